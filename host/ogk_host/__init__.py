@@ -1,0 +1,1 @@
+"""ogk ground tools: nominal trajectories, gain tables, table files."""

@@ -1,0 +1,38 @@
+/* ogk/interp.h -- interpolation of tabulated quantities over a strictly
+ * increasing grid (normally normalised time tau in [0, 1]).
+ *
+ * values holds n_grid rows of m quantities (row-major, row k at grid[k]).
+ * A query outside [grid[0], grid[n_grid-1]] returns OGK_E_RANGE and leaves
+ * out untouched: nothing is extrapolated silently. */
+#ifndef OGK_INTERP_H
+#define OGK_INTERP_H
+
+#include <stddef.h>
+#include "ogk/status.h"
+
+/* Checks that grid[0..n_grid-1] is finite and strictly increasing, n_grid >= 2. */
+ogk_status ogk_interp_check_grid(const double *grid, size_t n_grid);
+
+/* Piecewise-linear interpolation of m quantities at tau. */
+ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
+                             const double *values, size_t m,
+                             double tau, double *out);
+
+/* Shape-preserving piecewise-cubic Hermite (pchip, Fritsch-Carlson slopes with
+ * the Fritsch-Butland harmonic mean, one-sided three-point end slopes as in
+ * Moler's pchip). Writes slopes (n_grid x m, d value / d tau) once on the ground
+ * or at init; ogk_interp_pchip then evaluates in O(log n). */
+ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
+                                   const double *values, size_t m,
+                                   double *slopes);
+
+ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
+                            const double *values, const double *slopes,
+                            size_t m, double tau, double *out);
+
+/* Index k of the interval [grid[k], grid[k+1]] holding tau (the last interval
+ * for tau == grid[n_grid-1]). */
+ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
+                             size_t *k);
+
+#endif /* OGK_INTERP_H */

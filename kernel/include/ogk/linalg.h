@@ -1,0 +1,98 @@
+/* ogk/linalg.h -- fixed-size dense linear algebra on row-major double arrays.
+ *
+ * Matrices are plain row-major arrays: element (i, j) of an r x c matrix A is
+ * A[i * c + j]. Dimensions are checked against OGK_LA_MAX_N / OGK_LA_MAX_LONG
+ * (ogk/config.h); a zero or too-large dimension gives OGK_E_DIM. Outputs must
+ * not alias inputs unless a function says so (OGK_E_RANGE otherwise). Inputs
+ * are not checked for NaN/Inf by the products (cost); the factorizations do
+ * check and return OGK_E_NONFINITE. Factorizations keep their result in a
+ * caller-owned struct, so no memory is allocated and several run side by side. */
+#ifndef OGK_LINALG_H
+#define OGK_LINALG_H
+
+#include <stddef.h>
+#include "ogk/config.h"
+#include "ogk/status.h"
+
+/* Reciprocal 1-norm condition number below which a factorization reports
+ * OGK_E_ILL_CONDITIONED (its factors are still stored and usable). */
+#define OGK_LA_RCOND_MIN 1.0e-13
+
+/* y = A x,  A: rows x cols,  rows, cols <= OGK_LA_MAX_LONG. */
+ogk_status ogk_mat_vec(const double *A, size_t rows, size_t cols,
+                       const double *x, double *y);
+
+/* y = A^T x,  A: rows x cols,  y has cols entries. */
+ogk_status ogk_mat_t_vec(const double *A, size_t rows, size_t cols,
+                         const double *x, double *y);
+
+/* C = A B,  A: r x k, B: k x c, C: r x c; each dimension <= OGK_LA_MAX_LONG. */
+ogk_status ogk_mat_mul(const double *A, size_t r, size_t k,
+                       const double *B, size_t c, double *C);
+
+/* C = A^T B,  A: k x r, B: k x c, C: r x c. */
+ogk_status ogk_mat_mul_at_b(const double *A, size_t k, size_t r,
+                            const double *B, size_t c, double *C);
+
+/* C = A B^T,  A: r x k, B: c x k, C: r x c. */
+ogk_status ogk_mat_mul_a_bt(const double *A, size_t r, size_t k,
+                            const double *B, size_t c, double *C);
+
+/* At = A^T,  A: rows x cols. */
+ogk_status ogk_mat_transpose(const double *A, size_t rows, size_t cols,
+                             double *At);
+
+/* LU factorization with partial pivoting, P A = L U. */
+typedef struct {
+    double lu[OGK_LA_MAX_N * OGK_LA_MAX_N]; /* [-] L (unit lower, below diag) and U, row-major n x n */
+    size_t perm[OGK_LA_MAX_N];              /* [-] row i of P A is row perm[i] of A */
+    size_t n;                               /* [-] order; 0 when no valid factorization is held */
+    double anorm1;                          /* [units of A] 1-norm of A */
+    double rcond;                           /* [-] reciprocal 1-norm condition number, 1/(|A|_1 |A^-1|_1) */
+} ogk_lu_t;
+
+/* Factors the n x n matrix A. OGK_E_SINGULAR when a pivot is zero to working
+ * precision (lu->n is then 0); OGK_E_ILL_CONDITIONED when rcond < OGK_LA_RCOND_MIN
+ * (factors kept, solves allowed). */
+ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n);
+
+/* Solves A x = b with a held factorization; x may alias b. */
+ogk_status ogk_lu_solve(const ogk_lu_t *lu, const double *b, double *x);
+
+/* Ainv = A^-1 (n x n) with a held factorization. */
+ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv);
+
+/* Cholesky factorization A = L L^T of a symmetric positive definite matrix. */
+typedef struct {
+    double l[OGK_LA_MAX_N * OGK_LA_MAX_N]; /* [sqrt(units of A)] lower factor, row-major n x n, zero above diag */
+    size_t n;                              /* [-] order; 0 when no valid factorization is held */
+} ogk_chol_t;
+
+/* Factors A (only its lower triangle is read; symmetry is checked to
+ * 1e-12 relative). OGK_E_NOT_POSDEF when not positive definite or not symmetric. */
+ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n);
+
+/* Solves A x = b with a held factorization; x may alias b. */
+ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x);
+
+/* Householder QR workspace for least-squares and minimum-norm problems. */
+typedef struct {
+    double qr[OGK_LA_MAX_LONG * OGK_LA_MAX_N]; /* [-] Householder vectors and R, row-major long x short */
+    double tau[OGK_LA_MAX_N];                  /* [-] Householder scalars */
+    size_t long_dim;                           /* [-] long side of the factored matrix */
+    size_t short_dim;                          /* [-] short side (rank) */
+} ogk_qr_t;
+
+/* Least squares: x = argmin |A x - b|_2 for A: m x n with m >= n, full column
+ * rank (n <= OGK_LA_MAX_N, m <= OGK_LA_MAX_LONG). ws is caller-owned scratch.
+ * OGK_E_SINGULAR / OGK_E_ILL_CONDITIONED on (near) rank deficiency. */
+ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
+                     const double *b, double *x);
+
+/* Minimum norm: x = argmin |x|_2 subject to A x = b for A: m x n with m <= n,
+ * full row rank (m <= OGK_LA_MAX_N, n <= OGK_LA_MAX_LONG), computed from a QR
+ * factorization of A^T (equal to A^T (A A^T)^-1 b without forming A A^T). */
+ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
+                       const double *b, double *x);
+
+#endif /* OGK_LINALG_H */

@@ -1,0 +1,36 @@
+/* ogk/status.h -- status codes returned by every public kernel function. */
+#ifndef OGK_STATUS_H
+#define OGK_STATUS_H
+
+/* Keep OGK_STATUS_COUNT last; codes are stable across versions (append only). */
+typedef enum {
+    OGK_OK = 0,                 /* success */
+    OGK_E_NULL = 1,             /* a required pointer argument is NULL */
+    OGK_E_NONFINITE = 2,        /* NaN or Inf in an input */
+    OGK_E_DIM = 3,              /* a dimension is zero, too large, or inconsistent */
+    OGK_E_RANGE = 4,            /* a scalar argument is outside its valid range */
+    OGK_E_SINGULAR = 5,         /* matrix is singular to working precision */
+    OGK_E_ILL_CONDITIONED = 6,  /* matrix is invertible but its condition number is too large */
+    OGK_E_NOT_POSDEF = 7,       /* matrix is not symmetric positive definite */
+    OGK_E_SWITCH_OVERFLOW = 8,  /* more switching events than the result can hold */
+    OGK_E_STEP_LIMIT = 9,       /* propagation needs more steps than OGK_RK4_MAX_STEPS */
+    OGK_E_CALLBACK = 10,        /* a user callback returned a failure */
+    OGK_E_TABLE_MAGIC = 11,     /* table buffer does not start with the table magic */
+    OGK_E_TABLE_VERSION = 12,   /* unsupported table format version */
+    OGK_E_TABLE_TYPE = 13,      /* unsupported element type or table kind */
+    OGK_E_TABLE_DIM = 14,       /* table dimensions differ from what the caller expects */
+    OGK_E_TABLE_TRUNCATED = 15, /* buffer shorter than the header says */
+    OGK_E_TABLE_SIZE = 16,      /* buffer longer than the header says, or sizes overflow */
+    OGK_E_TABLE_CRC = 17,       /* CRC-32 mismatch (header or payload corrupted) */
+    OGK_E_NOT_INIT = 18,        /* context used before a successful init */
+    OGK_E_CONFIG = 19,          /* configuration rejected at init */
+    OGK_E_NOT_CONVERGED = 20,   /* an iteration did not converge within its bound */
+    OGK_E_SAFE_COMMAND = 21,    /* no correction computed: output holds the defined safe command */
+    OGK_STATUS_COUNT = 22
+} ogk_status;
+
+/* Stores in *name the code's identifier ("OGK_E_DIM", ...). Unknown codes
+ * give "OGK_E_UNKNOWN" and return OGK_E_RANGE. */
+ogk_status ogk_status_name(ogk_status code, const char **name);
+
+#endif /* OGK_STATUS_H */

@@ -1,0 +1,15 @@
+/* ogk/version.h -- kernel version. */
+#ifndef OGK_VERSION_H
+#define OGK_VERSION_H
+
+#include "ogk/status.h"
+
+#define OGK_VERSION_MAJOR 0
+#define OGK_VERSION_MINOR 1
+#define OGK_VERSION_PATCH 0
+#define OGK_VERSION_STRING "0.1.0"
+
+/* *text = OGK_VERSION_STRING. */
+ogk_status ogk_version(const char **text);
+
+#endif /* OGK_VERSION_H */

@@ -1,0 +1,211 @@
+/* interp.c -- linear and pchip interpolation over a strictly increasing grid. */
+#include "ogk/interp.h"
+
+#include <math.h>
+
+/* Bisection steps that locate an interval in any grid a size_t can index. */
+#define OGK_INTERP_MAX_SEARCH 64u
+
+ogk_status ogk_interp_check_grid(const double *grid, size_t n_grid)
+{
+    size_t k;
+
+    if (grid == NULL) {
+        return OGK_E_NULL;
+    }
+    if (n_grid < 2u) {
+        return OGK_E_DIM;
+    }
+    for (k = 0u; k < n_grid; ++k) {
+        if (!isfinite(grid[k])) {
+            return OGK_E_NONFINITE;
+        }
+        if (k > 0u && !(grid[k] > grid[k - 1u])) {
+            return OGK_E_RANGE;
+        }
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
+                             size_t *k)
+{
+    size_t lo;
+    size_t hi;
+    unsigned it;
+
+    if (grid == NULL || k == NULL) {
+        return OGK_E_NULL;
+    }
+    if (n_grid < 2u) {
+        return OGK_E_DIM;
+    }
+    if (!isfinite(tau)) {
+        return OGK_E_NONFINITE;
+    }
+    if (tau < grid[0] || tau > grid[n_grid - 1u]) {
+        return OGK_E_RANGE;
+    }
+    /* Invariant: grid[lo] <= tau <= grid[hi]. */
+    lo = 0u;
+    hi = n_grid - 1u;
+    for (it = 0u; it < OGK_INTERP_MAX_SEARCH && hi - lo > 1u; ++it) {
+        const size_t mid = lo + (hi - lo) / 2u;
+        if (grid[mid] <= tau) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    if (hi - lo > 1u) {
+        return OGK_E_NOT_CONVERGED; /* unreachable for n_grid < 2^64 */
+    }
+    *k = lo;
+    return OGK_OK;
+}
+
+ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
+                             const double *values, size_t m,
+                             double tau, double *out)
+{
+    size_t k;
+    size_t j;
+    double w;
+    ogk_status st;
+
+    if (values == NULL || out == NULL) {
+        return OGK_E_NULL;
+    }
+    if (m == 0u) {
+        return OGK_E_DIM;
+    }
+    st = ogk_interp_locate(grid, n_grid, tau, &k);
+    if (st != OGK_OK) {
+        return st;
+    }
+    w = (tau - grid[k]) / (grid[k + 1u] - grid[k]);
+    for (j = 0u; j < m; ++j) {
+        const double y0 = values[k * m + j];
+        const double y1 = values[(k + 1u) * m + j];
+        out[j] = y0 + w * (y1 - y0);
+    }
+    return OGK_OK;
+}
+
+/* One-sided three-point end slope, shape-preserving (Moler, "Numerical
+ * Computing with MATLAB", pchip): h0, h1 the first two intervals, d0, d1 their
+ * secant slopes. */
+static int sign_of(double v)
+{
+    return (v > 0.0) ? 1 : ((v < 0.0) ? -1 : 0);
+}
+
+static double pchip_end_slope(double h0, double h1, double d0, double d1)
+{
+    double s = ((2.0 * h0 + h1) * d0 - h0 * d1) / (h0 + h1);
+    if (sign_of(s) != sign_of(d0)) {
+        s = 0.0;
+    } else if (sign_of(d0) != sign_of(d1) && fabs(s) > fabs(3.0 * d0)) {
+        s = 3.0 * d0;
+    }
+    return s;
+}
+
+ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
+                                   const double *values, size_t m,
+                                   double *slopes)
+{
+    size_t k;
+    size_t j;
+    ogk_status st;
+
+    if (values == NULL || slopes == NULL) {
+        return OGK_E_NULL;
+    }
+    if (m == 0u) {
+        return OGK_E_DIM;
+    }
+    st = ogk_interp_check_grid(grid, n_grid);
+    if (st != OGK_OK) {
+        return st;
+    }
+    for (k = 0u; k < n_grid * m; ++k) {
+        if (!isfinite(values[k])) {
+            return OGK_E_NONFINITE;
+        }
+    }
+    for (j = 0u; j < m; ++j) {
+        if (n_grid == 2u) {
+            const double d = (values[m + j] - values[j]) / (grid[1] - grid[0]);
+            slopes[j] = d;
+            slopes[m + j] = d;
+            continue;
+        }
+        /* Interior: weighted harmonic mean of the adjacent secants
+         * (Fritsch & Butland 1984), zero at local extrema. */
+        for (k = 1u; k + 1u < n_grid; ++k) {
+            const double h0 = grid[k] - grid[k - 1u];
+            const double h1 = grid[k + 1u] - grid[k];
+            const double d0 = (values[k * m + j] - values[(k - 1u) * m + j]) / h0;
+            const double d1 = (values[(k + 1u) * m + j] - values[k * m + j]) / h1;
+            if (d0 * d1 <= 0.0) {
+                slopes[k * m + j] = 0.0;
+            } else {
+                const double w0 = 2.0 * h1 + h0;
+                const double w1 = h1 + 2.0 * h0;
+                slopes[k * m + j] = (w0 + w1) / (w0 / d0 + w1 / d1);
+            }
+        }
+        {
+            const double h0 = grid[1] - grid[0];
+            const double h1 = grid[2] - grid[1];
+            const double d0 = (values[m + j] - values[j]) / h0;
+            const double d1 = (values[2u * m + j] - values[m + j]) / h1;
+            slopes[j] = pchip_end_slope(h0, h1, d0, d1);
+        }
+        {
+            const size_t n = n_grid - 1u;
+            const double h0 = grid[n] - grid[n - 1u];
+            const double h1 = grid[n - 1u] - grid[n - 2u];
+            const double d0 = (values[n * m + j] - values[(n - 1u) * m + j]) / h0;
+            const double d1 = (values[(n - 1u) * m + j] - values[(n - 2u) * m + j]) / h1;
+            slopes[n * m + j] = pchip_end_slope(h0, h1, d0, d1);
+        }
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
+                            const double *values, const double *slopes,
+                            size_t m, double tau, double *out)
+{
+    size_t k;
+    size_t j;
+    double h;
+    double s;
+    double h00, h10, h01, h11;
+    ogk_status st;
+
+    if (values == NULL || slopes == NULL || out == NULL) {
+        return OGK_E_NULL;
+    }
+    if (m == 0u) {
+        return OGK_E_DIM;
+    }
+    st = ogk_interp_locate(grid, n_grid, tau, &k);
+    if (st != OGK_OK) {
+        return st;
+    }
+    h = grid[k + 1u] - grid[k];
+    s = (tau - grid[k]) / h;
+    /* Cubic Hermite basis on [0, 1]. */
+    h00 = (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s);
+    h10 = s * (1.0 - s) * (1.0 - s);
+    h01 = s * s * (3.0 - 2.0 * s);
+    h11 = s * s * (s - 1.0);
+    for (j = 0u; j < m; ++j) {
+        out[j] = h00 * values[k * m + j] + h10 * h * slopes[k * m + j] +
+                 h01 * values[(k + 1u) * m + j] + h11 * h * slopes[(k + 1u) * m + j];
+    }
+    return OGK_OK;
+}

@@ -1,0 +1,44 @@
+/* status.c -- names of the kernel status codes. */
+#include "ogk/status.h"
+
+#include <stddef.h>
+
+ogk_status ogk_status_name(ogk_status code, const char **name)
+{
+    /* Indexed by code value; keep in the order of ogk/status.h. */
+    static const char *const names[OGK_STATUS_COUNT] = {
+        "OGK_OK",
+        "OGK_E_NULL",
+        "OGK_E_NONFINITE",
+        "OGK_E_DIM",
+        "OGK_E_RANGE",
+        "OGK_E_SINGULAR",
+        "OGK_E_ILL_CONDITIONED",
+        "OGK_E_NOT_POSDEF",
+        "OGK_E_SWITCH_OVERFLOW",
+        "OGK_E_STEP_LIMIT",
+        "OGK_E_CALLBACK",
+        "OGK_E_TABLE_MAGIC",
+        "OGK_E_TABLE_VERSION",
+        "OGK_E_TABLE_TYPE",
+        "OGK_E_TABLE_DIM",
+        "OGK_E_TABLE_TRUNCATED",
+        "OGK_E_TABLE_SIZE",
+        "OGK_E_TABLE_CRC",
+        "OGK_E_NOT_INIT",
+        "OGK_E_CONFIG",
+        "OGK_E_NOT_CONVERGED",
+        "OGK_E_SAFE_COMMAND",
+    };
+    if (name == NULL) {
+        return OGK_E_NULL;
+    }
+    /* Through unsigned: a negative code wraps to a large index, and the
+     * comparison is meaningful whether the enum is int or (AAPCS) a byte. */
+    if ((unsigned)code >= (unsigned)OGK_STATUS_COUNT) {
+        *name = "OGK_E_UNKNOWN";
+        return OGK_E_RANGE;
+    }
+    *name = names[(unsigned)code];
+    return OGK_OK;
+}

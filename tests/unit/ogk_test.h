@@ -1,0 +1,37 @@
+/* ogk_test.h -- common includes and assertions of the kernel unit tests.
+ *
+ * On the host this pulls in cmocka; on the bare-metal Cortex-M7 build the
+ * include path puts port/cortex-m7/testrunner/cmocka.h first, a small runner
+ * with the same API subset and the same summary lines. Tests use only:
+ * cmocka_unit_test, cmocka_run_group_tests, assert_true, assert_false,
+ * assert_int_equal, assert_int_not_equal, assert_non_null, assert_null,
+ * print_error, print_message, fail, plus the OGK_ASSERT_* macros below. */
+#ifndef OGK_TEST_H
+#define OGK_TEST_H
+
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <math.h>
+#include <cmocka.h>
+
+/* |actual - expected| <= tol, with both values printed on failure. */
+#define OGK_ASSERT_NEAR(actual, expected, tol)                                  \
+    do {                                                                       \
+        const double ogk_a_ = (actual), ogk_e_ = (expected), ogk_t_ = (tol);   \
+        if (!(fabs(ogk_a_ - ogk_e_) <= ogk_t_)) {                              \
+            print_error("%s = %.17g, expected %.17g +- %.3g (%s:%d)\n",        \
+                        #actual, ogk_a_, ogk_e_, ogk_t_, __FILE__, __LINE__);  \
+            fail();                                                            \
+        }                                                                      \
+    } while (0)
+
+/* |actual - expected| <= rel * max(|expected|, floor). */
+#define OGK_ASSERT_REL(actual, expected, rel, floor)                            \
+    OGK_ASSERT_NEAR((actual), (expected),                                      \
+                    (rel) * fmax(fabs((double)(expected)), (floor)))
+
+#define OGK_ASSERT_STATUS(expr, code) assert_int_equal((int)(expr), (int)(code))
+
+#endif /* OGK_TEST_H */

@@ -1,0 +1,148 @@
+/* test_interp.c -- linear and pchip interpolation: exactness where it must be
+ * exact, hand-computed Fritsch-Butland slopes, shape preservation, and range
+ * errors instead of silent extrapolation. */
+#include "ogk_test.h"
+
+#include "ogk/interp.h"
+
+static void test_linear_exact_on_affine_data(void **state)
+{
+    const double grid[4] = {0.0, 0.1, 0.5, 1.0};
+    double values[8];
+    double out[2];
+    unsigned k;
+    (void)state;
+    for (k = 0u; k < 4u; ++k) {
+        values[2u * k] = 3.0 - 2.0 * grid[k];
+        values[2u * k + 1u] = 7.0 * grid[k];
+    }
+    for (k = 0u; k <= 20u; ++k) {
+        const double tau = 0.05 * (double)k;
+        OGK_ASSERT_STATUS(ogk_interp_linear(grid, 4u, values, 2u, tau, out), OGK_OK);
+        OGK_ASSERT_NEAR(out[0], 3.0 - 2.0 * tau, 1e-15);
+        OGK_ASSERT_NEAR(out[1], 7.0 * tau, 1e-15);
+    }
+}
+
+static void test_out_of_range_is_reported(void **state)
+{
+    const double grid[3] = {0.0, 0.5, 1.0};
+    const double values[3] = {1.0, 2.0, 3.0};
+    double slopes[3];
+    double out = -99.0;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_interp_linear(grid, 3u, values, 1u, -1e-12, &out), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_interp_linear(grid, 3u, values, 1u, 1.0 + 1e-12, &out), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_interp_linear(grid, 3u, values, 1u, NAN, &out), OGK_E_NONFINITE);
+    OGK_ASSERT_NEAR(out, -99.0, 0.0); /* untouched */
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 3u, values, 1u, slopes), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_interp_pchip(grid, 3u, values, slopes, 1u, 1.5, &out), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_interp_linear(grid, 3u, values, 1u, 1.0, &out), OGK_OK);
+    OGK_ASSERT_NEAR(out, 3.0, 0.0);
+}
+
+static void test_bad_grid(void **state)
+{
+    const double flat[3] = {0.0, 0.5, 0.5};
+    const double values[3] = {1.0, 2.0, 3.0};
+    double slopes[3];
+    double out;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_interp_check_grid(flat, 3u), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(flat, 3u, values, 1u, slopes), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_interp_check_grid(flat, 1u), OGK_E_DIM);
+    OGK_ASSERT_STATUS(ogk_interp_linear(flat, 3u, values, 0u, 0.1, &out), OGK_E_DIM);
+    OGK_ASSERT_STATUS(ogk_interp_linear(NULL, 3u, values, 1u, 0.1, &out), OGK_E_NULL);
+}
+
+static void test_pchip_slopes_by_hand(void **state)
+{
+    /* h = (1, 2), secants d = (1, 2). Interior (Fritsch-Butland weighted
+     * harmonic mean): w0 = 2*2+1 = 5, w1 = 2+2*1 = 4, slope = 9 / (5/1 + 4/2) = 9/7.
+     * Ends (three-point, shape-preserving): left ((2+2)*1 - 1*2)/3 = 2/3,
+     * right ((4+1)*2 - 2*1)/3 = 8/3. */
+    const double grid[3] = {0.0, 1.0, 3.0};
+    const double values[3] = {0.0, 1.0, 5.0};
+    double slopes[3];
+    double out;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 3u, values, 1u, slopes), OGK_OK);
+    OGK_ASSERT_NEAR(slopes[0], 2.0 / 3.0, 1e-15);
+    OGK_ASSERT_NEAR(slopes[1], 9.0 / 7.0, 1e-15);
+    OGK_ASSERT_NEAR(slopes[2], 8.0 / 3.0, 1e-15);
+    /* Hermite cubic at the middle of [1, 3]: (y0 + y1)/2 + h (m0 - m1)/8. */
+    OGK_ASSERT_STATUS(ogk_interp_pchip(grid, 3u, values, slopes, 1u, 2.0, &out), OGK_OK);
+    OGK_ASSERT_NEAR(out, 3.0 + 2.0 * (9.0 / 7.0 - 8.0 / 3.0) / 8.0, 1e-14);
+}
+
+static void test_pchip_interpolates_and_preserves_shape(void **state)
+{
+    /* Monotone step-like data with a flat part and an extremum. */
+    const double grid[7] = {0.0, 0.1, 0.2, 0.45, 0.6, 0.8, 1.0};
+    const double values[7] = {0.0, 0.05, 1.0, 1.0, 1.2, 0.3, 0.2};
+    double slopes[7];
+    double out, prev;
+    unsigned k;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 7u, values, 1u, slopes), OGK_OK);
+    for (k = 0u; k < 7u; ++k) {
+        OGK_ASSERT_STATUS(ogk_interp_pchip(grid, 7u, values, slopes, 1u, grid[k], &out), OGK_OK);
+        OGK_ASSERT_NEAR(out, values[k], 1e-15);
+    }
+    /* Rising on [0, 0.2], constant on [0.2, 0.45], rising then falling: no
+     * overshoot anywhere (values stay within each interval's end values). */
+    prev = 0.0;
+    for (k = 0u; k <= 1000u; ++k) {
+        const double tau = 0.001 * (double)k;
+        size_t iv;
+        double lo, hi;
+        OGK_ASSERT_STATUS(ogk_interp_pchip(grid, 7u, values, slopes, 1u, tau, &out), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_interp_locate(grid, 7u, tau, &iv), OGK_OK);
+        lo = fmin(values[iv], values[iv + 1u]);
+        hi = fmax(values[iv], values[iv + 1u]);
+        assert_true(out >= lo - 1e-14 && out <= hi + 1e-14);
+        if (tau <= 0.2) {
+            assert_true(out >= prev - 1e-15);
+        }
+        prev = out;
+    }
+}
+
+static void test_pchip_two_points_is_linear(void **state)
+{
+    const double grid[2] = {0.0, 1.0};
+    const double values[2] = {2.0, 4.0};
+    double slopes[2];
+    double out;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 2u, values, 1u, slopes), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_interp_pchip(grid, 2u, values, slopes, 1u, 0.3, &out), OGK_OK);
+    OGK_ASSERT_NEAR(out, 2.6, 1e-15);
+}
+
+static void test_locate_edges(void **state)
+{
+    const double grid[4] = {0.0, 0.25, 0.5, 1.0};
+    size_t k = 99u;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_interp_locate(grid, 4u, 0.0, &k), OGK_OK);
+    assert_int_equal(k, 0u);
+    OGK_ASSERT_STATUS(ogk_interp_locate(grid, 4u, 0.25, &k), OGK_OK);
+    assert_int_equal(k, 1u);
+    OGK_ASSERT_STATUS(ogk_interp_locate(grid, 4u, 1.0, &k), OGK_OK);
+    assert_int_equal(k, 2u);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_linear_exact_on_affine_data),
+        cmocka_unit_test(test_out_of_range_is_reported),
+        cmocka_unit_test(test_bad_grid),
+        cmocka_unit_test(test_pchip_slopes_by_hand),
+        cmocka_unit_test(test_pchip_interpolates_and_preserves_shape),
+        cmocka_unit_test(test_pchip_two_points_is_linear),
+        cmocka_unit_test(test_locate_edges),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

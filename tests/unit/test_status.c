@@ -1,0 +1,53 @@
+/* test_status.c -- every status code has its own name; unknown codes are reported. */
+#include "ogk_test.h"
+
+#include <string.h>
+
+#include "ogk/status.h"
+#include "ogk/version.h"
+
+static void test_each_code_named_and_distinct(void **state)
+{
+    unsigned i, j;
+    const char *names[OGK_STATUS_COUNT];
+    (void)state;
+    for (i = 0u; i < (unsigned)OGK_STATUS_COUNT; ++i) {
+        OGK_ASSERT_STATUS(ogk_status_name((ogk_status)i, &names[i]), OGK_OK);
+        assert_non_null(names[i]);
+        assert_true(strncmp(names[i], "OGK_", 4u) == 0);
+        for (j = 0u; j < i; ++j) {
+            assert_true(strcmp(names[i], names[j]) != 0);
+        }
+    }
+    assert_true(strcmp(names[OGK_OK], "OGK_OK") == 0);
+    assert_true(strcmp(names[OGK_E_TABLE_CRC], "OGK_E_TABLE_CRC") == 0);
+    assert_true(strcmp(names[OGK_E_SAFE_COMMAND], "OGK_E_SAFE_COMMAND") == 0);
+}
+
+static void test_unknown_code_and_null(void **state)
+{
+    const char *name = NULL;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_status_name(OGK_STATUS_COUNT, &name), OGK_E_RANGE);
+    assert_true(strcmp(name, "OGK_E_UNKNOWN") == 0);
+    OGK_ASSERT_STATUS(ogk_status_name(OGK_OK, NULL), OGK_E_NULL);
+}
+
+static void test_version(void **state)
+{
+    const char *text = NULL;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_version(&text), OGK_OK);
+    assert_true(strcmp(text, OGK_VERSION_STRING) == 0);
+    OGK_ASSERT_STATUS(ogk_version(NULL), OGK_E_NULL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_each_code_named_and_distinct),
+        cmocka_unit_test(test_unknown_code_and_null),
+        cmocka_unit_test(test_version),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,238 @@
+/* test_table.c -- the table loader accepts a well-formed table and rejects
+ * each kind of damage with its own status. The writer here is the test's
+ * own, written from the layout documented in ogk/table.h. */
+#include "ogk_test.h"
+
+#include <string.h>
+
+#include "ogk/crc32.h"
+#include "ogk/table.h"
+
+#define KIND_TEST 0x54455354u /* "TEST" */
+#define GRID 5u
+#define ROWS 2u
+#define COLS 3u
+#define N_VALUES (GRID * (1u + ROWS * COLS))
+#define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + 8u * N_VALUES)
+
+static void put_u16(uint8_t *p, uint16_t v)
+{
+    p[0] = (uint8_t)(v & 0xFFu);
+    p[1] = (uint8_t)(v >> 8);
+}
+
+static void put_u32(uint8_t *p, uint32_t v)
+{
+    unsigned i;
+    for (i = 0u; i < 4u; ++i) {
+        p[i] = (uint8_t)((v >> (8u * i)) & 0xFFu);
+    }
+}
+
+static void put_f64(uint8_t *p, double d)
+{
+    uint64_t bits;
+    unsigned i;
+    memcpy(&bits, &d, sizeof bits);
+    for (i = 0u; i < 8u; ++i) {
+        p[i] = (uint8_t)((bits >> (8u * i)) & 0xFFu);
+    }
+}
+
+static double entry_value(unsigned k, unsigned idx)
+{
+    return 100.0 * (double)k + (double)idx + 0.25;
+}
+
+/* Recomputes both CRCs after a deliberate edit of the header. */
+static void seal(uint8_t *buf)
+{
+    uint32_t crc = 0u;
+    (void)ogk_crc32_update(&crc, buf + OGK_TABLE_HEADER_SIZE, 8u * N_VALUES);
+    put_u32(buf + 40, crc);
+    crc = 0u;
+    (void)ogk_crc32_update(&crc, buf, 44u);
+    put_u32(buf + 44, crc);
+}
+
+static void build(uint8_t *buf)
+{
+    unsigned k, i;
+    memset(buf, 0, TABLE_BYTES);
+    memcpy(buf, "OGKT", 4u);
+    put_u16(buf + 4, 1u);
+    put_u16(buf + 6, 1u);
+    put_u32(buf + 8, KIND_TEST);
+    put_u16(buf + 12, 2u);
+    put_u32(buf + 16, ROWS);
+    put_u32(buf + 20, COLS);
+    put_u32(buf + 32, GRID);
+    put_u32(buf + 36, 8u * N_VALUES);
+    for (k = 0u; k < GRID; ++k) {
+        put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * k, 0.25 * (double)k);
+        for (i = 0u; i < ROWS * COLS; ++i) {
+            put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * (GRID + k * ROWS * COLS + i),
+                    entry_value(k, i));
+        }
+    }
+    seal(buf);
+}
+
+static ogk_table_spec_t spec(void)
+{
+    ogk_table_spec_t s;
+    memset(&s, 0, sizeof s);
+    s.kind = KIND_TEST;
+    s.ndims = 2u;
+    s.dims[0] = ROWS;
+    s.dims[1] = COLS;
+    s.min_grid = 2u;
+    s.max_grid = 100u;
+    return s;
+}
+
+static uint8_t table_buf[TABLE_BYTES + 8u];
+
+static void test_valid_table_reads_back(void **state)
+{
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    double grid[GRID];
+    double data[GRID * ROWS * COLS];
+    double one;
+    unsigned k, i;
+    (void)state;
+    build(table_buf);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_OK);
+    assert_int_equal(v.grid_size, GRID);
+    assert_int_equal(v.entry_len, ROWS * COLS);
+    OGK_ASSERT_STATUS(ogk_table_read_grid(&v, grid, GRID), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_table_read_data(&v, data, GRID * ROWS * COLS), OGK_OK);
+    for (k = 0u; k < GRID; ++k) {
+        OGK_ASSERT_NEAR(grid[k], 0.25 * (double)k, 0.0);
+        for (i = 0u; i < ROWS * COLS; ++i) {
+            OGK_ASSERT_NEAR(data[k * ROWS * COLS + i], entry_value(k, i), 0.0);
+        }
+    }
+    OGK_ASSERT_STATUS(ogk_table_get(&v, 3u, 4u, &one), OGK_OK);
+    OGK_ASSERT_NEAR(one, entry_value(3u, 4u), 0.0);
+    OGK_ASSERT_STATUS(ogk_table_get(&v, GRID, 0u, &one), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_table_get(&v, 0u, ROWS * COLS, &one), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_table_read_grid(&v, grid, GRID - 1u), OGK_E_DIM);
+    /* A zero dims entry in the spec accepts any size there. */
+    s.dims[1] = 0u;
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_OK);
+}
+
+static void test_corrupted_payload_byte(void **state)
+{
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    (void)state;
+    build(table_buf);
+    table_buf[OGK_TABLE_HEADER_SIZE + 77u] ^= 0x10u;
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_CRC);
+    assert_null(v.buf); /* view cleared: nothing can be read from it */
+}
+
+static void test_corrupted_header_byte(void **state)
+{
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    (void)state;
+    build(table_buf);
+    table_buf[33] ^= 0x01u; /* grid size, header CRC not updated */
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_CRC);
+}
+
+static void test_wrong_dimension(void **state)
+{
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    (void)state;
+    build(table_buf);
+    s.dims[0] = ROWS + 1u;
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_DIM);
+    s = spec();
+    s.ndims = 3u;
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_DIM);
+    s = spec();
+    s.max_grid = GRID - 1u;
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_DIM);
+}
+
+static void test_truncated_and_oversized(void **state)
+{
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    (void)state;
+    build(table_buf);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES - 1u, &s, &v), OGK_E_TABLE_TRUNCATED);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, 20u, &s, &v), OGK_E_TABLE_TRUNCATED);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES + 8u, &s, &v), OGK_E_TABLE_SIZE);
+}
+
+static void test_magic_version_type_kind(void **state)
+{
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    (void)state;
+    build(table_buf);
+    table_buf[0] = 'X';
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_MAGIC);
+    build(table_buf);
+    put_u16(table_buf + 4, 2u);
+    seal(table_buf);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_VERSION);
+    build(table_buf);
+    put_u16(table_buf + 6, 2u);
+    seal(table_buf);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_TYPE);
+    build(table_buf);
+    s.kind = KIND_TEST + 1u;
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_TYPE);
+}
+
+static void test_inconsistent_payload_size_and_nan(void **state)
+{
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    (void)state;
+    build(table_buf);
+    put_u32(table_buf + 36, 8u * N_VALUES - 8u);
+    seal(table_buf);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_SIZE);
+    build(table_buf);
+    put_f64(table_buf + OGK_TABLE_HEADER_SIZE + 8u * 9u, NAN);
+    seal(table_buf);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_NONFINITE);
+}
+
+static void test_null_and_unopened(void **state)
+{
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    double grid[GRID];
+    (void)state;
+    build(table_buf);
+    OGK_ASSERT_STATUS(ogk_table_open(NULL, TABLE_BYTES, &s, &v), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, NULL, &v), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, NULL), OGK_E_NULL);
+    memset(&v, 0, sizeof v);
+    OGK_ASSERT_STATUS(ogk_table_read_grid(&v, grid, GRID), OGK_E_NOT_INIT);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_valid_table_reads_back),
+        cmocka_unit_test(test_corrupted_payload_byte),
+        cmocka_unit_test(test_corrupted_header_byte),
+        cmocka_unit_test(test_wrong_dimension),
+        cmocka_unit_test(test_truncated_and_oversized),
+        cmocka_unit_test(test_magic_version_type_kind),
+        cmocka_unit_test(test_inconsistent_payload_size_and_nan),
+        cmocka_unit_test(test_null_and_unopened),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
