@@ -1,0 +1,324 @@
+"""Builds the cffi extension ``ogk._ogk_cffi`` (API mode) in place.
+
+The extension compiles every kernel source (kernel/src/*.c) together with the
+harness's C models (harness/csrc/*.c), so Python calls exactly the C the flight
+build compiles. The cdefs below are written by hand from kernel/include/ogk/*.h
+(cffi cannot read #include); integer macros use ``...`` so their values come
+from the headers at compile time, and struct layouts are completed by the C
+compiler (``...;``), so a -D override of a capacity limit cannot desynchronise
+Python and C.
+
+Run from anywhere:  .venv/bin/python harness/build_ffi.py
+(`make ffi` does this whenever a kernel source, harness/csrc or this file changes.)
+"""
+from __future__ import annotations
+
+import shutil
+import sys
+from pathlib import Path
+
+import cffi
+
+HARNESS_DIR = Path(__file__).resolve().parent
+ROOT = HARNESS_DIR.parent
+KERNEL_INCLUDE = ROOT / "kernel" / "include"
+KERNEL_SRC = ROOT / "kernel" / "src"
+CSRC = HARNESS_DIR / "csrc"
+PACKAGE_DIR = HARNESS_DIR / "ogk"
+BUILD_DIR = ROOT / "build" / "ffi"
+MODULE_NAME = "ogk._ogk_cffi"
+
+# ----------------------------------------------------------------- cdefs
+CDEF_STATUS = """
+typedef enum {
+    OGK_OK = 0,
+    OGK_E_NULL = 1,
+    OGK_E_NONFINITE = 2,
+    OGK_E_DIM = 3,
+    OGK_E_RANGE = 4,
+    OGK_E_SINGULAR = 5,
+    OGK_E_ILL_CONDITIONED = 6,
+    OGK_E_NOT_POSDEF = 7,
+    OGK_E_SWITCH_OVERFLOW = 8,
+    OGK_E_STEP_LIMIT = 9,
+    OGK_E_CALLBACK = 10,
+    OGK_E_TABLE_MAGIC = 11,
+    OGK_E_TABLE_VERSION = 12,
+    OGK_E_TABLE_TYPE = 13,
+    OGK_E_TABLE_DIM = 14,
+    OGK_E_TABLE_TRUNCATED = 15,
+    OGK_E_TABLE_SIZE = 16,
+    OGK_E_TABLE_CRC = 17,
+    OGK_E_NOT_INIT = 18,
+    OGK_E_CONFIG = 19,
+    OGK_E_NOT_CONVERGED = 20,
+    OGK_E_SAFE_COMMAND = 21,
+    OGK_STATUS_COUNT = 22
+} ogk_status;
+
+ogk_status ogk_status_name(ogk_status code, const char **name);
+"""
+
+CDEF_VERSION = """
+#define OGK_VERSION_MAJOR ...
+#define OGK_VERSION_MINOR ...
+#define OGK_VERSION_PATCH ...
+ogk_status ogk_version(const char **text);
+"""
+
+CDEF_CONFIG = """
+#define OGK_LA_MAX_N ...
+#define OGK_LA_MAX_LONG ...
+#define OGK_RK4_MAX_STATE ...
+#define OGK_RK4_MAX_SWITCHES ...
+#define OGK_RK4_MAX_STEPS ...
+#define OGK_RK4_MAX_BISECTIONS ...
+#define OGK_TABLE_MAX_DIMS ...
+"""
+
+CDEF_CRC32 = """
+ogk_status ogk_crc32_update(uint32_t *crc, const uint8_t *data, size_t len);
+"""
+
+CDEF_TABLE = """
+#define OGK_TABLE_HEADER_SIZE ...
+#define OGK_TABLE_VERSION ...
+#define OGK_TABLE_F64 ...
+
+typedef struct {
+    uint32_t kind;
+    uint16_t ndims;
+    uint32_t dims[...];
+    uint32_t min_grid;
+    uint32_t max_grid;
+    ...;
+} ogk_table_spec_t;
+
+typedef struct {
+    const uint8_t *buf;
+    uint32_t kind;
+    uint16_t ndims;
+    uint32_t dims[...];
+    uint32_t grid_size;
+    uint32_t entry_len;
+    ...;
+} ogk_table_view_t;
+
+ogk_status ogk_table_open(const uint8_t *buf, size_t len,
+                          const ogk_table_spec_t *spec, ogk_table_view_t *view);
+ogk_status ogk_table_read_grid(const ogk_table_view_t *view, double *grid_out,
+                               size_t capacity);
+ogk_status ogk_table_read_data(const ogk_table_view_t *view, double *data_out,
+                               size_t capacity);
+ogk_status ogk_table_get(const ogk_table_view_t *view, uint32_t k,
+                         uint32_t index, double *value);
+"""
+
+CDEF_INTERP = """
+ogk_status ogk_interp_check_grid(const double *grid, size_t n_grid);
+ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
+                             const double *values, size_t m,
+                             double tau, double *out);
+ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
+                                   const double *values, size_t m,
+                                   double *slopes);
+ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
+                            const double *values, const double *slopes,
+                            size_t m, double tau, double *out);
+ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
+                             size_t *k);
+"""
+
+CDEF_LINALG = """
+static const double OGK_LA_RCOND_MIN;
+
+ogk_status ogk_mat_vec(const double *A, size_t rows, size_t cols,
+                       const double *x, double *y);
+ogk_status ogk_mat_t_vec(const double *A, size_t rows, size_t cols,
+                         const double *x, double *y);
+ogk_status ogk_mat_mul(const double *A, size_t r, size_t k,
+                       const double *B, size_t c, double *C);
+ogk_status ogk_mat_mul_at_b(const double *A, size_t k, size_t r,
+                            const double *B, size_t c, double *C);
+ogk_status ogk_mat_mul_a_bt(const double *A, size_t r, size_t k,
+                            const double *B, size_t c, double *C);
+ogk_status ogk_mat_transpose(const double *A, size_t rows, size_t cols,
+                             double *At);
+
+typedef struct {
+    double lu[...];
+    size_t perm[...];
+    size_t n;
+    double anorm1;
+    double rcond;
+    ...;
+} ogk_lu_t;
+
+ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n);
+ogk_status ogk_lu_solve(const ogk_lu_t *lu, const double *b, double *x);
+ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv);
+
+typedef struct {
+    double l[...];
+    size_t n;
+    ...;
+} ogk_chol_t;
+
+ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n);
+ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x);
+
+typedef struct {
+    double qr[...];
+    double tau[...];
+    size_t long_dim;
+    size_t short_dim;
+    ...;
+} ogk_qr_t;
+
+ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
+                     const double *b, double *x);
+ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
+                       const double *b, double *x);
+"""
+
+CDEF_RK4 = """
+typedef ogk_status (*ogk_rhs_fn)(void *user, double t, const double *x,
+                                 int mode, double *xdot);
+typedef ogk_status (*ogk_switch_fn)(void *user, double t, const double *x,
+                                    int mode, double *s);
+
+typedef struct {
+    size_t n;
+    double h;
+    ogk_rhs_fn rhs;
+    ogk_switch_fn sw;
+    void *user;
+    double s_tol;
+    double t_tol;
+    ...;
+} ogk_rk4_problem_t;
+
+#define OGK_SWITCH_BY_S_TOL ...
+#define OGK_SWITCH_BY_TIME_TOL ...
+
+typedef struct {
+    double t;
+    double s;
+    int mode_after;
+    uint8_t how;
+    uint16_t bisections;
+    size_t dense_index;
+    ...;
+} ogk_switch_event_t;
+
+typedef struct {
+    ogk_switch_event_t sw[...];
+    size_t n_switches;
+    size_t n_steps;
+    size_t n_rhs;
+    int mode_final;
+    double t_reached;
+    ...;
+} ogk_rk4_result_t;
+
+typedef struct {
+    double *t;
+    double *x;
+    uint8_t *mode;
+    size_t capacity;
+    size_t count;
+    ...;
+} ogk_rk4_dense_t;
+
+ogk_status ogk_rk4_step(const ogk_rk4_problem_t *p, double t, const double *x,
+                        double dt, int mode, double *x_next);
+ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
+                             const double *x0, int mode0, double tf,
+                             ogk_rk4_result_t *res, double *xf,
+                             ogk_rk4_dense_t *dense);
+"""
+
+# harness/csrc/models.h: C models for tests and demos (not flight code).
+CDEF_MODELS = """
+typedef struct {
+    double mu;
+    ...;
+} ogk_model_two_body_t;
+
+ogk_status ogk_model_two_body_rhs(void *user, double t, const double *x,
+                                  int mode, double *xdot);
+
+typedef struct {
+    double u_max;
+    ...;
+} ogk_model_min_fuel_di_t;
+
+#define OGK_MODEL_MIN_FUEL_DI_N ...
+ogk_status ogk_model_min_fuel_di_rhs(void *user, double t, const double *x,
+                                     int mode, double *xdot);
+ogk_status ogk_model_min_fuel_di_switch(void *user, double t, const double *x,
+                                        int mode, double *s);
+
+typedef struct {
+    double rate;
+    double t_fail;
+    ...;
+} ogk_model_decay_t;
+
+ogk_status ogk_model_decay_rhs(void *user, double t, const double *x,
+                               int mode, double *xdot);
+
+typedef struct {
+    double omega;
+    ...;
+} ogk_model_oscillator_t;
+
+ogk_status ogk_model_oscillator_rhs(void *user, double t, const double *x,
+                                    int mode, double *xdot);
+ogk_status ogk_model_oscillator_switch(void *user, double t, const double *x,
+                                       int mode, double *s);
+"""
+
+CDEF = "".join(
+    [CDEF_STATUS, CDEF_VERSION, CDEF_CONFIG, CDEF_CRC32, CDEF_TABLE,
+     CDEF_INTERP, CDEF_LINALG, CDEF_RK4, CDEF_MODELS]
+)
+
+HEADERS = ["status", "version", "config", "crc32", "table", "interp", "linalg", "rk4"]
+SOURCE = "".join(f'#include "ogk/{h}.h"\n' for h in HEADERS) + '#include "models.h"\n'
+
+
+def kernel_sources() -> list[str]:
+    return [str(p) for p in sorted(KERNEL_SRC.glob("*.c"))] + [
+        str(p) for p in sorted(CSRC.glob("*.c"))
+    ]
+
+
+def make_builder() -> cffi.FFI:
+    ffibuilder = cffi.FFI()
+    ffibuilder.cdef(CDEF)
+    ffibuilder.set_source(
+        MODULE_NAME,
+        SOURCE,
+        sources=kernel_sources(),
+        include_dirs=[str(KERNEL_INCLUDE), str(CSRC)],
+        extra_compile_args=["-std=c99", "-O2"],
+        libraries=["m"],
+    )
+    return ffibuilder
+
+
+def main() -> int:
+    BUILD_DIR.mkdir(parents=True, exist_ok=True)
+    built = Path(make_builder().compile(tmpdir=str(BUILD_DIR), verbose=False))
+    # Install the extension next to the package sources (editable install).
+    for old in PACKAGE_DIR.glob("_ogk_cffi*"):
+        old.unlink()
+    target = PACKAGE_DIR / built.name
+    shutil.copy2(built, target)
+    print(f"build_ffi: {target.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,40 @@
+"""The `ogk` console script (run as a subprocess, as a user would)."""
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+OGK = Path(sys.executable).parent / "ogk"
+
+
+def run(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([str(OGK), *args], capture_output=True, text=True, timeout=60)
+
+
+def test_help() -> None:
+    out = run("--help")
+    assert out.returncode == 0, out.stderr
+    assert "version" in out.stdout and "demo" in out.stdout
+
+
+def test_version() -> None:
+    out = run("version")
+    assert out.returncode == 0, out.stderr
+    assert re.search(r"harness \d+\.\d+\.\d+", out.stdout)
+    assert re.search(r"kernel\s+\d+\.\d+\.\d+", out.stdout)
+
+
+def test_demo_switching() -> None:
+    out = run("demo", "switching")
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "closed form" in out.stdout
+    errors = [float(m) for m in re.findall(r"\s([-+]?\d\.\d+e[-+]\d+)\s+[01]\s+\d+\s*$",
+                                            out.stdout, flags=re.M)]
+    assert len(errors) == 2 and max(abs(e) for e in errors) < 1e-10
+
+
+def test_no_command_is_usage_error() -> None:
+    out = run()
+    assert out.returncode == 2
