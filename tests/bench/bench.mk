@@ -1,0 +1,23 @@
+# Benchmarks: `make bench` prints instruction counts (valgrind callgrind,
+# repeatable) and ns per call (host wall clock, indicative only on a shared
+# 2-core machine) for the kernel's hot paths.
+BENCH_DIR := $(B)/bench
+BENCH_CORE := $(BENCH_DIR)/bench_core
+BENCH_CASES := rk4_step switch
+PORT_HOST_SRC := port/host/ogk_port_host.c
+
+$(BENCH_CORE): tests/bench/bench_core.c $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
+	@mkdir -p $(@D)
+	gcc -std=c99 -O2 -g -Wall -Wextra -Werror $(KINC) -Iport/include \
+	  $< $(PORT_HOST_SRC) $(B)/host/libogk.a -o $@ -lm
+
+.PHONY: bench
+bench: $(BENCH_CORE)
+	@echo "== ogk bench (host x86-64, gcc -O2) =="
+	@for c in $(BENCH_CASES); do \
+	  n=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+	       --collect-atstart=no --toggle-collect=bench_$${c}_once \
+	       $(BENCH_CORE) once $$c 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'); \
+	  printf '%-10s %10s instructions/call (callgrind)   ' $$c "$$n"; \
+	  $(BENCH_CORE) time $$c; \
+	done
