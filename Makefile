@@ -2,6 +2,8 @@
 # install what they need themselves, idempotently (Debian 12, as root).
 SHELL := /bin/bash
 .DEFAULT_GOAL := all
+# Keep intermediate objects (sanitizer builds of the kernel) between links.
+.SECONDARY:
 
 # ---------------------------------------------------------------- setup
 APT_PKGS := build-essential valgrind clang clang-tidy libclang-rt-14-dev \
@@ -92,7 +94,7 @@ lint: | apt
 	@echo "lint: kernel/ compiles clean (gcc x86-64, arm-none-eabi cortex-m7) with strict flags"
 	cppcheck --quiet --std=c99 --enable=warning,style,performance,portability \
 	  --inline-suppr --suppressions-list=docs/cppcheck-suppressions.txt \
-	  --error-exitcode=3 $(KINC) kernel/src
+	  --error-exitcode=3 $(KINC) $(KSRC)
 	@echo "lint: cppcheck clean (justified suppressions: docs/cppcheck-suppressions.txt)"
 
 # ---------------------------------------------------------------- Python harness (cffi)
@@ -118,6 +120,7 @@ test: deps
 	$(MAKE) lint
 	$(MAKE) test-unit-host
 	$(MAKE) test-unit-arm
+	$(MAKE) test-arm-selftest test-qemu-plugin
 	$(MAKE) test-eigen
 	$(MAKE) test-python
 

@@ -4,7 +4,7 @@
 BENCH_DIR := $(B)/bench
 BENCH_CORE := $(BENCH_DIR)/bench_core
 BENCH_CASES := rk4_step switch
-PORT_HOST_SRC := port/host/ogk_port_host.c
+
 
 $(BENCH_CORE): tests/bench/bench_core.c $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
 	@mkdir -p $(@D)

@@ -7,8 +7,16 @@
 #include <stdint.h>
 #include "ogk/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* *crc = CRC-32 of data[0..len-1], continuing from a previous value: pass
  * *crc = 0 for a new computation (len may be 0; data may be NULL only then). */
 ogk_status ogk_crc32_update(uint32_t *crc, const uint8_t *data, size_t len);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OGK_CRC32_H */

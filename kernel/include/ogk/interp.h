@@ -10,6 +10,10 @@
 #include <stddef.h>
 #include "ogk/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Checks that grid[0..n_grid-1] is finite and strictly increasing, n_grid >= 2. */
 ogk_status ogk_interp_check_grid(const double *grid, size_t n_grid);
 
@@ -34,5 +38,9 @@ ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
  * for tau == grid[n_grid-1]). */
 ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
                              size_t *k);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OGK_INTERP_H */

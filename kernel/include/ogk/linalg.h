@@ -14,6 +14,10 @@
 #include "ogk/config.h"
 #include "ogk/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Reciprocal 1-norm condition number below which a factorization reports
  * OGK_E_ILL_CONDITIONED (its factors are still stored and usable). */
 #define OGK_LA_RCOND_MIN 1.0e-13
@@ -94,5 +98,9 @@ ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
  * factorization of A^T (equal to A^T (A A^T)^-1 b without forming A A^T). */
 ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
                        const double *b, double *x);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OGK_LINALG_H */

@@ -17,6 +17,10 @@
 #include "ogk/config.h"
 #include "ogk/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Right-hand side: writes xdot[0..n-1] = f(t, x, mode). Any status other than
  * OGK_OK stops the propagation with OGK_E_CALLBACK. */
 typedef ogk_status (*ogk_rhs_fn)(void *user, double t, const double *x,
@@ -82,5 +86,9 @@ ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
                              const double *x0, int mode0, double tf,
                              ogk_rk4_result_t *res, double *xf,
                              ogk_rk4_dense_t *dense);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OGK_RK4_H */

@@ -2,6 +2,10 @@
 #ifndef OGK_STATUS_H
 #define OGK_STATUS_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Keep OGK_STATUS_COUNT last; codes are stable across versions (append only). */
 typedef enum {
     OGK_OK = 0,                 /* success */
@@ -32,5 +36,9 @@ typedef enum {
 /* Stores in *name the code's identifier ("OGK_E_DIM", ...). Unknown codes
  * give "OGK_E_UNKNOWN" and return OGK_E_RANGE. */
 ogk_status ogk_status_name(ogk_status code, const char **name);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OGK_STATUS_H */

@@ -24,6 +24,10 @@
 #include "ogk/config.h"
 #include "ogk/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define OGK_TABLE_HEADER_SIZE 48u
 #define OGK_TABLE_VERSION 1u
 #define OGK_TABLE_F64 1u
@@ -67,5 +71,9 @@ ogk_status ogk_table_read_data(const ogk_table_view_t *view, double *data_out,
 /* Reads value `index` (0..entry_len-1) of entry k. */
 ogk_status ogk_table_get(const ogk_table_view_t *view, uint32_t k,
                          uint32_t index, double *value);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OGK_TABLE_H */

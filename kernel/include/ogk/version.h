@@ -4,6 +4,10 @@
 
 #include "ogk/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define OGK_VERSION_MAJOR 0
 #define OGK_VERSION_MINOR 1
 #define OGK_VERSION_PATCH 0
@@ -11,5 +15,9 @@
 
 /* *text = OGK_VERSION_STRING. */
 ogk_status ogk_version(const char **text);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OGK_VERSION_H */

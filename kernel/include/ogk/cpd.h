@@ -1,0 +1,156 @@
+/* ogk/cpd.h -- constrained PD (CPD) attitude control with thrust vectoring.
+ *
+ * Pontani & Celani 2021 (seeds/004), sections 2.2 and 5.1-5.4; design notes
+ * and the deviations from the paper in docs/cpd.md.
+ *
+ * Frames (all right-handed):
+ *   c      inertial, c1-c2 plane = nominal orbit plane;
+ *   a      auxiliary inertial, a1 = c2, a2 = -c3, a3 = -c1 (matrix R_A);
+ *   body   x_b longitudinal (thrust axis), from a by R1(Phi) R2(Theta) R3(Psi)
+ *          (eq. 9; R_i are elementary FRAME rotations, e.g.
+ *          R3(t) = [[cos t, sin t, 0], [-sin t, cos t, 0], [0, 0, 1]]);
+ *   r-t-n  local: r radial, t = (-sin xi, cos xi, 0) in c, n = r x t, from the
+ *          right ascension xi and declination phi.
+ * Thrust direction in r-t-n: (cos b sin a, cos b cos a, sin b) (eqs. 39, 52).
+ * Thrust direction of the deflected nozzle in body axes:
+ *   (cos Dz cos Dy, sin Dz, cos Dz sin Dy) (eq. 50), which with the swivel
+ *   point at -l x_b gives the torques of eqs. (14)-(15).
+ *
+ * Control law (eqs. 45-46), one call of ogk_cpd_step per control sample:
+ *   M_xc  = sat_Mxc { k_px e_x - k_dx P }
+ *   D_yc  = sat_Dyc { k_py e_y - k_dy Q }
+ *   D_zc  = sat_Dzc { -k_pz e_z + k_dz R }
+ * e_x = wrap(Phi_c - Phi) in both modes; e_y, e_z depend on the pointing mode
+ * (ogk_cpd_pointing_t). Every output is bounded by its limit, so eq. (47)
+ * bounds the actuator rates: |dM_x/dt| <= 2 M_xc_max / tau_x, etc. */
+#ifndef OGK_CPD_H
+#define OGK_CPD_H
+
+#include <stdint.h>
+#include "ogk/status.h"
+
+/* Inputs whose magnitude exceeds this are rejected (OGK_E_RANGE): beyond it
+ * sin/cos argument reduction of a double no longer resolves 1e-9 rad, and no
+ * navigation filter produces such angles except by a fault. [rad] */
+#define OGK_CPD_ANGLE_LIMIT 1.0e4
+
+/* Which pitch/yaw pointing error feeds the TVC loops. */
+typedef enum {
+    /* Default to fly. Rotation vector taking the body x axis onto the
+     * commanded thrust direction, in body axes: e_y about y_b replaces
+     * (Theta_c - Theta), e_z about z_b replaces (Psi_c - Psi). Independent of
+     * the roll angle, correct for any error up to 180 deg (docs/cpd.md). */
+    OGK_CPD_POINTING_BODY = 0,
+    /* Eqs. (45)-(46) literally: e_y = Theta_c - Theta, e_z = wrap(Psi_c - Psi).
+     * Valid near zero roll only: past ~90 deg of roll the pitch/yaw loops
+     * reverse sign (seeds/README.md errata). For comparison runs. */
+    OGK_CPD_POINTING_EULER = 1
+} ogk_cpd_pointing_t;
+
+/* Output flags (ogk_cpd_output_t.flags). */
+#define OGK_CPD_FLAG_SAT_X 0x01u       /* M_xc clipped at +-m_xc_max */
+#define OGK_CPD_FLAG_SAT_Y 0x02u       /* delta_yc clipped at +-delta_yc_max */
+#define OGK_CPD_FLAG_SAT_Z 0x04u       /* delta_zc clipped at +-delta_zc_max */
+#define OGK_CPD_FLAG_SAFE 0x08u        /* output is the safe command (status != OGK_OK) */
+#define OGK_CPD_FLAG_BEHIND 0x10u      /* commanded direction more than 90 deg from x_b */
+#define OGK_CPD_FLAG_YAW_UNDEFINED 0x20u /* commanded direction along +-a3: psi_c set to 0 */
+
+typedef struct {
+    double k_px;          /* [N m/rad] roll proportional gain, eq. (45), > 0 */
+    double k_dx;          /* [N m s/rad] roll derivative gain, > k_px tau_x */
+    double k_py;          /* [rad/rad] pitch proportional gain, eq. (46), > 0 */
+    double k_dy;          /* [rad s/rad] = [s] pitch derivative gain, > k_py tau_y */
+    double k_pz;          /* [rad/rad] yaw proportional gain, eq. (46), > 0 */
+    double k_dz;          /* [s] yaw derivative gain, > k_pz tau_z */
+    double m_xc_max;      /* [N m] roll torque command limit (Mbar_xc), > 0 */
+    double delta_yc_max;  /* [rad] pitch deflection command limit (Deltabar_yc), > 0 */
+    double delta_zc_max;  /* [rad] yaw deflection command limit (Deltabar_zc), > 0 */
+    double tau_x;         /* [s] side-jet actuator time constant, eq. (18), > 0 */
+    double tau_y;         /* [s] TVC pitch actuator time constant, eq. (16), > 0 */
+    double tau_z;         /* [s] TVC yaw actuator time constant, eq. (16), > 0 */
+    double phi_c;         /* [rad] commanded roll Phi_c, in [-pi, pi] (0 in the paper) */
+    ogk_cpd_pointing_t pointing; /* [-] pointing-error mode */
+} ogk_cpd_config_t;
+
+typedef struct {
+    double psi;       /* [rad] yaw Psi, eq. (9) */
+    double theta;     /* [rad] pitch Theta, eq. (9) */
+    double phi_roll;  /* [rad] roll Phi, eq. (9) */
+    double rate_p;    /* [rad/s] body angular rate about x_b (P) */
+    double rate_q;    /* [rad/s] body angular rate about y_b (Q) */
+    double rate_r;    /* [rad/s] body angular rate about z_b (R) */
+    double alpha_c;   /* [rad] commanded in-plane thrust angle (from guidance) */
+    double beta_c;    /* [rad] commanded out-of-plane thrust angle */
+    double xi;        /* [rad] right ascension of the vehicle */
+    double phi;       /* [rad] declination of the vehicle */
+} ogk_cpd_input_t;
+
+typedef struct {
+    double m_xc;      /* [N m] commanded roll torque, eq. (45), |m_xc| <= m_xc_max */
+    double delta_yc;  /* [rad] commanded pitch deflection, eq. (46) */
+    double delta_zc;  /* [rad] commanded yaw deflection, eq. (46) */
+    double psi_c;     /* [rad] commanded yaw, eqs. (38)-(39), in (-pi, pi] */
+    double theta_c;   /* [rad] commanded pitch, in [-pi/2, pi/2] */
+    double phi_c;     /* [rad] commanded roll (configuration value) */
+    double err_x;     /* [rad] roll error used: wrap(Phi_c - Phi) */
+    double err_y;     /* [rad] pitch pointing error used (about y_b in BODY mode) */
+    double err_z;     /* [rad] yaw pointing error used (about z_b in BODY mode) */
+    uint32_t flags;   /* [-] OGK_CPD_FLAG_* bits */
+} ogk_cpd_output_t;
+
+typedef struct {
+    ogk_cpd_config_t cfg;     /* copy of the accepted configuration */
+    ogk_cpd_output_t last;    /* last command written by ogk_cpd_step */
+    uint32_t init_magic;      /* [-] OGK_CPD_INIT_MAGIC once initialised */
+} ogk_cpd_t;
+
+/* Value of init_magic in a usable context (any other value: not initialised). */
+#define OGK_CPD_INIT_MAGIC 0x43504431u
+
+/* Validates cfg and copies it into ctx. Rejections leave ctx zeroed (every
+ * step then returns OGK_E_NOT_INIT): OGK_E_NULL (ctx or cfg NULL),
+ * OGK_E_NONFINITE (a NaN/Inf field), OGK_E_CONFIG (a gain, limit or time
+ * constant <= 0, k_d <= k_p tau on any axis -- the convergence condition of
+ * sec. 5.2 --, |phi_c| > pi, or an unknown pointing mode). */
+ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg);
+
+/* One control sample. On OGK_OK, out holds the CPD command. Otherwise, when out
+ * is not NULL, out holds the safe command (zero torque, zero deflections, zero
+ * angles and errors, OGK_CPD_FLAG_SAFE): OGK_E_NULL (ctx, in or out NULL),
+ * OGK_E_NOT_INIT, OGK_E_NONFINITE (NaN/Inf input), OGK_E_RANGE (an angle
+ * beyond OGK_CPD_ANGLE_LIMIT). The context stays usable after any of these. */
+ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
+                        ogk_cpd_output_t *out);
+
+/* Commanded yaw and pitch putting x_b along the commanded thrust direction
+ * (alpha_c, beta_c) at position (xi, phi): eqs. (38)-(39). theta_c in
+ * [-pi/2, pi/2], psi_c in (-pi, pi]; when the direction is along +-a3 (within
+ * 1e-12) yaw is undefined and psi_c = 0. OGK_E_NULL, OGK_E_NONFINITE,
+ * OGK_E_RANGE (|angle| > OGK_CPD_ANGLE_LIMIT). */
+ogk_status ogk_cpd_commanded_attitude(double alpha_c, double beta_c, double xi,
+                                      double phi, double *psi_c,
+                                      double *theta_c);
+
+/* Actual thrust angles (alpha_a in (-pi, pi], beta_a in [-pi/2, pi/2]) of the
+ * deflected thrust for attitude (psi, theta, phi_roll), position (xi, phi) and
+ * deflections (delta_y, delta_z): eqs. (49)-(52). Error codes as
+ * ogk_cpd_commanded_attitude (deflections are range-checked the same way). */
+ogk_status ogk_cpd_thrust_angles(double psi, double theta, double phi_roll,
+                                 double xi, double phi, double delta_y,
+                                 double delta_z, double *alpha_a,
+                                 double *beta_a);
+
+/* Body-axis pointing error (OGK_CPD_POINTING_BODY) of attitude (psi, theta,
+ * phi_roll) towards the direction (alpha_c, beta_c) at (xi, phi): the rotation
+ * vector taking x_b onto the direction has body components (0, *err_y,
+ * *err_z), magnitude in [0, pi]. Exactly behind (angle pi, axis undefined) it
+ * is (0, pi, 0). Error codes as ogk_cpd_commanded_attitude. */
+ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll,
+                                       double alpha_c, double beta_c, double xi,
+                                       double phi, double *err_y, double *err_z);
+
+/* *wrapped = angle + 2 pi k in (-pi, pi]. OGK_E_NULL, OGK_E_NONFINITE,
+ * OGK_E_RANGE (|angle| > OGK_CPD_ANGLE_LIMIT). */
+ogk_status ogk_cpd_wrap_pi(double angle, double *wrapped);
+
+#endif /* OGK_CPD_H */

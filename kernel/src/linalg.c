@@ -1,0 +1,840 @@
+/* linalg.c -- fixed-size dense linear algebra on row-major double arrays.
+ *
+ * Algorithms (Golub & Van Loan, Matrix Computations, 4th ed., sections cited):
+ *   LU      Gaussian elimination with partial pivoting (Sec. 3.4); rcond is
+ *           exact: 1 / (|A|_1 |A^-1|_1) with A^-1 built column by column from
+ *           the factors (n <= OGK_LA_MAX_N bounds the O(n^3) cost).
+ *   Chol    row-oriented Cholesky-Banachiewicz (Sec. 4.2).
+ *   QR      Householder reflectors in LAPACK dlarfg form (Sec. 5.1, 5.2):
+ *           H = I - tau v v^T, v(0) = 1, R on and above the diagonal, v below it.
+ *   lstsq   x = R^-1 (Q^T b)(0:n-1)                      (Sec. 5.3)
+ *   minnorm A^T = Q R,  z = R^-T b,  x = Q [z; 0]         (Sec. 5.6)
+ * Design note with thresholds, error codes and stack use: docs/linalg.md. */
+#include "ogk/linalg.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <string.h>
+
+/* Symmetry tolerance of the Cholesky input, relative to max |A_ij| (ogk/linalg.h). */
+#define OGK_CHOL_SYM_TOL 1.0e-12
+
+/* ------------------------------------------------------------------ helpers */
+
+/* True when the byte ranges [p, p + p_bytes) and [q, q + q_bytes) overlap.
+ * Compared as integers: the objects may be unrelated, so relational operators
+ * on the pointers themselves would be undefined. */
+static bool la_overlap(const void *p, size_t p_bytes, const void *q, size_t q_bytes)
+{
+    const uintptr_t p_lo = (uintptr_t)p;
+    const uintptr_t q_lo = (uintptr_t)q;
+    return (p_lo < q_lo + (uintptr_t)q_bytes) && (q_lo < p_lo + (uintptr_t)p_bytes);
+}
+
+/* Bytes of an array of `count` doubles (count <= OGK_LA_MAX_LONG^2, no overflow). */
+static size_t la_bytes(size_t count)
+{
+    return count * sizeof(double);
+}
+
+static bool la_dim_ok(size_t dim, size_t dim_max)
+{
+    return dim > 0u && dim <= dim_max;
+}
+
+static bool la_all_finite(const double *v, size_t count)
+{
+    size_t i;
+    for (i = 0u; i < count; ++i) {
+        if (!isfinite(v[i])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* Euclidean norm of v[0], v[stride], ..., v[(count-1) stride], scaled by the
+ * largest magnitude so that squares neither overflow nor underflow. */
+static double la_norm2(const double *v, size_t count, size_t stride)
+{
+    double scale = 0.0;
+    double ssq = 0.0;
+    size_t i;
+
+    for (i = 0u; i < count; ++i) {
+        const double a = fabs(v[i * stride]);
+        if (a > scale) {
+            scale = a;
+        }
+    }
+    if (scale == 0.0) {
+        return 0.0;
+    }
+    for (i = 0u; i < count; ++i) {
+        const double t = v[i * stride] / scale;
+        ssq += t * t;
+    }
+    return scale * sqrt(ssq);
+}
+
+/* Common checks of the products: NULL, dimensions, output overlapping an input. */
+static ogk_status la_product_check(const double *in1, size_t in1_count,
+                                   const double *in2, size_t in2_count,
+                                   const double *out, size_t out_count,
+                                   size_t d1, size_t d2, size_t d3)
+{
+    if (in1 == NULL || in2 == NULL || out == NULL) {
+        return OGK_E_NULL;
+    }
+    if (!la_dim_ok(d1, OGK_LA_MAX_LONG) || !la_dim_ok(d2, OGK_LA_MAX_LONG) ||
+        !la_dim_ok(d3, OGK_LA_MAX_LONG)) {
+        return OGK_E_DIM;
+    }
+    if (la_overlap(out, la_bytes(out_count), in1, la_bytes(in1_count)) ||
+        la_overlap(out, la_bytes(out_count), in2, la_bytes(in2_count))) {
+        return OGK_E_RANGE;
+    }
+    return OGK_OK;
+}
+
+/* ------------------------------------------------------------------ products */
+
+ogk_status ogk_mat_vec(const double *A, size_t rows, size_t cols,
+                       const double *x, double *y)
+{
+    size_t i;
+    size_t j;
+    const ogk_status st = la_product_check(A, rows * cols, x, cols, y, rows,
+                                           rows, cols, 1u);
+    if (st != OGK_OK) {
+        return st;
+    }
+    for (i = 0u; i < rows; ++i) {
+        double sum = 0.0;
+        for (j = 0u; j < cols; ++j) {
+            sum += A[i * cols + j] * x[j];
+        }
+        y[i] = sum;
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_mat_t_vec(const double *A, size_t rows, size_t cols,
+                         const double *x, double *y)
+{
+    size_t i;
+    size_t j;
+    const ogk_status st = la_product_check(A, rows * cols, x, rows, y, cols,
+                                           rows, cols, 1u);
+    if (st != OGK_OK) {
+        return st;
+    }
+    for (j = 0u; j < cols; ++j) {
+        double sum = 0.0;
+        for (i = 0u; i < rows; ++i) {
+            sum += A[i * cols + j] * x[i];
+        }
+        y[j] = sum;
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_mat_mul(const double *A, size_t r, size_t k,
+                       const double *B, size_t c, double *C)
+{
+    size_t i;
+    size_t j;
+    size_t p;
+    const ogk_status st = la_product_check(A, r * k, B, k * c, C, r * c, r, k, c);
+    if (st != OGK_OK) {
+        return st;
+    }
+    for (i = 0u; i < r; ++i) {
+        for (j = 0u; j < c; ++j) {
+            double sum = 0.0;
+            for (p = 0u; p < k; ++p) {
+                sum += A[i * k + p] * B[p * c + j];
+            }
+            C[i * c + j] = sum;
+        }
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_mat_mul_at_b(const double *A, size_t k, size_t r,
+                            const double *B, size_t c, double *C)
+{
+    size_t i;
+    size_t j;
+    size_t p;
+    const ogk_status st = la_product_check(A, k * r, B, k * c, C, r * c, r, k, c);
+    if (st != OGK_OK) {
+        return st;
+    }
+    for (i = 0u; i < r; ++i) {
+        for (j = 0u; j < c; ++j) {
+            double sum = 0.0;
+            for (p = 0u; p < k; ++p) {
+                sum += A[p * r + i] * B[p * c + j];
+            }
+            C[i * c + j] = sum;
+        }
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_mat_mul_a_bt(const double *A, size_t r, size_t k,
+                            const double *B, size_t c, double *C)
+{
+    size_t i;
+    size_t j;
+    size_t p;
+    const ogk_status st = la_product_check(A, r * k, B, c * k, C, r * c, r, k, c);
+    if (st != OGK_OK) {
+        return st;
+    }
+    for (i = 0u; i < r; ++i) {
+        for (j = 0u; j < c; ++j) {
+            double sum = 0.0;
+            for (p = 0u; p < k; ++p) {
+                sum += A[i * k + p] * B[j * k + p];
+            }
+            C[i * c + j] = sum;
+        }
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_mat_transpose(const double *A, size_t rows, size_t cols,
+                             double *At)
+{
+    size_t i;
+    size_t j;
+    /* A is passed twice: la_product_check wants two inputs. */
+    const ogk_status st = la_product_check(A, rows * cols, A, rows * cols,
+                                           At, rows * cols, rows, cols, 1u);
+    if (st != OGK_OK) {
+        return st;
+    }
+    for (i = 0u; i < rows; ++i) {
+        for (j = 0u; j < cols; ++j) {
+            At[j * rows + i] = A[i * cols + j];
+        }
+    }
+    return OGK_OK;
+}
+
+/* ------------------------------------------------------------------ LU */
+
+static void lu_invalidate(ogk_lu_t *lu)
+{
+    lu->n = 0u;
+    lu->anorm1 = 0.0;
+    lu->rcond = 0.0;
+}
+
+/* Checks that lu holds a factorization that can be used without reading out
+ * of bounds (guards against a never-factored or overwritten struct). */
+static ogk_status lu_check_held(const ogk_lu_t *lu)
+{
+    size_t i;
+    if (lu->n == 0u) {
+        return OGK_E_NOT_INIT;
+    }
+    if (lu->n > OGK_LA_MAX_N) {
+        return OGK_E_DIM;
+    }
+    for (i = 0u; i < lu->n; ++i) {
+        if (lu->perm[i] >= lu->n) {
+            return OGK_E_NOT_INIT;
+        }
+    }
+    return OGK_OK;
+}
+
+/* Solves L U y_out = y_in in place, y_in already permuted (= P b). */
+static void lu_substitute(const ogk_lu_t *lu, double *y)
+{
+    const size_t n = lu->n;
+    const double *f = lu->lu;
+    size_t i;
+    size_t j;
+    size_t ii;
+
+    /* Forward: L unit lower triangular. */
+    for (i = 1u; i < n; ++i) {
+        double sum = y[i];
+        for (j = 0u; j < i; ++j) {
+            sum -= f[i * n + j] * y[j];
+        }
+        y[i] = sum;
+    }
+    /* Backward: U upper triangular, nonzero diagonal (checked at factor time). */
+    for (ii = 0u; ii < n; ++ii) {
+        const size_t row = n - 1u - ii;
+        double sum = y[row];
+        for (j = row + 1u; j < n; ++j) {
+            sum -= f[row * n + j] * y[j];
+        }
+        y[row] = sum / f[row * n + row];
+    }
+}
+
+/* Column j of A^-1 into col[0..n-1]: solves A z = e_j, i.e. L U z = P e_j. */
+static void lu_inverse_column(const ogk_lu_t *lu, size_t j, double *col)
+{
+    size_t i;
+    for (i = 0u; i < lu->n; ++i) {
+        col[i] = (lu->perm[i] == j) ? 1.0 : 0.0;
+    }
+    lu_substitute(lu, col);
+}
+
+ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
+{
+    size_t i;
+    size_t j;
+    size_t k;
+    double pivot_tol;
+    double ainv_norm1 = 0.0;
+    double col[OGK_LA_MAX_N];
+
+    if (lu == NULL) {
+        return OGK_E_NULL;
+    }
+    lu_invalidate(lu);
+    if (A == NULL) {
+        return OGK_E_NULL;
+    }
+    if (!la_dim_ok(n, OGK_LA_MAX_N)) {
+        return OGK_E_DIM;
+    }
+    if (la_overlap(A, la_bytes(n * n), lu, sizeof *lu)) {
+        return OGK_E_RANGE;
+    }
+    if (!la_all_finite(A, n * n)) {
+        return OGK_E_NONFINITE;
+    }
+
+    /* Copy and 1-norm (largest absolute column sum) of A. */
+    {
+        double anorm1 = 0.0;
+        for (j = 0u; j < n; ++j) {
+            double colsum = 0.0;
+            for (i = 0u; i < n; ++i) {
+                colsum += fabs(A[i * n + j]);
+            }
+            if (colsum > anorm1) {
+                anorm1 = colsum;
+            }
+        }
+        (void)memcpy(lu->lu, A, la_bytes(n * n));
+        lu->anorm1 = anorm1;
+    }
+    for (i = 0u; i < n; ++i) {
+        lu->perm[i] = i;
+    }
+
+    /* A pivot at or below eps |A|_1 is zero to working precision. Any such
+     * pivot implies rcond <= n eps < OGK_LA_RCOND_MIN (the trailing block of
+     * (PA)^-1 is the inverse of the Schur complement S, and |S^-1|_1 >=
+     * 1 / |S e_1|_1 >= 1 / (n |pivot|)), so SINGULAR never hides a
+     * matrix that ILL_CONDITIONED would have accepted; a larger threshold
+     * (n eps |A|_1) would already reject the 12 x 12 Hilbert matrix. */
+    pivot_tol = DBL_EPSILON * lu->anorm1;
+
+    for (k = 0u; k < n; ++k) {
+        double *f = lu->lu;
+        size_t p = k;
+        double pmax = fabs(f[k * n + k]);
+        for (i = k + 1u; i < n; ++i) {
+            const double a = fabs(f[i * n + k]);
+            if (a > pmax) {
+                pmax = a;
+                p = i;
+            }
+        }
+        if (!(pmax > pivot_tol)) {
+            lu_invalidate(lu);
+            return OGK_E_SINGULAR;
+        }
+        if (p != k) {
+            const size_t tp = lu->perm[k];
+            lu->perm[k] = lu->perm[p];
+            lu->perm[p] = tp;
+            for (j = 0u; j < n; ++j) {
+                const double t = f[k * n + j];
+                f[k * n + j] = f[p * n + j];
+                f[p * n + j] = t;
+            }
+        }
+        for (i = k + 1u; i < n; ++i) {
+            const double l_ik = f[i * n + k] / f[k * n + k];
+            f[i * n + k] = l_ik;
+            for (j = k + 1u; j < n; ++j) {
+                f[i * n + j] -= l_ik * f[k * n + j];
+            }
+        }
+    }
+    lu->n = n;
+
+    /* Exact |A^-1|_1 from the factors: largest absolute column sum. */
+    for (j = 0u; j < n; ++j) {
+        double colsum = 0.0;
+        lu_inverse_column(lu, j, col);
+        for (i = 0u; i < n; ++i) {
+            colsum += fabs(col[i]);
+        }
+        if (!isfinite(colsum)) {
+            ainv_norm1 = HUGE_VAL;
+            break;
+        }
+        if (colsum > ainv_norm1) {
+            ainv_norm1 = colsum;
+        }
+    }
+    /* Divide in this order: each quotient stays representable for any A
+     * whose norm and inverse norm are finite. 1/inf gives rcond = 0. */
+    lu->rcond = (1.0 / ainv_norm1) / lu->anorm1;
+    if (!(lu->rcond >= OGK_LA_RCOND_MIN)) {
+        return OGK_E_ILL_CONDITIONED;
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_lu_solve(const ogk_lu_t *lu, const double *b, double *x)
+{
+    size_t i;
+    ogk_status st;
+    double y[OGK_LA_MAX_N];
+
+    if (lu == NULL || b == NULL || x == NULL) {
+        return OGK_E_NULL;
+    }
+    st = lu_check_held(lu);
+    if (st != OGK_OK) {
+        return st;
+    }
+    if (la_overlap(x, la_bytes(lu->n), lu, sizeof *lu)) {
+        return OGK_E_RANGE;
+    }
+    if (!la_all_finite(b, lu->n)) {
+        return OGK_E_NONFINITE;
+    }
+    /* b is read completely before x is written, so x may alias b. */
+    for (i = 0u; i < lu->n; ++i) {
+        y[i] = b[lu->perm[i]];
+    }
+    lu_substitute(lu, y);
+    (void)memcpy(x, y, la_bytes(lu->n));
+    return OGK_OK;
+}
+
+ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv)
+{
+    size_t i;
+    size_t j;
+    ogk_status st;
+    double col[OGK_LA_MAX_N];
+
+    if (lu == NULL || Ainv == NULL) {
+        return OGK_E_NULL;
+    }
+    st = lu_check_held(lu);
+    if (st != OGK_OK) {
+        return st;
+    }
+    if (la_overlap(Ainv, la_bytes(lu->n * lu->n), lu, sizeof *lu)) {
+        return OGK_E_RANGE;
+    }
+    for (j = 0u; j < lu->n; ++j) {
+        lu_inverse_column(lu, j, col);
+        for (i = 0u; i < lu->n; ++i) {
+            Ainv[i * lu->n + j] = col[i];
+        }
+    }
+    return OGK_OK;
+}
+
+/* ------------------------------------------------------------------ Cholesky */
+
+ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n)
+{
+    size_t i;
+    size_t j;
+    size_t k;
+    double scale = 0.0;
+
+    if (ch == NULL) {
+        return OGK_E_NULL;
+    }
+    ch->n = 0u;
+    if (A == NULL) {
+        return OGK_E_NULL;
+    }
+    if (!la_dim_ok(n, OGK_LA_MAX_N)) {
+        return OGK_E_DIM;
+    }
+    if (la_overlap(A, la_bytes(n * n), ch, sizeof *ch)) {
+        return OGK_E_RANGE;
+    }
+    if (!la_all_finite(A, n * n)) {
+        return OGK_E_NONFINITE;
+    }
+    for (i = 0u; i < n * n; ++i) {
+        const double a = fabs(A[i]);
+        if (a > scale) {
+            scale = a;
+        }
+    }
+    /* Symmetry to OGK_CHOL_SYM_TOL relative to the matrix scale (an element-wise
+     * relative test would reject round-off in entries that should be zero). */
+    for (i = 1u; i < n; ++i) {
+        for (j = 0u; j < i; ++j) {
+            if (fabs(A[i * n + j] - A[j * n + i]) > OGK_CHOL_SYM_TOL * scale) {
+                return OGK_E_NOT_POSDEF;
+            }
+        }
+    }
+
+    (void)memset(ch->l, 0, la_bytes(n * n));
+    for (i = 0u; i < n; ++i) {
+        for (j = 0u; j <= i; ++j) {
+            double sum = A[i * n + j];
+            for (k = 0u; k < j; ++k) {
+                sum -= ch->l[i * n + k] * ch->l[j * n + k];
+            }
+            if (i == j) {
+                /* d_i = a_ii - |l_i|^2 is the Schur-complement pivot; for SPD A,
+                 * cond_2(A) >= a_ii / d_i, so d_i <= eps a_ii means A is not
+                 * positive definite to working precision. */
+                if (!(A[i * n + i] > 0.0) || !(sum > DBL_EPSILON * A[i * n + i])) {
+                    (void)memset(ch->l, 0, la_bytes(n * n));
+                    return OGK_E_NOT_POSDEF;
+                }
+                ch->l[i * n + i] = sqrt(sum);
+            } else {
+                ch->l[i * n + j] = sum / ch->l[j * n + j];
+            }
+        }
+    }
+    ch->n = n;
+    return OGK_OK;
+}
+
+ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x)
+{
+    size_t i;
+    size_t j;
+    size_t ii;
+    size_t n;
+    double y[OGK_LA_MAX_N];
+
+    if (ch == NULL || b == NULL || x == NULL) {
+        return OGK_E_NULL;
+    }
+    if (ch->n == 0u) {
+        return OGK_E_NOT_INIT;
+    }
+    if (ch->n > OGK_LA_MAX_N) {
+        return OGK_E_DIM;
+    }
+    n = ch->n;
+    if (la_overlap(x, la_bytes(n), ch, sizeof *ch)) {
+        return OGK_E_RANGE;
+    }
+    if (!la_all_finite(b, n)) {
+        return OGK_E_NONFINITE;
+    }
+    /* L y = b, then L^T x = y; b is read completely before x is written. */
+    for (i = 0u; i < n; ++i) {
+        double sum = b[i];
+        for (j = 0u; j < i; ++j) {
+            sum -= ch->l[i * n + j] * y[j];
+        }
+        y[i] = sum / ch->l[i * n + i];
+    }
+    for (ii = 0u; ii < n; ++ii) {
+        const size_t row = n - 1u - ii;
+        double sum = y[row];
+        for (j = row + 1u; j < n; ++j) {
+            sum -= ch->l[j * n + row] * y[j];
+        }
+        y[row] = sum / ch->l[row * n + row];
+    }
+    (void)memcpy(x, y, la_bytes(n));
+    return OGK_OK;
+}
+
+/* ------------------------------------------------------------------ Householder QR */
+
+static void qr_invalidate(ogk_qr_t *ws)
+{
+    ws->long_dim = 0u;
+    ws->short_dim = 0u;
+}
+
+/* Factors ws->qr (long_dim x short_dim, already loaded) in place. */
+static void qr_factor(ogk_qr_t *ws)
+{
+    const size_t rows = ws->long_dim;
+    const size_t cols = ws->short_dim;
+    double *a = ws->qr;
+    size_t i;
+    size_t j;
+    size_t k;
+
+    for (k = 0u; k < cols; ++k) {
+        const double alpha = a[k * cols + k];
+        const double xnorm = la_norm2(&a[(k + 1u) * cols + k], rows - k - 1u, cols);
+        double beta;
+        double tau;
+        double v_scale;
+
+        if (xnorm == 0.0) {
+            /* Column already upper triangular: H = I (dlarfg convention). */
+            ws->tau[k] = 0.0;
+            continue;
+        }
+        beta = -copysign(hypot(alpha, xnorm), alpha);
+        tau = (beta - alpha) / beta;
+        v_scale = 1.0 / (alpha - beta);
+        for (i = k + 1u; i < rows; ++i) {
+            a[i * cols + k] *= v_scale;
+        }
+        a[k * cols + k] = beta;
+        ws->tau[k] = tau;
+        /* Apply H_k = I - tau v v^T to the trailing columns. */
+        for (j = k + 1u; j < cols; ++j) {
+            double w = a[k * cols + j];
+            for (i = k + 1u; i < rows; ++i) {
+                w += a[i * cols + k] * a[i * cols + j];
+            }
+            w *= tau;
+            a[k * cols + j] -= w;
+            for (i = k + 1u; i < rows; ++i) {
+                a[i * cols + j] -= w * a[i * cols + k];
+            }
+        }
+    }
+}
+
+/* y <- H_k y for a vector y of long_dim entries. */
+static void qr_apply_reflector(const ogk_qr_t *ws, size_t k, double *y)
+{
+    const size_t rows = ws->long_dim;
+    const size_t cols = ws->short_dim;
+    const double *a = ws->qr;
+    double w;
+    size_t i;
+
+    if (ws->tau[k] == 0.0) {
+        return;
+    }
+    w = y[k];
+    for (i = k + 1u; i < rows; ++i) {
+        w += a[i * cols + k] * y[i];
+    }
+    w *= ws->tau[k];
+    y[k] -= w;
+    for (i = k + 1u; i < rows; ++i) {
+        y[i] -= w * a[i * cols + k];
+    }
+}
+
+/* Rank test on R: SINGULAR when a diagonal entry is at or below
+ * long_dim eps max_j |a_j|_2 (the numerical-rank tolerance of LAPACK/numpy;
+ * it implies rcond(R) <= long_dim eps < OGK_LA_RCOND_MIN because
+ * |R|_1 >= max_j |a_j|_2 and |R^-1|_1 >= 1/|r_kk|), ILL_CONDITIONED when
+ * the exact 1-norm rcond of R (= that of A up to a factor short_dim in
+ * the 2-norm sense) is below OGK_LA_RCOND_MIN. */
+static ogk_status qr_rank_check(const ogk_qr_t *ws, double colnorm_max)
+{
+    const size_t cols = ws->short_dim;
+    const double *a = ws->qr;
+    const double tol = (double)ws->long_dim * DBL_EPSILON * colnorm_max;
+    double rnorm1 = 0.0;
+    double rinv_norm1 = 0.0;
+    double z[OGK_LA_MAX_N];
+    size_t i;
+    size_t j;
+    size_t p;
+    size_t ii;
+
+    for (j = 0u; j < cols; ++j) {
+        double colsum = 0.0;
+        if (!(fabs(a[j * cols + j]) > tol)) {
+            return OGK_E_SINGULAR;
+        }
+        for (i = 0u; i <= j; ++i) {
+            colsum += fabs(a[i * cols + j]);
+        }
+        if (colsum > rnorm1) {
+            rnorm1 = colsum;
+        }
+    }
+    /* Column j of R^-1: back substitution on e_j (nonzero in rows 0..j only). */
+    for (j = 0u; j < cols; ++j) {
+        double colsum;
+        z[j] = 1.0 / a[j * cols + j];
+        colsum = fabs(z[j]);
+        for (ii = 0u; ii < j; ++ii) {
+            const size_t row = j - 1u - ii;
+            double sum = 0.0;
+            for (p = row + 1u; p <= j; ++p) {
+                sum += a[row * cols + p] * z[p];
+            }
+            z[row] = -sum / a[row * cols + row];
+            colsum += fabs(z[row]);
+        }
+        if (!isfinite(colsum)) {
+            return OGK_E_ILL_CONDITIONED;
+        }
+        if (colsum > rinv_norm1) {
+            rinv_norm1 = colsum;
+        }
+    }
+    if (!(((1.0 / rinv_norm1) / rnorm1) >= OGK_LA_RCOND_MIN)) {
+        return OGK_E_ILL_CONDITIONED;
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
+                     const double *b, double *x)
+{
+    size_t i;
+    size_t j;
+    size_t k;
+    size_t ii;
+    double colnorm_max = 0.0;
+    ogk_status rank_status;
+    /* Q^T b needs all m entries: 1 KiB at the default OGK_LA_MAX_LONG. */
+    double y[OGK_LA_MAX_LONG];
+
+    if (ws == NULL) {
+        return OGK_E_NULL;
+    }
+    qr_invalidate(ws);
+    if (A == NULL || b == NULL || x == NULL) {
+        return OGK_E_NULL;
+    }
+    if (!la_dim_ok(n, OGK_LA_MAX_N) || !la_dim_ok(m, OGK_LA_MAX_LONG) || m < n) {
+        return OGK_E_DIM;
+    }
+    if (la_overlap(A, la_bytes(m * n), ws, sizeof *ws) ||
+        la_overlap(b, la_bytes(m), ws, sizeof *ws) ||
+        la_overlap(x, la_bytes(n), ws, sizeof *ws) ||
+        la_overlap(x, la_bytes(n), A, la_bytes(m * n)) ||
+        la_overlap(x, la_bytes(n), b, la_bytes(m))) {
+        return OGK_E_RANGE;
+    }
+    if (!la_all_finite(A, m * n) || !la_all_finite(b, m)) {
+        return OGK_E_NONFINITE;
+    }
+
+    (void)memcpy(ws->qr, A, la_bytes(m * n));
+    ws->long_dim = m;
+    ws->short_dim = n;
+    for (j = 0u; j < n; ++j) {
+        const double c = la_norm2(&A[j], m, n);
+        if (c > colnorm_max) {
+            colnorm_max = c;
+        }
+    }
+    qr_factor(ws);
+    rank_status = qr_rank_check(ws, colnorm_max);
+    if (rank_status == OGK_E_SINGULAR) {
+        qr_invalidate(ws);
+        return rank_status;
+    }
+
+    /* y = Q^T b = H_{n-1} ... H_0 b, then R x = y(0:n-1). */
+    (void)memcpy(y, b, la_bytes(m));
+    for (k = 0u; k < n; ++k) {
+        qr_apply_reflector(ws, k, y);
+    }
+    for (ii = 0u; ii < n; ++ii) {
+        const size_t row = n - 1u - ii;
+        double sum = y[row];
+        for (i = row + 1u; i < n; ++i) {
+            sum -= ws->qr[row * n + i] * y[i];
+        }
+        y[row] = sum / ws->qr[row * n + row];
+    }
+    (void)memcpy(x, y, la_bytes(n));
+    return rank_status;
+}
+
+ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
+                       const double *b, double *x)
+{
+    size_t i;
+    size_t j;
+    size_t kk;
+    double rownorm_max = 0.0;
+    ogk_status rank_status;
+    double z[OGK_LA_MAX_N];
+
+    if (ws == NULL) {
+        return OGK_E_NULL;
+    }
+    qr_invalidate(ws);
+    if (A == NULL || b == NULL || x == NULL) {
+        return OGK_E_NULL;
+    }
+    if (!la_dim_ok(m, OGK_LA_MAX_N) || !la_dim_ok(n, OGK_LA_MAX_LONG) || m > n) {
+        return OGK_E_DIM;
+    }
+    if (la_overlap(A, la_bytes(m * n), ws, sizeof *ws) ||
+        la_overlap(b, la_bytes(m), ws, sizeof *ws) ||
+        la_overlap(x, la_bytes(n), ws, sizeof *ws) ||
+        la_overlap(x, la_bytes(n), A, la_bytes(m * n)) ||
+        la_overlap(x, la_bytes(n), b, la_bytes(m))) {
+        return OGK_E_RANGE;
+    }
+    if (!la_all_finite(A, m * n) || !la_all_finite(b, m)) {
+        return OGK_E_NONFINITE;
+    }
+
+    /* ws->qr = A^T (n x m): the long side is A's column count. */
+    for (i = 0u; i < n; ++i) {
+        for (j = 0u; j < m; ++j) {
+            ws->qr[i * m + j] = A[j * n + i];
+        }
+    }
+    ws->long_dim = n;
+    ws->short_dim = m;
+    for (j = 0u; j < m; ++j) {
+        const double r = la_norm2(&A[j * n], n, 1u);
+        if (r > rownorm_max) {
+            rownorm_max = r;
+        }
+    }
+    qr_factor(ws);
+    rank_status = qr_rank_check(ws, rownorm_max);
+    if (rank_status == OGK_E_SINGULAR) {
+        qr_invalidate(ws);
+        return rank_status;
+    }
+
+    /* A = R^T Q^T: R^T z = b (forward substitution), then x = Q [z; 0]. */
+    for (i = 0u; i < m; ++i) {
+        double sum = b[i];
+        for (j = 0u; j < i; ++j) {
+            sum -= ws->qr[j * m + i] * z[j];
+        }
+        z[i] = sum / ws->qr[i * m + i];
+    }
+    (void)memcpy(x, z, la_bytes(m));
+    for (i = m; i < n; ++i) {
+        x[i] = 0.0;
+    }
+    /* Q = H_0 H_1 ... H_{m-1}: apply the last reflector first. */
+    for (kk = 0u; kk < m; ++kk) {
+        qr_apply_reflector(ws, m - 1u - kk, x);
+    }
+    return rank_status;
+}

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# check_plugin.sh ELF -- known-answer test of the insn_count plugin on
+# known_counts.elf (expected values from the construction of known_counts.c)
+# and a repeatability check (two runs, identical reports).
+set -u
+here=$(dirname "$0")
+elf=${1:?usage: check_plugin.sh known_counts.elf}
+r1=$("$here/count_insns.sh" "$elf" ten_nops calls_ten_nops 2>/dev/null); rc=$?
+r2=$("$here/count_insns.sh" "$elf" ten_nops calls_ten_nops 2>/dev/null)
+echo "$r1"
+problems=0
+expect() { grep -qE "$1" <<< "$r1" || { echo "PLUGIN FAIL: expected /$1/"; problems=$((problems + 1)); }; }
+[ $rc -eq 0 ] || { echo "PLUGIN FAIL: qemu exit $rc"; problems=$((problems + 1)); }
+expect '^insn_count fn ten_nops entry 0x[0-9a-f]+ calls 6 total 66 min 11 max 11 skipped 1$'
+expect '^insn_count fn calls_ten_nops entry 0x[0-9a-f]+ calls 1 total 14 min 14 max 14$'
+expect '^insn_count range ten_nops 0x[0-9a-f]+-0x[0-9a-f]+ executed 77$'
+expect '^insn_count range calls_ten_nops 0x[0-9a-f]+-0x[0-9a-f]+ executed 3$'
+expect '^insn_count total [0-9]+$'
+[ "$r1" = "$r2" ] || { echo "PLUGIN FAIL: two runs differ"; problems=$((problems + 1)); }
+if [ $problems -ne 0 ]; then echo "test-qemu-plugin: $problems problem(s)"; exit 1; fi
+echo "test-qemu-plugin: OK (known counts exact, two runs identical)"

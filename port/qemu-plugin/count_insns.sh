@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# count_insns.sh ELF FUNCTION... -- run a bare-metal Cortex-M7 ELF on QEMU
+# (mps2-an500) with the insn_count plugin and print, for each FUNCTION, the
+# instructions executed per call including callees (fn) and inside its own
+# body only (range). Addresses and sizes come from arm-none-eabi-nm -S.
+# The program's own output goes to stderr; the report to stdout.
+# Env: QEMU_PLUGIN_SO (default build/qemu-plugin/libinsn_count.so).
+set -euo pipefail
+elf=${1:?usage: count_insns.sh ELF FUNCTION...}
+shift
+so=${QEMU_PLUGIN_SO:-build/qemu-plugin/libinsn_count.so}
+[ -f "$so" ] || { echo "count_insns.sh: $so not built (make qemu-plugin)" >&2; exit 2; }
+args=""
+for fn in "$@"; do
+  line=$(arm-none-eabi-nm -S "$elf" | awk -v f="$fn" '$4 == f && ($3 == "T" || $3 == "t") { print $1, $2; exit }')
+  [ -n "$line" ] || { echo "count_insns.sh: no function '$fn' with a size in $elf" >&2; exit 2; }
+  read -r addr size <<< "$line"
+  lo=$((16#$addr)); hi=$((lo + 16#$size))
+  args="$args,fn=$fn@$(printf '0x%08x' $lo),range=$fn@$(printf '0x%08x-0x%08x' $lo $hi)"
+done
+report=$(mktemp)
+trap 'rm -f "$report"' EXIT
+set +e
+qemu-system-arm -M mps2-an500 -nographic -monitor none -serial none \
+  -semihosting-config enable=on,target=native \
+  -plugin "$(realpath "$so")$args,out=$report" -d plugin \
+  -kernel "$elf" </dev/null >&2 2>&1
+rc=$?
+set -e
+cat "$report"
+exit $rc

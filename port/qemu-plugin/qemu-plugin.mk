@@ -1,0 +1,20 @@
+# port/qemu-plugin/qemu-plugin.mk -- QEMU TCG plugin counting executed guest
+# instructions (included by port/cortex-m7/cortex-m7.mk). No glib needed.
+#   make qemu-plugin        build/qemu-plugin/libinsn_count.so
+#   make test-qemu-plugin   known-answer + repeatability check
+#   port/qemu-plugin/count_insns.sh ELF FUNCTION...   per-function counts
+QP_B := $(B)/qemu-plugin
+QP_SO := $(QP_B)/libinsn_count.so
+
+.PHONY: qemu-plugin test-qemu-plugin
+$(QP_SO): port/qemu-plugin/insn_count.c port/qemu-plugin/qemu_plugin_api.h | apt
+	@mkdir -p $(@D)
+	gcc -std=gnu11 -O2 -Wall -Wextra -Werror -fPIC -shared -fvisibility=hidden $< -o $@
+qemu-plugin: $(QP_SO)
+
+$(QP_B)/known_counts.elf: port/qemu-plugin/known_counts.c $(ARM_RT_OBJ) $(ARM_LDSCRIPT)
+	@mkdir -p $(@D)
+	$(ARM_CC) -std=gnu99 -Wall -Wextra -Werror -O2 $(ARM_CPU) $< $(ARM_RT_OBJ) \
+	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
+test-qemu-plugin: $(QP_SO) $(QP_B)/known_counts.elf
+	QEMU_PLUGIN_SO=$(QP_SO) port/qemu-plugin/check_plugin.sh $(QP_B)/known_counts.elf
