@@ -66,7 +66,7 @@ TEST_CFLAGS := -std=c99 -Wall -Wextra -Werror -O1 -g $(SAN) $(KINC) -Itests/unit
 $(B)/host-san/kernel/%.o: kernel/src/%.c $(KHDR) | apt
 	@mkdir -p $(@D)
 	gcc $(STRICT) -O1 -g $(SAN) $(KINC) -c $< -o $@
-$(B)/host-san/%: tests/unit/%.c tests/unit/ogk_test.h $(SAN_OBJ) | apt
+$(B)/host-san/%: tests/unit/%.c $(wildcard tests/unit/*.h) $(SAN_OBJ) | apt
 	@mkdir -p $(@D)
 	gcc $(TEST_CFLAGS) $< $(SAN_OBJ) -o $@ -lcmocka -lm
 

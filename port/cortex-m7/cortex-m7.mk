@@ -77,7 +77,7 @@ $(ARM_B)/rt/cmocka_shim.o: $(ARM_PORT)/testrunner/cmocka_shim.c $(ARM_RT_HDR) | 
 # ---------------------------------------------------------------- unit tests on QEMU
 # One rule per source (ARM_UNIT_SRC may name files outside tests/unit).
 define ARM_TEST_RULE
-$(ARM_B)/$(basename $(notdir $(1))).elf: $(1) tests/unit/ogk_test.h $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
+$(ARM_B)/$(basename $(notdir $(1))).elf: $(1) $(wildcard tests/unit/*.h) $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
 	$(ARM_CC) $(ARM_TEST_CFLAGS) $$< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
 	  $(ARM_LDFLAGS) -Wl,-Map=$$(@:.elf=.map) $(ARM_LDLIBS) -o $$@
 endef

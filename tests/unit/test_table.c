@@ -5,8 +5,8 @@
 
 #include <string.h>
 
-#include "ogk/crc32.h"
 #include "ogk/table.h"
+#include "table_writer.h"
 
 #define KIND_TEST 0x54455354u /* "TEST" */
 #define GRID 5u
@@ -14,30 +14,6 @@
 #define COLS 3u
 #define N_VALUES (GRID * (1u + ROWS * COLS))
 #define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + 8u * N_VALUES)
-
-static void put_u16(uint8_t *p, uint16_t v)
-{
-    p[0] = (uint8_t)(v & 0xFFu);
-    p[1] = (uint8_t)(v >> 8);
-}
-
-static void put_u32(uint8_t *p, uint32_t v)
-{
-    unsigned i;
-    for (i = 0u; i < 4u; ++i) {
-        p[i] = (uint8_t)((v >> (8u * i)) & 0xFFu);
-    }
-}
-
-static void put_f64(uint8_t *p, double d)
-{
-    uint64_t bits;
-    unsigned i;
-    memcpy(&bits, &d, sizeof bits);
-    for (i = 0u; i < 8u; ++i) {
-        p[i] = (uint8_t)((bits >> (8u * i)) & 0xFFu);
-    }
-}
 
 static double entry_value(unsigned k, unsigned idx)
 {
@@ -47,31 +23,19 @@ static double entry_value(unsigned k, unsigned idx)
 /* Recomputes both CRCs after a deliberate edit of the header. */
 static void seal(uint8_t *buf)
 {
-    uint32_t crc = 0u;
-    (void)ogk_crc32_update(&crc, buf + OGK_TABLE_HEADER_SIZE, 8u * N_VALUES);
-    put_u32(buf + 40, crc);
-    crc = 0u;
-    (void)ogk_crc32_update(&crc, buf, 44u);
-    put_u32(buf + 44, crc);
+    tw_seal(buf, N_VALUES);
 }
 
 static void build(uint8_t *buf)
 {
+    const uint32_t dims[2] = {ROWS, COLS};
     unsigned k, i;
     memset(buf, 0, TABLE_BYTES);
-    memcpy(buf, "OGKT", 4u);
-    put_u16(buf + 4, 1u);
-    put_u16(buf + 6, 1u);
-    put_u32(buf + 8, KIND_TEST);
-    put_u16(buf + 12, 2u);
-    put_u32(buf + 16, ROWS);
-    put_u32(buf + 20, COLS);
-    put_u32(buf + 32, GRID);
-    put_u32(buf + 36, 8u * N_VALUES);
+    tw_header(buf, KIND_TEST, 2u, dims, GRID);
     for (k = 0u; k < GRID; ++k) {
-        put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * k, 0.25 * (double)k);
+        tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * k, 0.25 * (double)k);
         for (i = 0u; i < ROWS * COLS; ++i) {
-            put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * (GRID + k * ROWS * COLS + i),
+            tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * (GRID + k * ROWS * COLS + i),
                     entry_value(k, i));
         }
     }
@@ -181,11 +145,11 @@ static void test_magic_version_type_kind(void **state)
     table_buf[0] = 'X';
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_MAGIC);
     build(table_buf);
-    put_u16(table_buf + 4, 2u);
+    tw_put_u16(table_buf + 4, 2u);
     seal(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_VERSION);
     build(table_buf);
-    put_u16(table_buf + 6, 2u);
+    tw_put_u16(table_buf + 6, 2u);
     seal(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_TYPE);
     build(table_buf);
@@ -199,11 +163,11 @@ static void test_inconsistent_payload_size_and_nan(void **state)
     ogk_table_view_t v;
     (void)state;
     build(table_buf);
-    put_u32(table_buf + 36, 8u * N_VALUES - 8u);
+    tw_put_u32(table_buf + 36, 8u * N_VALUES - 8u);
     seal(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_SIZE);
     build(table_buf);
-    put_f64(table_buf + OGK_TABLE_HEADER_SIZE + 8u * 9u, NAN);
+    tw_put_f64(table_buf + OGK_TABLE_HEADER_SIZE + 8u * 9u, NAN);
     seal(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_NONFINITE);
 }

@@ -1,0 +1,156 @@
+/* ogk/nog.h -- variable-time-domain neighboring optimal guidance (VTD-NOG),
+ * Pontani & Celani (2021), section 4, with the formulation of docs/vtd-nog.md
+ * (real time t as a 7th state, parameter a = t_f).
+ *
+ * Ground side (host/ogk_host/leo_geo): the minimum-time nominal and, on a grid
+ * of normalised time tau in [0, 1], the gains that map the state displacement
+ * dx_k = [x(t_k) - x*(tau_k); t_k - t_f* tau_k] to the costate displacement
+ * dlam_k and the flight-time correction dt_f, plus the costate-rate gain that
+ * gives a first-order hold of dlam inside the sampling interval.
+ *
+ * Flight side, at each sampling time t_k (ogk_nog_sample):
+ *   tau_k   = tau_(k-1) + (t_k - t_(k-1)) / t_f^(k-1)        (eq. 31, tau_0 = t_0 / t_f*)
+ *   [dlam_k; dt_f] = G(tau_k) dx_k,   t_f^(k) = t_f* + dt_f
+ *   cut-off predicted at t_k + (1 - tau_k) t_f^(k); eq. (32): the last interval
+ *   is the one with tau_k + Delta t_S / t_f^(k) >= 1.
+ * Between samples (ogk_nog_command), for tau = tau_k + (t - t_k) / t_f^(k):
+ *   lambda(tau) = lambda*(tau) + dlam_k + N(tau_k) dx_k (tau - tau_k)
+ *   and the thrust angles from the velocity costates, eq. (27) -- to first
+ *   order the same as eq. (30), since H_ux = H_ua = 0 on this nominal, but it
+ *   always yields a unit thrust direction.
+ * End-game (the paper is silent, docs/vtd-nog.md): no new correction once
+ * 1 - tau_k < tau_freeze or tau_k is past the last gain node; |dt_f| clipped
+ * to dtf_max_s; the corrected thrust direction kept within du_max_rad of the
+ * nominal one by scaling the costate correction.
+ *
+ * State vector order (SI): [r m, xi rad, phi rad, v_r m/s, v_t m/s, v_n m/s, t s]. */
+#ifndef OGK_NOG_H
+#define OGK_NOG_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "ogk/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define OGK_NOG_NX 7u            /* state (and costate) size */
+#define OGK_NOG_TABLE_KIND 0x4E4F4742u /* "NOGB": one bundle entry per tau node */
+
+/* Entry layout of the table bundle (one row of OGK_NOG_ENTRY_LEN doubles per
+ * tau node, SI, ' = d/dtau):
+ *   [  0,  7) x*        [  7, 14) x*'       [ 14, 21) lambda*   [ 21, 28) lambda*'
+ *   [ 28, 84) G (8 x 7, row-major): rows 0..6 -> dlam_k, row 7 -> dt_f [s]
+ *   [ 84,133) N (7 x 7, row-major): dlam'(tau_k) = N dx_k
+ * Costates are scaled with H = -1 at tau = 1 (any positive scale would do:
+ * only the direction of the velocity costates is flown). The grid runs from
+ * tau = 0 to tau = 1 inclusive; the gain blocks of the last node (tau = 1,
+ * where they are singular) are zero and never used. */
+#define OGK_NOG_OFF_X 0u
+#define OGK_NOG_OFF_XDOT 7u
+#define OGK_NOG_OFF_LAM 14u
+#define OGK_NOG_OFF_LAMDOT 21u
+#define OGK_NOG_OFF_GAIN 28u
+#define OGK_NOG_OFF_NRATE 84u
+#define OGK_NOG_ENTRY_LEN 133u
+
+#ifndef OGK_NOG_MAX_GRID
+#define OGK_NOG_MAX_GRID 256u
+#endif
+
+/* Validated gain table, decoded once (at init or after an uplink) and shared
+ * read-only by any number of guidance contexts. */
+typedef struct {
+    double tau[OGK_NOG_MAX_GRID];                        /* [-] grid, 0 .. 1 strictly increasing */
+    double entry[OGK_NOG_MAX_GRID * OGK_NOG_ENTRY_LEN];  /* [SI] rows as documented above */
+    size_t n_grid;                                       /* [-] nodes in use; 0 = no valid table */
+    double t_f_star_s;                                   /* [s] nominal flight time */
+} ogk_nog_table_t;
+
+/* Decodes and validates a table file (ogk/table.h format, kind
+ * OGK_NOG_TABLE_KIND, one dimension OGK_NOG_ENTRY_LEN): CRC, dims, grid from 0
+ * to 1, a single consistent t_f* > 0 (x*' of the time state). On failure the
+ * table is left empty (n_grid = 0) and the specific code returned. */
+ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t len);
+
+typedef struct {
+    const ogk_nog_table_t *table; /* validated table (not copied; must outlive the context) */
+    double sample_interval_s;     /* [s] Delta t_S, > 0 */
+    double dtf_max_s;             /* [s] bound on |dt_f|, > 0 */
+    double du_max_rad;            /* [rad] bound on the angle between corrected and nominal thrust directions, (0, pi] */
+    double tau_freeze;            /* [-] no new correction when 1 - tau_k < tau_freeze, [0, 1) */
+} ogk_nog_config_t;
+
+/* Navigation state at a sampling time. */
+typedef struct {
+    double t_s;        /* [s] time since ignition */
+    double r_m;        /* [m] radius */
+    double xi_rad;     /* [rad] right ascension */
+    double phi_rad;    /* [rad] declination */
+    double v_r_mps;    /* [m/s] radial velocity */
+    double v_t_mps;    /* [m/s] transverse velocity */
+    double v_n_mps;    /* [m/s] normal velocity */
+} ogk_nog_nav_t;
+
+/* Flags of a sample or command. */
+#define OGK_NOG_FLAG_TERMINATING 0x01u /* eq. (32): cut-off falls inside this interval */
+#define OGK_NOG_FLAG_FROZEN 0x02u      /* end-game: no new correction computed */
+#define OGK_NOG_FLAG_LIMITED 0x04u     /* dt_f or the direction correction was clipped */
+#define OGK_NOG_FLAG_SAFE 0x08u        /* safe command: last valid correction held (or nominal) */
+#define OGK_NOG_FLAG_CUTOFF 0x10u      /* t is at or past the cut-off time: engine off */
+
+typedef struct {
+    double tau_k;        /* [-] normalised time of this sample */
+    double tau_next;     /* [-] tau_(k+1) of eq. (31) (may exceed 1 in the last interval) */
+    double t_f_s;        /* [s] t_f^(k) = t_f* + dt_f */
+    double dt_f_s;       /* [s] applied flight-time correction */
+    double t_cutoff_s;   /* [s] predicted engine cut-off time, t_k + (1 - tau_k) t_f^(k) */
+    double dx[OGK_NOG_NX]; /* [SI] state displacement dx_k used */
+    double alpha_rad;    /* [rad] commanded in-plane thrust angle at t_k */
+    double beta_rad;     /* [rad] commanded out-of-plane thrust angle at t_k */
+    uint8_t flags;       /* OGK_NOG_FLAG_* */
+} ogk_nog_sample_t;
+
+typedef struct {
+    double tau;          /* [-] normalised time at t (clamped to 1 after cut-off) */
+    double alpha_rad;    /* [rad] commanded in-plane thrust angle */
+    double beta_rad;     /* [rad] commanded out-of-plane thrust angle */
+    uint8_t flags;       /* OGK_NOG_FLAG_* (CUTOFF: engine off) */
+} ogk_nog_command_t;
+
+/* Guidance context: fixed size, caller-owned. */
+typedef struct {
+    ogk_nog_config_t cfg;            /* copy of the configuration */
+    double t_k_s;                    /* [s] time of the current sample */
+    double tau_k;                    /* [-] tau of the current sample */
+    double t_f_s;                    /* [s] t_f in force */
+    double dlam_k[OGK_NOG_NX];       /* [costate units] dlam at tau_k */
+    double dlam_rate[OGK_NOG_NX];    /* [costate units] d(dlam)/dtau held over the interval */
+    uint32_t n_samples;              /* [-] samples taken */
+    uint8_t flags;                   /* [-] flags of the current sample */
+    uint8_t initialized;             /* [-] 1 after a successful init */
+} ogk_nog_t;
+
+/* Checks the configuration and resets the context to the nominal (tau = 0,
+ * t_f = t_f*, no correction). OGK_E_CONFIG for bad settings, OGK_E_NOT_INIT
+ * for an empty table; the context is then unusable until a good init. */
+ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg);
+
+/* One guidance sample. On bad navigation input (NaN/Inf, time not after the
+ * previous sample, r <= 0) returns the specific code, sets
+ * OGK_NOG_FLAG_SAFE, keeps the last valid correction (the nominal before the
+ * first) and advances tau with the t_f in force: out holds that safe sample. */
+ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_sample_t *out);
+
+/* Thrust-direction command at time t_s (>= the current sample's time; before
+ * the first sample the nominal from tau = 0 is served). OGK_E_RANGE for a time
+ * before the current sample (out then holds the command at the sample time,
+ * flagged SAFE); OGK_E_NONFINITE for a non-finite time (same safe command). */
+ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_nog_command_t *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* OGK_NOG_H */

@@ -1,0 +1,431 @@
+/* nog.c -- VTD-NOG flight law (ogk/nog.h; derivation in docs/vtd-nog.md). */
+#include "ogk/nog.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <string.h>
+
+#include "ogk/interp.h"
+#include "ogk/linalg.h"
+#include "ogk/table.h"
+
+#define NX OGK_NOG_NX
+#define N_GAIN_ROWS 8u          /* dlam (7) and dt_f */
+#define IDX_R 0u
+#define IDX_XI 1u
+#define IDX_VR 3u
+#define IDX_TIME 6u
+#define PI 3.14159265358979323846
+
+/* Halvings of the costate-correction scale when the direction bound bites:
+ * 40 give the scale to 1e-12. */
+#define OGK_NOG_LIMIT_ITERATIONS 40u
+
+/* Relative tolerance on the t_f* values a table carries (x*' of the time state). */
+#define OGK_NOG_TF_CONSISTENCY 1.0e-9
+
+static const double *entry_row(const ogk_nog_table_t *tbl, size_t k)
+{
+    return &tbl->entry[k * OGK_NOG_ENTRY_LEN];
+}
+
+/* ------------------------------------------------------------------ table */
+
+static ogk_status check_table_content(const ogk_nog_table_t *tbl)
+{
+    const size_t n = tbl->n_grid;
+    const double t_f = entry_row(tbl, 0u)[OGK_NOG_OFF_XDOT + IDX_TIME];
+    size_t k;
+    ogk_status st = ogk_interp_check_grid(tbl->tau, n);
+
+    if (st != OGK_OK) {
+        return OGK_E_TABLE_DIM;
+    }
+    if (tbl->tau[0] != 0.0 || tbl->tau[n - 1u] != 1.0) {
+        return OGK_E_TABLE_DIM;
+    }
+    if (!(t_f > 0.0)) {
+        return OGK_E_TABLE_TYPE;
+    }
+    for (k = 0u; k < n; ++k) {
+        const double *row = entry_row(tbl, k);
+        if (fabs(row[OGK_NOG_OFF_XDOT + IDX_TIME] - t_f) > OGK_NOG_TF_CONSISTENCY * t_f ||
+            fabs(row[OGK_NOG_OFF_X + IDX_TIME] - t_f * tbl->tau[k]) > OGK_NOG_TF_CONSISTENCY * t_f) {
+            return OGK_E_TABLE_TYPE;
+        }
+        if (!(row[OGK_NOG_OFF_X + IDX_R] > 0.0)) {
+            return OGK_E_TABLE_TYPE;
+        }
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t len)
+{
+    ogk_table_spec_t spec;
+    ogk_table_view_t view;
+    ogk_status st;
+
+    if (table == NULL) {
+        return OGK_E_NULL;
+    }
+    table->n_grid = 0u;
+    table->t_f_star_s = 0.0;
+    memset(&spec, 0, sizeof spec);
+    spec.kind = OGK_NOG_TABLE_KIND;
+    spec.ndims = 1u;
+    spec.dims[0] = OGK_NOG_ENTRY_LEN;
+    spec.min_grid = 3u;
+    spec.max_grid = OGK_NOG_MAX_GRID;
+    st = ogk_table_open(buf, len, &spec, &view);
+    if (st == OGK_OK) {
+        st = ogk_table_read_grid(&view, table->tau, OGK_NOG_MAX_GRID);
+    }
+    if (st == OGK_OK) {
+        st = ogk_table_read_data(&view, table->entry, OGK_NOG_MAX_GRID * OGK_NOG_ENTRY_LEN);
+    }
+    if (st == OGK_OK) {
+        table->n_grid = view.grid_size;
+        st = check_table_content(table);
+    }
+    if (st != OGK_OK) {
+        table->n_grid = 0u;
+        return st;
+    }
+    table->t_f_star_s = entry_row(table, 0u)[OGK_NOG_OFF_XDOT + IDX_TIME];
+    return OGK_OK;
+}
+
+/* ------------------------------------------------------------------ helpers */
+
+static bool finite_all(const double *v, size_t n)
+{
+    size_t i;
+    for (i = 0u; i < n; ++i) {
+        if (!isfinite(v[i])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+static double wrap_pi(double angle)
+{
+    double w = fmod(angle, 2.0 * PI);
+    if (w > PI) {
+        w -= 2.0 * PI;
+    } else if (w <= -PI) {
+        w += 2.0 * PI;
+    }
+    return w;
+}
+
+/* Cubic Hermite of n quantities at tau from values at offset off_val and
+ * d/dtau at off_der of the bracketing nodes. tau must be inside the grid. */
+static void hermite(const ogk_nog_table_t *tbl, double tau, size_t off_val,
+                    size_t off_der, size_t n, double *out)
+{
+    size_t k = 0u;
+    size_t i;
+    double h, s, h00, h10, h01, h11;
+    const double *a;
+    const double *b;
+
+    (void)ogk_interp_locate(tbl->tau, tbl->n_grid, tau, &k);
+    a = entry_row(tbl, k);
+    b = entry_row(tbl, k + 1u);
+    h = tbl->tau[k + 1u] - tbl->tau[k];
+    s = (tau - tbl->tau[k]) / h;
+    h00 = (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s);
+    h10 = s * (1.0 - s) * (1.0 - s);
+    h01 = s * s * (3.0 - 2.0 * s);
+    h11 = s * s * (s - 1.0);
+    for (i = 0u; i < n; ++i) {
+        out[i] = h00 * a[off_val + i] + h10 * h * a[off_der + i] + h01 * b[off_val + i] +
+                 h11 * h * b[off_der + i];
+    }
+}
+
+/* Linear interpolation of a block of n values at offset off. */
+static void linear_block(const ogk_nog_table_t *tbl, double tau, size_t off,
+                         size_t n, double *out)
+{
+    size_t k = 0u;
+    size_t i;
+    double w;
+    const double *a;
+    const double *b;
+
+    (void)ogk_interp_locate(tbl->tau, tbl->n_grid, tau, &k);
+    a = entry_row(tbl, k);
+    b = entry_row(tbl, k + 1u);
+    w = (tau - tbl->tau[k]) / (tbl->tau[k + 1u] - tbl->tau[k]);
+    for (i = 0u; i < n; ++i) {
+        out[i] = a[off + i] + w * (b[off + i] - a[off + i]);
+    }
+}
+
+/* Thrust direction minimising H: along -lambda_v (eq. 27), as angles. */
+static void angles_from_costate(const double *lam, double *alpha, double *beta)
+{
+    const double l4 = lam[IDX_VR];
+    const double l5 = lam[IDX_VR + 1u];
+    const double l6 = lam[IDX_VR + 2u];
+    const double in_plane = sqrt(l4 * l4 + l5 * l5);
+    *alpha = atan2(-l4, -l5);
+    *beta = atan2(-l6, in_plane);
+}
+
+/* Angle between the thrust directions of two costate vectors. */
+static double direction_angle(const double *lam_a, const double *lam_b)
+{
+    const double *a = &lam_a[IDX_VR];
+    const double *b = &lam_b[IDX_VR];
+    const double cx = a[1] * b[2] - a[2] * b[1];
+    const double cy = a[2] * b[0] - a[0] * b[2];
+    const double cz = a[0] * b[1] - a[1] * b[0];
+    const double dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    return atan2(sqrt(cx * cx + cy * cy + cz * cz), dot);
+}
+
+static void costate_at(const ogk_nog_t *ctx, double tau, double *lam)
+{
+    double lam_star[NX];
+    size_t i;
+    hermite(ctx->cfg.table, tau, OGK_NOG_OFF_LAM, OGK_NOG_OFF_LAMDOT, NX, lam_star);
+    for (i = 0u; i < NX; ++i) {
+        lam[i] = lam_star[i] + ctx->dlam_k[i] + ctx->dlam_rate[i] * (tau - ctx->tau_k);
+    }
+}
+
+/* Largest scale s in [0, 1] of the correction (dlam, dlam_rate) whose thrust
+ * direction at tau_k stays within du_max of the nominal one (bisection: the
+ * angle grows with s for the corrections met in practice; s = 0 always fits). */
+static double direction_limit_scale(const double *lam_star, const double *dlam, double du_max)
+{
+    double lam[NX];
+    double lo = 0.0;
+    double hi = 1.0;
+    unsigned it;
+    size_t i;
+
+    for (i = 0u; i < NX; ++i) {
+        lam[i] = lam_star[i] + dlam[i];
+    }
+    if (direction_angle(lam, lam_star) <= du_max) {
+        return 1.0;
+    }
+    for (it = 0u; it < OGK_NOG_LIMIT_ITERATIONS; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        for (i = 0u; i < NX; ++i) {
+            lam[i] = lam_star[i] + mid * dlam[i];
+        }
+        if (direction_angle(lam, lam_star) <= du_max) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo;
+}
+
+/* ------------------------------------------------------------------ API */
+
+ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg)
+{
+    const ogk_nog_table_t *tbl;
+
+    if (ctx == NULL || cfg == NULL) {
+        return OGK_E_NULL;
+    }
+    memset(ctx, 0, sizeof *ctx);
+    tbl = cfg->table;
+    if (tbl == NULL) {
+        return OGK_E_NULL;
+    }
+    if (tbl->n_grid < 3u || tbl->n_grid > OGK_NOG_MAX_GRID || !(tbl->t_f_star_s > 0.0)) {
+        return OGK_E_NOT_INIT;
+    }
+    if (!isfinite(cfg->sample_interval_s) || !(cfg->sample_interval_s > 0.0) ||
+        !isfinite(cfg->dtf_max_s) || !(cfg->dtf_max_s > 0.0) ||
+        cfg->dtf_max_s > 0.5 * tbl->t_f_star_s ||
+        !isfinite(cfg->du_max_rad) || !(cfg->du_max_rad > 0.0) || cfg->du_max_rad > PI ||
+        !isfinite(cfg->tau_freeze) || cfg->tau_freeze < 0.0 || !(cfg->tau_freeze < 1.0)) {
+        return OGK_E_CONFIG;
+    }
+    ctx->cfg = *cfg;
+    ctx->t_f_s = tbl->t_f_star_s;
+    ctx->initialized = 1u;
+    return OGK_OK;
+}
+
+/* Moves the current sample to (t_s, tau) keeping the correction in force
+ * (dlam continued from its hold, then held constant; t_f unchanged). */
+static void hold_correction(ogk_nog_t *ctx, double t_s, double tau)
+{
+    size_t i;
+    for (i = 0u; i < NX; ++i) {
+        ctx->dlam_k[i] += ctx->dlam_rate[i] * (tau - ctx->tau_k);
+        ctx->dlam_rate[i] = 0.0;
+    }
+    ctx->t_k_s = t_s;
+    ctx->tau_k = tau;
+}
+
+static void fill_sample(const ogk_nog_t *ctx, ogk_nog_sample_t *out)
+{
+    double lam[NX];
+    const double tau = fmin(ctx->tau_k, 1.0);
+
+    out->tau_k = ctx->tau_k;
+    out->t_f_s = ctx->t_f_s;
+    out->dt_f_s = ctx->t_f_s - ctx->cfg.table->t_f_star_s;
+    out->tau_next = ctx->tau_k + ctx->cfg.sample_interval_s / ctx->t_f_s;
+    out->t_cutoff_s = ctx->t_k_s + (1.0 - ctx->tau_k) * ctx->t_f_s;
+    costate_at(ctx, tau, lam);
+    angles_from_costate(lam, &out->alpha_rad, &out->beta_rad);
+    out->flags = ctx->flags;
+    if (out->tau_next >= 1.0) {
+        out->flags |= OGK_NOG_FLAG_TERMINATING;
+    }
+    if (ctx->tau_k >= 1.0) {
+        out->flags |= OGK_NOG_FLAG_CUTOFF;
+    }
+}
+
+/* The correction at tau_k from the gains (eqs. 29-31) with the end-game bounds. */
+static void compute_correction(ogk_nog_t *ctx, const double *dx)
+{
+    const ogk_nog_table_t *tbl = ctx->cfg.table;
+    double gain[N_GAIN_ROWS * NX];
+    double nrate[NX * NX];
+    double out8[N_GAIN_ROWS];
+    double lam_star[NX];
+    double dlam_rate[NX];
+    double dt_f;
+    double scale;
+    size_t i;
+
+    linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_GAIN, N_GAIN_ROWS * NX, gain);
+    linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_NRATE, NX * NX, nrate);
+    (void)ogk_mat_vec(gain, N_GAIN_ROWS, NX, dx, out8);
+    (void)ogk_mat_vec(nrate, NX, NX, dx, dlam_rate);
+
+    dt_f = out8[NX];
+    if (fabs(dt_f) > ctx->cfg.dtf_max_s) {
+        dt_f = copysign(ctx->cfg.dtf_max_s, dt_f);
+        ctx->flags |= OGK_NOG_FLAG_LIMITED;
+    }
+    hermite(tbl, ctx->tau_k, OGK_NOG_OFF_LAM, OGK_NOG_OFF_LAMDOT, NX, lam_star);
+    scale = direction_limit_scale(lam_star, out8, ctx->cfg.du_max_rad);
+    if (scale < 1.0) {
+        ctx->flags |= OGK_NOG_FLAG_LIMITED;
+    }
+    for (i = 0u; i < NX; ++i) {
+        ctx->dlam_k[i] = scale * out8[i];
+        ctx->dlam_rate[i] = scale * dlam_rate[i];
+    }
+    ctx->t_f_s = tbl->t_f_star_s + dt_f;
+}
+
+ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_sample_t *out)
+{
+    const ogk_nog_table_t *tbl;
+    double nav_v[NX];
+    double x_star[NX];
+    double dx[NX];
+    double tau;
+    size_t i;
+    ogk_status st = OGK_OK;
+
+    if (ctx == NULL || nav == NULL || out == NULL) {
+        return OGK_E_NULL;
+    }
+    memset(out, 0, sizeof *out);
+    if (ctx->initialized == 0u) {
+        return OGK_E_NOT_INIT;
+    }
+    tbl = ctx->cfg.table;
+    nav_v[0] = nav->r_m;
+    nav_v[1] = nav->xi_rad;
+    nav_v[2] = nav->phi_rad;
+    nav_v[3] = nav->v_r_mps;
+    nav_v[4] = nav->v_t_mps;
+    nav_v[5] = nav->v_n_mps;
+    nav_v[6] = nav->t_s;
+    ctx->flags = 0u;
+
+    if (!finite_all(nav_v, NX)) {
+        st = OGK_E_NONFINITE;
+    } else if (!(nav->r_m > 0.0) || nav->t_s < 0.0 ||
+               (ctx->n_samples > 0u && !(nav->t_s > ctx->t_k_s))) {
+        st = OGK_E_RANGE;
+    }
+    if (st != OGK_OK) {
+        /* Safe command: the correction in force, tau advanced to the sample
+         * time when that time is usable, else left where it was. */
+        if (isfinite(nav->t_s) && nav->t_s >= ctx->t_k_s) {
+            hold_correction(ctx, nav->t_s, ctx->tau_k + (nav->t_s - ctx->t_k_s) / ctx->t_f_s);
+        }
+        ctx->flags = OGK_NOG_FLAG_SAFE;
+        fill_sample(ctx, out);
+        return st;
+    }
+
+    tau = (ctx->n_samples == 0u) ? nav->t_s / tbl->t_f_star_s
+                                 : ctx->tau_k + (nav->t_s - ctx->t_k_s) / ctx->t_f_s;
+    ctx->n_samples += 1u;
+    /* End-game: past the last node with gains, or inside the freeze margin. */
+    if (tau >= tbl->tau[tbl->n_grid - 2u] || 1.0 - tau < ctx->cfg.tau_freeze) {
+        hold_correction(ctx, nav->t_s, tau);
+        ctx->flags = OGK_NOG_FLAG_FROZEN;
+        fill_sample(ctx, out);
+        return OGK_OK;
+    }
+    ctx->t_k_s = nav->t_s;
+    ctx->tau_k = tau;
+    hermite(tbl, tau, OGK_NOG_OFF_X, OGK_NOG_OFF_XDOT, NX, x_star);
+    for (i = 0u; i < NX; ++i) {
+        dx[i] = nav_v[i] - x_star[i];
+    }
+    dx[IDX_XI] = wrap_pi(dx[IDX_XI]);
+    /* x*[6] = t_f* tau: dx[6] is the real-time mismatch t_k - t_f* tau_k. */
+    compute_correction(ctx, dx);
+    fill_sample(ctx, out);
+    memcpy(out->dx, dx, sizeof dx);
+    return OGK_OK;
+}
+
+ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_nog_command_t *out)
+{
+    double lam[NX];
+    double tau;
+    ogk_status st = OGK_OK;
+
+    if (ctx == NULL || out == NULL) {
+        return OGK_E_NULL;
+    }
+    memset(out, 0, sizeof *out);
+    if (ctx->initialized == 0u) {
+        return OGK_E_NOT_INIT;
+    }
+    if (!isfinite(t_s)) {
+        st = OGK_E_NONFINITE;
+    } else if (t_s < ctx->t_k_s) {
+        st = OGK_E_RANGE;
+    }
+    tau = (st == OGK_OK) ? ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s : ctx->tau_k;
+    out->flags = (uint8_t)(ctx->flags & (OGK_NOG_FLAG_FROZEN | OGK_NOG_FLAG_LIMITED |
+                                         OGK_NOG_FLAG_SAFE));
+    if (st != OGK_OK) {
+        out->flags |= OGK_NOG_FLAG_SAFE;
+    }
+    if (tau >= 1.0) {
+        tau = 1.0;
+        out->flags |= OGK_NOG_FLAG_CUTOFF;
+    }
+    out->tau = tau;
+    costate_at(ctx, tau, lam);
+    angles_from_costate(lam, &out->alpha_rad, &out->beta_rad);
+    return st;
+}

@@ -1,0 +1,68 @@
+/* table_writer.h -- the unit tests' own writer of the table-file layout
+ * documented in ogk/table.h (independent of the ground tool's writer). */
+#ifndef OGK_TEST_TABLE_WRITER_H
+#define OGK_TEST_TABLE_WRITER_H
+
+#include <stdint.h>
+#include <string.h>
+
+#include "ogk/crc32.h"
+#include "ogk/table.h"
+
+static void tw_put_u16(uint8_t *p, uint16_t v)
+{
+    p[0] = (uint8_t)(v & 0xFFu);
+    p[1] = (uint8_t)(v >> 8);
+}
+
+static void tw_put_u32(uint8_t *p, uint32_t v)
+{
+    unsigned i;
+    for (i = 0u; i < 4u; ++i) {
+        p[i] = (uint8_t)((v >> (8u * i)) & 0xFFu);
+    }
+}
+
+static void tw_put_f64(uint8_t *p, double d)
+{
+    uint64_t bits;
+    unsigned i;
+    memcpy(&bits, &d, sizeof bits);
+    for (i = 0u; i < 8u; ++i) {
+        p[i] = (uint8_t)((bits >> (8u * i)) & 0xFFu);
+    }
+}
+
+/* Recomputes both CRCs of a table of n_values payload doubles. */
+static void tw_seal(uint8_t *buf, uint32_t n_values)
+{
+    uint32_t crc = 0u;
+    (void)ogk_crc32_update(&crc, buf + OGK_TABLE_HEADER_SIZE, 8u * (size_t)n_values);
+    tw_put_u32(buf + 40, crc);
+    crc = 0u;
+    (void)ogk_crc32_update(&crc, buf, 44u);
+    tw_put_u32(buf + 44, crc);
+}
+
+/* Header of a version-1 f64 table; the payload is written by the caller,
+ * then tw_seal. dims has ndims entries. */
+static void tw_header(uint8_t *buf, uint32_t kind, uint16_t ndims, const uint32_t *dims,
+                      uint32_t grid)
+{
+    uint32_t entry_len = 1u;
+    uint16_t d;
+    memset(buf, 0, OGK_TABLE_HEADER_SIZE);
+    memcpy(buf, "OGKT", 4u);
+    tw_put_u16(buf + 4, 1u);
+    tw_put_u16(buf + 6, 1u);
+    tw_put_u32(buf + 8, kind);
+    tw_put_u16(buf + 12, ndims);
+    for (d = 0u; d < ndims; ++d) {
+        tw_put_u32(buf + 16 + 4u * d, dims[d]);
+        entry_len *= dims[d];
+    }
+    tw_put_u32(buf + 32, grid);
+    tw_put_u32(buf + 36, 8u * grid * (1u + entry_len));
+}
+
+#endif /* OGK_TEST_TABLE_WRITER_H */

@@ -1,0 +1,298 @@
+/* test_nog.c -- VTD-NOG flight law on a synthetic table whose every output
+ * has a closed form: straight-line nominal, constant nominal costate with
+ * thrust angle ALPHA0, and sparse gains. */
+#include "ogk_test.h"
+
+#include <string.h>
+
+#include "ogk/nog.h"
+#include "table_writer.h"
+
+#define GRID 5u
+#define TF_STAR 100.0
+#define ALPHA0 0.3
+#define K_TF_VT 2.0      /* dt_f = K_TF_VT dv_t [s per m/s] */
+#define K_L6_VN 0.01     /* dlam_vn = K_L6_VN dv_n */
+#define K_L6_RATE 0.02   /* dlam_vn' = K_L6_RATE dv_n */
+#define K_L4_T 0.05      /* dlam_vr = K_L4_T dt (time-state error) */
+#define N_VALUES (GRID * (1u + OGK_NOG_ENTRY_LEN))
+#define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + 8u * N_VALUES)
+
+static const double tau_grid[GRID] = {0.0, 0.25, 0.5, 0.75, 1.0};
+static const double x0[7] = {7.0e6, 0.0, 0.0, 10.0, 9000.0, 0.0, 0.0};
+static const double x_rate[7] = {2.0e6, 0.5, 0.0, -5.0, 2000.0, 0.0, TF_STAR}; /* d/dtau */
+
+static uint8_t buf[TABLE_BYTES];
+static ogk_nog_table_t table;
+static ogk_nog_t nog;
+
+static void nominal_state(double tau, double *x)
+{
+    size_t i;
+    for (i = 0u; i < 7u; ++i) {
+        x[i] = x0[i] + tau * x_rate[i];
+    }
+}
+
+static void build_table(double tf_last_node)
+{
+    const uint32_t dims[1] = {OGK_NOG_ENTRY_LEN};
+    size_t k, i;
+    memset(buf, 0, sizeof buf);
+    tw_header(buf, OGK_NOG_TABLE_KIND, 1u, dims, GRID);
+    for (k = 0u; k < GRID; ++k) {
+        double row[OGK_NOG_ENTRY_LEN];
+        memset(row, 0, sizeof row);
+        nominal_state(tau_grid[k], &row[OGK_NOG_OFF_X]);
+        for (i = 0u; i < 7u; ++i) {
+            row[OGK_NOG_OFF_XDOT + i] = x_rate[i];
+        }
+        if (k == GRID - 1u) {
+            row[OGK_NOG_OFF_XDOT + 6u] = tf_last_node;
+        }
+        /* Thrust along (sin a, cos a, 0) in r-t-n: lambda_v = -(sin a, cos a, 0). */
+        row[OGK_NOG_OFF_LAM + 3u] = -sin(ALPHA0);
+        row[OGK_NOG_OFF_LAM + 4u] = -cos(ALPHA0);
+        if (k + 1u < GRID) { /* gains are zero (unused) at tau = 1 */
+            row[OGK_NOG_OFF_GAIN + 5u * 7u + 5u] = K_L6_VN;   /* dlam_vn from dv_n */
+            row[OGK_NOG_OFF_GAIN + 3u * 7u + 6u] = K_L4_T;    /* dlam_vr from dt */
+            row[OGK_NOG_OFF_GAIN + 7u * 7u + 4u] = K_TF_VT;   /* dt_f from dv_t */
+            row[OGK_NOG_OFF_NRATE + 5u * 7u + 5u] = K_L6_RATE;
+        }
+        tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * k, tau_grid[k]);
+        for (i = 0u; i < OGK_NOG_ENTRY_LEN; ++i) {
+            tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * (GRID + k * OGK_NOG_ENTRY_LEN + i),
+                       row[i]);
+        }
+    }
+    tw_seal(buf, N_VALUES);
+}
+
+static ogk_nog_config_t config(void)
+{
+    ogk_nog_config_t cfg;
+    cfg.table = &table;
+    cfg.sample_interval_s = 2.0;
+    cfg.dtf_max_s = 10.0;
+    cfg.du_max_rad = 0.5;
+    cfg.tau_freeze = 0.0;
+    return cfg;
+}
+
+static ogk_nog_nav_t nav_at(double t, double tau)
+{
+    double x[7];
+    ogk_nog_nav_t nav;
+    nominal_state(tau, x);
+    nav.t_s = t;
+    nav.r_m = x[0];
+    nav.xi_rad = x[1];
+    nav.phi_rad = x[2];
+    nav.v_r_mps = x[3];
+    nav.v_t_mps = x[4];
+    nav.v_n_mps = x[5];
+    return nav;
+}
+
+static int setup(void **state)
+{
+    ogk_nog_config_t cfg;
+    (void)state;
+    build_table(TF_STAR);
+    if (ogk_nog_table_load(&table, buf, TABLE_BYTES) != OGK_OK) {
+        return -1;
+    }
+    cfg = config();
+    return (ogk_nog_init(&nog, &cfg) == OGK_OK) ? 0 : -1;
+}
+
+static void test_table_load_and_rejections(void **state)
+{
+    (void)state;
+    assert_int_equal(table.n_grid, GRID);
+    OGK_ASSERT_NEAR(table.t_f_star_s, TF_STAR, 0.0);
+    buf[OGK_TABLE_HEADER_SIZE + 100u] ^= 0x01u;
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_E_TABLE_CRC);
+    assert_int_equal(table.n_grid, 0u);
+    build_table(TF_STAR * 1.01); /* t_f* of the last node disagrees */
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_E_TABLE_TYPE);
+    build_table(TF_STAR);
+    tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * (GRID - 1u), 0.9); /* grid must end at 1 */
+    tw_seal(buf, N_VALUES);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_E_TABLE_DIM);
+    build_table(TF_STAR);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES - 8u), OGK_E_TABLE_TRUNCATED);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
+}
+
+static void test_on_nominal_no_correction(void **state)
+{
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    OGK_ASSERT_NEAR(s.tau_k, 0.0, 0.0);
+    OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 1e-12);
+    OGK_ASSERT_NEAR(s.tau_next, 2.0 / TF_STAR, 1e-15);
+    OGK_ASSERT_NEAR(s.t_cutoff_s, TF_STAR, 1e-12);
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-15);
+    OGK_ASSERT_NEAR(s.beta_rad, 0.0, 0.0);
+    assert_int_equal(s.flags, 0u);
+}
+
+static void test_flight_time_update_and_eq31(void **state)
+{
+    /* dv_t = +1.5 m/s at t = 0: dt_f = 3 s. Next sample at t = 2:
+     * tau_1 = 2 / 103 (eq. 31), the time-state error dt = 2 - 100 tau_1. */
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    ogk_nog_command_t c;
+    const double tf0 = TF_STAR + K_TF_VT * 1.5;
+    const double tau1 = 2.0 / tf0;
+    const double dt1 = 2.0 - TF_STAR * tau1;
+    double lam4, lam5;
+    (void)state;
+    nav.v_t_mps += 1.5;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    OGK_ASSERT_NEAR(s.dt_f_s, 3.0, 1e-12);
+    OGK_ASSERT_NEAR(s.t_cutoff_s, tf0, 1e-12);
+    OGK_ASSERT_NEAR(s.dx[4], 1.5, 1e-9);
+    nav = nav_at(2.0, tau1);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    OGK_ASSERT_NEAR(s.tau_k, tau1, 1e-15);
+    OGK_ASSERT_NEAR(s.dx[6], dt1, 1e-12);
+    OGK_ASSERT_NEAR(s.dt_f_s, 0.0, 1e-10); /* on the nominal state again (v_t rounding) */
+    /* The time-state error moves lambda_vr: alpha = atan2(-lam4, -lam5). */
+    lam4 = -sin(ALPHA0) + K_L4_T * dt1;
+    lam5 = -cos(ALPHA0);
+    OGK_ASSERT_NEAR(s.alpha_rad, atan2(-lam4, -lam5), 1e-12);
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 3.0, &c), OGK_OK);
+    OGK_ASSERT_NEAR(c.tau, tau1 + 1.0 / TF_STAR, 1e-15);
+}
+
+static void test_out_of_plane_with_first_order_hold(void **state)
+{
+    /* dv_n = 2 m/s: dlam_vn = 0.02 at tau_k, rate 0.04 per unit tau; beta
+     * = atan2(-lam6, |lam_inplane|) with |lam_inplane| = 1. */
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    ogk_nog_command_t c;
+    const double t = 1.5;
+    const double tau = t / TF_STAR;
+    const double lam6 = K_L6_VN * 2.0 + K_L6_RATE * 2.0 * tau;
+    (void)state;
+    nav.v_n_mps = 2.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    OGK_ASSERT_NEAR(s.beta_rad, atan2(-K_L6_VN * 2.0, 1.0), 1e-14);
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, t, &c), OGK_OK);
+    OGK_ASSERT_NEAR(c.beta_rad, atan2(-lam6, 1.0), 1e-14);
+    OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, 1e-14);
+}
+
+static void test_end_game_limits(void **state)
+{
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    (void)state;
+    nav.v_t_mps += 50.0; /* dt_f = 100 s, clipped to 10 s */
+    nav.v_n_mps = 1000.0; /* dlam_vn = 10: about 84 deg, clipped to 0.5 rad */
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    OGK_ASSERT_NEAR(s.dt_f_s, 10.0, 0.0);
+    assert_true((s.flags & OGK_NOG_FLAG_LIMITED) != 0u);
+    OGK_ASSERT_NEAR(fabs(s.beta_rad), 0.5, 1e-9);
+}
+
+static void test_freeze_and_termination(void **state)
+{
+    /* Last gain node at tau = 0.75: a sample at tau = 0.8 is frozen. */
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    ogk_nog_command_t c;
+    (void)state;
+    nav.v_n_mps = 2.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    nav = nav_at(80.0, 0.8);
+    nav.v_n_mps = 50.0; /* would be a large correction: ignored when frozen */
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    assert_true((s.flags & OGK_NOG_FLAG_FROZEN) != 0u);
+    /* dlam held from the first sample's first-order hold at tau = 0.8. */
+    OGK_ASSERT_NEAR(s.beta_rad, atan2(-(K_L6_VN * 2.0 + K_L6_RATE * 2.0 * 0.8), 1.0), 1e-12);
+    nav = nav_at(98.5, 0.985);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    assert_true((s.flags & OGK_NOG_FLAG_TERMINATING) != 0u);
+    OGK_ASSERT_NEAR(s.t_cutoff_s, 100.0, 1e-9);
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 100.5, &c), OGK_OK);
+    assert_true((c.flags & OGK_NOG_FLAG_CUTOFF) != 0u);
+    OGK_ASSERT_NEAR(c.tau, 1.0, 0.0);
+}
+
+static void test_bad_navigation_gives_safe_command(void **state)
+{
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    ogk_nog_command_t c;
+    (void)state;
+    nav.v_t_mps += 1.5; /* dt_f = 3 s in force */
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    nav = nav_at(2.0, 0.02);
+    nav.v_r_mps = NAN;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_NONFINITE);
+    assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
+    OGK_ASSERT_NEAR(s.t_f_s, 103.0, 1e-12);            /* last valid correction held */
+    OGK_ASSERT_NEAR(s.tau_k, 2.0 / 103.0, 1e-15);      /* tau still advanced */
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
+    nav = nav_at(1.0, 0.01); /* time going backwards */
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
+    assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 1.0, &c), OGK_E_RANGE);
+    assert_true((c.flags & OGK_NOG_FLAG_SAFE) != 0u);
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, NAN, &c), OGK_E_NONFINITE);
+    /* The context is still usable: a good sample goes through. */
+    nav = nav_at(4.0, 4.0 / 103.0);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    assert_true((s.flags & OGK_NOG_FLAG_SAFE) == 0u);
+}
+
+static void test_init_errors(void **state)
+{
+    ogk_nog_config_t cfg = config();
+    ogk_nog_t ctx;
+    ogk_nog_table_t empty;
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_nog_init(NULL, &cfg), OGK_E_NULL);
+    cfg.sample_interval_s = 0.0;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&ctx, &nav, &s), OGK_E_NOT_INIT);
+    cfg = config();
+    cfg.dtf_max_s = 0.6 * TF_STAR;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg = config();
+    cfg.du_max_rad = NAN;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg = config();
+    cfg.tau_freeze = 1.0;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
+    memset(&empty, 0, sizeof empty);
+    cfg = config();
+    cfg.table = &empty;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_NOT_INIT);
+    cfg.table = NULL;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_NULL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_table_load_and_rejections, setup),
+        cmocka_unit_test_setup(test_on_nominal_no_correction, setup),
+        cmocka_unit_test_setup(test_flight_time_update_and_eq31, setup),
+        cmocka_unit_test_setup(test_out_of_plane_with_first_order_hold, setup),
+        cmocka_unit_test_setup(test_end_game_limits, setup),
+        cmocka_unit_test_setup(test_freeze_and_termination, setup),
+        cmocka_unit_test_setup(test_bad_navigation_gives_safe_command, setup),
+        cmocka_unit_test_setup(test_init_errors, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
