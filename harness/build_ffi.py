@@ -238,6 +238,95 @@ ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
                              ogk_rk4_dense_t *dense);
 """
 
+# kernel/include/ogk/cpd.h: constrained PD attitude control (docs/cpd.md).
+CDEF_CPD = """
+static const double OGK_CPD_ANGLE_LIMIT;
+
+typedef enum {
+    OGK_CPD_POINTING_BODY = 0,
+    OGK_CPD_POINTING_EULER = 1
+} ogk_cpd_pointing_t;
+
+#define OGK_CPD_FLAG_SAT_X ...
+#define OGK_CPD_FLAG_SAT_Y ...
+#define OGK_CPD_FLAG_SAT_Z ...
+#define OGK_CPD_FLAG_SAFE ...
+#define OGK_CPD_FLAG_BEHIND ...
+#define OGK_CPD_FLAG_YAW_UNDEFINED ...
+#define OGK_CPD_INIT_MAGIC ...
+
+typedef struct {
+    double k_px;
+    double k_dx;
+    double k_py;
+    double k_dy;
+    double k_pz;
+    double k_dz;
+    double m_xc_max;
+    double delta_yc_max;
+    double delta_zc_max;
+    double tau_x;
+    double tau_y;
+    double tau_z;
+    double phi_c;
+    ogk_cpd_pointing_t pointing;
+    double approach_accel_x;
+    double approach_accel_y;
+    double approach_accel_z;
+    ...;
+} ogk_cpd_config_t;
+
+typedef struct {
+    double psi;
+    double theta;
+    double phi_roll;
+    double rate_p;
+    double rate_q;
+    double rate_r;
+    double alpha_c;
+    double beta_c;
+    double xi;
+    double phi;
+    ...;
+} ogk_cpd_input_t;
+
+typedef struct {
+    double m_xc;
+    double delta_yc;
+    double delta_zc;
+    double psi_c;
+    double theta_c;
+    double phi_c;
+    double err_x;
+    double err_y;
+    double err_z;
+    uint32_t flags;
+    ...;
+} ogk_cpd_output_t;
+
+typedef struct {
+    ogk_cpd_config_t cfg;
+    ogk_cpd_output_t last;
+    uint32_t init_magic;
+    ...;
+} ogk_cpd_t;
+
+ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg);
+ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
+                        ogk_cpd_output_t *out);
+ogk_status ogk_cpd_commanded_attitude(double alpha_c, double beta_c, double xi,
+                                      double phi, double *psi_c,
+                                      double *theta_c);
+ogk_status ogk_cpd_thrust_angles(double psi, double theta, double phi_roll,
+                                 double xi, double phi, double delta_y,
+                                 double delta_z, double *alpha_a,
+                                 double *beta_a);
+ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll,
+                                       double alpha_c, double beta_c, double xi,
+                                       double phi, double *err_y, double *err_z);
+ogk_status ogk_cpd_wrap_pi(double angle, double *wrapped);
+"""
+
 # harness/csrc/models.h: C models for tests and demos (not flight code).
 CDEF_MODELS = """
 typedef struct {
@@ -279,13 +368,91 @@ ogk_status ogk_model_oscillator_switch(void *user, double t, const double *x,
                                        int mode, double *s);
 """
 
+# harness/csrc/sil_batch.h: batch loops of the SIL harness over Monte Carlo runs
+# (not flight code; ogk.leo_geo.attitude, docs/sil.md).
+CDEF_SIL_BATCH = """
+#define OGK_SIL_CPD_N_IN ...
+#define OGK_SIL_CPD_N_OUT ...
+ogk_status ogk_sil_cpd_init_batch(ogk_cpd_t *ctx, size_t n_runs,
+                                  const ogk_cpd_config_t *cfg, int32_t *status);
+ogk_status ogk_sil_cpd_step_batch(ogk_cpd_t *ctx, size_t n_runs,
+                                  const uint8_t *active, const double *in,
+                                  double *out, int32_t *status,
+                                  uint32_t *flags);
+"""
+
+CDEF_NOG = """
+#define OGK_NOG_NX ...
+#define OGK_NOG_TABLE_KIND ...
+#define OGK_NOG_ENTRY_LEN ...
+#define OGK_NOG_MAX_GRID ...
+#define OGK_NOG_FLAG_TERMINATING ...
+#define OGK_NOG_FLAG_FROZEN ...
+#define OGK_NOG_FLAG_LIMITED ...
+#define OGK_NOG_FLAG_SAFE ...
+#define OGK_NOG_FLAG_CUTOFF ...
+typedef struct {
+    double tau[...];
+    double entry[...];
+    size_t n_grid;
+    double t_f_star_s;
+    ...;
+} ogk_nog_table_t;
+typedef struct {
+    const ogk_nog_table_t *table;
+    double sample_interval_s;
+    double dtf_max_s;
+    double du_max_rad;
+    double tau_freeze;
+    ...;
+} ogk_nog_config_t;
+typedef struct {
+    double t_s; double r_m; double xi_rad; double phi_rad;
+    double v_r_mps; double v_t_mps; double v_n_mps;
+    ...;
+} ogk_nog_nav_t;
+typedef struct {
+    double tau_k; double tau_next; double t_f_s; double dt_f_s; double t_cutoff_s;
+    double dx[7]; double alpha_rad; double beta_rad; uint8_t flags;
+    ...;
+} ogk_nog_sample_t;
+typedef struct {
+    double tau; double alpha_rad; double beta_rad; uint8_t flags;
+    ...;
+} ogk_nog_command_t;
+typedef struct {
+    double t_k_s; double tau_k; double t_f_s;
+    uint32_t n_samples; uint8_t flags; uint8_t initialized;
+    ...;
+} ogk_nog_t;
+ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t len);
+ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg);
+ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_sample_t *out);
+ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_nog_command_t *out);
+"""
+
+# harness/csrc/nog_batch.h: VTD-NOG over all runs of a batch (ogk.leo_geo.nog_guidance).
+CDEF_NOG_BATCH = """
+ogk_status ogk_sil_nog_init_batch(ogk_nog_t *ctx, size_t n_runs,
+                                  const ogk_nog_config_t *cfg, int32_t *status);
+ogk_status ogk_sil_nog_sample_batch(ogk_nog_t *ctx, size_t n_runs, const uint8_t *active,
+                                    const double *t, const double *nav, double *t_cutoff,
+                                    double *t_f, double *tau_k, uint32_t *flags,
+                                    int32_t *status);
+ogk_status ogk_sil_nog_command_batch(const ogk_nog_t *ctx, size_t n_runs, const double *t,
+                                     double *alpha, double *beta, uint32_t *flags,
+                                     int32_t *status);
+"""
+
 CDEF = "".join(
     [CDEF_STATUS, CDEF_VERSION, CDEF_CONFIG, CDEF_CRC32, CDEF_TABLE,
-     CDEF_INTERP, CDEF_LINALG, CDEF_RK4, CDEF_MODELS]
+     CDEF_INTERP, CDEF_LINALG, CDEF_RK4, CDEF_CPD, CDEF_MODELS,
+     CDEF_SIL_BATCH, CDEF_NOG, CDEF_NOG_BATCH]
 )
 
-HEADERS = ["status", "version", "config", "crc32", "table", "interp", "linalg", "rk4"]
-SOURCE = "".join(f'#include "ogk/{h}.h"\n' for h in HEADERS) + '#include "models.h"\n'
+HEADERS = ["status", "version", "config", "crc32", "table", "interp", "linalg", "rk4", "cpd", "nog"]
+SOURCE = ("".join(f'#include "ogk/{h}.h"\n' for h in HEADERS) + '#include "models.h"\n'
+          + '#include "sil_batch.h"\n' + '#include "nog_batch.h"\n')
 
 
 def kernel_sources() -> list[str]:

@@ -70,6 +70,16 @@ typedef struct {
     double tau_z;         /* [s] TVC yaw actuator time constant, eq. (16), > 0 */
     double phi_c;         /* [rad] commanded roll Phi_c, in [-pi, pi] (0 in the paper) */
     ogk_cpd_pointing_t pointing; /* [-] pointing-error mode */
+    /* Braking-curve cap of the proportional term (not in the paper; docs/cpd.md):
+     * with a > 0 the PD law k_p e - k_d w is flown as k_d (w_c - w) with the
+     * rate command w_c = sign(e) min(k_p |e| / k_d, sqrt(2 a |e|)), so a large
+     * error is approached no faster than the saturated actuator can brake
+     * (a = margin * control acceleration at the command limit). Identical to
+     * eqs. (45)-(46) while k_p |e| / k_d <= sqrt(2 a |e|); a = 0 flies the
+     * paper's law unchanged. The command saturation, hence eq. (47), is kept. */
+    double approach_accel_x; /* [rad/s^2] roll braking acceleration, >= 0 (0: off) */
+    double approach_accel_y; /* [rad/s^2] pitch braking acceleration, >= 0 (0: off) */
+    double approach_accel_z; /* [rad/s^2] yaw braking acceleration, >= 0 (0: off) */
 } ogk_cpd_config_t;
 
 typedef struct {

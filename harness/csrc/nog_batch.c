@@ -1,0 +1,82 @@
+/* nog_batch.c -- SIL batch loops for VTD-NOG (not flight code; nog_batch.h). */
+#include "nog_batch.h"
+
+ogk_status ogk_sil_nog_init_batch(ogk_nog_t *ctx, size_t n_runs,
+                                  const ogk_nog_config_t *cfg, int32_t *status)
+{
+    ogk_status first = OGK_OK;
+    size_t i;
+    if (ctx == NULL || cfg == NULL || status == NULL) {
+        return OGK_E_NULL;
+    }
+    for (i = 0u; i < n_runs; ++i) {
+        const ogk_status st = ogk_nog_init(&ctx[i], cfg);
+        status[i] = (int32_t)st;
+        if (st != OGK_OK && first == OGK_OK) {
+            first = st;
+        }
+    }
+    return first;
+}
+
+ogk_status ogk_sil_nog_sample_batch(ogk_nog_t *ctx, size_t n_runs, const uint8_t *active,
+                                    const double *t, const double *nav, double *t_cutoff,
+                                    double *t_f, double *tau_k, uint32_t *flags,
+                                    int32_t *status)
+{
+    ogk_status first = OGK_OK;
+    size_t i;
+    if (ctx == NULL || active == NULL || t == NULL || nav == NULL || t_cutoff == NULL ||
+        t_f == NULL || tau_k == NULL || flags == NULL || status == NULL) {
+        return OGK_E_NULL;
+    }
+    for (i = 0u; i < n_runs; ++i) {
+        ogk_nog_nav_t in;
+        ogk_nog_sample_t out;
+        ogk_status st;
+        if (active[i] == 0u) {
+            continue;
+        }
+        in.t_s = t[i];
+        in.r_m = nav[6u * i];
+        in.xi_rad = nav[6u * i + 1u];
+        in.phi_rad = nav[6u * i + 2u];
+        in.v_r_mps = nav[6u * i + 3u];
+        in.v_t_mps = nav[6u * i + 4u];
+        in.v_n_mps = nav[6u * i + 5u];
+        st = ogk_nog_sample(&ctx[i], &in, &out);
+        t_cutoff[i] = out.t_cutoff_s;
+        t_f[i] = out.t_f_s;
+        tau_k[i] = out.tau_k;
+        flags[i] = out.flags;
+        status[i] = (int32_t)st;
+        if (st != OGK_OK && first == OGK_OK) {
+            first = st;
+        }
+    }
+    return first;
+}
+
+ogk_status ogk_sil_nog_command_batch(const ogk_nog_t *ctx, size_t n_runs, const double *t,
+                                     double *alpha, double *beta, uint32_t *flags,
+                                     int32_t *status)
+{
+    ogk_status first = OGK_OK;
+    size_t i;
+    if (ctx == NULL || t == NULL || alpha == NULL || beta == NULL || flags == NULL ||
+        status == NULL) {
+        return OGK_E_NULL;
+    }
+    for (i = 0u; i < n_runs; ++i) {
+        ogk_nog_command_t out;
+        const ogk_status st = ogk_nog_command(&ctx[i], t[i], &out);
+        alpha[i] = out.alpha_rad;
+        beta[i] = out.beta_rad;
+        flags[i] = out.flags;
+        status[i] = (int32_t)st;
+        if (st != OGK_OK && first == OGK_OK) {
+            first = st;
+        }
+    }
+    return first;
+}

@@ -1,0 +1,113 @@
+"""PNG figures of a campaign in the spirit of the paper's Figs. 3-5 (matplotlib, Agg backend).
+
+  leo_geo_states.png       Fig. 3: altitude error, declination, v_r, v_t, v_n and M_x vs time,
+                           every recorded run overlaid, nominal dashed
+  leo_geo_actuators.png    Fig. 4: nozzle deflections Delta_y, Delta_z (and M_x) vs time
+  leo_geo_attitude.png     Fig. 5: commanded vs actual Psi, Theta, Phi of one run
+  leo_geo_injection.png    injection errors of every run (scatter) and t_f histogram
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .campaign import CampaignResult
+from .nominal_ref import circular_speed, nominal_reference
+
+
+def write_plots(res: CampaignResult, out_dir: str | Path) -> list[Path]:
+    """Writes the PNGs that the result's data allows; returns their paths."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    written: list[Path] = []
+    h = res.history
+    scn = res.scenario
+    ref = nominal_reference(scn)
+    if h is not None and h.t_s.size:
+        t = h.t_s
+        d = h.data
+        nom = ref.state(np.clip(t, 0.0, ref.tf_s))
+        nom[t > ref.tf_s] = np.nan
+        vc = circular_speed(scn)
+        panels = [("r - R_f [km]", (d["r_m"] - scn.target_radius_m) / 1e3,
+                   (nom[:, 0] - scn.target_radius_m) / 1e3),
+                  ("declination phi [deg]", np.degrees(d["phi_rad"]), np.degrees(nom[:, 2])),
+                  ("v_r [km/s]", d["vr_mps"] / 1e3, nom[:, 3] / 1e3),
+                  ("v_t - v_c [km/s]", (d["vt_mps"] - vc) / 1e3, (nom[:, 4] - vc) / 1e3),
+                  ("v_n [m/s]", d["vn_mps"], nom[:, 5]),
+                  ("M_x [N m]", d["Mx_Nm"], None)]
+        fig, axes = plt.subplots(3, 2, figsize=(11, 9), sharex=True)
+        for ax, (label, val, nominal) in zip(axes.ravel(), panels):
+            ax.plot(t, val, lw=0.6, alpha=0.6)
+            if nominal is not None:
+                ax.plot(t, nominal, "k--", lw=1.2, label="nominal")
+            ax.set_ylabel(label)
+            ax.grid(alpha=0.3)
+        for ax in axes[-1]:
+            ax.set_xlabel("time since ignition [s]")
+        fig.suptitle(f"LEO-to-GEO injection: state histories ({h.run_id.size} runs, "
+                     f"truth {res.truth}, guidance {res.guidance})")
+        fig.tight_layout()
+        written.append(_save(fig, out / "leo_geo_states.png"))
+
+        if res.truth == "6dof":
+            fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+            for ax, key, label, scale in [(axes[0], "Dy_rad", "Delta_y [deg]", np.degrees(1.0)),
+                                          (axes[1], "Dz_rad", "Delta_z [deg]", np.degrees(1.0)),
+                                          (axes[2], "Mx_Nm", "M_x [N m]", 1.0)]:
+                ax.plot(t, d[key] * scale, lw=0.6, alpha=0.6)
+                ax.set_ylabel(label)
+                ax.grid(alpha=0.3)
+            axes[-1].set_xlabel("time since ignition [s]")
+            fig.suptitle("Thrust deflection angles and roll torque (actual, incl. actuation noise)")
+            fig.tight_layout()
+            written.append(_save(fig, out / "leo_geo_actuators.png"))
+
+            fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+            col = 0
+            for ax, (act, cmd, label) in zip(axes, [("psi_rad", "psi_c_rad", "yaw Psi [deg]"),
+                                                    ("theta_rad", "theta_c_rad", "pitch Theta [deg]"),
+                                                    ("phi_roll_rad", "phi_c_rad", "roll Phi [deg]")]):
+                ax.plot(t, np.degrees(d[cmd][:, col]), "k--", lw=1.2, label="commanded")
+                ax.plot(t, np.degrees(d[act][:, col]), lw=1.0, label="actual")
+                ax.set_ylabel(label)
+                ax.grid(alpha=0.3)
+            axes[0].legend()
+            axes[-1].set_xlabel("time since ignition [s]")
+            fig.suptitle(f"Commanded and actual attitude, run {int(h.run_id[col])}")
+            fig.tight_layout()
+            written.append(_save(fig, out / "leo_geo_attitude.png"))
+
+    ok = res.ok
+    if ok.any():
+        e = res.errors
+        fig, axes = plt.subplots(2, 2, figsize=(10, 8))
+        pairs = [("dr_f_m", "dvr_f_mps", "dr_f [m]", "dv_rf [m/s]"),
+                 ("dvt_f_mps", "dvn_f_mps", "dv_tf [m/s]", "dv_nf [m/s]"),
+                 ("dphi_f_deg", "dvn_f_mps", "dphi_f [deg]", "dv_nf [m/s]")]
+        for ax, (kx, ky, lx, ly) in zip(axes.ravel(), pairs):
+            ax.scatter(e[kx][ok], e[ky][ok], s=6, alpha=0.6)
+            ax.set_xlabel(lx)
+            ax.set_ylabel(ly)
+            ax.grid(alpha=0.3)
+        ax = axes[1, 1]
+        ax.hist(e["tf_s"][ok], bins=min(40, max(5, int(ok.sum() ** 0.5))))
+        ax.axvline(res.nominal_tf_s, color="k", ls="--", label="t_f*")
+        ax.set_xlabel("t_f [s]")
+        ax.legend()
+        fig.suptitle(f"Injection errors at cut-off ({int(ok.sum())} runs, {res.n_failures} failed)")
+        fig.tight_layout()
+        written.append(_save(fig, out / "leo_geo_injection.png"))
+    return written
+
+
+def _save(fig, path: Path) -> Path:
+    import matplotlib.pyplot as plt
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path

@@ -1,0 +1,261 @@
+"""VTD-NOG gain tables by transition matrices (docs/vtd-nog.md; VTD-NOG-NOTES.md secs. 2-3).
+
+Linear TPBVP on [tau_k, 1] in y = [dx (7); dlam (7); dmu (1)] with the parameter change da = dt_f:
+  y' = M(tau) y + G(tau) da,  M = [[A, -B, 0], [-C, -A^T, 0], [-E^T, -D^T, 0]],  G = [D; -E; -F].
+Integrating backward from tau = 1 (Phi = I, Gamma = 0)
+  d/dtau Phi(1, tau) = -Phi(1, tau) M(tau),   d/dtau Gamma(1, tau) = -Phi(1, tau) G(tau)
+gives y(1) = Phi(1, tau_k) y(tau_k) + Gamma(1, tau_k) da. With y(tau_k) = [dx_k; dlam_k; 0] the eight
+rows R = {r, phi, v_r, v_t, v_n | lambda_xi, lambda_t | mu} of y(1) vanish:
+  K_k [dlam_k; da] = -Phi_R,x dx_k,   K_k = [Phi_R,lam  Gamma_R]   (8 x 8)
+so the gain matrix is G_k = -K_k^-1 Phi_R,x (8 x 7): rows 0..6 give dlam_k, row 7 gives dt_f.
+All in canonical units (units.py); `table_arrays_si` converts to SI for the flight tables.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.integrate import solve_ivp
+
+from . import dynamics as dyn
+from .nominal import Nominal
+from .propagation import ATOL, N_Z, RTOL
+
+FloatArray = NDArray[np.float64]
+
+N_Y = N_Z + 1                     #: [dx; dlam; dmu]
+MU = N_Z                          #: index of dmu in y
+#: Rows of y(1) that vanish: constrained final states, free-final costates, parameter costate.
+ZERO_ROWS = (dyn.R, dyn.PHI, dyn.VR, dyn.VT, dyn.VN, dyn.N_X + dyn.XI, dyn.N_X + dyn.TIME, MU)
+N_GAIN_OUT = dyn.N_X + 1          #: (dlam (7), dt_f)
+
+
+def linear_system(nominal: Nominal, z: FloatArray) -> tuple[FloatArray, FloatArray,
+                                                             dyn.NeighboringMatrices]:
+    """M (..., 15, 15), G (..., 15) and the A..F matrices at nominal points z (..., 14)."""
+    x, lam = z[..., :dyn.N_X], z[..., dyn.N_X:]
+    mats = dyn.neighboring_matrices(nominal.model, x, lam, dyn.optimal_control(lam), nominal.t_f)
+    lead = z.shape[:-1]
+    m_mat = np.zeros(lead + (N_Y, N_Y))
+    m_mat[..., :dyn.N_X, :dyn.N_X] = mats.A
+    m_mat[..., :dyn.N_X, dyn.N_X:N_Z] = -mats.B
+    m_mat[..., dyn.N_X:N_Z, :dyn.N_X] = -mats.C
+    m_mat[..., dyn.N_X:N_Z, dyn.N_X:N_Z] = -np.swapaxes(mats.A, -1, -2)
+    m_mat[..., MU, :dyn.N_X] = -mats.E
+    m_mat[..., MU, dyn.N_X:N_Z] = -mats.D
+    g_vec = np.concatenate([mats.D, -mats.E, -mats.F[..., None]], axis=-1)
+    return m_mat, g_vec, mats
+
+
+@dataclasses.dataclass(frozen=True)
+class BackwardTransition:
+    """Phi(1, tau), Gamma(1, tau) and the nominal z(tau) at the requested tau (ascending)."""
+
+    tau: FloatArray        #: (N,)
+    z: FloatArray          #: (N, 14)
+    phi: FloatArray        #: (N, 15, 15)
+    gamma: FloatArray      #: (N, 15)
+
+
+def backward_transition(nominal: Nominal, tau: FloatArray) -> BackwardTransition:
+    """Integrates [z, Phi(1, .), Gamma(1, .)] backward from tau = 1 (DOP853, rtol 1e-12)."""
+    tau = np.unique(np.asarray(tau, dtype=np.float64))
+    if tau[0] < 0.0 or tau[-1] > 1.0:
+        raise ValueError("tau must lie in [0, 1]")
+    z1 = nominal.states(np.array([1.0]))[0]
+    t_f = nominal.t_f
+
+    def rhs(_: float, y: FloatArray) -> FloatArray:
+        z = y[:N_Z]
+        phi = y[N_Z:N_Z + N_Y * N_Y].reshape(N_Y, N_Y)
+        m_mat, g_vec, mats = linear_system(nominal, z)
+        dz = t_f * np.concatenate([mats.D, -mats.E])   # extremal flow (h_u = 0): g = [f~; -h_x]
+        return np.concatenate([dz, (-phi @ m_mat).ravel(), -phi @ g_vec])
+
+    y1 = np.concatenate([z1, np.eye(N_Y).ravel(), np.zeros(N_Y)])
+    desc = tau[::-1]
+    if desc[0] == 1.0 and desc.size == 1:
+        ys = y1[None, :]
+    else:
+        sol = solve_ivp(rhs, (1.0, float(desc[-1])), y1, method="DOP853", rtol=RTOL, atol=ATOL,
+                        t_eval=desc)
+        if not sol.success:
+            raise RuntimeError(f"backward transition integration failed: {sol.message}")
+        ys = sol.y.T[::-1]
+    return BackwardTransition(tau=tau, z=ys[:, :N_Z],
+                              phi=ys[:, N_Z:N_Z + N_Y * N_Y].reshape(-1, N_Y, N_Y),
+                              gamma=ys[:, N_Z + N_Y * N_Y:])
+
+
+def equilibrate(mat: FloatArray, sweeps: int = 30) -> tuple[FloatArray, FloatArray]:
+    """Ruiz row/column scaling of square matrices (..., n, n) to unit max-norm rows and columns.
+
+    Returns (row_scale, col_scale) such that diag(row) mat diag(col) is equilibrated.
+    """
+    row = np.ones(mat.shape[:-1])
+    col = np.ones(mat.shape[:-2] + mat.shape[-1:])
+    work = np.abs(mat)
+    for _ in range(sweeps):
+        scaled = work * row[..., :, None] * col[..., None, :]
+        row = row / np.sqrt(np.max(scaled, axis=-1))
+        scaled = work * row[..., :, None] * col[..., None, :]
+        col = col / np.sqrt(np.max(scaled, axis=-2))
+    return row, col
+
+
+@dataclasses.dataclass(frozen=True)
+class GainTable:
+    """VTD-NOG tables over normalised time (canonical units).
+
+    gain[k] maps dx_k = x(t_k) - x*(tau_k) (7, with dt_k = t_k - t_f* tau_k) to [dlam_k; dt_f].
+    costate_rate_gain[k] = d(dlam)/dtau at tau_k per unit dx_k (for a first-order hold of dlam
+    inside the sampling interval); control_gain[k] = K_lam = -H_uu^-1 F_u^T (du = K_lam dlam on this
+    nominal, where H_ux, H_ua vanish).
+    """
+
+    t_f: float                       #: t_f* [TU]
+    tau: FloatArray                  #: (N,)
+    z: FloatArray                    #: (N, 14) nominal [x; lambda]
+    u: FloatArray                    #: (N, 2) nominal [alpha, beta]
+    gain: FloatArray                 #: (N, 8, 7)
+    costate_rate_gain: FloatArray    #: (N, 7, 7)
+    control_gain: FloatArray         #: (N, 2, 7)
+    control_state_gain: FloatArray   #: (N, 2, 7)  K_x = -H_uu^-1 H_ux (0 on this nominal)
+    huu_min_eig: FloatArray          #: (N,) smallest eigenvalue of H_uu (SOSC: > 0)
+    cond_raw: FloatArray             #: (N,) 2-norm condition number of K_k
+    cond_equilibrated: FloatArray    #: (N,) same after Ruiz equilibration
+
+
+def default_tau_grid(nominal: Nominal, points_per_sample: int = 4, relative_spacing: float = 0.05,
+                     end_time_to_go_s: float = 0.5) -> FloatArray:
+    """Grid over [0, 1): spacing Delta t_S / points_per_sample in time (so every nominal sampling
+    instant k Delta t_S / t_f* is a node) until the time-to-go is Delta t_S / (points_per_sample
+    relative_spacing), then geometric in the time-to-go (each step `relative_spacing` of the
+    time-to-go; the costate gains grow like 1/time-to-go^3 and their linear interpolation then errs
+    by about 1.6 relative_spacing^2 = 0.4 %) down to `end_time_to_go_s` (below the last sampling
+    interval a flight law freezes the correction anyway). tau = 1 is excluded (K_k is singular
+    there). For the paper's data: 251 nodes (the flight bundle adds tau = 1 and must fit
+    OGK_NOG_MAX_GRID = 256)."""
+    t_f_s = nominal.t_f_s
+    step_s = nominal.problem.scenario.sample_interval_s / points_per_sample
+    switch_togo_s = step_s / relative_spacing
+    n_uniform = int(np.floor((t_f_s - switch_togo_s) / step_s))
+    uniform_s = step_s * np.arange(n_uniform + 1)
+    togo_s = t_f_s - uniform_s[-1]
+    n_geo = int(np.ceil(np.log(end_time_to_go_s / togo_s) / np.log(1.0 - relative_spacing)))
+    geometric_s = t_f_s - np.geomspace(togo_s, end_time_to_go_s, n_geo + 1)[1:]
+    return np.concatenate([uniform_s, geometric_s]) / t_f_s
+
+
+def compute_gain_table(nominal: Nominal, tau: FloatArray | None = None) -> GainTable:
+    """Gain table at the given tau (default `default_tau_grid`); every tau must be < 1."""
+    tau = default_tau_grid(nominal) if tau is None else np.unique(np.asarray(tau, dtype=np.float64))
+    if np.any(tau >= 1.0):
+        raise ValueError("the gain solve is singular at tau = 1; use tau < 1")
+    trans = backward_transition(nominal, np.append(tau, 1.0))
+    keep = trans.tau < 1.0
+    phi, gamma = trans.phi[keep], trans.gamma[keep]
+    z = nominal.states(tau)     # the forward solution from the exact ignition state (differs from
+    #                             the backward-integrated trans.z by ~1e-13 relative)
+    rows = list(ZERO_ROWS)
+    k_mat = np.concatenate([phi[:, rows, dyn.N_X:N_Z], gamma[:, rows, None]], axis=-1)   # (N, 8, 8)
+    rhs = -phi[:, rows, :dyn.N_X]                                                       # (N, 8, 7)
+    row_s, col_s = equilibrate(k_mat)
+    k_eq = k_mat * row_s[:, :, None] * col_s[:, None, :]
+    # solve the equilibrated system: K = R^-1 K_eq C^-1  ->  K^-1 b = C K_eq^-1 R b
+    gain = col_s[:, :, None] * np.linalg.solve(k_eq, row_s[:, :, None] * rhs)
+    _, _, mats = linear_system(nominal, z)
+    g_lam, g_a = gain[:, :dyn.N_X, :], gain[:, dyn.N_X, :]
+    costate_rate = (-mats.C - np.swapaxes(mats.A, -1, -2) @ g_lam
+                    - mats.E[:, :, None] * g_a[:, None, :])
+    return GainTable(
+        t_f=nominal.t_f, tau=tau, z=z, u=dyn.optimal_control(z[:, dyn.N_X:]), gain=gain,
+        costate_rate_gain=costate_rate, control_gain=mats.K_lam, control_state_gain=mats.K_x,
+        huu_min_eig=np.linalg.eigvalsh(mats.H_uu)[:, 0],
+        cond_raw=np.linalg.cond(k_mat), cond_equilibrated=np.linalg.cond(k_eq))
+
+
+def condition_numbers_si(nominal: Nominal, tau: FloatArray) -> FloatArray:
+    """cond(K_k) with K_k written in SI units (rows: X for states, TU/X for costates, 1 for mu;
+    columns: TU/X for dlam, TU for dt_f) -- for comparison with the canonical raw numbers."""
+    units = nominal.problem.units
+    x_scale, tu = units.state_scale, units.time_s
+    tau = np.unique(np.asarray(tau, dtype=np.float64))
+    trans = backward_transition(nominal, np.append(tau, 1.0))
+    keep = trans.tau < 1.0
+    rows = list(ZERO_ROWS)
+    k_mat = np.concatenate([trans.phi[keep][:, rows, dyn.N_X:N_Z],
+                            trans.gamma[keep][:, rows, None]], axis=-1)
+    row_scale = np.concatenate([x_scale, tu / x_scale, [1.0]])[rows]
+    col_scale = np.append(tu / x_scale, tu)
+    return np.linalg.cond(k_mat * row_scale[None, :, None] / col_scale[None, None, :])
+
+
+@dataclasses.dataclass(frozen=True)
+class Correction:
+    """First-order VTD-NOG correction at a sample (canonical units)."""
+
+    dlam_k: FloatArray     #: (7,)
+    dt_f: float            #: [TU]
+
+
+def _interp_rows(table: GainTable, values: FloatArray, tau_k: float) -> FloatArray:
+    """Linear interpolation of table rows in tau (exact at grid points); no extrapolation."""
+    if not table.tau[0] <= tau_k <= table.tau[-1]:
+        raise ValueError(f"tau = {tau_k} outside the table [{table.tau[0]}, {table.tau[-1]}]")
+    idx = int(np.clip(np.searchsorted(table.tau, tau_k, side="right") - 1, 0, table.tau.size - 2))
+    w = (tau_k - table.tau[idx]) / (table.tau[idx + 1] - table.tau[idx])
+    return (1.0 - w) * values[idx] + w * values[idx + 1]
+
+
+def predict_correction(table: GainTable, tau_k: float, dx_k: FloatArray) -> Correction:
+    """(dlam_k, dt_f) = G(tau_k) dx_k, G linearly interpolated in tau between table points."""
+    out = _interp_rows(table, table.gain, tau_k) @ np.asarray(dx_k, dtype=np.float64)
+    return Correction(dlam_k=out[:dyn.N_X], dt_f=float(out[dyn.N_X]))
+
+
+def predict_control_correction(table: GainTable, tau_k: float, dx_k: FloatArray,
+                               tau: FloatArray, hold: str = "first-order") -> FloatArray:
+    """du(tau) (N, 2) inside [tau_k, tau_k+1] from the table only.
+
+    hold = "zero-order": dlam(tau) = dlam_k; "first-order": dlam(tau) = dlam_k + (tau - tau_k)
+    N(tau_k) dx_k with N = costate_rate_gain. du = K_lam(tau) dlam(tau) (eq. 30 with H_ux = H_ua = 0;
+    the table's control_state_gain is kept to let a caller verify that K_x = 0).
+    """
+    dx_k = np.asarray(dx_k, dtype=np.float64)
+    corr = predict_correction(table, tau_k, dx_k)
+    tau = np.atleast_1d(np.asarray(tau, dtype=np.float64))
+    dlam = np.repeat(corr.dlam_k[None, :], tau.size, axis=0)
+    if hold == "first-order":
+        rate = _interp_rows(table, table.costate_rate_gain, tau_k) @ dx_k
+        dlam = dlam + (tau - tau_k)[:, None] * rate[None, :]
+    elif hold != "zero-order":
+        raise ValueError(f"unknown hold {hold!r}")
+    k_lam = np.stack([_interp_rows(table, table.control_gain, t) for t in tau])
+    return np.einsum("nij,nj->ni", k_lam, dlam)
+
+
+def propagate_neighboring(nominal: Nominal, tau_k: float, dx_k: FloatArray, correction: Correction,
+                          tau: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Exact linear neighboring extremal from tau_k: (dx, dlam, du) at each tau >= tau_k.
+
+    Integrates y' = M y + G dt_f together with the nominal (reference for the hold errors).
+    """
+    z_k = nominal.states(np.array([tau_k]))[0]
+    t_f, da = nominal.t_f, correction.dt_f
+
+    def rhs(_: float, w: FloatArray) -> FloatArray:
+        m_mat, g_vec, mats = linear_system(nominal, w[:N_Z])
+        return np.concatenate([t_f * np.concatenate([mats.D, -mats.E]), m_mat @ w[N_Z:] + g_vec * da])
+
+    w0 = np.concatenate([z_k, dx_k, correction.dlam_k, [0.0]])
+    tau = np.atleast_1d(np.asarray(tau, dtype=np.float64))
+    sol = solve_ivp(rhs, (tau_k, float(tau.max())), w0, method="DOP853", rtol=RTOL, atol=ATOL,
+                    t_eval=tau)
+    w = sol.y.T
+    _, _, mats = linear_system(nominal, w[:, :N_Z])
+    dx, dlam = w[:, N_Z:N_Z + dyn.N_X], w[:, N_Z + dyn.N_X:N_Z + 2 * dyn.N_X]
+    du = (np.einsum("nij,nj->ni", mats.K_lam, dlam) + np.einsum("nij,nj->ni", mats.K_x, dx)
+          + mats.K_a * da)
+    return dx, dlam, du

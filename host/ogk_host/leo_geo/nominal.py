@@ -1,0 +1,300 @@
+"""Minimum-time nominal of the LEO-to-GEO injection burn by an indirect method (sec. 3, eqs. 19-28).
+
+Problem (canonical units, units.py; normalised time tau = t / t_f, eq. 21):
+  minimise t_f subject to x' = t_f f~(x, u) with x = [r, xi, phi, v_r, v_t, v_n, t] (t' = t_f),
+  x(0) on the pre-ignition ellipse at a free true anomaly f0 (eq. 19 case B, xi = phi = v_n = t = 0),
+  x(1) on the target circular orbit (eq. 20; xi(1), t(1) free).
+Necessary conditions used (eqs. 24-28 with real time as a state):
+  u = argmin H: thrust along -lambda_v (eq. 27); lambda' = -t_f h_x (eq. 25);
+  lambda_xi(1) = 0 and lambda_t(1) = 0 (free final right ascension and time; lambda_xi' = 0 gives
+  lambda_xi = 0 everywhere);
+  initial transversality for the free f0: lambda(0)^T dx0/df0 = 0;
+  parameter condition (eq. 28): mu' = -H_a = -h, mu(0) = 0, mu(1) = dPhi/dt_f = 1; the system is
+  autonomous in tau (time is a state), so h = lambda^T f~ is constant and the condition is h = -1.
+The planar symmetric solution phi = v_n = lambda_phi = lambda_vn = 0 (beta = 0) is sought (sec. 3.2).
+
+Solution method (no hand-tuned guess): the costates are homogeneous except for h = -1, so the shooting
+unknowns are q = [f0, alpha0, kappa, t_f] with lambda_v(0) = -[sin alpha0, cos alpha0] (unit norm,
+alpha0 = initial thrust angle) and lambda_r(0) = kappa / t_f (kappa ~ total turn of lambda_v). A
+vectorised fixed-step RK4 scan over a coarse 4-D grid (f0 90..270 deg, alpha0 -75..75 deg,
+kappa -3..3, t_f 0.6..2 times the rocket-equation estimate at apoapsis) ranks candidates by their scaled
+residuals; the best few are refined by Levenberg-Marquardt (DOP853 at rtol 1e-9) and then damped
+Newton (rtol 1e-12), both with exact (variational) Jacobians; the minimum-t_f converged extremal is
+kept. The costates are then rescaled to h = -1 and lambda_t(0) is fixed so that
+lambda_t(1) = 0 (lambda_t does not feed back into the other equations).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Callable
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import least_squares
+
+from . import dynamics as dyn
+from .propagation import N_Z, integrate_extremal, rk4_extremal_batch
+from .scenario import LeoGeoScenario, load_scenario
+from .units import CanonicalUnits
+
+FloatArray = NDArray[np.float64]
+
+#: Names of the 6 residuals of the full necessary conditions, in `Nominal.residuals` order.
+RESIDUAL_NAMES = ("r(1) - R_f", "v_r(1)", "v_t(1) - v_c", "lambda_t(1)",
+                  "lambda(0)^T dx0/df0", "h + 1")
+
+
+@dataclasses.dataclass(frozen=True)
+class MinTimeProblem:
+    """Canonical-unit data of the minimum-time problem."""
+
+    scenario: LeoGeoScenario
+    units: CanonicalUnits
+    model: dyn.Model
+    semilatus_rectum: float       #: p of the pre-ignition ellipse [DU]
+    eccentricity: float
+    target_radius: float          #: R_f [DU] (1 by construction)
+
+    @classmethod
+    def from_scenario(cls, scn: LeoGeoScenario) -> "MinTimeProblem":
+        units = CanonicalUnits.for_scenario(scn)
+        return cls(scenario=scn, units=units, model=dyn.Model.for_scenario(scn, units),
+                   semilatus_rectum=scn.pre_ignition.semilatus_rectum_m / units.length_m,
+                   eccentricity=scn.pre_ignition.eccentricity,
+                   target_radius=scn.target_radius_m / units.length_m)
+
+    @property
+    def circular_speed(self) -> float:
+        """sqrt(mu / R_f) [VU]."""
+        return math.sqrt(self.model.mu / self.target_radius)
+
+    def ignition_state(self, f0: FloatArray | float) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """x0(f0) from eq. (19) case B, and its first and second derivatives in f0 (each (..., 7))."""
+        f0 = np.asarray(f0, dtype=np.float64)
+        p, e = self.semilatus_rectum, self.eccentricity
+        vp = math.sqrt(self.model.mu / p)
+        w = 1.0 + e * np.cos(f0)
+        sf, cf = np.sin(f0), np.cos(f0)
+        zeros = np.zeros_like(f0)
+        x0 = np.stack([p / w, zeros, zeros, vp * e * sf, vp * w, zeros, zeros], axis=-1)
+        dx0 = np.stack([p * e * sf / w**2, zeros, zeros, vp * e * cf, -vp * e * sf, zeros, zeros],
+                       axis=-1)
+        ddx0 = np.stack([p * e * cf / w**2 + 2.0 * p * e**2 * sf**2 / w**3, zeros, zeros,
+                         -vp * e * sf, -vp * e * cf, zeros, zeros], axis=-1)
+        return x0, dx0, ddx0
+
+    def rocket_equation_time(self) -> float:
+        """t_f of an impulsive-equivalent burn at apoapsis: the Delta v to circularise [TU]."""
+        p, e = self.semilatus_rectum, self.eccentricity
+        v_apo = math.sqrt(self.model.mu / p) * (1.0 - e)
+        delta_v = self.circular_speed - v_apo
+        c, n0 = self.model.exhaust_velocity, self.model.initial_accel
+        return c / n0 * (1.0 - math.exp(-delta_v / c))
+
+
+@dataclasses.dataclass(frozen=True)
+class Nominal:
+    """The minimum-time nominal (canonical units unless a name says otherwise)."""
+
+    problem: MinTimeProblem
+    t_f: float                    #: minimum time [TU]
+    f0: float                     #: ignition true anomaly [rad]
+    z0: FloatArray                #: [x(0); lambda(0)] (14,), costates scaled to h = -1
+    residuals: FloatArray         #: the 6 necessary-condition residuals (RESIDUAL_NAMES)
+    scan_candidates: int          #: grid points of the coarse scan
+    refined_starts: int           #: LM refinements run
+
+    @property
+    def t_f_s(self) -> float:
+        """t_f* [s]."""
+        return self.t_f * self.problem.units.time_s
+
+    @property
+    def model(self) -> dyn.Model:
+        return self.problem.model
+
+    def states(self, tau: FloatArray) -> FloatArray:
+        """[x; lambda] at each tau (N, 14), integrated from tau = 0 at rtol 1e-12."""
+        return integrate_extremal(self.model, self.z0, self.t_f, 0.0, tau).z
+
+
+def _costate_from_q(alpha0: FloatArray, kappa: FloatArray, t_f: FloatArray) -> FloatArray:
+    """Homogeneous initial costate (lambda_t = 0 placeholder), (..., 7)."""
+    alpha0 = np.asarray(alpha0, dtype=np.float64)
+    lam = np.zeros(alpha0.shape + (dyn.N_X,))
+    lam[..., dyn.R] = kappa / t_f
+    lam[..., dyn.VR] = -np.sin(alpha0)
+    lam[..., dyn.VT] = -np.cos(alpha0)
+    return lam
+
+
+def _reduced_residual(problem: MinTimeProblem, q: FloatArray, free_f0: bool = True,
+                      f0_fixed: float = 0.0, rtol: float = 1e-12,
+                      with_jac: bool = True) -> tuple[FloatArray, FloatArray]:
+    """Residual and Jacobian of the scaled shooting problem.
+
+    q = [f0, alpha0, kappa, t_f] (free_f0) or [alpha0, kappa, t_f] (f0 = f0_fixed). Residual:
+    [r(1) - R_f, v_r(1), v_t(1) - v_c] and, if free_f0, lambda(0)^T dx0/df0.
+    """
+    if free_f0:
+        f0, alpha0, kappa, t_f = q
+    else:
+        f0 = f0_fixed
+        alpha0, kappa, t_f = q
+    x0, dx0, ddx0 = problem.ignition_state(f0)
+    lam0 = _costate_from_q(alpha0, kappa, t_f)
+    z0 = np.concatenate([x0, lam0])
+    arc = integrate_extremal(problem.model, z0, t_f, 0.0, np.array([1.0]), sensitivity=with_jac,
+                             rtol=rtol)
+    z1 = arc.z[0]
+    rows = [dyn.R, dyn.VR, dyn.VT]
+    res = np.array([z1[dyn.R] - problem.target_radius, z1[dyn.VR], z1[dyn.VT] - problem.circular_speed])
+    if free_f0:
+        res = np.append(res, float(lam0 @ dx0))
+    if not with_jac:
+        return res, np.empty((0, 0))
+    sens = arc.sensitivity[0]
+    # dz0/dq columns
+    dz0 = np.zeros((N_Z, 4))
+    dz0[:dyn.N_X, 0] = dx0
+    dz0[dyn.N_X + dyn.VR, 1] = -math.cos(alpha0)
+    dz0[dyn.N_X + dyn.VT, 1] = math.sin(alpha0)
+    dz0[dyn.N_X + dyn.R, 2] = 1.0 / t_f
+    dz0[dyn.N_X + dyn.R, 3] = -kappa / t_f**2
+    dz1 = sens[:, :N_Z] @ dz0
+    dz1[:, 3] += sens[:, N_Z]
+    jac = dz1[rows, :]
+    if free_f0:
+        dtrans = np.array([lam0 @ ddx0, dz0[dyn.N_X:, 1] @ dx0, dz0[dyn.N_X:, 2] @ dx0,
+                           dz0[dyn.N_X:, 3] @ dx0])
+        return res, np.vstack([jac, dtrans])
+    return res, jac[:, 1:]
+
+
+def newton(fun: Callable[[FloatArray], tuple[FloatArray, FloatArray]], q: FloatArray,
+           max_iter: int = 12, tol: float = 1e-13,
+           max_halvings: int = 8) -> tuple[FloatArray, FloatArray]:
+    """Damped Newton iteration on fun(q) -> (residual, Jacobian).
+
+    Each full step is halved until the residual 2-norm decreases; the iteration stops when the max
+    residual falls below tol, when no damped step decreases it (the noise floor), or after max_iter
+    steps. Returns (q, residual).
+    """
+    q = np.array(q, dtype=np.float64)
+    res, jac = fun(q)
+    for _ in range(max_iter):
+        if np.max(np.abs(res)) < tol:
+            break
+        step = np.linalg.solve(jac, -res)
+        for _ in range(max_halvings + 1):
+            try:
+                res_new, jac_new = fun(q + step)
+            except RuntimeError:
+                res_new = np.full_like(res, np.inf)
+            if np.linalg.norm(res_new) < np.linalg.norm(res):
+                break
+            step = 0.5 * step
+        else:
+            break
+        q, res, jac = q + step, res_new, jac_new
+    return q, res
+
+
+def _scan(problem: MinTimeProblem, n_keep: int) -> tuple[FloatArray, int]:
+    """Coarse vectorised RK4 scan; returns the n_keep best q (by scaled residual) and the grid size."""
+    t_ref = problem.rocket_equation_time()
+    f0_grid = np.radians(np.arange(90.0, 270.1, 7.5))
+    alpha_grid = np.radians(np.arange(-75.0, 75.1, 15.0))
+    kappa_grid = np.arange(-3.0, 3.01, 0.5)
+    tf_grid = t_ref * np.geomspace(0.6, 2.0, 12)
+    grid = np.stack(np.meshgrid(f0_grid, alpha_grid, kappa_grid, tf_grid, indexing="ij"),
+                    axis=-1).reshape(-1, 4)
+    x0, dx0, _ = problem.ignition_state(grid[:, 0])
+    lam0 = _costate_from_q(grid[:, 1], grid[:, 2], grid[:, 3])
+    z1 = rk4_extremal_batch(problem.model, np.concatenate([x0, lam0], axis=1), grid[:, 3], 40)
+    # transversality as a cosine between lambda(0) and the tangent of the ignition manifold
+    cos_trans = np.sum(lam0 * dx0, axis=1) / (np.linalg.norm(lam0, axis=1)
+                                              * np.linalg.norm(dx0, axis=1))
+    merit = np.sqrt((z1[:, dyn.R] - problem.target_radius)**2 + z1[:, dyn.VR]**2
+                    + (z1[:, dyn.VT] - problem.circular_speed)**2 + 0.01 * cos_trans**2)
+    merit[~np.isfinite(merit)] = np.inf
+    best = np.argsort(merit)[:n_keep]
+    return grid[best], grid.shape[0]
+
+
+def _finish(problem: MinTimeProblem, q: FloatArray, scan_size: int, n_starts: int) -> Nominal:
+    """Rescales the converged homogeneous costates to h = -1 and fixes lambda_t(0)."""
+    f0, alpha0, kappa, t_f = (float(v) for v in q)
+    x0, dx0, _ = problem.ignition_state(f0)
+    lam0 = _costate_from_q(alpha0, kappa, t_f)
+    z1 = integrate_extremal(problem.model, np.concatenate([x0, lam0]), t_f, 0.0, np.array([1.0])).z[0]
+    lam0[dyn.TIME] = -z1[dyn.N_X + dyn.TIME]          # lambda_t(tau) = lambda_t(0) + g(tau)
+    z1[dyn.N_X + dyn.TIME] = 0.0
+    u1 = dyn.optimal_control(z1[dyn.N_X:])
+    h1 = float(z1[dyn.N_X:] @ dyn.state_rate(problem.model, z1[:dyn.N_X], u1))
+    if not h1 < 0.0:
+        raise RuntimeError(f"extremal with h = {h1} >= 0 cannot be normalised to h = -1")
+    z0 = np.concatenate([x0, lam0 * (-1.0 / h1)])
+    residuals = necessary_condition_residuals(problem, z0, t_f, f0)
+    return Nominal(problem=problem, t_f=t_f, f0=f0, z0=z0, residuals=residuals,
+                   scan_candidates=scan_size, refined_starts=n_starts)
+
+
+def necessary_condition_residuals(problem: MinTimeProblem, z0: FloatArray, t_f: float,
+                                  f0: float) -> FloatArray:
+    """The 6 residuals of RESIDUAL_NAMES, re-integrated from z0 (canonical units)."""
+    z1 = integrate_extremal(problem.model, z0, t_f, 0.0, np.array([1.0])).z[0]
+    _, dx0, _ = problem.ignition_state(f0)
+    lam1 = z1[dyn.N_X:]
+    h1 = float(lam1 @ dyn.state_rate(problem.model, z1[:dyn.N_X], dyn.optimal_control(lam1)))
+    return np.array([z1[dyn.R] - problem.target_radius, z1[dyn.VR],
+                     z1[dyn.VT] - problem.circular_speed, lam1[dyn.TIME],
+                     float(z0[dyn.N_X:] @ dx0), h1 + 1.0])
+
+
+def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 4) -> Nominal:
+    """Scan + Levenberg-Marquardt + damped Newton; returns the minimum-t_f converged extremal."""
+    problem = MinTimeProblem.from_scenario(scn if scn is not None else load_scenario())
+    starts, scan_size = _scan(problem, n_starts)
+    solutions: list[FloatArray] = []
+    for q_start in starts:
+        try:   # coarse-to-fine: LM at rtol 1e-9, then damped Newton at rtol 1e-12
+            fit = least_squares(
+                lambda q: _reduced_residual(problem, q, rtol=1e-9, with_jac=False)[0], q_start,
+                jac=lambda q: _reduced_residual(problem, q, rtol=1e-9)[1], method="lm",
+                xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=100)
+        except (RuntimeError, ValueError):
+            continue
+        if not np.all(np.isfinite(fit.x)) or fit.x[3] <= 0.0 or np.max(np.abs(fit.fun)) > 1e-7:
+            continue
+        q, res = newton(lambda q: _reduced_residual(problem, q), fit.x)
+        if not np.max(np.abs(res)) < 1e-12:
+            continue
+        q[0] = math.remainder(q[0], 2.0 * math.pi) % (2.0 * math.pi)
+        solutions.append(q)
+    if not solutions:
+        raise RuntimeError("no start of the coarse scan converged")
+    best = min(solutions, key=lambda q: q[3])
+    return _finish(problem, best, scan_size, len(starts))
+
+
+def solve_fixed_ignition(nominal: Nominal, f0: float,
+                         max_step_rad: float = math.radians(0.25)) -> float:
+    """Minimum time [TU] with the ignition true anomaly fixed at f0 (eq. 19 case A with x0(f0)).
+
+    Continuation from the nominal in steps of at most max_step_rad; used to verify that f0*
+    minimises t_f (second-order check of the free-ignition transversality condition).
+    """
+    problem = nominal.problem
+    lam0 = nominal.z0[dyn.N_X:]
+    scale = math.hypot(lam0[dyn.VR], lam0[dyn.VT])
+    q = np.array([math.atan2(-lam0[dyn.VR], -lam0[dyn.VT]), lam0[dyn.R] / scale * nominal.t_f,
+                  nominal.t_f])
+    n_steps = max(1, int(math.ceil(abs(f0 - nominal.f0) / max_step_rad)))
+    for f0_step in nominal.f0 + (f0 - nominal.f0) * np.arange(1, n_steps + 1) / n_steps:
+        q, res = newton(lambda q: _reduced_residual(problem, q, free_f0=False,
+                                                    f0_fixed=float(f0_step)), q)
+        if not np.max(np.abs(res)) < 1e-12:
+            raise RuntimeError(f"fixed-ignition solve failed at f0 = {f0_step}: residual {res}")
+    return float(q[2])

@@ -1,0 +1,515 @@
+/* cpd.c -- constrained PD attitude control (Pontani & Celani 2021, sec. 5).
+ *
+ * Rotations are built literally as the paper writes them (products of the
+ * elementary frame rotations R1, R2, R3 and R_A); the unit tests check them
+ * against an independent vector construction of the same frames. */
+#include "ogk/cpd.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <string.h>
+
+#define CPD_PI 3.14159265358979323846
+#define CPD_TWO_PI 6.28318530717958647692
+
+/* Below this horizontal component (in a1-a2) of a unit vector its yaw is
+ * undefined (the vector is along +-a3 to within 1e-12 rad). */
+#define CPD_YAW_EPS 1.0e-12
+
+/* Row-major 3x3 matrix (a struct, so const pointers to it are plain C99). */
+typedef struct {
+    double m[3][3];
+} mat3_t;
+
+/* ---------------------------------------------------------------- rotations */
+
+/* Elementary frame rotations (counterclockwise about axis 1, 2, 3):
+ * [new]^T = R_i(t) [old]^T, so components transform as v_new = R_i(t) v_old. */
+static void rot1(double t, mat3_t *r)
+{
+    const double c = cos(t);
+    const double s = sin(t);
+    r->m[0][0] = 1.0; r->m[0][1] = 0.0; r->m[0][2] = 0.0;
+    r->m[1][0] = 0.0; r->m[1][1] = c;   r->m[1][2] = s;
+    r->m[2][0] = 0.0; r->m[2][1] = -s;  r->m[2][2] = c;
+}
+
+static void rot2(double t, mat3_t *r)
+{
+    const double c = cos(t);
+    const double s = sin(t);
+    r->m[0][0] = c;   r->m[0][1] = 0.0; r->m[0][2] = -s;
+    r->m[1][0] = 0.0; r->m[1][1] = 1.0; r->m[1][2] = 0.0;
+    r->m[2][0] = s;   r->m[2][1] = 0.0; r->m[2][2] = c;
+}
+
+static void rot3(double t, mat3_t *r)
+{
+    const double c = cos(t);
+    const double s = sin(t);
+    r->m[0][0] = c;   r->m[0][1] = s;   r->m[0][2] = 0.0;
+    r->m[1][0] = -s;  r->m[1][1] = c;   r->m[1][2] = 0.0;
+    r->m[2][0] = 0.0; r->m[2][1] = 0.0; r->m[2][2] = 1.0;
+}
+
+/* out = a b (out must not alias a or b). */
+static void mat_mul(const mat3_t *a, const mat3_t *b, mat3_t *out)
+{
+    size_t i;
+    size_t j;
+    for (i = 0u; i < 3u; ++i) {
+        for (j = 0u; j < 3u; ++j) {
+            out->m[i][j] = a->m[i][0] * b->m[0][j] + a->m[i][1] * b->m[1][j] +
+                           a->m[i][2] * b->m[2][j];
+        }
+    }
+}
+
+/* out = m v */
+static void mat_vec(const mat3_t *a, const double v[3], double out[3])
+{
+    size_t i;
+    for (i = 0u; i < 3u; ++i) {
+        out[i] = a->m[i][0] * v[0] + a->m[i][1] * v[1] + a->m[i][2] * v[2];
+    }
+}
+
+/* out = m^T v */
+static void mat_t_vec(const mat3_t *a, const double v[3], double out[3])
+{
+    size_t i;
+    for (i = 0u; i < 3u; ++i) {
+        out[i] = a->m[0][i] * v[0] + a->m[1][i] * v[1] + a->m[2][i] * v[2];
+    }
+}
+
+/* N = R_A R3(-xi) R2(phi): [a]^T = N [r t n]^T (sec. 5.4), so a vector with
+ * r-t-n components u has a components N u. R_A: a1 = c2, a2 = -c3, a3 = -c1. */
+static void a_from_rtn(double xi, double phi, mat3_t *n_out)
+{
+    static const mat3_t r_a = {{{0.0, 1.0, 0.0}, {0.0, 0.0, -1.0}, {-1.0, 0.0, 0.0}}};
+    mat3_t r3;
+    mat3_t r2;
+    mat3_t c_from_rtn;
+    rot3(-xi, &r3);
+    rot2(phi, &r2);
+    mat_mul(&r3, &r2, &c_from_rtn);
+    mat_mul(&r_a, &c_from_rtn, n_out);
+}
+
+/* C = R1(Phi) R2(Theta) R3(Psi): body components = C a components (eq. 9). */
+static void body_from_a(double psi, double theta, double phi_roll, mat3_t *c_out)
+{
+    mat3_t r1;
+    mat3_t r2;
+    mat3_t r3;
+    mat3_t r2r3;
+    rot1(phi_roll, &r1);
+    rot2(theta, &r2);
+    rot3(psi, &r3);
+    mat_mul(&r2, &r3, &r2r3);
+    mat_mul(&r1, &r2r3, c_out);
+}
+
+/* Unit thrust direction in r-t-n from its angles (eqs. 39, 52). */
+static void rtn_direction(double alpha, double beta, double u[3])
+{
+    const double cb = cos(beta);
+    u[0] = cb * sin(alpha);
+    u[1] = cb * cos(alpha);
+    u[2] = sin(beta);
+}
+
+/* ---------------------------------------------------------------- checks */
+
+static ogk_status check_angle(double angle)
+{
+    if (!isfinite(angle)) {
+        return OGK_E_NONFINITE;
+    }
+    if (fabs(angle) > OGK_CPD_ANGLE_LIMIT) {
+        return OGK_E_RANGE;
+    }
+    return OGK_OK;
+}
+
+/* First non-OK status of check_angle over n values (NONFINITE before RANGE). */
+static ogk_status check_angles(const double *angles, size_t n)
+{
+    ogk_status st = OGK_OK;
+    size_t i;
+    for (i = 0u; i < n; ++i) {
+        const ogk_status si = check_angle(angles[i]);
+        if (si == OGK_E_NONFINITE) {
+            return si;
+        }
+        if (si != OGK_OK) {
+            st = si;
+        }
+    }
+    return st;
+}
+
+/* angle + 2 pi k in (-pi, pi]; angle finite. */
+static double wrap_pi(double angle)
+{
+    double m = fmod(CPD_PI - angle, CPD_TWO_PI); /* exact; in (-2 pi, 2 pi) */
+    double w;
+    if (m < 0.0) {
+        m += CPD_TWO_PI;
+    }
+    w = CPD_PI - m; /* m in [0, 2 pi] -> w in [-pi, pi] */
+    if (w <= -CPD_PI) {
+        w += CPD_TWO_PI;
+    }
+    return w;
+}
+
+static double saturate(double value, double limit, uint32_t flag, uint32_t *flags)
+{
+    if (value > limit) {
+        *flags |= flag;
+        return limit;
+    }
+    if (value < -limit) {
+        *flags |= flag;
+        return -limit;
+    }
+    return value;
+}
+
+/* ---------------------------------------------------------------- geometry */
+
+/* Eqs. (38)-(39): yaw and pitch of a unit vector with a components t_a. */
+static void attitude_of_direction(const double t_a[3], double *psi_c,
+                                  double *theta_c, bool *yaw_undefined)
+{
+    const double horiz = hypot(t_a[0], t_a[1]);
+    /* eq. (38): t_a = (cos Th cos Ps, cos Th sin Ps, -sin Th) */
+    *theta_c = atan2(-t_a[2], horiz);
+    if (horiz < CPD_YAW_EPS) {
+        *psi_c = 0.0;
+        *yaw_undefined = true;
+    } else {
+        *psi_c = atan2(t_a[1], t_a[0]);
+        if (*psi_c <= -CPD_PI) {
+            *psi_c = CPD_PI;
+        }
+        *yaw_undefined = false;
+    }
+}
+
+/* Rotation vector taking x_b = (1, 0, 0) onto the unit vector t_b (body
+ * components): axis x_b x t_b = (0, -t_z, t_y) normalised, angle
+ * atan2(|(t_y, t_z)|, t_x) in [0, pi]. Its y and z components are the pitch
+ * and yaw pointing errors. Near zero error they reduce to (-t_z, t_y), i.e.
+ * (Theta_c - Theta, Psi_c - Psi) at zero roll; they never change sign with
+ * the size of the error, and their magnitude is the true pointing angle. */
+static void pointing_error_body(const double t_b[3], double *err_y, double *err_z)
+{
+    const double lateral = hypot(t_b[1], t_b[2]);
+    const double angle = atan2(lateral, t_b[0]);
+    if (lateral > 0.0) {
+        const double scale = angle / lateral; /* -> 1 as the error -> 0 */
+        *err_y = -t_b[2] * scale;
+        *err_z = t_b[1] * scale;
+    } else if (t_b[0] >= 0.0) {
+        *err_y = 0.0;
+        *err_z = 0.0;
+    } else {
+        /* exactly behind: any axis normal to x_b turns the vehicle around;
+         * pitch is chosen so the command is deterministic */
+        *err_y = CPD_PI;
+        *err_z = 0.0;
+    }
+}
+
+/* Commanded direction in a and body components. */
+static void commanded_direction(double psi, double theta, double phi_roll,
+                                double alpha_c, double beta_c, double xi,
+                                double phi, double t_a[3], double t_b[3])
+{
+    mat3_t n_a_rtn;
+    mat3_t c_b_a;
+    double u_rtn[3];
+    rtn_direction(alpha_c, beta_c, u_rtn);
+    a_from_rtn(xi, phi, &n_a_rtn);
+    mat_vec(&n_a_rtn, u_rtn, t_a);
+    body_from_a(psi, theta, phi_roll, &c_b_a);
+    mat_vec(&c_b_a, t_a, t_b);
+}
+
+/* ---------------------------------------------------------------- public */
+
+ogk_status ogk_cpd_wrap_pi(double angle, double *wrapped)
+{
+    ogk_status st;
+    if (wrapped == NULL) {
+        return OGK_E_NULL;
+    }
+    st = check_angle(angle);
+    if (st != OGK_OK) {
+        return st;
+    }
+    *wrapped = wrap_pi(angle);
+    return OGK_OK;
+}
+
+ogk_status ogk_cpd_commanded_attitude(double alpha_c, double beta_c, double xi,
+                                      double phi, double *psi_c,
+                                      double *theta_c)
+{
+    const double angles[4] = {alpha_c, beta_c, xi, phi};
+    mat3_t n_a_rtn;
+    double u_rtn[3];
+    double t_a[3];
+    bool yaw_undefined;
+    ogk_status st;
+
+    if (psi_c == NULL || theta_c == NULL) {
+        return OGK_E_NULL;
+    }
+    st = check_angles(angles, 4u);
+    if (st != OGK_OK) {
+        return st;
+    }
+    rtn_direction(alpha_c, beta_c, u_rtn);
+    a_from_rtn(xi, phi, &n_a_rtn);
+    mat_vec(&n_a_rtn, u_rtn, t_a);
+    attitude_of_direction(t_a, psi_c, theta_c, &yaw_undefined);
+    return OGK_OK;
+}
+
+ogk_status ogk_cpd_thrust_angles(double psi, double theta, double phi_roll,
+                                 double xi, double phi, double delta_y,
+                                 double delta_z, double *alpha_a,
+                                 double *beta_a)
+{
+    const double angles[7] = {psi, theta, phi_roll, xi, phi, delta_y, delta_z};
+    mat3_t n_a_rtn;
+    mat3_t c_b_a;
+    mat3_t c_b_rtn;
+    double d_b[3];
+    double t_rtn[3];
+    ogk_status st;
+
+    if (alpha_a == NULL || beta_a == NULL) {
+        return OGK_E_NULL;
+    }
+    st = check_angles(angles, 7u);
+    if (st != OGK_OK) {
+        return st;
+    }
+    /* eq. (50): deflected thrust direction in body axes */
+    d_b[0] = cos(delta_z) * cos(delta_y);
+    d_b[1] = sin(delta_z);
+    d_b[2] = cos(delta_z) * sin(delta_y);
+    /* eqs. (49), (51): body components = C N (r-t-n components) */
+    a_from_rtn(xi, phi, &n_a_rtn);
+    body_from_a(psi, theta, phi_roll, &c_b_a);
+    mat_mul(&c_b_a, &n_a_rtn, &c_b_rtn);
+    mat_t_vec(&c_b_rtn, d_b, t_rtn);
+    /* eq. (52): t_rtn = (cos b sin a, cos b cos a, sin b) */
+    *alpha_a = atan2(t_rtn[0], t_rtn[1]);
+    if (*alpha_a <= -CPD_PI) {
+        *alpha_a = CPD_PI;
+    }
+    *beta_a = atan2(t_rtn[2], hypot(t_rtn[0], t_rtn[1]));
+    return OGK_OK;
+}
+
+ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll,
+                                       double alpha_c, double beta_c, double xi,
+                                       double phi, double *err_y, double *err_z)
+{
+    const double angles[7] = {psi, theta, phi_roll, alpha_c, beta_c, xi, phi};
+    double t_a[3];
+    double t_b[3];
+    ogk_status st;
+
+    if (err_y == NULL || err_z == NULL) {
+        return OGK_E_NULL;
+    }
+    st = check_angles(angles, 7u);
+    if (st != OGK_OK) {
+        return st;
+    }
+    commanded_direction(psi, theta, phi_roll, alpha_c, beta_c, xi, phi, t_a, t_b);
+    pointing_error_body(t_b, err_y, err_z);
+    return OGK_OK;
+}
+
+static bool config_finite(const ogk_cpd_config_t *cfg)
+{
+    const double v[16] = {cfg->k_px, cfg->k_dx, cfg->k_py, cfg->k_dy, cfg->k_pz,
+                          cfg->k_dz, cfg->m_xc_max, cfg->delta_yc_max,
+                          cfg->delta_zc_max, cfg->tau_x, cfg->tau_y, cfg->tau_z,
+                          cfg->phi_c, cfg->approach_accel_x, cfg->approach_accel_y,
+                          cfg->approach_accel_z};
+    size_t i;
+    for (i = 0u; i < 16u; ++i) {
+        if (!isfinite(v[i])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* The PD term of one axis, k_p e - k_d w, with the braking-curve cap of the
+ * rate command k_p e / k_d when a > 0 (see ogk_cpd_config_t). */
+static double pd_term(double k_p, double k_d, double a, double err, double rate)
+{
+    double rate_cmd = k_p * err / k_d;
+    if (a > 0.0) {
+        const double braking = sqrt(2.0 * a * fabs(err));
+        if (fabs(rate_cmd) > braking) {
+            rate_cmd = copysign(braking, err);
+        }
+    }
+    return k_d * (rate_cmd - rate);
+}
+
+/* Sec. 5.2: the linearised loop with a first-order actuator converges iff
+ * k_d > k_p tau > 0 (Routh on tau s^3 + s^2 + G k_d s + G k_p). */
+static bool axis_ok(double k_p, double k_d, double tau, double limit)
+{
+    return (k_p > 0.0) && (k_d > 0.0) && (tau > 0.0) && (limit > 0.0) &&
+           (k_d > k_p * tau);
+}
+
+ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg)
+{
+    if (ctx == NULL) {
+        return OGK_E_NULL;
+    }
+    (void)memset(ctx, 0, sizeof(*ctx));
+    if (cfg == NULL) {
+        return OGK_E_NULL;
+    }
+    if (!config_finite(cfg)) {
+        return OGK_E_NONFINITE;
+    }
+    if (!axis_ok(cfg->k_px, cfg->k_dx, cfg->tau_x, cfg->m_xc_max) ||
+        !axis_ok(cfg->k_py, cfg->k_dy, cfg->tau_y, cfg->delta_yc_max) ||
+        !axis_ok(cfg->k_pz, cfg->k_dz, cfg->tau_z, cfg->delta_zc_max)) {
+        return OGK_E_CONFIG;
+    }
+    if (fabs(cfg->phi_c) > CPD_PI) {
+        return OGK_E_CONFIG;
+    }
+    if (cfg->approach_accel_x < 0.0 || cfg->approach_accel_y < 0.0 ||
+        cfg->approach_accel_z < 0.0) {
+        return OGK_E_CONFIG;
+    }
+    if (cfg->pointing != OGK_CPD_POINTING_BODY &&
+        cfg->pointing != OGK_CPD_POINTING_EULER) {
+        return OGK_E_CONFIG;
+    }
+    ctx->cfg = *cfg;
+    ctx->last.flags = OGK_CPD_FLAG_SAFE;
+    ctx->init_magic = OGK_CPD_INIT_MAGIC;
+    return OGK_OK;
+}
+
+static void safe_command(ogk_cpd_output_t *out)
+{
+    out->m_xc = 0.0;
+    out->delta_yc = 0.0;
+    out->delta_zc = 0.0;
+    out->psi_c = 0.0;
+    out->theta_c = 0.0;
+    out->phi_c = 0.0;
+    out->err_x = 0.0;
+    out->err_y = 0.0;
+    out->err_z = 0.0;
+    out->flags = OGK_CPD_FLAG_SAFE;
+}
+
+/* Writes the safe command into out (if any) and into the context's last
+ * command (if the context is usable), and returns st. */
+static ogk_status reject(ogk_cpd_t *ctx, ogk_cpd_output_t *out, ogk_status st)
+{
+    if (out != NULL) {
+        safe_command(out);
+    }
+    if (ctx != NULL && ctx->init_magic == OGK_CPD_INIT_MAGIC) {
+        safe_command(&ctx->last);
+    }
+    return st;
+}
+
+ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
+                        ogk_cpd_output_t *out)
+{
+    const ogk_cpd_config_t *cfg;
+    double t_a[3];
+    double t_b[3];
+    double err_y;
+    double err_z;
+    double err_x;
+    bool yaw_undefined;
+    uint32_t flags = 0u;
+
+    if (ctx == NULL || in == NULL || out == NULL) {
+        return reject(ctx, out, OGK_E_NULL);
+    }
+    if (ctx->init_magic != OGK_CPD_INIT_MAGIC) {
+        return reject(ctx, out, OGK_E_NOT_INIT);
+    }
+    {
+        const double angles[7] = {in->psi, in->theta, in->phi_roll, in->alpha_c,
+                                  in->beta_c, in->xi, in->phi};
+        ogk_status st;
+        /* rates: only finiteness matters (a large rate saturates the command) */
+        if (!(isfinite(in->rate_p) && isfinite(in->rate_q) && isfinite(in->rate_r))) {
+            return reject(ctx, out, OGK_E_NONFINITE);
+        }
+        st = check_angles(angles, 7u);
+        if (st != OGK_OK) {
+            return reject(ctx, out, st);
+        }
+    }
+    cfg = &ctx->cfg;
+
+    /* eqs. (38)-(39): commanded attitude; direction in a and body axes */
+    commanded_direction(in->psi, in->theta, in->phi_roll, in->alpha_c, in->beta_c,
+                        in->xi, in->phi, t_a, t_b);
+    attitude_of_direction(t_a, &out->psi_c, &out->theta_c, &yaw_undefined);
+    out->phi_c = cfg->phi_c;
+    if (yaw_undefined) {
+        flags |= OGK_CPD_FLAG_YAW_UNDEFINED;
+    }
+    if (t_b[0] < 0.0) {
+        flags |= OGK_CPD_FLAG_BEHIND;
+    }
+
+    /* roll error: eq. (45) with the error wrapped to (-pi, pi] */
+    err_x = wrap_pi(cfg->phi_c - in->phi_roll);
+    if (cfg->pointing == OGK_CPD_POINTING_EULER) {
+        /* eq. (46) literally (valid near zero roll only, see cpd.h) */
+        err_y = out->theta_c - in->theta;
+        err_z = wrap_pi(out->psi_c - in->psi);
+    } else {
+        pointing_error_body(t_b, &err_y, &err_z);
+    }
+
+    /* eqs. (45)-(46) */
+    out->m_xc = saturate(pd_term(cfg->k_px, cfg->k_dx, cfg->approach_accel_x, err_x,
+                                 in->rate_p),
+                         cfg->m_xc_max, OGK_CPD_FLAG_SAT_X, &flags);
+    out->delta_yc = saturate(pd_term(cfg->k_py, cfg->k_dy, cfg->approach_accel_y, err_y,
+                                     in->rate_q),
+                             cfg->delta_yc_max, OGK_CPD_FLAG_SAT_Y, &flags);
+    /* yaw: eq. (46), -k_pz e_z + k_dz R = -(k_pz e_z - k_dz R): a negative
+     * deflection turns about +z_b (eq. 15) */
+    out->delta_zc = saturate(-pd_term(cfg->k_pz, cfg->k_dz, cfg->approach_accel_z, err_z,
+                                      in->rate_r),
+                             cfg->delta_zc_max, OGK_CPD_FLAG_SAT_Z, &flags);
+    out->err_x = err_x;
+    out->err_y = err_y;
+    out->err_z = err_z;
+    out->flags = flags;
+    ctx->last = *out;
+    return OGK_OK;
+}

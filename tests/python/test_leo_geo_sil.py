@@ -1,0 +1,185 @@
+"""SIL closed loop and Monte Carlo campaign of the LEO-to-GEO burn (harness/ogk/leo_geo):
+reproducibility across worker counts and chunking, re-flying one run, failure accounting, the CPD
+in the loop (attitude follows the command, eq. 47 rate bounds), JSON/report and the `ogk mc` command."""
+from __future__ import annotations
+
+import functools
+import json
+import math
+
+import numpy as np
+import pytest
+
+from ogk.leo_geo import paper_tables
+from ogk.leo_geo.campaign import eq47_bounds, run_campaign
+from ogk.leo_geo.dispersions import DispersionSwitches, draw_runs, run_seed
+from ogk.leo_geo.guidance import GuidanceSetup, NominalOpenLoopGuidance
+from ogk.leo_geo.nominal_ref import nominal_reference
+from ogk.leo_geo.report import format_report
+from ogk.leo_geo.sil import ERROR_KEYS, RATE_KEYS, SilSettings, simulate
+from ogk_host.leo_geo.scenario import load_scenario
+
+
+@pytest.fixture(scope="module")
+def scn():
+    return load_scenario()
+
+
+@pytest.fixture(scope="module")
+def ref(scn):
+    return nominal_reference(scn)
+
+
+SHORT = functools.partial(NominalOpenLoopGuidance, cutoff_s=12.0)   # 12 s burns: fast tests
+
+
+def _numbers(res) -> np.ndarray:
+    return np.concatenate([np.stack([res.errors[k] for k in ERROR_KEYS]),
+                           np.stack([res.max_rates[k] for k in RATE_KEYS]),
+                           res.draws.d_state.T, res.draws.thrust_coeffs.T])
+
+
+def test_same_seed_same_numbers_for_any_worker_count_and_chunking(scn):
+    """6-DOF, every dispersion, 7 runs: 1 worker / 1 chunk, 2 workers / 2 chunks and 1 worker / 3
+    chunks give bit-identical results; re-flying runs 5 and 2 alone reproduces them."""
+    common = dict(runs=7, seed=2024, truth="6dof", guidance_factory=SHORT)
+    one = run_campaign(scn, workers=1, **common)
+    two = run_campaign(scn, workers=2, **common)
+    three_chunks = run_campaign(scn, workers=1, chunks=3, **common)
+    assert one.n_failures == 0
+    np.testing.assert_array_equal(_numbers(one), _numbers(two))
+    np.testing.assert_array_equal(_numbers(one), _numbers(three_chunks))
+    again = run_campaign(scn, seed=2024, truth="6dof", guidance_factory=SHORT, runs=0,
+                         run_ids=[5, 2])
+    np.testing.assert_array_equal(_numbers(again), _numbers(one)[:, [5, 2]])
+    assert list(again.draws.run_seed) == [run_seed(2024, 5), run_seed(2024, 2)]
+    other = run_campaign(scn, workers=1, runs=7, seed=2025, truth="6dof", guidance_factory=SHORT)
+    assert not np.array_equal(_numbers(other), _numbers(one))
+
+
+def test_dispersion_draws_follow_tables_3_to_5(scn):
+    """2000 draws: sample sigmas within 5 % of Tables 3-4 and eq. (55); switching a group off
+    zeroes it without changing the others."""
+    draws, _ = draw_runs(scn, 9, np.arange(2000), DispersionSwitches())
+    isd, att = scn.initial_state_dispersion, scn.attitude_dispersion
+    expect_state = [isd.radius_m, 0.0, isd.declination_rad, isd.radial_velocity_m_s,
+                    isd.transverse_velocity_m_s, isd.normal_velocity_m_s]
+    np.testing.assert_allclose(draws.d_state.std(axis=0), expect_state, rtol=0.05)
+    np.testing.assert_allclose(draws.d_attitude.std(axis=0), att.yaw_rad, rtol=0.05)
+    np.testing.assert_allclose(draws.rates0.std(axis=0), att.roll_rate_rad_s, rtol=0.05)
+    np.testing.assert_allclose(draws.thrust_coeffs.std(axis=0), 0.02, rtol=0.05)
+    no_att, _ = draw_runs(scn, 9, np.arange(2000),
+                          DispersionSwitches(attitude=False))
+    assert not no_att.d_attitude.any() and not no_att.rates0.any()
+    np.testing.assert_array_equal(no_att.d_state, draws.d_state)
+    np.testing.assert_array_equal(no_att.thrust_coeffs, draws.thrust_coeffs)
+
+
+def test_cpd_in_the_loop_keeps_attitude_on_the_command(scn, ref):
+    """6-DOF, Table 3-5 dispersions, kernel CPD (body-axis pointing): after 25 s the thrust axis
+    x_b is within 0.5 deg of the commanded direction in every run, and the actuator rates never
+    exceed the eq. (47) bounds."""
+    sw = DispersionSwitches()
+    draws, gens = draw_runs(scn, 3, np.arange(4), sw)
+    guidance = NominalOpenLoopGuidance(GuidanceSetup(scn, ref, draws.run_id), cutoff_s=40.0)
+    res = simulate(scn, ref, draws, gens, sw, guidance,
+                   SilSettings(truth="6dof", history_runs=4, history_every=5))
+    assert res.failure == [""] * 4
+    h = res.history
+    assert h is not None and h.data["psi_rad"].shape == (h.t_s.size, 4)
+
+    def axis(psi, theta):
+        return np.stack([np.cos(theta) * np.cos(psi), np.cos(theta) * np.sin(psi), -np.sin(theta)])
+    actual = axis(h.data["psi_rad"], h.data["theta_rad"])
+    command = axis(h.data["psi_c_rad"], h.data["theta_c_rad"])
+    err_deg = np.degrees(np.arccos(np.clip((actual * command).sum(axis=0), -1.0, 1.0)))
+    late = h.t_s >= 25.0
+    assert np.nanmax(err_deg[late]) < 0.5
+    assert np.nanmax(err_deg[h.t_s < 1.0]) > 5.0          # the dispersed start was off
+    bounds = eq47_bounds(scn)
+    for key in RATE_KEYS:
+        assert np.all(res.max_rates[key] <= bounds[key] * (1 + 1e-12))
+        assert np.all(res.max_rates[key] > 0.0)
+    # the deflection outputs stay within the command limit plus the actuation noise
+    assert np.nanmax(np.abs(h.data["Dy_rad"])) < scn.cpd.deflection_y_command_max_rad + 5e-3
+
+
+class _Faulty(NominalOpenLoopGuidance):
+    """Run 1 gets NaN commands, run 2 never cuts off."""
+
+    def __init__(self, setup: GuidanceSetup) -> None:
+        super().__init__(setup, cutoff_s=6.0)
+        self._cutoff[2] = np.inf
+
+    def command(self, t):
+        a, b = super().command(t)
+        a = np.array(a, dtype=float)
+        a[1] = np.nan
+        return a, b
+
+
+def test_failures_are_counted_with_reasons(scn):
+    res = run_campaign(scn, runs=3, seed=1, truth="point-mass", guidance_factory=_Faulty,
+                       settings=SilSettings(t_max_s=10.0))
+    assert res.failure == ["", "guidance", "no_termination"]
+    assert res.n_failures == 2 and res.failure_reasons() == {"guidance": 1, "no_termination": 1}
+    assert res.errors["tf_s"][0] == 6.0 and np.isnan(res.errors["tf_s"][1:]).all()
+    doc = res.to_json_dict()
+    assert doc["failures"] == 2
+    assert doc["per_run"][1]["failure"] == "guidance" and doc["per_run"][1]["tf_s"] is None
+    json.dumps(doc, allow_nan=False)                      # NaN written as null
+
+
+def test_json_statistics_and_side_by_side_report(scn, tmp_path):
+    res = run_campaign(scn, runs=5, seed=8, truth="point-mass", guidance_factory=SHORT)
+    path = tmp_path / "mc.json"
+    res.write_json(path)
+    doc = json.loads(path.read_text())
+    for key in ("scenario", "runs", "failures", "mean", "std", "max_rates", "nominal_tf_s"):
+        assert key in doc
+    assert doc["runs"] == 5 and doc["failures"] == 0
+    assert doc["nominal_tf_s"] == pytest.approx(105.81, abs=0.01)
+    dvt = np.array([r["dvt_f_mps"] for r in doc["per_run"]])
+    assert doc["mean"]["dvt_f_mps"] == pytest.approx(dvt.mean(), rel=1e-12)
+    assert doc["std"]["dvt_f_mps"] == pytest.approx(dvt.std(ddof=1), rel=1e-12)
+    assert set(doc["max_rates"]) == set(RATE_KEYS)
+    # each run's seed re-creates its dispersed values
+    seed5 = [r["run_seed"] for r in doc["per_run"]]
+    assert seed5 == [run_seed(8, i) for i in range(5)]
+    text = format_report(res)
+    assert "Table 7" in text and "-2.1500" in text and "4.2600" in text
+    single = run_campaign(scn, runs=1, seed=8, truth="point-mass", guidance_factory=SHORT,
+                          dispersions=False)
+    assert "Table 6" in format_report(single) and "-1.8700" in format_report(single)
+
+
+def test_paper_tables_match_the_scenario_file(scn):
+    """paper_tables.py and scenarios/leo_geo.toml [paper_results] were typed independently."""
+    p = scn.paper
+    keys = list(ERROR_KEYS)
+    assert [paper_tables.TABLE6_SINGLE_RUN[k] for k in keys] == list(p.table6_final_errors)
+    assert [paper_tables.TABLE7_MEAN[k] for k in keys] == list(p.table7_mean)
+    assert [paper_tables.TABLE7_STD[k] for k in keys] == list(p.table7_sigma)
+
+
+def test_ogk_mc_command(tmp_path, capsys):
+    from ogk.cli import main
+    out = tmp_path / "mc.json"
+    code = main(["mc", "leo-geo", "--runs", "2", "--seed", "4", "--truth", "point-mass",
+                 "--no-dispersions", "--guidance", "nominal", "--json", str(out)])
+    text = capsys.readouterr().out
+    assert code == 0 and "Table 6" in text
+    doc = json.loads(out.read_text())
+    assert doc["runs"] == 2 and doc["guidance"] == "nominal"
+    assert abs(doc["mean"]["dr_f_m"]) < 1e-3 and doc["mean"]["tf_s"] == pytest.approx(105.8088,
+                                                                                       abs=1e-4)
+    assert math.isclose(doc["std"]["dvt_f_mps"], 0.0, abs_tol=1e-12)
+
+
+def test_ogk_mc_nog_without_kernel_guidance_fails_clearly(monkeypatch):
+    """--guidance nog while the kernel guidance module is missing: a message, not a traceback."""
+    from ogk import cmd_mc
+    monkeypatch.setattr(cmd_mc, "NOG_MODULE", "ogk.leo_geo._no_such_guidance")
+    with pytest.raises(SystemExit, match="KernelNogGuidance.*not available"):
+        cmd_mc.load_guidance("nog")
+    assert cmd_mc.load_guidance("nominal") is NominalOpenLoopGuidance
