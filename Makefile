@@ -124,8 +124,13 @@ test: deps
 	$(MAKE) test-eigen
 	$(MAKE) test-python
 
+# The main job: LEO-to-GEO VTD-NOG + CPD, ground tables then a 100-run SIL
+# Monte Carlo against the paper's Table 7 (JSON and PNG plots in build/mc).
 run: all
 	$(VENV)/bin/ogk demo switching
+	$(VENV)/bin/ogk tables leo-geo --out $(B)/tables/leo_geo
+	$(VENV)/bin/ogk mc leo-geo --runs 100 --seed 1 --workers 2 \
+	  --json $(B)/mc/leo_geo_100.json --plots $(B)/mc/plots
 
 clean:
 	rm -rf $(B) $(FFI_STAMP) harness/ogk/_ogk_cffi*

@@ -13,6 +13,7 @@ from collections.abc import Sequence
 SUBCOMMANDS: tuple[str, ...] = (
     "ogk.cmd_version",
     "ogk.cmd_demo",
+    "ogk.cmd_tables",
     "ogk.cmd_mc",
 )
 

@@ -4,6 +4,17 @@
 BENCH_DIR := $(B)/bench
 BENCH_CORE := $(BENCH_DIR)/bench_core
 BENCH_CASES := rk4_step switch
+BENCH_GNC := $(BENCH_DIR)/bench_gnc
+GNC_CASES := nog_sample nog_command cpd_step
+NOG_TABLE := $(B)/tables/leo_geo/leo_geo_nog_bundle.ogkt
+
+$(BENCH_GNC): tests/bench/bench_gnc.c $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
+	@mkdir -p $(@D)
+	gcc -std=c99 -O2 -g -Wall -Wextra -Werror $(KINC) -Iport/include \
+	  $< $(PORT_HOST_SRC) $(B)/host/libogk.a -o $@ -lm
+
+$(NOG_TABLE): scenarios/leo_geo.toml $(VENV)/.installed
+	$(VENV)/bin/ogk tables leo-geo --out $(@D)
 
 
 $(BENCH_CORE): tests/bench/bench_core.c $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
@@ -12,7 +23,7 @@ $(BENCH_CORE): tests/bench/bench_core.c $(B)/host/libogk.a $(PORT_HOST_SRC) | ap
 	  $< $(PORT_HOST_SRC) $(B)/host/libogk.a -o $@ -lm
 
 .PHONY: bench
-bench: $(BENCH_CORE)
+bench: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE)
 	@echo "== ogk bench (host x86-64, gcc -O2) =="
 	@for c in $(BENCH_CASES); do \
 	  n=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
@@ -20,4 +31,11 @@ bench: $(BENCH_CORE)
 	       $(BENCH_CORE) once $$c 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'); \
 	  printf '%-10s %10s instructions/call (callgrind)   ' $$c "$$n"; \
 	  $(BENCH_CORE) time $$c; \
+	done
+	@for c in $(GNC_CASES); do \
+	  n=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+	       --collect-atstart=no --toggle-collect=bench_$${c}_once \
+	       $(BENCH_GNC) $(NOG_TABLE) once $$c 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'); \
+	  printf '%-11s %9s instructions/call (callgrind)   ' $$c "$$n"; \
+	  $(BENCH_GNC) $(NOG_TABLE) time $$c; \
 	done

@@ -136,6 +136,7 @@ class CampaignResult:
         return _finite_or_none(out)
 
     def write_json(self, path: str | Path, per_run: bool = True) -> None:
+        Path(path).parent.mkdir(parents=True, exist_ok=True)
         Path(path).write_text(json.dumps(self.to_json_dict(per_run), indent=1) + "\n")
 
 
