@@ -273,6 +273,8 @@ typedef struct {
     double approach_accel_x;
     double approach_accel_y;
     double approach_accel_z;
+    double ff_period_s;
+    double ff_rate_max;
     ...;
 } ogk_cpd_config_t;
 

@@ -240,6 +240,39 @@ static void commanded_direction(double psi, double theta, double phi_roll,
     mat_vec(&c_b_a, t_a, t_b);
 }
 
+/* Body-axis rate [rad/s] of the commanded direction between two steps,
+ * (d_prev x d_now) / period in a components, rotated to body axes; only the
+ * y and z components (the pointing loops) are returned, clipped in norm. */
+static void feedforward_rate(const ogk_cpd_t *ctx, const double t_a[3], double psi,
+                             double theta, double phi_roll, double *w_y, double *w_z)
+{
+    const ogk_cpd_config_t *cfg = &ctx->cfg;
+    const double *p = ctx->dir_prev_a;
+    double w_a[3];
+    double w_b[3];
+    double norm;
+    mat3_t c_b_a;
+
+    *w_y = 0.0;
+    *w_z = 0.0;
+    if (!(cfg->ff_period_s > 0.0) || ctx->has_prev == 0u) {
+        return;
+    }
+    w_a[0] = (p[1] * t_a[2] - p[2] * t_a[1]) / cfg->ff_period_s;
+    w_a[1] = (p[2] * t_a[0] - p[0] * t_a[2]) / cfg->ff_period_s;
+    w_a[2] = (p[0] * t_a[1] - p[1] * t_a[0]) / cfg->ff_period_s;
+    body_from_a(psi, theta, phi_roll, &c_b_a);
+    mat_vec(&c_b_a, w_a, w_b);
+    norm = hypot(w_b[1], w_b[2]);
+    if (norm > cfg->ff_rate_max) {
+        const double scale = (norm > 0.0) ? cfg->ff_rate_max / norm : 0.0;
+        w_b[1] *= scale;
+        w_b[2] *= scale;
+    }
+    *w_y = w_b[1];
+    *w_z = w_b[2];
+}
+
 /* ---------------------------------------------------------------- public */
 
 ogk_status ogk_cpd_wrap_pi(double angle, double *wrapped)
@@ -342,13 +375,13 @@ ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll
 
 static bool config_finite(const ogk_cpd_config_t *cfg)
 {
-    const double v[16] = {cfg->k_px, cfg->k_dx, cfg->k_py, cfg->k_dy, cfg->k_pz,
+    const double v[18] = {cfg->k_px, cfg->k_dx, cfg->k_py, cfg->k_dy, cfg->k_pz,
                           cfg->k_dz, cfg->m_xc_max, cfg->delta_yc_max,
                           cfg->delta_zc_max, cfg->tau_x, cfg->tau_y, cfg->tau_z,
                           cfg->phi_c, cfg->approach_accel_x, cfg->approach_accel_y,
-                          cfg->approach_accel_z};
+                          cfg->approach_accel_z, cfg->ff_period_s, cfg->ff_rate_max};
     size_t i;
-    for (i = 0u; i < 16u; ++i) {
+    for (i = 0u; i < 18u; ++i) {
         if (!isfinite(v[i])) {
             return false;
         }
@@ -399,7 +432,7 @@ ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg)
         return OGK_E_CONFIG;
     }
     if (cfg->approach_accel_x < 0.0 || cfg->approach_accel_y < 0.0 ||
-        cfg->approach_accel_z < 0.0) {
+        cfg->approach_accel_z < 0.0 || cfg->ff_period_s < 0.0 || cfg->ff_rate_max < 0.0) {
         return OGK_E_CONFIG;
     }
     if (cfg->pointing != OGK_CPD_POINTING_BODY &&
@@ -448,6 +481,8 @@ ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
     double err_y;
     double err_z;
     double err_x;
+    double ff_y;
+    double ff_z;
     bool yaw_undefined;
     uint32_t flags = 0u;
 
@@ -498,18 +533,23 @@ ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
     out->m_xc = saturate(pd_term(cfg->k_px, cfg->k_dx, cfg->approach_accel_x, err_x,
                                  in->rate_p),
                          cfg->m_xc_max, OGK_CPD_FLAG_SAT_X, &flags);
+    feedforward_rate(ctx, t_a, in->psi, in->theta, in->phi_roll, &ff_y, &ff_z);
     out->delta_yc = saturate(pd_term(cfg->k_py, cfg->k_dy, cfg->approach_accel_y, err_y,
-                                     in->rate_q),
+                                     in->rate_q - ff_y),
                              cfg->delta_yc_max, OGK_CPD_FLAG_SAT_Y, &flags);
     /* yaw: eq. (46), -k_pz e_z + k_dz R = -(k_pz e_z - k_dz R): a negative
      * deflection turns about +z_b (eq. 15) */
     out->delta_zc = saturate(-pd_term(cfg->k_pz, cfg->k_dz, cfg->approach_accel_z, err_z,
-                                      in->rate_r),
+                                      in->rate_r - ff_z),
                              cfg->delta_zc_max, OGK_CPD_FLAG_SAT_Z, &flags);
     out->err_x = err_x;
     out->err_y = err_y;
     out->err_z = err_z;
     out->flags = flags;
     ctx->last = *out;
+    ctx->dir_prev_a[0] = t_a[0];
+    ctx->dir_prev_a[1] = t_a[1];
+    ctx->dir_prev_a[2] = t_a[2];
+    ctx->has_prev = 1u;
     return OGK_OK;
 }

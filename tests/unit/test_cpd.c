@@ -1192,6 +1192,60 @@ static void test_braking_cap_captures_large_rate(void **state)
     assert_true(x.angle - target < 1.2 * w0 * w0 / (2.0 * a_sat));
 }
 
+/* Feed-forward of the commanded turn rate: for a command turning at omega
+ * (alpha_c stepping by omega dt between steps, vehicle on the commanded
+ * attitude with zero rates), the pitch/yaw commands differ from the
+ * feed-forward-free law by k_d times a body rate of magnitude omega; the
+ * first step (no previous direction) and a command step beyond the clip are
+ * handled as documented. */
+static void test_feedforward_turn_rate(void **state)
+{
+    const double dt = 0.02;
+    const double omega = 0.01;        /* rad/s */
+    ogk_cpd_config_t off = rederived_config(OGK_CPD_POINTING_BODY);
+    ogk_cpd_config_t on = off;
+    ogk_cpd_t c_off, c_on;
+    ogk_cpd_output_t o_off, o_on;
+    ogk_cpd_input_t in = zero_input();
+    double psi_c, theta_c, ff_y, ff_z;
+    int k;
+    (void)state;
+    on.ff_period_s = dt;
+    on.ff_rate_max = 0.05;
+    OGK_ASSERT_STATUS(ogk_cpd_init(&c_off, &off), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_cpd_init(&c_on, &on), OGK_OK);
+    in.xi = 0.7;
+    in.phi = 0.01;
+    in.beta_c = 0.05;
+    for (k = 0; k < 3; ++k) {
+        in.alpha_c = 0.3 + omega * dt * (double)k;
+        OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(in.alpha_c, in.beta_c, in.xi, in.phi,
+                                                     &psi_c, &theta_c), OGK_OK);
+        in.psi = psi_c;
+        in.theta = theta_c;
+        in.phi_roll = 0.4;
+        OGK_ASSERT_STATUS(ogk_cpd_step(&c_off, &in, &o_off), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_cpd_step(&c_on, &in, &o_on), OGK_OK);
+        ff_y = (o_on.delta_yc - o_off.delta_yc) / on.k_dy;
+        ff_z = -(o_on.delta_zc - o_off.delta_zc) / on.k_dz;
+        if (k == 0) {
+            OGK_ASSERT_NEAR(hypot(ff_y, ff_z), 0.0, 0.0);
+        } else {
+            /* beta_c = 0.05: the in-plane turn is omega cos(beta_c) to first order */
+            OGK_ASSERT_REL(hypot(ff_y, ff_z), omega * cos(in.beta_c), 1e-3, 1e-12);
+        }
+    }
+    /* A 1-deg step of the command in one period is clipped to ff_rate_max. */
+    in.alpha_c += 1.0 * DEG;
+    OGK_ASSERT_STATUS(ogk_cpd_step(&c_off, &in, &o_off), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_cpd_step(&c_on, &in, &o_on), OGK_OK);
+    ff_y = (o_on.delta_yc - o_off.delta_yc) / on.k_dy;
+    ff_z = -(o_on.delta_zc - o_off.delta_zc) / on.k_dz;
+    assert_true(hypot(ff_y, ff_z) <= on.ff_rate_max * (1.0 + 1e-12));
+    on.ff_period_s = -0.02;
+    OGK_ASSERT_STATUS(ogk_cpd_init(&c_on, &on), OGK_E_CONFIG);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1213,6 +1267,7 @@ int main(void)
         cmocka_unit_test(test_geometry_functions_bad_inputs),
         cmocka_unit_test(test_braking_cap_formula),
         cmocka_unit_test(test_braking_cap_captures_large_rate),
+        cmocka_unit_test(test_feedforward_turn_rate),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -39,7 +39,8 @@ class AttitudeControl(Protocol):
 POINTING_MODES = {"body": 0, "euler": 1}
 
 
-def cpd_config(scn: LeoGeoScenario, gains: str | None = None, pointing: str = "body") -> dict:
+def cpd_config(scn: LeoGeoScenario, gains: str | None = None, pointing: str = "body",
+               control_period_s: float = 0.0) -> dict:
     """Field values of ogk_cpd_config_t from the scenario (gain set `gains` in {"printed",
     "rederived"}, default the scenario's `flown` choice)."""
     cpd, act = scn.cpd, scn.actuators
@@ -57,7 +58,9 @@ def cpd_config(scn: LeoGeoScenario, gains: str | None = None, pointing: str = "b
                 tau_z=act.time_constant_z_s, phi_c=cpd.roll_command_rad,
                 pointing=POINTING_MODES[pointing],
                 **dict(zip(("approach_accel_x", "approach_accel_y", "approach_accel_z"),
-                           cpd.braking_accels_rad_s2(scn))))
+                           cpd.braking_accels_rad_s2(scn))),
+                ff_period_s=control_period_s if cpd.feedforward else 0.0,
+                ff_rate_max=cpd.feedforward_rate_max_rad_s)
 
 
 class CpdBatchControl:
@@ -67,11 +70,11 @@ class CpdBatchControl:
     name = "cpd"
 
     def __init__(self, scn: LeoGeoScenario, n_runs: int, gains: str | None = None,
-                 pointing: str = "body") -> None:
+                 pointing: str = "body", control_period_s: float = 0.02) -> None:
         from ogk._ffi import ffi, lib
         self._ffi, self._lib = ffi, lib
         self.n_runs = n_runs
-        self.config = cpd_config(scn, gains, pointing)
+        self.config = cpd_config(scn, gains, pointing, control_period_s)
         cfg = ffi.new("ogk_cpd_config_t *")
         for key, value in self.config.items():
             setattr(cfg, key, value)

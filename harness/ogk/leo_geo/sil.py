@@ -150,7 +150,8 @@ def simulate(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
     coeffs = np.ascontiguousarray(draws.thrust_coeffs.T) if switches.thrust else None
     noise_src = ActuationNoise(scn, generators, switches.actuation and six_dof)
     if six_dof and attitude_control is None:
-        attitude_control = CpdBatchControl(scn, n, settings.cpd_gains, settings.cpd_pointing)
+        attitude_control = CpdBatchControl(scn, n, settings.cpd_gains, settings.cpd_pointing,
+                                           ctrl_dt)
     command = np.zeros((3, n))                   # held [M_xc, Delta_yc, Delta_zc]
     noise: F64 | None = None
     alpha_c, beta_c = np.zeros(n), np.zeros(n)

@@ -130,6 +130,8 @@ class Cpd:
     deflection_rate_bound_rad_s: float
     flown: str                      #: "printed" or "rederived"
     braking_margin: float           #: braking-curve cap (docs/cpd.md), 0 = the paper's law
+    feedforward: bool               #: feed-forward of the commanded turn rate (docs/cpd.md)
+    feedforward_rate_max_rad_s: float  #: clip of the feed-forward rate
     printed: CpdGains
     rederived: CpdGains
 

@@ -80,6 +80,15 @@ typedef struct {
     double approach_accel_x; /* [rad/s^2] roll braking acceleration, >= 0 (0: off) */
     double approach_accel_y; /* [rad/s^2] pitch braking acceleration, >= 0 (0: off) */
     double approach_accel_z; /* [rad/s^2] yaw braking acceleration, >= 0 (0: off) */
+    /* Feed-forward of the commanded turn rate (not in the paper; docs/cpd.md):
+     * the body-axis rate of the commanded thrust direction between two
+     * consecutive steps, omega_c = (d_prev x d_now) / ff_period_s, is added to
+     * the rate command of the pitch and yaw loops, k_d (w_c + omega_c - w),
+     * so a steadily turning command is tracked without the ramp lag
+     * (k_d / k_p) x rate of eq. (46). Its magnitude is clipped to ff_rate_max
+     * (a guidance sample that steps the command is not a rate). */
+    double ff_period_s;      /* [s] control period between steps, >= 0 (0: no feed-forward) */
+    double ff_rate_max;      /* [rad/s] clip of the feed-forward rate, >= 0 */
 } ogk_cpd_config_t;
 
 typedef struct {
@@ -111,6 +120,8 @@ typedef struct {
 typedef struct {
     ogk_cpd_config_t cfg;     /* copy of the accepted configuration */
     ogk_cpd_output_t last;    /* last command written by ogk_cpd_step */
+    double dir_prev_a[3];     /* [-] commanded thrust direction of the previous step (a frame) */
+    uint32_t has_prev;        /* [-] 1 when dir_prev_a holds a direction */
     uint32_t init_magic;      /* [-] OGK_CPD_INIT_MAGIC once initialised */
 } ogk_cpd_t;
 
