@@ -8,7 +8,7 @@ BENCH_GNC := $(BENCH_DIR)/bench_gnc
 GNC_CASES := nog_sample nog_command cpd_step
 NOG_TABLE := $(B)/tables/leo_geo/leo_geo_nog_bundle.ogkt
 
-$(BENCH_GNC): tests/bench/bench_gnc.c $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
+$(BENCH_GNC): tests/bench/bench_gnc.c tests/bench/bench_timer.h $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
 	@mkdir -p $(@D)
 	gcc -std=c99 -O2 -g -Wall -Wextra -Werror $(KINC) -Iport/include \
 	  $< $(PORT_HOST_SRC) $(B)/host/libogk.a -o $@ -lm
@@ -17,7 +17,7 @@ $(NOG_TABLE): scenarios/leo_geo.toml $(VENV)/.installed
 	$(VENV)/bin/ogk tables leo-geo --out $(@D)
 
 
-$(BENCH_CORE): tests/bench/bench_core.c $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
+$(BENCH_CORE): tests/bench/bench_core.c tests/bench/bench_timer.h $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
 	@mkdir -p $(@D)
 	gcc -std=c99 -O2 -g -Wall -Wextra -Werror $(KINC) -Iport/include \
 	  $< $(PORT_HOST_SRC) $(B)/host/libogk.a -o $@ -lm

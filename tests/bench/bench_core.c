@@ -15,6 +15,7 @@
 
 #include "ogk/rk4.h"
 #include "ogk_port.h"
+#include "bench_timer.h"
 
 static ogk_status two_body(void *user, double t, const double *x, int mode, double *xdot)
 {
@@ -68,33 +69,6 @@ __attribute__((noinline)) static int bench_switch_once(void)
     return st;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double da = *(const double *)a, db = *(const double *)b;
-    return (da > db) - (da < db);
-}
-
-static int time_case(int (*fn)(void), long iters, const char *name)
-{
-    double per_call[7];
-    int b;
-    for (b = 0; b < 7; ++b) {
-        const uint64_t t0 = ogk_port_counter_now();
-        long i;
-        for (i = 0; i < iters; ++i) {
-            if (fn() != 0) {
-                fprintf(stderr, "%s: kernel call failed\n", name);
-                return 1;
-            }
-        }
-        per_call[b] = (double)(ogk_port_counter_now() - t0) / (double)iters;
-    }
-    qsort(per_call, 7u, sizeof per_call[0], cmp_double);
-    printf("%s %.1f %s/call (median of 7 batches of %ld)\n", name, per_call[3],
-           ogk_port_counter_unit_name(), iters);
-    return 0;
-}
-
 int main(int argc, char **argv)
 {
     (void)ogk_port_counter_init();
@@ -111,10 +85,10 @@ int main(int argc, char **argv)
         }
     } else if (strcmp(argv[1], "time") == 0) {
         if (strcmp(argv[2], "rk4_step") == 0) {
-            return time_case(bench_rk4_step_once, 200000L, "rk4_step");
+            return bench_time_case(bench_rk4_step_once, 200000L, "rk4_step");
         }
         if (strcmp(argv[2], "switch") == 0) {
-            return time_case(bench_switch_once, 5000L, "switch");
+            return bench_time_case(bench_switch_once, 5000L, "switch");
         }
     }
     fprintf(stderr, "unknown arguments\n");

@@ -16,6 +16,7 @@
 #include "ogk/nog.h"
 #include "ogk/table.h"
 #include "ogk_port.h"
+#include "bench_timer.h"
 
 static ogk_nog_table_t table;
 static uint8_t image[OGK_TABLE_HEADER_SIZE + 8u * OGK_NOG_MAX_GRID * (1u + OGK_NOG_ENTRY_LEN)];
@@ -123,33 +124,6 @@ static int setup(const char *path)
     return bench_cpd_step_once();
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double da = *(const double *)a, db = *(const double *)b;
-    return (da > db) - (da < db);
-}
-
-static int time_case(int (*fn)(void), long iters, const char *name)
-{
-    double per_call[7];
-    int b;
-    for (b = 0; b < 7; ++b) {
-        const uint64_t t0 = ogk_port_counter_now();
-        long i;
-        for (i = 0; i < iters; ++i) {
-            if (fn() != 0) {
-                fprintf(stderr, "%s: kernel call failed\n", name);
-                return 1;
-            }
-        }
-        per_call[b] = (double)(ogk_port_counter_now() - t0) / (double)iters;
-    }
-    qsort(per_call, 7u, sizeof per_call[0], cmp_double);
-    printf("%s %.1f %s/call (median of 7 batches of %ld)\n", name, per_call[3],
-           ogk_port_counter_unit_name(), iters);
-    return 0;
-}
-
 int main(int argc, char **argv)
 {
     int (*fn)(void) = NULL;
@@ -170,5 +144,5 @@ int main(int argc, char **argv)
     if (strcmp(argv[2], "once") == 0) {
         return fn();
     }
-    return time_case(fn, 200000L, argv[3]);
+    return bench_time_case(fn, 200000L, argv[3]);
 }
