@@ -141,70 +141,53 @@ ogk_status ogk_mat_t_vec(const double *A, size_t rows, size_t cols,
     return OGK_OK;
 }
 
-ogk_status ogk_mat_mul(const double *A, size_t r, size_t k,
-                       const double *B, size_t c, double *C)
+/* C (r x c, row-major) = sum_p A(i, p) B(p, j), where A(i, p) = A[i a_i + p a_p] and
+ * B(p, j) = B[p b_p + j b_j]: one loop nest for A B, A^T B and A B^T. */
+static void product_strided(const double *A, size_t a_i, size_t a_p, const double *B,
+                            size_t b_p, size_t b_j, size_t r, size_t k, size_t c, double *C)
 {
     size_t i;
     size_t j;
     size_t p;
-    const ogk_status st = la_product_check(A, r * k, B, k * c, C, r * c, r, k, c);
-    if (st != OGK_OK) {
-        return st;
-    }
     for (i = 0u; i < r; ++i) {
         for (j = 0u; j < c; ++j) {
             double sum = 0.0;
             for (p = 0u; p < k; ++p) {
-                sum += A[i * k + p] * B[p * c + j];
+                sum += A[i * a_i + p * a_p] * B[p * b_p + j * b_j];
             }
             C[i * c + j] = sum;
         }
     }
-    return OGK_OK;
+}
+
+ogk_status ogk_mat_mul(const double *A, size_t r, size_t k,
+                       const double *B, size_t c, double *C)
+{
+    const ogk_status st = la_product_check(A, r * k, B, k * c, C, r * c, r, k, c);
+    if (st == OGK_OK) {
+        product_strided(A, k, 1u, B, c, 1u, r, k, c, C);
+    }
+    return st;
 }
 
 ogk_status ogk_mat_mul_at_b(const double *A, size_t k, size_t r,
                             const double *B, size_t c, double *C)
 {
-    size_t i;
-    size_t j;
-    size_t p;
     const ogk_status st = la_product_check(A, k * r, B, k * c, C, r * c, r, k, c);
-    if (st != OGK_OK) {
-        return st;
+    if (st == OGK_OK) {
+        product_strided(A, 1u, r, B, c, 1u, r, k, c, C);
     }
-    for (i = 0u; i < r; ++i) {
-        for (j = 0u; j < c; ++j) {
-            double sum = 0.0;
-            for (p = 0u; p < k; ++p) {
-                sum += A[p * r + i] * B[p * c + j];
-            }
-            C[i * c + j] = sum;
-        }
-    }
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_mat_mul_a_bt(const double *A, size_t r, size_t k,
                             const double *B, size_t c, double *C)
 {
-    size_t i;
-    size_t j;
-    size_t p;
     const ogk_status st = la_product_check(A, r * k, B, c * k, C, r * c, r, k, c);
-    if (st != OGK_OK) {
-        return st;
+    if (st == OGK_OK) {
+        product_strided(A, k, 1u, B, 1u, k, r, k, c, C);
     }
-    for (i = 0u; i < r; ++i) {
-        for (j = 0u; j < c; ++j) {
-            double sum = 0.0;
-            for (p = 0u; p < k; ++p) {
-                sum += A[i * k + p] * B[j * k + p];
-            }
-            C[i * c + j] = sum;
-        }
-    }
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_mat_transpose(const double *A, size_t rows, size_t cols,
