@@ -374,6 +374,13 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_samp
 
     tau = (ctx->n_samples == 0u) ? nav->t_s / tbl->t_f_star_s
                                  : ctx->tau_k + (nav->t_s - ctx->t_k_s) / ctx->t_f_s;
+    if (tau > 1.0) {
+        /* Sampled after the cut-off (tau outside [0, 1]): nothing to guide. */
+        hold_correction(ctx, nav->t_s, tau);
+        ctx->flags = OGK_NOG_FLAG_SAFE;
+        fill_sample(ctx, out);
+        return OGK_E_RANGE;
+    }
     ctx->n_samples += 1u;
     /* End-game: past the last node with gains, or inside the freeze margin. */
     if (tau >= tbl->tau[tbl->n_grid - 2u] || 1.0 - tau < ctx->cfg.tau_freeze) {

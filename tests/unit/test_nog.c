@@ -224,6 +224,11 @@ static void test_freeze_and_termination(void **state)
     OGK_ASSERT_STATUS(ogk_nog_command(&nog, 100.5, &c), OGK_OK);
     assert_true((c.flags & OGK_NOG_FLAG_CUTOFF) != 0u);
     OGK_ASSERT_NEAR(c.tau, 1.0, 0.0);
+    /* A sample past the cut-off (tau > 1) is rejected with the safe command. */
+    nav = nav_at(101.0, 1.0);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
+    assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u && (s.flags & OGK_NOG_FLAG_CUTOFF) != 0u);
+    OGK_ASSERT_NEAR(s.beta_rad, atan2(-(K_L6_VN * 2.0 + K_L6_RATE * 2.0 * 0.8), 1.0), 1e-12);
 }
 
 static void test_bad_navigation_gives_safe_command(void **state)

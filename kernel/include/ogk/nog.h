@@ -138,7 +138,8 @@ typedef struct {
 ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg);
 
 /* One guidance sample. On bad navigation input (NaN/Inf, time not after the
- * previous sample, r <= 0) returns the specific code, sets
+ * previous sample, r <= 0, or a time past the cut-off, i.e. tau > 1:
+ * OGK_E_NONFINITE / OGK_E_RANGE) returns the specific code, sets
  * OGK_NOG_FLAG_SAFE, keeps the last valid correction (the nominal before the
  * first) and advances tau with the t_f in force: out holds that safe sample. */
 ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_sample_t *out);
