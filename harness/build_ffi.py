@@ -446,13 +446,81 @@ ogk_status ogk_sil_nog_command_batch(const ogk_nog_t *ctx, size_t n_runs, const 
                                      int32_t *status);
 """
 
+# kernel/include/ogk/mpsp.h: MPSP bang-off-bang low-thrust guidance (docs/mpsp.md).
+CDEF_MPSP = """
+#define OGK_MPSP_NX ...
+#define OGK_MPSP_NX0 ...
+#define OGK_MPSP_NU ...
+#define OGK_MPSP_NY ...
+#define OGK_MPSP_MAX_ORDER ...
+#define OGK_MPSP_MAX_STEPS ...
+#define OGK_MPSP_MAX_SWITCHES ...
+#define OGK_MPSP_MAX_LOG ...
+#define OGK_MPSP_MAX_BASIS ...
+#define OGK_MPSP_MAX_WEIGHTS ...
+#define OGK_MPSP_MAX_UNKNOWNS ...
+#define OGK_MPSP_MAX_NODES ...
+#define OGK_MPSP_BASIS_FOURIER ...
+#define OGK_MPSP_BASIS_COSINE ...
+typedef struct {
+    double mu; double t_max; double c_exhaust; double t0; double tf;
+    double x0_nom[...]; double r_f[...]; double v_f[...];
+    uint32_t fourier_order; uint32_t fourier_kind; double fourier_period; double fourier_t_ref;
+    double h_max; double delta_max; double delta_tau_0; double delta_tau_min;
+    double r_eps[...]; double r_lambda;
+    double tol_r; double tol_v; double tol_lambda_m; double s_tol;
+    uint32_t max_newton; uint32_t max_outer; uint32_t n_seg_tol; uint32_t n_seg_tol_step;
+    double weights_nom[...]; double lambda_m0_nom; uint32_t n_seg_nom;
+    ...;
+} ogk_mpsp_config_t;
+typedef struct {
+    double x_f[...]; uint32_t n_switches; double t_switch[...];
+    uint32_t n_segments; uint32_t n_thrust_arcs; int mode0; size_t n_nodes;
+    ...;
+} ogk_mpsp_prop_t;
+typedef struct {
+    uint8_t converged; uint32_t newton_iterations; uint32_t inner_loops;
+    uint32_t outer_steps; uint32_t n_seg_tol; double tau_reached; double dy[...];
+    double err_r; double err_v; double lambda_mf; double m_f;
+    uint32_t n_segments; uint32_t n_thrust_arcs; uint32_t n_switches; double t_switch[...];
+    size_t n_weights; double weights[...]; double lambda_m0;
+    uint32_t n_log; double dy_norm_log[...];
+    ...;
+} ogk_mpsp_result_t;
+typedef struct {
+    size_t n_basis; size_t n_weights; size_t n_steps; uint32_t n_seg_nom;
+    ...;
+} ogk_mpsp_t;
+ogk_status ogk_mpsp_init(ogk_mpsp_t *ctx, const ogk_mpsp_config_t *cfg);
+ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale,
+                          const double *target_rv, ogk_mpsp_result_t *res);
+ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
+                              const double *x0, double thrust_scale, ogk_mpsp_prop_t *out);
+ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, double *t, double *x,
+                               uint8_t *mode, size_t capacity, size_t *count);
+ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x);
+ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double t,
+                            double *lambda_v, double *lambda_v_dot);
+ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, double *dy_dw, double *dy_dlm0);
+ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *weights,
+                                  double *lambda_m0);
+ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
+                                  double thrust_scale, double t, const double *x,
+                                  double dt, int mode, double *x_next,
+                                  double *dfdx, double *dfdw);
+ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
+                                double thrust_scale, double t_s, const double *x_s,
+                                int mode_before, double *jx, double *jw,
+                                double *dts_dx, double *dts_dw);
+"""
+
 CDEF = "".join(
     [CDEF_STATUS, CDEF_VERSION, CDEF_CONFIG, CDEF_CRC32, CDEF_TABLE,
      CDEF_INTERP, CDEF_LINALG, CDEF_RK4, CDEF_CPD, CDEF_MODELS,
-     CDEF_SIL_BATCH, CDEF_NOG, CDEF_NOG_BATCH]
+     CDEF_SIL_BATCH, CDEF_NOG, CDEF_NOG_BATCH, CDEF_MPSP]
 )
 
-HEADERS = ["status", "version", "config", "crc32", "table", "interp", "linalg", "rk4", "cpd", "nog"]
+HEADERS = ["status", "version", "config", "crc32", "table", "interp", "linalg", "rk4", "cpd", "nog", "mpsp"]
 SOURCE = ("".join(f'#include "ogk/{h}.h"\n' for h in HEADERS) + '#include "models.h"\n'
           + '#include "sil_batch.h"\n' + '#include "nog_batch.h"\n')
 

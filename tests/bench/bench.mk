@@ -39,3 +39,25 @@ bench: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE)
 	  printf '%-11s %9s instructions/call (callgrind)   ' $$c "$$n"; \
 	  $(BENCH_GNC) $(NOG_TABLE) time $$c; \
 	done
+
+# MPSP (kernel/include/ogk/mpsp.h): one Newton iteration at flight size (2000
+# RK4 steps, Fourier order 15: 94 unknowns) and its parts; see docs/mpsp.md.
+BENCH_MPSP := $(BENCH_DIR)/bench_mpsp
+MPSP_CASES := mpsp_iter mpsp_prop mpsp_sens mpsp_update
+
+$(BENCH_MPSP): tests/bench/bench_mpsp.c $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
+	@mkdir -p $(@D)
+	gcc -std=c99 -O2 -g -Wall -Wextra -Werror $(KINC) -Iport/include \
+	  $< $(PORT_HOST_SRC) $(B)/host/libogk.a -o $@ -lm
+
+.PHONY: bench-mpsp
+bench-mpsp: $(BENCH_MPSP)
+	@for c in $(MPSP_CASES); do \
+	  n=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+	       --collect-atstart=no --toggle-collect=bench_$${c}_once \
+	       $(BENCH_MPSP) once $$c 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'); \
+	  printf '%-11s %9s instructions/call (callgrind)   ' $$c "$$n"; \
+	  $(BENCH_MPSP) time $$c; \
+	done
+
+bench: bench-mpsp

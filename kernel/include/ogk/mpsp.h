@@ -1,0 +1,277 @@
+/* ogk/mpsp.h -- Model Predictive Static Programming (MPSP) for bang-off-bang
+ * low-thrust guidance, Wang & Topputo, Acta Astronautica 176 (2020),
+ * sections 2.3 and 3.1-3.4, appendices A-C, with the errata listed in
+ * docs/mpsp.md. Design, derivations and limits: docs/mpsp.md.
+ *
+ * Dynamics (eq. 16), normalised units (e.g. the paper's LU, TU, MU of Table 1):
+ *   X = [r(3), v(3), m, lambda_m],  U = lambda_v(t) = P(t) W      (eqs. 36-37)
+ *   r' = v,  v' = g(r) - u T/m lambda_v/|lambda_v|,  m' = -u T/c,
+ *   lambda_m' = -u T |lambda_v| / m^2,
+ *   S = 1 - lambda_m - |lambda_v| c / m,  u = 1 if S < 0 else 0     (eqs. 10-11)
+ * The MPSP unknowns are the Fourier weights W (3 blocks of 2 n + 1, one per
+ * component of lambda_v) and lambda_m(t0); the outputs are
+ *   Y = [r(t_f), v(t_f), lambda_m(t_f)]  with target [r_f, v_f, 0].
+ *
+ * Fourier basis (Appendix C with a configurable period, see the erratum):
+ *   theta = 2 pi (t - t_ref) / period,
+ *   OGK_MPSP_BASIS_FOURIER: h(t) = [1/2, cos theta, sin theta, cos 2 theta,
+ *                                   sin 2 theta, ..., cos n theta, sin n theta]
+ *   OGK_MPSP_BASIS_COSINE:  h(t) = [1/2, cos theta, cos 2 theta, ..., cos 2n theta]
+ *   lambda_v,i(t) = h(t)^T W[i (2 n + 1) .. (i + 1)(2 n + 1) - 1],  i = 0, 1, 2.
+ * The paper's printed basis cos(n pi eta), eta in [-pi, pi] over [t0, tf], is
+ * FOURIER with period = (tf - t0) / pi and t_ref = (t0 + tf) / 2.
+ *
+ * Integration: ogk_rk4_propagate (ogk/rk4.h) on the grid t0 + k h_max with
+ * switching detection by bisection (|S(t_s)| <= s_tol); the control U is
+ * evaluated at the RK4 stage times (erratum of Appendix A). Sensitivities are
+ * those of this discrete map: a backward sweep through each RK4 step
+ * (Appendix A, transposed), with the switching compensation of eqs. (22)-(25)
+ * at each switch node (eqs. 28-35).
+ *
+ * Memory: everything lives in ogk_mpsp_t (187 KiB with the default limits);
+ * no heap, no globals, every loop bounded. Stack: about 5 KiB worst case
+ * (docs/mpsp.md). */
+#ifndef OGK_MPSP_H
+#define OGK_MPSP_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "ogk/config.h"
+#include "ogk/linalg.h"
+#include "ogk/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define OGK_MPSP_NX 8u   /* MPSP state X = [r, v, m, lambda_m] (eq. 16) */
+#define OGK_MPSP_NX0 7u  /* physical initial state x0 = [r, v, m] */
+#define OGK_MPSP_NU 3u   /* MPSP control U = lambda_v */
+#define OGK_MPSP_NY 7u   /* output Y = [r_f, v_f, lambda_mf] */
+
+/* Largest Fourier order n_x (eq. C.1). */
+#ifndef OGK_MPSP_MAX_ORDER
+#define OGK_MPSP_MAX_ORDER 15u
+#endif
+/* Largest number of RK4 grid steps, ceil((tf - t0) / h_max). */
+#ifndef OGK_MPSP_MAX_STEPS
+#define OGK_MPSP_MAX_STEPS 2048u
+#endif
+/* Largest number of switches of an accepted trajectory (and of the switch
+ * times reported); a trajectory with more is rejected (OGK_E_SWITCH_OVERFLOW
+ * from ogk_mpsp_propagate, a failed inner loop inside ogk_mpsp_solve). */
+#ifndef OGK_MPSP_MAX_SWITCHES
+#define OGK_MPSP_MAX_SWITCHES 16u
+#endif
+/* Entries of the Newton history kept in the result. */
+#ifndef OGK_MPSP_MAX_LOG
+#define OGK_MPSP_MAX_LOG 64u
+#endif
+
+#define OGK_MPSP_MAX_BASIS (2u * OGK_MPSP_MAX_ORDER + 1u)
+#define OGK_MPSP_MAX_WEIGHTS (OGK_MPSP_NU * OGK_MPSP_MAX_BASIS)
+#define OGK_MPSP_MAX_UNKNOWNS (OGK_MPSP_MAX_WEIGHTS + 1u)
+/* Dense-output nodes: every grid node, t0 and tf, and every switch node the
+ * integrator may record (OGK_RK4_MAX_SWITCHES, so the dense output never runs
+ * out before the integrator's own switch limit). */
+#define OGK_MPSP_MAX_NODES (OGK_MPSP_MAX_STEPS + OGK_RK4_MAX_SWITCHES + 1u)
+
+#define OGK_MPSP_INIT_MAGIC 0x4D505350u /* "MPSP" */
+
+/* Basis kinds (ogk_mpsp_config_t.fourier_kind); 2 n + 1 functions either way. */
+#define OGK_MPSP_BASIS_FOURIER 0u /* 1/2, cos k theta, sin k theta, k = 1..n (eq. C.1) */
+#define OGK_MPSP_BASIS_COSINE 1u  /* 1/2, cos k theta, k = 1..2n (even extension) */
+
+/* Configuration, read-only after ogk_mpsp_init (copied into the context).
+ * Units: any consistent normalised set (LU, TU, MU); [T] = MU LU / TU^2. */
+typedef struct {
+    double mu;                  /* [LU^3/TU^2] gravitational parameter, >= 0 (0: field-free) */
+    double t_max;               /* [MU LU/TU^2] nominal maximum thrust T_max, > 0 */
+    double c_exhaust;           /* [LU/TU] exhaust velocity c = Isp g0, > 0 */
+    double t0;                  /* [TU] initial time */
+    double tf;                  /* [TU] final time, > t0 */
+    double x0_nom[OGK_MPSP_NX0]; /* [LU, LU/TU, MU] nominal r0, v0, m0 (C_nom of eq. 51), m0 > 0 */
+    double r_f[3];              /* [LU] nominal target position */
+    double v_f[3];              /* [LU/TU] nominal target velocity */
+    uint32_t fourier_order;     /* [-] n_x of eq. (C.1), 1..OGK_MPSP_MAX_ORDER */
+    uint32_t fourier_kind;      /* [-] OGK_MPSP_BASIS_FOURIER or OGK_MPSP_BASIS_COSINE */
+    double fourier_period;      /* [TU] fundamental period of the basis, > 0 (erratum: 2 (tf - t0) fits the Apophis nominal) */
+    double fourier_t_ref;       /* [TU] time of zero phase of the basis */
+    double h_max;               /* [TU] RK4 grid step, ceil((tf - t0)/h_max) <= OGK_MPSP_MAX_STEPS */
+    double delta_max;           /* [mixed] Newton only while ||Delta Y||_2 <= Delta_max (Alg. 1), > 0 */
+    double delta_tau_0;         /* [-] initial continuation step (Alg. 2), (0, 1] */
+    double delta_tau_min;       /* [-] continuation fails when a step <= this is needed (paper 0.1), [0, delta_tau_0) */
+    double r_eps[OGK_MPSP_MAX_WEIGHTS]; /* [-] diagonal of R_eps (eq. 41), first n_weights entries > 0 */
+    double r_lambda;            /* [-] R_lambda (eq. 41), > 0 */
+    double tol_r;               /* [LU] convergence: ||r(tf) - r_f|| <= tol_r, > 0 */
+    double tol_v;               /* [LU/TU] convergence: ||v(tf) - v_f|| <= tol_v, > 0 */
+    double tol_lambda_m;        /* [-] convergence: |lambda_m(tf)| <= tol_lambda_m, > 0 */
+    double s_tol;               /* [-] switch accepted when |S(t_s)| <= s_tol (paper 1e-12), > 0 */
+    uint32_t max_newton;        /* [-] Newton iterations per inner loop, >= 1 */
+    uint32_t max_outer;         /* [-] inner loops run by the continuation (Alg. 2), >= 1 */
+    uint32_t n_seg_tol;         /* [-] initial N_seg,tol (paper 0) */
+    uint32_t n_seg_tol_step;    /* [-] increase of N_seg,tol after a failed continuation (paper 2), >= 1 */
+    double weights_nom[OGK_MPSP_MAX_WEIGHTS]; /* [-] nominal weights epsilon_0 (eq. 50), first n_weights used */
+    double lambda_m0_nom;       /* [-] nominal lambda_m(t0) */
+    uint32_t n_seg_nom;         /* [-] N_seg,nom = thrust + coast segments of the nominal; 0: counted at init
+                                   by propagating the nominal weights from x0_nom */
+} ogk_mpsp_config_t;
+
+/* Summary of one propagation (the trajectory itself stays in the context). */
+typedef struct {
+    double x_f[OGK_MPSP_NX];    /* [LU, LU/TU, MU, -] X(tf) */
+    uint32_t n_switches;        /* [-] switches found */
+    double t_switch[OGK_MPSP_MAX_SWITCHES]; /* [TU] switch times (first OGK_MPSP_MAX_SWITCHES) */
+    uint32_t n_segments;        /* [-] N_seg = thrust + coast segments = n_switches + 1 */
+    uint32_t n_thrust_arcs;     /* [-] segments flown with u = 1 */
+    int mode0;                  /* [-] u on the first segment (0 coast, 1 thrust) */
+    size_t n_nodes;             /* [-] dense-output nodes held */
+} ogk_mpsp_prop_t;
+
+typedef struct {
+    uint8_t converged;          /* [-] 1: terminal tolerances met with the returned weights */
+    uint32_t newton_iterations; /* [-] evaluations of eq. (45) over all inner loops (the paper's NI) */
+    uint32_t inner_loops;       /* [-] inner loops run (Alg. 1), the direct one included */
+    uint32_t outer_steps;       /* [-] continuation inner loops (Alg. 2); 0 when the direct loop converged */
+    uint32_t n_seg_tol;         /* [-] N_seg,tol in force at the end */
+    double tau_reached;         /* [-] largest continuation parameter solved (1 on success) */
+    double dy[OGK_MPSP_NY];     /* [mixed] Y(tf) - Y_d with the returned weights, perturbed conditions */
+    double err_r;               /* [LU] ||r(tf) - r_f|| */
+    double err_v;               /* [LU/TU] ||v(tf) - v_f|| */
+    double lambda_mf;           /* [-] lambda_m(tf) */
+    double m_f;                 /* [MU] final mass */
+    uint32_t n_segments;        /* [-] thrust + coast segments */
+    uint32_t n_thrust_arcs;     /* [-] thrust segments */
+    uint32_t n_switches;        /* [-] switches */
+    double t_switch[OGK_MPSP_MAX_SWITCHES]; /* [TU] switch times */
+    size_t n_weights;           /* [-] 3 (2 n + 1) */
+    double weights[OGK_MPSP_MAX_WEIGHTS]; /* [-] updated weights: the command (safe command on failure) */
+    double lambda_m0;           /* [-] updated lambda_m(t0) */
+    uint32_t n_log;             /* [-] entries of dy_norm_log */
+    double dy_norm_log[OGK_MPSP_MAX_LOG]; /* [mixed] ||Delta Y||_2 before each Newton step, in order */
+} ogk_mpsp_result_t;
+
+/* Context: configuration, the last trajectory, its sensitivities and the
+ * Newton workspace. Treat as opaque; read it through the functions below. */
+typedef struct {
+    ogk_mpsp_config_t cfg;
+    size_t n_basis;             /* [-] 2 n + 1 */
+    size_t n_weights;           /* [-] 3 n_basis */
+    size_t n_steps;             /* [-] RK4 grid steps */
+    uint32_t n_seg_nom;         /* [-] N_seg,nom in use */
+    double omega;               /* [rad/TU] 2 pi / period */
+    double inv_sqrt_r_eps[OGK_MPSP_MAX_WEIGHTS]; /* [-] R_eps^-1/2 */
+    double inv_sqrt_r_lambda;   /* [-] R_lambda^-1/2 */
+    /* Conditions and parameters of the trajectory held. */
+    double thrust;              /* [MU LU/TU^2] T of the trajectory held */
+    double x0[OGK_MPSP_NX0];    /* [LU, LU/TU, MU] its initial state */
+    double weights[OGK_MPSP_MAX_WEIGHTS]; /* [-] its weights */
+    double lambda_m0;           /* [-] its lambda_m(t0) */
+    /* Dense trajectory (ogk_rk4_propagate's dense output). */
+    double traj_t[OGK_MPSP_MAX_NODES];
+    double traj_x[OGK_MPSP_MAX_NODES * OGK_MPSP_NX];
+    uint8_t traj_mode[OGK_MPSP_MAX_NODES];
+    size_t n_nodes;
+    size_t n_switch_nodes;
+    size_t switch_node[OGK_RK4_MAX_SWITCHES]; /* [-] node index of each switch */
+    uint8_t traj_valid;
+    uint8_t sens_valid;
+    /* Sensitivities of the trajectory held (eqs. 33 and 40). */
+    double dy_dw[OGK_MPSP_NY * OGK_MPSP_MAX_WEIGHTS]; /* B_v, row-major 7 x n_weights */
+    double dy_dlm0[OGK_MPSP_NY];                      /* A_lambda */
+    /* B_v being accumulated, basis-major: acc[q][r * 3 + c], 8 x 3 columns
+     * (padded so the inner loop has a fixed length). */
+    double bv_acc[OGK_MPSP_MAX_BASIS * OGK_MPSP_NX * OGK_MPSP_NU];
+    /* Newton workspace (eqs. 44-45 as a minimum-norm problem). */
+    double newton_m[OGK_MPSP_NY * OGK_MPSP_MAX_UNKNOWNS];
+    double newton_z[OGK_MPSP_MAX_UNKNOWNS];
+    ogk_qr_t qr;
+    /* Loop workspace: weights of the last solved tau (eps_k of Alg. 2), the
+     * inner loop's current iterate (eps_j of Alg. 1) and its Newton trial. */
+    double w_cont[OGK_MPSP_MAX_WEIGHTS];
+    double w_iter[OGK_MPSP_MAX_WEIGHTS];
+    double w_trial[OGK_MPSP_MAX_WEIGHTS];
+    uint32_t init_magic;
+} ogk_mpsp_t;
+
+/* Validates cfg (OGK_E_NULL, OGK_E_NONFINITE for NaN/Inf, OGK_E_CONFIG for
+ * anything out of range or over a compile-time limit) and prepares ctx. With
+ * cfg->n_seg_nom == 0 the nominal is propagated to count N_seg,nom (OGK_E_CONFIG
+ * if that propagation fails). On failure ctx is left uninitialised. */
+ogk_status ogk_mpsp_init(ogk_mpsp_t *ctx, const ogk_mpsp_config_t *cfg);
+
+/* Two-loop MPSP (Algorithms 1 and 2) from the nominal weights for the perturbed
+ * conditions C_per: initial state x0 (r, v, m at t0), thrust T_max * thrust_scale
+ * (Table 6: thrust_scale = 1 + eta), target target_rv = [r_f, v_f] (NULL: the
+ * configured target). Returns OGK_OK with res->converged = 1, or
+ * OGK_E_NOT_CONVERGED with res->weights / lambda_m0 holding the safe command:
+ * the weights solved at the largest continuation parameter reached, the nominal
+ * ones if none; res->dy etc. then describe that command flown from x0. Bad
+ * input: OGK_E_NULL, OGK_E_NOT_INIT, OGK_E_NONFINITE, OGK_E_RANGE (m0 <= 0,
+ * thrust_scale <= 0). */
+ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale,
+                          const double *target_rv, ogk_mpsp_result_t *res);
+
+/* Integrates eq. (16) from (t0, [x0, lambda_m0]) to tf with the given weights
+ * and thrust T_max * thrust_scale; the dense trajectory replaces the one in
+ * ctx (and invalidates its sensitivities). out may be NULL. Errors:
+ * OGK_E_SWITCH_OVERFLOW (more than OGK_MPSP_MAX_SWITCHES switches; trajectory
+ * kept), OGK_E_CALLBACK (mass <= 0, or lambda_v = 0 while thrusting),
+ * OGK_E_NONFINITE, and the input errors of ogk_mpsp_solve. */
+ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
+                              const double *x0, double thrust_scale,
+                              ogk_mpsp_prop_t *out);
+
+/* Copies the dense trajectory held: t (count), x (count x 8, row-major), mode
+ * (count; u of the step leaving each node). OGK_E_DIM if capacity is short. */
+ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, double *t, double *x,
+                               uint8_t *mode, size_t capacity, size_t *count);
+
+/* X(t) of the trajectory held by pchip (ogk/interp.h) over the nodes of the
+ * segment containing t (never across a switch). OGK_E_RANGE outside [t0, tf]. */
+ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x);
+
+/* lambda_v(t) = P(t) W (eqs. 36-37) for any weights (3 values); lambda_v_dot
+ * (3, may be NULL) receives d lambda_v / dt. */
+ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double t,
+                            double *lambda_v, double *lambda_v_dot);
+
+/* Sensitivities of the trajectory held (eqs. 28-35 with eqs. 22-25 at each
+ * switch): dy_dw = dY/dW (7 x n_weights, B_v of eq. 40) and dy_dlm0 = dY/d
+ * lambda_m0 (7, A_lambda of eq. 33). Either output may be NULL (they are kept
+ * in ctx for ogk_mpsp_newton_update). OGK_E_NOT_INIT without a trajectory;
+ * OGK_E_SINGULAR at a tangential switch (dS/dt = 0). */
+ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, double *dy_dw, double *dy_dlm0);
+
+/* Newton update of eqs. (44)-(46) from the sensitivities held: weights and
+ * *lambda_m0 (in/out) are decreased by the minimum-R-norm correction that
+ * cancels dy (7) to first order, solved as ogk_minnorm of
+ * [B_v R_eps^-1/2, A_lambda R_lambda^-1/2]. OGK_E_SINGULAR when the 7 x 7
+ * matrix of eq. (44) is singular (nothing changed). */
+ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *weights,
+                                  double *lambda_m0);
+
+/* One RK4 step of eq. (16) from (t, x) of length dt in mode (0 coast, 1 thrust),
+ * thrust T_max * thrust_scale, and its Jacobians (Appendix A with U at the stage
+ * times): x_next (8), dfdx = dX_next/dX (8 x 8) and dfdw = dX_next/dW
+ * (8 x n_weights). Outputs other than x_next may be NULL. */
+ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
+                                  double thrust_scale, double t, const double *x,
+                                  double dt, int mode, double *x_next,
+                                  double *dfdx, double *dfdw);
+
+/* Switching compensation at a switch (t_s, x_s) left in mode_before
+ * (eqs. 24-25, Appendix B): jx = dX+/dX- (8 x 8), jw = dX+/dW (8 x n_weights,
+ * through dU = P(t_s) dW), dts_dx = dt_s/dX- (8) and dts_dw = dt_s/dW
+ * (n_weights) from eq. (B.2). Any output may be NULL. OGK_E_SINGULAR when
+ * dS/dt = 0 at t_s. */
+ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
+                                double thrust_scale, double t_s, const double *x_s,
+                                int mode_before, double *jx, double *jw,
+                                double *dts_dx, double *dts_dw);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* OGK_MPSP_H */

@@ -1,0 +1,440 @@
+/* mpsp.c -- MPSP guidance loops: configuration, the Newton update
+ * (eqs. 44-46), the inner loop with the thrust-sequence check (Algorithm 1)
+ * and the continuation outer loop (Algorithm 2, with the missing `else`
+ * restored). Design notes: docs/mpsp.md. */
+#include "mpsp_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define NX OGK_MPSP_NX
+#define NY OGK_MPSP_NY
+#define MPSP_TWO_PI 6.283185307179586476925286766559
+/* Same rule as ogk_rk4_propagate: a step count within this slop of an integer is that integer. */
+#define MPSP_STEP_SLOP 1.0e-9
+/* N_seg,tol levels tried by Algorithm 2 at most (N_seg,nom <= switches + 1, step >= 1). */
+#define MPSP_MAX_TOL_LEVELS (OGK_RK4_MAX_SWITCHES + 4u)
+
+/* Boundary conditions and parameters C of eq. (51). */
+typedef struct {
+    double x0[OGK_MPSP_NX0];
+    double r_f[3];
+    double v_f[3];
+    double thrust;
+} mpsp_cond_t;
+
+/* ------------------------------------------------------------------ configuration */
+
+static bool cfg_scalars_finite(const ogk_mpsp_config_t *cfg)
+{
+    const double s[] = {cfg->mu, cfg->t_max, cfg->c_exhaust, cfg->t0, cfg->tf,
+                        cfg->fourier_period, cfg->fourier_t_ref, cfg->h_max, cfg->delta_max,
+                        cfg->delta_tau_0, cfg->delta_tau_min, cfg->r_lambda, cfg->tol_r,
+                        cfg->tol_v, cfg->tol_lambda_m, cfg->s_tol, cfg->lambda_m0_nom};
+    return mpsp_all_finite(s, sizeof s / sizeof s[0]) &&
+           mpsp_all_finite(cfg->x0_nom, OGK_MPSP_NX0) && mpsp_all_finite(cfg->r_f, 3u) &&
+           mpsp_all_finite(cfg->v_f, 3u);
+}
+
+static size_t grid_steps(double span, double h)
+{
+    const double ratio = span / h;
+    size_t n;
+    if (!(ratio <= (double)OGK_MPSP_MAX_STEPS + 1.0)) {
+        return OGK_MPSP_MAX_STEPS + 1u;
+    }
+    n = (size_t)floor(ratio);
+    if (ratio - (double)n > MPSP_STEP_SLOP * fmax(1.0, ratio) || n == 0u) {
+        n += 1u;
+    }
+    return n;
+}
+
+static ogk_status check_config(const ogk_mpsp_config_t *cfg)
+{
+    size_t n_weights;
+    size_t i;
+    double r2;
+
+    if (!cfg_scalars_finite(cfg)) {
+        return OGK_E_NONFINITE;
+    }
+    if (cfg->fourier_order < 1u || cfg->fourier_order > OGK_MPSP_MAX_ORDER ||
+        (cfg->fourier_kind != OGK_MPSP_BASIS_FOURIER &&
+         cfg->fourier_kind != OGK_MPSP_BASIS_COSINE)) {
+        return OGK_E_CONFIG;
+    }
+    n_weights = OGK_MPSP_NU * (2u * (size_t)cfg->fourier_order + 1u);
+    if (!mpsp_all_finite(cfg->weights_nom, n_weights) || !mpsp_all_finite(cfg->r_eps, n_weights)) {
+        return OGK_E_NONFINITE;
+    }
+    for (i = 0u; i < n_weights; ++i) {
+        if (!(cfg->r_eps[i] > 0.0)) {
+            return OGK_E_CONFIG;
+        }
+    }
+    r2 = cfg->x0_nom[0] * cfg->x0_nom[0] + cfg->x0_nom[1] * cfg->x0_nom[1] +
+         cfg->x0_nom[2] * cfg->x0_nom[2];
+    if (cfg->mu < 0.0 || !(cfg->t_max > 0.0) || !(cfg->c_exhaust > 0.0) ||
+        !(cfg->tf > cfg->t0) || !(cfg->fourier_period > 0.0) || !(cfg->h_max > 0.0) ||
+        !(cfg->delta_max > 0.0) || !(cfg->delta_tau_0 > 0.0) || cfg->delta_tau_0 > 1.0 ||
+        cfg->delta_tau_min < 0.0 || !(cfg->delta_tau_min < cfg->delta_tau_0) ||
+        !(cfg->r_lambda > 0.0) || !(cfg->tol_r > 0.0) || !(cfg->tol_v > 0.0) ||
+        !(cfg->tol_lambda_m > 0.0) || !(cfg->s_tol > 0.0) || cfg->max_newton < 1u ||
+        cfg->max_outer < 1u || cfg->n_seg_tol_step < 1u || !(cfg->x0_nom[6] > 0.0) ||
+        (cfg->mu > 0.0 && !(r2 > 0.0))) {
+        return OGK_E_CONFIG;
+    }
+    if (grid_steps(cfg->tf - cfg->t0, cfg->h_max) > OGK_MPSP_MAX_STEPS) {
+        return OGK_E_CONFIG; /* the dense trajectory would not fit */
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_mpsp_init(ogk_mpsp_t *ctx, const ogk_mpsp_config_t *cfg)
+{
+    size_t i;
+    ogk_status st;
+
+    if (ctx == NULL || cfg == NULL) {
+        return OGK_E_NULL;
+    }
+    ctx->init_magic = 0u;
+    st = check_config(cfg);
+    if (st != OGK_OK) {
+        return st;
+    }
+    (void)memset(ctx, 0, sizeof *ctx);
+    ctx->cfg = *cfg;
+    ctx->n_basis = 2u * (size_t)cfg->fourier_order + 1u;
+    ctx->n_weights = OGK_MPSP_NU * ctx->n_basis;
+    ctx->n_steps = grid_steps(cfg->tf - cfg->t0, cfg->h_max);
+    ctx->omega = MPSP_TWO_PI / cfg->fourier_period;
+    for (i = 0u; i < ctx->n_weights; ++i) {
+        ctx->inv_sqrt_r_eps[i] = 1.0 / sqrt(cfg->r_eps[i]);
+    }
+    ctx->inv_sqrt_r_lambda = 1.0 / sqrt(cfg->r_lambda);
+    ctx->init_magic = OGK_MPSP_INIT_MAGIC;
+    if (cfg->n_seg_nom == 0u) {
+        ogk_mpsp_prop_t prop;
+        st = mpsp_propagate_ctx(ctx, cfg->weights_nom, cfg->lambda_m0_nom, cfg->x0_nom,
+                                cfg->t_max, &prop);
+        if (st != OGK_OK) {
+            ctx->init_magic = 0u;
+            return OGK_E_CONFIG;
+        }
+        ctx->n_seg_nom = prop.n_segments;
+    } else {
+        ctx->n_seg_nom = cfg->n_seg_nom;
+    }
+    return OGK_OK;
+}
+
+/* ------------------------------------------------------------------ Newton update */
+
+ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *weights,
+                                  double *lambda_m0)
+{
+    size_t nw;
+    size_t nu;
+    size_t r;
+    size_t i;
+    ogk_status st;
+
+    if (ctx == NULL || dy == NULL || weights == NULL || lambda_m0 == NULL) {
+        return OGK_E_NULL;
+    }
+    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC || ctx->sens_valid == 0u) {
+        return OGK_E_NOT_INIT;
+    }
+    if (!mpsp_all_finite(dy, NY) || !mpsp_all_finite(weights, ctx->n_weights) ||
+        !isfinite(*lambda_m0)) {
+        return OGK_E_NONFINITE;
+    }
+    nw = ctx->n_weights;
+    nu = nw + 1u;
+    /* With z = [R_eps^1/2 dW; R_lambda^1/2 dlambda_m0], eq. (41) is |z|^2 / 2 and
+     * eq. (40) reads M z = dY, M = [B_v R_eps^-1/2, A_lambda R_lambda^-1/2]; the
+     * minimum-norm z = M^T (M M^T)^-1 dY is eqs. (44)-(45), since
+     * M M^T = A_lambda A_lambda^T / R_lambda + B_v R_eps^-1 B_v^T. */
+    for (r = 0u; r < NY; ++r) {
+        for (i = 0u; i < nw; ++i) {
+            ctx->newton_m[r * nu + i] = ctx->dy_dw[r * nw + i] * ctx->inv_sqrt_r_eps[i];
+        }
+        ctx->newton_m[r * nu + nw] = ctx->dy_dlm0[r] * ctx->inv_sqrt_r_lambda;
+    }
+    st = ogk_minnorm(&ctx->qr, ctx->newton_m, NY, nu, dy, ctx->newton_z);
+    if (st != OGK_OK && st != OGK_E_ILL_CONDITIONED) {
+        return st; /* ill-conditioned still gives the least-norm step: taken */
+    }
+    if (!mpsp_all_finite(ctx->newton_z, nu)) {
+        return OGK_E_NONFINITE;
+    }
+    /* Eq. (46): epsilon_{j+1} = epsilon_j - d epsilon_j, same for lambda_m0. */
+    for (i = 0u; i < nw; ++i) {
+        weights[i] -= ctx->newton_z[i] * ctx->inv_sqrt_r_eps[i];
+    }
+    *lambda_m0 -= ctx->newton_z[nw] * ctx->inv_sqrt_r_lambda;
+    return OGK_OK;
+}
+
+/* ------------------------------------------------------------------ loops */
+
+static double norm_n(const double *v, size_t n)
+{
+    double s = 0.0;
+    size_t i;
+    for (i = 0u; i < n; ++i) {
+        s += v[i] * v[i];
+    }
+    return sqrt(s);
+}
+
+/* Delta Y = Y(tf) - Y_d, Y_d = [r_f, v_f, 0]. */
+static void terminal_error(const mpsp_cond_t *cond, const double *x_f, double *dy)
+{
+    size_t i;
+    for (i = 0u; i < 3u; ++i) {
+        dy[i] = x_f[i] - cond->r_f[i];
+        dy[3u + i] = x_f[3u + i] - cond->v_f[i];
+    }
+    dy[6] = x_f[7];
+}
+
+static bool terminal_ok(const ogk_mpsp_config_t *cfg, const double *dy)
+{
+    return norm_n(dy, 3u) <= cfg->tol_r && norm_n(&dy[3], 3u) <= cfg->tol_v &&
+           fabs(dy[6]) <= cfg->tol_lambda_m;
+}
+
+static uint32_t abs_diff_u32(uint32_t a, uint32_t b)
+{
+    return (a > b) ? a - b : b - a;
+}
+
+/* Algorithm 1. weights / *lambda_m0 (in/out) end as the last accepted
+ * iterate; returns true (Sign = 1) when the terminal tolerances are met with
+ * them (the trajectory held in ctx is then theirs, summarised in *prop). */
+static bool inner_loop(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, double *weights,
+                       double *lambda_m0, uint32_t n_seg_tol, ogk_mpsp_prop_t *prop,
+                       ogk_mpsp_result_t *res)
+{
+    double dy[NY];
+    uint32_t j;
+    ogk_status st;
+
+    res->inner_loops += 1u;
+    st = mpsp_propagate_ctx(ctx, weights, *lambda_m0, cond->x0, cond->thrust, prop);
+    if (st != OGK_OK) {
+        return false;
+    }
+    for (j = 0u; j <= ctx->cfg.max_newton; ++j) {
+        double lm_new = *lambda_m0;
+        double dy_norm;
+        terminal_error(cond, prop->x_f, dy);
+        if (terminal_ok(&ctx->cfg, dy)) {
+            return true;
+        }
+        dy_norm = norm_n(dy, NY);
+        if (j == ctx->cfg.max_newton || !(dy_norm <= ctx->cfg.delta_max)) {
+            return false; /* line 5: too far for a Newton step */
+        }
+        if (res->n_log < OGK_MPSP_MAX_LOG) {
+            res->dy_norm_log[res->n_log] = dy_norm;
+            res->n_log += 1u;
+        }
+        /* line 8: A_lambda, B_v, p, the update (eqs. 33, 40, 44-46) */
+        st = ogk_mpsp_sensitivity(ctx, NULL, NULL);
+        if (st != OGK_OK) {
+            return false;
+        }
+        (void)memcpy(ctx->w_trial, weights, ctx->n_weights * sizeof weights[0]);
+        st = ogk_mpsp_newton_update(ctx, dy, ctx->w_trial, &lm_new);
+        if (st != OGK_OK) {
+            return false;
+        }
+        res->newton_iterations += 1u;
+        /* line 9: integrate with the update, count N_seg */
+        st = mpsp_propagate_ctx(ctx, ctx->w_trial, lm_new, cond->x0, cond->thrust, prop);
+        if (st != OGK_OK) {
+            return false;
+        }
+        /* lines 10-14: accept only a thrust sequence close to the nominal one */
+        if (abs_diff_u32(prop->n_segments, ctx->n_seg_nom) > n_seg_tol) {
+            return false;
+        }
+        (void)memcpy(weights, ctx->w_trial, ctx->n_weights * sizeof weights[0]);
+        *lambda_m0 = lm_new;
+    }
+    return false;
+}
+
+/* C_tau = (1 - tau) C_nom + tau C_per (eq. 51). */
+static void blend(const mpsp_cond_t *nom, const mpsp_cond_t *per, double tau, mpsp_cond_t *out)
+{
+    size_t i;
+    const double a = 1.0 - tau;
+    for (i = 0u; i < OGK_MPSP_NX0; ++i) {
+        out->x0[i] = a * nom->x0[i] + tau * per->x0[i];
+    }
+    for (i = 0u; i < 3u; ++i) {
+        out->r_f[i] = a * nom->r_f[i] + tau * per->r_f[i];
+        out->v_f[i] = a * nom->v_f[i] + tau * per->v_f[i];
+    }
+    out->thrust = a * nom->thrust + tau * per->thrust;
+}
+
+static void fill_result(const ogk_mpsp_t *ctx, const mpsp_cond_t *cond,
+                        const ogk_mpsp_prop_t *prop, bool prop_ok, ogk_mpsp_result_t *res)
+{
+    size_t i;
+    if (prop_ok) {
+        terminal_error(cond, prop->x_f, res->dy);
+        res->err_r = norm_n(res->dy, 3u);
+        res->err_v = norm_n(&res->dy[3], 3u);
+        res->lambda_mf = prop->x_f[7];
+        res->m_f = prop->x_f[6];
+        res->n_segments = prop->n_segments;
+        res->n_thrust_arcs = prop->n_thrust_arcs;
+        res->n_switches = prop->n_switches;
+        for (i = 0u; i < OGK_MPSP_MAX_SWITCHES; ++i) {
+            res->t_switch[i] = prop->t_switch[i];
+        }
+    } else {
+        for (i = 0u; i < NY; ++i) {
+            res->dy[i] = HUGE_VAL;
+        }
+        res->err_r = HUGE_VAL;
+        res->err_v = HUGE_VAL;
+        res->lambda_mf = HUGE_VAL;
+        res->m_f = 0.0;
+    }
+    res->n_weights = ctx->n_weights;
+}
+
+ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale,
+                          const double *target_rv, ogk_mpsp_result_t *res)
+{
+    mpsp_cond_t per;
+    mpsp_cond_t nom;
+    mpsp_cond_t cur;
+    ogk_mpsp_prop_t prop;
+    double lm_iter;
+    uint32_t n_seg_tol;
+    uint32_t level;
+    bool solved;
+    size_t nw;
+    size_t i;
+    ogk_status st;
+
+    if (ctx == NULL || x0 == NULL || res == NULL) {
+        return OGK_E_NULL;
+    }
+    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC) {
+        return OGK_E_NOT_INIT;
+    }
+    if (!mpsp_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale) ||
+        (target_rv != NULL && !mpsp_all_finite(target_rv, 6u))) {
+        return OGK_E_NONFINITE;
+    }
+    if (!(x0[6] > 0.0) || !(thrust_scale > 0.0)) {
+        return OGK_E_RANGE;
+    }
+    (void)memset(res, 0, sizeof *res);
+    nw = ctx->n_weights;
+    (void)memcpy(per.x0, x0, sizeof per.x0);
+    (void)memcpy(nom.x0, ctx->cfg.x0_nom, sizeof nom.x0);
+    for (i = 0u; i < 3u; ++i) {
+        nom.r_f[i] = ctx->cfg.r_f[i];
+        nom.v_f[i] = ctx->cfg.v_f[i];
+        per.r_f[i] = (target_rv != NULL) ? target_rv[i] : ctx->cfg.r_f[i];
+        per.v_f[i] = (target_rv != NULL) ? target_rv[3u + i] : ctx->cfg.v_f[i];
+    }
+    nom.thrust = ctx->cfg.t_max;
+    per.thrust = ctx->cfg.t_max * thrust_scale;
+
+    /* Safe command until something better is solved: the nominal. */
+    (void)memcpy(res->weights, ctx->cfg.weights_nom, nw * sizeof res->weights[0]);
+    res->lambda_m0 = ctx->cfg.lambda_m0_nom;
+    n_seg_tol = ctx->cfg.n_seg_tol;
+
+    /* Algorithm 2, line 4: the inner loop straight at C_per. */
+    (void)memcpy(ctx->w_iter, ctx->cfg.weights_nom, nw * sizeof ctx->w_iter[0]);
+    lm_iter = ctx->cfg.lambda_m0_nom;
+    solved = inner_loop(ctx, &per, ctx->w_iter, &lm_iter, n_seg_tol, &prop, res);
+    if (solved) {
+        (void)memcpy(res->weights, ctx->w_iter, nw * sizeof res->weights[0]);
+        res->lambda_m0 = lm_iter;
+        res->tau_reached = 1.0;
+    }
+
+    /* Lines 6-27: continuation from C_nom, restarted from the nominal weights
+     * with N_seg,tol widened by n_seg_tol_step after each failed continuation
+     * (the `else` the printed pseudo-code lacks). Bounded by the number of
+     * tolerance levels and by max_outer inner loops in all. */
+    for (level = 0u; !solved && level < MPSP_MAX_TOL_LEVELS &&
+                     (int64_t)ctx->n_seg_nom - (int64_t)n_seg_tol >= -1 &&
+                     res->outer_steps < ctx->cfg.max_outer;
+         ++level) {
+        double tau_old = 0.0;
+        double dtau = ctx->cfg.delta_tau_0;
+        double tau = tau_old + dtau;
+        double lm_cont;
+
+        (void)memcpy(ctx->w_cont, ctx->cfg.weights_nom, nw * sizeof ctx->w_cont[0]);
+        lm_cont = ctx->cfg.lambda_m0_nom;
+        while (dtau > 0.0 && res->outer_steps < ctx->cfg.max_outer) {
+            bool ok;
+            blend(&nom, &per, tau, &cur);
+            (void)memcpy(ctx->w_iter, ctx->w_cont, nw * sizeof ctx->w_iter[0]);
+            lm_iter = lm_cont;
+            res->outer_steps += 1u;
+            ok = inner_loop(ctx, &cur, ctx->w_iter, &lm_iter, n_seg_tol, &prop, res);
+            if (!ok) {
+                dtau *= 0.5; /* line 12 */
+            } else {
+                /* line 14 */
+                (void)memcpy(ctx->w_cont, ctx->w_iter, nw * sizeof ctx->w_cont[0]);
+                lm_cont = lm_iter;
+                tau_old = tau;
+                dtau = fmin(1.0 - tau, 2.0 * dtau);
+                if (tau > res->tau_reached) {
+                    /* best safe command so far */
+                    res->tau_reached = tau;
+                    (void)memcpy(res->weights, ctx->w_cont, nw * sizeof res->weights[0]);
+                    res->lambda_m0 = lm_cont;
+                }
+            }
+            /* line 16 (landing exactly on 1 for the closing step) */
+            tau = (dtau >= 1.0 - tau_old) ? 1.0 : tau_old + dtau;
+            /* lines 17-19: give up when the step needed is too small; a closing
+             * step (dtau = 1 - tau_old) below delta_tau_min is still taken,
+             * which is the paper's rule for delta_tau_0 = 0.5, whose tau are
+             * multiples of 0.125. */
+            if (dtau <= ctx->cfg.delta_tau_min && tau_old != 1.0 && dtau < 1.0 - tau_old) {
+                break;
+            }
+        }
+        if (tau_old == 1.0) {
+            solved = true; /* lines 21-22: continuation reached C_per */
+        } else {
+            n_seg_tol += ctx->cfg.n_seg_tol_step; /* line 24 */
+        }
+    }
+
+    if (solved) {
+        /* The trajectory held is the converged one at C_per (inner_loop
+         * returned right after checking it). */
+        fill_result(ctx, &per, &prop, true, res);
+        st = OGK_OK;
+    } else {
+        /* Report what the safe command does when flown from x0. */
+        bool ok = mpsp_propagate_ctx(ctx, res->weights, res->lambda_m0, per.x0, per.thrust,
+                                     &prop) == OGK_OK;
+        fill_result(ctx, &per, &prop, ok, res);
+        st = OGK_E_NOT_CONVERGED;
+    }
+    res->converged = solved ? 1u : 0u;
+    res->n_seg_tol = n_seg_tol;
+    return st;
+}

@@ -1,0 +1,218 @@
+/* mpsp_propagate.c -- the MPSP trajectory: integration of eq. (16) with
+ * switching detection (ogk_rk4_propagate, dense output kept in the context),
+ * segment counting (N_seg of section 3.4), read-out and pchip interpolation
+ * inside a segment ("interpolate the trajectory", Algorithm 1 line 4). */
+#include "mpsp_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "ogk/interp.h"
+
+#define NX OGK_MPSP_NX
+
+ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
+                              const double *x0, double thrust, ogk_mpsp_prop_t *out)
+{
+    mpsp_dyn_t dyn;
+    ogk_rk4_problem_t prob;
+    ogk_rk4_result_t res;
+    ogk_rk4_dense_t dense;
+    double xs[NX];
+    double xf[NX];
+    double u0[3];
+    size_t i;
+    int mode0;
+    ogk_status st;
+
+    ctx->traj_valid = 0u;
+    ctx->sens_valid = 0u;
+    ctx->n_nodes = 0u;
+    ctx->n_switch_nodes = 0u;
+    if (weights != ctx->weights) {
+        (void)memcpy(ctx->weights, weights, ctx->n_weights * sizeof weights[0]);
+    }
+    (void)memcpy(ctx->x0, x0, sizeof ctx->x0);
+    ctx->lambda_m0 = lambda_m0;
+    ctx->thrust = thrust;
+
+    (void)memcpy(xs, x0, OGK_MPSP_NX0 * sizeof xs[0]);
+    xs[7] = lambda_m0;
+    mpsp_dyn_setup(&dyn, ctx, ctx->weights, thrust);
+    mpsp_rk4_problem(&prob, ctx, &dyn);
+    /* Initial mode from the sign of S(t0) (eq. 11; S = 0 taken as coast). */
+    mpsp_control_at(&dyn, ctx->cfg.t0, u0);
+    mode0 = (mpsp_switch_value(&dyn, xs, u0) < 0.0) ? 1 : 0;
+
+    dense.t = ctx->traj_t;
+    dense.x = ctx->traj_x;
+    dense.mode = ctx->traj_mode;
+    dense.capacity = OGK_MPSP_MAX_NODES;
+    dense.count = 0u;
+    (void)memset(&res, 0, sizeof res);
+    st = ogk_rk4_propagate(&prob, ctx->cfg.t0, xs, mode0, ctx->cfg.tf, &res, xf, &dense);
+    ctx->n_nodes = dense.count;
+    if (st == OGK_OK && res.n_switches > OGK_MPSP_MAX_SWITCHES) {
+        st = OGK_E_SWITCH_OVERFLOW;
+    }
+    if (st == OGK_OK || st == OGK_E_SWITCH_OVERFLOW) {
+        ctx->n_switch_nodes = res.n_switches;
+        for (i = 0u; i < res.n_switches; ++i) {
+            ctx->switch_node[i] = res.sw[i].dense_index;
+        }
+    }
+    if (out != NULL) {
+        (void)memset(out, 0, sizeof *out);
+        (void)memcpy(out->x_f, xf, sizeof out->x_f);
+        out->n_switches = (uint32_t)res.n_switches;
+        for (i = 0u; i < res.n_switches && i < OGK_MPSP_MAX_SWITCHES; ++i) {
+            out->t_switch[i] = res.sw[i].t;
+        }
+        out->n_segments = (uint32_t)res.n_switches + 1u;
+        /* Segments alternate starting from mode0. */
+        out->n_thrust_arcs = (mode0 == 1) ? (out->n_segments + 1u) / 2u : out->n_segments / 2u;
+        out->mode0 = mode0;
+        out->n_nodes = dense.count;
+    }
+    if (st == OGK_OK) {
+        ctx->traj_valid = 1u;
+    }
+    return st;
+}
+
+static ogk_status check_inputs(const ogk_mpsp_t *ctx, const double *x0, double thrust_scale)
+{
+    if (ctx == NULL || x0 == NULL) {
+        return OGK_E_NULL;
+    }
+    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC) {
+        return OGK_E_NOT_INIT;
+    }
+    if (!mpsp_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale)) {
+        return OGK_E_NONFINITE;
+    }
+    if (!(x0[6] > 0.0) || !(thrust_scale > 0.0)) {
+        return OGK_E_RANGE;
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
+                              const double *x0, double thrust_scale,
+                              ogk_mpsp_prop_t *out)
+{
+    ogk_status st = check_inputs(ctx, x0, thrust_scale);
+    if (st != OGK_OK) {
+        return st;
+    }
+    if (weights == NULL) {
+        return OGK_E_NULL;
+    }
+    if (!mpsp_all_finite(weights, ctx->n_weights) || !isfinite(lambda_m0)) {
+        return OGK_E_NONFINITE;
+    }
+    return mpsp_propagate_ctx(ctx, weights, lambda_m0, x0, ctx->cfg.t_max * thrust_scale, out);
+}
+
+ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, double *t, double *x,
+                               uint8_t *mode, size_t capacity, size_t *count)
+{
+    if (ctx == NULL || count == NULL) {
+        return OGK_E_NULL;
+    }
+    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC) {
+        return OGK_E_NOT_INIT;
+    }
+    *count = ctx->n_nodes;
+    if (capacity < ctx->n_nodes) {
+        return OGK_E_DIM;
+    }
+    if (t != NULL) {
+        (void)memcpy(t, ctx->traj_t, ctx->n_nodes * sizeof t[0]);
+    }
+    if (x != NULL) {
+        (void)memcpy(x, ctx->traj_x, ctx->n_nodes * NX * sizeof x[0]);
+    }
+    if (mode != NULL) {
+        (void)memcpy(mode, ctx->traj_mode, ctx->n_nodes * sizeof mode[0]);
+    }
+    return OGK_OK;
+}
+
+ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x)
+{
+    double slopes[4u * NX];
+    size_t k;
+    size_t seg_lo = 0u;
+    size_t seg_hi;
+    size_t lo;
+    size_t hi;
+    size_t i;
+    ogk_status st;
+
+    if (ctx == NULL || x == NULL) {
+        return OGK_E_NULL;
+    }
+    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC) {
+        return OGK_E_NOT_INIT;
+    }
+    if (ctx->traj_valid == 0u || ctx->n_nodes < 2u) {
+        return OGK_E_NOT_INIT;
+    }
+    if (!isfinite(t)) {
+        return OGK_E_NONFINITE;
+    }
+    st = ogk_interp_locate(ctx->traj_t, ctx->n_nodes, t, &k);
+    if (st != OGK_OK) {
+        return st;
+    }
+    /* The segment [seg_lo, seg_hi] holding interval k: the state's derivative
+     * jumps at switch nodes, so the interpolant never reaches across one. */
+    seg_hi = ctx->n_nodes - 1u;
+    for (i = 0u; i < ctx->n_switch_nodes; ++i) {
+        const size_t s = ctx->switch_node[i];
+        if (s <= k && s > seg_lo) {
+            seg_lo = s;
+        }
+        if (s >= k + 1u && s < seg_hi) {
+            seg_hi = s;
+        }
+    }
+    /* pchip slopes are local (a node's slope uses its two neighbours, an end
+     * slope the first three nodes), so the window k-1 .. k+2 clipped to the
+     * segment gives the segment-wide pchip exactly on [t_k, t_k+1]. */
+    lo = (k > seg_lo) ? k - 1u : k;
+    hi = (k + 2u <= seg_hi) ? k + 2u : seg_hi;
+    st = ogk_interp_pchip_slopes(&ctx->traj_t[lo], hi - lo + 1u, &ctx->traj_x[lo * NX], NX,
+                                 slopes);
+    if (st != OGK_OK) {
+        return st;
+    }
+    return ogk_interp_pchip(&ctx->traj_t[lo], hi - lo + 1u, &ctx->traj_x[lo * NX], slopes,
+                            NX, t, x);
+}
+
+ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double t,
+                            double *lambda_v, double *lambda_v_dot)
+{
+    mpsp_dyn_t dyn;
+    double h[OGK_MPSP_MAX_BASIS];
+    double hdot[OGK_MPSP_MAX_BASIS];
+
+    if (ctx == NULL || weights == NULL || lambda_v == NULL) {
+        return OGK_E_NULL;
+    }
+    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC) {
+        return OGK_E_NOT_INIT;
+    }
+    if (!isfinite(t) || !mpsp_all_finite(weights, ctx->n_weights)) {
+        return OGK_E_NONFINITE;
+    }
+    mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max);
+    mpsp_basis(&dyn, t, h, hdot);
+    mpsp_control_from_basis(&dyn, h, lambda_v);
+    if (lambda_v_dot != NULL) {
+        mpsp_control_from_basis(&dyn, hdot, lambda_v_dot);
+    }
+    return OGK_OK;
+}

@@ -1,0 +1,497 @@
+/* test_mpsp_sensitivity.c -- MPSP sensitivities (ogk/mpsp.h, docs/mpsp.md):
+ *   - one RK4 step: dX_next/dX and dX_next/dW against central differences of
+ *     the kernel's own step, in thrust and in coast;
+ *   - a whole trajectory with gravity and two switches: dY/dW and dY/dlambda_m0
+ *     against central differences of ogk_mpsp_propagate (1e-6 relative);
+ *   - the switching compensation (eqs. 22-25) on a field-free problem whose
+ *     switch time has a closed form, t_s = acos(q)/omega, and whose terminal
+ *     r_x, v_x follow from the rocket equation: dt_s/dp and dY/dp exact;
+ *     the cross-track sensitivities (the dF/dU block) against a quadrature;
+ *   - the control (both basis kinds) and the pchip state read-out. */
+#include "ogk_test.h"
+
+#include <string.h>
+
+#include "ogk/mpsp.h"
+
+#define PI 3.14159265358979323846
+#define NX OGK_MPSP_NX
+#define NY OGK_MPSP_NY
+
+/* Grid of the whole-arc tests (the same on the host and on QEMU, where the
+ * binary runs in about 0.3 s). */
+#define ARC_STEPS 500.0
+
+static ogk_mpsp_t ctx;
+static ogk_mpsp_config_t cfg;
+static double dydw[NY * OGK_MPSP_MAX_WEIGHTS];
+static double fd_dydw[NY * OGK_MPSP_MAX_WEIGHTS];
+static double dfdw[NX * OGK_MPSP_MAX_WEIGHTS];
+static double fd_dfdw[NX * OGK_MPSP_MAX_WEIGHTS];
+static double wpert[OGK_MPSP_MAX_WEIGHTS];
+
+/* ---------------------------------------------------------------- fixtures */
+
+static void base_config(ogk_mpsp_config_t *c)
+{
+    size_t i;
+    (void)memset(c, 0, sizeof *c);
+    c->delta_max = 1.0;
+    c->delta_tau_0 = 0.5;
+    c->delta_tau_min = 0.1;
+    for (i = 0u; i < OGK_MPSP_MAX_WEIGHTS; ++i) {
+        c->r_eps[i] = 1.0;
+    }
+    c->r_lambda = 1.0;
+    c->tol_r = 1e-9;
+    c->tol_v = 1e-9;
+    c->tol_lambda_m = 1e-9;
+    c->s_tol = 1e-13;
+    c->max_newton = 20u;
+    c->max_outer = 20u;
+    c->n_seg_tol = 0u;
+    c->n_seg_tol_step = 2u;
+}
+
+/* Normalised two-body problem (mu = 1) over t in [0, 2], thrust 0.1, c = 1,
+ * order-3 basis of period 2 tf: |lambda_v| ~ 1.6 at both ends and ~0.6 in
+ * the middle, so the engine is on, off, on (two switches). */
+static const double w3[21] = {
+    2.0, 0.05, 0.02, 0.6, 0.03, -0.02, 0.01,   /* lambda_v,x */
+    0.6, 0.0, 0.2, 0.01, -0.02, 0.0, 0.01,     /* lambda_v,y */
+    0.0, 0.05, 0.0, 0.01, 0.0, 0.0, -0.01};    /* lambda_v,z */
+static const double x0_3d[7] = {1.0, 0.0, 0.01, 0.0, 1.0, 0.02, 1.0};
+
+static void orbit_config(ogk_mpsp_config_t *c, double steps)
+{
+    base_config(c);
+    c->mu = 1.0;
+    c->t_max = 0.1;
+    c->c_exhaust = 1.0;
+    c->t0 = 0.0;
+    c->tf = 2.0;
+    (void)memcpy(c->x0_nom, x0_3d, sizeof x0_3d);
+    c->fourier_order = 3u;
+    c->fourier_period = 4.0;
+    c->fourier_t_ref = 0.0;
+    c->h_max = 2.0 / steps;
+    (void)memcpy(c->weights_nom, w3, sizeof w3);
+    c->lambda_m0_nom = 0.0;
+}
+
+/* Field-free problem (mu = 0), order 1, period 2 (omega = pi), t in [0, 1]:
+ * lambda_v = [a0/2 + a1 cos(pi t), 0, 0] rises from 0.4 to 1.0, the engine
+ * is off until |lambda_v| c/m0 = 1 - lambda_m0 (eq. 10), then on. */
+#define FF_A0 1.4
+#define FF_A1 (-0.3)
+#define FF_LM0 0.2
+#define FF_T 0.5
+#define FF_C 1.0
+#define FF_M0 1.0
+
+static void field_free_config(ogk_mpsp_config_t *c, double steps)
+{
+    base_config(c);
+    c->mu = 0.0;
+    c->t_max = FF_T;
+    c->c_exhaust = FF_C;
+    c->t0 = 0.0;
+    c->tf = 1.0;
+    c->x0_nom[0] = 1.0;
+    c->x0_nom[3] = 0.1;
+    c->x0_nom[6] = FF_M0;
+    c->fourier_order = 1u;
+    c->fourier_period = 2.0;
+    c->fourier_t_ref = 0.0;
+    c->h_max = 1.0 / steps;
+    c->weights_nom[0] = FF_A0;
+    c->weights_nom[1] = FF_A1;
+    c->lambda_m0_nom = FF_LM0;
+}
+
+static double max_abs(const double *v, size_t n, size_t stride)
+{
+    double m = 0.0;
+    size_t i;
+    for (i = 0u; i < n; ++i) {
+        m = fmax(m, fabs(v[i * stride]));
+    }
+    return m;
+}
+
+/* |a - e| <= rel * max(|e|, 1e-3 * scale) + 1e-11: relative, with a floor of
+ * 1e-3 of the largest entry of the same row for entries near zero and an
+ * absolute 1e-11 for the round-off of the differences (|Y| ~ 1, d = 1e-3). */
+static void assert_matrix_rel(const double *a, const double *e, size_t rows, size_t cols,
+                              double rel)
+{
+    size_t r;
+    size_t c;
+    for (r = 0u; r < rows; ++r) {
+        const double scale = max_abs(&e[r * cols], cols, 1u);
+        for (c = 0u; c < cols; ++c) {
+            const double tol = rel * fmax(fabs(e[r * cols + c]), 1e-3 * scale) + 1e-11;
+            if (!(fabs(a[r * cols + c] - e[r * cols + c]) <= tol)) {
+                print_error("entry (%u, %u): %.12g, expected %.12g\n", (unsigned)r,
+                            (unsigned)c, a[r * cols + c], e[r * cols + c]);
+                fail();
+            }
+        }
+    }
+}
+
+/* ---------------------------------------------------------------- one RK4 step */
+
+/* Fourth-order central difference from f(-2d), f(-d), f(d), f(2d):
+ * truncation O(d^4), so d = 1e-3 keeps both truncation and the round-off
+ * and switch-location noise (|S| <= 1e-13) below 1e-9 relative. */
+static double fd5(double fm2, double fm1, double fp1, double fp2, double d)
+{
+    return (fm2 - 8.0 * fm1 + 8.0 * fp1 - fp2) / (12.0 * d);
+}
+
+static const double fd_offsets[4] = {-2.0, -1.0, 1.0, 2.0};
+
+static void check_step(int mode, uint32_t kind)
+{
+    static const double x[NX] = {1.0, 0.1, 0.02, -0.1, 0.95, 0.01, 0.9, 0.05};
+    const double t = 0.3;
+    const double dt = 0.05;
+    const double d = 1e-3;
+    double xn[NX];
+    double xs[4][NX];
+    double xpert[NX];
+    double dfdx[NX * NX];
+    double fd_dfdx[NX * NX];
+    size_t nw;
+    size_t i;
+    size_t j;
+    size_t p;
+
+    orbit_config(&cfg, 100.0);
+    cfg.n_seg_nom = 3u;
+    cfg.fourier_kind = kind;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    nw = ctx.n_weights;
+    OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, t, x, dt, mode, xn, dfdx, dfdw),
+                      OGK_OK);
+    for (j = 0u; j < NX; ++j) {
+        for (p = 0u; p < 4u; ++p) {
+            (void)memcpy(xpert, x, sizeof xpert);
+            xpert[j] = x[j] + fd_offsets[p] * d;
+            OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, t, xpert, dt, mode, xs[p],
+                                                     NULL, NULL), OGK_OK);
+        }
+        for (i = 0u; i < NX; ++i) {
+            fd_dfdx[i * NX + j] = fd5(xs[0][i], xs[1][i], xs[2][i], xs[3][i], d);
+        }
+    }
+    assert_matrix_rel(dfdx, fd_dfdx, NX, NX, 1e-6);
+    for (j = 0u; j < nw; ++j) {
+        for (p = 0u; p < 4u; ++p) {
+            (void)memcpy(wpert, w3, sizeof w3);
+            wpert[j] = w3[j] + fd_offsets[p] * d;
+            OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, wpert, 1.0, t, x, dt, mode, xs[p],
+                                                     NULL, NULL), OGK_OK);
+        }
+        for (i = 0u; i < NX; ++i) {
+            fd_dfdw[i * nw + j] = fd5(xs[0][i], xs[1][i], xs[2][i], xs[3][i], d);
+        }
+    }
+    if (mode == 1) {
+        assert_matrix_rel(dfdw, fd_dfdw, NX, nw, 1e-6);
+        /* U varies inside the step: the thrust rows depend on the harmonics. */
+        assert_true(fabs(dfdw[4u * nw + 7u + 6u]) > 1e-6);
+    } else {
+        /* In coast the weights do not enter eq. (16). */
+        for (i = 0u; i < NX * nw; ++i) {
+            assert_true(dfdw[i] == 0.0);
+            assert_true(fabs(fd_dfdw[i]) < 1e-12);
+        }
+    }
+}
+
+static void test_step_jacobian_thrust(void **state)
+{
+    (void)state;
+    check_step(1, OGK_MPSP_BASIS_FOURIER);
+    check_step(1, OGK_MPSP_BASIS_COSINE);
+}
+
+static void test_step_jacobian_coast(void **state)
+{
+    (void)state;
+    check_step(0, OGK_MPSP_BASIS_FOURIER);
+}
+
+/* ---------------------------------------------------------------- whole arc vs FD */
+
+static void propagate_y(const double *w, double lm0, double *y)
+{
+    ogk_mpsp_prop_t prop;
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w, lm0, x0_3d, 1.0, &prop), OGK_OK);
+    assert_int_equal(prop.n_switches, 2);
+    (void)memcpy(y, prop.x_f, 6u * sizeof y[0]);
+    y[6] = prop.x_f[7];
+}
+
+static void test_whole_arc_with_switches_fd(void **state)
+{
+    const double d = 1e-3;
+    const double lm0 = 0.0;
+    double dydl[NY];
+    double fd_dydl[NY];
+    double ys[4][NY];
+    ogk_mpsp_prop_t prop;
+    size_t nw;
+    size_t i;
+    size_t j;
+    size_t p;
+    (void)state;
+
+    orbit_config(&cfg, ARC_STEPS);
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    nw = ctx.n_weights;
+    assert_int_equal(ctx.n_seg_nom, 3); /* counted at init: on, off, on */
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, lm0, x0_3d, 1.0, &prop), OGK_OK);
+    assert_int_equal(prop.n_switches, 2);
+    assert_int_equal(prop.mode0, 1);
+    assert_int_equal(prop.n_thrust_arcs, 2);
+    assert_true(prop.t_switch[0] > 0.3 && prop.t_switch[0] < 0.7);
+    assert_true(prop.t_switch[1] > 1.3 && prop.t_switch[1] < 1.7);
+    OGK_ASSERT_STATUS(ogk_mpsp_sensitivity(&ctx, dydw, dydl), OGK_OK);
+
+    for (j = 0u; j < nw; ++j) {
+        for (p = 0u; p < 4u; ++p) {
+            (void)memcpy(wpert, w3, sizeof w3);
+            wpert[j] = w3[j] + fd_offsets[p] * d;
+            propagate_y(wpert, lm0, ys[p]);
+        }
+        for (i = 0u; i < NY; ++i) {
+            fd_dydw[i * nw + j] = fd5(ys[0][i], ys[1][i], ys[2][i], ys[3][i], d);
+        }
+    }
+    for (p = 0u; p < 4u; ++p) {
+        propagate_y(w3, lm0 + fd_offsets[p] * d, ys[p]);
+    }
+    for (i = 0u; i < NY; ++i) {
+        fd_dydl[i] = fd5(ys[0][i], ys[1][i], ys[2][i], ys[3][i], d);
+    }
+    assert_matrix_rel(dydw, fd_dydw, NY, nw, 1e-6);
+    assert_matrix_rel(dydl, fd_dydl, NY, 1u, 1e-6);
+    /* lambda_m0 moves both switches: A_lambda is not the no-switch value
+     * [0, ..., 0, 1] that eq. (33) would give without eqs. (22)-(25). */
+    assert_true(fabs(dydl[0]) > 1e-3);
+}
+
+/* ---------------------------------------------------------------- closed form */
+
+static double ff_q(double a0, double a1, double lm0, double m0)
+{
+    return ((1.0 - lm0) * m0 / FF_C - 0.5 * a0) / a1;
+}
+
+static void test_switch_time_closed_form(void **state)
+{
+    /* Closed forms: t_s = acos(q)/pi, q = (lambda* - a0/2)/a1,
+     * lambda* = (1 - lambda_m0) m0 / c. */
+    const double q = ff_q(FF_A0, FF_A1, FF_LM0, FF_M0);
+    const double ts = acos(q) / PI;
+    const double dts_dq = -1.0 / (PI * sqrt(1.0 - q * q));
+    const double theta_s = PI * ts;
+    const double lam_dot = -FF_A1 * PI * sin(theta_s); /* d|lambda_v|/dt at t_s */
+    double dts_dx[NX];
+    double dts_dw[9];
+    double jx[NX * NX];
+    double x_s[NX];
+    ogk_mpsp_prop_t prop;
+    (void)state;
+
+    field_free_config(&cfg, 100.0);
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, cfg.weights_nom, FF_LM0, cfg.x0_nom, 1.0, &prop),
+                      OGK_OK);
+    assert_int_equal(prop.mode0, 0);
+    assert_int_equal(prop.n_switches, 1);
+    OGK_ASSERT_NEAR(prop.t_switch[0], ts, 1e-11);
+
+    /* State at the switch: coast in field-free space. */
+    (void)memcpy(x_s, cfg.x0_nom, 7u * sizeof x_s[0]);
+    x_s[0] += cfg.x0_nom[3] * ts;
+    x_s[7] = FF_LM0;
+    OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, cfg.weights_nom, 1.0, ts, x_s, 0, jx, NULL,
+                                           dts_dx, dts_dw), OGK_OK);
+    /* eq. (B.2) against the closed form */
+    OGK_ASSERT_REL(dts_dw[0], dts_dq * (-0.5 / FF_A1), 1e-9, 1e-12);
+    OGK_ASSERT_REL(dts_dw[1], dts_dq * (-q / FF_A1), 1e-9, 1e-12);
+    OGK_ASSERT_REL(dts_dw[2], -sin(theta_s) / lam_dot, 1e-9, 1e-12); /* implicit: b1 */
+    OGK_ASSERT_REL(dts_dx[7], dts_dq * (-FF_M0 / (FF_C * FF_A1)), 1e-9, 1e-12);
+    OGK_ASSERT_REL(dts_dx[6], dts_dq * ((1.0 - FF_LM0) / (FF_C * FF_A1)), 1e-9, 1e-12);
+    OGK_ASSERT_NEAR(dts_dx[0], 0.0, 1e-15);
+    OGK_ASSERT_NEAR(dts_dx[3], 0.0, 1e-15);
+    /* eq. (24): v_x row picks up -(T/m) * (-dt_s) per unit d lambda_m. */
+    OGK_ASSERT_REL(jx[3u * NX + 7u], (-FF_T / FF_M0) * (-dts_dx[7]), 1e-12, 1e-12);
+    OGK_ASSERT_NEAR(jx[0u * NX + 0u], 1.0, 1e-15);
+}
+
+/* T / (m(t) lambda_x(t)) after the switch, for the cross-track quadrature. */
+static double ff_cross(double t, double ts)
+{
+    const double m = FF_M0 - (FF_T / FF_C) * (t - ts);
+    const double lam = 0.5 * FF_A0 + FF_A1 * cos(PI * t);
+    return FF_T / (m * lam);
+}
+
+static void test_whole_arc_closed_form(void **state)
+{
+    const double q = ff_q(FF_A0, FF_A1, FF_LM0, FF_M0);
+    const double ts = acos(q) / PI;
+    const double dts_dq = -1.0 / (PI * sqrt(1.0 - q * q));
+    const double m_f = FF_M0 - (FF_T / FF_C) * (1.0 - ts);
+    const double dv_dts = FF_T / m_f;                 /* rocket equation */
+    const double dr_dts = FF_C * log(FF_M0 / m_f);
+    const double dts[3] = {dts_dq * (-0.5 / FF_A1), dts_dq * (-q / FF_A1),
+                           dts_dq * (-FF_M0 / (FF_C * FF_A1))}; /* a0, a1, lambda_m0 */
+    double dydl[NY];
+    ogk_mpsp_prop_t prop;
+    size_t nw;
+    size_t qb;
+    (void)state;
+
+    field_free_config(&cfg, ARC_STEPS);
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    nw = ctx.n_weights;
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, cfg.weights_nom, FF_LM0, cfg.x0_nom, 1.0, &prop),
+                      OGK_OK);
+    OGK_ASSERT_REL(prop.x_f[6], m_f, 1e-12, 1.0);
+    OGK_ASSERT_STATUS(ogk_mpsp_sensitivity(&ctx, dydw, dydl), OGK_OK);
+    /* r_x (row 0) and v_x (row 3): only the switch time moves them. */
+    OGK_ASSERT_REL(dydw[0u * nw + 0u], dr_dts * dts[0], 1e-6, 1e-9);
+    OGK_ASSERT_REL(dydw[0u * nw + 1u], dr_dts * dts[1], 1e-6, 1e-9);
+    OGK_ASSERT_REL(dydw[3u * nw + 0u], dv_dts * dts[0], 1e-6, 1e-9);
+    OGK_ASSERT_REL(dydw[3u * nw + 1u], dv_dts * dts[1], 1e-6, 1e-9);
+    OGK_ASSERT_REL(dydl[0], dr_dts * dts[2], 1e-6, 1e-9);
+    OGK_ASSERT_REL(dydl[3], dv_dts * dts[2], 1e-6, 1e-9);
+
+    /* Cross-track (dF/dU block): dv_y/dw_y,q = -int_ts^tf T/(m lambda_x) h_q dt,
+     * dr_y/dw_y,q = -int (tf - t) T/(m lambda_x) h_q dt; Simpson, 2000 panels. */
+    for (qb = 0u; qb < 3u; ++qb) {
+        const size_t n = 2000u;
+        const double hq = (1.0 - ts) / (double)n;
+        double iv = 0.0;
+        double ir = 0.0;
+        size_t i;
+        for (i = 0u; i <= n; ++i) {
+            const double t = ts + hq * (double)i;
+            const double wgt = (i == 0u || i == n) ? 1.0 : ((i % 2u) ? 4.0 : 2.0);
+            const double basis = (qb == 0u) ? 0.5 : ((qb == 1u) ? cos(PI * t) : sin(PI * t));
+            const double f = ff_cross(t, ts) * basis;
+            iv += wgt * f;
+            ir += wgt * (1.0 - t) * f;
+        }
+        iv *= -hq / 3.0;
+        ir *= -hq / 3.0;
+        OGK_ASSERT_REL(dydw[4u * nw + 3u + qb], iv, 1e-6, 1e-9);
+        OGK_ASSERT_REL(dydw[1u * nw + 3u + qb], ir, 1e-6, 1e-9);
+    }
+}
+
+/* ---------------------------------------------------------------- read-out */
+
+static void test_control_and_state_readout(void **state)
+{
+    const double t = 0.77;
+    const double th = 2.0 * PI * t / 4.0;
+    double lv[3];
+    double lvd[3];
+    double expect[3];
+    double x[NX];
+    static double t_nodes[OGK_MPSP_MAX_NODES];
+    static double x_nodes[OGK_MPSP_MAX_NODES * NX];
+    static uint8_t mode_nodes[OGK_MPSP_MAX_NODES];
+    size_t count;
+    size_t i;
+    size_t c;
+    ogk_mpsp_prop_t prop;
+    (void)state;
+
+    orbit_config(&cfg, 100.0);
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    /* eq. (C.1) written out with libm */
+    OGK_ASSERT_STATUS(ogk_mpsp_control(&ctx, w3, t, lv, lvd), OGK_OK);
+    for (c = 0u; c < 3u; ++c) {
+        const double *w = &w3[7u * c];
+        expect[c] = 0.5 * w[0] + w[1] * cos(th) + w[2] * sin(th) + w[3] * cos(2.0 * th) +
+                    w[4] * sin(2.0 * th) + w[5] * cos(3.0 * th) + w[6] * sin(3.0 * th);
+        OGK_ASSERT_NEAR(lv[c], expect[c], 1e-14);
+    }
+    {
+        const double om = 2.0 * PI / 4.0;
+        const double *w = &w3[0];
+        const double d = om * (-w[1] * sin(th) + w[2] * cos(th)) +
+                         2.0 * om * (-w[3] * sin(2.0 * th) + w[4] * cos(2.0 * th)) +
+                         3.0 * om * (-w[5] * sin(3.0 * th) + w[6] * cos(3.0 * th));
+        OGK_ASSERT_NEAR(lvd[0], d, 1e-13);
+    }
+    /* The cosine kind: [1/2, cos th, cos 2 th, ..., cos 6 th]. */
+    cfg.fourier_kind = OGK_MPSP_BASIS_COSINE;
+    cfg.n_seg_nom = 3u;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_control(&ctx, w3, t, lv, lvd), OGK_OK);
+    for (c = 0u; c < 3u; ++c) {
+        const double *w = &w3[7u * c];
+        double d = 0.0;
+        expect[c] = 0.5 * w[0];
+        for (i = 1u; i <= 6u; ++i) {
+            expect[c] += w[i] * cos((double)i * th);
+            d -= w[i] * (double)i * (2.0 * PI / 4.0) * sin((double)i * th);
+        }
+        OGK_ASSERT_NEAR(lv[c], expect[c], 1e-14);
+        OGK_ASSERT_NEAR(lvd[c], d, 1e-13);
+    }
+    cfg.fourier_kind = 7u;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_E_CONFIG);
+    orbit_config(&cfg, 100.0);
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, 0.0, x0_3d, 1.0, &prop), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_trajectory(&ctx, t_nodes, x_nodes, mode_nodes,
+                                          OGK_MPSP_MAX_NODES, &count), OGK_OK);
+    assert_int_equal(count, prop.n_nodes);
+    assert_int_equal(count, 100 + 1 + 2);
+    OGK_ASSERT_NEAR(t_nodes[count - 1u], 2.0, 1e-15);
+    /* Nodes are reproduced; between nodes pchip is within O(h^3) of the orbit. */
+    OGK_ASSERT_STATUS(ogk_mpsp_state_at(&ctx, t_nodes[37], x), OGK_OK);
+    for (i = 0u; i < NX; ++i) {
+        OGK_ASSERT_NEAR(x[i], x_nodes[37u * NX + i], 1e-14);
+    }
+    OGK_ASSERT_STATUS(ogk_mpsp_state_at(&ctx, 2.0, x), OGK_OK);
+    OGK_ASSERT_NEAR(x[0], prop.x_f[0], 1e-14);
+    {
+        /* one RK4 step from node 37 to the midpoint as the reference */
+        const double tm = 0.5 * (t_nodes[37] + t_nodes[38]);
+        double xr[NX];
+        OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, t_nodes[37],
+                                                 &x_nodes[37u * NX], tm - t_nodes[37],
+                                                 (int)mode_nodes[37], xr, NULL, NULL),
+                          OGK_OK);
+        OGK_ASSERT_STATUS(ogk_mpsp_state_at(&ctx, tm, x), OGK_OK);
+        for (i = 0u; i < 6u; ++i) {
+            OGK_ASSERT_NEAR(x[i], xr[i], 1e-6);
+        }
+    }
+    OGK_ASSERT_STATUS(ogk_mpsp_state_at(&ctx, 2.0 + 1e-9, x), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_mpsp_trajectory(&ctx, t_nodes, NULL, NULL, 10u, &count), OGK_E_DIM);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_step_jacobian_thrust),
+        cmocka_unit_test(test_step_jacobian_coast),
+        cmocka_unit_test(test_whole_arc_with_switches_fd),
+        cmocka_unit_test(test_switch_time_closed_form),
+        cmocka_unit_test(test_whole_arc_closed_form),
+        cmocka_unit_test(test_control_and_state_readout),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
