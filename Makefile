@@ -120,7 +120,7 @@ test: deps
 	$(MAKE) lint
 	$(MAKE) test-unit-host
 	$(MAKE) test-unit-arm
-	$(MAKE) test-arm-selftest test-qemu-plugin
+	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack
 	$(MAKE) test-eigen
 	$(MAKE) test-python
 

@@ -142,3 +142,15 @@ test-arm-selftest: $(ST_ALL)
 
 # ---------------------------------------------------------------- QEMU instruction counter
 -include port/qemu-plugin/qemu-plugin.mk
+
+# ---------------------------------------------------------------- stack and recursion evidence
+# gcc's call graphs (-fcallgraph-info=su) of every kernel source for the Cortex-M7 build: worst-case
+# stack per ogk_* entry point, and a failure on any recursion or non-static frame.
+ARM_CG := $(ARM_B)/callgraph
+ARM_CI := $(patsubst kernel/src/%.c,$(ARM_CG)/%.ci,$(KSRC))
+$(ARM_CG)/%.ci: kernel/src/%.c $(KHDR) | apt
+	@mkdir -p $(@D)
+	$(ARM_CC) $(ARM_KFLAGS) $(KINC) -fcallgraph-info=su -dumpdir $(ARM_CG)/ -dumpbase $* -c $< -o $(ARM_CG)/$*.o
+.PHONY: arm-stack
+arm-stack: $(ARM_CI)
+	python3 port/cortex-m7/stack_report.py $(ARM_CI)
