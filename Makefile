@@ -105,9 +105,13 @@ $(FFI_STAMP): $(KSRC) $(KHDR) $(wildcard harness/csrc/*) harness/build_ffi.py $(
 .PHONY: ffi
 ffi: $(FFI_STAMP)
 
-.PHONY: test-python
+.PHONY: test-python test-slow
 test-python: $(FFI_STAMP)
-	$(VPY) -m pytest -q tests/python
+	$(VPY) -m pytest -q -m "not slow" tests/python
+
+# Minutes-long checks kept out of `make test`: the Apophis nominal regenerated from scratch.
+test-slow: $(FFI_STAMP)
+	$(VPY) -m pytest -q -m slow tests/python
 
 # ---------------------------------------------------------------- benchmarks
 include tests/bench/bench.mk

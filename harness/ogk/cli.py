@@ -15,6 +15,7 @@ SUBCOMMANDS: tuple[str, ...] = (
     "ogk.cmd_demo",
     "ogk.cmd_tables",
     "ogk.cmd_mc",
+    "ogk.cmd_mpsp",
 )
 
 

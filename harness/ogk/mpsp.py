@@ -307,52 +307,22 @@ class Mpsp:
 
 
 # ----------------------------------------------------------------- Apophis tables (docs/mpsp.md, sec. 9)
-def apophis_cases(basis: str = "period_2tf", order: int = 15) -> list[tuple[str, MpspResult]]:
+def apophis_cases(basis: str | None = None, order: int | None = None) -> list[tuple[str, MpspResult]]:
     """Runs the kernel's MPSP on the 23 cases of Tables 3, 5 and 6 of the paper from the stored
-    ground nominal (host/ogk_host/apophis; its Fourier fit with `basis`), paper settings."""
-    from ogk_host.apophis import fourier  # ground side, imported only here
-    from ogk_host.apophis.indirect import load_solution
-    from ogk_host.apophis.scenario import (DEFAULT_SCENARIO_PATH, initial_state_case,
-                                           load_scenario, normalised_problem,
-                                           terminal_position_case, thrust_case)
-    sc = load_scenario(DEFAULT_SCENARIO_PATH)
-    sol = load_solution(sc)
-    prob = normalised_problem(sc, None)
-    tf = prob.final_time
-    t, lam_v = fourier.nominal_control_on_grid(sc, sol)
-    eps = fourier.least_squares_weights(fourier.eta_of_time(t, 0.0, tf, basis), lam_v, order,
-                                        basis)
-    kind, period, t_ref = paper_basis(basis, 0.0, tf)
-    lu_km = sc.units.length_km
-    vu_km_s = sc.units.length_km / sc.units.time_s
-    g = Mpsp(MpspConfig(mu=prob.mu, t_max=prob.max_thrust, c_exhaust=prob.exhaust_velocity,
-                        t0=0.0, tf=tf, x0_nom=prob.x0, r_f=prob.rf, v_f=prob.vf,
-                        fourier_order=order, fourier_period=period, fourier_t_ref=t_ref,
-                        fourier_kind=kind, weights_nom=eps, lambda_m0_nom=float(sol.lam0[6]),
-                        h_max=sc.mpsp.h_max_over_tf * tf, tol_r=500.0 / lu_km,
-                        tol_v=0.1 / vu_km_s, tol_lambda_m=1e-6, delta_max=sc.mpsp.delta_max,
-                        delta_tau_0=sc.mpsp.delta_tau_initial, delta_tau_min=sc.mpsp.delta_tau_min,
-                        max_newton=100, max_outer=60))
-    out: list[tuple[str, MpspResult]] = []
-    for kappa in sc.perturbations.kappa:
-        p = initial_state_case(sc, kappa)
-        x0 = np.concatenate((prob.x0[:3] + p.delta_r0, prob.x0[3:6] + p.delta_v0, prob.x0[6:]))
-        out.append((f"T3 kappa={kappa:g}", g.solve(x0)))
-    for case in range(1, 9):
-        p = terminal_position_case(sc, case)
-        out.append((f"T5 case {case}", g.solve(prob.x0, 1.0, np.concatenate((prob.rf + p.delta_rf,
-                                                                            prob.vf)))))
-    for eta in (-10.0, -6.0, -3.0, 3.0, 6.0, 10.0):
-        out.append((f"T6 eta={eta:g}%", g.solve(prob.x0, 1.0 + thrust_case(sc, eta).thrust_fraction)))
-    return out
+    ground nominal (host/ogk_host/apophis; its Fourier fit with `basis`), paper settings.
+    The configuration and the cases are built by ogk.apophis.cases (also used by `ogk mpsp apophis`)."""
+    from ogk.apophis.cases import build_setup, paper_cases, run_case
+    setup = build_setup(basis, order)
+    return [(case.label, run_case(setup, case)[0]) for case in paper_cases(setup)]
 
 
 def main(argv: list[str] | None = None) -> int:
     """python -m ogk.mpsp [basis] : the kernel on the paper's 23 Apophis cases."""
     import sys
     args = sys.argv[1:] if argv is None else argv
-    basis = args[0] if args else "period_2tf"
-    print(f"MPSP (kernel) on the Apophis cases, basis {basis}, order 15")
+    basis = args[0] if args else None
+    print(f"MPSP (kernel) on the Apophis cases, basis {basis or 'of the scenario'}, order 15 "
+          "(the full side-by-side report: ogk mpsp apophis --paper-tables)")
     print("case            conv  NI  outer  |dr| km   |dv| km/s  |lambda_mf|  m_f kg  thrust arcs")
     for name, r in apophis_cases(basis):
         print(f"{name:15s} {str(r.converged):5s} {r.newton_iterations:3d} {r.outer_steps:5d} "

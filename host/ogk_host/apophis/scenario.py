@@ -1,0 +1,256 @@
+"""Apophis CubeSat scenario (Wang & Topputo 2020, Tables 1-6): TOML file -> dataclasses.
+
+Everything the solvers use is in the paper's normalised units: LU, TU, MU and velocities in LU/TU
+(not the printed VU, see the ERRATUM note in scenarios/apophis_cubesat.toml). `NormalisedProblem`
+holds one boundary value problem (nominal or perturbed) in those units.
+"""
+from __future__ import annotations
+
+import dataclasses
+import tomllib
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+FloatArray = NDArray[np.float64]
+
+SECONDS_PER_DAY = 86400.0
+REPO_ROOT = Path(__file__).resolve().parents[3]
+DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "apophis_cubesat.toml"
+
+
+@dataclasses.dataclass(frozen=True)
+class Units:
+    """Table 1 normalisation units."""
+
+    length_km: float           #: LU [km]
+    time_s: float              #: TU [s]
+    mass_kg: float             #: MU [kg]
+    velocity_km_s_printed: float  #: VU as printed [km/s]; unused (LU/TU is used instead)
+    mu_sun_km3_s2: float       #: Sun gravitational parameter [km^3/s^2]
+    g0_m_s2: float             #: gravitational acceleration at sea level [m/s^2]
+
+    @property
+    def velocity_km_s(self) -> float:
+        """Velocity unit consistent with LU and TU [km/s]."""
+        return self.length_km / self.time_s
+
+    @property
+    def acceleration_m_s2(self) -> float:
+        """Acceleration unit LU/TU^2 [m/s^2]."""
+        return self.length_km * 1.0e3 / self.time_s**2
+
+    @property
+    def force_N(self) -> float:
+        """Force unit MU LU/TU^2 [N]."""
+        return self.mass_kg * self.acceleration_m_s2
+
+
+@dataclasses.dataclass(frozen=True)
+class Spacecraft:
+    initial_mass_kg: float
+    max_thrust_N: float
+    specific_impulse_s: float
+
+
+@dataclasses.dataclass(frozen=True)
+class Boundary:
+    """Table 2 boundary conditions [LU, LU/TU]."""
+
+    r0: FloatArray
+    v0: FloatArray
+    rf: FloatArray
+    vf: FloatArray
+
+
+@dataclasses.dataclass(frozen=True)
+class Homotopy:
+    """Smoothing homotopy of eq. (48) and shooting tolerances."""
+
+    zeta_start: float
+    thrust_factor_start: float
+    zeta_step: float
+    zeta_step_min: float
+    final_rtol: float
+    smoothed_rtol: float
+    tight_below_zeta: float
+
+    def rtol(self, zeta: float) -> float:
+        """Integration tolerance for the shooting at smoothing level zeta."""
+        return self.final_rtol if zeta < self.tight_below_zeta else self.smoothed_rtol
+
+
+@dataclasses.dataclass(frozen=True)
+class MpspSettings:
+    """Section 4.1 MPSP settings (consumed by the MPSP tool, not by the indirect solver)."""
+
+    fourier_order: int
+    eta_start: float
+    eta_end: float
+    fourier_basis: str
+    h_max_over_tf: float
+    delta_max: float
+    delta_tau_initial: float
+    delta_tau_min: float
+    n_seg_tol_initial: int
+    n_seg_tol_increment: int
+    r_epsilon: str
+    r_lambda: float
+    switch_tolerance: float
+    tol_position_km: float
+    tol_velocity_km_s: float
+    tol_lambda_mf: float
+
+
+@dataclasses.dataclass(frozen=True)
+class PerturbationSets:
+    """Section 4.2-4.4 perturbation cases (Tables 3, 4, 6)."""
+
+    kappa: tuple[float, ...]
+    delta_r0_printed: FloatArray      #: [LU] as printed
+    delta_v0_printed: FloatArray      #: [VU] as printed
+    printed_vector_scale: float       #: ERRATUM factor (0.1) applied to both printed vectors
+    cube_side: float                  #: [LU]
+    delta_rf_vertices: FloatArray     #: (8, 3) [LU]
+    eta_percent: tuple[float, ...]
+
+    @property
+    def delta_r0(self) -> FloatArray:
+        """Basic initial-position perturbation actually used [LU]."""
+        return self.printed_vector_scale * self.delta_r0_printed
+
+    @property
+    def delta_v0(self) -> FloatArray:
+        """Basic initial-velocity perturbation actually used [LU/TU]."""
+        return self.printed_vector_scale * self.delta_v0_printed
+
+
+@dataclasses.dataclass(frozen=True)
+class Scenario:
+    path: Path
+    units: Units
+    spacecraft: Spacecraft
+    duration_days: float
+    boundary: Boundary
+    homotopy: Homotopy
+    mpsp: MpspSettings
+    perturbations: PerturbationSets
+    reference: dict[str, Any]   #: published numbers (section 4.1, Tables 3, 5, 6) as read
+
+    @property
+    def final_time(self) -> float:
+        """Transfer duration t_f - t_0 [TU]."""
+        return self.duration_days * SECONDS_PER_DAY / self.units.time_s
+
+
+@dataclasses.dataclass(frozen=True)
+class Perturbation:
+    """Deviation of one problem from the nominal one (section 4.2-4.4); zero = nominal.
+
+    `scaled(tau)` gives C_tau = (1 - tau) C_nom + tau C_per of eq. (51).
+    """
+
+    delta_r0: FloatArray = dataclasses.field(default_factory=lambda: np.zeros(3))  #: [LU]
+    delta_v0: FloatArray = dataclasses.field(default_factory=lambda: np.zeros(3))  #: [LU/TU]
+    delta_rf: FloatArray = dataclasses.field(default_factory=lambda: np.zeros(3))  #: [LU]
+    thrust_fraction: float = 0.0   #: eta: T_max -> (1 + eta) T_max
+    label: str = "nominal"
+
+    def scaled(self, tau: float) -> "Perturbation":
+        return Perturbation(tau * self.delta_r0, tau * self.delta_v0, tau * self.delta_rf,
+                            tau * self.thrust_fraction, f"{self.label} (tau={tau:.4g})")
+
+    @property
+    def is_nominal(self) -> bool:
+        return (not np.any(self.delta_r0) and not np.any(self.delta_v0)
+                and not np.any(self.delta_rf) and self.thrust_fraction == 0.0)
+
+
+def initial_state_case(scenario: Scenario, kappa: float) -> Perturbation:
+    """Table 3 case: r0 + kappa dr0, v0 + kappa dv0 (printed vectors times the ERRATUM scale)."""
+    p = scenario.perturbations
+    return Perturbation(delta_r0=kappa * p.delta_r0, delta_v0=kappa * p.delta_v0,
+                        label=f"kappa={kappa:g}")
+
+
+def terminal_position_case(scenario: Scenario, case: int) -> Perturbation:
+    """Table 4 case 1..8: r_f + vertex of the 0.04 LU cube."""
+    vertex = scenario.perturbations.delta_rf_vertices[case - 1]
+    return Perturbation(delta_rf=vertex.copy(), label=f"cube vertex {case}")
+
+
+def thrust_case(scenario: Scenario, eta_percent: float) -> Perturbation:
+    """Table 6 case: T_max (1 + eta)."""
+    return Perturbation(thrust_fraction=eta_percent / 100.0, label=f"eta={eta_percent:g}%")
+
+
+@dataclasses.dataclass(frozen=True)
+class NormalisedProblem:
+    """One fixed-time rendezvous problem in normalised units (mu = mu_sun TU^2/LU^3 ~ 1)."""
+
+    mu: float
+    max_thrust: float       #: T_max [MU LU/TU^2], already scaled by (1 + eta)
+    exhaust_velocity: float  #: c = Isp g0 [LU/TU]
+    final_time: float       #: t_f [TU] (t_0 = 0)
+    x0: FloatArray          #: [r0, v0, m0] (7)
+    rf: FloatArray
+    vf: FloatArray
+
+
+def normalised_problem(scenario: Scenario,
+                       perturbation: Perturbation | None = None) -> NormalisedProblem:
+    u = scenario.units
+    sc = scenario.spacecraft
+    b = scenario.boundary
+    pert = perturbation if perturbation is not None else Perturbation()
+    mu = u.mu_sun_km3_s2 * u.time_s**2 / u.length_km**3
+    max_thrust = sc.max_thrust_N * (1.0 + pert.thrust_fraction) / u.force_N
+    exhaust_velocity = sc.specific_impulse_s * u.g0_m_s2 * 1.0e-3 / u.velocity_km_s
+    x0 = np.concatenate([b.r0 + pert.delta_r0, b.v0 + pert.delta_v0,
+                         [sc.initial_mass_kg / u.mass_kg]])
+    return NormalisedProblem(mu=mu, max_thrust=max_thrust, exhaust_velocity=exhaust_velocity,
+                             final_time=scenario.final_time, x0=x0,
+                             rf=b.rf + pert.delta_rf, vf=b.vf.copy())
+
+
+def _vec(values: Any) -> FloatArray:
+    return np.asarray(values, dtype=np.float64)
+
+
+def load_scenario(path: str | Path = DEFAULT_SCENARIO_PATH) -> Scenario:
+    """Read scenarios/apophis_cubesat.toml (or another file of the same shape)."""
+    path = Path(path)
+    with path.open("rb") as fh:
+        d = tomllib.load(fh)
+    un, sc, bd, ho, mp = d["units"], d["spacecraft"], d["boundary"], d["homotopy"], d["mpsp"]
+    pi, pt, pth = (d["perturbations"]["initial"], d["perturbations"]["terminal"],
+                   d["perturbations"]["thrust"])
+    vertices = _vec(pt["delta_final_position_LU"])
+    if vertices.shape != (8, 3) or not np.allclose(np.abs(vertices), pt["cube_side_LU"] / 2.0):
+        raise ValueError(f"{path}: terminal perturbations must be the 8 vertices of the cube")
+    if mp["fourier_basis"] not in ("printed", "period_tf", "period_2tf", "cosine_2tf"):
+        raise ValueError(f"{path}: unknown fourier_basis {mp['fourier_basis']!r}")
+    return Scenario(
+        path=path,
+        units=Units(un["length_unit_km"], un["time_unit_s"], un["mass_unit_kg"],
+                    un["velocity_unit_km_s_printed"], un["mu_sun_km3_s2"], un["g0_m_s2"]),
+        spacecraft=Spacecraft(sc["initial_mass_kg"], sc["max_thrust_N"], sc["specific_impulse_s"]),
+        duration_days=float(d["transfer"]["duration_days"]),
+        boundary=Boundary(_vec(bd["initial_position_LU"]), _vec(bd["initial_velocity_VU"]),
+                          _vec(bd["final_position_LU"]), _vec(bd["final_velocity_VU"])),
+        homotopy=Homotopy(ho["zeta_start"], ho["thrust_factor_start"], ho["zeta_step"], ho["zeta_step_min"],
+                          ho["final_rtol"], ho["smoothed_rtol"], ho["tight_below_zeta"]),
+        mpsp=MpspSettings(int(mp["fourier_order"]), mp["eta_start"], mp["eta_end"],
+                          mp["fourier_basis"], mp["h_max_over_tf"], mp["delta_max"],
+                          mp["delta_tau_initial"], mp["delta_tau_min"], int(mp["n_seg_tol_initial"]),
+                          int(mp["n_seg_tol_increment"]), mp["r_epsilon"], mp["r_lambda"],
+                          mp["switch_tolerance"], mp["tol_position_km"], mp["tol_velocity_km_s"],
+                          mp["tol_lambda_mf"]),
+        perturbations=PerturbationSets(tuple(pi["kappa"]), _vec(pi["delta_position_printed_LU"]),
+                                       _vec(pi["delta_velocity_printed_VU"]),
+                                       float(pi["printed_vector_scale"]), float(pt["cube_side_LU"]),
+                                       vertices, tuple(pth["eta_percent"])),
+        reference=d["reference"],
+    )
