@@ -23,7 +23,7 @@ $(BENCH_CORE): tests/bench/bench_core.c tests/bench/bench_timer.h $(B)/host/libo
 	  $< $(PORT_HOST_SRC) $(B)/host/libogk.a -o $@ -lm
 
 .PHONY: bench
-bench: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE)
+bench: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE) $(FFI_STAMP)
 	@echo "== ogk bench (host x86-64, gcc -O2) =="
 	@for c in $(BENCH_CASES); do \
 	  n=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
@@ -39,6 +39,12 @@ bench: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE)
 	  printf '%-11s %9s instructions/call (callgrind)   ' $$c "$$n"; \
 	  $(BENCH_GNC) $(NOG_TABLE) time $$c; \
 	done
+	@echo "== MPSP per complete case (kernel CPU of ogk_mpsp_solve, the paper's 23 Apophis cases) =="
+	@$(VENV)/bin/ogk mpsp apophis --paper-tables --no-reference | \
+	  awk '/^T[356] / {for (i = 1; $$i != "yes" && $$i != "no"; i++) ; label = $$1; \
+	    for (j = 2; j < i; j++) label = label " " $$j; \
+	    printf "%-15s NI %3s  CPU %6.3f s   (paper MPSP-CT %6.2f s)\n", label, $$(i+2), $$(NF-3), $$(NF-1)} \
+	    /converged; kernel CPU/'
 
 # MPSP (kernel/include/ogk/mpsp.h): one Newton iteration at flight size (2000
 # RK4 steps, Fourier order 15: 94 unknowns) and its parts; see docs/mpsp.md.
