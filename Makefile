@@ -129,12 +129,15 @@ test: deps
 	$(MAKE) test-python
 
 # The main job: LEO-to-GEO VTD-NOG + CPD, ground tables then a 100-run SIL
-# Monte Carlo against the paper's Table 7 (JSON and PNG plots in build/mc).
+# Monte Carlo against the paper's Table 7 (JSON and PNG plots in build/mc); then
+# MPSP on the 23 Apophis cases against Wang & Topputo's Tables 3, 5, 6 (build/apophis).
 run: all
 	$(VENV)/bin/ogk demo switching
 	$(VENV)/bin/ogk tables leo-geo --out $(B)/tables/leo_geo
 	$(VENV)/bin/ogk mc leo-geo --runs 100 --seed 1 --workers 2 \
 	  --json $(B)/mc/leo_geo_100.json --plots $(B)/mc/plots
+	$(VENV)/bin/ogk mpsp apophis --paper-tables \
+	  --json $(B)/apophis/paper_tables.json --plots $(B)/apophis/plots
 
 clean:
 	rm -rf $(B) $(FFI_STAMP) harness/ogk/_ogk_cffi*
