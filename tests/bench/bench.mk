@@ -51,7 +51,7 @@ bench: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE) $(FFI_STAMP)
 BENCH_MPSP := $(BENCH_DIR)/bench_mpsp
 MPSP_CASES := mpsp_iter mpsp_prop mpsp_sens mpsp_update
 
-$(BENCH_MPSP): tests/bench/bench_mpsp.c $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
+$(BENCH_MPSP): tests/bench/bench_mpsp.c tests/bench/bench_timer.h $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
 	@mkdir -p $(@D)
 	gcc -std=c99 -O2 -g -Wall -Wextra -Werror $(KINC) -Iport/include \
 	  $< $(PORT_HOST_SRC) $(B)/host/libogk.a -o $@ -lm

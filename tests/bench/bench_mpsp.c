@@ -21,6 +21,7 @@
 
 #include "ogk/mpsp.h"
 #include "ogk_port.h"
+#include "bench_timer.h"
 
 static ogk_mpsp_t ctx;
 static ogk_mpsp_config_t cfg;
@@ -132,33 +133,6 @@ __attribute__((noinline)) static int bench_mpsp_update_once(void)
     return st;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double da = *(const double *)a, db = *(const double *)b;
-    return (da > db) - (da < db);
-}
-
-static int time_case(int (*fn)(void), long iters, const char *name)
-{
-    double per_call[7];
-    int b;
-    for (b = 0; b < 7; ++b) {
-        const uint64_t t0 = ogk_port_counter_now();
-        long i;
-        for (i = 0; i < iters; ++i) {
-            if (fn() != 0) {
-                fprintf(stderr, "%s: kernel call failed\n", name);
-                return 1;
-            }
-        }
-        per_call[b] = (double)(ogk_port_counter_now() - t0) / (double)iters;
-    }
-    qsort(per_call, 7u, sizeof per_call[0], cmp_double);
-    printf("%s %.0f %s/call (median of 7 batches of %ld)\n", name, per_call[3],
-           ogk_port_counter_unit_name(), iters);
-    return 0;
-}
-
 typedef struct {
     const char *name;
     int (*fn)(void);
@@ -195,7 +169,7 @@ int main(int argc, char **argv)
             return cases[i].fn();
         }
         if (strcmp(argv[1], "time") == 0) {
-            return time_case(cases[i].fn, cases[i].iters, cases[i].name);
+            return bench_time_case(cases[i].fn, cases[i].iters, cases[i].name);
         }
     }
     fprintf(stderr, "unknown arguments\n");
