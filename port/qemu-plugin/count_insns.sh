@@ -12,7 +12,7 @@ so=${QEMU_PLUGIN_SO:-build/qemu-plugin/libinsn_count.so}
 [ -f "$so" ] || { echo "count_insns.sh: $so not built (make qemu-plugin)" >&2; exit 2; }
 args=""
 for fn in "$@"; do
-  line=$(arm-none-eabi-nm -S "$elf" | awk -v f="$fn" '$4 == f && ($3 == "T" || $3 == "t") { print $1, $2; exit }')
+  line=$(arm-none-eabi-nm -S "$elf" | awk -v f="$fn" '!done && $4 == f && ($3 == "T" || $3 == "t") { print $1, $2; done = 1 }')
   [ -n "$line" ] || { echo "count_insns.sh: no function '$fn' with a size in $elf" >&2; exit 2; }
   read -r addr size <<< "$line"
   lo=$((16#$addr)); hi=$((lo + 16#$size))

@@ -67,3 +67,18 @@ bench-mpsp: $(BENCH_MPSP)
 	done
 
 bench: bench-mpsp
+
+# ---------------------------------------------------------------- Cortex-M7 instruction counts (QEMU plugin)
+# One MPSP Newton iteration (and its parts) executed on the emulated Cortex-M7, counted by the TCG
+# plugin from each function's entry to its return: instructions, not cycles (docs/ports.md).
+ARM_BENCH_MPSP := $(ARM_B)/bench_mpsp.elf
+$(ARM_BENCH_MPSP): tests/bench/bench_mpsp.c $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
+	$(ARM_CC) -std=c99 -Wall -Wextra -Werror -O2 -g $(ARM_CPU) -DOGK_BENCH_BARE_METAL \
+	  $(KINC) -Iport/include -I$(ARM_PORT) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
+	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
+.PHONY: bench-arm
+bench-arm: $(ARM_BENCH_MPSP) qemu-plugin
+	@echo "== ogk bench (Cortex-M7 on QEMU mps2-an500, instruction counts) =="
+	@port/qemu-plugin/count_insns.sh $(ARM_BENCH_MPSP) bench_mpsp_iter_once bench_mpsp_prop_once \
+	  bench_mpsp_sens_once bench_mpsp_update_once 2>/dev/null
+bench: bench-arm

@@ -21,7 +21,9 @@
 
 #include "ogk/mpsp.h"
 #include "ogk_port.h"
+#ifndef OGK_BENCH_BARE_METAL
 #include "bench_timer.h"
+#endif
 
 static ogk_mpsp_t ctx;
 static ogk_mpsp_config_t cfg;
@@ -139,6 +141,18 @@ typedef struct {
     long iters;
 } bench_case_t;
 
+#ifdef OGK_BENCH_BARE_METAL
+/* Bare-metal build (QEMU, no command line): one call of every case, for the
+ * instruction-counting plugin (`make bench-arm`). */
+int main(void)
+{
+    if (setup() != 0 || ogk_mpsp_sensitivity(&ctx, NULL, NULL) != OGK_OK) {
+        return 1;
+    }
+    return bench_mpsp_iter_once() | bench_mpsp_prop_once() | bench_mpsp_sens_once() |
+           bench_mpsp_update_once();
+}
+#else
 int main(int argc, char **argv)
 {
     static const bench_case_t cases[] = {
@@ -175,3 +189,4 @@ int main(int argc, char **argv)
     fprintf(stderr, "unknown arguments\n");
     return 2;
 }
+#endif /* OGK_BENCH_BARE_METAL */
