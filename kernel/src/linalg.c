@@ -101,48 +101,9 @@ static ogk_status la_product_check(const double *in1, size_t in1_count,
 
 /* ------------------------------------------------------------------ products */
 
-ogk_status ogk_mat_vec(const double *A, size_t rows, size_t cols,
-                       const double *x, double *y)
-{
-    size_t i;
-    size_t j;
-    const ogk_status st = la_product_check(A, rows * cols, x, cols, y, rows,
-                                           rows, cols, 1u);
-    if (st != OGK_OK) {
-        return st;
-    }
-    for (i = 0u; i < rows; ++i) {
-        double sum = 0.0;
-        for (j = 0u; j < cols; ++j) {
-            sum += A[i * cols + j] * x[j];
-        }
-        y[i] = sum;
-    }
-    return OGK_OK;
-}
-
-ogk_status ogk_mat_t_vec(const double *A, size_t rows, size_t cols,
-                         const double *x, double *y)
-{
-    size_t i;
-    size_t j;
-    const ogk_status st = la_product_check(A, rows * cols, x, rows, y, cols,
-                                           rows, cols, 1u);
-    if (st != OGK_OK) {
-        return st;
-    }
-    for (j = 0u; j < cols; ++j) {
-        double sum = 0.0;
-        for (i = 0u; i < rows; ++i) {
-            sum += A[i * cols + j] * x[i];
-        }
-        y[j] = sum;
-    }
-    return OGK_OK;
-}
-
 /* C (r x c, row-major) = sum_p A(i, p) B(p, j), where A(i, p) = A[i a_i + p a_p] and
- * B(p, j) = B[p b_p + j b_j]: one loop nest for A B, A^T B and A B^T. */
+ * B(p, j) = B[p b_p + j b_j]: one loop nest for
+ * A x, A^T x, A B, A^T B and A B^T. */
 static void product_strided(const double *A, size_t a_i, size_t a_p, const double *B,
                             size_t b_p, size_t b_j, size_t r, size_t k, size_t c, double *C)
 {
@@ -158,6 +119,28 @@ static void product_strided(const double *A, size_t a_i, size_t a_p, const doubl
             C[i * c + j] = sum;
         }
     }
+}
+
+ogk_status ogk_mat_vec(const double *A, size_t rows, size_t cols,
+                       const double *x, double *y)
+{
+    const ogk_status st = la_product_check(A, rows * cols, x, cols, y, rows,
+                                           rows, cols, 1u);
+    if (st == OGK_OK) {
+        product_strided(A, cols, 1u, x, 1u, 0u, rows, cols, 1u, y);
+    }
+    return st;
+}
+
+ogk_status ogk_mat_t_vec(const double *A, size_t rows, size_t cols,
+                         const double *x, double *y)
+{
+    const ogk_status st = la_product_check(A, rows * cols, x, rows, y, cols,
+                                           rows, cols, 1u);
+    if (st == OGK_OK) {
+        product_strided(A, 1u, cols, x, 1u, 0u, cols, rows, 1u, y);
+    }
+    return st;
 }
 
 ogk_status ogk_mat_mul(const double *A, size_t r, size_t k,
