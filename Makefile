@@ -98,7 +98,7 @@ lint: | apt
 	@echo "lint: cppcheck clean (justified suppressions: docs/cppcheck-suppressions.txt)"
 
 # ---------------------------------------------------------------- Python harness (cffi)
-FFI_STAMP := harness/ogk/.ffi-built
+FFI_STAMP := harness/ogk/bindings/.ffi-built
 $(FFI_STAMP): $(KSRC) $(KHDR) $(wildcard harness/csrc/*) harness/build_ffi.py $(VENV)/.installed
 	$(VPY) harness/build_ffi.py
 	touch $@
@@ -140,4 +140,4 @@ run: all
 	  --json $(B)/apophis/paper_tables.json --plots $(B)/apophis/plots
 
 clean:
-	rm -rf $(B) $(FFI_STAMP) harness/ogk/_ogk_cffi*
+	rm -rf $(B) $(FFI_STAMP) harness/ogk/bindings/_ogk_cffi*

@@ -1,4 +1,4 @@
-"""Builds the cffi extension ``ogk._ogk_cffi`` (API mode) in place.
+"""Builds the cffi extension ``ogk.bindings._ogk_cffi`` (API mode) in place.
 
 The extension compiles every kernel source (kernel/src/*.c) together with the
 harness's C models (harness/csrc/*.c), so Python calls exactly the C the flight
@@ -24,9 +24,9 @@ ROOT = HARNESS_DIR.parent
 KERNEL_INCLUDE = ROOT / "kernel" / "include"
 KERNEL_SRC = ROOT / "kernel" / "src"
 CSRC = HARNESS_DIR / "csrc"
-PACKAGE_DIR = HARNESS_DIR / "ogk"
+PACKAGE_DIR = HARNESS_DIR / "ogk" / "bindings"
 BUILD_DIR = ROOT / "build" / "ffi"
-MODULE_NAME = "ogk._ogk_cffi"
+MODULE_NAME = "ogk.bindings._ogk_cffi"
 
 # ----------------------------------------------------------------- cdefs
 CDEF_STATUS = """
@@ -371,7 +371,7 @@ ogk_status ogk_model_oscillator_switch(void *user, double t, const double *x,
 """
 
 # harness/csrc/sil_batch.h: batch loops of the SIL harness over Monte Carlo runs
-# (not flight code; ogk.leo_geo.attitude, docs/sil.md).
+# (not flight code; ogk.missions.orbit_injection.attitude, docs/sil.md).
 CDEF_SIL_BATCH = """
 #define OGK_SIL_CPD_N_IN ...
 #define OGK_SIL_CPD_N_OUT ...
@@ -433,7 +433,7 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_samp
 ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_nog_command_t *out);
 """
 
-# harness/csrc/nog_batch.h: VTD-NOG over all runs of a batch (ogk.leo_geo.nog_guidance).
+# harness/csrc/nog_batch.h: VTD-NOG over all runs of a batch (ogk.missions.orbit_injection.nog_guidance).
 CDEF_NOG_BATCH = """
 ogk_status ogk_sil_nog_init_batch(ogk_nog_t *ctx, size_t n_runs,
                                   const ogk_nog_config_t *cfg, int32_t *status);

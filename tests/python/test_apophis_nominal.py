@@ -2,8 +2,8 @@
 
 Validated:
 - the scenario file reproduces Table 1's normalisation (mu = 1 in LU/TU) and the ERRATUM choices;
-- the stored nominal (host/ogk_host/apophis/data/nominal_solution.json, made by
-  `python -m ogk_host.apophis regenerate`) is re-integrated here by an independent implementation
+- the stored nominal (host/ogk_host/low_thrust_transfer/data/nominal_solution.json, made by
+  `python -m ogk_host.low_thrust_transfer regenerate`) is re-integrated here by an independent implementation
   (own equations of motion, scipy DOP853 rtol 1e-12, bang-off-bang switches re-detected as events):
   final mass 21.062 +- 0.01 kg (paper), 5 thrust and 4 coast arcs (paper), rendezvous conditions and
   lambda_m(t_f) = 0, constant Hamiltonian (autonomous problem), sign of S consistent with u everywhere;
@@ -24,8 +24,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from ogk_host.apophis import fourier, indirect
-from ogk_host.apophis.scenario import (initial_state_case, load_scenario, normalised_problem,
+from ogk_host.low_thrust_transfer import fourier, indirect
+from ogk_host.low_thrust_transfer.scenario import (initial_state_case, load_scenario, normalised_problem,
                                        terminal_position_case, thrust_case)
 
 REPO = Path(__file__).resolve().parents[2]
@@ -311,7 +311,7 @@ REFERENCES_FILE = REPO / "host" / "ogk_host" / "apophis" / "data" / "perturbed_o
 
 @pytest.mark.parametrize("label", ["kappa=-2.5", "cube vertex 8", "eta=-10%"])
 def test_stored_perturbed_optimum_is_an_extremal(label: str) -> None:
-    """Hard cases of `python -m ogk_host.apophis references`: two shallow arcs of ~4 days whose S dips
+    """Hard cases of `python -m ogk_host.low_thrust_transfer references`: two shallow arcs of ~4 days whose S dips
     only ~4e-4 below/above zero (kappa = -2.5), a 0.36-day coast (vertex 8), a changed structure (eta)."""
     cases = indirect.load_references(REFERENCES_FILE)
     case = cases[label]

@@ -1,8 +1,8 @@
-"""`ogk mpsp apophis` (harness/ogk/cmd_mpsp.py): one case of each kind through the command line.
+"""`ogk mpsp apophis` (harness/ogk/cli/cmd_mpsp.py): one case of each kind through the command line.
 
 Convergence is checked against the paper's tolerances (section 4.1: 500 km, 0.1 km/s, |lambda_m(tf)|
 <= 1e-6); the fuel increase of one case against a fresh fuel-optimal re-solve by the ground indirect
-solver (host/ogk_host/apophis/indirect.py), whose terminal conditions are re-integrated here.
+solver (host/ogk_host/low_thrust_transfer/indirect.py), whose terminal conditions are re-integrated here.
 The 23-case comparison with Tables 3, 5, 6 is the slow command `ogk mpsp apophis --paper-tables`.
 """
 from __future__ import annotations
@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ogk.apophis.report import JSON_KEYS
+from ogk.missions.low_thrust_transfer.report import JSON_KEYS
 from ogk.cli import main
 
 LU_KM = 1.495979e8
@@ -58,9 +58,9 @@ def test_case_converges_within_paper_tolerances(tmp_path: Path, kind: str, param
 def test_initial_case_fuel_increase_against_fresh_reoptimisation(tmp_path: Path) -> None:
     """Table 3 kappa = -1 (paper: NI 5, FI 2.28 %): FI of the command against a fuel-optimal solution
     of the same perturbed problem computed here, verified by re-integrating its costates."""
-    from ogk_host.apophis.indirect import (load_solution, propagate, shooting_residual,
+    from ogk_host.low_thrust_transfer.indirect import (load_solution, propagate, shooting_residual,
                                            solve_fuel_optimal)
-    from ogk_host.apophis.scenario import (initial_state_case, load_scenario,
+    from ogk_host.low_thrust_transfer.scenario import (initial_state_case, load_scenario,
                                            normalised_problem)
     doc = _run(tmp_path, "--case", "initial", "--param=-1")
     _assert_within_paper_tolerances(doc)

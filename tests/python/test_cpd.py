@@ -1,5 +1,5 @@
 """CPD attitude control: gain design (host/ogk_host/cpd_design.py) and the kernel bindings
-(harness/ogk/cpd.py) against independent references.
+(harness/ogk/bindings/cpd.py) against independent references.
 
 References: numpy.roots for the closed-loop poles; the paper's printed numbers (eq. 54 and the text
 after it, sec. 7); scipy.spatial.transform.Rotation for the Euler sequence of eq. (9) and for the
@@ -15,8 +15,8 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from ogk import cpd
-from ogk.kernel import KernelError, Status
+from ogk.bindings import cpd
+from ogk.bindings.kernel import KernelError, Status
 from ogk_host import cpd_design as cd
 
 DEG = math.pi / 180.0

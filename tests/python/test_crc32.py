@@ -6,7 +6,7 @@ import zlib
 import numpy as np
 import pytest
 
-from ogk import kernel
+from ogk.bindings import kernel
 
 
 def test_known_check_value() -> None:

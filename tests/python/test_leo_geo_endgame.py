@@ -14,11 +14,11 @@ import dataclasses
 import numpy as np
 import pytest
 
-from ogk_host.leo_geo.scenario import load_scenario
+from ogk_host.orbit_injection.scenario import load_scenario
 
-from ogk.leo_geo import campaign
-from ogk.leo_geo.dispersions import DispersionSwitches
-from ogk.leo_geo.nog_guidance import KernelNogGuidance
+from ogk.missions.orbit_injection import campaign
+from ogk.missions.orbit_injection.dispersions import DispersionSwitches
+from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance
 
 _LOG: list["_Recording"] = []
 

@@ -1,4 +1,4 @@
-"""LEO-to-GEO minimum-time nominal (Pontani & Celani 2021, sec. 6; host/ogk_host/leo_geo/nominal.py).
+"""LEO-to-GEO minimum-time nominal (Pontani & Celani 2021, sec. 6; host/ogk_host/orbit_injection/nominal.py).
 
 Validated against independent references:
 - the paper: t_f* = 105.9 s (text) / 105.8 s (Table 6) and f0* = 179.9 deg (sec. 6);
@@ -20,10 +20,10 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.interpolate import CubicSpline
 
-from ogk_host.leo_geo import dynamics as dyn
-from ogk_host.leo_geo.gains import compute_gain_table
-from ogk_host.leo_geo.nominal import Nominal, solve_fixed_ignition, solve_nominal
-from ogk_host.leo_geo.scenario import LeoGeoScenario, load_scenario
+from ogk_host.orbit_injection import dynamics as dyn
+from ogk_host.orbit_injection.gains import compute_gain_table
+from ogk_host.orbit_injection.nominal import Nominal, solve_fixed_ignition, solve_nominal
+from ogk_host.orbit_injection.scenario import LeoGeoScenario, load_scenario
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""SIL closed loop and Monte Carlo campaign of the LEO-to-GEO burn (harness/ogk/leo_geo):
+"""SIL closed loop and Monte Carlo campaign of the LEO-to-GEO burn (harness/ogk/missions/orbit_injection):
 reproducibility across worker counts and chunking, re-flying one run, failure accounting, the CPD
 in the loop (attitude follows the command, eq. 47 rate bounds), JSON/report and the `ogk mc` command."""
 from __future__ import annotations
@@ -10,14 +10,14 @@ import math
 import numpy as np
 import pytest
 
-from ogk.leo_geo import paper_tables
-from ogk.leo_geo.campaign import eq47_bounds, run_campaign
-from ogk.leo_geo.dispersions import DispersionSwitches, draw_runs, run_seed
-from ogk.leo_geo.guidance import GuidanceSetup, NominalOpenLoopGuidance
-from ogk.leo_geo.nominal_ref import nominal_reference
-from ogk.leo_geo.report import format_report
-from ogk.leo_geo.sil import ERROR_KEYS, RATE_KEYS, SilSettings, simulate
-from ogk_host.leo_geo.scenario import load_scenario
+from ogk.missions.orbit_injection import paper_tables
+from ogk.missions.orbit_injection.campaign import eq47_bounds, run_campaign
+from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs, run_seed
+from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
+from ogk.missions.orbit_injection.nominal_ref import nominal_reference
+from ogk.missions.orbit_injection.report import format_report
+from ogk.missions.orbit_injection.sil import ERROR_KEYS, RATE_KEYS, SilSettings, simulate
+from ogk_host.orbit_injection.scenario import load_scenario
 
 
 @pytest.fixture(scope="module")
@@ -179,7 +179,7 @@ def test_ogk_mc_command(tmp_path, capsys):
 def test_ogk_mc_nog_without_kernel_guidance_fails_clearly(monkeypatch):
     """--guidance nog while the kernel guidance module is missing: a message, not a traceback."""
     from ogk import cmd_mc
-    monkeypatch.setattr(cmd_mc, "NOG_MODULE", "ogk.leo_geo._no_such_guidance")
+    monkeypatch.setattr(cmd_mc, "NOG_MODULE", "ogk.missions.orbit_injection._no_such_guidance")
     with pytest.raises(SystemExit, match="KernelNogGuidance.*not available"):
         cmd_mc.load_guidance("nog")
     assert cmd_mc.load_guidance("nominal") is NominalOpenLoopGuidance

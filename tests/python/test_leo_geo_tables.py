@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from ogk_host.cgen import write_c_table
-from ogk_host.leo_geo.gains import compute_gain_table
-from ogk_host.leo_geo.scenario import DEFAULT_SCENARIO_PATH
-from ogk_host.leo_geo.tables import build_nog_bundle
+from ogk_host.orbit_injection.gains import compute_gain_table
+from ogk_host.orbit_injection.scenario import DEFAULT_SCENARIO_PATH
+from ogk_host.orbit_injection.tables import build_nog_bundle
 from ogk_host import tablefile
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -45,8 +45,8 @@ int main(void)
 
 @pytest.fixture(scope="module")
 def bundle():
-    from ogk_host.leo_geo.nominal import solve_nominal
-    from ogk_host.leo_geo.scenario import load_scenario
+    from ogk_host.orbit_injection.nominal import solve_nominal
+    from ogk_host.orbit_injection.scenario import load_scenario
     nominal = solve_nominal(load_scenario())
     return build_nog_bundle(nominal, compute_gain_table(nominal))
 
@@ -78,7 +78,7 @@ def test_generated_c_table_loads_with_ground_values(bundle, tmp_path):
 
 
 def test_bundle_through_bindings_flies_nominal(bundle, tmp_path):
-    from ogk._ffi import ffi, lib
+    from ogk.bindings._ffi import ffi, lib
     image_path = tmp_path / "bundle.ogkt"
     tablefile.write_table(image_path, bundle.kind, bundle.grid, bundle.data)
     data = image_path.read_bytes()

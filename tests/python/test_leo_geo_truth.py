@@ -1,7 +1,7 @@
-"""Truth model of the LEO-to-GEO SIL (harness/ogk/leo_geo/truth.py) against independent references:
+"""Truth model of the LEO-to-GEO SIL (harness/ogk/missions/orbit_injection/truth.py) against independent references:
 a Kepler propagation, a Cartesian scipy integration, closed-form roll spin-up and actuator responses,
 vector constructions of the frames of eqs. (9), (49)-(52), Euler-angle kinematics (10)-(12), the
-kernel's CPD geometry, and the ground nominal (host/ogk_host/leo_geo) flown open loop."""
+kernel's CPD geometry, and the ground nominal (host/ogk_host/orbit_injection) flown open loop."""
 from __future__ import annotations
 
 import math
@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from ogk.leo_geo import truth as tm
-from ogk.leo_geo.dispersions import DispersionSwitches, draw_runs
-from ogk.leo_geo.guidance import GuidanceSetup, NominalOpenLoopGuidance
-from ogk.leo_geo.nominal_ref import nominal_reference
-from ogk.leo_geo.sil import SilSettings, _Rk4, simulate
-from ogk_host.leo_geo.scenario import load_scenario
+from ogk.missions.orbit_injection import truth as tm
+from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs
+from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
+from ogk.missions.orbit_injection.nominal_ref import nominal_reference
+from ogk.missions.orbit_injection.sil import SilSettings, _Rk4, simulate
+from ogk_host.orbit_injection.scenario import load_scenario
 
 
 @pytest.fixture(scope="module")
@@ -86,7 +86,7 @@ def test_dcm_eq9_matches_turned_axes_and_quaternion_round_trip(rng):
 def test_thrust_angles_eqs_49_52_vs_vector_construction_and_kernel(rng):
     """alpha_a, beta_a from the rotation matrices of eqs. (49)-(52), from the quaternion path the
     truth integrates, from a vector construction, and from the kernel's ogk_cpd_thrust_angles."""
-    from ogk._ffi import ffi, lib
+    from ogk.bindings._ffi import ffi, lib
     n = 40
     a = random_angles(rng, n)
     alpha, beta = tm.thrust_angles(a["psi"], a["theta"], a["roll"], a["xi"], a["phi"], a["dy"],

@@ -1,4 +1,4 @@
-"""MPSP through the cffi bindings (harness/ogk/mpsp.py), against an independent model.
+"""MPSP through the cffi bindings (harness/ogk/bindings/mpsp.py), against an independent model.
 
 The reference integrates eq. (16) of Wang & Topputo (2020) with scipy's DOP853 at rtol 1e-12,
 switching u at the zeros of S (eq. 10) located by solve_ivp's event finder, with the Fourier
@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from ogk.kernel import KernelError, Status
-from ogk.mpsp import BASIS_COSINE, Mpsp, MpspConfig, fourier_basis, paper_basis
+from ogk.bindings.kernel import KernelError, Status
+from ogk.bindings.mpsp import BASIS_COSINE, Mpsp, MpspConfig, fourier_basis, paper_basis
 
 W3 = np.array([2.0, 0.05, 0.02, 0.6, 0.03, -0.02, 0.01,
                0.6, 0.0, 0.2, 0.01, -0.02, 0.0, 0.01,
@@ -93,7 +93,7 @@ def test_basis_matches_numpy() -> None:
 
 
 def test_paper_bases_match_eta_definitions() -> None:
-    """The ground side's eta bases (host/ogk_host/apophis/fourier.py) in the kernel's terms."""
+    """The ground side's eta bases (host/ogk_host/low_thrust_transfer/fourier.py) in the kernel's terms."""
     t0, tf, order = 0.3, 7.3, 4
     t = np.linspace(t0, tf, 9)
     k = np.arange(1, order + 1)
@@ -175,13 +175,13 @@ def test_errors_map_to_status() -> None:
 
 
 def test_apophis_cases_against_paper_table_iterations() -> None:
-    """The kernel on the paper's mission (ground nominal of host/ogk_host/apophis, Fourier basis of
+    """The kernel on the paper's mission (ground nominal of host/ogk_host/low_thrust_transfer, Fourier basis of
     fundamental period 2 t_f): cases whose thrust sequence stays nominal converge in the Newton
     iteration counts of Tables 3 and 6 (kappa = -1: 5; eta = +3 %: 4; eta = +6 %: 5; +-2 allowed,
     the nominal and its fit are ours), within the paper's tolerances (500 km, 0.1 km/s, 1e-6)."""
-    from ogk_host.apophis import fourier as apophis
-    from ogk_host.apophis.indirect import load_solution
-    from ogk_host.apophis.scenario import (DEFAULT_SCENARIO_PATH, initial_state_case,
+    from ogk_host.low_thrust_transfer import fourier as apophis
+    from ogk_host.low_thrust_transfer.indirect import load_solution
+    from ogk_host.low_thrust_transfer.scenario import (DEFAULT_SCENARIO_PATH, initial_state_case,
                                            load_scenario, normalised_problem)
     sc = load_scenario(DEFAULT_SCENARIO_PATH)
     sol = load_solution(sc)

@@ -1,4 +1,4 @@
-"""VTD-NOG gain tables of the LEO-to-GEO burn (host/ogk_host/leo_geo/gains.py, docs/vtd-nog.md).
+"""VTD-NOG gain tables of the LEO-to-GEO burn (host/ogk_host/orbit_injection/gains.py, docs/vtd-nog.md).
 
 The main check is derivation-independent: from displaced states at tau_k = 0, 0.25, 0.5, 0.75 (with
 position, velocity AND real-time offsets dt_k = t_k - t_f* tau_k), the full nonlinear remaining-arc
@@ -18,13 +18,13 @@ import numpy as np
 import pytest
 
 from ogk_host import tablefile
-from ogk_host.leo_geo import dynamics as dyn
-from ogk_host.leo_geo import tables
-from ogk_host.leo_geo.gains import (GainTable, compute_gain_table, predict_control_correction,
+from ogk_host.orbit_injection import dynamics as dyn
+from ogk_host.orbit_injection import tables
+from ogk_host.orbit_injection.gains import (GainTable, compute_gain_table, predict_control_correction,
                                     predict_correction, propagate_neighboring)
-from ogk_host.leo_geo.nominal import Nominal, solve_nominal
-from ogk_host.leo_geo.propagation import integrate_extremal
-from ogk_host.leo_geo.reference import solve_remaining_arc
+from ogk_host.orbit_injection.nominal import Nominal, solve_nominal
+from ogk_host.orbit_injection.propagation import integrate_extremal
+from ogk_host.orbit_injection.reference import solve_remaining_arc
 
 TAU_CHECK = (0.0, 0.25, 0.5, 0.75)
 SCALES = (1e-2, 1e-3, 1e-4)          # times a 1-sigma (Table 3) displacement plus a 1 s clock offset

@@ -4,7 +4,7 @@ located switching times and states vs the closed-form bang-off-bang solution.
 Rest-to-rest transfer of distance D in time T with |u| <= u_max: thrust +u_max on
 [0, t1], coast on [t1, t2], thrust -u_max on [t2, T], with
 t1 = (T - sqrt(T^2 - 4 D/u_max))/2 and t2 = T - t1 (coded again below, independently
-of ogk.models.RestToRest). Between switches the motion is a quadratic and the
+of ogk.bindings.models.RestToRest). Between switches the motion is a quadratic and the
 costates linear in t, which RK4 integrates exactly, so the errors measure the
 bisection alone."""
 from __future__ import annotations
@@ -14,8 +14,8 @@ import math
 import numpy as np
 import pytest
 
-from ogk import kernel, models
-from ogk._ffi import lib
+from ogk.bindings import kernel, models
+from ogk.bindings._ffi import lib
 
 CASES = [  # D, T, u_max, h
     (1.0, 3.0, 1.0, 0.1),
@@ -97,7 +97,7 @@ def test_without_switch_function_no_events() -> None:
 
 
 def test_demo_reports_closed_form_agreement() -> None:
-    from ogk.demo_switching import format_report, run_switching_demo
+    from ogk.sil.demo_switching import format_report, run_switching_demo
 
     demo = run_switching_demo()
     assert demo.ok(1e-10)

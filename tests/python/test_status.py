@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import pytest
 
-from ogk import kernel
-from ogk._ffi import lib
+from ogk.bindings import kernel
+from ogk.bindings._ffi import lib
 
 # The codes of kernel/include/ogk/status.h, written out independently here.
 EXPECTED = [

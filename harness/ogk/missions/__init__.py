@@ -1,0 +1,2 @@
+"""Mission families: truth model family, guidance adapter and paper tables, found by name through
+ogk.sil.registry (docs/adding-a-mission.md)."""

@@ -1,0 +1,254 @@
+"""Monte Carlo campaign of the LEO-to-GEO burn: runs split in chunks over worker processes,
+statistics, JSON.
+
+The same (seed, run id) gives the same numbers whatever the number of runs, workers or chunks:
+every run draws from its own generator (dispersions.py), and every truth/control operation is
+elementwise over runs. Workers are forked processes (the nominal is solved once, before the fork);
+each chunk builds its own guidance with `guidance_factory(GuidanceSetup(...))`.
+"""
+from __future__ import annotations
+
+import dataclasses
+import json
+import multiprocessing as mp
+import os
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ogk_host.orbit_injection.scenario import LeoGeoScenario
+
+from .dispersions import DispersionSwitches, RunDraws, draw_runs
+from .guidance import GuidanceFactory, GuidanceSetup
+from .nominal_ref import NominalReference, nominal_reference
+from .sil import ERROR_KEYS, RATE_KEYS, History, SilSettings, simulate
+
+F64 = NDArray[np.float64]
+JSON_SCHEMA = "ogk.missions.orbit_injection.mc/1"
+
+
+@dataclasses.dataclass
+class CampaignResult:
+    """All runs of a campaign (run-major arrays, in run-id order)."""
+
+    scenario: LeoGeoScenario
+    seed: int
+    truth: str
+    guidance: str
+    switches: DispersionSwitches
+    settings: SilSettings
+    nominal_tf_s: float
+    draws: RunDraws
+    errors: dict[str, F64]          #: ERROR_KEYS -> (N,), NaN where failed
+    max_rates: dict[str, F64]       #: RATE_KEYS -> (N,)
+    failure: list[str]              #: "" or the reason, per run
+    history: History | None
+    wall_time_s: float              #: whole campaign, including the nominal solve if not cached
+    workers: int
+    nominal_solve_s: float = 0.0    #: time spent solving the ground nominal (0 when cached)
+    truth_steps: int = 0            #: truth steps of the longest chunk
+    flight_cpu_s: float = 0.0       #: CPU time (user + system) of the flight, all processes
+
+    @property
+    def flight_s(self) -> float:
+        """Wall time of the runs themselves (forks, loops, merge)."""
+        return self.wall_time_s - self.nominal_solve_s
+
+    @property
+    def runs(self) -> int:
+        return self.draws.n_runs
+
+    @property
+    def ok(self) -> NDArray[np.bool_]:
+        return np.array([f == "" for f in self.failure], dtype=bool)
+
+    @property
+    def n_failures(self) -> int:
+        return int((~self.ok).sum())
+
+    def failure_reasons(self) -> dict[str, int]:
+        out: dict[str, int] = {}
+        for f in self.failure:
+            if f:
+                out[f] = out.get(f, 0) + 1
+        return out
+
+    def mean(self) -> dict[str, float]:
+        ok = self.ok
+        return {k: float(np.mean(v[ok])) if ok.any() else float("nan")
+                for k, v in self.errors.items()}
+
+    def std(self) -> dict[str, float]:
+        """Sample standard deviation (ddof = 1; 0 for a single run)."""
+        ok = self.ok
+        return {k: float(np.std(v[ok], ddof=1)) if ok.sum() > 1 else 0.0
+                for k, v in self.errors.items()}
+
+    def max_rates_overall(self) -> dict[str, float]:
+        """Largest actuator rate over all successful runs (NaN for the point-mass truth)."""
+        ok = self.ok
+        return {k: float(np.max(v[ok])) if ok.any() else float("nan")
+                for k, v in self.max_rates.items()}
+
+    def to_json_dict(self, per_run: bool = True) -> dict[str, Any]:
+        scn = self.scenario
+        out: dict[str, Any] = {
+            "schema": JSON_SCHEMA,
+            "scenario": scn.name,
+            "source": scn.source,
+            "runs": self.runs,
+            "seed": self.seed,
+            "truth": self.truth,
+            "guidance": self.guidance,
+            "dispersions": dataclasses.asdict(self.switches),
+            "settings": {"control_rate_hz": self.settings.control_rate_hz,
+                         "truth_step_s": self.settings.truth_step_s,
+                         "guidance_sample_s": scn.sample_interval_s,
+                         "cpd_gains": self.settings.cpd_gains or scn.cpd.flown,
+                         "cpd_pointing": self.settings.cpd_pointing},
+            "failures": self.n_failures,
+            "failure_reasons": self.failure_reasons(),
+            "mean": self.mean(),
+            "std": self.std(),
+            "max_rates": self.max_rates_overall(),
+            "max_rates_bound_eq47": eq47_bounds(scn),
+            "nominal_tf_s": self.nominal_tf_s,
+            "wall_time_s": self.wall_time_s,
+            "timing": {"nominal_solve_s": self.nominal_solve_s, "flight_s": self.flight_s,
+                       "flight_cpu_s": self.flight_cpu_s, "truth_steps": self.truth_steps,
+                       "flight_ms_per_truth_step": 1e3 * self.flight_s / max(self.truth_steps, 1)},
+            "workers": self.workers,
+        }
+        if per_run:
+            d = self.draws
+            out["per_run"] = [
+                {"run_id": int(d.run_id[i]), "run_seed": int(d.run_seed[i]),
+                 "failure": self.failure[i],
+                 "d_state": d.d_state[i].tolist(), "d_attitude_rad": d.d_attitude[i].tolist(),
+                 "rates0_radps": d.rates0[i].tolist(), "thrust_coeffs": d.thrust_coeffs[i].tolist(),
+                 **{k: float(self.errors[k][i]) for k in ERROR_KEYS},
+                 **{k: float(self.max_rates[k][i]) for k in RATE_KEYS}}
+                for i in range(self.runs)]
+        return _finite_or_none(out)
+
+    def write_json(self, path: str | Path, per_run: bool = True) -> None:
+        Path(path).parent.mkdir(parents=True, exist_ok=True)
+        Path(path).write_text(json.dumps(self.to_json_dict(per_run), indent=1) + "\n")
+
+
+def eq47_bounds(scn: LeoGeoScenario) -> dict[str, float]:
+    """Eq. (47): |dM_x/dt| <= 2 Mbar_xc / tau_x, |dDelta/dt| <= 2 Deltabar_c / tau (RATE_KEYS units)."""
+    cpd, act = scn.cpd, scn.actuators
+    return {"Mx_dot_Nmps": 2.0 * cpd.roll_torque_command_max_n_m / act.time_constant_x_s,
+            "Dy_dot_degps": float(np.degrees(2.0 * cpd.deflection_y_command_max_rad
+                                             / act.time_constant_y_s)),
+            "Dz_dot_degps": float(np.degrees(2.0 * cpd.deflection_z_command_max_rad
+                                             / act.time_constant_z_s))}
+
+
+def _finite_or_none(obj: Any) -> Any:
+    """NaN/inf -> None (JSON has no NaN)."""
+    if isinstance(obj, float):
+        return obj if np.isfinite(obj) else None
+    if isinstance(obj, dict):
+        return {k: _finite_or_none(v) for k, v in obj.items()}
+    if isinstance(obj, list):
+        return [_finite_or_none(v) for v in obj]
+    return obj
+
+
+@dataclasses.dataclass(frozen=True)
+class _Job:
+    scenario: LeoGeoScenario
+    reference: NominalReference
+    seed: int
+    switches: DispersionSwitches
+    settings: SilSettings
+    guidance_factory: GuidanceFactory
+
+
+_JOB: _Job | None = None     # set in the parent before the fork; read by the workers
+
+
+def _run_chunk(run_ids: NDArray[np.int64]) -> tuple[RunDraws, Any]:
+    job = _JOB
+    assert job is not None
+    draws, gens = draw_runs(job.scenario, job.seed, run_ids, job.switches)
+    guidance = job.guidance_factory(GuidanceSetup(job.scenario, job.reference, draws.run_id))
+    res = simulate(job.scenario, job.reference, draws, gens, job.switches, guidance, job.settings)
+    return draws, res
+
+
+def _merge_history(parts: list[History | None]) -> History | None:
+    parts = [p for p in parts if p is not None]
+    if not parts:
+        return None
+    n_t = max(p.t_s.size for p in parts)
+    longest = max(parts, key=lambda p: p.t_s.size)
+    data = {}
+    for key in longest.data:
+        cols = []
+        for p in parts:
+            v = p.data[key]
+            if v.shape[0] < n_t:
+                v = np.vstack([v, np.full((n_t - v.shape[0], v.shape[1]), np.nan)])
+            cols.append(v)
+        data[key] = np.hstack(cols)
+    return History(run_id=np.concatenate([p.run_id for p in parts]), t_s=longest.t_s, data=data)
+
+
+def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 1,
+                 dispersions: bool | DispersionSwitches = True, truth: str = "6dof",
+                 guidance_factory: GuidanceFactory | None = None, guidance_name: str | None = None,
+                 settings: SilSettings | None = None, run_ids: Sequence[int] | None = None,
+                 chunks: int | None = None) -> CampaignResult:
+    """Flies `runs` runs (ids 0..runs-1, or the given `run_ids` to re-fly some of them) in
+    `chunks` chunks (default: one per worker) on `workers` forked processes."""
+    global _JOB
+    from .guidance import NominalOpenLoopGuidance
+    t_start = time.perf_counter()
+    if guidance_factory is None:
+        guidance_factory = NominalOpenLoopGuidance
+    name = guidance_name or getattr(guidance_factory, "name", None) or \
+        getattr(guidance_factory, "__name__", "guidance")
+    switches = dispersions if isinstance(dispersions, DispersionSwitches) else (
+        DispersionSwitches() if dispersions else DispersionSwitches.none())
+    settings = dataclasses.replace(settings or SilSettings(), truth=truth)
+    ids = np.arange(runs, dtype=np.int64) if run_ids is None else np.asarray(run_ids, np.int64)
+    if ids.size == 0:
+        raise ValueError("no runs")
+    workers = max(1, min(int(workers), ids.size))
+    n_chunks = max(1, min(chunks or workers, ids.size))
+    t_nominal = time.perf_counter()
+    ref = nominal_reference(scenario)
+    nominal_solve_s = time.perf_counter() - t_nominal
+    cpu_start = os.times()
+    _JOB = _Job(scenario, ref, int(seed), switches, settings, guidance_factory)
+    try:
+        pieces = np.array_split(ids, n_chunks)
+        if workers == 1:
+            outs = [_run_chunk(p) for p in pieces]
+        else:
+            with mp.get_context("fork").Pool(workers) as pool:
+                outs = pool.map(_run_chunk, pieces, chunksize=1)
+    finally:
+        _JOB = None
+    cpu_end = os.times()
+    flight_cpu_s = sum(getattr(cpu_end, f) - getattr(cpu_start, f)
+                       for f in ("user", "system", "children_user", "children_system"))
+    draws = RunDraws.concatenate([d for d, _ in outs])
+    results = [r for _, r in outs]
+    errors = {k: np.concatenate([r.errors[k] for r in results]) for k in ERROR_KEYS}
+    rates = {k: np.concatenate([r.max_rates[k] for r in results]) for k in RATE_KEYS}
+    failure = [f for r in results for f in r.failure]
+    return CampaignResult(scenario=scenario, seed=int(seed), truth=truth, guidance=str(name),
+                          switches=switches, settings=settings, nominal_tf_s=ref.tf_s, draws=draws,
+                          errors=errors, max_rates=rates, failure=failure,
+                          history=_merge_history([r.history for r in results]),
+                          wall_time_s=time.perf_counter() - t_start, workers=workers,
+                          nominal_solve_s=nominal_solve_s, flight_cpu_s=flight_cpu_s,
+                          truth_steps=max(r.truth_steps for r in results))

@@ -1,0 +1,123 @@
+"""The kernel's VTD-NOG (kernel/include/ogk/nog.h) as the SIL loop's guidance, all runs at once.
+
+One ogk_nog_t per run, one shared read-only ogk_nog_table_t decoded from the flight bundle
+(`ogk tables leo-geo`, regenerated when the scenario changes). The C batch loops in
+harness/csrc/nog_batch.c cross from Python once per sampling or command time for all runs.
+A run whose guidance returns an error status at a sample is flagged failed (the kernel still
+serves its safe command, which the loop flies until the run is counted).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ogk_host.orbit_injection.scenario import LeoGeoScenario
+from ogk_host.orbit_injection.tables import ensure_nog_tables
+
+from ogk.bindings._ffi import ffi, lib
+from ogk.bindings.kernel import KernelError
+from .guidance import GuidanceSetup
+
+F64 = NDArray[np.float64]
+BoolArray = NDArray[np.bool_]
+
+#: Where the campaign keeps its generated tables (relative to the working directory).
+TABLE_DIR = Path("build/tables/leo_geo")
+
+
+def load_table(bundle: Path) -> object:
+    """Decodes and validates a bundle into a new ogk_nog_table_t (raises KernelError)."""
+    table = ffi.new("ogk_nog_table_t *")
+    data = bundle.read_bytes()
+    status = lib.ogk_nog_table_load(table, ffi.from_buffer("uint8_t[]", data), len(data))
+    if status != lib.OGK_OK:
+        raise KernelError(status, "ogk_nog_table_load")
+    return table
+
+
+def nog_config(scn: LeoGeoScenario, table: object) -> object:
+    """ogk_nog_config_t from the scenario's guidance block (the end-game bounds included)."""
+    cfg = ffi.new("ogk_nog_config_t *")
+    cfg.table = table
+    cfg.sample_interval_s = scn.sample_interval_s
+    cfg.dtf_max_s = scn.end_game.dtf_max_s
+    cfg.du_max_rad = scn.end_game.du_max_rad
+    cfg.tau_freeze = scn.end_game.freeze_time_to_go_s / table.t_f_star_s
+    return cfg
+
+
+class KernelNogGuidance:
+    """Guidance protocol of ogk.missions.orbit_injection.guidance, flown by the kernel's ogk_nog_* functions."""
+
+    name = "nog"
+
+    def __init__(self, setup: GuidanceSetup, table_dir: Path = TABLE_DIR) -> None:
+        n = setup.n_runs
+        self._table = load_table(ensure_nog_tables(table_dir))
+        self._cfg = nog_config(setup.scenario, self._table)
+        self._ctx = ffi.new("ogk_nog_t[]", n)
+        status = np.zeros(n, dtype=np.int32)
+        rc = lib.ogk_sil_nog_init_batch(self._ctx, n, self._cfg,
+                                        ffi.from_buffer("int32_t[]", status, require_writable=True))
+        if rc != lib.OGK_OK:
+            raise KernelError(rc, "ogk_nog_init")
+        self._n = n
+        self._cutoff = np.full(n, np.inf)
+        self._t_f = np.full(n, float(self._table.t_f_star_s))
+        self._tau = np.zeros(n)
+        self._flags = np.zeros(n, dtype=np.uint32)
+        self._status = np.zeros(n, dtype=np.int32)
+        self._failed = np.zeros(n, dtype=bool)
+        self._terminating = np.zeros(n, dtype=bool)
+        self.flag_history: list[NDArray[np.uint32]] = []
+
+    @property
+    def t_f_star_s(self) -> float:
+        return float(self._table.t_f_star_s)
+
+    def sample(self, t: F64, nav: F64) -> None:
+        t = np.ascontiguousarray(t, dtype=np.float64)
+        nav = np.ascontiguousarray(nav, dtype=np.float64)
+        # Runs already cut off (t frozen at their cut-off) are left alone.
+        active = np.ascontiguousarray((t < self._cutoff) & ~self._terminating, dtype=np.uint8)
+        lib.ogk_sil_nog_sample_batch(
+            self._ctx, self._n, ffi.from_buffer("uint8_t[]", active),
+            ffi.from_buffer("double[]", t), ffi.from_buffer("double[]", nav),
+            ffi.from_buffer("double[]", self._cutoff, require_writable=True),
+            ffi.from_buffer("double[]", self._t_f, require_writable=True),
+            ffi.from_buffer("double[]", self._tau, require_writable=True),
+            ffi.from_buffer("uint32_t[]", self._flags, require_writable=True),
+            ffi.from_buffer("int32_t[]", self._status, require_writable=True))
+        was = active.astype(bool)
+        self._failed |= was & (self._status != lib.OGK_OK)
+        # Eq. (32): the interval in which tau reaches 1 is the last; its cut-off time is final.
+        self._terminating |= was & ((self._flags & lib.OGK_NOG_FLAG_TERMINATING) != 0)
+        self.flag_history.append(np.where(was, self._flags, 0).astype(np.uint32))
+
+    def command(self, t: F64) -> tuple[F64, F64]:
+        t = np.ascontiguousarray(np.broadcast_to(t, (self._n,)), dtype=np.float64)
+        alpha = np.empty(self._n)
+        beta = np.empty(self._n)
+        flags = np.empty(self._n, dtype=np.uint32)
+        status = np.empty(self._n, dtype=np.int32)
+        lib.ogk_sil_nog_command_batch(
+            self._ctx, self._n, ffi.from_buffer("double[]", t),
+            ffi.from_buffer("double[]", alpha, require_writable=True),
+            ffi.from_buffer("double[]", beta, require_writable=True),
+            ffi.from_buffer("uint32_t[]", flags, require_writable=True),
+            ffi.from_buffer("int32_t[]", status, require_writable=True))
+        return alpha, beta
+
+    def cutoff_time(self) -> F64:
+        """Predicted cut-off per run, t_k + (1 - tau_k) t_f^(k); final once the terminating
+        sample (eq. 32) is taken."""
+        return self._cutoff.copy()
+
+    def failed(self) -> BoolArray:
+        return self._failed.copy()
+
+    def flight_time(self) -> F64:
+        """t_f^(k) in force per run [s]."""
+        return self._t_f.copy()

@@ -1,0 +1,1 @@
+"""Mission-independent software-in-the-loop machinery: campaign runner, failure criteria, reports."""
