@@ -30,7 +30,7 @@ from ogk_host.low_thrust_transfer.scenario import (initial_state_case, load_scen
 
 REPO = Path(__file__).resolve().parents[2]
 SCENARIO_FILE = REPO / "scenarios" / "apophis_cubesat.toml"
-NOMINAL_FILE = REPO / "host" / "ogk_host" / "apophis" / "data" / "nominal_solution.json"
+NOMINAL_FILE = REPO / "host" / "ogk_host" / "low_thrust_transfer" / "data" / "nominal_solution.json"
 
 
 # ---------------------------------------------------------------- independent reference integrator
@@ -306,7 +306,7 @@ def test_regenerate_nominal_from_scratch(scenario, stored: dict) -> None:
 
 
 # ---------------------------------------------------------------- stored perturbed optima (FI references)
-REFERENCES_FILE = REPO / "host" / "ogk_host" / "apophis" / "data" / "perturbed_optima.json"
+REFERENCES_FILE = REPO / "host" / "ogk_host" / "low_thrust_transfer" / "data" / "perturbed_optima.json"
 
 
 @pytest.mark.parametrize("label", ["kappa=-2.5", "cube vertex 8", "eta=-10%"])
