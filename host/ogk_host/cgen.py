@@ -1,4 +1,5 @@
-"""Generated C source for flight builds: a table file as `const` data for flash.
+"""Generated C source for flight builds: a table file as `const` data for flash, and flight
+configurations (filled cffi kernel structs) as `const` C99 designated initialisers.
 
 The whole CRC-checked table image is emitted byte for byte, so a flight build links exactly what an
 uplink would carry and validates it with the same loader (`ogk_nog_table_load` etc.) at start-up. A
@@ -6,11 +7,13 @@ provenance comment (generator, scenario and its SHA-256, UTC date, table CRCs) h
 """
 from __future__ import annotations
 
+import dataclasses
 import datetime as _dt
 import hashlib
 import re
 import zlib
 from pathlib import Path
+from typing import Any
 
 GENERATOR = "ogk_host.cgen/1"
 BYTES_PER_LINE = 16
@@ -50,3 +53,133 @@ def write_c_table(image: bytes, symbol: str, out_dir: str | Path, scenario: str 
                       f"const uint8_t {symbol}[{len(image)}] = {{\n" + "\n".join(rows) + "\n};\n\n"
                       f"const size_t {symbol}_len = sizeof {symbol};\n")
     return c_path, h_path
+
+
+# ---------------------------------------------------------------------------------------------------
+# Flight configurations as C99 designated initialisers, generated from the filled cffi structs.
+#
+# The generator walks `ffi.typeof(...).fields`, so a field added to a kernel struct appears in the
+# header without anyone editing this file; a field the caller did not fill is emitted with the value
+# cffi holds (zero), visibly, rather than silently left out. Doubles are printed with %.17g (enough
+# digits for any binary64 to round-trip bit-exactly; -0.0 keeps its sign); NaN and Inf are refused
+# (no kernel configuration accepts them). Pointers are emitted as NULL with a "bound at init" comment:
+# the flight code sets them (e.g. ogk_nog_config_t.table) before calling the init function.
+
+DOUBLES_PER_LINE = 3
+_INT_TYPES = {"int8_t", "int16_t", "int32_t", "int64_t", "int", "long", "long long", "short",
+              "signed char", "char", "ptrdiff_t"}
+_UINT_TYPES = {"uint8_t", "uint16_t", "uint32_t", "uint64_t", "unsigned int", "unsigned long",
+               "unsigned long long", "unsigned short", "unsigned char", "size_t", "_Bool"}
+
+
+def c_double(value: float) -> str:
+    """A C double literal that reads back as exactly `value` (%.17g, always with a '.' or exponent)."""
+    value = float(value)
+    if value != value or value in (float("inf"), float("-inf")):
+        raise ValueError(f"non-finite value {value!r} has no place in a flight configuration")
+    text = "%.17g" % value
+    if not any(ch in text for ch in ".e"):
+        text += ".0"
+    return text
+
+
+def _c_scalar(ffi: Any, ctype: Any, value: Any) -> str:
+    if ctype.kind == "enum":
+        name = ctype.elements.get(int(value))
+        return name if name is not None else f"({ctype.cname}){int(value)}"
+    if ctype.kind != "primitive":
+        raise TypeError(f"not a scalar: {ctype.cname}")
+    if ctype.cname == "double":
+        return c_double(value)
+    if ctype.cname == "float":
+        text = "%.9g" % float(value)
+        return (text if any(ch in text for ch in ".e") else text + ".0") + "f"
+    if ctype.cname in _UINT_TYPES:
+        suffix = "ull" if ffi.sizeof(ctype) > 4 else "u"
+        return f"{int(value)}{suffix}"
+    if ctype.cname in _INT_TYPES:
+        return f"{int(value)}" + ("ll" if ffi.sizeof(ctype) > 4 else "")
+    raise TypeError(f"unsupported primitive type {ctype.cname}")
+
+
+def c_initializer(ffi: Any, ctype: Any, value: Any, indent: int = 0) -> str:
+    """C99 initialiser (designated for structs) of `value`, a cffi cdata of type `ctype`."""
+    pad = "    " * (indent + 1)
+    end = "    " * indent
+    if ctype.kind == "struct":
+        lines = []
+        for name, field in ctype.fields:
+            if field.bitsize != -1 or not name:
+                raise TypeError(f"{ctype.cname}.{name}: bit-fields and anonymous members unsupported")
+            lines.append(f"{pad}.{name} = {c_initializer(ffi, field.type, getattr(value, name), indent + 1)},")
+        return "{\n" + "\n".join(lines) + f"\n{end}}}"
+    if ctype.kind == "array":
+        items = [value[i] for i in range(ctype.length)]
+        if ctype.item.kind in ("primitive", "enum", "pointer"):
+            texts = [c_initializer(ffi, ctype.item, v) for v in items]
+            rows = [", ".join(texts[i:i + DOUBLES_PER_LINE])
+                    for i in range(0, len(texts), DOUBLES_PER_LINE)]
+            return "{\n" + ",\n".join(pad + row for row in rows) + f"\n{end}}}"
+        return "{\n" + ",\n".join(pad + c_initializer(ffi, ctype.item, v, indent + 1)
+                                  for v in items) + f"\n{end}}}"
+    if ctype.kind == "pointer":
+        return "NULL /* bound at init */"
+    return _c_scalar(ffi, ctype, value)
+
+
+@dataclasses.dataclass(frozen=True)
+class ConfigItem:
+    """One `static const` object of a generated flight-configuration header."""
+
+    symbol: str          #: C identifier of the object
+    cdata: Any           #: filled cffi struct (pointer to it, as ffi.new returns) or array
+    comment: str = ""    #: one line above the object
+
+
+def _ctype_of(ffi: Any, cdata: Any) -> Any:
+    ctype = ffi.typeof(cdata)
+    return ctype.item if ctype.kind == "pointer" else ctype
+
+
+def _c_declaration(ffi: Any, item: ConfigItem) -> str:
+    ctype = _ctype_of(ffi, item.cdata)
+    value = item.cdata[0] if ffi.typeof(item.cdata).kind == "pointer" else item.cdata
+    if ctype.kind == "array":
+        decl = f"static const {ctype.item.cname} {_identifier(item.symbol)}[{ctype.length}]"
+    else:
+        decl = f"static const {ctype.cname} {_identifier(item.symbol)}"
+    comment = f"/* {item.comment} */\n" if item.comment else ""
+    return comment + f"{decl} = {c_initializer(ffi, ctype, value)};\n"
+
+
+def write_c_config(ffi: Any, items: list[ConfigItem], out_path: str | Path, scenario: str | Path,
+                   includes: tuple[str, ...], defines: dict[str, float | int] | None = None,
+                   note: str = "") -> Path:
+    """Writes a header holding each item as `static const <type> <symbol> = { .field = ... };`.
+
+    `includes` are the kernel headers declaring the types (e.g. "ogk/nog.h"); `defines` adds
+    `#define NAME value` lines (doubles with %.17g) for scalars that are not part of a kernel struct."""
+    out = Path(out_path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    scenario = Path(scenario)
+    sha = hashlib.sha256(scenario.read_bytes()).hexdigest()
+    stamp = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    guard = "OGK_GENERATED_" + re.sub(r"[^A-Za-z0-9]", "_", out.name).upper()
+    parts = [f"/* Generated by {GENERATOR} on {stamp} -- do not edit.\n"
+             f" * Scenario {scenario.name} (SHA-256 {sha}).\n"
+             " * Flight configurations as C99 designated initialisers, one field per kernel struct\n"
+             " * member (from the cffi type, so a new member cannot be forgotten); doubles in %.17g,\n"
+             " * which reads back bit-exactly. Pointers are NULL: bind them before the init call.\n"
+             + (f" * {note}\n" if note else "") + " */\n",
+             f"#ifndef {guard}\n#define {guard}\n\n#include <stddef.h>\n#include <stdint.h>\n"]
+    parts += [f'#include "{inc}"\n' for inc in includes]
+    parts.append("\n")
+    for name, value in (defines or {}).items():
+        text = c_double(value) if isinstance(value, float) else f"{int(value)}"
+        parts.append(f"#define {_identifier(name)} {text}\n")
+    if defines:
+        parts.append("\n")
+    parts += [_c_declaration(ffi, item) + "\n" for item in items]
+    parts.append(f"#endif /* {guard} */\n")
+    out.write_text("".join(parts))
+    return out
