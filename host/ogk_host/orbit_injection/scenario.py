@@ -7,18 +7,21 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import tomllib
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from ..scenario_file import Section, read_toml
+
 FloatArray = NDArray[np.float64]
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
 DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "leo_geo.toml"
-SCHEMA = "ogk.missions.orbit_injection/1"
+SCHEMA = "ogk.leo_geo/1"
+MISSION = "orbit-injection"   #: the family name of ogk.missions.registry
+LAWS = ("vtd-nog",)            #: guidance laws this family flies
 
 
 @dataclasses.dataclass(frozen=True)
@@ -132,8 +135,8 @@ class Cpd:
     braking_margin: float           #: braking-curve cap (docs/cpd.md), 0 = the paper's law
     feedforward: bool               #: feed-forward of the commanded turn rate (docs/cpd.md)
     feedforward_rate_max_rad_s: float  #: clip of the feed-forward rate
-    printed: CpdGains
-    rederived: CpdGains
+    printed: CpdGains | None        #: eq. (54) as printed; None when the scenario has none
+    rederived: CpdGains | None      #: sec. 5.3 rule; None: derived by the ground tools
 
     def braking_accels_rad_s2(self, scn: "LeoGeoScenario") -> tuple[float, float, float]:
         """ogk_cpd_config_t.approach_accel_{x,y,z}: the margin times the smallest control
@@ -210,12 +213,21 @@ class PaperResults:
 
 
 @dataclasses.dataclass(frozen=True)
+class Acceptance:
+    """Failure criterion: a run whose injection error exceeds one of these has failed."""
+
+    radius_error_m: float           #: |dr_f|
+    declination_error_rad: float    #: |dphi_f|
+    velocity_error_m_s: float       #: each of |dv_rf|, |dv_tf|, |dv_nf|
+
+
+@dataclasses.dataclass(frozen=True)
 class EndGame:
     """Guard of the VTD-NOG law near cut-off (docs/vtd-nog.md, "End-game"); kernel ogk_nog_config_t."""
 
     dtf_max_s: float          #: bound on |dt_f|
     du_max_rad: float         #: bound on the angle between corrected and nominal thrust directions
-    freeze_time_to_go_s: float  #: no new correction when the nominal time to go is below this
+    freeze_time_to_go_s: float | None  #: no new correction below this nominal time to go; None: derived
 
 
 @dataclasses.dataclass(frozen=True)
@@ -237,7 +249,9 @@ class LeoGeoScenario:
     attitude_dispersion: AttitudeDispersion
     actuator_dispersion: ActuatorDispersion
     thrust_dispersion: ThrustDispersion
-    paper: PaperResults
+    paper: PaperResults | None      #: published figures, only for the paper's own scenario
+    acceptance: Acceptance = Acceptance(1000.0, 1000.0 / 42164.0e3, 10.0)
+    path: Path | None = None        #: the file it was read from
 
     @property
     def target_circular_speed_m_s(self) -> float:
@@ -245,79 +259,172 @@ class LeoGeoScenario:
         return math.sqrt(self.mu_m3_s2 / self.target_radius_m)
 
 
-def _section(raw: dict[str, Any], cls: type, key: str) -> Any:
-    """Builds dataclass `cls` from table `key`, rejecting missing or unknown keys."""
-    table = raw[key]
-    names = {f.name for f in dataclasses.fields(cls)}
-    scalars = {k: v for k, v in table.items() if not isinstance(v, dict)}
-    missing = names - set(scalars)
-    unknown = set(scalars) - names
-    if missing or unknown:
-        raise ValueError(f"[{key}]: missing {sorted(missing)}, unknown {sorted(unknown)}")
-    return cls(**scalars)
-
-
 def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
-    """Reads scenarios/leo_geo.toml (or `path`) and checks it for consistency."""
+    """Reads scenarios/leo_geo.toml (or `path`) and checks it: every missing key, wrong type,
+    unknown key or physically impossible value is an `OgkInputError` naming file and key."""
     scenario_path = Path(path) if path is not None else DEFAULT_SCENARIO_PATH
-    with open(scenario_path, "rb") as stream:
-        raw = tomllib.load(stream)
-    if raw.get("schema") != SCHEMA:
-        raise ValueError(f"{scenario_path}: schema {raw.get('schema')!r}, expected {SCHEMA!r}")
-    orbit_raw = dict(raw["pre_ignition_orbit"])
-    if orbit_raw.pop("ignition_true_anomaly") != "free":
-        raise ValueError("only the free-ignition case (eq. 19 case B) is implemented")
-    cpd_raw = raw["cpd"]
-    cpd_scalars = {k: v for k, v in cpd_raw.items() if not isinstance(v, dict)}
-    cpd = Cpd(**cpd_scalars, printed=CpdGains(**cpd_raw["printed"]),
-              rederived=CpdGains(**cpd_raw["rederived"]))
-    if cpd.flown not in ("printed", "rederived"):
-        raise ValueError(f"[cpd] flown must be 'printed' or 'rederived', got {cpd.flown!r}")
-    paper_raw = raw["paper_results"]
-    disp = raw["dispersions"]
+    top = Section(read_toml(scenario_path), scenario_path, "")
+    top.text("schema", choices=(SCHEMA,))
+    top.text("mission", choices=(MISSION,))
+    name = top.text("name")
+    source = top.text("source", default="")
+    gravity = top.section("gravity")
+    mu = gravity.number("mu_m3_s2", positive=True)
+    gravity.finish()
+
+    thrust_s = top.section("thrust")
+    thrust = thrust_s.dataclass(Thrust, exhaust_velocity_m_s={"positive": True},
+                                initial_accel_g0={"positive": True},
+                                standard_gravity_m_s2={"positive": True},
+                                initial_mass_kg={"positive": True})
+    thrust_s.finish()
+
+    orbit_s = top.section("pre_ignition_orbit")
+    orbit_s.text("ignition_true_anomaly", choices=("free",))  # eq. 19 case B only
+    pre = orbit_s.dataclass(PreIgnitionOrbit, semi_major_axis_m={"positive": True},
+                            eccentricity={"lo": 0.0, "hi": 0.99},
+                            leo_altitude_m={"nonnegative": True},
+                            earth_radius_m={"positive": True})
+    orbit_s.finish()
+
+    target_s = top.section("target_orbit")
+    target_radius = target_s.number("radius_m", positive=True)
+    target_s.finish()
+    perigee = pre.semi_major_axis_m * (1.0 - pre.eccentricity)
+    apogee = pre.semi_major_axis_m * (1.0 + pre.eccentricity)
+    if not target_radius > perigee:
+        raise target_s.error("radius_m", f"target radius {target_radius:.6g} m is not above the "
+                             f"pre-ignition perigee {perigee:.6g} m")
+    if apogee < target_radius * 0.5:
+        raise target_s.error("radius_m", f"target radius {target_radius:.6g} m is more than twice "
+                             f"the pre-ignition apogee {apogee:.6g} m: outside the documented envelope")
+
+    mp_s = top.section("mass_properties")
+    mass_properties = mp_s.dataclass(MassProperties, tvc_arm_m={"positive": True},
+                                     inertia_x_kg_m2={"positive": True},
+                                     inertia_y_kg_m2={"positive": True},
+                                     inertia_z_kg_m2={"positive": True})
+    mp_s.finish()
+    act_s = top.section("actuators")
+    actuators = act_s.dataclass(Actuators, **{f.name: {"positive": True}
+                                              for f in dataclasses.fields(Actuators)})
+    act_s.finish()
+
+    guid_s = top.section("guidance")
+    guid_s.text("law", choices=LAWS)
+    sample_interval = guid_s.number("sample_interval_s", positive=True)
+    eg_s = guid_s.section("end_game")
+    end_game = EndGame(dtf_max_s=eg_s.number("dtf_max_s", positive=True),
+                       du_max_rad=eg_s.number("du_max_rad", positive=True, hi=math.pi),
+                       freeze_time_to_go_s=eg_s.number("freeze_time_to_go_s", None,
+                                                       nonnegative=True))
+    eg_s.finish()
+    guid_s.finish()
+
+    cpd = _read_cpd(top.section("cpd"))
+    disp = top.section("dispersions")
+    isd_s, att_s, actd_s, thr_s = (disp.section(k) for k in
+                                   ("initial_state", "attitude", "actuators", "thrust"))
+    nonneg = {"nonnegative": True}
+    initial_state = isd_s.dataclass(InitialStateDispersion, **{
+        f.name: nonneg for f in dataclasses.fields(InitialStateDispersion)})
+    attitude = att_s.dataclass(AttitudeDispersion, **{
+        f.name: nonneg for f in dataclasses.fields(AttitudeDispersion)})
+    actuator = actd_s.dataclass(ActuatorDispersion, **{
+        f.name: nonneg for f in dataclasses.fields(ActuatorDispersion)})
+    thrust_disp = ThrustDispersion(harmonics=thr_s.integer("harmonics", lo=0, hi=50),
+                                   coefficient_sigma=thr_s.number("coefficient_sigma",
+                                                                  nonnegative=True))
+    for sec in (isd_s, att_s, actd_s, thr_s, disp):
+        sec.finish()
+
+    if cpd.rederived is None:  # sec. 5.3 rule with this scenario's thrust and inertia
+        cpd = dataclasses.replace(cpd, rederived=design_rule_gains(cpd, thrust, mass_properties))
+    acceptance = _read_acceptance(top.section("acceptance", optional=True), target_radius)
+    paper = _read_paper(top.section("paper_results")) if top.has("paper_results") else None
+    top.finish()
+
     scenario = LeoGeoScenario(
-        name=raw["name"],
-        source=raw["source"],
-        mu_m3_s2=float(raw["gravity"]["mu_m3_s2"]),
-        thrust=_section(raw, Thrust, "thrust"),
-        pre_ignition=PreIgnitionOrbit(**orbit_raw),
-        target_radius_m=float(raw["target_orbit"]["radius_m"]),
-        mass_properties=_section(raw, MassProperties, "mass_properties"),
-        actuators=_section(raw, Actuators, "actuators"),
-        sample_interval_s=float(raw["guidance"]["sample_interval_s"]),
-        end_game=_section(raw["guidance"], EndGame, "end_game"),
-        cpd=cpd,
-        initial_state_dispersion=_section(disp, InitialStateDispersion, "initial_state"),
-        attitude_dispersion=_section(disp, AttitudeDispersion, "attitude"),
-        actuator_dispersion=_section(disp, ActuatorDispersion, "actuators"),
-        thrust_dispersion=_section(disp, ThrustDispersion, "thrust"),
-        paper=PaperResults(
-            min_time_s=float(paper_raw["min_time_s"]),
-            ignition_true_anomaly_rad=float(paper_raw["ignition_true_anomaly_rad"]),
-            monte_carlo_runs=int(paper_raw["monte_carlo_runs"]),
-            table6_final_errors=tuple(paper_raw["table6_final_errors"]),
-            table7_mean=tuple(paper_raw["table7_mean"]),
-            table7_sigma=tuple(paper_raw["table7_sigma"])),
-    )
-    _check(scenario)
+        name=name, source=source, mu_m3_s2=mu, thrust=thrust, pre_ignition=pre,
+        target_radius_m=target_radius, mass_properties=mass_properties, actuators=actuators,
+        sample_interval_s=sample_interval, end_game=end_game, cpd=cpd,
+        initial_state_dispersion=initial_state, attitude_dispersion=attitude,
+        actuator_dispersion=actuator, thrust_dispersion=thrust_disp, paper=paper,
+        acceptance=acceptance, path=Path(scenario_path))
+    _check(scenario, top)
     return scenario
 
 
-def _check(scn: LeoGeoScenario) -> None:
-    """Physical sanity checks; bad data is rejected with a message naming the key."""
-    positive = {
-        "gravity.mu_m3_s2": scn.mu_m3_s2,
-        "thrust.exhaust_velocity_m_s": scn.thrust.exhaust_velocity_m_s,
-        "thrust.initial_accel_g0": scn.thrust.initial_accel_g0,
-        "thrust.initial_mass_kg": scn.thrust.initial_mass_kg,
-        "pre_ignition_orbit.semi_major_axis_m": scn.pre_ignition.semi_major_axis_m,
-        "target_orbit.radius_m": scn.target_radius_m,
-        "guidance.sample_interval_s": scn.sample_interval_s,
-        "guidance.end_game.dtf_max_s": scn.end_game.dtf_max_s,
-        "guidance.end_game.du_max_rad": scn.end_game.du_max_rad,
-    }
-    for key, value in positive.items():
-        if not value > 0.0:
-            raise ValueError(f"{key} must be > 0, got {value}")
-    if not 0.0 <= scn.pre_ignition.eccentricity < 1.0:
-        raise ValueError("pre_ignition_orbit.eccentricity must be in [0, 1)")
+def design_rule_gains(cpd: Cpd, thrust: Thrust, mp: MassProperties) -> CpdGains:
+    """Sec. 5.3: k_p = omega_n^2 / G_min, k_d = 2 zeta omega_n / G_min with G_x = 1 / I_x0 and
+    G_y = G_z = T l0 / I_y0 (l smallest and I_y largest at ignition)."""
+    w, z = cpd.natural_frequency_rad_s, cpd.damping_ratio
+    g_x = 1.0 / mp.inertia_x_kg_m2
+    g_y = thrust.thrust_n * mp.tvc_arm_m / max(mp.inertia_y_kg_m2, mp.inertia_z_kg_m2)
+    return CpdGains(gain_roll_g_per_kg_m2=g_x, gain_pitch_yaw_g_s2=g_y,
+                    kp_roll_n_m_per_rad=w * w / g_x, kd_roll_n_m_s_per_rad=2.0 * z * w / g_x,
+                    kp_pitch_yaw=w * w / g_y, kd_pitch_yaw_s=2.0 * z * w / g_y)
+
+
+def _read_cpd(sec: Section) -> Cpd:
+    gains = {}
+    for key in ("printed", "rederived"):
+        if sec.has(key):
+            g = sec.section(key)
+            gains[key] = g.dataclass(CpdGains, **{f.name: {"positive": True}
+                                                  for f in dataclasses.fields(CpdGains)})
+            g.finish()
+        else:
+            gains[key] = None
+    flown = sec.text("flown", default="rederived", choices=("printed", "rederived"))
+    if flown == "printed" and gains["printed"] is None:
+        raise sec.error("flown", "is 'printed' but there is no [cpd.printed] table")
+    cpd = Cpd(natural_frequency_rad_s=sec.number("natural_frequency_rad_s", positive=True),
+              damping_ratio=sec.number("damping_ratio", positive=True),
+              roll_command_rad=sec.number("roll_command_rad"),
+              roll_torque_command_max_n_m=sec.number("roll_torque_command_max_n_m", positive=True),
+              deflection_y_command_max_rad=sec.number("deflection_y_command_max_rad", positive=True),
+              deflection_z_command_max_rad=sec.number("deflection_z_command_max_rad", positive=True),
+              roll_torque_rate_bound_n_m_s=sec.number("roll_torque_rate_bound_n_m_s", positive=True),
+              deflection_rate_bound_rad_s=sec.number("deflection_rate_bound_rad_s", positive=True),
+              flown=flown,
+              braking_margin=sec.number("braking_margin", nonnegative=True, hi=1.0),
+              feedforward=sec.flag("feedforward"),
+              feedforward_rate_max_rad_s=sec.number("feedforward_rate_max_rad_s", positive=True),
+              printed=gains["printed"], rederived=gains["rederived"])
+    sec.finish()
+    return cpd
+
+
+def _read_acceptance(sec: Section, target_radius_m: float) -> Acceptance:
+    """Failure criterion of a run (docs/sil.md): |error| above these is a failed injection.
+    Defaults 1 km / 10 m/s; the declination tolerance defaults to the radius one at R_f."""
+    radius = sec.number("radius_error_m", 1000.0, positive=True)
+    acc = Acceptance(
+        radius_error_m=radius,
+        declination_error_rad=sec.number("declination_error_rad", radius / target_radius_m,
+                                         positive=True),
+        velocity_error_m_s=sec.number("velocity_error_m_s", 10.0, positive=True))
+    sec.finish()
+    return acc
+
+
+def _read_paper(sec: Section) -> PaperResults:
+    paper = PaperResults(
+        min_time_s=sec.number("min_time_s", positive=True),
+        ignition_true_anomaly_rad=sec.number("ignition_true_anomaly_rad"),
+        monte_carlo_runs=sec.integer("monte_carlo_runs", lo=1),
+        table6_final_errors=sec.numbers("table6_final_errors", 6),
+        table7_mean=sec.numbers("table7_mean", 6),
+        table7_sigma=sec.numbers("table7_sigma", 6))
+    sec.finish()
+    return paper
+
+
+def _check(scn: LeoGeoScenario, top: Section) -> None:
+    """Cross-key physics: the propellant must last well beyond any plausible burn."""
+    burnout_s = scn.thrust.exhaust_velocity_m_s / scn.thrust.initial_accel_m_s2
+    if burnout_s <= 4.0 * scn.sample_interval_s:
+        raise top.section("guidance").error(
+            "sample_interval_s", f"{scn.sample_interval_s:g} s is too long for a burn that "
+            f"exhausts the whole mass in {burnout_s:.3g} s")

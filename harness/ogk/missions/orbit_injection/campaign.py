@@ -28,7 +28,7 @@ from .nominal_ref import NominalReference, nominal_reference
 from .sil import ERROR_KEYS, RATE_KEYS, History, SilSettings, simulate
 
 F64 = NDArray[np.float64]
-JSON_SCHEMA = "ogk.missions.orbit_injection.mc/1"
+JSON_SCHEMA = "ogk.leo_geo.mc/1"
 
 
 @dataclasses.dataclass
