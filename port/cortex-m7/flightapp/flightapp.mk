@@ -1,0 +1,72 @@
+# port/cortex-m7/flightapp/flightapp.mk -- the flight application on the emulated Cortex-M7
+# (docs/flight-integration.md). Included by the top-level Makefile after cortex-m7.mk; uses its
+# STRICT, KINC, B, VENV, FFI_STAMP and cortex-m7.mk's ARM_* variables.
+#
+#   make test-flight-app    generate the LEO-to-GEO table image and flight configuration header
+#                           (ogk tables leo-geo), build build/arm/flightapp/flightapp.elf, run it on
+#                           QEMU; fails unless it exits 0 and prints "flightapp: PASS"
+#   make flight-app-size    flash / RAM of the ELF and of each object, largest symbols
+#   make flight-app-stack   worst-case stack of the ogk_flight_* entry points (gcc call graphs)
+#
+# Until the lead includes it: make -f Makefile -f port/cortex-m7/flightapp/flightapp.mk test-flight-app
+
+FA_DIR := $(ARM_PORT)/flightapp
+FA_B := $(ARM_B)/flightapp
+FA_TABLES := $(B)/tables/leo_geo
+FA_GEN := $(FA_TABLES)/c
+FA_GEN_C := $(FA_GEN)/ogk_leo_geo_nog_bundle.c
+FA_GEN_H := $(FA_GEN)/ogk_leo_geo_nog_bundle.h $(FA_GEN)/ogk_leo_geo_flight_config.h \
+  $(FA_GEN)/ogk_leo_geo_sil_plant.h
+FA_SRC := $(FA_DIR)/ogk_flight.c $(FA_DIR)/main.c
+FA_HDR := $(FA_DIR)/ogk_flight.h
+
+# The flight flags of the kernel (STRICT, -O2, per-function sections, -fstack-usage) for the
+# application and the generated table image as well.
+FA_CFLAGS := $(STRICT) $(ARM_CPU) -O2 -g -ffunction-sections -fdata-sections -fstack-usage \
+  $(KINC) -I$(FA_GEN) -I$(FA_DIR)
+FA_OBJ := $(FA_B)/ogk_flight.o $(FA_B)/main.o $(FA_B)/ogk_leo_geo_nog_bundle.o
+# Runtime: start-up (vectors, reset, FPU/MPU, semihosting exit) and the port counter; no test runner.
+FA_RT_OBJ := $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o
+FA_ELF := $(FA_B)/flightapp.elf
+
+.PHONY: test-flight-app flight-app flight-app-size flight-app-stack
+
+# Generated sources: the CRC'd table image as const C, the const configurations, the plant constants.
+$(FA_B)/tables.stamp: $(VENV)/.installed $(FFI_STAMP) scenarios/leo_geo.toml host/ogk_host/cgen.py \
+  harness/ogk/cli/cmd_tables.py $(wildcard host/ogk_host/orbit_injection/*.py)
+	$(VENV)/bin/ogk tables leo-geo --out $(FA_TABLES)
+	@mkdir -p $(@D)
+	@touch $@
+$(FA_GEN_C) $(FA_GEN_H): $(FA_B)/tables.stamp
+
+$(FA_B)/%.o: $(FA_DIR)/%.c $(FA_HDR) $(FA_GEN_H) $(KHDR) | apt
+	@mkdir -p $(@D)
+	$(ARM_CC) $(FA_CFLAGS) -c $< -o $@
+$(FA_B)/ogk_leo_geo_nog_bundle.o: $(FA_GEN_C) $(FA_GEN_H) | apt
+	@mkdir -p $(@D)
+	$(ARM_CC) $(FA_CFLAGS) -c $< -o $@
+
+$(FA_ELF): $(FA_OBJ) $(FA_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
+	$(ARM_CC) $(FA_OBJ) $(FA_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDFLAGS) -Wl,-Map=$(@:.elf=.map) \
+	  $(ARM_LDLIBS) -o $@
+
+flight-app: $(FA_ELF)
+
+test-flight-app: $(FA_ELF)
+	@$(ARM_PORT)/run_qemu.sh $(FA_ELF) $(ARM_TIMEOUT) > $(FA_B)/flightapp.log 2>&1; rc=$$?; \
+	cat $(FA_B)/flightapp.log; \
+	if [ $$rc -ne 0 ] || ! grep -q '^flightapp: PASS' $(FA_B)/flightapp.log; then \
+	  echo "test-flight-app: FAILED (qemu exit $$rc)"; exit 1; fi
+
+flight-app-size: $(FA_ELF)
+	arm-none-eabi-size -A $(FA_ELF) | grep -E '^(section|\.vectors|\.text|\.rodata|\.data|\.bss|\.heap|\.stack|Total)'
+	arm-none-eabi-size -t $(FA_OBJ) $(FA_RT_OBJ) $(ARM_KOBJ)
+	arm-none-eabi-nm --size-sort -S -r $(FA_ELF) | head -15
+
+# Call graphs of the application sources, with the kernel's ($(ARM_CI) from cortex-m7.mk).
+FA_CI := $(FA_B)/callgraph/ogk_flight.ci
+$(FA_B)/callgraph/%.ci: $(FA_DIR)/%.c $(FA_HDR) $(FA_GEN_H) $(KHDR) | apt
+	@mkdir -p $(@D)
+	$(ARM_CC) $(FA_CFLAGS) -fcallgraph-info=su -dumpdir $(@D)/ -dumpbase $* -c $< -o $(@D)/$*.o
+flight-app-stack: $(FA_CI) $(ARM_CI)
+	python3 $(ARM_PORT)/stack_report.py $(FA_CI) $(ARM_CI) | grep -E '^(entry point|ogk_flight_|ogk_nog_|ogk_cpd_step|ogk_cpd_init|outside|stack check)'
