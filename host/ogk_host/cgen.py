@@ -27,7 +27,8 @@ def _identifier(symbol: str) -> str:
 
 def write_c_table(image: bytes, symbol: str, out_dir: str | Path, scenario: str | Path,
                   note: str = "") -> tuple[Path, Path]:
-    """Writes <out_dir>/<symbol>.c and .h holding `const uint8_t <symbol>[]` and `<symbol>_len`."""
+    """Writes <out_dir>/<symbol>.c and .h holding `const uint8_t <symbol>[]` (8-byte aligned) and
+    `<symbol>_len`."""
     symbol = _identifier(symbol)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -49,8 +50,18 @@ def write_c_table(image: bytes, symbol: str, out_dir: str | Path, scenario: str 
         chunk = image[start:start + BYTES_PER_LINE]
         rows.append("    " + ", ".join(f"0x{b:02X}" for b in chunk) + ",")
     c_path = out / f"{symbol}.c"
-    c_path.write_text(header + f'#include "{symbol}.h"\n\n'
-                      f"const uint8_t {symbol}[{len(image)}] = {{\n" + "\n".join(rows) + "\n};\n\n"
+    # 8-byte alignment: the payload (offset 48) is then a valid array of doubles, so the kernel can
+    # read the table in place from flash (ogk_nog_table_view: OGK_E_ALIGN otherwise).
+    align = ("#if defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L\n"
+             "#define OGK_GENERATED_ALIGN8 _Alignas(8)\n"
+             "#elif defined(__GNUC__)\n"
+             "#define OGK_GENERATED_ALIGN8 __attribute__((aligned(8)))\n"
+             "#else\n"
+             "#error \"align this table to 8 bytes (in-place reading needs it)\"\n"
+             "#endif\n\n")
+    c_path.write_text(header + f'#include "{symbol}.h"\n\n' + align +
+                      f"OGK_GENERATED_ALIGN8 const uint8_t {symbol}[{len(image)}] = {{\n"
+                      + "\n".join(rows) + "\n};\n\n"
                       f"const size_t {symbol}_len = sizeof {symbol};\n")
     return c_path, h_path
 

@@ -4,7 +4,8 @@
 #
 #   make test-flight-app    generate the LEO-to-GEO table image and flight configuration header
 #                           (ogk tables leo-geo), build build/arm/flightapp/flightapp.elf, run it on
-#                           QEMU; fails unless it exits 0 and prints "flightapp: PASS"
+#                           QEMU; fails unless it exits 0 and prints "flightapp: PASS", and unless
+#                           the same app built for the host gives the same injection errors
 #   make flight-app-size    flash / RAM of the ELF and of each object, largest symbols
 #   make flight-app-stack   worst-case stack of the ogk_flight_* entry points (gcc call graphs)
 #
@@ -52,11 +53,21 @@ $(FA_ELF): $(FA_OBJ) $(FA_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
 
 flight-app: $(FA_ELF)
 
-test-flight-app: $(FA_ELF)
+# The same application for the host (gcc x86-64, glibc libm, the host kernel objects): its
+# injection errors must agree with the Cortex-M7 run (compare_runs.py).
+FA_HOST := $(B)/host/flightapp/flightapp
+$(FA_HOST): $(FA_SRC) $(FA_HDR) $(FA_GEN_C) $(FA_GEN_H) $(HOST_OBJ) | apt
+	@mkdir -p $(@D)
+	gcc $(STRICT) -O2 $(KINC) -I$(FA_GEN) -I$(FA_DIR) $(FA_SRC) $(FA_GEN_C) $(HOST_OBJ) -lm -o $@
+
+test-flight-app: $(FA_ELF) $(FA_HOST)
 	@$(ARM_PORT)/run_qemu.sh $(FA_ELF) $(ARM_TIMEOUT) > $(FA_B)/flightapp.log 2>&1; rc=$$?; \
 	cat $(FA_B)/flightapp.log; \
 	if [ $$rc -ne 0 ] || ! grep -q '^flightapp: PASS' $(FA_B)/flightapp.log; then \
-	  echo "test-flight-app: FAILED (qemu exit $$rc)"; exit 1; fi
+	  echo "test-flight-app: FAILED (qemu exit $$rc)"; exit 1; fi; \
+	$(FA_HOST) > $(FA_B)/flightapp_host.log 2>&1 || { cat $(FA_B)/flightapp_host.log; \
+	  echo "test-flight-app: FAILED (host build)"; exit 1; }; \
+	python3 $(FA_DIR)/compare_runs.py $(FA_B)/flightapp.log $(FA_B)/flightapp_host.log
 
 flight-app-size: $(FA_ELF)
 	arm-none-eabi-size -A $(FA_ELF) | grep -E '^(section|\.vectors|\.text|\.rodata|\.data|\.bss|\.heap|\.stack|Total)'

@@ -31,11 +31,12 @@
 #define MAX_TICKS 20000u     /* 400 s: far beyond any cut-off */
 #define DROPOUT_SAMPLE 5u    /* run B: the 6th sample (t = 10 s) gets a NaN radius */
 
-/* Tolerances on the injection errors at cut-off, w.r.t. eq. (20) (point-mass, no thrust error):
- * about 10x the errors measured in both runs, far below Table 7's sigmas. */
-#define TOL_DR_M 10.0
-#define TOL_DV_MPS 0.1
-#define TOL_DPHI_RAD 1.0e-6
+/* Tolerances on the injection errors at cut-off w.r.t. eq. (20), [dr m, dphi rad, dv_r, dv_t, dv_n
+ * m/s]. A (nominal start, no thrust error): ~10x the errors measured (7e-5 m, 8e-5 m/s). B (+1 sigma
+ * on five components at once, a navigation dropout): the 1-sigma spread of the paper's Monte Carlo
+ * (Table 7: 4.26 m, 2.9e-6 deg, 3.10, 2.07, 1.98 m/s); measured 0.10 m, 0.49, -1.08, 0.46 m/s. */
+static const double TOL_A[5] = {1.0e-3, 1.0e-9, 1.0e-3, 1.0e-3, 1.0e-3};
+static const double TOL_B[5] = {4.26, 5.06e-8, 3.10, 2.07, 1.98};
 
 /* The flight contexts live in static storage (the link checks their size). */
 static ogk_flight_t g_flight;
@@ -219,21 +220,24 @@ static int fly(const char *name, const double *dx0, int dropout, burn_result *re
     return 1;
 }
 
-static void check_burn(const char *name, int flown, const burn_result *r, uint32_t nonok_expected)
+static void check_burn(const char *name, int flown, const burn_result *r, const double *tol,
+                       uint32_t nonok_expected)
 {
-    char what[96];
+    char what[112];
     (void)snprintf(what, sizeof what, "%s flew to cut-off", name);
     check(flown, what);
     if (!flown) {
         return;
     }
-    (void)snprintf(what, sizeof what, "%s |dr_f| <= %g m", name, TOL_DR_M);
-    check(fabs(r->err[0]) <= TOL_DR_M, what);
-    (void)snprintf(what, sizeof what, "%s |dphi_f| <= %g rad", name, TOL_DPHI_RAD);
-    check(fabs(r->err[1]) <= TOL_DPHI_RAD, what);
-    (void)snprintf(what, sizeof what, "%s |dv_f| <= %g m/s", name, TOL_DV_MPS);
-    check(fabs(r->err[2]) <= TOL_DV_MPS && fabs(r->err[3]) <= TOL_DV_MPS &&
-          fabs(r->err[4]) <= TOL_DV_MPS, what);
+    {
+        static const char *const names[5] = {"dr_f", "dphi_f", "dv_rf", "dv_tf", "dv_nf"};
+        unsigned i;
+        for (i = 0u; i < 5u; ++i) {
+            (void)snprintf(what, sizeof what, "%s |%s| = %.3e <= %.3e", name, names[i],
+                           fabs(r->err[i]), tol[i]);
+            check(fabs(r->err[i]) <= tol[i], what);
+        }
+    }
     (void)snprintf(what, sizeof what, "%s non-OK samples == %u", name, (unsigned)nonok_expected);
     check(r->nonok_sample == nonok_expected, what);
     (void)snprintf(what, sizeof what, "%s CPD and command all OK", name);
@@ -327,18 +331,20 @@ int main(void)
 
     printf("flightapp: ogk VTD-NOG + CPD, LEO-to-GEO, table image %u bytes (const, flash)\n",
            (unsigned)ogk_leo_geo_nog_bundle_len);
-    printf("flightapp: sizeof ogk_nog_table_t %u, ogk_nog_t %u, ogk_cpd_t %u, ogk_flight_t %u bytes\n",
-           (unsigned)sizeof(ogk_nog_table_t), (unsigned)sizeof(ogk_nog_t),
+    printf("flightapp: table %s; sizeof table %u, ogk_nog_t %u, ogk_cpd_t %u, ogk_flight_t %u bytes\n",
+           OGK_FLIGHT_TABLE_IN_PLACE ? "read in place from flash (ogk_nog_table_view)"
+                                     : "decoded into RAM (ogk_nog_table_load)",
+           (unsigned)sizeof(ogk_flight_table_t), (unsigned)sizeof(ogk_nog_t),
            (unsigned)sizeof(ogk_cpd_t), (unsigned)sizeof(ogk_flight_t));
     printf("flightapp: sizeof ogk_nog_config_t %u, ogk_cpd_config_t %u, ogk_nog_sample_t %u, "
-           "ogk_cpd_output_t %u bytes\n", (unsigned)sizeof(ogk_nog_config_t),
+           "ogk_cpd_output_t %u bytes, image at %p\n", (unsigned)sizeof(ogk_nog_config_t),
            (unsigned)sizeof(ogk_cpd_config_t), (unsigned)sizeof(ogk_nog_sample_t),
-           (unsigned)sizeof(ogk_cpd_output_t));
+           (unsigned)sizeof(ogk_cpd_output_t), (const void *)ogk_leo_geo_nog_bundle);
 
     flown = fly("A nominal", zero, 0, &ra);
-    check_burn("A", flown, &ra, 0u);
+    check_burn("A", flown, &ra, TOL_A, 0u);
     flown = fly("B +1 sigma, nav dropout", sigma1, 1, &rb);
-    check_burn("B", flown, &rb, 1u);
+    check_burn("B", flown, &rb, TOL_B, 1u);
     error_reactions();
 
     printf("flightapp: %s: %u samples, %u control ticks in 2 burns, %u expected error statuses "

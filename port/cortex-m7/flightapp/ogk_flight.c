@@ -79,12 +79,21 @@ ogk_flight_action ogk_flight_init(ogk_flight_t *f, const uint8_t *image, size_t 
         return OGK_FLIGHT_ABORT;
     }
     f->engine_on = 0u;
+#if OGK_FLIGHT_TABLE_IN_PLACE
+    a = count(f, OGK_FLIGHT_CALL_TABLE, ogk_nog_table_view(&f->table, image, len));
+#else
     a = count(f, OGK_FLIGHT_CALL_TABLE, ogk_nog_table_load(&f->table, image, len));
+#endif
     if (a != OGK_FLIGHT_FLY) {
         return a;
     }
     f->nog_cfg = *nog_cfg;
+#if OGK_FLIGHT_TABLE_IN_PLACE
+    f->nog_cfg.table = NULL;
+    f->nog_cfg.view = &f->table;
+#else
     f->nog_cfg.table = &f->table;
+#endif
     f->cpd_cfg = *cpd_cfg;
     a = count(f, OGK_FLIGHT_CALL_INIT, ogk_nog_init(&f->nog, &f->nog_cfg));
     if (a != OGK_FLIGHT_FLY) {
@@ -159,7 +168,7 @@ ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flig
         memset(&f->act, 0, sizeof f->act);
         return a;
     }
-    if ((f->cmd.flags & OGK_NOG_FLAG_CUTOFF) != 0u) {
+    if (OGK_FLIGHT_CMD_CUTOFF(f->cmd)) {
         f->engine_on = 0u;
     }
     in.psi = att->psi;

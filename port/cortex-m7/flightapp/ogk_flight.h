@@ -26,6 +26,24 @@
 #include "ogk/nog.h"
 #include "ogk/status.h"
 
+/* Kernel API in transition (issue 7): the in-place table view (ogk_nog_table_view, no RAM copy of
+ * the table) and the shared thrust command (ogk/types.h) are used when the kernel headers have them;
+ * otherwise the table is decoded into RAM by ogk_nog_table_load (268 KiB). */
+#if defined(OGK_NOG_VIEW_MARKER)
+#define OGK_FLIGHT_TABLE_IN_PLACE 1
+typedef ogk_nog_table_view_t ogk_flight_table_t;
+#else
+#define OGK_FLIGHT_TABLE_IN_PLACE 0
+typedef ogk_nog_table_t ogk_flight_table_t;
+#endif
+#if defined(OGK_THRUST_FLAG_ENGINE_ON)
+typedef ogk_thrust_cmd_t ogk_flight_cmd_t;
+#define OGK_FLIGHT_CMD_CUTOFF(c) (((c).flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u)
+#else
+typedef ogk_nog_command_t ogk_flight_cmd_t;
+#define OGK_FLIGHT_CMD_CUTOFF(c) (((c).flags & OGK_NOG_FLAG_CUTOFF) != 0u)
+#endif
+
 /* What the application does after a kernel call (docs/flight-integration.md, "Reactions"). */
 typedef enum {
     OGK_FLIGHT_FLY = 0,          /* status OK: fly the output */
@@ -53,13 +71,14 @@ typedef struct {
 } ogk_flight_att_t;
 
 typedef struct {
-    ogk_nog_table_t table;       /* decoded, validated table (RAM copy of the flash image) */
+    ogk_flight_table_t table;    /* validated table: a view into the flash image (in place) or its
+                                    decoded RAM copy (ogk_nog_table_load) */
     ogk_nog_config_t nog_cfg;    /* the const configuration with .table bound */
     ogk_cpd_config_t cpd_cfg;    /* the const configuration (kept for a re-init) */
     ogk_nog_t nog;
     ogk_cpd_t cpd;
     ogk_nog_sample_t sample;     /* last guidance sample */
-    ogk_nog_command_t cmd;       /* last thrust-direction command */
+    ogk_flight_cmd_t cmd;        /* last thrust-direction command */
     ogk_cpd_output_t act;        /* last actuator command: apply until the next tick */
     double t_cutoff_s;           /* [s] predicted (final once terminating) engine cut-off */
     uint32_t ticks_per_sample;   /* [-] control ticks per guidance sample (Delta t_S x rate) */
@@ -73,7 +92,7 @@ typedef struct {
 /* The reaction to status st of call: the one place the application's policy is written. */
 ogk_flight_action ogk_flight_reaction(ogk_flight_call call, ogk_status st);
 
-/* Loads and validates the table image, binds it to a copy of *nog_cfg, initialises NOG and CPD.
+/* Validates the table image (in place, or decoded into f->table), binds it to a copy of *nog_cfg, initialises NOG and CPD.
  * control_rate_hz: rate of ogk_flight_control; Delta t_S x rate must be a whole number of ticks.
  * Returns FLY; RELOAD_TABLE when the image is rejected (call again with a redundant copy or a
  * re-uplinked image); ABORT for a rejected configuration (do not ignite). */
