@@ -105,7 +105,11 @@ $(FFI_STAMP): $(KSRC) $(KHDR) $(wildcard harness/csrc/*) harness/build_ffi.py $(
 .PHONY: ffi
 ffi: $(FFI_STAMP)
 
-.PHONY: test-python test-slow
+.PHONY: test-python test-slow test-imports
+# The import contract of docs/architecture.md (pyproject.toml [tool.importlinter]).
+test-imports: $(VENV)/.installed
+	$(VENV)/bin/lint-imports --no-cache
+
 test-python: $(FFI_STAMP)
 	$(VPY) -m pytest -q -m "not slow" tests/python
 
@@ -126,6 +130,7 @@ test: deps
 	$(MAKE) test-unit-arm
 	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack
 	$(MAKE) test-eigen
+	$(MAKE) test-imports
 	$(MAKE) test-python
 
 # The main job: LEO-to-GEO VTD-NOG + CPD, ground tables then a 100-run SIL

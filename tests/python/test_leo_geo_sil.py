@@ -3,6 +3,7 @@ reproducibility across worker counts and chunking, re-flying one run, failure ac
 in the loop (attitude follows the command, eq. 47 rate bounds), JSON/report and the `ogk mc` command."""
 from __future__ import annotations
 
+import dataclasses
 import functools
 import json
 import math
@@ -10,19 +11,20 @@ import math
 import numpy as np
 import pytest
 
-from ogk.missions.orbit_injection import paper_tables
 from ogk.missions.orbit_injection.campaign import eq47_bounds, run_campaign
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs, run_seed
 from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
 from ogk.missions.orbit_injection.report import format_report
 from ogk.missions.orbit_injection.sil import ERROR_KEYS, RATE_KEYS, SilSettings, simulate
-from ogk_host.orbit_injection.scenario import load_scenario
+from ogk_host.orbit_injection.scenario import Acceptance, load_scenario
 
 
 @pytest.fixture(scope="module")
 def scn():
-    return load_scenario()
+    """The paper's scenario with acceptance tolerances opened up: the 12 s SHORT burns below test
+    the machinery, not the injection (they miss GEO by thousands of km)."""
+    return dataclasses.replace(load_scenario(), acceptance=Acceptance(1e12, 10.0, 1e9))
 
 
 @pytest.fixture(scope="module")
@@ -130,6 +132,23 @@ def test_failures_are_counted_with_reasons(scn):
     json.dumps(doc, allow_nan=False)                      # NaN written as null
 
 
+def test_runs_beyond_the_scenario_tolerances_fail_with_their_reason(tmp_path):
+    """The stated criterion: the paper's scenario (1 km, 10 m/s) fails every 12 s burn (it ends near
+    the right radius but ~1.3 km/s short) and says so per run in the report and the JSON; the
+    open-loop nominal passes it."""
+    strict = load_scenario()
+    res = run_campaign(strict, runs=3, seed=8, truth="point-mass", guidance_factory=SHORT,
+                       dispersions=False)
+    assert res.n_failures == 3
+    assert all(f.startswith("tolerance: |dvt_f_mps| = ") and f.endswith("> 10") for f in res.failure)
+    doc = res.to_json_dict()
+    assert doc["failures"] == 3 and [r["run_id"] for r in doc["failed_runs"]] == [0, 1, 2]
+    assert doc["tolerances"]["dr_f_m"] == 1000.0 and doc["tolerances"]["dvt_f_mps"] == 10.0
+    assert "failed run 0: tolerance" in format_report(res)
+    full = run_campaign(strict, runs=1, seed=8, truth="point-mass", dispersions=False)
+    assert full.n_failures == 0
+
+
 def test_json_statistics_and_side_by_side_report(scn, tmp_path):
     res = run_campaign(scn, runs=5, seed=8, truth="point-mass", guidance_factory=SHORT)
     path = tmp_path / "mc.json"
@@ -153,13 +172,33 @@ def test_json_statistics_and_side_by_side_report(scn, tmp_path):
     assert "Table 6" in format_report(single) and "-1.8700" in format_report(single)
 
 
+# Pontani & Celani 2021, Tables 6 and 7, typed here from the paper independently of the scenario file.
+PAPER_TABLE6 = {"dr_f_m": 0.11, "dphi_f_deg": 0.0, "dvr_f_mps": -1.01, "dvt_f_mps": -1.87,
+                "dvn_f_mps": 0.0, "tf_s": 105.8}
+PAPER_TABLE7_MEAN = {"dr_f_m": 0.39, "dphi_f_deg": 2.8e-7, "dvr_f_mps": -0.87, "dvt_f_mps": -2.15,
+                     "dvn_f_mps": -0.17, "tf_s": 107.4}
+PAPER_TABLE7_STD = {"dr_f_m": 4.26, "dphi_f_deg": 2.9e-6, "dvr_f_mps": 3.10, "dvt_f_mps": 2.07,
+                    "dvn_f_mps": 1.98, "tf_s": 2.34}
+
+
 def test_paper_tables_match_the_scenario_file(scn):
-    """paper_tables.py and scenarios/leo_geo.toml [paper_results] were typed independently."""
+    """The report's paper columns come from scenarios/leo_geo.toml [paper_results]; checked against
+    the tables typed above from the paper."""
     p = scn.paper
     keys = list(ERROR_KEYS)
-    assert [paper_tables.TABLE6_SINGLE_RUN[k] for k in keys] == list(p.table6_final_errors)
-    assert [paper_tables.TABLE7_MEAN[k] for k in keys] == list(p.table7_mean)
-    assert [paper_tables.TABLE7_STD[k] for k in keys] == list(p.table7_sigma)
+    assert [PAPER_TABLE6[k] for k in keys] == list(p.table6_final_errors)
+    assert [PAPER_TABLE7_MEAN[k] for k in keys] == list(p.table7_mean)
+    assert [PAPER_TABLE7_STD[k] for k in keys] == list(p.table7_sigma)
+
+
+def test_report_prints_paper_columns_only_for_a_scenario_with_paper_results(scn):
+    res = run_campaign(scn, runs=1, seed=8, truth="point-mass", guidance_factory=SHORT,
+                       dispersions=False)
+    assert "Table 6" in format_report(res) and scn.name in format_report(res)
+    bare = run_campaign(dataclasses.replace(scn, paper=None, name="bare_mission"), runs=1,
+                        seed=8, truth="point-mass", guidance_factory=SHORT, dispersions=False)
+    text = format_report(bare)
+    assert "Table" not in text and "paper" not in text and "bare_mission" in text
 
 
 def test_ogk_mc_command(tmp_path, capsys):
@@ -174,12 +213,3 @@ def test_ogk_mc_command(tmp_path, capsys):
     assert abs(doc["mean"]["dr_f_m"]) < 1e-3 and doc["mean"]["tf_s"] == pytest.approx(105.8088,
                                                                                        abs=1e-4)
     assert math.isclose(doc["std"]["dvt_f_mps"], 0.0, abs_tol=1e-12)
-
-
-def test_ogk_mc_nog_without_kernel_guidance_fails_clearly(monkeypatch):
-    """--guidance nog while the kernel guidance module is missing: a message, not a traceback."""
-    from ogk import cmd_mc
-    monkeypatch.setattr(cmd_mc, "NOG_MODULE", "ogk.missions.orbit_injection._no_such_guidance")
-    with pytest.raises(SystemExit, match="KernelNogGuidance.*not available"):
-        cmd_mc.load_guidance("nog")
-    assert cmd_mc.load_guidance("nominal") is NominalOpenLoopGuidance

@@ -1,8 +1,9 @@
-"""The `ogk` command. Each subcommand lives in its own module (ogk/cmd_<name>.py)
+"""The `ogk` command. Each subcommand lives in its own module (ogk/cli/cmd_<name>.py)
 exposing `register(subparsers)`, which adds its parser and sets `func`
 (args -> exit code). To add one, write the module and list it in SUBCOMMANDS.
-Modules import the kernel bindings inside `func`, so `ogk --help` works before
-`make ffi`."""
+Scenario commands (tables, mc, cases) dispatch to the scenario's mission family
+(ogk.missions.registry). Bad input ends with one line naming the file, key and
+reason and exit code 2 (a traceback only with --debug)."""
 from __future__ import annotations
 
 import argparse
@@ -10,11 +11,14 @@ import importlib
 import sys
 from collections.abc import Sequence
 
+from ogk_host.errors import OgkInputError
+
 SUBCOMMANDS: tuple[str, ...] = (
     "ogk.cli.cmd_version",
     "ogk.cli.cmd_demo",
     "ogk.cli.cmd_tables",
     "ogk.cli.cmd_mc",
+    "ogk.cli.cmd_cases",
     "ogk.cli.cmd_mpsp",
 )
 
@@ -24,6 +28,8 @@ def build_parser() -> argparse.ArgumentParser:
         prog="ogk",
         description="ogk SIL harness and ground tools (kernel bindings, demos, campaigns).",
     )
+    parser.add_argument("--debug", action="store_true",
+                        help="show the traceback of an error instead of its one-line message")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name in SUBCOMMANDS:
         importlib.import_module(name).register(sub)
@@ -37,7 +43,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     if func is None:
         parser.print_help(sys.stderr)
         return 2
-    return int(func(args))
+    try:
+        return int(func(args))
+    except OgkInputError as err:
+        if args.debug:
+            raise
+        print(f"ogk {args.command}: {err.line()}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":

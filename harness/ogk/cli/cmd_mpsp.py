@@ -1,146 +1,21 @@
-"""`ogk mpsp apophis`: the kernel's MPSP guidance on the paper's Apophis mission (docs/mpsp-cli.md).
-
-  ogk mpsp apophis --case {initial,terminal,thrust} --param P [--json FILE]
-      one perturbation case: P = kappa (Table 3), 'dx,dy,dz' delta r_f in LU (Table 4), eta in %
-      (Table 6). FI needs the fuel-optimal re-solve of the same problem (cached, see --reference-dir);
-      --no-reference skips it (fuel_increase_pct = null).
-  ogk mpsp apophis --paper-tables [--json FILE] [--plots DIR]
-      the 23 cases of Tables 3, 5, 6 side by side with the paper.
-"""
+"""`ogk mpsp apophis ...`: the older spelling of `ogk cases apophis ...` (README), the kernel's MPSP
+on the paper's Apophis mission: `--case {initial,terminal,thrust} --param P` or `--paper-tables`
+(docs/mpsp-cli.md). `--scenario FILE` flies another scenario of the same family."""
 from __future__ import annotations
 
 import argparse
-import json
-import sys
-import time
-from pathlib import Path
 from typing import Any
 
+from ogk.cli.scenario_command import run_scenario_command
 
-def _write_json(path: str, doc: Any) -> None:
-    out = Path(path)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(doc, indent=1) + "\n")
-    print(f"wrote {out}")
-
-
-def _reference(setup: Any, case: Any, args: argparse.Namespace) -> Any:
-    """Cached/fresh fuel-optimal reference, or None (skipped or the ground solver failed)."""
-    from ogk.missions.low_thrust_transfer.reference import load_or_solve
-    if args.no_reference:
-        return None
-    try:
-        return load_or_solve(setup, case, Path(args.reference_dir),
-                             args.reference_timeout if args.reference_timeout > 0 else None)
-    except RuntimeError as err:  # ShootingFailure
-        print(f"  {case.label}: no fuel-optimal reference ({err})", file=sys.stderr)
-        return None
-
-
-def run_one(args: argparse.Namespace) -> int:
-    from ogk.missions.low_thrust_transfer.cases import build_setup, make_case, run_case
-    from ogk.missions.low_thrust_transfer.report import HEADER, make_record, table_line
-    setup = build_setup(args.basis, args.order, args.scenario)
-    case = make_case(setup, args.case, args.param)
-    res, cpu = run_case(setup, case)
-    start = time.perf_counter()
-    ref = _reference(setup, case, args)
-    rec = make_record(setup, res, cpu, ref)
-    print(HEADER)
-    print(table_line(case, rec, None, ref))
-    if ref is not None:
-        print(f"fuel-optimal reference: final mass {ref.final_mass_kg:.4f} kg, {ref.thrust_arcs} thrust "
-              f"arcs, {'cached' if ref.from_cache else 'solved'} "
-              f"({ref.solve_s:.1f} s solve, {time.perf_counter() - start:.1f} s here)")
-    if args.json:
-        _write_json(args.json, rec.to_json())
-    return 0 if rec.converged else 1
-
-
-def run_tables(args: argparse.Namespace) -> int:
-    from ogk.missions.low_thrust_transfer.cases import build_setup, paper_cases, run_case
-    from ogk.missions.low_thrust_transfer.report import HEADER, make_record, paper_rows, table_line
-    setup = build_setup(args.basis, args.order, args.scenario)
-    cases = paper_cases(setup)
-    papers = paper_rows(setup, cases)
-    print(f"MPSP (kernel) on the paper's Apophis cases: basis {setup.basis}, order {setup.order}; "
-          "paper = Wang & Topputo 2020, Tables 3, 5, 6 (MPSP-CT: MATLAB+MEX, i7-9750H)")
-    print(HEADER)
-    runs = []
-    records = []
-    ref_wall = 0.0
-    for case, paper in zip(cases, papers):
-        res, cpu = run_case(setup, case)
-        start = time.perf_counter()
-        ref = _reference(setup, case, args)
-        ref_wall += time.perf_counter() - start
-        rec = make_record(setup, res, cpu, ref)
-        print(table_line(case, rec, paper, ref), flush=True)
-        runs.append((case, res, ref))
-        records.append({"case": case.label, "kind": case.kind,
-                        "param": list(case.param) if isinstance(case.param, tuple) else case.param,
-                        **rec.to_json(),
-                        "reference_final_mass_kg": ref.final_mass_kg if ref else None,
-                        "reference_thrust_arcs": ref.thrust_arcs if ref else None,
-                        "reference_solve_s": ref.solve_s if ref else None,
-                        "paper": None if paper is None else vars(paper)})
-    n_conv = sum(1 for r in records if r["converged"])
-    refs = [r for _, _, r in runs if r is not None]
-    print(f"{n_conv}/{len(records)} converged; kernel CPU total "
-          f"{sum(float(r['cpu_s']) for r in records):.2f} s")
-    if not args.no_reference:
-        solved = [r for r in refs if not r.from_cache]
-        print(f"fuel-optimal references: {len(refs)}/{len(records)} available, "
-              f"{len(solved)} solved now, {len(refs) - len(solved)} from cache (*) in "
-              f"{args.reference_dir}; ground solve times (s, as recorded) total "
-              f"{sum(r.solve_s for r in refs):.1f}, max {max((r.solve_s for r in refs), default=0.0):.1f}; "
-              f"this run spent {ref_wall:.1f} s on references")
-    if args.json:
-        _write_json(args.json, {"basis": setup.basis, "order": setup.order, "cases": records})
-    if args.plots:
-        from ogk.missions.low_thrust_transfer.plots import write_plots
-        for p in write_plots(setup, runs, Path(args.plots)):
-            print(f"wrote {p}")
-    return 0 if n_conv == len(records) else 1
-
-
-def run_mpsp(args: argparse.Namespace) -> int:
-    if args.paper_tables:
-        if args.case or args.param is not None:
-            print("ogk mpsp: --paper-tables runs all cases; drop --case/--param", file=sys.stderr)
-            return 2
-        return run_tables(args)
-    if not args.case or args.param is None:
-        print("ogk mpsp: give --case and --param, or --paper-tables", file=sys.stderr)
-        return 2
-    if args.plots:
-        print("ogk mpsp: --plots needs --paper-tables", file=sys.stderr)
-        return 2
-    try:
-        return run_one(args)
-    except ValueError as err:
-        print(f"ogk mpsp: {err}", file=sys.stderr)
-        return 2
+MISSIONS = {"apophis": "apophis"}
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser("mpsp", help="MPSP guidance (kernel) on the paper's Apophis mission",
-                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("mission", choices=("apophis",))
-    p.add_argument("--case", choices=("initial", "terminal", "thrust"), default=None)
-    p.add_argument("--param", default=None,
-                   help="kappa (initial), 'dx,dy,dz' in LU (terminal), eta in %% (thrust)")
-    p.add_argument("--paper-tables", action="store_true", help="run the 23 cases of Tables 3, 5, 6")
-    p.add_argument("--json", default=None, metavar="FILE", help="write the result(s) as JSON")
-    p.add_argument("--plots", default=None, metavar="DIR", help="PNG figures (with --paper-tables)")
-    p.add_argument("--basis", default=None,
-                   help="Fourier basis (printed, period_tf, period_2tf, cosine_2tf; default: scenario)")
-    p.add_argument("--order", type=int, default=None, help="Fourier order (default: scenario, 15)")
-    p.add_argument("--scenario", default=None, help="default scenarios/apophis_cubesat.toml")
-    p.add_argument("--reference-dir", default="build/apophis/reference",
-                   help="cache of the fuel-optimal re-solves (default build/apophis/reference)")
-    p.add_argument("--reference-timeout", type=float, default=900.0, metavar="S",
-                   help="wall-time limit of one ground re-solve (s; 0 = none; default 900)")
-    p.add_argument("--no-reference", action="store_true",
-                   help="skip the fuel-optimal re-solves (no FI)")
-    p.set_defaults(func=run_mpsp)
+    p = sub.add_parser("mpsp", help="MPSP guidance on the Apophis mission (= ogk cases apophis)",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
+                       add_help=False)
+    p.add_argument("mission", choices=tuple(MISSIONS), nargs="?")
+    p.add_argument("rest", nargs=argparse.REMAINDER)
+    p.set_defaults(func=lambda args: run_scenario_command(
+        "cases", MISSIONS.get(args.mission or "", None), args.rest, p))

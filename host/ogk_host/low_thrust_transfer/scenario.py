@@ -7,18 +7,22 @@ holds one boundary value problem (nominal or perturbed) in those units.
 from __future__ import annotations
 
 import dataclasses
-import tomllib
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import OgkInputError
+from ..scenario_file import read_toml
+
 FloatArray = NDArray[np.float64]
 
 SECONDS_PER_DAY = 86400.0
 REPO_ROOT = Path(__file__).resolve().parents[3]
 DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "apophis_cubesat.toml"
+MISSION = "low-thrust-transfer"  #: the family name of ogk.missions.registry
+LAWS = ("mpsp",)                 #: guidance laws this family flies
 
 
 @dataclasses.dataclass(frozen=True)
@@ -222,16 +226,27 @@ def _vec(values: Any) -> FloatArray:
 def load_scenario(path: str | Path = DEFAULT_SCENARIO_PATH) -> Scenario:
     """Read scenarios/apophis_cubesat.toml (or another file of the same shape)."""
     path = Path(path)
-    with path.open("rb") as fh:
-        d = tomllib.load(fh)
+    d = read_toml(path)
+    if d.get("mission") != MISSION or d.get("guidance", {}).get("law") not in LAWS:
+        raise OgkInputError(f"mission must be {MISSION!r} with [guidance] law in {LAWS}, got "
+                            f"{d.get('mission')!r} / {d.get('guidance', {}).get('law')!r}", path=path)
+    try:
+        return _build(path, d)
+    except KeyError as exc:
+        raise OgkInputError(f"missing key {exc.args[0]!r}", path=path) from None
+    except (TypeError, ValueError) as exc:
+        raise OgkInputError(str(exc), path=path) from None
+
+
+def _build(path: Path, d: dict[str, Any]) -> Scenario:
     un, sc, bd, ho, mp = d["units"], d["spacecraft"], d["boundary"], d["homotopy"], d["mpsp"]
     pi, pt, pth = (d["perturbations"]["initial"], d["perturbations"]["terminal"],
                    d["perturbations"]["thrust"])
     vertices = _vec(pt["delta_final_position_LU"])
     if vertices.shape != (8, 3) or not np.allclose(np.abs(vertices), pt["cube_side_LU"] / 2.0):
-        raise ValueError(f"{path}: terminal perturbations must be the 8 vertices of the cube")
+        raise ValueError("perturbations.terminal: must be the 8 vertices of the cube")
     if mp["fourier_basis"] not in ("printed", "period_tf", "period_2tf", "cosine_2tf"):
-        raise ValueError(f"{path}: unknown fourier_basis {mp['fourier_basis']!r}")
+        raise ValueError(f"mpsp.fourier_basis: unknown {mp['fourier_basis']!r}")
     return Scenario(
         path=path,
         units=Units(un["length_unit_km"], un["time_unit_s"], un["mass_unit_kg"],

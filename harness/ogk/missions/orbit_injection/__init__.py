@@ -3,5 +3,5 @@ dispersions, closed loop, Monte Carlo campaign, report and plots. See docs/sil.m
 
 Modules: nominal_ref (dense ground nominal), truth (6-DOF and point-mass dynamics), dispersions,
 guidance (Guidance protocol + open-loop reference), attitude (AttitudeControl protocol + kernel CPD
-batch), sil (closed loop), campaign, paper_tables, report, plots.
+batch), sil (closed loop), campaign, report, plots; adapter (ogk tables / ogk mc).
 """

@@ -10,22 +10,30 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import multiprocessing as mp
-import os
+import math
 import time
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from ogk_host.errors import TableError
 from ogk_host.orbit_injection.scenario import LeoGeoScenario
+from ogk_host.scenario_file import ScenarioHeader, file_sha256
+
+from ogk.sil.criteria import apply_tolerances, failure_list, failure_reasons, statistics
+from ogk.sil.report import finite_or_none
+from ogk.sil.runner import run_chunks, run_ids_for
 
 from .dispersions import DispersionSwitches, RunDraws, draw_runs
 from .guidance import GuidanceFactory, GuidanceSetup
 from .nominal_ref import NominalReference, nominal_reference
 from .sil import ERROR_KEYS, RATE_KEYS, History, SilSettings, simulate
+
+if TYPE_CHECKING:
+    from .nog_guidance import NogTables
 
 F64 = NDArray[np.float64]
 JSON_SCHEMA = "ogk.leo_geo.mc/1"
@@ -52,6 +60,9 @@ class CampaignResult:
     nominal_solve_s: float = 0.0    #: time spent solving the ground nominal (0 when cached)
     truth_steps: int = 0            #: truth steps of the longest chunk
     flight_cpu_s: float = 0.0       #: CPU time (user + system) of the flight, all processes
+    scenario_path: str | None = None
+    scenario_sha256: str | None = None
+    tables: "NogTables | None" = None  #: the VTD-NOG tables flown (None: open-loop reference)
 
     @property
     def flight_s(self) -> float:
@@ -71,22 +82,18 @@ class CampaignResult:
         return int((~self.ok).sum())
 
     def failure_reasons(self) -> dict[str, int]:
-        out: dict[str, int] = {}
-        for f in self.failure:
-            if f:
-                out[f] = out.get(f, 0) + 1
-        return out
+        return failure_reasons(self.failure)
+
+    def failures_list(self) -> list[dict[str, object]]:
+        """[{run_id, reason}] of every failed run."""
+        return failure_list(self.draws.run_id.tolist(), self.failure)
 
     def mean(self) -> dict[str, float]:
-        ok = self.ok
-        return {k: float(np.mean(v[ok])) if ok.any() else float("nan")
-                for k, v in self.errors.items()}
+        return statistics(self.errors, self.ok)[0]
 
     def std(self) -> dict[str, float]:
         """Sample standard deviation (ddof = 1; 0 for a single run)."""
-        ok = self.ok
-        return {k: float(np.std(v[ok], ddof=1)) if ok.sum() > 1 else 0.0
-                for k, v in self.errors.items()}
+        return statistics(self.errors, self.ok)[1]
 
     def max_rates_overall(self) -> dict[str, float]:
         """Largest actuator rate over all successful runs (NaN for the point-mass truth)."""
@@ -122,6 +129,13 @@ class CampaignResult:
                        "flight_cpu_s": self.flight_cpu_s, "truth_steps": self.truth_steps,
                        "flight_ms_per_truth_step": 1e3 * self.flight_s / max(self.truth_steps, 1)},
             "workers": self.workers,
+            "scenario_path": self.scenario_path,
+            "scenario_sha256": self.scenario_sha256,
+            "tolerances": tolerances(scn),
+            "failed_runs": self.failures_list(),
+            "tables": None if self.tables is None else {
+                "directory": str(self.tables.directory), "sha256": self.tables.sha256,
+                "t_f_s": self.tables.t_f_star_s},
         }
         if per_run:
             d = self.draws
@@ -133,7 +147,7 @@ class CampaignResult:
                  **{k: float(self.errors[k][i]) for k in ERROR_KEYS},
                  **{k: float(self.max_rates[k][i]) for k in RATE_KEYS}}
                 for i in range(self.runs)]
-        return _finite_or_none(out)
+        return finite_or_none(out)
 
     def write_json(self, path: str | Path, per_run: bool = True) -> None:
         Path(path).parent.mkdir(parents=True, exist_ok=True)
@@ -150,19 +164,18 @@ def eq47_bounds(scn: LeoGeoScenario) -> dict[str, float]:
                                              / act.time_constant_z_s))}
 
 
-def _finite_or_none(obj: Any) -> Any:
-    """NaN/inf -> None (JSON has no NaN)."""
-    if isinstance(obj, float):
-        return obj if np.isfinite(obj) else None
-    if isinstance(obj, dict):
-        return {k: _finite_or_none(v) for k, v in obj.items()}
-    if isinstance(obj, list):
-        return [_finite_or_none(v) for v in obj]
-    return obj
+def tolerances(scn: LeoGeoScenario) -> dict[str, float]:
+    """The scenario's acceptance tolerances per error key (t_f has none: it is free)."""
+    acc = scn.acceptance
+    return {"dr_f_m": acc.radius_error_m, "dphi_f_deg": math.degrees(acc.declination_error_rad),
+            "dvr_f_mps": acc.velocity_error_m_s, "dvt_f_mps": acc.velocity_error_m_s,
+            "dvn_f_mps": acc.velocity_error_m_s}
 
 
 @dataclasses.dataclass(frozen=True)
 class _Job:
+    """One chunk of runs, called in a forked worker (ogk.sil.runner)."""
+
     scenario: LeoGeoScenario
     reference: NominalReference
     seed: int
@@ -170,17 +183,12 @@ class _Job:
     settings: SilSettings
     guidance_factory: GuidanceFactory
 
-
-_JOB: _Job | None = None     # set in the parent before the fork; read by the workers
-
-
-def _run_chunk(run_ids: NDArray[np.int64]) -> tuple[RunDraws, Any]:
-    job = _JOB
-    assert job is not None
-    draws, gens = draw_runs(job.scenario, job.seed, run_ids, job.switches)
-    guidance = job.guidance_factory(GuidanceSetup(job.scenario, job.reference, draws.run_id))
-    res = simulate(job.scenario, job.reference, draws, gens, job.switches, guidance, job.settings)
-    return draws, res
+    def __call__(self, run_ids: NDArray[np.int64]) -> tuple[RunDraws, Any]:
+        draws, gens = draw_runs(self.scenario, self.seed, run_ids, self.switches)
+        guidance = self.guidance_factory(GuidanceSetup(self.scenario, self.reference, draws.run_id))
+        res = simulate(self.scenario, self.reference, draws, gens, self.switches, guidance,
+                       self.settings)
+        return draws, res
 
 
 def _merge_history(parts: list[History | None]) -> History | None:
@@ -205,10 +213,11 @@ def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 
                  dispersions: bool | DispersionSwitches = True, truth: str = "6dof",
                  guidance_factory: GuidanceFactory | None = None, guidance_name: str | None = None,
                  settings: SilSettings | None = None, run_ids: Sequence[int] | None = None,
-                 chunks: int | None = None) -> CampaignResult:
+                 chunks: int | None = None, header: ScenarioHeader | None = None,
+                 tables: "NogTables | None" = None) -> CampaignResult:
     """Flies `runs` runs (ids 0..runs-1, or the given `run_ids` to re-fly some of them) in
-    `chunks` chunks (default: one per worker) on `workers` forked processes."""
-    global _JOB
+    `chunks` chunks (default: one per worker) on `workers` forked processes. A run fails (reason
+    kept) when the kernel, the truth model or the scenario's acceptance tolerances say so."""
     from .guidance import NominalOpenLoopGuidance
     t_start = time.perf_counter()
     if guidance_factory is None:
@@ -218,37 +227,30 @@ def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 
     switches = dispersions if isinstance(dispersions, DispersionSwitches) else (
         DispersionSwitches() if dispersions else DispersionSwitches.none())
     settings = dataclasses.replace(settings or SilSettings(), truth=truth)
-    ids = np.arange(runs, dtype=np.int64) if run_ids is None else np.asarray(run_ids, np.int64)
-    if ids.size == 0:
-        raise ValueError("no runs")
-    workers = max(1, min(int(workers), ids.size))
-    n_chunks = max(1, min(chunks or workers, ids.size))
+    ids = run_ids_for(runs, run_ids)
     t_nominal = time.perf_counter()
     ref = nominal_reference(scenario)
     nominal_solve_s = time.perf_counter() - t_nominal
-    cpu_start = os.times()
-    _JOB = _Job(scenario, ref, int(seed), switches, settings, guidance_factory)
-    try:
-        pieces = np.array_split(ids, n_chunks)
-        if workers == 1:
-            outs = [_run_chunk(p) for p in pieces]
-        else:
-            with mp.get_context("fork").Pool(workers) as pool:
-                outs = pool.map(_run_chunk, pieces, chunksize=1)
-    finally:
-        _JOB = None
-    cpu_end = os.times()
-    flight_cpu_s = sum(getattr(cpu_end, f) - getattr(cpu_start, f)
-                       for f in ("user", "system", "children_user", "children_system"))
+    if tables is not None and abs(tables.t_f_star_s - ref.tf_s) > 1e-6 * max(ref.tf_s, 1.0):
+        raise TableError(f"tables made for t_f* = {tables.t_f_star_s:.6f} s, the scenario's nominal "
+                         f"is {ref.tf_s:.6f} s: regenerate them with `ogk tables`",
+                         path=tables.directory)
+    job = _Job(scenario, ref, int(seed), switches, settings, guidance_factory)
+    outs, workers, flight_cpu_s = run_chunks(job, ids, workers, chunks)
     draws = RunDraws.concatenate([d for d, _ in outs])
     results = [r for _, r in outs]
     errors = {k: np.concatenate([r.errors[k] for r in results]) for k in ERROR_KEYS}
     rates = {k: np.concatenate([r.max_rates[k] for r in results]) for k in RATE_KEYS}
-    failure = [f for r in results for f in r.failure]
+    failure = apply_tolerances(errors, tolerances(scenario),
+                               [f for r in results for f in r.failure])
+    path = header.path if header is not None else scenario.path
     return CampaignResult(scenario=scenario, seed=int(seed), truth=truth, guidance=str(name),
                           switches=switches, settings=settings, nominal_tf_s=ref.tf_s, draws=draws,
                           errors=errors, max_rates=rates, failure=failure,
                           history=_merge_history([r.history for r in results]),
                           wall_time_s=time.perf_counter() - t_start, workers=workers,
                           nominal_solve_s=nominal_solve_s, flight_cpu_s=flight_cpu_s,
-                          truth_steps=max(r.truth_steps for r in results))
+                          truth_steps=max(r.truth_steps for r in results),
+                          scenario_path=None if path is None else str(path),
+                          scenario_sha256=None if path is None else file_sha256(path),
+                          tables=tables)

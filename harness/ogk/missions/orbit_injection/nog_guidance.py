@@ -8,13 +8,18 @@ serves its safe command, which the loop flies until the run is counted).
 """
 from __future__ import annotations
 
+import dataclasses
+import hashlib
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ogk_host.orbit_injection.scenario import LeoGeoScenario
-from ogk_host.orbit_injection.tables import ensure_nog_tables
+from ogk_host.errors import TableError
+from ogk_host.orbit_injection import tables as ground_tables
 
 from ogk.bindings._ffi import ffi, lib
 from ogk.bindings.kernel import KernelError
@@ -23,8 +28,43 @@ from .guidance import GuidanceSetup
 F64 = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
-#: Where the campaign keeps its generated tables (relative to the working directory).
-TABLE_DIR = Path("build/tables/leo_geo")
+BUNDLE_GLOB = "*_nog_bundle.ogkt"
+
+
+@dataclasses.dataclass(frozen=True)
+class NogTables:
+    """The tables a campaign flies, checked against its scenario (provenance in the JSON)."""
+
+    directory: Path
+    bundle: Path
+    manifest: dict[str, Any]
+    sha256: dict[str, str]          #: file name -> SHA-256 of every table file flown
+
+    @property
+    def t_f_star_s(self) -> float:
+        return float(self.manifest["t_f_s"])
+
+
+def prepare_tables(scn: LeoGeoScenario, table_dir: Path | None = None) -> NogTables:
+    """The scenario's own tables: generated into its directory under build/tables when missing,
+    otherwise checked (manifest names this scenario's SHA-256, files intact). A user's directory
+    (`table_dir`) is only checked, never written over (TableError, one line)."""
+    if scn.path is None:
+        raise TableError("the scenario has no file: tables are keyed by the scenario file")
+    if not hasattr(ground_tables, "check_tables"):  # TEMPORARY until the provenance API lands
+        directory = Path(table_dir) if table_dir else Path("build/tables") / scn.name
+        ground_tables.ensure_nog_tables(directory, scn.path)
+        import json
+        manifest = json.loads((directory / "manifest.json").read_text())
+    else:
+        directory = ground_tables.ensure_nog_tables(scn.path, table_dir)
+        manifest = ground_tables.check_tables(directory, scn.path)
+    bundles = sorted(Path(directory).glob(BUNDLE_GLOB))
+    if len(bundles) != 1:
+        raise TableError(f"expected one {BUNDLE_GLOB} bundle, found {len(bundles)}", path=directory)
+    sha = {p.name: hashlib.sha256(p.read_bytes()).hexdigest()
+           for p in sorted(Path(directory).glob("*.ogkt"))}
+    return NogTables(Path(directory), bundles[0], manifest, sha)
 
 
 def load_table(bundle: Path) -> object:
@@ -44,8 +84,16 @@ def nog_config(scn: LeoGeoScenario, table: object) -> object:
     cfg.sample_interval_s = scn.sample_interval_s
     cfg.dtf_max_s = scn.end_game.dtf_max_s
     cfg.du_max_rad = scn.end_game.du_max_rad
-    cfg.tau_freeze = scn.end_game.freeze_time_to_go_s / table.t_f_star_s
+    cfg.tau_freeze = freeze_time_to_go_s(scn) / table.t_f_star_s
     return cfg
+
+
+def freeze_time_to_go_s(scn: LeoGeoScenario) -> float:
+    """The end-game freeze: the scenario's value, or the ground tools' derivation from Delta t_S."""
+    if scn.end_game.freeze_time_to_go_s is not None:
+        return float(scn.end_game.freeze_time_to_go_s)
+    from ogk_host.orbit_injection import derive
+    return float(derive.effective_settings(scn).freeze_time_to_go_s)
 
 
 class KernelNogGuidance:
@@ -53,9 +101,9 @@ class KernelNogGuidance:
 
     name = "nog"
 
-    def __init__(self, setup: GuidanceSetup, table_dir: Path = TABLE_DIR) -> None:
+    def __init__(self, setup: GuidanceSetup, bundle: Path) -> None:
         n = setup.n_runs
-        self._table = load_table(ensure_nog_tables(table_dir))
+        self._table = load_table(bundle)
         self._cfg = nog_config(setup.scenario, self._table)
         self._ctx = ffi.new("ogk_nog_t[]", n)
         status = np.zeros(n, dtype=np.int32)
@@ -72,6 +120,14 @@ class KernelNogGuidance:
         self._failed = np.zeros(n, dtype=bool)
         self._terminating = np.zeros(n, dtype=bool)
         self.flag_history: list[NDArray[np.uint32]] = []
+
+    @classmethod
+    def for_tables(cls, tables: NogTables) -> Callable[[GuidanceSetup], "KernelNogGuidance"]:
+        """A guidance factory flying `tables` (checked by prepare_tables)."""
+        def factory(setup: GuidanceSetup) -> KernelNogGuidance:
+            return cls(setup, tables.bundle)
+        factory.name = cls.name  # type: ignore[attr-defined]
+        return factory
 
     @property
     def t_f_star_s(self) -> float:

@@ -1,11 +1,12 @@
-"""Side-by-side table of a campaign against the paper's Table 6 (single run, no dispersions) or
-Table 7 (mean and standard deviation over the Monte Carlo campaign)."""
+"""Text report of an orbit-injection campaign: the scenario flown, failures with their reasons, the
+injection errors, and -- only when the scenario carries the paper's results ([paper_results]) -- the
+paper's Table 6 (single run, no dispersions) or Table 7 (Monte Carlo) side by side."""
 from __future__ import annotations
 
-import math
+from ogk.sil.report import fmt as _fmt
+from ogk.sil.report import table as _table
 
-from . import paper_tables as paper
-from .campaign import CampaignResult, eq47_bounds
+from .campaign import CampaignResult, eq47_bounds, tolerances
 from .sil import ERROR_KEYS, RATE_KEYS
 
 LABELS = {
@@ -16,54 +17,57 @@ LABELS = {
 }
 
 
-def _fmt(v: float | None) -> str:
-    if v is None or (isinstance(v, float) and math.isnan(v)):
-        return "-"
-    if v == 0.0:
-        return "0"
-    if abs(v) >= 1e4 or abs(v) < 1e-2:
-        return f"{v:.3e}"
-    return f"{v:.4f}"
-
-
-def _table(header: list[str], rows: list[list[str]]) -> list[str]:
-    widths = [max(len(r[i]) for r in [header] + rows) for i in range(len(header))]
-    line = "  ".join(h.ljust(w) if i == 0 else h.rjust(w) for i, (h, w) in enumerate(zip(header, widths)))
-    out = [line, "-" * len(line)]
-    for r in rows:
-        out.append("  ".join(c.ljust(w) if i == 0 else c.rjust(w)
-                             for i, (c, w) in enumerate(zip(r, widths))))
-    return out
-
-
 def format_report(res: CampaignResult) -> str:
-    """The text printed by `ogk mc leo-geo`."""
-    lines = [f"LEO-to-GEO injection: {res.runs} run(s), seed {res.seed}, truth {res.truth}, "
+    """The text printed by `ogk mc SCENARIO`."""
+    scn = res.scenario
+    paper = scn.paper
+    lines = [f"{scn.name} ({res.scenario_path or 'scenario'}): orbit injection, {res.runs} run(s), "
+             f"seed {res.seed}, truth {res.truth}, "
              f"guidance {res.guidance}, dispersions "
              f"{'on' if res.switches.any else 'off (alignment errors only)'}",
-             f"nominal t_f* = {res.nominal_tf_s:.4f} s (paper: {paper.NOMINAL_TF_TEXT_S} s); "
+             f"nominal t_f* = {res.nominal_tf_s:.4f} s"
+             + (f" (paper: {paper.min_time_s} s)" if paper else "") + "; "
              f"control {res.settings.control_rate_hz:g} Hz, truth step "
              f"{res.settings.truth_step_s * 1e3:g} ms, guidance every "
              f"{res.scenario.sample_interval_s:g} s",
              f"failures: {res.n_failures}"
-             + (f" {res.failure_reasons()}" if res.n_failures else ""),
+             + (f" {res.failure_reasons()}" if res.n_failures else "")
+             + "  (criterion: kernel error, truth validity, or |error| above "
+             + ", ".join(f"{LABELS[k].split(' ')[0]} {v:.3g}" for k, v in tolerances(scn).items())
+             + ")",
              f"wall time: {res.wall_time_s:.1f} s on {res.workers} worker(s) (nominal solve "
              f"{res.nominal_solve_s:.1f} s, flight {res.flight_s:.1f} s = "
              f"{1e3 * res.flight_s / max(res.truth_steps, 1):.2f} ms per truth step; flight CPU "
              f"{res.flight_cpu_s:.1f} s)", ""]
+    for failed in res.failures_list()[:20]:
+        lines.append(f"  failed run {failed['run_id']}: {failed['reason']}")
+    if res.n_failures > 20:
+        lines.append(f"  ... {res.n_failures - 20} more failed runs in the JSON (failed_runs)")
+    if res.n_failures:
+        lines.append("")
     mean, std = res.mean(), res.std()
     if res.switches.any:
-        lines.append(f"Injection errors vs {paper.CITATION}, Table 7 ({paper.TABLE7_RUNS} runs)")
-        rows = [[LABELS[k], _fmt(mean[k]), _fmt(paper.TABLE7_MEAN[k]), _fmt(std[k]),
-                 _fmt(paper.TABLE7_STD[k])] for k in ERROR_KEYS]
-        lines += _table(["quantity", "mean (ours)", "mean (paper)", "std (ours)", "std (paper)"],
-                        rows)
+        if paper is not None:
+            p_mean, p_std = dict(zip(ERROR_KEYS, paper.table7_mean)), dict(zip(ERROR_KEYS, paper.table7_sigma))
+            lines.append(f"Injection errors vs {scn.source}, Table 7 ({paper.monte_carlo_runs} runs)")
+            rows = [[LABELS[k], _fmt(mean[k]), _fmt(p_mean[k]), _fmt(std[k]), _fmt(p_std[k])]
+                    for k in ERROR_KEYS]
+            lines += _table(["quantity", "mean (ours)", "mean (paper)", "std (ours)", "std (paper)"],
+                            rows)
+        else:
+            lines.append("Injection errors (mean and standard deviation over the successful runs)")
+            lines += _table(["quantity", "mean", "std"],
+                            [[LABELS[k], _fmt(mean[k]), _fmt(std[k])] for k in ERROR_KEYS])
     else:
-        lines.append(f"Injection errors vs {paper.CITATION}, Table 6 (single run)")
         single = mean if res.runs >= 1 else {}
-        rows = [[LABELS[k], _fmt(single.get(k)), _fmt(paper.TABLE6_SINGLE_RUN[k])]
-                for k in ERROR_KEYS]
-        lines += _table(["quantity", "ours", "paper"], rows)
+        if paper is not None:
+            p_single = dict(zip(ERROR_KEYS, paper.table6_final_errors))
+            lines.append(f"Injection errors vs {scn.source}, Table 6 (single run)")
+            lines += _table(["quantity", "ours", "paper"],
+                            [[LABELS[k], _fmt(single.get(k)), _fmt(p_single[k])] for k in ERROR_KEYS])
+        else:
+            lines.append("Injection errors (no dispersions)")
+            lines += _table(["quantity", "ours"], [[LABELS[k], _fmt(single.get(k))] for k in ERROR_KEYS])
     bounds = eq47_bounds(res.scenario)
     top = res.max_rates_overall()
     if res.truth == "6dof":

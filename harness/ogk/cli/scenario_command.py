@@ -1,0 +1,53 @@
+"""The shape every scenario command shares: `ogk COMMAND SCENARIO [family options]`.
+
+The first parser takes the scenario (a path or a name under scenarios/); its family's adapter then
+parses the rest with the options it declares, so `ogk mc leo-geo --help` lists that family's
+options. Bad input of any kind is an OgkInputError: one line, exit code 2 (ogk.cli.main).
+"""
+from __future__ import annotations
+
+import argparse
+from collections.abc import Sequence
+from typing import Any
+
+from ogk_host.scenario_file import read_header, resolve_scenario
+
+from ogk.missions import registry
+
+
+def register_scenario_command(sub: Any, name: str, help_text: str) -> None:
+    p = sub.add_parser(name, help=help_text, add_help=False,
+                       description=f"{help_text}. SCENARIO is a .toml path or a name under "
+                                   "scenarios/ (leo-geo, apophis, ...); `ogk {name} SCENARIO "
+                                   "--help` lists the options of its mission family.")
+    p.add_argument("scenario", metavar="SCENARIO", nargs="?")
+    p.add_argument("rest", nargs=argparse.REMAINDER)
+    p.set_defaults(func=lambda args: run_scenario_command(name, args.scenario, args.rest, p))
+
+
+def run_scenario_command(name: str, scenario: str | None, rest: Sequence[str],
+                         top: argparse.ArgumentParser | None = None,
+                         overrides: dict[str, Any] | None = None) -> int:
+    if scenario is None or scenario in ("-h", "--help"):
+        if top is not None:
+            top.print_help()
+        return 0 if scenario else 2
+    rest = list(rest)
+    # `--scenario FILE` (the older spelling `ogk mc leo-geo --scenario FILE`) names the file flown.
+    if "--scenario" in rest:
+        i = rest.index("--scenario")
+        if i + 1 >= len(rest):
+            raise SystemExit(f"ogk {name}: --scenario needs a file")
+        scenario = rest[i + 1]
+        del rest[i:i + 2]
+    header = read_header(resolve_scenario(scenario))
+    adapter = registry.command(header, name)
+    parser = argparse.ArgumentParser(prog=f"ogk {name} {scenario}",
+                                     description=(adapter.__doc__ or "").strip().splitlines()[0])
+    adder = getattr(adapter, f"add_{name}_arguments", None)
+    if adder is not None:
+        adder(parser)
+    args = parser.parse_args(rest)
+    for key, value in (overrides or {}).items():
+        setattr(args, key, value)
+    return int(getattr(adapter, name)(header, args))

@@ -1,0 +1,94 @@
+"""Orbit injection (VTD-NOG guidance + CPD attitude control; Pontani & Celani 2021 is its first user).
+
+The family's adapter for ogk.missions.registry: `ogk tables SCENARIO` (nominal, gain tables, C
+images) and `ogk mc SCENARIO` (SIL Monte Carlo, 6-DOF or point-mass truth).
+"""
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from ogk_host.errors import OgkInputError
+from ogk_host.orbit_injection.scenario import LAWS as SCENARIO_LAWS
+from ogk_host.orbit_injection.scenario import load_scenario
+from ogk_host.scenario_file import ScenarioHeader
+
+from ogk.sil.outputs import check_output_dir, check_output_file
+
+LAWS = SCENARIO_LAWS
+
+
+def add_mc_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--runs", type=int, required=True, help="number of runs")
+    p.add_argument("--seed", type=int, required=True,
+                   help="master seed >= 0 (run i: SeedSequence(seed, (i,)))")
+    p.add_argument("--workers", type=int, default=1, help="parallel processes (default 1)")
+    p.add_argument("--no-dispersions", action="store_true",
+                   help="no dispersions: alignment errors only (Table 6 case)")
+    p.add_argument("--truth", choices=("6dof", "point-mass"), default="6dof")
+    p.add_argument("--guidance", choices=("nog", "nominal"), default="nog",
+                   help="nog: kernel VTD-NOG; nominal: open-loop u*(t) (a reference, not guidance)")
+    p.add_argument("--json", required=True, help="output JSON file")
+    p.add_argument("--plots", default=None, help="directory for PNG plots")
+    p.add_argument("--tables", default=None, metavar="DIR",
+                   help="VTD-NOG tables to fly (default: the scenario's own directory under "
+                        "build/tables, generated when missing); checked against the scenario")
+    p.add_argument("--history-runs", type=int, default=50,
+                   help="runs whose time histories are recorded for --plots (default 50)")
+    p.add_argument("--control-rate", type=float, default=50.0, help="attitude control rate [Hz]")
+    p.add_argument("--truth-substeps", type=int, default=1,
+                   help="truth RK4 steps per control step (default 1: 20 ms)")
+    p.add_argument("--cpd-gains", choices=("printed", "rederived"), default=None,
+                   help="CPD gain set (default: the scenario's flown set)")
+    p.add_argument("--cpd-pointing", choices=("body", "euler"), default="body",
+                   help="CPD pitch/yaw error: body-axis (default) or eqs. 45-46 literally")
+
+
+def _check_mc_args(args: argparse.Namespace) -> None:
+    """Every option checked before the nominal is solved."""
+    if args.runs < 1:
+        raise OgkInputError(f"must be >= 1, got {args.runs}", key="--runs")
+    if args.seed < 0:
+        raise OgkInputError(f"must be >= 0, got {args.seed}", key="--seed")
+    if args.workers < 1:
+        raise OgkInputError(f"must be >= 1, got {args.workers}", key="--workers")
+    if not args.control_rate > 0.0 or args.control_rate > 1.0e4:
+        raise OgkInputError(f"must be in (0, 1e4] Hz, got {args.control_rate:g}", key="--control-rate")
+    if args.truth_substeps < 1:
+        raise OgkInputError(f"must be >= 1, got {args.truth_substeps}", key="--truth-substeps")
+    if args.history_runs < 0:
+        raise OgkInputError(f"must be >= 0, got {args.history_runs}", key="--history-runs")
+    check_output_file(args.json, "--json")
+    if args.plots:
+        check_output_dir(args.plots, "--plots")
+
+
+def mc(header: ScenarioHeader, args: argparse.Namespace) -> int:
+    from .campaign import run_campaign
+    from .guidance import NominalOpenLoopGuidance
+    from .nog_guidance import KernelNogGuidance, prepare_tables
+    from .report import format_report
+    from .sil import SilSettings
+
+    _check_mc_args(args)
+    scn = load_scenario(header.path)
+    if args.guidance == "nog":
+        tables = prepare_tables(scn, Path(args.tables) if args.tables else None)
+        factory = KernelNogGuidance.for_tables(tables)
+    else:
+        tables, factory = None, NominalOpenLoopGuidance
+    settings = SilSettings(control_rate_hz=args.control_rate, truth_substeps=args.truth_substeps,
+                           history_runs=args.history_runs if args.plots else 0,
+                           cpd_gains=args.cpd_gains, cpd_pointing=args.cpd_pointing)
+    res = run_campaign(scn, runs=args.runs, seed=args.seed, workers=args.workers,
+                       dispersions=not args.no_dispersions, truth=args.truth,
+                       guidance_factory=factory, guidance_name=args.guidance, settings=settings,
+                       header=header, tables=tables)
+    print(format_report(res))
+    res.write_json(args.json)
+    print(f"\nwrote {args.json}")
+    if args.plots:
+        from .plots import write_plots
+        for path in write_plots(res, args.plots):
+            print(f"wrote {path}")
+    return 0 if res.n_failures == 0 else 1
