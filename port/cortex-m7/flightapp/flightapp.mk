@@ -73,6 +73,7 @@ flight-app-size: $(FA_ELF)
 	arm-none-eabi-size -A $(FA_ELF) | grep -E '^(section|\.vectors|\.text|\.rodata|\.data|\.bss|\.heap|\.stack|Total)'
 	arm-none-eabi-size -t $(FA_OBJ) $(FA_RT_OBJ) $(ARM_KOBJ)
 	arm-none-eabi-nm --size-sort -S -r $(FA_ELF) | head -15
+	python3 $(FA_DIR)/map_sizes.py $(FA_ELF:.elf=.map)
 
 # Call graphs of the application sources, with the kernel's ($(ARM_CI) from cortex-m7.mk).
 FA_CI := $(FA_B)/callgraph/ogk_flight.ci
