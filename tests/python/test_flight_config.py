@@ -137,7 +137,7 @@ def test_every_field_of_the_kernel_configs(tmp_path: Path, rng: np.random.Genera
 def test_nested_structs_arrays_and_pointers(tmp_path: Path) -> None:
     """A whole initialised CPD context (nested config and output structs, an array, integers) and
     a NOG config with its table pointer set (emitted NULL, "bound at init")."""
-    from ogk.cli.cmd_tables import leo_geo_configs
+    from ogk.missions.orbit_injection.flight_config import leo_geo_configs
     bundle = REPO / "build" / "tables" / "leo_geo" / "leo_geo_nog_bundle.ogkt"
     if not bundle.exists():
         from ogk_host.orbit_injection.tables import write_nog_tables
@@ -158,7 +158,7 @@ def test_nested_structs_arrays_and_pointers(tmp_path: Path) -> None:
 def test_leo_geo_header_is_the_sil_configuration(tmp_path: Path) -> None:
     """The values of `ogk tables leo-geo` are those the SIL flies: NOG end-game from the scenario,
     tau_freeze = freeze time-to-go / t_f*, CPD with the 50 Hz feed-forward period."""
-    from ogk.cli.cmd_tables import leo_geo_configs, write_leo_geo_config
+    from ogk.missions.orbit_injection.flight_config import leo_geo_configs, write_leo_geo_config
     from ogk_host.orbit_injection.scenario import load_scenario
     bundle = REPO / "build" / "tables" / "leo_geo" / "leo_geo_nog_bundle.ogkt"
     if not bundle.exists():
@@ -179,9 +179,9 @@ def test_leo_geo_header_is_the_sil_configuration(tmp_path: Path) -> None:
 def test_apophis_header_is_the_mpsp_configuration(tmp_path: Path) -> None:
     """`ogk tables apophis`: the config of `ogk mpsp apophis` (cases.build_setup) and the nominal
     weights, read back in C; the kernel accepts the header's config unchanged."""
-    from ogk.cli.cmd_tables import run_tables
+    from ogk.cli import main
     from ogk.missions.low_thrust_transfer.cases import build_setup
-    assert run_tables(argparse.Namespace(mission="apophis", out=str(tmp_path), scenario=None)) == 0
+    assert main(["tables", "apophis", "--out", str(tmp_path)]) == 0
     header = tmp_path / "c" / "ogk_apophis_flight_config.h"
     text = header.read_text()
     setup = build_setup()

@@ -15,11 +15,30 @@ from typing import Any
 
 from ogk_host.errors import OgkInputError
 from ogk_host.low_thrust_transfer.scenario import LAWS as SCENARIO_LAWS
-from ogk_host.scenario_file import ScenarioHeader
+from ogk_host.scenario_file import ScenarioHeader, table_dir_for
 
 from ogk.sil.outputs import check_output_dir, check_output_file
 
 LAWS = SCENARIO_LAWS
+
+
+def add_tables_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--out", default=None, metavar="DIR",
+                   help="output directory (default: build/tables/<name>-<sha12> of the scenario)")
+
+
+def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
+    """The MPSP flight configuration (config + nominal weights) as a const C header."""
+    from ogk_host.low_thrust_transfer.scenario import load_scenario
+
+    from .flight_config import write_apophis_config
+
+    load_scenario(header.path)
+    out = Path(args.out) if args.out else table_dir_for(header.path)
+    check_output_dir(out, "--out")
+    for path in write_apophis_config(out, header.path):
+        print(f"  wrote {path} (flight build: const MPSP configuration)")
+    return 0
 
 
 def add_cases_arguments(p: argparse.ArgumentParser) -> None:

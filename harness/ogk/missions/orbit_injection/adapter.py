@@ -11,11 +11,47 @@ from pathlib import Path
 from ogk_host.errors import OgkInputError
 from ogk_host.orbit_injection.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.orbit_injection.scenario import load_scenario
-from ogk_host.scenario_file import ScenarioHeader
+from ogk_host.scenario_file import ScenarioHeader, table_dir_for
 
 from ogk.sil.outputs import check_output_dir, check_output_file
 
 LAWS = SCENARIO_LAWS
+
+
+def add_tables_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--out", default=None, metavar="DIR",
+                   help="output directory (default: build/tables/<name>-<sha12> of the scenario); "
+                        "a directory that ogk did not make is never written into")
+
+
+def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
+    from ogk_host.cgen import write_c_table
+    from ogk_host.orbit_injection import tables as ground
+
+    from .flight_config import write_leo_geo_config
+
+    load_scenario(header.path)  # every bad key reported before the nominal is solved
+    out = Path(args.out) if args.out else (
+        ground.default_table_dir(header.path) if hasattr(ground, "default_table_dir")
+        else table_dir_for(header.path))
+    check_output_dir(out, "--out")
+    manifest = ground.write_nog_tables(out, scenario_path=header.path)
+    bundle = next(out.glob("*_nog_bundle.ogkt"))
+    c_path, h_path = write_c_table(bundle.read_bytes(), "ogk_leo_geo_nog_bundle", out / "c",
+                                   header.path, note="Validate with ogk_nog_table_view() or load "
+                                                     "with ogk_nog_table_load() (ogk/nog.h).")
+    print(f"{header.name}: t_f* = {manifest['t_f_s']:.6f} s, "
+          f"f0* = {manifest['ignition_true_anomaly_deg']:.6f} deg")
+    for name, value in manifest.get("residuals", {}).items():
+        print(f"  residual {name:22s} {value: .3e}")
+    for entry in manifest["files"]:
+        print(f"  wrote {out / entry['file']}  kind {entry['kind']}  dims {entry['dims']}  "
+              f"grid {entry['grid_size']}  {entry['bytes']} bytes")
+    print(f"  wrote {c_path} and {h_path.name} (flight build: const table image)")
+    for path in write_leo_geo_config(out, header.path, bundle):
+        print(f"  wrote {path} (flight build: const configurations)")
+    print(f"  wrote {out / 'manifest.json'}")
+    return 0
 
 
 def add_mc_arguments(p: argparse.ArgumentParser) -> None:

@@ -1,0 +1,58 @@
+"""Flight configuration of an orbit-injection scenario as const C (docs/flight-integration.md).
+
+The configs are the cffi structs the SIL itself flies (nog_guidance.nog_config,
+attitude.cpd_config), handed to ogk_host.cgen.write_c_config, so the header cannot drift from the
+SIL's configuration.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+#: Attitude-control rate of the flight configuration (the SIL's default, docs/sil.md).
+CONTROL_RATE_HZ = 50.0
+
+
+def leo_geo_configs(scenario: Path, bundle: Path) -> tuple[Any, Any, Any]:
+    """(ffi, nog_config, cpd_config) as the SIL builds them, from the scenario and the bundle."""
+    from ogk_host.orbit_injection.scenario import load_scenario
+
+    from ogk.bindings._ffi import ffi
+    from ogk.missions.orbit_injection.attitude import cpd_config
+    from ogk.missions.orbit_injection.nog_guidance import load_table, nog_config
+
+    scn = load_scenario(scenario)
+    table = load_table(bundle)
+    nog = nog_config(scn, table)
+    cpd = ffi.new("ogk_cpd_config_t *")
+    for key, value in cpd_config(scn, control_period_s=1.0 / CONTROL_RATE_HZ).items():
+        setattr(cpd, key, value)
+    return ffi, nog, cpd
+
+
+def leo_geo_plant_defines(scenario: Path, t_f_star_s: float) -> dict[str, float]:
+    """Scenario constants of the flight app's point-mass plant (eqs. 3-6, sec. 6 thrust)."""
+    from ogk_host.orbit_injection.scenario import load_scenario
+    scn = load_scenario(scenario)
+    return {"OGK_LEO_GEO_MU_M3_S2": float(scn.mu_m3_s2),
+            "OGK_LEO_GEO_N0_M_S2": float(scn.thrust.initial_accel_m_s2),
+            "OGK_LEO_GEO_EXHAUST_VELOCITY_M_S": float(scn.thrust.exhaust_velocity_m_s),
+            "OGK_LEO_GEO_TARGET_RADIUS_M": float(scn.target_radius_m),
+            "OGK_LEO_GEO_T_F_STAR_S": float(t_f_star_s),
+            "OGK_LEO_GEO_CONTROL_RATE_HZ": CONTROL_RATE_HZ}
+
+
+def write_leo_geo_config(out: Path, scenario: Path, bundle: Path) -> list[Path]:
+    from ogk_host.cgen import ConfigItem, write_c_config
+    ffi, nog, cpd = leo_geo_configs(scenario, bundle)
+    cfg = write_c_config(
+        ffi, [ConfigItem("ogk_leo_geo_nog_config", nog,
+                         "VTD-NOG (ogk/nog.h): set .table to the validated table, then ogk_nog_init"),
+              ConfigItem("ogk_leo_geo_cpd_config", cpd,
+                         f"CPD (ogk/cpd.h), ff_period_s = the {CONTROL_RATE_HZ:g} Hz control period")],
+        out / "c" / "ogk_leo_geo_flight_config.h", scenario, includes=("ogk/nog.h", "ogk/cpd.h"),
+        note=f"Table: {bundle.name}, t_f* = {float(nog.table.t_f_star_s):.17g} s.")
+    plant = write_c_config(ffi, [], out / "c" / "ogk_leo_geo_sil_plant.h", scenario, includes=(),
+                           defines=leo_geo_plant_defines(scenario, float(nog.table.t_f_star_s)),
+                           note="Test-plant constants of the flight app (not flight data).")
+    return [cfg, plant]
