@@ -1,5 +1,6 @@
 """Flight configuration headers (ogk_host.cgen.write_c_config, `ogk tables`): every field of the
-generated const initialisers reads back in C bit-exactly as the cffi struct the harness filled.
+generated const initialisers reads back in C bit-exactly as the cffi struct the harness filled
+(writers: ogk.missions.{orbit_injection,low_thrust_transfer}.flight_config, `ogk tables SCENARIO`).
 
 Each test writes a header, generates a small C99 program that includes it and prints every leaf
 field by name (doubles as their 64-bit pattern, integers and enums as values, pointers as NULL or
@@ -9,7 +10,6 @@ flight flags when arm-none-eabi-gcc is installed.
 """
 from __future__ import annotations
 
-import argparse
 import math
 import shutil
 import struct
