@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Compares the injection errors of the flight app on the emulated Cortex-M7 with the same app built
 for the host (gcc x86-64, glibc libm): the "flightapp: <run>: cut-off ..." lines must agree to TOL
-(m, m/s, s) in every number. Usage: compare_runs.py ARM_LOG HOST_LOG"""
+(m, m/s, s) in every number; runs missing from one log are an error unless --common. Also compares
+the app with the SIL (sil_reference.py). Usage: compare_runs.py [--tol T] [--common] LOG_A LOG_B"""
 from __future__ import annotations
 
 import re
 import sys
+from pathlib import Path
 
 TOL = 1e-5
 LINE = re.compile(r"^flightapp: (.+?): cut-off (.*)$")
@@ -22,7 +24,17 @@ def runs(path: str) -> dict[str, list[float]]:
 
 
 def main(argv: list[str]) -> int:
-    arm, host = runs(argv[1]), runs(argv[2])
+    global TOL
+    args = argv[1:]
+    common = "--common" in args
+    args = [a for a in args if a != "--common"]
+    if args[0] == "--tol":
+        TOL, args = float(args[1]), args[2:]
+    arm, host = runs(args[0]), runs(args[1])
+    if common:
+        keys = arm.keys() & host.keys()
+        arm = {k: arm[k] for k in keys}
+        host = {k: host[k] for k in keys}
     if not arm or arm.keys() != host.keys():
         print(f"compare_runs: runs differ: arm {sorted(arm)} host {sorted(host)}")
         return 1
@@ -33,7 +45,8 @@ def main(argv: list[str]) -> int:
             return 1
         worst = max([worst] + [abs(a - b) for a, b in zip(arm[name], host[name])])
     ok = worst <= TOL
-    print(f"compare_runs: {len(arm)} runs, largest difference cortex-m7 vs host {worst:.3e} "
+    print(f"compare_runs: {len(arm)} runs ({', '.join(sorted(arm))}), largest difference "
+          f"{Path(args[0]).name} vs {Path(args[1]).name} {worst:.3e} "
           f"(tolerance {TOL:g}): {'ok' if ok else 'FAILED'}")
     return 0 if ok else 1
 

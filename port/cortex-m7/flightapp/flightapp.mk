@@ -6,6 +6,7 @@
 #                           (ogk tables leo-geo), build build/arm/flightapp/flightapp.elf, run it on
 #                           QEMU; fails unless it exits 0 and prints "flightapp: PASS", and unless
 #                           the same app built for the host gives the same injection errors
+#   make flight-app-sil-compare  the same runs against the host SIL (point-mass truth), ~30 s
 #   make flight-app-size    flash / RAM of the ELF and of each object, largest symbols
 #   make flight-app-stack   worst-case stack of the ogk_flight_* entry points (gcc call graphs)
 #
@@ -69,6 +70,21 @@ test-flight-app: $(FA_ELF) $(FA_HOST)
 	$(FA_HOST) > $(FA_B)/flightapp_host.log 2>&1 || { cat $(FA_B)/flightapp_host.log; \
 	  echo "test-flight-app: FAILED (host build)"; exit 1; }; \
 	python3 $(FA_DIR)/compare_runs.py $(FA_B)/flightapp.log $(FA_B)/flightapp_host.log
+
+# Against the host SIL (sil_reference.py: point-mass truth, the kernel NOG through cffi) with the
+# plant taking the command at every RK4 stage as the SIL does: runs A and B must agree to 1e-3
+# (measured: identical in all printed digits). About 30 s; not part of test-flight-app.
+FA_HOST_STAGE := $(B)/host/flightapp/flightapp_stage
+$(FA_HOST_STAGE): $(FA_SRC) $(FA_HDR) $(FA_GEN_C) $(FA_GEN_H) $(HOST_OBJ) | apt
+	@mkdir -p $(@D)
+	gcc $(STRICT) -O2 -DFLIGHTAPP_STAGE_COMMANDS=1 $(KINC) -I$(FA_GEN) -I$(FA_DIR) $(FA_SRC) \
+	  $(FA_GEN_C) $(HOST_OBJ) -lm -o $@
+.PHONY: flight-app-sil-compare
+flight-app-sil-compare: $(FA_HOST_STAGE) $(FA_B)/tables.stamp
+	$(FA_HOST_STAGE) > $(FA_B)/flightapp_stage.log
+	$(VPY) $(FA_DIR)/sil_reference.py $(FA_TABLES) > $(FA_B)/sil_reference.log
+	python3 $(FA_DIR)/compare_runs.py --common --tol 1e-3 $(FA_B)/flightapp_stage.log \
+	  $(FA_B)/sil_reference.log
 
 flight-app-size: $(FA_ELF)
 	arm-none-eabi-size -A $(FA_ELF) | grep -E '^(section|\.vectors|\.text|\.rodata|\.data|\.bss|\.heap|\.stack|Total)'

@@ -1,0 +1,55 @@
+#!/usr/bin/env python3
+"""The flight app's runs A and B flown by the host SIL (harness/ogk/missions/orbit_injection/sil.py,
+point-mass truth, the kernel NOG through cffi, no dispersion but the run's fixed ignition offset),
+printed in the flight app's format so compare_runs.py can compare them with the app built with
+-DFLIGHTAPP_STAGE_COMMANDS=1 (the same plant semantics: command evaluated at every RK4 stage).
+
+  .venv/bin/python port/cortex-m7/flightapp/sil_reference.py TABLE_DIR > sil.log
+
+A manual cross-check (about 30 s, most of it the nominal solve), not part of make test-flight-app:
+it depends on the harness internals (docs/flight-integration.md, "Verification")."""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from ogk_host.orbit_injection.scenario import DEFAULT_SCENARIO_PATH, load_scenario
+
+from ogk.missions.orbit_injection.dispersions import DispersionSwitches, RunDraws
+from ogk.missions.orbit_injection.guidance import GuidanceSetup
+from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance
+from ogk.missions.orbit_injection.nominal_ref import nominal_reference
+from ogk.missions.orbit_injection.sil import SilSettings, simulate
+
+# The offsets of main.c: A none, B +1 sigma of Table 3 on r, phi, v_r, v_t, v_n.
+RUNS = {"A nominal": [0.0] * 6,
+        "B +1 sigma": [5.0e3, 0.0, 1.186823891356144e-4, 30.0, 30.0, 30.0]}
+
+
+def main(argv: list[str]) -> int:
+    table_dir = Path(argv[1]) if len(argv) > 1 else Path("build/tables/leo_geo")
+    bundle = next(table_dir.glob("*_nog_bundle.ogkt"))
+    scn = load_scenario(DEFAULT_SCENARIO_PATH)
+    ref = nominal_reference(scn)
+    n = len(RUNS)
+    draws = RunDraws(np.arange(n, dtype=np.int64), np.zeros(n, dtype=np.uint64),
+                     np.array(list(RUNS.values()), dtype=np.float64), np.zeros((n, 3)),
+                     np.zeros((n, 3)), np.zeros((n, 10)))
+    gens = [np.random.default_rng(i) for i in range(n)]
+    guidance = KernelNogGuidance(GuidanceSetup(scn, ref, draws.run_id), bundle)
+    res = simulate(scn, ref, draws, gens, DispersionSwitches.none(), guidance,
+                   SilSettings(truth="point-mass"))
+    vc = float(np.sqrt(scn.mu_m3_s2 / scn.target_radius_m))
+    for i, name in enumerate(RUNS):
+        r, _, phi, vr, vt, vn = res.final_state[i]
+        t_f = float(res.errors["tf_s"][i]) if "tf_s" in res.errors else float("nan")
+        print(f"flightapp: {name}: cut-off t_f = {t_f:.6f} s: dr_f = {r - scn.target_radius_m:.6f} m, "
+              f"dphi_f = {np.degrees(phi):.3e} deg, dv_rf = {vr:.6f} m/s, dv_tf = {vt - vc:.6f} m/s, "
+              f"dv_nf = {vn:.6f} m/s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
