@@ -1,8 +1,6 @@
-"""Monte Carlo dispersions of the LEO-to-GEO burn (Pontani & Celani 2021, Tables 3-5, eq. 55).
+"""Monte Carlo dispersions of an orbit-injection burn (Pontani & Celani 2021, Tables 3-5, eq. 55).
 
-Reproducibility: run i of a campaign with master seed S owns the generator
-  PCG64(run_seed_i),  run_seed_i = SeedSequence(S, spawn_key=(i,)).generate_state(1, uint64)[0],
-so its numbers depend on (S, i) only, never on the number of runs, the worker count or the chunking.
+Reproducibility: run i owns the generator of ogk.sil.seeds (it depends on (seed, i) only).
 Each generator is consumed in a fixed order: 5 initial-state normals, 3 attitude, 3 rates, 10 thrust
 coefficients (always drawn, scaled by 0 when a group is switched off, so switching one group off does
 not change the others), then the actuation noise, 3 normals per control step in blocks of
@@ -17,6 +15,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ogk_host.orbit_injection.scenario import LeoGeoScenario
+
+from ogk.sil.seeds import run_generator, run_seed
+
+__all__ = ["ActuationNoise", "DispersionSwitches", "RunDraws", "draw_runs", "run_generator",
+           "run_seed"]
 
 F64 = NDArray[np.float64]
 
@@ -41,17 +44,6 @@ class DispersionSwitches:
     @property
     def any(self) -> bool:
         return self.initial_state or self.attitude or self.thrust or self.actuation
-
-
-def run_seed(master_seed: int, run_id: int) -> int:
-    """The 64-bit seed of run `run_id` of a campaign with `master_seed` (see module doc)."""
-    ss = np.random.SeedSequence(int(master_seed), spawn_key=(int(run_id),))
-    return int(ss.generate_state(1, np.uint64)[0])
-
-
-def run_generator(seed_of_run: int) -> np.random.Generator:
-    """The generator of one run."""
-    return np.random.Generator(np.random.PCG64(int(seed_of_run)))
 
 
 @dataclasses.dataclass(frozen=True)

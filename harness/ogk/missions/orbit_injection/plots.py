@@ -1,10 +1,10 @@
 """PNG figures of a campaign in the spirit of the paper's Figs. 3-5 (matplotlib, Agg backend).
 
-  leo_geo_states.png       Fig. 3: altitude error, declination, v_r, v_t, v_n and M_x vs time,
+  <scenario>_states.png       Fig. 3: altitude error, declination, v_r, v_t, v_n and M_x vs time,
                            every recorded run overlaid, nominal dashed
-  leo_geo_actuators.png    Fig. 4: nozzle deflections Delta_y, Delta_z (and M_x) vs time
-  leo_geo_attitude.png     Fig. 5: commanded vs actual Psi, Theta, Phi of one run
-  leo_geo_injection.png    injection errors of every run (scatter) and t_f histogram
+  <scenario>_actuators.png    Fig. 4: nozzle deflections Delta_y, Delta_z (and M_x) vs time
+  <scenario>_attitude.png     Fig. 5: commanded vs actual Psi, Theta, Phi of one run
+  <scenario>_injection.png    injection errors of every run (scatter) and t_f histogram
 """
 from __future__ import annotations
 
@@ -12,16 +12,16 @@ from pathlib import Path
 
 import numpy as np
 
-from .campaign import CampaignResult
+from ogk.sil.plots import dispersion_figure, pyplot, save
+
+from .campaign import CampaignResult, tolerances
 from .nominal_ref import circular_speed, nominal_reference
+from .report import LABELS
 
 
 def write_plots(res: CampaignResult, out_dir: str | Path) -> list[Path]:
     """Writes the PNGs that the result's data allows; returns their paths."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written: list[Path] = []
@@ -50,10 +50,10 @@ def write_plots(res: CampaignResult, out_dir: str | Path) -> list[Path]:
             ax.grid(alpha=0.3)
         for ax in axes[-1]:
             ax.set_xlabel("time since ignition [s]")
-        fig.suptitle(f"LEO-to-GEO injection: state histories ({h.run_id.size} runs, "
+        fig.suptitle(f"{scn.name}: state histories ({h.run_id.size} runs, "
                      f"truth {res.truth}, guidance {res.guidance})")
         fig.tight_layout()
-        written.append(_save(fig, out / "leo_geo_states.png"))
+        written.append(_save(fig, out / f"{scn.name}_states.png"))
 
         if res.truth == "6dof":
             fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
@@ -66,7 +66,7 @@ def write_plots(res: CampaignResult, out_dir: str | Path) -> list[Path]:
             axes[-1].set_xlabel("time since ignition [s]")
             fig.suptitle("Thrust deflection angles and roll torque (actual, incl. actuation noise)")
             fig.tight_layout()
-            written.append(_save(fig, out / "leo_geo_actuators.png"))
+            written.append(_save(fig, out / f"{scn.name}_actuators.png"))
 
             fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
             col = 0
@@ -81,33 +81,17 @@ def write_plots(res: CampaignResult, out_dir: str | Path) -> list[Path]:
             axes[-1].set_xlabel("time since ignition [s]")
             fig.suptitle(f"Commanded and actual attitude, run {int(h.run_id[col])}")
             fig.tight_layout()
-            written.append(_save(fig, out / "leo_geo_attitude.png"))
+            written.append(_save(fig, out / f"{scn.name}_attitude.png"))
 
     ok = res.ok
     if ok.any():
-        e = res.errors
-        fig, axes = plt.subplots(2, 2, figsize=(10, 8))
-        pairs = [("dr_f_m", "dvr_f_mps", "dr_f [m]", "dv_rf [m/s]"),
-                 ("dvt_f_mps", "dvn_f_mps", "dv_tf [m/s]", "dv_nf [m/s]"),
-                 ("dphi_f_deg", "dvn_f_mps", "dphi_f [deg]", "dv_nf [m/s]")]
-        for ax, (kx, ky, lx, ly) in zip(axes.ravel(), pairs):
-            ax.scatter(e[kx][ok], e[ky][ok], s=6, alpha=0.6)
-            ax.set_xlabel(lx)
-            ax.set_ylabel(ly)
-            ax.grid(alpha=0.3)
-        ax = axes[1, 1]
-        ax.hist(e["tf_s"][ok], bins=min(40, max(5, int(ok.sum() ** 0.5))))
-        ax.axvline(res.nominal_tf_s, color="k", ls="--", label="t_f*")
-        ax.set_xlabel("t_f [s]")
-        ax.legend()
-        fig.suptitle(f"Injection errors at cut-off ({int(ok.sum())} runs, {res.n_failures} failed)")
-        fig.tight_layout()
-        written.append(_save(fig, out / "leo_geo_injection.png"))
+        fig = dispersion_figure(
+            res.errors, ok, [("dr_f_m", "dvr_f_mps"), ("dvt_f_mps", "dvn_f_mps"),
+                             ("dphi_f_deg", "dvn_f_mps")], LABELS, "tf_s", res.nominal_tf_s,
+            f"{scn.name}: injection errors at cut-off ({int(ok.sum())} runs, "
+            f"{res.n_failures} failed)", tolerances(scn))
+        written.append(_save(fig, out / f"{scn.name}_injection.png"))
     return written
 
 
-def _save(fig, path: Path) -> Path:
-    import matplotlib.pyplot as plt
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+_save = save
