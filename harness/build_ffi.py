@@ -106,15 +106,29 @@ def macros(headers: list[Path]) -> list[tuple[str, str, str]]:
     """(name, kind, value) of the object-like OGK_* macros of `headers`,
     kind in {"int", "double", "string"}; empty (include-guard) macros skipped."""
     text = _preprocess(include_source(headers), "-dM")
-    found: list[tuple[str, str, str]] = []
+    values: dict[str, str] = {}
     for line in text.splitlines():
         m = _MACRO.match(line)
-        if not m or m.group(2) is None or not m.group(2).strip():
-            continue
-        name, value = m.group(1), m.group(2).strip()
-        if value.startswith('"'):
+        if m and m.group(2) is not None and m.group(2).strip():
+            values[m.group(1)] = m.group(2).strip()
+
+    def expanded(value: str) -> str:
+        # Other OGK_* macros replaced by their values (a macro may alias another,
+        # e.g. OGK_CPD_ANGLE_LIMIT -> OGK_ANGLE_LIMIT), so the kind is the compiler's.
+        for _ in range(16):
+            new = re.sub(r"\bOGK_\w+\b", lambda m: f"({values.get(m.group(0), m.group(0))})",
+                         value)
+            if new == value:
+                break
+            value = new
+        return value
+
+    found: list[tuple[str, str, str]] = []
+    for name, value in values.items():
+        full = expanded(value)
+        if full.lstrip("( ").startswith('"'):
             kind = "string"
-        elif _FLOAT.search(value):
+        elif _FLOAT.search(full):
             kind = "double"
         else:
             kind = "int"

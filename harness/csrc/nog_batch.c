@@ -31,7 +31,7 @@ ogk_status ogk_sil_nog_sample_batch(ogk_nog_t *ctx, size_t n_runs, const uint8_t
         return OGK_E_NULL;
     }
     for (i = 0u; i < n_runs; ++i) {
-        ogk_nog_nav_t in;
+        ogk_nav_state_t in;
         ogk_nog_sample_t out;
         ogk_status st;
         if (active[i] == 0u) {
@@ -68,11 +68,11 @@ ogk_status ogk_sil_nog_command_batch(const ogk_nog_t *ctx, size_t n_runs, const 
         return OGK_E_NULL;
     }
     for (i = 0u; i < n_runs; ++i) {
-        ogk_nog_command_t out;
+        ogk_thrust_cmd_t out;
         const ogk_status st = ogk_nog_command(&ctx[i], t[i], &out);
         alpha[i] = out.alpha_rad;
         beta[i] = out.beta_rad;
-        flags[i] = out.flags;
+        flags[i] = out.law_flags;
         status[i] = (int32_t)st;
         if (st != OGK_OK && first == OGK_OK) {
             first = st;

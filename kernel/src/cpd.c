@@ -10,8 +10,9 @@
 #include <stddef.h>
 #include <string.h>
 
-#define CPD_PI 3.14159265358979323846
-#define CPD_TWO_PI 6.28318530717958647692
+#include "ogk_checks.h"
+
+#define CPD_PI OGK_I_PI
 
 /* Below this horizontal component (in a1-a2) of a unit vector its yaw is
  * undefined (the vector is along +-a3 to within 1e-12 rad). */
@@ -151,21 +152,6 @@ static ogk_status check_angles(const double *angles, size_t n)
     return st;
 }
 
-/* angle + 2 pi k in (-pi, pi]; angle finite. */
-static double wrap_pi(double angle)
-{
-    double m = fmod(CPD_PI - angle, CPD_TWO_PI); /* exact; in (-2 pi, 2 pi) */
-    double w;
-    if (m < 0.0) {
-        m += CPD_TWO_PI;
-    }
-    w = CPD_PI - m; /* m in [0, 2 pi] -> w in [-pi, pi] */
-    if (w <= -CPD_PI) {
-        w += CPD_TWO_PI;
-    }
-    return w;
-}
-
 static double saturate(double value, double limit, uint32_t flag, uint32_t *flags)
 {
     if (value > limit) {
@@ -275,20 +261,6 @@ static void feedforward_rate(const ogk_cpd_t *ctx, const double t_a[3], double p
 
 /* ---------------------------------------------------------------- public */
 
-ogk_status ogk_cpd_wrap_pi(double angle, double *wrapped)
-{
-    ogk_status st;
-    if (wrapped == NULL) {
-        return OGK_E_NULL;
-    }
-    st = check_angle(angle);
-    if (st != OGK_OK) {
-        return st;
-    }
-    *wrapped = wrap_pi(angle);
-    return OGK_OK;
-}
-
 ogk_status ogk_cpd_commanded_attitude(double alpha_c, double beta_c, double xi,
                                       double phi, double *psi_c,
                                       double *theta_c)
@@ -380,13 +352,7 @@ static bool config_finite(const ogk_cpd_config_t *cfg)
                           cfg->delta_zc_max, cfg->tau_x, cfg->tau_y, cfg->tau_z,
                           cfg->phi_c, cfg->approach_accel_x, cfg->approach_accel_y,
                           cfg->approach_accel_z, cfg->ff_period_s, cfg->ff_rate_max};
-    size_t i;
-    for (i = 0u; i < 18u; ++i) {
-        if (!isfinite(v[i])) {
-            return false;
-        }
-    }
-    return true;
+    return ogk_i_all_finite(v, sizeof v / sizeof v[0]);
 }
 
 /* The PD term of one axis, k_p e - k_d w, with the braking-curve cap of the
@@ -441,7 +407,72 @@ ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg)
     }
     ctx->cfg = *cfg;
     ctx->last.flags = OGK_CPD_FLAG_SAFE;
-    ctx->init_magic = OGK_CPD_INIT_MAGIC;
+    ctx->init_marker = OGK_CPD_INIT_MARKER;
+    return OGK_OK;
+}
+
+ogk_status ogk_cpd_config_default(ogk_cpd_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return OGK_E_NULL;
+    }
+    (void)memset(cfg, 0, sizeof(*cfg));
+    /* eq. (54) and sec. 6 as printed (docs/cpd.md: pitch/yaw gain erratum) */
+    cfg->k_px = 21.6e3;
+    cfg->k_dx = 7.2e3;
+    cfg->k_py = 21.6;
+    cfg->k_dy = 7.2;
+    cfg->k_pz = 21.6;
+    cfg->k_dz = 7.2;
+    cfg->m_xc_max = 30.0;
+    cfg->delta_yc_max = 0.65 * CPD_PI / 180.0;
+    cfg->delta_zc_max = 0.65 * CPD_PI / 180.0;
+    cfg->tau_x = 0.1;
+    cfg->tau_y = 0.1;
+    cfg->tau_z = 0.1;
+    cfg->phi_c = 0.0;
+    cfg->pointing = OGK_CPD_POINTING_BODY;
+    cfg->approach_accel_x = 0.0;
+    cfg->approach_accel_y = 0.0;
+    cfg->approach_accel_z = 0.0;
+    cfg->ff_period_s = 0.0;
+    cfg->ff_rate_max = 0.0;
+    return OGK_OK;
+}
+
+ogk_status ogk_cpd_reset(ogk_cpd_t *ctx)
+{
+    if (ctx == NULL) {
+        return OGK_E_NULL;
+    }
+    if (ctx->init_marker != OGK_CPD_INIT_MARKER) {
+        return OGK_E_NOT_INIT;
+    }
+    (void)memset(&ctx->last, 0, sizeof(ctx->last));
+    ctx->last.flags = OGK_CPD_FLAG_SAFE;
+    ctx->dir_prev_a[0] = 0.0;
+    ctx->dir_prev_a[1] = 0.0;
+    ctx->dir_prev_a[2] = 0.0;
+    ctx->has_prev = 0u;
+    return OGK_OK;
+}
+
+ogk_status ogk_cpd_input_from_thrust_cmd(ogk_cpd_input_t *in, const ogk_thrust_cmd_t *cmd,
+                                         const ogk_nav_state_t *nav)
+{
+    if (in == NULL || cmd == NULL || nav == NULL) {
+        return OGK_E_NULL;
+    }
+    {
+        const double v[4] = {cmd->alpha_rad, cmd->beta_rad, nav->xi_rad, nav->phi_rad};
+        if (!ogk_i_all_finite(v, 4u)) {
+            return OGK_E_NONFINITE;
+        }
+    }
+    in->alpha_c = cmd->alpha_rad;
+    in->beta_c = cmd->beta_rad;
+    in->xi = nav->xi_rad;
+    in->phi = nav->phi_rad;
     return OGK_OK;
 }
 
@@ -466,7 +497,7 @@ static ogk_status reject(ogk_cpd_t *ctx, ogk_cpd_output_t *out, ogk_status st)
     if (out != NULL) {
         safe_command(out);
     }
-    if (ctx != NULL && ctx->init_magic == OGK_CPD_INIT_MAGIC) {
+    if (ctx != NULL && ctx->init_marker == OGK_CPD_INIT_MARKER) {
         safe_command(&ctx->last);
     }
     return st;
@@ -489,7 +520,7 @@ ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
     if (ctx == NULL || in == NULL || out == NULL) {
         return reject(ctx, out, OGK_E_NULL);
     }
-    if (ctx->init_magic != OGK_CPD_INIT_MAGIC) {
+    if (ctx->init_marker != OGK_CPD_INIT_MARKER) {
         return reject(ctx, out, OGK_E_NOT_INIT);
     }
     {
@@ -520,11 +551,11 @@ ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
     }
 
     /* roll error: eq. (45) with the error wrapped to (-pi, pi] */
-    err_x = wrap_pi(cfg->phi_c - in->phi_roll);
+    err_x = ogk_i_wrap_pi(cfg->phi_c - in->phi_roll);
     if (cfg->pointing == OGK_CPD_POINTING_EULER) {
         /* eq. (46) literally (valid near zero roll only, see cpd.h) */
         err_y = out->theta_c - in->theta;
-        err_z = wrap_pi(out->psi_c - in->psi);
+        err_z = ogk_i_wrap_pi(out->psi_c - in->psi);
     } else {
         pointing_error_body(t_b, &err_y, &err_z);
     }

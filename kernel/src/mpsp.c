@@ -5,6 +5,7 @@
 #include "mpsp_internal.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #define NX OGK_MPSP_NX
@@ -31,9 +32,9 @@ static bool cfg_scalars_finite(const ogk_mpsp_config_t *cfg)
                         cfg->fourier_period, cfg->fourier_t_ref, cfg->h_max, cfg->delta_max,
                         cfg->delta_tau_0, cfg->delta_tau_min, cfg->r_lambda, cfg->tol_r,
                         cfg->tol_v, cfg->tol_lambda_m, cfg->s_tol, cfg->lambda_m0_nom};
-    return mpsp_all_finite(s, sizeof s / sizeof s[0]) &&
-           mpsp_all_finite(cfg->x0_nom, OGK_MPSP_NX0) && mpsp_all_finite(cfg->r_f, 3u) &&
-           mpsp_all_finite(cfg->v_f, 3u);
+    return ogk_i_all_finite(s, sizeof s / sizeof s[0]) &&
+           ogk_i_all_finite(cfg->x0_nom, OGK_MPSP_NX0) && ogk_i_all_finite(cfg->r_f, 3u) &&
+           ogk_i_all_finite(cfg->v_f, 3u);
 }
 
 static size_t grid_steps(double span, double h)
@@ -65,7 +66,7 @@ static ogk_status check_config(const ogk_mpsp_config_t *cfg)
         return OGK_E_CONFIG;
     }
     n_weights = OGK_MPSP_NU * (2u * (size_t)cfg->fourier_order + 1u);
-    if (!mpsp_all_finite(cfg->weights_nom, n_weights) || !mpsp_all_finite(cfg->r_eps, n_weights)) {
+    if (!ogk_i_all_finite(cfg->weights_nom, n_weights) || !ogk_i_all_finite(cfg->r_eps, n_weights)) {
         return OGK_E_NONFINITE;
     }
     for (i = 0u; i < n_weights; ++i) {
@@ -91,21 +92,45 @@ static ogk_status check_config(const ogk_mpsp_config_t *cfg)
     return OGK_OK;
 }
 
-ogk_status ogk_mpsp_init(ogk_mpsp_t *ctx, const ogk_mpsp_config_t *cfg)
+ogk_status ogk_mpsp_config_default(ogk_mpsp_config_t *cfg)
 {
     size_t i;
-    ogk_status st;
 
-    if (ctx == NULL || cfg == NULL) {
+    if (cfg == NULL) {
         return OGK_E_NULL;
     }
-    ctx->init_magic = 0u;
-    st = check_config(cfg);
-    if (st != OGK_OK) {
-        return st;
+    /* Mission data (mu, thrust, exhaust velocity, times, states, target,
+     * basis order and period, nominal weights, step, tolerances) is 0: it
+     * must be set, and ogk_mpsp_init rejects it left at 0. */
+    (void)memset(cfg, 0, sizeof *cfg);
+    cfg->fourier_kind = OGK_MPSP_BASIS_FOURIER;
+    cfg->fourier_t_ref = 0.0;
+    cfg->delta_max = 1.0;       /* Delta_max of Alg. 1 */
+    cfg->delta_tau_0 = 0.5;     /* first continuation step of Alg. 2 */
+    cfg->delta_tau_min = 0.1;   /* the paper's 0.1 */
+    for (i = 0u; i < OGK_MPSP_MAX_WEIGHTS; ++i) {
+        cfg->r_eps[i] = 1.0;    /* R_eps = I (eq. 41) */
     }
-    (void)memset(ctx, 0, sizeof *ctx);
-    ctx->cfg = *cfg;
+    cfg->r_lambda = 1.0;        /* R_lambda = 1 (eq. 41) */
+    cfg->s_tol = 1.0e-12;       /* the paper's switch tolerance */
+    cfg->max_newton = 100u;
+    cfg->max_outer = 50u;
+    cfg->n_seg_tol = 0u;        /* the paper's initial N_seg,tol */
+    cfg->n_seg_tol_step = 2u;   /* the paper's increase */
+    cfg->n_seg_nom = 0u;        /* counted at init from the nominal */
+    return OGK_OK;
+}
+
+/* Everything ogk_mpsp_init derives from ctx->cfg (already checked and
+ * copied); also the whole of ogk_mpsp_reset. */
+static ogk_status prepare(ogk_mpsp_t *ctx)
+{
+    const ogk_mpsp_config_t *cfg = &ctx->cfg;
+    size_t i;
+
+    /* Everything after the configuration back to zero. */
+    (void)memset((unsigned char *)ctx + offsetof(ogk_mpsp_t, n_basis), 0,
+                 sizeof *ctx - offsetof(ogk_mpsp_t, n_basis));
     ctx->n_basis = 2u * (size_t)cfg->fourier_order + 1u;
     ctx->n_weights = OGK_MPSP_NU * ctx->n_basis;
     ctx->n_steps = grid_steps(cfg->tf - cfg->t0, cfg->h_max);
@@ -114,13 +139,13 @@ ogk_status ogk_mpsp_init(ogk_mpsp_t *ctx, const ogk_mpsp_config_t *cfg)
         ctx->inv_sqrt_r_eps[i] = 1.0 / sqrt(cfg->r_eps[i]);
     }
     ctx->inv_sqrt_r_lambda = 1.0 / sqrt(cfg->r_lambda);
-    ctx->init_magic = OGK_MPSP_INIT_MAGIC;
+    ctx->init_marker = OGK_MPSP_INIT_MARKER;
     if (cfg->n_seg_nom == 0u) {
         ogk_mpsp_prop_t prop;
-        st = mpsp_propagate_ctx(ctx, cfg->weights_nom, cfg->lambda_m0_nom, cfg->x0_nom,
+        const ogk_status st = mpsp_propagate_ctx(ctx, cfg->weights_nom, cfg->lambda_m0_nom, cfg->x0_nom,
                                 cfg->t_max, &prop);
         if (st != OGK_OK) {
-            ctx->init_magic = 0u;
+            ctx->init_marker = 0u;
             return OGK_E_CONFIG;
         }
         ctx->n_seg_nom = prop.n_segments;
@@ -128,6 +153,34 @@ ogk_status ogk_mpsp_init(ogk_mpsp_t *ctx, const ogk_mpsp_config_t *cfg)
         ctx->n_seg_nom = cfg->n_seg_nom;
     }
     return OGK_OK;
+}
+
+ogk_status ogk_mpsp_init(ogk_mpsp_t *ctx, const ogk_mpsp_config_t *cfg)
+{
+    ogk_status st;
+
+    if (ctx == NULL || cfg == NULL) {
+        return OGK_E_NULL;
+    }
+    ctx->init_marker = 0u;
+    st = check_config(cfg);
+    if (st != OGK_OK) {
+        return st;
+    }
+    (void)memset(ctx, 0, sizeof *ctx);
+    ctx->cfg = *cfg;
+    return prepare(ctx);
+}
+
+ogk_status ogk_mpsp_reset(ogk_mpsp_t *ctx)
+{
+    if (ctx == NULL) {
+        return OGK_E_NULL;
+    }
+    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
+        return OGK_E_NOT_INIT;
+    }
+    return prepare(ctx);
 }
 
 /* ------------------------------------------------------------------ Newton update */
@@ -144,10 +197,10 @@ ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *wei
     if (ctx == NULL || dy == NULL || weights == NULL || lambda_m0 == NULL) {
         return OGK_E_NULL;
     }
-    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC || ctx->sens_valid == 0u) {
+    if (ctx->init_marker != OGK_MPSP_INIT_MARKER || ctx->sens_valid == 0u) {
         return OGK_E_NOT_INIT;
     }
-    if (!mpsp_all_finite(dy, NY) || !mpsp_all_finite(weights, ctx->n_weights) ||
+    if (!ogk_i_all_finite(dy, NY) || !ogk_i_all_finite(weights, ctx->n_weights) ||
         !isfinite(*lambda_m0)) {
         return OGK_E_NONFINITE;
     }
@@ -167,7 +220,7 @@ ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *wei
     if (st != OGK_OK && st != OGK_E_ILL_CONDITIONED) {
         return st; /* ill-conditioned still gives the least-norm step: taken */
     }
-    if (!mpsp_all_finite(ctx->newton_z, nu)) {
+    if (!ogk_i_all_finite(ctx->newton_z, nu)) {
         return OGK_E_NONFINITE;
     }
     /* Eq. (46): epsilon_{j+1} = epsilon_j - d epsilon_j, same for lambda_m0. */
@@ -330,11 +383,11 @@ ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale
     if (ctx == NULL || x0 == NULL || res == NULL) {
         return OGK_E_NULL;
     }
-    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC) {
+    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
         return OGK_E_NOT_INIT;
     }
-    if (!mpsp_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale) ||
-        (target_rv != NULL && !mpsp_all_finite(target_rv, 6u))) {
+    if (!ogk_i_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale) ||
+        (target_rv != NULL && !ogk_i_all_finite(target_rv, 6u))) {
         return OGK_E_NONFINITE;
     }
     if (!(x0[6] > 0.0) || !(thrust_scale > 0.0)) {

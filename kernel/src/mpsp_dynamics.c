@@ -7,17 +7,6 @@
 #include <math.h>
 #include <string.h>
 
-bool mpsp_all_finite(const double *v, size_t n)
-{
-    size_t i;
-    for (i = 0u; i < n; ++i) {
-        if (!isfinite(v[i])) {
-            return false;
-        }
-    }
-    return true;
-}
-
 void mpsp_dyn_setup(mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weights,
                     double thrust)
 {

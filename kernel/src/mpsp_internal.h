@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include "ogk/mpsp.h"
 #include "ogk/rk4.h"
+#include "ogk_checks.h"
 
 /* Compile-time checks of the limits against the solvers used (C99: a
  * negative array size is an error). */
@@ -68,7 +69,6 @@ ogk_status mpsp_jacobian(const mpsp_dyn_t *dyn, const double *x, const double *u
 ogk_status mpsp_rhs_cb(void *user, double t, const double *x, int mode, double *xdot);
 ogk_status mpsp_switch_cb(void *user, double t, const double *x, int mode, double *s);
 void mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, mpsp_dyn_t *dyn);
-bool mpsp_all_finite(const double *v, size_t n);
 
 /* ---- mpsp_sensitivity.c */
 /* Adjoint row vectors are held "lane-major": up to MPSP_LANES row vectors w_r

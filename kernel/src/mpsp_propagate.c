@@ -85,10 +85,10 @@ static ogk_status check_inputs(const ogk_mpsp_t *ctx, const double *x0, double t
     if (ctx == NULL || x0 == NULL) {
         return OGK_E_NULL;
     }
-    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC) {
+    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
         return OGK_E_NOT_INIT;
     }
-    if (!mpsp_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale)) {
+    if (!ogk_i_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale)) {
         return OGK_E_NONFINITE;
     }
     if (!(x0[6] > 0.0) || !(thrust_scale > 0.0)) {
@@ -108,7 +108,7 @@ ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const double *weights, double lam
     if (weights == NULL) {
         return OGK_E_NULL;
     }
-    if (!mpsp_all_finite(weights, ctx->n_weights) || !isfinite(lambda_m0)) {
+    if (!ogk_i_all_finite(weights, ctx->n_weights) || !isfinite(lambda_m0)) {
         return OGK_E_NONFINITE;
     }
     return mpsp_propagate_ctx(ctx, weights, lambda_m0, x0, ctx->cfg.t_max * thrust_scale, out);
@@ -120,7 +120,7 @@ ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, double *t, double *x,
     if (ctx == NULL || count == NULL) {
         return OGK_E_NULL;
     }
-    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC) {
+    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
         return OGK_E_NOT_INIT;
     }
     *count = ctx->n_nodes;
@@ -153,7 +153,7 @@ ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x)
     if (ctx == NULL || x == NULL) {
         return OGK_E_NULL;
     }
-    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC) {
+    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
         return OGK_E_NOT_INIT;
     }
     if (ctx->traj_valid == 0u || ctx->n_nodes < 2u) {
@@ -202,10 +202,10 @@ ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double
     if (ctx == NULL || weights == NULL || lambda_v == NULL) {
         return OGK_E_NULL;
     }
-    if (ctx->init_magic != OGK_MPSP_INIT_MAGIC) {
+    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
         return OGK_E_NOT_INIT;
     }
-    if (!isfinite(t) || !mpsp_all_finite(weights, ctx->n_weights)) {
+    if (!isfinite(t) || !ogk_i_all_finite(weights, ctx->n_weights)) {
         return OGK_E_NONFINITE;
     }
     mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max);

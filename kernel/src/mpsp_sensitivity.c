@@ -243,7 +243,7 @@ static ogk_status check_ctx(const ogk_mpsp_t *ctx)
     if (ctx == NULL) {
         return OGK_E_NULL;
     }
-    return (ctx->init_magic == OGK_MPSP_INIT_MAGIC) ? OGK_OK : OGK_E_NOT_INIT;
+    return (ctx->init_marker == OGK_MPSP_INIT_MARKER) ? OGK_OK : OGK_E_NOT_INIT;
 }
 
 static ogk_status check_mode_scale(double thrust_scale, int mode)
@@ -285,8 +285,8 @@ ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
     if (st != OGK_OK) {
         return st;
     }
-    if (!isfinite(t) || !isfinite(dt) || !mpsp_all_finite(x, NX) ||
-        !mpsp_all_finite(weights, ctx->n_weights)) {
+    if (!isfinite(t) || !isfinite(dt) || !ogk_i_all_finite(x, NX) ||
+        !ogk_i_all_finite(weights, ctx->n_weights)) {
         return OGK_E_NONFINITE;
     }
     if (dt == 0.0) {
@@ -362,8 +362,8 @@ ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
     if (st != OGK_OK) {
         return st;
     }
-    if (!isfinite(t_s) || !mpsp_all_finite(x_s, NX) ||
-        !mpsp_all_finite(weights, ctx->n_weights)) {
+    if (!isfinite(t_s) || !ogk_i_all_finite(x_s, NX) ||
+        !ogk_i_all_finite(weights, ctx->n_weights)) {
         return OGK_E_NONFINITE;
     }
     mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max * thrust_scale);
@@ -535,8 +535,8 @@ ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, double *dy_dw, double *dy_dlm0)
     for (r = 0u; r < NY; ++r) {
         ctx->dy_dlm0[r] = adj[7u * L + r];
     }
-    if (!mpsp_all_finite(ctx->dy_dw, NY * ctx->n_weights) ||
-        !mpsp_all_finite(ctx->dy_dlm0, NY)) {
+    if (!ogk_i_all_finite(ctx->dy_dw, NY * ctx->n_weights) ||
+        !ogk_i_all_finite(ctx->dy_dlm0, NY)) {
         return OGK_E_NONFINITE;
     }
     ctx->sens_valid = 1u;

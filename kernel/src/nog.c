@@ -9,13 +9,15 @@
 #include "ogk/linalg.h"
 #include "ogk/table.h"
 
+#include "ogk_checks.h"
+
 #define NX OGK_NOG_NX
 #define N_GAIN_ROWS 8u          /* dlam (7) and dt_f */
 #define IDX_R 0u
 #define IDX_XI 1u
 #define IDX_VR 3u
 #define IDX_TIME 6u
-#define PI 3.14159265358979323846
+#define PI OGK_I_PI
 
 /* Halvings of the costate-correction scale when the direction bound bites:
  * 40 give the scale to 1e-12. */
@@ -24,14 +26,15 @@
 /* Relative tolerance on the t_f* values a table carries (x*' of the time state). */
 #define OGK_NOG_TF_CONSISTENCY 1.0e-9
 
-static const double *entry_row(const ogk_nog_table_t *tbl, size_t k)
+static const double *entry_row(const ogk_nog_table_view_t *tbl, size_t k)
 {
     return &tbl->entry[k * OGK_NOG_ENTRY_LEN];
 }
 
 /* ------------------------------------------------------------------ table */
 
-static ogk_status check_table_content(const ogk_nog_table_t *tbl)
+/* The grid and t_f* checks shared by the loader and the in-place view. */
+static ogk_status check_table_content(const ogk_nog_table_view_t *tbl)
 {
     const size_t n = tbl->n_grid;
     const double t_f = entry_row(tbl, 0u)[OGK_NOG_OFF_XDOT + IDX_TIME];
@@ -60,10 +63,35 @@ static ogk_status check_table_content(const ogk_nog_table_t *tbl)
     return OGK_OK;
 }
 
-ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t len)
+/* The file-level checks shared by the loader and the in-place view. */
+static ogk_status open_table(const uint8_t *buf, size_t len, ogk_table_view_t *view)
 {
     ogk_table_spec_t spec;
+
+    memset(&spec, 0, sizeof spec);
+    spec.kind = OGK_NOG_TABLE_KIND;
+    spec.ndims = 1u;
+    spec.dims[0] = OGK_NOG_ENTRY_LEN;
+    spec.min_grid = 3u;
+    spec.max_grid = OGK_NOG_MAX_GRID;
+    return ogk_table_open(buf, len, &spec, view);
+}
+
+/* A view of a RAM table (what the context flies from). */
+static void view_of_table(const ogk_nog_table_t *table, ogk_nog_table_view_t *view)
+{
+    memset(view, 0, sizeof *view);
+    view->tau = table->tau;
+    view->entry = table->entry;
+    view->n_grid = table->n_grid;
+    view->t_f_star_s = table->t_f_star_s;
+    view->init_marker = OGK_NOG_VIEW_MARKER;
+}
+
+ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t len)
+{
     ogk_table_view_t view;
+    ogk_nog_table_view_t tv;
     ogk_status st;
 
     if (table == NULL) {
@@ -71,13 +99,7 @@ ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t
     }
     table->n_grid = 0u;
     table->t_f_star_s = 0.0;
-    memset(&spec, 0, sizeof spec);
-    spec.kind = OGK_NOG_TABLE_KIND;
-    spec.ndims = 1u;
-    spec.dims[0] = OGK_NOG_ENTRY_LEN;
-    spec.min_grid = 3u;
-    spec.max_grid = OGK_NOG_MAX_GRID;
-    st = ogk_table_open(buf, len, &spec, &view);
+    st = open_table(buf, len, &view);
     if (st == OGK_OK) {
         st = ogk_table_read_grid(&view, table->tau, OGK_NOG_MAX_GRID);
     }
@@ -86,43 +108,59 @@ ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t
     }
     if (st == OGK_OK) {
         table->n_grid = view.grid_size;
-        st = check_table_content(table);
+        view_of_table(table, &tv);
+        st = check_table_content(&tv);
     }
     if (st != OGK_OK) {
         table->n_grid = 0u;
         return st;
     }
-    table->t_f_star_s = entry_row(table, 0u)[OGK_NOG_OFF_XDOT + IDX_TIME];
+    table->t_f_star_s = table->entry[OGK_NOG_OFF_XDOT + IDX_TIME];
+    return OGK_OK;
+}
+
+ogk_status ogk_nog_table_view(ogk_nog_table_view_t *view, const uint8_t *buf, size_t len)
+{
+    ogk_table_view_t tv;
+    ogk_status st;
+
+    if (view == NULL) {
+        return OGK_E_NULL;
+    }
+    memset(view, 0, sizeof *view);
+    if (buf == NULL) {
+        return OGK_E_NULL;
+    }
+    /* The payload (offset 48) is read in place as double: 8-byte alignment
+     * of buf aligns every value. */
+    if (((uintptr_t)(const void *)buf & 7u) != 0u) {
+        return OGK_E_ALIGN;
+    }
+    st = open_table(buf, len, &tv);
+    if (st != OGK_OK) {
+        return st;
+    }
+    /* Grid then entries, both in the table's little-endian binary64 (the
+     * target's own representation, checked below by the grid values). The
+     * bytes are only ever read, as double, through these pointers. */
+    view->tau = (const double *)(const void *)&buf[OGK_TABLE_HEADER_SIZE];
+    view->entry = view->tau + tv.grid_size;
+    view->n_grid = tv.grid_size;
+    st = check_table_content(view);
+    if (st != OGK_OK) {
+        memset(view, 0, sizeof *view);
+        return st;
+    }
+    view->t_f_star_s = view->entry[OGK_NOG_OFF_XDOT + IDX_TIME];
+    view->init_marker = OGK_NOG_VIEW_MARKER;
     return OGK_OK;
 }
 
 /* ------------------------------------------------------------------ helpers */
 
-static bool finite_all(const double *v, size_t n)
-{
-    size_t i;
-    for (i = 0u; i < n; ++i) {
-        if (!isfinite(v[i])) {
-            return false;
-        }
-    }
-    return true;
-}
-
-static double wrap_pi(double angle)
-{
-    double w = fmod(angle, 2.0 * PI);
-    if (w > PI) {
-        w -= 2.0 * PI;
-    } else if (w <= -PI) {
-        w += 2.0 * PI;
-    }
-    return w;
-}
-
 /* Cubic Hermite of n quantities at tau from values at offset off_val and
  * d/dtau at off_der of the bracketing nodes. tau must be inside the grid. */
-static void hermite(const ogk_nog_table_t *tbl, double tau, size_t off_val,
+static void hermite(const ogk_nog_table_view_t *tbl, double tau, size_t off_val,
                     size_t off_der, size_t n, double *out)
 {
     size_t k = 0u;
@@ -147,7 +185,7 @@ static void hermite(const ogk_nog_table_t *tbl, double tau, size_t off_val,
 }
 
 /* Linear interpolation of a block of n values at offset off. */
-static void linear_block(const ogk_nog_table_t *tbl, double tau, size_t off,
+static void linear_block(const ogk_nog_table_view_t *tbl, double tau, size_t off,
                          size_t n, double *out)
 {
     size_t k = 0u;
@@ -192,7 +230,7 @@ static void costate_at(const ogk_nog_t *ctx, double tau, double *lam)
 {
     double lam_star[NX];
     size_t i;
-    hermite(ctx->cfg.table, tau, OGK_NOG_OFF_LAM, OGK_NOG_OFF_LAMDOT, NX, lam_star);
+    hermite(&ctx->tbl, tau, OGK_NOG_OFF_LAM, OGK_NOG_OFF_LAMDOT, NX, lam_star);
     for (i = 0u; i < NX; ++i) {
         lam[i] = lam_star[i] + ctx->dlam_k[i] + ctx->dlam_rate[i] * (tau - ctx->tau_k);
     }
@@ -231,31 +269,80 @@ static double direction_limit_scale(const double *lam_star, const double *dlam, 
 
 /* ------------------------------------------------------------------ API */
 
+ogk_status ogk_nog_config_default(ogk_nog_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return OGK_E_NULL;
+    }
+    memset(cfg, 0, sizeof *cfg);
+    cfg->table = NULL;
+    cfg->view = NULL;
+    cfg->sample_interval_s = 2.0; /* Delta t_S of the paper's sec. 6 */
+    cfg->dtf_max_s = 40.0;        /* ~17 sigma of the paper's MC t_f spread (2.34 s) */
+    cfg->du_max_rad = PI / 3.0;   /* 60 deg */
+    cfg->tau_freeze = 0.0;        /* corrections up to the last gain node */
+    return OGK_OK;
+}
+
+/* The just-initialised state: nominal from tau = 0, no sample taken. */
+static void start_nominal(ogk_nog_t *ctx)
+{
+    memset(ctx->dlam_k, 0, sizeof ctx->dlam_k);
+    memset(ctx->dlam_rate, 0, sizeof ctx->dlam_rate);
+    ctx->t_k_s = 0.0;
+    ctx->tau_k = 0.0;
+    ctx->t_f_s = ctx->tbl.t_f_star_s;
+    ctx->n_samples = 0u;
+    ctx->flags = 0u;
+}
+
 ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg)
 {
-    const ogk_nog_table_t *tbl;
+    ogk_nog_table_view_t tbl;
 
     if (ctx == NULL || cfg == NULL) {
         return OGK_E_NULL;
     }
     memset(ctx, 0, sizeof *ctx);
-    tbl = cfg->table;
-    if (tbl == NULL) {
+    if (cfg->table == NULL && cfg->view == NULL) {
         return OGK_E_NULL;
     }
-    if (tbl->n_grid < 3u || tbl->n_grid > OGK_NOG_MAX_GRID || !(tbl->t_f_star_s > 0.0)) {
+    if (cfg->table != NULL && cfg->view != NULL) {
+        return OGK_E_CONFIG;
+    }
+    if (cfg->table != NULL) {
+        view_of_table(cfg->table, &tbl);
+    } else if (cfg->view->init_marker == OGK_NOG_VIEW_MARKER) {
+        tbl = *cfg->view;
+    } else {
+        return OGK_E_NOT_INIT;
+    }
+    if (tbl.n_grid < 3u || tbl.n_grid > OGK_NOG_MAX_GRID || !(tbl.t_f_star_s > 0.0)) {
         return OGK_E_NOT_INIT;
     }
     if (!isfinite(cfg->sample_interval_s) || !(cfg->sample_interval_s > 0.0) ||
         !isfinite(cfg->dtf_max_s) || !(cfg->dtf_max_s > 0.0) ||
-        cfg->dtf_max_s > 0.5 * tbl->t_f_star_s ||
+        cfg->dtf_max_s > 0.5 * tbl.t_f_star_s ||
         !isfinite(cfg->du_max_rad) || !(cfg->du_max_rad > 0.0) || cfg->du_max_rad > PI ||
         !isfinite(cfg->tau_freeze) || cfg->tau_freeze < 0.0 || !(cfg->tau_freeze < 1.0)) {
         return OGK_E_CONFIG;
     }
     ctx->cfg = *cfg;
-    ctx->t_f_s = tbl->t_f_star_s;
-    ctx->initialized = 1u;
+    ctx->tbl = tbl;
+    start_nominal(ctx);
+    ctx->init_marker = OGK_NOG_INIT_MARKER;
+    return OGK_OK;
+}
+
+ogk_status ogk_nog_reset(ogk_nog_t *ctx)
+{
+    if (ctx == NULL) {
+        return OGK_E_NULL;
+    }
+    if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
+        return OGK_E_NOT_INIT;
+    }
+    start_nominal(ctx);
     return OGK_OK;
 }
 
@@ -279,7 +366,7 @@ static void fill_sample(const ogk_nog_t *ctx, ogk_nog_sample_t *out)
 
     out->tau_k = ctx->tau_k;
     out->t_f_s = ctx->t_f_s;
-    out->dt_f_s = ctx->t_f_s - ctx->cfg.table->t_f_star_s;
+    out->dt_f_s = ctx->t_f_s - ctx->tbl.t_f_star_s;
     out->tau_next = ctx->tau_k + ctx->cfg.sample_interval_s / ctx->t_f_s;
     out->t_cutoff_s = ctx->t_k_s + (1.0 - ctx->tau_k) * ctx->t_f_s;
     costate_at(ctx, tau, lam);
@@ -296,7 +383,7 @@ static void fill_sample(const ogk_nog_t *ctx, ogk_nog_sample_t *out)
 /* The correction at tau_k from the gains (eqs. 29-31) with the end-game bounds. */
 static void compute_correction(ogk_nog_t *ctx, const double *dx)
 {
-    const ogk_nog_table_t *tbl = ctx->cfg.table;
+    const ogk_nog_table_view_t *tbl = &ctx->tbl;
     double gain[N_GAIN_ROWS * NX];
     double nrate[NX * NX];
     double out8[N_GAIN_ROWS];
@@ -328,9 +415,9 @@ static void compute_correction(ogk_nog_t *ctx, const double *dx)
     ctx->t_f_s = tbl->t_f_star_s + dt_f;
 }
 
-ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_sample_t *out)
+ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sample_t *out)
 {
-    const ogk_nog_table_t *tbl;
+    const ogk_nog_table_view_t *tbl;
     double nav_v[NX];
     double x_star[NX];
     double dx[NX];
@@ -342,10 +429,10 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_samp
         return OGK_E_NULL;
     }
     memset(out, 0, sizeof *out);
-    if (ctx->initialized == 0u) {
+    if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
         return OGK_E_NOT_INIT;
     }
-    tbl = ctx->cfg.table;
+    tbl = &ctx->tbl;
     nav_v[0] = nav->r_m;
     nav_v[1] = nav->xi_rad;
     nav_v[2] = nav->phi_rad;
@@ -355,7 +442,7 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_samp
     nav_v[6] = nav->t_s;
     ctx->flags = 0u;
 
-    if (!finite_all(nav_v, NX)) {
+    if (!ogk_i_all_finite(nav_v, NX)) {
         st = OGK_E_NONFINITE;
     } else if (!(nav->r_m > 0.0) || nav->t_s < 0.0 ||
                (ctx->n_samples > 0u && !(nav->t_s > ctx->t_k_s))) {
@@ -395,7 +482,7 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_samp
     for (i = 0u; i < NX; ++i) {
         dx[i] = nav_v[i] - x_star[i];
     }
-    dx[IDX_XI] = wrap_pi(dx[IDX_XI]);
+    dx[IDX_XI] = ogk_i_wrap_pi(dx[IDX_XI]);
     /* x*[6] = t_f* tau: dx[6] is the real-time mismatch t_k - t_f* tau_k. */
     compute_correction(ctx, dx);
     fill_sample(ctx, out);
@@ -403,36 +490,72 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_samp
     return OGK_OK;
 }
 
-ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_nog_command_t *out)
+/* tau of eq. (31) at t_s with the t_f in force; st receives the input check. */
+static double tau_at(const ogk_nog_t *ctx, double t_s, ogk_status *st)
+{
+    *st = OGK_OK;
+    if (!isfinite(t_s)) {
+        *st = OGK_E_NONFINITE;
+    } else if (t_s < ctx->t_k_s) {
+        *st = OGK_E_RANGE;
+    }
+    return (*st == OGK_OK) ? ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s : ctx->tau_k;
+}
+
+ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
 {
     double lam[NX];
     double tau;
-    ogk_status st = OGK_OK;
+    uint32_t law;
+    uint32_t flags = OGK_THRUST_FLAG_ENGINE_ON;
+    ogk_status st;
 
     if (ctx == NULL || out == NULL) {
         return OGK_E_NULL;
     }
     memset(out, 0, sizeof *out);
-    if (ctx->initialized == 0u) {
+    if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
         return OGK_E_NOT_INIT;
     }
-    if (!isfinite(t_s)) {
-        st = OGK_E_NONFINITE;
-    } else if (t_s < ctx->t_k_s) {
-        st = OGK_E_RANGE;
-    }
-    tau = (st == OGK_OK) ? ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s : ctx->tau_k;
-    out->flags = (uint8_t)(ctx->flags & (OGK_NOG_FLAG_FROZEN | OGK_NOG_FLAG_LIMITED |
-                                         OGK_NOG_FLAG_SAFE));
+    tau = tau_at(ctx, t_s, &st);
+    law = ctx->flags & (OGK_NOG_FLAG_FROZEN | OGK_NOG_FLAG_LIMITED | OGK_NOG_FLAG_SAFE);
     if (st != OGK_OK) {
-        out->flags |= OGK_NOG_FLAG_SAFE;
+        law |= OGK_NOG_FLAG_SAFE;
     }
     if (tau >= 1.0) {
         tau = 1.0;
-        out->flags |= OGK_NOG_FLAG_CUTOFF;
+        law |= OGK_NOG_FLAG_CUTOFF;
+        flags = 0u;
     }
-    out->tau = tau;
+    if ((law & OGK_NOG_FLAG_SAFE) != 0u) {
+        flags |= OGK_THRUST_FLAG_SAFE;
+    }
+    if ((law & OGK_NOG_FLAG_LIMITED) != 0u) {
+        flags |= OGK_THRUST_FLAG_LIMITED;
+    }
+    out->t_s = (st == OGK_OK) ? t_s : ctx->t_k_s;
+    out->flags = flags;
+    out->law_flags = law;
     costate_at(ctx, tau, lam);
     angles_from_costate(lam, &out->alpha_rad, &out->beta_rad);
     return st;
+}
+
+ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau)
+{
+    ogk_status st;
+    double v;
+
+    if (ctx == NULL || tau == NULL) {
+        return OGK_E_NULL;
+    }
+    if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
+        return OGK_E_NOT_INIT;
+    }
+    v = tau_at(ctx, t_s, &st);
+    if (st != OGK_OK) {
+        return st;
+    }
+    *tau = fmin(v, 1.0);
+    return OGK_OK;
 }

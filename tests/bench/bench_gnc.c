@@ -42,7 +42,7 @@ __attribute__((noinline)) static int bench_nog_sample_once(void)
 
 __attribute__((noinline)) static int bench_nog_command_once(void)
 {
-    ogk_nog_command_t out;
+    ogk_thrust_cmd_t out;
     int st = (int)ogk_nog_command(&nog, nav_mid.t_s + 1.3, &out);
     sink = out.alpha_rad;
     return st;
@@ -74,6 +74,7 @@ static int setup(const char *path)
         fprintf(stderr, "table rejected\n");
         return 1;
     }
+    (void)ogk_nog_config_default(&cfg);
     cfg.table = &table;
     cfg.sample_interval_s = 2.0;
     cfg.dtf_max_s = 40.0;

@@ -7,6 +7,8 @@ shortest-arc rotation (body pointing error); scipy.integrate.solve_ivp for the s
 """
 from __future__ import annotations
 
+import dataclasses
+
 import math
 import tomllib
 
@@ -343,7 +345,7 @@ def test_safe_command_and_errors() -> None:
     assert not ctl.step(cpd.CpdInput(theta=0.2)).safe          # still usable
     bad = _config(cpd.Pointing.BODY)
     with pytest.raises(KernelError) as info:
-        cpd.Cpd(cpd.CpdConfig(**{**bad.__dict__, "k_dy": bad.k_py * TAU}))
+        cpd.Cpd(bad.replace(k_dy=bad.k_py * TAU))
     assert info.value.status == Status.OGK_E_CONFIG
     with pytest.raises(KernelError) as info:
         cpd.wrap_pi(math.inf)
@@ -383,3 +385,45 @@ def test_capture_study_kernel_equals_numpy_prototype() -> None:
     np.testing.assert_allclose(proto.max_error_deg, kernel.max_error_deg, rtol=1e-9)
     np.testing.assert_allclose(proto.final_error_deg, kernel.final_error_deg, rtol=1e-6, atol=1e-9)
     assert kernel.max_error_deg.max() > 5.0            # a real transient, saturated
+
+
+# ----------------------------------------------------------------- the typed wrapper cannot drift
+def test_config_wrapper_follows_the_c_struct() -> None:
+    """CpdConfig starts from ogk_cpd_config_default and knows every field of the C struct, by name."""
+    from ogk.bindings._ffi import ffi, lib
+    c_fields = [name for name, _ in ffi.typeof("ogk_cpd_config_t").fields]
+    assert list(cpd.CpdConfig.fields()) == c_fields
+    ref = ffi.new("ogk_cpd_config_t *")
+    assert lib.ogk_cpd_config_default(ref) == lib.OGK_OK
+    d = cpd.CpdConfig()
+    for name in c_fields:                       # the defaults are C's, nothing restated in Python
+        assert getattr(d, name) == getattr(ref, name), name
+    assert d.pointing is cpd.Pointing.BODY
+    cfg = cpd.CpdConfig(approach_accel_y=0.05, ff_period_s=0.02, ff_rate_max=0.05)
+    c = cfg.to_c()                              # the fields once missing from the wrapper
+    assert (c.approach_accel_y, c.ff_period_s, c.ff_rate_max) == (0.05, 0.02, 0.05)
+    with pytest.raises(TypeError, match="no field 'k_pq'"):
+        cpd.CpdConfig(k_pq=1.0)
+    with pytest.raises(AttributeError):
+        cfg.k_px = 1.0                          # immutable: replace() makes a new one
+    assert cfg.replace(k_px=2.0).k_px == 2.0 and cfg.k_px == d.k_px
+    assert cfg == cpd.CpdConfig(**cfg.as_dict()) and cfg != d
+    cpd.Cpd(d)                                  # the defaults are a configuration init accepts
+
+
+def test_input_and_output_wrappers_match_the_c_structs() -> None:
+    from ogk.bindings._ffi import ffi
+    for cls, ctype in ((cpd.CpdInput, "ogk_cpd_input_t"), (cpd.CpdOutput, "ogk_cpd_output_t")):
+        assert [f.name for f in dataclasses.fields(cls)] == \
+            [name for name, _ in ffi.typeof(ctype).fields], ctype
+
+
+def test_reset_returns_to_the_initialised_state() -> None:
+    cfg = cpd.CpdConfig(ff_period_s=0.02, ff_rate_max=0.05)
+    a, b = cpd.Cpd(cfg), cpd.Cpd(cfg)
+    for k in range(3):
+        a.step(cpd.CpdInput(alpha_c=0.1 * k, theta=0.05))
+    a.reset()
+    assert a.last.safe
+    inp = cpd.CpdInput(alpha_c=0.3, theta=0.1)
+    assert a.step(inp) == b.step(inp)

@@ -206,3 +206,36 @@ def test_apophis_cases_against_paper_table_iterations() -> None:
         assert abs(res.newton_iterations - paper_ni) <= 2
         assert res.err_r * lu_km <= 500.0 and res.err_v * vu_km_s <= 0.1
         assert abs(res.lambda_mf) <= 1e-6
+
+
+# ----------------------------------------------------------------- the typed wrapper cannot drift
+def test_config_defaults_come_from_c_and_names_are_checked() -> None:
+    from ogk.bindings._ffi import ffi, lib
+    ref = ffi.new("ogk_mpsp_config_t *")
+    assert lib.ogk_mpsp_config_default(ref) == lib.OGK_OK
+    cfg = make_config(np.ones(3), np.ones(3))
+    assert list(MpspConfig.fields()) == [n for n, _ in ffi.typeof("ogk_mpsp_config_t").fields]
+    for name in ("delta_max", "delta_tau_0", "delta_tau_min", "r_lambda", "s_tol", "max_newton",
+                 "max_outer", "n_seg_tol", "n_seg_tol_step", "n_seg_nom", "fourier_kind",
+                 "fourier_t_ref"):
+        assert getattr(cfg, name) == getattr(ref, name), name
+    nw = 3 * (2 * ORDER + 1)
+    assert cfg.r_eps.shape == (nw,) and np.all(cfg.r_eps == 1.0)       # R_eps = I from C
+    np.testing.assert_array_equal(cfg.weights_nom, W3)
+    with pytest.raises(TypeError, match="no field 'tol_q'"):
+        make_config(np.ones(3), np.ones(3), tol_q=1.0)
+    with pytest.raises(TypeError, match="mission data missing"):
+        MpspConfig(mu=MU)
+    assert cfg.replace(max_newton=7).max_newton == 7 and cfg.max_newton == ref.max_newton
+
+
+def test_reset_gives_the_same_solve() -> None:
+    g = Mpsp(make_config(np.ones(3), np.zeros(3)))
+    prop = g.propagate(W3, 0.0, X0)
+    g = Mpsp(make_config(prop.x_f[:3], prop.x_f[3:6]))
+    target = np.concatenate((prop.x_f[:3] + [1e-3, 0.0, 0.0], prop.x_f[3:6]))
+    first = g.solve(X0, target=target)
+    g.reset()
+    again = g.solve(X0, target=target)
+    np.testing.assert_array_equal(first.weights, again.weights)
+    assert first.newton_iterations == again.newton_iterations

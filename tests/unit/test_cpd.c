@@ -582,21 +582,27 @@ static void test_wrap_pi(void **state)
     uint64_t seed = 5u;
     (void)state;
     for (i = 0u; i < sizeof(cases) / sizeof(cases[0]); ++i) {
-        OGK_ASSERT_STATUS(ogk_cpd_wrap_pi(cases[i][0], &w), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_wrap_pi(cases[i][0], &w), OGK_OK);
         OGK_ASSERT_NEAR(w, cases[i][1], 1e-12);
     }
     for (i = 0u; i < 1000u; ++i) {
         const double a = uniform(&seed, -OGK_CPD_ANGLE_LIMIT, OGK_CPD_ANGLE_LIMIT);
-        OGK_ASSERT_STATUS(ogk_cpd_wrap_pi(a, &w), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_wrap_pi(a, &w), OGK_OK);
         assert_true(w > -PI && w <= PI);
         OGK_ASSERT_NEAR(sin(w), sin(a), 1e-11);
         OGK_ASSERT_NEAR(cos(w), cos(a), 1e-11);
     }
-    /* one ulp past +-pi: pi - angle rounds to a full turn; still in (-pi, pi] */
-    OGK_ASSERT_STATUS(ogk_cpd_wrap_pi(nextafter(PI, 4.0), &w), OGK_OK);
+    /* exact on the principal range (one wrap for every law, ogk/mathutil.h) */
+    for (i = 0u; i < 1000u; ++i) {
+        const double a = uniform(&seed, -PI, PI);
+        OGK_ASSERT_STATUS(ogk_wrap_pi(a, &w), OGK_OK);
+        assert_true(w == a || (a == -PI && w == PI));
+    }
+    /* one ulp past +-pi: still in (-pi, pi] */
+    OGK_ASSERT_STATUS(ogk_wrap_pi(nextafter(PI, 4.0), &w), OGK_OK);
     assert_true(w > -PI && w <= PI);
     OGK_ASSERT_NEAR(fabs(w), PI, 1e-15);
-    OGK_ASSERT_STATUS(ogk_cpd_wrap_pi(nextafter(-PI, -4.0), &w), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_wrap_pi(nextafter(-PI, -4.0), &w), OGK_OK);
     assert_true(w > -PI && w <= PI);
     OGK_ASSERT_NEAR(fabs(w), PI, 1e-15);
 }
@@ -1101,10 +1107,10 @@ static void test_geometry_functions_bad_inputs(void **state)
                       OGK_E_NONFINITE);
     OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(0, 0, 0, 0, 0, 2e4, 0, &a, &b), OGK_E_RANGE);
 
-    OGK_ASSERT_STATUS(ogk_cpd_wrap_pi(0.0, NULL), OGK_E_NULL);
-    OGK_ASSERT_STATUS(ogk_cpd_wrap_pi(NAN, &a), OGK_E_NONFINITE);
-    OGK_ASSERT_STATUS(ogk_cpd_wrap_pi(-INFINITY, &a), OGK_E_NONFINITE);
-    OGK_ASSERT_STATUS(ogk_cpd_wrap_pi(1.5e4, &a), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_wrap_pi(0.0, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_wrap_pi(NAN, &a), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_wrap_pi(-INFINITY, &a), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_wrap_pi(1.5e4, &a), OGK_E_RANGE);
 }
 
 /* Braking-curve cap (ogk_cpd_config_t.approach_accel_*): in the linear band it
@@ -1246,6 +1252,82 @@ static void test_feedforward_turn_rate(void **state)
     OGK_ASSERT_STATUS(ogk_cpd_init(&c_on, &on), OGK_E_CONFIG);
 }
 
+/* ================================================================ contract */
+
+static void test_config_default_reset_and_thrust_cmd(void **state)
+{
+    ogk_cpd_config_t cfg;
+    const ogk_cpd_config_t printed = printed_config(OGK_CPD_POINTING_BODY);
+    ogk_cpd_t ctx, fresh, zero;
+    ogk_cpd_input_t in = zero_input();
+    ogk_cpd_output_t out;
+    ogk_thrust_cmd_t cmd;
+    ogk_nav_state_t nav;
+    int k;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_cpd_config_default(NULL), OGK_E_NULL);
+    memset(&cfg, 0xA5, sizeof(cfg));
+    OGK_ASSERT_STATUS(ogk_cpd_config_default(&cfg), OGK_OK);
+    /* the paper's printed values (eq. 54, sec. 6); extensions off */
+    OGK_ASSERT_NEAR(cfg.k_px, printed.k_px, 0.0);
+    OGK_ASSERT_NEAR(cfg.k_dx, printed.k_dx, 0.0);
+    OGK_ASSERT_NEAR(cfg.k_py, printed.k_py, 0.0);
+    OGK_ASSERT_NEAR(cfg.k_dy, printed.k_dy, 0.0);
+    OGK_ASSERT_NEAR(cfg.k_pz, printed.k_pz, 0.0);
+    OGK_ASSERT_NEAR(cfg.k_dz, printed.k_dz, 0.0);
+    OGK_ASSERT_NEAR(cfg.m_xc_max, printed.m_xc_max, 0.0);
+    OGK_ASSERT_NEAR(cfg.delta_yc_max, printed.delta_yc_max, 1e-17);
+    OGK_ASSERT_NEAR(cfg.delta_zc_max, printed.delta_zc_max, 1e-17);
+    OGK_ASSERT_NEAR(cfg.tau_x, printed.tau_x, 0.0);
+    OGK_ASSERT_NEAR(cfg.tau_y, printed.tau_y, 0.0);
+    OGK_ASSERT_NEAR(cfg.tau_z, printed.tau_z, 0.0);
+    OGK_ASSERT_NEAR(cfg.phi_c + cfg.approach_accel_x + cfg.approach_accel_y +
+                    cfg.approach_accel_z + cfg.ff_period_s + cfg.ff_rate_max, 0.0, 0.0);
+    assert_int_equal(cfg.pointing, OGK_CPD_POINTING_BODY);
+    OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &cfg), OGK_OK);
+    assert_true(ctx.init_marker == OGK_CPD_INIT_MARKER);
+
+    /* reset: back to the just-initialised state, configuration kept */
+    cfg.ff_period_s = 0.02;
+    cfg.ff_rate_max = 0.05;
+    OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_cpd_init(&fresh, &cfg), OGK_OK);
+    for (k = 0; k < 3; ++k) {
+        in.alpha_c = 0.1 * k;
+        OGK_ASSERT_STATUS(ogk_cpd_step(&ctx, &in, &out), OGK_OK);
+    }
+    assert_int_equal(ctx.has_prev, 1u);
+    OGK_ASSERT_STATUS(ogk_cpd_reset(&ctx), OGK_OK);
+    assert_true(memcmp(&ctx, &fresh, sizeof(ctx)) == 0);
+    OGK_ASSERT_STATUS(ogk_cpd_reset(NULL), OGK_E_NULL);
+    memset(&zero, 0, sizeof(zero));
+    OGK_ASSERT_STATUS(ogk_cpd_reset(&zero), OGK_E_NOT_INIT);
+
+    /* any law's thrust command feeds CPD */
+    memset(&cmd, 0, sizeof(cmd));
+    memset(&nav, 0, sizeof(nav));
+    cmd.alpha_rad = 0.3;
+    cmd.beta_rad = -0.1;
+    cmd.flags = OGK_THRUST_FLAG_ENGINE_ON;
+    nav.xi_rad = 1.2;
+    nav.phi_rad = 0.01;
+    in = zero_input();
+    in.theta = 0.2;
+    OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in, &cmd, &nav), OGK_OK);
+    OGK_ASSERT_NEAR(in.alpha_c, 0.3, 0.0);
+    OGK_ASSERT_NEAR(in.beta_c, -0.1, 0.0);
+    OGK_ASSERT_NEAR(in.xi, 1.2, 0.0);
+    OGK_ASSERT_NEAR(in.phi, 0.01, 0.0);
+    OGK_ASSERT_NEAR(in.theta, 0.2, 0.0); /* attitude untouched */
+    OGK_ASSERT_STATUS(ogk_cpd_step(&fresh, &in, &out), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(NULL, &cmd, &nav), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in, NULL, &nav), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in, &cmd, NULL), OGK_E_NULL);
+    cmd.beta_rad = NAN;
+    OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in, &cmd, &nav), OGK_E_NONFINITE);
+    OGK_ASSERT_NEAR(in.beta_c, -0.1, 0.0); /* untouched on rejection */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1268,6 +1350,7 @@ int main(void)
         cmocka_unit_test(test_braking_cap_formula),
         cmocka_unit_test(test_braking_cap_captures_large_rate),
         cmocka_unit_test(test_feedforward_turn_rate),
+        cmocka_unit_test(test_config_default_reset_and_thrust_cmd),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

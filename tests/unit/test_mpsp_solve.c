@@ -236,7 +236,7 @@ static void test_init_rejects_bad_config(void **state)
     cfg_work = cfg;
     cfg_work.mu = NAN;
     OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg_work), OGK_E_NONFINITE);
-    assert_true(ctx.init_magic != OGK_MPSP_INIT_MAGIC);
+    assert_true(ctx.init_marker != OGK_MPSP_INIT_MARKER);
     cfg_work = cfg;
     cfg_work.weights_nom[20] = INFINITY;
     OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg_work), OGK_E_NONFINITE);
@@ -351,6 +351,73 @@ static void test_entry_points_reject_bad_input(void **state)
     assert_int_equal(prop.n_switches, 12);
 }
 
+/* The contract: config_default holds the paper's algorithm settings and
+ * zeros for the mission data (rejected); reset returns to the init state. */
+static void test_config_default_and_reset(void **state)
+{
+    static ogk_mpsp_result_t first;
+    size_t n_nodes_init;
+    size_t i;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_mpsp_config_default(NULL), OGK_E_NULL);
+    (void)memset(&cfg_work, 0xA5, sizeof cfg_work);
+    OGK_ASSERT_STATUS(ogk_mpsp_config_default(&cfg_work), OGK_OK);
+    OGK_ASSERT_NEAR(cfg_work.delta_max, 1.0, 0.0);
+    OGK_ASSERT_NEAR(cfg_work.delta_tau_0, 0.5, 0.0);
+    OGK_ASSERT_NEAR(cfg_work.delta_tau_min, 0.1, 0.0);
+    OGK_ASSERT_NEAR(cfg_work.r_lambda, 1.0, 0.0);
+    OGK_ASSERT_NEAR(cfg_work.s_tol, 1e-12, 0.0);
+    for (i = 0u; i < OGK_MPSP_MAX_WEIGHTS; ++i) {
+        OGK_ASSERT_NEAR(cfg_work.r_eps[i], 1.0, 0.0);
+    }
+    assert_int_equal(cfg_work.max_newton, 100u);
+    assert_int_equal(cfg_work.max_outer, 50u);
+    assert_int_equal(cfg_work.n_seg_tol, 0u);
+    assert_int_equal(cfg_work.n_seg_tol_step, 2u);
+    assert_int_equal(cfg_work.n_seg_nom, 0u);
+    assert_int_equal(cfg_work.fourier_kind, OGK_MPSP_BASIS_FOURIER);
+    OGK_ASSERT_NEAR(cfg_work.mu + cfg_work.t_max + cfg_work.tf + cfg_work.h_max, 0.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg_work), OGK_E_CONFIG); /* mission data unset */
+    assert_true(ctx.init_marker != OGK_MPSP_INIT_MARKER);
+    OGK_ASSERT_STATUS(ogk_mpsp_reset(&ctx), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_mpsp_reset(NULL), OGK_E_NULL);
+
+    /* the mission data set on top of the defaults: the test's own nominal */
+    cfg_work.mu = cfg.mu;
+    cfg_work.t_max = cfg.t_max;
+    cfg_work.c_exhaust = cfg.c_exhaust;
+    cfg_work.t0 = cfg.t0;
+    cfg_work.tf = cfg.tf;
+    (void)memcpy(cfg_work.x0_nom, cfg.x0_nom, sizeof cfg.x0_nom);
+    (void)memcpy(cfg_work.r_f, cfg.r_f, sizeof cfg.r_f);
+    (void)memcpy(cfg_work.v_f, cfg.v_f, sizeof cfg.v_f);
+    cfg_work.fourier_order = cfg.fourier_order;
+    cfg_work.fourier_period = cfg.fourier_period;
+    cfg_work.h_max = cfg.h_max;
+    cfg_work.tol_r = cfg.tol_r;
+    cfg_work.tol_v = cfg.tol_v;
+    cfg_work.tol_lambda_m = cfg.tol_lambda_m;
+    (void)memcpy(cfg_work.weights_nom, cfg.weights_nom, sizeof cfg.weights_nom);
+    cfg_work.lambda_m0_nom = cfg.lambda_m0_nom;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg_work), OGK_OK);
+    assert_true(ctx.init_marker == OGK_MPSP_INIT_MARKER);
+    assert_int_equal(ctx.n_seg_nom, 3);
+    n_nodes_init = ctx.n_nodes;
+    {
+        double target[6];
+        nominal_target(target);
+        target[0] += 1e-2;
+        OGK_ASSERT_STATUS(ogk_mpsp_solve(&ctx, x0_3d, 1.0, target, &first), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_mpsp_reset(&ctx), OGK_OK);
+        assert_true(ctx.init_marker == OGK_MPSP_INIT_MARKER);
+        assert_int_equal(ctx.n_nodes, n_nodes_init);
+        assert_int_equal(ctx.sens_valid, 0u);
+        assert_int_equal(ctx.n_seg_nom, 3);
+        OGK_ASSERT_STATUS(ogk_mpsp_solve(&ctx, x0_3d, 1.0, target, &res), OGK_OK);
+        assert_true(memcmp(&first, &res, sizeof res) == 0);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -361,6 +428,7 @@ int main(void)
         cmocka_unit_test(test_failure_returns_safe_command),
         cmocka_unit_test(test_init_rejects_bad_config),
         cmocka_unit_test(test_entry_points_reject_bad_input),
+        cmocka_unit_test(test_config_default_and_reset),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -23,6 +23,11 @@ static const double x0[7] = {7.0e6, 0.0, 0.0, 10.0, 9000.0, 0.0, 0.0};
 static const double x_rate[7] = {2.0e6, 0.5, 0.0, -5.0, 2000.0, 0.0, TF_STAR}; /* d/dtau */
 
 static uint8_t buf[TABLE_BYTES];
+/* 8-byte aligned bytes for the in-place view (and 8 spare to misalign). */
+static union {
+    double align;
+    uint8_t b[TABLE_BYTES + 8u];
+} vbuf;
 static ogk_nog_table_t table;
 static ogk_nog_t nog;
 
@@ -71,6 +76,7 @@ static void build_table(double tf_last_node)
 static ogk_nog_config_t config(void)
 {
     ogk_nog_config_t cfg;
+    (void)ogk_nog_config_default(&cfg);
     cfg.table = &table;
     cfg.sample_interval_s = 2.0;
     cfg.dtf_max_s = 10.0;
@@ -146,7 +152,7 @@ static void test_flight_time_update_and_eq31(void **state)
      * tau_1 = 2 / 103 (eq. 31), the time-state error dt = 2 - 100 tau_1. */
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
     ogk_nog_sample_t s;
-    ogk_nog_command_t c;
+    ogk_thrust_cmd_t c;
     const double tf0 = TF_STAR + K_TF_VT * 1.5;
     const double tau1 = 2.0 / tf0;
     const double dt1 = 2.0 - TF_STAR * tau1;
@@ -167,7 +173,16 @@ static void test_flight_time_update_and_eq31(void **state)
     lam5 = -cos(ALPHA0);
     OGK_ASSERT_NEAR(s.alpha_rad, atan2(-lam4, -lam5), 1e-12);
     OGK_ASSERT_STATUS(ogk_nog_command(&nog, 3.0, &c), OGK_OK);
-    OGK_ASSERT_NEAR(c.tau, tau1 + 1.0 / TF_STAR, 1e-15);
+    assert_true(c.t_s == 3.0);
+    assert_int_equal(c.flags, OGK_THRUST_FLAG_ENGINE_ON);
+    {
+        double tau = -1.0;
+        OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, 3.0, &tau), OGK_OK);
+        OGK_ASSERT_NEAR(tau, tau1 + 1.0 / TF_STAR, 1e-15);
+        OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, 1.0, &tau), OGK_E_RANGE);
+        OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, NAN, &tau), OGK_E_NONFINITE);
+        OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, 3.0, NULL), OGK_E_NULL);
+    }
 }
 
 static void test_out_of_plane_with_first_order_hold(void **state)
@@ -176,7 +191,7 @@ static void test_out_of_plane_with_first_order_hold(void **state)
      * = atan2(-lam6, |lam_inplane|) with |lam_inplane| = 1. */
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
     ogk_nog_sample_t s;
-    ogk_nog_command_t c;
+    ogk_thrust_cmd_t c;
     const double t = 1.5;
     const double tau = t / TF_STAR;
     const double lam6 = K_L6_VN * 2.0 + K_L6_RATE * 2.0 * tau;
@@ -207,7 +222,7 @@ static void test_freeze_and_termination(void **state)
     /* Last gain node at tau = 0.75: a sample at tau = 0.8 is frozen. */
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
     ogk_nog_sample_t s;
-    ogk_nog_command_t c;
+    ogk_thrust_cmd_t c;
     (void)state;
     nav.v_n_mps = 2.0;
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
@@ -222,8 +237,13 @@ static void test_freeze_and_termination(void **state)
     assert_true((s.flags & OGK_NOG_FLAG_TERMINATING) != 0u);
     OGK_ASSERT_NEAR(s.t_cutoff_s, 100.0, 1e-9);
     OGK_ASSERT_STATUS(ogk_nog_command(&nog, 100.5, &c), OGK_OK);
-    assert_true((c.flags & OGK_NOG_FLAG_CUTOFF) != 0u);
-    OGK_ASSERT_NEAR(c.tau, 1.0, 0.0);
+    assert_true((c.law_flags & OGK_NOG_FLAG_CUTOFF) != 0u);
+    assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u); /* engine off */
+    {
+        double tau = -1.0;
+        OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, 100.5, &tau), OGK_OK);
+        OGK_ASSERT_NEAR(tau, 1.0, 0.0);
+    }
     /* A sample past the cut-off (tau > 1) is rejected with the safe command. */
     nav = nav_at(101.0, 1.0);
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
@@ -235,7 +255,7 @@ static void test_bad_navigation_gives_safe_command(void **state)
 {
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
     ogk_nog_sample_t s;
-    ogk_nog_command_t c;
+    ogk_thrust_cmd_t c;
     (void)state;
     nav.v_t_mps += 1.5; /* dt_f = 3 s in force */
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
@@ -250,7 +270,8 @@ static void test_bad_navigation_gives_safe_command(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
     OGK_ASSERT_STATUS(ogk_nog_command(&nog, 1.0, &c), OGK_E_RANGE);
-    assert_true((c.flags & OGK_NOG_FLAG_SAFE) != 0u);
+    assert_true((c.law_flags & OGK_NOG_FLAG_SAFE) != 0u);
+    assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
     OGK_ASSERT_STATUS(ogk_nog_command(&nog, NAN, &c), OGK_E_NONFINITE);
     /* The context is still usable: a good sample goes through. */
     nav = nav_at(4.0, 4.0 / 103.0);
@@ -287,6 +308,128 @@ static void test_init_errors(void **state)
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_NULL);
 }
 
+static void test_config_default(void **state)
+{
+    ogk_nog_config_t cfg;
+    ogk_nog_t ctx;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_nog_config_default(NULL), OGK_E_NULL);
+    memset(&cfg, 0xA5, sizeof cfg);
+    OGK_ASSERT_STATUS(ogk_nog_config_default(&cfg), OGK_OK);
+    assert_null(cfg.table);
+    assert_null(cfg.view);
+    OGK_ASSERT_NEAR(cfg.sample_interval_s, 2.0, 0.0);
+    OGK_ASSERT_NEAR(cfg.dtf_max_s, 40.0, 0.0);
+    OGK_ASSERT_NEAR(cfg.du_max_rad, 1.0471975511965976, 1e-16);
+    OGK_ASSERT_NEAR(cfg.tau_freeze, 0.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_NULL); /* no table bound */
+    cfg.table = &table;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    assert_true(ctx.init_marker == OGK_NOG_INIT_MARKER);
+}
+
+/* Two contexts fed the same samples give bit-identical outputs. */
+static void fly_both(ogk_nog_t *a, ogk_nog_t *b)
+{
+    static const double times[4] = {0.0, 2.0, 4.0, 80.0};
+    size_t i;
+    for (i = 0u; i < 4u; ++i) {
+        ogk_nog_nav_t nav = nav_at(times[i], times[i] / TF_STAR);
+        ogk_nog_sample_t sa, sb;
+        ogk_thrust_cmd_t ca, cb;
+        nav.v_t_mps += 1.5;
+        nav.v_n_mps = 2.0;
+        OGK_ASSERT_STATUS(ogk_nog_sample(a, &nav, &sa), ogk_nog_sample(b, &nav, &sb));
+        assert_true(memcmp(&sa, &sb, sizeof sa) == 0);
+        OGK_ASSERT_STATUS(ogk_nog_command(a, times[i] + 1.0, &ca),
+                          ogk_nog_command(b, times[i] + 1.0, &cb));
+        assert_true(memcmp(&ca, &cb, sizeof ca) == 0);
+    }
+}
+
+static void test_table_view_in_place(void **state)
+{
+    ogk_nog_table_view_t view;
+    ogk_nog_config_t cfg = config();
+    ogk_nog_t ctx;
+    (void)state;
+    memcpy(vbuf.b, buf, TABLE_BYTES);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES), OGK_OK);
+    assert_int_equal(view.n_grid, GRID);
+    assert_true(view.init_marker == OGK_NOG_VIEW_MARKER);
+    OGK_ASSERT_NEAR(view.t_f_star_s, TF_STAR, 0.0);
+    /* in place: no copy, the pointers are into the bytes */
+    assert_true((const void *)view.tau == (const void *)&vbuf.b[OGK_TABLE_HEADER_SIZE]);
+    assert_true((const void *)view.entry ==
+                (const void *)&vbuf.b[OGK_TABLE_HEADER_SIZE + 8u * GRID]);
+    cfg.table = NULL;
+    cfg.view = &view;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    fly_both(&nog, &ctx); /* RAM table and view: the same numbers */
+    cfg.table = &table;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG); /* both bound */
+}
+
+static void test_table_view_rejections(void **state)
+{
+    ogk_nog_table_view_t view;
+    ogk_nog_config_t cfg = config();
+    ogk_nog_t ctx;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_nog_table_view(NULL, vbuf.b, TABLE_BYTES), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, NULL, TABLE_BYTES), OGK_E_NULL);
+    /* misaligned copy of a good table */
+    memcpy(&vbuf.b[1], buf, TABLE_BYTES);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, &vbuf.b[1], TABLE_BYTES), OGK_E_ALIGN);
+    assert_int_equal(view.n_grid, 0u);
+    assert_true(view.init_marker == 0u);
+    cfg.table = NULL;
+    cfg.view = &view; /* an unvalidated view cannot be flown */
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_NOT_INIT);
+    memcpy(&vbuf.b[4], buf, TABLE_BYTES);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, &vbuf.b[4], TABLE_BYTES), OGK_E_ALIGN);
+    /* corrupted payload, header, magic; wrong length; then the same bytes, good */
+    memcpy(vbuf.b, buf, TABLE_BYTES);
+    vbuf.b[OGK_TABLE_HEADER_SIZE + 100u] ^= 0x01u;
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES), OGK_E_TABLE_CRC);
+    assert_int_equal(view.n_grid, 0u);
+    memcpy(vbuf.b, buf, TABLE_BYTES);
+    vbuf.b[20] ^= 0x40u;
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES), OGK_E_TABLE_CRC);
+    memcpy(vbuf.b, buf, TABLE_BYTES);
+    vbuf.b[0] = (uint8_t)'X';
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES), OGK_E_TABLE_MAGIC);
+    memcpy(vbuf.b, buf, TABLE_BYTES);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES - 8u),
+                      OGK_E_TABLE_TRUNCATED);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES + 8u), OGK_E_TABLE_SIZE);
+    /* content checks shared with the loader */
+    build_table(TF_STAR * 1.01);
+    memcpy(vbuf.b, buf, TABLE_BYTES);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES), OGK_E_TABLE_TYPE);
+    build_table(TF_STAR);
+    memcpy(vbuf.b, buf, TABLE_BYTES);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+}
+
+static void test_reset(void **state)
+{
+    ogk_nog_config_t cfg = config();
+    ogk_nog_t fresh;
+    ogk_nog_t zero;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_nog_reset(NULL), OGK_E_NULL);
+    memset(&zero, 0, sizeof zero);
+    OGK_ASSERT_STATUS(ogk_nog_reset(&zero), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_nog_init(&fresh, &cfg), OGK_OK);
+    fly_both(&nog, &fresh);                 /* both now hold a correction */
+    OGK_ASSERT_STATUS(ogk_nog_reset(&nog), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_init(&fresh, &cfg), OGK_OK);
+    assert_true(memcmp(&nog, &fresh, sizeof nog) == 0); /* the just-initialised state */
+    fly_both(&nog, &fresh);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -298,6 +441,10 @@ int main(void)
         cmocka_unit_test_setup(test_freeze_and_termination, setup),
         cmocka_unit_test_setup(test_bad_navigation_gives_safe_command, setup),
         cmocka_unit_test_setup(test_init_errors, setup),
+        cmocka_unit_test_setup(test_config_default, setup),
+        cmocka_unit_test_setup(test_table_view_in_place, setup),
+        cmocka_unit_test_setup(test_table_view_rejections, setup),
+        cmocka_unit_test_setup(test_reset, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,7 +1,8 @@
 """Typed bindings of the kernel's CPD attitude control (kernel/include/ogk/cpd.h, docs/cpd.md).
 
-    cfg = CpdConfig(k_px=..., ..., pointing=Pointing.BODY)
+    cfg = CpdConfig(k_px=..., ..., pointing=Pointing.BODY)  # ogk_cpd_config_default + fields by name
     ctl = Cpd(cfg)                               # ogk_cpd_init (KernelError on a rejected config)
+    ctl.reset()                                  # ogk_cpd_reset
     out = ctl.step(CpdInput(psi=..., ...))       # ogk_cpd_step -> CpdOutput
     psi_c, theta_c = commanded_attitude(alpha_c, beta_c, xi, phi)
     alpha_a, beta_a = thrust_angles(psi, theta, phi_roll, xi, phi, delta_y, delta_z)
@@ -21,6 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ogk.bindings._ffi import ffi, lib
+from ogk.bindings.config import KernelConfig
 from ogk.bindings.kernel import Status, _check
 
 F64 = NDArray[np.float64]
@@ -52,32 +54,15 @@ class Flag(enum.IntFlag):
     YAW_UNDEFINED = int(lib.OGK_CPD_FLAG_YAW_UNDEFINED)
 
 
-@dataclasses.dataclass(frozen=True)
-class CpdConfig:
-    """ogk_cpd_config_t: gains of eqs. (45)-(46), command limits, actuator time constants."""
+class CpdConfig(KernelConfig):
+    """ogk_cpd_config_t: gains of eqs. (45)-(46), command limits, actuator time constants, the
+    braking cap and the feed-forward. Starts from ogk_cpd_config_default (the defaults live in C:
+    kernel/include/ogk/cpd.h) and sets any field by its C name; an unknown name is a TypeError.
+    ``pointing`` reads back as a `Pointing`."""
 
-    k_px: float                 #: [N m/rad]
-    k_dx: float                 #: [N m s/rad]
-    k_py: float                 #: [rad/rad]
-    k_dy: float                 #: [s]
-    k_pz: float                 #: [rad/rad]
-    k_dz: float                 #: [s]
-    m_xc_max: float             #: [N m]
-    delta_yc_max: float         #: [rad]
-    delta_zc_max: float         #: [rad]
-    tau_x: float                #: [s]
-    tau_y: float                #: [s]
-    tau_z: float                #: [s]
-    phi_c: float = 0.0          #: [rad] commanded roll
-    pointing: Pointing = Pointing.BODY
-
-    def to_c(self) -> Any:
-        c = ffi.new("ogk_cpd_config_t *")
-        for f in dataclasses.fields(self):
-            if f.name != "pointing":
-                setattr(c, f.name, float(getattr(self, f.name)))
-        c.pointing = int(self.pointing)
-        return c
+    _ctype = "ogk_cpd_config_t"
+    _default_fn = "ogk_cpd_config_default"
+    _enums = {"pointing": Pointing}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -136,6 +121,10 @@ class Cpd:
         self._ctx = ffi.new("ogk_cpd_t *")
         self._cfg = config.to_c()
         _check(lib.ogk_cpd_init(self._ctx, self._cfg), "ogk_cpd_init")
+
+    def reset(self) -> None:
+        """ogk_cpd_reset: back to the just-initialised state, configuration kept."""
+        _check(lib.ogk_cpd_reset(self._ctx), "ogk_cpd_reset")
 
     def step_or_safe(self, inp: CpdInput) -> tuple[Status, CpdOutput]:
         """One control sample; never raises for a kernel status (the output is then safe)."""
@@ -197,5 +186,5 @@ def pointing_error_body(psi: ArrayLike, theta: ArrayLike, phi_roll: ArrayLike,
 
 
 def wrap_pi(angle: ArrayLike) -> Any:
-    """angle + 2 pi k in (-pi, pi]."""
-    return _elementwise(lib.ogk_cpd_wrap_pi, "ogk_cpd_wrap_pi", 1, angle)
+    """angle + 2 pi k in (-pi, pi] (ogk_wrap_pi, ogk/mathutil.h: the one wrap of every law)."""
+    return _elementwise(lib.ogk_wrap_pi, "ogk_wrap_pi", 1, angle)

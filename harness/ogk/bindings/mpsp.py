@@ -3,6 +3,7 @@
     cfg = MpspConfig(mu=1.0, t_max=..., c_exhaust=..., t0=0.0, tf=..., x0_nom=..., r_f=..., v_f=...,
                      fourier_order=15, fourier_period=2 * tf, weights_nom=eps0, lambda_m0_nom=lm0,
                      h_max=5e-4 * tf, tol_r=..., tol_v=..., tol_lambda_m=1e-6)
+    # (ogk_mpsp_config_default underneath: the algorithm settings' defaults live in C)
     g = Mpsp(cfg)                                   # ogk_mpsp_init (KernelError on a rejected config)
     res = g.solve(x0, thrust_scale=1.0, target=None)  # ogk_mpsp_solve -> MpspResult
     traj = g.propagate(res.weights, res.lambda_m0, x0)  # the kernel's own propagation, dense output
@@ -22,6 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ogk.bindings._ffi import ffi, lib
+from ogk.bindings.config import KernelConfig
 from ogk.bindings.kernel import Status, _check
 
 F64 = NDArray[np.float64]
@@ -98,63 +100,48 @@ def _out(a: F64) -> Any:
     return ffi.from_buffer("double[]", a, require_writable=True)
 
 
-@dataclasses.dataclass(frozen=True)
-class MpspConfig:
-    """ogk_mpsp_config_t (normalised units; see kernel/include/ogk/mpsp.h for each field)."""
+class MpspConfig(KernelConfig):
+    """ogk_mpsp_config_t (normalised units; see kernel/include/ogk/mpsp.h for each field).
 
-    mu: float
-    t_max: float
-    c_exhaust: float
-    t0: float
-    tf: float
-    x0_nom: ArrayLike
-    r_f: ArrayLike
-    v_f: ArrayLike
-    fourier_order: int
-    fourier_period: float
-    weights_nom: ArrayLike
-    lambda_m0_nom: float
-    h_max: float
-    tol_r: float
-    tol_v: float
-    tol_lambda_m: float
-    fourier_t_ref: float = 0.0
-    fourier_kind: int = BASIS_FOURIER
-    delta_max: float = 1.0
-    delta_tau_0: float = 0.5
-    delta_tau_min: float = 0.1
-    r_eps: ArrayLike | None = None  #: diagonal of R_eps; None = identity
-    r_lambda: float = 1.0
-    s_tol: float = 1e-12
-    max_newton: int = 100
-    max_outer: int = 50
-    n_seg_tol: int = 0
-    n_seg_tol_step: int = 2
-    n_seg_nom: int = 0  #: 0 = counted by the kernel from the nominal at init
+    Starts from ogk_mpsp_config_default -- the paper's algorithm settings (delta_max 1,
+    delta_tau_0 0.5, delta_tau_min 0.1, R_eps = I, R_lambda 1, s_tol 1e-12, max_newton 100,
+    max_outer 50, N_seg,tol 0 step 2, n_seg_nom 0 = counted at init) live in C only -- and sets
+    any field by its C name (unknown name: TypeError). The mission data (mu, t_max, c_exhaust,
+    t0, tf, x0_nom, r_f, v_f, fourier_order, fourier_period, weights_nom, lambda_m0_nom, h_max,
+    tol_r, tol_v, tol_lambda_m) must be given. ``weights_nom`` and ``r_eps`` take (and read back)
+    their first n_weights = 3 (2 n + 1) entries; ``r_eps=None`` keeps the identity."""
 
-    def to_c(self) -> Any:
-        nw = n_weights(self.fourier_order)
-        if not 1 <= int(self.fourier_order) <= MAX_ORDER:
+    _ctype = "ogk_mpsp_config_t"
+    _default_fn = "ogk_mpsp_config_default"
+    _REQUIRED = ("mu", "t_max", "c_exhaust", "t0", "tf", "x0_nom", "r_f", "v_f", "fourier_order",
+                 "fourier_period", "weights_nom", "lambda_m0_nom", "h_max", "tol_r", "tol_v",
+                 "tol_lambda_m")
+
+    def __init__(self, **fields: Any) -> None:
+        missing = [name for name in self._REQUIRED if name not in fields]
+        if missing:
+            raise TypeError(f"MpspConfig: mission data missing: {', '.join(missing)}")
+        if fields.get("r_eps", 0) is None:
+            del fields["r_eps"]
+        order = int(fields["fourier_order"])
+        if not 1 <= order <= MAX_ORDER:
             raise ValueError(f"fourier_order must be in 1..{MAX_ORDER}")
-        c = ffi.new("ogk_mpsp_config_t *")
-        for name in ("mu", "t_max", "c_exhaust", "t0", "tf", "fourier_period", "fourier_t_ref",
-                     "h_max", "delta_max", "delta_tau_0", "delta_tau_min", "r_lambda", "tol_r",
-                     "tol_v", "tol_lambda_m", "s_tol", "lambda_m0_nom"):
-            setattr(c, name, float(getattr(self, name)))
-        for name in ("fourier_order", "fourier_kind", "max_newton", "max_outer", "n_seg_tol", "n_seg_tol_step",
-                     "n_seg_nom"):
-            setattr(c, name, int(getattr(self, name)))
-        c.x0_nom = list(_vec(self.x0_nom, 7, "x0_nom"))
-        c.r_f = list(_vec(self.r_f, 3, "r_f"))
-        c.v_f = list(_vec(self.v_f, 3, "v_f"))
-        w = np.zeros(_MAX_WEIGHTS)
-        w[:nw] = _vec(self.weights_nom, nw, "weights_nom")
-        c.weights_nom = list(w)
-        r = np.ones(_MAX_WEIGHTS)
-        if self.r_eps is not None:
-            r[:nw] = _vec(self.r_eps, nw, "r_eps")
-        c.r_eps = list(r)
-        return c
+        nw = n_weights(order)
+        for name in ("weights_nom", "r_eps"):
+            if name in fields:
+                fields[name] = _vec(fields[name], nw, name)
+        fields["x0_nom"] = _vec(fields["x0_nom"], 7, "x0_nom")
+        fields["r_f"] = _vec(fields["r_f"], 3, "r_f")
+        fields["v_f"] = _vec(fields["v_f"], 3, "v_f")
+        super().__init__(**fields)
+
+    def _validate(self) -> None:
+        if not 1 <= int(self._c.fourier_order) <= MAX_ORDER:
+            raise ValueError(f"fourier_order must be in 1..{MAX_ORDER}")
+
+    def _array_lengths(self) -> dict[str, int]:
+        nw = n_weights(int(self._c.fourier_order))
+        return {"weights_nom": nw, "r_eps": nw}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -202,6 +189,10 @@ class Mpsp:
         self._c_cfg = cfg.to_c()
         self._ctx = ffi.new("ogk_mpsp_t *")
         _check(lib.ogk_mpsp_init(self._ctx, self._c_cfg), "ogk_mpsp_init")
+
+    def reset(self) -> None:
+        """ogk_mpsp_reset: back to the just-initialised state, configuration kept."""
+        _check(lib.ogk_mpsp_reset(self._ctx), "ogk_mpsp_reset")
 
     @property
     def n_weights(self) -> int:

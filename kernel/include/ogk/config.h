@@ -7,6 +7,10 @@
 #ifndef OGK_CONFIG_H
 #define OGK_CONFIG_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Largest square system (LU, Cholesky) and short side of a least-squares or
  * minimum-norm problem. */
 #ifndef OGK_LA_MAX_N
@@ -43,6 +47,10 @@
 /* Largest number of dimensions of one table-file entry. */
 #ifndef OGK_TABLE_MAX_DIMS
 #define OGK_TABLE_MAX_DIMS 4u
+#endif
+
+#ifdef __cplusplus
+}
 #endif
 
 #endif /* OGK_CONFIG_H */

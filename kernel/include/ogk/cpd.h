@@ -27,12 +27,17 @@
 #define OGK_CPD_H
 
 #include <stdint.h>
+#include "ogk/mathutil.h"
 #include "ogk/status.h"
+#include "ogk/types.h"
 
-/* Inputs whose magnitude exceeds this are rejected (OGK_E_RANGE): beyond it
- * sin/cos argument reduction of a double no longer resolves 1e-9 rad, and no
- * navigation filter produces such angles except by a fault. [rad] */
-#define OGK_CPD_ANGLE_LIMIT 1.0e4
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Inputs whose magnitude exceeds this are rejected (OGK_E_RANGE): the kernel's
+ * one angle limit (ogk/mathutil.h). [rad] */
+#define OGK_CPD_ANGLE_LIMIT OGK_ANGLE_LIMIT
 
 /* Which pitch/yaw pointing error feeds the TVC loops. */
 typedef enum {
@@ -55,6 +60,10 @@ typedef enum {
 #define OGK_CPD_FLAG_BEHIND 0x10u      /* commanded direction more than 90 deg from x_b */
 #define OGK_CPD_FLAG_YAW_UNDEFINED 0x20u /* commanded direction along +-a3: psi_c set to 0 */
 
+/* Defaults (ogk_cpd_config_default): the paper's gains and limits as printed
+ * (eq. 54 and sec. 6: k_px 21.6e3, k_dx 7.2e3, k_py = k_pz 21.6, k_dy = k_dz
+ * 7.2, 30 N m, 0.65 deg, tau 0.1 s; see docs/cpd.md for the pitch/yaw gain
+ * erratum), phi_c = 0, BODY pointing, braking cap and feed-forward off. */
 typedef struct {
     double k_px;          /* [N m/rad] roll proportional gain, eq. (45), > 0 */
     double k_dx;          /* [N m s/rad] roll derivative gain, > k_px tau_x */
@@ -117,16 +126,20 @@ typedef struct {
     uint32_t flags;   /* [-] OGK_CPD_FLAG_* bits */
 } ogk_cpd_output_t;
 
+/* Value of ogk_cpd_t.init_marker in a usable context (any other: not initialised). */
+#define OGK_CPD_INIT_MARKER 0x43504431u /* "CPD1" */
+
 typedef struct {
     ogk_cpd_config_t cfg;     /* copy of the accepted configuration */
     ogk_cpd_output_t last;    /* last command written by ogk_cpd_step */
     double dir_prev_a[3];     /* [-] commanded thrust direction of the previous step (a frame) */
     uint32_t has_prev;        /* [-] 1 when dir_prev_a holds a direction */
-    uint32_t init_magic;      /* [-] OGK_CPD_INIT_MAGIC once initialised */
+    uint32_t init_marker;     /* [-] OGK_CPD_INIT_MARKER once initialised */
 } ogk_cpd_t;
 
-/* Value of init_magic in a usable context (any other value: not initialised). */
-#define OGK_CPD_INIT_MAGIC 0x43504431u
+/* Fills every field with the defaults documented at ogk_cpd_config_t (a
+ * configuration ogk_cpd_init accepts). OGK_E_NULL. */
+ogk_status ogk_cpd_config_default(ogk_cpd_config_t *cfg);
 
 /* Validates cfg and copies it into ctx. Rejections leave ctx zeroed (every
  * step then returns OGK_E_NOT_INIT): OGK_E_NULL (ctx or cfg NULL),
@@ -134,6 +147,19 @@ typedef struct {
  * constant <= 0, k_d <= k_p tau on any axis -- the convergence condition of
  * sec. 5.2 --, |phi_c| > pi, or an unknown pointing mode). */
 ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg);
+
+/* Back to the state right after ogk_cpd_init (no previous direction for the
+ * feed-forward, last = safe command), configuration kept. OGK_E_NULL,
+ * OGK_E_NOT_INIT. */
+ogk_status ogk_cpd_reset(ogk_cpd_t *ctx);
+
+/* Sets the guidance part of a CPD input from any law's thrust command and the
+ * navigation state: alpha_c, beta_c from cmd, xi, phi from nav (the attitude
+ * and rates of in are left as they are). OGK_E_NULL; OGK_E_NONFINITE for a
+ * non-finite angle (in then untouched). A command without ENGINE_ON still
+ * carries the direction to hold. */
+ogk_status ogk_cpd_input_from_thrust_cmd(ogk_cpd_input_t *in, const ogk_thrust_cmd_t *cmd,
+                                         const ogk_nav_state_t *nav);
 
 /* One control sample. On OGK_OK, out holds the CPD command. Otherwise, when out
  * is not NULL, out holds the safe command (zero torque, zero deflections, zero
@@ -170,8 +196,10 @@ ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll
                                        double alpha_c, double beta_c, double xi,
                                        double phi, double *err_y, double *err_z);
 
-/* *wrapped = angle + 2 pi k in (-pi, pi]. OGK_E_NULL, OGK_E_NONFINITE,
- * OGK_E_RANGE (|angle| > OGK_CPD_ANGLE_LIMIT). */
-ogk_status ogk_cpd_wrap_pi(double angle, double *wrapped);
+/* The angle wrap is ogk_wrap_pi (ogk/mathutil.h), shared by every law. */
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OGK_CPD_H */

@@ -76,7 +76,8 @@ extern "C" {
  * out before the integrator's own switch limit). */
 #define OGK_MPSP_MAX_NODES (OGK_MPSP_MAX_STEPS + OGK_RK4_MAX_SWITCHES + 1u)
 
-#define OGK_MPSP_INIT_MAGIC 0x4D505350u /* "MPSP" */
+/* Value of ogk_mpsp_t.init_marker in a usable context (any other: not initialised). */
+#define OGK_MPSP_INIT_MARKER 0x4D505350u /* "MPSP" */
 
 /* Basis kinds (ogk_mpsp_config_t.fourier_kind); 2 n + 1 functions either way. */
 #define OGK_MPSP_BASIS_FOURIER 0u /* 1/2, cos k theta, sin k theta, k = 1..n (eq. C.1) */
@@ -191,14 +192,29 @@ typedef struct {
     double w_cont[OGK_MPSP_MAX_WEIGHTS];
     double w_iter[OGK_MPSP_MAX_WEIGHTS];
     double w_trial[OGK_MPSP_MAX_WEIGHTS];
-    uint32_t init_magic;
+    uint32_t init_marker;       /* [-] OGK_MPSP_INIT_MARKER once initialised */
 } ogk_mpsp_t;
+
+/* Fills every field with its default: the algorithm settings as in the
+ * paper (delta_max 1, delta_tau_0 0.5, delta_tau_min 0.1, R_eps = I,
+ * R_lambda = 1, s_tol 1e-12, max_newton 100, max_outer 50, n_seg_tol 0,
+ * n_seg_tol_step 2, n_seg_nom 0 = counted at init, FOURIER basis, t_ref 0);
+ * the mission data (mu, t_max, c_exhaust, t0, tf, x0_nom, r_f, v_f,
+ * fourier_order, fourier_period, h_max, tol_r, tol_v, tol_lambda_m,
+ * weights_nom, lambda_m0_nom) is 0 and must be set before ogk_mpsp_init
+ * (which rejects the zeros, OGK_E_CONFIG). OGK_E_NULL. */
+ogk_status ogk_mpsp_config_default(ogk_mpsp_config_t *cfg);
 
 /* Validates cfg (OGK_E_NULL, OGK_E_NONFINITE for NaN/Inf, OGK_E_CONFIG for
  * anything out of range or over a compile-time limit) and prepares ctx. With
  * cfg->n_seg_nom == 0 the nominal is propagated to count N_seg,nom (OGK_E_CONFIG
  * if that propagation fails). On failure ctx is left uninitialised. */
 ogk_status ogk_mpsp_init(ogk_mpsp_t *ctx, const ogk_mpsp_config_t *cfg);
+
+/* Back to the state right after ogk_mpsp_init (the nominal propagated again
+ * when cfg.n_seg_nom == 0, no sensitivities held), configuration kept.
+ * OGK_E_NULL, OGK_E_NOT_INIT. */
+ogk_status ogk_mpsp_reset(ogk_mpsp_t *ctx);
 
 /* Two-loop MPSP (Algorithms 1 and 2) from the nominal weights for the perturbed
  * conditions C_per: initial state x0 (r, v, m at t0), thrust T_max * thrust_scale

@@ -30,6 +30,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "ogk/status.h"
+#include "ogk/types.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -60,7 +61,9 @@ extern "C" {
 #endif
 
 /* Validated gain table, decoded once (at init or after an uplink) and shared
- * read-only by any number of guidance contexts. */
+ * read-only by any number of guidance contexts. RAM copy: 268 KiB with the
+ * default OGK_NOG_MAX_GRID; a flight build with the table in flash uses
+ * ogk_nog_table_view instead and needs no copy. */
 typedef struct {
     double tau[OGK_NOG_MAX_GRID];                        /* [-] grid, 0 .. 1 strictly increasing */
     double entry[OGK_NOG_MAX_GRID * OGK_NOG_ENTRY_LEN];  /* [SI] rows as documented above */
@@ -74,26 +77,47 @@ typedef struct {
  * table is left empty (n_grid = 0) and the specific code returned. */
 ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t len);
 
+/* Value of ogk_nog_table_view_t.init_marker in a validated view. */
+#define OGK_NOG_VIEW_MARKER 0x4E4F4756u /* "NOGV" */
+
+/* A validated table read in place (no copy): tau and entry point into the
+ * caller's table bytes, which must stay unchanged while any context bound to
+ * the view is used. */
 typedef struct {
-    const ogk_nog_table_t *table; /* validated table (not copied; must outlive the context) */
-    double sample_interval_s;     /* [s] Delta t_S, > 0 */
-    double dtf_max_s;             /* [s] bound on |dt_f|, > 0 */
-    double du_max_rad;            /* [rad] bound on the angle between corrected and nominal thrust directions, (0, pi] */
-    double tau_freeze;            /* [-] no new correction when 1 - tau_k < tau_freeze, [0, 1) */
+    const double *tau;     /* [-] n_grid grid values inside the table bytes */
+    const double *entry;   /* [SI] n_grid rows of OGK_NOG_ENTRY_LEN values inside the table bytes */
+    size_t n_grid;         /* [-] nodes; 0 = no valid table */
+    double t_f_star_s;     /* [s] nominal flight time */
+    uint32_t init_marker;  /* [-] OGK_NOG_VIEW_MARKER once validated */
+} ogk_nog_table_view_t;
+
+/* Validates buf[0..len-1] exactly as ogk_nog_table_load (magic, version, type,
+ * kind, dims, grid size, length, both CRCs, finite values, grid from 0 to 1,
+ * t_f* consistency) and then points the view into buf: the payload is read in
+ * place as IEEE-754 binary64, so buf must be 8-byte aligned (OGK_E_ALIGN
+ * otherwise) and the target little-endian like the file format (both targets
+ * are; a big-endian target fails the grid check, OGK_E_TABLE_DIM). The payload
+ * starts at offset OGK_TABLE_HEADER_SIZE = 48, a multiple of 8, so an aligned
+ * buffer aligns every value. On failure the view is zeroed (unusable) and the
+ * specific code returned. */
+ogk_status ogk_nog_table_view(ogk_nog_table_view_t *view, const uint8_t *buf, size_t len);
+
+/* Exactly one of table and view is set; neither is copied, both must outlive
+ * the context, and a context must be re-initialised after the table it is
+ * bound to is reloaded. */
+typedef struct {
+    const ogk_nog_table_t *table;     /* validated RAM table (ogk_nog_table_load), or NULL */
+    const ogk_nog_table_view_t *view; /* validated in-place view (ogk_nog_table_view), or NULL */
+    double sample_interval_s;     /* [s] Delta t_S, > 0 (default 2 s, the paper's sec. 6) */
+    double dtf_max_s;             /* [s] bound on |dt_f|, > 0 and <= t_f* / 2 (default 40 s) */
+    double du_max_rad;            /* [rad] bound on the angle between corrected and nominal thrust directions, (0, pi] (default pi/3) */
+    double tau_freeze;            /* [-] no new correction when 1 - tau_k < tau_freeze, [0, 1) (default 0) */
 } ogk_nog_config_t;
 
-/* Navigation state at a sampling time. */
-typedef struct {
-    double t_s;        /* [s] time since ignition */
-    double r_m;        /* [m] radius */
-    double xi_rad;     /* [rad] right ascension */
-    double phi_rad;    /* [rad] declination */
-    double v_r_mps;    /* [m/s] radial velocity */
-    double v_t_mps;    /* [m/s] transverse velocity */
-    double v_n_mps;    /* [m/s] normal velocity */
-} ogk_nog_nav_t;
+/* Navigation state at a sampling time (ogk/types.h). */
+typedef ogk_nav_state_t ogk_nog_nav_t;
 
-/* Flags of a sample or command. */
+/* Flags of a sample or command (law_flags of the command). */
 #define OGK_NOG_FLAG_TERMINATING 0x01u /* eq. (32): cut-off falls inside this interval */
 #define OGK_NOG_FLAG_FROZEN 0x02u      /* end-game: no new correction computed */
 #define OGK_NOG_FLAG_LIMITED 0x04u     /* dt_f or the direction correction was clipped */
@@ -109,46 +133,62 @@ typedef struct {
     double dx[OGK_NOG_NX]; /* [SI] state displacement dx_k used */
     double alpha_rad;    /* [rad] commanded in-plane thrust angle at t_k */
     double beta_rad;     /* [rad] commanded out-of-plane thrust angle at t_k */
-    uint8_t flags;       /* OGK_NOG_FLAG_* */
+    uint32_t flags;      /* [-] OGK_NOG_FLAG_* */
 } ogk_nog_sample_t;
 
-typedef struct {
-    double tau;          /* [-] normalised time at t (clamped to 1 after cut-off) */
-    double alpha_rad;    /* [rad] commanded in-plane thrust angle */
-    double beta_rad;     /* [rad] commanded out-of-plane thrust angle */
-    uint8_t flags;       /* OGK_NOG_FLAG_* (CUTOFF: engine off) */
-} ogk_nog_command_t;
+/* Value of ogk_nog_t.init_marker in a usable context (any other: not initialised). */
+#define OGK_NOG_INIT_MARKER 0x4E4F4731u /* "NOG1" */
 
 /* Guidance context: fixed size, caller-owned. */
 typedef struct {
     ogk_nog_config_t cfg;            /* copy of the configuration */
+    ogk_nog_table_view_t tbl;        /* the bound table (view, or pointers into the RAM table) */
     double t_k_s;                    /* [s] time of the current sample */
     double tau_k;                    /* [-] tau of the current sample */
     double t_f_s;                    /* [s] t_f in force */
     double dlam_k[OGK_NOG_NX];       /* [costate units] dlam at tau_k */
     double dlam_rate[OGK_NOG_NX];    /* [costate units] d(dlam)/dtau held over the interval */
     uint32_t n_samples;              /* [-] samples taken */
-    uint8_t flags;                   /* [-] flags of the current sample */
-    uint8_t initialized;             /* [-] 1 after a successful init */
+    uint32_t flags;                  /* [-] OGK_NOG_FLAG_* of the current sample */
+    uint32_t init_marker;            /* [-] OGK_NOG_INIT_MARKER after a successful init */
 } ogk_nog_t;
 
+/* Fills every field with the defaults documented in ogk_nog_config_t
+ * (table = view = NULL: bind one before ogk_nog_init). OGK_E_NULL. */
+ogk_status ogk_nog_config_default(ogk_nog_config_t *cfg);
+
 /* Checks the configuration and resets the context to the nominal (tau = 0,
- * t_f = t_f*, no correction). OGK_E_CONFIG for bad settings, OGK_E_NOT_INIT
- * for an empty table; the context is then unusable until a good init. */
+ * t_f = t_f*, no correction). OGK_E_NULL (ctx, cfg, or both table and view
+ * NULL), OGK_E_CONFIG for bad settings or both table and view set,
+ * OGK_E_NOT_INIT for an empty table or an unvalidated view; the context is
+ * then unusable (init_marker 0) until a good init. */
 ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg);
+
+/* Back to the state right after ogk_nog_init (nominal, no sample taken),
+ * configuration and table binding kept. OGK_E_NULL, OGK_E_NOT_INIT. */
+ogk_status ogk_nog_reset(ogk_nog_t *ctx);
 
 /* One guidance sample. On bad navigation input (NaN/Inf, time not after the
  * previous sample, r <= 0, or a time past the cut-off, i.e. tau > 1:
  * OGK_E_NONFINITE / OGK_E_RANGE) returns the specific code, sets
  * OGK_NOG_FLAG_SAFE, keeps the last valid correction (the nominal before the
  * first) and advances tau with the t_f in force: out holds that safe sample. */
-ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nog_nav_t *nav, ogk_nog_sample_t *out);
+ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sample_t *out);
 
 /* Thrust-direction command at time t_s (>= the current sample's time; before
- * the first sample the nominal from tau = 0 is served). OGK_E_RANGE for a time
- * before the current sample (out then holds the command at the sample time,
- * flagged SAFE); OGK_E_NONFINITE for a non-finite time (same safe command). */
-ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_nog_command_t *out);
+ * the first sample the nominal from tau = 0 is served): out->t_s = t_s, the
+ * angles, flags ENGINE_ON (cleared at and past the cut-off), SAFE, LIMITED,
+ * and law_flags = OGK_NOG_FLAG_* (FROZEN, LIMITED, SAFE, CUTOFF). OGK_E_RANGE
+ * for a time before the current sample (out then holds the command at the
+ * sample time, flagged SAFE); OGK_E_NONFINITE for a non-finite time (same safe
+ * command). */
+ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out);
+
+/* *tau = normalised time of eq. (31) at t_s >= the current sample's time with
+ * the t_f in force (clamped to 1 after the cut-off), for telemetry.
+ * OGK_E_NULL, OGK_E_NOT_INIT, OGK_E_NONFINITE, OGK_E_RANGE (t_s before the
+ * current sample). */
+ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau);
 
 #ifdef __cplusplus
 }

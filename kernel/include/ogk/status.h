@@ -30,7 +30,8 @@ typedef enum {
     OGK_E_CONFIG = 19,          /* configuration rejected at init */
     OGK_E_NOT_CONVERGED = 20,   /* an iteration did not converge within its bound */
     OGK_E_SAFE_COMMAND = 21,    /* no correction computed: output holds the defined safe command */
-    OGK_STATUS_COUNT = 22
+    OGK_E_ALIGN = 22,           /* buffer not aligned as the in-place reader requires */
+    OGK_STATUS_COUNT = 23
 } ogk_status;
 
 /* Stores in *name the code's identifier ("OGK_E_DIM", ...). Unknown codes

@@ -72,12 +72,12 @@ class CpdBatchControl:
     def __init__(self, scn: LeoGeoScenario, n_runs: int, gains: str | None = None,
                  pointing: str = "body", control_period_s: float = 0.02) -> None:
         from ogk.bindings._ffi import ffi, lib
+        from ogk.bindings.cpd import CpdConfig
         self._ffi, self._lib = ffi, lib
         self.n_runs = n_runs
         self.config = cpd_config(scn, gains, pointing, control_period_s)
-        cfg = ffi.new("ogk_cpd_config_t *")
-        for key, value in self.config.items():
-            setattr(cfg, key, value)
+        # Typed wrapper: ogk_cpd_config_default, then every field by its C name (checked).
+        cfg = CpdConfig(**self.config).to_c()
         self._ctx = ffi.new("ogk_cpd_t[]", max(n_runs, 1))
         self._in = np.zeros((int(lib.OGK_SIL_CPD_N_IN), n_runs))
         self._out = np.zeros((int(lib.OGK_SIL_CPD_N_OUT), n_runs))

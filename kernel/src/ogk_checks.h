@@ -1,0 +1,40 @@
+/* ogk_checks.h -- internal helpers shared by every law (not public API): the
+ * finite check of an input vector and the unchecked angle wrap behind
+ * ogk_wrap_pi (ogk/mathutil.h). static inline so the hot paths pay no call. */
+#ifndef OGK_CHECKS_H
+#define OGK_CHECKS_H
+
+#include <math.h>
+#include <stdbool.h>
+#include <stddef.h>
+
+#define OGK_I_PI 3.14159265358979323846
+#define OGK_I_TWO_PI 6.28318530717958647692
+
+/* true when v[0..n-1] are all finite (n = 0: true). */
+static inline bool ogk_i_all_finite(const double *v, size_t n)
+{
+    size_t i;
+    for (i = 0u; i < n; ++i) {
+        if (!isfinite(v[i])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* angle + 2 pi k in (-pi, pi], angle finite. fmod is exact, so an angle
+ * already in (-pi, pi] comes back unchanged; otherwise one rounding of the
+ * +-2 pi correction. */
+static inline double ogk_i_wrap_pi(double angle)
+{
+    double w = fmod(angle, OGK_I_TWO_PI);
+    if (w > OGK_I_PI) {
+        w -= OGK_I_TWO_PI;
+    } else if (w <= -OGK_I_PI) {
+        w += OGK_I_TWO_PI;
+    }
+    return w;
+}
+
+#endif /* OGK_CHECKS_H */
