@@ -14,7 +14,9 @@
 
 FA_DIR := $(ARM_PORT)/flightapp
 FA_B := $(ARM_B)/flightapp
-FA_TABLES := $(B)/tables/leo_geo
+# Generated into the app's own build tree (`ogk tables leo-geo --out DIR`), so that a campaign
+# regenerating build/tables/... at the same time cannot change the files under a build.
+FA_TABLES ?= $(FA_B)/tables
 FA_GEN := $(FA_TABLES)/c
 FA_GEN_C := $(FA_GEN)/ogk_leo_geo_nog_bundle.c
 FA_GEN_H := $(FA_GEN)/ogk_leo_geo_nog_bundle.h $(FA_GEN)/ogk_leo_geo_flight_config.h \
@@ -24,8 +26,12 @@ FA_HDR := $(FA_DIR)/ogk_flight.h
 
 # The flight flags of the kernel (STRICT, -O2, per-function sections, -fstack-usage) for the
 # application and the generated table image as well.
+# FA_DEFS: build options of the app, e.g. -DOGK_FLIGHT_TABLE_COPY=1 (table decoded into RAM instead
+# of read in place; build it into its own tree: make ... FA_DEFS=-DOGK_FLIGHT_TABLE_COPY=1
+# ARM_B=build/arm-tablecopy).
+FA_DEFS ?=
 FA_CFLAGS := $(STRICT) $(ARM_CPU) -O2 -g -ffunction-sections -fdata-sections -fstack-usage \
-  $(KINC) -I$(FA_GEN) -I$(FA_DIR)
+  $(FA_DEFS) $(KINC) -I$(FA_GEN) -I$(FA_DIR)
 FA_OBJ := $(FA_B)/ogk_flight.o $(FA_B)/main.o $(FA_B)/ogk_leo_geo_nog_bundle.o
 # Runtime: start-up (vectors, reset, FPU/MPU, semihosting exit) and the port counter; no test runner.
 FA_RT_OBJ := $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o
@@ -57,10 +63,11 @@ flight-app: $(FA_ELF)
 
 # The same application for the host (gcc x86-64, glibc libm, the host kernel objects): its
 # injection errors must agree with the Cortex-M7 run (compare_runs.py).
-FA_HOST := $(B)/host/flightapp/flightapp
+FA_HOST := $(ARM_B)/flightapp/host/flightapp
 $(FA_HOST): $(FA_SRC) $(FA_HDR) $(FA_GEN_C) $(FA_GEN_H) $(HOST_OBJ) | apt
 	@mkdir -p $(@D)
-	gcc $(STRICT) -O2 $(KINC) -I$(FA_GEN) -I$(FA_DIR) $(FA_SRC) $(FA_GEN_C) $(HOST_OBJ) -lm -o $@
+	gcc $(STRICT) -O2 $(FA_DEFS) $(KINC) -I$(FA_GEN) -I$(FA_DIR) $(FA_SRC) $(FA_GEN_C) $(HOST_OBJ) \
+	  -lm -o $@
 
 test-flight-app: $(FA_ELF) $(FA_HOST)
 	@$(ARM_PORT)/run_qemu.sh $(FA_ELF) $(ARM_TIMEOUT) > $(FA_B)/flightapp.log 2>&1; rc=$$?; \
@@ -74,7 +81,7 @@ test-flight-app: $(FA_ELF) $(FA_HOST)
 # Against the host SIL (sil_reference.py: point-mass truth, the kernel NOG through cffi) with the
 # plant taking the command at every RK4 stage as the SIL does: runs A and B must agree to 1e-3
 # (measured: identical in all printed digits). About 30 s; not part of test-flight-app.
-FA_HOST_STAGE := $(B)/host/flightapp/flightapp_stage
+FA_HOST_STAGE := $(ARM_B)/flightapp/host/flightapp_stage
 $(FA_HOST_STAGE): $(FA_SRC) $(FA_HDR) $(FA_GEN_C) $(FA_GEN_H) $(HOST_OBJ) | apt
 	@mkdir -p $(@D)
 	gcc $(STRICT) -O2 -DFLIGHTAPP_STAGE_COMMANDS=1 $(KINC) -I$(FA_GEN) -I$(FA_DIR) $(FA_SRC) \

@@ -95,7 +95,7 @@ static void plant_rhs(double t, const double *x, double alpha, double beta, doub
 static void plant_angles(double t, double *alpha, double *beta)
 {
 #if FLIGHTAPP_STAGE_COMMANDS
-    ogk_flight_cmd_t c;
+    ogk_thrust_cmd_t c;
     (void)ogk_nog_command(&g_flight.nog, t, &c);
     *alpha = c.alpha_rad;
     *beta = c.beta_rad;
@@ -175,19 +175,20 @@ static int fly(const char *name, const double *dx0, int dropout, burn_result *re
     for (n = 0u; n < MAX_TICKS; ++n) {
         double h = CONTROL_DT_S;
         t = (double)n * CONTROL_DT_S;
+        ogk_nav_state_t nav; /* navigation: the plant's state, perfect */
+        nav.t_s = t;
+        nav.r_m = x[R_];
+        nav.xi_rad = x[XI];
+        nav.phi_rad = x[PHI];
+        nav.v_r_mps = x[VR];
+        nav.v_t_mps = x[VT];
+        nav.v_n_mps = x[VN];
         if (n % f->ticks_per_sample == 0u && !f->terminating) {
-            ogk_nog_nav_t nav;
-            nav.t_s = t;
-            nav.r_m = x[R_];
-            nav.xi_rad = x[XI];
-            nav.phi_rad = x[PHI];
-            nav.v_r_mps = x[VR];
-            nav.v_t_mps = x[VT];
-            nav.v_n_mps = x[VN];
+            ogk_nav_state_t nav_k = nav;
             if (dropout && f->n_samples == DROPOUT_SAMPLE) {
-                nav.r_m = NAN; /* navigation dropout */
+                nav_k.r_m = NAN; /* navigation dropout */
             }
-            a = ogk_flight_guidance(f, &nav);
+            a = ogk_flight_guidance(f, &nav_k);
             if (a != OGK_FLIGHT_FLY || f->n_samples % 10u == 1u || f->terminating) {
                 printf("  t %7.2f s  sample %2u  tau %.6f  t_f %.4f s  cut-off %.4f s  "
                        "alpha %8.4f deg  beta %8.4f deg  flags 0x%02x  %s -> %s\n",
@@ -200,7 +201,7 @@ static int fly(const char *name, const double *dx0, int dropout, burn_result *re
                 return 0;
             }
         }
-        a = ogk_flight_control(f, t, &att, x[XI], x[PHI]);
+        a = ogk_flight_control(f, t, &att, &nav);
         if (a != OGK_FLIGHT_FLY) {
             printf("  t %7.2f s  control: %s -> %s\n", t, status_name(f->last_status),
                    action_name(a));
@@ -290,7 +291,7 @@ static void error_reactions(void)
 {
     ogk_flight_t *f = &g_flight;
     ogk_nog_config_t bad_nog = ogk_leo_geo_nog_config;
-    ogk_nog_nav_t nav;
+    ogk_nav_state_t nav;
     ogk_flight_att_t att;
     ogk_flight_action a;
 
@@ -305,6 +306,13 @@ static void error_reactions(void)
                         &ogk_leo_geo_nog_config, &ogk_leo_geo_cpd_config,
                         OGK_LEO_GEO_CONTROL_RATE_HZ);
     expect("reload of the good image", a, OGK_FLIGHT_FLY, f->last_status);
+#if !OGK_FLIGHT_TABLE_COPY
+    /* An image that is not 8-byte aligned cannot be read in place: a build defect, do not ignite. */
+    a = ogk_flight_init(f, ogk_leo_geo_nog_bundle + 4, ogk_leo_geo_nog_bundle_len - 4u,
+                        &ogk_leo_geo_nog_config, &ogk_leo_geo_cpd_config,
+                        OGK_LEO_GEO_CONTROL_RATE_HZ);
+    expect("table image at a 4-byte offset", a, OGK_FLIGHT_ABORT, f->last_status);
+#endif
     /* A configuration the kernel rejects: do not ignite. */
     bad_nog.dtf_max_s = 0.0;
     a = ogk_flight_init(f, ogk_leo_geo_nog_bundle, ogk_leo_geo_nog_bundle_len, &bad_nog,
@@ -332,20 +340,21 @@ static void error_reactions(void)
     nav.v_t_mps = INFINITY;
     a = ogk_flight_guidance(f, &nav);
     expect("sample with v_t = Inf", a, OGK_FLIGHT_SAFE, f->last_status);
+    nav.v_t_mps = f->table.entry[OGK_NOG_OFF_X + 4u];
 
     memset(&att, 0, sizeof att);
     att.theta = NAN;
-    a = ogk_flight_control(f, 2.0, &att, nav.xi_rad, nav.phi_rad);
+    a = ogk_flight_control(f, 2.0, &att, &nav);
     expect("CPD with a NaN pitch angle", a, OGK_FLIGHT_SAFE, f->last_status);
     check((f->act.flags & OGK_CPD_FLAG_SAFE) != 0u && f->act.delta_yc == 0.0 &&
           f->act.delta_zc == 0.0 && f->act.m_xc == 0.0, "CPD safe command: zero torque and deflections");
     att.theta = 0.0;
     memset(&f->cpd, 0, sizeof f->cpd); /* the CPD context is lost (e.g. a scrubbed RAM bank) */
-    a = ogk_flight_control(f, 2.02, &att, nav.xi_rad, nav.phi_rad);
+    a = ogk_flight_control(f, 2.02, &att, &nav);
     expect("CPD context lost", a, OGK_FLIGHT_HOLD, OGK_E_NOT_INIT);
-    a = ogk_flight_control(f, 2.04, &att, nav.xi_rad, nav.phi_rad);
+    a = ogk_flight_control(f, 2.04, &att, &nav);
     expect("CPD after its re-init", a, OGK_FLIGHT_FLY, f->last_status);
-    a = ogk_flight_control(f, 1.0, &att, nav.xi_rad, nav.phi_rad);
+    a = ogk_flight_control(f, 1.0, &att, &nav);
     expect("command for a time before the sample", a, OGK_FLIGHT_SAFE, OGK_E_RANGE);
 }
 
@@ -362,8 +371,8 @@ int main(void)
     printf("flightapp: ogk VTD-NOG + CPD, LEO-to-GEO, table image %u bytes (const, flash)\n",
            (unsigned)ogk_leo_geo_nog_bundle_len);
     printf("flightapp: table %s; sizeof table %u, ogk_nog_t %u, ogk_cpd_t %u, ogk_flight_t %u bytes\n",
-           OGK_FLIGHT_TABLE_IN_PLACE ? "read in place from flash (ogk_nog_table_view)"
-                                     : "decoded into RAM (ogk_nog_table_load)",
+           OGK_FLIGHT_TABLE_COPY ? "decoded into RAM (ogk_nog_table_load)"
+                                 : "read in place from flash (ogk_nog_table_view)",
            (unsigned)sizeof(ogk_flight_table_t), (unsigned)sizeof(ogk_nog_t),
            (unsigned)sizeof(ogk_cpd_t), (unsigned)sizeof(ogk_flight_t));
     printf("flightapp: sizeof ogk_nog_config_t %u, ogk_cpd_config_t %u, ogk_nog_sample_t %u, "

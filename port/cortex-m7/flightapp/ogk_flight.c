@@ -43,6 +43,10 @@ ogk_flight_action ogk_flight_reaction(ogk_flight_call call, ogk_status st)
         return OGK_FLIGHT_HOLD;
     case OGK_E_CONFIG:
         return OGK_FLIGHT_ABORT;            /* rejected configuration: do not ignite */
+    case OGK_E_ALIGN:
+        /* The image is not 8-byte aligned (a build defect; the generated C aligns it): reading
+         * it again does not help. Do not ignite (or decode it with ogk_nog_table_load). */
+        return OGK_FLIGHT_ABORT;
     case OGK_E_NULL:
     case OGK_E_DIM:
     case OGK_E_SINGULAR:
@@ -79,20 +83,21 @@ ogk_flight_action ogk_flight_init(ogk_flight_t *f, const uint8_t *image, size_t 
         return OGK_FLIGHT_ABORT;
     }
     f->engine_on = 0u;
-#if OGK_FLIGHT_TABLE_IN_PLACE
-    a = count(f, OGK_FLIGHT_CALL_TABLE, ogk_nog_table_view(&f->table, image, len));
-#else
+#if OGK_FLIGHT_TABLE_COPY
     a = count(f, OGK_FLIGHT_CALL_TABLE, ogk_nog_table_load(&f->table, image, len));
+#else
+    a = count(f, OGK_FLIGHT_CALL_TABLE, ogk_nog_table_view(&f->table, image, len));
 #endif
     if (a != OGK_FLIGHT_FLY) {
         return a;
     }
     f->nog_cfg = *nog_cfg;
-#if OGK_FLIGHT_TABLE_IN_PLACE
+#if OGK_FLIGHT_TABLE_COPY
+    f->nog_cfg.table = &f->table;
+    f->nog_cfg.view = NULL;
+#else
     f->nog_cfg.table = NULL;
     f->nog_cfg.view = &f->table;
-#else
-    f->nog_cfg.table = &f->table;
 #endif
     f->cpd_cfg = *cpd_cfg;
     a = count(f, OGK_FLIGHT_CALL_INIT, ogk_nog_init(&f->nog, &f->nog_cfg));
@@ -119,7 +124,7 @@ ogk_flight_action ogk_flight_init(ogk_flight_t *f, const uint8_t *image, size_t 
     return OGK_FLIGHT_FLY;
 }
 
-ogk_flight_action ogk_flight_guidance(ogk_flight_t *f, const ogk_nog_nav_t *nav)
+ogk_flight_action ogk_flight_guidance(ogk_flight_t *f, const ogk_nav_state_t *nav)
 {
     ogk_flight_action a = count(f, OGK_FLIGHT_CALL_SAMPLE, ogk_nog_sample(&f->nog, nav, &f->sample));
 
@@ -148,7 +153,7 @@ ogk_flight_action ogk_flight_guidance(ogk_flight_t *f, const ogk_nog_nav_t *nav)
 }
 
 ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flight_att_t *att,
-                                     double xi_rad, double phi_rad)
+                                     const ogk_nav_state_t *nav)
 {
     ogk_cpd_input_t in;
     ogk_flight_action a;
@@ -168,8 +173,8 @@ ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flig
         memset(&f->act, 0, sizeof f->act);
         return a;
     }
-    if (OGK_FLIGHT_CMD_CUTOFF(f->cmd)) {
-        f->engine_on = 0u;
+    if ((f->cmd.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u) {
+        f->engine_on = 0u; /* at or past the cut-off */
     }
     in.psi = att->psi;
     in.theta = att->theta;
@@ -177,11 +182,14 @@ ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flig
     in.rate_p = att->rate_p;
     in.rate_q = att->rate_q;
     in.rate_r = att->rate_r;
-    in.alpha_c = f->cmd.alpha_rad;
-    in.beta_c = f->cmd.beta_rad;
-    in.xi = xi_rad;
-    in.phi = phi_rad;
-    b = count(f, OGK_FLIGHT_CALL_CPD, ogk_cpd_step(&f->cpd, &in, &f->act));
+    b = count(f, OGK_FLIGHT_CALL_CPD, ogk_cpd_input_from_thrust_cmd(&in, &f->cmd, nav));
+    if (b == OGK_FLIGHT_FLY) {
+        b = count(f, OGK_FLIGHT_CALL_CPD, ogk_cpd_step(&f->cpd, &in, &f->act));
+    } else {
+        /* A non-finite command or position: no CPD step, the safe actuator command. */
+        memset(&f->act, 0, sizeof f->act);
+        f->act.flags = OGK_CPD_FLAG_SAFE;
+    }
     if (b == OGK_FLIGHT_HOLD) {
         /* CPD context lost: re-initialise from the const configuration; f->act holds the safe
          * command (zero torque, zero deflections) for this tick. */

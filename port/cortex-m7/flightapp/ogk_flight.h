@@ -10,7 +10,7 @@
  *   every control tick, t = n / control rate (50 Hz, 20 ms), from t = 0 (ignition):
  *     if (n % f->ticks_per_sample == 0 && !f->terminating)     every Delta t_S = 2 s
  *         ogk_flight_guidance(f, &nav)          navigation state at t -> new correction, cut-off
- *     ogk_flight_control(f, t, &att, xi, phi)   thrust-direction command at t + CPD step
+ *     ogk_flight_control(f, t, &att, &nav)      thrust-direction command at t + CPD step
  *     apply f->act (M_xc, delta_yc, delta_zc) until the next tick;
  *     engine off when f->engine_on becomes 0 (t >= f->t_cutoff_s; the last tick is shortened to
  *     land on it).
@@ -25,23 +25,19 @@
 #include "ogk/cpd.h"
 #include "ogk/nog.h"
 #include "ogk/status.h"
+#include "ogk/types.h"
 
-/* Kernel API in transition (issue 7): the in-place table view (ogk_nog_table_view, no RAM copy of
- * the table) and the shared thrust command (ogk/types.h) are used when the kernel headers have them;
- * otherwise the table is decoded into RAM by ogk_nog_table_load (268 KiB). */
-#if defined(OGK_NOG_VIEW_MARKER)
-#define OGK_FLIGHT_TABLE_IN_PLACE 1
-typedef ogk_nog_table_view_t ogk_flight_table_t;
-#else
-#define OGK_FLIGHT_TABLE_IN_PLACE 0
-typedef ogk_nog_table_t ogk_flight_table_t;
+/* The table is read in place from the const image (ogk_nog_table_view: no RAM copy, the image must
+ * stay unchanged and 8-byte aligned, which the generated C ensures). -DOGK_FLIGHT_TABLE_COPY=1
+ * decodes it into RAM instead (ogk_nog_table_load, 268 KiB), e.g. for an uplinked image whose
+ * buffer is reused. */
+#ifndef OGK_FLIGHT_TABLE_COPY
+#define OGK_FLIGHT_TABLE_COPY 0
 #endif
-#if defined(OGK_THRUST_FLAG_ENGINE_ON)
-typedef ogk_thrust_cmd_t ogk_flight_cmd_t;
-#define OGK_FLIGHT_CMD_CUTOFF(c) (((c).flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u)
+#if OGK_FLIGHT_TABLE_COPY
+typedef ogk_nog_table_t ogk_flight_table_t;
 #else
-typedef ogk_nog_command_t ogk_flight_cmd_t;
-#define OGK_FLIGHT_CMD_CUTOFF(c) (((c).flags & OGK_NOG_FLAG_CUTOFF) != 0u)
+typedef ogk_nog_table_view_t ogk_flight_table_t;
 #endif
 
 /* What the application does after a kernel call (docs/flight-integration.md, "Reactions"). */
@@ -71,14 +67,14 @@ typedef struct {
 } ogk_flight_att_t;
 
 typedef struct {
-    ogk_flight_table_t table;    /* validated table: a view into the flash image (in place) or its
-                                    decoded RAM copy (ogk_nog_table_load) */
+    ogk_flight_table_t table;    /* validated table: a view into the const image (in place) or,
+                                    with OGK_FLIGHT_TABLE_COPY, its decoded RAM copy */
     ogk_nog_config_t nog_cfg;    /* the const configuration with .table bound */
     ogk_cpd_config_t cpd_cfg;    /* the const configuration (kept for a re-init) */
     ogk_nog_t nog;
     ogk_cpd_t cpd;
     ogk_nog_sample_t sample;     /* last guidance sample */
-    ogk_flight_cmd_t cmd;        /* last thrust-direction command */
+    ogk_thrust_cmd_t cmd;        /* last thrust-direction command (ogk/types.h) */
     ogk_cpd_output_t act;        /* last actuator command: apply until the next tick */
     double t_cutoff_s;           /* [s] predicted (final once terminating) engine cut-off */
     uint32_t ticks_per_sample;   /* [-] control ticks per guidance sample (Delta t_S x rate) */
@@ -101,11 +97,12 @@ ogk_flight_action ogk_flight_init(ogk_flight_t *f, const uint8_t *image, size_t 
                                   const ogk_cpd_config_t *cpd_cfg, double control_rate_hz);
 
 /* Guidance sample at nav->t_s (every Delta t_S): new correction, cut-off time, terminating flag. */
-ogk_flight_action ogk_flight_guidance(ogk_flight_t *f, const ogk_nog_nav_t *nav);
+ogk_flight_action ogk_flight_guidance(ogk_flight_t *f, const ogk_nav_state_t *nav);
 
 /* Control tick at t_s: thrust-direction command (NOG) and attitude control (CPD) -> f->act.
- * xi_rad, phi_rad: position angles of the vehicle. Sets engine_on = 0 at or after the cut-off. */
+ * nav: navigation state at the tick (CPD uses the position angles xi, phi). Sets engine_on = 0 at
+ * or after the cut-off. */
 ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flight_att_t *att,
-                                     double xi_rad, double phi_rad);
+                                     const ogk_nav_state_t *nav);
 
 #endif /* OGK_FLIGHT_H */
