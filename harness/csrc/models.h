@@ -6,6 +6,10 @@
 
 #include "ogk/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* ---------------------------------------------------------------- two-body
  * x = [r(3), v(3)] in an inertial frame; xdot = [v, -mu r / |r|^3].
  * mode is ignored. OGK_E_RANGE at r = 0. */
@@ -64,5 +68,9 @@ ogk_status ogk_model_oscillator_rhs(void *user, double t, const double *x,
                                     int mode, double *xdot);
 ogk_status ogk_model_oscillator_switch(void *user, double t, const double *x,
                                        int mode, double *s);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OGK_HARNESS_MODELS_H */

@@ -11,6 +11,10 @@
 #include "ogk/nog.h"
 #include "ogk/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* ogk_nog_init(&ctx[i], cfg) for every run; status[i] per run. Returns the
  * first non-OK status, else OGK_OK. */
 ogk_status ogk_sil_nog_init_batch(ogk_nog_t *ctx, size_t n_runs,
@@ -30,5 +34,9 @@ ogk_status ogk_sil_nog_sample_batch(ogk_nog_t *ctx, size_t n_runs, const uint8_t
 ogk_status ogk_sil_nog_command_batch(const ogk_nog_t *ctx, size_t n_runs, const double *t,
                                      double *alpha, double *beta, uint32_t *flags,
                                      int32_t *status);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OGK_NOG_BATCH_H */

@@ -15,6 +15,10 @@
 #include "ogk/cpd.h"
 #include "ogk/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Inputs per run, in this order: psi, theta, phi_roll [rad], rate_p, rate_q,
  * rate_r [rad/s], alpha_c, beta_c, xi, phi [rad] (the fields of
  * ogk_cpd_input_t). */
@@ -39,5 +43,9 @@ ogk_status ogk_sil_cpd_step_batch(ogk_cpd_t *ctx, size_t n_runs,
                                   const uint8_t *active, const double *in,
                                   double *out, int32_t *status,
                                   uint32_t *flags);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OGK_SIL_BATCH_H */
