@@ -181,7 +181,7 @@ def test_table_interpolation_between_nodes(nominal: Nominal, table: GainTable) -
 
 def test_table_files_round_trip_in_si(nominal: Nominal, table: GainTable, tmp_path) -> None:
     """The .ogkt files decode with the documented kinds/dims and reproduce the canonical gains in SI."""
-    manifest = tables.write_nog_tables(tmp_path, nominal, table)
+    manifest = tables.write_nog_tables(tmp_path, nominal=nominal, table=table)
     assert len(manifest["files"]) == 7
     units = nominal.problem.units
     gain = tablefile.read_table(tmp_path / "leo_geo_gain.ogkt", tables.KIND_GAIN)
@@ -226,11 +226,11 @@ def test_check_detects_a_first_order_gain_error(nominal: Nominal, check_table: G
 def test_flight_bundle_matches_nog_h_layout(nominal: Nominal, table: GainTable, tmp_path) -> None:
     """leo_geo_nog_bundle.ogkt: kind/length/grid of kernel/include/ogk/nog.h, blocks equal to the
     separate tables, tau = 1 node with zero gains, x*' of the time state = t_f* everywhere."""
-    tables.write_nog_tables(tmp_path, nominal, table)
+    tables.write_nog_tables(tmp_path, nominal=nominal, table=table)
     bundle = tablefile.read_table(tmp_path / "leo_geo_nog_bundle.ogkt", tables.KIND_NOG_BUNDLE)
     assert tables.KIND_NOG_BUNDLE == 0x4E4F4742 and bundle.dims == (133,)
     assert bundle.grid[0] == 0.0 and bundle.grid[-1] == 1.0 and np.all(np.diff(bundle.grid) > 0.0)
-    assert bundle.grid.size <= tables.NOG_BUNDLE_MAX_GRID
+    assert bundle.grid.size <= tables.kernel_table_capacity()[0]
     n = table.tau.size
     nom_tab = tablefile.read_table(tmp_path / "leo_geo_nominal.ogkt").data.reshape(n, -1)
     gain = tablefile.read_table(tmp_path / "leo_geo_gain.ogkt").data.reshape(n, -1)

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
+from ..errors import OgkInputError
 from . import dynamics as dyn
 from .nominal import Nominal
 from .propagation import ATOL, N_Z, RTOL
@@ -127,25 +128,107 @@ class GainTable:
     cond_equilibrated: FloatArray    #: (N,) same after Ruiz equilibration
 
 
-def default_tau_grid(nominal: Nominal, points_per_sample: int = 4, relative_spacing: float = 0.05,
-                     end_time_to_go_s: float = 0.5) -> FloatArray:
-    """Grid over [0, 1): spacing Delta t_S / points_per_sample in time (so every nominal sampling
-    instant k Delta t_S / t_f* is a node) until the time-to-go is Delta t_S / (points_per_sample
-    relative_spacing), then geometric in the time-to-go (each step `relative_spacing` of the
-    time-to-go; the costate gains grow like 1/time-to-go^3 and their linear interpolation then errs
-    by about 1.6 relative_spacing^2 = 0.4 %) down to `end_time_to_go_s` (below the last sampling
-    interval a flight law freezes the correction anyway). tau = 1 is excluded (K_k is singular
-    there). For the paper's data: 251 nodes (the flight bundle adds tau = 1 and must fit
-    OGK_NOG_MAX_GRID = 256)."""
-    t_f_s = nominal.t_f_s
-    step_s = nominal.problem.scenario.sample_interval_s / points_per_sample
+#: Largest grid spacing relative to the time-to-go (docs/vtd-nog.md sec. 7). The costate gains grow
+#: like 1/time-to-go^3, so linear interpolation between nodes errs by about 1.6 rho^2 = 0.4 % of
+#: their size; every grid built here keeps this spacing bound.
+MAX_RELATIVE_SPACING = 0.05
+#: Bound checked on the *measured* mid-node interpolation error of the costate gains (max error over
+#: the entries / max entry, per node; `interpolation_error`): the 0.4 % of the spacing rule plus
+#: margin (the paper's grid measures 0.39 %).
+INTERPOLATION_ERROR_BOUND = 0.005
+
+
+class GridCapacityError(OgkInputError):
+    """The gain grid that keeps the interpolation bound does not fit the kernel's table capacity."""
+
+
+def tau_grid(t_f_s: float, step_s: float, end_time_to_go_s: float,
+             relative_spacing: float = MAX_RELATIVE_SPACING) -> FloatArray:
+    """Grid over [0, 1): uniform steps of `step_s` from ignition until the time-to-go is
+    step_s / relative_spacing, then geometric in the time-to-go (each step `relative_spacing` of
+    it) down to `end_time_to_go_s`; so no step exceeds `relative_spacing` of the time-to-go.
+    With no room for the uniform part the grid is geometric from ignition. tau = 1 is excluded
+    (K_k is singular there)."""
+    if not 0.0 < end_time_to_go_s < t_f_s:
+        raise ValueError(f"grid end {end_time_to_go_s} s must be in (0, t_f* = {t_f_s} s)")
     switch_togo_s = step_s / relative_spacing
-    n_uniform = int(np.floor((t_f_s - switch_togo_s) / step_s))
+    n_uniform = max(0, int(np.floor((t_f_s - switch_togo_s) / step_s)))
     uniform_s = step_s * np.arange(n_uniform + 1)
     togo_s = t_f_s - uniform_s[-1]
-    n_geo = int(np.ceil(np.log(end_time_to_go_s / togo_s) / np.log(1.0 - relative_spacing)))
+    n_geo = max(0, int(np.ceil(np.log(end_time_to_go_s / togo_s) / np.log(1.0 - relative_spacing))))
     geometric_s = t_f_s - np.geomspace(togo_s, end_time_to_go_s, n_geo + 1)[1:]
     return np.concatenate([uniform_s, geometric_s]) / t_f_s
+
+
+def uniform_step_candidates(sample_interval_s: float, t_f_s: float,
+                            relative_spacing: float = MAX_RELATIVE_SPACING) -> list[float]:
+    """Uniform steps tried, finest first: Delta t_S / 4, / 3, / 2, Delta t_S, then 2, 3, ...
+    Delta t_S (so the nominal sampling instants stay nodes), ending with the first step whose
+    uniform part is empty (a purely geometric grid)."""
+    out = [sample_interval_s / m for m in (4, 3, 2, 1)]
+    k = 2
+    while out[-1] / relative_spacing < t_f_s:
+        out.append(k * sample_interval_s)
+        k += 1
+    return out
+
+
+def kernel_table_capacity() -> tuple[int, int]:
+    """(OGK_NOG_MAX_GRID, OGK_NOG_ENTRY_LEN) read from the kernel through the bindings."""
+    try:
+        from ogk.bindings._ffi import lib
+    except ImportError as exc:
+        raise OgkInputError(f"the kernel bindings are needed for the table capacity: {exc}") from None
+    return int(lib.OGK_NOG_MAX_GRID), int(lib.OGK_NOG_ENTRY_LEN)
+
+
+@dataclasses.dataclass(frozen=True)
+class GridChoice:
+    """The chosen gain grid and why."""
+
+    tau: FloatArray              #: (N,) gain nodes, tau < 1 (the bundle adds tau = 1)
+    step_s: float                #: uniform step [s]
+    relative_spacing: float
+    end_time_to_go_s: float      #: time-to-go of the last gain node [s]
+    capacity: int                #: OGK_NOG_MAX_GRID (bundle nodes, tau = 1 included)
+
+    @property
+    def bundle_nodes(self) -> int:
+        return int(self.tau.size) + 1
+
+
+def choose_tau_grid(t_f_s: float, sample_interval_s: float, end_time_to_go_s: float,
+                    capacity: int | None = None,
+                    relative_spacing: float = MAX_RELATIVE_SPACING) -> GridChoice:
+    """The finest grid of `uniform_step_candidates` whose bundle (gain nodes + tau = 1) fits
+    `capacity` (default: OGK_NOG_MAX_GRID from the kernel). Every candidate keeps the spacing
+    bound; the finest uniform step is kept for its sampling-instant nodes. For the paper's data:
+    0.5 s steps, 251 gain nodes (252 of 256 in the bundle), the same grid as before.
+    Raises GridCapacityError when even the purely geometric grid does not fit."""
+    if capacity is None:
+        capacity = kernel_table_capacity()[0]
+    needed = 0
+    for step_s in uniform_step_candidates(sample_interval_s, t_f_s, relative_spacing):
+        tau = tau_grid(t_f_s, step_s, end_time_to_go_s, relative_spacing)
+        needed = tau.size + 1
+        if needed <= capacity:
+            return GridChoice(tau=tau, step_s=step_s, relative_spacing=relative_spacing,
+                              end_time_to_go_s=end_time_to_go_s, capacity=capacity)
+    min_end_s = t_f_s * (1.0 - relative_spacing) ** (capacity - 2)
+    raise GridCapacityError(
+        f"the gain grid needs {needed} nodes (spacing <= {relative_spacing:.0%} of the time-to-go "
+        f"down to {end_time_to_go_s:.3g} s to go, t_f* = {t_f_s:.4g} s) but the kernel holds "
+        f"OGK_NOG_MAX_GRID = {capacity}: raise freeze_time_to_go_s (the grid ends there) to at "
+        f"least {min_end_s:.3g} s", key="guidance.end_game.freeze_time_to_go_s")
+
+
+def default_tau_grid(nominal: Nominal, points_per_sample: int = 4,
+                     relative_spacing: float = MAX_RELATIVE_SPACING,
+                     end_time_to_go_s: float = 0.5) -> FloatArray:
+    """`tau_grid` with the uniform step Delta t_S / points_per_sample (no capacity check; the
+    flight tables use `choose_tau_grid`). For the paper's data: 251 nodes."""
+    return tau_grid(nominal.t_f_s, nominal.problem.scenario.sample_interval_s / points_per_sample,
+                    end_time_to_go_s, relative_spacing)
 
 
 def compute_gain_table(nominal: Nominal, tau: FloatArray | None = None) -> GainTable:
@@ -259,3 +342,16 @@ def propagate_neighboring(nominal: Nominal, tau_k: float, dx_k: FloatArray, corr
     du = (np.einsum("nij,nj->ni", mats.K_lam, dlam) + np.einsum("nij,nj->ni", mats.K_x, dx)
           + mats.K_a * da)
     return dx, dlam, du
+
+
+def interpolation_error(nominal: Nominal, table: GainTable) -> tuple[float, float]:
+    """Measured error of linear interpolation of the gains at the mid-nodes of the table's grid:
+    (costate gains, dt_f row), each the max over nodes of max |interpolated - computed| / max
+    |computed| at that node (canonical units). One extra gain computation at the mid-nodes."""
+    mids = 0.5 * (table.tau[:-1] + table.tau[1:])
+    exact = compute_gain_table(nominal, mids).gain
+    interp = 0.5 * (table.gain[:-1] + table.gain[1:])
+    err = np.abs(interp - exact)
+    lam = np.max(err[:, :dyn.N_X, :], axis=(1, 2)) / np.max(np.abs(exact[:, :dyn.N_X, :]), axis=(1, 2))
+    dtf = np.max(err[:, dyn.N_X, :], axis=1) / np.max(np.abs(exact[:, dyn.N_X, :]), axis=1)
+    return float(np.max(lam)), float(np.max(dtf))

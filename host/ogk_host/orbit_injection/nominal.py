@@ -33,6 +33,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import least_squares
 
+from ..errors import OgkInputError
 from . import dynamics as dyn
 from .propagation import N_Z, integrate_extremal, rk4_extremal_batch
 from .scenario import LeoGeoScenario, load_scenario
@@ -253,9 +254,129 @@ def necessary_condition_residuals(problem: MinTimeProblem, z0: FloatArray, t_f: 
                      float(z0[dyn.N_X:] @ dx0), h1 + 1.0])
 
 
-def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 4) -> Nominal:
-    """Scan + Levenberg-Marquardt + damped Newton; returns the minimum-t_f converged extremal."""
+#: The paper's problem (scenarios/leo_geo.toml, erratum applied) in canonical units,
+#: (p, e, n0, c) [DU, -, DU/TU^2, VU], and its minimum-time solution q = [f0, alpha0, kappa, t_f]
+#: (found by the coarse scan, polished to 1e-13): the start of every continuation.
+PAPER_PARAMETERS = (0.276996932003605, 0.723, 48.63751099172241, 0.9757156972733132)
+PAPER_SOLUTION = (3.1393985144536964, 0.0175294883993016, -0.03650272123394877,
+                  0.007715745002506479)
+
+
+class ContinuationError(RuntimeError):
+    """The continuation from the paper's solution did not reach the scenario's parameters."""
+
+
+class NominalError(OgkInputError):
+    """No minimum-time nominal for this scenario (one line: which keys to change)."""
+
+
+def problem_parameters(problem: MinTimeProblem) -> FloatArray:
+    """(p, e, n0, c) of the problem in canonical units."""
+    return np.array([problem.semilatus_rectum, problem.eccentricity, problem.model.initial_accel,
+                     problem.model.exhaust_velocity])
+
+
+def with_parameters(problem: MinTimeProblem, params: FloatArray) -> MinTimeProblem:
+    """The same problem (units, target) with other canonical (p, e, n0, c)."""
+    p, e, n0, c = (float(v) for v in params)
+    return dataclasses.replace(problem, semilatus_rectum=p, eccentricity=e,
+                               model=dyn.Model(mu=problem.model.mu, initial_accel=n0,
+                                               exhaust_velocity=c))
+
+
+def _homotopy(start: FloatArray, end: FloatArray, s: float) -> FloatArray:
+    """Parameters at s in [0, 1]: p and e linear, n0 and c geometric (they stay positive)."""
+    out = start + s * (end - start)
+    out[2:] = start[2:] * (end[2:] / start[2:]) ** s
+    return out
+
+
+def _corrector(problem: MinTimeProblem, q: FloatArray, rtol: float, max_iter: int = 8,
+               tol: float = 1e-10) -> tuple[FloatArray, bool]:
+    """Full (undamped) Newton steps from q; (q, converged). Undamped on purpose: near the paper's
+    solution the branch turns fast in (alpha0, kappa) and a monotone-residual damping stalls where
+    the full steps converge quadratically. Divergence (residual growth by 1e6, a non-finite value,
+    t_f <= 0 or burnout) ends it as not converged."""
+    q = np.array(q, dtype=np.float64)
+    first = None
+    for _ in range(max_iter + 1):
+        if not (np.all(np.isfinite(q)) and q[3] > 0.0):
+            return q, False
+        try:
+            res, jac = _reduced_residual(problem, q, rtol=rtol)
+        except (RuntimeError, ValueError):
+            return q, False
+        norm = float(np.max(np.abs(res)))
+        if not np.isfinite(norm):
+            return q, False
+        if norm < tol:
+            return q, True
+        first = norm if first is None else first
+        if norm > 1e6 * first:
+            return q, False
+        try:
+            q = q + np.linalg.solve(jac, -res)
+        except np.linalg.LinAlgError:
+            return q, False
+    return q, False
+
+
+def continue_from_paper(problem: MinTimeProblem, min_step: float = 1.0 / 64.0,
+                        rtol: float = 1e-10, max_solves: int = 24) -> tuple[FloatArray, int]:
+    """Natural-parameter continuation of the extremal from PAPER_PARAMETERS to the problem's.
+
+    Steps in s (homotopy parameter, 0 = paper, 1 = problem) start at 1 (a direct Newton solve),
+    halve on failure and double on success; the predictor is the secant through the last two
+    solutions. Each corrector is damped Newton with the exact variational Jacobian at `rtol`,
+    accepted at residual < 1e-9. Deterministic; returns (q, accepted steps) or raises
+    ContinuationError when the step falls below `min_step` or after `max_solves` corrector runs.
+    """
+    start, end = np.array(PAPER_PARAMETERS), problem_parameters(problem)
+    q, s = np.array(PAPER_SOLUTION), 0.0
+    q_prev: FloatArray | None = None
+    s_prev = 0.0
+    step, accepted, solves = 1.0, 0, 0
+    while s < 1.0:
+        if solves >= max_solves:
+            raise ContinuationError(f"continuation from the paper's solution used {solves} "
+                                    f"corrector runs and reached s = {s:.4f} only")
+        solves += 1
+        s_new = min(1.0, s + step)
+        sub = with_parameters(problem, _homotopy(start, end, s_new))
+        guess = q if q_prev is None else q + (q - q_prev) * (s_new - s) / (s - s_prev)
+        q_new, ok = _corrector(sub, guess, rtol)
+        if ok:
+            q_prev, s_prev, q, s = q, s, q_new, s_new
+            accepted += 1
+            step = min(2.0 * step, 1.0)
+        else:
+            step *= 0.5
+            if step < min_step:
+                raise ContinuationError(f"continuation from the paper's solution stalled at "
+                                        f"s = {s:.4f} (step < {min_step})")
+    return q, accepted
+
+
+def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 4,
+                  method: str = "auto") -> Nominal:
+    """Minimum-t_f extremal: continuation from the paper's solution ("continuation"), the coarse
+    scan + Levenberg-Marquardt + damped Newton ("scan"), or the first, falling back on the
+    second ("auto")."""
     problem = MinTimeProblem.from_scenario(scn if scn is not None else load_scenario())
+    if method in ("auto", "continuation"):
+        try:
+            q, steps = continue_from_paper(problem)
+            q, res = newton(lambda v: _reduced_residual(problem, v), q)
+            if np.max(np.abs(res)) < 1e-12:
+                q[0] = math.remainder(q[0], 2.0 * math.pi) % (2.0 * math.pi)
+                return _finish(problem, q, 0, steps)
+            if method == "continuation":
+                raise ContinuationError(f"final Newton polish left residual {res}")
+        except ContinuationError:
+            if method == "continuation":
+                raise
+    elif method != "scan":
+        raise ValueError(f"unknown method {method!r}")
     starts, scan_size = _scan(problem, n_starts)
     solutions: list[FloatArray] = []
     for q_start in starts:
@@ -274,9 +395,25 @@ def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 4) -> Nomin
         q[0] = math.remainder(q[0], 2.0 * math.pi) % (2.0 * math.pi)
         solutions.append(q)
     if not solutions:
-        raise RuntimeError("no start of the coarse scan converged")
+        raise NominalError(_outside_envelope_reason(problem), path=getattr(problem.scenario, "path", None),
+                           key="pre_ignition_orbit")
     best = min(solutions, key=lambda q: q[3])
     return _finish(problem, best, scan_size, len(starts))
+
+
+def _outside_envelope_reason(problem: MinTimeProblem) -> str:
+    """One line for a nominal that neither the continuation nor the scan found."""
+    scn = problem.scenario
+    a_m, e = scn.pre_ignition.semi_major_axis_m, scn.pre_ignition.eccentricity
+    perigee, apogee, r_f = a_m * (1.0 - e), a_m * (1.0 + e), scn.target_radius_m
+    a_h, e_h = 0.5 * (perigee + r_f), (r_f - perigee) / (r_f + perigee)
+    return (f"no minimum-time burn found: the documented envelope (docs/vtd-nog.md, sec. 2) is a "
+            f"pre-ignition transfer ellipse with apogee = target radius, R_f / perigee 1.5..8, "
+            f"n0 0.5..1.5 g0, c 2.5..4.5 km/s; this one has apogee {apogee / 1e3:.1f} km, target "
+            f"{r_f / 1e3:.1f} km, R_f / perigee {r_f / perigee:.3g}, n0 "
+            f"{scn.thrust.initial_accel_g0:.3g} g0, c {scn.thrust.exhaust_velocity_m_s / 1e3:.3g} "
+            f"km/s (for this perigee and target set semi_major_axis_m = {a_h:.6g}, "
+            f"eccentricity = {e_h:.6g})")
 
 
 def solve_fixed_ignition(nominal: Nominal, f0: float,

@@ -38,10 +38,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .. import tablefile
+from ..errors import TableError
 from . import dynamics as dyn
-from .gains import GainTable, compute_gain_table, condition_numbers_si
+from .derive import EffectiveSettings, effective_settings, freeze_rule_s
+from .gains import (INTERPOLATION_ERROR_BOUND, GainTable, GridCapacityError, GridChoice,
+                    choose_tau_grid, compute_gain_table, condition_numbers_si, interpolation_error,
+                    kernel_table_capacity)
 from .nominal import RESIDUAL_NAMES, Nominal, solve_nominal
-from .scenario import DEFAULT_SCENARIO_PATH, load_scenario
+from .scenario import DEFAULT_SCENARIO_PATH, REPO_ROOT, load_scenario
 
 FloatArray = NDArray[np.float64]
 
@@ -52,9 +56,12 @@ KIND_COSTATE_RATE_GAIN = 0x4E4F4704
 KIND_CONTROL_GAIN = 0x4E4F4705
 KIND_SCALARS = 0x4E4F4706
 KIND_NOG_BUNDLE = 0x4E4F4742          #: OGK_NOG_TABLE_KIND ("NOGB") of kernel/include/ogk/nog.h
-NOG_BUNDLE_ENTRY_LEN = 133            #: OGK_NOG_ENTRY_LEN
-NOG_BUNDLE_MAX_GRID = 256             #: OGK_NOG_MAX_GRID (default)
-GENERATOR = "ogk_host.orbit_injection.tables/1"
+NOG_BUNDLE_ENTRY_LEN = 133            #: the host layout; checked against the kernel's OGK_NOG_ENTRY_LEN
+GENERATOR = "ogk_host.orbit_injection.tables/2"
+MADE_BY = "ogk tables"                #: manifest["made_by"]: a directory this tool may overwrite
+MANIFEST = "manifest.json"
+BUNDLE_FILE = "leo_geo_nog_bundle.ogkt"
+TABLE_ROOT = REPO_ROOT / "build" / "tables"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -118,56 +125,200 @@ def build_nog_bundle(nominal: Nominal, table: GainTable) -> PlannedTable:
                            planned["costate_rate_gain"].data.reshape(table.tau.size, -1)], axis=1)
     data = np.vstack([body, last])
     grid = np.append(table.tau, 1.0)
-    if data.shape[1] != NOG_BUNDLE_ENTRY_LEN or grid.size > NOG_BUNDLE_MAX_GRID:
-        raise ValueError(f"bundle {data.shape} does not fit OGK_NOG_ENTRY_LEN / OGK_NOG_MAX_GRID")
+    max_grid, entry_len = kernel_table_capacity()
+    if data.shape[1] != entry_len:
+        raise ValueError(f"bundle entry of {data.shape[1]} doubles, the kernel's OGK_NOG_ENTRY_LEN "
+                         f"is {entry_len}: host and kernel layouts disagree")
+    if grid.size > max_grid:
+        raise GridCapacityError(f"bundle of {grid.size} nodes does not fit OGK_NOG_MAX_GRID = "
+                                f"{max_grid}: build the gains on `flight_grid` (tables.py)")
     return PlannedTable("nog_bundle", KIND_NOG_BUNDLE, grid, data)
 
 
-def write_nog_tables(out_dir: str | Path, nominal: Nominal | None = None,
-                     table: GainTable | None = None,
-                     scenario_path: str | Path = DEFAULT_SCENARIO_PATH) -> dict:
-    """Writes <out_dir>/leo_geo_<name>.ogkt for every table and manifest.json; returns the manifest."""
+def _sha256(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def _scenario_name(scenario_path: Path) -> str:
+    return load_scenario(scenario_path).name
+
+
+def default_table_dir(scenario_path: str | Path = DEFAULT_SCENARIO_PATH) -> Path:
+    """build/tables/<scenario name>-<first 12 hex of the scenario file's SHA-256> (under the
+    repository root): one directory per scenario content, so editing a scenario never reuses
+    the tables of its previous version."""
+    path = Path(scenario_path)
+    return TABLE_ROOT / f"{_scenario_name(path)}-{_sha256(path)[:12]}"
+
+
+def flight_grid(nominal: Nominal, settings: EffectiveSettings | None = None,
+                capacity: int | None = None) -> GridChoice:
+    """The gain grid of the flight bundle: `choose_tau_grid` down to the effective freeze time
+    (the kernel holds the correction past the last node), fitted to OGK_NOG_MAX_GRID."""
+    scn = nominal.problem.scenario
+    settings = effective_settings(scn) if settings is None else settings
+    end_s = settings.freeze_time_to_go_s if settings.freeze_time_to_go_s > 0.0 else freeze_rule_s(scn)
+    return choose_tau_grid(nominal.t_f_s, scn.sample_interval_s, end_s, capacity)
+
+
+def _is_ogk_dir(out: Path) -> bool:
+    manifest = out / MANIFEST
+    if not manifest.is_file():
+        return False
+    try:
+        return json.loads(manifest.read_text()).get("made_by") == MADE_BY
+    except (ValueError, OSError):
+        return False
+
+
+def write_nog_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SCENARIO_PATH, *,
+                     nominal: Nominal | None = None, table: GainTable | None = None) -> dict:
+    """Writes <out_dir>/leo_geo_<name>.ogkt for every table and manifest.json; returns the manifest.
+
+    Refuses (TableError) a non-empty directory without an ogk manifest: it never overwrites what it
+    did not make. The manifest is removed first and written last, so a directory with a manifest
+    is complete. `nominal`/`table` (optional) must come from the same scenario file; by default
+    the nominal is solved and the gains computed on `flight_grid`, whose mid-node interpolation
+    error is measured and must stay below INTERPOLATION_ERROR_BOUND.
+    """
     scenario_path = Path(scenario_path)
-    if nominal is None:
-        nominal = solve_nominal(load_scenario(scenario_path))
-    if table is None:
-        table = compute_gain_table(nominal)
     out = Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise TableError("exists and is not a directory", path=out)
+    if out.is_dir() and any(out.iterdir()) and not _is_ogk_dir(out):
+        raise TableError(f"not empty and has no {MANIFEST} made by {MADE_BY!r}: refusing to write "
+                         f"tables into it (give an empty or new directory)", path=out)
+    scn = load_scenario(scenario_path)
+    settings = effective_settings(scn)
+    if nominal is None:
+        nominal = solve_nominal(scn)
+    grid = flight_grid(nominal, settings)
+    if table is None:
+        table = compute_gain_table(nominal, grid.tau)
+    err_lam, err_dtf = interpolation_error(nominal, table)
+    if err_lam > INTERPOLATION_ERROR_BOUND:
+        raise GridCapacityError(
+            f"gain interpolation error {err_lam:.3%} exceeds {INTERPOLATION_ERROR_BOUND:.1%} on the "
+            f"grid that fits OGK_NOG_MAX_GRID = {grid.capacity} (uniform step {grid.step_s:g} s): "
+            f"shorten sample_interval_s", path=scenario_path, key="guidance.sample_interval_s")
+    bundle = build_nog_bundle(nominal, table)
     out.mkdir(parents=True, exist_ok=True)
+    (out / MANIFEST).unlink(missing_ok=True)
     files = []
-    for planned in build_table_arrays(nominal, table) + [build_nog_bundle(nominal, table)]:
+    for planned in build_table_arrays(nominal, table) + [bundle]:
         path = out / f"leo_geo_{planned.name}.ogkt"
         size = tablefile.write_table(path, planned.kind, planned.grid, planned.data)
+        header, _ = tablefile.TableHeader.unpack(path.read_bytes())
         files.append({"name": planned.name, "file": path.name, "kind": f"0x{planned.kind:08X}",
                       "dims": list(planned.dims), "grid_size": int(planned.grid.size),
-                      "bytes": size, "sha256": hashlib.sha256(path.read_bytes()).hexdigest()})
+                      "bytes": size, "sha256": _sha256(path),
+                      "payload_crc32": f"0x{header.payload_crc:08X}"})
     manifest = {
+        "made_by": MADE_BY,
         "generator": GENERATOR,
         "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
-        "scenario": str(scenario_path),
-        "scenario_sha256": hashlib.sha256(scenario_path.read_bytes()).hexdigest(),
+        "scenario": {"name": scn.name, "path": str(scenario_path.resolve()),
+                     "sha256": _sha256(scenario_path)},
         "t_f_s": nominal.t_f_s,
         "ignition_true_anomaly_deg": math.degrees(nominal.f0),
         "residuals": dict(zip(RESIDUAL_NAMES, (float(v) for v in nominal.residuals))),
         "max_cond_equilibrated": float(np.max(table.cond_equilibrated)),
+        "grid": {"gain_nodes": int(table.tau.size), "bundle_nodes": int(table.tau.size) + 1,
+                 "capacity_OGK_NOG_MAX_GRID": grid.capacity, "uniform_step_s": grid.step_s,
+                 "max_relative_spacing": grid.relative_spacing,
+                 "end_time_to_go_s": grid.end_time_to_go_s,
+                 "interpolation_error_costate": err_lam, "interpolation_error_dt_f": err_dtf,
+                 "interpolation_error_bound": INTERPOLATION_ERROR_BOUND},
+        "settings": settings.as_manifest(),
         "files": files,
     }
-    (out / "manifest.json").write_text(json.dumps(manifest, indent=2) + "\n")
+    (out / MANIFEST).write_text(json.dumps(manifest, indent=2) + "\n")
     return manifest
+
+
+def check_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SCENARIO_PATH,
+                 reference_tf_s: float | None = None, tf_tolerance_s: float = 1e-6) -> dict:
+    """The manifest of `out_dir` if its tables belong to `scenario_path` and are intact.
+
+    TableError (one line) when there is no ogk manifest, when the manifest names another scenario
+    (SHA-256 mismatch), when a file is missing or its SHA-256 or CRC does not match (corrupted),
+    or when t_f* differs from `reference_tf_s` by more than `tf_tolerance_s`.
+    """
+    out, scenario_path = Path(out_dir), Path(scenario_path)
+    manifest_path = out / MANIFEST
+    if not manifest_path.is_file():
+        raise TableError(f"no {MANIFEST}: not a table directory made by {MADE_BY!r}", path=out)
+    try:
+        manifest = json.loads(manifest_path.read_text())
+    except ValueError as exc:
+        raise TableError(f"unreadable ({exc})", path=manifest_path) from None
+    if not isinstance(manifest, dict) or manifest.get("made_by") != MADE_BY:
+        raise TableError(f"not made by {MADE_BY!r}", path=manifest_path)
+    want = _sha256(scenario_path)
+    scn_rec = manifest.get("scenario") or {}
+    if scn_rec.get("sha256") != want:
+        raise TableError(
+            f"made from scenario {scn_rec.get('name')!r} ({scn_rec.get('path')}, SHA-256 "
+            f"{str(scn_rec.get('sha256'))[:12]}), not from {scenario_path} (SHA-256 {want[:12]}): "
+            f"regenerate with `ogk tables` or use {default_table_dir(scenario_path)}", path=out)
+    for entry in manifest.get("files", []):
+        path = out / entry["file"]
+        if not path.is_file():
+            raise TableError(f"missing {entry['file']} listed in {MANIFEST}", path=out)
+        if _sha256(path) != entry["sha256"]:
+            raise TableError("corrupted: SHA-256 differs from the manifest", path=path)
+        try:
+            tablefile.decode_table(path.read_bytes(), int(entry["kind"], 16))
+        except tablefile.TableFormatError as exc:
+            raise TableError(f"corrupted: {exc}", path=path) from None
+    if not any(e.get("file") == BUNDLE_FILE for e in manifest.get("files", [])):
+        raise TableError(f"no {BUNDLE_FILE} in {MANIFEST}", path=out)
+    if reference_tf_s is not None and not abs(manifest["t_f_s"] - reference_tf_s) <= tf_tolerance_s:
+        raise TableError(f"t_f* = {manifest['t_f_s']:.9g} s in {MANIFEST} disagrees with the "
+                         f"reference {reference_tf_s:.9g} s", path=out)
+    return manifest
+
+
+def ensure_nog_tables(scenario_path: str | Path = DEFAULT_SCENARIO_PATH,
+                      table_dir: str | Path | None = None) -> Path:
+    """The checked table directory of `scenario_path` (the flight bundle is BUNDLE_FILE in it).
+
+    table_dir None: the default directory (`default_table_dir`), generated when it has no tables,
+    otherwise checked. A given table_dir is only checked (`check_tables`), except that it is
+    generated when it does not exist (or is empty). Raises TableError (one line) otherwise.
+    """
+    scenario_path = Path(scenario_path)
+    out = default_table_dir(scenario_path) if table_dir is None else Path(table_dir)
+    empty = not out.exists() or (out.is_dir() and not any(out.iterdir()))
+    if empty or (table_dir is None and not (out / MANIFEST).exists()):
+        write_nog_tables(out, scenario_path)
+    check_tables(out, scenario_path)
+    return out
 
 
 def main(argv: list[str] | None = None) -> int:
     """CLI: solve the nominal, compute the gains, write the tables, print a summary."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out_dir", nargs="?", default="build/tables/leo_geo")
+    parser.add_argument("out_dir", nargs="?", default=None,
+                        help="output directory (default: build/tables/<name>-<sha12>)")
     parser.add_argument("--scenario", default=str(DEFAULT_SCENARIO_PATH))
     args = parser.parse_args(argv)
-    nominal = solve_nominal(load_scenario(args.scenario))
-    table = compute_gain_table(nominal)
-    manifest = write_nog_tables(args.out_dir, nominal, table, args.scenario)
+    out_dir = default_table_dir(args.scenario) if args.out_dir is None else Path(args.out_dir)
+    scn = load_scenario(args.scenario)
+    nominal = solve_nominal(scn)
+    table = compute_gain_table(nominal, flight_grid(nominal).tau)
+    manifest = write_nog_tables(out_dir, args.scenario, nominal=nominal, table=table)
     print(f"t_f* = {nominal.t_f_s:.6f} s, f0* = {math.degrees(nominal.f0):.6f} deg")
     for name, value in manifest["residuals"].items():
         print(f"  residual {name:22s} {value: .3e}")
+    g = manifest["grid"]
+    print(f"  grid: {g['gain_nodes']} gain nodes + tau = 1 (OGK_NOG_MAX_GRID = "
+          f"{g['capacity_OGK_NOG_MAX_GRID']}), uniform step {g['uniform_step_s']:g} s, end "
+          f"{g['end_time_to_go_s']:g} s to go; mid-node interpolation error "
+          f"{g['interpolation_error_costate']:.3%} (costates), {g['interpolation_error_dt_f']:.3%} "
+          f"(dt_f), bound {g['interpolation_error_bound']:.1%}")
+    for key, rec in manifest["settings"].items():
+        print(f"  {key}: {rec['source']} {rec['value']}")
     togo_s = (1.0 - table.tau) * nominal.t_f_s
     picks = sorted({int(np.argmin(np.abs(togo_s - t))) for t in
                     (105.8, 80.0, 53.0, 26.5, 10.8, 5.0, 2.0, 1.0, 0.5, 0.1)})
@@ -180,27 +331,10 @@ def main(argv: list[str] | None = None) -> int:
               f"{table.cond_equilibrated[i]:10.3f}  {table.huu_min_eig[i]:.3e}  "
               f"{gain_si[i, dyn.N_X, dyn.VT]: .3e}")
     for entry in manifest["files"]:
-        print(f"  wrote {Path(args.out_dir) / entry['file']} kind {entry['kind']} dims "
+        print(f"  wrote {out_dir / entry['file']} kind {entry['kind']} dims "
               f"{entry['dims']} grid {entry['grid_size']}")
     return 0
 
 
 if __name__ == "__main__":
     raise SystemExit(main())
-
-
-def ensure_nog_tables(out_dir: str | Path = "build/tables/leo_geo",
-                      scenario_path: str | Path = DEFAULT_SCENARIO_PATH) -> Path:
-    """Path of the flight bundle in `out_dir`, regenerated when missing or when its manifest was
-    made from another scenario file or generator (the cache key is the scenario's SHA-256)."""
-    out = Path(out_dir)
-    scenario_path = Path(scenario_path)
-    bundle = out / "leo_geo_nog_bundle.ogkt"
-    manifest_path = out / "manifest.json"
-    want = hashlib.sha256(scenario_path.read_bytes()).hexdigest()
-    if bundle.exists() and manifest_path.exists():
-        manifest = json.loads(manifest_path.read_text())
-        if manifest.get("scenario_sha256") == want and manifest.get("generator") == GENERATOR:
-            return bundle
-    write_nog_tables(out, scenario_path=scenario_path)
-    return bundle
