@@ -94,7 +94,7 @@ flight-app-sil-compare: $(FA_HOST_STAGE) $(FA_B)/tables.stamp
 	  $(FA_B)/sil_reference.log
 
 flight-app-size: $(FA_ELF)
-	arm-none-eabi-size -A $(FA_ELF) | grep -E '^(section|\.vectors|\.text|\.rodata|\.data|\.bss|\.heap|\.stack|Total)'
+	arm-none-eabi-size -A $(FA_ELF) | grep -E '^(section|\.vectors|\.text|\.rodata|\.init_array|\.fini_array|\.data|\.bss|\.heap|\.stack|Total)'
 	arm-none-eabi-size -t $(FA_OBJ) $(FA_RT_OBJ) $(ARM_KOBJ)
 	arm-none-eabi-nm --size-sort -S -r $(FA_ELF) | head -15
 	python3 $(FA_DIR)/map_sizes.py $(FA_ELF:.elf=.map)
