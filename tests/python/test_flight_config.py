@@ -94,6 +94,26 @@ def _roundtrip(tmp_path: Path, items: list[ConfigItem], includes: tuple[str, ...
     return len(expected)
 
 
+@pytest.fixture(scope="module")
+def bundle(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The LEO-to-GEO NOG bundle: an existing `ogk tables leo-geo` output made from the current
+    scenario, else generated once (about 15 s)."""
+    import hashlib
+    import json
+    sha = hashlib.sha256(SCENARIO.read_bytes()).hexdigest()
+    for d in [REPO / "build" / "arm" / "flightapp" / "tables", REPO / "build" / "tables" / "leo_geo",
+              *sorted((REPO / "build" / "tables").glob("leo_geo-*"))]:
+        manifest = d / "manifest.json"
+        found = sorted(d.glob("*_nog_bundle.ogkt"))
+        if found and manifest.exists() and json.loads(manifest.read_text()).get(
+                "scenario_sha256") == sha:
+            return found[0]
+    from ogk_host.orbit_injection.tables import write_nog_tables
+    out = tmp_path_factory.mktemp("tables")
+    write_nog_tables(out, scenario_path=SCENARIO)
+    return sorted(out.glob("*_nog_bundle.ogkt"))[0]
+
+
 def _filled(ctype_name: str, rng: np.random.Generator) -> Any:
     """A struct with every double field set to a random value of random magnitude."""
     c = ffi.new(f"{ctype_name} *")
@@ -134,15 +154,10 @@ def test_every_field_of_the_kernel_configs(tmp_path: Path, rng: np.random.Genera
     assert n > 2 * 93
 
 
-def test_nested_structs_arrays_and_pointers(tmp_path: Path) -> None:
+def test_nested_structs_arrays_and_pointers(tmp_path: Path, bundle: Path) -> None:
     """A whole initialised CPD context (nested config and output structs, an array, integers) and
     a NOG config with its table pointer set (emitted NULL, "bound at init")."""
     from ogk.missions.orbit_injection.flight_config import leo_geo_configs
-    bundle = REPO / "build" / "tables" / "leo_geo" / "leo_geo_nog_bundle.ogkt"
-    if not bundle.exists():
-        from ogk_host.orbit_injection.tables import write_nog_tables
-        write_nog_tables(tmp_path / "tables", scenario_path=SCENARIO)
-        bundle = tmp_path / "tables" / "leo_geo_nog_bundle.ogkt"
     _, nog, cpd_cfg = leo_geo_configs(SCENARIO, bundle)
     ctx = ffi.new("ogk_cpd_t *")
     assert lib.ogk_cpd_init(ctx, cpd_cfg) == lib.OGK_OK
@@ -155,18 +170,19 @@ def test_nested_structs_arrays_and_pointers(tmp_path: Path) -> None:
     assert ".pointing = OGK_CPD_POINTING_BODY" in text
 
 
-def test_leo_geo_header_is_the_sil_configuration(tmp_path: Path) -> None:
+def test_leo_geo_header_is_the_sil_configuration(tmp_path: Path, bundle: Path) -> None:
     """The values of `ogk tables leo-geo` are those the SIL flies: NOG end-game from the scenario,
     tau_freeze = freeze time-to-go / t_f*, CPD with the 50 Hz feed-forward period."""
     from ogk.missions.orbit_injection.flight_config import leo_geo_configs, write_leo_geo_config
     from ogk_host.orbit_injection.scenario import load_scenario
-    bundle = REPO / "build" / "tables" / "leo_geo" / "leo_geo_nog_bundle.ogkt"
-    if not bundle.exists():
-        pytest.skip("no build/tables/leo_geo (run `ogk tables leo-geo`)")
+
+    from ogk.missions.orbit_injection import nog_guidance
     _, nog, cpd = leo_geo_configs(SCENARIO, bundle)
     scn = load_scenario(SCENARIO)
     assert nog.sample_interval_s == scn.sample_interval_s
-    assert nog.tau_freeze == scn.end_game.freeze_time_to_go_s / nog.table.t_f_star_s
+    freeze = (nog_guidance.freeze_time_to_go_s(scn) if hasattr(nog_guidance, "freeze_time_to_go_s")
+              else scn.end_game.freeze_time_to_go_s)
+    assert nog.tau_freeze == freeze / nog.table.t_f_star_s
     assert cpd.ff_period_s == 0.02
     paths = write_leo_geo_config(tmp_path, SCENARIO, bundle)
     text = paths[0].read_text()
