@@ -144,7 +144,6 @@ static int fly(const char *name, const double *dx0, int dropout, burn_result *re
     ogk_flight_t *f = &g_flight;
     ogk_flight_att_t att;
     double x[NPL];
-    double t = 0.0;
     double t_end = 0.0;
     uint32_t n;
     unsigned i;
@@ -174,7 +173,7 @@ static int fly(const char *name, const double *dx0, int dropout, burn_result *re
            name, x[R_] / 1e3, x[VT], f->table.t_f_star_s, (unsigned)f->ticks_per_sample);
     for (n = 0u; n < MAX_TICKS; ++n) {
         double h = CONTROL_DT_S;
-        t = (double)n * CONTROL_DT_S;
+        const double t = (double)n * CONTROL_DT_S;
         ogk_nav_state_t nav; /* navigation: the plant's state, perfect */
         nav.t_s = t;
         nav.r_m = x[R_];
