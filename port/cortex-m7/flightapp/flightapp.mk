@@ -6,7 +6,7 @@
 #                           (ogk tables leo-geo), build build/arm/flightapp/flightapp.elf, run it on
 #                           QEMU; fails unless it exits 0 and prints "flightapp: PASS", and unless
 #                           the same app built for the host gives the same injection errors
-#   make flight-app-sil-compare  the same runs against the host SIL (point-mass truth), ~30 s
+#   make flight-app-sil-compare  the same runs against the host SIL (point-mass truth), ~15 s
 #   make flight-app-size    flash / RAM of the ELF and of each object, largest symbols
 #   make flight-app-stack   worst-case stack of the ogk_flight_* entry points (gcc call graphs)
 #
@@ -80,7 +80,7 @@ test-flight-app: $(FA_ELF) $(FA_HOST)
 
 # Against the host SIL (sil_reference.py: point-mass truth, the kernel NOG through cffi) with the
 # plant taking the command at every RK4 stage as the SIL does: runs A and B must agree to 1e-3
-# (measured: identical in all printed digits). About 30 s; not part of test-flight-app.
+# (measured: identical in all printed digits). About 15 s; not part of test-flight-app.
 FA_HOST_STAGE := $(ARM_B)/flightapp/host/flightapp_stage
 $(FA_HOST_STAGE): $(FA_SRC) $(FA_HDR) $(FA_GEN_C) $(FA_GEN_H) $(HOST_OBJ) | apt
 	@mkdir -p $(@D)

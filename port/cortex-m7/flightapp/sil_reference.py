@@ -6,7 +6,7 @@ printed in the flight app's format so compare_runs.py can compare them with the 
 
   .venv/bin/python port/cortex-m7/flightapp/sil_reference.py TABLE_DIR > sil.log
 
-A manual cross-check (about 30 s, most of it the nominal solve), not part of make test-flight-app:
+A manual cross-check (about 15 s, most of it the nominal solve), not part of make test-flight-app:
 it depends on the harness internals (docs/flight-integration.md, "Verification")."""
 from __future__ import annotations
 
