@@ -12,6 +12,15 @@
 #
 # Until the lead includes it: make -f Makefile -f port/cortex-m7/flightapp/flightapp.mk test-flight-app
 
+# Prerequisites are expanded when this file is read: include it after FFI_STAMP and HOST_OBJ are set
+# (e.g. next to `include tests/bench/bench.mk`).
+ifeq ($(strip $(FFI_STAMP)),)
+$(error flightapp.mk: include it after FFI_STAMP is defined in the Makefile)
+endif
+ifeq ($(strip $(HOST_OBJ)),)
+$(error flightapp.mk: include it after HOST_OBJ is defined in the Makefile)
+endif
+
 FA_DIR := $(ARM_PORT)/flightapp
 FA_B := $(ARM_B)/flightapp
 # Generated into the app's own build tree (`ogk tables leo-geo --out DIR`), so that a campaign
