@@ -145,3 +145,47 @@ def test_second_order_sufficient_conditions(nominal: Nominal) -> None:
     assert np.all(table.huu_min_eig > 0.0)
     assert np.max(table.cond_equilibrated) < 100.0
     assert np.all(np.isfinite(table.gain))
+
+
+def test_derived_settings_reproduce_the_scenario(scenario: LeoGeoScenario) -> None:
+    """derive.py's rules give today's scenario values: the sec. 5.3 gains equal [cpd.rederived]
+    (to the 1-ulp rounding of the printed decimals), the freeze rule Delta t_S / 4 = 0.5 s, and the
+    braking accelerations the loader's Cpd.braking_accels_rad_s2 (when it still has it)."""
+    import dataclasses
+
+    from ogk_host.orbit_injection import derive
+    derived = derive.design_rule_gains(scenario)
+    stored = scenario.cpd.rederived
+    for field in dataclasses.fields(derived):
+        assert getattr(derived, field.name) == pytest.approx(getattr(stored, field.name), rel=3e-16)
+    assert derive.freeze_rule_s(scenario) == 0.5
+    accels = derive.braking_accels(scenario)
+    assert accels == pytest.approx((0.0125, 0.046391470523501885, 0.046391470523501885), rel=1e-15)
+    if hasattr(scenario.cpd, "braking_accels_rad_s2"):
+        assert accels == scenario.cpd.braking_accels_rad_s2(scenario)
+
+
+def test_settings_provenance(scenario: LeoGeoScenario) -> None:
+    """Scenario values win; a silent scenario gets the derived ones, marked as such."""
+    import dataclasses
+
+    from ogk_host.orbit_injection import derive
+    given = derive.effective_settings(scenario)
+    assert (given.cpd_gains_source, given.freeze_source, given.braking_source) == (
+        "scenario" if scenario.cpd.rederived is not None else "derived",
+        "scenario" if scenario.end_game.freeze_time_to_go_s is not None else "derived", "derived")
+    silent = dataclasses.replace(
+        scenario, cpd=dataclasses.replace(scenario.cpd, rederived=None),
+        end_game=dataclasses.replace(scenario.end_game, freeze_time_to_go_s=None))
+    eff = derive.effective_settings(silent)
+    assert eff.cpd_gains_source == "derived" and eff.freeze_source == "derived"
+    assert eff.freeze_time_to_go_s == 0.5 and eff.tau_freeze(105.80878) == pytest.approx(0.5 / 105.80878)
+    assert eff.cpd_gains == derive.design_rule_gains(scenario)
+    record = eff.as_manifest()
+    assert record["cpd_gains"]["source"] == "derived"
+    assert record["freeze_time_to_go_s"] == {"value": 0.5, "source": "derived"}
+    # another vehicle: twice the thrust halves the pitch/yaw gains
+    heavy = dataclasses.replace(silent, thrust=dataclasses.replace(
+        scenario.thrust, initial_accel_g0=2.0 * scenario.thrust.initial_accel_g0))
+    assert derive.effective_settings(heavy).cpd_gains.kp_pitch_yaw == pytest.approx(
+        0.5 * eff.cpd_gains.kp_pitch_yaw, rel=1e-14)

@@ -97,3 +97,125 @@ def test_bundle_through_bindings_flies_nominal(bundle, tmp_path):
     lam = bundle.data[0, 14:21]
     alpha_ref = np.arctan2(-lam[3], -lam[4])          # eq. (27) from the ground costate
     assert out.alpha_rad == pytest.approx(alpha_ref, abs=1e-12)
+
+
+# --- grid capacity and provenance (host/ogk_host/orbit_injection/{gains,tables}.py) -------------
+
+def test_grid_fits_kernel_capacity_for_long_burns():
+    """The capacity is the kernel's; every chosen grid keeps the 5 % spacing bound and fits it."""
+    from ogk.bindings._ffi import lib
+    from ogk_host.orbit_injection import gains
+    cap = int(lib.OGK_NOG_MAX_GRID)
+    assert gains.kernel_table_capacity() == (cap, int(lib.OGK_NOG_ENTRY_LEN))
+    paper = gains.choose_tau_grid(105.80878, 2.0, 0.5)
+    assert paper.step_s == 0.5 and paper.tau.size == 251          # today's grid, unchanged
+    for t_f in (40.0, 105.8, 161.1, 222.5, 250.3, 600.0):
+        choice = gains.choose_tau_grid(t_f, 2.0, 0.5)
+        togo = t_f * (1.0 - np.append(choice.tau, 1.0 - 0.5 / t_f))
+        assert choice.bundle_nodes <= cap
+        assert np.all(-np.diff(togo) <= gains.MAX_RELATIVE_SPACING * togo[:-1] * (1 + 1e-12))
+
+
+def test_grid_capacity_error_names_the_setting():
+    from ogk_host.errors import OgkInputError
+    from ogk_host.orbit_injection import gains
+    with pytest.raises(gains.GridCapacityError) as info:
+        gains.choose_tau_grid(250.0, 2.0, 1e-9)
+    assert isinstance(info.value, OgkInputError)
+    assert "\n" not in str(info.value) and "freeze_time_to_go_s" in str(info.value)
+
+
+@pytest.fixture(scope="module")
+def table_dir(tmp_path_factory):
+    from ogk_host.orbit_injection import tables
+    out = tmp_path_factory.mktemp("tables") / "leo_geo"
+    manifest = tables.write_nog_tables(out, DEFAULT_SCENARIO_PATH)
+    return out, manifest
+
+
+def test_manifest_records_provenance(table_dir):
+    import hashlib
+    from ogk_host.orbit_injection import tables
+    out, manifest = table_dir
+    assert manifest["made_by"] == "ogk tables"
+    assert manifest["scenario"]["name"] == "leo_geo"
+    assert manifest["scenario"]["sha256"] == hashlib.sha256(DEFAULT_SCENARIO_PATH.read_bytes()).hexdigest()
+    assert f"{manifest['t_f_s']:.5f}" == "105.80878"
+    assert f"{manifest['ignition_true_anomaly_deg']:.5f}" == "179.87429"
+    grid = manifest["grid"]
+    assert grid["bundle_nodes"] == 252 and grid["capacity_OGK_NOG_MAX_GRID"] == 256
+    assert grid["interpolation_error_costate"] < grid["interpolation_error_bound"] == 0.005
+    for entry in manifest["files"]:
+        assert hashlib.sha256((out / entry["file"]).read_bytes()).hexdigest() == entry["sha256"]
+    assert set(manifest["settings"]) == {"cpd_gains", "freeze_time_to_go_s", "braking_accels_rad_s2"}
+    assert all(rec["source"] in ("scenario", "derived") for rec in manifest["settings"].values())
+    assert tables.check_tables(out, DEFAULT_SCENARIO_PATH, reference_tf_s=manifest["t_f_s"]) == manifest
+    name = tables.default_table_dir(DEFAULT_SCENARIO_PATH).name
+    assert name == f"leo_geo-{manifest['scenario']['sha256'][:12]}"
+
+
+def _copy(src, dst):
+    shutil.copytree(src, dst)
+    return dst
+
+
+def test_check_tables_rejects_other_scenario_corruption_and_tf(table_dir, tmp_path):
+    from ogk_host.errors import TableError
+    from ogk_host.orbit_injection import tables
+    out, manifest = table_dir
+    other = tmp_path / "other.toml"
+    other.write_text(DEFAULT_SCENARIO_PATH.read_text() + "\n# edited\n")
+    with pytest.raises(TableError, match="made from scenario 'leo_geo'"):
+        tables.check_tables(out, other)
+    with pytest.raises(TableError, match="disagrees with the reference"):
+        tables.check_tables(out, DEFAULT_SCENARIO_PATH, reference_tf_s=manifest["t_f_s"] + 1e-3)
+    bad = _copy(out, tmp_path / "flipped")
+    gain = bad / "leo_geo_gain.ogkt"
+    data = bytearray(gain.read_bytes())
+    data[len(data) // 2] ^= 0x40
+    gain.write_bytes(bytes(data))
+    with pytest.raises(TableError, match="corrupted: SHA-256") as info:
+        tables.check_tables(bad, DEFAULT_SCENARIO_PATH)
+    assert "\n" not in str(info.value)
+    # same flip with the manifest's SHA-256 "fixed": the file's own CRC still catches it
+    import hashlib
+    import json
+    m = json.loads((bad / "manifest.json").read_text())
+    for entry in m["files"]:
+        if entry["file"] == gain.name:
+            entry["sha256"] = hashlib.sha256(gain.read_bytes()).hexdigest()
+    (bad / "manifest.json").write_text(json.dumps(m))
+    with pytest.raises(TableError, match="corrupted: .*CRC|corrupted: .*crc"):
+        tables.check_tables(bad, DEFAULT_SCENARIO_PATH)
+
+
+def test_writer_never_overwrites_a_foreign_directory(table_dir, tmp_path):
+    from ogk_host.errors import TableError
+    from ogk_host.orbit_injection import tables
+    foreign = tmp_path / "mine"
+    foreign.mkdir()
+    (foreign / "notes.txt").write_text("not tables")
+    with pytest.raises(TableError, match="refusing") as info:
+        tables.write_nog_tables(foreign, DEFAULT_SCENARIO_PATH)
+    assert "\n" not in str(info.value) and (foreign / "notes.txt").read_text() == "not tables"
+    with pytest.raises(TableError):        # ensure with a user directory only checks
+        tables.ensure_nog_tables(DEFAULT_SCENARIO_PATH, foreign)
+    # a user directory of ours is checked, not regenerated
+    ours = _copy(table_dir[0], tmp_path / "ours")
+    stamp = (ours / "manifest.json").stat().st_mtime_ns
+    assert tables.ensure_nog_tables(DEFAULT_SCENARIO_PATH, ours) == ours
+    assert (ours / "manifest.json").stat().st_mtime_ns == stamp
+
+
+def test_ensure_generates_default_dir_then_checks(monkeypatch, tmp_path):
+    from ogk_host.orbit_injection import tables
+    monkeypatch.setattr(tables, "TABLE_ROOT", tmp_path / "build" / "tables")
+    out = tables.ensure_nog_tables(DEFAULT_SCENARIO_PATH)
+    assert out == tables.default_table_dir(DEFAULT_SCENARIO_PATH) and out.parent == tmp_path / "build" / "tables"
+    assert (out / tables.BUNDLE_FILE).is_file()
+    stamp = (out / "manifest.json").stat().st_mtime_ns
+    assert tables.ensure_nog_tables(DEFAULT_SCENARIO_PATH) == out      # second call: check only
+    assert (out / "manifest.json").stat().st_mtime_ns == stamp
+    # a user directory that does not exist is generated
+    new = tmp_path / "new"
+    assert tables.ensure_nog_tables(DEFAULT_SCENARIO_PATH, new) == new and (new / "manifest.json").is_file()

@@ -13,15 +13,24 @@ Necessary conditions used (eqs. 24-28 with real time as a state):
   autonomous in tau (time is a state), so h = lambda^T f~ is constant and the condition is h = -1.
 The planar symmetric solution phi = v_n = lambda_phi = lambda_vn = 0 (beta = 0) is sought (sec. 3.2).
 
-Solution method (no hand-tuned guess): the costates are homogeneous except for h = -1, so the shooting
-unknowns are q = [f0, alpha0, kappa, t_f] with lambda_v(0) = -[sin alpha0, cos alpha0] (unit norm,
-alpha0 = initial thrust angle) and lambda_r(0) = kappa / t_f (kappa ~ total turn of lambda_v). A
-vectorised fixed-step RK4 scan over a coarse 4-D grid (f0 90..270 deg, alpha0 -75..75 deg,
-kappa -3..3, t_f 0.6..2 times the rocket-equation estimate at apoapsis) ranks candidates by their scaled
-residuals; the best few are refined by Levenberg-Marquardt (DOP853 at rtol 1e-9) and then damped
-Newton (rtol 1e-12), both with exact (variational) Jacobians; the minimum-t_f converged extremal is
-kept. The costates are then rescaled to h = -1 and lambda_t(0) is fixed so that
-lambda_t(1) = 0 (lambda_t does not feed back into the other equations).
+Solution method: the costates are homogeneous except for h = -1, so the shooting unknowns are
+q = [f0, alpha0, kappa, t_f] with lambda_v(0) = -[sin alpha0, cos alpha0] (unit norm, alpha0 = initial
+thrust angle) and lambda_r(0) = kappa / t_f (kappa ~ total turn of lambda_v).
+
+- "continuation" (default for a transfer ellipse whose apogee is the target radius, the documented
+  envelope of docs/vtd-nog.md sec. 2): natural-parameter continuation in the canonical
+  (p, e, n0, c) from the paper's problem (PAPER_PARAMETERS) and its solution (PAPER_SOLUTION), full
+  Newton correctors with the exact variational Jacobian, step doubled/halved; deterministic. Over
+  the envelope (R_f / r_p 1.5..8, n0 0.5..1.5 g0, c 2.5..4.5 km/s) it takes 1-2 steps.
+- "scan" (fallback, and the default for an ellipse that crosses the target orbit): a vectorised
+  fixed-step RK4 scan over a coarse 4-D grid (f0 90..270 deg plus anomalies around the crossings,
+  alpha0 -75..75 deg, kappa -3..3, t_f 0.6..3 times the rocket-equation estimate at apoapsis)
+  ranks candidates by their scaled residuals; the best few are refined by Levenberg-Marquardt
+  (DOP853 at rtol 1e-9) and damped Newton (rtol 1e-12); the minimum-t_f converged extremal is kept.
+
+The costates are then rescaled to h = -1 and lambda_t(0) is fixed so that lambda_t(1) = 0
+(lambda_t does not feed back into the other equations). No solution: NominalError (one line, with
+the transfer-ellipse keys to set).
 """
 from __future__ import annotations
 
@@ -202,18 +211,46 @@ def newton(fun: Callable[[FloatArray], tuple[FloatArray, FloatArray]], q: FloatA
     return q, res
 
 
+def crossing_anomalies(problem: MinTimeProblem) -> tuple[float, ...]:
+    """True anomalies [rad] where the pre-ignition ellipse crosses the target radius (none when the
+    target is outside (perigee, apogee))."""
+    cos_f = (problem.semilatus_rectum / problem.target_radius - 1.0) / problem.eccentricity \
+        if problem.eccentricity > 0.0 else math.inf
+    if not -1.0 < cos_f < 1.0:
+        return ()
+    f_c = math.acos(cos_f)
+    return (f_c, 2.0 * math.pi - f_c)
+
+
+def apogee_excess(problem: MinTimeProblem) -> float:
+    """apogee / R_f - 1 of the pre-ignition ellipse: ~0 for a transfer ellipse ending at R_f (the
+    documented envelope), > 0 when the ellipse crosses the target orbit."""
+    apogee = problem.semilatus_rectum / (1.0 - problem.eccentricity)
+    return apogee / problem.target_radius - 1.0
+
+
 def _scan(problem: MinTimeProblem, n_keep: int) -> tuple[FloatArray, int]:
-    """Coarse vectorised RK4 scan; returns the n_keep best q (by scaled residual) and the grid size."""
+    """Coarse vectorised RK4 scan; returns the n_keep best q (by scaled residual) and the grid size.
+
+    f0: 90..270 deg every 7.5 deg plus, when the ellipse crosses the target orbit, anomalies
+    -12..+3 deg around each crossing (mirrored for the descending one); t_f: 0.6..3 times the
+    rocket-equation time of an apoapsis burn, below 0.9 of the burnout time."""
     t_ref = problem.rocket_equation_time()
-    f0_grid = np.radians(np.arange(90.0, 270.1, 7.5))
+    f0_deg = list(np.arange(90.0, 270.1, 7.5))
+    for f_c in crossing_anomalies(problem)[:1]:
+        for off in (-12.0, -8.0, -5.0, -3.0, -1.5, 0.0, 1.5, 3.0):
+            f0_deg += [math.degrees(f_c) + off, 360.0 - math.degrees(f_c) - off]
+    f0_grid = np.radians(np.unique(np.round(f0_deg, 9)))
     alpha_grid = np.radians(np.arange(-75.0, 75.1, 15.0))
     kappa_grid = np.arange(-3.0, 3.01, 0.5)
-    tf_grid = t_ref * np.geomspace(0.6, 2.0, 12)
+    tf_grid = t_ref * np.geomspace(0.6, 3.0, 16)
+    tf_grid = tf_grid[tf_grid < 0.9 * problem.model.exhaust_velocity / problem.model.initial_accel]
     grid = np.stack(np.meshgrid(f0_grid, alpha_grid, kappa_grid, tf_grid, indexing="ij"),
                     axis=-1).reshape(-1, 4)
     x0, dx0, _ = problem.ignition_state(grid[:, 0])
     lam0 = _costate_from_q(grid[:, 1], grid[:, 2], grid[:, 3])
-    z1 = rk4_extremal_batch(problem.model, np.concatenate([x0, lam0], axis=1), grid[:, 3], 40)
+    with np.errstate(all="ignore"):
+        z1 = rk4_extremal_batch(problem.model, np.concatenate([x0, lam0], axis=1), grid[:, 3], 40)
     # transversality as a cosine between lambda(0) and the tangent of the ignition manifold
     cos_trans = np.sum(lam0 * dx0, axis=1) / (np.linalg.norm(lam0, axis=1)
                                               * np.linalg.norm(dx0, axis=1))
@@ -260,6 +297,14 @@ def necessary_condition_residuals(problem: MinTimeProblem, z0: FloatArray, t_f: 
 PAPER_PARAMETERS = (0.276996932003605, 0.723, 48.63751099172241, 0.9757156972733132)
 PAPER_SOLUTION = (3.1393985144536964, 0.0175294883993016, -0.03650272123394877,
                   0.007715745002506479)
+
+
+#: |apogee / R_f - 1| up to which "auto" continues from the paper (transfer ellipse ending at R_f;
+#: the paper's ellipse has -1.2e-5). Beyond it the ellipse crosses (or misses) the target orbit, the
+#: paper's solution sits at a bifurcation of that family (two crossings merge at apogee) and the
+#: continuation was measured to follow a wrong branch (42 000 km: 193 s instead of 106.8 s), so
+#: "auto" uses the scan.
+APOGEE_TOLERANCE = 1e-3
 
 
 class ContinuationError(RuntimeError):
@@ -357,12 +402,14 @@ def continue_from_paper(problem: MinTimeProblem, min_step: float = 1.0 / 64.0,
     return q, accepted
 
 
-def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 4,
+def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 8,
                   method: str = "auto") -> Nominal:
     """Minimum-t_f extremal: continuation from the paper's solution ("continuation"), the coarse
     scan + Levenberg-Marquardt + damped Newton ("scan"), or the first, falling back on the
     second ("auto")."""
     problem = MinTimeProblem.from_scenario(scn if scn is not None else load_scenario())
+    if method == "auto" and abs(apogee_excess(problem)) > APOGEE_TOLERANCE:
+        method = "scan"        # an ellipse crossing the target: the paper's point is a bifurcation
     if method in ("auto", "continuation"):
         try:
             q, steps = continue_from_paper(problem)
