@@ -138,21 +138,6 @@ class Cpd:
     printed: CpdGains | None        #: eq. (54) as printed; None when the scenario has none
     rederived: CpdGains | None      #: sec. 5.3 rule; None: derived by the ground tools
 
-    def braking_accels_rad_s2(self, scn: "LeoGeoScenario") -> tuple[float, float, float]:
-        """ogk_cpd_config_t.approach_accel_{x,y,z}: the margin times the smallest control
-        acceleration at the command limits over the burn (roll M_xc / I_x0; pitch/yaw
-        G_min sin(Delta_c) with G_min = T l0 / I_y0, I_z0)."""
-        mp, thrust_n = scn.mass_properties, scn.thrust.thrust_n
-        return (self.braking_margin * self.roll_torque_command_max_n_m / mp.inertia_x_kg_m2,
-                self.braking_margin * thrust_n * mp.tvc_arm_m / mp.inertia_y_kg_m2
-                * math.sin(self.deflection_y_command_max_rad),
-                self.braking_margin * thrust_n * mp.tvc_arm_m / mp.inertia_z_kg_m2
-                * math.sin(self.deflection_z_command_max_rad))
-
-    @property
-    def flown_gains(self) -> CpdGains:
-        """The gain set selected by the `flown` key."""
-        return self.rederived if self.flown == "rederived" else self.printed
 
 
 @dataclasses.dataclass(frozen=True)
@@ -338,8 +323,6 @@ def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
     for sec in (isd_s, att_s, actd_s, thr_s, disp):
         sec.finish()
 
-    if cpd.rederived is None:  # sec. 5.3 rule with this scenario's thrust and inertia
-        cpd = dataclasses.replace(cpd, rederived=design_rule_gains(cpd, thrust, mass_properties))
     acceptance = _read_acceptance(top.section("acceptance", optional=True), target_radius)
     paper = _read_paper(top.section("paper_results")) if top.has("paper_results") else None
     top.finish()
@@ -353,17 +336,6 @@ def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
         acceptance=acceptance, path=Path(scenario_path))
     _check(scenario, top)
     return scenario
-
-
-def design_rule_gains(cpd: Cpd, thrust: Thrust, mp: MassProperties) -> CpdGains:
-    """Sec. 5.3: k_p = omega_n^2 / G_min, k_d = 2 zeta omega_n / G_min with G_x = 1 / I_x0 and
-    G_y = G_z = T l0 / I_y0 (l smallest and I_y largest at ignition)."""
-    w, z = cpd.natural_frequency_rad_s, cpd.damping_ratio
-    g_x = 1.0 / mp.inertia_x_kg_m2
-    g_y = thrust.thrust_n * mp.tvc_arm_m / max(mp.inertia_y_kg_m2, mp.inertia_z_kg_m2)
-    return CpdGains(gain_roll_g_per_kg_m2=g_x, gain_pitch_yaw_g_s2=g_y,
-                    kp_roll_n_m_per_rad=w * w / g_x, kd_roll_n_m_s_per_rad=2.0 * z * w / g_x,
-                    kp_pitch_yaw=w * w / g_y, kd_pitch_yaw_s=2.0 * z * w / g_y)
 
 
 def _read_cpd(sec: Section) -> Cpd:

@@ -42,12 +42,18 @@ POINTING_MODES = {"body": 0, "euler": 1}
 def cpd_config(scn: LeoGeoScenario, gains: str | None = None, pointing: str = "body",
                control_period_s: float = 0.0) -> dict:
     """Field values of ogk_cpd_config_t from the scenario (gain set `gains` in {"printed",
-    "rederived"}, default the scenario's `flown` choice)."""
+    "rederived"}, default the scenario's `flown` choice). The re-derived gains and the braking
+    accelerations are the ground tools' (ogk_host.orbit_injection.derive): the scenario's own
+    values when it states them, the sec. 5.3 design rule otherwise."""
+    from ogk_host.orbit_injection import derive
     cpd, act = scn.cpd, scn.actuators
     chosen = gains if gains is not None else cpd.flown
-    g = cpd.rederived if chosen == "rederived" else cpd.printed
     if chosen not in ("printed", "rederived"):
         raise ValueError(f"unknown gain set {chosen!r}")
+    settings = derive.effective_settings(scn)
+    g = settings.cpd_gains if chosen == "rederived" else cpd.printed
+    if g is None:
+        raise ValueError(f"the scenario has no [cpd.{chosen}] gain set")
     return dict(k_px=g.kp_roll_n_m_per_rad, k_dx=g.kd_roll_n_m_s_per_rad,
                 k_py=g.kp_pitch_yaw, k_dy=g.kd_pitch_yaw_s,
                 k_pz=g.kp_pitch_yaw, k_dz=g.kd_pitch_yaw_s,
@@ -58,7 +64,7 @@ def cpd_config(scn: LeoGeoScenario, gains: str | None = None, pointing: str = "b
                 tau_z=act.time_constant_z_s, phi_c=cpd.roll_command_rad,
                 pointing=POINTING_MODES[pointing],
                 **dict(zip(("approach_accel_x", "approach_accel_y", "approach_accel_z"),
-                           cpd.braking_accels_rad_s2(scn))),
+                           settings.braking_accels_rad_s2)),
                 ff_period_s=control_period_s if cpd.feedforward else 0.0,
                 ff_rate_max=cpd.feedforward_rate_max_rad_s)
 

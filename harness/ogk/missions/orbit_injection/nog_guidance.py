@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 
 from ogk_host.orbit_injection.scenario import LeoGeoScenario
 from ogk_host.errors import TableError
+from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection import tables as ground_tables
 
 from ogk.bindings._ffi import ffi, lib
@@ -51,14 +52,8 @@ def prepare_tables(scn: LeoGeoScenario, table_dir: Path | None = None) -> NogTab
     (`table_dir`) is only checked, never written over (TableError, one line)."""
     if scn.path is None:
         raise TableError("the scenario has no file: tables are keyed by the scenario file")
-    if not hasattr(ground_tables, "check_tables"):  # TEMPORARY until the provenance API lands
-        directory = Path(table_dir) if table_dir else Path("build/tables") / scn.name
-        ground_tables.ensure_nog_tables(directory, scn.path)
-        import json
-        manifest = json.loads((directory / "manifest.json").read_text())
-    else:
-        directory = ground_tables.ensure_nog_tables(scn.path, table_dir)
-        manifest = ground_tables.check_tables(directory, scn.path)
+    directory = ground_tables.ensure_nog_tables(scn.path, table_dir)
+    manifest = ground_tables.check_tables(directory, scn.path)
     bundles = sorted(Path(directory).glob(BUNDLE_GLOB))
     if len(bundles) != 1:
         raise TableError(f"expected one {BUNDLE_GLOB} bundle, found {len(bundles)}", path=directory)
@@ -80,20 +75,15 @@ def load_table(bundle: Path) -> object:
 def nog_config(scn: LeoGeoScenario, table: object) -> object:
     """ogk_nog_config_t from the scenario's guidance block (the end-game bounds included)."""
     cfg = ffi.new("ogk_nog_config_t *")
+    status = lib.ogk_nog_config_default(cfg)
+    if status != lib.OGK_OK:
+        raise KernelError(status, "ogk_nog_config_default")
     cfg.table = table
     cfg.sample_interval_s = scn.sample_interval_s
     cfg.dtf_max_s = scn.end_game.dtf_max_s
     cfg.du_max_rad = scn.end_game.du_max_rad
-    cfg.tau_freeze = freeze_time_to_go_s(scn) / table.t_f_star_s
+    cfg.tau_freeze = derive.effective_settings(scn).tau_freeze(float(table.t_f_star_s))
     return cfg
-
-
-def freeze_time_to_go_s(scn: LeoGeoScenario) -> float:
-    """The end-game freeze: the scenario's value, or the ground tools' derivation from Delta t_S."""
-    if scn.end_game.freeze_time_to_go_s is not None:
-        return float(scn.end_game.freeze_time_to_go_s)
-    from ogk_host.orbit_injection import derive
-    return float(derive.effective_settings(scn).freeze_time_to_go_s)
 
 
 class KernelNogGuidance:
