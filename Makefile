@@ -120,6 +120,10 @@ test-slow: $(FFI_STAMP)
 # ---------------------------------------------------------------- benchmarks
 include tests/bench/bench.mk
 
+# ---------------------------------------------------------------- Cortex-M7 flight application
+# (docs/flight-integration.md): make test-flight-app, flight-app-size, flight-app-stack
+include port/cortex-m7/flightapp/flightapp.mk
+
 # ---------------------------------------------------------------- top-level
 .PHONY: all test run clean
 all: deps kernel-host arm-lib ffi
@@ -129,16 +133,17 @@ test: deps
 	$(MAKE) test-unit-host
 	$(MAKE) test-unit-arm
 	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack
+	$(MAKE) test-flight-app
 	$(MAKE) test-eigen
 	$(MAKE) test-imports
 	$(MAKE) test-python
 
-# The main job: LEO-to-GEO VTD-NOG + CPD, ground tables then a 100-run SIL
-# Monte Carlo against the paper's Table 7 (JSON and PNG plots in build/mc); then
+# The main job: LEO-to-GEO VTD-NOG + CPD, ground tables (build/tables/leo_geo-<sha12>) then a
+# 100-run SIL Monte Carlo flying them, against the paper's Table 7 (JSON and PNG plots in build/mc); then
 # MPSP on the 23 Apophis cases against Wang & Topputo's Tables 3, 5, 6 (build/apophis).
 run: all
 	$(VENV)/bin/ogk demo switching
-	$(VENV)/bin/ogk tables leo-geo --out $(B)/tables/leo_geo
+	$(VENV)/bin/ogk tables leo-geo
 	$(VENV)/bin/ogk mc leo-geo --runs 100 --seed 1 --workers 2 \
 	  --json $(B)/mc/leo_geo_100.json --plots $(B)/mc/plots
 	$(VENV)/bin/ogk mpsp apophis --paper-tables \

@@ -47,7 +47,7 @@ def write_leo_geo_config(out: Path, scenario: Path, bundle: Path) -> list[Path]:
     ffi, nog, cpd = leo_geo_configs(scenario, bundle)
     cfg = write_c_config(
         ffi, [ConfigItem("ogk_leo_geo_nog_config", nog,
-                         "VTD-NOG (ogk/nog.h): set .table to the validated table, then ogk_nog_init"),
+                         "VTD-NOG (ogk/nog.h): bind .view (ogk_nog_table_view, in place) or .table (ogk_nog_table_load), then ogk_nog_init"),
               ConfigItem("ogk_leo_geo_cpd_config", cpd,
                          f"CPD (ogk/cpd.h), ff_period_s = the {CONTROL_RATE_HZ:g} Hz control period")],
         out / "c" / "ogk_leo_geo_flight_config.h", scenario, includes=("ogk/nog.h", "ogk/cpd.h"),
