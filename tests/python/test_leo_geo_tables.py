@@ -142,6 +142,7 @@ def test_manifest_records_provenance(table_dir):
     assert manifest["scenario"]["sha256"] == hashlib.sha256(DEFAULT_SCENARIO_PATH.read_bytes()).hexdigest()
     assert f"{manifest['t_f_s']:.5f}" == "105.80878"
     assert f"{manifest['ignition_true_anomaly_deg']:.5f}" == "179.87429"
+    assert manifest["nominal_method"] == "continuation"
     grid = manifest["grid"]
     assert grid["bundle_nodes"] == 252 and grid["capacity_OGK_NOG_MAX_GRID"] == 256
     assert grid["interpolation_error_costate"] < grid["interpolation_error_bound"] == 0.005

@@ -113,6 +113,7 @@ def check_point(base: LeoGeoScenario, ratio: float, n0: float, c: float,
     t0 = time.perf_counter()
     nom = solve_nominal(scn)
     t_solve = time.perf_counter() - t0
+    assert nom.method == "continuation"            # inside the envelope: no scan needed
     assert np.max(np.abs(nom.residuals)) < 1e-11
     res = cartesian_check(nom, scn)
     assert abs(res["dr_m"]) < 1e-2                 # [m]
@@ -128,7 +129,7 @@ def check_point(base: LeoGeoScenario, ratio: float, n0: float, c: float,
     out = {"ratio": ratio, "n0_g0": n0, "c_m_s": c, "t_f_s": nom.t_f_s,
            "f0_deg": math.degrees(nom.f0), "max_residual": float(np.max(np.abs(nom.residuals))),
            "rise_plus_ms": 1e3 * rise[0], "rise_minus_ms": 1e3 * rise[1], "solve_s": t_solve,
-           "continuation_steps": nom.refined_starts if nom.scan_candidates == 0 else -1, **res}
+           "method": nom.method, "continuation_steps": nom.refined_starts, **res}
     print("\n" + "  ".join(f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}"
                            for k, v in out.items()))
     return out
@@ -146,7 +147,7 @@ def test_paper_case_unchanged(base: LeoGeoScenario) -> None:
     nom = solve_nominal(base)
     assert f"{nom.t_f_s:.5f}" == "105.80878"
     assert f"{math.degrees(nom.f0):.5f}" == "179.87429"
-    assert nom.scan_candidates == 0          # found by the continuation, not the scan
+    assert nom.method == "continuation" and nom.scan_candidates == 0
 
 
 @pytest.mark.slow
@@ -174,7 +175,7 @@ def test_paper_ellipse_with_another_target(base: LeoGeoScenario, r_f_km: float) 
     30 000 km -> 161.15 s at f0 147.23 deg, 41 000 km -> 112.69 s at 188.31 deg (measured)."""
     scn = dataclasses.replace(base, target_radius_m=r_f_km * 1e3)
     nom = solve_nominal(scn)
-    assert nom.scan_candidates > 0 and np.max(np.abs(nom.residuals)) < 1e-11
+    assert nom.method == "scan" and np.max(np.abs(nom.residuals)) < 1e-11
     res = cartesian_check(nom, scn)
     print(f"\n{r_f_km:.0f} km: t_f* = {nom.t_f_s:.5f} s, f0* = {math.degrees(nom.f0):.5f} deg, {res}")
     assert abs(res["dr_m"]) < 1e-2 and abs(res["v_r_m_s"]) < 1e-5 and abs(res["dv_t_m_s"]) < 1e-5

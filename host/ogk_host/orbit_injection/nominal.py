@@ -112,8 +112,9 @@ class Nominal:
     f0: float                     #: ignition true anomaly [rad]
     z0: FloatArray                #: [x(0); lambda(0)] (14,), costates scaled to h = -1
     residuals: FloatArray         #: the 6 necessary-condition residuals (RESIDUAL_NAMES)
-    scan_candidates: int          #: grid points of the coarse scan
-    refined_starts: int           #: LM refinements run
+    scan_candidates: int          #: grid points of the coarse scan (0: found by continuation)
+    refined_starts: int           #: LM refinements run (continuation: accepted steps)
+    method: str = "scan"          #: "continuation" or "scan"
 
     @property
     def t_f_s(self) -> float:
@@ -261,7 +262,8 @@ def _scan(problem: MinTimeProblem, n_keep: int) -> tuple[FloatArray, int]:
     return grid[best], grid.shape[0]
 
 
-def _finish(problem: MinTimeProblem, q: FloatArray, scan_size: int, n_starts: int) -> Nominal:
+def _finish(problem: MinTimeProblem, q: FloatArray, scan_size: int, n_starts: int,
+            method: str = "scan") -> Nominal:
     """Rescales the converged homogeneous costates to h = -1 and fixes lambda_t(0)."""
     f0, alpha0, kappa, t_f = (float(v) for v in q)
     x0, dx0, _ = problem.ignition_state(f0)
@@ -276,7 +278,7 @@ def _finish(problem: MinTimeProblem, q: FloatArray, scan_size: int, n_starts: in
     z0 = np.concatenate([x0, lam0 * (-1.0 / h1)])
     residuals = necessary_condition_residuals(problem, z0, t_f, f0)
     return Nominal(problem=problem, t_f=t_f, f0=f0, z0=z0, residuals=residuals,
-                   scan_candidates=scan_size, refined_starts=n_starts)
+                   scan_candidates=scan_size, refined_starts=n_starts, method=method)
 
 
 def necessary_condition_residuals(problem: MinTimeProblem, z0: FloatArray, t_f: float,
@@ -416,7 +418,7 @@ def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 8,
             q, res = newton(lambda v: _reduced_residual(problem, v), q)
             if np.max(np.abs(res)) < 1e-12:
                 q[0] = math.remainder(q[0], 2.0 * math.pi) % (2.0 * math.pi)
-                return _finish(problem, q, 0, steps)
+                return _finish(problem, q, 0, steps, method="continuation")
             if method == "continuation":
                 raise ContinuationError(f"final Newton polish left residual {res}")
         except ContinuationError:

@@ -158,7 +158,10 @@ def flight_grid(nominal: Nominal, settings: EffectiveSettings | None = None,
     scn = nominal.problem.scenario
     settings = effective_settings(scn) if settings is None else settings
     end_s = settings.freeze_time_to_go_s if settings.freeze_time_to_go_s > 0.0 else freeze_rule_s(scn)
-    return choose_tau_grid(nominal.t_f_s, scn.sample_interval_s, end_s, capacity)
+    try:
+        return choose_tau_grid(nominal.t_f_s, scn.sample_interval_s, end_s, capacity)
+    except GridCapacityError as exc:
+        raise GridCapacityError(exc.reason, path=getattr(scn, "path", None), key=exc.key) from None
 
 
 def _is_ogk_dir(out: Path) -> bool:
@@ -221,6 +224,7 @@ def write_nog_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SC
                      "sha256": _sha256(scenario_path)},
         "t_f_s": nominal.t_f_s,
         "ignition_true_anomaly_deg": math.degrees(nominal.f0),
+        "nominal_method": nominal.method,
         "residuals": dict(zip(RESIDUAL_NAMES, (float(v) for v in nominal.residuals))),
         "max_cond_equilibrated": float(np.max(table.cond_equilibrated)),
         "grid": {"gain_nodes": int(table.tau.size), "bundle_nodes": int(table.tau.size) + 1,
