@@ -444,19 +444,27 @@ def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 8,
         q[0] = math.remainder(q[0], 2.0 * math.pi) % (2.0 * math.pi)
         solutions.append(q)
     if not solutions:
-        raise NominalError(_outside_envelope_reason(problem), path=getattr(problem.scenario, "path", None),
-                           key="pre_ignition_orbit")
+        key, reason = _outside_envelope_reason(problem)
+        raise NominalError(reason, path=getattr(problem.scenario, "path", None), key=key)
     best = min(solutions, key=lambda q: q[3])
     return _finish(problem, best, scan_size, len(starts))
 
 
-def _outside_envelope_reason(problem: MinTimeProblem) -> str:
-    """One line for a nominal that neither the continuation nor the scan found."""
+def _outside_envelope_reason(problem: MinTimeProblem) -> tuple[str, str]:
+    """(key, one line) for a nominal that neither the continuation nor the scan found; the key is
+    the first scenario table outside the envelope (thrust, target_orbit, pre_ignition_orbit)."""
     scn = problem.scenario
     a_m, e = scn.pre_ignition.semi_major_axis_m, scn.pre_ignition.eccentricity
     perigee, apogee, r_f = a_m * (1.0 - e), a_m * (1.0 + e), scn.target_radius_m
     a_h, e_h = 0.5 * (perigee + r_f), (r_f - perigee) / (r_f + perigee)
-    return (f"no minimum-time burn found: the documented envelope (docs/vtd-nog.md, sec. 2) is a "
+    n0_g0, c_km_s = scn.thrust.initial_accel_g0, scn.thrust.exhaust_velocity_m_s / 1e3
+    if not (0.5 <= n0_g0 <= 1.5 and 2.5 <= c_km_s <= 4.5):
+        key = "thrust"
+    elif not 1.5 <= r_f / perigee <= 8.0:
+        key = "target_orbit.radius_m"
+    else:
+        key = "pre_ignition_orbit"
+    return key, (f"no minimum-time burn found: the documented envelope (docs/vtd-nog.md, sec. 2) is a "
             f"pre-ignition transfer ellipse with apogee = target radius, R_f / perigee 1.5..8, "
             f"n0 0.5..1.5 g0, c 2.5..4.5 km/s; this one has apogee {apogee / 1e3:.1f} km, target "
             f"{r_f / 1e3:.1f} km, R_f / perigee {r_f / perigee:.3g}, n0 "
