@@ -3,7 +3,8 @@
 `effective_settings(scn)` returns the values the tables and the SIL fly, each with its provenance
 ("scenario" = read from the file, "derived" = computed here by the documented rule):
 
-- CPD gains (docs/cpd.md, "Design rule"): sec. 5.3 with this scenario's thrust and inertia,
+- CPD gains (docs/cpd.md, "Design rule for another vehicle"; the re-derived set, flown unless
+  `[cpd] flown = "printed"`, recorded as `cpd_flown`): sec. 5.3 with this scenario's thrust and inertia,
   G_x = 1 / I_x0, G_y = T l0 / I_y0, G_z = T l0 / I_z0 (l smallest and I largest at ignition, so
   these are the G_min of each axis), k_p = omega_n^2 / G_min, k_d = 2 zeta omega_n / G_min; pitch
   and yaw share one set designed on min(G_y, G_z). Taken from `[cpd.rederived]` when present.
@@ -43,6 +44,7 @@ class EffectiveSettings:
     freeze_source: str
     braking_accels_rad_s2: tuple[float, float, float]   #: (roll, pitch, yaw)
     braking_source: str
+    cpd_flown: str = "rederived"    #: the scenario's [cpd] flown: "printed" flies [cpd.printed] instead
 
     def tau_freeze(self, t_f_star_s: float) -> float:
         """ogk_nog_config_t.tau_freeze for the nominal minimum time t_f*."""
@@ -52,7 +54,7 @@ class EffectiveSettings:
         """JSON-ready record (values SI) for the tables' manifest."""
         return {
             "cpd_gains": {"value": dataclasses.asdict(self.cpd_gains),
-                          "source": self.cpd_gains_source},
+                          "source": self.cpd_gains_source, "flown": self.cpd_flown},
             "freeze_time_to_go_s": {"value": self.freeze_time_to_go_s,
                                     "source": self.freeze_source},
             "braking_accels_rad_s2": {"value": list(self.braking_accels_rad_s2),
@@ -100,4 +102,5 @@ def effective_settings(scn: LeoGeoScenario) -> EffectiveSettings:
         freeze_s, freeze_src = freeze_rule_s(scn), DERIVED
     return EffectiveSettings(cpd_gains=gains, cpd_gains_source=gains_src,
                              freeze_time_to_go_s=freeze_s, freeze_source=freeze_src,
-                             braking_accels_rad_s2=braking_accels(scn), braking_source=DERIVED)
+                             braking_accels_rad_s2=braking_accels(scn), braking_source=DERIVED,
+                             cpd_flown=str(getattr(scn.cpd, "flown", "rederived")))
