@@ -20,9 +20,13 @@ The flight code (kernel/include/ogk/nog.h) loads one bundle instead:
   0x4E4F4742  nog_bundle         (133,)  [x* (7), x*' (7), lambda* (7), lambda*' (7), G (56), N (49)]
                                          on the same grid plus tau = 1 (gain blocks zero there)
 
-Command: `python -m ogk_host.orbit_injection.tables build/tables/leo_geo` writes the six .ogkt files, the
-bundle leo_geo_nog_bundle.ogkt and a manifest.json (provenance: scenario SHA-256, generator, UTC date,
-t_f*, f0*, residuals).
+Command: `python -m ogk_host.orbit_injection.tables [OUT_DIR] [--scenario F]` writes the six .ogkt
+files, the bundle leo_geo_nog_bundle.ogkt and a manifest.json into OUT_DIR (default
+`default_table_dir`: build/tables/<name>-<sha12>). Provenance (docs/vtd-nog.md sec. 7): made_by,
+scenario name/path/SHA-256, t_f*, f0*, residuals, grid (capacity from the kernel, measured
+interpolation error), derived settings with their source, each file's SHA-256 and CRC.
+`write_nog_tables` never writes into a directory it did not make; `check_tables` verifies a
+directory against a scenario; `ensure_nog_tables` generates the default directory or checks.
 """
 from __future__ import annotations
 
