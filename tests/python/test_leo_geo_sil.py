@@ -133,20 +133,22 @@ def test_failures_are_counted_with_reasons(scn):
 
 
 def test_runs_beyond_the_scenario_tolerances_fail_with_their_reason(tmp_path):
-    """The stated criterion: the paper's scenario (1 km, 10 m/s) fails every 12 s burn (it ends near
+    """The stated criterion: the paper's scenario (1 km, 20 m/s) fails every 12 s burn (it ends near
     the right radius but ~1.3 km/s short) and says so per run in the report and the JSON; the
     open-loop nominal passes it."""
     strict = load_scenario()
     res = run_campaign(strict, runs=3, seed=8, truth="point-mass", guidance_factory=SHORT,
                        dispersions=False)
     assert res.n_failures == 3
-    assert all(f.startswith("tolerance: |dvt_f_mps| = ") and f.endswith("> 10") for f in res.failure)
+    assert all(f.startswith("tolerance: |dvt_f_mps| = ") and f.endswith("> 20") for f in res.failure)
     doc = res.to_json_dict()
     assert doc["failures"] == 3 and [r["run_id"] for r in doc["failed_runs"]] == [0, 1, 2]
-    assert doc["tolerances"]["dr_f_m"] == 1000.0 and doc["tolerances"]["dvt_f_mps"] == 10.0
+    assert doc["tolerances"]["dr_f_m"] == 1000.0 and doc["tolerances"]["dvt_f_mps"] == 20.0
     assert "failed run 0: tolerance" in format_report(res)
     full = run_campaign(strict, runs=1, seed=8, truth="point-mass", dispersions=False)
     assert full.n_failures == 0
+    # a tolerance failure still flew: it stays in the statistics (counted, not dropped)
+    assert res.mean()["dvt_f_mps"] == pytest.approx(float(np.mean(res.errors["dvt_f_mps"])))
 
 
 def test_json_statistics_and_side_by_side_report(scn, tmp_path):

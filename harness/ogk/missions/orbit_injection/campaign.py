@@ -88,16 +88,23 @@ class CampaignResult:
         """[{run_id, reason}] of every failed run."""
         return failure_list(self.draws.run_id.tolist(), self.failure)
 
+    @property
+    def flown(self) -> NDArray[np.bool_]:
+        """Runs that reached cut-off with finite injection errors: every run the statistics cover,
+        including those outside the acceptance tolerances (they flew; they are counted as failures
+        as well, not dropped from the dispersion)."""
+        return np.all(np.stack([np.isfinite(self.errors[k]) for k in ERROR_KEYS]), axis=0)
+
     def mean(self) -> dict[str, float]:
-        return statistics(self.errors, self.ok)[0]
+        return statistics(self.errors, self.flown)[0]
 
     def std(self) -> dict[str, float]:
         """Sample standard deviation (ddof = 1; 0 for a single run)."""
-        return statistics(self.errors, self.ok)[1]
+        return statistics(self.errors, self.flown)[1]
 
     def max_rates_overall(self) -> dict[str, float]:
-        """Largest actuator rate over all successful runs (NaN for the point-mass truth)."""
-        ok = self.ok
+        """Largest actuator rate over all flown runs (NaN for the point-mass truth)."""
+        ok = self.flown
         return {k: float(np.max(v[ok])) if ok.any() else float("nan")
                 for k, v in self.max_rates.items()}
 

@@ -83,12 +83,12 @@ def write_plots(res: CampaignResult, out_dir: str | Path) -> list[Path]:
             fig.tight_layout()
             written.append(_save(fig, out / f"{scn.name}_attitude.png"))
 
-    ok = res.ok
+    ok = res.flown
     if ok.any():
         fig = dispersion_figure(
             res.errors, ok, [("dr_f_m", "dvr_f_mps"), ("dvt_f_mps", "dvn_f_mps"),
                              ("dphi_f_deg", "dvn_f_mps")], LABELS, "tf_s", res.nominal_tf_s,
-            f"{scn.name}: injection errors at cut-off ({int(ok.sum())} runs, "
+            f"{scn.name}: injection errors at cut-off ({int(ok.sum())} runs flown, "
             f"{res.n_failures} failed)", tolerances(scn))
         written.append(_save(fig, out / f"{scn.name}_injection.png"))
     return written

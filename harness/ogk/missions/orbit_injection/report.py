@@ -55,7 +55,7 @@ def format_report(res: CampaignResult) -> str:
             lines += _table(["quantity", "mean (ours)", "mean (paper)", "std (ours)", "std (paper)"],
                             rows)
         else:
-            lines.append("Injection errors (mean and standard deviation over the successful runs)")
+            lines.append("Injection errors (mean and standard deviation over the flown runs)")
             lines += _table(["quantity", "mean", "std"],
                             [[LABELS[k], _fmt(mean[k]), _fmt(std[k])] for k in ERROR_KEYS])
     else:
