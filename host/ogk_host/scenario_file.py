@@ -201,9 +201,12 @@ class Section:
                                                           if len(unknown) > 1 else ""))
 
 
-def table_dir_for(path: str | Path, root: str | Path = "build/tables") -> Path:
+TABLE_ROOT = REPO_ROOT / "build" / "tables"
+
+
+def table_dir_for(path: str | Path, root: str | Path = TABLE_ROOT) -> Path:
     """Where the ground products of a scenario file live by default:
-    `build/tables/<name>-<first 12 hex of the file's SHA-256>` (relative to the working directory),
-    so two scenarios, or two versions of one, never share a directory."""
+    `build/tables/<name>-<first 12 hex of the file's SHA-256>` under the repository root, so two
+    scenarios, or two versions of one, never share a directory."""
     header = read_header(path)
     return Path(root) / f"{header.name}-{header.sha256[:12]}"

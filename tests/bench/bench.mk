@@ -6,7 +6,7 @@ BENCH_CORE := $(BENCH_DIR)/bench_core
 BENCH_CASES := rk4_step switch
 BENCH_GNC := $(BENCH_DIR)/bench_gnc
 GNC_CASES := nog_sample nog_command cpd_step
-NOG_TABLE := $(B)/tables/leo_geo/leo_geo_nog_bundle.ogkt
+NOG_TABLE := $(BENCH_DIR)/tables/nog_bundle.ogkt
 
 $(BENCH_GNC): tests/bench/bench_gnc.c tests/bench/bench_timer.h $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
 	@mkdir -p $(@D)

@@ -96,3 +96,15 @@ def test_debug_shows_the_traceback(tmp_path: Path) -> None:
     path = edited(tmp_path, r"^initial_mass_kg = 2400.0", "initial_mass_kg = -1.0")
     out = run("--debug", "mc", str(path), *MC, "--json", str(tmp_path / "mc.json"))
     assert out.returncode != 0 and "Traceback" in out.stderr and "OgkInputError" in out.stderr
+
+
+def test_bad_mpsp_scenario_is_one_line(tmp_path: Path) -> None:
+    """The low-thrust-transfer family's loader: unknown and missing keys, one line each."""
+    src = SCENARIO.parent / "apophis_cubesat.toml"
+    path = tmp_path / "transfer.toml"
+    path.write_text(src.read_text().replace("r_lambda = 1.0", "r_lambda = 1.0\nr_lamda = 2.0"))
+    assert_one_line(run("cases", str(path), "--case", "thrust", "--param", "3", "--no-reference"),
+                    str(path), "mpsp.r_lamda", "unknown key")
+    path.write_text(src.read_text().replace("cube_side_LU = 0.04", ""))
+    assert_one_line(run("cases", str(path), "--paper-tables", "--no-reference"), "cube_side_LU",
+                    "missing key")

@@ -104,14 +104,14 @@ def bundle(tmp_path_factory: pytest.TempPathFactory) -> Path:
     for d in [REPO / "build" / "arm" / "flightapp" / "tables", REPO / "build" / "tables" / "leo_geo",
               *sorted((REPO / "build" / "tables").glob("leo_geo-*"))]:
         manifest = d / "manifest.json"
-        found = sorted(d.glob("*_nog_bundle.ogkt"))
+        found = sorted(d.glob("nog_bundle.ogkt"))
         if found and manifest.exists() and json.loads(manifest.read_text()).get(
                 "scenario_sha256") == sha:
             return found[0]
     from ogk_host.orbit_injection.tables import write_nog_tables
     out = tmp_path_factory.mktemp("tables")
     write_nog_tables(out, scenario_path=SCENARIO)
-    return sorted(out.glob("*_nog_bundle.ogkt"))[0]
+    return sorted(out.glob("nog_bundle.ogkt"))[0]
 
 
 def _filled(ctype_name: str, rng: np.random.Generator) -> Any:
@@ -157,8 +157,8 @@ def test_every_field_of_the_kernel_configs(tmp_path: Path, rng: np.random.Genera
 def test_nested_structs_arrays_and_pointers(tmp_path: Path, bundle: Path) -> None:
     """A whole initialised CPD context (nested config and output structs, an array, integers) and
     a NOG config with its table pointer set (emitted NULL, "bound at init")."""
-    from ogk.missions.orbit_injection.flight_config import leo_geo_configs
-    _, nog, cpd_cfg = leo_geo_configs(SCENARIO, bundle)
+    from ogk.missions.orbit_injection.flight_config import flight_configs
+    _, nog, cpd_cfg = flight_configs(SCENARIO, bundle)
     ctx = ffi.new("ogk_cpd_t *")
     assert lib.ogk_cpd_init(ctx, cpd_cfg) == lib.OGK_OK
     ctx.dir_prev_a = [0.25, -0.5, 1.0 / 3.0]
@@ -173,23 +173,23 @@ def test_nested_structs_arrays_and_pointers(tmp_path: Path, bundle: Path) -> Non
 def test_leo_geo_header_is_the_sil_configuration(tmp_path: Path, bundle: Path) -> None:
     """The values of `ogk tables leo-geo` are those the SIL flies: NOG end-game from the scenario,
     tau_freeze = freeze time-to-go / t_f*, CPD with the 50 Hz feed-forward period."""
-    from ogk.missions.orbit_injection.flight_config import leo_geo_configs, write_leo_geo_config
+    from ogk.missions.orbit_injection.flight_config import flight_configs, write_flight_config
     from ogk_host.orbit_injection.scenario import load_scenario
 
     from ogk.missions.orbit_injection import nog_guidance
-    _, nog, cpd = leo_geo_configs(SCENARIO, bundle)
+    _, nog, cpd = flight_configs(SCENARIO, bundle)
     scn = load_scenario(SCENARIO)
     assert nog.sample_interval_s == scn.sample_interval_s
     freeze = (nog_guidance.freeze_time_to_go_s(scn) if hasattr(nog_guidance, "freeze_time_to_go_s")
               else scn.end_game.freeze_time_to_go_s)
     assert nog.tau_freeze == freeze / nog.table.t_f_star_s
     assert cpd.ff_period_s == 0.02
-    paths = write_leo_geo_config(tmp_path, SCENARIO, bundle)
+    paths = write_flight_config(tmp_path, SCENARIO, bundle)
     text = paths[0].read_text()
     assert f".tau_freeze = {c_double(nog.tau_freeze)}," in text
     assert f".k_dy = {c_double(cpd.k_dy)}," in text
-    _roundtrip(tmp_path, [ConfigItem("ogk_leo_geo_nog_config", nog),
-                          ConfigItem("ogk_leo_geo_cpd_config", cpd)], ("ogk/nog.h", "ogk/cpd.h"))
+    _roundtrip(tmp_path, [ConfigItem("ogk_flight_nog_config", nog),
+                          ConfigItem("ogk_flight_cpd_config", cpd)], ("ogk/nog.h", "ogk/cpd.h"))
 
 
 def test_apophis_header_is_the_mpsp_configuration(tmp_path: Path) -> None:
@@ -198,14 +198,14 @@ def test_apophis_header_is_the_mpsp_configuration(tmp_path: Path) -> None:
     from ogk.cli import main
     from ogk.missions.low_thrust_transfer.cases import build_setup
     assert main(["tables", "apophis", "--out", str(tmp_path)]) == 0
-    header = tmp_path / "c" / "ogk_apophis_flight_config.h"
+    header = tmp_path / "c" / "ogk_mpsp_flight_config.h"
     text = header.read_text()
     setup = build_setup()
     cfg = setup.guidance.cfg.to_c()
     nw = setup.guidance.n_weights
-    assert f"#define OGK_APOPHIS_MPSP_N_WEIGHTS {nw}" in text
+    assert f"#define OGK_FLIGHT_MPSP_N_WEIGHTS {nw}" in text
     weights = ffi.new(f"double[{nw}]", list(np.asarray(setup.guidance.cfg.weights_nom, float)))
-    _roundtrip(tmp_path, [ConfigItem("ogk_apophis_mpsp_config", cfg),
-                          ConfigItem("ogk_apophis_mpsp_weights_nom", weights)], ("ogk/mpsp.h",))
+    _roundtrip(tmp_path, [ConfigItem("ogk_flight_mpsp_config", cfg),
+                          ConfigItem("ogk_flight_mpsp_weights_nom", weights)], ("ogk/mpsp.h",))
     ctx = ffi.new("ogk_mpsp_t *")
     assert lib.ogk_mpsp_init(ctx, cfg) == lib.OGK_OK

@@ -22,20 +22,20 @@ PROBE_MAIN = r"""
 #include <stdio.h>
 #include <string.h>
 #include "ogk/nog.h"
-#include "ogk_leo_geo_nog_bundle.h"
+#include "ogk_nog_bundle.h"
 static ogk_nog_table_t table;
-static uint8_t copy[sizeof ogk_leo_geo_nog_bundle];
+static uint8_t copy[sizeof ogk_nog_bundle];
 int main(void)
 {
     size_t k, j;
-    ogk_status st = ogk_nog_table_load(&table, ogk_leo_geo_nog_bundle, ogk_leo_geo_nog_bundle_len);
+    ogk_status st = ogk_nog_table_load(&table, ogk_nog_bundle, ogk_nog_bundle_len);
     printf("status %d n_grid %zu tf %.17g\n", (int)st, table.n_grid, table.t_f_star_s);
     for (k = 0; k < table.n_grid; k += 25) {
         for (j = 0; j < OGK_NOG_ENTRY_LEN; j += 11) {
             printf("entry %zu %zu %.17g\n", k, j, table.entry[k * OGK_NOG_ENTRY_LEN + j]);
         }
     }
-    memcpy(copy, ogk_leo_geo_nog_bundle, sizeof copy);
+    memcpy(copy, ogk_nog_bundle, sizeof copy);
     copy[sizeof copy / 2] ^= 0x40u;
     printf("corrupted %d\n", (int)ogk_nog_table_load(&table, copy, sizeof copy));
     return 0;
@@ -54,7 +54,7 @@ def bundle():
 def test_generated_c_table_loads_with_ground_values(bundle, tmp_path):
     image_path = tmp_path / "bundle.ogkt"
     tablefile.write_table(image_path, bundle.kind, bundle.grid, bundle.data)
-    c_path, h_path = write_c_table(image_path.read_bytes(), "ogk_leo_geo_nog_bundle", tmp_path,
+    c_path, h_path = write_c_table(image_path.read_bytes(), "ogk_nog_bundle", tmp_path,
                                    DEFAULT_SCENARIO_PATH)
     assert "SHA-256" in c_path.read_text()[:400]
     probe = tmp_path / "probe.c"
@@ -171,7 +171,7 @@ def test_check_tables_rejects_other_scenario_corruption_and_tf(table_dir, tmp_pa
     with pytest.raises(TableError, match="disagrees with the reference"):
         tables.check_tables(out, DEFAULT_SCENARIO_PATH, reference_tf_s=manifest["t_f_s"] + 1e-3)
     bad = _copy(out, tmp_path / "flipped")
-    gain = bad / "leo_geo_gain.ogkt"
+    gain = bad / "gain.ogkt"
     data = bytearray(gain.read_bytes())
     data[len(data) // 2] ^= 0x40
     gain.write_bytes(bytes(data))

@@ -184,11 +184,11 @@ def test_table_files_round_trip_in_si(nominal: Nominal, table: GainTable, tmp_pa
     manifest = tables.write_nog_tables(tmp_path, nominal=nominal, table=table)
     assert len(manifest["files"]) == 7
     units = nominal.problem.units
-    gain = tablefile.read_table(tmp_path / "leo_geo_gain.ogkt", tables.KIND_GAIN)
+    gain = tablefile.read_table(tmp_path / "gain.ogkt", tables.KIND_GAIN)
     assert gain.dims == (8, 7) and np.array_equal(gain.grid, table.tau)
-    nom_tab = tablefile.read_table(tmp_path / "leo_geo_nominal.ogkt", tables.KIND_NOMINAL)
+    nom_tab = tablefile.read_table(tmp_path / "nominal.ogkt", tables.KIND_NOMINAL)
     assert nom_tab.dims == (4, 7)
-    scalars = tablefile.read_table(tmp_path / "leo_geo_scalars.ogkt", tables.KIND_SCALARS)
+    scalars = tablefile.read_table(tmp_path / "scalars.ogkt", tables.KIND_SCALARS)
     assert scalars.data[0, 0] == pytest.approx(nominal.t_f_s, rel=1e-15)
     # SI prediction = canonical prediction converted
     k = 37
@@ -224,17 +224,17 @@ def test_check_detects_a_first_order_gain_error(nominal: Nominal, check_table: G
 
 
 def test_flight_bundle_matches_nog_h_layout(nominal: Nominal, table: GainTable, tmp_path) -> None:
-    """leo_geo_nog_bundle.ogkt: kind/length/grid of kernel/include/ogk/nog.h, blocks equal to the
+    """nog_bundle.ogkt: kind/length/grid of kernel/include/ogk/nog.h, blocks equal to the
     separate tables, tau = 1 node with zero gains, x*' of the time state = t_f* everywhere."""
     tables.write_nog_tables(tmp_path, nominal=nominal, table=table)
-    bundle = tablefile.read_table(tmp_path / "leo_geo_nog_bundle.ogkt", tables.KIND_NOG_BUNDLE)
+    bundle = tablefile.read_table(tmp_path / "nog_bundle.ogkt", tables.KIND_NOG_BUNDLE)
     assert tables.KIND_NOG_BUNDLE == 0x4E4F4742 and bundle.dims == (133,)
     assert bundle.grid[0] == 0.0 and bundle.grid[-1] == 1.0 and np.all(np.diff(bundle.grid) > 0.0)
     assert bundle.grid.size <= tables.kernel_table_capacity()[0]
     n = table.tau.size
-    nom_tab = tablefile.read_table(tmp_path / "leo_geo_nominal.ogkt").data.reshape(n, -1)
-    gain = tablefile.read_table(tmp_path / "leo_geo_gain.ogkt").data.reshape(n, -1)
-    rate = tablefile.read_table(tmp_path / "leo_geo_costate_rate_gain.ogkt").data.reshape(n, -1)
+    nom_tab = tablefile.read_table(tmp_path / "nominal.ogkt").data.reshape(n, -1)
+    gain = tablefile.read_table(tmp_path / "gain.ogkt").data.reshape(n, -1)
+    rate = tablefile.read_table(tmp_path / "costate_rate_gain.ogkt").data.reshape(n, -1)
     np.testing.assert_array_equal(bundle.data[:n, 0:28], nom_tab)
     np.testing.assert_array_equal(bundle.data[:n, 28:84], gain)
     np.testing.assert_array_equal(bundle.data[:n, 84:133], rate)

@@ -230,12 +230,56 @@ def load_scenario(path: str | Path = DEFAULT_SCENARIO_PATH) -> Scenario:
     if d.get("mission") != MISSION or d.get("guidance", {}).get("law") not in LAWS:
         raise OgkInputError(f"mission must be {MISSION!r} with [guidance] law in {LAWS}, got "
                             f"{d.get('mission')!r} / {d.get('guidance', {}).get('law')!r}", path=path)
+    tracked = _Tracked.wrap(d)
+    for key in ("name", "source", "mission"):  # the header (ogk_host.scenario_file.read_header)
+        tracked.get(key)
+    tracked.get("guidance", {}).get("law")
+    for key in ("departure_utc", "arrival_utc"):  # descriptive
+        tracked.get("transfer", {}).get(key)
     try:
-        return _build(path, d)
+        scenario = _build(path, tracked)
     except KeyError as exc:
         raise OgkInputError(f"missing key {exc.args[0]!r}", path=path) from None
     except (TypeError, ValueError) as exc:
         raise OgkInputError(str(exc), path=path) from None
+    unknown = tracked.unread(skip=("reference",))
+    if unknown:
+        raise OgkInputError("unknown key" + (f" (also {', '.join(unknown[1:])})" if len(unknown) > 1
+                                             else ""), path=path, key=unknown[0])
+    return scenario
+
+
+class _Tracked(dict):  # type: ignore[type-arg]
+    """A TOML table that remembers which keys were read, so that a key no loader reads (a typo)
+    is reported instead of silently ignored."""
+
+    @classmethod
+    def wrap(cls, value: Any) -> Any:
+        if isinstance(value, dict):
+            out = cls({k: cls.wrap(v) for k, v in value.items()})
+            out.read_keys = set()
+            return out
+        return value
+
+    def __getitem__(self, key: str) -> Any:
+        self.read_keys.add(key)
+        return super().__getitem__(key)
+
+    def get(self, key: str, default: Any = None) -> Any:
+        self.read_keys.add(key)
+        return super().get(key, default)
+
+    def unread(self, prefix: str = "", skip: tuple[str, ...] = ()) -> list[str]:
+        out: list[str] = []
+        for key, value in self.items():
+            name = f"{prefix}{key}"
+            if key in skip:
+                continue
+            if key not in self.read_keys:
+                out.append(name)
+            elif isinstance(value, _Tracked):
+                out.extend(value.unread(f"{name}."))
+        return sorted(out)
 
 
 def _build(path: Path, d: dict[str, Any]) -> Scenario:

@@ -21,7 +21,7 @@ The flight code (kernel/include/ogk/nog.h) loads one bundle instead:
                                          on the same grid plus tau = 1 (gain blocks zero there)
 
 Command: `python -m ogk_host.orbit_injection.tables [OUT_DIR] [--scenario F]` writes the six .ogkt
-files, the bundle leo_geo_nog_bundle.ogkt and a manifest.json into OUT_DIR (default
+files, the bundle nog_bundle.ogkt and a manifest.json into OUT_DIR (default
 `default_table_dir`: build/tables/<name>-<sha12>). Provenance (docs/vtd-nog.md sec. 7): made_by,
 scenario name/path/SHA-256, t_f*, f0*, residuals, grid (capacity from the kernel, measured
 interpolation error), derived settings with their source, each file's SHA-256 and CRC.
@@ -43,13 +43,14 @@ from numpy.typing import NDArray
 
 from .. import tablefile
 from ..errors import TableError
+from ..scenario_file import table_dir_for
 from . import dynamics as dyn
 from .derive import EffectiveSettings, effective_settings, freeze_rule_s
 from .gains import (INTERPOLATION_ERROR_BOUND, GainTable, GridCapacityError, GridChoice,
                     choose_tau_grid, compute_gain_table, condition_numbers_si, interpolation_error,
                     kernel_table_capacity)
 from .nominal import RESIDUAL_NAMES, Nominal, solve_nominal
-from .scenario import DEFAULT_SCENARIO_PATH, REPO_ROOT, load_scenario
+from .scenario import DEFAULT_SCENARIO_PATH, load_scenario
 
 FloatArray = NDArray[np.float64]
 
@@ -64,8 +65,7 @@ NOG_BUNDLE_ENTRY_LEN = 133            #: the host layout; checked against the ke
 GENERATOR = "ogk_host.orbit_injection.tables/2"
 MADE_BY = "ogk tables"                #: manifest["made_by"]: a directory this tool may overwrite
 MANIFEST = "manifest.json"
-BUNDLE_FILE = "leo_geo_nog_bundle.ogkt"
-TABLE_ROOT = REPO_ROOT / "build" / "tables"
+BUNDLE_FILE = "nog_bundle.ogkt"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -143,16 +143,11 @@ def _sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
-def _scenario_name(scenario_path: Path) -> str:
-    return load_scenario(scenario_path).name
-
-
 def default_table_dir(scenario_path: str | Path = DEFAULT_SCENARIO_PATH) -> Path:
-    """build/tables/<scenario name>-<first 12 hex of the scenario file's SHA-256> (under the
-    repository root): one directory per scenario content, so editing a scenario never reuses
-    the tables of its previous version."""
-    path = Path(scenario_path)
-    return TABLE_ROOT / f"{_scenario_name(path)}-{_sha256(path)[:12]}"
+    """build/tables/<scenario name>-<first 12 hex of the scenario file's SHA-256> under the
+    repository root (`ogk_host.scenario_file.table_dir_for`, the same for every family): one
+    directory per scenario content, so editing a scenario never reuses its previous tables."""
+    return table_dir_for(scenario_path)
 
 
 def flight_grid(nominal: Nominal, settings: EffectiveSettings | None = None,
@@ -180,7 +175,7 @@ def _is_ogk_dir(out: Path) -> bool:
 
 def write_nog_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SCENARIO_PATH, *,
                      nominal: Nominal | None = None, table: GainTable | None = None) -> dict:
-    """Writes <out_dir>/leo_geo_<name>.ogkt for every table and manifest.json; returns the manifest.
+    """Writes <out_dir>/<name>.ogkt for every table and manifest.json; returns the manifest.
 
     Refuses (TableError) a non-empty directory without an ogk manifest: it never overwrites what it
     did not make. The manifest is removed first and written last, so a directory with a manifest
@@ -213,7 +208,7 @@ def write_nog_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SC
     (out / MANIFEST).unlink(missing_ok=True)
     files = []
     for planned in build_table_arrays(nominal, table) + [bundle]:
-        path = out / f"leo_geo_{planned.name}.ogkt"
+        path = out / f"{planned.name}.ogkt"
         size = tablefile.write_table(path, planned.kind, planned.grid, planned.data)
         header, _ = tablefile.TableHeader.unpack(path.read_bytes())
         files.append({"name": planned.name, "file": path.name, "kind": f"0x{planned.kind:08X}",

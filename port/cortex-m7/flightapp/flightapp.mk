@@ -27,9 +27,9 @@ FA_B := $(ARM_B)/flightapp
 # regenerating build/tables/... at the same time cannot change the files under a build.
 FA_TABLES ?= $(FA_B)/tables
 FA_GEN := $(FA_TABLES)/c
-FA_GEN_C := $(FA_GEN)/ogk_leo_geo_nog_bundle.c
-FA_GEN_H := $(FA_GEN)/ogk_leo_geo_nog_bundle.h $(FA_GEN)/ogk_leo_geo_flight_config.h \
-  $(FA_GEN)/ogk_leo_geo_sil_plant.h
+FA_GEN_C := $(FA_GEN)/ogk_nog_bundle.c
+FA_GEN_H := $(FA_GEN)/ogk_nog_bundle.h $(FA_GEN)/ogk_orbit_injection_flight_config.h \
+  $(FA_GEN)/ogk_sil_plant.h
 FA_SRC := $(FA_DIR)/ogk_flight.c $(FA_DIR)/main.c
 FA_HDR := $(FA_DIR)/ogk_flight.h
 
@@ -41,7 +41,7 @@ FA_HDR := $(FA_DIR)/ogk_flight.h
 FA_DEFS ?=
 FA_CFLAGS := $(STRICT) $(ARM_CPU) -O2 -g -ffunction-sections -fdata-sections -fstack-usage \
   $(FA_DEFS) $(KINC) -I$(FA_GEN) -I$(FA_DIR)
-FA_OBJ := $(FA_B)/ogk_flight.o $(FA_B)/main.o $(FA_B)/ogk_leo_geo_nog_bundle.o
+FA_OBJ := $(FA_B)/ogk_flight.o $(FA_B)/main.o $(FA_B)/ogk_nog_bundle.o
 # Runtime: start-up (vectors, reset, FPU/MPU, semihosting exit) and the port counter; no test runner.
 FA_RT_OBJ := $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o
 FA_ELF := $(FA_B)/flightapp.elf
@@ -60,7 +60,7 @@ $(FA_GEN_C) $(FA_GEN_H): $(FA_B)/tables.stamp
 $(FA_B)/%.o: $(FA_DIR)/%.c $(FA_HDR) $(FA_GEN_H) $(KHDR) | apt
 	@mkdir -p $(@D)
 	$(ARM_CC) $(FA_CFLAGS) -c $< -o $@
-$(FA_B)/ogk_leo_geo_nog_bundle.o: $(FA_GEN_C) $(FA_GEN_H) | apt
+$(FA_B)/ogk_nog_bundle.o: $(FA_GEN_C) $(FA_GEN_H) | apt
 	@mkdir -p $(@D)
 	$(ARM_CC) $(FA_CFLAGS) -c $< -o $@
 

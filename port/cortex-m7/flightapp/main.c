@@ -24,11 +24,11 @@
 #include "ogk/nog.h"
 #include "ogk/status.h"
 #include "ogk_flight.h"
-#include "ogk_leo_geo_flight_config.h"
-#include "ogk_leo_geo_nog_bundle.h"
-#include "ogk_leo_geo_sil_plant.h"
+#include "ogk_orbit_injection_flight_config.h"
+#include "ogk_nog_bundle.h"
+#include "ogk_sil_plant.h"
 
-#define CONTROL_DT_S (1.0 / OGK_LEO_GEO_CONTROL_RATE_HZ)
+#define CONTROL_DT_S (1.0 / OGK_PLANT_CONTROL_RATE_HZ)
 #define MAX_TICKS 20000u     /* 400 s: far beyond any cut-off */
 #define DROPOUT_SAMPLE 5u    /* run B: the 6th sample (t = 10 s) gets a NaN radius */
 
@@ -71,8 +71,8 @@ enum { R_ = 0, XI = 1, PHI = 2, VR = 3, VT = 4, VN = 5, NPL = 6 };
 
 static void plant_rhs(double t, const double *x, double alpha, double beta, double *dx)
 {
-    const double n0 = OGK_LEO_GEO_N0_M_S2;
-    const double c = OGK_LEO_GEO_EXHAUST_VELOCITY_M_S;
+    const double n0 = OGK_PLANT_N0_M_S2;
+    const double c = OGK_PLANT_EXHAUST_VELOCITY_M_S;
     const double accel = n0 * c / (c - n0 * t);
     const double inv_r = 1.0 / x[R_];
     const double tphi = tan(x[PHI]);
@@ -80,7 +80,7 @@ static void plant_rhs(double t, const double *x, double alpha, double beta, doub
     dx[R_] = x[VR];
     dx[XI] = x[VT] * inv_r / cos(x[PHI]);
     dx[PHI] = x[VN] * inv_r;
-    dx[VR] = -OGK_LEO_GEO_MU_M3_S2 * inv_r * inv_r + (x[VT] * x[VT] + x[VN] * x[VN]) * inv_r +
+    dx[VR] = -OGK_PLANT_MU_M3_S2 * inv_r * inv_r + (x[VT] * x[VT] + x[VN] * x[VN]) * inv_r +
              accel * cb * sin(alpha);
     dx[VT] = x[VT] * (x[VN] * tphi - x[VR]) * inv_r + accel * cb * cos(alpha);
     dx[VN] = -(x[VT] * x[VT] * tphi + x[VR] * x[VN]) * inv_r + accel * sin(beta);
@@ -150,9 +150,9 @@ static int fly(const char *name, const double *dx0, int dropout, burn_result *re
     ogk_flight_action a;
 
     memset(res, 0, sizeof *res);
-    a = ogk_flight_init(f, ogk_leo_geo_nog_bundle, ogk_leo_geo_nog_bundle_len,
-                        &ogk_leo_geo_nog_config, &ogk_leo_geo_cpd_config,
-                        OGK_LEO_GEO_CONTROL_RATE_HZ);
+    a = ogk_flight_init(f, ogk_nog_bundle, ogk_nog_bundle_len,
+                        &ogk_flight_nog_config, &ogk_flight_cpd_config,
+                        OGK_PLANT_CONTROL_RATE_HZ);
     if (a != OGK_FLIGHT_FLY) {
         printf("flightapp: %s: init -> %s (%s): engine not lit\n", name, action_name(a),
                status_name(f->last_status));
@@ -229,10 +229,10 @@ static int fly(const char *name, const double *dx0, int dropout, burn_result *re
             break;
         }
     }
-    res->err[0] = x[R_] - OGK_LEO_GEO_TARGET_RADIUS_M;
+    res->err[0] = x[R_] - OGK_PLANT_TARGET_RADIUS_M;
     res->err[1] = x[PHI];
     res->err[2] = x[VR];
-    res->err[3] = x[VT] - sqrt(OGK_LEO_GEO_MU_M3_S2 / OGK_LEO_GEO_TARGET_RADIUS_M);
+    res->err[3] = x[VT] - sqrt(OGK_PLANT_MU_M3_S2 / OGK_PLANT_TARGET_RADIUS_M);
     res->err[4] = x[VN];
     res->err[5] = t_end;
     res->samples = f->n_samples;
@@ -289,39 +289,39 @@ static void expect(const char *what, ogk_flight_action got, ogk_flight_action wa
 static void error_reactions(void)
 {
     ogk_flight_t *f = &g_flight;
-    ogk_nog_config_t bad_nog = ogk_leo_geo_nog_config;
+    ogk_nog_config_t bad_nog = ogk_flight_nog_config;
     ogk_nav_state_t nav;
     ogk_flight_att_t att;
     ogk_flight_action a;
 
     printf("flightapp: error reactions\n");
     /* A truncated image (one byte short): rejected, table left empty -> reload. */
-    a = ogk_flight_init(f, ogk_leo_geo_nog_bundle, ogk_leo_geo_nog_bundle_len - 1u,
-                        &ogk_leo_geo_nog_config, &ogk_leo_geo_cpd_config,
-                        OGK_LEO_GEO_CONTROL_RATE_HZ);
+    a = ogk_flight_init(f, ogk_nog_bundle, ogk_nog_bundle_len - 1u,
+                        &ogk_flight_nog_config, &ogk_flight_cpd_config,
+                        OGK_PLANT_CONTROL_RATE_HZ);
     expect("table image one byte short", a, OGK_FLIGHT_RELOAD_TABLE, f->last_status);
     check(f->engine_on == 0u && f->table.n_grid == 0u, "no table, no ignition after a bad image");
-    a = ogk_flight_init(f, ogk_leo_geo_nog_bundle, ogk_leo_geo_nog_bundle_len,
-                        &ogk_leo_geo_nog_config, &ogk_leo_geo_cpd_config,
-                        OGK_LEO_GEO_CONTROL_RATE_HZ);
+    a = ogk_flight_init(f, ogk_nog_bundle, ogk_nog_bundle_len,
+                        &ogk_flight_nog_config, &ogk_flight_cpd_config,
+                        OGK_PLANT_CONTROL_RATE_HZ);
     expect("reload of the good image", a, OGK_FLIGHT_FLY, f->last_status);
 #if !OGK_FLIGHT_TABLE_COPY
     /* An image that is not 8-byte aligned cannot be read in place: a build defect, do not ignite. */
-    a = ogk_flight_init(f, ogk_leo_geo_nog_bundle + 4, ogk_leo_geo_nog_bundle_len - 4u,
-                        &ogk_leo_geo_nog_config, &ogk_leo_geo_cpd_config,
-                        OGK_LEO_GEO_CONTROL_RATE_HZ);
+    a = ogk_flight_init(f, ogk_nog_bundle + 4, ogk_nog_bundle_len - 4u,
+                        &ogk_flight_nog_config, &ogk_flight_cpd_config,
+                        OGK_PLANT_CONTROL_RATE_HZ);
     expect("table image at a 4-byte offset", a, OGK_FLIGHT_ABORT, f->last_status);
 #endif
     /* A configuration the kernel rejects: do not ignite. */
     bad_nog.dtf_max_s = 0.0;
-    a = ogk_flight_init(f, ogk_leo_geo_nog_bundle, ogk_leo_geo_nog_bundle_len, &bad_nog,
-                        &ogk_leo_geo_cpd_config, OGK_LEO_GEO_CONTROL_RATE_HZ);
+    a = ogk_flight_init(f, ogk_nog_bundle, ogk_nog_bundle_len, &bad_nog,
+                        &ogk_flight_cpd_config, OGK_PLANT_CONTROL_RATE_HZ);
     expect("NOG config dtf_max_s = 0", a, OGK_FLIGHT_ABORT, f->last_status);
     check(f->engine_on == 0u, "no ignition after a rejected configuration");
 
-    a = ogk_flight_init(f, ogk_leo_geo_nog_bundle, ogk_leo_geo_nog_bundle_len,
-                        &ogk_leo_geo_nog_config, &ogk_leo_geo_cpd_config,
-                        OGK_LEO_GEO_CONTROL_RATE_HZ);
+    a = ogk_flight_init(f, ogk_nog_bundle, ogk_nog_bundle_len,
+                        &ogk_flight_nog_config, &ogk_flight_cpd_config,
+                        OGK_PLANT_CONTROL_RATE_HZ);
     check(a == OGK_FLIGHT_FLY, "re-init");
     nav.t_s = 0.0;
     nav.r_m = f->table.entry[OGK_NOG_OFF_X + 0u];
@@ -368,7 +368,7 @@ int main(void)
     int flown;
 
     printf("flightapp: ogk VTD-NOG + CPD, LEO-to-GEO, table image %u bytes (const, flash)\n",
-           (unsigned)ogk_leo_geo_nog_bundle_len);
+           (unsigned)ogk_nog_bundle_len);
     printf("flightapp: table %s; sizeof table %u, ogk_nog_t %u, ogk_cpd_t %u, ogk_flight_t %u bytes\n",
            OGK_FLIGHT_TABLE_COPY ? "decoded into RAM (ogk_nog_table_load)"
                                  : "read in place from flash (ogk_nog_table_view)",
@@ -377,7 +377,7 @@ int main(void)
     printf("flightapp: sizeof ogk_nog_config_t %u, ogk_cpd_config_t %u, ogk_nog_sample_t %u, "
            "ogk_cpd_output_t %u bytes, image at %p\n", (unsigned)sizeof(ogk_nog_config_t),
            (unsigned)sizeof(ogk_cpd_config_t), (unsigned)sizeof(ogk_nog_sample_t),
-           (unsigned)sizeof(ogk_cpd_output_t), (const void *)ogk_leo_geo_nog_bundle);
+           (unsigned)sizeof(ogk_cpd_output_t), (const void *)ogk_nog_bundle);
 
     flown = fly("A nominal", zero, 0, &ra);
     check_burn("A", flown, &ra, TOL_A, 0u);

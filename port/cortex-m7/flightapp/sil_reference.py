@@ -30,7 +30,7 @@ RUNS = {"A nominal": [0.0] * 6,
 
 def main(argv: list[str]) -> int:
     table_dir = Path(argv[1]) if len(argv) > 1 else Path("build/tables/leo_geo")
-    bundle = next(table_dir.glob("*_nog_bundle.ogkt"))
+    bundle = next(table_dir.glob("nog_bundle.ogkt"))
     scn = load_scenario(DEFAULT_SCENARIO_PATH)
     ref = nominal_reference(scn)
     n = len(RUNS)

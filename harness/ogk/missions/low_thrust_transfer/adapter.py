@@ -31,12 +31,12 @@ def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
     """The MPSP flight configuration (config + nominal weights) as a const C header."""
     from ogk_host.low_thrust_transfer.scenario import load_scenario
 
-    from .flight_config import write_apophis_config
+    from .flight_config import write_flight_config
 
     load_scenario(header.path)
     out = Path(args.out) if args.out else table_dir_for(header.path)
     check_output_dir(out, "--out")
-    for path in write_apophis_config(out, header.path):
+    for path in write_flight_config(out, header.path):
         print(f"  wrote {path} (flight build: const MPSP configuration)")
     return 0
 

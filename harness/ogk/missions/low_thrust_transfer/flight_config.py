@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 
-def write_apophis_config(out: Path, scenario: Path | None) -> list[Path]:
+def write_flight_config(out: Path, scenario: Path | None) -> list[Path]:
     import numpy as np
 
     from ogk_host.cgen import ConfigItem, write_c_config
@@ -18,14 +18,14 @@ def write_apophis_config(out: Path, scenario: Path | None) -> list[Path]:
     nw = setup.guidance.n_weights
     weights = ffi.new(f"double[{nw}]", [float(w) for w in np.asarray(setup.guidance.cfg.weights_nom)])
     path = write_c_config(
-        ffi, [ConfigItem("ogk_apophis_mpsp_config", cfg,
+        ffi, [ConfigItem("ogk_flight_mpsp_config", cfg,
                          f"MPSP (ogk/mpsp.h), basis {setup.basis}, order {setup.order}: ogk_mpsp_init"),
-              ConfigItem("ogk_apophis_mpsp_weights_nom", weights,
+              ConfigItem("ogk_flight_mpsp_weights_nom", weights,
                          "nominal Fourier weights epsilon_0 (eq. 50), = the config's weights_nom[0..n)")],
-        out / "c" / "ogk_apophis_flight_config.h",
+        out / "c" / "ogk_mpsp_flight_config.h",
         scenario if scenario is not None else default_scenario_path(), includes=("ogk/mpsp.h",),
-        defines={"OGK_APOPHIS_MPSP_N_WEIGHTS": nw, "OGK_APOPHIS_MPSP_N_SEG_NOM": setup.guidance.n_seg_nom,
-                 "OGK_APOPHIS_MPSP_LAMBDA_M0_NOM": float(cfg.lambda_m0_nom)},
+        defines={"OGK_FLIGHT_MPSP_N_WEIGHTS": nw, "OGK_FLIGHT_MPSP_N_SEG_NOM": setup.guidance.n_seg_nom,
+                 "OGK_FLIGHT_MPSP_LAMBDA_M0_NOM": float(cfg.lambda_m0_nom)},
         note=f"Normalised units (LU = {setup.lu_km:.17g} km, MU = {setup.mu_kg:.17g} kg); "
              "n_seg_nom = 0: counted by ogk_mpsp_init.")
     return [path]

@@ -28,7 +28,7 @@ def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
     from ogk_host.cgen import write_c_table
     from ogk_host.orbit_injection import tables as ground
 
-    from .flight_config import write_leo_geo_config
+    from .flight_config import write_flight_config
 
     load_scenario(header.path)  # every bad key reported before the nominal is solved
     out = Path(args.out) if args.out else (
@@ -36,8 +36,8 @@ def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
         else table_dir_for(header.path))
     check_output_dir(out, "--out")
     manifest = ground.write_nog_tables(out, scenario_path=header.path)
-    bundle = next(out.glob("*_nog_bundle.ogkt"))
-    c_path, h_path = write_c_table(bundle.read_bytes(), "ogk_leo_geo_nog_bundle", out / "c",
+    bundle = out / ground.BUNDLE_FILE
+    c_path, h_path = write_c_table(bundle.read_bytes(), "ogk_nog_bundle", out / "c",
                                    header.path, note="Validate with ogk_nog_table_view() or load "
                                                      "with ogk_nog_table_load() (ogk/nog.h).")
     print(f"{header.name}: t_f* = {manifest['t_f_s']:.6f} s, "
@@ -48,7 +48,7 @@ def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
         print(f"  wrote {out / entry['file']}  kind {entry['kind']}  dims {entry['dims']}  "
               f"grid {entry['grid_size']}  {entry['bytes']} bytes")
     print(f"  wrote {c_path} and {h_path.name} (flight build: const table image)")
-    for path in write_leo_geo_config(out, header.path, bundle):
+    for path in write_flight_config(out, header.path, bundle):
         print(f"  wrote {path} (flight build: const configurations)")
     print(f"  wrote {out / 'manifest.json'}")
     return 0

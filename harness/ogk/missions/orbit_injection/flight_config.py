@@ -13,7 +13,7 @@ from typing import Any
 CONTROL_RATE_HZ = 50.0
 
 
-def leo_geo_configs(scenario: Path, bundle: Path) -> tuple[Any, Any, Any]:
+def flight_configs(scenario: Path, bundle: Path) -> tuple[Any, Any, Any]:
     """(ffi, nog_config, cpd_config) as the SIL builds them, from the scenario and the bundle."""
     from ogk_host.orbit_injection.scenario import load_scenario
 
@@ -30,29 +30,29 @@ def leo_geo_configs(scenario: Path, bundle: Path) -> tuple[Any, Any, Any]:
     return ffi, nog, cpd
 
 
-def leo_geo_plant_defines(scenario: Path, t_f_star_s: float) -> dict[str, float]:
+def plant_defines(scenario: Path, t_f_star_s: float) -> dict[str, float]:
     """Scenario constants of the flight app's point-mass plant (eqs. 3-6, sec. 6 thrust)."""
     from ogk_host.orbit_injection.scenario import load_scenario
     scn = load_scenario(scenario)
-    return {"OGK_LEO_GEO_MU_M3_S2": float(scn.mu_m3_s2),
-            "OGK_LEO_GEO_N0_M_S2": float(scn.thrust.initial_accel_m_s2),
-            "OGK_LEO_GEO_EXHAUST_VELOCITY_M_S": float(scn.thrust.exhaust_velocity_m_s),
-            "OGK_LEO_GEO_TARGET_RADIUS_M": float(scn.target_radius_m),
-            "OGK_LEO_GEO_T_F_STAR_S": float(t_f_star_s),
-            "OGK_LEO_GEO_CONTROL_RATE_HZ": CONTROL_RATE_HZ}
+    return {"OGK_PLANT_MU_M3_S2": float(scn.mu_m3_s2),
+            "OGK_PLANT_N0_M_S2": float(scn.thrust.initial_accel_m_s2),
+            "OGK_PLANT_EXHAUST_VELOCITY_M_S": float(scn.thrust.exhaust_velocity_m_s),
+            "OGK_PLANT_TARGET_RADIUS_M": float(scn.target_radius_m),
+            "OGK_PLANT_T_F_STAR_S": float(t_f_star_s),
+            "OGK_PLANT_CONTROL_RATE_HZ": CONTROL_RATE_HZ}
 
 
-def write_leo_geo_config(out: Path, scenario: Path, bundle: Path) -> list[Path]:
+def write_flight_config(out: Path, scenario: Path, bundle: Path) -> list[Path]:
     from ogk_host.cgen import ConfigItem, write_c_config
-    ffi, nog, cpd = leo_geo_configs(scenario, bundle)
+    ffi, nog, cpd = flight_configs(scenario, bundle)
     cfg = write_c_config(
-        ffi, [ConfigItem("ogk_leo_geo_nog_config", nog,
+        ffi, [ConfigItem("ogk_flight_nog_config", nog,
                          "VTD-NOG (ogk/nog.h): bind .view (ogk_nog_table_view, in place) or .table (ogk_nog_table_load), then ogk_nog_init"),
-              ConfigItem("ogk_leo_geo_cpd_config", cpd,
+              ConfigItem("ogk_flight_cpd_config", cpd,
                          f"CPD (ogk/cpd.h), ff_period_s = the {CONTROL_RATE_HZ:g} Hz control period")],
-        out / "c" / "ogk_leo_geo_flight_config.h", scenario, includes=("ogk/nog.h", "ogk/cpd.h"),
+        out / "c" / "ogk_orbit_injection_flight_config.h", scenario, includes=("ogk/nog.h", "ogk/cpd.h"),
         note=f"Table: {bundle.name}, t_f* = {float(nog.table.t_f_star_s):.17g} s.")
-    plant = write_c_config(ffi, [], out / "c" / "ogk_leo_geo_sil_plant.h", scenario, includes=(),
-                           defines=leo_geo_plant_defines(scenario, float(nog.table.t_f_star_s)),
+    plant = write_c_config(ffi, [], out / "c" / "ogk_sil_plant.h", scenario, includes=(),
+                           defines=plant_defines(scenario, float(nog.table.t_f_star_s)),
                            note="Test-plant constants of the flight app (not flight data).")
     return [cfg, plant]

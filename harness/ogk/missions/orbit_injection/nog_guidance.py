@@ -29,7 +29,6 @@ from .guidance import GuidanceSetup
 F64 = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
-BUNDLE_GLOB = "*_nog_bundle.ogkt"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -54,12 +53,10 @@ def prepare_tables(scn: LeoGeoScenario, table_dir: Path | None = None) -> NogTab
         raise TableError("the scenario has no file: tables are keyed by the scenario file")
     directory = ground_tables.ensure_nog_tables(scn.path, table_dir)
     manifest = ground_tables.check_tables(directory, scn.path)
-    bundles = sorted(Path(directory).glob(BUNDLE_GLOB))
-    if len(bundles) != 1:
-        raise TableError(f"expected one {BUNDLE_GLOB} bundle, found {len(bundles)}", path=directory)
+    bundle = Path(directory) / ground_tables.BUNDLE_FILE
     sha = {p.name: hashlib.sha256(p.read_bytes()).hexdigest()
            for p in sorted(Path(directory).glob("*.ogkt"))}
-    return NogTables(Path(directory), bundles[0], manifest, sha)
+    return NogTables(Path(directory), bundle, manifest, sha)
 
 
 def load_table(bundle: Path) -> object:
