@@ -204,9 +204,9 @@ class Section:
 TABLE_ROOT = REPO_ROOT / "build" / "tables"
 
 
-def table_dir_for(path: str | Path, root: str | Path = TABLE_ROOT) -> Path:
+def table_dir_for(path: str | Path, root: str | Path | None = None) -> Path:
     """Where the ground products of a scenario file live by default:
     `build/tables/<name>-<first 12 hex of the file's SHA-256>` under the repository root, so two
     scenarios, or two versions of one, never share a directory."""
     header = read_header(path)
-    return Path(root) / f"{header.name}-{header.sha256[:12]}"
+    return Path(TABLE_ROOT if root is None else root) / f"{header.name}-{header.sha256[:12]}"

@@ -209,13 +209,25 @@ def test_writer_never_overwrites_a_foreign_directory(table_dir, tmp_path):
 
 
 def test_ensure_generates_default_dir_then_checks(monkeypatch, tmp_path):
+    from ogk_host import scenario_file
     from ogk_host.orbit_injection import tables
-    monkeypatch.setattr(tables, "TABLE_ROOT", tmp_path / "build" / "tables")
+    monkeypatch.setattr(scenario_file, "TABLE_ROOT", tmp_path / "build" / "tables")
     out = tables.ensure_nog_tables(DEFAULT_SCENARIO_PATH)
     assert out == tables.default_table_dir(DEFAULT_SCENARIO_PATH) and out.parent == tmp_path / "build" / "tables"
     assert (out / tables.BUNDLE_FILE).is_file()
     stamp = (out / "manifest.json").stat().st_mtime_ns
     assert tables.ensure_nog_tables(DEFAULT_SCENARIO_PATH) == out      # second call: check only
+    assert (out / "manifest.json").stat().st_mtime_ns == stamp
+    # the default directory made by an older generator is remade (it is the tool's cache) ...
+    import json
+    doc = json.loads((out / "manifest.json").read_text())
+    (out / "manifest.json").write_text(json.dumps({**doc, "generator": "older/1"}))
+    assert tables.ensure_nog_tables(DEFAULT_SCENARIO_PATH) == out
+    assert json.loads((out / "manifest.json").read_text())["generator"] == tables.GENERATOR
+    # ... but a user's directory of an older generator is only checked, never rewritten
+    (out / "manifest.json").write_text(json.dumps({**doc, "generator": "older/1"}))
+    stamp = (out / "manifest.json").stat().st_mtime_ns
+    assert tables.ensure_nog_tables(DEFAULT_SCENARIO_PATH, out) == out
     assert (out / "manifest.json").stat().st_mtime_ns == stamp
     # a user directory that does not exist is generated
     new = tmp_path / "new"

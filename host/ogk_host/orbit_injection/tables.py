@@ -62,7 +62,7 @@ KIND_CONTROL_GAIN = 0x4E4F4705
 KIND_SCALARS = 0x4E4F4706
 KIND_NOG_BUNDLE = 0x4E4F4742          #: OGK_NOG_TABLE_KIND ("NOGB") of kernel/include/ogk/nog.h
 NOG_BUNDLE_ENTRY_LEN = 133            #: the host layout; checked against the kernel's OGK_NOG_ENTRY_LEN
-GENERATOR = "ogk_host.orbit_injection.tables/2"
+GENERATOR = "ogk_host.orbit_injection.tables/3"  # /3: files named <table>.ogkt
 MADE_BY = "ogk tables"                #: manifest["made_by"]: a directory this tool may overwrite
 MANIFEST = "manifest.json"
 BUNDLE_FILE = "nog_bundle.ogkt"
@@ -295,8 +295,19 @@ def ensure_nog_tables(scenario_path: str | Path = DEFAULT_SCENARIO_PATH,
     empty = not out.exists() or (out.is_dir() and not any(out.iterdir()))
     if empty or (table_dir is None and not (out / MANIFEST).exists()):
         write_nog_tables(out, scenario_path)
+    elif table_dir is None and _is_ogk_dir(out) and _generator(out) != GENERATOR:
+        # the default directory is this tool's cache (keyed by the scenario's SHA-256): tables of an
+        # older generator are remade there; a user's directory is only ever checked
+        write_nog_tables(out, scenario_path)
     check_tables(out, scenario_path)
     return out
+
+
+def _generator(out: Path) -> str | None:
+    try:
+        return json.loads((out / MANIFEST).read_text()).get("generator")
+    except (ValueError, OSError):
+        return None
 
 
 def main(argv: list[str] | None = None) -> int:
