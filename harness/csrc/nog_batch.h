@@ -1,7 +1,7 @@
 /* nog_batch.h -- SIL harness batch loops over Monte Carlo runs for the
  * VTD-NOG guidance (NOT flight code): one Python -> C crossing per sampling
  * or command time for all runs. Each run owns one ogk_nog_t; all share one
- * read-only ogk_nog_table_t. Used by ogk.leo_geo.nog_guidance. */
+ * read-only ogk_nog_table_t. Used by ogk.missions.orbit_injection.nog_guidance. */
 #ifndef OGK_NOG_BATCH_H
 #define OGK_NOG_BATCH_H
 

@@ -6,7 +6,7 @@
 #   make test-unit-arm       every tests/unit/test_*.c on QEMU (cmocka shim)
 #   make test-arm-selftest   checks of this route itself (runner, faults, FPU)
 #   make arm-size            code/data size of the kernel objects
-#   make qemu-plugin         build/qemu-plugin/libinsn_range.so (instruction counts)
+#   make qemu-plugin         build/qemu-plugin/libinsn_count.so (instruction counts)
 #
 # Overridable: ARM_UNIT_SRC (which test sources), ARM_TIMEOUT (s per test run).
 

@@ -2,7 +2,7 @@
  * Pontani & Celani (2021), section 4, with the formulation of docs/vtd-nog.md
  * (real time t as a 7th state, parameter a = t_f).
  *
- * Ground side (host/ogk_host/leo_geo): the minimum-time nominal and, on a grid
+ * Ground side (host/ogk_host/orbit_injection): the minimum-time nominal and, on a grid
  * of normalised time tau in [0, 1], the gains that map the state displacement
  * dx_k = [x(t_k) - x*(tau_k); t_k - t_f* tau_k] to the costate displacement
  * dlam_k and the flight-time correction dt_f, plus the costate-rate gain that

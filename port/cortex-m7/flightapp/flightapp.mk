@@ -10,7 +10,7 @@
 #   make flight-app-size    flash / RAM of the ELF and of each object, largest symbols
 #   make flight-app-stack   worst-case stack of the ogk_flight_* entry points (gcc call graphs)
 #
-# Until the lead includes it: make -f Makefile -f port/cortex-m7/flightapp/flightapp.mk test-flight-app
+# Included by the top-level Makefile (after bench.mk); make test runs test-flight-app.
 
 # Prerequisites are expanded when this file is read: include it after FFI_STAMP and HOST_OBJ are set
 # (e.g. next to `include tests/bench/bench.mk`).
