@@ -191,10 +191,11 @@ def test_nominal_agrees_with_an_independent_direct_re_solve(flown: dict, mission
     tf_star = float(manifest["t_f_s"])
     f0_star = math.radians(float(manifest["ignition_true_anomaly_deg"]))
     f0, tf = direct_min_time(mission, f0_star, tf_star)
-    # a piecewise-linear steering cannot beat the optimum; 12 nodes come within 0.05 %
-    assert tf >= tf_star * (1.0 - 1e-6)
-    assert tf <= tf_star * (1.0 + 5e-4)
-    assert abs(math.degrees(f0 - f0_star)) < 1.0
+    # A piecewise-linear steering cannot beat the optimum (up to the 800-step RK4 error); 12 nodes
+    # come within 4e-12 of t_f* and 4e-5 deg of f0* on these missions (measured when written).
+    assert tf >= tf_star * (1.0 - 1e-8)
+    assert tf <= tf_star * (1.0 + 1e-6)
+    assert abs(math.degrees(f0 - f0_star)) < 0.01
 
 
 def test_tables_of_another_scenario_are_refused(flown: dict, tmp_path: Path) -> None:
