@@ -2,6 +2,7 @@
 created (as the command would) and a probe file written and removed there."""
 from __future__ import annotations
 
+import os
 import tempfile
 from pathlib import Path
 
@@ -35,9 +36,14 @@ def check_output_file(path: str | Path, option: str) -> Path:
 
 
 def check_output_dir(path: str | Path, option: str) -> Path:
-    """A directory the command will create or fill."""
+    """A directory the command will create or fill. An existing one is not probed (nothing is
+    written into a directory before the command has decided that it may)."""
     p = Path(path)
     if p.exists() and not p.is_dir():
         raise OgkInputError("exists and is not a directory", path=p, key=option)
+    if p.is_dir():
+        if not os.access(p, os.W_OK | os.X_OK):
+            raise OgkInputError("not writable", path=p, key=option)
+        return p
     _probe(p, p, option)
     return p
