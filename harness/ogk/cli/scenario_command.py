@@ -10,6 +10,7 @@ import argparse
 from collections.abc import Sequence
 from typing import Any
 
+from ogk_host.errors import OgkInputError
 from ogk_host.scenario_file import read_header, resolve_scenario
 
 from ogk.missions import registry
@@ -37,7 +38,7 @@ def run_scenario_command(name: str, scenario: str | None, rest: Sequence[str],
     if "--scenario" in rest:
         i = rest.index("--scenario")
         if i + 1 >= len(rest):
-            raise SystemExit(f"ogk {name}: --scenario needs a file")
+            raise OgkInputError("needs a file", key="--scenario")
         scenario = rest[i + 1]
         del rest[i:i + 2]
     header = read_header(resolve_scenario(scenario))
