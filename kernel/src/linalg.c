@@ -57,7 +57,7 @@ static bool la_all_finite(const double *v, size_t count)
 
 /* Euclidean norm of v[0], v[stride], ..., v[(count-1) stride], scaled by the
  * largest magnitude so that squares neither overflow nor underflow. */
-static double la_norm2(const double *v, size_t count, size_t stride)
+static double la_norm2(const double *v, size_t count, size_t stride) /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
 {
     double scale = 0.0;
     double ssq = 0.0;
@@ -82,7 +82,7 @@ static double la_norm2(const double *v, size_t count, size_t stride)
 /* Common checks of the products: NULL, dimensions, output overlapping an input. */
 static ogk_status la_product_check(const double *in1, size_t in1_count,
                                    const double *in2, size_t in2_count,
-                                   const double *out, size_t out_count,
+                                   const double *out, size_t out_count, /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
                                    size_t d1, size_t d2, size_t d3)
 {
     if (in1 == NULL || in2 == NULL || out == NULL) {
@@ -105,7 +105,7 @@ static ogk_status la_product_check(const double *in1, size_t in1_count,
  * B(p, j) = B[p b_p + j b_j]: one loop nest for
  * A x, A^T x, A B, A^T B and A B^T. */
 static void product_strided(const double *A, size_t a_i, size_t a_p, const double *B,
-                            size_t b_p, size_t b_j, size_t r, size_t k, size_t c, double *C)
+                            size_t b_p, size_t b_j, size_t r, size_t k, size_t c, double *C) /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
 {
     size_t i;
     size_t j;

@@ -108,7 +108,7 @@ ogk_status ogk_mpsp_config_default(ogk_mpsp_config_t *cfg)
     cfg->delta_max = 1.0;       /* Delta_max of Alg. 1 */
     cfg->delta_tau_0 = 0.5;     /* first continuation step of Alg. 2 */
     cfg->delta_tau_min = 0.1;   /* the paper's 0.1 */
-    for (i = 0u; i < OGK_MPSP_MAX_WEIGHTS; ++i) {
+    for (i = 0u; i < (size_t)OGK_MPSP_MAX_WEIGHTS; ++i) {
         cfg->r_eps[i] = 1.0;    /* R_eps = I (eq. 41) */
     }
     cfg->r_lambda = 1.0;        /* R_lambda = 1 (eq. 41) */

@@ -29,14 +29,13 @@ void mpsp_dyn_setup(mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weight
  * th = omega (t - t_ref)), or [1/2, cos th, ..., cos 2n th] for the cosine
  * kind; the harmonics by the angle-addition recurrence (two trigonometric
  * calls per time, error growth ~k eps). */
-void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot)
+void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot) /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
 {
     const double theta = dyn->omega * (t - dyn->t_ref);
     const double c1 = cos(theta);
     const double s1 = sin(theta);
     const size_t last = dyn->n_basis - 1u; /* 2n */
     const bool cosine = (dyn->kind == OGK_MPSP_BASIS_COSINE);
-    const size_t n_harm = cosine ? last : last / 2u;
     double cn = c1;
     double sn = s1;
     size_t k;
@@ -45,7 +44,7 @@ void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot)
     if (hdot != NULL) {
         hdot[0] = 0.0;
     }
-    for (k = 1u; k <= n_harm; ++k) {
+    for (k = 1u; (cosine ? k : 2u * k) <= last; ++k) { /* k <= n harmonics */
         const double kw = (double)k * dyn->omega;
         if (cosine) {
             h[k] = cn;
@@ -64,6 +63,16 @@ void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot)
             const double c_next = cn * c1 - sn * s1;
             sn = sn * c1 + cn * s1;
             cn = c_next;
+        }
+    }
+    /* Every one of the n_basis entries is written: an even n_basis (never made by
+     * ogk_mpsp_init, which sets 2 n + 1) leaves a last entry the harmonics do not
+     * reach; it is zeroed instead of left indeterminate (clang-analyzer
+     * core.UndefinedBinaryOperatorResult in mpsp_control_from_basis). */
+    if (!cosine && (last % 2u) != 0u) {
+        h[last] = 0.0;
+        if (hdot != NULL) {
+            hdot[last] = 0.0;
         }
     }
 }
@@ -103,7 +112,7 @@ static double norm3(const double *a)
 }
 
 /* Eq. (16). */
-ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int mode,
+ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int mode, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
                     double *xdot)
 {
     const double m = x[6];
@@ -155,7 +164,7 @@ double mpsp_switch_value(const mpsp_dyn_t *dyn, const double *x, const double *u
     return 1.0 - x[7] - norm3(u) * dyn->c_exhaust / x[6];
 }
 
-ogk_status mpsp_jacobian(const mpsp_dyn_t *dyn, const double *x, const double *u,
+ogk_status mpsp_jacobian(const mpsp_dyn_t *dyn, const double *x, const double *u, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
                          int mode, mpsp_jac_t *jac)
 {
     const double m = x[6];

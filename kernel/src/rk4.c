@@ -122,7 +122,7 @@ static ogk_status eval_switch(const ogk_rk4_problem_t *p, double t,
     return isfinite(*sv) ? OGK_OK : OGK_E_NONFINITE;
 }
 
-static ogk_status dense_push(ogk_rk4_dense_t *d, size_t n, double t,
+static ogk_status dense_push(ogk_rk4_dense_t *d, size_t n, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, order of the RK4 step state; unit-tested */
                              const double *x, int mode)
 {
     if (d == NULL) {
@@ -142,7 +142,7 @@ static ogk_status dense_push(ogk_rk4_dense_t *d, size_t n, double t,
  * -side: bisection on the sub-step length, each trial one RK4 step from t.
  * On return *dt_s is the accepted sub-step, x_s the state there. */
 static ogk_status bisect_switch(stepper_t *s, double t, const double *x,
-                                double dt, int mode, int side, double *dt_s,
+                                double dt, int mode, int side, double *dt_s, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, order of the RK4 step state; unit-tested */
                                 double *x_s, ogk_switch_event_t *ev)
 {
     double lo = 0.0;
@@ -188,7 +188,7 @@ static ogk_status bisect_switch(stepper_t *s, double t, const double *x,
     return st;
 }
 
-static void finish(ogk_rk4_result_t *res, const stepper_t *s, double t,
+static void finish(ogk_rk4_result_t *res, const stepper_t *s, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, order of the RK4 step state; unit-tested */
                    int mode, const double *x, double *xf, size_t n)
 {
     res->n_rhs = s->n_rhs;
