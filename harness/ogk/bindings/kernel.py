@@ -55,6 +55,17 @@ class KernelError(Exception):
         self.partial = partial
         super().__init__(f"{func}: {self.name} ({self.code})")
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        # picklable (a worker process's error reaches the parent); a partial result that cannot
+        # be pickled (cffi data) is dropped
+        import pickle
+        partial = self.partial
+        try:
+            pickle.dumps(partial)
+        except Exception:  # noqa: BLE001
+            partial = None
+        return (type(self), (self.code, self.func, partial))
+
     @property
     def status(self) -> "Status":
         return Status(self.code)

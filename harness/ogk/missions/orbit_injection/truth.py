@@ -92,25 +92,32 @@ class TruthParams:
 
 
 # ----------------------------------------------------------------- thrust (sec. 6, eq. 55)
+def _fourier_basis(p: TruthParams, t: float) -> list[float]:
+    """[sin(k theta)] + [cos(k theta)], k = 1..5, theta = 2 pi t / t_f*, at one time (libm)."""
+    theta = (2.0 * math.pi / p.fluctuation_period) * t
+    return [math.sin(k * theta) for k in range(1, N_FOURIER + 1)] + \
+           [math.cos(k * theta) for k in range(1, N_FOURIER + 1)]
+
+
 def thrust_factor(p: TruthParams, t: F64 | float, coeffs: F64 | None) -> F64 | float:
     """1 + f(t) of eq. (55) per run; coeffs (10, N) = [a_1..a_5 (sin), a_6..a_10 (cos)] or None.
-    t is a scalar (all runs at the same time) or (N,)."""
+    t is a scalar (all runs at the same time) or (N,).
+
+    A run's value depends on its own time and coefficients only, never on the other runs of its
+    chunk: the per-run-time path (landing steps, where one run's time differs) evaluates the same
+    basis at each distinct time with the same operations, in the same order, as the scalar path
+    (docs/sil.md, determinism)."""
     if coeffs is None:
         return 1.0
-    theta = (2.0 * math.pi / p.fluctuation_period) * t
-    if np.ndim(theta) == 0:
-        basis = [math.sin(k * float(theta)) for k in range(1, N_FOURIER + 1)] + \
-                [math.cos(k * float(theta)) for k in range(1, N_FOURIER + 1)]
-        total = 1.0 + coeffs[0] * basis[0]
-        for k in range(1, 2 * N_FOURIER):
-            total += coeffs[k] * basis[k]
-        return total
-    s1, c1 = np.sin(theta), np.cos(theta)
-    sk, ck = s1, c1
-    total = 1.0 + coeffs[0] * sk + coeffs[N_FOURIER] * ck
-    for k in range(1, N_FOURIER):        # sin((k+1) x), cos((k+1) x) by the addition formulas
-        sk, ck = sk * c1 + ck * s1, ck * c1 - sk * s1
-        total = total + coeffs[k] * sk + coeffs[N_FOURIER + k] * ck
+    if np.ndim(t) == 0:
+        basis: list[F64] | list[float] = _fourier_basis(p, float(t))
+    else:
+        times, where = np.unique(np.asarray(t, dtype=np.float64), return_inverse=True)
+        table = np.array([_fourier_basis(p, float(u)) for u in times])   # (n_times, 10)
+        basis = list(table[where.reshape(-1)].T)                         # 10 x (N,)
+    total = 1.0 + coeffs[0] * basis[0]
+    for k in range(1, 2 * N_FOURIER):
+        total += coeffs[k] * basis[k]
     return total
 
 
