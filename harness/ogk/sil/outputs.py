@@ -1,5 +1,8 @@
 """Output paths are checked before a long computation starts, not after it: the directory is
-created (as the command would) and a probe file written and removed there."""
+created (as the command would) and a probe file written and removed there. Results are written
+atomically (`write_atomic`: a temporary file in the same directory, then a rename), and a result
+file of an earlier command is removed when a new one starts (`remove_stale`), so a file that
+exists is always complete and always the latest command's."""
 from __future__ import annotations
 
 import os
@@ -47,3 +50,32 @@ def check_output_dir(path: str | Path, option: str) -> Path:
         return p
     _probe(p, p, option)
     return p
+
+
+def remove_stale(path: str | Path) -> None:
+    """Removes an earlier result file before the command that will rewrite it starts."""
+    try:
+        Path(path).unlink()
+    except FileNotFoundError:
+        pass
+
+
+def write_atomic(path: str | Path, text: str) -> None:
+    """Writes `text` to `path` through a temporary file in the same directory and a rename: the
+    file is either the old one, absent, or complete."""
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=p.parent, prefix=f".{p.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, p)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
