@@ -47,7 +47,7 @@ static ogk_status check_table_content(const ogk_nog_table_view_t *tbl)
     if (tbl->tau[0] != 0.0 || tbl->tau[n - 1u] != 1.0) {
         return OGK_E_TABLE_DIM;
     }
-    if (!(t_f > 0.0)) {
+    if (!(t_f > 0.0) || t_f > OGK_NOG_TF_MAX_S) {
         return OGK_E_TABLE_TYPE;
     }
     for (k = 0u; k < n; ++k) {
@@ -86,6 +86,7 @@ static void view_of_table(const ogk_nog_table_t *table, ogk_nog_table_view_t *vi
     view->n_grid = table->n_grid;
     view->t_f_star_s = table->t_f_star_s;
     view->init_marker = OGK_NOG_VIEW_MARKER;
+    view->generation = table->generation;
 }
 
 ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t len)
@@ -97,6 +98,9 @@ ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t
     if (table == NULL) {
         return OGK_E_NULL;
     }
+    /* First, whatever follows: a context bound to this table is stale from
+     * here on, even if the new bytes turn out to be the old ones. */
+    table->generation += 1u;
     table->n_grid = 0u;
     table->t_f_star_s = 0.0;
     st = open_table(buf, len, &view);
@@ -123,11 +127,15 @@ ogk_status ogk_nog_table_view(ogk_nog_table_view_t *view, const uint8_t *buf, si
 {
     ogk_table_view_t tv;
     ogk_status st;
+    uint32_t generation;
 
     if (view == NULL) {
         return OGK_E_NULL;
     }
+    /* Bumped and kept through the reset: bound contexts become stale. */
+    generation = view->generation + 1u;
     memset(view, 0, sizeof *view);
+    view->generation = generation;
     if (buf == NULL) {
         return OGK_E_NULL;
     }
@@ -149,6 +157,7 @@ ogk_status ogk_nog_table_view(ogk_nog_table_view_t *view, const uint8_t *buf, si
     st = check_table_content(view);
     if (st != OGK_OK) {
         memset(view, 0, sizeof *view);
+        view->generation = generation;
         return st;
     }
     view->t_f_star_s = view->entry[OGK_NOG_OFF_XDOT + IDX_TIME];
@@ -287,6 +296,7 @@ ogk_status ogk_nog_config_default(ogk_nog_config_t *cfg)
 /* The just-initialised state: nominal from tau = 0, no sample taken. */
 static void start_nominal(ogk_nog_t *ctx)
 {
+    double lam[NX];
     memset(ctx->dlam_k, 0, sizeof ctx->dlam_k);
     memset(ctx->dlam_rate, 0, sizeof ctx->dlam_rate);
     ctx->t_k_s = 0.0;
@@ -294,6 +304,28 @@ static void start_nominal(ogk_nog_t *ctx)
     ctx->t_f_s = ctx->tbl.t_f_star_s;
     ctx->n_samples = 0u;
     ctx->flags = 0u;
+    /* The held direction before any sample: the nominal at tau = 0 (finite:
+     * at a node the Hermite is the node's finite value; 0 if not anyway). */
+    costate_at(ctx, 0.0, lam);
+    angles_from_costate(lam, &ctx->hold_alpha_rad, &ctx->hold_beta_rad);
+    if (!isfinite(ctx->hold_alpha_rad) || !isfinite(ctx->hold_beta_rad)) {
+        ctx->hold_alpha_rad = 0.0;
+        ctx->hold_beta_rad = 0.0;
+    }
+}
+
+/* True while the table the context was initialised on is still the one it
+ * holds pointers and sizes of: not reloaded since (generation), and still
+ * valid. The generation is the check; the others are cheap belt and braces. */
+static bool table_current(const ogk_nog_t *ctx)
+{
+    if (ctx->cfg.table != NULL) {
+        return ctx->cfg.table->generation == ctx->table_generation &&
+               ctx->cfg.table->n_grid == ctx->tbl.n_grid;
+    }
+    return ctx->cfg.view != NULL && ctx->cfg.view->generation == ctx->table_generation &&
+           ctx->cfg.view->init_marker == OGK_NOG_VIEW_MARKER &&
+           ctx->cfg.view->n_grid == ctx->tbl.n_grid && ctx->cfg.view->tau == ctx->tbl.tau;
 }
 
 ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg)
@@ -322,13 +354,14 @@ ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg)
     }
     if (!isfinite(cfg->sample_interval_s) || !(cfg->sample_interval_s > 0.0) ||
         !isfinite(cfg->dtf_max_s) || !(cfg->dtf_max_s > 0.0) ||
-        cfg->dtf_max_s > 0.5 * tbl.t_f_star_s ||
+        cfg->dtf_max_s > 0.5 * tbl.t_f_star_s || cfg->sample_interval_s > tbl.t_f_star_s ||
         !isfinite(cfg->du_max_rad) || !(cfg->du_max_rad > 0.0) || cfg->du_max_rad > PI ||
         !isfinite(cfg->tau_freeze) || cfg->tau_freeze < 0.0 || !(cfg->tau_freeze < 1.0)) {
         return OGK_E_CONFIG;
     }
     ctx->cfg = *cfg;
     ctx->tbl = tbl;
+    ctx->table_generation = tbl.generation;
     start_nominal(ctx);
     ctx->init_marker = OGK_NOG_INIT_MARKER;
     return OGK_OK;
@@ -341,6 +374,9 @@ ogk_status ogk_nog_reset(ogk_nog_t *ctx)
     }
     if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
         return OGK_E_NOT_INIT;
+    }
+    if (!table_current(ctx)) {
+        return OGK_E_TABLE_STALE; /* the nominal at tau = 0 would be read from it */
     }
     start_nominal(ctx);
     return OGK_OK;
@@ -359,18 +395,17 @@ static void hold_correction(ogk_nog_t *ctx, double t_s, double tau)
     ctx->tau_k = tau;
 }
 
-static void fill_sample(const ogk_nog_t *ctx, ogk_nog_sample_t *out)
+/* The sample fields that need no table: tau, t_f, cut-off, flags; the
+ * angles are the held ones (overwritten by fill_sample). */
+static void fill_sample_held(const ogk_nog_t *ctx, ogk_nog_sample_t *out)
 {
-    double lam[NX];
-    const double tau = fmin(ctx->tau_k, 1.0);
-
     out->tau_k = ctx->tau_k;
     out->t_f_s = ctx->t_f_s;
     out->dt_f_s = ctx->t_f_s - ctx->tbl.t_f_star_s;
     out->tau_next = ctx->tau_k + ctx->cfg.sample_interval_s / ctx->t_f_s;
     out->t_cutoff_s = ctx->t_k_s + (1.0 - ctx->tau_k) * ctx->t_f_s;
-    costate_at(ctx, tau, lam);
-    angles_from_costate(lam, &out->alpha_rad, &out->beta_rad);
+    out->alpha_rad = ctx->hold_alpha_rad;
+    out->beta_rad = ctx->hold_beta_rad;
     out->flags = ctx->flags;
     if (out->tau_next >= 1.0) {
         out->flags |= OGK_NOG_FLAG_TERMINATING;
@@ -380,8 +415,70 @@ static void fill_sample(const ogk_nog_t *ctx, ogk_nog_sample_t *out)
     }
 }
 
-/* The correction at tau_k from the gains (eqs. 29-31) with the end-game bounds. */
-static void compute_correction(ogk_nog_t *ctx, const double *dx)
+static void fill_sample(const ogk_nog_t *ctx, ogk_nog_sample_t *out)
+{
+    double lam[NX];
+    const double tau = fmin(ctx->tau_k, 1.0);
+
+    fill_sample_held(ctx, out);
+    costate_at(ctx, tau, lam);
+    angles_from_costate(lam, &out->alpha_rad, &out->beta_rad);
+}
+
+/* Every double of a sample is finite. */
+static bool sample_finite(const ogk_nog_sample_t *out)
+{
+    const double v[7] = {out->tau_k, out->tau_next, out->t_f_s, out->dt_f_s,
+                         out->t_cutoff_s, out->alpha_rad, out->beta_rad};
+    return ogk_i_all_finite(v, 7u) && ogk_i_all_finite(out->dx, NX);
+}
+
+/* Latest time a sample may carry (the t_s envelope of ogk/nog.h). */
+static double t_sample_max(const ogk_nog_t *ctx)
+{
+    return 2.0 * ctx->tbl.t_f_star_s + ctx->cfg.dtf_max_s;
+}
+
+/* The navigation envelope of ogk/nog.h (all values already finite). */
+static bool nav_in_envelope(const ogk_nog_t *ctx, const ogk_nav_state_t *nav)
+{
+    return nav->r_m > 0.0 && nav->r_m <= OGK_NOG_R_MAX_M &&
+           fabs(nav->xi_rad) <= OGK_NOG_XI_MAX_RAD && fabs(nav->phi_rad) < OGK_NOG_PHI_MAX_RAD &&
+           fabs(nav->v_r_mps) <= OGK_NOG_V_MAX_MPS && fabs(nav->v_t_mps) <= OGK_NOG_V_MAX_MPS &&
+           fabs(nav->v_n_mps) <= OGK_NOG_V_MAX_MPS && nav->t_s >= 0.0 &&
+           nav->t_s <= t_sample_max(ctx);
+}
+
+/* The safe output of a rejected sample (contract in ogk/nog.h). The context
+ * keeps its last good sample and correction; only its flags become SAFE, for
+ * the commands served until the next good sample. The held correction is
+ * shown at t_s when that time is usable, on a copy; with a stale table
+ * (readable = false) nothing is read from it: held angles. */
+static void safe_sample(ogk_nog_t *ctx, double t_s, bool readable, ogk_nog_sample_t *out)
+{
+    ogk_nog_t at = *ctx;
+
+    ctx->flags = OGK_NOG_FLAG_SAFE;
+    at.flags = OGK_NOG_FLAG_SAFE;
+    if (isfinite(t_s) && t_s >= ctx->t_k_s && t_s >= 0.0 && t_s <= t_sample_max(ctx)) {
+        /* Bounded by the envelope; past 1 it is shown, clamped in the costate. */
+        hold_correction(&at, t_s, ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s);
+    }
+    if (readable) {
+        fill_sample(&at, out);
+        if (sample_finite(out)) {
+            return;
+        }
+    }
+    fill_sample_held(&at, out);
+    if (!sample_finite(out)) {
+        fill_sample_held(ctx, out); /* the last good sample's own values */
+    }
+}
+
+/* The correction at tau_k from the gains (eqs. 29-31) with the end-game
+ * bounds. False (context untouched) when the gains times dx overflow. */
+static bool compute_correction(ogk_nog_t *ctx, const double *dx)
 {
     const ogk_nog_table_view_t *tbl = &ctx->tbl;
     double gain[N_GAIN_ROWS * NX];
@@ -397,6 +494,9 @@ static void compute_correction(ogk_nog_t *ctx, const double *dx)
     linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_NRATE, NX * NX, nrate);
     (void)ogk_mat_vec(gain, N_GAIN_ROWS, NX, dx, out8);
     (void)ogk_mat_vec(nrate, NX, NX, dx, dlam_rate);
+    if (!ogk_i_all_finite(out8, N_GAIN_ROWS) || !ogk_i_all_finite(dlam_rate, NX)) {
+        return false; /* finite gains and dx, but their products overflow */
+    }
 
     dt_f = out8[NX];
     if (fabs(dt_f) > ctx->cfg.dtf_max_s) {
@@ -413,17 +513,16 @@ static void compute_correction(ogk_nog_t *ctx, const double *dx)
         ctx->dlam_rate[i] = scale * dlam_rate[i];
     }
     ctx->t_f_s = tbl->t_f_star_s + dt_f;
+    return true;
 }
 
 ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sample_t *out)
 {
     const ogk_nog_table_view_t *tbl;
+    ogk_nog_t before;
     double nav_v[NX];
-    double x_star[NX];
-    double dx[NX];
     double tau;
-    size_t i;
-    ogk_status st = OGK_OK;
+    bool good = true;
 
     if (ctx == NULL || nav == NULL || out == NULL) {
         return OGK_E_NULL;
@@ -431,6 +530,11 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sa
     memset(out, 0, sizeof *out);
     if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
         return OGK_E_NOT_INIT;
+    }
+    if (!table_current(ctx)) {
+        /* Reloaded since init (maybe failed: n_grid = 0): not one read of it. */
+        safe_sample(ctx, nav->t_s, false, out);
+        return OGK_E_TABLE_STALE;
     }
     tbl = &ctx->tbl;
     nav_v[0] = nav->r_m;
@@ -440,53 +544,63 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sa
     nav_v[4] = nav->v_t_mps;
     nav_v[5] = nav->v_n_mps;
     nav_v[6] = nav->t_s;
-    ctx->flags = 0u;
 
     if (!ogk_i_all_finite(nav_v, NX)) {
-        st = OGK_E_NONFINITE;
-    } else if (!(nav->r_m > 0.0) || nav->t_s < 0.0 ||
-               (ctx->n_samples > 0u && !(nav->t_s > ctx->t_k_s))) {
-        st = OGK_E_RANGE;
+        safe_sample(ctx, nav->t_s, true, out);
+        return OGK_E_NONFINITE;
     }
-    if (st != OGK_OK) {
-        /* Safe command: the correction in force, tau advanced to the sample
-         * time when that time is usable, else left where it was. */
-        if (isfinite(nav->t_s) && nav->t_s >= ctx->t_k_s) {
-            hold_correction(ctx, nav->t_s, ctx->tau_k + (nav->t_s - ctx->t_k_s) / ctx->t_f_s);
-        }
-        ctx->flags = OGK_NOG_FLAG_SAFE;
-        fill_sample(ctx, out);
-        return st;
+    /* Envelope before any arithmetic: the time bound keeps tau and the
+     * cut-off time finite, the others keep gains times dx far from overflow. */
+    if (!nav_in_envelope(ctx, nav) || (ctx->n_samples > 0u && !(nav->t_s > ctx->t_k_s))) {
+        safe_sample(ctx, nav->t_s, true, out);
+        return OGK_E_RANGE;
     }
 
     tau = (ctx->n_samples == 0u) ? nav->t_s / tbl->t_f_star_s
                                  : ctx->tau_k + (nav->t_s - ctx->t_k_s) / ctx->t_f_s;
     if (tau > 1.0) {
-        /* Sampled after the cut-off (tau outside [0, 1]): nothing to guide. */
-        hold_correction(ctx, nav->t_s, tau);
-        ctx->flags = OGK_NOG_FLAG_SAFE;
-        fill_sample(ctx, out);
+        /* Sampled after the predicted cut-off (tau outside [0, 1]): nothing to
+         * guide, and nothing to commit (a wrong time tag must not stop the
+         * engine; the commands stop it at the predicted cut-off anyway). */
+        safe_sample(ctx, nav->t_s, true, out);
         return OGK_E_RANGE;
     }
+    before = *ctx;
+    ctx->flags = 0u;
     ctx->n_samples += 1u;
     /* End-game: past the last node with gains, or inside the freeze margin. */
     if (tau >= tbl->tau[tbl->n_grid - 2u] || 1.0 - tau < ctx->cfg.tau_freeze) {
         hold_correction(ctx, nav->t_s, tau);
         ctx->flags = OGK_NOG_FLAG_FROZEN;
         fill_sample(ctx, out);
-        return OGK_OK;
+    } else {
+        double x_star[NX];
+        double dx[NX];
+        size_t i;
+        ctx->t_k_s = nav->t_s;
+        ctx->tau_k = tau;
+        hermite(tbl, tau, OGK_NOG_OFF_X, OGK_NOG_OFF_XDOT, NX, x_star);
+        for (i = 0u; i < NX; ++i) {
+            dx[i] = nav_v[i] - x_star[i];
+        }
+        dx[IDX_XI] = ogk_i_wrap_pi(dx[IDX_XI]);
+        /* x*[6] = t_f* tau: dx[6] is the real-time mismatch t_k - t_f* tau_k. */
+        good = compute_correction(ctx, dx);
+        if (good) {
+            fill_sample(ctx, out);
+            memcpy(out->dx, dx, sizeof dx);
+        }
     }
-    ctx->t_k_s = nav->t_s;
-    ctx->tau_k = tau;
-    hermite(tbl, tau, OGK_NOG_OFF_X, OGK_NOG_OFF_XDOT, NX, x_star);
-    for (i = 0u; i < NX; ++i) {
-        dx[i] = nav_v[i] - x_star[i];
+    if (!good || !sample_finite(out)) {
+        /* Finite input, non-finite correction or output: back to the last
+         * good sample, and its correction is what flies. */
+        *ctx = before;
+        memset(out, 0, sizeof *out);
+        safe_sample(ctx, nav->t_s, true, out);
+        return OGK_E_SAFE_COMMAND;
     }
-    dx[IDX_XI] = ogk_i_wrap_pi(dx[IDX_XI]);
-    /* x*[6] = t_f* tau: dx[6] is the real-time mismatch t_k - t_f* tau_k. */
-    compute_correction(ctx, dx);
-    fill_sample(ctx, out);
-    memcpy(out->dx, dx, sizeof dx);
+    ctx->hold_alpha_rad = out->alpha_rad;
+    ctx->hold_beta_rad = out->beta_rad;
     return OGK_OK;
 }
 
@@ -499,16 +613,18 @@ static double tau_at(const ogk_nog_t *ctx, double t_s, ogk_status *st)
     } else if (t_s < ctx->t_k_s) {
         *st = OGK_E_RANGE;
     }
+    /* t_s - t_k_s is finite (both finite, t_s >= t_k_s >= 0) and t_f >=
+     * t_f* / 2 > 0: tau is finite or +inf, and +inf is clamped to 1. */
     return (*st == OGK_OK) ? ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s : ctx->tau_k;
 }
 
 ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
 {
-    double lam[NX];
     double tau;
     uint32_t law;
     uint32_t flags = OGK_THRUST_FLAG_ENGINE_ON;
     ogk_status st;
+    bool readable;
 
     if (ctx == NULL || out == NULL) {
         return OGK_E_NULL;
@@ -517,8 +633,12 @@ ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *o
     if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
         return OGK_E_NOT_INIT;
     }
+    readable = table_current(ctx);
     tau = tau_at(ctx, t_s, &st);
     law = ctx->flags & (OGK_NOG_FLAG_FROZEN | OGK_NOG_FLAG_LIMITED | OGK_NOG_FLAG_SAFE);
+    if (!readable) {
+        st = OGK_E_TABLE_STALE; /* the cut-off time above needs no table */
+    }
     if (st != OGK_OK) {
         law |= OGK_NOG_FLAG_SAFE;
     }
@@ -527,17 +647,30 @@ ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *o
         law |= OGK_NOG_FLAG_CUTOFF;
         flags = 0u;
     }
+    out->t_s = (isfinite(t_s) && t_s >= ctx->t_k_s) ? t_s : ctx->t_k_s;
+    out->alpha_rad = ctx->hold_alpha_rad;
+    out->beta_rad = ctx->hold_beta_rad;
+    if (readable) {
+        double lam[NX];
+        costate_at(ctx, tau, lam);
+        angles_from_costate(lam, &out->alpha_rad, &out->beta_rad);
+        if (!isfinite(out->alpha_rad) || !isfinite(out->beta_rad)) {
+            out->alpha_rad = ctx->hold_alpha_rad;
+            out->beta_rad = ctx->hold_beta_rad;
+            law |= OGK_NOG_FLAG_SAFE;
+            if (st == OGK_OK) {
+                st = OGK_E_SAFE_COMMAND;
+            }
+        }
+    }
     if ((law & OGK_NOG_FLAG_SAFE) != 0u) {
         flags |= OGK_THRUST_FLAG_SAFE;
     }
     if ((law & OGK_NOG_FLAG_LIMITED) != 0u) {
         flags |= OGK_THRUST_FLAG_LIMITED;
     }
-    out->t_s = (st == OGK_OK) ? t_s : ctx->t_k_s;
     out->flags = flags;
     out->law_flags = law;
-    costate_at(ctx, tau, lam);
-    angles_from_costate(lam, &out->alpha_rad, &out->beta_rad);
     return st;
 }
 
@@ -551,6 +684,9 @@ ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau)
     }
     if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
         return OGK_E_NOT_INIT;
+    }
+    if (!table_current(ctx)) {
+        return OGK_E_TABLE_STALE;
     }
     v = tau_at(ctx, t_s, &st);
     if (st != OGK_OK) {

@@ -30,6 +30,7 @@ ogk_status ogk_status_name(ogk_status code, const char **name)
         "OGK_E_NOT_CONVERGED",
         "OGK_E_SAFE_COMMAND",
         "OGK_E_ALIGN",
+        "OGK_E_TABLE_STALE",
     };
     if (name == NULL) {
         return OGK_E_NULL;

@@ -3,6 +3,7 @@
  * thrust angle ALPHA0, and sparse gains. */
 #include "ogk_test.h"
 
+#include <float.h>
 #include <string.h>
 
 #include "ogk/nog.h"
@@ -266,14 +267,18 @@ static void test_bad_navigation_gives_safe_command(void **state)
     OGK_ASSERT_NEAR(s.t_f_s, 103.0, 1e-12);            /* last valid correction held */
     OGK_ASSERT_NEAR(s.tau_k, 2.0 / 103.0, 1e-15);      /* tau still advanced */
     OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
-    nav = nav_at(1.0, 0.01); /* time going backwards */
+    nav = nav_at(0.0, 0.0); /* time not after the last good sample */
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 1.0, &c), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, -1.0, &c), OGK_E_RANGE);
     assert_true((c.law_flags & OGK_NOG_FLAG_SAFE) != 0u);
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
     OGK_ASSERT_STATUS(ogk_nog_command(&nog, NAN, &c), OGK_E_NONFINITE);
-    /* The context is still usable: a good sample goes through. */
+    /* A rejected sample does not move the context: a good sample at t = 1,
+     * after the last good one (0) but before the rejected one (2), flies. */
+    nav = nav_at(1.0, 1.0 / 103.0);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    assert_true((s.flags & OGK_NOG_FLAG_SAFE) == 0u);
     nav = nav_at(4.0, 4.0 / 103.0);
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) == 0u);
@@ -430,6 +435,224 @@ static void test_reset(void **state)
     fly_both(&nog, &fresh);
 }
 
+
+/* Every double of a sample is finite. */
+static int sample_is_finite(const ogk_nog_sample_t *s)
+{
+    size_t i;
+    int ok = isfinite(s->tau_k) && isfinite(s->tau_next) && isfinite(s->t_f_s) &&
+             isfinite(s->dt_f_s) && isfinite(s->t_cutoff_s) && isfinite(s->alpha_rad) &&
+             isfinite(s->beta_rad);
+    for (i = 0u; i < 7u; ++i) {
+        ok = ok && isfinite(s->dx[i]);
+    }
+    return ok;
+}
+
+/* After a reload of its table, good or failed, a context answers
+ * OGK_E_TABLE_STALE with the last good sample's angles and never reads the
+ * (empty) grid; re-init makes it usable again. */
+static void check_stale(ogk_nog_t *ctx, double held_beta)
+{
+    ogk_nog_nav_t nav = nav_at(30.0, 0.3);
+    ogk_nog_sample_t s;
+    ogk_thrust_cmd_t c;
+    double tau = -1.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(ctx, &nav, &s), OGK_E_TABLE_STALE);
+    assert_true(sample_is_finite(&s));
+    assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
+    OGK_ASSERT_NEAR(s.beta_rad, held_beta, 0.0);
+    OGK_ASSERT_STATUS(ogk_nog_command(ctx, 31.0, &c), OGK_E_TABLE_STALE);
+    assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad));
+    OGK_ASSERT_NEAR(c.beta_rad, held_beta, 0.0);
+    assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
+    assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u); /* before the predicted cut-off */
+    OGK_ASSERT_STATUS(ogk_nog_command(ctx, 500.0, &c), OGK_E_TABLE_STALE);
+    assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u); /* and off after it */
+    OGK_ASSERT_STATUS(ogk_nog_tau_at(ctx, 31.0, &tau), OGK_E_TABLE_STALE);
+    OGK_ASSERT_STATUS(ogk_nog_reset(ctx), OGK_E_TABLE_STALE);
+}
+
+static void test_stale_table_after_failed_reload(void **state)
+{
+    ogk_nog_config_t cfg = config();
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    double beta;
+    (void)state;
+    nav.v_n_mps = 2.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    beta = s.beta_rad;
+    buf[OGK_TABLE_HEADER_SIZE + 100u] ^= 0x01u; /* the uplinked copy is corrupt */
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_E_TABLE_CRC);
+    assert_int_equal(table.n_grid, 0u);
+    check_stale(&nog, beta);
+    /* A good reload does not revive the old binding either: re-init does. */
+    buf[OGK_TABLE_HEADER_SIZE + 100u] ^= 0x01u;
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
+    check_stale(&nog, beta);
+    OGK_ASSERT_STATUS(ogk_nog_init(&nog, &cfg), OGK_OK);
+    nav = nav_at(30.0, 0.3);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+}
+
+static void test_stale_view_after_failed_reload(void **state)
+{
+    ogk_nog_table_view_t view;
+    ogk_nog_config_t cfg = config();
+    ogk_nog_t ctx;
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    double beta;
+    (void)state;
+    memset(&view, 0, sizeof view);
+    memcpy(vbuf.b, buf, TABLE_BYTES);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES), OGK_OK);
+    cfg.table = NULL;
+    cfg.view = &view;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    nav.v_n_mps = 2.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&ctx, &nav, &s), OGK_OK);
+    beta = s.beta_rad;
+    /* The flash image is rewritten and fails validation: the view is zeroed. */
+    vbuf.b[OGK_TABLE_HEADER_SIZE + 100u] ^= 0x01u;
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES), OGK_E_TABLE_CRC);
+    check_stale(&ctx, beta);
+    vbuf.b[OGK_TABLE_HEADER_SIZE + 100u] ^= 0x01u;
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES), OGK_OK);
+    check_stale(&ctx, beta);
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    nav = nav_at(30.0, 0.3);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&ctx, &nav, &s), OGK_OK);
+}
+
+/* Finite input outside the envelope of ogk/nog.h: OGK_E_RANGE before any
+ * arithmetic, every output finite, the nominal (no correction yet) flown. */
+static void test_envelope_rejects_absurd_inputs(void **state)
+{
+    ogk_nog_sample_t s;
+    ogk_thrust_cmd_t c;
+    unsigned k;
+    (void)state;
+    for (k = 0u; k < 12u; ++k) {
+        ogk_nog_nav_t nav = nav_at(10.0, 0.1);
+        switch (k) {
+        case 0u: nav.phi_rad = 1.7e308; break;
+        case 1u: nav.t_s = DBL_MAX; break;
+        case 2u: nav.t_s = 2.0 * TF_STAR + 10.0 + 1e-9; break; /* 2 t_f* + dtf_max */
+        case 3u: nav.r_m = 1.0e9 * (1.0 + 1e-15); break;
+        case 4u: nav.r_m = 0.0; break;
+        case 5u: nav.phi_rad = -OGK_NOG_PHI_MAX_RAD; break;
+        case 6u: nav.xi_rad = 1.0e4 * (1.0 + 1e-15); break;
+        case 7u: nav.v_r_mps = -1.0e5 * (1.0 + 1e-15); break;
+        case 8u: nav.v_t_mps = 1.0e300; break;
+        case 9u: nav.v_n_mps = 1.0e5 * (1.0 + 1e-15); break;
+        case 10u: nav.t_s = -DBL_MIN; break;
+        default: nav.xi_rad = -DBL_MAX; break;
+        }
+        OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
+        assert_true(sample_is_finite(&s));
+        assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
+        OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
+        OGK_ASSERT_NEAR(s.beta_rad, 0.0, 1e-12);
+        OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0);
+        OGK_ASSERT_STATUS(ogk_nog_command(&nog, 10.0, &c), OGK_OK);
+        assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad));
+    }
+    /* On the envelope's edges the sample is good. */
+    {
+        ogk_nog_nav_t nav = nav_at(10.0, 0.1);
+        nav.v_n_mps = 1.0e5;
+        nav.xi_rad = 1.0e4;
+        OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+        assert_true(sample_is_finite(&s));
+    }
+    /* Commands far in the future are finite, with the engine off. */
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, DBL_MAX, &c), OGK_OK);
+    assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad) && isfinite(c.t_s));
+    assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u);
+}
+
+/* One bad sample (absurd time, a time past the cut-off, NaN) latches
+ * nothing: the next good sample flies as if it had not been taken. */
+static void test_one_bad_sample_does_not_latch(void **state)
+{
+    static const double bad_t[3] = {1.0e6, 150.0, 3.0};
+    ogk_nog_config_t cfg = config();
+    ogk_nog_t ref;
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s, sr;
+    ogk_thrust_cmd_t c, cr;
+    unsigned k;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ref, &cfg), OGK_OK);
+    nav.v_t_mps += 1.5;
+    nav.v_n_mps = 2.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&ref, &nav, &sr), OGK_OK);
+    for (k = 0u; k < 3u; ++k) {
+        const double t_good = 2.0 * (double)(k + 1u);
+        nav = nav_at(bad_t[k], bad_t[k] / TF_STAR);
+        if (k == 2u) {
+            nav.v_t_mps = NAN;
+        }
+        OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s),
+                          (k == 2u) ? OGK_E_NONFINITE : OGK_E_RANGE);
+        assert_true(sample_is_finite(&s));
+        assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
+        OGK_ASSERT_STATUS(ogk_nog_command(&nog, t_good - 1.0, &c), OGK_OK);
+        assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u); /* engine not cut off */
+        assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
+        nav = nav_at(t_good, t_good / TF_STAR);
+        nav.v_t_mps += 1.5;
+        OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nog_sample(&ref, &nav, &sr), OGK_OK);
+        assert_true((s.flags & OGK_NOG_FLAG_SAFE) == 0u);
+        assert_true(memcmp(&s, &sr, sizeof s) == 0);
+        OGK_ASSERT_STATUS(ogk_nog_command(&nog, t_good + 1.0, &c), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nog_command(&ref, t_good + 1.0, &cr), OGK_OK);
+        assert_true(memcmp(&c, &cr, sizeof c) == 0);
+    }
+}
+
+/* A valid-CRC table whose gains are 1e308: finite input, overflowing
+ * correction. The step reports it and flies the last good correction. */
+static void test_huge_gains_give_safe_command(void **state)
+{
+    ogk_nog_config_t cfg = config();
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    ogk_thrust_cmd_t c;
+    size_t k;
+    (void)state;
+    for (k = 0u; k + 1u < GRID; ++k) {
+        const size_t row = OGK_TABLE_HEADER_SIZE + 8u * (GRID + k * OGK_NOG_ENTRY_LEN);
+        tw_put_f64(buf + row + 8u * (OGK_NOG_OFF_GAIN + 7u * 7u + 4u), 1.0e308);
+        tw_put_f64(buf + row + 8u * (OGK_NOG_OFF_GAIN + 5u * 7u + 5u), 1.0e308);
+    }
+    tw_seal(buf, N_VALUES);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_init(&nog, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK); /* on the nominal: dx = 0 */
+    nav = nav_at(2.0, 0.02);
+    nav.v_t_mps += 10.0;
+    nav.v_n_mps = 10.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_SAFE_COMMAND);
+    assert_true(sample_is_finite(&s));
+    assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
+    OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0);   /* the last good (nominal) correction */
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
+    OGK_ASSERT_NEAR(s.beta_rad, 0.0, 1e-12);
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 3.0, &c), OGK_OK);
+    assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad));
+    assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
+    /* Small enough a displacement, and the same table flies again. */
+    nav = nav_at(4.0, 0.04);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    assert_true(sample_is_finite(&s));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -445,6 +668,11 @@ int main(void)
         cmocka_unit_test_setup(test_table_view_in_place, setup),
         cmocka_unit_test_setup(test_table_view_rejections, setup),
         cmocka_unit_test_setup(test_reset, setup),
+        cmocka_unit_test_setup(test_stale_table_after_failed_reload, setup),
+        cmocka_unit_test_setup(test_stale_view_after_failed_reload, setup),
+        cmocka_unit_test_setup(test_envelope_rejects_absurd_inputs, setup),
+        cmocka_unit_test_setup(test_one_bad_sample_does_not_latch, setup),
+        cmocka_unit_test_setup(test_huge_gains_give_safe_command, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

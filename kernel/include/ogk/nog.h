@@ -69,12 +69,23 @@ typedef struct {
     double entry[OGK_NOG_MAX_GRID * OGK_NOG_ENTRY_LEN];  /* [SI] rows as documented above */
     size_t n_grid;                                       /* [-] nodes in use; 0 = no valid table */
     double t_f_star_s;                                   /* [s] nominal flight time */
+    uint32_t generation;                                 /* [-] bumped by every ogk_nog_table_load, good or failed: a bound context compares it with the value it recorded at init */
 } ogk_nog_table_t;
+
+/* Largest nominal flight time a table may carry [s] (~32 years): far above any
+ * burn, low enough that every time bound derived from t_f* stays finite. */
+#define OGK_NOG_TF_MAX_S 1.0e9
 
 /* Decodes and validates a table file (ogk/table.h format, kind
  * OGK_NOG_TABLE_KIND, one dimension OGK_NOG_ENTRY_LEN): CRC, dims, grid from 0
- * to 1, a single consistent t_f* > 0 (x*' of the time state). On failure the
- * table is left empty (n_grid = 0) and the specific code returned. */
+ * to 1, a single consistent t_f* in (0, OGK_NOG_TF_MAX_S] (x*' of the time
+ * state). On failure the table is left empty (n_grid = 0) and the specific
+ * code returned. Every call, good or failed, first bumps table->generation
+ * (unsigned wrap-around; its first value is whatever the struct holds, zero
+ * for static storage): every context bound to the table is then stale and
+ * answers OGK_E_TABLE_STALE, with its safe output, until re-initialised. The
+ * generation is read by the contexts, so never copy a table over a bound one
+ * (memcpy would also copy the counter): reload it with this function. */
 ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t len);
 
 /* Value of ogk_nog_table_view_t.init_marker in a validated view. */
@@ -89,6 +100,7 @@ typedef struct {
     size_t n_grid;         /* [-] nodes; 0 = no valid table */
     double t_f_star_s;     /* [s] nominal flight time */
     uint32_t init_marker;  /* [-] OGK_NOG_VIEW_MARKER once validated */
+    uint32_t generation;   /* [-] bumped by every ogk_nog_table_view on this struct, good or failed (stale-binding check, as ogk_nog_table_t.generation) */
 } ogk_nog_table_view_t;
 
 /* Validates buf[0..len-1] exactly as ogk_nog_table_load (magic, version, type,
@@ -99,16 +111,20 @@ typedef struct {
  * are; a big-endian target fails the grid check, OGK_E_TABLE_DIM). The payload
  * starts at offset OGK_TABLE_HEADER_SIZE = 48, a multiple of 8, so an aligned
  * buffer aligns every value. On failure the view is zeroed (unusable) and the
- * specific code returned. */
+ * specific code returned. Every call (also with buf NULL or failing) bumps
+ * view->generation, which every other field's reset keeps: contexts bound to
+ * the view are then stale (OGK_E_TABLE_STALE) until re-initialised. */
 ogk_status ogk_nog_table_view(ogk_nog_table_view_t *view, const uint8_t *buf, size_t len);
 
 /* Exactly one of table and view is set; neither is copied, both must outlive
  * the context, and a context must be re-initialised after the table it is
- * bound to is reloaded. */
+ * bound to is reloaded: every call checks the binding's generation first and
+ * a reloaded one (good or failed) gives OGK_E_TABLE_STALE, never a read of
+ * the new (possibly empty) grid through the old sizes. */
 typedef struct {
     const ogk_nog_table_t *table;     /* validated RAM table (ogk_nog_table_load), or NULL */
     const ogk_nog_table_view_t *view; /* validated in-place view (ogk_nog_table_view), or NULL */
-    double sample_interval_s;     /* [s] Delta t_S, > 0 (default 2 s, the paper's sec. 6) */
+    double sample_interval_s;     /* [s] Delta t_S, > 0 and <= t_f* (default 2 s, the paper's sec. 6) */
     double dtf_max_s;             /* [s] bound on |dt_f|, > 0 and <= t_f* / 2 (default 40 s) */
     double du_max_rad;            /* [rad] bound on the angle between corrected and nominal thrust directions, (0, pi] (default pi/3) */
     double tau_freeze;            /* [-] no new correction when 1 - tau_k < tau_freeze, [0, 1) (default 0) */
@@ -148,8 +164,11 @@ typedef struct {
     double t_f_s;                    /* [s] t_f in force */
     double dlam_k[OGK_NOG_NX];       /* [costate units] dlam at tau_k */
     double dlam_rate[OGK_NOG_NX];    /* [costate units] d(dlam)/dtau held over the interval */
-    uint32_t n_samples;              /* [-] samples taken */
+    double hold_alpha_rad;           /* [rad] in-plane angle of the last good sample (nominal at tau = 0 before): flown when the table cannot be read (stale) or the costate overflows */
+    double hold_beta_rad;            /* [rad] out-of-plane angle, as hold_alpha_rad */
+    uint32_t n_samples;              /* [-] good samples taken */
     uint32_t flags;                  /* [-] OGK_NOG_FLAG_* of the current sample */
+    uint32_t table_generation;       /* [-] generation of the bound table (or view) at init */
     uint32_t init_marker;            /* [-] OGK_NOG_INIT_MARKER after a successful init */
 } ogk_nog_t;
 
@@ -158,21 +177,57 @@ typedef struct {
 ogk_status ogk_nog_config_default(ogk_nog_config_t *cfg);
 
 /* Checks the configuration and resets the context to the nominal (tau = 0,
- * t_f = t_f*, no correction). OGK_E_NULL (ctx, cfg, or both table and view
- * NULL), OGK_E_CONFIG for bad settings or both table and view set,
+ * t_f = t_f*, no correction), recording the table's generation. OGK_E_NULL
+ * (ctx, cfg, or both table and view NULL), OGK_E_CONFIG for bad settings
+ * (ranges in ogk_nog_config_t) or both table and view set,
  * OGK_E_NOT_INIT for an empty table or an unvalidated view; the context is
  * then unusable (init_marker 0) until a good init. */
 ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg);
 
 /* Back to the state right after ogk_nog_init (nominal, no sample taken),
- * configuration and table binding kept. OGK_E_NULL, OGK_E_NOT_INIT. */
+ * configuration and table binding kept. OGK_E_NULL, OGK_E_NOT_INIT,
+ * OGK_E_TABLE_STALE (the table was reloaded: re-initialise instead). */
 ogk_status ogk_nog_reset(ogk_nog_t *ctx);
 
-/* One guidance sample. On bad navigation input (NaN/Inf, time not after the
- * previous sample, r <= 0, or a time past the cut-off, i.e. tau > 1:
- * OGK_E_NONFINITE / OGK_E_RANGE) returns the specific code, sets
- * OGK_NOG_FLAG_SAFE, keeps the last valid correction (the nominal before the
- * first) and advances tau with the t_f in force: out holds that safe sample. */
+/* Navigation envelope of ogk_nog_sample, checked before any arithmetic
+ * (OGK_E_RANGE outside; NaN/Inf is OGK_E_NONFINITE). Physically generous on
+ * purpose: only values no vehicle flown by this law can have are rejected,
+ * and every product with the table's finite gains stays far from overflow.
+ *   r_m      (0, 1e9] m      ~2.6 x the lunar distance; > 0: the spherical
+ *                             coordinates are singular at the centre
+ *   xi_rad   |xi| <= 1e4 rad  longitude, may be unwrapped over revolutions
+ *                             (the kernel's OGK_ANGLE_LIMIT: the wrap is exact)
+ *   phi_rad  |phi| < pi/2     latitude; the poles are singular in r-t-n
+ *   v_*_mps  |v| <= 1e5 m/s   ~9 x Earth escape speed at the surface
+ *   t_s      [0, 2 t_f* + dtf_max_s] s  t = 0 is the nominal ignition; no
+ *                             cut-off can come after t_f* + dtf_max (t_f is
+ *                             clipped there), and one more t_f* separates a
+ *                             late sample (past the cut-off: tau > 1) from a
+ *                             corrupted time tag; both are rejected */
+#define OGK_NOG_R_MAX_M 1.0e9
+#define OGK_NOG_XI_MAX_RAD 1.0e4
+#define OGK_NOG_PHI_MAX_RAD 1.5707963267948966
+#define OGK_NOG_V_MAX_MPS 1.0e5
+
+/* One guidance sample. Rejected samples: the table was reloaded
+ * (OGK_E_TABLE_STALE); NaN/Inf input (OGK_E_NONFINITE); input outside the
+ * envelope above, time not after the previous good sample, or a time past
+ * the predicted cut-off, i.e. tau > 1 (OGK_E_RANGE); a correction or output
+ * that is not finite although the input is (gains too large for this
+ * displacement: OGK_E_SAFE_COMMAND). A rejected sample sets
+ * OGK_NOG_FLAG_SAFE (also in the commands until the next good sample) and
+ * out holds the safe sample: the last good correction (the nominal before
+ * the first) with its first-order hold, evaluated at the sample's time when
+ * that time is usable (finite, in the envelope, after the last good sample,
+ * tau <= 1), else at the last good sample; when the table cannot be read
+ * (stale) or the costate overflows, the last good sample's angles. A
+ * rejected sample does not move the context (time, tau, correction, t_f):
+ * the next good sample is judged against the last good one, so one bad
+ * sample latches nothing. What does latch is the cut-off: it is predicted
+ * by the last good sample (eq. 32: the last good sample whose interval is
+ * terminating fixes it), the commands clear ENGINE_ON from that time on, and
+ * no later sample can reopen it, since every later one has tau > 1. Every
+ * output (tau, t_f, cut-off time, dx, angles) is finite whatever the status. */
 ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sample_t *out);
 
 /* Thrust-direction command at time t_s (>= the current sample's time; before
@@ -181,13 +236,18 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sa
  * and law_flags = OGK_NOG_FLAG_* (FROZEN, LIMITED, SAFE, CUTOFF). OGK_E_RANGE
  * for a time before the current sample (out then holds the command at the
  * sample time, flagged SAFE); OGK_E_NONFINITE for a non-finite time (same safe
- * command). */
+ * command). Any finite later time is valid (far past the cut-off the engine
+ * is simply off). OGK_E_TABLE_STALE: the table was reloaded; out holds the
+ * last good sample's angles, flagged SAFE, ENGINE_ON until the predicted
+ * cut-off (computed without the table). OGK_E_SAFE_COMMAND: the costate at t
+ * is not finite (table values too large); same held angles. The angles are
+ * finite whatever the status. */
 ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out);
 
 /* *tau = normalised time of eq. (31) at t_s >= the current sample's time with
  * the t_f in force (clamped to 1 after the cut-off), for telemetry.
- * OGK_E_NULL, OGK_E_NOT_INIT, OGK_E_NONFINITE, OGK_E_RANGE (t_s before the
- * current sample). */
+ * OGK_E_NULL, OGK_E_NOT_INIT, OGK_E_TABLE_STALE, OGK_E_NONFINITE, OGK_E_RANGE
+ * (t_s before the current sample). */
 ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau);
 
 #ifdef __cplusplus

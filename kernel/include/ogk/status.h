@@ -31,7 +31,8 @@ typedef enum {
     OGK_E_NOT_CONVERGED = 20,   /* an iteration did not converge within its bound */
     OGK_E_SAFE_COMMAND = 21,    /* no correction computed: output holds the defined safe command */
     OGK_E_ALIGN = 22,           /* buffer not aligned as the in-place reader requires */
-    OGK_STATUS_COUNT = 23
+    OGK_E_TABLE_STALE = 23,     /* the table a context is bound to was reloaded since init: re-init */
+    OGK_STATUS_COUNT = 24
 } ogk_status;
 
 /* Stores in *name the code's identifier ("OGK_E_DIM", ...). Unknown codes
