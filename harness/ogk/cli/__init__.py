@@ -3,7 +3,10 @@ exposing `register(subparsers)`, which adds its parser and sets `func`
 (args -> exit code). To add one, write the module and list it in SUBCOMMANDS.
 Scenario commands (tables, mc, cases) dispatch to the scenario's mission family
 (ogk.missions.registry). Bad input ends with one line naming the file, key and
-reason and exit code 2 (a traceback only with --debug)."""
+reason and exit code 2; a campaign aborted by a fault (a run raised, a worker died, the
+watchdog fired: ogk.sil.runner.CampaignAborted) with one line naming the runs and the status and
+exit code 1; an interrupted one (Ctrl-C, SIGTERM) with one line and exit code 130 (a traceback
+only with --debug)."""
 from __future__ import annotations
 
 import argparse
@@ -12,6 +15,8 @@ import sys
 from collections.abc import Sequence
 
 from ogk_host.errors import OgkInputError
+
+from ogk.sil.runner import CampaignAborted, CampaignInterrupted
 
 SUBCOMMANDS: tuple[str, ...] = (
     "ogk.cli.cmd_version",
@@ -50,6 +55,16 @@ def main(argv: Sequence[str] | None = None) -> int:
             raise
         print(f"ogk {args.command}: {err.line()}", file=sys.stderr)
         return 2
+    except CampaignAborted as err:
+        if args.debug:
+            raise
+        print(f"ogk {args.command}: {err.line()}", file=sys.stderr)
+        return 130 if isinstance(err, CampaignInterrupted) else 1
+    except KeyboardInterrupt:
+        if args.debug:
+            raise
+        print(f"ogk {args.command}: interrupted", file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":

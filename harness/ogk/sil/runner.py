@@ -63,6 +63,13 @@ class CampaignAborted(RuntimeError):
         return (type(self), (self.reason, self.run_ids, self.status))
 
 
+class CampaignInterrupted(CampaignAborted):
+    """Ctrl-C or SIGTERM during the flight (the mission says where the finished runs are)."""
+
+    def line(self) -> str:
+        return f"campaign interrupted: {self.reason}"
+
+
 @dataclasses.dataclass(frozen=True)
 class Watchdog:
     """Wall-time limit of one chunk: `base_s + per_run_s * runs in the chunk`."""

@@ -13,7 +13,7 @@ from ogk_host.orbit_injection.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.orbit_injection.scenario import load_scenario
 from ogk_host.scenario_file import ScenarioHeader, table_dir_for
 
-from ogk.sil.outputs import check_output_dir, check_output_file
+from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale
 
 LAWS = SCENARIO_LAWS
 
@@ -78,6 +78,24 @@ def add_mc_arguments(p: argparse.ArgumentParser) -> None:
                    help="CPD gain set (default: the scenario's flown set)")
     p.add_argument("--cpd-pointing", choices=("body", "euler"), default="body",
                    help="CPD pitch/yaw error: body-axis (default) or eqs. 45-46 literally")
+    p.add_argument("--resume", action="store_true",
+                   help="keep the runs already in <json>.runs.jsonl (same scenario, seed and "
+                        "settings) and fly only the others: the result of an uninterrupted run")
+    p.add_argument("--chunk-runs", type=int, default=CHUNK_RUNS, metavar="K",
+                   help=f"at most K runs per chunk (default {CHUNK_RUNS}): finished chunks are "
+                        "kept in <json>.runs.jsonl as they complete")
+    p.add_argument("--watchdog-per-run", type=float, default=2.0, metavar="S",
+                   help="a chunk without a result after 120 s + S s per run is killed and the "
+                        "campaign aborted (default 2)")
+
+
+CHUNK_RUNS = 250
+
+
+def run_log_path(json_path: str | Path) -> Path:
+    """The campaign's run log, next to its JSON: <json>.runs.jsonl."""
+    p = Path(json_path)
+    return p.with_name(p.name + ".runs.jsonl")
 
 
 def _check_mc_args(args: argparse.Namespace) -> None:
@@ -94,7 +112,12 @@ def _check_mc_args(args: argparse.Namespace) -> None:
         raise OgkInputError(f"must be >= 1, got {args.truth_substeps}", key="--truth-substeps")
     if args.history_runs < 0:
         raise OgkInputError(f"must be >= 0, got {args.history_runs}", key="--history-runs")
+    if args.chunk_runs < 1:
+        raise OgkInputError(f"must be >= 1, got {args.chunk_runs}", key="--chunk-runs")
+    if not args.watchdog_per_run > 0.0:
+        raise OgkInputError(f"must be > 0 s, got {args.watchdog_per_run:g}", key="--watchdog-per-run")
     check_output_file(args.json, "--json")
+    check_output_file(run_log_path(args.json), "--json")
     if args.plots:
         check_output_dir(args.plots, "--plots")
 
@@ -106,7 +129,10 @@ def mc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     from .report import format_report
     from .sil import SilSettings
 
+    from ogk.sil.runner import Watchdog
+
     _check_mc_args(args)
+    remove_stale(args.json)          # no earlier result left looking new, whatever happens next
     scn = load_scenario(header.path)
     if args.guidance == "nog":
         tables = prepare_tables(scn, Path(args.tables) if args.tables else None)
@@ -119,8 +145,12 @@ def mc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     res = run_campaign(scn, runs=args.runs, seed=args.seed, workers=args.workers,
                        dispersions=not args.no_dispersions, truth=args.truth,
                        guidance_factory=factory, guidance_name=args.guidance, settings=settings,
-                       header=header, tables=tables)
+                       header=header, tables=tables, chunk_runs=args.chunk_runs,
+                       watchdog=Watchdog(per_run_s=args.watchdog_per_run),
+                       run_log=run_log_path(args.json), resume=args.resume)
     print(format_report(res))
+    if res.resumed_runs:
+        print(f"\n{res.resumed_runs} of {res.runs} runs taken from {run_log_path(args.json)}")
     res.write_json(args.json)
     print(f"\nwrote {args.json}")
     if args.plots:

@@ -5,10 +5,16 @@ The same (seed, run id) gives the same numbers whatever the number of runs, work
 every run draws from its own generator (dispersions.py), and every truth/control operation is
 elementwise over runs. Workers are forked processes (the nominal is solved once, before the fork);
 each chunk builds its own guidance with `guidance_factory(GuidanceSetup(...))`.
+
+Faults (a kernel error, a dead worker, the watchdog) end the campaign with
+ogk.sil.runner.CampaignAborted; with a `run_log` every finished chunk's runs are appended to it as
+they complete (ogk.sil.runlog), and `resume=True` flies only the runs it does not hold yet, giving
+the same result as an uninterrupted campaign.
 """
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import json
 import math
 import time
@@ -24,8 +30,10 @@ from ogk_host.orbit_injection.scenario import LeoGeoScenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
 from ogk.sil.criteria import apply_tolerances, failure_list, failure_reasons, statistics
+from ogk.sil.outputs import write_atomic
 from ogk.sil.report import finite_or_none
-from ogk.sil.runner import run_chunks, run_ids_for
+from ogk.sil.runlog import RunLog
+from ogk.sil.runner import CampaignInterrupted, Watchdog, run_chunks, run_ids_for
 
 from .dispersions import DispersionSwitches, RunDraws, draw_runs
 from .guidance import GuidanceFactory, GuidanceSetup
@@ -63,6 +71,7 @@ class CampaignResult:
     scenario_path: str | None = None
     scenario_sha256: str | None = None
     tables: "NogTables | None" = None  #: the VTD-NOG tables flown (None: open-loop reference)
+    resumed_runs: int = 0           #: runs taken from the run log of an interrupted campaign
 
     @property
     def flight_s(self) -> float:
@@ -136,6 +145,7 @@ class CampaignResult:
                        "flight_cpu_s": self.flight_cpu_s, "truth_steps": self.truth_steps,
                        "flight_ms_per_truth_step": 1e3 * self.flight_s / max(self.truth_steps, 1)},
             "workers": self.workers,
+            "resumed_runs": self.resumed_runs,
             "scenario_path": self.scenario_path,
             "scenario_sha256": self.scenario_sha256,
             "tolerances": tolerances(scn),
@@ -157,8 +167,8 @@ class CampaignResult:
         return finite_or_none(out)
 
     def write_json(self, path: str | Path, per_run: bool = True) -> None:
-        Path(path).parent.mkdir(parents=True, exist_ok=True)
-        Path(path).write_text(json.dumps(self.to_json_dict(per_run), indent=1) + "\n")
+        """Written atomically (temporary file + rename)."""
+        write_atomic(path, json.dumps(self.to_json_dict(per_run), indent=1) + "\n")
 
 
 def eq47_bounds(scn: LeoGeoScenario) -> dict[str, float]:
@@ -216,15 +226,69 @@ def _merge_history(parts: list[History | None]) -> History | None:
     return History(run_id=np.concatenate([p.run_id for p in parts]), t_s=longest.t_s, data=data)
 
 
+RUN_RECORD_FLOATS = ("d_state", "d_attitude_rad", "rates0_radps", "thrust_coeffs")
+
+
+def run_key(scenario: LeoGeoScenario, seed: int, truth: str, guidance: str,
+            switches: DispersionSwitches, settings: SilSettings, scenario_sha256: str | None,
+            tables: "NogTables | None") -> dict[str, Any]:
+    """What a run's numbers depend on besides its id: the run log's key (ogk.sil.runlog)."""
+    return {"schema": JSON_SCHEMA, "scenario_sha256": scenario_sha256,
+            "scenario_data_sha256": hashlib.sha256(repr(scenario).encode()).hexdigest(),
+            "seed": int(seed), "truth": truth, "guidance": guidance,
+            "dispersions": dataclasses.asdict(switches),
+            "settings": {"control_rate_hz": settings.control_rate_hz,
+                         "truth_substeps": settings.truth_substeps, "t_max_s": settings.t_max_s,
+                         "cpd_gains": settings.cpd_gains or scenario.cpd.flown,
+                         "cpd_pointing": settings.cpd_pointing},
+            "tables_sha256": None if tables is None else tables.sha256}
+
+
+def _run_records(draws: RunDraws, res: Any) -> list[dict[str, Any]]:
+    """One record per run of a chunk (the run log's lines); `failure` is the loop's reason, the
+    tolerances are applied when the campaign is assembled."""
+    return [{"run_id": int(draws.run_id[i]), "run_seed": int(draws.run_seed[i]),
+             "failure": res.failure[i],
+             "d_state": draws.d_state[i].tolist(), "d_attitude_rad": draws.d_attitude[i].tolist(),
+             "rates0_radps": draws.rates0[i].tolist(),
+             "thrust_coeffs": draws.thrust_coeffs[i].tolist(),
+             **{k: float(res.errors[k][i]) for k in ERROR_KEYS},
+             **{k: float(res.max_rates[k][i]) for k in RATE_KEYS}}
+            for i in range(draws.n_runs)]
+
+
+def _assemble(records: list[dict[str, Any]]) -> tuple[RunDraws, dict[str, F64], dict[str, F64],
+                                                      list[str]]:
+    draws = RunDraws(run_id=np.array([r["run_id"] for r in records], dtype=np.int64),
+                     run_seed=np.array([r["run_seed"] for r in records], dtype=np.uint64),
+                     d_state=np.array([r["d_state"] for r in records], dtype=np.float64),
+                     d_attitude=np.array([r["d_attitude_rad"] for r in records], dtype=np.float64),
+                     rates0=np.array([r["rates0_radps"] for r in records], dtype=np.float64),
+                     thrust_coeffs=np.array([r["thrust_coeffs"] for r in records],
+                                            dtype=np.float64))
+    errors = {k: np.array([r[k] for r in records], dtype=np.float64) for k in ERROR_KEYS}
+    rates = {k: np.array([r[k] for r in records], dtype=np.float64) for k in RATE_KEYS}
+    return draws, errors, rates, [str(r["failure"]) for r in records]
+
+
 def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 1,
                  dispersions: bool | DispersionSwitches = True, truth: str = "6dof",
                  guidance_factory: GuidanceFactory | None = None, guidance_name: str | None = None,
                  settings: SilSettings | None = None, run_ids: Sequence[int] | None = None,
                  chunks: int | None = None, header: ScenarioHeader | None = None,
-                 tables: "NogTables | None" = None) -> CampaignResult:
+                 tables: "NogTables | None" = None, *, chunk_runs: int | None = None,
+                 watchdog: Watchdog | None = None, run_log: str | Path | None = None,
+                 resume: bool = False) -> CampaignResult:
     """Flies `runs` runs (ids 0..runs-1, or the given `run_ids` to re-fly some of them) in
-    `chunks` chunks (default: one per worker) on `workers` forked processes. A run fails (reason
-    kept) when the kernel, the truth model or the scenario's acceptance tolerances say so."""
+    `chunks` chunks (default: one per worker; more when a chunk would exceed `chunk_runs` runs)
+    on `workers` forked processes. A run fails (reason kept) when the kernel, the truth model or
+    the scenario's acceptance tolerances say so.
+
+    `run_log`: file the finished runs are appended to as each chunk completes (ogk.sil.runlog);
+    `resume`: keep the runs of an existing run log of the same campaign and fly only the others
+    (runs whose histories are recorded, id < settings.history_runs, are flown again).
+    Raises CampaignAborted (a run raised, a worker died, `watchdog` fired) or CampaignInterrupted
+    (Ctrl-C / SIGTERM)."""
     from .guidance import NominalOpenLoopGuidance
     t_start = time.perf_counter()
     if guidance_factory is None:
@@ -242,22 +306,45 @@ def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 
         raise TableError(f"tables made for t_f* = {tables.t_f_star_s:.6f} s, the scenario's nominal "
                          f"is {ref.tf_s:.6f} s: regenerate them with `ogk tables`",
                          path=tables.directory)
-    job = _Job(scenario, ref, int(seed), switches, settings, guidance_factory)
-    outs, workers, flight_cpu_s = run_chunks(job, ids, workers, chunks)
-    draws = RunDraws.concatenate([d for d, _ in outs])
-    results = [r for _, r in outs]
-    errors = {k: np.concatenate([r.errors[k] for r in results]) for k in ERROR_KEYS}
-    rates = {k: np.concatenate([r.max_rates[k] for r in results]) for k in RATE_KEYS}
-    failure = apply_tolerances(errors, tolerances(scenario),
-                               [f for r in results for f in r.failure])
     path = header.path if header is not None else scenario.path
+    sha = None if path is None else file_sha256(path)
+    log = None if run_log is None else RunLog(
+        run_log, run_key(scenario, seed, truth, str(name), switches, settings, sha, tables),
+        resume=resume)
+    records: dict[int, dict[str, Any]] = {} if log is None else dict(log.records)
+    todo = np.array([i for i in ids.tolist()
+                     if i not in records or i < settings.history_runs], dtype=np.int64)
+
+    def keep(chunk_ids: NDArray[np.int64], out: tuple[RunDraws, Any]) -> None:
+        recs = _run_records(*out)
+        if log is not None:
+            log.append(recs)
+        records.update((r["run_id"], r) for r in recs)
+
+    job = _Job(scenario, ref, int(seed), switches, settings, guidance_factory)
+    outs: list[tuple[RunDraws, Any]] = []
+    flight_cpu_s = 0.0
+    if todo.size:
+        try:
+            outs, workers, flight_cpu_s = run_chunks(job, todo, workers, chunks,
+                                                     chunk_runs=chunk_runs, watchdog=watchdog,
+                                                     on_chunk=keep)
+        except KeyboardInterrupt:
+            kept = sum(1 for i in ids.tolist() if i in records)
+            where = (f"{kept} of {ids.size} runs kept in {log.path}; the same command with "
+                     f"--resume flies the rest" if log is not None
+                     else f"{kept} of {ids.size} runs finished, no run log: lost")
+            raise CampaignInterrupted(where) from None
+    results = [r for _, r in outs]
+    draws, errors, rates, loop_failure = _assemble([records[i] for i in ids.tolist()])
+    failure = apply_tolerances(errors, tolerances(scenario), loop_failure)
     return CampaignResult(scenario=scenario, seed=int(seed), truth=truth, guidance=str(name),
                           switches=switches, settings=settings, nominal_tf_s=ref.tf_s, draws=draws,
                           errors=errors, max_rates=rates, failure=failure,
                           history=_merge_history([r.history for r in results]),
                           wall_time_s=time.perf_counter() - t_start, workers=workers,
                           nominal_solve_s=nominal_solve_s, flight_cpu_s=flight_cpu_s,
-                          truth_steps=max(r.truth_steps for r in results),
+                          truth_steps=max((r.truth_steps for r in results), default=0),
                           scenario_path=None if path is None else str(path),
-                          scenario_sha256=None if path is None else file_sha256(path),
+                          scenario_sha256=sha, resumed_runs=int(ids.size - todo.size),
                           tables=tables)

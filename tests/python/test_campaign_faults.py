@@ -1,0 +1,216 @@
+"""Campaigns that survive faults (harness/ogk/sil/runner.py, runlog.py; docs/sil.md): a kernel error
+in a worker and a killed worker end the campaign with one line naming the runs and the status, the
+watchdog ends a hung chunk, Ctrl-C keeps the finished runs and `--resume` completes the campaign
+bit for bit, and the per-run numbers do not depend on the worker count or the chunking.
+
+Nothing here may hang: in-process campaigns run under an alarm, `ogk mc` under subprocess
+timeouts."""
+from __future__ import annotations
+
+import dataclasses
+import functools
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ogk.bindings.kernel import KernelError
+from ogk.missions.orbit_injection import nog_guidance
+from ogk.missions.orbit_injection.campaign import run_campaign
+from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
+from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, NogTables, prepare_tables
+from ogk.sil.runner import CampaignAborted, Watchdog
+from ogk_host.orbit_injection.scenario import Acceptance, load_scenario
+
+REPO = Path(__file__).resolve().parents[2]
+OGK = [sys.executable, "-c", "import sys; from ogk.cli import main; sys.exit(main())"]
+SHORT = functools.partial(NominalOpenLoopGuidance, cutoff_s=12.0)   # 12 s burns: fast tests
+
+
+@pytest.fixture(autouse=True)
+def alarm():
+    """Every in-process test ends within 90 s (a hang is a failure, not a stuck job)."""
+    def expired(signum, frame):
+        raise TimeoutError("test took more than 90 s: a campaign hung")
+    old = signal.signal(signal.SIGALRM, expired)
+    signal.alarm(90)
+    yield
+    signal.alarm(0)
+    signal.signal(signal.SIGALRM, old)
+
+
+@pytest.fixture(scope="module")
+def scn():
+    """The paper's scenario with opened tolerances (the tests check the machinery)."""
+    return dataclasses.replace(load_scenario(), acceptance=Acceptance(1e12, 10.0, 1e9))
+
+
+@pytest.fixture(scope="module")
+def tables():
+    return prepare_tables(load_scenario())
+
+
+@pytest.fixture(scope="module")
+def corrupted(tables, tmp_path_factory):
+    """A copy of the scenario's tables with one byte of the bundle flipped (CRC no longer holds);
+    the campaign is handed it directly, so the parent's file check does not stop it first."""
+    d = tmp_path_factory.mktemp("bad_tables")
+    for p in tables.directory.iterdir():
+        if p.is_file():
+            shutil.copy(p, d / p.name)
+    bundle = d / tables.bundle.name
+    data = bytearray(bundle.read_bytes())
+    data[len(data) // 2] ^= 0x40
+    bundle.write_bytes(bytes(data))
+    return NogTables(d, bundle, tables.manifest, tables.sha256)
+
+
+def test_kernel_error_is_picklable():
+    import pickle
+    err = pickle.loads(pickle.dumps(KernelError(3, "ogk_nog_table_load", partial=lambda: 0)))
+    assert (err.code, err.func, err.partial) == (3, "ogk_nog_table_load", None)
+    assert err.name.startswith("OGK_E_")
+
+
+def test_corrupted_table_with_two_workers_aborts_naming_runs_and_status(scn, corrupted):
+    t0 = time.monotonic()
+    with pytest.raises(CampaignAborted) as info:
+        run_campaign(scn, runs=4, seed=1, workers=2, truth="point-mass",
+                     guidance_factory=KernelNogGuidance.for_tables(corrupted))
+    err = info.value
+    assert err.status is not None and err.status.startswith("OGK_E_TABLE")
+    line = str(err)
+    assert "\n" not in line and err.status in line and "ogk_nog_table_load" in line
+    assert line.startswith("campaign aborted: runs 0-1: ") or line.startswith(
+        "campaign aborted: runs 2-3: ")
+    assert time.monotonic() - t0 < 30.0
+
+
+def test_ogk_mc_prints_one_line_and_exits_1_when_a_worker_raises(corrupted, tmp_path, capsys,
+                                                                 monkeypatch):
+    from ogk.cli import main
+    monkeypatch.setattr(nog_guidance, "prepare_tables", lambda scn, directory=None: corrupted)
+    out = tmp_path / "mc.json"
+    out.write_text("{}\n")                             # a previous campaign's result
+    code = main(["mc", "leo-geo", "--runs", "4", "--seed", "1", "--workers", "2",
+                 "--truth", "point-mass", "--json", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 1 and len(err) == 1
+    assert err[0].startswith("ogk mc: campaign aborted: runs ") and "OGK_E_TABLE" in err[0]
+    assert not out.exists()                            # no stale JSON left looking new
+
+
+class _KillsItself(NominalOpenLoopGuidance):
+    """The worker holding run 3 is killed (SIGKILL) while it builds its guidance."""
+
+    def __init__(self, setup: GuidanceSetup) -> None:
+        if 3 in setup.run_ids.tolist():
+            os.kill(os.getpid(), signal.SIGKILL)
+        super().__init__(setup, cutoff_s=12.0)
+
+
+def test_killed_worker_is_reported_with_its_runs(scn, tmp_path):
+    log = tmp_path / "mc.json.runs.jsonl"
+    with pytest.raises(CampaignAborted) as info:
+        run_campaign(scn, runs=6, seed=1, workers=2, chunks=3, truth="point-mass",
+                     guidance_factory=_KillsItself, run_log=log)
+    line = str(info.value)
+    assert line.startswith("campaign aborted: runs 2-3: worker pid ")
+    assert "killed by SIGKILL" in line and "\n" not in line
+    assert info.value.run_ids == [2, 3]
+    kept = [json.loads(x)["run_id"] for x in log.read_text().splitlines()[1:]]
+    assert 2 not in kept and 3 not in kept             # what finished is kept, nothing else
+
+
+class _Hangs(NominalOpenLoopGuidance):
+    def __init__(self, setup: GuidanceSetup) -> None:
+        if 1 in setup.run_ids.tolist():
+            time.sleep(3600)
+        super().__init__(setup, cutoff_s=12.0)
+
+
+def test_watchdog_kills_a_hung_chunk(scn):
+    t0 = time.monotonic()
+    with pytest.raises(CampaignAborted) as info:
+        run_campaign(scn, runs=2, seed=1, workers=2, truth="point-mass", guidance_factory=_Hangs,
+                     watchdog=Watchdog(base_s=3.0, per_run_s=0.5))
+    assert str(info.value).startswith("campaign aborted: runs 1: watchdog: no result after 4 s")
+    assert time.monotonic() - t0 < 20.0
+
+
+def _per_run(res) -> str:
+    """Every per-run value of the JSON, as written (repr of each float: bit for bit)."""
+    return json.dumps(res.to_json_dict()["per_run"])
+
+
+@pytest.fixture(scope="module")
+def reference(scn, tables):
+    """Kernel VTD-NOG, point-mass truth, 6 dispersed runs (cut-offs 103.7-109.0 s: runs land on
+    different steps), 1 worker, 1 chunk."""
+    return run_campaign(load_scenario(), runs=6, seed=7, workers=1, truth="point-mass",
+                        guidance_factory=KernelNogGuidance.for_tables(tables),
+                        guidance_name="nog", tables=tables)
+
+
+def test_per_run_values_do_not_depend_on_workers_or_chunks(reference, tables):
+    tf = reference.errors["tf_s"]
+    assert np.unique(np.round(tf, 6)).size == tf.size      # every run lands on its own step
+    for workers, chunks in ((2, 2), (2, 3), (1, 3)):
+        other = run_campaign(load_scenario(), runs=6, seed=7, workers=workers, chunks=chunks,
+                             truth="point-mass", guidance_factory=KernelNogGuidance.for_tables(tables),
+                             guidance_name="nog", tables=tables)
+        assert _per_run(other) == _per_run(reference), (workers, chunks)
+        assert other.to_json_dict()["std"] == reference.to_json_dict()["std"]
+
+
+def _wait_for_runs(log: Path, proc: subprocess.Popen, n: int, timeout: float) -> int:
+    end = time.monotonic() + timeout
+    while time.monotonic() < end and proc.poll() is None:
+        if log.exists() and len(log.read_text().splitlines()) - 1 >= n:
+            return len(log.read_text().splitlines()) - 1
+        time.sleep(0.05)
+    raise AssertionError(f"no {n} runs in {log} (exit {proc.poll()})")
+
+
+def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(reference,
+                                                                              tmp_path):
+    out = tmp_path / "mc.json"
+    log = tmp_path / "mc.json.runs.jsonl"
+    out.write_text("{}\n")                              # a previous campaign's result
+    def command(seed: int) -> list[str]:
+        return [*OGK, "mc", "leo-geo", "--runs", "6", "--seed", str(seed), "--workers", "2",
+                "--chunk-runs", "1", "--truth", "point-mass", "--json", str(out)]
+    cmd = command(7)
+    proc = subprocess.Popen(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    try:
+        kept = _wait_for_runs(log, proc, 1, 60.0)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=30)
+    finally:
+        proc.kill()
+    lines = err.strip().splitlines()
+    assert proc.returncode == 130 and len(lines) == 1, err
+    assert lines[0].startswith("ogk mc: campaign interrupted: ") and "--resume" in lines[0]
+    assert not out.exists()
+    kept = len(log.read_text().splitlines()) - 1
+    assert 1 <= kept < 6
+    done = subprocess.run([*cmd, "--resume"], cwd=REPO, capture_output=True, text=True,
+                          timeout=90)
+    assert done.returncode in (0, 1), done.stderr      # 1: a run outside the tolerances
+    assert f"{kept} of 6 runs taken from" in done.stdout
+    doc = json.loads(out.read_text())
+    assert doc["resumed_runs"] == kept
+    assert json.dumps(doc["per_run"]) == _per_run(reference)
+    assert doc["std"] == reference.to_json_dict()["std"]
+    # another seed does not resume from this file: one line, exit 2
+    other = subprocess.run([*command(8), "--resume"], cwd=REPO,
+                           capture_output=True, text=True, timeout=60)
+    assert other.returncode == 2 and "belongs to another campaign (differs in seed)" in other.stderr
