@@ -89,6 +89,16 @@ static ogk_status check_config(const ogk_mpsp_config_t *cfg)
     if (grid_steps(cfg->tf - cfg->t0, cfg->h_max) > OGK_MPSP_MAX_STEPS) {
         return OGK_E_CONFIG; /* the dense trajectory would not fit */
     }
+    {
+        /* The basis phase omega (t - t_ref) must be finite over [t0, tf]: a period near the
+         * smallest double or a far t_ref overflows it and the basis would be NaN (found by
+         * tests/fuzz/fuzz_mpsp_init.c). */
+        const double omega = MPSP_TWO_PI / cfg->fourier_period;
+        if (!isfinite(omega) || !isfinite(omega * (cfg->t0 - cfg->fourier_t_ref)) ||
+            !isfinite(omega * (cfg->tf - cfg->fourier_t_ref))) {
+            return OGK_E_CONFIG;
+        }
+    }
     return OGK_OK;
 }
 

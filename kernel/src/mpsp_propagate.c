@@ -214,5 +214,11 @@ ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double
     if (lambda_v_dot != NULL) {
         mpsp_control_from_basis(&dyn, hdot, lambda_v_dot);
     }
+    /* Finite weights can still overflow the sum, and a time far from t_ref the phase (found by
+     * tests/fuzz/fuzz_mpsp_init.c): never OGK_OK with a non-finite output. */
+    if (!ogk_i_all_finite(lambda_v, OGK_MPSP_NU) ||
+        (lambda_v_dot != NULL && !ogk_i_all_finite(lambda_v_dot, OGK_MPSP_NU))) {
+        return OGK_E_NONFINITE;
+    }
     return OGK_OK;
 }

@@ -30,3 +30,39 @@ tidy: | apt
 	  echo "tidy: $$n finding(s) in kernel/src (full log: $(TIDY_LOG)); fix each or suppress it at its line with a reason"; \
 	  [ $$n -ne 0 ] || cat $(TIDY_LOG).err; exit 1; fi; \
 	echo "tidy: clang-tidy clean over kernel/src ($(words $(KSRC)) files; checks of .clang-tidy)"
+
+# ---------------------------------------------------------------- libFuzzer (clang 14, libclang-rt-14-dev)
+# One harness per entry point family (tests/fuzz/fuzz_*.c); the kernel is built with the fuzzer's
+# coverage instrumentation and ASan+UBSan (every UB report aborts). The committed corpus
+# (tests/fuzz/corpus/<target>/) seeds a working corpus in $(B)/fuzz/corpus/<target>, where the new
+# inputs go; crashes go to $(B)/fuzz/artifacts/.
+FUZZ_B := $(B)/fuzz
+FUZZ_CC ?= clang
+FUZZ_TARGETS := table nog_table nog_step cpd_step mpsp_init
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_CFLAGS := -std=c99 -O1 -g $(FUZZ_SAN) $(KINC) -Itests/unit
+FUZZ_KOBJ := $(patsubst kernel/src/%.c,$(FUZZ_B)/kernel/%.o,$(KSRC))
+FUZZ_BIN := $(patsubst %,$(FUZZ_B)/fuzz_%,$(FUZZ_TARGETS))
+FUZZ_SECONDS ?= 60
+FUZZ_SHORT_SECONDS ?= 10
+FUZZ_HDR := tests/fuzz/fuzz_common.h tests/unit/table_writer.h
+
+$(FUZZ_B)/kernel/%.o: kernel/src/%.c $(KHDR) | apt
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c $< -o $@
+$(FUZZ_B)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_HDR) $(FUZZ_KOBJ) | apt
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -Wall -Wextra -Werror -Wno-unused-function -fsanitize=fuzzer $< $(FUZZ_KOBJ) -lm -o $@
+
+.PHONY: fuzz fuzz-short fuzz-build fuzz-seeds
+fuzz-build: $(FUZZ_BIN)
+fuzz: $(FUZZ_BIN)
+	@tests/fuzz/run_fuzz.sh $(FUZZ_B) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+fuzz-short: $(FUZZ_BIN)
+	@tests/fuzz/run_fuzz.sh $(FUZZ_B) $(FUZZ_SHORT_SECONDS) $(FUZZ_TARGETS)
+
+# Regenerates the seeds of tests/fuzz/corpus (committed; run by hand after a format change).
+fuzz-seeds: tests/fuzz/gen_seeds.c $(FUZZ_HDR) $(HOST_OBJ) | apt
+	@mkdir -p $(FUZZ_B) $(patsubst %,tests/fuzz/corpus/%,$(FUZZ_TARGETS))
+	gcc -std=c99 -O1 -Wall -Wextra -Werror -Wno-unused-function $(KINC) -Itests/unit $< $(HOST_OBJ) -lm -o $(FUZZ_B)/gen_seeds
+	$(FUZZ_B)/gen_seeds tests/fuzz/corpus

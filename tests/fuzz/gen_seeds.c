@@ -1,0 +1,108 @@
+/* gen_seeds.c -- writes the seed corpus of the fuzz harnesses (make fuzz-seeds; the outputs are
+ * committed in tests/fuzz/corpus/<target>/): the valid 5-node NOG table (as is, and re-sealed
+ * with a defect), op streams flying it near the nominal, CPD steps near level flight, an MPSP
+ * configuration patch. Usage: gen_seeds DIR (DIR/<target>/ must exist). */
+#include "fuzz_common.h"
+
+#include <stddef.h>
+
+#include "ogk/mpsp.h"
+
+static uint8_t table[FZ_TABLE_BYTES];
+
+static void put(const char *dir, const char *target, const char *name, const uint8_t *mode,
+                const uint8_t *p, size_t n)
+{
+    char path[512];
+    FILE *f;
+    (void)snprintf(path, sizeof path, "%s/%s/%s", dir, target, name);
+    f = fopen(path, "wb");
+    if (f == NULL) {
+        perror(path);
+        exit(1);
+    }
+    if (mode != NULL) {
+        (void)fwrite(mode, 1u, 1u, f);
+    }
+    (void)fwrite(p, 1u, n, f);
+    (void)fclose(f);
+}
+
+int main(int argc, char **argv)
+{
+    uint8_t m0 = 0u;
+    uint8_t m1 = 1u;
+    uint8_t m3 = 3u;
+    uint8_t ops[256];
+    size_t n = 0u;
+    size_t k;
+    if (argc != 2) {
+        (void)fprintf(stderr, "usage: gen_seeds DIR\n");
+        return 2;
+    }
+    fz_build_nog_table(table);
+    put(argv[1], "table", "nog5", &m0, table, sizeof table);
+    put(argv[1], "table", "nog5_own_spec", &m3, table, sizeof table);
+    put(argv[1], "nog_table", "nog5", &m0, table, sizeof table);
+    /* grid not ending at 1, re-sealed by the harness (mode 1): the field check must catch it */
+    tw_put_f64(table + OGK_TABLE_HEADER_SIZE + 8u * (FZ_GRID - 1u), 0.9);
+    put(argv[1], "nog_table", "nog5_grid_end", &m1, table, sizeof table);
+    fz_build_nog_table(table);
+    put(argv[1], "table", "header_only", &m1, table, OGK_TABLE_HEADER_SIZE);
+
+    /* NOG: samples near the nominal every 2 s, commands between, a reload, a re-init. */
+    ops[n++] = 0u; /* set-up: RAM table */
+    for (k = 0u; k < 8u; ++k) {
+        size_t i;
+        ops[n++] = 1u;
+        ops[n++] = (uint8_t)(4u * k); /* tau = 0.02 k: t = 2 k s */
+        for (i = 0u; i < 7u; ++i) {
+            ops[n++] = (uint8_t)(128u + ((k * 7u + i) % 5u)); /* small displacements */
+        }
+        ops[n++] = 3u;
+        ops[n++] = 1u;
+    }
+    ops[n++] = 4u;
+    for (k = 0u; k < 8u; ++k) {
+        ops[n++] = 0u;
+    }
+    ops[n++] = 6u;
+    ops[n++] = 3u;
+    ops[n++] = 0u;
+    ops[n++] = 7u;
+    put(argv[1], "nog_step", "fly_near_nominal", NULL, ops, n);
+    ops[0] = 1u; /* view */
+    put(argv[1], "nog_step", "fly_near_nominal_view", NULL, ops, n);
+
+    /* CPD: level flight with small errors, feed-forward on. */
+    n = 0u;
+    ops[n++] = 1u;
+    for (k = 0u; k < 16u; ++k) {
+        size_t i;
+        ops[n++] = 1u; /* odd: near level flight */
+        for (i = 0u; i < 10u; ++i) {
+            ops[n++] = (uint8_t)(128u + ((k + 3u * i) % 7u) - 3u);
+        }
+    }
+    put(argv[1], "cpd_step", "level_flight_ff", NULL, ops, n);
+    ops[0] = 2u; /* Euler pointing */
+    put(argv[1], "cpd_step", "level_flight_euler", NULL, ops, n);
+
+    /* MPSP: no patch (valid), and n_seg_nom left to the input (0: init propagates). */
+    {
+        static const uint8_t none[1] = {0u};
+        uint8_t patch[11] = {0u};
+        const size_t off = offsetof(ogk_mpsp_config_t, n_seg_nom);
+        put(argv[1], "mpsp_init", "valid", NULL, none, sizeof none);
+        patch[0] = 1u;
+        patch[1] = (uint8_t)(off & 0xFFu);
+        patch[2] = (uint8_t)(off >> 8);
+        put(argv[1], "mpsp_init", "count_segments", NULL, patch, sizeof patch);
+        /* h_max (a double) patched to 0: rejected */
+        patch[0] = 0u;
+        patch[1] = (uint8_t)(offsetof(ogk_mpsp_config_t, h_max) & 0xFFu);
+        patch[2] = (uint8_t)(offsetof(ogk_mpsp_config_t, h_max) >> 8);
+        put(argv[1], "mpsp_init", "h_max_zero", NULL, patch, sizeof patch);
+    }
+    return 0;
+}
