@@ -2,6 +2,7 @@
 #include "ogk/interp.h"
 
 #include <math.h>
+#include <stdbool.h>
 
 /* Bisection steps that locate an interval in any grid a size_t can index. */
 #define OGK_INTERP_MAX_SEARCH 64u
@@ -100,6 +101,44 @@ static int sign_of(double v)
     return (v > 0.0) ? 1 : ((v < 0.0) ? -1 : 0);
 }
 
+/* Magnitudes inside which the direct form of the interior slope cannot
+ * overflow or lose its terms to underflow: every w / d is then within
+ * [1e-300, 1e300]. Normal data (grid steps and secants far from 1e+-150) take
+ * the direct form, bit for bit the formula of Fritsch & Butland. */
+#define OGK_INTERP_DIRECT_LO 1.0e-150
+#define OGK_INTERP_DIRECT_HI 1.0e150
+
+static bool in_direct_range(double v)
+{
+    const double a = fabs(v);
+    return a >= OGK_INTERP_DIRECT_LO && a <= OGK_INTERP_DIRECT_HI;
+}
+
+/* Weighted harmonic mean (w0 + w1) / (w0 / d0 + w1 / d1) of two secants of
+ * the same sign (w0, w1 > 0). For a subnormal or huge secant (or weight) the
+ * direct form overflows in w / d (Frama-C: w0 / d0 for a subnormal d0), so
+ * it is evaluated scaled, as m (u0 + u1) e0 e1 / (u0 e1 + u1 e0) with
+ * e = d / max|d| and u = w / max(w): |e| <= 1 with one |e| = 1, u in [1/2, 1]
+ * (w0 / w1 is within [1/2, 2]), so no step overflows and the result, which
+ * lies between d0 and d1, is exact to rounding or (when e0 e1 underflows)
+ * within a subnormal of it. */
+static double harmonic_slope(double w0, double w1, double d0, double d1)
+{
+    double m, wm, e0, e1, u0, u1;
+
+    if (in_direct_range(d0) && in_direct_range(d1) && in_direct_range(w0) &&
+        in_direct_range(w1)) {
+        return (w0 + w1) / (w0 / d0 + w1 / d1);
+    }
+    m = fmax(fabs(d0), fabs(d1));
+    wm = fmax(w0, w1);
+    e0 = d0 / m;
+    e1 = d1 / m;
+    u0 = w0 / wm;
+    u1 = w1 / wm;
+    return m * (((u0 + u1) / (u0 * e1 + u1 * e0)) * e0 * e1);
+}
+
 static double pchip_end_slope(double h0, double h1, double d0, double d1)
 {
     double s = ((2.0 * h0 + h1) * d0 - h0 * d1) / (h0 + h1);
@@ -148,12 +187,12 @@ ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
             const double h1 = grid[k + 1u] - grid[k];
             const double d0 = (values[k * m + j] - values[(k - 1u) * m + j]) / h0;
             const double d1 = (values[(k + 1u) * m + j] - values[k * m + j]) / h1;
-            if (d0 * d1 <= 0.0) {
+            /* Signs, not d0 * d1: the product of two tiny secants of the same
+             * sign underflows to 0 and would flatten a monotone run. */
+            if (sign_of(d0) * sign_of(d1) <= 0) {
                 slopes[k * m + j] = 0.0;
             } else {
-                const double w0 = 2.0 * h1 + h0;
-                const double w1 = h1 + 2.0 * h0;
-                slopes[k * m + j] = (w0 + w1) / (w0 / d0 + w1 / d1);
+                slopes[k * m + j] = harmonic_slope(2.0 * h1 + h0, h1 + 2.0 * h0, d0, d1);
             }
         }
         {
@@ -170,6 +209,14 @@ ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
             const double d0 = (values[n * m + j] - values[(n - 1u) * m + j]) / h0;
             const double d1 = (values[(n - 1u) * m + j] - values[(n - 2u) * m + j]) / h1;
             slopes[n * m + j] = pchip_end_slope(h0, h1, d0, d1);
+        }
+    }
+    /* Finite grid and values can still give an infinite secant (a value
+     * step near DBL_MAX, or one over a subnormal grid step): reported, never
+     * handed on as a slope. */
+    for (k = 0u; k < n_grid * m; ++k) {
+        if (!isfinite(slopes[k])) {
+            return OGK_E_RANGE;
         }
     }
     return OGK_OK;

@@ -449,20 +449,31 @@ static bool nav_in_envelope(const ogk_nog_t *ctx, const ogk_nav_state_t *nav)
            nav->t_s <= t_sample_max(ctx);
 }
 
-/* The safe output of a rejected sample (contract in ogk/nog.h). The context
- * keeps its last good sample and correction; only its flags become SAFE, for
- * the commands served until the next good sample. The held correction is
- * shown at t_s when that time is usable, on a copy; with a stale table
- * (readable = false) nothing is read from it: held angles. */
+/* The safe output of a rejected sample (contract in ogk/nog.h): the
+ * correction in force, held, at t_s when that time is usable. A usable time
+ * up to the predicted cut-off (tau <= 1) moves the context there (dlam
+ * continued to it and held, t_f kept), as a good sample would; a time past
+ * the cut-off (tau > 1, still inside the envelope) is only shown, on a copy:
+ * a wrong time tag must not stop the engine early. An unusable time (not
+ * finite, outside the envelope, before the current sample) moves nothing.
+ * With a stale table (readable = false) nothing is read from it: held angles. */
 static void safe_sample(ogk_nog_t *ctx, double t_s, bool readable, ogk_nog_sample_t *out)
 {
-    ogk_nog_t at = *ctx;
+    ogk_nog_t at;
 
     ctx->flags = OGK_NOG_FLAG_SAFE;
-    at.flags = OGK_NOG_FLAG_SAFE;
     if (isfinite(t_s) && t_s >= ctx->t_k_s && t_s >= 0.0 && t_s <= t_sample_max(ctx)) {
-        /* Bounded by the envelope; past 1 it is shown, clamped in the costate. */
-        hold_correction(&at, t_s, ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s);
+        /* Bounded by the envelope: finite. */
+        const double tau = ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s;
+        if (tau <= 1.0) {
+            hold_correction(ctx, t_s, tau);
+            at = *ctx;
+        } else {
+            at = *ctx;
+            hold_correction(&at, t_s, tau); /* shown, clamped to 1 in the costate */
+        }
+    } else {
+        at = *ctx;
     }
     if (readable) {
         fill_sample(&at, out);

@@ -133,6 +133,71 @@ static void test_locate_edges(void **state)
     assert_int_equal(k, 2u);
 }
 
+
+/* The end-slope rule of Moler's pchip on three points, h0 = h1 = 1, where
+ * the one-sided slope is s = (3 d0 - d1) / 2: zero when s and d0 differ in
+ * sign; 3 d0 when the secants differ in sign and |s| > 3 |d0|; s otherwise.
+ * Both ends (the right one on the mirrored data), each branch and its
+ * neighbour, so a flipped or dropped clamp condition fails here. */
+static void test_pchip_end_slope_clamp(void **state)
+{
+    static const struct {
+        double y1, y2;   /* y0 = 0: d0 = y1, d1 = y2 - y1 */
+        double slope;    /* expected left-end slope */
+    } cases[5] = {
+        {1.0, 6.0, 0.0},   /* d = (1, 5): s = -1, sign differs from d0 -> 0 */
+        {1.0, 2.5, 0.75},  /* d = (1, 1.5): s = 0.75, same signs -> kept */
+        {1.0, -5.0, 3.0},  /* d = (1, -6): s = 4.5 > 3 d0, secants differ in sign -> 3 d0 */
+        {1.0, -1.0, 2.5},  /* d = (1, -2): s = 2.5 <= 3 d0 -> kept */
+        {-1.0, 5.0, -3.0}, /* d = (-1, 6): s = -4.5 -> 3 d0 = -3 */
+    };
+    const double grid[3] = {0.0, 1.0, 2.0};
+    unsigned k;
+    (void)state;
+    for (k = 0u; k < 5u; ++k) {
+        const double left[3] = {0.0, cases[k].y1, cases[k].y2};
+        /* mirrored: the right end sees the same secants, read backwards */
+        const double right[3] = {cases[k].y2, cases[k].y1, 0.0};
+        double slopes[3];
+        const double expected = cases[k].slope;
+        OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 3u, left, 1u, slopes), OGK_OK);
+        OGK_ASSERT_NEAR(slopes[0], expected, 1e-15);
+        OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 3u, right, 1u, slopes), OGK_OK);
+        OGK_ASSERT_NEAR(slopes[2], -expected, 1e-15);
+    }
+}
+
+/* Subnormal and tiny secants: the interior harmonic mean neither overflows
+ * (w0 / d0 for a subnormal d0 was +inf, flattening the slope to 0) nor
+ * underflows (d0 * d1 of two tiny secants was 0, taken as an extremum); huge
+ * ones stay finite; an infinite secant is reported. */
+static void test_pchip_tiny_and_huge_secants(void **state)
+{
+    const double grid[3] = {0.0, 0.5, 1.0};
+    const double grid1[3] = {0.0, 1.0, 2.0};
+    const double sub[3] = {0.0, 1.0e-310, 1.0};
+    const double tiny[3] = {0.0, 1.0e-200, 2.0e-200};
+    const double huge[3] = {0.0, 1.0e300, 2.0e300};
+    const double over[3] = {-1.7e308, 1.7e308, 1.7e308};
+    double slopes[3];
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 3u, sub, 1u, slopes), OGK_OK);
+    {
+        const double d0 = 1.0e-310 / 0.5;
+        const double d1 = (1.0 - 1.0e-310) / 0.5;
+        /* equal weights: 2 d0 d1 / (d0 + d1), ~2 d0 */
+        OGK_ASSERT_REL(slopes[1], 2.0 * d0 * (d1 / (d0 + d1)), 1e-9, 0.0);
+        assert_true(slopes[1] > 0.0 && isfinite(slopes[0]) && isfinite(slopes[2]));
+    }
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid1, 3u, tiny, 1u, slopes), OGK_OK);
+    OGK_ASSERT_REL(slopes[0], 1.0e-200, 1e-14, 0.0); /* linear data: every slope 1e-200 */
+    OGK_ASSERT_REL(slopes[1], 1.0e-200, 1e-14, 0.0);
+    OGK_ASSERT_REL(slopes[2], 1.0e-200, 1e-14, 0.0);
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid1, 3u, huge, 1u, slopes), OGK_OK);
+    OGK_ASSERT_REL(slopes[1], 1.0e300, 1e-14, 0.0);
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid1, 3u, over, 1u, slopes), OGK_E_RANGE);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -143,6 +208,8 @@ int main(void)
         cmocka_unit_test(test_pchip_interpolates_and_preserves_shape),
         cmocka_unit_test(test_pchip_two_points_is_linear),
         cmocka_unit_test(test_locate_edges),
+        cmocka_unit_test(test_pchip_end_slope_clamp),
+        cmocka_unit_test(test_pchip_tiny_and_huge_secants),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

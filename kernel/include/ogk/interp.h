@@ -25,7 +25,10 @@ ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
 /* Shape-preserving piecewise-cubic Hermite (pchip, Fritsch-Carlson slopes with
  * the Fritsch-Butland harmonic mean, one-sided three-point end slopes as in
  * Moler's pchip). Writes slopes (n_grid x m, d value / d tau) once on the ground
- * or at init; ogk_interp_pchip then evaluates in O(log n). */
+ * or at init; ogk_interp_pchip then evaluates in O(log n). Subnormal, tiny or
+ * huge secants are handled without overflow or underflow (a scaled form of the
+ * harmonic mean, the same result to rounding); OGK_E_RANGE if a secant itself
+ * is not finite (value steps near DBL_MAX, or a subnormal grid step). */
 ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
                                    const double *values, size_t m,
                                    double *slopes);

@@ -216,18 +216,23 @@ ogk_status ogk_nog_reset(ogk_nog_t *ctx);
  * that is not finite although the input is (gains too large for this
  * displacement: OGK_E_SAFE_COMMAND). A rejected sample sets
  * OGK_NOG_FLAG_SAFE (also in the commands until the next good sample) and
- * out holds the safe sample: the last good correction (the nominal before
- * the first) with its first-order hold, evaluated at the sample's time when
- * that time is usable (finite, in the envelope, after the last good sample,
- * tau <= 1), else at the last good sample; when the table cannot be read
- * (stale) or the costate overflows, the last good sample's angles. A
- * rejected sample does not move the context (time, tau, correction, t_f):
- * the next good sample is judged against the last good one, so one bad
- * sample latches nothing. What does latch is the cut-off: it is predicted
- * by the last good sample (eq. 32: the last good sample whose interval is
- * terminating fixes it), the commands clear ENGINE_ON from that time on, and
- * no later sample can reopen it, since every later one has tau > 1. Every
- * output (tau, t_f, cut-off time, dx, angles) is finite whatever the status. */
+ * out holds the safe sample: the correction in force (the nominal before the
+ * first good sample), held, at the sample's time; when the table cannot be
+ * read (stale) or the costate overflows, the last good sample's angles.
+ * Where the context goes:
+ *   - time usable (finite, inside the envelope, not before the current
+ *     sample) and tau <= 1: tau advances to it with the t_f in force and dlam
+ *     is continued to it and held (as before this change; the next sample
+ *     must be later than it, as after a good one);
+ *   - time past the predicted cut-off (tau > 1) but inside the envelope:
+ *     shown in out, not committed (a wrong time tag must not cut the engine);
+ *   - time not finite or outside the envelope (e.g. t = 1e6 s): nothing moves.
+ * So one bad sample latches nothing for the later good ones. What does latch
+ * is the cut-off: it is predicted by the last good sample (eq. 32: the good
+ * sample whose interval is terminating fixes it), the commands clear
+ * ENGINE_ON from that time on, and no later sample can reopen it, since every
+ * later one has tau > 1. Every output (tau, t_f, cut-off time, dx, angles) is
+ * finite whatever the status. */
 ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sample_t *out);
 
 /* Thrust-direction command at time t_s (>= the current sample's time; before
