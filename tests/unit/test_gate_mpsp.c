@@ -1,0 +1,186 @@
+/* test_gate_mpsp.c -- MPSP paths the other MPSP tests leave unrun (make coverage,
+ * docs/coverage.md): every rejection of the read-out entry points, the configuration's grid and
+ * basis-phase checks, a propagation that fails (mass depleted) inside ogk_mpsp_solve, and the
+ * non-finite control read-out. Coarse grid (40 RK4 steps): cheap on the host and on QEMU. */
+#include "ogk_test.h"
+
+#include <float.h>
+#include <string.h>
+
+#include "ogk/mpsp.h"
+
+static ogk_mpsp_t ctx;
+static ogk_mpsp_t blank; /* never initialised */
+static ogk_mpsp_config_t cfg;
+
+static const double w3[21] = {
+    2.0, 0.05, 0.02, 0.6, 0.03, -0.02, 0.01,
+    0.6, 0.0, 0.2, 0.01, -0.02, 0.0, 0.01,
+    0.0, 0.05, 0.0, 0.01, 0.0, 0.0, -0.01};
+static const double x0_3d[7] = {1.0, 0.0, 0.01, 0.0, 1.0, 0.02, 1.0};
+
+static void small_config(ogk_mpsp_config_t *c)
+{
+    size_t i;
+    OGK_ASSERT_STATUS(ogk_mpsp_config_default(c), OGK_OK);
+    c->mu = 1.0;
+    c->t_max = 0.1;
+    c->c_exhaust = 1.0;
+    c->t0 = 0.0;
+    c->tf = 2.0;
+    (void)memcpy(c->x0_nom, x0_3d, sizeof x0_3d);
+    c->r_f[0] = 1.0;
+    c->v_f[1] = 1.0;
+    c->fourier_order = 3u;
+    c->fourier_period = 4.0;
+    c->h_max = 2.0 / 40.0;
+    for (i = 0u; i < OGK_MPSP_MAX_WEIGHTS; ++i) {
+        c->r_eps[i] = 1.0;
+    }
+    c->tol_r = 1e-10;
+    c->tol_v = 1e-10;
+    c->tol_lambda_m = 1e-10;
+    c->max_newton = 3u;
+    c->max_outer = 2u;
+    (void)memcpy(c->weights_nom, w3, sizeof w3);
+    c->n_seg_nom = 3u;
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    small_config(&cfg);
+    return ogk_mpsp_init(&ctx, &cfg) == OGK_OK ? 0 : -1;
+}
+
+static void test_config_grid_and_phase(void **state)
+{
+    ogk_mpsp_config_t c;
+    ogk_mpsp_t tmp;
+    (void)state;
+    c = cfg;
+    c.h_max = 1e-300; /* (tf - t0) / h_max far over OGK_MPSP_MAX_STEPS */
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_E_CONFIG);
+    c = cfg;
+    c.h_max = 2.0 / 40.5; /* not a whole number of steps: rounded up to 41 */
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_OK);
+    assert_int_equal(tmp.n_steps, 41u);
+    c = cfg;
+    c.fourier_period = DBL_MIN; /* omega = 2 pi / period overflows */
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_E_CONFIG);
+    c = cfg;
+    c.fourier_t_ref = -DBL_MAX; /* omega (t0 - t_ref) overflows */
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_E_CONFIG);
+    assert_true(tmp.init_marker != OGK_MPSP_INIT_MARKER);
+}
+
+static void test_propagate_rejections(void **state)
+{
+    ogk_mpsp_prop_t prop;
+    double x[7];
+    double w[21];
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(NULL, w3, 0.0, x0_3d, 1.0, &prop), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, 0.0, NULL, 1.0, &prop), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&blank, w3, 0.0, x0_3d, 1.0, &prop), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, 0.0, x0_3d, NAN, &prop), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, 0.0, x0_3d, 0.0, &prop), OGK_E_RANGE);
+    (void)memcpy(x, x0_3d, sizeof x);
+    x[6] = 0.0;
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, 0.0, x, 1.0, &prop), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, NULL, 0.0, x0_3d, 1.0, &prop), OGK_E_NULL);
+    (void)memcpy(w, w3, sizeof w);
+    w[20] = INFINITY;
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w, 0.0, x0_3d, 1.0, &prop), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, NAN, x0_3d, 1.0, &prop), OGK_E_NONFINITE);
+    /* mass depleted on the way (m0 = 0.1, dm/dt = -0.1 while thrusting): eq. (16) undefined */
+    x[6] = 0.1;
+    assert_true(ogk_mpsp_propagate(&ctx, w3, 0.0, x, 1.0, &prop) != OGK_OK);
+}
+
+static void test_readout_rejections(void **state)
+{
+    ogk_mpsp_prop_t prop;
+    double t[4];
+    double x[8];
+    double u[3];
+    size_t count = 0u;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_mpsp_trajectory(NULL, t, NULL, NULL, 4u, &count), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_trajectory(&ctx, t, NULL, NULL, 4u, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_trajectory(&blank, t, NULL, NULL, 4u, &count), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_mpsp_state_at(NULL, 0.0, x), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_state_at(&blank, 0.0, x), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, 0.0, x0_3d, 1.0, &prop), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_trajectory(&ctx, t, NULL, NULL, 4u, &count), OGK_E_DIM);
+    assert_true(count > 4u);
+    OGK_ASSERT_STATUS(ogk_mpsp_state_at(&ctx, NAN, x), OGK_E_NONFINITE);
+    assert_true(ogk_mpsp_state_at(&ctx, 5.0, x) != OGK_OK); /* after tf */
+    OGK_ASSERT_STATUS(ogk_mpsp_state_at(&ctx, 1.0, x), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_control(NULL, w3, 0.0, u, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_control(&blank, w3, 0.0, u, NULL), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_mpsp_control(&ctx, w3, NAN, u, NULL), OGK_E_NONFINITE);
+    {
+        /* finite weights whose sum overflows: never OGK_OK with a non-finite output */
+        double w[21];
+        size_t i;
+        for (i = 0u; i < 21u; ++i) {
+            w[i] = DBL_MAX;
+        }
+        OGK_ASSERT_STATUS(ogk_mpsp_control(&ctx, w, 0.0, u, NULL), OGK_E_NONFINITE);
+        OGK_ASSERT_STATUS(ogk_mpsp_control(&ctx, w3, 0.0, u, NULL), OGK_OK);
+    }
+}
+
+static void test_newton_update_rejections(void **state)
+{
+    double dy[OGK_MPSP_NY];
+    double w[21];
+    double lm = 0.0;
+    ogk_mpsp_prop_t prop;
+    (void)state;
+    (void)memset(dy, 0, sizeof dy);
+    (void)memcpy(w, w3, sizeof w);
+    OGK_ASSERT_STATUS(ogk_mpsp_newton_update(NULL, dy, w, &lm), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_newton_update(&ctx, dy, w, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, 0.0, x0_3d, 1.0, &prop), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_newton_update(&ctx, dy, w, &lm), OGK_E_NOT_INIT); /* no sensitivities */
+    OGK_ASSERT_STATUS(ogk_mpsp_sensitivity(&ctx, NULL, NULL), OGK_OK);
+    dy[3] = NAN;
+    OGK_ASSERT_STATUS(ogk_mpsp_newton_update(&ctx, dy, w, &lm), OGK_E_NONFINITE);
+    dy[3] = 0.0;
+    lm = INFINITY;
+    OGK_ASSERT_STATUS(ogk_mpsp_newton_update(&ctx, dy, w, &lm), OGK_E_NONFINITE);
+    lm = 0.0;
+    OGK_ASSERT_STATUS(ogk_mpsp_newton_update(&ctx, dy, w, &lm), OGK_OK);
+    OGK_ASSERT_NEAR(lm, 0.0, 0.0); /* dy = 0: no step */
+}
+
+static void test_solve_with_failing_propagation(void **state)
+{
+    ogk_mpsp_result_t res;
+    double x[7];
+    size_t i;
+    (void)state;
+    (void)memcpy(x, x0_3d, sizeof x);
+    x[6] = 0.1; /* the mass runs out before tf: no trajectory to correct */
+    assert_true(ogk_mpsp_solve(&ctx, x, 1.0, NULL, &res) != OGK_OK);
+    assert_int_equal(res.converged, 0u);
+    for (i = 0u; i < OGK_MPSP_NY; ++i) {
+        assert_true(res.dy[i] == HUGE_VAL);
+    }
+    assert_true(res.err_r == HUGE_VAL && res.err_v == HUGE_VAL && res.lambda_mf == HUGE_VAL);
+    OGK_ASSERT_NEAR(res.m_f, 0.0, 0.0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_config_grid_and_phase),
+        cmocka_unit_test(test_propagate_rejections),
+        cmocka_unit_test(test_readout_rejections),
+        cmocka_unit_test(test_newton_update_rejections),
+        cmocka_unit_test(test_solve_with_failing_propagation),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}
