@@ -334,6 +334,53 @@ static void test_switch_time_closed_form(void **state)
     OGK_ASSERT_NEAR(jx[0u * NX + 0u], 1.0, 1e-15);
 }
 
+/* Eq. (25), the dX+/dW output (jw) of ogk_mpsp_switch_jump, on the same closed-form switch:
+ * jw = (dxdot / Sdot) S_U P(t_s), i.e. jw[i][k] = -dxdot_i dts_dw[k] with dxdot_vx = -T/m (the
+ * v_x row of eq. 24 above), and for every i, j, k the identity
+ * jw[i][k] dts_dx[j] = (jx[i][j] - delta_ij) dts_dw[k] (both are dxdot_i S_x,j S_U,k h_k / Sdot^2).
+ * Kills the sign mutant of the eq. (25) term (issue 8: no test passed jw before). */
+static void test_switch_jump_dw_closed_form(void **state)
+{
+    const double q = ff_q(FF_A0, FF_A1, FF_LM0, FF_M0);
+    const double ts = acos(q) / PI;
+    const double dts_dq = -1.0 / (PI * sqrt(1.0 - q * q));
+    double dts_dx[NX];
+    double dts_dw[9];
+    double jx[NX * NX];
+    double jw[NX * 9];
+    double x_s[NX];
+    size_t i;
+    size_t j;
+    size_t k;
+    (void)state;
+
+    field_free_config(&cfg, 100.0);
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    assert_int_equal(ctx.n_weights, 9u);
+    (void)memcpy(x_s, cfg.x0_nom, 7u * sizeof x_s[0]);
+    x_s[0] += cfg.x0_nom[3] * ts;
+    x_s[7] = FF_LM0;
+    OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, cfg.weights_nom, 1.0, ts, x_s, 0, jx, jw,
+                                           dts_dx, dts_dw), OGK_OK);
+    /* closed form of the v_x row: -T/m times -dt_s/dW, with dt_s/dW from eq. (B.2) */
+    OGK_ASSERT_REL(jw[3u * 9u + 0u], (-FF_T / FF_M0) * (-(dts_dq * (-0.5 / FF_A1))), 1e-9, 1e-12);
+    OGK_ASSERT_REL(jw[3u * 9u + 1u], (-FF_T / FF_M0) * (-(dts_dq * (-q / FF_A1))), 1e-9, 1e-12);
+    assert_true(fabs(jw[3u * 9u + 0u]) > 1e-3); /* not trivially zero */
+    /* position rows do not jump (dxdot_r = 0 at a switch) */
+    for (k = 0u; k < 9u; ++k) {
+        OGK_ASSERT_NEAR(jw[0u * 9u + k], 0.0, 1e-15);
+    }
+    for (i = 0u; i < NX; ++i) {
+        for (j = 0u; j < NX; ++j) {
+            for (k = 0u; k < 9u; ++k) {
+                const double lhs = jw[i * 9u + k] * dts_dx[j];
+                const double rhs = (jx[i * NX + j] - ((i == j) ? 1.0 : 0.0)) * dts_dw[k];
+                OGK_ASSERT_NEAR(lhs, rhs, 1e-12 * fmax(1.0, fabs(rhs)));
+            }
+        }
+    }
+}
+
 /* T / (m(t) lambda_x(t)) after the switch, for the cross-track quadrature. */
 static double ff_cross(double t, double ts)
 {
@@ -490,6 +537,7 @@ int main(void)
         cmocka_unit_test(test_step_jacobian_coast),
         cmocka_unit_test(test_whole_arc_with_switches_fd),
         cmocka_unit_test(test_switch_time_closed_form),
+        cmocka_unit_test(test_switch_jump_dw_closed_form),
         cmocka_unit_test(test_whole_arc_closed_form),
         cmocka_unit_test(test_control_and_state_readout),
     };
