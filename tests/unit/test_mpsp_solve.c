@@ -199,6 +199,42 @@ static void test_continuation_when_newton_is_not_allowed(void **state)
     check_flown(x0_3d, 1.0, target, 1e-10);
 }
 
+/* Algorithm 1 lines 10-14 and Algorithm 2 line 24: the N_seg tolerance. The trajectories near
+ * this nominal have 3 segments; a configured N_seg,nom of 5 or 6 makes every Newton step fail the
+ * segment check until the continuation has widened N_seg,tol (by n_seg_tol_step = 2 after each
+ * failed continuation) to |3 - N_seg,nom|: 0 -> 2 for N_seg,nom = 5 (the difference equals the
+ * tolerance: accepted, since the test is |dN| > N_seg,tol), 0 -> 2 -> 4 for 6. Kills the
+ * N_seg,tol step mutants (issue 8): a step of 1 (6: 3 instead of 4), no step (never solved),
+ * and >= for > in the check (5: 4 instead of 2). */
+static void test_segment_tolerance_widened_by_its_step(void **state)
+{
+    static const uint32_t n_seg_nom[2] = {5u, 6u};
+    static const uint32_t expected_tol[2] = {2u, 4u};
+    double target[6];
+    size_t c;
+    (void)state;
+    nominal_target(target);
+    target[0] += 1e-2;
+    target[1] -= 5e-3;
+    target[2] -= 5e-3;
+    target[4] += 5e-3;
+    for (c = 0u; c < 2u; ++c) {
+        cfg_work = cfg;
+        cfg_work.n_seg_nom = n_seg_nom[c];
+        cfg_work.n_seg_tol = 0u;
+        cfg_work.n_seg_tol_step = 2u;
+        OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg_work), OGK_OK);
+        assert_int_equal(ctx.n_seg_nom, n_seg_nom[c]);
+        OGK_ASSERT_STATUS(ogk_mpsp_solve(&ctx, x0_3d, 1.0, target, &res), OGK_OK);
+        assert_int_equal(res.converged, 1);
+        assert_int_equal(res.n_seg_tol, expected_tol[c]);
+        assert_int_equal(res.n_segments, 3);
+        assert_true(res.outer_steps >= 2u);
+        OGK_ASSERT_NEAR(res.tau_reached, 1.0, 0.0);
+        check_flown(x0_3d, 1.0, target, 1e-10);
+    }
+}
+
 static void test_failure_returns_safe_command(void **state)
 {
     double target[6];
@@ -425,6 +461,7 @@ int main(void)
         cmocka_unit_test(test_newton_recovers_perturbed_target),
         cmocka_unit_test(test_thrust_and_initial_state_perturbations),
         cmocka_unit_test(test_continuation_when_newton_is_not_allowed),
+        cmocka_unit_test(test_segment_tolerance_widened_by_its_step),
         cmocka_unit_test(test_failure_returns_safe_command),
         cmocka_unit_test(test_init_rejects_bad_config),
         cmocka_unit_test(test_entry_points_reject_bad_input),
