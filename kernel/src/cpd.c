@@ -577,6 +577,16 @@ ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
     out->err_y = err_y;
     out->err_z = err_z;
     out->flags = flags;
+    {
+        /* Finite by construction for the gains met in practice (saturate
+         * bounds the commands, atan2 and the wrap bound the angles); absurd
+         * but finite gains with huge rates could still meet inf - inf. */
+        const double v[9] = {out->m_xc, out->delta_yc, out->delta_zc, out->psi_c,
+                             out->theta_c, out->phi_c, out->err_x, out->err_y, out->err_z};
+        if (!ogk_i_all_finite(v, 9u)) {
+            return reject(ctx, out, OGK_E_SAFE_COMMAND);
+        }
+    }
     ctx->last = *out;
     ctx->dir_prev_a[0] = t_a[0];
     ctx->dir_prev_a[1] = t_a[1];

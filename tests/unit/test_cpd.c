@@ -1328,6 +1328,51 @@ static void test_config_default_reset_and_thrust_cmd(void **state)
     OGK_ASSERT_NEAR(in.beta_c, -0.1, 0.0); /* untouched on rejection */
 }
 
+
+/* Every output is finite whatever the input's size: absurd but finite gains
+ * (1e300, still k_d > k_p tau) and rates of +-1e308 on every axis, both
+ * pointing modes. */
+static void test_outputs_finite_for_absurd_finite_input(void **state)
+{
+    static const double rates[3] = {1e308, -1e308, 0.0};
+    unsigned mode, i, j, k;
+    (void)state;
+    for (mode = 0u; mode < 2u; ++mode) {
+        ogk_cpd_config_t cfg = rederived_config(mode == 0u ? OGK_CPD_POINTING_BODY
+                                                           : OGK_CPD_POINTING_EULER);
+        ogk_cpd_t ctx;
+        cfg.k_px = cfg.k_py = cfg.k_pz = 1e300;
+        cfg.k_dx = cfg.k_dy = cfg.k_dz = 1e300;
+        OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &cfg), OGK_OK);
+        for (i = 0u; i < 3u; ++i) {
+            for (j = 0u; j < 3u; ++j) {
+                for (k = 0u; k < 3u; ++k) {
+                    ogk_cpd_input_t in = zero_input();
+                    ogk_cpd_output_t out;
+                    ogk_status st;
+                    in.theta = 0.5;
+                    in.psi = -0.3;
+                    in.alpha_c = 1.0;
+                    in.beta_c = -0.2;
+                    in.rate_p = rates[i];
+                    in.rate_q = rates[j];
+                    in.rate_r = rates[k];
+                    st = ogk_cpd_step(&ctx, &in, &out);
+                    assert_true(st == OGK_OK || st == OGK_E_SAFE_COMMAND);
+                    assert_true(isfinite(out.m_xc) && isfinite(out.delta_yc) &&
+                                isfinite(out.delta_zc) && isfinite(out.psi_c) &&
+                                isfinite(out.theta_c) && isfinite(out.phi_c) &&
+                                isfinite(out.err_x) && isfinite(out.err_y) &&
+                                isfinite(out.err_z));
+                    assert_true(fabs(out.m_xc) <= cfg.m_xc_max &&
+                                fabs(out.delta_yc) <= cfg.delta_yc_max &&
+                                fabs(out.delta_zc) <= cfg.delta_zc_max);
+                }
+            }
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1342,6 +1387,7 @@ int main(void)
         cmocka_unit_test(test_euler_mode_wraps_errors),
         cmocka_unit_test(test_wrap_pi),
         cmocka_unit_test(test_actuator_rate_bound),
+        cmocka_unit_test(test_outputs_finite_for_absurd_finite_input),
         cmocka_unit_test(test_single_axis_closed_loop_converges),
         cmocka_unit_test(test_rigid_body_at_large_roll),
         cmocka_unit_test(test_init_rejects_bad_config),

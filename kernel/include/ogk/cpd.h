@@ -165,7 +165,10 @@ ogk_status ogk_cpd_input_from_thrust_cmd(ogk_cpd_input_t *in, const ogk_thrust_c
  * is not NULL, out holds the safe command (zero torque, zero deflections, zero
  * angles and errors, OGK_CPD_FLAG_SAFE): OGK_E_NULL (ctx, in or out NULL),
  * OGK_E_NOT_INIT, OGK_E_NONFINITE (NaN/Inf input), OGK_E_RANGE (an angle
- * beyond OGK_CPD_ANGLE_LIMIT). The context stays usable after any of these. */
+ * beyond OGK_CPD_ANGLE_LIMIT), OGK_E_SAFE_COMMAND (finite input, but an
+ * output would not be finite: absurd gains meeting absurd rates). Every
+ * output is finite whatever the status. The context stays usable after any
+ * of these. */
 ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
                         ogk_cpd_output_t *out);
 
