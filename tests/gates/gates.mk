@@ -95,3 +95,18 @@ coverage: $(COV_TESTS)
 	  --fail-under-line $(COVERAGE_LINES) --fail-under-branch $(COVERAGE_BRANCHES) . ; rc=$$?; \
 	if [ $$rc -ne 0 ]; then echo "coverage: under the thresholds (lines $(COVERAGE_LINES) %, branches $(COVERAGE_BRANCHES) %); per file: $(COV_B)/coverage.txt"; exit 1; fi; \
 	echo "coverage: at or above lines $(COVERAGE_LINES) %, branches $(COVERAGE_BRANCHES) % (per file: $(COV_B)/coverage.txt)"
+
+# ---------------------------------------------------------------- mutation run (not in make test)
+# tests/gates/mutants.py: MUTANTS_COUNT operator/constant mutants sampled with MUTANTS_SEED from
+# kernel/src, plus the fixed ones; each built in a copy under $(B)/mutants and run against every
+# C unit test (host, ASan+UBSan). Prints killed / survived and the score.
+MUTANTS_SEED ?= 1
+MUTANTS_COUNT ?= 40
+MUTANTS_ARGS ?=
+.PHONY: mutants
+mutants: | apt
+	python3 tests/gates/mutants.py --seed $(MUTANTS_SEED) --count $(MUTANTS_COUNT) \
+	  --build $(B)/mutants $(MUTANTS_ARGS)
+
+# ---------------------------------------------------------------- the gates of make test
+gates: tidy fuzz-short coverage

@@ -199,6 +199,36 @@ static void test_continuation_when_newton_is_not_allowed(void **state)
     check_flown(x0_3d, 1.0, target, 1e-10);
 }
 
+/* Algorithm 1's Newton budget: max_newton steps are all taken and the result of the last one is
+ * checked (j = 0 .. max_newton: the check after the last step is what converges here). With one
+ * step fewer the direct loop fails and the continuation has to take over. */
+static void test_newton_budget_is_exact(void **state)
+{
+    double target[6];
+    uint32_t needed;
+    (void)state;
+    nominal_target(target);
+    target[0] += 1e-2;
+    target[1] -= 5e-3;
+    target[2] -= 5e-3;
+    target[4] += 5e-3;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_solve(&ctx, x0_3d, 1.0, target, &res), OGK_OK);
+    needed = res.newton_iterations;
+    assert_true(needed >= 2u);
+    cfg_work = cfg;
+    cfg_work.max_newton = needed;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg_work), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_solve(&ctx, x0_3d, 1.0, target, &res), OGK_OK);
+    assert_int_equal(res.converged, 1);
+    assert_int_equal(res.newton_iterations, needed);
+    assert_int_equal(res.outer_steps, 0); /* the direct loop converged on its last step */
+    cfg_work.max_newton = needed - 1u;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg_work), OGK_OK);
+    (void)ogk_mpsp_solve(&ctx, x0_3d, 1.0, target, &res);
+    assert_true(res.outer_steps > 0u); /* the direct loop ran out of steps */
+}
+
 /* Algorithm 1 lines 10-14 and Algorithm 2 line 24: the N_seg tolerance. The trajectories near
  * this nominal have 3 segments; a configured N_seg,nom of 5 or 6 makes every Newton step fail the
  * segment check until the continuation has widened N_seg,tol (by n_seg_tol_step = 2 after each
@@ -462,6 +492,7 @@ int main(void)
         cmocka_unit_test(test_thrust_and_initial_state_perturbations),
         cmocka_unit_test(test_continuation_when_newton_is_not_allowed),
         cmocka_unit_test(test_segment_tolerance_widened_by_its_step),
+        cmocka_unit_test(test_newton_budget_is_exact),
         cmocka_unit_test(test_failure_returns_safe_command),
         cmocka_unit_test(test_init_rejects_bad_config),
         cmocka_unit_test(test_entry_points_reject_bad_input),
