@@ -299,6 +299,12 @@ def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 
         DispersionSwitches() if dispersions else DispersionSwitches.none())
     settings = dataclasses.replace(settings or SilSettings(), truth=truth)
     ids = run_ids_for(runs, run_ids)
+    path = header.path if header is not None else scenario.path
+    sha = None if path is None else file_sha256(path)
+    # the run log first: a --resume of another campaign is refused before any computation
+    log = None if run_log is None else RunLog(
+        run_log, run_key(scenario, seed, truth, str(name), switches, settings, sha, tables),
+        resume=resume)
     t_nominal = time.perf_counter()
     ref = nominal_reference(scenario)
     nominal_solve_s = time.perf_counter() - t_nominal
@@ -306,11 +312,6 @@ def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 
         raise TableError(f"tables made for t_f* = {tables.t_f_star_s:.6f} s, the scenario's nominal "
                          f"is {ref.tf_s:.6f} s: regenerate them with `ogk tables`",
                          path=tables.directory)
-    path = header.path if header is not None else scenario.path
-    sha = None if path is None else file_sha256(path)
-    log = None if run_log is None else RunLog(
-        run_log, run_key(scenario, seed, truth, str(name), switches, settings, sha, tables),
-        resume=resume)
     records: dict[int, dict[str, Any]] = {} if log is None else dict(log.records)
     todo = np.array([i for i in ids.tolist()
                      if i not in records or i < settings.history_runs], dtype=np.int64)
