@@ -173,6 +173,44 @@ static void test_solve_with_failing_propagation(void **state)
     OGK_ASSERT_NEAR(res.m_f, 0.0, 0.0);
 }
 
+/* ogk_mpsp_step_jacobian and ogk_mpsp_switch_jump: argument rejections, and states where
+ * eq. (16) is undefined (mass 0, r = 0 with gravity, lambda_v = 0 while thrusting). */
+static void test_jacobian_and_jump_rejections(void **state)
+{
+    double x[8];
+    double xn[8];
+    double jx[64];
+    double zero_w[21];
+    (void)state;
+    (void)memcpy(x, x0_3d, sizeof x0_3d);
+    x[7] = 0.0;
+    (void)memset(zero_w, 0, sizeof zero_w);
+    OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(NULL, w3, 1.0, 0.0, x, 0.05, 1, xn, NULL, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&blank, w3, 1.0, 0.0, x, 0.05, 1, xn, NULL, NULL), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, NULL, 1.0, 0.0, x, 0.05, 1, xn, NULL, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, NAN, 0.0, x, 0.05, 1, xn, NULL, NULL), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, 0.0, x, 0.05, 2, xn, NULL, NULL), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, NAN, x, 0.05, 1, xn, NULL, NULL), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, 0.0, x, 0.05, 1, xn, NULL, NULL), OGK_OK);
+    /* lambda_v = 0 while thrusting: the thrust direction is undefined */
+    assert_true(ogk_mpsp_step_jacobian(&ctx, zero_w, 1.0, 0.0, x, 0.05, 1, xn, jx, NULL) != OGK_OK);
+    x[6] = 0.0; /* no mass */
+    assert_true(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, 0.0, x, 0.05, 1, xn, jx, NULL) != OGK_OK);
+    assert_true(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, 0.0, x, 0.05, 0, xn, jx, NULL) != OGK_OK);
+    assert_true(ogk_mpsp_switch_jump(&ctx, w3, 1.0, 0.5, x, 0, jx, NULL, NULL, NULL) != OGK_OK);
+    x[6] = 1.0;
+    x[0] = 0.0; /* at the centre of the field */
+    x[1] = 0.0;
+    x[2] = 0.0;
+    assert_true(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, 0.0, x, 0.05, 0, xn, jx, NULL) != OGK_OK);
+    assert_true(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, 0.0, x, 0.05, 1, xn, NULL, NULL) != OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(NULL, w3, 1.0, 0.5, x, 0, jx, NULL, NULL, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, w3, NAN, 0.5, x, 0, jx, NULL, NULL, NULL), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, w3, 1.0, NAN, x, 0, jx, NULL, NULL, NULL), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_mpsp_sensitivity(NULL, NULL, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_sensitivity(&blank, NULL, NULL), OGK_E_NOT_INIT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -181,6 +219,7 @@ int main(void)
         cmocka_unit_test(test_readout_rejections),
         cmocka_unit_test(test_newton_update_rejections),
         cmocka_unit_test(test_solve_with_failing_propagation),
+        cmocka_unit_test(test_jacobian_and_jump_rejections),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -98,6 +98,11 @@ static void test_propagate_fails_at_every_callback(void **state)
     memset(&c, 0, sizeof c);
     p = problem(&c, 1);
     OGK_ASSERT_STATUS(ogk_rk4_propagate(&p, 0.0, NULL, 1, 1.0, &res, xf, NULL), OGK_E_NULL);
+    {
+        ogk_rk4_dense_t d;
+        memset(&d, 0, sizeof d); /* buffers missing */
+        OGK_ASSERT_STATUS(ogk_rk4_propagate(&p, 0.0, x0, 1, 1.0, &res, xf, &d), OGK_E_NULL);
+    }
     OGK_ASSERT_STATUS(ogk_rk4_propagate(&p, 0.0, x0, 1, 1.0, &res, xf, NULL), OGK_OK);
     assert_int_equal(res.n_switches, 1u);
     rhs_total = c.rhs_calls;
