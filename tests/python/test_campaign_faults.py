@@ -29,6 +29,7 @@ from ogk.missions.orbit_injection import nog_guidance
 from ogk.missions.orbit_injection.campaign import run_campaign
 from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
 from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, NogTables, prepare_tables
+from ogk.missions.orbit_injection.sil import SilSettings
 from ogk.sil.runner import CampaignAborted, Watchdog
 from ogk_host.orbit_injection.scenario import Acceptance, load_scenario
 
@@ -157,19 +158,20 @@ def _per_run(res) -> str:
     return json.dumps(res.to_json_dict()["per_run"])
 
 
-def _nog(tables, truth, workers=1, chunks=None):
+def _nog(tables, truth, workers=1, chunks=None, rate_hz=50.0):
     """Kernel VTD-NOG, 3 dispersed runs of seed 7 (their cut-offs differ: the runs land on
     different steps)."""
     return run_campaign(load_scenario(), runs=3, seed=7, workers=workers, chunks=chunks,
                         truth=truth, guidance_factory=KernelNogGuidance.for_tables(tables),
-                        guidance_name="nog", tables=tables)
+                        guidance_name="nog", tables=tables,
+                        settings=SilSettings(control_rate_hz=rate_hz))
 
 
 @pytest.fixture(scope="module")
 def reference(tables):
-    """Point-mass, 1 worker, 1 chunk: what `ogk mc leo-geo --runs 3 --seed 7 --truth point-mass`
-    must write, interrupted and resumed or not."""
-    return _nog(tables, "point-mass")
+    """Point-mass, 25 Hz, 1 worker, 1 chunk: what `ogk mc leo-geo --runs 3 --seed 7 --truth
+    point-mass --control-rate 25` must write, interrupted and resumed or not."""
+    return _nog(tables, "point-mass", rate_hz=25.0)
 
 
 def test_per_run_values_do_not_depend_on_workers_or_chunks(tables):
@@ -201,7 +203,8 @@ def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(re
     out.write_text("{}\n")                              # a previous campaign's result
     def command(seed: int) -> list[str]:
         return [*OGK, "mc", "leo-geo", "--runs", "3", "--seed", str(seed), "--workers", "2",
-                "--chunk-runs", "1", "--truth", "point-mass", "--json", str(out)]
+                "--chunk-runs", "1", "--truth", "point-mass", "--control-rate", "25",
+                "--json", str(out)]
     cmd = command(7)
     proc = subprocess.Popen(cmd, cwd=REPO, env=ENV, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
