@@ -41,6 +41,14 @@ ogk_flight_action ogk_flight_reaction(ogk_flight_call call, ogk_status st)
             return OGK_FLIGHT_RELOAD_TABLE;
         }
         return OGK_FLIGHT_HOLD;
+    case OGK_E_TABLE_STALE:
+        /* The table the NOG context was bound to has been (re)loaded since its init (the kernel
+         * flew the held correction and read nothing from the table): re-initialise the context on
+         * the table as it is now; if that table is bad, the init says so and it is reloaded. */
+        if (call == OGK_FLIGHT_CALL_INIT) {
+            return OGK_FLIGHT_RELOAD_TABLE;
+        }
+        return OGK_FLIGHT_HOLD;
     case OGK_E_CONFIG:
         return OGK_FLIGHT_ABORT;            /* rejected configuration: do not ignite */
     case OGK_E_ALIGN:
