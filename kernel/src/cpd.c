@@ -87,7 +87,7 @@ static void mat_t_vec(const mat3_t *a, const double v[3], double out[3])
 
 /* N = R_A R3(-xi) R2(phi): [a]^T = N [r t n]^T (sec. 5.4), so a vector with
  * r-t-n components u has a components N u. R_A: a1 = c2, a2 = -c3, a3 = -c1. */
-static void a_from_rtn(double xi, double phi, mat3_t *n_out)
+static void a_from_rtn(double xi, double phi, mat3_t *n_out) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     static const mat3_t r_a = {{{0.0, 1.0, 0.0}, {0.0, 0.0, -1.0}, {-1.0, 0.0, 0.0}}};
     mat3_t r3;
@@ -100,7 +100,7 @@ static void a_from_rtn(double xi, double phi, mat3_t *n_out)
 }
 
 /* C = R1(Phi) R2(Theta) R3(Psi): body components = C a components (eq. 9). */
-static void body_from_a(double psi, double theta, double phi_roll, mat3_t *c_out)
+static void body_from_a(double psi, double theta, double phi_roll, mat3_t *c_out) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     mat3_t r1;
     mat3_t r2;
@@ -152,7 +152,7 @@ static ogk_status check_angles(const double *angles, size_t n)
     return st;
 }
 
-static double saturate(double value, double limit, uint32_t flag, uint32_t *flags)
+static double saturate(double value, double limit, uint32_t flag, uint32_t *flags) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     if (value > limit) {
         *flags |= flag;
@@ -168,7 +168,7 @@ static double saturate(double value, double limit, uint32_t flag, uint32_t *flag
 /* ---------------------------------------------------------------- geometry */
 
 /* Eqs. (38)-(39): yaw and pitch of a unit vector with a components t_a. */
-static void attitude_of_direction(const double t_a[3], double *psi_c,
+static void attitude_of_direction(const double t_a[3], double *psi_c, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
                                   double *theta_c, bool *yaw_undefined)
 {
     const double horiz = hypot(t_a[0], t_a[1]);
@@ -212,8 +212,8 @@ static void pointing_error_body(const double t_b[3], double *err_y, double *err_
 }
 
 /* Commanded direction in a and body components. */
-static void commanded_direction(double psi, double theta, double phi_roll,
-                                double alpha_c, double beta_c, double xi,
+static void commanded_direction(double psi, double theta, double phi_roll, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+                                double alpha_c, double beta_c, double xi, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
                                 double phi, double t_a[3], double t_b[3])
 {
     mat3_t n_a_rtn;
@@ -357,7 +357,7 @@ static bool config_finite(const ogk_cpd_config_t *cfg)
 
 /* The PD term of one axis, k_p e - k_d w, with the braking-curve cap of the
  * rate command k_p e / k_d when a > 0 (see ogk_cpd_config_t). */
-static double pd_term(double k_p, double k_d, double a, double err, double rate)
+static double pd_term(double k_p, double k_d, double a, double err, double rate) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     double rate_cmd = k_p * err / k_d;
     if (a > 0.0) {

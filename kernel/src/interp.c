@@ -66,7 +66,7 @@ ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
 }
 
 ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
-                             const double *values, size_t m,
+                             const double *values, size_t m, /* NOLINT(bugprone-easily-swappable-parameters): order of the public header (grid, size, values, ...), checked by the unit tests and pytest */
                              double tau, double *out)
 {
     size_t k;
@@ -224,7 +224,7 @@ ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
 
 ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
                             const double *values, const double *slopes,
-                            size_t m, double tau, double *out)
+                            size_t m, double tau, double *out) /* NOLINT(bugprone-easily-swappable-parameters): order of the public header (grid, size, values, ...), checked by the unit tests and pytest */
 {
     size_t k;
     size_t j;

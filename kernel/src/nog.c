@@ -108,7 +108,7 @@ ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t
         st = ogk_table_read_grid(&view, table->tau, OGK_NOG_MAX_GRID);
     }
     if (st == OGK_OK) {
-        st = ogk_table_read_data(&view, table->entry, OGK_NOG_MAX_GRID * OGK_NOG_ENTRY_LEN);
+        st = ogk_table_read_data(&view, table->entry, (size_t)OGK_NOG_MAX_GRID * OGK_NOG_ENTRY_LEN);
     }
     if (st == OGK_OK) {
         table->n_grid = view.grid_size;
@@ -169,8 +169,8 @@ ogk_status ogk_nog_table_view(ogk_nog_table_view_t *view, const uint8_t *buf, si
 
 /* Cubic Hermite of n quantities at tau from values at offset off_val and
  * d/dtau at off_der of the bracketing nodes. tau must be inside the grid. */
-static void hermite(const ogk_nog_table_view_t *tbl, double tau, size_t off_val,
-                    size_t off_der, size_t n, double *out)
+static void hermite(const ogk_nog_table_view_t *tbl, double tau, size_t off_val, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+                    size_t off_der, size_t n, double *out) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     size_t k = 0u;
     size_t i;
@@ -194,7 +194,7 @@ static void hermite(const ogk_nog_table_view_t *tbl, double tau, size_t off_val,
 }
 
 /* Linear interpolation of a block of n values at offset off. */
-static void linear_block(const ogk_nog_table_view_t *tbl, double tau, size_t off,
+static void linear_block(const ogk_nog_table_view_t *tbl, double tau, size_t off, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
                          size_t n, double *out)
 {
     size_t k = 0u;
@@ -213,7 +213,7 @@ static void linear_block(const ogk_nog_table_view_t *tbl, double tau, size_t off
 }
 
 /* Thrust direction minimising H: along -lambda_v (eq. 27), as angles. */
-static void angles_from_costate(const double *lam, double *alpha, double *beta)
+static void angles_from_costate(const double *lam, double *alpha, double *beta) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     const double l4 = lam[IDX_VR];
     const double l5 = lam[IDX_VR + 1u];
@@ -384,7 +384,7 @@ ogk_status ogk_nog_reset(ogk_nog_t *ctx)
 
 /* Moves the current sample to (t_s, tau) keeping the correction in force
  * (dlam continued from its hold, then held constant; t_f unchanged). */
-static void hold_correction(ogk_nog_t *ctx, double t_s, double tau)
+static void hold_correction(ogk_nog_t *ctx, double t_s, double tau) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     size_t i;
     for (i = 0u; i < NX; ++i) {
@@ -501,8 +501,8 @@ static bool compute_correction(ogk_nog_t *ctx, const double *dx)
     double scale;
     size_t i;
 
-    linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_GAIN, N_GAIN_ROWS * NX, gain);
-    linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_NRATE, NX * NX, nrate);
+    linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_GAIN, (size_t)N_GAIN_ROWS * NX, gain);
+    linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_NRATE, (size_t)NX * NX, nrate);
     (void)ogk_mat_vec(gain, N_GAIN_ROWS, NX, dx, out8);
     (void)ogk_mat_vec(nrate, NX, NX, dx, dlam_rate);
     if (!ogk_i_all_finite(out8, N_GAIN_ROWS) || !ogk_i_all_finite(dlam_rate, NX)) {

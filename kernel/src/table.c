@@ -63,7 +63,7 @@ static ogk_status check_dims(const uint8_t *hdr, const ogk_table_spec_t *spec,
         return OGK_E_TABLE_DIM;
     }
     for (d = 0u; d < OGK_TABLE_MAX_DIMS; ++d) {
-        v->dims[d] = get_u32(hdr + OFF_DIMS + 4u * d);
+        v->dims[d] = get_u32(hdr + OFF_DIMS + (size_t)4u * d);
         if (d < v->ndims) {
             if (v->dims[d] == 0u) {
                 return OGK_E_TABLE_DIM;
