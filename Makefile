@@ -96,6 +96,7 @@ lint: | apt
 	  --inline-suppr --suppressions-list=docs/cppcheck-suppressions.txt \
 	  --error-exitcode=3 $(KINC) $(KSRC)
 	@echo "lint: cppcheck clean (justified suppressions: docs/cppcheck-suppressions.txt)"
+	$(MAKE) misra
 
 # ---------------------------------------------------------------- Python harness (cffi)
 FFI_STAMP := harness/ogk/bindings/.ffi-built
@@ -124,6 +125,14 @@ include tests/bench/bench.mk
 # (docs/flight-integration.md): make test-flight-app, flight-app-size, flight-app-stack
 include port/cortex-m7/flightapp/flightapp.mk
 
+# ---------------------------------------------------------------- gates (issue 8): make tidy,
+# fuzz-short / fuzz, coverage, mutants (not in make test), misra (a ratchet, in make lint)
+include tests/gates/gates.mk
+
+.PHONY: misra
+misra: | apt
+	$(PYTHON) tests/misra/misra_gate.py
+
 # ---------------------------------------------------------------- top-level
 .PHONY: all test run clean
 all: deps kernel-host arm-lib ffi
@@ -135,6 +144,7 @@ test: deps
 	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack
 	$(MAKE) test-flight-app
 	$(MAKE) test-eigen
+	$(MAKE) gates
 	$(MAKE) test-imports
 	$(MAKE) test-python
 

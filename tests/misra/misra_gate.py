@@ -1,0 +1,87 @@
+"""MISRA C:2012 ratchet over kernel/ (`make misra`, run by `make lint`).
+
+Runs cppcheck's misra addon (rule numbers only: the rule texts are not shipped) over kernel/src and
+compares the findings, counted per (file, rule), with tests/misra/baseline.json:
+
+- a count above its baseline, or a rule in a file that had none, fails the gate and is listed line by
+  line: new code is born under MISRA;
+- a count below its baseline is reported, and `--update` writes the lower count (the baseline only
+  ever goes down; `--update` refuses to raise it).
+
+The baseline is the debt still to pay (docs/misra-deviations.md says which rules are to be fixed and
+which are deviations with their rationale); the target is an empty baseline plus recorded deviations.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import subprocess
+import sys
+from collections import Counter
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+BASELINE = ROOT / "tests" / "misra" / "baseline.json"
+FINDING = re.compile(r"^(?P<file>[^:]+):(?P<line>\d+):misra-c2012-(?P<rule>[\d.]+)$")
+
+
+def run_cppcheck() -> list[tuple[str, int, str]]:
+    sources = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "kernel" / "src").glob("*.c"))
+    build = ROOT / "build" / "misra"  # the addon's dump files go here, not next to the sources
+    build.mkdir(parents=True, exist_ok=True)
+    proc = subprocess.run(
+        ["cppcheck", "--std=c99", "--addon=misra", "--quiet", "-Ikernel/include",
+         f"--cppcheck-build-dir={build}",
+         "--template={file}:{line}:{id}", *sources],
+        cwd=ROOT, capture_output=True, text=True, check=False)
+    found = []
+    for line in proc.stderr.splitlines():
+        m = FINDING.match(line.strip())
+        if m:
+            found.append((m["file"], int(m["line"]), m["rule"]))
+        elif "misra" in line and "error" in line.lower():
+            raise SystemExit(f"misra: cppcheck failed: {line}")
+    if proc.returncode != 0:
+        raise SystemExit(f"misra: cppcheck exited {proc.returncode}: {proc.stderr[-500:]}")
+    return found
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--update", action="store_true", help="lower the baseline to today's counts")
+    ap.add_argument("--init", action="store_true", help="write the baseline from scratch")
+    args = ap.parse_args(argv)
+    found = run_cppcheck()
+    counts = Counter(f"{f}|{r}" for f, _, r in found)
+    by_rule = Counter(r for _, _, r in found)
+    print(f"misra: {len(found)} findings over kernel/src ("
+          + ", ".join(f"{r}: {n}" for r, n in by_rule.most_common()) + ")")
+    if args.init:
+        BASELINE.write_text(json.dumps(dict(sorted(counts.items())), indent=1) + "\n")
+        print(f"misra: baseline written ({len(found)} findings)")
+        return 0
+    base: dict[str, int] = json.loads(BASELINE.read_text())
+    worse = {k: (n, base.get(k, 0)) for k, n in counts.items() if n > base.get(k, 0)}
+    better = {k: (counts.get(k, 0), b) for k, b in base.items() if counts.get(k, 0) < b}
+    for key, (n, b) in sorted(worse.items()):
+        file, rule = key.split("|")
+        lines = sorted(ln for f, ln, r in found if f == file and r == rule)
+        print(f"misra: NEW rule {rule} in {file}: {n} > baseline {b} (lines {', '.join(map(str, lines))})")
+    if better:
+        print(f"misra: {sum(b - n for n, b in better.values())} findings fewer than the baseline"
+              + (" (baseline lowered)" if args.update else " (run with --update to lower it)"))
+        if args.update and not worse:
+            lowered = {k: v for k, v in base.items() if counts.get(k, 0) > 0}
+            lowered.update({k: counts[k] for k in lowered})
+            BASELINE.write_text(json.dumps(dict(sorted(lowered.items())), indent=1) + "\n")
+    if worse:
+        print(f"misra: FAILED: {sum(n - b for n, b in worse.values())} findings above the baseline "
+              "(fix them, or record a deviation in docs/misra-deviations.md and justify raising it)")
+        return 1
+    print(f"misra: ok ({len(found)} findings, baseline {sum(base.values())})")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
