@@ -248,7 +248,7 @@ ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, double *t, double *x,
 ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x);
 
 /* lambda_v(t) = P(t) W (eqs. 36-37) for any weights (3 values); lambda_v_dot
- * (3, may be NULL) receives d lambda_v / dt. OGK_E_NONFINITE (outputs zeroed) when
+ * (3, may be NULL) receives d lambda_v / dt. OGK_E_NONFINITE (outputs not to be used) when
  * the weights make a non-finite control: never OGK_OK with a non-finite output. */
 ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double t,
                             double *lambda_v, double *lambda_v_dot);
