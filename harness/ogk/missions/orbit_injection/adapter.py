@@ -11,7 +11,7 @@ from pathlib import Path
 from ogk_host.errors import OgkInputError
 from ogk_host.orbit_injection.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.orbit_injection.scenario import load_scenario
-from ogk_host.scenario_file import ScenarioHeader, table_dir_for
+from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale
 
@@ -31,9 +31,7 @@ def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
     from .flight_config import write_flight_config
 
     load_scenario(header.path)  # every bad key reported before the nominal is solved
-    out = Path(args.out) if args.out else (
-        ground.default_table_dir(header.path) if hasattr(ground, "default_table_dir")
-        else table_dir_for(header.path))
+    out = Path(args.out) if args.out else ground.default_table_dir(header.path)
     check_output_dir(out, "--out")
     manifest = ground.write_nog_tables(out, scenario_path=header.path)
     bundle = out / ground.BUNDLE_FILE
