@@ -14,7 +14,7 @@ ogk_status ogk_crc32_update(uint32_t *crc, const uint8_t *data, size_t len)
     uint32_t c;
     size_t i;
 
-    if (crc == NULL || (data == NULL && len > 0u)) {
+    if ((crc == NULL) || ((data == NULL) && (len > 0u))) {
         return OGK_E_NULL;
     }
     c = ~(*crc);
