@@ -68,7 +68,7 @@ extern "C" {
 #define OGK_MPSP_MAX_LOG 64u
 #endif
 
-#define OGK_MPSP_MAX_BASIS (2u * OGK_MPSP_MAX_ORDER + 1u)
+#define OGK_MPSP_MAX_BASIS ((2u * OGK_MPSP_MAX_ORDER) + 1u)
 #define OGK_MPSP_MAX_WEIGHTS (OGK_MPSP_NU * OGK_MPSP_MAX_BASIS)
 #define OGK_MPSP_MAX_UNKNOWNS (OGK_MPSP_MAX_WEIGHTS + 1u)
 /* Dense-output nodes: every grid node, t0 and tf, and every switch node the
