@@ -44,7 +44,7 @@ void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot) /* NOL
     if (hdot != NULL) {
         hdot[0] = 0.0;
     }
-    for (k = 1u; (cosine ? k : 2u * k) <= last; ++k) { /* k <= n harmonics */
+    for (k = 1u; (cosine ? k : (2u * k)) <= last; ++k) { /* k <= n harmonics */
         const double kw = (double)k * dyn->omega;
         if (cosine) {
             h[k] = cn;
@@ -52,16 +52,16 @@ void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot) /* NOL
                 hdot[k] = -kw * sn;
             }
         } else {
-            h[2u * k - 1u] = cn;
+            h[(2u * k) - 1u] = cn;
             h[2u * k] = sn;
             if (hdot != NULL) {
-                hdot[2u * k - 1u] = -kw * sn;
+                hdot[(2u * k) - 1u] = -kw * sn;
                 hdot[2u * k] = kw * cn;
             }
         }
         {
-            const double c_next = cn * c1 - sn * s1;
-            sn = sn * c1 + cn * s1;
+            const double c_next = (cn * c1) - (sn * s1);
+            sn = (sn * c1) + (cn * s1);
             cn = c_next;
         }
     }
@@ -94,7 +94,7 @@ void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, double *u)
 
 void mpsp_control_at(mpsp_dyn_t *dyn, double t, double *u)
 {
-    if (!dyn->cache_ok || dyn->cache_t != t) {
+    if ((!dyn->cache_ok) || (dyn->cache_t != t)) {
         double h[OGK_MPSP_MAX_BASIS];
         mpsp_basis(dyn, t, h, NULL);
         mpsp_control_from_basis(dyn, h, dyn->cache_u);
@@ -108,7 +108,7 @@ void mpsp_control_at(mpsp_dyn_t *dyn, double t, double *u)
 
 static double norm3(const double *a)
 {
-    return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    return sqrt((a[0] * a[0]) + (a[1] * a[1]) + (a[2] * a[2]));
 }
 
 /* Eq. (16). */
@@ -124,7 +124,7 @@ ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int
         return OGK_E_CALLBACK; /* mass depleted: eq. (16) undefined */
     }
     if (dyn->mu != 0.0) {
-        const double r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+        const double r2 = (x[0] * x[0]) + (x[1] * x[1]) + (x[2] * x[2]);
         const double k = -dyn->mu / (r2 * sqrt(r2));
         if (!(r2 > 0.0)) {
             return OGK_E_CALLBACK;
@@ -143,9 +143,9 @@ ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int
             return OGK_E_CALLBACK; /* thrust direction undefined (eq. 8) */
         }
         a = dyn->thrust / (m * lam);
-        xdot[3] = gx - a * u[0];
-        xdot[4] = gy - a * u[1];
-        xdot[5] = gz - a * u[2];
+        xdot[3] = gx - (a * u[0]);
+        xdot[4] = gy - (a * u[1]);
+        xdot[5] = gz - (a * u[2]);
         xdot[6] = -dyn->thrust / dyn->c_exhaust;
         xdot[7] = -dyn->thrust * lam / (m * m);
     } else {
@@ -174,7 +174,7 @@ ogk_status mpsp_jacobian(const mpsp_dyn_t *dyn, const double *x, const double *u
         return OGK_E_CALLBACK;
     }
     if (dyn->mu != 0.0) {
-        const double r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+        const double r2 = (x[0] * x[0]) + (x[1] * x[1]) + (x[2] * x[2]);
         double k;
         double k3;
         size_t j;
@@ -186,7 +186,7 @@ ogk_status mpsp_jacobian(const mpsp_dyn_t *dyn, const double *x, const double *u
         k3 = 3.0 * k / r2;
         for (i = 0u; i < 3u; ++i) {
             for (j = 0u; j < 3u; ++j) {
-                jac->g[i * 3u + j] = k3 * x[i] * x[j] - ((i == j) ? k : 0.0);
+                jac->g[(i * 3u) + j] = (k3 * x[i] * x[j]) - ((i == j) ? k : 0.0);
             }
         }
     } else {
