@@ -52,10 +52,10 @@ ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lam
     (void)memset(&res, 0, sizeof res);
     st = ogk_rk4_propagate(&prob, ctx->cfg.t0, xs, mode0, ctx->cfg.tf, &res, xf, &dense);
     ctx->n_nodes = dense.count;
-    if (st == OGK_OK && res.n_switches > OGK_MPSP_MAX_SWITCHES) {
+    if ((st == OGK_OK) && (res.n_switches > OGK_MPSP_MAX_SWITCHES)) {
         st = OGK_E_SWITCH_OVERFLOW;
     }
-    if (st == OGK_OK || st == OGK_E_SWITCH_OVERFLOW) {
+    if ((st == OGK_OK) || (st == OGK_E_SWITCH_OVERFLOW)) {
         ctx->n_switch_nodes = res.n_switches;
         for (i = 0u; i < res.n_switches; ++i) {
             ctx->switch_node[i] = res.sw[i].dense_index;
@@ -65,12 +65,12 @@ ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lam
         (void)memset(out, 0, sizeof *out);
         (void)memcpy(out->x_f, xf, sizeof out->x_f);
         out->n_switches = (uint32_t)res.n_switches;
-        for (i = 0u; i < res.n_switches && i < OGK_MPSP_MAX_SWITCHES; ++i) {
+        for (i = 0u; (i < res.n_switches) && (i < OGK_MPSP_MAX_SWITCHES); ++i) {
             out->t_switch[i] = res.sw[i].t;
         }
         out->n_segments = (uint32_t)res.n_switches + 1u;
         /* Segments alternate starting from mode0. */
-        out->n_thrust_arcs = (mode0 == 1) ? (out->n_segments + 1u) / 2u : out->n_segments / 2u;
+        out->n_thrust_arcs = (mode0 == 1) ? ((out->n_segments + 1u) / 2u) : (out->n_segments / 2u);
         out->mode0 = mode0;
         out->n_nodes = dense.count;
     }
@@ -82,7 +82,7 @@ ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lam
 
 static ogk_status check_inputs(const ogk_mpsp_t *ctx, const double *x0, double thrust_scale)
 {
-    if (ctx == NULL || x0 == NULL) {
+    if ((ctx == NULL) || (x0 == NULL)) {
         return OGK_E_NULL;
     }
     if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
@@ -117,7 +117,7 @@ ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const double *weights, double lam
 ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, double *t, double *x,
                                uint8_t *mode, size_t capacity, size_t *count)
 {
-    if (ctx == NULL || count == NULL) {
+    if ((ctx == NULL) || (count == NULL)) {
         return OGK_E_NULL;
     }
     if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
@@ -150,13 +150,13 @@ ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x)
     size_t i;
     ogk_status st;
 
-    if (ctx == NULL || x == NULL) {
+    if ((ctx == NULL) || (x == NULL)) {
         return OGK_E_NULL;
     }
     if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
         return OGK_E_NOT_INIT;
     }
-    if (ctx->traj_valid == 0u || ctx->n_nodes < 2u) {
+    if ((ctx->traj_valid == 0u) || (ctx->n_nodes < 2u)) {
         return OGK_E_NOT_INIT;
     }
     if (!isfinite(t)) {
@@ -171,18 +171,18 @@ ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x)
     seg_hi = ctx->n_nodes - 1u;
     for (i = 0u; i < ctx->n_switch_nodes; ++i) {
         const size_t s = ctx->switch_node[i];
-        if (s <= k && s > seg_lo) {
+        if ((s <= k) && (s > seg_lo)) {
             seg_lo = s;
         }
-        if (s >= k + 1u && s < seg_hi) {
+        if ((s >= (k + 1u)) && (s < seg_hi)) {
             seg_hi = s;
         }
     }
     /* pchip slopes are local (a node's slope uses its two neighbours, an end
      * slope the first three nodes), so the window k-1 .. k+2 clipped to the
      * segment gives the segment-wide pchip exactly on [t_k, t_k+1]. */
-    lo = (k > seg_lo) ? k - 1u : k;
-    hi = (k + 2u <= seg_hi) ? k + 2u : seg_hi;
+    lo = (k > seg_lo) ? (k - 1u) : k;
+    hi = ((k + 2u) <= seg_hi) ? (k + 2u) : seg_hi;
     st = ogk_interp_pchip_slopes(&ctx->traj_t[lo], hi - lo + 1u, &ctx->traj_x[lo * NX], NX,
                                  slopes);
     if (st != OGK_OK) {
@@ -199,7 +199,7 @@ ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double
     double h[OGK_MPSP_MAX_BASIS];
     double hdot[OGK_MPSP_MAX_BASIS];
 
-    if (ctx == NULL || weights == NULL || lambda_v == NULL) {
+    if ((ctx == NULL) || (weights == NULL) || (lambda_v == NULL)) {
         return OGK_E_NULL;
     }
     if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
@@ -216,8 +216,8 @@ ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double
     }
     /* Finite weights can still overflow the sum, and a time far from t_ref the phase (found by
      * tests/fuzz/fuzz_mpsp_init.c): never OGK_OK with a non-finite output. */
-    if (!ogk_i_all_finite(lambda_v, OGK_MPSP_NU) ||
-        (lambda_v_dot != NULL && !ogk_i_all_finite(lambda_v_dot, OGK_MPSP_NU))) {
+    if ((!ogk_i_all_finite(lambda_v, OGK_MPSP_NU)) ||
+        ((lambda_v_dot != NULL) && (!ogk_i_all_finite(lambda_v_dot, OGK_MPSP_NU)))) {
         return OGK_E_NONFINITE;
     }
     return OGK_OK;
