@@ -27,17 +27,17 @@ static bool all_finite(const double *x, size_t n)
 
 static ogk_status check_problem(const ogk_rk4_problem_t *p)
 {
-    if (p == NULL || p->rhs == NULL) {
+    if ((p == NULL) || (p->rhs == NULL)) {
         return OGK_E_NULL;
     }
-    if (p->n == 0u || p->n > OGK_RK4_MAX_STATE) {
+    if ((p->n == 0u) || (p->n > OGK_RK4_MAX_STATE)) {
         return OGK_E_DIM;
     }
     if (!isfinite(p->h) || !(p->h > 0.0)) {
         return OGK_E_RANGE;
     }
     if (p->sw != NULL) {
-        if (!isfinite(p->s_tol) || p->s_tol < 0.0 || !isfinite(p->t_tol) || !(p->t_tol > 0.0)) {
+        if ((!isfinite(p->s_tol)) || (p->s_tol < 0.0) || (!isfinite(p->t_tol)) || (!(p->t_tol > 0.0))) {
             return OGK_E_RANGE;
         }
     }
@@ -62,25 +62,25 @@ static ogk_status step_raw(stepper_t *s, double t, const double *x, double dt,
         return OGK_E_CALLBACK;
     }
     for (i = 0u; i < n; ++i) {
-        xs[i] = x[i] + half * k1[i];
+        xs[i] = x[i] + (half * k1[i]);
     }
     if (s->p->rhs(s->p->user, t + half, xs, mode, k2) != OGK_OK) {
         return OGK_E_CALLBACK;
     }
     for (i = 0u; i < n; ++i) {
-        xs[i] = x[i] + half * k2[i];
+        xs[i] = x[i] + (half * k2[i]);
     }
     if (s->p->rhs(s->p->user, t + half, xs, mode, k3) != OGK_OK) {
         return OGK_E_CALLBACK;
     }
     for (i = 0u; i < n; ++i) {
-        xs[i] = x[i] + dt * k3[i];
+        xs[i] = x[i] + (dt * k3[i]);
     }
     if (s->p->rhs(s->p->user, t + dt, xs, mode, k4) != OGK_OK) {
         return OGK_E_CALLBACK;
     }
     for (i = 0u; i < n; ++i) {
-        x_next[i] = x[i] + (dt / 6.0) * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
+        x_next[i] = x[i] + ((dt / 6.0) * (k1[i] + (2.0 * (k2[i] + k3[i])) + k4[i]));
     }
     return all_finite(x_next, n) ? OGK_OK : OGK_E_NONFINITE;
 }
@@ -94,7 +94,7 @@ ogk_status ogk_rk4_step(const ogk_rk4_problem_t *p, double t, const double *x,
     if (st != OGK_OK) {
         return st;
     }
-    if (x == NULL || x_next == NULL) {
+    if ((x == NULL) || (x_next == NULL)) {
         return OGK_E_NULL;
     }
     if (!isfinite(t) || !isfinite(dt) || !all_finite(x, p->n)) {
@@ -152,9 +152,9 @@ static ogk_status bisect_switch(stepper_t *s, double t, const double *x,
 
     ev->how = OGK_SWITCH_BY_TIME_TOL;
     for (it = 0u; it < OGK_RK4_MAX_BISECTIONS; ++it) {
-        const double mid = lo + 0.5 * (hi - lo);
+        const double mid = lo + (0.5 * (hi - lo));
         double s_mid;
-        if (!(mid > lo && mid < hi) || hi - lo <= s->p->t_tol) {
+        if ((!((mid > lo) && (mid < hi))) || ((hi - lo) <= s->p->t_tol)) {
             break; /* bracket at the time tolerance or at its last bit */
         }
         st = step_raw(s, t, x, mid, mode, x_s);
@@ -216,10 +216,10 @@ ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
     if (st != OGK_OK) {
         return st;
     }
-    if (x0 == NULL || res == NULL || xf == NULL) {
+    if ((x0 == NULL) || (res == NULL) || (xf == NULL)) {
         return OGK_E_NULL;
     }
-    if (dense != NULL && (dense->t == NULL || dense->x == NULL || dense->mode == NULL)) {
+    if ((dense != NULL) && ((dense->t == NULL) || (dense->x == NULL) || (dense->mode == NULL))) {
         return OGK_E_NULL;
     }
     memset(res, 0, sizeof *res);
@@ -229,7 +229,7 @@ ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
     if (!isfinite(t0) || !isfinite(tf) || !all_finite(x0, p->n)) {
         return OGK_E_NONFINITE;
     }
-    if (!(tf > t0) || (mode0 != 0 && mode0 != 1)) {
+    if ((!(tf > t0)) || ((mode0 != 0) && (mode0 != 1))) {
         return OGK_E_RANGE;
     }
     ratio = (tf - t0) / p->h;
@@ -237,7 +237,7 @@ ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
         return OGK_E_STEP_LIMIT;
     }
     n_grid = (size_t)floor(ratio);
-    if (ratio - (double)n_grid > OGK_RK4_STEP_SLOP * fmax(1.0, ratio) || n_grid == 0u) {
+    if (((ratio - (double)n_grid) > (OGK_RK4_STEP_SLOP * fmax(1.0, ratio))) || (n_grid == 0u)) {
         n_grid += 1u;
     }
 
@@ -256,14 +256,14 @@ ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
     }
     st = dense_push(dense, p->n, t, x, mode);
 
-    for (k = 0u; k < n_grid && st == OGK_OK; ++k) {
+    for (k = 0u; (k < n_grid) && (st == OGK_OK); ++k) {
         const double t_target = (k + 1u == n_grid) ? tf : t0 + (double)(k + 1u) * p->h;
         size_t piece;
         /* One piece per located switch plus the last one: fixed bound. */
         for (piece = 0u; piece <= OGK_RK4_MAX_SWITCHES; ++piece) {
             double s_end = 0.0;
             st = step_raw(&s, t, x, t_target - t, mode, x_end);
-            if (st == OGK_OK && p->sw != NULL) {
+            if ((st == OGK_OK) && (p->sw != NULL)) {
                 st = eval_switch(p, t_target, x_end, mode, &s_end);
             }
             if (st != OGK_OK) {
@@ -272,7 +272,7 @@ ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
             if (side == 0) {
                 side = sign_of(s_end); /* S started exactly at zero: no event */
             }
-            if (p->sw == NULL || side == 0 || sign_of(s_end) != -side) {
+            if ((p->sw == NULL) || (side == 0) || (sign_of(s_end) != -side)) {
                 memcpy(x, x_end, p->n * sizeof x[0]);
                 t = t_target;
                 res->n_steps += 1u;
@@ -302,7 +302,7 @@ ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
                 res->sw[res->n_switches] = ev;
                 res->n_switches += 1u;
                 st = dense_push(dense, p->n, t, x, mode);
-                if (st != OGK_OK || !(t < t_target)) {
+                if ((st != OGK_OK) || (!(t < t_target))) {
                     break;
                 }
             }
