@@ -61,8 +61,8 @@ static void mat_mul(const mat3_t *a, const mat3_t *b, mat3_t *out)
     size_t j;
     for (i = 0u; i < 3u; ++i) {
         for (j = 0u; j < 3u; ++j) {
-            out->m[i][j] = a->m[i][0] * b->m[0][j] + a->m[i][1] * b->m[1][j] +
-                           a->m[i][2] * b->m[2][j];
+            out->m[i][j] = (a->m[i][0] * b->m[0][j]) + (a->m[i][1] * b->m[1][j]) +
+                           (a->m[i][2] * b->m[2][j]);
         }
     }
 }
@@ -72,7 +72,7 @@ static void mat_vec(const mat3_t *a, const double v[3], double out[3])
 {
     size_t i;
     for (i = 0u; i < 3u; ++i) {
-        out[i] = a->m[i][0] * v[0] + a->m[i][1] * v[1] + a->m[i][2] * v[2];
+        out[i] = (a->m[i][0] * v[0]) + (a->m[i][1] * v[1]) + (a->m[i][2] * v[2]);
     }
 }
 
@@ -81,7 +81,7 @@ static void mat_t_vec(const mat3_t *a, const double v[3], double out[3])
 {
     size_t i;
     for (i = 0u; i < 3u; ++i) {
-        out[i] = a->m[0][i] * v[0] + a->m[1][i] * v[1] + a->m[2][i] * v[2];
+        out[i] = (a->m[0][i] * v[0]) + (a->m[1][i] * v[1]) + (a->m[2][i] * v[2]);
     }
 }
 
@@ -241,17 +241,17 @@ static void feedforward_rate(const ogk_cpd_t *ctx, const double t_a[3], double p
 
     *w_y = 0.0;
     *w_z = 0.0;
-    if (!(cfg->ff_period_s > 0.0) || ctx->has_prev == 0u) {
+    if ((!(cfg->ff_period_s > 0.0)) || (ctx->has_prev == 0u)) {
         return;
     }
-    w_a[0] = (p[1] * t_a[2] - p[2] * t_a[1]) / cfg->ff_period_s;
-    w_a[1] = (p[2] * t_a[0] - p[0] * t_a[2]) / cfg->ff_period_s;
-    w_a[2] = (p[0] * t_a[1] - p[1] * t_a[0]) / cfg->ff_period_s;
+    w_a[0] = ((p[1] * t_a[2]) - (p[2] * t_a[1])) / cfg->ff_period_s;
+    w_a[1] = ((p[2] * t_a[0]) - (p[0] * t_a[2])) / cfg->ff_period_s;
+    w_a[2] = ((p[0] * t_a[1]) - (p[1] * t_a[0])) / cfg->ff_period_s;
     body_from_a(psi, theta, phi_roll, &c_b_a);
     mat_vec(&c_b_a, w_a, w_b);
     norm = hypot(w_b[1], w_b[2]);
     if (norm > cfg->ff_rate_max) {
-        const double scale = (norm > 0.0) ? cfg->ff_rate_max / norm : 0.0;
+        const double scale = (norm > 0.0) ? (cfg->ff_rate_max / norm) : 0.0;
         w_b[1] *= scale;
         w_b[2] *= scale;
     }
@@ -272,7 +272,7 @@ ogk_status ogk_cpd_commanded_attitude(double alpha_c, double beta_c, double xi,
     bool yaw_undefined;
     ogk_status st;
 
-    if (psi_c == NULL || theta_c == NULL) {
+    if ((psi_c == NULL) || (theta_c == NULL)) {
         return OGK_E_NULL;
     }
     st = check_angles(angles, 4u);
@@ -299,7 +299,7 @@ ogk_status ogk_cpd_thrust_angles(double psi, double theta, double phi_roll,
     double t_rtn[3];
     ogk_status st;
 
-    if (alpha_a == NULL || beta_a == NULL) {
+    if ((alpha_a == NULL) || (beta_a == NULL)) {
         return OGK_E_NULL;
     }
     st = check_angles(angles, 7u);
@@ -333,7 +333,7 @@ ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll
     double t_b[3];
     ogk_status st;
 
-    if (err_y == NULL || err_z == NULL) {
+    if ((err_y == NULL) || (err_z == NULL)) {
         return OGK_E_NULL;
     }
     st = check_angles(angles, 7u);
@@ -352,7 +352,7 @@ static bool config_finite(const ogk_cpd_config_t *cfg)
                           cfg->delta_zc_max, cfg->tau_x, cfg->tau_y, cfg->tau_z,
                           cfg->phi_c, cfg->approach_accel_x, cfg->approach_accel_y,
                           cfg->approach_accel_z, cfg->ff_period_s, cfg->ff_rate_max};
-    return ogk_i_all_finite(v, sizeof v / sizeof v[0]);
+    return ogk_i_all_finite(v, sizeof(v) / sizeof(v[0]));
 }
 
 /* The PD term of one axis, k_p e - k_d w, with the braking-curve cap of the
@@ -374,7 +374,7 @@ static double pd_term(double k_p, double k_d, double a, double err, double rate)
 static bool axis_ok(double k_p, double k_d, double tau, double limit)
 {
     return (k_p > 0.0) && (k_d > 0.0) && (tau > 0.0) && (limit > 0.0) &&
-           (k_d > k_p * tau);
+           (k_d > (k_p * tau));
 }
 
 ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg)
@@ -397,12 +397,12 @@ ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg)
     if (fabs(cfg->phi_c) > CPD_PI) {
         return OGK_E_CONFIG;
     }
-    if (cfg->approach_accel_x < 0.0 || cfg->approach_accel_y < 0.0 ||
-        cfg->approach_accel_z < 0.0 || cfg->ff_period_s < 0.0 || cfg->ff_rate_max < 0.0) {
+    if ((cfg->approach_accel_x < 0.0) || (cfg->approach_accel_y < 0.0) ||
+        (cfg->approach_accel_z < 0.0) || (cfg->ff_period_s < 0.0) || (cfg->ff_rate_max < 0.0)) {
         return OGK_E_CONFIG;
     }
-    if (cfg->pointing != OGK_CPD_POINTING_BODY &&
-        cfg->pointing != OGK_CPD_POINTING_EULER) {
+    if ((cfg->pointing != OGK_CPD_POINTING_BODY) &&
+        (cfg->pointing != OGK_CPD_POINTING_EULER)) {
         return OGK_E_CONFIG;
     }
     ctx->cfg = *cfg;
@@ -460,7 +460,7 @@ ogk_status ogk_cpd_reset(ogk_cpd_t *ctx)
 ogk_status ogk_cpd_input_from_thrust_cmd(ogk_cpd_input_t *in, const ogk_thrust_cmd_t *cmd,
                                          const ogk_nav_state_t *nav)
 {
-    if (in == NULL || cmd == NULL || nav == NULL) {
+    if ((in == NULL) || (cmd == NULL) || (nav == NULL)) {
         return OGK_E_NULL;
     }
     {
@@ -497,7 +497,7 @@ static ogk_status reject(ogk_cpd_t *ctx, ogk_cpd_output_t *out, ogk_status st)
     if (out != NULL) {
         safe_command(out);
     }
-    if (ctx != NULL && ctx->init_marker == OGK_CPD_INIT_MARKER) {
+    if ((ctx != NULL) && (ctx->init_marker == OGK_CPD_INIT_MARKER)) {
         safe_command(&ctx->last);
     }
     return st;
@@ -517,7 +517,7 @@ ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
     bool yaw_undefined;
     uint32_t flags = 0u;
 
-    if (ctx == NULL || in == NULL || out == NULL) {
+    if ((ctx == NULL) || (in == NULL) || (out == NULL)) {
         return reject(ctx, out, OGK_E_NULL);
     }
     if (ctx->init_marker != OGK_CPD_INIT_MARKER) {
