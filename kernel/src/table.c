@@ -59,7 +59,7 @@ static ogk_status check_dims(const uint8_t *hdr, const ogk_table_spec_t *spec,
     uint16_t d;
 
     v->ndims = get_u16(hdr + OFF_NDIMS);
-    if (v->ndims == 0u || v->ndims > OGK_TABLE_MAX_DIMS || v->ndims != spec->ndims) {
+    if ((v->ndims == 0u) || (v->ndims > OGK_TABLE_MAX_DIMS) || (v->ndims != spec->ndims)) {
         return OGK_E_TABLE_DIM;
     }
     for (d = 0u; d < OGK_TABLE_MAX_DIMS; ++d) {
@@ -68,10 +68,10 @@ static ogk_status check_dims(const uint8_t *hdr, const ogk_table_spec_t *spec,
             if (v->dims[d] == 0u) {
                 return OGK_E_TABLE_DIM;
             }
-            if (spec->dims[d] != 0u && spec->dims[d] != v->dims[d]) {
+            if ((spec->dims[d] != 0u) && (spec->dims[d] != v->dims[d])) {
                 return OGK_E_TABLE_DIM;
             }
-            if (v->dims[d] > OGK_TABLE_MAX_VALUES / product) {
+            if (v->dims[d] > (OGK_TABLE_MAX_VALUES / product)) {
                 return OGK_E_TABLE_SIZE;
             }
             product *= v->dims[d];
@@ -118,26 +118,26 @@ static ogk_status open_checked(const uint8_t *buf, size_t len,
         return st;
     }
     v->grid_size = get_u32(buf + OFF_GRID);
-    if (v->grid_size < spec->min_grid || v->grid_size > spec->max_grid || v->grid_size == 0u) {
+    if ((v->grid_size < spec->min_grid) || (v->grid_size > spec->max_grid) || (v->grid_size == 0u)) {
         return OGK_E_TABLE_DIM;
     }
     /* values = grid * (1 + entry_len), guarded against overflow. */
-    if (v->entry_len >= OGK_TABLE_MAX_VALUES ||
-        v->grid_size > OGK_TABLE_MAX_VALUES / (v->entry_len + 1u)) {
+    if ((v->entry_len >= OGK_TABLE_MAX_VALUES) ||
+        (v->grid_size > (OGK_TABLE_MAX_VALUES / (v->entry_len + 1u)))) {
         return OGK_E_TABLE_SIZE;
     }
     values = v->grid_size * (v->entry_len + 1u);
-    if (values > OGK_TABLE_MAX_VALUES / 8u) {
+    if (values > (OGK_TABLE_MAX_VALUES / 8u)) {
         return OGK_E_TABLE_SIZE;
     }
     payload_bytes = get_u32(buf + OFF_PAYLOAD_BYTES);
-    if (payload_bytes != 8u * values) {
+    if (payload_bytes != (8u * values)) {
         return OGK_E_TABLE_SIZE;
     }
-    if (len - OGK_TABLE_HEADER_SIZE < (size_t)payload_bytes) {
+    if ((len - OGK_TABLE_HEADER_SIZE) < (size_t)payload_bytes) {
         return OGK_E_TABLE_TRUNCATED;
     }
-    if (len - OGK_TABLE_HEADER_SIZE > (size_t)payload_bytes) {
+    if ((len - OGK_TABLE_HEADER_SIZE) > (size_t)payload_bytes) {
         return OGK_E_TABLE_SIZE;
     }
     crc = 0u;
@@ -163,7 +163,7 @@ ogk_status ogk_table_open(const uint8_t *buf, size_t len,
         return OGK_E_NULL;
     }
     memset(view, 0, sizeof *view);
-    if (buf == NULL || spec == NULL) {
+    if ((buf == NULL) || (spec == NULL)) {
         return OGK_E_NULL;
     }
     st = open_checked(buf, len, spec, view);
@@ -178,7 +178,7 @@ ogk_status ogk_table_read_grid(const ogk_table_view_t *view, double *grid_out,
 {
     uint32_t k;
 
-    if (view == NULL || grid_out == NULL) {
+    if ((view == NULL) || (grid_out == NULL)) {
         return OGK_E_NULL;
     }
     if (view->buf == NULL) {
@@ -200,7 +200,7 @@ ogk_status ogk_table_read_data(const ogk_table_view_t *view, double *data_out,
     size_t i;
     const uint8_t *data;
 
-    if (view == NULL || data_out == NULL) {
+    if ((view == NULL) || (data_out == NULL)) {
         return OGK_E_NULL;
     }
     if (view->buf == NULL) {
@@ -222,17 +222,17 @@ ogk_status ogk_table_get(const ogk_table_view_t *view, uint32_t k,
 {
     size_t offset;
 
-    if (view == NULL || value == NULL) {
+    if ((view == NULL) || (value == NULL)) {
         return OGK_E_NULL;
     }
     if (view->buf == NULL) {
         return OGK_E_NOT_INIT;
     }
-    if (k >= view->grid_size || index >= view->entry_len) {
+    if ((k >= view->grid_size) || (index >= view->entry_len)) {
         return OGK_E_RANGE;
     }
     offset = OGK_TABLE_HEADER_SIZE +
-             8u * ((size_t)view->grid_size + (size_t)k * (size_t)view->entry_len + (size_t)index);
+             (8u * ((size_t)view->grid_size + ((size_t)k * (size_t)view->entry_len) + (size_t)index));
     *value = get_f64(view->buf + offset);
     return OGK_OK;
 }
