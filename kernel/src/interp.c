@@ -21,7 +21,7 @@ ogk_status ogk_interp_check_grid(const double *grid, size_t n_grid)
         if (!isfinite(grid[k])) {
             return OGK_E_NONFINITE;
         }
-        if (k > 0u && !(grid[k] > grid[k - 1u])) {
+        if ((k > 0u) && (!(grid[k] > grid[k - 1u]))) {
             return OGK_E_RANGE;
         }
     }
@@ -35,7 +35,7 @@ ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
     size_t hi;
     unsigned it;
 
-    if (grid == NULL || k == NULL) {
+    if ((grid == NULL) || (k == NULL)) {
         return OGK_E_NULL;
     }
     if (n_grid < 2u) {
@@ -44,13 +44,13 @@ ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
     if (!isfinite(tau)) {
         return OGK_E_NONFINITE;
     }
-    if (tau < grid[0] || tau > grid[n_grid - 1u]) {
+    if ((tau < grid[0]) || (tau > grid[n_grid - 1u])) {
         return OGK_E_RANGE;
     }
     /* Invariant: grid[lo] <= tau <= grid[hi]. */
     lo = 0u;
     hi = n_grid - 1u;
-    for (it = 0u; it < OGK_INTERP_MAX_SEARCH && hi - lo > 1u; ++it) {
+    for (it = 0u; (it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u); ++it) {
         const size_t mid = lo + (hi - lo) / 2u;
         if (grid[mid] <= tau) {
             lo = mid;
@@ -58,7 +58,7 @@ ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
             hi = mid;
         }
     }
-    if (hi - lo > 1u) {
+    if ((hi - lo) > 1u) {
         return OGK_E_NOT_CONVERGED; /* unreachable for n_grid < 2^64 */
     }
     *k = lo;
@@ -74,7 +74,7 @@ ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
     double w;
     ogk_status st;
 
-    if (values == NULL || out == NULL) {
+    if ((values == NULL) || (out == NULL)) {
         return OGK_E_NULL;
     }
     if (m == 0u) {
@@ -86,9 +86,9 @@ ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
     }
     w = (tau - grid[k]) / (grid[k + 1u] - grid[k]);
     for (j = 0u; j < m; ++j) {
-        const double y0 = values[k * m + j];
-        const double y1 = values[(k + 1u) * m + j];
-        out[j] = y0 + w * (y1 - y0);
+        const double y0 = values[(k * m) + j];
+        const double y1 = values[((k + 1u) * m) + j];
+        out[j] = y0 + (w * (y1 - y0));
     }
     return OGK_OK;
 }
@@ -111,7 +111,7 @@ static int sign_of(double v)
 static bool in_direct_range(double v)
 {
     const double a = fabs(v);
-    return a >= OGK_INTERP_DIRECT_LO && a <= OGK_INTERP_DIRECT_HI;
+    return (a >= OGK_INTERP_DIRECT_LO) && (a <= OGK_INTERP_DIRECT_HI);
 }
 
 /* Weighted harmonic mean (w0 + w1) / (w0 / d0 + w1 / d1) of two secants of
@@ -136,12 +136,12 @@ static double harmonic_slope(double w0, double w1, double d0, double d1)
     e1 = d1 / m;
     u0 = w0 / wm;
     u1 = w1 / wm;
-    return m * (((u0 + u1) / (u0 * e1 + u1 * e0)) * e0 * e1);
+    return m * (((u0 + u1) / ((u0 * e1) + (u1 * e0))) * e0 * e1);
 }
 
 static double pchip_end_slope(double h0, double h1, double d0, double d1)
 {
-    double s = ((2.0 * h0 + h1) * d0 - h0 * d1) / (h0 + h1);
+    double s = ((((2.0 * h0) + h1) * d0) - (h0 * d1)) / (h0 + h1);
     if (sign_of(s) != sign_of(d0)) {
         s = 0.0;
     } else if (sign_of(d0) != sign_of(d1) && fabs(s) > fabs(3.0 * d0)) {
@@ -158,7 +158,7 @@ ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
     size_t j;
     ogk_status st;
 
-    if (values == NULL || slopes == NULL) {
+    if ((values == NULL) || (slopes == NULL)) {
         return OGK_E_NULL;
     }
     if (m == 0u) {
@@ -168,7 +168,7 @@ ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
     if (st != OGK_OK) {
         return st;
     }
-    for (k = 0u; k < n_grid * m; ++k) {
+    for (k = 0u; k < (n_grid * m); ++k) {
         if (!isfinite(values[k])) {
             return OGK_E_NONFINITE;
         }
@@ -182,39 +182,39 @@ ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
         }
         /* Interior: weighted harmonic mean of the adjacent secants
          * (Fritsch & Butland 1984), zero at local extrema. */
-        for (k = 1u; k + 1u < n_grid; ++k) {
+        for (k = 1u; (k + 1u) < n_grid; ++k) {
             const double h0 = grid[k] - grid[k - 1u];
             const double h1 = grid[k + 1u] - grid[k];
-            const double d0 = (values[k * m + j] - values[(k - 1u) * m + j]) / h0;
-            const double d1 = (values[(k + 1u) * m + j] - values[k * m + j]) / h1;
+            const double d0 = (values[(k * m) + j] - values[((k - 1u) * m) + j]) / h0;
+            const double d1 = (values[((k + 1u) * m) + j] - values[(k * m) + j]) / h1;
             /* Signs, not d0 * d1: the product of two tiny secants of the same
              * sign underflows to 0 and would flatten a monotone run. */
             if (sign_of(d0) * sign_of(d1) <= 0) {
-                slopes[k * m + j] = 0.0;
+                slopes[(k * m) + j] = 0.0;
             } else {
-                slopes[k * m + j] = harmonic_slope(2.0 * h1 + h0, h1 + 2.0 * h0, d0, d1);
+                slopes[(k * m) + j] = harmonic_slope((2.0 * h1) + h0, h1 + (2.0 * h0), d0, d1);
             }
         }
         {
             const double h0 = grid[1] - grid[0];
             const double h1 = grid[2] - grid[1];
             const double d0 = (values[m + j] - values[j]) / h0;
-            const double d1 = (values[2u * m + j] - values[m + j]) / h1;
+            const double d1 = (values[(2u * m) + j] - values[m + j]) / h1;
             slopes[j] = pchip_end_slope(h0, h1, d0, d1);
         }
         {
             const size_t n = n_grid - 1u;
             const double h0 = grid[n] - grid[n - 1u];
             const double h1 = grid[n - 1u] - grid[n - 2u];
-            const double d0 = (values[n * m + j] - values[(n - 1u) * m + j]) / h0;
-            const double d1 = (values[(n - 1u) * m + j] - values[(n - 2u) * m + j]) / h1;
-            slopes[n * m + j] = pchip_end_slope(h0, h1, d0, d1);
+            const double d0 = (values[(n * m) + j] - values[((n - 1u) * m) + j]) / h0;
+            const double d1 = (values[((n - 1u) * m) + j] - values[((n - 2u) * m) + j]) / h1;
+            slopes[(n * m) + j] = pchip_end_slope(h0, h1, d0, d1);
         }
     }
     /* Finite grid and values can still give an infinite secant (a value
      * step near DBL_MAX, or one over a subnormal grid step): reported, never
      * handed on as a slope. */
-    for (k = 0u; k < n_grid * m; ++k) {
+    for (k = 0u; k < (n_grid * m); ++k) {
         if (!isfinite(slopes[k])) {
             return OGK_E_RANGE;
         }
@@ -233,7 +233,7 @@ ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
     double h00, h10, h01, h11;
     ogk_status st;
 
-    if (values == NULL || slopes == NULL || out == NULL) {
+    if ((values == NULL) || (slopes == NULL) || (out == NULL)) {
         return OGK_E_NULL;
     }
     if (m == 0u) {
@@ -246,13 +246,13 @@ ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
     h = grid[k + 1u] - grid[k];
     s = (tau - grid[k]) / h;
     /* Cubic Hermite basis on [0, 1]. */
-    h00 = (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s);
+    h00 = (1.0 + (2.0 * s)) * (1.0 - s) * (1.0 - s);
     h10 = s * (1.0 - s) * (1.0 - s);
-    h01 = s * s * (3.0 - 2.0 * s);
+    h01 = s * s * (3.0 - (2.0 * s));
     h11 = s * s * (s - 1.0);
     for (j = 0u; j < m; ++j) {
-        out[j] = h00 * values[k * m + j] + h10 * h * slopes[k * m + j] +
-                 h01 * values[(k + 1u) * m + j] + h11 * h * slopes[(k + 1u) * m + j];
+        out[j] = (h00 * values[(k * m) + j]) + (h10 * h * slopes[(k * m) + j]) +
+                 (h01 * values[((k + 1u) * m) + j]) + (h11 * h * slopes[((k + 1u) * m) + j]);
     }
     return OGK_OK;
 }
