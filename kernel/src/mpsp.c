@@ -32,7 +32,7 @@ static bool cfg_scalars_finite(const ogk_mpsp_config_t *cfg)
                         cfg->fourier_period, cfg->fourier_t_ref, cfg->h_max, cfg->delta_max,
                         cfg->delta_tau_0, cfg->delta_tau_min, cfg->r_lambda, cfg->tol_r,
                         cfg->tol_v, cfg->tol_lambda_m, cfg->s_tol, cfg->lambda_m0_nom};
-    return ogk_i_all_finite(s, sizeof s / sizeof s[0]) &&
+    return ogk_i_all_finite(s, sizeof(s) / sizeof(s[0])) &&
            ogk_i_all_finite(cfg->x0_nom, OGK_MPSP_NX0) && ogk_i_all_finite(cfg->r_f, 3u) &&
            ogk_i_all_finite(cfg->v_f, 3u);
 }
@@ -45,7 +45,7 @@ static size_t grid_steps(double span, double h)
         return OGK_MPSP_MAX_STEPS + 1u;
     }
     n = (size_t)floor(ratio);
-    if (ratio - (double)n > MPSP_STEP_SLOP * fmax(1.0, ratio) || n == 0u) {
+    if (((ratio - (double)n) > (MPSP_STEP_SLOP * fmax(1.0, ratio))) || (n == 0u)) {
         n += 1u;
     }
     return n;
@@ -60,9 +60,9 @@ static ogk_status check_config(const ogk_mpsp_config_t *cfg)
     if (!cfg_scalars_finite(cfg)) {
         return OGK_E_NONFINITE;
     }
-    if (cfg->fourier_order < 1u || cfg->fourier_order > OGK_MPSP_MAX_ORDER ||
-        (cfg->fourier_kind != OGK_MPSP_BASIS_FOURIER &&
-         cfg->fourier_kind != OGK_MPSP_BASIS_COSINE)) {
+    if ((cfg->fourier_order < 1u) || (cfg->fourier_order > OGK_MPSP_MAX_ORDER) ||
+        ((cfg->fourier_kind != OGK_MPSP_BASIS_FOURIER) &&
+         (cfg->fourier_kind != OGK_MPSP_BASIS_COSINE))) {
         return OGK_E_CONFIG;
     }
     n_weights = OGK_MPSP_NU * (2u * (size_t)cfg->fourier_order + 1u);
@@ -74,16 +74,16 @@ static ogk_status check_config(const ogk_mpsp_config_t *cfg)
             return OGK_E_CONFIG;
         }
     }
-    r2 = cfg->x0_nom[0] * cfg->x0_nom[0] + cfg->x0_nom[1] * cfg->x0_nom[1] +
-         cfg->x0_nom[2] * cfg->x0_nom[2];
-    if (cfg->mu < 0.0 || !(cfg->t_max > 0.0) || !(cfg->c_exhaust > 0.0) ||
+    r2 = (cfg->x0_nom[0] * cfg->x0_nom[0]) + (cfg->x0_nom[1] * cfg->x0_nom[1]) +
+         (cfg->x0_nom[2] * cfg->x0_nom[2]);
+    if ((cfg->mu < 0.0) || !(cfg->t_max > 0.0) || !(cfg->c_exhaust > 0.0) ||
         !(cfg->tf > cfg->t0) || !(cfg->fourier_period > 0.0) || !(cfg->h_max > 0.0) ||
-        !(cfg->delta_max > 0.0) || !(cfg->delta_tau_0 > 0.0) || cfg->delta_tau_0 > 1.0 ||
-        cfg->delta_tau_min < 0.0 || !(cfg->delta_tau_min < cfg->delta_tau_0) ||
+        !(cfg->delta_max > 0.0) || !(cfg->delta_tau_0 > 0.0) || (cfg->delta_tau_0 > 1.0) ||
+        (cfg->delta_tau_min < 0.0) || !(cfg->delta_tau_min < cfg->delta_tau_0) ||
         !(cfg->r_lambda > 0.0) || !(cfg->tol_r > 0.0) || !(cfg->tol_v > 0.0) ||
-        !(cfg->tol_lambda_m > 0.0) || !(cfg->s_tol > 0.0) || cfg->max_newton < 1u ||
-        cfg->max_outer < 1u || cfg->n_seg_tol_step < 1u || !(cfg->x0_nom[6] > 0.0) ||
-        (cfg->mu > 0.0 && !(r2 > 0.0))) {
+        !(cfg->tol_lambda_m > 0.0) || !(cfg->s_tol > 0.0) || (cfg->max_newton < 1u) ||
+        (cfg->max_outer < 1u) || (cfg->n_seg_tol_step < 1u) || !(cfg->x0_nom[6] > 0.0) ||
+        ((cfg->mu > 0.0) && (!(r2 > 0.0)))) {
         return OGK_E_CONFIG;
     }
     if (grid_steps(cfg->tf - cfg->t0, cfg->h_max) > OGK_MPSP_MAX_STEPS) {
@@ -169,7 +169,7 @@ ogk_status ogk_mpsp_init(ogk_mpsp_t *ctx, const ogk_mpsp_config_t *cfg)
 {
     ogk_status st;
 
-    if (ctx == NULL || cfg == NULL) {
+    if ((ctx == NULL) || (cfg == NULL)) {
         return OGK_E_NULL;
     }
     ctx->init_marker = 0u;
@@ -204,10 +204,10 @@ ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *wei
     size_t i;
     ogk_status st;
 
-    if (ctx == NULL || dy == NULL || weights == NULL || lambda_m0 == NULL) {
+    if ((ctx == NULL) || (dy == NULL) || (weights == NULL) || (lambda_m0 == NULL)) {
         return OGK_E_NULL;
     }
-    if (ctx->init_marker != OGK_MPSP_INIT_MARKER || ctx->sens_valid == 0u) {
+    if ((ctx->init_marker != OGK_MPSP_INIT_MARKER) || (ctx->sens_valid == 0u)) {
         return OGK_E_NOT_INIT;
     }
     if (!ogk_i_all_finite(dy, NY) || !ogk_i_all_finite(weights, ctx->n_weights) ||
@@ -222,12 +222,12 @@ ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *wei
      * M M^T = A_lambda A_lambda^T / R_lambda + B_v R_eps^-1 B_v^T. */
     for (r = 0u; r < NY; ++r) {
         for (i = 0u; i < nw; ++i) {
-            ctx->newton_m[r * nu + i] = ctx->dy_dw[r * nw + i] * ctx->inv_sqrt_r_eps[i];
+            ctx->newton_m[(r * nu) + i] = ctx->dy_dw[(r * nw) + i] * ctx->inv_sqrt_r_eps[i];
         }
-        ctx->newton_m[r * nu + nw] = ctx->dy_dlm0[r] * ctx->inv_sqrt_r_lambda;
+        ctx->newton_m[(r * nu) + nw] = ctx->dy_dlm0[r] * ctx->inv_sqrt_r_lambda;
     }
     st = ogk_minnorm(&ctx->qr, ctx->newton_m, NY, nu, dy, ctx->newton_z);
-    if (st != OGK_OK && st != OGK_E_ILL_CONDITIONED) {
+    if ((st != OGK_OK) && (st != OGK_E_ILL_CONDITIONED)) {
         return st; /* ill-conditioned still gives the least-norm step: taken */
     }
     if (!ogk_i_all_finite(ctx->newton_z, nu)) {
@@ -266,13 +266,13 @@ static void terminal_error(const mpsp_cond_t *cond, const double *x_f, double *d
 
 static bool terminal_ok(const ogk_mpsp_config_t *cfg, const double *dy)
 {
-    return norm_n(dy, 3u) <= cfg->tol_r && norm_n(&dy[3], 3u) <= cfg->tol_v &&
-           fabs(dy[6]) <= cfg->tol_lambda_m;
+    return (norm_n(dy, 3u) <= cfg->tol_r) && (norm_n(&dy[3], 3u) <= cfg->tol_v) &&
+           (fabs(dy[6]) <= cfg->tol_lambda_m);
 }
 
 static uint32_t abs_diff_u32(uint32_t a, uint32_t b)
 {
-    return (a > b) ? a - b : b - a;
+    return (a > b) ? (a - b) : (b - a);
 }
 
 /* Algorithm 1. weights / *lambda_m0 (in/out) end as the last accepted
@@ -299,7 +299,7 @@ static bool inner_loop(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, double *weights
             return true;
         }
         dy_norm = norm_n(dy, NY);
-        if (j == ctx->cfg.max_newton || !(dy_norm <= ctx->cfg.delta_max)) {
+        if ((j == ctx->cfg.max_newton) || (!(dy_norm <= ctx->cfg.delta_max))) {
             return false; /* line 5: too far for a Newton step */
         }
         if (res->n_log < OGK_MPSP_MAX_LOG) {
@@ -338,13 +338,13 @@ static void blend(const mpsp_cond_t *nom, const mpsp_cond_t *per, double tau, mp
     size_t i;
     const double a = 1.0 - tau;
     for (i = 0u; i < OGK_MPSP_NX0; ++i) {
-        out->x0[i] = a * nom->x0[i] + tau * per->x0[i];
+        out->x0[i] = (a * nom->x0[i]) + (tau * per->x0[i]);
     }
     for (i = 0u; i < 3u; ++i) {
-        out->r_f[i] = a * nom->r_f[i] + tau * per->r_f[i];
-        out->v_f[i] = a * nom->v_f[i] + tau * per->v_f[i];
+        out->r_f[i] = (a * nom->r_f[i]) + (tau * per->r_f[i]);
+        out->v_f[i] = (a * nom->v_f[i]) + (tau * per->v_f[i]);
     }
-    out->thrust = a * nom->thrust + tau * per->thrust;
+    out->thrust = (a * nom->thrust) + (tau * per->thrust);
 }
 
 static void fill_result(const ogk_mpsp_t *ctx, const mpsp_cond_t *cond,
@@ -390,14 +390,14 @@ ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale
     size_t i;
     ogk_status st;
 
-    if (ctx == NULL || x0 == NULL || res == NULL) {
+    if ((ctx == NULL) || (x0 == NULL) || (res == NULL)) {
         return OGK_E_NULL;
     }
     if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
         return OGK_E_NOT_INIT;
     }
     if (!ogk_i_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale) ||
-        (target_rv != NULL && !ogk_i_all_finite(target_rv, 6u))) {
+        ((target_rv != NULL) && (!ogk_i_all_finite(target_rv, 6u)))) {
         return OGK_E_NONFINITE;
     }
     if (!(x0[6] > 0.0) || !(thrust_scale > 0.0)) {
@@ -435,9 +435,9 @@ ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale
      * with N_seg,tol widened by n_seg_tol_step after each failed continuation
      * (the `else` the printed pseudo-code lacks). Bounded by the number of
      * tolerance levels and by max_outer inner loops in all. */
-    for (level = 0u; !solved && level < MPSP_MAX_TOL_LEVELS &&
-                     (int64_t)ctx->n_seg_nom - (int64_t)n_seg_tol >= -1 &&
-                     res->outer_steps < ctx->cfg.max_outer;
+    for (level = 0u; (!solved) && (level < MPSP_MAX_TOL_LEVELS) &&
+                     (((int64_t)ctx->n_seg_nom - (int64_t)n_seg_tol) >= -1) &&
+                     (res->outer_steps < ctx->cfg.max_outer);
          ++level) {
         double tau_old = 0.0;
         double dtau = ctx->cfg.delta_tau_0;
@@ -469,12 +469,12 @@ ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale
                 }
             }
             /* line 16 (landing exactly on 1 for the closing step) */
-            tau = (dtau >= 1.0 - tau_old) ? 1.0 : tau_old + dtau;
+            tau = (dtau >= (1.0 - tau_old)) ? 1.0 : (tau_old + dtau);
             /* lines 17-19: give up when the step needed is too small; a closing
              * step (dtau = 1 - tau_old) below delta_tau_min is still taken,
              * which is the paper's rule for delta_tau_0 = 0.5, whose tau are
              * multiples of 0.125. */
-            if (dtau <= ctx->cfg.delta_tau_min && tau_old != 1.0 && dtau < 1.0 - tau_old) {
+            if ((dtau <= ctx->cfg.delta_tau_min) && (tau_old != 1.0) && (dtau < (1.0 - tau_old))) {
                 break;
             }
         }
