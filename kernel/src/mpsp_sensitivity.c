@@ -49,7 +49,7 @@ ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, 
     for (s = 0u; s < 4u; ++s) {
         const size_t ui = (s == 0u) ? 0u : ((s == 3u) ? 2u : 1u);
         ogk_status st = mpsp_jacobian(dyn, xs, u[ui], mode, &jac[s]);
-        if (st == OGK_OK && s < 3u) {
+        if ((st == OGK_OK) && (s < 3u)) {
             st = mpsp_rhs(dyn, xs, u[ui], mode, k);
         }
         if (st != OGK_OK) {
@@ -58,7 +58,7 @@ ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, 
         if (s < 3u) {
             const double step = (s == 2u) ? dt : half;
             for (i = 0u; i < NX; ++i) {
-                xs[i] = x[i] + step * k[i];
+                xs[i] = x[i] + (step * k[i]);
             }
         }
     }
@@ -83,14 +83,14 @@ ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, 
             const double zv0 = bk[3u * L + r];
             const double zv1 = bk[4u * L + r];
             const double zv2 = bk[5u * L + r];
-            const double ze = zv0 * jc->e[0] + zv1 * jc->e[1] + zv2 * jc->e[2];
-            bx[0u * L + r] = zv0 * g[0] + zv1 * g[3] + zv2 * g[6];
-            bx[1u * L + r] = zv0 * g[1] + zv1 * g[4] + zv2 * g[7];
-            bx[2u * L + r] = zv0 * g[2] + zv1 * g[5] + zv2 * g[8];
+            const double ze = (zv0 * jc->e[0]) + (zv1 * jc->e[1]) + (zv2 * jc->e[2]);
+            bx[(0u * L) + r] = (zv0 * g[0]) + (zv1 * g[3]) + (zv2 * g[6]);
+            bx[(1u * L) + r] = (zv0 * g[1]) + (zv1 * g[4]) + (zv2 * g[7]);
+            bx[(2u * L) + r] = (zv0 * g[2]) + (zv1 * g[5]) + (zv2 * g[8]);
             bx[3u * L + r] = bk[0u * L + r];
             bx[4u * L + r] = bk[1u * L + r];
             bx[5u * L + r] = bk[2u * L + r];
-            bx[6u * L + r] = jc->a_vm * ze + jc->a_lm * bk[7u * L + r];
+            bx[(6u * L) + r] = (jc->a_vm * ze) + (jc->a_lm * bk[(7u * L) + r]);
             bx[7u * L + r] = 0.0;
         }
         if (jc->thrust) {
@@ -99,10 +99,10 @@ ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, 
             for (c = 0u; c < 3u; ++c) {
                 const double ec = jc->e[c];
                 for (r = 0u; r < L; ++r) {
-                    const double ze = bk[3u * L + r] * jc->e[0] + bk[4u * L + r] * jc->e[1] +
-                                      bk[5u * L + r] * jc->e[2];
-                    dst[c * L + r] += jc->d_v * (bk[(3u + c) * L + r] - ze * ec) +
-                                      jc->d_l * bk[7u * L + r] * ec;
+                    const double ze = (bk[(3u * L) + r] * jc->e[0]) + (bk[(4u * L) + r] * jc->e[1]) +
+                                      (bk[(5u * L) + r] * jc->e[2]);
+                    dst[(c * L) + r] += (jc->d_v * (bk[((3u + c) * L) + r] - (ze * ec))) +
+                                      (jc->d_l * bk[(7u * L) + r] * ec);
                 }
             }
         }
@@ -114,7 +114,7 @@ ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, 
             const double cx = (s == 3u) ? dt : half;
             const double cw = (s == 1u) ? c6 : c3;
             for (i = 0u; i < NX * L; ++i) {
-                bk[i] = cw * adj_in[i] + cx * bx[i];
+                bk[i] = (cw * adj_in[i]) + (cx * bx[i]);
             }
         }
     }
@@ -147,7 +147,7 @@ ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
     if (st != OGK_OK) {
         return st;
     }
-    lam = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    lam = sqrt((u[0] * u[0]) + (u[1] * u[1]) + (u[2] * u[2]));
     for (i = 0u; i < NX; ++i) {
         jump->dxdot[i] = f_after[i] - f_before[i];
         jump->s_x[i] = 0.0;
@@ -159,7 +159,7 @@ ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
         jump->s_u[i] = -dyn->c_exhaust * u[i] / (m * lam);
     }
     /* Eq. (15): dS/dt = S_U dU/dt (S_X Xdot vanishes identically). */
-    e_udot = jump->s_u[0] * udot[0] + jump->s_u[1] * udot[1] + jump->s_u[2] * udot[2];
+    e_udot = (jump->s_u[0] * udot[0]) + (jump->s_u[1] * udot[1]) + (jump->s_u[2] * udot[2]);
     jump->s_dot = e_udot;
     if (!isfinite(jump->s_dot) || !(fabs(jump->s_dot) > 0.0)) {
         return OGK_E_SINGULAR; /* tangential switch: t_s not differentiable */
@@ -199,7 +199,7 @@ static void accumulate_basis2(double *restrict acc, size_t n_basis,
         const double hqb = hb[q];
         double *restrict dst = &acc[q * ACC_W];
         for (j = 0u; j < ACC_W; ++j) {
-            dst[j] += hqa * coef_a[j] + hqb * coef_b[j];
+            dst[j] += (hqa * coef_a[j]) + (hqb * coef_b[j]);
         }
     }
 }
@@ -216,7 +216,7 @@ static void accumulate_rows(double *out, size_t n_basis, size_t rows, const doub
     for (r = 0u; r < rows; ++r) {
         for (c = 0u; c < 3u; ++c) {
             for (q = 0u; q < n_basis; ++q) {
-                out[r * n_weights + c * n_basis + q] += coef[c * L + r] * h[q];
+                out[(r * n_weights) + (c * n_basis) + q] += coef[(c * L) + r] * h[q];
             }
         }
     }
@@ -232,7 +232,7 @@ static void unpack_basis(const double *acc, size_t n_basis, size_t rows, double 
     for (r = 0u; r < rows; ++r) {
         for (c = 0u; c < 3u; ++c) {
             for (q = 0u; q < n_basis; ++q) {
-                out[r * n_weights + c * n_basis + q] = acc[q * ACC_W + c * L + r];
+                out[(r * n_weights) + (c * n_basis) + q] = acc[(q * ACC_W) + (c * L) + r];
             }
         }
     }
@@ -251,7 +251,7 @@ static ogk_status check_mode_scale(double thrust_scale, int mode)
     if (!isfinite(thrust_scale)) {
         return OGK_E_NONFINITE;
     }
-    if (!(thrust_scale > 0.0) || (mode != 0 && mode != 1)) {
+    if ((!(thrust_scale > 0.0)) || ((mode != 0) && (mode != 1))) {
         return OGK_E_RANGE;
     }
     return OGK_OK;
@@ -278,7 +278,7 @@ ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
     if (st != OGK_OK) {
         return st;
     }
-    if (weights == NULL || x == NULL || x_next == NULL) {
+    if ((weights == NULL) || (x == NULL) || (x_next == NULL)) {
         return OGK_E_NULL;
     }
     st = check_mode_scale(thrust_scale, mode);
@@ -296,11 +296,11 @@ ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
     mpsp_rk4_problem(&prob, ctx, &dyn);
     prob.sw = NULL;
     st = ogk_rk4_step(&prob, t, x, dt, mode, x_next);
-    if (st != OGK_OK || (dfdx == NULL && dfdw == NULL)) {
+    if ((st != OGK_OK) || ((dfdx == NULL) && (dfdw == NULL))) {
         return st;
     }
     mpsp_basis(&dyn, t, h0, NULL);
-    mpsp_basis(&dyn, t + 0.5 * dt, hm, NULL);
+    mpsp_basis(&dyn, t + (0.5 * dt), hm, NULL);
     mpsp_basis(&dyn, t + dt, h1, NULL);
     (void)memset(eye, 0, sizeof eye);
     (void)memset(b0, 0, sizeof b0);
@@ -355,7 +355,7 @@ ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
     if (st != OGK_OK) {
         return st;
     }
-    if (weights == NULL || x_s == NULL) {
+    if ((weights == NULL) || (x_s == NULL)) {
         return OGK_E_NULL;
     }
     st = check_mode_scale(thrust_scale, mode_before);
@@ -377,13 +377,13 @@ ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
         const double a = jump.dxdot[i] / jump.s_dot;
         if (jx != NULL) {
             for (j = 0u; j < NX; ++j) {
-                jx[i * NX + j] = ((i == j) ? 1.0 : 0.0) + a * jump.s_x[j];
+                jx[(i * NX) + j] = ((i == j) ? 1.0 : 0.0) + (a * jump.s_x[j]);
             }
         }
         if (jw != NULL) {
             for (c = 0u; c < 3u; ++c) {
                 for (q = 0u; q < ctx->n_basis; ++q) {
-                    jw[i * ctx->n_weights + c * ctx->n_basis + q] = a * jump.s_u[c] * h[q];
+                    jw[(i * ctx->n_weights) + (c * ctx->n_basis) + q] = a * jump.s_u[c] * h[q];
                 }
             }
         }
@@ -397,7 +397,7 @@ ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
     if (dts_dw != NULL) {
         for (c = 0u; c < 3u; ++c) {
             for (q = 0u; q < ctx->n_basis; ++q) {
-                dts_dw[c * ctx->n_basis + q] = -jump.s_u[c] * h[q] / jump.s_dot;
+                dts_dw[(c * ctx->n_basis) + q] = -jump.s_u[c] * h[q] / jump.s_dot;
             }
         }
     }
@@ -439,7 +439,7 @@ ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, double *dy_dw, double *dy_dlm0)
     if (st != OGK_OK) {
         return st;
     }
-    if (ctx->traj_valid == 0u || ctx->n_nodes < 2u) {
+    if ((ctx->traj_valid == 0u) || (ctx->n_nodes < 2u)) {
         return OGK_E_NOT_INIT;
     }
     ctx->sens_valid = 0u;
@@ -484,12 +484,12 @@ ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, double *dy_dw, double *dy_dlm0)
             }
             pend_nonzero = true;
         }
-        if ((mode == 1 || pend_nonzero) && !h_hi_ok) {
+        if (((mode == 1) || pend_nonzero) && (!h_hi_ok)) {
             mpsp_basis(&dyn, t_hi, h_hi, NULL);
             mpsp_control_from_basis(&dyn, h_hi, u_hi);
         }
         if (mode == 1) {
-            mpsp_basis(&dyn, t_lo + 0.5 * dt, h_mid, NULL);
+            mpsp_basis(&dyn, t_lo + (0.5 * dt), h_mid, NULL);
             mpsp_basis(&dyn, t_lo, h_lo, NULL);
             mpsp_control_from_basis(&dyn, h_mid, u_mid);
             mpsp_control_from_basis(&dyn, h_lo, u_lo);
