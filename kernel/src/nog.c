@@ -44,16 +44,16 @@ static ogk_status check_table_content(const ogk_nog_table_view_t *tbl)
     if (st != OGK_OK) {
         return OGK_E_TABLE_DIM;
     }
-    if (tbl->tau[0] != 0.0 || tbl->tau[n - 1u] != 1.0) {
+    if ((tbl->tau[0] != 0.0) || (tbl->tau[n - 1u] != 1.0)) {
         return OGK_E_TABLE_DIM;
     }
-    if (!(t_f > 0.0) || t_f > OGK_NOG_TF_MAX_S) {
+    if ((!(t_f > 0.0)) || (t_f > OGK_NOG_TF_MAX_S)) {
         return OGK_E_TABLE_TYPE;
     }
     for (k = 0u; k < n; ++k) {
         const double *row = entry_row(tbl, k);
-        if (fabs(row[OGK_NOG_OFF_XDOT + IDX_TIME] - t_f) > OGK_NOG_TF_CONSISTENCY * t_f ||
-            fabs(row[OGK_NOG_OFF_X + IDX_TIME] - t_f * tbl->tau[k]) > OGK_NOG_TF_CONSISTENCY * t_f) {
+        if ((fabs(row[OGK_NOG_OFF_XDOT + IDX_TIME] - t_f) > (OGK_NOG_TF_CONSISTENCY * t_f)) ||
+            (fabs(row[OGK_NOG_OFF_X + IDX_TIME] - (t_f * tbl->tau[k])) > (OGK_NOG_TF_CONSISTENCY * t_f))) {
             return OGK_E_TABLE_TYPE;
         }
         if (!(row[OGK_NOG_OFF_X + IDX_R] > 0.0)) {
@@ -183,13 +183,13 @@ static void hermite(const ogk_nog_table_view_t *tbl, double tau, size_t off_val,
     b = entry_row(tbl, k + 1u);
     h = tbl->tau[k + 1u] - tbl->tau[k];
     s = (tau - tbl->tau[k]) / h;
-    h00 = (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s);
+    h00 = (1.0 + (2.0 * s)) * (1.0 - s) * (1.0 - s);
     h10 = s * (1.0 - s) * (1.0 - s);
-    h01 = s * s * (3.0 - 2.0 * s);
+    h01 = s * s * (3.0 - (2.0 * s));
     h11 = s * s * (s - 1.0);
     for (i = 0u; i < n; ++i) {
-        out[i] = h00 * a[off_val + i] + h10 * h * a[off_der + i] + h01 * b[off_val + i] +
-                 h11 * h * b[off_der + i];
+        out[i] = (h00 * a[off_val + i]) + (h10 * h * a[off_der + i]) + (h01 * b[off_val + i]) +
+                 (h11 * h * b[off_der + i]);
     }
 }
 
@@ -208,7 +208,7 @@ static void linear_block(const ogk_nog_table_view_t *tbl, double tau, size_t off
     b = entry_row(tbl, k + 1u);
     w = (tau - tbl->tau[k]) / (tbl->tau[k + 1u] - tbl->tau[k]);
     for (i = 0u; i < n; ++i) {
-        out[i] = a[off + i] + w * (b[off + i] - a[off + i]);
+        out[i] = a[off + i] + (w * (b[off + i] - a[off + i]));
     }
 }
 
@@ -218,7 +218,7 @@ static void angles_from_costate(const double *lam, double *alpha, double *beta) 
     const double l4 = lam[IDX_VR];
     const double l5 = lam[IDX_VR + 1u];
     const double l6 = lam[IDX_VR + 2u];
-    const double in_plane = sqrt(l4 * l4 + l5 * l5);
+    const double in_plane = sqrt((l4 * l4) + (l5 * l5));
     *alpha = atan2(-l4, -l5);
     *beta = atan2(-l6, in_plane);
 }
@@ -228,11 +228,11 @@ static double direction_angle(const double *lam_a, const double *lam_b)
 {
     const double *a = &lam_a[IDX_VR];
     const double *b = &lam_b[IDX_VR];
-    const double cx = a[1] * b[2] - a[2] * b[1];
-    const double cy = a[2] * b[0] - a[0] * b[2];
-    const double cz = a[0] * b[1] - a[1] * b[0];
-    const double dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    return atan2(sqrt(cx * cx + cy * cy + cz * cz), dot);
+    const double cx = (a[1] * b[2]) - (a[2] * b[1]);
+    const double cy = (a[2] * b[0]) - (a[0] * b[2]);
+    const double cz = (a[0] * b[1]) - (a[1] * b[0]);
+    const double dot = (a[0] * b[0]) + (a[1] * b[1]) + (a[2] * b[2]);
+    return atan2(sqrt((cx * cx) + (cy * cy) + (cz * cz)), dot);
 }
 
 static void costate_at(const ogk_nog_t *ctx, double tau, double *lam)
@@ -241,7 +241,7 @@ static void costate_at(const ogk_nog_t *ctx, double tau, double *lam)
     size_t i;
     hermite(&ctx->tbl, tau, OGK_NOG_OFF_LAM, OGK_NOG_OFF_LAMDOT, NX, lam_star);
     for (i = 0u; i < NX; ++i) {
-        lam[i] = lam_star[i] + ctx->dlam_k[i] + ctx->dlam_rate[i] * (tau - ctx->tau_k);
+        lam[i] = lam_star[i] + ctx->dlam_k[i] + (ctx->dlam_rate[i] * (tau - ctx->tau_k));
     }
 }
 
@@ -265,7 +265,7 @@ static double direction_limit_scale(const double *lam_star, const double *dlam, 
     for (it = 0u; it < OGK_NOG_LIMIT_ITERATIONS; ++it) {
         const double mid = 0.5 * (lo + hi);
         for (i = 0u; i < NX; ++i) {
-            lam[i] = lam_star[i] + mid * dlam[i];
+            lam[i] = lam_star[i] + (mid * dlam[i]);
         }
         if (direction_angle(lam, lam_star) <= du_max) {
             lo = mid;
@@ -323,23 +323,23 @@ static bool table_current(const ogk_nog_t *ctx)
         return ctx->cfg.table->generation == ctx->table_generation &&
                ctx->cfg.table->n_grid == ctx->tbl.n_grid;
     }
-    return ctx->cfg.view != NULL && ctx->cfg.view->generation == ctx->table_generation &&
-           ctx->cfg.view->init_marker == OGK_NOG_VIEW_MARKER &&
-           ctx->cfg.view->n_grid == ctx->tbl.n_grid && ctx->cfg.view->tau == ctx->tbl.tau;
+    return (ctx->cfg.view != NULL) && (ctx->cfg.view->generation == ctx->table_generation) &&
+           (ctx->cfg.view->init_marker == OGK_NOG_VIEW_MARKER) &&
+           (ctx->cfg.view->n_grid == ctx->tbl.n_grid) && (ctx->cfg.view->tau == ctx->tbl.tau);
 }
 
 ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg)
 {
     ogk_nog_table_view_t tbl;
 
-    if (ctx == NULL || cfg == NULL) {
+    if ((ctx == NULL) || (cfg == NULL)) {
         return OGK_E_NULL;
     }
     memset(ctx, 0, sizeof *ctx);
-    if (cfg->table == NULL && cfg->view == NULL) {
+    if ((cfg->table == NULL) && (cfg->view == NULL)) {
         return OGK_E_NULL;
     }
-    if (cfg->table != NULL && cfg->view != NULL) {
+    if ((cfg->table != NULL) && (cfg->view != NULL)) {
         return OGK_E_CONFIG;
     }
     if (cfg->table != NULL) {
@@ -349,14 +349,14 @@ ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg)
     } else {
         return OGK_E_NOT_INIT;
     }
-    if (tbl.n_grid < 3u || tbl.n_grid > OGK_NOG_MAX_GRID || !(tbl.t_f_star_s > 0.0)) {
+    if ((tbl.n_grid < 3u) || (tbl.n_grid > OGK_NOG_MAX_GRID) || (!(tbl.t_f_star_s > 0.0))) {
         return OGK_E_NOT_INIT;
     }
     if (!isfinite(cfg->sample_interval_s) || !(cfg->sample_interval_s > 0.0) ||
         !isfinite(cfg->dtf_max_s) || !(cfg->dtf_max_s > 0.0) ||
-        cfg->dtf_max_s > 0.5 * tbl.t_f_star_s || cfg->sample_interval_s > tbl.t_f_star_s ||
-        !isfinite(cfg->du_max_rad) || !(cfg->du_max_rad > 0.0) || cfg->du_max_rad > PI ||
-        !isfinite(cfg->tau_freeze) || cfg->tau_freeze < 0.0 || !(cfg->tau_freeze < 1.0)) {
+        (cfg->dtf_max_s > (0.5 * tbl.t_f_star_s)) || (cfg->sample_interval_s > tbl.t_f_star_s) ||
+        !isfinite(cfg->du_max_rad) || !(cfg->du_max_rad > 0.0) || (cfg->du_max_rad > PI) ||
+        !isfinite(cfg->tau_freeze) || (cfg->tau_freeze < 0.0) || !(cfg->tau_freeze < 1.0)) {
         return OGK_E_CONFIG;
     }
     ctx->cfg = *cfg;
@@ -402,7 +402,7 @@ static void fill_sample_held(const ogk_nog_t *ctx, ogk_nog_sample_t *out)
     out->tau_k = ctx->tau_k;
     out->t_f_s = ctx->t_f_s;
     out->dt_f_s = ctx->t_f_s - ctx->tbl.t_f_star_s;
-    out->tau_next = ctx->tau_k + ctx->cfg.sample_interval_s / ctx->t_f_s;
+    out->tau_next = ctx->tau_k + (ctx->cfg.sample_interval_s / ctx->t_f_s);
     out->t_cutoff_s = ctx->t_k_s + (1.0 - ctx->tau_k) * ctx->t_f_s;
     out->alpha_rad = ctx->hold_alpha_rad;
     out->beta_rad = ctx->hold_beta_rad;
@@ -436,17 +436,17 @@ static bool sample_finite(const ogk_nog_sample_t *out)
 /* Latest time a sample may carry (the t_s envelope of ogk/nog.h). */
 static double t_sample_max(const ogk_nog_t *ctx)
 {
-    return 2.0 * ctx->tbl.t_f_star_s + ctx->cfg.dtf_max_s;
+    return (2.0 * ctx->tbl.t_f_star_s) + ctx->cfg.dtf_max_s;
 }
 
 /* The navigation envelope of ogk/nog.h (all values already finite). */
 static bool nav_in_envelope(const ogk_nog_t *ctx, const ogk_nav_state_t *nav)
 {
-    return nav->r_m > 0.0 && nav->r_m <= OGK_NOG_R_MAX_M &&
-           fabs(nav->xi_rad) <= OGK_NOG_XI_MAX_RAD && fabs(nav->phi_rad) < OGK_NOG_PHI_MAX_RAD &&
-           fabs(nav->v_r_mps) <= OGK_NOG_V_MAX_MPS && fabs(nav->v_t_mps) <= OGK_NOG_V_MAX_MPS &&
-           fabs(nav->v_n_mps) <= OGK_NOG_V_MAX_MPS && nav->t_s >= 0.0 &&
-           nav->t_s <= t_sample_max(ctx);
+    return (nav->r_m > 0.0) && (nav->r_m <= OGK_NOG_R_MAX_M) &&
+           (fabs(nav->xi_rad) <= OGK_NOG_XI_MAX_RAD) && (fabs(nav->phi_rad) < OGK_NOG_PHI_MAX_RAD) &&
+           (fabs(nav->v_r_mps) <= OGK_NOG_V_MAX_MPS) && (fabs(nav->v_t_mps) <= OGK_NOG_V_MAX_MPS) &&
+           (fabs(nav->v_n_mps) <= OGK_NOG_V_MAX_MPS) && (nav->t_s >= 0.0) &&
+           (nav->t_s <= t_sample_max(ctx));
 }
 
 /* The safe output of a rejected sample (contract in ogk/nog.h): the
@@ -462,7 +462,7 @@ static void safe_sample(ogk_nog_t *ctx, double t_s, bool readable, ogk_nog_sampl
     ogk_nog_t at;
 
     ctx->flags = OGK_NOG_FLAG_SAFE;
-    if (isfinite(t_s) && t_s >= ctx->t_k_s && t_s >= 0.0 && t_s <= t_sample_max(ctx)) {
+    if (isfinite(t_s) && (t_s >= ctx->t_k_s) && (t_s >= 0.0) && (t_s <= t_sample_max(ctx))) {
         /* Bounded by the envelope: finite. */
         const double tau = ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s;
         if (tau <= 1.0) {
@@ -535,7 +535,7 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sa
     double tau;
     bool good = true;
 
-    if (ctx == NULL || nav == NULL || out == NULL) {
+    if ((ctx == NULL) || (nav == NULL) || (out == NULL)) {
         return OGK_E_NULL;
     }
     memset(out, 0, sizeof *out);
@@ -562,13 +562,13 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sa
     }
     /* Envelope before any arithmetic: the time bound keeps tau and the
      * cut-off time finite, the others keep gains times dx far from overflow. */
-    if (!nav_in_envelope(ctx, nav) || (ctx->n_samples > 0u && !(nav->t_s > ctx->t_k_s))) {
+    if ((!nav_in_envelope(ctx, nav)) || ((ctx->n_samples > 0u) && (!(nav->t_s > ctx->t_k_s)))) {
         safe_sample(ctx, nav->t_s, true, out);
         return OGK_E_RANGE;
     }
 
-    tau = (ctx->n_samples == 0u) ? nav->t_s / tbl->t_f_star_s
-                                 : ctx->tau_k + (nav->t_s - ctx->t_k_s) / ctx->t_f_s;
+    tau = (ctx->n_samples == 0u) ? (nav->t_s / tbl->t_f_star_s)
+                                 : (ctx->tau_k + ((nav->t_s - ctx->t_k_s) / ctx->t_f_s));
     if (tau > 1.0) {
         /* Sampled after the predicted cut-off (tau outside [0, 1]): nothing to
          * guide, and nothing to commit (a wrong time tag must not stop the
@@ -580,7 +580,7 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sa
     ctx->flags = 0u;
     ctx->n_samples += 1u;
     /* End-game: past the last node with gains, or inside the freeze margin. */
-    if (tau >= tbl->tau[tbl->n_grid - 2u] || 1.0 - tau < ctx->cfg.tau_freeze) {
+    if ((tau >= tbl->tau[tbl->n_grid - 2u]) || ((1.0 - tau) < ctx->cfg.tau_freeze)) {
         hold_correction(ctx, nav->t_s, tau);
         ctx->flags = OGK_NOG_FLAG_FROZEN;
         fill_sample(ctx, out);
@@ -637,7 +637,7 @@ ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *o
     ogk_status st;
     bool readable;
 
-    if (ctx == NULL || out == NULL) {
+    if ((ctx == NULL) || (out == NULL)) {
         return OGK_E_NULL;
     }
     memset(out, 0, sizeof *out);
@@ -658,7 +658,7 @@ ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *o
         law |= OGK_NOG_FLAG_CUTOFF;
         flags = 0u;
     }
-    out->t_s = (isfinite(t_s) && t_s >= ctx->t_k_s) ? t_s : ctx->t_k_s;
+    out->t_s = (isfinite(t_s) && (t_s >= ctx->t_k_s)) ? t_s : ctx->t_k_s;
     out->alpha_rad = ctx->hold_alpha_rad;
     out->beta_rad = ctx->hold_beta_rad;
     if (readable) {
@@ -690,7 +690,7 @@ ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau)
     ogk_status st;
     double v;
 
-    if (ctx == NULL || tau == NULL) {
+    if ((ctx == NULL) || (tau == NULL)) {
         return OGK_E_NULL;
     }
     if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
