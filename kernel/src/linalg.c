@@ -30,7 +30,7 @@ static bool la_overlap(const void *p, size_t p_bytes, const void *q, size_t q_by
 {
     const uintptr_t p_lo = (uintptr_t)p;
     const uintptr_t q_lo = (uintptr_t)q;
-    return (p_lo < q_lo + (uintptr_t)q_bytes) && (q_lo < p_lo + (uintptr_t)p_bytes);
+    return (p_lo < (q_lo + (uintptr_t)q_bytes)) && (q_lo < (p_lo + (uintptr_t)p_bytes));
 }
 
 /* Bytes of an array of `count` doubles (count <= OGK_LA_MAX_LONG^2, no overflow). */
@@ -41,7 +41,7 @@ static size_t la_bytes(size_t count)
 
 static bool la_dim_ok(size_t dim, size_t dim_max)
 {
-    return dim > 0u && dim <= dim_max;
+    return (dim > 0u) && (dim <= dim_max);
 }
 
 static bool la_all_finite(const double *v, size_t count)
@@ -85,7 +85,7 @@ static ogk_status la_product_check(const double *in1, size_t in1_count,
                                    const double *out, size_t out_count, /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
                                    size_t d1, size_t d2, size_t d3)
 {
-    if (in1 == NULL || in2 == NULL || out == NULL) {
+    if ((in1 == NULL) || (in2 == NULL) || (out == NULL)) {
         return OGK_E_NULL;
     }
     if (!la_dim_ok(d1, OGK_LA_MAX_LONG) || !la_dim_ok(d2, OGK_LA_MAX_LONG) ||
@@ -114,9 +114,9 @@ static void product_strided(const double *A, size_t a_i, size_t a_p, const doubl
         for (j = 0u; j < c; ++j) {
             double sum = 0.0;
             for (p = 0u; p < k; ++p) {
-                sum += A[i * a_i + p * a_p] * B[p * b_p + j * b_j];
+                sum += A[(i * a_i) + (p * a_p)] * B[(p * b_p) + (j * b_j)];
             }
-            C[i * c + j] = sum;
+            C[(i * c) + j] = sum;
         }
     }
 }
@@ -186,7 +186,7 @@ ogk_status ogk_mat_transpose(const double *A, size_t rows, size_t cols,
     }
     for (i = 0u; i < rows; ++i) {
         for (j = 0u; j < cols; ++j) {
-            At[j * rows + i] = A[i * cols + j];
+            At[(j * rows) + i] = A[(i * cols) + j];
         }
     }
     return OGK_OK;
@@ -233,7 +233,7 @@ static void lu_substitute(const ogk_lu_t *lu, double *y)
     for (i = 1u; i < n; ++i) {
         double sum = y[i];
         for (j = 0u; j < i; ++j) {
-            sum -= f[i * n + j] * y[j];
+            sum -= f[(i * n) + j] * y[j];
         }
         y[i] = sum;
     }
@@ -242,9 +242,9 @@ static void lu_substitute(const ogk_lu_t *lu, double *y)
         const size_t row = n - 1u - ii;
         double sum = y[row];
         for (j = row + 1u; j < n; ++j) {
-            sum -= f[row * n + j] * y[j];
+            sum -= f[(row * n) + j] * y[j];
         }
-        y[row] = sum / f[row * n + row];
+        y[row] = sum / f[(row * n) + row];
     }
 }
 
@@ -290,7 +290,7 @@ ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
         for (j = 0u; j < n; ++j) {
             double colsum = 0.0;
             for (i = 0u; i < n; ++i) {
-                colsum += fabs(A[i * n + j]);
+                colsum += fabs(A[(i * n) + j]);
             }
             if (colsum > anorm1) {
                 anorm1 = colsum;
@@ -314,9 +314,9 @@ ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
     for (k = 0u; k < n; ++k) {
         double *f = lu->lu;
         size_t p = k;
-        double pmax = fabs(f[k * n + k]);
+        double pmax = fabs(f[(k * n) + k]);
         for (i = k + 1u; i < n; ++i) {
-            const double a = fabs(f[i * n + k]);
+            const double a = fabs(f[(i * n) + k]);
             if (a > pmax) {
                 pmax = a;
                 p = i;
@@ -331,16 +331,16 @@ ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
             lu->perm[k] = lu->perm[p];
             lu->perm[p] = tp;
             for (j = 0u; j < n; ++j) {
-                const double t = f[k * n + j];
-                f[k * n + j] = f[p * n + j];
-                f[p * n + j] = t;
+                const double t = f[(k * n) + j];
+                f[(k * n) + j] = f[(p * n) + j];
+                f[(p * n) + j] = t;
             }
         }
         for (i = k + 1u; i < n; ++i) {
-            const double l_ik = f[i * n + k] / f[k * n + k];
-            f[i * n + k] = l_ik;
+            const double l_ik = f[(i * n) + k] / f[(k * n) + k];
+            f[(i * n) + k] = l_ik;
             for (j = k + 1u; j < n; ++j) {
-                f[i * n + j] -= l_ik * f[k * n + j];
+                f[(i * n) + j] -= l_ik * f[(k * n) + j];
             }
         }
     }
@@ -376,7 +376,7 @@ ogk_status ogk_lu_solve(const ogk_lu_t *lu, const double *b, double *x)
     ogk_status st;
     double y[OGK_LA_MAX_N];
 
-    if (lu == NULL || b == NULL || x == NULL) {
+    if ((lu == NULL) || (b == NULL) || (x == NULL)) {
         return OGK_E_NULL;
     }
     st = lu_check_held(lu);
@@ -405,7 +405,7 @@ ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv)
     ogk_status st;
     double col[OGK_LA_MAX_N];
 
-    if (lu == NULL || Ainv == NULL) {
+    if ((lu == NULL) || (Ainv == NULL)) {
         return OGK_E_NULL;
     }
     st = lu_check_held(lu);
@@ -418,7 +418,7 @@ ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv)
     for (j = 0u; j < lu->n; ++j) {
         lu_inverse_column(lu, j, col);
         for (i = 0u; i < lu->n; ++i) {
-            Ainv[i * lu->n + j] = col[i];
+            Ainv[(i * lu->n) + j] = col[i];
         }
     }
     return OGK_OK;
@@ -449,7 +449,7 @@ ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n)
     if (!la_all_finite(A, n * n)) {
         return OGK_E_NONFINITE;
     }
-    for (i = 0u; i < n * n; ++i) {
+    for (i = 0u; i < (n * n); ++i) {
         const double a = fabs(A[i]);
         if (a > scale) {
             scale = a;
@@ -459,7 +459,7 @@ ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n)
      * relative test would reject round-off in entries that should be zero). */
     for (i = 1u; i < n; ++i) {
         for (j = 0u; j < i; ++j) {
-            if (fabs(A[i * n + j] - A[j * n + i]) > OGK_CHOL_SYM_TOL * scale) {
+            if (fabs(A[(i * n) + j] - A[(j * n) + i]) > (OGK_CHOL_SYM_TOL * scale)) {
                 return OGK_E_NOT_POSDEF;
             }
         }
@@ -468,21 +468,21 @@ ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n)
     (void)memset(ch->l, 0, la_bytes(n * n));
     for (i = 0u; i < n; ++i) {
         for (j = 0u; j <= i; ++j) {
-            double sum = A[i * n + j];
+            double sum = A[(i * n) + j];
             for (k = 0u; k < j; ++k) {
-                sum -= ch->l[i * n + k] * ch->l[j * n + k];
+                sum -= ch->l[(i * n) + k] * ch->l[(j * n) + k];
             }
             if (i == j) {
                 /* d_i = a_ii - |l_i|^2 is the Schur-complement pivot; for SPD A,
                  * cond_2(A) >= a_ii / d_i, so d_i <= eps a_ii means A is not
                  * positive definite to working precision. */
-                if (!(A[i * n + i] > 0.0) || !(sum > DBL_EPSILON * A[i * n + i])) {
+                if ((!(A[(i * n) + i] > 0.0)) || (!(sum > (DBL_EPSILON * A[(i * n) + i])))) {
                     (void)memset(ch->l, 0, la_bytes(n * n));
                     return OGK_E_NOT_POSDEF;
                 }
-                ch->l[i * n + i] = sqrt(sum);
+                ch->l[(i * n) + i] = sqrt(sum);
             } else {
-                ch->l[i * n + j] = sum / ch->l[j * n + j];
+                ch->l[(i * n) + j] = sum / ch->l[(j * n) + j];
             }
         }
     }
@@ -498,7 +498,7 @@ ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x)
     size_t n;
     double y[OGK_LA_MAX_N];
 
-    if (ch == NULL || b == NULL || x == NULL) {
+    if ((ch == NULL) || (b == NULL) || (x == NULL)) {
         return OGK_E_NULL;
     }
     if (ch->n == 0u) {
@@ -518,17 +518,17 @@ ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x)
     for (i = 0u; i < n; ++i) {
         double sum = b[i];
         for (j = 0u; j < i; ++j) {
-            sum -= ch->l[i * n + j] * y[j];
+            sum -= ch->l[(i * n) + j] * y[j];
         }
-        y[i] = sum / ch->l[i * n + i];
+        y[i] = sum / ch->l[(i * n) + i];
     }
     for (ii = 0u; ii < n; ++ii) {
         const size_t row = n - 1u - ii;
         double sum = y[row];
         for (j = row + 1u; j < n; ++j) {
-            sum -= ch->l[j * n + row] * y[j];
+            sum -= ch->l[(j * n) + row] * y[j];
         }
-        y[row] = sum / ch->l[row * n + row];
+        y[row] = sum / ch->l[(row * n) + row];
     }
     (void)memcpy(x, y, la_bytes(n));
     return OGK_OK;
@@ -553,8 +553,8 @@ static void qr_factor(ogk_qr_t *ws)
     size_t k;
 
     for (k = 0u; k < cols; ++k) {
-        const double alpha = a[k * cols + k];
-        const double xnorm = la_norm2(&a[(k + 1u) * cols + k], rows - k - 1u, cols);
+        const double alpha = a[(k * cols) + k];
+        const double xnorm = la_norm2(&a[((k + 1u) * cols) + k], rows - k - 1u, cols);
         double beta;
         double tau;
         double v_scale;
@@ -568,20 +568,20 @@ static void qr_factor(ogk_qr_t *ws)
         tau = (beta - alpha) / beta;
         v_scale = 1.0 / (alpha - beta);
         for (i = k + 1u; i < rows; ++i) {
-            a[i * cols + k] *= v_scale;
+            a[(i * cols) + k] *= v_scale;
         }
-        a[k * cols + k] = beta;
+        a[(k * cols) + k] = beta;
         ws->tau[k] = tau;
         /* Apply H_k = I - tau v v^T to the trailing columns. */
         for (j = k + 1u; j < cols; ++j) {
-            double w = a[k * cols + j];
+            double w = a[(k * cols) + j];
             for (i = k + 1u; i < rows; ++i) {
-                w += a[i * cols + k] * a[i * cols + j];
+                w += a[(i * cols) + k] * a[(i * cols) + j];
             }
             w *= tau;
-            a[k * cols + j] -= w;
+            a[(k * cols) + j] -= w;
             for (i = k + 1u; i < rows; ++i) {
-                a[i * cols + j] -= w * a[i * cols + k];
+                a[(i * cols) + j] -= w * a[(i * cols) + k];
             }
         }
     }
@@ -601,12 +601,12 @@ static void qr_apply_reflector(const ogk_qr_t *ws, size_t k, double *y)
     }
     w = y[k];
     for (i = k + 1u; i < rows; ++i) {
-        w += a[i * cols + k] * y[i];
+        w += a[(i * cols) + k] * y[i];
     }
     w *= ws->tau[k];
     y[k] -= w;
     for (i = k + 1u; i < rows; ++i) {
-        y[i] -= w * a[i * cols + k];
+        y[i] -= w * a[(i * cols) + k];
     }
 }
 
@@ -631,11 +631,11 @@ static ogk_status qr_rank_check(const ogk_qr_t *ws, double colnorm_max)
 
     for (j = 0u; j < cols; ++j) {
         double colsum = 0.0;
-        if (!(fabs(a[j * cols + j]) > tol)) {
+        if (!(fabs(a[(j * cols) + j]) > tol)) {
             return OGK_E_SINGULAR;
         }
         for (i = 0u; i <= j; ++i) {
-            colsum += fabs(a[i * cols + j]);
+            colsum += fabs(a[(i * cols) + j]);
         }
         if (colsum > rnorm1) {
             rnorm1 = colsum;
@@ -644,15 +644,15 @@ static ogk_status qr_rank_check(const ogk_qr_t *ws, double colnorm_max)
     /* Column j of R^-1: back substitution on e_j (nonzero in rows 0..j only). */
     for (j = 0u; j < cols; ++j) {
         double colsum;
-        z[j] = 1.0 / a[j * cols + j];
+        z[j] = 1.0 / a[(j * cols) + j];
         colsum = fabs(z[j]);
         for (ii = 0u; ii < j; ++ii) {
             const size_t row = j - 1u - ii;
             double sum = 0.0;
             for (p = row + 1u; p <= j; ++p) {
-                sum += a[row * cols + p] * z[p];
+                sum += a[(row * cols) + p] * z[p];
             }
-            z[row] = -sum / a[row * cols + row];
+            z[row] = -sum / a[(row * cols) + row];
             colsum += fabs(z[row]);
         }
         if (!isfinite(colsum)) {
@@ -684,10 +684,10 @@ ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
         return OGK_E_NULL;
     }
     qr_invalidate(ws);
-    if (A == NULL || b == NULL || x == NULL) {
+    if ((A == NULL) || (b == NULL) || (x == NULL)) {
         return OGK_E_NULL;
     }
-    if (!la_dim_ok(n, OGK_LA_MAX_N) || !la_dim_ok(m, OGK_LA_MAX_LONG) || m < n) {
+    if ((!la_dim_ok(n, OGK_LA_MAX_N)) || (!la_dim_ok(m, OGK_LA_MAX_LONG)) || (m < n)) {
         return OGK_E_DIM;
     }
     if (la_overlap(A, la_bytes(m * n), ws, sizeof *ws) ||
@@ -726,9 +726,9 @@ ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
         const size_t row = n - 1u - ii;
         double sum = y[row];
         for (i = row + 1u; i < n; ++i) {
-            sum -= ws->qr[row * n + i] * y[i];
+            sum -= ws->qr[(row * n) + i] * y[i];
         }
-        y[row] = sum / ws->qr[row * n + row];
+        y[row] = sum / ws->qr[(row * n) + row];
     }
     (void)memcpy(x, y, la_bytes(n));
     return rank_status;
@@ -748,10 +748,10 @@ ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
         return OGK_E_NULL;
     }
     qr_invalidate(ws);
-    if (A == NULL || b == NULL || x == NULL) {
+    if ((A == NULL) || (b == NULL) || (x == NULL)) {
         return OGK_E_NULL;
     }
-    if (!la_dim_ok(m, OGK_LA_MAX_N) || !la_dim_ok(n, OGK_LA_MAX_LONG) || m > n) {
+    if ((!la_dim_ok(m, OGK_LA_MAX_N)) || (!la_dim_ok(n, OGK_LA_MAX_LONG)) || (m > n)) {
         return OGK_E_DIM;
     }
     if (la_overlap(A, la_bytes(m * n), ws, sizeof *ws) ||
@@ -768,7 +768,7 @@ ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
     /* ws->qr = A^T (n x m): the long side is A's column count. */
     for (i = 0u; i < n; ++i) {
         for (j = 0u; j < m; ++j) {
-            ws->qr[i * m + j] = A[j * n + i];
+            ws->qr[(i * m) + j] = A[(j * n) + i];
         }
     }
     ws->long_dim = n;
@@ -790,9 +790,9 @@ ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
     for (i = 0u; i < m; ++i) {
         double sum = b[i];
         for (j = 0u; j < i; ++j) {
-            sum -= ws->qr[j * m + i] * z[j];
+            sum -= ws->qr[(j * m) + i] * z[j];
         }
-        z[i] = sum / ws->qr[i * m + i];
+        z[i] = sum / ws->qr[(i * m) + i];
     }
     (void)memcpy(x, z, la_bytes(m));
     for (i = m; i < n; ++i) {
