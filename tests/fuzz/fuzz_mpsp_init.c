@@ -9,44 +9,16 @@
  * OGK_E_NOT_INIT); on success the control at t0 is finite and reset succeeds. */
 #include "fuzz_common.h"
 
+#include "mpsp_fixture.h"
 #include "ogk/mpsp.h"
 
 static ogk_mpsp_t ctx;
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static const double w3[21] = {
-    2.0, 0.05, 0.02, 0.6, 0.03, -0.02, 0.01,
-    0.6, 0.0, 0.2, 0.01, -0.02, 0.0, 0.01,
-    0.0, 0.05, 0.0, 0.01, 0.0, 0.0, -0.01};
-static const double x0_3d[7] = {1.0, 0.0, 0.01, 0.0, 1.0, 0.02, 1.0};
-
 static void orbit_config(ogk_mpsp_config_t *c)
 {
-    size_t i;
-    (void)memset(c, 0, sizeof *c);
-    (void)ogk_mpsp_config_default(c);
-    c->mu = 1.0;
-    c->t_max = 0.1;
-    c->c_exhaust = 1.0;
-    c->t0 = 0.0;
-    c->tf = 2.0;
-    (void)memcpy(c->x0_nom, x0_3d, sizeof x0_3d);
-    c->r_f[0] = 1.0;
-    c->v_f[1] = 1.0;
-    c->fourier_order = 3u;
-    c->fourier_period = 4.0;
-    c->h_max = 2.0 / 40.0;
-    for (i = 0u; i < OGK_MPSP_MAX_WEIGHTS; ++i) {
-        c->r_eps[i] = 1.0;
-    }
-    c->tol_r = 1e-10;
-    c->tol_v = 1e-10;
-    c->tol_lambda_m = 1e-10;
-    c->max_newton = 20u;
-    c->max_outer = 30u;
-    (void)memcpy(c->weights_nom, w3, sizeof w3);
-    c->n_seg_nom = 3u;
+    (void)mpsp_fixture_config(c, 20u, 30u);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
