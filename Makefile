@@ -131,7 +131,7 @@ include tests/gates/gates.mk
 
 .PHONY: misra
 misra: | apt
-	$(PYTHON) tests/misra/misra_gate.py
+	$(PYTHON) tests/misra/misra_gate.py --build $(B)/misra
 
 # ---------------------------------------------------------------- top-level
 .PHONY: all test run clean
