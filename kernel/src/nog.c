@@ -42,25 +42,26 @@ static ogk_status check_table_content(const ogk_nog_table_view_t *tbl)
     ogk_status st = ogk_interp_check_grid(tbl->tau, n);
 
     if (st != OGK_OK) {
-        return OGK_E_TABLE_DIM;
-    }
-    if ((tbl->tau[0] != 0.0) || (tbl->tau[n - 1u] != 1.0)) {
-        return OGK_E_TABLE_DIM;
-    }
-    if ((!(t_f > 0.0)) || (t_f > OGK_NOG_TF_MAX_S)) {
-        return OGK_E_TABLE_TYPE;
-    }
-    for (k = 0u; k < n; ++k) {
-        const double *row = entry_row(tbl, k);
-        if ((fabs(row[OGK_NOG_OFF_XDOT + IDX_TIME] - t_f) > (OGK_NOG_TF_CONSISTENCY * t_f)) ||
-            (fabs(row[OGK_NOG_OFF_X + IDX_TIME] - (t_f * tbl->tau[k])) > (OGK_NOG_TF_CONSISTENCY * t_f))) {
-            return OGK_E_TABLE_TYPE;
+        st = OGK_E_TABLE_DIM;
+    } else if ((tbl->tau[0] != 0.0) || (tbl->tau[n - 1u] != 1.0)) {
+        st = OGK_E_TABLE_DIM;
+    } else if ((!(t_f > 0.0)) || (t_f > OGK_NOG_TF_MAX_S)) {
+        st = OGK_E_TABLE_TYPE;
+    } else {
+        /* Up to the first inconsistent row. */
+        for (k = 0u; (k < n) && (st == OGK_OK); ++k) {
+            const double *row = entry_row(tbl, k);
+            if ((fabs(row[OGK_NOG_OFF_XDOT + IDX_TIME] - t_f) > (OGK_NOG_TF_CONSISTENCY * t_f)) ||
+                (fabs(row[OGK_NOG_OFF_X + IDX_TIME] - (t_f * tbl->tau[k])) > (OGK_NOG_TF_CONSISTENCY * t_f))) {
+                st = OGK_E_TABLE_TYPE;
+            } else if (!(row[OGK_NOG_OFF_X + IDX_R] > 0.0)) {
+                st = OGK_E_TABLE_TYPE;
+            } else {
+                /* row consistent: next one */
+            }
         }
-        if (!(row[OGK_NOG_OFF_X + IDX_R] > 0.0)) {
-            return OGK_E_TABLE_TYPE;
-        }
     }
-    return OGK_OK;
+    return st;
 }
 
 /* The file-level checks shared by the loader and the in-place view. */
@@ -68,7 +69,7 @@ static ogk_status open_table(const uint8_t *buf, size_t len, ogk_table_view_t *v
 {
     ogk_table_spec_t spec;
 
-    memset(&spec, 0, sizeof spec);
+    (void)memset(&spec, 0, sizeof spec); /* returns &spec: nothing to check */
     spec.kind = OGK_NOG_TABLE_KIND;
     spec.ndims = 1u;
     spec.dims[0] = OGK_NOG_ENTRY_LEN;
@@ -80,7 +81,7 @@ static ogk_status open_table(const uint8_t *buf, size_t len, ogk_table_view_t *v
 /* A view of a RAM table (what the context flies from). */
 static void view_of_table(const ogk_nog_table_t *table, ogk_nog_table_view_t *view)
 {
-    memset(view, 0, sizeof *view);
+    (void)memset(view, 0, sizeof *view); /* returns view: nothing to check */
     view->tau = table->tau;
     view->entry = table->entry;
     view->n_grid = table->n_grid;
@@ -96,73 +97,94 @@ ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t
     ogk_status st;
 
     if (table == NULL) {
-        return OGK_E_NULL;
-    }
-    /* First, whatever follows: a context bound to this table is stale from
-     * here on, even if the new bytes turn out to be the old ones. */
-    table->generation += 1u;
-    table->n_grid = 0u;
-    table->t_f_star_s = 0.0;
-    st = open_table(buf, len, &view);
-    if (st == OGK_OK) {
-        st = ogk_table_read_grid(&view, table->tau, OGK_NOG_MAX_GRID);
-    }
-    if (st == OGK_OK) {
-        st = ogk_table_read_data(&view, table->entry, (size_t)OGK_NOG_MAX_GRID * OGK_NOG_ENTRY_LEN);
-    }
-    if (st == OGK_OK) {
-        table->n_grid = view.grid_size;
-        view_of_table(table, &tv);
-        st = check_table_content(&tv);
-    }
-    if (st != OGK_OK) {
+        st = OGK_E_NULL;
+    } else {
+        /* First, whatever follows: a context bound to this table is stale from
+         * here on, even if the new bytes turn out to be the old ones. */
+        table->generation += 1u;
         table->n_grid = 0u;
-        return st;
+        table->t_f_star_s = 0.0;
+        st = open_table(buf, len, &view);
+        if (st == OGK_OK) {
+            st = ogk_table_read_grid(&view, table->tau, OGK_NOG_MAX_GRID);
+        }
+        if (st == OGK_OK) {
+            st = ogk_table_read_data(&view, table->entry, (size_t)OGK_NOG_MAX_GRID * OGK_NOG_ENTRY_LEN);
+        }
+        if (st == OGK_OK) {
+            table->n_grid = view.grid_size;
+            view_of_table(table, &tv);
+            st = check_table_content(&tv);
+        }
+        if (st != OGK_OK) {
+            table->n_grid = 0u;
+        } else {
+            table->t_f_star_s = table->entry[OGK_NOG_OFF_XDOT + IDX_TIME];
+        }
     }
-    table->t_f_star_s = table->entry[OGK_NOG_OFF_XDOT + IDX_TIME];
-    return OGK_OK;
+    return st;
 }
 
-ogk_status ogk_nog_table_view(ogk_nog_table_view_t *view, const uint8_t *buf, size_t len)
+/* Points the (reset) view into the payload of the opened table buf of
+ * grid_size nodes and checks it; on failure the view is reset again. */
+static ogk_status view_payload(ogk_nog_table_view_t *view, const uint8_t *buf, size_t grid_size,
+                               uint32_t generation)
 {
-    ogk_table_view_t tv;
     ogk_status st;
-    uint32_t generation;
 
-    if (view == NULL) {
-        return OGK_E_NULL;
-    }
-    /* Bumped and kept through the reset: bound contexts become stale. */
-    generation = view->generation + 1u;
-    memset(view, 0, sizeof *view);
-    view->generation = generation;
-    if (buf == NULL) {
-        return OGK_E_NULL;
-    }
-    /* The payload (offset 48) is read in place as double: 8-byte alignment
-     * of buf aligns every value. */
-    if (((uintptr_t)(const void *)buf & 7u) != 0u) {
-        return OGK_E_ALIGN;
-    }
-    st = open_table(buf, len, &tv);
-    if (st != OGK_OK) {
-        return st;
-    }
     /* Grid then entries, both in the table's little-endian binary64 (the
      * target's own representation, checked below by the grid values). The
      * bytes are only ever read, as double, through these pointers. */
     view->tau = (const double *)(const void *)&buf[OGK_TABLE_HEADER_SIZE];
-    view->entry = view->tau + tv.grid_size;
-    view->n_grid = tv.grid_size;
+    view->entry = &view->tau[grid_size];
+    view->n_grid = grid_size;
     st = check_table_content(view);
     if (st != OGK_OK) {
-        memset(view, 0, sizeof *view);
+        (void)memset(view, 0, sizeof *view); /* returns view: nothing to check */
         view->generation = generation;
-        return st;
+    } else {
+        view->t_f_star_s = view->entry[OGK_NOG_OFF_XDOT + IDX_TIME];
+        view->init_marker = OGK_NOG_VIEW_MARKER;
     }
-    view->t_f_star_s = view->entry[OGK_NOG_OFF_XDOT + IDX_TIME];
-    view->init_marker = OGK_NOG_VIEW_MARKER;
-    return OGK_OK;
+    return st;
+}
+
+/* ogk_nog_table_view past the reset of view (generation already bumped). */
+static ogk_status point_view(ogk_nog_table_view_t *view, const uint8_t *buf, size_t len,
+                             uint32_t generation)
+{
+    ogk_table_view_t tv;
+    ogk_status st;
+
+    if (buf == NULL) {
+        st = OGK_E_NULL;
+    } else if (((uintptr_t)(const void *)buf & 7u) != 0u) {
+        /* The payload (offset 48) is read in place as double: 8-byte alignment
+         * of buf aligns every value. */
+        st = OGK_E_ALIGN;
+    } else {
+        st = open_table(buf, len, &tv);
+        if (st == OGK_OK) {
+            st = view_payload(view, buf, tv.grid_size, generation);
+        }
+    }
+    return st;
+}
+
+ogk_status ogk_nog_table_view(ogk_nog_table_view_t *view, const uint8_t *buf, size_t len)
+{
+    ogk_status st;
+
+    if (view == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        /* Bumped and kept through the reset: bound contexts become stale. */
+        const uint32_t generation = view->generation + 1u;
+        (void)memset(view, 0, sizeof *view); /* returns view: nothing to check */
+        view->generation = generation;
+        st = point_view(view, buf, len, generation);
+    }
+    return st;
 }
 
 /* ------------------------------------------------------------------ helpers */
@@ -174,7 +196,12 @@ static void hermite(const ogk_nog_table_view_t *tbl, double tau, size_t off_val,
 {
     size_t k = 0u;
     size_t i;
-    double h, s, h00, h10, h01, h11;
+    double h;
+    double s;
+    double h00;
+    double h10;
+    double h01;
+    double h11;
     const double *a;
     const double *b;
 
@@ -251,54 +278,60 @@ static void costate_at(const ogk_nog_t *ctx, double tau, double *lam)
 static double direction_limit_scale(const double *lam_star, const double *dlam, double du_max)
 {
     double lam[NX];
-    double lo = 0.0;
-    double hi = 1.0;
-    unsigned it;
+    double scale;
     size_t i;
 
     for (i = 0u; i < NX; ++i) {
         lam[i] = lam_star[i] + dlam[i];
     }
     if (direction_angle(lam, lam_star) <= du_max) {
-        return 1.0;
-    }
-    for (it = 0u; it < OGK_NOG_LIMIT_ITERATIONS; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        for (i = 0u; i < NX; ++i) {
-            lam[i] = lam_star[i] + (mid * dlam[i]);
+        scale = 1.0;
+    } else {
+        double lo = 0.0;
+        double hi = 1.0;
+        unsigned it;
+        for (it = 0u; it < OGK_NOG_LIMIT_ITERATIONS; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            for (i = 0u; i < NX; ++i) {
+                lam[i] = lam_star[i] + (mid * dlam[i]);
+            }
+            if (direction_angle(lam, lam_star) <= du_max) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
         }
-        if (direction_angle(lam, lam_star) <= du_max) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
+        scale = lo;
     }
-    return lo;
+    return scale;
 }
 
 /* ------------------------------------------------------------------ API */
 
 ogk_status ogk_nog_config_default(ogk_nog_config_t *cfg)
 {
+    ogk_status st = OGK_OK;
+
     if (cfg == NULL) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else {
+        (void)memset(cfg, 0, sizeof *cfg); /* returns cfg: nothing to check */
+        cfg->table = NULL;
+        cfg->view = NULL;
+        cfg->sample_interval_s = 2.0; /* Delta t_S of the paper's sec. 6 */
+        cfg->dtf_max_s = 40.0;        /* ~17 sigma of the paper's MC t_f spread (2.34 s) */
+        cfg->du_max_rad = PI / 3.0;   /* 60 deg */
+        cfg->tau_freeze = 0.0;        /* corrections up to the last gain node */
     }
-    memset(cfg, 0, sizeof *cfg);
-    cfg->table = NULL;
-    cfg->view = NULL;
-    cfg->sample_interval_s = 2.0; /* Delta t_S of the paper's sec. 6 */
-    cfg->dtf_max_s = 40.0;        /* ~17 sigma of the paper's MC t_f spread (2.34 s) */
-    cfg->du_max_rad = PI / 3.0;   /* 60 deg */
-    cfg->tau_freeze = 0.0;        /* corrections up to the last gain node */
-    return OGK_OK;
+    return st;
 }
 
 /* The just-initialised state: nominal from tau = 0, no sample taken. */
 static void start_nominal(ogk_nog_t *ctx)
 {
     double lam[NX];
-    memset(ctx->dlam_k, 0, sizeof ctx->dlam_k);
-    memset(ctx->dlam_rate, 0, sizeof ctx->dlam_rate);
+    (void)memset(ctx->dlam_k, 0, sizeof ctx->dlam_k);       /* returns its first argument */
+    (void)memset(ctx->dlam_rate, 0, sizeof ctx->dlam_rate); /* returns its first argument */
     ctx->t_k_s = 0.0;
     ctx->tau_k = 0.0;
     ctx->t_f_s = ctx->tbl.t_f_star_s;
@@ -319,67 +352,91 @@ static void start_nominal(ogk_nog_t *ctx)
  * valid. The generation is the check; the others are cheap belt and braces. */
 static bool table_current(const ogk_nog_t *ctx)
 {
+    bool current;
+
     if (ctx->cfg.table != NULL) {
-        return ctx->cfg.table->generation == ctx->table_generation &&
-               ctx->cfg.table->n_grid == ctx->tbl.n_grid;
+        current = (ctx->cfg.table->generation == ctx->table_generation) &&
+                  (ctx->cfg.table->n_grid == ctx->tbl.n_grid);
+    } else {
+        current = (ctx->cfg.view != NULL) && (ctx->cfg.view->generation == ctx->table_generation) &&
+                  (ctx->cfg.view->init_marker == OGK_NOG_VIEW_MARKER) &&
+                  (ctx->cfg.view->n_grid == ctx->tbl.n_grid) && (ctx->cfg.view->tau == ctx->tbl.tau);
     }
-    return (ctx->cfg.view != NULL) && (ctx->cfg.view->generation == ctx->table_generation) &&
-           (ctx->cfg.view->init_marker == OGK_NOG_VIEW_MARKER) &&
-           (ctx->cfg.view->n_grid == ctx->tbl.n_grid) && (ctx->cfg.view->tau == ctx->tbl.tau);
+    return current;
+}
+
+/* The table cfg binds (exactly one of table and view), into tbl: the
+ * binding checks of ogk_nog_init, in its order. */
+static ogk_status bound_table(const ogk_nog_config_t *cfg, ogk_nog_table_view_t *tbl)
+{
+    ogk_status st = OGK_OK;
+
+    if ((cfg->table == NULL) && (cfg->view == NULL)) {
+        st = OGK_E_NULL;
+    } else if ((cfg->table != NULL) && (cfg->view != NULL)) {
+        st = OGK_E_CONFIG;
+    } else if (cfg->table != NULL) {
+        view_of_table(cfg->table, tbl);
+    } else if (cfg->view->init_marker == OGK_NOG_VIEW_MARKER) {
+        *tbl = *cfg->view;
+    } else {
+        st = OGK_E_NOT_INIT;
+    }
+    if ((st == OGK_OK) &&
+        ((tbl->n_grid < 3u) || (tbl->n_grid > OGK_NOG_MAX_GRID) || (!(tbl->t_f_star_s > 0.0)))) {
+        st = OGK_E_NOT_INIT;
+    }
+    return st;
+}
+
+/* The configuration ranges of ogk/nog.h against the bound table. */
+static bool config_valid(const ogk_nog_config_t *cfg, const ogk_nog_table_view_t *tbl)
+{
+    return !(!isfinite(cfg->sample_interval_s) || !(cfg->sample_interval_s > 0.0) ||
+             !isfinite(cfg->dtf_max_s) || !(cfg->dtf_max_s > 0.0) ||
+             (cfg->dtf_max_s > (0.5 * tbl->t_f_star_s)) || (cfg->sample_interval_s > tbl->t_f_star_s) ||
+             !isfinite(cfg->du_max_rad) || !(cfg->du_max_rad > 0.0) || (cfg->du_max_rad > PI) ||
+             !isfinite(cfg->tau_freeze) || (cfg->tau_freeze < 0.0) || !(cfg->tau_freeze < 1.0));
 }
 
 ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg)
 {
     ogk_nog_table_view_t tbl;
+    ogk_status st;
 
     if ((ctx == NULL) || (cfg == NULL)) {
-        return OGK_E_NULL;
-    }
-    memset(ctx, 0, sizeof *ctx);
-    if ((cfg->table == NULL) && (cfg->view == NULL)) {
-        return OGK_E_NULL;
-    }
-    if ((cfg->table != NULL) && (cfg->view != NULL)) {
-        return OGK_E_CONFIG;
-    }
-    if (cfg->table != NULL) {
-        view_of_table(cfg->table, &tbl);
-    } else if (cfg->view->init_marker == OGK_NOG_VIEW_MARKER) {
-        tbl = *cfg->view;
+        st = OGK_E_NULL;
     } else {
-        return OGK_E_NOT_INIT;
+        (void)memset(ctx, 0, sizeof *ctx); /* returns ctx: nothing to check */
+        st = bound_table(cfg, &tbl);
+        if ((st == OGK_OK) && (!config_valid(cfg, &tbl))) {
+            st = OGK_E_CONFIG;
+        }
+        if (st == OGK_OK) {
+            ctx->cfg = *cfg;
+            ctx->tbl = tbl;
+            ctx->table_generation = tbl.generation;
+            start_nominal(ctx);
+            ctx->init_marker = OGK_NOG_INIT_MARKER;
+        }
     }
-    if ((tbl.n_grid < 3u) || (tbl.n_grid > OGK_NOG_MAX_GRID) || (!(tbl.t_f_star_s > 0.0))) {
-        return OGK_E_NOT_INIT;
-    }
-    if (!isfinite(cfg->sample_interval_s) || !(cfg->sample_interval_s > 0.0) ||
-        !isfinite(cfg->dtf_max_s) || !(cfg->dtf_max_s > 0.0) ||
-        (cfg->dtf_max_s > (0.5 * tbl.t_f_star_s)) || (cfg->sample_interval_s > tbl.t_f_star_s) ||
-        !isfinite(cfg->du_max_rad) || !(cfg->du_max_rad > 0.0) || (cfg->du_max_rad > PI) ||
-        !isfinite(cfg->tau_freeze) || (cfg->tau_freeze < 0.0) || !(cfg->tau_freeze < 1.0)) {
-        return OGK_E_CONFIG;
-    }
-    ctx->cfg = *cfg;
-    ctx->tbl = tbl;
-    ctx->table_generation = tbl.generation;
-    start_nominal(ctx);
-    ctx->init_marker = OGK_NOG_INIT_MARKER;
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_nog_reset(ogk_nog_t *ctx)
 {
+    ogk_status st = OGK_OK;
+
     if (ctx == NULL) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
+        st = OGK_E_NOT_INIT;
+    } else if (!table_current(ctx)) {
+        st = OGK_E_TABLE_STALE; /* the nominal at tau = 0 would be read from it */
+    } else {
+        start_nominal(ctx);
     }
-    if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
-        return OGK_E_NOT_INIT;
-    }
-    if (!table_current(ctx)) {
-        return OGK_E_TABLE_STALE; /* the nominal at tau = 0 would be read from it */
-    }
-    start_nominal(ctx);
-    return OGK_OK;
+    return st;
 }
 
 /* Moves the current sample to (t_s, tau) keeping the correction in force
@@ -477,37 +534,24 @@ static void safe_sample(ogk_nog_t *ctx, double t_s, bool readable, ogk_nog_sampl
     }
     if (readable) {
         fill_sample(&at, out);
-        if (sample_finite(out)) {
-            return;
-        }
     }
-    fill_sample_held(&at, out);
-    if (!sample_finite(out)) {
-        fill_sample_held(ctx, out); /* the last good sample's own values */
+    if ((!readable) || (!sample_finite(out))) {
+        fill_sample_held(&at, out);
+        if (!sample_finite(out)) {
+            fill_sample_held(ctx, out); /* the last good sample's own values */
+        }
     }
 }
 
-/* The correction at tau_k from the gains (eqs. 29-31) with the end-game
- * bounds. False (context untouched) when the gains times dx overflow. */
-static bool compute_correction(ogk_nog_t *ctx, const double *dx)
+/* The bounds of compute_correction on the finite gain products out8
+ * (dlam, dt_f) and dlam_rate, then the correction into ctx. */
+static void apply_correction(ogk_nog_t *ctx, const double *out8, const double *dlam_rate)
 {
     const ogk_nog_table_view_t *tbl = &ctx->tbl;
-    double gain[N_GAIN_ROWS * NX];
-    double nrate[NX * NX];
-    double out8[N_GAIN_ROWS];
     double lam_star[NX];
-    double dlam_rate[NX];
     double dt_f;
     double scale;
     size_t i;
-
-    linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_GAIN, (size_t)N_GAIN_ROWS * NX, gain);
-    linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_NRATE, (size_t)NX * NX, nrate);
-    (void)ogk_mat_vec(gain, N_GAIN_ROWS, NX, dx, out8);
-    (void)ogk_mat_vec(nrate, NX, NX, dx, dlam_rate);
-    if (!ogk_i_all_finite(out8, N_GAIN_ROWS) || !ogk_i_all_finite(dlam_rate, NX)) {
-        return false; /* finite gains and dx, but their products overflow */
-    }
 
     dt_f = out8[NX];
     if (fabs(dt_f) > ctx->cfg.dtf_max_s) {
@@ -524,58 +568,41 @@ static bool compute_correction(ogk_nog_t *ctx, const double *dx)
         ctx->dlam_rate[i] = scale * dlam_rate[i];
     }
     ctx->t_f_s = tbl->t_f_star_s + dt_f;
-    return true;
 }
 
-ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sample_t *out)
+/* The correction at tau_k from the gains (eqs. 29-31) with the end-game
+ * bounds. False (context untouched) when the gains times dx overflow. */
+static bool compute_correction(ogk_nog_t *ctx, const double *dx)
 {
-    const ogk_nog_table_view_t *tbl;
+    const ogk_nog_table_view_t *tbl = &ctx->tbl;
+    double gain[N_GAIN_ROWS * NX];
+    double nrate[NX * NX];
+    double out8[N_GAIN_ROWS];
+    double dlam_rate[NX];
+    bool finite = true;
+
+    linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_GAIN, (size_t)N_GAIN_ROWS * NX, gain);
+    linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_NRATE, (size_t)NX * NX, nrate);
+    (void)ogk_mat_vec(gain, N_GAIN_ROWS, NX, dx, out8);
+    (void)ogk_mat_vec(nrate, NX, NX, dx, dlam_rate);
+    if (!ogk_i_all_finite(out8, N_GAIN_ROWS) || !ogk_i_all_finite(dlam_rate, NX)) {
+        finite = false; /* finite gains and dx, but their products overflow */
+    } else {
+        apply_correction(ctx, out8, dlam_rate);
+    }
+    return finite;
+}
+
+/* ogk_nog_sample from a finite, in-envelope sample at tau <= 1: the
+ * correction (or the end-game hold) committed, or the safe output. */
+static ogk_status take_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, const double *nav_v,
+                              double tau, ogk_nog_sample_t *out)
+{
+    const ogk_nog_table_view_t *tbl = &ctx->tbl;
     ogk_nog_t before;
-    double nav_v[NX];
-    double tau;
     bool good = true;
+    ogk_status st = OGK_OK;
 
-    if ((ctx == NULL) || (nav == NULL) || (out == NULL)) {
-        return OGK_E_NULL;
-    }
-    memset(out, 0, sizeof *out);
-    if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
-        return OGK_E_NOT_INIT;
-    }
-    if (!table_current(ctx)) {
-        /* Reloaded since init (maybe failed: n_grid = 0): not one read of it. */
-        safe_sample(ctx, nav->t_s, false, out);
-        return OGK_E_TABLE_STALE;
-    }
-    tbl = &ctx->tbl;
-    nav_v[0] = nav->r_m;
-    nav_v[1] = nav->xi_rad;
-    nav_v[2] = nav->phi_rad;
-    nav_v[3] = nav->v_r_mps;
-    nav_v[4] = nav->v_t_mps;
-    nav_v[5] = nav->v_n_mps;
-    nav_v[6] = nav->t_s;
-
-    if (!ogk_i_all_finite(nav_v, NX)) {
-        safe_sample(ctx, nav->t_s, true, out);
-        return OGK_E_NONFINITE;
-    }
-    /* Envelope before any arithmetic: the time bound keeps tau and the
-     * cut-off time finite, the others keep gains times dx far from overflow. */
-    if ((!nav_in_envelope(ctx, nav)) || ((ctx->n_samples > 0u) && (!(nav->t_s > ctx->t_k_s)))) {
-        safe_sample(ctx, nav->t_s, true, out);
-        return OGK_E_RANGE;
-    }
-
-    tau = (ctx->n_samples == 0u) ? (nav->t_s / tbl->t_f_star_s)
-                                 : (ctx->tau_k + ((nav->t_s - ctx->t_k_s) / ctx->t_f_s));
-    if (tau > 1.0) {
-        /* Sampled after the predicted cut-off (tau outside [0, 1]): nothing to
-         * guide, and nothing to commit (a wrong time tag must not stop the
-         * engine; the commands stop it at the predicted cut-off anyway). */
-        safe_sample(ctx, nav->t_s, true, out);
-        return OGK_E_RANGE;
-    }
     before = *ctx;
     ctx->flags = 0u;
     ctx->n_samples += 1u;
@@ -599,37 +626,101 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sa
         good = compute_correction(ctx, dx);
         if (good) {
             fill_sample(ctx, out);
-            memcpy(out->dx, dx, sizeof dx);
+            (void)memcpy(out->dx, dx, sizeof dx); /* returns out->dx: nothing to check */
         }
     }
     if (!good || !sample_finite(out)) {
         /* Finite input, non-finite correction or output: back to the last
          * good sample, and its correction is what flies. */
         *ctx = before;
-        memset(out, 0, sizeof *out);
+        (void)memset(out, 0, sizeof *out); /* returns out: nothing to check */
         safe_sample(ctx, nav->t_s, true, out);
-        return OGK_E_SAFE_COMMAND;
+        st = OGK_E_SAFE_COMMAND;
+    } else {
+        ctx->hold_alpha_rad = out->alpha_rad;
+        ctx->hold_beta_rad = out->beta_rad;
     }
-    ctx->hold_alpha_rad = out->alpha_rad;
-    ctx->hold_beta_rad = out->beta_rad;
-    return OGK_OK;
+    return st;
+}
+
+/* ogk_nog_sample on an initialised context bound to a current table. */
+static ogk_status sample_current(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sample_t *out)
+{
+    const ogk_nog_table_view_t *tbl = &ctx->tbl;
+    double nav_v[NX];
+    double tau;
+    ogk_status st;
+
+    nav_v[0] = nav->r_m;
+    nav_v[1] = nav->xi_rad;
+    nav_v[2] = nav->phi_rad;
+    nav_v[3] = nav->v_r_mps;
+    nav_v[4] = nav->v_t_mps;
+    nav_v[5] = nav->v_n_mps;
+    nav_v[6] = nav->t_s;
+
+    if (!ogk_i_all_finite(nav_v, NX)) {
+        safe_sample(ctx, nav->t_s, true, out);
+        st = OGK_E_NONFINITE;
+    } else if ((!nav_in_envelope(ctx, nav)) || ((ctx->n_samples > 0u) && (!(nav->t_s > ctx->t_k_s)))) {
+        /* Envelope before any arithmetic: the time bound keeps tau and the
+         * cut-off time finite, the others keep gains times dx far from overflow. */
+        safe_sample(ctx, nav->t_s, true, out);
+        st = OGK_E_RANGE;
+    } else {
+        tau = (ctx->n_samples == 0u) ? (nav->t_s / tbl->t_f_star_s)
+                                     : (ctx->tau_k + ((nav->t_s - ctx->t_k_s) / ctx->t_f_s));
+        if (tau > 1.0) {
+            /* Sampled after the predicted cut-off (tau outside [0, 1]): nothing to
+             * guide, and nothing to commit (a wrong time tag must not stop the
+             * engine; the commands stop it at the predicted cut-off anyway). */
+            safe_sample(ctx, nav->t_s, true, out);
+            st = OGK_E_RANGE;
+        } else {
+            st = take_sample(ctx, nav, nav_v, tau, out);
+        }
+    }
+    return st;
+}
+
+ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sample_t *out)
+{
+    ogk_status st;
+
+    if ((ctx == NULL) || (nav == NULL) || (out == NULL)) {
+        st = OGK_E_NULL;
+    } else {
+        (void)memset(out, 0, sizeof *out); /* returns out: nothing to check */
+        if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
+            st = OGK_E_NOT_INIT;
+        } else if (!table_current(ctx)) {
+            /* Reloaded since init (maybe failed: n_grid = 0): not one read of it. */
+            safe_sample(ctx, nav->t_s, false, out);
+            st = OGK_E_TABLE_STALE;
+        } else {
+            st = sample_current(ctx, nav, out);
+        }
+    }
+    return st;
 }
 
 /* tau of eq. (31) at t_s with the t_f in force; st receives the input check. */
 static double tau_at(const ogk_nog_t *ctx, double t_s, ogk_status *st)
 {
-    *st = OGK_OK;
     if (!isfinite(t_s)) {
         *st = OGK_E_NONFINITE;
     } else if (t_s < ctx->t_k_s) {
         *st = OGK_E_RANGE;
+    } else {
+        *st = OGK_OK;
     }
     /* t_s - t_k_s is finite (both finite, t_s >= t_k_s >= 0) and t_f >=
      * t_f* / 2 > 0: tau is finite or +inf, and +inf is clamped to 1. */
     return (*st == OGK_OK) ? ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s : ctx->tau_k;
 }
 
-ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
+/* ogk_nog_command on an initialised context (out already zeroed). */
+static ogk_status command_at(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
 {
     double tau;
     uint32_t law;
@@ -637,13 +728,6 @@ ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *o
     ogk_status st;
     bool readable;
 
-    if ((ctx == NULL) || (out == NULL)) {
-        return OGK_E_NULL;
-    }
-    memset(out, 0, sizeof *out);
-    if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
-        return OGK_E_NOT_INIT;
-    }
     readable = table_current(ctx);
     tau = tau_at(ctx, t_s, &st);
     law = ctx->flags & (OGK_NOG_FLAG_FROZEN | OGK_NOG_FLAG_LIMITED | OGK_NOG_FLAG_SAFE);
@@ -685,24 +769,39 @@ ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *o
     return st;
 }
 
+ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
+{
+    ogk_status st;
+
+    if ((ctx == NULL) || (out == NULL)) {
+        st = OGK_E_NULL;
+    } else {
+        (void)memset(out, 0, sizeof *out); /* returns out: nothing to check */
+        if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
+            st = OGK_E_NOT_INIT;
+        } else {
+            st = command_at(ctx, t_s, out);
+        }
+    }
+    return st;
+}
+
 ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau)
 {
     ogk_status st;
     double v;
 
     if ((ctx == NULL) || (tau == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
+        st = OGK_E_NOT_INIT;
+    } else if (!table_current(ctx)) {
+        st = OGK_E_TABLE_STALE;
+    } else {
+        v = tau_at(ctx, t_s, &st);
+        if (st == OGK_OK) {
+            *tau = fmin(v, 1.0);
+        }
     }
-    if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
-        return OGK_E_NOT_INIT;
-    }
-    if (!table_current(ctx)) {
-        return OGK_E_TABLE_STALE;
-    }
-    v = tau_at(ctx, t_s, &st);
-    if (st != OGK_OK) {
-        return st;
-    }
-    *tau = fmin(v, 1.0);
-    return OGK_OK;
+    return st;
 }
