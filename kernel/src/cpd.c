@@ -126,25 +126,26 @@ static void rtn_direction(double alpha, double beta, double u[3])
 
 static ogk_status check_angle(double angle)
 {
+    ogk_status st = OGK_OK;
+
     if (!isfinite(angle)) {
-        return OGK_E_NONFINITE;
+        st = OGK_E_NONFINITE;
+    } else if (fabs(angle) > OGK_CPD_ANGLE_LIMIT) {
+        st = OGK_E_RANGE;
+    } else {
+        /* finite and inside the limit */
     }
-    if (fabs(angle) > OGK_CPD_ANGLE_LIMIT) {
-        return OGK_E_RANGE;
-    }
-    return OGK_OK;
+    return st;
 }
 
-/* First non-OK status of check_angle over n values (NONFINITE before RANGE). */
+/* First non-OK status of check_angle over n values (NONFINITE before RANGE:
+ * the scan stops at the first non-finite value). */
 static ogk_status check_angles(const double *angles, size_t n)
 {
     ogk_status st = OGK_OK;
     size_t i;
-    for (i = 0u; i < n; ++i) {
+    for (i = 0u; (i < n) && (st != OGK_E_NONFINITE); ++i) {
         const ogk_status si = check_angle(angles[i]);
-        if (si == OGK_E_NONFINITE) {
-            return si;
-        }
         if (si != OGK_OK) {
             st = si;
         }
@@ -154,15 +155,18 @@ static ogk_status check_angles(const double *angles, size_t n)
 
 static double saturate(double value, double limit, uint32_t flag, uint32_t *flags) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
+    double sat = value;
+
     if (value > limit) {
         *flags |= flag;
-        return limit;
-    }
-    if (value < -limit) {
+        sat = limit;
+    } else if (value < -limit) {
         *flags |= flag;
-        return -limit;
+        sat = -limit;
+    } else {
+        /* inside the limit: unchanged */
     }
-    return value;
+    return sat;
 }
 
 /* ---------------------------------------------------------------- geometry */
@@ -234,29 +238,29 @@ static void feedforward_rate(const ogk_cpd_t *ctx, const double t_a[3], double p
 {
     const ogk_cpd_config_t *cfg = &ctx->cfg;
     const double *p = ctx->dir_prev_a;
-    double w_a[3];
-    double w_b[3];
-    double norm;
-    mat3_t c_b_a;
 
     *w_y = 0.0;
     *w_z = 0.0;
-    if ((!(cfg->ff_period_s > 0.0)) || (ctx->has_prev == 0u)) {
-        return;
+    /* Zero without a period or a previous direction. */
+    if ((cfg->ff_period_s > 0.0) && (ctx->has_prev != 0u)) {
+        double w_a[3];
+        double w_b[3];
+        double norm;
+        mat3_t c_b_a;
+        w_a[0] = ((p[1] * t_a[2]) - (p[2] * t_a[1])) / cfg->ff_period_s;
+        w_a[1] = ((p[2] * t_a[0]) - (p[0] * t_a[2])) / cfg->ff_period_s;
+        w_a[2] = ((p[0] * t_a[1]) - (p[1] * t_a[0])) / cfg->ff_period_s;
+        body_from_a(psi, theta, phi_roll, &c_b_a);
+        mat_vec(&c_b_a, w_a, w_b);
+        norm = hypot(w_b[1], w_b[2]);
+        if (norm > cfg->ff_rate_max) {
+            const double scale = (norm > 0.0) ? (cfg->ff_rate_max / norm) : 0.0;
+            w_b[1] *= scale;
+            w_b[2] *= scale;
+        }
+        *w_y = w_b[1];
+        *w_z = w_b[2];
     }
-    w_a[0] = ((p[1] * t_a[2]) - (p[2] * t_a[1])) / cfg->ff_period_s;
-    w_a[1] = ((p[2] * t_a[0]) - (p[0] * t_a[2])) / cfg->ff_period_s;
-    w_a[2] = ((p[0] * t_a[1]) - (p[1] * t_a[0])) / cfg->ff_period_s;
-    body_from_a(psi, theta, phi_roll, &c_b_a);
-    mat_vec(&c_b_a, w_a, w_b);
-    norm = hypot(w_b[1], w_b[2]);
-    if (norm > cfg->ff_rate_max) {
-        const double scale = (norm > 0.0) ? (cfg->ff_rate_max / norm) : 0.0;
-        w_b[1] *= scale;
-        w_b[2] *= scale;
-    }
-    *w_y = w_b[1];
-    *w_z = w_b[2];
 }
 
 /* ---------------------------------------------------------------- public */
@@ -266,24 +270,24 @@ ogk_status ogk_cpd_commanded_attitude(double alpha_c, double beta_c, double xi,
                                       double *theta_c)
 {
     const double angles[4] = {alpha_c, beta_c, xi, phi};
-    mat3_t n_a_rtn;
-    double u_rtn[3];
-    double t_a[3];
-    bool yaw_undefined;
     ogk_status st;
 
     if ((psi_c == NULL) || (theta_c == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else {
+        st = check_angles(angles, 4u);
     }
-    st = check_angles(angles, 4u);
-    if (st != OGK_OK) {
-        return st;
+    if (st == OGK_OK) {
+        mat3_t n_a_rtn;
+        double u_rtn[3];
+        double t_a[3];
+        bool yaw_undefined;
+        rtn_direction(alpha_c, beta_c, u_rtn);
+        a_from_rtn(xi, phi, &n_a_rtn);
+        mat_vec(&n_a_rtn, u_rtn, t_a);
+        attitude_of_direction(t_a, psi_c, theta_c, &yaw_undefined);
     }
-    rtn_direction(alpha_c, beta_c, u_rtn);
-    a_from_rtn(xi, phi, &n_a_rtn);
-    mat_vec(&n_a_rtn, u_rtn, t_a);
-    attitude_of_direction(t_a, psi_c, theta_c, &yaw_undefined);
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_cpd_thrust_angles(double psi, double theta, double phi_roll,
@@ -292,36 +296,36 @@ ogk_status ogk_cpd_thrust_angles(double psi, double theta, double phi_roll,
                                  double *beta_a)
 {
     const double angles[7] = {psi, theta, phi_roll, xi, phi, delta_y, delta_z};
-    mat3_t n_a_rtn;
-    mat3_t c_b_a;
-    mat3_t c_b_rtn;
-    double d_b[3];
-    double t_rtn[3];
     ogk_status st;
 
     if ((alpha_a == NULL) || (beta_a == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else {
+        st = check_angles(angles, 7u);
     }
-    st = check_angles(angles, 7u);
-    if (st != OGK_OK) {
-        return st;
+    if (st == OGK_OK) {
+        mat3_t n_a_rtn;
+        mat3_t c_b_a;
+        mat3_t c_b_rtn;
+        double d_b[3];
+        double t_rtn[3];
+        /* eq. (50): deflected thrust direction in body axes */
+        d_b[0] = cos(delta_z) * cos(delta_y);
+        d_b[1] = sin(delta_z);
+        d_b[2] = cos(delta_z) * sin(delta_y);
+        /* eqs. (49), (51): body components = C N (r-t-n components) */
+        a_from_rtn(xi, phi, &n_a_rtn);
+        body_from_a(psi, theta, phi_roll, &c_b_a);
+        mat_mul(&c_b_a, &n_a_rtn, &c_b_rtn);
+        mat_t_vec(&c_b_rtn, d_b, t_rtn);
+        /* eq. (52): t_rtn = (cos b sin a, cos b cos a, sin b) */
+        *alpha_a = atan2(t_rtn[0], t_rtn[1]);
+        if (*alpha_a <= -CPD_PI) {
+            *alpha_a = CPD_PI;
+        }
+        *beta_a = atan2(t_rtn[2], hypot(t_rtn[0], t_rtn[1]));
     }
-    /* eq. (50): deflected thrust direction in body axes */
-    d_b[0] = cos(delta_z) * cos(delta_y);
-    d_b[1] = sin(delta_z);
-    d_b[2] = cos(delta_z) * sin(delta_y);
-    /* eqs. (49), (51): body components = C N (r-t-n components) */
-    a_from_rtn(xi, phi, &n_a_rtn);
-    body_from_a(psi, theta, phi_roll, &c_b_a);
-    mat_mul(&c_b_a, &n_a_rtn, &c_b_rtn);
-    mat_t_vec(&c_b_rtn, d_b, t_rtn);
-    /* eq. (52): t_rtn = (cos b sin a, cos b cos a, sin b) */
-    *alpha_a = atan2(t_rtn[0], t_rtn[1]);
-    if (*alpha_a <= -CPD_PI) {
-        *alpha_a = CPD_PI;
-    }
-    *beta_a = atan2(t_rtn[2], hypot(t_rtn[0], t_rtn[1]));
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll,
@@ -329,20 +333,20 @@ ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll
                                        double phi, double *err_y, double *err_z)
 {
     const double angles[7] = {psi, theta, phi_roll, alpha_c, beta_c, xi, phi};
-    double t_a[3];
-    double t_b[3];
     ogk_status st;
 
     if ((err_y == NULL) || (err_z == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else {
+        st = check_angles(angles, 7u);
     }
-    st = check_angles(angles, 7u);
-    if (st != OGK_OK) {
-        return st;
+    if (st == OGK_OK) {
+        double t_a[3];
+        double t_b[3];
+        commanded_direction(psi, theta, phi_roll, alpha_c, beta_c, xi, phi, t_a, t_b);
+        pointing_error_body(t_b, err_y, err_z);
     }
-    commanded_direction(psi, theta, phi_roll, alpha_c, beta_c, xi, phi, t_a, t_b);
-    pointing_error_body(t_b, err_y, err_z);
-    return OGK_OK;
+    return st;
 }
 
 static bool config_finite(const ogk_cpd_config_t *cfg)
@@ -377,45 +381,9 @@ static bool axis_ok(double k_p, double k_d, double tau, double limit)
            (k_d > (k_p * tau));
 }
 
-ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg)
+/* The defaults of ogk_cpd_config_default into a non-NULL cfg. */
+static void config_default(ogk_cpd_config_t *cfg)
 {
-    if (ctx == NULL) {
-        return OGK_E_NULL;
-    }
-    (void)memset(ctx, 0, sizeof(*ctx));
-    if (cfg == NULL) {
-        return OGK_E_NULL;
-    }
-    if (!config_finite(cfg)) {
-        return OGK_E_NONFINITE;
-    }
-    if (!axis_ok(cfg->k_px, cfg->k_dx, cfg->tau_x, cfg->m_xc_max) ||
-        !axis_ok(cfg->k_py, cfg->k_dy, cfg->tau_y, cfg->delta_yc_max) ||
-        !axis_ok(cfg->k_pz, cfg->k_dz, cfg->tau_z, cfg->delta_zc_max)) {
-        return OGK_E_CONFIG;
-    }
-    if (fabs(cfg->phi_c) > CPD_PI) {
-        return OGK_E_CONFIG;
-    }
-    if ((cfg->approach_accel_x < 0.0) || (cfg->approach_accel_y < 0.0) ||
-        (cfg->approach_accel_z < 0.0) || (cfg->ff_period_s < 0.0) || (cfg->ff_rate_max < 0.0)) {
-        return OGK_E_CONFIG;
-    }
-    if ((cfg->pointing != OGK_CPD_POINTING_BODY) &&
-        (cfg->pointing != OGK_CPD_POINTING_EULER)) {
-        return OGK_E_CONFIG;
-    }
-    ctx->cfg = *cfg;
-    ctx->last.flags = OGK_CPD_FLAG_SAFE;
-    ctx->init_marker = OGK_CPD_INIT_MARKER;
-    return OGK_OK;
-}
-
-ogk_status ogk_cpd_config_default(ogk_cpd_config_t *cfg)
-{
-    if (cfg == NULL) {
-        return OGK_E_NULL;
-    }
     (void)memset(cfg, 0, sizeof(*cfg));
     /* eq. (54) and sec. 6 as printed (docs/cpd.md: pitch/yaw gain erratum) */
     cfg->k_px = 21.6e3;
@@ -437,43 +405,103 @@ ogk_status ogk_cpd_config_default(ogk_cpd_config_t *cfg)
     cfg->approach_accel_z = 0.0;
     cfg->ff_period_s = 0.0;
     cfg->ff_rate_max = 0.0;
-    return OGK_OK;
+}
+
+/* The configuration checks of ogk_cpd_init, in their order. */
+static ogk_status cpd_check_config(const ogk_cpd_config_t *cfg)
+{
+    ogk_status st = OGK_OK;
+
+    if (cfg == NULL) {
+        st = OGK_E_NULL;
+    } else if (!config_finite(cfg)) {
+        st = OGK_E_NONFINITE;
+    } else if (!axis_ok(cfg->k_px, cfg->k_dx, cfg->tau_x, cfg->m_xc_max) ||
+               !axis_ok(cfg->k_py, cfg->k_dy, cfg->tau_y, cfg->delta_yc_max) ||
+               !axis_ok(cfg->k_pz, cfg->k_dz, cfg->tau_z, cfg->delta_zc_max)) {
+        st = OGK_E_CONFIG;
+    } else if (fabs(cfg->phi_c) > CPD_PI) {
+        st = OGK_E_CONFIG;
+    } else if ((cfg->approach_accel_x < 0.0) || (cfg->approach_accel_y < 0.0) ||
+               (cfg->approach_accel_z < 0.0) || (cfg->ff_period_s < 0.0) || (cfg->ff_rate_max < 0.0)) {
+        st = OGK_E_CONFIG;
+    } else if ((cfg->pointing != OGK_CPD_POINTING_BODY) &&
+               (cfg->pointing != OGK_CPD_POINTING_EULER)) {
+        st = OGK_E_CONFIG;
+    } else {
+        /* a usable configuration */
+    }
+    return st;
+}
+
+ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg)
+{
+    ogk_status st;
+
+    if (ctx == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        (void)memset(ctx, 0, sizeof(*ctx));
+        st = cpd_check_config(cfg);
+        if (st == OGK_OK) {
+            ctx->cfg = *cfg;
+            ctx->last.flags = OGK_CPD_FLAG_SAFE;
+            ctx->init_marker = OGK_CPD_INIT_MARKER;
+        }
+    }
+    return st;
+}
+
+ogk_status ogk_cpd_config_default(ogk_cpd_config_t *cfg)
+{
+    ogk_status st = OGK_OK;
+
+    if (cfg == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        config_default(cfg);
+    }
+    return st;
 }
 
 ogk_status ogk_cpd_reset(ogk_cpd_t *ctx)
 {
+    ogk_status st = OGK_OK;
+
     if (ctx == NULL) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if (ctx->init_marker != OGK_CPD_INIT_MARKER) {
+        st = OGK_E_NOT_INIT;
+    } else {
+        (void)memset(&ctx->last, 0, sizeof(ctx->last));
+        ctx->last.flags = OGK_CPD_FLAG_SAFE;
+        ctx->dir_prev_a[0] = 0.0;
+        ctx->dir_prev_a[1] = 0.0;
+        ctx->dir_prev_a[2] = 0.0;
+        ctx->has_prev = 0u;
     }
-    if (ctx->init_marker != OGK_CPD_INIT_MARKER) {
-        return OGK_E_NOT_INIT;
-    }
-    (void)memset(&ctx->last, 0, sizeof(ctx->last));
-    ctx->last.flags = OGK_CPD_FLAG_SAFE;
-    ctx->dir_prev_a[0] = 0.0;
-    ctx->dir_prev_a[1] = 0.0;
-    ctx->dir_prev_a[2] = 0.0;
-    ctx->has_prev = 0u;
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_cpd_input_from_thrust_cmd(ogk_cpd_input_t *in, const ogk_thrust_cmd_t *cmd,
                                          const ogk_nav_state_t *nav)
 {
+    ogk_status st = OGK_OK;
+
     if ((in == NULL) || (cmd == NULL) || (nav == NULL)) {
-        return OGK_E_NULL;
-    }
-    {
+        st = OGK_E_NULL;
+    } else {
         const double v[4] = {cmd->alpha_rad, cmd->beta_rad, nav->xi_rad, nav->phi_rad};
         if (!ogk_i_all_finite(v, 4u)) {
-            return OGK_E_NONFINITE;
+            st = OGK_E_NONFINITE;
+        } else {
+            in->alpha_c = cmd->alpha_rad;
+            in->beta_c = cmd->beta_rad;
+            in->xi = nav->xi_rad;
+            in->phi = nav->phi_rad;
         }
     }
-    in->alpha_c = cmd->alpha_rad;
-    in->beta_c = cmd->beta_rad;
-    in->xi = nav->xi_rad;
-    in->phi = nav->phi_rad;
-    return OGK_OK;
+    return st;
 }
 
 static void safe_command(ogk_cpd_output_t *out)
@@ -491,8 +519,8 @@ static void safe_command(ogk_cpd_output_t *out)
 }
 
 /* Writes the safe command into out (if any) and into the context's last
- * command (if the context is usable), and returns st. */
-static ogk_status reject(ogk_cpd_t *ctx, ogk_cpd_output_t *out, ogk_status st)
+ * command (if the context is usable). */
+static void reject(ogk_cpd_t *ctx, ogk_cpd_output_t *out)
 {
     if (out != NULL) {
         safe_command(out);
@@ -500,13 +528,28 @@ static ogk_status reject(ogk_cpd_t *ctx, ogk_cpd_output_t *out, ogk_status st)
     if ((ctx != NULL) && (ctx->init_marker == OGK_CPD_INIT_MARKER)) {
         safe_command(&ctx->last);
     }
+}
+
+/* The input checks of ogk_cpd_step: rates finite, angles checked. */
+static ogk_status cpd_check_input(const ogk_cpd_input_t *in)
+{
+    const double angles[7] = {in->psi, in->theta, in->phi_roll, in->alpha_c,
+                              in->beta_c, in->xi, in->phi};
+    ogk_status st;
+    /* rates: only finiteness matters (a large rate saturates the command) */
+    if (!(isfinite(in->rate_p) && isfinite(in->rate_q) && isfinite(in->rate_r))) {
+        st = OGK_E_NONFINITE;
+    } else {
+        st = check_angles(angles, 7u);
+    }
     return st;
 }
 
-ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
-                        ogk_cpd_output_t *out)
+/* ogk_cpd_step on checked input: the command into out and, when finite,
+ * committed to ctx; OGK_E_SAFE_COMMAND (ctx untouched) otherwise. */
+static ogk_status control_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in, ogk_cpd_output_t *out)
 {
-    const ogk_cpd_config_t *cfg;
+    const ogk_cpd_config_t *cfg = &ctx->cfg;
     double t_a[3];
     double t_b[3];
     double err_y;
@@ -516,27 +559,7 @@ ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
     double ff_z;
     bool yaw_undefined;
     uint32_t flags = 0u;
-
-    if ((ctx == NULL) || (in == NULL) || (out == NULL)) {
-        return reject(ctx, out, OGK_E_NULL);
-    }
-    if (ctx->init_marker != OGK_CPD_INIT_MARKER) {
-        return reject(ctx, out, OGK_E_NOT_INIT);
-    }
-    {
-        const double angles[7] = {in->psi, in->theta, in->phi_roll, in->alpha_c,
-                                  in->beta_c, in->xi, in->phi};
-        ogk_status st;
-        /* rates: only finiteness matters (a large rate saturates the command) */
-        if (!(isfinite(in->rate_p) && isfinite(in->rate_q) && isfinite(in->rate_r))) {
-            return reject(ctx, out, OGK_E_NONFINITE);
-        }
-        st = check_angles(angles, 7u);
-        if (st != OGK_OK) {
-            return reject(ctx, out, st);
-        }
-    }
-    cfg = &ctx->cfg;
+    ogk_status st = OGK_OK;
 
     /* eqs. (38)-(39): commanded attitude; direction in a and body axes */
     commanded_direction(in->psi, in->theta, in->phi_roll, in->alpha_c, in->beta_c,
@@ -584,13 +607,36 @@ ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
         const double v[9] = {out->m_xc, out->delta_yc, out->delta_zc, out->psi_c,
                              out->theta_c, out->phi_c, out->err_x, out->err_y, out->err_z};
         if (!ogk_i_all_finite(v, 9u)) {
-            return reject(ctx, out, OGK_E_SAFE_COMMAND);
+            st = OGK_E_SAFE_COMMAND;
         }
     }
-    ctx->last = *out;
-    ctx->dir_prev_a[0] = t_a[0];
-    ctx->dir_prev_a[1] = t_a[1];
-    ctx->dir_prev_a[2] = t_a[2];
-    ctx->has_prev = 1u;
-    return OGK_OK;
+    if (st == OGK_OK) {
+        ctx->last = *out;
+        ctx->dir_prev_a[0] = t_a[0];
+        ctx->dir_prev_a[1] = t_a[1];
+        ctx->dir_prev_a[2] = t_a[2];
+        ctx->has_prev = 1u;
+    }
+    return st;
+}
+
+ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
+                        ogk_cpd_output_t *out)
+{
+    ogk_status st;
+
+    if ((ctx == NULL) || (in == NULL) || (out == NULL)) {
+        st = OGK_E_NULL;
+    } else if (ctx->init_marker != OGK_CPD_INIT_MARKER) {
+        st = OGK_E_NOT_INIT;
+    } else {
+        st = cpd_check_input(in);
+        if (st == OGK_OK) {
+            st = control_step(ctx, in, out);
+        }
+    }
+    if (st != OGK_OK) {
+        reject(ctx, out);
+    }
+    return st;
 }
