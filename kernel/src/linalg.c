@@ -46,13 +46,14 @@ static bool la_dim_ok(size_t dim, size_t dim_max)
 
 static bool la_all_finite(const double *v, size_t count)
 {
+    bool finite = true;
     size_t i;
-    for (i = 0u; i < count; ++i) {
+    for (i = 0u; (i < count) && finite; ++i) {
         if (!isfinite(v[i])) {
-            return false;
+            finite = false;
         }
     }
-    return true;
+    return finite;
 }
 
 /* Euclidean norm of v[0], v[stride], ..., v[(count-1) stride], scaled by the
@@ -60,7 +61,7 @@ static bool la_all_finite(const double *v, size_t count)
 static double la_norm2(const double *v, size_t count, size_t stride) /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
 {
     double scale = 0.0;
-    double ssq = 0.0;
+    double norm = 0.0;
     size_t i;
 
     for (i = 0u; i < count; ++i) {
@@ -69,14 +70,15 @@ static double la_norm2(const double *v, size_t count, size_t stride) /* NOLINT(b
             scale = a;
         }
     }
-    if (scale == 0.0) {
-        return 0.0;
+    if (scale != 0.0) {
+        double ssq = 0.0;
+        for (i = 0u; i < count; ++i) {
+            const double t = v[i * stride] / scale;
+            ssq += t * t;
+        }
+        norm = scale * sqrt(ssq);
     }
-    for (i = 0u; i < count; ++i) {
-        const double t = v[i * stride] / scale;
-        ssq += t * t;
-    }
-    return scale * sqrt(ssq);
+    return norm;
 }
 
 /* Common checks of the products: NULL, dimensions, output overlapping an input. */
@@ -85,18 +87,40 @@ static ogk_status la_product_check(const double *in1, size_t in1_count,
                                    const double *out, size_t out_count, /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
                                    size_t d1, size_t d2, size_t d3)
 {
+    ogk_status st;
     if ((in1 == NULL) || (in2 == NULL) || (out == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if (!la_dim_ok(d1, OGK_LA_MAX_LONG) || !la_dim_ok(d2, OGK_LA_MAX_LONG) ||
+               !la_dim_ok(d3, OGK_LA_MAX_LONG)) {
+        st = OGK_E_DIM;
+    } else if (la_overlap(out, la_bytes(out_count), in1, la_bytes(in1_count)) ||
+               la_overlap(out, la_bytes(out_count), in2, la_bytes(in2_count))) {
+        st = OGK_E_RANGE;
+    } else {
+        st = OGK_OK;
     }
-    if (!la_dim_ok(d1, OGK_LA_MAX_LONG) || !la_dim_ok(d2, OGK_LA_MAX_LONG) ||
-        !la_dim_ok(d3, OGK_LA_MAX_LONG)) {
-        return OGK_E_DIM;
+    return st;
+}
+
+/* Common checks of the factorizations of an n x n matrix A into a
+ * caller-owned struct of fact_bytes bytes at fact: NULL, dimension, A
+ * overlapping the struct, non-finite entries. */
+static ogk_status la_square_check(const double *A, size_t n, const void *fact,
+                                  size_t fact_bytes)
+{
+    ogk_status st;
+    if (A == NULL) {
+        st = OGK_E_NULL;
+    } else if (!la_dim_ok(n, OGK_LA_MAX_N)) {
+        st = OGK_E_DIM;
+    } else if (la_overlap(A, la_bytes(n * n), fact, fact_bytes)) {
+        st = OGK_E_RANGE;
+    } else if (!la_all_finite(A, n * n)) {
+        st = OGK_E_NONFINITE;
+    } else {
+        st = OGK_OK;
     }
-    if (la_overlap(out, la_bytes(out_count), in1, la_bytes(in1_count)) ||
-        la_overlap(out, la_bytes(out_count), in2, la_bytes(in2_count))) {
-        return OGK_E_RANGE;
-    }
-    return OGK_OK;
+    return st;
 }
 
 /* ------------------------------------------------------------------ products */
@@ -176,20 +200,19 @@ ogk_status ogk_mat_mul_a_bt(const double *A, size_t r, size_t k,
 ogk_status ogk_mat_transpose(const double *A, size_t rows, size_t cols,
                              double *At)
 {
-    size_t i;
-    size_t j;
     /* A is passed twice: la_product_check wants two inputs. */
     const ogk_status st = la_product_check(A, rows * cols, A, rows * cols,
                                            At, rows * cols, rows, cols, 1u);
-    if (st != OGK_OK) {
-        return st;
-    }
-    for (i = 0u; i < rows; ++i) {
-        for (j = 0u; j < cols; ++j) {
-            At[(j * rows) + i] = A[(i * cols) + j];
+    if (st == OGK_OK) {
+        size_t i;
+        size_t j;
+        for (i = 0u; i < rows; ++i) {
+            for (j = 0u; j < cols; ++j) {
+                At[(j * rows) + i] = A[(i * cols) + j];
+            }
         }
     }
-    return OGK_OK;
+    return st;
 }
 
 /* ------------------------------------------------------------------ LU */
@@ -205,19 +228,21 @@ static void lu_invalidate(ogk_lu_t *lu)
  * of bounds (guards against a never-factored or overwritten struct). */
 static ogk_status lu_check_held(const ogk_lu_t *lu)
 {
+    ogk_status st;
     size_t i;
     if (lu->n == 0u) {
-        return OGK_E_NOT_INIT;
-    }
-    if (lu->n > OGK_LA_MAX_N) {
-        return OGK_E_DIM;
-    }
-    for (i = 0u; i < lu->n; ++i) {
-        if (lu->perm[i] >= lu->n) {
-            return OGK_E_NOT_INIT;
+        st = OGK_E_NOT_INIT;
+    } else if (lu->n > OGK_LA_MAX_N) {
+        st = OGK_E_DIM;
+    } else {
+        st = OGK_OK;
+        for (i = 0u; (i < lu->n) && (st == OGK_OK); ++i) {
+            if (lu->perm[i] >= lu->n) {
+                st = OGK_E_NOT_INIT;
+            }
         }
     }
-    return OGK_OK;
+    return st;
 }
 
 /* Solves L U y_out = y_in in place, y_in already permuted (= P b). */
@@ -258,61 +283,41 @@ static void lu_inverse_column(const ogk_lu_t *lu, size_t j, double *col)
     lu_substitute(lu, col);
 }
 
-ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
+/* Loads A (n x n, checked) into lu: copy, 1-norm (largest absolute column
+ * sum), identity permutation. */
+static void lu_load(ogk_lu_t *lu, const double *A, size_t n)
 {
     size_t i;
     size_t j;
-    size_t k;
-    double pivot_tol;
-    double ainv_norm1 = 0.0;
-    double col[OGK_LA_MAX_N];
+    double anorm1 = 0.0;
 
-    if (lu == NULL) {
-        return OGK_E_NULL;
-    }
-    lu_invalidate(lu);
-    if (A == NULL) {
-        return OGK_E_NULL;
-    }
-    if (!la_dim_ok(n, OGK_LA_MAX_N)) {
-        return OGK_E_DIM;
-    }
-    if (la_overlap(A, la_bytes(n * n), lu, sizeof *lu)) {
-        return OGK_E_RANGE;
-    }
-    if (!la_all_finite(A, n * n)) {
-        return OGK_E_NONFINITE;
-    }
-
-    /* Copy and 1-norm (largest absolute column sum) of A. */
-    {
-        double anorm1 = 0.0;
-        for (j = 0u; j < n; ++j) {
-            double colsum = 0.0;
-            for (i = 0u; i < n; ++i) {
-                colsum += fabs(A[(i * n) + j]);
-            }
-            if (colsum > anorm1) {
-                anorm1 = colsum;
-            }
+    for (j = 0u; j < n; ++j) {
+        double colsum = 0.0;
+        for (i = 0u; i < n; ++i) {
+            colsum += fabs(A[(i * n) + j]);
         }
-        (void)memcpy(lu->lu, A, la_bytes(n * n));
-        lu->anorm1 = anorm1;
+        if (colsum > anorm1) {
+            anorm1 = colsum;
+        }
     }
+    (void)memcpy(lu->lu, A, la_bytes(n * n));
+    lu->anorm1 = anorm1;
     for (i = 0u; i < n; ++i) {
         lu->perm[i] = i;
     }
+}
 
-    /* A pivot at or below eps |A|_1 is zero to working precision. Any such
-     * pivot implies rcond <= n eps < OGK_LA_RCOND_MIN (the trailing block of
-     * (PA)^-1 is the inverse of the Schur complement S, and |S^-1|_1 >=
-     * 1 / |S e_1|_1 >= 1 / (n |pivot|)), so SINGULAR never hides a
-     * matrix that ILL_CONDITIONED would have accepted; a larger threshold
-     * (n eps |A|_1) would already reject the 12 x 12 Hilbert matrix. */
-    pivot_tol = DBL_EPSILON * lu->anorm1;
+/* Gaussian elimination with partial pivoting of the n x n matrix loaded in
+ * lu (lu_load). OGK_E_SINGULAR at the first pivot at or below pivot_tol. */
+static ogk_status lu_eliminate(ogk_lu_t *lu, size_t n, double pivot_tol)
+{
+    ogk_status st = OGK_OK;
+    double *f = lu->lu;
+    size_t i;
+    size_t j;
+    size_t k;
 
-    for (k = 0u; k < n; ++k) {
-        double *f = lu->lu;
+    for (k = 0u; (k < n) && (st == OGK_OK); ++k) {
         size_t p = k;
         double pmax = fabs(f[(k * n) + k]);
         for (i = k + 1u; i < n; ++i) {
@@ -323,34 +328,43 @@ ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
             }
         }
         if (!(pmax > pivot_tol)) {
-            lu_invalidate(lu);
-            return OGK_E_SINGULAR;
-        }
-        if (p != k) {
-            const size_t tp = lu->perm[k];
-            lu->perm[k] = lu->perm[p];
-            lu->perm[p] = tp;
-            for (j = 0u; j < n; ++j) {
-                const double t = f[(k * n) + j];
-                f[(k * n) + j] = f[(p * n) + j];
-                f[(p * n) + j] = t;
+            st = OGK_E_SINGULAR;
+        } else {
+            if (p != k) {
+                const size_t tp = lu->perm[k];
+                lu->perm[k] = lu->perm[p];
+                lu->perm[p] = tp;
+                for (j = 0u; j < n; ++j) {
+                    const double t = f[(k * n) + j];
+                    f[(k * n) + j] = f[(p * n) + j];
+                    f[(p * n) + j] = t;
+                }
             }
-        }
-        for (i = k + 1u; i < n; ++i) {
-            const double l_ik = f[(i * n) + k] / f[(k * n) + k];
-            f[(i * n) + k] = l_ik;
-            for (j = k + 1u; j < n; ++j) {
-                f[(i * n) + j] -= l_ik * f[(k * n) + j];
+            for (i = k + 1u; i < n; ++i) {
+                const double l_ik = f[(i * n) + k] / f[(k * n) + k];
+                f[(i * n) + k] = l_ik;
+                for (j = k + 1u; j < n; ++j) {
+                    f[(i * n) + j] -= l_ik * f[(k * n) + j];
+                }
             }
         }
     }
-    lu->n = n;
+    return st;
+}
 
-    /* Exact |A^-1|_1 from the factors: largest absolute column sum. */
-    for (j = 0u; j < n; ++j) {
+/* lu->rcond of a held factorization, with the exact |A^-1|_1 from the
+ * factors (largest absolute column sum). */
+static void lu_set_rcond(ogk_lu_t *lu)
+{
+    size_t i;
+    size_t j;
+    double ainv_norm1 = 0.0;
+    double col[OGK_LA_MAX_N];
+
+    for (j = 0u; j < lu->n; ++j) {
         double colsum = 0.0;
         lu_inverse_column(lu, j, col);
-        for (i = 0u; i < n; ++i) {
+        for (i = 0u; i < lu->n; ++i) {
             colsum += fabs(col[i]);
         }
         if (!isfinite(colsum)) {
@@ -364,110 +378,135 @@ ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
     /* Divide in this order: each quotient stays representable for any A
      * whose norm and inverse norm are finite. 1/inf gives rcond = 0. */
     lu->rcond = (1.0 / ainv_norm1) / lu->anorm1;
-    if (!(lu->rcond >= OGK_LA_RCOND_MIN)) {
-        return OGK_E_ILL_CONDITIONED;
+}
+
+ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
+{
+    ogk_status st;
+
+    if (lu == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        lu_invalidate(lu);
+        st = la_square_check(A, n, lu, sizeof *lu);
     }
-    return OGK_OK;
+    if (st == OGK_OK) {
+        lu_load(lu, A, n);
+        /* A pivot at or below eps |A|_1 is zero to working precision. Any such
+         * pivot implies rcond <= n eps < OGK_LA_RCOND_MIN (the trailing block of
+         * (PA)^-1 is the inverse of the Schur complement S, and |S^-1|_1 >=
+         * 1 / |S e_1|_1 >= 1 / (n |pivot|)), so SINGULAR never hides a
+         * matrix that ILL_CONDITIONED would have accepted; a larger threshold
+         * (n eps |A|_1) would already reject the 12 x 12 Hilbert matrix. */
+        st = lu_eliminate(lu, n, DBL_EPSILON * lu->anorm1);
+        if (st == OGK_OK) {
+            lu->n = n;
+            lu_set_rcond(lu);
+            if (!(lu->rcond >= OGK_LA_RCOND_MIN)) {
+                st = OGK_E_ILL_CONDITIONED;
+            }
+        } else {
+            lu_invalidate(lu);
+        }
+    }
+    return st;
 }
 
 ogk_status ogk_lu_solve(const ogk_lu_t *lu, const double *b, double *x)
 {
-    size_t i;
     ogk_status st;
-    double y[OGK_LA_MAX_N];
 
     if ((lu == NULL) || (b == NULL) || (x == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else {
+        st = lu_check_held(lu);
     }
-    st = lu_check_held(lu);
-    if (st != OGK_OK) {
-        return st;
+    if (st == OGK_OK) {
+        if (la_overlap(x, la_bytes(lu->n), lu, sizeof *lu)) {
+            st = OGK_E_RANGE;
+        } else if (!la_all_finite(b, lu->n)) {
+            st = OGK_E_NONFINITE;
+        } else {
+            size_t i;
+            double y[OGK_LA_MAX_N];
+            /* b is read completely before x is written, so x may alias b. */
+            for (i = 0u; i < lu->n; ++i) {
+                y[i] = b[lu->perm[i]];
+            }
+            lu_substitute(lu, y);
+            (void)memcpy(x, y, la_bytes(lu->n));
+        }
     }
-    if (la_overlap(x, la_bytes(lu->n), lu, sizeof *lu)) {
-        return OGK_E_RANGE;
-    }
-    if (!la_all_finite(b, lu->n)) {
-        return OGK_E_NONFINITE;
-    }
-    /* b is read completely before x is written, so x may alias b. */
-    for (i = 0u; i < lu->n; ++i) {
-        y[i] = b[lu->perm[i]];
-    }
-    lu_substitute(lu, y);
-    (void)memcpy(x, y, la_bytes(lu->n));
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv)
 {
-    size_t i;
-    size_t j;
     ogk_status st;
-    double col[OGK_LA_MAX_N];
 
     if ((lu == NULL) || (Ainv == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else {
+        st = lu_check_held(lu);
     }
-    st = lu_check_held(lu);
-    if (st != OGK_OK) {
-        return st;
-    }
-    if (la_overlap(Ainv, la_bytes(lu->n * lu->n), lu, sizeof *lu)) {
-        return OGK_E_RANGE;
-    }
-    for (j = 0u; j < lu->n; ++j) {
-        lu_inverse_column(lu, j, col);
-        for (i = 0u; i < lu->n; ++i) {
-            Ainv[(i * lu->n) + j] = col[i];
+    if (st == OGK_OK) {
+        if (la_overlap(Ainv, la_bytes(lu->n * lu->n), lu, sizeof *lu)) {
+            st = OGK_E_RANGE;
+        } else {
+            size_t i;
+            size_t j;
+            double col[OGK_LA_MAX_N];
+            for (j = 0u; j < lu->n; ++j) {
+                lu_inverse_column(lu, j, col);
+                for (i = 0u; i < lu->n; ++i) {
+                    Ainv[(i * lu->n) + j] = col[i];
+                }
+            }
         }
     }
-    return OGK_OK;
+    return st;
 }
 
 /* ------------------------------------------------------------------ Cholesky */
 
-ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n)
+/* OGK_E_NOT_POSDEF unless the n x n matrix A is symmetric to OGK_CHOL_SYM_TOL
+ * relative to the matrix scale max |A_ij| (an element-wise relative test would
+ * reject round-off in entries that should be zero). */
+static ogk_status chol_symmetry_check(const double *A, size_t n)
 {
     size_t i;
     size_t j;
-    size_t k;
     double scale = 0.0;
+    bool symmetric = true;
 
-    if (ch == NULL) {
-        return OGK_E_NULL;
-    }
-    ch->n = 0u;
-    if (A == NULL) {
-        return OGK_E_NULL;
-    }
-    if (!la_dim_ok(n, OGK_LA_MAX_N)) {
-        return OGK_E_DIM;
-    }
-    if (la_overlap(A, la_bytes(n * n), ch, sizeof *ch)) {
-        return OGK_E_RANGE;
-    }
-    if (!la_all_finite(A, n * n)) {
-        return OGK_E_NONFINITE;
-    }
     for (i = 0u; i < (n * n); ++i) {
         const double a = fabs(A[i]);
         if (a > scale) {
             scale = a;
         }
     }
-    /* Symmetry to OGK_CHOL_SYM_TOL relative to the matrix scale (an element-wise
-     * relative test would reject round-off in entries that should be zero). */
-    for (i = 1u; i < n; ++i) {
-        for (j = 0u; j < i; ++j) {
+    for (i = 1u; (i < n) && symmetric; ++i) {
+        for (j = 0u; (j < i) && symmetric; ++j) {
             if (fabs(A[(i * n) + j] - A[(j * n) + i]) > (OGK_CHOL_SYM_TOL * scale)) {
-                return OGK_E_NOT_POSDEF;
+                symmetric = false;
             }
         }
     }
+    return symmetric ? OGK_OK : OGK_E_NOT_POSDEF;
+}
+
+/* Cholesky-Banachiewicz on the lower triangle of A (n x n, checked) into
+ * ch->l; on OGK_E_NOT_POSDEF ch->l is left zero. */
+static ogk_status chol_decompose(ogk_chol_t *ch, const double *A, size_t n)
+{
+    ogk_status st = OGK_OK;
+    size_t i;
+    size_t j;
+    size_t k;
 
     (void)memset(ch->l, 0, la_bytes(n * n));
-    for (i = 0u; i < n; ++i) {
-        for (j = 0u; j <= i; ++j) {
+    for (i = 0u; (i < n) && (st == OGK_OK); ++i) {
+        for (j = 0u; (j <= i) && (st == OGK_OK); ++j) {
             double sum = A[(i * n) + j];
             for (k = 0u; k < j; ++k) {
                 sum -= ch->l[(i * n) + k] * ch->l[(j * n) + k];
@@ -478,43 +517,50 @@ ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n)
                  * positive definite to working precision. */
                 if ((!(A[(i * n) + i] > 0.0)) || (!(sum > (DBL_EPSILON * A[(i * n) + i])))) {
                     (void)memset(ch->l, 0, la_bytes(n * n));
-                    return OGK_E_NOT_POSDEF;
+                    st = OGK_E_NOT_POSDEF;
+                } else {
+                    ch->l[(i * n) + i] = sqrt(sum);
                 }
-                ch->l[(i * n) + i] = sqrt(sum);
             } else {
                 ch->l[(i * n) + j] = sum / ch->l[(j * n) + j];
             }
         }
     }
-    ch->n = n;
-    return OGK_OK;
+    return st;
 }
 
-ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x)
+ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n)
 {
+    ogk_status st;
+
+    if (ch == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        ch->n = 0u;
+        st = la_square_check(A, n, ch, sizeof *ch);
+    }
+    if (st == OGK_OK) {
+        st = chol_symmetry_check(A, n);
+    }
+    if (st == OGK_OK) {
+        st = chol_decompose(ch, A, n);
+    }
+    if (st == OGK_OK) {
+        ch->n = n;
+    }
+    return st;
+}
+
+/* L y = b, then L^T x = y with a held factorization of order n; b is read
+ * completely before x is written. */
+static void chol_substitute(const ogk_chol_t *ch, const double *b, double *x)
+{
+    const size_t n = ch->n;
     size_t i;
     size_t j;
     size_t ii;
-    size_t n;
     double y[OGK_LA_MAX_N];
 
-    if ((ch == NULL) || (b == NULL) || (x == NULL)) {
-        return OGK_E_NULL;
-    }
-    if (ch->n == 0u) {
-        return OGK_E_NOT_INIT;
-    }
-    if (ch->n > OGK_LA_MAX_N) {
-        return OGK_E_DIM;
-    }
-    n = ch->n;
-    if (la_overlap(x, la_bytes(n), ch, sizeof *ch)) {
-        return OGK_E_RANGE;
-    }
-    if (!la_all_finite(b, n)) {
-        return OGK_E_NONFINITE;
-    }
-    /* L y = b, then L^T x = y; b is read completely before x is written. */
     for (i = 0u; i < n; ++i) {
         double sum = b[i];
         for (j = 0u; j < i; ++j) {
@@ -530,8 +576,30 @@ ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x)
         }
         y[row] = sum / ch->l[(row * n) + row];
     }
-    (void)memcpy(x, y, la_bytes(n));
-    return OGK_OK;
+    for (i = 0u; i < n; ++i) {
+        x[i] = y[i];
+    }
+}
+
+ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x)
+{
+    ogk_status st;
+
+    if ((ch == NULL) || (b == NULL) || (x == NULL)) {
+        st = OGK_E_NULL;
+    } else if (ch->n == 0u) {
+        st = OGK_E_NOT_INIT;
+    } else if (ch->n > OGK_LA_MAX_N) {
+        st = OGK_E_DIM;
+    } else if (la_overlap(x, la_bytes(ch->n), ch, sizeof *ch)) {
+        st = OGK_E_RANGE;
+    } else if (!la_all_finite(b, ch->n)) {
+        st = OGK_E_NONFINITE;
+    } else {
+        st = OGK_OK;
+        chol_substitute(ch, b, x);
+    }
+    return st;
 }
 
 /* ------------------------------------------------------------------ Householder QR */
@@ -593,55 +661,61 @@ static void qr_apply_reflector(const ogk_qr_t *ws, size_t k, double *y)
     const size_t rows = ws->long_dim;
     const size_t cols = ws->short_dim;
     const double *a = ws->qr;
-    double w;
-    size_t i;
 
-    if (ws->tau[k] == 0.0) {
-        return;
-    }
-    w = y[k];
-    for (i = k + 1u; i < rows; ++i) {
-        w += a[(i * cols) + k] * y[i];
-    }
-    w *= ws->tau[k];
-    y[k] -= w;
-    for (i = k + 1u; i < rows; ++i) {
-        y[i] -= w * a[(i * cols) + k];
+    if (ws->tau[k] != 0.0) {
+        size_t i;
+        double w = y[k];
+        for (i = k + 1u; i < rows; ++i) {
+            w += a[(i * cols) + k] * y[i];
+        }
+        w *= ws->tau[k];
+        y[k] -= w;
+        for (i = k + 1u; i < rows; ++i) {
+            y[i] -= w * a[(i * cols) + k];
+        }
     }
 }
 
-/* Rank test on R: SINGULAR when a diagonal entry is at or below
- * long_dim eps max_j |a_j|_2 (the numerical-rank tolerance of LAPACK/numpy;
- * it implies rcond(R) <= long_dim eps < OGK_LA_RCOND_MIN because
- * |R|_1 >= max_j |a_j|_2 and |R^-1|_1 >= 1/|r_kk|), ILL_CONDITIONED when
- * the exact 1-norm rcond of R (= that of A up to a factor short_dim in
- * the 2-norm sense) is below OGK_LA_RCOND_MIN. */
-static ogk_status qr_rank_check(const ogk_qr_t *ws, double colnorm_max)
+/* *rnorm1 = |R|_1; OGK_E_SINGULAR (and *rnorm1 unspecified) at the first
+ * diagonal entry of R at or below tol. */
+static ogk_status qr_r_norm1(const ogk_qr_t *ws, double tol, double *rnorm1)
 {
     const size_t cols = ws->short_dim;
     const double *a = ws->qr;
-    const double tol = (double)ws->long_dim * DBL_EPSILON * colnorm_max;
-    double rnorm1 = 0.0;
+    ogk_status st = OGK_OK;
+    size_t i;
+    size_t j;
+
+    *rnorm1 = 0.0;
+    for (j = 0u; (j < cols) && (st == OGK_OK); ++j) {
+        if (!(fabs(a[(j * cols) + j]) > tol)) {
+            st = OGK_E_SINGULAR;
+        } else {
+            double colsum = 0.0;
+            for (i = 0u; i <= j; ++i) {
+                colsum += fabs(a[(i * cols) + j]);
+            }
+            if (colsum > *rnorm1) {
+                *rnorm1 = colsum;
+            }
+        }
+    }
+    return st;
+}
+
+/* |R^-1|_1, column j of R^-1 by back substitution on e_j (nonzero in rows
+ * 0..j only); HUGE_VAL as soon as a column sum is not finite (the largest
+ * of finite column sums is finite, so HUGE_VAL means exactly that). */
+static double qr_r_inv_norm1(const ogk_qr_t *ws)
+{
+    const size_t cols = ws->short_dim;
+    const double *a = ws->qr;
     double rinv_norm1 = 0.0;
     double z[OGK_LA_MAX_N];
-    size_t i;
     size_t j;
     size_t p;
     size_t ii;
 
-    for (j = 0u; j < cols; ++j) {
-        double colsum = 0.0;
-        if (!(fabs(a[(j * cols) + j]) > tol)) {
-            return OGK_E_SINGULAR;
-        }
-        for (i = 0u; i <= j; ++i) {
-            colsum += fabs(a[(i * cols) + j]);
-        }
-        if (colsum > rnorm1) {
-            rnorm1 = colsum;
-        }
-    }
-    /* Column j of R^-1: back substitution on e_j (nonzero in rows 0..j only). */
     for (j = 0u; j < cols; ++j) {
         double colsum;
         z[j] = 1.0 / a[(j * cols) + j];
@@ -656,66 +730,73 @@ static ogk_status qr_rank_check(const ogk_qr_t *ws, double colnorm_max)
             colsum += fabs(z[row]);
         }
         if (!isfinite(colsum)) {
-            return OGK_E_ILL_CONDITIONED;
+            rinv_norm1 = HUGE_VAL;
+            break;
         }
         if (colsum > rinv_norm1) {
             rinv_norm1 = colsum;
         }
     }
-    if (!(((1.0 / rinv_norm1) / rnorm1) >= OGK_LA_RCOND_MIN)) {
-        return OGK_E_ILL_CONDITIONED;
-    }
-    return OGK_OK;
+    return rinv_norm1;
 }
 
-ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
-                     const double *b, double *x)
+/* Rank test on R: SINGULAR when a diagonal entry is at or below
+ * long_dim eps max_j |a_j|_2 (the numerical-rank tolerance of LAPACK/numpy;
+ * it implies rcond(R) <= long_dim eps < OGK_LA_RCOND_MIN because
+ * |R|_1 >= max_j |a_j|_2 and |R^-1|_1 >= 1/|r_kk|), ILL_CONDITIONED when
+ * the exact 1-norm rcond of R (= that of A up to a factor short_dim in
+ * the 2-norm sense) is below OGK_LA_RCOND_MIN. */
+static ogk_status qr_rank_check(const ogk_qr_t *ws, double colnorm_max)
 {
-    size_t i;
-    size_t j;
-    size_t k;
-    size_t ii;
-    double colnorm_max = 0.0;
-    ogk_status rank_status;
-    /* Q^T b needs all m entries: 1 KiB at the default OGK_LA_MAX_LONG. */
-    double y[OGK_LA_MAX_LONG];
+    const double tol = (double)ws->long_dim * DBL_EPSILON * colnorm_max;
+    double rnorm1;
+    ogk_status st = qr_r_norm1(ws, tol, &rnorm1);
 
-    if (ws == NULL) {
-        return OGK_E_NULL;
-    }
-    qr_invalidate(ws);
-    if ((A == NULL) || (b == NULL) || (x == NULL)) {
-        return OGK_E_NULL;
-    }
-    if ((!la_dim_ok(n, OGK_LA_MAX_N)) || (!la_dim_ok(m, OGK_LA_MAX_LONG)) || (m < n)) {
-        return OGK_E_DIM;
-    }
-    if (la_overlap(A, la_bytes(m * n), ws, sizeof *ws) ||
-        la_overlap(b, la_bytes(m), ws, sizeof *ws) ||
-        la_overlap(x, la_bytes(n), ws, sizeof *ws) ||
-        la_overlap(x, la_bytes(n), A, la_bytes(m * n)) ||
-        la_overlap(x, la_bytes(n), b, la_bytes(m))) {
-        return OGK_E_RANGE;
-    }
-    if (!la_all_finite(A, m * n) || !la_all_finite(b, m)) {
-        return OGK_E_NONFINITE;
-    }
-
-    (void)memcpy(ws->qr, A, la_bytes(m * n));
-    ws->long_dim = m;
-    ws->short_dim = n;
-    for (j = 0u; j < n; ++j) {
-        const double c = la_norm2(&A[j], m, n);
-        if (c > colnorm_max) {
-            colnorm_max = c;
+    if (st == OGK_OK) {
+        const double rinv_norm1 = qr_r_inv_norm1(ws);
+        if ((!isfinite(rinv_norm1)) ||
+            (!(((1.0 / rinv_norm1) / rnorm1) >= OGK_LA_RCOND_MIN))) {
+            st = OGK_E_ILL_CONDITIONED;
         }
     }
-    qr_factor(ws);
-    rank_status = qr_rank_check(ws, colnorm_max);
-    if (rank_status == OGK_E_SINGULAR) {
-        qr_invalidate(ws);
-        return rank_status;
+    return st;
+}
+
+/* Common checks of ogk_lstsq and ogk_minnorm (A: m x n, b: m, x: n) in the
+ * order of the header: NULL, dimensions (dims_ok, the caller's test, read only
+ * once the pointers are known good), overlaps, non-finite inputs. */
+static ogk_status qr_problem_check(const ogk_qr_t *ws, const double *A, size_t m, size_t n, /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header */
+                                   const double *b, const double *x, bool dims_ok)
+{
+    ogk_status st;
+    if ((A == NULL) || (b == NULL) || (x == NULL)) {
+        st = OGK_E_NULL;
+    } else if (!dims_ok) {
+        st = OGK_E_DIM;
+    } else if (la_overlap(A, la_bytes(m * n), ws, sizeof *ws) ||
+               la_overlap(b, la_bytes(m), ws, sizeof *ws) ||
+               la_overlap(x, la_bytes(n), ws, sizeof *ws) ||
+               la_overlap(x, la_bytes(n), A, la_bytes(m * n)) ||
+               la_overlap(x, la_bytes(n), b, la_bytes(m))) {
+        st = OGK_E_RANGE;
+    } else if (!la_all_finite(A, m * n) || !la_all_finite(b, m)) {
+        st = OGK_E_NONFINITE;
+    } else {
+        st = OGK_OK;
     }
+    return st;
+}
+
+/* x = R^-1 (Q^T b)(0:n-1) with the factors of ogk_lstsq in ws (m x n). */
+static void qr_lstsq_solve(const ogk_qr_t *ws, const double *b, double *x)
+{
+    const size_t m = ws->long_dim;
+    const size_t n = ws->short_dim;
+    size_t i;
+    size_t k;
+    size_t ii;
+    /* Q^T b needs all m entries: 1 KiB at the default OGK_LA_MAX_LONG. */
+    double y[OGK_LA_MAX_LONG];
 
     /* y = Q^T b = H_{n-1} ... H_0 b, then R x = y(0:n-1). */
     (void)memcpy(y, b, la_bytes(m));
@@ -731,60 +812,55 @@ ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
         y[row] = sum / ws->qr[(row * n) + row];
     }
     (void)memcpy(x, y, la_bytes(n));
-    return rank_status;
 }
 
-ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
-                       const double *b, double *x)
+ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
+                     const double *b, double *x)
 {
+    ogk_status st;
+
+    if (ws == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        qr_invalidate(ws);
+        st = qr_problem_check(ws, A, m, n, b, x,
+                              la_dim_ok(n, OGK_LA_MAX_N) && la_dim_ok(m, OGK_LA_MAX_LONG) &&
+                                  (m >= n));
+    }
+    if (st == OGK_OK) {
+        size_t j;
+        double colnorm_max = 0.0;
+        (void)memcpy(ws->qr, A, la_bytes(m * n));
+        ws->long_dim = m;
+        ws->short_dim = n;
+        for (j = 0u; j < n; ++j) {
+            const double c = la_norm2(&A[j], m, n);
+            if (c > colnorm_max) {
+                colnorm_max = c;
+            }
+        }
+        qr_factor(ws);
+        st = qr_rank_check(ws, colnorm_max);
+        if (st == OGK_E_SINGULAR) {
+            qr_invalidate(ws);
+        } else {
+            /* OGK_OK or OGK_E_ILL_CONDITIONED: x is computed either way. */
+            qr_lstsq_solve(ws, b, x);
+        }
+    }
+    return st;
+}
+
+/* x = Q [z; 0] with R^T z = b, the factors of A^T (ogk_minnorm) in ws
+ * (n x m); b is read completely before x is written. */
+static void qr_minnorm_solve(const ogk_qr_t *ws, const double *b, double *x)
+{
+    const size_t n = ws->long_dim;
+    const size_t m = ws->short_dim;
     size_t i;
     size_t j;
     size_t kk;
-    double rownorm_max = 0.0;
-    ogk_status rank_status;
     double z[OGK_LA_MAX_N];
-
-    if (ws == NULL) {
-        return OGK_E_NULL;
-    }
-    qr_invalidate(ws);
-    if ((A == NULL) || (b == NULL) || (x == NULL)) {
-        return OGK_E_NULL;
-    }
-    if ((!la_dim_ok(m, OGK_LA_MAX_N)) || (!la_dim_ok(n, OGK_LA_MAX_LONG)) || (m > n)) {
-        return OGK_E_DIM;
-    }
-    if (la_overlap(A, la_bytes(m * n), ws, sizeof *ws) ||
-        la_overlap(b, la_bytes(m), ws, sizeof *ws) ||
-        la_overlap(x, la_bytes(n), ws, sizeof *ws) ||
-        la_overlap(x, la_bytes(n), A, la_bytes(m * n)) ||
-        la_overlap(x, la_bytes(n), b, la_bytes(m))) {
-        return OGK_E_RANGE;
-    }
-    if (!la_all_finite(A, m * n) || !la_all_finite(b, m)) {
-        return OGK_E_NONFINITE;
-    }
-
-    /* ws->qr = A^T (n x m): the long side is A's column count. */
-    for (i = 0u; i < n; ++i) {
-        for (j = 0u; j < m; ++j) {
-            ws->qr[(i * m) + j] = A[(j * n) + i];
-        }
-    }
-    ws->long_dim = n;
-    ws->short_dim = m;
-    for (j = 0u; j < m; ++j) {
-        const double r = la_norm2(&A[j * n], n, 1u);
-        if (r > rownorm_max) {
-            rownorm_max = r;
-        }
-    }
-    qr_factor(ws);
-    rank_status = qr_rank_check(ws, rownorm_max);
-    if (rank_status == OGK_E_SINGULAR) {
-        qr_invalidate(ws);
-        return rank_status;
-    }
 
     /* A = R^T Q^T: R^T z = b (forward substitution), then x = Q [z; 0]. */
     for (i = 0u; i < m; ++i) {
@@ -794,7 +870,9 @@ ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
         }
         z[i] = sum / ws->qr[(i * m) + i];
     }
-    (void)memcpy(x, z, la_bytes(m));
+    for (i = 0u; i < m; ++i) {
+        x[i] = z[i];
+    }
     for (i = m; i < n; ++i) {
         x[i] = 0.0;
     }
@@ -802,5 +880,47 @@ ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
     for (kk = 0u; kk < m; ++kk) {
         qr_apply_reflector(ws, m - 1u - kk, x);
     }
-    return rank_status;
+}
+
+ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
+                       const double *b, double *x)
+{
+    ogk_status st;
+
+    if (ws == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        qr_invalidate(ws);
+        st = qr_problem_check(ws, A, m, n, b, x,
+                              la_dim_ok(m, OGK_LA_MAX_N) && la_dim_ok(n, OGK_LA_MAX_LONG) &&
+                                  (m <= n));
+    }
+    if (st == OGK_OK) {
+        size_t i;
+        size_t j;
+        double rownorm_max = 0.0;
+        /* ws->qr = A^T (n x m): the long side is A's column count. */
+        for (i = 0u; i < n; ++i) {
+            for (j = 0u; j < m; ++j) {
+                ws->qr[(i * m) + j] = A[(j * n) + i];
+            }
+        }
+        ws->long_dim = n;
+        ws->short_dim = m;
+        for (j = 0u; j < m; ++j) {
+            const double r = la_norm2(&A[j * n], n, 1u);
+            if (r > rownorm_max) {
+                rownorm_max = r;
+            }
+        }
+        qr_factor(ws);
+        st = qr_rank_check(ws, rownorm_max);
+        if (st == OGK_E_SINGULAR) {
+            qr_invalidate(ws);
+        } else {
+            /* OGK_OK or OGK_E_ILL_CONDITIONED: x is computed either way. */
+            qr_minnorm_solve(ws, b, x);
+        }
+    }
+    return st;
 }
