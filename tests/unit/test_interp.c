@@ -75,6 +75,35 @@ static void test_pchip_slopes_by_hand(void **state)
     OGK_ASSERT_NEAR(out, 3.0 + 2.0 * (9.0 / 7.0 - 8.0 / 3.0) / 8.0, 1e-14);
 }
 
+/* Several quantities per node (values[k m + j]): each column gets its own
+ * slopes at every node, the ends included. The columns are the by-hand data
+ * above, y, and the affine images 2 y + 7 and -y: pchip slopes scale with the
+ * data (the clamps compare signs and ratios only) and ignore a constant, so
+ * they are (2/3, 9/7, 8/3), twice that, and minus that. */
+static void test_pchip_end_slopes_of_every_column(void **state)
+{
+    const double grid[3] = {0.0, 1.0, 3.0};
+    const double values[9] = {0.0, 7.0, -0.0, 1.0, 9.0, -1.0, 5.0, 17.0, -5.0};
+    const double slope_y[3] = {2.0 / 3.0, 9.0 / 7.0, 8.0 / 3.0};
+    const double factor[3] = {1.0, 2.0, -1.0};
+    const double offset[3] = {0.0, 7.0, 0.0};
+    const double mid_y = 3.0 + 2.0 * (9.0 / 7.0 - 8.0 / 3.0) / 8.0; /* y(2), as above */
+    double slopes[9];
+    double out[3];
+    unsigned k, j;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 3u, values, 3u, slopes), OGK_OK);
+    for (k = 0u; k < 3u; ++k) {
+        for (j = 0u; j < 3u; ++j) {
+            OGK_ASSERT_NEAR(slopes[3u * k + j], factor[j] * slope_y[k], 1e-14);
+        }
+    }
+    OGK_ASSERT_STATUS(ogk_interp_pchip(grid, 3u, values, slopes, 3u, 2.0, out), OGK_OK);
+    for (j = 0u; j < 3u; ++j) {
+        OGK_ASSERT_NEAR(out[j], factor[j] * mid_y + offset[j], 1e-13);
+    }
+}
+
 static void test_pchip_interpolates_and_preserves_shape(void **state)
 {
     /* Monotone step-like data with a flat part and an extremum. */
@@ -205,6 +234,7 @@ int main(void)
         cmocka_unit_test(test_out_of_range_is_reported),
         cmocka_unit_test(test_bad_grid),
         cmocka_unit_test(test_pchip_slopes_by_hand),
+        cmocka_unit_test(test_pchip_end_slopes_of_every_column),
         cmocka_unit_test(test_pchip_interpolates_and_preserves_shape),
         cmocka_unit_test(test_pchip_two_points_is_linear),
         cmocka_unit_test(test_locate_edges),

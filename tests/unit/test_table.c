@@ -172,6 +172,30 @@ static void test_inconsistent_payload_size_and_nan(void **state)
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_NONFINITE);
 }
 
+/* The finiteness scan covers the whole payload, both ends included: the
+ * first value (grid[0]) and the last (the last entry's last element). */
+static void test_nonfinite_first_and_last_value(void **state)
+{
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    (void)state;
+    build(table_buf);
+    tw_put_f64(table_buf + OGK_TABLE_HEADER_SIZE, NAN);
+    seal(table_buf);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_NONFINITE);
+    assert_null(v.buf);
+    build(table_buf);
+    tw_put_f64(table_buf + OGK_TABLE_HEADER_SIZE, -INFINITY);
+    seal(table_buf);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_NONFINITE);
+    build(table_buf);
+    tw_put_f64(table_buf + OGK_TABLE_HEADER_SIZE + 8u * (N_VALUES - 1u), INFINITY);
+    seal(table_buf);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_NONFINITE);
+    build(table_buf); /* and the undamaged table opens */
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_OK);
+}
+
 static void test_null_and_unopened(void **state)
 {
     ogk_table_spec_t s = spec();
@@ -196,6 +220,7 @@ int main(void)
         cmocka_unit_test(test_truncated_and_oversized),
         cmocka_unit_test(test_magic_version_type_kind),
         cmocka_unit_test(test_inconsistent_payload_size_and_nan),
+        cmocka_unit_test(test_nonfinite_first_and_last_value),
         cmocka_unit_test(test_null_and_unopened),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
