@@ -281,6 +281,37 @@ static void test_thrust_angles_round_trip_and_deflection(void **state)
     }
 }
 
+/* The branch cut of the documented ranges psi_c, alpha_a in (-pi, pi]: a
+ * direction straight behind (along -a1, or -t) has yaw / in-plane angle +pi,
+ * also when rounding hands atan2 a -0 or a -1e-16 that makes it return -pi.
+ * Commanded: (alpha, beta) = (0, pi) at xi = phi = 0 is -t = -c2 = -a1 (its
+ * n-component sin(pi) = 1.2e-16 is the rounding), so psi_c = pi, theta_c = 0.
+ * Actual: zero attitude puts x_b on a1 = c2, which at xi = -pi is -t(xi), so
+ * alpha_a = pi, beta_a = 0 (the same as at xi = +pi). */
+static void test_thrust_angles_branch_cut(void **state)
+{
+    double psi_c;
+    double theta_c;
+    double alpha_a;
+    double beta_a;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(0.0, PI, 0.0, 0.0, &psi_c, &theta_c), OGK_OK);
+    OGK_ASSERT_NEAR(psi_c, PI, 1e-15);
+    OGK_ASSERT_NEAR(theta_c, 0.0, 1e-15);
+    OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(PI, 0.0, 0.0, 0.0, &psi_c, &theta_c), OGK_OK);
+    OGK_ASSERT_NEAR(psi_c, PI, 1e-15);
+    OGK_ASSERT_NEAR(theta_c, 0.0, 1e-15);
+    OGK_ASSERT_STATUS(ogk_cpd_thrust_angles(0.0, 0.0, 0.0, -PI, 0.0, 0.0, 0.0, &alpha_a, &beta_a),
+                      OGK_OK);
+    OGK_ASSERT_NEAR(alpha_a, PI, 1e-15);
+    OGK_ASSERT_NEAR(beta_a, 0.0, 1e-15);
+    assert_vec_near(thrust_dir(alpha_a, beta_a, -PI, 0.0), a_frame().x, 1e-15);
+    OGK_ASSERT_STATUS(ogk_cpd_thrust_angles(0.0, 0.0, 0.0, PI, 0.0, 0.0, 0.0, &alpha_a, &beta_a),
+                      OGK_OK);
+    OGK_ASSERT_NEAR(alpha_a, PI, 1e-15);
+    OGK_ASSERT_NEAR(beta_a, 0.0, 1e-15);
+}
+
 /* Small deflections: d alpha, d beta from the first-order expansion of eq. (52)
  * with dT = Dz y_b + Dy z_b. */
 static void test_thrust_angles_small_deflection(void **state)
@@ -1380,6 +1411,7 @@ int main(void)
         cmocka_unit_test(test_commanded_attitude_known_values),
         cmocka_unit_test(test_thrust_angles_round_trip_and_deflection),
         cmocka_unit_test(test_thrust_angles_small_deflection),
+        cmocka_unit_test(test_thrust_angles_branch_cut),
         cmocka_unit_test(test_body_pointing_error_geometry),
         cmocka_unit_test(test_body_error_matches_euler_near_zero_roll),
         cmocka_unit_test(test_body_error_behind),
