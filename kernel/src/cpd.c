@@ -416,17 +416,17 @@ static ogk_status cpd_check_config(const ogk_cpd_config_t *cfg)
         st = OGK_E_NULL;
     } else if (!config_finite(cfg)) {
         st = OGK_E_NONFINITE;
-    } else if (!axis_ok(cfg->k_px, cfg->k_dx, cfg->tau_x, cfg->m_xc_max) ||
-               !axis_ok(cfg->k_py, cfg->k_dy, cfg->tau_y, cfg->delta_yc_max) ||
-               !axis_ok(cfg->k_pz, cfg->k_dz, cfg->tau_z, cfg->delta_zc_max)) {
-        st = OGK_E_CONFIG;
-    } else if (fabs(cfg->phi_c) > CPD_PI) {
-        st = OGK_E_CONFIG;
-    } else if ((cfg->approach_accel_x < 0.0) || (cfg->approach_accel_y < 0.0) ||
-               (cfg->approach_accel_z < 0.0) || (cfg->ff_period_s < 0.0) || (cfg->ff_rate_max < 0.0)) {
-        st = OGK_E_CONFIG;
-    } else if ((cfg->pointing != OGK_CPD_POINTING_BODY) &&
-               (cfg->pointing != OGK_CPD_POINTING_EULER)) {
+    } else if ((!axis_ok(cfg->k_px, cfg->k_dx, cfg->tau_x, cfg->m_xc_max) ||
+                !axis_ok(cfg->k_py, cfg->k_dy, cfg->tau_y, cfg->delta_yc_max) ||
+                !axis_ok(cfg->k_pz, cfg->k_dz, cfg->tau_z, cfg->delta_zc_max)) ||
+               /* roll command */
+               (fabs(cfg->phi_c) > CPD_PI) ||
+               /* braking curves and feed-forward */
+               ((cfg->approach_accel_x < 0.0) || (cfg->approach_accel_y < 0.0) ||
+                (cfg->approach_accel_z < 0.0) || (cfg->ff_period_s < 0.0) || (cfg->ff_rate_max < 0.0)) ||
+               /* pointing-error definition */
+               ((cfg->pointing != OGK_CPD_POINTING_BODY) &&
+                (cfg->pointing != OGK_CPD_POINTING_EULER))) {
         st = OGK_E_CONFIG;
     } else {
         /* a usable configuration */

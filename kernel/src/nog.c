@@ -41,9 +41,7 @@ static ogk_status check_table_content(const ogk_nog_table_view_t *tbl)
     size_t k;
     ogk_status st = ogk_interp_check_grid(tbl->tau, n);
 
-    if (st != OGK_OK) {
-        st = OGK_E_TABLE_DIM;
-    } else if ((tbl->tau[0] != 0.0) || (tbl->tau[n - 1u] != 1.0)) {
+    if ((st != OGK_OK) || (tbl->tau[0] != 0.0) || (tbl->tau[n - 1u] != 1.0)) {
         st = OGK_E_TABLE_DIM;
     } else if ((!(t_f > 0.0)) || (t_f > OGK_NOG_TF_MAX_S)) {
         st = OGK_E_TABLE_TYPE;
@@ -52,12 +50,9 @@ static ogk_status check_table_content(const ogk_nog_table_view_t *tbl)
         for (k = 0u; (k < n) && (st == OGK_OK); ++k) {
             const double *row = entry_row(tbl, k);
             if ((fabs(row[OGK_NOG_OFF_XDOT + IDX_TIME] - t_f) > (OGK_NOG_TF_CONSISTENCY * t_f)) ||
-                (fabs(row[OGK_NOG_OFF_X + IDX_TIME] - (t_f * tbl->tau[k])) > (OGK_NOG_TF_CONSISTENCY * t_f))) {
+                (fabs(row[OGK_NOG_OFF_X + IDX_TIME] - (t_f * tbl->tau[k])) > (OGK_NOG_TF_CONSISTENCY * t_f)) ||
+                (!(row[OGK_NOG_OFF_X + IDX_R] > 0.0))) {
                 st = OGK_E_TABLE_TYPE;
-            } else if (!(row[OGK_NOG_OFF_X + IDX_R] > 0.0)) {
-                st = OGK_E_TABLE_TYPE;
-            } else {
-                /* row consistent: next one */
             }
         }
     }
@@ -126,10 +121,11 @@ ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t
 }
 
 /* Points the (reset) view into the payload of the opened table buf of
- * grid_size nodes and checks it; on failure the view is reset again. */
-static ogk_status view_payload(ogk_nog_table_view_t *view, const uint8_t *buf, size_t grid_size,
-                               uint32_t generation)
+ * grid_size nodes and checks it; on failure the view is reset again, its
+ * generation kept. */
+static ogk_status view_payload(ogk_nog_table_view_t *view, const uint8_t *buf, size_t grid_size)
 {
+    const uint32_t generation = view->generation;
     ogk_status st;
 
     /* Grid then entries, both in the table's little-endian binary64 (the
@@ -150,8 +146,7 @@ static ogk_status view_payload(ogk_nog_table_view_t *view, const uint8_t *buf, s
 }
 
 /* ogk_nog_table_view past the reset of view (generation already bumped). */
-static ogk_status point_view(ogk_nog_table_view_t *view, const uint8_t *buf, size_t len,
-                             uint32_t generation)
+static ogk_status point_view(ogk_nog_table_view_t *view, const uint8_t *buf, size_t len)
 {
     ogk_table_view_t tv;
     ogk_status st;
@@ -165,7 +160,7 @@ static ogk_status point_view(ogk_nog_table_view_t *view, const uint8_t *buf, siz
     } else {
         st = open_table(buf, len, &tv);
         if (st == OGK_OK) {
-            st = view_payload(view, buf, tv.grid_size, generation);
+            st = view_payload(view, buf, tv.grid_size);
         }
     }
     return st;
@@ -182,7 +177,7 @@ ogk_status ogk_nog_table_view(ogk_nog_table_view_t *view, const uint8_t *buf, si
         const uint32_t generation = view->generation + 1u;
         (void)memset(view, 0, sizeof *view); /* returns view: nothing to check */
         view->generation = generation;
-        st = point_view(view, buf, len, generation);
+        st = point_view(view, buf, len);
     }
     return st;
 }
@@ -545,7 +540,7 @@ static void safe_sample(ogk_nog_t *ctx, double t_s, bool readable, ogk_nog_sampl
 
 /* The bounds of compute_correction on the finite gain products out8
  * (dlam, dt_f) and dlam_rate, then the correction into ctx. */
-static void apply_correction(ogk_nog_t *ctx, const double *out8, const double *dlam_rate)
+static void apply_correction(ogk_nog_t *ctx, const double *out8, const double *dlam_rate) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     const ogk_nog_table_view_t *tbl = &ctx->tbl;
     double lam_star[NX];
