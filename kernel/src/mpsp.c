@@ -42,38 +42,42 @@ static size_t grid_steps(double span, double h)
     const double ratio = span / h;
     size_t n;
     if (!(ratio <= (double)OGK_MPSP_MAX_STEPS + 1.0)) {
-        return OGK_MPSP_MAX_STEPS + 1u;
-    }
-    n = (size_t)floor(ratio);
-    if (((ratio - (double)n) > (MPSP_STEP_SLOP * fmax(1.0, ratio))) || (n == 0u)) {
-        n += 1u;
+        n = OGK_MPSP_MAX_STEPS + 1u;
+    } else {
+        n = (size_t)floor(ratio);
+        if (((ratio - (double)n) > (MPSP_STEP_SLOP * fmax(1.0, ratio))) || (n == 0u)) {
+            n += 1u;
+        }
     }
     return n;
 }
 
-static ogk_status check_config(const ogk_mpsp_config_t *cfg)
+/* The weight checks of check_config (basis order already checked). */
+static ogk_status check_config_weights(const ogk_mpsp_config_t *cfg)
 {
     size_t n_weights;
-    size_t i;
-    double r2;
+    ogk_status st = OGK_OK;
 
-    if (!cfg_scalars_finite(cfg)) {
-        return OGK_E_NONFINITE;
-    }
-    if ((cfg->fourier_order < 1u) || (cfg->fourier_order > OGK_MPSP_MAX_ORDER) ||
-        ((cfg->fourier_kind != OGK_MPSP_BASIS_FOURIER) &&
-         (cfg->fourier_kind != OGK_MPSP_BASIS_COSINE))) {
-        return OGK_E_CONFIG;
-    }
     n_weights = OGK_MPSP_NU * (2u * (size_t)cfg->fourier_order + 1u);
     if (!ogk_i_all_finite(cfg->weights_nom, n_weights) || !ogk_i_all_finite(cfg->r_eps, n_weights)) {
-        return OGK_E_NONFINITE;
-    }
-    for (i = 0u; i < n_weights; ++i) {
-        if (!(cfg->r_eps[i] > 0.0)) {
-            return OGK_E_CONFIG;
+        st = OGK_E_NONFINITE;
+    } else {
+        size_t i;
+        for (i = 0u; (i < n_weights) && (st == OGK_OK); ++i) {
+            if (!(cfg->r_eps[i] > 0.0)) {
+                st = OGK_E_CONFIG;
+            }
         }
     }
+    return st;
+}
+
+/* The range checks of check_config (every value already finite). */
+static ogk_status check_config_ranges(const ogk_mpsp_config_t *cfg)
+{
+    double r2;
+    ogk_status st = OGK_OK;
+
     r2 = (cfg->x0_nom[0] * cfg->x0_nom[0]) + (cfg->x0_nom[1] * cfg->x0_nom[1]) +
          (cfg->x0_nom[2] * cfg->x0_nom[2]);
     if ((cfg->mu < 0.0) || !(cfg->t_max > 0.0) || !(cfg->c_exhaust > 0.0) ||
@@ -83,32 +87,47 @@ static ogk_status check_config(const ogk_mpsp_config_t *cfg)
         !(cfg->r_lambda > 0.0) || !(cfg->tol_r > 0.0) || !(cfg->tol_v > 0.0) ||
         !(cfg->tol_lambda_m > 0.0) || !(cfg->s_tol > 0.0) || (cfg->max_newton < 1u) ||
         (cfg->max_outer < 1u) || (cfg->n_seg_tol_step < 1u) || !(cfg->x0_nom[6] > 0.0) ||
-        ((cfg->mu > 0.0) && (!(r2 > 0.0)))) {
-        return OGK_E_CONFIG;
-    }
-    if (grid_steps(cfg->tf - cfg->t0, cfg->h_max) > OGK_MPSP_MAX_STEPS) {
-        return OGK_E_CONFIG; /* the dense trajectory would not fit */
-    }
-    {
+        ((cfg->mu > 0.0) && (!(r2 > 0.0))) ||
+        /* the dense trajectory would not fit */
+        (grid_steps(cfg->tf - cfg->t0, cfg->h_max) > OGK_MPSP_MAX_STEPS)) {
+        st = OGK_E_CONFIG;
+    } else {
         /* The basis phase omega (t - t_ref) must be finite over [t0, tf]: a period near the
          * smallest double or a far t_ref overflows it and the basis would be NaN (found by
          * tests/fuzz/fuzz_mpsp_init.c). */
         const double omega = MPSP_TWO_PI / cfg->fourier_period;
         if (!isfinite(omega) || !isfinite(omega * (cfg->t0 - cfg->fourier_t_ref)) ||
             !isfinite(omega * (cfg->tf - cfg->fourier_t_ref))) {
-            return OGK_E_CONFIG;
+            st = OGK_E_CONFIG;
         }
     }
-    return OGK_OK;
+    return st;
 }
 
-ogk_status ogk_mpsp_config_default(ogk_mpsp_config_t *cfg)
+static ogk_status check_config(const ogk_mpsp_config_t *cfg)
+{
+    ogk_status st;
+
+    if (!cfg_scalars_finite(cfg)) {
+        st = OGK_E_NONFINITE;
+    } else if ((cfg->fourier_order < 1u) || (cfg->fourier_order > OGK_MPSP_MAX_ORDER) ||
+               ((cfg->fourier_kind != OGK_MPSP_BASIS_FOURIER) &&
+                (cfg->fourier_kind != OGK_MPSP_BASIS_COSINE))) {
+        st = OGK_E_CONFIG;
+    } else {
+        st = check_config_weights(cfg);
+    }
+    if (st == OGK_OK) {
+        st = check_config_ranges(cfg);
+    }
+    return st;
+}
+
+/* The defaults of ogk_mpsp_config_default into a non-NULL cfg. */
+static void config_defaults(ogk_mpsp_config_t *cfg)
 {
     size_t i;
 
-    if (cfg == NULL) {
-        return OGK_E_NULL;
-    }
     /* Mission data (mu, thrust, exhaust velocity, times, states, target,
      * basis order and period, nominal weights, step, tolerances) is 0: it
      * must be set, and ogk_mpsp_init rejects it left at 0. */
@@ -118,7 +137,7 @@ ogk_status ogk_mpsp_config_default(ogk_mpsp_config_t *cfg)
     cfg->delta_max = 1.0;       /* Delta_max of Alg. 1 */
     cfg->delta_tau_0 = 0.5;     /* first continuation step of Alg. 2 */
     cfg->delta_tau_min = 0.1;   /* the paper's 0.1 */
-    for (i = 0u; i < (size_t)OGK_MPSP_MAX_WEIGHTS; ++i) {
+    for (i = 0u; i < (sizeof cfg->r_eps / sizeof cfg->r_eps[0]); ++i) {
         cfg->r_eps[i] = 1.0;    /* R_eps = I (eq. 41) */
     }
     cfg->r_lambda = 1.0;        /* R_lambda = 1 (eq. 41) */
@@ -128,7 +147,18 @@ ogk_status ogk_mpsp_config_default(ogk_mpsp_config_t *cfg)
     cfg->n_seg_tol = 0u;        /* the paper's initial N_seg,tol */
     cfg->n_seg_tol_step = 2u;   /* the paper's increase */
     cfg->n_seg_nom = 0u;        /* counted at init from the nominal */
-    return OGK_OK;
+}
+
+ogk_status ogk_mpsp_config_default(ogk_mpsp_config_t *cfg)
+{
+    ogk_status st = OGK_OK;
+
+    if (cfg == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        config_defaults(cfg);
+    }
+    return st;
 }
 
 /* Everything ogk_mpsp_init derives from ctx->cfg (already checked and
@@ -136,11 +166,12 @@ ogk_status ogk_mpsp_config_default(ogk_mpsp_config_t *cfg)
 static ogk_status prepare(ogk_mpsp_t *ctx)
 {
     const ogk_mpsp_config_t *cfg = &ctx->cfg;
+    const size_t kept = offsetof(ogk_mpsp_t, n_basis); /* bytes of the configuration */
     size_t i;
+    ogk_status st = OGK_OK;
 
     /* Everything after the configuration back to zero. */
-    (void)memset((unsigned char *)ctx + offsetof(ogk_mpsp_t, n_basis), 0,
-                 sizeof *ctx - offsetof(ogk_mpsp_t, n_basis));
+    (void)memset(&((unsigned char *)ctx)[kept], 0, sizeof *ctx - kept);
     ctx->n_basis = 2u * (size_t)cfg->fourier_order + 1u;
     ctx->n_weights = OGK_MPSP_NU * ctx->n_basis;
     ctx->n_steps = grid_steps(cfg->tf - cfg->t0, cfg->h_max);
@@ -152,17 +183,18 @@ static ogk_status prepare(ogk_mpsp_t *ctx)
     ctx->init_marker = OGK_MPSP_INIT_MARKER;
     if (cfg->n_seg_nom == 0u) {
         ogk_mpsp_prop_t prop;
-        const ogk_status st = mpsp_propagate_ctx(ctx, cfg->weights_nom, cfg->lambda_m0_nom, cfg->x0_nom,
+        const ogk_status pst = mpsp_propagate_ctx(ctx, cfg->weights_nom, cfg->lambda_m0_nom, cfg->x0_nom,
                                 cfg->t_max, &prop);
-        if (st != OGK_OK) {
+        if (pst != OGK_OK) {
             ctx->init_marker = 0u;
-            return OGK_E_CONFIG;
+            st = OGK_E_CONFIG;
+        } else {
+            ctx->n_seg_nom = prop.n_segments;
         }
-        ctx->n_seg_nom = prop.n_segments;
     } else {
         ctx->n_seg_nom = cfg->n_seg_nom;
     }
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_mpsp_init(ogk_mpsp_t *ctx, const ogk_mpsp_config_t *cfg)
@@ -170,33 +202,38 @@ ogk_status ogk_mpsp_init(ogk_mpsp_t *ctx, const ogk_mpsp_config_t *cfg)
     ogk_status st;
 
     if ((ctx == NULL) || (cfg == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else {
+        ctx->init_marker = 0u;
+        st = check_config(cfg);
+        if (st == OGK_OK) {
+            (void)memset(ctx, 0, sizeof *ctx);
+            ctx->cfg = *cfg;
+            st = prepare(ctx);
+        }
     }
-    ctx->init_marker = 0u;
-    st = check_config(cfg);
-    if (st != OGK_OK) {
-        return st;
-    }
-    (void)memset(ctx, 0, sizeof *ctx);
-    ctx->cfg = *cfg;
-    return prepare(ctx);
+    return st;
 }
 
 ogk_status ogk_mpsp_reset(ogk_mpsp_t *ctx)
 {
+    ogk_status st;
+
     if (ctx == NULL) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
+        st = OGK_E_NOT_INIT;
+    } else {
+        st = prepare(ctx);
     }
-    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
-        return OGK_E_NOT_INIT;
-    }
-    return prepare(ctx);
+    return st;
 }
 
 /* ------------------------------------------------------------------ Newton update */
 
-ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *weights,
-                                  double *lambda_m0)
+/* ogk_mpsp_newton_update on checked arguments. */
+static ogk_status newton_step(ogk_mpsp_t *ctx, const double *dy, double *weights, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the argument order of ogk_mpsp_newton_update, its only caller */
+                              double *lambda_m0)
 {
     size_t nw;
     size_t nu;
@@ -204,16 +241,6 @@ ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *wei
     size_t i;
     ogk_status st;
 
-    if ((ctx == NULL) || (dy == NULL) || (weights == NULL) || (lambda_m0 == NULL)) {
-        return OGK_E_NULL;
-    }
-    if ((ctx->init_marker != OGK_MPSP_INIT_MARKER) || (ctx->sens_valid == 0u)) {
-        return OGK_E_NOT_INIT;
-    }
-    if (!ogk_i_all_finite(dy, NY) || !ogk_i_all_finite(weights, ctx->n_weights) ||
-        !isfinite(*lambda_m0)) {
-        return OGK_E_NONFINITE;
-    }
     nw = ctx->n_weights;
     nu = nw + 1u;
     /* With z = [R_eps^1/2 dW; R_lambda^1/2 dlambda_m0], eq. (41) is |z|^2 / 2 and
@@ -228,17 +255,37 @@ ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *wei
     }
     st = ogk_minnorm(&ctx->qr, ctx->newton_m, NY, nu, dy, ctx->newton_z);
     if ((st != OGK_OK) && (st != OGK_E_ILL_CONDITIONED)) {
-        return st; /* ill-conditioned still gives the least-norm step: taken */
+        /* the solver's status returned; ill-conditioned still gives the
+         * least-norm step: taken */
+    } else if (!ogk_i_all_finite(ctx->newton_z, nu)) {
+        st = OGK_E_NONFINITE;
+    } else {
+        /* Eq. (46): epsilon_{j+1} = epsilon_j - d epsilon_j, same for lambda_m0. */
+        for (i = 0u; i < nw; ++i) {
+            weights[i] -= ctx->newton_z[i] * ctx->inv_sqrt_r_eps[i];
+        }
+        *lambda_m0 -= ctx->newton_z[nw] * ctx->inv_sqrt_r_lambda;
+        st = OGK_OK;
     }
-    if (!ogk_i_all_finite(ctx->newton_z, nu)) {
-        return OGK_E_NONFINITE;
+    return st;
+}
+
+ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *weights,
+                                  double *lambda_m0)
+{
+    ogk_status st;
+
+    if ((ctx == NULL) || (dy == NULL) || (weights == NULL) || (lambda_m0 == NULL)) {
+        st = OGK_E_NULL;
+    } else if ((ctx->init_marker != OGK_MPSP_INIT_MARKER) || (ctx->sens_valid == 0u)) {
+        st = OGK_E_NOT_INIT;
+    } else if (!ogk_i_all_finite(dy, NY) || !ogk_i_all_finite(weights, ctx->n_weights) ||
+               !isfinite(*lambda_m0)) {
+        st = OGK_E_NONFINITE;
+    } else {
+        st = newton_step(ctx, dy, weights, lambda_m0);
     }
-    /* Eq. (46): epsilon_{j+1} = epsilon_j - d epsilon_j, same for lambda_m0. */
-    for (i = 0u; i < nw; ++i) {
-        weights[i] -= ctx->newton_z[i] * ctx->inv_sqrt_r_eps[i];
-    }
-    *lambda_m0 -= ctx->newton_z[nw] * ctx->inv_sqrt_r_lambda;
-    return OGK_OK;
+    return st;
 }
 
 /* ------------------------------------------------------------------ loops */
@@ -272,64 +319,82 @@ static bool terminal_ok(const ogk_mpsp_config_t *cfg, const double *dy)
 
 static uint32_t abs_diff_u32(uint32_t a, uint32_t b)
 {
-    return (a > b) ? (a - b) : (b - a);
+    uint32_t d;
+    if (a > b) {
+        d = a - b;
+    } else {
+        d = b - a;
+    }
+    return d;
 }
 
 /* Algorithm 1. weights / *lambda_m0 (in/out) end as the last accepted
  * iterate; returns true (Sign = 1) when the terminal tolerances are met with
  * them (the trajectory held in ctx is then theirs, summarised in *prop). */
+/* Lines 6-14 of Algorithm 1 from the iterate weights / *lambda_m0 (in/out)
+ * with terminal error dy of norm dy_norm: true when the updated iterate is
+ * accepted (and taken), false when the inner loop gives up. */
+static bool newton_iteration(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, double *weights, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of inner_loop, its only caller, which is unit-tested */
+                             double *lambda_m0, const double *dy, double dy_norm, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of inner_loop, its only caller, which is unit-tested */
+                             uint32_t n_seg_tol, ogk_mpsp_prop_t *prop, ogk_mpsp_result_t *res)
+{
+    double lm_new = *lambda_m0;
+    bool accepted = false;
+    ogk_status st;
+
+    if (res->n_log < OGK_MPSP_MAX_LOG) {
+        res->dy_norm_log[res->n_log] = dy_norm;
+        res->n_log += 1u;
+    }
+    /* line 8: A_lambda, B_v, p, the update (eqs. 33, 40, 44-46) */
+    st = ogk_mpsp_sensitivity(ctx, NULL, NULL);
+    if (st == OGK_OK) {
+        (void)memcpy(ctx->w_trial, weights, ctx->n_weights * sizeof weights[0]);
+        st = ogk_mpsp_newton_update(ctx, dy, ctx->w_trial, &lm_new);
+    }
+    if (st == OGK_OK) {
+        res->newton_iterations += 1u;
+        /* line 9: integrate with the update, count N_seg */
+        st = mpsp_propagate_ctx(ctx, ctx->w_trial, lm_new, cond->x0, cond->thrust, prop);
+    }
+    /* lines 10-14: accept only a thrust sequence close to the nominal one */
+    if ((st == OGK_OK) && (abs_diff_u32(prop->n_segments, ctx->n_seg_nom) <= n_seg_tol)) {
+        (void)memcpy(weights, ctx->w_trial, ctx->n_weights * sizeof weights[0]);
+        *lambda_m0 = lm_new;
+        accepted = true;
+    }
+    return accepted;
+}
+
 static bool inner_loop(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, double *weights,
                        double *lambda_m0, uint32_t n_seg_tol, ogk_mpsp_prop_t *prop,
                        ogk_mpsp_result_t *res)
 {
     double dy[NY];
     uint32_t j;
+    bool converged = false;
+    bool stop;
     ogk_status st;
 
     res->inner_loops += 1u;
     st = mpsp_propagate_ctx(ctx, weights, *lambda_m0, cond->x0, cond->thrust, prop);
-    if (st != OGK_OK) {
-        return false;
-    }
-    for (j = 0u; j <= ctx->cfg.max_newton; ++j) {
-        double lm_new = *lambda_m0;
-        double dy_norm;
+    stop = (st != OGK_OK);
+    for (j = 0u; (!stop) && (j <= ctx->cfg.max_newton); ++j) {
         terminal_error(cond, prop->x_f, dy);
         if (terminal_ok(&ctx->cfg, dy)) {
-            return true;
+            converged = true;
+            stop = true;
+        } else {
+            const double dy_norm = norm_n(dy, NY);
+            if ((j == ctx->cfg.max_newton) || (!(dy_norm <= ctx->cfg.delta_max))) {
+                stop = true; /* line 5: too far for a Newton step */
+            } else {
+                stop = !newton_iteration(ctx, cond, weights, lambda_m0, dy, dy_norm, n_seg_tol,
+                                         prop, res);
+            }
         }
-        dy_norm = norm_n(dy, NY);
-        if ((j == ctx->cfg.max_newton) || (!(dy_norm <= ctx->cfg.delta_max))) {
-            return false; /* line 5: too far for a Newton step */
-        }
-        if (res->n_log < OGK_MPSP_MAX_LOG) {
-            res->dy_norm_log[res->n_log] = dy_norm;
-            res->n_log += 1u;
-        }
-        /* line 8: A_lambda, B_v, p, the update (eqs. 33, 40, 44-46) */
-        st = ogk_mpsp_sensitivity(ctx, NULL, NULL);
-        if (st != OGK_OK) {
-            return false;
-        }
-        (void)memcpy(ctx->w_trial, weights, ctx->n_weights * sizeof weights[0]);
-        st = ogk_mpsp_newton_update(ctx, dy, ctx->w_trial, &lm_new);
-        if (st != OGK_OK) {
-            return false;
-        }
-        res->newton_iterations += 1u;
-        /* line 9: integrate with the update, count N_seg */
-        st = mpsp_propagate_ctx(ctx, ctx->w_trial, lm_new, cond->x0, cond->thrust, prop);
-        if (st != OGK_OK) {
-            return false;
-        }
-        /* lines 10-14: accept only a thrust sequence close to the nominal one */
-        if (abs_diff_u32(prop->n_segments, ctx->n_seg_nom) > n_seg_tol) {
-            return false;
-        }
-        (void)memcpy(weights, ctx->w_trial, ctx->n_weights * sizeof weights[0]);
-        *lambda_m0 = lm_new;
     }
-    return false;
+    return converged;
 }
 
 /* C_tau = (1 - tau) C_nom + tau C_per (eq. 51). */
@@ -375,8 +440,9 @@ static void fill_result(const ogk_mpsp_t *ctx, const mpsp_cond_t *cond,
     res->n_weights = ctx->n_weights;
 }
 
-ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale,
-                          const double *target_rv, ogk_mpsp_result_t *res)
+/* ogk_mpsp_solve on checked arguments. */
+static ogk_status solve_checked(ogk_mpsp_t *ctx, const double *x0, double thrust_scale,
+                                const double *target_rv, ogk_mpsp_result_t *res)
 {
     mpsp_cond_t per;
     mpsp_cond_t nom;
@@ -390,19 +456,6 @@ ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale
     size_t i;
     ogk_status st;
 
-    if ((ctx == NULL) || (x0 == NULL) || (res == NULL)) {
-        return OGK_E_NULL;
-    }
-    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
-        return OGK_E_NOT_INIT;
-    }
-    if (!ogk_i_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale) ||
-        ((target_rv != NULL) && (!ogk_i_all_finite(target_rv, 6u)))) {
-        return OGK_E_NONFINITE;
-    }
-    if (!(x0[6] > 0.0) || !(thrust_scale > 0.0)) {
-        return OGK_E_RANGE;
-    }
     (void)memset(res, 0, sizeof *res);
     nw = ctx->n_weights;
     (void)memcpy(per.x0, x0, sizeof per.x0);
@@ -443,10 +496,13 @@ ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale
         double dtau = ctx->cfg.delta_tau_0;
         double tau = tau_old + dtau;
         double lm_cont;
+        /* The continuation ends when dtau reaches 0 (tau = 1 reached) or at
+         * the give-up rule of lines 17-19. */
+        bool cont_done = !(dtau > 0.0);
 
         (void)memcpy(ctx->w_cont, ctx->cfg.weights_nom, nw * sizeof ctx->w_cont[0]);
         lm_cont = ctx->cfg.lambda_m0_nom;
-        while (dtau > 0.0 && res->outer_steps < ctx->cfg.max_outer) {
+        while ((!cont_done) && (res->outer_steps < ctx->cfg.max_outer)) {
             bool ok;
             blend(&nom, &per, tau, &cur);
             (void)memcpy(ctx->w_iter, ctx->w_cont, nw * sizeof ctx->w_iter[0]);
@@ -474,9 +530,8 @@ ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale
              * step (dtau = 1 - tau_old) below delta_tau_min is still taken,
              * which is the paper's rule for delta_tau_0 = 0.5, whose tau are
              * multiples of 0.125. */
-            if ((dtau <= ctx->cfg.delta_tau_min) && (tau_old != 1.0) && (dtau < (1.0 - tau_old))) {
-                break;
-            }
+            cont_done = ((dtau <= ctx->cfg.delta_tau_min) && (tau_old != 1.0) && (dtau < (1.0 - tau_old))) ||
+                        (!(dtau > 0.0));
         }
         if (tau_old == 1.0) {
             solved = true; /* lines 21-22: continuation reached C_per */
@@ -499,5 +554,25 @@ ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale
     }
     res->converged = solved ? 1u : 0u;
     res->n_seg_tol = n_seg_tol;
+    return st;
+}
+
+ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale,
+                          const double *target_rv, ogk_mpsp_result_t *res)
+{
+    ogk_status st;
+
+    if ((ctx == NULL) || (x0 == NULL) || (res == NULL)) {
+        st = OGK_E_NULL;
+    } else if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
+        st = OGK_E_NOT_INIT;
+    } else if (!ogk_i_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale) ||
+               ((target_rv != NULL) && (!ogk_i_all_finite(target_rv, 6u)))) {
+        st = OGK_E_NONFINITE;
+    } else if (!(x0[6] > 0.0) || !(thrust_scale > 0.0)) {
+        st = OGK_E_RANGE;
+    } else {
+        st = solve_checked(ctx, x0, thrust_scale, target_rv, res);
+    }
     return st;
 }
