@@ -308,9 +308,17 @@ static void lu_load(ogk_lu_t *lu, const double *A, size_t n)
 }
 
 /* Gaussian elimination with partial pivoting of the n x n matrix loaded in
- * lu (lu_load). OGK_E_SINGULAR at the first pivot at or below pivot_tol. */
-static ogk_status lu_eliminate(ogk_lu_t *lu, size_t n, double pivot_tol)
+ * lu (lu_load). OGK_E_SINGULAR at the first pivot at or below eps |A|_1.
+ *
+ * A pivot at or below eps |A|_1 is zero to working precision. Any such
+ * pivot implies rcond <= n eps < OGK_LA_RCOND_MIN (the trailing block of
+ * (PA)^-1 is the inverse of the Schur complement S, and |S^-1|_1 >=
+ * 1 / |S e_1|_1 >= 1 / (n |pivot|)), so SINGULAR never hides a
+ * matrix that ILL_CONDITIONED would have accepted; a larger threshold
+ * (n eps |A|_1) would already reject the 12 x 12 Hilbert matrix. */
+static ogk_status lu_eliminate(ogk_lu_t *lu, size_t n)
 {
+    const double pivot_tol = DBL_EPSILON * lu->anorm1;
     ogk_status st = OGK_OK;
     double *f = lu->lu;
     size_t i;
@@ -392,13 +400,7 @@ ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
     }
     if (st == OGK_OK) {
         lu_load(lu, A, n);
-        /* A pivot at or below eps |A|_1 is zero to working precision. Any such
-         * pivot implies rcond <= n eps < OGK_LA_RCOND_MIN (the trailing block of
-         * (PA)^-1 is the inverse of the Schur complement S, and |S^-1|_1 >=
-         * 1 / |S e_1|_1 >= 1 / (n |pivot|)), so SINGULAR never hides a
-         * matrix that ILL_CONDITIONED would have accepted; a larger threshold
-         * (n eps |A|_1) would already reject the 12 x 12 Hilbert matrix. */
-        st = lu_eliminate(lu, n, DBL_EPSILON * lu->anorm1);
+        st = lu_eliminate(lu, n);
         if (st == OGK_OK) {
             lu->n = n;
             lu_set_rcond(lu);

@@ -68,9 +68,8 @@ static ogk_status check_dims(const uint8_t *hdr, const ogk_table_spec_t *spec,
     for (d = 0u; (d < OGK_TABLE_MAX_DIMS) && (st == OGK_OK); ++d) {
         v->dims[d] = get_u32(&hdr[OFF_DIMS + ((size_t)4u * d)]);
         if (d < v->ndims) {
-            if (v->dims[d] == 0u) {
-                st = OGK_E_TABLE_DIM;
-            } else if ((spec->dims[d] != 0u) && (spec->dims[d] != v->dims[d])) {
+            if ((v->dims[d] == 0u) ||
+                ((spec->dims[d] != 0u) && (spec->dims[d] != v->dims[d]))) {
                 st = OGK_E_TABLE_DIM;
             } else if (v->dims[d] > (OGK_TABLE_MAX_VALUES / product)) {
                 st = OGK_E_TABLE_SIZE;
@@ -138,16 +137,14 @@ static ogk_status check_sizes(const uint8_t *buf, size_t len, const ogk_table_sp
     } else {
         const uint32_t payload_bytes = get_u32(&buf[OFF_PAYLOAD_BYTES]);
         *values = v->grid_size * (v->entry_len + 1u);
-        if (*values > (OGK_TABLE_MAX_VALUES / 8u)) {
+        if ((*values > (OGK_TABLE_MAX_VALUES / 8u)) || (payload_bytes != (8u * *values))) {
             st = OGK_E_TABLE_SIZE;
-        } else if (payload_bytes != (8u * *values)) {
-            st = OGK_E_TABLE_SIZE;
-        } else if ((len - OGK_TABLE_HEADER_SIZE) < (size_t)payload_bytes) {
-            st = OGK_E_TABLE_TRUNCATED;
-        } else if ((len - OGK_TABLE_HEADER_SIZE) > (size_t)payload_bytes) {
-            st = OGK_E_TABLE_SIZE;
-        } else {
+        } else if ((len - OGK_TABLE_HEADER_SIZE) == (size_t)payload_bytes) {
             st = OGK_OK;
+        } else {
+            /* shorter than the header says, or longer */
+            st = ((len - OGK_TABLE_HEADER_SIZE) < (size_t)payload_bytes) ? OGK_E_TABLE_TRUNCATED
+                                                                       : OGK_E_TABLE_SIZE;
         }
     }
     return st;
