@@ -42,7 +42,11 @@ ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lam
     mpsp_rk4_problem(&prob, ctx, &dyn);
     /* Initial mode from the sign of S(t0) (eq. 11; S = 0 taken as coast). */
     mpsp_control_at(&dyn, ctx->cfg.t0, u0);
-    mode0 = (mpsp_switch_value(&dyn, xs, u0) < 0.0) ? 1 : 0;
+    if (mpsp_switch_value(&dyn, xs, u0) < 0.0) {
+        mode0 = 1;
+    } else {
+        mode0 = 0;
+    }
 
     dense.t = ctx->traj_t;
     dense.x = ctx->traj_x;
@@ -82,19 +86,20 @@ ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lam
 
 static ogk_status check_inputs(const ogk_mpsp_t *ctx, const double *x0, double thrust_scale)
 {
+    ogk_status st = OGK_OK;
+
     if ((ctx == NULL) || (x0 == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
+        st = OGK_E_NOT_INIT;
+    } else if (!ogk_i_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale)) {
+        st = OGK_E_NONFINITE;
+    } else if (!(x0[6] > 0.0) || !(thrust_scale > 0.0)) {
+        st = OGK_E_RANGE;
+    } else {
+        /* usable initial state and thrust scale */
     }
-    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
-        return OGK_E_NOT_INIT;
-    }
-    if (!ogk_i_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale)) {
-        return OGK_E_NONFINITE;
-    }
-    if (!(x0[6] > 0.0) || !(thrust_scale > 0.0)) {
-        return OGK_E_RANGE;
-    }
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
@@ -103,46 +108,49 @@ ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const double *weights, double lam
 {
     ogk_status st = check_inputs(ctx, x0, thrust_scale);
     if (st != OGK_OK) {
-        return st;
+        /* the input check's status */
+    } else if (weights == NULL) {
+        st = OGK_E_NULL;
+    } else if (!ogk_i_all_finite(weights, ctx->n_weights) || !isfinite(lambda_m0)) {
+        st = OGK_E_NONFINITE;
+    } else {
+        st = mpsp_propagate_ctx(ctx, weights, lambda_m0, x0, ctx->cfg.t_max * thrust_scale, out);
     }
-    if (weights == NULL) {
-        return OGK_E_NULL;
-    }
-    if (!ogk_i_all_finite(weights, ctx->n_weights) || !isfinite(lambda_m0)) {
-        return OGK_E_NONFINITE;
-    }
-    return mpsp_propagate_ctx(ctx, weights, lambda_m0, x0, ctx->cfg.t_max * thrust_scale, out);
+    return st;
 }
 
 ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, double *t, double *x,
                                uint8_t *mode, size_t capacity, size_t *count)
 {
+    ogk_status st = OGK_OK;
+
     if ((ctx == NULL) || (count == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
+        st = OGK_E_NOT_INIT;
+    } else {
+        *count = ctx->n_nodes;
+        if (capacity < ctx->n_nodes) {
+            st = OGK_E_DIM;
+        } else {
+            if (t != NULL) {
+                (void)memcpy(t, ctx->traj_t, ctx->n_nodes * sizeof t[0]);
+            }
+            if (x != NULL) {
+                (void)memcpy(x, ctx->traj_x, ctx->n_nodes * NX * sizeof x[0]);
+            }
+            if (mode != NULL) {
+                (void)memcpy(mode, ctx->traj_mode, ctx->n_nodes * sizeof mode[0]);
+            }
+        }
     }
-    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
-        return OGK_E_NOT_INIT;
-    }
-    *count = ctx->n_nodes;
-    if (capacity < ctx->n_nodes) {
-        return OGK_E_DIM;
-    }
-    if (t != NULL) {
-        (void)memcpy(t, ctx->traj_t, ctx->n_nodes * sizeof t[0]);
-    }
-    if (x != NULL) {
-        (void)memcpy(x, ctx->traj_x, ctx->n_nodes * NX * sizeof x[0]);
-    }
-    if (mode != NULL) {
-        (void)memcpy(mode, ctx->traj_mode, ctx->n_nodes * sizeof mode[0]);
-    }
-    return OGK_OK;
+    return st;
 }
 
-ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x)
+/* The pchip state at t inside interval k of the held trajectory. */
+static ogk_status state_in_interval(const ogk_mpsp_t *ctx, double t, size_t k, double *x) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, its only caller (ogk_mpsp_state_at) is in this file and unit-tested */
 {
     double slopes[4u * NX];
-    size_t k;
     size_t seg_lo = 0u;
     size_t seg_hi;
     size_t lo;
@@ -150,22 +158,6 @@ ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x)
     size_t i;
     ogk_status st;
 
-    if ((ctx == NULL) || (x == NULL)) {
-        return OGK_E_NULL;
-    }
-    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
-        return OGK_E_NOT_INIT;
-    }
-    if ((ctx->traj_valid == 0u) || (ctx->n_nodes < 2u)) {
-        return OGK_E_NOT_INIT;
-    }
-    if (!isfinite(t)) {
-        return OGK_E_NONFINITE;
-    }
-    st = ogk_interp_locate(ctx->traj_t, ctx->n_nodes, t, &k);
-    if (st != OGK_OK) {
-        return st;
-    }
     /* The segment [seg_lo, seg_hi] holding interval k: the state's derivative
      * jumps at switch nodes, so the interpolant never reaches across one. */
     seg_hi = ctx->n_nodes - 1u;
@@ -181,44 +173,74 @@ ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x)
     /* pchip slopes are local (a node's slope uses its two neighbours, an end
      * slope the first three nodes), so the window k-1 .. k+2 clipped to the
      * segment gives the segment-wide pchip exactly on [t_k, t_k+1]. */
-    lo = (k > seg_lo) ? (k - 1u) : k;
-    hi = ((k + 2u) <= seg_hi) ? (k + 2u) : seg_hi;
+    if (k > seg_lo) {
+        lo = k - 1u;
+    } else {
+        lo = k;
+    }
+    if ((k + 2u) <= seg_hi) {
+        hi = k + 2u;
+    } else {
+        hi = seg_hi;
+    }
     st = ogk_interp_pchip_slopes(&ctx->traj_t[lo], hi - lo + 1u, &ctx->traj_x[lo * NX], NX,
                                  slopes);
-    if (st != OGK_OK) {
-        return st;
+    if (st == OGK_OK) {
+        st = ogk_interp_pchip(&ctx->traj_t[lo], hi - lo + 1u, &ctx->traj_x[lo * NX], slopes,
+                              NX, t, x);
     }
-    return ogk_interp_pchip(&ctx->traj_t[lo], hi - lo + 1u, &ctx->traj_x[lo * NX], slopes,
-                            NX, t, x);
+    return st;
+}
+
+ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x)
+{
+    ogk_status st;
+
+    if ((ctx == NULL) || (x == NULL)) {
+        st = OGK_E_NULL;
+    } else if ((ctx->init_marker != OGK_MPSP_INIT_MARKER) ||
+               /* no trajectory held */
+               ((ctx->traj_valid == 0u) || (ctx->n_nodes < 2u))) {
+        st = OGK_E_NOT_INIT;
+    } else if (!isfinite(t)) {
+        st = OGK_E_NONFINITE;
+    } else {
+        size_t k;
+        st = ogk_interp_locate(ctx->traj_t, ctx->n_nodes, t, &k);
+        if (st == OGK_OK) {
+            st = state_in_interval(ctx, t, k, x);
+        }
+    }
+    return st;
 }
 
 ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double t,
                             double *lambda_v, double *lambda_v_dot)
 {
-    mpsp_dyn_t dyn;
-    double h[OGK_MPSP_MAX_BASIS];
-    double hdot[OGK_MPSP_MAX_BASIS];
+    ogk_status st = OGK_OK;
 
     if ((ctx == NULL) || (weights == NULL) || (lambda_v == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
+        st = OGK_E_NOT_INIT;
+    } else if (!isfinite(t) || !ogk_i_all_finite(weights, ctx->n_weights)) {
+        st = OGK_E_NONFINITE;
+    } else {
+        mpsp_dyn_t dyn;
+        double h[OGK_MPSP_MAX_BASIS];
+        double hdot[OGK_MPSP_MAX_BASIS];
+        mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max);
+        mpsp_basis(&dyn, t, h, hdot);
+        mpsp_control_from_basis(&dyn, h, lambda_v);
+        if (lambda_v_dot != NULL) {
+            mpsp_control_from_basis(&dyn, hdot, lambda_v_dot);
+        }
+        /* Finite weights can still overflow the sum, and a time far from t_ref the phase (found by
+         * tests/fuzz/fuzz_mpsp_init.c): never OGK_OK with a non-finite output. */
+        if ((!ogk_i_all_finite(lambda_v, OGK_MPSP_NU)) ||
+            ((lambda_v_dot != NULL) && (!ogk_i_all_finite(lambda_v_dot, OGK_MPSP_NU)))) {
+            st = OGK_E_NONFINITE;
+        }
     }
-    if (ctx->init_marker != OGK_MPSP_INIT_MARKER) {
-        return OGK_E_NOT_INIT;
-    }
-    if (!isfinite(t) || !ogk_i_all_finite(weights, ctx->n_weights)) {
-        return OGK_E_NONFINITE;
-    }
-    mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max);
-    mpsp_basis(&dyn, t, h, hdot);
-    mpsp_control_from_basis(&dyn, h, lambda_v);
-    if (lambda_v_dot != NULL) {
-        mpsp_control_from_basis(&dyn, hdot, lambda_v_dot);
-    }
-    /* Finite weights can still overflow the sum, and a time far from t_ref the phase (found by
-     * tests/fuzz/fuzz_mpsp_init.c): never OGK_OK with a non-finite output. */
-    if ((!ogk_i_all_finite(lambda_v, OGK_MPSP_NU)) ||
-        ((lambda_v_dot != NULL) && (!ogk_i_all_finite(lambda_v_dot, OGK_MPSP_NU)))) {
-        return OGK_E_NONFINITE;
-    }
-    return OGK_OK;
+    return st;
 }
