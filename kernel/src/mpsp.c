@@ -37,7 +37,7 @@ static bool cfg_scalars_finite(const ogk_mpsp_config_t *cfg)
            ogk_i_all_finite(cfg->v_f, 3u);
 }
 
-static size_t grid_steps(double span, double h)
+static size_t mpsp_grid_steps(double span, double h)
 {
     const double ratio = span / h;
     size_t n;
@@ -89,7 +89,7 @@ static ogk_status check_config_ranges(const ogk_mpsp_config_t *cfg)
         (cfg->max_outer < 1u) || (cfg->n_seg_tol_step < 1u) || !(cfg->x0_nom[6] > 0.0) ||
         ((cfg->mu > 0.0) && (!(r2 > 0.0))) ||
         /* the dense trajectory would not fit */
-        (grid_steps(cfg->tf - cfg->t0, cfg->h_max) > OGK_MPSP_MAX_STEPS)) {
+        (mpsp_grid_steps(cfg->tf - cfg->t0, cfg->h_max) > OGK_MPSP_MAX_STEPS)) {
         st = OGK_E_CONFIG;
     } else {
         /* The basis phase omega (t - t_ref) must be finite over [t0, tf]: a period near the
@@ -174,7 +174,7 @@ static ogk_status prepare(ogk_mpsp_t *ctx)
     (void)memset(&((unsigned char *)ctx)[kept], 0, sizeof *ctx - kept);
     ctx->n_basis = 2u * (size_t)cfg->fourier_order + 1u;
     ctx->n_weights = OGK_MPSP_NU * ctx->n_basis;
-    ctx->n_steps = grid_steps(cfg->tf - cfg->t0, cfg->h_max);
+    ctx->n_steps = mpsp_grid_steps(cfg->tf - cfg->t0, cfg->h_max);
     ctx->omega = MPSP_TWO_PI / cfg->fourier_period;
     for (i = 0u; i < ctx->n_weights; ++i) {
         ctx->inv_sqrt_r_eps[i] = 1.0 / sqrt(cfg->r_eps[i]);

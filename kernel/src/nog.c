@@ -385,7 +385,7 @@ static ogk_status bound_table(const ogk_nog_config_t *cfg, ogk_nog_table_view_t 
 }
 
 /* The configuration ranges of ogk/nog.h against the bound table. */
-static bool config_valid(const ogk_nog_config_t *cfg, const ogk_nog_table_view_t *tbl)
+static bool nog_config_valid(const ogk_nog_config_t *cfg, const ogk_nog_table_view_t *tbl)
 {
     return !(!isfinite(cfg->sample_interval_s) || !(cfg->sample_interval_s > 0.0) ||
              !isfinite(cfg->dtf_max_s) || !(cfg->dtf_max_s > 0.0) ||
@@ -404,7 +404,7 @@ ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg)
     } else {
         (void)memset(ctx, 0, sizeof *ctx); /* returns ctx: nothing to check */
         st = bound_table(cfg, &tbl);
-        if ((st == OGK_OK) && (!config_valid(cfg, &tbl))) {
+        if ((st == OGK_OK) && (!nog_config_valid(cfg, &tbl))) {
             st = OGK_E_CONFIG;
         }
         if (st == OGK_OK) {
@@ -492,7 +492,7 @@ static double t_sample_max(const ogk_nog_t *ctx)
 }
 
 /* The navigation envelope of ogk/nog.h (all values already finite). */
-static bool nav_in_envelope(const ogk_nog_t *ctx, const ogk_nav_state_t *nav)
+static bool nog_nav_in_envelope(const ogk_nog_t *ctx, const ogk_nav_state_t *nav)
 {
     return (nav->r_m > 0.0) && (nav->r_m <= OGK_NOG_R_MAX_M) &&
            (fabs(nav->xi_rad) <= OGK_NOG_XI_MAX_RAD) && (fabs(nav->phi_rad) < OGK_NOG_PHI_MAX_RAD) &&
@@ -657,7 +657,7 @@ static ogk_status sample_current(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk
     if (!ogk_i_all_finite(nav_v, NX)) {
         safe_sample(ctx, nav->t_s, true, out);
         st = OGK_E_NONFINITE;
-    } else if ((!nav_in_envelope(ctx, nav)) || ((ctx->n_samples > 0u) && (!(nav->t_s > ctx->t_k_s)))) {
+    } else if ((!nog_nav_in_envelope(ctx, nav)) || ((ctx->n_samples > 0u) && (!(nav->t_s > ctx->t_k_s)))) {
         /* Envelope before any arithmetic: the time bound keeps tau and the
          * cut-off time finite, the others keep gains times dx far from overflow. */
         safe_sample(ctx, nav->t_s, true, out);
