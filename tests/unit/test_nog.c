@@ -16,6 +16,9 @@
 #define K_L6_VN 0.01     /* dlam_vn = K_L6_VN dv_n */
 #define K_L6_RATE 0.02   /* dlam_vn' = K_L6_RATE dv_n */
 #define K_L4_T 0.05      /* dlam_vr = K_L4_T dt (time-state error) */
+#define K_L1_R 1.0e-3    /* dlam_r = K_L1_R dr: not flown (eq. 27 uses lambda_v only) */
+#define K_L1_RATE 2.0e-3 /* dlam_r' = K_L1_RATE dr */
+#define PI 3.14159265358979323846
 #define N_VALUES (GRID * (1u + OGK_NOG_ENTRY_LEN))
 #define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + 8u * N_VALUES)
 
@@ -64,6 +67,8 @@ static void build_table(double tf_last_node)
             row[OGK_NOG_OFF_GAIN + 3u * 7u + 6u] = K_L4_T;    /* dlam_vr from dt */
             row[OGK_NOG_OFF_GAIN + 7u * 7u + 4u] = K_TF_VT;   /* dt_f from dv_t */
             row[OGK_NOG_OFF_NRATE + 5u * 7u + 5u] = K_L6_RATE;
+            row[OGK_NOG_OFF_GAIN + 0u * 7u + 0u] = K_L1_R;    /* dlam_r from dr */
+            row[OGK_NOG_OFF_NRATE + 0u * 7u + 0u] = K_L1_RATE;
         }
         tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * k, tau_grid[k]);
         for (i = 0u; i < OGK_NOG_ENTRY_LEN; ++i) {
@@ -184,6 +189,37 @@ static void test_flight_time_update_and_eq31(void **state)
         OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, NAN, &tau), OGK_E_NONFINITE);
         OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, 3.0, NULL), OGK_E_NULL);
     }
+}
+
+/* A radius error dr = 100 m: dx_k = [dr, 0, ...] (x*(0) is the first node,
+ * exactly), [dlam_k; dt_f] = G dx_k moves lambda_r only (G row 0, K_L1_R dr)
+ * with the rate N dx_k (K_L1_RATE dr), and the flown direction, -lambda_v of
+ * eq. (27), stays the nominal one, as does t_f. */
+static void test_radius_error_moves_lambda_r_only(void **state)
+{
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    ogk_thrust_cmd_t c;
+    size_t i;
+    (void)state;
+    nav.r_m += 100.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    OGK_ASSERT_NEAR(s.dx[0], 100.0, 0.0);
+    for (i = 1u; i < 7u; ++i) {
+        OGK_ASSERT_NEAR(s.dx[i], 0.0, 0.0);
+    }
+    OGK_ASSERT_NEAR(nog.dlam_k[0], K_L1_R * 100.0, 1e-15);
+    OGK_ASSERT_NEAR(nog.dlam_rate[0], K_L1_RATE * 100.0, 1e-15);
+    for (i = 1u; i < 7u; ++i) {
+        OGK_ASSERT_NEAR(nog.dlam_k[i], 0.0, 0.0);
+        OGK_ASSERT_NEAR(nog.dlam_rate[i], 0.0, 0.0);
+    }
+    OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0);
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-15);
+    OGK_ASSERT_NEAR(s.beta_rad, 0.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 1.0, &c), OGK_OK);
+    OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, 1e-15);
+    OGK_ASSERT_NEAR(c.beta_rad, 0.0, 0.0);
 }
 
 static void test_out_of_plane_with_first_order_hold(void **state)
@@ -307,6 +343,37 @@ static void test_init_errors(void **state)
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_NOT_INIT);
     cfg.table = NULL;
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_NULL);
+}
+
+/* The documented ranges of ogk_nog_config_t, at their closed ends and one
+ * ulp outside: Delta t_S in (0, t_f*], dt_f max in (0, t_f* / 2], du max in
+ * (0, pi], tau_freeze in [0, 1). */
+static void test_config_range_boundaries(void **state)
+{
+    ogk_nog_config_t cfg = config();
+    ogk_nog_t ctx;
+    (void)state;
+    cfg.sample_interval_s = TF_STAR;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    cfg.sample_interval_s = nextafter(TF_STAR, 2.0 * TF_STAR);
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg = config();
+    cfg.dtf_max_s = 0.5 * TF_STAR;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    cfg.dtf_max_s = nextafter(0.5 * TF_STAR, TF_STAR);
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg = config();
+    cfg.du_max_rad = PI;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    cfg.du_max_rad = nextafter(PI, 4.0);
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg = config();
+    cfg.tau_freeze = nextafter(1.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    cfg.tau_freeze = -0.0;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    cfg.tau_freeze = -DBL_MIN;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
 }
 
 static void test_config_default(void **state)
@@ -651,17 +718,71 @@ static void test_huge_gains_give_safe_command(void **state)
     assert_true(sample_is_finite(&s));
 }
 
+/* A valid table (finite values) whose costate still overflows: lambda_vr
+ * near DBL_MAX at the last two nodes with slopes -L, +L, so that the cubic
+ * Hermite at the middle of [0.75, 1] sums to -1.806e308 = -inf (terms -0.85,
+ * -0.053, -0.85, -0.053 x 1e308), and a held correction dlam_vr that grows
+ * past DBL_MAX: 1.5e308 (G row 3 from dv_n = 1 at tau = 0, du_max = pi so it
+ * is not scaled) continued by its rate 1.5e308 over 0.75 to +inf in the frozen
+ * sample at tau = 0.75. There the costate is +inf (thrust along -r: alpha =
+ * -pi/2, beta = 0, finite, flown); at tau = 0.875 it is -inf + inf = NaN: the
+ * command reports OGK_E_SAFE_COMMAND and flies those held angles. */
+static void test_overflowing_costate_gives_safe_command(void **state)
+{
+    const double big = 1.7e308;
+    ogk_nog_config_t cfg = config();
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    ogk_thrust_cmd_t c;
+    const size_t row0 = OGK_TABLE_HEADER_SIZE + 8u * GRID;
+    const size_t row3 = row0 + 8u * 3u * OGK_NOG_ENTRY_LEN;
+    const size_t row4 = row0 + 8u * 4u * OGK_NOG_ENTRY_LEN;
+    (void)state;
+    tw_put_f64(buf + row0 + 8u * (OGK_NOG_OFF_GAIN + 3u * 7u + 5u), 1.5e308);
+    tw_put_f64(buf + row0 + 8u * (OGK_NOG_OFF_NRATE + 3u * 7u + 5u), 1.5e308);
+    tw_put_f64(buf + row3 + 8u * (OGK_NOG_OFF_LAM + 3u), -big);
+    tw_put_f64(buf + row3 + 8u * (OGK_NOG_OFF_LAMDOT + 3u), -big);
+    tw_put_f64(buf + row4 + 8u * (OGK_NOG_OFF_LAM + 3u), -big);
+    tw_put_f64(buf + row4 + 8u * (OGK_NOG_OFF_LAMDOT + 3u), big);
+    tw_seal(buf, N_VALUES);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
+    cfg.du_max_rad = PI;
+    OGK_ASSERT_STATUS(ogk_nog_init(&nog, &cfg), OGK_OK);
+    nav.v_n_mps = 1.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    OGK_ASSERT_NEAR(nog.dlam_k[3], 1.5e308, 0.0);
+    nav = nav_at(75.0, 0.75);
+    nav.v_n_mps = 1.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    assert_true((s.flags & OGK_NOG_FLAG_FROZEN) != 0u);
+    assert_true(isinf(nog.dlam_k[3]) && nog.dlam_k[3] > 0.0);
+    OGK_ASSERT_NEAR(s.alpha_rad, -0.5 * PI, 1e-15);
+    OGK_ASSERT_NEAR(s.beta_rad, 0.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 80.0, &c), OGK_OK); /* s = 0.2: -1.77e308, finite */
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 87.5, &c), OGK_E_SAFE_COMMAND);
+    assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
+    assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u);
+    assert_true((c.law_flags & OGK_NOG_FLAG_SAFE) != 0u);
+    OGK_ASSERT_NEAR(c.alpha_rad, -0.5 * PI, 1e-15);
+    OGK_ASSERT_NEAR(c.beta_rad, 0.0, 0.0);
+    /* A time before the sample keeps its own status (and the held angles). */
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 70.0, &c), OGK_E_RANGE);
+    assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_table_load_and_rejections, setup),
         cmocka_unit_test_setup(test_on_nominal_no_correction, setup),
         cmocka_unit_test_setup(test_flight_time_update_and_eq31, setup),
+        cmocka_unit_test_setup(test_radius_error_moves_lambda_r_only, setup),
         cmocka_unit_test_setup(test_out_of_plane_with_first_order_hold, setup),
         cmocka_unit_test_setup(test_end_game_limits, setup),
         cmocka_unit_test_setup(test_freeze_and_termination, setup),
         cmocka_unit_test_setup(test_bad_navigation_gives_safe_command, setup),
         cmocka_unit_test_setup(test_init_errors, setup),
+        cmocka_unit_test_setup(test_config_range_boundaries, setup),
         cmocka_unit_test_setup(test_config_default, setup),
         cmocka_unit_test_setup(test_table_view_in_place, setup),
         cmocka_unit_test_setup(test_table_view_rejections, setup),
@@ -671,6 +792,7 @@ int main(void)
         cmocka_unit_test_setup(test_envelope_rejects_absurd_inputs, setup),
         cmocka_unit_test_setup(test_one_bad_sample_does_not_latch, setup),
         cmocka_unit_test_setup(test_huge_gains_give_safe_command, setup),
+        cmocka_unit_test_setup(test_overflowing_costate_gives_safe_command, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
