@@ -4,15 +4,18 @@
 Mutants: operator and constant changes at sites found in the code (comments, strings and
 preprocessor lines excluded): `<` <-> `<=`, `>` <-> `>=`, `==` <-> `!=`, `&&` <-> `||`, binary
 `+` <-> `-`, a unary minus dropped, a floating constant doubled (0.0 -> 1.0), an unsigned integer
-constant + 1. From every site a seeded sample (--seed, --count) is drawn, plus the fixed mutants
-of FIXED (the survivors of issue 8 item 3, kept so that their killing tests stay checked).
+constant + 1. From every site (less the equivalent ones of EQUIVALENT) a seeded sample (--seed,
+--count) is drawn, plus the fixed mutants of FIXED (earlier survivors, kept so that their killing
+tests stay checked; --fixed-only runs just those). The sample depends on the source text: the same
+seed draws other mutants once kernel/src changes (docs/mutation.md records the commit of each score).
 
 Each mutant is applied to a copy of the kernel under BUILD (build/mutants by default; the
 working tree is never touched), the mutated source recompiled, every C unit test
 (tests/unit/test_*.c, host, gcc -O1, no sanitizers) relinked and run until the first failure,
 crash or time-out (killed). A mutant that does not compile is reported and not counted.
 Prints one line per mutant and the score = killed / (killed + survived); exit status 0 unless
-the unmutated tree fails its own tests (or --min-score is given and not reached).
+the unmutated tree fails its own tests (2), a fixed mutant's fragment is no longer found once or
+is found more than once (3: update FIXED), or --min-score is given and not reached (1).
 """
 import argparse
 import os
@@ -25,7 +28,12 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-# (file, exact code fragment, replacement): the two survivors named in issue 8, item 3.
+# Fixed mutants, (file, code fragment, replacement, what it breaks): the survivors of issue 8
+# item 3 and of the seeded runs of docs/mutation.md, each with its killing unit test, kept so that
+# the test stays checked. A fragment is matched with every run of white space in it standing for
+# any run of white space (so re-indenting or re-wrapping the code, e.g. the MISRA 15.5 single-exit
+# rewrite, keeps it found); it must match exactly once, else the run reports it MISSING or
+# AMBIGUOUS and exits 3. Fragments are the expression that is mutated, not a return line.
 FIXED = [
     ("kernel/src/mpsp_sensitivity.c",
      "= a * jump.s_u[c] * h[q];", "= -a * jump.s_u[c] * h[q];",
@@ -33,7 +41,65 @@ FIXED = [
     ("kernel/src/mpsp.c",
      "n_seg_tol += ctx->cfg.n_seg_tol_step;", "n_seg_tol += 1u;",
      "N_seg,tol step of the continuation"),
+    ("kernel/src/cpd.c",
+     "*alpha_a <= -CPD_PI", "*alpha_a < -CPD_PI",
+     "alpha_a in (-pi, pi]: atan2's -pi (thrust along -t, xi = -pi) not mapped to +pi "
+     "(test_cpd: test_thrust_angles_branch_cut)"),
+    ("kernel/src/cpd.c",
+     "*psi_c <= -CPD_PI", "*psi_c < -CPD_PI",
+     "psi_c in (-pi, pi]: the same branch cut in ogk_cpd_commanded_attitude "
+     "(test_cpd: test_thrust_angles_branch_cut)"),
+    ("kernel/src/nog.c",
+     "(cfg->sample_interval_s > tbl", "(cfg->sample_interval_s >= tbl",
+     "Delta t_S = t_f* rejected although the documented range is (0, t_f*] "
+     "(test_nog: test_config_range_boundaries)"),
+    ("kernel/src/nog.c",
+     "for (i = 0u; i < NX; ++i) { ctx->dlam_k[i] = scale * out8[i];",
+     "for (i = 1u; i < NX; ++i) { ctx->dlam_k[i] = scale * out8[i];",
+     "dlam_r, dlam_r' of [dlam_k; dt_f] = G dx, N dx not updated "
+     "(test_nog: test_radius_error_moves_lambda_r_only)"),
+    ("kernel/src/nog.c",
+     "for (i = 0u; i < NX; ++i) { dx[i] = nav_v[i] - x_star[i];",
+     "for (i = 1u; i < NX; ++i) { dx[i] = nav_v[i] - x_star[i];",
+     "dx_r of dx_k left uninitialised (test_nog: test_radius_error_moves_lambda_r_only)"),
+    ("kernel/src/nog.c",
+     "if (st == OGK_OK) { st = OGK_E_SAFE_COMMAND;", "if (st != OGK_OK) { st = OGK_E_SAFE_COMMAND;",
+     "overflowing costate in ogk_nog_command reported as OK "
+     "(test_nog: test_overflowing_costate_gives_safe_command)"),
+    ("kernel/src/interp.c",
+     "values[((n - 1u) * m) + j]) / h0", "values[((n - 1u) * m) - j]) / h0",
+     "pchip right-end secant of column j > 0 read from the wrong element "
+     "(test_interp: test_pchip_end_slopes_of_every_column)"),
+    ("kernel/src/table.c",
+     "for (i = 0u; (i < values)", "for (i = 1u; (i < values)",
+     "finiteness scan of the payload skips grid[0] "
+     "(test_table: test_nonfinite_first_and_last_value)"),
 ]
+
+# Sites excluded from the sampling: equivalent mutants (no observable change; docs/mutation.md),
+# as (file, code fragment of the line, mutated token, why). A fragment no longer found only
+# excludes nothing (the mutant is then sampled again and shows up as a survivor).
+EQUIVALENT = [
+    ("kernel/src/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", "&&",
+     "ogk_interp_locate: with || the bisection runs its 64 iterations, but once hi - lo = 1 "
+     "mid = lo and nothing changes; only the time differs"),
+    ("kernel/src/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", "<",
+     "ogk_interp_locate: 65 instead of 64 bisection steps; 64 already halve any size_t range"),
+    ("kernel/src/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", ">",
+     "ogk_interp_locate: with >= the loop goes on at hi - lo = 1, where mid = lo changes nothing"),
+    ("kernel/src/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", "-",
+     "ogk_interp_locate: hi + lo > 1 keeps the loop going past hi - lo = 1, where nothing changes "
+     "(and stops it at lo = 0, hi = 1, converged too)"),
+    ("kernel/src/interp.c", "for (it = 0u; (it < OGK_INTERP_MAX_SEARCH)", "0u",
+     "ogk_interp_locate: 63 instead of 64 bisection steps; 63 halve any range of < 2^63 nodes "
+     "(the grid is bounded by OGK_TABLE_MAX_VALUES)"),
+]
+
+
+def fragment_regex(frag):
+    """The fragment as a regular expression: each run of white space matches any run."""
+    return re.compile(r"\s+".join(re.escape(w) for w in frag.split()))
+
 
 # The sanitizers of make test-unit-host: an out-of-bounds or undefined mutant is killed.
 SAN = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-omit-frame-pointer"]
@@ -142,7 +208,9 @@ def main():
     ap.add_argument("--build", default=os.path.join(ROOT, "build", "mutants"))
     ap.add_argument("--timeout", type=float, default=120.0, help="seconds per test program")
     ap.add_argument("--min-score", type=float, default=None)
-    ap.add_argument("--list", action="store_true", help="list the mutants only")
+    ap.add_argument("--list", action="store_true", help="list the mutants (and the excluded sites) only")
+    ap.add_argument("--fixed-only", action="store_true",
+                    help="run the fixed mutants only (their killing tests still kill them)")
     args = ap.parse_args()
 
     ksrc = sorted(os.path.join("kernel/src", f) for f in os.listdir(os.path.join(ROOT, "kernel/src"))
@@ -152,32 +220,55 @@ def main():
     texts = {p: open(os.path.join(ROOT, p)).read() for p in ksrc}
 
     all_sites = []
+    excluded = []
     for p in ksrc:
-        all_sites.extend(sites(p, texts[p]))
+        lines = texts[p].split("\n")
+        for site in sites(p, texts[p]):
+            _, no, a, b, _ = site
+            line = lines[no - 1]
+            why = [w for f, frag, tok, w in EQUIVALENT
+                   if f == p and line[a:b] == tok and frag in line
+                   and line.find(frag) <= a < line.find(frag) + len(frag)]
+            if why:
+                excluded.append((site, why[0]))
+            else:
+                all_sites.append(site)
     rng = random.Random(args.seed)
     sample = rng.sample(all_sites, min(args.count, len(all_sites)))
     sample.sort()
     mutants = []
+    missing = []
     for path, frag, rep, what in FIXED:
         t = texts[path]
-        k = t.find(frag)
-        if k < 0:
-            print("mutants: fixed mutant not found (source changed?): %s: %s" % (path, frag))
+        found = list(fragment_regex(frag).finditer(t))
+        if len(found) != 1:
+            why = "MISSING" if not found else "AMBIGUOUS (%d matches)" % len(found)
+            missing.append("%s: %s: %r" % (why, path, frag))
+            print("mutants: fixed mutant %s (source changed? update FIXED in tests/gates/mutants.py): "
+                  "%s: %r" % (why, path, frag))
             continue
+        k, e = found[0].start(), found[0].end()
         no = t.count("\n", 0, k) + 1
-        mutants.append((path, no, t[:k] + rep + t[k + len(frag):], frag, rep, what))
+        mutants.append((path, no, t[:k] + rep + t[e:], frag, rep, what))
     for path, no, a, b, rep in sample:
         lines = texts[path].split("\n")
         line = lines[no - 1]
         orig = line[a:b]
         lines[no - 1] = line[:a] + rep + line[b:]
         mutants.append((path, no, "\n".join(lines), orig, rep, line.strip()))
-    print("mutants: %d sites in %d kernel sources, %d sampled (seed %d) + %d fixed; %d unit tests"
-          % (len(all_sites), len(ksrc), len(sample), args.seed, len(FIXED), len(tests)))
+    if args.fixed_only:
+        mutants = mutants[:len(FIXED) - len(missing)]
+        sample = []
+    print("mutants: %d sites in %d kernel sources (%d equivalent excluded), %d sampled (seed %d) + "
+          "%d fixed (%d missing); %d unit tests"
+          % (len(all_sites), len(ksrc), len(excluded), len(sample), args.seed, len(FIXED) - len(missing),
+             len(missing), len(tests)))
     if args.list:
+        for (path, no, a, b, rep), why in excluded:
+            print("  excluded %s:%d: %r -> %r: %s" % (path, no, texts[path].split("\n")[no - 1][a:b], rep, why))
         for m in mutants:
             print("  %s:%d: %r -> %r   %s" % (m[0], m[1], m[3], m[4], m[5]))
-        return 0
+        return 3 if missing else 0
 
     # A copy of the kernel and the unit tests; objects of the unmutated sources and of the tests.
     b = os.path.abspath(args.build)
@@ -256,6 +347,10 @@ def main():
           % (killed, survived, invalid, score, killed, n, time.time() - t0))
     for path, no, orig, rep, what in survivors:
         print("  survivor: %s:%d: %r -> %r   %s" % (path, no, orig, rep, what))
+    for m in missing:
+        print("  fixed mutant not applied: %s" % m)
+    if missing:
+        return 3
     if args.min_score is not None and score < args.min_score:
         return 1
     return 0
