@@ -16,35 +16,35 @@ typedef struct {
 
 static bool all_finite(const double *x, size_t n)
 {
+    bool finite = true;
     size_t i;
-    for (i = 0u; i < n; ++i) {
+    for (i = 0u; (i < n) && finite; ++i) {
         if (!isfinite(x[i])) {
-            return false;
+            finite = false;
         }
     }
-    return true;
+    return finite;
 }
 
 static ogk_status check_problem(const ogk_rk4_problem_t *p)
 {
+    ogk_status st;
     if ((p == NULL) || (p->rhs == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if ((p->n == 0u) || (p->n > OGK_RK4_MAX_STATE)) {
+        st = OGK_E_DIM;
+    } else if ((!isfinite(p->h)) || (!(p->h > 0.0)) ||
+               ((p->sw != NULL) &&
+                ((!isfinite(p->s_tol)) || (p->s_tol < 0.0) || (!isfinite(p->t_tol)) || (!(p->t_tol > 0.0))))) {
+        st = OGK_E_RANGE;
+    } else {
+        st = OGK_OK;
     }
-    if ((p->n == 0u) || (p->n > OGK_RK4_MAX_STATE)) {
-        return OGK_E_DIM;
-    }
-    if (!isfinite(p->h) || !(p->h > 0.0)) {
-        return OGK_E_RANGE;
-    }
-    if (p->sw != NULL) {
-        if ((!isfinite(p->s_tol)) || (p->s_tol < 0.0) || (!isfinite(p->t_tol)) || (!(p->t_tol > 0.0))) {
-            return OGK_E_RANGE;
-        }
-    }
-    return OGK_OK;
+    return st;
 }
 
-/* One RK4 step; x_next may alias x. */
+/* One RK4 step; x_next may alias x (written only once all four stages
+ * succeeded). */
 static ogk_status step_raw(stepper_t *s, double t, const double *x, double dt,
                            int mode, double *x_next)
 {
@@ -56,59 +56,69 @@ static ogk_status step_raw(stepper_t *s, double t, const double *x, double dt,
     const size_t n = s->p->n;
     const double half = 0.5 * dt;
     size_t i;
+    ogk_status st = OGK_OK;
 
     s->n_rhs += 4u;
     if (s->p->rhs(s->p->user, t, x, mode, k1) != OGK_OK) {
-        return OGK_E_CALLBACK;
+        st = OGK_E_CALLBACK;
     }
-    for (i = 0u; i < n; ++i) {
-        xs[i] = x[i] + (half * k1[i]);
+    if (st == OGK_OK) {
+        for (i = 0u; i < n; ++i) {
+            xs[i] = x[i] + (half * k1[i]);
+        }
+        if (s->p->rhs(s->p->user, t + half, xs, mode, k2) != OGK_OK) {
+            st = OGK_E_CALLBACK;
+        }
     }
-    if (s->p->rhs(s->p->user, t + half, xs, mode, k2) != OGK_OK) {
-        return OGK_E_CALLBACK;
+    if (st == OGK_OK) {
+        for (i = 0u; i < n; ++i) {
+            xs[i] = x[i] + (half * k2[i]);
+        }
+        if (s->p->rhs(s->p->user, t + half, xs, mode, k3) != OGK_OK) {
+            st = OGK_E_CALLBACK;
+        }
     }
-    for (i = 0u; i < n; ++i) {
-        xs[i] = x[i] + (half * k2[i]);
+    if (st == OGK_OK) {
+        for (i = 0u; i < n; ++i) {
+            xs[i] = x[i] + (dt * k3[i]);
+        }
+        if (s->p->rhs(s->p->user, t + dt, xs, mode, k4) != OGK_OK) {
+            st = OGK_E_CALLBACK;
+        }
     }
-    if (s->p->rhs(s->p->user, t + half, xs, mode, k3) != OGK_OK) {
-        return OGK_E_CALLBACK;
+    if (st == OGK_OK) {
+        for (i = 0u; i < n; ++i) {
+            x_next[i] = x[i] + ((dt / 6.0) * (k1[i] + (2.0 * (k2[i] + k3[i])) + k4[i]));
+        }
+        st = all_finite(x_next, n) ? OGK_OK : OGK_E_NONFINITE;
     }
-    for (i = 0u; i < n; ++i) {
-        xs[i] = x[i] + (dt * k3[i]);
-    }
-    if (s->p->rhs(s->p->user, t + dt, xs, mode, k4) != OGK_OK) {
-        return OGK_E_CALLBACK;
-    }
-    for (i = 0u; i < n; ++i) {
-        x_next[i] = x[i] + ((dt / 6.0) * (k1[i] + (2.0 * (k2[i] + k3[i])) + k4[i]));
-    }
-    return all_finite(x_next, n) ? OGK_OK : OGK_E_NONFINITE;
+    return st;
 }
 
 ogk_status ogk_rk4_step(const ogk_rk4_problem_t *p, double t, const double *x,
                         double dt, int mode, double *x_next)
 {
-    stepper_t s;
     ogk_status st = check_problem(p);
 
-    if (st != OGK_OK) {
-        return st;
+    if (st == OGK_OK) {
+        if ((x == NULL) || (x_next == NULL)) {
+            st = OGK_E_NULL;
+        } else if (!isfinite(t) || !isfinite(dt) || !all_finite(x, p->n)) {
+            st = OGK_E_NONFINITE;
+        } else if (dt == 0.0) {
+            st = OGK_E_RANGE;
+        } else {
+            stepper_t s;
+            s.p = p;
+            s.n_rhs = 0u;
+            st = step_raw(&s, t, x, dt, mode, x_next);
+        }
     }
-    if ((x == NULL) || (x_next == NULL)) {
-        return OGK_E_NULL;
-    }
-    if (!isfinite(t) || !isfinite(dt) || !all_finite(x, p->n)) {
-        return OGK_E_NONFINITE;
-    }
-    if (dt == 0.0) {
-        return OGK_E_RANGE;
-    }
-    s.p = p;
-    s.n_rhs = 0u;
-    return step_raw(&s, t, x, dt, mode, x_next);
+    return st;
 }
 
-static int sign_of(double v)
+/* Sign of the switching function: +1, -1, or 0 at an exact zero. */
+static int switch_sign(double v)
 {
     return (v > 0.0) ? 1 : ((v < 0.0) ? -1 : 0);
 }
@@ -116,26 +126,31 @@ static int sign_of(double v)
 static ogk_status eval_switch(const ogk_rk4_problem_t *p, double t,
                               const double *x, int mode, double *sv)
 {
+    ogk_status st;
     if (p->sw(p->user, t, x, mode, sv) != OGK_OK) {
-        return OGK_E_CALLBACK;
+        st = OGK_E_CALLBACK;
+    } else {
+        st = isfinite(*sv) ? OGK_OK : OGK_E_NONFINITE;
     }
-    return isfinite(*sv) ? OGK_OK : OGK_E_NONFINITE;
+    return st;
 }
 
 static ogk_status dense_push(ogk_rk4_dense_t *d, size_t n, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, order of the RK4 step state; unit-tested */
                              const double *x, int mode)
 {
-    if (d == NULL) {
-        return OGK_OK;
+    ogk_status st = OGK_OK;
+    if (d != NULL) {
+        if (d->count >= d->capacity) {
+            st = OGK_E_DIM;
+        } else {
+            d->t[d->count] = t;
+            /* memcpy returns its destination: nothing to check (here and below). */
+            (void)memcpy(&d->x[d->count * n], x, n * sizeof x[0]);
+            d->mode[d->count] = (uint8_t)mode;
+            d->count += 1u;
+        }
     }
-    if (d->count >= d->capacity) {
-        return OGK_E_DIM;
-    }
-    d->t[d->count] = t;
-    memcpy(&d->x[d->count * n], x, n * sizeof x[0]);
-    d->mode[d->count] = (uint8_t)mode;
-    d->count += 1u;
-    return OGK_OK;
+    return st;
 }
 
 /* Locates the switch inside the sub-step [t, t + dt] whose end has S of sign
@@ -148,43 +163,42 @@ static ogk_status bisect_switch(stepper_t *s, double t, const double *x,
     double lo = 0.0;
     double hi = dt;
     unsigned it;
-    ogk_status st;
+    bool found = false; /* |S| <= s_tol at a trial point */
+    ogk_status st = OGK_OK;
 
     ev->how = OGK_SWITCH_BY_TIME_TOL;
-    for (it = 0u; it < OGK_RK4_MAX_BISECTIONS; ++it) {
+    for (it = 0u; (it < OGK_RK4_MAX_BISECTIONS) && (st == OGK_OK) && (!found); ++it) {
         const double mid = lo + (0.5 * (hi - lo));
-        double s_mid;
+        double s_mid = 0.0;
         if ((!((mid > lo) && (mid < hi))) || ((hi - lo) <= s->p->t_tol)) {
             break; /* bracket at the time tolerance or at its last bit */
         }
         st = step_raw(s, t, x, mid, mode, x_s);
-        if (st != OGK_OK) {
-            return st;
+        if (st == OGK_OK) {
+            st = eval_switch(s->p, t + mid, x_s, mode, &s_mid);
         }
-        st = eval_switch(s->p, t + mid, x_s, mode, &s_mid);
-        if (st != OGK_OK) {
-            return st;
-        }
-        ev->bisections = (uint16_t)(it + 1u);
-        if (fabs(s_mid) <= s->p->s_tol) {
-            ev->how = OGK_SWITCH_BY_S_TOL;
-            ev->s = s_mid;
-            *dt_s = mid;
-            return OGK_OK;
-        }
-        if (sign_of(s_mid) == side) {
-            lo = mid;
-        } else {
-            hi = mid;
+        if (st == OGK_OK) {
+            ev->bisections = (uint16_t)(it + 1u);
+            if (fabs(s_mid) <= s->p->s_tol) {
+                ev->how = OGK_SWITCH_BY_S_TOL;
+                ev->s = s_mid;
+                *dt_s = mid;
+                found = true;
+            } else if (switch_sign(s_mid) == side) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
         }
     }
-    /* Accept the far end of the bracket, where S already has the new sign. */
-    st = step_raw(s, t, x, hi, mode, x_s);
-    if (st != OGK_OK) {
-        return st;
+    if ((st == OGK_OK) && (!found)) {
+        /* Accept the far end of the bracket, where S already has the new sign. */
+        st = step_raw(s, t, x, hi, mode, x_s);
+        if (st == OGK_OK) {
+            st = eval_switch(s->p, t + hi, x_s, mode, &ev->s);
+            *dt_s = hi;
+        }
     }
-    st = eval_switch(s->p, t + hi, x_s, mode, &ev->s);
-    *dt_s = hi;
     return st;
 }
 
@@ -194,7 +208,129 @@ static void finish(ogk_rk4_result_t *res, const stepper_t *s, double t, /* NOLIN
     res->n_rhs = s->n_rhs;
     res->t_reached = t;
     res->mode_final = mode;
-    memcpy(xf, x, n * sizeof x[0]);
+    (void)memcpy(xf, x, n * sizeof x[0]);
+}
+
+/* The output pointers of ogk_rk4_propagate (dense optional, its buffers
+ * required when it is given). */
+static ogk_status check_outputs(const double *x0, const ogk_rk4_result_t *res,
+                                const double *xf, const ogk_rk4_dense_t *dense)
+{
+    ogk_status st;
+    if ((x0 == NULL) || (res == NULL) || (xf == NULL) ||
+        ((dense != NULL) && ((dense->t == NULL) || (dense->x == NULL) || (dense->mode == NULL)))) {
+        st = OGK_E_NULL;
+    } else {
+        st = OGK_OK;
+    }
+    return st;
+}
+
+/* Checks the span and initial state of ogk_rk4_propagate and counts its grid
+ * steps into *n_grid. */
+static ogk_status grid_steps(const ogk_rk4_problem_t *p, double t0, const double *x0, /* NOLINT(bugprone-easily-swappable-parameters): argument order of ogk_rk4_propagate */
+                             int mode0, double tf, size_t *n_grid)
+{
+    ogk_status st;
+    double ratio = 0.0;
+
+    if (!isfinite(t0) || !isfinite(tf) || !all_finite(x0, p->n)) {
+        st = OGK_E_NONFINITE;
+    } else if ((!(tf > t0)) || ((mode0 != 0) && (mode0 != 1))) {
+        st = OGK_E_RANGE;
+    } else {
+        ratio = (tf - t0) / p->h;
+        st = (ratio <= (double)OGK_RK4_MAX_STEPS) ? OGK_OK : OGK_E_STEP_LIMIT;
+    }
+    if (st == OGK_OK) {
+        *n_grid = (size_t)floor(ratio);
+        if (((ratio - (double)*n_grid) > (OGK_RK4_STEP_SLOP * fmax(1.0, ratio))) || (*n_grid == 0u)) {
+            *n_grid += 1u;
+        }
+    }
+    return st;
+}
+
+/* The integration of ogk_rk4_propagate over its n_grid grid steps, inputs
+ * checked and res zeroed. */
+static ogk_status integrate(const ogk_rk4_problem_t *p, double t0,
+                            const double *x0, int mode0, double tf, size_t n_grid, /* NOLINT(bugprone-easily-swappable-parameters): argument order of ogk_rk4_propagate */
+                            ogk_rk4_result_t *res, double *xf, ogk_rk4_dense_t *dense)
+{
+    double x[OGK_RK4_MAX_STATE];
+    double x_end[OGK_RK4_MAX_STATE];
+    double t = t0;
+    size_t k;
+    int mode = mode0;
+    int side = 0;
+    stepper_t s;
+    ogk_status st = OGK_OK;
+
+    s.p = p;
+    s.n_rhs = 0u;
+    (void)memcpy(x, x0, p->n * sizeof x[0]);
+    if (p->sw != NULL) {
+        double s0 = 0.0;
+        st = eval_switch(p, t, x, mode, &s0);
+        if (st == OGK_OK) {
+            side = switch_sign(s0);
+        }
+    }
+    if (st == OGK_OK) {
+        st = dense_push(dense, p->n, t, x, mode);
+    }
+
+    for (k = 0u; (k < n_grid) && (st == OGK_OK); ++k) {
+        const size_t k_next = k + 1u;
+        const double t_target = (k_next == n_grid) ? tf : (t0 + ((double)k_next * p->h));
+        bool done = false; /* t_target reached, or stopped on an error */
+        size_t piece;
+        /* One piece per located switch plus the last one: fixed bound. */
+        for (piece = 0u; (piece <= OGK_RK4_MAX_SWITCHES) && (!done); ++piece) {
+            double s_end = 0.0;
+            st = step_raw(&s, t, x, t_target - t, mode, x_end);
+            if ((st == OGK_OK) && (p->sw != NULL)) {
+                st = eval_switch(p, t_target, x_end, mode, &s_end);
+            }
+            if ((st == OGK_OK) && (side == 0)) {
+                side = switch_sign(s_end); /* S started exactly at zero: no event */
+            }
+            if (st != OGK_OK) {
+                done = true;
+            } else if ((p->sw == NULL) || (side == 0) || (switch_sign(s_end) != -side)) {
+                (void)memcpy(x, x_end, p->n * sizeof x[0]);
+                t = t_target;
+                res->n_steps += 1u;
+                st = dense_push(dense, p->n, t, x, mode);
+                done = true;
+            } else {
+                ogk_switch_event_t ev;
+                double dt_s = 0.0;
+                (void)memset(&ev, 0, sizeof ev); /* returns its destination */
+                st = bisect_switch(&s, t, x, t_target - t, mode, side, &dt_s, x_end, &ev);
+                if (st == OGK_OK) {
+                    t += dt_s;
+                    (void)memcpy(x, x_end, p->n * sizeof x[0]);
+                    res->n_steps += 1u;
+                    if (res->n_switches >= OGK_RK4_MAX_SWITCHES) {
+                        st = OGK_E_SWITCH_OVERFLOW;
+                    } else {
+                        mode = 1 - mode;
+                        side = -side;
+                        ev.t = t;
+                        ev.mode_after = mode;
+                        ev.dense_index = (dense != NULL) ? dense->count : 0u;
+                        res->sw[res->n_switches] = ev;
+                        res->n_switches += 1u;
+                        st = dense_push(dense, p->n, t, x, mode);
+                    }
+                }
+                done = (st != OGK_OK) || (!(t < t_target));
+            }
+        }
+    }
+    finish(res, &s, t, mode, x, xf, p->n);
+    return st;
 }
 
 ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
@@ -202,112 +338,21 @@ ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
                              ogk_rk4_result_t *res, double *xf,
                              ogk_rk4_dense_t *dense)
 {
-    double x[OGK_RK4_MAX_STATE];
-    double x_end[OGK_RK4_MAX_STATE];
-    double ratio;
-    double t;
-    size_t n_grid;
-    size_t k;
-    int mode = mode0;
-    int side = 0;
-    stepper_t s;
+    size_t n_grid = 0u;
     ogk_status st = check_problem(p);
 
-    if (st != OGK_OK) {
-        return st;
+    if (st == OGK_OK) {
+        st = check_outputs(x0, res, xf, dense);
     }
-    if ((x0 == NULL) || (res == NULL) || (xf == NULL)) {
-        return OGK_E_NULL;
-    }
-    if ((dense != NULL) && ((dense->t == NULL) || (dense->x == NULL) || (dense->mode == NULL))) {
-        return OGK_E_NULL;
-    }
-    memset(res, 0, sizeof *res);
-    if (dense != NULL) {
-        dense->count = 0u;
-    }
-    if (!isfinite(t0) || !isfinite(tf) || !all_finite(x0, p->n)) {
-        return OGK_E_NONFINITE;
-    }
-    if ((!(tf > t0)) || ((mode0 != 0) && (mode0 != 1))) {
-        return OGK_E_RANGE;
-    }
-    ratio = (tf - t0) / p->h;
-    if (!(ratio <= (double)OGK_RK4_MAX_STEPS)) {
-        return OGK_E_STEP_LIMIT;
-    }
-    n_grid = (size_t)floor(ratio);
-    if (((ratio - (double)n_grid) > (OGK_RK4_STEP_SLOP * fmax(1.0, ratio))) || (n_grid == 0u)) {
-        n_grid += 1u;
-    }
-
-    s.p = p;
-    s.n_rhs = 0u;
-    t = t0;
-    memcpy(x, x0, p->n * sizeof x[0]);
-    if (p->sw != NULL) {
-        double s0;
-        st = eval_switch(p, t, x, mode, &s0);
-        if (st != OGK_OK) {
-            finish(res, &s, t, mode, x, xf, p->n);
-            return st;
+    if (st == OGK_OK) {
+        (void)memset(res, 0, sizeof *res); /* returns its destination */
+        if (dense != NULL) {
+            dense->count = 0u;
         }
-        side = sign_of(s0);
+        st = grid_steps(p, t0, x0, mode0, tf, &n_grid);
     }
-    st = dense_push(dense, p->n, t, x, mode);
-
-    for (k = 0u; (k < n_grid) && (st == OGK_OK); ++k) {
-        const double t_target = (k + 1u == n_grid) ? tf : t0 + (double)(k + 1u) * p->h;
-        size_t piece;
-        /* One piece per located switch plus the last one: fixed bound. */
-        for (piece = 0u; piece <= OGK_RK4_MAX_SWITCHES; ++piece) {
-            double s_end = 0.0;
-            st = step_raw(&s, t, x, t_target - t, mode, x_end);
-            if ((st == OGK_OK) && (p->sw != NULL)) {
-                st = eval_switch(p, t_target, x_end, mode, &s_end);
-            }
-            if (st != OGK_OK) {
-                break;
-            }
-            if (side == 0) {
-                side = sign_of(s_end); /* S started exactly at zero: no event */
-            }
-            if ((p->sw == NULL) || (side == 0) || (sign_of(s_end) != -side)) {
-                memcpy(x, x_end, p->n * sizeof x[0]);
-                t = t_target;
-                res->n_steps += 1u;
-                st = dense_push(dense, p->n, t, x, mode);
-                break;
-            }
-            {
-                ogk_switch_event_t ev;
-                double dt_s = 0.0;
-                memset(&ev, 0, sizeof ev);
-                st = bisect_switch(&s, t, x, t_target - t, mode, side, &dt_s, x_end, &ev);
-                if (st != OGK_OK) {
-                    break;
-                }
-                t += dt_s;
-                memcpy(x, x_end, p->n * sizeof x[0]);
-                res->n_steps += 1u;
-                if (res->n_switches >= OGK_RK4_MAX_SWITCHES) {
-                    st = OGK_E_SWITCH_OVERFLOW;
-                    break;
-                }
-                mode = 1 - mode;
-                side = -side;
-                ev.t = t;
-                ev.mode_after = mode;
-                ev.dense_index = (dense != NULL) ? dense->count : 0u;
-                res->sw[res->n_switches] = ev;
-                res->n_switches += 1u;
-                st = dense_push(dense, p->n, t, x, mode);
-                if ((st != OGK_OK) || (!(t < t_target))) {
-                    break;
-                }
-            }
-        }
+    if (st == OGK_OK) {
+        st = integrate(p, t0, x0, mode0, tf, n_grid, res, xf, dense);
     }
-    finish(res, &s, t, mode, x, xf, p->n);
     return st;
 }
