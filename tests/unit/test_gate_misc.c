@@ -118,6 +118,15 @@ static void test_rk4_problem_and_argument_checks(void **state)
         const double bad[1] = {NAN};
         OGK_ASSERT_STATUS(ogk_rk4_step(&p, 0.0, bad, 0.1, 1, xn), OGK_E_NONFINITE);
     }
+    {
+        /* two states, the first one NaN: found without looking further */
+        const double bad2[2] = {NAN, 0.0};
+        double xn2[2] = {-7.0, -7.0};
+        p.n = 2u;
+        OGK_ASSERT_STATUS(ogk_rk4_step(&p, 0.0, bad2, 0.1, 1, xn2), OGK_E_NONFINITE);
+        OGK_ASSERT_NEAR(xn2[0], -7.0, 0.0);
+        p.n = 1u;
+    }
     OGK_ASSERT_STATUS(ogk_rk4_propagate(&p, 0.0, x0, 1, 1.0, NULL, xf, NULL), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_rk4_propagate(&p, 0.0, x0, 1, 1.0, &res, NULL, NULL), OGK_E_NULL);
     d.t = dt_buf;
@@ -236,6 +245,12 @@ static void test_linalg_first_entry_failures(void **state)
         assert_int_equal(ch.n, 0u);
     }
     {
+        /* not symmetric in the pair (2, 0) / (0, 2), found before (2, 1) is looked at */
+        const double A3[9] = {4.0, 0.0, 1.0, 0.0, 4.0, 0.0, 2.0, 0.0, 4.0};
+        OGK_ASSERT_STATUS(ogk_chol_factor(&ch, A3, 3u), OGK_E_NOT_POSDEF);
+        assert_int_equal(ch.n, 0u);
+    }
+    {
         /* negative first pivot */
         const double A3[9] = {-1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
         OGK_ASSERT_STATUS(ogk_chol_factor(&ch, A3, 3u), OGK_E_NOT_POSDEF);
@@ -248,6 +263,9 @@ static void test_linalg_first_entry_failures(void **state)
         OGK_ASSERT_STATUS(ogk_lstsq(&qr_ws, A32, 3u, 2u, b3, x), OGK_E_SINGULAR);
         /* a right-hand side that lies inside the workspace */
         OGK_ASSERT_STATUS(ogk_lstsq(&qr_ws, A32, 3u, 2u, qr_ws.tau, x), OGK_E_RANGE);
+        /* and a solution that would be written into it */
+        OGK_ASSERT_STATUS(ogk_lstsq(&qr_ws, A32, 3u, 2u, b3, qr_ws.tau), OGK_E_RANGE);
+        OGK_ASSERT_NEAR(x[0], -7.0, 0.0);
     }
 }
 
@@ -414,6 +432,32 @@ static void test_mpsp_control_rejections(void **state)
     OGK_ASSERT_STATUS(ogk_mpsp_control(&ctx, w, cfg.fourier_t_ref, lv, lvd), OGK_E_NONFINITE);
 }
 
+/* ogk_mpsp_newton_update: each argument rejected on its own, nothing written. */
+static void test_mpsp_newton_update_arguments(void **state)
+{
+    static ogk_mpsp_t blank; /* never initialised */
+    double dy[OGK_MPSP_NY];
+    double w[21];
+    double lm = 0.25;
+    (void)state;
+    (void)memset(dy, 0, sizeof dy);
+    dy[0] = 1e-3;
+    (void)memcpy(w, w3, sizeof w);
+    OGK_ASSERT_STATUS(ogk_mpsp_newton_update(&ctx, NULL, w, &lm), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_newton_update(&ctx, dy, NULL, &lm), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_newton_update(&blank, dy, w, &lm), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, 0.0, x0_3d, 1.0, NULL), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_sensitivity(&ctx, NULL, NULL), OGK_OK);
+    w[9] = NAN;
+    OGK_ASSERT_STATUS(ogk_mpsp_newton_update(&ctx, dy, w, &lm), OGK_E_NONFINITE);
+    OGK_ASSERT_NEAR(lm, 0.25, 0.0);
+    w[9] = w3[9];
+    assert_true(memcmp(w, w3, sizeof w) == 0);
+    /* the same call with finite weights takes a step */
+    OGK_ASSERT_STATUS(ogk_mpsp_newton_update(&ctx, dy, w, &lm), OGK_OK);
+    assert_true(memcmp(w, w3, sizeof w) != 0);
+}
+
 /* Partial outputs of ogk_mpsp_step_jacobian and ogk_mpsp_switch_jump are the full call's. */
 static double jx_full[64];
 static double jw_full[8u * 21u];
@@ -439,6 +483,8 @@ static void test_mpsp_partial_jacobians(void **state)
     w_bad[20] = INFINITY;
     OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, 0.0, x, 0.05, 1, NULL, NULL, NULL),
                       OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, 0.0, NULL, 0.05, 1, xn, NULL, NULL),
+                      OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, 0.0, x, NAN, 1, xn, NULL, NULL),
                       OGK_E_NONFINITE);
     OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, 0.0, bad, 0.05, 1, xn, NULL, NULL),
@@ -455,6 +501,8 @@ static void test_mpsp_partial_jacobians(void **state)
     assert_true(memcmp(jw_part, jw_full, sizeof jw_full) == 0);
     /* the switch jump at (0.5, x) leaving thrust */
     OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, w3, 1.0, 0.5, NULL, 1, jx_full, NULL, NULL, NULL),
+                      OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, NULL, 1.0, 0.5, x, 1, jx_full, NULL, NULL, NULL),
                       OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, w3, 1.0, 0.5, bad, 1, jx_full, NULL, NULL, NULL),
                       OGK_E_NONFINITE);
@@ -485,6 +533,7 @@ int main(void)
         cmocka_unit_test_setup(test_mpsp_config_one_field_at_a_time, setup_mpsp),
         cmocka_unit_test_setup(test_mpsp_readouts, setup_mpsp),
         cmocka_unit_test_setup(test_mpsp_control_rejections, setup_mpsp),
+        cmocka_unit_test_setup(test_mpsp_newton_update_arguments, setup_mpsp),
         cmocka_unit_test_setup(test_mpsp_partial_jacobians, setup_mpsp),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
