@@ -523,6 +523,36 @@ static void test_mpsp_partial_jacobians(void **state)
     assert_true(memcmp(dw_part, dw_full, sizeof dw_full) == 0);
 }
 
+/* dS/dt = S_U dU/dt (eq. 15): a constant lambda_v (only the constant basis weights) has
+ * dS/dt = 0, a switch there is tangential and its time not differentiable; a rate that
+ * overflows (sine weights of 1e308 at t_ref) is no better. Both are OGK_E_SINGULAR. */
+static void test_mpsp_tangential_switch(void **state)
+{
+    double x[8];
+    double w[21];
+    double jx[64];
+    size_t c;
+    (void)state;
+    (void)memcpy(x, x0_3d, sizeof x0_3d);
+    x[7] = 0.0;
+    (void)memset(w, 0, sizeof w);
+    w[0] = 1.0;
+    w[7] = 0.5;
+    w[14] = -0.25;
+    OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, w, 1.0, 0.5, x, 1, jx, NULL, NULL, NULL),
+                      OGK_E_SINGULAR);
+    for (c = 0u; c < 3u; ++c) {
+        w[c * 7u + 2u] = 1e308;
+        w[c * 7u + 4u] = 1e308;
+        w[c * 7u + 6u] = 1e308;
+    }
+    OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, w, 1.0, cfg.fourier_t_ref, x, 1, jx, NULL, NULL,
+                                           NULL),
+                      OGK_E_SINGULAR);
+    /* the fixture's varying lambda_v at the same state: a regular switch */
+    OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, w3, 1.0, 0.5, x, 1, jx, NULL, NULL, NULL), OGK_OK);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -535,6 +565,7 @@ int main(void)
         cmocka_unit_test_setup(test_mpsp_control_rejections, setup_mpsp),
         cmocka_unit_test_setup(test_mpsp_newton_update_arguments, setup_mpsp),
         cmocka_unit_test_setup(test_mpsp_partial_jacobians, setup_mpsp),
+        cmocka_unit_test_setup(test_mpsp_tangential_switch, setup_mpsp),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
