@@ -553,6 +553,42 @@ static void test_mpsp_tangential_switch(void **state)
     OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, w3, 1.0, 0.5, x, 1, jx, NULL, NULL, NULL), OGK_OK);
 }
 
+/* Algorithm 2's widening of N_seg,tol: the configuration states N_seg,nom = 1 while the
+ * fixture's command flies 3 segments (2 switches). At N_seg,tol = 0 every Newton step is refused
+ * (|3 - 1| > 0), the direct loop and the first continuation fail; N_seg,tol is widened by
+ * n_seg_tol_step = 2 and the solve converges there, to the target it was given. */
+static void test_mpsp_segment_tolerance_widened(void **state)
+{
+    static ogk_mpsp_result_t res;
+    ogk_mpsp_config_t c;
+    ogk_mpsp_prop_t prop;
+    size_t i;
+    (void)state;
+    OGK_ASSERT_STATUS(mpsp_fixture_config(&c, 8u, 10u), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, 0.0, x0_3d, 1.0, &prop), OGK_OK);
+    assert_int_equal(prop.n_switches, 2u);
+    (void)memcpy(c.r_f, prop.x_f, sizeof c.r_f); /* reachable target; lambda_m(tf) != 0 */
+    (void)memcpy(c.v_f, &prop.x_f[3], sizeof c.v_f);
+    c.n_seg_nom = 1u;
+    c.n_seg_tol = 0u;
+    c.n_seg_tol_step = 2u;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_solve(&ctx, x0_3d, 1.0, NULL, &res), OGK_OK);
+    assert_int_equal(res.converged, 1u);
+    assert_int_equal(res.n_seg_tol, 2u);
+    assert_true(res.outer_steps > 0u);
+    assert_int_equal(res.n_segments, 3u);
+    /* the command returned, flown again, meets the terminal conditions */
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, res.weights, res.lambda_m0, x0_3d, 1.0, &prop),
+                      OGK_OK);
+    for (i = 0u; i < 3u; ++i) {
+        OGK_ASSERT_NEAR(prop.x_f[i], c.r_f[i], 1e-9);
+        OGK_ASSERT_NEAR(prop.x_f[3u + i], c.v_f[i], 1e-9);
+    }
+    OGK_ASSERT_NEAR(prop.x_f[7], 0.0, 1e-9);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -566,6 +602,7 @@ int main(void)
         cmocka_unit_test_setup(test_mpsp_newton_update_arguments, setup_mpsp),
         cmocka_unit_test_setup(test_mpsp_partial_jacobians, setup_mpsp),
         cmocka_unit_test_setup(test_mpsp_tangential_switch, setup_mpsp),
+        cmocka_unit_test(test_mpsp_segment_tolerance_widened),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
