@@ -4,98 +4,97 @@
 #include <math.h>
 #include <stdbool.h>
 
+#include "ogk_checks.h"
+
 /* Bisection steps that locate an interval in any grid a size_t can index. */
 #define OGK_INTERP_MAX_SEARCH 64u
 
 ogk_status ogk_interp_check_grid(const double *grid, size_t n_grid)
 {
     size_t k;
+    ogk_status st;
 
     if (grid == NULL) {
-        return OGK_E_NULL;
-    }
-    if (n_grid < 2u) {
-        return OGK_E_DIM;
-    }
-    for (k = 0u; k < n_grid; ++k) {
-        if (!isfinite(grid[k])) {
-            return OGK_E_NONFINITE;
+        st = OGK_E_NULL;
+    } else if (n_grid < 2u) {
+        st = OGK_E_DIM;
+    } else {
+        st = OGK_OK;
+        for (k = 0u; (k < n_grid) && (st == OGK_OK); ++k) {
+            if (!isfinite(grid[k])) {
+                st = OGK_E_NONFINITE;
+            } else if ((k > 0u) && (!(grid[k] > grid[k - 1u]))) {
+                st = OGK_E_RANGE;
+            } else {
+                /* finite, and increasing so far */
+            }
         }
-        if ((k > 0u) && (!(grid[k] > grid[k - 1u]))) {
-            return OGK_E_RANGE;
-        }
     }
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
                              size_t *k)
 {
-    size_t lo;
-    size_t hi;
-    unsigned it;
+    ogk_status st;
 
     if ((grid == NULL) || (k == NULL)) {
-        return OGK_E_NULL;
-    }
-    if (n_grid < 2u) {
-        return OGK_E_DIM;
-    }
-    if (!isfinite(tau)) {
-        return OGK_E_NONFINITE;
-    }
-    if ((tau < grid[0]) || (tau > grid[n_grid - 1u])) {
-        return OGK_E_RANGE;
-    }
-    /* Invariant: grid[lo] <= tau <= grid[hi]. */
-    lo = 0u;
-    hi = n_grid - 1u;
-    for (it = 0u; (it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u); ++it) {
-        const size_t mid = lo + (hi - lo) / 2u;
-        if (grid[mid] <= tau) {
-            lo = mid;
+        st = OGK_E_NULL;
+    } else if (n_grid < 2u) {
+        st = OGK_E_DIM;
+    } else if (!isfinite(tau)) {
+        st = OGK_E_NONFINITE;
+    } else if ((tau < grid[0]) || (tau > grid[n_grid - 1u])) {
+        st = OGK_E_RANGE;
+    } else {
+        /* Invariant: grid[lo] <= tau <= grid[hi]. */
+        size_t lo = 0u;
+        size_t hi = n_grid - 1u;
+        unsigned it;
+        for (it = 0u; (it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u); ++it) {
+            const size_t mid = lo + ((hi - lo) / 2u);
+            if (grid[mid] <= tau) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        if ((hi - lo) > 1u) {
+            st = OGK_E_NOT_CONVERGED; /* unreachable for n_grid < 2^64 */
         } else {
-            hi = mid;
+            *k = lo;
+            st = OGK_OK;
         }
     }
-    if ((hi - lo) > 1u) {
-        return OGK_E_NOT_CONVERGED; /* unreachable for n_grid < 2^64 */
-    }
-    *k = lo;
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
                              const double *values, size_t m, /* NOLINT(bugprone-easily-swappable-parameters): order of the public header (grid, size, values, ...), checked by the unit tests and pytest */
                              double tau, double *out)
 {
-    size_t k;
-    size_t j;
-    double w;
+    size_t k = 0u;
     ogk_status st;
 
     if ((values == NULL) || (out == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if (m == 0u) {
+        st = OGK_E_DIM;
+    } else {
+        st = ogk_interp_locate(grid, n_grid, tau, &k);
     }
-    if (m == 0u) {
-        return OGK_E_DIM;
+    if (st == OGK_OK) {
+        const double w = (tau - grid[k]) / (grid[k + 1u] - grid[k]);
+        size_t j;
+        for (j = 0u; j < m; ++j) {
+            const double y0 = values[(k * m) + j];
+            const double y1 = values[((k + 1u) * m) + j];
+            out[j] = y0 + (w * (y1 - y0));
+        }
     }
-    st = ogk_interp_locate(grid, n_grid, tau, &k);
-    if (st != OGK_OK) {
-        return st;
-    }
-    w = (tau - grid[k]) / (grid[k + 1u] - grid[k]);
-    for (j = 0u; j < m; ++j) {
-        const double y0 = values[(k * m) + j];
-        const double y1 = values[((k + 1u) * m) + j];
-        out[j] = y0 + (w * (y1 - y0));
-    }
-    return OGK_OK;
+    return st;
 }
 
-/* One-sided three-point end slope, shape-preserving (Moler, "Numerical
- * Computing with MATLAB", pchip): h0, h1 the first two intervals, d0, d1 their
- * secant slopes. */
 static int sign_of(double v)
 {
     return (v > 0.0) ? 1 : ((v < 0.0) ? -1 : 0);
@@ -124,55 +123,48 @@ static bool in_direct_range(double v)
  * within a subnormal of it. */
 static double harmonic_slope(double w0, double w1, double d0, double d1)
 {
-    double m, wm, e0, e1, u0, u1;
+    double slope;
 
     if (in_direct_range(d0) && in_direct_range(d1) && in_direct_range(w0) &&
         in_direct_range(w1)) {
-        return (w0 + w1) / (w0 / d0 + w1 / d1);
+        slope = (w0 + w1) / ((w0 / d0) + (w1 / d1));
+    } else {
+        const double m = fmax(fabs(d0), fabs(d1));
+        const double wm = fmax(w0, w1);
+        const double e0 = d0 / m;
+        const double e1 = d1 / m;
+        const double u0 = w0 / wm;
+        const double u1 = w1 / wm;
+        slope = m * (((u0 + u1) / ((u0 * e1) + (u1 * e0))) * e0 * e1);
     }
-    m = fmax(fabs(d0), fabs(d1));
-    wm = fmax(w0, w1);
-    e0 = d0 / m;
-    e1 = d1 / m;
-    u0 = w0 / wm;
-    u1 = w1 / wm;
-    return m * (((u0 + u1) / ((u0 * e1) + (u1 * e0))) * e0 * e1);
+    return slope;
 }
 
+/* One-sided three-point end slope, shape-preserving (Moler, "Numerical
+ * Computing with MATLAB", pchip): h0, h1 the first two intervals, d0, d1 their
+ * secant slopes. */
 static double pchip_end_slope(double h0, double h1, double d0, double d1)
 {
     double s = ((((2.0 * h0) + h1) * d0) - (h0 * d1)) / (h0 + h1);
     if (sign_of(s) != sign_of(d0)) {
         s = 0.0;
-    } else if (sign_of(d0) != sign_of(d1) && fabs(s) > fabs(3.0 * d0)) {
+    } else if ((sign_of(d0) != sign_of(d1)) && (fabs(s) > fabs(3.0 * d0))) {
         s = 3.0 * d0;
+    } else {
+        /* the three-point slope is kept */
     }
     return s;
 }
 
-ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
-                                   const double *values, size_t m,
-                                   double *slopes)
+/* pchip slopes of the m value columns over the checked grid (n_grid >= 2):
+ * the secant for two points, else Fritsch-Butland inside and the one-sided
+ * three-point slope at both ends. */
+static void pchip_fill_slopes(const double *grid, size_t n_grid,
+                              const double *values, size_t m, double *slopes)
 {
     size_t k;
     size_t j;
-    ogk_status st;
 
-    if ((values == NULL) || (slopes == NULL)) {
-        return OGK_E_NULL;
-    }
-    if (m == 0u) {
-        return OGK_E_DIM;
-    }
-    st = ogk_interp_check_grid(grid, n_grid);
-    if (st != OGK_OK) {
-        return st;
-    }
-    for (k = 0u; k < (n_grid * m); ++k) {
-        if (!isfinite(values[k])) {
-            return OGK_E_NONFINITE;
-        }
-    }
     for (j = 0u; j < m; ++j) {
         if (n_grid == 2u) {
             const double d = (values[m + j] - values[j]) / (grid[1] - grid[0]);
@@ -211,48 +203,63 @@ ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
             slopes[(n * m) + j] = pchip_end_slope(h0, h1, d0, d1);
         }
     }
-    /* Finite grid and values can still give an infinite secant (a value
-     * step near DBL_MAX, or one over a subnormal grid step): reported, never
-     * handed on as a slope. */
-    for (k = 0u; k < (n_grid * m); ++k) {
-        if (!isfinite(slopes[k])) {
-            return OGK_E_RANGE;
+}
+
+ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
+                                   const double *values, size_t m,
+                                   double *slopes)
+{
+    ogk_status st;
+
+    if ((values == NULL) || (slopes == NULL)) {
+        st = OGK_E_NULL;
+    } else if (m == 0u) {
+        st = OGK_E_DIM;
+    } else {
+        st = ogk_interp_check_grid(grid, n_grid);
+    }
+    if ((st == OGK_OK) && (!ogk_i_all_finite(values, n_grid * m))) {
+        st = OGK_E_NONFINITE;
+    }
+    if (st == OGK_OK) {
+        pchip_fill_slopes(grid, n_grid, values, m, slopes);
+        /* Finite grid and values can still give an infinite secant (a value
+         * step near DBL_MAX, or one over a subnormal grid step): reported, never
+         * handed on as a slope. */
+        if (!ogk_i_all_finite(slopes, n_grid * m)) {
+            st = OGK_E_RANGE;
         }
     }
-    return OGK_OK;
+    return st;
 }
 
 ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
                             const double *values, const double *slopes,
                             size_t m, double tau, double *out) /* NOLINT(bugprone-easily-swappable-parameters): order of the public header (grid, size, values, ...), checked by the unit tests and pytest */
 {
-    size_t k;
-    size_t j;
-    double h;
-    double s;
-    double h00, h10, h01, h11;
+    size_t k = 0u;
     ogk_status st;
 
     if ((values == NULL) || (slopes == NULL) || (out == NULL)) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if (m == 0u) {
+        st = OGK_E_DIM;
+    } else {
+        st = ogk_interp_locate(grid, n_grid, tau, &k);
     }
-    if (m == 0u) {
-        return OGK_E_DIM;
+    if (st == OGK_OK) {
+        const double h = grid[k + 1u] - grid[k];
+        const double s = (tau - grid[k]) / h;
+        /* Cubic Hermite basis on [0, 1]. */
+        const double h00 = (1.0 + (2.0 * s)) * (1.0 - s) * (1.0 - s);
+        const double h10 = s * (1.0 - s) * (1.0 - s);
+        const double h01 = s * s * (3.0 - (2.0 * s));
+        const double h11 = s * s * (s - 1.0);
+        size_t j;
+        for (j = 0u; j < m; ++j) {
+            out[j] = (h00 * values[(k * m) + j]) + (h10 * h * slopes[(k * m) + j]) +
+                     (h01 * values[((k + 1u) * m) + j]) + (h11 * h * slopes[((k + 1u) * m) + j]);
+        }
     }
-    st = ogk_interp_locate(grid, n_grid, tau, &k);
-    if (st != OGK_OK) {
-        return st;
-    }
-    h = grid[k + 1u] - grid[k];
-    s = (tau - grid[k]) / h;
-    /* Cubic Hermite basis on [0, 1]. */
-    h00 = (1.0 + (2.0 * s)) * (1.0 - s) * (1.0 - s);
-    h10 = s * (1.0 - s) * (1.0 - s);
-    h01 = s * s * (3.0 - (2.0 * s));
-    h11 = s * s * (s - 1.0);
-    for (j = 0u; j < m; ++j) {
-        out[j] = (h00 * values[(k * m) + j]) + (h10 * h * slopes[(k * m) + j]) +
-                 (h01 * values[((k + 1u) * m) + j]) + (h11 * h * slopes[((k + 1u) * m) + j]);
-    }
-    return OGK_OK;
+    return st;
 }
