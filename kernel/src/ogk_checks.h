@@ -14,13 +14,14 @@
 /* true when v[0..n-1] are all finite (n = 0: true). */
 static inline bool ogk_i_all_finite(const double *v, size_t n)
 {
+    bool finite = true;
     size_t i;
-    for (i = 0u; i < n; ++i) {
+    for (i = 0u; (i < n) && finite; ++i) {
         if (!isfinite(v[i])) {
-            return false;
+            finite = false;
         }
     }
-    return true;
+    return finite;
 }
 
 /* angle + 2 pi k in (-pi, pi], angle finite. fmod is exact, so an angle
@@ -33,6 +34,8 @@ static inline double ogk_i_wrap_pi(double angle)
         w -= OGK_I_TWO_PI;
     } else if (w <= -OGK_I_PI) {
         w += OGK_I_TWO_PI;
+    } else {
+        /* already in (-pi, pi] */
     }
     return w;
 }
