@@ -51,3 +51,19 @@ def statistics(errors: Mapping[str, NDArray[np.float64]], ok: NDArray[np.bool_]
     mean = {k: float(np.mean(v[ok])) if ok.any() else float("nan") for k, v in errors.items()}
     std = {k: float(np.std(v[ok], ddof=1)) if ok.sum() > 1 else 0.0 for k, v in errors.items()}
     return mean, std
+
+
+def tail_statistics(errors: Mapping[str, NDArray[np.float64]], ok: NDArray[np.bool_],
+                    reference: Mapping[str, float] | None = None
+                    ) -> tuple[dict[str, float], dict[str, float]]:
+    """99.9th percentile of |error - reference| and the largest |error - reference| over the runs
+    in `ok` (reference 0 unless given, e.g. the nominal for a free final time). A reviewer reads the
+    worst run, not the sigma."""
+    ref = reference or {}
+    p999: dict[str, float] = {}
+    worst: dict[str, float] = {}
+    for k, v in errors.items():
+        dev = np.abs(v[ok] - ref.get(k, 0.0))
+        p999[k] = float(np.percentile(dev, 99.9)) if dev.size else float("nan")
+        worst[k] = float(np.max(dev)) if dev.size else float("nan")
+    return p999, worst

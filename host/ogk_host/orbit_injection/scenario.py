@@ -205,6 +205,9 @@ class Acceptance:
     velocity_error_m_s: float       #: each of |dv_rf|, |dv_tf|, |dv_nf|
 
 
+CUTOFFS = ("predicted", "energy")  #: engine cut-off decision (EndGame.cutoff)
+
+
 @dataclasses.dataclass(frozen=True)
 class EndGame:
     """Guard of the VTD-NOG law near cut-off (docs/vtd-nog.md, "End-game"); kernel ogk_nog_config_t."""
@@ -212,6 +215,20 @@ class EndGame:
     dtf_max_s: float          #: bound on |dt_f|
     du_max_rad: float         #: bound on the angle between corrected and nominal thrust directions
     freeze_time_to_go_s: float | None  #: no new correction below this nominal time to go; None: derived
+    #: "predicted": cut-off at the time predicted at the last sample (eq. 32, the paper);
+    #: "energy": kernel ogk_cutoff, cut when the orbital energy reaches the target's (beyond the paper)
+    cutoff: str = "predicted"
+    cutoff_arm_s: float | None = None         #: energy cut-off armed this long before the prediction; None: Delta t_S
+    cutoff_extend_max_s: float | None = None  #: latest cut-off after the prediction; None: 2 Delta t_S
+    fine_sample_interval_s: float | None = None  #: sampling interval near the end; None: Delta t_S throughout
+    fine_window_s: float = 0.0                #: fine sampling while the predicted time to go is at most this
+
+    def arm_s(self, sample_interval_s: float) -> float:
+        return self.cutoff_arm_s if self.cutoff_arm_s is not None else sample_interval_s
+
+    def extend_max_s(self, sample_interval_s: float) -> float:
+        return (self.cutoff_extend_max_s if self.cutoff_extend_max_s is not None
+                else 2.0 * sample_interval_s)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -301,7 +318,15 @@ def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
     end_game = EndGame(dtf_max_s=eg_s.number("dtf_max_s", positive=True),
                        du_max_rad=eg_s.number("du_max_rad", positive=True, hi=math.pi),
                        freeze_time_to_go_s=eg_s.number("freeze_time_to_go_s", None,
-                                                       nonnegative=True))
+                                                       nonnegative=True),
+                       cutoff=eg_s.text("cutoff", "predicted", choices=CUTOFFS),
+                       cutoff_arm_s=eg_s.number("cutoff_arm_s", None, nonnegative=True),
+                       cutoff_extend_max_s=eg_s.number("cutoff_extend_max_s", None,
+                                                       nonnegative=True),
+                       fine_sample_interval_s=eg_s.number("fine_sample_interval_s", None,
+                                                          positive=True,
+                                                          hi=sample_interval),
+                       fine_window_s=eg_s.number("fine_window_s", 0.0, nonnegative=True))
     eg_s.finish()
     guid_s.finish()
 

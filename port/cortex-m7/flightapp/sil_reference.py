@@ -40,7 +40,7 @@ def main(argv: list[str]) -> int:
     gens = [np.random.default_rng(i) for i in range(n)]
     guidance = KernelNogGuidance(GuidanceSetup(scn, ref, draws.run_id), bundle)
     res = simulate(scn, ref, draws, gens, DispersionSwitches.none(), guidance,
-                   SilSettings(truth="point-mass"))
+                   SilSettings(truth="point-mass", end_game="paper"))  # as the flight app flies
     vc = float(np.sqrt(scn.mu_m3_s2 / scn.target_radius_m))
     for i, name in enumerate(RUNS):
         r, _, phi, vr, vt, vn = res.final_state[i]

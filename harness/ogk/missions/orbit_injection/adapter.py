@@ -76,6 +76,9 @@ def add_mc_arguments(p: argparse.ArgumentParser) -> None:
                    help="CPD gain set (default: the scenario's flown set)")
     p.add_argument("--cpd-pointing", choices=("body", "euler"), default="body",
                    help="CPD pitch/yaw error: body-axis (default) or eqs. 45-46 literally")
+    p.add_argument("--paper-end-game", action="store_true",
+                   help="fly the paper's end-game (cut-off predicted at the samples, eq. 32; "
+                        "Delta t_S throughout) instead of the scenario's [guidance.end_game]")
     p.add_argument("--resume", action="store_true",
                    help="keep the runs already in <json>.runs.jsonl (same scenario, seed and "
                         "settings) and fly only the others: the result of an uninterrupted run")
@@ -139,7 +142,8 @@ def mc(header: ScenarioHeader, args: argparse.Namespace) -> int:
         tables, factory = None, NominalOpenLoopGuidance
     settings = SilSettings(control_rate_hz=args.control_rate, truth_substeps=args.truth_substeps,
                            history_runs=args.history_runs if args.plots else 0,
-                           cpd_gains=args.cpd_gains, cpd_pointing=args.cpd_pointing)
+                           cpd_gains=args.cpd_gains, cpd_pointing=args.cpd_pointing,
+                           end_game="paper" if args.paper_end_game else "scenario")
     res = run_campaign(scn, runs=args.runs, seed=args.seed, workers=args.workers,
                        dispersions=not args.no_dispersions, truth=args.truth,
                        guidance_factory=factory, guidance_name=args.guidance, settings=settings,

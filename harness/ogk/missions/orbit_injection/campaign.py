@@ -29,7 +29,8 @@ from ogk_host.errors import TableError
 from ogk_host.orbit_injection.scenario import LeoGeoScenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
-from ogk.sil.criteria import apply_tolerances, failure_list, failure_reasons, statistics
+from ogk.sil.criteria import (apply_tolerances, failure_list, failure_reasons, statistics,
+                              tail_statistics)
 from ogk.sil.outputs import write_atomic
 from ogk.sil.report import finite_or_none
 from ogk.sil.runlog import RunLog
@@ -38,7 +39,7 @@ from ogk.sil.runner import CampaignInterrupted, Watchdog, run_chunks, run_ids_fo
 from .dispersions import DispersionSwitches, RunDraws, draw_runs
 from .guidance import GuidanceFactory, GuidanceSetup
 from .nominal_ref import NominalReference, nominal_reference
-from .sil import ERROR_KEYS, RATE_KEYS, History, SilSettings, simulate
+from .sil import ERROR_KEYS, RATE_KEYS, EndGamePlan, History, SilSettings, simulate
 
 if TYPE_CHECKING:
     from .nog_guidance import NogTables
@@ -111,6 +112,11 @@ class CampaignResult:
         """Sample standard deviation (ddof = 1; 0 for a single run)."""
         return statistics(self.errors, self.flown)[1]
 
+    def tails(self) -> tuple[dict[str, float], dict[str, float]]:
+        """(99.9th percentile, largest) of |error| per quantity over the flown runs; for t_f, of
+        |t_f - mean t_f| (the final time is free)."""
+        return tail_statistics(self.errors, self.flown, {"tf_s": self.mean()["tf_s"]})
+
     def max_rates_overall(self) -> dict[str, float]:
         """Largest actuator rate over all flown runs (NaN for the point-mass truth)."""
         ok = self.flown
@@ -132,7 +138,10 @@ class CampaignResult:
                          "truth_step_s": self.settings.truth_step_s,
                          "guidance_sample_s": scn.sample_interval_s,
                          "cpd_gains": self.settings.cpd_gains or scn.cpd.flown,
-                         "cpd_pointing": self.settings.cpd_pointing},
+                         "cpd_pointing": self.settings.cpd_pointing,
+                         "end_game": dataclasses.asdict(EndGamePlan.of(scn, self.settings))},
+            "p99_9_abs": self.tails()[0],
+            "max_abs": self.tails()[1],
             "failures": self.n_failures,
             "failure_reasons": self.failure_reasons(),
             "mean": self.mean(),
@@ -202,7 +211,9 @@ class _Job:
 
     def __call__(self, run_ids: NDArray[np.int64]) -> tuple[RunDraws, Any]:
         draws, gens = draw_runs(self.scenario, self.seed, run_ids, self.switches)
-        guidance = self.guidance_factory(GuidanceSetup(self.scenario, self.reference, draws.run_id))
+        plan = EndGamePlan.of(self.scenario, self.settings)
+        guidance = self.guidance_factory(GuidanceSetup(self.scenario, self.reference, draws.run_id,
+                                                       plan.fine_interval_s))
         res = simulate(self.scenario, self.reference, draws, gens, self.switches, guidance,
                        self.settings)
         return draws, res
@@ -240,7 +251,8 @@ def run_key(scenario: LeoGeoScenario, seed: int, truth: str, guidance: str,
             "settings": {"control_rate_hz": settings.control_rate_hz,
                          "truth_substeps": settings.truth_substeps, "t_max_s": settings.t_max_s,
                          "cpd_gains": settings.cpd_gains or scenario.cpd.flown,
-                         "cpd_pointing": settings.cpd_pointing},
+                         "cpd_pointing": settings.cpd_pointing,
+                         "end_game": settings.end_game},
             "tables_sha256": None if tables is None else tables.sha256}
 
 

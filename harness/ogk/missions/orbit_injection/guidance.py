@@ -37,6 +37,8 @@ class GuidanceSetup:
     scenario: LeoGeoScenario
     reference: NominalReference
     run_ids: NDArray[np.int64]
+    #: sampling interval at the end of the burn when the end-game samples faster (sil.EndGamePlan)
+    last_interval_s: float | None = None
 
     @property
     def n_runs(self) -> int:
@@ -47,7 +49,7 @@ class GuidanceSetup:
 class Guidance(Protocol):
     """Vectorised guidance (see module doc)."""
 
-    def sample(self, t: F64, nav: F64) -> None: ...
+    def sample(self, t: F64, nav: F64, due: BoolArray | None = None) -> None: ...
 
     def command(self, t: F64) -> tuple[F64, F64]: ...
 
@@ -72,7 +74,7 @@ class NominalOpenLoopGuidance:
         self._cutoff = np.full(setup.n_runs, cut)
         self.samples = 0
 
-    def sample(self, t: F64, nav: F64) -> None:
+    def sample(self, t: F64, nav: F64, due: BoolArray | None = None) -> None:
         self.samples += 1
 
     def command(self, t: F64) -> tuple[F64, F64]:

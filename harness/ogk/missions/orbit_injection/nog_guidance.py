@@ -69,14 +69,16 @@ def load_table(bundle: Path) -> object:
     return table
 
 
-def nog_config(scn: LeoGeoScenario, table: object) -> object:
-    """ogk_nog_config_t from the scenario's guidance block (the end-game bounds included)."""
+def nog_config(scn: LeoGeoScenario, table: object, last_interval_s: float | None = None) -> object:
+    """ogk_nog_config_t from the scenario's guidance block (the end-game bounds included).
+    `last_interval_s`: the sampling interval at the end of the burn, which sets the terminating
+    sample of eq. (32) (default: the scenario's Delta t_S, sampled throughout)."""
     cfg = ffi.new("ogk_nog_config_t *")
     status = lib.ogk_nog_config_default(cfg)
     if status != lib.OGK_OK:
         raise KernelError(status, "ogk_nog_config_default")
     cfg.table = table
-    cfg.sample_interval_s = scn.sample_interval_s
+    cfg.sample_interval_s = scn.sample_interval_s if last_interval_s is None else last_interval_s
     cfg.dtf_max_s = scn.end_game.dtf_max_s
     cfg.du_max_rad = scn.end_game.du_max_rad
     cfg.tau_freeze = derive.effective_settings(scn).tau_freeze(float(table.t_f_star_s))
@@ -91,7 +93,7 @@ class KernelNogGuidance:
     def __init__(self, setup: GuidanceSetup, bundle: Path) -> None:
         n = setup.n_runs
         self._table = load_table(bundle)
-        self._cfg = nog_config(setup.scenario, self._table)
+        self._cfg = nog_config(setup.scenario, self._table, setup.last_interval_s)
         self._ctx = ffi.new("ogk_nog_t[]", n)
         status = np.zeros(n, dtype=np.int32)
         rc = lib.ogk_sil_nog_init_batch(self._ctx, n, self._cfg,
@@ -120,11 +122,15 @@ class KernelNogGuidance:
     def t_f_star_s(self) -> float:
         return float(self._table.t_f_star_s)
 
-    def sample(self, t: F64, nav: F64) -> None:
+    def sample(self, t: F64, nav: F64, due: BoolArray | None = None) -> None:
+        """Samples the runs `due` (default all) at t (N,) with nav (N, 6)."""
         t = np.ascontiguousarray(t, dtype=np.float64)
         nav = np.ascontiguousarray(nav, dtype=np.float64)
         # Runs already cut off (t frozen at their cut-off) are left alone.
-        active = np.ascontiguousarray((t < self._cutoff) & ~self._terminating, dtype=np.uint8)
+        take = (t < self._cutoff) & ~self._terminating
+        if due is not None:
+            take &= due
+        active = np.ascontiguousarray(take, dtype=np.uint8)
         lib.ogk_sil_nog_sample_batch(
             self._ctx, self._n, ffi.from_buffer("uint8_t[]", active),
             ffi.from_buffer("double[]", t), ffi.from_buffer("double[]", nav),

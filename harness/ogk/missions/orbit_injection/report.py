@@ -7,7 +7,7 @@ from ogk.sil.report import fmt as _fmt
 from ogk.sil.report import table as _table
 
 from .campaign import CampaignResult, eq47_bounds, tolerances
-from .sil import ERROR_KEYS, RATE_KEYS
+from .sil import ERROR_KEYS, RATE_KEYS, EndGamePlan
 
 LABELS = {
     "dr_f_m": "dr_f [m]", "dphi_f_deg": "dphi_f [deg]", "dvr_f_mps": "dv_rf [m/s]",
@@ -15,6 +15,14 @@ LABELS = {
     "Mx_dot_Nmps": "max |dM_x/dt| [N m/s]", "Dy_dot_degps": "max |dDelta_y/dt| [deg/s]",
     "Dz_dot_degps": "max |dDelta_z/dt| [deg/s]",
 }
+
+
+def _end_game_text(res: CampaignResult) -> str:
+    plan = EndGamePlan.of(res.scenario, res.settings)
+    fine = (f" ({plan.fine_interval_s:g} s in the last {plan.fine_window_s:g} s)"
+            if plan.fine_interval_s is not None else "")
+    cut = "energy (ogk_cutoff)" if plan.energy_cutoff else "predicted at the samples (eq. 32)"
+    return f"{fine}; cut-off {cut}"
 
 
 def format_report(res: CampaignResult) -> str:
@@ -29,7 +37,7 @@ def format_report(res: CampaignResult) -> str:
              + (f" (paper: {paper.min_time_s} s)" if paper else "") + "; "
              f"control {res.settings.control_rate_hz:g} Hz, truth step "
              f"{res.settings.truth_step_s * 1e3:g} ms, guidance every "
-             f"{res.scenario.sample_interval_s:g} s",
+             f"{res.scenario.sample_interval_s:g} s" + _end_game_text(res),
              f"failures: {res.n_failures}"
              + (f" {res.failure_reasons()}" if res.n_failures else "")
              + "  (criterion: kernel error, truth validity, or |error| above "
@@ -46,18 +54,22 @@ def format_report(res: CampaignResult) -> str:
     if res.n_failures:
         lines.append("")
     mean, std = res.mean(), res.std()
+    p999, worst = res.tails()
     if res.switches.any:
         if paper is not None:
             p_mean, p_std = dict(zip(ERROR_KEYS, paper.table7_mean)), dict(zip(ERROR_KEYS, paper.table7_sigma))
             lines.append(f"Injection errors vs {scn.source}, Table 7 ({paper.monte_carlo_runs} runs)")
-            rows = [[LABELS[k], _fmt(mean[k]), _fmt(p_mean[k]), _fmt(std[k]), _fmt(p_std[k])]
+            rows = [[LABELS[k], _fmt(mean[k]), _fmt(p_mean[k]), _fmt(std[k]), _fmt(p_std[k]),
+                     _fmt(p999[k]), _fmt(worst[k]), _fmt(worst[k] / p_std[k]) if p_std[k] else "-"]
                     for k in ERROR_KEYS]
-            lines += _table(["quantity", "mean (ours)", "mean (paper)", "std (ours)", "std (paper)"],
-                            rows)
+            lines += _table(["quantity", "mean (ours)", "mean (paper)", "std (ours)", "std (paper)",
+                             "p99.9 |err|", "max |err|", "max/paper std"], rows)
         else:
-            lines.append("Injection errors (mean and standard deviation over the flown runs)")
-            lines += _table(["quantity", "mean", "std"],
-                            [[LABELS[k], _fmt(mean[k]), _fmt(std[k])] for k in ERROR_KEYS])
+            lines.append("Injection errors (mean, standard deviation and tails over the flown runs)")
+            lines += _table(["quantity", "mean", "std", "p99.9 |err|", "max |err|"],
+                            [[LABELS[k], _fmt(mean[k]), _fmt(std[k]), _fmt(p999[k]), _fmt(worst[k])]
+                             for k in ERROR_KEYS])
+        lines.append("(t_f: |t_f - mean t_f|; p99.9 and max over the flown runs)")
     else:
         single = mean if res.runs >= 1 else {}
         if paper is not None:

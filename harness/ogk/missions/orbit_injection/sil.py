@@ -24,6 +24,7 @@ from ogk_host.orbit_injection.scenario import LeoGeoScenario
 
 from . import truth as tm
 from .attitude import AttitudeControl, CpdBatchControl
+from .cutoff import EnergyCutoff
 from .dispersions import ActuationNoise, DispersionSwitches, RunDraws
 from .guidance import Guidance
 from .nominal_ref import NominalReference, circular_speed
@@ -33,7 +34,8 @@ F64 = NDArray[np.float64]
 ERROR_KEYS = ("dr_f_m", "dphi_f_deg", "dvr_f_mps", "dvt_f_mps", "dvn_f_mps", "tf_s")
 RATE_KEYS = ("Mx_dot_Nmps", "Dy_dot_degps", "Dz_dot_degps")
 TRUTHS = ("6dof", "point-mass")
-FAILURE_REASONS = ("nan", "guidance", "attitude_control", "no_termination")
+FAILURE_REASONS = ("nan", "guidance", "cutoff", "attitude_control", "no_termination")
+END_GAMES = ("scenario", "paper")
 HISTORY_KEYS = ("r_m", "xi_rad", "phi_rad", "vr_mps", "vt_mps", "vn_mps", "alpha_c_rad",
                 "beta_c_rad", "Mx_Nm", "Dy_rad", "Dz_rad", "psi_rad", "theta_rad", "phi_roll_rad",
                 "psi_c_rad", "theta_c_rad", "phi_c_rad", "alpha_a_rad", "beta_a_rad")
@@ -51,10 +53,32 @@ class SilSettings:
     history_every: int = 5            #: control steps between history samples (0.1 s)
     cpd_gains: str | None = None      #: "printed" / "rederived" (default: scenario's flown set)
     cpd_pointing: str = "body"        #: "body" (flown) or "euler" (eqs. 45-46 literally)
+    #: "scenario": the scenario's [guidance.end_game] cut-off and end sampling; "paper": cut-off
+    #: predicted at the samples (eq. 32) and Delta t_S throughout, whatever the scenario says
+    end_game: str = "scenario"
 
     @property
     def truth_step_s(self) -> float:
         return 1.0 / (self.control_rate_hz * self.truth_substeps)
+
+
+@dataclasses.dataclass(frozen=True)
+class EndGamePlan:
+    """How a run ends (docs/vtd-nog.md, "End-game"): the cut-off decision and the sampling."""
+
+    energy_cutoff: bool               #: kernel ogk_cutoff decides the cut-off between samples
+    fine_interval_s: float | None     #: sampling interval near the end (None: Delta t_S throughout)
+    fine_window_s: float              #: ... while the predicted time to go is at most this
+
+    @classmethod
+    def of(cls, scn: LeoGeoScenario, settings: "SilSettings") -> "EndGamePlan":
+        if settings.end_game not in END_GAMES:
+            raise ValueError(f"end_game must be one of {END_GAMES}, got {settings.end_game!r}")
+        eg = scn.end_game
+        if settings.end_game == "paper":
+            return cls(False, None, 0.0)
+        fine = eg.fine_sample_interval_s if eg.fine_window_s > 0.0 else None
+        return cls(eg.cutoff == "energy", fine, eg.fine_window_s)
 
 
 @dataclasses.dataclass
@@ -143,6 +167,14 @@ def simulate(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
     if abs(sample_every - round(sample_every)) > 1e-9 or round(sample_every) < 1:
         raise ValueError("the guidance sampling interval must be a multiple of the control period")
     sample_every = int(round(sample_every))
+    plan = EndGamePlan.of(scn, settings)
+    fine_every = sample_every
+    if plan.fine_interval_s is not None:
+        fine = plan.fine_interval_s / ctrl_dt
+        if abs(fine - round(fine)) > 1e-9 or round(fine) < 1:
+            raise ValueError("the end-game sampling interval must be a multiple of the control period")
+        fine_every = int(round(fine))
+    energy_cut = EnergyCutoff(scn, n, ctrl_dt) if plan.energy_cutoff else None
     t_max = settings.t_max_s if settings.t_max_s is not None else 1.5 * ref.tf_s + 20.0
     vc = circular_speed(scn)
 
@@ -189,6 +221,7 @@ def simulate(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
             tm.rhs_point_mass(params, t, xs, a_c, b_c, factor(t), out)
     rk4 = _Rk4(x.shape)
     cutoff = np.full(n, np.inf)
+    predicted = np.full(n, np.inf)
     j = 0
     control_steps = 0
     with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
@@ -202,14 +235,25 @@ def simulate(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
             if j % settings.truth_substeps == 0:          # control sample
                 k = j // settings.truth_substeps
                 control_steps += 1
-                if k % sample_every == 0:
-                    guidance.sample(t_run, np.ascontiguousarray(x[:6].T))
+                due = np.full(n, k % sample_every == 0)
+                if plan.fine_interval_s is not None and k % fine_every == 0:
+                    # per run: the schedule of one run never depends on the others in its chunk
+                    due |= (predicted - t_run) <= plan.fine_window_s
+                if due.any():
+                    guidance.sample(t_run, np.ascontiguousarray(x[:6].T), due)
                     failed_fn = getattr(guidance, "failed", None)
                     if failed_fn is not None:
                         fail(np.asarray(failed_fn(), dtype=bool) & active, "guidance")
-                cutoff = np.asarray(guidance.cutoff_time(), dtype=np.float64)
-                fail(np.isnan(cutoff) & ~done, "guidance")
+                predicted = np.asarray(guidance.cutoff_time(), dtype=np.float64)
+                fail(np.isnan(predicted) & ~done, "guidance")
                 active = ~done
+                cutoff = predicted
+                if energy_cut is not None:
+                    known = active & np.isfinite(predicted)
+                    cutoff = np.where(known, energy_cut.step(known, t_run, x[:6].T, predicted),
+                                      predicted)
+                    fail(energy_cut.failed() & known, "cutoff")
+                    active = ~done
                 alpha_c, beta_c = (np.asarray(v, dtype=np.float64)
                                    for v in guidance.command(t_run))
                 fail(~(np.isfinite(alpha_c) & np.isfinite(beta_c)) & active, "guidance")
