@@ -11,18 +11,20 @@ ogk_status ogk_crc32_update(uint32_t *crc, const uint8_t *data, size_t len)
         0xEDB88320u, 0xF00F9344u, 0xD6D6A3E8u, 0xCB61B38Cu,
         0x9B64C2B0u, 0x86D3D2D4u, 0xA00AE278u, 0xBDBDF21Cu,
     };
-    uint32_t c;
-    size_t i;
+    ogk_status st;
 
     if ((crc == NULL) || ((data == NULL) && (len > 0u))) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else {
+        uint32_t c = ~(*crc);
+        size_t i;
+        for (i = 0u; i < len; ++i) {
+            c ^= (uint32_t)data[i];
+            c = (c >> 4) ^ nibble_crc[c & 0x0Fu];
+            c = (c >> 4) ^ nibble_crc[c & 0x0Fu];
+        }
+        *crc = ~c;
+        st = OGK_OK;
     }
-    c = ~(*crc);
-    for (i = 0u; i < len; ++i) {
-        c ^= (uint32_t)data[i];
-        c = (c >> 4) ^ nibble_crc[c & 0x0Fu];
-        c = (c >> 4) ^ nibble_crc[c & 0x0Fu];
-    }
-    *crc = ~c;
-    return OGK_OK;
+    return st;
 }
