@@ -7,15 +7,17 @@
 
 ogk_status ogk_wrap_pi(double angle, double *wrapped)
 {
+    ogk_status st;
+
     if (wrapped == NULL) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else if (!isfinite(angle)) {
+        st = OGK_E_NONFINITE;
+    } else if (fabs(angle) > OGK_ANGLE_LIMIT) {
+        st = OGK_E_RANGE;
+    } else {
+        *wrapped = ogk_i_wrap_pi(angle);
+        st = OGK_OK;
     }
-    if (!isfinite(angle)) {
-        return OGK_E_NONFINITE;
-    }
-    if (fabs(angle) > OGK_ANGLE_LIMIT) {
-        return OGK_E_RANGE;
-    }
-    *wrapped = ogk_i_wrap_pi(angle);
-    return OGK_OK;
+    return st;
 }
