@@ -32,15 +32,18 @@ ogk_status ogk_status_name(ogk_status code, const char **name)
         "OGK_E_ALIGN",
         "OGK_E_TABLE_STALE",
     };
+    ogk_status st;
+
     if (name == NULL) {
-        return OGK_E_NULL;
-    }
-    /* Through unsigned: a negative code wraps to a large index, and the
-     * comparison is meaningful whether the enum is int or (AAPCS) a byte. */
-    if ((unsigned)code >= (unsigned)OGK_STATUS_COUNT) {
+        st = OGK_E_NULL;
+    } else if ((unsigned)code >= (unsigned)OGK_STATUS_COUNT) {
+        /* Through unsigned: a negative code wraps to a large index, and the
+         * comparison is meaningful whether the enum is int or (AAPCS) a byte. */
         *name = "OGK_E_UNKNOWN";
-        return OGK_E_RANGE;
+        st = OGK_E_RANGE;
+    } else {
+        *name = names[(unsigned)code];
+        st = OGK_OK;
     }
-    *name = names[(unsigned)code];
-    return OGK_OK;
+    return st;
 }
