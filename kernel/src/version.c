@@ -5,9 +5,13 @@
 
 ogk_status ogk_version(const char **text)
 {
+    ogk_status st;
+
     if (text == NULL) {
-        return OGK_E_NULL;
+        st = OGK_E_NULL;
+    } else {
+        *text = OGK_VERSION_STRING;
+        st = OGK_OK;
     }
-    *text = OGK_VERSION_STRING;
-    return OGK_OK;
+    return st;
 }
