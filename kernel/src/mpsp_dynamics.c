@@ -119,43 +119,48 @@ ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int
     double gx = 0.0;
     double gy = 0.0;
     double gz = 0.0;
+    ogk_status st = OGK_OK;
 
     if (!(m > 0.0)) {
-        return OGK_E_CALLBACK; /* mass depleted: eq. (16) undefined */
-    }
-    if (dyn->mu != 0.0) {
+        st = OGK_E_CALLBACK; /* mass depleted: eq. (16) undefined */
+    } else if (dyn->mu != 0.0) {
         const double r2 = (x[0] * x[0]) + (x[1] * x[1]) + (x[2] * x[2]);
         const double k = -dyn->mu / (r2 * sqrt(r2));
         if (!(r2 > 0.0)) {
-            return OGK_E_CALLBACK;
+            st = OGK_E_CALLBACK;
+        } else {
+            gx = k * x[0];
+            gy = k * x[1];
+            gz = k * x[2];
         }
-        gx = k * x[0];
-        gy = k * x[1];
-        gz = k * x[2];
-    }
-    xdot[0] = x[3];
-    xdot[1] = x[4];
-    xdot[2] = x[5];
-    if (mode == 1) {
-        const double lam = norm3(u);
-        double a;
-        if (!(lam > 0.0)) {
-            return OGK_E_CALLBACK; /* thrust direction undefined (eq. 8) */
-        }
-        a = dyn->thrust / (m * lam);
-        xdot[3] = gx - (a * u[0]);
-        xdot[4] = gy - (a * u[1]);
-        xdot[5] = gz - (a * u[2]);
-        xdot[6] = -dyn->thrust / dyn->c_exhaust;
-        xdot[7] = -dyn->thrust * lam / (m * m);
     } else {
-        xdot[3] = gx;
-        xdot[4] = gy;
-        xdot[5] = gz;
-        xdot[6] = 0.0;
-        xdot[7] = 0.0;
+        /* no central body (mu = 0): no gravity */
     }
-    return OGK_OK;
+    if (st == OGK_OK) {
+        xdot[0] = x[3];
+        xdot[1] = x[4];
+        xdot[2] = x[5];
+        if (mode == 1) {
+            const double lam = norm3(u);
+            if (!(lam > 0.0)) {
+                st = OGK_E_CALLBACK; /* thrust direction undefined (eq. 8) */
+            } else {
+                const double a = dyn->thrust / (m * lam);
+                xdot[3] = gx - (a * u[0]);
+                xdot[4] = gy - (a * u[1]);
+                xdot[5] = gz - (a * u[2]);
+                xdot[6] = -dyn->thrust / dyn->c_exhaust;
+                xdot[7] = -dyn->thrust * lam / (m * m);
+            }
+        } else {
+            xdot[3] = gx;
+            xdot[4] = gy;
+            xdot[5] = gz;
+            xdot[6] = 0.0;
+            xdot[7] = 0.0;
+        }
+    }
+    return st;
 }
 
 /* Eq. (10): S = 1 - lambda_m - |lambda_v| c / m. */
@@ -169,24 +174,25 @@ ogk_status mpsp_jacobian(const mpsp_dyn_t *dyn, const double *x, const double *u
 {
     const double m = x[6];
     size_t i;
+    ogk_status st = OGK_OK;
 
     if (!(m > 0.0)) {
-        return OGK_E_CALLBACK;
-    }
-    if (dyn->mu != 0.0) {
+        st = OGK_E_CALLBACK;
+    } else if (dyn->mu != 0.0) {
         const double r2 = (x[0] * x[0]) + (x[1] * x[1]) + (x[2] * x[2]);
-        double k;
-        double k3;
-        size_t j;
         if (!(r2 > 0.0)) {
-            return OGK_E_CALLBACK;
-        }
-        /* G = mu/r^3 (3 r r^T / r^2 - I) */
-        k = dyn->mu / (r2 * sqrt(r2));
-        k3 = 3.0 * k / r2;
-        for (i = 0u; i < 3u; ++i) {
-            for (j = 0u; j < 3u; ++j) {
-                jac->g[(i * 3u) + j] = (k3 * x[i] * x[j]) - ((i == j) ? k : 0.0);
+            st = OGK_E_CALLBACK;
+        } else {
+            double k;
+            double k3;
+            size_t j;
+            /* G = mu/r^3 (3 r r^T / r^2 - I) */
+            k = dyn->mu / (r2 * sqrt(r2));
+            k3 = 3.0 * k / r2;
+            for (i = 0u; i < 3u; ++i) {
+                for (j = 0u; j < 3u; ++j) {
+                    jac->g[(i * 3u) + j] = (k3 * x[i] * x[j]) - ((i == j) ? k : 0.0);
+                }
             }
         }
     } else {
@@ -194,33 +200,37 @@ ogk_status mpsp_jacobian(const mpsp_dyn_t *dyn, const double *x, const double *u
             jac->g[i] = 0.0;
         }
     }
-    jac->thrust = (mode == 1);
-    if (jac->thrust) {
-        const double lam = norm3(u);
-        const double t_m2 = dyn->thrust / (m * m);
-        if (!(lam > 0.0)) {
-            return OGK_E_CALLBACK;
+    if (st == OGK_OK) {
+        jac->thrust = (mode == 1);
+        if (jac->thrust) {
+            const double lam = norm3(u);
+            const double t_m2 = dyn->thrust / (m * m);
+            if (!(lam > 0.0)) {
+                st = OGK_E_CALLBACK;
+            } else {
+                for (i = 0u; i < 3u; ++i) {
+                    jac->e[i] = u[i] / lam;
+                }
+                jac->a_vm = t_m2;
+                jac->a_lm = 2.0 * t_m2 * lam / m;
+                jac->d_v = -dyn->thrust / (m * lam);
+                jac->d_l = -t_m2;
+            }
+        } else {
+            jac->e[0] = 0.0;
+            jac->e[1] = 0.0;
+            jac->e[2] = 0.0;
+            jac->a_vm = 0.0;
+            jac->a_lm = 0.0;
+            jac->d_v = 0.0;
+            jac->d_l = 0.0;
         }
-        for (i = 0u; i < 3u; ++i) {
-            jac->e[i] = u[i] / lam;
-        }
-        jac->a_vm = t_m2;
-        jac->a_lm = 2.0 * t_m2 * lam / m;
-        jac->d_v = -dyn->thrust / (m * lam);
-        jac->d_l = -t_m2;
-    } else {
-        jac->e[0] = 0.0;
-        jac->e[1] = 0.0;
-        jac->e[2] = 0.0;
-        jac->a_vm = 0.0;
-        jac->a_lm = 0.0;
-        jac->d_v = 0.0;
-        jac->d_l = 0.0;
     }
-    return OGK_OK;
+    return st;
 }
 
-ogk_status mpsp_rhs_cb(void *user, double t, const double *x, int mode, double *xdot)
+/* RK4 callbacks of mpsp_rk4_problem: user is the mpsp_dyn_t it was given. */
+static ogk_status mpsp_rhs_cb(void *user, double t, const double *x, int mode, double *xdot)
 {
     mpsp_dyn_t *dyn = (mpsp_dyn_t *)user;
     double u[3] = {0.0, 0.0, 0.0};
@@ -230,17 +240,19 @@ ogk_status mpsp_rhs_cb(void *user, double t, const double *x, int mode, double *
     return mpsp_rhs(dyn, x, u, mode, xdot);
 }
 
-ogk_status mpsp_switch_cb(void *user, double t, const double *x, int mode, double *s)
+static ogk_status mpsp_switch_cb(void *user, double t, const double *x, int mode, double *s)
 {
     mpsp_dyn_t *dyn = (mpsp_dyn_t *)user;
-    double u[3];
+    ogk_status st = OGK_OK;
     (void)mode;
     if (!(x[6] > 0.0)) {
-        return OGK_E_CALLBACK;
+        st = OGK_E_CALLBACK;
+    } else {
+        double u[3];
+        mpsp_control_at(dyn, t, u);
+        *s = mpsp_switch_value(dyn, x, u);
     }
-    mpsp_control_at(dyn, t, u);
-    *s = mpsp_switch_value(dyn, x, u);
-    return OGK_OK;
+    return st;
 }
 
 void mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, mpsp_dyn_t *dyn)

@@ -8,13 +8,23 @@
 #include "ogk/rk4.h"
 #include "ogk_checks.h"
 
-/* Compile-time checks of the limits against the solvers used (C99: a
- * negative array size is an error). */
-typedef char ogk_mpsp_unknowns_fit_minnorm[(OGK_MPSP_MAX_UNKNOWNS <= OGK_LA_MAX_LONG) ? 1 : -1];
-typedef char ogk_mpsp_outputs_fit_minnorm[(OGK_MPSP_NY <= OGK_LA_MAX_N) ? 1 : -1];
-typedef char ogk_mpsp_state_fits_rk4[(OGK_MPSP_NX <= OGK_RK4_MAX_STATE) ? 1 : -1];
-typedef char ogk_mpsp_steps_fit_rk4[(OGK_MPSP_MAX_STEPS <= OGK_RK4_MAX_STEPS) ? 1 : -1];
-typedef char ogk_mpsp_switches_fit_rk4[(OGK_MPSP_MAX_SWITCHES <= OGK_RK4_MAX_SWITCHES) ? 1 : -1];
+/* Compile-time checks of the limits against the solvers used (all plain
+ * integer constants, so the preprocessor evaluates them). */
+#if OGK_MPSP_MAX_UNKNOWNS > OGK_LA_MAX_LONG
+#error "OGK_MPSP_MAX_UNKNOWNS exceeds OGK_LA_MAX_LONG (ogk_minnorm)"
+#endif
+#if OGK_MPSP_NY > OGK_LA_MAX_N
+#error "OGK_MPSP_NY exceeds OGK_LA_MAX_N (ogk_minnorm)"
+#endif
+#if OGK_MPSP_NX > OGK_RK4_MAX_STATE
+#error "OGK_MPSP_NX exceeds OGK_RK4_MAX_STATE"
+#endif
+#if OGK_MPSP_MAX_STEPS > OGK_RK4_MAX_STEPS
+#error "OGK_MPSP_MAX_STEPS exceeds OGK_RK4_MAX_STEPS"
+#endif
+#if OGK_MPSP_MAX_SWITCHES > OGK_RK4_MAX_SWITCHES
+#error "OGK_MPSP_MAX_SWITCHES exceeds OGK_RK4_MAX_SWITCHES"
+#endif
 
 /* Everything the right-hand side of eq. (16) needs; passed to the RK4
  * callbacks as `user`. The control cache holds U at the last time asked
@@ -65,9 +75,7 @@ ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int
 double mpsp_switch_value(const mpsp_dyn_t *dyn, const double *x, const double *u);
 ogk_status mpsp_jacobian(const mpsp_dyn_t *dyn, const double *x, const double *u,
                          int mode, mpsp_jac_t *jac);
-/* RK4 callbacks (user = mpsp_dyn_t *). */
-ogk_status mpsp_rhs_cb(void *user, double t, const double *x, int mode, double *xdot);
-ogk_status mpsp_switch_cb(void *user, double t, const double *x, int mode, double *s);
+/* The RK4 problem of eq. (16) on dyn (its callbacks take user = dyn). */
 void mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, mpsp_dyn_t *dyn);
 
 /* ---- mpsp_sensitivity.c */
