@@ -70,6 +70,11 @@ FIXED = [
      "values[((n - 1u) * m) + j]) / h0", "values[((n - 1u) * m) - j]) / h0",
      "pchip right-end secant of column j > 0 read from the wrong element "
      "(test_interp: test_pchip_end_slopes_of_every_column)"),
+    ("kernel/src/interp.c",
+     "(values[m + j] - values[j]) / (grid[1] - grid[0])",
+     "(values[m - j] - values[j]) / (grid[1] - grid[0])",
+     "pchip slopes of a two-node grid: column j > 0 reads another column "
+     "(test_interp: test_pchip_two_points_every_column)"),
     ("kernel/src/table.c",
      "for (i = 0u; (i < values)", "for (i = 1u; (i < values)",
      "finiteness scan of the payload skips grid[0] "
@@ -90,6 +95,10 @@ EQUIVALENT = [
     ("kernel/src/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", "-",
      "ogk_interp_locate: hi + lo > 1 keeps the loop going past hi - lo = 1, where nothing changes "
      "(and stops it at lo = 0, hi = 1, converged too)"),
+    ("kernel/src/table.c", "(v->entry_len >= OGK_TABLE_MAX_VALUES)", ">=",
+     "check_sizes: at entry_len = OGK_TABLE_MAX_VALUES the next clause, grid_size > MAX / (MAX + 1) "
+     "= 0, gives the same OGK_E_TABLE_SIZE (grid_size >= 1 is checked before); the first clause "
+     "only keeps entry_len + 1 from wrapping"),
     ("kernel/src/interp.c", "for (it = 0u; (it < OGK_INTERP_MAX_SEARCH)", "0u",
      "ogk_interp_locate: 63 instead of 64 bisection steps; 63 halve any range of < 2^63 nodes "
      "(the grid is bounded by OGK_TABLE_MAX_VALUES)"),

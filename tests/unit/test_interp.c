@@ -149,6 +149,25 @@ static void test_pchip_two_points_is_linear(void **state)
     OGK_ASSERT_NEAR(out, 2.6, 1e-15);
 }
 
+/* Two nodes, two quantities: each column's slope is its own secant, (4 - 2)
+ * and (-3 - 10), at both nodes, and the interpolant is each column's line. */
+static void test_pchip_two_points_every_column(void **state)
+{
+    const double grid[2] = {0.0, 1.0};
+    const double values[4] = {2.0, 10.0, 4.0, -3.0};
+    double slopes[4];
+    double out[2];
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 2u, values, 2u, slopes), OGK_OK);
+    OGK_ASSERT_NEAR(slopes[0], 2.0, 0.0);
+    OGK_ASSERT_NEAR(slopes[1], -13.0, 0.0);
+    OGK_ASSERT_NEAR(slopes[2], 2.0, 0.0);
+    OGK_ASSERT_NEAR(slopes[3], -13.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_interp_pchip(grid, 2u, values, slopes, 2u, 0.3, out), OGK_OK);
+    OGK_ASSERT_NEAR(out[0], 2.6, 1e-15);
+    OGK_ASSERT_NEAR(out[1], 10.0 - 13.0 * 0.3, 1e-14);
+}
+
 static void test_locate_edges(void **state)
 {
     const double grid[4] = {0.0, 0.25, 0.5, 1.0};
@@ -237,6 +256,7 @@ int main(void)
         cmocka_unit_test(test_pchip_end_slopes_of_every_column),
         cmocka_unit_test(test_pchip_interpolates_and_preserves_shape),
         cmocka_unit_test(test_pchip_two_points_is_linear),
+        cmocka_unit_test(test_pchip_two_points_every_column),
         cmocka_unit_test(test_locate_edges),
         cmocka_unit_test(test_pchip_end_slope_clamp),
         cmocka_unit_test(test_pchip_tiny_and_huge_secants),
