@@ -13,7 +13,7 @@ Each mutant is applied to a copy of the kernel under BUILD (build/mutants by def
 working tree is never touched), the mutated source recompiled, every C unit test
 (tests/unit/test_*.c, host, gcc -O1, no sanitizers) relinked and run until the first failure,
 crash or time-out (killed). A mutant that does not compile is reported and not counted.
-Prints one line per mutant and the score = killed / (killed + survived); exit status 0 unless
+Prints one line per mutant (file:line:column of a sampled one) and the score = killed / (killed + survived); exit status 0 unless
 the unmutated tree fails its own tests (2), a fixed mutant's fragment is no longer found once or
 is found more than once (3: update FIXED), or --min-score is given and not reached (1).
 """
@@ -258,13 +258,13 @@ def main():
             continue
         k, e = found[0].start(), found[0].end()
         no = t.count("\n", 0, k) + 1
-        mutants.append((path, no, t[:k] + rep + t[e:], frag, rep, what))
+        mutants.append((path, str(no), t[:k] + rep + t[e:], frag, rep, what))
     for path, no, a, b, rep in sample:
         lines = texts[path].split("\n")
         line = lines[no - 1]
         orig = line[a:b]
         lines[no - 1] = line[:a] + rep + line[b:]
-        mutants.append((path, no, "\n".join(lines), orig, rep, line.strip()))
+        mutants.append((path, "%d:%d" % (no, a + 1), "\n".join(lines), orig, rep, line.strip()))
     if args.fixed_only:
         mutants = mutants[:len(FIXED) - len(missing)]
         sample = []
@@ -276,7 +276,7 @@ def main():
         for (path, no, a, b, rep), why in excluded:
             print("  excluded %s:%d: %r -> %r: %s" % (path, no, texts[path].split("\n")[no - 1][a:b], rep, why))
         for m in mutants:
-            print("  %s:%d: %r -> %r   %s" % (m[0], m[1], m[3], m[4], m[5]))
+            print("  %s:%s: %r -> %r   %s" % (m[0], m[1], m[3], m[4], m[5]))
         return 3 if missing else 0
 
     # A copy of the kernel and the unit tests; objects of the unmutated sources and of the tests.
@@ -348,14 +348,14 @@ def main():
             else:
                 killed += 1
                 verdict = "killed by " + by
-        print("%3d %s:%d: %r -> %r: %s   [%s]" % (i, path, no, orig, rep, verdict, what[:70]))
+        print("%3d %s:%s: %r -> %r: %s   [%s]" % (i, path, no, orig, rep, verdict, what[:70]))
         sys.stdout.flush()
     n = killed + survived
     score = 100.0 * killed / n if n else 0.0
     print("mutants: %d killed, %d survived, %d did not compile; score %.1f %% (%d/%d), %.0f s"
           % (killed, survived, invalid, score, killed, n, time.time() - t0))
     for path, no, orig, rep, what in survivors:
-        print("  survivor: %s:%d: %r -> %r   %s" % (path, no, orig, rep, what))
+        print("  survivor: %s:%s: %r -> %r   %s" % (path, no, orig, rep, what))
     for m in missing:
         print("  fixed mutant not applied: %s" % m)
     if missing:
