@@ -122,6 +122,9 @@ static void accept(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, double t_predi
 
     if (ctx->have_prev) {
         rate = (energy - ctx->energy_prev_j_kg) / (nav->t_s - ctx->t_prev_s);
+        if (!isfinite(rate)) {
+            rate = 0.0; /* calls closer than the energy change allows: no extrapolation now */
+        }
     }
     out->flags = 0u;
     if ((!ctx->decided) && (nav->t_s >= (t_predicted_s - ctx->cfg.arm_before_s))) {

@@ -165,6 +165,25 @@ static void test_bad_input_changes_nothing(void **state)
     OGK_ASSERT_NEAR(out.energy_rate_w_kg, 0.0, 0.0);
 }
 
+/* Found by tests/fuzz/fuzz_cutoff_step.c: two calls a subnormal time apart
+ * made the energy rate overflow to inf (and the output non-finite). */
+static void test_rate_overflow_is_no_rate(void **state)
+{
+    const ogk_cutoff_config_t cfg = config();
+    ogk_cutoff_t ctx;
+    ogk_cutoff_out_t out;
+    ogk_nav_state_t nav = burn_state(0.0);
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &nav, 0.5, &out), OGK_OK);
+    nav.t_s = DBL_MIN * DBL_EPSILON;
+    nav.v_t_mps += 1.0;
+    OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &nav, 0.5, &out), OGK_OK);
+    OGK_ASSERT_NEAR(out.energy_rate_w_kg, 0.0, 0.0);
+    assert_true(isfinite(out.t_cutoff_s) && isfinite(out.energy_j_kg));
+    assert_true((out.flags & OGK_CUTOFF_FLAG_DECIDED) == 0u);
+}
+
 static void test_contract(void **state)
 {
     ogk_cutoff_config_t cfg = config();
@@ -207,6 +226,7 @@ int main(void)
         cmocka_unit_test(test_not_armed_before_window),
         cmocka_unit_test(test_backstop_when_energy_short),
         cmocka_unit_test(test_bad_input_changes_nothing),
+        cmocka_unit_test(test_rate_overflow_is_no_rate),
         cmocka_unit_test(test_contract),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
