@@ -72,8 +72,8 @@ fuzz-seeds: tests/fuzz/gen_seeds.c $(FUZZ_HDR) $(HOST_OBJ) | apt
 # sanitized build is make test-unit-host), run, then gcovr over kernel/. Fails under the
 # thresholds (a ratchet: raise them with the tests, never lower them; docs/coverage.md).
 COV_B := $(B)/coverage
-COVERAGE_LINES ?= 97
-COVERAGE_BRANCHES ?= 87
+COVERAGE_LINES ?= 99
+COVERAGE_BRANCHES ?= 95
 COV_FLAGS := -O0 -g --coverage
 COV_KOBJ := $(patsubst kernel/src/%.c,$(COV_B)/kernel/%.o,$(KSRC))
 COV_TESTS := $(patsubst tests/unit/%.c,$(COV_B)/%,$(UNIT_SRC))
