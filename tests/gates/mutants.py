@@ -99,6 +99,9 @@ EQUIVALENT = [
      "check_sizes: at entry_len = OGK_TABLE_MAX_VALUES the next clause, grid_size > MAX / (MAX + 1) "
      "= 0, gives the same OGK_E_TABLE_SIZE (grid_size >= 1 is checked before); the first clause "
      "only keeps entry_len + 1 from wrapping"),
+    ("kernel/src/table.c", "(v->grid_size > (OGK_TABLE_MAX_VALUES / (v->entry_len + 1u)))", ">",
+     "check_sizes: at grid_size = floor(MAX / (entry_len + 1)) >= 1 the value count is > MAX / 2, "
+     "so the next check (values > MAX / 8) gives the same OGK_E_TABLE_SIZE"),
     ("kernel/src/interp.c", "for (it = 0u; (it < OGK_INTERP_MAX_SEARCH)", "0u",
      "ogk_interp_locate: 63 instead of 64 bisection steps; 63 halve any range of < 2^63 nodes "
      "(the grid is bounded by OGK_TABLE_MAX_VALUES)"),
