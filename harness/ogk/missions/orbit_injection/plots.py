@@ -5,6 +5,8 @@
   <scenario>_actuators.png    Fig. 4: nozzle deflections Delta_y, Delta_z (and M_x) vs time
   <scenario>_attitude.png     Fig. 5: commanded vs actual Psi, Theta, Phi of one run
   <scenario>_injection.png    injection errors of every run (scatter) and t_f histogram
+  <scenario>_histograms.png   histogram of each injection error (log counts: the tails show), with
+                           the paper's sigma and the acceptance tolerance marked
 """
 from __future__ import annotations
 
@@ -91,7 +93,46 @@ def write_plots(res: CampaignResult, out_dir: str | Path) -> list[Path]:
             f"{scn.name}: injection errors at cut-off ({int(ok.sum())} runs flown, "
             f"{res.n_failures} failed)", tolerances(scn))
         written.append(_save(fig, out / f"{scn.name}_injection.png"))
+        written.append(_save(_histograms(res, ok), out / f"{scn.name}_histograms.png"))
     return written
+
+
+def _histograms(res: CampaignResult, ok: np.ndarray):
+    """One panel per injection error: counts on a log axis, so that a tail of a few runs in
+    thousands is visible; vertical lines at +-4 paper sigmas (when known) and the tolerance."""
+    plt = pyplot()
+    scn = res.scenario
+    keys = ("dr_f_m", "dphi_f_deg", "dvr_f_mps", "dvt_f_mps", "dvn_f_mps", "tf_s")
+    sigma = dict(zip(keys, scn.paper.table7_sigma)) if scn.paper is not None else {}
+    tol = tolerances(scn)
+    fig, axes = plt.subplots(2, 3, figsize=(13, 7))
+    for ax, key in zip(axes.ravel(), keys):
+        v = res.errors[key][ok]
+        centre = float(np.mean(v)) if key == "tf_s" else 0.0
+        half = max(float(np.max(np.abs(v - centre))) if v.size else 0.0,
+                   4.0 * sigma.get(key, 0.0)) * 1.15 or 1.0
+        ax.hist(v, bins=np.linspace(centre - half, centre + half, 61), color="C0", alpha=0.8)
+        ax.set_yscale("log")
+        ax.set_xlim(centre - half, centre + half)
+        if key in sigma:
+            for sgn in (-1.0, 1.0):
+                ax.axvline(centre + sgn * 4.0 * sigma[key], color="k", ls="--", lw=1.0,
+                           label="4 paper sigma" if sgn > 0 else None)
+        if key in tol:
+            if tol[key] <= half:
+                for sgn in (-1.0, 1.0):
+                    ax.axvline(sgn * tol[key], color="r", ls=":", lw=1.2,
+                               label="tolerance" if sgn > 0 else None)
+            else:
+                ax.text(0.02, 0.95, f"tolerance +-{tol[key]:.3g} (off scale)",
+                        transform=ax.transAxes, fontsize=8, va="top")
+        ax.set_xlabel(LABELS[key])
+        ax.set_ylabel("runs")
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=8)
+    fig.suptitle(f"{scn.name}: injection errors, {int(ok.sum())} runs (log counts)")
+    fig.tight_layout()
+    return fig
 
 
 _save = save
