@@ -75,6 +75,24 @@ FIXED = [
      "(values[m - j] - values[j]) / (grid[1] - grid[0])",
      "pchip slopes of a two-node grid: column j > 0 reads another column "
      "(test_interp: test_pchip_two_points_every_column)"),
+    ("kernel/src/nog.c",
+     "if (direction_angle(lam, lam_star) <= du_max) { scale = 1.0;",
+     "if (direction_angle(lam, lam_star) < du_max) { scale = 1.0;",
+     "du_max = pi limits an exact thrust reversal (angle pi) "
+     "(test_nog: test_du_max_pi_admits_a_reversal)"),
+    ("kernel/src/nog.c",
+     "!ogk_i_all_finite(out8, N_GAIN_ROWS) || !ogk_i_all_finite(dlam_rate, NX)",
+     "!ogk_i_all_finite(out8, N_GAIN_ROWS) && !ogk_i_all_finite(dlam_rate, NX)",
+     "an overflowing dt_f alone clipped to dtf_max instead of the safe command "
+     "(test_nog: test_overflowing_dt_f_alone_gives_safe_command)"),
+    ("kernel/src/nog.c",
+     "h = tbl->tau[k + 1u] - tbl->tau[k];", "h = tbl->tau[k + 1u] + tbl->tau[k];",
+     "Hermite interval length wrong beyond the first interval "
+     "(test_nog: test_on_nominal_in_every_interval)"),
+    ("kernel/src/table.c",
+     "(OGK_TABLE_MAX_VALUES / (v->entry_len + 1u))", "(OGK_TABLE_MAX_VALUES / (v->entry_len - 1u))",
+     "value-count guard divides by entry_len - 1 (0 for scalar entries) "
+     "(test_table: test_scalar_entries)"),
     ("kernel/src/table.c",
      "for (i = 0u; (i < values)", "for (i = 1u; (i < values)",
      "finiteness scan of the payload skips grid[0] "
@@ -82,8 +100,10 @@ FIXED = [
 ]
 
 # Sites excluded from the sampling: equivalent mutants (no observable change; docs/mutation.md),
-# as (file, code fragment of the line, mutated token, why). A fragment no longer found only
-# excludes nothing (the mutant is then sampled again and shows up as a survivor).
+# as (file, code fragment, mutated token, why): a site is excluded when its token is that token
+# and lies inside a match of the fragment (white space as in FIXED) that starts on the site's line
+# (it may run over the next two lines). A fragment no longer found only excludes nothing (the
+# mutant is then sampled again and shows up as a survivor).
 EQUIVALENT = [
     ("kernel/src/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", "&&",
      "ogk_interp_locate: with || the bisection runs its 64 iterations, but once hi - lo = 1 "
@@ -102,6 +122,10 @@ EQUIVALENT = [
     ("kernel/src/table.c", "(v->grid_size > (OGK_TABLE_MAX_VALUES / (v->entry_len + 1u)))", ">",
      "check_sizes: at grid_size = floor(MAX / (entry_len + 1)) >= 1 the value count is > MAX / 2, "
      "so the next check (values > MAX / 8) gives the same OGK_E_TABLE_SIZE"),
+    ("kernel/src/nog.c", "if (direction_angle(lam, lam_star) <= du_max) { lo = mid;", "<=",
+     "direction_limit_scale bisection: < instead of <= differs only when a probe's angle is "
+     "exactly du_max, and then moves the scale by one bisection step, 2^-40 of the correction "
+     "(the bisection's own resolution)"),
     ("kernel/src/interp.c", "for (it = 0u; (it < OGK_INTERP_MAX_SEARCH)", "0u",
      "ogk_interp_locate: 63 instead of 64 bisection steps; 63 halve any range of < 2^63 nodes "
      "(the grid is bounded by OGK_TABLE_MAX_VALUES)"),
@@ -237,10 +261,10 @@ def main():
         lines = texts[p].split("\n")
         for site in sites(p, texts[p]):
             _, no, a, b, _ = site
-            line = lines[no - 1]
+            here = "\n".join(lines[no - 1:no + 2])  # the site's line and the next two
             why = [w for f, frag, tok, w in EQUIVALENT
-                   if f == p and line[a:b] == tok and frag in line
-                   and line.find(frag) <= a < line.find(frag) + len(frag)]
+                   if f == p and here[a:b] == tok
+                   and any(m.start() <= a < m.end() for m in fragment_regex(frag).finditer(here))]
             if why:
                 excluded.append((site, why[0]))
             else:

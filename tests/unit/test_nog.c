@@ -222,6 +222,31 @@ static void test_radius_error_moves_lambda_r_only(void **state)
     OGK_ASSERT_NEAR(c.beta_rad, 0.0, 0.0);
 }
 
+/* On the nominal inside the later intervals: the cubic Hermite of a
+ * straight line with its own slope is the line, x*(tau) = x0 + tau x', so
+ * dx = 0 (to rounding of 7e6..9e6 m), no correction, t_f = t_f*. tau = 0.4
+ * and 0.6 are interior points of [0.25, 0.5] and [0.5, 0.75]. */
+static void test_on_nominal_in_every_interval(void **state)
+{
+    static const double taus[3] = {0.0, 0.4, 0.6};
+    ogk_nog_sample_t s;
+    size_t k;
+    size_t i;
+    (void)state;
+    for (k = 0u; k < 3u; ++k) {
+        ogk_nog_nav_t nav = nav_at(TF_STAR * taus[k], taus[k]);
+        OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+        OGK_ASSERT_NEAR(s.tau_k, taus[k], 1e-15);
+        OGK_ASSERT_NEAR(s.dx[0], 0.0, 1e-8);
+        for (i = 1u; i < 7u; ++i) {
+            OGK_ASSERT_NEAR(s.dx[i], 0.0, 1e-11);
+        }
+        OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 1e-9);
+        OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
+        assert_int_equal(s.flags, 0u);
+    }
+}
+
 static void test_out_of_plane_with_first_order_hold(void **state)
 {
     /* dv_n = 2 m/s: dlam_vn = 0.02 at tau_k, rate 0.04 per unit tau; beta
@@ -252,6 +277,34 @@ static void test_end_game_limits(void **state)
     OGK_ASSERT_NEAR(s.dt_f_s, 10.0, 0.0);
     assert_true((s.flags & OGK_NOG_FLAG_LIMITED) != 0u);
     OGK_ASSERT_NEAR(fabs(s.beta_rad), 0.5, 1e-9);
+}
+
+/* du_max = pi admits every direction: a correction that reverses the thrust
+ * exactly (dlam_v = -2 lambda*_v, from a gain on dphi = 1 rad, so lambda_v
+ * = -lambda*_v) flies unscaled and unflagged, alpha = ALPHA0 - pi. */
+static void test_du_max_pi_admits_a_reversal(void **state)
+{
+    ogk_nog_config_t cfg = config();
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    const size_t row0 = OGK_TABLE_HEADER_SIZE + 8u * GRID;
+    (void)state;
+    tw_put_f64(buf + row0 + 8u * (OGK_NOG_OFF_GAIN + 3u * 7u + 2u), 2.0 * sin(ALPHA0));
+    tw_put_f64(buf + row0 + 8u * (OGK_NOG_OFF_GAIN + 4u * 7u + 2u), 2.0 * cos(ALPHA0));
+    tw_seal(buf, N_VALUES);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
+    cfg.du_max_rad = PI;
+    OGK_ASSERT_STATUS(ogk_nog_init(&nog, &cfg), OGK_OK);
+    nav.phi_rad = 1.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    assert_true((s.flags & OGK_NOG_FLAG_LIMITED) == 0u);
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0 - PI, 1e-15);
+    OGK_ASSERT_NEAR(s.beta_rad, 0.0, 0.0);
+    /* the same correction under du_max = pi / 2 is scaled to that angle */
+    cfg.du_max_rad = 0.5 * PI;
+    OGK_ASSERT_STATUS(ogk_nog_init(&nog, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    assert_true((s.flags & OGK_NOG_FLAG_LIMITED) != 0u);
 }
 
 static void test_freeze_and_termination(void **state)
@@ -718,6 +771,30 @@ static void test_huge_gains_give_safe_command(void **state)
     assert_true(sample_is_finite(&s));
 }
 
+/* Only the flight-time row of G overflows (dt_f = 1e308 x 10 s per m/s =
+ * inf, every dlam finite): a fault of the table, reported as the safe
+ * command, not clipped to dtf_max like a large finite dt_f. */
+static void test_overflowing_dt_f_alone_gives_safe_command(void **state)
+{
+    ogk_nog_config_t cfg = config();
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    size_t k;
+    (void)state;
+    for (k = 0u; k + 1u < GRID; ++k) {
+        const size_t row = OGK_TABLE_HEADER_SIZE + 8u * (GRID + k * OGK_NOG_ENTRY_LEN);
+        tw_put_f64(buf + row + 8u * (OGK_NOG_OFF_GAIN + 7u * 7u + 4u), 1.0e308);
+    }
+    tw_seal(buf, N_VALUES);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_init(&nog, &cfg), OGK_OK);
+    nav.v_t_mps += 10.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_SAFE_COMMAND);
+    assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
+    OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0); /* the nominal t_f, not t_f* + dtf_max */
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-15);
+}
+
 /* A valid table (finite values) whose costate still overflows: lambda_vr
  * near DBL_MAX at the last two nodes with slopes -L, +L, so that the cubic
  * Hermite at the middle of [0.75, 1] sums to -1.806e308 = -inf (terms -0.85,
@@ -775,10 +852,12 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_table_load_and_rejections, setup),
         cmocka_unit_test_setup(test_on_nominal_no_correction, setup),
+        cmocka_unit_test_setup(test_on_nominal_in_every_interval, setup),
         cmocka_unit_test_setup(test_flight_time_update_and_eq31, setup),
         cmocka_unit_test_setup(test_radius_error_moves_lambda_r_only, setup),
         cmocka_unit_test_setup(test_out_of_plane_with_first_order_hold, setup),
         cmocka_unit_test_setup(test_end_game_limits, setup),
+        cmocka_unit_test_setup(test_du_max_pi_admits_a_reversal, setup),
         cmocka_unit_test_setup(test_freeze_and_termination, setup),
         cmocka_unit_test_setup(test_bad_navigation_gives_safe_command, setup),
         cmocka_unit_test_setup(test_init_errors, setup),
@@ -792,6 +871,7 @@ int main(void)
         cmocka_unit_test_setup(test_envelope_rejects_absurd_inputs, setup),
         cmocka_unit_test_setup(test_one_bad_sample_does_not_latch, setup),
         cmocka_unit_test_setup(test_huge_gains_give_safe_command, setup),
+        cmocka_unit_test_setup(test_overflowing_dt_f_alone_gives_safe_command, setup),
         cmocka_unit_test_setup(test_overflowing_costate_gives_safe_command, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -88,6 +88,37 @@ static void test_valid_table_reads_back(void **state)
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_OK);
 }
 
+/* The smallest entry, one scalar per node (ndims 1, dims {1}: entry_len 1):
+ * grid t_k = k and values y_k = 2 k + 0.5 read back exactly. */
+static void test_scalar_entries(void **state)
+{
+    const uint32_t dims[1] = {1u};
+    static uint8_t scalar_buf[OGK_TABLE_HEADER_SIZE + 8u * 2u * GRID];
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    double value;
+    unsigned k;
+    (void)state;
+    memset(scalar_buf, 0, sizeof scalar_buf);
+    tw_header(scalar_buf, KIND_TEST, 1u, dims, GRID);
+    for (k = 0u; k < GRID; ++k) {
+        tw_put_f64(scalar_buf + OGK_TABLE_HEADER_SIZE + 8u * k, (double)k);
+        tw_put_f64(scalar_buf + OGK_TABLE_HEADER_SIZE + 8u * (GRID + k), 2.0 * (double)k + 0.5);
+    }
+    tw_seal(scalar_buf, 2u * GRID);
+    s.ndims = 1u;
+    s.dims[0] = 1u;
+    s.dims[1] = 0u;
+    OGK_ASSERT_STATUS(ogk_table_open(scalar_buf, sizeof scalar_buf, &s, &v), OGK_OK);
+    assert_int_equal(v.entry_len, 1u);
+    assert_int_equal(v.grid_size, GRID);
+    for (k = 0u; k < GRID; ++k) {
+        OGK_ASSERT_STATUS(ogk_table_get(&v, k, 0u, &value), OGK_OK);
+        OGK_ASSERT_NEAR(value, 2.0 * (double)k + 0.5, 0.0);
+    }
+    OGK_ASSERT_STATUS(ogk_table_get(&v, 0u, 1u, &value), OGK_E_RANGE);
+}
+
 static void test_corrupted_payload_byte(void **state)
 {
     ogk_table_spec_t s = spec();
@@ -214,6 +245,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_valid_table_reads_back),
+        cmocka_unit_test(test_scalar_entries),
         cmocka_unit_test(test_corrupted_payload_byte),
         cmocka_unit_test(test_corrupted_header_byte),
         cmocka_unit_test(test_wrong_dimension),
