@@ -86,6 +86,9 @@ FIXED = [
      "an overflowing dt_f alone clipped to dtf_max instead of the safe command "
      "(test_nog: test_overflowing_dt_f_alone_gives_safe_command)"),
     ("kernel/src/nog.c",
+     "if (fabs(dt_f) > ctx->cfg.dtf_max_s)", "if (fabs(dt_f) >= ctx->cfg.dtf_max_s)",
+     "dt_f exactly at dtf_max flagged LIMITED (test_nog: test_dt_f_at_the_bound_is_not_limited)"),
+    ("kernel/src/nog.c",
      "h = tbl->tau[k + 1u] - tbl->tau[k];", "h = tbl->tau[k + 1u] + tbl->tau[k];",
      "Hermite interval length wrong beyond the first interval "
      "(test_nog: test_on_nominal_in_every_interval)"),
@@ -126,6 +129,13 @@ EQUIVALENT = [
      "direction_limit_scale bisection: < instead of <= differs only when a probe's angle is "
      "exactly du_max, and then moves the scale by one bisection step, 2^-40 of the correction "
      "(the bisection's own resolution)"),
+    ("kernel/src/table.c", "(OGK_TABLE_MAX_VALUES / (v->entry_len + 1u))", "1u",
+     "check_sizes: + 2u only tightens the guard; a grid it then rejects has > MAX / 2 values, "
+     "which the value-count check rejects with the same OGK_E_TABLE_SIZE"),
+    ("kernel/src/nog.c", "(nav->t_s <= t_sample_max(ctx))", "<=",
+     "nav_in_envelope: at t_s = 2 t_f* + dtf_max exactly, tau > 1 always (the cut-off is at "
+     "most t_f* + dtf_max), so the tau > 1 branch rejects it with the same OGK_E_RANGE and "
+     "the same safe_sample call"),
     ("kernel/src/interp.c", "for (it = 0u; (it < OGK_INTERP_MAX_SEARCH)", "0u",
      "ogk_interp_locate: 63 instead of 64 bisection steps; 63 halve any range of < 2^63 nodes "
      "(the grid is bounded by OGK_TABLE_MAX_VALUES)"),

@@ -279,6 +279,26 @@ static void test_end_game_limits(void **state)
     OGK_ASSERT_NEAR(fabs(s.beta_rad), 0.5, 1e-9);
 }
 
+/* |dt_f| at the bound is not clipped: dv_t = 5 m/s gives dt_f = 10 s =
+ * dtf_max exactly (2 x 5, both exact), flown as is and not flagged LIMITED;
+ * one ulp more of dv_t is clipped to 10 s and flagged. */
+static void test_dt_f_at_the_bound_is_not_limited(void **state)
+{
+    ogk_nog_config_t cfg = config();
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    (void)state;
+    nav.v_t_mps += 5.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    OGK_ASSERT_NEAR(s.dt_f_s, 10.0, 0.0);
+    assert_int_equal(s.flags & OGK_NOG_FLAG_LIMITED, 0u);
+    OGK_ASSERT_STATUS(ogk_nog_init(&nog, &cfg), OGK_OK);
+    nav.v_t_mps = nextafter(nav.v_t_mps, 1.0e4);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    OGK_ASSERT_NEAR(s.dt_f_s, 10.0, 0.0);
+    assert_true((s.flags & OGK_NOG_FLAG_LIMITED) != 0u);
+}
+
 /* du_max = pi admits every direction: a correction that reverses the thrust
  * exactly (dlam_v = -2 lambda*_v, from a gain on dphi = 1 rad, so lambda_v
  * = -lambda*_v) flies unscaled and unflagged, alpha = ALPHA0 - pi. */
@@ -857,6 +877,7 @@ int main(void)
         cmocka_unit_test_setup(test_radius_error_moves_lambda_r_only, setup),
         cmocka_unit_test_setup(test_out_of_plane_with_first_order_hold, setup),
         cmocka_unit_test_setup(test_end_game_limits, setup),
+        cmocka_unit_test_setup(test_dt_f_at_the_bound_is_not_limited, setup),
         cmocka_unit_test_setup(test_du_max_pi_admits_a_reversal, setup),
         cmocka_unit_test_setup(test_freeze_and_termination, setup),
         cmocka_unit_test_setup(test_bad_navigation_gives_safe_command, setup),
