@@ -89,6 +89,13 @@ FIXED = [
      "if (fabs(dt_f) > ctx->cfg.dtf_max_s)", "if (fabs(dt_f) >= ctx->cfg.dtf_max_s)",
      "dt_f exactly at dtf_max flagged LIMITED (test_nog: test_dt_f_at_the_bound_is_not_limited)"),
     ("kernel/src/nog.c",
+     "(t_s >= 0.0) && (t_s <= t_sample_max(ctx))", "(t_s >= 0.0) && (t_s < t_sample_max(ctx))",
+     "safe_sample: t_s = 2 t_f* + dtf_max (inside the closed envelope) treated as unusable "
+     "(test_nog: test_sample_at_the_envelope_time_bound)"),
+    ("kernel/src/nog.c",
+     "ctx->n_samples += 1u;", "ctx->n_samples += 2u;",
+     "good-sample count of the context (test_nog: test_on_nominal_in_every_interval)"),
+    ("kernel/src/nog.c",
      "h = tbl->tau[k + 1u] - tbl->tau[k];", "h = tbl->tau[k + 1u] + tbl->tau[k];",
      "Hermite interval length wrong beyond the first interval "
      "(test_nog: test_on_nominal_in_every_interval)"),

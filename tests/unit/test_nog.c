@@ -244,6 +244,7 @@ static void test_on_nominal_in_every_interval(void **state)
         OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 1e-9);
         OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
         assert_int_equal(s.flags, 0u);
+        assert_int_equal(nog.n_samples, k + 1u); /* good samples taken */
     }
 }
 
@@ -359,6 +360,29 @@ static void test_freeze_and_termination(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u && (s.flags & OGK_NOG_FLAG_CUTOFF) != 0u);
     OGK_ASSERT_NEAR(s.beta_rad, atan2(-(K_L6_VN * 2.0 + K_L6_RATE * 2.0 * 0.8), 1.0), 1e-12);
+}
+
+/* The time bound of the envelope, t_s <= 2 t_f* + dtf_max = 210 s, is
+ * closed: at 210 s the time is usable but past the cut-off, so the sample is
+ * shown at tau = 210 / 100 = 2.1 (CUTOFF), not committed; one ulp later it is
+ * outside the envelope and nothing moves (tau_k = 0 of the first sample). */
+static void test_sample_at_the_envelope_time_bound(void **state)
+{
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    const double t_max = 2.0 * TF_STAR + 10.0;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    nav = nav_at(t_max, 1.0);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
+    OGK_ASSERT_NEAR(s.tau_k, t_max / TF_STAR, 1e-15);
+    assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u && (s.flags & OGK_NOG_FLAG_CUTOFF) != 0u);
+    OGK_ASSERT_NEAR(nog.tau_k, 0.0, 0.0); /* shown, not committed */
+    assert_int_equal(nog.n_samples, 1u);
+    nav.t_s = nextafter(t_max, 1.0e3);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
+    OGK_ASSERT_NEAR(s.tau_k, 0.0, 0.0);
+    assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u && (s.flags & OGK_NOG_FLAG_CUTOFF) == 0u);
 }
 
 static void test_bad_navigation_gives_safe_command(void **state)
@@ -881,6 +905,7 @@ int main(void)
         cmocka_unit_test_setup(test_du_max_pi_admits_a_reversal, setup),
         cmocka_unit_test_setup(test_freeze_and_termination, setup),
         cmocka_unit_test_setup(test_bad_navigation_gives_safe_command, setup),
+        cmocka_unit_test_setup(test_sample_at_the_envelope_time_bound, setup),
         cmocka_unit_test_setup(test_init_errors, setup),
         cmocka_unit_test_setup(test_config_range_boundaries, setup),
         cmocka_unit_test_setup(test_config_default, setup),
