@@ -1,0 +1,87 @@
+/* ogk/terminal.h -- terminal steering along the velocity to be gained, for
+ * the last seconds of an injection burn into a circular orbit (beyond
+ * Pontani & Celani 2021; docs/vtd-nog.md, "End-game").
+ *
+ * Near cut-off the VTD-NOG gains grow like 1/time-to-go^3 and, in long burns,
+ * the variable time domain reaches tau = 1 while real time is left: the last
+ * corrections swing the commanded direction by up to 120 deg in 2-3 s, more
+ * than the attitude loop can follow, and the injection velocity misses by
+ * tens of m/s. In its last window_s seconds (time to go as predicted by the
+ * guidance law) this stage replaces the law's command by the direction of
+ * the velocity to be gained, v_go = v_target - v, with v_target the circular
+ * velocity of the target orbit in the local r-t-n frame (0, sqrt(mu/R_f), 0):
+ * thrust along v_go shrinks v_go along its own direction, so the command
+ * barely turns, and the energy cut-off (ogk/cutoff.h) ends the burn. The
+ * radius is not steered in the window (its error then grows by about v_r
+ * times the window, a few metres).
+ *
+ * Use: once per control period, after the guidance law's command:
+ * ogk_terminal_step(ctx, nav, t_predicted, &law_cmd, &cmd); fly cmd. Once
+ * engaged, the stage stays engaged for the burn (a later prediction that
+ * moves the cut-off does not hand the last seconds back to the law; latches
+ * by design, ogk_terminal_reset for a new burn). A rejected call (NaN, a
+ * value outside the envelope) leaves the context unchanged and outputs the
+ * law's command with OGK_THRUST_FLAG_SAFE set, or its last terminal command
+ * when engaged.
+ *
+ * Static memory, no globals; many contexts side by side. */
+#ifndef OGK_TERMINAL_H
+#define OGK_TERMINAL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include "ogk/status.h"
+#include "ogk/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Envelope of the navigation input (OGK_E_RANGE outside). */
+#define OGK_TERMINAL_R_MAX_M 1.0e10   /* [m] radius, (0, 1e10] */
+#define OGK_TERMINAL_V_MAX_MPS 1.0e5  /* [m/s] |v_r|, |v_t|, |v_n| */
+#define OGK_TERMINAL_T_MAX_S 1.0e7    /* [s] times, [0, 1e7] */
+/* Below this |v_go| the direction is held (it is not defined at v_go = 0). */
+#define OGK_TERMINAL_VGO_MIN_MPS 1.0e-3
+
+/* law_flags of the output command while engaged (the law's own flags are
+ * replaced: the command is not the law's). */
+#define OGK_TERMINAL_FLAG_ENGAGED 0x100u
+
+typedef struct {
+    double mu_m3_s2;        /* [m^3/s^2] gravitational parameter, > 0 */
+    double target_radius_m; /* [m] radius of the circular target orbit, (0, R_MAX] */
+    double window_s;        /* [s] engaged when the predicted time to go is at most this, [0, T_MAX] (0: never) */
+} ogk_terminal_config_t;
+
+typedef struct {
+    ogk_terminal_config_t cfg;
+    double v_target_mps;    /* [m/s] circular speed of the target orbit, sqrt(mu / R_f) */
+    double alpha_rad;       /* [rad] last terminal command, in-plane angle */
+    double beta_rad;        /* [rad] last terminal command, out-of-plane angle */
+    bool engaged;           /* [-] in the terminal window (latched) */
+    uint32_t init_marker;   /* [-] set by ogk_terminal_init */
+} ogk_terminal_t;
+
+/* Defaults: mu of the Earth, target 42164 km, window 3 s. */
+ogk_status ogk_terminal_config_default(ogk_terminal_config_t *cfg);
+
+/* OGK_E_CONFIG for a non-finite or out-of-range field (context untouched). */
+ogk_status ogk_terminal_init(ogk_terminal_t *ctx, const ogk_terminal_config_t *cfg);
+
+/* Back to the state after init (a new burn). */
+ogk_status ogk_terminal_reset(ogk_terminal_t *ctx);
+
+/* One control period: nav at nav->t_s, the guidance's predicted cut-off
+ * t_predicted_s and its command law_cmd (alpha, beta finite). *out is
+ * law_cmd while not engaged, else the v_go direction (same t_s and
+ * OGK_THRUST_FLAG_ENGINE_ON bit as law_cmd, law_flags ENGAGED). OGK_E_NONFINITE /
+ * OGK_E_RANGE: context unchanged; *out as described in the header comment. */
+ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s,
+                             const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* OGK_TERMINAL_H */
