@@ -222,6 +222,9 @@ class EndGame:
     cutoff_extend_max_s: float | None = None  #: latest cut-off after the prediction; None: 2 Delta t_S
     fine_sample_interval_s: float | None = None  #: sampling interval near the end; None: Delta t_S throughout
     fine_window_s: float = 0.0                #: fine sampling while the predicted time to go is at most this
+    #: kernel ogk_terminal: steer along the velocity to be gained once the predicted time to go is at
+    #: most this (0: never; beyond the paper)
+    terminal_window_s: float = 0.0
 
     def arm_s(self, sample_interval_s: float) -> float:
         return self.cutoff_arm_s if self.cutoff_arm_s is not None else sample_interval_s
@@ -326,7 +329,8 @@ def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
                        fine_sample_interval_s=eg_s.number("fine_sample_interval_s", None,
                                                           positive=True,
                                                           hi=sample_interval),
-                       fine_window_s=eg_s.number("fine_window_s", 0.0, nonnegative=True))
+                       fine_window_s=eg_s.number("fine_window_s", 0.0, nonnegative=True),
+                       terminal_window_s=eg_s.number("terminal_window_s", 0.0, nonnegative=True))
     eg_s.finish()
     guid_s.finish()
 

@@ -22,7 +22,9 @@ def _end_game_text(res: CampaignResult) -> str:
     fine = (f" ({plan.fine_interval_s:g} s in the last {plan.fine_window_s:g} s)"
             if plan.fine_interval_s is not None else "")
     cut = "energy (ogk_cutoff)" if plan.energy_cutoff else "predicted at the samples (eq. 32)"
-    return f"{fine}; cut-off {cut}"
+    term = (f"; along v_go in the last {plan.terminal_window_s:g} s (ogk_terminal)"
+            if plan.terminal_window_s > 0.0 else "")
+    return f"{fine}{term}; cut-off {cut}"
 
 
 def format_report(res: CampaignResult) -> str:

@@ -25,6 +25,7 @@ from ogk_host.orbit_injection.scenario import LeoGeoScenario
 from . import truth as tm
 from .attitude import AttitudeControl, CpdBatchControl
 from .cutoff import EnergyCutoff
+from .terminal import TerminalSteering
 from .dispersions import ActuationNoise, DispersionSwitches, RunDraws
 from .guidance import Guidance
 from .nominal_ref import NominalReference, circular_speed
@@ -34,7 +35,7 @@ F64 = NDArray[np.float64]
 ERROR_KEYS = ("dr_f_m", "dphi_f_deg", "dvr_f_mps", "dvt_f_mps", "dvn_f_mps", "tf_s")
 RATE_KEYS = ("Mx_dot_Nmps", "Dy_dot_degps", "Dz_dot_degps")
 TRUTHS = ("6dof", "point-mass")
-FAILURE_REASONS = ("nan", "guidance", "cutoff", "attitude_control", "no_termination")
+FAILURE_REASONS = ("nan", "guidance", "cutoff", "terminal", "attitude_control", "no_termination")
 END_GAMES = ("scenario", "paper")
 HISTORY_KEYS = ("r_m", "xi_rad", "phi_rad", "vr_mps", "vt_mps", "vn_mps", "alpha_c_rad",
                 "beta_c_rad", "Mx_Nm", "Dy_rad", "Dz_rad", "psi_rad", "theta_rad", "phi_roll_rad",
@@ -69,6 +70,7 @@ class EndGamePlan:
     energy_cutoff: bool               #: kernel ogk_cutoff decides the cut-off between samples
     fine_interval_s: float | None     #: sampling interval near the end (None: Delta t_S throughout)
     fine_window_s: float              #: ... while the predicted time to go is at most this
+    terminal_window_s: float = 0.0    #: kernel ogk_terminal steers the last seconds along v_go (0: never)
 
     @classmethod
     def of(cls, scn: LeoGeoScenario, settings: "SilSettings") -> "EndGamePlan":
@@ -76,9 +78,9 @@ class EndGamePlan:
             raise ValueError(f"end_game must be one of {END_GAMES}, got {settings.end_game!r}")
         eg = scn.end_game
         if settings.end_game == "paper":
-            return cls(False, None, 0.0)
+            return cls(False, None, 0.0, 0.0)
         fine = eg.fine_sample_interval_s if eg.fine_window_s > 0.0 else None
-        return cls(eg.cutoff == "energy", fine, eg.fine_window_s)
+        return cls(eg.cutoff == "energy", fine, eg.fine_window_s, eg.terminal_window_s)
 
 
 @dataclasses.dataclass
@@ -175,6 +177,7 @@ def simulate(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
             raise ValueError("the end-game sampling interval must be a multiple of the control period")
         fine_every = int(round(fine))
     energy_cut = EnergyCutoff(scn, n, ctrl_dt) if plan.energy_cutoff else None
+    terminal = TerminalSteering(scn, n) if plan.terminal_window_s > 0.0 else None
     t_max = settings.t_max_s if settings.t_max_s is not None else 1.5 * ref.tf_s + 20.0
     vc = circular_speed(scn)
 
@@ -256,6 +259,11 @@ def simulate(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
                     active = ~done
                 alpha_c, beta_c = (np.asarray(v, dtype=np.float64)
                                    for v in guidance.command(t_run))
+                if terminal is not None:
+                    known = active & np.isfinite(predicted)
+                    alpha_c, beta_c = terminal.step(known, t_run, x[:6].T, predicted, alpha_c,
+                                                    beta_c)
+                    fail(terminal.failed() & known, "terminal")
                 fail(~(np.isfinite(alpha_c) & np.isfinite(beta_c)) & active, "guidance")
                 active = ~done
                 if six_dof:

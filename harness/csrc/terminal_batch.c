@@ -1,0 +1,63 @@
+/* terminal_batch.c -- SIL batch loop for the terminal steering (not flight code; terminal_batch.h). */
+#include "terminal_batch.h"
+
+ogk_status ogk_sil_terminal_init_batch(ogk_terminal_t *ctx, size_t n_runs,
+                                       const ogk_terminal_config_t *cfg, int32_t *status)
+{
+    ogk_status first = OGK_OK;
+    size_t i;
+    if (ctx == NULL || cfg == NULL || status == NULL) {
+        return OGK_E_NULL;
+    }
+    for (i = 0u; i < n_runs; ++i) {
+        const ogk_status st = ogk_terminal_init(&ctx[i], cfg);
+        status[i] = (int32_t)st;
+        if (st != OGK_OK && first == OGK_OK) {
+            first = st;
+        }
+    }
+    return first;
+}
+
+ogk_status ogk_sil_terminal_step_batch(ogk_terminal_t *ctx, size_t n_runs, const uint8_t *active,
+                                       const double *t, const double *nav,
+                                       const double *t_predicted, double *alpha, double *beta,
+                                       uint8_t *engaged, int32_t *status)
+{
+    ogk_status first = OGK_OK;
+    size_t i;
+    if (ctx == NULL || active == NULL || t == NULL || nav == NULL || t_predicted == NULL ||
+        alpha == NULL || beta == NULL || engaged == NULL || status == NULL) {
+        return OGK_E_NULL;
+    }
+    for (i = 0u; i < n_runs; ++i) {
+        ogk_nav_state_t in;
+        ogk_thrust_cmd_t law;
+        ogk_thrust_cmd_t out;
+        ogk_status st;
+        if (active[i] == 0u) {
+            continue;
+        }
+        in.t_s = t[i];
+        in.r_m = nav[6u * i];
+        in.xi_rad = nav[6u * i + 1u];
+        in.phi_rad = nav[6u * i + 2u];
+        in.v_r_mps = nav[6u * i + 3u];
+        in.v_t_mps = nav[6u * i + 4u];
+        in.v_n_mps = nav[6u * i + 5u];
+        law.t_s = t[i];
+        law.alpha_rad = alpha[i];
+        law.beta_rad = beta[i];
+        law.flags = OGK_THRUST_FLAG_ENGINE_ON;
+        law.law_flags = 0u;
+        st = ogk_terminal_step(&ctx[i], &in, t_predicted[i], &law, &out);
+        alpha[i] = out.alpha_rad;
+        beta[i] = out.beta_rad;
+        engaged[i] = (uint8_t)((out.law_flags & OGK_TERMINAL_FLAG_ENGAGED) != 0u);
+        status[i] = (int32_t)st;
+        if (st != OGK_OK && first == OGK_OK) {
+            first = st;
+        }
+    }
+    return first;
+}

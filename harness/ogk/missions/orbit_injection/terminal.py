@@ -1,0 +1,66 @@
+"""The kernel's terminal steering along the velocity to be gained (kernel/include/ogk/terminal.h)
+for all runs of a SIL chunk: one ogk_terminal_t per run, stepped once per control step by the C
+batch loop of harness/csrc/terminal_batch.c. Flown when the scenario sets
+`[guidance.end_game] terminal_window_s` > 0 (docs/vtd-nog.md, "End-game": beyond the paper).
+"""
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ogk_host.orbit_injection.scenario import LeoGeoScenario
+
+from ogk.bindings._ffi import ffi, lib
+from ogk.bindings.kernel import KernelError
+
+F64 = NDArray[np.float64]
+BoolArray = NDArray[np.bool_]
+
+
+def terminal_config(scn: LeoGeoScenario) -> object:
+    """ogk_terminal_config_t of the scenario's circular target orbit and terminal window."""
+    cfg = ffi.new("ogk_terminal_config_t *")
+    status = lib.ogk_terminal_config_default(cfg)
+    if status != lib.OGK_OK:
+        raise KernelError(status, "ogk_terminal_config_default")
+    cfg.mu_m3_s2 = scn.mu_m3_s2
+    cfg.target_radius_m = scn.target_radius_m
+    cfg.window_s = scn.end_game.terminal_window_s
+    return cfg
+
+
+class TerminalSteering:
+    """Per-run ogk_terminal_t contexts, stepped together."""
+
+    def __init__(self, scn: LeoGeoScenario, n_runs: int) -> None:
+        self._n = n_runs
+        self._ctx = ffi.new("ogk_terminal_t[]", n_runs)
+        status = np.zeros(n_runs, dtype=np.int32)
+        rc = lib.ogk_sil_terminal_init_batch(self._ctx, n_runs, terminal_config(scn),
+                                             ffi.from_buffer("int32_t[]", status,
+                                                             require_writable=True))
+        if rc != lib.OGK_OK:
+            raise KernelError(rc, "ogk_terminal_init")
+        self.engaged = np.zeros(n_runs, dtype=np.uint8)
+        self.status = np.zeros(n_runs, dtype=np.int32)
+
+    def step(self, active: BoolArray, t: F64, nav: F64, t_predicted: F64, alpha: F64,
+             beta: F64) -> tuple[F64, F64]:
+        """The command to fly per run from the law's (alpha, beta) [rad]; inactive runs keep the
+        law's."""
+        act = np.ascontiguousarray(active, dtype=np.uint8)
+        a = np.array(alpha, dtype=np.float64)
+        b = np.array(beta, dtype=np.float64)
+        lib.ogk_sil_terminal_step_batch(
+            self._ctx, self._n, ffi.from_buffer("uint8_t[]", act),
+            ffi.from_buffer("double[]", np.ascontiguousarray(t, dtype=np.float64)),
+            ffi.from_buffer("double[]", np.ascontiguousarray(nav, dtype=np.float64)),
+            ffi.from_buffer("double[]", np.ascontiguousarray(t_predicted, dtype=np.float64)),
+            ffi.from_buffer("double[]", a, require_writable=True),
+            ffi.from_buffer("double[]", b, require_writable=True),
+            ffi.from_buffer("uint8_t[]", self.engaged, require_writable=True),
+            ffi.from_buffer("int32_t[]", self.status, require_writable=True))
+        return a, b
+
+    def failed(self) -> BoolArray:
+        return self.status != lib.OGK_OK
