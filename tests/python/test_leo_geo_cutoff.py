@@ -1,14 +1,17 @@
 """The scenario's end-game (energy cut-off by the kernel's ogk_cutoff, 0.5 s sampling in the last
-20 s; docs/vtd-nog.md, "End-game") against the paper's (cut-off predicted at the 2 s samples, eq. 32)
-on the same runs: the six runs of 1000 (seed 424242, 6-DOF, every dispersion) that the paper's
-end-game flies beyond the scenario's 20 m/s acceptance.
+20 s, steering along the velocity to be gained by ogk_terminal in the last 3 s; docs/vtd-nog.md,
+"End-game") against the paper's (cut-off predicted at the 2 s samples, eq. 32) on the same runs: the
+six runs of 1000 (seed 424242, 6-DOF, every dispersion) that the paper's end-game flies beyond the
+scenario's 20 m/s acceptance.
 
 Measured when written (ogk mc leo-geo --runs 1000 --seed 424242): paper's end-game 6 failures, worst
 |dv_tf| 33.5 m/s (run 191, t_f 114.0 s: t_f^(k) at the dtf_max_s clip from 6 s before the end, the
-predicted cut-off 2 s early); the scenario's end-game 0 failures, worst |dv_tf| 0.043 m/s, |dv_rf|
-15.3 m/s, |dv_nf| 16.4 m/s over the 1000 runs.
+predicted cut-off 2 s early); the scenario's end-game 0 failures, worst |dr_f| 17.3 m, |dv_rf| 0.13,
+|dv_tf| 0.0015, |dv_nf| 0.14 m/s over the 1000 runs.
 """
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 import pytest
@@ -30,9 +33,14 @@ def flown() -> dict[str, dict[str, np.ndarray]]:
     scn = load_scenario()
     ref = nominal_reference(scn)
     bundle = prepare_tables(scn).bundle
+    # "paper": the paper's end-game with the CPD feed-forward clip flown before this work (0.05
+    # rad/s), i.e. the loop these six runs failed with; "scenario": everything the scenario flies.
+    before = dataclasses.replace(scn, cpd=dataclasses.replace(scn.cpd,
+                                                              feedforward_rate_max_rad_s=0.05))
     out = {}
     for end_game in ("paper", "scenario"):
         settings = SilSettings(end_game=end_game)
+        scn = before if end_game == "paper" else load_scenario()
         plan = EndGamePlan.of(scn, settings)
         draws, gens = draw_runs(scn, SEED, WORST_RUNS, DispersionSwitches())
         guidance = KernelNogGuidance(GuidanceSetup(scn, ref, draws.run_id, plan.fine_interval_s),
@@ -46,7 +54,9 @@ def flown() -> dict[str, dict[str, np.ndarray]]:
 def test_scenario_flies_the_energy_cutoff() -> None:
     plan = EndGamePlan.of(load_scenario(), SilSettings())
     assert plan.energy_cutoff and plan.fine_interval_s == 0.5 and plan.fine_window_s == 20.0
-    assert EndGamePlan.of(load_scenario(), SilSettings(end_game="paper")) == EndGamePlan(False, None, 0.0)
+    assert plan.terminal_window_s == 3.0
+    assert (EndGamePlan.of(load_scenario(), SilSettings(end_game="paper"))
+            == EndGamePlan(False, None, 0.0, 0.0))
 
 
 def test_paper_end_game_misses_on_these_runs(flown) -> None:
@@ -57,12 +67,15 @@ def test_paper_end_game_misses_on_these_runs(flown) -> None:
     assert np.max(np.abs(paper["dvt_f_mps"])) > 30.0
 
 
-def test_energy_cutoff_bounds_them(flown) -> None:
+def test_end_game_bounds_them(flown) -> None:
     ours = flown["scenario"]
     # The cut-off on energy leaves no along-track error: 0.2 m/s covers the linear extrapolation
     # of the energy inside a 20 ms control step at 18 m/s^2 many times over.
     assert np.max(np.abs(ours["dvt_f_mps"])) < 0.2
+    # Thrust along v_go in the last 3 s: what is left is the attitude loop's pointing error over
+    # the window (about 0.1 m/s); 1 m/s is a third of the paper's dv_r sigma.
     for key in ("dvr_f_mps", "dvn_f_mps"):
-        assert np.max(np.abs(ours[key])) < 20.0, (key, ours[key])
-        assert np.max(np.abs(ours[key])) < np.max(np.abs(flown["paper"][key])), key
-    assert np.max(np.abs(ours["dr_f_m"])) < 100.0
+        assert np.max(np.abs(ours[key])) < 1.0, (key, ours[key])
+    # The radius is not steered in the window: dr grows by about v_r times 3 s. The paper's end-game
+    # leaves 38 m on run 498 of these; 4 paper sigmas are 17 m.
+    assert np.max(np.abs(ours["dr_f_m"])) < 25.0, ours["dr_f_m"]
