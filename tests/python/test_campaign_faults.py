@@ -137,6 +137,24 @@ def test_killed_worker_is_reported_with_its_runs(scn, tmp_path):
     assert 2 not in kept and 3 not in kept             # what finished is kept, nothing else
 
 
+def test_ogk_mc_reports_a_killed_worker_in_one_line(tmp_path, capsys, monkeypatch):
+    from ogk.cli import main
+    from ogk.missions.orbit_injection import guidance as guidance_module
+    monkeypatch.setattr(guidance_module, "NominalOpenLoopGuidance", _KillsItself)
+    out = tmp_path / "mc.json"
+    code = main(["mc", "leo-geo", "--runs", "6", "--seed", "1", "--workers", "2",
+                 "--chunk-runs", "2", "--truth", "point-mass", "--guidance", "nominal",
+                 "--json", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 1 and len(err) == 1, err
+    assert err[0].startswith("ogk mc: campaign aborted: runs 2-3: worker pid "), err[0]
+    assert "killed by SIGKILL" in err[0]
+    assert not out.exists()
+    kept = [json.loads(x)["run_id"] for x in
+            (tmp_path / "mc.json.runs.jsonl").read_text().splitlines()[1:]]
+    assert 2 not in kept and 3 not in kept             # resumable: the finished chunks are kept
+
+
 class _Hangs(NominalOpenLoopGuidance):
     def __init__(self, setup: GuidanceSetup) -> None:
         if 1 in setup.run_ids.tolist():
