@@ -77,6 +77,15 @@ static void test_crossing_between_control_steps(void **state)
         assert_true((again.flags & OGK_CUTOFF_FLAG_DECIDED) != 0u);
         OGK_ASSERT_NEAR(again.t_cutoff_s, out.t_cutoff_s, 0.0);
     }
+    /* A rejected call after the decision reports the decided cut-off. */
+    {
+        ogk_nav_state_t bad = burn_state(T_CROSS + 0.6);
+        ogk_cutoff_out_t again;
+        bad.r_m = NAN;
+        OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &bad, T_CROSS + 3.0, &again), OGK_E_NONFINITE);
+        assert_int_equal(again.flags, OGK_CUTOFF_FLAG_DECIDED);
+        OGK_ASSERT_NEAR(again.t_cutoff_s, out.t_cutoff_s, 0.0);
+    }
 }
 
 static void test_prediction_early_is_overridden(void **state)
