@@ -143,6 +143,9 @@ EQUIVALENT = [
      "nav_in_envelope: at t_s = 2 t_f* + dtf_max exactly, tau > 1 always (the cut-off is at "
      "most t_f* + dtf_max), so the tau > 1 branch rejects it with the same OGK_E_RANGE and "
      "the same safe_sample call"),
+    ("kernel/src/rk4.c", "double ratio = 0.0;", "0.0",
+     "grid_steps: ratio is read only when st == OGK_OK, which is set only after ratio is assigned "
+     "(the initialiser is for the static analysers)"),
     ("kernel/src/interp.c", "for (it = 0u; (it < OGK_INTERP_MAX_SEARCH)", "0u",
      "ogk_interp_locate: 63 instead of 64 bisection steps; 63 halve any range of < 2^63 nodes "
      "(the grid is bounded by OGK_TABLE_MAX_VALUES)"),
