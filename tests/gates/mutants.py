@@ -104,6 +104,10 @@ FIXED = [
      "value-count guard divides by entry_len - 1 (0 for scalar entries) "
      "(test_table: test_scalar_entries)"),
     ("kernel/src/table.c",
+     "(*values > (OGK_TABLE_MAX_VALUES / 8u))", "(*values >= (OGK_TABLE_MAX_VALUES / 8u))",
+     "the largest admitted payload, MAX / 8 values, rejected as too large "
+     "(test_table: test_largest_payload_size)"),
+    ("kernel/src/table.c",
      "for (i = 0u; (i < values)", "for (i = 1u; (i < values)",
      "finiteness scan of the payload skips grid[0] "
      "(test_table: test_nonfinite_first_and_last_value)"),

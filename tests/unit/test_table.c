@@ -227,6 +227,32 @@ static void test_nonfinite_first_and_last_value(void **state)
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_OK);
 }
 
+/* The largest payload the format admits is OGK_TABLE_MAX_VALUES / 8 =
+ * 2^25 - 1 values = 31 x (601 x 1801): entries of 30 values on a grid of
+ * 1 082 401. A header claiming it passes the size checks and is then found
+ * truncated (only the header is there); one value more, 2^25 = 32 x 2^20
+ * (entries of 31), is too large. Both stop before the payload is read, so
+ * the payload CRC is not needed. */
+static void test_largest_payload_size(void **state)
+{
+    static uint8_t hdr[OGK_TABLE_HEADER_SIZE];
+    const uint32_t dims_max[1] = {30u};
+    const uint32_t dims_over[1] = {31u};
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    (void)state;
+    s.ndims = 1u;
+    s.dims[0] = 0u;
+    s.dims[1] = 0u;
+    s.max_grid = 2000000u;
+    tw_header(hdr, KIND_TEST, 1u, dims_max, 601u * 1801u);
+    tw_seal(hdr, 0u);
+    OGK_ASSERT_STATUS(ogk_table_open(hdr, sizeof hdr, &s, &v), OGK_E_TABLE_TRUNCATED);
+    tw_header(hdr, KIND_TEST, 1u, dims_over, 1048576u);
+    tw_seal(hdr, 0u);
+    OGK_ASSERT_STATUS(ogk_table_open(hdr, sizeof hdr, &s, &v), OGK_E_TABLE_SIZE);
+}
+
 static void test_null_and_unopened(void **state)
 {
     ogk_table_spec_t s = spec();
@@ -253,6 +279,7 @@ int main(void)
         cmocka_unit_test(test_magic_version_type_kind),
         cmocka_unit_test(test_inconsistent_payload_size_and_nan),
         cmocka_unit_test(test_nonfinite_first_and_last_value),
+        cmocka_unit_test(test_largest_payload_size),
         cmocka_unit_test(test_null_and_unopened),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
