@@ -143,7 +143,9 @@ def mc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     settings = SilSettings(control_rate_hz=args.control_rate, truth_substeps=args.truth_substeps,
                            history_runs=args.history_runs if args.plots else 0,
                            cpd_gains=args.cpd_gains, cpd_pointing=args.cpd_pointing,
-                           end_game="paper" if args.paper_end_game else "scenario")
+                           # the open-loop reference flies no end-game (its cut-off is t_f*)
+                           end_game=("paper" if args.paper_end_game or args.guidance == "nominal"
+                                     else "scenario"))
     res = run_campaign(scn, runs=args.runs, seed=args.seed, workers=args.workers,
                        dispersions=not args.no_dispersions, truth=args.truth,
                        guidance_factory=factory, guidance_name=args.guidance, settings=settings,

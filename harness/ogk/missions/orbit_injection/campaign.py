@@ -214,6 +214,7 @@ class _Job:
         plan = EndGamePlan.of(self.scenario, self.settings)
         guidance = self.guidance_factory(GuidanceSetup(self.scenario, self.reference, draws.run_id,
                                                        plan.fine_interval_s))
+        # (a guidance that flies no end-game ignores last_interval_s: sil.EndGamePlan.flown_by)
         res = simulate(self.scenario, self.reference, draws, gens, self.switches, guidance,
                        self.settings)
         return draws, res

@@ -66,6 +66,10 @@ class NominalOpenLoopGuidance:
     The reference for tests: with the point-mass truth and no dispersions it must reproduce the
     ground nominal's final state (the check that the truth and the ground tools agree)."""
 
+    #: an open-loop reference flies its own cut-off and command to the end: no end-game stage
+    #: (sil.EndGamePlan.flown_by)
+    flies_end_game = False
+
     name = "nominal"
 
     def __init__(self, setup: GuidanceSetup, cutoff_s: float | None = None) -> None:

@@ -35,7 +35,7 @@ F64 = NDArray[np.float64]
 ERROR_KEYS = ("dr_f_m", "dphi_f_deg", "dvr_f_mps", "dvt_f_mps", "dvn_f_mps", "tf_s")
 RATE_KEYS = ("Mx_dot_Nmps", "Dy_dot_degps", "Dz_dot_degps")
 TRUTHS = ("6dof", "point-mass")
-FAILURE_REASONS = ("nan", "guidance", "cutoff", "terminal", "attitude_control", "no_termination")
+FAILURE_REASONS = ("nan", "guidance", "attitude_control", "no_termination", "cutoff", "terminal")
 END_GAMES = ("scenario", "paper")
 HISTORY_KEYS = ("r_m", "xi_rad", "phi_rad", "vr_mps", "vt_mps", "vn_mps", "alpha_c_rad",
                 "beta_c_rad", "Mx_Nm", "Dy_rad", "Dz_rad", "psi_rad", "theta_rad", "phi_roll_rad",
@@ -78,9 +78,26 @@ class EndGamePlan:
             raise ValueError(f"end_game must be one of {END_GAMES}, got {settings.end_game!r}")
         eg = scn.end_game
         if settings.end_game == "paper":
-            return cls(False, None, 0.0, 0.0)
-        fine = eg.fine_sample_interval_s if eg.fine_window_s > 0.0 else None
+            return cls.none()
+        fine = None
+        if eg.fine_sample_interval_s is not None and eg.fine_window_s > 0.0:
+            # a whole number of control periods (at least one): samples fall on control steps
+            ctrl_dt = 1.0 / settings.control_rate_hz
+            fine = max(1, round(eg.fine_sample_interval_s / ctrl_dt)) * ctrl_dt
         return cls(eg.cutoff == "energy", fine, eg.fine_window_s, eg.terminal_window_s)
+
+    @classmethod
+    def none(cls) -> "EndGamePlan":
+        """Nothing beyond the paper: cut-off predicted at the samples, Delta t_S throughout."""
+        return cls(False, None, 0.0, 0.0)
+
+    @classmethod
+    def flown_by(cls, scn: LeoGeoScenario, settings: "SilSettings", guidance: object
+                 ) -> "EndGamePlan":
+        """The plan a guidance flies: an open-loop reference (flies_end_game = False) flies none."""
+        if not getattr(guidance, "flies_end_game", True):
+            return cls.none()
+        return cls.of(scn, settings)
 
 
 @dataclasses.dataclass
@@ -169,13 +186,10 @@ def simulate(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
     if abs(sample_every - round(sample_every)) > 1e-9 or round(sample_every) < 1:
         raise ValueError("the guidance sampling interval must be a multiple of the control period")
     sample_every = int(round(sample_every))
-    plan = EndGamePlan.of(scn, settings)
+    plan = EndGamePlan.flown_by(scn, settings, guidance)
     fine_every = sample_every
     if plan.fine_interval_s is not None:
-        fine = plan.fine_interval_s / ctrl_dt
-        if abs(fine - round(fine)) > 1e-9 or round(fine) < 1:
-            raise ValueError("the end-game sampling interval must be a multiple of the control period")
-        fine_every = int(round(fine))
+        fine_every = int(round(plan.fine_interval_s / ctrl_dt))   # whole periods (EndGamePlan.of)
     energy_cut = EnergyCutoff(scn, n, ctrl_dt) if plan.energy_cutoff else None
     terminal = TerminalSteering(scn, n) if plan.terminal_window_s > 0.0 else None
     t_max = settings.t_max_s if settings.t_max_s is not None else 1.5 * ref.tf_s + 20.0
@@ -259,13 +273,14 @@ def simulate(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
                     active = ~done
                 alpha_c, beta_c = (np.asarray(v, dtype=np.float64)
                                    for v in guidance.command(t_run))
+                fail(~(np.isfinite(alpha_c) & np.isfinite(beta_c)) & active, "guidance")
+                active = ~done
                 if terminal is not None:
                     known = active & np.isfinite(predicted)
                     alpha_c, beta_c = terminal.step(known, t_run, x[:6].T, predicted, alpha_c,
                                                     beta_c)
                     fail(terminal.failed() & known, "terminal")
-                fail(~(np.isfinite(alpha_c) & np.isfinite(beta_c)) & active, "guidance")
-                active = ~done
+                    active = ~done
                 if six_dof:
                     psi, theta, roll = tm.euler_from_quat(x[tm.Q0:tm.Q3 + 1])
                     att = np.stack([psi, theta, roll, x[tm.RATE_P], x[tm.RATE_Q], x[tm.RATE_R]],
