@@ -1,6 +1,8 @@
 /* nog_batch.c -- SIL batch loops for VTD-NOG (not flight code; nog_batch.h). */
 #include "nog_batch.h"
 
+#include "nav_batch.h"
+
 ogk_status ogk_sil_nog_init_batch(ogk_nog_t *ctx, size_t n_runs,
                                   const ogk_nog_config_t *cfg, int32_t *status)
 {
@@ -12,9 +14,7 @@ ogk_status ogk_sil_nog_init_batch(ogk_nog_t *ctx, size_t n_runs,
     for (i = 0u; i < n_runs; ++i) {
         const ogk_status st = ogk_nog_init(&ctx[i], cfg);
         status[i] = (int32_t)st;
-        if (st != OGK_OK && first == OGK_OK) {
-            first = st;
-        }
+        (void)ogk_sil_keep_first_error(&first, st);
     }
     return first;
 }
@@ -37,22 +37,14 @@ ogk_status ogk_sil_nog_sample_batch(ogk_nog_t *ctx, size_t n_runs, const uint8_t
         if (active[i] == 0u) {
             continue;
         }
-        in.t_s = t[i];
-        in.r_m = nav[6u * i];
-        in.xi_rad = nav[6u * i + 1u];
-        in.phi_rad = nav[6u * i + 2u];
-        in.v_r_mps = nav[6u * i + 3u];
-        in.v_t_mps = nav[6u * i + 4u];
-        in.v_n_mps = nav[6u * i + 5u];
+        (void)ogk_sil_nav_of_run(t, nav, i, &in); /* pointers checked above */
         st = ogk_nog_sample(&ctx[i], &in, &out);
         t_cutoff[i] = out.t_cutoff_s;
         t_f[i] = out.t_f_s;
         tau_k[i] = out.tau_k;
         flags[i] = out.flags;
         status[i] = (int32_t)st;
-        if (st != OGK_OK && first == OGK_OK) {
-            first = st;
-        }
+        (void)ogk_sil_keep_first_error(&first, st);
     }
     return first;
 }
@@ -74,9 +66,7 @@ ogk_status ogk_sil_nog_command_batch(const ogk_nog_t *ctx, size_t n_runs, const 
         beta[i] = out.beta_rad;
         flags[i] = out.law_flags;
         status[i] = (int32_t)st;
-        if (st != OGK_OK && first == OGK_OK) {
-            first = st;
-        }
+        (void)ogk_sil_keep_first_error(&first, st);
     }
     return first;
 }

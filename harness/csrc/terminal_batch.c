@@ -1,6 +1,8 @@
 /* terminal_batch.c -- SIL batch loop for the terminal steering (not flight code; terminal_batch.h). */
 #include "terminal_batch.h"
 
+#include "nav_batch.h"
+
 ogk_status ogk_sil_terminal_init_batch(ogk_terminal_t *ctx, size_t n_runs,
                                        const ogk_terminal_config_t *cfg, int32_t *status)
 {
@@ -12,9 +14,7 @@ ogk_status ogk_sil_terminal_init_batch(ogk_terminal_t *ctx, size_t n_runs,
     for (i = 0u; i < n_runs; ++i) {
         const ogk_status st = ogk_terminal_init(&ctx[i], cfg);
         status[i] = (int32_t)st;
-        if (st != OGK_OK && first == OGK_OK) {
-            first = st;
-        }
+        (void)ogk_sil_keep_first_error(&first, st);
     }
     return first;
 }
@@ -38,13 +38,7 @@ ogk_status ogk_sil_terminal_step_batch(ogk_terminal_t *ctx, size_t n_runs, const
         if (active[i] == 0u) {
             continue;
         }
-        in.t_s = t[i];
-        in.r_m = nav[6u * i];
-        in.xi_rad = nav[6u * i + 1u];
-        in.phi_rad = nav[6u * i + 2u];
-        in.v_r_mps = nav[6u * i + 3u];
-        in.v_t_mps = nav[6u * i + 4u];
-        in.v_n_mps = nav[6u * i + 5u];
+        (void)ogk_sil_nav_of_run(t, nav, i, &in); /* pointers checked above */
         law.t_s = t[i];
         law.alpha_rad = alpha[i];
         law.beta_rad = beta[i];
@@ -55,9 +49,7 @@ ogk_status ogk_sil_terminal_step_batch(ogk_terminal_t *ctx, size_t n_runs, const
         beta[i] = out.beta_rad;
         engaged[i] = (uint8_t)((out.law_flags & OGK_TERMINAL_FLAG_ENGAGED) != 0u);
         status[i] = (int32_t)st;
-        if (st != OGK_OK && first == OGK_OK) {
-            first = st;
-        }
+        (void)ogk_sil_keep_first_error(&first, st);
     }
     return first;
 }

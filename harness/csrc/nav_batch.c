@@ -1,0 +1,28 @@
+/* nav_batch.c -- shared pieces of the SIL batch loops (not flight code; nav_batch.h). */
+#include "nav_batch.h"
+
+ogk_status ogk_sil_nav_of_run(const double *t, const double *nav, size_t i, ogk_nav_state_t *out)
+{
+    if (t == NULL || nav == NULL || out == NULL) {
+        return OGK_E_NULL;
+    }
+    out->t_s = t[i];
+    out->r_m = nav[6u * i];
+    out->xi_rad = nav[6u * i + 1u];
+    out->phi_rad = nav[6u * i + 2u];
+    out->v_r_mps = nav[6u * i + 3u];
+    out->v_t_mps = nav[6u * i + 4u];
+    out->v_n_mps = nav[6u * i + 5u];
+    return OGK_OK;
+}
+
+ogk_status ogk_sil_keep_first_error(ogk_status *first, ogk_status st)
+{
+    if (first == NULL) {
+        return OGK_E_NULL;
+    }
+    if (st != OGK_OK && *first == OGK_OK) {
+        *first = st;
+    }
+    return OGK_OK;
+}
