@@ -225,6 +225,13 @@ static void test_contract(void **state)
     cfg.control_period_s = 0.0;
     OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_E_CONFIG);
     assert_int_not_equal((int)ctx.init_marker, 0x43555430); /* rejected config: still not initialised */
+    /* The closed bounds are admitted: extend_max_s = T_MAX, a prediction at t = 0. */
+    cfg = config();
+    cfg.extend_max_s = OGK_CUTOFF_T_MAX_S;
+    OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &nav, 0.0, &out), OGK_OK);
+    OGK_ASSERT_NEAR(out.t_cutoff_s, OGK_CUTOFF_T_MAX_S, 0.0);
+    assert_int_equal(out.flags, OGK_CUTOFF_FLAG_ARMED | OGK_CUTOFF_FLAG_BACKSTOP);
 }
 
 int main(void)

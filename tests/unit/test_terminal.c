@@ -212,6 +212,12 @@ static void test_contract(void **state)
     cfg.mu_m3_s2 = 1.0e308;
     cfg.target_radius_m = 1.0e-300; /* circular speed overflows */
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    /* Any positive mu and radius are admitted (a normalised problem: mu = 0.5, R_f = 0.5). */
+    cfg = config();
+    cfg.mu_m3_s2 = 0.5;
+    cfg.target_radius_m = 0.5;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_NEAR(ctx.v_target_mps, 1.0, 0.0);
     /* window 0: never engaged */
     cfg = config();
     cfg.window_s = 0.0;
