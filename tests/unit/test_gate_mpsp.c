@@ -47,6 +47,39 @@ static void test_config_grid_and_phase(void **state)
     assert_true(tmp.init_marker != OGK_MPSP_INIT_MARKER);
 }
 
+/* The edges of the configuration ranges (ogk/mpsp.h): each admitted or refused
+ * value at its bound. */
+static void test_config_range_edges(void **state)
+{
+    ogk_mpsp_config_t c;
+    ogk_mpsp_t tmp;
+    const size_t n_weights = OGK_MPSP_NU * ((2u * 3u) + 1u); /* fourier_order 3 */
+    (void)state;
+    c = cfg;
+    c.c_exhaust = 0.0; /* mass flow T / c undefined */
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_E_CONFIG);
+    c = cfg;
+    c.max_outer = 1u; /* one continuation level is a valid problem */
+    c.n_seg_tol_step = 1u;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_OK);
+    c = cfg;
+    c.mu = 0.0; /* no gravity: the origin is a valid start */
+    c.x0_nom[0] = 0.0;
+    c.x0_nom[1] = 0.0;
+    c.x0_nom[2] = 0.0;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_OK);
+    c = cfg;
+    c.x0_nom[0] = 0.5; /* |r| = 0.5 (normalised units): valid with gravity */
+    c.x0_nom[1] = 0.0;
+    c.x0_nom[2] = 0.0;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_OK);
+    c = cfg;
+    c.r_eps[n_weights] = 0.0; /* past the weights in use: not read */
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_OK);
+    c.r_eps[n_weights - 1u] = 0.0; /* the last weight in use */
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_E_CONFIG);
+}
+
 static void test_propagate_rejections(void **state)
 {
     ogk_mpsp_prop_t prop;
@@ -188,6 +221,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_config_grid_and_phase),
+        cmocka_unit_test(test_config_range_edges),
         cmocka_unit_test(test_propagate_rejections),
         cmocka_unit_test(test_readout_rejections),
         cmocka_unit_test(test_newton_update_rejections),
