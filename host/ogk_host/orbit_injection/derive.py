@@ -6,7 +6,8 @@
 - CPD gains (docs/cpd.md, "Design rule for another vehicle"; the re-derived set, flown unless
   `[cpd] flown = "printed"`, recorded as `cpd_flown`): sec. 5.3 with this scenario's thrust and inertia,
   G_x = 1 / I_x0, G_y = T l0 / I_y0, G_z = T l0 / I_z0 (l smallest and I largest at ignition, so
-  these are the G_min of each axis), k_p = omega_n^2 / G_min, k_d = 2 zeta omega_n / G_min; pitch
+  these are the G_min of each axis; T is the smallest thrust of the burn, T_min of sec. 7 eq. 57
+  for a tabulated thrust, the constant T = n0 m0 of sec. 6), k_p = omega_n^2 / G_min, k_d = 2 zeta omega_n / G_min; pitch
   and yaw share one set designed on min(G_y, G_z). Taken from `[cpd.rederived]` when present.
 - End-game freeze (docs/vtd-nog.md, "End-game"): freeze_time_to_go_s = Delta t_S / 4, the spacing of
   the paper's gain grid near cut-off (4 nodes per sampling interval; 0.5 s for Delta t_S = 2 s, the
@@ -67,7 +68,7 @@ def design_rule_gains(scn: LeoGeoScenario) -> CpdGains:
     cpd, mp = scn.cpd, scn.mass_properties
     w, z = cpd.natural_frequency_rad_s, cpd.damping_ratio
     g_x = 1.0 / mp.inertia_x_kg_m2
-    g_yz = scn.thrust.thrust_n * mp.tvc_arm_m / max(mp.inertia_y_kg_m2, mp.inertia_z_kg_m2)
+    g_yz = scn.thrust.min_thrust_n * mp.tvc_arm_m / max(mp.inertia_y_kg_m2, mp.inertia_z_kg_m2)
     return CpdGains(gain_roll_g_per_kg_m2=g_x, gain_pitch_yaw_g_s2=g_yz,
                     kp_roll_n_m_per_rad=w * w / g_x, kd_roll_n_m_s_per_rad=2.0 * z * w / g_x,
                     kp_pitch_yaw=w * w / g_yz, kd_pitch_yaw_s=2.0 * z * w / g_yz)
@@ -80,7 +81,7 @@ def freeze_rule_s(scn: LeoGeoScenario) -> float:
 
 def braking_accels(scn: LeoGeoScenario) -> tuple[float, float, float]:
     """ogk_cpd_config_t.approach_accel_{x,y,z} [rad/s^2] (see the module docstring)."""
-    cpd, mp, thrust_n = scn.cpd, scn.mass_properties, scn.thrust.thrust_n
+    cpd, mp, thrust_n = scn.cpd, scn.mass_properties, scn.thrust.min_thrust_n
     return (cpd.braking_margin * cpd.roll_torque_command_max_n_m / mp.inertia_x_kg_m2,
             cpd.braking_margin * thrust_n * mp.tvc_arm_m / mp.inertia_y_kg_m2
             * math.sin(cpd.deflection_y_command_max_rad),

@@ -10,7 +10,7 @@ complex-step derivative tests), except `optimal_control`.
   eq. (5)  v_t' = v_t (v_n tan(phi) - v_r)/r + a(t) cos(alpha) cos(beta)
   eq. (6)  v_n' = -v_t^2 tan(phi)/r - v_r v_n/r + a(t) sin(beta)
            t'   = 1
-with a(t) = T/m = n0 c / (c - n0 t) (sec. 6). Here ' is d/dt; in normalised time tau = t/t_f
+with a(t) = T/m = n0 c / (c - n0 t) (sec. 6) or a tabulated T(t)/m(t) (sec. 7). Here ' is d/dt; in normalised time tau = t/t_f
 (eq. 22) every rate is multiplied by t_f.
 
 h(x, lam, u) = lam^T f~(x, u) is the Hamiltonian per unit time; H = t_f h (eq. 23).
@@ -22,7 +22,7 @@ import dataclasses
 import numpy as np
 from numpy.typing import NDArray
 
-from .scenario import LeoGeoScenario
+from .scenario import LeoGeoScenario, TabulatedThrust
 from .units import CanonicalUnits
 
 FloatArray = NDArray[np.float64]
@@ -36,22 +36,75 @@ FREE_FINAL = (XI, TIME)
 
 
 @dataclasses.dataclass(frozen=True)
+class TabulatedAccel:
+    """a(t) = T(t) / m(t) of a tabulated thrust and mass history (scenario.TabulatedThrust, sec. 7)
+    in canonical units: t in TU, a in DU/TU^2."""
+
+    thrust: TabulatedThrust
+    time_unit_s: float         #: TU [s]
+    accel_unit_m_s2: float     #: DU/TU^2 [m/s^2]
+
+    @property
+    def end(self) -> float:
+        """Last tabulated time [TU]."""
+        return self.thrust.end_s / self.time_unit_s
+
+    @property
+    def knots(self) -> FloatArray:
+        """Interior spline breakpoints [TU] (the third derivative of a jumps there)."""
+        return self.thrust.knots_s / self.time_unit_s
+
+    def __call__(self, t: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        tu, au = self.time_unit_s, self.accel_unit_m_s2
+        a, a1, a2 = self.thrust.accel_derivatives(np.real(np.asarray(t)) * tu)
+        return a / au, a1 * (tu / au), a2 * (tu * tu / au)
+
+
+@dataclasses.dataclass(frozen=True)
 class Model:
-    """Canonical-unit constants of the dynamics."""
+    """Canonical-unit constants of the dynamics.
+
+    Thrust acceleration: the sec. 6 formula a = n0 c / (c - n0 t) (table None), or a tabulated
+    T(t) / m(t) (`TabulatedAccel`, sec. 7); then n0 = a(0) and c is the effective exhaust velocity at
+    ignition, kept only for the coarse-scan time estimates.
+    """
 
     mu: float                  #: gravitational parameter [DU^3/TU^2] (1 by construction)
     initial_accel: float       #: n0 [DU/TU^2]
     exhaust_velocity: float    #: c [VU]
+    table: TabulatedAccel | None = None   #: tabulated a(t); None: the sec. 6 formula
 
     @classmethod
     def for_scenario(cls, scn: LeoGeoScenario, units: CanonicalUnits) -> "Model":
         """Converts the scenario's SI thrust model to canonical units."""
+        table = None
+        if isinstance(scn.thrust, TabulatedThrust):
+            table = TabulatedAccel(scn.thrust, units.time_s, units.accel_m_s2)
         return cls(mu=scn.mu_m3_s2 * units.time_s**2 / units.length_m**3,
                    initial_accel=scn.thrust.initial_accel_m_s2 / units.accel_m_s2,
-                   exhaust_velocity=scn.thrust.exhaust_velocity_m_s / units.velocity_m_s)
+                   exhaust_velocity=scn.thrust.exhaust_velocity_m_s / units.velocity_m_s,
+                   table=table)
+
+    @property
+    def max_time(self) -> float:
+        """Latest real time an arc may reach [TU]: 0.95 of the burnout time c / n0 (a -> infinity),
+        or the end of the thrust table."""
+        if self.table is not None:
+            return self.table.end
+        return 0.95 * (self.exhaust_velocity / self.initial_accel)
+
+    def tau_breaks(self, t_f: float, tau_ref: float, t_ref: float) -> FloatArray | None:
+        """The table's knots as normalised times on an arc with t(tau_ref) = t_ref and t' = t_f
+        (None without a table): the integrators restart there (`solve_ivp_segmented`)."""
+        if self.table is None:
+            return None
+        return tau_ref + (self.table.knots - t_ref) / t_f
 
     def accel(self, t: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """a(t) = n0 c/(c - n0 t) and its first two time derivatives a^2/c, 2 a^3/c^2."""
+        """a(t) and its first two time derivatives: n0 c/(c - n0 t), a^2/c, 2 a^3/c^2 for the sec. 6
+        formula, the spline derivatives of T/m for a table."""
+        if self.table is not None:
+            return self.table(t)
         c = self.exhaust_velocity
         a = self.initial_accel * c / (c - self.initial_accel * t)
         return a, a * a / c, 2.0 * a**3 / (c * c)

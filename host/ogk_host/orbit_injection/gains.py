@@ -21,7 +21,7 @@ from scipy.integrate import solve_ivp
 from ..errors import OgkInputError
 from . import dynamics as dyn
 from .nominal import Nominal
-from .propagation import ATOL, N_Z, RTOL
+from .propagation import ATOL, N_Z, RTOL, solve_ivp_segmented
 
 FloatArray = NDArray[np.float64]
 
@@ -79,8 +79,9 @@ def backward_transition(nominal: Nominal, tau: FloatArray) -> BackwardTransition
     if desc[0] == 1.0 and desc.size == 1:
         ys = y1[None, :]
     else:
-        sol = solve_ivp(rhs, (1.0, float(desc[-1])), y1, method="DOP853", rtol=RTOL, atol=ATOL,
-                        t_eval=desc)
+        sol = solve_ivp_segmented(rhs, (1.0, float(desc[-1])), y1, desc,
+                                  nominal.model.tau_breaks(t_f, 0.0, 0.0),
+                                  method="DOP853", rtol=RTOL, atol=ATOL)
         if not sol.success:
             raise RuntimeError(f"backward transition integration failed: {sol.message}")
         ys = sol.y.T[::-1]
@@ -334,8 +335,9 @@ def propagate_neighboring(nominal: Nominal, tau_k: float, dx_k: FloatArray, corr
 
     w0 = np.concatenate([z_k, dx_k, correction.dlam_k, [0.0]])
     tau = np.atleast_1d(np.asarray(tau, dtype=np.float64))
-    sol = solve_ivp(rhs, (tau_k, float(tau.max())), w0, method="DOP853", rtol=RTOL, atol=ATOL,
-                    t_eval=tau)
+    sol = solve_ivp_segmented(rhs, (tau_k, float(tau.max())), w0, tau,
+                              nominal.model.tau_breaks(t_f, 0.0, 0.0),
+                              method="DOP853", rtol=RTOL, atol=ATOL)
     w = sol.y.T
     _, _, mats = linear_system(nominal, w[:, :N_Z])
     dx, dlam = w[:, N_Z:N_Z + dyn.N_X], w[:, N_Z + dyn.N_X:N_Z + 2 * dyn.N_X]

@@ -62,17 +62,30 @@ class MinTimeProblem:
     scenario: LeoGeoScenario
     units: CanonicalUnits
     model: dyn.Model
-    semilatus_rectum: float       #: p of the pre-ignition ellipse [DU]
+    semilatus_rectum: float       #: p of the pre-ignition ellipse [DU] (case B; NaN for case A)
     eccentricity: float
     target_radius: float          #: R_f [DU] (1 by construction)
+    #: eq. (19) case A: the specified ignition state (7 canonical components); None for case B
+    fixed_state: tuple[float, ...] | None = None
 
     @classmethod
     def from_scenario(cls, scn: LeoGeoScenario) -> "MinTimeProblem":
         units = CanonicalUnits.for_scenario(scn)
-        return cls(scenario=scn, units=units, model=dyn.Model.for_scenario(scn, units),
+        model = dyn.Model.for_scenario(scn, units)
+        if getattr(scn, "pre_ignition", None) is None:
+            x0 = units.state_from_si(scn.initial_state.state_si())
+            return cls(scenario=scn, units=units, model=model, semilatus_rectum=math.nan,
+                       eccentricity=math.nan, target_radius=scn.target_radius_m / units.length_m,
+                       fixed_state=tuple(float(v) for v in x0))
+        return cls(scenario=scn, units=units, model=model,
                    semilatus_rectum=scn.pre_ignition.semilatus_rectum_m / units.length_m,
                    eccentricity=scn.pre_ignition.eccentricity,
                    target_radius=scn.target_radius_m / units.length_m)
+
+    @property
+    def free_ignition(self) -> bool:
+        """Eq. (19) case B (ignition anomaly free); False: case A (specified state)."""
+        return self.fixed_state is None
 
     @property
     def circular_speed(self) -> float:
@@ -80,8 +93,12 @@ class MinTimeProblem:
         return math.sqrt(self.model.mu / self.target_radius)
 
     def ignition_state(self, f0: FloatArray | float) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """x0(f0) from eq. (19) case B, and its first and second derivatives in f0 (each (..., 7))."""
+        """x0(f0) from eq. (19) case B, and its first and second derivatives in f0 (each (..., 7)).
+        Case A: the specified state whatever f0, derivatives zero."""
         f0 = np.asarray(f0, dtype=np.float64)
+        if self.fixed_state is not None:
+            x0 = np.broadcast_to(np.array(self.fixed_state), f0.shape + (dyn.N_X,)).copy()
+            return x0, np.zeros_like(x0), np.zeros_like(x0)
         p, e = self.semilatus_rectum, self.eccentricity
         vp = math.sqrt(self.model.mu / p)
         w = 1.0 + e * np.cos(f0)
@@ -93,6 +110,25 @@ class MinTimeProblem:
         ddx0 = np.stack([p * e * cf / w**2 + 2.0 * p * e**2 * sf**2 / w**3, zeros, zeros,
                          -vp * e * sf, -vp * e * cf, zeros, zeros], axis=-1)
         return x0, dx0, ddx0
+
+    def ignition_anomaly(self, f0: float) -> float:
+        """The ignition true anomaly reported for a solution: f0 (case B), or the true anomaly of
+        the specified state on its osculating orbit (case A)."""
+        if self.fixed_state is None:
+            return f0
+        return self.scenario.initial_state.true_anomaly_rad(self.scenario.mu_m3_s2)
+
+    def velocity_gain_time(self) -> float:
+        """Case A: the time [TU] at which the integral of a(t) equals the speed difference
+        |v_target - v0| (a crude impulsive estimate of t_f, for the scan range)."""
+        x0 = self.fixed_state
+        dv = math.hypot(x0[dyn.VR], self.circular_speed - x0[dyn.VT])
+        t = np.linspace(0.0, self.model.max_time, 2001)
+        a = self.model.accel(t)[0]
+        gained = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] + a[:-1]) * np.diff(t))])
+        if gained[-1] <= dv:
+            return float(t[-1])
+        return float(np.interp(dv, gained, t))
 
     def rocket_equation_time(self) -> float:
         """t_f of an impulsive-equivalent burn at apoapsis: the Delta v to circularise [TU]."""
@@ -277,7 +313,8 @@ def _finish(problem: MinTimeProblem, q: FloatArray, scan_size: int, n_starts: in
         raise RuntimeError(f"extremal with h = {h1} >= 0 cannot be normalised to h = -1")
     z0 = np.concatenate([x0, lam0 * (-1.0 / h1)])
     residuals = necessary_condition_residuals(problem, z0, t_f, f0)
-    return Nominal(problem=problem, t_f=t_f, f0=f0, z0=z0, residuals=residuals,
+    return Nominal(problem=problem, t_f=t_f, f0=problem.ignition_anomaly(f0), z0=z0,
+                   residuals=residuals,
                    scan_candidates=scan_size, refined_starts=n_starts, method=method)
 
 
@@ -410,6 +447,11 @@ def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 8,
     scan + Levenberg-Marquardt + damped Newton ("scan"), or the first, falling back on the
     second ("auto")."""
     problem = MinTimeProblem.from_scenario(scn if scn is not None else load_scenario())
+    if not problem.free_ignition:
+        if method not in ("auto", "scan"):
+            raise ValueError(f"method {method!r}: a specified ignition state (eq. 19 case A) is "
+                             f"solved by the scan only")
+        return _solve_specified_state(problem, min(n_starts, SPECIFIED_STATE_STARTS))
     if method == "auto" and abs(apogee_excess(problem)) > APOGEE_TOLERANCE:
         method = "scan"        # an ellipse crossing the target: the paper's point is a bifurcation
     if method in ("auto", "continuation"):
@@ -448,6 +490,61 @@ def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 8,
         raise NominalError(reason, path=getattr(problem.scenario, "path", None), key=key)
     best = min(solutions, key=lambda q: q[3])
     return _finish(problem, best, scan_size, len(starts))
+
+
+#: Refinements of the case-A scan (each LM + Newton costs ~10-30 s with a tabulated thrust; on
+#: the Scout data the best-ranked start already converges to the minimum).
+SPECIFIED_STATE_STARTS = 3
+
+
+def _solve_specified_state(problem: MinTimeProblem, n_starts: int) -> Nominal:
+    """Eq. (19) case A (sec. 7, eq. 56): x(0) specified, unknowns q = [alpha0, kappa, t_f] and the
+    three in-plane injection residuals. A vectorised RK4 scan (alpha0 -80..80 deg every 5 deg,
+    kappa -2..2 every 0.1, t_f 0.8..1.6 times `velocity_gain_time`, inside the thrust table) ranks
+    the candidates; the best n_starts are refined by Levenberg-Marquardt (rtol 1e-9) and damped
+    Newton (rtol 1e-12); the minimum-t_f converged extremal is kept."""
+    t_ref = problem.velocity_gain_time()
+    alpha_grid = np.radians(np.arange(-80.0, 80.1, 5.0))
+    kappa_grid = np.arange(-2.0, 2.001, 0.1)
+    tf_grid = t_ref * np.geomspace(0.8, 1.6, 17)
+    tf_grid = tf_grid[tf_grid < 0.999 * problem.model.max_time]
+    grid = np.stack(np.meshgrid(alpha_grid, kappa_grid, tf_grid, indexing="ij"),
+                    axis=-1).reshape(-1, 3)
+    x0, _, _ = problem.ignition_state(np.zeros(grid.shape[0]))
+    lam0 = _costate_from_q(grid[:, 0], grid[:, 1], grid[:, 2])
+    with np.errstate(all="ignore"):
+        z1 = rk4_extremal_batch(problem.model, np.concatenate([x0, lam0], axis=1), grid[:, 2], 40)
+    merit = np.sqrt((z1[:, dyn.R] - problem.target_radius)**2 + z1[:, dyn.VR]**2
+                    + (z1[:, dyn.VT] - problem.circular_speed)**2)
+    merit[~np.isfinite(merit)] = np.inf
+    starts = grid[np.argsort(merit)[:n_starts]]
+
+    def fun(q: FloatArray, rtol: float = 1e-12, with_jac: bool = True) -> tuple[FloatArray, FloatArray]:
+        return _reduced_residual(problem, q, free_f0=False, rtol=rtol, with_jac=with_jac)
+
+    solutions: list[FloatArray] = []
+    for q_start in starts:
+        try:
+            fit = least_squares(lambda q: fun(q, 1e-9, False)[0], q_start,
+                                jac=lambda q: fun(q, 1e-9)[1], method="lm",
+                                xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=100)
+        except (RuntimeError, ValueError):
+            continue
+        if not np.all(np.isfinite(fit.x)) or fit.x[2] <= 0.0 or np.max(np.abs(fit.fun)) > 1e-7:
+            continue
+        try:
+            q, res = newton(fun, fit.x)
+        except (RuntimeError, ValueError):
+            continue
+        if np.max(np.abs(res)) < 1e-12:
+            solutions.append(q)
+    if not solutions:
+        raise NominalError(f"no minimum-time burn found from the specified ignition state "
+                           f"(eq. 19 case A) within the thrust table ({problem.model.max_time * problem.units.time_s:.4g} s): "
+                           f"check [initial_state], [target_orbit] and [thrust]",
+                           path=getattr(problem.scenario, "path", None), key="initial_state")
+    best = min(solutions, key=lambda q: q[2])
+    return _finish(problem, np.concatenate([[0.0], best]), grid.shape[0], len(starts))
 
 
 def _outside_envelope_reason(problem: MinTimeProblem) -> tuple[str, str]:

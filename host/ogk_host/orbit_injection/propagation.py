@@ -23,6 +23,48 @@ RTOL = 1e-12
 ATOL = 1e-14
 
 
+@dataclasses.dataclass(frozen=True)
+class SegmentedSolution:
+    """The parts of scipy's OdeResult that the callers use."""
+
+    t: FloatArray
+    y: FloatArray          #: (n_y, n_eval)
+    success: bool
+    message: str
+    nfev: int
+
+
+def solve_ivp_segmented(rhs, span: tuple[float, float], y0: FloatArray, t_eval: FloatArray,
+                        breaks: FloatArray | None, **options):
+    """solve_ivp(rhs, span, y0, t_eval=t_eval, **options), restarted at every break strictly
+    inside the span. A tabulated thrust (cubic splines) makes the right-hand side only piecewise
+    smooth: restarting at the knots keeps DOP853 from shrinking its steps around each of them.
+    Without breaks inside the span this is exactly one solve_ivp call."""
+    lo, hi = min(span), max(span)
+    inner = np.array([]) if breaks is None else np.asarray(breaks, dtype=np.float64)
+    inner = inner[(inner > lo) & (inner < hi)]
+    if inner.size == 0:
+        return solve_ivp(rhs, span, y0, t_eval=t_eval, **options)
+    direction = 1.0 if span[1] >= span[0] else -1.0
+    edges = np.concatenate([[span[0]], np.sort(inner)[::int(direction)], [span[1]]])
+    t_eval = np.asarray(t_eval, dtype=np.float64)
+    cols = np.empty((np.size(y0), t_eval.size))
+    taken = np.zeros(t_eval.size, dtype=bool)
+    y, nfev = np.asarray(y0, dtype=np.float64), 0
+    for a, b in zip(edges[:-1], edges[1:]):
+        want = ~taken & (direction * (t_eval - a) >= 0.0) & (direction * (t_eval - b) <= 0.0)
+        pts = np.unique(np.append(t_eval[want], b))[::int(direction)]
+        sol = solve_ivp(rhs, (float(a), float(b)), y, t_eval=pts, **options)
+        if not sol.success:
+            return SegmentedSolution(t_eval, cols, False, sol.message, nfev + int(sol.nfev))
+        nfev += int(sol.nfev)
+        for k in np.flatnonzero(want):
+            cols[:, k] = sol.y[:, int(np.flatnonzero(pts == t_eval[k])[0])]
+        taken |= want
+        y = sol.y[:, -1]
+    return SegmentedSolution(t_eval, cols, True, "segmented", nfev)
+
+
 def extremal_jacobian(model: dyn.Model, z: FloatArray, t_f: float) -> tuple[FloatArray, FloatArray]:
     """(J (..., 14, 14), dz'/dt_f (..., 14)) of dz/dtau = t_f g(z) along an extremal."""
     x, lam = z[..., :dyn.N_X], z[..., dyn.N_X:]
@@ -59,9 +101,9 @@ def integrate_extremal(model: dyn.Model, z_start: FloatArray, t_f: float, tau_st
     order = np.argsort(direction * tau_eval, kind="stable")
     tau_end = float(tau_eval[order[-1]])
     t_end = float(z_start[dyn.TIME]) + t_f * (tau_end - tau_start)
-    burnout = model.exhaust_velocity / model.initial_accel     # a(t) -> infinity as m -> 0
-    if not (t_f > 0.0 and max(t_end, float(z_start[dyn.TIME])) < 0.95 * burnout):
-        raise RuntimeError(f"t_f = {t_f} out of range: the arc would reach burnout (t = {burnout})")
+    t_max = model.max_time      # a(t) -> infinity as m -> 0, or the end of the thrust table
+    if not (t_f > 0.0 and max(t_end, float(z_start[dyn.TIME])) < t_max):
+        raise RuntimeError(f"t_f = {t_f} out of range: the arc would reach burnout (t = {t_max})")
 
     if sensitivity:
         def rhs(_: float, y: FloatArray) -> FloatArray:
@@ -81,8 +123,9 @@ def integrate_extremal(model: dyn.Model, z_start: FloatArray, t_f: float, tau_st
         ys = np.repeat(y0[None, :], tau_eval.size, axis=0)
         nfev = 0
     else:
-        sol = solve_ivp(rhs, (tau_start, tau_end), y0, method="DOP853", rtol=rtol, atol=atol,
-                        t_eval=tau_eval[order])
+        breaks = model.tau_breaks(t_f, tau_start, float(np.real(z_start[dyn.TIME])))
+        sol = solve_ivp_segmented(rhs, (tau_start, tau_end), y0, tau_eval[order], breaks,
+                                  method="DOP853", rtol=rtol, atol=atol)
         if not sol.success:
             raise RuntimeError(f"extremal integration failed: {sol.message}")
         ys = np.empty((tau_eval.size, y0.size))

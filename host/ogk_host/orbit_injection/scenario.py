@@ -5,12 +5,15 @@ use internally are built by `CanonicalUnits.for_scenario` (DU = target radius, T
 """
 from __future__ import annotations
 
+import bisect
 import dataclasses
+import functools
 import math
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.interpolate import CubicSpline
 
 from ..scenario_file import Section, read_toml
 
@@ -57,6 +60,143 @@ class Thrust:
         """m(t) = m0 - (T/c) t [kg]."""
         return self.initial_mass_kg - self.mass_flow_kg_s * np.asarray(t_s, dtype=np.float64)
 
+    @property
+    def min_thrust_n(self) -> float:
+        """Smallest thrust over the burn (sec. 5.3 G_min): T itself."""
+        return self.thrust_n
+
+    @property
+    def burnout_s(self) -> float:
+        """Time at which the whole mass would be gone, c / n0 [s] (a(t) -> infinity)."""
+        return self.exhaust_velocity_m_s / self.initial_accel_m_s2
+
+
+@dataclasses.dataclass(frozen=True)
+class TabulatedThrust:
+    """Thrust and mass histories tabulated versus time since ignition (sec. 7: "the actual time
+    histories of the rocket thrust magnitude and mass are employed").
+
+    Both columns are interpolated by not-a-knot cubic splines (scipy CubicSpline), so the thrust
+    acceleration a(t) = T(t) / m(t) is twice continuously differentiable: the ground tools need
+    a' and a'' (eqs. 25 and the accessory problem, docs/vtd-nog.md). Outside the table the motor is
+    burnt out: T = 0 after the last time (the truth model), m held at its last value. The ground
+    tools refuse an arc that leaves the table.
+    """
+
+    time_s: tuple[float, ...]       #: t_i [s], strictly increasing, t_0 = 0 (ignition)
+    thrust_n: tuple[float, ...]     #: T(t_i) [N], > 0
+    mass_kg: tuple[float, ...]      #: m(t_i) [kg], > 0, decreasing
+
+    @functools.cached_property
+    def _splines(self) -> tuple[CubicSpline, CubicSpline]:
+        t = np.asarray(self.time_s, dtype=np.float64)
+        return (CubicSpline(t, np.asarray(self.thrust_n, dtype=np.float64), bc_type="not-a-knot"),
+                CubicSpline(t, np.asarray(self.mass_kg, dtype=np.float64), bc_type="not-a-knot"))
+
+    @functools.cached_property
+    def _coefficients(self) -> tuple[FloatArray, FloatArray]:
+        """(breakpoints (n,), coefficients (4, n-1, 2)) of both splines [T, m], highest power
+        first (scipy PPoly layout), for the fast evaluation of `_eval`."""
+        ts, ms = self._splines
+        return np.asarray(ts.x), np.stack([ts.c, ms.c], axis=-1)
+
+    def _eval(self, t: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """([T, m], d/dt, d2/dt2) at t (..., 2), each piece's cubic by Horner (equals the
+        CubicSpline values to rounding, at a fraction of its call overhead)."""
+        x, c = self._coefficients
+        i = np.clip(np.searchsorted(x, t, side="right") - 1, 0, x.size - 2)
+        dt = (t - x[i])[..., None]
+        c0, c1, c2, c3 = c[0][i], c[1][i], c[2][i], c[3][i]
+        return (((c0 * dt + c1) * dt + c2) * dt + c3, (3.0 * c0 * dt + 2.0 * c1) * dt + c2,
+                6.0 * c0 * dt + 2.0 * c1)
+
+    @property
+    def end_s(self) -> float:
+        """Last tabulated time: burnout [s]."""
+        return self.time_s[-1]
+
+    @property
+    def burnout_s(self) -> float:
+        return self.end_s
+
+    @property
+    def knots_s(self) -> FloatArray:
+        """Interior breakpoints of the splines [s]: the derivatives of a(t) beyond the second jump
+        there, so the ground integrators restart at them (propagation.solve_ivp_segmented)."""
+        return np.asarray(self.time_s[1:-1], dtype=np.float64)
+
+    def thrust_mass_at(self, t_s: FloatArray | float) -> tuple[FloatArray, FloatArray]:
+        """(T(t) [N], m(t) [kg]); after the table T = 0 (burnt out) and m holds its last value."""
+        t = np.asarray(t_s, dtype=np.float64)
+        value = self._eval(np.clip(t, 0.0, self.end_s))[0]
+        return np.where(t > self.end_s, 0.0, value[..., 0]), value[..., 1]
+
+    def thrust_at(self, t_s: FloatArray | float) -> FloatArray:
+        """T(t) [N]; 0 after the table (burnt out)."""
+        return self.thrust_mass_at(t_s)[0]
+
+    def mass_kg_at(self, t_s: FloatArray | float) -> FloatArray:
+        """m(t) [kg], held at the last value after the table."""
+        return self.thrust_mass_at(t_s)[1]
+
+    def mass_kg(self, t_s: FloatArray | float) -> FloatArray:
+        return self.mass_kg_at(t_s)
+
+    def accel_m_s2(self, t_s: FloatArray | float) -> FloatArray:
+        """T/m at time t since ignition [m/s^2] (0 after burnout)."""
+        thrust, mass = self.thrust_mass_at(t_s)
+        return thrust / mass
+
+    @functools.cached_property
+    def _scalar_pieces(self) -> tuple[list[float], list[tuple[float, ...]]]:
+        """Breakpoints and per-piece coefficients as Python floats (scalar fast path)."""
+        x, c = self._coefficients
+        return [float(v) for v in x], [tuple(float(v) for v in c[:, i, :].ravel())
+                                       for i in range(x.size - 1)]
+
+    def _accel_scalar(self, t: float) -> tuple[float, float, float]:
+        x, pieces = self._scalar_pieces
+        i = min(max(bisect.bisect_right(x, t) - 1, 0), len(x) - 2)
+        d = t - x[i]
+        t0, m0, t1, m1, t2, m2, t3, m3 = pieces[i]
+        thr, mass = ((t0 * d + t1) * d + t2) * d + t3, ((m0 * d + m1) * d + m2) * d + m3
+        thr1, mass1 = (3.0 * t0 * d + 2.0 * t1) * d + t2, (3.0 * m0 * d + 2.0 * m1) * d + m2
+        thr2, mass2 = 6.0 * t0 * d + 2.0 * t1, 6.0 * m0 * d + 2.0 * m1
+        a = thr / mass
+        a1 = (thr1 - a * mass1) / mass
+        return a, a1, (thr2 - 2.0 * a1 * mass1 - a * mass2) / mass
+
+    def accel_derivatives(self, t_s: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """(a, da/dt, d2a/dt2) of a = T/m inside the table (the end pieces extrapolated) [SI]."""
+        if np.ndim(t_s) == 0:
+            return self._accel_scalar(float(t_s))
+        v, v1, v2 = self._eval(np.asarray(t_s, dtype=np.float64))
+        thr, thr1, thr2 = v[..., 0], v1[..., 0], v2[..., 0]
+        m, m1, m2 = v[..., 1], v1[..., 1], v2[..., 1]
+        a = thr / m
+        a1 = (thr1 - a * m1) / m
+        a2 = (thr2 - 2.0 * a1 * m1 - a * m2) / m
+        return a, a1, a2
+
+    @property
+    def initial_mass_kg(self) -> float:
+        return float(self.mass_kg[0])
+
+    @property
+    def initial_accel_m_s2(self) -> float:
+        """a(0) [m/s^2]."""
+        return float(self.thrust_n[0] / self.mass_kg[0])
+
+    @property
+    def exhaust_velocity_m_s(self) -> float:
+        """Effective exhaust velocity at ignition, T(0) / (-dm/dt(0)) [m/s] (informative)."""
+        return float(self.thrust_n[0] / -self._splines[1](0.0, 1))
+
+    @property
+    def min_thrust_n(self) -> float:
+        """Smallest tabulated thrust [N] (sec. 5.3 G_min; sec. 7: T_min)."""
+        return float(min(self.thrust_n))
+
 
 @dataclasses.dataclass(frozen=True)
 class PreIgnitionOrbit:
@@ -71,6 +211,27 @@ class PreIgnitionOrbit:
     def semilatus_rectum_m(self) -> float:
         """p = a (1 - e^2): the p~ of eq. (19)."""
         return self.semi_major_axis_m * (1.0 - self.eccentricity**2)
+
+
+@dataclasses.dataclass(frozen=True)
+class InitialState:
+    """Specified ignition state (eq. 19 case A, sec. 7 eq. 56): xi = phi = v_n = 0 (sec. 3.1)."""
+
+    radius_m: float                 #: r_i
+    radial_velocity_m_s: float      #: v_r,i
+    transverse_velocity_m_s: float  #: v_t,i
+
+    def state_si(self) -> FloatArray:
+        """[r, xi, phi, v_r, v_t, v_n, t] at ignition (SI)."""
+        return np.array([self.radius_m, 0.0, 0.0, self.radial_velocity_m_s,
+                         self.transverse_velocity_m_s, 0.0, 0.0])
+
+    def true_anomaly_rad(self, mu_m3_s2: float) -> float:
+        """True anomaly of the state on its osculating (coast) orbit, in [0, 2 pi) [rad]."""
+        h = self.radius_m * self.transverse_velocity_m_s
+        p = h * h / mu_m3_s2
+        return math.atan2(self.radial_velocity_m_s * h / mu_m3_s2, p / self.radius_m - 1.0) \
+            % (2.0 * math.pi)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -189,7 +350,7 @@ class PaperResults:
     """Published figures, kept for comparison only."""
 
     min_time_s: float
-    ignition_true_anomaly_rad: float
+    ignition_true_anomaly_rad: float | None   #: None when the paper gives none (sec. 7)
     monte_carlo_runs: int
     table6_final_errors: tuple[float, ...]
     table7_mean: tuple[float, ...]
@@ -205,7 +366,8 @@ class Acceptance:
     velocity_error_m_s: float       #: each of |dv_rf|, |dv_tf|, |dv_nf|
 
 
-CUTOFFS = ("predicted", "energy")  #: engine cut-off decision (EndGame.cutoff)
+CUTOFFS = ("predicted", "energy")
+THRUST_MODELS = ("constant", "tabulated")  #: [thrust] model: sec. 6 formula or sec. 7 histories  #: engine cut-off decision (EndGame.cutoff)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -241,8 +403,8 @@ class LeoGeoScenario:
     name: str
     source: str
     mu_m3_s2: float
-    thrust: Thrust
-    pre_ignition: PreIgnitionOrbit
+    thrust: Thrust | TabulatedThrust
+    pre_ignition: PreIgnitionOrbit | None   #: eq. (19) case B (free ignition anomaly), or None
     target_radius_m: float
     mass_properties: MassProperties
     actuators: Actuators
@@ -256,6 +418,7 @@ class LeoGeoScenario:
     paper: PaperResults | None      #: published figures, only for the paper's own scenario
     acceptance: Acceptance = Acceptance(1000.0, 1000.0 / 42164.0e3, 10.0)
     path: Path | None = None        #: the file it was read from
+    initial_state: InitialState | None = None   #: eq. (19) case A (specified state), or None
 
     @property
     def target_circular_speed_m_s(self) -> float:
@@ -277,31 +440,51 @@ def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
     gravity.finish()
 
     thrust_s = top.section("thrust")
-    thrust = thrust_s.dataclass(Thrust, exhaust_velocity_m_s={"positive": True},
-                                initial_accel_g0={"positive": True},
-                                standard_gravity_m_s2={"positive": True},
-                                initial_mass_kg={"positive": True})
+    thrust: Thrust | TabulatedThrust
+    if thrust_s.text("model", "constant", choices=THRUST_MODELS) == "tabulated":
+        thrust = _read_tabulated_thrust(thrust_s)
+    else:
+        thrust = thrust_s.dataclass(Thrust, exhaust_velocity_m_s={"positive": True},
+                                    initial_accel_g0={"positive": True},
+                                    standard_gravity_m_s2={"positive": True},
+                                    initial_mass_kg={"positive": True})
     thrust_s.finish()
 
-    orbit_s = top.section("pre_ignition_orbit")
-    orbit_s.text("ignition_true_anomaly", choices=("free",))  # eq. 19 case B only
-    pre = orbit_s.dataclass(PreIgnitionOrbit, semi_major_axis_m={"positive": True},
-                            eccentricity={"lo": 0.0, "hi": 0.99},
-                            leo_altitude_m={"nonnegative": True},
-                            earth_radius_m={"positive": True})
-    orbit_s.finish()
+    pre: PreIgnitionOrbit | None = None
+    initial: InitialState | None = None
+    if top.has("initial_state") == top.has("pre_ignition_orbit"):
+        raise top.error("initial_state", "give exactly one of [initial_state] (eq. 19 case A, a "
+                        "specified ignition state) and [pre_ignition_orbit] (case B, free anomaly)")
+    if top.has("pre_ignition_orbit"):
+        orbit_s = top.section("pre_ignition_orbit")
+        orbit_s.text("ignition_true_anomaly", choices=("free",))  # eq. 19 case B
+        pre = orbit_s.dataclass(PreIgnitionOrbit, semi_major_axis_m={"positive": True},
+                                eccentricity={"lo": 0.0, "hi": 0.99},
+                                leo_altitude_m={"nonnegative": True},
+                                earth_radius_m={"positive": True})
+        orbit_s.finish()
+    else:
+        init_s = top.section("initial_state")
+        initial = init_s.dataclass(InitialState, radius_m={"positive": True},
+                                   transverse_velocity_m_s={"positive": True})
+        init_s.finish()
 
     target_s = top.section("target_orbit")
     target_radius = target_s.number("radius_m", positive=True)
     target_s.finish()
-    perigee = pre.semi_major_axis_m * (1.0 - pre.eccentricity)
-    apogee = pre.semi_major_axis_m * (1.0 + pre.eccentricity)
-    if not target_radius > perigee:
-        raise target_s.error("radius_m", f"target radius {target_radius:.6g} m is not above the "
-                             f"pre-ignition perigee {perigee:.6g} m")
-    if apogee < target_radius * 0.5:
-        raise target_s.error("radius_m", f"target radius {target_radius:.6g} m is more than twice "
-                             f"the pre-ignition apogee {apogee:.6g} m: outside the documented envelope")
+    if pre is not None:
+        perigee = pre.semi_major_axis_m * (1.0 - pre.eccentricity)
+        apogee = pre.semi_major_axis_m * (1.0 + pre.eccentricity)
+        if not target_radius > perigee:
+            raise target_s.error("radius_m", f"target radius {target_radius:.6g} m is not above "
+                                 f"the pre-ignition perigee {perigee:.6g} m")
+        if apogee < target_radius * 0.5:
+            raise target_s.error("radius_m", f"target radius {target_radius:.6g} m is more than "
+                                 f"twice the pre-ignition apogee {apogee:.6g} m: outside the "
+                                 f"documented envelope")
+    elif not 0.5 < target_radius / initial.radius_m < 2.0:
+        raise target_s.error("radius_m", f"target radius {target_radius:.6g} m is not within a "
+                             f"factor 2 of the initial radius {initial.radius_m:.6g} m")
 
     mp_s = top.section("mass_properties")
     mass_properties = mp_s.dataclass(MassProperties, tvc_arm_m={"positive": True},
@@ -361,7 +544,7 @@ def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
         sample_interval_s=sample_interval, end_game=end_game, cpd=cpd,
         initial_state_dispersion=initial_state, attitude_dispersion=attitude,
         actuator_dispersion=actuator, thrust_dispersion=thrust_disp, paper=paper,
-        acceptance=acceptance, path=Path(scenario_path))
+        acceptance=acceptance, path=Path(scenario_path), initial_state=initial)
     _check(scenario, top)
     return scenario
 
@@ -412,7 +595,7 @@ def _read_acceptance(sec: Section, target_radius_m: float) -> Acceptance:
 def _read_paper(sec: Section) -> PaperResults:
     paper = PaperResults(
         min_time_s=sec.number("min_time_s", positive=True),
-        ignition_true_anomaly_rad=sec.number("ignition_true_anomaly_rad"),
+        ignition_true_anomaly_rad=sec.number("ignition_true_anomaly_rad", None),
         monte_carlo_runs=sec.integer("monte_carlo_runs", lo=1),
         table6_final_errors=sec.numbers("table6_final_errors", 6),
         table7_mean=sec.numbers("table7_mean", 6),
@@ -421,9 +604,30 @@ def _read_paper(sec: Section) -> PaperResults:
     return paper
 
 
+def _read_tabulated_thrust(sec: Section) -> TabulatedThrust:
+    """[thrust] with model = "tabulated": time_s, thrust_n, mass_kg of equal lengths (>= 4 points),
+    time from 0 strictly increasing, thrust > 0, mass > 0 and decreasing."""
+    time_s = sec.numbers("time_s")
+    n = len(time_s)
+    if n < 4:
+        raise sec.error("time_s", f"needs at least 4 points for the cubic interpolation, got {n}")
+    thrust_n, mass_kg = sec.numbers("thrust_n", n), sec.numbers("mass_kg", n)
+    if time_s[0] != 0.0:
+        raise sec.error("time_s", f"must start at 0 (ignition), got {time_s[0]:g}")
+    if any(b <= a for a, b in zip(time_s, time_s[1:])):
+        raise sec.error("time_s", "must be strictly increasing")
+    if not all(v > 0.0 and math.isfinite(v) for v in thrust_n):
+        raise sec.error("thrust_n", "every entry must be > 0")
+    if not all(v > 0.0 and math.isfinite(v) for v in mass_kg):
+        raise sec.error("mass_kg", "every entry must be > 0")
+    if any(b >= a for a, b in zip(mass_kg, mass_kg[1:])):
+        raise sec.error("mass_kg", "must decrease (the motor burns propellant)")
+    return TabulatedThrust(time_s=time_s, thrust_n=thrust_n, mass_kg=mass_kg)
+
+
 def _check(scn: LeoGeoScenario, top: Section) -> None:
     """Cross-key physics: the propellant must last well beyond any plausible burn."""
-    burnout_s = scn.thrust.exhaust_velocity_m_s / scn.thrust.initial_accel_m_s2
+    burnout_s = scn.thrust.burnout_s
     if burnout_s <= 4.0 * scn.sample_interval_s:
         raise top.section("guidance").error(
             "sample_interval_s", f"{scn.sample_interval_s:g} s is too long for a burn that "

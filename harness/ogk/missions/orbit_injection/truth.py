@@ -23,6 +23,9 @@ Point-mass state (6): r, xi, phi, v_r, v_t, v_n; thrust along the commanded (alp
 Thrust (sec. 6 and eq. 55): T(t) = m0 n0 [1 + f(t)], f(t) = sum_k a_k sin(2 k pi t / t_f*) +
 a_{k+5} cos(2 k pi t / t_f*); the mass flow stays nominal (m(t) = m0 - m0 n0 t / c), so only the thrust
 (and the TVC torque T l) fluctuates: T/m = n0 c / (c - n0 t) [1 + f(t)].
+With a tabulated thrust (sec. 7, scenario [thrust] model = "tabulated") T(t) and m(t) are the
+scenario's cubic splines (ogk_host.orbit_injection.scenario.TabulatedThrust, the same functions the
+ground tools use): T(t) [1 + f(t)] / m(t), with T = 0 after the table (burnt out).
 """
 from __future__ import annotations
 
@@ -31,7 +34,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_host.orbit_injection.scenario import LeoGeoScenario
+from ogk_host.orbit_injection.scenario import LeoGeoScenario, TabulatedThrust
 
 F64 = NDArray[np.float64]
 
@@ -63,10 +66,13 @@ class TruthParams:
     output_max: tuple[float, float, float]      #: Mbar_x [N m], Deltabar_y, Deltabar_z [rad]
     time_constant: tuple[float, float, float]   #: tau_x, tau_y, tau_z [s]
     fluctuation_period: float                   #: t_f* of eq. (55) [s]
+    #: sec. 7: tabulated thrust and mass histories (T(t), m(t) splines); None: the sec. 6 formula
+    thrust_table: TabulatedThrust | None = None
 
     @classmethod
     def from_scenario(cls, scn: LeoGeoScenario, tf_nominal_s: float) -> "TruthParams":
         mp, act = scn.mass_properties, scn.actuators
+        table = scn.thrust if isinstance(scn.thrust, TabulatedThrust) else None
         return cls(mu=scn.mu_m3_s2, n0=scn.thrust.initial_accel_m_s2,
                    exhaust_velocity=scn.thrust.exhaust_velocity_m_s,
                    mass0=scn.thrust.initial_mass_kg,
@@ -78,12 +84,19 @@ class TruthParams:
                                act.deflection_z_max_rad),
                    time_constant=(act.time_constant_x_s, act.time_constant_y_s,
                                   act.time_constant_z_s),
-                   fluctuation_period=tf_nominal_s)
+                   fluctuation_period=tf_nominal_s, thrust_table=table)
 
     @property
     def thrust0(self) -> float:
-        """Nominal constant thrust T = n0 m0 [N]."""
+        """Nominal constant thrust T = n0 m0 [N] (with a table: the thrust at ignition)."""
         return self.n0 * self.mass0
+
+    def thrust_mass(self, t: F64 | float) -> tuple[F64 | float, F64 | float]:
+        """Nominal (T(t), m(t)) [N, kg]: T = n0 m0 and m = m0 - (T/c) t (sec. 6), or the tabulated
+        histories (sec. 7; T = 0 after the table: burnt out)."""
+        if self.thrust_table is None:
+            return self.thrust0, self.mass0 - self.mass_flow * t
+        return self.thrust_table.thrust_at(t), self.thrust_table.mass_kg_at(t)
 
     @property
     def mass_flow(self) -> float:
@@ -145,7 +158,9 @@ class ThrustFactorCache:
 
 
 def nominal_accel(p: TruthParams, t: F64) -> F64:
-    """Nominal T/m = n0 c / (c - n0 t) [m/s^2]."""
+    """Nominal T/m = n0 c / (c - n0 t) [m/s^2], or the tabulated T(t) / m(t)."""
+    if p.thrust_table is not None:
+        return p.thrust_table.accel_m_s2(t)
     return p.n0 * p.exhaust_velocity / (p.exhaust_velocity - p.n0 * t)
 
 
@@ -329,8 +344,12 @@ def rhs_6dof(p: TruthParams, t: F64 | float, x: F64, command: F64, noise: F64 | 
     command (3, N): held CPD commands [M_xc, Delta_yc, Delta_zc]; noise (3, N) held actuation
     errors or None; factor: 1 + f(t) of eq. (55) (thrust_factor), scalar or (N,)."""
     mx, dy, dz = actuator_outputs(p, x, noise)
-    thrust = p.thrust0 * factor
-    mass = p.mass0 - p.mass_flow * t
+    if p.thrust_table is None:
+        thrust = p.thrust0 * factor
+        mass = p.mass0 - p.mass_flow * t
+    else:
+        thrust_nom, mass = p.thrust_mass(t)
+        thrust = thrust_nom * factor
     _translational(p, x, thrust / mass, thrust_direction_6dof(x, dy, dz), out)
     arm, ix, iy, iz = mass_properties(p, t)
     wp, wq, wr = x[RATE_P], x[RATE_Q], x[RATE_R]
