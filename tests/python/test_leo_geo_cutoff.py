@@ -6,8 +6,9 @@ scenario's 20 m/s acceptance.
 
 Measured when written (ogk mc leo-geo --runs 1000 --seed 424242): paper's end-game 6 failures, worst
 |dv_tf| 33.5 m/s (run 191, t_f 114.0 s: t_f^(k) at the dtf_max_s clip from 6 s before the end, the
-predicted cut-off 2 s early); the scenario's end-game 0 failures, worst |dr_f| 17.3 m, |dv_rf| 0.13,
-|dv_tf| 0.0015, |dv_nf| 0.14 m/s over the 1000 runs.
+predicted cut-off 2 s early); the scenario as flown (end-game, CPD feed-forward clip 0.4 rad/s,
+braking margin 1) 0 failures, worst |dr_f| 10.6 m, |dv_rf| 0.12, |dv_tf| 0.00083, |dv_nf| 0.11 m/s
+over the 1000 runs.
 """
 from __future__ import annotations
 
