@@ -42,7 +42,8 @@ class NominalReference:
 
     @property
     def initial_state(self) -> F64:
-        """x*(0) (6,) SI: the nominal ignition state (eq. 19 case B at f0*)."""
+        """x*(0) (6,) SI: the nominal ignition state (eq. 19 case B at f0*, or the specified
+        state of case A, e.g. eq. 56)."""
         return self.x_si[0].copy()
 
     @property
