@@ -59,7 +59,7 @@ typedef struct {
     double energy_target_j_kg; /* [J/kg] -mu / (2 a) */
     double energy_prev_j_kg;   /* [J/kg] energy at the previous accepted call */
     double t_prev_s;           /* [s] time of the previous accepted call */
-    double t_cutoff_s;         /* [s] the decided cut-off time (valid when decided) */
+    double t_cutoff_s;         /* [s] the decided cut-off time, valid once decided */
     double t_backstop_s;       /* [s] backstop of the last accepted call (T_MAX before one) */
     bool have_prev;            /* [-] an accepted call is held (the rate needs two) */
     bool decided;              /* [-] cut-off decided (final) */
