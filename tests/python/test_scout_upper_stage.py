@@ -247,6 +247,7 @@ def test_short_sil_campaign_has_no_failure(tmp_path: Path) -> None:
                            "--workers", "1", "--json", str(out)],
                           capture_output=True, text=True, timeout=1500)
     assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert "sec. 7, Table 14 (100 runs)" in proc.stdout   # the paper's numbering of this mission
     data = json.loads(out.read_text())
     assert data["runs"] == 4 and data["failures"] == 0, data["failed_runs"]
     assert data["nominal_tf_s"] == pytest.approx(25.8, abs=0.2)

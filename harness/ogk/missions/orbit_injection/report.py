@@ -60,7 +60,8 @@ def format_report(res: CampaignResult) -> str:
     if res.switches.any:
         if paper is not None:
             p_mean, p_std = dict(zip(ERROR_KEYS, paper.table7_mean)), dict(zip(ERROR_KEYS, paper.table7_sigma))
-            lines.append(f"Injection errors vs {scn.source}, Table 7 ({paper.monte_carlo_runs} runs)")
+            lines.append(f"Injection errors vs {scn.source}, {paper.monte_carlo_table} "
+                         f"({paper.monte_carlo_runs} runs)")
             rows = [[LABELS[k], _fmt(mean[k]), _fmt(p_mean[k]), _fmt(std[k]), _fmt(p_std[k]),
                      _fmt(p999[k]), _fmt(worst[k]), _fmt(worst[k] / p_std[k]) if p_std[k] else "-"]
                     for k in ERROR_KEYS]
@@ -76,7 +77,7 @@ def format_report(res: CampaignResult) -> str:
         single = mean if res.runs >= 1 else {}
         if paper is not None:
             p_single = dict(zip(ERROR_KEYS, paper.table6_final_errors))
-            lines.append(f"Injection errors vs {scn.source}, Table 6 (single run)")
+            lines.append(f"Injection errors vs {scn.source}, {paper.single_run_table} (single run)")
             lines += _table(["quantity", "ours", "paper"],
                             [[LABELS[k], _fmt(single.get(k)), _fmt(p_single[k])] for k in ERROR_KEYS])
         else:
