@@ -124,6 +124,7 @@ def _worker(run_ids: NDArray[np.int64], conn: Any) -> None:
     object (which may not survive unpickling)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, _DEFERRED_SIGNALS)  # blocked by the parent's start
     _die_with_parent()
     try:
         message: tuple[str, Any] = ("ok", _call_job(run_ids))
@@ -166,6 +167,10 @@ def _kill(procs: Sequence[Any]) -> None:
                 pass
     for p in procs:
         p.join(5.0)
+
+
+#: signals held back while a worker is started (_run_forked)
+_DEFERRED_SIGNALS = {signal.SIGINT, signal.SIGTERM}
 
 
 def _raise_keyboard_interrupt(signum: int, frame: Any) -> None:
@@ -225,11 +230,18 @@ def _run_forked(pieces: list[NDArray[np.int64]], workers: int, watchdog: Watchdo
         while todo or running:
             while todo and len(running) < workers:
                 k = todo.pop(0)
-                recv, send = ctx.Pipe(duplex=False)
-                proc = ctx.Process(target=_worker, args=(pieces[k], send), daemon=True)
-                proc.start()
-                send.close()
-                running[k] = (proc, recv, time.monotonic() + watchdog.limit_s(pieces[k].size))
+                # Ctrl-C / SIGTERM wait until the worker is started: a KeyboardInterrupt inside
+                # Process.start leaves a half-built multiprocessing finaliser that prints a
+                # traceback at exit (seen once in the Ctrl-C test), after the one-line message.
+                old_mask = signal.pthread_sigmask(signal.SIG_BLOCK, _DEFERRED_SIGNALS)
+                try:
+                    recv, send = ctx.Pipe(duplex=False)
+                    proc = ctx.Process(target=_worker, args=(pieces[k], send), daemon=True)
+                    proc.start()
+                    send.close()
+                    running[k] = (proc, recv, time.monotonic() + watchdog.limit_s(pieces[k].size))
+                finally:
+                    signal.pthread_sigmask(signal.SIG_SETMASK, old_mask)
             now = time.monotonic()
             timeout = max(0.0, min(d for _, _, d in running.values()) - now)
             ready = set(wait([c for _, c, _ in running.values()]
