@@ -12,18 +12,14 @@
 #include <string.h>
 
 #include "ogk/nog.h"
+#include "nog_fixture.h"
 #include "table_writer.h"
 
 #define GRID_MAX 5u
-#define TF_STAR 100.0
-#define ALPHA0 0.3
-#define K_L6_VN 0.01 /* dlam_vn = K_L6_VN dv_n */
 #define N_VALUES(n) ((n) * (1u + OGK_NOG_ENTRY_LEN))
 #define TABLE_BYTES(n) (OGK_TABLE_HEADER_SIZE + 8u * N_VALUES(n))
 #define ROW(n, k, i) (OGK_TABLE_HEADER_SIZE + 8u * ((n) + (k) * OGK_NOG_ENTRY_LEN + (i)))
 
-static const double x0[7] = {7.0e6, 0.0, 0.0, 10.0, 9000.0, 0.0, 0.0};
-static const double x_rate[7] = {2.0e6, 0.5, 0.0, -5.0, 2000.0, 0.0, TF_STAR}; /* d/dtau */
 
 /* Two table images (5 and 4 nodes), 8-byte aligned for the in-place view. */
 static union {
@@ -33,14 +29,6 @@ static union {
 static ogk_nog_table_t table;
 static ogk_nog_table_t table_other; /* loaded once, never bound: a struct to copy over */
 static ogk_nog_t nog;
-
-static void nominal_state(double tau, double *x)
-{
-    size_t i;
-    for (i = 0u; i < 7u; ++i) {
-        x[i] = x0[i] + tau * x_rate[i];
-    }
-}
 
 /* n nodes at tau = k / (n - 1), time state and its rate scaled by t_f (so t_f* = t_f). */
 static void build(uint8_t *buf, uint32_t n, double t_f)
@@ -75,29 +63,12 @@ static void build(uint8_t *buf, uint32_t n, double t_f)
 
 static ogk_nog_config_t config(void)
 {
-    ogk_nog_config_t cfg;
-    (void)ogk_nog_config_default(&cfg);
-    cfg.table = &table;
-    cfg.sample_interval_s = 2.0;
-    cfg.dtf_max_s = 10.0;
-    cfg.du_max_rad = 0.5;
-    cfg.tau_freeze = 0.0;
-    return cfg;
+    return nog_fixture_config(&table);
 }
 
 static ogk_nog_nav_t nav_at(double t, double tau)
 {
-    double x[7];
-    ogk_nog_nav_t nav;
-    nominal_state(tau, x);
-    nav.t_s = t;
-    nav.r_m = x[0];
-    nav.xi_rad = x[1];
-    nav.phi_rad = x[2];
-    nav.v_r_mps = x[3];
-    nav.v_t_mps = x[4];
-    nav.v_n_mps = x[5];
-    return nav;
+    return nog_fixture_nav_at(t, tau);
 }
 
 static int setup(void **state)

@@ -7,13 +7,11 @@
 #include <string.h>
 
 #include "ogk/nog.h"
+#include "nog_fixture.h"
 #include "table_writer.h"
 
 #define GRID 5u
-#define TF_STAR 100.0
-#define ALPHA0 0.3
 #define K_TF_VT 2.0      /* dt_f = K_TF_VT dv_t [s per m/s] */
-#define K_L6_VN 0.01     /* dlam_vn = K_L6_VN dv_n */
 #define K_L6_RATE 0.02   /* dlam_vn' = K_L6_RATE dv_n */
 #define K_L4_T 0.05      /* dlam_vr = K_L4_T dt (time-state error) */
 #define K_L1_R 1.0e-3    /* dlam_r = K_L1_R dr: not flown (eq. 27 uses lambda_v only) */
@@ -23,8 +21,6 @@
 #define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + 8u * N_VALUES)
 
 static const double tau_grid[GRID] = {0.0, 0.25, 0.5, 0.75, 1.0};
-static const double x0[7] = {7.0e6, 0.0, 0.0, 10.0, 9000.0, 0.0, 0.0};
-static const double x_rate[7] = {2.0e6, 0.5, 0.0, -5.0, 2000.0, 0.0, TF_STAR}; /* d/dtau */
 
 static uint8_t buf[TABLE_BYTES];
 /* 8-byte aligned bytes for the in-place view (and 8 spare to misalign). */
@@ -34,14 +30,6 @@ static union {
 } vbuf;
 static ogk_nog_table_t table;
 static ogk_nog_t nog;
-
-static void nominal_state(double tau, double *x)
-{
-    size_t i;
-    for (i = 0u; i < 7u; ++i) {
-        x[i] = x0[i] + tau * x_rate[i];
-    }
-}
 
 static void build_table(double tf_last_node)
 {
@@ -81,29 +69,12 @@ static void build_table(double tf_last_node)
 
 static ogk_nog_config_t config(void)
 {
-    ogk_nog_config_t cfg;
-    (void)ogk_nog_config_default(&cfg);
-    cfg.table = &table;
-    cfg.sample_interval_s = 2.0;
-    cfg.dtf_max_s = 10.0;
-    cfg.du_max_rad = 0.5;
-    cfg.tau_freeze = 0.0;
-    return cfg;
+    return nog_fixture_config(&table);
 }
 
 static ogk_nog_nav_t nav_at(double t, double tau)
 {
-    double x[7];
-    ogk_nog_nav_t nav;
-    nominal_state(tau, x);
-    nav.t_s = t;
-    nav.r_m = x[0];
-    nav.xi_rad = x[1];
-    nav.phi_rad = x[2];
-    nav.v_r_mps = x[3];
-    nav.v_t_mps = x[4];
-    nav.v_n_mps = x[5];
-    return nav;
+    return nog_fixture_nav_at(t, tau);
 }
 
 static int setup(void **state)
