@@ -18,18 +18,36 @@ ogk_status ogk_terminal_config_default(ogk_terminal_config_t *cfg)
         cfg->mu_m3_s2 = 3.986004e14;
         cfg->target_radius_m = 42164.0e3;
         cfg->window_s = 3.0;
+        cfg->shape_gain = 0.0;
+        cfg->shape_gain_normal = 0.0;
+        cfg->shape_hold_s = 1.0;
     }
     return st;
 }
 
+static bool terminal_shaped(const ogk_terminal_config_t *cfg)
+{
+    return (cfg->shape_gain > 0.0) || (cfg->shape_gain_normal > 0.0);
+}
+
+/* Shaping off, or gains in [0, 1] with a hold in [HOLD_MIN, window]. */
+static bool terminal_shape_valid(const ogk_terminal_config_t *cfg)
+{
+    return (cfg->shape_gain >= 0.0) && (cfg->shape_gain <= 1.0) && (cfg->shape_gain_normal >= 0.0) &&
+           (cfg->shape_gain_normal <= 1.0) &&
+           (!terminal_shaped(cfg) ||
+            ((cfg->shape_hold_s >= OGK_TERMINAL_HOLD_MIN_S) && (cfg->shape_hold_s <= cfg->window_s)));
+}
+
 static bool terminal_config_valid(const ogk_terminal_config_t *cfg)
 {
-    const double v[3] = {cfg->mu_m3_s2, cfg->target_radius_m, cfg->window_s};
+    const double v[6] = {cfg->mu_m3_s2, cfg->target_radius_m, cfg->window_s, cfg->shape_gain,
+                         cfg->shape_gain_normal, cfg->shape_hold_s};
 
-    return ogk_i_all_finite(v, 3u) && (cfg->mu_m3_s2 > 0.0) && (cfg->target_radius_m > 0.0) &&
+    return ogk_i_all_finite(v, 6u) && (cfg->mu_m3_s2 > 0.0) && (cfg->target_radius_m > 0.0) &&
            (cfg->target_radius_m <= OGK_TERMINAL_R_MAX_M) && (cfg->window_s >= 0.0) &&
            (cfg->window_s <= OGK_TERMINAL_T_MAX_S) &&
-           isfinite(sqrt(cfg->mu_m3_s2 / cfg->target_radius_m));
+           isfinite(sqrt(cfg->mu_m3_s2 / cfg->target_radius_m)) && terminal_shape_valid(cfg);
 }
 
 static void terminal_clear(ogk_terminal_t *ctx)
@@ -37,6 +55,17 @@ static void terminal_clear(ogk_terminal_t *ctx)
     ctx->alpha_rad = 0.0;
     ctx->beta_rad = 0.0;
     ctx->engaged = false;
+    ctx->plan.t0_s = 0.0;
+    ctx->plan.duration_s = 0.0;
+    ctx->plan.accel_r0_mps2 = 0.0;
+    ctx->plan.accel_r1_mps3 = 0.0;
+    ctx->plan.accel_n0_mps2 = 0.0;
+    ctx->plan.accel_n1_mps3 = 0.0;
+    ctx->plan.accel_t_mps2 = 0.0;
+    ctx->plan.in_hold = false;
+    ctx->last_t_s = 0.0;
+    ctx->last_energy_j_kg = 0.0;
+    ctx->has_last = false;
 }
 
 ogk_status ogk_terminal_init(ogk_terminal_t *ctx, const ogk_terminal_config_t *cfg)
@@ -106,6 +135,105 @@ static void steer_along_vgo(ogk_terminal_t *ctx, const ogk_nav_state_t *nav)
     }
 }
 
+/* Initial value and rate of the acceleration, linear in time over duration_s,
+ * that takes x' to 0 and x + x' duration_s / 2 (the miss of a decay of x' at
+ * constant rate) to (1 - k) times itself: terminal.h, "Position shaping". */
+static void plan_axis(double x, double x_dot, double duration_s, double k, double *accel0, double *accel1)
+{
+    const double t2 = duration_s * duration_s;
+
+    *accel0 = (-((1.0 + (3.0 * k)) * x_dot) / duration_s) - ((6.0 * k * x) / t2);
+    *accel1 = ((12.0 * k * x) / (t2 * duration_s)) + ((6.0 * k * x_dot) / t2);
+}
+
+/* The shaped plan from the state at nav->t_s with duration_s to go; false
+ * (plan unchanged) if a term overflows (a radius near 0 in the envelope). */
+static bool plan_from(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double duration_s)
+{
+    const double r = nav->r_m;
+    const double z = r * sin(nav->phi_rad);
+    const double z_dot = (nav->v_r_mps * sin(nav->phi_rad)) + (nav->v_n_mps * cos(nav->phi_rad));
+    const double mu_r2 = ctx->cfg.mu_m3_s2 / (r * r);
+    const double g_r = (((nav->v_t_mps * nav->v_t_mps) + (nav->v_n_mps * nav->v_n_mps)) / r) - mu_r2;
+    const double g_n = -(mu_r2 * z) / r;
+    double a_r0 = 0.0;
+    double a_r1 = 0.0;
+    double a_n0 = 0.0;
+    double a_n1 = 0.0;
+    bool finite;
+
+    plan_axis(r - ctx->cfg.target_radius_m, nav->v_r_mps, duration_s, ctx->cfg.shape_gain, &a_r0, &a_r1);
+    plan_axis(z, z_dot, duration_s, ctx->cfg.shape_gain_normal, &a_n0, &a_n1);
+    {
+        const double v[5] = {a_r0 - g_r, a_r1, a_n0 - g_n, a_n1, (ctx->v_target_mps - nav->v_t_mps) / duration_s};
+        finite = ogk_i_all_finite(v, 5u);
+        if (finite) {
+            ctx->plan.t0_s = nav->t_s;
+            ctx->plan.duration_s = duration_s;
+            ctx->plan.accel_r0_mps2 = v[0];
+            ctx->plan.accel_r1_mps3 = v[1];
+            ctx->plan.accel_n0_mps2 = v[2];
+            ctx->plan.accel_n1_mps3 = v[3];
+            ctx->plan.accel_t_mps2 = v[4];
+        }
+    }
+    return finite;
+}
+
+/* The thrust direction at the start of the plan; v_go's (steer_along_vgo
+ * has just set it) if the plan asks for no acceleration. */
+static void steer_along_plan(ogk_terminal_t *ctx)
+{
+    const double a_r = ctx->plan.accel_r0_mps2;
+    const double a_n = ctx->plan.accel_n0_mps2;
+    const double a_t = ctx->plan.accel_t_mps2;
+    const double a_in_plane = hypot(a_r, a_t);
+
+    if (hypot(a_in_plane, a_n) > 0.0) {
+        ctx->alpha_rad = atan2(a_r, a_t);
+        ctx->beta_rad = atan2(a_n, a_in_plane);
+    }
+}
+
+static double specific_energy(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav)
+{
+    const double v2 = (nav->v_r_mps * nav->v_r_mps) + (nav->v_t_mps * nav->v_t_mps) + (nav->v_n_mps * nav->v_n_mps);
+
+    return (0.5 * v2) - (ctx->cfg.mu_m3_s2 / nav->r_m);
+}
+
+/* Time to the energy cut-off at the last period's energy rate (terminal.h),
+ * else the law's predicted time to go. */
+static double time_to_cutoff(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s)
+{
+    const double energy = specific_energy(ctx, nav);
+    double time_to_go = t_predicted_s - nav->t_s;
+
+    if (ctx->has_last && (nav->t_s > ctx->last_t_s)) {
+        const double energy_rate = (energy - ctx->last_energy_j_kg) / (nav->t_s - ctx->last_t_s);
+        if (energy_rate > 0.0) {
+            const double energy_target = -ctx->cfg.mu_m3_s2 / (2.0 * ctx->cfg.target_radius_m);
+            const double t_energy = (energy_target - energy) / energy_rate;
+            time_to_go = isfinite(t_energy) ? t_energy : time_to_go;
+        }
+    }
+    return time_to_go;
+}
+
+/* Shaped window: re-plan at every step while the time to go exceeds the
+ * hold, then v_go steering for the rest of the window (latched). A plan that
+ * overflows is not made: v_go steering for this step. */
+static void steer_shaped(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s)
+{
+    const double time_to_go = time_to_cutoff(ctx, nav, t_predicted_s);
+
+    ctx->plan.in_hold = ctx->plan.in_hold || (time_to_go <= ctx->cfg.shape_hold_s);
+    steer_along_vgo(ctx, nav);
+    if ((!ctx->plan.in_hold) && plan_from(ctx, nav, time_to_go)) {
+        steer_along_plan(ctx);
+    }
+}
+
 ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s,
                              const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out)
 {
@@ -116,22 +244,28 @@ ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, do
     } else if (ctx->init_marker != OGK_TERMINAL_INIT_MARKER) {
         st = OGK_E_NOT_INIT;
     } else {
-        const double v[8] = {nav->t_s, nav->r_m, nav->v_r_mps, nav->v_t_mps, nav->v_n_mps, t_predicted_s,
-                             law_cmd->alpha_rad, law_cmd->beta_rad};
-        if (!ogk_i_all_finite(v, 8u)) {
+        const double v[9] = {nav->t_s, nav->r_m, nav->phi_rad, nav->v_r_mps, nav->v_t_mps, nav->v_n_mps,
+                             t_predicted_s, law_cmd->alpha_rad, law_cmd->beta_rad};
+        if (!ogk_i_all_finite(v, 9u)) {
             st = OGK_E_NONFINITE;
         } else if (!terminal_nav_in_envelope(nav, t_predicted_s)) {
             st = OGK_E_RANGE;
         } else {
-            if ((!ctx->engaged) && ((t_predicted_s - nav->t_s) <= ctx->cfg.window_s) &&
-                (ctx->cfg.window_s > 0.0)) {
+            if ((!ctx->engaged) && ((t_predicted_s - nav->t_s) <= ctx->cfg.window_s) && (ctx->cfg.window_s > 0.0)) {
                 ctx->engaged = true;
                 ctx->alpha_rad = law_cmd->alpha_rad; /* held if v_go is already ~0 */
                 ctx->beta_rad = law_cmd->beta_rad;
             }
-            if (ctx->engaged) {
+            if (!ctx->engaged) {
+                /* the law's command is flown */
+            } else if (terminal_shaped(&ctx->cfg)) {
+                steer_shaped(ctx, nav, t_predicted_s);
+            } else {
                 steer_along_vgo(ctx, nav);
             }
+            ctx->last_t_s = nav->t_s;
+            ctx->last_energy_j_kg = specific_energy(ctx, nav);
+            ctx->has_last = isfinite(ctx->last_energy_j_kg);
         }
         if ((st != OGK_OK) && ((!isfinite(law_cmd->alpha_rad)) || (!isfinite(law_cmd->beta_rad)))) {
             /* No usable law command either: the last terminal one (zeros before). */

@@ -1,6 +1,8 @@
 /* fuzz_terminal_step.c -- ogk_terminal_step with arbitrary navigation inputs, predictions and law
- * commands. Input: up to 64 steps of 8 raw doubles (t, r, v_r, v_t, v_n, t_predicted, alpha, beta);
- * a step whose first byte is odd is a plausible end-of-burn state instead (one-byte offsets).
+ * commands. Input: one mode byte (bits 0-3: position-shaping gain in sixteenths, 0 = pure v_go;
+ * bit 4: hold = the whole window; bit 6: radius only, no plane-normal shaping), then up to 64
+ * steps of 9 raw doubles (t, r, phi, v_r, v_t, v_n, t_predicted, alpha, beta); a step whose first
+ * byte is odd is a plausible end-of-burn state instead (one-byte offsets).
  * Oracle (terminal.h): the output angles are finite whenever the law's are, or the context has a
  * terminal command; once engaged the output carries OGK_TERMINAL_FLAG_ENGAGED on every call; a
  * rejected call (status != OGK_OK) leaves the context byte-identical and sets OGK_THRUST_FLAG_SAFE. */
@@ -21,6 +23,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     r.p = data;
     r.n = size;
     FZ_CHECK(ogk_terminal_config_default(&cfg) == OGK_OK);
+    if (r.n > 0u) {
+        const uint8_t mode = fz_u8(&r);
+        cfg.shape_gain = (double)(mode & 0x0fu) / 15.0;
+        cfg.shape_gain_normal = ((mode & 0x40u) != 0u) ? 0.0 : cfg.shape_gain;
+        cfg.shape_hold_s = 0.5;
+        cfg.shape_hold_s = ((mode & 0x10u) != 0u) ? cfg.window_s : cfg.shape_hold_s;
+    }
     FZ_CHECK(ogk_terminal_init(&term, &cfg) == OGK_OK);
     while (r.n > 0u && steps < 64) {
         ogk_nav_state_t nav;
@@ -36,6 +45,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             (void)fz_u8(&r);
             nav.t_s = 100.0 + 0.02 * steps;
             nav.r_m = 42164.0e3 + fz_small(&r, 1.0e3);
+            nav.phi_rad = fz_small(&r, 1.0e-5);
             nav.v_r_mps = fz_small(&r, 50.0);
             nav.v_t_mps = 3074.66 + fz_small(&r, 60.0);
             nav.v_n_mps = fz_small(&r, 50.0);
@@ -45,6 +55,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         } else {
             nav.t_s = fz_f64(&r);
             nav.r_m = fz_f64(&r);
+            nav.phi_rad = fz_f64(&r);
             nav.v_r_mps = fz_f64(&r);
             nav.v_t_mps = fz_f64(&r);
             nav.v_n_mps = fz_f64(&r);

@@ -147,7 +147,12 @@ static void test_rejections_change_nothing(void **state)
     ogk_thrust_cmd_t out;
     (void)state;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
-    /* Not engaged: the law's command, marked safe. */
+    /* Not engaged: the law's command, marked safe (phi is read by the shaped window: checked too). */
+    nav.phi_rad = INFINITY;
+    before = ctx;
+    OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 100.5, &law, &out), OGK_E_NONFINITE);
+    assert_true(memcmp(&ctx, &before, sizeof ctx) == 0);
+    nav.phi_rad = 0.0;
     nav.v_n_mps = NAN;
     before = ctx;
     OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 100.5, &law, &out), OGK_E_NONFINITE);
@@ -179,6 +184,194 @@ static void test_rejections_change_nothing(void **state)
     nav = nav_at(50.0, 3.0, -40.0, -4.0);
     OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.0, &law, &out), OGK_OK);
     assert_true(memcmp(&out, &law, sizeof out) == 0);
+}
+
+/* Shaped window, first step (no energy rate yet: the law's time to go): the
+ * plan's acceleration, integrated here in closed form over its duration, must take
+ * the velocity to 0 and the position to (1 - k) times the miss of a linear
+ * decay, x + x' T / 2 (ogk/terminal.h), on both axes, for k = 1 and k = 0.4. */
+static void test_shaped_plan_meets_its_end_conditions(void **state)
+{
+    static const double gains[2] = {1.0, 0.4};
+    size_t g;
+    (void)state;
+    for (g = 0u; g < 2u; ++g) {
+        ogk_terminal_config_t cfg = config();
+        ogk_terminal_t ctx;
+        ogk_nav_state_t nav = nav_at(100.0, 12.0, -45.0, -3.0);
+        const ogk_thrust_cmd_t law = law_command(100.0);
+        ogk_thrust_cmd_t out;
+        const double k = gains[g];
+        const double t_go = 2.5;
+        double dr;
+        double z;
+        double z_dot;
+        double g_r;
+        double g_n;
+        double T;
+        double v_end;
+        double x_end;
+        cfg.shape_gain = k;
+        cfg.shape_gain_normal = 1.4 * k - 0.4; /* 1.0 and 0.16: the axes have their own gains */
+        cfg.shape_hold_s = 0.5;
+        nav.phi_rad = 2.0e-7;
+        OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 100.0 + t_go, &law, &out), OGK_OK);
+        assert_false(ctx.plan.in_hold);
+        T = ctx.plan.duration_s;
+        OGK_ASSERT_NEAR(T, t_go, 0.0);
+        dr = nav.r_m - R_F;
+        g_r = (((nav.v_t_mps * nav.v_t_mps) + (nav.v_n_mps * nav.v_n_mps)) / nav.r_m) - (MU / (nav.r_m * nav.r_m));
+        v_end = nav.v_r_mps + ((ctx.plan.accel_r0_mps2 + g_r) * T) + (0.5 * ctx.plan.accel_r1_mps3 * T * T);
+        x_end = dr + (nav.v_r_mps * T) + (0.5 * (ctx.plan.accel_r0_mps2 + g_r) * T * T) +
+                ((ctx.plan.accel_r1_mps3 * T * T * T) / 6.0);
+        OGK_ASSERT_NEAR(v_end, 0.0, 1e-12);
+        OGK_ASSERT_NEAR(x_end, (1.0 - k) * (dr + (0.5 * nav.v_r_mps * T)), 1e-9);
+        z = nav.r_m * sin(nav.phi_rad);
+        z_dot = (nav.v_r_mps * sin(nav.phi_rad)) + (nav.v_n_mps * cos(nav.phi_rad));
+        g_n = -(MU * z) / (nav.r_m * nav.r_m * nav.r_m);
+        v_end = z_dot + ((ctx.plan.accel_n0_mps2 + g_n) * T) + (0.5 * ctx.plan.accel_n1_mps3 * T * T);
+        x_end = z + (z_dot * T) + (0.5 * (ctx.plan.accel_n0_mps2 + g_n) * T * T) +
+                ((ctx.plan.accel_n1_mps3 * T * T * T) / 6.0);
+        OGK_ASSERT_NEAR(v_end, 0.0, 1e-12);
+        OGK_ASSERT_NEAR(x_end, (1.0 - cfg.shape_gain_normal) * (z + (0.5 * z_dot * T)), 1e-9);
+        /* the command is the plan's direction at its start */
+        OGK_ASSERT_NEAR(out.alpha_rad, atan2(ctx.plan.accel_r0_mps2, ctx.plan.accel_t_mps2), 1e-15);
+        assert_int_equal(out.law_flags, OGK_TERMINAL_FLAG_ENGAGED);
+    }
+}
+
+/* Inertial two-body propagation (RK4 at the 20 ms control period) of a
+ * vehicle thrusting at a constant acceleration along the terminal command,
+ * from 3 s before the circular target's energy is reached, cut at that
+ * energy: with shaping (k = 1, hold 0.5 s) the radius and the plane-normal
+ * position miss are a small fraction of pure v_go's, with the velocity still
+ * nulled. The reference is the test's own propagation, not the kernel's plan. */
+typedef struct {
+    double pos[3];
+    double vel[3];
+} state6_t;
+
+static void to_nav(const state6_t *s, double t_s, ogk_nav_state_t *nav, double e_r[3], double e_t[3],
+                   double e_n[3])
+{
+    const double r = sqrt((s->pos[0] * s->pos[0]) + (s->pos[1] * s->pos[1]) + (s->pos[2] * s->pos[2]));
+    const double xi = atan2(s->pos[1], s->pos[0]);
+    const double phi = asin(s->pos[2] / r);
+    size_t i;
+    e_r[0] = cos(phi) * cos(xi);
+    e_r[1] = cos(phi) * sin(xi);
+    e_r[2] = sin(phi);
+    e_t[0] = -sin(xi);
+    e_t[1] = cos(xi);
+    e_t[2] = 0.0;
+    e_n[0] = -sin(phi) * cos(xi);
+    e_n[1] = -sin(phi) * sin(xi);
+    e_n[2] = cos(phi);
+    (void)memset(nav, 0, sizeof *nav);
+    nav->t_s = t_s;
+    nav->r_m = r;
+    nav->xi_rad = xi;
+    nav->phi_rad = phi;
+    for (i = 0u; i < 3u; ++i) {
+        nav->v_r_mps += s->vel[i] * e_r[i];
+        nav->v_t_mps += s->vel[i] * e_t[i];
+        nav->v_n_mps += s->vel[i] * e_n[i];
+    }
+}
+
+static void deriv(const state6_t *s, const double thrust[3], state6_t *d)
+{
+    const double r = sqrt((s->pos[0] * s->pos[0]) + (s->pos[1] * s->pos[1]) + (s->pos[2] * s->pos[2]));
+    size_t i;
+    for (i = 0u; i < 3u; ++i) {
+        d->pos[i] = s->vel[i];
+        d->vel[i] = (-(MU * s->pos[i]) / (r * r * r)) + thrust[i];
+    }
+}
+
+static void axpy(const state6_t *s, double h, const state6_t *d, state6_t *out)
+{
+    size_t i;
+    for (i = 0u; i < 3u; ++i) {
+        out->pos[i] = s->pos[i] + (h * d->pos[i]);
+        out->vel[i] = s->vel[i] + (h * d->vel[i]);
+    }
+}
+
+/* Flies the end of the burn; returns the final nav state (r-t-n). */
+static ogk_nav_state_t fly_end(double shape_gain)
+{
+    ogk_terminal_config_t cfg = config();
+    ogk_terminal_t ctx;
+    const double accel = 17.7;
+    const double h = 0.02;
+    const double energy_f = -MU / (2.0 * R_F);
+    state6_t s;
+    ogk_nav_state_t nav;
+    double t = 100.0;
+    int k;
+    cfg.shape_gain = shape_gain;
+    cfg.shape_gain_normal = shape_gain;
+    cfg.shape_hold_s = 0.5;
+    (void)ogk_terminal_init(&ctx, &cfg);
+    /* at xi = 0: r 40 m low and climbing 14 m/s, 6 m below the plane, 3 m/s towards it, 50 m/s slow */
+    s.pos[0] = R_F - 40.0;
+    s.pos[1] = 0.0;
+    s.pos[2] = -6.0;
+    s.vel[0] = 14.0;
+    s.vel[1] = sqrt(MU / R_F) - 50.0;
+    s.vel[2] = 3.0;
+    for (k = 0; k < 400; ++k) {
+        double e_r[3], e_t[3], e_n[3], thrust[3];
+        const ogk_thrust_cmd_t law = law_command(t);
+        ogk_thrust_cmd_t out;
+        state6_t k1, k2, k3, k4, tmp;
+        size_t i;
+        to_nav(&s, t, &nav, e_r, e_t, e_n);
+        if ((0.5 * ((nav.v_r_mps * nav.v_r_mps) + (nav.v_t_mps * nav.v_t_mps) + (nav.v_n_mps * nav.v_n_mps))) -
+                (MU / nav.r_m) >=
+            energy_f) {
+            break;
+        }
+        OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.8, &law, &out), OGK_OK);
+        for (i = 0u; i < 3u; ++i) {
+            thrust[i] = accel * ((cos(out.beta_rad) * sin(out.alpha_rad) * e_r[i]) +
+                                 (cos(out.beta_rad) * cos(out.alpha_rad) * e_t[i]) + (sin(out.beta_rad) * e_n[i]));
+        }
+        deriv(&s, thrust, &k1);
+        axpy(&s, 0.5 * h, &k1, &tmp);
+        deriv(&tmp, thrust, &k2);
+        axpy(&s, 0.5 * h, &k2, &tmp);
+        deriv(&tmp, thrust, &k3);
+        axpy(&s, h, &k3, &tmp);
+        deriv(&tmp, thrust, &k4);
+        for (i = 0u; i < 3u; ++i) {
+            s.pos[i] += (h / 6.0) * (k1.pos[i] + (2.0 * k2.pos[i]) + (2.0 * k3.pos[i]) + k4.pos[i]);
+            s.vel[i] += (h / 6.0) * (k1.vel[i] + (2.0 * k2.vel[i]) + (2.0 * k3.vel[i]) + k4.vel[i]);
+        }
+        t += h;
+    }
+    assert_true((k > 100) && (k < 400)); /* about 2.8 s of thrust */
+    assert_true(ctx.plan.in_hold == (shape_gain > 0.0)); /* v_go steering after the hold */
+    return nav;
+}
+
+static void test_shaped_window_steers_out_the_position_miss(void **state)
+{
+    const ogk_nav_state_t pure = fly_end(0.0);
+    const ogk_nav_state_t shaped = fly_end(1.0);
+    const double dr_pure = pure.r_m - R_F;
+    const double dr_shaped = shaped.r_m - R_F;
+    const double z_pure = pure.r_m * sin(pure.phi_rad);
+    const double z_shaped = shaped.r_m * sin(shaped.phi_rad);
+    (void)state;
+    assert_true(fabs(dr_pure) > 10.0);       /* -40 + 14 x 2.8 / 2 m, about -20 m */
+    assert_true(fabs(z_pure) > 1.5);         /* -6 + 3 x 2.8 / 2 m, about -2 m */
+    assert_true(fabs(dr_shaped) < 0.05 * fabs(dr_pure));
+    assert_true(fabs(z_shaped) < 0.05 * fabs(z_pure));
+    assert_true(fabs(shaped.v_r_mps) < 0.5); /* one control period of thrust: 0.35 m/s */
+    assert_true(fabs(shaped.v_n_mps) < 0.5);
 }
 
 static void test_contract(void **state)
@@ -224,6 +417,29 @@ static void test_contract(void **state)
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
     OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 100.0, &law, &out), OGK_OK);
     assert_true(memcmp(&out, &law, sizeof out) == 0);
+    /* shaping: gain in [0, 1], hold in [HOLD_MIN, window] when the gain is positive */
+    cfg = config();
+    cfg.shape_gain = 1.5;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.shape_gain = -0.1;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.shape_gain = 0.0;
+    cfg.shape_gain_normal = 1.0 + 1e-12;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.shape_gain_normal = 0.5; /* the normal gain alone turns shaping on: the hold is checked */
+    cfg.shape_hold_s = cfg.window_s + 0.1;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.shape_hold_s = 0.5 * OGK_TERMINAL_HOLD_MIN_S;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.shape_hold_s = NAN;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.shape_gain_normal = 0.0; /* off: the hold is not used */
+    cfg.shape_hold_s = 1.0e6;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    cfg.shape_gain = 1.0;
+    cfg.shape_hold_s = OGK_TERMINAL_HOLD_MIN_S;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+
 }
 
 int main(void)
@@ -234,6 +450,8 @@ int main(void)
         cmocka_unit_test(test_direction_constant_while_vgo_shrinks),
         cmocka_unit_test(test_vgo_zero_holds_direction),
         cmocka_unit_test(test_rejections_change_nothing),
+        cmocka_unit_test(test_shaped_plan_meets_its_end_conditions),
+        cmocka_unit_test(test_shaped_window_steers_out_the_position_miss),
         cmocka_unit_test(test_contract),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -11,9 +11,30 @@
  * the velocity to be gained, v_go = v_target - v, with v_target the circular
  * velocity of the target orbit in the local r-t-n frame (0, sqrt(mu/R_f), 0):
  * thrust along v_go shrinks v_go along its own direction, so the command
- * barely turns, and the energy cut-off (ogk/cutoff.h) ends the burn. The
- * radius is not steered in the window (its error then grows by about v_r
- * times the window, a few metres).
+ * barely turns, and the energy cut-off (ogk/cutoff.h) ends the burn. With
+ * shape_gain = 0 the radius and the out-of-plane position are not steered in
+ * the window (their errors then grow by about v_r, v_n times half the window).
+ *
+ * Position shaping (shape_gain k for the radius, shape_gain_normal for the
+ * plane-normal position, each in [0, 1], either > 0; both 0: pure v_go
+ * steering): the radial and out-of-plane components of the command follow the linear-acceleration plan that nulls
+ * the velocity and k times the position miss that pure v_go steering would
+ * leave (E-guidance; k = 1 nulls both), re-planned at every step while the
+ * time to go T exceeds shape_hold_s:
+ *   a(T) = -(1 + 3 k) x'/T - 6 k x / T^2,  x = r - R_f or z = r sin(phi),
+ * thrust acceleration a - g (g: the radial gravity-minus-centrifugal term,
+ * the plane-normal gravity -mu z / r^3), tangential (v_c - v_t) / T. The
+ * plane is the r-t-n frame's equator (phi = 0), as for the target velocity.
+ * T is the time to the energy cut-off at the energy rate of the last control
+ * period, (E_f - E) / (dE/dt), E = v^2 / 2 - mu / r, E_f = -mu / (2 R_f): the
+ * cut-off ogk_cutoff makes (the law's prediction, which decides when the
+ * window opens, is late or early by a sample interval or more); the law's
+ * predicted time to go when no rate is known yet or it is not positive.
+ * The command is the plan's direction at its start. The gains grow like
+ * 1 / T^2 and the plan's turn at the end is more than an attitude loop
+ * follows, so from T = shape_hold_s on the window steers along v_go (latched;
+ * the position miss left is then about x' shape_hold_s / 2, with x' small).
+ * Measured against flying the frozen plan open loop to its end: docs/vtd-nog.md.
  *
  * Use: once per control period, after the guidance law's command:
  * ogk_terminal_step(ctx, nav, t_predicted, &law_cmd, &cmd); fly cmd. Once
@@ -43,6 +64,8 @@ extern "C" {
 #define OGK_TERMINAL_T_MAX_S 1.0e7    /* [s] times, [0, 1e7] */
 /* Below this |v_go| the direction is held (it is not defined at v_go = 0). */
 #define OGK_TERMINAL_VGO_MIN_MPS 1.0e-3
+/* Smallest shape_hold_s: the plan's gains grow like 1 / hold^3. */
+#define OGK_TERMINAL_HOLD_MIN_S 1.0e-3
 
 /* law_flags of the output command while engaged (the law's own flags are
  * replaced: the command is not the law's). */
@@ -52,7 +75,22 @@ typedef struct {
     double mu_m3_s2;        /* [m^3/s^2] gravitational parameter, > 0 */
     double target_radius_m; /* [m] radius of the circular target orbit, (0, R_MAX] */
     double window_s;        /* [s] engaged when the predicted time to go is at most this, [0, T_MAX] (0: never) */
+    double shape_gain;      /* [-] k of the radius miss steered out in the window, [0, 1] (0: not steered) */
+    double shape_gain_normal; /* [-] k of the plane-normal position miss, [0, 1] (0: not steered) */
+    double shape_hold_s;    /* [s] time to go below which v_go steering takes over, [HOLD_MIN, window_s] when shape_gain > 0 */
 } ogk_terminal_config_t;
+
+/* The last linear-acceleration plan of the shaped window (r-t-n). */
+typedef struct {
+    double t0_s;            /* [s] time at which it was made */
+    double duration_s;      /* [s] time to go at t0_s, > shape_hold_s */
+    double accel_r0_mps2;   /* [m/s^2] radial thrust acceleration at t0_s */
+    double accel_r1_mps3;   /* [m/s^3] its rate */
+    double accel_n0_mps2;   /* [m/s^2] plane-normal thrust acceleration at t0_s */
+    double accel_n1_mps3;   /* [m/s^3] its rate */
+    double accel_t_mps2;    /* [m/s^2] tangential thrust acceleration, held */
+    bool in_hold;           /* [-] past the hold: v_go steering (latched) */
+} ogk_terminal_plan_t;
 
 typedef struct {
     ogk_terminal_config_t cfg;
@@ -60,10 +98,15 @@ typedef struct {
     double alpha_rad;       /* [rad] last terminal command, in-plane angle */
     double beta_rad;        /* [rad] last terminal command, out-of-plane angle */
     bool engaged;           /* [-] in the terminal window (latched) */
+    ogk_terminal_plan_t plan; /* [-] shaped window only */
+    double last_t_s;        /* [s] time of the last accepted step */
+    double last_energy_j_kg; /* [J/kg] specific orbital energy at last_t_s */
+    bool has_last;          /* [-] last_t_s, last_energy_j_kg are set */
     uint32_t init_marker;   /* [-] set by ogk_terminal_init */
 } ogk_terminal_t;
 
-/* Defaults: mu of the Earth, target 42164 km, window 3 s. */
+/* Defaults: mu of the Earth, target 42164 km, window 3 s, no shaping
+ * (shape_gain = shape_gain_normal = 0, shape_hold_s 1 s). */
 ogk_status ogk_terminal_config_default(ogk_terminal_config_t *cfg);
 
 /* OGK_E_CONFIG for a non-finite or out-of-range field (context untouched). */
@@ -72,11 +115,13 @@ ogk_status ogk_terminal_init(ogk_terminal_t *ctx, const ogk_terminal_config_t *c
 /* Back to the state after init (a new burn). */
 ogk_status ogk_terminal_reset(ogk_terminal_t *ctx);
 
-/* One control period: nav at nav->t_s, the guidance's predicted cut-off
- * t_predicted_s and its command law_cmd (alpha, beta finite). *out is
- * law_cmd while not engaged, else the v_go direction (same t_s and
- * OGK_THRUST_FLAG_ENGINE_ON bit as law_cmd, law_flags ENGAGED). OGK_E_NONFINITE /
- * OGK_E_RANGE: context unchanged; *out as described in the header comment. */
+/* One control period: nav at nav->t_s (t, r, phi, v_r, v_t, v_n read; xi
+ * not), the guidance's predicted cut-off t_predicted_s and its command
+ * law_cmd (alpha, beta finite). *out is law_cmd while not engaged, else the
+ * terminal direction (v_go, or the shaped plan's; same t_s and
+ * OGK_THRUST_FLAG_ENGINE_ON bit as law_cmd, law_flags ENGAGED). OGK_E_NONFINITE
+ * (any of those values) / OGK_E_RANGE: context unchanged; *out as described in
+ * the header comment. */
 ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s,
                              const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out);
 
