@@ -390,6 +390,12 @@ class EndGame:
     #: kernel ogk_terminal: steer along the velocity to be gained once the predicted time to go is at
     #: most this (0: never; beyond the paper)
     terminal_window_s: float = 0.0
+    #: ogk_terminal position shaping: fraction of the radius and of the plane-normal position miss
+    #: steered out in the window (0: not steered) and the time to go below which v_go steering
+    #: takes over
+    terminal_shape_gain: float = 0.0
+    terminal_shape_gain_normal: float = 0.0
+    terminal_shape_hold_s: float = 1.0
 
     def arm_s(self, sample_interval_s: float) -> float:
         return self.cutoff_arm_s if self.cutoff_arm_s is not None else sample_interval_s
@@ -516,7 +522,21 @@ def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
                                                           positive=True,
                                                           hi=sample_interval),
                        fine_window_s=eg_s.number("fine_window_s", 0.0, nonnegative=True),
-                       terminal_window_s=eg_s.number("terminal_window_s", 0.0, nonnegative=True))
+                       terminal_window_s=eg_s.number("terminal_window_s", 0.0, nonnegative=True),
+                       terminal_shape_gain=eg_s.number("terminal_shape_gain", 0.0,
+                                                       nonnegative=True, hi=1.0),
+                       terminal_shape_gain_normal=eg_s.number("terminal_shape_gain_normal", 0.0,
+                                                              nonnegative=True, hi=1.0),
+                       terminal_shape_hold_s=eg_s.number("terminal_shape_hold_s", 1.0,
+                                                         positive=True))
+    shaped = end_game.terminal_shape_gain > 0.0 or end_game.terminal_shape_gain_normal > 0.0
+    if shaped and not end_game.terminal_shape_hold_s <= end_game.terminal_window_s:
+        raise eg_s.error("terminal_shape_hold_s",
+                         f"must be <= terminal_window_s ({end_game.terminal_window_s:g} s) when "
+                         f"a shape gain is set, got {end_game.terminal_shape_hold_s:g}")
+    if shaped and end_game.terminal_shape_hold_s < 1.0e-3:
+        raise eg_s.error("terminal_shape_hold_s", "must be >= 1e-3 s (kernel "
+                         f"OGK_TERMINAL_HOLD_MIN_S), got {end_game.terminal_shape_hold_s:g}")
     eg_s.finish()
     guid_s.finish()
 

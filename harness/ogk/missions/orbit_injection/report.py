@@ -22,8 +22,17 @@ def _end_game_text(res: CampaignResult) -> str:
     fine = (f" ({plan.fine_interval_s:g} s in the last {plan.fine_window_s:g} s)"
             if plan.fine_interval_s is not None else "")
     cut = "energy (ogk_cutoff)" if plan.energy_cutoff else "predicted at the samples (eq. 32)"
-    term = (f"; along v_go in the last {plan.terminal_window_s:g} s (ogk_terminal)"
-            if plan.terminal_window_s > 0.0 else "")
+    eg = res.scenario.end_game
+    shaped = plan.terminal_window_s > 0.0 and (eg.terminal_shape_gain > 0.0
+                                               or eg.terminal_shape_gain_normal > 0.0)
+    if shaped:
+        term = (f"; last {plan.terminal_window_s:g} s: radius (gain "
+                f"{eg.terminal_shape_gain:g}) and plane (gain {eg.terminal_shape_gain_normal:g}) "
+                f"shaped, along v_go in the last {eg.terminal_shape_hold_s:g} s (ogk_terminal)")
+    elif plan.terminal_window_s > 0.0:
+        term = f"; along v_go in the last {plan.terminal_window_s:g} s (ogk_terminal)"
+    else:
+        term = ""
     return f"{fine}{term}; cut-off {cut}"
 
 

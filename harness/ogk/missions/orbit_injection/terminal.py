@@ -26,6 +26,9 @@ def terminal_config(scn: LeoGeoScenario) -> object:
     cfg.mu_m3_s2 = scn.mu_m3_s2
     cfg.target_radius_m = scn.target_radius_m
     cfg.window_s = scn.end_game.terminal_window_s
+    cfg.shape_gain = scn.end_game.terminal_shape_gain
+    cfg.shape_gain_normal = scn.end_game.terminal_shape_gain_normal
+    cfg.shape_hold_s = scn.end_game.terminal_shape_hold_s
     return cfg
 
 
