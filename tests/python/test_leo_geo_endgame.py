@@ -1,11 +1,14 @@
 """End-game of the kernel VTD-NOG on the worst runs of campaigns with thrust fluctuations (eq. 55).
 
 Point-mass truth (guidance only), initial-state and thrust dispersions, 40 runs, fluctuation sigma at the
-paper's 0.02 and at 2.5x (0.05). Measured when written (seed 7): paper sigma -- no guard engagement,
-max |dr_f| 2.2 m, max |dv_tf| 10.8 m/s, max |t_f - t_f*| 9.5 s; 2.5x -- the guard engaged (LIMITED) in 6
-runs, max |dr_f| 3.4 m, max |dv_tf| 42 m/s (the last-interval thrust error, not correctable with a cut-off
-fixed at the last sample), every run terminated inside the t_f bound. The assertions hold these with
-margin: termination, no failure, the flight-time bound, the guard engaging under stress, bounded errors.
+paper's 0.02 and at 2.5x (0.05), the scenario's end-game (energy cut-off, 0.5 s sampling in the last 20 s,
+v_go steering in the last 3 s; the point-mass truth flies the terminal stage's command since 2026-12-02,
+before it flew the law's). Measured (seed 7): paper sigma -- the guard engaged (LIMITED) in 9 runs, max
+|dr_f| 4.5 m, max |dv| 0.0003 m/s, max |t_f - t_f*| 8.9 s; 2.5x -- LIMITED in 20 runs, max |dr_f| 11.1 m
+(the radius is not steered in the window), max |dv| 0.001 m/s, every run inside the t_f bound. (With the
+paper's end-game, cut-off fixed at the last 2 s sample, the 2.5x case left 42 m/s in dv_t.) The assertions
+hold these with margin: termination, no failure, the flight-time bound, the guard engaging under stress,
+bounded errors: dr_f within 2 (paper sigma) and 4 (2.5x) of Table 7's 4.26 m, velocities within 1 m/s.
 """
 from __future__ import annotations
 
@@ -49,8 +52,8 @@ def _column(doc: dict, key: str) -> np.ndarray:
     return np.array([run[key] for run in doc["per_run"]], dtype=float)
 
 
-@pytest.mark.parametrize("sigma, max_dr, max_dv, guard_runs", [(0.02, 5.0, 20.0, 0),
-                                                               (0.05, 8.0, 80.0, 1)])
+@pytest.mark.parametrize("sigma, max_dr, max_dv, guard_runs", [(0.02, 8.5, 1.0, 0),
+                                                               (0.05, 17.0, 1.0, 1)])
 def test_end_game_bounded_on_worst_runs(sigma: float, max_dr: float, max_dv: float,
                                         guard_runs: int) -> None:
     scn, doc, flags = _fly(sigma)

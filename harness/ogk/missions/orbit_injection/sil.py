@@ -233,8 +233,18 @@ def simulate(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
         def rhs(t: F64 | float, xs: F64, out: F64) -> None:
             tm.rhs_6dof(params, t, xs, command, noise, factor(t), out)
     else:
+        # the law's command in continuous time, except where the terminal stage is engaged: its
+        # command, computed at the control step, is held over it (zero-order hold, as the 6-DOF
+        # loop holds the attitude command)
+        held = np.zeros(n, dtype=bool)
+        held_alpha = np.zeros(n)
+        held_beta = np.zeros(n)
+
         def rhs(t: F64 | float, xs: F64, out: F64) -> None:
             a_c, b_c = guidance.command(np.broadcast_to(t, (n,)))
+            if held.any():
+                a_c = np.where(held, held_alpha, a_c)
+                b_c = np.where(held, held_beta, b_c)
             tm.rhs_point_mass(params, t, xs, a_c, b_c, factor(t), out)
     rk4 = _Rk4(x.shape)
     cutoff = np.full(n, np.inf)
@@ -281,6 +291,10 @@ def simulate(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
                                                     beta_c)
                     fail(terminal.failed() & known, "terminal")
                     active = ~done
+                    if not six_dof:
+                        held[:] = terminal.engaged != 0
+                        held_alpha[:] = alpha_c
+                        held_beta[:] = beta_c
                 if six_dof:
                     psi, theta, roll = tm.euler_from_quat(x[tm.Q0:tm.Q3 + 1])
                     att = np.stack([psi, theta, roll, x[tm.RATE_P], x[tm.RATE_Q], x[tm.RATE_R]],
