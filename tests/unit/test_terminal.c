@@ -374,6 +374,53 @@ static void test_shaped_window_steers_out_the_position_miss(void **state)
     assert_true(fabs(shaped.v_n_mps) < 0.5);
 }
 
+/* The shaped window's fallbacks: the law's time to go while the energy is not
+ * rising (or on a repeated time tag), and v_go steering when the plan
+ * overflows (a radius near 0, inside the envelope). */
+static void test_shaped_fallbacks(void **state)
+{
+    ogk_terminal_config_t cfg = config();
+    ogk_terminal_t ctx;
+    ogk_nav_state_t nav = nav_at(100.0, 12.0, -45.0, -3.0);
+    const ogk_thrust_cmd_t law = law_command(100.0);
+    ogk_thrust_cmd_t out;
+    (void)state;
+    cfg.shape_gain = 1.0;
+    cfg.shape_gain_normal = 1.0;
+    cfg.shape_hold_s = 0.5;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.5, &law, &out), OGK_OK);
+    OGK_ASSERT_NEAR(ctx.plan.duration_s, 102.5 - 100.0, 0.0);
+    /* the same time tag again: no rate, the law's time to go */
+    OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.4, &law, &out), OGK_OK);
+    OGK_ASSERT_NEAR(ctx.plan.duration_s, 102.4 - 100.0, 0.0);
+    /* 20 ms later, slower: the energy falls, the law's time to go */
+    nav.t_s += 0.02;
+    nav.v_t_mps -= 1.0;
+    OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.5, &law, &out), OGK_OK);
+    OGK_ASSERT_NEAR(ctx.plan.duration_s, 102.5 - nav.t_s, 1e-12);
+    /* 20 ms later, faster by 0.35 m/s: the time to the energy cut-off, (E_f - E) / (dE/dt) */
+    {
+        const double e0 = (0.5 * ((nav.v_r_mps * nav.v_r_mps) + (nav.v_t_mps * nav.v_t_mps) +
+                                  (nav.v_n_mps * nav.v_n_mps))) - (MU / nav.r_m);
+        double e1;
+        nav.t_s += 0.02;
+        nav.v_t_mps += 0.35;
+        e1 = (0.5 * ((nav.v_r_mps * nav.v_r_mps) + (nav.v_t_mps * nav.v_t_mps) + (nav.v_n_mps * nav.v_n_mps))) -
+             (MU / nav.r_m);
+        OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.5, &law, &out), OGK_OK);
+        OGK_ASSERT_NEAR(ctx.plan.duration_s, ((-MU / (2.0 * R_F)) - e1) / ((e1 - e0) / 0.02), 1e-6);
+        assert_true(ctx.plan.duration_s > 2.0); /* 45 m/s at 17.5 m/s^2 */
+    }
+    /* a radius of 1e-200 m: mu / r^2 overflows, no plan, v_go steering */
+    OGK_ASSERT_STATUS(ogk_terminal_reset(&ctx), OGK_OK);
+    nav = nav_at(100.0, 12.0, -45.0, -3.0);
+    nav.r_m = 1.0e-200;
+    OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.5, &law, &out), OGK_OK);
+    assert_along(&out, -12.0, 45.0, 3.0);
+    assert_false(ctx.plan.in_hold);
+}
+
 static void test_contract(void **state)
 {
     ogk_terminal_config_t cfg = config();
@@ -452,6 +499,7 @@ int main(void)
         cmocka_unit_test(test_rejections_change_nothing),
         cmocka_unit_test(test_shaped_plan_meets_its_end_conditions),
         cmocka_unit_test(test_shaped_window_steers_out_the_position_miss),
+        cmocka_unit_test(test_shaped_fallbacks),
         cmocka_unit_test(test_contract),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
