@@ -1,0 +1,218 @@
+"""Open-loop minimum-time Earth-to-Mars rendezvous (Starek & Kolmanovsky 2012, secs. 2.1, 2.3, 4.1.1).
+
+Transcription (docs/nmpc.md, "Formulation"): free final time t_f, normalised time tau = t / t_f in [0, 1],
+N subintervals of equal length, the thrust angle piecewise linear between its N + 1 node values (sec. 2.3),
+direct multiple shooting with `rk4_steps_per_interval` RK4 steps per subinterval (the angle evaluated at
+the RK4 stage times), constant thrust T_0 and mass flow of eq. (13), exact terminal conditions of eq. (5):
+r = r_M, theta = theta_M(t_f), v_r = 0, v_theta = sqrt(mu / r_M). Solved by IPOPT (exact Hessian).
+
+The problem has many local optima (errata: 370.1-384 days), so the initial guess is part of the method:
+`phase_matched_guess` and `multi_start` below.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+
+import casadi as ca
+import numpy as np
+from numpy.typing import NDArray
+
+from .dynamics import DAY_S, Model, casadi_rhs
+from .scenario import RendezvousScenario
+
+FloatArray = NDArray[np.float64]
+
+#: The documented guess (docs/nmpc.md, "Initial guess"): t_f guess and radius-profile exponent.
+DEFAULT_GUESS_TF_DAYS = 370.0
+DEFAULT_GUESS_SHAPE = 1.0
+
+
+@dataclasses.dataclass(frozen=True)
+class Guess:
+    """Initial guess of the NLP: node states (N+1, 5), node angles (N+1,), t_f [normalised]."""
+
+    label: str
+    states: FloatArray
+    controls: FloatArray
+    t_f: float
+
+
+@dataclasses.dataclass(frozen=True)
+class OcpResult:
+    converged: bool
+    status: str                 #: IPOPT's return status
+    t_f_days: float
+    fuel_kg: float
+    iterations: int
+    solve_time_s: float         #: wall clock of the IPOPT call
+    time_days: FloatArray       #: node times (N+1,)
+    states: FloatArray          #: node states (N+1, 5), normalised (docs/nmpc.md, "Units")
+    controls_rad: FloatArray    #: node thrust angles (N+1,) [rad]
+    guess: str                  #: label of the initial guess
+
+
+def phase_matched_guess(model: Model, nodes: int, t_f_days: float = DEFAULT_GUESS_TF_DAYS,
+                        shape: float = DEFAULT_GUESS_SHAPE, alpha_rad: float = 0.5 * math.pi,
+                        label: str | None = None) -> Guess:
+    """A phase-matched guess: with s = tau^shape the radius goes from r_0 to r_M as
+    r = r_0 + (r_M - r_0)(3 s^2 - 2 s^3) (zero radial speed at both ends), the polar angle linearly
+    from theta_0 to Mars' theta_M(t_f) (so the guess ends exactly at Mars' state of eq. 5), v_r = dr/dt
+    (finite differences over the nodes),
+    v_theta the circular speed sqrt(1 / r), the mass m0 - mdot t, the angle `alpha_rad` everywhere
+    (pi/2: circumferential thrust)."""
+    t_f = t_f_days * DAY_S / model.units.time_s
+    tau = np.linspace(0.0, 1.0, nodes + 1)
+    s = tau ** shape
+    r0, r1 = model.x0[0], model.mars_radius
+    r = r0 + (r1 - r0) * (3.0 * s ** 2 - 2.0 * s ** 3)
+    v_r = np.gradient(r, tau * t_f)   # finite differences: dr/dtau is singular at 0 for shape < 1
+    theta = model.x0[1] + (model.mars_state(t_f)[1] - model.x0[1]) * tau
+    mass = model.x0[4] - model.mass_flow * t_f * tau
+    states = np.stack([r, theta, v_r, r ** -0.5, mass], axis=-1)
+    controls = np.full(nodes + 1, alpha_rad)
+    return Guess(label or f"phase-matched tf={t_f_days:g} d shape={shape:g} alpha={alpha_rad:.3g}",
+                 states, controls, t_f)
+
+
+class MinTimeOcp:
+    """The NLP, built once per scenario and solved from any number of guesses."""
+
+    def __init__(self, scenario: RendezvousScenario, nodes: int | None = None,
+                 rk4_steps: int | None = None) -> None:
+        if scenario.ocp.objective != "min-time":
+            raise ValueError(f"{scenario.path}: ocp.objective is {scenario.ocp.objective!r}, not min-time")
+        self.model = Model.for_scenario(scenario)
+        self.nodes = nodes or scenario.ocp.nodes
+        self.rk4_steps = rk4_steps or scenario.ocp.rk4_steps_per_interval
+        self._build()
+
+    def _interval_function(self) -> ca.Function:
+        """x(tau_k) -> x(tau_{k+1}) over one subinterval of duration h, angle linear a0 -> a1."""
+        f = casadi_rhs()
+        m = self.model
+        x = ca.SX.sym("x", 5)
+        a0, a1, h = ca.SX.sym("a0"), ca.SX.sym("a1"), ca.SX.sym("h")
+        dt = h / self.rk4_steps
+        xk = x
+        for i in range(self.rk4_steps):
+            s0 = i / self.rk4_steps
+            a_start = a0 + (a1 - a0) * s0
+            a_mid = a0 + (a1 - a0) * (s0 + 0.5 / self.rk4_steps)
+            a_end = a0 + (a1 - a0) * (s0 + 1.0 / self.rk4_steps)
+            k1 = f(xk, a_start, m.thrust, m.mass_flow)
+            k2 = f(xk + 0.5 * dt * k1, a_mid, m.thrust, m.mass_flow)
+            k3 = f(xk + 0.5 * dt * k2, a_mid, m.thrust, m.mass_flow)
+            k4 = f(xk + dt * k3, a_end, m.thrust, m.mass_flow)
+            xk = xk + dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        return ca.Function("interval", [x, a0, a1, h], [xk])
+
+    def _build(self) -> None:
+        n, m = self.nodes, self.model
+        step = self._interval_function().map(n)
+        X = ca.SX.sym("X", 5, n + 1)
+        U = ca.SX.sym("U", 1, n + 1)
+        tf = ca.SX.sym("tf")
+        h = ca.repmat(tf / n, 1, n)
+        x_end = step(X[:, :n], U[:, :n], U[:, 1:], h)
+        mars = ca.vertcat(m.mars_radius, m.mars_theta0 + m.mars_rate * tf, 0.0, m.mars_radius ** -0.5)
+        g = ca.vertcat(X[:, 0] - m.x0,                              # eq. (4)
+                       ca.reshape(x_end - X[:, 1:], -1, 1),         # continuity (multiple shooting)
+                       X[:4, n] - mars)                             # eq. (5)
+        w = ca.vertcat(ca.reshape(X, -1, 1), ca.reshape(U, -1, 1), tf)
+        self._n_w = w.shape[0]
+        # Bounds keep IPOPT in the physical region only (no active bound at the optima measured).
+        lbx = np.concatenate([np.tile([0.3, -10.0, -2.0, 0.1, 0.05], n + 1),
+                              np.full(n + 1, -3.0 * math.pi), [1.0]])
+        ubx = np.concatenate([np.tile([5.0, 20.0, 2.0, 3.0, 1.0], n + 1),
+                              np.full(n + 1, 4.0 * math.pi), [30.0]])
+        self._lbx, self._ubx = lbx, ubx
+        self._ng = g.shape[0]
+        opts = {"ipopt.tol": 1e-10, "ipopt.constr_viol_tol": 1e-12, "ipopt.max_iter": 500,
+                "ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes"}
+        self._solver = ca.nlpsol("min_time", "ipopt", {"x": w, "f": tf, "g": g}, opts)
+
+    def solve(self, guess: Guess) -> OcpResult:
+        n, m = self.nodes, self.model
+        w0 = np.concatenate([guess.states.T.ravel(order="F"), guess.controls, [guess.t_f]])
+        start = time.perf_counter()
+        sol = self._solver(x0=w0, lbx=self._lbx, ubx=self._ubx, lbg=0.0, ubg=0.0)
+        elapsed = time.perf_counter() - start
+        stats = self._solver.stats()
+        w = np.asarray(sol["x"]).ravel()
+        states = w[: 5 * (n + 1)].reshape(n + 1, 5)
+        controls = w[5 * (n + 1): 6 * (n + 1)]
+        t_f = float(w[-1])
+        units = m.units
+        return OcpResult(converged=bool(stats["success"]), status=str(stats["return_status"]),
+                         t_f_days=t_f * units.time_s / DAY_S,
+                         fuel_kg=(states[0, 4] - states[-1, 4]) * units.mass_kg,
+                         iterations=int(stats["iter_count"]), solve_time_s=elapsed,
+                         time_days=np.linspace(0.0, t_f, n + 1) * units.time_s / DAY_S,
+                         states=states, controls_rad=controls, guess=guess.label)
+
+
+def default_guess(ocp: MinTimeOcp) -> Guess:
+    """The documented guess (docs/nmpc.md): phase-matched, t_f = 370 d, smoothstep radius, alpha = pi/2."""
+    return phase_matched_guess(ocp.model, ocp.nodes, label="documented")
+
+
+def multi_start_guesses(ocp: MinTimeOcp) -> list[Guess]:
+    """A handful of deterministic guesses (8): t_f guesses across and beyond the band of local optima
+    (300-460 d), early / late climbs (shape 0.5, 2) and thrust angles tilted off circumferential
+    (45 and 135 deg). Each of them, alone, was measured to converge to a different optimum or to the
+    documented guess's (docs/nmpc.md, "Multi-start")."""
+    spec = [(300.0, 1.0, 0.25), (330.0, 1.0, 0.5), (350.0, 2.0, 0.5), (400.0, 2.0, 0.5),
+            (460.0, 1.0, 0.25), (370.0, 0.5, 0.75), (430.0, 0.5, 0.25), (300.0, 0.5, 0.75)]
+    return [phase_matched_guess(ocp.model, ocp.nodes, tf, shape, alpha * math.pi)
+            for tf, shape, alpha in spec]
+
+
+def grid_guesses(ocp: MinTimeOcp) -> list[Guess]:
+    """The wider survey of docs/nmpc.md: t_f guess 300-460 d (7 values) x shape 0.5, 1, 2 x angle
+    45, 90, 135 deg: 63 starts."""
+    return [phase_matched_guess(ocp.model, ocp.nodes, tf, shape, alpha * math.pi)
+            for tf in (300.0, 330.0, 350.0, 370.0, 400.0, 430.0, 460.0)
+            for shape in (0.5, 1.0, 2.0) for alpha in (0.25, 0.5, 0.75)]
+
+
+def multi_start(ocp: MinTimeOcp, guesses: list[Guess] | None = None,
+                distinct_days: float = 1e-3) -> tuple[list[OcpResult], list[OcpResult]]:
+    """Solves from every guess; returns (all results, the distinct converged local optima sorted by t_f,
+    two optima being the same when their t_f differ by less than `distinct_days`)."""
+    results = [ocp.solve(g) for g in (guesses if guesses is not None else multi_start_guesses(ocp))]
+    optima: list[OcpResult] = []
+    for res in sorted((r for r in results if r.converged), key=lambda r: r.t_f_days):
+        if not optima or res.t_f_days - optima[-1].t_f_days > distinct_days:
+            optima.append(res)
+    return results, optima
+
+
+def main(argv: list[str] | None = None) -> int:
+    """`python -m ogk_host.rendezvous.ocp [scenario] [--multi-start | --grid]`: the figures of docs/nmpc.md."""
+    import argparse
+
+    from .scenario import load_scenario
+
+    parser = argparse.ArgumentParser(description=main.__doc__)
+    parser.add_argument("scenario", nargs="?", default=None)
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("--multi-start", action="store_true", help="the 8 starts of multi_start_guesses")
+    group.add_argument("--grid", action="store_true", help="the 63 starts of grid_guesses")
+    args = parser.parse_args(argv)
+    ocp = MinTimeOcp(load_scenario(args.scenario))
+    if args.multi_start or args.grid:
+        results, optima = multi_start(ocp, grid_guesses(ocp) if args.grid else None)
+    else:
+        results = [ocp.solve(default_guess(ocp))]
+        optima = [r for r in results if r.converged]
+    for r in results:
+        print(f"{r.guess:48s} {r.status:22s} t_f = {r.t_f_days:.4f} d  fuel = {r.fuel_kg:.2f} kg  "
+              f"iterations = {r.iterations:3d}  solve = {r.solve_time_s:.3f} s")
+    print(f"{len(optima)} distinct local optima [d]: " + ", ".join(f"{o.t_f_days:.4f}" for o in optima))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,223 @@
+"""Earth-to-Mars low-thrust rendezvous scenarios (Starek & Kolmanovsky 2012, Table A.1): TOML -> dataclasses.
+
+Everything here is SI (m, s, kg, N, rad), as in scenarios/rendezvous_*.toml. The normalised units the
+solvers use are built by `dynamics.Units.for_scenario` (LU = r_E, mu_sun = 1, MU = m0; docs/nmpc.md).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from pathlib import Path
+
+from ..scenario_file import Section, read_toml
+
+REPO_ROOT = Path(__file__).resolve().parents[3]
+DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "rendezvous_nep_min_time.toml"
+SCHEMA = "ogk.rendezvous/1"
+MISSION = "low-thrust-rendezvous"
+LAWS = ("nmpc",)
+PROPULSION_MODELS = ("nuclear-electric",)
+THROTTLES = ("constant", "bounded")   #: sec. 3.2.1: T = T_0 (min-time) or 0 <= T <= T_max (eq. 12)
+OBJECTIVES = ("min-time", "min-fuel")
+CONTROLS = ("piecewise-linear",)
+
+
+@dataclasses.dataclass(frozen=True)
+class Problem:
+    """Table A.1, "Problem definition"."""
+
+    start_time_s: float             #: t_0 [s]
+    earth_orbit_radius_m: float     #: r_E [m]
+    mars_orbit_radius_m: float      #: r_M [m]
+    earth_mass_kg: float            #: m_E [kg]
+    mars_mass_kg: float             #: m_M [kg]
+    sun_mass_kg: float              #: m_S [kg]
+    sun_mu_m3_s2: float             #: mu [m^3/s^2]
+
+
+@dataclasses.dataclass(frozen=True)
+class PolarState:
+    """A planar heliocentric state in the rotating polar frame of eq. (11)."""
+
+    radius_m: float                         #: r [m]
+    polar_angle_rad: float                  #: theta [rad]
+    radial_velocity_m_s: float              #: v_r [m/s]
+    circumferential_velocity_m_s: float     #: v_theta [m/s]
+
+
+@dataclasses.dataclass(frozen=True)
+class Perturbations:
+    """Table A.1, "Perturbation inputs" (the simulation model; unknown to the predictive model)."""
+
+    area_m2: float                      #: A_s/c [m^2]
+    reflectivity_efficiency: float      #: eta [-]
+    solar_constant_w_m2: float          #: S_0 [W/m^2]
+    speed_of_light_m_s: float           #: c [m/s]
+    thrust_offset_percent: float        #: T_offset [%] (eq. 23)
+    thrust_angle_sigma_rad: float       #: sigma_alpha_T [rad]
+    earth_mu_m3_s2: float               #: mu_E [m^3/s^2]
+    mars_mu_m3_s2: float                #: mu_M [m^3/s^2]
+    earth_initial_polar_angle_rad: float    #: (theta_E)_0 [rad]
+
+
+@dataclasses.dataclass(frozen=True)
+class Propulsion:
+    """Nuclear-electric engine, sec. 3.2.1: 0 <= T <= T_max (eq. 12), mdot = -T / (g0 Isp) (eq. 13)."""
+
+    model: str
+    throttle: str                   #: "constant" (T = T_max) or "bounded"
+    thrust_max_n: float             #: T_max [N]
+    specific_impulse_s: float       #: I_sp [s]
+    standard_gravity_m_s2: float    #: g_0 [m/s^2]
+
+    @property
+    def mass_flow_at_max_kg_s(self) -> float:
+        """|mdot| at T_max [kg/s] (eq. 13)."""
+        return self.thrust_max_n / (self.standard_gravity_m_s2 * self.specific_impulse_s)
+
+
+@dataclasses.dataclass(frozen=True)
+class Convergence:
+    """Table A.1, "Convergence criteria" and the rendezvous test of sec. 2.3.1 (MPC stop)."""
+
+    earth_soi_radius_m: float
+    mars_soi_radius_m: float
+    velocity_error_m_s: float
+
+
+@dataclasses.dataclass(frozen=True)
+class OcpSettings:
+    """Transcription of the open-loop OCP (sec. 2.3: direct multiple shooting, piecewise-linear control)."""
+
+    objective: str
+    nodes: int                      #: N control subintervals (N + 1 node values)
+    control: str
+    rk4_steps_per_interval: int
+
+
+@dataclasses.dataclass(frozen=True)
+class RendezvousScenario:
+    path: Path
+    name: str
+    source: str
+    problem: Problem
+    initial: PolarState
+    initial_mass_kg: float
+    target: PolarState              #: Mars at t_0 (circular orbit, eq. 6)
+    perturbations: Perturbations
+    propulsion: Propulsion
+    convergence: Convergence
+    ocp: OcpSettings
+    law: str
+    paper_results: dict[str, float]
+
+    @property
+    def mars_mean_motion_rad_s(self) -> float:
+        """sqrt(mu / r_M^3), eq. (6)."""
+        return math.sqrt(self.problem.sun_mu_m3_s2 / self.problem.mars_orbit_radius_m ** 3)
+
+
+def _read_state(section: Section) -> PolarState:
+    state = PolarState(radius_m=section.number("radius_m", positive=True),
+                       polar_angle_rad=section.number("polar_angle_rad", lo=-2.0 * math.pi,
+                                                      hi=2.0 * math.pi),
+                       radial_velocity_m_s=section.number("radial_velocity_m_s"),
+                       circumferential_velocity_m_s=section.number("circumferential_velocity_m_s",
+                                                                   positive=True))
+    return state
+
+
+def _check_circular(section: Section, state: PolarState, mu: float, what: str) -> None:
+    """Eqs. (4)-(5) put the spacecraft and Mars on circular orbits: v_theta = sqrt(mu / r), v_r = 0.
+    Table A.1 prints 7 significant figures, so a relative mismatch above 1e-6 is a typo."""
+    circular = math.sqrt(mu / state.radius_m)
+    if abs(state.circumferential_velocity_m_s / circular - 1.0) > 1e-6:
+        raise section.error("circumferential_velocity_m_s",
+                            f"{what}: {state.circumferential_velocity_m_s:.8g} m/s is not the "
+                            f"circular speed sqrt(mu / r) = {circular:.8g} m/s (eqs. 4-5)")
+    if state.radial_velocity_m_s != 0.0:
+        raise section.error("radial_velocity_m_s", f"{what}: must be 0 on a circular orbit (eqs. 4-5)")
+
+
+def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
+    """Reads scenarios/rendezvous_nep_min_time.toml (or `path`) and checks it: every missing key, wrong
+    type, unknown key or physically impossible value is an `OgkInputError` naming file and key."""
+    scenario_path = Path(path) if path is not None else DEFAULT_SCENARIO_PATH
+    top = Section(read_toml(scenario_path), scenario_path, "")
+    top.text("schema", choices=(SCHEMA,))
+    top.text("mission", choices=(MISSION,))
+    name = top.text("name")
+    source = top.text("source", default="")
+
+    prob_s = top.section("problem")
+    problem = prob_s.dataclass(Problem, start_time_s={"nonnegative": True},
+                               **{f.name: {"positive": True} for f in dataclasses.fields(Problem)
+                                  if f.name != "start_time_s"})
+    prob_s.finish()
+    if not problem.mars_orbit_radius_m > problem.earth_orbit_radius_m:
+        raise prob_s.error("mars_orbit_radius_m", "must be above earth_orbit_radius_m (outward transfer)")
+
+    init_s = top.section("initial_state")
+    initial = _read_state(init_s)
+    initial_mass = init_s.number("mass_kg", positive=True)
+    init_s.finish()
+    _check_circular(init_s, initial, problem.sun_mu_m3_s2, "spacecraft")
+
+    target_s = top.section("target")
+    target = _read_state(target_s)
+    target_s.finish()
+    _check_circular(target_s, target, problem.sun_mu_m3_s2, "Mars")
+    if target.radius_m != problem.mars_orbit_radius_m:
+        raise target_s.error("radius_m", "must equal problem.mars_orbit_radius_m (circular orbit, eq. 6)")
+
+    pert_s = top.section("perturbations")
+    perturbations = pert_s.dataclass(Perturbations, area_m2={"nonnegative": True},
+                                     reflectivity_efficiency={"lo": 0.0, "hi": 1.0},
+                                     solar_constant_w_m2={"nonnegative": True},
+                                     speed_of_light_m_s={"positive": True},
+                                     thrust_offset_percent={"lo": -100.0, "hi": 100.0},
+                                     thrust_angle_sigma_rad={"nonnegative": True},
+                                     earth_mu_m3_s2={"nonnegative": True},
+                                     mars_mu_m3_s2={"nonnegative": True})
+    pert_s.finish()
+
+    prop_s = top.section("propulsion")
+    propulsion = Propulsion(model=prop_s.text("model", choices=PROPULSION_MODELS),
+                            throttle=prop_s.text("throttle", choices=THROTTLES),
+                            thrust_max_n=prop_s.number("thrust_max_n", positive=True),
+                            specific_impulse_s=prop_s.number("specific_impulse_s", positive=True),
+                            standard_gravity_m_s2=prop_s.number("standard_gravity_m_s2",
+                                                                positive=True))
+    prop_s.finish()
+
+    conv_s = top.section("convergence")
+    convergence = conv_s.dataclass(Convergence, **{f.name: {"positive": True}
+                                                   for f in dataclasses.fields(Convergence)})
+    conv_s.finish()
+
+    guid_s = top.section("guidance")
+    law = guid_s.text("law", choices=LAWS)
+    guid_s.finish()
+
+    ocp_s = top.section("ocp")
+    ocp = OcpSettings(objective=ocp_s.text("objective", choices=OBJECTIVES),
+                      nodes=ocp_s.integer("nodes", lo=2, hi=1000),
+                      control=ocp_s.text("control", choices=CONTROLS),
+                      rk4_steps_per_interval=ocp_s.integer("rk4_steps_per_interval", lo=1, hi=100))
+    ocp_s.finish()
+    if ocp.objective == "min-time" and propulsion.throttle != "constant":
+        raise ocp_s.error("objective", "min-time is posed with propulsion.throttle = \"constant\" "
+                          "(sec. 3.2.1: min-time and min-fuel coincide only then)")
+
+    paper: dict[str, float] = {}
+    if top.has("paper_results"):
+        paper_s = top.section("paper_results")
+        for key in ("open_loop_time_s", "open_loop_fuel_kg"):
+            if paper_s.has(key):
+                paper[key] = paper_s.number(key, positive=True)
+        paper_s.finish()
+    top.finish()
+    return RendezvousScenario(path=scenario_path, name=name, source=source, problem=problem,
+                              initial=initial, initial_mass_kg=initial_mass, target=target,
+                              perturbations=perturbations, propulsion=propulsion,
+                              convergence=convergence, ocp=ocp, law=law, paper_results=paper)
