@@ -166,3 +166,22 @@ def test_loader_rejects_bad_input(tmp_path: Path, table: str, key: str, value: f
         load_scenario(path)
     assert info.value.key == f"{table}.{key}"
     assert needle in str(info.value)
+
+
+def test_numpy_and_casadi_models_agree(ocp: MinTimeOcp, optimum: OcpResult) -> None:
+    """dynamics.rhs (numpy) equals dynamics.casadi_rhs, and dynamics.rk4_interval reproduces the
+    OCP's node states from its own angles (multiple-shooting continuity, IPOPT's tolerance)."""
+    from ogk_host.rendezvous.dynamics import casadi_rhs, rhs, rk4_interval
+
+    m = ocp.model
+    f = casadi_rhs()
+    for x, alpha in zip(optimum.states, optimum.controls_rad):
+        assert np.allclose(rhs(x, alpha, m.thrust, m.mass_flow),
+                           np.asarray(f(x, alpha, m.thrust, m.mass_flow)).ravel(), rtol=1e-14, atol=1e-15)
+    batch = rhs(optimum.states, optimum.controls_rad, m.thrust, m.mass_flow)
+    assert batch.shape == (31, 5)
+    h = (optimum.time_days[1] - optimum.time_days[0]) * DAY / m.units.time_s
+    for k in range(ocp.nodes):
+        x_next = rk4_interval(optimum.states[k], optimum.controls_rad[k], optimum.controls_rad[k + 1],
+                              h, ocp.rk4_steps, m.thrust, m.mass_flow)
+        assert np.allclose(x_next, optimum.states[k + 1], rtol=0.0, atol=1e-9)
