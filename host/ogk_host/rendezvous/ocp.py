@@ -24,9 +24,12 @@ from .scenario import RendezvousScenario
 
 FloatArray = NDArray[np.float64]
 
-#: The documented guess (docs/nmpc.md, "Initial guess"): t_f guess and radius-profile exponent.
+#: The documented guess (docs/nmpc.md, "Initial guess"): t_f guess, radius-profile exponent and thrust
+#: angle. 135 deg (prograde with an inward component) was measured the most robust of 45 / 90 / 135 deg
+#: over t_f guesses of 300-460 d (20 of 21 starts reach the best optimum found, 9 of 21 with 90 deg).
 DEFAULT_GUESS_TF_DAYS = 370.0
 DEFAULT_GUESS_SHAPE = 1.0
+DEFAULT_GUESS_ALPHA_RAD = 0.75 * math.pi
 
 
 @dataclasses.dataclass(frozen=True)
@@ -154,8 +157,9 @@ class MinTimeOcp:
 
 
 def default_guess(ocp: MinTimeOcp) -> Guess:
-    """The documented guess (docs/nmpc.md): phase-matched, t_f = 370 d, smoothstep radius, alpha = pi/2."""
-    return phase_matched_guess(ocp.model, ocp.nodes, label="documented")
+    """The documented guess (docs/nmpc.md): phase-matched, t_f = 370 d, smoothstep radius, alpha = 135 deg."""
+    return phase_matched_guess(ocp.model, ocp.nodes, DEFAULT_GUESS_TF_DAYS, DEFAULT_GUESS_SHAPE,
+                               DEFAULT_GUESS_ALPHA_RAD, label="documented")
 
 
 def multi_start_guesses(ocp: MinTimeOcp) -> list[Guess]:
