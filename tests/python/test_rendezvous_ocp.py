@@ -185,3 +185,34 @@ def test_numpy_and_casadi_models_agree(ocp: MinTimeOcp, optimum: OcpResult) -> N
         x_next = rk4_interval(optimum.states[k], optimum.controls_rad[k], optimum.controls_rad[k + 1],
                               h, ocp.rk4_steps, m.thrust, m.mass_flow)
         assert np.allclose(x_next, optimum.states[k + 1], rtol=0.0, atol=1e-9)
+
+
+SEP_PRINTED = {"power_a1": 1.1063, "power_a2": 0.1495, "power_a3": -0.2990, "power_a4": -0.0423,
+               "thrust_b1_n": -1.9137e-3, "thrust_b2_n_per_w": 36.2429e-3 / 1e3,      # mN, mN/kW
+               "mass_rate_c1_kg_s": -0.4756e-6, "mass_rate_c2_kg_s_per_w": -0.9021e-6 / 1e3}  # mg/s, mg/s/kW
+
+
+@pytest.mark.parametrize("name", ["rendezvous_nep_min_fuel", "rendezvous_sep_min_fuel"])
+def test_min_fuel_scenarios_carry_table_a1(name: str) -> None:
+    """The two minimum-fuel cases of sec. 4.2 (not solved yet): Table A.1's values, read raw, and
+    the loader's reading of them (eq. 14's P_0 gives T_0 = 0.5 N at 1 AU)."""
+    path = SCENARIO.parent / f"{name}.toml"
+    raw = tomllib.loads(path.read_text())
+    sep = name.startswith("rendezvous_sep")
+    for (table, key), paper in TABLE_A1.items():
+        if sep and key in ("specific_impulse_s", "standard_gravity_m_s2"):
+            continue
+        assert raw[table][key] == pytest.approx(paper, rel=1e-12, abs=1e-15), (table, key)
+    assert raw["ocp"]["objective"] == "min-fuel" and raw["propulsion"]["throttle"] == "bounded"
+    scenario = load_scenario(path)
+    assert scenario.name == name
+    if sep:
+        for key, paper in SEP_PRINTED.items():
+            assert raw["propulsion"]["solar_electric"][key] == pytest.approx(paper, rel=1e-12), key
+        solar = scenario.propulsion.solar
+        p0 = solar.reference_power_w(0.5)
+        a1, a2, a3, a4 = 1.1063, 0.1495, -0.2990, -0.0423
+        t_1au_mn = -1.9137 + 36.2429 * (p0 / 1e3) * (a1 + a2 + a3) / (1.0 + a4)   # eq. (14), r = 1 AU
+        assert t_1au_mn == pytest.approx(500.0, rel=1e-12)
+    with pytest.raises(ValueError):
+        MinTimeOcp(scenario)

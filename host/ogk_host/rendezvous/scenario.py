@@ -16,10 +16,12 @@ DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "rendezvous_nep_min_time.toml"
 SCHEMA = "ogk.rendezvous/1"
 MISSION = "low-thrust-rendezvous"
 LAWS = ("nmpc",)
-PROPULSION_MODELS = ("nuclear-electric",)
+PROPULSION_MODELS = ("nuclear-electric", "solar-electric")
 THROTTLES = ("constant", "bounded")   #: sec. 3.2.1: T = T_0 (min-time) or 0 <= T <= T_max (eq. 12)
 OBJECTIVES = ("min-time", "min-fuel")
 CONTROLS = ("piecewise-linear",)
+#: [paper_results] keys: the open loop of sec. 4.1.1 (Table I) and the unperturbed SNNS runs (Table II).
+PAPER_RESULT_KEYS = ("open_loop_time_s", "open_loop_fuel_kg", "snns_time_s", "snns_fuel_kg")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -61,18 +63,50 @@ class Perturbations:
 
 
 @dataclasses.dataclass(frozen=True)
+class SolarElectric:
+    """Solar-electric engine, eq. (14): T_max(r) = b1 + b2 P_0 (a1 r^2 + a2 r + a3) / (r^4 (1 + a4 r)) with
+    r in AU, and mass rate dm/dt = c1 + c2 P, P = (T - b1) / b2. The paper prints a_i, b_i, c_i without
+    units; the scenario stores them in SI read with the units of Kim's model (mN, kW, mg/s), the only
+    reading under which T_0 = 0.5 N at 1 AU needs a plausible P_0 (13.9 kW; docs/nmpc.md)."""
+
+    fit_length_unit_m: float            #: the unit of r in eq. (14): 1 AU [m]
+    power_a1: float                     #: a1 [-]
+    power_a2: float                     #: a2 [-]
+    power_a3: float                     #: a3 [-]
+    power_a4: float                     #: a4 [-]
+    thrust_b1_n: float                  #: b1 [N]
+    thrust_b2_n_per_w: float            #: b2 [N/W]
+    mass_rate_c1_kg_s: float            #: c1 [kg/s] (dm/dt, negative)
+    mass_rate_c2_kg_s_per_w: float      #: c2 [kg/(s W)]
+
+    def power_ratio(self, radius_m: float) -> float:
+        """P_max(r) / P_0, eq. (14)."""
+        r = radius_m / self.fit_length_unit_m
+        return (self.power_a1 * r * r + self.power_a2 * r + self.power_a3) / (r ** 4 * (1.0 + self.power_a4 * r))
+
+    def reference_power_w(self, thrust_at_1au_n: float) -> float:
+        """P_0 such that T_max(1 AU) = T_0 (sec. 4, test case (3): "T_0 = 0.5 N at 1 AU")."""
+        return (thrust_at_1au_n - self.thrust_b1_n) / (self.thrust_b2_n_per_w
+                                                        * self.power_ratio(self.fit_length_unit_m))
+
+
+@dataclasses.dataclass(frozen=True)
 class Propulsion:
-    """Nuclear-electric engine, sec. 3.2.1: 0 <= T <= T_max (eq. 12), mdot = -T / (g0 Isp) (eq. 13)."""
+    """Sec. 3.2. Nuclear-electric: 0 <= T <= T_max (eq. 12), mdot = -T / (g0 Isp) (eq. 13).
+    Solar-electric: T_max is the thrust at 1 AU and `solar` holds eq. (14)."""
 
     model: str
     throttle: str                   #: "constant" (T = T_max) or "bounded"
-    thrust_max_n: float             #: T_max [N]
-    specific_impulse_s: float       #: I_sp [s]
-    standard_gravity_m_s2: float    #: g_0 [m/s^2]
+    thrust_max_n: float             #: T_max [N] (solar-electric: T_0 at 1 AU)
+    specific_impulse_s: float | None = None     #: I_sp [s] (nuclear-electric)
+    standard_gravity_m_s2: float | None = None  #: g_0 [m/s^2] (nuclear-electric)
+    solar: SolarElectric | None = None
 
     @property
     def mass_flow_at_max_kg_s(self) -> float:
-        """|mdot| at T_max [kg/s] (eq. 13)."""
+        """|mdot| at T_max [kg/s] (eq. 13; nuclear-electric only)."""
+        if self.specific_impulse_s is None or self.standard_gravity_m_s2 is None:
+            raise ValueError("mass_flow_at_max_kg_s is defined for the nuclear-electric model (eq. 13)")
         return self.thrust_max_n / (self.standard_gravity_m_s2 * self.specific_impulse_s)
 
 
@@ -182,12 +216,26 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
     pert_s.finish()
 
     prop_s = top.section("propulsion")
-    propulsion = Propulsion(model=prop_s.text("model", choices=PROPULSION_MODELS),
-                            throttle=prop_s.text("throttle", choices=THROTTLES),
-                            thrust_max_n=prop_s.number("thrust_max_n", positive=True),
-                            specific_impulse_s=prop_s.number("specific_impulse_s", positive=True),
-                            standard_gravity_m_s2=prop_s.number("standard_gravity_m_s2",
-                                                                positive=True))
+    model = prop_s.text("model", choices=PROPULSION_MODELS)
+    throttle = prop_s.text("throttle", choices=THROTTLES)
+    thrust_max = prop_s.number("thrust_max_n", positive=True)
+    if model == "nuclear-electric":
+        propulsion = Propulsion(model=model, throttle=throttle, thrust_max_n=thrust_max,
+                                specific_impulse_s=prop_s.number("specific_impulse_s", positive=True),
+                                standard_gravity_m_s2=prop_s.number("standard_gravity_m_s2",
+                                                                    positive=True))
+    else:
+        sep_s = prop_s.section("solar_electric")
+        solar = sep_s.dataclass(SolarElectric, fit_length_unit_m={"positive": True},
+                                thrust_b2_n_per_w={"positive": True})
+        sep_s.finish()
+        if throttle != "bounded":
+            raise prop_s.error("throttle", "the solar-electric thrust depends on r (eq. 14): "
+                               "must be \"bounded\"")
+        if not solar.reference_power_w(thrust_max) > 0.0:
+            raise prop_s.error("thrust_max_n", "no positive reference power P_0 gives this thrust at "
+                               "1 AU (eq. 14)")
+        propulsion = Propulsion(model=model, throttle=throttle, thrust_max_n=thrust_max, solar=solar)
     prop_s.finish()
 
     conv_s = top.section("convergence")
@@ -212,7 +260,7 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
     paper: dict[str, float] = {}
     if top.has("paper_results"):
         paper_s = top.section("paper_results")
-        for key in ("open_loop_time_s", "open_loop_fuel_kg"):
+        for key in PAPER_RESULT_KEYS:
             if paper_s.has(key):
                 paper[key] = paper_s.number(key, positive=True)
         paper_s.finish()
