@@ -26,7 +26,7 @@ FloatArray = NDArray[np.float64]
 
 #: The documented guess (docs/nmpc.md, "Initial guess"): t_f guess, radius-profile exponent and thrust
 #: angle. 135 deg (prograde with an inward component) was measured the most robust of 45 / 90 / 135 deg
-#: over t_f guesses of 300-460 d (20 of 21 starts reach the best optimum found, 9 of 21 with 90 deg).
+#: over t_f guesses of 300-460 d (20 of 21 starts reach the best optimum found, 10 of 21 with 90 deg).
 DEFAULT_GUESS_TF_DAYS = 370.0
 DEFAULT_GUESS_SHAPE = 1.0
 DEFAULT_GUESS_ALPHA_RAD = 0.75 * math.pi
@@ -80,15 +80,21 @@ def phase_matched_guess(model: Model, nodes: int, t_f_days: float = DEFAULT_GUES
 
 
 class MinTimeOcp:
-    """The NLP, built once per scenario and solved from any number of guesses."""
+    """The NLP, built once per scenario and solved from any number of guesses.
+
+    `max_sweep_rad` (not in the paper, default off): bounds |alpha_{k+1} - alpha_k|, the angle swept
+    linearly over one subinterval. Without it the angle may wind through whole turns inside a subinterval,
+    which averages the thrust down (a throttle the constant-thrust model does not have): every local
+    optimum but the best one found winds so (docs/nmpc.md, "Windings")."""
 
     def __init__(self, scenario: RendezvousScenario, nodes: int | None = None,
-                 rk4_steps: int | None = None) -> None:
+                 rk4_steps: int | None = None, max_sweep_rad: float | None = None) -> None:
         if scenario.ocp.objective != "min-time":
             raise ValueError(f"{scenario.path}: ocp.objective is {scenario.ocp.objective!r}, not min-time")
         self.model = Model.for_scenario(scenario)
         self.nodes = nodes or scenario.ocp.nodes
         self.rk4_steps = rk4_steps or scenario.ocp.rk4_steps_per_interval
+        self.max_sweep_rad = max_sweep_rad
         self._build()
 
     def _interval_function(self) -> ca.Function:
@@ -123,6 +129,9 @@ class MinTimeOcp:
         g = ca.vertcat(X[:, 0] - m.x0,                              # eq. (4)
                        ca.reshape(x_end - X[:, 1:], -1, 1),         # continuity (multiple shooting)
                        X[:4, n] - mars)                             # eq. (5)
+        self._ng_eq = g.shape[0]
+        if self.max_sweep_rad is not None:
+            g = ca.vertcat(g, (U[0, 1:] - U[0, :n]).T)
         w = ca.vertcat(ca.reshape(X, -1, 1), ca.reshape(U, -1, 1), tf)
         self._n_w = w.shape[0]
         # Bounds keep IPOPT in the physical region only (no active bound at the optima measured).
@@ -140,7 +149,12 @@ class MinTimeOcp:
         n, m = self.nodes, self.model
         w0 = np.concatenate([guess.states.T.ravel(order="F"), guess.controls, [guess.t_f]])
         start = time.perf_counter()
-        sol = self._solver(x0=w0, lbx=self._lbx, ubx=self._ubx, lbg=0.0, ubg=0.0)
+        lbg = np.zeros(self._ng)
+        ubg = np.zeros(self._ng)
+        if self.max_sweep_rad is not None:
+            lbg[self._ng_eq:] = -self.max_sweep_rad
+            ubg[self._ng_eq:] = self.max_sweep_rad
+        sol = self._solver(x0=w0, lbx=self._lbx, ubx=self._ubx, lbg=lbg, ubg=ubg)
         elapsed = time.perf_counter() - start
         stats = self._solver.stats()
         w = np.asarray(sol["x"]).ravel()
@@ -194,7 +208,8 @@ def multi_start(ocp: MinTimeOcp, guesses: list[Guess] | None = None,
 
 
 def main(argv: list[str] | None = None) -> int:
-    """`python -m ogk_host.rendezvous.ocp [scenario] [--multi-start | --grid]`: the figures of docs/nmpc.md."""
+    """`python -m ogk_host.rendezvous.ocp [scenario] [--multi-start | --grid] [--max-sweep-pi A]`: the
+    figures of docs/nmpc.md."""
     import argparse
 
     from .scenario import load_scenario
@@ -204,8 +219,11 @@ def main(argv: list[str] | None = None) -> int:
     group = parser.add_mutually_exclusive_group()
     group.add_argument("--multi-start", action="store_true", help="the 8 starts of multi_start_guesses")
     group.add_argument("--grid", action="store_true", help="the 63 starts of grid_guesses")
+    parser.add_argument("--max-sweep-pi", type=float, default=None,
+                        help="bound the angle swept per subinterval to this many pi (MinTimeOcp.max_sweep_rad)")
     args = parser.parse_args(argv)
-    ocp = MinTimeOcp(load_scenario(args.scenario))
+    sweep = None if args.max_sweep_pi is None else args.max_sweep_pi * math.pi
+    ocp = MinTimeOcp(load_scenario(args.scenario), max_sweep_rad=sweep)
     if args.multi_start or args.grid:
         results, optima = multi_start(ocp, grid_guesses(ocp) if args.grid else None)
     else:
