@@ -21,6 +21,7 @@ ogk_status ogk_terminal_config_default(ogk_terminal_config_t *cfg)
         cfg->shape_gain = 0.0;
         cfg->shape_gain_normal = 0.0;
         cfg->shape_hold_s = 1.0;
+        cfg->shape_lead_s = 0.0;
     }
     return st;
 }
@@ -41,10 +42,10 @@ static bool terminal_shape_valid(const ogk_terminal_config_t *cfg)
 
 static bool terminal_config_valid(const ogk_terminal_config_t *cfg)
 {
-    const double v[6] = {cfg->mu_m3_s2, cfg->target_radius_m, cfg->window_s, cfg->shape_gain,
-                         cfg->shape_gain_normal, cfg->shape_hold_s};
+    const double v[7] = {cfg->mu_m3_s2, cfg->target_radius_m, cfg->window_s, cfg->shape_gain,
+                         cfg->shape_gain_normal, cfg->shape_hold_s, cfg->shape_lead_s};
 
-    return ogk_i_all_finite(v, 6u) && (cfg->mu_m3_s2 > 0.0) && (cfg->target_radius_m > 0.0) &&
+    return ogk_i_all_finite(v, 7u) && (cfg->shape_lead_s >= 0.0) && (cfg->shape_lead_s <= OGK_TERMINAL_T_MAX_S) && (cfg->mu_m3_s2 > 0.0) && (cfg->target_radius_m > 0.0) &&
            (cfg->target_radius_m <= OGK_TERMINAL_R_MAX_M) && (cfg->window_s >= 0.0) &&
            (cfg->window_s <= OGK_TERMINAL_T_MAX_S) &&
            isfinite(sqrt(cfg->mu_m3_s2 / cfg->target_radius_m)) && terminal_shape_valid(cfg);
@@ -180,12 +181,14 @@ static bool plan_from(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double du
     return finite;
 }
 
-/* The thrust direction at the start of the plan; v_go's (steer_along_vgo
- * has just set it) if the plan asks for no acceleration. */
+/* The plan's thrust direction shape_lead_s after its start (at most at its
+ * end); v_go's (steer_along_vgo has just set it) if the plan asks for no
+ * acceleration. */
 static void steer_along_plan(ogk_terminal_t *ctx)
 {
-    const double a_r = ctx->plan.accel_r0_mps2;
-    const double a_n = ctx->plan.accel_n0_mps2;
+    const double lead = fmin(ctx->cfg.shape_lead_s, ctx->plan.duration_s);
+    const double a_r = ctx->plan.accel_r0_mps2 + (ctx->plan.accel_r1_mps3 * lead);
+    const double a_n = ctx->plan.accel_n0_mps2 + (ctx->plan.accel_n1_mps3 * lead);
     const double a_t = ctx->plan.accel_t_mps2;
     const double a_in_plane = hypot(a_r, a_t);
 

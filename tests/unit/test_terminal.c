@@ -238,6 +238,24 @@ static void test_shaped_plan_meets_its_end_conditions(void **state)
         /* the command is the plan's direction at its start */
         OGK_ASSERT_NEAR(out.alpha_rad, atan2(ctx.plan.accel_r0_mps2, ctx.plan.accel_t_mps2), 1e-15);
         assert_int_equal(out.law_flags, OGK_TERMINAL_FLAG_ENGAGED);
+        /* with a lead, its direction that much later (the same plan: same state, same T) */
+        cfg.shape_lead_s = 0.4;
+        OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 100.0 + t_go, &law, &out), OGK_OK);
+        {
+            const double a_r = ctx.plan.accel_r0_mps2 + (0.4 * ctx.plan.accel_r1_mps3);
+            const double a_n = ctx.plan.accel_n0_mps2 + (0.4 * ctx.plan.accel_n1_mps3);
+            const double a_t = ctx.plan.accel_t_mps2;
+            OGK_ASSERT_NEAR(out.alpha_rad, atan2(a_r, a_t), 1e-15);
+            OGK_ASSERT_NEAR(out.beta_rad, atan2(a_n, hypot(a_r, a_t)), 1e-15);
+        }
+        /* a lead beyond the plan's end: its end */
+        cfg.shape_lead_s = 10.0;
+        OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 100.0 + t_go, &law, &out), OGK_OK);
+        OGK_ASSERT_NEAR(out.alpha_rad,
+                        atan2(ctx.plan.accel_r0_mps2 + (t_go * ctx.plan.accel_r1_mps3), ctx.plan.accel_t_mps2),
+                        1e-15);
     }
 }
 
@@ -480,6 +498,12 @@ static void test_contract(void **state)
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
     cfg.shape_hold_s = NAN;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.shape_hold_s = 0.5;
+    cfg.shape_lead_s = -0.1;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.shape_lead_s = 2.0 * OGK_TERMINAL_T_MAX_S;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.shape_lead_s = 0.0;
     cfg.shape_gain_normal = 0.0; /* off: the hold is not used */
     cfg.shape_hold_s = 1.0e6;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);

@@ -396,6 +396,7 @@ class EndGame:
     terminal_shape_gain: float = 0.0
     terminal_shape_gain_normal: float = 0.0
     terminal_shape_hold_s: float = 1.0
+    terminal_shape_lead_s: float = 0.0
 
     def arm_s(self, sample_interval_s: float) -> float:
         return self.cutoff_arm_s if self.cutoff_arm_s is not None else sample_interval_s
@@ -528,7 +529,9 @@ def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
                        terminal_shape_gain_normal=eg_s.number("terminal_shape_gain_normal", 0.0,
                                                               nonnegative=True, hi=1.0),
                        terminal_shape_hold_s=eg_s.number("terminal_shape_hold_s", 1.0,
-                                                         positive=True))
+                                                         positive=True),
+                       terminal_shape_lead_s=eg_s.number("terminal_shape_lead_s", 0.0,
+                                                         nonnegative=True, hi=1.0e7))
     shaped = end_game.terminal_shape_gain > 0.0 or end_game.terminal_shape_gain_normal > 0.0
     if shaped and not end_game.terminal_shape_hold_s <= end_game.terminal_window_s:
         raise eg_s.error("terminal_shape_hold_s",

@@ -30,7 +30,9 @@
  * cut-off ogk_cutoff makes (the law's prediction, which decides when the
  * window opens, is late or early by a sample interval or more); the law's
  * predicted time to go when no rate is known yet or it is not positive.
- * The command is the plan's direction at its start. The gains grow like
+ * The command is the plan's direction shape_lead_s after its start (at most
+ * at its end): the attitude loop's lag, which otherwise makes the vehicle
+ * overshoot a planned turn it cannot reverse in time. The gains grow like
  * 1 / T^2 and the plan's turn at the end is more than an attitude loop
  * follows, so from T = shape_hold_s on the window steers along v_go (latched;
  * the position miss left is then about x' shape_hold_s / 2, with x' small).
@@ -77,6 +79,7 @@ typedef struct {
     double window_s;        /* [s] engaged when the predicted time to go is at most this, [0, T_MAX] (0: never) */
     double shape_gain;      /* [-] k of the radius miss steered out in the window, [0, 1] (0: not steered) */
     double shape_gain_normal; /* [-] k of the plane-normal position miss, [0, 1] (0: not steered) */
+    double shape_lead_s;    /* [s] the command is the plan's direction this long ahead (attitude-loop lag), [0, T_MAX] (0: none) */
     double shape_hold_s;    /* [s] time to go below which v_go steering takes over, [HOLD_MIN, window_s] when shape_gain > 0 */
 } ogk_terminal_config_t;
 

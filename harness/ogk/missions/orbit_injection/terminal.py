@@ -29,6 +29,7 @@ def terminal_config(scn: LeoGeoScenario) -> object:
     cfg.shape_gain = scn.end_game.terminal_shape_gain
     cfg.shape_gain_normal = scn.end_game.terminal_shape_gain_normal
     cfg.shape_hold_s = scn.end_game.terminal_shape_hold_s
+    cfg.shape_lead_s = scn.end_game.terminal_shape_lead_s
     return cfg
 
 
