@@ -1,6 +1,6 @@
 """The scenario's end-game (energy cut-off by the kernel's ogk_cutoff, 0.5 s sampling in the last
-20 s, steering along the velocity to be gained by ogk_terminal in the last 3 s; docs/vtd-nog.md,
-"End-game") against the paper's (cut-off predicted at the 2 s samples, eq. 32) on the same runs: the
+20 s, ogk_terminal in the last 10 s: radius and plane shaped with a 0.5 s lead, along the velocity to
+be gained in the last 2 s; docs/vtd-nog.md, "End-game") against the paper's (cut-off predicted at the 2 s samples, eq. 32) on the same runs: the
 six runs of 1000 (seed 424242, 6-DOF, every dispersion) that the paper's end-game flies beyond the
 scenario's 20 m/s acceptance.
 
@@ -8,7 +8,9 @@ Measured when written (ogk mc leo-geo --runs 1000 --seed 424242): paper's end-ga
 |dv_tf| 33.5 m/s (run 191, t_f 114.0 s: t_f^(k) at the dtf_max_s clip from 6 s before the end, the
 predicted cut-off 2 s early); the scenario as flown (end-game, CPD feed-forward clip 0.4 rad/s,
 braking margin 1) 0 failures, worst |dr_f| 10.6 m, |dv_rf| 0.12, |dv_tf| 0.00083, |dv_nf| 0.11 m/s
-over the 1000 runs.
+over the 1000 runs with the 3 s v_go window flown until 2026-12-02; with the shaped 10 s window
+(2026-12-02) 0 failures, worst 3.07 m, 1.25, 0.0018, 0.16 m/s. On these six runs the shaped window
+leaves at most 3.07 m and 0.14 m/s.
 """
 from __future__ import annotations
 
@@ -56,7 +58,7 @@ def flown() -> dict[str, dict[str, np.ndarray]]:
 def test_scenario_flies_the_energy_cutoff() -> None:
     plan = EndGamePlan.of(load_scenario(), SilSettings())
     assert plan.energy_cutoff and plan.fine_interval_s == 0.5 and plan.fine_window_s == 20.0
-    assert plan.terminal_window_s == 3.0
+    assert plan.terminal_window_s == 10.0
     assert (EndGamePlan.of(load_scenario(), SilSettings(end_game="paper"))
             == EndGamePlan(False, None, 0.0, 0.0))
 
@@ -74,10 +76,10 @@ def test_end_game_bounds_them(flown) -> None:
     # The cut-off on energy leaves no along-track error: 0.2 m/s covers the linear extrapolation
     # of the energy inside a 20 ms control step at 18 m/s^2 many times over.
     assert np.max(np.abs(ours["dvt_f_mps"])) < 0.2
-    # Thrust along v_go in the last 3 s: what is left is the attitude loop's pointing error over
-    # the window (about 0.1 m/s); 1 m/s is a third of the paper's dv_r sigma.
+    # Thrust along v_go in the last 2 s: what is left is the attitude loop's pointing error over
+    # it (about 0.1 m/s); 1 m/s is a third of the paper's dv_r sigma.
     for key in ("dvr_f_mps", "dvn_f_mps"):
         assert np.max(np.abs(ours[key])) < 1.0, (key, ours[key])
-    # The radius is not steered in the window: dr grows by about v_r times 3 s. The paper's end-game
-    # leaves 38 m on run 498 of these; 4 paper sigmas are 17 m.
-    assert np.max(np.abs(ours["dr_f_m"])) < 25.0, ours["dr_f_m"]
+    # The radius is steered out in the window (E-guidance) until its last 2 s. The paper's end-game
+    # leaves 38 m on run 498 of these; one paper sigma (Table 7) is 4.26 m.
+    assert np.max(np.abs(ours["dr_f_m"])) < 4.26, ours["dr_f_m"]

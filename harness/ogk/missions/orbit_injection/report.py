@@ -28,7 +28,9 @@ def _end_game_text(res: CampaignResult) -> str:
     if shaped:
         term = (f"; last {plan.terminal_window_s:g} s: radius (gain "
                 f"{eg.terminal_shape_gain:g}) and plane (gain {eg.terminal_shape_gain_normal:g}) "
-                f"shaped, along v_go in the last {eg.terminal_shape_hold_s:g} s (ogk_terminal)")
+                f"shaped" + (f", lead {eg.terminal_shape_lead_s:g} s" if eg.terminal_shape_lead_s > 0
+                             else "")
+                + f", along v_go in the last {eg.terminal_shape_hold_s:g} s (ogk_terminal)")
     elif plan.terminal_window_s > 0.0:
         term = f"; along v_go in the last {plan.terminal_window_s:g} s (ogk_terminal)"
     else:
