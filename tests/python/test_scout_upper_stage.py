@@ -240,6 +240,24 @@ def test_truth_model_flies_the_table_and_lands_on_the_nominal(scn, raw) -> None:
         assert abs(res.errors[key][0]) < 1e-2
 
 
+def test_both_missions_take_one_path_and_the_code_names_neither() -> None:
+    """Issue 9's "no mission-specific branch": both scenario files resolve to the same family adapter
+    and load into the same scenario type through the same loader; no source file of kernel/, harness/
+    or host/ names either mission (comments included, the Scout's data being in its TOML only)."""
+    from ogk.missions.registry import family
+    from ogk_host.scenario_file import read_header
+    headers = [read_header(p) for p in (SCOUT, LEO_GEO)]
+    assert {h.mission for h in headers} == {"orbit-injection"}
+    assert family(headers[0]) is family(headers[1])
+    assert type(load_scenario(SCOUT)) is type(load_scenario(LEO_GEO))
+    named = []
+    for top in ("kernel", "harness", "host"):
+        for path in (ROOT / top).rglob("*"):
+            if path.suffix in (".c", ".h", ".py") and "scout" in path.read_text().lower():
+                named.append(str(path.relative_to(ROOT)))
+    assert named == [], named
+
+
 def test_shaped_window_steers_out_the_radius_and_the_plane(scn) -> None:
     """The scenario's end-game (ogk_terminal with radius and plane shaping in the last 2 s, v_go in
     the last 0.9 s) against the same window unshaped (gains 0: v_go throughout, the radius and the

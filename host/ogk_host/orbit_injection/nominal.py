@@ -493,7 +493,7 @@ def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 8,
 
 
 #: Refinements of the case-A scan (each LM + Newton costs ~10-30 s with a tabulated thrust; on
-#: the Scout data the best-ranked start already converges to the minimum).
+#: the sec. 7 data the best-ranked start already converges to the minimum).
 SPECIFIED_STATE_STARTS = 3
 
 
