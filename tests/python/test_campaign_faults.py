@@ -176,10 +176,10 @@ def _per_run(res) -> str:
     return json.dumps(res.to_json_dict()["per_run"])
 
 
-def _nog(tables, truth, workers=1, chunks=None, rate_hz=50.0, runs=3):
-    """Kernel VTD-NOG, `runs` dispersed runs of seed 7 (their cut-offs differ: the runs land on
+def _nog(tables, truth, workers=1, chunks=None, rate_hz=50.0):
+    """Kernel VTD-NOG, 3 dispersed runs of seed 7 (their cut-offs differ: the runs land on
     different steps)."""
-    return run_campaign(load_scenario(), runs=runs, seed=7, workers=workers, chunks=chunks,
+    return run_campaign(load_scenario(), runs=3, seed=7, workers=workers, chunks=chunks,
                         truth=truth, guidance_factory=KernelNogGuidance.for_tables(tables),
                         guidance_name="nog", tables=tables,
                         settings=SilSettings(control_rate_hz=rate_hz))
@@ -187,11 +187,9 @@ def _nog(tables, truth, workers=1, chunks=None, rate_hz=50.0, runs=3):
 
 @pytest.fixture(scope="module")
 def reference(tables):
-    """Point-mass, 25 Hz, 1 worker, 1 chunk: what `ogk mc leo-geo --runs 8 --seed 7 --truth
-    point-mass --control-rate 25` must write, interrupted and resumed or not. Eight runs in chunks
-    of one: after the first is kept, six chunks are left to interrupt (with three, a loaded
-    machine let the campaign finish before the test's SIGINT landed: exit 0, seen once)."""
-    return _nog(tables, "point-mass", rate_hz=25.0, runs=8)
+    """Point-mass, 25 Hz, 1 worker, 1 chunk: what `ogk mc leo-geo --runs 3 --seed 7 --truth
+    point-mass --control-rate 25` must write, interrupted and resumed or not."""
+    return _nog(tables, "point-mass", rate_hz=25.0)
 
 
 def test_per_run_values_do_not_depend_on_workers_or_chunks(tables):
@@ -222,7 +220,7 @@ def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(re
     log = tmp_path / "mc.json.runs.jsonl"
     out.write_text("{}\n")                              # a previous campaign's result
     def command(seed: int) -> list[str]:
-        return [*OGK, "mc", "leo-geo", "--runs", "8", "--seed", str(seed), "--workers", "2",
+        return [*OGK, "mc", "leo-geo", "--runs", "3", "--seed", str(seed), "--workers", "2",
                 "--chunk-runs", "1", "--truth", "point-mass", "--control-rate", "25",
                 "--json", str(out)]
     cmd = command(7)
@@ -239,11 +237,11 @@ def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(re
     assert lines[0].startswith("ogk mc: campaign interrupted: ") and "--resume" in lines[0]
     assert not out.exists()
     kept = len(log.read_text().splitlines()) - 1
-    assert 1 <= kept < 8
+    assert 1 <= kept < 3
     done = subprocess.run([*cmd, "--resume"], cwd=REPO, env=ENV, capture_output=True, text=True,
                           timeout=90)
     assert done.returncode in (0, 1), done.stderr      # 1: a run outside the tolerances
-    assert f"{kept} of 8 runs taken from" in done.stdout
+    assert f"{kept} of 3 runs taken from" in done.stdout
     doc = json.loads(out.read_text())
     assert doc["resumed_runs"] == kept
     assert json.dumps(doc["per_run"]) == _per_run(reference)
