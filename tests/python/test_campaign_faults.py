@@ -224,8 +224,12 @@ def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(re
                 "--chunk-runs", "1", "--truth", "point-mass", "--control-rate", "25",
                 "--json", str(out)]
     cmd = command(7)
+    # SIGINT back to its default in the child: a test run started as a background job by a shell
+    # without job control (`make test &`) inherits SIGINT ignored, and Python then keeps it ignored,
+    # so the Ctrl-C below would be lost and the campaign would finish (exit 0).
     proc = subprocess.Popen(cmd, cwd=REPO, env=ENV, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+                            stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         kept = _wait_for_runs(log, proc, 1, 60.0)
         proc.send_signal(signal.SIGINT)

@@ -53,10 +53,9 @@ MC = ("--runs", "2", "--seed", "1")
     (r"^sample_interval_s = 2.0", "sample_interval_s = 0.0",
      ["guidance.sample_interval_s", "must be > 0"]),
     (r'^law = "vtd-nog"', 'law = "nmpc"', ["guidance.law", "vtd-nog"]),
-    (r"^terminal_window_s = 3.0", "terminal_window_s = 3.0\nterminal_shape_gain = 1.0\n"
-     "terminal_shape_hold_s = 4.0", ["guidance.end_game.terminal_shape_hold_s",
-                                     "terminal_window_s"]),
-    (r"^terminal_window_s = 3.0", "terminal_window_s = 3.0\nterminal_shape_gain_normal = 1.5",
+    (r"^terminal_shape_hold_s = 2.0", "terminal_shape_hold_s = 12.0",
+     ["guidance.end_game.terminal_shape_hold_s", "terminal_window_s"]),
+    (r"^terminal_shape_gain_normal = 1.0", "terminal_shape_gain_normal = 1.5",
      ["guidance.end_game.terminal_shape_gain_normal", "must be"]),
     (r'^mission = "orbit-injection"', 'mission = "orbit-insertion"', ["mission", "unknown"]),
     (r"^\[gravity\]", "[gravity", ["malformed TOML"]),
