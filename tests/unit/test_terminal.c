@@ -235,6 +235,8 @@ static void test_shaped_plan_meets_its_end_conditions(void **state)
                 ((ctx.plan.accel_n1_mps3 * T * T * T) / 6.0);
         OGK_ASSERT_NEAR(v_end, 0.0, 1e-12);
         OGK_ASSERT_NEAR(x_end, (1.0 - cfg.shape_gain_normal) * (z + (0.5 * z_dot * T)), 1e-9);
+        /* the tangential component nulls the along-track speed error over T */
+        OGK_ASSERT_NEAR(ctx.plan.accel_t_mps2, (sqrt(MU / R_F) - nav.v_t_mps) / T, 1e-12);
         /* the command is the plan's direction at its start */
         OGK_ASSERT_NEAR(out.alpha_rad, atan2(ctx.plan.accel_r0_mps2, ctx.plan.accel_t_mps2), 1e-15);
         assert_int_equal(out.law_flags, OGK_TERMINAL_FLAG_ENGAGED);
@@ -409,9 +411,12 @@ static void test_shaped_fallbacks(void **state)
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
     OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.5, &law, &out), OGK_OK);
     OGK_ASSERT_NEAR(ctx.plan.duration_s, 102.5 - 100.0, 0.0);
-    /* the same time tag again: no rate, the law's time to go */
+    /* the same time tag again, 1 m/s faster: no rate (not an infinite one), the law's time to go */
+    nav.v_t_mps += 1.0;
     OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.4, &law, &out), OGK_OK);
     OGK_ASSERT_NEAR(ctx.plan.duration_s, 102.4 - 100.0, 0.0);
+    assert_false(ctx.plan.in_hold);
+    nav.v_t_mps -= 1.0;
     /* 20 ms later, slower: the energy falls, the law's time to go */
     nav.t_s += 0.02;
     nav.v_t_mps -= 1.0;
@@ -430,6 +435,17 @@ static void test_shaped_fallbacks(void **state)
         OGK_ASSERT_NEAR(ctx.plan.duration_s, ((-MU / (2.0 * R_F)) - e1) / ((e1 - e0) / 0.02), 1e-6);
         assert_true(ctx.plan.duration_s > 2.0); /* 45 m/s at 17.5 m/s^2 */
     }
+    /* a radius whose energy overflows (-inf): no energy is kept, so the next step has no rate and
+     * plans on the law's time to go (an infinite rate would give T = 0, the hold) */
+    OGK_ASSERT_STATUS(ogk_terminal_reset(&ctx), OGK_OK);
+    nav = nav_at(100.0, 12.0, -45.0, -3.0);
+    nav.r_m = 1.0e-310;
+    OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.5, &law, &out), OGK_OK);
+    assert_false(ctx.has_last);
+    nav = nav_at(100.02, 12.0, -45.0, -3.0);
+    OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.5, &law, &out), OGK_OK);
+    assert_false(ctx.plan.in_hold);
+    OGK_ASSERT_NEAR(ctx.plan.duration_s, 102.5 - 100.02, 0.0);
     /* a radius of 1e-200 m: mu / r^2 overflows, no plan, v_go steering */
     OGK_ASSERT_STATUS(ogk_terminal_reset(&ctx), OGK_OK);
     nav = nav_at(100.0, 12.0, -45.0, -3.0);
