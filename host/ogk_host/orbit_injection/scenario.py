@@ -398,6 +398,11 @@ class EndGame:
     terminal_shape_hold_s: float = 1.0
     terminal_shape_lead_s: float = 0.0
 
+    @property
+    def terminal_shaped(self) -> bool:
+        """The terminal window shapes the radius or the plane (else pure v_go steering)."""
+        return self.terminal_shape_gain > 0.0 or self.terminal_shape_gain_normal > 0.0
+
     def arm_s(self, sample_interval_s: float) -> float:
         return self.cutoff_arm_s if self.cutoff_arm_s is not None else sample_interval_s
 
@@ -532,7 +537,7 @@ def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
                                                          positive=True),
                        terminal_shape_lead_s=eg_s.number("terminal_shape_lead_s", 0.0,
                                                          nonnegative=True, hi=1.0e7))
-    shaped = end_game.terminal_shape_gain > 0.0 or end_game.terminal_shape_gain_normal > 0.0
+    shaped = end_game.terminal_shaped
     if shaped and not end_game.terminal_shape_hold_s <= end_game.terminal_window_s:
         raise eg_s.error("terminal_shape_hold_s",
                          f"must be <= terminal_window_s ({end_game.terminal_window_s:g} s) when "

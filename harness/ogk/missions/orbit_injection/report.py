@@ -23,14 +23,11 @@ def _end_game_text(res: CampaignResult) -> str:
             if plan.fine_interval_s is not None else "")
     cut = "energy (ogk_cutoff)" if plan.energy_cutoff else "predicted at the samples (eq. 32)"
     eg = res.scenario.end_game
-    shaped = plan.terminal_window_s > 0.0 and (eg.terminal_shape_gain > 0.0
-                                               or eg.terminal_shape_gain_normal > 0.0)
-    if shaped:
-        term = (f"; last {plan.terminal_window_s:g} s: radius (gain "
-                f"{eg.terminal_shape_gain:g}) and plane (gain {eg.terminal_shape_gain_normal:g}) "
-                f"shaped" + (f", lead {eg.terminal_shape_lead_s:g} s" if eg.terminal_shape_lead_s > 0
-                             else "")
-                + f", along v_go in the last {eg.terminal_shape_hold_s:g} s (ogk_terminal)")
+    if plan.terminal_window_s > 0.0 and eg.terminal_shaped:
+        lead = f", lead {eg.terminal_shape_lead_s:g} s" if eg.terminal_shape_lead_s > 0.0 else ""
+        term = (f"; last {plan.terminal_window_s:g} s: radius (gain {eg.terminal_shape_gain:g}) "
+                f"and plane (gain {eg.terminal_shape_gain_normal:g}) shaped{lead}, along v_go in "
+                f"the last {eg.terminal_shape_hold_s:g} s (ogk_terminal)")
     elif plan.terminal_window_s > 0.0:
         term = f"; along v_go in the last {plan.terminal_window_s:g} s (ogk_terminal)"
     else:
