@@ -31,6 +31,8 @@ ogk_status ogk_status_name(ogk_status code, const char **name)
         "OGK_E_SAFE_COMMAND",
         "OGK_E_ALIGN",
         "OGK_E_TABLE_STALE",
+        "OGK_E_INFEASIBLE",
+        "OGK_E_ITER_LIMIT",
     };
     ogk_status st;
 

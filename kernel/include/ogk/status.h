@@ -32,7 +32,9 @@ typedef enum {
     OGK_E_SAFE_COMMAND = 21,    /* no correction computed: output holds the defined safe command */
     OGK_E_ALIGN = 22,           /* buffer not aligned as the in-place reader requires */
     OGK_E_TABLE_STALE = 23,     /* the table a context is bound to was reloaded since init: re-init */
-    OGK_STATUS_COUNT = 24
+    OGK_E_INFEASIBLE = 24,      /* a constrained subproblem (QP) has no feasible point */
+    OGK_E_ITER_LIMIT = 25,      /* an iterative solver reached its iteration bound before its tolerance */
+    OGK_STATUS_COUNT = 26
 } ogk_status;
 
 /* Stores in *name the code's identifier ("OGK_E_DIM", ...). Unknown codes

@@ -1,0 +1,97 @@
+/* ogk/qp.h -- dense strictly convex quadratic programming (the QP of the
+ * NMPC's SQP, ogk/nmpc.h), by the dual active-set method of Goldfarb & Idnani
+ * (Math. Programming 27, 1983). Design and measured cost: docs/qp.md.
+ *
+ *   minimise    1/2 x^T H x + g^T x
+ *   subject to  A_eq x  = b_eq          (m_eq rows)
+ *               A_in x >= b_in          (m_in rows)
+ *               lb <= x <= ub           (per variable; +-OGK_QP_INF: no bound)
+ *
+ * H must be symmetric positive definite (OGK_E_NOT_POSDEF otherwise: the
+ * caller regularises). Optimality conditions returned with the solution:
+ *   H x + g = A_eq^T y_eq + A_in^T y_in + z_lb - z_ub,
+ *   y_in >= 0, z_lb >= 0, z_ub >= 0, complementary with their constraints.
+ * Matrices are row-major (element (i, j) of an r x c matrix is A[i * c + j]).
+ * All workspace lives in a caller-owned ogk_qp_workspace_t: no heap, no
+ * globals, every loop bounded by the OGK_QP_MAX_* limits below. */
+#ifndef OGK_QP_H
+#define OGK_QP_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "ogk/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Largest number of variables. */
+#ifndef OGK_QP_MAX_N
+#define OGK_QP_MAX_N 72u
+#endif
+/* Largest number of equality rows. */
+#ifndef OGK_QP_MAX_EQ
+#define OGK_QP_MAX_EQ 8u
+#endif
+/* Largest number of general inequality rows (bounds are extra). */
+#ifndef OGK_QP_MAX_IN
+#define OGK_QP_MAX_IN 80u
+#endif
+
+/* A bound of this magnitude or more (either sign) means "no bound". */
+#define OGK_QP_INF 1.0e20
+
+/* Largest number of active-set changes of one solve (fixed loop bound). */
+#define OGK_QP_MAX_ITER (4u * (OGK_QP_MAX_N + OGK_QP_MAX_EQ + OGK_QP_MAX_IN) + 16u)
+
+typedef struct {
+    size_t n;              /* [-] variables, 1..OGK_QP_MAX_N */
+    size_t m_eq;           /* [-] equality rows, 0..OGK_QP_MAX_EQ, <= n */
+    size_t m_in;           /* [-] general inequality rows, 0..OGK_QP_MAX_IN */
+    const double *H;       /* [-] n x n, symmetric positive definite (both triangles read) */
+    const double *g;       /* [-] n, linear term */
+    const double *A_eq;    /* [-] m_eq x n (NULL when m_eq = 0) */
+    const double *b_eq;    /* [-] m_eq (NULL when m_eq = 0) */
+    const double *A_in;    /* [-] m_in x n (NULL when m_in = 0) */
+    const double *b_in;    /* [-] m_in (NULL when m_in = 0) */
+    const double *lb;      /* [-] n lower bounds, <= -OGK_QP_INF for none; NULL: none at all */
+    const double *ub;      /* [-] n upper bounds, >= +OGK_QP_INF for none; NULL: none at all */
+} ogk_qp_problem_t;
+
+typedef struct {
+    double x[OGK_QP_MAX_N];       /* [-] minimiser (n entries used) */
+    double y_eq[OGK_QP_MAX_EQ];   /* [-] equality multipliers (m_eq) */
+    double y_in[OGK_QP_MAX_IN];   /* [-] inequality multipliers, >= 0 (m_in) */
+    double z_lb[OGK_QP_MAX_N];    /* [-] lower-bound multipliers, >= 0 (n) */
+    double z_ub[OGK_QP_MAX_N];    /* [-] upper-bound multipliers, >= 0 (n) */
+    double objective;             /* [-] 1/2 x^T H x + g^T x at x */
+    size_t iterations;            /* [-] constraints added to or dropped from the active set */
+    size_t n_active;              /* [-] active constraints at the solution, equalities included */
+} ogk_qp_solution_t;
+
+/* Workspace of one solve; reusable, never read before it is written. */
+typedef struct {
+    double l[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] Cholesky factor of H, then J = L^-T Q */
+    double r[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] upper-triangular R of the active set */
+    double work[6u * OGK_QP_MAX_N];          /* [-] d, z, r and scratch vectors */
+    double u[OGK_QP_MAX_N];                  /* [-] multipliers of the active set */
+    size_t active[OGK_QP_MAX_N];             /* [-] indices of the active constraints */
+    double slack[OGK_QP_MAX_IN + 2u * OGK_QP_MAX_N]; /* [-] constraint values */
+} ogk_qp_workspace_t;
+
+/* Solves the QP. Returns OGK_OK with the solution, or:
+ * OGK_E_NULL (a required pointer), OGK_E_DIM (a dimension out of range),
+ * OGK_E_NONFINITE (NaN/Inf in H, g, A, b, or a NaN bound),
+ * OGK_E_RANGE (lb > ub for some variable),
+ * OGK_E_NOT_POSDEF (H not positive definite to working precision),
+ * OGK_E_INFEASIBLE (the constraints admit no point; also dependent equality
+ * rows that are inconsistent), OGK_E_ITER_LIMIT (OGK_QP_MAX_ITER reached).
+ * On any error sol->x holds zeros and the multipliers are zero. */
+ogk_status ogk_qp_solve(ogk_qp_workspace_t *ws, const ogk_qp_problem_t *p,
+                        ogk_qp_solution_t *sol);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* OGK_QP_H */
