@@ -20,8 +20,14 @@ PROPULSION_MODELS = ("nuclear-electric", "solar-electric")
 THROTTLES = ("constant", "bounded")   #: sec. 3.2.1: T = T_0 (min-time) or 0 <= T <= T_max (eq. 12)
 OBJECTIVES = ("min-time", "min-fuel")
 CONTROLS = ("piecewise-linear",)
-#: [paper_results] keys: the open loop of sec. 4.1.1 (Table I) and the unperturbed SNNS runs (Table II).
-PAPER_RESULT_KEYS = ("open_loop_time_s", "open_loop_fuel_kg", "snns_time_s", "snns_fuel_kg")
+NMPC_STRATEGIES = ("snns", "cncn")     #: sec. 2.3.3 and 2.3.1
+#: [paper_results] keys: Table I (open loop, CNCN, SNNS; unperturbed and perturbed; the maximum computation
+#: time per subinterval as a fraction of the subinterval, Table I's footnote) and Table II (SNNS).
+PAPER_RESULT_KEYS = ("open_loop_time_s", "open_loop_fuel_kg", "open_loop_max_comp_fraction",
+                     "snns_time_s", "snns_fuel_kg", "snns_max_comp_fraction",
+                     "snns_perturbed_time_s", "snns_perturbed_fuel_kg", "snns_perturbed_max_comp_fraction",
+                     "cncn_time_s", "cncn_fuel_kg", "cncn_max_comp_fraction",
+                     "cncn_perturbed_time_s", "cncn_perturbed_fuel_kg", "cncn_perturbed_max_comp_fraction")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -130,6 +136,24 @@ class OcpSettings:
 
 
 @dataclasses.dataclass(frozen=True)
+class NmpcSettings:
+    """The closed loop of sec. 2.3 (`ogk nmpc`, harness/ogk/missions/rendezvous). The paper gives none of the
+    SNNS parameters (errata): the values in the scenario files are ours (docs/nmpc.md, "Closed loop")."""
+
+    strategy: str                       #: default strategy: "snns" (sec. 2.3.3) or "cncn" (sec. 2.3.1)
+    doubling_threshold_percent: float   #: SNNS adopts 2N when its cost is lower by more than this [%]
+    max_subdivisions: int               #: doublings allowed over the whole flight
+    min_nodes: int                      #: SNNS never plans with fewer subintervals (regrids instead)
+    max_replans: int                    #: the flight stops (not converged) after this many replans
+    max_flight_days: float              #: ... or at this flight time [d]
+    rk4_steps_per_interval: int         #: RK4 steps per subinterval of the predictive model
+    third_bodies_in_model: bool         #: Earth and Mars gravity in the predictive model (paper: false)
+    tol: float                          #: IPOPT tol
+    constr_viol_tol: float              #: IPOPT constr_viol_tol
+    max_iter: int                       #: IPOPT max_iter per solve
+
+
+@dataclasses.dataclass(frozen=True)
 class RendezvousScenario:
     path: Path
     name: str
@@ -144,6 +168,7 @@ class RendezvousScenario:
     ocp: OcpSettings
     law: str
     paper_results: dict[str, float]
+    nmpc: NmpcSettings
 
     @property
     def mars_mean_motion_rad_s(self) -> float:
@@ -257,6 +282,21 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
         raise ocp_s.error("objective", "min-time is posed with propulsion.throttle = \"constant\" "
                           "(sec. 3.2.1: min-time and min-fuel coincide only then)")
 
+    nmpc_s = top.section("nmpc")
+    nmpc = NmpcSettings(strategy=nmpc_s.text("strategy", choices=NMPC_STRATEGIES),
+                        doubling_threshold_percent=nmpc_s.number("doubling_threshold_percent",
+                                                                 nonnegative=True),
+                        max_subdivisions=nmpc_s.integer("max_subdivisions", lo=0, hi=10),
+                        min_nodes=nmpc_s.integer("min_nodes", lo=1, hi=ocp.nodes),
+                        max_replans=nmpc_s.integer("max_replans", lo=1, hi=100000),
+                        max_flight_days=nmpc_s.number("max_flight_days", positive=True),
+                        rk4_steps_per_interval=nmpc_s.integer("rk4_steps_per_interval", lo=1, hi=100),
+                        third_bodies_in_model=nmpc_s.flag("third_bodies_in_model"),
+                        tol=nmpc_s.number("tol", positive=True, hi=1e-2),
+                        constr_viol_tol=nmpc_s.number("constr_viol_tol", positive=True, hi=1e-2),
+                        max_iter=nmpc_s.integer("max_iter", lo=1, hi=100000))
+    nmpc_s.finish()
+
     paper: dict[str, float] = {}
     if top.has("paper_results"):
         paper_s = top.section("paper_results")
@@ -268,4 +308,5 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
     return RendezvousScenario(path=scenario_path, name=name, source=source, problem=problem,
                               initial=initial, initial_mass_kg=initial_mass, target=target,
                               perturbations=perturbations, propulsion=propulsion,
-                              convergence=convergence, ocp=ocp, law=law, paper_results=paper)
+                              convergence=convergence, ocp=ocp, law=law, paper_results=paper,
+                              nmpc=nmpc)
