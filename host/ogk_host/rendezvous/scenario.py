@@ -66,6 +66,9 @@ class Perturbations:
     earth_mu_m3_s2: float               #: mu_E [m^3/s^2]
     mars_mu_m3_s2: float                #: mu_M [m^3/s^2]
     earth_initial_polar_angle_rad: float    #: (theta_E)_0 [rad]
+    #: How often the closed loop redraws the thrust-angle noise N(0, sigma_alpha_T) [s] (not in the paper,
+    #: which only says "pseudorandom"); 0 = once per MPC control subinterval (docs/nmpc.md, "Truth model").
+    thrust_angle_draw_period_s: float
 
 
 @dataclasses.dataclass(frozen=True)
@@ -237,7 +240,8 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                                      thrust_offset_percent={"lo": -100.0, "hi": 100.0},
                                      thrust_angle_sigma_rad={"nonnegative": True},
                                      earth_mu_m3_s2={"nonnegative": True},
-                                     mars_mu_m3_s2={"nonnegative": True})
+                                     mars_mu_m3_s2={"nonnegative": True},
+                                     thrust_angle_draw_period_s={"nonnegative": True})
     pert_s.finish()
 
     prop_s = top.section("propulsion")
