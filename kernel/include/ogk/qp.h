@@ -42,7 +42,7 @@ extern "C" {
 #define OGK_QP_INF 1.0e20
 
 /* Largest number of active-set changes of one solve (fixed loop bound). */
-#define OGK_QP_MAX_ITER (4u * (OGK_QP_MAX_N + OGK_QP_MAX_EQ + OGK_QP_MAX_IN) + 16u)
+#define OGK_QP_MAX_ITER ((4u * (OGK_QP_MAX_N + OGK_QP_MAX_EQ + OGK_QP_MAX_IN)) + 16u)
 
 typedef struct {
     size_t n;              /* [-] variables, 1..OGK_QP_MAX_N */
@@ -69,24 +69,55 @@ typedef struct {
     size_t n_active;              /* [-] active constraints at the solution, equalities included */
 } ogk_qp_solution_t;
 
-/* Workspace of one solve; reusable, never read before it is written. */
+/* Numerical tolerances (all relative; docs/qp.md):
+ * FEAS  a constraint a^T x >= b (or a bound, a = +-e_i) is violated when
+ *       a^T x - b < -OGK_QP_FEAS_TOL (|b| + |a|_2 |x|_2); a dependent equality
+ *       row is consistent when |a^T x - b| is within the same tolerance;
+ * DEP   a constraint normal n is linearly dependent on the active set when
+ *       |J2^T n|_2 <= OGK_QP_DEP_TOL |J^T n|_2 (its part outside the active
+ *       span, in the metric of H^-1, is negligible);
+ * PIVOT H is not positive definite when a Cholesky pivot d_jj^2 is
+ *       <= OGK_QP_PIVOT_TOL H_jj (or H_jj <= 0);
+ * SYM   H is not symmetric when |H_ij - H_ji| > OGK_QP_SYM_TOL max |H_kl|
+ *       (OGK_E_NOT_POSDEF); the factored matrix is (H + H^T) / 2. */
+#define OGK_QP_FEAS_TOL 1.0e-12
+#define OGK_QP_DEP_TOL 1.0e-10
+#define OGK_QP_PIVOT_TOL 1.0e-12
+#define OGK_QP_SYM_TOL 1.0e-12
+
+/* Workspace of one solve; reusable, never read before it is written.
+ * Constraints are numbered: equality rows 0..m_eq-1, inequality rows
+ * m_eq..m_eq+m_in-1, lower bounds m_eq+m_in+i, upper bounds m_eq+m_in+n+i. */
 typedef struct {
-    double l[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] Cholesky factor of H, then J = L^-T Q */
-    double r[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] upper-triangular R of the active set */
-    double work[6u * OGK_QP_MAX_N];          /* [-] d, z, r and scratch vectors */
-    double u[OGK_QP_MAX_N];                  /* [-] multipliers of the active set */
-    size_t active[OGK_QP_MAX_N];             /* [-] indices of the active constraints */
-    double slack[OGK_QP_MAX_IN + 2u * OGK_QP_MAX_N]; /* [-] constraint values */
+    double j[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] Cholesky factor L of H, then J = L^-T Q, row-major n x n */
+    double r[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] upper-triangular R of the active set (row stride n); L^-1 during setup */
+    double x[OGK_QP_MAX_N];                  /* [-] primal iterate */
+    double d[OGK_QP_MAX_N];                  /* [-] J^T n of the constraint being added */
+    double z[OGK_QP_MAX_N];                  /* [-] primal step direction J2 J2^T n */
+    double rdir[OGK_QP_MAX_N];               /* [-] dual step direction R^-1 J1^T n */
+    double u[OGK_QP_MAX_N];                  /* [-] multipliers of the active set, in R's column order */
+    size_t active[OGK_QP_MAX_N];             /* [-] constraint numbers of the active set, in R's column order */
+    double slack[OGK_QP_MAX_IN + (2u * OGK_QP_MAX_N)]; /* [-] a^T x - b of the inequality rows and bounds (0: active or no bound) */
+    double rownorm[OGK_QP_MAX_EQ + OGK_QP_MAX_IN];   /* [-] 2-norms of the rows of A_eq, then A_in */
+    double eqsign[OGK_QP_MAX_EQ];            /* [-] +-1: the sign with which each equality row was made active */
 } ogk_qp_workspace_t;
 
 /* Solves the QP. Returns OGK_OK with the solution, or:
  * OGK_E_NULL (a required pointer), OGK_E_DIM (a dimension out of range),
- * OGK_E_NONFINITE (NaN/Inf in H, g, A, b, or a NaN bound),
- * OGK_E_RANGE (lb > ub for some variable),
- * OGK_E_NOT_POSDEF (H not positive definite to working precision),
- * OGK_E_INFEASIBLE (the constraints admit no point; also dependent equality
- * rows that are inconsistent), OGK_E_ITER_LIMIT (OGK_QP_MAX_ITER reached).
- * On any error sol->x holds zeros and the multipliers are zero. */
+ * OGK_E_NONFINITE (NaN/Inf in H, g, A, b, or a NaN bound; also a solution
+ * that overflowed), OGK_E_RANGE (lb > ub for some variable),
+ * OGK_E_NOT_POSDEF (H not symmetric or not positive definite to working
+ * precision: OGK_QP_SYM_TOL, OGK_QP_PIVOT_TOL),
+ * OGK_E_INFEASIBLE (the constraints admit no point: a violated constraint
+ * that can be made active neither by a primal nor by a dual step),
+ * OGK_E_ITER_LIMIT (OGK_QP_MAX_ITER active-set changes reached).
+ * Equality rows are made active first, in order, and never dropped; a row
+ * linearly dependent on the rows before it (OGK_QP_DEP_TOL) is skipped when
+ * it is consistent with them (OGK_QP_FEAS_TOL; its multiplier is then 0) and
+ * gives OGK_E_INFEASIBLE when it conflicts. Bounds with lb == ub fix a variable.
+ * On any error sol->x holds zeros and the multipliers are zero (sol->iterations
+ * still counts the active-set changes of an OGK_E_INFEASIBLE or
+ * OGK_E_ITER_LIMIT solve). */
 ogk_status ogk_qp_solve(ogk_qp_workspace_t *ws, const ogk_qp_problem_t *p,
                         ogk_qp_solution_t *sol);
 
