@@ -1,0 +1,282 @@
+/* ogk/nmpc.h -- receding-horizon nonlinear MPC for planar low-thrust
+ * rendezvous with a target on a circular orbit (Starek & Kolmanovsky 2012,
+ * secs. 2-3: the CNCN and SNNS strategies), solved by an SQP of our own on a
+ * direct multiple-shooting transcription. Design, derivations, errata and
+ * measured costs: docs/nmpc.md (section "Flight solver").
+ *
+ * Units: a normalised set documented by the scenario (docs/nmpc.md: LU = r_E,
+ * TU = sqrt(LU^3 / mu_sun), MU = m0); every field says which. Time is absolute
+ * (t = 0 at departure), so the target and third bodies follow their circular
+ * ephemerides phi(t) = phi_0 + rate t.
+ *
+ * Predictive model (eqs. 11-14), state x = (r, theta, v_r, v_theta, m):
+ *   r' = v_r,  theta' = v_theta / r,
+ *   v_r' = v_theta^2 / r - mu / r^2 + (w T_max(r) / m) cos(alpha) + p_r,
+ *   v_theta' = -v_theta v_r / r + (w T_max(r) / m) sin(alpha) + p_theta,
+ *   m' = -w mdot_max(r)
+ * alpha: thrust angle from the local vertical (0 radially outward); w: the
+ * throttle in [0, 1] (w = 1 with OGK_NMPC_ENGINE_CONSTANT); T_max, mdot_max
+ * constant (nuclear-electric) or eq. (14) (solar-electric, duty-cycle
+ * reading); p: optional point-mass third bodies on circular orbits (direct
+ * and indirect terms), a beyond-the-paper option.
+ *
+ * Transcription (sec. 2.3): N equal subintervals of the free horizon
+ * T = t_f - t0, node states X_0 (the measured state) .. X_N, node controls
+ * U_0 .. U_N, piecewise linear in between; RK4 with rk4_steps steps per
+ * subinterval, the control evaluated at the stage times. Constraints:
+ * continuity X_{k+1} = F_k(X_k, U_k, U_{k+1}, T) and eq. (5) at t_f
+ * (r = R_T, theta = theta_T(t_f), v_r = 0, v_theta = sqrt(mu / R_T)).
+ * Objective: T (minimum time) or m_0 - m_N (minimum fuel).
+ *
+ * SQP: exact discrete sensitivities of F_k, the state deviations condensed
+ * away (unknowns dU, dT: at most OGK_NMPC_MAX_VARS), a damped-BFGS reduced
+ * Hessian (as the paper's ACADO runs used BFGS), the QP by ogk_qp_solve
+ * (ogk/qp.h), a filter line search on (constraint violation, J).
+ *
+ * Memory: everything in ogk_nmpc_t (no heap, no globals, every loop bounded
+ * by the OGK_NMPC_MAX_* limits below). */
+#ifndef OGK_NMPC_H
+#define OGK_NMPC_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "ogk/qp.h"
+#include "ogk/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define OGK_NMPC_NX 5u        /* state (r, theta, v_r, v_theta, m) */
+#define OGK_NMPC_NC 4u        /* terminal conditions of eq. (5) */
+#define OGK_NMPC_MAX_NU 2u    /* controls per node: alpha, and the throttle w */
+#define OGK_NMPC_MAX_BODIES 2u /* third bodies of the predictive model */
+
+/* Largest number of subintervals N of a plan (the SNNS doubling never
+ * exceeds it). */
+#ifndef OGK_NMPC_MAX_NODES
+#define OGK_NMPC_MAX_NODES 32u
+#endif
+/* Largest number of RK4 steps per subinterval. */
+#ifndef OGK_NMPC_MAX_RK4_STEPS
+#define OGK_NMPC_MAX_RK4_STEPS 32u
+#endif
+/* Largest number of SQP iterations of one solve. */
+#ifndef OGK_NMPC_MAX_SQP_ITER
+#define OGK_NMPC_MAX_SQP_ITER 200u
+#endif
+/* Largest number of backtracking steps of one line search. */
+#define OGK_NMPC_MAX_LINE_SEARCH 30u
+
+/* QP unknowns: the node-control corrections and the horizon correction. */
+#define OGK_NMPC_MAX_VARS (((OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU) + 1u)
+/* Sensitivity directions of one subinterval: X_k, U_k, U_{k+1}, T. */
+#define OGK_NMPC_MAX_DIR (OGK_NMPC_NX + (2u * OGK_NMPC_MAX_NU) + 1u)
+
+/* ogk_nmpc_config_t.objective */
+#define OGK_NMPC_MIN_TIME 0u
+#define OGK_NMPC_MIN_FUEL 1u
+/* ogk_nmpc_config_t.engine */
+#define OGK_NMPC_ENGINE_CONSTANT 0u  /* w = 1: the control is alpha only (nu = 1) */
+#define OGK_NMPC_ENGINE_THROTTLED 1u /* controls (alpha, w), 0 <= w <= 1 (nu = 2) */
+/* ogk_nmpc_config_t.power */
+#define OGK_NMPC_POWER_CONSTANT 0u   /* T_max = thrust_max, mdot_max = mass_flow_max (eqs. 12-13) */
+#define OGK_NMPC_POWER_SOLAR 1u      /* eq. (14): T_max(r), mdot_max(r) from p(r) */
+/* ogk_nmpc_config_t.strategy */
+#define OGK_NMPC_SNNS 0u             /* shrinking number of nodes with subdivision (sec. 2.3.3) */
+#define OGK_NMPC_CNCN 1u             /* constant number of control nodes (sec. 2.3.1) */
+
+/* ogk_nmpc_report_t.flags and ogk_nmpc_command_t.law_flags */
+#define OGK_NMPC_FLAG_CONVERGED 0x01u   /* the solve met its tolerances; the plan is new */
+#define OGK_NMPC_FLAG_STALE 0x02u       /* the solve failed: the previous plan, shifted, is flown */
+#define OGK_NMPC_FLAG_SUBDIVIDED 0x04u  /* SNNS doubled the node count at this replan */
+#define OGK_NMPC_FLAG_REGRIDDED 0x08u   /* nodes re-placed by interpolation (CNCN, or SNNS at min_nodes) */
+#define OGK_NMPC_FLAG_LS_FAILED 0x10u   /* the line search found no acceptable step (solve failed) */
+#define OGK_NMPC_FLAG_END_OF_PLAN 0x20u /* command asked past t_f: the last node's control is held */
+
+#define OGK_NMPC_INIT_MARKER 0x4E4D5043u /* "NMPC" */
+
+/* Configuration, read-only after ogk_nmpc_init (copied into the context). */
+typedef struct {
+    /* predictive model */
+    double mu;                  /* [LU^3/TU^2] central body (the Sun), > 0 (normalised: 1) */
+    uint32_t engine;            /* [-] OGK_NMPC_ENGINE_CONSTANT or _THROTTLED */
+    uint32_t power;             /* [-] OGK_NMPC_POWER_CONSTANT or _SOLAR */
+    double thrust_max;          /* [MU LU/TU^2] T_0 (POWER_CONSTANT), > 0; must be set */
+    double mass_flow_max;       /* [MU/TU] |dm/dt| at T_0 (POWER_CONSTANT), >= 0; must be set */
+    double solar_length_unit;   /* [LU] unit of r in eq. (14) (1 AU), > 0 with POWER_SOLAR */
+    double solar_a[4];          /* [-] a_1 .. a_4 of eq. (14): p = (a1 s^2 + a2 s + a3) / (s^4 (1 + a4 s)), s = r / unit */
+    double solar_thrust[2];     /* [MU LU/TU^2] T_max(r) = solar_thrust[0] + solar_thrust[1] p (b_1, b_2 P_0) */
+    double solar_flow[2];       /* [MU/TU] mdot_max(r) = solar_flow[0] + solar_flow[1] p (-c_1, -c_2 P_0), > 0 where flown */
+    uint32_t n_bodies;          /* [-] third bodies in the predictive model, 0..OGK_NMPC_MAX_BODIES (paper: 0) */
+    double body_mu[OGK_NMPC_MAX_BODIES];     /* [LU^3/TU^2] their gravitational parameters, >= 0 */
+    double body_radius[OGK_NMPC_MAX_BODIES]; /* [LU] their circular-orbit radii, > 0 */
+    double body_phase0[OGK_NMPC_MAX_BODIES]; /* [rad] their polar angles at t = 0 */
+    double body_rate[OGK_NMPC_MAX_BODIES];   /* [rad/TU] their angular rates */
+    /* target: circular orbit (eqs. 5-6) */
+    double target_radius;       /* [LU] R_T, > 0; must be set */
+    double target_phase0;       /* [rad] theta_T at t = 0 */
+    double target_rate;         /* [rad/TU] theta_T' (sqrt(mu / R_T^3) on a Keplerian orbit) */
+    /* transcription */
+    uint32_t objective;         /* [-] OGK_NMPC_MIN_TIME or OGK_NMPC_MIN_FUEL */
+    uint32_t nodes;             /* [-] N of the first plan, 1..OGK_NMPC_MAX_NODES (default 30) */
+    uint32_t rk4_steps;         /* [-] RK4 steps per subinterval, 1..OGK_NMPC_MAX_RK4_STEPS (default 8) */
+    double horizon_min;         /* [TU] lower bound of T, > 0 (default 1e-3) */
+    double horizon_max;         /* [TU] upper bound of T, > horizon_min (default 30) */
+    double max_sweep;           /* [rad] bound on |alpha_{k+1} - alpha_k|, 0: none (default 0) */
+    /* SQP */
+    uint32_t max_iter;          /* [-] SQP iterations per solve, 1..OGK_NMPC_MAX_SQP_ITER (default 100) */
+    double tol_feas;            /* [LU, LU/TU, MU] max |defect|, |terminal residual| at convergence, > 0 (default 1e-9) */
+    double tol_stat;            /* [-] max |H dv| (reduced stationarity) at convergence, > 0 (default 1e-7) */
+    double hessian_init;        /* [-] scale of the first BFGS matrix (identity times it), > 0 (default 1) */
+    double step_max_alpha;      /* [rad] bound on one SQP step of a node angle, > 0 (default 1) */
+    double step_max_horizon;    /* [TU] bound on one SQP step of T, > 0 (default 1) */
+    /* receding horizon (sec. 2.3) */
+    uint32_t strategy;          /* [-] OGK_NMPC_SNNS or OGK_NMPC_CNCN */
+    uint32_t min_nodes;         /* [-] SNNS: fewest subintervals; below it the plan is regridded to min_nodes (default 2) */
+    uint32_t max_subdivisions;  /* [-] SNNS: doublings allowed over the flight (default 2) */
+    double doubling_threshold;  /* [-] SNNS: double when (J_N - J_2N) / |J_N| > this (default 0.01 = 1 %) */
+    uint32_t doubling_max_nodes;/* [-] SNNS: run the doubling test only when N <= this (<= MAX_NODES / 2; default 8) */
+} ogk_nmpc_config_t;
+
+/* A plan: what a solve returns and the next one starts from. */
+typedef struct {
+    double t0;                  /* [TU] absolute time of node 0 */
+    double horizon;             /* [TU] T = t_f - t0 */
+    uint32_t nodes;             /* [-] N, 1..OGK_NMPC_MAX_NODES */
+    uint32_t nu;                /* [-] controls per node (1 or 2; set by the context's engine) */
+    double x[(OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_NX];     /* [LU, rad, LU/TU, LU/TU, MU] node states, row k = node k */
+    double u[(OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU]; /* [rad, -] node controls, row k = node k (nu used) */
+    double lambda[OGK_NMPC_NC]; /* [-] multipliers of eq. (5) at the last solve (dual warm start) */
+} ogk_nmpc_plan_t;
+
+/* Measured state at the replan time. */
+typedef struct {
+    double t;                   /* [TU] absolute time */
+    double x[OGK_NMPC_NX];      /* [LU, rad, LU/TU, LU/TU, MU] state */
+} ogk_nmpc_input_t;
+
+/* What one solve or replan did. */
+typedef struct {
+    uint32_t flags;             /* [-] OGK_NMPC_FLAG_* */
+    ogk_status solve_status;    /* [-] outcome of the last SQP (OGK_OK when converged) */
+    uint32_t sqp_iterations;    /* [-] SQP iterations, every solve of the call (the doubling test too) */
+    uint32_t qp_iterations;     /* [-] active-set changes of the QPs, summed */
+    uint32_t solves;            /* [-] SQP solves run by the call (2 with a doubling test) */
+    uint32_t nodes;             /* [-] N of the plan now flown */
+    double t_next;              /* [TU] end of the plan's first subinterval: the next replan time */
+    double t_f;                 /* [TU] the plan's final time */
+    double objective;           /* [TU or MU] J of the plan flown */
+    double feas;                /* [mixed] max |defect or terminal residual| of the plan flown */
+    double stat;                /* [-] last reduced stationarity |H dv|_inf */
+} ogk_nmpc_report_t;
+
+/* Command of the plan at one time. */
+typedef struct {
+    double t;                   /* [TU] time the command is for */
+    double alpha;               /* [rad] thrust angle from the local vertical (paper's convention) */
+    double throttle;            /* [-] w in [0, 1] (1 with OGK_NMPC_ENGINE_CONSTANT) */
+    uint32_t flags;             /* [-] OGK_THRUST_FLAG_* of ogk/types.h (ENGINE_ON, SAFE) */
+    uint32_t law_flags;         /* [-] OGK_NMPC_FLAG_* of the plan flown */
+} ogk_nmpc_command_t;
+
+/* Context. Treat as opaque; read it through the functions below. */
+typedef struct {
+    ogk_nmpc_config_t cfg;
+    uint32_t nu;                /* [-] controls per node */
+    uint32_t subdivisions;      /* [-] doublings made since init or reset */
+    uint32_t plan_flags;        /* [-] OGK_NMPC_FLAG_* of the plan flown */
+    uint8_t have_plan;          /* [-] 1 once a plan is loaded */
+    ogk_nmpc_plan_t plan;       /* the plan flown */
+    ogk_nmpc_plan_t work;       /* the SQP iterate */
+    ogk_nmpc_plan_t trial;      /* the line-search point */
+    ogk_nmpc_plan_t alt;        /* the doubled plan of the SNNS test */
+    double hess[OGK_NMPC_MAX_VARS * OGK_NMPC_MAX_VARS];     /* [-] BFGS matrix of the plan flown */
+    double hess_alt[OGK_NMPC_MAX_VARS * OGK_NMPC_MAX_VARS]; /* [-] BFGS matrix of the doubled plan */
+    uint8_t hess_valid;         /* [-] 1: hess belongs to the plan flown (warm start) */
+    /* sensitivities of the current iterate, per subinterval k */
+    double sens_f[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                   /* F_k */
+    double sens_a[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_NX];     /* dF_k/dX_k */
+    double sens_b0[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_MAX_NU]; /* dF_k/dU_k */
+    double sens_b1[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_MAX_NU]; /* dF_k/dU_k+1 */
+    double sens_t[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                   /* dF_k/dT */
+    /* condensed QP */
+    double cond_g[OGK_NMPC_NX * OGK_NMPC_MAX_VARS]; /* dX_N / dv */
+    double cond_e[OGK_NMPC_NX];                     /* dX_N at v = 0 (the defects carried) */
+    double qp_g[OGK_NMPC_MAX_VARS];
+    double qp_aeq[OGK_NMPC_NC * OGK_NMPC_MAX_VARS];
+    double qp_beq[OGK_NMPC_NC];
+    double qp_ain[2u * OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_VARS];
+    double qp_bin[2u * OGK_NMPC_MAX_NODES];
+    double qp_lb[OGK_NMPC_MAX_VARS];
+    double qp_ub[OGK_NMPC_MAX_VARS];
+    double grad_lag[OGK_NMPC_MAX_VARS];  /* reduced Lagrangian gradient of the last iterate */
+    double step_v[OGK_NMPC_MAX_VARS];    /* accepted step in the QP unknowns */
+    double dx[(OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_NX]; /* state part of the step */
+    ogk_qp_workspace_t qp_ws;
+    ogk_qp_solution_t qp_sol;
+    uint32_t init_marker;       /* [-] OGK_NMPC_INIT_MARKER once initialised */
+} ogk_nmpc_t;
+
+/* Fills every field with its default; the mission data (thrust_max,
+ * mass_flow_max, target_radius) are 0 and must be set. */
+ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg);
+
+/* Validates cfg (OGK_E_NULL, OGK_E_NONFINITE, OGK_E_CONFIG) and copies it. */
+ogk_status ogk_nmpc_init(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg);
+
+/* Back to the state right after init (no plan; configuration kept). */
+ogk_status ogk_nmpc_reset(ogk_nmpc_t *ctx);
+
+/* Loads a plan (the ground's open-loop solution, or any guess): nodes in
+ * 1..OGK_NMPC_MAX_NODES, nu equal to the engine's, horizon within its bounds,
+ * everything finite, r and m > 0 (OGK_E_DIM, OGK_E_RANGE, OGK_E_NONFINITE).
+ * The BFGS matrix restarts. */
+ogk_status ogk_nmpc_load_plan(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *plan);
+
+/* Copies the plan flown. OGK_E_RANGE when none is loaded. */
+ogk_status ogk_nmpc_get_plan(const ogk_nmpc_t *ctx, ogk_nmpc_plan_t *plan);
+
+/* Solves the OCP from in (t, x) with the plan held as the guess (same node
+ * count; its node 0 becomes in->x and its horizon t_f - in->t): the open
+ * loop, or one re-solve without a strategy. On success the plan is replaced;
+ * on failure it is kept (flag STALE) and the status says why:
+ * OGK_E_ITER_LIMIT, OGK_E_NOT_CONVERGED (line search), OGK_E_INFEASIBLE (QP),
+ * OGK_E_NOT_POSDEF, OGK_E_NONFINITE (a trial state left the model's domain). */
+ogk_status ogk_nmpc_solve(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
+                          ogk_nmpc_report_t *rep);
+
+/* One MPC replan at in->t (normally the previous report's t_next): the
+ * strategy's shift (SNNS: the subintervals already flown dropped; CNCN: the
+ * same N regridded over [t, t_f]), then a solve, then for SNNS the doubling
+ * test. A failed solve keeps flying the shifted previous plan (flag STALE,
+ * the solve's status returned); the context stays usable. */
+ogk_status ogk_nmpc_replan(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
+                           ogk_nmpc_report_t *rep);
+
+/* The plan's control at absolute time t (piecewise linear; before t0 the
+ * first node's, after t_f the last node's with FLAG_END_OF_PLAN). No plan:
+ * OGK_E_RANGE with the safe command (engine off, alpha 0, FLAG SAFE). */
+ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t,
+                            ogk_nmpc_command_t *cmd);
+
+/* Right-hand side of the predictive model at (t, x, u) (for tests and the
+ * harness's cross-checks); u has the engine's nu entries. */
+ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
+                              const double *u, double *xdot);
+
+/* One subinterval F(x0, u0, u1) of length h starting at absolute time t0,
+ * with its sensitivities (each may be NULL): dfdx (5 x 5), dfdu0 and dfdu1
+ * (5 x nu), dfdh (5, t0 held) and dfdt0 (5, h held): for the tests'
+ * finite-difference checks. */
+ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
+                             const double *x0, const double *u0,
+                             const double *u1, double *x1, double *dfdx,
+                             double *dfdu0, double *dfdu1, double *dfdh,
+                             double *dfdt0);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* OGK_NMPC_H */

@@ -1,0 +1,501 @@
+/* nmpc.c -- public API of ogk_nmpc (ogk/nmpc.h): configuration, plans, the
+ * receding-horizon strategies of Starek & Kolmanovsky (2012) sec. 2.3 around
+ * the SQP of nmpc_sqp.c, and the command. */
+#include "ogk/nmpc.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "nmpc_internal.h"
+#include "ogk/types.h"
+#include "ogk_checks.h"
+
+#define NX OGK_NMPC_NX
+
+/* Relative slack when counting the subintervals already flown. */
+#define FLOWN_EPS 1.0e-9
+
+ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg)
+{
+    ogk_status st = OGK_OK;
+    if (cfg == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        (void)memset(cfg, 0, sizeof(*cfg));
+        cfg->mu = 1.0;
+        cfg->engine = OGK_NMPC_ENGINE_CONSTANT;
+        cfg->power = OGK_NMPC_POWER_CONSTANT;
+        cfg->thrust_max = 0.0;      /* must be set */
+        cfg->mass_flow_max = 0.0;   /* must be set */
+        cfg->solar_length_unit = 1.0;
+        cfg->n_bodies = 0u;
+        cfg->target_radius = 0.0;   /* must be set */
+        cfg->objective = OGK_NMPC_MIN_TIME;
+        cfg->nodes = 30u;
+        cfg->rk4_steps = 8u;
+        cfg->horizon_min = 1.0e-3;
+        cfg->horizon_max = 30.0;
+        cfg->max_sweep = 0.0;
+        cfg->max_iter = 100u;
+        cfg->tol_feas = 1.0e-9;
+        cfg->tol_stat = 1.0e-7;
+        cfg->hessian_init = 1.0;
+        cfg->step_max_alpha = 1.0;
+        cfg->step_max_horizon = 1.0;
+        cfg->strategy = OGK_NMPC_SNNS;
+        cfg->min_nodes = 2u;
+        cfg->max_subdivisions = 2u;
+        cfg->doubling_threshold = 0.01;
+        cfg->doubling_max_nodes = 8u;
+    }
+    return st;
+}
+
+static bool config_finite(const ogk_nmpc_config_t *c)
+{
+    const double scalars[] = {
+        c->mu, c->thrust_max, c->mass_flow_max, c->solar_length_unit,
+        c->target_radius, c->target_phase0, c->target_rate, c->horizon_min,
+        c->horizon_max, c->max_sweep, c->tol_feas, c->tol_stat, c->hessian_init,
+        c->step_max_alpha, c->step_max_horizon, c->doubling_threshold
+    };
+    return ogk_i_all_finite(scalars, sizeof(scalars) / sizeof(scalars[0]))
+        && ogk_i_all_finite(c->solar_a, 4u) && ogk_i_all_finite(c->solar_thrust, 2u)
+        && ogk_i_all_finite(c->solar_flow, 2u)
+        && ogk_i_all_finite(c->body_mu, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->body_radius, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->body_phase0, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->body_rate, OGK_NMPC_MAX_BODIES);
+}
+
+static bool config_valid(const ogk_nmpc_config_t *c)
+{
+    bool ok = (c->mu > 0.0) && (c->target_radius > 0.0)
+        && (c->engine <= OGK_NMPC_ENGINE_THROTTLED) && (c->power <= OGK_NMPC_POWER_SOLAR)
+        && (c->objective <= OGK_NMPC_MIN_FUEL) && (c->strategy <= OGK_NMPC_CNCN)
+        && (c->nodes >= 1u) && (c->nodes <= OGK_NMPC_MAX_NODES)
+        && (c->rk4_steps >= 1u) && (c->rk4_steps <= OGK_NMPC_MAX_RK4_STEPS)
+        && (c->horizon_min > 0.0) && (c->horizon_max > c->horizon_min)
+        && (c->max_sweep >= 0.0)
+        && (c->max_iter >= 1u) && (c->max_iter <= OGK_NMPC_MAX_SQP_ITER)
+        && (c->tol_feas > 0.0) && (c->tol_stat > 0.0) && (c->hessian_init > 0.0)
+        && (c->step_max_alpha > 0.0) && (c->step_max_horizon > 0.0)
+        && (c->min_nodes >= 1u) && (c->min_nodes <= OGK_NMPC_MAX_NODES)
+        && (c->doubling_threshold >= 0.0)
+        && (c->doubling_max_nodes <= (OGK_NMPC_MAX_NODES / 2u))
+        && (c->n_bodies <= OGK_NMPC_MAX_BODIES);
+    uint32_t b;
+    if (ok && (c->power == OGK_NMPC_POWER_SOLAR)) {
+        ok = c->solar_length_unit > 0.0;
+    } else if (ok) {
+        ok = (c->thrust_max > 0.0) && (c->mass_flow_max >= 0.0);
+    } else {
+        /* already rejected */
+    }
+    for (b = 0u; ok && (b < c->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
+        ok = (c->body_mu[b] >= 0.0) && (c->body_radius[b] > 0.0);
+    }
+    return ok;
+}
+
+static void prepare(ogk_nmpc_t *ctx)
+{
+    ctx->nu = (ctx->cfg.engine == OGK_NMPC_ENGINE_THROTTLED) ? 2u : 1u;
+    ctx->subdivisions = 0u;
+    ctx->plan_flags = 0u;
+    ctx->have_plan = 0u;
+    ctx->hess_valid = 0u;
+    (void)memset(&ctx->plan, 0, sizeof(ctx->plan));
+    (void)memset(&ctx->work, 0, sizeof(ctx->work));
+}
+
+ogk_status ogk_nmpc_init(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg)
+{
+    ogk_status st = OGK_OK;
+    if ((ctx == NULL) || (cfg == NULL)) {
+        st = OGK_E_NULL;
+    } else {
+        ctx->init_marker = 0u;
+        if (!config_finite(cfg)) {
+            st = OGK_E_NONFINITE;
+        } else if (!config_valid(cfg)) {
+            st = OGK_E_CONFIG;
+        } else {
+            (void)memcpy(&ctx->cfg, cfg, sizeof(*cfg));
+            prepare(ctx);
+            ctx->init_marker = OGK_NMPC_INIT_MARKER;
+        }
+    }
+    return st;
+}
+
+static ogk_status check_ctx(const ogk_nmpc_t *ctx)
+{
+    ogk_status st = OGK_OK;
+    if (ctx == NULL) {
+        st = OGK_E_NULL;
+    } else if (ctx->init_marker != OGK_NMPC_INIT_MARKER) {
+        st = OGK_E_NOT_INIT;
+    } else {
+        /* usable */
+    }
+    return st;
+}
+
+ogk_status ogk_nmpc_reset(ogk_nmpc_t *ctx)
+{
+    ogk_status st = check_ctx(ctx);
+    if (st == OGK_OK) {
+        prepare(ctx);
+    }
+    return st;
+}
+
+ogk_status ogk_nmpc_load_plan(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *plan)
+{
+    ogk_status st = check_ctx(ctx);
+    if ((st == OGK_OK) && (plan == NULL)) {
+        st = OGK_E_NULL;
+    }
+    if (st == OGK_OK) {
+        if ((plan->nodes < 1u) || (plan->nodes > OGK_NMPC_MAX_NODES) || (plan->nu != ctx->nu)) {
+            st = OGK_E_DIM;
+        } else if (!isfinite(plan->t0) || !isfinite(plan->horizon)
+                   || !ogk_i_all_finite(plan->x, ((size_t)plan->nodes + 1u) * NX)
+                   || !ogk_i_all_finite(plan->u, ((size_t)plan->nodes + 1u) * plan->nu)
+                   || !ogk_i_all_finite(plan->lambda, OGK_NMPC_NC)) {
+            st = OGK_E_NONFINITE;
+        } else if ((plan->horizon < ctx->cfg.horizon_min) || (plan->horizon > ctx->cfg.horizon_max)) {
+            st = OGK_E_RANGE;
+        } else {
+            uint32_t k;
+            for (k = 0u; (k <= plan->nodes) && (st == OGK_OK); ++k) {
+                if (!(plan->x[(k * NX) + 0u] > 0.0) || !(plan->x[(k * NX) + 4u] > 0.0)) {
+                    st = OGK_E_RANGE;
+                }
+                if ((ctx->nu > 1u) && (st == OGK_OK)) {
+                    const double w = plan->u[(k * ctx->nu) + 1u];
+                    st = ((w >= 0.0) && (w <= 1.0)) ? OGK_OK : OGK_E_RANGE;
+                }
+            }
+        }
+    }
+    if (st == OGK_OK) {
+        (void)memcpy(&ctx->plan, plan, sizeof(*plan));
+        ctx->have_plan = 1u;
+        ctx->hess_valid = 0u;
+        ctx->plan_flags = 0u;
+    }
+    return st;
+}
+
+ogk_status ogk_nmpc_get_plan(const ogk_nmpc_t *ctx, ogk_nmpc_plan_t *plan)
+{
+    ogk_status st = check_ctx(ctx);
+    if ((st == OGK_OK) && (plan == NULL)) {
+        st = OGK_E_NULL;
+    }
+    if ((st == OGK_OK) && (ctx->have_plan == 0u)) {
+        st = OGK_E_RANGE;
+    }
+    if (st == OGK_OK) {
+        (void)memcpy(plan, &ctx->plan, sizeof(*plan));
+    }
+    return st;
+}
+
+static ogk_status check_input(const ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
+                              ogk_nmpc_report_t *rep)
+{
+    ogk_status st = check_ctx(ctx);
+    if ((st == OGK_OK) && ((in == NULL) || (rep == NULL))) {
+        st = OGK_E_NULL;
+    }
+    if (st == OGK_OK) {
+        (void)memset(rep, 0, sizeof(*rep));
+        if (!isfinite(in->t) || !ogk_i_all_finite(in->x, NX)) {
+            st = OGK_E_NONFINITE;
+        } else if ((ctx->have_plan == 0u) || !(in->x[0] > 0.0) || !(in->x[4] > 0.0)
+                   || !(in->t < (ctx->plan.t0 + ctx->plan.horizon))) {
+            st = OGK_E_RANGE; /* no plan, outside the model's domain, or past t_f */
+        } else {
+            /* usable */
+        }
+    }
+    return st;
+}
+
+static void fill_report(const ogk_nmpc_t *ctx, ogk_nmpc_report_t *rep)
+{
+    const ogk_nmpc_plan_t *p = &ctx->plan;
+    rep->flags |= ctx->plan_flags;
+    rep->nodes = p->nodes;
+    rep->t_next = p->t0 + (p->horizon / (double)p->nodes);
+    rep->t_f = p->t0 + p->horizon;
+    rep->objective = ogk_i_nmpc_objective(&ctx->cfg, p);
+}
+
+/* work := plan re-anchored at (t, x): node 0 measured, same t_f. */
+static void anchor_work(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in)
+{
+    const double t_f = ctx->plan.t0 + ctx->plan.horizon;
+    (void)memcpy(&ctx->work, &ctx->plan, sizeof(ctx->work));
+    ctx->work.t0 = in->t;
+    ctx->work.horizon = t_f - in->t;
+    if (ctx->work.horizon < ctx->cfg.horizon_min) {
+        ctx->work.horizon = ctx->cfg.horizon_min;
+    }
+    (void)memcpy(ctx->work.x, in->x, NX * sizeof(double));
+}
+
+/* Runs the SQP on work; on success it becomes the plan. */
+static ogk_status solve_work(ogk_nmpc_t *ctx, ogk_nmpc_report_t *rep)
+{
+    const bool cold = (ctx->hess_valid == 0u);
+    ogk_status st = ogk_i_nmpc_sqp(ctx, ctx->hess, cold, rep);
+    rep->solve_status = st;
+    if (st == OGK_OK) {
+        (void)memcpy(&ctx->plan, &ctx->work, sizeof(ctx->plan));
+        ctx->hess_valid = 1u;
+        ctx->plan_flags = OGK_NMPC_FLAG_CONVERGED;
+    } else {
+        ctx->hess_valid = 0u;
+        ctx->plan_flags = OGK_NMPC_FLAG_STALE;
+    }
+    return st;
+}
+
+ogk_status ogk_nmpc_solve(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
+                          ogk_nmpc_report_t *rep)
+{
+    ogk_status st = check_input(ctx, in, rep);
+    if (st == OGK_OK) {
+        anchor_work(ctx, in);
+        st = solve_work(ctx, rep);
+        fill_report(ctx, rep);
+    }
+    return st;
+}
+
+/* Rows and columns [drop, nv) of the BFGS matrix, moved to the top left. */
+static void hessian_drop(double *hess, size_t nv, size_t drop)
+{
+    const size_t nv_new = nv - drop;
+    size_t i;
+    size_t j;
+    for (i = 0u; i < nv_new; ++i) {
+        for (j = 0u; j < nv_new; ++j) {
+            hess[(i * nv_new) + j] = hess[((i + drop) * nv) + (j + drop)];
+        }
+    }
+}
+
+/* The strategy's shift of the plan to time t (sec. 2.3). */
+static void shift_plan(ogk_nmpc_t *ctx, double t)
+{
+    ogk_nmpc_plan_t *p = &ctx->plan;
+    const double h = p->horizon / (double)p->nodes;
+    const size_t nv = ((size_t)p->nodes + 1u) * ctx->nu + 1u;
+    double flown = (t - p->t0) / h;
+    uint32_t count = 0u;
+
+    flown = (flown > 0.0) ? (flown + FLOWN_EPS) : 0.0;
+    if (flown < (double)p->nodes) {
+        count = (uint32_t)flown;
+    } else {
+        count = p->nodes;
+    }
+    if (ctx->cfg.strategy == OGK_NMPC_SNNS) {
+        if ((count >= 1u) && ((p->nodes - count) >= ctx->cfg.min_nodes) && (count < p->nodes)) {
+            /* SNN: the flown subintervals leave the plan, the rest is the guess */
+            ogk_i_nmpc_plan_drop(p, count);
+            if (ctx->hess_valid != 0u) {
+                hessian_drop(ctx->hess, nv, (size_t)count * ctx->nu);
+            }
+        } else if (count >= 1u) {
+            /* fewer than min_nodes would remain: keep min_nodes over [t, t_f] */
+            const uint32_t n_keep = (ctx->cfg.min_nodes < p->nodes) ? ctx->cfg.min_nodes : p->nodes;
+            ogk_i_nmpc_plan_regrid(p, t, n_keep, &ctx->trial);
+            (void)memcpy(p, &ctx->trial, sizeof(*p));
+            ctx->plan_flags |= OGK_NMPC_FLAG_REGRIDDED;
+            ctx->hess_valid = (n_keep == p->nodes) ? ctx->hess_valid : 0u;
+        } else {
+            /* nothing flown yet: re-solve the same plan */
+        }
+    } else {
+        /* CNCN: the same N over [t, t_f] */
+        ogk_i_nmpc_plan_regrid(p, t, p->nodes, &ctx->trial);
+        (void)memcpy(p, &ctx->trial, sizeof(*p));
+        ctx->plan_flags |= OGK_NMPC_FLAG_REGRIDDED;
+    }
+}
+
+/* SNNS doubling test (sec. 2.3.3): solve with 2N from the N result (or the
+ * shifted plan when N failed); adopt 2N when it improves J by more than the
+ * threshold (the paper's "less than" is a typo) or when only 2N converged. */
+static ogk_status doubling_test(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
+                                ogk_status st_n, ogk_nmpc_report_t *rep)
+{
+    ogk_status st = st_n;
+    const ogk_nmpc_config_t *cfg = &ctx->cfg;
+    const uint32_t n = ctx->plan.nodes;
+
+    if ((cfg->strategy == OGK_NMPC_SNNS) && (ctx->subdivisions < cfg->max_subdivisions)
+        && (n <= cfg->doubling_max_nodes) && ((2u * n) <= OGK_NMPC_MAX_NODES)) {
+        ogk_status st_sub;
+        if (st_n != OGK_OK) {
+            anchor_work(ctx, in);
+            st_sub = ogk_i_nmpc_plan_subdivide(cfg, &ctx->work, &ctx->alt);
+        } else {
+            st_sub = ogk_i_nmpc_plan_subdivide(cfg, &ctx->plan, &ctx->alt);
+        }
+        if (st_sub == OGK_OK) {
+            ogk_nmpc_report_t rep_alt;
+            (void)memset(&rep_alt, 0, sizeof(rep_alt));
+            (void)memcpy(&ctx->work, &ctx->alt, sizeof(ctx->work));
+            st_sub = ogk_i_nmpc_sqp(ctx, ctx->hess_alt, true, &rep_alt);
+            rep->sqp_iterations += rep_alt.sqp_iterations;
+            rep->qp_iterations += rep_alt.qp_iterations;
+            rep->solves += rep_alt.solves;
+            if (st_sub == OGK_OK) {
+                const double j_n = ogk_i_nmpc_objective(cfg, &ctx->plan);
+                const double j_2n = ogk_i_nmpc_objective(cfg, &ctx->work);
+                const double gain = (j_n - j_2n) / ((fabs(j_n) > 1.0e-12) ? fabs(j_n) : 1.0e-12);
+                if ((st_n != OGK_OK) || (gain > cfg->doubling_threshold)) {
+                    const size_t nv = ((size_t)ctx->work.nodes + 1u) * ctx->nu + 1u;
+                    (void)memcpy(&ctx->plan, &ctx->work, sizeof(ctx->plan));
+                    (void)memcpy(ctx->hess, ctx->hess_alt, nv * nv * sizeof(double));
+                    ctx->hess_valid = 1u;
+                    ctx->subdivisions += 1u;
+                    ctx->plan_flags = OGK_NMPC_FLAG_CONVERGED | OGK_NMPC_FLAG_SUBDIVIDED;
+                    rep->feas = rep_alt.feas;
+                    rep->stat = rep_alt.stat;
+                    rep->solve_status = OGK_OK;
+                    st = OGK_OK;
+                }
+            }
+        }
+    }
+    return st;
+}
+
+ogk_status ogk_nmpc_replan(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
+                           ogk_nmpc_report_t *rep)
+{
+    ogk_status st = check_input(ctx, in, rep);
+    if (st == OGK_OK) {
+        ctx->plan_flags = 0u;
+        shift_plan(ctx, in->t);
+        {
+            const uint32_t shift_flags = ctx->plan_flags;
+            anchor_work(ctx, in);
+            st = solve_work(ctx, rep);
+            ctx->plan_flags |= shift_flags;
+        }
+        st = doubling_test(ctx, in, st, rep);
+        fill_report(ctx, rep);
+    }
+    return st;
+}
+
+ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command_t *cmd)
+{
+    ogk_status st = check_ctx(ctx);
+    if ((st == OGK_OK) && (cmd == NULL)) {
+        st = OGK_E_NULL;
+    }
+    if (cmd != NULL) {
+        /* the safe command: engine off */
+        cmd->t = t;
+        cmd->alpha = 0.0;
+        cmd->throttle = 0.0;
+        cmd->flags = OGK_THRUST_FLAG_SAFE;
+        cmd->law_flags = 0u;
+    }
+    if (st == OGK_OK) {
+        if (!isfinite(t)) {
+            st = OGK_E_NONFINITE;
+        } else if (ctx->have_plan == 0u) {
+            st = OGK_E_RANGE;
+        } else {
+            double u[OGK_NMPC_MAX_NU] = { 0.0, 1.0 };
+            ogk_i_nmpc_plan_control(&ctx->plan, t, u);
+            cmd->alpha = u[0];
+            cmd->throttle = (ctx->nu > 1u) ? u[1] : 1.0;
+            cmd->throttle = (cmd->throttle < 0.0) ? 0.0 : ((cmd->throttle > 1.0) ? 1.0 : cmd->throttle);
+            cmd->flags = (cmd->throttle > 0.0) ? OGK_THRUST_FLAG_ENGINE_ON : 0u;
+            cmd->law_flags = ctx->plan_flags;
+            if ((ctx->plan_flags & OGK_NMPC_FLAG_STALE) != 0u) {
+                cmd->flags |= OGK_THRUST_FLAG_SAFE;
+            }
+            if (t > (ctx->plan.t0 + ctx->plan.horizon)) {
+                cmd->law_flags |= OGK_NMPC_FLAG_END_OF_PLAN;
+            }
+        }
+    }
+    return st;
+}
+
+ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
+                              const double *u, double *xdot)
+{
+    ogk_status st = check_ctx(ctx);
+    if ((st == OGK_OK) && ((x == NULL) || (u == NULL) || (xdot == NULL))) {
+        st = OGK_E_NULL;
+    }
+    if ((st == OGK_OK) && !isfinite(t)) {
+        st = OGK_E_NONFINITE;
+    }
+    if (st == OGK_OK) {
+        st = ogk_i_nmpc_rhs(&ctx->cfg, ctx->nu, t, x, u, xdot, NULL, NULL, NULL);
+    }
+    return st;
+}
+
+ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
+                             const double *x0, const double *u0,
+                             const double *u1, double *x1, double *dfdx,
+                             double *dfdu0, double *dfdu1, double *dfdh,
+                             double *dfdt0)
+{
+    ogk_status st = check_ctx(ctx);
+    double sens[OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS];
+    if ((st == OGK_OK) && ((x0 == NULL) || (u0 == NULL) || (u1 == NULL) || (x1 == NULL))) {
+        st = OGK_E_NULL;
+    }
+    if ((st == OGK_OK) && (!isfinite(t0) || !isfinite(h))) {
+        st = OGK_E_NONFINITE;
+    }
+    if ((st == OGK_OK) && !(h > 0.0)) {
+        st = OGK_E_RANGE;
+    }
+    if (st == OGK_OK) {
+        st = ogk_i_nmpc_shoot(&ctx->cfg, ctx->nu, t0, h, x0, u0, u1, x1, sens);
+    }
+    if (st == OGK_OK) {
+        const uint32_t nu = ctx->nu;
+        const size_t col_h = NX + (2u * (size_t)nu);
+        size_t i;
+        size_t j;
+        for (i = 0u; i < NX; ++i) {
+            for (j = 0u; (j < NX) && (dfdx != NULL); ++j) {
+                dfdx[(i * NX) + j] = sens[(i * OGK_I_NMPC_MAX_COLS) + j];
+            }
+            for (j = 0u; j < nu; ++j) {
+                if (dfdu0 != NULL) {
+                    dfdu0[(i * nu) + j] = sens[(i * OGK_I_NMPC_MAX_COLS) + NX + j];
+                }
+                if (dfdu1 != NULL) {
+                    dfdu1[(i * nu) + j] = sens[(i * OGK_I_NMPC_MAX_COLS) + NX + nu + j];
+                }
+            }
+            if (dfdh != NULL) {
+                dfdh[i] = sens[(i * OGK_I_NMPC_MAX_COLS) + col_h];
+            }
+            if (dfdt0 != NULL) {
+                dfdt0[i] = sens[(i * OGK_I_NMPC_MAX_COLS) + col_h + 1u];
+            }
+        }
+    }
+    return st;
+}

@@ -1,0 +1,189 @@
+/* nmpc_model.c -- the NMPC's predictive model, eqs. (11)-(14) of Starek &
+ * Kolmanovsky (2012), with optional third bodies derived from vectors (the
+ * printed eqs. 15-18 are wrong: docs/nmpc.md), and its Jacobians. */
+#include "nmpc_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "ogk_checks.h"
+
+/* T_max(r) and mdot_max(r) with their derivatives in r. */
+static void engine_limits(const ogk_nmpc_config_t *cfg, double r,
+                          double *thrust, double *thrust_dr,
+                          double *flow, double *flow_dr)
+{
+    if (cfg->power == OGK_NMPC_POWER_SOLAR) {
+        /* eq. (14): p(s) = (a1 s^2 + a2 s + a3) / (s^4 (1 + a4 s)), s = r / unit */
+        const double s = r / cfg->solar_length_unit;
+        const double num = ((cfg->solar_a[0] * s) + cfg->solar_a[1]) * s + cfg->solar_a[2];
+        const double num_ds = (2.0 * cfg->solar_a[0] * s) + cfg->solar_a[1];
+        const double s4 = s * s * s * s;
+        const double den = s4 * (1.0 + (cfg->solar_a[3] * s));
+        const double den_ds = (4.0 * s * s * s * (1.0 + (cfg->solar_a[3] * s))) + (cfg->solar_a[3] * s4);
+        const double p = num / den;
+        const double p_dr = ((num_ds * den) - (num * den_ds)) / (den * den * cfg->solar_length_unit);
+        *thrust = cfg->solar_thrust[0] + (cfg->solar_thrust[1] * p);
+        *thrust_dr = cfg->solar_thrust[1] * p_dr;
+        *flow = cfg->solar_flow[0] + (cfg->solar_flow[1] * p);
+        *flow_dr = cfg->solar_flow[1] * p_dr;
+    } else {
+        *thrust = cfg->thrust_max;
+        *thrust_dr = 0.0;
+        *flow = cfg->mass_flow_max;
+        *flow_dr = 0.0;
+    }
+}
+
+/* Acceleration of third body b in the spacecraft's (radial, circumferential)
+ * axes: direct -mu d / |d|^3 with d = r_sc - r_b, and indirect -mu r_b / R^3
+ * (the Sun-centred frame accelerates towards the body). d in the spacecraft's
+ * axes: (r - R cos D, -R sin D), D = phi_b(t) - theta. Adds the acceleration
+ * to acc[2] and, when jac is not NULL, its derivatives in (r, theta, t) to
+ * jac[2][3]. */
+static ogk_status body_accel(const ogk_nmpc_config_t *cfg, uint32_t b, double t,
+                             double r, double theta, double *acc, double jac[2][3])
+{
+    ogk_status st = OGK_OK;
+    const double mu_b = cfg->body_mu[b];
+    const double big_r = cfg->body_radius[b];
+    const double delta = (cfg->body_phase0[b] + (cfg->body_rate[b] * t)) - theta;
+    const double cd = cos(delta);
+    const double sd = sin(delta);
+    const double d_r = r - (big_r * cd);
+    const double d_t = -big_r * sd;
+    const double d2 = (d_r * d_r) + (d_t * d_t);
+    const double ind = mu_b / (big_r * big_r);
+
+    if (!(d2 > 1.0e-30)) {
+        st = OGK_E_NONFINITE; /* the spacecraft is at the body's centre */
+    } else {
+        const double d1 = sqrt(d2);
+        const double k3 = mu_b / (d2 * d1);
+        acc[0] += (-k3 * d_r) - (ind * cd);
+        acc[1] += (-k3 * d_t) - (ind * sd);
+        if (jac != NULL) {
+            /* dA/dd = -mu (I / D^3 - 3 d d^T / D^5) */
+            const double k5 = 3.0 * k3 / d2;
+            const double g_rr = -k3 + (k5 * d_r * d_r);
+            const double g_rt = k5 * d_r * d_t;
+            const double g_tt = -k3 + (k5 * d_t * d_t);
+            /* dd/dr = (1, 0); dd/dD = (R sin D, -R cos D); dD/dtheta = -1, dD/dt = rate */
+            const double dd_r_dD = big_r * sd;
+            const double dd_t_dD = -big_r * cd;
+            /* indirect term: d/dD of -ind (cos D, sin D) = ind (sin D, -cos D) */
+            const double a_r_dD = (g_rr * dd_r_dD) + (g_rt * dd_t_dD) + (ind * sd);
+            const double a_t_dD = (g_rt * dd_r_dD) + (g_tt * dd_t_dD) - (ind * cd);
+            jac[0][0] += g_rr;
+            jac[1][0] += g_rt;
+            jac[0][1] -= a_r_dD;
+            jac[1][1] -= a_t_dD;
+            jac[0][2] += a_r_dD * cfg->body_rate[b];
+            jac[1][2] += a_t_dD * cfg->body_rate[b];
+        }
+    }
+    return st;
+}
+
+ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
+                          const double *x, const double *u, double *xdot,
+                          double *jx, double *ju, double *jt)
+{
+    ogk_status st = OGK_OK;
+    const double r = x[0];
+    const double v_r = x[2];
+    const double v_t = x[3];
+    const double m = x[4];
+
+    if (!(r > 0.0) || !(m > 0.0) || !ogk_i_all_finite(x, OGK_NMPC_NX)
+        || !ogk_i_all_finite(u, nu)) {
+        st = OGK_E_NONFINITE;
+    } else {
+        const double throttle = (nu > 1u) ? u[1] : 1.0;
+        const double ca = cos(u[0]);
+        const double sa = sin(u[0]);
+        double thrust;
+        double thrust_dr;
+        double flow;
+        double flow_dr;
+        double pert[2] = { 0.0, 0.0 };
+        double pert_jac[2][3] = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 } };
+        uint32_t b;
+
+        engine_limits(cfg, r, &thrust, &thrust_dr, &flow, &flow_dr);
+        for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES) && (st == OGK_OK); ++b) {
+            st = body_accel(cfg, b, t, r, x[1], pert, (jx != NULL) ? pert_jac : NULL);
+        }
+        if (st == OGK_OK) {
+            const double inv_r = 1.0 / r;
+            const double acc = throttle * thrust / m;
+            /* eq. (11) and (13) */
+            xdot[0] = v_r;
+            xdot[1] = v_t * inv_r;
+            xdot[2] = (v_t * v_t * inv_r) - (cfg->mu * inv_r * inv_r) + (acc * ca) + pert[0];
+            xdot[3] = (-v_t * v_r * inv_r) + (acc * sa) + pert[1];
+            xdot[4] = -throttle * flow;
+            if (!ogk_i_all_finite(xdot, OGK_NMPC_NX)) {
+                st = OGK_E_NONFINITE;
+            }
+            if ((st == OGK_OK) && (jx != NULL)) {
+                const double acc_dr = throttle * thrust_dr / m;
+                (void)memset(jx, 0, OGK_NMPC_NX * OGK_NMPC_NX * sizeof(double));
+                jx[(0u * OGK_NMPC_NX) + 2u] = 1.0;
+                jx[(1u * OGK_NMPC_NX) + 0u] = -v_t * inv_r * inv_r;
+                jx[(1u * OGK_NMPC_NX) + 3u] = inv_r;
+                jx[(2u * OGK_NMPC_NX) + 0u] = (-v_t * v_t * inv_r * inv_r)
+                    + (2.0 * cfg->mu * inv_r * inv_r * inv_r) + (acc_dr * ca) + pert_jac[0][0];
+                jx[(2u * OGK_NMPC_NX) + 1u] = pert_jac[0][1];
+                jx[(2u * OGK_NMPC_NX) + 3u] = 2.0 * v_t * inv_r;
+                jx[(2u * OGK_NMPC_NX) + 4u] = -acc * ca / m;
+                jx[(3u * OGK_NMPC_NX) + 0u] = (v_t * v_r * inv_r * inv_r) + (acc_dr * sa) + pert_jac[1][0];
+                jx[(3u * OGK_NMPC_NX) + 1u] = pert_jac[1][1];
+                jx[(3u * OGK_NMPC_NX) + 2u] = -v_t * inv_r;
+                jx[(3u * OGK_NMPC_NX) + 3u] = -v_r * inv_r;
+                jx[(3u * OGK_NMPC_NX) + 4u] = -acc * sa / m;
+                jx[(4u * OGK_NMPC_NX) + 0u] = -throttle * flow_dr;
+                if (ju != NULL) {
+                    (void)memset(ju, 0, OGK_NMPC_NX * nu * sizeof(double));
+                    ju[(2u * nu) + 0u] = -acc * sa;
+                    ju[(3u * nu) + 0u] = acc * ca;
+                    if (nu > 1u) {
+                        ju[(2u * nu) + 1u] = thrust * ca / m;
+                        ju[(3u * nu) + 1u] = thrust * sa / m;
+                        ju[(4u * nu) + 1u] = -flow;
+                    }
+                }
+                if (jt != NULL) {
+                    jt[0] = 0.0;
+                    jt[1] = 0.0;
+                    jt[2] = pert_jac[0][2];
+                    jt[3] = pert_jac[1][2];
+                    jt[4] = 0.0;
+                }
+            }
+        }
+    }
+    return st;
+}
+
+void ogk_i_nmpc_terminal(const ogk_nmpc_config_t *cfg, const double *x,
+                         double t_f, double *c)
+{
+    /* eq. (5) with eq. (6): the target on its circular orbit at t_f */
+    c[0] = x[0] - cfg->target_radius;
+    c[1] = x[1] - (cfg->target_phase0 + (cfg->target_rate * t_f));
+    c[2] = x[2];
+    c[3] = x[3] - sqrt(cfg->mu / cfg->target_radius);
+}
+
+double ogk_i_nmpc_objective(const ogk_nmpc_config_t *cfg,
+                            const ogk_nmpc_plan_t *p)
+{
+    double j;
+    if (cfg->objective == OGK_NMPC_MIN_FUEL) {
+        j = p->x[0u * OGK_NMPC_NX + 4u] - p->x[(p->nodes * OGK_NMPC_NX) + 4u];
+    } else {
+        j = p->horizon;
+    }
+    return j;
+}

@@ -1,0 +1,110 @@
+/* nmpc_plan.c -- the plan operations of the receding-horizon strategies
+ * (sec. 2.3 of Starek & Kolmanovsky): the control of a plan at a time,
+ * dropping flown subintervals (SNN), regridding the same horizon on another
+ * node count by interpolation (CNCN), and subdividing every subinterval in
+ * two (the SNNS doubling). */
+#include "nmpc_internal.h"
+
+#include <string.h>
+
+#define NX OGK_NMPC_NX
+
+/* Position of absolute time t in plan p: subinterval k and fraction in it. */
+static void locate(const ogk_nmpc_plan_t *p, double t, uint32_t *k, double *frac)
+{
+    const double h = p->horizon / (double)p->nodes;
+    double s = (t - p->t0) / h;
+    uint32_t idx;
+    s = (s > 0.0) ? s : 0.0;
+    s = (s < (double)p->nodes) ? s : (double)p->nodes;
+    idx = (uint32_t)s;
+    idx = (idx < p->nodes) ? idx : (p->nodes - 1u);
+    *k = idx;
+    *frac = s - (double)idx;
+}
+
+void ogk_i_nmpc_plan_control(const ogk_nmpc_plan_t *p, double t, double *u)
+{
+    uint32_t k;
+    double frac;
+    uint32_t i;
+    locate(p, t, &k, &frac);
+    for (i = 0u; (i < p->nu) && (i < OGK_NMPC_MAX_NU); ++i) {
+        u[i] = ((1.0 - frac) * p->u[(k * p->nu) + i]) + (frac * p->u[((k + 1u) * p->nu) + i]);
+    }
+}
+
+void ogk_i_nmpc_plan_drop(ogk_nmpc_plan_t *p, uint32_t count)
+{
+    const double h = p->horizon / (double)p->nodes;
+    const uint32_t keep = p->nodes - count; /* caller: count < nodes */
+    (void)memmove(p->x, &p->x[count * NX], ((size_t)keep + 1u) * NX * sizeof(double));
+    (void)memmove(p->u, &p->u[count * p->nu], ((size_t)keep + 1u) * p->nu * sizeof(double));
+    p->t0 += (double)count * h;
+    p->horizon -= (double)count * h;
+    p->nodes = keep;
+}
+
+void ogk_i_nmpc_plan_regrid(const ogk_nmpc_plan_t *src, double t0,
+                            uint32_t nodes, ogk_nmpc_plan_t *dst)
+{
+    const double t_f = src->t0 + src->horizon;
+    uint32_t j;
+    uint32_t i;
+
+    dst->t0 = t0;
+    dst->horizon = t_f - t0;
+    dst->nodes = nodes;
+    dst->nu = src->nu;
+    (void)memcpy(dst->lambda, src->lambda, sizeof(dst->lambda));
+    for (j = 0u; (j <= nodes) && (j <= OGK_NMPC_MAX_NODES); ++j) {
+        const double t = t0 + ((dst->horizon * (double)j) / (double)nodes);
+        uint32_t k;
+        double frac;
+        locate(src, t, &k, &frac);
+        for (i = 0u; i < NX; ++i) {
+            dst->x[(j * NX) + i] = ((1.0 - frac) * src->x[(k * NX) + i])
+                + (frac * src->x[((k + 1u) * NX) + i]);
+        }
+        for (i = 0u; (i < src->nu) && (i < OGK_NMPC_MAX_NU); ++i) {
+            dst->u[(j * src->nu) + i] = ((1.0 - frac) * src->u[(k * src->nu) + i])
+                + (frac * src->u[((k + 1u) * src->nu) + i]);
+        }
+    }
+}
+
+ogk_status ogk_i_nmpc_plan_subdivide(const ogk_nmpc_config_t *cfg,
+                                     const ogk_nmpc_plan_t *src,
+                                     ogk_nmpc_plan_t *dst)
+{
+    ogk_status st = OGK_OK;
+    const uint32_t nu = src->nu;
+    const double h_half = 0.5 * src->horizon / (double)src->nodes;
+    uint32_t k;
+    uint32_t i;
+
+    dst->t0 = src->t0;
+    dst->horizon = src->horizon;
+    dst->nodes = 2u * src->nodes;
+    dst->nu = nu;
+    (void)memcpy(dst->lambda, src->lambda, sizeof(dst->lambda));
+    for (k = 0u; (k < src->nodes) && (k < (OGK_NMPC_MAX_NODES / 2u)) && (st == OGK_OK); ++k) {
+        double u_mid[OGK_NMPC_MAX_NU];
+        for (i = 0u; i < nu; ++i) {
+            /* piecewise linear: the midpoint value is exact */
+            u_mid[i] = 0.5 * (src->u[(k * nu) + i] + src->u[((k + 1u) * nu) + i]);
+            dst->u[(2u * k * nu) + i] = src->u[(k * nu) + i];
+            dst->u[(((2u * k) + 1u) * nu) + i] = u_mid[i];
+        }
+        (void)memcpy(&dst->x[2u * k * NX], &src->x[k * NX], NX * sizeof(double));
+        /* midpoint state propagated over the first half (a consistent guess) */
+        st = ogk_i_nmpc_shoot(cfg, nu, src->t0 + ((double)(2u * k) * h_half), h_half,
+                              &src->x[k * NX], &src->u[k * nu], u_mid,
+                              &dst->x[((2u * k) + 1u) * NX], NULL);
+    }
+    if (st == OGK_OK) {
+        (void)memcpy(&dst->x[dst->nodes * NX], &src->x[src->nodes * NX], NX * sizeof(double));
+        (void)memcpy(&dst->u[dst->nodes * nu], &src->u[src->nodes * nu], nu * sizeof(double));
+    }
+    return st;
+}

@@ -1,0 +1,147 @@
+/* nmpc_shoot.c -- one multiple-shooting interval of the NMPC: fixed-step RK4
+ * with the control linear over the interval and evaluated at the stage times
+ * (sec. 2.3 of Starek & Kolmanovsky), and the exact derivatives of this
+ * discrete map (internal numerical differentiation: the RK4 recursion
+ * differentiated stage by stage), so the SQP's linearisation is that of the
+ * map it constrains. */
+#include "nmpc_internal.h"
+
+#include <string.h>
+
+#define NX OGK_NMPC_NX
+#define NCOL OGK_I_NMPC_MAX_COLS
+
+/* Y = S + a K_prev (+ b k_prev in column col_h), for the first `ncol` columns. */
+static void stage_sens(const double *s, const double *k_prev_sens,
+                       const double *k_prev, double a, double b, size_t col_h,
+                       size_t ncol, double *y)
+{
+    size_t i;
+    size_t c;
+    for (i = 0u; i < NX; ++i) {
+        for (c = 0u; c < ncol; ++c) {
+            y[(i * NCOL) + c] = s[(i * NCOL) + c] + (a * k_prev_sens[(i * NCOL) + c]);
+        }
+        y[(i * NCOL) + col_h] += b * k_prev[i];
+    }
+}
+
+/* K = fx Y + fu dU/dp + ft dt/dp for one stage. */
+static void stage_k(const double *jx, const double *ju, const double *jt,
+                    const double *y, uint32_t nu, double s_frac, size_t ncol,
+                    double *k)
+{
+    const size_t col_u0 = NX;
+    const size_t col_u1 = NX + nu;
+    const size_t col_h = NX + (2u * nu);
+    const size_t col_t = col_h + 1u;
+    size_t i;
+    size_t j;
+    size_t c;
+    for (i = 0u; i < NX; ++i) {
+        for (c = 0u; c < ncol; ++c) {
+            double acc = 0.0;
+            for (j = 0u; j < NX; ++j) {
+                acc += jx[(i * NX) + j] * y[(j * NCOL) + c];
+            }
+            k[(i * NCOL) + c] = acc;
+        }
+        for (j = 0u; j < nu; ++j) {
+            k[(i * NCOL) + col_u0 + j] += ju[(i * nu) + j] * (1.0 - s_frac);
+            k[(i * NCOL) + col_u1 + j] += ju[(i * nu) + j] * s_frac;
+        }
+        /* stage time t_start + s h: d/dh = s, d/dt_start = 1 */
+        k[(i * NCOL) + col_h] += jt[i] * s_frac;
+        k[(i * NCOL) + col_t] += jt[i];
+    }
+}
+
+ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu,
+                            double t_start, double h, const double *x0,
+                            const double *u0, const double *u1, double *xf,
+                            double *sens)
+{
+    /* RK4 stage offsets (fractions of one step) and weights */
+    static const double c_off[4] = { 0.0, 0.5, 0.5, 1.0 };
+    static const double w_rk[4] = { 1.0, 2.0, 2.0, 1.0 };
+    ogk_status st = OGK_OK;
+    const uint32_t steps = cfg->rk4_steps;
+    const double dt = h / (double)steps;
+    const double inv_steps = 1.0 / (double)steps;
+    const size_t ncol = NX + (2u * (size_t)nu) + 2u;
+    const size_t col_h = NX + (2u * (size_t)nu);
+    double x[NX];
+    double stage_x[NX];
+    double k[4][NX];
+    double u[OGK_NMPC_MAX_NU];
+    double jx[NX * NX];
+    double ju[NX * OGK_NMPC_MAX_NU];
+    double jt[NX];
+    double s_mat[NX * NCOL];
+    double y_mat[NX * NCOL];
+    double k_mat[4][NX * NCOL];
+    uint32_t step;
+    uint32_t j;
+    size_t i;
+    size_t c;
+
+    (void)memcpy(x, x0, sizeof(x));
+    if (sens != NULL) {
+        (void)memset(s_mat, 0, sizeof(s_mat));
+        for (i = 0u; i < NX; ++i) {
+            s_mat[(i * NCOL) + i] = 1.0;
+        }
+    }
+    for (step = 0u; (step < steps) && (step < OGK_NMPC_MAX_RK4_STEPS) && (st == OGK_OK); ++step) {
+        for (j = 0u; (j < 4u) && (st == OGK_OK); ++j) {
+            const double s_frac = ((double)step + c_off[j]) * inv_steps;
+            const double t_stage = t_start + (s_frac * h);
+            for (i = 0u; i < nu; ++i) {
+                u[i] = u0[i] + ((u1[i] - u0[i]) * s_frac);
+            }
+            for (i = 0u; i < NX; ++i) {
+                stage_x[i] = (j == 0u) ? x[i] : (x[i] + (c_off[j] * dt * k[j - 1u][i]));
+            }
+            st = ogk_i_nmpc_rhs(cfg, nu, t_stage, stage_x, u, k[j],
+                                (sens != NULL) ? jx : NULL, ju, jt);
+            if ((st == OGK_OK) && (sens != NULL)) {
+                if (j == 0u) {
+                    (void)memcpy(y_mat, s_mat, sizeof(y_mat));
+                } else {
+                    /* y = x + c dt k_prev, dt = h / steps */
+                    stage_sens(s_mat, k_mat[j - 1u], k[j - 1u], c_off[j] * dt,
+                               c_off[j] * inv_steps, col_h, ncol, y_mat);
+                }
+                stage_k(jx, ju, jt, y_mat, nu, s_frac, ncol, k_mat[j]);
+            }
+        }
+        if (st == OGK_OK) {
+            for (i = 0u; i < NX; ++i) {
+                x[i] += (dt / 6.0) * (k[0][i] + (2.0 * k[1][i]) + (2.0 * k[2][i]) + k[3][i]);
+            }
+            if (sens != NULL) {
+                for (i = 0u; i < NX; ++i) {
+                    double k_sum = 0.0;
+                    for (c = 0u; c < ncol; ++c) {
+                        double acc = 0.0;
+                        for (j = 0u; j < 4u; ++j) {
+                            acc += w_rk[j] * k_mat[j][(i * NCOL) + c];
+                        }
+                        s_mat[(i * NCOL) + c] += (dt / 6.0) * acc;
+                    }
+                    for (j = 0u; j < 4u; ++j) {
+                        k_sum += w_rk[j] * k[j][i];
+                    }
+                    s_mat[(i * NCOL) + col_h] += (inv_steps / 6.0) * k_sum;
+                }
+            }
+        }
+    }
+    if (st == OGK_OK) {
+        (void)memcpy(xf, x, sizeof(x));
+        if (sens != NULL) {
+            (void)memcpy(sens, s_mat, sizeof(s_mat));
+        }
+    }
+    return st;
+}

@@ -1,0 +1,522 @@
+/* nmpc_sqp.c -- the NMPC's SQP on the multiple-shooting transcription
+ * (docs/nmpc.md, "Flight solver"):
+ *   1. every interval F_k with its exact sensitivities (nmpc_shoot.c);
+ *   2. the state corrections condensed away: dX_{k+1} = A_k dX_k + B0_k dU_k
+ *      + B1_k dU_{k+1} + t_k dT + d_k, dX_0 = 0 (d_k = F_k - X_{k+1}), so the
+ *      QP unknowns are v = (dU_0 .. dU_N, dT) and only dX_N enters it
+ *      (no path constraints on the states);
+ *   3. the QP  min g^T v + 1/2 v^T H v  s.t. the linearised eq. (5), throttle
+ *      and horizon bounds, a box on each step, the optional sweep bound;
+ *      H a damped-BFGS (Powell) approximation of the reduced Hessian of the
+ *      Lagrangian, carried from solve to solve (the dual warm start);
+ *   4. a filter line search (Waechter & Biegler, Math. Prog. 106, 2006,
+ *      sec. 2.3, without its restoration phase) on the pair (theta, J),
+ *      theta = sum |d_k|_1 + |c|_1: an l1 merit function with Armijo
+ *      backtracking stalled on the Maratos effect (steps of 1/32 for
+ *      hundreds of iterations near the solution; docs/nmpc.md).
+ * Converged when every defect and terminal residual is within tol_feas and
+ * |H v|_inf (the reduced stationarity residual) within tol_stat. */
+#include "nmpc_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "ogk_checks.h"
+
+#define NX OGK_NMPC_NX
+#define NC OGK_NMPC_NC
+#define NCOL OGK_I_NMPC_MAX_COLS
+#define MAXV OGK_NMPC_MAX_VARS
+
+/* Armijo constant and backtracking factor of the line search. */
+#define ARMIJO_C1 1.0e-4
+#define BACKTRACK 0.5
+/* Filter line search constants (Waechter & Biegler 2006, sec. 2.3). */
+#define FILTER_SIZE 32u
+#define FILTER_GAMMA 1.0e-5
+#define FILTER_S_THETA 1.1
+#define FILTER_S_PHI 2.3
+/* Powell damping: keep s^T y >= 0.2 s^T H s. */
+#define POWELL_DAMP 0.2
+
+static size_t n_vars(const ogk_nmpc_plan_t *p)
+{
+    return ((size_t)p->nodes + 1u) * (size_t)p->nu + 1u;
+}
+
+/* Merit pieces of a plan: l1 and max norms of every defect and terminal
+ * residual. Stores F_k and the sensitivities in ctx when with_sens. */
+static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
+                           bool with_sens, double *viol_l1, double *viol_max,
+                           double *c_term)
+{
+    ogk_status st = OGK_OK;
+    const uint32_t nu = p->nu;
+    const double h = p->horizon / (double)p->nodes;
+    double sens[NX * NCOL] = { 0.0 };
+    double x1[NX];
+    double l1 = 0.0;
+    double mx = 0.0;
+    uint32_t k;
+    size_t i;
+    size_t j;
+
+    for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES) && (st == OGK_OK); ++k) {
+        const double t_start = p->t0 + ((double)k * h);
+        st = ogk_i_nmpc_shoot(&ctx->cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu],
+                              &p->u[(k + 1u) * nu], x1, with_sens ? sens : NULL);
+        if (st == OGK_OK) {
+            for (i = 0u; i < NX; ++i) {
+                const double d = x1[i] - p->x[((k + 1u) * NX) + i];
+                l1 += fabs(d);
+                mx = (fabs(d) > mx) ? fabs(d) : mx;
+            }
+            if (with_sens) {
+                const size_t col_h = NX + (2u * (size_t)nu);
+                (void)memcpy(&ctx->sens_f[k * NX], x1, sizeof(x1));
+                for (i = 0u; i < NX; ++i) {
+                    for (j = 0u; j < NX; ++j) {
+                        ctx->sens_a[(k * NX * NX) + (i * NX) + j] = sens[(i * NCOL) + j];
+                    }
+                    for (j = 0u; j < nu; ++j) {
+                        ctx->sens_b0[(k * NX * nu) + (i * nu) + j] = sens[(i * NCOL) + NX + j];
+                        ctx->sens_b1[(k * NX * nu) + (i * nu) + j] = sens[(i * NCOL) + NX + nu + j];
+                    }
+                    /* h = T / N and t_start = t0 + k T / N */
+                    ctx->sens_t[(k * NX) + i] = (sens[(i * NCOL) + col_h]
+                        + ((double)k * sens[(i * NCOL) + col_h + 1u])) / (double)p->nodes;
+                }
+            }
+        }
+    }
+    if (st == OGK_OK) {
+        ogk_i_nmpc_terminal(&ctx->cfg, &p->x[p->nodes * NX], p->t0 + p->horizon, c_term);
+        for (i = 0u; i < NC; ++i) {
+            l1 += fabs(c_term[i]);
+            mx = (fabs(c_term[i]) > mx) ? fabs(c_term[i]) : mx;
+        }
+        *viol_l1 = l1;
+        *viol_max = mx;
+    }
+    return st;
+}
+
+/* G_N = dX_N/dv and e_N = dX_N(v = 0) by the forward recursion. */
+static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
+{
+    const uint32_t nu = p->nu;
+    const size_t col_t = nv - 1u;
+    double g_next[NX * MAXV];
+    double e_next[NX];
+    uint32_t k;
+    size_t i;
+    size_t j;
+    size_t c;
+
+    (void)memset(ctx->cond_g, 0, NX * nv * sizeof(double));
+    (void)memset(ctx->cond_e, 0, sizeof(ctx->cond_e));
+    for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
+        const double *a = &ctx->sens_a[k * NX * NX];
+        /* columns that can be nonzero after interval k: U_0..U_{k+1}, T */
+        const size_t n_used = ((size_t)k + 2u) * nu;
+        for (i = 0u; i < NX; ++i) {
+            double acc_e = 0.0;
+            for (c = 0u; c < n_used; ++c) {
+                double acc = 0.0;
+                for (j = 0u; j < NX; ++j) {
+                    acc += a[(i * NX) + j] * ctx->cond_g[(j * nv) + c];
+                }
+                g_next[(i * nv) + c] = acc;
+            }
+            {
+                double acc = 0.0;
+                for (j = 0u; j < NX; ++j) {
+                    acc += a[(i * NX) + j] * ctx->cond_g[(j * nv) + col_t];
+                    acc_e += a[(i * NX) + j] * ctx->cond_e[j];
+                }
+                g_next[(i * nv) + col_t] = acc + ctx->sens_t[(k * NX) + i];
+            }
+            for (j = 0u; j < nu; ++j) {
+                g_next[(i * nv) + ((size_t)k * nu) + j] += ctx->sens_b0[(k * NX * nu) + (i * nu) + j];
+                g_next[(i * nv) + (((size_t)k + 1u) * nu) + j] += ctx->sens_b1[(k * NX * nu) + (i * nu) + j];
+            }
+            e_next[i] = acc_e + (ctx->sens_f[(k * NX) + i] - p->x[((k + 1u) * NX) + i]);
+        }
+        for (i = 0u; i < NX; ++i) {
+            for (c = 0u; c < n_used; ++c) {
+                ctx->cond_g[(i * nv) + c] = g_next[(i * nv) + c];
+            }
+            ctx->cond_g[(i * nv) + col_t] = g_next[(i * nv) + col_t];
+        }
+        (void)memcpy(ctx->cond_e, e_next, sizeof(e_next));
+    }
+}
+
+/* Objective gradient in v and the QP's equality rows (linearised eq. 5). */
+static void build_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
+                               size_t nv, const double *c_term, double *g_obj)
+{
+    const size_t col_t = nv - 1u;
+    size_t i;
+    size_t c;
+
+    (void)memset(g_obj, 0, nv * sizeof(double));
+    if (ctx->cfg.objective == OGK_NMPC_MIN_FUEL) {
+        for (c = 0u; c < nv; ++c) {
+            g_obj[c] = -ctx->cond_g[(4u * nv) + c]; /* J = m_0 - m_N */
+        }
+    } else {
+        g_obj[col_t] = 1.0; /* J = T */
+    }
+    for (i = 0u; i < NC; ++i) {
+        for (c = 0u; c < nv; ++c) {
+            ctx->qp_aeq[(i * nv) + c] = ctx->cond_g[(i * nv) + c];
+        }
+        ctx->qp_beq[i] = -(c_term[i] + ctx->cond_e[i]);
+    }
+    /* theta_T(t_f) moves with T */
+    ctx->qp_aeq[(1u * nv) + col_t] -= ctx->cfg.target_rate;
+    (void)p;
+}
+
+/* Bounds of the QP unknowns and the sweep rows; returns the number of rows. */
+static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
+{
+    const uint32_t nu = p->nu;
+    const ogk_nmpc_config_t *cfg = &ctx->cfg;
+    size_t rows = 0u;
+    uint32_t k;
+    double lo;
+    double hi;
+
+    for (k = 0u; (k <= p->nodes) && (k <= OGK_NMPC_MAX_NODES); ++k) {
+        ctx->qp_lb[(size_t)k * nu] = -cfg->step_max_alpha;
+        ctx->qp_ub[(size_t)k * nu] = cfg->step_max_alpha;
+        if (nu > 1u) {
+            const double w = p->u[((size_t)k * nu) + 1u];
+            lo = -w;
+            hi = 1.0 - w;
+            ctx->qp_lb[((size_t)k * nu) + 1u] = (lo < hi) ? lo : hi;
+            ctx->qp_ub[((size_t)k * nu) + 1u] = hi;
+        }
+    }
+    lo = cfg->horizon_min - p->horizon;
+    hi = cfg->horizon_max - p->horizon;
+    lo = (lo > -cfg->step_max_horizon) ? lo : -cfg->step_max_horizon;
+    hi = (hi < cfg->step_max_horizon) ? hi : cfg->step_max_horizon;
+    ctx->qp_lb[nv - 1u] = lo;
+    ctx->qp_ub[nv - 1u] = (hi > lo) ? hi : lo;
+    if (cfg->max_sweep > 0.0) {
+        (void)memset(ctx->qp_ain, 0, 2u * (size_t)p->nodes * nv * sizeof(double));
+        for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
+            const double sweep = p->u[((size_t)k + 1u) * nu] - p->u[(size_t)k * nu];
+            /* -max <= sweep + da_{k+1} - da_k <= max */
+            ctx->qp_ain[(rows * nv) + (((size_t)k + 1u) * nu)] = 1.0;
+            ctx->qp_ain[(rows * nv) + ((size_t)k * nu)] = -1.0;
+            ctx->qp_bin[rows] = -cfg->max_sweep - sweep;
+            ++rows;
+            ctx->qp_ain[(rows * nv) + (((size_t)k + 1u) * nu)] = -1.0;
+            ctx->qp_ain[(rows * nv) + ((size_t)k * nu)] = 1.0;
+            ctx->qp_bin[rows] = -cfg->max_sweep + sweep;
+            ++rows;
+        }
+    }
+    return rows;
+}
+
+/* State part of the step: dX_{k+1} = A_k dX_k + B0 dU_k + B1 dU_{k+1} + t_k dT + d_k. */
+static void expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const double *v, size_t nv)
+{
+    const uint32_t nu = p->nu;
+    uint32_t k;
+    size_t i;
+    size_t j;
+
+    (void)memset(ctx->dx, 0, NX * sizeof(double));
+    for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
+        for (i = 0u; i < NX; ++i) {
+            double acc = ctx->sens_f[(k * NX) + i] - p->x[((k + 1u) * NX) + i];
+            for (j = 0u; j < NX; ++j) {
+                acc += ctx->sens_a[(k * NX * NX) + (i * NX) + j] * ctx->dx[(k * NX) + j];
+            }
+            for (j = 0u; j < nu; ++j) {
+                acc += ctx->sens_b0[(k * NX * nu) + (i * nu) + j] * v[((size_t)k * nu) + j];
+                acc += ctx->sens_b1[(k * NX * nu) + (i * nu) + j] * v[(((size_t)k + 1u) * nu) + j];
+            }
+            acc += ctx->sens_t[(k * NX) + i] * v[nv - 1u];
+            ctx->dx[((k + 1u) * NX) + i] = acc;
+        }
+    }
+}
+
+/* trial = work + alpha * step */
+static void take_step(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const double *v,
+                      size_t nv, double alpha, ogk_nmpc_plan_t *trial)
+{
+    const uint32_t nu = p->nu;
+    size_t i;
+    (void)memcpy(trial, p, sizeof(*trial));
+    for (i = NX; i < (((size_t)p->nodes + 1u) * NX); ++i) {
+        trial->x[i] = p->x[i] + (alpha * ctx->dx[i]);
+    }
+    for (i = 0u; i < (((size_t)p->nodes + 1u) * nu); ++i) {
+        trial->u[i] = p->u[i] + (alpha * v[i]);
+    }
+    if (nu > 1u) {
+        /* the QP's throttle bounds are exact; clip rounding only */
+        for (i = 0u; i <= (size_t)p->nodes; ++i) {
+            double w = trial->u[(i * nu) + 1u];
+            w = (w < 0.0) ? 0.0 : w;
+            trial->u[(i * nu) + 1u] = (w > 1.0) ? 1.0 : w;
+        }
+    }
+    trial->horizon = p->horizon + (alpha * v[nv - 1u]);
+}
+
+/* Damped BFGS update of H with the step s and the gradient change y. */
+static void bfgs_update(double *hess, size_t nv, const double *s, double *y, bool first)
+{
+    double hs[MAXV];
+    double s_hs = 0.0;
+    double s_y = 0.0;
+    double y_y = 0.0;
+    size_t i;
+    size_t j;
+
+    for (i = 0u; i < nv; ++i) {
+        s_y += s[i] * y[i];
+        y_y += y[i] * y[i];
+    }
+    if (first && (s_y > 0.0) && (y_y > 0.0)) {
+        /* Shanno-Phua scaling of the initial matrix */
+        const double scale = y_y / s_y;
+        for (i = 0u; i < nv; ++i) {
+            for (j = 0u; j < nv; ++j) {
+                hess[(i * nv) + j] = (i == j) ? scale : 0.0;
+            }
+        }
+    }
+    for (i = 0u; i < nv; ++i) {
+        double acc = 0.0;
+        for (j = 0u; j < nv; ++j) {
+            acc += hess[(i * nv) + j] * s[j];
+        }
+        hs[i] = acc;
+        s_hs += s[i] * acc;
+    }
+    if (s_hs > (1.0e-300)) {
+        if (s_y < (POWELL_DAMP * s_hs)) {
+            const double theta = (1.0 - POWELL_DAMP) * s_hs / (s_hs - s_y);
+            s_y = 0.0;
+            for (i = 0u; i < nv; ++i) {
+                y[i] = (theta * y[i]) + ((1.0 - theta) * hs[i]);
+                s_y += s[i] * y[i];
+            }
+        }
+        if (s_y > 0.0) {
+            for (i = 0u; i < nv; ++i) {
+                for (j = 0u; j < nv; ++j) {
+                    hess[(i * nv) + j] += ((y[i] * y[j]) / s_y) - ((hs[i] * hs[j]) / s_hs);
+                }
+            }
+        }
+    }
+}
+
+static void identity(double *hess, size_t nv, double scale)
+{
+    size_t i;
+    size_t j;
+    for (i = 0u; i < nv; ++i) {
+        for (j = 0u; j < nv; ++j) {
+            hess[(i * nv) + j] = (i == j) ? scale : 0.0;
+        }
+    }
+}
+
+/* Reduced gradient of the Lagrangian, g - A_eq^T y. */
+static void lagrangian_gradient(const ogk_nmpc_t *ctx, size_t nv, const double *g_obj,
+                                const double *y, double *out)
+{
+    size_t c;
+    size_t i;
+    for (c = 0u; c < nv; ++c) {
+        double acc = g_obj[c];
+        for (i = 0u; i < NC; ++i) {
+            acc -= ctx->qp_aeq[(i * nv) + c] * y[i];
+        }
+        out[c] = acc;
+    }
+}
+
+ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
+                          ogk_nmpc_report_t *rep)
+{
+    ogk_nmpc_plan_t *p = &ctx->work;
+    const ogk_nmpc_config_t *cfg = &ctx->cfg;
+    const size_t nv = n_vars(p);
+    ogk_status st = OGK_OK;
+    bool done = false;
+    bool have_prev = false;
+    bool first_update = cold;
+    double g_obj[MAXV];
+    double grad_new[MAXV];
+    double c_term[NC];
+    double c_trial[NC];
+    double y_prev[NC];
+    double filter_theta[FILTER_SIZE];
+    double filter_phi[FILTER_SIZE];
+    uint32_t n_filter = 0u;
+    uint32_t filter_next = 0u;
+    double theta_max = 0.0;
+    double theta_min = 0.0;
+    bool first_iter = true;
+    double viol_l1 = 0.0;
+    double viol_max = 0.0;
+    uint32_t iter;
+    size_t i;
+    ogk_qp_problem_t qp;
+
+    if (cold) {
+        identity(hess, nv, cfg->hessian_init);
+    }
+    (void)memcpy(y_prev, p->lambda, sizeof(y_prev));
+    rep->stat = 0.0;
+    for (iter = 0u; (iter < cfg->max_iter) && (iter < OGK_NMPC_MAX_SQP_ITER) && !done; ++iter) {
+        st = evaluate(ctx, p, true, &viol_l1, &viol_max, c_term);
+        if (st != OGK_OK) {
+            done = true;
+            break;
+        }
+        condense(ctx, p, nv);
+        build_linear_terms(ctx, p, nv, c_term, g_obj);
+        if (have_prev) {
+            /* y = grad L(new iterate) - grad L(old iterate), both with the last QP's multipliers */
+            lagrangian_gradient(ctx, nv, g_obj, y_prev, grad_new);
+            for (i = 0u; i < nv; ++i) {
+                grad_new[i] -= ctx->grad_lag[i];
+            }
+            bfgs_update(hess, nv, ctx->step_v, grad_new, first_update);
+            first_update = false;
+        }
+        const size_t rows = build_bounds(ctx, p, nv);
+        qp.n = nv;
+        qp.m_eq = NC;
+        qp.m_in = rows;
+        qp.H = hess;
+        qp.g = g_obj;
+        qp.A_eq = ctx->qp_aeq;
+        qp.b_eq = ctx->qp_beq;
+        qp.A_in = (rows > 0u) ? ctx->qp_ain : NULL;
+        qp.b_in = (rows > 0u) ? ctx->qp_bin : NULL;
+        qp.lb = ctx->qp_lb;
+        qp.ub = ctx->qp_ub;
+        st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+        if (st == OGK_E_NOT_POSDEF) {
+            identity(hess, nv, cfg->hessian_init);
+            first_update = true;
+            st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+        }
+        rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
+        rep->sqp_iterations += 1u;
+        if (st != OGK_OK) {
+            done = true;
+            break;
+        }
+        {
+            /* reduced stationarity |H v|_inf = |g - A^T y - z|_inf */
+            double stat = 0.0;
+            size_t j;
+            for (i = 0u; i < nv; ++i) {
+                double acc = 0.0;
+                for (j = 0u; j < nv; ++j) {
+                    acc += hess[(i * nv) + j] * ctx->qp_sol.x[j];
+                }
+                stat = (fabs(acc) > stat) ? fabs(acc) : stat;
+            }
+            rep->stat = stat;
+            if ((viol_max <= cfg->tol_feas) && (stat <= cfg->tol_stat)) {
+                (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
+                done = true;
+                break;
+            }
+        }
+        expand_step(ctx, p, ctx->qp_sol.x, nv);
+        {
+            /* filter line search (Waechter & Biegler 2006, without the
+             * restoration phase): theta = l1 violation, phi = J */
+            const double phi0 = ogk_i_nmpc_objective(cfg, p);
+            const double theta0 = viol_l1;
+            const double dphi = (cfg->objective == OGK_NMPC_MIN_FUEL)
+                ? -ctx->dx[(p->nodes * NX) + 4u] : ctx->qp_sol.x[nv - 1u];
+            double alpha = 1.0;
+            bool accepted = false;
+            bool f_type = false;
+            uint32_t ls;
+
+            if (first_iter) {
+                theta_max = 1.0e4 * ((theta0 > 1.0) ? theta0 : 1.0);
+                theta_min = 1.0e-4 * ((theta0 > 1.0) ? theta0 : 1.0);
+                first_iter = false;
+            }
+            for (ls = 0u; (ls < OGK_NMPC_MAX_LINE_SEARCH) && !accepted; ++ls) {
+                double t_l1 = 0.0;
+                double t_max = 0.0;
+                ogk_status ts;
+                take_step(ctx, p, ctx->qp_sol.x, nv, alpha, &ctx->trial);
+                ts = evaluate(ctx, &ctx->trial, false, &t_l1, &t_max, c_trial);
+                if ((ts == OGK_OK) && (t_l1 <= theta_max)) {
+                    const double phi_t = ogk_i_nmpc_objective(cfg, &ctx->trial);
+                    const double m_alpha = alpha * dphi;
+                    f_type = (dphi < 0.0) && (theta0 <= theta_min)
+                        && ((alpha * pow(-m_alpha, FILTER_S_PHI)) > pow(theta0, FILTER_S_THETA));
+                    if (f_type) {
+                        accepted = phi_t <= (phi0 + (ARMIJO_C1 * m_alpha));
+                    } else {
+                        accepted = (t_l1 <= ((1.0 - FILTER_GAMMA) * theta0))
+                            || (phi_t <= (phi0 - (FILTER_GAMMA * theta0)));
+                    }
+                    if (accepted) {
+                        uint32_t f;
+                        for (f = 0u; (f < n_filter) && (f < FILTER_SIZE) && accepted; ++f) {
+                            if ((t_l1 >= filter_theta[f]) && (phi_t >= filter_phi[f])) {
+                                accepted = false;
+                            }
+                        }
+                    }
+                }
+                if (!accepted) {
+                    alpha *= BACKTRACK;
+                }
+            }
+            if (!accepted) {
+                rep->flags |= OGK_NMPC_FLAG_LS_FAILED;
+                st = OGK_E_NOT_CONVERGED;
+                done = true;
+                break;
+            }
+            if (!f_type) {
+                /* augment the filter (oldest entry replaced when full) */
+                const uint32_t slot = (n_filter < FILTER_SIZE) ? n_filter : (filter_next % FILTER_SIZE);
+                filter_theta[slot] = (1.0 - FILTER_GAMMA) * theta0;
+                filter_phi[slot] = phi0 - (FILTER_GAMMA * theta0);
+                n_filter = (n_filter < FILTER_SIZE) ? (n_filter + 1u) : n_filter;
+                filter_next = (slot + 1u) % FILTER_SIZE;
+            }
+            (void)memcpy(p, &ctx->trial, sizeof(*p));
+            lagrangian_gradient(ctx, nv, g_obj, ctx->qp_sol.y_eq, ctx->grad_lag);
+            for (i = 0u; i < nv; ++i) {
+                ctx->step_v[i] = alpha * ctx->qp_sol.x[i];
+            }
+            (void)memcpy(y_prev, ctx->qp_sol.y_eq, sizeof(y_prev));
+            (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
+            have_prev = true;
+        }
+    }
+    if ((st == OGK_OK) && !done) {
+        st = OGK_E_ITER_LIMIT;
+    }
+    rep->feas = viol_max;
+    rep->solves += 1u;
+    return st;
+}
