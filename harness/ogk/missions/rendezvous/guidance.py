@@ -1,0 +1,208 @@
+"""Receding-horizon guidance of the rendezvous closed loop (Starek & Kolmanovsky 2012, sec. 2.3).
+
+`Guidance` is what the closed loop (closed_loop.py) flies: at the start of each control subinterval it calls
+`replan(t, x)` with the measured (truth) state, then flies `command(t)` until the returned `t_next` (the end
+of the plan's first subinterval), and replans there. Two implementations are meant to plug in:
+
+- `IpoptGuidance` (here): the ground NLP (ogk_host.rendezvous.nlp.RendezvousNlp, CasADi + IPOPT) re-solved
+  with the strategies of strategy.py, warm started primal and dual from the shifted previous solution;
+- the flight code's `ogk_nmpc` (C kernel), added by the lead in `make_guidance` below.
+
+All times and states are normalised (TU, LU, VU, MU: docs/nmpc.md, "Units").
+"""
+from __future__ import annotations
+
+import dataclasses
+from typing import Any, Protocol
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from ogk_host.errors import OgkInputError
+from ogk_host.rendezvous.dynamics import DAY_S, Model
+from ogk_host.rendezvous.nlp import NlpResult, RendezvousNlp
+from ogk_host.rendezvous.ocp import DEFAULT_GUESS_ALPHA_RAD, DEFAULT_GUESS_SHAPE, DEFAULT_GUESS_TF_DAYS
+from ogk_host.rendezvous.ocp import phase_matched_guess
+from ogk_host.rendezvous.plan import Plan
+from ogk_host.rendezvous.scenario import RendezvousScenario
+
+from . import strategy as st
+
+FloatArray = NDArray[np.float64]
+
+SOLVERS = ("ipopt", "kernel")
+
+
+@dataclasses.dataclass(frozen=True)
+class ReplanInfo:
+    """What one replan did (one row of the flight's history)."""
+
+    t: float                    #: time of the replan [TU]
+    t_next: float               #: time of the next replan: end of the flown plan's first subinterval [TU]
+    converged: bool             #: the plan flown from t was solved now (False: the previous plan is flown on)
+    failed: bool                #: no solve of this replan converged
+    iterations: int             #: solver iterations, every solve of this replan (N and 2N)
+    solve_time_s: float         #: solver wall time, every solve of this replan
+    solves: int                 #: NLP solves in this replan (SNNS: 2 while doubling is tested)
+    nodes: int                  #: N of the plan flown from t
+    subdivided: bool            #: the doubled plan was adopted here
+    objective: float | None     #: cost-to-go of the adopted solution (normalised), None when failed
+    status: str                 #: solver status of the adopted (or failed N) solve
+    plan: Plan                  #: the plan flown from t (on a failure: the previous plan's remainder)
+
+
+class Guidance(Protocol):
+    """What the closed loop needs from a guidance implementation."""
+
+    name: str
+
+    def replan(self, t: float, x: FloatArray) -> ReplanInfo:
+        """Called at the start of each control subinterval with the measured state."""
+        ...
+
+    def command(self, t: float) -> tuple[float, float]:
+        """(alpha [rad], throttle w in [0, 1]) at time t: the piecewise-linear plan control (w = 1 for a
+        constant-thrust engine)."""
+        ...
+
+
+# --------------------------------------------------------------------------------------------------------
+
+def first_guess(scenario: RendezvousScenario, nodes: int, t: float, x: ArrayLike, nu: int) -> Plan:
+    """The documented open-loop guess (ocp.default_guess: phase-matched, t_f 370 d, 135 deg), as a plan
+    from (t, x); a throttle column of 1 (full thrust) when nu = 2."""
+    model = Model.for_scenario(scenario)
+    g = phase_matched_guess(model, nodes, DEFAULT_GUESS_TF_DAYS, DEFAULT_GUESS_SHAPE,
+                            DEFAULT_GUESS_ALPHA_RAD, label="documented")
+    controls = g.controls.reshape(-1, 1)
+    if nu == 2:
+        controls = np.hstack([controls, np.ones_like(controls)])
+    states = np.array(g.states, copy=True)
+    states[0] = np.asarray(x, dtype=np.float64)
+    return Plan(t0=t, horizon=g.t_f, states=states, controls=controls)
+
+
+def strategy_settings(scenario: RendezvousScenario, name: str | None = None) -> st.StrategySettings:
+    """The strategy of scenario [nmpc] (`name` overrides its default strategy)."""
+    n = scenario.nmpc
+    units = Model.for_scenario(scenario).units
+    return st.StrategySettings(name=name or n.strategy, doubling_threshold_percent=n.doubling_threshold_percent,
+                               max_subdivisions=n.max_subdivisions, min_nodes=n.min_nodes,
+                               min_horizon=DAY_S / units.time_s)
+
+
+class IpoptGuidance:
+    """The ground NLP re-solved along the flight with SNNS or CNCN (strategy.py).
+
+    - first replan: the open-loop problem from the documented guess (`first_guess`), N = [ocp] nodes;
+    - SNNS: guess = the previous plan shifted (`strategy.snns_guess`), primal and dual warm start; while
+      subdivisions remain, the doubled guess is solved too and adopted by `strategy.adopt_doubled`;
+    - CNCN: guess = the previous plan regridded with the same N (primal warm start only: interpolated duals
+      are no better than none);
+    - a replan where no solve converges keeps flying the previous plan (its next subinterval) and is counted
+      in `failed_solves`; its remainder is the guess of the next replan.
+    """
+
+    name = "ipopt"
+
+    def __init__(self, scenario: RendezvousScenario, strategy: st.StrategySettings,
+                 third_bodies: bool | None = None) -> None:
+        self.scenario = scenario
+        self.strategy = strategy
+        n = scenario.nmpc
+        self.third_bodies = n.third_bodies_in_model if third_bodies is None else third_bodies
+        # one NLP object for every node count (it builds and caches one IPOPT solver per N, cold and warm)
+        self.nlp = RendezvousNlp(scenario, rk4_steps=n.rk4_steps_per_interval, third_bodies=self.third_bodies,
+                                 tol=n.tol, constr_viol_tol=n.constr_viol_tol, max_iter=n.max_iter)
+        self.nu = int(self.nlp.nu)
+        self._plan: Plan | None = None          # basis of the next guess
+        self._flying: Plan | None = None        # the plan commanded now
+        self._duals: Any = None                 # duals of self._plan's solve (None after a regrid/failure)
+        self.subdivisions = 0
+        self.failed_solves = 0
+        self.solves = 0
+        self.replans = 0
+
+    def _solve(self, t: float, x: FloatArray, guess: Plan, duals: Any) -> NlpResult:
+        self.solves += 1
+        res = self.nlp.solve(t, x, guess, duals=duals)
+        if not res.converged and duals is not None:
+            # A warm start can stall where a cold start from the same primal point does not; both count.
+            self.solves += 1
+            cold = self.nlp.solve(t, x, guess, duals=None)
+            return dataclasses.replace(cold, iterations=cold.iterations + res.iterations,
+                                       solve_time_s=cold.solve_time_s + res.solve_time_s)
+        return res
+
+    def _guess(self, t: float, x: FloatArray) -> tuple[Plan, Any]:
+        s = self.strategy
+        prev = self._plan
+        if prev is None:
+            return first_guess(self.scenario, self.scenario.ocp.nodes, t, x, self.nu), None
+        if s.name == "cncn":
+            return st.regrid(prev, t, x, self.scenario.ocp.nodes, s.min_horizon), None
+        guess = st.snns_guess(prev, t, x, s.min_nodes, s.min_horizon)
+        duals = None
+        shifted = (guess.nodes == prev.nodes - 1 and guess.t0 == prev.t0 + prev.step)
+        if shifted and self._duals is not None and self._duals.nodes == prev.nodes:
+            duals = self._duals.shifted()
+        return guess, duals
+
+    def replan(self, t: float, x: FloatArray) -> ReplanInfo:
+        x = np.asarray(x, dtype=np.float64)
+        self.replans += 1
+        guess, duals = self._guess(t, x)
+        solves_before = self.solves
+        res = self._solve(t, x, guess, duals)
+        iterations, solve_s = res.iterations, res.solve_time_s
+        adopted: NlpResult | None = res if res.converged else None
+        subdivided = False
+        s = self.strategy
+        if s.name == "snns" and self.subdivisions < s.max_subdivisions:
+            base = res.plan if res.converged else guess
+            res2 = self._solve(t, x, st.subdivide(base), None)
+            iterations += res2.iterations
+            solve_s += res2.solve_time_s
+            cost_n = res.objective if res.converged else None
+            cost_2n = res2.objective if res2.converged else None
+            if st.adopt_doubled(cost_n, cost_2n, s.doubling_threshold_percent):
+                adopted, subdivided = res2, True
+                self.subdivisions += 1
+        solves = self.solves - solves_before
+        if adopted is not None:
+            self._plan = self._flying = adopted.plan
+            self._duals = adopted.duals
+            flown = adopted.plan
+            status = adopted.status
+        else:
+            self.failed_solves += 1
+            self._plan = guess
+            self._duals = None
+            if self._flying is None:
+                self._flying = guess
+            flown = guess
+            status = res.status
+        return ReplanInfo(t=t, t_next=t + flown.step, converged=adopted is not None, failed=adopted is None,
+                          iterations=iterations, solve_time_s=solve_s, solves=solves, nodes=flown.nodes,
+                          subdivided=subdivided, objective=None if adopted is None else adopted.objective,
+                          status=status, plan=flown)
+
+    def command(self, t: float) -> tuple[float, float]:
+        plan = self._flying
+        if plan is None:
+            raise RuntimeError("command() before the first replan()")
+        u = plan.control_at(t)
+        return float(u[0]), (float(u[1]) if u.shape[0] > 1 else 1.0)
+
+
+# ======================================================================================================
+# GUIDANCE FACTORY -- the lead plugs the flight code's solver (ogk_nmpc, C kernel) in here:
+#     if name == "kernel": return KernelGuidance(scenario, strategy)
+# ======================================================================================================
+def make_guidance(name: str, scenario: RendezvousScenario, strategy: st.StrategySettings) -> Guidance:
+    """The guidance implementation `--solver NAME` flies."""
+    if name == "ipopt":
+        return IpoptGuidance(scenario, strategy)
+    if name == "kernel":
+        raise OgkInputError("the flight-code NMPC solver (ogk_nmpc) is not built yet; use --solver ipopt",
+                            key="--solver")
+    raise OgkInputError(f"must be one of {', '.join(SOLVERS)}, got {name!r}", key="--solver")
