@@ -25,6 +25,7 @@ SUBCOMMANDS: tuple[str, ...] = (
     "ogk.cli.cmd_mc",
     "ogk.cli.cmd_cases",
     "ogk.cli.cmd_mpsp",
+    "ogk.cli.cmd_nmpc",
 )
 
 
