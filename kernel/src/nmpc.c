@@ -42,6 +42,7 @@ ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg)
         cfg->hessian_init = 1.0;
         cfg->step_max_alpha = 1.0;
         cfg->step_max_horizon = 1.0;
+        cfg->elastic_weight = 1000.0;
         cfg->strategy = OGK_NMPC_SNNS;
         cfg->min_nodes = 2u;
         cfg->max_subdivisions = 2u;
@@ -57,7 +58,7 @@ static bool config_finite(const ogk_nmpc_config_t *c)
         c->mu, c->thrust_max, c->mass_flow_max, c->solar_length_unit,
         c->target_radius, c->target_phase0, c->target_rate, c->horizon_min,
         c->horizon_max, c->max_sweep, c->tol_feas, c->tol_stat, c->hessian_init,
-        c->step_max_alpha, c->step_max_horizon, c->doubling_threshold
+        c->step_max_alpha, c->step_max_horizon, c->elastic_weight, c->doubling_threshold
     };
     return ogk_i_all_finite(scalars, sizeof(scalars) / sizeof(scalars[0]))
         && ogk_i_all_finite(c->solar_a, 4u) && ogk_i_all_finite(c->solar_thrust, 2u)
@@ -79,7 +80,7 @@ static bool config_valid(const ogk_nmpc_config_t *c)
         && (c->max_sweep >= 0.0)
         && (c->max_iter >= 1u) && (c->max_iter <= OGK_NMPC_MAX_SQP_ITER)
         && (c->tol_feas > 0.0) && (c->tol_stat > 0.0) && (c->hessian_init > 0.0)
-        && (c->step_max_alpha > 0.0) && (c->step_max_horizon > 0.0)
+        && (c->step_max_alpha > 0.0) && (c->step_max_horizon > 0.0) && (c->elastic_weight > 0.0)
         && (c->min_nodes >= 1u) && (c->min_nodes <= OGK_NMPC_MAX_NODES)
         && (c->doubling_threshold >= 0.0)
         && (c->doubling_max_nodes <= (OGK_NMPC_MAX_NODES / 2u))
@@ -215,9 +216,8 @@ static ogk_status check_input(const ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
         (void)memset(rep, 0, sizeof(*rep));
         if (!isfinite(in->t) || !ogk_i_all_finite(in->x, NX)) {
             st = OGK_E_NONFINITE;
-        } else if ((ctx->have_plan == 0u) || !(in->x[0] > 0.0) || !(in->x[4] > 0.0)
-                   || !(in->t < (ctx->plan.t0 + ctx->plan.horizon))) {
-            st = OGK_E_RANGE; /* no plan, outside the model's domain, or past t_f */
+        } else if ((ctx->have_plan == 0u) || !(in->x[0] > 0.0) || !(in->x[4] > 0.0)) {
+            st = OGK_E_RANGE; /* no plan, or outside the model's domain */
         } else {
             /* usable */
         }
@@ -385,6 +385,12 @@ ogk_status ogk_nmpc_replan(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
     ogk_status st = check_input(ctx, in, rep);
     if (st == OGK_OK) {
         ctx->plan_flags = 0u;
+        if (((ctx->plan.t0 + ctx->plan.horizon) - in->t) < ctx->cfg.horizon_min) {
+            /* t_f reached before the target: the plan is stretched to end
+             * horizon_min after t (its nodes scaled in time) */
+            ctx->plan.horizon = (in->t + ctx->cfg.horizon_min) - ctx->plan.t0;
+            ctx->plan_flags |= OGK_NMPC_FLAG_REGRIDDED;
+        }
         shift_plan(ctx, in->t);
         {
             const uint32_t shift_flags = ctx->plan_flags;

@@ -23,6 +23,10 @@
 
 #include "ogk_checks.h"
 
+#if (OGK_NMPC_MAX_QP > OGK_QP_MAX_N) || (OGK_NMPC_NC > OGK_QP_MAX_EQ) || ((2u * OGK_NMPC_MAX_NODES) > OGK_QP_MAX_IN)
+#error "ogk/qp.h limits too small for ogk/nmpc.h (OGK_NMPC_MAX_QP unknowns, 2 OGK_NMPC_MAX_NODES sweep rows)"
+#endif
+
 #define NX OGK_NMPC_NX
 #define NC OGK_NMPC_NC
 #define NCOL OGK_I_NMPC_MAX_COLS
@@ -36,6 +40,12 @@
 #define FILTER_GAMMA 1.0e-5
 #define FILTER_S_THETA 1.1
 #define FILTER_S_PHI 2.3
+/* Curvature of the elastic slacks, relative to elastic_weight. */
+#define ELASTIC_CURVATURE 1.0e-6
+/* Restarts (scaled-identity Hessian, empty filter) after a failed line search. */
+#define MAX_RESTARTS 2u
+/* Factor on the step box of a QP retried after OGK_E_INFEASIBLE. */
+#define BOX_OPEN 1.0e3
 /* Powell damping: keep s^T y >= 0.2 s^T H s. */
 #define POWELL_DAMP 0.2
 
@@ -180,7 +190,8 @@ static void build_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
 }
 
 /* Bounds of the QP unknowns and the sweep rows; returns the number of rows. */
-static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
+static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
+                           double box_scale)
 {
     const uint32_t nu = p->nu;
     const ogk_nmpc_config_t *cfg = &ctx->cfg;
@@ -190,8 +201,8 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
     double hi;
 
     for (k = 0u; (k <= p->nodes) && (k <= OGK_NMPC_MAX_NODES); ++k) {
-        ctx->qp_lb[(size_t)k * nu] = -cfg->step_max_alpha;
-        ctx->qp_ub[(size_t)k * nu] = cfg->step_max_alpha;
+        ctx->qp_lb[(size_t)k * nu] = -cfg->step_max_alpha * box_scale;
+        ctx->qp_ub[(size_t)k * nu] = cfg->step_max_alpha * box_scale;
         if (nu > 1u) {
             const double w = p->u[((size_t)k * nu) + 1u];
             lo = -w;
@@ -202,8 +213,8 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
     }
     lo = cfg->horizon_min - p->horizon;
     hi = cfg->horizon_max - p->horizon;
-    lo = (lo > -cfg->step_max_horizon) ? lo : -cfg->step_max_horizon;
-    hi = (hi < cfg->step_max_horizon) ? hi : cfg->step_max_horizon;
+    lo = (lo > (-cfg->step_max_horizon * box_scale)) ? lo : (-cfg->step_max_horizon * box_scale);
+    hi = (hi < (cfg->step_max_horizon * box_scale)) ? hi : (cfg->step_max_horizon * box_scale);
     ctx->qp_lb[nv - 1u] = lo;
     ctx->qp_ub[nv - 1u] = (hi > lo) ? hi : lo;
     if (cfg->max_sweep > 0.0) {
@@ -271,6 +282,65 @@ static void take_step(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const dou
         }
     }
     trial->horizon = p->horizon + (alpha * v[nv - 1u]);
+}
+
+/* The elastic QP (SNOPT's elastic mode, on eq. 5 only): unknowns
+ * (v, s+, s-), A_eq v + s+ - s- = b_eq, s+-  >= 0, cost + elastic_weight
+ * (s+ + s-) and a small curvature on the slacks (the QP needs H > 0). */
+static ogk_status solve_elastic(ogk_nmpc_t *ctx, const double *hess, const double *g_obj,
+                                size_t nv, size_t rows)
+{
+    const size_t ne = nv + (2u * NC);
+    const double w = ctx->cfg.elastic_weight;
+    ogk_qp_problem_t qp;
+    size_t i;
+    size_t j;
+
+    (void)memset(ctx->el_h, 0, ne * ne * sizeof(double));
+    for (i = 0u; i < nv; ++i) {
+        for (j = 0u; j < nv; ++j) {
+            ctx->el_h[(i * ne) + j] = hess[(i * nv) + j];
+        }
+        ctx->el_g[i] = g_obj[i];
+        ctx->el_lb[i] = ctx->qp_lb[i];
+        ctx->el_ub[i] = ctx->qp_ub[i];
+    }
+    for (i = nv; i < ne; ++i) {
+        ctx->el_h[(i * ne) + i] = ELASTIC_CURVATURE * w;
+        ctx->el_g[i] = w;
+        ctx->el_lb[i] = 0.0;
+        ctx->el_ub[i] = OGK_QP_INF;
+    }
+    for (i = 0u; i < NC; ++i) {
+        for (j = 0u; j < nv; ++j) {
+            ctx->el_aeq[(i * ne) + j] = ctx->qp_aeq[(i * nv) + j];
+        }
+        for (j = nv; j < ne; ++j) {
+            ctx->el_aeq[(i * ne) + j] = 0.0;
+        }
+        ctx->el_aeq[(i * ne) + nv + i] = 1.0;
+        ctx->el_aeq[(i * ne) + nv + NC + i] = -1.0;
+    }
+    for (i = 0u; i < rows; ++i) {
+        for (j = 0u; j < nv; ++j) {
+            ctx->el_ain[(i * ne) + j] = ctx->qp_ain[(i * nv) + j];
+        }
+        for (j = nv; j < ne; ++j) {
+            ctx->el_ain[(i * ne) + j] = 0.0;
+        }
+    }
+    qp.n = ne;
+    qp.m_eq = NC;
+    qp.m_in = rows;
+    qp.H = ctx->el_h;
+    qp.g = ctx->el_g;
+    qp.A_eq = ctx->el_aeq;
+    qp.b_eq = ctx->qp_beq;
+    qp.A_in = (rows > 0u) ? ctx->el_ain : NULL;
+    qp.b_in = (rows > 0u) ? ctx->qp_bin : NULL;
+    qp.lb = ctx->el_lb;
+    qp.ub = ctx->el_ub;
+    return ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
 }
 
 /* Damped BFGS update of H with the step s and the gradient change y. */
@@ -371,6 +441,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     double theta_max = 0.0;
     double theta_min = 0.0;
     bool first_iter = true;
+    uint32_t restarts = 0u;
     double viol_l1 = 0.0;
     double viol_max = 0.0;
     uint32_t iter;
@@ -399,7 +470,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             bfgs_update(hess, nv, ctx->step_v, grad_new, first_update);
             first_update = false;
         }
-        const size_t rows = build_bounds(ctx, p, nv);
+        const size_t rows = build_bounds(ctx, p, nv, 1.0);
         qp.n = nv;
         qp.m_eq = NC;
         qp.m_in = rows;
@@ -416,6 +487,19 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             identity(hess, nv, cfg->hessian_init);
             first_update = true;
             st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+        }
+        if (st == OGK_E_INFEASIBLE) {
+            /* the step box made the linearised eq. (5) unreachable: once more
+             * with the box opened (the physical bounds stay) */
+            rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
+            (void)build_bounds(ctx, p, nv, BOX_OPEN);
+            st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+            if (st == OGK_E_INFEASIBLE) {
+                rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
+                (void)build_bounds(ctx, p, nv, 1.0);
+                st = solve_elastic(ctx, hess, g_obj, nv, rows);
+                rep->flags |= OGK_NMPC_FLAG_ELASTIC;
+            }
         }
         rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
         rep->sqp_iterations += 1u;
@@ -488,6 +572,17 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 if (!accepted) {
                     alpha *= BACKTRACK;
                 }
+            }
+            if (!accepted && (restarts < MAX_RESTARTS)) {
+                /* restart: a BFGS matrix that has drifted and a filter that
+                 * blocks every step are the usual causes */
+                restarts += 1u;
+                identity(hess, nv, cfg->hessian_init);
+                first_update = true;
+                have_prev = false;
+                n_filter = 0u;
+                filter_next = 0u;
+                continue;
             }
             if (!accepted) {
                 rep->flags |= OGK_NMPC_FLAG_LS_FAILED;

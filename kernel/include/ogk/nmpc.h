@@ -70,6 +70,8 @@ extern "C" {
 
 /* QP unknowns: the node-control corrections and the horizon correction. */
 #define OGK_NMPC_MAX_VARS (((OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU) + 1u)
+/* Unknowns of the elastic QP: v and the slacks s+, s- of eq. (5). */
+#define OGK_NMPC_MAX_QP (OGK_NMPC_MAX_VARS + (2u * OGK_NMPC_NC))
 /* Sensitivity directions of one subinterval: X_k, U_k, U_{k+1}, T. */
 #define OGK_NMPC_MAX_DIR (OGK_NMPC_NX + (2u * OGK_NMPC_MAX_NU) + 1u)
 
@@ -93,6 +95,7 @@ extern "C" {
 #define OGK_NMPC_FLAG_REGRIDDED 0x08u   /* nodes re-placed by interpolation (CNCN, or SNNS at min_nodes) */
 #define OGK_NMPC_FLAG_LS_FAILED 0x10u   /* the line search found no acceptable step (solve failed) */
 #define OGK_NMPC_FLAG_END_OF_PLAN 0x20u /* command asked past t_f: the last node's control is held */
+#define OGK_NMPC_FLAG_ELASTIC 0x40u     /* a QP was infeasible and solved in elastic mode (eq. 5 relaxed) */
 
 #define OGK_NMPC_INIT_MARKER 0x4E4D5043u /* "NMPC" */
 
@@ -131,6 +134,7 @@ typedef struct {
     double hessian_init;        /* [-] scale of the first BFGS matrix (identity times it), > 0 (default 1) */
     double step_max_alpha;      /* [rad] bound on one SQP step of a node angle, > 0 (default 1) */
     double step_max_horizon;    /* [TU] bound on one SQP step of T, > 0 (default 1) */
+    double elastic_weight;      /* [J units per residual unit] l1 weight of eq. (5)'s slacks in an elastic QP, > 0 (default 1000) */
     /* receding horizon (sec. 2.3) */
     uint32_t strategy;          /* [-] OGK_NMPC_SNNS or OGK_NMPC_CNCN */
     uint32_t min_nodes;         /* [-] SNNS: fewest subintervals; below it the plan is regridded to min_nodes (default 2) */
@@ -203,7 +207,12 @@ typedef struct {
     /* condensed QP */
     double cond_g[OGK_NMPC_NX * OGK_NMPC_MAX_VARS]; /* dX_N / dv */
     double cond_e[OGK_NMPC_NX];                     /* dX_N at v = 0 (the defects carried) */
-    double qp_g[OGK_NMPC_MAX_VARS];
+    double el_h[OGK_NMPC_MAX_QP * OGK_NMPC_MAX_QP];      /* elastic QP: Hessian */
+    double el_g[OGK_NMPC_MAX_QP];
+    double el_aeq[OGK_NMPC_NC * OGK_NMPC_MAX_QP];
+    double el_ain[2u * OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_QP];
+    double el_lb[OGK_NMPC_MAX_QP];
+    double el_ub[OGK_NMPC_MAX_QP];
     double qp_aeq[OGK_NMPC_NC * OGK_NMPC_MAX_VARS];
     double qp_beq[OGK_NMPC_NC];
     double qp_ain[2u * OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_VARS];

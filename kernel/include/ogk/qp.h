@@ -27,7 +27,7 @@ extern "C" {
 
 /* Largest number of variables. */
 #ifndef OGK_QP_MAX_N
-#define OGK_QP_MAX_N 72u
+#define OGK_QP_MAX_N 80u
 #endif
 /* Largest number of equality rows. */
 #ifndef OGK_QP_MAX_EQ

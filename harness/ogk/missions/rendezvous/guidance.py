@@ -203,6 +203,6 @@ def make_guidance(name: str, scenario: RendezvousScenario, strategy: st.Strategy
     if name == "ipopt":
         return IpoptGuidance(scenario, strategy)
     if name == "kernel":
-        raise OgkInputError("the flight-code NMPC solver (ogk_nmpc) is not built yet; use --solver ipopt",
-                            key="--solver")
+        from .kernel_guidance import KernelGuidance   # the flight code (ogk_nmpc), through cffi
+        return KernelGuidance(scenario, strategy)
     raise OgkInputError(f"must be one of {', '.join(SOLVERS)}, got {name!r}", key="--solver")

@@ -1,0 +1,169 @@
+"""Typed bindings of the kernel's receding-horizon NMPC (kernel/include/ogk/nmpc.h, docs/nmpc.md).
+
+    cfg = NmpcConfig(thrust_max=..., mass_flow_max=..., target_radius=..., target_phase0=...,
+                     target_rate=..., nodes=30, strategy=SNNS)   # ogk_nmpc_config_default underneath
+    g = Nmpc(cfg)                                    # ogk_nmpc_init (KernelError on a rejected config)
+    g.load_plan(t0, horizon, states, controls)       # the ground's plan or a guess
+    rep = g.solve(t, x)                              # open loop from (t, x), the plan as the guess
+    rep = g.replan(t, x)                             # one MPC step: strategy shift, solve, doubling test
+    alpha, throttle, flags, law_flags = g.command(t)
+
+Normalised units throughout (the scenario's LU, TU, MU). ``solve``/``replan`` return a report also when
+the SQP fails (``rep.status`` names why, the previous plan stays flown); bad inputs raise KernelError.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ogk.bindings._ffi import ffi, lib
+from ogk.bindings.config import KernelConfig
+from ogk.bindings.kernel import _check, status_name
+
+F64 = NDArray[np.float64]
+
+__all__ = ["CNCN", "SNNS", "MAX_NODES", "Nmpc", "NmpcConfig", "NmpcReport", "NmpcPlan"]
+
+NX: int = int(lib.OGK_NMPC_NX)
+MAX_NODES: int = int(lib.OGK_NMPC_MAX_NODES)
+MAX_NU: int = int(lib.OGK_NMPC_MAX_NU)
+SNNS: int = int(lib.OGK_NMPC_SNNS)
+CNCN: int = int(lib.OGK_NMPC_CNCN)
+FLAG_CONVERGED: int = int(lib.OGK_NMPC_FLAG_CONVERGED)
+FLAG_STALE: int = int(lib.OGK_NMPC_FLAG_STALE)
+FLAG_SUBDIVIDED: int = int(lib.OGK_NMPC_FLAG_SUBDIVIDED)
+FLAG_REGRIDDED: int = int(lib.OGK_NMPC_FLAG_REGRIDDED)
+
+
+class NmpcConfig(KernelConfig):
+    _ctype = "ogk_nmpc_config_t"
+    _default_fn = "ogk_nmpc_config_default"
+
+
+@dataclasses.dataclass(frozen=True)
+class NmpcPlan:
+    t0: float               #: [TU] time of node 0
+    horizon: float          #: [TU] t_f - t0
+    states: F64             #: (N + 1, 5)
+    controls: F64           #: (N + 1, nu)
+    multipliers: F64        #: (4,) of eq. (5)
+
+
+@dataclasses.dataclass(frozen=True)
+class NmpcReport:
+    status: str             #: "OGK_OK" or why the (last) solve failed
+    flags: int              #: OGK_NMPC_FLAG_*
+    sqp_iterations: int
+    qp_iterations: int
+    solves: int
+    nodes: int
+    t_next: float           #: [TU]
+    t_f: float              #: [TU]
+    objective: float        #: [TU or MU]
+    feas: float
+    stat: float
+
+    @property
+    def converged(self) -> bool:
+        return self.status == "OGK_OK"
+
+    @property
+    def subdivided(self) -> bool:
+        return bool(self.flags & FLAG_SUBDIVIDED)
+
+
+class Nmpc:
+    """One ogk_nmpc_t context (owned by Python; ~230 KiB with the default limits)."""
+
+    def __init__(self, cfg: NmpcConfig) -> None:
+        self._ctx = ffi.new("ogk_nmpc_t *")
+        _check(lib.ogk_nmpc_init(self._ctx, cfg.to_c()), "ogk_nmpc_init")
+        self.nu = int(self._ctx.nu)
+        self._in = ffi.new("ogk_nmpc_input_t *")
+        self._rep = ffi.new("ogk_nmpc_report_t *")
+        self._cmd = ffi.new("ogk_nmpc_command_t *")
+
+    def reset(self) -> None:
+        _check(lib.ogk_nmpc_reset(self._ctx), "ogk_nmpc_reset")
+
+    def load_plan(self, t0: float, horizon: float, states: ArrayLike, controls: ArrayLike,
+                  multipliers: ArrayLike | None = None) -> None:
+        x = np.ascontiguousarray(states, dtype=np.float64)
+        u = np.ascontiguousarray(controls, dtype=np.float64).reshape(x.shape[0], -1)
+        n = x.shape[0] - 1
+        if x.ndim != 2 or x.shape[1] != NX or not 1 <= n <= MAX_NODES:
+            raise ValueError(f"states must be (N + 1, {NX}) with 1 <= N <= {MAX_NODES}, got {x.shape}")
+        plan = ffi.new("ogk_nmpc_plan_t *")
+        plan.t0 = float(t0)
+        plan.horizon = float(horizon)
+        plan.nodes = n
+        plan.nu = u.shape[1]
+        ffi.memmove(plan.x, x.tobytes(), x.nbytes)
+        ffi.memmove(plan.u, u.tobytes(), u.nbytes)
+        if multipliers is not None:
+            lam = np.ascontiguousarray(multipliers, dtype=np.float64)
+            ffi.memmove(getattr(plan, "lambda"), lam.tobytes(), lam.nbytes)
+        _check(lib.ogk_nmpc_load_plan(self._ctx, plan), "ogk_nmpc_load_plan")
+
+    def plan(self) -> NmpcPlan:
+        p = ffi.new("ogk_nmpc_plan_t *")
+        _check(lib.ogk_nmpc_get_plan(self._ctx, p), "ogk_nmpc_get_plan")
+        n, nu = int(p.nodes), int(p.nu)
+        x = np.frombuffer(ffi.buffer(p.x), dtype=np.float64)[: (n + 1) * NX].reshape(n + 1, NX).copy()
+        u = np.frombuffer(ffi.buffer(p.u), dtype=np.float64)[: (n + 1) * nu].reshape(n + 1, nu).copy()
+        lam = np.array([getattr(p, "lambda")[i] for i in range(4)])
+        return NmpcPlan(t0=float(p.t0), horizon=float(p.horizon), states=x, controls=u, multipliers=lam)
+
+    def _call(self, fn: str, t: float, x: ArrayLike) -> NmpcReport:
+        self._in.t = float(t)
+        xs = np.ascontiguousarray(x, dtype=np.float64)
+        for i in range(NX):
+            self._in.x[i] = float(xs[i])
+        status = int(getattr(lib, fn)(self._ctx, self._in, self._rep))
+        solver_codes = {int(lib.OGK_OK), int(lib.OGK_E_ITER_LIMIT), int(lib.OGK_E_NOT_CONVERGED),
+                        int(lib.OGK_E_INFEASIBLE), int(lib.OGK_E_NOT_POSDEF)}
+        r = self._rep
+        solver_failed_inside = status == int(lib.OGK_E_NONFINITE) and r.solves > 0
+        if status not in solver_codes and not solver_failed_inside:
+            _check(status, fn)
+        return NmpcReport(status=status_name(status), flags=int(r.flags), sqp_iterations=int(r.sqp_iterations),
+                          qp_iterations=int(r.qp_iterations), solves=int(r.solves), nodes=int(r.nodes),
+                          t_next=float(r.t_next), t_f=float(r.t_f), objective=float(r.objective),
+                          feas=float(r.feas), stat=float(r.stat))
+
+    def solve(self, t: float, x: ArrayLike) -> NmpcReport:
+        return self._call("ogk_nmpc_solve", t, x)
+
+    def replan(self, t: float, x: ArrayLike) -> NmpcReport:
+        return self._call("ogk_nmpc_replan", t, x)
+
+    def command(self, t: float) -> tuple[float, float, int, int]:
+        _check(lib.ogk_nmpc_command(self._ctx, float(t), self._cmd), "ogk_nmpc_command")
+        c = self._cmd
+        return float(c.alpha), float(c.throttle), int(c.flags), int(c.law_flags)
+
+    def model_rhs(self, t: float, x: ArrayLike, u: ArrayLike) -> F64:
+        xs = np.ascontiguousarray(x, dtype=np.float64)
+        us = np.ascontiguousarray(u, dtype=np.float64)
+        out = np.empty(NX)
+        _check(lib.ogk_nmpc_model_rhs(self._ctx, float(t), ffi.from_buffer("double[]", xs),
+                                      ffi.from_buffer("double[]", us),
+                                      ffi.from_buffer("double[]", out)), "ogk_nmpc_model_rhs")
+        return out
+
+    def interval(self, t0: float, h: float, x0: ArrayLike, u0: ArrayLike,
+                 u1: ArrayLike) -> tuple[F64, F64, F64, F64, F64, F64]:
+        """(x1, dfdx (5, 5), dfdu0 (5, nu), dfdu1 (5, nu), dfdh (5,), dfdt0 (5,)) of one subinterval."""
+        nu = self.nu
+        bufs = [np.empty(NX), np.empty(NX * NX), np.empty(NX * nu), np.empty(NX * nu), np.empty(NX),
+                np.empty(NX)]
+        xs = np.ascontiguousarray(x0, dtype=np.float64)
+        a = np.ascontiguousarray(u0, dtype=np.float64)
+        b = np.ascontiguousarray(u1, dtype=np.float64)
+        _check(lib.ogk_nmpc_interval(self._ctx, float(t0), float(h), ffi.from_buffer("double[]", xs),
+                                     ffi.from_buffer("double[]", a), ffi.from_buffer("double[]", b),
+                                     *[ffi.from_buffer("double[]", q) for q in bufs]), "ogk_nmpc_interval")
+        return (bufs[0], bufs[1].reshape(NX, NX), bufs[2].reshape(NX, nu), bufs[3].reshape(NX, nu),
+                bufs[4], bufs[5])

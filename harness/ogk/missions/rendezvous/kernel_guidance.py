@@ -1,0 +1,113 @@
+"""The flight code's NMPC (`ogk_nmpc`, kernel/include/ogk/nmpc.h) as a `Guidance` of the closed loop.
+
+The kernel owns the whole receding-horizon logic (SNNS drop / min_nodes regrid / doubling test, CNCN
+regrid, the stale-plan fallback); this adapter only maps the scenario to the kernel configuration
+(normalised units of docs/nmpc.md) and times the calls:
+
+- first replan: the documented guess (`guidance.first_guess`) loaded as the plan, then `ogk_nmpc_solve`
+  (the open loop from (t, x), a cold BFGS start);
+- every later replan: `ogk_nmpc_replan` (warm: the shifted plan, its multipliers and BFGS matrix).
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from ogk_host.rendezvous.dynamics import DAY_S, Engine, Model, planets
+from ogk_host.rendezvous.plan import Plan
+from ogk_host.rendezvous.scenario import RendezvousScenario
+
+from ogk.bindings.nmpc import CNCN, FLAG_SUBDIVIDED, MAX_NODES, SNNS, Nmpc, NmpcConfig
+
+from . import strategy as st
+from .guidance import ReplanInfo, first_guess
+
+FloatArray = NDArray[np.float64]
+
+
+def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
+                  third_bodies: bool | None = None, **overrides: object) -> NmpcConfig:
+    """The kernel configuration of a scenario: model, target and transcription from the scenario, the
+    strategy's parameters from [nmpc] (the doubling test runs while 2N fits OGK_NMPC_MAX_NODES)."""
+    model = Model.for_scenario(scenario)
+    engine = Engine.for_scenario(scenario)
+    n = scenario.nmpc
+    use_bodies = n.third_bodies_in_model if third_bodies is None else third_bodies
+    fields: dict[str, object] = dict(
+        mu=1.0,
+        engine=0 if engine.nu == 1 else 1,
+        power=1 if engine.solar else 0,
+        thrust_max=engine.thrust if not engine.solar else 1.0,
+        mass_flow_max=engine.mass_flow if not engine.solar else 1.0,
+        solar_length_unit=1.0 / engine.au_per_lu,
+        solar_a=list(engine.power), solar_thrust=list(engine.thrust_coef), solar_flow=list(engine.flow_coef),
+        target_radius=model.mars_radius, target_phase0=model.mars_theta0, target_rate=model.mars_rate,
+        objective=0 if scenario.ocp.objective == "min-time" else 1,
+        nodes=scenario.ocp.nodes, rk4_steps=n.rk4_steps_per_interval,
+        horizon_min=max(strategy.min_horizon, 1e-3),
+        strategy=SNNS if strategy.name == "snns" else CNCN,
+        min_nodes=strategy.min_nodes, max_subdivisions=strategy.max_subdivisions,
+        doubling_threshold=strategy.doubling_threshold_percent / 100.0,
+        doubling_max_nodes=MAX_NODES // 2,
+        max_iter=200, tol_feas=1e-9, tol_stat=1e-6,
+    )
+    if use_bodies:
+        bodies = planets(scenario)
+        fields.update(n_bodies=len(bodies), body_mu=[b.mu for b in bodies],
+                      body_radius=[b.radius for b in bodies], body_phase0=[b.theta0 for b in bodies],
+                      body_rate=[b.rate for b in bodies])
+    fields.update(overrides)
+    return NmpcConfig(**fields)
+
+
+def to_plan(p) -> Plan:  # type: ignore[no-untyped-def]
+    return Plan(t0=p.t0, horizon=p.horizon, states=p.states, controls=p.controls)
+
+
+class KernelGuidance:
+    """`ogk_nmpc` flown by the closed loop (solve_time_s: wall clock of the C call through cffi)."""
+
+    name = "kernel"
+
+    def __init__(self, scenario: RendezvousScenario, strategy: st.StrategySettings,
+                 third_bodies: bool | None = None, **overrides: object) -> None:
+        self.scenario = scenario
+        self.strategy = strategy
+        self.cfg = kernel_config(scenario, strategy, third_bodies, **overrides)
+        self.nmpc = Nmpc(self.cfg)
+        self.nu = self.nmpc.nu
+        self.started = False
+        self.subdivisions = 0
+        self.failed_solves = 0
+        self.solves = 0
+        self.replans = 0
+
+    def replan(self, t: float, x: ArrayLike) -> ReplanInfo:
+        x = np.asarray(x, dtype=np.float64)
+        self.replans += 1
+        start = time.perf_counter()
+        if not self.started:
+            g = first_guess(self.scenario, self.scenario.ocp.nodes, t, x, self.nu)
+            self.nmpc.load_plan(g.t0, g.horizon, g.states, g.controls)
+            rep = self.nmpc.solve(t, x)
+            self.started = True
+        else:
+            rep = self.nmpc.replan(t, x)
+        elapsed = time.perf_counter() - start
+        self.solves += rep.solves
+        subdivided = bool(rep.flags & FLAG_SUBDIVIDED)
+        self.subdivisions += int(subdivided)
+        self.failed_solves += int(not rep.converged)
+        plan = to_plan(self.nmpc.plan())
+        return ReplanInfo(t=t, t_next=rep.t_next, converged=rep.converged, failed=not rep.converged,
+                          iterations=rep.sqp_iterations, solve_time_s=elapsed, solves=rep.solves,
+                          nodes=rep.nodes, subdivided=subdivided,
+                          objective=rep.objective if rep.converged else None, status=rep.status, plan=plan)
+
+    def command(self, t: float) -> tuple[float, float]:
+        alpha, throttle, _, _ = self.nmpc.command(t)
+        return alpha, throttle
+
+
+__all__ = ["KernelGuidance", "kernel_config", "DAY_S"]

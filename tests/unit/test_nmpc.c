@@ -1,0 +1,514 @@
+/* test_nmpc.c -- the receding-horizon NMPC (ogk/nmpc.h, docs/nmpc.md):
+ *   - configuration defaults and every init rejection;
+ *   - the predictive model against eq. (11) written out here, and its third
+ *     bodies against a Cartesian computation (inertial vectors rotated into
+ *     the spacecraft's polar axes);
+ *   - the sensitivities of one shooting interval against central finite
+ *     differences (solar-electric engine, two third bodies: every column);
+ *   - the SQP on a problem with a known solution: the near-field-free radial
+ *     minimum-time transfer, t* = 2 sqrt(D / a) (accelerate, then brake), the
+ *     discrete optimum above it and closer with more nodes;
+ *   - a coast rendezvous (minimum fuel, the target on the spacecraft's own
+ *     orbit): zero fuel;
+ *   - the strategies (SNNS drop, CNCN regrid), the command, a failed solve
+ *     flying the previous plan with the SAFE flag, bad inputs, reset. */
+#include "ogk_test.h"
+
+#include <string.h>
+
+#include "ogk/nmpc.h"
+#include "ogk/types.h"
+
+#define NX OGK_NMPC_NX
+#define PI 3.14159265358979323846
+
+static ogk_nmpc_t ctx;
+static ogk_nmpc_t ctx2;
+static ogk_nmpc_plan_t plan;
+static ogk_nmpc_plan_t plan2;
+
+/* Earth-to-Mars in the normalised units of docs/nmpc.md (Table A.1). */
+static void mars_config(ogk_nmpc_config_t *c, uint32_t nodes)
+{
+    (void)ogk_nmpc_config_default(c);
+    c->thrust_max = 0.05621056;
+    c->mass_flow_max = 0.05690745;
+    c->target_radius = 1.52367877;
+    c->target_phase0 = 2.2689280275926285;
+    c->target_rate = pow(1.52367877, -1.5);
+    c->nodes = nodes;
+    c->max_iter = 200u;
+    c->tol_stat = 1.0e-7;
+}
+
+/* The phase-matched guess of docs/nmpc.md (smoothstep radius, 135 deg). */
+static void mars_guess(const ogk_nmpc_config_t *c, uint32_t nodes, double t_f, ogk_nmpc_plan_t *p)
+{
+    uint32_t k;
+    const double r0 = 1.0;
+    const double r1 = c->target_radius;
+    (void)memset(p, 0, sizeof *p);
+    p->t0 = 0.0;
+    p->horizon = t_f;
+    p->nodes = nodes;
+    p->nu = 1u;
+    for (k = 0u; k <= nodes; ++k) {
+        const double tau = (double)k / (double)nodes;
+        const double r = r0 + (r1 - r0) * (3.0 * tau * tau - 2.0 * tau * tau * tau);
+        p->x[k * NX + 0u] = r;
+        p->x[k * NX + 1u] = (c->target_phase0 + c->target_rate * t_f) * tau;
+        p->x[k * NX + 2u] = (r1 - r0) * (6.0 * tau - 6.0 * tau * tau) / t_f;
+        p->x[k * NX + 3u] = 1.0 / sqrt(r);
+        p->x[k * NX + 4u] = 1.0 - c->mass_flow_max * t_f * tau;
+        p->u[k] = 0.75 * PI;
+    }
+}
+
+static void test_config_default_and_init(void **state)
+{
+    ogk_nmpc_config_t c;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_nmpc_config_default(NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nmpc_config_default(&c), OGK_OK);
+    OGK_ASSERT_NEAR(c.mu, 1.0, 0.0);
+    assert_int_equal((int)c.nodes, 30);
+    assert_int_equal((int)c.rk4_steps, 8);
+    assert_int_equal((int)c.strategy, (int)OGK_NMPC_SNNS);
+    assert_int_equal((int)c.objective, (int)OGK_NMPC_MIN_TIME);
+    /* the mission data are unset: rejected */
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_E_CONFIG);
+    OGK_ASSERT_STATUS(ogk_nmpc_reset(&ctx), OGK_E_NOT_INIT);
+    mars_config(&c, 8u);
+    OGK_ASSERT_STATUS(ogk_nmpc_init(NULL, &c), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    {
+        ogk_nmpc_config_t bad = c;
+        bad.target_rate = NAN;
+        OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx2, &bad), OGK_E_NONFINITE);
+        bad = c;
+        bad.nodes = OGK_NMPC_MAX_NODES + 1u;
+        OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx2, &bad), OGK_E_CONFIG);
+        bad = c;
+        bad.rk4_steps = 0u;
+        OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx2, &bad), OGK_E_CONFIG);
+        bad = c;
+        bad.horizon_max = bad.horizon_min;
+        OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx2, &bad), OGK_E_CONFIG);
+        bad = c;
+        bad.strategy = 7u;
+        OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx2, &bad), OGK_E_CONFIG);
+        bad = c;
+        bad.doubling_max_nodes = OGK_NMPC_MAX_NODES;
+        OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx2, &bad), OGK_E_CONFIG);
+        bad = c;
+        bad.n_bodies = 1u;
+        bad.body_radius[0] = 0.0;
+        OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx2, &bad), OGK_E_CONFIG);
+        /* a rejected init leaves the context unusable */
+        OGK_ASSERT_STATUS(ogk_nmpc_reset(&ctx2), OGK_E_NOT_INIT);
+    }
+}
+
+static void test_model_closed_form(void **state)
+{
+    ogk_nmpc_config_t c;
+    const double x[NX] = { 1.2, 0.3, 0.05, 0.9, 0.8 };
+    const double u[1] = { 0.7 };
+    double xdot[NX];
+    const double acc = 0.05621056 / 0.8;
+    (void)state;
+    mars_config(&c, 8u);
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, x, u, xdot), OGK_OK);
+    /* eq. (11) and (13) with mu = 1 */
+    OGK_ASSERT_NEAR(xdot[0], 0.05, 1e-15);
+    OGK_ASSERT_NEAR(xdot[1], 0.9 / 1.2, 1e-15);
+    OGK_ASSERT_NEAR(xdot[2], 0.81 / 1.2 - 1.0 / 1.44 + acc * cos(0.7), 1e-15);
+    OGK_ASSERT_NEAR(xdot[3], -0.9 * 0.05 / 1.2 + acc * sin(0.7), 1e-15);
+    OGK_ASSERT_NEAR(xdot[4], -0.05690745, 1e-15);
+    {
+        const double bad[NX] = { -1.0, 0.0, 0.0, 1.0, 1.0 };
+        OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, bad, u, xdot), OGK_E_NONFINITE);
+    }
+}
+
+static void test_third_bodies_cartesian(void **state)
+{
+    ogk_nmpc_config_t c;
+    /* 0.014 LU from the first body at t (its phase 0.1 + 0.37) */
+    const double x[NX] = { 1.01, 0.46, 0.0, 1.0, 1.0 };
+    const double u[1] = { 0.0 };
+    double with_b[NX];
+    double without_b[NX];
+    const double t = 0.37;
+    double ax = 0.0;
+    double ay = 0.0;
+    uint32_t b;
+    (void)state;
+    mars_config(&c, 8u);
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, t, x, u, without_b), OGK_OK);
+    c.n_bodies = 2u;
+    c.body_mu[0] = 3.0e-6;
+    c.body_radius[0] = 1.0;
+    c.body_phase0[0] = 0.1;
+    c.body_rate[0] = 1.0;
+    c.body_mu[1] = 3.2e-7;
+    c.body_radius[1] = 1.52;
+    c.body_phase0[1] = 2.27;
+    c.body_rate[1] = 0.53;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, t, x, u, with_b), OGK_OK);
+    /* inertial vectors: spacecraft, bodies; direct and indirect terms */
+    for (b = 0u; b < 2u; ++b) {
+        const double phi = c.body_phase0[b] + c.body_rate[b] * t;
+        const double bx = c.body_radius[b] * cos(phi);
+        const double by = c.body_radius[b] * sin(phi);
+        const double dx = x[0] * cos(x[1]) - bx;
+        const double dy = x[0] * sin(x[1]) - by;
+        const double d3 = pow(dx * dx + dy * dy, 1.5);
+        const double r3 = pow(c.body_radius[b], 3.0);
+        ax += -c.body_mu[b] * dx / d3 - c.body_mu[b] * bx / r3;
+        ay += -c.body_mu[b] * dy / d3 - c.body_mu[b] * by / r3;
+    }
+    OGK_ASSERT_REL(with_b[2] - without_b[2], ax * cos(x[1]) + ay * sin(x[1]), 1e-9, 1e-12);
+    OGK_ASSERT_REL(with_b[3] - without_b[3], -ax * sin(x[1]) + ay * cos(x[1]), 1e-9, 1e-12);
+    /* Earth's pull at 0.01 LU dominates the field there: the check is not vacuous */
+    assert_true(fabs(ax) > 1.0e-2);
+}
+
+static void test_interval_sensitivities(void **state)
+{
+    ogk_nmpc_config_t c;
+    const double x0[NX] = { 1.01, 0.05, 0.02, 0.98, 0.9 };
+    const double u0[2] = { 0.7, 0.6 };
+    const double u1[2] = { 1.9, 0.3 };
+    const double t0 = 0.3;
+    const double h = 0.2;
+    const double eps = 1.0e-6;
+    double x1[NX];
+    double fx[NX * NX];
+    double fu0[NX * 2];
+    double fu1[NX * 2];
+    double fh[NX];
+    double ft[NX];
+    double worst = 0.0;
+    int col;
+    (void)state;
+    mars_config(&c, 8u);
+    c.engine = OGK_NMPC_ENGINE_THROTTLED;
+    c.power = OGK_NMPC_POWER_SOLAR;
+    c.solar_length_unit = 1.0000000002;
+    c.solar_a[0] = 1.1063;
+    c.solar_a[1] = 0.1495;
+    c.solar_a[2] = -0.299;
+    c.solar_a[3] = -0.0423;
+    c.solar_thrust[0] = -2.0e-4;
+    c.solar_thrust[1] = 0.05;
+    c.solar_flow[0] = 5.0e-3;
+    c.solar_flow[1] = 0.05;
+    c.n_bodies = 2u;
+    c.body_mu[0] = 3.0e-6;
+    c.body_radius[0] = 1.0;
+    c.body_phase0[0] = -0.1;
+    c.body_rate[0] = 1.0;
+    c.body_mu[1] = 3.2e-7;
+    c.body_radius[1] = 1.52;
+    c.body_phase0[1] = 2.27;
+    c.body_rate[1] = 0.53;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_interval(&ctx, t0, h, x0, u0, u1, x1, fx, fu0, fu1, fh, ft), OGK_OK);
+    for (col = 0; col < 11; ++col) {
+        double xp[NX], xm[NX], u0p[2], u0m[2], u1p[2], u1m[2], a[NX], bm[NX];
+        double tp = t0, tm = t0, hp = h, hm = h;
+        int i;
+        (void)memcpy(xp, x0, sizeof xp);
+        (void)memcpy(xm, x0, sizeof xm);
+        (void)memcpy(u0p, u0, sizeof u0p);
+        (void)memcpy(u0m, u0, sizeof u0m);
+        (void)memcpy(u1p, u1, sizeof u1p);
+        (void)memcpy(u1m, u1, sizeof u1m);
+        if (col < 5) { xp[col] += eps; xm[col] -= eps; }
+        else if (col < 7) { u0p[col - 5] += eps; u0m[col - 5] -= eps; }
+        else if (col < 9) { u1p[col - 7] += eps; u1m[col - 7] -= eps; }
+        else if (col == 9) { hp += eps; hm -= eps; }
+        else { tp += eps; tm -= eps; }
+        OGK_ASSERT_STATUS(ogk_nmpc_interval(&ctx, tp, hp, xp, u0p, u1p, a, NULL, NULL, NULL, NULL, NULL), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nmpc_interval(&ctx, tm, hm, xm, u0m, u1m, bm, NULL, NULL, NULL, NULL, NULL), OGK_OK);
+        for (i = 0; i < (int)NX; ++i) {
+            const double fd = (a[i] - bm[i]) / (2.0 * eps);
+            double an;
+            if (col < 5) { an = fx[i * 5 + col]; }
+            else if (col < 7) { an = fu0[i * 2 + col - 5]; }
+            else if (col < 9) { an = fu1[i * 2 + col - 7]; }
+            else if (col == 9) { an = fh[i]; }
+            else { an = ft[i]; }
+            OGK_ASSERT_NEAR(an, fd, 2e-8);
+            worst = fmax(worst, fabs(an));
+        }
+    }
+    assert_true(worst > 0.1); /* the columns are not all zero */
+}
+
+/* Radial minimum-time transfer in a near-field-free region: the continuous
+ * optimum is t* = 2 sqrt(D / a); the discrete one (piecewise-linear angle)
+ * lies above it by O(h^2). */
+static double radial_transfer(uint32_t nodes, uint32_t *iterations)
+{
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    const double a = 0.1;
+    const double dist = 0.5;
+    const double mu = 1.0e-9;
+    const double t_guess = 5.0;
+    uint32_t k;
+    (void)ogk_nmpc_config_default(&c);
+    c.mu = mu;
+    c.thrust_max = a;
+    c.mass_flow_max = 0.0;
+    c.target_radius = 1.0 + dist;
+    c.nodes = nodes;
+    c.rk4_steps = 4u;
+    c.horizon_min = 0.1;
+    c.horizon_max = 20.0;
+    c.max_iter = 200u;
+    c.tol_feas = 1.0e-10;
+    c.tol_stat = 1.0e-8;
+    if (ogk_nmpc_init(&ctx, &c) != OGK_OK) {
+        return -1.0;
+    }
+    (void)memset(&plan, 0, sizeof plan);
+    plan.horizon = t_guess;
+    plan.nodes = nodes;
+    plan.nu = 1u;
+    for (k = 0u; k <= nodes; ++k) {
+        const double tau = (double)k / (double)nodes;
+        plan.x[k * NX + 0u] = 1.0 + dist * (3.0 * tau * tau - 2.0 * tau * tau * tau);
+        plan.x[k * NX + 2u] = dist * (6.0 * tau - 6.0 * tau * tau) / t_guess;
+        plan.x[k * NX + 3u] = sqrt(mu);
+        plan.x[k * NX + 4u] = 1.0;
+        plan.u[k] = ((tau < 0.5) ? 0.0 : PI) + 0.01;
+    }
+    if (ogk_nmpc_load_plan(&ctx, &plan) != OGK_OK) {
+        return -1.0;
+    }
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    if (ogk_nmpc_solve(&ctx, &in, &rep) != OGK_OK) {
+        return -1.0;
+    }
+    *iterations = rep.sqp_iterations;
+    assert_true(rep.feas <= 1.0e-10);
+    return rep.t_f;
+}
+
+static void test_sqp_known_solution(void **state)
+{
+    const double t_star = 2.0 * sqrt(0.5 / 0.1);
+    uint32_t it10 = 0u;
+    uint32_t it20 = 0u;
+    const double t10 = radial_transfer(10u, &it10);
+    const double t20 = radial_transfer(20u, &it20);
+    (void)state;
+    print_message("radial transfer: t* = %.6f, N = 10: %.6f (%u SQP iterations), N = 20: %.6f (%u)\n",
+                  t_star, t10, (unsigned)it10, t20, (unsigned)it20);
+    assert_true(t10 >= t_star * (1.0 - 1.0e-6));
+    assert_true(t20 >= t_star * (1.0 - 1.0e-6));
+    assert_true(t10 <= t_star * 1.01);
+    assert_true(t20 <= t_star * 1.003);
+    /* more nodes, closer: the excess shrinks about fourfold when h halves */
+    assert_true((t20 - t_star) < 0.5 * (t10 - t_star));
+}
+
+/* Minimum fuel with the target on the spacecraft's own circular orbit and
+ * phase: coasting is optimal, fuel 0. */
+static void test_coast_rendezvous_zero_fuel(void **state)
+{
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    const uint32_t nodes = 6u;
+    uint32_t k;
+    (void)state;
+    mars_config(&c, nodes);
+    c.engine = OGK_NMPC_ENGINE_THROTTLED;
+    c.objective = OGK_NMPC_MIN_FUEL;
+    c.target_radius = 1.0;
+    c.target_phase0 = 0.0;
+    c.target_rate = 1.0;
+    c.horizon_min = 1.0;
+    c.horizon_max = 2.0;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    (void)memset(&plan, 0, sizeof plan);
+    plan.horizon = 1.5;
+    plan.nodes = nodes;
+    plan.nu = 2u;
+    for (k = 0u; k <= nodes; ++k) {
+        const double t = 1.5 * (double)k / (double)nodes;
+        plan.x[k * NX + 0u] = 1.0;
+        plan.x[k * NX + 1u] = t;
+        plan.x[k * NX + 3u] = 1.0;
+        plan.x[k * NX + 4u] = 1.0;
+        plan.u[2u * k] = 1.0;
+        plan.u[2u * k + 1u] = 0.5; /* the guess burns: the solve must learn to coast */
+    }
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    OGK_ASSERT_NEAR(rep.objective, 0.0, 1.0e-9);
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
+    for (k = 0u; k <= nodes; ++k) {
+        OGK_ASSERT_NEAR(plan2.u[2u * k + 1u], 0.0, 1.0e-8);
+    }
+}
+
+/* Earth-to-Mars N = 8: the open loop, then one SNNS and one CNCN replan. */
+static void test_strategies_and_command(void **state)
+{
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    ogk_nmpc_command_t cmd;
+    double h;
+    double t_f;
+    (void)state;
+    mars_config(&c, 8u);
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    /* no plan yet: the safe command and OGK_E_RANGE */
+    OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, 0.0, &cmd), OGK_E_RANGE);
+    assert_int_equal((int)cmd.flags, (int)OGK_THRUST_FLAG_SAFE);
+    OGK_ASSERT_NEAR(cmd.throttle, 0.0, 0.0);
+    mars_guess(&c, 8u, 6.4, &plan);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
+    assert_true(rep.feas <= 1.0e-9);
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan), OGK_OK);
+    h = plan.horizon / 8.0;
+    t_f = plan.t0 + plan.horizon;
+    OGK_ASSERT_NEAR(rep.t_next, h, 1e-14);
+    /* the command interpolates the node controls */
+    OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, 0.25 * h, &cmd), OGK_OK);
+    OGK_ASSERT_NEAR(cmd.alpha, 0.75 * plan.u[0] + 0.25 * plan.u[1], 1e-14);
+    OGK_ASSERT_NEAR(cmd.throttle, 1.0, 0.0);
+    assert_true((cmd.flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u);
+    OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, t_f + 1.0, &cmd), OGK_OK);
+    assert_true((cmd.law_flags & OGK_NMPC_FLAG_END_OF_PLAN) != 0u);
+    OGK_ASSERT_NEAR(cmd.alpha, plan.u[8], 0.0);
+
+    /* SNNS replan at the first node on the plan's own state: N - 1 nodes and
+     * a t_f no later (node 1's control no longer shapes the flown interval,
+     * one more freedom: the SNNS gain over the open loop), nearly the same */
+    in.t = h;
+    (void)memcpy(in.x, &plan.x[NX], sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &in, &rep), OGK_OK);
+    assert_int_equal((int)rep.nodes, 7);
+    assert_true(rep.t_f <= t_f + 1e-9);
+    OGK_ASSERT_NEAR(rep.t_f, t_f, 1e-3);
+    assert_true(rep.sqp_iterations <= 30u);
+
+    /* CNCN from the same open loop keeps N and regrids */
+    c.strategy = OGK_NMPC_CNCN;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx2, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx2, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx2, &in, &rep), OGK_OK);
+    assert_int_equal((int)rep.nodes, 8);
+    assert_true((rep.flags & OGK_NMPC_FLAG_REGRIDDED) != 0u);
+    OGK_ASSERT_NEAR(rep.t_next, h + (rep.t_f - h) / 8.0, 1e-12);
+    /* another grid, another discrete optimum: within 0.3 d here */
+    OGK_ASSERT_NEAR(rep.t_f, t_f, 5e-3);
+}
+
+/* A solve that cannot finish flies the previous plan, says so, and leaves
+ * the context usable. */
+static void test_failure_and_bad_input(void **state)
+{
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    ogk_nmpc_command_t cmd;
+    double alpha_before;
+    (void)state;
+    mars_config(&c, 8u);
+    c.max_iter = 2u; /* too few from this guess */
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    mars_guess(&c, 8u, 6.4, &plan);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_E_ITER_LIMIT);
+    assert_true((rep.flags & OGK_NMPC_FLAG_STALE) != 0u);
+    OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, 0.1, &cmd), OGK_OK);
+    assert_true((cmd.flags & OGK_THRUST_FLAG_SAFE) != 0u);
+    OGK_ASSERT_NEAR(cmd.alpha, 0.75 * PI, 1e-15); /* the guess, still flown */
+    alpha_before = cmd.alpha;
+
+    /* bad inputs: specific codes, the plan untouched */
+    in.x[2] = NAN;
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &in, &rep), OGK_E_NONFINITE);
+    in.x[2] = 0.0;
+    in.x[4] = -1.0;
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &in, &rep), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, NULL, &rep), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, NAN, &cmd), OGK_E_NONFINITE);
+    assert_int_equal((int)cmd.flags, (int)OGK_THRUST_FLAG_SAFE);
+    OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, 0.1, &cmd), OGK_OK);
+    OGK_ASSERT_NEAR(cmd.alpha, alpha_before, 0.0);
+    plan.nodes = 0u;
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_E_DIM);
+    plan.nodes = 8u;
+    plan.nu = 2u;
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_E_DIM);
+    plan.nu = 1u;
+    plan.horizon = 1.0e3;
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_E_RANGE);
+    plan.horizon = 6.4;
+    plan.u[3] = INFINITY;
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_E_NONFINITE);
+}
+
+/* reset gives back the context of a fresh init: the same open loop bit for bit */
+static void test_reset_equals_init(void **state)
+{
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep_a;
+    ogk_nmpc_report_t rep_b;
+    (void)state;
+    mars_config(&c, 6u);
+    mars_guess(&c, 6u, 6.4, &plan);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep_a), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_reset(&ctx), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, 0.0, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep_b), OGK_OK);
+    assert_int_equal((int)rep_a.sqp_iterations, (int)rep_b.sqp_iterations);
+    assert_true(rep_a.t_f == rep_b.t_f);
+    assert_true(rep_a.objective == rep_b.objective);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_config_default_and_init),
+        cmocka_unit_test(test_model_closed_form),
+        cmocka_unit_test(test_third_bodies_cartesian),
+        cmocka_unit_test(test_interval_sensitivities),
+        cmocka_unit_test(test_sqp_known_solution),
+        cmocka_unit_test(test_coast_rendezvous_zero_fuel),
+        cmocka_unit_test(test_strategies_and_command),
+        cmocka_unit_test(test_failure_and_bad_input),
+        cmocka_unit_test(test_reset_equals_init),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
