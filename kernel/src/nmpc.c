@@ -39,6 +39,7 @@ ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg)
         cfg->max_iter = 100u;
         cfg->tol_feas = 1.0e-9;
         cfg->tol_stat = 1.0e-7;
+        cfg->tol_obj = 1.0e-7;
         cfg->hessian_init = 1.0;
         cfg->step_max_alpha = 1.0;
         cfg->step_max_horizon = 1.0;
@@ -57,7 +58,7 @@ static bool config_finite(const ogk_nmpc_config_t *c)
     const double scalars[] = {
         c->mu, c->thrust_max, c->mass_flow_max, c->solar_length_unit,
         c->target_radius, c->target_phase0, c->target_rate, c->horizon_min,
-        c->horizon_max, c->max_sweep, c->tol_feas, c->tol_stat, c->hessian_init,
+        c->horizon_max, c->max_sweep, c->tol_feas, c->tol_stat, c->tol_obj, c->hessian_init,
         c->step_max_alpha, c->step_max_horizon, c->elastic_weight, c->doubling_threshold
     };
     return ogk_i_all_finite(scalars, sizeof(scalars) / sizeof(scalars[0]))
@@ -79,7 +80,7 @@ static bool config_valid(const ogk_nmpc_config_t *c)
         && (c->horizon_min > 0.0) && (c->horizon_max > c->horizon_min)
         && (c->max_sweep >= 0.0)
         && (c->max_iter >= 1u) && (c->max_iter <= OGK_NMPC_MAX_SQP_ITER)
-        && (c->tol_feas > 0.0) && (c->tol_stat > 0.0) && (c->hessian_init > 0.0)
+        && (c->tol_feas > 0.0) && (c->tol_stat > 0.0) && (c->tol_obj >= 0.0) && (c->hessian_init > 0.0)
         && (c->step_max_alpha > 0.0) && (c->step_max_horizon > 0.0) && (c->elastic_weight > 0.0)
         && (c->min_nodes >= 1u) && (c->min_nodes <= OGK_NMPC_MAX_NODES)
         && (c->doubling_threshold >= 0.0)

@@ -15,7 +15,10 @@
  *      backtracking stalled on the Maratos effect (steps of 1/32 for
  *      hundreds of iterations near the solution; docs/nmpc.md).
  * Converged when every defect and terminal residual is within tol_feas and
- * |H v|_inf (the reduced stationarity residual) within tol_stat. */
+ * either |H v|_inf (the reduced stationarity residual) is within tol_stat or
+ * the step's predicted |dJ| within tol_obj max(|J|, 1): minimum-fuel
+ * objectives are so flat in T that BFGS creeps for hundreds of iterations
+ * at 1e-5 stationarity with J fixed to 1e-7 (docs/nmpc.md). */
 #include "nmpc_internal.h"
 
 #include <math.h>
@@ -441,6 +444,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     double theta_max = 0.0;
     double theta_min = 0.0;
     bool first_iter = true;
+    bool flat = false;
     uint32_t restarts = 0u;
     double viol_l1 = 0.0;
     double viol_max = 0.0;
@@ -519,7 +523,16 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 stat = (fabs(acc) > stat) ? fabs(acc) : stat;
             }
             rep->stat = stat;
-            if ((viol_max <= cfg->tol_feas) && (stat <= cfg->tol_stat)) {
+            {
+                /* predicted change of J by the QP step (its defect part included) */
+                double pred = (cfg->objective == OGK_NMPC_MIN_FUEL) ? -ctx->cond_e[4] : 0.0;
+                const double j_now = fabs(ogk_i_nmpc_objective(cfg, p));
+                for (i = 0u; i < nv; ++i) {
+                    pred += g_obj[i] * ctx->qp_sol.x[i];
+                }
+                flat = fabs(pred) <= (cfg->tol_obj * ((j_now > 1.0) ? j_now : 1.0));
+            }
+            if ((viol_max <= cfg->tol_feas) && ((stat <= cfg->tol_stat) || flat)) {
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
                 done = true;
                 break;

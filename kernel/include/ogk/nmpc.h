@@ -131,6 +131,7 @@ typedef struct {
     uint32_t max_iter;          /* [-] SQP iterations per solve, 1..OGK_NMPC_MAX_SQP_ITER (default 100) */
     double tol_feas;            /* [LU, LU/TU, MU] max |defect|, |terminal residual| at convergence, > 0 (default 1e-9) */
     double tol_stat;            /* [-] max |H dv| (reduced stationarity) at convergence, > 0 (default 1e-7) */
+    double tol_obj;             /* [-] or converged when the QP step's predicted |dJ| <= tol_obj max(|J|, 1), >= 0 (default 1e-7) */
     double hessian_init;        /* [-] scale of the first BFGS matrix (identity times it), > 0 (default 1) */
     double step_max_alpha;      /* [rad] bound on one SQP step of a node angle, > 0 (default 1) */
     double step_max_horizon;    /* [TU] bound on one SQP step of T, > 0 (default 1) */

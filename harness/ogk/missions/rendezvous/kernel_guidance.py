@@ -5,7 +5,8 @@ regrid, the stale-plan fallback); this adapter only maps the scenario to the ker
 (normalised units of docs/nmpc.md) and times the calls:
 
 - first replan: the documented guess (`guidance.first_guess`) loaded as the plan, then `ogk_nmpc_solve`
-  (the open loop from (t, x), a cold BFGS start);
+  (the open loop from (t, x), a cold BFGS start); minimum fuel first solves minimum time from that guess
+  in a second context and starts from its optimum at full throttle (the ground's guess, nlp.py);
 - every later replan: `ogk_nmpc_replan` (warm: the shifted plan, its multipliers and BFGS matrix).
 """
 from __future__ import annotations
@@ -82,6 +83,7 @@ class KernelGuidance:
         self.failed_solves = 0
         self.solves = 0
         self.replans = 0
+        self.pre_iterations = 0
 
     def replan(self, t: float, x: ArrayLike) -> ReplanInfo:
         x = np.asarray(x, dtype=np.float64)
@@ -89,6 +91,16 @@ class KernelGuidance:
         start = time.perf_counter()
         if not self.started:
             g = first_guess(self.scenario, self.scenario.ocp.nodes, t, x, self.nu)
+            if self.cfg.objective != 0:
+                # minimum fuel starts from the minimum-time optimum at full throttle (the flight code
+                # solves it too: a second context with the time objective), as the ground does (nlp.py)
+                time_opt = Nmpc(self.cfg.replace(objective=0))
+                time_opt.load_plan(g.t0, g.horizon, g.states, g.controls)
+                pre = time_opt.solve(t, x)
+                self.pre_iterations = pre.sqp_iterations
+                if pre.converged:
+                    p = time_opt.plan()
+                    g = Plan(t0=p.t0, horizon=p.horizon, states=p.states, controls=p.controls)
             self.nmpc.load_plan(g.t0, g.horizon, g.states, g.controls)
             rep = self.nmpc.solve(t, x)
             self.started = True
