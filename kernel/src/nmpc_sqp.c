@@ -530,7 +530,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 for (i = 0u; i < nv; ++i) {
                     pred += g_obj[i] * ctx->qp_sol.x[i];
                 }
-                flat = fabs(pred) <= (cfg->tol_obj * ((j_now > 1.0) ? j_now : 1.0));
+                flat = (cfg->tol_obj > 0.0) && (fabs(pred) <= (cfg->tol_obj * ((j_now > 1.0) ? j_now : 1.0)));
             }
             if ((viol_max <= cfg->tol_feas) && ((stat <= cfg->tol_stat) || flat)) {
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
