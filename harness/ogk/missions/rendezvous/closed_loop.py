@@ -57,6 +57,7 @@ class ReplanRecord:
     planned_t_f_days: float         #: t_f of the plan flown from here
     subinterval_days: float         #: length of the subinterval flown
     angle_offset_deg: float         #: thrust-angle noise of the subinterval's first draw
+    sweep_deg: float                #: |alpha_1 - alpha_0| of the flown subinterval (> 360: a winding)
     status: str
 
     def to_json(self) -> dict[str, Any]:
@@ -189,7 +190,9 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
                            failed=info.failed, subdivided=info.subdivided,
                            planned_t_f_days=info.plan.t_f * units.time_s / DAY_S,
                            subinterval_days=(t_next - t) * units.time_s / DAY_S,
-                           angle_offset_deg=math.degrees(segs[0][2]), status=info.status)
+                           angle_offset_deg=math.degrees(segs[0][2]),
+                           sweep_deg=math.degrees(abs(float(info.plan.controls[1, 0] - info.plan.controls[0, 0]))),
+                           status=info.status)
         history.append(rec)
         if progress is not None:
             progress(rec)
@@ -225,7 +228,9 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
                 done = True
             ts.append(tg[1:])
             xs.append(xg[1:])
-            for tk in tg[:-1] if len(tg) > 1 else tg:
+            # command samples for the figures: the integration grid and 16 per segment
+            samples = np.union1d(tg[:-1], np.linspace(tg[0], tg[-1], 17)[:-1]) if len(tg) > 1 else tg
+            for tk in samples:
                 a, w = guidance.command(float(tk))
                 cmd_t.append(float(tk))
                 cmd_a.append(a)
