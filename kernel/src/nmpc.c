@@ -53,7 +53,7 @@ ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg)
     return st;
 }
 
-static bool config_finite(const ogk_nmpc_config_t *c)
+static bool nmpc_config_finite(const ogk_nmpc_config_t *c)
 {
     const double scalars[] = {
         c->mu, c->thrust_max, c->mass_flow_max, c->solar_length_unit,
@@ -67,10 +67,11 @@ static bool config_finite(const ogk_nmpc_config_t *c)
         && ogk_i_all_finite(c->body_mu, OGK_NMPC_MAX_BODIES)
         && ogk_i_all_finite(c->body_radius, OGK_NMPC_MAX_BODIES)
         && ogk_i_all_finite(c->body_phase0, OGK_NMPC_MAX_BODIES)
-        && ogk_i_all_finite(c->body_rate, OGK_NMPC_MAX_BODIES);
+        && ogk_i_all_finite(c->body_rate, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->body_softening, OGK_NMPC_MAX_BODIES);
 }
 
-static bool config_valid(const ogk_nmpc_config_t *c)
+static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
 {
     bool ok = (c->mu > 0.0) && (c->target_radius > 0.0)
         && (c->engine <= OGK_NMPC_ENGINE_THROTTLED) && (c->power <= OGK_NMPC_POWER_SOLAR)
@@ -95,14 +96,18 @@ static bool config_valid(const ogk_nmpc_config_t *c)
         /* already rejected */
     }
     for (b = 0u; ok && (b < c->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
-        ok = (c->body_mu[b] >= 0.0) && (c->body_radius[b] > 0.0);
+        ok = (c->body_mu[b] >= 0.0) && (c->body_radius[b] > 0.0) && (c->body_softening[b] >= 0.0);
     }
     return ok;
 }
 
-static void prepare(ogk_nmpc_t *ctx)
+static void nmpc_prepare(ogk_nmpc_t *ctx)
 {
-    ctx->nu = (ctx->cfg.engine == OGK_NMPC_ENGINE_THROTTLED) ? 2u : 1u;
+    if (ctx->cfg.engine == OGK_NMPC_ENGINE_THROTTLED) {
+        ctx->nu = 2u;
+    } else {
+        ctx->nu = 1u;
+    }
     ctx->subdivisions = 0u;
     ctx->plan_flags = 0u;
     ctx->have_plan = 0u;
@@ -118,20 +123,20 @@ ogk_status ogk_nmpc_init(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg)
         st = OGK_E_NULL;
     } else {
         ctx->init_marker = 0u;
-        if (!config_finite(cfg)) {
+        if (!nmpc_config_finite(cfg)) {
             st = OGK_E_NONFINITE;
-        } else if (!config_valid(cfg)) {
+        } else if (!nmpc_config_valid(cfg)) {
             st = OGK_E_CONFIG;
         } else {
             (void)memcpy(&ctx->cfg, cfg, sizeof(*cfg));
-            prepare(ctx);
+            nmpc_prepare(ctx);
             ctx->init_marker = OGK_NMPC_INIT_MARKER;
         }
     }
     return st;
 }
 
-static ogk_status check_ctx(const ogk_nmpc_t *ctx)
+static ogk_status nmpc_check_ctx(const ogk_nmpc_t *ctx)
 {
     ogk_status st = OGK_OK;
     if (ctx == NULL) {
@@ -146,16 +151,16 @@ static ogk_status check_ctx(const ogk_nmpc_t *ctx)
 
 ogk_status ogk_nmpc_reset(ogk_nmpc_t *ctx)
 {
-    ogk_status st = check_ctx(ctx);
+    ogk_status st = nmpc_check_ctx(ctx);
     if (st == OGK_OK) {
-        prepare(ctx);
+        nmpc_prepare(ctx);
     }
     return st;
 }
 
 ogk_status ogk_nmpc_load_plan(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *plan)
 {
-    ogk_status st = check_ctx(ctx);
+    ogk_status st = nmpc_check_ctx(ctx);
     if ((st == OGK_OK) && (plan == NULL)) {
         st = OGK_E_NULL;
     }
@@ -193,7 +198,7 @@ ogk_status ogk_nmpc_load_plan(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *plan)
 
 ogk_status ogk_nmpc_get_plan(const ogk_nmpc_t *ctx, ogk_nmpc_plan_t *plan)
 {
-    ogk_status st = check_ctx(ctx);
+    ogk_status st = nmpc_check_ctx(ctx);
     if ((st == OGK_OK) && (plan == NULL)) {
         st = OGK_E_NULL;
     }
@@ -209,7 +214,7 @@ ogk_status ogk_nmpc_get_plan(const ogk_nmpc_t *ctx, ogk_nmpc_plan_t *plan)
 static ogk_status check_input(const ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
                               ogk_nmpc_report_t *rep)
 {
-    ogk_status st = check_ctx(ctx);
+    ogk_status st = nmpc_check_ctx(ctx);
     if ((st == OGK_OK) && ((in == NULL) || (rep == NULL))) {
         st = OGK_E_NULL;
     }
@@ -296,11 +301,15 @@ static void shift_plan(ogk_nmpc_t *ctx, double t)
 {
     ogk_nmpc_plan_t *p = &ctx->plan;
     const double h = p->horizon / (double)p->nodes;
-    const size_t nv = ((size_t)p->nodes + 1u) * ctx->nu + 1u;
+    const size_t nv = (((size_t)p->nodes + 1u) * ctx->nu) + 1u;
     double flown = (t - p->t0) / h;
     uint32_t count = 0u;
 
-    flown = (flown > 0.0) ? (flown + FLOWN_EPS) : 0.0;
+    if (flown > 0.0) {
+        flown += FLOWN_EPS;
+    } else {
+        flown = 0.0;
+    }
     if (flown < (double)p->nodes) {
         count = (uint32_t)flown;
     } else {
@@ -363,7 +372,7 @@ static ogk_status doubling_test(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
                 const double j_2n = ogk_i_nmpc_objective(cfg, &ctx->work);
                 const double gain = (j_n - j_2n) / ((fabs(j_n) > 1.0e-12) ? fabs(j_n) : 1.0e-12);
                 if ((st_n != OGK_OK) || (gain > cfg->doubling_threshold)) {
-                    const size_t nv = ((size_t)ctx->work.nodes + 1u) * ctx->nu + 1u;
+                    const size_t nv = (((size_t)ctx->work.nodes + 1u) * ctx->nu) + 1u;
                     (void)memcpy(&ctx->plan, &ctx->work, sizeof(ctx->plan));
                     (void)memcpy(ctx->hess, ctx->hess_alt, nv * nv * sizeof(double));
                     ctx->hess_valid = 1u;
@@ -407,7 +416,7 @@ ogk_status ogk_nmpc_replan(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
 
 ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command_t *cmd)
 {
-    ogk_status st = check_ctx(ctx);
+    ogk_status st = nmpc_check_ctx(ctx);
     if ((st == OGK_OK) && (cmd == NULL)) {
         st = OGK_E_NULL;
     }
@@ -430,7 +439,11 @@ ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command_t 
             cmd->alpha = u[0];
             cmd->throttle = (ctx->nu > 1u) ? u[1] : 1.0;
             cmd->throttle = (cmd->throttle < 0.0) ? 0.0 : ((cmd->throttle > 1.0) ? 1.0 : cmd->throttle);
-            cmd->flags = (cmd->throttle > 0.0) ? OGK_THRUST_FLAG_ENGINE_ON : 0u;
+            if (cmd->throttle > 0.0) {
+                cmd->flags = OGK_THRUST_FLAG_ENGINE_ON;
+            } else {
+                cmd->flags = 0u;
+            }
             cmd->law_flags = ctx->plan_flags;
             if ((ctx->plan_flags & OGK_NMPC_FLAG_STALE) != 0u) {
                 cmd->flags |= OGK_THRUST_FLAG_SAFE;
@@ -446,7 +459,7 @@ ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command_t 
 ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
                               const double *u, double *xdot)
 {
-    ogk_status st = check_ctx(ctx);
+    ogk_status st = nmpc_check_ctx(ctx);
     if ((st == OGK_OK) && ((x == NULL) || (u == NULL) || (xdot == NULL))) {
         st = OGK_E_NULL;
     }
@@ -461,11 +474,11 @@ ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
 
 ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
                              const double *x0, const double *u0,
-                             const double *u1, double *x1, double *dfdx,
-                             double *dfdu0, double *dfdu1, double *dfdh,
+                             const double *u1, double *x1, double *dfdx, /* NOLINT(bugprone-easily-swappable-parameters): order of the public header (ogk/nmpc.h) and the bindings; every output is checked by central differences (test_nmpc.c) */
+                             double *dfdu0, double *dfdu1, double *dfdh, /* NOLINT(bugprone-easily-swappable-parameters): as above */
                              double *dfdt0)
 {
-    ogk_status st = check_ctx(ctx);
+    ogk_status st = nmpc_check_ctx(ctx);
     double sens[OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS];
     if ((st == OGK_OK) && ((x0 == NULL) || (u0 == NULL) || (u1 == NULL) || (x1 == NULL))) {
         st = OGK_E_NULL;
@@ -485,8 +498,10 @@ ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
         size_t i;
         size_t j;
         for (i = 0u; i < NX; ++i) {
-            for (j = 0u; (j < NX) && (dfdx != NULL); ++j) {
-                dfdx[(i * NX) + j] = sens[(i * OGK_I_NMPC_MAX_COLS) + j];
+            for (j = 0u; j < NX; ++j) {
+                if (dfdx != NULL) {
+                    dfdx[(i * NX) + j] = sens[(i * OGK_I_NMPC_MAX_COLS) + j];
+                }
             }
             for (j = 0u; j < nu; ++j) {
                 if (dfdu0 != NULL) {

@@ -9,39 +9,45 @@
 #include "ogk_checks.h"
 
 /* T_max(r) and mdot_max(r) with their derivatives in r. */
-static void engine_limits(const ogk_nmpc_config_t *cfg, double r,
-                          double *thrust, double *thrust_dr,
-                          double *flow, double *flow_dr)
+typedef struct {
+    double thrust;    /* [MU LU/TU^2] T_max(r) */
+    double thrust_dr; /* [MU/TU^2] dT_max/dr */
+    double flow;      /* [MU/TU] mdot_max(r) */
+    double flow_dr;   /* [MU/(LU TU)] dmdot_max/dr */
+} engine_limits_t;
+
+static void engine_limits(const ogk_nmpc_config_t *cfg, double r, engine_limits_t *lim)
 {
     if (cfg->power == OGK_NMPC_POWER_SOLAR) {
         /* eq. (14): p(s) = (a1 s^2 + a2 s + a3) / (s^4 (1 + a4 s)), s = r / unit */
         const double s = r / cfg->solar_length_unit;
-        const double num = ((cfg->solar_a[0] * s) + cfg->solar_a[1]) * s + cfg->solar_a[2];
+        const double num = (((cfg->solar_a[0] * s) + cfg->solar_a[1]) * s) + cfg->solar_a[2];
         const double num_ds = (2.0 * cfg->solar_a[0] * s) + cfg->solar_a[1];
         const double s4 = s * s * s * s;
         const double den = s4 * (1.0 + (cfg->solar_a[3] * s));
         const double den_ds = (4.0 * s * s * s * (1.0 + (cfg->solar_a[3] * s))) + (cfg->solar_a[3] * s4);
         const double p = num / den;
         const double p_dr = ((num_ds * den) - (num * den_ds)) / (den * den * cfg->solar_length_unit);
-        *thrust = cfg->solar_thrust[0] + (cfg->solar_thrust[1] * p);
-        *thrust_dr = cfg->solar_thrust[1] * p_dr;
-        *flow = cfg->solar_flow[0] + (cfg->solar_flow[1] * p);
-        *flow_dr = cfg->solar_flow[1] * p_dr;
+        lim->thrust = cfg->solar_thrust[0] + (cfg->solar_thrust[1] * p);
+        lim->thrust_dr = cfg->solar_thrust[1] * p_dr;
+        lim->flow = cfg->solar_flow[0] + (cfg->solar_flow[1] * p);
+        lim->flow_dr = cfg->solar_flow[1] * p_dr;
     } else {
-        *thrust = cfg->thrust_max;
-        *thrust_dr = 0.0;
-        *flow = cfg->mass_flow_max;
-        *flow_dr = 0.0;
+        lim->thrust = cfg->thrust_max;
+        lim->thrust_dr = 0.0;
+        lim->flow = cfg->mass_flow_max;
+        lim->flow_dr = 0.0;
     }
 }
 
 /* Acceleration of third body b in the spacecraft's (radial, circumferential)
  * axes: direct -mu d / |d|^3 with d = r_sc - r_b, and indirect -mu r_b / R^3
- * (the Sun-centred frame accelerates towards the body). d in the spacecraft's
+ * (the Sun-centred frame accelerates towards the body), |d|^2 + eps^2 in
+ * place of |d|^2 with a softening length eps. d in the spacecraft's
  * axes: (r - R cos D, -R sin D), D = phi_b(t) - theta. Adds the acceleration
  * to acc[2] and, when jac is not NULL, its derivatives in (r, theta, t) to
  * jac[2][3]. */
-static ogk_status body_accel(const ogk_nmpc_config_t *cfg, uint32_t b, double t,
+static ogk_status body_accel(const ogk_nmpc_config_t *cfg, uint32_t b, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (t, r, theta) in the model's order; its only caller is ogk_i_nmpc_rhs, checked against a Cartesian computation and by central differences (test_nmpc.c) */
                              double r, double theta, double *acc, double jac[2][3])
 {
     ogk_status st = OGK_OK;
@@ -52,7 +58,8 @@ static ogk_status body_accel(const ogk_nmpc_config_t *cfg, uint32_t b, double t,
     const double sd = sin(delta);
     const double d_r = r - (big_r * cd);
     const double d_t = -big_r * sd;
-    const double d2 = (d_r * d_r) + (d_t * d_t);
+    const double eps = cfg->body_softening[b];
+    const double d2 = (d_r * d_r) + (d_t * d_t) + (eps * eps);
     const double ind = mu_b / (big_r * big_r);
 
     if (!(d2 > 1.0e-30)) {
@@ -85,8 +92,8 @@ static ogk_status body_accel(const ogk_nmpc_config_t *cfg, uint32_t b, double t,
     return st;
 }
 
-ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
-                          const double *x, const double *u, double *xdot,
+ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (model f(t, x, u) and its Jacobians); checked against eq. (11) and by central differences (test_nmpc.c) */
+                          const double *x, const double *u, double *xdot, /* NOLINT(bugprone-easily-swappable-parameters): as above */
                           double *jx, double *ju, double *jt)
 {
     ogk_status st = OGK_OK;
@@ -102,33 +109,30 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
         const double throttle = (nu > 1u) ? u[1] : 1.0;
         const double ca = cos(u[0]);
         const double sa = sin(u[0]);
-        double thrust;
-        double thrust_dr;
-        double flow;
-        double flow_dr;
+        engine_limits_t lim;
         double pert[2] = { 0.0, 0.0 };
         double pert_jac[2][3] = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 } };
         uint32_t b;
 
-        engine_limits(cfg, r, &thrust, &thrust_dr, &flow, &flow_dr);
+        engine_limits(cfg, r, &lim);
         for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES) && (st == OGK_OK); ++b) {
             st = body_accel(cfg, b, t, r, x[1], pert, (jx != NULL) ? pert_jac : NULL);
         }
         if (st == OGK_OK) {
             const double inv_r = 1.0 / r;
-            const double acc = throttle * thrust / m;
+            const double acc = throttle * lim.thrust / m;
             /* eq. (11) and (13) */
             xdot[0] = v_r;
             xdot[1] = v_t * inv_r;
             xdot[2] = (v_t * v_t * inv_r) - (cfg->mu * inv_r * inv_r) + (acc * ca) + pert[0];
             xdot[3] = (-v_t * v_r * inv_r) + (acc * sa) + pert[1];
-            xdot[4] = -throttle * flow;
+            xdot[4] = -throttle * lim.flow;
             if (!ogk_i_all_finite(xdot, OGK_NMPC_NX)) {
                 st = OGK_E_NONFINITE;
             }
             if ((st == OGK_OK) && (jx != NULL)) {
-                const double acc_dr = throttle * thrust_dr / m;
-                (void)memset(jx, 0, OGK_NMPC_NX * OGK_NMPC_NX * sizeof(double));
+                const double acc_dr = throttle * lim.thrust_dr / m;
+                (void)memset(jx, 0, sizeof(double) * OGK_NMPC_NX * OGK_NMPC_NX);
                 jx[(0u * OGK_NMPC_NX) + 2u] = 1.0;
                 jx[(1u * OGK_NMPC_NX) + 0u] = -v_t * inv_r * inv_r;
                 jx[(1u * OGK_NMPC_NX) + 3u] = inv_r;
@@ -142,15 +146,15 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
                 jx[(3u * OGK_NMPC_NX) + 2u] = -v_t * inv_r;
                 jx[(3u * OGK_NMPC_NX) + 3u] = -v_r * inv_r;
                 jx[(3u * OGK_NMPC_NX) + 4u] = -acc * sa / m;
-                jx[(4u * OGK_NMPC_NX) + 0u] = -throttle * flow_dr;
+                jx[(4u * OGK_NMPC_NX) + 0u] = -throttle * lim.flow_dr;
                 if (ju != NULL) {
-                    (void)memset(ju, 0, OGK_NMPC_NX * nu * sizeof(double));
+                    (void)memset(ju, 0, sizeof(double) * OGK_NMPC_NX * nu);
                     ju[(2u * nu) + 0u] = -acc * sa;
                     ju[(3u * nu) + 0u] = acc * ca;
                     if (nu > 1u) {
-                        ju[(2u * nu) + 1u] = thrust * ca / m;
-                        ju[(3u * nu) + 1u] = thrust * sa / m;
-                        ju[(4u * nu) + 1u] = -flow;
+                        ju[(2u * nu) + 1u] = lim.thrust * ca / m;
+                        ju[(3u * nu) + 1u] = lim.thrust * sa / m;
+                        ju[(4u * nu) + 1u] = -lim.flow;
                     }
                 }
                 if (jt != NULL) {
@@ -181,7 +185,7 @@ double ogk_i_nmpc_objective(const ogk_nmpc_config_t *cfg,
 {
     double j;
     if (cfg->objective == OGK_NMPC_MIN_FUEL) {
-        j = p->x[0u * OGK_NMPC_NX + 4u] - p->x[(p->nodes * OGK_NMPC_NX) + 4u];
+        j = p->x[(0u * OGK_NMPC_NX) + 4u] - p->x[(p->nodes * OGK_NMPC_NX) + 4u];
     } else {
         j = p->horizon;
     }

@@ -116,6 +116,7 @@ typedef struct {
     double body_radius[OGK_NMPC_MAX_BODIES]; /* [LU] their circular-orbit radii, > 0 */
     double body_phase0[OGK_NMPC_MAX_BODIES]; /* [rad] their polar angles at t = 0 */
     double body_rate[OGK_NMPC_MAX_BODIES];   /* [rad/TU] their angular rates */
+    double body_softening[OGK_NMPC_MAX_BODIES]; /* [LU] Plummer length eps, |d|^3 -> (|d|^2 + eps^2)^(3/2), >= 0 (0: point mass) */
     /* target: circular orbit (eqs. 5-6) */
     double target_radius;       /* [LU] R_T, > 0; must be set */
     double target_phase0;       /* [rad] theta_T at t = 0 */

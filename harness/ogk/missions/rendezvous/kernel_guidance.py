@@ -54,10 +54,12 @@ def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
         max_iter=200, tol_feas=1e-9, tol_stat=1e-6,
     )
     if use_bodies:
-        bodies = planets(scenario)
+        # as the ground NLP (nlp.py): Earth a point mass, Mars softened by its sphere of influence (the
+        # plan ends at Mars' centre, where a point mass is singular)
+        bodies = planets(scenario, mars_softening_m=scenario.convergence.mars_soi_radius_m)
         fields.update(n_bodies=len(bodies), body_mu=[b.mu for b in bodies],
                       body_radius=[b.radius for b in bodies], body_phase0=[b.theta0 for b in bodies],
-                      body_rate=[b.rate for b in bodies])
+                      body_rate=[b.rate for b in bodies], body_softening=[b.softening for b in bodies])
     fields.update(overrides)
     return NmpcConfig(**fields)
 
