@@ -10,6 +10,9 @@
  *   d(q+1..n-1) (R gains the column d(0..q)); a constraint is dropped by
  *   removing its column of R and restoring the triangle by Givens rotations
  *   of rows of R (and the same columns of J).
+ * J is stored transposed (ws->j row k = column k of J), so that J^T n, J2 d2
+ * and every rotation run along contiguous rows; L lives in ws->r until the
+ * first constraint is added.
  *
  * Equality rows are made active first, in order, and never dropped; then each
  * iteration adds the most violated inequality row or bound (violation
@@ -113,9 +116,7 @@ static ogk_status qp_input_check(const ogk_qp_workspace_t *ws, const ogk_qp_prob
                                  const ogk_qp_solution_t *sol)
 {
     ogk_status st;
-    if ((ws == NULL) || (p == NULL) || (sol == NULL)) {
-        st = OGK_E_NULL;
-    } else if (!qp_pointers_ok(p)) {
+    if ((ws == NULL) || (p == NULL) || (sol == NULL) || !qp_pointers_ok(p)) {
         st = OGK_E_NULL;
     } else if (!qp_dim_ok(p)) {
         st = OGK_E_DIM;
@@ -133,22 +134,39 @@ static ogk_status qp_input_check(const ogk_qp_workspace_t *ws, const ogk_qp_prob
 
 /* ------------------------------------------------------------------ setup */
 
-/* 2-norm of v[0..n-1], scaled against overflow. */
+/* Sum of squares below which the unscaled 2-norm may have lost accuracy to
+ * underflow (DBL_MIN / DBL_EPSILON). */
+#define QP_SSQ_SAFE_MIN (DBL_MIN / DBL_EPSILON)
+
+/* 2-norm of v[0..n-1]: the plain sum of squares, or, when it overflowed or
+ * may have underflowed, the sum rescaled by the largest magnitude. */
 static double qp_norm2(const double *v, size_t n)
 {
-    double scale = 0.0;
     double ssq = 0.0;
+    double norm;
     size_t i;
     for (i = 0u; i < n; ++i) {
-        scale = fmax(scale, fabs(v[i]));
+        ssq += v[i] * v[i];
     }
-    if (scale > 0.0) {
+    if ((ssq <= DBL_MAX) && (ssq >= QP_SSQ_SAFE_MIN)) {
+        norm = sqrt(ssq);
+    } else {
+        double scale = 0.0;
         for (i = 0u; i < n; ++i) {
-            const double t = v[i] / scale;
-            ssq += t * t;
+            if (fabs(v[i]) > scale) {
+                scale = fabs(v[i]);
+            }
         }
+        ssq = 0.0;
+        if (scale > 0.0) {
+            for (i = 0u; i < n; ++i) {
+                const double t = v[i] / scale;
+                ssq += t * t;
+            }
+        }
+        norm = scale * sqrt(ssq);
     }
-    return scale * sqrt(ssq);
+    return norm;
 }
 
 /* OGK_E_NOT_POSDEF when H is not symmetric to OGK_QP_SYM_TOL max |H|. */
@@ -159,7 +177,9 @@ static ogk_status qp_symmetry_check(const double *H, size_t n)
     size_t i;
     size_t k;
     for (i = 0u; i < (n * n); ++i) {
-        hmax = fmax(hmax, fabs(H[i]));
+        if (fabs(H[i]) > hmax) {
+            hmax = fabs(H[i]);
+        }
     }
     for (i = 0u; (i < n) && (st == OGK_OK); ++i) {
         for (k = 0u; (k < i) && (st == OGK_OK); ++k) {
@@ -171,12 +191,12 @@ static ogk_status qp_symmetry_check(const double *H, size_t n)
     return st;
 }
 
-/* ws->j = L, (H + H^T)/2 = L L^T (row-major, zero above the diagonal).
+/* ws->r = L, (H + H^T)/2 = L L^T (row-major, zero above the diagonal).
  * OGK_E_NOT_POSDEF when a pivot d^2 <= OGK_QP_PIVOT_TOL H_jj or H_jj <= 0. */
 static ogk_status qp_cholesky(ogk_qp_workspace_t *ws, const double *H, size_t n)
 {
     ogk_status st = OGK_OK;
-    double *L = ws->j;
+    double *L = ws->r;
     size_t i;
     size_t jj;
     size_t k;
@@ -207,7 +227,7 @@ static ogk_status qp_cholesky(ogk_qp_workspace_t *ws, const double *H, size_t n)
 /* ws->x = -H^-1 g from L (forward then back substitution). */
 static void qp_unconstrained(ogk_qp_workspace_t *ws, const double *g, size_t n)
 {
-    const double *L = ws->j;
+    const double *L = ws->r;
     double *x = ws->x;
     size_t i;
     size_t k;
@@ -228,28 +248,29 @@ static void qp_unconstrained(ogk_qp_workspace_t *ws, const double *g, size_t n)
     }
 }
 
-/* ws->j = J = L^-T (upper triangular), via L^-1 built column by column in ws->r. */
+/* ws->j = J^T = L^-1 (lower triangular), row by row from L in ws->r:
+ * L(i,i) Li(i,:) = e_i - sum_{k<i} L(i,k) Li(k,:). */
 static void qp_initial_j(ogk_qp_workspace_t *ws, size_t n)
 {
-    const double *L = ws->j;
-    double *Li = ws->r;
+    const double *L = ws->r;
+    double *Li = ws->j;
     size_t c;
     size_t i;
     size_t k;
     (void)memset(Li, 0, n * n * sizeof(double)); /* result unused: returns Li */
-    for (c = 0u; c < n; ++c) {
-        Li[(c * n) + c] = 1.0 / L[(c * n) + c];
-        for (i = c + 1u; i < n; ++i) {
-            double s = 0.0;
-            for (k = c; k < i; ++k) {
-                s -= L[(i * n) + k] * Li[(k * n) + c];
-            }
-            Li[(i * n) + c] = s / L[(i * n) + i];
-        }
-    }
     for (i = 0u; i < n; ++i) {
-        for (c = 0u; c < n; ++c) {
-            ws->j[(i * n) + c] = Li[(c * n) + i];
+        double *row = &Li[i * n];
+        const double inv = 1.0 / L[(i * n) + i];
+        for (k = 0u; k < i; ++k) {
+            const double lik = L[(i * n) + k];
+            const double *rk = &Li[k * n];
+            for (c = 0u; c <= k; ++c) {
+                row[c] -= lik * rk[c];
+            }
+        }
+        row[i] = 1.0;
+        for (c = 0u; c <= i; ++c) {
+            row[c] *= inv;
         }
     }
 }
@@ -268,18 +289,20 @@ static const double *qp_row(const qp_state_t *s, size_t c)
     return row;
 }
 
-/* Sign and right-hand side of constraint c as n_c^T x >= b_c (equalities
- * with the sign they were made active with). Bounds: the variable in *var. */
+/* Factor and right-hand side of constraint c as n_c^T x >= b_c, n_c = factor
+ * times the row: 1 / |a|_2 for the general rows (unit normals), times the
+ * sign an equality was made active with; +-1 for the bounds, whose variable
+ * goes to *var (QP_NONE for a general row). */
 static double qp_rhs(const qp_state_t *s, size_t c, double *sign, size_t *var)
 {
     double b;
     *var = QP_NONE;
     if (c < s->k_in) {
-        *sign = s->ws->eqsign[c];
+        *sign = s->ws->eqsign[c] * s->ws->rowscale[c];
         b = *sign * s->p->b_eq[c];
     } else if (c < s->k_lb) {
-        *sign = 1.0;
-        b = s->p->b_in[c - s->k_in];
+        *sign = s->ws->rowscale[c];
+        b = *sign * s->p->b_in[c - s->k_in];
     } else if (c < s->k_ub) {
         *sign = 1.0;
         *var = c - s->k_lb;
@@ -314,13 +337,13 @@ static double qp_dot(const qp_state_t *s, size_t c, const double *v)
 }
 
 /* Slack n_c^T x - b_c at ws->x and its violation tolerance in *tol. */
-static double qp_slack(const qp_state_t *s, size_t c, double xnorm, double *tol)
+static double qp_slack(const qp_state_t *s, size_t c, double xnorm, double *tol) /* NOLINT(bugprone-easily-swappable-parameters): a constraint number and a norm, every call checked by the KKT and brute-force unit tests */
 {
     double sign;
     size_t var;
     const double b = qp_rhs(s, c, &sign, &var);
-    const double anorm = (var != QP_NONE) ? 1.0 : s->ws->rownorm[c];
-    *tol = OGK_QP_FEAS_TOL * (fabs(b) + (anorm * xnorm));
+    (void)var; /* unit normals: |n_c|_2 = 1 (1 / |a| for a zero row a: |n_c| = 0) */
+    *tol = OGK_QP_FEAS_TOL * (fabs(b) + xnorm);
     return qp_dot(s, c, s->ws->x) - b;
 }
 
@@ -341,28 +364,27 @@ static qp_dir_t qp_direction(const qp_state_t *s, size_t c)
     (void)qp_rhs(s, c, &sign, &var); /* only the sign and the variable are needed */
     if (var != QP_NONE) {
         for (k = 0u; k < n; ++k) {
-            ws->d[k] = sign * ws->j[(var * n) + k];
+            ws->d[k] = sign * ws->j[(k * n) + var];
         }
     } else {
         const double *row = qp_row(s, c);
-        (void)memset(ws->d, 0, n * sizeof(double)); /* result unused: returns d */
-        for (i = 0u; i < n; ++i) {
-            const double a = sign * row[i];
-            if (a != 0.0) {
-                for (k = 0u; k < n; ++k) {
-                    ws->d[k] += ws->j[(i * n) + k] * a;
-                }
+        for (k = 0u; k < n; ++k) {
+            const double *jk = &ws->j[k * n];
+            double dk = 0.0;
+            for (i = 0u; i < n; ++i) {
+                dk += jk[i] * row[i];
             }
+            ws->d[k] = sign * dk;
         }
     }
-    /* z = sum over the free columns q..n-1 of J(:, k) d(k) */
+    /* z = sum over the free columns q..n-1 of J(:, k) d(k) (rows of ws->j) */
     (void)memset(ws->z, 0, n * sizeof(double)); /* result unused: returns z */
-    for (i = 0u; i < n; ++i) {
-        double zi = 0.0;
-        for (k = q; k < n; ++k) {
-            zi += ws->j[(i * n) + k] * ws->d[k];
+    for (k = q; k < n; ++k) {
+        const double *jk = &ws->j[k * n];
+        const double dk = ws->d[k];
+        for (i = 0u; i < n; ++i) {
+            ws->z[i] += jk[i] * dk;
         }
-        ws->z[i] = zi;
     }
     /* rdir = R^-1 d(0..q-1), back substitution */
     for (i = q; i > 0u; --i) {
@@ -382,21 +404,24 @@ static qp_dir_t qp_direction(const qp_state_t *s, size_t c)
     return dir;
 }
 
-/* Rotates columns a and b of J: (Ja, Jb) <- (c Ja + s Jb, -s Ja + c Jb). */
-static void qp_rotate_j(ogk_qp_workspace_t *ws, size_t n, size_t a, size_t b,
+/* Rotates columns a and b of J (rows of ws->j, which holds J^T):
+ * (Ja, Jb) <- (c Ja + s Jb, -s Ja + c Jb). */
+static void qp_rotate_j(ogk_qp_workspace_t *ws, size_t n, size_t a, size_t b, /* NOLINT(bugprone-easily-swappable-parameters): order, rows, cosine, sine of a Givens rotation; a swapped pair fails the unit tests (docs/qp.md, mutants) */
                         double cs, double sn)
 {
+    double *ja = &ws->j[a * n];
+    double *jb = &ws->j[b * n];
     size_t i;
     for (i = 0u; i < n; ++i) {
-        const double ja = ws->j[(i * n) + a];
-        const double jb = ws->j[(i * n) + b];
-        ws->j[(i * n) + a] = (cs * ja) + (sn * jb);
-        ws->j[(i * n) + b] = (cs * jb) - (sn * ja);
+        const double va = ja[i];
+        const double vb = jb[i];
+        ja[i] = (cs * va) + (sn * vb);
+        jb[i] = (cs * vb) - (sn * va);
     }
 }
 
 /* Adds constraint c with multiplier u_c at position q (d = J^T n_c held). */
-static void qp_add(qp_state_t *s, size_t c, double u_c)
+static void qp_add(qp_state_t *s, size_t c, double u_c) /* NOLINT(bugprone-easily-swappable-parameters): a constraint number and its multiplier */
 {
     ogk_qp_workspace_t *ws = s->ws;
     const size_t n = s->n;
@@ -415,7 +440,7 @@ static void qp_add(qp_state_t *s, size_t c, double u_c)
     }
     if (ws->d[q] < 0.0) {
         for (i = 0u; i < n; ++i) {
-            ws->j[(i * n) + q] = -ws->j[(i * n) + q];
+            ws->j[(q * n) + i] = -ws->j[(q * n) + i];
         }
         ws->d[q] = -ws->d[q];
     }
@@ -448,8 +473,9 @@ static void qp_drop(qp_state_t *s, size_t pos)
     for (k = pos; (k + 1u) < q; ++k) {
         const double a = ws->r[(k * n) + k];
         const double b = ws->r[((k + 1u) * n) + k];
-        if (b != 0.0) {
-            const double h = hypot(a, b);
+        const double h = hypot(a, b);
+        if (h > 0.0) {
+            /* also when b = 0: a < 0 then gives cs = -1, a positive diagonal */
             const double cs = a / h;
             const double sn = b / h;
             for (i = k; (i + 1u) < q; ++i) {
@@ -461,15 +487,6 @@ static void qp_drop(qp_state_t *s, size_t pos)
             qp_rotate_j(ws, n, k, k + 1u, cs, sn);
         }
         ws->r[((k + 1u) * n) + k] = 0.0;
-        if (ws->r[(k * n) + k] < 0.0) {
-            /* keep the diagonal positive: flip row k of R and column k of J */
-            for (i = k; (i + 1u) < q; ++i) {
-                ws->r[(k * n) + i] = -ws->r[(k * n) + i];
-            }
-            for (i = 0u; i < n; ++i) {
-                ws->j[(i * n) + k] = -ws->j[(i * n) + k];
-            }
-        }
     }
     s->q = q - 1u;
     s->iter += 1u;
@@ -558,10 +575,8 @@ static size_t qp_select(const qp_state_t *s)
     }
     for (k = 0u; k < total; ++k) {
         if (ws->slack[k] < 0.0) {
-            const double anorm = (k < m_in) ? ws->rownorm[s->k_in + k] : 1.0;
-            const double v = ws->slack[k] / ((anorm > 0.0) ? anorm : 1.0);
-            if (v < worst) {
-                worst = v;
+            if (ws->slack[k] < worst) {
+                worst = ws->slack[k];
                 best = s->k_in + k;
             }
         }
@@ -673,9 +688,9 @@ static void qp_solution(const qp_state_t *s, ogk_qp_solution_t *sol)
     for (k = 0u; k < s->q; ++k) {
         const size_t c = ws->active[k];
         if (c < s->k_in) {
-            sol->y_eq[c] = ws->eqsign[c] * ws->u[k];
+            sol->y_eq[c] = ws->eqsign[c] * ws->rowscale[c] * ws->u[k];
         } else if (c < s->k_lb) {
-            sol->y_in[c - s->k_in] = ws->u[k];
+            sol->y_in[c - s->k_in] = ws->rowscale[c] * ws->u[k];
         } else if (c < s->k_ub) {
             sol->z_lb[c - s->k_lb] = ws->u[k];
         } else {
@@ -689,7 +704,12 @@ static void qp_row_norms(const qp_state_t *s)
 {
     size_t c;
     for (c = 0u; c < s->k_lb; ++c) {
-        s->ws->rownorm[c] = qp_norm2(qp_row(s, c), s->n);
+        const double norm = qp_norm2(qp_row(s, c), s->n);
+        double scale = 1.0;
+        if (norm > 0.0) {
+            scale = 1.0 / norm;
+        }
+        s->ws->rowscale[c] = scale;
     }
 }
 

@@ -3,7 +3,7 @@
 # 2-core machine) for the kernel's hot paths.
 BENCH_DIR := $(B)/bench
 BENCH_CORE := $(BENCH_DIR)/bench_core
-BENCH_CASES := rk4_step switch
+BENCH_CASES := rk4_step switch qp
 BENCH_GNC := $(BENCH_DIR)/bench_gnc
 GNC_CASES := nog_sample nog_command cpd_step
 NOG_TABLE := $(BENCH_DIR)/tables/nog_bundle.ogkt

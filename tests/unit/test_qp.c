@@ -848,6 +848,50 @@ static void test_dependent_equalities(void **state)
     OGK_ASSERT_NEAR(sol.y_eq[1] - 2.0 * sol.y_eq[2], y[4], 1e-13);
 }
 
+/* Row scaling: the N&W problem with its rows multiplied by 1e200 and by
+ * 1e-200 (squares overflow / underflow) gives the same x, and multipliers
+ * divided by the factor; a solution that overflows is OGK_E_NONFINITE. */
+static void test_scaled_rows_and_overflow(void **state)
+{
+    ogk_qp_problem_t p = small_problem();
+    static const double factors[2] = {1e200, 1e-200};
+    static double A[6];
+    static double b[3];
+    static const double Hs[4] = {1e-10, 0.0, 0.0, 1e-10};
+    static const double gs[2] = {1e300, 0.0};
+    size_t f, i;
+    (void)state;
+    for (f = 0; f < 2; ++f) {
+        for (i = 0; i < 6; ++i) {
+            A[i] = nw_A[i] * factors[f];
+        }
+        for (i = 0; i < 3; ++i) {
+            b[i] = nw_b[i] * factors[f];
+        }
+        p = small_problem();
+        p.m_in = 3;
+        p.A_in = A;
+        p.b_in = b;
+        expect_status(&p, OGK_OK);
+        OGK_ASSERT_NEAR(sol.x[0], 1.4, 1e-14);
+        OGK_ASSERT_NEAR(sol.x[1], 1.7, 1e-14);
+        OGK_ASSERT_REL(sol.y_in[0] * factors[f], 0.8, 1e-14, 0.0);
+        /* the same rows as equalities: x1 - 2 x2 = -2 alone */
+        p = small_problem();
+        p.m_eq = 1;
+        p.A_eq = A;
+        p.b_eq = b;
+        expect_status(&p, OGK_OK);
+        OGK_ASSERT_NEAR(sol.x[0], 1.4, 1e-14);
+        OGK_ASSERT_REL(sol.y_eq[0] * factors[f], 0.8, 1e-14, 0.0);
+    }
+    /* x = -H^-1 g = -1e310: overflows */
+    p = small_problem();
+    p.H = Hs;
+    p.g = gs;
+    expect_status(&p, OGK_E_NONFINITE);
+}
+
 /* ------------------------------------------------------------------ random */
 
 /* n <= 6: the kernel against the brute-force enumeration, plus KKT. */
@@ -914,6 +958,7 @@ int main(void)
         cmocka_unit_test(test_hand_example),
         cmocka_unit_test(test_degenerate),
         cmocka_unit_test(test_dependent_equalities),
+        cmocka_unit_test(test_scaled_rows_and_overflow),
         cmocka_unit_test(test_random_vs_brute_force),
         cmocka_unit_test(test_random_target_size),
     };

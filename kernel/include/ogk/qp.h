@@ -89,8 +89,8 @@ typedef struct {
  * Constraints are numbered: equality rows 0..m_eq-1, inequality rows
  * m_eq..m_eq+m_in-1, lower bounds m_eq+m_in+i, upper bounds m_eq+m_in+n+i. */
 typedef struct {
-    double j[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] Cholesky factor L of H, then J = L^-T Q, row-major n x n */
-    double r[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] upper-triangular R of the active set (row stride n); L^-1 during setup */
+    double j[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] J^T = Q^T L^-1, row-major n x n (row k: column k of J) */
+    double r[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] Cholesky factor L of H during setup, then the upper-triangular R of the active set (row stride n) */
     double x[OGK_QP_MAX_N];                  /* [-] primal iterate */
     double d[OGK_QP_MAX_N];                  /* [-] J^T n of the constraint being added */
     double z[OGK_QP_MAX_N];                  /* [-] primal step direction J2 J2^T n */
@@ -98,7 +98,7 @@ typedef struct {
     double u[OGK_QP_MAX_N];                  /* [-] multipliers of the active set, in R's column order */
     size_t active[OGK_QP_MAX_N];             /* [-] constraint numbers of the active set, in R's column order */
     double slack[OGK_QP_MAX_IN + (2u * OGK_QP_MAX_N)]; /* [-] a^T x - b of the inequality rows and bounds (0: active or no bound) */
-    double rownorm[OGK_QP_MAX_EQ + OGK_QP_MAX_IN];   /* [-] 2-norms of the rows of A_eq, then A_in */
+    double rowscale[OGK_QP_MAX_EQ + OGK_QP_MAX_IN];  /* [-] 1 / |a|_2 of the rows of A_eq, then A_in (1 for a zero row): rows are handled as unit normals */
     double eqsign[OGK_QP_MAX_EQ];            /* [-] +-1: the sign with which each equality row was made active */
 } ogk_qp_workspace_t;
 
