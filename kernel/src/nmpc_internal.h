@@ -11,8 +11,9 @@
 #include "ogk/nmpc.h"
 
 /* Columns of the sensitivity matrix of one interval, in this order:
- * X_k (5), U_k (nu), U_{k+1} (nu), h (1), t_start (1). */
-#define OGK_I_NMPC_MAX_COLS (OGK_NMPC_NX + (2u * OGK_NMPC_MAX_NU) + 2u)
+ * X_k (5), U_k (nu), U_{k+1} (nu), h (1), t_start (1): the directions of
+ * ogk/nmpc.h (h standing for T) and t_start. */
+#define OGK_I_NMPC_MAX_COLS (OGK_NMPC_MAX_DIR + 1u)
 
 /* xdot = f(t, x, u) and, when jx is not NULL, its Jacobians: jx (5 x 5,
  * row-major), ju (5 x nu), jt (5). OGK_E_NONFINITE when x leaves the model's

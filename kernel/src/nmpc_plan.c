@@ -7,7 +7,7 @@
 
 #include <string.h>
 
-#define NX OGK_NMPC_NX
+#define NX ((size_t)OGK_NMPC_NX)
 
 /* Position of absolute time t in plan p: subinterval k and fraction in it. */
 static void locate(const ogk_nmpc_plan_t *p, double t, uint32_t *k, double *frac)
@@ -39,7 +39,7 @@ void ogk_i_nmpc_plan_drop(ogk_nmpc_plan_t *p, uint32_t count)
     const double h = p->horizon / (double)p->nodes;
     const uint32_t keep = p->nodes - count; /* caller: count < nodes */
     (void)memmove(p->x, &p->x[count * NX], ((size_t)keep + 1u) * NX * sizeof(double));
-    (void)memmove(p->u, &p->u[count * p->nu], ((size_t)keep + 1u) * p->nu * sizeof(double));
+    (void)memmove(p->u, &p->u[(size_t)count * p->nu], ((size_t)keep + 1u) * p->nu * sizeof(double));
     p->t0 += (double)count * h;
     p->horizon -= (double)count * h;
     p->nodes = keep;
@@ -64,7 +64,7 @@ void ogk_i_nmpc_plan_regrid(const ogk_nmpc_plan_t *src, double t0,
         locate(src, t, &k, &frac);
         for (i = 0u; i < NX; ++i) {
             dst->x[(j * NX) + i] = ((1.0 - frac) * src->x[(k * NX) + i])
-                + (frac * src->x[((k + 1u) * NX) + i]);
+                + (frac * src->x[(((size_t)k + 1u) * NX) + i]);
         }
         for (i = 0u; (i < src->nu) && (i < OGK_NMPC_MAX_NU); ++i) {
             dst->u[(j * src->nu) + i] = ((1.0 - frac) * src->u[(k * src->nu) + i])
@@ -96,15 +96,16 @@ ogk_status ogk_i_nmpc_plan_subdivide(const ogk_nmpc_config_t *cfg,
             dst->u[(2u * k * nu) + i] = src->u[(k * nu) + i];
             dst->u[(((2u * k) + 1u) * nu) + i] = u_mid[i];
         }
-        (void)memcpy(&dst->x[2u * k * NX], &src->x[k * NX], NX * sizeof(double));
+        (void)memcpy(&dst->x[2u * (size_t)k * NX], &src->x[k * NX], NX * sizeof(double));
         /* midpoint state propagated over the first half (a consistent guess) */
-        st = ogk_i_nmpc_shoot(cfg, nu, src->t0 + ((double)(2u * k) * h_half), h_half,
-                              &src->x[k * NX], &src->u[k * nu], u_mid,
-                              &dst->x[((2u * k) + 1u) * NX], NULL);
+        st = ogk_i_nmpc_shoot(cfg, nu, src->t0 + ((2.0 * (double)k) * h_half), h_half,
+                              &src->x[k * NX], &src->u[(size_t)k * nu], u_mid,
+                              &dst->x[((2u * (size_t)k) + 1u) * NX], NULL);
     }
     if (st == OGK_OK) {
         (void)memcpy(&dst->x[dst->nodes * NX], &src->x[src->nodes * NX], NX * sizeof(double));
-        (void)memcpy(&dst->u[dst->nodes * nu], &src->u[src->nodes * nu], nu * sizeof(double));
+        (void)memcpy(&dst->u[(size_t)dst->nodes * nu], &src->u[(size_t)src->nodes * nu],
+                     (size_t)nu * sizeof(double));
     }
     return st;
 }

@@ -8,12 +8,12 @@
 
 #include <string.h>
 
-#define NX OGK_NMPC_NX
+#define NX ((size_t)OGK_NMPC_NX)
 #define NCOL OGK_I_NMPC_MAX_COLS
 
 /* Y = S + a K_prev (+ b k_prev in column col_h), for the first `ncol` columns. */
-static void stage_sens(const double *s, const double *k_prev_sens,
-                       const double *k_prev, double a, double b, size_t col_h,
+static void stage_sens(const double *s, const double *k_prev_sens, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the terms of Y = S + a K_prev in order; its only caller is ogk_i_nmpc_shoot, checked by central differences (test_nmpc.c) */
+                       const double *k_prev, double a, double b, size_t col_h, /* NOLINT(bugprone-easily-swappable-parameters): as above */
                        size_t ncol, double *y)
 {
     size_t i;
@@ -27,13 +27,13 @@ static void stage_sens(const double *s, const double *k_prev_sens,
 }
 
 /* K = fx Y + fu dU/dp + ft dt/dp for one stage. */
-static void stage_k(const double *jx, const double *ju, const double *jt,
-                    const double *y, uint32_t nu, double s_frac, size_t ncol,
+static void stage_k(const double *jx, const double *ju, const double *jt, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the terms of K = fx Y + fu dU/dp + ft dt/dp in order; its only caller is ogk_i_nmpc_shoot, checked by central differences (test_nmpc.c) */
+                    const double *y, uint32_t nu, double s_frac, size_t ncol, /* NOLINT(bugprone-easily-swappable-parameters): as above */
                     double *k)
 {
     const size_t col_u0 = NX;
-    const size_t col_u1 = NX + nu;
-    const size_t col_h = NX + (2u * nu);
+    const size_t col_u1 = NX + (size_t)nu;
+    const size_t col_h = NX + (2u * (size_t)nu);
     const size_t col_t = col_h + 1u;
     size_t i;
     size_t j;
@@ -56,7 +56,7 @@ static void stage_k(const double *jx, const double *ju, const double *jt,
     }
 }
 
-ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu,
+ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (nu, t_start, h as in ogk_nmpc_interval); checked by central differences (test_nmpc.c) */
                             double t_start, double h, const double *x0,
                             const double *u0, const double *u1, double *xf,
                             double *sens)

@@ -30,8 +30,8 @@
 #error "ogk/qp.h limits too small for ogk/nmpc.h (OGK_NMPC_MAX_QP unknowns, 2 OGK_NMPC_MAX_NODES sweep rows)"
 #endif
 
-#define NX OGK_NMPC_NX
-#define NC OGK_NMPC_NC
+#define NX ((size_t)OGK_NMPC_NX)
+#define NC ((size_t)OGK_NMPC_NC)
 #define NCOL OGK_I_NMPC_MAX_COLS
 #define MAXV OGK_NMPC_MAX_VARS
 
@@ -60,20 +60,21 @@ static size_t n_vars(const ogk_nmpc_plan_t *p)
 /* Merit pieces of a plan: l1 and max norms of every defect and terminal
  * residual. Stores F_k and the sensitivities in ctx when with_sens. */
 static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
-                           bool with_sens, double *viol_l1, double *viol_max,
+                           bool with_sens, double *viol_l1, double *viol_max, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, outputs in the order of the merit pair (l1, max) and c; every caller is in this file */
                            double *c_term)
 {
     ogk_status st = OGK_OK;
     const uint32_t nu = p->nu;
     const double h = p->horizon / (double)p->nodes;
-    double sens[NX * NCOL] = { 0.0 };
+    double sens[NX * NCOL];
     double x1[NX];
     double l1 = 0.0;
     double mx = 0.0;
-    uint32_t k;
+    size_t k;
     size_t i;
     size_t j;
 
+    (void)memset(sens, 0, sizeof(sens));
     for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES) && (st == OGK_OK); ++k) {
         const double t_start = p->t0 + ((double)k * h);
         st = ogk_i_nmpc_shoot(&ctx->cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu],
@@ -103,7 +104,7 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
         }
     }
     if (st == OGK_OK) {
-        ogk_i_nmpc_terminal(&ctx->cfg, &p->x[p->nodes * NX], p->t0 + p->horizon, c_term);
+        ogk_i_nmpc_terminal(&ctx->cfg, &p->x[(size_t)p->nodes * NX], p->t0 + p->horizon, c_term);
         for (i = 0u; i < NC; ++i) {
             l1 += fabs(c_term[i]);
             mx = (fabs(c_term[i]) > mx) ? fabs(c_term[i]) : mx;
@@ -121,7 +122,7 @@ static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
     const size_t col_t = nv - 1u;
     double g_next[NX * MAXV];
     double e_next[NX];
-    uint32_t k;
+    size_t k;
     size_t i;
     size_t j;
     size_t c;
@@ -131,7 +132,7 @@ static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
     for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
         const double *a = &ctx->sens_a[k * NX * NX];
         /* columns that can be nonzero after interval k: U_0..U_{k+1}, T */
-        const size_t n_used = ((size_t)k + 2u) * nu;
+        const size_t n_used = (k + 2u) * nu;
         for (i = 0u; i < NX; ++i) {
             double acc_e = 0.0;
             for (c = 0u; c < n_used; ++c) {
@@ -150,8 +151,8 @@ static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
                 g_next[(i * nv) + col_t] = acc + ctx->sens_t[(k * NX) + i];
             }
             for (j = 0u; j < nu; ++j) {
-                g_next[(i * nv) + ((size_t)k * nu) + j] += ctx->sens_b0[(k * NX * nu) + (i * nu) + j];
-                g_next[(i * nv) + (((size_t)k + 1u) * nu) + j] += ctx->sens_b1[(k * NX * nu) + (i * nu) + j];
+                g_next[(i * nv) + (k * nu) + j] += ctx->sens_b0[(k * NX * nu) + (i * nu) + j];
+                g_next[(i * nv) + ((k + 1u) * nu) + j] += ctx->sens_b1[(k * NX * nu) + (i * nu) + j];
             }
             e_next[i] = acc_e + (ctx->sens_f[(k * NX) + i] - p->x[((k + 1u) * NX) + i]);
         }
@@ -193,7 +194,7 @@ static void build_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
 }
 
 /* Bounds of the QP unknowns and the sweep rows; returns the number of rows. */
-static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
+static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, nv and the box factor; every caller is in this file */
                            double box_scale)
 {
     const uint32_t nu = p->nu;
@@ -242,7 +243,7 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
 static void expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const double *v, size_t nv)
 {
     const uint32_t nu = p->nu;
-    uint32_t k;
+    size_t k;
     size_t i;
     size_t j;
 
@@ -254,8 +255,8 @@ static void expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const double 
                 acc += ctx->sens_a[(k * NX * NX) + (i * NX) + j] * ctx->dx[(k * NX) + j];
             }
             for (j = 0u; j < nu; ++j) {
-                acc += ctx->sens_b0[(k * NX * nu) + (i * nu) + j] * v[((size_t)k * nu) + j];
-                acc += ctx->sens_b1[(k * NX * nu) + (i * nu) + j] * v[(((size_t)k + 1u) * nu) + j];
+                acc += ctx->sens_b0[(k * NX * nu) + (i * nu) + j] * v[(k * nu) + j];
+                acc += ctx->sens_b1[(k * NX * nu) + (i * nu) + j] * v[((k + 1u) * nu) + j];
             }
             acc += ctx->sens_t[(k * NX) + i] * v[nv - 1u];
             ctx->dx[((k + 1u) * NX) + i] = acc;
@@ -290,8 +291,8 @@ static void take_step(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const dou
 /* The elastic QP (SNOPT's elastic mode, on eq. 5 only): unknowns
  * (v, s+, s-), A_eq v + s+ - s- = b_eq, s+-  >= 0, cost + elastic_weight
  * (s+ + s-) and a small curvature on the slacks (the QP needs H > 0). */
-static ogk_status solve_elastic(ogk_nmpc_t *ctx, const double *hess, const double *g_obj,
-                                size_t nv, size_t rows)
+static ogk_status solve_elastic(ogk_nmpc_t *ctx, const double *hess, const double *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the QP's (H, g) in order; its only caller is ogk_i_nmpc_sqp */
+                                size_t nv, size_t rows) /* NOLINT(bugprone-easily-swappable-parameters): as above, sizes (unknowns, inequality rows) */
 {
     const size_t ne = nv + (2u * NC);
     const double w = ctx->cfg.elastic_weight;
@@ -408,7 +409,7 @@ static void identity(double *hess, size_t nv, double scale)
 }
 
 /* Reduced gradient of the Lagrangian, g - A_eq^T y. */
-static void lagrangian_gradient(const ogk_nmpc_t *ctx, size_t nv, const double *g_obj,
+static void lagrangian_gradient(const ogk_nmpc_t *ctx, size_t nv, const double *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the order of g - A_eq^T y; every caller is in this file */
                                 const double *y, double *out)
 {
     size_t c;
@@ -450,6 +451,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     double viol_max = 0.0;
     uint32_t iter;
     size_t i;
+    size_t rows;
     ogk_qp_problem_t qp;
 
     if (cold) {
@@ -459,59 +461,54 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     rep->stat = 0.0;
     for (iter = 0u; (iter < cfg->max_iter) && (iter < OGK_NMPC_MAX_SQP_ITER) && !done; ++iter) {
         st = evaluate(ctx, p, true, &viol_l1, &viol_max, c_term);
-        if (st != OGK_OK) {
-            done = true;
-            break;
-        }
-        condense(ctx, p, nv);
-        build_linear_terms(ctx, p, nv, c_term, g_obj);
-        if (have_prev) {
-            /* y = grad L(new iterate) - grad L(old iterate), both with the last QP's multipliers */
-            lagrangian_gradient(ctx, nv, g_obj, y_prev, grad_new);
-            for (i = 0u; i < nv; ++i) {
-                grad_new[i] -= ctx->grad_lag[i];
+        if (st == OGK_OK) {
+            condense(ctx, p, nv);
+            build_linear_terms(ctx, p, nv, c_term, g_obj);
+            if (have_prev) {
+                /* y = grad L(new iterate) - grad L(old iterate), both with the last QP's multipliers */
+                lagrangian_gradient(ctx, nv, g_obj, y_prev, grad_new);
+                for (i = 0u; i < nv; ++i) {
+                    grad_new[i] -= ctx->grad_lag[i];
+                }
+                bfgs_update(hess, nv, ctx->step_v, grad_new, first_update);
+                first_update = false;
             }
-            bfgs_update(hess, nv, ctx->step_v, grad_new, first_update);
-            first_update = false;
-        }
-        const size_t rows = build_bounds(ctx, p, nv, 1.0);
-        qp.n = nv;
-        qp.m_eq = NC;
-        qp.m_in = rows;
-        qp.H = hess;
-        qp.g = g_obj;
-        qp.A_eq = ctx->qp_aeq;
-        qp.b_eq = ctx->qp_beq;
-        qp.A_in = (rows > 0u) ? ctx->qp_ain : NULL;
-        qp.b_in = (rows > 0u) ? ctx->qp_bin : NULL;
-        qp.lb = ctx->qp_lb;
-        qp.ub = ctx->qp_ub;
-        st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
-        if (st == OGK_E_NOT_POSDEF) {
-            identity(hess, nv, cfg->hessian_init);
-            first_update = true;
+            rows = build_bounds(ctx, p, nv, 1.0);
+            qp.n = nv;
+            qp.m_eq = NC;
+            qp.m_in = rows;
+            qp.H = hess;
+            qp.g = g_obj;
+            qp.A_eq = ctx->qp_aeq;
+            qp.b_eq = ctx->qp_beq;
+            qp.A_in = (rows > 0u) ? ctx->qp_ain : NULL;
+            qp.b_in = (rows > 0u) ? ctx->qp_bin : NULL;
+            qp.lb = ctx->qp_lb;
+            qp.ub = ctx->qp_ub;
             st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
-        }
-        if (st == OGK_E_INFEASIBLE) {
-            /* the step box made the linearised eq. (5) unreachable: once more
-             * with the box opened (the physical bounds stay) */
-            rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
-            (void)build_bounds(ctx, p, nv, BOX_OPEN);
-            st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+            if (st == OGK_E_NOT_POSDEF) {
+                identity(hess, nv, cfg->hessian_init);
+                first_update = true;
+                st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+            }
             if (st == OGK_E_INFEASIBLE) {
+                /* the step box made the linearised eq. (5) unreachable: once more
+                 * with the box opened (the physical bounds stay) */
                 rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
-                (void)build_bounds(ctx, p, nv, 1.0);
-                st = solve_elastic(ctx, hess, g_obj, nv, rows);
-                rep->flags |= OGK_NMPC_FLAG_ELASTIC;
+                (void)build_bounds(ctx, p, nv, BOX_OPEN);
+                st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+                if (st == OGK_E_INFEASIBLE) {
+                    rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
+                    (void)build_bounds(ctx, p, nv, 1.0);
+                    st = solve_elastic(ctx, hess, g_obj, nv, rows);
+                    rep->flags |= OGK_NMPC_FLAG_ELASTIC;
+                }
             }
+            rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
+            rep->sqp_iterations += 1u;
         }
-        rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
-        rep->sqp_iterations += 1u;
-        if (st != OGK_OK) {
-            done = true;
-            break;
-        }
-        {
+        done = (st != OGK_OK);
+        if (!done) {
             /* reduced stationarity |H v|_inf = |g - A^T y - z|_inf */
             double stat = 0.0;
             size_t j;
@@ -535,11 +532,12 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             if ((viol_max <= cfg->tol_feas) && ((stat <= cfg->tol_stat) || flat)) {
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
                 done = true;
-                break;
             }
         }
-        expand_step(ctx, p, ctx->qp_sol.x, nv);
-        {
+        if (!done) {
+            expand_step(ctx, p, ctx->qp_sol.x, nv);
+        }
+        if (!done) {
             /* filter line search (Waechter & Biegler 2006, without the
              * restoration phase): theta = l1 violation, phi = J */
             const double phi0 = ogk_i_nmpc_objective(cfg, p);
@@ -595,30 +593,30 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 have_prev = false;
                 n_filter = 0u;
                 filter_next = 0u;
-                continue;
-            }
-            if (!accepted) {
+            } else if (!accepted) {
                 rep->flags |= OGK_NMPC_FLAG_LS_FAILED;
                 st = OGK_E_NOT_CONVERGED;
                 done = true;
-                break;
+            } else {
+                if (!f_type) {
+                    /* augment the filter (oldest entry replaced when full) */
+                    const uint32_t slot = (n_filter < FILTER_SIZE) ? n_filter : (filter_next % FILTER_SIZE);
+                    filter_theta[slot] = (1.0 - FILTER_GAMMA) * theta0;
+                    filter_phi[slot] = phi0 - (FILTER_GAMMA * theta0);
+                    if (n_filter < FILTER_SIZE) {
+                        n_filter += 1u;
+                    }
+                    filter_next = (slot + 1u) % FILTER_SIZE;
+                }
+                (void)memcpy(p, &ctx->trial, sizeof(*p));
+                lagrangian_gradient(ctx, nv, g_obj, ctx->qp_sol.y_eq, ctx->grad_lag);
+                for (i = 0u; i < nv; ++i) {
+                    ctx->step_v[i] = alpha * ctx->qp_sol.x[i];
+                }
+                (void)memcpy(y_prev, ctx->qp_sol.y_eq, sizeof(y_prev));
+                (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
+                have_prev = true;
             }
-            if (!f_type) {
-                /* augment the filter (oldest entry replaced when full) */
-                const uint32_t slot = (n_filter < FILTER_SIZE) ? n_filter : (filter_next % FILTER_SIZE);
-                filter_theta[slot] = (1.0 - FILTER_GAMMA) * theta0;
-                filter_phi[slot] = phi0 - (FILTER_GAMMA * theta0);
-                n_filter = (n_filter < FILTER_SIZE) ? (n_filter + 1u) : n_filter;
-                filter_next = (slot + 1u) % FILTER_SIZE;
-            }
-            (void)memcpy(p, &ctx->trial, sizeof(*p));
-            lagrangian_gradient(ctx, nv, g_obj, ctx->qp_sol.y_eq, ctx->grad_lag);
-            for (i = 0u; i < nv; ++i) {
-                ctx->step_v[i] = alpha * ctx->qp_sol.x[i];
-            }
-            (void)memcpy(y_prev, ctx->qp_sol.y_eq, sizeof(y_prev));
-            (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
-            have_prev = true;
         }
     }
     if ((st == OGK_OK) && !done) {
