@@ -445,7 +445,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     double theta_max = 0.0;
     double theta_min = 0.0;
     bool first_iter = true;
-    bool flat = false;
+    bool flat;
     uint32_t restarts = 0u;
     double viol_l1 = 0.0;
     double viol_max = 0.0;
@@ -535,20 +535,19 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             }
         }
         if (!done) {
-            expand_step(ctx, p, ctx->qp_sol.x, nv);
-        }
-        if (!done) {
             /* filter line search (Waechter & Biegler 2006, without the
              * restoration phase): theta = l1 violation, phi = J */
             const double phi0 = ogk_i_nmpc_objective(cfg, p);
             const double theta0 = viol_l1;
-            const double dphi = (cfg->objective == OGK_NMPC_MIN_FUEL)
-                ? -ctx->dx[(p->nodes * NX) + 4u] : ctx->qp_sol.x[nv - 1u];
+            double dphi;
             double alpha = 1.0;
             bool accepted = false;
             bool f_type = false;
             uint32_t ls;
 
+            expand_step(ctx, p, ctx->qp_sol.x, nv);
+            dphi = (cfg->objective == OGK_NMPC_MIN_FUEL)
+                ? -ctx->dx[(p->nodes * NX) + 4u] : ctx->qp_sol.x[nv - 1u];
             if (first_iter) {
                 theta_max = 1.0e4 * ((theta0 > 1.0) ? theta0 : 1.0);
                 theta_min = 1.0e-4 * ((theta0 > 1.0) ? theta0 : 1.0);
