@@ -124,8 +124,11 @@ class RendezvousNlp:
                    is allowed (the optimum is then full throttle: it gives min-fuel's guess)
     third_bodies   Earth and Mars gravity in the predictive model (module docstring)
     max_sweep_rad  bound on |alpha_{k+1} - alpha_k| (as MinTimeOcp; default off)
-    horizon_bounds (lo, hi) on T [TU] (default HORIZON_LO and the scenario's [ocp] horizon_max_s or
-                   HORIZON_HI)
+    horizon_bounds (lo, hi) on T [TU] (default HORIZON_LO, HORIZON_HI): relative to each solve's t0
+    transfer_time_max_s  an absolute arrival deadline t_f <= t_0 + this [s] (t_0 of Table A.1; default
+                   None). Absolute, not a horizon: a bound on T = t_f - t0 that is active at every replan
+                   would recede with t0 and the arrival with it. The open loop of the minimum-fuel
+                   scenarios passes [ocp] transfer_time_max_s (`open_loop`); the closed loop decides.
     tol, constr_viol_tol, max_iter   IPOPT's (default 1e-10, 1e-12, 500: the open loop)
     warm_mu_init   IPOPT mu_init of a warm solve (duals given)
     """
@@ -134,7 +137,8 @@ class RendezvousNlp:
                  rk4_steps: int | None = None, third_bodies: bool = False, *,
                  objective: str | None = None, max_sweep_rad: float | None = None,
                  horizon_bounds: tuple[float, float] | None = None, tol: float = 1e-10,
-                 constr_viol_tol: float = 1e-12, max_iter: int = 500, warm_mu_init: float = 1e-8) -> None:
+                 constr_viol_tol: float = 1e-12, max_iter: int = 500, warm_mu_init: float = 1e-8,
+                 transfer_time_max_s: float | None = None) -> None:
         self.scenario = scenario
         self.model = Model.for_scenario(scenario)
         self.engine = Engine.for_scenario(scenario)
@@ -152,12 +156,18 @@ class RendezvousNlp:
             raise ValueError("max_sweep_rad must be > 0")
         self.max_sweep_rad = max_sweep_rad
         if horizon_bounds is None:
-            hi = getattr(scenario.ocp, "horizon_max_s", None)
-            horizon_bounds = (HORIZON_LO, HORIZON_HI if hi is None else hi / self.model.units.time_s)
+            horizon_bounds = (HORIZON_LO, HORIZON_HI)
         lo, hi = horizon_bounds
         if not 0.0 < lo < hi:
             raise ValueError(f"horizon bounds must satisfy 0 < lo < hi, got {horizon_bounds}")
         self.horizon_bounds = (float(lo), float(hi))
+        #: absolute latest arrival [TU] (None: free): T <= arrival_max - t0 at every solve
+        self.arrival_max: float | None = None
+        if transfer_time_max_s is not None:
+            if not transfer_time_max_s > 0.0:
+                raise ValueError(f"transfer_time_max_s must be > 0, got {transfer_time_max_s}")
+            self.arrival_max = ((scenario.problem.start_time_s + transfer_time_max_s)
+                                / self.model.units.time_s)
         if not (tol > 0.0 and constr_viol_tol > 0.0 and max_iter >= 1 and warm_mu_init > 0.0):
             raise ValueError("tol, constr_viol_tol, warm_mu_init must be > 0 and max_iter >= 1")
         self.ipopt = {"ipopt.tol": tol, "ipopt.constr_viol_tol": constr_viol_tol,
@@ -293,10 +303,17 @@ class RendezvousNlp:
             raise ValueError(f"duals are for N = {duals.nodes}, nu = {duals.nu}; the guess has N = {n}")
         _, b = self._build(n)
         lo, hi = self.horizon_bounds
+        if self.arrival_max is not None:
+            hi = min(hi, self.arrival_max - t0)
+            if not hi > lo:
+                raise ValueError(f"t0 = {t0:.6g} TU is past the arrival deadline {self.arrival_max:.6g} TU "
+                                 f"(less than the shortest horizon {lo:g} TU left)")
+        ubx = b["ubx"].copy()
+        ubx[-1] = hi
         w0 = np.concatenate([guess.states.ravel(), guess.controls.ravel(),
                              [min(max(guess.horizon, lo), hi)]])
-        w0 = np.clip(w0, b["lbx"], b["ubx"])
-        args = dict(x0=w0, p=np.concatenate([[t0], x0]), lbx=b["lbx"], ubx=b["ubx"], lbg=b["lbg"],
+        w0 = np.clip(w0, b["lbx"], ubx)
+        args = dict(x0=w0, p=np.concatenate([[t0], x0]), lbx=b["lbx"], ubx=ubx, lbg=b["lbg"],
                     ubg=b["ubg"])
         if duals is not None:
             args.update(lam_g0=duals.lam_g, lam_x0=duals.lam_x)
@@ -336,45 +353,67 @@ def min_time_guess(nlp: RendezvousNlp) -> Plan:
     return Plan(t0=0.0, horizon=g.t_f, states=g.states, controls=controls)
 
 
+#: Throttle of the min-fuel guess at every node (docs/nmpc.md, "Minimum fuel"): from the min-time optimum's
+#: states and angles, 0.5 (mid-box) reaches the best optimum found for both engines; 1 (the min-time
+#: throttle) does for NEP but stops the SEP case at a worse local optimum (211.32 kg at the deadline).
+MIN_FUEL_GUESS_THROTTLE = 0.5
+
+
 def min_fuel_guess(scenario: RendezvousScenario, nlp: RendezvousNlp | None = None) -> tuple[Plan, NlpResult]:
     """The documented guess of the open-loop minimum-fuel problems (docs/nmpc.md, "Minimum fuel"): the
-    minimum-time optimum of the same engine (objective "min-time", full throttle; from `min_time_guess`),
-    throttle 1 at every node. IPOPT then opens the coast arcs. Returns (guess, the min-time result)."""
+    minimum-time optimum of the same engine (objective "min-time", full throttle; from `min_time_guess`):
+    its node states, angles and horizon, with the throttle MIN_FUEL_GUESS_THROTTLE at every node. IPOPT
+    then opens the coast arcs. Returns (guess, the min-time result)."""
     mt = RendezvousNlp(scenario, objective="min-time",
                        rk4_steps=None if nlp is None else nlp.rk4_steps,
                        third_bodies=False if nlp is None else nlp.third_bodies)
     res = mt.solve(0.0, mt.model.x0, min_time_guess(mt))
     if not res.converged:
         raise RuntimeError(f"the minimum-time guess did not converge: {res.status}")
-    return res.plan, res
+    p = res.plan
+    controls = np.stack([p.controls[:, 0], np.full(p.nodes + 1, MIN_FUEL_GUESS_THROTTLE)], axis=1)
+    return Plan(t0=p.t0, horizon=p.horizon, states=p.states, controls=controls), res
+
+
+def open_loop(scenario: RendezvousScenario, free: bool = False, third_bodies: bool = False,
+              nodes: int | None = None) -> tuple[RendezvousNlp, NlpResult, NlpResult | None]:
+    """The open loop of a scenario (docs/nmpc.md): min-time from ocp's documented guess; min-fuel from the
+    min-time optimum at full throttle, arrival by [ocp] transfer_time_max_s unless `free`. Returns (the NLP,
+    its result, the min-time result used as min-fuel's guess or None)."""
+    deadline = None if free else scenario.ocp.transfer_time_max_s
+    nlp = RendezvousNlp(scenario, third_bodies=third_bodies, transfer_time_max_s=deadline)
+    if nlp.objective == "min-time":
+        guess = min_time_guess(nlp)
+        if nodes is not None:
+            raise ValueError("nodes: min-time starts from ocp's documented guess (scenario N)")
+        return nlp, nlp.solve(0.0, nlp.model.x0, guess), None
+    plan, mt = min_fuel_guess(scenario, nlp)
+    return nlp, nlp.solve(0.0, nlp.model.x0, plan), mt
 
 
 def main(argv: list[str] | None = None) -> int:
-    """`python -m ogk_host.rendezvous.nlp [SCENARIO] [--third-bodies] [--nodes N]`: the open loop of the
+    """`python -m ogk_host.rendezvous.nlp [SCENARIO] [--free] [--third-bodies]`: the open loop of the
     scenario through RendezvousNlp (min-time: from ocp's documented guess; min-fuel: from the min-time
-    optimum at full throttle), the figures of docs/nmpc.md."""
+    optimum at full throttle, arrival by [ocp] transfer_time_max_s unless --free), docs/nmpc.md's figures."""
     import argparse
 
     from .scenario import load_scenario
 
     parser = argparse.ArgumentParser(description=main.__doc__)
     parser.add_argument("scenario", nargs="?", default=None)
+    parser.add_argument("--free", action="store_true", help="ignore [ocp] transfer_time_max_s (t_f free)")
     parser.add_argument("--third-bodies", action="store_true", help="Earth and Mars in the predictive model")
     args = parser.parse_args(argv)
     scenario = load_scenario(args.scenario)
-    nlp = RendezvousNlp(scenario, third_bodies=args.third_bodies)
+    nlp, res, mt = open_loop(scenario, free=args.free, third_bodies=args.third_bodies)
+    deadline = "free" if nlp.arrival_max is None else f"<= {nlp.days(nlp.arrival_max):.1f} d"
     print(f"{scenario.name}: {scenario.propulsion.model}, throttle {scenario.propulsion.throttle}, "
           f"objective {nlp.objective}, N = {scenario.ocp.nodes}, RK4 steps {nlp.rk4_steps}, third bodies "
-          f"{nlp.third_bodies}, horizon bounds [{nlp.days(nlp.horizon_bounds[0]):.3f}, "
-          f"{nlp.days(nlp.horizon_bounds[1]):.1f}] d")
-    if nlp.objective == "min-time":
-        res = nlp.solve(0.0, nlp.model.x0, min_time_guess(nlp))
-    else:
-        guess, mt = min_fuel_guess(scenario, nlp)
-        print(f"  guess (min-time, full throttle): {mt.status}, t_f = {nlp.days(mt.plan.t_f):.4f} d, fuel "
-              f"{nlp.kg(1.0 - mt.plan.states[-1, 4]):.2f} kg, {mt.iterations} iterations, "
+          f"{nlp.third_bodies}, t_f {deadline}")
+    if mt is not None:
+        print(f"  guess = min-time optimum (throttle {MIN_FUEL_GUESS_THROTTLE:g}): {mt.status}, t_f = {nlp.days(mt.plan.t_f):.4f} d, "
+              f"fuel {nlp.kg(1.0 - mt.plan.states[-1, 4]):.2f} kg, {mt.iterations} iterations, "
               f"{mt.solve_time_s:.3f} s")
-        res = nlp.solve(0.0, nlp.model.x0, guess)
     p = res.plan
     print(f"  {nlp.objective}: {res.status}, t_f = {nlp.days(p.t_f):.4f} d, fuel = "
           f"{nlp.kg(1.0 - p.states[-1, 4]):.2f} kg, {res.iterations} iterations, {res.solve_time_s:.3f} s")

@@ -136,6 +136,10 @@ class OcpSettings:
     nodes: int                      #: N control subintervals (N + 1 node values)
     control: str
     rk4_steps_per_interval: int
+    #: Open-loop minimum fuel: arrival no later than t_0 + this [s] (None: t_f free). The fuel is flat in t_f
+    #: past a knee (~490 d NEP, ~530 d SEP) and free t_f stops at a guess-dependent local optimum anywhere
+    #: in 490-1700 d; the bound, just past the knee, pins t_f (docs/nmpc.md, "Minimum fuel").
+    transfer_time_max_s: float | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -280,7 +284,8 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
     ocp = OcpSettings(objective=ocp_s.text("objective", choices=OBJECTIVES),
                       nodes=ocp_s.integer("nodes", lo=2, hi=1000),
                       control=ocp_s.text("control", choices=CONTROLS),
-                      rk4_steps_per_interval=ocp_s.integer("rk4_steps_per_interval", lo=1, hi=100))
+                      rk4_steps_per_interval=ocp_s.integer("rk4_steps_per_interval", lo=1, hi=100),
+                      transfer_time_max_s=ocp_s.number("transfer_time_max_s", None, positive=True))
     ocp_s.finish()
     if ocp.objective == "min-time" and propulsion.throttle != "constant":
         raise ocp_s.error("objective", "min-time is posed with propulsion.throttle = \"constant\" "
