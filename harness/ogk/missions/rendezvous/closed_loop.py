@@ -59,6 +59,9 @@ class ReplanRecord:
     angle_offset_deg: float         #: thrust-angle noise of the subinterval's first draw
     sweep_deg: float                #: |alpha_1 - alpha_0| of the flown subinterval (> 360: a winding)
     status: str
+    status_n: str = ""              #: status of the N solve (SNNS: before the doubling test)
+    cost_n_days: float | None = None    #: min-time: cost-to-go of the N solve [d] (None: failed)
+    cost_2n_days: float | None = None   #: ... of the 2N solve (None: failed or not tried)
 
     def to_json(self) -> dict[str, Any]:
         return dataclasses.asdict(self)
@@ -120,6 +123,13 @@ class FlightResult:
 def _mass_flow_max(scenario: RendezvousScenario, r: FloatArray) -> FloatArray:
     """Nominal mdot_max(r) [normalised] of the engine (the predictive model's, no thrust offset)."""
     return np.asarray(Engine.for_scenario(scenario).limits(r)[1], dtype=np.float64) * np.ones_like(r)
+
+
+def _days(cost: float | None, scenario: RendezvousScenario, units: Any) -> float | None:
+    """A min-time cost-to-go [TU] in days (None for min-fuel costs and failed solves)."""
+    if cost is None or scenario.ocp.objective != "min-time":
+        return None
+    return cost * units.time_s / DAY_S
 
 
 def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed: int,
@@ -192,7 +202,9 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
                            subinterval_days=(t_next - t) * units.time_s / DAY_S,
                            angle_offset_deg=math.degrees(segs[0][2]),
                            sweep_deg=math.degrees(abs(float(info.plan.controls[1, 0] - info.plan.controls[0, 0]))),
-                           status=info.status)
+                           status=info.status, status_n=info.status_n,
+                           cost_n_days=_days(info.cost_n, scenario, units),
+                           cost_2n_days=_days(info.cost_2n, scenario, units))
         history.append(rec)
         if progress is not None:
             progress(rec)

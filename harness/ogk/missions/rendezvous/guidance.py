@@ -48,6 +48,9 @@ class ReplanInfo:
     objective: float | None     #: cost-to-go of the adopted solution (normalised), None when failed
     status: str                 #: solver status of the adopted (or failed N) solve
     plan: Plan                  #: the plan flown from t (on a failure: the previous plan's remainder)
+    status_n: str = ""          #: status of the N solve (SNNS: before the doubling test)
+    cost_n: float | None = None     #: cost-to-go of the N solve (None when it failed)
+    cost_2n: float | None = None    #: cost-to-go of the 2N solve (None: failed or not tried)
 
 
 class Guidance(Protocol):
@@ -156,6 +159,7 @@ class IpoptGuidance:
         iterations, solve_s = res.iterations, res.solve_time_s
         adopted: NlpResult | None = res if res.converged else None
         subdivided = False
+        cost_2n: float | None = None
         s = self.strategy
         if s.name == "snns" and self.subdivisions < s.max_subdivisions:
             base = res.plan if res.converged else guess
@@ -184,7 +188,8 @@ class IpoptGuidance:
         return ReplanInfo(t=t, t_next=t + flown.step, converged=adopted is not None, failed=adopted is None,
                           iterations=iterations, solve_time_s=solve_s, solves=solves, nodes=flown.nodes,
                           subdivided=subdivided, objective=None if adopted is None else adopted.objective,
-                          status=status, plan=flown)
+                          status=status, plan=flown, status_n=res.status,
+                          cost_n=res.objective if res.converged else None, cost_2n=cost_2n)
 
     def command(self, t: float) -> tuple[float, float]:
         plan = self._flying
