@@ -138,7 +138,7 @@ class OcpSettings:
     rk4_steps_per_interval: int
     #: Open-loop minimum fuel: arrival no later than t_0 + this [s] (None: t_f free). The fuel is flat in t_f
     #: past a knee (~490 d NEP, ~530 d SEP) and free t_f stops at a guess-dependent local optimum anywhere
-    #: in 490-1700 d; the bound, just past the knee, pins t_f (docs/nmpc.md, "Minimum fuel").
+    #: in 490-1700 d; the bound, just past the knee, cuts off the long branches (docs/nmpc.md, "Minimum fuel").
     transfer_time_max_s: float | None = None
 
 
