@@ -82,3 +82,54 @@ bench-arm: $(ARM_BENCH_MPSP) qemu-plugin
 	@port/qemu-plugin/count_insns.sh $(ARM_BENCH_MPSP) bench_mpsp_iter_once bench_mpsp_prop_once \
 	  bench_mpsp_sens_once bench_mpsp_update_once 2>/dev/null
 bench: bench-arm
+
+# ---------------------------------------------------------------- NMPC warm re-solve (docs/nmpc.md, "Cost")
+# One ogk_nmpc_replan at N = 30 -> 29 after the open loop (the case: tests/bench/bench_nmpc_ipopt.py,
+# generated into bench_nmpc_case.h bit-exact from the scenario): host ns (median), callgrind instructions
+# of exactly one re-solve, Cortex-M7 instructions (QEMU plugin), the static worst-case stack (gcc call
+# graphs) and the QEMU high-water mark; then CasADi + IPOPT's warm re-solve of the same case and the
+# kernel through cffi, in one table (bench_nmpc_ipopt.py run).
+NMPC_B := $(BENCH_DIR)/nmpc
+NMPC_CASE_H := $(NMPC_B)/bench_nmpc_case.h
+BENCH_NMPC := $(BENCH_DIR)/bench_nmpc
+ARM_BENCH_NMPC := $(ARM_B)/bench_nmpc.elf
+
+$(NMPC_CASE_H): tests/bench/bench_nmpc_ipopt.py scenarios/rendezvous_nep_min_time.toml $(FFI_STAMP)
+	$(VPY) tests/bench/bench_nmpc_ipopt.py header $@
+
+$(BENCH_NMPC): tests/bench/bench_nmpc.c $(NMPC_CASE_H) $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
+	@mkdir -p $(@D)
+	gcc -std=c99 -O2 -g -Wall -Wextra -Werror $(KINC) -Iport/include -I$(NMPC_B) \
+	  $< $(PORT_HOST_SRC) $(B)/host/libogk.a -o $@ -lm
+
+$(ARM_BENCH_NMPC): tests/bench/bench_nmpc.c $(NMPC_CASE_H) $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
+	$(ARM_CC) -std=c99 -Wall -Wextra -Werror -O2 -g $(ARM_CPU) -DOGK_BENCH_BARE_METAL \
+	  $(KINC) -Iport/include -I$(ARM_PORT) -I$(NMPC_B) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
+	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
+
+.PHONY: bench-nmpc bench-nmpc-profile
+bench-nmpc: $(BENCH_NMPC) $(ARM_BENCH_NMPC) $(ARM_CI) qemu-plugin $(FFI_STAMP)
+	@echo "== NMPC warm re-solve vs CasADi + IPOPT (docs/nmpc.md, \"Cost\") =="
+	@rm -f $(NMPC_B)/*.txt
+	@$(BENCH_NMPC) time > $(NMPC_B)/host.txt
+	@n=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+	     --collect-atstart=no --toggle-collect=bench_nmpc_replan_once \
+	     $(BENCH_NMPC) once 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'); \
+	  echo "nmpc_replan_callgrind $$n" > $(NMPC_B)/callgrind.txt
+	@port/qemu-plugin/count_insns.sh $(ARM_BENCH_NMPC) bench_nmpc_replan_once 2> $(NMPC_B)/m7_run.log | \
+	  awk '$$2 == "fn" && $$3 == "bench_nmpc_replan_once" { print "nmpc_replan_m7_insns", $$9 }' > $(NMPC_B)/m7.txt
+	@sed -n 's/^\(nmpc_m7_[a-z0-9_]* [0-9.e+-]*\).*/\1/p; s/.*stack high-water mark: \([0-9]*\) of.*/nmpc_m7_stack_hwm \1/p' \
+	  $(NMPC_B)/m7_run.log >> $(NMPC_B)/m7.txt
+	@python3 port/cortex-m7/stack_report.py $(ARM_CI) > $(NMPC_B)/stack_report.log; \
+	  awk '$$1 == "ogk_nmpc_replan" { print "nmpc_stack_replan", $$3 } $$1 == "ogk_nmpc_solve" { print "nmpc_stack_solve", $$3 }' \
+	  $(NMPC_B)/stack_report.log > $(NMPC_B)/stack.txt
+	@$(VPY) tests/bench/bench_nmpc_ipopt.py run --figures $(NMPC_B)
+
+# Where the re-solve's instructions go: callgrind of one re-solve, inclusive per function.
+bench-nmpc-profile: $(BENCH_NMPC)
+	valgrind --tool=callgrind --callgrind-out-file=$(NMPC_B)/callgrind.out \
+	  --collect-atstart=no --toggle-collect=bench_nmpc_replan_once $(BENCH_NMPC) once
+	callgrind_annotate --inclusive=yes $(NMPC_B)/callgrind.out | head -40
+	callgrind_annotate $(NMPC_B)/callgrind.out | head -30
+
+bench: bench-nmpc
