@@ -22,6 +22,12 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
                           const double *x, const double *u, double *xdot,
                           double *jx, double *ju, double *jt);
 
+/* k = jx y for the first ncol columns of y and k (row stride `stride`),
+ * jx a Jacobian of ogk_i_nmpc_rhs: only its structural nonzeros are used
+ * (13 of 25; the sensitivity sweep's inner product). */
+void ogk_i_nmpc_jx_times(const double *jx, const double *y, size_t stride,
+                         size_t ncol, double *k);
+
 /* F = x at the end of one interval [t_start, t_start + h] from x0 with the
  * control linear from u0 to u1. When sens is not NULL it receives the
  * 5 x OGK_I_NMPC_MAX_COLS sensitivity matrix (columns above; unused control

@@ -37,15 +37,8 @@ static void stage_k(const double *jx, const double *ju, const double *jt, /* NOL
     const size_t col_t = col_h + 1u;
     size_t i;
     size_t j;
-    size_t c;
+    ogk_i_nmpc_jx_times(jx, y, NCOL, ncol, k);
     for (i = 0u; i < NX; ++i) {
-        for (c = 0u; c < ncol; ++c) {
-            double acc = 0.0;
-            for (j = 0u; j < NX; ++j) {
-                acc += jx[(i * NX) + j] * y[(j * NCOL) + c];
-            }
-            k[(i * NCOL) + c] = acc;
-        }
         for (j = 0u; j < nu; ++j) {
             k[(i * NCOL) + col_u0 + j] += ju[(i * nu) + j] * (1.0 - s_frac);
             k[(i * NCOL) + col_u1 + j] += ju[(i * nu) + j] * s_frac;

@@ -47,6 +47,13 @@
 #define ELASTIC_CURVATURE 1.0e-6
 /* Restarts (scaled-identity Hessian, empty filter) after a failed line search. */
 #define MAX_RESTARTS 2u
+/* Smallest step box (fraction of step_max_*) and the smallest step taken as
+ * a BFGS pair. */
+#define BOX_MIN 1.0e-3
+#define BFGS_MIN_ALPHA 0.1
+/* Feasibility steps per solve, and the largest violation they are tried at. */
+#define MAX_RESTORES 3u
+#define RESTORE_VIOL_MAX 1.0e-4
 /* Factor on the step box of a QP retried after OGK_E_INFEASIBLE. */
 #define BOX_OPEN 1.0e3
 /* Powell damping: keep s^T y >= 0.2 s^T H s. */
@@ -423,6 +430,43 @@ static void lagrangian_gradient(const ogk_nmpc_t *ctx, size_t nv, const double *
     }
 }
 
+/* Minimum-norm feasibility step: the QP with H = I and g = 0 on the same
+ * constraints, taken whole when it lowers the l1 violation. True when taken
+ * (the iterate moved; the BFGS pair of this step is skipped). */
+static bool feasibility_step(ogk_nmpc_t *ctx, ogk_nmpc_plan_t *p, size_t nv, size_t rows,
+                             double viol_l1, ogk_nmpc_report_t *rep)
+{
+    ogk_qp_problem_t qp;
+    double zero[MAXV];
+    double t_l1 = 0.0;
+    double t_max = 0.0;
+    double c_trial[NC];
+    bool taken = false;
+    (void)memset(zero, 0, sizeof(zero));
+    identity(ctx->el_h, nv, 1.0);
+    qp.n = nv;
+    qp.m_eq = NC;
+    qp.m_in = rows;
+    qp.H = ctx->el_h;
+    qp.g = zero;
+    qp.A_eq = ctx->qp_aeq;
+    qp.b_eq = ctx->qp_beq;
+    qp.A_in = (rows > 0u) ? ctx->qp_ain : NULL;
+    qp.b_in = (rows > 0u) ? ctx->qp_bin : NULL;
+    qp.lb = ctx->qp_lb;
+    qp.ub = ctx->qp_ub;
+    if (ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol) == OGK_OK) {
+        rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
+        expand_step(ctx, p, ctx->qp_sol.x, nv);
+        take_step(ctx, p, ctx->qp_sol.x, nv, 1.0, &ctx->trial);
+        if ((evaluate(ctx, &ctx->trial, false, &t_l1, &t_max, c_trial) == OGK_OK) && (t_l1 < viol_l1)) {
+            (void)memcpy(p, &ctx->trial, sizeof(*p));
+            taken = true;
+        }
+    }
+    return taken;
+}
+
 ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                           ogk_nmpc_report_t *rep)
 {
@@ -446,7 +490,10 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     double theta_min = 0.0;
     bool first_iter = true;
     bool flat;
+    bool restored = false;
     uint32_t restarts = 0u;
+    uint32_t restores = 0u;
+    double box = 1.0;
     double viol_l1 = 0.0;
     double viol_max = 0.0;
     uint32_t iter;
@@ -473,7 +520,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 bfgs_update(hess, nv, ctx->step_v, grad_new, first_update);
                 first_update = false;
             }
-            rows = build_bounds(ctx, p, nv, 1.0);
+            rows = build_bounds(ctx, p, nv, box);
             qp.n = nv;
             qp.m_eq = NC;
             qp.m_in = rows;
@@ -499,7 +546,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
                 if (st == OGK_E_INFEASIBLE) {
                     rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
-                    (void)build_bounds(ctx, p, nv, 1.0);
+                    (void)build_bounds(ctx, p, nv, box);
                     st = solve_elastic(ctx, hess, g_obj, nv, rows);
                     rep->flags |= OGK_NMPC_FLAG_ELASTIC;
                 }
@@ -532,9 +579,21 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             if ((viol_max <= cfg->tol_feas) && ((stat <= cfg->tol_stat) || flat)) {
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
                 done = true;
+            } else if (flat && (viol_max <= RESTORE_VIOL_MAX) && (restores < MAX_RESTORES)) {
+                /* the step predicts no change of J, only feasibility is left:
+                 * a minimum-norm step onto the linearised constraints (H = I,
+                 * g = 0) converges quadratically where BFGS steps wander in
+                 * the null space and keep the violation at 1e-8 (docs) */
+                restores += 1u;
+                restored = feasibility_step(ctx, p, nv, rows, viol_l1, rep);
+                have_prev = have_prev && !restored;
+            } else {
+                /* an SQP step */
             }
         }
-        if (!done) {
+        if (!done && restored) {
+            restored = false;
+        } else if (!done) {
             /* filter line search (Waechter & Biegler 2006, without the
              * restoration phase): theta = l1 violation, phi = J */
             const double phi0 = ogk_i_nmpc_objective(cfg, p);
@@ -587,6 +646,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 /* restart: a BFGS matrix that has drifted and a filter that
                  * blocks every step are the usual causes */
                 restarts += 1u;
+                box = 1.0;
                 identity(hess, nv, cfg->hessian_init);
                 first_update = true;
                 have_prev = false;
@@ -614,7 +674,12 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 }
                 (void)memcpy(y_prev, ctx->qp_sol.y_eq, sizeof(y_prev));
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
-                have_prev = true;
+                /* the step box as a trust region: a cut step shrinks it (the
+                 * next QP stays where the linearisation held), a full step
+                 * regrows it; a much-cut step is no curvature sample */
+                box = (alpha < 1.0) ? (((alpha * box) > BOX_MIN) ? (alpha * box) : BOX_MIN)
+                                    : (((2.0 * box) < 1.0) ? (2.0 * box) : 1.0);
+                have_prev = alpha >= BFGS_MIN_ALPHA;
             }
         }
     }

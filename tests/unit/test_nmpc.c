@@ -340,8 +340,7 @@ static void test_coast_rendezvous_zero_fuel(void **state)
     c.target_rate = 1.0;
     c.horizon_min = 1.0;
     c.horizon_max = 2.0;
-    c.tol_obj = 0.0; /* stationarity only, tight */
-    c.tol_stat = 1.0e-10;
+    c.tol_obj = 0.0; /* stationarity only (1e-7, mars_config) */
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     (void)memset(&plan, 0, sizeof plan);
     plan.horizon = 1.5;
@@ -363,7 +362,7 @@ static void test_coast_rendezvous_zero_fuel(void **state)
     OGK_ASSERT_NEAR(rep.objective, 0.0, 1.0e-9);
     OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
     for (k = 0u; k <= nodes; ++k) {
-        OGK_ASSERT_NEAR(plan2.u[2u * k + 1u], 0.0, 1.0e-8);
+        OGK_ASSERT_NEAR(plan2.u[2u * k + 1u], 0.0, 1.0e-7);
     }
 }
 

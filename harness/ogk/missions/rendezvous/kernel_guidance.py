@@ -6,7 +6,7 @@ regrid, the stale-plan fallback); this adapter only maps the scenario to the ker
 
 - first replan: the documented guess (`guidance.first_guess`) loaded as the plan, then `ogk_nmpc_solve`
   (the open loop from (t, x), a cold BFGS start); minimum fuel first solves minimum time from that guess
-  in a second context and starts from its optimum at full throttle (the ground's guess, nlp.py);
+  in a second context and starts from its optimum with throttle 0.5 (the ground's guess, nlp.py);
 - every later replan: `ogk_nmpc_replan` (warm: the shifted plan, its multipliers and BFGS matrix).
 """
 from __future__ import annotations
@@ -102,7 +102,9 @@ class KernelGuidance:
                 self.pre_iterations = pre.sqp_iterations
                 if pre.converged:
                     p = time_opt.plan()
-                    g = Plan(t0=p.t0, horizon=p.horizon, states=p.states, controls=p.controls)
+                    controls = p.controls.copy()
+                    controls[:, 1] = 0.5     # the ground's documented guess (nlp.min_fuel_guess)
+                    g = Plan(t0=p.t0, horizon=p.horizon, states=p.states, controls=controls)
             self.nmpc.load_plan(g.t0, g.horizon, g.states, g.controls)
             rep = self.nmpc.solve(t, x)
             self.started = True
