@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from ogk_host.errors import OgkInputError
 from ogk_host.rendezvous.dynamics import DAY_S, Model
-from ogk_host.rendezvous.nlp import NlpResult, RendezvousNlp
+from ogk_host.rendezvous.nlp import NlpResult, RendezvousNlp, min_fuel_guess
 from ogk_host.rendezvous.ocp import DEFAULT_GUESS_ALPHA_RAD, DEFAULT_GUESS_SHAPE, DEFAULT_GUESS_TF_DAYS
 from ogk_host.rendezvous.ocp import phase_matched_guess
 from ogk_host.rendezvous.plan import Plan
@@ -96,7 +96,8 @@ def strategy_settings(scenario: RendezvousScenario, name: str | None = None) -> 
 class IpoptGuidance:
     """The ground NLP re-solved along the flight with SNNS or CNCN (strategy.py).
 
-    - first replan: the open-loop problem from the documented guess (`first_guess`), N = [ocp] nodes;
+    - first replan: the open-loop problem from the documented guess (`first_guess`; min-fuel: nlp's
+      `min_fuel_guess`), N = [ocp] nodes;
     - SNNS: guess = the previous plan shifted (`strategy.snns_guess`), primal and dual warm start; while
       subdivisions remain, the doubled guess is solved too and adopted by `strategy.adopt_doubled`;
     - CNCN: guess = the previous plan regridded with the same N (primal warm start only: interpolated duals
@@ -114,8 +115,12 @@ class IpoptGuidance:
         n = scenario.nmpc
         self.third_bodies = n.third_bodies_in_model if third_bodies is None else third_bodies
         # one NLP object for every node count (it builds and caches one IPOPT solver per N, cold and warm)
+        # min-fuel: arrival by [ocp] transfer_time_max_s (with t_f free the fuel is flat past the knee and
+        # has no minimum; docs/nmpc.md, "Minimum fuel"), an absolute deadline the re-plans keep
+        deadline = scenario.ocp.transfer_time_max_s if scenario.ocp.objective == "min-fuel" else None
         self.nlp = RendezvousNlp(scenario, rk4_steps=n.rk4_steps_per_interval, third_bodies=self.third_bodies,
-                                 tol=n.tol, constr_viol_tol=n.constr_viol_tol, max_iter=n.max_iter)
+                                 tol=n.tol, constr_viol_tol=n.constr_viol_tol, max_iter=n.max_iter,
+                                 transfer_time_max_s=deadline)
         self.nu = int(self.nlp.nu)
         self._plan: Plan | None = None          # basis of the next guess
         self._flying: Plan | None = None        # the plan commanded now
@@ -140,6 +145,12 @@ class IpoptGuidance:
         s = self.strategy
         prev = self._plan
         if prev is None:
+            if self.nlp.objective == "min-fuel":
+                # the open loop's documented min-fuel guess: the min-time optimum at throttle 0.5 (nlp.py)
+                g, _ = min_fuel_guess(self.scenario, self.nlp)
+                states = np.array(g.states, copy=True)
+                states[0] = x
+                return Plan(t0=t, horizon=g.horizon, states=states, controls=g.controls), None
             return first_guess(self.scenario, self.scenario.ocp.nodes, t, x, self.nu), None
         if s.name == "cncn":
             return st.regrid(prev, t, x, self.scenario.ocp.nodes, s.min_horizon), None
