@@ -1,7 +1,7 @@
 /* gen_seeds.c -- writes the seed corpus of the fuzz harnesses (make fuzz-seeds; the outputs are
  * committed in tests/fuzz/corpus/<target>/): the valid 5-node NOG table (as is, and re-sealed
  * with a defect), op streams flying it near the nominal, CPD steps near level flight, an MPSP
- * configuration patch. Usage: gen_seeds DIR (DIR/<target>/ must exist). */
+ * configuration patch, NMPC flights (open loop, replans, commands). Usage: gen_seeds DIR (DIR/<target>/ must exist). */
 #include "fuzz_common.h"
 
 #include <stddef.h>
@@ -103,6 +103,48 @@ int main(int argc, char **argv)
         patch[1] = (uint8_t)(offsetof(ogk_mpsp_config_t, h_max) & 0xFFu);
         patch[2] = (uint8_t)(offsetof(ogk_mpsp_config_t, h_max) >> 8);
         put(argv[1], "mpsp_init", "h_max_zero", NULL, patch, sizeof patch);
+    }
+
+    /* NMPC (fuzz_nmpc_step.c): the unperturbed guess of N = 4 nodes, a solve, then replans at the
+     * next node with commands between; once with the constant engine (SNNS, doubling test with
+     * threshold 0), once throttled, minimum fuel, CNCN, two softened bodies and the sweep bound. */
+    {
+        static const uint8_t modes[2][2] = {
+            { 0x00u, 0x03u | 0x04u | 0x18u | 0x40u }, /* N 4, rk4 2, max_iter 4, doubling N <= 1 */
+            { 0x01u | 0x02u | 0x04u | 0x30u | 0x40u, 0x03u | 0x04u | 0x18u },
+        };
+        static const char *const names[2] = { "snns_open_loop_replans", "cncn_throttled_fuel_bodies" };
+        size_t s;
+        for (s = 0u; s < 2u; ++s) {
+            const int throttled = (modes[s][0] & 0x01u) != 0u;
+            size_t i;
+            n = 0u;
+            ops[n++] = modes[s][0];
+            ops[n++] = modes[s][1];
+            ops[n++] = 128u; /* horizon scale 1 */
+            for (k = 0u; k <= 4u; ++k) {
+                ops[n++] = 128u; /* r as guessed */
+                ops[n++] = 128u; /* alpha = 135 deg */
+                if (throttled) {
+                    ops[n++] = 200u;
+                }
+            }
+            for (k = 0u; k < 3u; ++k) {
+                ops[n++] = (k == 0u) ? 0u : 1u; /* solve, then replans */
+                for (i = 0u; i < 6u; ++i) {
+                    ops[n++] = 128u; /* at the next node, on the plan */
+                }
+                ops[n++] = 2u; /* command inside the plan */
+                ops[n++] = 30u;
+            }
+            ops[n++] = 2u + 128u; /* command at a raw time: +Inf */
+            for (i = 0u; i < 6u; ++i) {
+                ops[n++] = 0u;
+            }
+            ops[n++] = 0xF0u;
+            ops[n++] = 0x7Fu;
+            put(argv[1], "nmpc_step", names[s], NULL, ops, n);
+        }
     }
     return 0;
 }
