@@ -467,7 +467,7 @@ ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
         st = OGK_E_NONFINITE;
     }
     if (st == OGK_OK) {
-        st = ogk_i_nmpc_rhs(&ctx->cfg, ctx->nu, t, x, u, xdot, NULL, NULL, NULL);
+        st = ogk_i_nmpc_rhs(&ctx->cfg, ctx->nu, t, x, u, NULL, xdot, NULL, NULL, NULL);
     }
     return st;
 }

@@ -16,11 +16,12 @@
 #define OGK_I_NMPC_MAX_COLS (OGK_NMPC_MAX_DIR + 1u)
 
 /* xdot = f(t, x, u) and, when jx is not NULL, its Jacobians: jx (5 x 5,
- * row-major), ju (5 x nu), jt (5). OGK_E_NONFINITE when x leaves the model's
- * domain (r <= 0, m <= 0, a third body hit) or a value is not finite. */
+ * row-major), ju (5 x nu), jt (5). trig: cos and sin of u[0] when the caller
+ * has them, NULL to compute them here. OGK_E_NONFINITE when x leaves the
+ * model's domain (r <= 0, m <= 0, a third body hit) or a value is not finite. */
 ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
-                          const double *x, const double *u, double *xdot,
-                          double *jx, double *ju, double *jt);
+                          const double *x, const double *u, const double *trig,
+                          double *xdot, double *jx, double *ju, double *jt);
 
 /* k = jx y for the first ncol columns of y and k (row stride `stride`),
  * jx a Jacobian of ogk_i_nmpc_rhs: only its structural nonzeros are used

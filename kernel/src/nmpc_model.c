@@ -93,8 +93,8 @@ static ogk_status body_accel(const ogk_nmpc_config_t *cfg, uint32_t b, double t,
 }
 
 ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (model f(t, x, u) and its Jacobians); checked against eq. (11) and by central differences (test_nmpc.c) */
-                          const double *x, const double *u, double *xdot, /* NOLINT(bugprone-easily-swappable-parameters): as above */
-                          double *jx, double *ju, double *jt)
+                          const double *x, const double *u, const double *trig, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                          double *xdot, double *jx, double *ju, double *jt) /* NOLINT(bugprone-easily-swappable-parameters): as above */
 {
     ogk_status st = OGK_OK;
     const double r = x[0];
@@ -107,8 +107,8 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /
         st = OGK_E_NONFINITE;
     } else {
         const double throttle = (nu > 1u) ? u[1] : 1.0;
-        const double ca = cos(u[0]);
-        const double sa = sin(u[0]);
+        const double ca = (trig != NULL) ? trig[0] : cos(u[0]);
+        const double sa = (trig != NULL) ? trig[1] : sin(u[0]);
         engine_limits_t lim;
         double pert[2] = { 0.0, 0.0 };
         double pert_jac[2][3] = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 } };

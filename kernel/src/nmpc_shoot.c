@@ -6,6 +6,7 @@
  * map it constrains. */
 #include "nmpc_internal.h"
 
+#include <math.h>
 #include <string.h>
 
 #define NX ((size_t)OGK_NMPC_NX)
@@ -45,7 +46,9 @@ static void stage_k(const double *jx, const double *ju, const double *jt, /* NOL
         }
         /* stage time t_start + s h: d/dh = s, d/dt_start = 1 */
         k[(i * NCOL) + col_h] += jt[i] * s_frac;
-        k[(i * NCOL) + col_t] += jt[i];
+        if (ncol > col_t) {
+            k[(i * NCOL) + col_t] += jt[i];
+        }
     }
 }
 
@@ -57,12 +60,15 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
     /* RK4 stage offsets (fractions of one step) and weights */
     static const double c_off[4] = { 0.0, 0.5, 0.5, 1.0 };
     static const double w_rk[4] = { 1.0, 2.0, 2.0, 1.0 };
+    static const uint32_t trig_index[4] = { 0u, 1u, 1u, 2u };
     ogk_status st = OGK_OK;
     const uint32_t steps = cfg->rk4_steps;
     const double dt = h / (double)steps;
     const double inv_steps = 1.0 / (double)steps;
-    const size_t ncol = NX + (2u * (size_t)nu) + 2u;
     const size_t col_h = NX + (2u * (size_t)nu);
+    /* the start-time column is identically zero without third bodies (the
+     * model is then autonomous): it is not propagated */
+    const size_t ncol = (cfg->n_bodies > 0u) ? (col_h + 2u) : (col_h + 1u);
     double x[NX];
     double stage_x[NX];
     double k[4][NX];
@@ -70,6 +76,7 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
     double jx[NX * NX];
     double ju[NX * OGK_NMPC_MAX_NU];
     double jt[NX];
+    double trig[(2u * OGK_NMPC_MAX_RK4_STEPS) + 1u][2];
     double s_mat[NX * NCOL];
     double y_mat[NX * NCOL];
     double k_mat[4][NX * NCOL];
@@ -79,6 +86,15 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
     size_t c;
 
     (void)memcpy(x, x0, sizeof(x));
+    /* cos and sin of the angle at the 2 steps + 1 distinct stage offsets
+     * (a step's last stage is the next one's first), the same arithmetic as
+     * the stage loop's s_frac */
+    for (i = 0u; (i <= (2u * (size_t)steps)) && (i <= (2u * OGK_NMPC_MAX_RK4_STEPS)); ++i) {
+        const double s_frac = ((double)(i / 2u) + (((i % 2u) != 0u) ? 0.5 : 0.0)) * inv_steps;
+        const double angle = u0[0] + ((u1[0] - u0[0]) * s_frac);
+        trig[i][0] = cos(angle);
+        trig[i][1] = sin(angle);
+    }
     if (sens != NULL) {
         (void)memset(s_mat, 0, sizeof(s_mat));
         for (i = 0u; i < NX; ++i) {
@@ -95,7 +111,7 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
             for (i = 0u; i < NX; ++i) {
                 stage_x[i] = (j == 0u) ? x[i] : (x[i] + (c_off[j] * dt * k[j - 1u][i]));
             }
-            st = ogk_i_nmpc_rhs(cfg, nu, t_stage, stage_x, u, k[j],
+            st = ogk_i_nmpc_rhs(cfg, nu, t_stage, stage_x, u, trig[(2u * step) + trig_index[j]], k[j],
                                 (sens != NULL) ? jx : NULL, ju, jt);
             if ((st == OGK_OK) && (sens != NULL)) {
                 if (j == 0u) {

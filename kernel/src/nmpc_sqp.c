@@ -494,6 +494,9 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     uint32_t restarts = 0u;
     uint32_t restores = 0u;
     double box = 1.0;
+    bool have_eval = false;
+    double first_l1 = 0.0;
+    double first_max = 0.0;
     double viol_l1 = 0.0;
     double viol_max = 0.0;
     uint32_t iter;
@@ -507,7 +510,10 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     (void)memcpy(y_prev, p->lambda, sizeof(y_prev));
     rep->stat = 0.0;
     for (iter = 0u; (iter < cfg->max_iter) && (iter < OGK_NMPC_MAX_SQP_ITER) && !done; ++iter) {
-        st = evaluate(ctx, p, true, &viol_l1, &viol_max, c_term);
+        if (!have_eval) {
+            st = evaluate(ctx, p, true, &viol_l1, &viol_max, c_term);
+        }
+        have_eval = false;
         if (st == OGK_OK) {
             condense(ctx, p, nv);
             build_linear_terms(ctx, p, nv, c_term, g_obj);
@@ -617,7 +623,12 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 double t_max = 0.0;
                 ogk_status ts;
                 take_step(ctx, p, ctx->qp_sol.x, nv, alpha, &ctx->trial);
-                ts = evaluate(ctx, &ctx->trial, false, &t_l1, &t_max, c_trial);
+                /* the full step is evaluated with its sensitivities: taken
+                 * (the usual case near the solution), it is the next
+                 * iteration's linearisation */
+                ts = evaluate(ctx, &ctx->trial, ls == 0u, &t_l1, &t_max, c_trial);
+                first_l1 = t_l1;
+                first_max = t_max;
                 if ((ts == OGK_OK) && (t_l1 <= theta_max)) {
                     const double phi_t = ogk_i_nmpc_objective(cfg, &ctx->trial);
                     const double m_alpha = alpha * dphi;
@@ -680,6 +691,12 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 box = (alpha < 1.0) ? (((alpha * box) > BOX_MIN) ? (alpha * box) : BOX_MIN)
                                     : (((2.0 * box) < 1.0) ? (2.0 * box) : 1.0);
                 have_prev = alpha >= BFGS_MIN_ALPHA;
+                if (alpha >= 1.0) {
+                    have_eval = true;
+                    viol_l1 = first_l1;
+                    viol_max = first_max;
+                    (void)memcpy(c_term, c_trial, sizeof(c_term));
+                }
             }
         }
     }
