@@ -158,6 +158,12 @@ run: all
 	  --json $(B)/mc/leo_geo_100.json --plots $(B)/mc/plots
 	$(VENV)/bin/ogk mpsp apophis --paper-tables \
 	  --json $(B)/apophis/paper_tables.json --plots $(B)/apophis/plots
+	$(VENV)/bin/ogk nmpc rendezvous_nep_min_time --strategy snns --solver kernel \
+	  --json $(B)/nmpc/snns_unperturbed.json --plots $(B)/nmpc/plots
+	$(VENV)/bin/ogk nmpc rendezvous_nep_min_time --strategy cncn --solver kernel \
+	  --json $(B)/nmpc/cncn_unperturbed.json --plots $(B)/nmpc/plots
+	$(VENV)/bin/ogk nmpc rendezvous_nep_min_time --strategy snns --solver kernel --perturbed --seed 1 \
+	  --third-bodies-in-model yes --json $(B)/nmpc/snns_perturbed_seed1.json --plots $(B)/nmpc/plots
 
 clean:
 	rm -rf $(B) $(FFI_STAMP) harness/ogk/bindings/_ogk_cffi*
