@@ -96,6 +96,7 @@ class FlightResult:
     command_offset: FloatArray      #: thrust-angle noise added [rad]
     units: Any = None
     closest_approach: dict[str, float] = dataclasses.field(default_factory=dict)
+    earth_encounter: dict[str, float] = dataclasses.field(default_factory=dict)  #: closest to Earth
 
     def summary(self) -> dict[str, Any]:
         ms = np.asarray(self.solve_ms) if self.solve_ms else np.zeros(1)
@@ -110,7 +111,7 @@ class FlightResult:
                 "solve_ms": {"median": float(np.median(ms)), "max": float(np.max(ms)),
                              "total": float(np.sum(ms))},
                 "max_comp_fraction": self.max_comp_fraction,
-                "closest_approach": self.closest_approach}
+                "closest_approach": self.closest_approach, "earth_encounter": self.earth_encounter}
 
     def to_json(self) -> dict[str, Any]:
         doc = self.summary()
@@ -123,6 +124,13 @@ class FlightResult:
 def _mass_flow_max(scenario: RendezvousScenario, r: FloatArray) -> FloatArray:
     """Nominal mdot_max(r) [normalised] of the engine (the predictive model's, no thrust offset)."""
     return np.asarray(Engine.for_scenario(scenario).limits(r)[1], dtype=np.float64) * np.ones_like(r)
+
+
+def polar_distance_m(x: FloatArray, body: FloatArray, units: Any) -> float:
+    """|r - r_body| [m] of two normalised polar positions (r, theta, ...)."""
+    dth = float(x[1]) - float(body[1])
+    d2 = x[0] ** 2 + body[0] ** 2 - 2.0 * x[0] * body[0] * math.cos(dth)
+    return math.sqrt(max(float(d2), 0.0)) * units.length_m
 
 
 def _days(cost: float | None, scenario: RendezvousScenario, units: Any) -> float | None:
@@ -257,6 +265,9 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
     dr_f, dv_f = truth.miss(t, x)
     misses = np.array([truth.miss(float(tk), xk) for tk, xk in zip(t_arr, x_arr)])
     k_best = int(np.argmin(misses[:, 0]))
+    # Earth encounters (unmodelled in the predictive model): the closest distance to Earth over the flight
+    d_earth = np.array([polar_distance_m(xk, truth.earth_state(float(tk)), units) for tk, xk in zip(t_arr, x_arr)])
+    k_emin = int(np.argmin(d_earth))
     # the paper's fuel accounting: nominal mass flow (no thrust offset) x throttle, integrated over the flight
     ct = np.asarray(cmd_t)
     cw = np.asarray(cmd_w)
@@ -282,4 +293,7 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
         command_offset=np.asarray(cmd_o), units=units,
         closest_approach={"position_miss_km": float(misses[k_best, 0]) / 1e3,
                           "t_days": float(t_arr[k_best]) * units.time_s / DAY_S,
-                          "velocity_miss_m_s": float(misses[k_best, 1])})
+                          "velocity_miss_m_s": float(misses[k_best, 1])},
+        earth_encounter={"distance_km": float(d_earth[k_emin]) / 1e3,
+                         "t_days": float(t_arr[k_emin]) * units.time_s / DAY_S,
+                         "start_distance_km": float(d_earth[0]) / 1e3})
