@@ -170,7 +170,7 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /
     return st;
 }
 
-void ogk_i_nmpc_jx_times(const double *jx, const double *y, size_t stride,
+void ogk_i_nmpc_jx_times(const double *jx, const double *y, size_t stride, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (k = jx y, y's stride and columns); its only caller is stage_k (nmpc_shoot.c), checked by central differences (test_nmpc.c) */
                          size_t ncol, double *k)
 {
     /* the structure of eq. (11)-(14)'s Jacobian (ogk_i_nmpc_rhs): r' = v_r;

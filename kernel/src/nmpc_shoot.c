@@ -68,7 +68,7 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
     const size_t col_h = NX + (2u * (size_t)nu);
     /* the start-time column is identically zero without third bodies (the
      * model is then autonomous): it is not propagated */
-    const size_t ncol = (cfg->n_bodies > 0u) ? (col_h + 2u) : (col_h + 1u);
+    const size_t ncol = col_h + 1u + (size_t)((cfg->n_bodies > 0u) ? 1u : 0u);
     double x[NX];
     double stage_x[NX];
     double k[4][NX];
@@ -89,8 +89,9 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
     /* cos and sin of the angle at the 2 steps + 1 distinct stage offsets
      * (a step's last stage is the next one's first), the same arithmetic as
      * the stage loop's s_frac */
-    for (i = 0u; (i <= (2u * (size_t)steps)) && (i <= (2u * OGK_NMPC_MAX_RK4_STEPS)); ++i) {
-        const double s_frac = ((double)(i / 2u) + (((i % 2u) != 0u) ? 0.5 : 0.0)) * inv_steps;
+    for (i = 0u; (i <= (2u * (size_t)steps)) && (i <= (2u * (size_t)OGK_NMPC_MAX_RK4_STEPS)); ++i) {
+        const size_t i_step = i / 2u; /* the step of stage offset i (exact integer division) */
+        const double s_frac = ((double)i_step + (((i % 2u) != 0u) ? 0.5 : 0.0)) * inv_steps;
         const double angle = u0[0] + ((u1[0] - u0[0]) * s_frac);
         trig[i][0] = cos(angle);
         trig[i][1] = sin(angle);

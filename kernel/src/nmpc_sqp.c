@@ -433,14 +433,13 @@ static void lagrangian_gradient(const ogk_nmpc_t *ctx, size_t nv, const double *
 /* Minimum-norm feasibility step: the QP with H = I and g = 0 on the same
  * constraints, taken whole when it lowers the l1 violation. True when taken
  * (the iterate moved; the BFGS pair of this step is skipped). */
-static bool feasibility_step(ogk_nmpc_t *ctx, ogk_nmpc_plan_t *p, size_t nv, size_t rows,
+static bool feasibility_step(ogk_nmpc_t *ctx, ogk_nmpc_plan_t *p, size_t nv, size_t rows, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the sizes of the QP (unknowns, rows) and the violation to beat; its only caller is ogk_i_nmpc_sqp */
                              double viol_l1, ogk_nmpc_report_t *rep)
 {
     ogk_qp_problem_t qp;
     double zero[MAXV];
     double t_l1 = 0.0;
     double t_max = 0.0;
-    double c_trial[NC];
     bool taken = false;
     (void)memset(zero, 0, sizeof(zero));
     identity(ctx->el_h, nv, 1.0);
@@ -456,6 +455,7 @@ static bool feasibility_step(ogk_nmpc_t *ctx, ogk_nmpc_plan_t *p, size_t nv, siz
     qp.lb = ctx->qp_lb;
     qp.ub = ctx->qp_ub;
     if (ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol) == OGK_OK) {
+        double c_trial[NC];
         rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
         expand_step(ctx, p, ctx->qp_sol.x, nv);
         take_step(ctx, p, ctx->qp_sol.x, nv, 1.0, &ctx->trial);
@@ -688,8 +688,17 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 /* the step box as a trust region: a cut step shrinks it (the
                  * next QP stays where the linearisation held), a full step
                  * regrows it; a much-cut step is no curvature sample */
-                box = (alpha < 1.0) ? (((alpha * box) > BOX_MIN) ? (alpha * box) : BOX_MIN)
-                                    : (((2.0 * box) < 1.0) ? (2.0 * box) : 1.0);
+                if (alpha < 1.0) {
+                    box *= alpha;
+                    if (!(box > BOX_MIN)) {
+                        box = BOX_MIN;
+                    }
+                } else {
+                    box *= 2.0;
+                    if (!(box < 1.0)) {
+                        box = 1.0;
+                    }
+                }
                 have_prev = alpha >= BFGS_MIN_ALPHA;
                 if (alpha >= 1.0) {
                     have_eval = true;
@@ -698,6 +707,8 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                     (void)memcpy(c_term, c_trial, sizeof(c_term));
                 }
             }
+        } else {
+            /* done: converged or failed in this iteration */
         }
     }
     if ((st == OGK_OK) && !done) {
