@@ -222,8 +222,9 @@ static ogk_status check_input(const ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
         (void)memset(rep, 0, sizeof(*rep));
         if (!isfinite(in->t) || !ogk_i_all_finite(in->x, NX)) {
             st = OGK_E_NONFINITE;
-        } else if ((ctx->have_plan == 0u) || !(in->x[0] > 0.0) || !(in->x[4] > 0.0)) {
-            st = OGK_E_RANGE; /* no plan, or outside the model's domain */
+        } else if ((ctx->have_plan == 0u) || !(in->x[0] > 0.0) || !(in->x[4] > 0.0)
+                   || !(fabs(in->t) <= OGK_NMPC_T_ABS_MAX)) {
+            st = OGK_E_RANGE; /* no plan, outside the model's domain, or a time the plan's arithmetic cannot resolve */
         } else {
             /* usable */
         }
@@ -325,10 +326,12 @@ static void shift_plan(ogk_nmpc_t *ctx, double t)
         } else if (count >= 1u) {
             /* fewer than min_nodes would remain: keep min_nodes over [t, t_f] */
             const uint32_t n_keep = (ctx->cfg.min_nodes < p->nodes) ? ctx->cfg.min_nodes : p->nodes;
+            const uint32_t n_before = p->nodes;
             ogk_i_nmpc_plan_regrid(p, t, n_keep, &ctx->trial);
             (void)memcpy(p, &ctx->trial, sizeof(*p));
             ctx->plan_flags |= OGK_NMPC_FLAG_REGRIDDED;
-            ctx->hess_valid = (n_keep == p->nodes) ? ctx->hess_valid : 0u;
+            /* another node count: the BFGS matrix no longer fits the unknowns */
+            ctx->hess_valid = (n_keep == n_before) ? ctx->hess_valid : 0u;
         } else {
             /* nothing flown yet: re-solve the same plan */
         }

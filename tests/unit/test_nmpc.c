@@ -456,6 +456,11 @@ static void test_failure_and_bad_input(void **state)
     in.x[4] = -1.0;
     OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &in, &rep), OGK_E_RANGE);
     OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, NULL, &rep), OGK_E_NULL);
+    in.x[4] = 1.0;
+    in.t = 2.0 * OGK_NMPC_T_ABS_MAX; /* t + horizon_min would round to t */
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &in, &rep), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_E_RANGE);
+    in.t = 0.0;
     OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, NAN, &cmd), OGK_E_NONFINITE);
     assert_int_equal((int)cmd.flags, (int)OGK_THRUST_FLAG_SAFE);
     OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, 0.1, &cmd), OGK_OK);

@@ -68,6 +68,10 @@ extern "C" {
 /* Largest number of backtracking steps of one line search. */
 #define OGK_NMPC_MAX_LINE_SEARCH 30u
 
+/* Largest |time| a solve or replan accepts [TU] (OGK_E_RANGE beyond): far
+ * past it t + horizon_min rounds to t (1e6 TU is 160,000 years). */
+#define OGK_NMPC_T_ABS_MAX 1.0e6
+
 /* QP unknowns: the node-control corrections and the horizon correction. */
 #define OGK_NMPC_MAX_VARS (((OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU) + 1u)
 /* Unknowns of the elastic QP: v and the slacks s+, s- of eq. (5). */
@@ -253,7 +257,9 @@ ogk_status ogk_nmpc_get_plan(const ogk_nmpc_t *ctx, ogk_nmpc_plan_t *plan);
  * loop, or one re-solve without a strategy. On success the plan is replaced;
  * on failure it is kept (flag STALE) and the status says why:
  * OGK_E_ITER_LIMIT, OGK_E_NOT_CONVERGED (line search), OGK_E_INFEASIBLE (QP),
- * OGK_E_NOT_POSDEF, OGK_E_NONFINITE (a trial state left the model's domain). */
+ * OGK_E_NOT_POSDEF, OGK_E_NONFINITE (a trial state left the model's domain).
+ * Bad input: OGK_E_NULL, OGK_E_NOT_INIT, OGK_E_NONFINITE, OGK_E_RANGE (no plan,
+ * r or m not positive, |t| > OGK_NMPC_T_ABS_MAX), the plan untouched. */
 ogk_status ogk_nmpc_solve(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
                           ogk_nmpc_report_t *rep);
 
