@@ -58,7 +58,7 @@ static bool nmpc_config_finite(const ogk_nmpc_config_t *c)
     const double scalars[] = {
         c->mu, c->thrust_max, c->mass_flow_max, c->solar_length_unit,
         c->target_radius, c->target_phase0, c->target_rate, c->horizon_min,
-        c->horizon_max, c->max_sweep, c->tol_feas, c->tol_stat, c->tol_obj, c->hessian_init,
+        c->horizon_max, c->max_sweep, c->time_weight, c->tol_feas, c->tol_stat, c->tol_obj, c->hessian_init,
         c->step_max_alpha, c->step_max_horizon, c->elastic_weight, c->doubling_threshold
     };
     return ogk_i_all_finite(scalars, sizeof(scalars) / sizeof(scalars[0]))
@@ -79,7 +79,7 @@ static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
         && (c->nodes >= 1u) && (c->nodes <= OGK_NMPC_MAX_NODES)
         && (c->rk4_steps >= 1u) && (c->rk4_steps <= OGK_NMPC_MAX_RK4_STEPS)
         && (c->horizon_min > 0.0) && (c->horizon_max > c->horizon_min)
-        && (c->max_sweep >= 0.0)
+        && (c->max_sweep >= 0.0) && (c->time_weight >= 0.0)
         && (c->max_iter >= 1u) && (c->max_iter <= OGK_NMPC_MAX_SQP_ITER)
         && (c->tol_feas > 0.0) && (c->tol_stat > 0.0) && (c->tol_obj >= 0.0) && (c->hessian_init > 0.0)
         && (c->step_max_alpha > 0.0) && (c->step_max_horizon > 0.0) && (c->elastic_weight > 0.0)

@@ -207,7 +207,8 @@ double ogk_i_nmpc_objective(const ogk_nmpc_config_t *cfg,
 {
     double j;
     if (cfg->objective == OGK_NMPC_MIN_FUEL) {
-        j = p->x[(0u * OGK_NMPC_NX) + 4u] - p->x[(p->nodes * OGK_NMPC_NX) + 4u];
+        j = (p->x[(0u * OGK_NMPC_NX) + 4u] - p->x[(p->nodes * OGK_NMPC_NX) + 4u])
+            + (cfg->time_weight * p->horizon);
     } else {
         j = p->horizon;
     }

@@ -184,8 +184,9 @@ static void build_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
     (void)memset(g_obj, 0, nv * sizeof(double));
     if (ctx->cfg.objective == OGK_NMPC_MIN_FUEL) {
         for (c = 0u; c < nv; ++c) {
-            g_obj[c] = -ctx->cond_g[(4u * nv) + c]; /* J = m_0 - m_N */
+            g_obj[c] = -ctx->cond_g[(4u * nv) + c]; /* J = m_0 - m_N (+ time_weight T) */
         }
+        g_obj[col_t] += ctx->cfg.time_weight;
     } else {
         g_obj[col_t] = 1.0; /* J = T */
     }
@@ -612,7 +613,8 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
 
             expand_step(ctx, p, ctx->qp_sol.x, nv);
             dphi = (cfg->objective == OGK_NMPC_MIN_FUEL)
-                ? -ctx->dx[(p->nodes * NX) + 4u] : ctx->qp_sol.x[nv - 1u];
+                ? (-ctx->dx[(p->nodes * NX) + 4u] + (cfg->time_weight * ctx->qp_sol.x[nv - 1u]))
+                : ctx->qp_sol.x[nv - 1u];
             if (first_iter) {
                 theta_max = 1.0e4 * ((theta0 > 1.0) ? theta0 : 1.0);
                 theta_min = 1.0e-4 * ((theta0 > 1.0) ? theta0 : 1.0);

@@ -364,6 +364,14 @@ static void test_coast_rendezvous_zero_fuel(void **state)
     for (k = 0u; k <= nodes; ++k) {
         OGK_ASSERT_NEAR(plan2.u[2u * k + 1u], 0.0, 1.0e-7);
     }
+    /* with a time weight the coast is as short as allowed: T = horizon_min,
+     * J = 0 fuel + w T */
+    c.time_weight = 0.01;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    OGK_ASSERT_NEAR(rep.t_f, c.horizon_min, 1.0e-9);
+    OGK_ASSERT_NEAR(rep.objective, 0.01 * c.horizon_min, 1.0e-9);
 }
 
 /* Earth-to-Mars N = 8: the open loop, then one SNNS and one CNCN replan. */

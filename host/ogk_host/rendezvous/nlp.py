@@ -46,7 +46,7 @@ import casadi as ca
 import numpy as np
 from numpy.typing import NDArray
 
-from .dynamics import (DAY_S, Engine, Model, casadi_third_body_accel, casadi_throttle_rhs, planets)
+from .dynamics import (DAY_S, Engine, Model, Units, casadi_third_body_accel, casadi_throttle_rhs, planets)
 from .plan import Plan
 from .scenario import RendezvousScenario
 
@@ -138,8 +138,11 @@ class RendezvousNlp:
                  objective: str | None = None, max_sweep_rad: float | None = None,
                  horizon_bounds: tuple[float, float] | None = None, tol: float = 1e-10,
                  constr_viol_tol: float = 1e-12, max_iter: int = 500, warm_mu_init: float = 1e-8,
-                 transfer_time_max_s: float | None = None) -> None:
+                 transfer_time_max_s: float | None = None, time_weight_kg_per_day: float = 0.0) -> None:
         self.scenario = scenario
+        #: min-fuel only: J = m_0 - m_f + w T in MU per TU (a closed-loop choice, [nmpc] fuel_time_weight_kg_per_day)
+        self.time_weight = float(time_weight_kg_per_day) * Units.for_scenario(scenario).time_s / DAY_S \
+            / Units.for_scenario(scenario).mass_kg
         self.model = Model.for_scenario(scenario)
         self.engine = Engine.for_scenario(scenario)
         self.nu = self.engine.nu
@@ -250,7 +253,7 @@ class RendezvousNlp:
         if self.max_sweep_rad is not None:
             g.append((U[0, 1:] - U[0, :n]).T)
         w = ca.vertcat(ca.reshape(X, -1, 1), ca.reshape(U, -1, 1), T)
-        f = T if self.objective == "min-time" else P[5] - X[4, n]
+        f = T if self.objective == "min-time" else P[5] - X[4, n] + self.time_weight * T
         nlp = {"x": w, "f": f, "g": ca.vertcat(*g), "p": P}
         r_lo = 0.6 if self.engine.solar else 0.3
         lbx = np.concatenate([np.tile([r_lo, -10.0, -2.0, 0.1, 0.05], n + 1),

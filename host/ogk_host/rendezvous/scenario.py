@@ -158,6 +158,7 @@ class NmpcSettings:
     tol: float                          #: IPOPT tol
     constr_viol_tol: float              #: IPOPT constr_viol_tol
     max_iter: int                       #: IPOPT max_iter per solve
+    fuel_time_weight_kg_per_day: float = 0.0  #: min-fuel closed loop: J = fuel + w T (beyond the paper; 0 = its J)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -303,7 +304,9 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                         third_bodies_in_model=nmpc_s.flag("third_bodies_in_model"),
                         tol=nmpc_s.number("tol", positive=True, hi=1e-2),
                         constr_viol_tol=nmpc_s.number("constr_viol_tol", positive=True, hi=1e-2),
-                        max_iter=nmpc_s.integer("max_iter", lo=1, hi=100000))
+                        max_iter=nmpc_s.integer("max_iter", lo=1, hi=100000),
+                        fuel_time_weight_kg_per_day=nmpc_s.number("fuel_time_weight_kg_per_day", default=0.0,
+                                                                  nonnegative=True))
     nmpc_s.finish()
 
     paper: dict[str, float] = {}

@@ -26,7 +26,9 @@
  * subinterval, the control evaluated at the stage times. Constraints:
  * continuity X_{k+1} = F_k(X_k, U_k, U_{k+1}, T) and eq. (5) at t_f
  * (r = R_T, theta = theta_T(t_f), v_r = 0, v_theta = sqrt(mu / R_T)).
- * Objective: T (minimum time) or m_0 - m_N (minimum fuel).
+ * Objective: T (minimum time) or m_0 - m_N (minimum fuel; plus time_weight T,
+ * a beyond-the-paper option: fuel alone is flat in T and a perturbed closed
+ * loop can keep postponing the arrival).
  *
  * SQP: exact discrete sensitivities of F_k, the state deviations condensed
  * away (unknowns dU, dT: at most OGK_NMPC_MAX_VARS), a damped-BFGS reduced
@@ -127,6 +129,7 @@ typedef struct {
     double target_rate;         /* [rad/TU] theta_T' (sqrt(mu / R_T^3) on a Keplerian orbit) */
     /* transcription */
     uint32_t objective;         /* [-] OGK_NMPC_MIN_TIME or OGK_NMPC_MIN_FUEL */
+    double time_weight;         /* [MU/TU] minimum fuel only: J = m_0 - m_N + time_weight T, >= 0 (default 0: the paper's) */
     uint32_t nodes;             /* [-] N of the first plan, 1..OGK_NMPC_MAX_NODES (default 30) */
     uint32_t rk4_steps;         /* [-] RK4 steps per subinterval, 1..OGK_NMPC_MAX_RK4_STEPS (default 8) */
     double horizon_min;         /* [TU] lower bound of T, > 0 (default 1e-3) */

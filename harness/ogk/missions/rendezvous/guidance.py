@@ -120,7 +120,8 @@ class IpoptGuidance:
         deadline = scenario.ocp.transfer_time_max_s if scenario.ocp.objective == "min-fuel" else None
         self.nlp = RendezvousNlp(scenario, rk4_steps=n.rk4_steps_per_interval, third_bodies=self.third_bodies,
                                  tol=n.tol, constr_viol_tol=n.constr_viol_tol, max_iter=n.max_iter,
-                                 transfer_time_max_s=deadline)
+                                 transfer_time_max_s=deadline,
+                                 time_weight_kg_per_day=n.fuel_time_weight_kg_per_day)
         self.nu = int(self.nlp.nu)
         self._plan: Plan | None = None          # basis of the next guess
         self._flying: Plan | None = None        # the plan commanded now

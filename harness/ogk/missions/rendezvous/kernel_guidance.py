@@ -45,6 +45,8 @@ def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
         solar_a=list(engine.power), solar_thrust=list(engine.thrust_coef), solar_flow=list(engine.flow_coef),
         target_radius=model.mars_radius, target_phase0=model.mars_theta0, target_rate=model.mars_rate,
         objective=0 if scenario.ocp.objective == "min-time" else 1,
+        # [nmpc] fuel_time_weight_kg_per_day in MU/TU (minimum fuel only)
+        time_weight=n.fuel_time_weight_kg_per_day * model.units.time_s / DAY_S / model.units.mass_kg,
         nodes=scenario.ocp.nodes, rk4_steps=n.rk4_steps_per_interval,
         horizon_min=max(strategy.min_horizon, 1e-3),
         strategy=SNNS if strategy.name == "snns" else CNCN,
