@@ -48,7 +48,14 @@ def fly_one(path: str, strategy: str, solver: str, perturbed: bool, seed: int,
     scenario = with_model(load_scenario(path), third_bodies)
     guidance = make_guidance(solver, scenario, strategy_settings(scenario, strategy))
     start = time.perf_counter()
-    r = fly(scenario, guidance, perturbed, seed, strategy_name=strategy, solver_name=solver)
+    try:
+        r = fly(scenario, guidance, perturbed, seed, strategy_name=strategy, solver_name=solver)
+    except RuntimeError as err:   # the truth integration stopped (e.g. a pass through a planet's centre)
+        return {"seed": seed, "converged": False, "reason": f"truth: {err}", "t_f_days": float("nan"),
+                "fuel_kg": float("nan"), "fuel_nominal_mdot_kg": float("nan"), "solves": 0, "failed_solves": 0,
+                "subdivisions": 0, "solve_ms": {"median": float("nan"), "max": float("nan")},
+                "wall_s": time.perf_counter() - start,
+                "third_bodies_in_model": scenario.nmpc.third_bodies_in_model}
     doc = r.summary()
     doc["wall_s"] = time.perf_counter() - start
     doc["third_bodies_in_model"] = scenario.nmpc.third_bodies_in_model
@@ -66,7 +73,7 @@ def campaign(path: str, strategy: str, solver: str, perturbed: bool, seeds: list
     done = [f for f in flights if f["converged"]]
     t_f = np.array([f["t_f_days"] for f in done]) if done else np.zeros(0)
     fuel = np.array([f["fuel_kg"] for f in done]) if done else np.zeros(0)
-    ms = np.concatenate([[f["solve_ms"]["median"]] for f in flights]) if flights else np.zeros(1)
+    ms = np.array([f["solve_ms"]["median"] for f in flights if f["converged"]] or [float("nan")])
     return {"scenario": path, "strategy": strategy, "solver": solver, "perturbed": perturbed,
             "third_bodies_in_model": flights[0]["third_bodies_in_model"] if flights else None,
             "seeds": seeds, "reached_mars": len(done), "flights": len(flights),
