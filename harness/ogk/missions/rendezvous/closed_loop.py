@@ -7,7 +7,9 @@ It is checked on the truth model's integration grid inside every subinterval, an
 which it starts to hold is bisected (re-propagating from the last grid point where it did not) down to
 `ARRIVAL_TOLERANCE_S`: the flight time reported is the first instant the criterion holds, as in the paper
 (which "terminates the controller within a finite tolerance of the target defined by the SOI"), not the
-end of the subinterval in which it happens.
+end of the subinterval in which it happens. A flight whose truth trajectory passes inside Earth's or Mars'
+radius (`EARTH_RADIUS_M`, `MARS_RADIUS_M`: the truth's planets are point masses and would let it through) ends
+there, not converged ("earth_impact", "mars_impact"), checked on the same grid.
 
 Perturbed flights: the truth model adds Earth and Mars gravity, solar radiation pressure and the -10 % thrust
 offset (truth.py); the loop adds the thrust-angle noise N(0, sigma_alpha_T): one draw per control subinterval
@@ -35,6 +37,10 @@ from .truth import TruthModel
 FloatArray = NDArray[np.float64]
 
 ARRIVAL_TOLERANCE_S = 600.0     #: bisection of the first instant of rendezvous [s]
+#: Planet radii (mean, IAU/IUGG; not in Table A.1): the truth model's planets are point masses, so a flight that
+#: passes closer than this to a planet's centre has hit it and ends there ("earth_impact", "mars_impact").
+EARTH_RADIUS_M = 6.3710e6
+MARS_RADIUS_M = 3.3895e6
 TRUTH_RTOL = 1e-10
 TRUTH_ATOL = 1e-12
 
@@ -224,8 +230,17 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
                 reason = "truth_invalid"
                 done = True
                 break
-            hit = -1
+            # a point-mass truth lets the spacecraft fly through a planet: the flight ends there
+            impact, impact_reason = len(tg), ""
             for i in range(1, len(tg)):
+                if polar_distance_m(xg[i], truth.earth_state(float(tg[i])), units) < EARTH_RADIUS_M:
+                    impact, impact_reason = i, "earth_impact"
+                    break
+                if polar_distance_m(xg[i], truth.mars_state(float(tg[i])), units) < MARS_RADIUS_M:
+                    impact, impact_reason = i, "mars_impact"
+                    break
+            hit = -1
+            for i in range(1, impact):
                 dr, dv = truth.miss(float(tg[i]), xg[i])
                 if dr < conv.mars_soi_radius_m and dv < conv.velocity_error_m_s:
                     hit = i
@@ -245,6 +260,10 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
                 tg = np.concatenate([tg[:hit], [hi_t]])
                 xg = np.vstack([xg[:hit], hi_x[None, :]])
                 reason = "rendezvous"
+                done = True
+            elif impact < len(tg):
+                tg, xg = tg[: impact + 1], xg[: impact + 1]
+                reason = impact_reason
                 done = True
             ts.append(tg[1:])
             xs.append(xg[1:])
