@@ -257,3 +257,49 @@ def test_cli_json_keys_and_plots(tmp_path: Path) -> None:
     pngs = sorted(p.name for p in (tmp_path / "plots").glob("*.png"))
     assert len(pngs) == 3 and all(p.startswith("rendezvous_nep_min_time_cncn_ipopt_unperturbed") for p in pngs)
     assert math.isfinite(doc["t_f_days"])
+
+
+class _Coast:
+    """Guidance stub: circumferential thrust, 10-day subintervals, never fails."""
+
+    name = "stub"
+
+    def __init__(self, plan: Plan) -> None:
+        self.plan = plan
+        self.solves = self.failed_solves = self.subdivisions = 0
+
+    def replan(self, t: float, x: np.ndarray) -> ReplanInfo:
+        self.solves += 1
+        return ReplanInfo(t=t, t_next=t + 0.172, converged=True, failed=False, iterations=0, solve_time_s=0.0,
+                          solves=1, nodes=self.plan.nodes, subdivided=False, objective=1.0, status="stub",
+                          plan=self.plan)
+
+    def command(self, t: float) -> tuple[float, float]:
+        return 0.5 * math.pi, 1.0
+
+
+class _EarthOnTheWay:
+    """The truth model with 'Earth' put on the spacecraft's initial circular orbit, co-moving with it."""
+
+    def __init__(self, truth) -> None:  # type: ignore[no-untyped-def]
+        self.truth = truth
+
+    def __getattr__(self, name: str):  # type: ignore[no-untyped-def]
+        return getattr(self.truth, name)
+
+    def earth_state(self, t: float) -> np.ndarray:
+        x0 = self.truth.x0
+        return np.array([x0[0], x0[1] + x0[3] / x0[0] * t, 0.0, x0[3]])
+
+
+def test_a_flight_through_a_planet_ends_there(scenario) -> None:  # type: ignore[no-untyped-def]
+    """The truth's planets are point masses: passing inside Earth's radius ends the flight, not converged."""
+    from ogk.missions.rendezvous.truth import TruthModel
+    truth = TruthModel.for_scenario(scenario, perturbed=False)
+    x0 = Model.for_scenario(scenario).x0
+    plan = Plan(t0=0.0, horizon=1.0, states=np.tile(x0, (2, 1)), controls=np.full((2, 1), 0.5 * math.pi))
+    result = fly(scenario, _Coast(plan), perturbed=False, seed=0, truth=_EarthOnTheWay(truth), max_replans=5)
+    assert not result.converged and result.reason == "earth_impact"
+    assert len(result.history) == 1 and result.t_f_days < 2.0
+    free = fly(scenario, _Coast(plan), perturbed=False, seed=0, truth=truth, max_replans=2)
+    assert free.reason == "max_replans"
