@@ -466,7 +466,7 @@ ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
     if ((st == OGK_OK) && ((x == NULL) || (u == NULL) || (xdot == NULL))) {
         st = OGK_E_NULL;
     }
-    if ((st == OGK_OK) && !isfinite(t)) {
+    if ((st == OGK_OK) && (!isfinite(t) || !ogk_i_all_finite(x, NX) || !ogk_i_all_finite(u, ctx->nu))) {
         st = OGK_E_NONFINITE;
     }
     if (st == OGK_OK) {
@@ -486,7 +486,8 @@ ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
     if ((st == OGK_OK) && ((x0 == NULL) || (u0 == NULL) || (u1 == NULL) || (x1 == NULL))) {
         st = OGK_E_NULL;
     }
-    if ((st == OGK_OK) && (!isfinite(t0) || !isfinite(h))) {
+    if ((st == OGK_OK) && (!isfinite(t0) || !isfinite(h) || !ogk_i_all_finite(x0, NX)
+                           || !ogk_i_all_finite(u0, ctx->nu) || !ogk_i_all_finite(u1, ctx->nu))) {
         st = OGK_E_NONFINITE;
     }
     if ((st == OGK_OK) && !(h > 0.0)) {

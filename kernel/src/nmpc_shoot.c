@@ -116,13 +116,14 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
                                 (sens != NULL) ? jx : NULL, ju, jt);
             if ((st == OGK_OK) && (sens != NULL)) {
                 if (j == 0u) {
-                    (void)memcpy(y_mat, s_mat, sizeof(y_mat));
+                    /* the first stage is at the step's start: Y = S */
+                    stage_k(jx, ju, jt, s_mat, nu, s_frac, ncol, k_mat[j]);
                 } else {
                     /* y = x + c dt k_prev, dt = h / steps */
                     stage_sens(s_mat, k_mat[j - 1u], k[j - 1u], c_off[j] * dt,
                                c_off[j] * inv_steps, col_h, ncol, y_mat);
+                    stage_k(jx, ju, jt, y_mat, nu, s_frac, ncol, k_mat[j]);
                 }
-                stage_k(jx, ju, jt, y_mat, nu, s_frac, ncol, k_mat[j]);
             }
         }
         if (st == OGK_OK) {
