@@ -431,6 +431,24 @@ static void lagrangian_gradient(const ogk_nmpc_t *ctx, size_t nv, const double *
     }
 }
 
+/* The step's QP on the context's linearised eq. (5), bounds and sweep rows,
+ * with the Hessian and linear term given. */
+static void step_qp(const ogk_nmpc_t *ctx, size_t nv, size_t rows, const double *hess, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the QP's sizes then its H and g; callers in this file only */
+                    const double *g, ogk_qp_problem_t *qp)
+{
+    qp->n = nv;
+    qp->m_eq = NC;
+    qp->m_in = rows;
+    qp->H = hess;
+    qp->g = g;
+    qp->A_eq = ctx->qp_aeq;
+    qp->b_eq = ctx->qp_beq;
+    qp->A_in = (rows > 0u) ? ctx->qp_ain : NULL;
+    qp->b_in = (rows > 0u) ? ctx->qp_bin : NULL;
+    qp->lb = ctx->qp_lb;
+    qp->ub = ctx->qp_ub;
+}
+
 /* Minimum-norm feasibility step: the QP with H = I and g = 0 on the same
  * constraints, taken whole when it lowers the l1 violation. True when taken
  * (the iterate moved; the BFGS pair of this step is skipped). */
@@ -444,17 +462,7 @@ static bool feasibility_step(ogk_nmpc_t *ctx, ogk_nmpc_plan_t *p, size_t nv, siz
     bool taken = false;
     (void)memset(zero, 0, sizeof(zero));
     identity(ctx->el_h, nv, 1.0);
-    qp.n = nv;
-    qp.m_eq = NC;
-    qp.m_in = rows;
-    qp.H = ctx->el_h;
-    qp.g = zero;
-    qp.A_eq = ctx->qp_aeq;
-    qp.b_eq = ctx->qp_beq;
-    qp.A_in = (rows > 0u) ? ctx->qp_ain : NULL;
-    qp.b_in = (rows > 0u) ? ctx->qp_bin : NULL;
-    qp.lb = ctx->qp_lb;
-    qp.ub = ctx->qp_ub;
+    step_qp(ctx, nv, rows, ctx->el_h, zero, &qp);
     if (ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol) == OGK_OK) {
         double c_trial[NC];
         rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
@@ -528,17 +536,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 first_update = false;
             }
             rows = build_bounds(ctx, p, nv, box);
-            qp.n = nv;
-            qp.m_eq = NC;
-            qp.m_in = rows;
-            qp.H = hess;
-            qp.g = g_obj;
-            qp.A_eq = ctx->qp_aeq;
-            qp.b_eq = ctx->qp_beq;
-            qp.A_in = (rows > 0u) ? ctx->qp_ain : NULL;
-            qp.b_in = (rows > 0u) ? ctx->qp_bin : NULL;
-            qp.lb = ctx->qp_lb;
-            qp.ub = ctx->qp_ub;
+            step_qp(ctx, nv, rows, hess, g_obj, &qp);
             st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
             if (st == OGK_E_NOT_POSDEF) {
                 identity(hess, nv, cfg->hessian_init);

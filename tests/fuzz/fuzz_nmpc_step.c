@@ -20,6 +20,7 @@
 
 #include <stdbool.h>
 
+#include "nmpc_fixture.h"
 #include "ogk/nmpc.h"
 #include "ogk/types.h"
 
@@ -108,36 +109,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     r.n = size;
     m0 = fz_u8(&r);
     m1 = fz_u8(&r);
-    FZ_CHECK(ogk_nmpc_config_default(&cfg) == OGK_OK);
-    /* Earth to Mars, normalised (docs/nmpc.md) */
-    cfg.thrust_max = 0.05621056;
-    cfg.mass_flow_max = 0.05690745;
-    cfg.target_radius = 1.52367877;
-    cfg.target_phase0 = 2.2689280275926285;
-    cfg.target_rate = pow(1.52367877, -1.5);
+    /* Earth to Mars, normalised (docs/nmpc.md; tests/unit/nmpc_fixture.h) */
+    nmpc_fx_mars(&cfg, 30u);
     cfg.engine = ((m0 & 0x01u) != 0u) ? OGK_NMPC_ENGINE_THROTTLED : OGK_NMPC_ENGINE_CONSTANT;
     cfg.objective = ((m0 & 0x02u) != 0u) ? OGK_NMPC_MIN_FUEL : OGK_NMPC_MIN_TIME;
     cfg.strategy = ((m0 & 0x04u) != 0u) ? OGK_NMPC_CNCN : OGK_NMPC_SNNS;
     if ((m0 & 0x08u) != 0u) {
-        cfg.power = OGK_NMPC_POWER_SOLAR;
-        cfg.solar_length_unit = 1.0;
-        cfg.solar_a[0] = 1.1063;
-        cfg.solar_a[1] = 0.1495;
-        cfg.solar_a[2] = -0.299;
-        cfg.solar_a[3] = -0.0423;
-        cfg.solar_thrust[0] = -2.0e-4;
-        cfg.solar_thrust[1] = 0.05;
-        cfg.solar_flow[0] = 5.0e-3;
-        cfg.solar_flow[1] = 0.05;
+        nmpc_fx_solar(&cfg, 1.0, 0.05);
     }
     cfg.n_bodies = ((m0 >> 4) & 0x03u) > 2u ? 2u : ((m0 >> 4) & 0x03u);
-    cfg.body_mu[0] = 3.0e-6;
-    cfg.body_radius[0] = 1.0;
-    cfg.body_rate[0] = 1.0;
-    cfg.body_mu[1] = 3.2e-7;
-    cfg.body_radius[1] = 1.52;
-    cfg.body_phase0[1] = 2.27;
-    cfg.body_rate[1] = 0.53;
+    nmpc_fx_body(&cfg, 0u, 3.0e-6, 1.0, 0.0, 1.0);
+    nmpc_fx_body(&cfg, 1u, 3.2e-7, 1.52, 2.27, 0.53);
     if (((m0 >> 4) & 0x03u) == 3u) {
         cfg.body_softening[0] = 0.006;
         cfg.body_softening[1] = 0.004;

@@ -18,6 +18,7 @@
 #include <float.h>
 #include <string.h>
 
+#include "nmpc_fixture.h"
 #include "ogk/nmpc.h"
 #include "ogk/types.h"
 
@@ -28,40 +29,17 @@ static ogk_nmpc_t ctx;
 static ogk_nmpc_plan_t plan;
 static ogk_nmpc_plan_t plan2;
 
-/* Radial transfer in a near-field-free region (test_nmpc.c): min time, t* = 2 sqrt(D / a). */
+/* The radial transfer of nmpc_fixture.h, 2 RK4 steps, no doubling test unless asked. */
 static void radial_config(ogk_nmpc_config_t *c, uint32_t nodes)
 {
-    (void)ogk_nmpc_config_default(c);
-    c->mu = 1.0e-9;
-    c->thrust_max = 0.1;
-    c->mass_flow_max = 0.0;
-    c->target_radius = 1.5;
-    c->nodes = nodes;
-    c->rk4_steps = 2u;
-    c->horizon_min = 0.1;
-    c->horizon_max = 20.0;
-    c->max_iter = 100u;
-    c->tol_feas = 1.0e-10;
-    c->tol_stat = 1.0e-8;
+    nmpc_fx_radial(c, nodes, 2u, 100u);
     c->min_nodes = 1u;
     c->doubling_max_nodes = 0u; /* no doubling test unless asked */
 }
 
 static void radial_guess(uint32_t nodes, double t_guess, ogk_nmpc_plan_t *p)
 {
-    uint32_t k;
-    (void)memset(p, 0, sizeof *p);
-    p->horizon = t_guess;
-    p->nodes = nodes;
-    p->nu = 1u;
-    for (k = 0u; k <= nodes; ++k) {
-        const double tau = (double)k / (double)nodes;
-        p->x[k * NX + 0u] = 1.0 + 0.5 * (3.0 * tau * tau - 2.0 * tau * tau * tau);
-        p->x[k * NX + 2u] = 0.5 * (6.0 * tau - 6.0 * tau * tau) / t_guess;
-        p->x[k * NX + 3u] = sqrt(1.0e-9);
-        p->x[k * NX + 4u] = 1.0;
-        p->u[k] = ((tau < 0.5) ? 0.0 : PI) + 0.01;
-    }
+    nmpc_fx_radial_guess(nodes, t_guess, p);
 }
 
 static void input_at(double t, const double *x, ogk_nmpc_input_t *in)
@@ -503,16 +481,7 @@ static void test_model_throttle_solar_overflow_and_body_centre(void **state)
     OGK_ASSERT_NEAR(xdot[4], -0.25 * 0.03, 1e-17);
 
     /* solar-electric, eq. (14): p(s) = (a1 s^2 + a2 s + a3) / (s^4 (1 + a4 s)), s = r / unit */
-    c.power = OGK_NMPC_POWER_SOLAR;
-    c.solar_length_unit = 1.1;
-    c.solar_a[0] = 1.1063;
-    c.solar_a[1] = 0.1495;
-    c.solar_a[2] = -0.299;
-    c.solar_a[3] = -0.0423;
-    c.solar_thrust[0] = -2.0e-4;
-    c.solar_thrust[1] = 0.05;
-    c.solar_flow[0] = 5.0e-3;
-    c.solar_flow[1] = 0.04;
+    nmpc_fx_solar(&c, 1.1, 0.04);
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, x, u, xdot), OGK_OK);
     {
@@ -573,24 +542,10 @@ static void test_solve_solar_engine_and_bodies(void **state)
     uint32_t k;
     (void)state;
     coast_config(&c, 4u);
-    c.power = OGK_NMPC_POWER_SOLAR;
-    c.solar_length_unit = 1.0;
-    c.solar_a[0] = 1.1063;
-    c.solar_a[1] = 0.1495;
-    c.solar_a[2] = -0.299;
-    c.solar_a[3] = -0.0423;
-    c.solar_thrust[0] = -2.0e-4;
-    c.solar_thrust[1] = 0.05;
-    c.solar_flow[0] = 5.0e-3;
-    c.solar_flow[1] = 0.05;
+    nmpc_fx_solar(&c, 1.0, 0.05);
     c.n_bodies = 2u;
-    c.body_mu[0] = 1.0e-10;
-    c.body_radius[0] = 3.0;
-    c.body_rate[0] = 0.2;
-    c.body_mu[1] = 1.0e-10;
-    c.body_radius[1] = 4.0;
-    c.body_phase0[1] = 2.0;
-    c.body_rate[1] = 0.1;
+    nmpc_fx_body(&c, 0u, 1.0e-10, 3.0, 0.0, 0.2);
+    nmpc_fx_body(&c, 1u, 1.0e-10, 4.0, 2.0, 0.1);
     c.body_softening[1] = 0.01;
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     coast_guess(4u, 1.5, 0.3, &plan);

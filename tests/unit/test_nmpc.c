@@ -16,6 +16,7 @@
 
 #include <string.h>
 
+#include "nmpc_fixture.h"
 #include "ogk/nmpc.h"
 #include "ogk/types.h"
 
@@ -27,41 +28,14 @@ static ogk_nmpc_t ctx2;
 static ogk_nmpc_plan_t plan;
 static ogk_nmpc_plan_t plan2;
 
-/* Earth-to-Mars in the normalised units of docs/nmpc.md (Table A.1). */
 static void mars_config(ogk_nmpc_config_t *c, uint32_t nodes)
 {
-    (void)ogk_nmpc_config_default(c);
-    c->thrust_max = 0.05621056;
-    c->mass_flow_max = 0.05690745;
-    c->target_radius = 1.52367877;
-    c->target_phase0 = 2.2689280275926285;
-    c->target_rate = pow(1.52367877, -1.5);
-    c->nodes = nodes;
-    c->max_iter = 200u;
-    c->tol_stat = 1.0e-7;
+    nmpc_fx_mars(c, nodes);
 }
 
-/* The phase-matched guess of docs/nmpc.md (smoothstep radius, 135 deg). */
 static void mars_guess(const ogk_nmpc_config_t *c, uint32_t nodes, double t_f, ogk_nmpc_plan_t *p)
 {
-    uint32_t k;
-    const double r0 = 1.0;
-    const double r1 = c->target_radius;
-    (void)memset(p, 0, sizeof *p);
-    p->t0 = 0.0;
-    p->horizon = t_f;
-    p->nodes = nodes;
-    p->nu = 1u;
-    for (k = 0u; k <= nodes; ++k) {
-        const double tau = (double)k / (double)nodes;
-        const double r = r0 + (r1 - r0) * (3.0 * tau * tau - 2.0 * tau * tau * tau);
-        p->x[k * NX + 0u] = r;
-        p->x[k * NX + 1u] = (c->target_phase0 + c->target_rate * t_f) * tau;
-        p->x[k * NX + 2u] = (r1 - r0) * (6.0 * tau - 6.0 * tau * tau) / t_f;
-        p->x[k * NX + 3u] = 1.0 / sqrt(r);
-        p->x[k * NX + 4u] = 1.0 - c->mass_flow_max * t_f * tau;
-        p->u[k] = 0.75 * PI;
-    }
+    nmpc_fx_mars_guess(c, nodes, t_f, p);
 }
 
 static void test_config_default_and_init(void **state)
@@ -150,14 +124,8 @@ static void test_third_bodies_cartesian(void **state)
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, t, x, u, without_b), OGK_OK);
     c.n_bodies = 2u;
-    c.body_mu[0] = 3.0e-6;
-    c.body_radius[0] = 1.0;
-    c.body_phase0[0] = 0.1;
-    c.body_rate[0] = 1.0;
-    c.body_mu[1] = 3.2e-7;
-    c.body_radius[1] = 1.52;
-    c.body_phase0[1] = 2.27;
-    c.body_rate[1] = 0.53;
+    nmpc_fx_body(&c, 0u, 3.0e-6, 1.0, 0.1, 1.0);
+    nmpc_fx_body(&c, 1u, 3.2e-7, 1.52, 2.27, 0.53);
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, t, x, u, with_b), OGK_OK);
     /* inertial vectors: spacecraft, bodies; direct and indirect terms */
@@ -198,25 +166,10 @@ static void test_interval_sensitivities(void **state)
     (void)state;
     mars_config(&c, 8u);
     c.engine = OGK_NMPC_ENGINE_THROTTLED;
-    c.power = OGK_NMPC_POWER_SOLAR;
-    c.solar_length_unit = 1.0000000002;
-    c.solar_a[0] = 1.1063;
-    c.solar_a[1] = 0.1495;
-    c.solar_a[2] = -0.299;
-    c.solar_a[3] = -0.0423;
-    c.solar_thrust[0] = -2.0e-4;
-    c.solar_thrust[1] = 0.05;
-    c.solar_flow[0] = 5.0e-3;
-    c.solar_flow[1] = 0.05;
+    nmpc_fx_solar(&c, 1.0000000002, 0.05);
     c.n_bodies = 2u;
-    c.body_mu[0] = 3.0e-6;
-    c.body_radius[0] = 1.0;
-    c.body_phase0[0] = -0.1;
-    c.body_rate[0] = 1.0;
-    c.body_mu[1] = 3.2e-7;
-    c.body_radius[1] = 1.52;
-    c.body_phase0[1] = 2.27;
-    c.body_rate[1] = 0.53;
+    nmpc_fx_body(&c, 0u, 3.0e-6, 1.0, -0.1, 1.0);
+    nmpc_fx_body(&c, 1u, 3.2e-7, 1.52, 2.27, 0.53);
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_interval(&ctx, t0, h, x0, u0, u1, x1, fx, fu0, fu1, fh, ft), OGK_OK);
     for (col = 0; col < 11; ++col) {
@@ -259,38 +212,11 @@ static double radial_transfer(uint32_t nodes, uint32_t *iterations)
     ogk_nmpc_config_t c;
     ogk_nmpc_input_t in;
     ogk_nmpc_report_t rep;
-    const double a = 0.1;
-    const double dist = 0.5;
-    const double mu = 1.0e-9;
-    const double t_guess = 5.0;
-    uint32_t k;
-    (void)ogk_nmpc_config_default(&c);
-    c.mu = mu;
-    c.thrust_max = a;
-    c.mass_flow_max = 0.0;
-    c.target_radius = 1.0 + dist;
-    c.nodes = nodes;
-    c.rk4_steps = 4u;
-    c.horizon_min = 0.1;
-    c.horizon_max = 20.0;
-    c.max_iter = 200u;
-    c.tol_feas = 1.0e-10;
-    c.tol_stat = 1.0e-8;
+    nmpc_fx_radial(&c, nodes, 4u, 200u);
     if (ogk_nmpc_init(&ctx, &c) != OGK_OK) {
         return -1.0;
     }
-    (void)memset(&plan, 0, sizeof plan);
-    plan.horizon = t_guess;
-    plan.nodes = nodes;
-    plan.nu = 1u;
-    for (k = 0u; k <= nodes; ++k) {
-        const double tau = (double)k / (double)nodes;
-        plan.x[k * NX + 0u] = 1.0 + dist * (3.0 * tau * tau - 2.0 * tau * tau * tau);
-        plan.x[k * NX + 2u] = dist * (6.0 * tau - 6.0 * tau * tau) / t_guess;
-        plan.x[k * NX + 3u] = sqrt(mu);
-        plan.x[k * NX + 4u] = 1.0;
-        plan.u[k] = ((tau < 0.5) ? 0.0 : PI) + 0.01;
-    }
+    nmpc_fx_radial_guess(nodes, 5.0, &plan);
     if (ogk_nmpc_load_plan(&ctx, &plan) != OGK_OK) {
         return -1.0;
     }
