@@ -37,6 +37,7 @@ ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg)
         cfg->horizon_max = 30.0;
         cfg->max_sweep = 0.0;
         cfg->max_iter = 100u;
+        cfg->max_iter_cold = 200u;
         cfg->tol_feas = 1.0e-9;
         cfg->tol_stat = 1.0e-7;
         cfg->tol_obj = 1.0e-7;
@@ -68,7 +69,8 @@ static bool nmpc_config_finite(const ogk_nmpc_config_t *c)
         && ogk_i_all_finite(c->body_radius, OGK_NMPC_MAX_BODIES)
         && ogk_i_all_finite(c->body_phase0, OGK_NMPC_MAX_BODIES)
         && ogk_i_all_finite(c->body_rate, OGK_NMPC_MAX_BODIES)
-        && ogk_i_all_finite(c->body_softening, OGK_NMPC_MAX_BODIES);
+        && ogk_i_all_finite(c->body_softening, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->keepout_radius, OGK_NMPC_MAX_BODIES);
 }
 
 static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
@@ -81,6 +83,7 @@ static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
         && (c->horizon_min > 0.0) && (c->horizon_max > c->horizon_min)
         && (c->max_sweep >= 0.0) && (c->time_weight >= 0.0)
         && (c->max_iter >= 1u) && (c->max_iter <= OGK_NMPC_MAX_SQP_ITER)
+        && (c->max_iter_cold >= 1u) && (c->max_iter_cold <= OGK_NMPC_MAX_SQP_ITER)
         && (c->tol_feas > 0.0) && (c->tol_stat > 0.0) && (c->tol_obj >= 0.0) && (c->hessian_init > 0.0)
         && (c->step_max_alpha > 0.0) && (c->step_max_horizon > 0.0) && (c->elastic_weight > 0.0)
         && (c->min_nodes >= 1u) && (c->min_nodes <= OGK_NMPC_MAX_NODES)
@@ -96,7 +99,8 @@ static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
         /* already rejected */
     }
     for (b = 0u; ok && (b < c->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
-        ok = (c->body_mu[b] >= 0.0) && (c->body_radius[b] > 0.0) && (c->body_softening[b] >= 0.0);
+        ok = (c->body_mu[b] >= 0.0) && (c->body_radius[b] > 0.0) && (c->body_softening[b] >= 0.0)
+            && (c->keepout_radius[b] >= 0.0);
     }
     return ok;
 }

@@ -118,7 +118,9 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /
 
         engine_limits(cfg, r, &lim);
         for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES) && (st == OGK_OK); ++b) {
-            st = body_accel(cfg, b, t, r, x[1], pert, (jx != NULL) ? pert_jac : NULL);
+            if (cfg->body_mu[b] > 0.0) { /* mu = 0: an ephemeris for the keep-out only */
+                st = body_accel(cfg, b, t, r, x[1], pert, (jx != NULL) ? pert_jac : NULL);
+            }
         }
         if (st == OGK_OK) {
             const double inv_r = 1.0 / r;

@@ -26,8 +26,8 @@
 
 #include "ogk_checks.h"
 
-#if (OGK_NMPC_MAX_QP > OGK_QP_MAX_N) || (OGK_NMPC_NC > OGK_QP_MAX_EQ) || ((2u * OGK_NMPC_MAX_NODES) > OGK_QP_MAX_IN)
-#error "ogk/qp.h limits too small for ogk/nmpc.h (OGK_NMPC_MAX_QP unknowns, 2 OGK_NMPC_MAX_NODES sweep rows)"
+#if (OGK_NMPC_MAX_QP > OGK_QP_MAX_N) || (OGK_NMPC_NC > OGK_QP_MAX_EQ) || (OGK_NMPC_MAX_ROWS > OGK_QP_MAX_IN)
+#error "ogk/qp.h limits too small for ogk/nmpc.h (OGK_NMPC_MAX_QP unknowns, OGK_NMPC_MAX_ROWS inequality rows)"
 #endif
 
 #define NX ((size_t)OGK_NMPC_NX)
@@ -47,6 +47,8 @@
 #define ELASTIC_CURVATURE 1.0e-6
 /* Restarts (scaled-identity Hessian, empty filter) after a failed line search. */
 #define MAX_RESTARTS 2u
+/* Keep-out rows enter the QP for nodes within this many radii. */
+#define KEEPOUT_ACTIVE 3.0
 /* Smallest step box (fraction of step_max_*) and the smallest step taken as
  * a BFGS pair. */
 #define BOX_MIN 1.0e-3
@@ -62,6 +64,56 @@
 static size_t n_vars(const ogk_nmpc_plan_t *p)
 {
     return ((size_t)p->nodes + 1u) * (size_t)p->nu + 1u;
+}
+
+/* Distance of node state x at time t from body b's centre and its
+ * derivatives in r, theta and t (d^2 = r^2 + R^2 - 2 r R cos(theta - phi)). */
+static double keepout_distance(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t,
+                               double *d_r, double *d_theta, double *d_t) /* NOLINT(bugprone-easily-swappable-parameters): internal, the derivatives in the state's order (r, theta) then t; checked by test_keepout_detour */
+{
+    const double big_r = cfg->body_radius[b];
+    const double phi = cfg->body_phase0[b] + (cfg->body_rate[b] * t);
+    const double cd = cos(x[1] - phi);
+    const double sd = sin(x[1] - phi);
+    const double d2 = ((x[0] * x[0]) + (big_r * big_r)) - (2.0 * x[0] * big_r * cd);
+    double d = 0.0;
+    double inv = 0.0;
+    if (d2 > 0.0) {
+        d = sqrt(d2);
+    }
+    if (d > 1.0e-300) {
+        inv = 1.0 / d;
+    }
+    *d_r = (x[0] - (big_r * cd)) * inv;
+    *d_theta = x[0] * big_r * sd * inv;
+    *d_t = -(*d_theta) * cfg->body_rate[b];
+    return d;
+}
+
+/* Keep-out violation of a plan: sum and largest of max(0, R_b - d) over the
+ * interior nodes. */
+static void keepout_violation(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, double *sum, /* NOLINT(bugprone-easily-swappable-parameters): internal, adds to evaluate's (l1, max) pair in that order */
+                              double *largest)
+{
+    const double h = p->horizon / (double)p->nodes;
+    size_t k;
+    size_t b;
+    for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
+        if (cfg->keepout_radius[b] > 0.0) {
+            for (k = 1u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
+                double dr;
+                double dth;
+                double dt;
+                const double d = keepout_distance(cfg, b, &p->x[k * NX], p->t0 + ((double)k * h),
+                                                  &dr, &dth, &dt);
+                const double v = cfg->keepout_radius[b] - d;
+                if (v > 0.0) {
+                    *sum += v;
+                    *largest = (v > *largest) ? v : *largest;
+                }
+            }
+        }
+    }
 }
 
 /* Merit pieces of a plan: l1 and max norms of every defect and terminal
@@ -116,10 +168,41 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
             l1 += fabs(c_term[i]);
             mx = (fabs(c_term[i]) > mx) ? fabs(c_term[i]) : mx;
         }
+        keepout_violation(&ctx->cfg, p, &l1, &mx);
         *viol_l1 = l1;
         *viol_max = mx;
     }
     return st;
+}
+
+/* The keep-out rows of node k (interior) with its condensed sensitivities G
+ * (5 x nv) and offsets e: d + d_X (G v + e) + d_T v_T >= R, for each body
+ * with a keep-out radius that the node is within KEEPOUT_ACTIVE radii of. */
+static void keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, size_t k, /* NOLINT(bugprone-easily-swappable-parameters): internal, condense's (G, e) of the node in that order */
+                         const double *g, const double *e) /* NOLINT(bugprone-easily-swappable-parameters): as above */
+{
+    const ogk_nmpc_config_t *cfg = &ctx->cfg;
+    const double h = p->horizon / (double)p->nodes;
+    size_t b;
+    size_t c;
+    for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
+        if ((cfg->keepout_radius[b] > 0.0) && (ctx->ko_rows < OGK_NMPC_MAX_NODES)) {
+            double dr;
+            double dth;
+            double dt;
+            const double d = keepout_distance(cfg, b, &p->x[k * NX], p->t0 + ((double)k * h), &dr, &dth, &dt);
+            if (d < (KEEPOUT_ACTIVE * cfg->keepout_radius[b])) {
+                double *row = &ctx->ko_a[ctx->ko_rows * nv];
+                for (c = 0u; c < nv; ++c) {
+                    row[c] = (dr * g[(0u * nv) + c]) + (dth * g[(1u * nv) + c]);
+                }
+                /* the node's time t0 + k T / N moves with T */
+                row[nv - 1u] += dt * (double)k / (double)p->nodes;
+                ctx->ko_b[ctx->ko_rows] = cfg->keepout_radius[b] - d - (dr * e[0]) - (dth * e[1]);
+                ctx->ko_rows += 1u;
+            }
+        }
+    }
 }
 
 /* G_N = dX_N/dv and e_N = dX_N(v = 0) by the forward recursion. */
@@ -136,6 +219,7 @@ static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
 
     (void)memset(ctx->cond_g, 0, NX * nv * sizeof(double));
     (void)memset(ctx->cond_e, 0, sizeof(ctx->cond_e));
+    ctx->ko_rows = 0u;
     for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
         const double *a = &ctx->sens_a[k * NX * NX];
         /* columns that can be nonzero after interval k: U_0..U_{k+1}, T */
@@ -170,6 +254,9 @@ static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
             ctx->cond_g[(i * nv) + col_t] = g_next[(i * nv) + col_t];
         }
         (void)memcpy(ctx->cond_e, e_next, sizeof(e_next));
+        if ((k + 1u) < p->nodes) {
+            keepout_rows(ctx, p, nv, k + 1u, ctx->cond_g, ctx->cond_e);
+        }
     }
 }
 
@@ -243,6 +330,11 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
             ctx->qp_bin[rows] = -cfg->max_sweep + sweep;
             ++rows;
         }
+    }
+    for (k = 0u; (k < ctx->ko_rows) && (k < OGK_NMPC_MAX_NODES); ++k) {
+        (void)memcpy(&ctx->qp_ain[rows * nv], &ctx->ko_a[(size_t)k * nv], nv * sizeof(double));
+        ctx->qp_bin[rows] = ctx->ko_b[k];
+        ++rows;
     }
     return rows;
 }
@@ -482,6 +574,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     ogk_nmpc_plan_t *p = &ctx->work;
     const ogk_nmpc_config_t *cfg = &ctx->cfg;
     const size_t nv = n_vars(p);
+    const uint32_t iter_limit = cold ? cfg->max_iter_cold : cfg->max_iter;
     ogk_status st = OGK_OK;
     bool done = false;
     bool have_prev = false;
@@ -518,7 +611,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     }
     (void)memcpy(y_prev, p->lambda, sizeof(y_prev));
     rep->stat = 0.0;
-    for (iter = 0u; (iter < cfg->max_iter) && (iter < OGK_NMPC_MAX_SQP_ITER) && !done; ++iter) {
+    for (iter = 0u; (iter < iter_limit) && (iter < OGK_NMPC_MAX_SQP_ITER) && !done; ++iter) {
         if (!have_eval) {
             st = evaluate(ctx, p, true, &viol_l1, &viol_max, c_term);
         }

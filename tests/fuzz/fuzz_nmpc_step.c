@@ -129,6 +129,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     cfg.nodes = 1u + (m1 & 0x03u);
     cfg.rk4_steps = 1u + ((m1 >> 2) & 0x01u);
     cfg.max_iter = 1u + ((m1 >> 3) & 0x03u);
+    cfg.max_iter_cold = 1u + ((m1 >> 3) & 0x03u);
     cfg.min_nodes = 1u + ((m1 >> 5) & 0x01u);
     cfg.doubling_max_nodes = (m1 >> 6) & 0x03u;
     cfg.doubling_threshold = ((cfg.doubling_max_nodes & 1u) != 0u) ? 0.0 : 0.01;

@@ -24,6 +24,7 @@ static inline void nmpc_fx_mars(ogk_nmpc_config_t *c, uint32_t nodes)
     c->target_rate = pow(1.52367877, -1.5);
     c->nodes = nodes;
     c->max_iter = 200u;
+    c->max_iter_cold = 200u;
     c->tol_stat = 1.0e-7;
 }
 
@@ -89,6 +90,7 @@ static inline void nmpc_fx_radial(ogk_nmpc_config_t *c, uint32_t nodes, uint32_t
     c->horizon_min = 0.1;
     c->horizon_max = 20.0;
     c->max_iter = max_iter;
+    c->max_iter_cold = max_iter;
     c->tol_feas = 1.0e-10;
     c->tol_stat = 1.0e-8;
 }

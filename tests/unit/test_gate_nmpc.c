@@ -64,6 +64,7 @@ static void coast_config(ogk_nmpc_config_t *c, uint32_t nodes)
     c->horizon_min = 1.0;
     c->horizon_max = 2.0;
     c->max_iter = 100u;
+    c->max_iter_cold = 100u;
     c->doubling_max_nodes = 0u;
 }
 
@@ -109,6 +110,9 @@ BAD_RANGE(hmax_low, c->horizon_max = 0.5 * c->horizon_min)
 BAD_RANGE(sweep_neg, c->max_sweep = -1.0e-300)
 BAD_RANGE(iter_zero, c->max_iter = 0u)
 BAD_RANGE(iter_big, c->max_iter = OGK_NMPC_MAX_SQP_ITER + 1u)
+BAD_RANGE(iter_cold_zero, c->max_iter_cold = 0u)
+BAD_RANGE(iter_cold_big, c->max_iter_cold = OGK_NMPC_MAX_SQP_ITER + 1u)
+BAD_RANGE(keepout_neg, c->n_bodies = 2u; c->keepout_radius[1] = -1.0e-9)
 BAD_RANGE(feas_zero, c->tol_feas = 0.0)
 BAD_RANGE(stat_zero, c->tol_stat = 0.0)
 BAD_RANGE(obj_neg, c->tol_obj = -1.0e-9)
@@ -147,6 +151,9 @@ static const config_case_t range_cases[] = {
     { "max_sweep", sweep_neg, OGK_E_CONFIG },
     { "max_iter 0", iter_zero, OGK_E_CONFIG },
     { "max_iter max+1", iter_big, OGK_E_CONFIG },
+    { "max_iter_cold 0", iter_cold_zero, OGK_E_CONFIG },
+    { "max_iter_cold max+1", iter_cold_big, OGK_E_CONFIG },
+    { "keepout_radius[1]", keepout_neg, OGK_E_CONFIG },
     { "tol_feas", feas_zero, OGK_E_CONFIG },
     { "tol_stat", stat_zero, OGK_E_CONFIG },
     { "tol_obj", obj_neg, OGK_E_CONFIG },
@@ -231,6 +238,7 @@ static void test_init_rejects_every_field(void **state)
             fields[n++] = &p->body_phase0[b];
             fields[n++] = &p->body_rate[b];
             fields[n++] = &p->body_softening[b];
+            fields[n++] = &p->keepout_radius[b];
         }
         fields[n++] = &p->target_radius;
         fields[n++] = &p->target_phase0;
@@ -618,6 +626,7 @@ static void test_solve_elastic_qp(void **state)
         c.horizon_min = 1.0;
         c.horizon_max = 1.0 + 1.0e-6;
         c.max_iter = 3u;
+        c.max_iter_cold = 3u;
         c.max_sweep = (pass == 0) ? 0.0 : 0.5; /* with and without inequality rows */
         OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
         coast_guess(3u, 1.0, 0.5, &plan);
@@ -820,6 +829,7 @@ static void test_stale_and_stretched_plans(void **state)
     h = solve_radial_open_loop(&c, 4u, &rep);
     t_f = rep.t_f;
     c.max_iter = 1u;
+    c.max_iter_cold = 1u;
     c.doubling_max_nodes = 8u;
     c.doubling_threshold = 0.0;
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
@@ -871,6 +881,7 @@ static void test_cncn_stale(void **state)
     c.strategy = OGK_NMPC_CNCN;
     h = solve_radial_open_loop(&c, 4u, &rep);
     c.max_iter = 1u;
+    c.max_iter_cold = 1u;
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
     input_at(0.5 * h, plan.x, &in);

@@ -370,7 +370,8 @@ static void test_failure_and_bad_input(void **state)
     double alpha_before;
     (void)state;
     mars_config(&c, 8u);
-    c.max_iter = 2u; /* too few from this guess */
+    c.max_iter = 2u;
+    c.max_iter_cold = 2u; /* too few from this guess */
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     mars_guess(&c, 8u, 6.4, &plan);
     OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
@@ -412,6 +413,53 @@ static void test_failure_and_bad_input(void **state)
     OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_E_NONFINITE);
 }
 
+/* Keep-out: a body (ephemeris only) sits on the radial path; with a keep-out
+ * radius every interior node stays that far from it, and the detour costs
+ * time against the unconstrained optimum. */
+static void test_keepout_detour(void **state)
+{
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    double t_free;
+    uint32_t k;
+    const double radius = 0.08;
+    (void)state;
+    nmpc_fx_radial(&c, 12u, 4u, 300u);
+    c.n_bodies = 1u;
+    nmpc_fx_body(&c, 0u, 0.0, 1.25, 0.03, 0.0);  /* 0.0375 LU off the radial line */
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    nmpc_fx_radial_guess(12u, 5.0, &plan);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    t_free = rep.t_f;
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
+    {
+        /* without the keep-out the path runs through the body's position */
+        double closest = 1.0e9;
+        for (k = 1u; k < 12u; ++k) {
+            const double r = plan2.x[k * NX];
+            const double th = plan2.x[k * NX + 1u];
+            closest = fmin(closest, sqrt(r * r + 1.5625 - 2.5 * r * cos(th - 0.03)));
+        }
+        assert_true(closest < radius);
+    }
+    c.keepout_radius[0] = radius;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
+    for (k = 1u; k < 12u; ++k) {
+        const double r = plan2.x[k * NX];
+        const double th = plan2.x[k * NX + 1u];
+        assert_true(sqrt(r * r + 1.5625 - 2.5 * r * cos(th - 0.03)) >= radius - 1.0e-8);
+    }
+    print_message("keep-out detour: t_f %.6f against %.6f unconstrained\n", rep.t_f, t_free);
+    assert_true(rep.t_f > t_free);
+}
+
 /* reset gives back the context of a fresh init: the same open loop bit for bit */
 static void test_reset_equals_init(void **state)
 {
@@ -448,6 +496,7 @@ int main(void)
         cmocka_unit_test(test_coast_rendezvous_zero_fuel),
         cmocka_unit_test(test_strategies_and_command),
         cmocka_unit_test(test_failure_and_bad_input),
+        cmocka_unit_test(test_keepout_detour),
         cmocka_unit_test(test_reset_equals_init),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -159,6 +159,7 @@ class NmpcSettings:
     constr_viol_tol: float              #: IPOPT constr_viol_tol
     max_iter: int                       #: IPOPT max_iter per solve
     fuel_time_weight_kg_per_day: float = 0.0  #: min-fuel closed loop: J = fuel + w T (beyond the paper; 0 = its J)
+    earth_keepout_radius_m: float = 0.0  #: flight solver: interior plan nodes stay this far from Earth (0: none)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -306,7 +307,9 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                         constr_viol_tol=nmpc_s.number("constr_viol_tol", positive=True, hi=1e-2),
                         max_iter=nmpc_s.integer("max_iter", lo=1, hi=100000),
                         fuel_time_weight_kg_per_day=nmpc_s.number("fuel_time_weight_kg_per_day", default=0.0,
-                                                                  nonnegative=True))
+                                                                  nonnegative=True),
+                        earth_keepout_radius_m=nmpc_s.number("earth_keepout_radius_m", default=0.0,
+                                                             nonnegative=True))
     nmpc_s.finish()
 
     paper: dict[str, float] = {}

@@ -65,7 +65,7 @@ extern "C" {
 #endif
 /* Largest number of SQP iterations of one solve. */
 #ifndef OGK_NMPC_MAX_SQP_ITER
-#define OGK_NMPC_MAX_SQP_ITER 200u
+#define OGK_NMPC_MAX_SQP_ITER 500u
 #endif
 /* Largest number of backtracking steps of one line search. */
 #define OGK_NMPC_MAX_LINE_SEARCH 30u
@@ -76,6 +76,9 @@ extern "C" {
 
 /* QP unknowns: the node-control corrections and the horizon correction. */
 #define OGK_NMPC_MAX_VARS (((OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU) + 1u)
+/* General inequality rows of the QP: the sweep bound (2 per subinterval)
+ * and the keep-out (at most one per node, OGK_NMPC_MAX_NODES in all). */
+#define OGK_NMPC_MAX_ROWS (3u * OGK_NMPC_MAX_NODES)
 /* Unknowns of the elastic QP: v and the slacks s+, s- of eq. (5). */
 #define OGK_NMPC_MAX_QP (OGK_NMPC_MAX_VARS + (2u * OGK_NMPC_NC))
 /* Sensitivity directions of one subinterval: X_k, U_k, U_{k+1}, T. */
@@ -123,6 +126,7 @@ typedef struct {
     double body_phase0[OGK_NMPC_MAX_BODIES]; /* [rad] their polar angles at t = 0 */
     double body_rate[OGK_NMPC_MAX_BODIES];   /* [rad/TU] their angular rates */
     double body_softening[OGK_NMPC_MAX_BODIES]; /* [LU] Plummer length eps, |d|^3 -> (|d|^2 + eps^2)^(3/2), >= 0 (0: point mass) */
+    double keepout_radius[OGK_NMPC_MAX_BODIES]; /* [LU] nodes 1..N-1 stay this far from body b's centre (b < n_bodies; body_mu may be 0 for an ephemeris only), >= 0 (0: none) */
     /* target: circular orbit (eqs. 5-6) */
     double target_radius;       /* [LU] R_T, > 0; must be set */
     double target_phase0;       /* [rad] theta_T at t = 0 */
@@ -136,7 +140,8 @@ typedef struct {
     double horizon_max;         /* [TU] upper bound of T, > horizon_min (default 30) */
     double max_sweep;           /* [rad] bound on |alpha_{k+1} - alpha_k|, 0: none (default 0) */
     /* SQP */
-    uint32_t max_iter;          /* [-] SQP iterations per solve, 1..OGK_NMPC_MAX_SQP_ITER (default 100) */
+    uint32_t max_iter;          /* [-] SQP iterations per warm solve (a BFGS matrix carried), 1..OGK_NMPC_MAX_SQP_ITER (default 100) */
+    uint32_t max_iter_cold;     /* [-] SQP iterations per cold solve (first plan, after a failure, doubling test), 1..OGK_NMPC_MAX_SQP_ITER (default 200) */
     double tol_feas;            /* [LU, LU/TU, MU] max |defect|, |terminal residual| at convergence, > 0 (default 1e-9) */
     double tol_stat;            /* [-] max |H dv| (reduced stationarity) at convergence, > 0 (default 1e-7) */
     double tol_obj;             /* [-] or converged when the QP step's predicted |dJ| <= tol_obj max(|J|, 1), >= 0 (default 1e-7) */
@@ -219,13 +224,16 @@ typedef struct {
     double el_h[OGK_NMPC_MAX_QP * OGK_NMPC_MAX_QP];      /* elastic QP: Hessian */
     double el_g[OGK_NMPC_MAX_QP];
     double el_aeq[OGK_NMPC_NC * OGK_NMPC_MAX_QP];
-    double el_ain[2u * OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_QP];
+    double el_ain[OGK_NMPC_MAX_ROWS * OGK_NMPC_MAX_QP];
     double el_lb[OGK_NMPC_MAX_QP];
     double el_ub[OGK_NMPC_MAX_QP];
     double qp_aeq[OGK_NMPC_NC * OGK_NMPC_MAX_VARS];
     double qp_beq[OGK_NMPC_NC];
-    double qp_ain[2u * OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_VARS];
-    double qp_bin[2u * OGK_NMPC_MAX_NODES];
+    double qp_ain[OGK_NMPC_MAX_ROWS * OGK_NMPC_MAX_VARS];
+    double qp_bin[OGK_NMPC_MAX_ROWS];
+    double ko_a[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_VARS]; /* keep-out rows of the condensed QP */
+    double ko_b[OGK_NMPC_MAX_NODES];
+    size_t ko_rows;             /* [-] keep-out rows in use */
     double qp_lb[OGK_NMPC_MAX_VARS];
     double qp_ub[OGK_NMPC_MAX_VARS];
     double grad_lag[OGK_NMPC_MAX_VARS];  /* reduced Lagrangian gradient of the last iterate */

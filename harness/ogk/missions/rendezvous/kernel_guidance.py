@@ -53,7 +53,7 @@ def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
         min_nodes=strategy.min_nodes, max_subdivisions=strategy.max_subdivisions,
         doubling_threshold=strategy.doubling_threshold_percent / 100.0,
         doubling_max_nodes=MAX_NODES // 2,
-        max_iter=200, tol_feas=1e-9, tol_stat=1e-6,
+        max_iter=200, max_iter_cold=500, tol_feas=1e-9, tol_stat=1e-6,
     )
     if use_bodies:
         # as the ground NLP (nlp.py): Earth a point mass, Mars softened by its sphere of influence (the
@@ -62,6 +62,13 @@ def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
         fields.update(n_bodies=len(bodies), body_mu=[b.mu for b in bodies],
                       body_radius=[b.radius for b in bodies], body_phase0=[b.theta0 for b in bodies],
                       body_rate=[b.rate for b in bodies], body_softening=[b.softening for b in bodies])
+    keepout = n.earth_keepout_radius_m / model.units.length_m
+    if keepout > 0.0:
+        earth = planets(scenario)[0]
+        if not use_bodies:   # Earth's ephemeris only (no gravity) for the keep-out
+            fields.update(n_bodies=1, body_mu=[0.0], body_radius=[earth.radius], body_phase0=[earth.theta0],
+                          body_rate=[earth.rate])
+        fields.update(keepout_radius=[keepout])
     fields.update(overrides)
     return NmpcConfig(**fields)
 
