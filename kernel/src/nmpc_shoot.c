@@ -7,6 +7,7 @@
 #include "nmpc_internal.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <string.h>
 
 #define NX ((size_t)OGK_NMPC_NX)
@@ -52,6 +53,18 @@ static void stage_k(const double *jx, const double *ju, const double *jt, /* NOL
     }
 }
 
+/* True when a third body pulls (mu > 0): the model then depends on time. A
+ * body with mu = 0 is an ephemeris for the keep-out only. */
+static bool attracting_bodies(const ogk_nmpc_config_t *cfg)
+{
+    bool any = false;
+    uint32_t b;
+    for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
+        any = any || (cfg->body_mu[b] > 0.0);
+    }
+    return any;
+}
+
 ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (nu, t_start, h as in ogk_nmpc_interval); checked by central differences (test_nmpc.c) */
                             double t_start, double h, const double *x0,
                             const double *u0, const double *u1, double *xf,
@@ -68,7 +81,7 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
     const size_t col_h = NX + (2u * (size_t)nu);
     /* the start-time column is identically zero without third bodies (the
      * model is then autonomous): it is not propagated */
-    const size_t ncol = col_h + 1u + (size_t)((cfg->n_bodies > 0u) ? 1u : 0u);
+    const size_t ncol = col_h + 1u + (size_t)(attracting_bodies(cfg) ? 1u : 0u);
     double x[NX];
     double stage_x[NX];
     double k[4][NX];
