@@ -1,7 +1,7 @@
 """Low-thrust heliocentric rendezvous (receding-horizon NMPC; Starek & Kolmanovsky 2012 is its first user).
 
 The family's adapter for ogk.missions.registry: `ogk nmpc SCENARIO` flies the closed loop of sec. 2.3 (SNNS or
-CNCN, guidance by IPOPT or, later, the flight code's ogk_nmpc) against the truth model, unperturbed or
+CNCN, guidance by IPOPT or by the flight code's ogk_nmpc) against the truth model, unperturbed or
 perturbed (sec. 3.3-3.5), prints the paper's Table I (min-time) or Table II (min-fuel) column of the same
 case beside the run, writes the JSON and optionally the PNG figures (Figs. 5-10). Exit 0 when the flight
 reached Mars (sec. 2.3.1's criterion), 1 when it did not, 2 on bad input.
