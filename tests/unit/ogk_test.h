@@ -34,4 +34,17 @@
 
 #define OGK_ASSERT_STATUS(expr, code) assert_int_equal((int)(expr), (int)(code))
 
+/* max_i |v[i]| over count entries (0 for none). */
+static inline double ogk_test_max_abs(const double *v, size_t count)
+{
+    double m = 0.0;
+    size_t i;
+    for (i = 0; i < count; ++i) {
+        if (fabs(v[i]) > m) {
+            m = fabs(v[i]);
+        }
+    }
+    return m;
+}
+
 #endif /* OGK_TEST_H */

@@ -42,18 +42,6 @@ static void fill_dominant(double *a, size_t n, uint64_t *state)
     }
 }
 
-static double max_abs(const double *v, size_t count)
-{
-    double m = 0.0;
-    size_t i;
-    for (i = 0; i < count; ++i) {
-        if (fabs(v[i]) > m) {
-            m = fabs(v[i]);
-        }
-    }
-    return m;
-}
-
 /* Infinity norm of A (rows x cols), computed here without the kernel. */
 static double norm_inf(const double *A, size_t rows, size_t cols)
 {
@@ -324,7 +312,7 @@ static void test_lu_random_solve_inverse(void **state)
             /* Backward error: |A x - b| <= c n eps (|A| |x| + |b|). */
             res = residual_inf(A, n, n, x, b);
             assert_true(res <= 16.0 * (double)n * DBL_EPSILON *
-                                   (norm_inf(A, n, n) * max_abs(x, n) + max_abs(b, n)));
+                                   (norm_inf(A, n, n) * ogk_test_max_abs(x, n) + ogk_test_max_abs(b, n)));
             /* x may alias b. */
             OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, b), OGK_OK);
             for (i = 0; i < n; ++i) {
@@ -443,7 +431,7 @@ static void test_lu_hilbert(void **state)
     OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_OK);
     /* Solution is inaccurate, but the backward error stays at round-off. */
     assert_true(residual_inf(H, 12, 12, x, b) <=
-                1e3 * DBL_EPSILON * (norm_inf(H, 12, 12) * max_abs(x, 12) + max_abs(b, 12)));
+                1e3 * DBL_EPSILON * (norm_inf(H, 12, 12) * ogk_test_max_abs(x, 12) + ogk_test_max_abs(b, 12)));
     OGK_ASSERT_STATUS(ogk_lu_inverse(&lu, Hinv), OGK_OK);
 }
 
@@ -599,7 +587,7 @@ static void test_chol_random_spd(void **state)
         OGK_ASSERT_STATUS(ogk_chol_solve(&ch, b, x), OGK_OK);
         assert_true(residual_inf(A, n, n, x, b) <=
                     16.0 * (double)n * DBL_EPSILON *
-                        (norm_inf(A, n, n) * max_abs(x, n) + max_abs(b, n)));
+                        (norm_inf(A, n, n) * ogk_test_max_abs(x, n) + ogk_test_max_abs(b, n)));
         OGK_ASSERT_STATUS(ogk_chol_solve(&ch, b, b), OGK_OK); /* x may alias b */
         for (i = 0; i < n; ++i) {
             OGK_ASSERT_NEAR(b[i], x[i], 0.0);

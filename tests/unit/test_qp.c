@@ -40,25 +40,13 @@ static size_t lcg_int(uint64_t *state, size_t k)
     return (v >= k) ? k - 1u : v;
 }
 
-static double max_abs(const double *v, size_t count)
-{
-    double m = 0.0;
-    size_t i;
-    for (i = 0; i < count; ++i) {
-        if (fabs(v[i]) > m) {
-            m = fabs(v[i]);
-        }
-    }
-    return m;
-}
-
 /* Solves the dim x dim system M y = rhs in place (M destroyed, y = rhs on
  * return) by Gaussian elimination with partial pivoting. false when a pivot is
  * below 1e-11 times the largest entry of M (singular for our purposes). */
 #define GE_MAX 40
 static bool ge_solve(double *M, double *rhs, size_t dim)
 {
-    const double scale = max_abs(M, dim * dim);
+    const double scale = ogk_test_max_abs(M, dim * dim);
     size_t c, i, k;
     for (c = 0; c < dim; ++c) {
         size_t piv = c;
@@ -219,10 +207,10 @@ static void random_problem(test_problem_t *t, uint64_t *s, size_t n, size_t m_eq
 static void check_kkt(const test_problem_t *t, const ogk_qp_solution_t *s, double tol)
 {
     const size_t n = t->n;
-    const double xs = fmax(1.0, max_abs(s->x, n));
-    const double ys = fmax(1.0, fmax(max_abs(s->y_eq, t->m_eq), max_abs(s->y_in, t->m_in)));
-    const double zs = fmax(max_abs(s->z_lb, n), max_abs(s->z_ub, n));
-    const double hs = fmax(1.0, max_abs(t->H, n * n));
+    const double xs = fmax(1.0, ogk_test_max_abs(s->x, n));
+    const double ys = fmax(1.0, fmax(ogk_test_max_abs(s->y_eq, t->m_eq), ogk_test_max_abs(s->y_in, t->m_in)));
+    const double zs = fmax(ogk_test_max_abs(s->z_lb, n), ogk_test_max_abs(s->z_ub, n));
+    const double hs = fmax(1.0, ogk_test_max_abs(t->H, n * n));
     const double mult = fmax(ys, zs);
     size_t i, k;
     /* stationarity: H x + g - A_eq^T y_eq - A_in^T y_in - z_lb + z_ub = 0 */
@@ -237,7 +225,7 @@ static void check_kkt(const test_problem_t *t, const ogk_qp_solution_t *s, doubl
         for (k = 0; k < t->m_in; ++k) {
             r -= t->A_in[k * n + i] * s->y_in[k];
         }
-        OGK_ASSERT_NEAR(r, 0.0, tol * (hs * xs + mult + fmax(1.0, max_abs(t->g, n))));
+        OGK_ASSERT_NEAR(r, 0.0, tol * (hs * xs + mult + fmax(1.0, ogk_test_max_abs(t->g, n))));
     }
     /* primal feasibility */
     for (k = 0; k < t->m_eq; ++k) {
@@ -649,7 +637,7 @@ static void test_unconstrained(void **state)
         }
         assert_true(ge_solve(M, y, n));
         for (i = 0; i < n; ++i) {
-            OGK_ASSERT_NEAR(sol.x[i], y[i], 1e-9 * fmax(1.0, max_abs(y, n)));
+            OGK_ASSERT_NEAR(sol.x[i], y[i], 1e-9 * fmax(1.0, ogk_test_max_abs(y, n)));
         }
         assert_int_equal((int)sol.n_active, 0);
         assert_int_equal((int)sol.iterations, 0);
@@ -688,10 +676,10 @@ static void test_equality_only(void **state)
         }
         assert_true(ge_solve(M, y, dim));
         for (i = 0; i < n; ++i) {
-            OGK_ASSERT_NEAR(sol.x[i], y[i], 1e-9 * fmax(1.0, max_abs(y, n)));
+            OGK_ASSERT_NEAR(sol.x[i], y[i], 1e-9 * fmax(1.0, ogk_test_max_abs(y, n)));
         }
         for (k = 0; k < me; ++k) {
-            OGK_ASSERT_NEAR(sol.y_eq[k], y[n + k], 1e-8 * fmax(1.0, max_abs(&y[n], me)));
+            OGK_ASSERT_NEAR(sol.y_eq[k], y[n + k], 1e-8 * fmax(1.0, ogk_test_max_abs(&y[n], me)));
         }
         assert_int_equal((int)sol.n_active, (int)me);
         assert_int_equal((int)sol.iterations, (int)me);
@@ -915,7 +903,7 @@ static void test_random_vs_brute_force(void **state)
         check_kkt(&tp, &sol, 1e-11);
         assert_true(brute_force(&tp, xb, &fb));
         for (i = 0; i < n; ++i) {
-            OGK_ASSERT_NEAR(sol.x[i], xb[i], 1e-8 * fmax(1.0, max_abs(xb, n)));
+            OGK_ASSERT_NEAR(sol.x[i], xb[i], 1e-8 * fmax(1.0, ogk_test_max_abs(xb, n)));
         }
         OGK_ASSERT_REL(sol.objective, fb, 1e-10, 1.0);
         if (sol.n_active > me) {
