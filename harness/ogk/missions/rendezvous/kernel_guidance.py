@@ -16,6 +16,7 @@ import time
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from ogk_host.rendezvous.dynamics import DAY_S, Engine, Model, planets
+from ogk_host.rendezvous.nlp import MIN_FUEL_GUESS_THROTTLE
 from ogk_host.rendezvous.plan import Plan
 from ogk_host.rendezvous.scenario import RendezvousScenario
 
@@ -112,7 +113,7 @@ class KernelGuidance:
                 if pre.converged:
                     p = time_opt.plan()
                     controls = p.controls.copy()
-                    controls[:, 1] = 0.5     # the ground's documented guess (nlp.min_fuel_guess)
+                    controls[:, 1] = MIN_FUEL_GUESS_THROTTLE   # the ground's documented guess
                     g = Plan(t0=p.t0, horizon=p.horizon, states=p.states, controls=controls)
             self.nmpc.load_plan(g.t0, g.horizon, g.states, g.controls)
             rep = self.nmpc.solve(t, x)
