@@ -1,0 +1,403 @@
+/* blt_arc.c -- the prediction of NRPC (sec. III.D): the unknown vector, RK4 propagation of the
+ * segments forward and backward with impact detection, the arcs' errors at their meeting points
+ * (eqs. 65 and 70) and, optionally, their sensitivities by the variational equations. */
+#include "blt_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define NX OGK_BLT_NX
+
+/* ------------------------------------------------------------------ unknowns */
+
+static bool seg_param_free(const ogk_blt_config_t *cfg, uint32_t k, uint32_t p)
+{
+    bool is_free = (cfg->segment_free[k] & (1u << p)) != 0u;
+    if ((cfg->segment_kind[k] != OGK_BLT_SEG_BURN) && (p != 6u)) {
+        is_free = false; /* a coast has its duration only */
+    }
+    return is_free;
+}
+
+uint32_t blt_count_unknowns(const ogk_blt_config_t *cfg)
+{
+    uint32_t n = 0u;
+    uint32_t i;
+    uint32_t k;
+    for (i = 0u; i < NX; ++i) {
+        n += ((cfg->start_free_mask >> i) & 1u);
+    }
+    for (k = 0u; k < cfg->n_segments; ++k) {
+        for (i = 0u; i < OGK_BLT_NP; ++i) {
+            n += seg_param_free(cfg, k, i) ? 1u : 0u;
+        }
+    }
+    return n + (NX * cfg->n_free_nodes);
+}
+
+uint32_t blt_count_errors(const ogk_blt_config_t *cfg)
+{
+    const uint32_t last = cfg->n_free_nodes;
+    uint32_t n = NX * last;
+    if (cfg->meet_interface[last] == cfg->n_segments) {
+        uint32_t i;
+        for (i = 0u; i < NX; ++i) {
+            n += ((cfg->target_mask >> i) & 1u);
+        }
+    } else {
+        n += NX;
+    }
+    return n;
+}
+
+void blt_pack(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, double *u)
+{
+    uint32_t n = 0u;
+    uint32_t i;
+    uint32_t k;
+    for (i = 0u; i < NX; ++i) {
+        if (((cfg->start_free_mask >> i) & 1u) != 0u) {
+            u[n] = tr->x0[i];
+            ++n;
+        }
+    }
+    for (k = 0u; k < cfg->n_segments; ++k) {
+        for (i = 0u; i < OGK_BLT_NP; ++i) {
+            if (seg_param_free(cfg, k, i)) {
+                u[n] = tr->seg[k][i];
+                ++n;
+            }
+        }
+    }
+    for (k = 0u; k < cfg->n_free_nodes; ++k) {
+        for (i = 0u; i < NX; ++i) {
+            u[n] = tr->node[k][i];
+            ++n;
+        }
+    }
+}
+
+void blt_unpack(const ogk_blt_config_t *cfg, const double *u, ogk_blt_transfer_t *tr)
+{
+    uint32_t n = 0u;
+    uint32_t i;
+    uint32_t k;
+    for (i = 0u; i < NX; ++i) {
+        if (((cfg->start_free_mask >> i) & 1u) != 0u) {
+            tr->x0[i] = u[n];
+            ++n;
+        }
+    }
+    for (k = 0u; k < cfg->n_segments; ++k) {
+        for (i = 0u; i < OGK_BLT_NP; ++i) {
+            if (seg_param_free(cfg, k, i)) {
+                tr->seg[k][i] = u[n];
+                ++n;
+            }
+        }
+    }
+    for (k = 0u; k < cfg->n_free_nodes; ++k) {
+        for (i = 0u; i < NX; ++i) {
+            tr->node[k][i] = u[n];
+            ++n;
+        }
+    }
+}
+
+uint32_t blt_steps_for(const ogk_blt_config_t *cfg, double duration)
+{
+    const double ratio = fabs(duration) / cfg->model.step_max;
+    uint32_t n;
+    if (!(ratio < (double)OGK_BLT_MAX_SEGMENT_STEPS)) {
+        n = OGK_BLT_MAX_SEGMENT_STEPS;
+    } else {
+        n = (uint32_t)ceil(ratio);
+        if (n == 0u) {
+            n = 1u;
+        }
+    }
+    return n;
+}
+
+/* ------------------------------------------------------------------ propagation */
+
+static void track_bodies(const ogk_blt_model_t *m, const double x[NX], blt_eval_t *ev)
+{
+    const double body_x[2] = {-m->mu, 1.0 - m->mu};
+    size_t b;
+    for (b = 0u; b < 2u; ++b) {
+        const double dx = x[0] - body_x[b];
+        const double d = sqrt((dx * dx) + (x[1] * x[1]) + (x[2] * x[2]));
+        if (!(d >= ev->min_distance[b])) {
+            ev->min_distance[b] = d;
+        }
+        if (!(d > m->body_radius[b])) {
+            ev->impact = true;
+        }
+    }
+}
+
+/* Right-hand side of the state and, when nu > 0, of its sensitivities S (6 x nu, row-major,
+ * after the state in y): S' = F S + G (docs/blt.md, "Variational equations"). */
+static bool rhs_aug(const ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double tau, const double *y,
+                    double *dy, uint32_t nu)
+{
+    const ogk_blt_config_t *cfg = &ctx->cfg;
+    blt_rhs_parts_t parts;
+    bool ok = blt_rhs(&cfg->model, seg, tau, y, dy, (nu > 0u) ? &parts : NULL);
+    if (ok && (nu > 0u)) {
+        const double *S = &y[NX];
+        double *dS = &dy[NX];
+        double dadt[3];
+        double dadm[3];
+        uint32_t c;
+        uint32_t i;
+        uint32_t j;
+        const double sr = (parts.s_hat[0] * y[0]) + (parts.s_hat[1] * y[1]);
+        const double dsr = (parts.ds_hat[0] * y[0]) + (parts.ds_hat[1] * y[1]);
+        for (i = 0u; i < 3u; ++i) {
+            /* explicit time dependence (the Sun's direction): SRP and tide */
+            dadt[i] = (-parts.srp * parts.ds_hat[i]) +
+                      (cfg->model.sun_tidal * 3.0 * ((parts.ds_hat[i] * sr) + (parts.s_hat[i] * dsr)));
+            /* d a / d m: thrust / m and SRP / m */
+            dadm[i] = (parts.srp * parts.s_hat[i]) / parts.mass;
+            if (seg->burn) {
+                dadm[i] -= (parts.thrust * parts.u_hat[i]) / parts.mass;
+            }
+        }
+        for (c = 0u; c < nu; ++c) {
+            double sr3[3];
+            double sv3[3];
+            for (i = 0u; i < 3u; ++i) {
+                sr3[i] = S[(i * nu) + c];
+                sv3[i] = S[((3u + i) * nu) + c];
+                dS[(i * nu) + c] = sv3[i];
+            }
+            for (i = 0u; i < 3u; ++i) {
+                double acc = 0.0;
+                for (j = 0u; j < 3u; ++j) {
+                    acc += parts.grad[(i * 3u) + j] * sr3[j];
+                }
+                dS[((3u + i) * nu) + c] = acc;
+            }
+            dS[(3u * nu) + c] += 2.0 * sv3[1]; /* Coriolis */
+            dS[(4u * nu) + c] -= 2.0 * sv3[0];
+        }
+        /* G: the direct dependence on the parameters */
+        if (seg->burn) {
+            for (j = 0u; j < 3u; ++j) {
+                const uint32_t ca = ctx->col_seg[k][j];
+                const uint32_t cb = ctx->col_seg[k][3u + j];
+                for (i = 0u; i < 3u; ++i) {
+                    /* d u_hat / d w = (I - u u^T) / |w|, w = A + B tau */
+                    const double d = (parts.thrust / parts.w_norm) *
+                                     (((i == j) ? 1.0 : 0.0) - (parts.u_hat[i] * parts.u_hat[j]));
+                    if (ca != OGK_BLT_NO_COLUMN) {
+                        dS[((3u + i) * nu) + ca] += d;
+                    }
+                    if (cb != OGK_BLT_NO_COLUMN) {
+                        dS[((3u + i) * nu) + cb] += d * tau;
+                    }
+                }
+            }
+        }
+        for (j = 0u; j < k; ++j) {
+            /* an earlier duration shifts this segment's time and (a burn) lowers its mass */
+            const uint32_t ct = ctx->col_seg[j][6];
+            if (ct != OGK_BLT_NO_COLUMN) {
+                const double mass_rate = (cfg->segment_kind[j] == OGK_BLT_SEG_BURN) ? -cfg->model.mass_flow : 0.0;
+                for (i = 0u; i < 3u; ++i) {
+                    dS[((3u + i) * nu) + ct] += dadt[i] + (dadm[i] * mass_rate);
+                }
+            }
+        }
+    }
+    return ok;
+}
+
+/* Propagates segment k over its duration T in n RK4 steps, forward (tau 0 -> T) or backward
+ * (T -> 0); y = state (+ sensitivities when nu > 0). Stops at an impact. */
+static void prop_segment(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double duration, uint32_t n,
+                         bool backward, double *y, uint32_t nu, blt_eval_t *ev)
+{
+    const size_t dim = (size_t)NX * (1u + nu);
+    double *k1 = &ctx->var_k[0];
+    double *k2 = &ctx->var_k[dim];
+    double *k3 = &ctx->var_k[2u * dim];
+    double *k4 = &ctx->var_k[3u * dim];
+    double *tmp = &ctx->var_k[4u * dim];
+    const double h = (backward ? -duration : duration) / (double)n;
+    uint32_t s;
+    bool go = true;
+
+    ev->propagations += 1u;
+    for (s = 0u; (s < n) && go; ++s) {
+        const double tau = backward ? (duration - (((double)s) * (duration / (double)n)))
+                                    : (((double)s) * (duration / (double)n));
+        size_t i;
+        bool ok;
+        ok = rhs_aug(ctx, seg, k, tau, y, k1, nu);
+        for (i = 0u; i < dim; ++i) {
+            tmp[i] = y[i] + (0.5 * h * k1[i]);
+        }
+        ok = ok && rhs_aug(ctx, seg, k, tau + (0.5 * h), tmp, k2, nu);
+        for (i = 0u; i < dim; ++i) {
+            tmp[i] = y[i] + (0.5 * h * k2[i]);
+        }
+        ok = ok && rhs_aug(ctx, seg, k, tau + (0.5 * h), tmp, k3, nu);
+        for (i = 0u; i < dim; ++i) {
+            tmp[i] = y[i] + (h * k3[i]);
+        }
+        ok = ok && rhs_aug(ctx, seg, k, tau + h, tmp, k4, nu);
+        if (!ok) {
+            ev->bad_rhs = true;
+            go = false;
+        } else {
+            for (i = 0u; i < dim; ++i) {
+                y[i] += (h / 6.0) * (k1[i] + (2.0 * k2[i]) + (2.0 * k3[i]) + k4[i]);
+            }
+            track_bodies(&ctx->cfg.model, y, ev);
+            go = !ev->impact && ogk_i_all_finite(y, NX);
+            if (!ogk_i_all_finite(y, NX)) {
+                ev->bad_rhs = true;
+            }
+        }
+    }
+}
+
+static uint32_t steps_of(const ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, uint32_t k)
+{
+    return (ctx->steps_frozen != 0u) ? ctx->seg_steps[k] : blt_steps_for(&ctx->cfg, tr->seg[k][6]);
+}
+
+/* Adds sign * f(x at tau) of segment k to the sensitivity column of its duration. */
+static void duration_jump(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double tau, double *y, uint32_t nu,
+                          double sign, blt_eval_t *ev)
+{
+    const uint32_t ct = ctx->col_seg[k][6];
+    if ((nu > 0u) && (ct != OGK_BLT_NO_COLUMN)) {
+        double f[NX];
+        uint32_t i;
+        if (!blt_rhs(&ctx->cfg.model, seg, tau, y, f, NULL)) {
+            ev->bad_rhs = true;
+        }
+        for (i = 0u; i < NX; ++i) {
+            y[NX + (i * nu) + ct] += sign * f[i];
+        }
+    }
+}
+
+static void init_sens(double *y, uint32_t nu, const uint32_t *cols, uint32_t ncols)
+{
+    uint32_t i;
+    if (nu > 0u) {
+        (void)memset(&y[NX], 0, sizeof(double) * NX * nu);
+        for (i = 0u; i < ncols; ++i) {
+            if (cols[i] != OGK_BLT_NO_COLUMN) {
+                y[NX + (i * nu) + cols[i]] = 1.0;
+            }
+        }
+    }
+}
+
+void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double *sens, blt_eval_t *ev)
+{
+    const ogk_blt_config_t *cfg = &ctx->cfg;
+    const uint32_t nu = (sens != NULL) ? ctx->n_unknowns : 0u;
+    const uint32_t last = cfg->n_free_nodes;
+    double *y = ctx->var;
+    uint32_t row = 0u;
+    uint32_t a;
+
+    ev->impact = false;
+    ev->bad_rhs = false;
+    ev->min_distance[0] = HUGE_VAL;
+    ev->min_distance[1] = HUGE_VAL;
+    for (a = 0u; (a <= last) && !ev->impact && !ev->bad_rhs; ++a) {
+        const uint32_t lo = ctx->anchor[a];
+        const uint32_t hi = ctx->anchor[a + 1u];
+        const uint32_t meet = cfg->meet_interface[a];
+        double x_fwd[NX];
+        uint32_t k;
+        uint32_t i;
+        uint32_t c;
+
+        /* forward from the left anchor to the meeting interface */
+        if (a == 0u) {
+            (void)memcpy(y, tr->x0, sizeof(double) * NX);
+            init_sens(y, nu, ctx->col_start, NX);
+        } else {
+            (void)memcpy(y, tr->node[a - 1u], sizeof(double) * NX);
+            init_sens(y, nu, ctx->col_node[a - 1u], NX);
+        }
+        track_bodies(&cfg->model, y, ev);
+        for (k = lo; (k < meet) && !ev->impact && !ev->bad_rhs; ++k) {
+            blt_seg_t seg;
+            blt_segment(cfg, tr, k, &seg);
+            prop_segment(ctx, &seg, k, tr->seg[k][6], steps_of(ctx, tr, k), false, y, nu, ev);
+            duration_jump(ctx, &seg, k, tr->seg[k][6], y, nu, 1.0, ev);
+        }
+        (void)memcpy(x_fwd, y, sizeof(x_fwd));
+        if (nu > 0u) {
+            (void)memcpy(ctx->s_fwd, &y[NX], sizeof(double) * NX * nu);
+        }
+        if ((meet == hi) && (a == last)) {
+            /* eq. (65): the target's constrained components */
+            for (i = 0u; i < NX; ++i) {
+                if (((cfg->target_mask >> i) & 1u) != 0u) {
+                    e[row] = x_fwd[i] - tr->xf[i];
+                    if (nu > 0u) {
+                        for (c = 0u; c < nu; ++c) {
+                            sens[(row * nu) + c] = ctx->s_fwd[(i * nu) + c];
+                        }
+                    }
+                    ++row;
+                }
+            }
+        } else {
+            /* backward from the right anchor to the meeting interface (eq. 70) */
+            if (a == last) {
+                (void)memcpy(y, tr->xf, sizeof(double) * NX);
+                init_sens(y, nu, ctx->col_node[0], 0u);
+            } else {
+                (void)memcpy(y, tr->node[a], sizeof(double) * NX);
+                init_sens(y, nu, ctx->col_node[a], NX);
+            }
+            for (k = hi; (k > meet) && !ev->impact && !ev->bad_rhs; --k) {
+                blt_seg_t seg;
+                blt_segment(cfg, tr, k - 1u, &seg);
+                duration_jump(ctx, &seg, k - 1u, tr->seg[k - 1u][6], y, nu, -1.0, ev);
+                prop_segment(ctx, &seg, k - 1u, tr->seg[k - 1u][6], steps_of(ctx, tr, k - 1u), true, y, nu, ev);
+            }
+            for (i = 0u; i < NX; ++i) {
+                e[row] = x_fwd[i] - y[i];
+                if (nu > 0u) {
+                    for (c = 0u; c < nu; ++c) {
+                        sens[(row * nu) + c] = ctx->s_fwd[(i * nu) + c] - y[NX + (i * nu) + c];
+                    }
+                }
+                ++row;
+            }
+        }
+    }
+}
+
+void blt_chain(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double x_end[OGK_BLT_NX], blt_eval_t *ev)
+{
+    const ogk_blt_config_t *cfg = &ctx->cfg;
+    double *y = ctx->var;
+    uint32_t k;
+
+    ev->impact = false;
+    ev->bad_rhs = false;
+    ev->min_distance[0] = HUGE_VAL;
+    ev->min_distance[1] = HUGE_VAL;
+    (void)memcpy(y, tr->x0, sizeof(double) * NX);
+    track_bodies(&cfg->model, y, ev);
+    for (k = 0u; (k < cfg->n_segments) && !ev->impact && !ev->bad_rhs; ++k) {
+        blt_seg_t seg;
+        blt_segment(cfg, tr, k, &seg);
+        prop_segment(ctx, &seg, k, tr->seg[k][6], steps_of(ctx, tr, k), false, y, 0u, ev);
+    }
+    (void)memcpy(x_end, y, sizeof(double) * NX);
+}

@@ -1,0 +1,77 @@
+/* blt_internal.h -- internals of ogk_blt shared by blt.c (configuration, corrector),
+ * blt_model.c (the right-hand side and its derivatives) and blt_arc.c (propagation of the
+ * arcs, errors, Jacobians). Not public API. Design notes: docs/blt.md. */
+#ifndef OGK_BLT_INTERNAL_H
+#define OGK_BLT_INTERNAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ogk/blt.h"
+#include "ogk_checks.h"
+
+/* the linear algebra of the corrector must hold the error vector */
+typedef char blt_check_la_rows[(OGK_LA_MAX_N >= OGK_BLT_MAX_ERRORS) ? 1 : -1];
+typedef char blt_check_la_cols[(OGK_LA_MAX_LONG >= (OGK_BLT_MAX_UNKNOWNS + OGK_BLT_MAX_ERRORS)) ? 1 : -1];
+
+#define BLT_T_ABS_MAX 1.0e6 /* [TU] |t0| bound */
+
+/* What a segment's right-hand side needs besides the state. */
+typedef struct {
+    double t_start;   /* [TU] absolute time at tau = 0 */
+    double m_start;   /* [-] mass fraction at tau = 0 */
+    double a[3];      /* [-] BLT A (burn) */
+    double b[3];      /* [1/TU] BLT B (burn) */
+    bool burn;        /* engine on */
+} blt_seg_t;
+
+/* Per-term pieces of the right-hand side at one point, for the variational equations. */
+typedef struct {
+    double grad[9];     /* [1/TU^2] d(acceleration)/d(position), gravity + centrifugal + solar tide */
+    double u_hat[3];    /* [-] thrust direction (burn) */
+    double w_norm;      /* [-] |A + B tau| (burn) */
+    double thrust;      /* [LU/TU^2] thrust acceleration magnitude, thrust_accel / m (burn) */
+    double srp;         /* [LU/TU^2] SRP acceleration magnitude, srp_accel / m */
+    double s_hat[3];    /* [-] the Sun's direction */
+    double ds_hat[3];   /* [1/TU] its time derivative */
+    double mass;        /* [-] mass fraction */
+} blt_rhs_parts_t;
+
+/* f(t, x): dx = (v, a). tau = time since the segment's start. parts (may be NULL) receives the
+ * pieces the variational equations need (grad only when parts is given). Returns false when the
+ * direction A + B tau vanishes or the mass is not positive (no finite thrust direction). */
+bool blt_rhs(const ogk_blt_model_t *m, const blt_seg_t *seg, double tau, const double x[OGK_BLT_NX],
+             double dx[OGK_BLT_NX], blt_rhs_parts_t *parts);
+
+/* Segment parameters and bookkeeping of a transfer. */
+double blt_segment_start_time(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k);
+double blt_segment_start_mass(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k);
+void blt_segment(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k, blt_seg_t *seg);
+
+/* Number of unknowns / errors the configuration implies. */
+uint32_t blt_count_unknowns(const ogk_blt_config_t *cfg);
+uint32_t blt_count_errors(const ogk_blt_config_t *cfg);
+/* u <- the unknowns of tr; tr <- tr with its unknowns replaced by u. */
+void blt_pack(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, double *u);
+void blt_unpack(const ogk_blt_config_t *cfg, const double *u, ogk_blt_transfer_t *tr);
+
+/* Result of one evaluation of the error vector. */
+typedef struct {
+    bool impact;              /* a body was hit (propagation of that arc stopped there) */
+    bool bad_rhs;             /* no finite right-hand side (A + B tau = 0 or mass <= 0) */
+    uint32_t propagations;    /* segments propagated */
+    double min_distance[2];   /* [LU] closest approach at the RK4 nodes */
+} blt_eval_t;
+
+/* e = the errors of tr (all arcs). sens (ctx->jac layout) receives de/du when non-NULL
+ * (variational equations). Uses ctx->seg_steps when ctx->steps_frozen. */
+void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double *sens, blt_eval_t *ev);
+
+/* Forward propagation of the whole chain (free nodes ignored). */
+void blt_chain(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double x_end[OGK_BLT_NX], blt_eval_t *ev);
+
+/* RK4 step count of a segment of duration T. */
+uint32_t blt_steps_for(const ogk_blt_config_t *cfg, double duration);
+
+#endif /* OGK_BLT_INTERNAL_H */
