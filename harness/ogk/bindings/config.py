@@ -34,6 +34,42 @@ def _is_pointer(ftype: Any) -> bool:
     return ftype.kind == "pointer"
 
 
+def _set_field(owner: str, c: Any, name: str, ftype: Any, value: Any) -> None:
+    """c.name = value, by the field's C type; a nested struct takes a mapping of its fields."""
+    if _is_pointer(ftype):
+        setattr(c, name, ffi.NULL if value is None else value)
+    elif ftype.kind == "struct":
+        sub = getattr(c, name)
+        fields = dict(ftype.fields)
+        for key, v in dict(value).items():
+            if key not in fields:
+                raise TypeError(f"{owner}.{name} has no field {key!r}; fields: {', '.join(fields)}")
+            _set_field(f"{owner}.{name}", sub, key, fields[key].type, v)
+    elif ftype.kind == "array":
+        v = np.asarray(value, dtype=np.float64 if ftype.item.cname == "double" else np.int64)
+        v = v.reshape(-1)
+        if v.size > ftype.length:
+            raise ValueError(f"{owner}.{name}: {v.size} values, the C array holds {ftype.length}")
+        arr = getattr(c, name)
+        for i, x in enumerate(v):
+            arr[i] = float(x) if ftype.item.cname == "double" else int(x)
+    elif ftype.kind == "enum" or (ftype.kind == "primitive" and ftype.cname != "double"):
+        setattr(c, name, int(value))
+    else:
+        setattr(c, name, float(value))
+
+
+def _get_field(value: Any, ftype: Any) -> Any:
+    """A nested struct's fields as a dict (arrays as numpy arrays)."""
+    if ftype.kind == "struct":
+        return {k: _get_field(getattr(value, k), f.type) for k, f in ftype.fields}
+    if ftype.kind == "array":
+        return np.array([value[i] for i in range(ftype.length)])
+    if ftype.kind == "primitive" and ftype.cname == "double":
+        return float(value)
+    return int(value)
+
+
 class KernelConfig:
     """Base of the typed configurations: subclasses set ``_ctype`` and ``_default_fn``."""
 
@@ -61,23 +97,7 @@ class KernelConfig:
         raise TypeError(f"{cls._ctype} has no field {name!r}; fields: {', '.join(cls.fields())}")
 
     def _set(self, name: str, value: Any) -> None:
-        ftype = self._ftype(name)
-        c = self._c
-        if _is_pointer(ftype):
-            setattr(c, name, ffi.NULL if value is None else value)
-        elif ftype.kind == "array":
-            v = np.asarray(value, dtype=np.float64 if ftype.item.cname == "double" else np.int64)
-            v = v.reshape(-1)
-            if v.size > ftype.length:
-                raise ValueError(f"{self._ctype}.{name}: {v.size} values, the C array holds "
-                                 f"{ftype.length}")
-            arr = getattr(c, name)
-            for i, x in enumerate(v):
-                arr[i] = float(x) if ftype.item.cname == "double" else int(x)
-        elif ftype.kind == "enum" or (ftype.kind == "primitive" and ftype.cname != "double"):
-            setattr(c, name, int(value))
-        else:
-            setattr(c, name, float(value))
+        _set_field(self._ctype, self._c, name, self._ftype(name), value)
 
     def _validate(self) -> None:
         """Hook for checks the C init cannot word as well (subclasses)."""
@@ -98,6 +118,8 @@ class KernelConfig:
             return np.array([value[i] for i in range(n)])
         if _is_pointer(ftype):
             return value
+        if ftype.kind == "struct":
+            return _get_field(value, ftype)
         if ftype.kind == "primitive" and ftype.cname == "double":
             return float(value)
         if name in self._enums:
