@@ -85,7 +85,7 @@ static bool structure_ok(const ogk_blt_config_t *c)
         uint32_t a;
         for (a = 0u; ok && (a <= c->n_free_nodes); ++a) {
             const uint32_t hi = (a < c->n_free_nodes) ? c->free_node_interface[a] : c->n_segments;
-            ok = (hi > lo) && (hi <= c->n_segments) && (c->meet_interface[a] > lo) && (c->meet_interface[a] <= hi);
+            ok = (hi > lo) && (hi <= c->n_segments) && (c->meet_interface[a] >= lo) && (c->meet_interface[a] <= hi);
             lo = hi;
         }
     }
@@ -96,7 +96,7 @@ static bool structure_ok(const ogk_blt_config_t *c)
     return ok;
 }
 
-static ogk_status check_config(const ogk_blt_config_t *c)
+static ogk_status blt_check_config(const ogk_blt_config_t *c)
 {
     ogk_status st = OGK_OK;
     const double s[] = {c->fd_step, c->tol, c->ls_factor, c->lm_lambda0, c->lm_up, c->lm_down,
@@ -128,7 +128,7 @@ static ogk_status check_config(const ogk_blt_config_t *c)
 }
 
 /* Derived quantities: counts, anchors and the column of every unknown (blt_pack's order). */
-static void prepare(ogk_blt_t *ctx)
+static void blt_prepare(ogk_blt_t *ctx)
 {
     const ogk_blt_config_t *c = &ctx->cfg;
     uint32_t col = 0u;
@@ -182,10 +182,10 @@ ogk_status ogk_blt_init(ogk_blt_t *ctx, const ogk_blt_config_t *cfg)
         st = OGK_E_NULL;
     } else {
         ctx->init_marker = 0u;
-        st = check_config(cfg);
+        st = blt_check_config(cfg);
         if (st == OGK_OK) {
             (void)memcpy(&ctx->cfg, cfg, sizeof(*cfg));
-            prepare(ctx);
+            blt_prepare(ctx);
             ctx->init_marker = OGK_BLT_INIT_MARKER;
         }
     }
@@ -200,7 +200,7 @@ ogk_status ogk_blt_reset(ogk_blt_t *ctx)
     } else if (ctx->init_marker != OGK_BLT_INIT_MARKER) {
         st = OGK_E_NOT_INIT;
     } else {
-        prepare(ctx);
+        blt_prepare(ctx);
     }
     return st;
 }
@@ -271,7 +271,7 @@ static void tidy(const ogk_blt_config_t *c, ogk_blt_transfer_t *tr)
     }
 }
 
-static void fill_report(const ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, const double *e,
+static void blt_fill_report(const ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, const double *e,
                         const blt_eval_t *ev, ogk_blt_report_t *rep)
 {
     const ogk_blt_config_t *c = &ctx->cfg;
@@ -324,7 +324,7 @@ ogk_status ogk_blt_evaluate(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, ogk_bl
         ctx->steps_frozen = 0u;
         blt_errors(ctx, tr, ctx->e_trial, NULL, &ev);
         rep->propagations = ev.propagations;
-        fill_report(ctx, tr, ctx->e_trial, &ev, rep);
+        blt_fill_report(ctx, tr, ctx->e_trial, &ev, rep);
         rep->err_norm0 = rep->err_norm;
         if (ev.impact || ev.bad_rhs) {
             rep->flags |= ev.impact ? OGK_BLT_FLAG_IMPACT : OGK_BLT_FLAG_SINGULAR;
@@ -357,7 +357,7 @@ ogk_status ogk_blt_propagate(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, doubl
         ctx->steps_frozen = 0u;
         blt_chain(ctx, tr, x_end, &ev);
         rep->propagations = ev.propagations;
-        fill_report(ctx, tr, NULL, &ev, rep);
+        blt_fill_report(ctx, tr, NULL, &ev, rep);
         if (ev.impact || ev.bad_rhs) {
             rep->flags |= ev.impact ? OGK_BLT_FLAG_IMPACT : OGK_BLT_FLAG_SINGULAR;
             st = OGK_E_NOT_CONVERGED;
@@ -444,13 +444,16 @@ static bool corrector_step(ogk_blt_t *ctx, double lambda)
 {
     const uint32_t nu = ctx->n_unknowns;
     const uint32_t ne = ctx->n_errors;
-    const uint32_t na = (lambda > 0.0) ? (nu + ne) : nu;
     const double root = sqrt(lambda);
+    uint32_t na = nu;
     double rhs[OGK_BLT_MAX_ERRORS];
     ogk_status st;
     uint32_t i;
     uint32_t j;
 
+    if (lambda > 0.0) {
+        na += ne;
+    }
     for (i = 0u; i < ne; ++i) {
         for (j = 0u; j < nu; ++j) {
             ctx->jaug[(i * na) + j] = ctx->jac[(i * nu) + j];
@@ -643,7 +646,7 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
             }
         }
         (void)memcpy(solution, &cur, sizeof(cur));
-        fill_report(ctx, &cur, ctx->e, &ev_cur, rep);
+        blt_fill_report(ctx, &cur, ctx->e, &ev_cur, rep);
         if ((flags & OGK_BLT_FLAG_CONVERGED) != 0u) {
             (void)memcpy(&ctx->held, &cur, sizeof(cur));
             ctx->held_valid = 1u;
@@ -686,10 +689,18 @@ ogk_status ogk_blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cm
             const ogk_blt_config_t *c = &ctx->cfg;
             double t_seg = ctx->held.t0;
             uint32_t k = 0u;
+            uint32_t j;
+            bool found = false;
             cmd->flags = 0u;
-            while ((k < c->n_segments) && (t >= (t_seg + ctx->held.seg[k][6]))) {
-                t_seg += ctx->held.seg[k][6];
-                ++k;
+            for (j = 0u; j < c->n_segments; ++j) {
+                if (!found) {
+                    if (t >= (t_seg + ctx->held.seg[j][6])) {
+                        t_seg += ctx->held.seg[j][6];
+                        k = j + 1u;
+                    } else {
+                        found = true;
+                    }
+                }
             }
             cmd->segment = k;
             if ((k < c->n_segments) && (c->segment_kind[k] == OGK_BLT_SEG_BURN)) {

@@ -87,7 +87,7 @@ typedef struct {
     uint32_t segment_free[OGK_BLT_MAX_SEGMENTS];   /* [-] OGK_BLT_FREE_* bits (default all; a coast uses T only) */
     uint32_t n_free_nodes;    /* [-] 0..OGK_BLT_MAX_FREE_NODES (default 0) */
     uint32_t free_node_interface[OGK_BLT_MAX_FREE_NODES]; /* [-] interface 1..n_segments-1 of each, increasing */
-    uint32_t meet_interface[OGK_BLT_MAX_ARCS];  /* [-] meeting interface of each arc, in (left, right anchor] (default: right anchor) */
+    uint32_t meet_interface[OGK_BLT_MAX_ARCS];  /* [-] meeting interface of each arc, in [left, right anchor] (default: right anchor) */
     uint32_t start_free_mask; /* [-] bits 0-5: components of x0 the corrector may change (default 0) */
     uint32_t target_mask;     /* [-] bits 0-5: constrained components of xf; all six when the last arc meets before the end (default 0x3F) */
     uint32_t corrector;       /* [-] OGK_BLT_CORR_* (default NRPC) */
