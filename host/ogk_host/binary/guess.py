@@ -1,0 +1,277 @@
+"""Initial guesses of the BLT corrector (Xiong & Wang, sec. III.C): the single-burn guess SBIG (eqs. 23-31)
+and the unilateral backward manifold-patching guess UbMPIG (eqs. 53-60), as kernel transfers.
+
+A guess is a `Layout` (the kernel's transfer structure: segment kinds, free nodes, meeting interfaces;
+docs/blt.md sec. 1) and the values of an `ogk_blt_transfer_t` (start, target, segment parameters, nodes).
+Everything is in the normalised units of docs/blt.md; the orbits and manifolds come from the
+gravity-only model (the paper's "simplified model", sec. II.B.1); the phase adjustment of eq. (29) flies
+the burn with the kernel's own propagator (ogk_blt_propagate: the same integrator the corrector uses).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.integrate import solve_ivp
+from scipy.optimize import minimize
+
+from ogk.bindings.blt import BURN, COAST, Blt, BltConfig, Transfer
+
+from .dynamics import FloatArray, GravityField, Model, jacobi
+from .manifolds import manifold_states
+from .orbits import ATOL, RTOL, PeriodicOrbit, propagate
+
+KIND = {"burn": BURN, "coast": COAST}
+
+
+@dataclasses.dataclass(frozen=True)
+class Layout:
+    """The kernel's transfer structure (ogk_blt_config_t fields)."""
+
+    kinds: tuple[str, ...]                  #: "burn" / "coast" per segment
+    free_nodes: tuple[int, ...] = ()        #: interior interfaces holding a free node
+    meets: tuple[int, ...] = ()             #: meeting interface of each arc (default: its right anchor)
+    start_free_mask: int = 0
+    target_mask: int = 0x3F
+
+    def config_fields(self) -> dict[str, Any]:
+        meets = self.meets or tuple(list(self.free_nodes) + [len(self.kinds)])
+        return dict(n_segments=len(self.kinds), segment_kind=[KIND[k] for k in self.kinds],
+                    n_free_nodes=len(self.free_nodes), free_node_interface=list(self.free_nodes) or [0],
+                    meet_interface=list(meets), start_free_mask=self.start_free_mask,
+                    target_mask=self.target_mask)
+
+
+@dataclasses.dataclass
+class Guess:
+    layout: Layout
+    transfer: Transfer
+    info: dict[str, Any]                    #: what the guess stage found (phases, delta-v, ...)
+
+
+def kernel_config(model: Model, layout: Layout, **fields: Any) -> BltConfig:
+    """The kernel configuration of `model` and `layout`, other fields from `fields`."""
+    return BltConfig(model=model.as_dict(), **layout.config_fields(), **fields)
+
+
+# ------------------------------------------------------------------------------------------ orbit phases
+
+class OrbitPhase:
+    """x(t) on a periodic orbit, t [TU] from its state0 (any real t: taken modulo the period)."""
+
+    def __init__(self, orbit: PeriodicOrbit) -> None:
+        self.orbit = orbit
+        self._sol = propagate(orbit.model.gravity_only(), orbit.state0, orbit.period, dense_output=True)
+
+    def __call__(self, t: ArrayLike) -> FloatArray:
+        tt = np.mod(np.asarray(t, dtype=float), self.orbit.period)
+        return np.asarray(self._sol.sol(tt)).T
+
+
+# ------------------------------------------------------------------------------------------ SBIG
+
+def blt_from_separation(dr: FloatArray, dv: FloatArray, thrust_accel: float) -> FloatArray:
+    """eqs. (26)-(28): (A, B, T) from the closest state separation (dr, dv)."""
+    nr = float(np.linalg.norm(dr))
+    duration = math.sqrt(2.0 * nr / thrust_accel)                     # (26)
+    a = dr / nr                                                       # (27)
+    b = dv / float(np.linalg.norm(dv)) - dr / (nr * duration)         # (28)
+    return np.concatenate([a, b, [duration]])
+
+
+def closest_states(dep: OrbitPhase, arr: OrbitPhase, samples: int = 360) -> tuple[float, float]:
+    """eqs. (23)-(25): the phases (t_i, t_t) [TU] of the closest pair of states of the two orbits (6-norm),
+    a grid of `samples` phases each, then BFGS."""
+    ti = np.linspace(0.0, dep.orbit.period, samples, endpoint=False)
+    tt = np.linspace(0.0, arr.orbit.period, samples, endpoint=False)
+    xi, xt = dep(ti), arr(tt)
+    d2 = ((xt[None, :, :] - xi[:, None, :]) ** 2).sum(axis=2)
+    i, j = np.unravel_index(int(np.argmin(d2)), d2.shape)
+
+    def cost(p: FloatArray) -> float:
+        return float(((arr(p[1]) - dep(p[0])) ** 2).sum())
+    res = minimize(cost, np.array([ti[i], tt[j]]), method="BFGS")
+    return float(res.x[0]), float(res.x[1])
+
+
+def sbig(model: Model, departure: PeriodicOrbit, arrival: PeriodicOrbit, *, t0: float = 0.0,
+         samples: int = 360, scan: int = 24) -> Guess:
+    """Single-burn initial guess (sec. III.C.1): closest states (eqs. 23-25), BLT parameters (eqs. 26-28),
+    then the phase adjustment of eqs. (29)-(31) with the burn flown in `model` (the corrector's model: an
+    impact-free guess there is what the corrector needs): Nelder-Mead on (dt_i, dt_t) from three starts (0, 0), (-T/2, T/2), (-T, 0).
+
+    Beyond the paper: when every start's burn hits a body (eq. 27 aims A at the target, and between the
+    L2 and L1 halos the straight line goes through the secondary), the pair of phases is chosen on a
+    `scan` x `scan` grid instead, as the impact-free pair whose eqs. (26)-(28) burn misses least."""
+    dep, arr = OrbitPhase(departure), OrbitPhase(arrival)
+    layout = Layout(kinds=("burn",))
+    k = Blt(kernel_config(model, layout))
+
+    def miss(ti: float, tt: float, params: FloatArray) -> float:
+        tr = Transfer(t0=t0, x0=dep(ti), xf=arr(tt), segments=params[None, :])
+        rep = k.evaluate(tr)
+        return float(rep.err_norm ** 2) if rep.status == "OGK_OK" else math.inf
+
+    def adjust(ti: float, tt: float, params: FloatArray) -> tuple[float, float, float]:
+        T = params[6]
+        best_fun, best_x = math.inf, (0.0, 0.0)
+        for start in ((0.0, 0.0), (-0.5 * T, 0.5 * T), (-T, 0.0)):
+            res = minimize(lambda v: min(miss(ti + v[0], tt + v[1], params), 1e6), np.array(start),
+                           method="Nelder-Mead", options={"xatol": 1e-6, "fatol": 1e-12, "maxiter": 400})
+            if res.fun < best_fun:
+                best_fun, best_x = float(res.fun), (float(res.x[0]), float(res.x[1]))
+        return best_fun, best_x[0], best_x[1]
+
+    t_i, t_t = closest_states(dep, arr, samples)
+    sep = arr(t_t) - dep(t_i)
+    params = blt_from_separation(sep[0:3], sep[3:6], model.thrust_accel)
+    fun, dt_i, dt_t = adjust(t_i, t_t, params)
+    scanned = False
+    if not fun < 1e6:
+        scanned = True
+        best = (math.inf, 0.0, 0.0, params)
+        for ti in np.linspace(0.0, departure.period, scan, endpoint=False):
+            for tt in np.linspace(0.0, arrival.period, scan, endpoint=False):
+                s = arr(tt) - dep(ti)
+                p = blt_from_separation(s[0:3], s[3:6], model.thrust_accel)
+                f = miss(float(ti), float(tt), p)
+                if f < best[0]:
+                    best = (f, float(ti), float(tt), p)
+        if not math.isfinite(best[0]):
+            raise RuntimeError("every single-burn guess between the two orbits hits a body")
+        _, t_i, t_t, params = best
+        sep = arr(t_t) - dep(t_i)
+        fun, dt_i, dt_t = adjust(t_i, t_t, params)
+    x0, xf = dep(t_i + dt_i), arr(t_t + dt_t)
+    tr = Transfer(t0=t0, x0=x0, xf=xf, segments=params[None, :])
+    return Guess(layout=layout, transfer=tr,
+                 info=dict(phase_departure=t_i + dt_i, phase_arrival=t_t + dt_t, closest_separation=sep.tolist(),
+                           phase_shift=[dt_i, dt_t], guess_miss=math.sqrt(fun), impact_scan=scanned))
+
+
+# ------------------------------------------------------------------------------------------ UbMPIG
+
+@dataclasses.dataclass(frozen=True)
+class Circle:
+    """A circular orbit about the barycentre, radius [LU], prograde in the inertial frame."""
+
+    radius: float
+
+    @property
+    def synodic_rate(self) -> float:
+        """[rad/TU] angular rate in the synodic frame (inertial mean motion - 1)."""
+        return self.radius ** -1.5 - 1.0
+
+    def state(self, longitude: float) -> FloatArray:
+        """Synodic state at a longitude [rad] (the angle from the x axis in the synodic frame)."""
+        c, s = math.cos(longitude), math.sin(longitude)
+        speed = self.radius * self.synodic_rate
+        return np.array([self.radius * c, self.radius * s, 0.0, -speed * s, speed * c, 0.0])
+
+
+def _backward_to_circle(model: Model, state: FloatArray, circle: Circle, t_max: float) -> tuple[FloatArray, float] | None:
+    """Backward flow of a stable-manifold state to its first crossing of the circle (from outside or
+    inside), or None (impact, t_max)."""
+    field = GravityField(model.gravity_only())
+    r0 = float(np.linalg.norm(state[0:3]))
+
+    def cross(t: float, s: FloatArray) -> float:
+        return float(math.sqrt(s[0] ** 2 + s[1] ** 2 + s[2] ** 2) - circle.radius)
+    cross.terminal = True  # type: ignore[attr-defined]
+    cross.direction = 1.0 if r0 < circle.radius else -1.0  # type: ignore[attr-defined]
+    events = [cross]
+    for centre, radius in zip(model.body_positions, model.body_radius):
+        def hit(t: float, s: FloatArray, c: FloatArray = centre, rr: float = radius) -> float:
+            return float(np.linalg.norm(s[0:3] - c) - rr)
+        hit.terminal = True  # type: ignore[attr-defined]
+        events.append(hit)
+    sol = solve_ivp(field.derivative, (0.0, -t_max), state, method="DOP853", rtol=1e-10, atol=1e-12,
+                    events=events)
+    if sol.t_events[0].size == 0:
+        return None
+    return sol.y_events[0][0].copy(), float(-sol.t_events[0][0])
+
+
+def ubmpig(model: Model, circle: Circle, target: PeriodicOrbit, *, sign: int = -1, deviations: ArrayLike =
+           (1e-3, 3e-3, 1e-2, 3e-2), phases: int = 120, coast_max: float = 20.0, t0: float = 0.0) -> Guess:
+    """Unilateral backward manifold patching (sec. III.C.2, eqs. 53-60), StoS read as OtoS for the circle
+    (the departure longitude is free, eq. 55): the stable manifold of `target` (velocity-only deviation d,
+    eq. 35, branch `sign`) flown backward to the circle; the patch minimises the total impulsive delta-v
+    |dv_circle| + |dv_orbit| over the orbit phase and d (the paper's objective, eq. 55, replaces the circle's
+    delta-v by the Jacobi-constant gap; we minimise the burn time itself). Then eqs. (57)-(60): burns along
+    the impulses, T_k = |dv_k| / a_th, departure advanced by T_1 / 2 on the circle, arrival delayed by T_3 / 2
+    on the orbit, coast = TOC - (T_1 + T_3) / 2; the free node at the end of the coast starts as the mean of
+    the forward and backward predictions (eq. 72)."""
+    orbit_phase = OrbitPhase(target)
+    taus = np.linspace(0.0, target.period, phases, endpoint=False)
+    best: tuple[float, float, float] | None = None   # (cost, tau, d)
+
+    def patch(tau: float, d: float) -> tuple[float, dict[str, Any]] | None:
+        xs = manifold_states(target, [tau % target.period], stable=True, sign=sign, deviation=d,
+                             velocity_only=True)[0]
+        hit = _backward_to_circle(model, xs, circle, coast_max)
+        if hit is None:
+            return None
+        xc, toc = hit
+        lon = math.atan2(xc[1], xc[0])
+        dv_circle = xc[3:6] - circle.state(lon)[3:6]
+        dv_orbit = orbit_phase(tau)[3:6] - xs[3:6]
+        cost = float(np.linalg.norm(dv_circle) + np.linalg.norm(dv_orbit))
+        return cost, dict(tau=tau, d=d, longitude=lon, toc=toc, dv_circle=dv_circle, dv_orbit=dv_orbit,
+                          crossing=xc, manifold_state=xs)
+
+    for d in np.atleast_1d(np.asarray(deviations, dtype=float)):
+        for tau in taus:
+            p = patch(float(tau), float(d))
+            if p is not None and (best is None or p[0] < best[0]):
+                best = (p[0], float(tau), float(d))
+    if best is None:
+        raise RuntimeError("no stable-manifold trajectory of the target orbit crosses the circle")
+    res = minimize(lambda v: (patch(v[0], math.exp(v[1])) or (1e3, {}))[0],
+                   np.array([best[1], math.log(best[2])]), method="Nelder-Mead",
+                   options={"xatol": 1e-7, "fatol": 1e-10, "maxiter": 300})
+    found = patch(float(res.x[0]), math.exp(float(res.x[1])))
+    if found is None or found[0] > best[0]:
+        found = patch(best[1], best[2])
+    assert found is not None
+    info = found[1]
+    acc = model.thrust_accel
+    dv1, dv3 = info["dv_circle"], info["dv_orbit"]
+    t1, t3 = float(np.linalg.norm(dv1)) / acc, float(np.linalg.norm(dv3)) / acc        # (57)
+    u1, u3 = dv1 / np.linalg.norm(dv1), dv3 / np.linalg.norm(dv3)
+    coast = info["toc"] - 0.5 * (t1 + t3)                                              # (59)
+    if coast <= 0.0:
+        raise RuntimeError(f"the burns ({t1:.3f} + {t3:.3f} TU) outlast the coast ({info['toc']:.3f} TU)")
+    x0 = circle.state(info["longitude"] - circle.synodic_rate * 0.5 * t1)               # (60)
+    xf = orbit_phase(info["tau"] + 0.5 * t3)
+    segments = np.array([np.concatenate([u1, u1, [t1]]), [0, 0, 0, 0, 0, 0, coast],
+                         np.concatenate([u3, u3, [t3]])])
+    layout = Layout(kinds=("burn", "coast", "burn"), free_nodes=(2,), meets=(1, 2))
+    tr = Transfer(t0=t0, x0=x0, xf=xf, segments=segments, nodes=np.zeros((1, 6)))
+    tr.nodes = predicted_node(model, layout, tr)
+    info_out = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in info.items()}
+    info_out.update(dv_total=float(np.linalg.norm(dv1) + np.linalg.norm(dv3)), burn_times=[t1, t3],
+                    jacobi_gap=float(jacobi(model.gravity_only(), info["crossing"]) -
+                                     jacobi(model.gravity_only(), circle.state(info["longitude"]))))
+    return Guess(layout=layout, transfer=tr, info=info_out)
+
+
+def predicted_node(model: Model, layout: Layout, tr: Transfer) -> FloatArray:
+    """eq. (72): each free node starts as the mean of the forward prediction from the start and the
+    backward prediction from the target (the kernel's propagator, `model` without SRP/Sun)."""
+    from .reference import propagate_chain
+    nodes = []
+    segs = [("burn", s[0:3], s[3:6], s[6]) if k == "burn" else ("coast", s[6])
+            for k, s in zip(layout.kinds, tr.segments)]
+    gm = dataclasses.replace(model.gravity_only(), thrust_accel=model.thrust_accel, mass_flow=model.mass_flow)
+    for node in layout.free_nodes:
+        fwd = propagate_chain(gm, tr.x0, segs[:node], t0=tr.t0, mass0=tr.mass0, rtol=1e-10, atol=1e-12)
+        burned = sum(s[6] for k, s in zip(layout.kinds, tr.segments) if k == "burn")
+        t_end = tr.t0 + float(sum(s[6] for s in tr.segments))
+        bwd = propagate_chain(gm, tr.xf, segs[node:], t0=t_end, mass0=tr.mass0 - model.mass_flow * burned,
+                              backward=True, rtol=1e-10, atol=1e-12)
+        nodes.append(0.5 * (fwd.state + bwd.state))
+    return np.array(nodes)
