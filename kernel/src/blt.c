@@ -597,7 +597,7 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
         ev.propagations = 0u;
         if (ev.impact || ev.bad_rhs) {
             flags |= OGK_BLT_FLAG_GUESS_IMPACT | (ev.impact ? OGK_BLT_FLAG_IMPACT : OGK_BLT_FLAG_SINGULAR);
-            fill_report(ctx, &cur, NULL, &ev, rep); /* durations, mass, where it hit; no error vector */
+            blt_fill_report(ctx, &cur, NULL, &ev, rep); /* durations, mass, where it hit; no error vector */
             st = OGK_E_NOT_CONVERGED;
         }
     }
