@@ -28,6 +28,7 @@ from scipy.integrate import solve_ivp
 from ogk_host.binary import dynamics as dyn
 from ogk_host.binary.dynamics import Model, model_from_scenario
 from ogk_host.binary.manifolds import (REALM_OF_SIGN, departure_growth, manifold_states, propagate_to_cut,
+                                       realm_cut,
                                        realm, transported_eigenvectors)
 from ogk_host.binary.orbits import (collinear_points, continue_family, correct_orbit, flow, flow_stm,
                                     halo_bifurcation, jacobi_at_point, linear_modes, lyapunov_orbit,
@@ -205,7 +206,7 @@ def test_manifold_realms_follow_the_papers_sign(moshup_orbits) -> None:
         phases = np.linspace(0.0, orbit.period, 4, endpoint=False)
         for sign in (1, -1):
             expected = REALM_OF_SIGN[(orbit.point, sign)]
-            cut = {"P": -model.mu, "S": 1.0 - model.mu, "exterior": collinear_points(model)["L2"] + 0.5}[expected]
+            cut = realm_cut(model, expected)
             for stable in (False, True):
                 for x in manifold_states(orbit, phases, stable=stable, sign=sign):
                     end = propagate_to_cut(model, x, cut, backward=stable, t_max=12.0)

@@ -163,3 +163,49 @@ def departure_growth(orbit: PeriodicOrbit, *, deviation: float = 1e-9, stable: b
     ref = propagate(orbit.model, orbit.state0, duration).y[:, -1]
     dev = propagate(orbit.model, orbit.state0 + deviation * w, duration).y[:, -1]
     return float(np.linalg.norm(dev - ref) / deviation)
+
+
+def realm_cut(model: Model, realm_name: str) -> float:
+    """The Poincare cut of a realm used by `main` and the tests: x = -mu (P, through the primary), x = 1 - mu
+    (S, through the secondary, the paper's example), x = x_L2 + 0.5 (exterior)."""
+    return {"P": -model.mu, "S": 1.0 - model.mu, "exterior": collinear_points(model)["L2"] + 0.5}[realm_name]
+
+
+def main(argv: list[str] | None = None) -> int:
+    """`python -m ogk_host.binary.manifolds [SCENARIO] [N]`: for every scenario orbit, both signs, W^u forward
+    and W^s backward from N phases (eq. 34, d = 1e-6) to the cut of the realm the sign leads into: how many
+    reach it, how many hit a body, the flight times (docs/blt-ground.md)."""
+    import sys
+
+    from .dynamics import model_from_scenario
+    from .orbits import scenario_orbit
+    from .scenario import load_scenario
+
+    args = sys.argv[1:] if argv is None else argv
+    sc = load_scenario(args[0] if args else None)
+    n = int(args[1]) if len(args) > 1 else 16
+    model = model_from_scenario(sc)
+    tu_h = sc.units.time_s / 3600.0
+    print("| orbit | branch | realm | cut x [LU] | reach the cut | hit Alpha | hit Beta | neither (20 TU) | "
+          "time to the cut [h] |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for name in sc.orbits:
+        orbit = scenario_orbit(sc, name, model)
+        phases = np.linspace(0.0, orbit.period, n, endpoint=False)
+        for sign in (1, -1):
+            where = REALM_OF_SIGN[(orbit.point, sign)]
+            cut = realm_cut(model, where)
+            for stable in (False, True):
+                ends = manifold_to_cut(orbit, phases, cut, stable=stable, sign=sign, t_max=20.0)
+                reach = [abs(e.time) * tu_h for e in ends if e.reached_cut]
+                hits = [sum(1 for e in ends if e.impact == i) for i in (0, 1)]
+                none = n - len(reach) - hits[0] - hits[1]
+                span = f"{min(reach):.2f}-{max(reach):.2f}" if reach else "-"
+                label = ("W^s" if stable else "W^u") + (" +" if sign > 0 else " -")
+                print(f"| {name} | {label} | {where} | {cut:.4f} | {len(reach)}/{n} | {hits[0]} | {hits[1]} | "
+                      f"{none} | {span} |")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
