@@ -220,7 +220,7 @@ static bool rhs_aug(const ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, doub
 static void prop_segment(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double duration, uint32_t n,
                          bool backward, double *y, uint32_t nu, blt_eval_t *ev)
 {
-    const size_t dim = (size_t)NX * (1u + nu);
+    const size_t dim = (size_t)NX * ((size_t)nu + 1u);
     double *k1 = &ctx->var_k[0];
     double *k2 = &ctx->var_k[dim];
     double *k3 = &ctx->var_k[2u * dim];
@@ -289,8 +289,8 @@ static void duration_jump(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, doub
 
 static void init_sens(double *y, uint32_t nu, const uint32_t *cols, uint32_t ncols)
 {
-    uint32_t i;
     if (nu > 0u) {
+        uint32_t i;
         (void)memset(&y[NX], 0, sizeof(double) * NX * nu);
         for (i = 0u; i < ncols; ++i) {
             if (cols[i] != OGK_BLT_NO_COLUMN) {

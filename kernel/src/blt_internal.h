@@ -12,8 +12,17 @@
 #include "ogk_checks.h"
 
 /* the linear algebra of the corrector must hold the error vector */
-typedef char blt_check_la_rows[(OGK_LA_MAX_N >= OGK_BLT_MAX_ERRORS) ? 1 : -1];
-typedef char blt_check_la_cols[(OGK_LA_MAX_LONG >= (OGK_BLT_MAX_UNKNOWNS + OGK_BLT_MAX_ERRORS)) ? 1 : -1];
+#if OGK_BLT_MAX_ERRORS > OGK_LA_MAX_N
+#error "OGK_BLT_MAX_ERRORS exceeds OGK_LA_MAX_N (ogk_minnorm)"
+#endif
+#if (OGK_BLT_MAX_UNKNOWNS + OGK_BLT_MAX_ERRORS) > OGK_LA_MAX_LONG
+#error "OGK_BLT_MAX_UNKNOWNS + OGK_BLT_MAX_ERRORS exceeds OGK_LA_MAX_LONG (ogk_minnorm)"
+#endif
+/* the segment_free bits are the parameter indices of a segment: A 0-2, B 3-5, T 6 */
+#if (OGK_BLT_FREE_A != 0x07u) || (OGK_BLT_FREE_B != 0x38u) || (OGK_BLT_FREE_T != (1u << 6)) || \
+    (OGK_BLT_FREE_ALL != (OGK_BLT_FREE_A | OGK_BLT_FREE_B | OGK_BLT_FREE_T))
+#error "OGK_BLT_FREE_* must be the bits of the parameter indices"
+#endif
 
 #define BLT_T_ABS_MAX 1.0e6 /* [TU] |t0| bound */
 
@@ -44,9 +53,7 @@ typedef struct {
 bool blt_rhs(const ogk_blt_model_t *m, const blt_seg_t *seg, double tau, const double x[OGK_BLT_NX],
              double dx[OGK_BLT_NX], blt_rhs_parts_t *parts);
 
-/* Segment parameters and bookkeeping of a transfer. */
-double blt_segment_start_time(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k);
-double blt_segment_start_mass(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k);
+/* Segment k's start time, start mass, kind and A, B. */
 void blt_segment(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k, blt_seg_t *seg);
 
 /* Number of unknowns / errors the configuration implies. */

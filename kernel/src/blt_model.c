@@ -143,7 +143,7 @@ bool blt_rhs(const ogk_blt_model_t *m, const blt_seg_t *seg, double tau, const d
     return ok;
 }
 
-double blt_segment_start_time(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k)
+static double segment_start_time(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k)
 {
     double t = tr->t0;
     uint32_t j;
@@ -153,7 +153,7 @@ double blt_segment_start_time(const ogk_blt_config_t *cfg, const ogk_blt_transfe
     return t;
 }
 
-double blt_segment_start_mass(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k)
+static double segment_start_mass(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k)
 {
     double burned = 0.0;
     uint32_t j;
@@ -168,8 +168,8 @@ double blt_segment_start_mass(const ogk_blt_config_t *cfg, const ogk_blt_transfe
 void blt_segment(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k, blt_seg_t *seg)
 {
     size_t i;
-    seg->t_start = blt_segment_start_time(cfg, tr, k);
-    seg->m_start = blt_segment_start_mass(cfg, tr, k);
+    seg->t_start = segment_start_time(cfg, tr, k);
+    seg->m_start = segment_start_mass(cfg, tr, k);
     seg->burn = cfg->segment_kind[k] == OGK_BLT_SEG_BURN;
     for (i = 0u; i < 3u; ++i) {
         seg->a[i] = tr->seg[k][i];
