@@ -141,7 +141,7 @@ static void blt_prepare(ogk_blt_t *ctx)
     for (k = 0u; k < OGK_BLT_MAX_FREE_NODES; ++k) {
         ctx->anchor[k + 1u] = (k < c->n_free_nodes) ? c->free_node_interface[k] : c->n_segments;
     }
-    ctx->anchor[c->n_free_nodes + 1u] = c->n_segments;
+    ctx->anchor[OGK_BLT_MAX_ARCS] = c->n_segments; /* every entry defined: reset == a fresh init */
     for (i = 0u; i < NX; ++i) {
         ctx->col_start[i] = OGK_BLT_NO_COLUMN;
         if (((c->start_free_mask >> i) & 1u) != 0u) {
