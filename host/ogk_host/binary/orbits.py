@@ -191,8 +191,7 @@ def floquet(monodromy: ArrayLike) -> Floquet:
     if abs(vals[iu].imag) > 1e-6 * abs(vals[iu]) or abs(vals[is_].imag) > 1e-6:
         raise CorrectionError(f"no real saddle pair in the monodromy: {vals}")
     rest = [i for i in range(6) if i not in (iu, is_)]
-    dist = [abs(vals[i] - 1.0) for i in rest]
-    unit = sorted(rest, key=lambda i: dist[rest.index(i)])[:2]
+    unit = sorted(rest, key=lambda i: abs(vals[i] - 1.0))[:2]
     other = [i for i in rest if i not in unit]
     return Floquet(eigenvalues=vals, unstable_value=float(vals[iu].real), stable_value=float(vals[is_].real),
                    unstable_vector=_oriented(vecs[:, iu]), stable_vector=_oriented(vecs[:, is_]),
@@ -421,13 +420,14 @@ def halo_bifurcation(model: Model, point: str, *,
     amps = [a]
     path = _lyapunov_path(field, point, amps)
     f_prev = _vertical_trace(field, path[-1], RTOL_CONT, ATOL_CONT) - 2.0
-    factor = 1.25
-    while True:
-        a_next = a * factor if a * factor < top else top
-        if a_next <= a:
+    while True:                     # geometric steps (x 1.25) until the trace passes 2
+        if a >= top:
             raise CorrectionError(f"no halo bifurcation from the {point} Lyapunov family below Ax = {top:.4g}")
-        guess = path[-1] + (path[-1] - path[-2]) * (a_next - amps[-1]) / (amps[-1] - amps[-2]) if len(path) > 1 \
-            else _lyapunov_guess(field.model, point, a_next)
+        a_next = min(1.25 * a, top)
+        if len(path) > 1:
+            guess = path[-1] + (path[-1] - path[-2]) * (a_next - amps[-1]) / (amps[-1] - amps[-2])
+        else:
+            guess = _lyapunov_guess(field.model, point, a_next)
         v, _ = _newton(field, "lyapunov", guess, amplitude=a_next, rtol=RTOL_CONT, atol=ATOL_CONT)
         f = _vertical_trace(field, v, RTOL_CONT, ATOL_CONT) - 2.0
         if f_prev < 0.0 <= f:
@@ -435,10 +435,7 @@ def halo_bifurcation(model: Model, point: str, *,
             break
         path.append(v)
         amps.append(a_next)
-        f_prev = f
-        a = a_next
-        if a_next >= top:
-            raise CorrectionError(f"no halo bifurcation from the {point} Lyapunov family below Ax = {top:.4g}")
+        f_prev, a = f, a_next
 
     cache: dict[float, FloatArray] = {lo: v_lo, hi: v_hi}
 
