@@ -195,16 +195,22 @@ def _backward_to_circle(model: Model, state: FloatArray, circle: Circle, t_max: 
     return sol.y_events[0][0].copy(), float(-sol.t_events[0][0])
 
 
-def ubmpig(model: Model, circle: Circle, target: PeriodicOrbit, *, sign: int = -1, deviations: ArrayLike =
-           (1e-3, 3e-3, 1e-2, 3e-2), phases: int = 120, coast_max: float = 20.0, t0: float = 0.0) -> Guess:
+def ubmpig(model: Model, circle: Circle, target: PeriodicOrbit, *, sign: int = -1,
+           deviation_bounds: tuple[float, float] = (5e-2, 1.5e-1), phases: int = 120, coast_max: float = 20.0, coast_margin: float = 1.5, split_coast: bool = True,
+           t0: float = 0.0) -> Guess:
     """Unilateral backward manifold patching (sec. III.C.2, eqs. 53-60), StoS read as OtoS for the circle
     (the departure longitude is free, eq. 55): the stable manifold of `target` (velocity-only deviation d,
     eq. 35, branch `sign`) flown backward to the circle; the patch minimises the total impulsive delta-v
     |dv_circle| + |dv_orbit| over the orbit phase and d (the paper's objective, eq. 55, replaces the circle's
     delta-v by the Jacobi-constant gap; we minimise the burn time itself). Then eqs. (57)-(60): burns along
     the impulses, T_k = |dv_k| / a_th, departure advanced by T_1 / 2 on the circle, arrival delayed by T_3 / 2
-    on the orbit, coast = TOC - (T_1 + T_3) / 2; the free node at the end of the coast starts as the mean of
-    the forward and backward predictions (eq. 72)."""
+    on the orbit, coast = TOC - (T_1 + T_3) / 2. The free node at the end of the coast starts as the backward
+    prediction from the target through the last burn, i.e. on the manifold: eq. (72)'s mean with the
+    forward prediction is no guess here, as that prediction has coasted for TOC (several TU) along an
+    unstable flow from an impulse replaced by a burn. Patches whose time of coasting is shorter than
+    `coast_margin` times the total burn time are skipped (their coast would vanish in eq. 59). d is kept
+    in `deviation_bounds` [VU]: the paper's d = 1e-6 makes the insertion burn a few milliseconds long and the
+    coast days long; d is the insertion burn's delta-v here, so its floor sets a burn the thrusters can fly."""
     orbit_phase = OrbitPhase(target)
     taus = np.linspace(0.0, target.period, phases, endpoint=False)
     best: tuple[float, float, float] | None = None   # (cost, tau, d)
@@ -220,10 +226,13 @@ def ubmpig(model: Model, circle: Circle, target: PeriodicOrbit, *, sign: int = -
         dv_circle = xc[3:6] - circle.state(lon)[3:6]
         dv_orbit = orbit_phase(tau)[3:6] - xs[3:6]
         cost = float(np.linalg.norm(dv_circle) + np.linalg.norm(dv_orbit))
+        if toc < coast_margin * cost / model.thrust_accel:
+            return None   # the burns (eq. 59) would eat the coast: not a burn-coast-burn transfer
         return cost, dict(tau=tau, d=d, longitude=lon, toc=toc, dv_circle=dv_circle, dv_orbit=dv_orbit,
                           crossing=xc, manifold_state=xs)
 
-    for d in np.atleast_1d(np.asarray(deviations, dtype=float)):
+    d_lo, d_hi = deviation_bounds
+    for d in np.geomspace(d_lo, d_hi, 3):
         for tau in taus:
             p = patch(float(tau), float(d))
             if p is not None and (best is None or p[0] < best[0]):
@@ -232,6 +241,7 @@ def ubmpig(model: Model, circle: Circle, target: PeriodicOrbit, *, sign: int = -
         raise RuntimeError("no stable-manifold trajectory of the target orbit crosses the circle")
     res = minimize(lambda v: (patch(v[0], math.exp(v[1])) or (1e3, {}))[0],
                    np.array([best[1], math.log(best[2])]), method="Nelder-Mead",
+                   bounds=[(None, None), (math.log(d_lo), math.log(d_hi))],
                    options={"xatol": 1e-7, "fatol": 1e-10, "maxiter": 300})
     found = patch(float(res.x[0]), math.exp(float(res.x[1])))
     if found is None or found[0] > best[0]:
@@ -247,11 +257,17 @@ def ubmpig(model: Model, circle: Circle, target: PeriodicOrbit, *, sign: int = -
         raise RuntimeError(f"the burns ({t1:.3f} + {t3:.3f} TU) outlast the coast ({info['toc']:.3f} TU)")
     x0 = circle.state(info["longitude"] - circle.synodic_rate * 0.5 * t1)               # (60)
     xf = orbit_phase(info["tau"] + 0.5 * t3)
-    segments = np.array([np.concatenate([u1, u1, [t1]]), [0, 0, 0, 0, 0, 0, coast],
-                         np.concatenate([u3, u3, [t3]])])
-    layout = Layout(kinds=("burn", "coast", "burn"), free_nodes=(2,), meets=(1, 2))
+    if split_coast:
+        # the free node in the middle of the coast: two arcs of TOC / 2 each instead of one of TOC
+        segments = np.array([np.concatenate([u1, u1, [t1]]), [0, 0, 0, 0, 0, 0, 0.5 * coast],
+                             [0, 0, 0, 0, 0, 0, 0.5 * coast], np.concatenate([u3, u3, [t3]])])
+        layout = Layout(kinds=("burn", "coast", "coast", "burn"), free_nodes=(2,), meets=(2, 3))
+    else:
+        segments = np.array([np.concatenate([u1, u1, [t1]]), [0, 0, 0, 0, 0, 0, coast],
+                             np.concatenate([u3, u3, [t3]])])
+        layout = Layout(kinds=("burn", "coast", "burn"), free_nodes=(2,), meets=(1, 2))
     tr = Transfer(t0=t0, x0=x0, xf=xf, segments=segments, nodes=np.zeros((1, 6)))
-    tr.nodes = predicted_node(model, layout, tr)
+    tr.nodes = predicted_node(model, layout, tr, how="backward")
     info_out = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in info.items()}
     info_out.update(dv_total=float(np.linalg.norm(dv1) + np.linalg.norm(dv3)), burn_times=[t1, t3],
                     jacobi_gap=float(jacobi(model.gravity_only(), info["crossing"]) -
@@ -259,9 +275,10 @@ def ubmpig(model: Model, circle: Circle, target: PeriodicOrbit, *, sign: int = -
     return Guess(layout=layout, transfer=tr, info=info_out)
 
 
-def predicted_node(model: Model, layout: Layout, tr: Transfer) -> FloatArray:
-    """eq. (72): each free node starts as the mean of the forward prediction from the start and the
-    backward prediction from the target (the kernel's propagator, `model` without SRP/Sun)."""
+def predicted_node(model: Model, layout: Layout, tr: Transfer, how: str = "mean") -> FloatArray:
+    """Each free node's first value: eq. (72)'s mean of the forward prediction from the start and the
+    backward prediction from the target (how = "mean"), or either alone ("forward", "backward"); flown with
+    DOP853 in `model` without SRP/Sun."""
     from .reference import propagate_chain
     nodes = []
     segs = [("burn", s[0:3], s[3:6], s[6]) if k == "burn" else ("coast", s[6])
@@ -273,5 +290,5 @@ def predicted_node(model: Model, layout: Layout, tr: Transfer) -> FloatArray:
         t_end = tr.t0 + float(sum(s[6] for s in tr.segments))
         bwd = propagate_chain(gm, tr.xf, segs[node:], t0=t_end, mass0=tr.mass0 - model.mass_flow * burned,
                               backward=True, rtol=1e-10, atol=1e-12)
-        nodes.append(0.5 * (fwd.state + bwd.state))
+        nodes.append({"mean": 0.5 * (fwd.state + bwd.state), "forward": fwd.state, "backward": bwd.state}[how])
     return np.array(nodes)
