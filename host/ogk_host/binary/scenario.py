@@ -155,6 +155,8 @@ class BinaryScenario:
     orbits: dict[str, OrbitSpec]
     transfers: dict[str, Any]       #: [transfers.NAME]: raw TOML tables, read by later tools
     paper_results: dict[str, Any]   #: [paper_results]: raw TOML table, for comparison only
+    solver: dict[str, Any] = dataclasses.field(default_factory=dict)       #: [solver] (ogk_host.binary.transfers)
+    monte_carlo: dict[str, Any] = dataclasses.field(default_factory=dict)  #: [monte_carlo] (idem)
 
     @property
     def units(self) -> Units:
@@ -265,7 +267,13 @@ def load_scenario(path: str | Path | None = None) -> BinaryScenario:
     if top.has("paper_results"):
         top.section("paper_results")
         paper = dict(raw["paper_results"])
+    extra: dict[str, dict[str, Any]] = {}
+    for table in ("solver", "monte_carlo"):   # read key by key by ogk_host.binary.transfers
+        if top.has(table):
+            top.section(table)
+            extra[table] = dict(raw[table])
     top.finish()
     return BinaryScenario(path=scenario_path, name=name, source=source, law=law, system=system,
                           gravity=gravity, sun=sun, spacecraft=spacecraft, orbits=orbits,
-                          transfers=transfers, paper_results=paper)
+                          transfers=transfers, paper_results=paper, solver=extra.get("solver", {}),
+                          monte_carlo=extra.get("monte_carlo", {}))

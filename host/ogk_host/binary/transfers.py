@@ -1,0 +1,199 @@
+"""Transfers of a binary-asteroid scenario as data: [solver], [transfers.NAME] and [monte_carlo] read key by
+key (every complaint an OgkInputError naming the key), and the ground pipeline of one transfer: orbits,
+initial guess (ogk_host.binary.guess), convergence by the kernel (ogk_host.binary.design), the figures.
+
+    [solver]                       the corrector's settings (SI; defaults: the paper's tolerance and limits)
+    [transfers.NAME] kind = "single-burn"      SBIG (eqs. 23-31) from_orbit -> to_orbit, StoS (eq. 65)
+    [transfers.NAME] kind = "ump-backward"     UbMPIG (eqs. 53-60) circle -> to_orbit, burn-coast-burn
+    [monte_carlo]                  the convergence campaign of Table 3 (ogk.missions.binary.campaign)
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from ogk.bindings.blt import BltReport, Transfer
+
+from ..errors import OgkInputError
+from ..scenario_file import Section
+from .design import CORRECTORS, JACOBIANS, Converged, converge
+from .dynamics import Model, model_from_scenario
+from .guess import Circle, Guess, sbig, ubmpig
+from .orbits import scenario_orbit
+from .scenario import BinaryScenario
+
+KINDS = ("single-burn", "ump-backward")
+
+
+@dataclasses.dataclass(frozen=True)
+class SolverSettings:
+    step_max_s: float = 20.0          #: [s] RK4 step bound (2e-3 TU for Moshup)
+    tol: float = 1e-6                 #: [-] |e|_2, normalised (the paper's, sec. III.D)
+    max_iter: int = 40                #: the paper's NRPC limit (sec. VI)
+    fd_step: float = 1e-6             #: [-] central-difference step, normalised
+    ls_trials: int = 4                #: step lengths 1, 1/10, 1/100, 1/1000
+    corrector: str = "nrpc"           #: nrpc | lm
+    jacobian: str = "variational"     #: variational | central
+    gravity: str = "scenario"         #: scenario | degree2 | point-mass
+    srp: bool = True                  #: SRP in the corrector's model (eq. 9)
+    sun: bool = True                  #: solar tide in the corrector's model (eq. 10)
+
+    def kernel_fields(self, tol: float | None = None, max_iter: int | None = None) -> dict[str, Any]:
+        return dict(tol=self.tol if tol is None else tol, max_iter=self.max_iter if max_iter is None else max_iter,
+                    fd_step=self.fd_step, ls_trials=self.ls_trials)
+
+
+@dataclasses.dataclass(frozen=True)
+class TransferSpec:
+    name: str
+    kind: str                         #: single-burn | ump-backward
+    thrust_n: float                   #: [N]
+    to_orbit: str
+    from_orbit: str | None = None     #: single-burn
+    circle_radius_m: float | None = None   #: ump-backward: departure circle about the barycentre [m]
+    manifold_sign: int = -1           #: ump-backward: branch of the target's stable manifold (-1: exterior)
+    insertion_dv_m_s: tuple[float, float] = (0.0128, 0.0383)   #: ump-backward: bounds of d [m/s]
+    paper: dict[str, float] = dataclasses.field(default_factory=dict)   #: the paper's figures of this case
+
+
+@dataclasses.dataclass(frozen=True)
+class MonteCarloSpec:
+    transfer: str
+    levels_percent: tuple[float, ...]
+    runs: int
+    tol: float
+    max_iter: int
+    sigma_fraction: float             #: sigma of a draw as a fraction of the level (1/3: the level is 3 sigma)
+    paper_converged_percent: tuple[float, ...]
+
+
+def solver_settings(scenario: BinaryScenario) -> SolverSettings:
+    s = Section(scenario.solver, scenario.path, "solver")
+    d = SolverSettings()
+    out = SolverSettings(step_max_s=s.number("step_max_s", d.step_max_s, positive=True),
+                         tol=s.number("tol", d.tol, positive=True),
+                         max_iter=s.integer("max_iter", d.max_iter, lo=1, hi=500),
+                         fd_step=s.number("fd_step", d.fd_step, positive=True),
+                         ls_trials=s.integer("ls_trials", d.ls_trials, lo=1, hi=30),
+                         corrector=s.text("corrector", d.corrector, choices=tuple(CORRECTORS)),
+                         jacobian=s.text("jacobian", d.jacobian, choices=tuple(JACOBIANS)),
+                         gravity=s.text("gravity", d.gravity, choices=("scenario", "degree2", "point-mass")),
+                         srp=s.flag("srp", d.srp), sun=s.flag("sun", d.sun))
+    s.finish()
+    return out
+
+
+def transfer_spec(scenario: BinaryScenario, name: str) -> TransferSpec:
+    if name not in scenario.transfers:
+        raise OgkInputError(f"no [transfers.{name}] (has: {', '.join(scenario.transfers) or 'none'})",
+                            path=scenario.path, key="--transfer")
+    s = Section(scenario.transfers[name], scenario.path, f"transfers.{name}")
+    kind = s.text("kind", choices=KINDS)
+    thrust = s.number("thrust_n", positive=True)
+    to_orbit = s.text("to_orbit")
+    paper = {k: s.number(k) for k in ("paper_burn_time_s", "paper_fuel_g", "paper_flight_time_s",
+                                      "paper_iterations") if s.has(k)}
+    for orbit in [to_orbit] + ([scenario.transfers[name].get("from_orbit")] if kind == "single-burn" else []):
+        if orbit not in scenario.orbits:
+            raise s.error("to_orbit" if orbit == to_orbit else "from_orbit",
+                          f"no [orbits.{orbit}] (has: {', '.join(scenario.orbits)})")
+    if kind == "single-burn":
+        spec = TransferSpec(name=name, kind=kind, thrust_n=thrust, to_orbit=to_orbit, from_orbit=s.text("from_orbit"),
+                            paper=paper)
+    else:
+        bounds = s.numbers("insertion_dv_m_s", length=2)
+        if not 0.0 < bounds[0] < bounds[1]:
+            raise s.error("insertion_dv_m_s", "must be [low, high] with 0 < low < high")
+        spec = TransferSpec(name=name, kind=kind, thrust_n=thrust, to_orbit=to_orbit,
+                            circle_radius_m=s.number("circle_radius_m", positive=True),
+                            manifold_sign=s.integer("manifold_sign", -1, lo=-1, hi=1),
+                            insertion_dv_m_s=(bounds[0], bounds[1]), paper=paper)
+        if spec.manifold_sign == 0:
+            raise s.error("manifold_sign", "must be +1 or -1")
+    s.finish()
+    return spec
+
+
+def monte_carlo_spec(scenario: BinaryScenario) -> MonteCarloSpec:
+    if not scenario.monte_carlo:
+        raise OgkInputError("no [monte_carlo] table", path=scenario.path)
+    s = Section(scenario.monte_carlo, scenario.path, "monte_carlo")
+    levels = s.numbers("levels_percent")
+    paper = s.numbers("paper_converged_percent", length=len(levels))
+    spec = MonteCarloSpec(transfer=s.text("transfer"), levels_percent=levels, runs=s.integer("runs", lo=1),
+                          tol=s.number("tol", positive=True), max_iter=s.integer("max_iter", lo=1, hi=500),
+                          sigma_fraction=s.number("sigma_fraction", positive=True), paper_converged_percent=paper)
+    s.finish()
+    if spec.transfer not in scenario.transfers:
+        raise s.error("transfer", f"no [transfers.{spec.transfer}]")
+    return spec
+
+
+# ------------------------------------------------------------------------------------------ the pipeline
+
+def corrector_model(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings) -> Model:
+    """The kernel's model of this transfer (normalised; docs/blt.md sec. 1)."""
+    gravity = None if solver.gravity == "scenario" else solver.gravity
+    return model_from_scenario(scenario, spec.thrust_n, gravity=gravity, srp=solver.srp, sun=solver.sun,
+                               step_max=solver.step_max_s / scenario.units.time_s)
+
+
+def initial_guess(scenario: BinaryScenario, spec: TransferSpec, model: Model) -> Guess:
+    """SBIG or UbMPIG in the scenario's gravity (orbits and manifolds: the gravity-only model)."""
+    gravity_model = model.gravity_only()
+    target = scenario_orbit(scenario, spec.to_orbit, gravity_model)
+    if spec.kind == "single-burn":
+        assert spec.from_orbit is not None
+        return sbig(model, scenario_orbit(scenario, spec.from_orbit, gravity_model), target)
+    assert spec.circle_radius_m is not None
+    vu = scenario.units.velocity_m_s
+    return ubmpig(model, Circle(spec.circle_radius_m / scenario.units.length_m), target, sign=spec.manifold_sign,
+                  deviation_bounds=(spec.insertion_dv_m_s[0] / vu, spec.insertion_dv_m_s[1] / vu))
+
+
+@dataclasses.dataclass
+class Design:
+    spec: TransferSpec
+    model: Model
+    guess: Guess
+    result: Converged
+    guess_s: float                    #: [s] wall time of the guess stage
+    solve_s: float                    #: [s] wall time of the convergence stage (all kernel solves)
+
+    @property
+    def transfer(self) -> Transfer:
+        return self.result.transfer
+
+    @property
+    def report(self) -> BltReport:
+        return self.result.report
+
+
+def design(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings, *, corrector: str | None = None,
+           jacobian: str | None = None) -> Design:
+    model = corrector_model(scenario, spec, solver)
+    start = time.perf_counter()
+    guess = initial_guess(scenario, spec, model)
+    mid = time.perf_counter()
+    result = converge(model, guess, corrector=corrector or solver.corrector, jacobian=jacobian or solver.jacobian,
+                      **solver.kernel_fields())
+    return Design(spec=spec, model=model, guess=guess, result=result, guess_s=mid - start,
+                  solve_s=time.perf_counter() - mid)
+
+
+def figures(scenario: BinaryScenario, d: Design) -> dict[str, Any]:
+    """SI figures of a designed transfer: burn and flight times, fuel, delta-v, closest approaches."""
+    u, sc = scenario.units, scenario.spacecraft
+    rep = d.report
+    fuel_kg = (1.0 - rep.mass_final) * sc.mass_kg
+    c = sc.specific_impulse_s * sc.standard_gravity_m_s2
+    return dict(burn_time_s=rep.burn_time * u.time_s, flight_time_s=rep.flight_time * u.time_s,
+                fuel_g=fuel_kg * 1e3, delta_v_m_s=c * math.log(1.0 / rep.mass_final),
+                closest_approach_m=[float(x) * u.length_m for x in rep.min_distance],
+                segment_times_s=[float(t) * u.time_s for t in d.transfer.segments[:, 6]],
+                final_error=float(rep.err_norm), final_error_position_m=float(np.linalg.norm(rep.err[0:3])) * u.length_m
+                if rep.n_errors >= 3 else None)
