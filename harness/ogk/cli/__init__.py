@@ -26,6 +26,7 @@ SUBCOMMANDS: tuple[str, ...] = (
     "ogk.cli.cmd_cases",
     "ogk.cli.cmd_mpsp",
     "ogk.cli.cmd_nmpc",
+    "ogk.cli.cmd_blt",
 )
 
 

@@ -7,6 +7,7 @@ A family is a module (an *adapter*) that may define any of:
   add_mc_arguments(parser); mc(header, args) -> int      `ogk mc SCENARIO ...`
   add_cases_arguments(parser); cases(header, args) -> int  `ogk cases SCENARIO ...`
   add_nmpc_arguments(parser); nmpc(header, args) -> int    `ogk nmpc SCENARIO ...`
+  add_blt_arguments(parser); blt(header, args) -> int      `ogk blt SCENARIO ...`
 
 A new family is one adapter module plus one line here (docs/adding-a-mission.md); a new mission of a
 known family is one TOML file and nothing else.
@@ -23,6 +24,7 @@ FAMILIES: dict[str, str] = {
     "orbit-injection": "ogk.missions.orbit_injection.adapter",
     "low-thrust-transfer": "ogk.missions.low_thrust_transfer.adapter",
     "low-thrust-rendezvous": "ogk.missions.rendezvous.adapter",
+    "binary-asteroid": "ogk.missions.binary.adapter",
 }
 
 
@@ -44,7 +46,7 @@ def command(header: ScenarioHeader, name: str) -> ModuleType:
     """The adapter, checked to implement command `name` (tables, mc, cases)."""
     adapter = family(header)
     if not callable(getattr(adapter, name, None)):
-        have = [c for c in ("tables", "mc", "cases", "nmpc") if callable(getattr(adapter, c, None))]
+        have = [c for c in ("tables", "mc", "cases", "nmpc", "blt") if callable(getattr(adapter, c, None))]
         raise OgkInputError(f"family {header.mission!r} has no `ogk {name}` (it has: "
                             f"{', '.join('ogk ' + c for c in have)})", path=header.path)
     return adapter

@@ -1,0 +1,1 @@
+"""Binary-asteroid proximity transfers (BLT guidance with NRPC; Xiong & Wang is its first user)."""

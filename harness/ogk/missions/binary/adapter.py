@@ -1,0 +1,207 @@
+"""Binary-asteroid transfers with BLT guidance and NRPC (Xiong & Wang is its first user).
+
+The family's adapter for ogk.missions.registry:
+  `ogk blt SCENARIO --transfer NAME --json FILE [--plots DIR]`: one transfer: the ground's initial guess, the
+      flight kernel's corrector in the realistic model, the independent DOP853 re-propagation of the result,
+      the paper's figures beside it. Exit 0 when the kernel converged and DOP853 confirms the tolerance.
+  `ogk mc SCENARIO [--perturbation PCT ...] [--runs N] [--seed S] --json FILE [--plots DIR]`: the convergence
+      Monte Carlo of Table 3, plain NRPC and the damped corrector on the same draws. Exit 0 when it ran.
+Exit 2 on bad input.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from ogk_host.binary import transfers as T
+from ogk_host.binary.orbits import scenario_orbit
+from ogk_host.binary.scenario import LAWS as SCENARIO_LAWS
+from ogk_host.binary.scenario import BinaryScenario, load_scenario
+from ogk_host.errors import OgkInputError
+from ogk_host.scenario_file import ScenarioHeader
+
+from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale, write_atomic
+
+from . import campaign
+
+LAWS = SCENARIO_LAWS
+
+
+def _scenario(header: ScenarioHeader) -> BinaryScenario:
+    return load_scenario(header.path)
+
+
+# ------------------------------------------------------------------------------------------ ogk blt
+
+def add_blt_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--transfer", required=True, metavar="NAME", help="a [transfers.NAME] of the scenario")
+    p.add_argument("--json", required=True, metavar="FILE", help="write the result as JSON")
+    p.add_argument("--plots", default=None, metavar="DIR", help="PNG figures (synodic frame, C_J and control)")
+    p.add_argument("--corrector", choices=("scenario", "nrpc", "lm"), default="scenario",
+                   help="nrpc (eq. 64) or lm (damped); default: the scenario's [solver] corrector")
+    p.add_argument("--jacobian", choices=("scenario", "variational", "central"), default="scenario",
+                   help="variational equations or central differences (eq. 62); default: the scenario's")
+
+
+def blt_document(scenario: BinaryScenario, name: str, corrector: str | None, jacobian: str | None) -> dict[str, Any]:
+    from .trajectory import reference_errors
+    solver = T.solver_settings(scenario)
+    spec = T.transfer_spec(scenario, name)
+    cpu0 = time.process_time()
+    d = T.design(scenario, spec, solver, corrector=corrector, jacobian=jacobian)
+    cpu = time.process_time() - cpu0
+    ref = reference_errors(d.model, d.guess.layout, d.transfer)
+    fig = T.figures(scenario, d)
+    rep = d.report
+    u = scenario.units
+    doc: dict[str, Any] = dict(
+        scenario=scenario.name, transfer=name, kind=spec.kind, thrust_n=spec.thrust_n,
+        corrector=corrector or solver.corrector, jacobian=jacobian or solver.jacobian, tol=solver.tol,
+        converged=rep.converged, status=rep.status, flags=rep.flag_names(), iterations=rep.iterations,
+        propagations=rep.propagations, continuation=d.result.steps,
+        initial_error=rep.err_norm0,
+        final_error_dop853=ref.err_norm, dop853_meets_tol=bool(ref.err_norm <= solver.tol and not ref.impact),
+        **fig, guess_cpu_s=d.guess_s, kernel_solve_wall_s=d.solve_s, total_cpu_s=cpu,
+        guess=dict(segments=d.guess.transfer.segments.tolist(), info=d.guess.info),
+        solution=dict(t0=d.transfer.t0, x0=d.transfer.x0.tolist(), xf=d.transfer.xf.tolist(),
+                      segments=d.transfer.segments.tolist(), nodes=d.transfer.nodes.tolist(),
+                      kinds=list(d.guess.layout.kinds), free_nodes=list(d.guess.layout.free_nodes),
+                      meets=list(d.guess.layout.meets)),
+        units=dict(length_m=u.length_m, time_s=u.time_s, velocity_m_s=u.velocity_m_s),
+        paper={k: v for k, v in spec.paper.items()})
+    return doc
+
+
+def report_lines(doc: dict[str, Any]) -> list[str]:
+    p = doc["paper"]
+    lines = [f"Xiong & Wang, {doc['scenario']} / {doc['transfer']} ({doc['kind']}, {doc['thrust_n'] * 1e3:g} mN, "
+             f"corrector {doc['corrector']}, Jacobian {doc['jacobian']})",
+             f"  {'':34s} {'this run':>16s} {'paper':>12s}"]
+
+    def row(label: str, mine: str, theirs: str = "-") -> None:
+        lines.append(f"  {label:34s} {mine:>16s} {theirs:>12s}")
+    row("converged (|e| <= tol)", f"{'yes' if doc['converged'] else 'no: ' + doc['status']}")
+    row("iterations", str(doc["iterations"]), f"{p['paper_iterations']:g}" if "paper_iterations" in p else "-")
+    row("final |e| kernel / DOP853", f"{doc['final_error']:.2e} / {doc['final_error_dop853']:.2e}")
+    row("burn time [min]", f"{doc['burn_time_s'] / 60:.1f}",
+        f"{p['paper_burn_time_s'] / 60:.1f}" if "paper_burn_time_s" in p else "-")
+    row("flight time [min]", f"{doc['flight_time_s'] / 60:.1f}",
+        f"{p['paper_flight_time_s'] / 60:.1f}" if "paper_flight_time_s" in p else "-")
+    row("fuel [g]", f"{doc['fuel_g']:.2f}", f"{p['paper_fuel_g']:.2f}" if "paper_fuel_g" in p else "-")
+    row("delta-v [m/s]", f"{doc['delta_v_m_s']:.4f}")
+    row("closest approach Alpha / Beta [m]", f"{doc['closest_approach_m'][0]:.0f} / {doc['closest_approach_m'][1]:.0f}")
+    row("kernel solve wall [ms]", f"{doc['kernel_solve_wall_s'] * 1e3:.1f}")
+    return lines
+
+
+def blt(header: ScenarioHeader, args: argparse.Namespace) -> int:
+    scenario = _scenario(header)
+    out = check_output_file(args.json, "--json")
+    plots = check_output_dir(args.plots, "--plots") if args.plots else None
+    T.transfer_spec(scenario, args.transfer)      # bad names are input errors before any work
+    remove_stale(out)
+    corrector = None if args.corrector == "scenario" else args.corrector
+    jacobian = None if args.jacobian == "scenario" else args.jacobian
+    doc = blt_document(scenario, args.transfer, corrector, jacobian)
+    if plots is not None:
+        doc["plots"] = [str(p) for p in _transfer_plots(scenario, doc, plots)]
+    write_atomic(out, json.dumps(doc, indent=1))
+    print("\n".join(report_lines(doc)))
+    return 0 if doc["converged"] and doc["dop853_meets_tol"] else 1
+
+
+def _transfer_plots(scenario: BinaryScenario, doc: dict[str, Any], out_dir: Path) -> list[Path]:
+    from ogk.bindings.blt import Transfer
+    from ogk_host.binary.guess import Layout, OrbitPhase
+
+    from .plots import transfer_figures
+    from .trajectory import sample
+    spec = T.transfer_spec(scenario, doc["transfer"])
+    solver = T.solver_settings(scenario)
+    model = T.corrector_model(scenario, spec, solver)
+    s = doc["solution"]
+    lay = Layout(kinds=tuple(s["kinds"]), free_nodes=tuple(s["free_nodes"]), meets=tuple(s["meets"]))
+    tr = Transfer(t0=s["t0"], x0=np.array(s["x0"]), xf=np.array(s["xf"]), segments=np.array(s["segments"]),
+                  nodes=np.array(s["nodes"]).reshape(-1, 6))
+    smp = sample(model, lay, tr)
+    gm = model.gravity_only()
+    orbit_states = []
+    for key in ("from_orbit", "to_orbit"):
+        name = getattr(spec, key, None)
+        if name:
+            o = scenario_orbit(scenario, name, gm)
+            orbit_states.append(OrbitPhase(o)(np.linspace(0.0, o.period, 400)))
+    title = (f"{doc['transfer']}: {doc['thrust_n'] * 1e3:g} mN, burn {doc['burn_time_s'] / 60:.1f} min, "
+             f"fuel {doc['fuel_g']:.2f} g, {'converged' if doc['converged'] else 'NOT converged'}")
+    return transfer_figures(doc["transfer"], model, smp, orbit_states, scenario.units.length_m,
+                            scenario.units.time_s, out_dir, title)
+
+
+# ------------------------------------------------------------------------------------------ ogk mc
+
+def add_mc_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--perturbation", type=float, nargs="+", default=None, metavar="PCT",
+                   help="perturbation levels [%%] (default: the scenario's [monte_carlo] levels)")
+    p.add_argument("--runs", type=int, default=None, metavar="N", help="runs per level (default: the scenario's)")
+    p.add_argument("--seed", type=int, default=1, metavar="S", help="campaign seed (default 1)")
+    p.add_argument("--json", required=True, metavar="FILE", help="write the campaign as JSON")
+    p.add_argument("--plots", default=None, metavar="DIR", help="PNG of the convergence rates")
+    p.add_argument("--corrector", choices=("both", "nrpc", "lm"), default="both",
+                   help="which corrector(s) to fly on the draws (default both)")
+    p.add_argument("--workers", type=int, default=2, metavar="W", help="worker processes (default 2)")
+
+
+def mc(header: ScenarioHeader, args: argparse.Namespace) -> int:
+    scenario = _scenario(header)
+    spec_mc = T.monte_carlo_spec(scenario)
+    out = check_output_file(args.json, "--json")
+    plots = check_output_dir(args.plots, "--plots") if args.plots else None
+    levels = tuple(args.perturbation) if args.perturbation else spec_mc.levels_percent
+    runs = spec_mc.runs if args.runs is None else args.runs
+    if runs < 1 or any(not 0.0 < lv <= 100.0 for lv in levels) or args.workers < 1:
+        raise OgkInputError("--runs and --workers must be >= 1 and every --perturbation in (0, 100]")
+    remove_stale(out)
+    correctors = ("nrpc", "lm") if args.corrector == "both" else (args.corrector,)
+    solver = T.solver_settings(scenario)
+    spec = T.transfer_spec(scenario, spec_mc.transfer)
+    start = time.perf_counter()
+    d = T.design(scenario, spec, solver)
+    if not d.report.converged:
+        raise OgkInputError(f"the nominal transfer {spec.name} did not converge ({d.report.status})",
+                            path=scenario.path, key=f"transfers.{spec.name}")
+    assert spec.circle_radius_m is not None
+    nominal = campaign.Nominal(model=d.model, layout=d.guess.layout, transfer=d.transfer,
+                               circle_radius=spec.circle_radius_m / scenario.units.length_m, tol=spec_mc.tol,
+                               max_iter=spec_mc.max_iter, jacobian=T.JACOBIANS[solver.jacobian],
+                               fields=dict(fd_step=solver.fd_step, ls_trials=solver.ls_trials))
+    paper = dict(zip(spec_mc.levels_percent, spec_mc.paper_converged_percent))
+    doc: dict[str, Any] = dict(scenario=scenario.name, transfer=spec.name, seed=args.seed, runs_per_level=runs,
+                               tol=spec_mc.tol, max_iter=spec_mc.max_iter, sigma_fraction=spec_mc.sigma_fraction,
+                               correctors=list(correctors), jacobian=solver.jacobian,
+                               nominal=dict(segments=d.transfer.segments.tolist(), iterations=d.report.iterations),
+                               paper_levels_percent=list(spec_mc.levels_percent),
+                               paper_converged_percent=list(spec_mc.paper_converged_percent), levels=[])
+    print(f"Xiong & Wang, Table 3 ({scenario.name} / {spec.name}, {spec.thrust_n * 1e3:g} mN): {runs} runs per "
+          f"level, seed {args.seed}, tol {spec_mc.tol:g}, {spec_mc.max_iter} iterations")
+    print(f"  {'level [%]':>9s} " + " ".join(f"{c + ' [%]':>10s}" for c in correctors) + f" {'paper [%]':>10s}"
+          "  failures (" + correctors[-1] + ")")
+    for i, level in enumerate(levels):
+        runs_out = campaign.run_level(nominal, args.seed, i, level / 100.0, spec_mc.sigma_fraction, runs,
+                                      correctors, args.workers)
+        summary = {c: campaign.summarise(runs_out, c) for c in correctors}
+        doc["levels"].append(dict(level_percent=level, paper_converged_percent=paper.get(level), summary=summary,
+                                  converged_pct={c: summary[c]["converged_pct"] for c in correctors},
+                                  runs=runs_out))
+        print(f"  {level:9g} " + " ".join(f"{summary[c]['converged_pct']:10.2f}" for c in correctors) +
+              f" {paper[level]:10.2f}" if level in paper else "         -", end="")
+        print("  " + ", ".join(f"{k}: {v}" for k, v in summary[correctors[-1]]["failures"].items()))
+    doc["wall_s"] = time.perf_counter() - start
+    if plots is not None:
+        from .plots import mc_figure
+        doc["plots"] = [str(mc_figure(doc, plots))]
+    write_atomic(out, json.dumps(doc))
+    return 0

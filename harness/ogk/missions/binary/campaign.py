@@ -1,0 +1,135 @@
+"""The convergence Monte Carlo of Table 3 (Xiong & Wang, sec. V.A.2): the nominal UMP transfer perturbed and
+corrected again by the flight kernel, plain NRPC and the damped corrector on the same draws.
+
+"Perturbation %" (the paper leaves it undefined; the scenario's [monte_carlo] comment and docs/blt.md say the
+same): with p the level and xi ~ N(0, (sigma_fraction)^2) clipped to [-1, 1] (the level is the largest
+perturbation: "perturbed by values up to p"),
+  - each component of A and B of every burn: + p xi |[A; B]| (the law's scale, 1 after normalisation);
+  - every duration T: T (1 + p xi);
+  - the departure: moved along the circle by an ignition-time error p xi T_1 (T_1 the first burn's duration);
+  - the free node: re-predicted from the perturbed parameters (backward from the target, as the guess stage
+    does; eq. 72); the target is not perturbed ("the orbit determination ... is assumed to be accurate").
+Run k of a campaign with seed S draws from numpy's default_rng([S, level index, k]): a run is reproducible
+alone, and the same draws serve both correctors."""
+from __future__ import annotations
+
+import dataclasses
+import math
+import multiprocessing
+import time
+from typing import Any
+
+import numpy as np
+
+from ogk.bindings.blt import LM, NRPC, Blt, Transfer
+from ogk_host.binary.dynamics import Model
+from ogk_host.binary.guess import Circle, Layout, kernel_config, predicted_node
+
+CORRECTORS = {"nrpc": NRPC, "lm": LM}
+
+
+@dataclasses.dataclass(frozen=True)
+class Nominal:
+    """What a worker needs: the corrector's model, the layout, the converged nominal and its circle."""
+
+    model: Model
+    layout: Layout
+    transfer: Transfer
+    circle_radius: float          #: [LU]
+    tol: float
+    max_iter: int
+    jacobian: int
+    fields: dict[str, Any]
+
+
+def draw(nominal: Nominal, level: float, sigma_fraction: float, rng: np.random.Generator) -> tuple[Transfer, dict[str, Any]]:
+    """A perturbed problem and guess (see the module docstring) and the draw itself."""
+    tr = nominal.transfer
+    n_seg = tr.segments.shape[0]
+    xi = np.clip(rng.normal(0.0, sigma_fraction, size=(n_seg * 7 + 1)), -1.0, 1.0)
+    seg = tr.segments.copy()
+    for k, kind in enumerate(nominal.layout.kinds):
+        if kind == "burn":
+            scale = float(np.linalg.norm(seg[k, 0:6]))
+            seg[k, 0:6] += level * xi[7 * k: 7 * k + 6] * scale
+        seg[k, 6] *= 1.0 + level * xi[7 * k + 6]
+    circle = Circle(nominal.circle_radius)
+    lon0 = math.atan2(tr.x0[1], tr.x0[0])
+    shift = level * xi[-1] * tr.segments[0, 6]
+    x0 = circle.state(lon0 + circle.synodic_rate * shift)
+    guess = Transfer(t0=tr.t0, x0=x0, xf=tr.xf.copy(), segments=seg, nodes=tr.nodes.copy(), mass0=tr.mass0)
+    if nominal.layout.free_nodes:
+        guess.nodes = predicted_node(nominal.model, nominal.layout, guess, how="backward")
+    return guess, dict(xi=xi.tolist(), departure_shift=shift)
+
+
+def reason(rep_flags: list[str], status: str) -> str:
+    if status == "OGK_OK":
+        return "converged"
+    for name, why in (("GUESS_IMPACT", "guess hits a body"), ("ITER_LIMIT", "iteration limit"),
+                      ("SINGULAR", "singular Jacobian"), ("STALLED", "no decreasing step")):
+        if name in rep_flags:
+            return why
+    return status
+
+
+_WORKER: dict[str, Any] = {}
+
+
+def _init(nominal: Nominal) -> None:
+    _WORKER["nominal"] = nominal
+    _WORKER["kernels"] = {name: Blt(kernel_config(nominal.model, nominal.layout, corrector=code,
+                                                  jacobian=nominal.jacobian, tol=nominal.tol,
+                                                  max_iter=nominal.max_iter, **nominal.fields))
+                          for name, code in CORRECTORS.items()}
+
+
+def _run(job: tuple[int, int, float, float, int, tuple[str, ...]]) -> dict[str, Any]:
+    seed, level_index, level, sigma_fraction, k, correctors = job
+    nominal: Nominal = _WORKER["nominal"]
+    rng = np.random.default_rng([seed, level_index, k])
+    out: dict[str, Any] = dict(run=k, level_percent=100.0 * level)
+    try:
+        guess, d = draw(nominal, level, sigma_fraction, rng)
+    except (ValueError, RuntimeError) as exc:       # the perturbed prediction itself fails (impact, mass)
+        out.update(draw=None, results={c: dict(converged=False, reason=f"no guess: {exc}") for c in correctors})
+        return out
+    out["draw"] = d
+    results = {}
+    for name in correctors:
+        start = time.process_time()
+        try:
+            _, rep = _WORKER["kernels"][name].solve(guess)
+        except Exception as exc:                     # bad input the kernel refused (range): a failure
+            results[name] = dict(converged=False, reason=f"rejected: {exc}")
+            continue
+        results[name] = dict(converged=rep.converged, reason=reason(rep.flag_names(), rep.status),
+                             iterations=rep.iterations, err_norm0=rep.err_norm0, err_norm=rep.err_norm,
+                             burn_time=rep.burn_time, mass_final=rep.mass_final,
+                             cpu_ms=1e3 * (time.process_time() - start))
+    out["results"] = results
+    return out
+
+
+def run_level(nominal: Nominal, seed: int, level_index: int, level: float, sigma_fraction: float, runs: int,
+              correctors: tuple[str, ...], workers: int) -> list[dict[str, Any]]:
+    jobs = [(seed, level_index, level, sigma_fraction, k, correctors) for k in range(runs)]
+    if workers <= 1:
+        _init(nominal)
+        return [_run(j) for j in jobs]
+    ctx = multiprocessing.get_context("fork")
+    with ctx.Pool(workers, initializer=_init, initargs=(nominal,)) as pool:
+        return list(pool.imap(_run, jobs, chunksize=8))
+
+
+def summarise(runs: list[dict[str, Any]], corrector: str) -> dict[str, Any]:
+    res = [r["results"][corrector] for r in runs]
+    conv = [r for r in res if r["converged"]]
+    reasons: dict[str, int] = {}
+    for r in res:
+        if not r["converged"]:
+            reasons[r["reason"]] = reasons.get(r["reason"], 0) + 1
+    its = [r["iterations"] for r in conv]
+    return dict(runs=len(res), converged=len(conv), converged_pct=100.0 * len(conv) / max(len(res), 1),
+                failures=reasons, iterations_median=float(np.median(its)) if its else None,
+                iterations_max=int(max(its)) if its else None)
