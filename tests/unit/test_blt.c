@@ -313,6 +313,7 @@ static const char *break_config(ogk_blt_config_t *c, int k, ogk_status *expected
     case 18: name = "segment_free[0] bit 7"; c->segment_free[0] = 0x80u; break;
     case 19: name = "free node at interface 0"; c->free_node_interface[0] = 0u; break;
     case 20: name = "free node at the end"; c->free_node_interface[0] = 3u; break;
+    case 52: name = "free node past the end"; c->free_node_interface[0] = 4u; break;
     case 21: name = "meet_interface[1] before its left anchor"; c->meet_interface[1] = 1u; break;
     case 22: name = "meet_interface[0] past its right anchor"; c->meet_interface[0] = 3u; break;
     case 23: name = "meet_interface[1] before the start"; c->meet_interface[1] = 0u; break;
@@ -430,7 +431,7 @@ static void test_init_rejections(void **state)
         }
         check_rejected(&c, expected, name);
     }
-    assert_int_equal(k, 52);
+    assert_int_equal(k, 53);
     /* every double of the configuration, NaN and then -Inf */
     {
         double *fields[40];
