@@ -11,6 +11,7 @@ Exit 2 on bad input.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import time
 from pathlib import Path
@@ -153,6 +154,8 @@ def add_mc_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--corrector", choices=("both", "nrpc", "lm"), default="both",
                    help="which corrector(s) to fly on the draws (default both)")
     p.add_argument("--workers", type=int, default=2, metavar="W", help="worker processes (default 2)")
+    p.add_argument("--sigma-fraction", type=float, default=None, metavar="F",
+                   help="sigma of a draw as a fraction of the level (default: the scenario's [monte_carlo])")
 
 
 def mc(header: ScenarioHeader, args: argparse.Namespace) -> int:
@@ -162,6 +165,10 @@ def mc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     plots = check_output_dir(args.plots, "--plots") if args.plots else None
     levels = tuple(args.perturbation) if args.perturbation else spec_mc.levels_percent
     runs = spec_mc.runs if args.runs is None else args.runs
+    if args.sigma_fraction is not None:
+        if not args.sigma_fraction > 0.0:
+            raise OgkInputError("must be > 0", key="--sigma-fraction")
+        spec_mc = dataclasses.replace(spec_mc, sigma_fraction=args.sigma_fraction)
     if runs < 1 or any(not 0.0 < lv <= 100.0 for lv in levels) or args.workers < 1:
         raise OgkInputError("--runs and --workers must be >= 1 and every --perturbation in (0, 100]")
     remove_stale(out)
