@@ -205,7 +205,9 @@ def mc(header: ScenarioHeader, args: argparse.Namespace) -> int:
                                   runs=runs_out))
         print(f"  {level:9g} " + " ".join(f"{summary[c]['converged_pct']:10.2f}" for c in correctors) +
               f" {paper[level]:10.2f}" if level in paper else "         -", end="")
-        print("  " + ", ".join(f"{k}: {v}" for k, v in summary[correctors[-1]]["failures"].items()))
+        print("  " + ", ".join(f"{k}: {v}" for k, v in summary[correctors[-1]]["failures"].items()) +
+              "".join(f"  [{c}: DOP853 confirms {summary[c]['dop853_confirmed']}/{summary[c]['converged']}]"
+                      for c in correctors if summary[c]["dop853_confirmed"] != summary[c]["converged"]))
     doc["wall_s"] = time.perf_counter() - start
     if plots is not None:
         from .plots import mc_figure

@@ -25,6 +25,8 @@ from ogk.bindings.blt import LM, NRPC, Blt, Transfer
 from ogk_host.binary.dynamics import Model
 from ogk_host.binary.guess import Circle, Layout, kernel_config, predicted_node
 
+from .trajectory import reference_errors
+
 CORRECTORS = {"nrpc": NRPC, "lm": LM}
 
 
@@ -99,14 +101,19 @@ def _run(job: tuple[int, int, float, float, int, tuple[str, ...]]) -> dict[str, 
     for name in correctors:
         start = time.process_time()
         try:
-            _, rep = _WORKER["kernels"][name].solve(guess)
+            sol, rep = _WORKER["kernels"][name].solve(guess)
         except Exception as exc:                     # bad input the kernel refused (range): a failure
             results[name] = dict(converged=False, reason=f"rejected: {exc}")
             continue
+        cpu_ms = 1e3 * (time.process_time() - start)
         results[name] = dict(converged=rep.converged, reason=reason(rep.flag_names(), rep.status),
                              iterations=rep.iterations, err_norm0=rep.err_norm0, err_norm=rep.err_norm,
-                             burn_time=rep.burn_time, mass_final=rep.mass_final,
-                             cpu_ms=1e3 * (time.process_time() - start))
+                             burn_time=rep.burn_time, mass_final=rep.mass_final, cpu_ms=cpu_ms)
+        if rep.converged:
+            # the independent check: the same error vector by DOP853 (rtol 1e-12) must meet the tolerance
+            ref = reference_errors(nominal.model, nominal.layout, sol)
+            results[name].update(dop853_err_norm=ref.err_norm,
+                                 dop853_meets_tol=bool(ref.err_norm <= nominal.tol and not ref.impact))
     out["results"] = results
     return out
 
@@ -130,6 +137,8 @@ def summarise(runs: list[dict[str, Any]], corrector: str) -> dict[str, Any]:
         if not r["converged"]:
             reasons[r["reason"]] = reasons.get(r["reason"], 0) + 1
     its = [r["iterations"] for r in conv]
+    confirmed = sum(1 for r in conv if r.get("dop853_meets_tol"))
     return dict(runs=len(res), converged=len(conv), converged_pct=100.0 * len(conv) / max(len(res), 1),
+                dop853_confirmed=confirmed,
                 failures=reasons, iterations_median=float(np.median(its)) if its else None,
                 iterations_max=int(max(its)) if its else None)
