@@ -1,7 +1,9 @@
 /* gen_seeds.c -- writes the seed corpus of the fuzz harnesses (make fuzz-seeds; the outputs are
  * committed in tests/fuzz/corpus/<target>/): the valid 5-node NOG table (as is, and re-sealed
  * with a defect), op streams flying it near the nominal, CPD steps near level flight, an MPSP
- * configuration patch, NMPC flights (open loop, replans, commands). Usage: gen_seeds DIR (DIR/<target>/ must exist). */
+ * configuration patch, NMPC flights (open loop, replans, commands), BLT solves (fuzz_blt_solve.c: a
+ * single burn, burn-coast-burn with a free node forward and with the last arc backward, raw transfers
+ * with a NaN and into the secondary). Usage: gen_seeds DIR (DIR/<target>/ must exist). */
 #include "fuzz_common.h"
 
 #include <stddef.h>
@@ -9,6 +11,13 @@
 #include "ogk/mpsp.h"
 
 static uint8_t table[FZ_TABLE_BYTES];
+
+/* Appends a double's bytes (the harness reads them back with memcpy on the same host). */
+static size_t put_f64(uint8_t *p, size_t n, double v)
+{
+    (void)memcpy(&p[n], &v, sizeof v);
+    return n + sizeof v;
+}
 
 static void put(const char *dir, const char *target, const char *name, const uint8_t *mode,
                 const uint8_t *p, size_t n)
@@ -144,6 +153,82 @@ int main(int argc, char **argv)
             ops[n++] = 0xF0u;
             ops[n++] = 0x7Fu;
             put(argv[1], "nmpc_step", names[s], NULL, ops, n);
+        }
+    }
+
+    /* BLT (fuzz_blt_solve.c): structured transfers, small displacements (bytes near 128), two
+     * iterations, tol 1e-6, step 0.03 TU; commands at 10, 50, 90 and 120 % of the flight. */
+    {
+        static const uint8_t modes[3][3] = {
+            { 0x00u, 0xABu, 0x0Cu },               /* single burn, NRPC, central, Moshup-like */
+            { 0x01u | 0x02u | 0x08u | 0x40u, 0xABu, 0x0Cu }, /* b-c-b, free node, LM, variational, x and vy free */
+            { 0x02u | 0x0Cu | 0x20u, 0xABu, 0x0Cu }, /* b-c-b, last arc backward, NRPC, variational, point mass */
+        };
+        static const char *const names[3] = { "single_burn_nrpc", "bcb_node_lm_variational",
+                                              "bcb_backward_point_mass" };
+        size_t s;
+        for (s = 0u; s < 3u; ++s) {
+            const size_t nseg = (s == 0u) ? 1u : 3u;
+            size_t i;
+            n = 0u;
+            ops[n++] = modes[s][0];
+            ops[n++] = modes[s][1];
+            ops[n++] = modes[s][2];
+            ops[n++] = 0u; /* structured transfer */
+            for (i = 0u; i < 6u; ++i) {
+                ops[n++] = (uint8_t)(126u + (i % 5u)); /* x0 */
+            }
+            ops[n++] = 255u; /* mass0 1 */
+            for (i = 0u; i < 6u; ++i) {
+                ops[n++] = (uint8_t)(129u - (i % 3u)); /* xf */
+            }
+            for (k = 0u; k < nseg; ++k) {
+                for (i = 0u; i < 7u; ++i) {
+                    ops[n++] = (uint8_t)(124u + ((3u * i + k) % 9u)); /* A, B, T */
+                }
+            }
+            ops[n++] = 10u;
+            ops[n++] = 50u;
+            ops[n++] = 90u;
+            ops[n++] = 120u;
+            put(argv[1], "blt_solve", names[s], NULL, ops, n);
+        }
+    }
+    /* BLT raw: the model's doubles given (valid), a single burn with a NaN in xf, then one into the
+     * secondary (guess impact), a command at a raw +Inf time */
+    {
+        static const double x0_ok[6] = { 0.3, 0.8, 0.05, -0.3, 0.2, 0.01 };
+        static const double x0_hit[6] = { 0.5956, 0.0, 0.0, 1.0, 0.0, 0.0 };
+        static const double p[7] = { 0.6, 0.5, 0.1, -0.4, 0.8, 0.3, 0.3 };
+        static const char *const names[2] = { "raw_nan_target", "raw_into_secondary" };
+        size_t s;
+        for (s = 0u; s < 2u; ++s) {
+            const double *x0 = (s == 0u) ? x0_ok : x0_hit;
+            size_t i;
+            n = 0u;
+            ops[n++] = 0x00u;
+            ops[n++] = 0x00u;
+            ops[n++] = 0x20u | 0x0Cu; /* raw model doubles follow */
+            n = put_f64(ops, n, 0.0544);
+            n = put_f64(ops, n, -0.09);
+            n = put_f64(ops, n, 0.02);
+            n = put_f64(ops, n, 0.01);
+            ops[n++] = 0xFFu; /* raw transfer */
+            n = put_f64(ops, n, 0.25); /* t0 */
+            n = put_f64(ops, n, 0.9);  /* mass0 */
+            for (i = 0u; i < 6u; ++i) {
+                n = put_f64(ops, n, x0[i]);
+                n = put_f64(ops, n, ((s == 0u) && (i == 2u)) ? (double)NAN : 1.0);
+            }
+            for (i = 0u; i < 7u; ++i) {
+                n = put_f64(ops, n, (s == 1u) ? ((i == 0u) ? 1.0 : ((i == 6u) ? 0.28 : 0.0)) : p[i]);
+            }
+            for (i = 0u; i < 6u; ++i) {
+                n = put_f64(ops, n, 0.0); /* node (unused) */
+            }
+            ops[n++] = 200u;
+            n = put_f64(ops, n, (double)INFINITY);
+            put(argv[1], "blt_solve", names[s], NULL, ops, n);
         }
     }
     return 0;

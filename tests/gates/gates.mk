@@ -38,7 +38,7 @@ tidy: | apt
 # inputs go; crashes go to $(B)/fuzz/artifacts/.
 FUZZ_B := $(B)/fuzz
 FUZZ_CC ?= clang
-FUZZ_TARGETS := table nog_table nog_step cpd_step mpsp_init cutoff_step terminal_step nmpc_step
+FUZZ_TARGETS := table nog_table nog_step cpd_step mpsp_init cutoff_step terminal_step nmpc_step blt_solve
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_CFLAGS := -std=c99 -O1 -g $(FUZZ_SAN) $(KINC) -Itests/unit
 FUZZ_KOBJ := $(patsubst kernel/src/%.c,$(FUZZ_B)/kernel/%.o,$(KSRC))
