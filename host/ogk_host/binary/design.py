@@ -6,6 +6,7 @@ impulsive guess can absorb). Normalised units (docs/blt.md)."""
 from __future__ import annotations
 
 import dataclasses
+import math
 from typing import Any
 
 from ogk.bindings.blt import LM, NRPC, Blt, BltReport, Transfer
@@ -50,3 +51,36 @@ def converge(model: Model, guess: Guess, *, corrector: str = "nrpc", jacobian: s
             break
         current = Guess(layout=guess.layout, transfer=sol, info=guess.info)
     return Converged(sol, rep, steps)
+
+
+def thrust_continuation(model: Model, guess: Guess, base_thrust_accel: float, *, ratio: float = 1.1,
+                        corrector: str = "lm", jacobian: str = "variational", **fields: Any) -> Converged:
+    """The transfer at model.thrust_accel reached from a solution at base_thrust_accel: the guess is first
+    converged at the base thrust (directly or by `converge`), then the thrust is stepped geometrically by at
+    most `ratio` per solve, each solve warm-started from the previous solution with every burn time scaled
+    by sqrt(a_previous / a_next) (eq. 26's scaling) and the mass flow scaled with the thrust. Beyond the paper:
+    SBIG's guess (eqs. 26-28) only converges near the thrust it was built for."""
+    target = model.thrust_accel
+    flow_per_accel = model.mass_flow / target
+
+    def at(accel: float) -> Model:
+        return dataclasses.replace(model, thrust_accel=accel, mass_flow=flow_per_accel * accel)
+    result = converge(at(base_thrust_accel), guess, corrector=corrector, jacobian=jacobian, **fields)
+    steps = [dict(thrust_accel=base_thrust_accel, **st) for st in result.steps]
+    n = max(1, math.ceil(abs(math.log(target / base_thrust_accel)) / math.log(ratio)))
+    current, accel = result, base_thrust_accel
+    for k in range(1, n + 1):
+        if not current.report.converged:
+            break
+        nxt = base_thrust_accel * (target / base_thrust_accel) ** (k / n)
+        tr = current.transfer
+        seg = tr.segments.copy()
+        for i, kind in enumerate(guess.layout.kinds):
+            if kind == "burn":
+                seg[i, 6] *= math.sqrt(accel / nxt)
+        warm = Guess(layout=guess.layout, transfer=dataclasses.replace(tr, segments=seg), info=guess.info)
+        current = converge(at(nxt), warm, corrector=corrector, jacobian=jacobian, **fields)
+        steps += [dict(thrust_accel=nxt, **st) for st in current.steps]
+        accel = nxt
+    return Converged(current.transfer, current.report, steps)
+

@@ -20,7 +20,7 @@ from ogk.bindings.blt import BltReport, Transfer
 
 from ..errors import OgkInputError
 from ..scenario_file import Section
-from .design import CORRECTORS, JACOBIANS, Converged, converge
+from .design import CORRECTORS, JACOBIANS, Converged, converge, thrust_continuation
 from .dynamics import Model, model_from_scenario
 from .guess import Circle, Guess, sbig, ubmpig
 from .orbits import scenario_orbit
@@ -174,13 +174,23 @@ class Design:
 
 
 def design(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings, *, corrector: str | None = None,
-           jacobian: str | None = None) -> Design:
+           jacobian: str | None = None, base_thrust_n: float | None = None) -> Design:
+    """Guess, then the kernel's corrector in the realistic model (design.converge). When that fails and
+    `base_thrust_n` (the thrust the transfer is defined at) differs from spec.thrust_n, the guess is built at
+    the base thrust and carried to spec.thrust_n by design.thrust_continuation."""
     model = corrector_model(scenario, spec, solver)
+    corr, jac = corrector or solver.corrector, jacobian or solver.jacobian
     start = time.perf_counter()
     guess = initial_guess(scenario, spec, model)
     mid = time.perf_counter()
-    result = converge(model, guess, corrector=corrector or solver.corrector, jacobian=jacobian or solver.jacobian,
-                      **solver.kernel_fields())
+    result = converge(model, guess, corrector=corr, jacobian=jac, **solver.kernel_fields())
+    if not result.report.converged and base_thrust_n is not None and base_thrust_n != spec.thrust_n:
+        base = corrector_model(scenario, dataclasses.replace(spec, thrust_n=base_thrust_n), solver)
+        guess = initial_guess(scenario, spec, base)
+        direct = result.steps
+        result = thrust_continuation(model, guess, base.thrust_accel, corrector=corr, jacobian=jac,
+                                     **solver.kernel_fields())
+        result.steps = [dict(direct=True, **st) for st in direct] + result.steps
     return Design(spec=spec, model=model, guess=guess, result=result, guess_s=mid - start,
                   solve_s=time.perf_counter() - mid)
 

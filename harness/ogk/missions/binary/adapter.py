@@ -46,14 +46,20 @@ def add_blt_arguments(p: argparse.ArgumentParser) -> None:
                    help="nrpc (eq. 64) or lm (damped); default: the scenario's [solver] corrector")
     p.add_argument("--jacobian", choices=("scenario", "variational", "central"), default="scenario",
                    help="variational equations or central differences (eq. 62); default: the scenario's")
+    p.add_argument("--thrust-n", type=float, default=None, metavar="F",
+                   help="fly the transfer at this thrust [N] instead of its thrust_n (a thrust sweep)")
 
 
-def blt_document(scenario: BinaryScenario, name: str, corrector: str | None, jacobian: str | None) -> dict[str, Any]:
+def blt_document(scenario: BinaryScenario, name: str, corrector: str | None, jacobian: str | None,
+                 thrust_n: float | None = None) -> dict[str, Any]:
     from .trajectory import reference_errors
     solver = T.solver_settings(scenario)
     spec = T.transfer_spec(scenario, name)
+    base_thrust = spec.thrust_n
+    if thrust_n is not None:
+        spec = dataclasses.replace(spec, thrust_n=thrust_n, paper={})   # the paper's figures are for its thrust
     cpu0 = time.process_time()
-    d = T.design(scenario, spec, solver, corrector=corrector, jacobian=jacobian)
+    d = T.design(scenario, spec, solver, corrector=corrector, jacobian=jacobian, base_thrust_n=base_thrust)
     cpu = time.process_time() - cpu0
     ref = reference_errors(d.model, d.guess.layout, d.transfer)
     fig = T.figures(scenario, d)
@@ -107,7 +113,9 @@ def blt(header: ScenarioHeader, args: argparse.Namespace) -> int:
     remove_stale(out)
     corrector = None if args.corrector == "scenario" else args.corrector
     jacobian = None if args.jacobian == "scenario" else args.jacobian
-    doc = blt_document(scenario, args.transfer, corrector, jacobian)
+    if args.thrust_n is not None and not args.thrust_n > 0.0:
+        raise OgkInputError("must be > 0", key="--thrust-n")
+    doc = blt_document(scenario, args.transfer, corrector, jacobian, args.thrust_n)
     if plots is not None:
         doc["plots"] = [str(p) for p in _transfer_plots(scenario, doc, plots)]
     write_atomic(out, json.dumps(doc, indent=1))
@@ -121,7 +129,7 @@ def _transfer_plots(scenario: BinaryScenario, doc: dict[str, Any], out_dir: Path
 
     from .plots import transfer_figures
     from .trajectory import sample
-    spec = T.transfer_spec(scenario, doc["transfer"])
+    spec = dataclasses.replace(T.transfer_spec(scenario, doc["transfer"]), thrust_n=doc["thrust_n"])
     solver = T.solver_settings(scenario)
     model = T.corrector_model(scenario, spec, solver)
     s = doc["solution"]
