@@ -103,9 +103,8 @@ static ogk_status blt_check_config(const ogk_blt_config_t *c)
                         c->burn_time_min, c->time_max};
     if (!model_finite(&c->model) || !ogk_i_all_finite(s, sizeof(s) / sizeof(s[0]))) {
         st = OGK_E_NONFINITE;
-    } else if (!model_ranges_ok(&c->model) || !structure_ok(c)) {
-        st = OGK_E_CONFIG;
-    } else if (((c->corrector != OGK_BLT_CORR_NRPC) && (c->corrector != OGK_BLT_CORR_LM)) ||
+    } else if (!model_ranges_ok(&c->model) || !structure_ok(c) ||
+               ((c->corrector != OGK_BLT_CORR_NRPC) && (c->corrector != OGK_BLT_CORR_LM)) ||
                ((c->jacobian != OGK_BLT_JAC_CENTRAL) && (c->jacobian != OGK_BLT_JAC_VARIATIONAL)) ||
                !(c->fd_step > 0.0) || !(c->tol > 0.0) || (c->max_iter < 1u) ||
                (c->max_iter > OGK_BLT_MAX_ITER) || !(c->ls_factor > 0.0) || !(c->ls_factor < 1.0) ||
@@ -489,7 +488,7 @@ static void try_step(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double alpha
 /* The paper's line search: step lengths 1, f, f^2, ... (f = 1/10) until |e| decreases; a step
  * whose trajectory hits a body is halved (up to impact_halvings times) first. */
 static bool nrpc_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_norm, ogk_blt_transfer_t *trial,
-                        blt_eval_t *ev, uint32_t *flags, uint32_t *propagations)
+                        blt_eval_t *ev, uint32_t *flags, uint32_t *propagations) /* NOLINT(bugprone-easily-swappable-parameters): the solve's two accumulators, in its order */
 {
     const ogk_blt_config_t *c = &ctx->cfg;
     double alpha = 1.0;
@@ -521,7 +520,7 @@ static bool nrpc_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_
 
 /* Levenberg-Marquardt: raise lambda until the step decreases |e| without impact. */
 static bool lm_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_norm, ogk_blt_transfer_t *trial,
-                      blt_eval_t *ev, uint32_t *flags, uint32_t *propagations)
+                      blt_eval_t *ev, uint32_t *flags, uint32_t *propagations) /* NOLINT(bugprone-easily-swappable-parameters): as nrpc_search */
 {
     const ogk_blt_config_t *c = &ctx->cfg;
     bool accepted = false;
@@ -556,7 +555,7 @@ static double lm_scale(const ogk_blt_t *ctx)
     double s = 0.0;
     uint32_t i;
     for (i = 0u; i < ctx->n_errors; ++i) {
-        const double r = norm2(&ctx->jac[i * ctx->n_unknowns], ctx->n_unknowns);
+        const double r = norm2(&ctx->jac[(size_t)i * ctx->n_unknowns], ctx->n_unknowns);
         s += r * r;
     }
     return s / (double)ctx->n_errors;

@@ -139,7 +139,7 @@ static void track_bodies(const ogk_blt_model_t *m, const double x[NX], blt_eval_
 
 /* Right-hand side of the state and, when nu > 0, of its sensitivities S (6 x nu, row-major,
  * after the state in y): S' = F S + G (docs/blt.md, "Variational equations"). */
-static bool rhs_aug(const ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double tau, const double *y,
+static bool rhs_aug(const ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double tau, const double *y, /* NOLINT(bugprone-easily-swappable-parameters): segment index, then its time */
                     double *dy, uint32_t nu)
 {
     const ogk_blt_config_t *cfg = &ctx->cfg;
@@ -217,7 +217,7 @@ static bool rhs_aug(const ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, doub
 
 /* Propagates segment k over its duration T in n RK4 steps, forward (tau 0 -> T) or backward
  * (T -> 0); y = state (+ sensitivities when nu > 0). Stops at an impact. */
-static void prop_segment(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double duration, uint32_t n,
+static void prop_segment(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double duration, uint32_t n, /* NOLINT(bugprone-easily-swappable-parameters): index, duration, steps */
                          bool backward, double *y, uint32_t nu, blt_eval_t *ev)
 {
     const size_t dim = (size_t)NX * ((size_t)nu + 1u);
@@ -271,7 +271,7 @@ static uint32_t steps_of(const ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, uin
 }
 
 /* Adds sign * f(x at tau) of segment k to the sensitivity column of its duration. */
-static void duration_jump(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double tau, double *y, uint32_t nu,
+static void duration_jump(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double tau, double *y, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): as prop_segment */
                           double sign, blt_eval_t *ev)
 {
     const uint32_t ct = ctx->col_seg[k][6];
@@ -300,7 +300,7 @@ static void init_sens(double *y, uint32_t nu, const uint32_t *cols, uint32_t nco
     }
 }
 
-void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double *sens, blt_eval_t *ev)
+void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double *sens, blt_eval_t *ev) /* NOLINT(bugprone-easily-swappable-parameters): errors, then their sensitivities (NULL) */
 {
     const ogk_blt_config_t *cfg = &ctx->cfg;
     const uint32_t nu = (sens != NULL) ? ctx->n_unknowns : 0u;

@@ -10,8 +10,8 @@
 /* Gravity of one body at rho = r - r_body: acc += grad U, hess += d(grad U)/d rho (when non-NULL).
  * U = mu / s + mu R^2 P(rho) / s^5 with P = rho^T Q rho, Q = diag(-C20/2 + 3 C22,
  * -C20/2 - 3 C22, C20): the Cartesian form of eq. (7)'s degree-2 terms. */
-static void body_gravity(double mu_b, double ref_radius, double c20, double c22, const double rho[3],
-                         double acc[3], double *hess)
+static void body_gravity(double mu_b, double ref_radius, double c20, double c22, const double rho[3], /* NOLINT(bugprone-easily-swappable-parameters): eq. (7)'s order */
+                         double acc[3], double *hess) /* NOLINT(bugprone-easily-swappable-parameters): acceleration, then its gradient */
 {
     const double s2 = (rho[0] * rho[0]) + (rho[1] * rho[1]) + (rho[2] * rho[2]);
     const double s = sqrt(s2);
