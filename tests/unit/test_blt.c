@@ -1148,8 +1148,8 @@ static double jacobi(const double *x)
            ((x[3] * x[3]) + (x[4] * x[4]) + (x[5] * x[5]));
 }
 
-/* Small amplitude: the linearised period of Szebehely (Theory of Orbits, 1967, sec. 5.6; the
- * collinear points' in-plane frequency), omega_p^2 = (2 - c2 + sqrt(9 c2^2 - 8 c2)) / 2,
+/* Small amplitude: the linearised period (Szebehely, Theory of Orbits, 1967: the in-plane frequency
+ * of the linearised motion about a collinear point), omega_p^2 = (2 - c2 + sqrt(9 c2^2 - 8 c2)) / 2,
  * c2 = mu / g^3 + (1 - mu) / (1 - g)^3, g the distance from L1 to the Moon, is about 2.6915 TU for
  * Earth-Moon L1. x_L1 is found here by bisection of the x-axis force balance (blt_fixture.h).
  * The tolerance: a Lyapunov orbit's period differs from the linear one at second order in its
