@@ -660,7 +660,7 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
         rep->propagations = propagations;
         rep->err_norm0 = e_norm0;
         if (st != OGK_OK) {
-            rep->err_norm = (e_norm < HUGE_VAL) ? e_norm : rep->err_norm;
+            rep->err_norm = e_norm; /* HUGE_VAL when no error vector exists (bad input, guess hits a body) */
         }
     }
     return st;

@@ -57,8 +57,10 @@ extern "C" {
 
 /* report flags */
 #define OGK_BLT_FLAG_CONVERGED 0x01u  /* |e|_2 <= tol */
-#define OGK_BLT_FLAG_IMPACT 0x02u     /* a trial or the guess hit a body (backed off) */
-#define OGK_BLT_FLAG_SINGULAR 0x04u   /* J J^T singular: no Newton step */
+#define OGK_BLT_FLAG_IMPACT 0x02u     /* a trial or the guess hit a body (a trial: backed off); also a trial
+                                         step with no finite thrust direction (A + B tau = 0) or no mass left */
+#define OGK_BLT_FLAG_SINGULAR 0x04u   /* J J^T singular (no Newton step), a Jacobian that could not be formed,
+                                         or (guess, evaluate, propagate) no finite right-hand side */
 #define OGK_BLT_FLAG_ITER_LIMIT 0x08u /* max_iter reached */
 #define OGK_BLT_FLAG_STALLED 0x10u    /* no trial step decreased |e| */
 #define OGK_BLT_FLAG_SAFE 0x20u       /* no solution held: the command is the safe command (engine off) */
@@ -87,7 +89,8 @@ typedef struct {
     uint32_t segment_free[OGK_BLT_MAX_SEGMENTS];   /* [-] OGK_BLT_FREE_* bits (default all; a coast uses T only) */
     uint32_t n_free_nodes;    /* [-] 0..OGK_BLT_MAX_FREE_NODES (default 0) */
     uint32_t free_node_interface[OGK_BLT_MAX_FREE_NODES]; /* [-] interface 1..n_segments-1 of each, increasing */
-    uint32_t meet_interface[OGK_BLT_MAX_ARCS];  /* [-] meeting interface of each arc, in [left, right anchor] (default: right anchor) */
+    uint32_t meet_interface[OGK_BLT_MAX_ARCS];  /* [-] meeting interface of each arc, in [left, right anchor] (default 1: the
+                                                   right anchor of the default single segment; set it with n_segments) */
     uint32_t start_free_mask; /* [-] bits 0-5: components of x0 the corrector may change (default 0) */
     uint32_t target_mask;     /* [-] bits 0-5: constrained components of xf; all six when the last arc meets before the end (default 0x3F) */
     uint32_t corrector;       /* [-] OGK_BLT_CORR_* (default NRPC) */
@@ -113,7 +116,7 @@ typedef struct {
     double t0;                /* [TU] time of the start (sets the Sun's direction), |t0| <= 1e6 */
     double mass0;             /* [-] mass fraction at the start, (0, 1] */
     double x0[OGK_BLT_NX];    /* [LU, VU] start state (components in start_free_mask: a guess) */
-    double xf[OGK_BLT_NX];    /* [LU, VU] target state (components outside target_mask ignored) */
+    double xf[OGK_BLT_NX];    /* [LU, VU] target state (components outside target_mask unused, but must be finite) */
     double seg[OGK_BLT_MAX_SEGMENTS][OGK_BLT_NP];  /* A [-], B [1/TU], T [TU] of each segment (coast: T only) */
     double node[OGK_BLT_MAX_FREE_NODES][OGK_BLT_NX]; /* [LU, VU] free-node states */
 } ogk_blt_transfer_t;
@@ -125,7 +128,7 @@ typedef struct {
     uint32_t n_unknowns;      /* [-] length of the unknown vector */
     uint32_t n_errors;        /* [-] length of the error vector */
     double err_norm0;         /* [-] |e|_2 of the guess */
-    double err_norm;          /* [-] |e|_2 of the returned transfer */
+    double err_norm;          /* [-] |e|_2 of the returned transfer (HUGE_VAL when it has none: bad input, guess hits a body) */
     double err[OGK_BLT_MAX_ERRORS];  /* [LU, VU] the returned transfer's error vector (eqs. 65, 70) */
     double burn_time;         /* [TU] total burn time */
     double flight_time;       /* [TU] total duration */
