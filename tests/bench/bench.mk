@@ -133,3 +133,63 @@ bench-nmpc-profile: $(BENCH_NMPC)
 	callgrind_annotate $(NMPC_B)/callgrind.out | head -30
 
 bench: bench-nmpc
+
+# ---------------------------------------------------------------- BLT / NRPC (docs/blt.md, "Cost")
+# One NRPC iteration (ogk_blt_solve with max_iter = 1 from the guess) and a whole convergence, for the
+# single-burn l2_to_l1_lyapunov and the burn-coast-burn circle_to_l2_ump of scenarios/moshup.toml, each with
+# the central-difference and the variational Jacobian (the cases: tests/bench/bench_blt_case.py, generated into
+# bench_blt_case.h bit-exact from the scenario through the ground pipeline): host ns (medians), callgrind
+# instructions of exactly one iteration / convergence, Cortex-M7 instructions (QEMU plugin), the static
+# worst-case stack (gcc call graphs) and the QEMU high-water mark; one table (bench_blt_case.py run).
+BLT_B := $(BENCH_DIR)/blt
+BLT_CASE_H := $(BLT_B)/bench_blt_case.h
+BENCH_BLT := $(BENCH_DIR)/bench_blt
+ARM_BENCH_BLT := $(ARM_B)/bench_blt.elf
+BLT_KEYS := sb_cd sb_var ump_cd ump_var
+
+$(BLT_CASE_H): tests/bench/bench_blt_case.py scenarios/moshup.toml $(wildcard host/ogk_host/binary/*.py) $(FFI_STAMP)
+	$(VPY) tests/bench/bench_blt_case.py header $@
+
+$(BENCH_BLT): tests/bench/bench_blt.c $(BLT_CASE_H) $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
+	@mkdir -p $(@D)
+	gcc -std=c99 -O2 -g -Wall -Wextra -Werror $(KINC) -Iport/include -I$(BLT_B) \
+	  $< $(PORT_HOST_SRC) $(B)/host/libogk.a -o $@ -lm
+
+$(ARM_BENCH_BLT): tests/bench/bench_blt.c $(BLT_CASE_H) $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
+	$(ARM_CC) -std=c99 -Wall -Wextra -Werror -O2 -g $(ARM_CPU) -DOGK_BENCH_BARE_METAL \
+	  $(KINC) -Iport/include -I$(ARM_PORT) -I$(BLT_B) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
+	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
+
+.PHONY: bench-blt bench-blt-profile
+bench-blt: $(BENCH_BLT) $(ARM_BENCH_BLT) $(ARM_CI) qemu-plugin $(FFI_STAMP)
+	@echo "== BLT / NRPC: one iteration and a whole convergence (docs/blt.md, \"Cost\") =="
+	@rm -f $(BLT_B)/*.txt
+	@$(BENCH_BLT) time > $(BLT_B)/host.txt
+	@for k in $(BLT_KEYS); do for u in iteration converge; do \
+	  n=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+	       --collect-atstart=no --toggle-collect=bench_blt_$${u}_once \
+	       $(BENCH_BLT) once $$k $$u 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'); \
+	  case $$u in iteration) s=iter;; *) s=conv;; esac; \
+	  echo "blt_$${k}_$${s}_callgrind $$n"; \
+	done; done > $(BLT_B)/callgrind.txt
+	@port/qemu-plugin/count_insns.sh $(ARM_BENCH_BLT) $(foreach k,$(BLT_KEYS),bench_blt_m7_iter_$(k) bench_blt_m7_conv_$(k)) \
+	  2> $(BLT_B)/m7_run.log | \
+	  awk '$$2 == "fn" && $$3 ~ /^bench_blt_m7_(iter|conv)_/ { k = $$3; sub(/^bench_blt_m7_/, "", k); \
+	    u = substr(k, 1, 4); k = substr(k, 6); print "blt_" k "_" u "_m7_insns", $$9 }' > $(BLT_B)/m7.txt
+	@sed -n 's/^\(blt_m7_[a-z0-9_]* [0-9.e+-]*\).*/\1/p; s/.*stack high-water mark: \([0-9]*\) of.*/blt_m7_stack_hwm \1/p' \
+	  $(BLT_B)/m7_run.log >> $(BLT_B)/m7.txt
+	@python3 port/cortex-m7/stack_report.py $(ARM_CI) > $(BLT_B)/stack_report.log; \
+	  awk '$$1 == "ogk_blt_solve" { print "blt_stack_solve", $$3 } $$1 == "ogk_blt_jacobian" { print "blt_stack_jacobian", $$3 } \
+	    $$1 == "ogk_blt_evaluate" { print "blt_stack_evaluate", $$3 }' $(BLT_B)/stack_report.log > $(BLT_B)/stack.txt
+	@$(VPY) tests/bench/bench_blt_case.py run --figures $(BLT_B)
+
+# Where an iteration's instructions go: callgrind of one iteration of BLT_PROFILE (a key of BLT_KEYS),
+# inclusive and self cost per function.
+BLT_PROFILE ?= ump_cd
+bench-blt-profile: $(BENCH_BLT)
+	valgrind --tool=callgrind --callgrind-out-file=$(BLT_B)/callgrind_$(BLT_PROFILE).out \
+	  --collect-atstart=no --toggle-collect=bench_blt_iteration_once $(BENCH_BLT) once $(BLT_PROFILE) iteration
+	callgrind_annotate --inclusive=yes $(BLT_B)/callgrind_$(BLT_PROFILE).out | head -40
+	callgrind_annotate $(BLT_B)/callgrind_$(BLT_PROFILE).out | head -30
+
+bench: bench-blt
