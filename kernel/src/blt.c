@@ -104,7 +104,7 @@ static ogk_status blt_check_config(const ogk_blt_config_t *c)
     if (!model_finite(&c->model) || !ogk_i_all_finite(s, sizeof(s) / sizeof(s[0]))) {
         st = OGK_E_NONFINITE;
     } else if (!model_ranges_ok(&c->model) || !structure_ok(c) ||
-               ((c->corrector != OGK_BLT_CORR_NRPC) && (c->corrector != OGK_BLT_CORR_LM)) ||
+               (c->corrector > OGK_BLT_CORR_HYBRID) ||
                ((c->jacobian != OGK_BLT_JAC_CENTRAL) && (c->jacobian != OGK_BLT_JAC_VARIATIONAL)) ||
                !(c->fd_step > 0.0) || !(c->tol > 0.0) || (c->max_iter < 1u) ||
                (c->max_iter > OGK_BLT_MAX_ITER) || !(c->ls_factor > 0.0) || !(c->ls_factor < 1.0) ||
@@ -561,6 +561,36 @@ static double lm_scale(const ogk_blt_t *ctx)
     return s / (double)ctx->n_errors;
 }
 
+/* One corrector iteration from cur (J held): the Newton step of eq. (64) with the paper's search (NRPC,
+ * and HYBRID first), the Levenberg-Marquardt search (LM, and HYBRID when the Newton search found no
+ * decrease). true with the accepted transfer in trial and its errors in ctx->e_trial. */
+static bool blt_iterate(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_norm, ogk_blt_transfer_t *trial,
+                        blt_eval_t *ev, uint32_t *flags, uint32_t *propagations, uint32_t iteration)
+{
+    const uint32_t kind = ctx->cfg.corrector;
+    bool accepted = false;
+    if ((kind != OGK_BLT_CORR_NRPC) && (iteration == 1u)) {
+        ctx->lm_lambda = ctx->cfg.lm_lambda0 * lm_scale(ctx);
+    }
+    if (kind != OGK_BLT_CORR_LM) {
+        if (!corrector_step(ctx, 0.0)) {
+            *flags |= OGK_BLT_FLAG_SINGULAR;
+        } else {
+            accepted = nrpc_search(ctx, cur, e_norm, trial, ev, flags, propagations);
+            if (!accepted && (kind == OGK_BLT_CORR_NRPC)) {
+                *flags |= OGK_BLT_FLAG_STALLED;
+            }
+        }
+    }
+    if (!accepted && (kind != OGK_BLT_CORR_NRPC)) {
+        accepted = lm_search(ctx, cur, e_norm, trial, ev, flags, propagations);
+        if (!accepted) {
+            *flags |= OGK_BLT_FLAG_STALLED;
+        }
+    }
+    return accepted;
+}
+
 ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_blt_transfer_t *solution,
                          ogk_blt_report_t *rep)
 {
@@ -618,29 +648,13 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
             } else {
                 bool accepted;
                 ++iterations;
-                if (ctx->cfg.corrector == OGK_BLT_CORR_LM) {
-                    if (iterations == 1u) {
-                        ctx->lm_lambda = ctx->cfg.lm_lambda0 * lm_scale(ctx);
-                    }
-                    accepted = lm_search(ctx, &cur, e_norm, &trial, &ev, &flags, &propagations);
-                } else if (!corrector_step(ctx, 0.0)) {
-                    flags |= OGK_BLT_FLAG_SINGULAR;
-                    accepted = false;
-                } else {
-                    accepted = nrpc_search(ctx, &cur, e_norm, &trial, &ev, &flags, &propagations);
-                    if (!accepted) {
-                        flags |= OGK_BLT_FLAG_STALLED;
-                    }
-                }
+                accepted = blt_iterate(ctx, &cur, e_norm, &trial, &ev, &flags, &propagations, iterations);
                 if (accepted) {
                     (void)memcpy(&cur, &trial, sizeof(cur));
                     (void)memcpy(ctx->e, ctx->e_trial, sizeof(double) * ctx->n_errors);
                     e_norm = norm2(ctx->e, ctx->n_errors);
                     ev_cur = ev;
                 } else {
-                    if (ctx->cfg.corrector == OGK_BLT_CORR_LM) {
-                        flags |= OGK_BLT_FLAG_STALLED;
-                    }
                     go = false;
                 }
             }

@@ -42,11 +42,12 @@ def _check_converged(d: T.Design, tol: float) -> None:
         assert ref.closest_approach[i] > d.model.body_radius[i]
 
 
+@pytest.mark.parametrize("corrector", ("lm", "hybrid"))
 @pytest.mark.parametrize("name", SINGLE)
-def test_single_burn_converges_with_the_damped_corrector(name: str) -> None:
+def test_single_burn_converges_with_the_damped_correctors(name: str, corrector: str) -> None:
     """Done-when: single-burn StoS in both directions between the L1/L2 Lyapunov and halo orbits at 24 mN, to
     the paper's 1e-6, confirmed by DOP853."""
-    _check_converged(designed(name, "lm"), 1e-6)
+    _check_converged(designed(name, corrector), 1e-6)
 
 
 @pytest.mark.parametrize("name", ("l2_to_l1_lyapunov", "l1_to_l2_lyapunov", "l1_to_l2_halo"))
@@ -68,7 +69,7 @@ def test_single_burn_figures_are_of_the_papers_order() -> None:
     assert fig["fuel_g"] == pytest.approx(mdot * fig["burn_time_s"] * 1e3, rel=1e-9)
 
 
-@pytest.mark.parametrize("corrector", ("nrpc", "lm"))
+@pytest.mark.parametrize("corrector", ("nrpc", "lm", "hybrid"))
 def test_ump_transfer_of_table3_converges(corrector: str) -> None:
     """Done-when: the UMP burn-coast-burn transfer used for Table 3 converges (bilateral arcs, a free node)."""
     d = designed("circle_to_l2_ump", corrector)
@@ -126,7 +127,7 @@ def test_ogk_mc_small_campaign(tmp_path: Path) -> None:
     doc = json.loads((tmp_path / "mc.json").read_text())
     (level,) = doc["levels"]
     assert level["level_percent"] == 20.0 and len(level["runs"]) == 6
-    for c in ("nrpc", "lm"):
+    for c in ("nrpc", "lm", "hybrid"):
         s = level["summary"][c]
         assert 0.0 <= s["converged_pct"] <= 100.0 and s["runs"] == 6
         assert s["converged"] + sum(s["failures"].values()) == 6

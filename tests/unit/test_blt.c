@@ -327,7 +327,7 @@ static const char *break_config(ogk_blt_config_t *c, int k, ogk_status *expected
         c->target_mask = 0x3Eu;
         break;
     /* solver settings */
-    case 27: name = "corrector 2"; c->corrector = 2u; break;
+    case 27: name = "corrector 3"; c->corrector = 3u; break;
     case 28: name = "jacobian 2"; c->jacobian = 2u; break;
     case 29: name = "fd_step 0"; c->fd_step = 0.0; break;
     case 30: name = "tol 0"; c->tol = 0.0; break;
@@ -915,7 +915,7 @@ static void solve_known_single_burn(uint32_t corrector, uint32_t jacobian)
     gap = direction_gap(tr.seg[0], out.seg[0]);
     print_message("single burn, %s + %s: %u iterations, %u propagations, |e| %.2e -> %.2e, "
                   "T error %.2e, direction error %.2e (guess: %.2e)\n",
-                  (corrector == OGK_BLT_CORR_NRPC) ? "NRPC" : "LM",
+                  (corrector == OGK_BLT_CORR_NRPC) ? "NRPC" : ((corrector == OGK_BLT_CORR_LM) ? "LM" : "HYBRID"),
                   (jacobian == OGK_BLT_JAC_CENTRAL) ? "central" : "variational", (unsigned)rep.iterations,
                   (unsigned)rep.propagations, rep.err_norm0, rep.err_norm, out.seg[0][6] - tr.seg[0][6], gap, gap0);
     assert_int_equal((int)rep.flags, (int)OGK_BLT_FLAG_CONVERGED);
@@ -965,6 +965,12 @@ static void test_corrector_lm_variational(void **state)
 {
     (void)state;
     solve_known_single_burn(OGK_BLT_CORR_LM, OGK_BLT_JAC_VARIATIONAL);
+}
+
+static void test_corrector_hybrid_variational(void **state)
+{
+    (void)state;
+    solve_known_single_burn(OGK_BLT_CORR_HYBRID, OGK_BLT_JAC_VARIATIONAL);
 }
 
 /* The burn-coast-burn with its free node (23 unknowns, 12 errors: not unique, so only convergence
@@ -1243,6 +1249,7 @@ int main(void)
         cmocka_unit_test(test_corrector_nrpc_variational),
         cmocka_unit_test(test_corrector_lm_central),
         cmocka_unit_test(test_corrector_lm_variational),
+        cmocka_unit_test(test_corrector_hybrid_variational),
         cmocka_unit_test(test_corrector_bcb_free_node),
         cmocka_unit_test(test_impact_through_secondary),
         cmocka_unit_test(test_iteration_limit),

@@ -92,6 +92,7 @@ static void test_trial_step_through_secondary(void **state)
     ogk_blt_config_t c;
     ogk_blt_report_t rep;
     ogk_status st;
+    double stalled_norm;
     (void)state;
     trial_impact_problem(&c);
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
@@ -116,6 +117,18 @@ static void test_trial_step_through_secondary(void **state)
     assert_true((rep.flags & OGK_BLT_FLAG_IMPACT) != 0u);
     assert_true(st != OGK_OK);
     assert_true((rep.flags & OGK_BLT_FLAG_STALLED) != 0u);
+    stalled_norm = rep.err_norm;
+    /* HYBRID: where the same Newton search stalls, its LM search takes over and goes on lowering |e| */
+    c.corrector = OGK_BLT_CORR_HYBRID;
+    OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
+    st = ogk_blt_solve(&ctx, &g, &out, &rep);
+    print_message("HYBRID by the secondary, no halving: status %d, flags 0x%x, %u iterations, |e| %.3g "
+                  "(NRPC stalled at %.3g)\n", (int)st, (unsigned)rep.flags, (unsigned)rep.iterations, rep.err_norm,
+                  stalled_norm);
+    assert_true((st == OGK_OK) || (st == OGK_E_ITER_LIMIT));
+    assert_true((rep.flags & OGK_BLT_FLAG_STALLED) == 0u);
+    assert_true(rep.err_norm < 0.5 * stalled_norm);
+    assert_true(rep.min_distance[1] > c.model.body_radius[1]);
     /* LM goes round it */
     c.impact_halvings = 10u;
     c.corrector = OGK_BLT_CORR_LM;
@@ -192,6 +205,11 @@ static void test_zero_jacobian_singular(void **state)
     assert_int_equal(memcmp(&out, &g, sizeof(out)), 0); /* nothing moved (T in range, a coast) */
     /* LM: lambda_0 relative to a zero J is 0: no damping to save the step */
     c.corrector = OGK_BLT_CORR_LM;
+    OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_blt_solve(&ctx, &g, &out, &rep), OGK_E_NOT_CONVERGED);
+    assert_int_equal((int)rep.flags, (int)(OGK_BLT_FLAG_SINGULAR | OGK_BLT_FLAG_STALLED | OGK_BLT_FLAG_SAFE));
+    /* HYBRID: no Newton step (singular), then the undamped LM step is singular too */
+    c.corrector = OGK_BLT_CORR_HYBRID;
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_blt_solve(&ctx, &g, &out, &rep), OGK_E_NOT_CONVERGED);
     assert_int_equal((int)rep.flags, (int)(OGK_BLT_FLAG_SINGULAR | OGK_BLT_FLAG_STALLED | OGK_BLT_FLAG_SAFE));

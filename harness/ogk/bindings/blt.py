@@ -24,7 +24,7 @@ from ogk.bindings.kernel import _check, status_name
 
 F64 = NDArray[np.float64]
 
-__all__ = ["BURN", "COAST", "NRPC", "LM", "CENTRAL", "VARIATIONAL", "Blt", "BltConfig", "BltReport",
+__all__ = ["BURN", "COAST", "NRPC", "LM", "HYBRID", "CENTRAL", "VARIATIONAL", "Blt", "BltConfig", "BltReport",
            "Transfer", "MAX_SEGMENTS", "MAX_FREE_NODES"]
 
 NX: int = int(lib.OGK_BLT_NX)
@@ -37,6 +37,7 @@ BURN: int = int(lib.OGK_BLT_SEG_BURN)
 COAST: int = int(lib.OGK_BLT_SEG_COAST)
 NRPC: int = int(lib.OGK_BLT_CORR_NRPC)
 LM: int = int(lib.OGK_BLT_CORR_LM)
+HYBRID: int = int(lib.OGK_BLT_CORR_HYBRID)
 CENTRAL: int = int(lib.OGK_BLT_JAC_CENTRAL)
 VARIATIONAL: int = int(lib.OGK_BLT_JAC_VARIATIONAL)
 FLAGS: dict[str, int] = {name: int(getattr(lib, f"OGK_BLT_FLAG_{name}"))

@@ -9,12 +9,12 @@ import dataclasses
 import math
 from typing import Any
 
-from ogk.bindings.blt import LM, NRPC, Blt, BltReport, Transfer
+from ogk.bindings.blt import HYBRID, LM, NRPC, Blt, BltReport, Transfer
 
 from .dynamics import Model
 from .guess import Guess, kernel_config
 
-CORRECTORS = {"nrpc": NRPC, "lm": LM}
+CORRECTORS = {"nrpc": NRPC, "lm": LM, "hybrid": HYBRID}
 JACOBIANS = {"central": 0, "variational": 1}
 
 

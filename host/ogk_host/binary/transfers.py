@@ -36,7 +36,7 @@ class SolverSettings:
     max_iter: int = 40                #: the paper's NRPC limit (sec. VI)
     fd_step: float = 1e-6             #: [-] central-difference step, normalised
     ls_trials: int = 4                #: step lengths 1, 1/10, 1/100, 1/1000
-    corrector: str = "nrpc"           #: nrpc | lm
+    corrector: str = "hybrid"         #: nrpc | lm | hybrid
     jacobian: str = "variational"     #: variational | central
     gravity: str = "scenario"         #: scenario | degree2 | point-mass
     srp: bool = True                  #: SRP in the corrector's model (eq. 9)

@@ -50,6 +50,7 @@ extern "C" {
 /* correctors */
 #define OGK_BLT_CORR_NRPC 0u /* eq. (64), minimum-norm Newton step, with the paper's line search */
 #define OGK_BLT_CORR_LM 1u   /* damped minimum-norm step (Levenberg-Marquardt), beyond the paper */
+#define OGK_BLT_CORR_HYBRID 2u /* eq. (64) with the paper's search first; the LM search when it finds no decrease */
 
 /* Jacobians */
 #define OGK_BLT_JAC_CENTRAL 0u     /* eq. (62): central differences */

@@ -5,7 +5,7 @@ The family's adapter for ogk.missions.registry:
       flight kernel's corrector in the realistic model, the independent DOP853 re-propagation of the result,
       the paper's figures beside it. Exit 0 when the kernel converged and DOP853 confirms the tolerance.
   `ogk mc SCENARIO [--perturbation PCT ...] [--runs N] [--seed S] --json FILE [--plots DIR]`: the convergence
-      Monte Carlo of Table 3, plain NRPC and the damped corrector on the same draws. Exit 0 when it ran.
+      Monte Carlo of Table 3, plain NRPC, the damped corrector and the hybrid on the same draws. Exit 0 when it ran.
 Exit 2 on bad input.
 """
 from __future__ import annotations
@@ -42,8 +42,9 @@ def add_blt_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--transfer", required=True, metavar="NAME", help="a [transfers.NAME] of the scenario")
     p.add_argument("--json", required=True, metavar="FILE", help="write the result as JSON")
     p.add_argument("--plots", default=None, metavar="DIR", help="PNG figures (synodic frame, C_J and control)")
-    p.add_argument("--corrector", choices=("scenario", "nrpc", "lm"), default="scenario",
-                   help="nrpc (eq. 64) or lm (damped); default: the scenario's [solver] corrector")
+    p.add_argument("--corrector", choices=("scenario", "nrpc", "lm", "hybrid"), default="scenario",
+                   help="nrpc (eq. 64), lm (damped) or hybrid (eq. 64, LM when its search fails); default: the "
+                        "scenario's [solver] corrector")
     p.add_argument("--jacobian", choices=("scenario", "variational", "central"), default="scenario",
                    help="variational equations or central differences (eq. 62); default: the scenario's")
     p.add_argument("--thrust-n", type=float, default=None, metavar="F",
@@ -159,8 +160,8 @@ def add_mc_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=int, default=1, metavar="S", help="campaign seed (default 1)")
     p.add_argument("--json", required=True, metavar="FILE", help="write the campaign as JSON")
     p.add_argument("--plots", default=None, metavar="DIR", help="PNG of the convergence rates")
-    p.add_argument("--corrector", choices=("both", "nrpc", "lm"), default="both",
-                   help="which corrector(s) to fly on the draws (default both)")
+    p.add_argument("--corrector", choices=("all", "nrpc", "lm", "hybrid"), default="all",
+                   help="which corrector(s) to fly on the same draws (default all three)")
     p.add_argument("--workers", type=int, default=2, metavar="W", help="worker processes (default 2)")
     p.add_argument("--sigma-fraction", type=float, default=None, metavar="F",
                    help="sigma of a draw as a fraction of the level (default: the scenario's [monte_carlo])")
@@ -180,7 +181,7 @@ def mc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     if runs < 1 or any(not 0.0 < lv <= 100.0 for lv in levels) or args.workers < 1:
         raise OgkInputError("--runs and --workers must be >= 1 and every --perturbation in (0, 100]")
     remove_stale(out)
-    correctors = ("nrpc", "lm") if args.corrector == "both" else (args.corrector,)
+    correctors = ("nrpc", "lm", "hybrid") if args.corrector == "all" else (args.corrector,)
     solver = T.solver_settings(scenario)
     spec = T.transfer_spec(scenario, spec_mc.transfer)
     start = time.perf_counter()

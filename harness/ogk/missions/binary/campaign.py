@@ -1,5 +1,5 @@
 """The convergence Monte Carlo of Table 3 (Xiong & Wang, sec. V.A.2): the nominal UMP transfer perturbed and
-corrected again by the flight kernel, plain NRPC and the damped corrector on the same draws.
+corrected again by the flight kernel, plain NRPC, the damped corrector and the hybrid on the same draws.
 
 "Perturbation %" (the paper leaves it undefined; the scenario's [monte_carlo] comment and docs/blt.md say the
 same): with p the level and xi ~ N(0, (sigma_fraction)^2) clipped to [-1, 1] (the level is the largest
@@ -21,13 +21,13 @@ from typing import Any
 
 import numpy as np
 
-from ogk.bindings.blt import LM, NRPC, Blt, Transfer
+from ogk.bindings.blt import HYBRID, LM, NRPC, Blt, Transfer
 from ogk_host.binary.dynamics import Model
 from ogk_host.binary.guess import Circle, Layout, kernel_config, predicted_node
 
 from .trajectory import reference_errors
 
-CORRECTORS = {"nrpc": NRPC, "lm": LM}
+CORRECTORS = {"nrpc": NRPC, "lm": LM, "hybrid": HYBRID}
 
 
 @dataclasses.dataclass(frozen=True)

@@ -76,10 +76,11 @@ def mc_figure(doc: dict[str, Any], out_dir: Path) -> Path:
     out_dir.mkdir(parents=True, exist_ok=True)
     levels = [lv["level_percent"] for lv in doc["levels"]]
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 4.8))
-    for name, style in (("nrpc", "o-"), ("lm", "s-")):
+    for name, style in (("nrpc", "o-"), ("lm", "s-"), ("hybrid", "d-")):
         rates = [lv["summary"][name]["converged_pct"] for lv in doc["levels"] if name in lv["summary"]]
         if rates:
-            a1.plot(levels[:len(rates)], rates, style, label={"nrpc": "plain NRPC (eq. 64)", "lm": "damped (LM)"}[name])
+            a1.plot(levels[:len(rates)], rates, style, label={"nrpc": "plain NRPC (eq. 64)", "lm": "damped (LM)",
+                                                              "hybrid": "hybrid (eq. 64, then LM)"}[name])
     paper = doc.get("paper_converged_percent")
     if paper:
         a1.plot(doc["paper_levels_percent"], paper, "k^--", label="paper, Table 3")
@@ -88,7 +89,7 @@ def mc_figure(doc: dict[str, Any], out_dir: Path) -> Path:
     a1.set_ylim(0, 102)
     a1.grid(alpha=0.3)
     a1.legend()
-    for name, colour in (("nrpc", "tab:blue"), ("lm", "tab:orange")):
+    for name, colour in (("nrpc", "tab:blue"), ("lm", "tab:orange"), ("hybrid", "tab:green")):
         its = [r["results"][name]["iterations"] for lv in doc["levels"] for r in lv["runs"]
                if name in r.get("results", {}) and r["results"][name].get("converged")]
         if its:
