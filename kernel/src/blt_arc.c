@@ -137,8 +137,38 @@ static void track_bodies(const ogk_blt_model_t *m, const double x[NX], blt_eval_
     }
 }
 
-/* Right-hand side of the state and, when nu > 0, of its sensitivities S (6 x nu, row-major,
- * after the state in y): S' = F S + G (docs/blt.md, "Variational equations"). */
+/* The slot of column col in var (OGK_BLT_NO_COLUMN when the column is not carried: it is zero). */
+static uint32_t blt_slot_of(const ogk_blt_t *ctx, uint32_t col)
+{
+    return (col == OGK_BLT_NO_COLUMN) ? OGK_BLT_NO_COLUMN : ctx->slot[col];
+}
+
+/* Starts carrying column col (a zero column) when it is not carried yet. */
+static void blt_activate(ogk_blt_t *ctx, double *y, uint32_t col)
+{
+    if ((col != OGK_BLT_NO_COLUMN) && (ctx->slot[col] == OGK_BLT_NO_COLUMN)) {
+        ctx->slot[col] = ctx->n_live;
+        (void)memset(&y[NX + ((size_t)ctx->n_live * NX)], 0, sizeof(double) * NX);
+        ctx->n_live += 1u;
+    }
+}
+
+/* The columns segment k can make non-zero: its own A, B (a burn) and T, and every earlier T. */
+static void blt_activate_segment(ogk_blt_t *ctx, double *y, uint32_t k)
+{
+    uint32_t p;
+    uint32_t j;
+    for (p = 0u; p < OGK_BLT_NP; ++p) {
+        blt_activate(ctx, y, ctx->col_seg[k][p]);
+    }
+    for (j = 0u; j < k; ++j) {
+        blt_activate(ctx, y, ctx->col_seg[j][6]);
+    }
+}
+
+/* Right-hand side of the state and, when nu > 0, of the nu carried sensitivity columns (6 entries
+ * each, after the state in y; ctx->slot maps J's columns to them): S' = F S + G (docs/blt.md,
+ * "Variational equations"). A column no segment has forced yet is zero and not carried. */
 static bool rhs_aug(const ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double tau, const double *y, /* NOLINT(bugprone-easily-swappable-parameters): segment index, then its time */
                     double *dy, uint32_t nu)
 {
@@ -166,48 +196,41 @@ static bool rhs_aug(const ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, doub
             }
         }
         for (c = 0u; c < nu; ++c) {
-            double sr3[3];
-            double sv3[3];
+            const double *Sc = &S[(size_t)c * NX];
+            double *dSc = &dS[(size_t)c * NX];
             for (i = 0u; i < 3u; ++i) {
-                sr3[i] = S[(i * nu) + c];
-                sv3[i] = S[((3u + i) * nu) + c];
-                dS[(i * nu) + c] = sv3[i];
+                dSc[i] = Sc[3u + i];
+                dSc[3u + i] = (parts.grad[(size_t)i * 3u] * Sc[0]) + (parts.grad[(i * 3u) + 1u] * Sc[1]) +
+                              (parts.grad[(i * 3u) + 2u] * Sc[2]);
             }
-            for (i = 0u; i < 3u; ++i) {
-                double acc = 0.0;
-                for (j = 0u; j < 3u; ++j) {
-                    acc += parts.grad[(i * 3u) + j] * sr3[j];
-                }
-                dS[((3u + i) * nu) + c] = acc;
-            }
-            dS[(3u * nu) + c] += 2.0 * sv3[1]; /* Coriolis */
-            dS[(4u * nu) + c] -= 2.0 * sv3[0];
+            dSc[3] += 2.0 * Sc[4]; /* Coriolis */
+            dSc[4] -= 2.0 * Sc[3];
         }
         /* G: the direct dependence on the parameters */
         if (seg->burn) {
             for (j = 0u; j < 3u; ++j) {
-                const uint32_t ca = ctx->col_seg[k][j];
-                const uint32_t cb = ctx->col_seg[k][3u + j];
+                const uint32_t ca = blt_slot_of(ctx, ctx->col_seg[k][j]);
+                const uint32_t cb = blt_slot_of(ctx, ctx->col_seg[k][3u + j]);
                 for (i = 0u; i < 3u; ++i) {
                     /* d u_hat / d w = (I - u u^T) / |w|, w = A + B tau */
                     const double d = (parts.thrust / parts.w_norm) *
                                      (((i == j) ? 1.0 : 0.0) - (parts.u_hat[i] * parts.u_hat[j]));
                     if (ca != OGK_BLT_NO_COLUMN) {
-                        dS[((3u + i) * nu) + ca] += d;
+                        dS[(ca * NX) + 3u + i] += d;
                     }
                     if (cb != OGK_BLT_NO_COLUMN) {
-                        dS[((3u + i) * nu) + cb] += d * tau;
+                        dS[(cb * NX) + 3u + i] += d * tau;
                     }
                 }
             }
         }
         for (j = 0u; j < k; ++j) {
             /* an earlier duration shifts this segment's time and (a burn) lowers its mass */
-            const uint32_t ct = ctx->col_seg[j][6];
+            const uint32_t ct = blt_slot_of(ctx, ctx->col_seg[j][6]);
             if (ct != OGK_BLT_NO_COLUMN) {
                 const double mass_rate = (cfg->segment_kind[j] == OGK_BLT_SEG_BURN) ? -cfg->model.mass_flow : 0.0;
                 for (i = 0u; i < 3u; ++i) {
-                    dS[((3u + i) * nu) + ct] += dadt[i] + (dadm[i] * mass_rate);
+                    dS[(ct * NX) + 3u + i] += dadt[i] + (dadm[i] * mass_rate);
                 }
             }
         }
@@ -271,39 +294,51 @@ static uint32_t steps_of(const ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, uin
 }
 
 /* Adds sign * f(x at tau) of segment k to the sensitivity column of its duration. */
-static void duration_jump(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double tau, double *y, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): as prop_segment */
+static void duration_jump(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double tau, double *y, bool sens, /* NOLINT(bugprone-easily-swappable-parameters): as prop_segment */
                           double sign, blt_eval_t *ev)
 {
     const uint32_t ct = ctx->col_seg[k][6];
-    if ((nu > 0u) && (ct != OGK_BLT_NO_COLUMN)) {
+    if (sens && (ct != OGK_BLT_NO_COLUMN)) {
         double f[NX];
         uint32_t i;
         if (!blt_rhs(&ctx->cfg.model, seg, tau, y, f, NULL)) {
             ev->bad_rhs = true;
         }
         for (i = 0u; i < NX; ++i) {
-            y[NX + (i * nu) + ct] += sign * f[i];
+            y[NX + ((size_t)ctx->slot[ct] * NX) + i] += sign * f[i];
         }
     }
 }
 
-static void init_sens(double *y, uint32_t nu, const uint32_t *cols, uint32_t ncols)
+/* Carries exactly the columns of the anchor's free components (unit vectors). */
+static void init_sens(ogk_blt_t *ctx, double *y, bool sens, const uint32_t *cols, uint32_t ncols)
 {
-    if (nu > 0u) {
+    if (sens) {
         uint32_t i;
-        (void)memset(&y[NX], 0, sizeof(double) * NX * nu);
+        for (i = 0u; i < ctx->n_unknowns; ++i) {
+            ctx->slot[i] = OGK_BLT_NO_COLUMN;
+        }
+        ctx->n_live = 0u;
         for (i = 0u; i < ncols; ++i) {
             if (cols[i] != OGK_BLT_NO_COLUMN) {
-                y[NX + (i * nu) + cols[i]] = 1.0;
+                blt_activate(ctx, y, cols[i]);
+                y[NX + ((size_t)ctx->slot[cols[i]] * NX) + i] = 1.0;
             }
         }
     }
 }
 
+/* Entry (i, col) of the carried sensitivities s (slots as in slot[]). */
+static double sens_at(const double *s, const uint32_t *slot, uint32_t i, uint32_t col)
+{
+    return (slot[col] == OGK_BLT_NO_COLUMN) ? 0.0 : s[((size_t)slot[col] * NX) + i];
+}
+
 void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double *sens, blt_eval_t *ev) /* NOLINT(bugprone-easily-swappable-parameters): errors, then their sensitivities (NULL) */
 {
     const ogk_blt_config_t *cfg = &ctx->cfg;
-    const uint32_t nu = (sens != NULL) ? ctx->n_unknowns : 0u;
+    const bool with_sens = sens != NULL;
+    const uint32_t nu = ctx->n_unknowns;
     const uint32_t last = cfg->n_free_nodes;
     double *y = ctx->var;
     uint32_t row = 0u;
@@ -325,30 +360,34 @@ void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double 
         /* forward from the left anchor to the meeting interface */
         if (a == 0u) {
             (void)memcpy(y, tr->x0, sizeof(double) * NX);
-            init_sens(y, nu, ctx->col_start, NX);
+            init_sens(ctx, y, with_sens, ctx->col_start, NX);
         } else {
             (void)memcpy(y, tr->node[a - 1u], sizeof(double) * NX);
-            init_sens(y, nu, ctx->col_node[a - 1u], NX);
+            init_sens(ctx, y, with_sens, ctx->col_node[a - 1u], NX);
         }
         track_bodies(&cfg->model, y, ev);
         for (k = lo; (k < meet) && !ev->impact && !ev->bad_rhs; ++k) {
             blt_seg_t seg;
             blt_segment(cfg, tr, k, &seg);
-            prop_segment(ctx, &seg, k, tr->seg[k][6], steps_of(ctx, tr, k), false, y, nu, ev);
-            duration_jump(ctx, &seg, k, tr->seg[k][6], y, nu, 1.0, ev);
+            if (with_sens) {
+                blt_activate_segment(ctx, y, k);
+            }
+            prop_segment(ctx, &seg, k, tr->seg[k][6], steps_of(ctx, tr, k), false, y, with_sens ? ctx->n_live : 0u, ev);
+            duration_jump(ctx, &seg, k, tr->seg[k][6], y, with_sens, 1.0, ev);
         }
         (void)memcpy(x_fwd, y, sizeof(x_fwd));
-        if (nu > 0u) {
-            (void)memcpy(ctx->s_fwd, &y[NX], sizeof(double) * NX * nu);
+        if (with_sens) {
+            (void)memcpy(ctx->s_fwd, &y[NX], sizeof(double) * NX * ctx->n_live);
+            (void)memcpy(ctx->slot_fwd, ctx->slot, sizeof(uint32_t) * nu);
         }
         if ((meet == hi) && (a == last)) {
             /* eq. (65): the target's constrained components */
             for (i = 0u; i < NX; ++i) {
                 if (((cfg->target_mask >> i) & 1u) != 0u) {
                     e[row] = x_fwd[i] - tr->xf[i];
-                    if (nu > 0u) {
+                    if (with_sens) {
                         for (c = 0u; c < nu; ++c) {
-                            sens[(row * nu) + c] = ctx->s_fwd[(i * nu) + c];
+                            sens[(row * nu) + c] = sens_at(ctx->s_fwd, ctx->slot_fwd, i, c);
                         }
                     }
                     ++row;
@@ -358,22 +397,26 @@ void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double 
             /* backward from the right anchor to the meeting interface (eq. 70) */
             if (a == last) {
                 (void)memcpy(y, tr->xf, sizeof(double) * NX);
-                init_sens(y, nu, ctx->col_node[0], 0u);
+                init_sens(ctx, y, with_sens, ctx->col_node[0], 0u);
             } else {
                 (void)memcpy(y, tr->node[a], sizeof(double) * NX);
-                init_sens(y, nu, ctx->col_node[a], NX);
+                init_sens(ctx, y, with_sens, ctx->col_node[a], NX);
             }
             for (k = hi; (k > meet) && !ev->impact && !ev->bad_rhs; --k) {
                 blt_seg_t seg;
                 blt_segment(cfg, tr, k - 1u, &seg);
-                duration_jump(ctx, &seg, k - 1u, tr->seg[k - 1u][6], y, nu, -1.0, ev);
-                prop_segment(ctx, &seg, k - 1u, tr->seg[k - 1u][6], steps_of(ctx, tr, k - 1u), true, y, nu, ev);
+                if (with_sens) {
+                    blt_activate_segment(ctx, y, k - 1u);
+                }
+                duration_jump(ctx, &seg, k - 1u, tr->seg[k - 1u][6], y, with_sens, -1.0, ev);
+                prop_segment(ctx, &seg, k - 1u, tr->seg[k - 1u][6], steps_of(ctx, tr, k - 1u), true, y,
+                             with_sens ? ctx->n_live : 0u, ev);
             }
             for (i = 0u; i < NX; ++i) {
                 e[row] = x_fwd[i] - y[i];
-                if (nu > 0u) {
+                if (with_sens) {
                     for (c = 0u; c < nu; ++c) {
-                        sens[(row * nu) + c] = ctx->s_fwd[(i * nu) + c] - y[NX + (i * nu) + c];
+                        sens[(row * nu) + c] = sens_at(ctx->s_fwd, ctx->slot_fwd, i, c) - sens_at(&y[NX], ctx->slot, i, c);
                     }
                 }
                 ++row;

@@ -33,18 +33,22 @@ static void body_gravity(double mu_b, double ref_radius, double c20, double c22,
         acc[i] += (-mu_b * rho[i] * inv_s3) + (k2 * ((2.0 * qrho[i] * inv_s5) - (5.0 * p * inv_s7 * rho[i])));
     }
     if (hess != NULL) {
+        /* H_ij = a rho_i rho_j + b (qrho_i rho_j + rho_i qrho_j) + delta_ij d_i, symmetric: 6 entries */
         const double inv_s9 = inv_s7 * inv_s2;
+        const double a = (3.0 * mu_b * inv_s5) + (35.0 * k2 * p * inv_s9);
+        const double b = -10.0 * k2 * inv_s7;
+        const double d0 = (-mu_b * inv_s3) - (5.0 * k2 * p * inv_s7);
         size_t j;
         for (i = 0u; i < 3u; ++i) {
-            for (j = 0u; j < 3u; ++j) {
-                const double rr = rho[i] * rho[j];
-                double h = mu_b * 3.0 * rr * inv_s5;
-                double h2 = (-10.0 * inv_s7 * ((qrho[i] * rho[j]) + (rho[i] * qrho[j]))) + (35.0 * p * inv_s9 * rr);
+            for (j = i; j < 3u; ++j) {
+                double h = (a * rho[i] * rho[j]) + (b * ((qrho[i] * rho[j]) + (rho[i] * qrho[j])));
                 if (i == j) {
-                    h -= mu_b * inv_s3;
-                    h2 += (2.0 * q[i] * inv_s5) - (5.0 * p * inv_s7);
+                    h += d0 + (2.0 * k2 * q[i] * inv_s5);
+                    hess[(i * 3u) + i] += h;
+                } else {
+                    hess[(i * 3u) + j] += h;
+                    hess[(j * 3u) + i] += h;
                 }
-                hess[(i * 3u) + j] += h + (k2 * h2);
             }
         }
     }

@@ -173,6 +173,10 @@ typedef struct {
     double var[OGK_BLT_NX * (1u + OGK_BLT_MAX_UNKNOWNS)];      /* [-] state + sensitivities (variational) */
     double var_k[5u * OGK_BLT_NX * (1u + OGK_BLT_MAX_UNKNOWNS)]; /* [-] RK4 stages of it */
     double s_fwd[OGK_BLT_NX * OGK_BLT_MAX_UNKNOWNS];           /* [-] forward sensitivities at a meeting point */
+    uint32_t slot[OGK_BLT_MAX_UNKNOWNS];     /* [-] where each column of J lives in var while propagating
+                                                (OGK_BLT_NO_COLUMN: still zero, not carried) */
+    uint32_t slot_fwd[OGK_BLT_MAX_UNKNOWNS]; /* [-] the same for s_fwd */
+    uint32_t n_live;                         /* [-] columns carried in var */
     double lm_lambda;             /* [-] current LM damping (absolute) */
     uint32_t init_marker;         /* [-] OGK_BLT_INIT_MARKER once initialised */
 } ogk_blt_t;
