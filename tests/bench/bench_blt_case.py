@@ -189,8 +189,8 @@ def run(args: argparse.Namespace) -> int:
     def count(key: str, unit: str = "") -> str:
         return f"{int(fig[key]):,}{unit}" if key in fig and fig[key].isdigit() else "-"
 
-    print(f"== ogk_blt NRPC cost: {SCENARIO}, the realistic model, RK4 <= 2.0e-3 TU; host x86-64 gcc -O2, "
-          f"Cortex-M7 gcc -O2 (QEMU instruction counts) ==")
+    print(f"== ogk_blt NRPC cost: {SCENARIO}, the realistic model (each transfer's RK4 step bound below); host "
+          f"x86-64 gcc -O2, Cortex-M7 gcc -O2 (QEMU instruction counts) ==")
     head = f"{'':44s}" + "".join(f"{c['key']:>18s}" for c in cs)
     print(head)
     results = [cffi_runs(c["cfg"], c["guess"], args.reps) for c in cs]
@@ -198,6 +198,7 @@ def run(args: argparse.Namespace) -> int:
     def row(label: str, cells: list[str]) -> None:
         print(f"{label:44s}" + "".join(f"{x:>18s}" for x in cells))
     row("unknowns x errors", [f"{r['rep'].n_unknowns} x {r['rep'].n_errors}" for r in results])
+    row("RK4 step bound [TU]", [f"{float(c['cfg'].model['step_max']):.1e}" for c in cs])
     row("one iteration, host wall [ms]", [ms(f"blt_{c['key']}_iter_ns") for c in cs])
     row("one iteration, host CPU [ms]", [ms(f"blt_{c['key']}_iter_cpu_ns") for c in cs])
     row("one iteration, callgrind [instructions]", [count(f"blt_{c['key']}_iter_callgrind") for c in cs])

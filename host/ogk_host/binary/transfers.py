@@ -58,6 +58,7 @@ class TransferSpec:
     manifold_sign: int = -1           #: ump-backward: branch of the target's stable manifold (-1: exterior)
     insertion_dv_m_s: tuple[float, float] = (0.0128, 0.0383)   #: ump-backward: bounds of d [m/s]
     paper: dict[str, float] = dataclasses.field(default_factory=dict)   #: the paper's figures of this case
+    step_max_s: float | None = None   #: [s] this transfer's RK4 step bound (default: [solver] step_max_s)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -114,6 +115,8 @@ def transfer_spec(scenario: BinaryScenario, name: str) -> TransferSpec:
                             insertion_dv_m_s=(bounds[0], bounds[1]), paper=paper)
         if spec.manifold_sign == 0:
             raise s.error("manifold_sign", "must be +1 or -1")
+    if s.has("step_max_s"):
+        spec = dataclasses.replace(spec, step_max_s=s.number("step_max_s", positive=True))
     s.finish()
     return spec
 
@@ -138,8 +141,9 @@ def monte_carlo_spec(scenario: BinaryScenario) -> MonteCarloSpec:
 def corrector_model(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings) -> Model:
     """The kernel's model of this transfer (normalised; docs/blt.md sec. 1)."""
     gravity = None if solver.gravity == "scenario" else solver.gravity
+    step = solver.step_max_s if spec.step_max_s is None else spec.step_max_s
     return model_from_scenario(scenario, spec.thrust_n, gravity=gravity, srp=solver.srp, sun=solver.sun,
-                               step_max=solver.step_max_s / scenario.units.time_s)
+                               step_max=step / scenario.units.time_s)
 
 
 def initial_guess(scenario: BinaryScenario, spec: TransferSpec, model: Model) -> Guess:
