@@ -77,6 +77,15 @@ def test_ump_transfer_of_table3_converges(corrector: str) -> None:
     _check_converged(d, 1e-6)
 
 
+def test_bmp_transfer_converges() -> None:
+    """BMPIG (eqs. 36-43) L1 -> L2 Lyapunov through x = 1 - mu: three burns, two coasts, one free node."""
+    d = designed("l1_to_l2_lyapunov_bmp", "hybrid")
+    assert d.guess.layout.kinds == ("burn", "coast", "burn", "coast", "burn")
+    _check_converged(d, 1e-6)
+    single = designed("l1_to_l2_lyapunov", "hybrid")
+    assert d.report.burn_time < 0.5 * single.report.burn_time   # the manifolds do most of the work
+
+
 def test_kernel_propagation_matches_dop853() -> None:
     """The kernel's RK4 (2e-3 TU steps) against DOP853 on the converged L2 -> L1 Lyapunov burn, forward."""
     d = designed("l2_to_l1_lyapunov", "lm")

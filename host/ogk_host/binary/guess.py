@@ -292,3 +292,97 @@ def predicted_node(model: Model, layout: Layout, tr: Transfer, how: str = "mean"
                               backward=True, rtol=1e-10, atol=1e-12)
         nodes.append({"mean": 0.5 * (fwd.state + bwd.state), "forward": fwd.state, "backward": bwd.state}[how])
     return np.array(nodes)
+
+
+# ------------------------------------------------------------------------------------------ BMPIG
+
+def _manifold_cut(orbit: PeriodicOrbit, tau: float, d: float, sign: int, stable: bool,
+                  x_cut: float) -> tuple[FloatArray, FloatArray, float] | None:
+    """(manifold start state, crossing state on x = x_cut, |time of flight|) or None (impact, no crossing)."""
+    from .manifolds import propagate_to_cut
+    xs = manifold_states(orbit, [tau % orbit.period], stable=stable, sign=sign, deviation=d, velocity_only=True)[0]
+    c = propagate_to_cut(orbit.model, xs, x_cut, backward=stable, t_max=20.0)
+    if not c.reached_cut or c.impact is not None:
+        return None
+    return xs, c.state, abs(c.time)
+
+
+def bmpig(model: Model, departure: PeriodicOrbit, arrival: PeriodicOrbit, *, deviation: float = 0.05,
+          phases: int = 48, t0: float = 0.0) -> Guess:
+    """Bilateral manifold patching (sec. III.C.2, eqs. 36-43) between an L1 and an L2 orbit through the
+    secondary's realm S: the unstable manifold of `departure` (branch into S) forward and the stable manifold
+    of `arrival` (branch into S) backward to the cut x = 1 - mu; the patch matches their positions on the cut
+    (eq. 37's constraint) and minimises the total impulsive delta-v d_1 + |dv_cut| + d_2 (ours: eq. 37
+    minimises d_1^2 + d_2^2 + |Delta C_J|; the cut impulse is what a burn pays). A `phases` x `phases` grid of
+    the two orbits' phases at d_1 = d_2 = `deviation` [VU] picks the pair whose crossings are closest in
+    position, SLSQP then closes the position gap over (tau_1, tau_2, d_1, d_2), d in [deviation / 3, 3
+    deviation]. Conversion, eqs. (40)-(43): three burns along the impulses, T_k = |dv_k| / a_th, the
+    departure advanced by T_1 / 2, the arrival delayed by T_3 / 2, each coast shortened by its own burn's half
+    and a share of T_cut proportional to its length (eq. 42). Kernel layout: burn-coast-burn-coast-burn, the
+    free node at the start of the cut burn (the forward prediction along the unstable manifold), arcs meeting
+    at the node (forward) and at the end of the cut burn."""
+    from scipy.optimize import minimize as _minimize
+    x_cut = 1.0 - model.mu
+    sign_dep = -1 if departure.point == "L1" else 1     # manifolds.REALM_OF_SIGN: the branch into S
+    sign_arr = 1 if arrival.point == "L2" else -1
+    taus1 = np.linspace(0.0, departure.period, phases, endpoint=False)
+    taus2 = np.linspace(0.0, arrival.period, phases, endpoint=False)
+    c1 = [_manifold_cut(departure, float(t), deviation, sign_dep, False, x_cut) for t in taus1]
+    c2 = [_manifold_cut(arrival, float(t), deviation, sign_arr, True, x_cut) for t in taus2]
+    best: tuple[float, int, int] | None = None
+    for i, a in enumerate(c1):
+        for j, b in enumerate(c2):
+            if a is None or b is None:
+                continue
+            gap = float(np.linalg.norm(a[1][0:3] - b[1][0:3]))
+            if best is None or gap < best[0]:
+                best = (gap, i, j)
+    if best is None:
+        raise RuntimeError("no pair of manifold trajectories reaches the cut x = 1 - mu without impact")
+
+    def crossing(v: FloatArray) -> tuple[tuple[FloatArray, FloatArray, float], tuple[FloatArray, FloatArray, float]] | None:
+        a = _manifold_cut(departure, float(v[0]), math.exp(v[2]), sign_dep, False, x_cut)
+        b = _manifold_cut(arrival, float(v[1]), math.exp(v[3]), sign_arr, True, x_cut)
+        return None if a is None or b is None else (a, b)
+
+    def cost(v: FloatArray) -> float:
+        cb = crossing(v)
+        if cb is None:
+            return 1e3
+        return float(math.exp(v[2]) + math.exp(v[3]) + np.linalg.norm(cb[1][1][3:6] - cb[0][1][3:6]))
+
+    def gap(v: FloatArray) -> FloatArray:
+        cb = crossing(v)
+        return np.ones(3) if cb is None else cb[1][1][0:3] - cb[0][1][0:3]
+    ld = math.log(deviation)
+    v0 = np.array([taus1[best[1]], taus2[best[2]], ld, ld])
+    res = _minimize(cost, v0, method="SLSQP", constraints=[{"type": "eq", "fun": lambda v: gap(v)[1:3]}],
+                    bounds=[(None, None), (None, None), (ld - math.log(3.0), ld + math.log(3.0))] * 1 +
+                    [(ld - math.log(3.0), ld + math.log(3.0))], options={"maxiter": 60, "ftol": 1e-10})
+    v = res.x if crossing(res.x) is not None and float(np.linalg.norm(gap(res.x))) < 1e-6 else v0
+    cb = crossing(v)
+    assert cb is not None
+    (xs1, xc1, toc1), (xs2, xc2, toc2) = cb
+    d1, d2 = math.exp(v[2]), math.exp(v[3])
+    dep_phase, arr_phase = OrbitPhase(departure), OrbitPhase(arrival)
+    dv1 = xs1[3:6] - dep_phase(v[0])[3:6]
+    dv3 = arr_phase(v[1])[3:6] - xs2[3:6]
+    dvc = xc2[3:6] - xc1[3:6]
+    acc = model.thrust_accel
+    t1, tc, t3 = d1 / acc, float(np.linalg.norm(dvc)) / acc, d2 / acc                       # (40)
+    share = toc1 / (toc1 + toc2)
+    coast1 = toc1 - 0.5 * t1 - tc * share                                                  # (42)
+    coast2 = toc2 - 0.5 * t3 - tc * (1.0 - share)
+    if coast1 <= 0.0 or coast2 <= 0.0:
+        raise RuntimeError(f"the burns outlast a coast ({coast1:.3f}, {coast2:.3f} TU)")
+    u1, uc, u3 = dv1 / np.linalg.norm(dv1), dvc / np.linalg.norm(dvc), dv3 / np.linalg.norm(dv3)
+    segments = np.array([np.concatenate([u1, u1, [t1]]), [0, 0, 0, 0, 0, 0, coast1], np.concatenate([uc, uc, [tc]]),
+                         [0, 0, 0, 0, 0, 0, coast2], np.concatenate([u3, u3, [t3]])])
+    layout = Layout(kinds=("burn", "coast", "burn", "coast", "burn"), free_nodes=(2,), meets=(2, 3))
+    tr = Transfer(t0=t0, x0=dep_phase(v[0] - 0.5 * t1), xf=arr_phase(v[1] + 0.5 * t3), segments=segments,
+                  nodes=np.zeros((1, 6)))                                                    # (43)
+    tr.nodes = predicted_node(model, layout, tr, how="forward")
+    info = dict(tau=[float(v[0]), float(v[1])], d=[d1, d2], toc=[toc1, toc2], dv_cut=dvc.tolist(),
+                position_gap=float(np.linalg.norm(xc2[0:3] - xc1[0:3])), grid_gap=best[0],
+                dv_total=float(d1 + d2 + np.linalg.norm(dvc)), burn_times=[t1, tc, t3])
+    return Guess(layout=layout, transfer=tr, info=info)

@@ -5,6 +5,7 @@ initial guess (ogk_host.binary.guess), convergence by the kernel (ogk_host.binar
     [solver]                       the corrector's settings (SI; defaults: the paper's tolerance and limits)
     [transfers.NAME] kind = "single-burn"      SBIG (eqs. 23-31) from_orbit -> to_orbit, StoS (eq. 65)
     [transfers.NAME] kind = "ump-backward"     UbMPIG (eqs. 53-60) circle -> to_orbit, burn-coast-burn
+    [transfers.NAME] kind = "bmp"              BMPIG (eqs. 36-43) from_orbit -> to_orbit via x = 1 - mu, 3 burns
     [monte_carlo]                  the convergence campaign of Table 3 (ogk.missions.binary.campaign)
 """
 from __future__ import annotations
@@ -22,11 +23,11 @@ from ..errors import OgkInputError
 from ..scenario_file import Section
 from .design import CORRECTORS, JACOBIANS, Converged, converge, thrust_continuation
 from .dynamics import Model, model_from_scenario
-from .guess import Circle, Guess, sbig, ubmpig
+from .guess import Circle, Guess, bmpig, sbig, ubmpig
 from .orbits import scenario_orbit
 from .scenario import BinaryScenario
 
-KINDS = ("single-burn", "ump-backward")
+KINDS = ("single-burn", "ump-backward", "bmp")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -98,13 +99,15 @@ def transfer_spec(scenario: BinaryScenario, name: str) -> TransferSpec:
     to_orbit = s.text("to_orbit")
     paper = {k: s.number(k) for k in ("paper_burn_time_s", "paper_fuel_g", "paper_flight_time_s",
                                       "paper_iterations") if s.has(k)}
-    for orbit in [to_orbit] + ([scenario.transfers[name].get("from_orbit")] if kind == "single-burn" else []):
+    for orbit in [to_orbit] + ([scenario.transfers[name].get("from_orbit")] if kind != "ump-backward" else []):
         if orbit not in scenario.orbits:
             raise s.error("to_orbit" if orbit == to_orbit else "from_orbit",
                           f"no [orbits.{orbit}] (has: {', '.join(scenario.orbits)})")
-    if kind == "single-burn":
+    if kind in ("single-burn", "bmp"):
         spec = TransferSpec(name=name, kind=kind, thrust_n=thrust, to_orbit=to_orbit, from_orbit=s.text("from_orbit"),
                             paper=paper)
+        if kind == "bmp":
+            spec = dataclasses.replace(spec, insertion_dv_m_s=(s.number("manifold_dv_m_s", positive=True),) * 2)
     else:
         bounds = s.numbers("insertion_dv_m_s", length=2)
         if not 0.0 < bounds[0] < bounds[1]:
@@ -153,6 +156,10 @@ def initial_guess(scenario: BinaryScenario, spec: TransferSpec, model: Model) ->
     if spec.kind == "single-burn":
         assert spec.from_orbit is not None
         return sbig(model, scenario_orbit(scenario, spec.from_orbit, gravity_model), target)
+    if spec.kind == "bmp":
+        assert spec.from_orbit is not None
+        return bmpig(model, scenario_orbit(scenario, spec.from_orbit, gravity_model), target,
+                     deviation=spec.insertion_dv_m_s[0] / scenario.units.velocity_m_s)
     assert spec.circle_radius_m is not None
     vu = scenario.units.velocity_m_s
     return ubmpig(model, Circle(spec.circle_radius_m / scenario.units.length_m), target, sign=spec.manifold_sign,
@@ -188,6 +195,17 @@ def design(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings,
     guess = initial_guess(scenario, spec, model)
     mid = time.perf_counter()
     result = converge(model, guess, corrector=corr, jacobian=jac, **solver.kernel_fields())
+    if spec.kind == "bmp":
+        # the manifold pair the grid picks moves with d: a few neighbouring d before giving up
+        for scale in (0.8, 1.25, 0.64, 1.5625):
+            if result.report.converged:
+                break
+            d = spec.insertion_dv_m_s[0] * scale
+            alt = initial_guess(scenario, dataclasses.replace(spec, insertion_dv_m_s=(d, d)), model)
+            attempt = converge(model, alt, corrector=corr, jacobian=jac, **solver.kernel_fields())
+            attempt.steps = [dict(deviation_scale=scale, **st) for st in attempt.steps]
+            attempt.steps = result.steps + attempt.steps
+            guess, result = alt, attempt
     if not result.report.converged and base_thrust_n is not None and base_thrust_n != spec.thrust_n:
         base = corrector_model(scenario, dataclasses.replace(spec, thrust_n=base_thrust_n), solver)
         guess = initial_guess(scenario, spec, base)
