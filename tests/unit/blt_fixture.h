@@ -131,4 +131,27 @@ static inline void blt_fx_lyapunov_config(ogk_blt_config_t *c)
     c->time_max = 5.0;
 }
 
+#ifdef OGK_TEST_H /* the cmocka helpers: only for the unit tests (the fuzzer includes this header too) */
+/* tr->xf = the end of tr flown forward (the known solution's own target), with ctx. */
+static inline void blt_fx_make_target(ogk_blt_t *ctx, const ogk_blt_config_t *c, ogk_blt_transfer_t *tr)
+{
+    ogk_blt_report_t rep;
+    OGK_ASSERT_STATUS(ogk_blt_init(ctx, c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_blt_propagate(ctx, tr, tr->xf, &rep), OGK_OK);
+}
+
+/* tr->node[0] = the state at interface `iface` of tr flown forward (no free node in c), with ctx. */
+static inline void blt_fx_make_node(ogk_blt_t *ctx, const ogk_blt_config_t *c, uint32_t iface, ogk_blt_transfer_t *tr)
+{
+    ogk_blt_config_t part = *c;
+    ogk_blt_report_t rep;
+    part.n_segments = iface;
+    part.n_free_nodes = 0u;
+    part.meet_interface[0] = iface;
+    part.target_mask = 0x3Fu;
+    OGK_ASSERT_STATUS(ogk_blt_init(ctx, &part), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_blt_propagate(ctx, tr, tr->node[0], &rep), OGK_OK);
+}
+#endif
+
 #endif /* OGK_TEST_BLT_FIXTURE_H */

@@ -40,27 +40,6 @@ static double jac_fd[JAC_LEN];
 
 /* ------------------------------------------------------------------ helpers */
 
-/* tr->xf = the end of tr flown forward (the known solution's own target). */
-static void make_target(const ogk_blt_config_t *c, ogk_blt_transfer_t *tr)
-{
-    ogk_blt_report_t rep;
-    OGK_ASSERT_STATUS(ogk_blt_init(&ctx, c), OGK_OK);
-    OGK_ASSERT_STATUS(ogk_blt_propagate(&ctx, tr, tr->xf, &rep), OGK_OK);
-}
-
-/* tr->node[0] = the state at interface `iface` of tr flown forward (no free node in c). */
-static void make_node(const ogk_blt_config_t *c, uint32_t iface, ogk_blt_transfer_t *tr)
-{
-    ogk_blt_config_t part = *c;
-    ogk_blt_report_t rep;
-    part.n_segments = iface;
-    part.n_free_nodes = 0u;
-    part.meet_interface[0] = iface;
-    part.target_mask = 0x3Fu;
-    OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &part), OGK_OK);
-    OGK_ASSERT_STATUS(ogk_blt_propagate(&ctx, tr, tr->node[0], &rep), OGK_OK);
-}
-
 /* Every parameter of every segment scaled by 1 + f, 1 - f, 1 + f/2 in turn (a ~f perturbation of
  * A, B and T); the free node's components by 1 + f/5. */
 static void perturb(const ogk_blt_config_t *c, ogk_blt_transfer_t *g, double f)
@@ -511,7 +490,7 @@ static void test_reset_equals_fresh_init(void **state)
     blt_fx_moshup(&c);
     c.corrector = OGK_BLT_CORR_LM; /* leaves a damping in the context */
     blt_fx_single_burn(&tr);
-    make_target(&c, &tr);
+    blt_fx_make_target(&ctx, &c, &tr);
     g = tr;
     perturb(&c, &g, 0.05);
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
@@ -601,9 +580,9 @@ static void test_bad_transfers(void **state)
     {
         ogk_blt_config_t nonode;
         blt_fx_bcb_config(&nonode, 0);
-        make_target(&nonode, &tr);
+        blt_fx_make_target(&ctx, &nonode, &tr);
     }
-    make_node(&c, 2u, &tr);
+    blt_fx_make_node(&ctx, &c, 2u, &tr);
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
     /* NaN / Inf in each group of fields */
     for (i = 0u; i < 7u; ++i) {
@@ -685,7 +664,7 @@ static void test_null_and_not_init(void **state)
     (void)state;
     blt_fx_moshup(&c);
     blt_fx_single_burn(&tr);
-    make_target(&c, &tr);
+    blt_fx_make_target(&ctx, &c, &tr);
     OGK_ASSERT_STATUS(ogk_blt_init(NULL, &c), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, NULL), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
@@ -749,7 +728,7 @@ static void test_command_blt_law(void **state)
     (void)state;
     blt_fx_bcb_config(&c, 0);
     blt_fx_bcb(&tr);
-    make_target(&c, &tr);
+    blt_fx_make_target(&ctx, &c, &tr);
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
     /* the exact transfer: converged without an iteration, held */
     OGK_ASSERT_STATUS(ogk_blt_solve(&ctx, &tr, &out, &rep), OGK_OK);
@@ -864,7 +843,7 @@ static void test_jacobian_single_burn_all_terms(void **state)
     blt_fx_moshup(&c);
     c.start_free_mask = (1u << 1) | (1u << 5);
     blt_fx_single_burn(&tr);
-    make_target(&c, &tr);
+    blt_fx_make_target(&ctx, &c, &tr);
     perturb(&c, &tr, 0.05); /* away from the solution: e != 0 */
     check_jacobians(&c, &tr, "(a) single burn, every term");
 }
@@ -881,8 +860,8 @@ static void test_jacobian_bcb_free_node(void **state)
     valid_config(&c);
     blt_fx_bcb(&tr);
     blt_fx_bcb_config(&nonode, 0);
-    make_target(&nonode, &tr);
-    make_node(&c, 2u, &tr);
+    blt_fx_make_target(&ctx, &nonode, &tr);
+    blt_fx_make_node(&ctx, &c, 2u, &tr);
     perturb(&c, &tr, 0.05);
     check_jacobians(&c, &tr, "(b) burn-coast-burn, free node");
 }
@@ -906,7 +885,7 @@ static void solve_known_single_burn(uint32_t corrector, uint32_t jacobian)
     c.jacobian = jacobian;
     c.tol = 1.0e-10;
     blt_fx_single_burn(&tr);
-    make_target(&c, &tr);
+    blt_fx_make_target(&ctx, &c, &tr);
     g = tr;
     perturb(&c, &g, 0.1);
     gap0 = direction_gap(tr.seg[0], g.seg[0]);
@@ -988,7 +967,7 @@ static void test_corrector_bcb_free_node(void **state)
     (void)state;
     blt_fx_bcb(&tr);
     blt_fx_bcb_config(&nonode, 0);
-    make_target(&nonode, &tr);
+    blt_fx_make_target(&ctx, &nonode, &tr);
     for (run = 0; run < 3; ++run) {
         double x_end[NX];
         double worst = 0.0;
@@ -997,7 +976,7 @@ static void test_corrector_bcb_free_node(void **state)
         c.tol = 1.0e-9;
         c.corrector = (run == 1) ? OGK_BLT_CORR_LM : OGK_BLT_CORR_NRPC;
         c.jacobian = (run == 2) ? OGK_BLT_JAC_CENTRAL : OGK_BLT_JAC_VARIATIONAL;
-        make_node(&c, 2u, &tr);
+        blt_fx_make_node(&ctx, &c, 2u, &tr);
         g = tr;
         perturb(&c, &g, 0.1);
         OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
@@ -1017,7 +996,7 @@ static void test_corrector_bcb_free_node(void **state)
         }
         assert_true(worst <= 1.0e-7);
         g = out;
-        make_node(&nonode, 2u, &g); /* g.node = the state at interface 2 of the solution flown forward */
+        blt_fx_make_node(&ctx, &nonode, 2u, &g); /* g.node = the state at interface 2 of the solution flown forward */
         worst = 0.0;
         for (i = 0u; i < NX; ++i) {
             worst = fmax(worst, fabs(g.node[0][i] - out.node[0][i]));
@@ -1092,7 +1071,7 @@ static void test_iteration_limit(void **state)
     blt_fx_moshup(&c);
     c.max_iter = 1u;
     blt_fx_single_burn(&tr);
-    make_target(&c, &tr);
+    blt_fx_make_target(&ctx, &c, &tr);
     g = tr;
     perturb(&c, &g, 0.3);
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);

@@ -36,25 +36,6 @@ static ogk_blt_transfer_t out;
 static double jac_a[JAC_LEN];
 static double jac_b[JAC_LEN];
 
-static void make_target(const ogk_blt_config_t *c, ogk_blt_transfer_t *t)
-{
-    ogk_blt_report_t rep;
-    OGK_ASSERT_STATUS(ogk_blt_init(&ctx, c), OGK_OK);
-    OGK_ASSERT_STATUS(ogk_blt_propagate(&ctx, t, t->xf, &rep), OGK_OK);
-}
-
-static void make_node(const ogk_blt_config_t *c, uint32_t iface, ogk_blt_transfer_t *t)
-{
-    ogk_blt_config_t part = *c;
-    ogk_blt_report_t rep;
-    part.n_segments = iface;
-    part.n_free_nodes = 0u;
-    part.meet_interface[0] = iface;
-    part.target_mask = 0x3Fu;
-    OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &part), OGK_OK);
-    OGK_ASSERT_STATUS(ogk_blt_propagate(&ctx, t, t->node[0], &rep), OGK_OK);
-}
-
 static void set_burn(ogk_blt_transfer_t *t, uint32_t k, double ax, double ay, double bx, double by, double T)
 {
     t->seg[k][0] = ax;
@@ -155,7 +136,7 @@ static void test_unreachable_tolerance_stalls(void **state)
     c.jacobian = OGK_BLT_JAC_VARIATIONAL;
     c.tol = 1.0e-300;
     blt_fx_single_burn(&tr);
-    make_target(&c, &tr);
+    blt_fx_make_target(&ctx, &c, &tr);
     g = tr;
     g.seg[0][6] *= 1.05;
     g.seg[0][1] += 0.05;
@@ -228,7 +209,7 @@ static void test_jacobian_failures(void **state)
     g.x0[0] = (1.0 - c.model.mu) + c.model.body_radius[1] + 5.0e-7;
     g.x0[3] = 1.5; /* above the escape speed there (1.1 VU) */
     set_burn(&g, 0u, 1.0, 0.0, 0.0, 0.2, 0.3);
-    make_target(&c, &g);
+    blt_fx_make_target(&ctx, &c, &g);
     g.xf[1] += 0.01; /* not converged: the corrector needs J */
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_blt_jacobian(&ctx, &g, jac_a, JAC_LEN), OGK_E_NOT_CONVERGED);
@@ -291,7 +272,7 @@ static void test_trial_runs_out_of_mass(void **state)
         c.jacobian = OGK_BLT_JAC_VARIATIONAL;
         blt_fx_single_burn(&tr);
         tr.mass0 = (c.model.mass_flow * tr.seg[0][6]) + 0.0045;
-        make_target(&c, &tr);
+        blt_fx_make_target(&ctx, &c, &tr);
         g = tr;
         g.seg[0][6] *= 0.93;
         OGK_ASSERT_STATUS(ogk_blt_solve(&ctx, &g, &out, &rep), OGK_OK);
@@ -349,7 +330,7 @@ static void test_direction_through_zero(void **state)
     blt_fx_single_burn(&tr);
     tr.t0 = 0.0;
     set_burn(&tr, 0u, 0.5, 0.0, -1.0, 0.0, 0.7321);
-    make_target(&c, &tr);
+    blt_fx_make_target(&ctx, &c, &tr);
     OGK_ASSERT_STATUS(ogk_blt_solve(&ctx, &tr, &out, &rep), OGK_OK);
     assert_int_equal((int)rep.iterations, 0);
     OGK_ASSERT_STATUS(ogk_blt_command(&ctx, 0.25, &cmd), OGK_OK);
@@ -444,9 +425,9 @@ static void check_layout(const ogk_blt_config_t *c0, const char *what)
     double d;
     blt_fx_bcb_config(&nonode, 0);
     blt_fx_bcb(&tr);
-    make_target(&nonode, &tr);
+    blt_fx_make_target(&ctx, &nonode, &tr);
     if (c.n_free_nodes > 0u) {
-        make_node(&c, c.free_node_interface[0], &tr);
+        blt_fx_make_node(&ctx, &c, c.free_node_interface[0], &tr);
     }
     g = tr;
     g.seg[0][6] *= 1.05;
@@ -595,7 +576,7 @@ static void test_normalise_off(void **state)
     c.normalise_ab = 0u;
     c.jacobian = OGK_BLT_JAC_VARIATIONAL;
     blt_fx_single_burn(&tr);
-    make_target(&c, &tr);
+    blt_fx_make_target(&ctx, &c, &tr);
     g = tr;
     for (i = 0u; i < 6u; ++i) {
         g.seg[0][i] *= 3.0;
