@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import re
 import statistics
 import sys
 import time
@@ -33,6 +32,7 @@ from typing import Any
 
 import numpy as np
 
+from bench_figures import read_figures
 from ogk.bindings.blt import CENTRAL, MAX_FREE_NODES, MAX_SEGMENTS, NRPC, NX, VARIATIONAL, Blt, BltConfig, Transfer
 from ogk_host.binary import transfers as T
 from ogk_host.binary.guess import kernel_config
@@ -135,17 +135,6 @@ def write_header(path: Path) -> None:
 
 
 # ------------------------------------------------------------------------------------------------ the table
-def read_figures(d: Path | None) -> dict[str, str]:
-    """`blt_<key> <value>` lines written by `make bench-blt` (bench_blt time, callgrind, QEMU, stack)."""
-    out: dict[str, str] = {}
-    if d is None:
-        return out
-    for f in sorted(d.glob("*.txt")):
-        for line in f.read_text().splitlines():
-            m = re.match(r"^(blt_[a-z0-9_]+)\s+(\S+)", line)
-            if m:
-                out[m.group(1)] = m.group(2)
-    return out
 
 
 def cffi_runs(cfg: BltConfig, guess: Transfer, reps: int) -> dict[str, Any]:
@@ -176,7 +165,7 @@ def cpu_model() -> str:
 
 def run(args: argparse.Namespace) -> int:
     cs = cases()
-    fig = read_figures(args.figures)
+    fig = read_figures(args.figures, "blt")
     ok = True
 
     def num(key: str) -> float | None:

@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import re
 import statistics
 import sys
 import time
@@ -34,6 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
+from bench_figures import read_figures
 from ogk.bindings._ffi import ffi
 from ogk.bindings.nmpc import Nmpc, NmpcConfig
 from ogk.missions.rendezvous import strategy as st
@@ -175,17 +175,6 @@ def ipopt_runs(scenario: RendezvousScenario, guess: Plan, x0: np.ndarray, t1: fl
 
 
 # ------------------------------------------------------------------------------------------------ C figures
-def read_figures(d: Path | None) -> dict[str, str]:
-    """key value lines written by `make bench-nmpc` (bench_nmpc time, callgrind, QEMU plugin, stack)."""
-    out: dict[str, str] = {}
-    if d is None:
-        return out
-    for f in sorted(d.glob("*.txt")):
-        for line in f.read_text().splitlines():
-            m = re.match(r"^(nmpc_[a-z0-9_]+)\s+(\S+)", line)
-            if m:
-                out[m.group(1)] = m.group(2)
-    return out
 
 
 def run(args: argparse.Namespace) -> int:
@@ -194,7 +183,7 @@ def run(args: argparse.Namespace) -> int:
     ip = ipopt_runs(scenario, guess, x0, kern["t1"], kern["x1"], args.open_reps, args.warm_reps)
     # the same case with the stationarity test alone (tol_obj = 0): the kernel at IPOPT's accuracy
     tight = kernel_runs(cfg.replace(tol_obj=0.0), guess, x0, 1, args.replan_reps)
-    fig = read_figures(args.figures)
+    fig = read_figures(args.figures, "nmpc")
     tu_s = Model.for_scenario(scenario).units.time_s
     days = lambda t: t * tu_s / DAY_S  # noqa: E731
     kr, kw, io, iw, ipr = kern["open"], kern["replan"], ip["open"], ip["warm"], ip["primal"]

@@ -24,7 +24,7 @@ extern "C" {
 #define OGK_BLT_MAX_SEGMENTS 5u /* [-] burns and coasts of one transfer */
 #endif
 #ifndef OGK_BLT_MAX_FREE_NODES
-#define OGK_BLT_MAX_FREE_NODES 1u /* [-] free (unknown) states at interior interfaces */
+#define OGK_BLT_MAX_FREE_NODES 1u /* [-] unknown states at interior interfaces (free nodes) */
 #endif
 #define OGK_BLT_MAX_ARCS (OGK_BLT_MAX_FREE_NODES + 1u)
 /* unknowns: free start components, every segment parameter, every free node */
