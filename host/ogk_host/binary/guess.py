@@ -101,7 +101,8 @@ def sbig(model: Model, departure: PeriodicOrbit, arrival: PeriodicOrbit, *, t0: 
          samples: int = 360, scan: int = 24) -> Guess:
     """Single-burn initial guess (sec. III.C.1): closest states (eqs. 23-25), BLT parameters (eqs. 26-28),
     then the phase adjustment of eqs. (29)-(31) with the burn flown in `model` (the corrector's model: an
-    impact-free guess there is what the corrector needs): Nelder-Mead on (dt_i, dt_t) from three starts (0, 0), (-T/2, T/2), (-T, 0).
+    impact-free guess there is what the corrector needs): Nelder-Mead on (dt_i, dt_t) from three starts
+    (0, 0), (-T/2, T/2), (-T, 0).
 
     Beyond the paper: when every start's burn hits a body (eq. 27 aims A at the target, and between the
     L2 and L1 halos the straight line goes through the secondary), the pair of phases is chosen on a
@@ -172,7 +173,8 @@ class Circle:
         return np.array([self.radius * c, self.radius * s, 0.0, -speed * s, speed * c, 0.0])
 
 
-def _backward_to_circle(model: Model, state: FloatArray, circle: Circle, t_max: float) -> tuple[FloatArray, float] | None:
+def _backward_to_circle(model: Model, state: FloatArray, circle: Circle,
+                        t_max: float) -> tuple[FloatArray, float] | None:
     """Backward flow of a stable-manifold state to its first crossing of the circle (from outside or
     inside), or None (impact, t_max)."""
     field = GravityField(model.gravity_only())
@@ -196,8 +198,8 @@ def _backward_to_circle(model: Model, state: FloatArray, circle: Circle, t_max: 
 
 
 def ubmpig(model: Model, circle: Circle, target: PeriodicOrbit, *, sign: int = -1,
-           deviation_bounds: tuple[float, float] = (5e-2, 1.5e-1), phases: int = 120, coast_max: float = 20.0, coast_margin: float = 1.5, split_coast: bool = True,
-           t0: float = 0.0) -> Guess:
+           deviation_bounds: tuple[float, float] = (5e-2, 1.5e-1), phases: int = 120, coast_max: float = 20.0,
+           coast_margin: float = 1.5, split_coast: bool = True, t0: float = 0.0) -> Guess:
     """Unilateral backward manifold patching (sec. III.C.2, eqs. 53-60), StoS read as OtoS for the circle
     (the departure longitude is free, eq. 55): the stable manifold of `target` (velocity-only deviation d,
     eq. 35, branch `sign`) flown backward to the circle; the patch minimises the total impulsive delta-v
@@ -340,7 +342,9 @@ def bmpig(model: Model, departure: PeriodicOrbit, arrival: PeriodicOrbit, *, dev
     if best is None:
         raise RuntimeError("no pair of manifold trajectories reaches the cut x = 1 - mu without impact")
 
-    def crossing(v: FloatArray) -> tuple[tuple[FloatArray, FloatArray, float], tuple[FloatArray, FloatArray, float]] | None:
+    Cut = tuple[FloatArray, FloatArray, float]
+
+    def crossing(v: FloatArray) -> tuple[Cut, Cut] | None:
         a = _manifold_cut(departure, float(v[0]), math.exp(v[2]), sign_dep, False, x_cut)
         b = _manifold_cut(arrival, float(v[1]), math.exp(v[3]), sign_arr, True, x_cut)
         return None if a is None or b is None else (a, b)
@@ -357,8 +361,8 @@ def bmpig(model: Model, departure: PeriodicOrbit, arrival: PeriodicOrbit, *, dev
     ld = math.log(deviation)
     v0 = np.array([taus1[best[1]], taus2[best[2]], ld, ld])
     res = _minimize(cost, v0, method="SLSQP", constraints=[{"type": "eq", "fun": lambda v: gap(v)[1:3]}],
-                    bounds=[(None, None), (None, None), (ld - math.log(3.0), ld + math.log(3.0))] * 1 +
-                    [(ld - math.log(3.0), ld + math.log(3.0))], options={"maxiter": 60, "ftol": 1e-10})
+                    bounds=[(None, None), (None, None)] + [(ld - math.log(3.0), ld + math.log(3.0))] * 2,
+                    options={"maxiter": 60, "ftol": 1e-10})
     v = res.x if crossing(res.x) is not None and float(np.linalg.norm(gap(res.x))) < 1e-6 else v0
     cb = crossing(v)
     assert cb is not None

@@ -44,7 +44,8 @@ class Nominal:
     fields: dict[str, Any]
 
 
-def draw(nominal: Nominal, level: float, sigma_fraction: float, rng: np.random.Generator) -> tuple[Transfer, dict[str, Any]]:
+def draw(nominal: Nominal, level: float, sigma_fraction: float,
+         rng: np.random.Generator) -> tuple[Transfer, dict[str, Any]]:
     """A perturbed problem and guess (see the module docstring) and the draw itself."""
     tr = nominal.transfer
     n_seg = tr.segments.shape[0]
