@@ -21,4 +21,9 @@ void ogk_cm7_exit(int code) __attribute__((noreturn));
 /* Bytes of the stack written so far (deepest point reached since reset). */
 uint32_t ogk_cm7_stack_high_water(void);
 
+/* Paints the stack again from its limit up to the address `top` (which must lie below the
+ * caller's frame), so that ogk_cm7_stack_high_water restarts from there: a benchmark measures one
+ * call's stack by repainting below its own frame first. */
+void ogk_cm7_stack_repaint_below(uintptr_t top);
+
 #endif /* OGK_CM7_H */

@@ -244,6 +244,14 @@ uint32_t ogk_cm7_stack_high_water(void)
     return (words - untouched) * 4u;
 }
 
+__attribute__((noinline)) void ogk_cm7_stack_repaint_below(uintptr_t top)
+{
+    volatile uint32_t *word = __StackLimit;
+    while ((uintptr_t)word < top) {
+        *word++ = OGK_CM7_STACK_PAINT;
+    }
+}
+
 static void ogk_cm7_at_exit(void)
 {
     const uint32_t used = ogk_cm7_stack_high_water();

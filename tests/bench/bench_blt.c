@@ -110,19 +110,6 @@ static int check_converged(const bench_blt_case_t *c)
 
 #ifdef OGK_BENCH_BARE_METAL
 extern uint32_t __StackTop[];
-extern uint32_t __StackLimit[];
-/* startup.c's OGK_CM7_STACK_PAINT (not exported by ogk_cm7.h) */
-#define BENCH_STACK_PAINT 0xA5C3E1F0u
-
-/* Paints the main stack again from its limit up to `top` (below the caller's frame), so the
- * high-water mark restarts. */
-__attribute__((noinline)) static void repaint_stack_below(uintptr_t top)
-{
-    volatile uint32_t *word = __StackLimit;
-    while ((uintptr_t)word < top) {
-        *word++ = BENCH_STACK_PAINT;
-    }
-}
 
 #if BENCH_BLT_NCASES != 4u
 #error "bench_blt.c: the bare-metal wrappers below name the four cases of bench_blt_case.py"
@@ -170,7 +157,7 @@ int main(void)
         if (setup(c, 0u) != 0) {
             return 1;
         }
-        repaint_stack_below((uintptr_t)&here - 1024u);
+        ogk_cm7_stack_repaint_below((uintptr_t)&here - 1024u);
         if ((m7_conv[i]() != 0) || (check_converged(c) != 0)) {
             return 1;
         }

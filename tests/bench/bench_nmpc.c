@@ -105,19 +105,6 @@ static int check_replan(void)
 
 #ifdef OGK_BENCH_BARE_METAL
 extern uint32_t __StackTop[];
-extern uint32_t __StackLimit[];
-/* startup.c's OGK_CM7_STACK_PAINT (not exported by ogk_cm7.h) */
-#define BENCH_STACK_PAINT 0xA5C3E1F0u
-
-/* Paints the main stack again from its limit up to `top` (below the caller's
- * frame), so the high-water mark restarts: the open loop's depth forgotten. */
-__attribute__((noinline)) static void repaint_stack_below(uintptr_t top)
-{
-    volatile uint32_t *word = __StackLimit;
-    while ((uintptr_t)word < top) {
-        *word++ = BENCH_STACK_PAINT;
-    }
-}
 
 /* Bare metal (QEMU, no command line): the open loop, then one re-solve. The
  * stack of the re-solve: the stack below main's frame repainted after the
@@ -131,7 +118,7 @@ int main(void)
     }
     hwm_open = ogk_cm7_stack_high_water();
     depth = (uint32_t)((uintptr_t)__StackTop - (uintptr_t)&here);
-    repaint_stack_below((uintptr_t)&here - 1024u);
+    ogk_cm7_stack_repaint_below((uintptr_t)&here - 1024u);
     if (bench_nmpc_replan_once() != 0) {
         return 1;
     }
