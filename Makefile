@@ -99,9 +99,9 @@ lint: | apt
 	$(MAKE) misra
 
 # ---------------------------------------------------------------- Python harness (cffi)
-FFI_STAMP := harness/ogk/bindings/.ffi-built
-$(FFI_STAMP): $(KSRC) $(KHDR) $(wildcard harness/csrc/*) harness/build_ffi.py $(VENV)/.installed
-	$(VPY) harness/build_ffi.py
+FFI_STAMP := bindings/ogk_bindings/.ffi-built
+$(FFI_STAMP): $(KSRC) $(KHDR) $(wildcard bindings/csrc/*) $(wildcard harness/ogk/missions/*/csrc/*) bindings/build_ffi.py $(VENV)/.installed
+	$(VPY) bindings/build_ffi.py
 	touch $@
 .PHONY: ffi
 ffi: $(FFI_STAMP)
@@ -169,4 +169,4 @@ run: all
 	$(VENV)/bin/ogk mc moshup --seed 20261202 --workers 2 --json $(B)/blt/mc_table3.json --plots $(B)/blt/plots
 
 clean:
-	rm -rf $(B) $(FFI_STAMP) harness/ogk/bindings/_ogk_cffi*
+	rm -rf $(B) $(FFI_STAMP) bindings/ogk_bindings/_ogk_cffi*

@@ -437,7 +437,7 @@ def capture_study(n_runs: int = 200, pointing: str = "BODY", gains: CpdGains | N
     a_sat = (float(g0[0]) * m_xc_max, float(g0[1]) * delta_c_max)
     ctls: list[Any] = []
     if controller == "kernel":
-        from ogk.bindings import cpd  # the bindings are needed only here
+        from ogk_bindings import cpd  # the bindings are needed only here
         ctls = [cpd.Cpd(cpd.CpdConfig(**gains.as_config_dict(), m_xc_max=m_xc_max,
                                       delta_yc_max=delta_c_max, delta_zc_max=delta_c_max,
                                       tau_x=tau, tau_y=tau, tau_z=tau,

@@ -7,7 +7,7 @@ Layout (little-endian, no padding, 48-byte header):
    40  payload CRC-32       44  CRC-32 of header bytes 0..43
    48  payload: grid[grid size] then entry k (prod(dims) values, row-major) per k.
 The reader mirrors the kernel loader's checks so the round trip can be tested in
-pure Python; the kernel loader (ogk.bindings.kernel.table_load) is the authority on board.
+pure Python; the kernel loader (ogk_bindings.kernel.table_load) is the authority on board.
 """
 from __future__ import annotations
 

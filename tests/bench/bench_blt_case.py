@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 
 from bench_figures import read_figures
-from ogk.bindings.blt import CENTRAL, MAX_FREE_NODES, MAX_SEGMENTS, NRPC, NX, VARIATIONAL, Blt, BltConfig, Transfer
+from ogk_bindings.blt import CENTRAL, MAX_FREE_NODES, MAX_SEGMENTS, NRPC, NX, VARIATIONAL, Blt, BltConfig, Transfer
 from ogk_host.binary import transfers as T
 from ogk_host.binary.guess import kernel_config
 from ogk_host.binary.scenario import load_scenario

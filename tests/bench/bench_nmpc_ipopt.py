@@ -34,8 +34,8 @@ from pathlib import Path
 import numpy as np
 
 from bench_figures import read_figures
-from ogk.bindings._ffi import ffi
-from ogk.bindings.nmpc import Nmpc, NmpcConfig
+from ogk_bindings._ffi import ffi
+from ogk_bindings.nmpc import Nmpc, NmpcConfig
 from ogk.missions.rendezvous import strategy as st
 from ogk.missions.rendezvous.guidance import first_guess, strategy_settings
 from ogk.missions.rendezvous.kernel_guidance import kernel_config

@@ -24,7 +24,7 @@ from ogk_host.binary import dynamics as dyn
 from ogk_host.binary.dynamics import GravityField, Model, kernel_model, model_from_scenario
 from ogk_host.binary.reference import propagate_chain
 from ogk_host.binary.scenario import load_scenario
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 
 SCENARIO = Path(__file__).resolve().parents[2] / "scenarios" / "moshup.toml"
 HOUR = 3600.0

@@ -1,9 +1,9 @@
 """The cffi bindings reach everything the public headers declare.
 
 An independent scan of the header TEXT (comments stripped, regex; it shares no
-code with harness/build_ffi.py, which works from the preprocessor) lists every
+code with bindings/build_ffi.py, which works from the preprocessor) lists every
 public function, every field of every struct typedef, every enumerator and
-every object-like OGK_* macro of kernel/include/ogk/*.h and harness/csrc/*.h;
+every object-like OGK_* macro of kernel/include/ogk/*.h, bindings/csrc/*.h and the families' csrc/*.h;
 each must be reachable through ``lib`` / ``ffi``. A header that gains a
 function, field or macro the bindings miss fails here.
 """
@@ -14,11 +14,12 @@ from pathlib import Path
 
 import pytest
 
-from ogk.bindings._ffi import ffi, lib
+from ogk_bindings._ffi import ffi, lib
 
 ROOT = Path(__file__).resolve().parents[2]
 HEADERS = sorted((ROOT / "kernel" / "include" / "ogk").glob("*.h")) + sorted(
-    (ROOT / "harness" / "csrc").glob("*.h"))
+    (ROOT / "bindings" / "csrc").glob("*.h")) + sorted(
+    (ROOT / "harness" / "ogk" / "missions").glob("*/csrc/*.h"))
 
 
 def _strip_comments(text: str) -> str:

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ogk.bindings.blt import Transfer
+from ogk_bindings.blt import Transfer
 from ogk.missions.binary.campaign import Nominal, draw
 from ogk.missions.binary.trajectory import reference_errors
 from ogk_host.binary import transfers as T
@@ -89,7 +89,7 @@ def test_bmp_transfer_converges() -> None:
 def test_kernel_propagation_matches_dop853() -> None:
     """The kernel's RK4 (2e-3 TU steps) against DOP853 on the converged L2 -> L1 Lyapunov burn, forward."""
     d = designed("l2_to_l1_lyapunov", "lm")
-    from ogk.bindings.blt import Blt
+    from ogk_bindings.blt import Blt
     from ogk_host.binary.guess import kernel_config
     x_kernel, _ = Blt(kernel_config(d.model, d.guess.layout)).propagate(d.transfer)
     s = d.transfer.segments[0]

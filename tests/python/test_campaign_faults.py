@@ -24,7 +24,7 @@ import pytest
 import ogk
 import ogk_host
 
-from ogk.bindings.kernel import KernelError
+from ogk_bindings.kernel import KernelError
 from ogk.missions.orbit_injection import nog_guidance
 from ogk.missions.orbit_injection.campaign import run_campaign
 from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance

@@ -1,5 +1,5 @@
 """CPD attitude control: gain design (host/ogk_host/cpd_design.py) and the kernel bindings
-(harness/ogk/bindings/cpd.py) against independent references.
+(bindings/ogk_bindings/cpd.py) against independent references.
 
 References: numpy.roots for the closed-loop poles; the paper's printed numbers (eq. 54 and the text
 after it, sec. 7); scipy.spatial.transform.Rotation for the Euler sequence of eq. (9) and for the
@@ -17,8 +17,8 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from ogk.bindings import cpd
-from ogk.bindings.kernel import KernelError, Status
+from ogk_bindings import cpd
+from ogk_bindings.kernel import KernelError, Status
 from ogk_host import cpd_design as cd
 
 DEG = math.pi / 180.0
@@ -390,7 +390,7 @@ def test_capture_study_kernel_equals_numpy_prototype() -> None:
 # ----------------------------------------------------------------- the typed wrapper cannot drift
 def test_config_wrapper_follows_the_c_struct() -> None:
     """CpdConfig starts from ogk_cpd_config_default and knows every field of the C struct, by name."""
-    from ogk.bindings._ffi import ffi, lib
+    from ogk_bindings._ffi import ffi, lib
     c_fields = [name for name, _ in ffi.typeof("ogk_cpd_config_t").fields]
     assert list(cpd.CpdConfig.fields()) == c_fields
     ref = ffi.new("ogk_cpd_config_t *")
@@ -412,7 +412,7 @@ def test_config_wrapper_follows_the_c_struct() -> None:
 
 
 def test_input_and_output_wrappers_match_the_c_structs() -> None:
-    from ogk.bindings._ffi import ffi
+    from ogk_bindings._ffi import ffi
     for cls, ctype in ((cpd.CpdInput, "ogk_cpd_input_t"), (cpd.CpdOutput, "ogk_cpd_output_t")):
         assert [f.name for f in dataclasses.fields(cls)] == \
             [name for name, _ in ffi.typeof(ctype).fields], ctype

@@ -6,7 +6,7 @@ import zlib
 import numpy as np
 import pytest
 
-from ogk.bindings import kernel
+from ogk_bindings import kernel
 
 
 def test_known_check_value() -> None:

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from ogk.bindings._ffi import ffi, lib
+from ogk_bindings._ffi import ffi, lib
 from ogk_host.cgen import ConfigItem, c_double, write_c_config
 
 REPO = Path(__file__).resolve().parents[2]

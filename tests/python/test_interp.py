@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 from scipy.interpolate import PchipInterpolator
 
-from ogk.bindings import kernel
-from ogk.bindings._ffi import lib
+from ogk_bindings import kernel
+from ogk_bindings._ffi import lib
 
 
 def random_grid(rng: np.random.Generator, n: int) -> np.ndarray:

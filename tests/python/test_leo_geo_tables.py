@@ -78,7 +78,7 @@ def test_generated_c_table_loads_with_ground_values(bundle, tmp_path):
 
 
 def test_bundle_through_bindings_flies_nominal(bundle, tmp_path):
-    from ogk.bindings._ffi import ffi, lib
+    from ogk_bindings._ffi import ffi, lib
     image_path = tmp_path / "bundle.ogkt"
     tablefile.write_table(image_path, bundle.kind, bundle.grid, bundle.data)
     data = image_path.read_bytes()
@@ -103,7 +103,7 @@ def test_bundle_through_bindings_flies_nominal(bundle, tmp_path):
 
 def test_grid_fits_kernel_capacity_for_long_burns():
     """The capacity is the kernel's; every chosen grid keeps the 5 % spacing bound and fits it."""
-    from ogk.bindings._ffi import lib
+    from ogk_bindings._ffi import lib
     from ogk_host.orbit_injection import gains
     cap = int(lib.OGK_NOG_MAX_GRID)
     assert gains.kernel_table_capacity() == (cap, int(lib.OGK_NOG_ENTRY_LEN))
@@ -117,7 +117,7 @@ def test_grid_fits_kernel_capacity_for_long_burns():
 
 
 def test_grid_capacity_error_names_the_setting():
-    from ogk_host.errors import OgkInputError
+    from ogk_bindings.errors import OgkInputError
     from ogk_host.orbit_injection import gains
     with pytest.raises(gains.GridCapacityError) as info:
         gains.choose_tau_grid(250.0, 2.0, 1e-9)
@@ -161,7 +161,7 @@ def _copy(src, dst):
 
 
 def test_check_tables_rejects_other_scenario_corruption_and_tf(table_dir, tmp_path):
-    from ogk_host.errors import TableError
+    from ogk_bindings.errors import TableError
     from ogk_host.orbit_injection import tables
     out, manifest = table_dir
     other = tmp_path / "other.toml"
@@ -191,7 +191,7 @@ def test_check_tables_rejects_other_scenario_corruption_and_tf(table_dir, tmp_pa
 
 
 def test_writer_never_overwrites_a_foreign_directory(table_dir, tmp_path):
-    from ogk_host.errors import TableError
+    from ogk_bindings.errors import TableError
     from ogk_host.orbit_injection import tables
     foreign = tmp_path / "mine"
     foreign.mkdir()

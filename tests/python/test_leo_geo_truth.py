@@ -86,7 +86,7 @@ def test_dcm_eq9_matches_turned_axes_and_quaternion_round_trip(rng):
 def test_thrust_angles_eqs_49_52_vs_vector_construction_and_kernel(rng):
     """alpha_a, beta_a from the rotation matrices of eqs. (49)-(52), from the quaternion path the
     truth integrates, from a vector construction, and from the kernel's ogk_cpd_thrust_angles."""
-    from ogk.bindings._ffi import ffi, lib
+    from ogk_bindings._ffi import ffi, lib
     n = 40
     a = random_angles(rng, n)
     alpha, beta = tm.thrust_angles(a["psi"], a["theta"], a["roll"], a["xi"], a["phi"], a["dy"],

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from ogk.bindings import kernel
-from ogk.bindings._ffi import lib
+from ogk_bindings import kernel
+from ogk_bindings._ffi import lib
 
 
 def well_conditioned(rng: np.random.Generator, n: int) -> np.ndarray:

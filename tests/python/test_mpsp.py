@@ -1,4 +1,4 @@
-"""MPSP through the cffi bindings (harness/ogk/bindings/mpsp.py), against an independent model.
+"""MPSP through the cffi bindings (bindings/ogk_bindings/mpsp.py), against an independent model.
 
 The reference integrates eq. (16) of Wang & Topputo (2020) with scipy's DOP853 at rtol 1e-12,
 switching u at the zeros of S (eq. 10) located by solve_ivp's event finder, with the Fourier
@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from ogk.bindings.kernel import KernelError, Status
-from ogk.bindings.mpsp import BASIS_COSINE, Mpsp, MpspConfig, fourier_basis, paper_basis
+from ogk_bindings.kernel import KernelError, Status
+from ogk_bindings.mpsp import BASIS_COSINE, Mpsp, MpspConfig, fourier_basis, paper_basis
 
 W3 = np.array([2.0, 0.05, 0.02, 0.6, 0.03, -0.02, 0.01,
                0.6, 0.0, 0.2, 0.01, -0.02, 0.0, 0.01,
@@ -210,7 +210,7 @@ def test_apophis_cases_against_paper_table_iterations() -> None:
 
 # ----------------------------------------------------------------- the typed wrapper cannot drift
 def test_config_defaults_come_from_c_and_names_are_checked() -> None:
-    from ogk.bindings._ffi import ffi, lib
+    from ogk_bindings._ffi import ffi, lib
     ref = ffi.new("ogk_mpsp_config_t *")
     assert lib.ogk_mpsp_config_default(ref) == lib.OGK_OK
     cfg = make_config(np.ones(3), np.ones(3))

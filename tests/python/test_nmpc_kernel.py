@@ -21,8 +21,8 @@ from ogk_host.rendezvous.dynamics import DAY_S, Engine, Model, planets, rk4_inte
 from ogk_host.rendezvous.nlp import RendezvousNlp, min_fuel_guess, min_time_guess
 from ogk_host.rendezvous.scenario import load_scenario
 
-from ogk.bindings.kernel import KernelError
-from ogk.bindings.nmpc import Nmpc
+from ogk_bindings.kernel import KernelError
+from ogk_bindings.nmpc import Nmpc
 from ogk.missions.rendezvous.closed_loop import fly
 from ogk.missions.rendezvous.guidance import first_guess, strategy_settings
 from ogk.missions.rendezvous.kernel_guidance import KernelGuidance, kernel_config

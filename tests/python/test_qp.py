@@ -9,7 +9,7 @@ import casadi
 import numpy as np
 import pytest
 
-from ogk.bindings._ffi import ffi, lib
+from ogk_bindings._ffi import ffi, lib
 
 INF = float(lib.OGK_QP_INF)
 

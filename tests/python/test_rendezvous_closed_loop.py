@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from ogk_host.rendezvous.dynamics import DAY_S, Model
 from ogk_host.rendezvous.plan import Plan
 from ogk_host.rendezvous.scenario import DEFAULT_SCENARIO_PATH, load_scenario

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from ogk_host.rendezvous.ocp import MinTimeOcp, OcpResult, default_guess, multi_start
 from ogk_host.rendezvous.scenario import load_scenario
 

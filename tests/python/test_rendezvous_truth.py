@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from ogk.missions.rendezvous.truth import TruthModel
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from ogk_host.rendezvous.dynamics import Engine, rhs, rk4_interval, throttle_rhs
 from ogk_host.rendezvous.scenario import load_scenario
 

@@ -4,7 +4,7 @@ located switching times and states vs the closed-form bang-off-bang solution.
 Rest-to-rest transfer of distance D in time T with |u| <= u_max: thrust +u_max on
 [0, t1], coast on [t1, t2], thrust -u_max on [t2, T], with
 t1 = (T - sqrt(T^2 - 4 D/u_max))/2 and t2 = T - t1 (coded again below, independently
-of ogk.bindings.models.RestToRest). Between switches the motion is a quadratic and the
+of ogk_bindings.models.RestToRest). Between switches the motion is a quadratic and the
 costates linear in t, which RK4 integrates exactly, so the errors measure the
 bisection alone."""
 from __future__ import annotations
@@ -14,8 +14,8 @@ import math
 import numpy as np
 import pytest
 
-from ogk.bindings import kernel, models
-from ogk.bindings._ffi import lib
+from ogk_bindings import kernel, models
+from ogk_bindings._ffi import lib
 
 CASES = [  # D, T, u_max, h
     (1.0, 3.0, 1.0, 0.1),

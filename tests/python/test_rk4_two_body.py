@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from ogk.bindings import kernel, models
-from ogk.bindings._ffi import lib
+from ogk_bindings import kernel, models
+from ogk_bindings._ffi import lib
 
 MU = 1.0            # normalised units: mu = 1, a = 1, period 2 pi
 SMA = 1.0

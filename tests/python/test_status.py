@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import pytest
 
-from ogk.bindings import kernel
-from ogk.bindings._ffi import lib
+from ogk_bindings import kernel
+from ogk_bindings._ffi import lib
 
 # The codes of kernel/include/ogk/status.h, written out independently here.
 EXPECTED = [

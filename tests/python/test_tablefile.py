@@ -12,8 +12,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-from ogk.bindings import kernel
-from ogk.bindings._ffi import lib
+from ogk_bindings import kernel
+from ogk_bindings._ffi import lib
 from ogk_host import tablefile as tf
 
 KIND = 0x4E4F4701  # an arbitrary application kind

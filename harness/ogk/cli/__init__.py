@@ -14,7 +14,7 @@ import importlib
 import sys
 from collections.abc import Sequence
 
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 
 from ogk.sil.runner import CampaignAborted, CampaignInterrupted
 

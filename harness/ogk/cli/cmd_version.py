@@ -7,7 +7,7 @@ from typing import Any
 
 def run(args: argparse.Namespace) -> int:
     import ogk
-    from ogk.bindings import kernel
+    from ogk_bindings import kernel
 
     print(f"ogk harness {ogk.__version__}")
     print(f"ogk kernel  {kernel.version()}")

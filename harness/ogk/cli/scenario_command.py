@@ -10,7 +10,7 @@ import argparse
 from collections.abc import Sequence
 from typing import Any
 
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import read_header, resolve_scenario
 
 from ogk.missions import registry

@@ -1,8 +1,8 @@
 """Switching demo: minimum-fuel rest-to-rest transfer of a double integrator.
 
 The kernel's RK4 integrates x = [r, v, lambda_r, lambda_v] with the harness's C
-model (harness/csrc/models.c) and locates the zeros of S = |lambda_v| - 1 by
-bisection; the closed form (ogk.bindings.models.RestToRest) gives the exact switching
+model (bindings/csrc/models.c) and locates the zeros of S = |lambda_v| - 1 by
+bisection; the closed form (ogk_bindings.models.RestToRest) gives the exact switching
 times and states. RK4 is exact for these piecewise-quadratic motions, so every
 error left is the switch location's."""
 from __future__ import annotations
@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ogk.bindings import kernel, models
+from ogk_bindings import kernel, models
 
 
 @dataclass(frozen=True)

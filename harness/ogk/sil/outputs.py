@@ -9,7 +9,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 
 
 def _probe(directory: Path, shown: Path, option: str) -> None:

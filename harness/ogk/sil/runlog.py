@@ -19,7 +19,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 
 SCHEMA = "ogk.runlog/1"
 

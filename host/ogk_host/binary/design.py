@@ -9,7 +9,7 @@ import dataclasses
 import math
 from typing import Any
 
-from ogk.bindings.blt import HYBRID, LM, NRPC, Blt, BltReport, Transfer
+from ogk_bindings.blt import HYBRID, LM, NRPC, Blt, BltReport, Transfer
 
 from .dynamics import Model
 from .guess import Guess, kernel_config

@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike
 from scipy.integrate import solve_ivp
 from scipy.optimize import minimize
 
-from ogk.bindings.blt import BURN, COAST, Blt, BltConfig, Transfer
+from ogk_bindings.blt import BURN, COAST, Blt, BltConfig, Transfer
 
 from .dynamics import FloatArray, GravityField, Model, jacobi
 from .manifolds import manifold_states

@@ -17,9 +17,9 @@ from typing import Any
 
 import numpy as np
 
-from ogk.bindings.blt import BltReport, Transfer
+from ogk_bindings.blt import BltReport, Transfer
 
-from ..errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from ..scenario_file import Section
 from .design import CORRECTORS, JACOBIANS, Converged, converge, thrust_continuation
 from .dynamics import Model, model_from_scenario

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from ..scenario_file import read_toml
 
 FloatArray = NDArray[np.float64]

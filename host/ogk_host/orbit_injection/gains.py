@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
-from ..errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from . import dynamics as dyn
 from .nominal import Nominal
 from .propagation import ATOL, N_Z, RTOL, solve_ivp_segmented
@@ -177,7 +177,7 @@ def uniform_step_candidates(sample_interval_s: float, t_f_s: float,
 def kernel_table_capacity() -> tuple[int, int]:
     """(OGK_NOG_MAX_GRID, OGK_NOG_ENTRY_LEN) read from the kernel through the bindings."""
     try:
-        from ogk.bindings._ffi import lib
+        from ogk_bindings._ffi import lib
     except ImportError as exc:
         raise OgkInputError(f"the kernel bindings are needed for the table capacity: {exc}") from None
     return int(lib.OGK_NOG_MAX_GRID), int(lib.OGK_NOG_ENTRY_LEN)

@@ -42,7 +42,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import least_squares
 
-from ..errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from . import dynamics as dyn
 from .propagation import N_Z, integrate_extremal, rk4_extremal_batch
 from .scenario import LeoGeoScenario, load_scenario

@@ -42,7 +42,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .. import tablefile
-from ..errors import TableError
+from ogk_bindings.errors import TableError
 from ..scenario_file import table_dir_for
 from . import dynamics as dyn
 from .derive import EffectiveSettings, effective_settings, freeze_rule_s

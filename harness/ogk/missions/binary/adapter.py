@@ -22,7 +22,7 @@ from ogk_host.binary import transfers as T
 from ogk_host.binary.orbits import scenario_orbit
 from ogk_host.binary.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.binary.scenario import BinaryScenario, load_scenario
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale, write_atomic
@@ -125,7 +125,7 @@ def blt(header: ScenarioHeader, args: argparse.Namespace) -> int:
 
 
 def _transfer_plots(scenario: BinaryScenario, doc: dict[str, Any], out_dir: Path) -> list[Path]:
-    from ogk.bindings.blt import Transfer
+    from ogk_bindings.blt import Transfer
     from ogk_host.binary.guess import Layout, OrbitPhase
 
     from .plots import transfer_figures

@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from ogk.bindings.blt import HYBRID, LM, NRPC, Blt, Transfer
+from ogk_bindings.blt import HYBRID, LM, NRPC, Blt, Transfer
 from ogk_host.binary.dynamics import Model
 from ogk_host.binary.guess import Circle, Layout, kernel_config, predicted_node
 

@@ -9,7 +9,7 @@ import dataclasses
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ogk.bindings.blt import Transfer
+from ogk_bindings.blt import Transfer
 from ogk_host.binary.dynamics import Burn, FloatArray, Model, state_derivative
 from ogk_host.binary.guess import Layout
 from ogk_host.binary.reference import propagate_chain

@@ -13,7 +13,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from ogk_host.low_thrust_transfer.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.scenario_file import ScenarioHeader, table_dir_for
 

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk.bindings.mpsp import Mpsp, MpspConfig, MpspResult, paper_basis
+from ogk_bindings.mpsp import Mpsp, MpspConfig, MpspResult, paper_basis
 
 if TYPE_CHECKING:  # ground side, imported at run time inside the functions
     from ogk_host.low_thrust_transfer.indirect import Solution

@@ -10,7 +10,7 @@ def write_flight_config(out: Path, scenario: Path | None) -> list[Path]:
 
     from ogk_host.cgen import ConfigItem, write_c_config
 
-    from ogk.bindings._ffi import ffi
+    from ogk_bindings._ffi import ffi
     from .cases import build_setup, default_scenario_path
 
     setup = build_setup(scenario_path=scenario)

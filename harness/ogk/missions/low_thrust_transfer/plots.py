@@ -15,7 +15,7 @@ from numpy.typing import NDArray
 
 from ogk.missions.low_thrust_transfer.cases import KINDS, ApophisSetup, Case
 from ogk.missions.low_thrust_transfer.reference import Reference
-from ogk.bindings.mpsp import MpspResult
+from ogk_bindings.mpsp import MpspResult
 
 F64 = NDArray[np.float64]
 

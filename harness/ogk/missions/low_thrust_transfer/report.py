@@ -11,7 +11,7 @@ from typing import Any
 
 from ogk.missions.low_thrust_transfer.cases import TABLE_OF_KIND, ApophisSetup, Case, fuel_increase_percent
 from ogk.missions.low_thrust_transfer.reference import Reference
-from ogk.bindings.mpsp import MpspResult
+from ogk_bindings.mpsp import MpspResult
 
 JSON_KEYS: tuple[str, ...] = ("converged", "newton_iterations", "outer_steps", "dr_f_km", "dv_f_kmps",
                               "lambda_mf", "final_mass_kg", "fuel_increase_pct", "thrust_arcs",

@@ -8,7 +8,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from ogk_host.orbit_injection.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.orbit_injection.scenario import load_scenario
 from ogk_host.scenario_file import ScenarioHeader

@@ -70,15 +70,15 @@ def cpd_config(scn: LeoGeoScenario, gains: str | None = None, pointing: str = "b
 
 
 class CpdBatchControl:
-    """The kernel's ogk_cpd_step for N runs per call (harness/csrc/sil_batch.c), one ogk_cpd_t per
+    """The kernel's ogk_cpd_step for N runs per call (csrc/sil_batch.c), one ogk_cpd_t per
     run in a cffi array."""
 
     name = "cpd"
 
     def __init__(self, scn: LeoGeoScenario, n_runs: int, gains: str | None = None,
                  pointing: str = "body", control_period_s: float = 0.02) -> None:
-        from ogk.bindings._ffi import ffi, lib
-        from ogk.bindings.cpd import CpdConfig
+        from ogk_bindings._ffi import ffi, lib
+        from ogk_bindings.cpd import CpdConfig
         self._ffi, self._lib = ffi, lib
         self.n_runs = n_runs
         self.config = cpd_config(scn, gains, pointing, control_period_s)
@@ -93,7 +93,7 @@ class CpdBatchControl:
         st = lib.ogk_sil_cpd_init_batch(self._ctx, n_runs, cfg,
                                         ffi.from_buffer("int32_t[]", self._status))
         if st != lib.OGK_OK:
-            from ogk.bindings.kernel import KernelError
+            from ogk_bindings.kernel import KernelError
             raise KernelError(st, "ogk_sil_cpd_init_batch")
         self._phi_c = np.full(n_runs, self.config["phi_c"])
 

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_host.errors import TableError
+from ogk_bindings.errors import TableError
 from ogk_host.orbit_injection.scenario import LeoGeoScenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 

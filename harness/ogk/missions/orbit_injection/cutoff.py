@@ -1,6 +1,6 @@
 """The kernel's energy cut-off monitor (kernel/include/ogk/cutoff.h) for all runs of a SIL chunk.
 
-One ogk_cutoff_t per run; the C batch loop of harness/csrc/cutoff_batch.c crosses from Python once
+One ogk_cutoff_t per run; the C batch loop of csrc/cutoff_batch.c crosses from Python once
 per control step. Flown when the scenario says `[guidance.end_game] cutoff = "energy"`
 (docs/vtd-nog.md, "End-game": beyond the paper).
 """
@@ -11,8 +11,8 @@ from numpy.typing import NDArray
 
 from ogk_host.orbit_injection.scenario import LeoGeoScenario
 
-from ogk.bindings._ffi import ffi, lib
-from ogk.bindings.kernel import KernelError
+from ogk_bindings._ffi import ffi, lib
+from ogk_bindings.kernel import KernelError
 
 F64 = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]

@@ -17,7 +17,7 @@ def flight_configs(scenario: Path, bundle: Path) -> tuple[Any, Any, Any]:
     """(ffi, nog_config, cpd_config) as the SIL builds them, from the scenario and the bundle."""
     from ogk_host.orbit_injection.scenario import load_scenario
 
-    from ogk.bindings._ffi import ffi
+    from ogk_bindings._ffi import ffi
     from ogk.missions.orbit_injection.attitude import cpd_config
     from ogk.missions.orbit_injection.nog_guidance import load_table, nog_config
 

@@ -2,7 +2,7 @@
 
 One ogk_nog_t per run, one shared read-only ogk_nog_table_t decoded from the flight bundle
 (`ogk tables leo-geo`, regenerated when the scenario changes). The C batch loops in
-harness/csrc/nog_batch.c cross from Python once per sampling or command time for all runs.
+csrc/nog_batch.c cross from Python once per sampling or command time for all runs.
 A run whose guidance returns an error status at a sample is flagged failed (the kernel still
 serves its safe command, which the loop flies until the run is counted).
 """
@@ -18,12 +18,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ogk_host.orbit_injection.scenario import LeoGeoScenario
-from ogk_host.errors import TableError
+from ogk_bindings.errors import TableError
 from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection import tables as ground_tables
 
-from ogk.bindings._ffi import ffi, lib
-from ogk.bindings.kernel import KernelError
+from ogk_bindings._ffi import ffi, lib
+from ogk_bindings.kernel import KernelError
 from .guidance import GuidanceSetup
 
 F64 = NDArray[np.float64]

@@ -1,6 +1,6 @@
 """The kernel's terminal steering along the velocity to be gained (kernel/include/ogk/terminal.h)
 for all runs of a SIL chunk: one ogk_terminal_t per run, stepped once per control step by the C
-batch loop of harness/csrc/terminal_batch.c. Flown when the scenario sets
+batch loop of csrc/terminal_batch.c. Flown when the scenario sets
 `[guidance.end_game] terminal_window_s` > 0 (docs/vtd-nog.md, "End-game": beyond the paper).
 """
 from __future__ import annotations
@@ -10,8 +10,8 @@ from numpy.typing import NDArray
 
 from ogk_host.orbit_injection.scenario import LeoGeoScenario
 
-from ogk.bindings._ffi import ffi, lib
-from ogk.bindings.kernel import KernelError
+from ogk_bindings._ffi import ffi, lib
+from ogk_bindings.kernel import KernelError
 
 F64 = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]

@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from ogk_host.rendezvous.dynamics import DAY_S
 from ogk_host.rendezvous.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.rendezvous.scenario import RendezvousScenario

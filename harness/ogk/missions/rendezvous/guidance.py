@@ -17,7 +17,7 @@ from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from ogk_host.errors import OgkInputError
+from ogk_bindings.errors import OgkInputError
 from ogk_host.rendezvous.dynamics import DAY_S, Model
 from ogk_host.rendezvous.nlp import NlpResult, RendezvousNlp, min_fuel_guess
 from ogk_host.rendezvous.ocp import DEFAULT_GUESS_ALPHA_RAD, DEFAULT_GUESS_SHAPE, DEFAULT_GUESS_TF_DAYS

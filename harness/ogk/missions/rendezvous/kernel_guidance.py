@@ -20,7 +20,7 @@ from ogk_host.rendezvous.nlp import MIN_FUEL_GUESS_THROTTLE
 from ogk_host.rendezvous.plan import Plan
 from ogk_host.rendezvous.scenario import RendezvousScenario
 
-from ogk.bindings.nmpc import CNCN, FLAG_SUBDIVIDED, MAX_NODES, SNNS, Nmpc, NmpcConfig
+from ogk_bindings.nmpc import CNCN, FLAG_SUBDIVIDED, MAX_NODES, SNNS, Nmpc, NmpcConfig
 
 from . import strategy as st
 from .guidance import ReplanInfo, first_guess

@@ -18,9 +18,9 @@ import dataclasses
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ogk.bindings._ffi import ffi, lib
-from ogk.bindings.config import KernelConfig
-from ogk.bindings.kernel import _check, status_name
+from ogk_bindings._ffi import ffi, lib
+from ogk_bindings.config import KernelConfig
+from ogk_bindings.kernel import _check, status_name
 
 F64 = NDArray[np.float64]
 

@@ -1,14 +1,18 @@
-"""Builds the cffi extension ``ogk.bindings._ogk_cffi`` (API mode) in place.
+"""Builds the cffi extension ``ogk_bindings._ogk_cffi`` (API mode) in place.
 
 The extension compiles every kernel source (kernel/src/*.c) together with the
-harness's C models (harness/csrc/*.c), so Python calls exactly the C the flight
-build compiles.
+test models of the bindings (bindings/csrc/*.c) and the C helpers of each mission
+family (harness/ogk/missions/<family>/csrc/*.c: batched calls of the kernel's step
+functions over many runs), so Python calls exactly the C the flight build compiles.
+The family helpers are linked into this one extension because they take the kernel's
+context structs, which must come from the same cffi instance; this is a build-time
+list of sources, not a Python import (the layers of docs/architecture.md hold).
 
 The cdefs are generated from the headers themselves at build time; nothing of
 a kernel type is restated here:
 
 * types, enums and prototypes: ``gcc -E`` over every public header
-  (kernel/include/ogk/*.h, harness/csrc/*.h), keeping only the lines the
+  (kernel/include/ogk/*.h, the csrc/*.h above), keeping only the lines the
   linemarkers attribute to those headers (what <stdint.h> and <stddef.h>
   declare, cffi already knows). Comments vanish, macros are expanded (array
   sizes become the constants the C compiler sees, so a -D override of a
@@ -24,8 +28,8 @@ a kernel type is restated here:
 tests/python/test_bindings.py checks independently that every function,
 struct field and integer macro of the headers is reachable.
 
-Run from anywhere:  .venv/bin/python harness/build_ffi.py
-(`make ffi` does this whenever a kernel source, harness/csrc or this file changes.)
+Run from anywhere:  .venv/bin/python bindings/build_ffi.py
+(`make ffi` does this whenever a kernel source, a csrc/ file or this file changes.)
 """
 from __future__ import annotations
 
@@ -39,24 +43,25 @@ from pathlib import Path
 
 import cffi
 
-HARNESS_DIR = Path(__file__).resolve().parent
-ROOT = HARNESS_DIR.parent
+BINDINGS_DIR = Path(__file__).resolve().parent
+ROOT = BINDINGS_DIR.parent
 KERNEL_INCLUDE = ROOT / "kernel" / "include"
 KERNEL_SRC = ROOT / "kernel" / "src"
-CSRC = HARNESS_DIR / "csrc"
-PACKAGE_DIR = HARNESS_DIR / "ogk" / "bindings"
+#: C beside the kernel: the bindings' test models, then every family's helpers
+CSRC_DIRS = [BINDINGS_DIR / "csrc", *sorted((ROOT / "harness" / "ogk" / "missions").glob("*/csrc"))]
+PACKAGE_DIR = BINDINGS_DIR / "ogk_bindings"
 BUILD_DIR = ROOT / "build" / "ffi"
-MODULE_NAME = "ogk.bindings._ogk_cffi"
+MODULE_NAME = "ogk_bindings._ogk_cffi"
 CC = os.environ.get("CC", "gcc")
 # Extra -D/-U options (e.g. a capacity override) applied both to the header scan
 # and to the compilation of the extension.
 DEFINES = shlex.split(os.environ.get("OGK_FFI_DEFINES", ""))
-INCLUDE_DIRS = [str(KERNEL_INCLUDE), str(CSRC)]
+INCLUDE_DIRS = [str(KERNEL_INCLUDE), *(str(d) for d in CSRC_DIRS)]
 
 
 def public_headers() -> list[Path]:
-    """Every header the bindings expose: the kernel's public API, then the SIL helpers."""
-    return sorted((KERNEL_INCLUDE / "ogk").glob("*.h")) + sorted(CSRC.glob("*.h"))
+    """Every header the bindings expose: the kernel's public API, then the C beside it."""
+    return sorted((KERNEL_INCLUDE / "ogk").glob("*.h")) + [h for d in CSRC_DIRS for h in sorted(d.glob("*.h"))]
 
 
 def include_source(headers: list[Path]) -> str:
@@ -155,7 +160,7 @@ def generated_cdef() -> str:
 
 def kernel_sources() -> list[str]:
     return [str(p) for p in sorted(KERNEL_SRC.glob("*.c"))] + [
-        str(p) for p in sorted(CSRC.glob("*.c"))
+        str(p) for d in CSRC_DIRS for p in sorted(d.glob("*.c"))
     ]
 
 

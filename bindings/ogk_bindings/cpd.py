@@ -21,9 +21,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ogk.bindings._ffi import ffi, lib
-from ogk.bindings.config import KernelConfig
-from ogk.bindings.kernel import Status, _check
+from ogk_bindings._ffi import ffi, lib
+from ogk_bindings.config import KernelConfig
+from ogk_bindings.kernel import Status, _check
 
 F64 = NDArray[np.float64]
 

@@ -1,4 +1,4 @@
-"""Factories of the harness's C models (harness/csrc/models.h) for ogk.bindings.kernel.rk4_*.
+"""Factories of the bindings' C test models (bindings/csrc/models.h) for ogk_bindings.kernel.rk4_*.
 
 Each factory allocates the model's parameter struct with ffi.new and returns a
 CModel holding it, so the struct lives as long as the CModel."""
@@ -7,8 +7,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ogk.bindings._ffi import ffi, lib
-from ogk.bindings.kernel import CModel
+from ogk_bindings._ffi import ffi, lib
+from ogk_bindings.kernel import CModel
 
 
 def two_body(mu: float) -> CModel:

@@ -1,4 +1,4 @@
-"""Typed numpy bindings of the ogk C kernel (thin layer over ogk.bindings._ogk_cffi).
+"""Typed numpy bindings of the ogk C kernel (thin layer over ogk_bindings._ogk_cffi).
 
 Every wrapper converts its inputs to contiguous float64 arrays, calls the one
 kernel function, and raises KernelError (status code and name) for any status
@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ogk.bindings._ffi import ffi, lib
+from ogk_bindings._ffi import ffi, lib
 
 F64 = NDArray[np.float64]
 

@@ -19,8 +19,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ogk.bindings._ffi import ffi, lib
-from ogk.bindings.kernel import _check
+from ogk_bindings._ffi import ffi, lib
+from ogk_bindings.kernel import _check
 
 __all__ = ["KernelConfig", "field_names"]
 

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 try:
-    from ogk.bindings._ogk_cffi import ffi, lib  # type: ignore[import-not-found]
+    from ogk_bindings._ogk_cffi import ffi, lib  # type: ignore[import-not-found]
 except ImportError as exc:  # pragma: no cover - depends on the build state
     raise ImportError(
         "ogk kernel bindings are not built (or are stale): run `make ffi` "
