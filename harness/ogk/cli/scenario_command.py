@@ -42,6 +42,8 @@ def run_scenario_command(name: str, scenario: str | None, rest: Sequence[str],
         scenario = rest[i + 1]
         del rest[i:i + 2]
     header = read_header(resolve_scenario(scenario))
+    if name == "mc":
+        return _campaign(header, scenario, rest, overrides)
     adapter = registry.command(header, name)
     parser = argparse.ArgumentParser(prog=f"ogk {name} {scenario}",
                                      description=(adapter.__doc__ or "").strip().splitlines()[0])
@@ -52,3 +54,19 @@ def run_scenario_command(name: str, scenario: str | None, rest: Sequence[str],
     for key, value in (overrides or {}).items():
         setattr(args, key, value)
     return int(getattr(adapter, name)(header, args))
+
+
+def _campaign(header: Any, scenario: str, rest: Sequence[str],
+              overrides: dict[str, Any] | None) -> int:
+    """`ogk mc SCENARIO`: the engine's options, then the family's (ogk.cli.campaign_flow)."""
+    from ogk.cli import campaign_flow
+    fam = registry.campaign_family(header)
+    parser = argparse.ArgumentParser(prog=f"ogk mc {scenario}",
+                                     description=f"Monte Carlo campaign of a {fam.name} scenario "
+                                                 f"({', '.join(fam.laws)}): {fam.campaign_doc}")
+    campaign_flow.add_engine_arguments(parser, fam)
+    fam.add_campaign_arguments(parser)
+    args = parser.parse_args(rest)
+    for key, value in (overrides or {}).items():
+        setattr(args, key, value)
+    return campaign_flow.fly(header, args)

@@ -4,8 +4,8 @@ The family's adapter for ogk.missions.registry:
   `ogk blt SCENARIO --transfer NAME --json FILE [--plots DIR]`: one transfer: the ground's initial guess, the
       flight kernel's corrector in the realistic model, the independent DOP853 re-propagation of the result,
       the paper's figures beside it. Exit 0 when the kernel converged and DOP853 confirms the tolerance.
-  `ogk mc SCENARIO [--perturbation PCT ...] [--runs N] [--seed S] --json FILE [--plots DIR]`: the convergence
-      Monte Carlo of Table 3, plain NRPC, the damped corrector and the hybrid on the same draws. Exit 0 when it ran.
+  `ogk run SCENARIO --transfer NAME ...`: the same (`ogk blt` is its older spelling).
+  `ogk mc SCENARIO`: the convergence Monte Carlo of Table 3, through the campaign engine (family.py).
 Exit 2 on bad input.
 """
 from __future__ import annotations
@@ -27,7 +27,6 @@ from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale, write_atomic
 
-from . import campaign
 
 LAWS = SCENARIO_LAWS
 
@@ -151,75 +150,7 @@ def _transfer_plots(scenario: BinaryScenario, doc: dict[str, Any], out_dir: Path
                             scenario.units.time_s, out_dir, title)
 
 
-# ------------------------------------------------------------------------------------------ ogk mc
-
-def add_mc_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--perturbation", type=float, nargs="+", default=None, metavar="PCT",
-                   help="perturbation levels [%%] (default: the scenario's [monte_carlo] levels)")
-    p.add_argument("--runs", type=int, default=None, metavar="N", help="runs per level (default: the scenario's)")
-    p.add_argument("--seed", type=int, default=1, metavar="S", help="campaign seed (default 1)")
-    p.add_argument("--json", required=True, metavar="FILE", help="write the campaign as JSON")
-    p.add_argument("--plots", default=None, metavar="DIR", help="PNG of the convergence rates")
-    p.add_argument("--corrector", choices=("all", "nrpc", "lm", "hybrid"), default="all",
-                   help="which corrector(s) to fly on the same draws (default all three)")
-    p.add_argument("--workers", type=int, default=2, metavar="W", help="worker processes (default 2)")
-    p.add_argument("--sigma-fraction", type=float, default=None, metavar="F",
-                   help="sigma of a draw as a fraction of the level (default: the scenario's [monte_carlo])")
-
-
-def mc(header: ScenarioHeader, args: argparse.Namespace) -> int:
-    scenario = _scenario(header)
-    spec_mc = T.monte_carlo_spec(scenario)
-    out = check_output_file(args.json, "--json")
-    plots = check_output_dir(args.plots, "--plots") if args.plots else None
-    levels = tuple(args.perturbation) if args.perturbation else spec_mc.levels_percent
-    runs = spec_mc.runs if args.runs is None else args.runs
-    if args.sigma_fraction is not None:
-        if not args.sigma_fraction > 0.0:
-            raise OgkInputError("must be > 0", key="--sigma-fraction")
-        spec_mc = dataclasses.replace(spec_mc, sigma_fraction=args.sigma_fraction)
-    if runs < 1 or any(not 0.0 < lv <= 100.0 for lv in levels) or args.workers < 1:
-        raise OgkInputError("--runs and --workers must be >= 1 and every --perturbation in (0, 100]")
-    remove_stale(out)
-    correctors = ("nrpc", "lm", "hybrid") if args.corrector == "all" else (args.corrector,)
-    solver = T.solver_settings(scenario)
-    spec = T.transfer_spec(scenario, spec_mc.transfer)
-    start = time.perf_counter()
-    d = T.design(scenario, spec, solver)
-    if not d.report.converged:
-        raise OgkInputError(f"the nominal transfer {spec.name} did not converge ({d.report.status})",
-                            path=scenario.path, key=f"transfers.{spec.name}")
-    assert spec.circle_radius_m is not None
-    nominal = campaign.Nominal(model=d.model, layout=d.guess.layout, transfer=d.transfer,
-                               circle_radius=spec.circle_radius_m / scenario.units.length_m, tol=spec_mc.tol,
-                               max_iter=spec_mc.max_iter, jacobian=T.JACOBIANS[solver.jacobian],
-                               fields=dict(fd_step=solver.fd_step, ls_trials=solver.ls_trials))
-    paper = dict(zip(spec_mc.levels_percent, spec_mc.paper_converged_percent))
-    doc: dict[str, Any] = dict(scenario=scenario.name, transfer=spec.name, seed=args.seed, runs_per_level=runs,
-                               tol=spec_mc.tol, max_iter=spec_mc.max_iter, sigma_fraction=spec_mc.sigma_fraction,
-                               correctors=list(correctors), jacobian=solver.jacobian,
-                               nominal=dict(segments=d.transfer.segments.tolist(), iterations=d.report.iterations),
-                               paper_levels_percent=list(spec_mc.levels_percent),
-                               paper_converged_percent=list(spec_mc.paper_converged_percent), levels=[])
-    print(f"Xiong & Wang, Table 3 ({scenario.name} / {spec.name}, {spec.thrust_n * 1e3:g} mN): {runs} runs per "
-          f"level, seed {args.seed}, tol {spec_mc.tol:g}, {spec_mc.max_iter} iterations")
-    print(f"  {'level [%]':>9s} " + " ".join(f"{c + ' [%]':>10s}" for c in correctors) + f" {'paper [%]':>10s}"
-          "  failures (" + correctors[-1] + ")")
-    for i, level in enumerate(levels):
-        runs_out = campaign.run_level(nominal, args.seed, i, level / 100.0, spec_mc.sigma_fraction, runs,
-                                      correctors, args.workers)
-        summary = {c: campaign.summarise(runs_out, c) for c in correctors}
-        doc["levels"].append(dict(level_percent=level, paper_converged_percent=paper.get(level), summary=summary,
-                                  converged_pct={c: summary[c]["converged_pct"] for c in correctors},
-                                  runs=runs_out))
-        print(f"  {level:9g} " + " ".join(f"{summary[c]['converged_pct']:10.2f}" for c in correctors) +
-              f" {paper[level]:10.2f}" if level in paper else "         -", end="")
-        print("  " + ", ".join(f"{k}: {v}" for k, v in summary[correctors[-1]]["failures"].items()) +
-              "".join(f"  [{c}: DOP853 confirms {summary[c]['dop853_confirmed']}/{summary[c]['converged']}]"
-                      for c in correctors if summary[c]["dop853_confirmed"] != summary[c]["converged"]))
-    doc["wall_s"] = time.perf_counter() - start
-    if plots is not None:
-        from .plots import mc_figure
-        doc["plots"] = [str(mc_figure(doc, plots))]
-    write_atomic(out, json.dumps(doc))
-    return 0
+# `ogk run` is the family's one-transfer verb; `ogk blt` its older spelling. `ogk mc` goes through
+# the campaign engine (family.py).
+add_run_arguments = add_blt_arguments
+run = blt

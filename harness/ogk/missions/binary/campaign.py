@@ -9,13 +9,12 @@ perturbation: "perturbed by values up to p"),
   - the departure: moved along the circle by an ignition-time error p xi T_1 (T_1 the first burn's duration);
   - the free node: re-predicted from the perturbed parameters (backward from the target, as the guess stage
     does; eq. 72); the target is not perturbed ("the orbit determination ... is assumed to be accurate").
-Run k of a campaign with seed S draws from numpy's default_rng([S, level index, k]): a run is reproducible
-alone, and the same draws serve both correctors."""
+Run i of a campaign flies level i mod L (L levels) from its own stream (ogk.sil.seeds, the campaign
+engine's): a run is reproducible alone, and the same draw serves every corrector."""
 from __future__ import annotations
 
 import dataclasses
 import math
-import multiprocessing
 import time
 from typing import Any
 
@@ -76,69 +75,61 @@ def reason(rep_flags: list[str], status: str) -> str:
     return status
 
 
-_WORKER: dict[str, Any] = {}
+def kernels(nominal: Nominal, correctors: tuple[str, ...]) -> dict[str, Blt]:
+    """One flight-kernel context per corrector, configured as the nominal's."""
+    return {name: Blt(kernel_config(nominal.model, nominal.layout, corrector=CORRECTORS[name],
+                                    jacobian=nominal.jacobian, tol=nominal.tol,
+                                    max_iter=nominal.max_iter, **nominal.fields))
+            for name in correctors}
 
 
-def _init(nominal: Nominal) -> None:
-    _WORKER["nominal"] = nominal
-    _WORKER["kernels"] = {name: Blt(kernel_config(nominal.model, nominal.layout, corrector=code,
-                                                  jacobian=nominal.jacobian, tol=nominal.tol,
-                                                  max_iter=nominal.max_iter, **nominal.fields))
-                          for name, code in CORRECTORS.items()}
-
-
-def _run(job: tuple[int, int, float, float, int, tuple[str, ...]]) -> dict[str, Any]:
-    seed, level_index, level, sigma_fraction, k, correctors = job
-    nominal: Nominal = _WORKER["nominal"]
-    rng = np.random.default_rng([seed, level_index, k])
-    out: dict[str, Any] = dict(run=k, level_percent=100.0 * level)
+def fly_run(nominal: Nominal, solvers: dict[str, Blt], level: float, sigma_fraction: float,
+            rng: np.random.Generator) -> dict[str, Any]:
+    """One perturbed problem corrected by each corrector on the same draw: a flat record
+    (`<corrector>.converged`, `.reason`, `.iterations`, ...; timings under `timing.`)."""
+    out: dict[str, Any] = {"level_percent": 100.0 * level}
     try:
         guess, d = draw(nominal, level, sigma_fraction, rng)
     except (ValueError, RuntimeError) as exc:       # the perturbed prediction itself fails (impact, mass)
-        out.update(draw=None, results={c: dict(converged=False, reason=f"no guess: {exc}") for c in correctors})
+        out["draw.xi"] = None
+        out["draw.departure_shift"] = None
+        for name in solvers:
+            out.update({f"{name}.converged": False, f"{name}.reason": f"no guess: {exc}"})
         return out
-    out["draw"] = d
-    results = {}
-    for name in correctors:
+    out["draw.xi"] = d["xi"]
+    out["draw.departure_shift"] = float(d["departure_shift"])
+    for name, kernel in solvers.items():
         start = time.process_time()
         try:
-            sol, rep = _WORKER["kernels"][name].solve(guess)
+            sol, rep = kernel.solve(guess)
         except Exception as exc:                     # bad input the kernel refused (range): a failure
-            results[name] = dict(converged=False, reason=f"rejected: {exc}")
+            out.update({f"{name}.converged": False, f"{name}.reason": f"rejected: {exc}"})
             continue
-        cpu_ms = 1e3 * (time.process_time() - start)
-        results[name] = dict(converged=rep.converged, reason=reason(rep.flag_names(), rep.status),
-                             iterations=rep.iterations, err_norm0=rep.err_norm0, err_norm=rep.err_norm,
-                             burn_time=rep.burn_time, mass_final=rep.mass_final, cpu_ms=cpu_ms)
+        out[f"timing.{name}.cpu_ms"] = 1e3 * (time.process_time() - start)
+        out.update({f"{name}.converged": bool(rep.converged),
+                    f"{name}.reason": reason(rep.flag_names(), rep.status),
+                    f"{name}.iterations": int(rep.iterations), f"{name}.err_norm0": rep.err_norm0,
+                    f"{name}.err_norm": rep.err_norm, f"{name}.burn_time": rep.burn_time,
+                    f"{name}.mass_final": rep.mass_final})
         if rep.converged:
             # the independent check: the same error vector by DOP853 (rtol 1e-12) must meet the tolerance
             ref = reference_errors(nominal.model, nominal.layout, sol)
-            results[name].update(dop853_err_norm=ref.err_norm,
-                                 dop853_meets_tol=bool(ref.err_norm <= nominal.tol and not ref.impact))
-    out["results"] = results
+            out[f"{name}.dop853_err_norm"] = ref.err_norm
+            out[f"{name}.dop853_meets_tol"] = bool(ref.err_norm <= nominal.tol and not ref.impact)
     return out
 
 
-def run_level(nominal: Nominal, seed: int, level_index: int, level: float, sigma_fraction: float, runs: int,
-              correctors: tuple[str, ...], workers: int) -> list[dict[str, Any]]:
-    jobs = [(seed, level_index, level, sigma_fraction, k, correctors) for k in range(runs)]
-    if workers <= 1:
-        _init(nominal)
-        return [_run(j) for j in jobs]
-    ctx = multiprocessing.get_context("fork")
-    with ctx.Pool(workers, initializer=_init, initargs=(nominal,)) as pool:
-        return list(pool.imap(_run, jobs, chunksize=8))
-
-
-def summarise(runs: list[dict[str, Any]], corrector: str) -> dict[str, Any]:
-    res = [r["results"][corrector] for r in runs]
-    conv = [r for r in res if r["converged"]]
+def summarise(records: list[dict[str, Any]], corrector: str) -> dict[str, Any]:
+    """Converged %, DOP853 confirmations, failure reasons and iterations of one corrector."""
+    res = [r for r in records if f"{corrector}.converged" in r]
+    conv = [r for r in res if r[f"{corrector}.converged"]]
     reasons: dict[str, int] = {}
     for r in res:
-        if not r["converged"]:
-            reasons[r["reason"]] = reasons.get(r["reason"], 0) + 1
-    its = [r["iterations"] for r in conv]
-    confirmed = sum(1 for r in conv if r.get("dop853_meets_tol"))
+        if not r[f"{corrector}.converged"]:
+            why = r[f"{corrector}.reason"]
+            reasons[why] = reasons.get(why, 0) + 1
+    its = [r[f"{corrector}.iterations"] for r in conv]
+    confirmed = sum(1 for r in conv if r.get(f"{corrector}.dop853_meets_tol"))
     return dict(runs=len(res), converged=len(conv), converged_pct=100.0 * len(conv) / max(len(res), 1),
                 dop853_confirmed=confirmed,
                 failures=reasons, iterations_median=float(np.median(its)) if its else None,

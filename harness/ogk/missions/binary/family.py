@@ -1,0 +1,185 @@
+"""The binary-asteroid family's campaign contract (ogk.sil.family): the convergence Monte Carlo of
+Table 3 (Xiong & Wang, sec. V.A.2). A run is the scenario's [monte_carlo] transfer perturbed at one
+level (run i: level i mod L) and corrected by each corrector on the same draw (campaign.py).
+
+Acceptance: a run fails when a corrector claims convergence that the DOP853 re-propagation does not
+confirm within the tolerance, or when the kernel rejected the perturbed problem. A corrector that
+does not converge is what the campaign measures (the converged percentage per level), not a failure.
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import hashlib
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from ogk_bindings.errors import OgkInputError
+from ogk_host.binary import transfers as T
+from ogk_host.binary.scenario import LAWS, BinaryScenario, load_scenario
+from ogk_host.scenario_file import ScenarioHeader, file_sha256
+
+from ogk.sil.engine import Flown
+from ogk.sil.family import CampaignPlan, Record, per_run
+from ogk.sil.seeds import run_generator
+
+from . import campaign
+
+ALL = ("nrpc", "lm", "hybrid")
+
+
+@dataclasses.dataclass(frozen=True)
+class _Base:
+    scenario: BinaryScenario
+    transfer: str
+    thrust_n: float
+    correctors: tuple[str, ...]
+    levels_percent: tuple[float, ...]
+    paper: dict[float, float]
+
+
+class BinaryFamily:
+    name = "binary-asteroid"
+    laws = LAWS
+    default_runs = None
+    campaign_doc = ("the Table 3 convergence Monte Carlo: the scenario's [monte_carlo] transfer "
+                    "perturbed, every corrector on the same draws, each converged run re-checked "
+                    "by DOP853; run i flies level i mod L")
+
+    def load(self, header: ScenarioHeader) -> BinaryScenario:
+        return load_scenario(header.path)
+
+    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
+        p.add_argument("--perturbation", type=float, nargs="+", default=None, metavar="PCT",
+                       help="perturbation levels [%%] (default: the scenario's [monte_carlo] levels)")
+        p.add_argument("--corrector", choices=("all", *ALL), default="all",
+                       help="which corrector(s) to fly on the same draws (default all three)")
+        p.add_argument("--sigma-fraction", type=float, default=None, metavar="F",
+                       help="sigma of a draw as a fraction of the level (default: the scenario's)")
+
+    def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
+        scenario = self.load(header)
+        spec_mc = T.monte_carlo_spec(scenario)
+        levels = tuple(float(v) for v in (options.get("perturbation") or spec_mc.levels_percent))
+        bad = [v for v in levels if not 0.0 < v <= 100.0]
+        if bad:
+            raise OgkInputError(f"every level must be in (0, 100] %, got {bad[0]:g}",
+                                key="--perturbation")
+        sigma = options.get("sigma_fraction")
+        sigma = spec_mc.sigma_fraction if sigma is None else float(sigma)
+        if not sigma > 0.0:
+            raise OgkInputError(f"must be > 0, got {sigma:g}", key="--sigma-fraction")
+        chosen = options.get("corrector", "all")
+        correctors = ALL if chosen == "all" else (str(chosen),)
+        solver = T.solver_settings(scenario)
+        spec = T.transfer_spec(scenario, spec_mc.transfer)
+        d = T.design(scenario, spec, solver)
+        if not d.report.converged:
+            raise OgkInputError(f"the nominal transfer {spec.name} did not converge "
+                                f"({d.report.status})", path=scenario.path,
+                                key=f"transfers.{spec.name}")
+        assert spec.circle_radius_m is not None
+        nominal = campaign.Nominal(
+            model=d.model, layout=d.guess.layout, transfer=d.transfer,
+            circle_radius=spec.circle_radius_m / scenario.units.length_m, tol=spec_mc.tol,
+            max_iter=spec_mc.max_iter, jacobian=T.JACOBIANS[solver.jacobian],
+            fields=dict(fd_step=solver.fd_step, ls_trials=solver.ls_trials))
+        solvers = campaign.kernels(nominal, correctors)
+        n_levels = len(levels)
+
+        def fly_one(run_id: int, run_seed: int) -> Record:
+            level = levels[run_id % n_levels]
+            return campaign.fly_run(nominal, solvers, level / 100.0, sigma, run_generator(run_seed))
+
+        tol = spec_mc.tol
+
+        def judge(rec: Record) -> str:
+            for c in correctors:
+                why = str(rec.get(f"{c}.reason") or "")
+                if why.startswith("rejected"):
+                    return f"{c}: {why}"
+                if rec.get(f"{c}.converged") and not rec.get(f"{c}.dop853_meets_tol"):
+                    return f"{c}: converged but DOP853 |e| = {rec.get(f'{c}.dop853_err_norm')} > {tol:g}"
+            return ""
+
+        nominal_sha = hashlib.sha256(np.ascontiguousarray(d.transfer.segments).tobytes()
+                                     + np.ascontiguousarray(d.transfer.nodes).tobytes()).hexdigest()
+        paper = dict(zip(spec_mc.levels_percent, spec_mc.paper_converged_percent))
+        base = _Base(scenario, spec.name, spec.thrust_n, correctors, levels, paper)
+        return CampaignPlan(
+            family=self.name, law=header.law, mission=scenario.name, scenario_path=Path(header.path),
+            scenario_sha256=file_sha256(header.path),
+            options={"perturbation": list(levels), "sigma_fraction": sigma, "corrector": chosen,
+                     "transfer": spec.name, "tol": tol, "max_iter": spec_mc.max_iter,
+                     "jacobian": solver.jacobian},
+            products={"nominal_transfer": nominal_sha},
+            fly=per_run(fly_one), judge=judge,
+            quantities=tuple(f"{c}.{q}" for c in correctors for q in ("iterations", "err_norm")),
+            paper=lambda recs: self._paper(base, recs),
+            acceptance={"dop853_tolerance": tol, "non_convergence": "measured, not a failure"},
+            watchdog_per_run_s=30.0, base=base)
+
+    # ------------------------------------------------------------------ reports
+    def _levels(self, base: _Base, records: Sequence[Record]) -> list[dict[str, Any]]:
+        out = []
+        for level in base.levels_percent:
+            recs = [r for r in records if r["level_percent"] == level]
+            summary = {c: campaign.summarise(list(recs), c) for c in base.correctors}
+            out.append(dict(level_percent=level, paper_converged_percent=base.paper.get(level),
+                            runs=len(recs), summary=summary,
+                            converged_pct={c: summary[c]["converged_pct"] for c in base.correctors}))
+        return out
+
+    def _paper(self, base: _Base, records: Sequence[Record]) -> dict[str, Any] | None:
+        if not base.paper:
+            return None
+        return {"table": "Xiong & Wang, Table 3 (converged %)",
+                "levels": [{"level_percent": lv["level_percent"],
+                            "paper_converged_percent": lv["paper_converged_percent"],
+                            **{f"{c}_converged_percent": lv["converged_pct"][c]
+                               for c in base.correctors}}
+                           for lv in self._levels(base, records)]}
+
+    def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
+        base: _Base = flown.plan.base
+        levels = self._levels(base, flown.records)
+        cs = base.correctors
+        lines = [f"Xiong & Wang, Table 3 ({base.scenario.name} / {base.transfer}, "
+                 f"{base.thrust_n * 1e3:g} mN): {len(flown.records)} runs over {len(levels)} levels, "
+                 f"seed {flown.seed}, tol {flown.plan.options['tol']:g}",
+                 f"  {'level [%]':>9s} {'runs':>5s} " + " ".join(f"{c + ' [%]':>10s}" for c in cs)
+                 + f" {'paper [%]':>10s}  not converged ({cs[-1]})"]
+        for lv in levels:
+            s = lv["summary"]
+            paper = lv["paper_converged_percent"]
+            lines.append(f"  {lv['level_percent']:9g} {lv['runs']:5d} "
+                         + " ".join(f"{s[c]['converged_pct']:10.2f}" for c in cs)
+                         + (f" {paper:10.2f}" if paper is not None else f" {'-':>10s}")
+                         + "  " + ", ".join(f"{k}: {v}" for k, v in s[cs[-1]]["failures"].items())
+                         + "".join(f"  [{c}: DOP853 confirms {s[c]['dop853_confirmed']}/"
+                                   f"{s[c]['converged']}]" for c in cs
+                                   if s[c]["dop853_confirmed"] != s[c]["converged"]))
+        extra = {"scenario": base.scenario.name, "transfer": base.transfer,
+                 "correctors": list(cs), "levels": levels,
+                 "runs_per_level": {str(lv["level_percent"]): lv["runs"] for lv in levels}}
+        return "\n".join(lines), extra
+
+    def plots(self, flown: Flown, out_dir: Path) -> list[Path]:
+        from .plots import mc_figure
+        base: _Base = flown.plan.base
+        levels = self._levels(base, flown.records)
+        for lv in levels:   # the figure's shape: per run, per corrector
+            recs = [r for r in flown.records if r["level_percent"] == lv["level_percent"]]
+            lv["runs"] = [{"results": {c: {"converged": r.get(f"{c}.converged"),
+                                           "iterations": r.get(f"{c}.iterations")}
+                                       for c in base.correctors}} for r in recs]
+        doc = {"scenario": base.scenario.name, "transfer": base.transfer, "levels": levels,
+               "runs_per_level": len(flown.records) // max(len(levels), 1), "seed": flown.seed,
+               "paper_levels_percent": list(base.paper), "paper_converged_percent":
+                   list(base.paper.values())}
+        return [mc_figure(doc, out_dir)]
+
+
+FAMILY = BinaryFamily()
