@@ -1,98 +1,18 @@
-"""`ogk mc SCENARIO`, `ogk replay CAMPAIGN RUN_ID`, `ogk report CAMPAIGN`: the same flow for every
-mission family. The family (ogk.missions.<family>.family.FAMILY, ogk.sil.family) says what a run
-is; the engine (ogk.sil.engine) flies the runs; the envelope (ogk.sil.envelope) writes the JSON and
-the Parquet table. Exit 0 when every run passed the scenario's acceptance, 1 otherwise."""
+"""`ogk replay CAMPAIGN RUN_ID` and `ogk report CAMPAIGN`: the same for every mission family (the
+family found from the envelope by ogk.missions.registry); `ogk mc` is ogk.sil.command."""
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from ogk_bindings.errors import OgkInputError
-from ogk_host.scenario_file import ScenarioHeader, file_sha256, read_header
+from ogk_host.scenario_file import file_sha256, read_header
 
 from ogk.missions import registry
 from ogk.sil import engine, envelope
 from ogk.sil.family import CampaignPlan
-from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale
-from ogk.sil.runner import Watchdog
-
-
-def add_engine_arguments(p: argparse.ArgumentParser, family: Any) -> None:
-    """The options every campaign has (the family adds its own after them)."""
-    default_runs = getattr(family, "default_runs", None)
-    p.add_argument("--runs", type=int, default=default_runs, required=default_runs is None,
-                   help="number of runs" + (f" (default {default_runs})" if default_runs else ""))
-    p.add_argument("--seed", type=int, default=1,
-                   help="master seed >= 0 (run i draws from SeedSequence(seed, (i,)); default 1)")
-    p.add_argument("--workers", type=int, default=1, help="parallel processes (default 1)")
-    p.add_argument("--json", required=True, metavar="FILE",
-                   help="the campaign envelope; the per-run table is FILE's stem + .parquet")
-    p.add_argument("--plots", default=None, metavar="DIR", help="directory for PNG plots")
-    p.add_argument("--resume", action="store_true",
-                   help="keep the runs already in <json>.runs.jsonl (same campaign) and fly the rest")
-    p.add_argument("--chunk-runs", type=int, default=None, metavar="K",
-                   help=f"at most K runs per chunk (default {engine.DEFAULT_CHUNK_RUNS}); finished "
-                        "chunks are kept in <json>.runs.jsonl as they complete")
-    p.add_argument("--watchdog-per-run", type=float, default=None, metavar="S",
-                   help="a chunk without a result after 120 s + S s per run is killed and the "
-                        "campaign aborted (default: the family's)")
-
-
-def check_engine_arguments(args: argparse.Namespace) -> None:
-    """Every engine option checked before any ground product is made."""
-    if args.runs is None or args.runs < 1:
-        raise OgkInputError(f"must be >= 1, got {args.runs}", key="--runs")
-    if args.seed < 0:
-        raise OgkInputError(f"must be >= 0, got {args.seed}", key="--seed")
-    if args.workers < 1:
-        raise OgkInputError(f"must be >= 1, got {args.workers}", key="--workers")
-    if args.chunk_runs is not None and args.chunk_runs < 1:
-        raise OgkInputError(f"must be >= 1, got {args.chunk_runs}", key="--chunk-runs")
-    if args.watchdog_per_run is not None and not args.watchdog_per_run > 0.0:
-        raise OgkInputError(f"must be > 0 s, got {args.watchdog_per_run:g}",
-                            key="--watchdog-per-run")
-    check_output_file(args.json, "--json")
-    check_output_file(engine.run_log_path(args.json), "--json")
-    check_output_file(envelope.table_path(args.json), "--json")
-    if args.plots:
-        check_output_dir(args.plots, "--plots")
-
-
-ENGINE_OPTIONS = ("runs", "seed", "workers", "json", "plots", "resume", "chunk_runs",
-                  "watchdog_per_run", "debug")
-
-
-def family_options(args: argparse.Namespace) -> dict[str, Any]:
-    """The family's own options (what is not the engine's)."""
-    return {k: v for k, v in vars(args).items() if k not in ENGINE_OPTIONS}
-
-
-def fly(header: ScenarioHeader, args: argparse.Namespace) -> int:
-    """`ogk mc SCENARIO ...` for any family."""
-    fam = registry.campaign_family(header)
-    check_engine_arguments(args)
-    remove_stale(args.json)
-    plan: CampaignPlan = fam.plan(header, family_options(args))
-    if plan.max_runs is not None and args.runs > plan.max_runs:
-        raise OgkInputError(f"this campaign has {plan.max_runs} runs, got {args.runs}", key="--runs")
-    wd = Watchdog(per_run_s=args.watchdog_per_run) if args.watchdog_per_run else None
-    flown = engine.fly_campaign(plan, args.runs, args.seed, args.workers,
-                                chunk_runs=args.chunk_runs, watchdog=wd,
-                                run_log=engine.run_log_path(args.json), resume=args.resume)
-    text, extra = fam.report(flown)
-    print(text)
-    if flown.resumed_runs:
-        print(f"\n{flown.resumed_runs} of {len(flown.records)} runs taken from "
-              f"{engine.run_log_path(args.json)}")
-    envelope.write_campaign(args.json, flown, extra)
-    print(f"\nwrote {args.json} and {envelope.table_path(args.json)} "
-          f"({len(flown.records)} runs, {flown.wall_s:.1f} s wall, {flown.workers} workers)")
-    if args.plots and hasattr(fam, "plots"):
-        for path in fam.plots(flown, Path(args.plots)):
-            print(f"wrote {path}")
-    return 0 if not flown.failures() else 1
+from ogk.sil.outputs import check_output_dir, check_output_file
 
 
 def campaign_plan(doc: dict[str, Any], path: str | Path) -> tuple[Any, CampaignPlan]:

@@ -58,15 +58,10 @@ def run_scenario_command(name: str, scenario: str | None, rest: Sequence[str],
 
 def _campaign(header: Any, scenario: str, rest: Sequence[str],
               overrides: dict[str, Any] | None) -> int:
-    """`ogk mc SCENARIO`: the engine's options, then the family's (ogk.cli.campaign_flow)."""
-    from ogk.cli import campaign_flow
+    """`ogk mc SCENARIO`: the engine's options, then the family's (ogk.sil.command)."""
+    from ogk.sil import command
     fam = registry.campaign_family(header)
-    parser = argparse.ArgumentParser(prog=f"ogk mc {scenario}",
-                                     description=f"Monte Carlo campaign of a {fam.name} scenario "
-                                                 f"({', '.join(fam.laws)}): {fam.campaign_doc}")
-    campaign_flow.add_engine_arguments(parser, fam)
-    fam.add_campaign_arguments(parser)
-    args = parser.parse_args(rest)
+    args = command.parser_for(fam, f"ogk mc {scenario}").parse_args(rest)
     for key, value in (overrides or {}).items():
         setattr(args, key, value)
-    return campaign_flow.fly(header, args)
+    return command.fly(fam, header, args)

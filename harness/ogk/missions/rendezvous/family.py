@@ -1,0 +1,148 @@
+"""The low-thrust rendezvous family's campaign contract (ogk.sil.family): the receding-horizon NMPC
+closed loop (Starek & Kolmanovsky 2012) flown on many thrust-angle noise streams. Run i is one
+closed-loop flight whose noise comes from its own stream (ogk.sil.seeds): a new guidance context
+per run, the truth model perturbed unless --unperturbed.
+
+Acceptance: the scenario's arrival condition ([convergence]: inside Mars' sphere of influence and
+within its velocity tolerance) reached before the replan and flight-time limits; a flight that
+stops for any other reason (impact, replan limit, truth failure) fails with that reason.
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import time
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from ogk_bindings.errors import OgkInputError
+from ogk_host.rendezvous.scenario import LAWS, RendezvousScenario, load_scenario
+from ogk_host.scenario_file import ScenarioHeader, file_sha256
+
+from ogk.sil.engine import Flown
+from ogk.sil.family import CampaignPlan, Detail, Record, per_run
+
+STRATEGIES = ("snns", "cncn")
+SOLVERS = ("kernel", "ipopt")
+RESULTS = ("t_f_days", "fuel_kg", "fuel_nominal_mdot_kg", "final_position_miss_km",
+           "final_velocity_miss_m_s", "iterations", "solves", "replans", "failed_solves",
+           "subdivisions", "max_comp_fraction")
+
+
+def with_model(scenario: RendezvousScenario, third_bodies: str) -> RendezvousScenario:
+    """The scenario with the predictive model's third bodies as the command says."""
+    if third_bodies == "scenario":
+        return scenario
+    return dataclasses.replace(scenario, nmpc=dataclasses.replace(
+        scenario.nmpc, third_bodies_in_model=third_bodies == "yes"))
+
+
+def flight_record(summary: Mapping[str, Any]) -> Record:
+    """A flat record of one closed-loop flight (FlightResult.summary())."""
+    rec: Record = {"converged": bool(summary["converged"]), "reason": str(summary["reason"])}
+    rec.update({k: summary.get(k) for k in RESULTS})
+    rec["timing.solve_ms_median"] = summary["solve_ms"]["median"]
+    rec["timing.solve_ms_max"] = summary["solve_ms"]["max"]
+    return rec
+
+
+class RendezvousFamily:
+    name = "low-thrust-rendezvous"
+    laws = LAWS
+    default_runs = None
+    campaign_doc = ("closed-loop NMPC flights on independent thrust-angle noise streams "
+                    "(run i: its own stream); the arrival condition is the acceptance")
+
+    def load(self, header: ScenarioHeader) -> RendezvousScenario:
+        return load_scenario(header.path)
+
+    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
+        p.add_argument("--strategy", choices=STRATEGIES, default=None,
+                       help="SNNS or CNCN (default: the scenario's [nmpc] strategy)")
+        p.add_argument("--solver", choices=SOLVERS, default="kernel",
+                       help="kernel: the flight code's ogk_nmpc (default); ipopt: the ground peer")
+        p.add_argument("--unperturbed", action="store_true",
+                       help="fly the unperturbed truth (every run is then the same flight)")
+        p.add_argument("--third-bodies-in-model", choices=("scenario", "yes", "no"),
+                       default="scenario", help="Earth and Mars gravity in the predictive model")
+        p.add_argument("--max-replans", type=int, default=None, metavar="K",
+                       help="replan limit of a flight (default: the scenario's)")
+
+    def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
+        from .closed_loop import fly
+        from .guidance_base import strategy_settings
+        from .guidance_factory import make_guidance
+
+        third = str(options.get("third_bodies_in_model") or "scenario")
+        scenario = with_model(self.load(header), third)
+        strategy = str(options.get("strategy") or scenario.nmpc.strategy)
+        solver = str(options.get("solver") or "kernel")
+        if strategy not in STRATEGIES:
+            raise OgkInputError(f"one of {', '.join(STRATEGIES)}, got {strategy!r}", key="--strategy")
+        if solver not in SOLVERS:
+            raise OgkInputError(f"one of {', '.join(SOLVERS)}, got {solver!r}", key="--solver")
+        max_replans = options.get("max_replans")
+        if max_replans is not None and int(max_replans) < 1:
+            raise OgkInputError(f"must be >= 1, got {max_replans}", key="--max-replans")
+        perturbed = not bool(options.get("unperturbed"))
+        settings = strategy_settings(scenario, strategy)
+
+        def flight(run_seed: int) -> Any:
+            guidance = make_guidance(solver, scenario, settings)
+            return fly(scenario, guidance, perturbed, run_seed, strategy, solver,
+                       max_replans=max_replans)
+
+        def fly_one(run_id: int, run_seed: int) -> Record:
+            start = time.perf_counter()
+            try:
+                rec = flight_record(flight(run_seed).summary())
+            except RuntimeError as err:   # the truth integration stopped (e.g. through a planet)
+                rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(RESULTS)}
+            rec["timing.wall_s"] = time.perf_counter() - start
+            return rec
+
+        def detail(run_id: int, run_seed: int, plots: Path | None) -> Detail:
+            result = flight(run_seed)
+            files: tuple[Path, ...] = ()
+            if plots is not None:
+                from .plots import write_plots
+                files = tuple(write_plots(scenario, result, plots))
+            return Detail(flight_record(result.summary()), files)
+
+        return CampaignPlan(
+            family=self.name, law=header.law, mission=scenario.name,
+            scenario_path=Path(header.path), scenario_sha256=file_sha256(header.path),
+            options={"strategy": strategy, "solver": solver, "unperturbed": not perturbed,
+                     "third_bodies_in_model": third, "max_replans": max_replans},
+            products={}, fly=per_run(fly_one),
+            judge=lambda rec: "" if rec["converged"] else f"not arrived: {rec['reason']}",
+            quantities=("t_f_days", "fuel_kg", "final_position_miss_km",
+                        "final_velocity_miss_m_s", "failed_solves"),
+            acceptance={"arrival": "inside Mars' sphere of influence within the velocity "
+                                   "tolerance of [convergence]",
+                        "mars_soi_radius_m": scenario.convergence.mars_soi_radius_m,
+                        "velocity_error_m_s": scenario.convergence.velocity_error_m_s},
+            detail=detail, watchdog_per_run_s=600.0, base=scenario)
+
+    def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
+        opts = flown.plan.options
+        recs = flown.records
+        lines = [f"{flown.plan.mission}: {opts['strategy']} {opts['solver']} "
+                 f"{'unperturbed' if opts['unperturbed'] else 'perturbed'}: Mars reached on "
+                 f"{sum(1 for r in recs if r['converged'])} of {len(recs)} runs",
+                 "  run  reached  t_f [d]   fuel [kg]  solves  failed  subdiv  median ms"]
+        for r in recs:
+            lines.append(f"  {r['run_id']:3d}  {'yes' if r['converged'] else 'NO ':7s}  "
+                         f"{_f(r['t_f_days'], '8.2f')}  {_f(r['fuel_kg'], '9.2f')}  "
+                         f"{_f(r['solves'], '6d')}  {_f(r['failed_solves'], '6d')}  "
+                         f"{_f(r['subdivisions'], '6d')}  {_f(r['timing.solve_ms_median'], '9.2f')}")
+        return "\n".join(lines), {"reached_mars": sum(1 for r in recs if r["converged"])}
+
+
+def _f(value: Any, fmt: str) -> str:
+    width = int(fmt.split(".")[0].rstrip("df") or 0)
+    return "-".rjust(width) if value is None else format(value, fmt)
+
+
+FAMILY = RendezvousFamily()
