@@ -289,3 +289,45 @@ def _run_forked(pieces: list[NDArray[np.int64]], workers: int, watchdog: Watchdo
         _kill([p for p, _, _ in running.values()])
         for _, conn, _ in running.values():
             conn.close()
+
+
+class CallTimeout(RuntimeError):
+    """`call_with_timeout`: the call did not finish within its wall-time limit."""
+
+
+def _call_in_child(fn: Callable[[], Any], conn: Any) -> None:
+    _die_with_parent()
+    try:
+        message: tuple[str, Any] = ("ok", fn())
+    except BaseException as exc:  # noqa: BLE001 - reported to the parent, which raises
+        message = ("error", describe_error(exc)[0])
+    try:
+        conn.send(message)
+    finally:
+        conn.close()
+
+
+def call_with_timeout(fn: Callable[[], R], timeout_s: float | None) -> R:
+    """`fn()` in a forked process killed after `timeout_s` of wall time (CallTimeout); a long ground
+    solve that must not hang a command. Without a limit, or inside a campaign worker (a daemon may
+    not fork; the campaign's watchdog bounds it there), `fn()` runs in this process. The result
+    comes back pickled; an exception as RuntimeError with its one-line description."""
+    if timeout_s is None or mp.current_process().daemon:
+        return fn()
+    ctx = mp.get_context("fork")
+    recv, send = ctx.Pipe(duplex=False)
+    proc = ctx.Process(target=_call_in_child, args=(fn, send), daemon=True)
+    proc.start()
+    send.close()
+    try:
+        if not recv.poll(timeout_s):
+            raise CallTimeout(f"no result after {timeout_s:g} s")
+        kind, payload = recv.recv()
+    except EOFError:
+        kind, payload = "error", "the process died without a result"
+    finally:
+        _kill([proc])
+        recv.close()
+    if kind != "ok":
+        raise RuntimeError(payload)
+    return payload

@@ -174,3 +174,9 @@ def _run(args: argparse.Namespace) -> int:
     except ValueError as err:
         print(f"ogk cases: {err}", file=sys.stderr)
         return 2
+
+
+# `ogk run` is the family's one-case verb (or the paper's tables); `ogk cases` and `ogk mpsp apophis`
+# are its older spellings. `ogk mc` goes through the campaign engine (family.py).
+add_run_arguments = add_cases_arguments
+run = cases

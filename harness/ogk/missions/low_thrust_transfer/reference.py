@@ -11,15 +11,14 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import json
-import multiprocessing
 import time
-from multiprocessing.connection import Connection
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ogk.missions.low_thrust_transfer.cases import ApophisSetup, Case
+from ogk.sil.runner import CallTimeout, call_with_timeout
 
 F64 = NDArray[np.float64]
 REPO_ROOT = Path(__file__).resolve().parents[4]
@@ -88,43 +87,24 @@ class ReferenceTimeout(RuntimeError):
     """The ground re-solve did not finish within the allowed wall time."""
 
 
-def _solve_in_child(setup: ApophisSetup, case: Case, conn: Connection) -> None:
+def _solve(setup: ApophisSetup, case: Case) -> tuple[list[float], float, str]:
     from ogk_host.low_thrust_transfer.indirect import solve_fuel_optimal
-    try:
-        start = time.perf_counter()
-        sol = solve_fuel_optimal(setup.scenario, case.perturbation, warm_start=setup.nominal)
-        conn.send(("ok", [float(x) for x in sol.lam0], time.perf_counter() - start, sol.method))
-    except Exception as err:  # reported to the parent, which raises
-        conn.send(("error", f"{type(err).__name__}: {err}", 0.0, ""))
-    finally:
-        conn.close()
+    start = time.perf_counter()
+    sol = solve_fuel_optimal(setup.scenario, case.perturbation, warm_start=setup.nominal)
+    return [float(x) for x in sol.lam0], time.perf_counter() - start, str(sol.method)
 
 
 def solve_reference(setup: ApophisSetup, case: Case, timeout_s: float | None = None) -> Reference:
     """Fresh ground re-solve (continuation from the nominal), verified. With timeout_s, the solve runs
-    in a forked process that is terminated after timeout_s of wall time (ReferenceTimeout)."""
-    if timeout_s is None:
-        from ogk_host.low_thrust_transfer.indirect import solve_fuel_optimal
-        start = time.perf_counter()
-        sol = solve_fuel_optimal(setup.scenario, case.perturbation, warm_start=setup.nominal)
-        return verify(setup, case, sol.lam0, time.perf_counter() - start, sol.method, False)
-    ctx = multiprocessing.get_context("fork")
-    parent, child = ctx.Pipe(duplex=False)
-    proc = ctx.Process(target=_solve_in_child, args=(setup, case, child), daemon=True)
-    proc.start()
-    child.close()
+    in a forked process that is killed after timeout_s of wall time (ReferenceTimeout;
+    ogk.sil.runner.call_with_timeout)."""
     try:
-        if not parent.poll(timeout_s):
-            raise ReferenceTimeout(f"ground re-solve of {case.label} exceeded {timeout_s:g} s")
-        status, payload, solve_s, method = parent.recv()
-    finally:
-        if proc.is_alive():
-            proc.terminate()
-        proc.join()
-        parent.close()
-    if status != "ok":
-        raise RuntimeError(f"ground re-solve of {case.label} failed: {payload}")
-    return verify(setup, case, np.asarray(payload), float(solve_s), str(method), False)
+        lam0, solve_s, method = call_with_timeout(lambda: _solve(setup, case), timeout_s)
+    except CallTimeout:
+        raise ReferenceTimeout(f"ground re-solve of {case.label} exceeded {timeout_s:g} s") from None
+    except RuntimeError as err:
+        raise RuntimeError(f"ground re-solve of {case.label} failed: {err}") from None
+    return verify(setup, case, np.asarray(lam0), float(solve_s), str(method), False)
 
 
 def committed_lambda0(case: Case) -> F64 | None:

@@ -1,0 +1,178 @@
+"""The low-thrust transfer family's campaign contract (ogk.sil.family): the kernel's MPSP re-planned
+on perturbed problems (Wang & Topputo 2020, sec. 4).
+
+Two campaigns:
+  --cases dispersed (default)  run i perturbs one thing, kind i mod 3 (initial state, target,
+                               thrust), by a value drawn uniformly from its own stream within the
+                               range of the scenario's [perturbations] (kappa in [min, max], the
+                               target offset inside the cube, eta in [min, max]);
+  --cases paper                run i is the paper's case i of Tables 3, 5, 6 (23 runs, no draw),
+                               the paper's columns beside ours.
+With --reference, each run also gets the fuel-optimal re-solve of the same problem (cached) and
+its fuel increase FI.
+
+Acceptance: MPSP converged, and its terminal errors within the scenario's [mpsp] tolerances
+(tol_position_km, tol_velocity_km_s).
+"""
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from ogk_bindings.errors import OgkInputError
+from ogk_host.low_thrust_transfer.scenario import LAWS, load_scenario
+from ogk_host.scenario_file import ScenarioHeader, file_sha256
+
+from ogk.sil.engine import Flown
+from ogk.sil.family import CampaignPlan, Record, per_run
+from ogk.sil.seeds import run_generator
+
+from .cases import KINDS, ApophisSetup, Case, build_setup, initial_case, paper_cases, run_case
+from .cases import terminal_case, thrust_case
+from .report import HEADER, CaseRecord, make_record, paper_rows, table_line
+
+RESULTS = ("converged", "newton_iterations", "outer_steps", "dr_f_km", "dv_f_kmps", "lambda_mf",
+           "final_mass_kg", "fuel_increase_pct", "thrust_arcs")
+
+
+def dispersed_case(setup: ApophisSetup, run_id: int, rng: np.random.Generator) -> Case:
+    """Run `run_id`'s problem: kind run_id mod 3, its size drawn within the scenario's range."""
+    pert = setup.scenario.perturbations
+    kind = KINDS[run_id % len(KINDS)]
+    if kind == "initial":
+        return initial_case(setup, float(rng.uniform(min(pert.kappa), max(pert.kappa))))
+    if kind == "terminal":
+        lo = np.min(pert.delta_rf_vertices, axis=0)
+        hi = np.max(pert.delta_rf_vertices, axis=0)
+        return terminal_case(setup, rng.uniform(lo, hi), label=f"dispersed target {run_id}")
+    return thrust_case(setup, float(rng.uniform(min(pert.eta_percent), max(pert.eta_percent))))
+
+
+class LowThrustFamily:
+    name = "low-thrust-transfer"
+    laws = LAWS
+    default_runs = None
+    campaign_doc = ("MPSP re-planned on perturbed problems: --cases dispersed (run i: one "
+                    "perturbation of kind i mod 3 drawn in the scenario's range) or --cases paper "
+                    "(the paper's 23 cases)")
+
+    def load(self, header: ScenarioHeader) -> Any:
+        return load_scenario(header.path)
+
+    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
+        p.add_argument("--cases", choices=("dispersed", "paper"), default="dispersed",
+                       help="dispersed draws (default) or the paper's 23 cases (--runs 23)")
+        p.add_argument("--basis", default=None,
+                       help="Fourier basis (printed, period_tf, period_2tf, cosine_2tf; default: "
+                            "the scenario's)")
+        p.add_argument("--order", type=int, default=None, help="Fourier order (default: scenario)")
+        p.add_argument("--reference", action="store_true",
+                       help="the fuel-optimal re-solve of every run's problem, for FI (cached in "
+                            "--reference-dir)")
+        p.add_argument("--reference-dir", default="build/apophis/reference",
+                       help="cache of the fuel-optimal re-solves")
+
+    def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
+        order = options.get("order")
+        if order is not None and int(order) < 1:
+            raise OgkInputError(f"must be >= 1, got {order}", key="--order")
+        self.load(header)     # every bad key reported before the setup is built
+        setup = build_setup(options.get("basis"), order, header.path)
+        which = str(options.get("cases") or "dispersed")
+        papers = paper_cases(setup) if which == "paper" else None
+        reference = bool(options.get("reference"))
+        ref_dir = Path(str(options.get("reference_dir") or "build/apophis/reference"))
+        m = setup.scenario.mpsp
+
+        def case_of(run_id: int, run_seed: int) -> Case:
+            if papers is not None:
+                return papers[run_id]
+            return dispersed_case(setup, run_id, run_generator(run_seed))
+
+        def fly_one(run_id: int, run_seed: int) -> Record:
+            from .reference import load_or_solve
+            case = case_of(run_id, run_seed)
+            res, cpu = run_case(setup, case)
+            ref = None
+            if reference:
+                try:
+                    ref = load_or_solve(setup, case, ref_dir)
+                except RuntimeError:          # no fuel-optimal reference: FI stays None
+                    ref = None
+            rec = make_record(setup, res, cpu, ref).to_json()
+            out: Record = {"kind": case.kind, "label": case.label,
+                           "kappa": float(case.param) if case.kind == "initial" else None,
+                           "delta_rf_lu": list(case.param) if case.kind == "terminal" else None,
+                           "eta_percent": float(case.param) if case.kind == "thrust" else None}
+            out.update({k: rec[k] for k in RESULTS})
+            out["reference_final_mass_kg"] = None if ref is None else ref.final_mass_kg
+            out["timing.cpu_s"] = rec["cpu_s"]
+            return out
+
+        def judge(rec: Record) -> str:
+            if not rec["converged"]:
+                return "MPSP did not converge"
+            if not rec["dr_f_km"] <= m.tol_position_km:
+                return f"tolerance: |dr_f| = {rec['dr_f_km']:.4g} km > {m.tol_position_km:.4g}"
+            if not rec["dv_f_kmps"] <= m.tol_velocity_km_s:
+                return f"tolerance: |dv_f| = {rec['dv_f_kmps']:.4g} km/s > {m.tol_velocity_km_s:.4g}"
+            return ""
+
+        nominal = hashlib.sha256(json.dumps([float(x) for x in setup.nominal.lam0]).encode())
+        return CampaignPlan(
+            family=self.name, law=header.law, mission=header.name,
+            scenario_path=Path(header.path), scenario_sha256=file_sha256(header.path),
+            options={"cases": which, "basis": setup.basis, "order": setup.order,
+                     "reference": reference, "reference_dir": str(ref_dir)},
+            products={"nominal_lambda0": nominal.hexdigest()},
+            fly=per_run(fly_one), judge=judge,
+            quantities=("newton_iterations", "dr_f_km", "dv_f_kmps", "lambda_mf",
+                        "final_mass_kg", "fuel_increase_pct"),
+            paper=(None if papers is None else lambda recs: self._paper(setup, papers, recs)),
+            max_runs=None if papers is None else len(papers),
+            acceptance={"converged": True, "dr_f_km": m.tol_position_km,
+                        "dv_f_kmps": m.tol_velocity_km_s},
+            watchdog_per_run_s=120.0, base=(setup, papers))
+
+    def _paper(self, setup: ApophisSetup, papers: list[Case],
+               records: Sequence[Record]) -> dict[str, Any] | None:
+        rows = paper_rows(setup, papers)
+        if all(r is None for r in rows):
+            return None
+        return {"table": "Wang & Topputo 2020, Tables 3, 5, 6",
+                "cases": [{"run_id": int(r["run_id"]), "case": papers[int(r["run_id"])].label,
+                           "paper": None if rows[int(r["run_id"])] is None
+                           else vars(rows[int(r["run_id"])]),
+                           **{k: r[k] for k in RESULTS}} for r in records]}
+
+    def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
+        setup, papers = flown.plan.base
+        rows = paper_rows(setup, papers) if papers is not None else None
+        lines = [f"MPSP (kernel) on {flown.plan.mission}: {flown.plan.options['cases']} cases, "
+                 f"basis {setup.basis}, order {setup.order}"
+                 + ("; paper = Wang & Topputo 2020, Tables 3, 5, 6 (MPSP-CT: MATLAB+MEX, i7-9750H)"
+                    if rows is not None else ""), HEADER]
+        for r in flown.records:
+            i = int(r["run_id"])
+            case = papers[i] if papers is not None else _Label(str(r["label"]))
+            rec = CaseRecord(**{k: r[k] for k in RESULTS}, cpu_s=float(r["timing.cpu_s"]))
+            lines.append(table_line(case, rec, None if rows is None else rows[i], None))
+        conv = sum(1 for r in flown.records if r["converged"])
+        lines.append(f"{conv}/{len(flown.records)} converged; kernel CPU total "
+                     f"{sum(float(r['timing.cpu_s']) for r in flown.records):.2f} s")
+        return "\n".join(lines), {"basis": setup.basis, "order": setup.order}
+
+
+class _Label:
+    """What table_line reads of a case: its label."""
+
+    def __init__(self, label: str) -> None:
+        self.label = label
+
+
+FAMILY = LowThrustFamily()
