@@ -33,8 +33,10 @@ from ogk.sil.criteria import (apply_tolerances, failure_list, failure_reasons, s
                               tail_statistics)
 from ogk.sil.outputs import write_atomic
 from ogk.sil.report import finite_or_none
+from ogk.sil.engine import fly_campaign
+from ogk.sil.family import CampaignPlan
 from ogk.sil.runlog import RunLog
-from ogk.sil.runner import CampaignInterrupted, Watchdog, run_chunks, run_ids_for
+from ogk.sil.runner import Watchdog, run_ids_for
 
 from .dispersions import DispersionSwitches, RunDraws, draw_runs
 from .guidance import GuidanceFactory, GuidanceSetup
@@ -73,6 +75,7 @@ class CampaignResult:
     scenario_sha256: str | None = None
     tables: "NogTables | None" = None  #: the VTD-NOG tables flown (None: open-loop reference)
     resumed_runs: int = 0           #: runs taken from the run log of an interrupted campaign
+    engine_result: Any = None       #: the engine's records (ogk.sil.engine.Flown)
 
     @property
     def flight_s(self) -> float:
@@ -209,8 +212,9 @@ class _Job:
     settings: SilSettings
     guidance_factory: GuidanceFactory
 
-    def __call__(self, run_ids: NDArray[np.int64]) -> tuple[RunDraws, Any]:
-        draws, gens = draw_runs(self.scenario, self.seed, run_ids, self.switches)
+    def __call__(self, run_ids: NDArray[np.int64],
+                 run_seeds: NDArray[np.uint64] | None = None) -> tuple[RunDraws, Any]:
+        draws, gens = draw_runs(self.scenario, self.seed, run_ids, self.switches, run_seeds)
         plan = EndGamePlan.of(self.scenario, self.settings)
         guidance = self.guidance_factory(GuidanceSetup(self.scenario, self.reference, draws.run_id,
                                                        plan.fine_interval_s))
@@ -284,6 +288,44 @@ def _assemble(records: list[dict[str, Any]]) -> tuple[RunDraws, dict[str, F64], 
     return draws, errors, rates, [str(r["failure"]) for r in records]
 
 
+@dataclasses.dataclass(frozen=True)
+class _ChunkFlight:
+    """The family's chunk flight for the campaign engine: records without histories."""
+
+    job: _Job
+
+    def __call__(self, run_ids: NDArray[np.int64],
+                 run_seeds: NDArray[np.uint64]) -> list[dict[str, Any]]:
+        return _run_records(*self.job(run_ids, run_seeds))
+
+
+def campaign_plan(scenario: LeoGeoScenario, ref: NominalReference, switches: DispersionSwitches,
+                  settings: SilSettings, guidance_factory: GuidanceFactory, name: str,
+                  tables: "NogTables | None", scenario_path: Path | None, law: str,
+                  options: dict[str, Any] | None = None) -> CampaignPlan:
+    """The campaign of the engine (ogk.sil.family): chunks flown vectorised by `_Job` (histories
+    off), judged against the scenario's tolerances. `options`: the command's options (what
+    `ogk replay` rebuilds the plan from); by default the run key's settings."""
+    sha = None if scenario_path is None else file_sha256(scenario_path)
+    flight = dataclasses.replace(settings, history_runs=0)
+    job = _Job(scenario, ref, 0, switches, flight, guidance_factory)
+    tol = tolerances(scenario)
+    labels = {k: k for k in tol}
+
+    def judge(rec: dict[str, Any]) -> str:
+        return apply_tolerances({k: np.array([rec[k]]) for k in tol}, tol, [""], labels)[0]
+
+    key = run_key(scenario, 0, settings.truth, name, switches, settings, sha, tables)
+    key.pop("seed")
+    return CampaignPlan(
+        family="orbit-injection", law=law, mission=scenario.name,
+        scenario_path=Path(scenario_path) if scenario_path is not None else Path(""),
+        scenario_sha256=sha or "", options=options if options is not None else key,
+        products={} if tables is None else {"nog_tables": tables.sha256},
+        fly=_ChunkFlight(job), judge=judge, quantities=ERROR_KEYS,
+        acceptance=tol, watchdog_per_run_s=2.0, base=job)
+
+
 def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 1,
                  dispersions: bool | DispersionSwitches = True, truth: str = "6dof",
                  guidance_factory: GuidanceFactory | None = None, guidance_name: str | None = None,
@@ -291,15 +333,16 @@ def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 
                  chunks: int | None = None, header: ScenarioHeader | None = None,
                  tables: "NogTables | None" = None, *, chunk_runs: int | None = None,
                  watchdog: Watchdog | None = None, run_log: str | Path | None = None,
-                 resume: bool = False) -> CampaignResult:
-    """Flies `runs` runs (ids 0..runs-1, or the given `run_ids` to re-fly some of them) in
-    `chunks` chunks (default: one per worker; more when a chunk would exceed `chunk_runs` runs)
-    on `workers` forked processes. A run fails (reason kept) when the kernel, the truth model or
-    the scenario's acceptance tolerances say so.
+                 resume: bool = False, options: dict[str, Any] | None = None) -> CampaignResult:
+    """Flies `runs` runs (ids 0..runs-1, or the given `run_ids` to re-fly some of them) through
+    the campaign engine (ogk.sil.engine) in `chunks` chunks (default: one per worker; more when a
+    chunk would exceed `chunk_runs` runs) on `workers` forked processes. A run fails (reason
+    kept) when the kernel, the truth model or the scenario's acceptance tolerances say so.
 
     `run_log`: file the finished runs are appended to as each chunk completes (ogk.sil.runlog);
-    `resume`: keep the runs of an existing run log of the same campaign and fly only the others
-    (runs whose histories are recorded, id < settings.history_runs, are flown again).
+    `resume`: keep the runs of an existing run log of the same campaign and fly only the others.
+    The histories of runs with id < settings.history_runs are flown again in this process after
+    the campaign (the same numbers: a run depends only on its id and the campaign).
     Raises CampaignAborted (a run raised, a worker died, `watchdog` fired) or CampaignInterrupted
     (Ctrl-C / SIGTERM)."""
     from .guidance import NominalOpenLoopGuidance
@@ -313,11 +356,11 @@ def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 
     settings = dataclasses.replace(settings or SilSettings(), truth=truth)
     ids = run_ids_for(runs, run_ids)
     path = header.path if header is not None else scenario.path
-    sha = None if path is None else file_sha256(path)
+    law = header.law if header is not None else "vtd-nog"
     # the run log first: a --resume of another campaign is refused before any computation
-    log = None if run_log is None else RunLog(
-        run_log, run_key(scenario, seed, truth, str(name), switches, settings, sha, tables),
-        resume=resume)
+    probe = campaign_plan(scenario, None, switches, settings, guidance_factory,  # type: ignore[arg-type]
+                          str(name), tables, path, law, options)
+    log = None if run_log is None else RunLog(run_log, probe.key(seed), resume=resume)
     t_nominal = time.perf_counter()
     ref = nominal_reference(scenario)
     nominal_solve_s = time.perf_counter() - t_nominal
@@ -325,40 +368,23 @@ def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 
         raise TableError(f"tables made for t_f* = {tables.t_f_star_s:.6f} s, the scenario's nominal "
                          f"is {ref.tf_s:.6f} s: regenerate them with `ogk tables`",
                          path=tables.directory)
-    records: dict[int, dict[str, Any]] = {} if log is None else dict(log.records)
-    todo = np.array([i for i in ids.tolist()
-                     if i not in records or i < settings.history_runs], dtype=np.int64)
-
-    def keep(chunk_ids: NDArray[np.int64], out: tuple[RunDraws, Any]) -> None:
-        recs = _run_records(*out)
-        if log is not None:
-            log.append(recs)
-        records.update((r["run_id"], r) for r in recs)
-
-    job = _Job(scenario, ref, int(seed), switches, settings, guidance_factory)
-    outs: list[tuple[RunDraws, Any]] = []
-    flight_cpu_s = 0.0
-    if todo.size:
-        try:
-            outs, workers, flight_cpu_s = run_chunks(job, todo, workers, chunks,
-                                                     chunk_runs=chunk_runs, watchdog=watchdog,
-                                                     on_chunk=keep)
-        except KeyboardInterrupt:
-            kept = sum(1 for i in ids.tolist() if i in records)
-            where = (f"{kept} of {ids.size} runs kept in {log.path}; the same command with "
-                     f"--resume flies the rest" if log is not None
-                     else f"{kept} of {ids.size} runs finished, no run log: lost")
-            raise CampaignInterrupted(where) from None
-    results = [r for _, r in outs]
-    draws, errors, rates, loop_failure = _assemble([records[i] for i in ids.tolist()])
-    failure = apply_tolerances(errors, tolerances(scenario), loop_failure)
+    plan = campaign_plan(scenario, ref, switches, settings, guidance_factory, str(name), tables,
+                         path, law, options)
+    del log   # the engine reopens it (resume keeps what the check above accepted)
+    flown = fly_campaign(plan, runs, seed, workers, run_ids=run_ids, chunk_runs=chunk_runs,
+                         chunks=chunks, watchdog=watchdog, run_log=run_log, resume=resume)
+    draws, errors, rates, failure = _assemble(flown.records)
+    history, truth_steps = None, 0
+    hist_ids = ids[ids < settings.history_runs]
+    if hist_ids.size:   # the plotted runs again, with histories, in this process
+        res = _Job(scenario, ref, int(seed), switches, settings, guidance_factory)(hist_ids)[1]
+        history, truth_steps = res.history, int(res.truth_steps)
     return CampaignResult(scenario=scenario, seed=int(seed), truth=truth, guidance=str(name),
                           switches=switches, settings=settings, nominal_tf_s=ref.tf_s, draws=draws,
-                          errors=errors, max_rates=rates, failure=failure,
-                          history=_merge_history([r.history for r in results]),
-                          wall_time_s=time.perf_counter() - t_start, workers=workers,
-                          nominal_solve_s=nominal_solve_s, flight_cpu_s=flight_cpu_s,
-                          truth_steps=max((r.truth_steps for r in results), default=0),
+                          errors=errors, max_rates=rates, failure=failure, history=history,
+                          wall_time_s=time.perf_counter() - t_start, workers=flown.workers,
+                          nominal_solve_s=nominal_solve_s, flight_cpu_s=flown.cpu_s,
+                          truth_steps=truth_steps,
                           scenario_path=None if path is None else str(path),
-                          scenario_sha256=sha, resumed_runs=int(ids.size - todo.size),
-                          tables=tables)
+                          scenario_sha256=plan.scenario_sha256 or None,
+                          resumed_runs=flown.resumed_runs, tables=tables, engine_result=flown)

@@ -72,11 +72,14 @@ class RunDraws:
 
 
 def draw_runs(scn: LeoGeoScenario, master_seed: int, run_ids: Sequence[int] | NDArray[np.int64],
-              switches: DispersionSwitches) -> tuple[RunDraws, list[np.random.Generator]]:
+              switches: DispersionSwitches, run_seeds: NDArray[np.uint64] | None = None
+              ) -> tuple[RunDraws, list[np.random.Generator]]:
     """Initial dispersions of the given runs, and each run's generator positioned for the
-    actuation noise."""
+    actuation noise. `run_seeds` (the campaign engine's, ogk.sil.engine) are the streams of the
+    runs; without them they are derived from `master_seed` the same way (ogk.sil.seeds)."""
     ids = np.asarray(run_ids, dtype=np.int64)
-    seeds = np.array([run_seed(master_seed, i) for i in ids], dtype=np.uint64)
+    seeds = (np.array([run_seed(master_seed, i) for i in ids], dtype=np.uint64)
+             if run_seeds is None else np.asarray(run_seeds, dtype=np.uint64))
     isd, att = scn.initial_state_dispersion, scn.attitude_dispersion
     sig_state = np.array([isd.radius_m, isd.declination_rad, isd.radial_velocity_m_s,
                           isd.transverse_velocity_m_s, isd.normal_velocity_m_s])

@@ -54,9 +54,10 @@ def format_report(res: CampaignResult) -> str:
              + ", ".join(f"{LABELS[k].split(' ')[0]} {v:.3g}" for k, v in tolerances(scn).items())
              + ")",
              f"wall time: {res.wall_time_s:.1f} s on {res.workers} worker(s) (nominal solve "
-             f"{res.nominal_solve_s:.1f} s, flight {res.flight_s:.1f} s = "
-             f"{1e3 * res.flight_s / max(res.truth_steps, 1):.2f} ms per truth step; flight CPU "
-             f"{res.flight_cpu_s:.1f} s)", ""]
+             f"{res.nominal_solve_s:.1f} s, flight {res.flight_s:.1f} s"
+             + (f" = {1e3 * res.flight_s / res.truth_steps:.2f} ms per truth step"
+                if res.truth_steps else "")
+             + f"; flight CPU {res.flight_cpu_s:.1f} s)", ""]
     for failed in res.failures_list()[:20]:
         lines.append(f"  failed run {failed['run_id']}: {failed['reason']}")
     if res.n_failures > 20:

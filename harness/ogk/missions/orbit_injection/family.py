@@ -1,0 +1,172 @@
+"""The orbit-injection family's campaign contract (ogk.sil.family): the SIL Monte Carlo of VTD-NOG
++ CPD (Pontani & Celani 2021). Run i is one dispersed flight (initial state, attitude, rates,
+thrust; dispersions.py) drawn from its own stream; chunks of runs are flown vectorised
+(campaign._Job). Acceptance: the scenario's [acceptance] tolerances on the injection errors, plus
+any kernel error or truth-model failure (campaign.tolerances).
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from ogk_bindings.errors import OgkInputError
+from ogk_host.orbit_injection.scenario import LAWS, LeoGeoScenario, load_scenario
+from ogk_host.scenario_file import ScenarioHeader
+
+from ogk.sil.engine import Flown, seeds_of
+from ogk.sil.envelope import ENVELOPE_KEYS
+from ogk.sil.family import CampaignPlan, Detail
+
+from .campaign import CampaignResult, _assemble, _Job, _run_records, campaign_plan
+from .dispersions import DispersionSwitches
+from .sil import SilSettings
+
+
+@dataclasses.dataclass(frozen=True)
+class _Base:
+    scenario: LeoGeoScenario
+    job: _Job                   #: the flight with its nominal, guidance factory and settings
+    switches: DispersionSwitches
+    settings: SilSettings
+    guidance: str
+    tables: Any
+    history_runs: int
+
+
+class OrbitInjectionFamily:
+    name = "orbit-injection"
+    laws = LAWS
+    default_runs = None
+    campaign_doc = ("dispersed flights of the kernel's VTD-NOG + CPD with the scenario's end-game "
+                    "(6-DOF or point-mass truth), side by side with Tables 6-7 when the scenario "
+                    "carries them")
+
+    def load(self, header: ScenarioHeader) -> LeoGeoScenario:
+        return load_scenario(header.path)
+
+    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
+        p.add_argument("--no-dispersions", action="store_true",
+                       help="no dispersions: alignment errors only (Table 6 case)")
+        p.add_argument("--truth", choices=("6dof", "point-mass"), default="6dof")
+        p.add_argument("--guidance", choices=("nog", "nominal"), default="nog",
+                       help="nog: kernel VTD-NOG; nominal: open-loop u*(t) (a reference, not guidance)")
+        p.add_argument("--tables", default=None, metavar="DIR",
+                       help="VTD-NOG tables to fly (default: the scenario's own directory under "
+                            "build/tables, generated when missing); checked against the scenario")
+        p.add_argument("--history-runs", type=int, default=50,
+                       help="runs whose time histories are drawn with --plots (default 50)")
+        p.add_argument("--control-rate", type=float, default=50.0, help="attitude control rate [Hz]")
+        p.add_argument("--truth-substeps", type=int, default=1,
+                       help="truth RK4 steps per control step (default 1: 20 ms)")
+        p.add_argument("--cpd-gains", choices=("printed", "rederived"), default=None,
+                       help="CPD gain set (default: the scenario's flown set)")
+        p.add_argument("--cpd-pointing", choices=("body", "euler"), default="body",
+                       help="CPD pitch/yaw error: body-axis (default) or eqs. 45-46 literally")
+        p.add_argument("--paper-end-game", action="store_true",
+                       help="fly the paper's end-game (cut-off predicted at the samples, eq. 32; "
+                            "Delta t_S throughout) instead of the scenario's [guidance.end_game]")
+
+    def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
+        from .guidance import NominalOpenLoopGuidance
+        from .nog_guidance import KernelNogGuidance, prepare_tables
+        from .nominal_ref import nominal_reference
+
+        opts = {"no_dispersions": False, "truth": "6dof", "guidance": "nog", "tables": None,
+                "history_runs": 50, "control_rate": 50.0, "truth_substeps": 1, "cpd_gains": None,
+                "cpd_pointing": "body", "paper_end_game": False, **dict(options)}
+        rate = float(opts["control_rate"])
+        if not rate > 0.0 or rate > 1.0e4:
+            raise OgkInputError(f"must be in (0, 1e4] Hz, got {rate:g}", key="--control-rate")
+        if int(opts["truth_substeps"]) < 1:
+            raise OgkInputError(f"must be >= 1, got {opts['truth_substeps']}", key="--truth-substeps")
+        if int(opts["history_runs"]) < 0:
+            raise OgkInputError(f"must be >= 0, got {opts['history_runs']}", key="--history-runs")
+        scn = self.load(header)
+        if opts["guidance"] == "nog":
+            tables = prepare_tables(scn, Path(opts["tables"]) if opts["tables"] else None)
+            factory: Any = KernelNogGuidance.for_tables(tables)
+            opts["tables"] = str(tables.directory)
+        else:
+            tables, factory = None, NominalOpenLoopGuidance
+        settings = SilSettings(control_rate_hz=rate, truth_substeps=int(opts["truth_substeps"]),
+                               cpd_gains=opts["cpd_gains"], cpd_pointing=str(opts["cpd_pointing"]),
+                               truth=str(opts["truth"]),
+                               # the open-loop reference flies no end-game (its cut-off is t_f*)
+                               end_game=("paper" if opts["paper_end_game"]
+                                         or opts["guidance"] == "nominal" else "scenario"))
+        switches = DispersionSwitches.none() if opts["no_dispersions"] else DispersionSwitches()
+        ref = nominal_reference(scn)
+        if tables is not None and abs(tables.t_f_star_s - ref.tf_s) > 1e-6 * max(ref.tf_s, 1.0):
+            raise OgkInputError(f"tables made for t_f* = {tables.t_f_star_s:.6f} s, the nominal is "
+                                f"{ref.tf_s:.6f} s: regenerate them with `ogk tables`",
+                                path=tables.directory)
+        history_runs = int(opts.pop("history_runs"))    # what is drawn, not what is flown
+        plan = campaign_plan(scn, ref, switches, settings, factory, str(opts["guidance"]),
+                             tables, header.path, header.law, opts)
+        plan.base = _Base(scn, _Job(scn, ref, 0, switches, settings, factory), switches, settings,
+                          str(opts["guidance"]), tables, history_runs)
+
+        def detail(run_id: int, run_seed: int, plots: Path | None) -> Detail:
+            res = self._result(plan, [], history_ids=np.array([run_id], dtype=np.int64),
+                               run_seeds=np.array([run_seed], dtype=np.uint64))
+            files = () if plots is None else tuple(self._write_plots(res, plots))
+            return Detail({}, files)
+
+        plan.detail = detail
+        return plan
+
+    # ------------------------------------------------------------------ reports
+    def _result(self, plan: CampaignPlan, records: list[dict[str, Any]], flown: Flown | None = None,
+                history_ids: np.ndarray | None = None,
+                run_seeds: np.ndarray | None = None) -> CampaignResult:
+        """The family's CampaignResult (report and plots) from the engine's records; the runs in
+        `history_ids` flown again here with their histories."""
+        base: _Base = plan.base
+        history, truth_steps = None, 0
+        if history_ids is not None and history_ids.size:
+            settings = dataclasses.replace(base.settings, history_runs=int(history_ids.max()) + 1)
+            job = dataclasses.replace(base.job, settings=settings)
+            seed = 0 if flown is None else flown.seed
+            draws_res = job(history_ids, seeds_of(seed, history_ids) if run_seeds is None
+                            else run_seeds)
+            history, truth_steps = draws_res[1].history, int(draws_res[1].truth_steps)
+            if not records:
+                records = _run_records(*draws_res)
+        draws, errors, rates, failure = _assemble(records)
+        return CampaignResult(
+            scenario=base.scenario, seed=0 if flown is None else flown.seed, truth=base.settings.truth,
+            guidance=base.guidance, switches=base.switches, settings=base.settings,
+            nominal_tf_s=base.job.reference.tf_s, draws=draws, errors=errors, max_rates=rates,
+            failure=failure, history=history, wall_time_s=0.0 if flown is None else flown.wall_s,
+            workers=1 if flown is None else flown.workers,
+            flight_cpu_s=0.0 if flown is None else flown.cpu_s, truth_steps=truth_steps,
+            scenario_path=str(plan.scenario_path), scenario_sha256=plan.scenario_sha256,
+            resumed_runs=0 if flown is None else flown.resumed_runs, tables=base.tables,
+            engine_result=flown)
+
+    def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
+        from .report import format_report
+        res = self._result(flown.plan, flown.records, flown)
+        extra = res.to_json_dict(per_run=True)
+        extra["family_schema"] = extra.pop("schema")
+        for key in ENVELOPE_KEYS:       # the envelope states these (same meaning, one source)
+            extra.pop(key, None)
+        return format_report(res), extra
+
+    def plots(self, flown: Flown, out_dir: Path) -> list[Path]:
+        base: _Base = flown.plan.base
+        ids = np.array([i for i in flown.run_ids if i < base.history_runs], dtype=np.int64)
+        res = self._result(flown.plan, flown.records, flown, history_ids=ids)
+        return self._write_plots(res, out_dir)
+
+    @staticmethod
+    def _write_plots(res: CampaignResult, out_dir: Path) -> list[Path]:
+        from .plots import write_plots
+        return list(write_plots(res, out_dir))
+
+
+FAMILY = OrbitInjectionFamily()
