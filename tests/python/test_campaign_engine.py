@@ -1,0 +1,202 @@
+"""The campaign engine is the same for every mission family (ogk.sil.engine, ogk.sil.family,
+ogk.sil.envelope; docs/sil.md): each family's shipped scenario flown through `ogk mc` writes the
+envelope and the Parquet table, `ogk replay` re-flies a run bit for bit, and the faults end the
+same way in every family: a run that raises in a worker (its runs and status named), a killed
+worker, a hung chunk (watchdog), Ctrl-C then --resume (the uninterrupted result), an unwritable
+output (one line, exit 2, before any flight); the per-run numbers do not depend on the worker
+count or the chunking.
+
+The faults are injected by wrapping the family's own chunk flight (the plan's `fly`), so the family's
+real plan, draws and kernel calls run around them. Nothing here may hang: every in-process campaign
+runs under an alarm, every `ogk` call under a subprocess timeout."""
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ogk_bindings.kernel import KernelError
+from ogk_host.scenario_file import read_header, resolve_scenario
+
+from ogk.missions import registry
+from ogk.sil import envelope
+from ogk.sil.engine import fly_campaign
+from ogk.sil.runner import CampaignAborted, CampaignInterrupted, Watchdog
+
+OGK = [sys.executable, "-c", "import sys; from ogk.cli import main; sys.exit(main())"]
+
+#: family -> (shipped scenario, the family's options of a short campaign)
+FAMILIES = {
+    "orbit-injection": ("leo-geo", {}),
+    "low-thrust-transfer": ("apophis", {}),
+    "low-thrust-rendezvous": ("rendezvous_nep_min_time", {}),
+    "binary-asteroid": ("moshup", {"perturbation": [10.0, 40.0]}),
+}
+CLI_OPTIONS = {"binary-asteroid": ["--perturbation", "10", "40"]}
+
+
+@pytest.fixture(autouse=True)
+def alarm():
+    """Every in-process test ends within 240 s (a hang is a failure, not a stuck job)."""
+    def expired(signum, frame):
+        raise TimeoutError("test took more than 240 s: a campaign hung")
+    old = signal.signal(signal.SIGALRM, expired)
+    signal.alarm(240)
+    yield
+    signal.alarm(0)
+    signal.signal(signal.SIGALRM, old)
+
+
+_PLANS: dict[str, object] = {}
+
+
+def plan_of(family: str):
+    """The family's real plan of its shipped scenario (built once per session)."""
+    if family not in _PLANS:
+        scenario, options = FAMILIES[family]
+        header = read_header(resolve_scenario(scenario))
+        fam = registry.campaign_family(header)
+        assert fam.name == family
+        _PLANS[family] = fam.plan(header, dict(options))
+    return _PLANS[family]
+
+
+def faulty(plan, fault):
+    """The plan with `fault(run_id)` called before each run of its chunk flight."""
+    real = plan.fly
+
+    def fly(ids, seeds):
+        for i in ids:
+            fault(int(i))
+        return real(ids, seeds)
+    return dataclasses.replace(plan, fly=fly)
+
+
+def without_timing(records):
+    return [{k: v for k, v in r.items() if not k.startswith("timing.")} for r in records]
+
+
+def same(a, b) -> bool:
+    return all(not envelope.record_differences(x, y) for x, y in zip(a, b)) and len(a) == len(b)
+
+
+def ogk(*args: str, timeout: float = 600.0) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([*OGK, *args], capture_output=True, text=True, timeout=timeout)
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+def test_ogk_mc_writes_envelope_and_table_and_replay_is_bit_exact(family, tmp_path):
+    scenario, _ = FAMILIES[family]
+    out = tmp_path / "mc.json"
+    res = ogk("mc", scenario, "--runs", "6", "--workers", "2", "--seed", "97",
+              *CLI_OPTIONS.get(family, []), "--json", str(out))
+    assert res.returncode in (0, 1), res.stdout + res.stderr
+    assert "Traceback" not in res.stderr
+    doc = json.loads(out.read_text())
+    assert doc["schema"] == envelope.SCHEMA and doc["family"] == family and doc["runs"] == 6
+    assert doc["seed"] == 97 and doc["workers"] == 2
+    assert len(doc["scenario_sha256"]) == 64 and Path(doc["scenario_path"]).is_file()
+    assert doc["failures"] == len(doc["failed_runs"]) == (res.returncode == 1) * doc["failures"]
+    for q in doc["quantities"].values():
+        assert set(q) == {"n", "mean", "std", "worst"}
+    rows = envelope.read_table(tmp_path / doc["per_run_table"])
+    assert [r["run_id"] for r in rows] == list(range(6))
+    assert all({"run_id", "run_seed", "failure"} <= set(r) for r in rows)
+    assert len({r["run_seed"] for r in rows}) == 6          # six independent streams
+    # a quantity's worst run is the run with the largest |value| in the table
+    for key, q in doc["quantities"].items():
+        vals = [(abs(r[key]), r["run_id"]) for r in rows
+                if isinstance(r.get(key), (int, float)) and np.isfinite(r[key])]
+        if vals:
+            assert q["worst"]["run_id"] == max(vals)[1]
+    rep = ogk("replay", str(out), "4")
+    assert rep.returncode == 0 and "bit-exact" in rep.stdout, rep.stdout + rep.stderr
+    rep = ogk("report", str(out))
+    assert rep.returncode in (0, 1) and doc["mission"] in rep.stdout, rep.stderr
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+def test_records_do_not_depend_on_workers_or_chunks(family):
+    plan = plan_of(family)
+    one = fly_campaign(plan, 5, 11, workers=1, progress=False)
+    two = fly_campaign(plan, 5, 11, workers=2, chunk_runs=2, progress=False)
+    assert same(without_timing(one.records), without_timing(two.records))
+    # a run alone gives the same record as in the campaign
+    alone = fly_campaign(plan, 5, 11, workers=1, run_ids=[3], progress=False)
+    assert same(without_timing(alone.records), without_timing(one.records[3:4]))
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+def test_a_run_that_raises_in_a_worker_aborts_naming_runs_and_status(family):
+    def fault(i):
+        if i == 3:
+            raise KernelError(7, "ogk_fake_step")
+    with pytest.raises(CampaignAborted) as err:
+        fly_campaign(faulty(plan_of(family), fault), 6, 1, workers=2, chunk_runs=2,
+                     progress=False)
+    assert err.value.run_ids == [2, 3] and "KernelError" in err.value.reason
+    assert err.value.status is not None
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+def test_a_killed_worker_is_reported_with_its_runs(family):
+    def fault(i):
+        if i == 4:
+            os.kill(os.getpid(), signal.SIGKILL)
+    with pytest.raises(CampaignAborted) as err:
+        fly_campaign(faulty(plan_of(family), fault), 6, 1, workers=2, chunk_runs=2,
+                     progress=False)
+    assert err.value.run_ids == [4, 5] and "SIGKILL" in err.value.reason
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+def test_watchdog_kills_a_hung_chunk(family):
+    def fault(i):
+        if i == 0:
+            time.sleep(120)
+    start = time.perf_counter()
+    with pytest.raises(CampaignAborted) as err:
+        fly_campaign(faulty(plan_of(family), fault), 2, 1, workers=2, chunk_runs=1,
+                     watchdog=Watchdog(base_s=3.0, per_run_s=0.0), progress=False)
+    assert err.value.run_ids == [0] and "watchdog" in err.value.reason
+    assert time.perf_counter() - start < 30.0
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(family, tmp_path):
+    plan = plan_of(family)
+    log = tmp_path / "c.json.runs.jsonl"
+
+    def fault(i):
+        if i == 4:
+            os.kill(os.getpid(), signal.SIGINT)     # one worker: the chunks fly in this process
+    with pytest.raises(CampaignInterrupted) as err:
+        fly_campaign(faulty(plan, fault), 6, 5, workers=1, chunk_runs=2, run_log=log,
+                     progress=False)
+    assert "4 of 6 runs kept" in err.value.line()
+    resumed = fly_campaign(plan, 6, 5, workers=2, chunk_runs=2, run_log=log, resume=True,
+                           progress=False)
+    assert resumed.resumed_runs == 4
+    whole = fly_campaign(plan, 6, 5, workers=1, progress=False)
+    assert same(without_timing(resumed.records), without_timing(whole.records))
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+def test_unwritable_output_is_one_line_before_any_flight(family, tmp_path):
+    scenario, _ = FAMILIES[family]
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    (locked / "mc.json").mkdir()            # a directory where the JSON must go
+    start = time.perf_counter()
+    res = ogk("mc", scenario, "--runs", "2", "--json", str(locked / "mc.json"), timeout=120)
+    assert res.returncode == 2 and "Traceback" not in res.stderr
+    assert res.stderr.count("\n") == 1 and "--json" in res.stderr, res.stderr
+    assert time.perf_counter() - start < 60.0
