@@ -148,25 +148,28 @@ test: deps
 	$(MAKE) test-imports
 	$(MAKE) test-python
 
-# The main job: LEO-to-GEO VTD-NOG + CPD, ground tables (build/tables/leo_geo-<sha12>) then a
-# 100-run SIL Monte Carlo flying them, against the paper's Table 7 (JSON and PNG plots in build/mc); then
-# MPSP on the 23 Apophis cases against Wang & Topputo's Tables 3, 5, 6 (build/apophis).
+# The main job, through the verbs every family has (ogk tables / mc / run): LEO-to-GEO VTD-NOG + CPD,
+# ground tables (build/tables/leo_geo-<sha12>) then a 100-run SIL Monte Carlo flying them, against the
+# paper's Table 7 (envelope JSON, Parquet table and PNG plots in build/mc); MPSP on the 23 Apophis cases
+# against Wang & Topputo's Tables 3, 5, 6 (build/apophis); the Earth-to-Mars NMPC against Table I
+# (build/nmpc); the six BLT transfers about Moshup and the Table 3 campaign (build/blt; 600 runs per level).
 run: all
 	$(VENV)/bin/ogk demo switching
 	$(VENV)/bin/ogk tables leo-geo
 	$(VENV)/bin/ogk mc leo-geo --runs 100 --seed 1 --workers 2 \
 	  --json $(B)/mc/leo_geo_100.json --plots $(B)/mc/plots
-	$(VENV)/bin/ogk mpsp apophis --paper-tables \
+	$(VENV)/bin/ogk run apophis --paper-tables \
 	  --json $(B)/apophis/paper_tables.json --plots $(B)/apophis/plots
-	$(VENV)/bin/ogk nmpc rendezvous_nep_min_time --strategy snns --solver kernel \
+	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy snns --solver kernel \
 	  --json $(B)/nmpc/snns_unperturbed.json --plots $(B)/nmpc/plots
-	$(VENV)/bin/ogk nmpc rendezvous_nep_min_time --strategy cncn --solver kernel \
+	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy cncn --solver kernel \
 	  --json $(B)/nmpc/cncn_unperturbed.json --plots $(B)/nmpc/plots
-	$(VENV)/bin/ogk nmpc rendezvous_nep_min_time --strategy snns --solver kernel --perturbed --seed 1 \
+	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy snns --solver kernel --perturbed --seed 1 \
 	  --third-bodies-in-model yes --json $(B)/nmpc/snns_perturbed_seed1.json --plots $(B)/nmpc/plots
 	for t in l2_to_l1_lyapunov l1_to_l2_lyapunov l2_to_l1_halo l1_to_l2_halo l1_to_l2_lyapunov_bmp circle_to_l2_ump; do \
-	  $(VENV)/bin/ogk blt moshup --transfer $$t --json $(B)/blt/$$t.json --plots $(B)/blt/plots || exit 1; done
-	$(VENV)/bin/ogk mc moshup --seed 20261202 --workers 2 --json $(B)/blt/mc_table3.json --plots $(B)/blt/plots
+	  $(VENV)/bin/ogk run moshup --transfer $$t --json $(B)/blt/$$t.json --plots $(B)/blt/plots || exit 1; done
+	$(VENV)/bin/ogk mc moshup --seed 20261202 --workers 2 --json $(B)/blt/mc_table3.json \
+	  --plots $(B)/blt/plots
 
 clean:
 	rm -rf $(B) $(FFI_STAMP) bindings/ogk_bindings/_ogk_cffi*

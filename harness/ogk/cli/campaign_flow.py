@@ -76,11 +76,15 @@ def report(campaign: str) -> int:
     doc = envelope.read_envelope(campaign)
     table = Path(campaign).with_name(doc["per_run_table"] or envelope.table_path(campaign).name)
     records = envelope.read_table(table)
-    fam = registry.family_named(doc["family"])
-    if hasattr(fam, "report_from"):
-        print(fam.report_from(doc, records))
-    else:
-        print(generic_report(doc))
+    # the family's own report, from the plan rebuilt as `ogk replay` does (nothing is flown)
+    fam, plan = campaign_plan(doc, campaign)
+    flown = engine.Flown(plan=plan, seed=int(doc["seed"]), records=records,
+                         workers=int(doc["workers"]), wall_s=float(doc["timing"]["wall_s"] or 0.0),
+                         cpu_s=float(doc["timing"]["cpu_s"] or 0.0),
+                         resumed_runs=int(doc["resumed_runs"]))
+    print(fam.report(flown)[0])
+    print()
+    print(generic_report(doc))
     return 0 if not doc["failures"] else 1
 
 

@@ -61,7 +61,7 @@ def _campaign(header: Any, scenario: str, rest: Sequence[str],
     """`ogk mc SCENARIO`: the engine's options, then the family's (ogk.sil.command)."""
     from ogk.sil import command
     fam = registry.campaign_family(header)
-    args = command.parser_for(fam, f"ogk mc {scenario}").parse_args(rest)
+    args = command.parser_for(fam, f"ogk mc {scenario}", header).parse_args(rest)
     for key, value in (overrides or {}).items():
         setattr(args, key, value)
     return command.fly(fam, header, args)

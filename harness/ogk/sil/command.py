@@ -16,20 +16,25 @@ from .outputs import check_output_dir, check_output_file, remove_stale
 from .runner import Watchdog
 
 
-def parser_for(fam: Any, prog: str) -> argparse.ArgumentParser:
+def parser_for(fam: Any, prog: str, header: ScenarioHeader | None = None
+               ) -> argparse.ArgumentParser:
     """The parser of a family's campaign: the engine's options, then the family's."""
     p = argparse.ArgumentParser(prog=prog, description=f"Monte Carlo campaign of a {fam.name} "
                                 f"scenario ({', '.join(fam.laws)}): {fam.campaign_doc}")
-    add_engine_arguments(p, fam)
+    add_engine_arguments(p, fam, header)
     fam.add_campaign_arguments(p)
     return p
 
 
-def add_engine_arguments(p: argparse.ArgumentParser, family: Any) -> None:
-    """The options every campaign has (the family adds its own after them)."""
-    default_runs = getattr(family, "default_runs", None)
-    p.add_argument("--runs", type=int, default=default_runs, required=default_runs is None,
-                   help="number of runs" + (f" (default {default_runs})" if default_runs else ""))
+def add_engine_arguments(p: argparse.ArgumentParser, family: Any,
+                         header: ScenarioHeader | None = None) -> None:
+    """The options every campaign has (the family adds its own after them). The number of runs
+    defaults to what the scenario states, when the family reads one (`default_runs(header)`)."""
+    default_runs = family.default_runs(header) if header is not None else None
+    p.add_argument("--runs", type=int, default=default_runs,
+                   help="number of runs" + (f" (default {default_runs}, the scenario's)"
+                                            if default_runs else
+                                            " (required unless the campaign is a fixed list)"))
     p.add_argument("--seed", type=int, default=1,
                    help="master seed >= 0 (run i draws from SeedSequence(seed, (i,)); default 1)")
     p.add_argument("--workers", type=int, default=1, help="parallel processes (default 1)")
@@ -48,7 +53,7 @@ def add_engine_arguments(p: argparse.ArgumentParser, family: Any) -> None:
 
 def check_engine_arguments(args: argparse.Namespace) -> None:
     """Every engine option checked before any ground product is made."""
-    if args.runs is None or args.runs < 1:
+    if args.runs is not None and args.runs < 1:
         raise OgkInputError(f"must be >= 1, got {args.runs}", key="--runs")
     if args.seed < 0:
         raise OgkInputError(f"must be >= 0, got {args.seed}", key="--seed")
@@ -78,8 +83,15 @@ def family_options(args: argparse.Namespace) -> dict[str, Any]:
 def fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace) -> int:
     """`ogk mc SCENARIO ...` for any family `fam` (its FAMILY object)."""
     check_engine_arguments(args)
+    if args.runs is None and not getattr(fam, "fixed_lists", False):
+        raise OgkInputError("required: the number of runs", key="--runs")
     remove_stale(args.json)
     plan: CampaignPlan = fam.plan(header, family_options(args))
+    if args.runs is None:
+        if plan.max_runs is None:
+            raise OgkInputError("required: the number of runs (this campaign draws its runs)",
+                                key="--runs")
+        args.runs = plan.max_runs
     if plan.max_runs is not None and args.runs > plan.max_runs:
         raise OgkInputError(f"this campaign has {plan.max_runs} runs, got {args.runs}", key="--runs")
     wd = Watchdog(per_run_s=args.watchdog_per_run) if args.watchdog_per_run else None

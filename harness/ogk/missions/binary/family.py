@@ -43,7 +43,14 @@ class _Base:
 class BinaryFamily:
     name = "binary-asteroid"
     laws = LAWS
-    default_runs = None
+
+    def default_runs(self, header: ScenarioHeader) -> int | None:
+        """The scenario's [monte_carlo] runs per level times its levels (Table 3: 600 x 6)."""
+        try:
+            spec = T.monte_carlo_spec(self.load(header))
+        except OgkInputError:
+            return None          # reported with its key when the campaign is planned
+        return spec.runs * len(spec.levels_percent)
     campaign_doc = ("the Table 3 convergence Monte Carlo: the scenario's [monte_carlo] transfer "
                     "perturbed, every corrector on the same draws, each converged run re-checked "
                     "by DOP853; run i flies level i mod L")

@@ -56,7 +56,11 @@ def dispersed_case(setup: ApophisSetup, run_id: int, rng: np.random.Generator) -
 class LowThrustFamily:
     name = "low-thrust-transfer"
     laws = LAWS
-    default_runs = None
+
+    fixed_lists = True           #: --cases paper: the number of runs is the list's
+
+    def default_runs(self, header: ScenarioHeader) -> int | None:
+        return None              # the command states it, or the paper's list does
     campaign_doc = ("MPSP re-planned on perturbed problems: --cases dispersed (run i: one "
                     "perturbation of kind i mod 3 drawn in the scenario's range) or --cases paper "
                     "(the paper's 23 cases)")

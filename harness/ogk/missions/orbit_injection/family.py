@@ -40,7 +40,9 @@ class _Base:
 class OrbitInjectionFamily:
     name = "orbit-injection"
     laws = LAWS
-    default_runs = None
+
+    def default_runs(self, header: ScenarioHeader) -> int | None:
+        return None              # the command states the number of runs
     campaign_doc = ("dispersed flights of the kernel's VTD-NOG + CPD with the scenario's end-game "
                     "(6-DOF or point-mass truth), side by side with Tables 6-7 when the scenario "
                     "carries them")

@@ -43,7 +43,7 @@ def main(argv: list[str] | None = None) -> int:
               "[ogk mc options]", file=sys.stderr)
         return 2
     header = read_header(resolve_scenario(rest[0]))
-    args = command.parser_for(FAMILY, "python -m ogk.missions.rendezvous.campaign").parse_args(
+    args = command.parser_for(FAMILY, "python -m ogk.missions.rendezvous.campaign", header).parse_args(
         [*rest[1:], "--runs", str(len(seeds)), "--seed", str(seeds[0])])
     return command.fly(FAMILY, header, args)
 

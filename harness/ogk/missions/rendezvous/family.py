@@ -51,7 +51,9 @@ def flight_record(summary: Mapping[str, Any]) -> Record:
 class RendezvousFamily:
     name = "low-thrust-rendezvous"
     laws = LAWS
-    default_runs = None
+
+    def default_runs(self, header: ScenarioHeader) -> int | None:
+        return None              # the command states the number of runs
     campaign_doc = ("closed-loop NMPC flights on independent thrust-angle noise streams "
                     "(run i: its own stream); the arrival condition is the acceptance")
 
