@@ -10,6 +10,7 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "ogk/thrust_cmd.h"
 #include "ogk_checks.h"
 
 #define CPD_PI OGK_I_PI
@@ -486,17 +487,20 @@ ogk_status ogk_cpd_reset(ogk_cpd_t *ctx)
 ogk_status ogk_cpd_input_from_thrust_cmd(ogk_cpd_input_t *in, const ogk_thrust_cmd_t *cmd,
                                          const ogk_nav_state_t *nav)
 {
-    ogk_status st = OGK_OK;
+    ogk_status st;
 
     if ((in == NULL) || (cmd == NULL) || (nav == NULL)) {
         st = OGK_E_NULL;
     } else {
-        const double v[4] = {cmd->alpha_rad, cmd->beta_rad, nav->xi_rad, nav->phi_rad};
-        if (!ogk_i_all_finite(v, 4u)) {
+        ogk_thrust_cmd_t rtn;
+        /* any law's command, in r-t-n at the vehicle's position */
+        st = ogk_thrust_cmd_to_rtn(cmd, nav, &rtn);
+        if ((st == OGK_OK) && (!isfinite(nav->xi_rad) || !isfinite(nav->phi_rad))) {
             st = OGK_E_NONFINITE;
-        } else {
-            in->alpha_c = cmd->alpha_rad;
-            in->beta_c = cmd->beta_rad;
+        }
+        if (st == OGK_OK) {
+            in->alpha_c = rtn.alpha_rad;
+            in->beta_c = rtn.beta_rad;
             in->xi = nav->xi_rad;
             in->phi = nav->phi_rad;
         }

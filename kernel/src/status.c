@@ -33,6 +33,7 @@ ogk_status ogk_status_name(ogk_status code, const char **name)
         "OGK_E_TABLE_STALE",
         "OGK_E_INFEASIBLE",
         "OGK_E_ITER_LIMIT",
+        "OGK_E_FRAME",
     };
     ogk_status st;
 

@@ -153,11 +153,18 @@ ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg);
  * OGK_E_NOT_INIT. */
 ogk_status ogk_cpd_reset(ogk_cpd_t *ctx);
 
-/* Sets the guidance part of a CPD input from any law's thrust command and the
- * navigation state: alpha_c, beta_c from cmd, xi, phi from nav (the attitude
- * and rates of in are left as they are). OGK_E_NULL; OGK_E_NONFINITE for a
- * non-finite angle (in then untouched). A command without ENGINE_ON still
- * carries the direction to hold. */
+/* Sets the guidance part of a CPD input from any law's thrust command
+ * (ogk_thrust_cmd_t, ogk/types.h) and the navigation state: alpha_c, beta_c
+ * = the command's r-t-n angles at (xi, phi) (ogk_thrust_cmd_to_rtn: the
+ * angles of an OGK_FRAME_RTN command as they are, an OGK_FRAME_INERTIAL
+ * vector rotated into r-t-n), xi, phi from nav (the attitude and rates of in
+ * are left as they are). A command without ENGINE_ON still carries the
+ * direction to hold. Rejections leave in untouched: OGK_E_NULL;
+ * OGK_E_FRAME (a synodic command: convert it first with
+ * ogk_thrust_cmd_synodic_to_inertial; or an unknown frame); OGK_E_NONFINITE
+ * (a non-finite angle, vector, time, throttle, xi or phi); OGK_E_RANGE (an
+ * inertial u that is not a unit vector, a throttle outside [0, 1], |xi| or
+ * |phi| > OGK_ANGLE_LIMIT with an inertial u). */
 ogk_status ogk_cpd_input_from_thrust_cmd(ogk_cpd_input_t *in, const ogk_thrust_cmd_t *cmd,
                                          const ogk_nav_state_t *nav);
 

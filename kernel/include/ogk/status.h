@@ -34,7 +34,8 @@ typedef enum {
     OGK_E_TABLE_STALE = 23,     /* the table a context is bound to was reloaded since init: re-init */
     OGK_E_INFEASIBLE = 24,      /* a constrained subproblem (QP) has no feasible point */
     OGK_E_ITER_LIMIT = 25,      /* an iterative solver reached its iteration bound before its tolerance */
-    OGK_STATUS_COUNT = 26
+    OGK_E_FRAME = 26,           /* a thrust command's frame is unknown, or one the consumer cannot convert */
+    OGK_STATUS_COUNT = 27
 } ogk_status;
 
 /* Stores in *name the code's identifier ("OGK_E_DIM", ...). Unknown codes

@@ -1,0 +1,24 @@
+/* thrust_cmd_internal.h -- unchecked builders of the thrust command for the
+ * kernel's producers (the laws' contract calls), which hold values already
+ * valid: finite angles or a unit vector, a throttle in [0, 1], a known frame.
+ * Not public API: the checked forms are in ogk/thrust_cmd.h. Each zeroes the
+ * command first (padding included, so commands compare with memcmp) and
+ * stores the throttle as 0 when flags lacks OGK_THRUST_FLAG_ENGINE_ON. */
+#ifndef OGK_THRUST_CMD_INTERNAL_H
+#define OGK_THRUST_CMD_INTERNAL_H
+
+#include <stdint.h>
+#include "ogk/types.h"
+
+/* An r-t-n command from finite angles (u computed from them). */
+void ogk_i_thrust_cmd_angles(ogk_thrust_cmd_t *cmd, double t_s, double alpha_rad, double beta_rad,
+                             double throttle, uint32_t flags, uint32_t law_flags);
+
+/* A command from a unit vector u in a known frame (in r-t-n its angles too). */
+void ogk_i_thrust_cmd_unit(ogk_thrust_cmd_t *cmd, double t_s, ogk_frame_t frame, const double *u,
+                           double throttle, uint32_t flags, uint32_t law_flags);
+
+/* The safe command of a known frame (ogk_thrust_cmd_safe). */
+void ogk_i_thrust_cmd_safe(ogk_thrust_cmd_t *cmd, double t_s, ogk_frame_t frame, uint32_t law_flags);
+
+#endif /* OGK_THRUST_CMD_INTERNAL_H */
