@@ -10,6 +10,7 @@
 #include "ogk/table.h"
 
 #include "ogk_checks.h"
+#include "thrust_cmd_internal.h"
 
 #define NX OGK_NOG_NX
 #define N_GAIN_ROWS 8u          /* dlam (7) and dt_f */
@@ -714,10 +715,12 @@ static double tau_at(const ogk_nog_t *ctx, double t_s, ogk_status *st)
     return (*st == OGK_OK) ? ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s : ctx->tau_k;
 }
 
-/* ogk_nog_command on an initialised context (out already zeroed). */
+/* ogk_nog_command on an initialised context. */
 static ogk_status command_at(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
 {
     double tau;
+    double alpha;
+    double beta;
     uint32_t law;
     uint32_t flags = OGK_THRUST_FLAG_ENGINE_ON;
     ogk_status st;
@@ -737,16 +740,15 @@ static ogk_status command_at(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t 
         law |= OGK_NOG_FLAG_CUTOFF;
         flags = 0u;
     }
-    out->t_s = (isfinite(t_s) && (t_s >= ctx->t_k_s)) ? t_s : ctx->t_k_s;
-    out->alpha_rad = ctx->hold_alpha_rad;
-    out->beta_rad = ctx->hold_beta_rad;
+    alpha = ctx->hold_alpha_rad;
+    beta = ctx->hold_beta_rad;
     if (readable) {
         double lam[NX];
         costate_at(ctx, tau, lam);
-        angles_from_costate(lam, &out->alpha_rad, &out->beta_rad);
-        if (!isfinite(out->alpha_rad) || !isfinite(out->beta_rad)) {
-            out->alpha_rad = ctx->hold_alpha_rad;
-            out->beta_rad = ctx->hold_beta_rad;
+        angles_from_costate(lam, &alpha, &beta);
+        if (!isfinite(alpha) || !isfinite(beta)) {
+            alpha = ctx->hold_alpha_rad;
+            beta = ctx->hold_beta_rad;
             law |= OGK_NOG_FLAG_SAFE;
             if (st == OGK_OK) {
                 st = OGK_E_SAFE_COMMAND;
@@ -759,8 +761,9 @@ static ogk_status command_at(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t 
     if ((law & OGK_NOG_FLAG_LIMITED) != 0u) {
         flags |= OGK_THRUST_FLAG_LIMITED;
     }
-    out->flags = flags;
-    out->law_flags = law;
+    /* the r-t-n command (full thrust while the engine is on) */
+    ogk_i_thrust_cmd_angles(out, (isfinite(t_s) && (t_s >= ctx->t_k_s)) ? t_s : ctx->t_k_s, alpha,
+                            beta, 1.0, flags, law);
     return st;
 }
 
@@ -770,13 +773,12 @@ ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *o
 
     if ((ctx == NULL) || (out == NULL)) {
         st = OGK_E_NULL;
+    } else if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
+        /* no engine-on flag from an uninitialised context: the safe command */
+        ogk_i_thrust_cmd_safe(out, t_s, OGK_FRAME_RTN, OGK_NOG_FLAG_SAFE);
+        st = OGK_E_NOT_INIT;
     } else {
-        (void)memset(out, 0, sizeof *out); /* returns out: nothing to check */
-        if (ctx->init_marker != OGK_NOG_INIT_MARKER) {
-            st = OGK_E_NOT_INIT;
-        } else {
-            st = command_at(ctx, t_s, out);
-        }
+        st = command_at(ctx, t_s, out);
     }
     return st;
 }

@@ -5,6 +5,7 @@
 #include <stddef.h>
 
 #include "ogk_checks.h"
+#include "thrust_cmd_internal.h"
 
 #define OGK_TERMINAL_INIT_MARKER 0x54524d30u /* "TRM0" */
 
@@ -109,15 +110,16 @@ static bool terminal_nav_in_envelope(const ogk_nav_state_t *nav, double t_predic
            (t_predicted_s <= OGK_TERMINAL_T_MAX_S);
 }
 
-/* The command in force: the terminal one when engaged, else the law's. */
+/* The command in force: the terminal one when engaged (a complete r-t-n
+ * command, full thrust while the law's engine is on), else the law's as it
+ * is. Only t_s, the angles and the flags of law_cmd are read. */
 static void terminal_output(const ogk_terminal_t *ctx, const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out)
 {
-    *out = *law_cmd;
     if (ctx->engaged) {
-        out->alpha_rad = ctx->alpha_rad;
-        out->beta_rad = ctx->beta_rad;
-        out->flags = law_cmd->flags & OGK_THRUST_FLAG_ENGINE_ON;
-        out->law_flags = OGK_TERMINAL_FLAG_ENGAGED;
+        ogk_i_thrust_cmd_angles(out, law_cmd->t_s, ctx->alpha_rad, ctx->beta_rad, 1.0,
+                                law_cmd->flags & OGK_THRUST_FLAG_ENGINE_ON, OGK_TERMINAL_FLAG_ENGAGED);
+    } else {
+        *out = *law_cmd;
     }
 }
 
@@ -272,11 +274,9 @@ ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, do
         }
         if ((st != OGK_OK) && ((!isfinite(law_cmd->alpha_rad)) || (!isfinite(law_cmd->beta_rad)))) {
             /* No usable law command either: the last terminal one (zeros before). */
-            out->t_s = law_cmd->t_s;
-            out->alpha_rad = ctx->alpha_rad;
-            out->beta_rad = ctx->beta_rad;
-            out->flags = (law_cmd->flags & OGK_THRUST_FLAG_ENGINE_ON) | OGK_THRUST_FLAG_SAFE;
-            out->law_flags = ctx->engaged ? OGK_TERMINAL_FLAG_ENGAGED : 0u;
+            ogk_i_thrust_cmd_angles(out, law_cmd->t_s, ctx->alpha_rad, ctx->beta_rad, 1.0,
+                                    (law_cmd->flags & OGK_THRUST_FLAG_ENGINE_ON) | OGK_THRUST_FLAG_SAFE,
+                                    ctx->engaged ? OGK_TERMINAL_FLAG_ENGAGED : 0u);
         } else {
             terminal_output(ctx, law_cmd, out);
             if (st != OGK_OK) {

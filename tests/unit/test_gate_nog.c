@@ -144,9 +144,17 @@ static void test_null_and_uninitialised(void **state)
     OGK_ASSERT_STATUS(ogk_nog_command(&nog, 1.0, NULL), OGK_E_NULL);
     (void)memset(&c, 0x5A, sizeof c);
     OGK_ASSERT_STATUS(ogk_nog_command(&zero, 1.0, &c), OGK_E_NOT_INIT);
-    /* the output is cleared: no engine-on flag from an uninitialised context */
-    assert_int_equal(c.flags, 0u);
+    /* the safe command: no engine-on flag from an uninitialised context */
+    assert_int_equal(c.flags, OGK_THRUST_FLAG_SAFE);
+    assert_int_equal(c.law_flags, OGK_NOG_FLAG_SAFE);
+    assert_int_equal((int)c.frame, (int)OGK_FRAME_RTN);
     OGK_ASSERT_NEAR(c.alpha_rad, 0.0, 0.0);
+    OGK_ASSERT_NEAR(c.beta_rad, 0.0, 0.0);
+    OGK_ASSERT_NEAR(c.u[0], 0.0, 0.0);
+    OGK_ASSERT_NEAR(c.u[1], 1.0, 0.0);
+    OGK_ASSERT_NEAR(c.u[2], 0.0, 0.0);
+    OGK_ASSERT_NEAR(c.throttle, 0.0, 0.0);
+    OGK_ASSERT_NEAR(c.t_s, 1.0, 0.0);
     OGK_ASSERT_STATUS(ogk_nog_tau_at(NULL, 1.0, &tau), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_nog_tau_at(&zero, 1.0, &tau), OGK_E_NOT_INIT);
     OGK_ASSERT_NEAR(tau, -7.0, 0.0);

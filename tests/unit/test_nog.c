@@ -236,6 +236,15 @@ static void test_out_of_plane_with_first_order_hold(void **state)
     OGK_ASSERT_STATUS(ogk_nog_command(&nog, t, &c), OGK_OK);
     OGK_ASSERT_NEAR(c.beta_rad, atan2(-lam6, 1.0), 1e-14);
     OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, 1e-14);
+    /* the one command of every law (ogk/types.h): r-t-n, the primer vector -lambda_v / |lambda_v|
+     * = (sin ALPHA0, cos ALPHA0, -lam6) / sqrt(1 + lam6^2) as u, full thrust */
+    assert_int_equal((int)c.frame, (int)OGK_FRAME_RTN);
+    OGK_ASSERT_NEAR(c.u[0], sin(ALPHA0) / sqrt(1.0 + (lam6 * lam6)), 1e-15);
+    OGK_ASSERT_NEAR(c.u[1], cos(ALPHA0) / sqrt(1.0 + (lam6 * lam6)), 1e-15);
+    OGK_ASSERT_NEAR(c.u[2], -lam6 / sqrt(1.0 + (lam6 * lam6)), 1e-15);
+    OGK_ASSERT_NEAR(c.throttle, 1.0, 0.0);
+    OGK_ASSERT_NEAR(c.t_s, t, 0.0);
+    assert_int_equal(c.flags, OGK_THRUST_FLAG_ENGINE_ON);
 }
 
 static void test_end_game_limits(void **state)
@@ -321,6 +330,9 @@ static void test_freeze_and_termination(void **state)
     OGK_ASSERT_STATUS(ogk_nog_command(&nog, 100.5, &c), OGK_OK);
     assert_true((c.law_flags & OGK_NOG_FLAG_CUTOFF) != 0u);
     assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u); /* engine off */
+    OGK_ASSERT_NEAR(c.throttle, 0.0, 0.0);
+    OGK_ASSERT_NEAR(c.u[0], cos(c.beta_rad) * sin(c.alpha_rad), 1e-16); /* still a direction */
+    OGK_ASSERT_NEAR(c.u[2], sin(c.beta_rad), 1e-16);
     {
         double tau = -1.0;
         OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, 100.5, &tau), OGK_OK);

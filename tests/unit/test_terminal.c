@@ -51,6 +51,12 @@ static void assert_along(const ogk_thrust_cmd_t *cmd, double g_r, double g_t, do
     OGK_ASSERT_NEAR(cos(cmd->beta_rad) * sin(cmd->alpha_rad), g_r / norm, 1e-14);
     OGK_ASSERT_NEAR(cos(cmd->beta_rad) * cos(cmd->alpha_rad), g_t / norm, 1e-14);
     OGK_ASSERT_NEAR(sin(cmd->beta_rad), g_n / norm, 1e-14);
+    /* a complete r-t-n command (ogk/types.h): the same direction as u, full thrust with the engine on */
+    assert_int_equal((int)cmd->frame, (int)OGK_FRAME_RTN);
+    OGK_ASSERT_NEAR(cmd->u[0], g_r / norm, 1e-14);
+    OGK_ASSERT_NEAR(cmd->u[1], g_t / norm, 1e-14);
+    OGK_ASSERT_NEAR(cmd->u[2], g_n / norm, 1e-14);
+    OGK_ASSERT_NEAR(cmd->throttle, ((cmd->flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u) ? 1.0 : 0.0, 0.0);
 }
 
 static void test_outside_window_passes_law_command(void **state)

@@ -236,9 +236,13 @@ ogk_status ogk_nog_reset(ogk_nog_t *ctx);
 ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sample_t *out);
 
 /* Thrust-direction command at time t_s (>= the current sample's time; before
- * the first sample the nominal from tau = 0 is served): out->t_s = t_s, the
- * angles, flags ENGINE_ON (cleared at and past the cut-off), SAFE, LIMITED,
- * and law_flags = OGK_NOG_FLAG_* (FROZEN, LIMITED, SAFE, CUTOFF). OGK_E_RANGE
+ * the first sample the nominal from tau = 0 is served): NOG's contract call
+ * for the one command of every law (ogk/types.h), in OGK_FRAME_RTN:
+ * out->t_s = t_s, the angles and their unit vector u, throttle 1 (0 at and
+ * past the cut-off), flags ENGINE_ON (cleared at and past the cut-off), SAFE,
+ * LIMITED, and law_flags = OGK_NOG_FLAG_* (FROZEN, LIMITED, SAFE, CUTOFF).
+ * OGK_E_NOT_INIT: the safe command of ogk/thrust_cmd.h (engine off, alpha =
+ * beta = 0, flags SAFE, law_flags OGK_NOG_FLAG_SAFE). OGK_E_RANGE
  * for a time before the current sample (out then holds the command at the
  * sample time, flagged SAFE); OGK_E_NONFINITE for a non-finite time (same safe
  * command). Any finite later time is valid (far past the cut-off the engine

@@ -120,8 +120,11 @@ ogk_status ogk_terminal_reset(ogk_terminal_t *ctx);
 
 /* One control period: nav at nav->t_s (t, r, phi, v_r, v_t, v_n read; xi
  * not), the guidance's predicted cut-off t_predicted_s and its command
- * law_cmd (alpha, beta finite). *out is law_cmd while not engaged, else the
- * terminal direction (v_go, or the shaped plan's; same t_s and
+ * law_cmd, an r-t-n command (OGK_FRAME_RTN; only its t_s, alpha, beta --
+ * finite -- and flags are read, so a command set field by field works too).
+ * *out is law_cmd as it is while not engaged, else the terminal direction
+ * (v_go, or the shaped plan's) as a complete r-t-n command (ogk/types.h: the
+ * angles, their unit vector, throttle 1 with the engine on; same t_s and
  * OGK_THRUST_FLAG_ENGINE_ON bit as law_cmd, law_flags ENGAGED). OGK_E_NONFINITE
  * (any of those values) / OGK_E_RANGE: context unchanged; *out as described in
  * the header comment. */
