@@ -12,7 +12,10 @@ The cdefs are generated from the headers themselves at build time; nothing of
 a kernel type is restated here:
 
 * types, enums and prototypes: ``gcc -E`` over every public header
-  (kernel/include/ogk/*.h, the csrc/*.h above), keeping only the lines the
+  (kernel/include/ogk/*.h, the csrc/*.h above) and every test header
+  (``TEST_HEADERS``: kernel/include/ogk/internal/*.h, the laws' test entry
+  points that left the public headers, e.g. ``ogk_nmpc_interval``; declared
+  here so that the bindings' cross-checks keep calling them), keeping only the lines the
   linemarkers attribute to those headers (what <stdint.h> and <stddef.h>
   declare, cffi already knows). Comments vanish, macros are expanded (array
   sizes become the constants the C compiler sees, so a -D override of a
@@ -60,15 +63,32 @@ INCLUDE_DIRS = [str(KERNEL_INCLUDE), *(str(d) for d in CSRC_DIRS)]
 
 
 def public_headers() -> list[Path]:
-    """Every header the bindings expose: the kernel's public API, then the C beside it."""
+    """Every header of the API: the kernel's public API, then the C beside it."""
     return sorted((KERNEL_INCLUDE / "ogk").glob("*.h")) + [h for d in CSRC_DIRS for h in sorted(d.glob("*.h"))]
+
+
+#: The kernel's test headers (kernel/include/ogk/internal/*.h): entry points that exist for the
+#: tests (ogk_nmpc_interval, ogk_mpsp_step_jacobian, ogk_blt_jacobian, ...), kept out of the public
+#: headers a flight application includes, but declared to cffi like them. A separate list, so
+#: that what is flight API and what is a test hook stays visible here and in test_bindings.py.
+TEST_HEADERS: list[Path] = sorted((KERNEL_INCLUDE / "ogk" / "internal").glob("*.h"))
+
+
+def bound_headers() -> list[Path]:
+    """Every header the bindings declare: the public ones, then the test headers."""
+    return public_headers() + TEST_HEADERS
 
 
 def include_source(headers: list[Path]) -> str:
     """A translation unit including every header (as the kernel's users spell it)."""
     lines = []
     for h in headers:
-        rel = f"ogk/{h.name}" if h.parent == KERNEL_INCLUDE / "ogk" else h.name
+        if h.parent == KERNEL_INCLUDE / "ogk":
+            rel = f"ogk/{h.name}"
+        elif h.parent == KERNEL_INCLUDE / "ogk" / "internal":
+            rel = f"ogk/internal/{h.name}"
+        else:
+            rel = h.name
         lines.append(f'#include "{rel}"\n')
     return "".join(lines)
 
@@ -154,7 +174,7 @@ def macro_cdefs(found: list[tuple[str, str, str]]) -> str:
 
 
 def generated_cdef() -> str:
-    headers = public_headers()
+    headers = bound_headers()
     return declarations(headers) + macro_cdefs(macros(headers))
 
 
@@ -165,7 +185,7 @@ def kernel_sources() -> list[str]:
 
 
 def make_builder() -> cffi.FFI:
-    headers = public_headers()
+    headers = bound_headers()
     cdef = generated_cdef()
     BUILD_DIR.mkdir(parents=True, exist_ok=True)
     (BUILD_DIR / "generated_cdef.h").write_text(cdef)  # for inspection only

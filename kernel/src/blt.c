@@ -3,6 +3,8 @@
  * (Levenberg-Marquardt on the same minimum-norm problem), evaluation and the thrust command.
  * Design notes: docs/blt.md. */
 #include "blt_internal.h"
+#include "ogk/internal/blt_test.h"
+#include "thrust_cmd_internal.h"
 
 #include <math.h>
 #include <string.h>
@@ -682,7 +684,8 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
 
 /* ------------------------------------------------------------------ command */
 
-ogk_status ogk_blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cmd)
+/* ogk_blt_command (also behind ogk_blt_thrust_cmd). */
+static ogk_status blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cmd)
 {
     ogk_status st = OGK_OK;
     if ((ctx == NULL) || (cmd == NULL)) {
@@ -733,6 +736,59 @@ ogk_status ogk_blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cm
                     st = OGK_E_SAFE_COMMAND;
                 }
             }
+        }
+    }
+    return st;
+}
+
+ogk_status ogk_blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cmd)
+{
+    return blt_command(ctx, t, cmd);
+}
+
+/* The direction to hold while the engine is off in segment k (a coast, or k =
+ * n_segments after the end): the next burn's at its start, eq. (22) at tau =
+ * 0, A / |A|; (1, 0, 0) when no burn follows (or its A is zero). */
+static void hold_direction(const ogk_blt_t *ctx, uint32_t k, double u[3])
+{
+    const ogk_blt_config_t *c = &ctx->cfg;
+    bool found = false;
+    uint32_t j;
+    u[0] = 1.0;
+    u[1] = 0.0;
+    u[2] = 0.0;
+    for (j = k + 1u; (j < c->n_segments) && (!found); ++j) {
+        if (c->segment_kind[j] == OGK_BLT_SEG_BURN) {
+            const double *a = ctx->held.seg[j];
+            const double an = norm2(a, 3u);
+            found = true;
+            if (an > 0.0) {
+                u[0] = a[0] / an;
+                u[1] = a[1] / an;
+                u[2] = a[2] / an;
+            }
+        }
+    }
+}
+
+ogk_status ogk_blt_thrust_cmd(const ogk_blt_t *ctx, double t, ogk_thrust_cmd_t *cmd)
+{
+    ogk_status st;
+    if (cmd == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        ogk_blt_command_t bc;
+        ogk_i_thrust_cmd_safe(cmd, t, OGK_FRAME_SYNODIC, OGK_BLT_FLAG_SAFE);
+        st = blt_command(ctx, t, &bc); /* OGK_E_NULL for a NULL ctx */
+        if (st != OGK_OK) {
+            /* the safe command */
+        } else if (bc.engine_on != 0u) {
+            ogk_i_thrust_cmd_unit(cmd, t, OGK_FRAME_SYNODIC, bc.u_hat, 1.0, OGK_THRUST_FLAG_ENGINE_ON,
+                                  bc.flags);
+        } else {
+            double u[3];
+            hold_direction(ctx, bc.segment, u);
+            ogk_i_thrust_cmd_unit(cmd, t, OGK_FRAME_SYNODIC, u, 0.0, 0u, bc.flags);
         }
     }
     return st;

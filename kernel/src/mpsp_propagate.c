@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "ogk/interp.h"
+#include "thrust_cmd_internal.h"
 
 #define NX OGK_MPSP_NX
 
@@ -240,6 +241,56 @@ ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double
         if ((!ogk_i_all_finite(lambda_v, OGK_MPSP_NU)) ||
             ((lambda_v_dot != NULL) && (!ogk_i_all_finite(lambda_v_dot, OGK_MPSP_NU)))) {
             st = OGK_E_NONFINITE;
+        }
+    }
+    return st;
+}
+
+/* ogk_mpsp_thrust_cmd on a context holding a trajectory and a finite t (cmd
+ * holds the safe command). */
+static ogk_status thrust_cmd_held(const ogk_mpsp_t *ctx, double t, ogk_thrust_cmd_t *cmd)
+{
+    size_t k;
+    ogk_status st = ogk_interp_locate(ctx->traj_t, ctx->n_nodes, t, &k);
+    if (st == OGK_OK) {
+        mpsp_dyn_t dyn;
+        double h[OGK_MPSP_MAX_BASIS];
+        double lv[3];
+        double norm;
+        mpsp_dyn_setup(&dyn, ctx, ctx->weights, ctx->thrust);
+        mpsp_basis(&dyn, t, h, NULL);
+        mpsp_control_from_basis(&dyn, h, lv);
+        norm = hypot(hypot(lv[0], lv[1]), lv[2]);
+        if (!(norm > 0.0) || !isfinite(norm)) {
+            st = OGK_E_SAFE_COMMAND; /* no primer direction */
+        } else {
+            /* eq. (16) thrusts along -lambda_v; u of the segment holding t (eq. 11) */
+            const double u[3] = {-lv[0] / norm, -lv[1] / norm, -lv[2] / norm};
+            const bool thrust = ctx->traj_mode[k] != 0u;
+            ogk_i_thrust_cmd_unit(cmd, t, OGK_FRAME_INERTIAL, u, thrust ? 1.0 : 0.0,
+                                  thrust ? OGK_THRUST_FLAG_ENGINE_ON : 0u, 0u);
+        }
+    }
+    return st;
+}
+
+ogk_status ogk_mpsp_thrust_cmd(const ogk_mpsp_t *ctx, double t, ogk_thrust_cmd_t *cmd)
+{
+    ogk_status st;
+
+    if (cmd == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        ogk_i_thrust_cmd_safe(cmd, t, OGK_FRAME_INERTIAL, 0u);
+        if (ctx == NULL) {
+            st = OGK_E_NULL;
+        } else if ((ctx->init_marker != OGK_MPSP_INIT_MARKER) || (ctx->traj_valid == 0u) ||
+                   (ctx->n_nodes < 2u)) {
+            st = OGK_E_NOT_INIT; /* no context, or no trajectory held */
+        } else if (!isfinite(t)) {
+            st = OGK_E_NONFINITE;
+        } else {
+            st = thrust_cmd_held(ctx, t, cmd);
         }
     }
     return st;

@@ -9,6 +9,7 @@
  * stages, which is eq. (A.3)-(A.4) transposed: the same numbers as forming the
  * 8 x 8 step matrices and multiplying, at a fraction of the cost. */
 #include "mpsp_internal.h"
+#include "ogk/internal/mpsp_test.h"
 
 #include <math.h>
 #include <string.h>

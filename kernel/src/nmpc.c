@@ -7,8 +7,10 @@
 #include <string.h>
 
 #include "nmpc_internal.h"
+#include "ogk/internal/nmpc_test.h"
 #include "ogk/types.h"
 #include "ogk_checks.h"
+#include "thrust_cmd_internal.h"
 
 #define NX OGK_NMPC_NX
 
@@ -421,7 +423,8 @@ ogk_status ogk_nmpc_replan(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
     return st;
 }
 
-ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command_t *cmd)
+/* ogk_nmpc_command (also behind ogk_nmpc_thrust_cmd). */
+static ogk_status nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command_t *cmd)
 {
     ogk_status st = nmpc_check_ctx(ctx);
     if ((st == OGK_OK) && (cmd == NULL)) {
@@ -463,6 +466,30 @@ ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command_t 
     return st;
 }
 
+ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command_t *cmd)
+{
+    return nmpc_command(ctx, t, cmd);
+}
+
+ogk_status ogk_nmpc_thrust_cmd(const ogk_nmpc_t *ctx, double t, ogk_thrust_cmd_t *cmd)
+{
+    ogk_status st;
+    if (cmd == NULL) {
+        st = OGK_E_NULL;
+    } else {
+        ogk_nmpc_command_t nc;
+        /* fills nc whatever the status (the safe command on a rejection) */
+        st = nmpc_command(ctx, t, &nc);
+        {
+            /* thrust (cos alpha, sin alpha) along (r_hat, theta_hat) = (r, t) of r-t-n */
+            const double u[3] = {cos(nc.alpha), sin(nc.alpha), 0.0};
+            ogk_i_thrust_cmd_unit(cmd, isfinite(nc.t) ? nc.t : 0.0, OGK_FRAME_RTN, u, nc.throttle,
+                                  nc.flags, nc.law_flags);
+        }
+    }
+    return st;
+}
+
 ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
                               const double *u, double *xdot)
 {
@@ -481,7 +508,7 @@ ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
 
 ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
                              const double *x0, const double *u0,
-                             const double *u1, double *x1, double *dfdx, /* NOLINT(bugprone-easily-swappable-parameters): order of the public header (ogk/nmpc.h) and the bindings; every output is checked by central differences (test_nmpc.c) */
+                             const double *u1, double *x1, double *dfdx, /* NOLINT(bugprone-easily-swappable-parameters): order of the test header (ogk/internal/nmpc_test.h) and the bindings; every output is checked by central differences (test_nmpc.c) */
                              double *dfdu0, double *dfdu1, double *dfdh, /* NOLINT(bugprone-easily-swappable-parameters): as above */
                              double *dfdt0)
 {

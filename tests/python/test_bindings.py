@@ -1,4 +1,4 @@
-"""The cffi bindings reach everything the public headers declare.
+"""The cffi bindings reach everything the public headers and the test headers declare.
 
 An independent scan of the header TEXT (comments stripped, regex; it shares no
 code with bindings/build_ffi.py, which works from the preprocessor) lists every
@@ -6,6 +6,12 @@ public function, every field of every struct typedef, every enumerator and
 every object-like OGK_* macro of kernel/include/ogk/*.h, bindings/csrc/*.h and the families' csrc/*.h;
 each must be reachable through ``lib`` / ``ffi``. A header that gains a
 function, field or macro the bindings miss fails here.
+
+The kernel's test headers (kernel/include/ogk/internal/*.h: the test entry points
+that are not flight API, e.g. ogk_nmpc_interval) are scanned the same way, as a
+separate list (TEST_HEADERS): each of their functions must be reachable too, must
+not be declared by a public header as well, and must be named by the public
+header of its law as living there (so the move stays documented).
 """
 from __future__ import annotations
 
@@ -17,9 +23,11 @@ import pytest
 from ogk_bindings._ffi import ffi, lib
 
 ROOT = Path(__file__).resolve().parents[2]
-HEADERS = sorted((ROOT / "kernel" / "include" / "ogk").glob("*.h")) + sorted(
+PUBLIC_HEADERS = sorted((ROOT / "kernel" / "include" / "ogk").glob("*.h")) + sorted(
     (ROOT / "bindings" / "csrc").glob("*.h")) + sorted(
     (ROOT / "harness" / "ogk" / "missions").glob("*/csrc/*.h"))
+TEST_HEADERS = sorted((ROOT / "kernel" / "include" / "ogk" / "internal").glob("*.h"))
+HEADERS = PUBLIC_HEADERS + TEST_HEADERS
 
 
 def _strip_comments(text: str) -> str:
@@ -108,6 +116,37 @@ def test_scan_found_the_api() -> None:
     assert "rhs" in structs["ogk_rk4_problem_t"]
     assert "entry" in structs["ogk_nog_table_t"]
     assert len(MACROS) > 50
+    assert {"ogk_thrust_cmd_to_rtn", "ogk_nmpc_thrust_cmd", "ogk_mpsp_thrust_cmd",
+            "ogk_blt_thrust_cmd", "ogk_nmpc_interval", "ogk_blt_jacobian"} <= names
+
+
+#: the test entry points moved out of the public headers (issue 18), by test header
+MOVED = {
+    "nmpc_test.h": {"ogk_nmpc_model_rhs", "ogk_nmpc_interval"},
+    "mpsp_test.h": {"ogk_mpsp_step_jacobian", "ogk_mpsp_switch_jump"},
+    "blt_test.h": {"ogk_blt_jacobian"},
+}
+
+
+def test_test_headers_found() -> None:
+    """Each test header is scanned and holds (at least) what moved into it."""
+    names = {h.name for h in TEST_HEADERS}
+    assert set(MOVED) <= names
+    for h in TEST_HEADERS:
+        assert {n for _, n in _functions(h)} >= MOVED.get(h.name, set()), h.name
+
+
+@pytest.mark.parametrize("header", TEST_HEADERS, ids=[h.name for h in TEST_HEADERS])
+def test_test_entry_points_not_public(header: Path) -> None:
+    """A test entry point is declared by its test header only, and the law's public header
+    points there (ogk/<law>.h names ogk/internal/<law>_test.h)."""
+    public = {n for h in PUBLIC_HEADERS for _, n in _functions(h)}
+    hooks = {n for _, n in _functions(header)}
+    assert hooks, f"{header.name} declares no function"
+    assert not hooks & public, f"{sorted(hooks & public)} also in a public header"
+    law = header.name.removesuffix("_test.h")
+    public_header = ROOT / "kernel" / "include" / "ogk" / f"{law}.h"
+    assert f"ogk/internal/{header.name}" in public_header.read_text(), public_header.name
 
 
 @pytest.mark.parametrize("header,ret,name", FUNCTIONS, ids=[f[2] for f in FUNCTIONS])

@@ -26,6 +26,7 @@
 
 #include "blt_fixture.h"
 #include "ogk/blt.h"
+#include "ogk/internal/blt_test.h" /* ogk_blt_jacobian */
 
 #define NX OGK_BLT_NX
 #define NP OGK_BLT_NP
@@ -93,7 +94,7 @@ static double direction_gap(const double *p, const double *q)
     return worst;
 }
 
-/* The unknowns of tr in the documented order (ogk/blt.h, ogk_blt_jacobian): a pointer to each. */
+/* The unknowns of tr in the documented order (ogk/internal/blt_test.h, ogk_blt_jacobian): a pointer to each. */
 static uint32_t unknown_ptrs(const ogk_blt_config_t *c, ogk_blt_transfer_t *tr, double **u)
 {
     uint32_t n = 0u;

@@ -23,6 +23,7 @@
 
 #include "blt_fixture.h"
 #include "ogk/blt.h"
+#include "ogk/internal/blt_test.h" /* ogk_blt_jacobian */
 #include "ogk/linalg.h"
 
 #define NX OGK_BLT_NX

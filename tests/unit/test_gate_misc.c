@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "mpsp_fixture.h"
+#include "ogk/internal/mpsp_test.h" /* ogk_mpsp_step_jacobian, ogk_mpsp_switch_jump */
 #include "ogk/linalg.h"
 #include "ogk/mpsp.h"
 #include "ogk/rk4.h"

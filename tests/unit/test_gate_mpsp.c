@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "mpsp_fixture.h"
+#include "ogk/internal/mpsp_test.h" /* ogk_mpsp_step_jacobian, ogk_mpsp_switch_jump */
 #include "ogk/mpsp.h"
 
 static ogk_mpsp_t ctx;

@@ -12,6 +12,7 @@
 
 #include <string.h>
 
+#include "ogk/internal/mpsp_test.h" /* ogk_mpsp_step_jacobian, ogk_mpsp_switch_jump */
 #include "ogk/mpsp.h"
 
 #define PI 3.14159265358979323846

@@ -12,6 +12,7 @@
 
 #include <string.h>
 
+#include "ogk/internal/mpsp_test.h" /* ogk_mpsp_step_jacobian */
 #include "ogk/mpsp.h"
 
 #define NX OGK_MPSP_NX

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "nmpc_fixture.h"
+#include "ogk/internal/nmpc_test.h" /* ogk_nmpc_model_rhs, ogk_nmpc_interval */
 #include "ogk/nmpc.h"
 #include "ogk/types.h"
 

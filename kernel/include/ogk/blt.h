@@ -12,6 +12,7 @@
 #include <stdint.h>
 #include "ogk/linalg.h"
 #include "ogk/status.h"
+#include "ogk/types.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -198,11 +199,7 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess,
  * OGK_E_NOT_CONVERGED when the trajectory hits a body (rep->flags has OGK_BLT_FLAG_IMPACT). */
 ogk_status ogk_blt_evaluate(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, ogk_blt_report_t *rep);
 
-/* J = de/du at `tr` (n_errors x n_unknowns, row-major into jac[0 .. n_errors * n_unknowns - 1])
- * with the configured Jacobian; the unknowns' order: free start components, then each segment's
- * free parameters (A, B, T), then each free node's six components. */
-ogk_status ogk_blt_jacobian(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *jac,
-                            size_t jac_len);
+/* J = de/du: a test entry point, ogk_blt_jacobian in ogk/internal/blt_test.h. */
 
 /* Forward propagation of the whole chain from tr->x0 (free nodes ignored) to the end:
  * x_end [LU, VU], rep (errors not filled). OGK_E_NOT_CONVERGED on impact. */
@@ -212,6 +209,19 @@ ogk_status ogk_blt_propagate(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr,
 /* The BLT direction (eq. 22) of the held converged solution at time t [TU] (absolute, the
  * solution's t0 based). Engine off (the safe command, OGK_E_SAFE_COMMAND) when none is held. */
 ogk_status ogk_blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cmd);
+
+/* BLT's contract call for the one command of every law (ogk/types.h): the
+ * held solution's command at time t [TU] (ogk_blt_command) in
+ * OGK_FRAME_SYNODIC: during a burn u = u_hat of eq. (22), throttle 1, flags
+ * ENGINE_ON; during a coast, and after the last segment, the engine is off
+ * (throttle 0) and u is the direction to hold: the next burn's at its start
+ * (A / |A|), (1, 0, 0) when no burn follows; law_flags = the command's
+ * OGK_BLT_FLAG_* (SAFE). The statuses of ogk_blt_command; with any of them
+ * cmd holds the safe command of ogk/thrust_cmd.h in OGK_FRAME_SYNODIC
+ * (engine off, u = (1, 0, 0), flags SAFE, law_flags OGK_BLT_FLAG_SAFE; t_s =
+ * 0 for a non-finite t). OGK_E_NULL when cmd is NULL. CPD needs it inertial:
+ * ogk_thrust_cmd_synodic_to_inertial with the binary's phase at t. */
+ogk_status ogk_blt_thrust_cmd(const ogk_blt_t *ctx, double t, ogk_thrust_cmd_t *cmd);
 
 #ifdef __cplusplus
 }

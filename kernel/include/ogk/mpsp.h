@@ -39,6 +39,7 @@
 #include "ogk/config.h"
 #include "ogk/linalg.h"
 #include "ogk/status.h"
+#include "ogk/types.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -268,24 +269,23 @@ ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, double *dy_dw, double *dy_dlm0)
 ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *weights,
                                   double *lambda_m0);
 
-/* One RK4 step of eq. (16) from (t, x) of length dt in mode (0 coast, 1 thrust),
- * thrust T_max * thrust_scale, and its Jacobians (Appendix A with U at the stage
- * times): x_next (8), dfdx = dX_next/dX (8 x 8) and dfdw = dX_next/dW
- * (8 x n_weights). Outputs other than x_next may be NULL. */
-ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
-                                  double thrust_scale, double t, const double *x,
-                                  double dt, int mode, double *x_next,
-                                  double *dfdx, double *dfdw);
+/* MPSP's contract call for the one command of every law (ogk/types.h): the
+ * command of the trajectory held (after ogk_mpsp_solve: the converged one,
+ * else the safe command's; or the last ogk_mpsp_propagate) at time t [TU],
+ * in OGK_FRAME_INERTIAL (the frame of r, v): u = -lambda_v / |lambda_v|, the
+ * primer-vector direction along which eq. (16) thrusts, with lambda_v(t) =
+ * P(t) W of the held weights; throttle = the bang-off-bang u of eq. (11) on
+ * the held trajectory's segment containing t (1: S < 0, thrust; 0: coast),
+ * flags ENGINE_ON with it; law_flags 0 (MPSP has no flags). Otherwise the
+ * safe command of ogk/thrust_cmd.h in OGK_FRAME_INERTIAL (engine off, u =
+ * (1, 0, 0), flags SAFE) and: OGK_E_NULL (cmd NULL; ctx NULL),
+ * OGK_E_NOT_INIT (no context, or no trajectory held), OGK_E_NONFINITE (t),
+ * OGK_E_RANGE (t outside [t0, tf]), OGK_E_SAFE_COMMAND (lambda_v(t) = 0 or
+ * not finite: no direction). */
+ogk_status ogk_mpsp_thrust_cmd(const ogk_mpsp_t *ctx, double t, ogk_thrust_cmd_t *cmd);
 
-/* Switching compensation at a switch (t_s, x_s) left in mode_before
- * (eqs. 24-25, Appendix B): jx = dX+/dX- (8 x 8), jw = dX+/dW (8 x n_weights,
- * through dU = P(t_s) dW), dts_dx = dt_s/dX- (8) and dts_dw = dt_s/dW
- * (n_weights) from eq. (B.2). Any output may be NULL. OGK_E_SINGULAR when
- * dS/dt = 0 at t_s. */
-ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
-                                double thrust_scale, double t_s, const double *x_s,
-                                int mode_before, double *jx, double *jw,
-                                double *dts_dx, double *dts_dw);
+/* Test entry points (one RK4 step's Jacobians, the switching compensation):
+ * ogk/internal/mpsp_test.h. */
 
 #ifdef __cplusplus
 }

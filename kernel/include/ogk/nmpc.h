@@ -44,6 +44,7 @@
 #include <stdint.h>
 #include "ogk/qp.h"
 #include "ogk/status.h"
+#include "ogk/types.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -288,20 +289,20 @@ ogk_status ogk_nmpc_replan(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
 ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t,
                             ogk_nmpc_command_t *cmd);
 
-/* Right-hand side of the predictive model at (t, x, u) (for tests and the
- * harness's cross-checks); u has the engine's nu entries. */
-ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
-                              const double *u, double *xdot);
+/* NMPC's contract call for the one command of every law (ogk/types.h): the
+ * plan's command at absolute time t [TU] (ogk_nmpc_command) in
+ * OGK_FRAME_RTN. The model's thrust (cos alpha, sin alpha) along (r_hat,
+ * theta_hat), alpha from the local vertical, is the r-t-n unit vector
+ * u = (cos alpha, sin alpha, 0) (theta_hat = t, the orbit normal = n), so
+ * the kernel's angles are alpha_rad = pi/2 - alpha (wrapped into (-pi, pi]),
+ * beta_rad = 0; throttle = w, flags and law_flags as ogk_nmpc_command. The
+ * statuses of ogk_nmpc_command, with NMPC's safe command converted the same
+ * way (engine off, along r_hat: alpha_rad = pi/2; t_s = 0 for a non-finite t);
+ * OGK_E_NULL when cmd is NULL. */
+ogk_status ogk_nmpc_thrust_cmd(const ogk_nmpc_t *ctx, double t, ogk_thrust_cmd_t *cmd);
 
-/* One subinterval F(x0, u0, u1) of length h starting at absolute time t0,
- * with its sensitivities (each may be NULL): dfdx (5 x 5), dfdu0 and dfdu1
- * (5 x nu), dfdh (5, t0 held) and dfdt0 (5, h held): for the tests'
- * finite-difference checks. */
-ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
-                             const double *x0, const double *u0,
-                             const double *u1, double *x1, double *dfdx,
-                             double *dfdu0, double *dfdu1, double *dfdh,
-                             double *dfdt0);
+/* Test entry points (the model's right-hand side, one shooting interval with
+ * its sensitivities): ogk/internal/nmpc_test.h. */
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,39 @@
+/* ogk/internal/nmpc_test.h -- test entry points of ogk_nmpc: NOT flight API.
+ *
+ * The predictive model's right-hand side and one shooting interval with its
+ * sensitivities, for the unit tests' closed-form and finite-difference checks
+ * (tests/unit/test_nmpc.c, test_gate_nmpc.c) and the Python bindings'
+ * cross-checks (bindings/ogk_bindings/nmpc.py; bindings/build_ffi.py declares
+ * this header in its TEST_HEADERS list). A flight application includes
+ * ogk/nmpc.h only. Why here and not in kernel/src/nmpc_internal.h:
+ * docs/adding-a-law.md, "Test entry points". */
+#ifndef OGK_INTERNAL_NMPC_TEST_H
+#define OGK_INTERNAL_NMPC_TEST_H
+
+#include "ogk/nmpc.h"
+#include "ogk/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Right-hand side of the predictive model at (t, x, u) (for tests and the
+ * harness's cross-checks); u has the engine's nu entries. */
+ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
+                              const double *u, double *xdot);
+
+/* One subinterval F(x0, u0, u1) of length h starting at absolute time t0,
+ * with its sensitivities (each may be NULL): dfdx (5 x 5), dfdu0 and dfdu1
+ * (5 x nu), dfdh (5, t0 held) and dfdt0 (5, h held): for the tests'
+ * finite-difference checks. */
+ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
+                             const double *x0, const double *u0,
+                             const double *u1, double *x1, double *dfdx,
+                             double *dfdu0, double *dfdu1, double *dfdh,
+                             double *dfdt0);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* OGK_INTERNAL_NMPC_TEST_H */
