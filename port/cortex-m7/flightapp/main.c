@@ -14,7 +14,8 @@
  * Runs: A nominal ignition state; B ignition state off by +1 sigma of Table 3 on r, phi, v_r, v_t,
  * v_n; C as B with a navigation dropout (NaN radius) at the 6th sample; then the error reactions one by one
  * (rejected image -> reload, rejected configuration -> abort, bad navigation -> safe sample, bad
- * attitude -> safe command, lost CPD context -> re-init). Prints a trace via semihosting and a last
+ * attitude -> safe command, lost CPD context -> re-init; the same direction as an inertial command
+ * -> the same actuators, a synodic one -> abort). Prints a trace via semihosting and a last
  * line "flightapp: PASS ..." or "flightapp: FAIL ..."; exit code 0 on PASS, 1 on FAIL. */
 #include <math.h>
 #include <stdio.h>
@@ -23,6 +24,7 @@
 #include "ogk/cpd.h"
 #include "ogk/nog.h"
 #include "ogk/status.h"
+#include "ogk/thrust_cmd.h"
 #include "ogk_flight.h"
 #include "ogk_orbit_injection_flight_config.h"
 #include "ogk_nog_bundle.h"
@@ -69,49 +71,51 @@ static const char *action_name(ogk_flight_action a)
 /* ------------------------------------------------------------------ point-mass plant */
 enum { R_ = 0, XI = 1, PHI = 2, VR = 3, VT = 4, VN = 5, NPL = 6 };
 
-static void plant_rhs(double t, const double *x, double alpha, double beta, double *dx)
+/* u: the thrust direction in r-t-n, the unit vector of the common thrust command (ogk/types.h). */
+static void plant_rhs(double t, const double *x, const double *u, double *dx)
 {
     const double n0 = OGK_PLANT_N0_M_S2;
     const double c = OGK_PLANT_EXHAUST_VELOCITY_M_S;
     const double accel = n0 * c / (c - n0 * t);
     const double inv_r = 1.0 / x[R_];
     const double tphi = tan(x[PHI]);
-    const double cb = cos(beta);
     dx[R_] = x[VR];
     dx[XI] = x[VT] * inv_r / cos(x[PHI]);
     dx[PHI] = x[VN] * inv_r;
     dx[VR] = -OGK_PLANT_MU_M3_S2 * inv_r * inv_r + (x[VT] * x[VT] + x[VN] * x[VN]) * inv_r +
-             accel * cb * sin(alpha);
-    dx[VT] = x[VT] * (x[VN] * tphi - x[VR]) * inv_r + accel * cb * cos(alpha);
-    dx[VN] = -(x[VT] * x[VT] * tphi + x[VR] * x[VN]) * inv_r + accel * sin(beta);
+             accel * u[0];
+    dx[VT] = x[VT] * (x[VN] * tphi - x[VR]) * inv_r + accel * u[1];
+    dx[VN] = -(x[VT] * x[VT] * tphi + x[VR] * x[VN]) * inv_r + accel * u[2];
 }
 
 /* Thrust direction the plant flies at time t: the command of the tick (held), or with
  * FLIGHTAPP_STAGE_COMMANDS=1 the guidance command at t itself, like the SIL's point-mass truth
- * (ogk mc --truth point-mass), for comparing with it. */
+ * (ogk mc --truth point-mass), for comparing with it. NOG's command is in r-t-n (u = (u_r, u_t,
+ * u_n), the angles' unit vector). */
 #ifndef FLIGHTAPP_STAGE_COMMANDS
 #define FLIGHTAPP_STAGE_COMMANDS 0
 #endif
-static void plant_angles(double t, double *alpha, double *beta)
+static void plant_direction(double t, double *u)
 {
 #if FLIGHTAPP_STAGE_COMMANDS
     ogk_thrust_cmd_t c;
     (void)ogk_nog_command(&g_flight.nog, t, &c);
-    *alpha = c.alpha_rad;
-    *beta = c.beta_rad;
+    u[0] = c.u[0];
+    u[1] = c.u[1];
+    u[2] = c.u[2];
 #else
     (void)t;
-    *alpha = g_flight.cmd.alpha_rad;
-    *beta = g_flight.cmd.beta_rad;
+    u[0] = g_flight.cmd.u[0];
+    u[1] = g_flight.cmd.u[1];
+    u[2] = g_flight.cmd.u[2];
 #endif
 }
 
 static void plant_stage(double t, const double *x, double *dx)
 {
-    double alpha;
-    double beta;
-    plant_angles(t, &alpha, &beta);
-    plant_rhs(t, x, alpha, beta, dx);
+    double u[3];
+    plant_direction(t, u);
+    plant_rhs(t, x, u, dx);
 }
 
 static void plant_rk4(double t, double h, double *x)
@@ -355,6 +359,44 @@ static void error_reactions(void)
     expect("CPD after its re-init", a, OGK_FLIGHT_FLY, f->last_status);
     a = ogk_flight_control(f, 1.0, &att, &nav);
     expect("command for a time before the sample", a, OGK_FLIGHT_SAFE, OGK_E_RANGE);
+
+    /* Any law's command: NOG's r-t-n direction given as an inertial vector (what MPSP produces)
+     * gives the same actuator command from the same CPD state. */
+    {
+        ogk_thrust_cmd_t rtn;
+        ogk_thrust_cmd_t inert;
+        ogk_thrust_cmd_t syn;
+        ogk_cpd_output_t act_rtn;
+        const ogk_cpd_t cpd_before = f->cpd;
+        const double cx = cos(nav.xi_rad), sx = sin(nav.xi_rad);
+        const double cp = cos(nav.phi_rad), sp = sin(nav.phi_rad);
+        double u_i[3];
+        a = ogk_flight_control(f, 2.06, &att, &nav);
+        check(a == OGK_FLIGHT_FLY, "NOG command at 2.06 s");
+        rtn = f->cmd;
+        act_rtn = f->act;
+        /* u_I = u_r r_hat + u_t t_hat + u_n n_hat (ogk/types.h, OGK_FRAME_RTN) */
+        u_i[0] = rtn.u[0] * cp * cx - rtn.u[1] * sx - rtn.u[2] * sp * cx;
+        u_i[1] = rtn.u[0] * cp * sx + rtn.u[1] * cx - rtn.u[2] * sp * sx;
+        u_i[2] = rtn.u[0] * sp + rtn.u[2] * cp;
+        check(ogk_thrust_cmd_from_unit(rtn.t_s, OGK_FRAME_INERTIAL, u_i, rtn.throttle, rtn.flags,
+                                       rtn.law_flags, &inert) == OGK_OK, "inertial command built");
+        f->cpd = cpd_before;
+        a = ogk_flight_attitude(f, &inert, &att, &nav);
+        expect("the same direction as an inertial command", a, OGK_FLIGHT_FLY, f->last_status);
+        check(fabs(f->act.delta_yc - act_rtn.delta_yc) <= 1e-12 &&
+              fabs(f->act.delta_zc - act_rtn.delta_zc) <= 1e-12 &&
+              fabs(f->act.theta_c - act_rtn.theta_c) <= 1e-12 &&
+              fabs(f->act.psi_c - act_rtn.psi_c) <= 1e-12, "same actuator command from either frame");
+        /* A synodic command (BLT's) not rotated to inertial: CPD cannot take it -> abort. */
+        check(ogk_thrust_cmd_from_unit(rtn.t_s, OGK_FRAME_SYNODIC, u_i, 1.0, OGK_THRUST_FLAG_ENGINE_ON,
+                                       0u, &syn) == OGK_OK, "synodic command built");
+        a = ogk_flight_attitude(f, &syn, &att, &nav);
+        expect("a synodic command handed to CPD", a, OGK_FLIGHT_ABORT, f->last_status);
+        check(f->last_status == OGK_E_FRAME && f->engine_on == 0u && f->act.m_xc == 0.0 &&
+              f->act.delta_yc == 0.0 && (f->act.flags & OGK_CPD_FLAG_SAFE) != 0u,
+              "frame fault: engine off, safe actuator command");
+    }
 }
 
 int main(void)

@@ -51,6 +51,10 @@ ogk_flight_action ogk_flight_reaction(ogk_flight_call call, ogk_status st)
         return OGK_FLIGHT_HOLD;
     case OGK_E_CONFIG:
         return OGK_FLIGHT_ABORT;            /* rejected configuration: do not ignite */
+    case OGK_E_FRAME:
+        /* The attitude loop was handed a command in a frame it cannot convert (a synodic command
+         * not rotated to inertial): the application wired a law wrongly; no tick can fix it. */
+        return OGK_FLIGHT_ABORT;
     case OGK_E_ALIGN:
         /* The image is not 8-byte aligned (a build defect; the generated C aligns it): reading
          * it again does not help. Do not ignite (or decode it with ogk_nog_table_load). */
@@ -160,10 +164,47 @@ ogk_flight_action ogk_flight_guidance(ogk_flight_t *f, const ogk_nav_state_t *na
     return a;
 }
 
+ogk_flight_action ogk_flight_attitude(ogk_flight_t *f, const ogk_thrust_cmd_t *cmd,
+                                      const ogk_flight_att_t *att, const ogk_nav_state_t *nav)
+{
+    ogk_cpd_input_t in;
+    ogk_flight_action b;
+
+    if (cmd != &f->cmd) {
+        f->cmd = *cmd;
+    }
+    if ((f->cmd.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u) {
+        f->engine_on = 0u; /* at or past the cut-off (or the law's own engine-off) */
+    }
+    in.psi = att->psi;
+    in.theta = att->theta;
+    in.phi_roll = att->phi_roll;
+    in.rate_p = att->rate_p;
+    in.rate_q = att->rate_q;
+    in.rate_r = att->rate_r;
+    /* any frame CPD converts: the law's direction as r-t-n angles at nav's position */
+    b = count(f, OGK_FLIGHT_CALL_CPD, ogk_cpd_input_from_thrust_cmd(&in, &f->cmd, nav));
+    if (b == OGK_FLIGHT_FLY) {
+        b = count(f, OGK_FLIGHT_CALL_CPD, ogk_cpd_step(&f->cpd, &in, &f->act));
+    } else {
+        /* A non-finite command or position, or a frame CPD cannot take: no CPD step, the safe
+         * actuator command. */
+        memset(&f->act, 0, sizeof f->act);
+        f->act.flags = OGK_CPD_FLAG_SAFE;
+    }
+    if (b == OGK_FLIGHT_HOLD) {
+        /* CPD context lost: re-initialise from the const configuration; f->act holds the safe
+         * command (zero torque, zero deflections) for this tick. */
+        (void)count(f, OGK_FLIGHT_CALL_INIT, ogk_cpd_init(&f->cpd, &f->cpd_cfg));
+    } else if (b == OGK_FLIGHT_ABORT) {
+        f->engine_on = 0u;
+    }
+    return b;
+}
+
 ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flight_att_t *att,
                                      const ogk_nav_state_t *nav)
 {
-    ogk_cpd_input_t in;
     ogk_flight_action a;
     ogk_flight_action b;
 
@@ -181,29 +222,7 @@ ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flig
         memset(&f->act, 0, sizeof f->act);
         return a;
     }
-    if ((f->cmd.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u) {
-        f->engine_on = 0u; /* at or past the cut-off */
-    }
-    in.psi = att->psi;
-    in.theta = att->theta;
-    in.phi_roll = att->phi_roll;
-    in.rate_p = att->rate_p;
-    in.rate_q = att->rate_q;
-    in.rate_r = att->rate_r;
-    b = count(f, OGK_FLIGHT_CALL_CPD, ogk_cpd_input_from_thrust_cmd(&in, &f->cmd, nav));
-    if (b == OGK_FLIGHT_FLY) {
-        b = count(f, OGK_FLIGHT_CALL_CPD, ogk_cpd_step(&f->cpd, &in, &f->act));
-    } else {
-        /* A non-finite command or position: no CPD step, the safe actuator command. */
-        memset(&f->act, 0, sizeof f->act);
-        f->act.flags = OGK_CPD_FLAG_SAFE;
-    }
-    if (b == OGK_FLIGHT_HOLD) {
-        /* CPD context lost: re-initialise from the const configuration; f->act holds the safe
-         * command (zero torque, zero deflections) for this tick. */
-        (void)count(f, OGK_FLIGHT_CALL_INIT, ogk_cpd_init(&f->cpd, &f->cpd_cfg));
-    } else if (b == OGK_FLIGHT_ABORT) {
-        f->engine_on = 0u;
-    }
+    /* NOG's command is the common thrust command (r-t-n): the same attitude tick as any law's */
+    b = ogk_flight_attitude(f, &f->cmd, att, nav);
     return b > a ? b : a;
 }

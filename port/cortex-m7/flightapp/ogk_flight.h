@@ -12,6 +12,10 @@
  *         ogk_flight_guidance(f, &nav)          navigation state at t -> new correction, cut-off
  *     ogk_flight_control(f, t, &att, &nav)      thrust-direction command at t + CPD step
  *     apply f->act (M_xc, delta_yc, delta_zc) until the next tick;
+ * ogk_flight_control is NOG's command followed by ogk_flight_attitude(f, &cmd, &att, &nav), the
+ * attitude tick that takes the one thrust command of every law (ogk_thrust_cmd_t, ogk/types.h) in
+ * any frame CPD converts (r-t-n, inertial): another law plugs in there (docs/flight-integration.md,
+ * "Another guidance law").
  *     engine off when f->engine_on becomes 0 (t >= f->t_cutoff_s; the last tick is shortened to
  *     land on it).
  * Each function returns the action of ogk_flight_reaction for the status it got, and counts the
@@ -57,7 +61,7 @@ typedef enum {
     OGK_FLIGHT_CALL_INIT = 1,    /* ogk_nog_init, ogk_cpd_init */
     OGK_FLIGHT_CALL_SAMPLE = 2,  /* ogk_nog_sample */
     OGK_FLIGHT_CALL_COMMAND = 3, /* ogk_nog_command */
-    OGK_FLIGHT_CALL_CPD = 4      /* ogk_cpd_step */
+    OGK_FLIGHT_CALL_CPD = 4      /* ogk_cpd_input_from_thrust_cmd, ogk_cpd_step */
 } ogk_flight_call;
 
 /* Attitude navigation at a control tick. */
@@ -74,7 +78,7 @@ typedef struct {
     ogk_nog_t nog;
     ogk_cpd_t cpd;
     ogk_nog_sample_t sample;     /* last guidance sample */
-    ogk_thrust_cmd_t cmd;        /* last thrust-direction command (ogk/types.h) */
+    ogk_thrust_cmd_t cmd;        /* last thrust-direction command (ogk/types.h; NOG's: r-t-n) */
     ogk_cpd_output_t act;        /* last actuator command: apply until the next tick */
     double t_cutoff_s;           /* [s] predicted (final once terminating) engine cut-off */
     uint32_t ticks_per_sample;   /* [-] control ticks per guidance sample (Delta t_S x rate) */
@@ -104,5 +108,14 @@ ogk_flight_action ogk_flight_guidance(ogk_flight_t *f, const ogk_nav_state_t *na
  * or after the cut-off. */
 ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flight_att_t *att,
                                      const ogk_nav_state_t *nav);
+
+/* Attitude tick on any law's thrust command (the common ogk_thrust_cmd_t: NOG's ogk_nog_command,
+ * ogk_mpsp_thrust_cmd, ogk_nmpc_thrust_cmd, ogk_blt_thrust_cmd after
+ * ogk_thrust_cmd_synodic_to_inertial): copies it to f->cmd, sets engine_on = 0 when it lacks
+ * OGK_THRUST_FLAG_ENGINE_ON, and runs CPD on it (ogk_cpd_input_from_thrust_cmd converts an inertial
+ * direction to r-t-n at nav's xi, phi) -> f->act. A command CPD cannot take (OGK_E_FRAME: synodic or
+ * unknown frame) is an integration fault: ABORT, f->act the safe command, engine off. */
+ogk_flight_action ogk_flight_attitude(ogk_flight_t *f, const ogk_thrust_cmd_t *cmd,
+                                      const ogk_flight_att_t *att, const ogk_nav_state_t *nav);
 
 #endif /* OGK_FLIGHT_H */
