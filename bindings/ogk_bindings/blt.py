@@ -7,6 +7,7 @@ docs/blt.md).
     sol, rep = k.solve(Transfer(...))                             # corrector; rep.status says how it ended
     rep = k.evaluate(tr); x_end, rep = k.propagate(tr); J = k.jacobian(tr)
     cmd = k.command(t)                                            # eq. (22) of the held solution
+    c = k.thrust_cmd(t)                                           # the one command of every law (synodic)
 
 Normalised units throughout (docs/blt.md, sec. 1: LU = separation, TU = T_o / 2 pi, mass fraction).
 Bad inputs raise KernelError; a corrector that does not converge returns its report (status names why).
@@ -20,7 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.config import KernelConfig
-from ogk_bindings.kernel import _check, status_name
+from ogk_bindings.kernel import ThrustCmd, _check, _thrust_cmd_call, status_name
 
 F64 = NDArray[np.float64]
 
@@ -164,10 +165,16 @@ class Blt:
         return np.array(list(x)), rep
 
     def jacobian(self, tr: Transfer) -> F64:
+        """J = de/du (test entry point: kernel/include/ogk/internal/blt_test.h)."""
         n = self.n_errors * self.n_unknowns
         buf = ffi.new(f"double[{n}]")
         _check(lib.ogk_blt_jacobian(self._ctx, tr.to_c(), buf, n), "ogk_blt_jacobian")
         return np.frombuffer(ffi.buffer(buf), dtype=np.float64).reshape(self.n_errors, self.n_unknowns).copy()
+
+    def thrust_cmd(self, t: float) -> ThrustCmd:
+        """ogk_blt_thrust_cmd: the held solution's command at t [TU] in the synodic frame;
+        KernelError (partial = the safe command) when there is none."""
+        return _thrust_cmd_call("ogk_blt_thrust_cmd", self._ctx, t)
 
     def command(self, t: float) -> tuple[str, bool, F64, int]:
         """(status, engine_on, u_hat, segment) of the held solution at time t [TU]."""

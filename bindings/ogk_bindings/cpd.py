@@ -4,6 +4,7 @@
     ctl = Cpd(cfg)                               # ogk_cpd_init (KernelError on a rejected config)
     ctl.reset()                                  # ogk_cpd_reset
     out = ctl.step(CpdInput(psi=..., ...))       # ogk_cpd_step -> CpdOutput
+    inp = CpdInput(psi=..., ...).with_thrust_cmd(cmd, xi, phi)   # any law's ThrustCmd (r-t-n, inertial)
     psi_c, theta_c = commanded_attitude(alpha_c, beta_c, xi, phi)
     alpha_a, beta_a = thrust_angles(psi, theta, phi_roll, xi, phi, delta_y, delta_z)
 
@@ -23,7 +24,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.config import KernelConfig
-from ogk_bindings.kernel import Status, _check
+from ogk_bindings.kernel import Status, ThrustCmd, _check
 
 F64 = NDArray[np.float64]
 
@@ -85,6 +86,18 @@ class CpdInput:
         for f in dataclasses.fields(self):
             setattr(c, f.name, float(getattr(self, f.name)))
         return c
+
+    def with_thrust_cmd(self, cmd: ThrustCmd, xi: float, phi: float) -> "CpdInput":
+        """This input with the guidance part from any law's command at position (xi, phi)
+        (ogk_cpd_input_from_thrust_cmd: r-t-n angles as they are, an inertial direction rotated
+        into r-t-n); KernelError (OGK_E_FRAME for a synodic command) otherwise."""
+        c = self.to_c()
+        nav = ffi.new("ogk_nav_state_t *")
+        nav.xi_rad = float(xi)
+        nav.phi_rad = float(phi)
+        _check(lib.ogk_cpd_input_from_thrust_cmd(c, cmd.to_c(), nav), "ogk_cpd_input_from_thrust_cmd")
+        return dataclasses.replace(self, alpha_c=float(c.alpha_c), beta_c=float(c.beta_c),
+                                   xi=float(c.xi), phi=float(c.phi))
 
 
 @dataclasses.dataclass(frozen=True)

@@ -18,8 +18,8 @@ from ogk_bindings._ffi import ffi, lib
 F64 = NDArray[np.float64]
 
 __all__ = [
-    "CModel", "Dense", "KernelError", "LuFactor", "Rk4Result", "Status", "SwitchEvent",
-    "Table", "TableSpec", "TableView", "cholesky_solve", "crc32", "interp_check_grid",
+    "CModel", "Dense", "Frame", "KernelError", "LuFactor", "Rk4Result", "Status", "SwitchEvent",
+    "Table", "TableSpec", "TableView", "ThrustCmd", "cholesky_solve", "crc32", "interp_check_grid",
     "interp_linear", "interp_locate", "interp_pchip", "limits", "lstsq", "lu_factor",
     "lu_inverse", "lu_rcond", "lu_solve", "mat_mul", "mat_vec", "minnorm", "pchip_slopes",
     "rk4_propagate", "rk4_step", "status_name", "table_load", "version",
@@ -74,6 +74,69 @@ class KernelError(Exception):
 def _check(status: int, func: str, partial: Any = None) -> None:
     if status != lib.OGK_OK:
         raise KernelError(status, func, partial)
+
+
+# ----------------------------------------------------------------- the one thrust command of every law
+class Frame(enum.IntEnum):
+    """Frame of a thrust command's direction (ogk_frame_t, ogk/types.h)."""
+
+    RTN = int(lib.OGK_FRAME_RTN)
+    INERTIAL = int(lib.OGK_FRAME_INERTIAL)
+    SYNODIC = int(lib.OGK_FRAME_SYNODIC)
+
+
+@dataclass(frozen=True)
+class ThrustCmd:
+    """ogk_thrust_cmd_t: what every law's contract call produces (ogk_nog_command,
+    ogk_mpsp_thrust_cmd, ogk_nmpc_thrust_cmd, ogk_blt_thrust_cmd). ``u`` is the unit direction in
+    ``frame``; in r-t-n ``alpha``, ``beta`` [rad] are the same direction (0 in the other frames).
+    ``t`` is in the law's time unit (NOG: s; MPSP, NMPC, BLT: TU)."""
+
+    t: float
+    frame: Frame
+    u: tuple[float, float, float]
+    alpha: float
+    beta: float
+    throttle: float
+    flags: int
+    law_flags: int
+
+    @property
+    def engine_on(self) -> bool:
+        return bool(self.flags & int(lib.OGK_THRUST_FLAG_ENGINE_ON))
+
+    @property
+    def safe(self) -> bool:
+        return bool(self.flags & int(lib.OGK_THRUST_FLAG_SAFE))
+
+    @classmethod
+    def from_c(cls, c: Any) -> "ThrustCmd":
+        return cls(t=float(c.t_s), frame=Frame(int(c.frame)), u=(float(c.u[0]), float(c.u[1]), float(c.u[2])),
+                   alpha=float(c.alpha_rad), beta=float(c.beta_rad), throttle=float(c.throttle),
+                   flags=int(c.flags), law_flags=int(c.law_flags))
+
+    def to_c(self) -> Any:
+        c = ffi.new("ogk_thrust_cmd_t *")
+        c.t_s = self.t
+        c.frame = int(self.frame)
+        for i in range(3):
+            c.u[i] = self.u[i]
+        c.alpha_rad = self.alpha
+        c.beta_rad = self.beta
+        c.throttle = self.throttle
+        c.flags = self.flags
+        c.law_flags = self.law_flags
+        return c
+
+
+def _thrust_cmd_call(func: str, ctx: Any, t: float) -> ThrustCmd:
+    """One law's contract call ``func(ctx, t, &cmd)``; a rejection raises KernelError with the law's
+    safe command as ``partial``."""
+    c = ffi.new("ogk_thrust_cmd_t *")
+    st = getattr(lib, func)(ctx, float(t), c)
+    cmd = ThrustCmd.from_c(c)
+    _check(st, func, partial=cmd)
+    return cmd
 
 
 # ----------------------------------------------------------------- helpers

@@ -7,6 +7,7 @@
     g = Mpsp(cfg)                                   # ogk_mpsp_init (KernelError on a rejected config)
     res = g.solve(x0, thrust_scale=1.0, target=None)  # ogk_mpsp_solve -> MpspResult
     traj = g.propagate(res.weights, res.lambda_m0, x0)  # the kernel's own propagation, dense output
+    cmd = g.thrust_cmd(t)                           # the one command of every law (inertial ThrustCmd)
 
 Normalised units throughout (the scenario's LU, TU, MU). The MPSP state is X = [r, v, m, lambda_m];
 the weights are three blocks of 2 n + 1 Fourier coefficients (lambda_v x, y, z), basis
@@ -24,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.config import KernelConfig
-from ogk_bindings.kernel import Status, _check
+from ogk_bindings.kernel import Status, ThrustCmd, _check, _thrust_cmd_call
 
 F64 = NDArray[np.float64]
 
@@ -283,9 +284,16 @@ class Mpsp:
                "ogk_mpsp_newton_update")
         return w, float(lm[0])
 
+    def thrust_cmd(self, t: float) -> ThrustCmd:
+        """ogk_mpsp_thrust_cmd: the held trajectory's command at t [TU], inertial: the primer
+        direction -lambda_v / |lambda_v|, the bang-off-bang throttle; KernelError (partial = the
+        safe command) without a trajectory, outside [t0, tf] or without a direction."""
+        return _thrust_cmd_call("ogk_mpsp_thrust_cmd", self._ctx, t)
+
     def step_jacobian(self, weights: ArrayLike, t: float, x: ArrayLike, dt: float, mode: int,
                       thrust_scale: float = 1.0) -> tuple[F64, F64, F64]:
-        """One RK4 step: (x_next, dX_next/dX (8 x 8), dX_next/dW (8 x n_weights))."""
+        """One RK4 step: (x_next, dX_next/dX (8 x 8), dX_next/dW (8 x n_weights)). Test entry point
+        (kernel/include/ogk/internal/mpsp_test.h, not flight API)."""
         w = _vec(weights, self.n_weights, "weights")
         xn = np.empty(NX)
         jx = np.empty((NX, NX))

@@ -7,6 +7,7 @@
     rep = g.solve(t, x)                              # open loop from (t, x), the plan as the guess
     rep = g.replan(t, x)                             # one MPC step: strategy shift, solve, doubling test
     alpha, throttle, flags, law_flags = g.command(t)
+    cmd = g.thrust_cmd(t)                            # the one command of every law (r-t-n ThrustCmd)
 
 Normalised units throughout (the scenario's LU, TU, MU). ``solve``/``replan`` return a report also when
 the SQP fails (``rep.status`` names why, the previous plan stays flown); bad inputs raise KernelError.
@@ -20,7 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.config import KernelConfig
-from ogk_bindings.kernel import _check, status_name
+from ogk_bindings.kernel import ThrustCmd, _check, _thrust_cmd_call, status_name
 
 F64 = NDArray[np.float64]
 
@@ -144,6 +145,12 @@ class Nmpc:
         c = self._cmd
         return float(c.alpha), float(c.throttle), int(c.flags), int(c.law_flags)
 
+    def thrust_cmd(self, t: float) -> ThrustCmd:
+        """ogk_nmpc_thrust_cmd: the plan's command at t [TU] in r-t-n (alpha = pi/2 - the angle
+        from the vertical); KernelError (partial = the safe command) when there is none."""
+        return _thrust_cmd_call("ogk_nmpc_thrust_cmd", self._ctx, t)
+
+    # Test entry points (kernel/include/ogk/internal/nmpc_test.h, not flight API).
     def model_rhs(self, t: float, x: ArrayLike, u: ArrayLike) -> F64:
         xs = np.ascontiguousarray(x, dtype=np.float64)
         us = np.ascontiguousarray(u, dtype=np.float64)
