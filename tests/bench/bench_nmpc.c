@@ -16,7 +16,7 @@
  * tests/bench/bench_nmpc_ipopt.py header from the scenario, bit-exact):
  * scenarios/rendezvous_nep_min_time.toml with the configuration of
  * kernel_config() (what `ogk nmpc --solver kernel` flies), the open loop
- * ogk_nmpc_solve from the documented guess (guidance.first_guess), then one
+ * ogk_nmpc_solve from the documented guess (guidance_base.first_guess), then one
  * SNNS ogk_nmpc_replan at the plan's first node time t_next from the plan's
  * node-1 state with r + 1e-4 LU and v_theta + 1e-4 VU (N 30 -> 29; its BFGS
  * matrix and multipliers kept). Every repetition starts from the same saved

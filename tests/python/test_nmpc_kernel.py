@@ -24,7 +24,7 @@ from ogk_host.rendezvous.scenario import load_scenario
 from ogk_bindings.kernel import KernelError
 from ogk_bindings.nmpc import Nmpc
 from ogk.missions.rendezvous.closed_loop import fly
-from ogk.missions.rendezvous.guidance import first_guess, strategy_settings
+from ogk.missions.rendezvous.guidance_base import first_guess, strategy_settings
 from ogk.missions.rendezvous.kernel_guidance import KernelGuidance, kernel_config
 
 MIN_TIME = "scenarios/rendezvous_nep_min_time.toml"

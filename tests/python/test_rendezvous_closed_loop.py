@@ -24,7 +24,8 @@ from ogk_host.rendezvous.scenario import DEFAULT_SCENARIO_PATH, load_scenario
 
 from ogk.missions.rendezvous import strategy as st
 from ogk.missions.rendezvous.closed_loop import fly
-from ogk.missions.rendezvous.guidance import IpoptGuidance, ReplanInfo, strategy_settings
+from ogk.missions.rendezvous.guidance import IpoptGuidance
+from ogk.missions.rendezvous.guidance_base import ReplanInfo, strategy_settings
 
 OGK = Path(sys.executable).parent / "ogk"
 #: open-loop optimum from the documented guess (docs/nmpc.md, section 4): t_f* = 370.12080652 d

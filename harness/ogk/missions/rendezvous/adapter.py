@@ -117,7 +117,8 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     strategy_name = args.strategy or scenario.nmpc.strategy
 
     from .closed_loop import fly
-    from .guidance import make_guidance, strategy_settings
+    from .guidance_base import strategy_settings
+    from .guidance_factory import make_guidance
 
     guidance = make_guidance(args.solver, scenario, strategy_settings(scenario, strategy_name))
     remove_stale(json_path)

@@ -31,7 +31,7 @@ from numpy.typing import NDArray
 from ogk_host.rendezvous.dynamics import DAY_S, Engine, Model
 from ogk_host.rendezvous.scenario import RendezvousScenario
 
-from .guidance import Guidance, ReplanInfo
+from .guidance_base import Guidance, ReplanInfo
 from .truth import TruthModel
 
 FloatArray = NDArray[np.float64]

@@ -1,97 +1,24 @@
-"""Receding-horizon guidance of the rendezvous closed loop (Starek & Kolmanovsky 2012, sec. 2.3).
+"""The ground NLP as a guidance of the rendezvous closed loop (Starek & Kolmanovsky 2012, sec. 2.3).
 
-`Guidance` is what the closed loop (closed_loop.py) flies: at the start of each control subinterval it calls
-`replan(t, x)` with the measured (truth) state, then flies `command(t)` until the returned `t_next` (the end
-of the plan's first subinterval), and replans there. Two implementations are meant to plug in:
-
-- `IpoptGuidance` (here): the ground NLP (ogk_host.rendezvous.nlp.RendezvousNlp, CasADi + IPOPT) re-solved
-  with the strategies of strategy.py, warm started primal and dual from the shifted previous solution;
-- the flight code's `ogk_nmpc` (C kernel), added by the lead in `make_guidance` below.
+`IpoptGuidance`: the ground NLP (ogk_host.rendezvous.nlp.RendezvousNlp, CasADi + IPOPT) re-solved along the
+flight with the strategies of strategy.py, warm started primal and dual from the shifted previous solution.
+It is one `guidance_base.Guidance`; the flight code's is kernel_guidance.KernelGuidance, and
+guidance_factory.make_guidance picks one by the `--solver` name.
 
 All times and states are normalised (TU, LU, VU, MU: docs/nmpc.md, "Units").
 """
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
-from ogk_bindings.errors import OgkInputError
-from ogk_host.rendezvous.dynamics import DAY_S, Model
 from ogk_host.rendezvous.nlp import NlpResult, RendezvousNlp, min_fuel_guess
-from ogk_host.rendezvous.ocp import DEFAULT_GUESS_ALPHA_RAD, DEFAULT_GUESS_SHAPE, DEFAULT_GUESS_TF_DAYS
-from ogk_host.rendezvous.ocp import phase_matched_guess
 from ogk_host.rendezvous.plan import Plan
 from ogk_host.rendezvous.scenario import RendezvousScenario
 
 from . import strategy as st
-
-FloatArray = NDArray[np.float64]
-
-SOLVERS = ("ipopt", "kernel")
-
-
-@dataclasses.dataclass(frozen=True)
-class ReplanInfo:
-    """What one replan did (one row of the flight's history)."""
-
-    t: float                    #: time of the replan [TU]
-    t_next: float               #: time of the next replan: end of the flown plan's first subinterval [TU]
-    converged: bool             #: the plan flown from t was solved now (False: the previous plan is flown on)
-    failed: bool                #: no solve of this replan converged
-    iterations: int             #: solver iterations, every solve of this replan (N and 2N)
-    solve_time_s: float         #: solver wall time, every solve of this replan
-    solves: int                 #: NLP solves in this replan (SNNS: 2 while doubling is tested)
-    nodes: int                  #: N of the plan flown from t
-    subdivided: bool            #: the doubled plan was adopted here
-    objective: float | None     #: cost-to-go of the adopted solution (normalised), None when failed
-    status: str                 #: solver status of the adopted (or failed N) solve
-    plan: Plan                  #: the plan flown from t (on a failure: the previous plan's remainder)
-    status_n: str = ""          #: status of the N solve (SNNS: before the doubling test)
-    cost_n: float | None = None     #: cost-to-go of the N solve (None when it failed)
-    cost_2n: float | None = None    #: cost-to-go of the 2N solve (None: failed or not tried)
-
-
-class Guidance(Protocol):
-    """What the closed loop needs from a guidance implementation."""
-
-    name: str
-
-    def replan(self, t: float, x: FloatArray) -> ReplanInfo:
-        """Called at the start of each control subinterval with the measured state."""
-        ...
-
-    def command(self, t: float) -> tuple[float, float]:
-        """(alpha [rad], throttle w in [0, 1]) at time t: the piecewise-linear plan control (w = 1 for a
-        constant-thrust engine)."""
-        ...
-
-
-# --------------------------------------------------------------------------------------------------------
-
-def first_guess(scenario: RendezvousScenario, nodes: int, t: float, x: ArrayLike, nu: int) -> Plan:
-    """The documented open-loop guess (ocp.default_guess: phase-matched, t_f 370 d, 135 deg), as a plan
-    from (t, x); a throttle column of 1 (full thrust) when nu = 2."""
-    model = Model.for_scenario(scenario)
-    g = phase_matched_guess(model, nodes, DEFAULT_GUESS_TF_DAYS, DEFAULT_GUESS_SHAPE,
-                            DEFAULT_GUESS_ALPHA_RAD, label="documented")
-    controls = g.controls.reshape(-1, 1)
-    if nu == 2:
-        controls = np.hstack([controls, np.ones_like(controls)])
-    states = np.array(g.states, copy=True)
-    states[0] = np.asarray(x, dtype=np.float64)
-    return Plan(t0=t, horizon=g.t_f, states=states, controls=controls)
-
-
-def strategy_settings(scenario: RendezvousScenario, name: str | None = None) -> st.StrategySettings:
-    """The strategy of scenario [nmpc] (`name` overrides its default strategy)."""
-    n = scenario.nmpc
-    units = Model.for_scenario(scenario).units
-    return st.StrategySettings(name=name or n.strategy, doubling_threshold_percent=n.doubling_threshold_percent,
-                               max_subdivisions=n.max_subdivisions, min_nodes=n.min_nodes,
-                               min_horizon=DAY_S / units.time_s)
-
+from .guidance_base import FloatArray, ReplanInfo, first_guess
 
 class IpoptGuidance:
     """The ground NLP re-solved along the flight with SNNS or CNCN (strategy.py).
@@ -209,17 +136,3 @@ class IpoptGuidance:
             raise RuntimeError("command() before the first replan()")
         u = plan.control_at(t)
         return float(u[0]), (float(u[1]) if u.shape[0] > 1 else 1.0)
-
-
-# ======================================================================================================
-# GUIDANCE FACTORY -- the lead plugs the flight code's solver (ogk_nmpc, C kernel) in here:
-#     if name == "kernel": return KernelGuidance(scenario, strategy)
-# ======================================================================================================
-def make_guidance(name: str, scenario: RendezvousScenario, strategy: st.StrategySettings) -> Guidance:
-    """The guidance implementation `--solver NAME` flies."""
-    if name == "ipopt":
-        return IpoptGuidance(scenario, strategy)
-    if name == "kernel":
-        from .kernel_guidance import KernelGuidance   # the flight code (ogk_nmpc), through cffi
-        return KernelGuidance(scenario, strategy)
-    raise OgkInputError(f"must be one of {', '.join(SOLVERS)}, got {name!r}", key="--solver")

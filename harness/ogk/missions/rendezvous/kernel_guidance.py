@@ -4,7 +4,7 @@ The kernel owns the whole receding-horizon logic (SNNS drop / min_nodes regrid /
 regrid, the stale-plan fallback); this adapter only maps the scenario to the kernel configuration
 (normalised units of docs/nmpc.md) and times the calls:
 
-- first replan: the documented guess (`guidance.first_guess`) loaded as the plan, then `ogk_nmpc_solve`
+- first replan: the documented guess (`guidance_base.first_guess`) loaded as the plan, then `ogk_nmpc_solve`
   (the open loop from (t, x), a cold BFGS start); minimum fuel first solves minimum time from that guess
   in a second context and starts from its optimum with throttle 0.5 (the ground's guess, nlp.py);
 - every later replan: `ogk_nmpc_replan` (warm: the shifted plan, its multipliers and BFGS matrix).
@@ -23,7 +23,7 @@ from ogk_host.rendezvous.scenario import RendezvousScenario
 from ogk_bindings.nmpc import CNCN, FLAG_SUBDIVIDED, MAX_NODES, SNNS, Nmpc, NmpcConfig
 
 from . import strategy as st
-from .guidance import ReplanInfo, first_guess
+from .guidance_base import ReplanInfo, first_guess
 
 FloatArray = NDArray[np.float64]
 
