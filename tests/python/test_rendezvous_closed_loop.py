@@ -147,6 +147,23 @@ def scenario():  # type: ignore[no-untyped-def]
     return load_scenario()
 
 
+def test_ipopt_guidance_keeps_a_bounded_number_of_solvers(scenario) -> None:  # type: ignore[no-untyped-def]
+    """BoundedNlp: at most SOLVER_CACHE_SIZE solvers, least recently used dropped, and only their symbolic
+    NLPs (an unbounded cache held one CasADi solver per node count: GBs over a perturbed flight)."""
+    from ogk.missions.rendezvous.guidance import SOLVER_CACHE_SIZE, BoundedNlp
+
+    nlp = BoundedNlp(scenario, rk4_steps=1)
+    keys = [(2, False), (3, False), (2, True), (4, False), (2, False), (5, False), (6, False)]
+    for n, warm in keys:
+        nlp._build(n)
+        nlp._solver(n, warm)
+        assert len(nlp._solvers) <= SOLVER_CACHE_SIZE
+        assert set(nlp._built) == {k for k, _ in nlp._solvers}
+    assert SOLVER_CACHE_SIZE == 4
+    assert list(nlp._solvers) == [(4, False), (2, False), (5, False), (6, False)]   # (2, False) was used again
+    assert nlp._solver(6, False) is nlp._solver(6, False)                           # kept ones are reused
+
+
 def test_short_unperturbed_closed_loop_keeps_the_open_loop_plan(scenario) -> None:  # type: ignore[no-untyped-def]
     """Bellman (sec. 2.2), short variant: 3 SNNS replans (no doubling test, to build 3 solvers only) from the
     measured unperturbed state re-find the open loop's t_f* within 1e-3 d and keep its subinterval grid."""
@@ -229,6 +246,13 @@ def test_cli_bad_input_is_one_line(tmp_path: Path, args: list[str], words: list[
         assert w in lines[0]
 
 
+def test_cli_help_names_the_default_solver() -> None:
+    """`ogk nmpc` flies the flight code unless told otherwise, and its help says so."""
+    out = run("nmpc", "rendezvous_nep_min_time", "--help")
+    assert out.returncode == 0, out.stderr
+    assert "default: kernel" in " ".join(out.stdout.split())
+
+
 def test_cli_other_family_and_bad_scenario(tmp_path: Path) -> None:
     out = run("nmpc", "leo-geo", "--json", str(tmp_path / "r.json"))
     assert out.returncode == 2 and "has no `ogk nmpc`" in out.stderr
@@ -241,8 +265,8 @@ def test_cli_other_family_and_bad_scenario(tmp_path: Path) -> None:
 def test_cli_json_keys_and_plots(tmp_path: Path) -> None:
     """Two CNCN replans (one node count, ~10 s): not converged (exit 1), every key written, 3 figures."""
     out_json = tmp_path / "r.json"
-    out = run("nmpc", "rendezvous_nep_min_time", "--strategy", "cncn", "--max-replans", "2", "--json",
-              str(out_json), "--plots", str(tmp_path / "plots"))
+    out = run("nmpc", "rendezvous_nep_min_time", "--strategy", "cncn", "--solver", "ipopt", "--max-replans", "2",
+              "--json", str(out_json), "--plots", str(tmp_path / "plots"))
     assert out.returncode == 1, out.stdout + out.stderr
     assert "Table I" in out.stdout and "389.52" in out.stdout      # the paper's CNCN column
     doc = json.loads(out_json.read_text())

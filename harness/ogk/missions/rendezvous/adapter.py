@@ -34,8 +34,9 @@ def add_nmpc_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--perturbed", action="store_true",
                    help="fly the perturbed truth model (Earth/Mars gravity, SRP, -10 %% thrust, angle noise)")
     p.add_argument("--seed", type=int, default=1, help="seed of the thrust-angle noise (default 1)")
-    p.add_argument("--solver", choices=SOLVERS, default="ipopt",
-                   help="guidance: ipopt (ground NLP) or kernel (flight code ogk_nmpc)")
+    p.add_argument("--solver", choices=SOLVERS, default="kernel",
+                   help="guidance: kernel (the flight code's ogk_nmpc) or ipopt (the ground NLP, CasADi + "
+                        "IPOPT); default: %(default)s")
     p.add_argument("--json", required=True, metavar="FILE", help="write the result as JSON")
     p.add_argument("--plots", default=None, metavar="DIR", help="PNG figures (trajectory, control, miss)")
     p.add_argument("--third-bodies-in-model", choices=("scenario", "yes", "no"), default="scenario",
@@ -95,8 +96,13 @@ def report_lines(scenario: RendezvousScenario, doc: dict[str, Any]) -> list[str]
     if "open_loop_time_s" in p:
         lines.append(f"  paper's open loop (unperturbed): {p['open_loop_time_s'] / DAY_S:.2f} d, "
                      f"{p.get('open_loop_fuel_kg', float('nan')):.2f} kg; perturbed: not converged")
-    lines.append("  fuel, nominal mdot: the paper's accounting (nominal mass flow x thrusting time; errata); truth "
-                 "mass: what the -10 % thrust engine burned")
+    if perturbed:
+        lines.append("  fuel, nominal mdot: the paper's accounting (nominal mass flow x thrusting time; errata); truth "
+                     f"mass: what the perturbed engine ({scenario.perturbations.thrust_offset_percent:+g} % thrust) "
+                     "burned")
+    else:
+        lines.append("  fuel, nominal mdot: the paper's accounting (nominal mass flow x thrusting time); truth mass: "
+                     "what the engine burned (unperturbed: nominal thrust and mass flow)")
     return lines
 
 
@@ -141,7 +147,7 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     for line in report_lines(scenario, doc):
         print(line)
     write_atomic(json_path, json.dumps(doc, indent=1) + "\n")
-    print(f"wrote {json_path} ({wall:.1f} s)")
+    print(f"wrote {json_path} (the flight took {wall:.1f} s, wall clock)")
     if plots_dir is not None:
         from .plots import write_plots
         for path in write_plots(scenario, result, Path(plots_dir)):

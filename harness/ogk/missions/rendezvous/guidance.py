@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 from typing import Any
 
+import casadi as ca
 import numpy as np
 from ogk_host.rendezvous.nlp import NlpResult, RendezvousNlp, min_fuel_guess
 from ogk_host.rendezvous.plan import Plan
@@ -19,6 +20,34 @@ from ogk_host.rendezvous.scenario import RendezvousScenario
 
 from . import strategy as st
 from .guidance_base import FloatArray, ReplanInfo, first_guess
+
+#: IPOPT solvers an `IpoptGuidance` keeps, least recently used dropped first. RendezvousNlp builds one
+#: CasADi solver (about 85 MB resident at N = 30, 170 MB at N = 60) and its symbolic NLP (about 2 MB) per
+#: (node count, warm start) and keeps every one; SNNS asks for a new N at almost every replan (N - 1 after the
+#: shift, 2N for the doubling test), so the flight's resident memory grew with its length (3.5 GB for the
+#: perturbed SNNS flight of seed 1, 9.7 GB reported in issue 18). A replan uses at most three: (N, warm),
+#: (N, cold) when the warm start stalls, (2N, cold); the fourth keeps the previous replan's N, which CNCN and
+#: SNNS at min_nodes solve again. A dropped solver is built again when asked for: after an adopted doubling
+#: SNNS walks down node counts it has flown before (25 of the 75 solves of that flight), which costs about
+#: 30 s more CPU (0.3-1.2 s a build) for 0.79 GB instead of 3.5 GB (docs/nmpc.md, "Closed loop").
+SOLVER_CACHE_SIZE = 4
+
+
+class BoundedNlp(RendezvousNlp):
+    """RendezvousNlp keeping at most `SOLVER_CACHE_SIZE` IPOPT solvers, and only the symbolic NLPs of their
+    node counts (an LRU over RendezvousNlp's own caches, its `_solvers` and `_built` dictionaries)."""
+
+    def _solver(self, n: int, warm: bool) -> ca.Function:
+        solver = super()._solver(n, warm)
+        key = (n, warm)
+        self._solvers[key] = self._solvers.pop(key)      # most recently used last
+        while len(self._solvers) > SOLVER_CACHE_SIZE:
+            del self._solvers[next(iter(self._solvers))]
+        kept = {nodes for nodes, _ in self._solvers}
+        for nodes in [k for k in self._built if k not in kept]:
+            del self._built[nodes]
+        return solver
+
 
 class IpoptGuidance:
     """The ground NLP re-solved along the flight with SNNS or CNCN (strategy.py).
@@ -41,14 +70,15 @@ class IpoptGuidance:
         self.strategy = strategy
         n = scenario.nmpc
         self.third_bodies = n.third_bodies_in_model if third_bodies is None else third_bodies
-        # one NLP object for every node count (it builds and caches one IPOPT solver per N, cold and warm)
+        # one NLP object for every node count (it builds one IPOPT solver per N, cold and warm, and keeps the
+        # SOLVER_CACHE_SIZE most recently used)
         # min-fuel: arrival by [ocp] transfer_time_max_s (with t_f free the fuel is flat past the knee and
         # has no minimum; docs/nmpc.md, "Minimum fuel"), an absolute deadline the re-plans keep
         deadline = scenario.ocp.transfer_time_max_s if scenario.ocp.objective == "min-fuel" else None
-        self.nlp = RendezvousNlp(scenario, rk4_steps=n.rk4_steps_per_interval, third_bodies=self.third_bodies,
-                                 tol=n.tol, constr_viol_tol=n.constr_viol_tol, max_iter=n.max_iter,
-                                 transfer_time_max_s=deadline,
-                                 time_weight_kg_per_day=n.fuel_time_weight_kg_per_day)
+        self.nlp = BoundedNlp(scenario, rk4_steps=n.rk4_steps_per_interval, third_bodies=self.third_bodies,
+                              tol=n.tol, constr_viol_tol=n.constr_viol_tol, max_iter=n.max_iter,
+                              transfer_time_max_s=deadline,
+                              time_weight_kg_per_day=n.fuel_time_weight_kg_per_day)
         self.nu = int(self.nlp.nu)
         self._plan: Plan | None = None          # basis of the next guess
         self._flying: Plan | None = None        # the plan commanded now
