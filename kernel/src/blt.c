@@ -748,24 +748,28 @@ ogk_status ogk_blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cm
 
 /* The direction to hold while the engine is off in segment k (a coast, or k =
  * n_segments after the end): the next burn's at its start, eq. (22) at tau =
- * 0, A / |A|; (1, 0, 0) when no burn follows (or its A is zero). */
+ * 0, A / |A|; (1, 0, 0) when no burn follows (or its A is zero). The segments
+ * after k are visited last to first, so the first burn after k is the one
+ * that stays. */
 static void hold_direction(const ogk_blt_t *ctx, uint32_t k, double u[3])
 {
     const ogk_blt_config_t *c = &ctx->cfg;
-    bool found = false;
     uint32_t j;
     u[0] = 1.0;
     u[1] = 0.0;
     u[2] = 0.0;
-    for (j = k + 1u; (j < c->n_segments) && (!found); ++j) {
-        if (c->segment_kind[j] == OGK_BLT_SEG_BURN) {
-            const double *a = ctx->held.seg[j];
+    for (j = c->n_segments; j > (k + 1u); --j) {
+        if (c->segment_kind[j - 1u] == OGK_BLT_SEG_BURN) {
+            const double *a = ctx->held.seg[j - 1u];
             const double an = norm2(a, 3u);
-            found = true;
             if (an > 0.0) {
                 u[0] = a[0] / an;
                 u[1] = a[1] / an;
                 u[2] = a[2] / an;
+            } else {
+                u[0] = 1.0;
+                u[1] = 0.0;
+                u[2] = 0.0;
             }
         }
     }

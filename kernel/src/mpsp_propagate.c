@@ -284,9 +284,9 @@ ogk_status ogk_mpsp_thrust_cmd(const ogk_mpsp_t *ctx, double t, ogk_thrust_cmd_t
         ogk_i_thrust_cmd_safe(cmd, t, OGK_FRAME_INERTIAL, 0u);
         if (ctx == NULL) {
             st = OGK_E_NULL;
-        } else if ((ctx->init_marker != OGK_MPSP_INIT_MARKER) || (ctx->traj_valid == 0u) ||
-                   (ctx->n_nodes < 2u)) {
-            st = OGK_E_NOT_INIT; /* no context, or no trajectory held */
+        } else if ((ctx->init_marker != OGK_MPSP_INIT_MARKER) || (ctx->traj_valid == 0u)) {
+            /* no context, or no trajectory held (a held one reached tf: >= 2 nodes) */
+            st = OGK_E_NOT_INIT;
         } else if (!isfinite(t)) {
             st = OGK_E_NONFINITE;
         } else {

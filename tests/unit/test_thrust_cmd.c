@@ -488,6 +488,10 @@ static void test_cpd_same_output_from_either_frame(void **state)
     nav.phi_rad = NAN;
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in_a, &rtn, &nav), OGK_E_NONFINITE);
     nav.phi_rad = 0.05;
+    nav.xi_rad = INFINITY;
+    OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in_a, &rtn, &nav), OGK_E_NONFINITE);
+    nav.xi_rad = 0.9;
+    OGK_ASSERT_NEAR(in_a.alpha_c, 0.25, 0.0); /* untouched */
     inert.u[2] += 0.1;
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in_b, &inert, &nav), OGK_E_RANGE);
     OGK_ASSERT_NEAR(in_b.beta_c, -0.1, 1e-14); /* untouched */

@@ -370,7 +370,13 @@ static void test_blt_burn_coast_and_after(void **state)
         OGK_ASSERT_NEAR(cmd.u[0], 1.0, 0.0);
         assert_int_equal(cmd.flags, 0u);
     }
-    /* a coast followed by a burn whose A is zero: (1, 0, 0) */
+    /* a coast followed by a coast (the configuration edited behind the context's back): no burn
+     * follows, (1, 0, 0); then by a burn whose A is zero: (1, 0, 0) too */
+    blt.cfg.segment_kind[2] = OGK_BLT_SEG_COAST;
+    OGK_ASSERT_STATUS(ogk_blt_thrust_cmd(&blt, sol.t0 + sol.seg[0][6] + 0.01, &cmd), OGK_OK);
+    OGK_ASSERT_NEAR(cmd.u[0], 1.0, 0.0);
+    OGK_ASSERT_NEAR(cmd.throttle, 0.0, 0.0);
+    blt.cfg.segment_kind[2] = OGK_BLT_SEG_BURN;
     blt.held.seg[2][0] = 0.0;
     blt.held.seg[2][1] = 0.0;
     blt.held.seg[2][2] = 0.0;
