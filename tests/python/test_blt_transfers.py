@@ -13,6 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from ogk.sil import envelope
+
 from ogk_bindings.blt import Transfer
 from ogk.missions.binary.campaign import Nominal, draw
 from ogk.missions.binary.trajectory import reference_errors
@@ -135,13 +137,17 @@ def test_ogk_mc_small_campaign(tmp_path: Path) -> None:
     assert r.returncode == 0, r.stderr
     doc = json.loads((tmp_path / "mc.json").read_text())
     (level,) = doc["levels"]
-    assert level["level_percent"] == 20.0 and len(level["runs"]) == 6
+    assert level["level_percent"] == 20.0 and level["runs"] == 6
     for c in ("nrpc", "lm", "hybrid"):
         s = level["summary"][c]
         assert 0.0 <= s["converged_pct"] <= 100.0 and s["runs"] == 6
         assert s["converged"] + sum(s["failures"].values()) == 6
         assert s["dop853_confirmed"] == s["converged"]     # every converged run re-propagated independently
-    assert all(run["draw"] is not None and len(run["draw"]["xi"]) == 29 for run in level["runs"])
+    # every run's draw is in the per-run table (the campaign engine's Parquet)
+    rows = envelope.read_table(tmp_path / doc["per_run_table"])
+    assert len(rows) == 6 and all(r["level_percent"] == 20.0 for r in rows)
+    assert all(r["draw.xi"] is not None and len(r["draw.xi"]) == 29 for r in rows)
+    assert doc["paper"]["levels"][0]["paper_converged_percent"] == 80.51
     assert "80.51" in r.stdout        # Table 3's 20 % figure printed beside ours
 
 
