@@ -26,6 +26,7 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale, write_atomic
+from ogk.sil.progress import Working
 
 
 LAWS = SCENARIO_LAWS
@@ -59,7 +60,8 @@ def blt_document(scenario: BinaryScenario, name: str, corrector: str | None, jac
     if thrust_n is not None:
         spec = dataclasses.replace(spec, thrust_n=thrust_n, paper={})   # the paper's figures are for its thrust
     cpu0 = time.process_time()
-    d = T.design(scenario, spec, solver, corrector=corrector, jacobian=jacobian, base_thrust_n=base_thrust)
+    with Working(f"{scenario.name}: {name}: guess, continuation and correction"):
+        d = T.design(scenario, spec, solver, corrector=corrector, jacobian=jacobian, base_thrust_n=base_thrust)
     cpu = time.process_time() - cpu0
     ref = reference_errors(d.model, d.guess.layout, d.transfer)
     fig = T.figures(scenario, d)

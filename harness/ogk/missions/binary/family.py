@@ -1,10 +1,13 @@
 """The binary-asteroid family's campaign contract (ogk.sil.family): the convergence Monte Carlo of
 Table 3 (Xiong & Wang, sec. V.A.2). A run is the scenario's [monte_carlo] transfer perturbed at one
-level (run i: level i mod L) and corrected by each corrector on the same draw (campaign.py).
+level of its [dispersions] (run i: level i mod L) and corrected by each corrector on the same draw
+(campaign.py).
 
-Acceptance: a run fails when a corrector claims convergence that the DOP853 re-propagation does not
-confirm within the tolerance, or when the kernel rejected the perturbed problem. A corrector that
-does not converge is what the campaign measures (the converged percentage per level), not a failure.
+Acceptance (`scenario.acceptance`): a run fails when a corrector claims convergence that the DOP853
+re-propagation does not confirm within [acceptance] error_tolerance (default: the [monte_carlo] tol
+the correctors run with), or when the kernel rejected the perturbed problem. A corrector that does
+not converge is what the campaign measures (the converged percentage per level), not a failure.
+The paper's column is [paper_results.table3], printed only when the scenario has it.
 """
 from __future__ import annotations
 
@@ -23,6 +26,7 @@ from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
 from ogk.sil.engine import Flown
 from ogk.sil.family import CampaignPlan, Record, per_run
+from ogk.sil.progress import Working
 from ogk.sil.seeds import run_generator
 
 from . import campaign
@@ -37,7 +41,7 @@ class _Base:
     thrust_n: float
     correctors: tuple[str, ...]
     levels_percent: tuple[float, ...]
-    paper: dict[float, float]
+    paper: dict[float, float]         #: level [%] -> the paper's converged % (empty: no paper column)
 
 
 class BinaryFamily:
@@ -45,7 +49,7 @@ class BinaryFamily:
     laws = LAWS
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
-        """The scenario's [monte_carlo] runs per level times its levels (Table 3: 600 x 6)."""
+        """The scenario's [monte_carlo] runs per level times its [dispersions] levels (Table 3: 600 x 6)."""
         try:
             spec = T.monte_carlo_spec(self.load(header))
         except OgkInputError:
@@ -60,7 +64,7 @@ class BinaryFamily:
 
     def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
         p.add_argument("--perturbation", type=float, nargs="+", default=None, metavar="PCT",
-                       help="perturbation levels [%%] (default: the scenario's [monte_carlo] levels)")
+                       help="perturbation levels [%%] (default: the scenario's [dispersions] levels)")
         p.add_argument("--corrector", choices=("all", *ALL), default="all",
                        help="which corrector(s) to fly on the same draws (default all three)")
         p.add_argument("--sigma-fraction", type=float, default=None, metavar="F",
@@ -82,17 +86,20 @@ class BinaryFamily:
         correctors = ALL if chosen == "all" else (str(chosen),)
         solver = T.solver_settings(scenario)
         spec = T.transfer_spec(scenario, spec_mc.transfer)
-        d = T.design(scenario, spec, solver)
+        with Working(f"{scenario.name}: nominal {spec.name}"):
+            d = T.design(scenario, spec, solver)
         if not d.report.converged:
             raise OgkInputError(f"the nominal transfer {spec.name} did not converge "
                                 f"({d.report.status})", path=scenario.path,
                                 key=f"transfers.{spec.name}")
         assert spec.circle_radius_m is not None
+        accept_tol = scenario.acceptance.tolerance(spec_mc.tol)
         nominal = campaign.Nominal(
             model=d.model, layout=d.guess.layout, transfer=d.transfer,
             circle_radius=spec.circle_radius_m / scenario.units.length_m, tol=spec_mc.tol,
             max_iter=spec_mc.max_iter, jacobian=T.JACOBIANS[solver.jacobian],
-            fields=dict(fd_step=solver.fd_step, ls_trials=solver.ls_trials))
+            fields=dict(fd_step=solver.fd_step, ls_trials=solver.ls_trials),
+            error_tolerance=accept_tol)
         solvers = campaign.kernels(nominal, correctors)
         n_levels = len(levels)
 
@@ -108,12 +115,15 @@ class BinaryFamily:
                 if why.startswith("rejected"):
                     return f"{c}: {why}"
                 if rec.get(f"{c}.converged") and not rec.get(f"{c}.dop853_meets_tol"):
-                    return f"{c}: converged but DOP853 |e| = {rec.get(f'{c}.dop853_err_norm')} > {tol:g}"
+                    return (f"{c}: converged but DOP853 |e| = {rec.get(f'{c}.dop853_err_norm')} > "
+                            f"{accept_tol:g}")
             return ""
 
         nominal_sha = hashlib.sha256(np.ascontiguousarray(d.transfer.segments).tobytes()
                                      + np.ascontiguousarray(d.transfer.nodes).tobytes()).hexdigest()
-        paper = dict(zip(spec_mc.levels_percent, spec_mc.paper_converged_percent))
+        table3 = (scenario.paper_results or {}).get("table3") or {}
+        paper = {float(lv): float(pc) for lv, pc in zip(table3.get("levels_percent", ()),
+                                                          table3.get("converged_percent", ()))}
         base = _Base(scenario, spec.name, spec.thrust_n, correctors, levels, paper)
         return CampaignPlan(
             family=self.name, law=header.law, mission=scenario.name, scenario_path=Path(header.path),
@@ -125,7 +135,9 @@ class BinaryFamily:
             fly=per_run(fly_one), judge=judge,
             quantities=tuple(f"{c}.{q}" for c in correctors for q in ("iterations", "err_norm")),
             paper=lambda recs: self._paper(base, recs),
-            acceptance={"dop853_tolerance": tol, "non_convergence": "measured, not a failure"},
+            acceptance={"dop853_tolerance": accept_tol,
+                        "error_tolerance": scenario.acceptance.error_tolerance,
+                        "non_convergence": "measured, not a failure"},
             watchdog_per_run_s=30.0, base=base)
 
     # ------------------------------------------------------------------ reports
@@ -157,13 +169,14 @@ class BinaryFamily:
                  f"{base.thrust_n * 1e3:g} mN): {len(flown.records)} runs over {len(levels)} levels, "
                  f"seed {flown.seed}, tol {flown.plan.options['tol']:g}",
                  f"  {'level [%]':>9s} {'runs':>5s} " + " ".join(f"{c + ' [%]':>10s}" for c in cs)
-                 + f" {'paper [%]':>10s}  not converged ({cs[-1]})"]
+                 + (f" {'paper [%]':>10s}" if base.paper else "") + f"  not converged ({cs[-1]})"]
         for lv in levels:
             s = lv["summary"]
             paper = lv["paper_converged_percent"]
             lines.append(f"  {lv['level_percent']:9g} {lv['runs']:5d} "
                          + " ".join(f"{s[c]['converged_pct']:10.2f}" for c in cs)
-                         + (f" {paper:10.2f}" if paper is not None else f" {'-':>10s}")
+                         + ("" if not base.paper else f" {paper:10.2f}" if paper is not None
+                            else f" {'-':>10s}")
                          + "  " + ", ".join(f"{k}: {v}" for k, v in s[cs[-1]]["failures"].items())
                          + "".join(f"  [{c}: DOP853 confirms {s[c]['dop853_confirmed']}/"
                                    f"{s[c]['converged']}]" for c in cs

@@ -14,6 +14,7 @@ from ogk_host.orbit_injection.scenario import load_scenario
 from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.outputs import check_output_dir
+from ogk.sil.progress import Working
 
 LAWS = SCENARIO_LAWS
 
@@ -33,7 +34,8 @@ def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
     load_scenario(header.path)  # every bad key reported before the nominal is solved
     out = Path(args.out) if args.out else ground.default_table_dir(header.path)
     check_output_dir(out, "--out")
-    manifest = ground.write_nog_tables(out, scenario_path=header.path)
+    with Working(f"{header.name}: ground nominal and VTD-NOG gains"):
+        manifest = ground.write_nog_tables(out, scenario_path=header.path)
     bundle = out / ground.BUNDLE_FILE
     c_path, h_path = write_c_table(bundle.read_bytes(), "ogk_nog_bundle", out / "c",
                                    header.path, note="Validate with ogk_nog_table_view() or load "
