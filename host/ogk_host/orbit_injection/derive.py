@@ -4,11 +4,13 @@
 ("scenario" = read from the file, "derived" = computed here by the documented rule):
 
 - CPD gains (docs/cpd.md, "Design rule for another vehicle"; the re-derived set, flown unless
-  `[cpd] flown = "printed"`, recorded as `cpd_flown`): sec. 5.3 with this scenario's thrust and inertia,
-  G_x = 1 / I_x0, G_y = T l0 / I_y0, G_z = T l0 / I_z0 (l smallest and I largest at ignition, so
-  these are the G_min of each axis; T is the smallest thrust of the burn, T_min of sec. 7 eq. 57
-  for a tabulated thrust, the constant T = n0 m0 of sec. 6), k_p = omega_n^2 / G_min, k_d = 2 zeta omega_n / G_min; pitch
-  and yaw share one set designed on min(G_y, G_z). Taken from `[cpd.rederived]` when present.
+  `[cpd] flown = "printed"`, recorded as `cpd_flown`): the sec. 5.3 rule of the mission-independent
+  ground tool (ogk_host.cpd_design: `VehicleModel.effectiveness` for G, `design_axis` for
+  k_p = omega_n^2 / G_min, k_d = 2 zeta omega_n / G_min) applied to this scenario's vehicle at ignition,
+  where l is smallest and I largest, so G_x = 1 / I_x0, G_y = T l0 / I_y0, G_z = T l0 / I_z0 are the
+  G_min of each axis (T is the smallest thrust of the burn, T_min of sec. 7 eq. 57 for a tabulated
+  thrust, the constant T = n0 m0 of sec. 6); pitch and yaw share one set designed on min(G_y, G_z).
+  Taken from `[cpd.rederived]` when present.
 - End-game freeze (docs/vtd-nog.md, "End-game"): freeze_time_to_go_s = Delta t_S / 4, the spacing of
   the paper's gain grid near cut-off (4 nodes per sampling interval; 0.5 s for Delta t_S = 2 s, the
   flown value: freezing earlier was measured to be worse, and the gain grid ends there). Taken from
@@ -27,6 +29,7 @@ import dataclasses
 import math
 from typing import Any
 
+from .. import cpd_design
 from .scenario import CpdGains, LeoGeoScenario
 
 SCENARIO = "scenario"
@@ -63,15 +66,28 @@ class EffectiveSettings:
         }
 
 
+def vehicle(scn: LeoGeoScenario) -> cpd_design.VehicleModel:
+    """The scenario's vehicle for the CPD design: its smallest thrust, eq. (53)'s arm and inertias."""
+    mp = scn.mass_properties
+    return cpd_design.VehicleModel(
+        thrust_n=scn.thrust.min_thrust_n, arm0_m=mp.tvc_arm_m, arm_rate_m_s=mp.tvc_arm_rate_m_s,
+        inertia0_kg_m2=(mp.inertia_x_kg_m2, mp.inertia_y_kg_m2, mp.inertia_z_kg_m2),
+        inertia_rate_kg_m2_s=(mp.inertia_x_rate_kg_m2_s, mp.inertia_y_rate_kg_m2_s,
+                              mp.inertia_z_rate_kg_m2_s),
+        burn_time_s=0.0)   # only G at ignition is used
+
+
 def design_rule_gains(scn: LeoGeoScenario) -> CpdGains:
-    """Sec. 5.3 design rule with the scenario's omega_n, zeta, thrust and ignition inertia."""
-    cpd, mp = scn.cpd, scn.mass_properties
-    w, z = cpd.natural_frequency_rad_s, cpd.damping_ratio
-    g_x = 1.0 / mp.inertia_x_kg_m2
-    g_yz = scn.thrust.min_thrust_n * mp.tvc_arm_m / max(mp.inertia_y_kg_m2, mp.inertia_z_kg_m2)
+    """Sec. 5.3 design rule (cpd_design.design_axis) with the scenario's omega_n, zeta and its G at
+    ignition; one pitch/yaw set on the smaller of G_y, G_z."""
+    w, z = scn.cpd.natural_frequency_rad_s, scn.cpd.damping_ratio
+    g_x, g_y, g_z = (float(g) for g in vehicle(scn).effectiveness(0.0))
+    g_yz = min(g_y, g_z)
+    roll = cpd_design.design_axis(g_x, w, z)
+    pitch_yaw = cpd_design.design_axis(g_yz, w, z)
     return CpdGains(gain_roll_g_per_kg_m2=g_x, gain_pitch_yaw_g_s2=g_yz,
-                    kp_roll_n_m_per_rad=w * w / g_x, kd_roll_n_m_s_per_rad=2.0 * z * w / g_x,
-                    kp_pitch_yaw=w * w / g_yz, kd_pitch_yaw_s=2.0 * z * w / g_yz)
+                    kp_roll_n_m_per_rad=roll.k_p, kd_roll_n_m_s_per_rad=roll.k_d,
+                    kp_pitch_yaw=pitch_yaw.k_p, kd_pitch_yaw_s=pitch_yaw.k_d)
 
 
 def freeze_rule_s(scn: LeoGeoScenario) -> float:
