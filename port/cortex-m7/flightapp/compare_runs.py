@@ -2,7 +2,8 @@
 """Compares the injection errors of the flight app on the emulated Cortex-M7 with the same app built
 for the host (gcc x86-64, glibc libm): the "flightapp: <run>: cut-off ..." lines must agree to TOL
 (m, m/s, s) in every number; runs missing from one log are an error unless --common. Also compares
-the app with the SIL (sil_reference.py). Usage: compare_runs.py [--tol T] [--common] LOG_A LOG_B"""
+the app with the SIL (python -m ogk.missions.orbit_injection.flightapp_reference).
+Usage: compare_runs.py [--tol T] [--common] LOG_A LOG_B"""
 from __future__ import annotations
 
 import re

@@ -87,7 +87,8 @@ test-flight-app: $(FA_ELF) $(FA_HOST)
 	  echo "test-flight-app: FAILED (host build)"; exit 1; }; \
 	python3 $(FA_DIR)/compare_runs.py $(FA_B)/flightapp.log $(FA_B)/flightapp_host.log
 
-# Against the host SIL (sil_reference.py: point-mass truth, the kernel NOG through cffi) with the
+# Against the host SIL (python -m ogk.missions.orbit_injection.flightapp_reference: point-mass truth,
+# the kernel NOG through cffi; the script lives with its mission family, the port imports none) with the
 # plant taking the command at every RK4 stage as the SIL does: runs A and B must agree to 1e-3
 # (measured: identical in all printed digits). About 15 s; not part of test-flight-app.
 FA_HOST_STAGE := $(ARM_B)/flightapp/host/flightapp_stage
@@ -98,7 +99,7 @@ $(FA_HOST_STAGE): $(FA_SRC) $(FA_HDR) $(FA_GEN_C) $(FA_GEN_H) $(HOST_OBJ) | apt
 .PHONY: flight-app-sil-compare
 flight-app-sil-compare: $(FA_HOST_STAGE) $(FA_B)/tables.stamp
 	$(FA_HOST_STAGE) > $(FA_B)/flightapp_stage.log
-	$(VPY) $(FA_DIR)/sil_reference.py $(FA_TABLES) > $(FA_B)/sil_reference.log
+	$(VPY) -m ogk.missions.orbit_injection.flightapp_reference $(FA_TABLES) > $(FA_B)/sil_reference.log
 	python3 $(FA_DIR)/compare_runs.py --common --tol 1e-3 $(FA_B)/flightapp_stage.log \
 	  $(FA_B)/sil_reference.log
 

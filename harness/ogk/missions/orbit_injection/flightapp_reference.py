@@ -1,27 +1,28 @@
-#!/usr/bin/env python3
-"""The flight app's runs A and B flown by the host SIL (harness/ogk/missions/orbit_injection/sil.py,
-point-mass truth, the kernel NOG through cffi, no dispersion but the run's fixed ignition offset),
-printed in the flight app's format so compare_runs.py can compare them with the app built with
--DFLIGHTAPP_STAGE_COMMANDS=1 (the same plant semantics: command evaluated at every RK4 stage).
+"""The flight application's runs A and B (port/cortex-m7/flightapp/main.c) flown by this family's host
+SIL (sil.py: point-mass truth, the kernel NOG through cffi, no dispersion but the run's fixed ignition
+offset), printed in the flight app's format so that port/cortex-m7/flightapp/compare_runs.py can compare
+them with the app built with -DFLIGHTAPP_STAGE_COMMANDS=1 (the same plant semantics: command evaluated at
+every RK4 stage).
 
-  .venv/bin/python port/cortex-m7/flightapp/sil_reference.py TABLE_DIR > sil.log
+    .venv/bin/python -m ogk.missions.orbit_injection.flightapp_reference TABLE_DIR > sil.log
 
-A manual cross-check (about 15 s, most of it the nominal solve), not part of make test-flight-app:
-it depends on the harness internals (docs/flight-integration.md, "Verification")."""
+A manual cross-check (about 15 s, most of it the nominal solve), run by `make flight-app-sil-compare`, not
+by make test-flight-app (docs/flight-integration.md, "Verification"). It lives with the family because it
+flies the family's SIL; the flight port imports no mission.
+"""
 from __future__ import annotations
 
 import sys
 from pathlib import Path
 
 import numpy as np
-
 from ogk_host.orbit_injection.scenario import DEFAULT_SCENARIO_PATH, load_scenario
 
-from ogk.missions.orbit_injection.dispersions import DispersionSwitches, RunDraws
-from ogk.missions.orbit_injection.guidance import GuidanceSetup
-from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance
-from ogk.missions.orbit_injection.nominal_ref import nominal_reference
-from ogk.missions.orbit_injection.sil import SilSettings, simulate
+from .dispersions import DispersionSwitches, RunDraws
+from .guidance import GuidanceSetup
+from .nog_guidance import KernelNogGuidance
+from .nominal_ref import nominal_reference
+from .sil import SilSettings, simulate
 
 # The offsets of main.c: A none, B +1 sigma of Table 3 on r, phi, v_r, v_t, v_n.
 RUNS = {"A nominal": [0.0] * 6,
