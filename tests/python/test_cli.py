@@ -19,6 +19,18 @@ def test_help() -> None:
     assert "version" in out.stdout and "demo" in out.stdout
 
 
+def test_scenario_command_help_without_scenario() -> None:
+    """`ogk tables --help` prints the command's help and exits 0; after a SCENARIO, --help is the
+    family's."""
+    for args in (("tables", "--help"), ("mc", "-h")):
+        out = run(*args)
+        assert out.returncode == 0, out.stderr
+        assert out.stdout.startswith(f"usage: ogk {args[0]} ") and f"`ogk {args[0]} SCENARIO" in out.stdout
+    out = run("tables", "leo-geo", "--help")
+    assert out.returncode == 0, out.stderr
+    assert "--out" in out.stdout
+
+
 def test_version() -> None:
     out = run("version")
     assert out.returncode == 0, out.stderr

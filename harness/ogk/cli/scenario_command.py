@@ -19,11 +19,24 @@ from ogk.missions import registry
 def register_scenario_command(sub: Any, name: str, help_text: str) -> None:
     p = sub.add_parser(name, help=help_text, add_help=False,
                        description=f"{help_text}. SCENARIO is a .toml path or a name under "
-                                   "scenarios/ (leo-geo, apophis, ...); `ogk {name} SCENARIO "
+                                   f"scenarios/ (leo-geo, apophis, ...); `ogk {name} SCENARIO "
                                    "--help` lists the options of its mission family.")
-    p.add_argument("scenario", metavar="SCENARIO", nargs="?")
-    p.add_argument("rest", nargs=argparse.REMAINDER)
-    p.set_defaults(func=lambda args: run_scenario_command(name, args.scenario, args.rest, p))
+    # -h before any SCENARIO is this parser's (`ogk tables --help`: this help, exit 0); after it, the
+    # family's (`ogk tables leo-geo --help`: `rest` takes it).
+    p.add_argument("-h", "--help", action="store_true", dest="show_help",
+                   help="show this help; after SCENARIO, the options of its mission family")
+    p.add_argument("scenario", metavar="SCENARIO", nargs="?",
+                   help="a .toml path or a name under scenarios/")
+    p.add_argument("rest", nargs=argparse.REMAINDER, help=argparse.SUPPRESS)
+
+    def run(args: argparse.Namespace) -> int:
+        if args.show_help:   # `ogk tables --help [SCENARIO]`
+            if args.scenario is None:
+                return run_scenario_command(name, "--help", [], p)
+            return run_scenario_command(name, args.scenario, ["--help", *args.rest], p)
+        return run_scenario_command(name, args.scenario, args.rest, p)
+
+    p.set_defaults(func=run)
 
 
 def run_scenario_command(name: str, scenario: str | None, rest: Sequence[str],
