@@ -10,8 +10,8 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "ogk/thrust_cmd.h"
 #include "ogk_checks.h"
+#include "thrust_cmd_internal.h"
 
 #define CPD_PI OGK_I_PI
 
@@ -492,15 +492,16 @@ ogk_status ogk_cpd_input_from_thrust_cmd(ogk_cpd_input_t *in, const ogk_thrust_c
     if ((in == NULL) || (cmd == NULL) || (nav == NULL)) {
         st = OGK_E_NULL;
     } else {
-        ogk_thrust_cmd_t rtn;
-        /* any law's command, in r-t-n at the vehicle's position */
-        st = ogk_thrust_cmd_to_rtn(cmd, nav, &rtn);
+        double ab[2];
+        /* any law's command as r-t-n angles at the vehicle's position (ogk_thrust_cmd_to_rtn's
+         * checks; no unit vector built) */
+        st = ogk_i_thrust_cmd_rtn_direction(cmd, nav, ab, NULL);
         if ((st == OGK_OK) && (!isfinite(nav->xi_rad) || !isfinite(nav->phi_rad))) {
             st = OGK_E_NONFINITE;
         }
         if (st == OGK_OK) {
-            in->alpha_c = rtn.alpha_rad;
-            in->beta_c = rtn.beta_rad;
+            in->alpha_c = ab[0];
+            in->beta_c = ab[1];
             in->xi = nav->xi_rad;
             in->phi = nav->phi_rad;
         }

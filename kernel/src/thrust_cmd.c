@@ -245,14 +245,10 @@ static void inertial_to_rtn(const double *u_i, double xi, double phi, double *u_
     u_rtn[2] = (-sp * cx * u_i[0]) - (sp * sx * u_i[1]) + (cp * u_i[2]);
 }
 
-/* ogk_thrust_cmd_to_rtn on non-NULL arguments. */
-static ogk_status to_rtn_checked(const ogk_thrust_cmd_t *in, const ogk_nav_state_t *nav,
-                                 ogk_thrust_cmd_t *out)
+ogk_status ogk_i_thrust_cmd_rtn_direction(const ogk_thrust_cmd_t *in, const ogk_nav_state_t *nav,
+                                          double ab[2], double *u_rtn)
 {
     ogk_status st = time_throttle_checked(in->t_s, in->throttle);
-    double u[3] = {0.0, 0.0, 0.0};
-    double alpha = 0.0;
-    double beta = 0.0;
 
     if (st != OGK_OK) {
         /* the time / throttle check's status */
@@ -260,9 +256,11 @@ static ogk_status to_rtn_checked(const ogk_thrust_cmd_t *in, const ogk_nav_state
         if (!isfinite(in->alpha_rad) || !isfinite(in->beta_rad)) {
             st = OGK_E_NONFINITE;
         } else {
-            alpha = in->alpha_rad;
-            beta = in->beta_rad;
-            unit_of_angles(alpha, beta, u);
+            ab[0] = in->alpha_rad;
+            ab[1] = in->beta_rad;
+            if (u_rtn != NULL) {
+                unit_of_angles(ab[0], ab[1], u_rtn);
+            }
         }
     } else if (in->frame == OGK_FRAME_INERTIAL) {
         double n[3];
@@ -274,21 +272,37 @@ static ogk_status to_rtn_checked(const ogk_thrust_cmd_t *in, const ogk_nav_state
         } else if ((fabs(nav->xi_rad) > OGK_ANGLE_LIMIT) || (fabs(nav->phi_rad) > OGK_ANGLE_LIMIT)) {
             st = OGK_E_RANGE;
         } else {
+            double u[3];
             inertial_to_rtn(n, nav->xi_rad, nav->phi_rad, u);
-            alpha = alpha_of_unit(u);
-            beta = beta_of_unit(u);
+            ab[0] = alpha_of_unit(u);
+            ab[1] = beta_of_unit(u);
+            if (u_rtn != NULL) {
+                u_rtn[0] = u[0];
+                u_rtn[1] = u[1];
+                u_rtn[2] = u[2];
+            }
         }
     } else {
         st = OGK_E_FRAME; /* synodic: its angle is not known here; or not a frame */
     }
+    return st;
+}
+
+/* ogk_thrust_cmd_to_rtn on non-NULL arguments. */
+static ogk_status to_rtn_checked(const ogk_thrust_cmd_t *in, const ogk_nav_state_t *nav,
+                                 ogk_thrust_cmd_t *out)
+{
+    double ab[2];
+    double u[3];
+    const ogk_status st = ogk_i_thrust_cmd_rtn_direction(in, nav, ab, u);
     if (st == OGK_OK) {
         const double t_s = in->t_s;
         const double throttle = in->throttle;
         const uint32_t flags = in->flags;
         const uint32_t law_flags = in->law_flags;
         fill_common(out, t_s, OGK_FRAME_RTN, throttle, flags, law_flags);
-        out->alpha_rad = alpha;
-        out->beta_rad = beta;
+        out->alpha_rad = ab[0];
+        out->beta_rad = ab[1];
         out->u[0] = u[0];
         out->u[1] = u[1];
         out->u[2] = u[2];
