@@ -4,9 +4,12 @@
                            every recorded run overlaid, nominal dashed
   <scenario>_actuators.png    Fig. 4: nozzle deflections Delta_y, Delta_z (and M_x) vs time
   <scenario>_attitude.png     Fig. 5: commanded vs actual Psi, Theta, Phi of one run
-  <scenario>_injection.png    injection errors of every run (scatter) and t_f histogram
-  <scenario>_histograms.png   histogram of each injection error (log counts: the tails show), with
-                           the paper's sigma and the acceptance tolerance marked
+  <scenario>_injection.png    injection errors of every run (scatter, at the data's own scale) and
+                           t_f histogram; the acceptance box is drawn when it is on scale, otherwise
+                           stated in the panel with the number of runs outside it
+  <scenario>_histograms.png   histogram of each injection error over the data's own range (log counts:
+                           the tails show), with the paper's 4 sigma and the acceptance tolerance
+                           drawn when on scale, otherwise stated in the panel
 """
 from __future__ import annotations
 
@@ -14,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ogk.sil.plots import dispersion_figure, pyplot, save
+from ogk.sil.plots import pyplot, save
 
 from .campaign import CampaignResult, tolerances
 from .nominal_ref import circular_speed, nominal_reference
@@ -87,19 +90,72 @@ def write_plots(res: CampaignResult, out_dir: str | Path) -> list[Path]:
 
     ok = res.flown
     if ok.any():
-        fig = dispersion_figure(
-            res.errors, ok, [("dr_f_m", "dvr_f_mps"), ("dvt_f_mps", "dvn_f_mps"),
-                             ("dphi_f_deg", "dvn_f_mps")], LABELS, "tf_s", res.nominal_tf_s,
-            f"{scn.name}: injection errors at cut-off ({int(ok.sum())} runs flown, "
-            f"{res.n_failures} failed)", tolerances(scn))
-        written.append(_save(fig, out / f"{scn.name}_injection.png"))
+        written.append(_save(_injection(res, ok), out / f"{scn.name}_injection.png"))
         written.append(_save(_histograms(res, ok), out / f"{scn.name}_histograms.png"))
     return written
 
 
+#: A tolerance is drawn when it is at most this many times the largest |error| of the runs: beyond
+#: that the data would shrink to a dot, and the tolerance is stated in the panel instead.
+ON_SCALE = 3.0
+
+
+def _fmt(v: float) -> str:
+    return f"{v:.3g}"
+
+
+def _injection(res: CampaignResult, ok: np.ndarray):
+    """Three scatter panels of error pairs at the scale of the runs, and the t_f histogram."""
+    plt = pyplot()
+    scn = res.scenario
+    tol = tolerances(scn)
+    pairs = [("dr_f_m", "dvr_f_mps"), ("dvt_f_mps", "dvn_f_mps"), ("dphi_f_deg", "dvn_f_mps")]
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8.5))
+    for ax, (kx, ky) in zip(axes.ravel(), pairs):
+        x, y = res.errors[kx][ok], res.errors[ky][ok]
+        ax.scatter(x, y, s=8, alpha=0.6, color="C0", label=f"{x.size} runs")
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        ax.axvline(0.0, color="0.6", lw=0.6)
+        tx, ty = tol.get(kx), tol.get(ky)
+        if tx is not None and ty is not None:
+            span_x = float(np.max(np.abs(x))) or tx
+            span_y = float(np.max(np.abs(y))) or ty
+            outside = int(np.sum((np.abs(x) > tx) | (np.abs(y) > ty)))
+            if tx <= ON_SCALE * span_x and ty <= ON_SCALE * span_y:
+                ax.plot([-tx, tx, tx, -tx, -tx], [-ty, -ty, ty, ty, -ty], "r--", lw=0.9,
+                        label=f"acceptance ({outside} outside)")
+            else:   # stated above the panel, where it hides no run
+                ax.set_title(f"acceptance box |{LABELS[kx].split()[0]}| <= {_fmt(tx)}, "
+                             f"|{LABELS[ky].split()[0]}| <= {_fmt(ty)}: off scale, {outside} of {x.size} "
+                             "runs outside", fontsize=8.5, color="darkred")
+        ax.margins(0.15)
+        ax.ticklabel_format(axis="both", style="sci", scilimits=(-3, 4))
+        ax.set_xlabel(LABELS[kx])
+        ax.set_ylabel(LABELS[ky])
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="lower right")
+    ax = axes[1, 1]
+    tf = res.errors["tf_s"][ok]
+    ax.hist(tf, bins=min(40, max(5, int(tf.size ** 0.5))), color="C0", alpha=0.8)
+    if res.nominal_tf_s is not None:
+        ax.axvline(res.nominal_tf_s, color="k", ls="--", label=f"nominal t_f* {res.nominal_tf_s:.2f} s")
+        ax.legend(fontsize=8)
+    ax.set_xlabel(LABELS["tf_s"])
+    ax.set_ylabel("runs")
+    ax.grid(alpha=0.3)
+    fig.suptitle(f"{scn.name}: injection errors at cut-off ({int(ok.sum())} runs flown, "
+                 f"{res.n_failures} failed)")
+    fig.tight_layout()
+    return fig
+
+
 def _histograms(res: CampaignResult, ok: np.ndarray):
-    """One panel per injection error: counts on a log axis, so that a tail of a few runs in
-    thousands is visible; vertical lines at +-4 paper sigmas (when known) and the tolerance."""
+    """One panel per injection error over the runs' own range: counts on a log axis, so that a tail
+    of a few runs in thousands is visible; +-4 paper sigmas (when known) and the tolerance as
+    vertical lines when on scale (within ON_SCALE times the data's range), stated in the panel
+    otherwise."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
     plt = pyplot()
     scn = res.scenario
     keys = ("dr_f_m", "dphi_f_deg", "dvr_f_mps", "dvt_f_mps", "dvn_f_mps", "tf_s")
@@ -109,27 +165,39 @@ def _histograms(res: CampaignResult, ok: np.ndarray):
     for ax, key in zip(axes.ravel(), keys):
         v = res.errors[key][ok]
         centre = float(np.mean(v)) if key == "tf_s" else 0.0
-        half = max(float(np.max(np.abs(v - centre))) if v.size else 0.0,
-                   4.0 * sigma.get(key, 0.0)) * 1.15 or 1.0
+        data_half = float(np.max(np.abs(v - centre))) if v.size else 0.0
+        marks = []   # (offset from centre, colour, style, label)
+        notes = []
+        if key in sigma:
+            four = 4.0 * sigma[key]
+            if data_half > 0.0 and four > ON_SCALE * data_half:
+                notes.append(f"4 paper sigma +-{_fmt(four)} (off scale)")
+            else:
+                marks.append((four, "k", "--", "4 paper sigma"))
+        if key in tol:
+            if data_half > 0.0 and tol[key] > ON_SCALE * data_half:
+                outside = int(np.sum(np.abs(v) > tol[key]))
+                notes.append(f"tolerance +-{_fmt(tol[key])} (off scale, {outside} outside)")
+            else:
+                marks.append((tol[key], "r", ":", "tolerance"))
+        half = max([data_half] + [m[0] for m in marks]) * 1.15 or 1.0
         ax.hist(v, bins=np.linspace(centre - half, centre + half, 61), color="C0", alpha=0.8)
         ax.set_yscale("log")
+        ax.yaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
+        ax.yaxis.set_major_formatter(FuncFormatter(lambda c, _: f"{c:g}"))
+        ax.yaxis.set_minor_formatter(NullFormatter())
         ax.set_xlim(centre - half, centre + half)
-        if key in sigma:
+        for offset, colour, style, label in marks:
             for sgn in (-1.0, 1.0):
-                ax.axvline(centre + sgn * 4.0 * sigma[key], color="k", ls="--", lw=1.0,
-                           label="4 paper sigma" if sgn > 0 else None)
-        if key in tol:
-            if tol[key] <= half:
-                for sgn in (-1.0, 1.0):
-                    ax.axvline(sgn * tol[key], color="r", ls=":", lw=1.2,
-                               label="tolerance" if sgn > 0 else None)
-            else:
-                ax.text(0.02, 0.95, f"tolerance +-{tol[key]:.3g} (off scale)",
-                        transform=ax.transAxes, fontsize=8, va="top")
-        ax.set_xlabel(LABELS[key])
+                ax.axvline(centre + sgn * offset, color=colour, ls=style, lw=1.1,
+                           label=label if sgn > 0 else None)
+        if notes:   # above the panel, where they hide no bar
+            ax.set_title("\n".join(notes), fontsize=8, color="darkred")
+        if marks:
+            ax.legend(fontsize=8, loc="upper right")
+        ax.set_xlabel(LABELS[key] if key != "tf_s" else f"{LABELS[key]} (mean {centre:.2f} s)")
         ax.set_ylabel("runs")
         ax.grid(alpha=0.3)
-    axes[0, 0].legend(fontsize=8)
     fig.suptitle(f"{scn.name}: injection errors, {int(ok.sum())} runs (log counts)")
     fig.tight_layout()
     return fig
