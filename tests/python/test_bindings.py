@@ -181,3 +181,22 @@ def test_macro_readable(header: str, name: str, value: str) -> None:
         assert isinstance(v, int), f"{header}: {name} is not an integer"
         if re.fullmatch(r"(0[xX][0-9a-fA-F]+|\d+)[uUlL]*", value):
             assert v == int(value.rstrip("uUlL"), 0), f"{header}: {name}"
+
+
+def test_thrust_cmd_wrapper_covers_the_struct() -> None:
+    """kernel.ThrustCmd carries every field of ogk_thrust_cmd_t through to_c / from_c, and Frame
+    is ogk_frame_t (the typed wrapper every law's thrust_cmd(t) returns)."""
+    from ogk_bindings.kernel import Frame, ThrustCmd
+
+    assert {f.name: int(f) for f in Frame} == {
+        "RTN": lib.OGK_FRAME_RTN, "INERTIAL": lib.OGK_FRAME_INERTIAL, "SYNODIC": lib.OGK_FRAME_SYNODIC}
+    assert len(Frame) == lib.OGK_FRAME_COUNT
+    wrapped = {"t_s", "alpha_rad", "beta_rad", "flags", "law_flags", "frame", "u", "throttle"}
+    assert {f for f, _ in ffi.typeof("ogk_thrust_cmd_t").fields} == wrapped
+    c = ffi.new("ogk_thrust_cmd_t *")
+    assert lib.ogk_thrust_cmd_from_angles(2.5, 0.3, -0.2, 0.5, lib.OGK_THRUST_FLAG_ENGINE_ON, 7, c) == lib.OGK_OK
+    cmd = ThrustCmd.from_c(c)
+    assert (cmd.t, cmd.frame, cmd.alpha, cmd.beta, cmd.throttle, cmd.law_flags) == (2.5, Frame.RTN, 0.3, -0.2, 0.5, 7)
+    assert cmd.engine_on and not cmd.safe
+    back = cmd.to_c()
+    assert bytes(ffi.buffer(back)) == bytes(ffi.buffer(c))
