@@ -147,7 +147,7 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     for line in report_lines(scenario, doc):
         print(line)
     write_atomic(json_path, json.dumps(doc, indent=1) + "\n")
-    print(f"wrote {json_path} (the flight took {wall:.1f} s, wall clock)")
+    print(f"wrote {json_path} (the flight took {wall:.4g} s, wall clock)")
     if plots_dir is not None:
         from .plots import write_plots
         for path in write_plots(scenario, result, Path(plots_dir)):
