@@ -15,7 +15,15 @@ def register(sub: Any) -> None:
     p = sub.add_parser("mpsp", help="MPSP guidance on the Apophis mission (= ogk cases apophis)",
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
                        add_help=False)
+    p.add_argument("-h", "--help", action="store_true", dest="show_help",
+                   help="show this help; after MISSION, the options of `ogk cases`")
     p.add_argument("mission", choices=tuple(MISSIONS), nargs="?")
-    p.add_argument("rest", nargs=argparse.REMAINDER)
-    p.set_defaults(func=lambda args: run_scenario_command(
-        "cases", MISSIONS.get(args.mission or "", None), args.rest, p))
+    p.add_argument("rest", nargs=argparse.REMAINDER, help=argparse.SUPPRESS)
+
+    def run(args: argparse.Namespace) -> int:
+        if args.show_help and args.mission is None:
+            p.print_help()
+            return 0
+        rest = ["--help", *args.rest] if args.show_help else args.rest
+        return run_scenario_command("cases", MISSIONS.get(args.mission or "", None), rest, p)
+    p.set_defaults(func=run)
