@@ -1,21 +1,29 @@
 """Scenario files: where they are, what they are, and a typed reader whose every complaint names
 the file, the key and the reason (`OgkInputError`).
 
-A scenario is a TOML file under scenarios/ (or anywhere, by path). Its top level says which
-mission family and which guidance law it is::
+A scenario is a TOML file under scenarios/ (or anywhere, by path). Every family's file starts with
+the same header (docs/adding-a-mission.md, "The scenario header")::
 
+    schema = "ogk.orbit-injection/1"   # "ogk.<mission>/<version>": checked against `mission`
     mission = "orbit-injection"        # family: truth model, ground tools, SIL adapter
+    name = "leo_geo"
     [guidance]
     law = "vtd-nog"
+    [dispersions]                      # what a campaign draws at random, and only that
+    [acceptance]                       # the failure criterion (each family states its default)
+    [paper_results]                    # optional: the paper's figures, for comparison only
 
-Each family's loader reads the rest with `Section`, which rejects missing keys, wrong types and
-unknown keys, so a typo never silently falls back to a default (docs/adding-a-mission.md).
+`read_header` checks the schema against the mission and refuses an older spelling of the header
+(`OLD_SPELLINGS`) with one line naming the key and what to rename it to, before anything is
+computed. Each family's loader reads the rest with `Section`, which rejects missing keys, wrong
+types and unknown keys, so a typo never silently falls back to a default.
 """
 from __future__ import annotations
 
 import dataclasses
 import hashlib
 import math
+import re
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -63,6 +71,85 @@ def read_toml(path: str | Path) -> dict[str, Any]:
 
 def file_sha256(path: str | Path) -> str:
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+#: The mission families (one package each in ogk_host and ogk.missions; ogk.missions.registry
+#: maps them to their code, test_scenario_header checks the two lists agree).
+MISSIONS = ("orbit-injection", "low-thrust-transfer", "low-thrust-rendezvous", "binary-asteroid")
+
+HEADER_DOC = 'docs/adding-a-mission.md, "The scenario header"'
+
+#: Older spellings of the header, refused with what to rename them to: (missions, dotted key as a
+#: regular expression, the new spelling with the key's groups as {0}, {1}). Checked on every table
+#: and key of the file, innermost first, so the line names the most precise key.
+OLD_SPELLINGS: tuple[tuple[tuple[str, ...], str, str], ...] = (
+    (MISSIONS, r"reference\.([^.]+)", "[paper_results.{0}]"),
+    (MISSIONS, r"reference", "[paper_results]"),
+    (("low-thrust-transfer",), r"perturbations\.(initial|terminal|thrust)", "[dispersions.{0}]"),
+    (("low-thrust-transfer",), r"perturbations", "[dispersions] (initial, terminal, thrust)"),
+    (("low-thrust-rendezvous",), r"perturbations\.(thrust_angle_sigma_rad|thrust_angle_draw_period_s)",
+     "[dispersions] {0}"),
+    (("binary-asteroid",), r"transfers\.([^.]+)\.paper_([^.]+)", "[paper_results.transfers.{0}] {1}"),
+    (("binary-asteroid",), r"monte_carlo\.paper_converged_percent",
+     "[paper_results.table3] converged_percent (with levels_percent, the paper's levels)"),
+    (("binary-asteroid",), r"monte_carlo\.(levels_percent|sigma_fraction)", "[dispersions] {0}"),
+)
+
+#: schema values of the family dialects before the common header (issue 18)
+OLD_SCHEMAS = ("ogk.leo_geo/1", "ogk.binary/1", "ogk.rendezvous/1")
+
+_SCHEMA_RE = re.compile(r"ogk\.([a-z0-9-]+)/([1-9][0-9]*)")
+
+
+def schema_of(mission: str, version: int = 1) -> str:
+    """The header's schema value of a family: "ogk.<mission>/<version>"."""
+    return f"ogk.{mission}/{version}"
+
+
+def _keys_innermost_first(table: dict[str, Any], prefix: str = "") -> list[str]:
+    out: list[str] = []
+    for key, value in table.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            out.extend(_keys_innermost_first(value, f"{name}."))
+        out.append(name)
+    return out
+
+
+def refuse_old_spellings(raw: dict[str, Any], path: str | Path, mission: str) -> None:
+    """One line naming the first key spelt the old way and what to rename it to."""
+    for key in _keys_innermost_first(raw):
+        for missions, pattern, new in OLD_SPELLINGS:
+            match = re.fullmatch(pattern, key)
+            if mission in missions and match:
+                raise OgkInputError(f"old spelling: rename it to {new.format(*match.groups())} "
+                                    f"({HEADER_DOC})", path=path, key=key)
+
+
+def check_header(raw: dict[str, Any], path: str | Path, schema: str | None = None) -> tuple[str, str]:
+    """(mission, schema) of a parsed scenario, checked: `mission` one of MISSIONS, no old spelling,
+    `schema` = "ogk.<mission>/<version>" (and equal to `schema` when the family's loader gives its
+    own). Every complaint one line, before anything is computed."""
+    top = Section(raw, path, "")
+    mission = top.text("mission")
+    if mission not in MISSIONS:
+        raise top.error("mission", f"unknown mission family {mission!r} (known: "
+                        f"{', '.join(sorted(MISSIONS))})")
+    refuse_old_spellings(raw, path, mission)
+    expected = schema or schema_of(mission)
+    if not top.has("schema"):
+        raise top.error("schema", f"missing key: the header starts with schema = \"{expected}\" "
+                        f"({HEADER_DOC})")
+    value = top.text("schema")
+    match = _SCHEMA_RE.fullmatch(value)
+    if value in OLD_SCHEMAS:
+        raise top.error("schema", f"old spelling {value!r}: rename it to \"{expected}\" ({HEADER_DOC})")
+    if match is None or match.group(1) != mission:
+        raise top.error("schema", f"{value!r} is not the schema of mission = \"{mission}\": rename it "
+                        f"to \"{expected}\" ({HEADER_DOC})")
+    if schema is not None and value != schema:
+        raise top.error("schema", f"{value!r}: this version of ogk reads \"{schema}\"")
+    return mission, value
 
 
 @dataclasses.dataclass(frozen=True)
@@ -120,6 +207,15 @@ class Section:
         if not isinstance(value, dict):
             raise self.error(name, f"must be a table, got {type(value).__name__}")
         return Section(value, self._path, self.key(name))
+
+    def raw_table(self, name: str) -> dict[str, Any] | None:
+        """The TOML table `name` as parsed (marked read; its keys are the caller's to check), or
+        None when the file has none (e.g. an optional [paper_results])."""
+        if name not in self._data:
+            self._read.add(name)
+            return None
+        self.section(name)
+        return self._data[name]
 
     def number(self, name: str, default: Any = _MISSING, *, positive: bool = False,
                nonnegative: bool = False, lo: float | None = None, hi: float | None = None) -> float:
