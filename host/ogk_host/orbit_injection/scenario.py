@@ -10,19 +10,20 @@ import dataclasses
 import functools
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicSpline
 
-from ..scenario_file import Section, read_toml
+from ..scenario_file import Section, check_header, read_toml, schema_of
 
 FloatArray = NDArray[np.float64]
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
 DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "leo_geo.toml"
-SCHEMA = "ogk.leo_geo/1"
 MISSION = "orbit-injection"   #: the family name of ogk.missions.registry
+SCHEMA = schema_of(MISSION)    #: "ogk.orbit-injection/1" (the header, ogk_host.scenario_file)
 LAWS = ("vtd-nog",)            #: guidance laws this family flies
 
 
@@ -361,8 +362,22 @@ class PaperResults:
 
 
 @dataclasses.dataclass(frozen=True)
+class Dispersions:
+    """[dispersions]: what a campaign draws at random (Tables 3-5, eq. 55), and only that."""
+
+    initial_state: InitialStateDispersion
+    attitude: AttitudeDispersion
+    actuators: ActuatorDispersion
+    thrust: ThrustDispersion
+
+
+@dataclasses.dataclass(frozen=True)
 class Acceptance:
-    """Failure criterion: a run whose injection error exceeds one of these has failed."""
+    """Failure criterion: a run whose injection error exceeds one of these has failed.
+
+    Default when the scenario has no [acceptance] (or leaves a key out): 1 km on the radius, the
+    same 1 km seen from the target radius on the declination (radius_error_m / R_f), 10 m/s on
+    each velocity component."""
 
     radius_error_m: float           #: |dr_f|
     declination_error_rad: float    #: |dphi_f|
@@ -436,6 +451,18 @@ class LeoGeoScenario:
     initial_state: InitialState | None = None   #: eq. (19) case A (specified state), or None
 
     @property
+    def dispersions(self) -> Dispersions:
+        """[dispersions] as one object (the same attribute name in every family)."""
+        return Dispersions(self.initial_state_dispersion, self.attitude_dispersion,
+                           self.actuator_dispersion, self.thrust_dispersion)
+
+    @property
+    def paper_results(self) -> dict[str, Any] | None:
+        """[paper_results] as a dict, or None when the scenario has none (every family's name;
+        `paper` is the same figures typed)."""
+        return None if self.paper is None else dataclasses.asdict(self.paper)
+
+    @property
     def target_circular_speed_m_s(self) -> float:
         """sqrt(mu / R_f), eq. (20)."""
         return math.sqrt(self.mu_m3_s2 / self.target_radius_m)
@@ -445,9 +472,11 @@ def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
     """Reads scenarios/leo_geo.toml (or `path`) and checks it: every missing key, wrong type,
     unknown key or physically impossible value is an `OgkInputError` naming file and key."""
     scenario_path = Path(path) if path is not None else DEFAULT_SCENARIO_PATH
-    top = Section(read_toml(scenario_path), scenario_path, "")
-    top.text("schema", choices=(SCHEMA,))
+    raw = read_toml(scenario_path)
+    top = Section(raw, scenario_path, "")
     top.text("mission", choices=(MISSION,))
+    check_header(raw, scenario_path, SCHEMA)
+    top.text("schema")
     name = top.text("name")
     source = top.text("source", default="")
     gravity = top.section("gravity")
@@ -612,7 +641,8 @@ def _read_cpd(sec: Section) -> Cpd:
 
 def _read_acceptance(sec: Section, target_radius_m: float) -> Acceptance:
     """Failure criterion of a run (docs/sil.md): |error| above these is a failed injection.
-    Defaults 1 km / 10 m/s; the declination tolerance defaults to the radius one at R_f."""
+    STATED DEFAULT (docs/adding-a-mission.md, "The scenario header"): radius_error_m = 1000 m,
+    declination_error_rad = radius_error_m / R_f, velocity_error_m_s = 10 m/s."""
     radius = sec.number("radius_error_m", 1000.0, positive=True)
     acc = Acceptance(
         radius_error_m=radius,
