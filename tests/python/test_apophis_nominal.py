@@ -159,7 +159,7 @@ def test_scenario_units_and_errata(scenario) -> None:
     assert problem.final_time * units.time_s / 86400.0 == pytest.approx(1156.0)
     assert problem.max_thrust * units.force_N == pytest.approx(1.5e-3)
     assert problem.exhaust_velocity * units.velocity_km_s == pytest.approx(3000 * 9.80655e-3)
-    p = scenario.perturbations
+    p = scenario.dispersions
     assert np.allclose(p.delta_r0, 0.1 * np.array([1.6712, -1.0659, -4.1460]) * 1e-2)
     assert len(p.kappa) == 9 and len(p.eta_percent) == 6
     assert np.allclose(np.abs(p.delta_rf_vertices), 0.02) and len({tuple(v) for v in p.delta_rf_vertices}) == 8
@@ -169,7 +169,7 @@ def test_scenario_units_and_errata(scenario) -> None:
         0.9 * problem.max_thrust)
     assert np.allclose(normalised_problem(scenario, terminal_position_case(scenario, 8)).rf,
                        scenario.boundary.rf - 0.02)
-    assert scenario.reference["nominal"]["final_mass_kg"] == 21.062
+    assert scenario.paper_results["nominal"]["final_mass_kg"] == 21.062
 
 
 # ---------------------------------------------------------------- stored nominal, independent checks

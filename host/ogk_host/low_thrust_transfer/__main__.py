@@ -112,7 +112,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.command == "report":
         return cmd_report(scenario)
     if args.command == "references":
-        p = scenario.perturbations
+        p = scenario.dispersions
         return cmd_perturbed(scenario, list(p.kappa), list(range(1, 9)), list(p.eta_percent),
                              REFERENCES_PATH)
     explicit = args.kappa is not None or args.vertex is not None or args.eta is not None

@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ogk_bindings.errors import OgkInputError
-from ..scenario_file import read_toml
+from ..scenario_file import Section, check_header, read_toml, schema_of
 
 FloatArray = NDArray[np.float64]
 
@@ -22,7 +22,14 @@ SECONDS_PER_DAY = 86400.0
 REPO_ROOT = Path(__file__).resolve().parents[3]
 DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "apophis_cubesat.toml"
 MISSION = "low-thrust-transfer"  #: the family name of ogk.missions.registry
+SCHEMA = schema_of(MISSION)      #: "ogk.low-thrust-transfer/1" (the header, ogk_host.scenario_file)
 LAWS = ("mpsp",)                 #: guidance laws this family flies
+#: [paper_results] of Wang & Topputo 2020: the columns of Tables 3, 5, 6 (one entry per case, rows in the
+#: order of [dispersions]), the row labels some tables print, and the nominal of section 4.1.
+PAPER_COLUMNS = ("position_error_km", "velocity_error_km_s", "lambda_mf", "newton_iterations",
+                 "fuel_increase_percent", "mpsp_time_s", "tpbvp_time_s")
+PAPER_ROW_LABELS = {"table3": "kappa", "table5": None, "table6": "eta_percent"}
+PAPER_NOMINAL = ("final_mass_kg", "thrust_arcs", "coast_arcs")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -109,8 +116,9 @@ class MpspSettings:
 
 
 @dataclasses.dataclass(frozen=True)
-class PerturbationSets:
-    """Section 4.2-4.4 perturbation cases (Tables 3, 4, 6)."""
+class Dispersions:
+    """[dispersions]: the perturbation cases of sections 4.2-4.4 (Tables 3, 4, 6), flown as listed
+    (`ogk mc --cases paper`) or drawn within their ranges (`--cases dispersed`)."""
 
     kappa: tuple[float, ...]
     delta_r0_printed: FloatArray      #: [LU] as printed
@@ -140,13 +148,25 @@ class Scenario:
     boundary: Boundary
     homotopy: Homotopy
     mpsp: MpspSettings
-    perturbations: PerturbationSets
-    reference: dict[str, Any]   #: published numbers (section 4.1, Tables 3, 5, 6) as read
+    dispersions: Dispersions
+    paper_results: dict[str, Any] | None   #: [paper_results] (section 4.1, Tables 3, 5, 6); None: none
+    acceptance: "Acceptance"
 
     @property
     def final_time(self) -> float:
         """Transfer duration t_f - t_0 [TU]."""
         return self.duration_days * SECONDS_PER_DAY / self.units.time_s
+
+
+@dataclasses.dataclass(frozen=True)
+class Acceptance:
+    """[acceptance]: a case passes when MPSP converged with terminal errors no larger than these.
+
+    Default when the scenario has no [acceptance] (or leaves a key out): the MPSP convergence
+    tolerances of [mpsp], position_error_km = tol_position_km, velocity_error_km_s = tol_velocity_km_s."""
+
+    position_error_km: float        #: ||Delta r_f|| [km]
+    velocity_error_km_s: float      #: ||Delta v_f|| [km/s]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -174,14 +194,14 @@ class Perturbation:
 
 def initial_state_case(scenario: Scenario, kappa: float) -> Perturbation:
     """Table 3 case: r0 + kappa dr0, v0 + kappa dv0 (printed vectors times the ERRATUM scale)."""
-    p = scenario.perturbations
+    p = scenario.dispersions
     return Perturbation(delta_r0=kappa * p.delta_r0, delta_v0=kappa * p.delta_v0,
                         label=f"kappa={kappa:g}")
 
 
 def terminal_position_case(scenario: Scenario, case: int) -> Perturbation:
     """Table 4 case 1..8: r_f + vertex of the 0.04 LU cube."""
-    vertex = scenario.perturbations.delta_rf_vertices[case - 1]
+    vertex = scenario.dispersions.delta_rf_vertices[case - 1]
     return Perturbation(delta_rf=vertex.copy(), label=f"cube vertex {case}")
 
 
@@ -230,8 +250,9 @@ def load_scenario(path: str | Path = DEFAULT_SCENARIO_PATH) -> Scenario:
     if d.get("mission") != MISSION or d.get("guidance", {}).get("law") not in LAWS:
         raise OgkInputError(f"mission must be {MISSION!r} with [guidance] law in {LAWS}, got "
                             f"{d.get('mission')!r} / {d.get('guidance', {}).get('law')!r}", path=path)
+    check_header(d, path, SCHEMA)
     tracked = _Tracked.wrap(d)
-    for key in ("name", "source", "mission"):  # the header (ogk_host.scenario_file.read_header)
+    for key in ("schema", "name", "source", "mission"):  # the header (ogk_host.scenario_file)
         tracked.get(key)
     tracked.get("guidance", {}).get("law")
     for key in ("departure_utc", "arrival_utc"):  # descriptive
@@ -242,7 +263,11 @@ def load_scenario(path: str | Path = DEFAULT_SCENARIO_PATH) -> Scenario:
         raise OgkInputError(f"missing key {exc.args[0]!r}", path=path) from None
     except (TypeError, ValueError) as exc:
         raise OgkInputError(str(exc), path=path) from None
-    unknown = tracked.unread(skip=("reference",))
+    top = Section(d, path, "")
+    scenario = dataclasses.replace(
+        scenario, paper_results=_read_paper(top.raw_table("paper_results"), path),
+        acceptance=_read_acceptance(top.section("acceptance", optional=True), scenario.mpsp))
+    unknown = tracked.unread(skip=("paper_results", "acceptance"))
     if unknown:
         raise OgkInputError("unknown key" + (f" (also {', '.join(unknown[1:])})" if len(unknown) > 1
                                              else ""), path=path, key=unknown[0])
@@ -284,11 +309,11 @@ class _Tracked(dict):  # type: ignore[type-arg]
 
 def _build(path: Path, d: dict[str, Any]) -> Scenario:
     un, sc, bd, ho, mp = d["units"], d["spacecraft"], d["boundary"], d["homotopy"], d["mpsp"]
-    pi, pt, pth = (d["perturbations"]["initial"], d["perturbations"]["terminal"],
-                   d["perturbations"]["thrust"])
+    pi, pt, pth = (d["dispersions"]["initial"], d["dispersions"]["terminal"],
+                   d["dispersions"]["thrust"])
     vertices = _vec(pt["delta_final_position_LU"])
     if vertices.shape != (8, 3) or not np.allclose(np.abs(vertices), pt["cube_side_LU"] / 2.0):
-        raise ValueError("perturbations.terminal: must be the 8 vertices of the cube")
+        raise ValueError("dispersions.terminal: must be the 8 vertices of the cube")
     if mp["fourier_basis"] not in ("printed", "period_tf", "period_2tf", "cosine_2tf"):
         raise ValueError(f"mpsp.fourier_basis: unknown {mp['fourier_basis']!r}")
     return Scenario(
@@ -307,9 +332,45 @@ def _build(path: Path, d: dict[str, Any]) -> Scenario:
                           int(mp["n_seg_tol_increment"]), mp["r_epsilon"], mp["r_lambda"],
                           mp["switch_tolerance"], mp["tol_position_km"], mp["tol_velocity_km_s"],
                           mp["tol_lambda_mf"]),
-        perturbations=PerturbationSets(tuple(pi["kappa"]), _vec(pi["delta_position_printed_LU"]),
-                                       _vec(pi["delta_velocity_printed_VU"]),
-                                       float(pi["printed_vector_scale"]), float(pt["cube_side_LU"]),
-                                       vertices, tuple(pth["eta_percent"])),
-        reference=d["reference"],
+        dispersions=Dispersions(tuple(pi["kappa"]), _vec(pi["delta_position_printed_LU"]),
+                                _vec(pi["delta_velocity_printed_VU"]),
+                                float(pi["printed_vector_scale"]), float(pt["cube_side_LU"]),
+                                vertices, tuple(pth["eta_percent"])),
+        paper_results=None,                       # read by load_scenario (Section)
+        acceptance=Acceptance(float(mp["tol_position_km"]), float(mp["tol_velocity_km_s"])),
     )
+
+
+def _read_acceptance(sec: Section, mpsp: MpspSettings) -> Acceptance:
+    """[acceptance]; STATED DEFAULT (docs/adding-a-mission.md, "The scenario header"): the [mpsp]
+    convergence tolerances tol_position_km and tol_velocity_km_s."""
+    acc = Acceptance(position_error_km=sec.number("position_error_km", mpsp.tol_position_km, positive=True),
+                     velocity_error_km_s=sec.number("velocity_error_km_s", mpsp.tol_velocity_km_s,
+                                                    positive=True))
+    sec.finish()
+    return acc
+
+
+def _read_paper(raw: dict[str, Any] | None, path: Path) -> dict[str, Any] | None:
+    """[paper_results]: optional; [paper_results.nominal] (section 4.1) and [paper_results.table3|5|6],
+    each table's columns lists of numbers of one length (PAPER_COLUMNS, plus its row labels)."""
+    if raw is None:
+        return None
+    top = Section(raw, path, "paper_results")
+    if top.has("nominal"):
+        nom = top.section("nominal")
+        for key in PAPER_NOMINAL:
+            if nom.has(key):
+                nom.number(key, positive=True)
+        nom.finish()
+    for table, label in PAPER_ROW_LABELS.items():
+        if not top.has(table):
+            continue
+        sec = top.section(table)
+        length = len(sec.numbers(label)) if label is not None and sec.has(label) else None
+        for key in PAPER_COLUMNS:
+            if sec.has(key):
+                length = len(sec.numbers(key, length))
+        sec.finish()
+    top.finish()
+    return raw

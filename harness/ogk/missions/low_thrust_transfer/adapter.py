@@ -18,6 +18,7 @@ from ogk_host.low_thrust_transfer.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.scenario_file import ScenarioHeader, table_dir_for
 
 from ogk.sil.outputs import check_output_dir, check_output_file
+from ogk.sil.report import finite_or_none
 
 LAWS = SCENARIO_LAWS
 
@@ -73,7 +74,7 @@ def cases(header: ScenarioHeader, args: argparse.Namespace) -> int:
 def _write_json(path: str, doc: Any) -> None:
     out = Path(path)
     out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(doc, indent=1) + "\n")
+    out.write_text(json.dumps(finite_or_none(doc), indent=1, allow_nan=False) + "\n")
     print(f"wrote {out}")
 
 
@@ -92,15 +93,15 @@ def _reference(setup: Any, case: Any, args: argparse.Namespace) -> Any:
 
 def run_one(args: argparse.Namespace) -> int:
     from ogk.missions.low_thrust_transfer.cases import build_setup, make_case, run_case
-    from ogk.missions.low_thrust_transfer.report import HEADER, make_record, table_line
+    from ogk.missions.low_thrust_transfer.report import header, make_record, table_line
     setup = build_setup(args.basis, args.order, args.scenario)
     case = make_case(setup, args.case, args.param)
     res, cpu = run_case(setup, case)
     start = time.perf_counter()
     ref = _reference(setup, case, args)
     rec = make_record(setup, res, cpu, ref)
-    print(HEADER)
-    print(table_line(case, rec, None, ref))
+    print(header(False))                      # one case of our own: no paper row to compare with
+    print(table_line(case, rec, None, ref, paper_columns=False))
     if ref is not None:
         print(f"fuel-optimal reference: final mass {ref.final_mass_kg:.4f} kg, {ref.thrust_arcs} thrust "
               f"arcs, {'cached' if ref.from_cache else 'solved'} "
@@ -112,13 +113,16 @@ def run_one(args: argparse.Namespace) -> int:
 
 def run_tables(args: argparse.Namespace) -> int:
     from ogk.missions.low_thrust_transfer.cases import build_setup, paper_cases, run_case
-    from ogk.missions.low_thrust_transfer.report import HEADER, make_record, paper_rows, table_line
+    from ogk.missions.low_thrust_transfer.report import header, make_record, paper_rows, table_line
     setup = build_setup(args.basis, args.order, args.scenario)
     cases = paper_cases(setup)
     papers = paper_rows(setup, cases)
-    print(f"MPSP (kernel) on the paper's Apophis cases: basis {setup.basis}, order {setup.order}; "
-          "paper = Wang & Topputo 2020, Tables 3, 5, 6 (MPSP-CT: MATLAB+MEX, i7-9750H)")
-    print(HEADER)
+    with_paper = any(p is not None for p in papers)   # only a scenario with [paper_results]
+    print(f"MPSP (kernel) on the {len(cases)} cases of {setup.scenario.path.name}'s [dispersions]: basis "
+          f"{setup.basis}, order {setup.order}"
+          + ("; paper = Wang & Topputo 2020, Tables 3, 5, 6 (MPSP-CT: MATLAB+MEX, i7-9750H)"
+             if with_paper else ""))
+    print(header(with_paper))
     runs = []
     records = []
     ref_wall = 0.0
@@ -128,7 +132,7 @@ def run_tables(args: argparse.Namespace) -> int:
         ref = _reference(setup, case, args)
         ref_wall += time.perf_counter() - start
         rec = make_record(setup, res, cpu, ref)
-        print(table_line(case, rec, paper, ref), flush=True)
+        print(table_line(case, rec, paper, ref, paper_columns=with_paper), flush=True)
         runs.append((case, res, ref))
         records.append({"case": case.label, "kind": case.kind,
                         "param": list(case.param) if isinstance(case.param, tuple) else case.param,

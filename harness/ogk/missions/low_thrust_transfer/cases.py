@@ -154,8 +154,9 @@ def make_case(setup: ApophisSetup, kind: CaseKind, param: str) -> Case:
 
 
 def paper_cases(setup: ApophisSetup) -> list[Case]:
-    """The 23 cases of Tables 3, 5 (vertices of Table 4) and 6, in the tables' order."""
-    pert = setup.scenario.perturbations
+    """The cases of the scenario's [dispersions] as listed: for the paper's scenario the 23 cases of
+    Tables 3, 5 (vertices of Table 4) and 6, in the tables' order."""
+    pert = setup.scenario.dispersions
     cases = [initial_case(setup, k) for k in pert.kappa]
     cases += [terminal_case(setup, v, f"T5 case {i + 1}")
               for i, v in enumerate(pert.delta_rf_vertices)]

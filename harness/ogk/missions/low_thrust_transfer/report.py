@@ -1,7 +1,7 @@
 """One MPSP case as the JSON record of `ogk mpsp apophis`, and the side-by-side table with the paper.
 
-The paper's numbers (Tables 3, 5, 6) are read from the scenario's [reference.table*] sections through the
-ground scenario loader (scenario.reference).
+The paper's numbers (Tables 3, 5, 6) are read from the scenario's [paper_results.table*] sections through
+the ground scenario loader (scenario.paper_results); a scenario without them gets no paper columns.
 """
 from __future__ import annotations
 
@@ -63,8 +63,9 @@ class PaperRow:
 
 
 def paper_rows(setup: ApophisSetup, cases: list[Case]) -> list[PaperRow | None]:
-    """The paper's row of each case of `paper_cases` (None for a case not in the tables)."""
-    ref = setup.scenario.reference
+    """The paper's row of each case of `paper_cases` (None for a case not in the tables, every one
+    None when the scenario has no [paper_results])."""
+    ref = setup.scenario.paper_results or {}
     counters = {k: 0 for k in TABLE_OF_KIND}
     out: list[PaperRow | None] = []
     for case in cases:
@@ -93,10 +94,23 @@ def _fmt(x: float | None, spec: str, width: int) -> str:
 
 HEADER = ("case             conv arcs  NI ours/paper  |dr_f| km ours/paper   |dv_f| km/s ours/paper  "
           "|lam_mf| ours/paper   FI % ours/paper  CPU s ours / MPSP-CT paper  ref s")
+#: the same table without the paper's columns (a scenario without [paper_results], a single case)
+HEADER_OURS = ("case             conv arcs   NI  |dr_f| km   |dv_f| km/s   |lam_mf|     FI %     CPU s  ref s")
+
+
+def header(paper_columns: bool) -> str:
+    return HEADER if paper_columns else HEADER_OURS
 
 
 def table_line(case: Case, rec: CaseRecord, paper: PaperRow | None,
-               reference: Reference | None) -> str:
+               reference: Reference | None, paper_columns: bool = True) -> str:
+    ref_s = (f"{_fmt(reference.solve_s if reference else None, '.1f', 5)}"
+             f"{'*' if reference is not None and reference.from_cache else ' '}")
+    if not paper_columns:
+        return (f"{case.label:16s} {('yes' if rec.converged else 'NO'):>4s} {rec.thrust_arcs:4d}  "
+                f"{rec.newton_iterations:3d}  {rec.dr_f_km:9.2f}  {rec.dv_f_kmps:12.2e}  "
+                f"{abs(rec.lambda_mf):9.2e}  {_fmt(rec.fuel_increase_pct, '.2f', 7)}  {rec.cpu_s:8.3f}  "
+                + ref_s)
     p = paper
     ni = _col(p, 'newton_iterations')
     return (f"{case.label:16s} {('yes' if rec.converged else 'NO'):>4s} {rec.thrust_arcs:4d}  "
@@ -105,6 +119,4 @@ def table_line(case: Case, rec: CaseRecord, paper: PaperRow | None,
             f"{rec.dv_f_kmps:9.2e} / {_fmt(_col(p, 'velocity_error_km_s'), '.2e', 8)}   "
             f"{abs(rec.lambda_mf):8.2e} / {_fmt(_col(p, 'lambda_mf'), '.2e', 8)}  "
             f"{_fmt(rec.fuel_increase_pct, '.2f', 6)} / {_fmt(_col(p, 'fuel_increase_percent'), '.2f', 5)}  "
-            f"{rec.cpu_s:8.3f} / {_fmt(_col(p, 'mpsp_time_s'), '.2f', 6)}           "
-            f"{_fmt(reference.solve_s if reference else None, '.1f', 5)}"
-            f"{'*' if reference is not None and reference.from_cache else ' '}")
+            f"{rec.cpu_s:8.3f} / {_fmt(_col(p, 'mpsp_time_s'), '.2f', 6)}           " + ref_s)
