@@ -51,7 +51,7 @@ TABLE_A1 = {
     ("perturbations", "solar_constant_w_m2"): 1368.0,
     ("perturbations", "speed_of_light_m_s"): 299792458.0,
     ("perturbations", "thrust_offset_percent"): -10.0,
-    ("perturbations", "thrust_angle_sigma_rad"): 3 * DEG,
+    ("dispersions", "thrust_angle_sigma_rad"): 3 * DEG,
     ("perturbations", "earth_mu_m3_s2"): 398600.441 * KM ** 3,
     ("perturbations", "mars_mu_m3_s2"): 42828 * KM ** 3,
     ("perturbations", "earth_initial_polar_angle_rad"): -0.35414 * DEG,
@@ -68,7 +68,7 @@ def test_scenario_carries_table_a1() -> None:
     raw = tomllib.loads(SCENARIO.read_text())
     for (table, key), paper in TABLE_A1.items():
         assert raw[table][key] == pytest.approx(paper, rel=1e-12, abs=1e-15), (table, key)
-    assert raw["schema"] == "ogk.rendezvous/1" and raw["guidance"]["law"] == "nmpc"
+    assert raw["schema"] == "ogk.low-thrust-rendezvous/1" and raw["guidance"]["law"] == "nmpc"
     assert raw["propulsion"]["throttle"] == "constant"
     assert raw["ocp"] == {"objective": "min-time", "nodes": 30, "control": "piecewise-linear",
                           "rk4_steps_per_interval": 8}

@@ -270,11 +270,11 @@ def test_miss_to_mars(nep: TruthModel) -> None:
 
 
 def test_draw_period_key(tmp_path: Path) -> None:
-    """[perturbations] thrust_angle_draw_period_s: in every rendezvous file (0 = per subinterval),
+    """[dispersions] thrust_angle_draw_period_s: in every rendezvous file (0 = per subinterval),
     negative or missing rejected with the key named."""
     for path in (NEP_TIME, NEP_FUEL, SEP_FUEL):
         scenario = load_scenario(path)
-        assert scenario.perturbations.thrust_angle_draw_period_s == 0.0
+        assert scenario.dispersions.thrust_angle_draw_period_s == 0.0
         assert TruthModel.for_scenario(scenario, True).angle_draw_period == 0.0
     text = NEP_TIME.read_text()
     line = next(l for l in text.splitlines() if l.startswith("thrust_angle_draw_period_s"))
@@ -284,5 +284,5 @@ def test_draw_period_key(tmp_path: Path) -> None:
         path.write_text(bad)
         with pytest.raises(OgkInputError) as info:
             load_scenario(path)
-        assert info.value.key == "perturbations.thrust_angle_draw_period_s"
+        assert info.value.key == "dispersions.thrust_angle_draw_period_s"
         assert needle in str(info.value)

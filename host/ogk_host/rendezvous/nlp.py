@@ -422,7 +422,7 @@ def main(argv: list[str] | None = None) -> int:
           f"{nlp.kg(1.0 - p.states[-1, 4]):.2f} kg, {res.iterations} iterations, {res.solve_time_s:.3f} s")
     if nlp.nu == 2:
         print("  throttle at the nodes: " + " ".join(f"{w:.2f}" for w in p.controls[:, 1]))
-    paper = scenario.paper_results
+    paper = scenario.paper_results or {}
     for key in ("open_loop_time_s", "snns_time_s"):
         if key in paper:
             fuel = paper.get(key.replace("time_s", "fuel_kg"))

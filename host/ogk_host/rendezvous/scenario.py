@@ -9,12 +9,12 @@ import dataclasses
 import math
 from pathlib import Path
 
-from ..scenario_file import Section, read_toml
+from ..scenario_file import Section, check_header, read_toml, schema_of
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
 DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "rendezvous_nep_min_time.toml"
-SCHEMA = "ogk.rendezvous/1"
 MISSION = "low-thrust-rendezvous"
+SCHEMA = schema_of(MISSION)   #: "ogk.low-thrust-rendezvous/1" (the header, ogk_host.scenario_file)
 LAWS = ("nmpc",)
 PROPULSION_MODELS = ("nuclear-electric", "solar-electric")
 THROTTLES = ("constant", "bounded")   #: sec. 3.2.1: T = T_0 (min-time) or 0 <= T <= T_max (eq. 12)
@@ -62,13 +62,34 @@ class Perturbations:
     solar_constant_w_m2: float          #: S_0 [W/m^2]
     speed_of_light_m_s: float           #: c [m/s]
     thrust_offset_percent: float        #: T_offset [%] (eq. 23)
-    thrust_angle_sigma_rad: float       #: sigma_alpha_T [rad]
     earth_mu_m3_s2: float               #: mu_E [m^3/s^2]
     mars_mu_m3_s2: float                #: mu_M [m^3/s^2]
     earth_initial_polar_angle_rad: float    #: (theta_E)_0 [rad]
+
+
+@dataclasses.dataclass(frozen=True)
+class Dispersions:
+    """[dispersions]: what a perturbed flight draws at random (Table A.1's thrust-angle noise, sec. 3.5);
+    the deterministic forces and the thrust offset are [perturbations]."""
+
+    thrust_angle_sigma_rad: float       #: sigma_alpha_T [rad]
     #: How often the closed loop redraws the thrust-angle noise N(0, sigma_alpha_T) [s] (not in the paper,
     #: which only says "pseudorandom"); 0 = once per MPC control subinterval (docs/nmpc.md, "Truth model").
     thrust_angle_draw_period_s: float
+
+
+@dataclasses.dataclass(frozen=True)
+class Acceptance:
+    """[acceptance]: a closed-loop flight passes when it arrives (the [convergence] test stops it) with its
+    final miss within these and, when propellant_kg is given, burns no more propellant (truth mass).
+
+    Default when the scenario has no [acceptance] (or leaves a key out): the arrival condition of
+    [convergence]: position_error_m = mars_soi_radius_m, velocity_error_m_s = velocity_error_m_s, no
+    propellant limit."""
+
+    position_error_m: float             #: |r - r_M| at arrival [m]
+    velocity_error_m_s: float           #: |v - v_M| at arrival [m/s]
+    propellant_kg: float | None = None  #: m_0 - m_f limit [kg]; None: no limit
 
 
 @dataclasses.dataclass(frozen=True)
@@ -171,13 +192,15 @@ class RendezvousScenario:
     initial: PolarState
     initial_mass_kg: float
     target: PolarState              #: Mars at t_0 (circular orbit, eq. 6)
-    perturbations: Perturbations
+    perturbations: Perturbations    #: the forces of the simulation model (deterministic)
     propulsion: Propulsion
     convergence: Convergence
     ocp: OcpSettings
     law: str
-    paper_results: dict[str, float]
+    paper_results: dict[str, float] | None   #: [paper_results]; None when the scenario has none
     nmpc: NmpcSettings
+    dispersions: Dispersions        #: [dispersions]: the thrust-angle noise of a perturbed flight
+    acceptance: Acceptance          #: [acceptance], or its default (the arrival condition)
 
     @property
     def mars_mean_motion_rad_s(self) -> float:
@@ -211,9 +234,11 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
     """Reads scenarios/rendezvous_nep_min_time.toml (or `path`) and checks it: every missing key, wrong
     type, unknown key or physically impossible value is an `OgkInputError` naming file and key."""
     scenario_path = Path(path) if path is not None else DEFAULT_SCENARIO_PATH
-    top = Section(read_toml(scenario_path), scenario_path, "")
-    top.text("schema", choices=(SCHEMA,))
+    raw = read_toml(scenario_path)
+    top = Section(raw, scenario_path, "")
     top.text("mission", choices=(MISSION,))
+    check_header(raw, scenario_path, SCHEMA)
+    top.text("schema")
     name = top.text("name")
     source = top.text("source", default="")
 
@@ -244,11 +269,13 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                                      solar_constant_w_m2={"nonnegative": True},
                                      speed_of_light_m_s={"positive": True},
                                      thrust_offset_percent={"lo": -100.0, "hi": 100.0},
-                                     thrust_angle_sigma_rad={"nonnegative": True},
                                      earth_mu_m3_s2={"nonnegative": True},
-                                     mars_mu_m3_s2={"nonnegative": True},
-                                     thrust_angle_draw_period_s={"nonnegative": True})
+                                     mars_mu_m3_s2={"nonnegative": True})
     pert_s.finish()
+    disp_s = top.section("dispersions")
+    dispersions = disp_s.dataclass(Dispersions, thrust_angle_sigma_rad={"nonnegative": True},
+                                   thrust_angle_draw_period_s={"nonnegative": True})
+    disp_s.finish()
 
     prop_s = top.section("propulsion")
     model = prop_s.text("model", choices=PROPULSION_MODELS)
@@ -277,6 +304,7 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
     convergence = conv_s.dataclass(Convergence, **{f.name: {"positive": True}
                                                    for f in dataclasses.fields(Convergence)})
     conv_s.finish()
+    acceptance = _read_acceptance(top.section("acceptance", optional=True), convergence)
 
     guid_s = top.section("guidance")
     law = guid_s.text("law", choices=LAWS)
@@ -312,8 +340,9 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                                                              nonnegative=True))
     nmpc_s.finish()
 
-    paper: dict[str, float] = {}
+    paper: dict[str, float] | None = None
     if top.has("paper_results"):
+        paper = {}
         paper_s = top.section("paper_results")
         for key in PAPER_RESULT_KEYS:
             if paper_s.has(key):
@@ -324,4 +353,17 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                               initial=initial, initial_mass_kg=initial_mass, target=target,
                               perturbations=perturbations, propulsion=propulsion,
                               convergence=convergence, ocp=ocp, law=law, paper_results=paper,
-                              nmpc=nmpc)
+                              nmpc=nmpc, dispersions=dispersions, acceptance=acceptance)
+
+
+def _read_acceptance(sec: Section, convergence: Convergence) -> Acceptance:
+    """[acceptance]; STATED DEFAULT (docs/adding-a-mission.md, "The scenario header"): the arrival
+    condition of [convergence] (Mars' sphere-of-influence radius, its velocity error), no propellant
+    limit."""
+    acc = Acceptance(position_error_m=sec.number("position_error_m", convergence.mars_soi_radius_m,
+                                                 positive=True),
+                     velocity_error_m_s=sec.number("velocity_error_m_s", convergence.velocity_error_m_s,
+                                                   positive=True),
+                     propellant_kg=sec.number("propellant_kg", None, positive=True))
+    sec.finish()
+    return acc

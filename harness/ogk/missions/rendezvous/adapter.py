@@ -53,7 +53,7 @@ def _paper_prefix(strategy: str, perturbed: bool) -> str:
 def paper_values(scenario: RendezvousScenario, strategy: str, perturbed: bool) -> dict[str, float | None]:
     """The paper's figures of the same case from [paper_results] (None where the paper has none)."""
     pre = _paper_prefix(strategy, perturbed)
-    p = scenario.paper_results
+    p = scenario.paper_results or {}
     t = p.get(f"{pre}_time_s")
     return {"t_f_days": None if t is None else t / DAY_S, "fuel_kg": p.get(f"{pre}_fuel_kg"),
             "max_comp_fraction": p.get(f"{pre}_max_comp_fraction"), "converged": True if t else None}
@@ -71,10 +71,10 @@ def report_lines(scenario: RendezvousScenario, doc: dict[str, Any]) -> list[str]
     case = ("perturbed EOMs" if perturbed else "unperturbed EOMs")
     lines = [f"Starek & Kolmanovsky 2012, {table} ({scenario.name}): {strategy.upper()} MPC, {case}, "
              f"solver {doc['solver']}, seed {doc['seed']}",
-             f"  {'':34s} {'this run':>14s} {'paper':>14s}"]
+             f"  {'':34s} {'this run':>14s}" + (f" {'paper':>14s}" if scenario.paper_results else "")]
 
-    def row(label: str, mine: str, theirs: str) -> None:
-        lines.append(f"  {label:34s} {mine:>14s} {theirs:>14s}")
+    def row(label: str, mine: str, theirs: str) -> None:   # the paper's column only when the scenario has one
+        lines.append(f"  {label:34s} {mine:>14s}" + (f" {theirs:>14s}" if scenario.paper_results else ""))
 
     row("Converged to Mars?", "yes" if doc["converged"] else f"no ({doc['reason']})",
         "-" if paper["converged"] is None else "yes")
@@ -92,7 +92,7 @@ def report_lines(scenario: RendezvousScenario, doc: dict[str, Any]) -> list[str]
     ca = doc.get("closest_approach") or {}
     if ca and not doc["converged"]:
         row("closest approach [km] at [d]", f"{ca['position_miss_km']:.0f} @ {ca['t_days']:.1f}", "-")
-    p = scenario.paper_results
+    p = scenario.paper_results or {}
     if "open_loop_time_s" in p:
         lines.append(f"  paper's open loop (unperturbed): {p['open_loop_time_s'] / DAY_S:.2f} d, "
                      f"{p.get('open_loop_fuel_kg', float('nan')):.2f} kg; perturbed: not converged")

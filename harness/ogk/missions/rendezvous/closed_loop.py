@@ -13,7 +13,7 @@ there, not converged ("earth_impact", "mars_impact"), checked on the same grid.
 
 Perturbed flights: the truth model adds Earth and Mars gravity, solar radiation pressure and the -10 % thrust
 offset (truth.py); the loop adds the thrust-angle noise N(0, sigma_alpha_T): one draw per control subinterval
-when [perturbations] thrust_angle_draw_period_s is 0, otherwise one draw every that many seconds of flight
+when [dispersions] thrust_angle_draw_period_s is 0, otherwise one draw every that many seconds of flight
 (draw k covers [k P, (k + 1) P) from t_0), held constant in between. The draws come from
 numpy.random.default_rng(seed) in flight order, so a seed is one reproducible flight.
 
@@ -157,8 +157,8 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
     conv = scenario.convergence
     max_replans = max_replans or scenario.nmpc.max_replans
     t_max = (max_flight_days or scenario.nmpc.max_flight_days) * DAY_S / units.time_s
-    sigma = scenario.perturbations.thrust_angle_sigma_rad if perturbed else 0.0
-    period_s = scenario.perturbations.thrust_angle_draw_period_s
+    sigma = scenario.dispersions.thrust_angle_sigma_rad if perturbed else 0.0
+    period_s = scenario.dispersions.thrust_angle_draw_period_s
     period = period_s / units.time_s
     rng = np.random.default_rng(seed)
     draws: dict[int, float] = {}

@@ -3,9 +3,11 @@ closed loop (Starek & Kolmanovsky 2012) flown on many thrust-angle noise streams
 closed-loop flight whose noise comes from its own stream (ogk.sil.seeds): a new guidance context
 per run, the truth model perturbed unless --unperturbed.
 
-Acceptance: the scenario's arrival condition ([convergence]: inside Mars' sphere of influence and
-within its velocity tolerance) reached before the replan and flight-time limits; a flight that
-stops for any other reason (impact, replan limit, truth failure) fails with that reason.
+Acceptance: the scenario's [acceptance] (`scenario.acceptance`): the flight arrives (the [convergence]
+test: inside Mars' sphere of influence and within its velocity tolerance, before the replan and
+flight-time limits) with its final miss within position_error_m / velocity_error_m_s (default: the
+arrival condition itself) and, when the scenario states propellant_kg, no more propellant burnt; a
+flight that stops for any other reason (impact, replan limit, truth failure) fails with that reason.
 """
 from __future__ import annotations
 
@@ -17,7 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from ogk_bindings.errors import OgkInputError
-from ogk_host.rendezvous.scenario import LAWS, RendezvousScenario, load_scenario
+from ogk_host.rendezvous.scenario import LAWS, Acceptance, RendezvousScenario, load_scenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
 from ogk.sil.engine import Flown
@@ -38,6 +40,22 @@ def with_model(scenario: RendezvousScenario, third_bodies: str) -> RendezvousSce
         scenario.nmpc, third_bodies_in_model=third_bodies == "yes"))
 
 
+def judge(acceptance: Acceptance, rec: Mapping[str, Any]) -> str:
+    """"" or why the flight fails the scenario's [acceptance] (module doc)."""
+    if not rec["converged"]:
+        return f"not arrived: {rec['reason']}"
+    miss_m = None if rec.get("final_position_miss_km") is None else 1e3 * rec["final_position_miss_km"]
+    if miss_m is not None and not miss_m <= acceptance.position_error_m:
+        return f"tolerance: |r - r_M| = {miss_m:.4g} m > {acceptance.position_error_m:.4g}"
+    dv = rec.get("final_velocity_miss_m_s")
+    if dv is not None and not dv <= acceptance.velocity_error_m_s:
+        return f"tolerance: |v - v_M| = {dv:.4g} m/s > {acceptance.velocity_error_m_s:.4g}"
+    fuel = rec.get("fuel_kg")
+    if acceptance.propellant_kg is not None and fuel is not None and not fuel <= acceptance.propellant_kg:
+        return f"propellant: {fuel:.4g} kg > {acceptance.propellant_kg:.4g}"
+    return ""
+
+
 def flight_record(summary: Mapping[str, Any]) -> Record:
     """A flat record of one closed-loop flight (FlightResult.summary())."""
     rec: Record = {"converged": bool(summary["converged"]), "reason": str(summary["reason"])}
@@ -55,7 +73,8 @@ class RendezvousFamily:
     def default_runs(self, header: ScenarioHeader) -> int | None:
         return None              # the command states the number of runs
     campaign_doc = ("closed-loop NMPC flights on independent thrust-angle noise streams "
-                    "(run i: its own stream); the arrival condition is the acceptance")
+                    "(run i: its own stream); judged by the scenario's [acceptance] (default: "
+                    "the arrival condition)")
 
     def load(self, header: ScenarioHeader) -> RendezvousScenario:
         return load_scenario(header.path)
@@ -119,13 +138,12 @@ class RendezvousFamily:
             options={"strategy": strategy, "solver": solver, "unperturbed": not perturbed,
                      "third_bodies_in_model": third, "max_replans": max_replans},
             products={}, fly=per_run(fly_one),
-            judge=lambda rec: "" if rec["converged"] else f"not arrived: {rec['reason']}",
+            judge=lambda rec: judge(scenario.acceptance, rec),
             quantities=("t_f_days", "fuel_kg", "final_position_miss_km",
                         "final_velocity_miss_m_s", "failed_solves"),
-            acceptance={"arrival": "inside Mars' sphere of influence within the velocity "
-                                   "tolerance of [convergence]",
-                        "mars_soi_radius_m": scenario.convergence.mars_soi_radius_m,
-                        "velocity_error_m_s": scenario.convergence.velocity_error_m_s},
+            acceptance={"arrival": "the [convergence] test: inside Mars' sphere of influence "
+                                   "within its velocity tolerance",
+                        **dataclasses.asdict(scenario.acceptance)},
             detail=detail, watchdog_per_run_s=600.0, base=scenario)
 
     def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:

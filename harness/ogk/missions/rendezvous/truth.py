@@ -23,7 +23,7 @@ Perturbed: eq. (11) with (f_perturb) = the sum of
     "mean Earth orbit radius"). At 1 AU and 1500 kg: 1.83e-7 m/s^2, radial, outward.
   * Control disturbances, eq. (23): the thrust is T (1 + T_offset / 100) (T_offset = -10 %) and the applied
     angle is alpha_cmd + `angle_offset`, the caller's draw from N(0, sigma_alpha_T) (held for
-    [perturbations] thrust_angle_draw_period_s, 0 = one draw per MPC control subinterval).
+    [dispersions] thrust_angle_draw_period_s, 0 = one draw per MPC control subinterval).
     Mass flow: the engine delivers the offset thrust at its nominal specific impulse (for the solar-electric
     engine, at its nominal T_max(r) / mdot_max(r)), so the mass flow scales with the actual thrust:
     dm/dt = -w (1 + T_offset / 100) mdot_max(r). The paper's accounting (errata: its perturbed fuel equals
@@ -80,8 +80,8 @@ class TruthModel:
                    x0=Model.for_scenario(scenario).x0, earth=earth, mars=mars,
                    srp=srp_si / accel_unit if perturbed else 0.0,
                    thrust_scale=1.0 + pert.thrust_offset_percent / 100.0 if perturbed else 1.0,
-                   angle_sigma_rad=pert.thrust_angle_sigma_rad if perturbed else 0.0,
-                   angle_draw_period=pert.thrust_angle_draw_period_s / u.time_s,
+                   angle_sigma_rad=scenario.dispersions.thrust_angle_sigma_rad if perturbed else 0.0,
+                   angle_draw_period=scenario.dispersions.thrust_angle_draw_period_s / u.time_s,
                    mars_soi=scenario.convergence.mars_soi_radius_m / u.length_m,
                    velocity_tol=scenario.convergence.velocity_error_m_s / u.velocity_m_s)
 
