@@ -170,7 +170,10 @@ def test_transfers_and_paper_results_pass_through(tmp_path: Path) -> None:
     assert set(load_scenario(SCENARIO).transfers) < set(sc.transfers)   # the file's own, and the added one
     assert sc.transfers["l1_to_l2"] == {"kind": "bmp", "thrust_n": 0.024,
                                          "segments": [["burn", 1.0], ["coast", 2.0]]}
-    assert sc.paper_results == {"fig10d_time_h": 5.88, "fig10d_fuel_kg": 0.01628, "note": "Fig. 10d"}
+    # the file's own [paper_results.transfers.*] and [paper_results.table3], and the figures added
+    assert {k: sc.paper_results[k] for k in ("fig10d_time_h", "fig10d_fuel_kg", "note")} == {
+        "fig10d_time_h": 5.88, "fig10d_fuel_kg": 0.01628, "note": "Fig. 10d"}
+    assert sc.paper_results["table3"] == load_scenario(SCENARIO).paper_results["table3"]
     p.write_text(SCENARIO.read_text() + "\n[transfers]\nl1_to_l2 = 3\n")
     with pytest.raises(OgkInputError) as err:
         load_scenario(p)

@@ -6,8 +6,10 @@ of the model (LU = D, TU = T_o / (2 pi), docs/blt.md section 1) are built by `un
 
 Sections: [system] (Table 1), [gravity] (the model and the assumed homogeneous ellipsoid of each body),
 [sun], [spacecraft] (sec. IV), [orbits.NAME] (the libration-point orbits of the study, built by
-`orbits.scenario_orbit`), and two opaque tables that later sessions fill without changing this reader:
-[transfers.NAME] and [paper_results] (returned as the raw TOML tables).
+`orbits.scenario_orbit`), [transfers.NAME], [solver] and [monte_carlo] (returned as the raw TOML tables,
+read key by key by `transfers`), and the common header tables (docs/adding-a-mission.md, "The scenario
+header"): [dispersions] (what the Table 3 campaign draws: levels_percent, sigma_fraction), [acceptance]
+(error_tolerance) and the optional [paper_results] ([paper_results.transfers.NAME], [paper_results.table3]).
 """
 from __future__ import annotations
 
@@ -16,13 +18,13 @@ import math
 from pathlib import Path
 from typing import Any
 
-from ..scenario_file import Section, read_toml
+from ..scenario_file import Section, check_header, read_toml, schema_of
 from .units import Units
 
 REPO_ROOT = Path(__file__).resolve().parents[3]
 DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "moshup.toml"
-SCHEMA = "ogk.binary/1"
 MISSION = "binary-asteroid"
+SCHEMA = schema_of(MISSION)     #: "ogk.binary-asteroid/1" (the header, ogk_host.scenario_file)
 LAWS = ("blt",)
 GRAVITY_MODELS = ("degree2", "point-mass")
 ORBIT_FAMILIES = ("lyapunov", "halo")
@@ -31,6 +33,9 @@ HALO_BRANCHES = ("north", "south")
 #: The homogeneous ellipsoid's mass rho V must agree with Table 1's mass within this fraction: the
 #: ellipsoid is an assumption about the shape, never a second mass (docs/blt-ground.md, "Gravity").
 ELLIPSOID_MASS_TOLERANCE = 0.02
+#: [paper_results.transfers.NAME]: the paper's figures of one transfer; [paper_results.table3]: Table 3.
+PAPER_TRANSFER_KEYS = ("flight_time_s", "burn_time_s", "fuel_g", "iterations")
+PAPER_TABLE3_KEYS = ("levels_percent", "converged_percent")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -143,6 +148,30 @@ class OrbitSpec:
 
 
 @dataclasses.dataclass(frozen=True)
+class Dispersions:
+    """[dispersions]: what the Table 3 campaign draws (docs/blt.md, "Monte Carlo"): at each level p, every
+    BLT parameter and the departure perturbed by p xi, xi ~ N(0, sigma_fraction^2) clipped to [-1, 1]."""
+
+    levels_percent: tuple[float, ...]   #: the perturbation levels p [%]
+    sigma_fraction: float               #: sigma of a draw as a fraction of the level (1/3: the level is 3 sigma)
+
+
+@dataclasses.dataclass(frozen=True)
+class Acceptance:
+    """[acceptance]: a corrector that claims convergence must be confirmed by the DOP853 re-propagation of
+    the same error vector within error_tolerance (normalised |e|_2); a corrector that does not converge is
+    measured (the converged %), not a failure.
+
+    Default when the scenario has no [acceptance]: None, the tolerance the corrector itself was run with:
+    [monte_carlo] tol in `ogk mc`, [solver] tol in `ogk blt` / `ogk run` (`tolerance(corrector_tol)`)."""
+
+    error_tolerance: float | None = None
+
+    def tolerance(self, corrector_tol: float) -> float:
+        return corrector_tol if self.error_tolerance is None else self.error_tolerance
+
+
+@dataclasses.dataclass(frozen=True)
 class BinaryScenario:
     path: Path
     name: str
@@ -154,7 +183,9 @@ class BinaryScenario:
     spacecraft: Spacecraft
     orbits: dict[str, OrbitSpec]
     transfers: dict[str, Any]       #: [transfers.NAME]: raw TOML tables, read by later tools
-    paper_results: dict[str, Any]   #: [paper_results]: raw TOML table, for comparison only
+    paper_results: dict[str, Any] | None   #: [paper_results] (for comparison only); None: none
+    dispersions: Dispersions | None        #: [dispersions] (the Table 3 campaign's); None: none
+    acceptance: Acceptance
     solver: dict[str, Any] = dataclasses.field(default_factory=dict)       #: [solver] (ogk_host.binary.transfers)
     monte_carlo: dict[str, Any] = dataclasses.field(default_factory=dict)  #: [monte_carlo] (idem)
 
@@ -207,8 +238,9 @@ def load_scenario(path: str | Path | None = None) -> BinaryScenario:
     scenario_path = Path(path) if path is not None else DEFAULT_SCENARIO_PATH
     raw = read_toml(scenario_path)
     top = Section(raw, scenario_path, "")
-    top.text("schema", choices=(SCHEMA,))
     top.text("mission", choices=(MISSION,))
+    check_header(raw, scenario_path, SCHEMA)
+    top.text("schema")
     name = top.text("name")
     source = top.text("source", default="")
 
@@ -263,10 +295,11 @@ def load_scenario(path: str | Path | None = None) -> BinaryScenario:
             tr_s.section(key)   # each transfer must be a table; its keys belong to the transfer tools
             transfers[key] = raw["transfers"][key]
         tr_s.finish()
-    paper: dict[str, Any] = {}
-    if top.has("paper_results"):
-        top.section("paper_results")
-        paper = dict(raw["paper_results"])
+    paper = _read_paper(top.raw_table("paper_results"), scenario_path, transfers)
+    dispersions = _read_dispersions(top.section("dispersions")) if top.has("dispersions") else None
+    acc_s = top.section("acceptance", optional=True)
+    acceptance = Acceptance(error_tolerance=acc_s.number("error_tolerance", None, positive=True))
+    acc_s.finish()
     extra: dict[str, dict[str, Any]] = {}
     for table in ("solver", "monte_carlo"):   # read key by key by ogk_host.binary.transfers
         if top.has(table):
@@ -275,5 +308,42 @@ def load_scenario(path: str | Path | None = None) -> BinaryScenario:
     top.finish()
     return BinaryScenario(path=scenario_path, name=name, source=source, law=law, system=system,
                           gravity=gravity, sun=sun, spacecraft=spacecraft, orbits=orbits,
-                          transfers=transfers, paper_results=paper, solver=extra.get("solver", {}),
+                          transfers=transfers, paper_results=paper, dispersions=dispersions,
+                          acceptance=acceptance, solver=extra.get("solver", {}),
                           monte_carlo=extra.get("monte_carlo", {}))
+
+
+def _read_dispersions(sec: Section) -> Dispersions:
+    levels = sec.numbers("levels_percent")
+    if not levels or any(not 0.0 < v <= 100.0 for v in levels):
+        raise sec.error("levels_percent", f"must be a non-empty list of levels in (0, 100] %, got {list(levels)}")
+    out = Dispersions(levels_percent=levels, sigma_fraction=sec.number("sigma_fraction", positive=True))
+    sec.finish()
+    return out
+
+
+def _read_paper(raw: dict[str, Any] | None, path: Path, transfers: dict[str, Any]) -> dict[str, Any] | None:
+    """[paper_results], the paper's figures for comparison only, or None. Checked: each
+    [paper_results.transfers.NAME] names a transfer and holds only PAPER_TRANSFER_KEYS (numbers),
+    [paper_results.table3] levels_percent and converged_percent of one length. Other keys are kept as
+    read (figures a report may quote)."""
+    if raw is None:
+        return None
+    top = Section(raw, path, "paper_results")
+    if top.has("transfers"):
+        tr_s = top.section("transfers")
+        for name in raw["transfers"]:
+            sec = tr_s.section(name)
+            if name not in transfers:
+                raise tr_s.error(name, f"no [transfers.{name}] (has: {', '.join(transfers) or 'none'})")
+            for key in PAPER_TRANSFER_KEYS:
+                if sec.has(key):
+                    sec.number(key, positive=True)
+            sec.finish()
+        tr_s.finish()
+    if top.has("table3"):
+        t3 = top.section("table3")
+        levels = t3.numbers("levels_percent")
+        t3.numbers("converged_percent", length=len(levels))
+        t3.finish()
+    return dict(raw)

@@ -6,7 +6,10 @@ initial guess (ogk_host.binary.guess), convergence by the kernel (ogk_host.binar
     [transfers.NAME] kind = "single-burn"      SBIG (eqs. 23-31) from_orbit -> to_orbit, StoS (eq. 65)
     [transfers.NAME] kind = "ump-backward"     UbMPIG (eqs. 53-60) circle -> to_orbit, burn-coast-burn
     [transfers.NAME] kind = "bmp"              BMPIG (eqs. 36-43) from_orbit -> to_orbit via x = 1 - mu, 3 burns
-    [monte_carlo]                  the convergence campaign of Table 3 (ogk.missions.binary.campaign)
+    [monte_carlo]                  the convergence campaign of Table 3 (ogk.missions.binary.campaign): the
+                                   transfer flown, runs per level, the corrector's tol and max_iter there;
+                                   what it draws is [dispersions] (levels_percent, sigma_fraction), the
+                                   paper's column [paper_results.table3]
 """
 from __future__ import annotations
 
@@ -58,7 +61,9 @@ class TransferSpec:
     circle_radius_m: float | None = None   #: ump-backward: departure circle about the barycentre [m]
     manifold_sign: int = -1           #: ump-backward: branch of the target's stable manifold (-1: exterior)
     insertion_dv_m_s: tuple[float, float] = (0.0128, 0.0383)   #: ump-backward: bounds of d [m/s]
-    paper: dict[str, float] = dataclasses.field(default_factory=dict)   #: the paper's figures of this case
+    #: the paper's figures of this transfer ([paper_results.transfers.NAME]: flight_time_s, burn_time_s,
+    #: fuel_g, iterations); empty when the scenario has none
+    paper: dict[str, float] = dataclasses.field(default_factory=dict)
     step_max_s: float | None = None   #: [s] this transfer's RK4 step bound (default: [solver] step_max_s)
 
 
@@ -70,7 +75,6 @@ class MonteCarloSpec:
     tol: float
     max_iter: int
     sigma_fraction: float             #: sigma of a draw as a fraction of the level (1/3: the level is 3 sigma)
-    paper_converged_percent: tuple[float, ...]
 
 
 def solver_settings(scenario: BinaryScenario) -> SolverSettings:
@@ -97,8 +101,8 @@ def transfer_spec(scenario: BinaryScenario, name: str) -> TransferSpec:
     kind = s.text("kind", choices=KINDS)
     thrust = s.number("thrust_n", positive=True)
     to_orbit = s.text("to_orbit")
-    paper = {k: s.number(k) for k in ("paper_burn_time_s", "paper_fuel_g", "paper_flight_time_s",
-                                      "paper_iterations") if s.has(k)}
+    paper = {k: float(v) for k, v in
+             ((scenario.paper_results or {}).get("transfers", {}).get(name, {})).items()}
     for orbit in [to_orbit] + ([scenario.transfers[name].get("from_orbit")] if kind != "ump-backward" else []):
         if orbit not in scenario.orbits:
             raise s.error("to_orbit" if orbit == to_orbit else "from_orbit",
@@ -125,14 +129,17 @@ def transfer_spec(scenario: BinaryScenario, name: str) -> TransferSpec:
 
 
 def monte_carlo_spec(scenario: BinaryScenario) -> MonteCarloSpec:
+    """[monte_carlo] (the campaign's settings) with [dispersions] (what it draws)."""
     if not scenario.monte_carlo:
         raise OgkInputError("no [monte_carlo] table", path=scenario.path)
+    if scenario.dispersions is None:
+        raise OgkInputError("missing table: the [monte_carlo] campaign draws what [dispersions] states "
+                            "(levels_percent, sigma_fraction)", path=scenario.path, key="dispersions")
     s = Section(scenario.monte_carlo, scenario.path, "monte_carlo")
-    levels = s.numbers("levels_percent")
-    paper = s.numbers("paper_converged_percent", length=len(levels))
-    spec = MonteCarloSpec(transfer=s.text("transfer"), levels_percent=levels, runs=s.integer("runs", lo=1),
-                          tol=s.number("tol", positive=True), max_iter=s.integer("max_iter", lo=1, hi=500),
-                          sigma_fraction=s.number("sigma_fraction", positive=True), paper_converged_percent=paper)
+    spec = MonteCarloSpec(transfer=s.text("transfer"), levels_percent=scenario.dispersions.levels_percent,
+                          runs=s.integer("runs", lo=1), tol=s.number("tol", positive=True),
+                          max_iter=s.integer("max_iter", lo=1, hi=500),
+                          sigma_fraction=scenario.dispersions.sigma_fraction)
     s.finish()
     if spec.transfer not in scenario.transfers:
         raise s.error("transfer", f"no [transfers.{spec.transfer}]")

@@ -26,6 +26,7 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale, write_atomic
+from ogk.sil.report import finite_or_none
 from ogk.sil.progress import Working
 
 
@@ -64,6 +65,7 @@ def blt_document(scenario: BinaryScenario, name: str, corrector: str | None, jac
         d = T.design(scenario, spec, solver, corrector=corrector, jacobian=jacobian, base_thrust_n=base_thrust)
     cpu = time.process_time() - cpu0
     ref = reference_errors(d.model, d.guess.layout, d.transfer)
+    accept_tol = scenario.acceptance.tolerance(solver.tol)   # [acceptance], default the [solver] tol
     fig = T.figures(scenario, d)
     rep = d.report
     u = scenario.units
@@ -73,7 +75,8 @@ def blt_document(scenario: BinaryScenario, name: str, corrector: str | None, jac
         converged=rep.converged, status=rep.status, flags=rep.flag_names(), iterations=rep.iterations,
         propagations=rep.propagations, continuation=d.result.steps,
         initial_error=rep.err_norm0,
-        final_error_dop853=ref.err_norm, dop853_meets_tol=bool(ref.err_norm <= solver.tol and not ref.impact),
+        final_error_dop853=ref.err_norm, acceptance_tol=accept_tol,
+        dop853_meets_tol=bool(ref.err_norm <= accept_tol and not ref.impact),
         **fig, guess_cpu_s=d.guess_s, kernel_solve_wall_s=d.solve_s, total_cpu_s=cpu,
         guess=dict(segments=d.guess.transfer.segments.tolist(), info=d.guess.info),
         solution=dict(t0=d.transfer.t0, x0=d.transfer.x0.tolist(), xf=d.transfer.xf.tolist(),
@@ -86,21 +89,23 @@ def blt_document(scenario: BinaryScenario, name: str, corrector: str | None, jac
 
 
 def report_lines(doc: dict[str, Any]) -> list[str]:
+    """This run's figures, the paper's column beside them only when the scenario has the transfer's
+    [paper_results.transfers.NAME]."""
     p = doc["paper"]
     lines = [f"Xiong & Wang, {doc['scenario']} / {doc['transfer']} ({doc['kind']}, {doc['thrust_n'] * 1e3:g} mN, "
              f"corrector {doc['corrector']}, Jacobian {doc['jacobian']})",
-             f"  {'':34s} {'this run':>16s} {'paper':>12s}"]
+             f"  {'':34s} {'this run':>16s}" + (f" {'paper':>12s}" if p else "")]
 
     def row(label: str, mine: str, theirs: str = "-") -> None:
-        lines.append(f"  {label:34s} {mine:>16s} {theirs:>12s}")
+        lines.append(f"  {label:34s} {mine:>16s}" + (f" {theirs:>12s}" if p else ""))
     row("converged (|e| <= tol)", f"{'yes' if doc['converged'] else 'no: ' + doc['status']}")
-    row("iterations", str(doc["iterations"]), f"{p['paper_iterations']:g}" if "paper_iterations" in p else "-")
+    row("iterations", str(doc["iterations"]), f"{p['iterations']:g}" if "iterations" in p else "-")
     row("final |e| kernel / DOP853", f"{doc['final_error']:.2e} / {doc['final_error_dop853']:.2e}")
     row("burn time [min]", f"{doc['burn_time_s'] / 60:.1f}",
-        f"{p['paper_burn_time_s'] / 60:.1f}" if "paper_burn_time_s" in p else "-")
+        f"{p['burn_time_s'] / 60:.1f}" if "burn_time_s" in p else "-")
     row("flight time [min]", f"{doc['flight_time_s'] / 60:.1f}",
-        f"{p['paper_flight_time_s'] / 60:.1f}" if "paper_flight_time_s" in p else "-")
-    row("fuel [g]", f"{doc['fuel_g']:.2f}", f"{p['paper_fuel_g']:.2f}" if "paper_fuel_g" in p else "-")
+        f"{p['flight_time_s'] / 60:.1f}" if "flight_time_s" in p else "-")
+    row("fuel [g]", f"{doc['fuel_g']:.2f}", f"{p['fuel_g']:.2f}" if "fuel_g" in p else "-")
     row("delta-v [m/s]", f"{doc['delta_v_m_s']:.4f}")
     row("closest approach Alpha / Beta [m]", f"{doc['closest_approach_m'][0]:.0f} / {doc['closest_approach_m'][1]:.0f}")
     row("kernel solve wall [ms]", f"{doc['kernel_solve_wall_s'] * 1e3:.1f}")
@@ -120,7 +125,7 @@ def blt(header: ScenarioHeader, args: argparse.Namespace) -> int:
     doc = blt_document(scenario, args.transfer, corrector, jacobian, args.thrust_n)
     if plots is not None:
         doc["plots"] = [str(p) for p in _transfer_plots(scenario, doc, plots)]
-    write_atomic(out, json.dumps(doc, indent=1))
+    write_atomic(out, json.dumps(finite_or_none(doc), indent=1, allow_nan=False))
     print("\n".join(report_lines(doc)))
     return 0 if doc["converged"] and doc["dop853_meets_tol"] else 1
 
