@@ -161,15 +161,17 @@ class ScenarioHeader:
     name: str
     mission: str         #: family, e.g. "orbit-injection"
     law: str             #: guidance law, e.g. "vtd-nog"
+    schema: str = ""     #: "ogk.<mission>/<version>"
 
 
 def read_header(path: str | Path) -> ScenarioHeader:
     p = Path(path)
     raw = read_toml(p)
+    mission, schema = check_header(raw, p)
     top = Section(raw, p, "")
     guidance = top.section("guidance")
     return ScenarioHeader(path=p, sha256=file_sha256(p), name=top.text("name"),
-                          mission=top.text("mission"), law=guidance.text("law"))
+                          mission=mission, law=guidance.text("law"), schema=schema)
 
 
 class Section:
