@@ -41,7 +41,7 @@ STRICT := -std=c99 -pedantic -Wall -Wextra -Werror -Wconversion \
   -Wdouble-promotion -Wshadow
 KINC := -Ikernel/include
 KSRC := $(sort $(wildcard kernel/src/*.c))
-KHDR := $(wildcard kernel/include/ogk/*.h) $(wildcard kernel/src/*.h)
+KHDR := $(wildcard kernel/include/ogk/*.h) $(wildcard kernel/include/ogk/internal/*.h) $(wildcard kernel/src/*.h)
 SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 B := build
 

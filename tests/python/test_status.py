@@ -17,6 +17,7 @@ EXPECTED = [
     "OGK_E_TABLE_STALE",
     "OGK_E_INFEASIBLE",
     "OGK_E_ITER_LIMIT",
+    "OGK_E_FRAME",
 ]
 
 

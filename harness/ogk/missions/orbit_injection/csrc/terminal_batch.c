@@ -1,5 +1,6 @@
 /* terminal_batch.c -- SIL batch loop for the terminal steering (not flight code; terminal_batch.h). */
 #include "terminal_batch.h"
+#include "ogk/thrust_cmd.h"
 
 #include "nav_batch.h"
 
@@ -39,11 +40,15 @@ ogk_status ogk_sil_terminal_step_batch(ogk_terminal_t *ctx, size_t n_runs, const
             continue;
         }
         (void)ogk_sil_nav_of_run(t, nav, i, &in); /* pointers checked above */
-        law.t_s = t[i];
-        law.alpha_rad = alpha[i];
-        law.beta_rad = beta[i];
-        law.flags = OGK_THRUST_FLAG_ENGINE_ON;
-        law.law_flags = 0u;
+        /* the law's complete command (frame r-t-n, unit vector, throttle 1) from its angles */
+        st = ogk_thrust_cmd_from_angles(t[i], alpha[i], beta[i], 1.0, OGK_THRUST_FLAG_ENGINE_ON,
+                                        0u, &law);
+        if (st != OGK_OK) {   /* not finite: the step is not flown, the status says why */
+            engaged[i] = 0u;
+            status[i] = (int32_t)st;
+            (void)ogk_sil_keep_first_error(&first, st);
+            continue;
+        }
         st = ogk_terminal_step(&ctx[i], &in, t_predicted[i], &law, &out);
         alpha[i] = out.alpha_rad;
         beta[i] = out.beta_rad;
