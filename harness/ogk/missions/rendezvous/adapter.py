@@ -22,6 +22,7 @@ from ogk_host.rendezvous.scenario import RendezvousScenario
 from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale, write_atomic
+from ogk.sil.progress import Working
 
 LAWS = SCENARIO_LAWS
 STRATEGIES = ("snns", "cncn")
@@ -136,8 +137,13 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
               flush=True)
 
     start = time.perf_counter()
-    result = fly(scenario, guidance, args.perturbed, args.seed, strategy_name, args.solver,
-                 max_replans=args.max_replans, progress=trace if args.trace else None)
+    with Working(f"{scenario.name}: {strategy_name} {args.solver} closed loop") as work:
+        def replanned(rec: Any) -> None:
+            work.note(f"replan {rec.index}, t = {rec.t_days:.1f} d, miss {rec.position_miss_km:.3g} km")
+            if args.trace:
+                trace(rec)
+        result = fly(scenario, guidance, args.perturbed, args.seed, strategy_name, args.solver,
+                     max_replans=args.max_replans, progress=replanned)
     wall = time.perf_counter() - start
     doc = result.to_json()
     doc.update({"scenario_path": str(header.path), "scenario_sha256": header.sha256,
@@ -153,3 +159,9 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
         for path in write_plots(scenario, result, Path(plots_dir)):
             print(f"wrote {path}")
     return 0 if result.converged else 1
+
+
+# `ogk run` is the family's one-flight verb; `ogk nmpc` its older spelling. `ogk mc` goes through
+# the campaign engine (family.py).
+add_run_arguments = add_nmpc_arguments
+run = nmpc

@@ -15,7 +15,8 @@ Perturbed flights: the truth model adds Earth and Mars gravity, solar radiation 
 offset (truth.py); the loop adds the thrust-angle noise N(0, sigma_alpha_T): one draw per control subinterval
 when [dispersions] thrust_angle_draw_period_s is 0, otherwise one draw every that many seconds of flight
 (draw k covers [k P, (k + 1) P) from t_0), held constant in between. The draws come from
-numpy.random.default_rng(seed) in flight order, so a seed is one reproducible flight.
+ogk.sil.seeds.run_generator(seed) (PCG64(seed), the stream numpy's default generator of that seed gives) in flight
+order, so a seed is one reproducible flight; a campaign gives each run its own seed (ogk.sil.engine).
 
 Times and states are normalised (TU, LU, VU, MU) inside the loop; the result also carries SI figures.
 """
@@ -28,8 +29,11 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+
 from ogk_host.rendezvous.dynamics import DAY_S, Engine, Model
 from ogk_host.rendezvous.scenario import RendezvousScenario
+
+from ogk.sil.seeds import run_generator
 
 from .guidance_base import Guidance, ReplanInfo
 from .truth import TruthModel
@@ -160,7 +164,7 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
     sigma = scenario.dispersions.thrust_angle_sigma_rad if perturbed else 0.0
     period_s = scenario.dispersions.thrust_angle_draw_period_s
     period = period_s / units.time_s
-    rng = np.random.default_rng(seed)
+    rng = run_generator(seed)   # Generator(PCG64(seed)): the engine's stream of one run
     draws: dict[int, float] = {}
 
     def offset_for(k: int) -> float:
