@@ -18,6 +18,8 @@ from pathlib import Path
 import numpy as np
 from ogk_host.orbit_injection.scenario import DEFAULT_SCENARIO_PATH, load_scenario
 
+from ogk.sil.seeds import run_generator
+
 from .dispersions import DispersionSwitches, RunDraws
 from .guidance import GuidanceSetup
 from .nog_guidance import KernelNogGuidance
@@ -38,7 +40,7 @@ def main(argv: list[str]) -> int:
     draws = RunDraws(np.arange(n, dtype=np.int64), np.zeros(n, dtype=np.uint64),
                      np.array(list(RUNS.values()), dtype=np.float64), np.zeros((n, 3)),
                      np.zeros((n, 3)), np.zeros((n, 10)))
-    gens = [np.random.default_rng(i) for i in range(n)]
+    gens = [run_generator(i) for i in range(n)]   # PCG64(i): the streams the reference always had
     guidance = KernelNogGuidance(GuidanceSetup(scn, ref, draws.run_id), bundle)
     res = simulate(scn, ref, draws, gens, DispersionSwitches.none(), guidance,
                    SilSettings(truth="point-mass", end_game="paper"))  # as the flight app flies
