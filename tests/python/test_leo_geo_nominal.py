@@ -23,20 +23,20 @@ from scipy.interpolate import CubicSpline
 from ogk_host.orbit_injection import dynamics as dyn
 from ogk_host.orbit_injection.gains import compute_gain_table
 from ogk_host.orbit_injection.nominal import Nominal, solve_fixed_ignition, solve_nominal
-from ogk_host.orbit_injection.scenario import LeoGeoScenario, load_scenario
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario, load_scenario
 
 
 @pytest.fixture(scope="module")
-def scenario() -> LeoGeoScenario:
+def scenario() -> OrbitInjectionScenario:
     return load_scenario()
 
 
 @pytest.fixture(scope="module")
-def nominal(scenario: LeoGeoScenario) -> Nominal:
+def nominal(scenario: OrbitInjectionScenario) -> Nominal:
     return solve_nominal(scenario)
 
 
-def test_scenario_matches_erratum_and_gain_rule(scenario: LeoGeoScenario) -> None:
+def test_scenario_matches_erratum_and_gain_rule(scenario: OrbitInjectionScenario) -> None:
     """a and e are the LEO(400 km)-GEO Hohmann ellipse; rederived CPD gains follow sec. 5.3."""
     orbit = scenario.pre_ignition
     r_leo = orbit.earth_radius_m + orbit.leo_altitude_m
@@ -65,7 +65,7 @@ def test_scenario_matches_erratum_and_gain_rule(scenario: LeoGeoScenario) -> Non
 
 
 def test_min_time_and_ignition_anomaly_match_paper(nominal: Nominal,
-                                                   scenario: LeoGeoScenario) -> None:
+                                                   scenario: OrbitInjectionScenario) -> None:
     """t_f* within 0.2 s of both published values (105.9 s text, 105.8 s Table 6); f0* within 0.1 deg."""
     assert abs(nominal.t_f_s - scenario.paper.min_time_s) < 0.2
     assert abs(nominal.t_f_s - scenario.paper.table6_final_errors[5]) < 0.2
@@ -84,7 +84,7 @@ def test_necessary_condition_residuals_are_tiny(nominal: Nominal) -> None:
 
 
 def test_independent_cartesian_reintegration_hits_geo(nominal: Nominal,
-                                                      scenario: LeoGeoScenario) -> None:
+                                                      scenario: OrbitInjectionScenario) -> None:
     """Inertial Cartesian SI re-integration with the nominal steering reaches R_f, v_r = 0, v_c."""
     mu = scenario.mu_m3_s2
     p = scenario.pre_ignition.semi_major_axis_m * (1.0 - scenario.pre_ignition.eccentricity**2)
@@ -147,7 +147,7 @@ def test_second_order_sufficient_conditions(nominal: Nominal) -> None:
     assert np.all(np.isfinite(table.gain))
 
 
-def test_derived_settings_reproduce_the_scenario(scenario: LeoGeoScenario) -> None:
+def test_derived_settings_reproduce_the_scenario(scenario: OrbitInjectionScenario) -> None:
     """derive.py's rules give today's scenario values: the sec. 5.3 gains equal [cpd.rederived]
     (to the 1-ulp rounding of the printed decimals), the freeze rule Delta t_S / 4 = 0.5 s, and the
     braking accelerations of the sec. 5.3 limits worked by hand."""
@@ -168,7 +168,7 @@ def test_derived_settings_reproduce_the_scenario(scenario: LeoGeoScenario) -> No
                                                               0.09278294104700377)), rel=1e-15)
 
 
-def test_settings_provenance(scenario: LeoGeoScenario) -> None:
+def test_settings_provenance(scenario: OrbitInjectionScenario) -> None:
     """Scenario values win; a silent scenario gets the derived ones, marked as such."""
     import dataclasses
 

@@ -29,7 +29,7 @@ from scipy.integrate import solve_ivp
 from ogk_host.orbit_injection import dynamics as dyn
 from ogk_host.orbit_injection.nominal import (NominalError, Nominal, solve_fixed_ignition,
                                               solve_nominal)
-from ogk_host.orbit_injection.scenario import LeoGeoScenario, load_scenario
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario, load_scenario
 
 R_P_M = 6778.137e3          #: perigee (LEO) radius of every envelope point [m]
 CORNERS = [(ratio, n0, c) for ratio in (1.5, 8.0) for n0 in (0.5, 1.5) for c in (2500.0, 4500.0)]
@@ -40,12 +40,12 @@ INTERIOR = [(3.0, 1.0, 3500.0),
 
 
 @pytest.fixture(scope="module")
-def base() -> LeoGeoScenario:
+def base() -> OrbitInjectionScenario:
     return load_scenario()
 
 
-def envelope_scenario(base: LeoGeoScenario, ratio: float, n0_g0: float,
-                      c_m_s: float) -> LeoGeoScenario:
+def envelope_scenario(base: OrbitInjectionScenario, ratio: float, n0_g0: float,
+                      c_m_s: float) -> OrbitInjectionScenario:
     """The paper's scenario with a transfer ellipse r_p -> R_f = ratio r_p and another n0, c."""
     r_f = ratio * R_P_M
     pre = dataclasses.replace(base.pre_ignition, semi_major_axis_m=0.5 * (R_P_M + r_f),
@@ -54,7 +54,7 @@ def envelope_scenario(base: LeoGeoScenario, ratio: float, n0_g0: float,
     return dataclasses.replace(base, target_radius_m=r_f, pre_ignition=pre, thrust=thrust)
 
 
-def cartesian_check(nom: Nominal, scn: LeoGeoScenario) -> dict[str, float]:
+def cartesian_check(nom: Nominal, scn: OrbitInjectionScenario) -> dict[str, float]:
     """Independent re-integration (module docstring); returns the residuals in SI."""
     mu = scn.mu_m3_s2
     p = scn.pre_ignition.semi_major_axis_m * (1.0 - scn.pre_ignition.eccentricity**2)
@@ -107,7 +107,7 @@ def cartesian_check(nom: Nominal, scn: LeoGeoScenario) -> dict[str, float]:
             "end_transversality": end_trans, "start_transversality_rel": start_trans / scale}
 
 
-def check_point(base: LeoGeoScenario, ratio: float, n0: float, c: float,
+def check_point(base: OrbitInjectionScenario, ratio: float, n0: float, c: float,
                 delta_deg: float = 0.05) -> dict[str, float]:
     scn = envelope_scenario(base, ratio, n0, c)
     t0 = time.perf_counter()
@@ -136,12 +136,12 @@ def check_point(base: LeoGeoScenario, ratio: float, n0: float, c: float,
 
 
 @pytest.mark.parametrize("ratio,n0,c", CORNERS + INTERIOR)
-def test_envelope_point_is_a_verified_minimum(base: LeoGeoScenario, ratio: float, n0: float,
+def test_envelope_point_is_a_verified_minimum(base: OrbitInjectionScenario, ratio: float, n0: float,
                                              c: float) -> None:
     check_point(base, ratio, n0, c)
 
 
-def test_paper_case_unchanged(base: LeoGeoScenario) -> None:
+def test_paper_case_unchanged(base: OrbitInjectionScenario) -> None:
     """The paper's scenario gives today's optimum (docs/vtd-nog.md sec. 2) from the continuation
     seed directly (zero continuation steps beyond the seed's Newton polish)."""
     nom = solve_nominal(base)
@@ -151,7 +151,7 @@ def test_paper_case_unchanged(base: LeoGeoScenario) -> None:
 
 
 @pytest.mark.slow
-def test_continuation_and_scan_agree_on_the_paper(base: LeoGeoScenario) -> None:
+def test_continuation_and_scan_agree_on_the_paper(base: OrbitInjectionScenario) -> None:
     cont = solve_nominal(base, method="continuation")
     scan = solve_nominal(base, method="scan")
     assert cont.t_f_s == pytest.approx(scan.t_f_s, rel=1e-10)
@@ -162,13 +162,13 @@ def test_continuation_and_scan_agree_on_the_paper(base: LeoGeoScenario) -> None:
 @pytest.mark.parametrize("ratio", (1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0))
 @pytest.mark.parametrize("n0", (0.5, 1.0, 1.5))
 @pytest.mark.parametrize("c", (2500.0, 3500.0, 4500.0))
-def test_exhaustive_envelope(base: LeoGeoScenario, ratio: float, n0: float, c: float) -> None:
+def test_exhaustive_envelope(base: OrbitInjectionScenario, ratio: float, n0: float, c: float) -> None:
     check_point(base, ratio, n0, c)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("r_f_km", (30000.0, 41000.0))
-def test_paper_ellipse_with_another_target(base: LeoGeoScenario, r_f_km: float) -> None:
+def test_paper_ellipse_with_another_target(base: OrbitInjectionScenario, r_f_km: float) -> None:
     """The user's literal edit (issue 7): the paper's ellipse (apogee 42 163 km) kept, the target
     moved inside it. Outside the documented envelope (the ellipse crosses the target orbit; the
     paper's point is a bifurcation of this family), solved by the scan around the crossings:
@@ -183,7 +183,7 @@ def test_paper_ellipse_with_another_target(base: LeoGeoScenario, r_f_km: float) 
 
 
 @pytest.mark.slow
-def test_infeasible_burn_fails_with_one_line(base: LeoGeoScenario) -> None:
+def test_infeasible_burn_fails_with_one_line(base: OrbitInjectionScenario) -> None:
     """c = 400 m/s cannot give the 1.47 km/s of the burn before burnout (400 ln 20 = 1.2 km/s at
     95 % of the burnout time; 500 m/s still does, in 43.4 s): one line naming the keys."""
     scn = dataclasses.replace(base, thrust=dataclasses.replace(base.thrust,

@@ -30,7 +30,7 @@ import math
 from typing import Any
 
 from .. import cpd_design
-from .scenario import CpdGains, LeoGeoScenario
+from .scenario import CpdGains, OrbitInjectionScenario
 
 SCENARIO = "scenario"
 DERIVED = "derived"
@@ -66,7 +66,7 @@ class EffectiveSettings:
         }
 
 
-def vehicle(scn: LeoGeoScenario) -> cpd_design.VehicleModel:
+def vehicle(scn: OrbitInjectionScenario) -> cpd_design.VehicleModel:
     """The scenario's vehicle for the CPD design: its smallest thrust, eq. (53)'s arm and inertias."""
     mp = scn.mass_properties
     return cpd_design.VehicleModel(
@@ -77,7 +77,7 @@ def vehicle(scn: LeoGeoScenario) -> cpd_design.VehicleModel:
         burn_time_s=0.0)   # only G at ignition is used
 
 
-def design_rule_gains(scn: LeoGeoScenario) -> CpdGains:
+def design_rule_gains(scn: OrbitInjectionScenario) -> CpdGains:
     """Sec. 5.3 design rule (cpd_design.design_axis) with the scenario's omega_n, zeta and its G at
     ignition; one pitch/yaw set on the smaller of G_y, G_z."""
     w, z = scn.cpd.natural_frequency_rad_s, scn.cpd.damping_ratio
@@ -90,12 +90,12 @@ def design_rule_gains(scn: LeoGeoScenario) -> CpdGains:
                     kp_pitch_yaw=pitch_yaw.k_p, kd_pitch_yaw_s=pitch_yaw.k_d)
 
 
-def freeze_rule_s(scn: LeoGeoScenario) -> float:
+def freeze_rule_s(scn: OrbitInjectionScenario) -> float:
     """Derived end-game freeze time: Delta t_S / 4 (0.5 s for the paper's 2 s)."""
     return FREEZE_FRACTION_OF_SAMPLE * scn.sample_interval_s
 
 
-def braking_accels(scn: LeoGeoScenario) -> tuple[float, float, float]:
+def braking_accels(scn: OrbitInjectionScenario) -> tuple[float, float, float]:
     """ogk_cpd_config_t.approach_accel_{x,y,z} [rad/s^2] (see the module docstring)."""
     cpd, mp, thrust_n = scn.cpd, scn.mass_properties, scn.thrust.min_thrust_n
     return (cpd.braking_margin * cpd.roll_torque_command_max_n_m / mp.inertia_x_kg_m2,
@@ -105,7 +105,7 @@ def braking_accels(scn: LeoGeoScenario) -> tuple[float, float, float]:
             * math.sin(cpd.deflection_z_command_max_rad))
 
 
-def effective_settings(scn: LeoGeoScenario) -> EffectiveSettings:
+def effective_settings(scn: OrbitInjectionScenario) -> EffectiveSettings:
     """The flown settings of `scn`, scenario values first, derived ones where the file is silent."""
     stored = getattr(scn.cpd, "rederived", None)
     if stored is not None:

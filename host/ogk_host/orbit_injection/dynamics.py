@@ -22,7 +22,7 @@ import dataclasses
 import numpy as np
 from numpy.typing import NDArray
 
-from .scenario import LeoGeoScenario, TabulatedThrust
+from .scenario import OrbitInjectionScenario, TabulatedThrust
 from .units import CanonicalUnits
 
 FloatArray = NDArray[np.float64]
@@ -75,7 +75,7 @@ class Model:
     table: TabulatedAccel | None = None   #: tabulated a(t); None: the sec. 6 formula
 
     @classmethod
-    def for_scenario(cls, scn: LeoGeoScenario, units: CanonicalUnits) -> "Model":
+    def for_scenario(cls, scn: OrbitInjectionScenario, units: CanonicalUnits) -> "Model":
         """Converts the scenario's SI thrust model to canonical units."""
         table = None
         if isinstance(scn.thrust, TabulatedThrust):

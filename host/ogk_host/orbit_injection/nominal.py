@@ -45,7 +45,7 @@ from scipy.optimize import least_squares
 from ogk_bindings.errors import OgkInputError
 from . import dynamics as dyn
 from .propagation import N_Z, integrate_extremal, rk4_extremal_batch
-from .scenario import LeoGeoScenario, load_scenario
+from .scenario import OrbitInjectionScenario, load_scenario
 from .units import CanonicalUnits
 
 FloatArray = NDArray[np.float64]
@@ -59,7 +59,7 @@ RESIDUAL_NAMES = ("r(1) - R_f", "v_r(1)", "v_t(1) - v_c", "lambda_t(1)",
 class MinTimeProblem:
     """Canonical-unit data of the minimum-time problem."""
 
-    scenario: LeoGeoScenario
+    scenario: OrbitInjectionScenario
     units: CanonicalUnits
     model: dyn.Model
     semilatus_rectum: float       #: p of the pre-ignition ellipse [DU] (case B; NaN for case A)
@@ -69,7 +69,7 @@ class MinTimeProblem:
     fixed_state: tuple[float, ...] | None = None
 
     @classmethod
-    def from_scenario(cls, scn: LeoGeoScenario) -> "MinTimeProblem":
+    def from_scenario(cls, scn: OrbitInjectionScenario) -> "MinTimeProblem":
         units = CanonicalUnits.for_scenario(scn)
         model = dyn.Model.for_scenario(scn, units)
         if getattr(scn, "pre_ignition", None) is None:
@@ -441,7 +441,7 @@ def continue_from_paper(problem: MinTimeProblem, min_step: float = 1.0 / 64.0,
     return q, accepted
 
 
-def solve_nominal(scn: LeoGeoScenario | None = None, n_starts: int = 8,
+def solve_nominal(scn: OrbitInjectionScenario | None = None, n_starts: int = 8,
                   method: str = "auto") -> Nominal:
     """Minimum-t_f extremal: continuation from the paper's solution ("continuation"), the coarse
     scan + Levenberg-Marquardt + damped Newton ("scan"), or the first, falling back on the

@@ -427,7 +427,7 @@ class EndGame:
 
 
 @dataclasses.dataclass(frozen=True)
-class LeoGeoScenario:
+class OrbitInjectionScenario:
     """Everything section 6 of the paper specifies for the LEO-to-GEO injection burn (SI units)."""
 
     name: str
@@ -468,7 +468,7 @@ class LeoGeoScenario:
         return math.sqrt(self.mu_m3_s2 / self.target_radius_m)
 
 
-def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
+def load_scenario(path: str | Path | None = None) -> OrbitInjectionScenario:
     """Reads scenarios/leo_geo.toml (or `path`) and checks it: every missing key, wrong type,
     unknown key or physically impossible value is an `OgkInputError` naming file and key."""
     scenario_path = Path(path) if path is not None else DEFAULT_SCENARIO_PATH
@@ -598,7 +598,7 @@ def load_scenario(path: str | Path | None = None) -> LeoGeoScenario:
     paper = _read_paper(top.section("paper_results")) if top.has("paper_results") else None
     top.finish()
 
-    scenario = LeoGeoScenario(
+    scenario = OrbitInjectionScenario(
         name=name, source=source, mu_m3_s2=mu, thrust=thrust, pre_ignition=pre,
         target_radius_m=target_radius, mass_properties=mass_properties, actuators=actuators,
         sample_interval_s=sample_interval, end_game=end_game, cpd=cpd,
@@ -688,7 +688,7 @@ def _read_tabulated_thrust(sec: Section) -> TabulatedThrust:
     return TabulatedThrust(time_s=time_s, thrust_n=thrust_n, mass_kg=mass_kg)
 
 
-def _check(scn: LeoGeoScenario, top: Section) -> None:
+def _check(scn: OrbitInjectionScenario, top: Section) -> None:
     """Cross-key physics: the propellant must last well beyond any plausible burn."""
     burnout_s = scn.thrust.burnout_s
     if burnout_s <= 4.0 * scn.sample_interval_s:

@@ -15,7 +15,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from .scenario import LeoGeoScenario
+from .scenario import OrbitInjectionScenario
 
 FloatArray = NDArray[np.float64]
 
@@ -28,7 +28,7 @@ class CanonicalUnits:
     time_s: float     #: TU [s]
 
     @classmethod
-    def for_scenario(cls, scn: LeoGeoScenario) -> "CanonicalUnits":
+    def for_scenario(cls, scn: OrbitInjectionScenario) -> "CanonicalUnits":
         """DU = R_f, TU = sqrt(R_f^3 / mu)."""
         du = scn.target_radius_m
         return cls(length_m=du, time_s=math.sqrt(du**3 / scn.mu_m3_s2))

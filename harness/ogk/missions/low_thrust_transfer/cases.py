@@ -29,7 +29,7 @@ TABLE_OF_KIND: dict[CaseKind, str] = {"initial": "table3", "terminal": "table5",
 
 
 @dataclasses.dataclass(frozen=True)
-class ApophisSetup:
+class MpspSetup:
     """The kernel's guidance context on the nominal mission, and what it was built from."""
 
     scenario: "Scenario"
@@ -58,7 +58,7 @@ def default_scenario_path() -> Path:
 
 
 def build_setup(basis: str | None = None, order: int | None = None,
-                scenario_path: str | Path | None = None, max_outer: int = 60) -> ApophisSetup:
+                scenario_path: str | Path | None = None, max_outer: int = 60) -> MpspSetup:
     """Kernel MPSP on the stored ground nominal with the paper's settings (section 4.1).
 
     basis/order default to the scenario's `[mpsp] fourier_basis` / `fourier_order`."""
@@ -88,7 +88,7 @@ def build_setup(basis: str | None = None, order: int | None = None,
                         delta_tau_min=m.delta_tau_min, n_seg_tol=m.n_seg_tol_initial,
                         n_seg_tol_step=m.n_seg_tol_increment, r_lambda=m.r_lambda,
                         max_newton=100, max_outer=max_outer))
-    return ApophisSetup(sc, sol, prob, g, basis, order)
+    return MpspSetup(sc, sol, prob, g, basis, order)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -105,7 +105,7 @@ class Case:
     target: F64 | None           #: [r_f, v_f] (6) or None (nominal target)
 
 
-def initial_case(setup: ApophisSetup, kappa: float) -> Case:
+def initial_case(setup: MpspSetup, kappa: float) -> Case:
     """Table 3: r0 + kappa dr0, v0 + kappa dv0 (the scenario's 0.1-scaled vectors)."""
     from ogk_host.low_thrust_transfer.scenario import initial_state_case
     p = initial_state_case(setup.scenario, float(kappa))
@@ -116,7 +116,7 @@ def initial_case(setup: ApophisSetup, kappa: float) -> Case:
                 1.0, None)
 
 
-def terminal_case(setup: ApophisSetup, delta_rf: tuple[float, float, float] | F64,
+def terminal_case(setup: MpspSetup, delta_rf: tuple[float, float, float] | F64,
                   label: str | None = None) -> Case:
     """Table 4/5: r_f + delta r_f [LU]."""
     from ogk_host.low_thrust_transfer.scenario import Perturbation
@@ -131,7 +131,7 @@ def terminal_case(setup: ApophisSetup, delta_rf: tuple[float, float, float] | F6
                 vec, p, setup.problem.x0.copy(), 1.0, target)
 
 
-def thrust_case(setup: ApophisSetup, eta_percent: float) -> Case:
+def thrust_case(setup: MpspSetup, eta_percent: float) -> Case:
     """Table 6: T_max (1 + eta) over the whole flight."""
     from ogk_host.low_thrust_transfer.scenario import thrust_case as ground_thrust_case
     p = ground_thrust_case(setup.scenario, float(eta_percent))
@@ -139,7 +139,7 @@ def thrust_case(setup: ApophisSetup, eta_percent: float) -> Case:
                 float(eta_percent), p, setup.problem.x0.copy(), 1.0 + p.thrust_fraction, None)
 
 
-def make_case(setup: ApophisSetup, kind: CaseKind, param: str) -> Case:
+def make_case(setup: MpspSetup, kind: CaseKind, param: str) -> Case:
     """A case from the command line's --case/--param (P: kappa, 'dx,dy,dz' in LU, eta in %)."""
     if kind == "initial":
         return initial_case(setup, float(param))
@@ -153,7 +153,7 @@ def make_case(setup: ApophisSetup, kind: CaseKind, param: str) -> Case:
     raise ValueError(f"unknown case kind {kind!r}; known: {KINDS}")
 
 
-def paper_cases(setup: ApophisSetup) -> list[Case]:
+def paper_cases(setup: MpspSetup) -> list[Case]:
     """The cases of the scenario's [dispersions] as listed: for the paper's scenario the 23 cases of
     Tables 3, 5 (vertices of Table 4) and 6, in the tables' order."""
     pert = setup.scenario.dispersions
@@ -164,7 +164,7 @@ def paper_cases(setup: ApophisSetup) -> list[Case]:
     return cases
 
 
-def run_case(setup: ApophisSetup, case: Case) -> tuple[MpspResult, float]:
+def run_case(setup: MpspSetup, case: Case) -> tuple[MpspResult, float]:
     """The kernel's solve on one case and its CPU time (time.process_time around the solve only)."""
     start = time.process_time()
     res = setup.guidance.solve(case.x0, case.thrust_scale, case.target)

@@ -34,7 +34,7 @@ from ogk.sil.engine import Flown
 from ogk.sil.family import CampaignPlan, Record, per_run
 from ogk.sil.seeds import run_generator
 
-from .cases import KINDS, ApophisSetup, Case, build_setup, initial_case, paper_cases, run_case
+from .cases import KINDS, MpspSetup, Case, build_setup, initial_case, paper_cases, run_case
 from .cases import terminal_case, thrust_case
 from .report import CaseRecord, header, make_record, paper_rows, table_line
 
@@ -42,7 +42,7 @@ RESULTS = ("converged", "newton_iterations", "outer_steps", "dr_f_km", "dv_f_kmp
            "final_mass_kg", "fuel_increase_pct", "thrust_arcs")
 
 
-def dispersed_case(setup: ApophisSetup, run_id: int, rng: np.random.Generator) -> Case:
+def dispersed_case(setup: MpspSetup, run_id: int, rng: np.random.Generator) -> Case:
     """Run `run_id`'s problem: kind run_id mod 3, its size drawn within the scenario's range."""
     pert = setup.scenario.dispersions
     kind = KINDS[run_id % len(KINDS)]
@@ -145,7 +145,7 @@ class LowThrustFamily:
                         "dv_f_kmps": acc.velocity_error_km_s},
             watchdog_per_run_s=120.0, base=(setup, papers))
 
-    def _paper(self, setup: ApophisSetup, papers: list[Case],
+    def _paper(self, setup: MpspSetup, papers: list[Case],
                records: Sequence[Record]) -> dict[str, Any] | None:
         rows = paper_rows(setup, papers)
         if all(r is None for r in rows):

@@ -13,14 +13,14 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk.missions.low_thrust_transfer.cases import KINDS, ApophisSetup, Case
+from ogk.missions.low_thrust_transfer.cases import KINDS, MpspSetup, Case
 from ogk.missions.low_thrust_transfer.reference import Reference
 from ogk_bindings.mpsp import MpspResult
 
 F64 = NDArray[np.float64]
 
 
-def _days(setup: ApophisSetup) -> float:
+def _days(setup: MpspSetup) -> float:
     return float(setup.scenario.units.time_s) / 86400.0
 
 
@@ -31,7 +31,7 @@ def _arc_steps(arcs: list[tuple[float, float, float]]) -> tuple[F64, F64]:
     return np.asarray(t), np.asarray(u)
 
 
-def mpsp_throttle(setup: ApophisSetup, case: Case, res: MpspResult) -> tuple[F64, F64]:
+def mpsp_throttle(setup: MpspSetup, case: Case, res: MpspResult) -> tuple[F64, F64]:
     """(t [TU], u) of the MPSP solution flown by the kernel."""
     traj = setup.guidance.propagate(res.weights, res.lambda_m0, case.x0, case.thrust_scale)
     return traj.t, traj.mode.astype(np.float64)
@@ -44,7 +44,7 @@ def thrust_angles_deg(lam_v: F64) -> tuple[F64, F64]:
     return alpha, beta
 
 
-def write_plots(setup: ApophisSetup, runs: list[tuple[Case, MpspResult, Reference | None]],
+def write_plots(setup: MpspSetup, runs: list[tuple[Case, MpspResult, Reference | None]],
                 out_dir: Path) -> list[Path]:
     import matplotlib
     matplotlib.use("Agg")

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk.missions.low_thrust_transfer.cases import ApophisSetup, Case
+from ogk.missions.low_thrust_transfer.cases import MpspSetup, Case
 from ogk.sil.runner import CallTimeout, call_with_timeout
 
 F64 = NDArray[np.float64]
@@ -52,12 +52,12 @@ def _nominal_path() -> Path:
     return Path(NOMINAL_PATH)
 
 
-def cache_key(setup: ApophisSetup) -> dict[str, str]:
+def cache_key(setup: MpspSetup) -> dict[str, str]:
     return {"scenario_sha256": sha256_of(setup.scenario.path),
             "nominal_sha256": sha256_of(_nominal_path())}
 
 
-def verify(setup: ApophisSetup, case: Case, lam0: F64, solve_s: float, method: str,
+def verify(setup: MpspSetup, case: Case, lam0: F64, solve_s: float, method: str,
            from_cache: bool) -> Reference:
     """Re-integrate lambda_0 of the perturbed problem: arcs, final mass, terminal errors."""
     from ogk_host.low_thrust_transfer.indirect import propagate, shooting_residual
@@ -75,7 +75,7 @@ def verify(setup: ApophisSetup, case: Case, lam0: F64, solve_s: float, method: s
                      float(abs(prop.z_final[13])), float(solve_s), method, from_cache)
 
 
-def is_converged(setup: ApophisSetup, ref: Reference) -> bool:
+def is_converged(setup: MpspSetup, ref: Reference) -> bool:
     """Re-integrated terminal errors far inside the MPSP tolerances (a true optimum, not a guess)."""
     m = setup.scenario.mpsp
     return (ref.position_error_km <= 1e-3 * m.tol_position_km
@@ -87,14 +87,14 @@ class ReferenceTimeout(RuntimeError):
     """The ground re-solve did not finish within the allowed wall time."""
 
 
-def _solve(setup: ApophisSetup, case: Case) -> tuple[list[float], float, str]:
+def _solve(setup: MpspSetup, case: Case) -> tuple[list[float], float, str]:
     from ogk_host.low_thrust_transfer.indirect import solve_fuel_optimal
     start = time.perf_counter()
     sol = solve_fuel_optimal(setup.scenario, case.perturbation, warm_start=setup.nominal)
     return [float(x) for x in sol.lam0], time.perf_counter() - start, str(sol.method)
 
 
-def solve_reference(setup: ApophisSetup, case: Case, timeout_s: float | None = None) -> Reference:
+def solve_reference(setup: MpspSetup, case: Case, timeout_s: float | None = None) -> Reference:
     """Fresh ground re-solve (continuation from the nominal), verified. With timeout_s, the solve runs
     in a forked process that is killed after timeout_s of wall time (ReferenceTimeout;
     ogk.sil.runner.call_with_timeout)."""
@@ -124,7 +124,7 @@ def committed_lambda0(case: Case) -> F64 | None:
     return None
 
 
-def load_or_solve(setup: ApophisSetup, case: Case, cache_dir: Path = DEFAULT_CACHE_DIR,
+def load_or_solve(setup: MpspSetup, case: Case, cache_dir: Path = DEFAULT_CACHE_DIR,
                   timeout_s: float | None = None) -> Reference:
     """The cached reference of `case` if present, current and verified; else a fresh solve (stored)."""
     path = Path(cache_dir) / f"{case.key}.json"

@@ -9,7 +9,7 @@ import dataclasses
 import math
 from typing import Any
 
-from ogk.missions.low_thrust_transfer.cases import TABLE_OF_KIND, ApophisSetup, Case, fuel_increase_percent
+from ogk.missions.low_thrust_transfer.cases import TABLE_OF_KIND, MpspSetup, Case, fuel_increase_percent
 from ogk.missions.low_thrust_transfer.reference import Reference
 from ogk_bindings.mpsp import MpspResult
 
@@ -37,7 +37,7 @@ class CaseRecord:
         return dataclasses.asdict(self)
 
 
-def make_record(setup: ApophisSetup, res: MpspResult, cpu_s: float,
+def make_record(setup: MpspSetup, res: MpspResult, cpu_s: float,
                 reference: Reference | None) -> CaseRecord:
     m_f = res.m_f * setup.mu_kg
     fi = None
@@ -62,7 +62,7 @@ class PaperRow:
     tpbvp_time_s: float
 
 
-def paper_rows(setup: ApophisSetup, cases: list[Case]) -> list[PaperRow | None]:
+def paper_rows(setup: MpspSetup, cases: list[Case]) -> list[PaperRow | None]:
     """The paper's row of each case of `paper_cases` (None for a case not in the tables, every one
     None when the scenario has no [paper_results])."""
     ref = setup.scenario.paper_results or {}

@@ -13,7 +13,7 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_host.orbit_injection.scenario import LeoGeoScenario
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 F64 = NDArray[np.float64]
 
@@ -39,7 +39,7 @@ class AttitudeControl(Protocol):
 POINTING_MODES = {"body": 0, "euler": 1}
 
 
-def cpd_config(scn: LeoGeoScenario, gains: str | None = None, pointing: str = "body",
+def cpd_config(scn: OrbitInjectionScenario, gains: str | None = None, pointing: str = "body",
                control_period_s: float = 0.0) -> dict:
     """Field values of ogk_cpd_config_t from the scenario (gain set `gains` in {"printed",
     "rederived"}, default the scenario's `flown` choice). The re-derived gains and the braking
@@ -75,7 +75,7 @@ class CpdBatchControl:
 
     name = "cpd"
 
-    def __init__(self, scn: LeoGeoScenario, n_runs: int, gains: str | None = None,
+    def __init__(self, scn: OrbitInjectionScenario, n_runs: int, gains: str | None = None,
                  pointing: str = "body", control_period_s: float = 0.02) -> None:
         from ogk_bindings._ffi import ffi, lib
         from ogk_bindings.cpd import CpdConfig

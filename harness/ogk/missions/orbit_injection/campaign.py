@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ogk_bindings.errors import TableError
-from ogk_host.orbit_injection.scenario import LeoGeoScenario
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
 from ogk.sil.criteria import (apply_tolerances, failure_list, failure_reasons, statistics,
@@ -54,7 +54,7 @@ JSON_SCHEMA = "ogk.leo_geo.mc/1"
 class CampaignResult:
     """All runs of a campaign (run-major arrays, in run-id order)."""
 
-    scenario: LeoGeoScenario
+    scenario: OrbitInjectionScenario
     seed: int
     truth: str
     guidance: str
@@ -183,7 +183,7 @@ class CampaignResult:
         write_atomic(path, json.dumps(self.to_json_dict(per_run), indent=1) + "\n")
 
 
-def eq47_bounds(scn: LeoGeoScenario) -> dict[str, float]:
+def eq47_bounds(scn: OrbitInjectionScenario) -> dict[str, float]:
     """Eq. (47): |dM_x/dt| <= 2 Mbar_xc / tau_x, |dDelta/dt| <= 2 Deltabar_c / tau (RATE_KEYS units)."""
     cpd, act = scn.cpd, scn.actuators
     return {"Mx_dot_Nmps": 2.0 * cpd.roll_torque_command_max_n_m / act.time_constant_x_s,
@@ -193,7 +193,7 @@ def eq47_bounds(scn: LeoGeoScenario) -> dict[str, float]:
                                              / act.time_constant_z_s))}
 
 
-def tolerances(scn: LeoGeoScenario) -> dict[str, float]:
+def tolerances(scn: OrbitInjectionScenario) -> dict[str, float]:
     """The scenario's acceptance tolerances per error key (t_f has none: it is free)."""
     acc = scn.acceptance
     return {"dr_f_m": acc.radius_error_m, "dphi_f_deg": math.degrees(acc.declination_error_rad),
@@ -205,7 +205,7 @@ def tolerances(scn: LeoGeoScenario) -> dict[str, float]:
 class _Job:
     """One chunk of runs, called in a forked worker (ogk.sil.runner)."""
 
-    scenario: LeoGeoScenario
+    scenario: OrbitInjectionScenario
     reference: NominalReference
     seed: int
     switches: DispersionSwitches
@@ -245,7 +245,7 @@ def _merge_history(parts: list[History | None]) -> History | None:
 RUN_RECORD_FLOATS = ("d_state", "d_attitude_rad", "rates0_radps", "thrust_coeffs")
 
 
-def run_key(scenario: LeoGeoScenario, seed: int, truth: str, guidance: str,
+def run_key(scenario: OrbitInjectionScenario, seed: int, truth: str, guidance: str,
             switches: DispersionSwitches, settings: SilSettings, scenario_sha256: str | None,
             tables: "NogTables | None") -> dict[str, Any]:
     """What a run's numbers depend on besides its id: the run log's key (ogk.sil.runlog)."""
@@ -299,7 +299,7 @@ class _ChunkFlight:
         return _run_records(*self.job(run_ids, run_seeds))
 
 
-def campaign_plan(scenario: LeoGeoScenario, ref: NominalReference, switches: DispersionSwitches,
+def campaign_plan(scenario: OrbitInjectionScenario, ref: NominalReference, switches: DispersionSwitches,
                   settings: SilSettings, guidance_factory: GuidanceFactory, name: str,
                   tables: "NogTables | None", scenario_path: Path | None, law: str,
                   options: dict[str, Any] | None = None) -> CampaignPlan:
@@ -326,7 +326,7 @@ def campaign_plan(scenario: LeoGeoScenario, ref: NominalReference, switches: Dis
         acceptance=tol, watchdog_per_run_s=2.0, base=job)
 
 
-def run_campaign(scenario: LeoGeoScenario, runs: int, seed: int, workers: int = 1,
+def run_campaign(scenario: OrbitInjectionScenario, runs: int, seed: int, workers: int = 1,
                  dispersions: bool | DispersionSwitches = True, truth: str = "6dof",
                  guidance_factory: GuidanceFactory | None = None, guidance_name: str | None = None,
                  settings: SilSettings | None = None, run_ids: Sequence[int] | None = None,

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_host.orbit_injection.scenario import LeoGeoScenario
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import KernelError
@@ -18,7 +18,7 @@ F64 = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
 
-def cutoff_config(scn: LeoGeoScenario, control_period_s: float) -> object:
+def cutoff_config(scn: OrbitInjectionScenario, control_period_s: float) -> object:
     """ogk_cutoff_config_t: the target orbit's semi-major axis (circular: its radius) and the
     scenario's arm / extend windows."""
     cfg = ffi.new("ogk_cutoff_config_t *")
@@ -36,7 +36,7 @@ def cutoff_config(scn: LeoGeoScenario, control_period_s: float) -> object:
 class EnergyCutoff:
     """Per-run ogk_cutoff_t contexts, stepped together."""
 
-    def __init__(self, scn: LeoGeoScenario, n_runs: int, control_period_s: float) -> None:
+    def __init__(self, scn: OrbitInjectionScenario, n_runs: int, control_period_s: float) -> None:
         self._n = n_runs
         self._ctx = ffi.new("ogk_cutoff_t[]", n_runs)
         status = np.zeros(n_runs, dtype=np.int32)

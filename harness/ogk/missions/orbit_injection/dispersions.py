@@ -14,7 +14,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_host.orbit_injection.scenario import LeoGeoScenario
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 from ogk.sil.seeds import run_generator, run_seed
 
@@ -71,7 +71,7 @@ class RunDraws:
                           for f in dataclasses.fields(RunDraws)))
 
 
-def draw_runs(scn: LeoGeoScenario, master_seed: int, run_ids: Sequence[int] | NDArray[np.int64],
+def draw_runs(scn: OrbitInjectionScenario, master_seed: int, run_ids: Sequence[int] | NDArray[np.int64],
               switches: DispersionSwitches, run_seeds: NDArray[np.uint64] | None = None
               ) -> tuple[RunDraws, list[np.random.Generator]]:
     """Initial dispersions of the given runs, and each run's generator positioned for the
@@ -114,7 +114,7 @@ class ActuationNoise:
     `next()` returns (3, N) [dM_x, dDelta_y, dDelta_z]; zeros when switched off (then the
     generators are not touched)."""
 
-    def __init__(self, scn: LeoGeoScenario, generators: list[np.random.Generator],
+    def __init__(self, scn: OrbitInjectionScenario, generators: list[np.random.Generator],
                  enabled: bool) -> None:
         ad = scn.actuator_dispersion
         self._sigma = np.array([ad.roll_torque_n_m, ad.deflection_y_rad, ad.deflection_z_rad])

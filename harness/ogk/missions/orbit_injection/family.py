@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 from ogk_bindings.errors import OgkInputError
-from ogk_host.orbit_injection.scenario import LAWS, LeoGeoScenario, load_scenario
+from ogk_host.orbit_injection.scenario import LAWS, OrbitInjectionScenario, load_scenario
 from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.engine import Flown, seeds_of
@@ -28,7 +28,7 @@ from .sil import SilSettings
 
 @dataclasses.dataclass(frozen=True)
 class _Base:
-    scenario: LeoGeoScenario
+    scenario: OrbitInjectionScenario
     job: _Job                   #: the flight with its nominal, guidance factory and settings
     switches: DispersionSwitches
     settings: SilSettings
@@ -47,7 +47,7 @@ class OrbitInjectionFamily:
                     "(6-DOF or point-mass truth), side by side with Tables 6-7 when the scenario "
                     "carries them")
 
-    def load(self, header: ScenarioHeader) -> LeoGeoScenario:
+    def load(self, header: ScenarioHeader) -> OrbitInjectionScenario:
         return load_scenario(header.path)
 
     def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:

@@ -21,7 +21,7 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_host.orbit_injection.scenario import LeoGeoScenario
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 from .nominal_ref import NominalReference
 
@@ -34,7 +34,7 @@ class GuidanceSetup:
     """What a guidance factory receives: the scenario, the ground nominal, and the runs it serves
     (campaign run indices, one chunk of the campaign in each worker process)."""
 
-    scenario: LeoGeoScenario
+    scenario: OrbitInjectionScenario
     reference: NominalReference
     run_ids: NDArray[np.int64]
     #: sampling interval at the end of the burn when the end-game samples faster (sil.EndGamePlan)

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_host.orbit_injection.scenario import LeoGeoScenario
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 from ogk_bindings.errors import TableError
 from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection import tables as ground_tables
@@ -45,7 +45,7 @@ class NogTables:
         return float(self.manifest["t_f_s"])
 
 
-def prepare_tables(scn: LeoGeoScenario, table_dir: Path | None = None) -> NogTables:
+def prepare_tables(scn: OrbitInjectionScenario, table_dir: Path | None = None) -> NogTables:
     """The scenario's own tables: generated into its directory under build/tables when missing,
     otherwise checked (manifest names this scenario's SHA-256, files intact). A user's directory
     (`table_dir`) is only checked, never written over (TableError, one line)."""
@@ -69,7 +69,7 @@ def load_table(bundle: Path) -> object:
     return table
 
 
-def nog_config(scn: LeoGeoScenario, table: object, last_interval_s: float | None = None) -> object:
+def nog_config(scn: OrbitInjectionScenario, table: object, last_interval_s: float | None = None) -> object:
     """ogk_nog_config_t from the scenario's guidance block (the end-game bounds included).
     `last_interval_s`: the sampling interval at the end of the burn, which sets the terminating
     sample of eq. (32) (default: the scenario's Delta t_S, sampled throughout)."""

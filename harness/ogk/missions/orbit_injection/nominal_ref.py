@@ -16,7 +16,7 @@ from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
 from ogk_host.orbit_injection import dynamics as dyn
 from ogk_host.orbit_injection.nominal import Nominal, solve_nominal
-from ogk_host.orbit_injection.scenario import LeoGeoScenario, load_scenario
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario, load_scenario
 
 F64 = NDArray[np.float64]
 
@@ -27,7 +27,7 @@ N_GRID = 4001
 class NominalReference:
     """Dense SI samples of the nominal: x = [r, xi, phi, v_r, v_t, v_n], u = [alpha, beta]."""
 
-    scenario: LeoGeoScenario
+    scenario: OrbitInjectionScenario
     nominal: Nominal
     t_s: F64            #: (n,) time since ignition [s], 0 .. t_f*
     x_si: F64           #: (n, 6) [m, rad, rad, m/s, m/s, m/s]
@@ -60,7 +60,7 @@ class NominalReference:
         return self._u_interp(np.clip(t_s, 0.0, self.tf_s))
 
 
-def build_reference(scn: LeoGeoScenario, n_grid: int = N_GRID) -> NominalReference:
+def build_reference(scn: OrbitInjectionScenario, n_grid: int = N_GRID) -> NominalReference:
     """Solves the nominal and samples it (canonical -> SI with the ground tool's units)."""
     nominal = solve_nominal(scn)
     units = nominal.problem.units
@@ -78,11 +78,11 @@ def build_reference(scn: LeoGeoScenario, n_grid: int = N_GRID) -> NominalReferen
 
 
 @functools.lru_cache(maxsize=4)
-def nominal_reference(scn: LeoGeoScenario | None = None) -> NominalReference:
+def nominal_reference(scn: OrbitInjectionScenario | None = None) -> NominalReference:
     """Cached `build_reference` (the scenario dataclasses are frozen, hence hashable)."""
     return build_reference(scn if scn is not None else load_scenario())
 
 
-def circular_speed(scn: LeoGeoScenario) -> float:
+def circular_speed(scn: OrbitInjectionScenario) -> float:
     """sqrt(mu / R_f) [m/s], eq. (20)."""
     return math.sqrt(scn.mu_m3_s2 / scn.target_radius_m)

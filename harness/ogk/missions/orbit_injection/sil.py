@@ -20,7 +20,7 @@ from typing import Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_host.orbit_injection.scenario import LeoGeoScenario
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 from . import truth as tm
 from .attitude import AttitudeControl, CpdBatchControl
@@ -73,7 +73,7 @@ class EndGamePlan:
     terminal_window_s: float = 0.0    #: kernel ogk_terminal steers the last seconds along v_go (0: never)
 
     @classmethod
-    def of(cls, scn: LeoGeoScenario, settings: "SilSettings") -> "EndGamePlan":
+    def of(cls, scn: OrbitInjectionScenario, settings: "SilSettings") -> "EndGamePlan":
         if settings.end_game not in END_GAMES:
             raise ValueError(f"end_game must be one of {END_GAMES}, got {settings.end_game!r}")
         eg = scn.end_game
@@ -92,7 +92,7 @@ class EndGamePlan:
         return cls(False, None, 0.0, 0.0)
 
     @classmethod
-    def flown_by(cls, scn: LeoGeoScenario, settings: "SilSettings", guidance: object
+    def flown_by(cls, scn: OrbitInjectionScenario, settings: "SilSettings", guidance: object
                  ) -> "EndGamePlan":
         """The plan a guidance flies: an open-loop reference (flies_end_game = False) flies none."""
         if not getattr(guidance, "flies_end_game", True):
@@ -123,7 +123,7 @@ class SilResult:
     control_steps: int
 
 
-def initial_state(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
+def initial_state(scn: OrbitInjectionScenario, ref: NominalReference, draws: RunDraws,
                   truth: str) -> F64:
     """Component-major initial truth state (n_state, N): nominal ignition state + Table 3 errors;
     for 6-DOF the nominal attitude points x_b along u*(0) with the commanded roll, plus Table 4
@@ -170,7 +170,7 @@ class _Rk4:
         return x + k1
 
 
-def simulate(scn: LeoGeoScenario, ref: NominalReference, draws: RunDraws,
+def simulate(scn: OrbitInjectionScenario, ref: NominalReference, draws: RunDraws,
              generators: list[np.random.Generator], switches: DispersionSwitches,
              guidance: Guidance, settings: SilSettings = SilSettings(),
              attitude_control: AttitudeControl | None = None) -> SilResult:

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_host.orbit_injection.scenario import LeoGeoScenario
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import KernelError
@@ -17,7 +17,7 @@ F64 = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
 
-def terminal_config(scn: LeoGeoScenario) -> object:
+def terminal_config(scn: OrbitInjectionScenario) -> object:
     """ogk_terminal_config_t of the scenario's circular target orbit and terminal window."""
     cfg = ffi.new("ogk_terminal_config_t *")
     status = lib.ogk_terminal_config_default(cfg)
@@ -36,7 +36,7 @@ def terminal_config(scn: LeoGeoScenario) -> object:
 class TerminalSteering:
     """Per-run ogk_terminal_t contexts, stepped together."""
 
-    def __init__(self, scn: LeoGeoScenario, n_runs: int) -> None:
+    def __init__(self, scn: OrbitInjectionScenario, n_runs: int) -> None:
         self._n = n_runs
         self._ctx = ffi.new("ogk_terminal_t[]", n_runs)
         status = np.zeros(n_runs, dtype=np.int32)

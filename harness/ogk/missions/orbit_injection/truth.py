@@ -34,7 +34,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_host.orbit_injection.scenario import LeoGeoScenario, TabulatedThrust
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario, TabulatedThrust
 
 F64 = NDArray[np.float64]
 
@@ -70,7 +70,7 @@ class TruthParams:
     thrust_table: TabulatedThrust | None = None
 
     @classmethod
-    def from_scenario(cls, scn: LeoGeoScenario, tf_nominal_s: float) -> "TruthParams":
+    def from_scenario(cls, scn: OrbitInjectionScenario, tf_nominal_s: float) -> "TruthParams":
         mp, act = scn.mass_properties, scn.actuators
         table = scn.thrust if isinstance(scn.thrust, TabulatedThrust) else None
         return cls(mu=scn.mu_m3_s2, n0=scn.thrust.initial_accel_m_s2,
