@@ -23,6 +23,7 @@ from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale, write_atomic
 from ogk.sil.progress import Working
+from ogk.sil.report import finite_or_none
 
 LAWS = SCENARIO_LAWS
 STRATEGIES = ("snns", "cncn")
@@ -70,8 +71,9 @@ def report_lines(scenario: RendezvousScenario, doc: dict[str, Any]) -> list[str]
     paper = paper_values(scenario, strategy, perturbed)
     table = "Table I" if scenario.ocp.objective == "min-time" else "Table II"
     case = ("perturbed EOMs" if perturbed else "unperturbed EOMs")
-    lines = [f"Starek & Kolmanovsky 2012, {table} ({scenario.name}): {strategy.upper()} MPC, {case}, "
-             f"solver {doc['solver']}, seed {doc['seed']}",
+    title = (f"Starek & Kolmanovsky 2012, {table} ({scenario.name})" if scenario.paper_results
+             else f"{scenario.name} (no paper figures in the scenario)")
+    lines = [f"{title}: {strategy.upper()} MPC, {case}, solver {doc['solver']}, seed {doc['seed']}",
              f"  {'':34s} {'this run':>14s}" + (f" {'paper':>14s}" if scenario.paper_results else "")]
 
     def row(label: str, mine: str, theirs: str) -> None:   # the paper's column only when the scenario has one
@@ -149,10 +151,12 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     doc.update({"scenario_path": str(header.path), "scenario_sha256": header.sha256,
                 "objective": scenario.ocp.objective,
                 "third_bodies_in_model": scenario.nmpc.third_bodies_in_model,
-                "wall_s": wall, "paper": paper_values(scenario, strategy_name, args.perturbed)})
+                "wall_s": wall})
+    if scenario.paper_results:      # the paper's figures only for a scenario that carries them
+        doc["paper"] = paper_values(scenario, strategy_name, args.perturbed)
     for line in report_lines(scenario, doc):
         print(line)
-    write_atomic(json_path, json.dumps(doc, indent=1) + "\n")
+    write_atomic(json_path, json.dumps(finite_or_none(doc), indent=1) + "\n")
     print(f"wrote {json_path} (the flight took {wall:.4g} s, wall clock)")
     if plots_dir is not None:
         from .plots import write_plots
