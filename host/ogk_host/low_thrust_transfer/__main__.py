@@ -1,15 +1,22 @@
 """Command line of the Apophis ground tool.
 
-  python -m ogk_host.low_thrust_transfer regenerate   solve the nominal from scratch, write data/nominal_solution.json
-  python -m ogk_host.low_thrust_transfer report       summary of the stored nominal + Fourier-basis measurement
+  python -m ogk_host.low_thrust_transfer regenerate   solve the nominal from scratch, write it with its
+                                          manifest into the scenario's product directory
+                                          build/tables/<name>-<sha12>/ (never into the package)
+  python -m ogk_host.low_thrust_transfer report       summary of the scenario's nominal + Fourier-basis measurement
   python -m ogk_host.low_thrust_transfer perturbed    fuel-optimal solutions of perturbed problems (warm start)
         [--kappa K ...] [--vertex I ...] [--eta PERCENT ...]   (default: kappa 1, vertex 1, eta -10)
-  python -m ogk_host.low_thrust_transfer references   all 23 cases of Tables 3-6, written to
-                                          data/perturbed_optima.json (the references of the FI column)
+  python -m ogk_host.low_thrust_transfer references   all cases of the scenario's [dispersions], written to
+                                          perturbed_optima.json in its product directory (FI references)
+
+Every command takes --scenario FILE (default scenarios/apophis_cubesat.toml) and --out DIR (default
+build/tables/<name>-<sha12> of the scenario). The shipped data/*.json are a cache used only for a
+scenario of the same physics (ogk_host.low_thrust_transfer.products); this tool never writes them.
 """
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 import time
 from pathlib import Path
@@ -17,8 +24,10 @@ from pathlib import Path
 import numpy as np
 
 from . import fourier
-from .indirect import (NOMINAL_PATH, REFERENCES_PATH, Solution, load_solution, save_references,
-                       save_solution, solve_fuel_optimal)
+from ogk_bindings.errors import OgkInputError
+
+from . import products
+from .indirect import Solution, save_references, solution_record, solve_fuel_optimal
 from .scenario import (DEFAULT_SCENARIO_PATH, Perturbation, Scenario, initial_state_case,
                        load_scenario, terminal_position_case, thrust_case)
 
@@ -41,16 +50,20 @@ def describe(solution: Solution, scenario: Scenario) -> str:
     return "\n".join(lines)
 
 
-def cmd_regenerate(scenario: Scenario) -> int:
-    solution = solve_fuel_optimal(scenario, None, log=_log)
-    save_solution(solution, scenario)
+def cmd_regenerate(scenario: Scenario, out: Path) -> int:
+    start = time.perf_counter()
+    solution = products.solve_nominal(scenario, log=_log)
+    doc = {"generator": "python -m ogk_host.low_thrust_transfer regenerate",
+           "units": "normalised: LU, TU, MU, velocity LU/TU (Table 1)",
+           **solution_record(solution, scenario)}
+    path = products.write_nominal(doc, scenario, out)
     print(describe(solution, scenario))
-    print(f"written {NOMINAL_PATH}")
+    print(f"written {path} and {out / products.MANIFEST} ({time.perf_counter() - start:.1f} s)")
     return 0
 
 
-def cmd_report(scenario: Scenario) -> int:
-    solution = load_solution(scenario)
+def cmd_report(scenario: Scenario, out: Path) -> int:
+    solution, _ = products.ensure_nominal(scenario, out, log=_log)
     print(describe(solution, scenario))
     t, lam_v = fourier.nominal_control_on_grid(scenario, solution)
     print(f"Fourier fit of the nominal lambda_v on the MPSP grid ({t.size} points, "
@@ -74,8 +87,8 @@ def cmd_report(scenario: Scenario) -> int:
 
 
 def cmd_perturbed(scenario: Scenario, kappas: list[float], vertices: list[int],
-                  etas: list[float], output: Path | None = None) -> int:
-    nominal = load_solution(scenario)
+                  etas: list[float], out: Path, output: Path | None = None) -> int:
+    nominal, _ = products.ensure_nominal(scenario, out, log=_log)
     cases: list[Perturbation] = ([initial_state_case(scenario, k) for k in kappas]
                                  + [terminal_position_case(scenario, v) for v in vertices]
                                  + [thrust_case(scenario, e) for e in etas])
@@ -89,6 +102,9 @@ def cmd_perturbed(scenario: Scenario, kappas: list[float], vertices: list[int],
         print(f"  (wall {time.perf_counter() - start:.1f} s)", flush=True)
     if output is not None:
         save_references(solutions, scenario, output)
+        doc = json.loads(output.read_text())
+        doc["physics_sha256"] = products.physics_sha256(scenario.path)
+        output.write_text(json.dumps(doc, indent=1) + "\n")
         print(f"written {output}")
     print("case               final mass [kg]  thrust/coast arcs  runtime [s]")
     for s in solutions:
@@ -102,24 +118,30 @@ def main(argv: list[str] | None = None) -> int:
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("command", choices=("regenerate", "report", "perturbed", "references"))
     parser.add_argument("--scenario", default=str(DEFAULT_SCENARIO_PATH))
+    parser.add_argument("--out", default=None, metavar="DIR",
+                        help="product directory (default build/tables/<name>-<sha12>)")
     parser.add_argument("--kappa", type=float, nargs="*", default=None)
     parser.add_argument("--vertex", type=int, nargs="*", default=None)
     parser.add_argument("--eta", type=float, nargs="*", default=None)
     args = parser.parse_args(argv)
-    scenario = load_scenario(args.scenario)
-    if args.command == "regenerate":
-        return cmd_regenerate(scenario)
-    if args.command == "report":
-        return cmd_report(scenario)
-    if args.command == "references":
-        p = scenario.dispersions
-        return cmd_perturbed(scenario, list(p.kappa), list(range(1, 9)), list(p.eta_percent),
-                             REFERENCES_PATH)
-    explicit = args.kappa is not None or args.vertex is not None or args.eta is not None
-    return cmd_perturbed(scenario, args.kappa or ([] if explicit else [1.0]),
-                         args.vertex or ([] if explicit else [1]),
-                         args.eta or ([] if explicit else [-10.0]))
-
+    try:
+        scenario = load_scenario(args.scenario)
+        out = Path(args.out) if args.out else products.product_dir(scenario.path)
+        if args.command == "regenerate":
+            return cmd_regenerate(scenario, out)
+        if args.command == "report":
+            return cmd_report(scenario, out)
+        if args.command == "references":
+            p = scenario.dispersions
+            return cmd_perturbed(scenario, list(p.kappa), list(range(1, 9)), list(p.eta_percent), out,
+                                 out / products.REFERENCES_FILE)
+        explicit = args.kappa is not None or args.vertex is not None or args.eta is not None
+        return cmd_perturbed(scenario, args.kappa or ([] if explicit else [1.0]),
+                             args.vertex or ([] if explicit else [1]),
+                             args.eta or ([] if explicit else [-10.0]), out)
+    except OgkInputError as err:
+        print(err.line(), file=sys.stderr)
+        return 2
 
 if __name__ == "__main__":
     sys.exit(main())

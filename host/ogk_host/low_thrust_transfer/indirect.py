@@ -36,6 +36,7 @@ from .scenario import NormalisedProblem, Perturbation, Scenario, normalised_prob
 FloatArray = NDArray[np.float64]
 
 DATA_DIR = Path(__file__).resolve().parent / "data"
+#: the shipped cache (of the scenario whose physics_sha256 each file states; products.py), read only
 NOMINAL_PATH = DATA_DIR / "nominal_solution.json"
 REFERENCES_PATH = DATA_DIR / "perturbed_optima.json"
 MAX_ARCS = 200
@@ -629,15 +630,15 @@ def _header(scenario: Scenario, command: str) -> dict[str, object]:
     }
 
 
-def save_solution(solution: Solution, scenario: Scenario, path: Path = NOMINAL_PATH) -> None:
-    """Write the nominal solution as JSON."""
+def save_solution(solution: Solution, scenario: Scenario, path: Path) -> None:
+    """Write the nominal solution as JSON to `path` (the ground product is written by
+    products.write_nominal with its manifest; nothing writes into data/, a cache)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     doc = {**_header(scenario, "regenerate"), **solution_record(solution, scenario)}
     path.write_text(json.dumps(doc, indent=1) + "\n")
 
 
-def save_references(solutions: list[Solution], scenario: Scenario,
-                    path: Path = REFERENCES_PATH) -> None:
+def save_references(solutions: list[Solution], scenario: Scenario, path: Path) -> None:
     """Write the fuel-optimal solutions of perturbed problems (the FI references) as JSON."""
     path.parent.mkdir(parents=True, exist_ok=True)
     doc = {**_header(scenario, "references"),

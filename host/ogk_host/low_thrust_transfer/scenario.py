@@ -7,6 +7,7 @@ holds one boundary value problem (nominal or perturbed) in those units.
 from __future__ import annotations
 
 import dataclasses
+import math
 from pathlib import Path
 from typing import Any
 
@@ -257,6 +258,7 @@ def load_scenario(path: str | Path = DEFAULT_SCENARIO_PATH) -> Scenario:
     tracked.get("guidance", {}).get("law")
     for key in ("departure_utc", "arrival_utc"):  # descriptive
         tracked.get("transfer", {}).get(key)
+    _check_values(d, path)          # every number: type, finite, sign (one line, before computing)
     try:
         scenario = _build(path, tracked)
     except KeyError as exc:
@@ -271,7 +273,110 @@ def load_scenario(path: str | Path = DEFAULT_SCENARIO_PATH) -> Scenario:
     if unknown:
         raise OgkInputError("unknown key" + (f" (also {', '.join(unknown[1:])})" if len(unknown) > 1
                                              else ""), path=path, key=unknown[0])
+    check_reachable(scenario)
     return scenario
+
+
+#: [section] -> keys that must be finite numbers > 0
+_POSITIVE = {
+    "units": ("length_unit_km", "time_unit_s", "mass_unit_kg", "velocity_unit_km_s_printed",
+              "mu_sun_km3_s2", "g0_m_s2"),
+    "spacecraft": ("initial_mass_kg", "max_thrust_N", "specific_impulse_s"),
+    "transfer": ("duration_days",),
+    "homotopy": ("zeta_start", "thrust_factor_start", "zeta_step", "zeta_step_min", "final_rtol",
+                 "smoothed_rtol", "tight_below_zeta"),
+    "mpsp": ("h_max_over_tf", "delta_max", "delta_tau_initial", "delta_tau_min", "r_lambda",
+             "switch_tolerance", "tol_position_km", "tol_velocity_km_s", "tol_lambda_mf"),
+}
+
+
+def _check_values(d: dict[str, Any], path: Path) -> None:
+    """Types and ranges of every number the solvers use (OgkInputError FILE: KEY: REASON): a string
+    where a number belongs, nan/inf, a zero or negative mass, thrust, Isp, duration, unit or
+    tolerance are refused here, before anything is computed."""
+    top = Section(d, path, "")
+    for name, keys in _POSITIVE.items():
+        sec = top.section(name)
+        for key in keys:
+            sec.number(key, positive=True)
+    ho, mp = top.section("homotopy"), top.section("mpsp")
+    ho.number("zeta_start", hi=1.0)
+    ho.number("thrust_factor_start", lo=1.0)
+    for key in ("final_rtol", "smoothed_rtol"):
+        ho.number(key, hi=1e-3)
+    mp.number("h_max_over_tf", hi=1.0)
+    mp.number("delta_tau_initial", hi=1.0)
+    mp.number("delta_tau_min", hi=1.0)
+    mp.number("eta_start")
+    mp.number("eta_end")
+    mp.integer("fourier_order", lo=1, hi=200)
+    mp.integer("n_seg_tol_initial", lo=0)
+    mp.integer("n_seg_tol_increment", lo=0)
+    mp.text("fourier_basis")
+    mp.text("r_epsilon")
+    bd = top.section("boundary")
+    for key in ("initial_position_LU", "initial_velocity_VU", "final_position_LU", "final_velocity_VU"):
+        vec = bd.numbers(key, 3)
+        if not all(math.isfinite(x) for x in vec):
+            raise bd.error(key, f"must be 3 finite numbers, got {list(vec)}")
+    for key in ("initial_position_LU", "final_position_LU"):
+        if not sum(x * x for x in bd.numbers(key, 3)) > 0.0:
+            raise bd.error(key, "must not be the origin (the Sun)")
+    disp = top.section("dispersions")
+    ini, ter, thr = disp.section("initial"), disp.section("terminal"), disp.section("thrust")
+    for sec, key, n in ((ini, "kappa", None), (ini, "delta_position_printed_LU", 3),
+                        (ini, "delta_velocity_printed_VU", 3), (thr, "eta_percent", None)):
+        vec = sec.numbers(key, n)
+        if not vec or not all(math.isfinite(x) for x in vec):
+            raise sec.error(key, f"must be a non-empty list of finite numbers, got {list(vec)}")
+    if not min(thr.numbers("eta_percent")) > -100.0:
+        raise thr.error("eta_percent", "must be > -100 (T_max (1 + eta/100) > 0)")
+    ini.number("printed_vector_scale")
+    ter.number("cube_side_LU", positive=True)
+    vertices = ter._get("delta_final_position_LU", None)
+    if (not isinstance(vertices, list) or len(vertices) != 8
+            or any(not isinstance(v, list) or len(v) != 3
+                   or any(isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x)
+                          for x in v) for v in vertices)):
+        raise ter.error("delta_final_position_LU", "must be the 8 vertices of the cube, 3 finite "
+                        "numbers each")
+
+
+#: STATED ENVELOPE (docs/mpsp-cli.md, "Input checks"): a transfer is refused before any solve when
+#: the target is out of reach of the engine even in free space with this margin for gravity.
+REACH_MARGIN = 10.0
+
+
+def check_reachable(scenario: Scenario) -> None:
+    """A necessary condition for the nominal to exist, checked before any solve: the target's
+    offset from the ballistic (thrust-free) arc at t_f must be within REACH_MARGIN times what the
+    engine can give in free space over t_f at full thrust, in velocity the rocket equation
+    dv = c ln(m0 / (m0 - mdot t_f)), in position the double integral of that acceleration
+    (<= dv t_f). A duration far too short for the transfer ends here as one line, not as a
+    3e8 km miss reported as a result."""
+    from scipy.integrate import solve_ivp
+    prob = normalised_problem(scenario, None)
+    tf, mu = prob.final_time, prob.mu
+    def rhs(t: float, y: FloatArray) -> FloatArray:
+        r = y[:3]
+        return np.concatenate([y[3:], -mu * r / float(np.linalg.norm(r)) ** 3])
+    sol = solve_ivp(rhs, (0.0, tf), prob.x0[:6], method="DOP853", rtol=1e-9, atol=1e-12)
+    if sol.status != 0:
+        return  # a collision course; the solver will say more
+    y = sol.y[:, -1]
+    m0, c, tmax = float(prob.x0[6]), prob.exhaust_velocity, prob.max_thrust
+    burn = min(tmax / c * tf, 0.999 * m0)       # propellant at full thrust over t_f (capped)
+    dv = c * math.log(m0 / (m0 - burn))
+    need_v = float(np.linalg.norm(prob.vf - y[3:6]))
+    need_r = float(np.linalg.norm(prob.rf - y[0:3]))
+    u = scenario.units
+    if need_v > REACH_MARGIN * dv or need_r > REACH_MARGIN * dv * tf:
+        raise OgkInputError(
+            f"{scenario.duration_days:g} days at {scenario.spacecraft.max_thrust_N:g} N cannot reach the "
+            f"target: it is {need_r * u.length_km:.3g} km and {need_v * u.velocity_km_s:.3g} km/s from "
+            f"the thrust-free arc at t_f, the engine gives at most {dv * u.velocity_km_s:.3g} km/s "
+            f"(envelope: {REACH_MARGIN:g} x the free-space reach, docs/mpsp-cli.md)",
+            path=scenario.path, key="transfer.duration_days")
 
 
 class _Tracked(dict):  # type: ignore[type-arg]

@@ -29,16 +29,29 @@ def add_tables_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
-    """The MPSP flight configuration (config + nominal weights) as a const C header."""
+    """The scenario's ground products into its provenance directory (default
+    build/tables/<name>-<sha12>): the fuel-optimal nominal (nominal_solution.json; from the shipped
+    cache only when the physics is the same, else solved), manifest.json (scenario path, SHA-256,
+    physics SHA-256, the nominal's SHA-256), and the MPSP flight configuration as a const C header."""
+    from ogk_host.low_thrust_transfer.products import MANIFEST, record_file
     from ogk_host.low_thrust_transfer.scenario import load_scenario
 
+    from .cases import build_setup
     from .flight_config import write_flight_config
 
     load_scenario(header.path)
     out = Path(args.out) if args.out else table_dir_for(header.path)
     check_output_dir(out, "--out")
-    for path in write_flight_config(out, header.path):
+    setup = build_setup(scenario_path=header.path, product_dir=out)
+    nom = setup.nominal
+    print(f"{header.name}: nominal final mass {nom.final_mass_kg:.4f} kg, {nom.thrust_arcs} thrust / "
+          f"{nom.coast_arcs} coast arcs, |dr_f| = {nom.position_error_km:.2e} km, "
+          f"|dv_f| = {nom.velocity_error_km_s:.2e} km/s ({nom.method})")
+    print(f"  wrote {setup.nominal_path} (SHA-256 {setup.nominal_sha256[:12]})")
+    for path in write_flight_config(out, header.path, setup):
+        record_file(out, str(path.relative_to(out)), path)
         print(f"  wrote {path} (flight build: const MPSP configuration)")
+    print(f"  wrote {out / MANIFEST}")
     return 0
 
 
@@ -52,8 +65,9 @@ def add_cases_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--basis", default=None,
                    help="Fourier basis (printed, period_tf, period_2tf, cosine_2tf; default: scenario)")
     p.add_argument("--order", type=int, default=None, help="Fourier order (default: scenario, 15)")
-    p.add_argument("--reference-dir", default="build/apophis/reference",
-                   help="cache of the fuel-optimal re-solves (default build/apophis/reference)")
+    p.add_argument("--reference-dir", default=None,
+                   help="cache of the fuel-optimal re-solves (default: reference/ in the scenario's "
+                        "product directory build/tables/<name>-<sha12>)")
     p.add_argument("--reference-timeout", type=float, default=900.0, metavar="S",
                    help="wall-time limit of one ground re-solve (s; 0 = none; default 900)")
     p.add_argument("--no-reference", action="store_true",
@@ -61,7 +75,14 @@ def add_cases_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def cases(header: ScenarioHeader, args: argparse.Namespace) -> int:
+    from ogk.missions.low_thrust_transfer.cases import check_param
+    from ogk_host.low_thrust_transfer.scenario import load_scenario
     args.scenario = str(header.path)
+    load_scenario(header.path)           # every bad key, before anything is computed
+    if args.case and args.param is not None:
+        check_param(args.case, args.param)
+    if args.reference_timeout is not None and not args.reference_timeout >= 0.0:
+        raise OgkInputError(f"must be >= 0, got {args.reference_timeout}", key="--reference-timeout")
     if args.json:
         check_output_file(args.json, "--json")
     if args.plots:
@@ -83,8 +104,9 @@ def _reference(setup: Any, case: Any, args: argparse.Namespace) -> Any:
     from ogk.missions.low_thrust_transfer.reference import load_or_solve
     if args.no_reference:
         return None
+    ref_dir = Path(args.reference_dir) if args.reference_dir else setup.product_dir / "reference"
     try:
-        return load_or_solve(setup, case, Path(args.reference_dir),
+        return load_or_solve(setup, case, ref_dir,
                              args.reference_timeout if args.reference_timeout > 0 else None)
     except RuntimeError as err:  # ShootingFailure
         print(f"  {case.label}: no fuel-optimal reference ({err})", file=sys.stderr)
@@ -108,7 +130,25 @@ def run_one(args: argparse.Namespace) -> int:
               f"({ref.solve_s:.1f} s solve, {time.perf_counter() - start:.1f} s here)")
     if args.json:
         _write_json(args.json, rec.to_json())
-    return 0 if rec.converged else 1
+    failure = judge(setup, rec)
+    if failure:
+        print(f"ogk run: {case.label}: FAILED: {failure}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def judge(setup: Any, rec: Any) -> str:
+    """Why a case fails the scenario's [acceptance] ("" when it passes): MPSP converged, terminal
+    errors within position_error_km / velocity_error_km_s (the family's judge in `ogk mc`)."""
+    acc = setup.scenario.acceptance
+    if not rec.converged:
+        return "MPSP did not converge"
+    if not rec.dr_f_km <= acc.position_error_km:
+        return f"tolerance: |dr_f| = {rec.dr_f_km:.4g} km > {acc.position_error_km:.4g} ([acceptance])"
+    if not rec.dv_f_kmps <= acc.velocity_error_km_s:
+        return (f"tolerance: |dv_f| = {rec.dv_f_kmps:.4g} km/s > {acc.velocity_error_km_s:.4g} "
+                "([acceptance])")
+    return ""
 
 
 def run_tables(args: argparse.Namespace) -> int:
@@ -125,6 +165,7 @@ def run_tables(args: argparse.Namespace) -> int:
     print(header(with_paper))
     runs = []
     records = []
+    failures: list[str] = []
     ref_wall = 0.0
     for case, paper in zip(cases, papers):
         res, cpu = run_case(setup, case)
@@ -133,6 +174,9 @@ def run_tables(args: argparse.Namespace) -> int:
         ref_wall += time.perf_counter() - start
         rec = make_record(setup, res, cpu, ref)
         print(table_line(case, rec, paper, ref, paper_columns=with_paper), flush=True)
+        failure = judge(setup, rec)
+        if failure:
+            failures.append(f"{case.label}: {failure}")
         runs.append((case, res, ref))
         records.append({"case": case.label, "kind": case.kind,
                         "param": list(case.param) if isinstance(case.param, tuple) else case.param,
@@ -149,7 +193,7 @@ def run_tables(args: argparse.Namespace) -> int:
         solved = [r for r in refs if not r.from_cache]
         print(f"fuel-optimal references: {len(refs)}/{len(records)} available, "
               f"{len(solved)} solved now, {len(refs) - len(solved)} from cache (*) in "
-              f"{args.reference_dir}; ground solve times (s, as recorded) total "
+              f"{args.reference_dir or setup.product_dir / 'reference'}; ground solve times (s, as recorded) total "
               f"{sum(r.solve_s for r in refs):.1f}, max {max((r.solve_s for r in refs), default=0.0):.1f}; "
               f"this run spent {ref_wall:.1f} s on references")
     if args.json:
@@ -158,7 +202,9 @@ def run_tables(args: argparse.Namespace) -> int:
         from ogk.missions.low_thrust_transfer.plots import write_plots
         for p in write_plots(setup, runs, Path(args.plots)):
             print(f"wrote {p}")
-    return 0 if n_conv == len(records) else 1
+    for line in failures:
+        print(f"ogk run: FAILED: {line}", file=sys.stderr)
+    return 0 if not failures else 1
 
 
 def _run(args: argparse.Namespace) -> int:

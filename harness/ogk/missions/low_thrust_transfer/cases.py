@@ -38,6 +38,16 @@ class MpspSetup:
     guidance: Mpsp
     basis: str
     order: int
+    nominal_path: Path | None = None   #: the scenario's own nominal (products.ensure_nominal)
+    nominal_sha256: str = ""           #: its SHA-256 (the envelope's products)
+
+    @property
+    def product_dir(self) -> Path:
+        """build/tables/<name>-<sha12> of the scenario (or the directory given to build_setup)."""
+        if self.nominal_path is not None:
+            return self.nominal_path.parent
+        from ogk_host.low_thrust_transfer.products import product_dir
+        return product_dir(self.scenario.path)
 
     @property
     def lu_km(self) -> float:
@@ -58,17 +68,23 @@ def default_scenario_path() -> Path:
 
 
 def build_setup(basis: str | None = None, order: int | None = None,
-                scenario_path: str | Path | None = None, max_outer: int = 60) -> MpspSetup:
-    """Kernel MPSP on the stored ground nominal with the paper's settings (section 4.1).
+                scenario_path: str | Path | None = None, max_outer: int = 60,
+                product_dir: str | Path | None = None) -> MpspSetup:
+    """Kernel MPSP on the scenario's own fuel-optimal nominal with its section 4.1 settings.
 
-    basis/order default to the scenario's `[mpsp] fourier_basis` / `fourier_order`."""
+    The nominal is the scenario's ground product (ogk_host.low_thrust_transfer.products:
+    build/tables/<name>-<sha12>/nominal_solution.json, or `product_dir`), made when missing (from
+    the shipped cache when the physics is the same, else solved) and refused when it was made from
+    another scenario (TableError, one line). basis/order default to the scenario's `[mpsp]
+    fourier_basis` / `fourier_order`."""
     from ogk_host.low_thrust_transfer import fourier
-    from ogk_host.low_thrust_transfer.indirect import load_solution
+    from ogk_host.low_thrust_transfer.products import ensure_nominal
     from ogk_host.low_thrust_transfer.scenario import load_scenario, normalised_problem
+    from ogk_host.scenario_file import file_sha256
     sc = load_scenario(scenario_path if scenario_path is not None else default_scenario_path())
     basis = sc.mpsp.fourier_basis if basis is None else basis
     order = sc.mpsp.fourier_order if order is None else int(order)
-    sol = load_solution(sc)
+    sol, nominal_path = ensure_nominal(sc, product_dir)
     prob = normalised_problem(sc, None)
     tf = prob.final_time
     t, lam_v = fourier.nominal_control_on_grid(sc, sol)
@@ -88,7 +104,7 @@ def build_setup(basis: str | None = None, order: int | None = None,
                         delta_tau_min=m.delta_tau_min, n_seg_tol=m.n_seg_tol_initial,
                         n_seg_tol_step=m.n_seg_tol_increment, r_lambda=m.r_lambda,
                         max_newton=100, max_outer=max_outer))
-    return MpspSetup(sc, sol, prob, g, basis, order)
+    return MpspSetup(sc, sol, prob, g, basis, order, nominal_path, file_sha256(nominal_path))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -139,18 +155,46 @@ def thrust_case(setup: MpspSetup, eta_percent: float) -> Case:
                 float(eta_percent), p, setup.problem.x0.copy(), 1.0 + p.thrust_fraction, None)
 
 
+def _param_number(text: str, what: str) -> float:
+    from ogk_bindings.errors import OgkInputError
+    try:
+        x = float(text)
+    except (TypeError, ValueError):
+        raise OgkInputError(f"{what} must be a number, got {text!r}", key="--param") from None
+    if not np.isfinite(x):
+        raise OgkInputError(f"{what} must be finite, got {text!r}", key="--param")
+    return x
+
+
+def check_param(kind: CaseKind, param: str) -> float | tuple[float, float, float]:
+    """--param of --case `kind`, checked (OgkInputError `--param: REASON`): kappa and eta finite
+    numbers, eta > -100 (the thrust stays > 0); the terminal offset 3 finite numbers in LU."""
+    from ogk_bindings.errors import OgkInputError
+    if kind == "initial":
+        return _param_number(param, "kappa")
+    if kind == "terminal":
+        parts = [s for s in str(param).replace(" ", "").split(",") if s]
+        if len(parts) != 3:
+            raise OgkInputError(f"for --case terminal is 'dx,dy,dz' in LU, got {param!r}", key="--param")
+        x, y, z = (_param_number(p, "each of dx,dy,dz") for p in parts)
+        return (x, y, z)
+    if kind == "thrust":
+        eta = _param_number(param, "eta [%]")
+        if not eta > -100.0:
+            raise OgkInputError(f"eta must be > -100 % (T_max (1 + eta/100) > 0), got {param}",
+                                key="--param")
+        return eta
+    raise OgkInputError(f"unknown case kind {kind!r}; known: {', '.join(KINDS)}", key="--case")
+
+
 def make_case(setup: MpspSetup, kind: CaseKind, param: str) -> Case:
     """A case from the command line's --case/--param (P: kappa, 'dx,dy,dz' in LU, eta in %)."""
+    value = check_param(kind, param)
     if kind == "initial":
-        return initial_case(setup, float(param))
+        return initial_case(setup, float(value))  # type: ignore[arg-type]
     if kind == "terminal":
-        parts = [s for s in param.replace(" ", "").split(",") if s]
-        if len(parts) != 3:
-            raise ValueError(f"--param for terminal is 'dx,dy,dz' in LU, got {param!r}")
-        return terminal_case(setup, (float(parts[0]), float(parts[1]), float(parts[2])))
-    if kind == "thrust":
-        return thrust_case(setup, float(param))
-    raise ValueError(f"unknown case kind {kind!r}; known: {KINDS}")
+        return terminal_case(setup, value)        # type: ignore[arg-type]
+    return thrust_case(setup, float(value))       # type: ignore[arg-type]
 
 
 def paper_cases(setup: MpspSetup) -> list[Case]:

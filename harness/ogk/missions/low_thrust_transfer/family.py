@@ -80,8 +80,9 @@ class LowThrustFamily:
         p.add_argument("--reference", action="store_true",
                        help="the fuel-optimal re-solve of every run's problem, for FI (cached in "
                             "--reference-dir)")
-        p.add_argument("--reference-dir", default="build/apophis/reference",
-                       help="cache of the fuel-optimal re-solves")
+        p.add_argument("--reference-dir", default=None,
+                       help="cache of the fuel-optimal re-solves (default: reference/ in the "
+                            "scenario's product directory build/tables/<name>-<sha12>)")
 
     def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
         order = options.get("order")
@@ -92,7 +93,8 @@ class LowThrustFamily:
         which = str(options.get("cases") or "dispersed")
         papers = paper_cases(setup) if which == "paper" else None
         reference = bool(options.get("reference"))
-        ref_dir = Path(str(options.get("reference_dir") or "build/apophis/reference"))
+        ref_dir = (Path(str(options["reference_dir"])) if options.get("reference_dir")
+                   else setup.product_dir / "reference")
         acc = setup.scenario.acceptance
 
         def case_of(run_id: int, run_seed: int) -> Case:
@@ -135,7 +137,8 @@ class LowThrustFamily:
             scenario_path=Path(header.path), scenario_sha256=file_sha256(header.path),
             options={"cases": which, "basis": setup.basis, "order": setup.order,
                      "reference": reference, "reference_dir": str(ref_dir)},
-            products={"nominal_lambda0": nominal.hexdigest()},
+            products={"nominal": str(setup.nominal_path), "nominal_sha256": setup.nominal_sha256,
+                      "nominal_lambda0": nominal.hexdigest()},
             fly=per_run(fly_one), judge=judge,
             quantities=("newton_iterations", "dr_f_km", "dv_f_kmps", "lambda_mf",
                         "final_mass_kg", "fuel_increase_pct"),

@@ -5,7 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 
-def write_flight_config(out: Path, scenario: Path | None) -> list[Path]:
+def write_flight_config(out: Path, scenario: Path | None, setup: object | None = None) -> list[Path]:
+    """The header of `setup` (default: build_setup of `scenario`, on the scenario's own nominal)."""
     import numpy as np
 
     from ogk_host.cgen import ConfigItem, write_c_config
@@ -13,7 +14,8 @@ def write_flight_config(out: Path, scenario: Path | None) -> list[Path]:
     from ogk_bindings._ffi import ffi
     from .cases import build_setup, default_scenario_path
 
-    setup = build_setup(scenario_path=scenario)
+    if setup is None:
+        setup = build_setup(scenario_path=scenario)
     cfg = setup.guidance.cfg.to_c()
     nw = setup.guidance.n_weights
     weights = ffi.new(f"double[{nw}]", [float(w) for w in np.asarray(setup.guidance.cfg.weights_nom)])
@@ -27,5 +29,6 @@ def write_flight_config(out: Path, scenario: Path | None) -> list[Path]:
         defines={"OGK_FLIGHT_MPSP_N_WEIGHTS": nw, "OGK_FLIGHT_MPSP_N_SEG_NOM": setup.guidance.n_seg_nom,
                  "OGK_FLIGHT_MPSP_LAMBDA_M0_NOM": float(cfg.lambda_m0_nom)},
         note=f"Normalised units (LU = {setup.lu_km:.17g} km, MU = {setup.mu_kg:.17g} kg); "
-             "n_seg_nom = 0: counted by ogk_mpsp_init.")
+             "n_seg_nom = 0: counted by ogk_mpsp_init. Nominal: "
+             f"{setup.nominal_path.name if setup.nominal_path else '?'} (SHA-256 {setup.nominal_sha256}).")
     return [path]

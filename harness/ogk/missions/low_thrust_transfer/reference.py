@@ -1,7 +1,8 @@
 """Fuel-optimal re-solves of the perturbed problems (ground indirect solver), cached on disk.
 
-One JSON per case in build/apophis/reference/<case key>.json, valid while the scenario file's SHA-256
-(and the stored nominal's, the warm start) are unchanged; otherwise recomputed with
+One JSON per case in <the scenario's product directory build/tables/<name>-<sha12>>/reference/<case
+key>.json (keyed by scenario), valid while the scenario file's SHA-256 (and its nominal's, the warm
+start) are unchanged; otherwise recomputed with
 `solve_fuel_optimal(scenario, perturbation, warm_start=nominal)`. Loading re-integrates the stored
 lambda_0 (DOP853, the scenario's final rtol) and recomputes arcs, final mass and terminal errors, so a
 cache entry is only trusted after it has been verified against the dynamics.
@@ -22,7 +23,6 @@ from ogk.sil.runner import CallTimeout, call_with_timeout
 
 F64 = NDArray[np.float64]
 REPO_ROOT = Path(__file__).resolve().parents[4]
-DEFAULT_CACHE_DIR = REPO_ROOT / "build" / "apophis" / "reference"
 FORMAT = 1
 
 
@@ -47,14 +47,11 @@ def sha256_of(path: Path) -> str:
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
-def _nominal_path() -> Path:
-    from ogk_host.low_thrust_transfer.indirect import NOMINAL_PATH
-    return Path(NOMINAL_PATH)
-
-
 def cache_key(setup: MpspSetup) -> dict[str, str]:
+    """What an entry was made from: the scenario file and the scenario's own nominal (the warm
+    start), by SHA-256; an entry of another scenario or nominal is recomputed, never used."""
     return {"scenario_sha256": sha256_of(setup.scenario.path),
-            "nominal_sha256": sha256_of(_nominal_path())}
+            "nominal_sha256": setup.nominal_sha256}
 
 
 def verify(setup: MpspSetup, case: Case, lam0: F64, solve_s: float, method: str,
@@ -107,12 +104,15 @@ def solve_reference(setup: MpspSetup, case: Case, timeout_s: float | None = None
     return verify(setup, case, np.asarray(lam0), float(solve_s), str(method), False)
 
 
-def committed_lambda0(case: Case) -> F64 | None:
+def committed_lambda0(setup: MpspSetup, case: Case) -> F64 | None:
     """lambda_0 of the same perturbed problem in the ground tool's committed references
-    (host/ogk_host/low_thrust_transfer/data/perturbed_optima.json, `python -m ogk_host.low_thrust_transfer references`), matched
-    on the perturbation itself; None when absent. Used only after re-integration verifies it."""
-    path = _nominal_path().parent / "perturbed_optima.json"
-    if not path.exists():
+    (the scenario's product directory, else the shipped host/ogk_host/low_thrust_transfer/data/
+    perturbed_optima.json when its physics_sha256 is this scenario's; `python -m
+    ogk_host.low_thrust_transfer references`), matched on the perturbation itself; None when absent.
+    Used only after re-integration verifies it."""
+    from ogk_host.low_thrust_transfer.products import references_for
+    path = references_for(setup.scenario, setup.product_dir)
+    if path is None:            # none made from this scenario's physics
         return None
     p = case.perturbation
     want = np.concatenate([p.delta_r0, p.delta_v0, p.delta_rf, [p.thrust_fraction]])
@@ -124,9 +124,11 @@ def committed_lambda0(case: Case) -> F64 | None:
     return None
 
 
-def load_or_solve(setup: MpspSetup, case: Case, cache_dir: Path = DEFAULT_CACHE_DIR,
+def load_or_solve(setup: MpspSetup, case: Case, cache_dir: Path | None = None,
                   timeout_s: float | None = None) -> Reference:
     """The cached reference of `case` if present, current and verified; else a fresh solve (stored)."""
+    if cache_dir is None:
+        cache_dir = setup.product_dir / "reference"
     path = Path(cache_dir) / f"{case.key}.json"
     key = cache_key(setup)
     if path.exists():
@@ -140,7 +142,7 @@ def load_or_solve(setup: MpspSetup, case: Case, cache_dir: Path = DEFAULT_CACHE_
         except (ValueError, KeyError, TypeError, RuntimeError):
             pass  # unreadable or stale entry: recompute
     ref = None
-    seed = committed_lambda0(case)
+    seed = committed_lambda0(setup, case)
     if seed is not None:
         candidate = verify(setup, case, seed, 0.0, "committed ground reference", True)
         ref = candidate if is_converged(setup, candidate) else None
