@@ -336,3 +336,22 @@ def test_beyond_acceptance_is_a_failure(tmp_path: Path, capsys: pytest.CaptureFi
         assert "FAILED: tolerance: |dr_f|" in err and "([acceptance])" in err, err
     finally:
         shutil.rmtree(out, ignore_errors=True)
+
+
+@pytest.mark.parametrize("verb", ["run", "mc"])
+@pytest.mark.parametrize("option,value,reason", [
+    ("--order", "16", "--order: must be in 1..15"),
+    ("--order", "0", "--order: must be in 1..15"),
+    ("--basis", "foo", "argument --basis: invalid choice: 'foo'"),
+])
+def test_bad_fourier_options(tmp_path: Path, capsys: pytest.CaptureFixture[str], verb: str,
+                             option: str, value: str, reason: str) -> None:
+    argv = (["run", "apophis", "--case", "thrust", "--param=3", "--no-reference"] if verb == "run"
+            else ["mc", "apophis", "--runs", "2", "--json", str(tmp_path / "mc.json")])
+    try:
+        code = main(argv + [option, value])
+    except SystemExit as exit_:          # argparse's own refusal
+        code = exit_.code
+    assert code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert reason in err[-1], err

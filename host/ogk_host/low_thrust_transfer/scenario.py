@@ -277,6 +277,11 @@ def load_scenario(path: str | Path = DEFAULT_SCENARIO_PATH) -> Scenario:
     return scenario
 
 
+#: OGK_MPSP_MAX_ORDER of kernel/include/ogk/mpsp.h (the kernel's weight arrays)
+MAX_FOURIER_ORDER = 15
+#: the Fourier bases of fourier.py / ogk_bindings.mpsp.paper_basis
+FOURIER_BASES = ("printed", "period_tf", "period_2tf", "cosine_2tf")
+
 #: [section] -> keys that must be finite numbers > 0
 _POSITIVE = {
     "units": ("length_unit_km", "time_unit_s", "mass_unit_kg", "velocity_unit_km_s_printed",
@@ -309,7 +314,7 @@ def _check_values(d: dict[str, Any], path: Path) -> None:
     mp.number("delta_tau_min", hi=1.0)
     mp.number("eta_start")
     mp.number("eta_end")
-    mp.integer("fourier_order", lo=1, hi=200)
+    mp.integer("fourier_order", lo=1, hi=MAX_FOURIER_ORDER)
     mp.integer("n_seg_tol_initial", lo=0)
     mp.integer("n_seg_tol_increment", lo=0)
     mp.text("fourier_basis")

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from ogk_bindings.errors import OgkInputError
+from ogk_host.low_thrust_transfer.scenario import FOURIER_BASES, MAX_FOURIER_ORDER
 from ogk_host.low_thrust_transfer.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.scenario_file import ScenarioHeader, table_dir_for
 
@@ -62,7 +63,7 @@ def add_cases_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--paper-tables", action="store_true", help="run the 23 cases of Tables 3, 5, 6")
     p.add_argument("--json", default=None, metavar="FILE", help="write the result(s) as JSON")
     p.add_argument("--plots", default=None, metavar="DIR", help="PNG figures (with --paper-tables)")
-    p.add_argument("--basis", default=None,
+    p.add_argument("--basis", default=None, choices=FOURIER_BASES,
                    help="Fourier basis (printed, period_tf, period_2tf, cosine_2tf; default: scenario)")
     p.add_argument("--order", type=int, default=None, help="Fourier order (default: scenario, 15)")
     p.add_argument("--reference-dir", default=None,
@@ -87,8 +88,9 @@ def cases(header: ScenarioHeader, args: argparse.Namespace) -> int:
         check_output_file(args.json, "--json")
     if args.plots:
         check_output_dir(args.plots, "--plots")
-    if args.order is not None and args.order < 1:
-        raise OgkInputError(f"must be >= 1, got {args.order}", key="--order")
+    if args.order is not None and not 1 <= args.order <= MAX_FOURIER_ORDER:
+        raise OgkInputError(f"must be in 1..{MAX_FOURIER_ORDER} (the kernel's OGK_MPSP_MAX_ORDER), "
+                            f"got {args.order}", key="--order")
     return _run(args)
 
 

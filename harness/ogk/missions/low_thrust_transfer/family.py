@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 from ogk_bindings.errors import OgkInputError
-from ogk_host.low_thrust_transfer.scenario import LAWS, load_scenario
+from ogk_host.low_thrust_transfer.scenario import FOURIER_BASES, LAWS, MAX_FOURIER_ORDER, load_scenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
 from ogk.sil.engine import Flown
@@ -73,7 +73,7 @@ class LowThrustFamily:
     def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
         p.add_argument("--cases", choices=("dispersed", "paper"), default="dispersed",
                        help="dispersed draws (default) or the paper's 23 cases (--runs 23)")
-        p.add_argument("--basis", default=None,
+        p.add_argument("--basis", default=None, choices=FOURIER_BASES,
                        help="Fourier basis (printed, period_tf, period_2tf, cosine_2tf; default: "
                             "the scenario's)")
         p.add_argument("--order", type=int, default=None, help="Fourier order (default: scenario)")
@@ -86,8 +86,13 @@ class LowThrustFamily:
 
     def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
         order = options.get("order")
-        if order is not None and int(order) < 1:
-            raise OgkInputError(f"must be >= 1, got {order}", key="--order")
+        if order is not None and not 1 <= int(order) <= MAX_FOURIER_ORDER:
+            raise OgkInputError(f"must be in 1..{MAX_FOURIER_ORDER} (the kernel's OGK_MPSP_MAX_ORDER), "
+                                f"got {order}", key="--order")
+        basis = options.get("basis")
+        if basis is not None and basis not in FOURIER_BASES:
+            raise OgkInputError(f"must be one of {', '.join(FOURIER_BASES)}, got {basis!r}",
+                                key="--basis")
         self.load(header)     # every bad key reported before the setup is built
         setup = build_setup(options.get("basis"), order, header.path)
         which = str(options.get("cases") or "dispersed")
