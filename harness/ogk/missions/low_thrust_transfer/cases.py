@@ -1,8 +1,10 @@
-"""Kernel MPSP configured on the paper's Apophis mission, and its perturbation cases.
+"""Kernel MPSP configured on a low-thrust transfer scenario (first: the paper's Apophis mission), and
+its perturbation cases.
 
-The configuration comes from the ground side (host/ogk_host/low_thrust_transfer): the stored fuel-optimal nominal,
-its least-squares Fourier fit of lambda_v (eqs. 49-50) and the section 4.1 settings of
-scenarios/apophis_cubesat.toml. A `Case` is one perturbed problem of Tables 3-6 in the kernel's terms
+The configuration comes from the ground side (host/ogk_host/low_thrust_transfer): the scenario's own
+fuel-optimal nominal (its ground product, build/tables/<name>-<sha12>/nominal_solution.json,
+products.ensure_nominal), its least-squares Fourier fit of lambda_v (eqs. 49-50) and the scenario's
+[mpsp] settings. A `Case` is one perturbed problem of Tables 3-6 in the kernel's terms
 (initial state, thrust scale, target) together with the ground `Perturbation` describing the same
 problem, so that the fuel-optimal solution of that problem can be computed for comparison.
 """
