@@ -89,6 +89,8 @@ OLD_SPELLINGS: tuple[tuple[tuple[str, ...], str, str], ...] = (
     (("low-thrust-transfer",), r"perturbations", "[dispersions] (initial, terminal, thrust)"),
     (("low-thrust-rendezvous",), r"perturbations\.(thrust_angle_sigma_rad|thrust_angle_draw_period_s)",
      "[dispersions] {0}"),
+    (("low-thrust-rendezvous",), r"(problem|perturbations|convergence)\.mars_([^.]+)",
+     "[{0}] target_{1} (and name the target: [target] name = \"Mars\")"),
     (("binary-asteroid",), r"transfers\.([^.]+)\.paper_([^.]+)", "[paper_results.transfers.{0}] {1}"),
     (("binary-asteroid",), r"monte_carlo\.paper_converged_percent",
      "[paper_results.table3] converged_percent (with levels_percent, the paper's levels)"),

@@ -41,7 +41,7 @@ def kernel_for(path: str, **overrides: object) -> tuple[Nmpc, object]:
 def test_model_matches_the_ground_model(path: str) -> None:
     g, scen = kernel_for(path, third_bodies=True)
     engine = Engine.for_scenario(scen)
-    bodies = planets(scen, mars_softening_m=scen.convergence.mars_soi_radius_m)
+    bodies = planets(scen, mars_softening_m=scen.convergence.target_soi_radius_m)
     rng = np.random.default_rng(7)
     for _ in range(20):
         x = np.array([rng.uniform(0.8, 1.6), rng.uniform(-3, 6), rng.normal(0, 0.1), rng.uniform(0.7, 1.1),
@@ -161,7 +161,7 @@ def test_perturbed_snns_closed_loop_on_its_own_seed() -> None:
     scen = load_scenario(MIN_TIME)
     r = fly(scen, KernelGuidance(scen, strategy_settings(scen, "snns")), perturbed=True, seed=101)
     assert r.converged
-    assert r.final_position_miss_km < scen.convergence.mars_soi_radius_m / 1e3
+    assert r.final_position_miss_km < scen.convergence.target_soi_radius_m / 1e3
 
 
 def test_bad_inputs_raise() -> None:

@@ -32,9 +32,9 @@ VEL_TOL_M_S = 0.01
 TABLE_A1 = {
     ("problem", "start_time_s"): 0.0,
     ("problem", "earth_orbit_radius_m"): 149597871 * KM,
-    ("problem", "mars_orbit_radius_m"): 227939100 * KM,
+    ("problem", "target_orbit_radius_m"): 227939100 * KM,
     ("problem", "earth_mass_kg"): 5.9736e24,
-    ("problem", "mars_mass_kg"): 6.4191e23,
+    ("problem", "target_mass_kg"): 6.4191e23,
     ("problem", "sun_mass_kg"): 1.98892e30,
     ("problem", "sun_mu_m3_s2"): 132712440018 * KM ** 3,
     ("initial_state", "radius_m"): 149597871 * KM,
@@ -53,13 +53,13 @@ TABLE_A1 = {
     ("perturbations", "thrust_offset_percent"): -10.0,
     ("dispersions", "thrust_angle_sigma_rad"): 3 * DEG,
     ("perturbations", "earth_mu_m3_s2"): 398600.441 * KM ** 3,
-    ("perturbations", "mars_mu_m3_s2"): 42828 * KM ** 3,
+    ("perturbations", "target_mu_m3_s2"): 42828 * KM ** 3,
     ("perturbations", "earth_initial_polar_angle_rad"): -0.35414 * DEG,
     ("propulsion", "thrust_max_n"): 0.5,
     ("propulsion", "specific_impulse_s"): 3000.0,
     ("propulsion", "standard_gravity_m_s2"): 9.80665,
     ("convergence", "earth_soi_radius_m"): 9.24641e5 * KM,
-    ("convergence", "mars_soi_radius_m"): 5.77247e5 * KM,
+    ("convergence", "target_soi_radius_m"): 5.77247e5 * KM,
     ("convergence", "velocity_error_m_s"): 1.0 * KM,
 }
 

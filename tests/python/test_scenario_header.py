@@ -101,6 +101,11 @@ OLD = [
     # rendezvous: the thrust-angle noise back in [perturbations] (its forces stay there)
     ("rendezvous_nep_min_fuel", r"^\[dispersions\].*\n", "", "perturbations.thrust_angle_sigma_rad",
      "[dispersions] thrust_angle_sigma_rad"),
+    # rendezvous: the target's keys named after Mars (any target now: [target] name)
+    ("rendezvous_nep_min_time", r"^target_orbit_radius_m", "mars_orbit_radius_m",
+     "problem.mars_orbit_radius_m", "[problem] target_orbit_radius_m"),
+    ("rendezvous_sep_min_fuel", r"^target_soi_radius_m", "mars_soi_radius_m",
+     "convergence.mars_soi_radius_m", "[convergence] target_soi_radius_m"),
     # binary: per-transfer paper_* keys, paper_converged_percent, the draws in [monte_carlo]
     ("moshup", r"^(\[transfers\.l2_to_l1_halo\].*\n)", r"\1paper_fuel_g = 13.64\n",
      "transfers.l2_to_l1_halo.paper_fuel_g", "[paper_results.transfers.l2_to_l1_halo] fuel_g"),
@@ -161,7 +166,9 @@ def test_rendezvous_default_acceptance_is_the_arrival_condition(tmp_path: Path) 
     from ogk.missions.rendezvous.family import judge
     scn = rendezvous.load_scenario(SCENARIOS / "rendezvous_nep_min_time.toml")
     conv = scn.convergence
-    assert scn.acceptance == rendezvous.Acceptance(conv.mars_soi_radius_m, conv.velocity_error_m_s, None)
+    # the propellant limit defaults to what the vehicle carries: m0 - [spacecraft] dry_mass_kg
+    assert scn.acceptance == rendezvous.Acceptance(conv.target_soi_radius_m, conv.velocity_error_m_s,
+                                                   scn.initial_mass_kg - scn.dry_mass_kg)
     arrived = {"converged": True, "reason": "converged", "final_position_miss_km": 5.0e5,
                "final_velocity_miss_m_s": 900.0, "fuel_kg": 600.0}
     assert judge(scn.acceptance, arrived) == ""
@@ -170,7 +177,7 @@ def test_rendezvous_default_acceptance_is_the_arrival_condition(tmp_path: Path) 
     path = edited(tmp_path, "rendezvous_nep_min_time", r"^\[paper_results\]",
                   "[acceptance]\npropellant_kg = 550.0\n\n[paper_results]")
     limited = rendezvous.load_scenario(path).acceptance
-    assert limited == rendezvous.Acceptance(conv.mars_soi_radius_m, conv.velocity_error_m_s, 550.0)
+    assert limited == rendezvous.Acceptance(conv.target_soi_radius_m, conv.velocity_error_m_s, 550.0)
     assert judge(limited, arrived).startswith("propellant: 600 kg > 550")
 
 

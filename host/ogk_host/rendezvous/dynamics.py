@@ -69,7 +69,7 @@ class Model:
         x0 = np.array([s0.radius_m / u.length_m, s0.polar_angle_rad,
                        s0.radial_velocity_m_s / u.velocity_m_s,
                        s0.circumferential_velocity_m_s / u.velocity_m_s, 1.0])
-        r_m = scenario.problem.mars_orbit_radius_m / u.length_m
+        r_m = scenario.problem.target_orbit_radius_m / u.length_m
         # Solar-electric (eq. 14): the constant-throttle pair is the engine's at r_E (Engine.limits), only
         # so that Model (x0, Mars, units) exists for every scenario; its throttle model is `Engine`.
         thrust, mass_flow = Engine.for_scenario(scenario).limits(1.0)
@@ -243,10 +243,10 @@ def planets(scenario: RendezvousScenario, mars_softening_m: float = 0.0) -> tupl
     mu_unit = u.length_m ** 3 / u.time_s ** 2
     pert = scenario.perturbations
     r_e = scenario.problem.earth_orbit_radius_m / u.length_m
-    r_m = scenario.problem.mars_orbit_radius_m / u.length_m
+    r_m = scenario.problem.target_orbit_radius_m / u.length_m
     earth = ThirdBody(mu=pert.earth_mu_m3_s2 / mu_unit, radius=r_e,
                       theta0=pert.earth_initial_polar_angle_rad, rate=r_e ** -1.5)
-    mars = ThirdBody(mu=pert.mars_mu_m3_s2 / mu_unit, radius=r_m, theta0=scenario.target.polar_angle_rad,
+    mars = ThirdBody(mu=pert.target_mu_m3_s2 / mu_unit, radius=r_m, theta0=scenario.target.polar_angle_rad,
                      rate=r_m ** -1.5, softening=mars_softening_m / u.length_m)
     return earth, mars
 

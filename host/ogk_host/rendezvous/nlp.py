@@ -205,7 +205,7 @@ class RendezvousNlp:
         accel = None
         if self.third_bodies:
             earth, mars = planets(self.scenario,
-                                  mars_softening_m=self.scenario.convergence.mars_soi_radius_m)
+                                  mars_softening_m=self.scenario.convergence.target_soi_radius_m)
             accel = casadi_third_body_accel((earth, mars))
         nu, steps = self.nu, self.rk4_steps
         x = ca.SX.sym("x", 5)
@@ -346,12 +346,13 @@ class RendezvousNlp:
 
 
 def min_time_guess(nlp: RendezvousNlp) -> Plan:
-    """ocp's documented guess (docs/nmpc.md, "Initial guess": phase-matched, t_f = 370 d, alpha = 135 deg)
-    as a Plan from t0 = 0, full throttle when nu = 2."""
-    from .ocp import DEFAULT_GUESS_ALPHA_RAD, DEFAULT_GUESS_SHAPE, DEFAULT_GUESS_TF_DAYS, phase_matched_guess
+    """ocp's documented guess (docs/nmpc.md, "Initial guess": phase-matched, alpha = 135 deg, 225 deg for an
+    inward transfer) with t_f sized from the vehicle and the transfer (`ocp.guess_transfer_days`: 370 d for
+    the paper's) as a Plan from t0 = 0, full throttle when nu = 2."""
+    from .ocp import DEFAULT_GUESS_SHAPE, guess_alpha_rad, guess_transfer_days, phase_matched_guess
 
-    g = phase_matched_guess(nlp.model, nlp.scenario.ocp.nodes, DEFAULT_GUESS_TF_DAYS, DEFAULT_GUESS_SHAPE,
-                            DEFAULT_GUESS_ALPHA_RAD)
+    g = phase_matched_guess(nlp.model, nlp.scenario.ocp.nodes, guess_transfer_days(nlp.scenario),
+                            DEFAULT_GUESS_SHAPE, guess_alpha_rad(nlp.scenario))
     controls = g.controls[:, None] if nlp.nu == 1 else np.stack([g.controls, np.ones_like(g.controls)], 1)
     return Plan(t0=0.0, horizon=g.t_f, states=g.states, controls=controls)
 

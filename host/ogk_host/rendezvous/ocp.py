@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .dynamics import DAY_S, Model, casadi_rhs
-from .scenario import RendezvousScenario
+from .scenario import RendezvousScenario, hohmann
 
 FloatArray = NDArray[np.float64]
 
@@ -30,6 +30,43 @@ FloatArray = NDArray[np.float64]
 DEFAULT_GUESS_TF_DAYS = 370.0
 DEFAULT_GUESS_SHAPE = 1.0
 DEFAULT_GUESS_ALPHA_RAD = 0.75 * math.pi
+
+
+#: The paper's transfer (Table A.1: Earth to Mars, 0.5 N on 1500 kg): its Hohmann time is the time scale
+#: the documented 370-day guess belongs to (docs/nmpc.md, "Any circular rendezvous").
+PAPER_ORBITS_M = (1.49597871e11, 2.279391e11)
+PAPER_SUN_MU = 1.32712440018e20
+#: The guess never plans to burn more than this fraction of the propellant (its mass stays above dry).
+GUESS_PROPELLANT_FRACTION = 0.9
+
+
+def transfer_time_scale_s(scenario: RendezvousScenario) -> float:
+    """max(Hohmann time, Hohmann Delta v / (T / m0)) [s]: the transfer's time scale, from the orbits
+    and the vehicle's initial acceleration (a weak vehicle needs longer than the coast)."""
+    r1, r2 = scenario.initial.radius_m, scenario.target.radius_m
+    dv, t_h = hohmann(scenario.problem.sun_mu_m3_s2, r1, r2)
+    accel = scenario.propulsion.thrust_max_n / scenario.initial_mass_kg
+    return max(t_h, dv / accel)
+
+
+def guess_transfer_days(scenario: RendezvousScenario) -> float:
+    """The first guess's t_f [d]: the documented 370 d (the paper's vehicle and orbits) scaled by this
+    transfer's time scale over the paper's, and short enough that full thrust burns at most
+    GUESS_PROPELLANT_FRACTION of the propellant (nominal mass flow at the departure orbit)."""
+    ref = max(hohmann(PAPER_SUN_MU, *PAPER_ORBITS_M)[1],
+              hohmann(PAPER_SUN_MU, *PAPER_ORBITS_M)[0] / (0.5 / 1500.0))
+    days = DEFAULT_GUESS_TF_DAYS * transfer_time_scale_s(scenario) / ref
+    flow = Model.for_scenario(scenario)
+    mdot_kg_s = flow.mass_flow * flow.units.mass_flow_kg_s
+    if mdot_kg_s > 0.0:
+        days = min(days, GUESS_PROPELLANT_FRACTION * scenario.propellant_kg / mdot_kg_s / DAY_S)
+    return days
+
+
+def guess_alpha_rad(scenario: RendezvousScenario) -> float:
+    """The guess's thrust angle: 135 deg outward (prograde, tilted inward: the documented guess), its
+    mirror 225 deg (retrograde) inward."""
+    return DEFAULT_GUESS_ALPHA_RAD if scenario.outward else 2.0 * math.pi - DEFAULT_GUESS_ALPHA_RAD
 
 
 @dataclasses.dataclass(frozen=True)

@@ -1,4 +1,7 @@
-"""Earth-to-Mars low-thrust rendezvous scenarios (Starek & Kolmanovsky 2012, Table A.1): TOML -> dataclasses.
+"""Coplanar circular-orbit low-thrust rendezvous scenarios (Starek & Kolmanovsky 2012, Table A.1, is the
+first: Earth to Mars): TOML -> dataclasses. The target is the scenario's `[target]` (its `name`, orbit radius
+and phase), inward or outward of the departure orbit; the vehicle's dry mass is `[spacecraft] dry_mass_kg`
+(docs/nmpc.md, "Any circular rendezvous": the envelope and what is derived from the vehicle).
 
 Everything here is SI (m, s, kg, N, rad), as in scenarios/rendezvous_*.toml. The normalised units the
 solvers use are built by `dynamics.Units.for_scenario` (LU = r_E, mu_sun = 1, MU = m0; docs/nmpc.md).
@@ -30,15 +33,70 @@ PAPER_RESULT_KEYS = ("open_loop_time_s", "open_loop_fuel_kg", "open_loop_max_com
                      "cncn_perturbed_time_s", "cncn_perturbed_fuel_kg", "cncn_perturbed_max_comp_fraction")
 
 
+#: The envelope the family states (docs/nmpc.md, "Any circular rendezvous"): target orbit radius over
+#: the departure orbit radius, and the vehicle's initial thrust acceleration T / m0 [m/s^2].
+ENVELOPE_RADIUS_RATIO = (0.7, 1.55)
+ENVELOPE_ACCEL_M_S2 = (2.5e-4, 3.2e-3)
+
+
+def hohmann(mu: float, r1: float, r2: float) -> tuple[float, float]:
+    """(Delta v [m/s], transfer time [s]) of the Hohmann transfer between circular orbits r1 and r2 (both
+    burns; half the ellipse's period): the impulsive minimum for radius ratios below 11.94, so no
+    low-thrust transfer needs less Delta v."""
+    a = 0.5 * (r1 + r2)
+    dv1 = abs(math.sqrt(mu / r1) * (math.sqrt(2.0 * r2 / (r1 + r2)) - 1.0))
+    dv2 = abs(math.sqrt(mu / r2) * (1.0 - math.sqrt(2.0 * r1 / (r1 + r2))))
+    return dv1 + dv2, math.pi * math.sqrt(a ** 3 / mu)
+
+
+def exhaust_velocity_max_m_s(propulsion: "Propulsion", r_lo: float, r_hi: float) -> float:
+    """The largest effective exhaust velocity T_max / mdot_max of the engine between the two orbits
+    [m/s] (nuclear-electric: g0 Isp; solar-electric: eq. (14) sampled)."""
+    if propulsion.solar is None:
+        assert propulsion.specific_impulse_s is not None and propulsion.standard_gravity_m_s2 is not None
+        return propulsion.specific_impulse_s * propulsion.standard_gravity_m_s2
+    sol = propulsion.solar
+    p0 = sol.reference_power_w(propulsion.thrust_max_n)
+    best = 0.0
+    for k in range(65):
+        r = r_lo + (r_hi - r_lo) * k / 64.0
+        power = p0 * sol.power_ratio(r)
+        thrust = sol.thrust_b1_n + sol.thrust_b2_n_per_w * power
+        flow = -(sol.mass_rate_c1_kg_s + sol.mass_rate_c2_kg_s_per_w * power)
+        if thrust > 0.0 and flow > 0.0:
+            best = max(best, thrust / flow)
+    return best
+
+
+def _check_propellant(prop_s: Section, propulsion: "Propulsion", problem: "Problem", initial: "PolarState",
+                      target: "PolarState", initial_mass: float, dry_mass: float) -> None:
+    """Refuses, before anything is flown, a vehicle outside the stated acceleration envelope and one
+    whose propellant cannot give even the Hohmann Delta v (the impulsive minimum: no low-thrust transfer
+    needs less) at the engine's best exhaust velocity (Tsiolkovsky)."""
+    accel = propulsion.thrust_max_n / initial_mass
+    lo, hi = ENVELOPE_ACCEL_M_S2
+    if not lo <= accel <= hi:
+        raise prop_s.error("thrust_max_n", f"T / m0 = {accel:.3g} m/s^2 is outside the envelope the family "
+                           f"states ({lo:g}-{hi:g} m/s^2; docs/nmpc.md, \"Any circular rendezvous\")")
+    r1, r2 = sorted((initial.radius_m, target.radius_m))
+    dv_min, _ = hohmann(problem.sun_mu_m3_s2, r1, r2)
+    ve = exhaust_velocity_max_m_s(propulsion, r1, r2)
+    dv_max = ve * math.log(initial_mass / dry_mass)
+    if not dv_max > dv_min:
+        raise prop_s.error("thrust_max_n", f"not enough propellant: {initial_mass - dry_mass:.6g} kg "
+                           f"(spacecraft.dry_mass_kg) give at most {dv_max:.0f} m/s, the transfer needs "
+                           f"more than the Hohmann {dv_min:.0f} m/s")
+
+
 @dataclasses.dataclass(frozen=True)
 class Problem:
     """Table A.1, "Problem definition"."""
 
     start_time_s: float             #: t_0 [s]
-    earth_orbit_radius_m: float     #: r_E [m]
-    mars_orbit_radius_m: float      #: r_M [m]
+    earth_orbit_radius_m: float     #: r_E [m] (the departure planet's orbit; the length unit)
+    target_orbit_radius_m: float    #: r_T [m] (the paper's r_M)
     earth_mass_kg: float            #: m_E [kg]
-    mars_mass_kg: float             #: m_M [kg]
+    target_mass_kg: float           #: m_T [kg] (the paper's m_M)
     sun_mass_kg: float              #: m_S [kg]
     sun_mu_m3_s2: float             #: mu [m^3/s^2]
 
@@ -63,7 +121,7 @@ class Perturbations:
     speed_of_light_m_s: float           #: c [m/s]
     thrust_offset_percent: float        #: T_offset [%] (eq. 23)
     earth_mu_m3_s2: float               #: mu_E [m^3/s^2]
-    mars_mu_m3_s2: float                #: mu_M [m^3/s^2]
+    target_mu_m3_s2: float                #: mu_M [m^3/s^2]
     earth_initial_polar_angle_rad: float    #: (theta_E)_0 [rad]
 
 
@@ -84,8 +142,8 @@ class Acceptance:
     final miss within these and, when propellant_kg is given, burns no more propellant (truth mass).
 
     Default when the scenario has no [acceptance] (or leaves a key out): the arrival condition of
-    [convergence]: position_error_m = mars_soi_radius_m, velocity_error_m_s = velocity_error_m_s, no
-    propellant limit."""
+    [convergence]: position_error_m = target_soi_radius_m, velocity_error_m_s = velocity_error_m_s, and
+    propellant_kg = the vehicle's propellant (initial_state.mass_kg - spacecraft.dry_mass_kg)."""
 
     position_error_m: float             #: |r - r_M| at arrival [m]
     velocity_error_m_s: float           #: |v - v_M| at arrival [m/s]
@@ -145,7 +203,7 @@ class Convergence:
     """Table A.1, "Convergence criteria" and the rendezvous test of sec. 2.3.1 (MPC stop)."""
 
     earth_soi_radius_m: float
-    mars_soi_radius_m: float
+    target_soi_radius_m: float
     velocity_error_m_s: float
 
 
@@ -191,7 +249,9 @@ class RendezvousScenario:
     problem: Problem
     initial: PolarState
     initial_mass_kg: float
-    target: PolarState              #: Mars at t_0 (circular orbit, eq. 6)
+    target: PolarState              #: the target at t_0 (circular orbit, eq. 6)
+    target_name: str                #: [target] name: what the outputs call it ("Mars")
+    dry_mass_kg: float              #: [spacecraft] dry_mass_kg: the mass with no propellant left
     perturbations: Perturbations    #: the forces of the simulation model (deterministic)
     propulsion: Propulsion
     convergence: Convergence
@@ -204,8 +264,18 @@ class RendezvousScenario:
 
     @property
     def mars_mean_motion_rad_s(self) -> float:
-        """sqrt(mu / r_M^3), eq. (6)."""
-        return math.sqrt(self.problem.sun_mu_m3_s2 / self.problem.mars_orbit_radius_m ** 3)
+        """sqrt(mu / r_T^3), eq. (6)."""
+        return math.sqrt(self.problem.sun_mu_m3_s2 / self.problem.target_orbit_radius_m ** 3)
+
+    @property
+    def propellant_kg(self) -> float:
+        """m_0 - dry mass: what the engine can burn."""
+        return self.initial_mass_kg - self.dry_mass_kg
+
+    @property
+    def outward(self) -> bool:
+        """The target's orbit is above the departure orbit."""
+        return self.target.radius_m > self.initial.radius_m
 
 
 def _read_state(section: Section) -> PolarState:
@@ -247,8 +317,7 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                                **{f.name: {"positive": True} for f in dataclasses.fields(Problem)
                                   if f.name != "start_time_s"})
     prob_s.finish()
-    if not problem.mars_orbit_radius_m > problem.earth_orbit_radius_m:
-        raise prob_s.error("mars_orbit_radius_m", "must be above earth_orbit_radius_m (outward transfer)")
+    # inward and outward transfers alike; the envelope the family states is checked below (ENVELOPE_*)
 
     init_s = top.section("initial_state")
     initial = _read_state(init_s)
@@ -257,11 +326,25 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
     _check_circular(init_s, initial, problem.sun_mu_m3_s2, "spacecraft")
 
     target_s = top.section("target")
+    target_name = target_s.text("name")
     target = _read_state(target_s)
     target_s.finish()
-    _check_circular(target_s, target, problem.sun_mu_m3_s2, "Mars")
-    if target.radius_m != problem.mars_orbit_radius_m:
-        raise target_s.error("radius_m", "must equal problem.mars_orbit_radius_m (circular orbit, eq. 6)")
+    _check_circular(target_s, target, problem.sun_mu_m3_s2, target_name)
+    if target.radius_m != problem.target_orbit_radius_m:
+        raise target_s.error("radius_m", "must equal problem.target_orbit_radius_m (circular orbit, eq. 6)")
+    ratio = target.radius_m / initial.radius_m
+    if not ENVELOPE_RADIUS_RATIO[0] <= ratio <= ENVELOPE_RADIUS_RATIO[1] or abs(ratio - 1.0) < 0.05:
+        raise target_s.error("radius_m", f"target / departure orbit radius {ratio:.4g} is outside the "
+                             f"envelope the family states ({ENVELOPE_RADIUS_RATIO[0]:g}-"
+                             f"{ENVELOPE_RADIUS_RATIO[1]:g}, at least 5 % apart; docs/nmpc.md, "
+                             f"\"Any circular rendezvous\")")
+
+    craft_s = top.section("spacecraft")
+    dry_mass = craft_s.number("dry_mass_kg", positive=True)
+    craft_s.finish()
+    if not dry_mass < initial_mass:
+        raise craft_s.error("dry_mass_kg", f"{dry_mass:g} kg leaves no propellant: must be below "
+                            f"initial_state.mass_kg = {initial_mass:g} kg")
 
     pert_s = top.section("perturbations")
     perturbations = pert_s.dataclass(Perturbations, area_m2={"nonnegative": True},
@@ -270,7 +353,7 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                                      speed_of_light_m_s={"positive": True},
                                      thrust_offset_percent={"lo": -100.0, "hi": 100.0},
                                      earth_mu_m3_s2={"nonnegative": True},
-                                     mars_mu_m3_s2={"nonnegative": True})
+                                     target_mu_m3_s2={"nonnegative": True})
     pert_s.finish()
     disp_s = top.section("dispersions")
     dispersions = disp_s.dataclass(Dispersions, thrust_angle_sigma_rad={"nonnegative": True},
@@ -299,12 +382,19 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                                "1 AU (eq. 14)")
         propulsion = Propulsion(model=model, throttle=throttle, thrust_max_n=thrust_max, solar=solar)
     prop_s.finish()
+    _check_propellant(prop_s, propulsion, problem, initial, target, initial_mass, dry_mass)
 
     conv_s = top.section("convergence")
     convergence = conv_s.dataclass(Convergence, **{f.name: {"positive": True}
                                                    for f in dataclasses.fields(Convergence)})
     conv_s.finish()
-    acceptance = _read_acceptance(top.section("acceptance", optional=True), convergence)
+    escape = math.sqrt(2.0 * perturbations.target_mu_m3_s2 / convergence.target_soi_radius_m)
+    if not convergence.velocity_error_m_s > escape:
+        raise conv_s.error("velocity_error_m_s", f"{convergence.velocity_error_m_s:g} m/s is below "
+                           f"{target_name}'s escape speed at its sphere of influence, sqrt(2 mu_T / r_SOI) = "
+                           f"{escape:.0f} m/s: its pull alone would keep the arrival test from holding")
+    acceptance = _read_acceptance(top.section("acceptance", optional=True), convergence,
+                                   initial_mass - dry_mass)
 
     guid_s = top.section("guidance")
     law = guid_s.text("law", choices=LAWS)
@@ -351,19 +441,23 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
     top.finish()
     return RendezvousScenario(path=scenario_path, name=name, source=source, problem=problem,
                               initial=initial, initial_mass_kg=initial_mass, target=target,
+                              target_name=target_name, dry_mass_kg=dry_mass,
                               perturbations=perturbations, propulsion=propulsion,
                               convergence=convergence, ocp=ocp, law=law, paper_results=paper,
                               nmpc=nmpc, dispersions=dispersions, acceptance=acceptance)
 
 
-def _read_acceptance(sec: Section, convergence: Convergence) -> Acceptance:
+def _read_acceptance(sec: Section, convergence: Convergence, propellant_kg: float) -> Acceptance:
     """[acceptance]; STATED DEFAULT (docs/adding-a-mission.md, "The scenario header"): the arrival
-    condition of [convergence] (Mars' sphere-of-influence radius, its velocity error), no propellant
-    limit."""
-    acc = Acceptance(position_error_m=sec.number("position_error_m", convergence.mars_soi_radius_m,
+    condition of [convergence] (the target's sphere-of-influence radius, its velocity error) and the
+    vehicle's propellant (initial_state.mass_kg - spacecraft.dry_mass_kg)."""
+    acc = Acceptance(position_error_m=sec.number("position_error_m", convergence.target_soi_radius_m,
                                                  positive=True),
                      velocity_error_m_s=sec.number("velocity_error_m_s", convergence.velocity_error_m_s,
                                                    positive=True),
-                     propellant_kg=sec.number("propellant_kg", None, positive=True))
+                     propellant_kg=sec.number("propellant_kg", propellant_kg, positive=True))
     sec.finish()
+    if acc.propellant_kg is not None and acc.propellant_kg > propellant_kg:
+        raise sec.error("propellant_kg", f"{acc.propellant_kg:g} kg is more than the vehicle carries "
+                        f"({propellant_kg:g} kg = initial_state.mass_kg - spacecraft.dry_mass_kg)")
     return acc

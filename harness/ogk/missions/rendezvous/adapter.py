@@ -79,7 +79,7 @@ def report_lines(scenario: RendezvousScenario, doc: dict[str, Any]) -> list[str]
     def row(label: str, mine: str, theirs: str) -> None:   # the paper's column only when the scenario has one
         lines.append(f"  {label:34s} {mine:>14s}" + (f" {theirs:>14s}" if scenario.paper_results else ""))
 
-    row("Converged to Mars?", "yes" if doc["converged"] else f"no ({doc['reason']})",
+    row(f"Reached {scenario.target_name}?", "yes" if doc["converged"] else f"no ({doc['reason']})",
         "-" if paper["converged"] is None else "yes")
     row("t_f - t_0 [d]", _f(doc["t_f_days"], ".2f"), _f(paper["t_f_days"], ".2f"))
     row("fuel m_0 - m_f [kg], nominal mdot", _f(doc["fuel_nominal_mdot_kg"], ".2f"), _f(paper["fuel_kg"], ".2f"))

@@ -9,7 +9,7 @@ which it starts to hold is bisected (re-propagating from the last grid point whe
 (which "terminates the controller within a finite tolerance of the target defined by the SOI"), not the
 end of the subinterval in which it happens. A flight whose truth trajectory passes inside Earth's or Mars'
 radius (`EARTH_RADIUS_M`, `MARS_RADIUS_M`: the truth's planets are point masses and would let it through) ends
-there, not converged ("earth_impact", "mars_impact"), checked on the same grid.
+there, not converged ("earth_impact", "target_impact"), checked on the same grid.
 
 Perturbed flights: the truth model adds Earth and Mars gravity, solar radiation pressure and the -10 % thrust
 offset (truth.py); the loop adds the thrust-angle noise N(0, sigma_alpha_T): one draw per control subinterval
@@ -42,9 +42,11 @@ FloatArray = NDArray[np.float64]
 
 ARRIVAL_TOLERANCE_S = 600.0     #: bisection of the first instant of rendezvous [s]
 #: Planet radii (mean, IAU/IUGG; not in Table A.1): the truth model's planets are point masses, so a flight that
-#: passes closer than this to a planet's centre has hit it and ends there ("earth_impact", "mars_impact").
+#: passes closer than this to a planet's centre has hit it and ends there ("earth_impact", "target_impact").
 EARTH_RADIUS_M = 6.3710e6
 MARS_RADIUS_M = 3.3895e6
+#: A plan may arrive this much below the dry mass before it is refused (the plan's RK4 against the truth).
+PROPELLANT_SLACK_KG = 1e-3
 TRUTH_RTOL = 1e-10
 TRUTH_ATOL = 1e-12
 
@@ -150,6 +152,22 @@ def _days(cost: float | None, scenario: RendezvousScenario, units: Any) -> float
     return cost * units.time_s / DAY_S
 
 
+def _record(index: int, t: float, x: FloatArray, info: ReplanInfo, t_next: float, offset: float,
+            truth: Any, scenario: RendezvousScenario, units: Any) -> ReplanRecord:
+    dr0, dv0 = truth.miss(t, x)
+    return ReplanRecord(index=index, t_days=t * units.time_s / DAY_S, position_miss_km=dr0 / 1e3,
+                        velocity_miss_m_s=dv0, nodes=info.nodes, iterations=info.iterations,
+                        solve_ms=info.solve_time_s * 1e3, solves=info.solves, converged=info.converged,
+                        failed=info.failed, subdivided=info.subdivided,
+                        planned_t_f_days=info.plan.t_f * units.time_s / DAY_S,
+                        subinterval_days=(t_next - t) * units.time_s / DAY_S,
+                        angle_offset_deg=math.degrees(offset),
+                        sweep_deg=math.degrees(abs(float(info.plan.controls[1, 0] - info.plan.controls[0, 0]))),
+                        status=info.status, status_n=info.status_n,
+                        cost_n_days=_days(info.cost_n, scenario, units),
+                        cost_2n_days=_days(info.cost_2n, scenario, units))
+
+
 def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed: int,
         strategy_name: str = "", solver_name: str = "", truth: Any = None,
         max_replans: int | None = None, max_flight_days: float | None = None,
@@ -174,7 +192,7 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
 
     def arrived(t: float, x: FloatArray) -> bool:
         dr, dv = truth.miss(t, x)
-        return dr < conv.mars_soi_radius_m and dv < conv.velocity_error_m_s
+        return dr < conv.target_soi_radius_m and dv < conv.velocity_error_m_s
 
     t = scenario.problem.start_time_s / units.time_s
     x = np.array(model.x0, copy=True)
@@ -198,6 +216,20 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
             break
         info = guidance.replan(t, x)
         infos.append(info)
+        # the dry mass (docs/nmpc.md, "Any circular rendezvous"): a plan that arrives below it is refused,
+        # the flight stops with the reason (the predictive model knows no dry mass)
+        if not history and not info.converged:
+            reason = (f"no first plan to {scenario.target_name}: no solve converged from the guesses sized "
+                      f"for this vehicle ({info.status})")
+            history.append(_record(0, t, x, info, t, 0.0, truth, scenario, units))
+            break
+        need_kg = (float(x[4]) - float(info.plan.states[-1, 4])) * units.mass_kg
+        left_kg = float(x[4]) * units.mass_kg - scenario.dry_mass_kg
+        if info.converged and need_kg > left_kg + PROPELLANT_SLACK_KG:
+            reason = (f"propellant: the plan to {scenario.target_name} needs {need_kg:.1f} kg, "
+                      f"{left_kg:.1f} kg left (dry mass {scenario.dry_mass_kg:g} kg)")
+            history.append(_record(len(history), t, x, info, t, 0.0, truth, scenario, units))
+            break
         t_next = min(info.t_next, t_max)
         if not t_next > t:
             reason = "empty_subinterval"
@@ -211,18 +243,7 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
         else:
             segs = [(t, t_next, offset_for(subinterval_count))]
         subinterval_count += 1
-        dr0, dv0 = truth.miss(t, x)
-        rec = ReplanRecord(index=len(history), t_days=t * units.time_s / DAY_S, position_miss_km=dr0 / 1e3,
-                           velocity_miss_m_s=dv0, nodes=info.nodes, iterations=info.iterations,
-                           solve_ms=info.solve_time_s * 1e3, solves=info.solves, converged=info.converged,
-                           failed=info.failed, subdivided=info.subdivided,
-                           planned_t_f_days=info.plan.t_f * units.time_s / DAY_S,
-                           subinterval_days=(t_next - t) * units.time_s / DAY_S,
-                           angle_offset_deg=math.degrees(segs[0][2]),
-                           sweep_deg=math.degrees(abs(float(info.plan.controls[1, 0] - info.plan.controls[0, 0]))),
-                           status=info.status, status_n=info.status_n,
-                           cost_n_days=_days(info.cost_n, scenario, units),
-                           cost_2n_days=_days(info.cost_2n, scenario, units))
+        rec = _record(len(history), t, x, info, t_next, segs[0][2], truth, scenario, units)
         history.append(rec)
         if progress is not None:
             progress(rec)
@@ -234,6 +255,13 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
                 reason = "truth_invalid"
                 done = True
                 break
+            dry = scenario.dry_mass_kg / units.mass_kg
+            empty = np.nonzero(xg[1:, 4] < dry)[0]
+            if len(empty):      # ran dry: the flight ends at the first grid point below the dry mass
+                k = int(empty[0]) + 1
+                tg, xg = tg[: k + 1], xg[: k + 1]
+                reason = f"propellant: ran dry (dry mass {scenario.dry_mass_kg:g} kg) before {scenario.target_name}"
+                done = True
             # a point-mass truth lets the spacecraft fly through a planet: the flight ends there
             impact, impact_reason = len(tg), ""
             for i in range(1, len(tg)):
@@ -241,15 +269,15 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
                     impact, impact_reason = i, "earth_impact"
                     break
                 if polar_distance_m(xg[i], truth.mars_state(float(tg[i])), units) < MARS_RADIUS_M:
-                    impact, impact_reason = i, "mars_impact"
+                    impact, impact_reason = i, "target_impact"
                     break
             hit = -1
             for i in range(1, impact):
                 dr, dv = truth.miss(float(tg[i]), xg[i])
-                if dr < conv.mars_soi_radius_m and dv < conv.velocity_error_m_s:
+                if dr < conv.target_soi_radius_m and dv < conv.velocity_error_m_s:
                     hit = i
                     break
-            if hit > 0:
+            if hit > 0:     # (before the dry-mass point when the flight also ran dry: the arrival wins)
                 # bisect the first instant of rendezvous between grid points hit - 1 and hit
                 lo_t, lo_x, hi_t, hi_x = float(tg[hit - 1]), xg[hit - 1], float(tg[hit]), xg[hit]
                 tol = ARRIVAL_TOLERANCE_S / units.time_s

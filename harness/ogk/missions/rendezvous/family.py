@@ -46,10 +46,10 @@ def judge(acceptance: Acceptance, rec: Mapping[str, Any]) -> str:
         return f"not arrived: {rec['reason']}"
     miss_m = None if rec.get("final_position_miss_km") is None else 1e3 * rec["final_position_miss_km"]
     if miss_m is not None and not miss_m <= acceptance.position_error_m:
-        return f"tolerance: |r - r_M| = {miss_m:.4g} m > {acceptance.position_error_m:.4g}"
+        return f"tolerance: |r - r_T| = {miss_m:.4g} m > {acceptance.position_error_m:.4g}"
     dv = rec.get("final_velocity_miss_m_s")
     if dv is not None and not dv <= acceptance.velocity_error_m_s:
-        return f"tolerance: |v - v_M| = {dv:.4g} m/s > {acceptance.velocity_error_m_s:.4g}"
+        return f"tolerance: |v - v_T| = {dv:.4g} m/s > {acceptance.velocity_error_m_s:.4g}"
     fuel = rec.get("fuel_kg")
     if acceptance.propellant_kg is not None and fuel is not None and not fuel <= acceptance.propellant_kg:
         return f"propellant: {fuel:.4g} kg > {acceptance.propellant_kg:.4g}"
@@ -141,8 +141,8 @@ class RendezvousFamily:
             judge=lambda rec: judge(scenario.acceptance, rec),
             quantities=("t_f_days", "fuel_kg", "final_position_miss_km",
                         "final_velocity_miss_m_s", "failed_solves"),
-            acceptance={"arrival": "the [convergence] test: inside Mars' sphere of influence "
-                                   "within its velocity tolerance",
+            acceptance={"arrival": f"the [convergence] test: inside {scenario.target_name}'s sphere of "
+                                   "influence within its velocity tolerance; propellant within the dry mass",
                         **dataclasses.asdict(scenario.acceptance)},
             detail=detail, watchdog_per_run_s=600.0, base=scenario)
 
@@ -150,7 +150,8 @@ class RendezvousFamily:
         opts = flown.plan.options
         recs = flown.records
         lines = [f"{flown.plan.mission}: {opts['strategy']} {opts['solver']} "
-                 f"{'unperturbed' if opts['unperturbed'] else 'perturbed'}: Mars reached on "
+                 f"{'unperturbed' if opts['unperturbed'] else 'perturbed'}: "
+                 f"{getattr(flown.plan.base, 'target_name', 'the target')} reached on "
                  f"{sum(1 for r in recs if r['converged'])} of {len(recs)} runs",
                  "  run  reached  t_f [d]   fuel [kg]  solves  failed  subdiv  median ms"]
         for r in recs:
@@ -158,7 +159,8 @@ class RendezvousFamily:
                          f"{_f(r['t_f_days'], '8.2f')}  {_f(r['fuel_kg'], '9.2f')}  "
                          f"{_f(r['solves'], '6d')}  {_f(r['failed_solves'], '6d')}  "
                          f"{_f(r['subdivisions'], '6d')}  {_f(r['timing.solve_ms_median'], '9.2f')}")
-        return "\n".join(lines), {"reached_mars": sum(1 for r in recs if r["converged"])}
+        reached = sum(1 for r in recs if r["converged"])
+        return "\n".join(lines), {"reached_target": reached, "reached_mars": reached}   # reached_mars: older name
 
 
 def _f(value: Any, fmt: str) -> str:

@@ -22,7 +22,8 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from ogk_host.rendezvous.dynamics import DAY_S, Model
-from ogk_host.rendezvous.ocp import DEFAULT_GUESS_ALPHA_RAD, DEFAULT_GUESS_SHAPE, DEFAULT_GUESS_TF_DAYS
+from ogk_host.rendezvous.ocp import DEFAULT_GUESS_SHAPE
+from ogk_host.rendezvous.ocp import GUESS_PROPELLANT_FRACTION, guess_alpha_rad, guess_transfer_days
 from ogk_host.rendezvous.ocp import phase_matched_guess
 from ogk_host.rendezvous.plan import Plan
 from ogk_host.rendezvous.scenario import RendezvousScenario
@@ -68,18 +69,43 @@ class Guidance(Protocol):
         ...
 
 
-def first_guess(scenario: RendezvousScenario, nodes: int, t: float, x: ArrayLike, nu: int) -> Plan:
-    """The documented open-loop guess (ocp.default_guess: phase-matched, t_f 370 d, 135 deg), as a plan
-    from (t, x); a throttle column of 1 (full thrust) when nu = 2."""
+#: Multiples of the sized guess tried in turn when a first solve does not converge.
+GUESS_FACTORS = (1.0, 0.8, 1.25, 0.65, 1.6)
+
+
+def first_guesses(scenario: RendezvousScenario, nodes: int, t: float, x: ArrayLike, nu: int) -> list[Plan]:
+    """The documented open-loop guess (ocp.default_guess: phase-matched, smoothstep radius, 135 deg)
+    with t_f sized from the vehicle and the transfer (`guess_transfer_days`; 370 d for the paper's),
+    then the same at the other GUESS_FACTORS (none burning more than the propellant): the first
+    replan tries them in turn. A throttle column of 1 (full thrust) when nu = 2. The guess's mass never
+    goes below the dry mass."""
     model = Model.for_scenario(scenario)
-    g = phase_matched_guess(model, nodes, DEFAULT_GUESS_TF_DAYS, DEFAULT_GUESS_SHAPE,
-                            DEFAULT_GUESS_ALPHA_RAD, label="documented")
-    controls = g.controls.reshape(-1, 1)
-    if nu == 2:
-        controls = np.hstack([controls, np.ones_like(controls)])
-    states = np.array(g.states, copy=True)
-    states[0] = np.asarray(x, dtype=np.float64)
-    return Plan(t0=t, horizon=g.t_f, states=states, controls=controls)
+    base = guess_transfer_days(scenario)
+    cap = GUESS_PROPELLANT_FRACTION * scenario.propellant_kg / max(
+        model.mass_flow * model.units.mass_flow_kg_s, 1e-30) / DAY_S
+    dry = scenario.dry_mass_kg / model.units.mass_kg
+    plans = []
+    for factor in GUESS_FACTORS:
+        days = base * factor
+        if factor > 1.0:            # a longer guess only while full thrust stays within the propellant
+            days = min(days, cap)
+            if days <= base * 1.0001:
+                continue
+        g = phase_matched_guess(model, nodes, days, DEFAULT_GUESS_SHAPE, guess_alpha_rad(scenario),
+                                label="documented")
+        controls = g.controls.reshape(-1, 1)
+        if nu == 2:
+            controls = np.hstack([controls, np.ones_like(controls)])
+        states = np.array(g.states, copy=True)
+        states[:, 4] = np.maximum(states[:, 4], dry)
+        states[0] = np.asarray(x, dtype=np.float64)
+        plans.append(Plan(t0=t, horizon=g.t_f, states=states, controls=controls))
+    return plans
+
+
+def first_guess(scenario: RendezvousScenario, nodes: int, t: float, x: ArrayLike, nu: int) -> Plan:
+    """The first of `first_guesses` (for the paper's vehicle: the documented guess, t_f 370 d)."""
+    return first_guesses(scenario, nodes, t, x, nu)[0]
 
 
 def strategy_settings(scenario: RendezvousScenario, name: str | None = None) -> st.StrategySettings:

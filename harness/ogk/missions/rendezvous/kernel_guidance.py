@@ -23,7 +23,7 @@ from ogk_host.rendezvous.scenario import RendezvousScenario
 from ogk_bindings.nmpc import CNCN, FLAG_SUBDIVIDED, MAX_NODES, SNNS, Nmpc, NmpcConfig
 
 from . import strategy as st
-from .guidance_base import ReplanInfo, first_guess
+from .guidance_base import ReplanInfo, first_guesses
 
 FloatArray = NDArray[np.float64]
 
@@ -59,7 +59,7 @@ def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
     if use_bodies:
         # as the ground NLP (nlp.py): Earth a point mass, Mars softened by its sphere of influence (the
         # plan ends at Mars' centre, where a point mass is singular)
-        bodies = planets(scenario, mars_softening_m=scenario.convergence.mars_soi_radius_m)
+        bodies = planets(scenario, mars_softening_m=scenario.convergence.target_soi_radius_m)
         fields.update(n_bodies=len(bodies), body_mu=[b.mu for b in bodies],
                       body_radius=[b.radius for b in bodies], body_phase0=[b.theta0 for b in bodies],
                       body_rate=[b.rate for b in bodies], body_softening=[b.softening for b in bodies])
@@ -102,21 +102,12 @@ class KernelGuidance:
         self.replans += 1
         start = time.perf_counter()
         if not self.started:
-            g = first_guess(self.scenario, self.scenario.ocp.nodes, t, x, self.nu)
-            if self.cfg.objective != 0:
-                # minimum fuel starts from the minimum-time optimum at full throttle (the flight code
-                # solves it too: a second context with the time objective), as the ground does (nlp.py)
-                time_opt = Nmpc(self.cfg.replace(objective=0))
-                time_opt.load_plan(g.t0, g.horizon, g.states, g.controls)
-                pre = time_opt.solve(t, x)
-                self.pre_iterations = pre.sqp_iterations
-                if pre.converged:
-                    p = time_opt.plan()
-                    controls = p.controls.copy()
-                    controls[:, 1] = MIN_FUEL_GUESS_THROTTLE   # the ground's documented guess
-                    g = Plan(t0=p.t0, horizon=p.horizon, states=p.states, controls=controls)
-            self.nmpc.load_plan(g.t0, g.horizon, g.states, g.controls)
-            rep = self.nmpc.solve(t, x)
+            rep = None
+            for g in first_guesses(self.scenario, self.scenario.ocp.nodes, t, x, self.nu):
+                rep = self._first_solve(g, t, x)
+                if rep.converged:
+                    break
+            assert rep is not None
             self.started = True
         else:
             rep = self.nmpc.replan(t, x)
@@ -130,6 +121,24 @@ class KernelGuidance:
                           iterations=rep.sqp_iterations, solve_time_s=elapsed, solves=rep.solves,
                           nodes=rep.nodes, subdivided=subdivided,
                           objective=rep.objective if rep.converged else None, status=rep.status, plan=plan)
+
+    def _first_solve(self, g: Plan, t: float, x: FloatArray):  # type: ignore[no-untyped-def]
+        """The open loop from one guess (min-fuel: through the min-time optimum at full throttle)."""
+        if self.cfg.objective != 0:
+            # minimum fuel starts from the minimum-time optimum at full throttle (the flight code
+            # solves it too: a second context with the time objective), as the ground does (nlp.py)
+            time_opt = Nmpc(self.cfg.replace(objective=0))
+            time_opt.load_plan(g.t0, g.horizon, g.states, g.controls)
+            pre = time_opt.solve(t, x)
+            self.pre_iterations = pre.sqp_iterations
+            if pre.converged:
+                p = time_opt.plan()
+                controls = p.controls.copy()
+                controls[:, 1] = MIN_FUEL_GUESS_THROTTLE   # the ground's documented guess
+                g = Plan(t0=p.t0, horizon=p.horizon, states=p.states, controls=controls)
+        self.nmpc.reset()
+        self.nmpc.load_plan(g.t0, g.horizon, g.states, g.controls)
+        return self.nmpc.solve(t, x)
 
     def command(self, t: float) -> tuple[float, float]:
         alpha, throttle, _, _ = self.nmpc.command(t)

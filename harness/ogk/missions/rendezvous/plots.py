@@ -46,15 +46,15 @@ def write_plots(scenario: RendezvousScenario, result: FlightResult, out_dir: Pat
     ang = np.linspace(0.0, 2.0 * math.pi, 361)
     ax.plot(np.cos(ang), np.sin(ang), color="tab:blue", lw=0.8, label="Earth orbit")
     ax.plot(model.mars_radius / au * np.cos(ang), model.mars_radius / au * np.sin(ang), color="tab:red", lw=0.8,
-            label="Mars orbit")
+            label=f"{scenario.target_name} orbit")
     ax.plot(r * np.cos(th), r * np.sin(th), color="k", lw=1.2, label="spacecraft")
     t_end = float(result.t[-1])
     mars_end = model.mars_state(t_end)
     mars_0 = model.mars_state(float(result.t[0]))
     ax.plot(*(mars_0[0] / au * np.array([math.cos(mars_0[1]), math.sin(mars_0[1])])), "o", color="tab:red",
-            mfc="none", label="Mars at t_0")
+            mfc="none", label=f"{scenario.target_name} at t_0")
     ax.plot(*(mars_end[0] / au * np.array([math.cos(mars_end[1]), math.sin(mars_end[1])])), "o",
-            color="tab:red", label="Mars at the end")
+            color="tab:red", label=f"{scenario.target_name} at the end")
     ax.plot([0.0], [0.0], "*", color="orange", ms=12)
     # thrust arrows at each replan (the commanded angle there)
     t_rep = np.array([h.t_days for h in result.history]) * DAY_S / units.time_s
@@ -106,8 +106,8 @@ def write_plots(scenario: RendezvousScenario, result: FlightResult, out_dir: Pat
     k = np.arange(len(result.history))
     fig, (b1, b2) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
     b1.semilogy(k, [h.position_miss_km for h in result.history], "o-", ms=3)
-    b1.axhline(scenario.convergence.mars_soi_radius_m / 1e3, color="tab:red", ls="--", lw=0.8,
-               label="Mars SOI")
+    b1.axhline(scenario.convergence.target_soi_radius_m / 1e3, color="tab:red", ls="--", lw=0.8,
+               label=f"{scenario.target_name} SOI")
     b1.set_ylabel("||r - r_M|| [km]")
     b1.legend(fontsize=7)
     b1.grid(alpha=0.3, which="both")

@@ -82,7 +82,7 @@ class TruthModel:
                    thrust_scale=1.0 + pert.thrust_offset_percent / 100.0 if perturbed else 1.0,
                    angle_sigma_rad=scenario.dispersions.thrust_angle_sigma_rad if perturbed else 0.0,
                    angle_draw_period=scenario.dispersions.thrust_angle_draw_period_s / u.time_s,
-                   mars_soi=scenario.convergence.mars_soi_radius_m / u.length_m,
+                   mars_soi=scenario.convergence.target_soi_radius_m / u.length_m,
                    velocity_tol=scenario.convergence.velocity_error_m_s / u.velocity_m_s)
 
     # -- planets ----------------------------------------------------------------------------------------
