@@ -55,13 +55,14 @@ class Mission:
     dry_kg: float
     velocity_error_m_s: float   #: the arrival's |v - v_T| (above the target's escape speed at its SOI)
     perturbed_campaign: bool    #: `ogk mc` perturbed (the default) or --unperturbed
+    body_radius_m: float        #: the planet's radius (the impact check)
 
 
 MISSIONS = [
     Mission("earth_venus_min_time", "rendezvous_nep_min_time", "Venus", 1.0820893e11, 3.24859e14, 4.8675e24,
-            6.16e8, -30.0, 0.5, 1500.0, 500.0, 2000.0, True),
+            6.16e8, -30.0, 0.5, 1500.0, 500.0, 2000.0, True, 6.0518e6),
     Mission("light_earth_mars_min_fuel", "rendezvous_nep_min_fuel", "Mars", 2.279391e11, 4.2828e13,
-            6.4191e23, 5.77247e8, 130.0, 0.8, 250.0, 100.0, 1000.0, False),
+            6.4191e23, 5.77247e8, 130.0, 0.8, 250.0, 100.0, 1000.0, False, 3.3895e6),
 ]
 IDS = [m.name for m in MISSIONS]
 
@@ -87,7 +88,8 @@ def write_scenario(m: Mission, directory: Path, **override: float) -> Path:
     text = re.sub(r'(?m)^name = "rendezvous_[a-z_]+"', f'name = "{m.name}"', text)
     v = math.sqrt(MU_SUN / m.radius_m)
     edits = [("problem", "target_orbit_radius_m", repr(m.radius_m)), ("problem", "target_mass_kg", repr(m.mass_kg)),
-             ("target", "name", f'"{m.target}"'), ("target", "radius_m", repr(m.radius_m)),
+             ("target", "name", f'"{m.target}"'), ("target", "body_radius_m", repr(m.body_radius_m)),
+             ("target", "radius_m", repr(m.radius_m)),
              ("target", "polar_angle_rad", repr(math.radians(m.phase_deg))),
              ("target", "circumferential_velocity_m_s", repr(v)),
              ("perturbations", "target_mu_m3_s2", repr(m.mu_m3_s2)),

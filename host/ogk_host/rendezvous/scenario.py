@@ -251,6 +251,7 @@ class RendezvousScenario:
     initial_mass_kg: float
     target: PolarState              #: the target at t_0 (circular orbit, eq. 6)
     target_name: str                #: [target] name: what the outputs call it ("Mars")
+    target_body_radius_m: float     #: [target] body_radius_m: the planet's radius (a flight inside it has hit it)
     dry_mass_kg: float              #: [spacecraft] dry_mass_kg: the mass with no propellant left
     perturbations: Perturbations    #: the forces of the simulation model (deterministic)
     propulsion: Propulsion
@@ -327,6 +328,7 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
 
     target_s = top.section("target")
     target_name = target_s.text("name")
+    target_body_radius = target_s.number("body_radius_m", positive=True)
     target = _read_state(target_s)
     target_s.finish()
     _check_circular(target_s, target, problem.sun_mu_m3_s2, target_name)
@@ -388,6 +390,9 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
     convergence = conv_s.dataclass(Convergence, **{f.name: {"positive": True}
                                                    for f in dataclasses.fields(Convergence)})
     conv_s.finish()
+    if not target_body_radius < convergence.target_soi_radius_m:
+        raise target_s.error("body_radius_m", f"{target_body_radius:g} m is not below the sphere of influence "
+                             f"convergence.target_soi_radius_m = {convergence.target_soi_radius_m:g} m")
     escape = math.sqrt(2.0 * perturbations.target_mu_m3_s2 / convergence.target_soi_radius_m)
     if not convergence.velocity_error_m_s > escape:
         raise conv_s.error("velocity_error_m_s", f"{convergence.velocity_error_m_s:g} m/s is below "
@@ -441,7 +446,8 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
     top.finish()
     return RendezvousScenario(path=scenario_path, name=name, source=source, problem=problem,
                               initial=initial, initial_mass_kg=initial_mass, target=target,
-                              target_name=target_name, dry_mass_kg=dry_mass,
+                              target_name=target_name, target_body_radius_m=target_body_radius,
+                              dry_mass_kg=dry_mass,
                               perturbations=perturbations, propulsion=propulsion,
                               convergence=convergence, ocp=ocp, law=law, paper_results=paper,
                               nmpc=nmpc, dispersions=dispersions, acceptance=acceptance)

@@ -8,8 +8,8 @@ which it starts to hold is bisected (re-propagating from the last grid point whe
 `ARRIVAL_TOLERANCE_S`: the flight time reported is the first instant the criterion holds, as in the paper
 (which "terminates the controller within a finite tolerance of the target defined by the SOI"), not the
 end of the subinterval in which it happens. A flight whose truth trajectory passes inside Earth's or Mars'
-radius (`EARTH_RADIUS_M`, `MARS_RADIUS_M`: the truth's planets are point masses and would let it through) ends
-there, not converged ("earth_impact", "target_impact"), checked on the same grid.
+radius (`EARTH_RADIUS_M`, the scenario's [target] body_radius_m: the truth's planets are point masses and would let
+it through) ends there, not converged ("earth_impact", "target_impact"), checked on the same grid.
 
 Perturbed flights: the truth model adds Earth and Mars gravity, solar radiation pressure and the -10 % thrust
 offset (truth.py); the loop adds the thrust-angle noise N(0, sigma_alpha_T): one draw per control subinterval
@@ -41,10 +41,10 @@ from .truth import TruthModel
 FloatArray = NDArray[np.float64]
 
 ARRIVAL_TOLERANCE_S = 600.0     #: bisection of the first instant of rendezvous [s]
-#: Planet radii (mean, IAU/IUGG; not in Table A.1): the truth model's planets are point masses, so a flight that
-#: passes closer than this to a planet's centre has hit it and ends there ("earth_impact", "target_impact").
+#: Earth's mean radius (IUGG; not in Table A.1; the target's is the scenario's [target] body_radius_m): the truth
+#: model's planets are point masses, so a flight that passes closer than this to a planet's centre has hit it and
+#: ends there ("earth_impact", "target_impact").
 EARTH_RADIUS_M = 6.3710e6
-MARS_RADIUS_M = 3.3895e6
 #: A plan may arrive this much below the dry mass before it is refused (the plan's RK4 against the truth).
 PROPELLANT_SLACK_KG = 1e-3
 TRUTH_RTOL = 1e-10
@@ -268,7 +268,7 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
                 if polar_distance_m(xg[i], truth.earth_state(float(tg[i])), units) < EARTH_RADIUS_M:
                     impact, impact_reason = i, "earth_impact"
                     break
-                if polar_distance_m(xg[i], truth.mars_state(float(tg[i])), units) < MARS_RADIUS_M:
+                if polar_distance_m(xg[i], truth.mars_state(float(tg[i])), units) < scenario.target_body_radius_m:
                     impact, impact_reason = i, "target_impact"
                     break
             hit = -1
