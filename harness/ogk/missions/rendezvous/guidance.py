@@ -14,7 +14,7 @@ from typing import Any
 
 import casadi as ca
 import numpy as np
-from ogk_host.rendezvous.nlp import NlpResult, RendezvousNlp, min_fuel_guess
+from ogk_host.rendezvous.nlp import MIN_FUEL_GUESS_THROTTLE, NlpResult, RendezvousNlp, min_fuel_guess
 from ogk_host.rendezvous.plan import Plan
 from ogk_host.rendezvous.scenario import RendezvousScenario
 
@@ -104,8 +104,15 @@ class IpoptGuidance:
         prev = self._plan
         if prev is None:
             if self.nlp.objective == "min-fuel":
-                # the open loop's documented min-fuel guess: the min-time optimum at throttle 0.5 (nlp.py)
-                g, _ = min_fuel_guess(self.scenario, self.nlp)
+                # the open loop's documented min-fuel guess: the min-time optimum at throttle 0.5 (nlp.py);
+                # when that min-time solve fails (a vehicle far from the paper's), the sized guess itself
+                try:
+                    g, _ = min_fuel_guess(self.scenario, self.nlp)
+                except RuntimeError:
+                    g = first_guess(self.scenario, self.scenario.ocp.nodes, t, x, self.nu)
+                    controls = np.array(g.controls, copy=True)
+                    controls[:, 1] = MIN_FUEL_GUESS_THROTTLE
+                    g = Plan(t0=t, horizon=g.horizon, states=g.states, controls=controls)
                 states = np.array(g.states, copy=True)
                 states[0] = x
                 return Plan(t0=t, horizon=g.horizon, states=states, controls=g.controls), None
