@@ -94,9 +94,9 @@ def transfer_figures(name: str, model: Model, samples: Samples, orbits: list[np.
             ax.set_title("; ".join(notes), fontsize=8)
         ax.set_xlabel("x [km]")
         ax.set_ylabel(f"{label} [km]")
-        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_aspect("equal", adjustable="box")   # the zoomed limits stay; the panel takes their shape
         ax.grid(alpha=0.3)
-    axes[1].legend(fontsize=7, loc="upper center", ncol=2)   # the x-z view has room above a planar transfer
+    axes[1].legend(fontsize=7, loc="upper center", ncol=3, bbox_to_anchor=(0.5, -0.32))   # below the panel: no data hidden
     fig.suptitle(title)
     p1 = out_dir / f"{name}_synodic.png"
     fig.savefig(p1, dpi=110)
