@@ -156,18 +156,34 @@ def _verified(scenario: Scenario, path: Path) -> Any:
     return sol
 
 
-def solve_nominal(scenario: Scenario, log: Callable[[str], None] | None = None) -> Any:
-    """The fuel-optimal nominal from scratch, with progress on a terminal (ogk.sil.progress.Working
-    when the harness is importable)."""
+class _Quiet:
+    """A long step shown nowhere: what the ground tools use unless their caller shows progress."""
+
+    def __init__(self, title: str) -> None:
+        self.title = title
+
+    def __enter__(self) -> "_Quiet":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        return None
+
+    def note(self, text: str) -> None:
+        return None
+
+
+#: a context manager factory `working(title)` whose value has `note(text)`: the harness passes
+#: ogk.sil.progress.Working (progress on a terminal); the ground tools do not import upward
+Working = Callable[[str], Any]
+
+
+def solve_nominal(scenario: Scenario, log: Callable[[str], None] | None = None,
+                  working: Working | None = None) -> Any:
+    """The fuel-optimal nominal from scratch; `working` shows its progress (module's Working)."""
     from .indirect import ShootingFailure, solve_fuel_optimal
+    show = working or _Quiet
     try:
-        from ogk.sil.progress import Working
-    except ImportError:          # ground tools alone
-        Working = None           # type: ignore[assignment]
-    try:
-        if Working is None:
-            return solve_fuel_optimal(scenario, None, log=log)
-        with Working(f"{scenario.path.name}: fuel-optimal nominal") as work:
+        with show(f"{scenario.path.name}: fuel-optimal nominal") as work:
             def note(text: str) -> None:
                 work.note(text.strip())
                 if log:
@@ -179,7 +195,8 @@ def solve_nominal(scenario: Scenario, log: Callable[[str], None] | None = None) 
                             key="transfer") from None
 
 
-def continue_from_cache(scenario: Scenario, log: Callable[[str], None] | None = None) -> Any:
+def continue_from_cache(scenario: Scenario, log: Callable[[str], None] | None = None,
+                        working: Working | None = None) -> Any:
     """The nominal of `scenario` by continuation (eq. 51) from the shipped cache's nominal, when
     the two problems differ only in what a Perturbation moves (initial state, target position,
     T_max) and agree in units, mass, Isp, duration, target velocity and homotopy; None otherwise or
@@ -210,20 +227,14 @@ def continue_from_cache(scenario: Scenario, log: Callable[[str], None] | None = 
     pert = Perturbation(delta_r0=n.r0 - b.r0, delta_v0=n.v0 - b.v0, delta_rf=n.rf - b.rf,
                         thrust_fraction=scenario.spacecraft.max_thrust_N / base.spacecraft.max_thrust_N
                         - 1.0, label=f"{scenario.path.name} from the cached nominal")
-    try:
-        from ogk.sil.progress import Working
-    except ImportError:
-        Working = None  # type: ignore[assignment]
+    show = working or _Quiet
     title = f"{scenario.path.name}: nominal by continuation from {base_path.name}'s"
     try:
         warm = load_solution(base, cache)
-        if Working is None:
-            sol = solve_fuel_optimal(base, pert, warm_start=warm, log=log)
-        else:
-            with Working(title) as work:
-                sol = solve_fuel_optimal(base, pert, warm_start=warm,
-                                         log=lambda text: (work.note(text.strip()),
-                                                           log(text) if log else None))
+        with show(title) as work:
+            sol = solve_fuel_optimal(base, pert, warm_start=warm,
+                                     log=lambda text: (work.note(text.strip()),
+                                                       log(text) if log else None))
     except ShootingFailure as err:
         if log:
             log(f"continuation from the cached nominal failed ({err}); solving from scratch")
@@ -235,7 +246,8 @@ def continue_from_cache(scenario: Scenario, log: Callable[[str], None] | None = 
 
 
 def ensure_nominal(scenario: Scenario, out: str | Path | None = None, *,
-                   log: Callable[[str], None] | None = None) -> tuple[Any, Path]:
+                   log: Callable[[str], None] | None = None,
+                   working: Working | None = None) -> tuple[Any, Path]:
     """The scenario's own nominal (Solution, file): checked if `out` (default its product directory)
     has one; else taken from the shipped cache when its physics is the same, or solved; written with
     its manifest into `out`. A user's `out` holding another scenario's products is refused."""
@@ -260,9 +272,9 @@ def ensure_nominal(scenario: Scenario, out: str | Path | None = None, *,
         path = write_nominal(doc, scenario, directory)
         return _verified(scenario, path), path
     from .indirect import solution_record
-    sol = continue_from_cache(scenario, log) if cache.exists() else None
+    sol = continue_from_cache(scenario, log, working) if cache.exists() else None
     if sol is None:
-        sol = solve_nominal(scenario, log)
+        sol = solve_nominal(scenario, log, working)
     doc = {"generator": "ogk tables (ogk_host.low_thrust_transfer.products.ensure_nominal)",
            "units": "normalised: LU, TU, MU, velocity LU/TU (Table 1)",
            **solution_record(sol, scenario)}

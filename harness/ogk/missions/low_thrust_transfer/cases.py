@@ -83,10 +83,12 @@ def build_setup(basis: str | None = None, order: int | None = None,
     from ogk_host.low_thrust_transfer.products import ensure_nominal
     from ogk_host.low_thrust_transfer.scenario import load_scenario, normalised_problem
     from ogk_host.scenario_file import file_sha256
+
+    from ogk.sil.progress import Working
     sc = load_scenario(scenario_path if scenario_path is not None else default_scenario_path())
     basis = sc.mpsp.fourier_basis if basis is None else basis
     order = sc.mpsp.fourier_order if order is None else int(order)
-    sol, nominal_path = ensure_nominal(sc, product_dir)
+    sol, nominal_path = ensure_nominal(sc, product_dir, working=Working)   # progress on a terminal
     prob = normalised_problem(sc, None)
     tf = prob.final_time
     t, lam_v = fourier.nominal_control_on_grid(sc, sol)
