@@ -112,3 +112,15 @@ def test_bad_mpsp_scenario_is_one_line(tmp_path: Path) -> None:
     path.write_text(src.read_text().replace("cube_side_LU = 0.04", ""))
     assert_one_line(run("cases", str(path), "--paper-tables", "--no-reference"), "cube_side_LU",
                     "missing key")
+
+
+def test_a_time_to_go_clip_longer_than_half_the_burn_is_one_line_at_tables(tmp_path: Path) -> None:
+    """The kernel refuses |dt_f| clips above t_f*/2 (ogk_nog_init, OGK_E_CONFIG); t_f* is known
+    only once the nominal is solved, so `ogk tables` checks it there and names the key (issue 19:
+    a copied dtf_max_s used to pass `ogk tables` and abort `ogk mc` with a bare status). The paper's
+    burn has t_f* = 105.8 s: 60 s is above its half, 52 s below."""
+    path = edited(tmp_path, r"^dtf_max_s = 40\.0", "dtf_max_s = 60.0")
+    line = assert_one_line(run("tables", str(path), "--out", str(tmp_path / "t")),
+                           "guidance.end_game.dtf_max_s", "t_f*/2")
+    half = float(re.search(r"t_f\*/2 = ([0-9.]+) s", line).group(1))
+    assert 52.0 < half < 53.5

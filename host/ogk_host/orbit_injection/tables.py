@@ -37,12 +37,13 @@ import hashlib
 import json
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from .. import tablefile
-from ogk_bindings.errors import TableError
+from ogk_bindings.errors import OgkInputError, TableError
 from ..scenario_file import table_dir_for
 from . import dynamics as dyn
 from .derive import EffectiveSettings, effective_settings, freeze_rule_s
@@ -194,6 +195,7 @@ def write_nog_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SC
     settings = effective_settings(scn)
     if nominal is None:
         nominal = solve_nominal(scn)
+    check_burn_bounds(scn, nominal.t_f_s)
     grid = flight_grid(nominal, settings)
     if table is None:
         table = compute_gain_table(nominal, grid.tau)
@@ -237,6 +239,21 @@ def write_nog_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SC
     }
     (out / MANIFEST).write_text(json.dumps(manifest, indent=2) + "\n")
     return manifest
+
+
+def check_burn_bounds(scn: Any, t_f_star_s: float) -> None:
+    """The settings the kernel bounds by the burn itself (ogk_nog_init: |dt_f| clip <= t_f*/2,
+    sampling interval <= t_f*), checked against the nominal's t_f* so that a copied setting is one
+    line naming its key here, not OGK_E_CONFIG when the campaign starts (issue 19)."""
+    eg = scn.end_game
+    if not eg.dtf_max_s <= 0.5 * t_f_star_s:
+        raise OgkInputError(f"must be <= t_f*/2 = {0.5 * t_f_star_s:.4g} s for this burn "
+                            f"(t_f* = {t_f_star_s:.4g} s), got {eg.dtf_max_s:g}",
+                            path=scn.path, key="guidance.end_game.dtf_max_s")
+    if not scn.sample_interval_s <= t_f_star_s:
+        raise OgkInputError(f"must be <= t_f* = {t_f_star_s:.4g} s for this burn, got "
+                            f"{scn.sample_interval_s:g}", path=scn.path,
+                            key="guidance.sample_interval_s")
 
 
 def check_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SCENARIO_PATH,
