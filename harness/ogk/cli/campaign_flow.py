@@ -48,7 +48,7 @@ def replay(campaign: str, run_id: int, plots: str | None, json_out: str | None) 
     if plots:
         check_output_dir(plots, "--plots")
     fam, plan = campaign_plan(doc, campaign)
-    again = engine._Chunk(plan, int(doc["seed"]))(np.array([run_id], dtype=np.int64))[0]
+    again = engine.JudgedChunk(plan, int(doc["seed"]))(np.array([run_id], dtype=np.int64))[0]
     diff = envelope.record_differences(stored[run_id], again)
     print(f"{plan.mission}: run {run_id} of {campaign} (seed {doc['seed']}, run seed "
           f"{again['run_seed']}): {'bit-exact' if not diff else 'DIFFERS in ' + ', '.join(diff)}")

@@ -61,8 +61,9 @@ def seeds_of(seed: int, ids: NDArray[np.int64]) -> NDArray[np.uint64]:
 
 
 @dataclasses.dataclass(frozen=True)
-class _Chunk:
-    """The job handed to the runner: flies a chunk, stamps id and seed, judges each run."""
+class JudgedChunk:
+    """The job handed to the runner (and `ogk replay`): flies a chunk, stamps each run's id and
+    seed, judges it."""
 
     plan: CampaignPlan
     seed: int
@@ -106,7 +107,7 @@ def fly_campaign(plan: CampaignPlan, runs: int, seed: int, workers: int = 1, *,
         wd = watchdog or Watchdog(per_run_s=plan.watchdog_per_run_s)
         size = chunk_runs or DEFAULT_CHUNK_RUNS
         try:
-            _, used, cpu_s = run_chunks(_Chunk(plan, int(seed)), todo, workers, chunks,
+            _, used, cpu_s = run_chunks(JudgedChunk(plan, int(seed)), todo, workers, chunks,
                                         chunk_runs=size, watchdog=wd, on_chunk=keep)
         except KeyboardInterrupt:
             kept = sum(1 for i in ids.tolist() if i in records)
