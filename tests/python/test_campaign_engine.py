@@ -43,16 +43,10 @@ FAMILIES = {
 CLI_OPTIONS = {"binary-asteroid": ["--perturbation", "10", "40"]}
 
 
-@pytest.fixture(autouse=True)
-def alarm():
-    """Every in-process test ends within 240 s (a hang is a failure, not a stuck job)."""
-    def expired(signum, frame):
-        raise TimeoutError("test took more than 240 s: a campaign hung")
-    old = signal.signal(signal.SIGALRM, expired)
-    signal.alarm(240)
-    yield
-    signal.alarm(0)
-    signal.signal(signal.SIGALRM, old)
+#: every in-process test ends within this many seconds (conftest.alarm)
+ALARM_S = 240
+pytestmark = pytest.mark.usefixtures("alarm")
+
 
 
 _PLANS: dict[str, object] = {}

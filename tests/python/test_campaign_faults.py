@@ -42,16 +42,10 @@ ENV = {**os.environ, "PYTHONPATH": os.pathsep.join(
 SHORT = functools.partial(NominalOpenLoopGuidance, cutoff_s=12.0)   # 12 s burns: fast tests
 
 
-@pytest.fixture(autouse=True)
-def alarm():
-    """Every in-process test ends within 90 s (a hang is a failure, not a stuck job)."""
-    def expired(signum, frame):
-        raise TimeoutError("test took more than 90 s: a campaign hung")
-    old = signal.signal(signal.SIGALRM, expired)
-    signal.alarm(90)
-    yield
-    signal.alarm(0)
-    signal.signal(signal.SIGALRM, old)
+#: every in-process test ends within this many seconds (conftest.alarm)
+ALARM_S = 90
+pytestmark = pytest.mark.usefixtures("alarm")
+
 
 
 @pytest.fixture(scope="module")
