@@ -22,7 +22,7 @@ from ogk_bindings.blt import BURN, COAST, Blt, BltConfig, Transfer
 
 from .dynamics import FloatArray, GravityField, Model, jacobi
 from .manifolds import manifold_states
-from .orbits import ATOL, RTOL, PeriodicOrbit, propagate
+from .orbits import ATOL, RTOL, CorrectionError, PeriodicOrbit, propagate
 
 KIND = {"burn": BURN, "coast": COAST}
 
@@ -142,7 +142,7 @@ def sbig(model: Model, departure: PeriodicOrbit, arrival: PeriodicOrbit, *, t0: 
                 if f < best[0]:
                     best = (f, float(ti), float(tt), p)
         if not math.isfinite(best[0]):
-            raise RuntimeError("every single-burn guess between the two orbits hits a body")
+            raise CorrectionError(f"every single-burn guess between the {departure.point} {departure.family} and the {arrival.point} {arrival.family} hits a body (a {scan} x {scan} scan of the phases)")
         _, t_i, t_t, params = best
         sep = arr(t_t) - dep(t_i)
         fun, dt_i, dt_t = adjust(t_i, t_t, params)

@@ -134,8 +134,22 @@ def propagate(model: Model | GravityField, state: ArrayLike, duration: float, *,
     sol = solve_ivp(rhs, (0.0, float(duration)), y0, method="DOP853", rtol=rtol, atol=atol,
                     dense_output=dense_output, events=events)
     if sol.status < 0:
-        raise CorrectionError(f"propagation failed: {sol.message}")
+        raise CorrectionError(_failure_reason(f.model, sol.t[-1], sol.y[0:3, -1], str(sol.message)))
     return sol
+
+
+BODY_NAMES = ("primary", "secondary")
+
+
+def _failure_reason(model: Model, t: float, position: FloatArray, message: str) -> str:
+    """One line for a failed propagation: a fall into a body (the usual cause: the degree-2 field is
+    singular at the centre) names the body and the distance; otherwise scipy's message."""
+    dist = np.linalg.norm(model.body_positions - np.asarray(position, dtype=float)[None, :], axis=1)
+    k = int(np.argmin(dist / np.maximum(np.asarray(model.body_radius), 1e-300)))
+    if dist[k] <= max(model.body_radius[k], 1e-12):
+        return (f"the trajectory falls into the {BODY_NAMES[k]} ({dist[k]:.4g} LU from its centre at "
+                f"t = {t:.4g} TU, impact radius {model.body_radius[k]:.4g} LU)")
+    return f"propagation failed at t = {t:.4g} TU: {message}"
 
 
 def flow(model: Model | GravityField, state: ArrayLike, duration: float, *, rtol: float = RTOL,
@@ -400,6 +414,10 @@ def lyapunov_orbit(model: Model, point: str, amplitude: float, *, steps: int | N
     Ax from the linear approximation (geometric steps from a small amplitude), then a final correction at
     RTOL/ATOL."""
     field = GravityField(model.gravity_only())
+    reach = _family_reach(model, point)
+    if amplitude >= reach:
+        raise CorrectionError(f"the {point} Lyapunov orbit with Ax = {amplitude:.4g} LU would reach an impact "
+                              f"sphere (the point is {reach:.4g} LU from the nearer one)")
     a0 = min(_start_amplitude(model, point), amplitude)
     n = steps if steps is not None else max(2, int(math.ceil(math.log(amplitude / a0) / math.log(1.6))) + 1)
     amps = list(np.geomspace(a0, amplitude, n)) if amplitude > a0 else [amplitude]
@@ -408,27 +426,75 @@ def lyapunov_orbit(model: Model, point: str, amplitude: float, *, steps: int | N
     return _finish(field, "lyapunov", point, v)
 
 
-def halo_bifurcation(model: Model, point: str, *,
-                     amplitude_max: float | None = None) -> tuple[float, FloatArray]:
-    """(Ax, unknowns) of the planar Lyapunov orbit where the halo family branches off: the first amplitude
-    at which the out-of-plane pair of Floquet multipliers reaches +1 (trace of the (z, vz) block = 2)."""
-    field = GravityField(model.gravity_only())
+class NoBifurcation(CorrectionError):
+    """The planar Lyapunov family has no halo bifurcation before it reaches a body (the vertical pair of
+    multipliers moves away from +1: at the point the vertical frequency exceeds the planar one)."""
+
+
+#: Geometric growth of the amplitude between members of the bifurcation scan (Moshup's scan is exactly
+#: these steps); a member that fails is retried at half the step, BIFURCATION_RETRIES times.
+BIFURCATION_RATIO = 1.25
+BIFURCATION_RETRIES = 8
+
+
+def _family_reach(model: Model, point: str) -> float:
+    """Distance [LU] from the point to the nearer impact sphere along the x axis: no member of a family
+    about the point can be larger than this."""
     xl = collinear_points(model)[point]
-    reach = min(abs(xl + model.mu) - model.body_radius[0], abs(xl - 1.0 + model.mu) - model.body_radius[1])
-    top = amplitude_max if amplitude_max is not None else 0.95 * reach
-    a = _start_amplitude(model, point)
-    amps = [a]
-    path = _lyapunov_path(field, point, amps)
-    f_prev = _vertical_trace(field, path[-1], RTOL_CONT, ATOL_CONT) - 2.0
-    while True:                     # geometric steps (x 1.25) until the trace passes 2
-        if a >= top:
-            raise CorrectionError(f"no halo bifurcation from the {point} Lyapunov family below Ax = {top:.4g}")
-        a_next = min(1.25 * a, top)
+    return min(abs(xl + model.mu) - model.body_radius[0], abs(xl - 1.0 + model.mu) - model.body_radius[1])
+
+
+def _crossings_clear(model: Model, v: FloatArray, s: FloatArray) -> bool:
+    """Both x-axis crossings of a planar orbit (x0 and the half-period x) outside both impact spheres."""
+    xs = np.array([v[0], s[0]])
+    centres = np.array([-model.mu, 1.0 - model.mu])
+    return bool(np.all(np.abs(xs[:, None] - centres[None, :]) > np.asarray(model.body_radius)[None, :]))
+
+
+def _scan_member(field: GravityField, point: str, path: list[FloatArray], amps: list[float],
+                 a_next: float) -> tuple[float, FloatArray]:
+    """The next Lyapunov member of the bifurcation scan at Ax = a_next (secant predictor), retried at half the
+    step on a failed correction or a member that reaches an impact sphere. Returns (amplitude, unknowns)."""
+    a = amps[-1]
+    reason = ""
+    for _ in range(BIFURCATION_RETRIES + 1):
         if len(path) > 1:
             guess = path[-1] + (path[-1] - path[-2]) * (a_next - amps[-1]) / (amps[-1] - amps[-2])
         else:
             guess = _lyapunov_guess(field.model, point, a_next)
-        v, _ = _newton(field, "lyapunov", guess, amplitude=a_next, rtol=RTOL_CONT, atol=ATOL_CONT)
+        try:
+            v, s = _newton(field, "lyapunov", guess, amplitude=a_next, rtol=RTOL_CONT, atol=ATOL_CONT)
+            if _crossings_clear(field.model, v, s):
+                return a_next, v
+            reason = "the member crosses the x axis inside an impact sphere"
+        except CorrectionError as exc:
+            reason = str(exc)
+        a_next = a + 0.5 * (a_next - a)
+    raise CorrectionError(f"the {point} Lyapunov family cannot be continued past Ax = {a:.4g} LU: {reason}")
+
+
+def halo_bifurcation(model: Model, point: str, *,
+                     amplitude_max: float | None = None) -> tuple[float, FloatArray]:
+    """(Ax, unknowns) of the planar Lyapunov orbit where the halo family branches off: the first amplitude
+    at which the out-of-plane pair of Floquet multipliers reaches +1 (trace of the (z, vz) block = 2).
+
+    Scale-aware: the scan starts at 1e-3 of the point's distance to the nearer body, grows by
+    BIFURCATION_RATIO, halves a step that fails (retries), and stops at 0.95 of the distance from the point
+    to the nearer impact sphere (or at the first member whose crossing enters one). No bifurcation before
+    that: `NoBifurcation`, one line naming the point and the frequencies."""
+    field = GravityField(model.gravity_only())
+    top = amplitude_max if amplitude_max is not None else 0.95 * _family_reach(model, point)
+    a = _start_amplitude(model, point)
+    amps = [a]
+    path = _lyapunov_path(field, point, amps)
+    f_prev = _vertical_trace(field, path[-1], RTOL_CONT, ATOL_CONT) - 2.0
+    while True:                     # geometric steps until the trace passes 2
+        if a >= top:
+            raise NoBifurcation(_no_bifurcation(model, point, a, f"below Ax = {top:.4g} LU"))
+        try:
+            a_next, v = _scan_member(field, point, path, amps, min(BIFURCATION_RATIO * a, top))
+        except CorrectionError as exc:
+            raise NoBifurcation(_no_bifurcation(model, point, a, str(exc))) from exc
         f = _vertical_trace(field, v, RTOL_CONT, ATOL_CONT) - 2.0
         if f_prev < 0.0 <= f:
             lo, hi, v_lo, v_hi = amps[-1], a_next, path[-1], v
@@ -451,6 +517,14 @@ def halo_bifurcation(model: Model, point: str, *,
     return a_bif, cache[a_bif]
 
 
+def _no_bifurcation(model: Model, point: str, amplitude: float, reason: str) -> str:
+    lm = linear_modes(model.gravity_only(), point)
+    rel = "exceeds" if lm.vertical_frequency > lm.planar_frequency else "is below"
+    return (f"no halo bifurcation from the {point} Lyapunov family up to Ax = {amplitude:.4g} LU ({reason}); "
+            f"at {point} the vertical frequency {lm.vertical_frequency:.6g} {rel} the planar "
+            f"{lm.planar_frequency:.6g} rad/TU")
+
+
 def continue_family(model: Model, family: str, start: ArrayLike, tangent: ArrayLike, step: float, count: int,
                     *, stop: Callable[[FloatArray, FloatArray], bool] | None = None) -> list[FloatArray]:
     """Pseudo-arclength continuation: `count` members after `start` (unknowns (x0, z0, vy0, T/2)), each the
@@ -465,14 +539,17 @@ def continue_family(model: Model, family: str, start: ArrayLike, tangent: ArrayL
     planar = family == "lyapunov"
     for _ in range(count):
         h = step
+        reason = ""
         for _attempt in range(6):
             try:
                 v_new, s = _newton(field, family, v + h * t, arclength=(v, t, h), rtol=RTOL_CONT, atol=ATOL_CONT)
                 break
-            except CorrectionError:
+            except CorrectionError as exc:
+                reason = str(exc)
                 h *= 0.5
         else:
-            raise CorrectionError("pseudo-arclength continuation stalled")
+            raise CorrectionError(f"pseudo-arclength continuation of the {family} family stalled after "
+                                  f"{len(out)} members: {reason}")
         # new tangent: null vector of the crossing Jacobian at v_new
         _, phi, sdot = _crossing(field, v_new[0], v_new[1], v_new[2], v_new[3], RTOL_CONT, ATOL_CONT)
         rows = [1, 3] if planar else [1, 3, 5]
@@ -500,7 +577,10 @@ def halo_orbit(model: Model, point: str, amplitude: float, branch: str, *,
         raise ValueError(f"branch must be 'north' or 'south', got {branch!r}")
     gm = model.gravity_only()
     field = GravityField(gm)
-    _, v_bif = halo_bifurcation(gm, point)
+    try:
+        _, v_bif = halo_bifurcation(gm, point)
+    except NoBifurcation as exc:
+        return _halo_by_model_homotopy(gm, point, amplitude, branch, str(exc))
     ds = step if step is not None else amplitude / 8.0
     members = continue_family(gm, "halo", v_bif, [0.0, 1.0, 0.0, 0.0], ds, 400,
                               stop=lambda v, s: _amplitude("halo", v, s) >= amplitude)
@@ -522,6 +602,53 @@ def halo_orbit(model: Model, point: str, amplitude: float, branch: str, *,
     return orbit
 
 
+#: The model homotopy's first step in lambda (the degree-2 coefficients' scale), its smallest step, and the
+#: largest growth of the step after a success.
+HOMOTOPY_STEP, HOMOTOPY_MIN_STEP, HOMOTOPY_GROWTH = 0.25, 1.0 / 1024.0, 1.5
+
+
+def _scaled_degree2(model: Model, lam: float) -> Model:
+    """The model with both bodies' C20 and C22 multiplied by lam (0: point masses)."""
+    return dataclasses.replace(model, c20=(lam * model.c20[0], lam * model.c20[1]),
+                               c22=(lam * model.c22[0], lam * model.c22[1]))
+
+
+def _halo_by_model_homotopy(model: Model, point: str, amplitude: float, branch: str,
+                            reason: str) -> PeriodicOrbit:
+    """A halo orbit of a model whose Lyapunov family has no halo bifurcation (at Didymos' L1, Dimorphos' C20
+    lifts the vertical frequency above the planar one): the halo with the same Az and branch of the
+    point-mass model, continued in lam (the degree-2 coefficients scaled by lam, 0 -> 1) at fixed Az, each
+    step from the secant predictor, halved on a failed correction."""
+    if not any(model.c20) and not any(model.c22):
+        raise NoBifurcation(reason)
+    base = halo_orbit(_scaled_degree2(model, 0.0), point, amplitude, branch)
+    x0 = base.state0
+    path = [np.array([x0[0], x0[2], x0[4], 0.5 * base.period])]
+    lams = [0.0]
+    h = HOMOTOPY_STEP
+    while lams[-1] < 1.0:
+        lam = min(1.0, lams[-1] + h)
+        guess = path[-1] if len(path) < 2 else \
+            path[-1] + (path[-1] - path[-2]) * (lam - lams[-1]) / (lams[-1] - lams[-2])
+        try:
+            v, _ = _newton(GravityField(_scaled_degree2(model, lam)), "halo", guess, amplitude=amplitude,
+                           rtol=RTOL_CONT, atol=ATOL_CONT)
+        except CorrectionError as exc:
+            h *= 0.5
+            if h < HOMOTOPY_MIN_STEP:
+                raise CorrectionError(f"{reason}; the point-mass {point} halo at Az = {amplitude:.4g} LU does not "
+                                      f"continue to the degree-2 model past {lams[-1]:.4g} of its "
+                                      f"coefficients: {exc}") from exc
+            continue
+        path.append(v)
+        lams.append(lam)
+        h = min(HOMOTOPY_GROWTH * h, 1.0)
+    field = GravityField(model)
+    v_fin, _ = _newton(field, "halo", path[-1], amplitude=amplitude)
+    orbit = _finish(field, "halo", point, v_fin)
+    return orbit if orbit.branch == branch else mirror(orbit)
+
+
 def mirror(orbit: PeriodicOrbit) -> PeriodicOrbit:
     """The z -> -z image of an orbit (north <-> south)."""
     flip = np.diag([1.0, 1.0, -1.0, 1.0, 1.0, -1.0])
@@ -529,6 +656,14 @@ def mirror(orbit: PeriodicOrbit) -> PeriodicOrbit:
     mono = flip @ orbit.monodromy @ flip
     branch = None if orbit.branch is None else ("south" if orbit.branch == "north" else "north")
     return dataclasses.replace(orbit, state0=state0, monodromy=mono, floquet=floquet(mono), branch=branch)
+
+
+def _check_clear(orbit: PeriodicOrbit) -> None:
+    """CorrectionError when the orbit passes inside a body's impact sphere (its closest approach)."""
+    for k, d in enumerate(orbit.min_distances()):
+        if d <= orbit.model.body_radius[k]:
+            raise CorrectionError(f"the orbit passes {d:.4g} LU from the {BODY_NAMES[k]}'s centre, inside its "
+                                  f"impact radius {orbit.model.body_radius[k]:.4g} LU")
 
 
 def scenario_orbit(scenario: BinaryScenario, name: str, model: Model | None = None) -> PeriodicOrbit:
@@ -540,10 +675,18 @@ def scenario_orbit(scenario: BinaryScenario, name: str, model: Model | None = No
     spec: OrbitSpec = scenario.orbits[name]
     m = model if model is not None else model_from_scenario(scenario)
     amp = spec.amplitude_m / scenario.units.length_m
-    if spec.family == "lyapunov":
-        return lyapunov_orbit(m, spec.point, amp)
-    assert spec.branch is not None
-    return halo_orbit(m, spec.point, amp, spec.branch)
+    try:
+        if spec.family == "lyapunov":
+            orbit = lyapunov_orbit(m, spec.point, amp)
+        else:
+            assert spec.branch is not None
+            orbit = halo_orbit(m, spec.point, amp, spec.branch)
+        _check_clear(orbit)
+        return orbit
+    except CorrectionError as exc:
+        raise CorrectionError(f"[orbits.{name}] ({spec.family} about {spec.point}, amplitude "
+                              f"{spec.amplitude_m:g} m = {amp:.4g} LU, reach {_family_reach(m, spec.point):.4g} "
+                              f"LU to the nearer impact sphere): {exc}") from exc
 
 
 def jacobi_at_point(model: Model, point: str) -> float:

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 from ogk_host.binary import transfers as T
-from ogk_host.binary.orbits import scenario_orbit
+from ogk_host.binary.orbits import CorrectionError, scenario_orbit
 from ogk_host.binary.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.binary.scenario import BinaryScenario, load_scenario
 from ogk_bindings.errors import OgkInputError
@@ -62,7 +62,11 @@ def blt_document(scenario: BinaryScenario, name: str, corrector: str | None, jac
         spec = dataclasses.replace(spec, thrust_n=thrust_n, paper={})   # the paper's figures are for its thrust
     cpu0 = time.process_time()
     with Working(f"{scenario.name}: {name}: guess, continuation and correction"):
-        d = T.design(scenario, spec, solver, corrector=corrector, jacobian=jacobian, base_thrust_n=base_thrust)
+        try:
+            d = T.design(scenario, spec, solver, corrector=corrector, jacobian=jacobian,
+                         base_thrust_n=base_thrust)
+        except CorrectionError as exc:      # an orbit or a guess that cannot be built: one line, exit 2
+            raise OgkInputError(str(exc), path=scenario.path, key=f"transfers.{name}") from exc
     cpu = time.process_time() - cpu0
     ref = reference_errors(d.model, d.guess.layout, d.transfer)
     accept_tol = scenario.acceptance.tolerance(solver.tol)   # [acceptance], default the [solver] tol

@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 from ogk_bindings.errors import OgkInputError
 from ogk_host.binary import transfers as T
+from ogk_host.binary.orbits import CorrectionError
 from ogk_host.binary.scenario import LAWS, BinaryScenario, load_scenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
@@ -87,7 +88,10 @@ class BinaryFamily:
         solver = T.solver_settings(scenario)
         spec = T.transfer_spec(scenario, spec_mc.transfer)
         with Working(f"{scenario.name}: nominal {spec.name}"):
-            d = T.design(scenario, spec, solver)
+            try:
+                d = T.design(scenario, spec, solver)
+            except CorrectionError as exc:      # an orbit or a guess that cannot be built: one line
+                raise OgkInputError(str(exc), path=scenario.path, key=f"transfers.{spec.name}") from exc
         if not d.report.converged:
             raise OgkInputError(f"the nominal transfer {spec.name} did not converge "
                                 f"({d.report.status})", path=scenario.path,
