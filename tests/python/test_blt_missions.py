@@ -316,3 +316,25 @@ def test_an_orbit_that_hits_a_body_is_one_line(tmp_path: Path) -> None:
     r = _ogk("run", str(path), "--transfer", "l2_to_l1_lyapunov", "--json", str(tmp_path / "x.json"))
     assert r.returncode == 2, r.stderr
     assert r.stderr.count("\n") == 1 and "[orbits.l1_lyapunov]" in r.stderr and "impact sphere" in r.stderr
+
+
+@pytest.mark.parametrize("az_m", (20.0, 60.0))
+def test_didymos_halos_across_the_amplitudes_that_used_to_fail(missions: dict[str, Path], az_m: float) -> None:
+    """The failure this file was written for: every Didymos halo of Az 20-60 m ended in a scipy traceback in
+    halo_bifurcation. Now L2 branches off its Lyapunov family (at Ax ~ 10.8 m), L1 has no bifurcation (the
+    vertical frequency exceeds the planar one: NoBifurcation naming both) and comes from the model homotopy;
+    both close in our own propagation."""
+    from ogk_host.binary import orbits as O
+    from ogk_host.binary.dynamics import model_from_scenario
+    sc = load_scenario(missions["didymos_dimorphos"])
+    model = model_from_scenario(sc).gravity_only()
+    with pytest.raises(O.NoBifurcation, match="vertical frequency .* exceeds the planar"):
+        O.halo_bifurcation(model, "L1")
+    k = constants(missions["didymos_dimorphos"])
+    for point in ("L1", "L2"):
+        o = O.halo_orbit(model, point, az_m / k["lu"], "south")
+        sol = own_flow(k, o.state0, o.period, t0=0.0, burn=None, thrust_accel=0.0, mass_flow=0.0, forces=False)
+        assert np.max(np.abs(sol.y[:, -1] - o.state0)) < 1e-8
+        assert o.amplitude * k["lu"] == pytest.approx(az_m, rel=1e-8)
+        d1, d2 = o.min_distances()
+        assert d1 > k["bodies"][0]["impact"] and d2 > k["bodies"][1]["impact"]
