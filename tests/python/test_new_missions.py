@@ -9,7 +9,12 @@ then check
 - provenance: the JSON names the scenario's SHA-256 and the tables flown; tables of another
   scenario and a corrupted table are refused with one line; a user's directory is never written.
 
-The three missions differ in target radius, thrust level and exhaust velocity; one burns > 125 s.
+The four missions differ in target radius, thrust level and exhaust velocity; one burns > 125 s.
+long_burn_corner sits at the long-burn corner of the envelope the family states (R_f / r_p = 8,
+n0 = 0.5 g0, c = 2.5 km/s: t_f* = 222 s) and leaves the burn-scaled end-game settings out, so it
+flies the ones derived from its t_f* (ogk_host.orbit_injection.derive.burn_scaled). The short-burn
+corner (1.5, 1.5 g0, 4.5 km/s: t_f* = 41.8 s) with the paper's dispersions is outside the linear
+domain the family states: `ogk tables` names each dispersion key in one warning line.
 """
 from __future__ import annotations
 
@@ -39,6 +44,7 @@ class Mission:
     target_radius_m: float
     accel_g0: float          #: initial thrust acceleration / g0
     exhaust_velocity_m_s: float
+    derived_end_game: bool = False   #: dtf_max_s and the end-game windows left out (derived)
 
     @property
     def hohmann(self) -> tuple[float, float]:
@@ -51,7 +57,9 @@ MISSIONS = [
     Mission("meo_20000km_low_thrust", 20000.0e3, 0.8, 3200.0),
     Mission("high_30000km_hot", 30000.0e3, 1.4, 4200.0),
     Mission("geo_long_burn", 42164.0e3, 0.6, 2700.0),   # ~190 s burn
+    Mission("long_burn_corner", 8.0 * R_LEO, 0.5, 2500.0, derived_end_game=True),
 ]
+BURN_SCALED = ("dtf_max_s", "fine_window_s", "terminal_window_s")
 
 
 def ogk(*args: str, timeout: float = 600.0) -> subprocess.CompletedProcess[str]:
@@ -73,6 +81,8 @@ def write_scenario(mission: Mission, directory: Path) -> Path:
              (r"^\[cpd\.printed\][\s\S]*?(?=^\[cpd\.rederived)", ""),
              (r"^\[cpd\.rederived\][\s\S]*?(?=^\[dispersions)", ""),
              (r"^freeze_time_to_go_s = .*$", "")]
+    if mission.derived_end_game:
+        edits += [(rf"^{key} = .*$", "") for key in BURN_SCALED]
     for old, new in edits:
         text, n = re.subn(old, new, text, count=1, flags=re.M)
         assert n == 1, old
@@ -235,3 +245,39 @@ def test_a_users_directory_is_never_written(flown: dict, tmp_path: Path) -> None
     out = ogk("mc", str(scenario), "--runs", "1", "--seed", "1", "--tables", str(mine),
               "--json", str(tmp_path / "x.json"), timeout=120)
     assert out.returncode == 2 and sorted(p.name for p in mine.iterdir()) == ["notes.txt"]
+
+
+def test_burn_scaled_settings_are_derived_and_flown(flown: dict) -> None:
+    """The edge mission leaves dtf_max_s and the windows out: the manifest records them as derived,
+    within the kernel's bound (|dt_f| clip <= t_f*/2) and growing with the burn (longer than the
+    paper's 40 / 20 / 10 s for this 222 s burn); its campaign met the tolerances above."""
+    run = flown["long_burn_corner"]
+    tf = float(run["manifest"]["t_f_s"])
+    assert tf > 200.0
+    settings = run["manifest"]["settings"]
+    for key, paper in zip(BURN_SCALED, (40.0, 20.0, 10.0)):
+        assert settings[key]["source"] == "derived"
+        assert paper < settings[key]["value"] < 0.5 * tf
+    assert "warning" not in run["mc"].stderr
+
+
+def test_short_burn_corner_names_each_key_outside_the_linear_domain(tmp_path: Path) -> None:
+    """At the short-burn corner the paper's dispersions (5 km, 30 m/s) are large against the burn
+    (n0 t_f*^2 = 25.7 km, Delta v = 661 m/s): one warning line per key, and the derived |dt_f| clip
+    fits the kernel's t_f*/2 bound where the copied 40 s did not (exit 0, tables written)."""
+    corner = Mission("short_burn_corner", 1.5 * R_LEO, 1.5, 4500.0, derived_end_game=True)
+    scenario = write_scenario(corner, tmp_path)
+    out = ogk("tables", str(scenario), "--out", str(tmp_path / "tables"), timeout=300)
+    assert out.returncode == 0, out.stdout + out.stderr
+    lines = out.stderr.strip().splitlines()
+    keys = [re.match(rf"^{re.escape(str(scenario))}: (\S+): warning: ", ln) for ln in lines]
+    assert all(keys), lines
+    assert [k.group(1) for k in keys if k] == [
+        "dispersions.initial_state.radius_m", "dispersions.initial_state.radial_velocity_m_s",
+        "dispersions.initial_state.transverse_velocity_m_s",
+        "dispersions.initial_state.normal_velocity_m_s"]
+    manifest = json.loads((tmp_path / "tables" / "manifest.json").read_text())
+    tf = float(manifest["t_f_s"])
+    assert 41.0 < tf < 42.5
+    assert manifest["settings"]["dtf_max_s"]["source"] == "derived"
+    assert manifest["settings"]["dtf_max_s"]["value"] <= 0.5 * tf

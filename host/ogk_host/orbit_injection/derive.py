@@ -19,6 +19,22 @@
   control acceleration at the command limits over the burn: roll M_xc / I_x0, pitch/yaw
   T l0 sin(Delta_c) / I_y0, I_z0. Always derived (the margin is the scenario's setting).
 
+- What scales with the burn (docs/vtd-nog.md, "Derived settings"), from the nominal minimum time
+  t_f* (`resolve(scn, t_f_star_s)`, called wherever the nominal is known: `ogk tables`, the
+  campaign plan, the flight configuration), each the paper's mission's setting as a fraction of
+  its 105.9 s burn: the |dt_f| clip dtf_max_s = 0.375 t_f* (40 s; the kernel requires <= t_f*/2),
+  the fine-sampling window fine_window_s = 0.19 t_f* (20 s) and the terminal window
+  terminal_window_s = 0.094 t_f* (10 s; at least terminal_shape_hold_s). The windows are derived
+  only with the energy cut-off (the paper's end-game has none). Measured at the short-burn corner
+  of the envelope (t_f* = 41.8 s, 200 runs, seed 777): a copied 10 s terminal window fails 18
+  runs, 5 s fails 1 (docs/vtd-nog.md).
+- The envelope (`envelope_warnings(scn, t_f_star_s)`): one line per setting outside what was
+  measured to fly, naming its key: the nominal's envelope (R_f / perigee 1.5..8, n0 0.5..1.5 g0,
+  c 2.5..4.5 km/s), a window or clip set above 2x its rule, and the initial-state dispersions
+  beyond the linear domain of the neighbouring-optimal law (3 sigma of the radius above 0.2 n0
+  t_f*^2, 3 sigma of a velocity component above 0.1 of the burn's Delta v; the paper's mission is
+  at 0.12 and 0.062).
+
 Written against the scenario loader both before and after its keys became optional
 (`getattr(..., None)`): a missing `[cpd.rederived]` is `scn.cpd.rederived is None`, a missing
 freeze key is `scn.end_game.freeze_time_to_go_s is None`.
@@ -29,6 +45,8 @@ import dataclasses
 import math
 from typing import Any
 
+import numpy as np
+
 from .. import cpd_design
 from .scenario import CpdGains, OrbitInjectionScenario
 
@@ -36,6 +54,21 @@ SCENARIO = "scenario"
 DERIVED = "derived"
 #: Freeze rule: this fraction of the sampling interval (docs/vtd-nog.md, "End-game").
 FREEZE_FRACTION_OF_SAMPLE = 0.25
+#: Burn-scaled rules: the paper's mission's settings over its t_f* = 105.9 s (module docstring).
+DTF_MAX_FRACTION_OF_BURN = 0.375
+FINE_WINDOW_FRACTION_OF_BURN = 0.19
+TERMINAL_WINDOW_FRACTION_OF_BURN = 0.094
+#: A window or clip set above this multiple of its rule gets a warning.
+WINDOW_WARNING_FACTOR = 2.0
+#: Linear domain of VTD-NOG (module docstring): 3 sigma radius / (n0 t_f*^2), 3 sigma velocity / Delta v.
+RADIUS_DISPERSION_FRACTION = 0.2
+VELOCITY_DISPERSION_FRACTION = 0.1
+#: The nominal's envelope (docs/vtd-nog.md sec. 2): R_f / perigee, n0 [g0], c [m/s].
+ENVELOPE_RADIUS_RATIO = (1.5, 8.0)
+ENVELOPE_ACCEL_G0 = (0.5, 1.5)
+ENVELOPE_EXHAUST_M_S = (2500.0, 4500.0)
+EG_KEY = "guidance.end_game."
+G0 = 9.80665   #: standard gravity [m/s^2], for n0 in g0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -49,6 +82,8 @@ class EffectiveSettings:
     braking_accels_rad_s2: tuple[float, float, float]   #: (roll, pitch, yaw)
     braking_source: str
     cpd_flown: str = "rederived"    #: the scenario's [cpd] flown: "printed" flies [cpd.printed] instead
+    #: the burn-scaled end-game settings: key -> (value, source); empty until resolved with t_f*
+    end_game: tuple[tuple[str, float, str], ...] = ()
 
     def tau_freeze(self, t_f_star_s: float) -> float:
         """ogk_nog_config_t.tau_freeze for the nominal minimum time t_f*."""
@@ -63,6 +98,7 @@ class EffectiveSettings:
                                     "source": self.freeze_source},
             "braking_accels_rad_s2": {"value": list(self.braking_accels_rad_s2),
                                       "source": self.braking_source},
+            **{key: {"value": value, "source": source} for key, value, source in self.end_game},
         }
 
 
@@ -105,8 +141,10 @@ def braking_accels(scn: OrbitInjectionScenario) -> tuple[float, float, float]:
             * math.sin(cpd.deflection_z_command_max_rad))
 
 
-def effective_settings(scn: OrbitInjectionScenario) -> EffectiveSettings:
-    """The flown settings of `scn`, scenario values first, derived ones where the file is silent."""
+def effective_settings(scn: OrbitInjectionScenario,
+                       t_f_star_s: float | None = None) -> EffectiveSettings:
+    """The flown settings of `scn`, scenario values first, derived ones where the file is silent;
+    with `t_f_star_s`, the burn-scaled end-game settings too."""
     stored = getattr(scn.cpd, "rederived", None)
     if stored is not None:
         gains, gains_src = stored, SCENARIO
@@ -120,4 +158,90 @@ def effective_settings(scn: OrbitInjectionScenario) -> EffectiveSettings:
     return EffectiveSettings(cpd_gains=gains, cpd_gains_source=gains_src,
                              freeze_time_to_go_s=freeze_s, freeze_source=freeze_src,
                              braking_accels_rad_s2=braking_accels(scn), braking_source=DERIVED,
-                             cpd_flown=str(getattr(scn.cpd, "flown", "rederived")))
+                             cpd_flown=str(getattr(scn.cpd, "flown", "rederived")),
+                             end_game=(() if t_f_star_s is None
+                                       else burn_scaled(scn, t_f_star_s)))
+
+
+def burn_scaled(scn: OrbitInjectionScenario, t_f_star_s: float) -> tuple[tuple[str, float, str], ...]:
+    """(key, value, source) of dtf_max_s, fine_window_s and terminal_window_s for a burn of t_f*."""
+    eg = scn.end_game
+    rules = {"dtf_max_s": DTF_MAX_FRACTION_OF_BURN * t_f_star_s,
+             "fine_window_s": FINE_WINDOW_FRACTION_OF_BURN * t_f_star_s,
+             # the v_go hold is the window's last part: the window is never shorter
+             "terminal_window_s": max(TERMINAL_WINDOW_FRACTION_OF_BURN * t_f_star_s,
+                                      eg.terminal_shape_hold_s)}
+    out = []
+    for key, rule in rules.items():
+        stored = getattr(eg, key)
+        out.append((key, float(stored), SCENARIO) if stored is not None else (key, rule, DERIVED))
+    return tuple(out)
+
+
+def resolve(scn: OrbitInjectionScenario, t_f_star_s: float) -> OrbitInjectionScenario:
+    """`scn` with every burn-scaled end-game setting it leaves out derived for a burn of t_f*
+    (a scenario that sets them all comes back unchanged)."""
+    values = {key: value for key, value, _ in burn_scaled(scn, t_f_star_s)}
+    if all(getattr(scn.end_game, key) == value for key, value in values.items()):
+        return scn
+    return dataclasses.replace(scn, end_game=dataclasses.replace(scn.end_game, **values))
+
+
+def require_resolved(scn: OrbitInjectionScenario) -> None:
+    """ValueError when a burn-scaled setting is still unset (a caller skipped `resolve`)."""
+    missing = [key for key in ("dtf_max_s", "fine_window_s", "terminal_window_s")
+               if getattr(scn.end_game, key) is None]
+    if missing:
+        raise ValueError(f"end-game settings {missing} not resolved: call derive.resolve(scn, t_f*)")
+
+
+def delta_v_m_s(scn: OrbitInjectionScenario, t_f_star_s: float) -> float:
+    """The nominal burn's Delta v: the integral of T/m over [0, t_f*] (trapezoid, 2001 points)."""
+    t = np.linspace(0.0, t_f_star_s, 2001)
+    a = np.asarray(scn.thrust.accel_m_s2(t), dtype=np.float64)
+    return float(np.sum(0.5 * (a[1:] + a[:-1]) * np.diff(t)))
+
+
+def envelope_warnings(scn: OrbitInjectionScenario, t_f_star_s: float) -> list[tuple[str, str]]:
+    """(key, reason) for each setting outside the measured envelope (module docstring)."""
+    out: list[tuple[str, str]] = []
+    n0_g0 = scn.thrust.initial_accel_m_s2 / G0
+    c = scn.thrust.exhaust_velocity_m_s
+    if scn.pre_ignition is not None:   # the envelope is stated for the free-ignition ellipse (case B)
+        perigee = scn.pre_ignition.semi_major_axis_m * (1.0 - scn.pre_ignition.eccentricity)
+        ratio = scn.target_radius_m / perigee
+        for key, value, (lo, hi), what in (
+                ("target_orbit.radius_m", ratio, ENVELOPE_RADIUS_RATIO, "R_f / perigee"),
+                ("thrust.initial_accel_g0", n0_g0, ENVELOPE_ACCEL_G0, "n0 [g0]"),
+                ("thrust.exhaust_velocity_m_s", c, ENVELOPE_EXHAUST_M_S, "c [m/s]")):
+            if not lo <= value <= hi:
+                out.append((key, f"{what} = {value:.4g} is outside the envelope {lo:g}..{hi:g} "
+                            f"where the nominal and its campaigns are verified"))
+    for key, value, source in burn_scaled(scn, t_f_star_s):
+        rule = {k: v for k, v, _ in burn_scaled(_without_burn_scaled(scn), t_f_star_s)}[key]
+        if source == SCENARIO and value > WINDOW_WARNING_FACTOR * rule:
+            out.append((EG_KEY + key, f"{value:g} s is {value / t_f_star_s:.0%} of this burn "
+                        f"(t_f* = {t_f_star_s:.4g} s), above {WINDOW_WARNING_FACTOR:g}x the rule's "
+                        f"{rule:.3g} s: leave the key out to fly the rule"))
+    isd = scn.initial_state_dispersion
+    radius_scale = scn.thrust.initial_accel_m_s2 * t_f_star_s ** 2
+    if 3.0 * isd.radius_m > RADIUS_DISPERSION_FRACTION * radius_scale:
+        out.append(("dispersions.initial_state.radius_m",
+                    f"3 sigma = {3.0 * isd.radius_m:g} m is {3.0 * isd.radius_m / radius_scale:.2f} "
+                    f"n0 t_f*^2, beyond the linear domain of VTD-NOG ({RADIUS_DISPERSION_FRACTION:g}; "
+                    f"<= {RADIUS_DISPERSION_FRACTION * radius_scale / 3.0:.4g} m sigma for this burn)"))
+    dv = delta_v_m_s(scn, t_f_star_s)
+    for name in ("radial_velocity_m_s", "transverse_velocity_m_s", "normal_velocity_m_s"):
+        sigma = float(getattr(isd, name))
+        if 3.0 * sigma > VELOCITY_DISPERSION_FRACTION * dv:
+            out.append((f"dispersions.initial_state.{name}",
+                        f"3 sigma = {3.0 * sigma:g} m/s is {3.0 * sigma / dv:.3f} of the burn's "
+                        f"Delta v ({dv:.4g} m/s), beyond the linear domain of VTD-NOG "
+                        f"({VELOCITY_DISPERSION_FRACTION:g}; <= {VELOCITY_DISPERSION_FRACTION * dv / 3.0:.3g} "
+                        f"m/s sigma for this burn)"))
+    return out
+
+
+def _without_burn_scaled(scn: OrbitInjectionScenario) -> OrbitInjectionScenario:
+    return dataclasses.replace(scn, end_game=dataclasses.replace(
+        scn.end_game, dtf_max_s=None, fine_window_s=None, terminal_window_s=None))

@@ -392,7 +392,7 @@ THRUST_MODELS = ("constant", "tabulated")  #: [thrust] model: sec. 6 formula or 
 class EndGame:
     """Guard of the VTD-NOG law near cut-off (docs/vtd-nog.md, "End-game"); kernel ogk_nog_config_t."""
 
-    dtf_max_s: float          #: bound on |dt_f|
+    dtf_max_s: float | None   #: bound on |dt_f|; None: derived from t_f* (derive.resolve)
     du_max_rad: float         #: bound on the angle between corrected and nominal thrust directions
     freeze_time_to_go_s: float | None  #: no new correction below this nominal time to go; None: derived
     #: "predicted": cut-off at the time predicted at the last sample (eq. 32, the paper);
@@ -401,10 +401,13 @@ class EndGame:
     cutoff_arm_s: float | None = None         #: energy cut-off armed this long before the prediction; None: Delta t_S
     cutoff_extend_max_s: float | None = None  #: latest cut-off after the prediction; None: 2 Delta t_S
     fine_sample_interval_s: float | None = None  #: sampling interval near the end; None: Delta t_S throughout
-    fine_window_s: float = 0.0                #: fine sampling while the predicted time to go is at most this
+    #: fine sampling while the predicted time to go is at most this; None: derived from t_f*
+    #: (derive.resolve; only with the energy cut-off, else 0 = never)
+    fine_window_s: float | None = 0.0
     #: kernel ogk_terminal: steer along the velocity to be gained once the predicted time to go is at
-    #: most this (0: never; beyond the paper)
-    terminal_window_s: float = 0.0
+    #: most this (0: never; beyond the paper); None: derived from t_f* (derive.resolve; only with
+    #: the energy cut-off, else 0)
+    terminal_window_s: float | None = 0.0
     #: ogk_terminal position shaping: fraction of the radius and of the plane-normal position miss
     #: steered out in the window (0: not steered) and the time to go below which v_go steering
     #: takes over
@@ -545,19 +548,26 @@ def load_scenario(path: str | Path | None = None) -> OrbitInjectionScenario:
     guid_s.text("law", choices=LAWS)
     sample_interval = guid_s.number("sample_interval_s", positive=True)
     eg_s = guid_s.section("end_game")
-    end_game = EndGame(dtf_max_s=eg_s.number("dtf_max_s", positive=True),
+    cutoff = eg_s.text("cutoff", "predicted", choices=CUTOFFS)
+    # what scales with the burn is derived from t_f* when absent (derive.resolve, issue 19); the
+    # windows only with the energy cut-off (the paper's end-game has none)
+    window_default = None if cutoff == "energy" else 0.0
+    end_game = EndGame(dtf_max_s=eg_s.number("dtf_max_s", None, positive=True),
                        du_max_rad=eg_s.number("du_max_rad", positive=True, hi=math.pi),
                        freeze_time_to_go_s=eg_s.number("freeze_time_to_go_s", None,
                                                        nonnegative=True),
-                       cutoff=eg_s.text("cutoff", "predicted", choices=CUTOFFS),
+                       cutoff=cutoff,
                        cutoff_arm_s=eg_s.number("cutoff_arm_s", None, nonnegative=True),
                        cutoff_extend_max_s=eg_s.number("cutoff_extend_max_s", None,
                                                        nonnegative=True),
                        fine_sample_interval_s=eg_s.number("fine_sample_interval_s", None,
                                                           positive=True,
                                                           hi=sample_interval),
-                       fine_window_s=eg_s.number("fine_window_s", 0.0, nonnegative=True),
-                       terminal_window_s=eg_s.number("terminal_window_s", 0.0, nonnegative=True),
+                       fine_window_s=eg_s.number(
+                           "fine_window_s", window_default if eg_s.has("fine_sample_interval_s")
+                           else 0.0, nonnegative=True),
+                       terminal_window_s=eg_s.number("terminal_window_s", window_default,
+                                                     nonnegative=True),
                        terminal_shape_gain=eg_s.number("terminal_shape_gain", 0.0,
                                                        nonnegative=True, hi=1.0),
                        terminal_shape_gain_normal=eg_s.number("terminal_shape_gain_normal", 0.0,
@@ -567,7 +577,8 @@ def load_scenario(path: str | Path | None = None) -> OrbitInjectionScenario:
                        terminal_shape_lead_s=eg_s.number("terminal_shape_lead_s", 0.0,
                                                          nonnegative=True, hi=1.0e7))
     shaped = end_game.terminal_shaped
-    if shaped and not end_game.terminal_shape_hold_s <= end_game.terminal_window_s:
+    if (shaped and end_game.terminal_window_s is not None
+            and not end_game.terminal_shape_hold_s <= end_game.terminal_window_s):
         raise eg_s.error("terminal_shape_hold_s",
                          f"must be <= terminal_window_s ({end_game.terminal_window_s:g} s) when "
                          f"a shape gain is set, got {end_game.terminal_shape_hold_s:g}")

@@ -46,7 +46,7 @@ from .. import tablefile
 from ogk_bindings.errors import OgkInputError, TableError
 from ..scenario_file import table_dir_for
 from . import dynamics as dyn
-from .derive import EffectiveSettings, effective_settings, freeze_rule_s
+from .derive import EffectiveSettings, effective_settings, freeze_rule_s, resolve
 from .gains import (INTERPOLATION_ERROR_BOUND, GainTable, GridCapacityError, GridChoice,
                     choose_tau_grid, compute_gain_table, condition_numbers_si, interpolation_error,
                     kernel_table_capacity)
@@ -192,9 +192,10 @@ def write_nog_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SC
         raise TableError(f"not empty and has no {MANIFEST} made by {MADE_BY!r}: refusing to write "
                          f"tables into it (give an empty or new directory)", path=out)
     scn = load_scenario(scenario_path)
-    settings = effective_settings(scn)
     if nominal is None:
         nominal = solve_nominal(scn)
+    settings = effective_settings(scn, nominal.t_f_s)   # with where each value came from
+    scn = resolve(scn, nominal.t_f_s)          # what scales with the burn (derive.burn_scaled)
     check_burn_bounds(scn, nominal.t_f_s)
     grid = flight_grid(nominal, settings)
     if table is None:
@@ -246,7 +247,7 @@ def check_burn_bounds(scn: Any, t_f_star_s: float) -> None:
     sampling interval <= t_f*), checked against the nominal's t_f* so that a copied setting is one
     line naming its key here, not OGK_E_CONFIG when the campaign starts (issue 19)."""
     eg = scn.end_game
-    if not eg.dtf_max_s <= 0.5 * t_f_star_s:
+    if eg.dtf_max_s is not None and not eg.dtf_max_s <= 0.5 * t_f_star_s:
         raise OgkInputError(f"must be <= t_f*/2 = {0.5 * t_f_star_s:.4g} s for this burn "
                             f"(t_f* = {t_f_star_s:.4g} s), got {eg.dtf_max_s:g}",
                             path=scn.path, key="guidance.end_game.dtf_max_s")

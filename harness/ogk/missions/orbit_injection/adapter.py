@@ -29,9 +29,12 @@ def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
     from ogk_host.cgen import write_c_table
     from ogk_host.orbit_injection import tables as ground
 
+    from ogk_host.orbit_injection.derive import resolve
+
+    from .family import warn_outside_envelope
     from .flight_config import write_flight_config
 
-    load_scenario(header.path)  # every bad key reported before the nominal is solved
+    scn = load_scenario(header.path)  # every bad key reported before the nominal is solved
     out = Path(args.out) if args.out else ground.default_table_dir(header.path)
     check_output_dir(out, "--out")
     with Working(f"{header.name}: ground nominal and VTD-NOG gains"):
@@ -42,6 +45,10 @@ def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
                                                      "with ogk_nog_table_load() (ogk/nog.h).")
     print(f"{header.name}: t_f* = {manifest['t_f_s']:.6f} s, "
           f"f0* = {manifest['ignition_true_anomaly_deg']:.6f} deg")
+    warn_outside_envelope(resolve(scn, manifest["t_f_s"]), manifest["t_f_s"])
+    for key, entry in manifest["settings"].items():
+        if key.endswith("_window_s") or key == "dtf_max_s":
+            print(f"  {key} = {entry['value']:.4g} s ({entry['source']})")
     for name, value in manifest.get("residuals", {}).items():
         print(f"  residual {name:22s} {value: .3e}")
     for entry in manifest["files"]:

@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ogk_bindings.errors import TableError
+from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
@@ -364,6 +365,7 @@ def run_campaign(scenario: OrbitInjectionScenario, runs: int, seed: int, workers
     t_nominal = time.perf_counter()
     ref = nominal_reference(scenario)
     nominal_solve_s = time.perf_counter() - t_nominal
+    scenario = derive.resolve(scenario, ref.tf_s)     # what scales with the burn
     if tables is not None and abs(tables.t_f_star_s - ref.tf_s) > 1e-6 * max(ref.tf_s, 1.0):
         raise TableError(f"tables made for t_f* = {tables.t_f_star_s:.6f} s, the scenario's nominal "
                          f"is {ref.tf_s:.6f} s: regenerate them with `ogk tables`",

@@ -21,8 +21,9 @@ def flight_configs(scenario: Path, bundle: Path) -> tuple[Any, Any, Any]:
     from ogk.missions.orbit_injection.attitude import cpd_config
     from ogk.missions.orbit_injection.nog_guidance import load_table, nog_config
 
-    scn = load_scenario(scenario)
+    from ogk_host.orbit_injection.derive import resolve
     table = load_table(bundle)
+    scn = resolve(load_scenario(scenario), float(table.t_f_star_s))   # type: ignore[attr-defined]
     nog = nog_config(scn, table)
     cpd = ffi.new("ogk_cpd_config_t *")
     for key, value in cpd_config(scn, control_period_s=1.0 / CONTROL_RATE_HZ).items():

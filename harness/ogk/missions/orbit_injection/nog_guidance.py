@@ -73,6 +73,7 @@ def nog_config(scn: OrbitInjectionScenario, table: object, last_interval_s: floa
     """ogk_nog_config_t from the scenario's guidance block (the end-game bounds included).
     `last_interval_s`: the sampling interval at the end of the burn, which sets the terminating
     sample of eq. (32) (default: the scenario's Delta t_S, sampled throughout)."""
+    scn = derive.resolve(scn, float(table.t_f_star_s))  # type: ignore[attr-defined]
     cfg = ffi.new("ogk_nog_config_t *")
     status = lib.ogk_nog_config_default(cfg)
     if status != lib.OGK_OK:

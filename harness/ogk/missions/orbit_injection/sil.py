@@ -20,6 +20,7 @@ from typing import Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 from . import truth as tm
@@ -76,9 +77,11 @@ class EndGamePlan:
     def of(cls, scn: OrbitInjectionScenario, settings: "SilSettings") -> "EndGamePlan":
         if settings.end_game not in END_GAMES:
             raise ValueError(f"end_game must be one of {END_GAMES}, got {settings.end_game!r}")
-        eg = scn.end_game
         if settings.end_game == "paper":
             return cls.none()
+        derive.require_resolved(scn)
+        eg = scn.end_game
+        assert eg.fine_window_s is not None and eg.terminal_window_s is not None
         fine = None
         if eg.fine_sample_interval_s is not None and eg.fine_window_s > 0.0:
             # a whole number of control periods (at least one): samples fall on control steps
