@@ -240,7 +240,7 @@ def ubmpig(model: Model, circle: Circle, target: PeriodicOrbit, *, sign: int = -
             if p is not None and (best is None or p[0] < best[0]):
                 best = (p[0], float(tau), float(d))
     if best is None:
-        raise RuntimeError("no stable-manifold trajectory of the target orbit crosses the circle")
+        raise CorrectionError("no stable-manifold trajectory of the target orbit crosses the circle")
     res = minimize(lambda v: (patch(v[0], math.exp(v[1])) or (1e3, {}))[0],
                    np.array([best[1], math.log(best[2])]), method="Nelder-Mead",
                    bounds=[(None, None), (math.log(d_lo), math.log(d_hi))],
@@ -256,7 +256,7 @@ def ubmpig(model: Model, circle: Circle, target: PeriodicOrbit, *, sign: int = -
     u1, u3 = dv1 / np.linalg.norm(dv1), dv3 / np.linalg.norm(dv3)
     coast = info["toc"] - 0.5 * (t1 + t3)                                              # (59)
     if coast <= 0.0:
-        raise RuntimeError(f"the burns ({t1:.3f} + {t3:.3f} TU) outlast the coast ({info['toc']:.3f} TU)")
+        raise CorrectionError(f"the burns ({t1:.3f} + {t3:.3f} TU) outlast the coast ({info['toc']:.3f} TU)")
     x0 = circle.state(info["longitude"] - circle.synodic_rate * 0.5 * t1)               # (60)
     xf = orbit_phase(info["tau"] + 0.5 * t3)
     if split_coast:
@@ -340,7 +340,7 @@ def bmpig(model: Model, departure: PeriodicOrbit, arrival: PeriodicOrbit, *, dev
             if best is None or gap < best[0]:
                 best = (gap, i, j)
     if best is None:
-        raise RuntimeError("no pair of manifold trajectories reaches the cut x = 1 - mu without impact")
+        raise CorrectionError(f"no pair of manifold trajectories of the {departure.point} {departure.family} and the {arrival.point} {arrival.family} reaches the cut x = 1 - mu without impact (d = {deviation:.4g} VU)")
 
     Cut = tuple[FloatArray, FloatArray, float]
 
@@ -378,7 +378,7 @@ def bmpig(model: Model, departure: PeriodicOrbit, arrival: PeriodicOrbit, *, dev
     coast1 = toc1 - 0.5 * t1 - tc * share                                                  # (42)
     coast2 = toc2 - 0.5 * t3 - tc * (1.0 - share)
     if coast1 <= 0.0 or coast2 <= 0.0:
-        raise RuntimeError(f"the burns outlast a coast ({coast1:.3f}, {coast2:.3f} TU)")
+        raise CorrectionError(f"the burns outlast a coast ({coast1:.3f}, {coast2:.3f} TU)")
     u1, uc, u3 = dv1 / np.linalg.norm(dv1), dvc / np.linalg.norm(dvc), dv3 / np.linalg.norm(dv3)
     segments = np.array([np.concatenate([u1, u1, [t1]]), [0, 0, 0, 0, 0, 0, coast1], np.concatenate([uc, uc, [tc]]),
                          [0, 0, 0, 0, 0, 0, coast2], np.concatenate([u3, u3, [t3]])])

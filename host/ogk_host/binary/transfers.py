@@ -27,7 +27,7 @@ from ..scenario_file import Section
 from .design import CORRECTORS, JACOBIANS, Converged, converge, thrust_continuation
 from .dynamics import Model, model_from_scenario
 from .guess import Circle, Guess, bmpig, sbig, ubmpig
-from .orbits import scenario_orbit
+from .orbits import CorrectionError, scenario_orbit
 from .scenario import BinaryScenario
 
 KINDS = ("single-burn", "ump-backward", "bmp")
@@ -191,6 +191,26 @@ class Design:
         return self.result.report
 
 
+#: When no manifold pair of a BMP reaches the cut without impact at the scenario's manifold_dv_m_s (the
+#: Moshup L1 halo's, docs/blt-transfers.md), the guess is retried at these multiples of it: a larger d
+#: leaves the orbit faster and clears the secondary (0.15 VU: 2 of 48 L1-halo phases reach the cut).
+BMP_WIDER_DEVIATIONS = (3.0, 6.0)
+
+
+def _wider_bmp_guess(scenario: BinaryScenario, spec: TransferSpec, model: Model,
+                     first: CorrectionError) -> tuple[TransferSpec, Guess]:
+    """BMPIG at BMP_WIDER_DEVIATIONS x manifold_dv_m_s; the first that finds an impact-free pair."""
+    for scale in BMP_WIDER_DEVIATIONS:
+        d = spec.insertion_dv_m_s[0] * scale
+        wider = dataclasses.replace(spec, insertion_dv_m_s=(d, d))
+        try:
+            return wider, initial_guess(scenario, wider, model)
+        except CorrectionError:
+            continue
+    raise CorrectionError(f"{first} (nor at {' or '.join(f'{k:g}' for k in BMP_WIDER_DEVIATIONS)} x "
+                          f"manifold_dv_m_s)") from first
+
+
 def design(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings, *, corrector: str | None = None,
            jacobian: str | None = None, base_thrust_n: float | None = None) -> Design:
     """Guess, then the kernel's corrector in the realistic model (design.converge). When that fails and
@@ -199,7 +219,13 @@ def design(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings,
     model = corrector_model(scenario, spec, solver)
     corr, jac = corrector or solver.corrector, jacobian or solver.jacobian
     start = time.perf_counter()
-    guess = initial_guess(scenario, spec, model)
+    guess_spec = spec
+    try:
+        guess = initial_guess(scenario, spec, model)
+    except CorrectionError as exc:
+        if spec.kind != "bmp":
+            raise
+        guess_spec, guess = _wider_bmp_guess(scenario, spec, model, exc)
     mid = time.perf_counter()
     result = converge(model, guess, corrector=corr, jacobian=jac, **solver.kernel_fields())
     if spec.kind == "bmp":
@@ -207,15 +233,18 @@ def design(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings,
         for scale in (0.8, 1.25, 0.64, 1.5625):
             if result.report.converged:
                 break
-            d = spec.insertion_dv_m_s[0] * scale
-            alt = initial_guess(scenario, dataclasses.replace(spec, insertion_dv_m_s=(d, d)), model)
+            d = guess_spec.insertion_dv_m_s[0] * scale
+            try:
+                alt = initial_guess(scenario, dataclasses.replace(spec, insertion_dv_m_s=(d, d)), model)
+            except CorrectionError:
+                continue
             attempt = converge(model, alt, corrector=corr, jacobian=jac, **solver.kernel_fields())
             attempt.steps = [dict(deviation_scale=scale, **st) for st in attempt.steps]
             attempt.steps = result.steps + attempt.steps
             guess, result = alt, attempt
     if not result.report.converged and base_thrust_n is not None and base_thrust_n != spec.thrust_n:
         base = corrector_model(scenario, dataclasses.replace(spec, thrust_n=base_thrust_n), solver)
-        guess = initial_guess(scenario, spec, base)
+        guess = initial_guess(scenario, guess_spec, base)
         direct = result.steps
         result = thrust_continuation(model, guess, base.thrust_accel, corrector=corr, jacobian=jac,
                                      **solver.kernel_fields())
