@@ -26,7 +26,7 @@ from ogk_bindings.errors import OgkInputError
 from ..scenario_file import Section
 from .design import CORRECTORS, JACOBIANS, Converged, converge, thrust_continuation
 from .dynamics import Model, model_from_scenario
-from .guess import Circle, Guess, bmpig, sbig, ubmpig
+from .guess import Circle, Guess, OrbitPhase, bmpig, sbig, ubmpig
 from .orbits import CorrectionError, scenario_orbit
 from .scenario import BinaryScenario
 
@@ -211,6 +211,53 @@ def _wider_bmp_guess(scenario: BinaryScenario, spec: TransferSpec, model: Model,
                           f"manifold_dv_m_s)") from first
 
 
+#: The gravity continuation's first step in lambda (the degree-2 coefficients' scale, 1 -> 0) and its smallest.
+GRAVITY_STEP, GRAVITY_MIN_STEP = 0.25, 1.0 / 32.0
+
+
+def _gravity_continuation(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings, model: Model,
+                          corrector: str, jacobian: str) -> tuple[Guess, Converged]:
+    """A single burn in the point-mass model (`model`) reached from the scenario's degree-2 model: the transfer
+    converged there, then lambda (both bodies' C20, C22 x lambda) stepped 1 -> 0, at each step both orbits
+    rebuilt in the lambda model, the start and the target moved to the same phase fraction of them, the solve
+    warm-started from the last solution; a failed step is halved (to GRAVITY_MIN_STEP). Beyond the paper: the
+    point-mass guesses of Moshup's halo pair stall (L2 -> L1) or graze Beta (L1 -> L2)."""
+    assert spec.from_orbit is not None and spec.to_orbit is not None
+    full = corrector_model(scenario, spec, dataclasses.replace(solver, gravity="degree2"))
+    guess = initial_guess(scenario, spec, full)
+    fields = solver.kernel_fields()
+    result = converge(full, guess, corrector=corrector, jacobian=jacobian, **fields)
+    steps = [dict(gravity_scale=1.0, **st) for st in result.steps]
+
+    def orbits(m: Model) -> tuple[OrbitPhase, OrbitPhase]:
+        gm = m.gravity_only()
+        return (OrbitPhase(scenario_orbit(scenario, spec.from_orbit or "", gm)),
+                OrbitPhase(scenario_orbit(scenario, spec.to_orbit or "", gm)))
+    phases = orbits(full)
+    frac = (guess.info["phase_departure"] / phases[0].orbit.period,
+            guess.info["phase_arrival"] / phases[1].orbit.period)
+    lam, h = 1.0, GRAVITY_STEP
+    while result.report.converged and lam > 0.0:
+        nxt = max(0.0, lam - h)
+        m = model if nxt == 0.0 else dataclasses.replace(
+            model, ref_radius=full.ref_radius, c20=(nxt * full.c20[0], nxt * full.c20[1]),
+            c22=(nxt * full.c22[0], nxt * full.c22[1]))
+        dep, arr = orbits(m)
+        tr = dataclasses.replace(result.transfer, x0=dep(frac[0] * dep.orbit.period),
+                                 xf=arr(frac[1] * arr.orbit.period))
+        attempt = converge(m, Guess(layout=guess.layout, transfer=tr, info=guess.info), corrector=corrector,
+                           jacobian=jacobian, **fields)
+        steps += [dict(gravity_scale=nxt, **st) for st in attempt.steps]
+        if attempt.report.converged:
+            lam, result = nxt, attempt
+        elif h / 2.0 >= GRAVITY_MIN_STEP:
+            h /= 2.0
+        else:
+            result = attempt
+    result.steps = steps
+    return guess, result
+
+
 def design(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings, *, corrector: str | None = None,
            jacobian: str | None = None, base_thrust_n: float | None = None) -> Design:
     """Guess, then the kernel's corrector in the realistic model (design.converge). When that fails and
@@ -242,6 +289,11 @@ def design(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings,
             attempt.steps = [dict(deviation_scale=scale, **st) for st in attempt.steps]
             attempt.steps = result.steps + attempt.steps
             guess, result = alt, attempt
+    if (not result.report.converged and spec.kind == "single-burn" and scenario.gravity.model == "degree2"
+            and not any(model.c20) and not any(model.c22)):
+        direct = result.steps
+        guess, result = _gravity_continuation(scenario, spec, solver, model, corr, jac)
+        result.steps = [dict(direct=True, **st) for st in direct] + result.steps
     if not result.report.converged and base_thrust_n is not None and base_thrust_n != spec.thrust_n:
         base = corrector_model(scenario, dataclasses.replace(spec, thrust_n=base_thrust_n), solver)
         guess = initial_guess(scenario, guess_spec, base)
