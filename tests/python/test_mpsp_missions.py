@@ -1,14 +1,14 @@
 """A new MPSP mission is one TOML file; its nominal is its own ground product (issue 19).
 
 From a copy of scenarios/apophis_cubesat.toml in tmp_path:
-  - a cheaper variant (the Apophis target, T_max 1.6 mN instead of 1.5: its nominal by continuation
-    from the cached one, seconds) in `make test`: `ogk tables` makes its own nominal into its own
-    directory build/tables/<name>-<sha12> with a manifest; `ogk run` of a case and `ogk mc --runs 3`
-    fly it with MPSP converging; the nominal meets its boundary conditions when re-integrated here,
-    independently of the ground tool (scipy solve_ivp, rtol 1e-12, the switching function's zeros as
-    events); Apophis's products unchanged, both coexist, no tracked file changed;
+  - the edge of the Apophis transfer's envelope: T_max 1.35 mN, 10 % below the paper's (at 1.3 mN no
+    nominal exists): its nominal by continuation from the cached one (~20 s); `ogk tables` makes it
+    into its own directory build/tables/<name>-<sha12> with a manifest; `ogk run` of a case and
+    `ogk mc --runs 3` fly it with MPSP converging; the nominal meets its boundary conditions when
+    re-integrated here, independently of the ground tool (scipy solve_ivp, rtol 1e-12, the switching
+    function's zeros as events); Apophis's products unchanged, both coexist, no tracked file changed;
   - a Bennu-like target (boundary state from published-style elements propagated here by a two-body
-    solve_ivp; 2.5 mN, 1200 d), solved from scratch (minutes): @pytest.mark.slow;
+    solve_ivp; 2.5 mN, 1200 d), its nominal solved from scratch (~50 s), the same checks;
   - bad input: one line FILE: KEY: REASON, exit 2, in seconds (strings, nan/inf, zero or negative
     masses, thrusts, durations, --param nan, a duration too short to reach the target), a result
     beyond [acceptance] is exit 1 with the reason; another scenario's products are refused.
@@ -223,14 +223,24 @@ def _fly_new_mission(scenario: Path, tmp_path: Path, capsys: pytest.CaptureFixtu
         shutil.rmtree(out, ignore_errors=True)
 
 
-def test_new_mission_cheap_variant(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    """The Apophis target at 1.6 mN: a new mission, nominal by continuation from the cache."""
-    scenario = _edit(tmp_path / "apophis_16mN.toml", name='"mpsp_test_apophis_16mN"',
-                     max_thrust_N="1.6e-3")
+def test_new_mission_at_the_thrust_edge(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """The Apophis target at 1.35 mN, 10 % below the paper's thrust: the edge of this transfer's
+    envelope (at 1.3 mN no fuel-optimal nominal exists: the thrust continuation stalls, and 1.2 mN
+    fails the reach check). A new mission, its nominal by continuation from the cache."""
+    scenario = _edit(tmp_path / "apophis_edge.toml", name='"mpsp_test_apophis_1_35mN"',
+                     max_thrust_N="1.35e-3", printed_vector_scale="0.01", cube_side_LU="0.004")
+    # The dispersions scaled to the 4 % thrust margin: the paper's (kappa up to 3.5 x its vectors,
+    # a 0.04 LU cube, eta -10 %) need more thrust than this vehicle has above the edge (measured:
+    # 1 of 3 dispersed runs converge with them, 9 of 9 with these).
+    text = scenario.read_text()
+    block = text[text.index("delta_final_position_LU = ["):]
+    block = block[:block.index("\n]\n") + 2]
+    text = text.replace(block, block.replace("0.02", "0.002"))
+    scenario.write_text(re.sub(r"^eta_percent = .*$", "eta_percent = [-1.0, -0.5, 0.5, 1.0]", text,
+                               count=1, flags=re.M))
     _fly_new_mission(scenario, tmp_path, capsys, "from the cached nominal")
 
 
-@pytest.mark.slow
 def test_new_mission_bennu_like(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """A Bennu-like target, 2.5 mN, 1200 days: its nominal solved from scratch (about 2 min)."""
     rf, vf = bennu_like_target()
