@@ -109,7 +109,6 @@ def write_mission(name: str, directory: Path) -> Path:
         "gravity.primary": dict(semi_axes_m=m["primary"][0], impact_radius_m=m["primary"][1]),
         "gravity.secondary": dict(semi_axes_m=m["secondary"][0], impact_radius_m=m["secondary"][1]),
         "sun": dict(distance_m=m["sun_m"]),
-        "solver": dict(step_max_s=round(2e-3 * tu, 3)),          # moshup's 2e-3 TU
         "transfers.l1_to_l2_lyapunov_bmp": dict(manifold_dv_m_s=0.05 * vu, thrust_n=m["thrust_n"]),
         "transfers.circle_to_l2_ump": dict(circle_radius_m=m["circle_m"], step_max_s=round(8e-3 * tu, 3),
                                            insertion_dv_m_s=[0.05 * vu, 0.15 * vu]),
@@ -119,6 +118,9 @@ def write_mission(name: str, directory: Path) -> Path:
     for t in ("l2_to_l1_lyapunov", "l1_to_l2_lyapunov", "l2_to_l1_halo", "l1_to_l2_halo"):
         changes[f"transfers.{t}"] = dict(thrust_n=m["thrust_n"])
     text = edit_scenario((REPO / "scenarios" / "moshup.toml").read_text(), changes)
+    # [solver] step_max_s left out: the family derives it from the system's time unit (2e-3 TU)
+    text, n = re.subn(r"(?m)^step_max_s = 20\.0 .*\n", "", text, count=1)
+    assert n == 1
     path = directory / f"{name}.toml"
     path.write_text(text + EXTRA_TRANSFERS.format(thrust=m["thrust_n"]))
     return path

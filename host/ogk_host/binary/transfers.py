@@ -33,9 +33,14 @@ from .scenario import BinaryScenario
 KINDS = ("single-burn", "ump-backward", "bmp")
 
 
+#: The RK4 step bound when [solver] step_max_s is left out: this fraction of the scenario's time unit
+#: (Moshup's 20 s is 2.0e-3 of its TU = 9982 s; DOP853 re-checks every flown transfer's |e|).
+STEP_MAX_TU = 2.0e-3
+
+
 @dataclasses.dataclass(frozen=True)
 class SolverSettings:
-    step_max_s: float = 20.0          #: [s] RK4 step bound (2e-3 TU for Moshup)
+    step_max_s: float = 20.0          #: [s] RK4 step bound (default: STEP_MAX_TU of the scenario's TU)
     tol: float = 1e-6                 #: [-] |e|_2, normalised (the paper's, sec. III.D)
     max_iter: int = 40                #: the paper's NRPC limit (sec. VI)
     fd_step: float = 1e-6             #: [-] central-difference step, normalised
@@ -80,7 +85,8 @@ class MonteCarloSpec:
 def solver_settings(scenario: BinaryScenario) -> SolverSettings:
     s = Section(scenario.solver, scenario.path, "solver")
     d = SolverSettings()
-    out = SolverSettings(step_max_s=s.number("step_max_s", d.step_max_s, positive=True),
+    out = SolverSettings(step_max_s=s.number("step_max_s", STEP_MAX_TU * scenario.units.time_s,
+                                             positive=True),
                          tol=s.number("tol", d.tol, positive=True),
                          max_iter=s.integer("max_iter", d.max_iter, lo=1, hi=500),
                          fd_step=s.number("fd_step", d.fd_step, positive=True),
