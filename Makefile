@@ -166,7 +166,8 @@ run: all
 	  --json $(B)/nmpc/cncn_unperturbed.json --plots $(B)/nmpc/plots
 	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy snns --solver kernel --perturbed --seed 1 \
 	  --third-bodies-in-model yes --json $(B)/nmpc/snns_perturbed_seed1.json --plots $(B)/nmpc/plots
-	for t in l2_to_l1_lyapunov l1_to_l2_lyapunov l2_to_l1_halo l1_to_l2_halo l1_to_l2_lyapunov_bmp circle_to_l2_ump; do \
+	for t in l2_to_l1_lyapunov l1_to_l2_lyapunov l2_to_l1_halo l1_to_l2_halo l1_to_l2_lyapunov_bmp l1_to_l2_halo_bmp \
+	  circle_to_l2_ump; do \
 	  $(VENV)/bin/ogk run moshup --transfer $$t --json $(B)/blt/$$t.json --plots $(B)/blt/plots || exit 1; done
 	$(VENV)/bin/ogk mc moshup --seed 20261202 --workers 2 --json $(B)/blt/mc_table3.json \
 	  --plots $(B)/blt/plots
