@@ -1,11 +1,12 @@
 """Missions no other file names, made as a user would: edit a copy of scenarios/leo_geo.toml, run
-`ogk tables` and `ogk mc` on it end to end (subprocesses, few runs, 6-DOF truth, every dispersion),
-then check
+`ogk tables`, `ogk mc` and `ogk run` on it end to end (subprocesses, few runs, 6-DOF truth, every
+dispersion), then check
 
 - the nominal against an independent re-solve: a direct method written here (planar Cartesian
   dynamics, thrust angle piecewise linear in time, SLSQP on f0, t_f and the nodes), which can only
   be as fast as the true optimum, so its t_f must agree with the ground tools' t_f* from above;
 - the injection errors against the tolerances the scenario states (`ogk mc` exits 0, no failure);
+- `ogk run --seed S` is run 0 of `ogk mc --seed S`, to the bit;
 - provenance: the JSON names the scenario's SHA-256 and the tables flown; tables of another
   scenario and a corrupted table are refused with one line; a user's directory is never written.
 
@@ -168,10 +169,14 @@ def flown(tmp_path_factory: pytest.TempPathFactory) -> dict[str, dict]:
         assert made.returncode == 0, made.stdout + made.stderr
         camp = ogk("mc", str(scenario), "--runs", "3", "--seed", "20261201", "--workers", "1",
                    "--tables", str(tables), "--json", str(work / "mc.json"))
+        one = ogk("run", str(scenario), "--seed", "20261201", "--tables", str(tables),
+                  "--json", str(work / "run.json"))
         out[mission.name] = {"mission": mission, "scenario": scenario, "tables": tables,
                              "manifest": json.loads((tables / "manifest.json").read_text()),
                              "mc": camp, "doc": json.loads((work / "mc.json").read_text())
-                             if (work / "mc.json").exists() else None}
+                             if (work / "mc.json").exists() else None, "run": one,
+                             "one": json.loads((work / "run.json").read_text())
+                             if (work / "run.json").exists() else None}
     return out
 
 
@@ -189,6 +194,19 @@ def test_campaign_meets_the_stated_tolerances(flown: dict, mission: Mission) -> 
     for name, sha in doc["tables"]["sha256"].items():
         assert hashlib.sha256((run["tables"] / name).read_bytes()).hexdigest() == sha
     assert doc["nominal_tf_s"] == pytest.approx(run["manifest"]["t_f_s"], rel=1e-9)
+
+
+@pytest.mark.parametrize("mission", MISSIONS, ids=lambda m: m.name)
+def test_ogk_run_flies_run_0_of_the_campaign(flown: dict, mission: Mission) -> None:
+    """`ogk run --seed S` is one flight: run 0 of `ogk mc --seed S`, to the bit, within the tolerances."""
+    run = flown[mission.name]
+    assert run["run"].returncode == 0, run["run"].stdout[-3000:] + run["run"].stderr
+    one, camp = run["one"], run["doc"]
+    assert one["runs"] == 1 and one["failures"] == 0
+    first = next(r for r in camp["per_run"] if r["run_id"] == 0)
+    assert one["per_run"][0] == first
+    for key, tol in one["tolerances"].items():
+        assert abs(one["per_run"][0][key]) <= tol
 
 
 def test_one_mission_burns_longer_than_125_s(flown: dict) -> None:
