@@ -299,3 +299,13 @@ def test_short_burn_corner_names_each_key_outside_the_linear_domain(tmp_path: Pa
     assert 41.0 < tf < 42.5
     assert manifest["settings"]["dtf_max_s"]["source"] == "derived"
     assert manifest["settings"]["dtf_max_s"]["value"] <= 0.5 * tf
+
+    # the paper's windows copied (20 s and 10 s on a 41.8 s burn): a warning each, naming the key
+    copied = Mission("short_burn_copied_windows", 1.5 * R_LEO, 1.5, 4500.0)
+    path = write_scenario(copied, tmp_path)
+    path.write_text(path.read_text().replace("dtf_max_s = 40.0", "dtf_max_s = 15.0"))
+    out = ogk("tables", str(path), "--out", str(tmp_path / "copied"), timeout=300)
+    assert out.returncode == 0, out.stdout + out.stderr
+    named = [ln.split(": ")[1] for ln in out.stderr.strip().splitlines()]
+    assert named[:2] == ["guidance.end_game.fine_window_s", "guidance.end_game.terminal_window_s"]
+    assert len(named) == 6

@@ -163,17 +163,21 @@ def effective_settings(scn: OrbitInjectionScenario,
                                        else burn_scaled(scn, t_f_star_s)))
 
 
+def burn_rules(scn: OrbitInjectionScenario, t_f_star_s: float) -> dict[str, float]:
+    """The rule's dtf_max_s, fine_window_s and terminal_window_s [s] for a burn of t_f* (module docstring)."""
+    return {"dtf_max_s": DTF_MAX_FRACTION_OF_BURN * t_f_star_s,
+            "fine_window_s": FINE_WINDOW_FRACTION_OF_BURN * t_f_star_s,
+            # the v_go hold is the window's last part: the window is never shorter
+            "terminal_window_s": max(TERMINAL_WINDOW_FRACTION_OF_BURN * t_f_star_s,
+                                     scn.end_game.terminal_shape_hold_s)}
+
+
 def burn_scaled(scn: OrbitInjectionScenario, t_f_star_s: float) -> tuple[tuple[str, float, str], ...]:
-    """(key, value, source) of dtf_max_s, fine_window_s and terminal_window_s for a burn of t_f*."""
-    eg = scn.end_game
-    rules = {"dtf_max_s": DTF_MAX_FRACTION_OF_BURN * t_f_star_s,
-             "fine_window_s": FINE_WINDOW_FRACTION_OF_BURN * t_f_star_s,
-             # the v_go hold is the window's last part: the window is never shorter
-             "terminal_window_s": max(TERMINAL_WINDOW_FRACTION_OF_BURN * t_f_star_s,
-                                      eg.terminal_shape_hold_s)}
+    """(key, value, source) of dtf_max_s, fine_window_s and terminal_window_s for a burn of t_f*: the
+    scenario's value where it sets one, else the rule's."""
     out = []
-    for key, rule in rules.items():
-        stored = getattr(eg, key)
+    for key, rule in burn_rules(scn, t_f_star_s).items():
+        stored = getattr(scn.end_game, key)
         out.append((key, float(stored), SCENARIO) if stored is not None else (key, rule, DERIVED))
     return tuple(out)
 
@@ -217,8 +221,9 @@ def envelope_warnings(scn: OrbitInjectionScenario, t_f_star_s: float) -> list[tu
             if not lo <= value <= hi:
                 out.append((key, f"{what} = {value:.4g} is outside the envelope {lo:g}..{hi:g} "
                             f"where the nominal and its campaigns are verified"))
+    rules = burn_rules(scn, t_f_star_s)
     for key, value, source in burn_scaled(scn, t_f_star_s):
-        rule = {k: v for k, v, _ in burn_scaled(_without_burn_scaled(scn), t_f_star_s)}[key]
+        rule = rules[key]
         if source == SCENARIO and value > WINDOW_WARNING_FACTOR * rule:
             out.append((EG_KEY + key, f"{value:g} s is {value / t_f_star_s:.0%} of this burn "
                         f"(t_f* = {t_f_star_s:.4g} s), above {WINDOW_WARNING_FACTOR:g}x the rule's "
@@ -241,7 +246,3 @@ def envelope_warnings(scn: OrbitInjectionScenario, t_f_star_s: float) -> list[tu
                         f"m/s sigma for this burn)"))
     return out
 
-
-def _without_burn_scaled(scn: OrbitInjectionScenario) -> OrbitInjectionScenario:
-    return dataclasses.replace(scn, end_game=dataclasses.replace(
-        scn.end_game, dtf_max_s=None, fine_window_s=None, terminal_window_s=None))
