@@ -111,7 +111,7 @@ ffi: $(FFI_STAMP)
 test-imports: $(VENV)/.installed
 	$(VENV)/bin/lint-imports --no-cache
 
-test-python: $(FFI_STAMP)
+test-python: $(FFI_STAMP) $(LINK_ECHO_ELF)
 	$(VPY) -m pytest -q -m "not slow" tests/python
 
 # Minutes-long checks kept out of `make test`: the Apophis nominal regenerated from scratch.
@@ -124,6 +124,7 @@ include tests/bench/bench.mk
 # ---------------------------------------------------------------- Cortex-M7 flight application
 # (docs/flight-integration.md): make test-flight-app, flight-app-size, flight-app-stack
 include port/cortex-m7/flightapp/flightapp.mk
+include port/cortex-m7/link/link.mk
 
 # ---------------------------------------------------------------- gates (issue 8): make tidy,
 # fuzz-short / fuzz, coverage, mutants (not in make test), misra (a ratchet, in make lint)

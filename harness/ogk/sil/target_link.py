@@ -1,0 +1,165 @@
+"""The host end of the processor-in-the-loop link (docs/pil.md; the target end is
+port/cortex-m7/link/ogk_link.h): one flight program on QEMU's mps2-an500, framed messages over its
+semihosting console (the program's stdin and stdout).
+
+Frame (every field little-endian): b"OGKL" | type u16 | length u16 | payload | CRC-32 u32 of type,
+length and payload (zlib's). The runtime's own text (the stack report at exit, a fault report) also
+reaches stdout: it is read as such only after the program has ended, never between frames.
+
+`TargetLink(elf)` starts QEMU; `send` / `receive` exchange frames; a frame that does not arrive
+within `timeout_s`, a dead QEMU or a corrupt frame raise `TargetLinkError` (one line, with the
+program's exit code and the tail of its output when it has ended). `close()` sends STOP and waits.
+"""
+from __future__ import annotations
+
+import os
+import select
+import struct
+import subprocess
+import time
+import zlib
+from pathlib import Path
+from types import TracebackType
+
+import numpy as np
+from numpy.typing import NDArray
+
+MAGIC = b"OGKL"
+MAX_PAYLOAD = 1024           #: OGK_LINK_MAX_PAYLOAD
+STOP, ERROR, ECHO = 1, 2, 3  #: OGK_LINK_STOP, OGK_LINK_ERROR, OGK_LINK_ECHO
+QEMU = ("qemu-system-arm", "-M", "mps2-an500", "-nographic", "-monitor", "none", "-serial", "none",
+        "-semihosting-config", "enable=on,target=native")
+
+
+class TargetLinkError(RuntimeError):
+    """The link broke: timeout, QEMU ended, or a corrupt frame."""
+
+
+def frame(kind: int, payload: bytes) -> bytes:
+    """One frame of `kind` carrying `payload`."""
+    if len(payload) > MAX_PAYLOAD:
+        raise ValueError(f"payload of {len(payload)} bytes exceeds {MAX_PAYLOAD}")
+    head = struct.pack("<HH", kind, len(payload))
+    return MAGIC + head + payload + struct.pack("<I", zlib.crc32(head + payload))
+
+
+def f64_payload(values: NDArray[np.float64]) -> bytes:
+    """binary64 values as 8 little-endian bytes each (bit patterns kept, NaN payloads included)."""
+    return np.ascontiguousarray(values, dtype="<f8").tobytes()
+
+
+def f64_values(payload: bytes) -> NDArray[np.float64]:
+    return np.frombuffer(payload, dtype="<f8").astype(np.float64)
+
+
+class TargetLink:
+    """One flight program on the emulated Cortex-M7, talked to in frames."""
+
+    def __init__(self, elf: str | Path, timeout_s: float = 10.0, extra_args: tuple[str, ...] = ()) -> None:
+        self.elf = Path(elf)
+        if not self.elf.is_file():
+            raise TargetLinkError(f"{self.elf}: no such flight program (make link-echo builds the link's)")
+        self.timeout_s = timeout_s
+        self._proc = subprocess.Popen([*QEMU, *extra_args, "-kernel", str(self.elf)],
+                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                      stderr=subprocess.STDOUT)
+        assert self._proc.stdin is not None and self._proc.stdout is not None
+        self._out = self._proc.stdout.fileno()
+        self._buf = bytearray()
+
+    # ---------------------------------------------------------------- frames
+    def send(self, kind: int, payload: bytes = b"") -> None:
+        assert self._proc.stdin is not None
+        try:
+            self._proc.stdin.write(frame(kind, payload))
+            self._proc.stdin.flush()
+        except (BrokenPipeError, ValueError) as exc:
+            raise self._error(f"send failed ({exc})") from None
+
+    def receive(self) -> tuple[int, bytes]:
+        """(type, payload) of the next frame."""
+        head = self._read(8)
+        if head[:4] != MAGIC:
+            raise self._error(f"no frame: {bytes(head)!r} where a frame starts")
+        kind, length = struct.unpack("<HH", head[4:])
+        if length > MAX_PAYLOAD:
+            raise self._error(f"frame length {length} above {MAX_PAYLOAD}")
+        body = self._read(length + 4)
+        payload, (crc,) = bytes(body[:length]), struct.unpack("<I", body[length:])
+        if crc != zlib.crc32(head[4:] + payload):
+            raise self._error("frame CRC mismatch")
+        return kind, payload
+
+    def exchange(self, kind: int, payload: bytes) -> tuple[int, bytes]:
+        self.send(kind, payload)
+        return self.receive()
+
+    # ---------------------------------------------------------------- ending
+    def close(self, timeout_s: float = 10.0) -> int:
+        """STOP, then the program's exit code (QEMU killed if it does not end in `timeout_s`)."""
+        if self._proc.poll() is None:
+            try:
+                self.send(STOP)
+            except TargetLinkError:
+                pass
+            try:
+                self._proc.wait(timeout_s)
+            except subprocess.TimeoutExpired:
+                self._proc.kill()
+                self._proc.wait()
+        self._drain()
+        return int(self._proc.returncode)
+
+    def kill(self) -> None:
+        if self._proc.poll() is None:
+            self._proc.kill()
+            self._proc.wait()
+
+    @property
+    def output(self) -> str:
+        """What the program wrote that is not a frame (after it ended: the runtime's reports)."""
+        return self._buf.decode("utf-8", errors="replace")
+
+    def __enter__(self) -> "TargetLink":
+        return self
+
+    def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None,
+                 tb: TracebackType | None) -> None:
+        if exc_type is None:
+            self.close()
+        else:
+            self.kill()
+
+    # ---------------------------------------------------------------- internals
+    def _read(self, n: int) -> bytearray:
+        deadline = time.monotonic() + self.timeout_s
+        while len(self._buf) < n:
+            left = deadline - time.monotonic()
+            if left <= 0.0:
+                raise self._error(f"no frame within {self.timeout_s:g} s")
+            ready, _, _ = select.select([self._out], [], [], left)
+            if ready:
+                chunk = os.read(self._out, 65536)
+                if not chunk:
+                    self._proc.wait()
+                    raise self._error("the program ended")
+                self._buf += chunk
+        out, self._buf = self._buf[:n], self._buf[n:]
+        return out
+
+    def _drain(self) -> None:
+        while True:
+            ready, _, _ = select.select([self._out], [], [], 0.0)
+            chunk = os.read(self._out, 65536) if ready else b""
+            if not chunk:
+                return
+            self._buf += chunk
+
+    def _error(self, what: str) -> TargetLinkError:
+        code = self._proc.poll()
+        if code is not None:
+            self._drain()
+        tail = " | ".join(self.output.strip().splitlines()[-3:])
+        ended = "running" if code is None else f"exit {code}"
+        return TargetLinkError(f"{self.elf.name} on qemu mps2-an500 ({ended}): {what}"
+                               + (f"; output: {tail}" if tail else ""))
