@@ -17,5 +17,14 @@ expect '^insn_count range ten_nops 0x[0-9a-f]+-0x[0-9a-f]+ executed 77$'
 expect '^insn_count range calls_ten_nops 0x[0-9a-f]+-0x[0-9a-f]+ executed 3$'
 expect '^insn_count total [0-9]+$'
 [ "$r1" = "$r2" ] || { echo "PLUGIN FAIL: two runs differ"; problems=$((problems + 1)); }
+# calls=: every returned call, in return order: ten_nops (11) six times, the one inside
+# calls_ten_nops returning before it (14)
+calls=$(mktemp)
+CALLS_OUT=$calls "$here/count_insns.sh" "$elf" ten_nops calls_ten_nops >/dev/null 2>&1
+[ "$(grep -c '^ten_nops 11$' "$calls")" = 6 ] && [ "$(grep -c '^calls_ten_nops 14$' "$calls")" = 1 ] \
+  && [ "$(wc -l < "$calls")" = 7 ] \
+  && [ "$(grep -B1 '^calls_ten_nops 14$' "$calls" | head -n 1)" = "ten_nops 11" ] \
+  || { echo "PLUGIN FAIL: calls= log"; cat "$calls"; problems=$((problems + 1)); }
+rm -f "$calls"
 if [ $problems -ne 0 ]; then echo "test-qemu-plugin: $problems problem(s)"; exit 1; fi
-echo "test-qemu-plugin: OK (known counts exact, two runs identical)"
+echo "test-qemu-plugin: OK (known counts exact, two runs identical, the per-call log)"

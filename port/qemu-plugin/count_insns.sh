@@ -4,7 +4,8 @@
 # instructions executed per call including callees (fn) and inside its own
 # body only (range). Addresses and sizes come from arm-none-eabi-nm -S.
 # The program's own output goes to stderr; the report to stdout.
-# Env: QEMU_PLUGIN_SO (default build/qemu-plugin/libinsn_count.so).
+# Env: QEMU_PLUGIN_SO (default build/qemu-plugin/libinsn_count.so); CALLS_OUT=PATH: every
+# call's count, one line `NAME COUNT` per returned call (the plugin's calls= option).
 set -euo pipefail
 elf=${1:?usage: count_insns.sh ELF FUNCTION...}
 shift
@@ -23,7 +24,7 @@ trap 'rm -f "$report"' EXIT
 set +e
 qemu-system-arm -M mps2-an500 -nographic -monitor none -serial none \
   -semihosting-config enable=on,target=native \
-  -plugin "$(realpath "$so")$args,out=$report" -d plugin \
+  -plugin "$(realpath "$so")$args${CALLS_OUT:+,calls=$CALLS_OUT},out=$report" -d plugin \
   -kernel "$elf" </dev/null >&2 2>&1
 rc=$?
 set -e

@@ -17,6 +17,11 @@
  *                       counted). Up to 16.
  *   out=PATH            append the report to PATH (default: qemu_plugin_outs,
  *                       which needs `-d plugin` and goes to QEMU's log).
+ *   calls=PATH          also write every completed call of every fn item to
+ *                       PATH, one line `NAME COUNT` each, in the order the
+ *                       calls return (processor in the loop, docs/pil.md: the
+ *                       k-th line of a function is its k-th step's count, so
+ *                       a campaign keeps the maximum with its run and step).
  *
  * Report lines (one per item, at exit):
  *   insn_count total N
@@ -66,6 +71,7 @@ static size_t n_ranges;
 static uint64_t previous_tb_end;
 static int previous_tb_called; /* the previous block ended with bl/blx */
 static char out_path[4096];
+static FILE *calls_file; /* calls=PATH: one line per completed call */
 
 /* Translation block start and end (address after its last instruction),
  * packed in the callback's userdata: guest addresses are 32-bit and Thumb
@@ -114,6 +120,9 @@ static void on_tb_exec(unsigned int vcpu_index, void *userdata)
             }
             if (count > fn->max) {
                 fn->max = count;
+            }
+            if (calls_file != NULL) {
+                fprintf(calls_file, "%s %" PRIu64 "\n", fn->name, count);
             }
             fn->active = 0;
         }
@@ -204,6 +213,10 @@ static void on_exit_report(qemu_plugin_id_t id, void *userdata)
     if (file != NULL) {
         fclose(file);
     }
+    if (calls_file != NULL) {
+        fclose(calls_file);
+        calls_file = NULL;
+    }
 }
 
 /* "NAME@rest": copies NAME, returns rest (NULL if malformed). */
@@ -261,6 +274,13 @@ static int parse_argument(const char *arg)
         n_ranges += 1;
         return 0;
     }
+    if (strncmp(arg, "calls=", 6) == 0) {
+        if (calls_file != NULL || arg[6] == '\0') {
+            return -1;
+        }
+        calls_file = fopen(arg + 6, "w");
+        return calls_file != NULL ? 0 : -1;
+    }
     if (strncmp(arg, "out=", 4) == 0) {
         const size_t len = strlen(arg + 4);
         if (len == 0 || len >= sizeof out_path) {
@@ -284,7 +304,7 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
         if (parse_argument(argv[i]) != 0) {
             fprintf(stderr,
                     "insn_count: bad argument '%s' (fn=NAME@0xADDR, "
-                    "range=NAME@0xLO-0xHI, out=PATH; at most %d fn and %d range)\n",
+                    "range=NAME@0xLO-0xHI, out=PATH, calls=PATH; at most %d fn and %d range)\n",
                     argv[i], MAX_ITEMS, MAX_ITEMS);
             return -1;
         }
