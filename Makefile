@@ -77,6 +77,8 @@ test-unit-host: $(UNIT_HOST)
 
 # ---------------------------------------------------------------- Cortex-M7 (bare metal, QEMU)
 include port/cortex-m7/cortex-m7.mk
+# before test-python, whose prerequisites name its LINK_ECHO_ELF (prerequisites expand when read)
+include port/cortex-m7/link/link.mk
 
 # ---------------------------------------------------------------- Eigen cross-check (host only)
 EIGEN_BIN := $(B)/host/eigen_crosscheck
@@ -124,7 +126,6 @@ include tests/bench/bench.mk
 # ---------------------------------------------------------------- Cortex-M7 flight application
 # (docs/flight-integration.md): make test-flight-app, flight-app-size, flight-app-stack
 include port/cortex-m7/flightapp/flightapp.mk
-include port/cortex-m7/link/link.mk
 
 # ---------------------------------------------------------------- gates (issue 8): make tidy,
 # fuzz-short / fuzz, coverage, mutants (not in make test), misra (a ratchet, in make lint)
