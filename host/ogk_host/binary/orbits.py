@@ -607,7 +607,7 @@ def halo_orbit(model: Model, point: str, amplitude: float, branch: str, *,
 HOMOTOPY_STEP, HOMOTOPY_MIN_STEP, HOMOTOPY_GROWTH = 0.25, 1.0 / 1024.0, 1.5
 
 
-def _scaled_degree2(model: Model, lam: float) -> Model:
+def scaled_degree2(model: Model, lam: float) -> Model:
     """The model with both bodies' C20 and C22 multiplied by lam (0: point masses)."""
     return dataclasses.replace(model, c20=(lam * model.c20[0], lam * model.c20[1]),
                                c22=(lam * model.c22[0], lam * model.c22[1]))
@@ -621,7 +621,7 @@ def _halo_by_model_homotopy(model: Model, point: str, amplitude: float, branch: 
     step from the secant predictor, halved on a failed correction."""
     if not any(model.c20) and not any(model.c22):
         raise NoBifurcation(reason)
-    base = halo_orbit(_scaled_degree2(model, 0.0), point, amplitude, branch)
+    base = halo_orbit(scaled_degree2(model, 0.0), point, amplitude, branch)
     x0 = base.state0
     path = [np.array([x0[0], x0[2], x0[4], 0.5 * base.period])]
     lams = [0.0]
@@ -631,7 +631,7 @@ def _halo_by_model_homotopy(model: Model, point: str, amplitude: float, branch: 
         guess = path[-1] if len(path) < 2 else \
             path[-1] + (path[-1] - path[-2]) * (lam - lams[-1]) / (lams[-1] - lams[-2])
         try:
-            v, _ = _newton(GravityField(_scaled_degree2(model, lam)), "halo", guess, amplitude=amplitude,
+            v, _ = _newton(GravityField(scaled_degree2(model, lam)), "halo", guess, amplitude=amplitude,
                            rtol=RTOL_CONT, atol=ATOL_CONT)
         except CorrectionError as exc:
             h *= 0.5

@@ -27,7 +27,7 @@ from ..scenario_file import Section
 from .design import CORRECTORS, JACOBIANS, Converged, converge, thrust_continuation
 from .dynamics import Model, model_from_scenario
 from .guess import Circle, Guess, OrbitPhase, bmpig, sbig, ubmpig
-from .orbits import CorrectionError, scenario_orbit
+from .orbits import CorrectionError, scaled_degree2, scenario_orbit
 from .scenario import BinaryScenario
 
 KINDS = ("single-burn", "ump-backward", "bmp")
@@ -245,9 +245,7 @@ def _gravity_continuation(scenario: BinaryScenario, spec: TransferSpec, solver: 
     lam, h = 1.0, GRAVITY_STEP
     while result.report.converged and lam > 0.0:
         nxt = max(0.0, lam - h)
-        m = model if nxt == 0.0 else dataclasses.replace(
-            model, ref_radius=full.ref_radius, c20=(nxt * full.c20[0], nxt * full.c20[1]),
-            c22=(nxt * full.c22[0], nxt * full.c22[1]))
+        m = model if nxt == 0.0 else scaled_degree2(full, nxt)
         dep, arr = orbits(m)
         tr = dataclasses.replace(result.transfer, x0=dep(frac[0] * dep.orbit.period),
                                  xf=arr(frac[1] * arr.orbit.period))
