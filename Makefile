@@ -126,6 +126,8 @@ include tests/bench/bench.mk
 # ---------------------------------------------------------------- Cortex-M7 flight application
 # (docs/flight-integration.md): make test-flight-app, flight-app-size, flight-app-stack
 include port/cortex-m7/flightapp/flightapp.mk
+# processor-in-the-loop flight programs (docs/pil.md): make pil-program PIL_PROGRAM=oi PIL_OUT=DIR
+include port/cortex-m7/pil/pil.mk
 
 # ---------------------------------------------------------------- gates (issue 8): make tidy,
 # fuzz-short / fuzz, coverage, mutants (not in make test), misra (a ratchet, in make lint)
