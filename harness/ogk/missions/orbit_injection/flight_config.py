@@ -31,6 +31,41 @@ def flight_configs(scenario: Path, bundle: Path) -> tuple[Any, Any, Any]:
     return ffi, nog, cpd
 
 
+def end_game_configs(scenario: Path, bundle: Path) -> tuple[list[tuple[str, Any, str]],
+                                                            dict[str, float | int]]:
+    """The scenario's end-game as the SIL flies it (sil.EndGamePlan at CONTROL_RATE_HZ): NOG with
+    the end-game's last sampling interval, the energy cut-off and the terminal stage configurations,
+    and the schedule as defines (the PIL flight program, port/cortex-m7/pil/oi_flight.c)."""
+    from ogk_host.orbit_injection.derive import resolve
+    from ogk_host.orbit_injection.scenario import load_scenario
+
+    from ogk.missions.orbit_injection.cutoff import cutoff_config
+    from ogk.missions.orbit_injection.nog_guidance import load_table, nog_config
+    from ogk.missions.orbit_injection.sil import EndGamePlan, SilSettings
+    from ogk.missions.orbit_injection.terminal import terminal_config
+
+    table = load_table(bundle)
+    scn = resolve(load_scenario(scenario), float(table.t_f_star_s))   # type: ignore[attr-defined]
+    dt = 1.0 / CONTROL_RATE_HZ
+    plan = EndGamePlan.of(scn, SilSettings(control_rate_hz=CONTROL_RATE_HZ))
+    ticks = round(scn.sample_interval_s / dt)
+    fine = 0 if plan.fine_interval_s is None else round(plan.fine_interval_s / dt)
+    items = [("ogk_flight_endgame_nog_config", nog_config(scn, table, plan.fine_interval_s),
+              "VTD-NOG with the end-game's last sampling interval (eq. 32's terminating sample)"),
+             ("ogk_flight_cutoff_config", cutoff_config(scn, dt),
+              "energy cut-off (ogk/cutoff.h), stepped at the control rate"),
+             ("ogk_flight_terminal_config", terminal_config(scn),
+              "terminal steering (ogk/terminal.h) along the velocity to be gained")]
+    defines: dict[str, float | int] = {
+        "OGK_FLIGHT_CONTROL_RATE_HZ": CONTROL_RATE_HZ,
+        "OGK_FLIGHT_TICKS_PER_SAMPLE": int(ticks),
+        "OGK_FLIGHT_FINE_TICKS": int(fine),
+        "OGK_FLIGHT_FINE_WINDOW_S": float(plan.fine_window_s),
+        "OGK_FLIGHT_ENERGY_CUTOFF": int(plan.energy_cutoff),
+        "OGK_FLIGHT_TERMINAL": int(plan.terminal_window_s > 0.0)}
+    return items, defines
+
+
 def plant_defines(scenario: Path, t_f_star_s: float) -> dict[str, float]:
     """Scenario constants of the flight app's point-mass plant (eqs. 3-6, sec. 6 thrust)."""
     from ogk_host.orbit_injection.scenario import load_scenario
@@ -46,13 +81,18 @@ def plant_defines(scenario: Path, t_f_star_s: float) -> dict[str, float]:
 def write_flight_config(out: Path, scenario: Path, bundle: Path) -> list[Path]:
     from ogk_host.cgen import ConfigItem, write_c_config
     ffi, nog, cpd = flight_configs(scenario, bundle)
+    end_game, schedule = end_game_configs(scenario, bundle)
     cfg = write_c_config(
         ffi, [ConfigItem("ogk_flight_nog_config", nog,
                          "VTD-NOG (ogk/nog.h): bind .view (ogk_nog_table_view, in place) or .table (ogk_nog_table_load), then ogk_nog_init"),
               ConfigItem("ogk_flight_cpd_config", cpd,
-                         f"CPD (ogk/cpd.h), ff_period_s = the {CONTROL_RATE_HZ:g} Hz control period")],
-        out / "c" / "ogk_orbit_injection_flight_config.h", scenario, includes=("ogk/nog.h", "ogk/cpd.h"),
-        note=f"Table: {bundle.name}, t_f* = {float(nog.table.t_f_star_s):.17g} s.")
+                         f"CPD (ogk/cpd.h), ff_period_s = the {CONTROL_RATE_HZ:g} Hz control period"),
+              *(ConfigItem(name, value, what) for name, value, what in end_game)],
+        out / "c" / "ogk_orbit_injection_flight_config.h", scenario,
+        includes=("ogk/nog.h", "ogk/cpd.h", "ogk/cutoff.h", "ogk/terminal.h"), defines=schedule,
+        note=f"Table: {bundle.name}, t_f* = {float(nog.table.t_f_star_s):.17g} s. The first two fly the "
+             "paper's end-game (flightapp); the end-game items and the schedule defines fly the "
+             "scenario's (the PIL flight program).")
     plant = write_c_config(ffi, [], out / "c" / "ogk_sil_plant.h", scenario, includes=(),
                            defines=plant_defines(scenario, float(nog.table.t_f_star_s)),
                            note="Test-plant constants of the flight app (not flight data).")
