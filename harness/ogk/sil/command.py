@@ -10,9 +10,10 @@ from typing import Any
 from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader
 
-from . import engine, envelope
+from . import engine, envelope, target_summary
 from .family import CampaignPlan
 from .outputs import check_output_dir, check_output_file, remove_stale
+from .pil import TARGETS
 from .runner import Watchdog
 
 
@@ -46,9 +47,17 @@ def add_engine_arguments(p: argparse.ArgumentParser, family: Any,
     p.add_argument("--chunk-runs", type=int, default=None, metavar="K",
                    help=f"at most K runs per chunk (default {engine.DEFAULT_CHUNK_RUNS}); finished "
                         "chunks are kept in <json>.runs.jsonl as they complete")
+    add_target_argument(p)
     p.add_argument("--watchdog-per-run", type=float, default=None, metavar="S",
                    help="a chunk without a result after 120 s + S s per run is killed and the "
                         "campaign aborted (default: the family's)")
+
+
+def add_target_argument(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--target", choices=TARGETS, default="host",
+                   help="host: the flight software in this process (SIL, default); m7: the "
+                        "scenario's flight program on the emulated Cortex-M7, one QEMU per worker, "
+                        "with the host campaign on the same draws beside it (docs/pil.md)")
 
 
 def check_engine_arguments(args: argparse.Namespace) -> None:
@@ -76,13 +85,24 @@ ENGINE_OPTIONS = ("runs", "seed", "workers", "json", "plots", "resume", "chunk_r
 
 
 def family_options(args: argparse.Namespace) -> dict[str, Any]:
-    """The family's own options (what is not the engine's)."""
-    return {k: v for k, v in vars(args).items() if k not in ENGINE_OPTIONS}
+    """The family's own options (what is not the engine's), and the target when it is not the host
+    (a host campaign's options, hence its run log and envelope, are those of before --target)."""
+    return {k: v for k, v in vars(args).items() if k not in ENGINE_OPTIONS
+            and not (k == "target" and v == "host")}
+
+
+def check_target(fam: Any, args: argparse.Namespace) -> None:
+    target = getattr(args, "target", "host")
+    if target not in getattr(fam, "targets", ("host",)):
+        raise OgkInputError(f"the {fam.name} family has no flight program for target {target} "
+                            f"(its targets: {', '.join(getattr(fam, 'targets', ('host',)))})",
+                            key="--target")
 
 
 def fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace) -> int:
     """`ogk mc SCENARIO ...` for any family `fam` (its FAMILY object)."""
     check_engine_arguments(args)
+    check_target(fam, args)
     if args.runs is None and not getattr(fam, "fixed_lists", False):
         raise OgkInputError("required: the number of runs", key="--runs")
     remove_stale(args.json)
@@ -98,15 +118,29 @@ def fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace) -> int:
     flown = engine.fly_campaign(plan, args.runs, args.seed, args.workers,
                                 chunk_runs=args.chunk_runs, watchdog=wd,
                                 run_log=engine.run_log_path(args.json), resume=args.resume)
+    pil = None
+    if plan.target != "host":
+        # the host campaign on the same draws: what the target changes, per run
+        opts = {k: v for k, v in family_options(args).items() if k != "target"}
+        host = engine.fly_campaign(fam.plan(header, opts), args.runs, args.seed, args.workers,
+                                   run_ids=flown.run_ids, chunk_runs=args.chunk_runs)
+        pil = target_summary.summary(plan.target, flown.records, host.records, plan.target_bounds,
+                                     plan.target_why, flown.wall_s, flown.workers)
     text, extra = fam.report(flown)
     print(text)
+    if pil is not None:
+        print()
+        print(target_summary.format_summary(pil))
     if flown.resumed_runs:
         print(f"\n{flown.resumed_runs} of {len(flown.records)} runs taken from "
               f"{engine.run_log_path(args.json)}")
-    envelope.write_campaign(args.json, flown, extra)
+    envelope.write_campaign(args.json, flown, extra, pil)
     print(f"\nwrote {args.json} and {envelope.table_path(args.json)} "
           f"({len(flown.records)} runs, {flown.wall_s:.1f} s wall, {flown.workers} workers)")
     if args.plots and hasattr(fam, "plots"):
         for path in fam.plots(flown, Path(args.plots)):
             print(f"wrote {path}")
-    return 0 if not flown.failures() else 1
+    agree = pil is None or pil["host_vs_target"]["within_bounds"]
+    if not agree:
+        print("the target campaign differs from the host's beyond the stated bounds (above)")
+    return 0 if not flown.failures() and agree else 1

@@ -7,7 +7,8 @@ Envelope (`ogk.campaign/1`, written atomically, NaN as null):
   acceptance (the criterion as the scenario states it),
   quantities {key: {n, mean, std, worst: {run_id, value}}}  (worst: the largest |value|),
   paper (the paper's columns beside ours, only when the scenario carries them),
-  per_run_table (the Parquet file's name), timing {wall_s, cpu_s}
+  per_run_table (the Parquet file's name), timing {wall_s, cpu_s}, target ("host" or "m7"),
+  pil (a target campaign only: worst case per entry point, host vs target; ogk.sil.target_summary)
 A family may add its own keys (its report's figures, older names kept as aliases): never one of
 the above.
 
@@ -33,7 +34,7 @@ SCHEMA = "ogk.campaign/1"
 ENVELOPE_KEYS = ("schema", "family", "law", "mission", "scenario_path", "scenario_sha256",
                  "products", "options", "seed", "runs", "workers", "resumed_runs", "failures",
                  "failure_reasons", "failed_runs", "acceptance", "quantities", "paper",
-                 "per_run_table", "timing")
+                 "per_run_table", "timing", "target", "pil")
 
 
 def table_path(json_path: str | Path) -> Path:
@@ -80,7 +81,8 @@ def failure_reasons(records: Sequence[Record]) -> dict[str, int]:
 
 
 def envelope(flown: Flown, extra: Mapping[str, Any] | None = None,
-             json_path: str | Path | None = None) -> dict[str, Any]:
+             json_path: str | Path | None = None,
+             pil: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """The campaign's JSON document (module doc); `extra`: the family's own keys."""
     plan, recs = flown.plan, flown.records
     doc: dict[str, Any] = dict(extra or {})
@@ -97,9 +99,11 @@ def envelope(flown: Flown, extra: Mapping[str, Any] | None = None,
         "failed_runs": flown.failures(), "acceptance": plan.acceptance,
         "quantities": quantity_summary(recs, plan.quantities),
         "per_run_table": None if json_path is None else table_path(json_path).name,
-        "timing": {"wall_s": flown.wall_s, "cpu_s": flown.cpu_s}})
+        "timing": {"wall_s": flown.wall_s, "cpu_s": flown.cpu_s}, "target": plan.target})
     if paper is not None:
         doc["paper"] = paper
+    if pil is not None:
+        doc["pil"] = dict(pil)
     return finite_or_none(doc)
 
 
@@ -137,11 +141,12 @@ def read_table(path: str | Path) -> list[Record]:
 
 
 def write_campaign(json_path: str | Path, flown: Flown,
-                   extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
+                   extra: Mapping[str, Any] | None = None,
+                   pil: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Writes the Parquet table, then the envelope (the envelope last: a JSON that exists names a
     complete table). Returns the envelope."""
     write_table(table_path(json_path), flown.records)
-    doc = envelope(flown, extra, json_path)
+    doc = envelope(flown, extra, json_path, pil)
     write_atomic(json_path, json.dumps(doc, indent=1) + "\n")
     return doc
 

@@ -20,6 +20,11 @@ and the campaign plan says everything the engine needs and nothing of the physic
   quantities                                record keys summarised (mean, std, worst run)
   paper(records) -> dict | None             the paper's columns beside ours, when the scenario has them
   detail(run_id, run_seed, plots_dir)       one run again with its time histories and plots
+  target, target_bounds, target_why         where the flight software runs; for "m7" the bound of
+                                            each quantity against the host on the same draws
+
+A family that flies on the target lists it in `targets` (("host", "m7")) and reads
+options["target"] (absent: "host").
 
 `options` is JSON: everything a run depends on besides its id and seed. It is the run log's key,
 it is written into the campaign envelope, and `ogk replay` rebuilds the plan from it.
@@ -66,6 +71,13 @@ class CampaignPlan:
     acceptance: dict[str, Any] = dataclasses.field(default_factory=dict)  #: as the report states it
     watchdog_per_run_s: float = 2.0   #: default watchdog allowance of one run [s]
     base: Any = None                  #: family-private (the report's inputs); never pickled
+    #: where the flight software runs (ogk.sil.pil.TARGETS): "host" (the SIL) or "m7" (the flight
+    #: program on the emulated Cortex-M7, whose records carry pil.<entry>.* keys)
+    target: str = "host"
+    #: a target campaign's largest allowed |host - target| per quantity on the same draws, and why
+    #: they differ at all (docs/pil.md, "Host vs target")
+    target_bounds: dict[str, float] = dataclasses.field(default_factory=dict)
+    target_why: str = ""
 
     def key(self, seed: int) -> dict[str, Any]:
         """What the runs depend on besides their ids: the run log's key."""

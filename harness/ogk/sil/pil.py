@@ -1,0 +1,178 @@
+"""Processor in the loop (docs/pil.md): a family's flight program on the emulated Cortex-M7, talked
+to over the link (ogk.sil.target_link), with the instructions of every entry-point call counted by
+QEMU's insn_count plugin and the stack of every call measured on the target (painted window).
+
+`PilSession(program)` starts one QEMU for a sequence of runs. A family's chunk flight
+  * `exchange(kind, values)` at every step (binary64 values in and out; or `send` to several
+    sessions, then `receive` from each, so that their QEMUs compute at once),
+  * `end_run(run_id)` after each run (the target answers with its stack per entry point),
+  * `close()` at the end of the chunk: the plugin's call log (one line `NAME COUNT` per returned
+    call, cut into steps and runs by the program's markers) becomes, per run and entry point, the
+    record keys of `entry_keys`:
+      pil.<entry>.calls, .insn_median, .insn_max, .insn_max_step (the step of the maximum, from 0),
+      .stack_bytes (deepest stack of the run's calls below the caller's stack pointer).
+The engine summarises those keys over the campaign (ogk.sil.target_summary).
+"""
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import tempfile
+from collections.abc import Sequence
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .target_link import ERROR, TargetLink, TargetLinkError, f64_payload, f64_values
+
+RUN_END = 16                        #: OGK_PIL_RUN_END (port/cortex-m7/pil/ogk_pil.h)
+TICK_MARK = "ogk_pil_tick_mark"     #: called by the program after every step it answers
+RUN_MARK = "ogk_pil_run_mark"       #: ... and after every run
+TARGETS = ("host", "m7")            #: where a campaign's flight software runs
+PLUGIN = Path(__file__).resolve().parents[3] / "build" / "qemu-plugin" / "libinsn_count.so"
+
+
+@dataclasses.dataclass(frozen=True)
+class FlightProgram:
+    """One scenario's flight program: the ELF and its entry points in the order of its stack slots."""
+
+    elf: Path
+    entry_points: tuple[str, ...]
+    timeout_s: float = 30.0         #: the longest a step may take on QEMU
+
+
+@lru_cache(maxsize=16)
+def _symbols(elf: str, mtime_ns: int) -> dict[str, int]:
+    """Function name -> address (Thumb bit cleared) of an ELF."""
+    out = subprocess.run(["arm-none-eabi-nm", "-S", elf], check=True, capture_output=True,
+                         text=True).stdout
+    syms: dict[str, int] = {}
+    for line in out.splitlines():
+        parts = line.split()
+        if len(parts) == 4 and parts[2] in ("T", "t") and parts[3] not in syms:
+            syms[parts[3]] = int(parts[0], 16) & ~1
+    return syms
+
+
+def plugin_arguments(program: FlightProgram, calls_path: Path, report_path: Path) -> str:
+    """The -plugin argument: one fn= item per entry point and marker, the call log, the report."""
+    if not PLUGIN.is_file():
+        raise TargetLinkError(f"{PLUGIN} not built (make qemu-plugin)")
+    syms = _symbols(str(program.elf), program.elf.stat().st_mtime_ns)
+    items = []
+    for name in (*program.entry_points, TICK_MARK, RUN_MARK):
+        if name not in syms:
+            raise TargetLinkError(f"{program.elf.name}: no function {name}")
+        items.append(f"fn={name}@0x{syms[name]:08x}")
+    return ",".join([str(PLUGIN), *items, f"calls={calls_path}", f"out={report_path}"])
+
+
+@dataclasses.dataclass
+class _RunCalls:
+    counts: dict[str, list[int]]
+    steps: dict[str, list[int]]
+
+
+def parse_calls(lines: Sequence[str], entry_points: Sequence[str]) -> list[_RunCalls]:
+    """The call log cut into runs (at RUN_MARK) and steps (at TICK_MARK): per run and entry point,
+    every call's instruction count and the step it belongs to."""
+    runs: list[_RunCalls] = []
+    cur = _RunCalls({e: [] for e in entry_points}, {e: [] for e in entry_points})
+    step = 0
+    for line in lines:
+        name, _, count = line.partition(" ")
+        if name == TICK_MARK:
+            step += 1
+        elif name == RUN_MARK:
+            runs.append(cur)
+            cur = _RunCalls({e: [] for e in entry_points}, {e: [] for e in entry_points})
+            step = 0
+        elif name in cur.counts:
+            cur.counts[name].append(int(count))
+            cur.steps[name].append(step)
+    return runs
+
+
+def entry_keys(calls: _RunCalls, stack: Sequence[int], overflow: int,
+               entry_points: Sequence[str]) -> dict[str, Any]:
+    """The record keys of one run (module doc)."""
+    out: dict[str, Any] = {}
+    for slot, e in enumerate(entry_points):
+        c = np.asarray(calls.counts[e], dtype=np.int64)
+        k = int(np.argmax(c)) if c.size else -1
+        out[f"pil.{e}.calls"] = int(c.size)
+        out[f"pil.{e}.insn_median"] = float(np.median(c)) if c.size else None
+        out[f"pil.{e}.insn_max"] = int(c[k]) if c.size else None
+        out[f"pil.{e}.insn_max_step"] = int(calls.steps[e][k]) if c.size else None
+        out[f"pil.{e}.stack_bytes"] = int(stack[slot]) if c.size else None
+        if overflow & (1 << slot):
+            out[f"pil.{e}.stack_window_exceeded"] = True
+    return out
+
+
+class PilSession:
+    """One flight program on QEMU for a chunk of runs (module doc)."""
+
+    def __init__(self, program: FlightProgram) -> None:
+        self.program = program
+        self._dir = tempfile.TemporaryDirectory(prefix="ogk-pil-")
+        self._calls = Path(self._dir.name) / "calls.log"
+        plugin = plugin_arguments(program, self._calls, Path(self._dir.name) / "report.txt")
+        self.link = TargetLink(program.elf, timeout_s=program.timeout_s,
+                               extra_args=("-plugin", plugin))
+        self._runs: list[int] = []
+        self._stack: list[tuple[list[int], int]] = []
+        self.exchanges = 0
+
+    def exchange(self, kind: int, values: NDArray[np.float64] | Sequence[float]
+                 ) -> NDArray[np.float64]:
+        """One step: values out, the reply's values back (a reply of another kind: TargetLinkError)."""
+        self.send(kind, values)
+        return self.receive(kind)
+
+    def send(self, kind: int, values: NDArray[np.float64] | Sequence[float]) -> None:
+        """The first half of an exchange (several sessions then compute at once)."""
+        self.link.send(kind, f64_payload(np.asarray(values, dtype=np.float64)))
+
+    def receive(self, kind: int) -> NDArray[np.float64]:
+        """The second half: the reply of `kind`."""
+        got, payload = self.link.receive()
+        self.exchanges += 1
+        if got != kind:
+            what = f"error code {payload[0]}" if got == ERROR and payload else f"frame type {got}"
+            raise TargetLinkError(f"{self.program.elf.name}: {what} in reply to frame type {kind}")
+        return f64_values(payload)
+
+    def end_run(self, run_id: int) -> None:
+        got, payload = self.link.exchange(RUN_END, b"")
+        n = len(self.program.entry_points)
+        if got != RUN_END or len(payload) != 4 * (n + 1):
+            raise TargetLinkError(f"{self.program.elf.name}: bad RUN_END reply (type {got}, "
+                                  f"{len(payload)} bytes)")
+        words = np.frombuffer(payload, dtype="<u4").astype(np.int64)
+        self._runs.append(int(run_id))
+        self._stack.append(([int(w) for w in words[:n]], int(words[n])))
+
+    def close(self) -> dict[int, dict[str, Any]]:
+        """Ends the program; run id -> its pil.* record keys."""
+        try:
+            code = self.link.close()
+            if code != 0:
+                raise TargetLinkError(f"{self.program.elf.name} ended with exit {code}: "
+                                      f"{self.link.output.strip()[-300:]}")
+            lines = self._calls.read_text().splitlines() if self._calls.exists() else []
+        finally:
+            self._dir.cleanup()
+        runs = parse_calls(lines, self.program.entry_points)
+        if len(runs) != len(self._runs):
+            raise TargetLinkError(f"{self.program.elf.name}: the call log has {len(runs)} runs, "
+                                  f"{len(self._runs)} were flown")
+        return {rid: entry_keys(calls, stack, overflow, self.program.entry_points)
+                for rid, calls, (stack, overflow) in zip(self._runs, runs, self._stack)}
+
+    def kill(self) -> None:
+        self.link.kill()
+        self._dir.cleanup()

@@ -1,0 +1,41 @@
+"""A scenario's PIL flight program, built on demand (docs/pil.md): the family writes the generated C
+(table image, flight configuration) into DIR/c, then `make pil-program PIL_PROGRAM=NAME PIL_OUT=DIR`
+compiles and links it with the flight flags. DIR is keyed by the family (e.g. by the SHA-256 of the
+tables flown), so two campaigns of one scenario share one build; a lock file serialises them."""
+from __future__ import annotations
+
+import fcntl
+import hashlib
+import subprocess
+from collections.abc import Callable
+from pathlib import Path
+
+from ogk_bindings.errors import OgkInputError
+
+ROOT = Path(__file__).resolve().parents[3]      #: the repository (its Makefile builds the ELF)
+PIL_BUILD = ROOT / "build" / "pil"
+
+
+def build_program(program: str, out: Path, generate: Callable[[Path], None]) -> Path:
+    """DIR/PROGRAM.elf for `out` = DIR: `generate(DIR / "c")` once (a stamp marks it done), then make
+    (which rebuilds what changed, e.g. the kernel). Raises OgkInputError with make's last lines."""
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        stamp = out / "c" / ".generated"
+        if not stamp.exists():
+            (out / "c").mkdir(exist_ok=True)
+            generate(out / "c")
+            stamp.touch()
+        proc = subprocess.run(["make", "-s", "-C", str(ROOT), "pil-program",
+                               f"PIL_PROGRAM={program}", f"PIL_OUT={out.resolve()}"],
+                              capture_output=True, text=True)
+        if proc.returncode != 0:
+            tail = " | ".join((proc.stdout + proc.stderr).strip().splitlines()[-4:])
+            raise OgkInputError(f"the {program} flight program did not build: {tail}",
+                                path=out)
+    return out / f"{program}.elf"
+
+
+def file_sha256(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
