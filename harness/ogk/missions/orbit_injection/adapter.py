@@ -68,6 +68,8 @@ def add_run_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", required=True, metavar="FILE", help="the flight as a campaign of one")
     p.add_argument("--plots", default=None, metavar="DIR", help="PNG plots of the flight")
     FAMILY.add_campaign_arguments(p)
+    from ogk.sil.command import add_target_argument
+    add_target_argument(p)
 
 
 def run(header: ScenarioHeader, args: argparse.Namespace) -> int:

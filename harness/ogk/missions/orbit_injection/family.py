@@ -51,6 +51,7 @@ class _Base:
 class OrbitInjectionFamily:
     name = "orbit-injection"
     laws = LAWS
+    targets = ("host", "m7")        #: m7: port/cortex-m7/pil/oi_pil.c (pil.py)
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         return None              # the command states the number of runs
@@ -124,6 +125,8 @@ class OrbitInjectionFamily:
                              tables, header.path, header.law, opts)
         plan.base = _Base(scn, _Job(scn, ref, 0, switches, settings, factory), switches, settings,
                           str(opts["guidance"]), tables, history_runs)
+        if opts.get("target", "host") != "host":
+            self._on_target(plan, opts, tables, header.path)
 
         def detail(run_id: int, run_seed: int, plots: Path | None) -> Detail:
             res = self._result(plan, [], history_ids=np.array([run_id], dtype=np.int64),
@@ -133,6 +136,23 @@ class OrbitInjectionFamily:
 
         plan.detail = detail
         return plan
+
+    @staticmethod
+    def _on_target(plan: CampaignPlan, opts: dict[str, Any], tables: Any, scenario: Path) -> None:
+        """The plan flown by the scenario's flight program on the emulated Cortex-M7 (pil.py)."""
+        from ogk.sil.pil_build import file_sha256
+
+        from . import pil
+        pil.check_target_settings(plan.base.settings, opts)
+        program = pil.flight_program(tables, scenario)
+        job = dataclasses.replace(plan.base.job, settings=dataclasses.replace(
+            plan.base.settings, history_runs=0))
+        plan.fly = pil.TargetJob(job, program)
+        plan.target = str(opts["target"])
+        plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
+        plan.target_bounds = dict(pil.BOUNDS)
+        plan.target_why = pil.BOUNDS_WHY
+        plan.watchdog_per_run_s = 60.0
 
     # ------------------------------------------------------------------ reports
     def _result(self, plan: CampaignPlan, records: list[dict[str, Any]], flown: Flown | None = None,

@@ -15,7 +15,7 @@ v_t - sqrt(mu / R_f), v_n, and the cut-off time t_f.
 from __future__ import annotations
 
 import dataclasses
-from typing import Callable
+from typing import Callable, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -24,7 +24,7 @@ from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 from . import truth as tm
-from .attitude import AttitudeControl, CpdBatchControl
+from .attitude import AttitudeCommand, AttitudeControl, CpdBatchControl
 from .cutoff import EnergyCutoff
 from .terminal import TerminalSteering
 from .dispersions import ActuationNoise, DispersionSwitches, RunDraws
@@ -146,6 +146,27 @@ def initial_state(scn: OrbitInjectionScenario, ref: NominalReference, draws: Run
     return x
 
 
+@dataclasses.dataclass(frozen=True)
+class Tick:
+    """What a flight computer answers at one control tick, per run (N,); inactive runs: NaN."""
+
+    failure: list[str]                 #: "" or a FAILURE_REASONS entry
+    t_predicted_s: F64                 #: guidance's predicted cut-off [s]
+    t_cutoff_s: F64                    #: cut-off in force [s]
+    alpha_rad: F64                     #: thrust-direction command flown [rad]
+    beta_rad: F64
+    attitude: AttitudeCommand          #: CPD's output
+
+
+class FlightComputer(Protocol):
+    """The flight software of N runs as one call per control tick k: times t_s (N,), navigation
+    nav (N, 6) [r, xi, phi, v_r, v_t, v_n], attitude (N, 6) [psi, theta, phi rad, p, q, r rad/s],
+    and which runs still fly (ogk.missions.orbit_injection.pil: the flight program on the target)."""
+
+    def tick(self, k: int, t_s: F64, nav: F64, attitude: F64,
+             active: NDArray[np.bool_]) -> Tick: ...
+
+
 RhsFn = Callable[[F64 | float, F64, F64], None]   #: rhs(t, x, out): writes dx/dt into out
 
 
@@ -176,12 +197,17 @@ class _Rk4:
 def simulate(scn: OrbitInjectionScenario, ref: NominalReference, draws: RunDraws,
              generators: list[np.random.Generator], switches: DispersionSwitches,
              guidance: Guidance, settings: SilSettings = SilSettings(),
-             attitude_control: AttitudeControl | None = None) -> SilResult:
-    """Flies N runs from ignition to engine cut-off (or failure)."""
+             attitude_control: AttitudeControl | None = None,
+             flight_computer: FlightComputer | None = None) -> SilResult:
+    """Flies N runs from ignition to engine cut-off (or failure). With `flight_computer` (6-DOF
+    truth) the whole control tick is the flight program's (processor in the loop): guidance,
+    the end-game and CPD are not called here."""
     if settings.truth not in TRUTHS:
         raise ValueError(f"truth must be one of {TRUTHS}, got {settings.truth!r}")
     six_dof = settings.truth == "6dof"
     n = draws.n_runs
+    if flight_computer is not None and not six_dof:
+        raise ValueError("a flight computer flies on the 6-DOF truth")
     params = tm.TruthParams.from_scenario(scn, ref.tf_s)
     ctrl_dt = 1.0 / settings.control_rate_hz
     h = settings.truth_step_s
@@ -262,7 +288,28 @@ def simulate(scn: OrbitInjectionScenario, ref: NominalReference, draws: RunDraws
             if t > t_max:
                 fail(active, "no_termination")
                 break
-            if j % settings.truth_substeps == 0:          # control sample
+            if j % settings.truth_substeps == 0 and flight_computer is not None:
+                # the flight software on the target: one exchange per run and tick (ogk.sil.pil)
+                k = j // settings.truth_substeps
+                control_steps += 1
+                psi, theta, roll = tm.euler_from_quat(x[tm.Q0:tm.Q3 + 1])
+                att = np.stack([psi, theta, roll, x[tm.RATE_P], x[tm.RATE_Q], x[tm.RATE_R]],
+                               axis=1)
+                tick = flight_computer.tick(k, t_run, np.ascontiguousarray(x[:6].T), att, active)
+                for reason in sorted(set(tick.failure) - {""}):
+                    fail(active & np.array([f == reason for f in tick.failure]), reason)
+                active = ~done
+                predicted, cutoff = tick.t_predicted_s, tick.t_cutoff_s
+                alpha_c, beta_c = tick.alpha_rad, tick.beta_rad
+                att_cmd = tick.attitude
+                command = np.where(active, np.stack([att_cmd.m_xc, att_cmd.delta_yc,
+                                                     att_cmd.delta_zc]), command)
+                noise = noise_src.next() if switches.actuation else None
+                max_rates = _actuator_rates(x, command, noise, tau, out_max, active, max_rates)
+                if hist_cols.size and k % settings.history_every == 0:
+                    _record(hist_t, hist_rows, hist_cols, t, x, done, alpha_c, beta_c, att_cmd,
+                            noise, params, six_dof)
+            elif j % settings.truth_substeps == 0:          # control sample
                 k = j // settings.truth_substeps
                 control_steps += 1
                 due = np.full(n, k % sample_every == 0)
@@ -309,12 +356,8 @@ def simulate(scn: OrbitInjectionScenario, ref: NominalReference, draws: RunDraws
                     command = np.where(active, np.stack([att_cmd.m_xc, att_cmd.delta_yc,
                                                          att_cmd.delta_zc]), command)
                     noise = noise_src.next() if switches.actuation else None
-                    # eq. (47) check: d/dt of the actuator outputs is (cmd - state)/tau while
-                    # unsaturated; it is largest right after a command change (exponential lag).
-                    state = x[tm.ACT_MX:tm.ACT_DZ + 1]
-                    inside = np.abs(state + (noise if noise is not None else 0.0)) < out_max
-                    rate = np.abs(command - state) / tau * inside
-                    max_rates = np.where(active, np.maximum(max_rates, rate), max_rates)
+                    max_rates = _actuator_rates(x, command, noise, tau, out_max, active,
+                                                max_rates)
                 if hist_cols.size and k % settings.history_every == 0:
                     _record(hist_t, hist_rows, hist_cols, t, x, done, alpha_c, beta_c, att_cmd,
                             noise, params, six_dof)
@@ -360,6 +403,16 @@ def simulate(scn: OrbitInjectionScenario, ref: NominalReference, draws: RunDraws
     return SilResult(run_id=draws.run_id.copy(), final_state=final, errors=errors,
                      max_rates=rates, failure=failure, history=history, truth_steps=j,
                      control_steps=control_steps)
+
+
+def _actuator_rates(x: F64, command: F64, noise: F64 | None, tau: F64, out_max: F64,
+                    active: NDArray[np.bool_], max_rates: F64) -> F64:
+    """Eq. (47) check: d/dt of the actuator outputs is (cmd - state)/tau while unsaturated; it is
+    largest right after a command change (exponential lag). The running maximum per run."""
+    state = x[tm.ACT_MX:tm.ACT_DZ + 1]
+    inside = np.abs(state + (noise if noise is not None else 0.0)) < out_max
+    rate = np.abs(command - state) / tau * inside
+    return np.where(active, np.maximum(max_rates, rate), max_rates)
 
 
 def _record(hist_t: list[float], rows: dict[str, list[F64]], cols: NDArray[np.int64], t: float,
