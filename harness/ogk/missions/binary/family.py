@@ -48,6 +48,7 @@ class _Base:
 class BinaryFamily:
     name = "binary-asteroid"
     laws = LAWS
+    targets = ("host", "m7")        #: m7: the corrector calls on the emulated Cortex-M7 (pil.py)
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         """The scenario's [monte_carlo] runs per level times its [dispersions] levels (Table 3: 600 x 6)."""
@@ -129,7 +130,7 @@ class BinaryFamily:
         paper = {float(lv): float(pc) for lv, pc in zip(table3.get("levels_percent", ()),
                                                           table3.get("converged_percent", ()))}
         base = _Base(scenario, spec.name, spec.thrust_n, correctors, levels, paper)
-        return CampaignPlan(
+        plan = CampaignPlan(
             family=self.name, law=header.law, mission=scenario.name, scenario_path=Path(header.path),
             scenario_sha256=file_sha256(header.path),
             options={"perturbation": list(levels), "sigma_fraction": sigma, "corrector": chosen,
@@ -143,6 +144,27 @@ class BinaryFamily:
                         "error_tolerance": scenario.acceptance.error_tolerance,
                         "non_convergence": "measured, not a failure"},
             watchdog_per_run_s=30.0, base=base)
+        if options.get("target", "host") != "host":
+            self._on_target(plan, options, nominal, levels, sigma, Path(header.path))
+        return plan
+
+    @staticmethod
+    def _on_target(plan: CampaignPlan, options: Mapping[str, Any], nominal: campaign.Nominal,
+                   levels: tuple[float, ...], sigma: float, scenario: Path) -> None:
+        """The plan with every corrector call made by the scenario's flight program on the emulated
+        Cortex-M7 (pil.py); the draws, the DOP853 checks and the judging stay on the host."""
+        from ogk.sil.pil_build import file_sha256
+
+        from . import pil
+        base: _Base = plan.base
+        program = pil.flight_program(nominal, scenario, base.transfer)
+        plan.fly = pil.TargetJob(nominal, base.correctors, levels, sigma, program)
+        plan.target = str(options["target"])
+        plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
+        plan.target_bounds = {k: v for k, v in pil.BOUNDS.items()
+                              if k.split(".")[0] in base.correctors}
+        plan.target_why = pil.BOUNDS_WHY
+        plan.watchdog_per_run_s = 120.0
 
     # ------------------------------------------------------------------ reports
     def _levels(self, base: _Base, records: Sequence[Record]) -> list[dict[str, Any]]:
