@@ -60,6 +60,7 @@ class LowThrustFamily:
     laws = LAWS
 
     fixed_lists = True           #: --cases paper: the number of runs is the list's
+    targets = ("host", "m7")     #: --target m7: the solves on the flight program (pil.py)
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         return None              # the command states it, or the paper's list does
@@ -108,9 +109,13 @@ class LowThrustFamily:
             return dispersed_case(setup, run_id, run_generator(run_seed))
 
         def fly_one(run_id: int, run_seed: int) -> Record:
-            from .reference import load_or_solve
             case = case_of(run_id, run_seed)
             res, cpu = run_case(setup, case)
+            return record_of(case, res, cpu)
+
+        def record_of(case: Case, res: Any, cpu: float) -> Record:
+            """A run's record from its case and the solve's result (host or target)."""
+            from .reference import load_or_solve
             ref = None
             if reference:
                 try:
@@ -137,7 +142,7 @@ class LowThrustFamily:
             return ""
 
         nominal = hashlib.sha256(json.dumps([float(x) for x in setup.nominal.lam0]).encode())
-        return CampaignPlan(
+        plan = CampaignPlan(
             family=self.name, law=header.law, mission=header.name,
             scenario_path=Path(header.path), scenario_sha256=file_sha256(header.path),
             options={"cases": which, "basis": setup.basis, "order": setup.order,
@@ -152,6 +157,25 @@ class LowThrustFamily:
             acceptance={"converged": True, "dr_f_km": acc.position_error_km,
                         "dv_f_kmps": acc.velocity_error_km_s},
             watchdog_per_run_s=120.0, base=(setup, papers))
+        if options.get("target", "host") != "host":
+            self._on_target(plan, options, setup, case_of, record_of)
+        return plan
+
+    @staticmethod
+    def _on_target(plan: CampaignPlan, opts: Mapping[str, Any], setup: MpspSetup,
+                   case_of: Any, record_of: Any) -> None:
+        """The plan's solves made by the scenario's flight program on the emulated Cortex-M7
+        (pil.py); the cases, records and judging stay the host's."""
+        from ogk.sil.pil_build import file_sha256
+
+        from . import pil
+        program = pil.flight_program(setup, plan.scenario_path)
+        plan.fly = pil.TargetJob(case_of, record_of, program, t0=float(setup.guidance.cfg.t0))
+        plan.target = str(opts["target"])
+        plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
+        plan.target_bounds = dict(pil.BOUNDS)
+        plan.target_why = pil.BOUNDS_WHY
+        plan.watchdog_per_run_s = 900.0
 
     def _paper(self, setup: MpspSetup, papers: list[Case],
                records: Sequence[Record]) -> dict[str, Any] | None:
