@@ -69,6 +69,7 @@ def flight_record(summary: Mapping[str, Any]) -> Record:
 class RendezvousFamily:
     name = "low-thrust-rendezvous"
     laws = LAWS
+    targets = ("host", "m7")        #: m7: port/cortex-m7/pil/nmpc_pil.c (pil.py)
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         return None              # the command states the number of runs
@@ -132,7 +133,7 @@ class RendezvousFamily:
                 files = tuple(write_plots(scenario, result, plots))
             return Detail(flight_record(result.summary()), files)
 
-        return CampaignPlan(
+        plan = CampaignPlan(
             family=self.name, law=header.law, mission=scenario.name,
             scenario_path=Path(header.path), scenario_sha256=file_sha256(header.path),
             options={"strategy": strategy, "solver": solver, "unperturbed": not perturbed,
@@ -145,6 +146,31 @@ class RendezvousFamily:
                                    "influence within its velocity tolerance; propellant within the dry mass",
                         **dataclasses.asdict(scenario.acceptance)},
             detail=detail, watchdog_per_run_s=600.0, base=scenario)
+        if options.get("target", "host") != "host":
+            self._on_target(plan, str(options["target"]), Path(header.path), scenario, settings,
+                            strategy, third, perturbed, max_replans)
+        return plan
+
+    @staticmethod
+    def _on_target(plan: CampaignPlan, target: str, path: Path, scenario: RendezvousScenario,
+                   settings: Any, strategy: str, third: str, perturbed: bool,
+                   max_replans: Any) -> None:
+        """The plan's replans made by the scenario's flight program on the emulated Cortex-M7
+        (pil.py); the truth, the noise and the judging stay on the host."""
+        from ogk.sil.pil_build import file_sha256
+
+        from . import pil
+        if plan.options["solver"] != "kernel":
+            raise OgkInputError(f"--target {target} flies the kernel's ogk_nmpc, got "
+                                f"{plan.options['solver']!r}", key="--solver")
+        program = pil.flight_program(path, strategy, third)
+        plan.fly = pil.TargetJob(scenario, settings, strategy, perturbed,
+                                 None if max_replans is None else int(max_replans), program)
+        plan.target = target
+        plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
+        plan.target_bounds = dict(pil.BOUNDS)
+        plan.target_why = pil.BOUNDS_WHY
+        plan.watchdog_per_run_s = 7200.0     # a whole closed loop of QEMU re-solves
 
     def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
         opts = flown.plan.options

@@ -1,0 +1,208 @@
+"""Low-thrust rendezvous on the emulated Cortex-M7 (docs/flight-integration-nmpc.md): the flight
+program port/cortex-m7/pil/nmpc_pil.c (ogk_nmpc re-solves, nmpc_flight.c) makes every replan of the
+closed loop, the host's truth (closed_loop.fly) flies the vehicle. One QEMU per chunk of runs; each
+run is a fresh init of the flight software, its thrust-angle noise that of the host campaign.
+
+One step = one replan exchange (NMPC_REPLAN): the measured (t, x) out, the report, the command at t
+and the plan flown back (its node states in one or two NMPC_PLAN_X reads of the copy the step made).
+Between replans the truth integrator asks for the command at arbitrary instants: those are
+ogk_nmpc_command on the host, in a context that holds the target's plan bit for bit (the same C, a
+piecewise-linear interpolation without libm), so the truth flies exactly the plan the target solved;
+the command at the replan time, computed on the target, is checked against it.
+"""
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from ogk_host.rendezvous.plan import Plan
+from ogk_host.rendezvous.scenario import RendezvousScenario
+
+from ogk_bindings._ffi import ffi, lib
+from ogk_bindings.kernel import _check, status_name
+from ogk_bindings.nmpc import FLAG_SUBDIVIDED, NX, Nmpc
+from ogk.sil.pil import FlightProgram, PilSession
+from ogk.sil.pil_build import PIL_BUILD, build_program
+from ogk.sil.target_link import TargetLinkError
+
+from . import strategy as st
+from .guidance_base import ReplanInfo
+
+F64 = NDArray[np.float64]
+
+NMPC_INIT, NMPC_REPLAN, NMPC_PLAN_X = 32, 33, 34     #: frame types of nmpc_pil.c
+HEAD = 21                                           #: NMPC_REPLAN reply values before the controls
+ROWS_PER_FRAME = 25                                 #: node states per NMPC_PLAN_X reply
+#: the entry points of a replan, in the program's stack-slot order (nmpc_flight.h)
+ENTRY_POINTS = ("ogk_nmpc_init", "ogk_nmpc_reset", "ogk_nmpc_load_plan", "ogk_nmpc_solve",
+                "ogk_nmpc_replan", "ogk_nmpc_get_plan", "ogk_nmpc_command")
+#: nmpc_flight.h's ogk_nmpc_action
+ACTIONS = {0: "fly", 1: "fly_stale", 2: "hold", 3: "no_plan", 4: "reinit", 5: "abort"}
+#: the SQP's own outcomes (the context stays usable; KernelGuidance returns them as a report)
+SOLVER_CODES = {int(lib.OGK_OK), int(lib.OGK_E_ITER_LIMIT), int(lib.OGK_E_NOT_CONVERGED),
+                int(lib.OGK_E_INFEASIBLE), int(lib.OGK_E_NOT_POSDEF)}
+#: the longest one replan may take on QEMU (a cold first replan through every guess)
+STEP_TIMEOUT_S = 900.0
+
+#: Host vs target on the same noise streams (docs/flight-integration-nmpc.md, "Host vs target"):
+#: the largest per-run difference. Measured on rendezvous_nep_min_time (SNNS, perturbed): see the doc.
+BOUNDS = {"t_f_days": 0.01, "fuel_kg": 0.5, "final_position_miss_km": 1.0e4,
+          "final_velocity_miss_m_s": 10.0, "failed_solves": 0.0}
+BOUNDS_WHY = ("the same C on both sides on the same inputs; newlib's libm (sin, cos, sqrt-free "
+              "pow, atan2) differs from glibc's by a few ulp in the predictive model's RK4, an SQP "
+              "to 1e-9 feasibility turns those into plan differences of its tolerance, and the "
+              "closed loop carries them to the arrival (the arrival instant is bisected to "
+              "ARRIVAL_TOLERANCE_S; the final misses are those at the first instant inside the "
+              "sphere of influence, so they move with the instant); the count of failed solves "
+              "is asserted equal")
+
+
+def program_key(scenario_path: Path, strategy: str, third_bodies: str) -> str:
+    """The build directory's name: what the generated configuration depends on."""
+    h = hashlib.sha256(Path(scenario_path).read_bytes())
+    h.update(f"\0{strategy}\0{third_bodies}\0flight_config/1".encode())
+    return h.hexdigest()[:16]
+
+
+def flight_program(scenario_path: Path, strategy: str, third_bodies: str) -> FlightProgram:
+    """The scenario's flight program, built for the strategy and predictive model flown."""
+    from .flight_config import write_flight_config
+
+    out = PIL_BUILD / "rendezvous" / program_key(scenario_path, strategy, third_bodies)
+
+    def generate(c_dir: Path) -> None:
+        write_flight_config(c_dir.parent, Path(scenario_path), strategy, third_bodies)
+
+    return FlightProgram(build_program("nmpc", out, generate), ENTRY_POINTS,
+                         timeout_s=STEP_TIMEOUT_S)
+
+
+class TargetGuidance:
+    """The closed loop's Guidance whose replans run on the flight program (module doc)."""
+
+    name = "kernel"
+
+    def __init__(self, session: PilSession, cfg: Any) -> None:
+        self.session = session
+        reply = session.exchange(NMPC_INIT, [])
+        if reply[0] != 0.0:
+            raise TargetLinkError(f"the flight program's init answered {ACTIONS.get(int(reply[0]))} "
+                                  "(ogk_nmpc_action): the configuration is rejected")
+        self.nu = int(reply[1])
+        self._mirror = Nmpc(cfg)        # holds the target's plan for the commands between replans
+        if self._mirror.nu != self.nu:
+            raise TargetLinkError(f"the flight program flies nu = {self.nu}, the host's config "
+                                  f"{self._mirror.nu}")
+        self.subdivisions = 0
+        self.failed_solves = 0
+        self.solves = 0
+        self.replans = 0
+        self.pre_iterations = 0
+        self.actions: list[str] = []
+        self.command_mismatch = 0       #: replans whose target command differs from the host's
+
+    def replan(self, t: float, x: ArrayLike) -> ReplanInfo:
+        x = np.asarray(x, dtype=np.float64)
+        self.replans += 1
+        start = time.perf_counter()
+        r = self.session.exchange(NMPC_REPLAN, np.concatenate([[float(t)], x]))
+        elapsed = time.perf_counter() - start   # QEMU's wall time, not the M7's
+        action, status = ACTIONS.get(int(r[0]), "unknown"), int(r[1])
+        flags, iters, solves, nodes = int(r[2]), int(r[3]), int(r[4]), int(r[5])
+        if status not in SOLVER_CODES and not (status == int(lib.OGK_E_NONFINITE) and solves > 0):
+            # KernelGuidance raises here (Nmpc._call): the measurement was rejected
+            _check(status, "ogk_nmpc_replan" if self.replans > 1 else "ogk_nmpc_solve")
+        if int(r[18]) != int(lib.OGK_OK):
+            raise TargetLinkError(f"the flight program has no plan after a replan ({action})")
+        self.actions.append(action)
+        self.pre_iterations = int(r[19])
+        plan = self._plan(r)
+        cmd = self.command(float(t))
+        if (cmd[0], cmd[1]) != (float(r[9]), float(r[10])):
+            self.command_mismatch += 1
+        converged = status == int(lib.OGK_OK)
+        self.solves += solves
+        subdivided = bool(flags & FLAG_SUBDIVIDED)
+        self.subdivisions += int(subdivided)
+        self.failed_solves += int(not converged)
+        return ReplanInfo(t=t, t_next=float(r[6]), converged=converged, failed=not converged,
+                          iterations=iters, solve_time_s=elapsed, solves=solves, nodes=nodes,
+                          subdivided=subdivided, objective=float(r[8]) if converged else None,
+                          status=status_name(status), plan=plan)
+
+    def _plan(self, r: F64) -> Plan:
+        """The target's plan flown: controls from the reply, node states read in frames; loaded
+        into the mirror context bit for bit (not through ogk_nmpc_load_plan, whose horizon bounds
+        a stale plan's remainder may leave)."""
+        n, nu = int(r[16]), int(r[17])
+        nc = (n + 1) * nu
+        controls = np.array(r[HEAD:HEAD + nc]).reshape(n + 1, nu)
+        lam = np.array(r[HEAD + nc:HEAD + nc + 4])
+        rows = []
+        for first in range(0, n + 1, ROWS_PER_FRAME):
+            rows.append(self.session.exchange(NMPC_PLAN_X, [float(first)]))
+        states = np.concatenate(rows).reshape(n + 1, NX)
+        p = self._mirror._ctx.plan
+        p.t0, p.horizon, p.nodes, p.nu = float(r[14]), float(r[15]), n, nu
+        ffi.memmove(p.x, np.ascontiguousarray(states).tobytes(), states.nbytes)
+        ffi.memmove(p.u, np.ascontiguousarray(controls).tobytes(), controls.nbytes)
+        for i in range(4):
+            getattr(p, "lambda")[i] = float(lam[i])
+        self._mirror._ctx.have_plan = 1
+        return Plan(t0=float(r[14]), horizon=float(r[15]), states=states, controls=controls)
+
+    def command(self, t: float) -> tuple[float, float]:
+        alpha, throttle, _, _ = self._mirror.command(t)
+        return alpha, throttle
+
+
+@dataclasses.dataclass(frozen=True)
+class TargetJob:
+    """The chunk flight of `ogk mc --target m7`: the chunk's runs one after the other on one QEMU,
+    each a fresh init of the flight program, the host's closed loop and truth around it."""
+
+    scenario: RendezvousScenario
+    settings: st.StrategySettings
+    strategy: str
+    perturbed: bool
+    max_replans: int | None
+    program: FlightProgram
+
+    def __call__(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64]
+                 ) -> list[dict[str, Any]]:
+        from .closed_loop import fly
+        from .family import RESULTS, flight_record
+        from .kernel_guidance import kernel_config
+
+        cfg = kernel_config(self.scenario, self.settings)
+        session = PilSession(self.program)
+        records: list[dict[str, Any]] = []
+        try:
+            for rid, seed in zip(run_ids, run_seeds):
+                start = time.perf_counter()
+                guidance = TargetGuidance(session, cfg)
+                try:
+                    rec = flight_record(fly(self.scenario, guidance, self.perturbed, int(seed),
+                                            self.strategy, "kernel",
+                                            max_replans=self.max_replans).summary())
+                except TargetLinkError:
+                    raise
+                except RuntimeError as err:   # the truth integration stopped (family.fly_one)
+                    rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(RESULTS)}
+                rec["timing.wall_s"] = time.perf_counter() - start
+                rec["pil.command_mismatch"] = guidance.command_mismatch
+                session.end_run(int(rid))
+                rec["run_id"] = int(rid)
+                records.append(rec)
+            keys = session.close()
+        except BaseException:
+            session.kill()
+            raise
+        for rec in records:
+            rec.update(keys[int(rec.pop("run_id"))])
+        return records

@@ -1,0 +1,168 @@
+/* nmpc_flight.c -- one NMPC replan of the rendezvous flight software (nmpc_flight.h). */
+#include "nmpc_flight.h"
+
+#include <string.h>
+
+#include "ogk_nmpc_flight_config.h"
+
+#if defined(OGK_PIL_PROBE) && OGK_PIL_PROBE
+#include "ogk_pil.h"
+extern ogk_pil_stack_t ogk_pil_probe;   /* the PIL program's probe (nmpc_pil.c) */
+#define CALL(f, slot, call)                                                                    \
+    do {                                                                                       \
+        ogk_status call_st_ = OGK_OK;                                                          \
+        OGK_PIL_STACK(&ogk_pil_probe, (slot), call_st_ = (call));                              \
+        (f)->last[(slot)] = call_st_;                                                          \
+    } while (0)
+#else
+#define CALL(f, slot, call) ((f)->last[(slot)] = (call))
+#endif
+
+/* The SQP's own outcomes (ogk/nmpc.h, ogk_nmpc_solve): the context stays usable, the previous plan
+ * (shifted) is flown. NONFINITE counts when a solve ran (a trial state left the model's domain). */
+static int solver_outcome(ogk_status st, const ogk_nmpc_report_t *rep)
+{
+    return (st == OGK_E_ITER_LIMIT) || (st == OGK_E_NOT_CONVERGED) || (st == OGK_E_INFEASIBLE) ||
+           (st == OGK_E_NOT_POSDEF) || ((st == OGK_E_NONFINITE) && (rep->solves > 0u));
+}
+
+ogk_nmpc_action ogk_nmpc_flight_init(ogk_nmpc_flight_t *f)
+{
+    if (f == NULL) {
+        return OGK_NMPC_ABORT;
+    }
+    (void)memset(f->last, 0, sizeof f->last);
+    (void)memset(&f->rep, 0, sizeof f->rep);
+    (void)memset(&f->cmd, 0, sizeof f->cmd);
+    f->status = OGK_OK;
+    f->plan_status = OGK_E_RANGE;
+    f->cmd_status = OGK_E_RANGE;
+    f->started = 0u;
+    f->pre_iterations = 0u;
+    f->guesses_tried = 0u;
+    f->n_guesses = (uint32_t)OGK_NMPC_FLIGHT_N_GUESSES;
+    CALL(f, OGK_NMPC_FL_INIT, ogk_nmpc_init(&f->ctx, &ogk_nmpc_flight_config));
+    /* a rejected configuration (OGK_E_CONFIG, NONFINITE): do not start the loop */
+    return (f->last[OGK_NMPC_FL_INIT] == OGK_OK) ? OGK_NMPC_FLY : OGK_NMPC_ABORT;
+}
+
+/* The guess k with the measured time and state as node 0 (guidance_base.first_guesses). */
+static void measured_guess(ogk_nmpc_flight_t *f, uint32_t k)
+{
+    uint32_t i;
+    (void)memcpy(&f->guess, &ogk_nmpc_flight_guesses[k], sizeof f->guess);
+    f->guess.t0 = f->in.t;
+    for (i = 0u; i < OGK_NMPC_NX; ++i) {
+        f->guess.x[i] = f->in.x[i];
+    }
+}
+
+/* Minimum fuel: the guess replaced by the minimum-time optimum from it at the ground's throttle
+ * (kernel_guidance._first_solve, nlp.py), when that pre-solve converges; otherwise kept. */
+static void min_fuel_guess(ogk_nmpc_flight_t *f)
+{
+    ogk_nmpc_config_t cfg = ogk_nmpc_flight_config;
+    ogk_nmpc_report_t pre;
+    ogk_status st;
+    (void)memset(&pre, 0, sizeof pre);
+    cfg.objective = OGK_NMPC_MIN_TIME;
+    CALL(f, OGK_NMPC_FL_INIT, ogk_nmpc_init(&f->time_opt, &cfg));
+    if (f->last[OGK_NMPC_FL_INIT] != OGK_OK) {
+        return;                 /* the time context is refused: solve from the guess itself */
+    }
+    CALL(f, OGK_NMPC_FL_LOAD_PLAN, ogk_nmpc_load_plan(&f->time_opt, &f->guess));
+    if (f->last[OGK_NMPC_FL_LOAD_PLAN] != OGK_OK) {
+        return;
+    }
+    CALL(f, OGK_NMPC_FL_SOLVE, ogk_nmpc_solve(&f->time_opt, &f->in, &pre));
+    f->pre_iterations = pre.sqp_iterations;
+    if (f->last[OGK_NMPC_FL_SOLVE] == OGK_OK) {
+        CALL(f, OGK_NMPC_FL_GET_PLAN, ogk_nmpc_get_plan(&f->time_opt, &f->guess));
+        st = f->last[OGK_NMPC_FL_GET_PLAN];
+        if (st == OGK_OK) {
+            uint32_t k;
+            for (k = 0u; (k <= f->guess.nodes) && (k <= OGK_NMPC_MAX_NODES); ++k) {
+                f->guess.u[(k * f->guess.nu) + 1u] = OGK_NMPC_FLIGHT_MIN_FUEL_THROTTLE;
+            }
+            /* the ground's guess carries no multipliers (a Plan of states and controls) */
+            (void)memset(f->guess.lambda, 0, sizeof f->guess.lambda);
+        }
+    }
+}
+
+/* The first replan: each guess in turn until a solve converges (KernelGuidance.replan). */
+static void first_replan(ogk_nmpc_flight_t *f)
+{
+    uint32_t k;
+    f->status = OGK_E_RANGE;
+    for (k = 0u; k < (uint32_t)OGK_NMPC_FLIGHT_N_GUESSES; ++k) {
+        measured_guess(f, k);
+        if (ogk_nmpc_flight_config.objective != OGK_NMPC_MIN_TIME) {
+            min_fuel_guess(f);
+        }
+        f->guesses_tried = k + 1u;
+        CALL(f, OGK_NMPC_FL_RESET, ogk_nmpc_reset(&f->ctx));
+        if (f->last[OGK_NMPC_FL_RESET] != OGK_OK) {
+            f->status = f->last[OGK_NMPC_FL_RESET];
+            return;             /* the context is lost: the step re-initialises it */
+        }
+        CALL(f, OGK_NMPC_FL_LOAD_PLAN, ogk_nmpc_load_plan(&f->ctx, &f->guess));
+        if (f->last[OGK_NMPC_FL_LOAD_PLAN] != OGK_OK) {
+            f->status = f->last[OGK_NMPC_FL_LOAD_PLAN];
+            (void)memset(&f->rep, 0, sizeof f->rep);
+            return;             /* a guess the kernel refuses: the measurement is out of range */
+        }
+        CALL(f, OGK_NMPC_FL_SOLVE, ogk_nmpc_solve(&f->ctx, &f->in, &f->rep));
+        f->status = f->last[OGK_NMPC_FL_SOLVE];
+        if (f->status == OGK_OK || !solver_outcome(f->status, &f->rep)) {
+            return;             /* converged, or the measurement itself was rejected */
+        }
+    }
+}
+
+ogk_nmpc_action ogk_nmpc_flight_step(ogk_nmpc_flight_t *f, const ogk_nmpc_input_t *in)
+{
+    ogk_nmpc_action action;
+    uint32_t first;
+    if (f == NULL || in == NULL) {
+        return OGK_NMPC_REINIT;
+    }
+    f->in = *in;
+    f->pre_iterations = 0u;
+    first = (f->started == 0u) ? 1u : 0u;
+    if (first != 0u) {
+        first_replan(f);
+        f->started = 1u;
+    } else {
+        CALL(f, OGK_NMPC_FL_REPLAN, ogk_nmpc_replan(&f->ctx, &f->in, &f->rep));
+        f->status = f->last[OGK_NMPC_FL_REPLAN];
+    }
+    if (f->status == OGK_OK) {
+        action = OGK_NMPC_FLY;
+    } else if (solver_outcome(f->status, &f->rep)) {
+        /* a failed first replan has only its last guess loaded: nothing worth flying */
+        action = (first != 0u) ? OGK_NMPC_NO_PLAN : OGK_NMPC_FLY_STALE;
+    } else if (f->status == OGK_E_NOT_INIT || f->status == OGK_E_NULL) {
+        action = OGK_NMPC_REINIT;
+    } else {
+        action = OGK_NMPC_HOLD;   /* NONFINITE / RANGE / DIM of the measurement: plan untouched */
+    }
+    /* the plan flown and the command at t, whatever the outcome (the link sends both) */
+    CALL(f, OGK_NMPC_FL_GET_PLAN, ogk_nmpc_get_plan(&f->ctx, &f->plan));
+    f->plan_status = f->last[OGK_NMPC_FL_GET_PLAN];
+    CALL(f, OGK_NMPC_FL_COMMAND, ogk_nmpc_command(&f->ctx, f->in.t, &f->cmd));
+    f->cmd_status = f->last[OGK_NMPC_FL_COMMAND];
+    if (action == OGK_NMPC_REINIT) {
+        const ogk_status st = f->status;
+        (void)ogk_nmpc_flight_init(f);   /* ABORT here leaves the context refusing every call */
+        f->status = st;
+    }
+    if (action == OGK_NMPC_NO_PLAN || action == OGK_NMPC_REINIT || f->cmd_status != OGK_OK) {
+        /* engine off: the kernel's safe command (ogk_nmpc_command with no plan) */
+        f->cmd.t = f->in.t;
+        f->cmd.alpha = 0.0;
+        f->cmd.throttle = 0.0;
+        f->cmd.flags = OGK_THRUST_FLAG_SAFE;
+    }
+    return action;
+}
