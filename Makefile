@@ -113,7 +113,7 @@ ffi: $(FFI_STAMP)
 test-imports: $(VENV)/.installed
 	$(VENV)/bin/lint-imports --no-cache
 
-test-python: $(FFI_STAMP) $(LINK_ECHO_ELF)
+test-python: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o
 	$(VPY) -m pytest -q -m "not slow" tests/python
 
 # Minutes-long checks kept out of `make test`: the Apophis nominal regenerated from scratch.

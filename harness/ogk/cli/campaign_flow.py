@@ -10,7 +10,7 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import file_sha256, read_header
 
 from ogk.missions import registry
-from ogk.sil import engine, envelope
+from ogk.sil import engine, envelope, target_summary
 from ogk.sil.family import CampaignPlan
 from ogk.sil.outputs import check_output_dir, check_output_file
 
@@ -99,5 +99,7 @@ def generic_report(doc: dict[str, Any]) -> str:
                          f"{q['worst']['value']:14.6g}  {q['worst']['run_id']}")
     for reason, n in doc["failure_reasons"].items():
         lines.append(f"  failed: {n} x {reason}")
+    if doc.get("pil"):
+        lines.append(target_summary.format_summary(doc["pil"]))
     return "\n".join(lines)
 

@@ -1,11 +1,14 @@
 """A scenario's PIL flight program, built on demand (docs/pil.md): the family writes the generated C
 (table image, flight configuration) into DIR/c, then `make pil-program PIL_PROGRAM=NAME PIL_OUT=DIR`
-compiles and links it with the flight flags. DIR is keyed by the family (e.g. by the SHA-256 of the
+compiles and links it with the flight flags; the campaign flies DIR/NAME-<sha16>.elf, a copy named by
+its content. DIR is keyed by the family (e.g. by the SHA-256 of the
 tables flown), so two campaigns of one scenario share one build; a lock file serialises them."""
 from __future__ import annotations
 
 import fcntl
 import hashlib
+import os
+import shutil
 import subprocess
 from collections.abc import Callable
 from pathlib import Path
@@ -34,7 +37,15 @@ def build_program(program: str, out: Path, generate: Callable[[Path], None]) -> 
             tail = " | ".join((proc.stdout + proc.stderr).strip().splitlines()[-4:])
             raise OgkInputError(f"the {program} flight program did not build: {tail}",
                                 path=out)
-    return out / f"{program}.elf"
+        # the campaign flies a copy named by its content: a later rebuild (another campaign, a
+        # changed kernel) never changes the ELF under a running campaign or its recorded SHA-256
+        elf = out / f"{program}.elf"
+        flown = out / f"{program}-{file_sha256(elf)[:16]}.elf"
+        if not flown.exists():
+            tmp = flown.with_suffix(".tmp")
+            shutil.copyfile(elf, tmp)
+            os.replace(tmp, flown)
+    return flown
 
 
 def file_sha256(path: Path) -> str:

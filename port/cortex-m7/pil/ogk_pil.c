@@ -26,8 +26,10 @@ __attribute__((noinline)) uint32_t *ogk_pil_stack_paint(void)
     uint32_t *lo;
     uint32_t i;
     __asm__ volatile("mov %0, sp" : "=r"(sp));
-    /* the window ends 8 bytes below this leaf's stack pointer, word-aligned */
-    lo = (uint32_t *)((sp & ~(uintptr_t)7u) - 8u - OGK_PIL_STACK_WINDOW);
+    /* The window ends at this leaf's stack pointer, which is the caller's: the leaf keeps no frame
+     * (a BL pushes nothing; checked in the disassembly, docs/pil.md), and AAPCS keeps it 8-aligned
+     * at a call. So the figure is every byte the next call writes below the caller's pointer. */
+    lo = (uint32_t *)((sp & ~(uintptr_t)7u) - OGK_PIL_STACK_WINDOW);
     word = lo;
     for (i = 0u; i < PIL_WORDS; ++i) {
         word[i] = PIL_PAINT;

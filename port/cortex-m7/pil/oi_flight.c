@@ -57,32 +57,49 @@ static int sample_due(const ogk_oi_flight_t *f, uint32_t k, double t_s)
     return due && t_s < f->t_predicted_s && !f->base.terminating;
 }
 
+/* Keeps the first failure of the tick: the tick goes on with the kernel's safe outputs, as in flight. */
+static void note(ogk_oi_failure *first, ogk_oi_failure fail)
+{
+    if (*first == OGK_OI_OK) {
+        *first = fail;
+    }
+}
+
 ogk_oi_failure ogk_oi_flight_tick(ogk_oi_flight_t *f, uint32_t k, const ogk_nav_state_t *nav,
                                   const ogk_flight_att_t *att)
 {
     ogk_flight_t *b = &f->base;
+    ogk_oi_failure fail = OGK_OI_OK;
     ogk_status st = OGK_OK;
     ogk_cpd_input_t in;
 
     f->sampled = 0u;
     if (sample_due(f, k, nav->t_s)) {
+        ogk_flight_action a;
         CALL(OGK_OI_NOG_SAMPLE, st, ogk_nog_sample(&b->nog, nav, &b->sample));
         f->status[OGK_OI_NOG_SAMPLE] = st;
         f->sampled = 1u;
         b->n_samples += 1u;
-        f->t_predicted_s = b->sample.t_cutoff_s;
-        if ((b->sample.flags & OGK_NOG_FLAG_TERMINATING) != 0u) {
-            b->terminating = 1u;
+        a = ogk_flight_reaction(OGK_FLIGHT_CALL_SAMPLE, st);
+        if (a == OGK_FLIGHT_FLY || a == OGK_FLIGHT_SAFE) {
+            /* both wrote a sample: the safe one holds the last valid correction and t_f */
+            f->t_predicted_s = b->sample.t_cutoff_s;
+            if ((b->sample.flags & OGK_NOG_FLAG_TERMINATING) != 0u) {
+                b->terminating = 1u;
+            }
+        } else if (a == OGK_FLIGHT_HOLD) {
+            /* context lost: re-initialise from the const configuration (nominal from tau = 0) */
+            (void)ogk_nog_init(&b->nog, &b->nog_cfg);
+        } else {
+            b->engine_on = 0u;   /* RELOAD_TABLE / ABORT: not recoverable in flight */
         }
-        if (ogk_flight_reaction(OGK_FLIGHT_CALL_SAMPLE, st) != OGK_FLIGHT_FLY) {
-            /* the kernel wrote its safe sample (SAFE) or the context needs a re-init (HOLD):
-             * the SIL counts the run as a guidance failure from here */
+        if (st != OGK_OK) {
             b->n_nonok[OGK_FLIGHT_CALL_SAMPLE] += 1u;
-            return OGK_OI_FAIL_GUIDANCE;
+            note(&fail, OGK_OI_FAIL_GUIDANCE);   /* the SIL counts the run failed from here */
         }
     }
     if (isnan(f->t_predicted_s)) {
-        return OGK_OI_FAIL_GUIDANCE;
+        note(&fail, OGK_OI_FAIL_GUIDANCE);
     }
     f->t_cutoff_s = f->t_predicted_s;
 #if OGK_FLIGHT_ENERGY_CUTOFF
@@ -90,16 +107,17 @@ ogk_oi_failure ogk_oi_flight_tick(ogk_oi_flight_t *f, uint32_t k, const ogk_nav_
         ogk_cutoff_out_t co;
         CALL(OGK_OI_CUTOFF_STEP, st, ogk_cutoff_step(&f->cutoff, nav, f->t_predicted_s, &co));
         f->status[OGK_OI_CUTOFF_STEP] = st;
-        if (st != OGK_OK) {
-            return OGK_OI_FAIL_CUTOFF;
+        if (st == OGK_OK) {
+            f->t_cutoff_s = co.t_cutoff_s;
+        } else {
+            note(&fail, OGK_OI_FAIL_CUTOFF);     /* the prediction stays the cut-off */
         }
-        f->t_cutoff_s = co.t_cutoff_s;
     }
 #endif
     CALL(OGK_OI_NOG_COMMAND, st, ogk_nog_command(&b->nog, nav->t_s, &b->cmd));
     f->status[OGK_OI_NOG_COMMAND] = st;
     if (!(isfinite(b->cmd.alpha_rad) && isfinite(b->cmd.beta_rad))) {
-        return OGK_OI_FAIL_GUIDANCE;
+        note(&fail, OGK_OI_FAIL_GUIDANCE);       /* CPD below answers with its safe command */
     }
 #if OGK_FLIGHT_TERMINAL
     if (isfinite(f->t_predicted_s)) {
@@ -112,13 +130,14 @@ ogk_oi_failure ogk_oi_flight_tick(ogk_oi_flight_t *f, uint32_t k, const ogk_nav_
                  ogk_terminal_step(&f->terminal, nav, f->t_predicted_s, &law, &out));
         }
         f->status[OGK_OI_TERMINAL_STEP] = st;
-        if (st != OGK_OK) {
-            f->engaged = 0u;
-            return OGK_OI_FAIL_TERMINAL;
+        if (st == OGK_OK) {
+            b->cmd.alpha_rad = out.alpha_rad;
+            b->cmd.beta_rad = out.beta_rad;
+            f->engaged = (uint8_t)((out.law_flags & OGK_TERMINAL_FLAG_ENGAGED) != 0u);
+        } else {
+            f->engaged = 0u;                     /* the law's command is flown */
+            note(&fail, OGK_OI_FAIL_TERMINAL);
         }
-        b->cmd.alpha_rad = out.alpha_rad;
-        b->cmd.beta_rad = out.beta_rad;
-        f->engaged = (uint8_t)((out.law_flags & OGK_TERMINAL_FLAG_ENGAGED) != 0u);
     }
 #endif
     /* CPD on the command's angles (as the SIL's batch step: alpha, beta, xi, phi) */
@@ -135,9 +154,12 @@ ogk_oi_failure ogk_oi_flight_tick(ogk_oi_flight_t *f, uint32_t k, const ogk_nav_
     CALL(OGK_OI_CPD_STEP, st, ogk_cpd_step(&b->cpd, &in, &b->act));
     f->status[OGK_OI_CPD_STEP] = st;
     b->n_ticks += 1u;
-    if (st != OGK_OK) {
-        /* CPD wrote its safe command (zero torque, zero deflections): the SIL counts a failure */
-        return OGK_OI_FAIL_ATTITUDE;
+    if (ogk_flight_reaction(OGK_FLIGHT_CALL_CPD, st) == OGK_FLIGHT_HOLD) {
+        (void)ogk_cpd_init(&b->cpd, &b->cpd_cfg);   /* context lost: re-init, safe command held */
     }
-    return OGK_OI_OK;
+    if (st != OGK_OK) {
+        /* CPD wrote its safe command (zero torque, zero deflections) */
+        note(&fail, OGK_OI_FAIL_ATTITUDE);
+    }
+    return fail;
 }

@@ -59,8 +59,9 @@ typedef struct {
 
 ogk_flight_action ogk_oi_flight_init(ogk_oi_flight_t *f, const uint8_t *image, size_t len);
 
-/* One control tick: sample when due, cut-off, command, terminal, CPD. Returns the failure the SIL
- * would count (the kernel's safe outputs are in f->base.act either way). */
+/* One control tick: sample when due, cut-off, command, terminal, CPD. Every step runs whatever an
+ * earlier one returned, on the kernel's safe outputs and the reactions of ogk_flight_reaction (a lost
+ * context re-initialised, the engine off on ABORT); returns the first failure the SIL would count. */
 ogk_oi_failure ogk_oi_flight_tick(ogk_oi_flight_t *f, uint32_t k, const ogk_nav_state_t *nav,
                                   const ogk_flight_att_t *att);
 
