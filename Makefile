@@ -157,11 +157,14 @@ test: deps
 # paper's Table 7 (envelope JSON, Parquet table and PNG plots in build/mc); MPSP on the 23 Apophis cases
 # against Wang & Topputo's Tables 3, 5, 6 (build/apophis); the Earth-to-Mars NMPC against Table I
 # (build/nmpc); the six BLT transfers about Moshup and the Table 3 campaign (build/blt; 600 runs per level).
-run: all
+run: all $(QP_SO)
 	$(VENV)/bin/ogk demo switching
 	$(VENV)/bin/ogk tables leo-geo
 	$(VENV)/bin/ogk mc leo-geo --runs 100 --seed 1 --workers 2 \
 	  --json $(B)/mc/leo_geo_100.json --plots $(B)/mc/plots
+	# the same 100 runs with the flight program on the emulated Cortex-M7 (docs/pil.md)
+	$(VENV)/bin/ogk mc leo-geo --target m7 --runs 100 --seed 1 --workers 2 \
+	  --json $(B)/pil/leo_geo_m7_100.json
 	$(VENV)/bin/ogk run apophis --paper-tables \
 	  --json $(B)/apophis/paper_tables.json --plots $(B)/apophis/plots
 	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy snns --solver kernel \
