@@ -153,3 +153,17 @@ def test_host_vs_target_names_the_worst_run() -> None:
     assert q["run_id"] == 1 and q["max_abs_diff"] == pytest.approx(0.5) and not q["within"]
     assert hv["failures_differ"] == [2] and not hv["within_bounds"]
     assert target_summary.host_vs_target(target[:2], host[:2], {"x": 0.6})["within_bounds"]
+
+
+@pytest.mark.parametrize("option", [("--truth", "point-mass"), ("--control-rate", "25"),
+                                    ("--cpd-gains", "printed"), ("--paper-end-game",)])
+def test_options_the_flight_configuration_does_not_fly_are_refused(option: tuple[str, ...],
+                                                                    tmp_path: Path) -> None:
+    """The flight program flies the generated configuration: a campaign option it does not fly is
+    refused in one line naming the option, before anything is built or flown."""
+    out = ogk("mc", "leo-geo", "--target", "m7", "--runs", "1", *option,
+              "--json", str(tmp_path / "x.json"), timeout=120)
+    assert out.returncode == 2, out.stdout + out.stderr
+    line = out.stderr.strip().splitlines()[-1]
+    assert f"{option[0]}: --target m7 flies the generated flight configuration" in line
+    assert not (tmp_path / "x.json").exists()
