@@ -172,6 +172,7 @@ class LowThrustFamily:
         program = pil.flight_program(setup, plan.scenario_path)
         plan.fly = pil.TargetJob(case_of, record_of, program, t0=float(setup.guidance.cfg.t0))
         plan.target = str(opts["target"])
+        plan.options = {**plan.options, "target": plan.target}   # `ogk replay` flies it there
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = dict(pil.BOUNDS)
         plan.target_why = pil.BOUNDS_WHY

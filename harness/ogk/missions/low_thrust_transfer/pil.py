@@ -46,12 +46,15 @@ BOUNDS_WHY = ("the same C on both sides and the same configuration (generated fr
 
 
 def flight_program(setup: Any, scenario_path: Path) -> FlightProgram:
-    """The scenario's flight program, built for the configuration the campaign flies (the setup's
-    basis, order and nominal: one build per configuration)."""
+    """The scenario's flight program, built for the configuration the campaign flies: one build
+    per scenario file (SHA-256), basis, order and C configuration (its bytes: the nominal weights
+    and every [mpsp] setting)."""
     from .flight_config import write_flight_config
 
-    cfg = setup.guidance.cfg
-    key = f"{setup.nominal_sha256[:12]}-{setup.basis}-{setup.order}-{_config_digest(cfg)}"
+    from ogk_host.scenario_file import file_sha256
+
+    key = (f"{file_sha256(scenario_path)[:12]}-{setup.basis}-{setup.order}-"
+           f"{_config_digest(setup.guidance.cfg)}")
     out = PIL_BUILD / "low_thrust_transfer" / f"{Path(scenario_path).stem}-{key}"
 
     def generate(c_dir: Path) -> None:

@@ -1,0 +1,129 @@
+"""Processor in the loop for MPSP re-planning (docs/flight-integration-mpsp.md): `ogk mc SCENARIO
+--target m7` solves every run's problem with the scenario's flight program
+(port/cortex-m7/pil/mpsp_pil.c over mpsp_flight.c: ogk_mpsp_init, ogk_mpsp_solve,
+ogk_mpsp_thrust_cmd) on QEMU's Cortex-M7, the host drawing the problems and judging the results.
+
+On a mission no other file names, made from a copy of scenarios/apophis_cubesat.toml as a user
+would (smaller dispersions: kappa in [-1, 1], eta in [3, 6] %, the paper's target cube; no
+published results), a 3-run dispersed campaign (one initial-state, one target, one thrust
+perturbation):
+- every run converges within the scenario's tolerances on the target, and the target agrees with
+  the host campaign on the same draws within the family's bounds (pil.BOUNDS): the same Newton
+  iteration counts, continuation steps and thrust arcs; the terminal errors and final mass to the
+  ulps of newlib's libm;
+- every entry point carries its instruction counts and stack per run (one init and one solve per
+  run), the envelope names the worst call, and the measured stack is within gcc's static worst
+  case per entry point (make arm-stack) plus libm's frames;
+- `ogk replay` flies a run of the target campaign again on the target, bit for bit.
+About 25 s on one core (QEMU: 2 sessions at once).
+"""
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+OGK = Path(sys.executable).parent / "ogk"
+SEED = "20261203"
+ENTRIES = ("ogk_mpsp_init", "ogk_mpsp_solve", "ogk_mpsp_thrust_cmd")
+#: newlib's libm functions (sin, cos, sqrt, ...) are outside gcc's call graph (stack_report.py
+#: counts them as 0): their frames on top of the static worst case
+LIBM_SLACK_B = 256
+
+
+def ogk(*args: str, timeout: float = 600.0) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([str(OGK), *args], capture_output=True, text=True, timeout=timeout,
+                          cwd=ROOT)
+
+
+def small_dispersions(directory: Path) -> Path:
+    text = (ROOT / "scenarios" / "apophis_cubesat.toml").read_text()
+    text = text.split("# ---------------------------------------------------------------- published")[0]
+    for key, value in {"name": '"pil_mpsp_small"', "kappa": "[-1.0, 1.0]",
+                       "eta_percent": "[3.0, 6.0]"}.items():
+        text, n = re.subn(rf"^{key} = .*$", f"{key} = {value}", text, flags=re.M)
+        assert n == 1, key
+    path = directory / "pil_mpsp_small.toml"
+    path.write_text(text)
+    return path
+
+
+@pytest.fixture(scope="module")
+def campaign(tmp_path_factory: pytest.TempPathFactory) -> dict:
+    d = tmp_path_factory.mktemp("pil_mpsp")
+    scenario = small_dispersions(d)
+    out = ogk("mc", str(scenario), "--target", "m7", "--runs", "3", "--seed", SEED,
+              "--json", str(d / "m7.json"))
+    assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
+    host = ogk("mc", str(scenario), "--runs", "3", "--seed", SEED, "--json", str(d / "host.json"))
+    assert host.returncode == 0, host.stdout[-2000:] + host.stderr[-2000:]
+    import pyarrow.parquet as pq
+    return {"dir": d, "stdout": out.stdout, "doc": json.loads((d / "m7.json").read_text()),
+            "records": pq.read_table(d / "m7.parquet").to_pylist(),
+            "host": pq.read_table(d / "host.parquet").to_pylist()}
+
+
+def test_target_campaign_passes_and_agrees_with_the_host(campaign: dict) -> None:
+    from ogk.missions.low_thrust_transfer.pil import BOUNDS
+    doc = campaign["doc"]
+    assert doc["target"] == "m7" and doc["failures"] == 0 and doc["runs"] == 3
+    assert doc["options"]["target"] == "m7" and "flight_program" in doc["products"]
+    hv = doc["pil"]["host_vs_target"]
+    assert hv["runs_compared"] == 3 and hv["within_bounds"] and not hv["failures_differ"]
+    assert set(hv["quantities"]) == set(BOUNDS)
+    host = {r["run_id"]: r for r in campaign["host"]}
+    for r in campaign["records"]:
+        h = host[r["run_id"]]
+        assert r["converged"] and r["failure"] == ""
+        # the host campaign flown on its own: the same problem (draws), the same iterations
+        assert (r["kind"], r["kappa"], r["eta_percent"], r["delta_rf_lu"]) == \
+            (h["kind"], h["kappa"], h["eta_percent"], h["delta_rf_lu"])
+        assert r["newton_iterations"] == h["newton_iterations"] > 0
+        for key, bound in BOUNDS.items():
+            assert abs(r[key] - h[key]) <= bound, (r["run_id"], key, r[key], h[key])
+    # the records carry the host's keys, plus the pil.* ones
+    assert {k for k in campaign["records"][0] if not k.startswith("pil.")} == set(campaign["host"][0])
+    assert sorted(r["kind"] for r in campaign["records"]) == ["initial", "terminal", "thrust"]
+
+
+def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
+    for r in campaign["records"]:
+        for e in ENTRIES:
+            assert r[f"pil.{e}.calls"] == 1, e          # one init and one re-plan per run
+            assert r[f"pil.{e}.insn_max"] >= r[f"pil.{e}.insn_median"] > 0, e
+            assert 0 < r[f"pil.{e}.stack_bytes"] < 12288, e
+            assert not r.get(f"pil.{e}.stack_window_exceeded"), e
+        assert r["pil.ogk_mpsp_init.insn_max_step"] == 0       # step 0: MPSP_INIT
+        assert r["pil.ogk_mpsp_solve.insn_max_step"] == 1      # step 1: MPSP_REPLAN
+        # a solve is at least its Newton iterations' propagations (2048 RK4 steps each)
+        assert r["pil.ogk_mpsp_solve.insn_max"] > 1e6 * r["newton_iterations"]
+    worst = campaign["doc"]["pil"]["entry_points"]
+    runs = {r["run_id"]: r for r in campaign["records"]}
+    for e in ENTRIES:
+        w = worst[e]["insn_max"]
+        assert w["value"] == max(r[f"pil.{e}.insn_max"] for r in campaign["records"])
+        assert runs[w["run_id"]][f"pil.{e}.insn_max"] == w["value"]
+    assert "On the target (m7)" in campaign["stdout"] and "Host vs target" in campaign["stdout"]
+
+
+def test_stack_is_within_the_static_worst_case(campaign: dict) -> None:
+    out = subprocess.run(["make", "-s", "arm-stack"], cwd=ROOT, capture_output=True, text=True,
+                         timeout=600)
+    assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
+    static = {m.group(1): int(m.group(3)) for m in
+              re.finditer(r"^(ogk_\w+)\s+(\d+)\s+(\d+)", out.stdout, flags=re.M)}
+    worst = campaign["doc"]["pil"]["entry_points"]
+    for e in ENTRIES:
+        measured = worst[e]["stack_bytes"]["value"]
+        assert 0 < measured <= static[e] + LIBM_SLACK_B, (e, measured, static[e])
+
+
+def test_replay_flies_the_run_again_on_the_target(campaign: dict) -> None:
+    out = ogk("replay", str(campaign["dir"] / "m7.json"), "1")
+    assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
+    assert "bit-exact" in out.stdout
