@@ -29,7 +29,7 @@
 #define BLT_MS OGK_BLT_MAX_SEGMENTS
 #define BLT_MF OGK_BLT_MAX_FREE_NODES
 /* values of a flattened ogk_blt_config_t, ogk_blt_transfer_t, ogk_blt_report_t */
-#define BLT_CFG_N (17u + 1u + 2u * BLT_MS + 1u + BLT_MF + OGK_BLT_MAX_ARCS + 4u + 2u + 1u + 1u + 2u + 3u + 1u + 2u + 1u)
+#define BLT_CFG_N (16u + 1u + 2u * BLT_MS + 1u + BLT_MF + OGK_BLT_MAX_ARCS + 4u + 2u + 1u + 1u + 2u + 3u + 1u + 2u + 1u)
 #define BLT_TR_N (2u + 2u * OGK_BLT_NX + BLT_MS * OGK_BLT_NP + BLT_MF * OGK_BLT_NX)
 #define BLT_REP_N (7u + OGK_BLT_MAX_ERRORS + 3u + 2u)
 #define BLT_MAX_IN (1u + BLT_CFG_N + BLT_TR_N)

@@ -99,7 +99,8 @@ def flatten(cdata_ptr: Any) -> list[float]:
 
 
 def unflatten(ctype: str, values: NDArray[np.float64]) -> Any:
-    """A new `ctype *` filled from values (the walk of flatten)."""
+    """A new `ctype[1]` filled from values (the walk of flatten); it owns the memory: keep it alive
+    while its element is read."""
     box = ffi.new(f"{ctype}[1]")
     it = iter(values.tolist())
     _fill(ffi.typeof(ctype), box, 0, it)
@@ -139,9 +140,10 @@ class TargetCorrector:
         self.last_action = ACTIONS.get(int(r[1]), str(r[1]))
         if status_name(status) not in ("OGK_OK", "OGK_E_NOT_CONVERGED", "OGK_E_ITER_LIMIT"):
             _check(status, "ogk_blt_solve")            # bad input: KernelError, as the host's Blt
-        rep = _report(status, unflatten("ogk_blt_report_t", r[2:2 + REPORT_N])[0])
-        sol = unflatten("ogk_blt_transfer_t", r[2 + REPORT_N:])[0]
-        return Transfer.from_c(sol, self.n_segments, self.n_nodes), rep
+        rep_box = unflatten("ogk_blt_report_t", r[2:2 + REPORT_N])    # (the boxes own the memory:
+        sol_box = unflatten("ogk_blt_transfer_t", r[2 + REPORT_N:])   # keep them while reading)
+        rep = _report(status, rep_box[0])
+        return Transfer.from_c(sol_box[0], self.n_segments, self.n_nodes), rep
 
 
 def configure(session: PilSession, slot: int, cfg: BltConfig | None = None) -> None:
