@@ -127,3 +127,51 @@ def test_replay_flies_the_run_again_on_the_target(campaign: dict) -> None:
     out = ogk("replay", str(campaign["dir"] / "m7.json"), "1")
     assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
     assert "bit-exact" in out.stdout
+
+
+def test_flight_software_reacts_to_every_status_on_the_target(campaign: dict) -> None:
+    """mpsp_flight.c's reactions, on the target: a bad request is refused and the plan held kept
+    (HOLD: the nominal before the first re-plan, the last plan after it), a command outside
+    [t0, tf] is the kernel's safe command (SAFE, engine off), a good request flies (FLY) with the
+    host's iterations and weights. (NOT_INIT and CONFIG need a corrupted context or configuration,
+    which the link cannot make: they are the kernel tests'.)"""
+    import numpy as np
+
+    from ogk.missions.low_thrust_transfer import pil
+    from ogk.missions.low_thrust_transfer.cases import build_setup, thrust_case
+    from ogk.sil.pil import PilSession
+    fly, safe, hold = 0.0, 1.0, 2.0
+    ok, nonfinite, out_of_range = 0.0, 2.0, 4.0
+    scenario = campaign["dir"] / "pil_mpsp_small.toml"
+    setup = build_setup(scenario_path=scenario)
+    case = thrust_case(setup, 3.0)
+    host = setup.guidance.solve(case.x0, case.thrust_scale, case.target)
+    session = PilSession(pil.flight_program(setup, scenario))
+    try:
+        init = session.exchange(pil.MPSP_INIT, [])
+        assert init[0] == fly and init[1] == setup.guidance.n_weights
+        tf = float(init[3])
+        bad_mass = pil.request(case)
+        bad_mass[6] = -1.0                                   # m0 <= 0
+        r = session.exchange(pil.MPSP_REPLAN, bad_mass)
+        assert (r[0], r[1]) == (hold, out_of_range)
+        assert r[23] == fly            # no re-plan yet: the nominal the init propagated flies
+        good = session.exchange(pil.MPSP_REPLAN, pil.request(case))
+        assert (good[0], good[1], good[23]) == (fly, ok, fly) and good[24] in (0.0, 1.0)
+        assert int(good[3]) == host.newton_iterations
+        np.testing.assert_allclose(good[pil.REPLY_HEAD:pil.REPLY_HEAD + int(good[29])],
+                                   host.weights, rtol=0, atol=1e-9)
+        nan_fix = pil.request(case)
+        nan_fix[0] = float("nan")
+        r = session.exchange(pil.MPSP_REPLAN, nan_fix)
+        assert (r[0], r[1]) == (hold, nonfinite)
+        assert np.array_equal(r[2:23], good[2:23]) and r[23] == fly   # the previous plan flies
+        late = session.exchange(pil.MPSP_REPLAN, pil.request(case, t_cmd=tf + 1.0))
+        assert late[0] == fly and late[23] == safe and late[24] == 0.0   # t outside [t0, tf]
+        assert int(late[28]) & 0x02                                     # OGK_THRUST_FLAG_SAFE
+        session.end_run(0)
+        keys = session.close()[0]
+    except BaseException:
+        session.kill()
+        raise
+    assert keys["pil.ogk_mpsp_solve.calls"] == 4 and keys["pil.ogk_mpsp_thrust_cmd.calls"] == 4

@@ -14,11 +14,11 @@ extern ogk_pil_stack_t ogk_pil_probe;   /* the PIL program's probe (mpsp_pil.c) 
 #define CALL(slot, st, call) ((st) = (call))
 #endif
 
-/* ogk_mpsp_init on the const configuration; the plan and command cleared (engine off). */
+/* ogk_mpsp_init on the const configuration; the plan result and the command cleared (engine off
+ * until the next command: the nominal trajectory is held when the init propagated it). */
 static ogk_mpsp_flight_action init_context(ogk_mpsp_flight_t *f)
 {
     ogk_status st = OGK_OK;
-    f->plan_held = 0u;
     (void)memset(&f->plan, 0, sizeof f->plan);
     (void)ogk_thrust_cmd_safe(0.0, OGK_FRAME_INERTIAL, 0u, &f->cmd);
     CALL(OGK_MPSP_FLIGHT_INIT, st, ogk_mpsp_init(&f->mpsp, &ogk_flight_mpsp_config));
@@ -59,16 +59,14 @@ ogk_mpsp_flight_action ogk_mpsp_flight_replan(ogk_mpsp_flight_t *f, const double
     }
     switch (st) {
     case OGK_OK:
-        f->plan_held = 1u;           /* converged: the trajectory held is the plan's */
-        a = OGK_MPSP_FLY;
+        a = OGK_MPSP_FLY;            /* converged: the trajectory held is the plan's */
         break;
     case OGK_E_NOT_CONVERGED:
-        f->plan_held = 1u;           /* the safe plan (largest tau solved, else the nominal) */
-        a = OGK_MPSP_SAFE;
+        a = OGK_MPSP_SAFE;           /* the safe plan (largest tau solved, else the nominal) */
         break;
     case OGK_E_NOT_INIT:
-        /* the context was corrupted: back to the const configuration, no plan until the next
-         * request (the previous trajectory is gone with the context) */
+        /* the context was corrupted: back to the const configuration (the nominal held again
+         * when the init propagates it); the previous plan is gone with the context */
         a = init_context(f);
         if (a == OGK_MPSP_FLY) {
             a = OGK_MPSP_REINIT;
@@ -90,7 +88,7 @@ ogk_mpsp_flight_action ogk_mpsp_flight_command(ogk_mpsp_flight_t *f, double t)
     if (f == NULL) {
         return OGK_MPSP_ABORT;
     }
-    /* without a plan held the kernel answers NOT_INIT with its safe command (engine off) */
+    /* without a trajectory held the kernel answers NOT_INIT with its safe command (engine off) */
     CALL(OGK_MPSP_FLIGHT_CMD, st, ogk_mpsp_thrust_cmd(&f->mpsp, t, &f->cmd));
     f->status[OGK_MPSP_FLIGHT_CMD] = st;
     if (st != OGK_OK) {

@@ -50,18 +50,21 @@ typedef struct {
     ogk_mpsp_t mpsp;              /* the kernel context (187 KiB with the default limits) */
     ogk_mpsp_result_t plan;       /* the last re-plan: weights, lambda_m0 = the command's data */
     ogk_thrust_cmd_t cmd;         /* the last command (OGK_FRAME_INERTIAL) */
-    uint8_t plan_held;            /* [-] 1: a plan (converged or safe) is held in mpsp */
     uint32_t n_replans;           /* [-] ogk_mpsp_flight_replan calls */
     uint32_t n_nonok[OGK_MPSP_FLIGHT_N_ENTRIES]; /* [-] non-OK statuses per entry point */
     ogk_status status[OGK_MPSP_FLIGHT_N_ENTRIES]; /* [-] last status per entry point */
 } ogk_mpsp_flight_t;
 
-/* ogk_mpsp_init on the generated configuration. FLY, or ABORT (configuration rejected). */
+/* ogk_mpsp_init on the generated configuration. FLY, or ABORT (configuration rejected). With the
+ * generated configuration (n_seg_nom = 0) the init propagates the nominal, so the command flies
+ * the nominal plan until the first re-plan; with n_seg_nom set, no trajectory is held and the
+ * command is the safe one (engine off) until then. */
 ogk_mpsp_flight_action ogk_mpsp_flight_init(ogk_mpsp_flight_t *f);
 
 /* ogk_mpsp_solve for the perturbed conditions (mpsp_flight.h's doc): FLY (converged), SAFE (not
- * converged: f->plan holds the safe command), HOLD (input rejected: f->plan unchanged), REINIT
- * (context lost; re-initialised, no plan held), ABORT (re-initialisation failed). */
+ * converged: f->plan holds the safe command), HOLD (input rejected: f->plan and the trajectory
+ * held unchanged), REINIT (context lost; re-initialised: the nominal held again, as after
+ * ogk_mpsp_flight_init), ABORT (re-initialisation failed). */
 ogk_mpsp_flight_action ogk_mpsp_flight_replan(ogk_mpsp_flight_t *f, const double *x0,
                                               double thrust_scale, const double *target_rv);
 

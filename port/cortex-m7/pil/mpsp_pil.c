@@ -78,8 +78,6 @@ static unsigned replan(const double *v)
 static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *reply_type,
                   uint8_t *out, uint16_t *reply_length)
 {
-    double v[MPSP_REPLAN_IN];
-    unsigned n;
     if (type == MPSP_INIT && length == 0u) {
         const ogk_mpsp_flight_action a = ogk_mpsp_flight_init(&g_flight);
         ogk_pil_tick_mark();
@@ -93,6 +91,8 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
         return 0;
     }
     if (type == MPSP_REPLAN && length == 8u * MPSP_REPLAN_IN) {
+        double v[MPSP_REPLAN_IN];
+        unsigned n;
         ogk_pil_get_f64s(in, v, MPSP_REPLAN_IN);
         n = replan(v);
         ogk_pil_tick_mark();
