@@ -160,6 +160,7 @@ class BinaryFamily:
         program = pil.flight_program(nominal, scenario, base.transfer)
         plan.fly = pil.TargetJob(nominal, base.correctors, levels, sigma, program)
         plan.target = str(options["target"])
+        plan.options = {**plan.options, "target": plan.target}
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = {k: v for k, v in pil.BOUNDS.items()
                               if k.split(".")[0] in base.correctors}
