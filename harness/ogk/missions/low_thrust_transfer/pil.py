@@ -5,12 +5,13 @@ problem, builds the record and judges it exactly as the host campaign does (fami
 
 One exchange per kernel step: MPSP_INIT (ogk_mpsp_init) at the start of every run, then one
 MPSP_REPLAN (one ogk_mpsp_solve, the whole two-loop MPSP of the run's case, and one
-ogk_mpsp_thrust_cmd at t0 of the plan). One QEMU per chunk of runs; a batch of sessions computes
-at once (each flies its runs one after the other).
+ogk_mpsp_thrust_cmd at t0 of the plan). Two QEMUs per worker compute at once, each taking the
+chunk's next run when it is free.
 """
 from __future__ import annotations
 
 import dataclasses
+import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -101,11 +102,13 @@ def result_of(reply: NDArray[np.float64]) -> Any:
 
 @dataclasses.dataclass(frozen=True)
 class TargetJob:
-    """The chunk flight of `ogk mc --target m7`: the chunk's runs `batch` at a time, one QEMU each
-    (each flying its runs one after the other), the cases and records those of the host's fly_one.
+    """The chunk flight of `ogk mc --target m7`: `batch` QEMUs per worker, each taking the chunk's
+    next run when it is free (a solve takes 4 to 91 Newton iterations: no lock-step), the cases and
+    records those of the host's fly_one.
 
     `case_of(run_id, run_seed)` is the host's case; `record_of(case, result, cpu_s)` the host's
-    record of it (family.py), so the keys and the judging are the host's."""
+    record of it (family.py), so the keys and the judging are the host's. Both run in the calling
+    thread; the threads only wait on their QEMU's link."""
 
     case_of: Callable[[int, int], Any]
     record_of: Callable[[Any, Any, float], dict[str, Any]]
@@ -113,36 +116,48 @@ class TargetJob:
     t0: float = 0.0
     batch: int = 2
 
+    def _fly_run(self, s: PilSession, run_id: int, case: Any) -> tuple[NDArray[np.float64], float]:
+        """One run on session s: MPSP_INIT, MPSP_REPLAN, RUN_END; the reply and the host's wait for
+        it (timing.cpu_s of a target run: QEMU time, not flight CPU time)."""
+        init = s.exchange(MPSP_INIT, [])
+        if init[0] != 0.0:
+            raise TargetLinkError(f"the flight program's init answered action {init[0]:g} "
+                                  "(ogk_mpsp_flight_action)")
+        start = time.perf_counter()
+        reply = s.exchange(MPSP_REPLAN, request(case, self.t0))
+        wait = time.perf_counter() - start
+        s.end_run(run_id)
+        return reply, wait
+
     def __call__(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64]
                  ) -> list[dict[str, Any]]:
-        n = min(self.batch, int(run_ids.size))
+        from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
+
+        ids = [int(i) for i in run_ids]
+        cases = [self.case_of(rid, int(seed)) for rid, seed in zip(ids, run_seeds)]
+        n = min(self.batch, len(ids))
         sessions = [PilSession(self.program) for _ in range(n)]
-        records: list[dict[str, Any]] = []
+        flown: list[tuple[NDArray[np.float64], float] | None] = [None] * len(ids)
+        queue = iter(range(len(ids)))
+        lock = threading.Lock()
+
+        def fly(s: PilSession) -> None:
+            while True:
+                with lock:
+                    k = next(queue, None)
+                if k is None:
+                    return
+                flown[k] = self._fly_run(s, ids[k], cases[k])
+
         try:
-            for g in range(0, int(run_ids.size), n):
-                ids = [int(i) for i in run_ids[g:g + n]]
-                seeds = [int(s) for s in run_seeds[g:g + n]]
-                cases = [self.case_of(rid, seed) for rid, seed in zip(ids, seeds)]
-                live = sessions[:len(ids)]
-                for s in live:
-                    s.send(MPSP_INIT, [])
-                for s in live:
-                    init = s.receive(MPSP_INIT)
-                    if init[0] != 0.0:
-                        raise TargetLinkError(f"the flight program's init answered action "
-                                              f"{init[0]:g} (ogk_mpsp_flight_action)")
-                start = time.perf_counter()
-                for s, case in zip(live, cases):
-                    s.send(MPSP_REPLAN, request(case, self.t0))
-                replies, waits = [], []
-                for s in live:      # timing.cpu_s: the host's wait for the reply (QEMU time)
-                    replies.append(s.receive(MPSP_REPLAN))
-                    waits.append(time.perf_counter() - start)
-                for s, rid, case, reply, wait in zip(live, ids, cases, replies, waits):
-                    s.end_run(rid)
-                    rec = self.record_of(case, result_of(reply), wait)
-                    rec["run_id"] = rid
-                    records.append(rec)
+            with ThreadPoolExecutor(max_workers=n, thread_name_prefix="ogk-pil-mpsp") as pool:
+                futures = [pool.submit(fly, s) for s in sessions]
+                done, _ = wait(futures, return_when=FIRST_EXCEPTION)
+                if any(f.exception() is not None for f in done):
+                    for s in sessions:      # the other threads' links fail at once
+                        s.kill()
+                for f in futures:
+                    f.result()
             keys: dict[int, dict[str, Any]] = {}
             for s in sessions:
                 keys.update(s.close())
@@ -150,6 +165,10 @@ class TargetJob:
             for s in sessions:
                 s.kill()
             raise
-        for rec in records:
-            rec.update(keys[int(rec["run_id"])])
+        records: list[dict[str, Any]] = []
+        for rid, case, item in zip(ids, cases, flown):
+            assert item is not None
+            rec = self.record_of(case, result_of(item[0]), item[1])
+            rec.update(keys[rid])
+            records.append(rec)
         return records
