@@ -167,6 +167,7 @@ class RendezvousFamily:
         plan.fly = pil.TargetJob(scenario, settings, strategy, perturbed,
                                  None if max_replans is None else int(max_replans), program)
         plan.target = target
+        plan.options = {**plan.options, "target": target}
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = dict(pil.BOUNDS)
         plan.target_why = pil.BOUNDS_WHY
