@@ -50,6 +50,9 @@ def add_blt_arguments(p: argparse.ArgumentParser) -> None:
                    help="variational equations or central differences (eq. 62); default: the scenario's")
     p.add_argument("--thrust-n", type=float, default=None, metavar="F",
                    help="fly the transfer at this thrust [N] instead of its thrust_n (a thrust sweep)")
+    p.add_argument("--target", choices=("host", "m7"), default="host",
+                   help="m7: every corrector solve of the design made by the scenario's flight program "
+                        "on the emulated Cortex-M7 (docs/flight-integration-blt.md); default host")
 
 
 def blt_document(scenario: BinaryScenario, name: str, corrector: str | None, jacobian: str | None,
@@ -126,12 +129,44 @@ def blt(header: ScenarioHeader, args: argparse.Namespace) -> int:
     jacobian = None if args.jacobian == "scenario" else args.jacobian
     if args.thrust_n is not None and not args.thrust_n > 0.0:
         raise OgkInputError("must be > 0", key="--thrust-n")
-    doc = blt_document(scenario, args.transfer, corrector, jacobian, args.thrust_n)
+    if getattr(args, "target", "host") == "m7":
+        doc = _blt_on_target(header, scenario, args.transfer, corrector, jacobian, args.thrust_n)
+    else:
+        doc = blt_document(scenario, args.transfer, corrector, jacobian, args.thrust_n)
     if plots is not None:
         doc["plots"] = [str(p) for p in _transfer_plots(scenario, doc, plots)]
     write_atomic(out, json.dumps(finite_or_none(doc), indent=1, allow_nan=False))
     print("\n".join(report_lines(doc)))
+    if "target_solves" in doc:
+        pil = doc["pil"]
+        print(f"  on the target (m7): {len(doc['target_solves'])} solve(s), iterations "
+              + ", ".join(str(s["iterations"]) for s in doc["target_solves"])
+              + f"; ogk_blt_solve max {pil.get('pil.ogk_blt_solve.insn_max')} instructions, "
+              f"stack {pil.get('pil.ogk_blt_solve.stack_bytes')} B")
     return 0 if doc["converged"] and doc["dop853_meets_tol"] else 1
+
+
+def _blt_on_target(header: ScenarioHeader, scenario: BinaryScenario, name: str, corrector: str | None,
+                   jacobian: str | None, thrust_n: float | None) -> dict[str, Any]:
+    """blt_document with every corrector solve made by the scenario's flight program (pil.py): the
+    document's keys plus target, flight_program (SHA-256), target_solves and the pil.* keys."""
+    from ogk.sil.pil import PilSession
+    from ogk.sil.pil_build import file_sha256
+
+    from .pil import corrections_on_target
+    from .pil_transfers import scenario_program
+    program = scenario_program(header)
+    session = PilSession(program)
+    try:
+        with corrections_on_target(session) as log:
+            doc = blt_document(scenario, name, corrector, jacobian, thrust_n)
+        session.end_run(0)
+        keys = session.close()[0]
+    except BaseException:
+        session.kill()
+        raise
+    doc.update(target="m7", flight_program=file_sha256(program.elf), target_solves=log, pil=keys)
+    return doc
 
 
 def _transfer_plots(scenario: BinaryScenario, doc: dict[str, Any], out_dir: Path) -> list[Path]:

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 from ogk_bindings.blt import BltReport, Transfer
 
-from ogk.sil.pil import PilSession
+from ogk.sil.pil import FlightProgram, PilSession
 
 from .family import FAMILY
 from .pil import corrections_on_target
@@ -40,21 +40,26 @@ def _host_solves() -> tuple[Any, list[dict[str, Any]]]:
     return _Logged, log
 
 
+def scenario_program(header: Any) -> FlightProgram:
+    """The scenario's flight program (the one its `ogk mc --target m7` flies: built for the corrector
+    configurations of its [monte_carlo] nominal; the design's solves uplink their own)."""
+    plan = FAMILY.plan(header, {"target": "m7"})
+    return plan.fly.program                                     # type: ignore[attr-defined,no-any-return]
+
+
 def transfers_on_target(scenario_path: Path, names: list[str] | None = None) -> dict[str, Any]:
     """Each transfer designed on the host, then with its corrector calls on the target: per transfer
     the solves (iterations, status, |e|) side by side, instructions and stack of the target's."""
     from ogk_host.binary import design
     from ogk_host.binary import transfers as T
     from ogk_host.binary.scenario import load_scenario
-
     from ogk_host.scenario_file import read_header
 
     header = read_header(scenario_path)
     scenario = load_scenario(header.path)
     solver = T.solver_settings(scenario)
     names = names or list(scenario.transfers)
-    plan = FAMILY.plan(header, {"target": "m7", "runs": 1})  # the scenario's program
-    program = plan.fly.program                                  # type: ignore[attr-defined]
+    program = scenario_program(header)
     out: dict[str, Any] = {"scenario": scenario.name, "flight_program": str(program.elf),
                            "transfers": []}
     session = PilSession(program)
