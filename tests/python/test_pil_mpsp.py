@@ -15,7 +15,7 @@ perturbation):
   run), the envelope names the worst call, and the measured stack is within gcc's static worst
   case per entry point (make arm-stack) plus libm's frames;
 - `ogk replay` flies a run of the target campaign again on the target, bit for bit.
-About 25 s on one core (QEMU: 2 sessions at once).
+About 20 s on a quiet machine, 33 s with load average 4 on 2 cores (QEMU: 2 sessions at once).
 """
 from __future__ import annotations
 
@@ -131,9 +131,10 @@ def test_replay_flies_the_run_again_on_the_target(campaign: dict) -> None:
 
 def test_flight_software_reacts_to_every_status_on_the_target(campaign: dict) -> None:
     """mpsp_flight.c's reactions, on the target: a bad request is refused and the plan held kept
-    (HOLD: the nominal before the first re-plan, the last plan after it), a command outside
-    [t0, tf] is the kernel's safe command (SAFE, engine off), a good request flies (FLY) with the
-    host's iterations and weights. (NOT_INIT and CONFIG need a corrupted context or configuration,
+    (HOLD: the nominal before the first re-plan, the last plan after it), a request MPSP cannot
+    solve flies the kernel's safe plan (SAFE, the host's iterations and weights), a command
+    outside [t0, tf] is the kernel's safe command (SAFE, engine off), a good request flies (FLY)
+    with the host's iterations and weights. (NOT_INIT and CONFIG need a corrupted context or configuration,
     which the link cannot make: they are the kernel tests'.)"""
     import numpy as np
 
@@ -141,7 +142,7 @@ def test_flight_software_reacts_to_every_status_on_the_target(campaign: dict) ->
     from ogk.missions.low_thrust_transfer.cases import build_setup, thrust_case
     from ogk.sil.pil import PilSession
     fly, safe, hold = 0.0, 1.0, 2.0
-    ok, nonfinite, out_of_range = 0.0, 2.0, 4.0
+    ok, nonfinite, out_of_range, not_converged = 0.0, 2.0, 4.0, 20.0
     scenario = campaign["dir"] / "pil_mpsp_small.toml"
     setup = build_setup(scenario_path=scenario)
     case = thrust_case(setup, 3.0)
@@ -166,6 +167,18 @@ def test_flight_software_reacts_to_every_status_on_the_target(campaign: dict) ->
         r = session.exchange(pil.MPSP_REPLAN, nan_fix)
         assert (r[0], r[1]) == (hold, nonfinite)
         assert np.array_equal(r[2:23], good[2:23]) and r[23] == fly   # the previous plan flies
+        # T_max tripled: MPSP does not converge (6 iterations, 18 continuation loops); the safe
+        # plan (the weights of the largest continuation parameter solved) is the host's and flies
+        weak = thrust_case(setup, 200.0)
+        host_weak = setup.guidance.solve(weak.x0, weak.thrust_scale, weak.target)
+        assert not host_weak.converged
+        r = session.exchange(pil.MPSP_REPLAN, pil.request(weak))
+        assert (r[0], r[1], r[2]) == (safe, not_converged, 0.0)
+        assert int(r[3]) == host_weak.newton_iterations and int(r[5]) == host_weak.outer_steps
+        assert r[7] == pytest.approx(host_weak.tau_reached, abs=1e-12)
+        np.testing.assert_allclose(r[pil.REPLY_HEAD:pil.REPLY_HEAD + int(r[29])],
+                                   host_weak.weights, rtol=0, atol=1e-9)
+        assert r[23] == fly
         late = session.exchange(pil.MPSP_REPLAN, pil.request(case, t_cmd=tf + 1.0))
         assert late[0] == fly and late[23] == safe and late[24] == 0.0   # t outside [t0, tf]
         assert int(late[28]) & 0x02                                     # OGK_THRUST_FLAG_SAFE
@@ -174,4 +187,4 @@ def test_flight_software_reacts_to_every_status_on_the_target(campaign: dict) ->
     except BaseException:
         session.kill()
         raise
-    assert keys["pil.ogk_mpsp_solve.calls"] == 4 and keys["pil.ogk_mpsp_thrust_cmd.calls"] == 4
+    assert keys["pil.ogk_mpsp_solve.calls"] == 5 and keys["pil.ogk_mpsp_thrust_cmd.calls"] == 5

@@ -176,7 +176,7 @@ class LowThrustFamily:
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = dict(pil.BOUNDS)
         plan.target_why = pil.BOUNDS_WHY
-        plan.watchdog_per_run_s = 900.0
+        plan.watchdog_per_run_s = pil.SOLVE_TIMEOUT_S
 
     def _paper(self, setup: MpspSetup, papers: list[Case],
                records: Sequence[Record]) -> dict[str, Any] | None:

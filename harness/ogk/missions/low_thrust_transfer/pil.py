@@ -29,6 +29,10 @@ REPLY_HEAD = 30                         #: values before the weights in the MPSP
 #: the entry points the flight software calls, in the program's stack-slot order (mpsp_flight.h)
 ENTRY_POINTS = ("ogk_mpsp_init", "ogk_mpsp_solve", "ogk_mpsp_thrust_cmd")
 STATUS_OK, STATUS_NOT_CONVERGED = 0, 20  #: ogk/status.h
+#: The longest one solve may take on QEMU [s]: the configuration bounds a solve to max_newton (100)
+#: iterations in each of up to 1 + max_outer (60) inner loops, ~4.3e7 instructions each, a few
+#: hundred seconds on a loaded QEMU; the paper's worst case (91 iterations) takes ~10 s.
+SOLVE_TIMEOUT_S = 1800.0
 
 #: Host vs target on the same cases (docs/flight-integration-mpsp.md, "Host vs target"): the largest
 #: difference of a run's result. Measured on the 23 paper cases of apophis_cubesat (`ogk mc
@@ -61,7 +65,8 @@ def flight_program(setup: Any, scenario_path: Path) -> FlightProgram:
     def generate(c_dir: Path) -> None:
         write_flight_config(c_dir.parent, scenario_path, setup)   # writes OUT/c/...
 
-    return FlightProgram(build_program("mpsp", out, generate), ENTRY_POINTS, timeout_s=600.0)
+    return FlightProgram(build_program("mpsp", out, generate), ENTRY_POINTS,
+                         timeout_s=SOLVE_TIMEOUT_S)
 
 
 def _config_digest(cfg: Any) -> str:
