@@ -64,19 +64,22 @@ ogk_mpsp_flight_action ogk_mpsp_flight_replan(ogk_mpsp_flight_t *f, const double
     case OGK_E_NOT_CONVERGED:
         a = OGK_MPSP_SAFE;           /* the safe plan (largest tau solved, else the nominal) */
         break;
-    case OGK_E_NOT_INIT:
-        /* the context was corrupted: back to the const configuration (the nominal held again
+    case OGK_E_NULL:
+    case OGK_E_NONFINITE:
+    case OGK_E_RANGE:
+        /* a bad request (navigation fix, thrust estimate or target): the kernel rejects it
+         * before touching the context or the result, so the previous plan (f->plan and the
+         * trajectory the command reads) is still held */
+        a = OGK_MPSP_HOLD;
+        break;
+    default:
+        /* NOT_INIT: the context was corrupted (and any status ogk/mpsp.h does not list for the
+         * solve, treated the same): back to the const configuration (the nominal held again
          * when the init propagates it); the previous plan is gone with the context */
         a = init_context(f);
         if (a == OGK_MPSP_FLY) {
             a = OGK_MPSP_REINIT;
         }
-        break;
-    default:
-        /* NULL, NONFINITE, RANGE: a bad request (navigation fix, thrust estimate or target);
-         * the kernel rejects it before touching the context or the result, so the previous plan
-         * (f->plan and the trajectory the command reads) is still held */
-        a = OGK_MPSP_HOLD;
         break;
     }
     return a;
