@@ -79,7 +79,7 @@ static void min_fuel_guess(ogk_nmpc_flight_t *f)
     if (f->last[OGK_NMPC_FL_SOLVE] == OGK_OK) {
         CALL(f, OGK_NMPC_FL_GET_PLAN, ogk_nmpc_get_plan(&f->time_opt, &f->guess));
         st = f->last[OGK_NMPC_FL_GET_PLAN];
-        if (st == OGK_OK) {
+        if ((st == OGK_OK) && (f->guess.nu > 1u)) {   /* a throttle column to set */
             uint32_t k;
             for (k = 0u; (k <= f->guess.nodes) && (k <= OGK_NMPC_MAX_NODES); ++k) {
                 f->guess.u[(k * f->guess.nu) + 1u] = OGK_NMPC_FLIGHT_MIN_FUEL_THROTTLE;

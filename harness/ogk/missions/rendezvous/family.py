@@ -163,9 +163,10 @@ class RendezvousFamily:
         if plan.options["solver"] != "kernel":
             raise OgkInputError(f"--target {target} flies the kernel's ogk_nmpc, got "
                                 f"{plan.options['solver']!r}", key="--solver")
-        program = pil.flight_program(path, strategy, third)
+        program = pil.flight_program(path, scenario, strategy, third)
         plan.fly = pil.TargetJob(scenario, settings, strategy, perturbed,
-                                 None if max_replans is None else int(max_replans), program)
+                                 None if max_replans is None else int(max_replans), program,
+                                 flight_record, RESULTS)
         plan.target = target
         plan.options = {**plan.options, "target": target}
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}

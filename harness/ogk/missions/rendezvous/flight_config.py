@@ -22,18 +22,16 @@ from typing import Any
 HEADER = "ogk_nmpc_flight_config.h"
 
 
-def flight_items(scenario_path: Path, strategy: str, third_bodies: str) -> tuple[Any, Any, Any, int]:
-    """(ffi, config cdata, guesses cdata array, number of guesses) as KernelGuidance flies them."""
+def flight_items(scenario: Any, strategy: str) -> tuple[Any, Any, Any, int]:
+    """(ffi, config cdata, guesses cdata array, number of guesses) as KernelGuidance flies them, for
+    the scenario as the campaign flies it (family.with_model: its predictive model's third bodies)."""
     from ogk_host.rendezvous.dynamics import Model
-    from ogk_host.rendezvous.scenario import load_scenario
 
     from ogk_bindings._ffi import ffi
 
-    from .family import with_model
     from .guidance_base import first_guesses, strategy_settings
     from .kernel_guidance import kernel_config
 
-    scenario = with_model(load_scenario(scenario_path), third_bodies)
     settings = strategy_settings(scenario, strategy)
     cfg = kernel_config(scenario, settings)
     nu = 1 if cfg.engine == 0 else 2
@@ -54,13 +52,15 @@ def flight_items(scenario_path: Path, strategy: str, third_bodies: str) -> tuple
     return ffi, cfg.to_c(), arr, len(guesses)
 
 
-def write_flight_config(out: Path, scenario_path: Path, strategy: str, third_bodies: str) -> Path:
-    """OUT/c/ogk_nmpc_flight_config.h for the scenario flown with `strategy` and the predictive
-    model's third bodies as `third_bodies` ("scenario", "yes", "no")."""
+def write_flight_config(out: Path, scenario_path: Path, scenario: Any, strategy: str,
+                        third_bodies: str) -> Path:
+    """OUT/c/ogk_nmpc_flight_config.h for `scenario` (loaded from scenario_path, its predictive
+    model's third bodies as the campaign's `third_bodies`: "scenario", "yes", "no") flown with
+    `strategy`."""
     from ogk_host.cgen import ConfigItem, write_c_config
     from ogk_host.rendezvous.nlp import MIN_FUEL_GUESS_THROTTLE
 
-    ffi, cfg, guesses, n = flight_items(scenario_path, strategy, third_bodies)
+    ffi, cfg, guesses, n = flight_items(scenario, strategy)
     return write_c_config(
         ffi, [ConfigItem("ogk_nmpc_flight_config", cfg,
                          f"ogk_nmpc (ogk/nmpc.h), strategy {strategy}, third bodies in the model: "

@@ -15,6 +15,7 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import time
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -74,14 +75,16 @@ def program_key(scenario_path: Path, strategy: str, third_bodies: str) -> str:
     return h.hexdigest()[:16]
 
 
-def flight_program(scenario_path: Path, strategy: str, third_bodies: str) -> FlightProgram:
-    """The scenario's flight program, built for the strategy and predictive model flown."""
+def flight_program(scenario_path: Path, scenario: RendezvousScenario, strategy: str,
+                   third_bodies: str) -> FlightProgram:
+    """The scenario's flight program, built for the strategy and predictive model flown (`scenario`:
+    the file's, with the campaign's third bodies in its model)."""
     from .flight_config import write_flight_config
 
     out = PIL_BUILD / "rendezvous" / program_key(scenario_path, strategy, third_bodies)
 
     def generate(c_dir: Path) -> None:
-        write_flight_config(c_dir.parent, Path(scenario_path), strategy, third_bodies)
+        write_flight_config(c_dir.parent, Path(scenario_path), scenario, strategy, third_bodies)
 
     return FlightProgram(build_program("nmpc", out, generate), ENTRY_POINTS,
                          timeout_s=STEP_TIMEOUT_S)
@@ -203,11 +206,12 @@ class TargetJob:
     perturbed: bool
     max_replans: int | None
     program: FlightProgram
+    record: Callable[[Mapping[str, Any]], dict[str, Any]]   #: family.flight_record
+    results: tuple[str, ...]                                #: family.RESULTS
 
     def __call__(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64]
                  ) -> list[dict[str, Any]]:
         from .closed_loop import fly
-        from .family import RESULTS, flight_record
         from .kernel_guidance import KernelGuidance, kernel_config
         from ogk_host.rendezvous.dynamics import DAY_S, Model
 
@@ -220,13 +224,13 @@ class TargetJob:
                 start = time.perf_counter()
                 guidance = TargetGuidance(session, cfg, KernelGuidance(self.scenario, self.settings))
                 try:
-                    rec = flight_record(fly(self.scenario, guidance, self.perturbed, int(seed),
-                                            self.strategy, "kernel",
-                                            max_replans=self.max_replans).summary())
+                    rec = self.record(fly(self.scenario, guidance, self.perturbed, int(seed),
+                                          self.strategy, "kernel",
+                                          max_replans=self.max_replans).summary())
                 except TargetLinkError:
                     raise
                 except RuntimeError as err:   # the truth integration stopped (family.fly_one)
-                    rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(RESULTS)}
+                    rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(self.results)}
                 rec["timing.wall_s"] = time.perf_counter() - start
                 rec["pil.command_mismatch"] = guidance.command_mismatch
                 rec.update(shadow_keys(guidance, tu_days))
