@@ -17,7 +17,8 @@ Validated: the host's record keys plus pil.*, equal failed solves and the bounds
 agreeing with the host kernel given the same states (pil.shadow_*), the target's command at each
 replan time equal to the host's on the plan it sent; every entry point's instruction counts and
 stack, the solves' stack within gcc's static worst case (make arm-stack) plus libm's frames; an
-option the flight program does not fly (--solver ipopt) refused in one line.
+option the flight program does not fly (--solver ipopt) refused in one line; `ogk replay` flies a
+run of the target campaign again on the target, bit for bit.
 """
 from __future__ import annotations
 
@@ -80,7 +81,7 @@ def min_fuel(tmp_path_factory: pytest.TempPathFactory) -> dict:
     assert out.returncode == 1 and "Traceback" not in out.stderr, out.stdout[-3000:] + out.stderr[-3000:]
     host = ogk("mc", str(scenario), *common, "--json", str(d / "host.json"))
     assert host.returncode == 1 and "Traceback" not in host.stderr, host.stdout[-2000:] + host.stderr[-2000:]
-    return {"stdout": out.stdout, "doc": json.loads((d / "m7.json").read_text()),
+    return {"dir": d, "stdout": out.stdout, "doc": json.loads((d / "m7.json").read_text()),
             "records": _records(d / "m7.parquet"), "host": _records(d / "host.parquet")}
 
 
@@ -142,6 +143,12 @@ def test_min_fuel_first_replans_agree_with_the_host(min_fuel: dict) -> None:
     # minimum fuel: the flown context and the minimum-time one are initialised, both solve
     assert r["pil.ogk_nmpc_init.calls"] >= 2 and r["pil.ogk_nmpc_solve.calls"] >= 2
     assert r["pil.ogk_nmpc_replan.calls"] == REPLANS - 1
+
+
+def test_replay_flies_the_run_again_on_the_target(min_fuel: dict) -> None:
+    out = ogk("replay", str(min_fuel["dir"] / "m7.json"), "0")
+    assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
+    assert "bit-exact" in out.stdout
 
 
 #: newlib's libm functions (sin, cos, pow) are outside gcc's call graph: their frames on top
