@@ -49,7 +49,7 @@ typedef enum {
 } ogk_nmpc_action;
 
 typedef struct {
-    ogk_nmpc_t ctx;             /* the context flown (~230 KiB, static storage) */
+    ogk_nmpc_t ctx;             /* the context flown (390,784 B: keep it in static storage) */
     ogk_nmpc_t time_opt;        /* minimum fuel only: the first replan's minimum-time pre-solve */
     ogk_nmpc_plan_t guess;      /* the guess being loaded (first replan) */
     ogk_nmpc_plan_t plan;       /* the plan flown after the step (ogk_nmpc_get_plan) */
