@@ -169,6 +169,36 @@ def test_stack_is_within_the_static_worst_case(whole_flight: dict) -> None:
     assert worst["ogk_nmpc_solve"]["stack_bytes"]["value"] > 0.9 * static["ogk_nmpc_solve"]
 
 
+def test_the_flight_program_reacts_to_a_rejected_measurement(whole_flight: dict) -> None:
+    """nmpc_flight.c's reactions over the link: a non-finite measurement before any plan is HOLD
+    with NONFINITE and the safe command (engine off); the next valid one starts cold and flies; a
+    later non-finite one holds the plan flown (its command, no solve)."""
+    import numpy as np
+    from ogk_host.rendezvous.dynamics import Model
+    from ogk_host.rendezvous.scenario import load_scenario
+
+    from ogk.missions.rendezvous import pil
+    from ogk.sil.pil import PilSession
+    path = ROOT / "scenarios" / "rendezvous_nep_min_time.toml"
+    scenario = load_scenario(path)
+    x0 = Model.for_scenario(scenario).x0
+    session = PilSession(pil.flight_program(path, scenario, "snns", "scenario"))
+    try:
+        assert session.exchange(pil.NMPC_INIT, [])[0] == 0.0             # FLY
+        r = session.exchange(pil.NMPC_REPLAN, [0.0, np.nan, *x0[1:]])
+        assert pil.ACTIONS[int(r[0])] == "hold" and int(r[1]) == 2     # OGK_E_NONFINITE
+        assert r[10] == 0.0 and int(r[11]) & 0x2 and int(r[18]) != 0   # engine off, SAFE, no plan
+        r = session.exchange(pil.NMPC_REPLAN, [0.0, *x0])
+        assert pil.ACTIONS[int(r[0])] == "fly" and int(r[1]) == 0 and int(r[20]) == 1
+        t_next, throttle = r[6], r[10]
+        r = session.exchange(pil.NMPC_REPLAN, [t_next, np.inf, *x0[1:]])
+        assert pil.ACTIONS[int(r[0])] == "hold" and int(r[4]) == 0       # no solve ran
+        assert int(r[18]) == 0 and r[10] == throttle                     # the plan flown, held
+        session.end_run(0)
+    finally:
+        session.close()
+
+
 def test_the_ground_solver_is_refused_on_the_target(tmp_path: Path) -> None:
     out = ogk("mc", "rendezvous_nep_min_time", "--target", "m7", "--runs", "1", "--solver", "ipopt",
               "--json", str(tmp_path / "x.json"), timeout=120)

@@ -152,6 +152,9 @@ ogk_nmpc_action ogk_nmpc_flight_step(ogk_nmpc_flight_t *f, const ogk_nmpc_input_
     f->plan_status = f->last[OGK_NMPC_FL_GET_PLAN];
     CALL(f, OGK_NMPC_FL_COMMAND, ogk_nmpc_command(&f->ctx, f->in.t, &f->cmd));
     f->cmd_status = f->last[OGK_NMPC_FL_COMMAND];
+    if ((first != 0u) && ((action == OGK_NMPC_NO_PLAN) || (f->plan_status != OGK_OK))) {
+        f->started = 0u;   /* no first plan: the next replan starts cold again, from the guesses */
+    }
     if (action == OGK_NMPC_REINIT) {
         const ogk_status st = f->status;
         (void)ogk_nmpc_flight_init(f);   /* ABORT here leaves the context refusing every call */

@@ -42,7 +42,8 @@ typedef enum {
     OGK_NMPC_HOLD = 2,       /* the measurement was rejected (NONFINITE, RANGE before any solve):
                                 the plan held is flown unchanged; replan with the next measurement */
     OGK_NMPC_NO_PLAN = 3,    /* the first replan converged from no guess: engine off (the kernel's
-                                safe command); the ground uplinks a plan or the loop stops */
+                                safe command); the next replan starts cold again (the SIL's loop
+                                stops here: "no first plan") */
     OGK_NMPC_REINIT = 4,     /* the context was lost (NOT_INIT, NULL): re-initialised from the const
                                 configuration, engine off this step, the next replan starts cold */
     OGK_NMPC_ABORT = 5       /* the configuration is rejected: never start the loop */
