@@ -7,8 +7,9 @@
 #       builds DIR/PIL_PROGRAM.elf, its objects in DIR/obj. `ogk mc SCENARIO --target m7` calls
 #       this (harness/ogk/sil/pil_build.py); the flight build's flags are the kernel's.
 #
-# Programs (one fragment each, below): oi (VTD-NOG + energy cut-off + terminal + CPD: oi_pil.c over
-# oi_flight.c and the flightapp's ogk_flight.c).
+# Programs (one fragment each, <program>.mk.inc): oi (VTD-NOG + energy cut-off + terminal + CPD:
+# oi_pil.c over oi_flight.c and the flightapp's ogk_flight.c), mpsp (MPSP re-planning), nmpc (NMPC
+# re-solves), blt (the BLT correctors).
 
 PIL_DIR := $(ARM_PORT)/pil
 PIL_PROGRAM ?= oi
