@@ -167,6 +167,9 @@ run: all $(QP_SO)
 	  --json $(B)/pil/leo_geo_m7_100.json
 	$(VENV)/bin/ogk run apophis --paper-tables \
 	  --json $(B)/apophis/paper_tables.json --plots $(B)/apophis/plots
+	# the 23 paper cases solved on the emulated Cortex-M7, the host's iteration counts beside them
+	$(VENV)/bin/ogk mc apophis_cubesat --cases paper --target m7 --workers 2 \
+	  --json $(B)/pil/apophis_paper_m7.json
 	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy snns --solver kernel \
 	  --json $(B)/nmpc/snns_unperturbed.json --plots $(B)/nmpc/plots
 	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy cncn --solver kernel \
@@ -178,6 +181,8 @@ run: all $(QP_SO)
 	  $(VENV)/bin/ogk run moshup --transfer $$t --json $(B)/blt/$$t.json --plots $(B)/blt/plots || exit 1; done
 	$(VENV)/bin/ogk mc moshup --seed 20261202 --workers 2 --json $(B)/blt/mc_table3.json \
 	  --plots $(B)/blt/plots
+	# the scenario's transfers corrected on the emulated Cortex-M7, beside the host's
+	$(VENV)/bin/python -m ogk.missions.binary.pil_transfers moshup --json $(B)/pil/moshup_transfers_m7.json
 
 clean:
 	rm -rf $(B) $(FFI_STAMP) bindings/ogk_bindings/_ogk_cffi*
