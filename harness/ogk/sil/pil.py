@@ -6,7 +6,7 @@ QEMU's insn_count plugin and the stack of every call measured on the target (pai
   * `exchange(kind, values)` at every step (binary64 values in and out; or `send` to several
     sessions, then `receive` from each, so that their QEMUs compute at once),
   * `end_run(run_id)` after each run (the target answers with its stack per entry point),
-  * `close()` at the end of the chunk: the plugin's call log (one line `NAME COUNT` per returned
+  * `close()` at the end of the chunk (`fly_sessions` does the starting and ending for a family): the plugin's call log (one line `NAME COUNT` per returned
     call, cut into steps and runs by the program's markers) becomes, per run and entry point, the
     record keys of `entry_keys`:
       pil.<entry>.calls, .insn_median, .insn_max, .insn_max_step (the step of the maximum, from 0),
@@ -18,10 +18,10 @@ from __future__ import annotations
 import dataclasses
 import subprocess
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -176,3 +176,25 @@ class PilSession:
     def kill(self) -> None:
         self.link.kill()
         self._dir.cleanup()
+
+
+R = TypeVar("R")
+
+
+def fly_sessions(program: FlightProgram, n: int, fly: Callable[[list[PilSession]], R]
+                 ) -> tuple[R, dict[int, dict[str, Any]]]:
+    """Starts `n` sessions of `program`, calls `fly(sessions)`, ends them: (fly's result, run id ->
+    its pil.* record keys, for every run the sessions ended with `end_run`). Any error kills every
+    session's QEMU and propagates."""
+    sessions: list[PilSession] = []
+    try:
+        sessions = [PilSession(program) for _ in range(n)]
+        out = fly(sessions)
+        keys: dict[int, dict[str, Any]] = {}
+        for s in sessions:
+            keys.update(s.close())
+    except BaseException:
+        for s in sessions:
+            s.kill()
+        raise
+    return out, keys

@@ -190,16 +190,6 @@ static unsigned report_to(const ogk_blt_report_t *p, double *o, unsigned at)
 }
 
 /* ------------------------------------------------------------------ link handler */
-static int reply_error(uint8_t *out, uint16_t *reply_type, uint16_t *reply_length)
-{
-    /* an unknown frame, a wrong length or a bad slot: a link ERROR frame with code 255 */
-    out[0] = 255u;
-    out[1] = 0u;
-    *reply_type = OGK_LINK_ERROR;
-    *reply_length = 2u;
-    return 0;
-}
-
 static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *reply_type,
                   uint8_t *out, uint16_t *reply_length)
 {
@@ -208,11 +198,11 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
     uint32_t slot;
     unsigned n = (unsigned)length / 8u;
     if (length % 8u != 0u || n < 1u || n > BLT_MAX_IN) {
-        return reply_error(out, reply_type, reply_length);
+        return OGK_PIL_UNKNOWN;   /* unknown frame, wrong length or bad slot */
     }
     ogk_pil_get_f64s(in, v, n);
     if (!(v[0] >= 0.0 && v[0] < (double)OGK_BLT_FLIGHT_N_SLOTS)) {
-        return reply_error(out, reply_type, reply_length);
+        return OGK_PIL_UNKNOWN;   /* unknown frame, wrong length or bad slot */
     }
     slot = (uint32_t)v[0];
     if (type == BLT_INIT && n == 1u) {
@@ -246,7 +236,7 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
         *reply_length = (uint16_t)(8u * at);
         return 0;
     } else {
-        return reply_error(out, reply_type, reply_length);
+        return OGK_PIL_UNKNOWN;   /* unknown frame, wrong length or bad slot */
     }
     ogk_pil_put_f64s(out, r, 2u);
     *reply_type = type;

@@ -101,12 +101,7 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
         *reply_length = (uint16_t)(8u * n);
         return 0;
     }
-    /* an unknown frame or a wrong length: a link ERROR frame with code 255 */
-    out[0] = 255u;
-    out[1] = 0u;
-    *reply_type = OGK_LINK_ERROR;
-    *reply_length = 2u;
-    return 0;
+    return OGK_PIL_UNKNOWN;   /* an unknown frame or a wrong length: the loop answers ERROR 255 */
 }
 
 int main(void)

@@ -31,15 +31,6 @@ ogk_pil_stack_t ogk_pil_probe;
 static ogk_nmpc_flight_t g_flight;
 static double g_out[NMPC_MAX_OUT];
 
-static int link_error(uint16_t *reply_type, uint8_t *out, uint16_t *reply_length)
-{
-    out[0] = 255u;      /* an unknown frame or a wrong length: a link ERROR frame, code 255 */
-    out[1] = 0u;
-    *reply_type = OGK_LINK_ERROR;
-    *reply_length = 2u;
-    return 0;
-}
-
 static uint16_t replan_reply(const ogk_nmpc_flight_t *f, ogk_nmpc_action a)
 {
     const uint32_t nodes = (f->plan_status == OGK_OK) ? f->plan.nodes : 0u;
@@ -106,7 +97,7 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
         ogk_pil_get_f64s(in, v, 1u);
         if (!(v[0] >= 0.0) || !(v[0] <= (double)OGK_NMPC_MAX_NODES) ||
             g_flight.plan_status != OGK_OK) {
-            return link_error(reply_type, out, reply_length);
+            return OGK_PIL_UNKNOWN;   /* unknown frame or wrong length */
         }
         first = (uint32_t)v[0];
         rows = (g_flight.plan.nodes + 1u > first) ? (g_flight.plan.nodes + 1u - first) : 0u;
@@ -115,7 +106,7 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
                      sizeof(double) * rows * OGK_NMPC_NX);
         n = (uint16_t)(rows * OGK_NMPC_NX);
     } else {
-        return link_error(reply_type, out, reply_length);
+        return OGK_PIL_UNKNOWN;   /* unknown frame or wrong length */
     }
     ogk_pil_put_f64s(out, g_out, n);
     *reply_type = type;

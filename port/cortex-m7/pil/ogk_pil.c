@@ -129,7 +129,12 @@ int ogk_pil_serve(ogk_pil_handler handler, ogk_pil_stack_t *probe, unsigned n_sl
             continue;
         }
         rc = handler(type, in, length, &reply_type, out, &reply_length);
-        if (rc != 0) {
+        if (rc == OGK_PIL_UNKNOWN) {
+            out[0] = 255u;
+            out[1] = 0u;
+            reply_type = OGK_LINK_ERROR;
+            reply_length = 2u;
+        } else if (rc != 0) {
             return rc;
         }
         if (reply_type != 0u && ogk_link_send(reply_type, out, reply_length) != 0) {

@@ -55,9 +55,10 @@ void ogk_pil_stack_note(ogk_pil_stack_t *probe, unsigned slot, const uint32_t *l
 int ogk_pil_send_run_end(ogk_pil_stack_t *probe, unsigned n_slots);
 
 /* The frame loop: RUN_END is answered from probe (n_slots entry points); every other frame that is
- * not STOP or a link error goes to handler, which fills the
- * reply (type, payload, length) and returns 0, or returns non-zero to end the program with that
- * exit code. STOP ends it with 0, end of input with 3. Never returns otherwise. */
+ * not STOP or a link error goes to handler, which fills the reply (type, payload, length) and
+ * returns 0; returns OGK_PIL_UNKNOWN for a frame it does not know (or of a wrong length), which the
+ * loop answers with OGK_LINK_ERROR code 255; or returns a positive code to end the program with it. STOP ends it with 0, end of input with 3. Never returns otherwise. */
+#define OGK_PIL_UNKNOWN (-1)
 typedef int (*ogk_pil_handler)(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *reply_type,
                                uint8_t *out, uint16_t *reply_length);
 int ogk_pil_serve(ogk_pil_handler handler, ogk_pil_stack_t *probe, unsigned n_slots);

@@ -26,7 +26,7 @@ from ogk_bindings._ffi import ffi
 from ogk_bindings.blt import BltConfig, BltReport, Transfer, _report
 from ogk_bindings.kernel import _check, status_name
 
-from ogk.sil.pil import FlightProgram, PilSession
+from ogk.sil.pil import FlightProgram, PilSession, fly_sessions
 from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
@@ -169,11 +169,12 @@ class TargetJob:
     def __call__(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64]
                  ) -> list[dict[str, Any]]:
         from ogk.sil.seeds import run_generator
-        session = PilSession(self.program)
         n_seg = int(self.nominal.transfer.segments.shape[0])
         n_nodes = len(self.nominal.layout.free_nodes)
-        records: list[dict[str, Any]] = []
-        try:
+
+        def fly_all(sessions: list[PilSession]) -> list[dict[str, Any]]:
+            session = sessions[0]
+            records: list[dict[str, Any]] = []
             solvers = {name: TargetCorrector(session, SLOTS.index(name), n_seg, n_nodes)
                        for name in self.correctors}
             for rid, seed in zip(run_ids, run_seeds):
@@ -183,10 +184,9 @@ class TargetJob:
                 records.append(campaign.fly_run(self.nominal, solvers, level / 100.0, self.sigma,
                                                 run_generator(int(seed))))
                 session.end_run(int(rid))
-            keys = session.close()
-        except BaseException:
-            session.kill()
-            raise
+            return records
+
+        records, keys = fly_sessions(self.program, 1, fly_all)
         for rid, rec in zip(run_ids, records):
             # (timing.<corrector>.cpu_ms stays: here the host's CPU during the exchange; the
             # target's cost is pil.ogk_blt_solve.insn_*)

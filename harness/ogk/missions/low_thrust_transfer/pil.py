@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk.sil.pil import FlightProgram, PilSession
+from ogk.sil.pil import FlightProgram, PilSession, fly_sessions
 from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
@@ -141,7 +141,6 @@ class TargetJob:
         ids = [int(i) for i in run_ids]
         cases = [self.case_of(rid, int(seed)) for rid, seed in zip(ids, run_seeds)]
         n = min(self.batch, len(ids))
-        sessions = [PilSession(self.program) for _ in range(n)]
         flown: list[tuple[NDArray[np.float64], float] | None] = [None] * len(ids)
         queue = iter(range(len(ids)))
         lock = threading.Lock()
@@ -154,7 +153,7 @@ class TargetJob:
                     return
                 flown[k] = self._fly_run(s, ids[k], cases[k])
 
-        try:
+        def fly_all(sessions: list[PilSession]) -> None:
             with ThreadPoolExecutor(max_workers=n, thread_name_prefix="ogk-pil-mpsp") as pool:
                 futures = [pool.submit(fly, s) for s in sessions]
                 done, _ = wait(futures, return_when=FIRST_EXCEPTION)
@@ -163,13 +162,8 @@ class TargetJob:
                         s.kill()
                 for f in futures:
                     f.result()
-            keys: dict[int, dict[str, Any]] = {}
-            for s in sessions:
-                keys.update(s.close())
-        except BaseException:
-            for s in sessions:
-                s.kill()
-            raise
+
+        _, keys = fly_sessions(self.program, n, fly_all)
         records: list[dict[str, Any]] = []
         for rid, case, item in zip(ids, cases, flown):
             assert item is not None

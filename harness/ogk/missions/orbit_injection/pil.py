@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk.sil.pil import FlightProgram, PilSession
+from ogk.sil.pil import FlightProgram, PilSession, fly_sessions
 from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
@@ -104,9 +104,9 @@ class TargetJob:
         from .dispersions import draw_runs
 
         job = self.host_job
-        sessions = [PilSession(self.program) for _ in range(min(self.batch, run_ids.size))]
-        records: list[dict[str, Any]] = []
-        try:
+
+        def fly(sessions: list[PilSession]) -> list[dict[str, Any]]:
+            records: list[dict[str, Any]] = []
             for g in range(0, run_ids.size, len(sessions)):
                 ids, seeds = run_ids[g:g + len(sessions)], run_seeds[g:g + len(sessions)]
                 draws, gens = draw_runs(job.scenario, job.seed, ids, job.switches, seeds)
@@ -116,13 +116,9 @@ class TargetJob:
                 for s, rid in zip(sessions, ids):
                     s.end_run(int(rid))
                 records += _run_records(draws, res)
-            keys: dict[int, dict[str, Any]] = {}
-            for s in sessions:
-                keys.update(s.close())
-        except BaseException:
-            for s in sessions:
-                s.kill()
-            raise
+            return records
+
+        records, keys = fly_sessions(self.program, min(self.batch, int(run_ids.size)), fly)
         for rec in records:
             rec.update(keys[int(rec["run_id"])])
         return records

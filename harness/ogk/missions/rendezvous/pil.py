@@ -27,7 +27,7 @@ from ogk_host.rendezvous.scenario import RendezvousScenario
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import _check, status_name
 from ogk_bindings.nmpc import FLAG_SUBDIVIDED, NX, Nmpc
-from ogk.sil.pil import FlightProgram, PilSession
+from ogk.sil.pil import FlightProgram, PilSession, fly_sessions
 from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
@@ -217,9 +217,10 @@ class TargetJob:
 
         cfg = kernel_config(self.scenario, self.settings)
         tu_days = Model.for_scenario(self.scenario).units.time_s / DAY_S
-        session = PilSession(self.program)
-        records: list[dict[str, Any]] = []
-        try:
+
+        def fly_all(sessions: list[PilSession]) -> list[dict[str, Any]]:
+            session = sessions[0]
+            records: list[dict[str, Any]] = []
             for rid, seed in zip(run_ids, run_seeds):
                 start = time.perf_counter()
                 guidance = TargetGuidance(session, cfg, KernelGuidance(self.scenario, self.settings))
@@ -237,10 +238,9 @@ class TargetJob:
                 session.end_run(int(rid))
                 rec["run_id"] = int(rid)
                 records.append(rec)
-            keys = session.close()
-        except BaseException:
-            session.kill()
-            raise
+            return records
+
+        records, keys = fly_sessions(self.program, 1, fly_all)
         for rec in records:
             rec.update(keys[int(rec.pop("run_id"))])
         return records
