@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 
 from ogk.sil import pil, target_summary
+from pil_checks import assert_stack_within_static
 
 ROOT = Path(__file__).resolve().parents[2]
 OGK = Path(sys.executable).parent / "ogk"
@@ -102,23 +103,13 @@ def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     assert "On the target (m7)" in campaign["stdout"] and "Host vs target" in campaign["stdout"]
 
 
-#: newlib's libm functions the entry points call (sin, cos, atan2, ...) are outside gcc's call
-#: graph (stack_report.py counts them as 0): their frames on top of the static worst case
-LIBM_SLACK_B = 256
 
 
 def test_stack_is_within_the_static_worst_case(campaign: dict) -> None:
     """What the painted window measured on the target is at most gcc's static worst case per entry
     point (make arm-stack: own frame + deepest path through the kernel's call graph) plus libm."""
-    out = subprocess.run(["make", "-s", "arm-stack"], cwd=ROOT, capture_output=True, text=True,
-                         timeout=600)
-    assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
-    static = {m.group(1): int(m.group(3)) for m in
-              re.finditer(r"^(ogk_\w+)\s+(\d+)\s+(\d+)", out.stdout, flags=re.M)}
-    worst = campaign["doc"]["pil"]["entry_points"]
-    for e in ENTRIES:
-        measured = worst[e]["stack_bytes"]["value"]
-        assert 0 < measured <= static[e] + LIBM_SLACK_B, (e, measured, static[e])
+    static = assert_stack_within_static(campaign["doc"]["pil"]["entry_points"], ENTRIES)
+    assert static
 
 
 def test_replay_flies_the_run_again_on_the_target(campaign: dict) -> None:

@@ -1,0 +1,32 @@
+"""What the PIL tests of every family check the same way (tests/python/test_pil_*.py)."""
+from __future__ import annotations
+
+import re
+import subprocess
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+#: newlib's libm functions the entry points call (sin, cos, atan2, pow, ...) are outside gcc's call
+#: graph (stack_report.py counts them as 0): their frames on top of the static worst case [B]
+LIBM_SLACK_B = 256
+
+
+def static_worst_stack() -> dict[str, int]:
+    """gcc's static worst-case stack per kernel entry point on the Cortex-M7 (`make arm-stack`: own
+    frame plus the deepest path through the kernel's call graph) [B]."""
+    out = subprocess.run(["make", "-s", "arm-stack"], cwd=ROOT, capture_output=True, text=True,
+                         timeout=600)
+    assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
+    return {m.group(1): int(m.group(3)) for m in
+            re.finditer(r"^(ogk_\w+)\s+(\d+)\s+(\d+)", out.stdout, flags=re.M)}
+
+
+def assert_stack_within_static(entry_points: dict, entries: tuple[str, ...]) -> dict[str, int]:
+    """Each measured stack (the envelope's pil.entry_points) is positive and at most the static
+    worst case plus libm's frames. Returns the static figures."""
+    static = static_worst_stack()
+    for e in entries:
+        measured = entry_points[e]["stack_bytes"]["value"]
+        assert 0 < measured <= static[e] + LIBM_SLACK_B, (e, measured, static[e])
+    return static
