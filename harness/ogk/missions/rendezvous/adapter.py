@@ -46,6 +46,9 @@ def add_nmpc_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--max-replans", type=int, default=None, metavar="K",
                    help="stop after K replans (default: the scenario's [nmpc] max_replans)")
     p.add_argument("--trace", action="store_true", help="print one line per replan")
+    p.add_argument("--target", choices=("host", "m7"), default="host",
+                   help="host: the kernel in this process (default); m7: every replan made by the "
+                        "scenario's flight program on the emulated Cortex-M7 (docs/pil.md)")
 
 
 def _paper_prefix(strategy: str, perturbed: bool) -> str:
@@ -129,7 +132,22 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     from .guidance_base import strategy_settings
     from .guidance_factory import make_guidance
 
-    guidance = make_guidance(args.solver, scenario, strategy_settings(scenario, strategy_name))
+    settings = strategy_settings(scenario, strategy_name)
+    session = None
+    if getattr(args, "target", "host") == "m7":
+        if args.solver != "kernel":
+            raise OgkInputError(f"--target m7 flies the kernel's ogk_nmpc, got {args.solver!r}",
+                                key="--solver")
+        from ogk.sil.pil import PilSession
+
+        from . import pil
+        from .kernel_guidance import kernel_config
+        program = pil.flight_program(Path(header.path), scenario, strategy_name,
+                                     args.third_bodies_in_model)
+        session = PilSession(program)
+        guidance: Any = pil.TargetGuidance(session, kernel_config(scenario, settings))
+    else:
+        guidance = make_guidance(args.solver, scenario, settings)
     remove_stale(json_path)
 
     def trace(rec: Any) -> None:
@@ -144,10 +162,22 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
             work.note(f"replan {rec.index}, t = {rec.t_days:.1f} d, miss {rec.position_miss_km:.3g} km")
             if args.trace:
                 trace(rec)
-        result = fly(scenario, guidance, args.perturbed, args.seed, strategy_name, args.solver,
-                     max_replans=args.max_replans, progress=replanned)
+        try:
+            result = fly(scenario, guidance, args.perturbed, args.seed, strategy_name, args.solver,
+                         max_replans=args.max_replans, progress=replanned)
+            if session is not None:
+                session.end_run(0)
+                target_keys = session.close()[0]
+        except BaseException:
+            if session is not None:
+                session.kill()
+            raise
     wall = time.perf_counter() - start
     doc = result.to_json()
+    if session is not None:     # the flight program's figures per entry point (docs/pil.md)
+        from ogk.sil.pil_build import file_sha256
+        doc.update({"target": "m7", "flight_program": file_sha256(session.program.elf),
+                    **target_keys})
     doc.update({"scenario_path": str(header.path), "scenario_sha256": header.sha256,
                 "objective": scenario.ocp.objective,
                 "third_bodies_in_model": scenario.nmpc.third_bodies_in_model,
