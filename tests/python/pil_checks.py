@@ -30,3 +30,15 @@ def assert_stack_within_static(entry_points: dict, entries: tuple[str, ...]) -> 
         measured = entry_points[e]["stack_bytes"]["value"]
         assert 0 < measured <= static[e] + LIBM_SLACK_B, (e, measured, static[e])
     return static
+
+
+def assert_worst_matches_records(doc: dict, records: list[dict], entries: tuple[str, ...]) -> None:
+    """The envelope's worst call per entry point is the largest of the runs' own, at the run and
+    step that run records."""
+    worst = doc["pil"]["entry_points"]
+    runs = {r["run_id"]: r for r in records}
+    for e in entries:
+        w = worst[e]["insn_max"]
+        assert w["value"] == max(r[f"pil.{e}.insn_max"] for r in records), e
+        assert runs[w["run_id"]][f"pil.{e}.insn_max"] == w["value"], e
+        assert runs[w["run_id"]][f"pil.{e}.insn_max_step"] == w["step"], e

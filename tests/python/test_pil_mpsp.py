@@ -26,7 +26,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from pil_checks import assert_stack_within_static
+from pil_checks import assert_stack_within_static, assert_worst_matches_records
 
 ROOT = Path(__file__).resolve().parents[2]
 OGK = Path(sys.executable).parent / "ogk"
@@ -100,20 +100,14 @@ def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
         assert r["pil.ogk_mpsp_solve.insn_max_step"] == 1      # step 1: MPSP_REPLAN
         # a solve is at least its Newton iterations' propagations (2048 RK4 steps each)
         assert r["pil.ogk_mpsp_solve.insn_max"] > 1e6 * r["newton_iterations"]
-    worst = campaign["doc"]["pil"]["entry_points"]
-    runs = {r["run_id"]: r for r in campaign["records"]}
-    for e in ENTRIES:
-        w = worst[e]["insn_max"]
-        assert w["value"] == max(r[f"pil.{e}.insn_max"] for r in campaign["records"])
-        assert runs[w["run_id"]][f"pil.{e}.insn_max"] == w["value"]
+    assert_worst_matches_records(campaign["doc"], campaign["records"], ENTRIES)
     assert "On the target (m7)" in campaign["stdout"] and "Host vs target" in campaign["stdout"]
 
 
 def test_stack_is_within_the_static_worst_case(campaign: dict) -> None:
     """What the painted window measured on the target is at most gcc's static worst case per entry
     point (make arm-stack: own frame + deepest path through the kernel's call graph) plus libm."""
-    static = assert_stack_within_static(campaign["doc"]["pil"]["entry_points"], ENTRIES)
-    assert static
+    assert_stack_within_static(campaign["doc"]["pil"]["entry_points"], ENTRIES)
 
 
 def test_replay_flies_the_run_again_on_the_target(campaign: dict) -> None:

@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 from ogk.sil import pil, target_summary
-from pil_checks import assert_stack_within_static
+from pil_checks import assert_stack_within_static, assert_worst_matches_records
 
 ROOT = Path(__file__).resolve().parents[2]
 OGK = Path(sys.executable).parent / "ogk"
@@ -93,23 +93,14 @@ def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
         assert r["pil.ogk_nog_command.calls"] == ticks
         t_f = r["tf_s"]
         assert t_f / 2.0 < r["pil.ogk_nog_sample.calls"] < t_f / 2.0 + 60
-    worst = campaign["doc"]["pil"]["entry_points"]
-    for e in ENTRIES:
-        w = worst[e]["insn_max"]
-        runs = {r["run_id"]: r for r in campaign["records"]}
-        assert w["value"] == max(r[f"pil.{e}.insn_max"] for r in campaign["records"])
-        assert runs[w["run_id"]][f"pil.{e}.insn_max"] == w["value"]
-        assert runs[w["run_id"]][f"pil.{e}.insn_max_step"] == w["step"]
+    assert_worst_matches_records(campaign["doc"], campaign["records"], ENTRIES)
     assert "On the target (m7)" in campaign["stdout"] and "Host vs target" in campaign["stdout"]
-
-
 
 
 def test_stack_is_within_the_static_worst_case(campaign: dict) -> None:
     """What the painted window measured on the target is at most gcc's static worst case per entry
     point (make arm-stack: own frame + deepest path through the kernel's call graph) plus libm."""
-    static = assert_stack_within_static(campaign["doc"]["pil"]["entry_points"], ENTRIES)
-    assert static
+    assert_stack_within_static(campaign["doc"]["pil"]["entry_points"], ENTRIES)
 
 
 def test_replay_flies_the_run_again_on_the_target(campaign: dict) -> None:
