@@ -164,6 +164,16 @@ ogk_flight_action ogk_flight_guidance(ogk_flight_t *f, const ogk_nav_state_t *na
     return a;
 }
 
+void ogk_flight_cpd_attitude(const ogk_flight_att_t *att, ogk_cpd_input_t *in)
+{
+    in->psi = att->psi;
+    in->theta = att->theta;
+    in->phi_roll = att->phi_roll;
+    in->rate_p = att->rate_p;
+    in->rate_q = att->rate_q;
+    in->rate_r = att->rate_r;
+}
+
 ogk_flight_action ogk_flight_attitude(ogk_flight_t *f, const ogk_thrust_cmd_t *cmd,
                                       const ogk_flight_att_t *att, const ogk_nav_state_t *nav)
 {
@@ -176,12 +186,7 @@ ogk_flight_action ogk_flight_attitude(ogk_flight_t *f, const ogk_thrust_cmd_t *c
     if ((f->cmd.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u) {
         f->engine_on = 0u; /* at or past the cut-off (or the law's own engine-off) */
     }
-    in.psi = att->psi;
-    in.theta = att->theta;
-    in.phi_roll = att->phi_roll;
-    in.rate_p = att->rate_p;
-    in.rate_q = att->rate_q;
-    in.rate_r = att->rate_r;
+    ogk_flight_cpd_attitude(att, &in);
     /* any frame CPD converts: the law's direction as r-t-n angles at nav's position */
     b = count(f, OGK_FLIGHT_CALL_CPD, ogk_cpd_input_from_thrust_cmd(&in, &f->cmd, nav));
     if (b == OGK_FLIGHT_FLY) {

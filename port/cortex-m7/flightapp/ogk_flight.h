@@ -118,4 +118,7 @@ ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flig
 ogk_flight_action ogk_flight_attitude(ogk_flight_t *f, const ogk_thrust_cmd_t *cmd,
                                       const ogk_flight_att_t *att, const ogk_nav_state_t *nav);
 
+/* The attitude half of CPD's input (Euler angles and body rates); the command half is the law's. */
+void ogk_flight_cpd_attitude(const ogk_flight_att_t *att, ogk_cpd_input_t *in);
+
 #endif /* OGK_FLIGHT_H */

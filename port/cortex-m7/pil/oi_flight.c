@@ -141,12 +141,7 @@ ogk_oi_failure ogk_oi_flight_tick(ogk_oi_flight_t *f, uint32_t k, const ogk_nav_
     }
 #endif
     /* CPD on the command's angles (as the SIL's batch step: alpha, beta, xi, phi) */
-    in.psi = att->psi;
-    in.theta = att->theta;
-    in.phi_roll = att->phi_roll;
-    in.rate_p = att->rate_p;
-    in.rate_q = att->rate_q;
-    in.rate_r = att->rate_r;
+    ogk_flight_cpd_attitude(att, &in);
     in.alpha_c = b->cmd.alpha_rad;
     in.beta_c = b->cmd.beta_rad;
     in.xi = nav->xi_rad;
