@@ -56,8 +56,8 @@ def add_engine_arguments(p: argparse.ArgumentParser, family: Any,
 def add_target_argument(p: argparse.ArgumentParser) -> None:
     p.add_argument("--target", choices=TARGETS, default="host",
                    help="host: the flight software in this process (SIL, default); m7: the "
-                        "scenario's flight program on the emulated Cortex-M7, one QEMU per worker, "
-                        "with the host campaign on the same draws beside it (docs/pil.md)")
+                        "scenario's flight program on the emulated Cortex-M7 (QEMU), with the host "
+                        "campaign on the same draws beside it (docs/pil.md)")
 
 
 def check_engine_arguments(args: argparse.Namespace) -> None:
@@ -138,6 +138,9 @@ def fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace) -> int:
     print(f"\nwrote {args.json} and {envelope.table_path(args.json)} "
           f"({len(flown.records)} runs, {flown.wall_s:.1f} s wall, {flown.workers} workers)")
     if args.plots and hasattr(fam, "plots"):
+        if plan.target != "host":
+            print("plots: time histories of the host's flights of the same runs (the target sends "
+                  "no histories back)")
         for path in fam.plots(flown, Path(args.plots)):
             print(f"wrote {path}")
     agree = pil is None or pil["host_vs_target"]["within_bounds"]
