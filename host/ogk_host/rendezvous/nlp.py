@@ -178,7 +178,7 @@ class RendezvousNlp:
                       "ipopt.sb": "yes"}
         self.warm_mu_init = warm_mu_init
         self._interval = self._interval_function()
-        self._built: dict[int, tuple[ca.Function, dict[str, FloatArray]]] = {}
+        self._built: dict[object, tuple[dict, dict[str, FloatArray]]] = {}
         self._solvers: dict[tuple[int, bool], ca.Function] = {}
         if nodes is not None:
             self._solver(self._check_nodes(nodes), warm=False)
@@ -237,13 +237,24 @@ class RendezvousNlp:
         return np.asarray(self._interval(x, np.atleast_1d(u0), np.atleast_1d(u1), h, tk)).ravel()
 
     def _build(self, n: int) -> tuple[ca.Function, dict[str, FloatArray]]:
-        if n in self._built:
-            return self._built[n]
+        return self.problem(n)
+
+    def problem(self, n: int, symbolic: str = "SX") -> tuple[dict, dict[str, FloatArray]]:
+        """The NLP of N = n subintervals as CasADi expressions ({x, f, g, p}) and its bounds (lbx, ubx,
+        lbg, ubg; fn = (w, p) -> (f, g) for checks). "SX" inlines every subinterval (IPOPT's own solver);
+        "MX" keeps the subinterval map one function called N times, so generated or JIT-compiled code
+        holds its derivatives once (the benches' compiled peers)."""
+        key = n if symbolic == "SX" else (n, symbolic)
+        if key in self._built:
+            return self._built[key]
+        if symbolic not in ("SX", "MX"):
+            raise ValueError(f"symbolic must be SX or MX, got {symbolic!r}")
+        sym = ca.SX.sym if symbolic == "SX" else ca.MX.sym
         m, nu = self.model, self.nu
-        X = ca.SX.sym("X", 5, n + 1)
-        U = ca.SX.sym("U", nu, n + 1)
-        T = ca.SX.sym("T")
-        P = ca.SX.sym("p", 6)           # (t0, x0)
+        X = sym("X", 5, n + 1)
+        U = sym("U", nu, n + 1)
+        T = sym("T")
+        P = sym("p", 6)           # (t0, x0)
         h = T / n
         tk = P[0] + h * ca.DM(np.arange(n)).T
         x_end = self._interval.map(n)(X[:, :n], U[:, :n], U[:, 1:], ca.repmat(h, 1, n), tk)
@@ -268,8 +279,8 @@ class RendezvousNlp:
             lbg[9 + 5 * n:] = -self.max_sweep_rad
             ubg[9 + 5 * n:] = self.max_sweep_rad
         fn = ca.Function(f"nlp_{n}", [w, P], [f, nlp["g"]])   # for checks only
-        self._built[n] = (nlp, {"lbx": lbx, "ubx": ubx, "lbg": lbg, "ubg": ubg, "fn": fn})
-        return self._built[n]
+        self._built[key] = (nlp, {"lbx": lbx, "ubx": ubx, "lbg": lbg, "ubg": ubg, "fn": fn})
+        return self._built[key]
 
     def _solver(self, n: int, warm: bool) -> ca.Function:
         key = (n, warm)
