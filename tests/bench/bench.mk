@@ -87,8 +87,10 @@ bench: bench-arm
 # One ogk_nmpc_replan at N = 30 -> 29 after the open loop (the case: tests/bench/bench_nmpc_ipopt.py,
 # generated into bench_nmpc_case.h bit-exact from the scenario): host ns (median), callgrind instructions
 # of exactly one re-solve, Cortex-M7 instructions (QEMU plugin), the static worst-case stack (gcc call
-# graphs) and the QEMU high-water mark; then CasADi + IPOPT's warm re-solve of the same case and the
-# kernel through cffi, in one table (bench_nmpc_ipopt.py run).
+# graphs) and the QEMU high-water mark; then the strongest peers on the same re-solve from the same start,
+# FATROP and IPOPT JIT-compiled by gcc -O2 (tests/bench/nmpc_peers.py: compiled once per machine into
+# build/bench/nmpc/peers; their callgrind counts cached there too), and the kernel through cffi, in one
+# table with the ratios at the kernel's default and at matched accuracy (bench_nmpc_ipopt.py run).
 NMPC_B := $(BENCH_DIR)/nmpc
 NMPC_CASE_H := $(NMPC_B)/bench_nmpc_case.h
 BENCH_NMPC := $(BENCH_DIR)/bench_nmpc
@@ -123,6 +125,7 @@ bench-nmpc: $(BENCH_NMPC) $(ARM_BENCH_NMPC) $(ARM_CI) qemu-plugin $(FFI_STAMP)
 	@python3 port/cortex-m7/stack_report.py $(ARM_CI) > $(NMPC_B)/stack_report.log; \
 	  awk '$$1 == "ogk_nmpc_replan" { print "nmpc_stack_replan", $$3 } $$1 == "ogk_nmpc_solve" { print "nmpc_stack_solve", $$3 }' \
 	  $(NMPC_B)/stack_report.log > $(NMPC_B)/stack.txt
+	@$(VPY) tests/bench/bench_nmpc_ipopt.py peer-insns $(NMPC_B)/peers_callgrind.txt > /dev/null
 	@$(VPY) tests/bench/bench_nmpc_ipopt.py run --figures $(NMPC_B)
 
 # Where the re-solve's instructions go: callgrind of one re-solve, inclusive per function.

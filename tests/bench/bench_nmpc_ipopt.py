@@ -1,53 +1,62 @@
-"""The NMPC's warm re-solve, kernel (ogk_nmpc) against CasADi + IPOPT (RendezvousNlp), same case, same run.
+"""The NMPC's warm re-solve: the kernel (ogk_nmpc) against the strongest peers a user could pick, FATROP and
+IPOPT JIT-compiled by gcc -O2 (CasADi 3.8, tests/bench/nmpc_peers.py), same problem, same start, same run.
 
     bench_nmpc_ipopt.py header OUT.h        the case as C (tests/bench/bench_nmpc.c includes it)
-    bench_nmpc_ipopt.py run [--figures DIR] IPOPT and the kernel through cffi here, plus the C bench's
-                                            figures (host ms, callgrind, Cortex-M7) read from DIR: one table
+    bench_nmpc_ipopt.py peer-insns OUT      callgrind instructions of one warm call of each peer (cached)
+    bench_nmpc_ipopt.py run [--figures DIR] the peers and the kernel through cffi here, plus the C bench's
+                                            figures (CPU, callgrind, Cortex-M7, stack) read from DIR: one table
 
-The case (docs/nmpc.md, "Cost"), identical for both solvers:
+The case (docs/nmpc.md, "Cost"), identical for every solver:
 
 1. scenario scenarios/rendezvous_nep_min_time.toml, N = 30, RK4 8 steps per subinterval; the kernel's
    configuration is `kernel_config(scenario, strategy_settings(scenario))` (what `ogk nmpc --solver kernel`
-   flies: tol_feas 1e-9, tol_stat 1e-6, SNNS), IPOPT's NLP is IpoptGuidance's (the [nmpc] tol 1e-8,
-   constr_viol_tol 1e-10, exact Hessian);
-2. the open loop from the documented guess (`guidance_base.first_guess`: phase-matched, t_f 370 d, 135 deg) at
-   t = 0 from Table A.1's state: kernel `ogk_nmpc_solve` (cold BFGS), IPOPT `RendezvousNlp.solve` (cold);
-3. the measured state of the replan: the KERNEL plan's node-1 state with r + DR LU and v_theta + DVT VU,
-   at the kernel plan's first node time t_1 = t_next (both solvers get the same (t_1, x));
-4. one SNNS re-solve (N = 29, no doubling test: N > doubling_max_nodes): kernel `ogk_nmpc_replan` (the
-   plan shifted inside, BFGS matrix and multipliers kept), IPOPT `RendezvousNlp.solve` from its own plan
-   shifted (`strategy.snns_shift`, node 0 = x) with its duals shifted (`NlpDuals.shifted`, warm start).
+   flies: tol_feas 1e-9, tol_stat 1e-6, SNNS); the peers solve IpoptGuidance's NLP (RendezvousNlp, the
+   [nmpc] tol 1e-8, constr_viol_tol 1e-10, exact Hessian);
+2. the kernel's open loop from the documented guess (`guidance_base.first_guess`: phase-matched, t_f 370 d,
+   135 deg) at t = 0 from Table A.1's state;
+3. the start of the re-solve, the same for all: the kernel plan's node-1 time t_1 and state with r + DR LU and
+   v_theta + DVT VU; the primal warm start is the kernel's plan shifted (`strategy.snns_shift`) for the kernel
+   (`ogk_nmpc_replan` shifts it inside), FATROP and IPOPT's primal warm start. IPOPT's primal-dual warm start
+   needs its own multipliers: it starts from its own open loop's plan and duals, shifted (`NlpDuals.shifted`);
+4. one SNNS re-solve (N = 29), the kernel at its default tolerance and with the stationarity test alone
+   (`tol_obj = 0`, set after the same open loop: the same start, only the stop differs);
+5. the converged optimum of that re-solve, IPOPT at tol 1e-12 from the same start: every t_f error is from it.
+   Matched accuracy: t_f within 1 s of it, max |g| within the [nmpc] constr_viol_tol.
 
-Wall times are medians of repetitions of exactly the same work: the kernel context saved after step 2 and
-copied back before each replan (as the C bench's memcpy), IPOPT re-called with the same guess and duals
-(its solver object is built before the first timed call; `solve_time_s` is the solver call only).
+CPU times are medians of repetitions of exactly the same work (the kernel context copied back before each
+re-solve; each peer re-called with the same start after one untimed call); the peers' JIT code is compiled
+once per machine (build/bench/nmpc/peers) and not in any timing.
 """
 from __future__ import annotations
 
 import argparse
+import hashlib
 import math
+import re
+import subprocess
 import statistics
 import sys
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from bench_figures import read_figures
+from nmpc_peers import FatropJit, IpoptJit, PeerSolve
 from ogk_bindings._ffi import ffi
 from ogk_bindings.nmpc import Nmpc, NmpcConfig
 from ogk.missions.rendezvous import strategy as st
 from ogk.missions.rendezvous.guidance_base import first_guess, strategy_settings
 from ogk.missions.rendezvous.kernel_guidance import kernel_config
 from ogk_host.rendezvous.dynamics import DAY_S, Model
-from ogk_host.rendezvous.nlp import RendezvousNlp
+from ogk_host.rendezvous.nlp import NlpDuals, RendezvousNlp
 from ogk_host.rendezvous.plan import Plan
 from ogk_host.rendezvous.scenario import RendezvousScenario, load_scenario
 
 SCENARIO = "scenarios/rendezvous_nep_min_time.toml"
 DR = 1e-4    #: [LU] radius perturbation of the replan state (15 000 km)
 DVT = 1e-4   #: [VU] v_theta perturbation of the replan state (2.98 m/s)
-GOAL_RATIO = 38.0
 
 
 # ------------------------------------------------------------------------------------------------ the case
@@ -108,21 +117,26 @@ def write_header(path: Path) -> None:
 
 
 # ------------------------------------------------------------------------------------------------ kernel
-def kernel_runs(cfg: NmpcConfig, guess: Plan, x0: np.ndarray, open_reps: int, replan_reps: int) -> dict:
+def kernel_runs(cfg: NmpcConfig, guess: Plan, x0: np.ndarray, open_reps: int, replan_reps: int,
+                tol_obj: float | None = None) -> dict:
     """The kernel through cffi: open loop (median of open_reps fresh solves), then the replan (median of
-    replan_reps, the pre-replan context copied back each time)."""
+    replan_reps, the pre-replan context copied back each time). `tol_obj` replaces the configuration's for
+    the replan only, so the open loop, (t_1, x_1) and the warm start are the default's."""
     size = ffi.sizeof("ogk_nmpc_t")
     k = Nmpc(cfg)
-    open_s = []
+    open_s, open_cpu = [], []
     for _ in range(open_reps):
         k.reset()
         k.load_plan(guess.t0, guess.horizon, guess.states, guess.controls)
-        start = time.perf_counter()
+        cpu, start = time.process_time(), time.perf_counter()
         rep_open = k.solve(0.0, x0)
         open_s.append(time.perf_counter() - start)
+        open_cpu.append(time.process_time() - cpu)
     plan = k.plan()
     x1 = replan_state(plan.states)
     t1 = rep_open.t_next
+    if tol_obj is not None:
+        k._ctx.cfg.tol_obj = tol_obj   # noqa: SLF001 (the bench's stopping test, after the same open loop)
     saved = ffi.new("ogk_nmpc_t *")
     ffi.memmove(saved, k._ctx, size)   # the C bench's memcpy of the pre-replan context
     replan_s, replan_cpu = [], []
@@ -134,131 +148,225 @@ def kernel_runs(cfg: NmpcConfig, guess: Plan, x0: np.ndarray, open_reps: int, re
         replan_s.append(time.perf_counter() - start)
         replan_cpu.append(time.process_time() - cpu)
     assert rep is not None
-    return dict(open=rep_open, open_s=statistics.median(open_s), open_reps=open_reps, plan=plan,
+    return dict(open=rep_open, open_s=statistics.median(open_s), open_cpu=statistics.median(open_cpu),
+                open_reps=open_reps, plan=plan,
                 t1=t1, x1=x1, replan=rep, replan_s=statistics.median(replan_s),
                 replan_cpu=statistics.median(replan_cpu), replan_reps=replan_reps,
                 replan_plan=k.plan(), sizeof_ctx=size, sizeof_qp_ws=ffi.sizeof("ogk_qp_workspace_t"))
 
 
-# ------------------------------------------------------------------------------------------------ IPOPT
-def ipopt_runs(scenario: RendezvousScenario, guess: Plan, x0: np.ndarray, t1: float, x1: np.ndarray,
-               open_reps: int, warm_reps: int) -> dict:
+# ------------------------------------------------------------------------------------------------ peers
+#: FATROP's barrier start for a warm re-solve: its default mu_init 0.1 takes 8 iterations from the shifted
+#: plan, 1e-5 takes 4 and 1e-8 (with bound_push / bound_frac 1e-9, IPOPT's warm settings) 5 (measured on this
+#: case, 2026-12-03): the bench flies FATROP's best.
+FATROP_WARM = {"mu_init": 1e-5}
+#: The converged optimum every t_f error is measured from: IPOPT (no JIT) at 1e-12 from the same start.
+REF_TOL, REF_CONSTR_TOL = 1e-12, 1e-13
+#: Matched accuracy (issue 21): t_f within 1 s of the converged optimum, constraints within the [nmpc] tol.
+MATCH_TF_S = 1.0
+GOAL_MATCHED, GOAL_DEFAULT = 5.0, 10.0
+
+
+def peer_cache() -> Path:
+    return Path("build/bench/nmpc/peers")
+
+
+def nmpc_nlp(scenario: RendezvousScenario, **kw: float) -> RendezvousNlp:
     n = scenario.nmpc
-    nlp = RendezvousNlp(scenario, rk4_steps=n.rk4_steps_per_interval, third_bodies=False, tol=n.tol,
-                        constr_viol_tol=n.constr_viol_tol, max_iter=n.max_iter)   # IpoptGuidance's NLP
-    opens = [nlp.solve(0.0, x0, guess) for _ in range(open_reps)]
-    res = opens[-1]
-    if not res.converged:
-        raise RuntimeError(f"IPOPT open loop: {res.status}")
-    warm_guess = st.snns_shift(res.plan, x1)
-    duals = res.duals.shifted()
-    nlp.solve(t1, x1, warm_guess, duals=duals)   # first call of the N = 29 warm solver (not timed)
-    warms, warm_cpu = [], []
-    for _ in range(warm_reps):
-        cpu = time.process_time()   # around RendezvousNlp.solve: its ~0.1 ms of numpy wrapping included
-        warms.append(nlp.solve(t1, x1, warm_guess, duals=duals))
-        warm_cpu.append(time.process_time() - cpu)
-    # the primal warm start alone (the shifted plan, IPOPT's default barrier start, no duals): the issue's
-    # "warm-started MPC re-solve" (38 ms, 9 iterations there), the reference of its 38x goal
-    nlp.solve(t1, x1, warm_guess)   # first call of the N = 29 solver without duals (not timed)
-    primals, primal_cpu = [], []
-    for _ in range(warm_reps):
-        cpu = time.process_time()
-        primals.append(nlp.solve(t1, x1, warm_guess))
-        primal_cpu.append(time.process_time() - cpu)
-    return dict(nlp=nlp, open=res, open_s=statistics.median(r.solve_time_s for r in opens),
-                open_reps=open_reps, warm=warms[-1], warm_s=statistics.median(r.solve_time_s for r in warms),
-                warm_cpu=statistics.median(warm_cpu), warm_reps=warm_reps,
-                warm_iters=sorted({r.iterations for r in warms}),
-                primal=primals[-1], primal_s=statistics.median(r.solve_time_s for r in primals),
-                primal_cpu=statistics.median(primal_cpu), primal_iters=sorted({r.iterations for r in primals}))
+    opts = dict(tol=n.tol, constr_viol_tol=n.constr_viol_tol, max_iter=n.max_iter)
+    opts.update(kw)
+    return RendezvousNlp(scenario, rk4_steps=n.rk4_steps_per_interval, third_bodies=False, **opts)
 
 
-# ------------------------------------------------------------------------------------------------ C figures
+@dataclass
+class Row:
+    label: str
+    iterations: str
+    cpu_ms: float
+    t_f: float           #: [TU]
+    feas: float          #: max |g| of the equality rows
+    insns: int | None = None
 
 
+def peer_rows(scenario: RendezvousScenario, guess: Plan, x0: np.ndarray, t1: float, x1: np.ndarray,
+              warm_guess: Plan, reps: int) -> tuple[list[Row], dict]:
+    """FATROP + JIT (primal warm, the kernel's plan shifted) and IPOPT + JIT (primal-dual warm from its own
+    open loop, and primal warm from the kernel's plan), medians of `reps` timed calls after one untimed."""
+    nlp, n = nmpc_nlp(scenario), scenario.nmpc
+    cache, nodes = peer_cache(), warm_guess.nodes
+    out: list[Row] = []
+
+    def timed(label: str, call) -> PeerSolve:
+        call()
+        runs = [call() for _ in range(reps)]
+        r = runs[-1]
+        out.append(Row(label, "/".join(str(i) for i in sorted({q.iterations for q in runs})),
+                       statistics.median(q.cpu_s for q in runs) * 1e3, t1 + r.plan.horizon,
+                       nlp.constraint_violation(t1, x1, r.plan)))
+        if not all(q.success for q in runs):
+            out[-1].label += f" [{r.status}]"
+        return r
+
+    fat = FatropJit(nlp, nodes, cache, n.tol, n.constr_viol_tol, FATROP_WARM)
+    timed("FATROP + JIT, primal warm (mu_init 1e-5)", lambda: fat.solve(t1, x1, warm_guess))
+    cold = IpoptJit(nlp, guess.nodes, cache, n.tol, n.constr_viol_tol, warm=False)
+    open_runs = [cold.solve(0.0, x0, guess) for _ in range(3)]
+    own = open_runs[-1]
+    duals = NlpDuals(nodes=guess.nodes, nu=nlp.nu, lam_g=own.lam_g, lam_x=own.lam_x).shifted()
+    warm = IpoptJit(nlp, nodes, cache, n.tol, n.constr_viol_tol, warm=True)
+    own_guess = st.snns_shift(own.plan, x1)
+    timed("IPOPT + JIT, primal-dual warm (own plan)",
+          lambda: warm.solve(t1, x1, own_guess, duals.lam_g, duals.lam_x))
+    primal = IpoptJit(nlp, nodes, cache, n.tol, n.constr_viol_tol, warm=False)
+    timed("IPOPT + JIT, primal warm", lambda: primal.solve(t1, x1, warm_guess))
+    return out, dict(open_cpu=statistics.median(r.cpu_s for r in open_runs) * 1e3, open=own)
+
+
+# ------------------------------------------------------------------------------------------------ run
 def run(args: argparse.Namespace) -> int:
     scenario, cfg, guess, x0 = case()
     kern = kernel_runs(cfg, guess, x0, args.open_reps, args.replan_reps)
-    ip = ipopt_runs(scenario, guess, x0, kern["t1"], kern["x1"], args.open_reps, args.warm_reps)
-    # the same case with the stationarity test alone (tol_obj = 0): the kernel at IPOPT's accuracy
-    tight = kernel_runs(cfg.replace(tol_obj=0.0), guess, x0, 1, args.replan_reps)
+    tight = kernel_runs(cfg, guess, x0, 1, args.replan_reps, tol_obj=0.0)
+    t1, x1 = kern["t1"], kern["x1"]
+    kp = kern["plan"]
+    warm_guess = st.snns_shift(Plan(t0=kp.t0, horizon=kp.horizon, states=kp.states, controls=kp.controls), x1)
+    ref = nmpc_nlp(scenario, tol=REF_TOL, constr_viol_tol=REF_CONSTR_TOL).solve(t1, x1, warm_guess)
+    if not ref.converged:
+        print(f"the reference solve did not converge: {ref.status}")
+        return 1
+    t_ref = t1 + ref.plan.horizon
+    peers, extra = peer_rows(scenario, guess, x0, t1, x1, warm_guess, args.warm_reps)
     fig = read_figures(args.figures, "nmpc")
-    tu_s = Model.for_scenario(scenario).units.time_s
+    units = Model.for_scenario(scenario).units
+    tu_s = units.time_s
     days = lambda t: t * tu_s / DAY_S  # noqa: E731
-    kr, kw, io, iw, ipr = kern["open"], kern["replan"], ip["open"], ip["warm"], ip["primal"]
-    ok = kr.converged and kw.converged and io.converged and iw.converged and ipr.converged
+    tol = scenario.nmpc.constr_viol_tol
 
-    def ms(key: str) -> float | None:
-        return float(fig[key]) * 1e-6 if key in fig else None
+    def c_ms(key: str, fallback: float) -> float:
+        return float(fig[key]) * 1e-6 if key in fig else fallback
 
-    def count(key: str, unit: str = "") -> str:
-        return f"{int(fig[key]):,}{unit}" if key in fig and fig[key].isdigit() else "-"
+    def c_int(key: str) -> int | None:
+        return int(fig[key]) if key in fig and fig[key].isdigit() else None
 
-    def f3(v: float | None) -> str:
-        return "-" if v is None else f"{v:.3f}"
-
-    c_wall, c_cpu = ms("nmpc_replan_ns"), ms("nmpc_replan_cpu_ns")
-    ffi_wall, ffi_cpu = kern["replan_s"] * 1e3, kern["replan_cpu"] * 1e3
-    ip_wall, ip_cpu = ip["warm_s"] * 1e3, ip["warm_cpu"] * 1e3
-    k_wall = c_wall if c_wall is not None else ffi_wall
-    k_cpu = c_cpu if c_cpu is not None else ffi_cpu
-    src = "C bench" if c_wall is not None else "cffi"
-
-    print(f"== NMPC warm re-solve: {SCENARIO}, open loop N = 30, then one SNNS replan (N = 29) at t_1 = "
-          f"{days(kern['t1']):.4f} d from the plan's node 1 + (r {DR:g} LU, v_theta {DVT:g} VU) ==")
-    print(f"{'':44s}{'kernel (ogk_nmpc)':>22s}{'CasADi + IPOPT':>18s}")
-    rows = [
-        ("warm re-solve, C bench, wall [ms]", f3(c_wall), ""),
-        ("warm re-solve, C bench, CPU [ms]", f3(c_cpu), ""),
-        ("warm re-solve, through cffi, wall [ms]", f3(ffi_wall), f3(ip_wall)),
-        ("warm re-solve, through cffi, CPU [ms]", f3(ffi_cpu), f3(ip_cpu)),
-        ("warm re-solve, callgrind [instructions]", count("nmpc_replan_callgrind"), ""),
-        ("warm re-solve, Cortex-M7 QEMU [instructions]", count("nmpc_replan_m7_insns"), ""),
-        ("warm re-solve iterations (SQP or IPOPT)", f"{kw.sqp_iterations} ({kw.qp_iterations} QP)",
-         "/".join(str(i) for i in ip["warm_iters"])),
-        ("warm re-solve t_f [d]", f"{days(kw.t_f):.9f}", f"{days(iw.plan.t_f):.9f}"),
-        ("IPOPT primal warm start only: wall, CPU [ms]", "", f"{ip['primal_s'] * 1e3:.2f}, "
-         f"{ip['primal_cpu'] * 1e3:.2f}"),
-        ("IPOPT primal warm start only: iterations, t_f [d]", "",
-         "/".join(str(i) for i in ip["primal_iters"]) + f", {days(ipr.plan.t_f):.6f}"),
-        ("same, kernel tol_obj = 0: CPU [ms], iterations", f"{tight['replan_cpu'] * 1e3:.3f}, "
-         f"{tight['replan'].sqp_iterations}", ""),
-        ("same, kernel tol_obj = 0: t_f [d]", f"{days(tight['replan'].t_f):.9f}", ""),
-        ("cold open loop N = 30, wall [ms]", f"{kern['open_s'] * 1e3:.1f}", f"{ip['open_s'] * 1e3:.1f}"),
-        ("cold open loop iterations", f"{kr.sqp_iterations} ({kr.qp_iterations} QP)", f"{io.iterations}"),
-        ("cold open loop t_f [d]", f"{days(kr.t_f):.9f}", f"{days(io.plan.t_f):.9f}"),
-    ]
-    for label, a, b in rows:
-        print(f"{label:44s}{a:>22s}{b:>18s}")
-    r_wall, r_cpu = ip_wall / k_wall, ip_cpu / k_cpu
-    print(f"ratio IPOPT / kernel ({src}): {r_wall:.1f}x wall ({ip_wall:.2f} / {k_wall:.3f} ms), {r_cpu:.1f}x CPU "
-          f"({ip_cpu:.2f} / {k_cpu:.3f} ms); goal >= {GOAL_RATIO:g}x and < 1 ms: wall "
-          f"{'MET' if r_wall >= GOAL_RATIO and k_wall < 1.0 else 'NOT MET'}, CPU "
-          f"{'MET' if r_cpu >= GOAL_RATIO and k_cpu < 1.0 else 'NOT MET'}")
-    p_wall, p_cpu = ip["primal_s"] * 1e3, ip["primal_cpu"] * 1e3
-    print(f"ratio against IPOPT's primal warm start (the issue's 38 ms warm re-solve): {p_wall / k_wall:.1f}x wall "
-          f"({p_wall:.2f} / {k_wall:.3f} ms), {p_cpu / k_cpu:.1f}x CPU; goal >= {GOAL_RATIO:g}x and < 1 ms: "
-          f"{'MET' if p_cpu / k_cpu >= GOAL_RATIO and k_cpu < 1.0 else 'NOT MET'} (CPU)")
-    print(f"with tol_obj = 0 (|H v| <= tol_stat only) the kernel re-solve takes {tight['replan'].sqp_iterations} "
-          f"iterations, {tight['replan_cpu'] * 1e3:.3f} ms CPU: ratio {ip_cpu / (tight['replan_cpu'] * 1e3):.1f}x CPU, "
-          f"t_f {abs(tight['replan'].t_f - iw.plan.t_f) * tu_s:.3g} s from IPOPT's")
-    print(f"same answer: |t_f kernel - t_f IPOPT| = {abs(kw.t_f - iw.plan.t_f) * tu_s:.3g} s (re-solve), "
-          f"{abs(kr.t_f - io.plan.t_f) * tu_s:.3g} s (open loop); max |constraint| kernel {kw.feas:.1e}, "
-          f"IPOPT {ip['nlp'].constraint_violation(kern['t1'], kern['x1'], iw.plan):.1e}")
-    print(f"sizeof(ogk_nmpc_t) {kern['sizeof_ctx']:,} B, sizeof(ogk_qp_workspace_t) {kern['sizeof_qp_ws']:,} B "
-          f"(host; Cortex-M7: {count('nmpc_m7_sizeof_ctx', ' B')}, {count('nmpc_m7_sizeof_qp_ws', ' B')})")
-    print(f"Cortex-M7 stack: static worst case ogk_nmpc_replan {count('nmpc_stack_replan', ' B')}, ogk_nmpc_solve "
-          f"{count('nmpc_stack_solve', ' B')} (stack_report.py); measured on QEMU: the "
-          f"re-solve {count('nmpc_m7_replan_stack', ' B')} (bench_nmpc_replan_once and below), the whole run's "
-          f"high-water mark {count('nmpc_m7_stack_hwm', ' B')}")
-    print(f"(medians of {fig.get('nmpc_replan_reps', '-')} re-solves in C, {kern['replan_reps']} through cffi, "
-          f"{ip['warm_reps']} of IPOPT, {args.open_reps} open loops; SQP iterations of the re-solve: C bench "
-          f"{fig.get('nmpc_replan_sqp', '-')}, cffi {kw.sqp_iterations}, Cortex-M7 {fig.get('nmpc_m7_replan_sqp', '-')})")
+    kw, kt = kern["replan"], tight["replan"]
+    k_default = Row("kernel ogk_nmpc_replan, default tol", f"{kw.sqp_iterations} SQP ({kw.qp_iterations} QP)",
+                    c_ms("nmpc_replan_cpu_ns", kern["replan_cpu"] * 1e3), kw.t_f, kw.feas,
+                    c_int("nmpc_replan_callgrind"))
+    k_tight = Row("kernel ogk_nmpc_replan, tol_obj = 0", f"{kt.sqp_iterations} SQP ({kt.qp_iterations} QP)",
+                  c_ms("nmpc_tight_replan_cpu_ns", tight["replan_cpu"] * 1e3), kt.t_f, kt.feas,
+                  c_int("nmpc_tight_replan_callgrind"))
+    for r in peers:
+        r.insns = c_int("nmpc_peer_" + peer_key(r.label) + "_callgrind")
+    print(f"== NMPC warm re-solve: {SCENARIO}, open loop N = {guess.nodes}, then one SNNS replan "
+          f"(N = {guess.nodes - 1}) at t_1 = {days(t1):.4f} d from the kernel plan's node 1 + (r {DR:g} LU, "
+          f"v_theta {DVT:g} VU): every solver from this (t_1, x_1) ==")
+    print(f"converged optimum (IPOPT, tol {REF_TOL:g}, {ref.iterations} iterations): t_f = {days(t_ref):.9f} d")
+    head = f"{'solver (warm start)':46s}{'iterations':>17s}{'CPU ms':>9s}{'instructions':>14s}" \
+           f"{'t_f - opt [s]':>15s}{'max|g|':>9s}"
+    print(head)
+    for r in [k_default, k_tight] + peers:
+        ins = "-" if r.insns is None else f"{r.insns:,}"
+        print(f"{r.label:46s}{r.iterations:>17s}{r.cpu_ms:9.3f}{ins:>14s}{(r.t_f - t_ref) * tu_s:15.3f}"
+              f"{r.feas:9.1e}")
+    matched = [r for r in peers if abs(r.t_f - t_ref) * tu_s <= MATCH_TF_S and r.feas <= tol
+               and "[" not in r.label]
+    ok = kw.converged and kt.converged and bool(matched)
+    if not matched:
+        print("no peer reached matched accuracy")
+        return 1
+    best = min(matched, key=lambda r: r.cpu_ms)
+    k_match_ok = abs(kt.t_f - t_ref) * tu_s <= MATCH_TF_S and kt.feas <= tol
+    r_match, r_default = best.cpu_ms / k_tight.cpu_ms, best.cpu_ms / k_default.cpu_ms
+    print(f"strongest peer: {best.label} ({best.cpu_ms:.3f} ms CPU)")
+    print(f"at matched accuracy (t_f within {MATCH_TF_S:g} s of the optimum, max|g| <= {tol:g}): kernel tol_obj = 0 "
+          f"{'reaches it' if k_match_ok else 'DOES NOT reach it'}: {r_match:.2f}x the strongest peer (goal >= "
+          f"{GOAL_MATCHED:g}x: {'MET' if r_match >= GOAL_MATCHED and k_match_ok else 'NOT MET'})")
+    print(f"at the kernel's default tolerance (t_f {(kw.t_f - t_ref) * tu_s:.1f} s from the optimum): {r_default:.2f}x "
+          f"the strongest peer (goal >= {GOAL_DEFAULT:g}x: {'MET' if r_default >= GOAL_DEFAULT else 'NOT MET'})")
+    if best.insns is not None and k_tight.insns is not None:
+        print(f"instructions (x86-64 callgrind): strongest peer / kernel tol_obj = 0: {best.insns / k_tight.insns:.2f}x; "
+              f"/ kernel default: {best.insns / k_default.insns:.2f}x" if k_default.insns else "")
+    print(f"cold open loop N = {guess.nodes}: kernel {kern['open_cpu'] * 1e3:.1f} ms CPU, {kern['open'].sqp_iterations} "
+          f"SQP iterations; IPOPT + JIT {extra['open_cpu']:.1f} ms CPU, {extra['open'].iterations} iterations; "
+          f"t_f {days(kern['open'].t_f):.6f} / {days(extra['open'].plan.horizon):.6f} d")
+    print(f"Cortex-M7 (QEMU plugin): the default re-solve {fig.get('nmpc_replan_m7_insns', '-')} instructions; "
+          f"stack static worst case ogk_nmpc_replan {fig.get('nmpc_stack_replan', '-')} B, measured "
+          f"{fig.get('nmpc_m7_replan_stack', '-')} B; sizeof(ogk_nmpc_t) {kern['sizeof_ctx']:,} B host, "
+          f"{fig.get('nmpc_m7_sizeof_ctx', '-')} B Cortex-M7")
+    print(f"(CPU: medians of {fig.get('nmpc_replan_reps', kern['replan_reps'])} kernel re-solves "
+          f"({'C bench' if 'nmpc_replan_cpu_ns' in fig else 'cffi'}), {args.warm_reps} of each peer; the peers' "
+          f"JIT code is compiled once per machine into {peer_cache()})")
     if "nmpc_replan_sqp" in fig and int(fig["nmpc_replan_sqp"]) != kw.sqp_iterations:
         print("WARNING: the C bench and the cffi run did not do the same re-solve")
         ok = False
     return 0 if ok else 1
+
+
+#: callgrind --toggle-collect pattern of each peer's solver call (its JIT code included: collected inclusively)
+PEER_TOGGLE = {"fatrop": "casadi::FatropInterface::solve*", "ipopt_pd": "casadi::IpoptInterface::solve*",
+               "ipopt_primal": "casadi::IpoptInterface::solve*"}
+
+
+def peer_once(which: str, calls: int) -> int:
+    """`calls` solves of one peer from the bench's start (for callgrind: the instructions of one warm call are
+    the difference between 2 calls and 1, so one-time set-up inside the first call is not counted)."""
+    scenario, cfg, guess, x0 = case()
+    kern = kernel_runs(cfg, guess, x0, 1, 1)
+    t1, x1, kp = kern["t1"], kern["x1"], kern["plan"]
+    warm_guess = st.snns_shift(Plan(t0=kp.t0, horizon=kp.horizon, states=kp.states, controls=kp.controls), x1)
+    nlp, n, cache = nmpc_nlp(scenario), scenario.nmpc, peer_cache()
+    if which == "fatrop":
+        fat = FatropJit(nlp, warm_guess.nodes, cache, n.tol, n.constr_viol_tol, FATROP_WARM)
+        call = lambda: fat.solve(t1, x1, warm_guess)  # noqa: E731
+    elif which == "ipopt_primal":
+        primal = IpoptJit(nlp, warm_guess.nodes, cache, n.tol, n.constr_viol_tol, warm=False)
+        call = lambda: primal.solve(t1, x1, warm_guess)  # noqa: E731
+    else:
+        own = IpoptJit(nlp, guess.nodes, cache, n.tol, n.constr_viol_tol, warm=False).solve(0.0, x0, guess)
+        duals = NlpDuals(nodes=guess.nodes, nu=nlp.nu, lam_g=own.lam_g, lam_x=own.lam_x).shifted()
+        warm = IpoptJit(nlp, warm_guess.nodes, cache, n.tol, n.constr_viol_tol, warm=True)
+        own_guess = st.snns_shift(own.plan, x1)
+        call = lambda: warm.solve(t1, x1, own_guess, duals.lam_g, duals.lam_x)  # noqa: E731
+    for _ in range(calls):
+        call()
+    return 0
+
+
+def peer_insns(out: Path) -> int:
+    """`nmpc_peer_<which>_callgrind N` per peer into `out`: the instructions of one warm solver call (x86-64
+    callgrind, 2 calls minus 1). Deterministic, so cached under build/bench/nmpc/peers by the start it
+    solves from (the kernel's open loop moves it) and the peer's options: ~1 min per valgrind run otherwise."""
+    scenario, cfg, guess, x0 = case()
+    kern = kernel_runs(cfg, guess, x0, 1, 1)
+    blob = repr((Path(SCENARIO).read_bytes(), kern["t1"], kern["x1"].tobytes(), kern["plan"].states.tobytes(),
+                 kern["plan"].controls.tobytes(), FATROP_WARM, ca_version())).encode()
+    lines = []
+    for which, toggle in PEER_TOGGLE.items():
+        key = hashlib.sha256(blob + which.encode()).hexdigest()[:16]
+        cached = peer_cache() / f"insns_{key}.txt"
+        if not cached.exists():
+            counts = []
+            for calls in (1, 2):
+                res = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
+                                      "--collect-atstart=no", f"--toggle-collect={toggle}", sys.executable,
+                                      __file__, "peer-once", which, "--calls", str(calls)],
+                                     capture_output=True, text=True, check=True)
+                counts.append(int(re.findall(r"Collected : (\d+)", res.stderr)[-1]))
+            cached.parent.mkdir(parents=True, exist_ok=True)
+            cached.write_text(f"{counts[1] - counts[0]}\n")
+        lines.append(f"nmpc_peer_{which}_callgrind {cached.read_text().strip()}")
+    out.write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    return 0
+
+
+def ca_version() -> str:
+    import casadi
+    return str(casadi.__version__)
+
+
+def peer_key(label: str) -> str:
+    return "fatrop" if label.startswith("FATROP") else ("ipopt_pd" if "dual" in label else "ipopt_primal")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -266,6 +374,11 @@ def main(argv: list[str] | None = None) -> int:
     sub = p.add_subparsers(dest="cmd", required=True)
     h = sub.add_parser("header")
     h.add_argument("out", type=Path)
+    o = sub.add_parser("peer-once", help="solve one peer CALLS times (for callgrind)")
+    o.add_argument("which", choices=sorted(PEER_TOGGLE))
+    o.add_argument("--calls", type=int, default=1)
+    pi = sub.add_parser("peer-insns", help="callgrind instructions of one warm call per peer, into OUT")
+    pi.add_argument("out", type=Path)
     r = sub.add_parser("run")
     r.add_argument("--figures", type=Path, default=None, help="directory of the C bench's *.txt figures")
     r.add_argument("--open-reps", type=int, default=5)
@@ -275,6 +388,10 @@ def main(argv: list[str] | None = None) -> int:
     if args.cmd == "header":
         write_header(args.out)
         return 0
+    if args.cmd == "peer-once":
+        return peer_once(args.which, args.calls)
+    if args.cmd == "peer-insns":
+        return peer_insns(args.out)
     return run(args)
 
 
