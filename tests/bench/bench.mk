@@ -114,10 +114,13 @@ bench-nmpc: $(BENCH_NMPC) $(ARM_BENCH_NMPC) $(ARM_CI) qemu-plugin $(FFI_STAMP)
 	@echo "== NMPC warm re-solve vs CasADi + IPOPT (docs/nmpc.md, \"Cost\") =="
 	@rm -f $(NMPC_B)/*.txt
 	@$(BENCH_NMPC) time > $(NMPC_B)/host.txt
-	@n=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+	@$(BENCH_NMPC) time tight > $(NMPC_B)/host_tight.txt
+	@for m in "" tight; do \
+	  n=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
 	     --collect-atstart=no --toggle-collect=bench_nmpc_replan_once \
-	     $(BENCH_NMPC) once 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'); \
-	  echo "nmpc_replan_callgrind $$n" > $(NMPC_B)/callgrind.txt
+	     $(BENCH_NMPC) once $$m 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'); \
+	  echo "nmpc$${m:+_$$m}_replan_callgrind $$n"; \
+	done > $(NMPC_B)/callgrind.txt
 	@port/qemu-plugin/count_insns.sh $(ARM_BENCH_NMPC) bench_nmpc_replan_once 2> $(NMPC_B)/m7_run.log | \
 	  awk '$$2 == "fn" && $$3 == "bench_nmpc_replan_once" { print "nmpc_replan_m7_insns", $$9 }' > $(NMPC_B)/m7.txt
 	@sed -n 's/^\(nmpc_m7_[a-z0-9_]* [0-9.e+-]*\).*/\1/p; s/.*stack high-water mark: \([0-9]*\) of.*/nmpc_m7_stack_hwm \1/p' \

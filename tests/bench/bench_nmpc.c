@@ -8,6 +8,9 @@
  *                       "nmpc_<key> <value>" lines for bench_nmpc_ipopt.py
  *   bench_nmpc once     the open loop, then exactly one re-solve, for valgrind
  *                       callgrind with --toggle-collect=bench_nmpc_replan_once
+ *   ... time|once tight the same re-solve with the stationarity test alone
+ *                       (tol_obj = 0, set after the same open loop: the same
+ *                       start, only the stop differs); keys "nmpc_tight_<key>"
  *   (bare metal)        the same as once, for the QEMU instruction counter
  *                       (`make bench-nmpc`); prints "nmpc_m7_<key> <value>"
  *                       lines, among them the stack used by the re-solve
@@ -40,6 +43,7 @@
 #endif
 
 static ogk_nmpc_t ctx;
+static int tight; /* 1: the re-solve with tol_obj = 0 (argument "tight") */
 static ogk_nmpc_report_t rep_open;
 static ogk_nmpc_report_t rep_replan;
 static ogk_nmpc_input_t in_replan;
@@ -76,6 +80,9 @@ static int setup(void)
     if (st != OGK_OK) {
         fprintf(stderr, "bench_nmpc: open loop failed (status %d)\n", (int)st);
         return 1;
+    }
+    if (tight) {
+        ctx.cfg.tol_obj = 0.0; /* the matched-accuracy re-solve: stationarity test only */
     }
     /* the replan: at the first node's time, the plan's node-1 state perturbed */
     in_replan.t = rep_open.t_next;
@@ -161,9 +168,15 @@ int main(int argc, char **argv)
     static double c_ns[MAX_REPS];
     int reps = 0;
     int i;
-    if (argc != 2 || (strcmp(argv[1], "time") != 0 && strcmp(argv[1], "once") != 0)) {
-        fprintf(stderr, "usage: %s time|once\n", argv[0]);
+    const char *key = "nmpc";
+    if (argc < 2 || argc > 3 || (strcmp(argv[1], "time") != 0 && strcmp(argv[1], "once") != 0)
+        || (argc == 3 && strcmp(argv[2], "tight") != 0)) {
+        fprintf(stderr, "usage: %s time|once [tight]\n", argv[0]);
         return 2;
+    }
+    if (argc == 3) {
+        tight = 1;
+        key = "nmpc_tight";
     }
     (void)ogk_port_counter_init();
     if (strcmp(argv[1], "once") == 0) {
@@ -178,7 +191,7 @@ int main(int argc, char **argv)
         t_ns[i] = (double)(ogk_port_counter_now() - t0);
     }
     qsort(t_ns, 3u, sizeof t_ns[0], cmp_double);
-    printf("nmpc_open_ns %.0f open loop N = %u: %u SQP iterations (%u QP), t_f %.17g TU, median of 3\n",
+    printf("%s_open_ns %.0f open loop N = %u: %u SQP iterations (%u QP), t_f %.17g TU, median of 3\n", key,
            t_ns[1], (unsigned)BENCH_NMPC_NODES, (unsigned)rep_open.sqp_iterations,
            (unsigned)rep_open.qp_iterations, rep_open.t_f);
     (void)memcpy(&saved, &ctx, sizeof saved);
@@ -210,15 +223,15 @@ int main(int argc, char **argv)
         }
     }
     qsort(t_ns, (size_t)reps, sizeof t_ns[0], cmp_double);
-    printf("nmpc_replan_ns %.0f warm re-solve N = %u: median of %d, min %.0f, max %.0f ns\n",
+    printf("%s_replan_ns %.0f warm re-solve N = %u: median of %d, min %.0f, max %.0f ns\n", key,
            t_ns[reps / 2], (unsigned)rep_replan.nodes, reps, t_ns[0], t_ns[reps - 1]);
     qsort(c_ns, (size_t)reps, sizeof c_ns[0], cmp_double);
-    printf("nmpc_replan_cpu_ns %.0f CPU time of the process: median of %d, min %.0f, max %.0f ns\n",
+    printf("%s_replan_cpu_ns %.0f CPU time of the process: median of %d, min %.0f, max %.0f ns\n", key,
            c_ns[reps / 2], reps, c_ns[0], c_ns[reps - 1]);
-    printf("nmpc_replan_reps %d\n", reps);
-    printf("nmpc_replan_sqp %u SQP iterations\n", (unsigned)rep_replan.sqp_iterations);
-    printf("nmpc_replan_qp %u QP iterations\n", (unsigned)rep_replan.qp_iterations);
-    printf("nmpc_replan_tf %.17g TU\n", rep_replan.t_f);
+    printf("%s_replan_reps %d\n", key, reps);
+    printf("%s_replan_sqp %u SQP iterations\n", key, (unsigned)rep_replan.sqp_iterations);
+    printf("%s_replan_qp %u QP iterations\n", key, (unsigned)rep_replan.qp_iterations);
+    printf("%s_replan_tf %.17g TU\n", key, rep_replan.t_f);
     printf("nmpc_sizeof_ctx %u B sizeof(ogk_nmpc_t)\n", (unsigned)sizeof(ogk_nmpc_t));
     printf("nmpc_sizeof_qp_ws %u B sizeof(ogk_qp_workspace_t)\n", (unsigned)sizeof(ogk_qp_workspace_t));
     return 0;
