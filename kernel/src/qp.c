@@ -285,7 +285,7 @@ static qp_dir_t qp_direction(const qp_state_t *s, size_t c)
             ws->d[k] = sign * ws->j[(k * n) + var];
         }
     } else {
-        ogk_i_qp_mat_vec(ws->j, n, lower, qp_row(s, c), sign, ws->d);
+        ogk_i_qp_mat_vec(ws->j, n, n, lower, qp_row(s, c), sign, ws->d);
     }
     /* z = sum over the free columns q..n-1 of J(:, k) d(k) (rows of ws->j) */
     ogk_i_qp_rows_combine(ws->j, n, lower, q, ws->d, ws->z);
@@ -483,10 +483,16 @@ static size_t qp_select(const qp_state_t *s)
     size_t best = QP_NONE;
     double worst = 0.0;
     size_t k;
+    /* the rows: A_in x four rows per pass, then qp_slack's arithmetic on the
+     * unit normals (factor 1 / |a|_2) */
+    if (m_in > 0u) {
+        ogk_i_qp_mat_vec(s->p->A_in, m_in, s->n, false, ws->x, 1.0, ws->slack);
+    }
     for (k = 0u; k < m_in; ++k) {
-        double tol;
-        const double slack = qp_slack(s, s->k_in + k, xnorm, &tol);
-        ws->slack[k] = (slack >= -tol) ? 0.0 : slack;
+        const double scale = ws->rowscale[s->k_in + k];
+        const double b = scale * s->p->b_in[k];
+        const double slack = (scale * ws->slack[k]) - b;
+        ws->slack[k] = (slack >= -(OGK_QP_FEAS_TOL * (fabs(b) + xnorm))) ? 0.0 : slack;
     }
     /* bounds in one pass each, the arithmetic of qp_slack without its
      * dispatch: x_i - lb_i, and (-x_i) - (-ub_i) = ub_i - x_i exactly */
@@ -611,7 +617,7 @@ static void qp_solution(const qp_state_t *s, ogk_qp_solution_t *sol)
     double lin = 0.0;
     size_t i;
     size_t k;
-    ogk_i_qp_mat_vec(H, n, false, ws->x, 1.0, hx); /* H x, four rows per pass */
+    ogk_i_qp_mat_vec(H, n, n, false, ws->x, 1.0, hx); /* H x, four rows per pass */
     for (i = 0u; i < n; ++i) {
         quad += ws->x[i] * hx[i];
         lin += s->p->g[i] * ws->x[i];
@@ -669,7 +675,7 @@ ogk_status ogk_qp_solve(ogk_qp_workspace_t *ws, const ogk_qp_problem_t *p,
     if (st == OGK_OK) {
         ogk_i_qp_inverse_lower(ws->r, p->n, ws->j); /* J^T = L^-1 */
         /* unconstrained start x = -H^-1 g = L^-T (-L^-1 g), by the rows of L^-1 */
-        ogk_i_qp_mat_vec(ws->j, p->n, true, p->g, -1.0, ws->d);
+        ogk_i_qp_mat_vec(ws->j, p->n, p->n, true, p->g, -1.0, ws->d);
         ogk_i_qp_rows_combine(ws->j, p->n, true, 0u, ws->d, ws->x);
         qp_row_norms(&s);
         st = qp_equalities(&s);

@@ -22,13 +22,28 @@ static size_t qp_row_end(bool lower, size_t n, size_t end)
     return len;
 }
 
-void ogk_i_qp_mat_vec(const double *J, size_t n, bool lower, const double *a, double sign, double *d) /* NOLINT(bugprone-easily-swappable-parameters): internal, every call in qp.c */
+/* row[0..len-1] -= a * u[0..len-1], two columns per step (one SIMD pair on SSE2). */
+static void qp_axpy_sub(double *row, double a, const double *u, size_t len)
+{
+    size_t c = 0u;
+    for (; (c + 2u) <= len; c += 2u) {
+        const double ra = row[c] - (a * u[c]);
+        const double rb = row[c + 1u] - (a * u[c + 1u]);
+        row[c] = ra;
+        row[c + 1u] = rb;
+    }
+    if (c < len) {
+        row[c] -= a * u[c];
+    }
+}
+
+void ogk_i_qp_mat_vec(const double *J, size_t m, size_t n, bool lower, const double *a, double sign, double *d) /* NOLINT(bugprone-easily-swappable-parameters): internal, every call in qp.c */
 {
     size_t k = 0u;
     size_t i;
     /* four rows per pass over a; each row's sum in two halves (even and odd
      * columns), added at the end: a SIMD pair on SSE2 */
-    for (; (k + 4u) <= n; k += 4u) {
+    for (; (k + 4u) <= m; k += 4u) {
         const double *j0 = &J[k * n];
         const double *j1 = &j0[n];
         const double *j2 = &j1[n];
@@ -66,7 +81,7 @@ void ogk_i_qp_mat_vec(const double *J, size_t n, bool lower, const double *a, do
         d[k + 2u] = sign * (s2a + s2b);
         d[k + 3u] = sign * (s3a + s3b);
     }
-    for (; k < n; ++k) {
+    for (; k < m; ++k) {
         const double *jk = &J[k * n];
         double s = 0.0;
         const size_t len = qp_row_end(lower, n, k + 1u);
@@ -122,12 +137,16 @@ void ogk_i_qp_rank1_rows(double *J, size_t n, size_t k0, const double *v, const 
 {
     size_t k = k0;
     size_t i;
-    for (; (k + 2u) <= n; k += 2u) {
+    for (; (k + 4u) <= n; k += 4u) {
         double *j0 = &J[k * n];
         double *j1 = &j0[n];
+        double *j2 = &j1[n];
+        double *j3 = &j2[n];
         const double v0 = v[k];
         const double v1 = v[k + 1u];
-        /* two columns per step (one SIMD pair on SSE2) */
+        const double v2 = v[k + 2u];
+        const double v3 = v[k + 3u];
+        /* four rows per pass over w, two columns per step (one SIMD pair on SSE2) */
         for (i = 0u; (i + 2u) <= n; i += 2u) {
             const double wa = w[i];
             const double wb = w[i + 1u];
@@ -135,65 +154,55 @@ void ogk_i_qp_rank1_rows(double *J, size_t n, size_t k0, const double *v, const 
             const double b0 = j0[i + 1u] - (v0 * wb);
             const double a1 = j1[i] - (v1 * wa);
             const double b1 = j1[i + 1u] - (v1 * wb);
+            const double a2 = j2[i] - (v2 * wa);
+            const double b2 = j2[i + 1u] - (v2 * wb);
+            const double a3 = j3[i] - (v3 * wa);
+            const double b3 = j3[i + 1u] - (v3 * wb);
             j0[i] = a0;
             j0[i + 1u] = b0;
             j1[i] = a1;
             j1[i + 1u] = b1;
+            j2[i] = a2;
+            j2[i + 1u] = b2;
+            j3[i] = a3;
+            j3[i + 1u] = b3;
         }
         if (i < n) {
             j0[i] -= v0 * w[i];
             j1[i] -= v1 * w[i];
+            j2[i] -= v2 * w[i];
+            j3[i] -= v3 * w[i];
         }
     }
     for (; k < n; ++k) {
-        double *jk = &J[k * n];
-        const double vk = v[k];
-        for (i = 0u; i < n; ++i) {
-            jk[i] -= vk * w[i];
-        }
+        qp_axpy_sub(&J[k * n], v[k], w, n);
     }
 }
 
-/* row[0..len-1] -= a * u[0..len-1], two columns per step (one SIMD pair on SSE2). */
-static void qp_axpy_sub(double *row, double a, const double *u, size_t len)
+/* Row i of the trailing matrix (columns i..n-1) minus the outer products of
+ * the four pivot rows k..k+3, in that order (the order of four one-row
+ * updates), two columns per step (one SIMD pair on SSE2). */
+static void qp_trailing_rank4(double *U, size_t n, size_t k, size_t i) /* NOLINT(bugprone-easily-swappable-parameters): pivot block k, row i; a swap fails the unit tests */
 {
-    size_t c = 0u;
-    for (; (c + 2u) <= len; c += 2u) {
-        const double ra = row[c] - (a * u[c]);
-        const double rb = row[c + 1u] - (a * u[c + 1u]);
+    const double *u0 = &U[k * n];
+    const double *u1 = &u0[n];
+    const double *u2 = &u1[n];
+    const double *u3 = &u2[n];
+    const double a0 = u0[i];
+    const double a1 = u1[i];
+    const double a2 = u2[i];
+    const double a3 = u3[i];
+    double *row = &U[i * n];
+    size_t c = i;
+    for (; (c + 2u) <= n; c += 2u) {
+        const double ra = (((row[c] - (a0 * u0[c])) - (a1 * u1[c])) - (a2 * u2[c])) - (a3 * u3[c]);
+        const double rb = (((row[c + 1u] - (a0 * u0[c + 1u])) - (a1 * u1[c + 1u])) - (a2 * u2[c + 1u])) -
+                          (a3 * u3[c + 1u]);
         row[c] = ra;
         row[c + 1u] = rb;
     }
-    if (c < len) {
-        row[c] -= a * u[c];
-    }
-}
-
-/* Rows i, i+1 of the trailing matrix minus the outer product of row k
- * (columns i.. and i+1.. of U): row i's first column alone, then both rows
- * in one pass over U(k, i+1..n-1). */
-static void qp_trailing_pair(double *U, size_t n, size_t k, size_t i) /* NOLINT(bugprone-easily-swappable-parameters): pivot row k, rows i and i+1; a swap fails the unit tests */
-{
-    const double *uk = &U[k * n];
-    double *u0 = &U[i * n];
-    double *u1 = &u0[n];
-    const double a0 = uk[i];
-    const double a1 = uk[i + 1u];
-    size_t c = i + 1u;
-    u0[i] -= a0 * uk[i];
-    for (; (c + 2u) <= n; c += 2u) {
-        const double p0 = u0[c] - (a0 * uk[c]);
-        const double q0 = u0[c + 1u] - (a0 * uk[c + 1u]);
-        const double p1 = u1[c] - (a1 * uk[c]);
-        const double q1 = u1[c + 1u] - (a1 * uk[c + 1u]);
-        u0[c] = p0;
-        u0[c + 1u] = q0;
-        u1[c] = p1;
-        u1[c + 1u] = q1;
-    }
     if (c < n) {
-        u0[c] -= a0 * uk[c];
-        u1[c] -= a1 * uk[c];
+        row[c] = (((row[c] - (a0 * u0[c])) - (a1 * u1[c])) - (a2 * u2[c])) - (a3 * u3[c]);
     }
 }
 
@@ -204,6 +213,7 @@ ogk_status ogk_i_qp_cholesky(const double *H, size_t n, double *U)
     double asym = 0.0;
     size_t i;
     size_t k;
+    size_t kb;
     /* the upper triangle of (H + H^T)/2; the pairs H(i, k), H(k, i) also
      * give max |H| and the asymmetry */
     for (k = 0u; k < n; ++k) {
@@ -219,28 +229,34 @@ ogk_status ogk_i_qp_cholesky(const double *H, size_t n, double *U)
             U[(k * n) + i] = 0.5 * (lo + up);
         }
     }
-    /* right-looking (outer-product) Cholesky, H = U^T U: row k of U is the
-     * reduced row k over its pivot; the trailing rows lose its outer product
-     * (contiguous row updates, Golub & Van Loan, Algorithm 4.2.2 by rows) */
-    for (k = 0u; (k < n) && (st == OGK_OK); ++k) {
-        const double hkk = H[(k * n) + k];
-        const double piv = U[(k * n) + k];
-        if ((hkk <= 0.0) || (piv <= (OGK_QP_PIVOT_TOL * hkk))) {
-            st = OGK_E_NOT_POSDEF;
-        } else {
-            const double ukk = sqrt(piv);
-            const double inv = 1.0 / ukk;
-            double *uk = &U[k * n];
-            uk[k] = ukk;
-            for (i = k + 1u; i < n; ++i) {
-                uk[i] *= inv;
+    /* right-looking (outer-product) Cholesky, H = U^T U, by panels of four
+     * pivot rows: row k of U is the reduced row k over its pivot, and its
+     * outer product leaves the rows below (Golub & Van Loan, Algorithm 4.2.2
+     * by rows); inside a panel row by row, below it the four outer products
+     * in one pass per row (same order of operations) */
+    for (kb = 0u; (kb < n) && (st == OGK_OK); kb += 4u) {
+        const size_t kend = qp_row_end(true, n, kb + 4u); /* min(kb + 4, n) */
+        for (k = kb; (k < kend) && (st == OGK_OK); ++k) {
+            const double hkk = H[(k * n) + k];
+            const double piv = U[(k * n) + k];
+            if ((hkk <= 0.0) || (piv <= (OGK_QP_PIVOT_TOL * hkk))) {
+                st = OGK_E_NOT_POSDEF;
+            } else {
+                const double ukk = sqrt(piv);
+                const double inv = 1.0 / ukk;
+                double *uk = &U[k * n];
+                uk[k] = ukk;
+                for (i = k + 1u; i < n; ++i) {
+                    uk[i] *= inv;
+                }
+                for (i = k + 1u; i < kend; ++i) {
+                    qp_axpy_sub(&U[(i * n) + i], uk[i], &uk[i], n - i);
+                }
             }
-            i = k + 1u;
-            for (; (i + 2u) <= n; i += 2u) {
-                qp_trailing_pair(U, n, k, i);
-            }
-            if (i < n) {
-                qp_axpy_sub(&U[(i * n) + i], uk[i], &uk[i], n - i);
+        }
+        if ((st == OGK_OK) && (kend == (kb + 4u))) {
+            for (i = kend; i < n; ++i) {
+                qp_trailing_rank4(U, n, kb, i);
             }
         }
     }

@@ -12,9 +12,9 @@
 
 #include "ogk/status.h"
 
-/* d[k] = sign * (J[k, :] . a) for k = 0..n-1 (J n x n, row stride n);
+/* d[k] = sign * (J[k, :] . a) for k = 0..m-1 (J m x n, row stride n);
  * lower: J is lower triangular (its zeros above the diagonal are skipped). */
-void ogk_i_qp_mat_vec(const double *J, size_t n, bool lower, const double *a, double sign, double *d);
+void ogk_i_qp_mat_vec(const double *J, size_t m, size_t n, bool lower, const double *a, double sign, double *d);
 
 /* z = sum_{k = k0}^{n-1} d[k] J[k, :] (the rows k0..n-1 of J, combined);
  * lower: J is lower triangular (its zeros above the diagonal are skipped). */
