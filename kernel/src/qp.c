@@ -1,18 +1,20 @@
 /* qp.c -- dense strictly convex QP by the dual active-set method of
  * Goldfarb & Idnani, "A numerically stable dual method for solving strictly
- * convex quadratic programs", Math. Programming 27 (1983) 1-33, in the form of
- * Powell's and Turlach's implementations (quadprog "qpgen2"):
+ * convex quadratic programs", Math. Programming 27 (1983) 1-33:
  *
- *   H = L L^T (Cholesky), unconstrained start x = -H^-1 g, J = L^-T;
+ *   H = L L^T (Cholesky, computed as U = L^T), unconstrained start
+ *   x = -H^-1 g, J = L^-T;
  *   with the active normals N = [n_1 .. n_q]: L^-1 N = Q [R; 0], J = L^-T Q,
  *   d = J^T n+, z = J2 d2 (primal direction), r = R^-1 d1 (dual direction);
- *   a constraint is added by Givens rotations of the columns of J that zero
- *   d(q+1..n-1) (R gains the column d(0..q)); a constraint is dropped by
- *   removing its column of R and restoring the triangle by Givens rotations
- *   of rows of R (and the same columns of J).
- * J is stored transposed (ws->j row k = column k of J), so that J^T n, J2 d2
- * and every rotation run along contiguous rows; L lives in ws->r until the
- * first constraint is added.
+ *   a constraint is added by one Householder reflection of the columns
+ *   q..n-1 of J that maps d2 onto |d2| e_1 (R gains the column d(0..q)); a
+ *   constraint is dropped by removing its column of R and restoring the
+ *   triangle by Givens rotations of rows of R (and the same columns of J).
+ * J is stored transposed (ws->j row k = column k of J), so that J^T n, J2 d2,
+ * the reflection and every rotation run along contiguous rows; U lives in
+ * ws->r until the first constraint is added. Until then J^T = L^-1 is lower
+ * triangular and its products skip the zeros. The dense loops are in
+ * qp_blas.c.
  *
  * Equality rows are made active first, in order, and never dropped; then each
  * iteration adds the most violated inequality row or bound (violation
@@ -30,6 +32,7 @@
 #include <string.h>
 
 #include "ogk_checks.h"
+#include "qp_internal.h"
 
 /* "No constraint" (a constraint number or an active-set position). */
 #define QP_NONE SIZE_MAX
@@ -49,6 +52,7 @@ typedef struct {
 /* Result of the step computation for one constraint. */
 typedef struct {
     double ztn;    /* z^T n+ = |d2|^2 */
+    double d2;     /* |d2|_2, d2 = d(q..n-1) */
     bool dep;      /* n+ linearly dependent on the active normals (z = 0) */
 } qp_dir_t;
 
@@ -83,6 +87,24 @@ static bool qp_no_nan(const double *v, size_t n)
         }
     }
     return ok;
+}
+
+/* True when v[0..n-1] is all finite: v_i * 0 is 0 for a finite v_i and NaN
+ * for +-Inf or NaN, and a NaN stays in the sums. Two independent sums and no
+ * branch per element (the input check reads all of H). */
+static bool qp_all_finite(const double *v, size_t n)
+{
+    double acc0 = 0.0;
+    double acc1 = 0.0;
+    size_t i = 0u;
+    for (; (i + 2u) <= n; i += 2u) {
+        acc0 += v[i] * 0.0;
+        acc1 += v[i + 1u] * 0.0;
+    }
+    if (i < n) {
+        acc0 += v[i] * 0.0;
+    }
+    return (acc0 + acc1) == 0.0;
 }
 
 static bool qp_has_lb(const ogk_qp_problem_t *p, size_t i)
@@ -120,11 +142,11 @@ static ogk_status qp_input_check(const ogk_qp_workspace_t *ws, const ogk_qp_prob
         st = OGK_E_NULL;
     } else if (!qp_dim_ok(p)) {
         st = OGK_E_DIM;
-    } else if (!ogk_i_all_finite(p->H, p->n * p->n) || !ogk_i_all_finite(p->g, p->n) ||
-               ((p->m_eq > 0u) && (!ogk_i_all_finite(p->A_eq, p->m_eq * p->n) ||
-                                   !ogk_i_all_finite(p->b_eq, p->m_eq))) ||
-               ((p->m_in > 0u) && (!ogk_i_all_finite(p->A_in, p->m_in * p->n) ||
-                                   !ogk_i_all_finite(p->b_in, p->m_in)))) {
+    } else if (!qp_all_finite(p->H, p->n * p->n) || !qp_all_finite(p->g, p->n) ||
+               ((p->m_eq > 0u) && (!qp_all_finite(p->A_eq, p->m_eq * p->n) ||
+                                   !qp_all_finite(p->b_eq, p->m_eq))) ||
+               ((p->m_in > 0u) && (!qp_all_finite(p->A_in, p->m_in * p->n) ||
+                                   !qp_all_finite(p->b_in, p->m_in)))) {
         st = OGK_E_NONFINITE;
     } else {
         st = qp_bounds_check(p);
@@ -167,112 +189,6 @@ static double qp_norm2(const double *v, size_t n)
         norm = scale * sqrt(ssq);
     }
     return norm;
-}
-
-/* OGK_E_NOT_POSDEF when H is not symmetric to OGK_QP_SYM_TOL max |H|. */
-static ogk_status qp_symmetry_check(const double *H, size_t n)
-{
-    ogk_status st = OGK_OK;
-    double hmax = 0.0;
-    size_t i;
-    size_t k;
-    for (i = 0u; i < (n * n); ++i) {
-        if (fabs(H[i]) > hmax) {
-            hmax = fabs(H[i]);
-        }
-    }
-    for (i = 0u; (i < n) && (st == OGK_OK); ++i) {
-        for (k = 0u; (k < i) && (st == OGK_OK); ++k) {
-            if (fabs(H[(i * n) + k] - H[(k * n) + i]) > (OGK_QP_SYM_TOL * hmax)) {
-                st = OGK_E_NOT_POSDEF;
-            }
-        }
-    }
-    return st;
-}
-
-/* ws->r = L, (H + H^T)/2 = L L^T (row-major, zero above the diagonal).
- * OGK_E_NOT_POSDEF when a pivot d^2 <= OGK_QP_PIVOT_TOL H_jj or H_jj <= 0. */
-static ogk_status qp_cholesky(ogk_qp_workspace_t *ws, const double *H, size_t n)
-{
-    ogk_status st = OGK_OK;
-    double *L = ws->r;
-    size_t i;
-    size_t jj;
-    size_t k;
-    (void)memset(L, 0, n * n * sizeof(double)); /* result unused: returns L */
-    for (jj = 0u; (jj < n) && (st == OGK_OK); ++jj) {
-        const double hjj = H[(jj * n) + jj];
-        double piv = hjj;
-        for (k = 0u; k < jj; ++k) {
-            piv -= L[(jj * n) + k] * L[(jj * n) + k];
-        }
-        if ((hjj <= 0.0) || (piv <= (OGK_QP_PIVOT_TOL * hjj))) {
-            st = OGK_E_NOT_POSDEF;
-        } else {
-            const double ljj = sqrt(piv);
-            L[(jj * n) + jj] = ljj;
-            for (i = jj + 1u; i < n; ++i) {
-                double s = 0.5 * (H[(i * n) + jj] + H[(jj * n) + i]);
-                for (k = 0u; k < jj; ++k) {
-                    s -= L[(i * n) + k] * L[(jj * n) + k];
-                }
-                L[(i * n) + jj] = s / ljj;
-            }
-        }
-    }
-    return st;
-}
-
-/* ws->x = -H^-1 g from L (forward then back substitution). */
-static void qp_unconstrained(ogk_qp_workspace_t *ws, const double *g, size_t n)
-{
-    const double *L = ws->r;
-    double *x = ws->x;
-    size_t i;
-    size_t k;
-    for (i = 0u; i < n; ++i) {
-        double s = -g[i];
-        for (k = 0u; k < i; ++k) {
-            s -= L[(i * n) + k] * x[k];
-        }
-        x[i] = s / L[(i * n) + i];
-    }
-    for (i = n; i > 0u; --i) {
-        const size_t ii = i - 1u;
-        double s = x[ii];
-        for (k = i; k < n; ++k) {
-            s -= L[(k * n) + ii] * x[k];
-        }
-        x[ii] = s / L[(ii * n) + ii];
-    }
-}
-
-/* ws->j = J^T = L^-1 (lower triangular), row by row from L in ws->r:
- * L(i,i) Li(i,:) = e_i - sum_{k<i} L(i,k) Li(k,:). */
-static void qp_initial_j(ogk_qp_workspace_t *ws, size_t n)
-{
-    const double *L = ws->r;
-    double *Li = ws->j;
-    size_t c;
-    size_t i;
-    size_t k;
-    (void)memset(Li, 0, n * n * sizeof(double)); /* result unused: returns Li */
-    for (i = 0u; i < n; ++i) {
-        double *row = &Li[i * n];
-        const double inv = 1.0 / L[(i * n) + i];
-        for (k = 0u; k < i; ++k) {
-            const double lik = L[(i * n) + k];
-            const double *rk = &Li[k * n];
-            for (c = 0u; c <= k; ++c) {
-                row[c] -= lik * rk[c];
-            }
-        }
-        row[i] = 1.0;
-        for (c = 0u; c <= i; ++c) {
-            row[c] *= inv;
-        }
-    }
 }
 
 /* ------------------------------------------------------------------ constraints */
@@ -355,6 +271,8 @@ static qp_dir_t qp_direction(const qp_state_t *s, size_t c)
     ogk_qp_workspace_t *ws = s->ws;
     const size_t n = s->n;
     const size_t q = s->q;
+    /* J^T is L^-1, lower triangular, until the first change of the active set */
+    const bool lower = s->iter == 0u;
     double sign;
     size_t var;
     qp_dir_t dir;
@@ -367,25 +285,10 @@ static qp_dir_t qp_direction(const qp_state_t *s, size_t c)
             ws->d[k] = sign * ws->j[(k * n) + var];
         }
     } else {
-        const double *row = qp_row(s, c);
-        for (k = 0u; k < n; ++k) {
-            const double *jk = &ws->j[k * n];
-            double dk = 0.0;
-            for (i = 0u; i < n; ++i) {
-                dk += jk[i] * row[i];
-            }
-            ws->d[k] = sign * dk;
-        }
+        ogk_i_qp_mat_vec(ws->j, n, n, lower, qp_row(s, c), sign, ws->d);
     }
     /* z = sum over the free columns q..n-1 of J(:, k) d(k) (rows of ws->j) */
-    (void)memset(ws->z, 0, n * sizeof(double)); /* result unused: returns z */
-    for (k = q; k < n; ++k) {
-        const double *jk = &ws->j[k * n];
-        const double dk = ws->d[k];
-        for (i = 0u; i < n; ++i) {
-            ws->z[i] += jk[i] * dk;
-        }
-    }
+    ogk_i_qp_rows_combine(ws->j, n, lower, q, ws->d, ws->z);
     /* rdir = R^-1 d(0..q-1), back substitution */
     for (i = q; i > 0u; --i) {
         const size_t ii = i - 1u;
@@ -398,6 +301,7 @@ static qp_dir_t qp_direction(const qp_state_t *s, size_t c)
     {
         const double d2 = (q < n) ? qp_norm2(&ws->d[q], n - q) : 0.0;
         dir.ztn = d2 * d2;
+        dir.d2 = d2;
         dir.dep = (q >= n) || (d2 <= (OGK_QP_DEP_TOL * qp_norm2(ws->d, n))) ||
                   (dir.ztn <= 0.0);
     }
@@ -420,29 +324,55 @@ static void qp_rotate_j(ogk_qp_workspace_t *ws, size_t n, size_t a, size_t b, /*
     }
 }
 
-/* Adds constraint c with multiplier u_c at position q (d = J^T n_c held). */
-static void qp_add(qp_state_t *s, size_t c, double u_c) /* NOLINT(bugprone-easily-swappable-parameters): a constraint number and its multiplier */
+/* Adds constraint c with multiplier u_c at position q (d = J^T n_c and
+ * z = J2 d2 held). One Householder reflection P = I - v v^T / beta of the
+ * columns q..n-1 of J maps d2 onto |d2| e_1 (Golub & Van Loan, Matrix
+ * Computations, 4th ed., Algorithm 5.1.1): v = d2 + sigma |d2| e_1,
+ * sigma = sign(d2(0)) (no cancellation), beta = sigma |d2| v(0) = v^T v / 2,
+ * J2 <- J2 P = J2 - w v^T / beta with w = J2 v = z + sigma |d2| J(:, q), so
+ * that the product J2 v costs n operations (z is already there). P d2 =
+ * -sigma |d2| e_1: column q of J is negated when sigma > 0 (R's diagonal > 0).
+ * About 2 n (n - q) operations instead of the 6 n (n - q) of n - q - 1 Givens
+ * rotations (docs/qp.md, "Adding a constraint"). */
+static void qp_add(qp_state_t *s, size_t c, double u_c, double d2norm) /* NOLINT(bugprone-easily-swappable-parameters): a constraint number, its multiplier and |d2| */
 {
     ogk_qp_workspace_t *ws = s->ws;
     const size_t n = s->n;
     const size_t q = s->q;
-    size_t k;
+    double *w = ws->rdir; /* R^-1 d1 is not needed after the step: reused for J2 v */
     size_t i;
-    for (k = n - 1u; k > q; --k) {
-        const double a = ws->d[k - 1u];
-        const double b = ws->d[k];
-        if (b != 0.0) {
-            const double h = hypot(a, b);
-            qp_rotate_j(ws, n, k - 1u, k, a / h, b / h);
-            ws->d[k - 1u] = h;
+    if (((q + 1u) < n) && (d2norm > 0.0)) {
+        size_t k;
+        const double *jq = &ws->j[q * n];
+        const double sigma = (ws->d[q] < 0.0) ? -1.0 : 1.0;
+        const double alpha = sigma * d2norm;
+        const double v0 = ws->d[q] + alpha;
+        const double inv_beta = 1.0 / (alpha * v0);
+        for (i = 0u; i < n; ++i) {
+            w[i] = (ws->z[i] + (alpha * jq[i])) * inv_beta;
+        }
+        /* the rows q..n-1 of J^T: row k -= v(k - q) w / beta; v(k - q) = d(k) for k > q */
+        ws->d[q] = v0;
+        ogk_i_qp_rank1_rows(ws->j, n, q, ws->d, w);
+        for (k = q + 1u; k < n; ++k) {
             ws->d[k] = 0.0;
         }
-    }
-    if (ws->d[q] < 0.0) {
+        /* P d2 = -alpha e_1: negate column q when sigma > 0 so that R(q, q) = |d2| > 0 */
+        if (sigma > 0.0) {
+            double *jq_new = &ws->j[q * n];
+            for (i = 0u; i < n; ++i) {
+                jq_new[i] = -jq_new[i];
+            }
+        }
+        ws->d[q] = d2norm;
+    } else if (ws->d[q] < 0.0) {
+        /* q = n - 1 (nothing to reflect): only the sign of column q */
         for (i = 0u; i < n; ++i) {
             ws->j[(q * n) + i] = -ws->j[(q * n) + i];
         }
         ws->d[q] = -ws->d[q];
+    } else {
+        /* d(q) >= 0 already */
     }
     for (i = 0u; i <= q; ++i) {
         ws->r[(i * n) + q] = ws->d[i];
@@ -537,7 +467,7 @@ static ogk_status qp_equalities(qp_state_t *s)
         } else {
             const double t = -slack / dir.ztn;
             qp_take_step(s, t);
-            qp_add(s, c, t);
+            qp_add(s, c, t, dir.d2);
         }
     }
     return st;
@@ -553,33 +483,44 @@ static size_t qp_select(const qp_state_t *s)
     size_t best = QP_NONE;
     double worst = 0.0;
     size_t k;
-    for (k = 0u; k < total; ++k) {
-        const size_t c = s->k_in + k;
-        const bool is_bound = k >= m_in;
-        const size_t var = is_bound ? ((k - m_in) % s->n) : 0u;
-        const bool present = !is_bound || ((c < s->k_ub) ? qp_has_lb(s->p, var) : qp_has_ub(s->p, var));
-        double slack = 0.0;
-        if (present) {
-            double tol;
-            slack = qp_slack(s, c, xnorm, &tol);
-            if (slack >= -tol) {
-                slack = 0.0;
-            }
+    /* the rows: A_in x four rows per pass, then qp_slack's arithmetic on the
+     * unit normals (factor 1 / |a|_2) */
+    if (m_in > 0u) {
+        ogk_i_qp_mat_vec(s->p->A_in, m_in, s->n, false, ws->x, 1.0, ws->slack);
+    }
+    for (k = 0u; k < m_in; ++k) {
+        const double scale = ws->rowscale[s->k_in + k];
+        const double b = scale * s->p->b_in[k];
+        const double slack = (scale * ws->slack[k]) - b;
+        ws->slack[k] = (slack >= -(OGK_QP_FEAS_TOL * (fabs(b) + xnorm))) ? 0.0 : slack;
+    }
+    /* bounds in one pass each, the arithmetic of qp_slack without its
+     * dispatch: x_i - lb_i, and (-x_i) - (-ub_i) = ub_i - x_i exactly */
+    for (k = 0u; k < s->n; ++k) {
+        double lo = 0.0;
+        double hi = 0.0;
+        if (qp_has_lb(s->p, k)) {
+            const double slack = ws->x[k] - s->p->lb[k];
+            lo = (slack >= -(OGK_QP_FEAS_TOL * (fabs(s->p->lb[k]) + xnorm))) ? 0.0 : slack;
         }
-        ws->slack[k] = slack;
+        if (qp_has_ub(s->p, k)) {
+            const double slack = s->p->ub[k] - ws->x[k];
+            hi = (slack >= -(OGK_QP_FEAS_TOL * (fabs(s->p->ub[k]) + xnorm))) ? 0.0 : slack;
+        }
+        ws->slack[m_in + k] = lo;
+        ws->slack[m_in + s->n + k] = hi;
     }
     for (k = 0u; k < s->q; ++k) {
         if (ws->active[k] >= s->k_in) {
             ws->slack[ws->active[k] - s->k_in] = 0.0;
         }
     }
+    /* the most negative slack, the first on ties (worst starts at 0: only
+     * violated constraints qualify); selects instead of branches */
     for (k = 0u; k < total; ++k) {
-        if (ws->slack[k] < 0.0) {
-            if (ws->slack[k] < worst) {
-                worst = ws->slack[k];
-                best = s->k_in + k;
-            }
-        }
+        const bool better = ws->slack[k] < worst;
+        worst = better ? ws->slack[k] : worst;
+        best = better ? (s->k_in + k) : best;
     }
     return best;
 }
@@ -614,7 +555,7 @@ static ogk_status qp_iterate(qp_state_t *s, size_t c, double *u_c, bool *added)
         const double t2 = -slack / dir.ztn;
         qp_take_step(s, t2);
         *u_c += t2;
-        qp_add(s, c, *u_c);
+        qp_add(s, c, *u_c, dir.d2);
         *added = true;
     } else {
         if (dir.dep) {
@@ -668,19 +609,17 @@ static ogk_status qp_inequalities(qp_state_t *s)
 
 static void qp_solution(const qp_state_t *s, ogk_qp_solution_t *sol)
 {
-    const ogk_qp_workspace_t *ws = s->ws;
+    ogk_qp_workspace_t *ws = s->ws;
+    double *hx = ws->d; /* scratch: d is not needed after the last step */
     const double *H = s->p->H;
     const size_t n = s->n;
     double quad = 0.0;
     double lin = 0.0;
     size_t i;
     size_t k;
+    ogk_i_qp_mat_vec(H, n, n, false, ws->x, 1.0, hx); /* H x, four rows per pass */
     for (i = 0u; i < n; ++i) {
-        double hx = 0.0;
-        for (k = 0u; k < n; ++k) {
-            hx += H[(i * n) + k] * ws->x[k];
-        }
-        quad += ws->x[i] * hx;
+        quad += ws->x[i] * hx[i];
         lin += s->p->g[i] * ws->x[i];
         sol->x[i] = ws->x[i];
     }
@@ -730,14 +669,14 @@ ogk_status ogk_qp_solve(ogk_qp_workspace_t *ws, const ogk_qp_problem_t *p,
         s.k_ub = s.k_lb + p->n;
         s.q = 0u;
         s.iter = 0u;
-        st = qp_symmetry_check(p->H, p->n);
+        /* symmetry (OGK_QP_SYM_TOL) checked in the same pass: OGK_E_NOT_POSDEF too */
+        st = ogk_i_qp_cholesky(p->H, p->n, ws->r); /* U = L^T in ws->r until the first add */
     }
     if (st == OGK_OK) {
-        st = qp_cholesky(ws, p->H, p->n);
-    }
-    if (st == OGK_OK) {
-        qp_unconstrained(ws, p->g, p->n);
-        qp_initial_j(ws, p->n);
+        ogk_i_qp_inverse_lower(ws->r, p->n, ws->j); /* J^T = L^-1 */
+        /* unconstrained start x = -H^-1 g = L^-T (-L^-1 g), by the rows of L^-1 */
+        ogk_i_qp_mat_vec(ws->j, p->n, p->n, true, p->g, -1.0, ws->d);
+        ogk_i_qp_rows_combine(ws->j, p->n, true, 0u, ws->d, ws->x);
         qp_row_norms(&s);
         st = qp_equalities(&s);
     }

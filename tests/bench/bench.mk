@@ -199,3 +199,7 @@ bench-blt-profile: $(BENCH_BLT)
 	callgrind_annotate $(BLT_B)/callgrind_$(BLT_PROFILE).out | head -30
 
 bench: bench-blt
+
+# Dense QP against DAQP and qpOASES (docs/qp.md): after the NMPC section, whose case header it uses.
+include tests/bench/bench_qp.mk
+bench: bench-qp

@@ -90,11 +90,11 @@ typedef struct {
  * m_eq..m_eq+m_in-1, lower bounds m_eq+m_in+i, upper bounds m_eq+m_in+n+i. */
 typedef struct {
     double j[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] J^T = Q^T L^-1, row-major n x n (row k: column k of J) */
-    double r[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] Cholesky factor L of H during setup, then the upper-triangular R of the active set (row stride n) */
+    double r[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] Cholesky factor U = L^T of H during setup, then the upper-triangular R of the active set (row stride n) */
     double x[OGK_QP_MAX_N];                  /* [-] primal iterate */
     double d[OGK_QP_MAX_N];                  /* [-] J^T n of the constraint being added */
     double z[OGK_QP_MAX_N];                  /* [-] primal step direction J2 J2^T n */
-    double rdir[OGK_QP_MAX_N];               /* [-] dual step direction R^-1 J1^T n */
+    double rdir[OGK_QP_MAX_N];               /* [-] dual step direction R^-1 J1^T n; then J2 v / beta of the Householder update that adds n */
     double u[OGK_QP_MAX_N];                  /* [-] multipliers of the active set, in R's column order */
     size_t active[OGK_QP_MAX_N];             /* [-] constraint numbers of the active set, in R's column order */
     double slack[OGK_QP_MAX_IN + (2u * OGK_QP_MAX_N)]; /* [-] a^T x - b of the inequality rows and bounds (0: active or no bound) */

@@ -1,0 +1,309 @@
+/* qp_blas.c -- the dense loops of ogk_qp_solve (kernel/src/qp.c), blocked by
+ * four rows (two for the update) so that the shared vector is read once per
+ * block and the loop overhead is shared: each element still sees the same
+ * operations in the same order as the one-row loop, so the results are the
+ * same to the bit (docs/qp.md, "Cost"). */
+#include "qp_internal.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "ogk/qp.h"
+
+/* Columns of rows ..end-1 that can be nonzero: end for a lower triangular
+ * matrix (capped at n), n otherwise. */
+static size_t qp_row_end(bool lower, size_t n, size_t end)
+{
+    size_t len = n;
+    if (lower && (end < n)) {
+        len = end;
+    }
+    return len;
+}
+
+/* row[0..len-1] -= a * u[0..len-1], two columns per step (one SIMD pair on SSE2). */
+static void qp_axpy_sub(double *row, double a, const double *u, size_t len)
+{
+    size_t c = 0u;
+    for (; (c + 2u) <= len; c += 2u) {
+        const double ra = row[c] - (a * u[c]);
+        const double rb = row[c + 1u] - (a * u[c + 1u]);
+        row[c] = ra;
+        row[c + 1u] = rb;
+    }
+    if (c < len) {
+        row[c] -= a * u[c];
+    }
+}
+
+void ogk_i_qp_mat_vec(const double *J, size_t m, size_t n, bool lower, const double *a, double sign, double *d) /* NOLINT(bugprone-easily-swappable-parameters): internal, every call in qp.c */
+{
+    size_t k = 0u;
+    size_t i;
+    /* four rows per pass over a; each row's sum in two halves (even and odd
+     * columns), added at the end: a SIMD pair on SSE2 */
+    for (; (k + 4u) <= m; k += 4u) {
+        const double *j0 = &J[k * n];
+        const double *j1 = &j0[n];
+        const double *j2 = &j1[n];
+        const double *j3 = &j2[n];
+        double s0a = 0.0;
+        double s0b = 0.0;
+        double s1a = 0.0;
+        double s1b = 0.0;
+        double s2a = 0.0;
+        double s2b = 0.0;
+        double s3a = 0.0;
+        double s3b = 0.0;
+        /* a lower triangular J: rows k..k+3 end at column k+3 */
+        const size_t len = qp_row_end(lower, n, k + 4u);
+        for (i = 0u; (i + 2u) <= len; i += 2u) {
+            const double aa = a[i];
+            const double ab = a[i + 1u];
+            s0a += j0[i] * aa;
+            s0b += j0[i + 1u] * ab;
+            s1a += j1[i] * aa;
+            s1b += j1[i + 1u] * ab;
+            s2a += j2[i] * aa;
+            s2b += j2[i + 1u] * ab;
+            s3a += j3[i] * aa;
+            s3b += j3[i + 1u] * ab;
+        }
+        if (i < len) {
+            s0a += j0[i] * a[i];
+            s1a += j1[i] * a[i];
+            s2a += j2[i] * a[i];
+            s3a += j3[i] * a[i];
+        }
+        d[k] = sign * (s0a + s0b);
+        d[k + 1u] = sign * (s1a + s1b);
+        d[k + 2u] = sign * (s2a + s2b);
+        d[k + 3u] = sign * (s3a + s3b);
+    }
+    for (; k < m; ++k) {
+        const double *jk = &J[k * n];
+        double s = 0.0;
+        const size_t len = qp_row_end(lower, n, k + 1u);
+        for (i = 0u; i < len; ++i) {
+            s += jk[i] * a[i];
+        }
+        d[k] = sign * s;
+    }
+}
+
+void ogk_i_qp_rows_combine(const double *J, size_t n, bool lower, size_t k0, const double *d, double *z) /* NOLINT(bugprone-easily-swappable-parameters): internal, every call in qp.c */
+{
+    size_t k = k0;
+    size_t i;
+    for (i = 0u; i < n; ++i) {
+        z[i] = 0.0;
+    }
+    for (; (k + 4u) <= n; k += 4u) {
+        const double *j0 = &J[k * n];
+        const double *j1 = &j0[n];
+        const double *j2 = &j1[n];
+        const double *j3 = &j2[n];
+        const double d0 = d[k];
+        const double d1 = d[k + 1u];
+        const double d2 = d[k + 2u];
+        const double d3 = d[k + 3u];
+        /* a lower triangular J: rows k..k+3 end at column k+3 */
+        const size_t len = qp_row_end(lower, n, k + 4u);
+        /* two columns per step: the pair is one SIMD operation where the
+         * target has one (SSE2), two scalar ones elsewhere */
+        for (i = 0u; (i + 2u) <= len; i += 2u) {
+            const double za = (((z[i] + (j0[i] * d0)) + (j1[i] * d1)) + (j2[i] * d2)) + (j3[i] * d3);
+            const double zb = (((z[i + 1u] + (j0[i + 1u] * d0)) + (j1[i + 1u] * d1)) + (j2[i + 1u] * d2)) +
+                              (j3[i + 1u] * d3);
+            z[i] = za;
+            z[i + 1u] = zb;
+        }
+        if (i < len) {
+            z[i] = (((z[i] + (j0[i] * d0)) + (j1[i] * d1)) + (j2[i] * d2)) + (j3[i] * d3);
+        }
+    }
+    for (; k < n; ++k) {
+        const double *jk = &J[k * n];
+        const double dk = d[k];
+        const size_t len = qp_row_end(lower, n, k + 1u);
+        for (i = 0u; i < len; ++i) {
+            z[i] += jk[i] * dk;
+        }
+    }
+}
+
+void ogk_i_qp_rank1_rows(double *J, size_t n, size_t k0, const double *v, const double *w) /* NOLINT(bugprone-easily-swappable-parameters): internal, its one call in qp_add; a swap fails the unit tests */
+{
+    size_t k = k0;
+    size_t i;
+    for (; (k + 4u) <= n; k += 4u) {
+        double *j0 = &J[k * n];
+        double *j1 = &j0[n];
+        double *j2 = &j1[n];
+        double *j3 = &j2[n];
+        const double v0 = v[k];
+        const double v1 = v[k + 1u];
+        const double v2 = v[k + 2u];
+        const double v3 = v[k + 3u];
+        /* four rows per pass over w, two columns per step (one SIMD pair on SSE2) */
+        for (i = 0u; (i + 2u) <= n; i += 2u) {
+            const double wa = w[i];
+            const double wb = w[i + 1u];
+            const double a0 = j0[i] - (v0 * wa);
+            const double b0 = j0[i + 1u] - (v0 * wb);
+            const double a1 = j1[i] - (v1 * wa);
+            const double b1 = j1[i + 1u] - (v1 * wb);
+            const double a2 = j2[i] - (v2 * wa);
+            const double b2 = j2[i + 1u] - (v2 * wb);
+            const double a3 = j3[i] - (v3 * wa);
+            const double b3 = j3[i + 1u] - (v3 * wb);
+            j0[i] = a0;
+            j0[i + 1u] = b0;
+            j1[i] = a1;
+            j1[i + 1u] = b1;
+            j2[i] = a2;
+            j2[i + 1u] = b2;
+            j3[i] = a3;
+            j3[i + 1u] = b3;
+        }
+        if (i < n) {
+            j0[i] -= v0 * w[i];
+            j1[i] -= v1 * w[i];
+            j2[i] -= v2 * w[i];
+            j3[i] -= v3 * w[i];
+        }
+    }
+    for (; k < n; ++k) {
+        qp_axpy_sub(&J[k * n], v[k], w, n);
+    }
+}
+
+/* Row i of the trailing matrix (columns i..n-1) minus the outer products of
+ * the four pivot rows k..k+3, in that order (the order of four one-row
+ * updates), two columns per step (one SIMD pair on SSE2). */
+static void qp_trailing_rank4(double *U, size_t n, size_t k, size_t i) /* NOLINT(bugprone-easily-swappable-parameters): pivot block k, row i; a swap fails the unit tests */
+{
+    const double *u0 = &U[k * n];
+    const double *u1 = &u0[n];
+    const double *u2 = &u1[n];
+    const double *u3 = &u2[n];
+    const double a0 = u0[i];
+    const double a1 = u1[i];
+    const double a2 = u2[i];
+    const double a3 = u3[i];
+    double *row = &U[i * n];
+    size_t c = i;
+    for (; (c + 2u) <= n; c += 2u) {
+        const double ra = (((row[c] - (a0 * u0[c])) - (a1 * u1[c])) - (a2 * u2[c])) - (a3 * u3[c]);
+        const double rb = (((row[c + 1u] - (a0 * u0[c + 1u])) - (a1 * u1[c + 1u])) - (a2 * u2[c + 1u])) -
+                          (a3 * u3[c + 1u]);
+        row[c] = ra;
+        row[c + 1u] = rb;
+    }
+    if (c < n) {
+        row[c] = (((row[c] - (a0 * u0[c])) - (a1 * u1[c])) - (a2 * u2[c])) - (a3 * u3[c]);
+    }
+}
+
+ogk_status ogk_i_qp_cholesky(const double *H, size_t n, double *U)
+{
+    ogk_status st = OGK_OK;
+    double hmax = 0.0;
+    double asym = 0.0;
+    size_t i;
+    size_t k;
+    size_t kb;
+    /* the upper triangle of (H + H^T)/2; the pairs H(i, k), H(k, i) also
+     * give max |H| and the asymmetry */
+    for (k = 0u; k < n; ++k) {
+        const double hkk = fabs(H[(k * n) + k]);
+        hmax = (hkk > hmax) ? hkk : hmax;
+        U[(k * n) + k] = H[(k * n) + k];
+        for (i = k + 1u; i < n; ++i) {
+            const double up = H[(k * n) + i];
+            const double lo = H[(i * n) + k];
+            const double big = (fabs(lo) > fabs(up)) ? fabs(lo) : fabs(up);
+            hmax = (big > hmax) ? big : hmax;
+            asym = (fabs(lo - up) > asym) ? fabs(lo - up) : asym;
+            U[(k * n) + i] = 0.5 * (lo + up);
+        }
+    }
+    /* right-looking (outer-product) Cholesky, H = U^T U, by panels of four
+     * pivot rows: row k of U is the reduced row k over its pivot, and its
+     * outer product leaves the rows below (Golub & Van Loan, Algorithm 4.2.2
+     * by rows); inside a panel row by row, below it the four outer products
+     * in one pass per row (same order of operations) */
+    for (kb = 0u; (kb < n) && (st == OGK_OK); kb += 4u) {
+        const size_t kend = qp_row_end(true, n, kb + 4u); /* min(kb + 4, n) */
+        for (k = kb; (k < kend) && (st == OGK_OK); ++k) {
+            const double hkk = H[(k * n) + k];
+            const double piv = U[(k * n) + k];
+            if ((hkk <= 0.0) || (piv <= (OGK_QP_PIVOT_TOL * hkk))) {
+                st = OGK_E_NOT_POSDEF;
+            } else {
+                const double ukk = sqrt(piv);
+                const double inv = 1.0 / ukk;
+                double *uk = &U[k * n];
+                uk[k] = ukk;
+                for (i = k + 1u; i < n; ++i) {
+                    uk[i] *= inv;
+                }
+                for (i = k + 1u; i < kend; ++i) {
+                    qp_axpy_sub(&U[(i * n) + i], uk[i], &uk[i], n - i);
+                }
+            }
+        }
+        if ((st == OGK_OK) && (kend == (kb + 4u))) {
+            for (i = kend; i < n; ++i) {
+                qp_trailing_rank4(U, n, kb, i);
+            }
+        }
+    }
+    if ((st == OGK_OK) && (asym > (OGK_QP_SYM_TOL * hmax))) {
+        st = OGK_E_NOT_POSDEF;
+    }
+    return st;
+}
+
+void ogk_i_qp_inverse_lower(const double *U, size_t n, double *Li)
+{
+    size_t c;
+    size_t i;
+    for (i = 0u; i < (n * n); ++i) {
+        Li[i] = 0.0;
+    }
+    for (i = 0u; i < n; ++i) {
+        double *row = &Li[i * n];
+        const double inv = 1.0 / U[(i * n) + i];
+        size_t k = 0u;
+        /* four rows k of Li per pass over row i; Li(k, c) = 0 for c > k, so
+         * the block's columns 0..k+3 take the same values as one row at a
+         * time. L(i, k) = U(k, i). */
+        for (; (k + 4u) <= i; k += 4u) {
+            const double *r0 = &Li[k * n];
+            const double *r1 = &r0[n];
+            const double *r2 = &r1[n];
+            const double *r3 = &r2[n];
+            const double l0 = U[(k * n) + i];
+            const double l1 = U[((k + 1u) * n) + i];
+            const double l2 = U[((k + 2u) * n) + i];
+            const double l3 = U[((k + 3u) * n) + i];
+            /* columns 0..k+3 (an even count), two per step (one SIMD pair on SSE2) */
+            for (c = 0u; c <= (k + 3u); c += 2u) {
+                const double ra = (((row[c] - (l0 * r0[c])) - (l1 * r1[c])) - (l2 * r2[c])) - (l3 * r3[c]);
+                const double rb = (((row[c + 1u] - (l0 * r0[c + 1u])) - (l1 * r1[c + 1u])) - (l2 * r2[c + 1u])) -
+                                  (l3 * r3[c + 1u]);
+                row[c] = ra;
+                row[c + 1u] = rb;
+            }
+        }
+        for (; k < i; ++k) {
+            qp_axpy_sub(row, U[(k * n) + i], &Li[k * n], k + 1u);
+        }
+        row[i] = 1.0;
+        for (c = 0u; c <= i; ++c) {
+            row[c] *= inv;
+        }
+    }
+}
