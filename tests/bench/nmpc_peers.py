@@ -17,6 +17,7 @@ and the options; later runs load it (no compile in the timing, none after the fi
 """
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import time
 from dataclasses import dataclass
@@ -46,7 +47,7 @@ class PeerSolve:
 def _jit_opts(cache: Path, name: str) -> dict:
     return {"jit": True, "compiler": "shell", "jit_temp_suffix": False, "jit_name": name,
             "jit_serialize": "link", "jit_options": {"flags": ["-O2"], "verbose": False, "cleanup": False,
-                                                     "directory": f"{cache}/"}}
+                                                     "directory": f"{cache.resolve()}/"}}
 
 
 def _cached(cache: Path | None, key: str, build) -> ca.Function:
@@ -61,7 +62,9 @@ def _cached(cache: Path | None, key: str, build) -> ca.Function:
             return ca.Function.load(str(path))
         except RuntimeError:
             path.unlink()
-    solver = build(key)
+    cache = cache.resolve()
+    with contextlib.chdir(cache):   # CasADi writes the generated <name>.c into the working directory
+        solver = build(key)
     solver.save(str(path))
     return solver
 
