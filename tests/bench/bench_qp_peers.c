@@ -12,6 +12,8 @@
  *   bench_qp_peers once FILE        every QP of FILE solved once by the kernel
  *                                   in bench_qp_set_once (for callgrind's
  *                                   --toggle-collect)
+ *   bench_qp_peers once-daqp FILE   the same for DAQP in bench_daqp_set_once
+ *                                   (its cases built before, outside)
  *
  * FILE (written by tests/bench/bench_qp_peers.py and by the NMPC recorder
  * bench_qp_record.c): per QP, int32 n, m_eq, m_in, then doubles H (n x n,
@@ -194,17 +196,38 @@ __attribute__((noinline)) static int bench_qp_set_once(const qp_rec_t *v, size_t
     return bad;
 }
 
+__attribute__((noinline)) static int bench_daqp_set_once(daqp_case_t *c, size_t cnt)
+{
+    int bad = 0;
+    size_t i;
+    double fd = 0.0;
+    for (i = 0; i < cnt; ++i) {
+        bad += (int)(daqp_run(&c[i], &fd) != 1);
+    }
+    return bad;
+}
+
 int main(int argc, char **argv)
 {
     qp_rec_t *v;
     size_t cnt, i;
     if (argc < 3) {
-        fprintf(stderr, "usage: bench_qp_peers time FILE REPS | once FILE\n");
+        fprintf(stderr, "usage: bench_qp_peers time FILE REPS | once FILE | once-daqp FILE\n");
         return 2;
     }
     cnt = read_set(argv[2], &v);
     if (strcmp(argv[1], "once") == 0) {
         int bad = bench_qp_set_once(v, cnt);
+        printf("qps %zu failed %d\n", cnt, bad);
+        return 0;
+    }
+    if (strcmp(argv[1], "once-daqp") == 0) {
+        daqp_case_t *c = malloc(cnt * sizeof(daqp_case_t));
+        int bad;
+        for (i = 0; i < cnt; ++i) {
+            daqp_problem(&v[i], &c[i]);
+        }
+        bad = bench_daqp_set_once(c, cnt);
         printf("qps %zu failed %d\n", cnt, bad);
         return 0;
     }

@@ -89,10 +89,12 @@ def c_timings(peers: Path, path: Path, reps: int):
     return rows
 
 
-def callgrind(peers: Path, path: Path) -> int:
+def callgrind(peers: Path, path: Path, solver: str = "kernel") -> int:
+    """Instructions of every QP of the set solved once by `solver` ("kernel" or "daqp")."""
+    mode, fn = ("once", "bench_qp_set_once") if solver == "kernel" else ("once-daqp", "bench_daqp_set_once")
     r = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
-                        "--collect-atstart=no", "--toggle-collect=bench_qp_set_once",
-                        str(peers), "once", str(path)], check=True, capture_output=True, text=True)
+                        "--collect-atstart=no", f"--toggle-collect={fn}",
+                        str(peers), mode, str(path)], check=True, capture_output=True, text=True)
     for line in r.stderr.splitlines():
         if "Collected :" in line:
             return int(line.split(":")[-1])
@@ -193,7 +195,7 @@ def fdiff(fa, fb):
     return float(d.max()), float((d / np.maximum(1.0, np.abs(np.asarray(fa)))).max())
 
 
-def report(name: str, qps, c_rows, o3_rows, py_rows, insns: int) -> None:
+def report(name: str, qps, c_rows, o3_rows, py_rows, insns: int, daqp_insns: int) -> None:
     n = [q.n for q in qps]
     st = [r[0] for r in c_rows]
     bad_daqp = sum(1 for r in c_rows if r[5] != 1)
@@ -228,7 +230,9 @@ def report(name: str, qps, c_rows, o3_rows, py_rows, insns: int) -> None:
               f"qpOASES (casadi.conic) {np.median(q):8.2f} us   kernel/daqp {np.median(k) / np.median(d):.3f}"
               f"   kernel/qpOASES {np.median(k) / np.median(q):.3f}")
         print(f"   largest objective difference: DAQP {da2:.2e} (rel {dr2:.2e}), qpOASES {qa:.2e} (rel {qr:.2e})")
-    print(f"   callgrind: kernel {insns} instructions for the set, {insns / len(qps):.0f} per QP")
+    print(f"   callgrind (gcc -O2 both): kernel {insns:,} instructions for the set ({insns / len(qps):,.0f} per QP), "
+          f"DAQP {daqp_insns:,} ({daqp_insns / len(qps):,.0f} per QP, its malloc/free included); "
+          f"kernel/DAQP {insns / daqp_insns:.3f}")
 
 
 def main() -> int:
@@ -253,7 +257,8 @@ def main() -> int:
         c_rows = c_timings(a.peers, path, a.reps)
         o3_rows = None if a.peers_daqp_o3 is None else c_timings(a.peers_daqp_o3, path, a.reps)
         py_rows = None if a.no_python else python_timings(qps, a.reps)
-        report(name, qps, c_rows, o3_rows, py_rows, callgrind(a.peers, path))
+        report(name, qps, c_rows, o3_rows, py_rows, callgrind(a.peers, path),
+               callgrind(a.peers, path, "daqp"))
         sys.stdout.flush()
     load = os.getloadavg()
     print(f"== load average at the end {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}")
