@@ -23,6 +23,7 @@ from scipy.integrate import solve_ivp
 from ogk_host.rendezvous.nlp import RendezvousNlp, min_time_guess
 from ogk_host.rendezvous.plan import Plan
 from ogk_host.rendezvous.scenario import load_scenario
+from scenario_edit import set_key
 
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "tests" / "bench"))
@@ -31,14 +32,6 @@ from nmpc_peers import FatropJit, IpoptJit  # noqa: E402
 MU_SUN = 1.32712440018e20
 R_T = 1.38 * 1.49597871e11
 NODES = 8
-
-
-def _set(text: str, section: str, key: str, value: str) -> str:
-    start = text.index(f"[{section}]")
-    end = text.find("\n[", start + 1)
-    body, n = re.subn(rf"(?m)^{key} = \S+", f"{key} = {value}", text[start:end], count=1)
-    assert n == 1, (section, key)
-    return text[:start] + body + text[end:]
 
 
 @pytest.fixture(scope="module")
@@ -52,7 +45,7 @@ def scenario(tmp_path_factory: pytest.TempPathFactory):
                                 ("target", "circumferential_velocity_m_s", repr(math.sqrt(MU_SUN / R_T))),
                                 ("initial_state", "mass_kg", "1100.0"), ("spacecraft", "dry_mass_kg", "400.0"),
                                 ("propulsion", "thrust_max_n", "0.35"), ("ocp", "nodes", str(NODES))]:
-        text = _set(text, section, key, value)
+        text = set_key(text, section, key, value)
     path = tmp_path_factory.mktemp("peers") / "outer_body_1p38au_min_time.toml"
     path.write_text(text)
     return load_scenario(path)

@@ -33,6 +33,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from scenario_edit import set_key
+
 REPO = Path(__file__).resolve().parents[2]
 OGK = Path(sys.executable).with_name("ogk")
 SCENARIOS = REPO / "scenarios"
@@ -71,16 +73,6 @@ def ogk(*args: str, timeout: float = 300.0) -> subprocess.CompletedProcess[str]:
     return subprocess.run([str(OGK), *args], capture_output=True, text=True, timeout=timeout)
 
 
-def _set(text: str, section: str, key: str, value: str) -> str:
-    """`key = value` inside [section] of a TOML text (the first such key after the header)."""
-    start = text.index(f"[{section}]")
-    end = text.find("\n[", start + 1)
-    end = len(text) if end < 0 else end
-    body, n = re.subn(rf"(?m)^{key} = \S+", f"{key} = {value}", text[start:end], count=1)
-    assert n == 1, (section, key)
-    return text[:start] + body + text[end:]
-
-
 def write_scenario(m: Mission, directory: Path, **override: float) -> Path:
     """The shipped scenario with the mission's target, vehicle and dry mass; no [paper_results]."""
     text = (SCENARIOS / f"{m.base}.toml").read_text()
@@ -99,7 +91,7 @@ def write_scenario(m: Mission, directory: Path, **override: float) -> Path:
              ("spacecraft", "dry_mass_kg", repr(override.get("dry_kg", m.dry_kg))),
              ("propulsion", "thrust_max_n", repr(override.get("thrust_n", m.thrust_n)))]
     for section, key, value in edits:
-        text = _set(text, section, key, value)
+        text = set_key(text, section, key, value)
     path = directory / f"{m.name}.toml"
     path.write_text(text)
     return path
