@@ -8,6 +8,11 @@
  *                       "nmpc_<key> <value>" lines for bench_nmpc_ipopt.py
  *   bench_nmpc once     the open loop, then exactly one re-solve, for valgrind
  *                       callgrind with --toggle-collect=bench_nmpc_replan_once
+ *   bench_nmpc time|once [tol0] [exact|bfgs]
+ *                       the same with tol_obj = 0 (the stationarity test
+ *                       alone: the converged optimum, IPOPT's accuracy)
+ *                       and/or the exact (or damped-BFGS) Hessian in place
+ *                       of the configuration's; "nmpc_<key>" lines unchanged
  *   (bare metal)        the same as once, for the QEMU instruction counter
  *                       (`make bench-nmpc`); prints "nmpc_m7_<key> <value>"
  *                       lines, among them the stack used by the re-solve
@@ -44,6 +49,16 @@ static ogk_nmpc_report_t rep_open;
 static ogk_nmpc_report_t rep_replan;
 static ogk_nmpc_input_t in_replan;
 static volatile double sink;
+/* The options of the command line, or for the bare-metal build
+ * -DBENCH_NMPC_TOL0=1 and -DBENCH_NMPC_HESSIAN=<OGK_NMPC_HESSIAN_*>. */
+#ifndef BENCH_NMPC_TOL0
+#define BENCH_NMPC_TOL0 0
+#endif
+#ifndef BENCH_NMPC_HESSIAN
+#define BENCH_NMPC_HESSIAN (-1)
+#endif
+static int opt_tol0 = BENCH_NMPC_TOL0;          /* tol_obj = 0 */
+static int opt_hessian = BENCH_NMPC_HESSIAN;    /* OGK_NMPC_HESSIAN_*, -1: the configuration's */
 
 /* init, the documented guess, the open loop. */
 static int setup(void)
@@ -54,6 +69,12 @@ static int setup(void)
     ogk_status st;
     (void)ogk_nmpc_config_default(&cfg);
     bench_nmpc_case_config(&cfg);
+    if (opt_tol0) {
+        cfg.tol_obj = 0.0;
+    }
+    if (opt_hessian >= 0) {
+        cfg.hessian = (uint32_t)opt_hessian;
+    }
     (void)memset(&plan, 0, sizeof plan);
     plan.t0 = bench_nmpc_guess_t0;
     plan.horizon = bench_nmpc_guess_horizon;
@@ -161,9 +182,21 @@ int main(int argc, char **argv)
     static double c_ns[MAX_REPS];
     int reps = 0;
     int i;
-    if (argc != 2 || (strcmp(argv[1], "time") != 0 && strcmp(argv[1], "once") != 0)) {
-        fprintf(stderr, "usage: %s time|once\n", argv[0]);
+    if (argc < 2 || (strcmp(argv[1], "time") != 0 && strcmp(argv[1], "once") != 0)) {
+        fprintf(stderr, "usage: %s time|once [tol0] [exact|bfgs]\n", argv[0]);
         return 2;
+    }
+    for (i = 2; i < argc; ++i) {
+        if (strcmp(argv[i], "tol0") == 0) {
+            opt_tol0 = 1;
+        } else if (strcmp(argv[i], "bfgs") == 0) {
+            opt_hessian = (int)OGK_NMPC_HESSIAN_BFGS;
+        } else if (strcmp(argv[i], "exact") == 0) {
+            opt_hessian = (int)OGK_NMPC_HESSIAN_EXACT;
+        } else {
+            fprintf(stderr, "usage: %s time|once [tol0] [exact|bfgs]\n", argv[0]);
+            return 2;
+        }
     }
     (void)ogk_port_counter_init();
     if (strcmp(argv[1], "once") == 0) {
