@@ -192,7 +192,8 @@ static bool try_shift(const double *hess, size_t nv, const double *a_eq, double 
 }
 
 double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq, /* NOLINT(bugprone-easily-swappable-parameters): internal, (H, order, A_eq, fallback scale, last rho) as nmpc_internal.h states; checked through the SQP tests */
-                                 double fallback, double rho_hint, double *out, double *work) /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                                 double fallback, double rho_hint, double *out, double *work, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                                 bool *shifted)
 {
     double scale = 0.0;
     double a_norm = 0.0;
@@ -217,6 +218,7 @@ double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq, /*
      * multipliers: it is always added, and most Hessians factor with the
      * first rho (measured: the benchmark's re-solve never needs more) */
     ok = false;
+    *shifted = false;
     rho = (a_norm > 1.0e-300) ? ((RHO_FIRST * scale) / a_norm) : 0.0;
     /* the last iteration's rho usually fits again: start there */
     rho = (rho_hint > rho) ? rho_hint : rho;
@@ -232,6 +234,7 @@ double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq, /*
          * a growing shift */
         double delta = DELTA_FIRST * scale;
         rho_used = (a_norm > 1.0e-300) ? ((RHO_FIRST * scale) / a_norm) : 0.0;
+        *shifted = true;
         for (n = 0u; (n < DELTA_TRIES) && !ok; ++n) {
             if (isfinite(scale) && (scale > 1.0e-300)) {
                 ok = try_shift(hess, nv, a_eq, rho_used, delta, PIVOT_MIN * scale, out, work);

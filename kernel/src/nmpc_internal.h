@@ -128,7 +128,7 @@ void ogk_i_nmpc_hess_mirror(double *hess, size_t nv);
  * does. out and work: nv x nv scratch. Returns the rho used (the QP's
  * multipliers of eq. 5 are then y - rho b_eq). */
 double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq,
-                                 double fallback, double rho_hint, double *out, double *work);
+                                 double fallback, double rho_hint, double *out, double *work, bool *shifted);
 
 /* Damped BFGS (Powell) update of hess with step s and gradient change y (y
  * is damped in place); first: Shanno-Phua scaling of the initial matrix. */

@@ -529,9 +529,18 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             build_linear_terms(ctx, p, nv, c_term, g_obj);
             rho = 0.0;
             if (second) {
+                bool shifted = false;
                 rho = ogk_i_nmpc_hess_convexify(hess, nv, ctx->qp_aeq, cfg->hessian_init, rho_last, ctx->el_h,
-                                                ctx->el_ain);
+                                                ctx->el_ain, &shifted);
                 rho_last = rho;
+                if (shifted) {
+                    /* not convex on the null space of eq. (5): far from a minimum the
+                     * exact model misleads (measured: closed loops with Earth in the
+                     * model stalled at the iteration limit); this step on the scaled
+                     * identity */
+                    rho = 0.0;
+                    ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
+                }
             } else if (have_prev && !exact) {
                 /* y = grad L(new iterate) - grad L(old iterate), both with the last QP's multipliers */
                 lagrangian_gradient(ctx, nv, g_obj, y_prev, grad_new);
