@@ -10,7 +10,8 @@
  * continuity multipliers; J and c are linear). It need not be positive
  * definite: it is convexified along the normals of eq. (5) (H + rho A^T A
  * leaves the QP's solution unchanged on A v = b, the multipliers shift by
- * rho b), then shifted (H + delta I) when still not positive definite. */
+ * rho b), then shifted (H + delta I) when still not positive definite, and
+ * *shifted says so (the SQP then takes the scaled identity instead). */
 #include "nmpc_internal.h"
 
 #include <math.h>

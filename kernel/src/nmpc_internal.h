@@ -126,7 +126,8 @@ void ogk_i_nmpc_hess_mirror(double *hess, size_t nv);
  * rho_hint, the last one used, when larger) then delta that factors (a_eq:
  * the NC x nv rows of eq. 5); the scaled identity (fallback) when nothing
  * does. out and work: nv x nv scratch. Returns the rho used (the QP's
- * multipliers of eq. 5 are then y - rho b_eq). */
+ * multipliers of eq. 5 are then y - rho b_eq); *shifted: a delta was needed
+ * (H not convex on eq. 5's null space). */
 double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq,
                                  double fallback, double rho_hint, double *out, double *work, bool *shifted);
 

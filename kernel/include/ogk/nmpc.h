@@ -161,7 +161,8 @@ typedef struct {
     double tol_obj;             /* [-] or converged when the QP step's predicted |dJ| <= tol_obj max(|J|, 1), >= 0 (default 1e-7) */
     uint32_t hessian;           /* [-] OGK_NMPC_HESSIAN_BFGS (default: damped BFGS of the reduced Hessian) or
                                  *     OGK_NMPC_HESSIAN_EXACT (sum_k mu_k^T d2F_k of the RK4 maps, condensed,
-                                 *     convexified along the eq. (5) normals, shifted when still indefinite;
+                                 *     convexified along the eq. (5) normals, the scaled identity for an
+                                 *     iteration where that is not enough;
                                  *     converges in the interior-point peers' iterations: docs/nmpc-flight.md) */
     double hessian_init;        /* [-] scale of the first BFGS matrix (identity times it; also the QP's Hessian after a
                                  *     failed factorisation), > 0 (default 1) */
