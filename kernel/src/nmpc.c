@@ -43,6 +43,7 @@ ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg)
         cfg->tol_feas = 1.0e-9;
         cfg->tol_stat = 1.0e-7;
         cfg->tol_obj = 1.0e-7;
+        cfg->hessian = OGK_NMPC_HESSIAN_BFGS;
         cfg->hessian_init = 1.0;
         cfg->step_max_alpha = 1.0;
         cfg->step_max_horizon = 1.0;
@@ -80,6 +81,7 @@ static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
     bool ok = (c->mu > 0.0) && (c->target_radius > 0.0)
         && (c->engine <= OGK_NMPC_ENGINE_THROTTLED) && (c->power <= OGK_NMPC_POWER_SOLAR)
         && (c->objective <= OGK_NMPC_MIN_FUEL) && (c->strategy <= OGK_NMPC_CNCN)
+        && (c->hessian <= OGK_NMPC_HESSIAN_EXACT)
         && (c->nodes >= 1u) && (c->nodes <= OGK_NMPC_MAX_NODES)
         && (c->rk4_steps >= 1u) && (c->rk4_steps <= OGK_NMPC_MAX_RK4_STEPS)
         && (c->horizon_min > 0.0) && (c->horizon_max > c->horizon_min)
@@ -525,7 +527,7 @@ ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
         st = OGK_E_RANGE;
     }
     if (st == OGK_OK) {
-        st = ogk_i_nmpc_shoot(&ctx->cfg, ctx->nu, t0, h, x0, u0, u1, x1, sens);
+        st = ogk_i_nmpc_shoot(&ctx->cfg, ctx->nu, t0, h, x0, u0, u1, x1, sens, NULL);
     }
     if (st == OGK_OK) {
         const uint32_t nu = ctx->nu;
@@ -551,6 +553,45 @@ ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
             }
             if (dfdt0 != NULL) {
                 dfdt0[i] = sens[(i * OGK_I_NMPC_MAX_COLS) + col_h + 1u];
+            }
+        }
+    }
+    return st;
+}
+
+ogk_status ogk_nmpc_interval_hess(ogk_nmpc_t *ctx, double t0, double h, /* NOLINT(bugprone-easily-swappable-parameters): order of the test header (ogk/internal/nmpc_test.h), as ogk_nmpc_interval; checked by central differences (test_nmpc.c) */
+                                  const double *x0, const double *u0,
+                                  const double *u1, const double *w,
+                                  double *hess)
+{
+    ogk_status st = nmpc_check_ctx(ctx);
+    if ((st == OGK_OK) && ((x0 == NULL) || (u0 == NULL) || (u1 == NULL) || (w == NULL) || (hess == NULL))) {
+        st = OGK_E_NULL;
+    }
+    if ((st == OGK_OK) && (!isfinite(t0) || !isfinite(h) || !ogk_i_all_finite(x0, NX)
+                           || !ogk_i_all_finite(u0, ctx->nu) || !ogk_i_all_finite(u1, ctx->nu)
+                           || !ogk_i_all_finite(w, NX))) {
+        st = OGK_E_NONFINITE;
+    }
+    if ((st == OGK_OK) && !(h > 0.0)) {
+        st = OGK_E_RANGE;
+    }
+    if (st == OGK_OK) {
+        double sens[OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS];
+        double x1[OGK_NMPC_NX];
+        st = ogk_i_nmpc_shoot(&ctx->cfg, ctx->nu, t0, h, x0, u0, u1, x1, sens, ctx->tape);
+    }
+    if (st == OGK_OK) {
+        double w_int[OGK_I_NMPC_MAX_COLS * OGK_I_NMPC_MAX_COLS];
+        const size_t nd = NX + (2u * (size_t)ctx->nu) + 2u;
+        const size_t ncol = ogk_i_nmpc_ncol(&ctx->cfg, ctx->nu);
+        size_t i;
+        size_t j;
+        ogk_i_nmpc_shoot_hess(&ctx->cfg, ctx->nu, t0, h, u0, u1, ctx->tape, w, w_int);
+        for (i = 0u; i < nd; ++i) {
+            for (j = 0u; j < nd; ++j) {
+                /* the t0 column is not propagated for an autonomous model: its second derivatives are 0 */
+                hess[(i * nd) + j] = ((i < ncol) && (j < ncol)) ? w_int[(i * OGK_I_NMPC_MAX_COLS) + j] : 0.0;
             }
         }
     }

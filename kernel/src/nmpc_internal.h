@@ -14,6 +14,9 @@
  * X_k (5), U_k (nu), U_{k+1} (nu), h (1), t_start (1): the directions of
  * ogk/nmpc.h (h standing for T) and t_start. */
 #define OGK_I_NMPC_MAX_COLS (OGK_NMPC_MAX_DIR + 1u)
+/* Arguments of the model f(z): z = (x (5), u (nu), t), stored with this
+ * stride (the largest nu). */
+#define OGK_I_NMPC_NZ (OGK_NMPC_NX + OGK_NMPC_MAX_NU + 1u)
 
 /* xdot = f(t, x, u) and, when jx is not NULL, its Jacobians: jx (5 x 5,
  * row-major), ju (5 x nu), jt (5). trig: cos and sin of u[0] when the caller
@@ -23,20 +26,72 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
                           const double *x, const double *u, const double *trig,
                           double *xdot, double *jx, double *ju, double *jt);
 
+/* hz (OGK_I_NMPC_NZ square, z = (x, u, t) with t at index 5 + nu) = the
+ * upper triangle (row <= column; the rest zero) of the Hessian of
+ * kappa . f(t, x, u) in z; trig: cos and sin of u[0]. The caller has
+ * evaluated ogk_i_nmpc_rhs at the same point (its domain checks passed). */
+void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
+                         const double *x, const double *u, const double *trig,
+                         const double *kappa, double *hz);
+
 /* k = jx y for the first ncol columns of y and k (row stride `stride`),
  * jx a Jacobian of ogk_i_nmpc_rhs: only its structural nonzeros are used
  * (13 of 25; the sensitivity sweep's inner product). */
 void ogk_i_nmpc_jx_times(const double *jx, const double *y, size_t stride,
                          size_t ncol, double *k);
 
+/* size_t forms of the limits (built from the atoms, so that no composite
+ * expression is cast): sensitivity columns, model arguments, directions,
+ * QP unknowns. */
+#define OGK_I_NMPC_NCOL_Z (((size_t)OGK_NMPC_NX + (2u * (size_t)OGK_NMPC_MAX_NU)) + 2u)
+#define OGK_I_NMPC_NZ_Z (((size_t)OGK_NMPC_NX + (size_t)OGK_NMPC_MAX_NU) + 1u)
+#define OGK_I_NMPC_NDIR_Z (((size_t)OGK_NMPC_NX + (2u * (size_t)OGK_NMPC_MAX_NU)) + 1u)
+#define OGK_I_NMPC_MAXV_Z ((((size_t)OGK_NMPC_MAX_NODES + 1u) * (size_t)OGK_NMPC_MAX_NU) + 1u)
+
+/* Layout of one RK4 step of the tape (OGK_NMPC_TAPE_STEP doubles): the
+ * step's starting sensitivity matrix S, sum_j b_j K_j (b = 1, 2, 2, 1),
+ * then four stage records of OGK_I_NMPC_TAPE_STAGE doubles: stage state,
+ * stage derivative k, cos/sin of the stage angle, the model's Jacobian,
+ * k's sensitivity matrix. */
+#define OGK_I_NMPC_TAPE_KSUM ((size_t)OGK_NMPC_NX * OGK_I_NMPC_NCOL_Z)
+#define OGK_I_NMPC_TAPE_STAGE0 (2u * (size_t)OGK_NMPC_NX * OGK_I_NMPC_NCOL_Z)
+#define OGK_I_NMPC_TAPE_X ((size_t)0u)
+#define OGK_I_NMPC_TAPE_K ((size_t)OGK_NMPC_NX)
+#define OGK_I_NMPC_TAPE_TRIG (2u * (size_t)OGK_NMPC_NX)
+#define OGK_I_NMPC_TAPE_JX ((2u * (size_t)OGK_NMPC_NX) + 2u)
+#define OGK_I_NMPC_TAPE_KS (OGK_I_NMPC_TAPE_JX + ((size_t)OGK_NMPC_NX * (size_t)OGK_NMPC_NX))
+#define OGK_I_NMPC_TAPE_STAGE (OGK_I_NMPC_TAPE_KS + ((size_t)OGK_NMPC_NX * OGK_I_NMPC_NCOL_Z))
+#define OGK_I_NMPC_TAPE_STEP_Z (OGK_I_NMPC_TAPE_STAGE0 + (4u * OGK_I_NMPC_TAPE_STAGE))
+/* the same layout in the preprocessor's arithmetic, against ogk/nmpc.h's size */
+#if ((2u * OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS) \
+     + (4u * ((2u * OGK_NMPC_NX) + 2u + (OGK_NMPC_NX * OGK_NMPC_NX) + (OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS)))) \
+    != OGK_NMPC_TAPE_STEP
+#error "OGK_NMPC_TAPE_STEP (ogk/nmpc.h) does not match the tape layout"
+#endif
+
+/* Sensitivity columns propagated for this model: X_k, U_k, U_{k+1}, h, and
+ * t_start only when a third body attracts (the model then depends on t). */
+size_t ogk_i_nmpc_ncol(const ogk_nmpc_config_t *cfg, uint32_t nu);
+
 /* F = x at the end of one interval [t_start, t_start + h] from x0 with the
  * control linear from u0 to u1. When sens is not NULL it receives the
  * 5 x OGK_I_NMPC_MAX_COLS sensitivity matrix (columns above; unused control
- * columns zero). */
+ * columns zero); when tape is not NULL too, the sweep is recorded there
+ * (cfg->rk4_steps steps of OGK_NMPC_TAPE_STEP). */
 ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu,
                             double t_start, double h, const double *x0,
                             const double *u0, const double *u1, double *xf,
-                            double *sens);
+                            double *sens, double *tape);
+
+/* W (OGK_I_NMPC_MAX_COLS square, symmetric, the first ogk_i_nmpc_ncol
+ * columns set) = sum_i w_i d2F_i / dp2 for the interval whose forward sweep
+ * with sensitivities was recorded in tape (same cfg, nu, t_start, h, u0,
+ * u1), p = (X_k, U_k, U_{k+1}, h[, t_start]): the RK4 recursion's adjoint
+ * for the weights w, differentiated forward (docs/nmpc-flight.md). */
+void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu,
+                           double t_start, double h, const double *u0,
+                           const double *u1, const double *tape,
+                           const double *w, double *hess);
 
 /* Terminal residual c = (r - R_T, theta - theta_T(t_f), v_r, v_theta - v_T)
  * of eq. (5) at state x and time t_f. */
@@ -48,6 +103,49 @@ void ogk_i_nmpc_terminal(const ogk_nmpc_config_t *cfg, const double *x,
  * iterations to rep and sets rep->feas, rep->stat. */
 ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                           ogk_nmpc_report_t *rep);
+
+/* The QP Hessian (nmpc_hess.c). Powell damping: keep s^T y >= this s^T H s. */
+#define OGK_I_NMPC_POWELL_DAMP 0.2
+
+/* blk (OGK_NMPC_MAX_DIR square, the first 5 + 2 nu + 1 rows and columns
+ * set) = interval k's second-order block w_int (ogk_i_nmpc_shoot_hess, ncol
+ * columns) in (X_k, U_k, U_{k+1}, T): h = T / N, t_start = t0 + k T / N. */
+void ogk_i_nmpc_hess_block(uint32_t nu, size_t ncol, size_t k, uint32_t nodes,
+                           const double *w_int, double *blk);
+
+/* The upper triangle of hess (nv x nv) += Gt^T blk Gt, Gt = d(X_k, U_k,
+ * U_{k+1}, T)/dv with X_k's rows g (5 x nv, the condensing's dX_k/dv).
+ * scratch: 2 OGK_NMPC_MAX_DIR OGK_NMPC_MAX_VARS doubles. */
+void ogk_i_nmpc_hess_add(double *hess, size_t nv, uint32_t nu, size_t k,
+                         const double *g, const double *blk, double *scratch);
+
+/* The upper triangle of hess (nv x nv) copied into the lower one. */
+void ogk_i_nmpc_hess_mirror(double *hess, size_t nv);
+
+/* hess := hess + rho A^T A (+ delta I), the least of a few rho (from
+ * rho_hint, the last one used, when larger) then delta that factors (a_eq:
+ * the NC x nv rows of eq. 5); the scaled identity (fallback) when nothing
+ * does. out and work: nv x nv scratch. Returns the rho used (the QP's
+ * multipliers of eq. 5 are then y - rho b_eq); *shifted: a delta was needed
+ * (H not convex on eq. 5's null space). */
+double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq,
+                                 double fallback, double rho_hint, double *out, double *work, bool *shifted);
+
+/* Damped BFGS (Powell) update of hess with step s and gradient change y (y
+ * is damped in place); first: Shanno-Phua scaling of the initial matrix. */
+void ogk_i_nmpc_bfgs_update(double *hess, size_t nv, const double *s, double *y, bool first);
+
+/* hess := scale I (nv x nv). */
+void ogk_i_nmpc_identity(double *hess, size_t nv, double scale);
+
+/* Keep-out (nmpc_keepout.c): adds sum and largest of max(0, R_b - d) over
+ * the interior nodes of p to *sum and *largest; appends to ctx->ko_a/ko_b
+ * the linearised rows of interior node k (g: its 5 x nv condensed
+ * sensitivities, e: its offsets). */
+void ogk_i_nmpc_keepout_violation(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, double *sum,
+                                  double *largest);
+void ogk_i_nmpc_keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, size_t k,
+                             const double *g, const double *e);
 
 /* Objective of a plan: T or m_0 - m_N. */
 double ogk_i_nmpc_objective(const ogk_nmpc_config_t *cfg,

@@ -1,6 +1,7 @@
 /* nmpc_model.c -- the NMPC's predictive model, eqs. (11)-(14) of Starek &
  * Kolmanovsky (2012), with optional third bodies derived from vectors (the
- * printed eqs. 15-18 are wrong: docs/nmpc.md), and its Jacobians. */
+ * printed eqs. 15-18 are wrong: docs/nmpc.md), its Jacobians and the
+ * Hessian of a weighted sum of its components (the exact SQP Hessian). */
 #include "nmpc_internal.h"
 
 #include <math.h>
@@ -217,4 +218,134 @@ double ogk_i_nmpc_objective(const ogk_nmpc_config_t *cfg,
         j = p->horizon;
     }
     return j;
+}
+
+/* d2T_max/dr2 and d2mdot_max/dr2 (0 for constant power): eq. (14)'s
+ * p den = num differentiated twice, p'' den + 2 p' den' + p den'' = num''. */
+static void engine_curvature(const ogk_nmpc_config_t *cfg, double r, double *thrust_drr, double *flow_drr) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, outputs in engine_limits_t's order */
+{
+    if (cfg->power == OGK_NMPC_POWER_SOLAR) {
+        const double s = r / cfg->solar_length_unit;
+        const double num = (((cfg->solar_a[0] * s) + cfg->solar_a[1]) * s) + cfg->solar_a[2];
+        const double num_ds = (2.0 * cfg->solar_a[0] * s) + cfg->solar_a[1];
+        const double s4 = s * s * s * s;
+        const double den = s4 * (1.0 + (cfg->solar_a[3] * s));
+        const double den_ds = (4.0 * s * s * s * (1.0 + (cfg->solar_a[3] * s))) + (cfg->solar_a[3] * s4);
+        const double den_dss = (12.0 * s * s) + (20.0 * cfg->solar_a[3] * s * s * s);
+        const double p = num / den;
+        const double p_ds = ((num_ds * den) - (num * den_ds)) / (den * den);
+        const double p_dss = ((2.0 * cfg->solar_a[0]) - (2.0 * p_ds * den_ds) - (p * den_dss)) / den;
+        const double p_drr = p_dss / (cfg->solar_length_unit * cfg->solar_length_unit);
+        *thrust_drr = cfg->solar_thrust[1] * p_drr;
+        *flow_drr = cfg->solar_flow[1] * p_drr;
+    } else {
+        *thrust_drr = 0.0;
+        *flow_drr = 0.0;
+    }
+}
+
+/* Hessian in (r, D) of kappa . A_b for third body b, A_b its acceleration in
+ * the spacecraft's axes (body_accel), D = phi_b(t) - theta: out[0] = d2/dr2,
+ * out[1] = d2/dr dD, out[2] = d2/dD2. With d = (r - R cos D, -R sin D) and
+ * rho^2 = |d|^2 + eps^2, the direct term -mu d / rho^3 has the d-Hessian
+ * 3 mu ((kappa d^T + d kappa^T) + (kappa . d) I) / rho^5
+ * - 15 mu (kappa . d) d d^T / rho^7, chained through dd/dr = (1, 0),
+ * dd/dD = (R sin D, -R cos D), d2d/dD2 = (R cos D, R sin D); the indirect
+ * term -ind (cos D, sin D) adds ind (kappa . (cos D, sin D)) to d2/dD2. */
+static void body_hess(const ogk_nmpc_config_t *cfg, uint32_t b, double t, double r, double theta, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (t, r, theta) in body_accel's order; checked by central differences of the interval's gradient (test_nmpc.c) */
+                      const double *kappa, double *out)
+{
+    const double mu_b = cfg->body_mu[b];
+    const double big_r = cfg->body_radius[b];
+    const double delta = (cfg->body_phase0[b] + (cfg->body_rate[b] * t)) - theta;
+    const double cd = cos(delta);
+    const double sd = sin(delta);
+    const double d_r = r - (big_r * cd);
+    const double d_t = -big_r * sd;
+    const double eps = cfg->body_softening[b];
+    const double rho2 = (d_r * d_r) + (d_t * d_t) + (eps * eps);
+    const double rho = sqrt(rho2);
+    const double k3 = mu_b / (rho2 * rho);
+    const double k5 = 3.0 * k3 / rho2;
+    const double k7 = 5.0 * k5 / rho2;
+    const double kd = (kappa[0] * d_r) + (kappa[1] * d_t);
+    const double ind = mu_b / (big_r * big_r);
+    /* d-Hessian of kappa . A_direct (symmetric 2 x 2) and its gradient */
+    const double h_rr = (2.0 * k5 * kappa[0] * d_r) + (k5 * kd) - (k7 * kd * d_r * d_r);
+    const double h_rt = (k5 * ((kappa[0] * d_t) + (kappa[1] * d_r))) - (k7 * kd * d_r * d_t);
+    const double h_tt = (2.0 * k5 * kappa[1] * d_t) + (k5 * kd) - (k7 * kd * d_t * d_t);
+    const double g_r = (-k3 * kappa[0]) + (k5 * kd * d_r);
+    const double g_t = (-k3 * kappa[1]) + (k5 * kd * d_t);
+    const double e_r = big_r * sd;  /* dd/dD */
+    const double e_t = -big_r * cd;
+    out[0] = h_rr;
+    out[1] = (h_rr * e_r) + (h_rt * e_t);
+    out[2] = (e_r * ((h_rr * e_r) + (h_rt * e_t))) + (e_t * ((h_rt * e_r) + (h_tt * e_t)))
+        + (g_r * big_r * cd) + (g_t * big_r * sd)
+        + (ind * ((kappa[0] * cd) + (kappa[1] * sd)));
+}
+
+void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of ogk_i_nmpc_rhs; checked by central differences of the interval's gradient (test_nmpc.c) */
+                         const double *x, const double *u, const double *trig, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                         const double *kappa, double *hz) /* NOLINT(bugprone-easily-swappable-parameters): as above */
+{
+    /* z = (r, theta, v_r, v_theta, m, alpha[, w], t); g = kappa . f(z) */
+    const size_t zs = OGK_I_NMPC_NZ;
+    const size_t i_a = OGK_NMPC_NX;
+    const size_t i_w = OGK_NMPC_NX + 1u;
+    const size_t i_t = OGK_NMPC_NX + (size_t)nu;
+    const double r = x[0];
+    const double v_r = x[2];
+    const double v_t = x[3];
+    const double m = x[4];
+    const double throttle = (nu > 1u) ? u[1] : 1.0;
+    const double inv_r = 1.0 / r;
+    const double inv_r2 = inv_r * inv_r;
+    const double inv_r3 = inv_r2 * inv_r;
+    const double inv_m = 1.0 / m;
+    /* q = kappa . (0, 0, cos a, sin a, 0) and its alpha derivative */
+    const double q = (kappa[2] * trig[0]) + (kappa[3] * trig[1]);
+    const double q_a = (-kappa[2] * trig[1]) + (kappa[3] * trig[0]);
+    engine_limits_t lim;
+    double thrust_drr;
+    double flow_drr;
+    uint32_t b;
+
+    engine_limits(cfg, r, &lim);
+    engine_curvature(cfg, r, &thrust_drr, &flow_drr);
+    (void)memset(hz, 0, zs * zs * sizeof(double));
+    /* eq. (11): the central body and the transport terms */
+    hz[(0u * zs) + 0u] = (kappa[1] * 2.0 * v_t * inv_r3)
+        + (kappa[2] * ((2.0 * v_t * v_t * inv_r3) - (6.0 * cfg->mu * inv_r2 * inv_r2)))
+        - (kappa[3] * 2.0 * v_t * v_r * inv_r3)
+        + (throttle * thrust_drr * inv_m * q) - (kappa[4] * throttle * flow_drr);
+    hz[(0u * zs) + 2u] = kappa[3] * v_t * inv_r2;
+    hz[(0u * zs) + 3u] = ((-kappa[1] - (2.0 * kappa[2] * v_t)) + (kappa[3] * v_r)) * inv_r2;
+    hz[(2u * zs) + 3u] = -kappa[3] * inv_r;
+    hz[(3u * zs) + 3u] = 2.0 * kappa[2] * inv_r;
+    /* the thrust w T(r) / m (cos a, sin a) and the flow -w mdot(r) */
+    hz[(0u * zs) + 4u] = -throttle * lim.thrust_dr * inv_m * inv_m * q;
+    hz[(0u * zs) + i_a] = throttle * lim.thrust_dr * inv_m * q_a;
+    hz[(4u * zs) + 4u] = 2.0 * throttle * lim.thrust * inv_m * inv_m * inv_m * q;
+    hz[(4u * zs) + i_a] = -throttle * lim.thrust * inv_m * inv_m * q_a;
+    hz[(i_a * zs) + i_a] = -throttle * lim.thrust * inv_m * q;
+    if (nu > 1u) {
+        hz[(0u * zs) + i_w] = (lim.thrust_dr * inv_m * q) - (kappa[4] * lim.flow_dr);
+        hz[(4u * zs) + i_w] = -lim.thrust * inv_m * inv_m * q;
+        hz[(i_a * zs) + i_w] = lim.thrust * inv_m * q_a;
+    }
+    /* third bodies: (r, D) with D = phi_b(t) - theta, dD/dtheta = -1, dD/dt = rate */
+    for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
+        if (cfg->body_mu[b] > 0.0) {
+            double hb[3];
+            const double rate = cfg->body_rate[b];
+            body_hess(cfg, b, t, r, x[1], &kappa[2], hb);
+            hz[(0u * zs) + 0u] += hb[0];
+            hz[(0u * zs) + 1u] -= hb[1];
+            hz[(0u * zs) + i_t] += rate * hb[1];
+            hz[(1u * zs) + 1u] += hb[2];
+            hz[(1u * zs) + i_t] -= rate * hb[2];
+            hz[(i_t * zs) + i_t] += rate * rate * hb[2];
+        }
+    }
 }

@@ -100,7 +100,7 @@ ogk_status ogk_i_nmpc_plan_subdivide(const ogk_nmpc_config_t *cfg,
         /* midpoint state propagated over the first half (a consistent guess) */
         st = ogk_i_nmpc_shoot(cfg, nu, src->t0 + ((2.0 * (double)k) * h_half), h_half,
                               &src->x[k * NX], &src->u[(size_t)k * nu], u_mid,
-                              &dst->x[((2u * (size_t)k) + 1u) * NX], NULL);
+                              &dst->x[((2u * (size_t)k) + 1u) * NX], NULL, NULL);
     }
     if (st == OGK_OK) {
         (void)memcpy(&dst->x[dst->nodes * NX], &src->x[src->nodes * NX], NX * sizeof(double));

@@ -3,7 +3,8 @@
  * (sec. 2.3 of Starek & Kolmanovsky), and the exact derivatives of this
  * discrete map (internal numerical differentiation: the RK4 recursion
  * differentiated stage by stage), so the SQP's linearisation is that of the
- * map it constrains. */
+ * map it constrains; with a tape, the forward sweep records what the
+ * second-order adjoint sweep (nmpc_shoot_hess.c) reads back. */
 #include "nmpc_internal.h"
 
 #include <math.h>
@@ -11,7 +12,7 @@
 #include <string.h>
 
 #define NX ((size_t)OGK_NMPC_NX)
-#define NCOL OGK_I_NMPC_MAX_COLS
+#define NCOL OGK_I_NMPC_NCOL_Z
 
 /* Y = S + a K_prev (+ b k_prev in column col_h), for the first `ncol` columns. */
 static void stage_sens(const double *s, const double *k_prev_sens, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the terms of Y = S + a K_prev in order; its only caller is ogk_i_nmpc_shoot, checked by central differences (test_nmpc.c) */
@@ -65,10 +66,17 @@ static bool attracting_bodies(const ogk_nmpc_config_t *cfg)
     return any;
 }
 
+size_t ogk_i_nmpc_ncol(const ogk_nmpc_config_t *cfg, uint32_t nu)
+{
+    /* the start-time column is identically zero without third bodies (the
+     * model is then autonomous): it is not propagated */
+    return NX + (2u * (size_t)nu) + 1u + (size_t)(attracting_bodies(cfg) ? 1u : 0u);
+}
+
 ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (nu, t_start, h as in ogk_nmpc_interval); checked by central differences (test_nmpc.c) */
                             double t_start, double h, const double *x0,
                             const double *u0, const double *u1, double *xf,
-                            double *sens)
+                            double *sens, double *tape)
 {
     /* RK4 stage offsets (fractions of one step) and weights */
     static const double c_off[4] = { 0.0, 0.5, 0.5, 1.0 };
@@ -79,9 +87,8 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
     const double dt = h / (double)steps;
     const double inv_steps = 1.0 / (double)steps;
     const size_t col_h = NX + (2u * (size_t)nu);
-    /* the start-time column is identically zero without third bodies (the
-     * model is then autonomous): it is not propagated */
-    const size_t ncol = col_h + 1u + (size_t)(attracting_bodies(cfg) ? 1u : 0u);
+    const size_t ncol = ogk_i_nmpc_ncol(cfg, nu);
+    const bool taped = (sens != NULL) && (tape != NULL);
     double x[NX];
     double stage_x[NX];
     double k[4][NX];
@@ -116,6 +123,10 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
         }
     }
     for (step = 0u; (step < steps) && (step < OGK_NMPC_MAX_RK4_STEPS) && (st == OGK_OK); ++step) {
+        double *tape_step = taped ? &tape[(size_t)step * OGK_I_NMPC_TAPE_STEP_Z] : NULL;
+        if (tape_step != NULL) {
+            (void)memcpy(tape_step, s_mat, sizeof(s_mat));
+        }
         for (j = 0u; (j < 4u) && (st == OGK_OK); ++j) {
             const double s_frac = ((double)step + c_off[j]) * inv_steps;
             const double t_stage = t_start + (s_frac * h);
@@ -137,6 +148,14 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
                                c_off[j] * inv_steps, col_h, ncol, y_mat);
                     stage_k(jx, ju, jt, y_mat, nu, s_frac, ncol, k_mat[j]);
                 }
+                if (tape_step != NULL) {
+                    double *rec = &tape_step[OGK_I_NMPC_TAPE_STAGE0 + ((size_t)j * OGK_I_NMPC_TAPE_STAGE)];
+                    (void)memcpy(&rec[OGK_I_NMPC_TAPE_X], stage_x, sizeof(stage_x));
+                    (void)memcpy(&rec[OGK_I_NMPC_TAPE_K], k[j], sizeof(k[j]));
+                    (void)memcpy(&rec[OGK_I_NMPC_TAPE_TRIG], trig[(2u * step) + trig_index[j]], 2u * sizeof(double));
+                    (void)memcpy(&rec[OGK_I_NMPC_TAPE_JX], jx, sizeof(jx));
+                    (void)memcpy(&rec[OGK_I_NMPC_TAPE_KS], k_mat[j], sizeof(k_mat[j]));
+                }
             }
         }
         if (st == OGK_OK) {
@@ -157,6 +176,13 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
                         k_sum += w_rk[j] * k[j][i];
                     }
                     s_mat[(i * NCOL) + col_h] += (inv_steps / 6.0) * k_sum;
+                }
+                if (tape_step != NULL) {
+                    /* sum_j b_j K_j again, for the second-order sweep only */
+                    for (i = 0u; i < (NX * NCOL); ++i) {
+                        tape_step[OGK_I_NMPC_TAPE_KSUM + i] = k_mat[0][i] + (2.0 * k_mat[1][i])
+                            + (2.0 * k_mat[2][i]) + k_mat[3][i];
+                    }
                 }
             }
         }

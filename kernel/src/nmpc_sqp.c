@@ -7,8 +7,11 @@
  *      (no path constraints on the states);
  *   3. the QP  min g^T v + 1/2 v^T H v  s.t. the linearised eq. (5), throttle
  *      and horizon bounds, a box on each step, the optional sweep bound;
- *      H a damped-BFGS (Powell) approximation of the reduced Hessian of the
- *      Lagrangian, carried from solve to solve (the dual warm start);
+ *      H the exact reduced Hessian of the Lagrangian, convexified
+ *      (nmpc_hess.c; its per-interval blocks computed with the
+ *      sensitivities, the intervals swept from the last to the first so
+ *      that each one's continuity multiplier is known), or a damped-BFGS
+ *      (Powell) approximation carried from solve to solve;
  *   4. a filter line search (Waechter & Biegler, Math. Prog. 106, 2006,
  *      sec. 2.3, without its restoration phase) on the pair (theta, J),
  *      theta = sum |d_k|_1 + |c|_1: an l1 merit function with Armijo
@@ -47,8 +50,6 @@
 #define ELASTIC_CURVATURE 1.0e-6
 /* Restarts (scaled-identity Hessian, empty filter) after a failed line search. */
 #define MAX_RESTARTS 2u
-/* Keep-out rows enter the QP for nodes within this many radii. */
-#define KEEPOUT_ACTIVE 3.0
 /* Smallest step box (fraction of step_max_*) and the smallest step taken as
  * a BFGS pair. */
 #define BOX_MIN 1.0e-3
@@ -58,86 +59,48 @@
 #define RESTORE_VIOL_MAX 1.0e-4
 /* Factor on the step box of a QP retried after OGK_E_INFEASIBLE. */
 #define BOX_OPEN 1.0e3
-/* Powell damping: keep s^T y >= 0.2 s^T H s. */
-#define POWELL_DAMP 0.2
 
 static size_t n_vars(const ogk_nmpc_plan_t *p)
 {
     return ((size_t)p->nodes + 1u) * (size_t)p->nu + 1u;
 }
 
-/* Distance of node state x at time t from body b's centre and its
- * derivatives in r, theta and t (d^2 = r^2 + R^2 - 2 r R cos(theta - phi)). */
-static double keepout_distance(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t,
-                               double *d_r, double *d_theta, double *d_t) /* NOLINT(bugprone-easily-swappable-parameters): internal, the derivatives in the state's order (r, theta) then t; checked by test_keepout_detour */
-{
-    const double big_r = cfg->body_radius[b];
-    const double phi = cfg->body_phase0[b] + (cfg->body_rate[b] * t);
-    const double cd = cos(x[1] - phi);
-    const double sd = sin(x[1] - phi);
-    const double d2 = ((x[0] * x[0]) + (big_r * big_r)) - (2.0 * x[0] * big_r * cd);
-    double d = 0.0;
-    double inv = 0.0;
-    if (d2 > 0.0) {
-        d = sqrt(d2);
-    }
-    if (d > 1.0e-300) {
-        inv = 1.0 / d;
-    }
-    *d_r = (x[0] - (big_r * cd)) * inv;
-    *d_theta = x[0] * big_r * sd * inv;
-    *d_t = -(*d_theta) * cfg->body_rate[b];
-    return d;
-}
-
-/* Keep-out violation of a plan: sum and largest of max(0, R_b - d) over the
- * interior nodes. */
-static void keepout_violation(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, double *sum, /* NOLINT(bugprone-easily-swappable-parameters): internal, adds to evaluate's (l1, max) pair in that order */
-                              double *largest)
-{
-    const double h = p->horizon / (double)p->nodes;
-    size_t k;
-    size_t b;
-    for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
-        if (cfg->keepout_radius[b] > 0.0) {
-            for (k = 1u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
-                double dr;
-                double dth;
-                double dt;
-                const double d = keepout_distance(cfg, b, &p->x[k * NX], p->t0 + ((double)k * h),
-                                                  &dr, &dth, &dt);
-                const double v = cfg->keepout_radius[b] - d;
-                if (v > 0.0) {
-                    *sum += v;
-                    *largest = (v > *largest) ? v : *largest;
-                }
-            }
-        }
-    }
-}
-
 /* Merit pieces of a plan: l1 and max norms of every defect and terminal
  * residual. Stores F_k and the sensitivities in ctx when with_sens. */
 static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
-                           bool with_sens, double *viol_l1, double *viol_max, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, outputs in the order of the merit pair (l1, max) and c; every caller is in this file */
+                           bool with_sens, const double *y, double *viol_l1, double *viol_max, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, outputs in the order of the merit pair (l1, max) and c; every caller is in this file */
                            double *c_term)
 {
     ogk_status st = OGK_OK;
     const uint32_t nu = p->nu;
     const double h = p->horizon / (double)p->nodes;
+    /* the exact Hessian's blocks come with the sensitivities, for the
+     * multipliers y of eq. (5); the intervals then go from the last to the
+     * first, carrying the continuity multiplier w backwards */
+    const bool second = with_sens && (y != NULL) && (ctx->cfg.hessian == OGK_NMPC_HESSIAN_EXACT);
     double sens[NX * NCOL];
     double x1[NX];
+    double w[NX];
     double l1 = 0.0;
     double mx = 0.0;
-    size_t k;
+    size_t n;
     size_t i;
     size_t j;
 
     (void)memset(sens, 0, sizeof(sens));
-    for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES) && (st == OGK_OK); ++k) {
+    if (second) {
+        /* w_{N-1} = dJ/dX_N - dc/dX_N^T y (c of eq. 5: the first four states) */
+        for (i = 0u; i < NC; ++i) {
+            w[i] = -y[i];
+        }
+        w[4] = (ctx->cfg.objective == OGK_NMPC_MIN_FUEL) ? -1.0 : 0.0;
+    }
+    for (n = 0u; (n < p->nodes) && (n < OGK_NMPC_MAX_NODES) && (st == OGK_OK); ++n) {
+        const size_t k = second ? ((size_t)p->nodes - 1u - n) : n;
         const double t_start = p->t0 + ((double)k * h);
         st = ogk_i_nmpc_shoot(&ctx->cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu],
-                              &p->u[(k + 1u) * nu], x1, with_sens ? sens : NULL);
+                              &p->u[(k + 1u) * nu], x1, with_sens ? sens : NULL,
+                              second ? ctx->tape : NULL);
         if (st == OGK_OK) {
             for (i = 0u; i < NX; ++i) {
                 const double d = x1[i] - p->x[((k + 1u) * NX) + i];
@@ -160,6 +123,24 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
                         + ((double)k * sens[(i * NCOL) + col_h + 1u])) / (double)p->nodes;
                 }
             }
+            if (second) {
+                /* the interval's block in the context's scratch (free until condensing), not on the stack */
+                double *w_int = ctx->hess_tmp;
+                double w_prev[NX];
+                ogk_i_nmpc_shoot_hess(&ctx->cfg, nu, t_start, h, &p->u[k * nu], &p->u[(k + 1u) * nu],
+                                      ctx->tape, w, w_int);
+                ogk_i_nmpc_hess_block(nu, ogk_i_nmpc_ncol(&ctx->cfg, nu), k, p->nodes, w_int,
+                                      &ctx->hess_blk[k * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR]);
+                /* w_{k-1} = A_k^T w_k */
+                for (j = 0u; j < NX; ++j) {
+                    double acc = 0.0;
+                    for (i = 0u; i < NX; ++i) {
+                        acc += sens[(i * NCOL) + j] * w[i];
+                    }
+                    w_prev[j] = acc;
+                }
+                (void)memcpy(w, w_prev, sizeof(w));
+            }
         }
     }
     if (st == OGK_OK) {
@@ -168,45 +149,15 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
             l1 += fabs(c_term[i]);
             mx = (fabs(c_term[i]) > mx) ? fabs(c_term[i]) : mx;
         }
-        keepout_violation(&ctx->cfg, p, &l1, &mx);
+        ogk_i_nmpc_keepout_violation(&ctx->cfg, p, &l1, &mx);
         *viol_l1 = l1;
         *viol_max = mx;
     }
     return st;
 }
 
-/* The keep-out rows of node k (interior) with its condensed sensitivities G
- * (5 x nv) and offsets e: d + d_X (G v + e) + d_T v_T >= R, for each body
- * with a keep-out radius that the node is within KEEPOUT_ACTIVE radii of. */
-static void keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, size_t k, /* NOLINT(bugprone-easily-swappable-parameters): internal, condense's (G, e) of the node in that order */
-                         const double *g, const double *e) /* NOLINT(bugprone-easily-swappable-parameters): as above */
-{
-    const ogk_nmpc_config_t *cfg = &ctx->cfg;
-    const double h = p->horizon / (double)p->nodes;
-    size_t b;
-    size_t c;
-    for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
-        if ((cfg->keepout_radius[b] > 0.0) && (ctx->ko_rows < OGK_NMPC_MAX_NODES)) {
-            double dr;
-            double dth;
-            double dt;
-            const double d = keepout_distance(cfg, b, &p->x[k * NX], p->t0 + ((double)k * h), &dr, &dth, &dt);
-            if (d < (KEEPOUT_ACTIVE * cfg->keepout_radius[b])) {
-                double *row = &ctx->ko_a[ctx->ko_rows * nv];
-                for (c = 0u; c < nv; ++c) {
-                    row[c] = (dr * g[(0u * nv) + c]) + (dth * g[(1u * nv) + c]);
-                }
-                /* the node's time t0 + k T / N moves with T */
-                row[nv - 1u] += dt * (double)k / (double)p->nodes;
-                ctx->ko_b[ctx->ko_rows] = cfg->keepout_radius[b] - d - (dr * e[0]) - (dth * e[1]);
-                ctx->ko_rows += 1u;
-            }
-        }
-    }
-}
-
 /* G_N = dX_N/dv and e_N = dX_N(v = 0) by the forward recursion. */
-static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
+static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, double *hess)
 {
     const uint32_t nu = p->nu;
     const size_t col_t = nv - 1u;
@@ -220,8 +171,16 @@ static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
     (void)memset(ctx->cond_g, 0, NX * nv * sizeof(double));
     (void)memset(ctx->cond_e, 0, sizeof(ctx->cond_e));
     ctx->ko_rows = 0u;
+    if (hess != NULL) {
+        (void)memset(hess, 0, nv * nv * sizeof(double));
+    }
     for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
         const double *a = &ctx->sens_a[k * NX * NX];
+        if (hess != NULL) {
+            /* the exact Hessian's interval k, with cond_g = dX_k/dv */
+            ogk_i_nmpc_hess_add(hess, nv, nu, k, ctx->cond_g,
+                                &ctx->hess_blk[k * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR], ctx->hess_tmp);
+        }
         /* columns that can be nonzero after interval k: U_0..U_{k+1}, T */
         const size_t n_used = (k + 2u) * nu;
         for (i = 0u; i < NX; ++i) {
@@ -255,8 +214,11 @@ static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv)
         }
         (void)memcpy(ctx->cond_e, e_next, sizeof(e_next));
         if ((k + 1u) < p->nodes) {
-            keepout_rows(ctx, p, nv, k + 1u, ctx->cond_g, ctx->cond_e);
+            ogk_i_nmpc_keepout_rows(ctx, p, nv, k + 1u, ctx->cond_g, ctx->cond_e);
         }
+    }
+    if (hess != NULL) {
+        ogk_i_nmpc_hess_mirror(hess, nv);
     }
 }
 
@@ -447,67 +409,6 @@ static ogk_status solve_elastic(ogk_nmpc_t *ctx, const double *hess, const doubl
     return ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
 }
 
-/* Damped BFGS update of H with the step s and the gradient change y. */
-static void bfgs_update(double *hess, size_t nv, const double *s, double *y, bool first)
-{
-    double hs[MAXV];
-    double s_hs = 0.0;
-    double s_y = 0.0;
-    double y_y = 0.0;
-    size_t i;
-    size_t j;
-
-    for (i = 0u; i < nv; ++i) {
-        s_y += s[i] * y[i];
-        y_y += y[i] * y[i];
-    }
-    if (first && (s_y > 0.0) && (y_y > 0.0)) {
-        /* Shanno-Phua scaling of the initial matrix */
-        const double scale = y_y / s_y;
-        for (i = 0u; i < nv; ++i) {
-            for (j = 0u; j < nv; ++j) {
-                hess[(i * nv) + j] = (i == j) ? scale : 0.0;
-            }
-        }
-    }
-    for (i = 0u; i < nv; ++i) {
-        double acc = 0.0;
-        for (j = 0u; j < nv; ++j) {
-            acc += hess[(i * nv) + j] * s[j];
-        }
-        hs[i] = acc;
-        s_hs += s[i] * acc;
-    }
-    if (s_hs > (1.0e-300)) {
-        if (s_y < (POWELL_DAMP * s_hs)) {
-            const double theta = (1.0 - POWELL_DAMP) * s_hs / (s_hs - s_y);
-            s_y = 0.0;
-            for (i = 0u; i < nv; ++i) {
-                y[i] = (theta * y[i]) + ((1.0 - theta) * hs[i]);
-                s_y += s[i] * y[i];
-            }
-        }
-        if (s_y > 0.0) {
-            for (i = 0u; i < nv; ++i) {
-                for (j = 0u; j < nv; ++j) {
-                    hess[(i * nv) + j] += ((y[i] * y[j]) / s_y) - ((hs[i] * hs[j]) / s_hs);
-                }
-            }
-        }
-    }
-}
-
-static void identity(double *hess, size_t nv, double scale)
-{
-    size_t i;
-    size_t j;
-    for (i = 0u; i < nv; ++i) {
-        for (j = 0u; j < nv; ++j) {
-            hess[(i * nv) + j] = (i == j) ? scale : 0.0;
-        }
-    }
-}
-
 /* Reduced gradient of the Lagrangian, g - A_eq^T y. */
 static void lagrangian_gradient(const ogk_nmpc_t *ctx, size_t nv, const double *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the order of g - A_eq^T y; every caller is in this file */
                                 const double *y, double *out)
@@ -553,14 +454,14 @@ static bool feasibility_step(ogk_nmpc_t *ctx, ogk_nmpc_plan_t *p, size_t nv, siz
     double t_max = 0.0;
     bool taken = false;
     (void)memset(zero, 0, sizeof(zero));
-    identity(ctx->el_h, nv, 1.0);
+    ogk_i_nmpc_identity(ctx->el_h, nv, 1.0);
     step_qp(ctx, nv, rows, ctx->el_h, zero, &qp);
     if (ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol) == OGK_OK) {
         double c_trial[NC];
         rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
         expand_step(ctx, p, ctx->qp_sol.x, nv);
         take_step(ctx, p, ctx->qp_sol.x, nv, 1.0, &ctx->trial);
-        if ((evaluate(ctx, &ctx->trial, false, &t_l1, &t_max, c_trial) == OGK_OK) && (t_l1 < viol_l1)) {
+        if ((evaluate(ctx, &ctx->trial, false, NULL, &t_l1, &t_max, c_trial) == OGK_OK) && (t_l1 < viol_l1)) {
             (void)memcpy(p, &ctx->trial, sizeof(*p));
             taken = true;
         }
@@ -591,7 +492,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     double theta_max = 0.0;
     double theta_min = 0.0;
     bool first_iter = true;
-    bool flat;
+    bool flat = false;
     bool restored = false;
     uint32_t restarts = 0u;
     uint32_t restores = 0u;
@@ -605,35 +506,60 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     size_t i;
     size_t rows;
     ogk_qp_problem_t qp;
+    /* the exact Hessian, until a failed line search falls back to BFGS */
+    bool exact = (cfg->hessian == OGK_NMPC_HESSIAN_EXACT);
+    double rho;
+    double rho_last = 0.0;
 
     if (cold) {
-        identity(hess, nv, cfg->hessian_init);
+        ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
     }
     (void)memcpy(y_prev, p->lambda, sizeof(y_prev));
     rep->stat = 0.0;
     for (iter = 0u; (iter < iter_limit) && (iter < OGK_NMPC_MAX_SQP_ITER) && !done; ++iter) {
+        /* a cold solve has no multipliers for its first exact Hessian: that
+         * iteration's QP gets the scaled identity */
+        const bool second = exact && !(cold && (iter == 0u));
         if (!have_eval) {
-            st = evaluate(ctx, p, true, &viol_l1, &viol_max, c_term);
+            st = evaluate(ctx, p, true, second ? y_prev : NULL, &viol_l1, &viol_max, c_term);
         }
         have_eval = false;
         if (st == OGK_OK) {
-            condense(ctx, p, nv);
+            condense(ctx, p, nv, second ? hess : NULL);
             build_linear_terms(ctx, p, nv, c_term, g_obj);
-            if (have_prev) {
+            rho = 0.0;
+            if (second) {
+                bool shifted = false;
+                rho = ogk_i_nmpc_hess_convexify(hess, nv, ctx->qp_aeq, cfg->hessian_init, rho_last, ctx->el_h,
+                                                ctx->el_ain, &shifted);
+                rho_last = rho;
+                if (shifted) {
+                    /* not convex on the null space of eq. (5): far from a minimum the
+                     * exact model misleads (measured: closed loops with Earth in the
+                     * model stalled at the iteration limit); this step on the scaled
+                     * identity */
+                    rho = 0.0;
+                    ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
+                }
+            } else if (have_prev && !exact) {
                 /* y = grad L(new iterate) - grad L(old iterate), both with the last QP's multipliers */
                 lagrangian_gradient(ctx, nv, g_obj, y_prev, grad_new);
                 for (i = 0u; i < nv; ++i) {
                     grad_new[i] -= ctx->grad_lag[i];
                 }
-                bfgs_update(hess, nv, ctx->step_v, grad_new, first_update);
+                ogk_i_nmpc_bfgs_update(hess, nv, ctx->step_v, grad_new, first_update);
                 first_update = false;
+            } else {
+                /* BFGS without a pair: the matrix carried; the first iteration of a
+                 * cold exact solve: the scaled identity */
             }
             rows = build_bounds(ctx, p, nv, box);
             step_qp(ctx, nv, rows, hess, g_obj, &qp);
             st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
             if (st == OGK_E_NOT_POSDEF) {
-                identity(hess, nv, cfg->hessian_init);
+                ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
                 first_update = true;
+                rho = 0.0;
                 st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
             }
             if (st == OGK_E_INFEASIBLE) {
@@ -647,6 +573,13 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                     (void)build_bounds(ctx, p, nv, box);
                     st = solve_elastic(ctx, hess, g_obj, nv, rows);
                     rep->flags |= OGK_NMPC_FLAG_ELASTIC;
+                    rho = 0.0; /* the slacks take the residual: no shift to undo */
+                }
+            }
+            if ((st == OGK_OK) && (rho > 0.0)) {
+                /* H + rho A^T A: the multipliers of eq. (5) are y - rho b_eq */
+                for (i = 0u; i < NC; ++i) {
+                    ctx->qp_sol.y_eq[i] -= rho * ctx->qp_beq[i];
                 }
             }
             rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
@@ -677,7 +610,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             if ((viol_max <= cfg->tol_feas) && ((stat <= cfg->tol_stat) || flat)) {
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
                 done = true;
-            } else if (flat && (viol_max <= RESTORE_VIOL_MAX) && (restores < MAX_RESTORES)) {
+            } else if (!exact && flat && (viol_max <= RESTORE_VIOL_MAX) && (restores < MAX_RESTORES)) {
                 /* the step predicts no change of J, only feasibility is left:
                  * a minimum-norm step onto the linearised constraints (H = I,
                  * g = 0) converges quadratically where BFGS steps wander in
@@ -696,6 +629,10 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
              * restoration phase): theta = l1 violation, phi = J */
             const double phi0 = ogk_i_nmpc_objective(cfg, p);
             const double theta0 = viol_l1;
+            /* an exact-Hessian step that predicts no change of J is the
+             * last Newton step when its full step is feasible: that trial
+             * is first evaluated without sensitivities */
+            const bool newton_last = exact && flat;
             double dphi;
             double alpha = 1.0;
             bool accepted = false;
@@ -719,7 +656,8 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 /* the full step is evaluated with its sensitivities: taken
                  * (the usual case near the solution), it is the next
                  * iteration's linearisation */
-                ts = evaluate(ctx, &ctx->trial, ls == 0u, &t_l1, &t_max, c_trial);
+                ts = evaluate(ctx, &ctx->trial, (ls == 0u) && !newton_last, exact ? ctx->qp_sol.y_eq : NULL,
+                              &t_l1, &t_max, c_trial);
                 first_l1 = t_l1;
                 first_max = t_max;
                 if ((ts == OGK_OK) && (t_l1 <= theta_max)) {
@@ -751,7 +689,9 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                  * blocks every step are the usual causes */
                 restarts += 1u;
                 box = 1.0;
-                identity(hess, nv, cfg->hessian_init);
+                /* the exact Hessian's step failed too: BFGS from here on */
+                exact = false;
+                ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
                 first_update = true;
                 have_prev = false;
                 n_filter = 0u;
@@ -793,11 +733,18 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                     }
                 }
                 have_prev = alpha >= BFGS_MIN_ALPHA;
-                if (alpha >= 1.0) {
+                if (newton_last && (alpha >= 1.0) && (first_max <= cfg->tol_feas)) {
+                    /* converged at the trial: a full Newton step predicting no
+                     * change of J (|dJ| <= tol_obj max(|J|, 1)) landed feasible */
+                    viol_max = first_max;
+                    done = true;
+                } else if ((alpha >= 1.0) && !newton_last) {
                     have_eval = true;
                     viol_l1 = first_l1;
                     viol_max = first_max;
                     (void)memcpy(c_term, c_trial, sizeof(c_term));
+                } else {
+                    /* evaluated again, with its sensitivities, next iteration */
                 }
             }
         } else {

@@ -8,9 +8,14 @@
  *                       "nmpc_<key> <value>" lines for bench_nmpc_ipopt.py
  *   bench_nmpc once     the open loop, then exactly one re-solve, for valgrind
  *                       callgrind with --toggle-collect=bench_nmpc_replan_once
- *   ... time|once tight the same re-solve with the stationarity test alone
- *                       (tol_obj = 0, set after the same open loop: the same
- *                       start, only the stop differs); keys "nmpc_tight_<key>"
+ *   bench_nmpc time|once [tol0] [exact|bfgs]
+ *                       the same re-solve with tol_obj = 0 (the stationarity
+ *                       test alone: the converged optimum, IPOPT's accuracy)
+ *                       and/or the exact (or damped-BFGS) Hessian in place
+ *                       of the configuration's, both set AFTER the same open
+ *                       loop (the configuration's): every mode re-solves from
+ *                       the same (t_1, x_1) and warm start, only the solver
+ *                       differs; keys "nmpc[_exact|_bfgs][_tol0]_<key>"
  *   (bare metal)        the same as once, for the QEMU instruction counter
  *                       (`make bench-nmpc`); prints "nmpc_m7_<key> <value>"
  *                       lines, among them the stack used by the re-solve
@@ -43,11 +48,20 @@
 #endif
 
 static ogk_nmpc_t ctx;
-static int tight; /* 1: the re-solve with tol_obj = 0 (argument "tight") */
 static ogk_nmpc_report_t rep_open;
 static ogk_nmpc_report_t rep_replan;
 static ogk_nmpc_input_t in_replan;
 static volatile double sink;
+/* The options of the command line, or for the bare-metal build
+ * -DBENCH_NMPC_TOL0=1 and -DBENCH_NMPC_HESSIAN=<OGK_NMPC_HESSIAN_*>. */
+#ifndef BENCH_NMPC_TOL0
+#define BENCH_NMPC_TOL0 0
+#endif
+#ifndef BENCH_NMPC_HESSIAN
+#define BENCH_NMPC_HESSIAN (-1)
+#endif
+static int opt_tol0 = BENCH_NMPC_TOL0;          /* tol_obj = 0 */
+static int opt_hessian = BENCH_NMPC_HESSIAN;    /* OGK_NMPC_HESSIAN_*, -1: the configuration's */
 
 /* init, the documented guess, the open loop. */
 static int setup(void)
@@ -81,8 +95,12 @@ static int setup(void)
         fprintf(stderr, "bench_nmpc: open loop failed (status %d)\n", (int)st);
         return 1;
     }
-    if (tight) {
-        ctx.cfg.tol_obj = 0.0; /* the matched-accuracy re-solve: stationarity test only */
+    /* the re-solve's options, after the open loop: the same start for every mode */
+    if (opt_tol0) {
+        ctx.cfg.tol_obj = 0.0;
+    }
+    if (opt_hessian >= 0) {
+        ctx.cfg.hessian = (uint32_t)opt_hessian;
     }
     /* the replan: at the first node's time, the plan's node-1 state perturbed */
     in_replan.t = rep_open.t_next;
@@ -166,18 +184,28 @@ int main(int argc, char **argv)
 {
     static double t_ns[MAX_REPS];
     static double c_ns[MAX_REPS];
+    static char key[32];
     int reps = 0;
     int i;
-    const char *key = "nmpc";
-    if (argc < 2 || argc > 3 || (strcmp(argv[1], "time") != 0 && strcmp(argv[1], "once") != 0)
-        || (argc == 3 && strcmp(argv[2], "tight") != 0)) {
-        fprintf(stderr, "usage: %s time|once [tight]\n", argv[0]);
+    if (argc < 2 || (strcmp(argv[1], "time") != 0 && strcmp(argv[1], "once") != 0)) {
+        fprintf(stderr, "usage: %s time|once [tol0] [exact|bfgs]\n", argv[0]);
         return 2;
     }
-    if (argc == 3) {
-        tight = 1;
-        key = "nmpc_tight";
+    for (i = 2; i < argc; ++i) {
+        if (strcmp(argv[i], "tol0") == 0) {
+            opt_tol0 = 1;
+        } else if (strcmp(argv[i], "bfgs") == 0) {
+            opt_hessian = (int)OGK_NMPC_HESSIAN_BFGS;
+        } else if (strcmp(argv[i], "exact") == 0) {
+            opt_hessian = (int)OGK_NMPC_HESSIAN_EXACT;
+        } else {
+            fprintf(stderr, "usage: %s time|once [tol0] [exact|bfgs]\n", argv[0]);
+            return 2;
+        }
     }
+    (void)snprintf(key, sizeof key, "nmpc%s%s",
+                   opt_hessian < 0 ? "" : (opt_hessian == (int)OGK_NMPC_HESSIAN_EXACT ? "_exact" : "_bfgs"),
+                   opt_tol0 ? "_tol0" : "");
     (void)ogk_port_counter_init();
     if (strcmp(argv[1], "once") == 0) {
         return setup() != 0 || bench_nmpc_replan_once() != 0 || check_replan() != 0;

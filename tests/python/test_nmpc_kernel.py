@@ -3,7 +3,8 @@
 - its predictive model against the ground's numpy model (ogk_host.rendezvous.dynamics: eqs. 11-14, third
   bodies from Cartesian vectors), for the nuclear- and solar-electric engines;
 - one shooting interval against the numpy RK4 twin (dynamics.rk4_interval) and its sensitivities against
-  central differences through the bindings;
+  central differences through the bindings; its multiplier-weighted second derivatives (the exact SQP
+  Hessian's block) against CasADi's algorithmic Hessian of the ground NLP's own interval map;
 - the open loop of the same transcription against CasADi + IPOPT (RendezvousNlp): minimum time (t_f*) and
   bounded-thrust minimum fuel (the fuel), and the kernel's plan re-integrated by scipy's DOP853;
 - the unperturbed SNNS closed loop (Table I's column) reaching Mars before the open loop's t_f*, with the
@@ -13,6 +14,7 @@ from __future__ import annotations
 
 import math
 
+import casadi as ca
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -21,6 +23,7 @@ from ogk_host.rendezvous.dynamics import DAY_S, Engine, Model, planets, rk4_inte
 from ogk_host.rendezvous.nlp import RendezvousNlp, min_fuel_guess, min_time_guess
 from ogk_host.rendezvous.scenario import load_scenario
 
+from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import KernelError
 from ogk_bindings.nmpc import Nmpc
 from ogk.missions.rendezvous.closed_loop import fly
@@ -77,6 +80,37 @@ def test_interval_matches_numpy_rk4_and_finite_differences() -> None:
     assert np.max(np.abs(dfdu0)) > 1e-3
 
 
+@pytest.mark.parametrize("path,bodies", [(MIN_TIME, False), (SEP_FUEL, True)])
+def test_interval_second_derivatives_match_casadi(path: str, bodies: bool) -> None:
+    """sum_i w_i d2F_i/dp2, p = (x, u0, u1, h, t0): the kernel's forward-over-adjoint sweep against CasADi's
+    exact Hessian of RendezvousNlp's interval (the same RK4 transcription; SEP: solar engine, throttle,
+    Earth and Mars in the model)."""
+    g, scen = kernel_for(path, third_bodies=bodies)
+    nlp = RendezvousNlp(scen, rk4_steps=scen.nmpc.rk4_steps_per_interval, third_bodies=bodies)
+    nu = g.nu
+    n = 5 + 2 * nu + 2
+    p = ca.SX.sym("p", n)
+    w = np.array([0.7, -1.3, 2.1, 0.4, -0.9])
+    xf = nlp._interval(p[:5], p[5:5 + nu], p[5 + nu:5 + 2 * nu], p[5 + 2 * nu], p[6 + 2 * nu])
+    hess_ref = ca.Function("h", [p], [ca.hessian(ca.dot(ca.DM(w), xf), p)[0]])
+    rng = np.random.default_rng(11)
+    for _ in range(3):
+        x0 = np.array([rng.uniform(1.0, 1.5), rng.uniform(0, 3), rng.normal(0, 0.05), rng.uniform(0.8, 1.0),
+                       rng.uniform(0.6, 1.0)])
+        u0 = np.array([rng.uniform(-3, 3), rng.uniform(0.1, 0.9)])[:nu]
+        u1 = np.array([rng.uniform(-3, 3), rng.uniform(0.1, 0.9)])[:nu]
+        h, t0 = rng.uniform(0.1, 0.3), rng.uniform(0, 6)
+        ref = np.asarray(hess_ref(np.concatenate([x0, u0, u1, [h, t0]])))
+        out = np.empty(n * n)
+        arrays = [np.ascontiguousarray(a, dtype=np.float64) for a in (x0, u0, u1, w)]
+        status = lib.ogk_nmpc_interval_hess(g._ctx, float(t0), float(h),
+                                            *[ffi.from_buffer("double[]", a) for a in arrays],
+                                            ffi.from_buffer("double[]", out))
+        assert status == 0
+        np.testing.assert_allclose(out.reshape(n, n), ref, rtol=1e-9, atol=1e-11 * np.max(np.abs(ref)))
+        assert np.max(np.abs(ref)) > 1e-2
+
+
 def reintegrate_miss(scen, plan) -> tuple[float, float]:
     """DOP853 flight of the plan's piecewise-linear control; miss to eq. (5) at t_f in km, m/s."""
     model = Model.for_scenario(scen)
@@ -125,6 +159,30 @@ def test_open_loop_min_time_equals_ipopt_and_reintegrates() -> None:
     assert abs(rep.t_f - ref.plan.t_f) * days < 1e-4     # the same optimum of the same transcription
     dpos_km, dvel = reintegrate_miss(scen, _P(g.plan()))
     assert dpos_km < 100.0 and dvel < 0.01               # the RK4 error of docs/nmpc.md (30 km, 2.4 mm/s)
+
+
+def test_exact_hessian_open_loop_reaches_ipopt_at_the_default_tolerance() -> None:
+    """The exact Hessian (OGK_NMPC_HESSIAN_EXACT) at the kernel's default tol_obj lands on IPOPT's optimum of
+    the same transcription within 1 s of t_f (BFGS needs tol_obj = 0 and more iterations for that: 127
+    against 78 when measured; the cold start's non-convex iterations take identity steps)."""
+    exact = int(lib.OGK_NMPC_HESSIAN_EXACT)
+    g, scen = kernel_for(MIN_TIME, hessian=exact)
+    x0 = Model.for_scenario(scen).x0
+    guess = first_guess(scen, scen.ocp.nodes, 0.0, x0, g.nu)
+    g.load_plan(guess.t0, guess.horizon, guess.states, guess.controls)
+    rep = g.solve(0.0, x0)
+    assert rep.converged, rep.status
+    nlp = RendezvousNlp(scen, rk4_steps=scen.nmpc.rk4_steps_per_interval)
+    ref = nlp.solve(0.0, x0, min_time_guess(nlp))
+    assert ref.converged
+    time_s = Model.for_scenario(scen).units.time_s
+    assert abs(rep.t_f - ref.plan.t_f) * time_s < 1.0
+    assert rep.feas <= 1e-9
+    bfgs, _ = kernel_for(MIN_TIME, tol_obj=0.0)
+    bfgs.load_plan(guess.t0, guess.horizon, guess.states, guess.controls)
+    rep_bfgs = bfgs.solve(0.0, x0)
+    assert rep_bfgs.converged
+    assert rep.sqp_iterations < rep_bfgs.sqp_iterations
 
 
 def test_open_loop_min_fuel_equals_ipopt_fuel() -> None:

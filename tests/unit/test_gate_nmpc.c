@@ -118,6 +118,7 @@ BAD_RANGE(feas_zero, c->tol_feas = 0.0)
 BAD_RANGE(stat_zero, c->tol_stat = 0.0)
 BAD_RANGE(obj_neg, c->tol_obj = -1.0e-9)
 BAD_RANGE(hess_zero, c->hessian_init = 0.0)
+BAD_RANGE(hessian_bad, c->hessian = OGK_NMPC_HESSIAN_EXACT + 1u)
 BAD_RANGE(step_alpha_zero, c->step_max_alpha = 0.0)
 BAD_RANGE(step_h_zero, c->step_max_horizon = 0.0)
 BAD_RANGE(elastic_zero, c->elastic_weight = 0.0)
@@ -138,6 +139,7 @@ BAD_RANGE(body1_soft_neg, c->n_bodies = 2u; c->body_softening[1] = -1.0e-9)
 
 static const config_case_t range_cases[] = {
     { "mu", mu_zero, OGK_E_CONFIG },
+    { "hessian", hessian_bad, OGK_E_CONFIG },
     { "target_radius", radius_zero, OGK_E_CONFIG },
     { "engine", engine_bad, OGK_E_CONFIG },
     { "power", power_bad, OGK_E_CONFIG },
@@ -542,15 +544,16 @@ static void test_model_throttle_solar_overflow_and_body_centre(void **state)
 /* ------------------------------------------------------------------ solves */
 
 /* Solar-electric engine and two third bodies inside a solve: a coast on the target's own orbit
- * is still the minimum-fuel solution up to the bodies' pull, which is tiny here. */
-static void test_solve_solar_engine_and_bodies(void **state)
+ * is still the minimum-fuel solution up to the bodies' pull, which is tiny here. With both
+ * Hessians, each without an elastic QP. */
+static void solve_solar_engine_and_bodies(uint32_t hessian)
 {
     ogk_nmpc_config_t c;
     ogk_nmpc_input_t in;
     ogk_nmpc_report_t rep;
     uint32_t k;
-    (void)state;
     coast_config(&c, 4u);
+    c.hessian = hessian;
     nmpc_fx_solar(&c, 1.0, 0.05);
     c.n_bodies = 2u;
     nmpc_fx_body(&c, 0u, 1.0e-10, 3.0, 0.0, 0.2);
@@ -571,6 +574,13 @@ static void test_solve_solar_engine_and_bodies(void **state)
         assert_true(plan2.u[2u * k + 1u] >= 0.0 && plan2.u[2u * k + 1u] <= 1.0e-4);
     }
     OGK_ASSERT_NEAR(rep.objective, plan2.x[4] - plan2.x[4u * NX + 4u], 0.0);
+}
+
+static void test_solve_solar_engine_and_bodies(void **state)
+{
+    (void)state;
+    solve_solar_engine_and_bodies(OGK_NMPC_HESSIAN_BFGS);
+    solve_solar_engine_and_bodies(OGK_NMPC_HESSIAN_EXACT);
 }
 
 /* The sweep bound: no |alpha_{k+1} - alpha_k| above max_sweep, and t_f no earlier than the

@@ -5,9 +5,14 @@
  *     the spacecraft's polar axes);
  *   - the sensitivities of one shooting interval against central finite
  *     differences (solar-electric engine, two third bodies: every column);
+ *   - its second derivatives weighted by a multiplier (the exact SQP
+ *     Hessian's block) against central differences of w . dF/dp, for that
+ *     model and for the constant engine without bodies;
  *   - the SQP on a problem with a known solution: the near-field-free radial
  *     minimum-time transfer, t* = 2 sqrt(D / a) (accelerate, then brake), the
- *     discrete optimum above it and closer with more nodes;
+ *     discrete optimum above it and closer with more nodes; with the exact
+ *     Hessian too (fewer iterations), and its Earth-to-Mars open loop and
+ *     replans at BFGS's fully converged optimum;
  *   - a coast rendezvous (minimum fuel, the target on the spacecraft's own
  *     orbit): zero fuel;
  *   - the strategies (SNNS drop, CNCN regrid), the command, a failed solve
@@ -205,15 +210,112 @@ static void test_interval_sensitivities(void **state)
     assert_true(worst > 0.1); /* the columns are not all zero */
 }
 
+/* g = w . dF/dp at p = (x0, u0, u1, h, t0) (5 + 2 nu + 2 entries). */
+static void interval_gradient(double t0, double h, const double *x0, const double *u0, const double *u1, /* NOLINT(bugprone-easily-swappable-parameters): the order of ogk_nmpc_interval */
+                              const double *w, uint32_t nu, double *g)
+{
+    double x1[NX];
+    double fx[NX * NX];
+    double fu0[NX * 2];
+    double fu1[NX * 2];
+    double fh[NX];
+    double ft[NX];
+    size_t j;
+    size_t i;
+    OGK_ASSERT_STATUS(ogk_nmpc_interval(&ctx, t0, h, x0, u0, u1, x1, fx, fu0, fu1, fh, ft), OGK_OK);
+    for (j = 0u; j < (NX + (2u * nu) + 2u); ++j) {
+        double acc = 0.0;
+        for (i = 0u; i < NX; ++i) {
+            double d;
+            if (j < NX) { d = fx[i * NX + j]; }
+            else if (j < NX + nu) { d = fu0[i * nu + (j - NX)]; }
+            else if (j < NX + 2u * nu) { d = fu1[i * nu + (j - NX - nu)]; }
+            else if (j == NX + 2u * nu) { d = fh[i]; }
+            else { d = ft[i]; }
+            acc += w[i] * d;
+        }
+        g[j] = acc;
+    }
+}
+
+/* The weighted second derivatives of the interval in ctx against central
+ * differences of its gradient; returns the largest |entry|. */
+static double check_interval_hess(uint32_t nu, const double *u0, const double *u1)
+{
+    const double x0[NX] = { 1.01, 0.05, 0.02, 0.98, 0.9 };
+    const double w[NX] = { 0.7, -1.3, 2.1, 0.4, -0.9 };
+    const double t0 = 0.3;
+    const double h = 0.2;
+    const double eps = 1.0e-5;
+    const size_t nd = NX + (2u * nu) + 2u;
+    double hess[11 * 11];
+    double worst = 0.0;
+    size_t col;
+    OGK_ASSERT_STATUS(ogk_nmpc_interval_hess(&ctx, t0, h, x0, u0, u1, w, hess), OGK_OK);
+    for (col = 0u; col < nd; ++col) {
+        double p_plus[11];
+        double p_minus[11];
+        double gp[11];
+        double gm[11];
+        size_t i;
+        (void)memcpy(p_plus, x0, sizeof x0);
+        (void)memcpy(&p_plus[NX], u0, nu * sizeof(double));
+        (void)memcpy(&p_plus[NX + nu], u1, nu * sizeof(double));
+        p_plus[NX + 2u * nu] = h;
+        p_plus[NX + 2u * nu + 1u] = t0;
+        (void)memcpy(p_minus, p_plus, sizeof p_plus);
+        p_plus[col] += eps;
+        p_minus[col] -= eps;
+        interval_gradient(p_plus[nd - 1u], p_plus[nd - 2u], p_plus, &p_plus[NX], &p_plus[NX + nu], w, nu, gp);
+        interval_gradient(p_minus[nd - 1u], p_minus[nd - 2u], p_minus, &p_minus[NX], &p_minus[NX + nu], w, nu, gm);
+        for (i = 0u; i < nd; ++i) {
+            const double fd = (gp[i] - gm[i]) / (2.0 * eps);
+            OGK_ASSERT_NEAR(hess[i * nd + col], fd, 1e-7 * (1.0 + fabs(fd)));
+            assert_true(hess[i * nd + col] == hess[col * nd + i]); /* symmetric */
+            worst = fmax(worst, fabs(hess[i * nd + col]));
+        }
+    }
+    return worst;
+}
+
+static void test_interval_second_derivatives(void **state)
+{
+    ogk_nmpc_config_t c;
+    const double u0[2] = { 0.7, 0.6 };
+    const double u1[2] = { 1.9, 0.3 };
+    const double x0[NX] = { 1.01, 0.05, 0.02, 0.98, 0.9 };
+    double hess[11 * 11];
+    (void)state;
+    /* solar-electric, throttled, two third bodies: every entry of eq. (11)-(14)'s Hessian */
+    mars_config(&c, 8u);
+    c.engine = OGK_NMPC_ENGINE_THROTTLED;
+    nmpc_fx_solar(&c, 1.0000000002, 0.05);
+    c.n_bodies = 2u;
+    nmpc_fx_body(&c, 0u, 3.0e-6, 1.0, -0.1, 1.0);
+    nmpc_fx_body(&c, 1u, 3.2e-7, 1.52, 2.27, 0.53);
+    c.body_softening[1] = 0.01;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    assert_true(check_interval_hess(2u, u0, u1) > 0.1);
+    /* the constant engine without bodies (the benchmark's model) */
+    mars_config(&c, 8u);
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    assert_true(check_interval_hess(1u, u0, u1) > 0.1);
+    /* bad input */
+    OGK_ASSERT_STATUS(ogk_nmpc_interval_hess(&ctx, 0.0, 0.2, NULL, u0, u1, x0, hess), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nmpc_interval_hess(&ctx, 0.0, 0.0, x0, u0, u1, x0, hess), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_nmpc_interval_hess(&ctx, NAN, 0.2, x0, u0, u1, x0, hess), OGK_E_NONFINITE);
+}
+
 /* Radial minimum-time transfer in a near-field-free region: the continuous
  * optimum is t* = 2 sqrt(D / a); the discrete one (piecewise-linear angle)
  * lies above it by O(h^2). */
-static double radial_transfer(uint32_t nodes, uint32_t *iterations)
+static double radial_transfer(uint32_t nodes, uint32_t hessian, uint32_t *iterations)
 {
     ogk_nmpc_config_t c;
     ogk_nmpc_input_t in;
     ogk_nmpc_report_t rep;
     nmpc_fx_radial(&c, nodes, 4u, 200u);
+    c.hessian = hessian;
     if (ogk_nmpc_init(&ctx, &c) != OGK_OK) {
         return -1.0;
     }
@@ -236,8 +338,8 @@ static void test_sqp_known_solution(void **state)
     const double t_star = 2.0 * sqrt(0.5 / 0.1);
     uint32_t it10 = 0u;
     uint32_t it20 = 0u;
-    const double t10 = radial_transfer(10u, &it10);
-    const double t20 = radial_transfer(20u, &it20);
+    const double t10 = radial_transfer(10u, OGK_NMPC_HESSIAN_BFGS, &it10);
+    const double t20 = radial_transfer(20u, OGK_NMPC_HESSIAN_BFGS, &it20);
     (void)state;
     print_message("radial transfer: t* = %.6f, N = 10: %.6f (%u SQP iterations), N = 20: %.6f (%u)\n",
                   t_star, t10, (unsigned)it10, t20, (unsigned)it20);
@@ -247,6 +349,69 @@ static void test_sqp_known_solution(void **state)
     assert_true(t20 <= t_star * 1.003);
     /* more nodes, closer: the excess shrinks about fourfold when h halves */
     assert_true((t20 - t_star) < 0.5 * (t10 - t_star));
+}
+
+/* The exact Hessian on the same known solution: the same bounds on the
+ * discrete optimum, in fewer SQP iterations than BFGS; then the Earth-to-Mars
+ * open loop and an SNNS and a CNCN replan (the warm starts) reach BFGS's
+ * converged optimum (tol_obj = 0) within 1e-8 TU (0.05 s). */
+static void test_sqp_exact_hessian(void **state)
+{
+    const double t_star = 2.0 * sqrt(0.5 / 0.1);
+    uint32_t it_bfgs = 0u;
+    uint32_t it_exact = 0u;
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    ogk_nmpc_report_t rep_ref;
+    double t_exact;
+    double t_bfgs;
+    uint32_t strategy;
+    (void)state;
+    t_bfgs = radial_transfer(10u, OGK_NMPC_HESSIAN_BFGS, &it_bfgs);
+    t_exact = radial_transfer(10u, OGK_NMPC_HESSIAN_EXACT, &it_exact);
+    print_message("radial N = 10: BFGS %.8f (%u SQP iterations), exact %.8f (%u)\n", t_bfgs, (unsigned)it_bfgs,
+                  t_exact, (unsigned)it_exact);
+    assert_true(t_exact >= t_star * (1.0 - 1.0e-6));
+    assert_true(t_exact <= t_star * 1.01);
+    assert_true(it_exact < it_bfgs);
+    for (strategy = OGK_NMPC_SNNS; strategy <= OGK_NMPC_CNCN; ++strategy) {
+        /* the reference: BFGS to the stationarity test alone */
+        mars_config(&c, 8u);
+        c.strategy = strategy;
+        c.tol_obj = 0.0;
+        c.tol_stat = 1.0e-9;
+        OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx2, &c), OGK_OK);
+        c.tol_obj = 1.0e-7;
+        c.tol_stat = 1.0e-7;
+        c.hessian = OGK_NMPC_HESSIAN_EXACT;
+        OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+        mars_guess(&c, 8u, 6.4, &plan);
+        OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx2, &plan), OGK_OK);
+        in.t = 0.0;
+        (void)memcpy(in.x, plan.x, sizeof in.x);
+        OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx2, &in, &rep_ref), OGK_OK);
+        OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, 1.0e-8);
+        assert_true(rep.feas <= c.tol_feas);
+        assert_true(rep.sqp_iterations < rep_ref.sqp_iterations);
+        /* one replan at the first node, the state 1e-4 off the plan's */
+        OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
+        in.t = rep.t_next;
+        (void)memcpy(in.x, &plan2.x[NX], sizeof in.x);
+        in.x[0] += 1.0e-4;
+        in.x[3] += 1.0e-4;
+        OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &in, &rep), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx2, &in, &rep_ref), OGK_OK);
+        print_message("%s replan: exact t_f %.12f (%u SQP iterations), BFGS tol_obj 0 %.12f (%u)\n",
+                      (strategy == OGK_NMPC_SNNS) ? "SNNS" : "CNCN", rep.t_f, (unsigned)rep.sqp_iterations,
+                      rep_ref.t_f, (unsigned)rep_ref.sqp_iterations);
+        assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
+        OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, 1.0e-8);
+        assert_true(rep.feas <= c.tol_feas);
+        assert_true(rep.sqp_iterations <= rep_ref.sqp_iterations);
+    }
 }
 
 /* Minimum fuel with the target on the spacecraft's own circular orbit and
@@ -417,7 +582,7 @@ static void test_failure_and_bad_input(void **state)
 /* Keep-out: a body (ephemeris only) sits on the radial path; with a keep-out
  * radius every interior node stays that far from it, and the detour costs
  * time against the unconstrained optimum. */
-static void test_keepout_detour(void **state)
+static void keepout_detour(uint32_t hessian)
 {
     ogk_nmpc_config_t c;
     ogk_nmpc_input_t in;
@@ -425,8 +590,8 @@ static void test_keepout_detour(void **state)
     double t_free;
     uint32_t k;
     const double radius = 0.08;
-    (void)state;
     nmpc_fx_radial(&c, 12u, 4u, 300u);
+    c.hessian = hessian;
     c.n_bodies = 1u;
     nmpc_fx_body(&c, 0u, 0.0, 1.25, 0.03, 0.0);  /* 0.0375 LU off the radial line */
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
@@ -457,8 +622,18 @@ static void test_keepout_detour(void **state)
         const double th = plan2.x[k * NX + 1u];
         assert_true(sqrt(r * r + 1.5625 - 2.5 * r * cos(th - 0.03)) >= radius - 1.0e-8);
     }
-    print_message("keep-out detour: t_f %.6f against %.6f unconstrained\n", rep.t_f, t_free);
+    print_message("keep-out detour (%s Hessian): t_f %.8f against %.8f unconstrained, %u SQP iterations\n",
+                  (hessian == OGK_NMPC_HESSIAN_EXACT) ? "exact" : "BFGS", rep.t_f, t_free,
+                  (unsigned)rep.sqp_iterations);
     assert_true(rep.t_f > t_free);
+}
+
+/* With both Hessians (the exact one leaves the keep-out's curvature out). */
+static void test_keepout_detour(void **state)
+{
+    (void)state;
+    keepout_detour(OGK_NMPC_HESSIAN_BFGS);
+    keepout_detour(OGK_NMPC_HESSIAN_EXACT);
 }
 
 /* reset gives back the context of a fresh init: the same open loop bit for bit */
@@ -493,7 +668,9 @@ int main(void)
         cmocka_unit_test(test_model_closed_form),
         cmocka_unit_test(test_third_bodies_cartesian),
         cmocka_unit_test(test_interval_sensitivities),
+        cmocka_unit_test(test_interval_second_derivatives),
         cmocka_unit_test(test_sqp_known_solution),
+        cmocka_unit_test(test_sqp_exact_hessian),
         cmocka_unit_test(test_coast_rendezvous_zero_fuel),
         cmocka_unit_test(test_strategies_and_command),
         cmocka_unit_test(test_failure_and_bad_input),

@@ -31,9 +31,11 @@
  * loop can keep postponing the arrival).
  *
  * SQP: exact discrete sensitivities of F_k, the state deviations condensed
- * away (unknowns dU, dT: at most OGK_NMPC_MAX_VARS), a damped-BFGS reduced
- * Hessian (as the paper's ACADO runs used BFGS), the QP by ogk_qp_solve
- * (ogk/qp.h), a filter line search on (constraint violation, J).
+ * away (unknowns dU, dT: at most OGK_NMPC_MAX_VARS), the reduced Hessian of
+ * the Lagrangian exact (second order of the RK4 map weighted by the
+ * continuity multipliers, regularised) or damped BFGS (as the paper's ACADO
+ * runs), the QP by ogk_qp_solve (ogk/qp.h), a filter line search on
+ * (constraint violation, J).
  *
  * Memory: everything in ogk_nmpc_t (no heap, no globals, every loop bounded
  * by the OGK_NMPC_MAX_* limits below). */
@@ -84,6 +86,14 @@ extern "C" {
 #define OGK_NMPC_MAX_QP (OGK_NMPC_MAX_VARS + (2u * OGK_NMPC_NC))
 /* Sensitivity directions of one subinterval: X_k, U_k, U_{k+1}, T. */
 #define OGK_NMPC_MAX_DIR (OGK_NMPC_NX + (2u * OGK_NMPC_MAX_NU) + 1u)
+/* Doubles the exact Hessian records per RK4 step of one subinterval (the
+ * forward sweep's tape, read back by the second-order adjoint sweep): the
+ * step's sensitivity matrix and the weighted sum of its stages' (each
+ * 5 x (OGK_NMPC_MAX_DIR + 1)) and, per stage, its state (5), its derivative
+ * k (5), cos/sin of its angle (2), the model's Jacobian (5 x 5) and k's
+ * sensitivities (5 x (OGK_NMPC_MAX_DIR + 1)). */
+#define OGK_NMPC_TAPE_STEP ((2u * OGK_NMPC_NX * (OGK_NMPC_MAX_DIR + 1u)) \
+    + (4u * ((2u * OGK_NMPC_NX) + 2u + (OGK_NMPC_NX * OGK_NMPC_NX) + (OGK_NMPC_NX * (OGK_NMPC_MAX_DIR + 1u)))))
 
 /* ogk_nmpc_config_t.objective */
 #define OGK_NMPC_MIN_TIME 0u
@@ -94,6 +104,9 @@ extern "C" {
 /* ogk_nmpc_config_t.power */
 #define OGK_NMPC_POWER_CONSTANT 0u   /* T_max = thrust_max, mdot_max = mass_flow_max (eqs. 12-13) */
 #define OGK_NMPC_POWER_SOLAR 1u      /* eq. (14): T_max(r), mdot_max(r) from p(r) */
+/* ogk_nmpc_config_t.hessian */
+#define OGK_NMPC_HESSIAN_BFGS 0u     /* damped BFGS (Powell), carried from solve to solve (the default) */
+#define OGK_NMPC_HESSIAN_EXACT 1u    /* second order of the discrete map, convexified (docs/nmpc-flight.md) */
 /* ogk_nmpc_config_t.strategy */
 #define OGK_NMPC_SNNS 0u             /* shrinking number of nodes with subdivision (sec. 2.3.3) */
 #define OGK_NMPC_CNCN 1u             /* constant number of control nodes (sec. 2.3.1) */
@@ -146,7 +159,13 @@ typedef struct {
     double tol_feas;            /* [LU, LU/TU, MU] max |defect|, |terminal residual| at convergence, > 0 (default 1e-9) */
     double tol_stat;            /* [-] max |H dv| (reduced stationarity) at convergence, > 0 (default 1e-7) */
     double tol_obj;             /* [-] or converged when the QP step's predicted |dJ| <= tol_obj max(|J|, 1), >= 0 (default 1e-7) */
-    double hessian_init;        /* [-] scale of the first BFGS matrix (identity times it), > 0 (default 1) */
+    uint32_t hessian;           /* [-] OGK_NMPC_HESSIAN_BFGS (default: damped BFGS of the reduced Hessian) or
+                                 *     OGK_NMPC_HESSIAN_EXACT (sum_k mu_k^T d2F_k of the RK4 maps, condensed,
+                                 *     convexified along the eq. (5) normals, the scaled identity for an
+                                 *     iteration where that is not enough;
+                                 *     converges in the interior-point peers' iterations: docs/nmpc-flight.md) */
+    double hessian_init;        /* [-] scale of the first BFGS matrix (identity times it; also the QP's Hessian after a
+                                 *     failed factorisation), > 0 (default 1) */
     double step_max_alpha;      /* [rad] bound on one SQP step of a node angle, > 0 (default 1) */
     double step_max_horizon;    /* [TU] bound on one SQP step of T, > 0 (default 1) */
     double elastic_weight;      /* [J units per residual unit] l1 weight of eq. (5)'s slacks in an elastic QP, > 0 (default 1000) */
@@ -210,7 +229,7 @@ typedef struct {
     ogk_nmpc_plan_t work;       /* the SQP iterate */
     ogk_nmpc_plan_t trial;      /* the line-search point */
     ogk_nmpc_plan_t alt;        /* the doubled plan of the SNNS test */
-    double hess[OGK_NMPC_MAX_VARS * OGK_NMPC_MAX_VARS];     /* [-] BFGS matrix of the plan flown */
+    double hess[OGK_NMPC_MAX_VARS * OGK_NMPC_MAX_VARS];     /* [-] QP Hessian (BFGS: the matrix of the plan flown) */
     double hess_alt[OGK_NMPC_MAX_VARS * OGK_NMPC_MAX_VARS]; /* [-] BFGS matrix of the doubled plan */
     uint8_t hess_valid;         /* [-] 1: hess belongs to the plan flown (warm start) */
     /* sensitivities of the current iterate, per subinterval k */
@@ -219,6 +238,11 @@ typedef struct {
     double sens_b0[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_MAX_NU]; /* dF_k/dU_k */
     double sens_b1[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_MAX_NU]; /* dF_k/dU_k+1 */
     double sens_t[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                   /* dF_k/dT */
+    /* exact Hessian: per subinterval k the block sum_i mu_k,i d2F_k,i in (X_k, U_k, U_k+1, T),
+     * OGK_NMPC_MAX_DIR square, and the tape of the interval being swept */
+    double hess_blk[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR];
+    double tape[OGK_NMPC_MAX_RK4_STEPS * OGK_NMPC_TAPE_STEP];
+    double hess_tmp[2u * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_VARS]; /* scratch: one interval's second derivatives, then the condensing's */
     /* condensed QP */
     double cond_g[OGK_NMPC_NX * OGK_NMPC_MAX_VARS]; /* dX_N / dv */
     double cond_e[OGK_NMPC_NX];                     /* dX_N at v = 0 (the defects carried) */

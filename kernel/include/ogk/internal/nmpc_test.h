@@ -32,6 +32,16 @@ ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
                              double *dfdu0, double *dfdu1, double *dfdh,
                              double *dfdt0);
 
+/* The second derivatives of the same subinterval weighted by w (5):
+ * hess = sum_i w_i d2F_i/dp2, p = (x0 (5), u0 (nu), u1 (nu), h, t0), a
+ * symmetric (5 + 2 nu + 2)-square row-major matrix (the exact SQP Hessian's
+ * per-interval block), for the tests' finite-difference checks of
+ * w . dF/dp. Uses the context's tape (hence not const). */
+ogk_status ogk_nmpc_interval_hess(ogk_nmpc_t *ctx, double t0, double h,
+                                  const double *x0, const double *u0,
+                                  const double *u1, const double *w,
+                                  double *hess);
+
 #ifdef __cplusplus
 }
 #endif

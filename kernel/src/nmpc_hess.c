@@ -1,0 +1,314 @@
+/* nmpc_hess.c -- the QP Hessian of the NMPC's SQP (nmpc_sqp.c): the exact
+ * reduced Hessian of the Lagrangian and its regularisation, or the damped
+ * BFGS approximation (docs/nmpc-flight.md, "Hessian").
+ *
+ * Exact: with L = J - y^T c(X_N, T) and the continuity X_{k+1} = F_k - d_k
+ * condensed away, the Hessian of L in the QP unknowns v = (dU, dT) is
+ *   sum_k Gt_k^T W_k Gt_k,  W_k = sum_i w_k,i d2F_k,i / d(X_k, U_k, U_k+1, T)2,
+ * Gt_k = d(X_k, U_k, U_k+1, T)/dv (X_k's rows are the condensing's G_k), the
+ * weights w_{N-1} = dJ/dX_N - dc/dX_N^T y, w_{k-1} = A_k^T w_k (the
+ * continuity multipliers; J and c are linear). It need not be positive
+ * definite: it is convexified along the normals of eq. (5) (H + rho A^T A
+ * leaves the QP's solution unchanged on A v = b, the multipliers shift by
+ * rho b), then shifted (H + delta I) when still not positive definite, and
+ * *shifted says so (the SQP then takes the scaled identity instead). */
+#include "nmpc_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define NX ((size_t)OGK_NMPC_NX)
+#define NC ((size_t)OGK_NMPC_NC)
+#define NCOL OGK_I_NMPC_NCOL_Z
+#define NDIR OGK_I_NMPC_NDIR_Z
+#define MAXV OGK_I_NMPC_MAXV_Z
+
+/* Convexification: rho from RHO_FIRST max|H_ii| / max|A_i|^2 up by
+ * RHO_GROWTH, then a shift delta from DELTA_FIRST max|H_ii| up by
+ * DELTA_GROWTH; a Cholesky pivot must exceed PIVOT_MIN max|H_ii|. */
+#define RHO_FIRST 1.0e-2
+#define RHO_GROWTH 100.0
+#define RHO_TRIES 4u
+#define DELTA_FIRST 1.0e-8
+#define DELTA_GROWTH 4.0
+#define DELTA_TRIES 24u
+#define PIVOT_MIN 1.0e-12
+
+void ogk_i_nmpc_hess_block(uint32_t nu, size_t ncol, size_t k, uint32_t nodes, /* NOLINT(bugprone-easily-swappable-parameters): internal, (nu, columns, interval, N) as nmpc_internal.h states; checked through the SQP tests */
+                           const double *w_int, double *blk)
+{
+    /* h = T / N and t_start = t0 + k T / N: the T direction is
+     * (e_h + k e_ts) / N (e_ts only when propagated) */
+    const size_t col_h = NX + (2u * (size_t)nu);
+    const size_t nb = col_h + 1u;
+    const double kk = (double)k;
+    const double inv_n = 1.0 / (double)nodes;
+    const bool with_ts = ncol > nb;
+    double t_col[NCOL];
+    size_t a;
+    size_t b;
+
+    (void)memset(t_col, 0, sizeof(t_col));
+    for (a = 0u; (a < ncol) && (a < NCOL); ++a) {
+        t_col[a] = w_int[(a * NCOL) + col_h];
+        if (with_ts) {
+            t_col[a] += kk * w_int[(a * NCOL) + col_h + 1u];
+        }
+        t_col[a] *= inv_n;
+    }
+    for (a = 0u; a < col_h; ++a) {
+        for (b = 0u; b < col_h; ++b) {
+            blk[(a * NDIR) + b] = w_int[(a * NCOL) + b];
+        }
+        blk[(a * NDIR) + col_h] = t_col[a];
+        blk[(col_h * NDIR) + a] = t_col[a];
+    }
+    blk[(col_h * NDIR) + col_h] = (t_col[col_h] + (with_ts ? (kk * t_col[col_h + 1u]) : 0.0)) * inv_n;
+}
+
+void ogk_i_nmpc_hess_add(double *hess, size_t nv, uint32_t nu, size_t k, /* NOLINT(bugprone-easily-swappable-parameters): internal, (H, its order, nu, interval) as nmpc_internal.h states; checked through the SQP tests */
+                         const double *g, const double *blk, double *scratch) /* NOLINT(bugprone-easily-swappable-parameters): as above */
+{
+    /* Gt over the columns interval k can touch (U_0 .. U_{k+1}, then T):
+     * five dense rows (G's) and unit rows for U_k, U_{k+1}, T */
+    const size_t nb = NX + (2u * (size_t)nu) + 1u;
+    const size_t na = ((k + 2u) * (size_t)nu) + 1u;
+    const size_t c_u0 = k * (size_t)nu;
+    const size_t c_u1 = (k + 1u) * (size_t)nu;
+    double *gx = scratch;                /* 5 x na: G's rows */
+    double *bm = &scratch[NDIR * MAXV];  /* nb x na: blk Gt */
+    size_t a;
+    size_t c;
+    size_t x;
+    size_t j;
+
+    for (x = 0u; x < NX; ++x) {
+        (void)memcpy(&gx[x * na], &g[x * nv], (na - 1u) * sizeof(double));
+        gx[(x * na) + (na - 1u)] = g[(x * nv) + (nv - 1u)];
+    }
+    for (a = 0u; a < nb; ++a) {
+        const double *brow = &blk[a * NDIR];
+        double *bmrow = &bm[a * na];
+        for (c = 0u; c < na; ++c) {
+            bmrow[c] = (brow[0] * gx[c]) + (brow[1] * gx[na + c]) + (brow[2] * gx[(2u * na) + c])
+                + (brow[3] * gx[(3u * na) + c]) + (brow[4] * gx[(4u * na) + c]);
+        }
+        for (j = 0u; j < (size_t)nu; ++j) {
+            bmrow[c_u0 + j] += brow[NX + j];
+            bmrow[c_u1 + j] += brow[NX + (size_t)nu + j];
+        }
+        bmrow[na - 1u] += brow[nb - 1u];
+    }
+    /* hess (upper triangle; the caller mirrors) += Gt^T bm */
+    for (a = 0u; a < na; ++a) {
+        size_t ra = a;
+        double *hrow;
+        if (a == (na - 1u)) {
+            ra = nv - 1u; /* the T column of Gt is v's last */
+        }
+        hrow = &hess[ra * nv];
+        for (c = a; c < (na - 1u); ++c) {
+            hrow[c] += (gx[a] * bm[c]) + (gx[na + a] * bm[na + c]) + (gx[(2u * na) + a] * bm[(2u * na) + c])
+                + (gx[(3u * na) + a] * bm[(3u * na) + c]) + (gx[(4u * na) + a] * bm[(4u * na) + c]);
+        }
+        hrow[nv - 1u] += (gx[a] * bm[na - 1u]) + (gx[na + a] * bm[(2u * na) - 1u])
+            + (gx[(2u * na) + a] * bm[(3u * na) - 1u]) + (gx[(3u * na) + a] * bm[(4u * na) - 1u])
+            + (gx[(4u * na) + a] * bm[(5u * na) - 1u]);
+    }
+    /* the unit rows of Gt: row U_k,j adds bm's row NX + j to hess's row c_u0 + j (upper part) */
+    for (j = 0u; j < (size_t)nu; ++j) {
+        const double *b0 = &bm[(NX + j) * na];
+        const double *b1 = &bm[(NX + (size_t)nu + j) * na];
+        for (c = c_u0 + j; c < (na - 1u); ++c) {
+            hess[((c_u0 + j) * nv) + c] += b0[c];
+        }
+        hess[((c_u0 + j) * nv) + (nv - 1u)] += b0[na - 1u];
+        for (c = c_u1 + j; c < (na - 1u); ++c) {
+            hess[((c_u1 + j) * nv) + c] += b1[c];
+        }
+        hess[((c_u1 + j) * nv) + (nv - 1u)] += b1[na - 1u];
+    }
+    hess[((nv - 1u) * nv) + (nv - 1u)] += bm[((nb - 1u) * na) + (na - 1u)];
+}
+
+void ogk_i_nmpc_hess_mirror(double *hess, size_t nv)
+{
+    size_t i;
+    size_t j;
+    for (i = 0u; i < nv; ++i) {
+        for (j = 0u; j < i; ++j) {
+            hess[(i * nv) + j] = hess[(j * nv) + i];
+        }
+    }
+}
+
+/* In-place Cholesky of the n x n matrix a (lower triangle); false when a
+ * pivot is not above pivot_min. */
+static bool cholesky_ok(double *a, size_t n, double pivot_min) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (matrix, order, pivot floor); its only caller is try_shift */
+{
+    bool ok = true;
+    size_t i;
+    size_t j;
+    size_t l;
+    for (j = 0u; (j < n) && ok; ++j) {
+        double d = a[(j * n) + j];
+        for (l = 0u; l < j; ++l) {
+            d -= a[(j * n) + l] * a[(j * n) + l];
+        }
+        if (!(d > pivot_min)) {
+            ok = false;
+        } else {
+            const double ljj = sqrt(d);
+            a[(j * n) + j] = ljj;
+            for (i = j + 1u; i < n; ++i) {
+                double s = a[(i * n) + j];
+                for (l = 0u; l < j; ++l) {
+                    s -= a[(i * n) + l] * a[(j * n) + l];
+                }
+                a[(i * n) + j] = s / ljj;
+            }
+        }
+    }
+    return ok;
+}
+
+/* try := hess + rho A^T A + delta I; true when it factors. */
+static bool try_shift(const double *hess, size_t nv, const double *a_eq, double rho, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (H, order, A, rho, delta) in the formula's order; its only caller is ogk_i_nmpc_hess_convexify */
+                      double delta, double pivot_min, double *out, double *work)
+{
+    size_t i;
+    size_t j;
+    size_t r;
+    for (i = 0u; i < nv; ++i) {
+        for (j = 0u; j < nv; ++j) {
+            double acc = hess[(i * nv) + j];
+            for (r = 0u; r < NC; ++r) {
+                acc += rho * a_eq[(r * nv) + i] * a_eq[(r * nv) + j];
+            }
+            out[(i * nv) + j] = acc + ((i == j) ? delta : 0.0);
+        }
+    }
+    (void)memcpy(work, out, nv * nv * sizeof(double));
+    return cholesky_ok(work, nv, pivot_min);
+}
+
+double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq, /* NOLINT(bugprone-easily-swappable-parameters): internal, (H, order, A_eq, fallback scale, last rho) as nmpc_internal.h states; checked through the SQP tests */
+                                 double fallback, double rho_hint, double *out, double *work, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                                 bool *shifted)
+{
+    double scale = 0.0;
+    double a_norm = 0.0;
+    double rho;
+    double rho_used = 0.0;
+    bool ok;
+    uint32_t n;
+    size_t i;
+    size_t r;
+
+    for (i = 0u; i < nv; ++i) {
+        scale = (fabs(hess[(i * nv) + i]) > scale) ? fabs(hess[(i * nv) + i]) : scale;
+    }
+    for (r = 0u; r < NC; ++r) {
+        double acc = 0.0;
+        for (i = 0u; i < nv; ++i) {
+            acc += a_eq[(r * nv) + i] * a_eq[(r * nv) + i];
+        }
+        a_norm = (acc > a_norm) ? acc : a_norm;
+    }
+    /* rho A^T A changes neither the QP's step nor (once corrected) its
+     * multipliers: it is always added, and most Hessians factor with the
+     * first rho (measured: the benchmark's re-solve never needs more) */
+    ok = false;
+    *shifted = false;
+    rho = (a_norm > 1.0e-300) ? ((RHO_FIRST * scale) / a_norm) : 0.0;
+    /* the last iteration's rho usually fits again: start there */
+    rho = (rho_hint > rho) ? rho_hint : rho;
+    for (n = 0u; (n < RHO_TRIES) && !ok; ++n) {
+        if ((rho > 0.0) && isfinite(scale) && (scale > 1.0e-300)) {
+            rho_used = rho;
+            ok = try_shift(hess, nv, a_eq, rho, 0.0, PIVOT_MIN * scale, out, work);
+            rho *= RHO_GROWTH;
+        }
+    }
+    if (!ok) {
+        /* not convex on the null space of eq. (5) either: the first rho and
+         * a growing shift */
+        double delta = DELTA_FIRST * scale;
+        rho_used = (a_norm > 1.0e-300) ? ((RHO_FIRST * scale) / a_norm) : 0.0;
+        *shifted = true;
+        for (n = 0u; (n < DELTA_TRIES) && !ok; ++n) {
+            if (isfinite(scale) && (scale > 1.0e-300)) {
+                ok = try_shift(hess, nv, a_eq, rho_used, delta, PIVOT_MIN * scale, out, work);
+                delta *= DELTA_GROWTH;
+            }
+        }
+    }
+    if (!ok) {
+        /* nothing factored (a non-finite entry): the scaled identity */
+        rho_used = 0.0;
+        ogk_i_nmpc_identity(out, nv, fallback);
+    }
+    (void)memcpy(hess, out, nv * nv * sizeof(double));
+    return rho_used;
+}
+
+/* Damped BFGS update of H with the step s and the gradient change y. */
+void ogk_i_nmpc_bfgs_update(double *hess, size_t nv, const double *s, double *y, bool first)
+{
+    double hs[MAXV];
+    double s_hs = 0.0;
+    double s_y = 0.0;
+    double y_y = 0.0;
+    size_t i;
+    size_t j;
+
+    for (i = 0u; i < nv; ++i) {
+        s_y += s[i] * y[i];
+        y_y += y[i] * y[i];
+    }
+    if (first && (s_y > 0.0) && (y_y > 0.0)) {
+        /* Shanno-Phua scaling of the initial matrix */
+        const double scale = y_y / s_y;
+        for (i = 0u; i < nv; ++i) {
+            for (j = 0u; j < nv; ++j) {
+                hess[(i * nv) + j] = (i == j) ? scale : 0.0;
+            }
+        }
+    }
+    for (i = 0u; i < nv; ++i) {
+        double acc = 0.0;
+        for (j = 0u; j < nv; ++j) {
+            acc += hess[(i * nv) + j] * s[j];
+        }
+        hs[i] = acc;
+        s_hs += s[i] * acc;
+    }
+    if (s_hs > (1.0e-300)) {
+        if (s_y < (OGK_I_NMPC_POWELL_DAMP * s_hs)) {
+            const double theta = (1.0 - OGK_I_NMPC_POWELL_DAMP) * s_hs / (s_hs - s_y);
+            s_y = 0.0;
+            for (i = 0u; i < nv; ++i) {
+                y[i] = (theta * y[i]) + ((1.0 - theta) * hs[i]);
+                s_y += s[i] * y[i];
+            }
+        }
+        if (s_y > 0.0) {
+            for (i = 0u; i < nv; ++i) {
+                for (j = 0u; j < nv; ++j) {
+                    hess[(i * nv) + j] += ((y[i] * y[j]) / s_y) - ((hs[i] * hs[j]) / s_hs);
+                }
+            }
+        }
+    }
+}
+
+void ogk_i_nmpc_identity(double *hess, size_t nv, double scale)
+{
+    size_t i;
+    size_t j;
+    for (i = 0u; i < nv; ++i) {
+        for (j = 0u; j < nv; ++j) {
+            hess[(i * nv) + j] = (i == j) ? scale : 0.0;
+        }
+    }
+}

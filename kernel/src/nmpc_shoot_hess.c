@@ -1,0 +1,246 @@
+/* nmpc_shoot_hess.c -- second derivatives of one multiple-shooting interval
+ * (nmpc_shoot.c), weighted by the continuity multipliers: the exact SQP
+ * Hessian's per-interval block W = sum_i w_i d2F_i/dp2,
+ * p = (X_k, U_k, U_{k+1}, h[, t_start]).
+ *
+ * Forward over adjoint: the adjoint of w . F runs backwards through the RK4
+ * recursion recorded by the forward sweep (its stage states, Jacobians and
+ * the sensitivities S, K of the forward sweep), and every nonlinear operation
+ * adds (its output's adjoint) x (its second derivative) applied to its
+ * inputs' forward sensitivities:
+ *   - a stage k_j = f(z_j), z_j = (y_j, u_j, t_j): Z_j^T (sum_i kbar_j,i
+ *     d2f_i/dz2) Z_j, Z_j = dz_j/dp (u_j and t_j are linear in p);
+ *   - the products of h with a stage derivative, y_{j+1} = x_n + c_{j+1}
+ *     (h / M) k_j and x_{n+1} = x_n + (h / 6M) sum_j b_j k_j: their cross
+ *     terms in h and p.
+ * The adjoints: kbar_j = (h b_j / 6M) lambda_{n+1} + (c_{j+1} h / M)
+ * ybar_{j+1}, ybar_j = f_x(z_j)^T kbar_j, lambda_n = lambda_{n+1}
+ * + sum_j ybar_j, lambda_M = w. Checked against central differences of
+ * w . dF/dp (test_nmpc.c). */
+#include "nmpc_internal.h"
+
+#include <stdbool.h>
+#include <string.h>
+
+#define NX ((size_t)OGK_NMPC_NX)
+#define NCOL OGK_I_NMPC_NCOL_Z
+#define NZ OGK_I_NMPC_NZ_Z
+
+/* out = jx^T a over the Jacobian's structural nonzeros (13 of 25, those of
+ * ogk_i_nmpc_jx_times; jx[2] = dr'/dv_r = 1). */
+static void jx_transpose_times(const double *jx, const double *a, double *out)
+{
+    out[0] = (jx[5] * a[1]) + (jx[10] * a[2]) + (jx[15] * a[3]) + (jx[20] * a[4]);
+    out[1] = (jx[11] * a[2]) + (jx[16] * a[3]);
+    out[2] = a[0] + (jx[17] * a[3]);
+    out[3] = (jx[8] * a[1]) + (jx[13] * a[2]) + (jx[18] * a[3]);
+    out[4] = (jx[14] * a[2]) + (jx[19] * a[3]);
+}
+
+/* The cross term of a product of h with a stage derivative k (K = dk/dp):
+ * hess[h][c] and hess[c][h] += scale (K^T a)_c, accumulated in the upper
+ * triangle (the diagonal entry twice). */
+static void add_h_cross(const double *k_sens, const double *a, double scale, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (K, adjoint, factor) in the order of the product; callers in this file */
+                        size_t col_h, size_t ncol, double *hess)
+{
+    size_t c;
+    for (c = 0u; c < ncol; ++c) {
+        const double v = scale * ((k_sens[c] * a[0]) + (k_sens[NCOL + c] * a[1]) + (k_sens[(2u * NCOL) + c] * a[2])
+                                  + (k_sens[(3u * NCOL) + c] * a[3]) + (k_sens[(4u * NCOL) + c] * a[4]));
+        if (c < col_h) {
+            hess[(c * NCOL) + col_h] += v;
+        } else if (c > col_h) {
+            hess[(col_h * NCOL) + c] += v;
+        } else {
+            hess[(col_h * NCOL) + col_h] += 2.0 * v;
+        }
+    }
+}
+
+/* hess (upper triangle) += Z^T hz Z for one stage. Z = dz/dp has the state
+ * rows y_sens (5 x ncol, row stride NCOL), the control rows (1 - s) at U_k
+ * and s at U_{k+1}, the time row s at h and 1 at t_start; hz is the upper
+ * triangle of the model's Hessian (ogk_i_nmpc_rhs_hess), whose structural
+ * nonzeros are written out: m_a = (hz Z)_a for each argument a, then
+ * sum_a Z_a^T m_a. theta and t have curvature only with attracting bodies. */
+static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (model Hessian, state sensitivities, nu) as in the stage; its only caller is ogk_i_nmpc_shoot_hess */
+                                double s_frac, bool bodies, size_t ncol, double *hess)
+{
+    const size_t i_a = NX;                        /* alpha's z index and U_k's column */
+    const size_t i_t = NX + (size_t)nu;           /* t's z index */
+    const size_t col_h = NX + (2u * (size_t)nu);
+    const double *row_r = &y_sens[0u * NCOL];
+    const double *row_th = &y_sens[1u * NCOL];
+    const double *row_vr = &y_sens[2u * NCOL];
+    const double *row_vt = &y_sens[3u * NCOL];
+    const double *row_m = &y_sens[4u * NCOL];
+    double m_r[NCOL];
+    double m_vr[NCOL];
+    double m_vt[NCOL];
+    double m_m[NCOL];
+    double m_ctl[OGK_NMPC_MAX_NU][NCOL];
+    double m_th[NCOL];
+    double m_t[NCOL];
+    size_t a;
+    size_t c;
+    size_t j;
+
+    (void)memset(m_r, 0, sizeof(m_r));
+    (void)memset(m_m, 0, sizeof(m_m));
+    (void)memset(m_ctl, 0, sizeof(m_ctl));
+    for (c = 0u; c < ncol; ++c) {
+        m_r[c] = (hz[(0u * NZ) + 0u] * row_r[c]) + (hz[(0u * NZ) + 2u] * row_vr[c]) + (hz[(0u * NZ) + 3u] * row_vt[c])
+            + (hz[(0u * NZ) + 4u] * row_m[c]);
+        m_vr[c] = (hz[(0u * NZ) + 2u] * row_r[c]) + (hz[(2u * NZ) + 3u] * row_vt[c]);
+        m_vt[c] = (hz[(0u * NZ) + 3u] * row_r[c]) + (hz[(2u * NZ) + 3u] * row_vr[c]) + (hz[(3u * NZ) + 3u] * row_vt[c]);
+        m_m[c] = (hz[(0u * NZ) + 4u] * row_r[c]) + (hz[(4u * NZ) + 4u] * row_m[c]);
+        for (j = 0u; j < (size_t)nu; ++j) {
+            m_ctl[j][c] = (hz[(0u * NZ) + (i_a + j)] * row_r[c]) + (hz[(4u * NZ) + (i_a + j)] * row_m[c]);
+        }
+    }
+    /* the control rows' entries: (1 - s) in column NX + j, s in column NX + nu + j */
+    for (j = 0u; j < (size_t)nu; ++j) {
+        size_t l;
+        const double lo = 1.0 - s_frac;
+        m_r[i_a + j] += hz[(0u * NZ) + (i_a + j)] * lo;
+        m_r[i_a + (size_t)nu + j] += hz[(0u * NZ) + (i_a + j)] * s_frac;
+        m_m[i_a + j] += hz[(4u * NZ) + (i_a + j)] * lo;
+        m_m[i_a + (size_t)nu + j] += hz[(4u * NZ) + (i_a + j)] * s_frac;
+        for (l = 0u; l < (size_t)nu; ++l) {
+            const double h_jl = (j <= l) ? hz[((i_a + j) * NZ) + (i_a + l)] : hz[((i_a + l) * NZ) + (i_a + j)];
+            m_ctl[j][i_a + l] += h_jl * lo;
+            m_ctl[j][i_a + (size_t)nu + l] += h_jl * s_frac;
+        }
+    }
+    if (bodies) {
+        /* theta and t: hz(0,1), (1,1), (0,t), (1,t), (t,t) */
+        for (c = 0u; c < ncol; ++c) {
+            m_r[c] += hz[(0u * NZ) + 1u] * row_th[c];
+            m_th[c] = (hz[(0u * NZ) + 1u] * row_r[c]) + (hz[(1u * NZ) + 1u] * row_th[c]);
+            m_t[c] = (hz[(0u * NZ) + i_t] * row_r[c]) + (hz[(1u * NZ) + i_t] * row_th[c]);
+        }
+        m_r[col_h] += hz[(0u * NZ) + i_t] * s_frac;
+        m_r[col_h + 1u] += hz[(0u * NZ) + i_t];
+        m_th[col_h] += hz[(1u * NZ) + i_t] * s_frac;
+        m_th[col_h + 1u] += hz[(1u * NZ) + i_t];
+        m_t[col_h] += hz[(i_t * NZ) + i_t] * s_frac;
+        m_t[col_h + 1u] += hz[(i_t * NZ) + i_t];
+    }
+    /* hess += sum_a Z_a^T m_a, upper triangle */
+    for (a = 0u; a < ncol; ++a) {
+        double *hrow = &hess[a * NCOL];
+        const double z_r = row_r[a];
+        const double z_vr = row_vr[a];
+        const double z_vt = row_vt[a];
+        const double z_m = row_m[a];
+        for (c = a; c < ncol; ++c) {
+            hrow[c] += (z_r * m_r[c]) + (z_vr * m_vr[c]) + (z_vt * m_vt[c]) + (z_m * m_m[c]);
+        }
+        if (bodies) {
+            const double z_th = row_th[a];
+            for (c = a; c < ncol; ++c) {
+                hrow[c] += z_th * m_th[c];
+            }
+        }
+    }
+    for (j = 0u; j < (size_t)nu; ++j) {
+        const size_t c0 = i_a + j;
+        const size_t c1 = i_a + (size_t)nu + j;
+        for (c = c0; c < ncol; ++c) {
+            hess[(c0 * NCOL) + c] += (1.0 - s_frac) * m_ctl[j][c];
+        }
+        for (c = c1; c < ncol; ++c) {
+            hess[(c1 * NCOL) + c] += s_frac * m_ctl[j][c];
+        }
+    }
+    if (bodies) {
+        for (c = col_h; c < ncol; ++c) {
+            hess[(col_h * NCOL) + c] += s_frac * m_t[c];
+        }
+        hess[((col_h + 1u) * NCOL) + col_h + 1u] += m_t[col_h + 1u];
+    }
+}
+
+void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of ogk_i_nmpc_shoot; checked by central differences (test_nmpc.c) */
+                           double t_start, double h, const double *u0, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                           const double *u1, const double *tape, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                           const double *w, double *hess)
+{
+    /* RK4 stage offsets and weights, as the forward sweep's */
+    static const double c_off[4] = { 0.0, 0.5, 0.5, 1.0 };
+    static const double w_rk[4] = { 1.0, 2.0, 2.0, 1.0 };
+    const uint32_t steps = cfg->rk4_steps;
+    const double dt = h / (double)steps;
+    const double inv_steps = 1.0 / (double)steps;
+    const size_t ncol = ogk_i_nmpc_ncol(cfg, nu);
+    const size_t col_h = NX + (2u * (size_t)nu);
+    double lambda[NX];
+    double ybar[NX];
+    double kbar[NX];
+    double y_sens[NX * NCOL];
+    double hz[NZ * NZ];
+    double u[OGK_NMPC_MAX_NU];
+    const bool bodies = ncol > (col_h + 1u);
+    uint32_t n;
+    size_t i;
+    size_t c;
+
+    (void)memset(hess, 0, NCOL * NCOL * sizeof(double));
+    (void)memcpy(lambda, w, sizeof(lambda));
+    for (n = steps; (n > 0u) && (n <= OGK_NMPC_MAX_RK4_STEPS); --n) {
+        const double *rec_step = &tape[((size_t)n - 1u) * OGK_I_NMPC_TAPE_STEP_Z];
+        const double *s_mat = rec_step;
+        double lambda_next[NX];
+        uint32_t j;
+
+        (void)memcpy(lambda_next, lambda, sizeof(lambda));
+        (void)memset(ybar, 0, sizeof(ybar));
+        add_h_cross(&rec_step[OGK_I_NMPC_TAPE_KSUM], lambda_next, inv_steps / 6.0, col_h, ncol, hess);
+        for (j = 4u; j > 0u; --j) {
+            const uint32_t js = j - 1u;
+            const double *rec = &rec_step[OGK_I_NMPC_TAPE_STAGE0 + ((size_t)js * OGK_I_NMPC_TAPE_STAGE)];
+            const double s_frac = (((double)n - 1.0) + c_off[js]) * inv_steps;
+            const double t_stage = t_start + (s_frac * h);
+            /* x_{n+1} = x_n + (h / 6M) sum b_j k_j: the adjoint of k_j (its h
+             * cross term, summed over the stages, is added below) */
+            for (i = 0u; i < NX; ++i) {
+                kbar[i] = (dt / 6.0) * w_rk[js] * lambda_next[i];
+            }
+            if (js < 3u) {
+                /* y_{j+1} = x_n + c_{j+1} (h / M) k_j (ybar holds ybar_{j+1}) */
+                for (i = 0u; i < NX; ++i) {
+                    kbar[i] += c_off[js + 1u] * dt * ybar[i];
+                }
+                add_h_cross(&rec[OGK_I_NMPC_TAPE_KS], ybar, c_off[js + 1u] * inv_steps, col_h, ncol, hess);
+            }
+            /* Z_j's state rows: Y_j = S_n + c_j dt K_{j-1} (+ c_j / M k_{j-1} in column h) */
+            if (js == 0u) {
+                (void)memcpy(y_sens, s_mat, sizeof(y_sens));
+            } else {
+                const double *prev = &rec_step[OGK_I_NMPC_TAPE_STAGE0 + (((size_t)js - 1u) * OGK_I_NMPC_TAPE_STAGE)];
+                for (i = 0u; i < NX; ++i) {
+                    for (c = 0u; c < ncol; ++c) {
+                        y_sens[(i * NCOL) + c] = s_mat[(i * NCOL) + c]
+                            + (c_off[js] * dt * prev[OGK_I_NMPC_TAPE_KS + (i * NCOL) + c]);
+                    }
+                    y_sens[(i * NCOL) + col_h] += c_off[js] * inv_steps * prev[OGK_I_NMPC_TAPE_K + i];
+                }
+            }
+            for (i = 0u; i < (size_t)nu; ++i) {
+                u[i] = u0[i] + ((u1[i] - u0[i]) * s_frac);
+            }
+            ogk_i_nmpc_rhs_hess(cfg, nu, t_stage, &rec[OGK_I_NMPC_TAPE_X], u, &rec[OGK_I_NMPC_TAPE_TRIG], kbar, hz);
+            add_stage_curvature(hz, y_sens, nu, s_frac, bodies, ncol, hess);
+            jx_transpose_times(&rec[OGK_I_NMPC_TAPE_JX], kbar, ybar);
+            for (i = 0u; i < NX; ++i) {
+                lambda[i] += ybar[i];
+            }
+        }
+    }
+    /* the lower triangle mirrored */
+    for (i = 0u; i < ncol; ++i) {
+        for (c = 0u; c < i; ++c) {
+            hess[(i * NCOL) + c] = hess[(c * NCOL) + i];
+        }
+    }
+}
