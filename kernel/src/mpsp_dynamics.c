@@ -13,6 +13,7 @@ void mpsp_dyn_setup(mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weight
     dyn->mu = ctx->cfg.mu;
     dyn->thrust = thrust;
     dyn->c_exhaust = ctx->cfg.c_exhaust;
+    dyn->mdot_thrust = -thrust / ctx->cfg.c_exhaust;
     dyn->w = weights;
     dyn->n_basis = ctx->n_basis;
     dyn->kind = ctx->cfg.fourier_kind;
@@ -152,18 +153,50 @@ static void control_cs(const mpsp_dyn_t *dyn, double c1, double s1, double *u)
     u1 += 0.5 * w[nb];
     u2 += 0.5 * w[2u * nb];
     if (dyn->kind == OGK_MPSP_BASIS_COSINE) {
-        for (k = 1u; k <= last; ++k) { /* cos k theta, k = 1..2n */
+        for (k = 1u; k < last; k += 2u) { /* cos k theta, k = 1..2n, two per pass */
+            double c2;
+            double s2;
             u0 += cn * w[k];
             u1 += cn * w[nb + k];
             u2 += cn * w[(2u * nb) + k];
-            {
-                const double c_next = (cn * c1) - (sn * s1);
-                sn = (sn * c1) + (cn * s1);
-                cn = c_next;
-            }
+            c2 = (cn * c1) - (sn * s1);
+            s2 = (sn * c1) + (cn * s1);
+            u0 += c2 * w[k + 1u];
+            u1 += c2 * w[nb + k + 1u];
+            u2 += c2 * w[(2u * nb) + k + 1u];
+            cn = (c2 * c1) - (s2 * s1);
+            sn = (s2 * c1) + (c2 * s1);
+        }
+        if (k == last) { /* an odd 2n (never made by ogk_mpsp_init) */
+            u0 += cn * w[k];
+            u1 += cn * w[nb + k];
+            u2 += cn * w[(2u * nb) + k];
         }
     } else {
-        for (k = 1u; (2u * k) <= last; ++k) { /* cos k theta, sin k theta, k = 1..n */
+        /* cos k theta, sin k theta, k = 1..n, two harmonics per pass (the
+         * recurrence then needs no register copies) */
+        for (k = 1u; ((2u * k) + 2u) <= last; k += 2u) {
+            const size_t ic = (2u * k) - 1u;
+            double c2;
+            double s2;
+            u0 += cn * w[ic];
+            u0 += sn * w[ic + 1u];
+            u1 += cn * w[nb + ic];
+            u1 += sn * w[nb + ic + 1u];
+            u2 += cn * w[(2u * nb) + ic];
+            u2 += sn * w[(2u * nb) + ic + 1u];
+            c2 = (cn * c1) - (sn * s1);
+            s2 = (sn * c1) + (cn * s1);
+            u0 += c2 * w[ic + 2u];
+            u0 += s2 * w[ic + 3u];
+            u1 += c2 * w[nb + ic + 2u];
+            u1 += s2 * w[nb + ic + 3u];
+            u2 += c2 * w[(2u * nb) + ic + 2u];
+            u2 += s2 * w[(2u * nb) + ic + 3u];
+            cn = (c2 * c1) - (s2 * s1);
+            sn = (s2 * c1) + (c2 * s1);
+        }
+        if ((2u * k) <= last) { /* n odd: the last harmonic */
             const size_t ic = (2u * k) - 1u;
             u0 += cn * w[ic];
             u0 += sn * w[ic + 1u];
@@ -171,11 +204,6 @@ static void control_cs(const mpsp_dyn_t *dyn, double c1, double s1, double *u)
             u1 += sn * w[nb + ic + 1u];
             u2 += cn * w[(2u * nb) + ic];
             u2 += sn * w[(2u * nb) + ic + 1u];
-            {
-                const double c_next = (cn * c1) - (sn * s1);
-                sn = (sn * c1) + (cn * s1);
-                cn = c_next;
-            }
         }
     }
     u[0] = u0;
@@ -205,19 +233,55 @@ void mpsp_basis_control(mpsp_dyn_t *dyn, double t, double *h, mpsp_uval_t *uv)
     u1 = 0.5 * w[nb];
     u2 = 0.5 * w[2u * nb];
     if (dyn->kind == OGK_MPSP_BASIS_COSINE) {
-        for (k = 1u; k <= last; ++k) {
+        for (k = 1u; k < last; k += 2u) { /* two per pass */
+            double c2;
+            double s2;
             h[k] = cn;
             u0 += cn * w[k];
             u1 += cn * w[nb + k];
             u2 += cn * w[(2u * nb) + k];
-            {
-                const double c_next = (cn * c1) - (sn * s1);
-                sn = (sn * c1) + (cn * s1);
-                cn = c_next;
-            }
+            c2 = (cn * c1) - (sn * s1);
+            s2 = (sn * c1) + (cn * s1);
+            h[k + 1u] = c2;
+            u0 += c2 * w[k + 1u];
+            u1 += c2 * w[nb + k + 1u];
+            u2 += c2 * w[(2u * nb) + k + 1u];
+            cn = (c2 * c1) - (s2 * s1);
+            sn = (s2 * c1) + (c2 * s1);
+        }
+        if (k == last) { /* an odd 2n (never made by ogk_mpsp_init) */
+            h[k] = cn;
+            u0 += cn * w[k];
+            u1 += cn * w[nb + k];
+            u2 += cn * w[(2u * nb) + k];
         }
     } else {
-        for (k = 1u; (2u * k) <= last; ++k) {
+        for (k = 1u; ((2u * k) + 2u) <= last; k += 2u) { /* two harmonics per pass */
+            const size_t ic = (2u * k) - 1u;
+            double c2;
+            double s2;
+            h[ic] = cn;
+            h[ic + 1u] = sn;
+            u0 += cn * w[ic];
+            u0 += sn * w[ic + 1u];
+            u1 += cn * w[nb + ic];
+            u1 += sn * w[nb + ic + 1u];
+            u2 += cn * w[(2u * nb) + ic];
+            u2 += sn * w[(2u * nb) + ic + 1u];
+            c2 = (cn * c1) - (sn * s1);
+            s2 = (sn * c1) + (cn * s1);
+            h[ic + 2u] = c2;
+            h[ic + 3u] = s2;
+            u0 += c2 * w[ic + 2u];
+            u0 += s2 * w[ic + 3u];
+            u1 += c2 * w[nb + ic + 2u];
+            u1 += s2 * w[nb + ic + 3u];
+            u2 += c2 * w[(2u * nb) + ic + 2u];
+            u2 += s2 * w[(2u * nb) + ic + 3u];
+            cn = (c2 * c1) - (s2 * s1);
+            sn = (s2 * c1) + (c2 * s1);
+        }
+        if ((2u * k) <= last) { /* n odd: the last harmonic */
             const size_t ic = (2u * k) - 1u;
             h[ic] = cn;
             h[ic + 1u] = sn;
@@ -227,11 +291,6 @@ void mpsp_basis_control(mpsp_dyn_t *dyn, double t, double *h, mpsp_uval_t *uv)
             u1 += sn * w[nb + ic + 1u];
             u2 += cn * w[(2u * nb) + ic];
             u2 += sn * w[(2u * nb) + ic + 1u];
-            {
-                const double c_next = (cn * c1) - (sn * s1);
-                sn = (sn * c1) + (cn * s1);
-                cn = c_next;
-            }
         }
         if ((last % 2u) != 0u) {
             h[last] = 0.0; /* an even n_basis, as in mpsp_basis */
@@ -301,7 +360,7 @@ ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int
                 xdot[3] = gx - (a * u[0]);
                 xdot[4] = gy - (a * u[1]);
                 xdot[5] = gz - (a * u[2]);
-                xdot[6] = -dyn->thrust / dyn->c_exhaust;
+                xdot[6] = dyn->mdot_thrust;
                 xdot[7] = -dyn->thrust * lam / (m * m);
             }
         } else {
@@ -323,6 +382,9 @@ double mpsp_switch_value(const mpsp_dyn_t *dyn, const double *x, const double *u
 
 /* G = mu/r^3 (3 r r^T / r^2 - I), upper triangle; *kg = -mu/r^3 as in
  * mpsp_rhs (0 and G = 0 without a central body). OGK_E_CALLBACK at r = 0. */
+/* G = mu/r^3 (3 r r^T / r^2 - I), upper triangle, and *kg = -mu/r^3 (0 and
+ * G = 0 without a central body): one square root and one division.
+ * OGK_E_CALLBACK at r = 0. */
 static ogk_status gravity_gradient(const mpsp_dyn_t *dyn, const double *x, double *kg,
                                    double *g)
 {
@@ -333,8 +395,10 @@ static ogk_status gravity_gradient(const mpsp_dyn_t *dyn, const double *x, doubl
         if (!(r2 > 0.0)) {
             st = OGK_E_CALLBACK;
         } else {
-            const double k = dyn->mu / (r2 * sqrt(r2));
-            const double k3 = 3.0 * k / r2;
+            const double inv_r = 1.0 / sqrt(r2);
+            const double inv_r2 = inv_r * inv_r;
+            const double k = dyn->mu * inv_r2 * inv_r;
+            const double k3 = 3.0 * k * inv_r2;
             *kg = -k;
             g[0] = (k3 * x[0] * x[0]) - k;
             g[1] = k3 * x[0] * x[1];
@@ -353,6 +417,9 @@ static ogk_status gravity_gradient(const mpsp_dyn_t *dyn, const double *x, doubl
     return st;
 }
 
+/* The stage states need only be those of ogk_rk4_step to rounding (the
+ * partials taken there agree with finite differences to 1e-8, docs/mpsp.md):
+ * reciprocals replace the divisions of mpsp_rhs (7 per stage to 3). */
 ogk_status mpsp_stage_eval(const mpsp_dyn_t *dyn, const double *x, const mpsp_uval_t *uv, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
                            int mode, double *xdot, mpsp_stage_t *sd)
 {
@@ -371,9 +438,10 @@ ogk_status mpsp_stage_eval(const mpsp_dyn_t *dyn, const double *x, const mpsp_uv
     if (st == OGK_OK) {
         if (mode == 1) {
             const double lam = uv->lam;
-            const double a = dyn->thrust / (m * lam);
-            const double t_m2 = dyn->thrust / (m * m);
             const double inv_lam = 1.0 / lam;
+            const double t_m = dyn->thrust / m;
+            const double t_m2 = t_m / m;
+            const double a = t_m * inv_lam; /* T/(m |U|) */
             sd->e[0] = uv->u[0] * inv_lam;
             sd->e[1] = uv->u[1] * inv_lam;
             sd->e[2] = uv->u[2] * inv_lam;
@@ -381,12 +449,12 @@ ogk_status mpsp_stage_eval(const mpsp_dyn_t *dyn, const double *x, const mpsp_uv
             sd->a_lm = 2.0 * t_m2 * lam / m;
             sd->d_v = -a;
             sd->d_l = -t_m2;
-            if (xdot != NULL) { /* mpsp_rhs, thrust */
+            if (xdot != NULL) { /* eq. (16), thrust */
                 xdot[3] = (kg * x[0]) - (a * uv->u[0]);
                 xdot[4] = (kg * x[1]) - (a * uv->u[1]);
                 xdot[5] = (kg * x[2]) - (a * uv->u[2]);
-                xdot[6] = -dyn->thrust / dyn->c_exhaust;
-                xdot[7] = -dyn->thrust * lam / (m * m);
+                xdot[6] = dyn->mdot_thrust;
+                xdot[7] = -t_m2 * lam;
             }
         } else {
             sd->e[0] = 0.0;
@@ -396,7 +464,7 @@ ogk_status mpsp_stage_eval(const mpsp_dyn_t *dyn, const double *x, const mpsp_uv
             sd->a_lm = 0.0;
             sd->d_v = 0.0;
             sd->d_l = 0.0;
-            if (xdot != NULL) { /* mpsp_rhs, coast */
+            if (xdot != NULL) { /* eq. (16), coast */
                 xdot[3] = kg * x[0];
                 xdot[4] = kg * x[1];
                 xdot[5] = kg * x[2];

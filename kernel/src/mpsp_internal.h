@@ -36,6 +36,7 @@ typedef struct {
     double mu;          /* [LU^3/TU^2] */
     double thrust;      /* [MU LU/TU^2] T of this propagation */
     double c_exhaust;   /* [LU/TU] */
+    double mdot_thrust; /* [MU/TU] -T/c, m' in thrust (eq. 16) */
     const double *w;    /* [-] weights, 3 blocks of n_basis */
     size_t n_basis;     /* [-] 2 n + 1 */
     uint32_t kind;      /* [-] OGK_MPSP_BASIS_* */

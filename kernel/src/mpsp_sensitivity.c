@@ -180,21 +180,24 @@ static void reverse_row_mass(const mpsp_stage_t *sd, double dt, bool thrust, con
     const double z6 = (dt / 6.0) * w[7];
     const double z3 = (dt / 3.0) * w[7];
     double am = w[6] + (sd[3].a_lm * z6);
-    size_t i;
 
     am += sd[2].a_lm * z3;
     am += sd[1].a_lm * z3;
     am += sd[0].a_lm * z6;
     if (thrust) {
+        size_t i;
         for (i = 0u; i < 3u; ++i) {
             b_end[i] = (sd[3].d_l * z6) * sd[3].e[i];
             b_mid[i] = ((sd[2].d_l * z3) * sd[2].e[i]) + ((sd[1].d_l * z3) * sd[1].e[i]);
             b_start[i] = (sd[0].d_l * z6) * sd[0].e[i];
         }
     }
-    for (i = 0u; i < 6u; ++i) {
-        w_out[i] = 0.0;
-    }
+    w_out[0] = 0.0;
+    w_out[1] = 0.0;
+    w_out[2] = 0.0;
+    w_out[3] = 0.0;
+    w_out[4] = 0.0;
+    w_out[5] = 0.0;
     w_out[6] = am;
     w_out[7] = w[7];
 }
@@ -540,15 +543,51 @@ static void block_product(double *acc, size_t n_basis, const double *hb, const d
             double a20 = acc[i2];
             double a21 = acc[i2 + 1u];
             double a22 = acc[i2 + 2u];
-            for (b = 0u; b < n; ++b) {
-                const size_t ih = (b * MB) + q;
-                const size_t ic = (b * NYU) + j;
-                const double h0 = hb[ih];
-                const double h1 = hb[ih + 1u];
-                const double h2 = hb[ih + 2u];
-                const double c0 = cb[ic];
-                const double c1 = cb[ic + 1u];
-                const double c2 = cb[ic + 2u];
+            double h0;
+            double h1;
+            double h2;
+            double c0;
+            double c1;
+            double c2;
+            for (b = 0u; (b + 1u) < n; b += 2u) { /* two samples per pass */
+                h0 = hb[(b * MB) + q];
+                h1 = hb[(b * MB) + q + 1u];
+                h2 = hb[(b * MB) + q + 2u];
+                c0 = cb[(b * NYU) + j];
+                c1 = cb[(b * NYU) + j + 1u];
+                c2 = cb[(b * NYU) + j + 2u];
+                a00 += h0 * c0;
+                a01 += h0 * c1;
+                a02 += h0 * c2;
+                a10 += h1 * c0;
+                a11 += h1 * c1;
+                a12 += h1 * c2;
+                a20 += h2 * c0;
+                a21 += h2 * c1;
+                a22 += h2 * c2;
+                h0 = hb[((b + 1u) * MB) + q];
+                h1 = hb[((b + 1u) * MB) + q + 1u];
+                h2 = hb[((b + 1u) * MB) + q + 2u];
+                c0 = cb[((b + 1u) * NYU) + j];
+                c1 = cb[((b + 1u) * NYU) + j + 1u];
+                c2 = cb[((b + 1u) * NYU) + j + 2u];
+                a00 += h0 * c0;
+                a01 += h0 * c1;
+                a02 += h0 * c2;
+                a10 += h1 * c0;
+                a11 += h1 * c1;
+                a12 += h1 * c2;
+                a20 += h2 * c0;
+                a21 += h2 * c1;
+                a22 += h2 * c2;
+            }
+            if (b < n) {
+                h0 = hb[(b * MB) + q];
+                h1 = hb[(b * MB) + q + 1u];
+                h2 = hb[(b * MB) + q + 2u];
+                c0 = cb[(b * NYU) + j];
+                c1 = cb[(b * NYU) + j + 1u];
+                c2 = cb[(b * NYU) + j + 2u];
                 a00 += h0 * c0;
                 a01 += h0 * c1;
                 a02 += h0 * c2;

@@ -28,8 +28,8 @@
  * (Appendix A, transposed), with the switching compensation of eqs. (22)-(25)
  * at each switch node (eqs. 28-35).
  *
- * Memory: everything lives in ogk_mpsp_t (187 KiB with the default limits);
- * no heap, no globals, every loop bounded. Stack: about 5 KiB worst case
+ * Memory: everything lives in ogk_mpsp_t (199 KiB with the default limits);
+ * no heap, no globals, every loop bounded. Stack: about 4.5 KiB worst case
  * (docs/mpsp.md). */
 #ifndef OGK_MPSP_H
 #define OGK_MPSP_H
