@@ -130,6 +130,14 @@ typedef struct {
 ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
                            int mode_before, mpsp_jump_t *jump);
 
+/* ---- mpsp_bv.c */
+/* acc[q][r * 3 + c] += sum_b hb[b][q] cb[b][r * 3 + c] over the n samples b
+ * (hb rows OGK_MPSP_MAX_BASIS apart, cb rows 21 apart): B_v += bU h^T. */
+void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb,
+                           size_t n);
+/* B_v row-major (7 x 3 n_basis) from the basis-major accumulator. */
+void mpsp_bv_unpack(const double *acc, size_t n_basis, double *out);
+
 /* ---- mpsp_propagate.c */
 /* Propagates into ctx; t_max_eff is T (already scaled). */
 ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
