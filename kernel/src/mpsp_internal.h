@@ -16,6 +16,9 @@
 #if OGK_MPSP_NY > OGK_LA_MAX_N
 #error "OGK_MPSP_NY exceeds OGK_LA_MAX_N (ogk_minnorm)"
 #endif
+#if OGK_MPSP_SENS_BLOCK < 3
+#error "OGK_MPSP_SENS_BLOCK must hold the 3 samples of one RK4 step"
+#endif
 #if OGK_MPSP_NX > OGK_RK4_MAX_STATE
 #error "OGK_MPSP_NX exceeds OGK_RK4_MAX_STATE"
 #endif
@@ -33,6 +36,7 @@ typedef struct {
     double mu;          /* [LU^3/TU^2] */
     double thrust;      /* [MU LU/TU^2] T of this propagation */
     double c_exhaust;   /* [LU/TU] */
+    double mdot_thrust; /* [MU/TU] -T/c, m' in thrust (eq. 16) */
     const double *w;    /* [-] weights, 3 blocks of n_basis */
     size_t n_basis;     /* [-] 2 n + 1 */
     uint32_t kind;      /* [-] OGK_MPSP_BASIS_* */
@@ -41,23 +45,33 @@ typedef struct {
     double cache_t;     /* [TU] time of cache_u */
     double cache_u[3];  /* [-] U(cache_t) */
     bool cache_ok;
+    double anchor_t;    /* [TU] last time whose phase was taken from cos() and sin() */
+    double anchor_c;    /* [-] cos(omega (anchor_t - t_ref)) */
+    double anchor_s;    /* [-] sin(omega (anchor_t - t_ref)) */
+    bool anchor_ok;
 } mpsp_dyn_t;
 
-/* Partial derivatives of eq. (16) at one point (derived in docs/mpsp.md;
- * Appendix A's dF/dU block is garbled in the paper):
+/* Partial derivatives of eq. (16) at one RK4 stage state (derived in
+ * docs/mpsp.md; Appendix A's dF/dU block is garbled in the paper):
  *   d f_v/d r = G(r),  d f_v/d m = a_vm e,  d f_lm/d m = a_lm,
  *   d f_v/d U = d_v (I - e e^T),  d f_lm/d U = d_l e^T,
  * with e = U/|U|, a_vm = u T/m^2, a_lm = 2 u T |U|/m^3, d_v = -u T/(m |U|),
- * d_l = -u T/m^2. All thrust terms are 0 in coast. */
+ * d_l = -u T/m^2. All thrust terms are 0 in coast. G is symmetric: only its
+ * upper triangle is kept. */
 typedef struct {
-    double g[9];        /* [1/TU^2] G(r), row-major, symmetric */
-    double e[3];        /* [-] U/|U| (0 in coast when |U| = 0) */
+    double g[6];        /* [1/TU^2] G(r): g_xx, g_xy, g_xz, g_yy, g_yz, g_zz */
+    double e[3];        /* [-] U/|U| (0 in coast) */
     double a_vm;
     double a_lm;
     double d_v;
     double d_l;
-    bool thrust;
-} mpsp_jac_t;
+} mpsp_stage_t;
+
+/* U = lambda_v at one time and its norm |U| (eq. 16 needs both). */
+typedef struct {
+    double u[3];        /* [-] U(t) */
+    double lam;         /* [-] |U(t)| */
+} mpsp_uval_t;
 
 /* ---- mpsp_dynamics.c */
 void mpsp_dyn_setup(mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weights,
@@ -66,6 +80,12 @@ void mpsp_dyn_setup(mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weight
 void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot);
 /* U = P(t) W from a basis vector. */
 void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, double *u);
+/* cos and sin of the basis phase theta = omega (t - t_ref): rotated from the
+ * last phase taken from cos() and sin() (the anchor, kept in dyn) when theta
+ * is within MPSP_PHASE_REACH of it, else from cos() and sin() (new anchor). */
+void mpsp_phase(mpsp_dyn_t *dyn, double t, double *c1, double *s1);
+/* h(t) and U(t) = P(t) W, |U|, in one pass (phase from mpsp_phase). */
+void mpsp_basis_control(mpsp_dyn_t *dyn, double t, double *h, mpsp_uval_t *uv);
 /* U(t) through the cache. */
 void mpsp_control_at(mpsp_dyn_t *dyn, double t, double *u);
 /* Eq. (16) with U given; OGK_E_CALLBACK on m <= 0 or |U| = 0 while thrusting. */
@@ -73,27 +93,28 @@ ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int
                     double *xdot);
 /* Eq. (10). */
 double mpsp_switch_value(const mpsp_dyn_t *dyn, const double *x, const double *u);
-ogk_status mpsp_jacobian(const mpsp_dyn_t *dyn, const double *x, const double *u,
-                         int mode, mpsp_jac_t *jac);
+/* One RK4 stage of the sensitivity sweep at state x with control uv: the
+ * partials of eq. (16) into sd and, when xdot is not NULL, eq. (16) itself
+ * with the arithmetic of mpsp_rhs (so the stage states are those of
+ * ogk_rk4_step). Errors as mpsp_rhs. */
+ogk_status mpsp_stage_eval(const mpsp_dyn_t *dyn, const double *x, const mpsp_uval_t *uv,
+                           int mode, double *xdot, mpsp_stage_t *sd);
 /* The RK4 problem of eq. (16) on dyn (its callbacks take user = dyn). */
 void mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, mpsp_dyn_t *dyn);
 
 /* ---- mpsp_sensitivity.c */
-/* Adjoint row vectors are held "lane-major": up to MPSP_LANES row vectors w_r
- * (rows of d(.)/dX) stored as a[i * MPSP_LANES + r] for component i of row r,
- * so every operation is a fixed-length loop over the rows (unrolled and
- * vectorised by the compiler). Control sensitivities likewise as
- * bu[c * MPSP_LANES + r]. Unused lanes are zero. */
-#define MPSP_LANES 8u
+/* Adjoint rows: row vectors w_r (rows of d(.)/dX), row-major,
+ * w[r * OGK_MPSP_NX + i]. Control sensitivities of row r at one time:
+ * bu[r * 3 + c]. */
 
-/* Adjoint of one RK4 step (Appendix A, transposed): for the row vectors
- * adj_in (NX x MPSP_LANES, lane-major) of d(.)/dX_next, writes w dX_next/dX to
- * adj_out and ADDS w dX_next/dU_stage to bu_start (U at t), bu_mid (t + dt/2,
- * stages 2 and 3) and bu_end (t + dt), each 3 x MPSP_LANES. u_start, u_mid,
- * u_end are U at those times (not read in coast). */
+/* Adjoint of one RK4 step (Appendix A, transposed): for the n_rows rows
+ * adj_in of d(.)/dX_next, writes w dX_next/dX to adj_out (may be adj_in) and,
+ * in thrust, w dX_next/dU at the stage times into bu_start (U at t), bu_mid
+ * (t + dt/2, stages 2 and 3) and bu_end (t + dt), each n_rows x 3
+ * (overwritten; left untouched in coast, where U does not enter eq. 16).
+ * uv[0..2] is U at t, t + dt/2, t + dt (not read in coast). */
 ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, int mode,
-                             const double *u_start, const double *u_mid,
-                             const double *u_end, const double *adj_in,
+                             const mpsp_uval_t *uv, size_t n_rows, const double *adj_in,
                              double *adj_out, double *bu_start, double *bu_mid,
                              double *bu_end);
 
@@ -108,6 +129,14 @@ typedef struct {
 
 ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
                            int mode_before, mpsp_jump_t *jump);
+
+/* ---- mpsp_bv.c */
+/* acc[q][r * 3 + c] += sum_b hb[b][q] cb[b][r * 3 + c] over the n samples b
+ * (hb rows OGK_MPSP_MAX_BASIS apart, cb rows 21 apart): B_v += bU h^T. */
+void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb,
+                           size_t n);
+/* B_v row-major (7 x 3 n_basis) from the basis-major accumulator. */
+void mpsp_bv_unpack(const double *acc, size_t n_basis, double *out);
 
 /* ---- mpsp_propagate.c */
 /* Propagates into ctx; t_max_eff is T (already scaled). */

@@ -2,10 +2,10 @@
  * RK4 step Jacobians (Appendix A, with U at the RK4 stage times), the
  * switching compensation (eqs. 22-25, Appendix B) and the backward recursion
  * (eqs. 28-35) that accumulates B_v = sum_k B_k P_k (eq. 40) and A_lambda
- * (eq. 33). Derivations in docs/mpsp.md.
+ * (eq. 33). Derivations and costs in docs/mpsp.md (sections 3 and 8).
  *
- * The recursion propagates row vectors backwards (B_{k,0} of eq. 35 is
- * d Y / d X_k); each RK4 step is differentiated in reverse through its four
+ * The recursion propagates the 7 rows of B_{k,0} = d Y / d X_k (eq. 35)
+ * backwards; each RK4 step is differentiated in reverse through its four
  * stages, which is eq. (A.3)-(A.4) transposed: the same numbers as forming the
  * 8 x 8 step matrices and multiplying, at a fraction of the cost. */
 #include "mpsp_internal.h"
@@ -15,16 +15,18 @@
 #include <string.h>
 
 #define NX ((size_t)OGK_MPSP_NX)
-#define NY OGK_MPSP_NY
+#define NY ((size_t)OGK_MPSP_NY)
+/* Coefficients of one sensitivity sample: bU(t), row r, component c at r * 3 + c. */
+#define NYU (NY * 3u)
+#define MB OGK_MPSP_MAX_BASIS
+#define SB ((size_t)OGK_MPSP_SENS_BLOCK)
 
-#define L ((size_t)MPSP_LANES)
-
-/* Re-runs the stages of ogk_rk4_step (same arithmetic) from x to get the
- * Jacobians at the stage states X_{n,i}; u[0..2] is U at t, t + dt/2, t + dt. */
-static ogk_status stage_jacobians(const mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                  const double *const *u, mpsp_jac_t *jac)
+/* The partials of eq. (16) at the four stage states of the RK4 step from x
+ * (ogk_rk4_step's stages, same arithmetic); uv[0..2] is U at t, t + dt/2,
+ * t + dt, used by stages 1, 2-3 and 4. */
+static ogk_status stage_partials(const mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                 const mpsp_uval_t *uv, mpsp_stage_t *sd)
 {
-    /* Stage s uses U at t, t + dt/2, t + dt/2, t + dt (u index 0, 1, 1, 2). */
     static const size_t stage_u[4] = {0u, 1u, 1u, 2u};
     double xs[NX];
     double k[NX];
@@ -35,111 +37,193 @@ static ogk_status stage_jacobians(const mpsp_dyn_t *dyn, const double *x, double
 
     (void)memcpy(xs, x, sizeof xs);
     for (s = 0u; (s < 4u) && (st == OGK_OK); ++s) {
-        const size_t ui = stage_u[s];
-        st = mpsp_jacobian(dyn, xs, u[ui], mode, &jac[s]);
-        if ((st == OGK_OK) && (s < 3u)) {
-            st = mpsp_rhs(dyn, xs, u[ui], mode, k);
-        }
-        if ((st == OGK_OK) && (s < 3u)) {
+        if (s < 3u) {
             const double step = (s == 2u) ? dt : half;
+            st = mpsp_stage_eval(dyn, xs, &uv[stage_u[s]], mode, k, &sd[s]);
             for (i = 0u; i < NX; ++i) {
                 xs[i] = x[i] + (step * k[i]);
             }
+        } else {
+            st = mpsp_stage_eval(dyn, xs, &uv[stage_u[s]], mode, NULL, &sd[s]);
         }
     }
     return st;
 }
 
-/* The reverse sweep of mpsp_step_adjoint through the stage Jacobians jac. */
-static void reverse_sweep(const mpsp_jac_t *jac, double dt, const double *adj_in, double *adj_out, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                          double *bu_start, double *bu_mid, double *bu_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+/* Stage s of the reverse sweep for one row, z = bK_s with z_v = zv and
+ * z_lm = zl: bx = (z A_s)_r = G z_v, b = z D_s (thrust only); returns
+ * (z A_s)_m = a_vm z_v.e + a_lm z_lm. A and D as in reverse_row. */
+static inline double stage_back(const mpsp_stage_t *p, const double *zv, double zl, bool thrust, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                         double *bx, double *b)
 {
-    double bk[NX * L];
-    double bx[NX * L];
-    double acc[NX * L];
+    const double ze = (zv[0] * p->e[0]) + (zv[1] * p->e[1]) + (zv[2] * p->e[2]);
+    bx[0] = (zv[0] * p->g[0]) + (zv[1] * p->g[1]) + (zv[2] * p->g[2]);
+    bx[1] = (zv[0] * p->g[1]) + (zv[1] * p->g[3]) + (zv[2] * p->g[4]);
+    bx[2] = (zv[0] * p->g[2]) + (zv[1] * p->g[4]) + (zv[2] * p->g[5]);
+    if (thrust) {
+        const double alpha = (p->d_l * zl) - (p->d_v * ze);
+        b[0] = (p->d_v * zv[0]) + (alpha * p->e[0]);
+        b[1] = (p->d_v * zv[1]) + (alpha * p->e[1]);
+        b[2] = (p->d_v * zv[2]) + (alpha * p->e[2]);
+    }
+    return (p->a_vm * ze) + (p->a_lm * zl);
+}
+
+/* One adjoint row w through the reverse sweep of a step with stage partials
+ * sd (X_next = X + dt/6 (K1 + 2 K2 + 2 K3 + K4)):
+ *   bK4 = dt/6 w,            bX4 = bK4 A4
+ *   bK3 = dt/3 w + dt bX4,   bX3 = bK3 A3
+ *   bK2 = dt/3 w + dt/2 bX3, bX2 = bK2 A2
+ *   bK1 = dt/6 w + dt/2 bX2, bX1 = bK1 A1
+ *   w dX_next/dX = w + bX1 + bX2 + bX3 + bX4,  w dX_next/dU_i = bKi Di,
+ * with A = d f/d X and D = d f/d U of mpsp_stage_t; for z = bK,
+ *   (z A)_r = z_v G,  (z A)_v = z_r,  (z A)_m = a_vm z_v.e + a_lm z_lm,  (z A)_lm = 0,
+ *   z D = d_v z_v + (d_l z_lm - d_v z_v.e) e.
+ * f_m is constant and no f depends on lambda_m, so z_m never enters and the
+ * lambda_m component of w passes unchanged (z_lm = (dt/6 or dt/3) w_lm); with
+ * (bX)_v = (bK)_r the sweep needs only z_v and bX_r per stage:
+ *   (bK4)_v = dt/6 w_v,  (bK3)_v = dt/3 w_v + dt (dt/6 w_r),
+ *   (bK2)_v = dt/3 w_v + dt/2 (dt/3 w_r + dt (bX4)_r),
+ *   (bK1)_v = dt/6 w_v + dt/2 (dt/3 w_r + dt/2 (bX3)_r).
+ * b_start, b_mid, b_end (3 each) receive w dX_next/dU at t, t + dt/2 and
+ * t + dt in thrust. w_out may be w. */
+static void reverse_row(const mpsp_stage_t *sd, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                        double *w_out, double *b_start, double *b_mid, double *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+{
     const double half = 0.5 * dt;
     const double c6 = dt / 6.0;
     const double c3 = dt / 3.0;
-    size_t i;
-    size_t r;
-    size_t n;
+    double zv[3];
+    double bx4[3];
+    double bx3[3];
+    double bx[3];
+    double b[3];
+    double bm[3];
+    double ar[3];
+    double av[3];
+    double zr2[3];
+    double am;
 
-    /* Reverse sweep, all rows w at once (X_next = X + dt/6 (K1 + 2 K2 + 2 K3 + K4)):
-     *   bK4 = dt/6 w,            bX4 = bK4 A4
-     *   bK3 = dt/3 w + dt bX4,   bX3 = bK3 A3
-     *   bK2 = dt/3 w + dt/2 bX3, bX2 = bK2 A2
-     *   bK1 = dt/6 w + dt/2 bX2, bX1 = bK1 A1
-     *   w dX_next/dX = w + bX1 + bX2 + bX3 + bX4,  w dX_next/dU_i = bKi Di,
-     * with A = d f/d X and D = d f/d U of mpsp_jac_t:
-     *   (z A)_r = z_v G,  (z A)_v = z_r,  (z A)_m = a_vm z_v.e + a_lm z_lm,  (z A)_lm = 0
-     *   (z D) = d_v (z_v - (z_v.e) e) + d_l z_lm e. */
-    for (i = 0u; i < NX * L; ++i) {
-        bk[i] = c6 * adj_in[i];
-        acc[i] = adj_in[i];
+    /* stage 4: (bK4)_v = dt/6 w_v */
+    zv[0] = c6 * w[3];
+    zv[1] = c6 * w[4];
+    zv[2] = c6 * w[5];
+    am = w[6] + stage_back(&sd[3], zv, c6 * w[7], thrust, bx4, b);
+    if (thrust) {
+        b_end[0] = b[0];
+        b_end[1] = b[1];
+        b_end[2] = b[2];
     }
-    for (n = 0u; n < 4u; ++n) {
-        const size_t s = 3u - n; /* stages 4, 3, 2, 1 */
-        const mpsp_jac_t *jc = &jac[s];
-        const double *g = jc->g;
-        for (r = 0u; r < L; ++r) {
-            const double zv0 = bk[3u * L + r];
-            const double zv1 = bk[4u * L + r];
-            const double zv2 = bk[5u * L + r];
-            const double ze = (zv0 * jc->e[0]) + (zv1 * jc->e[1]) + (zv2 * jc->e[2]);
-            bx[(0u * L) + r] = (zv0 * g[0]) + (zv1 * g[3]) + (zv2 * g[6]);
-            bx[(1u * L) + r] = (zv0 * g[1]) + (zv1 * g[4]) + (zv2 * g[7]);
-            bx[(2u * L) + r] = (zv0 * g[2]) + (zv1 * g[5]) + (zv2 * g[8]);
-            bx[3u * L + r] = bk[0u * L + r];
-            bx[4u * L + r] = bk[1u * L + r];
-            bx[5u * L + r] = bk[2u * L + r];
-            bx[(6u * L) + r] = (jc->a_vm * ze) + (jc->a_lm * bk[(7u * L) + r]);
-            bx[7u * L + r] = 0.0;
-        }
-        if (jc->thrust) {
-            double *dst = (s == 0u) ? bu_start : ((s == 3u) ? bu_end : bu_mid);
-            size_t c;
-            for (c = 0u; c < 3u; ++c) {
-                const double ec = jc->e[c];
-                for (r = 0u; r < L; ++r) {
-                    const double ze = (bk[(3u * L) + r] * jc->e[0]) + (bk[(4u * L) + r] * jc->e[1]) +
-                                      (bk[(5u * L) + r] * jc->e[2]);
-                    dst[(c * L) + r] += (jc->d_v * (bk[((3u + c) * L) + r] - (ze * ec))) +
-                                      (jc->d_l * bk[(7u * L) + r] * ec);
-                }
-            }
-        }
-        for (i = 0u; i < NX * L; ++i) {
-            acc[i] += bx[i];
-        }
-        if (s > 0u) {
-            /* stage s-1 feeds X_{n,s} = X + cx K_{s-1}: cx = dt for s = 3, dt/2 else */
-            const double cx = (s == 3u) ? dt : half;
-            const double cw = (s == 1u) ? c6 : c3;
-            for (i = 0u; i < NX * L; ++i) {
-                bk[i] = (cw * adj_in[i]) + (cx * bx[i]);
-            }
+    /* stage 3: (bK3)_v = dt/3 w_v + dt (bK4)_r, (bK4)_r = dt/6 w_r */
+    zv[0] = (c3 * w[3]) + (dt * (c6 * w[0]));
+    zv[1] = (c3 * w[4]) + (dt * (c6 * w[1]));
+    zv[2] = (c3 * w[5]) + (dt * (c6 * w[2]));
+    am += stage_back(&sd[2], zv, c3 * w[7], thrust, bx3, bm);
+    /* stage 2: (bK3)_r = dt/3 w_r + dt (bX4)_r, (bK2)_v = dt/3 w_v + dt/2 (bK3)_r */
+    zv[0] = (c3 * w[0]) + (dt * bx4[0]);
+    zv[1] = (c3 * w[1]) + (dt * bx4[1]);
+    zv[2] = (c3 * w[2]) + (dt * bx4[2]);
+    av[0] = (w[3] + (c6 * w[0])) + zv[0];
+    av[1] = (w[4] + (c6 * w[1])) + zv[1];
+    av[2] = (w[5] + (c6 * w[2])) + zv[2];
+    zv[0] = (c3 * w[3]) + (half * zv[0]);
+    zv[1] = (c3 * w[4]) + (half * zv[1]);
+    zv[2] = (c3 * w[5]) + (half * zv[2]);
+    ar[0] = (w[0] + bx4[0]) + bx3[0];
+    ar[1] = (w[1] + bx4[1]) + bx3[1];
+    ar[2] = (w[2] + bx4[2]) + bx3[2];
+    am += stage_back(&sd[1], zv, c3 * w[7], thrust, bx, b);
+    if (thrust) {
+        b_mid[0] = bm[0] + b[0];
+        b_mid[1] = bm[1] + b[1];
+        b_mid[2] = bm[2] + b[2];
+    }
+    /* stage 1: (bK2)_r = dt/3 w_r + dt/2 (bX3)_r, (bK1)_v = dt/6 w_v + dt/2 (bK2)_r,
+     * (bK1)_r = dt/6 w_r + dt/2 (bX2)_r */
+    zr2[0] = (c3 * w[0]) + (half * bx3[0]);
+    zr2[1] = (c3 * w[1]) + (half * bx3[1]);
+    zr2[2] = (c3 * w[2]) + (half * bx3[2]);
+    av[0] = (av[0] + zr2[0]) + ((c6 * w[0]) + (half * bx[0]));
+    av[1] = (av[1] + zr2[1]) + ((c6 * w[1]) + (half * bx[1]));
+    av[2] = (av[2] + zr2[2]) + ((c6 * w[2]) + (half * bx[2]));
+    ar[0] += bx[0];
+    ar[1] += bx[1];
+    ar[2] += bx[2];
+    zv[0] = (c6 * w[3]) + (half * zr2[0]);
+    zv[1] = (c6 * w[4]) + (half * zr2[1]);
+    zv[2] = (c6 * w[5]) + (half * zr2[2]);
+    am += stage_back(&sd[0], zv, c6 * w[7], thrust, bx, b);
+    if (thrust) {
+        b_start[0] = b[0];
+        b_start[1] = b[1];
+        b_start[2] = b[2];
+    }
+    /* w dX_next/dX = w + bX1 + bX2 + bX3 + bX4, (bX)_v = (bK)_r; lambda_m passes */
+    w_out[7] = w[7];
+    w_out[0] = ar[0] + bx[0];
+    w_out[1] = ar[1] + bx[1];
+    w_out[2] = ar[2] + bx[2];
+    w_out[3] = av[0];
+    w_out[4] = av[1];
+    w_out[5] = av[2];
+    w_out[6] = am;
+}
+
+/* reverse_row for a row with w_r = w_v = 0 (the row of lambda_m(tf): switches
+ * change only its m and lambda_m components, S_X = [0_6, ., .]): z_v = 0 at
+ * every stage, so bX_r = 0, the row keeps w_r = w_v = 0 and
+ *   (w dX_next/dX)_m = w_m + sum_s a_lm,s z_lm,s,   w dX_next/dU_s = d_l,s z_lm,s e_s,
+ * the same numbers as reverse_row gives with z_v = 0. */
+static void reverse_row_mass(const mpsp_stage_t *sd, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                             double *w_out, double *b_start, double *b_mid, double *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+{
+    const double z6 = (dt / 6.0) * w[7];
+    const double z3 = (dt / 3.0) * w[7];
+    double am = w[6] + (sd[3].a_lm * z6);
+
+    am += sd[2].a_lm * z3;
+    am += sd[1].a_lm * z3;
+    am += sd[0].a_lm * z6;
+    if (thrust) {
+        size_t i;
+        for (i = 0u; i < 3u; ++i) {
+            b_end[i] = (sd[3].d_l * z6) * sd[3].e[i];
+            b_mid[i] = ((sd[2].d_l * z3) * sd[2].e[i]) + ((sd[1].d_l * z3) * sd[1].e[i]);
+            b_start[i] = (sd[0].d_l * z6) * sd[0].e[i];
         }
     }
-    (void)memcpy(adj_out, acc, sizeof acc);
+    w_out[0] = 0.0;
+    w_out[1] = 0.0;
+    w_out[2] = 0.0;
+    w_out[3] = 0.0;
+    w_out[4] = 0.0;
+    w_out[5] = 0.0;
+    w_out[6] = am;
+    w_out[7] = w[7];
 }
 
 ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                             const double *u_start, const double *u_mid, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                             const double *u_end, const double *adj_in,
+                             const mpsp_uval_t *uv, size_t n_rows, const double *adj_in,
                              double *adj_out, double *bu_start, double *bu_mid, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                              double *bu_end)
 {
-    mpsp_jac_t jac[4];
-    static const double u_zero[3] = {0.0, 0.0, 0.0};
-    const double *u[3];
-    ogk_status st;
+    mpsp_stage_t sd[4];
+    const ogk_status st = stage_partials(dyn, x, dt, mode, uv, sd);
 
-    u[0] = (mode == 1) ? u_start : u_zero;
-    u[1] = (mode == 1) ? u_mid : u_zero;
-    u[2] = (mode == 1) ? u_end : u_zero;
-    st = stage_jacobians(dyn, x, dt, mode, u, jac);
     if (st == OGK_OK) {
-        reverse_sweep(jac, dt, adj_in, adj_out, bu_start, bu_mid, bu_end);
+        size_t r;
+        for (r = 0u; r < n_rows; ++r) {
+            const double *w = &adj_in[r * NX];
+            if ((w[0] == 0.0) && (w[1] == 0.0) && (w[2] == 0.0) && (w[3] == 0.0) &&
+                (w[4] == 0.0) && (w[5] == 0.0)) {
+                /* a row of m and lambda_m only (that of lambda_m(tf)): it stays so */
+                reverse_row_mass(sd, dt, mode == 1, w, &adj_out[r * NX], &bu_start[r * 3u],
+                                 &bu_mid[r * 3u], &bu_end[r * 3u]);
+            } else {
+                reverse_row(sd, dt, mode == 1, w, &adj_out[r * NX], &bu_start[r * 3u],
+                            &bu_mid[r * 3u], &bu_end[r * 3u]);
+            }
+        }
     }
     return st;
 }
@@ -188,44 +272,14 @@ ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
     return st;
 }
 
-/* Columns of the basis-major accumulator: component c of row r at c L + r
- * (the lane-major bu layout). The fixed inner length lets the compiler
- * unroll and vectorise the hottest loop of the sweep. */
-#define ACC_W (3u * L)
-
-/* acc[q][j] += h[q] coef[j], q < n_basis, j < ACC_W (eq. 40: dU = P dW). */
-static void accumulate_basis(double *acc, size_t n_basis,
-                             const double *coef, const double *h) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+/* U and |U| from a basis row. */
+static void uval_from_basis(const mpsp_dyn_t *dyn, const double *h, mpsp_uval_t *uv)
 {
-    size_t q;
-    size_t j;
-    for (q = 0u; q < n_basis; ++q) {
-        const double hq = h[q];
-        double *dst = &acc[q * ACC_W];
-        for (j = 0u; j < ACC_W; ++j) {
-            dst[j] += hq * coef[j];
-        }
-    }
+    mpsp_control_from_basis(dyn, h, uv->u);
+    uv->lam = sqrt((uv->u[0] * uv->u[0]) + (uv->u[1] * uv->u[1]) + (uv->u[2] * uv->u[2]));
 }
 
-/* acc[q][j] += ha[q] coef_a[j] + hb[q] coef_b[j]: two times in one pass. */
-static void accumulate_basis2(double *acc, size_t n_basis,
-                              const double *coef_a, const double *ha, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                              const double *coef_b, const double *hb) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-{
-    size_t q;
-    size_t j;
-    for (q = 0u; q < n_basis; ++q) {
-        const double hqa = ha[q];
-        const double hqb = hb[q];
-        double *dst = &acc[q * ACC_W];
-        for (j = 0u; j < ACC_W; ++j) {
-            dst[j] += (hqa * coef_a[j]) + (hqb * coef_b[j]);
-        }
-    }
-}
-
-/* out[r][c n_basis + q] += coef[c L + r] h[q], row-major rows x 3 n_basis
+/* out[r][c n_basis + q] += coef[r * 3 + c] h[q], row-major rows x 3 n_basis
  * (the one-step Jacobian; not on the hot path). */
 static void accumulate_rows(double *out, size_t n_basis, size_t rows, const double *coef, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                             const double *h)
@@ -237,26 +291,53 @@ static void accumulate_rows(double *out, size_t n_basis, size_t rows, const doub
     for (r = 0u; r < rows; ++r) {
         for (c = 0u; c < 3u; ++c) {
             for (q = 0u; q < n_basis; ++q) {
-                out[(r * n_weights) + (c * n_basis) + q] += coef[(c * L) + r] * h[q];
+                out[(r * n_weights) + (c * n_basis) + q] += coef[(r * 3u) + c] * h[q];
             }
         }
     }
 }
 
-/* out[r][c n_basis + q] = acc[q][c L + r] for r < rows. */
-static void unpack_basis(const double *acc, size_t n_basis, size_t rows, double *out) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+/* The partials of the RK4 step of ogk_mpsp_step_jacobian (x_next already
+ * taken): dF/dX and dF/dW through the adjoint of the step, each if asked. */
+static ogk_status step_partials(const ogk_mpsp_t *ctx, const mpsp_dyn_t *dyn, double t, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                const double *x, double dt, int mode, double *dfdx, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                double *dfdw)
 {
-    const size_t n_weights = 3u * n_basis;
-    size_t r;
-    size_t c;
-    size_t q;
-    for (r = 0u; r < rows; ++r) {
-        for (c = 0u; c < 3u; ++c) {
-            for (q = 0u; q < n_basis; ++q) {
-                out[(r * n_weights) + (c * n_basis) + q] = acc[(q * ACC_W) + (c * L) + r];
-            }
-        }
+    double h0[OGK_MPSP_MAX_BASIS];
+    double hm[OGK_MPSP_MAX_BASIS];
+    double h1[OGK_MPSP_MAX_BASIS];
+    double adj[NX * NX];
+    double b0[NX * 3u];
+    double bm[NX * 3u];
+    double b1[NX * 3u];
+    mpsp_uval_t uv[3];
+    size_t i;
+    ogk_status st;
+
+    mpsp_basis(dyn, t, h0, NULL);
+    mpsp_basis(dyn, t + (0.5 * dt), hm, NULL);
+    mpsp_basis(dyn, t + dt, h1, NULL);
+    (void)memset(adj, 0, sizeof adj);
+    (void)memset(b0, 0, sizeof b0);
+    (void)memset(bm, 0, sizeof bm);
+    (void)memset(b1, 0, sizeof b1);
+    for (i = 0u; i < NX; ++i) {
+        adj[(i * NX) + i] = 1.0; /* row i seeds d X_next[i] */
     }
+    uval_from_basis(dyn, h0, &uv[0]);
+    uval_from_basis(dyn, hm, &uv[1]);
+    uval_from_basis(dyn, h1, &uv[2]);
+    st = mpsp_step_adjoint(dyn, x, dt, mode, uv, NX, adj, adj, b0, bm, b1);
+    if ((st == OGK_OK) && (dfdx != NULL)) {
+        (void)memcpy(dfdx, adj, sizeof adj); /* row i of adj is d X_next[i] / dX */
+    }
+    if ((st == OGK_OK) && (dfdw != NULL)) {
+        (void)memset(dfdw, 0, NX * ctx->n_weights * sizeof dfdw[0]);
+        accumulate_rows(dfdw, ctx->n_basis, NX, b0, h0);
+        accumulate_rows(dfdw, ctx->n_basis, NX, bm, hm);
+        accumulate_rows(dfdw, ctx->n_basis, NX, b1, h1);
+    }
+    return st;
 }
 
 static ogk_status check_ctx(const ogk_mpsp_t *ctx)
@@ -281,59 +362,6 @@ static ogk_status check_mode_scale(double thrust_scale, int mode)
         st = OGK_E_RANGE;
     } else {
         /* a usable scale and mode */
-    }
-    return st;
-}
-
-/* The partials of the RK4 step of ogk_mpsp_step_jacobian (x_next already
- * taken): dF/dX and dF/dW through the adjoint of the step, each if asked. */
-static ogk_status step_partials(const ogk_mpsp_t *ctx, const mpsp_dyn_t *dyn, double t, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                const double *x, double dt, int mode, double *dfdx, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                double *dfdw)
-{
-    double h0[OGK_MPSP_MAX_BASIS];
-    double hm[OGK_MPSP_MAX_BASIS];
-    double h1[OGK_MPSP_MAX_BASIS];
-    double eye[NX * L];
-    double adj[NX * L];
-    double b0[ACC_W];
-    double bm[ACC_W];
-    double b1[ACC_W];
-    size_t i;
-    ogk_status st;
-
-    mpsp_basis(dyn, t, h0, NULL);
-    mpsp_basis(dyn, t + (0.5 * dt), hm, NULL);
-    mpsp_basis(dyn, t + dt, h1, NULL);
-    (void)memset(eye, 0, sizeof eye);
-    (void)memset(b0, 0, sizeof b0);
-    (void)memset(bm, 0, sizeof bm);
-    (void)memset(b1, 0, sizeof b1);
-    for (i = 0u; i < NX; ++i) {
-        eye[i * L + i] = 1.0; /* row i seeds d X_next[i] */
-    }
-    {
-        double u0[3];
-        double um[3];
-        double u1[3];
-        mpsp_control_from_basis(dyn, h0, u0);
-        mpsp_control_from_basis(dyn, hm, um);
-        mpsp_control_from_basis(dyn, h1, u1);
-        st = mpsp_step_adjoint(dyn, x, dt, mode, u0, um, u1, eye, adj, b0, bm, b1);
-    }
-    if ((st == OGK_OK) && (dfdx != NULL)) {
-        size_t j;
-        for (i = 0u; i < NX; ++i) {
-            for (j = 0u; j < NX; ++j) {
-                dfdx[i * NX + j] = adj[j * L + i];
-            }
-        }
-    }
-    if ((st == OGK_OK) && (dfdw != NULL)) {
-        (void)memset(dfdw, 0, NX * ctx->n_weights * sizeof dfdw[0]);
-        accumulate_rows(dfdw, ctx->n_basis, NX, b0, h0);
-        accumulate_rows(dfdw, ctx->n_basis, NX, bm, hm);
-        accumulate_rows(dfdw, ctx->n_basis, NX, b1, h1);
     }
     return st;
 }
@@ -445,7 +473,7 @@ ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
 }
 
 /* Eqs. (22)-(25) at the switch node k + 1 (time t_hi, state x_hi) of the
- * backward recursion: the rows adj compensated and the S_U part added to
+ * backward recursion: the NY rows adj compensated and the S_U part added to
  * pend (bU at t_hi). */
 static ogk_status switch_compensation(mpsp_dyn_t *dyn, double t_hi, const double *x_hi, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                                       double *adj, double *pend) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
@@ -459,16 +487,88 @@ static ogk_status switch_compensation(mpsp_dyn_t *dyn, double t_hi, const double
         for (r = 0u; r < NY; ++r) {
             double a = 0.0;
             for (i = 0u; i < NX; ++i) {
-                a += adj[i * L + r] * jump.dxdot[i];
+                a += adj[(r * NX) + i] * jump.dxdot[i];
             }
             a /= jump.s_dot;
             for (i = 0u; i < 3u; ++i) {
-                pend[i * L + r] += a * jump.s_u[i];
+                pend[(r * 3u) + i] += a * jump.s_u[i];
             }
             for (i = 0u; i < NX; ++i) {
-                adj[i * L + r] += a * jump.s_x[i];
+                adj[(r * NX) + i] += a * jump.s_x[i];
             }
         }
+    }
+    return st;
+}
+
+/* Samples of B_v (eq. 40) on their way into ctx->bv_acc: slots 0..n-1 of
+ * ctx->sens_h / sens_c are complete; when hi_held, slot n already holds
+ * h(t_hi) and hi its U, for the node above the step being differentiated. */
+typedef struct {
+    ogk_mpsp_t *ctx;
+    size_t n;
+    bool hi_held;
+    mpsp_uval_t hi;
+} sens_block_t;
+
+/* Adds the complete samples to B_v and moves a held h(t_hi) to slot 0. */
+static void block_flush(sens_block_t *blk)
+{
+    ogk_mpsp_t *ctx = blk->ctx;
+    mpsp_bv_block_product(ctx->bv_acc, ctx->n_basis, ctx->sens_h, ctx->sens_c, blk->n);
+    if (blk->hi_held && (blk->n > 0u)) {
+        (void)memcpy(ctx->sens_h, &ctx->sens_h[blk->n * MB], ctx->n_basis * sizeof ctx->sens_h[0]);
+    }
+    blk->n = 0u;
+}
+
+/* h(t_hi) and U(t_hi) into slot n unless already held. */
+static void block_hold_hi(sens_block_t *blk, mpsp_dyn_t *dyn, double t_hi)
+{
+    if (!blk->hi_held) {
+        mpsp_basis_control(dyn, t_hi, &blk->ctx->sens_h[blk->n * MB], &blk->hi);
+        blk->hi_held = true;
+    }
+}
+
+/* One thrust step k (node k -> k + 1) of the recursion: U at the node below
+ * and at the midpoint from new basis rows (slots n + 2 and n + 1), the step
+ * differentiated, and the node above (slot n: its pending bU plus stage 4)
+ * and the midpoint (stages 2 and 3) completed; the node below is held with
+ * stage 1 as its pending bU. */
+static ogk_status thrust_step(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, double *adj, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                              double *pend)
+{
+    ogk_mpsp_t *ctx = blk->ctx;
+    const double t_lo = ctx->traj_t[k];
+    const double dt = ctx->traj_t[k + 1u] - t_lo;
+    const size_t n = blk->n;
+    double *h_mid = &ctx->sens_h[(n + 1u) * MB];
+    double *h_lo = &ctx->sens_h[(n + 2u) * MB];
+    double *c_hi = &ctx->sens_c[n * NYU];
+    double *c_mid = &ctx->sens_c[(n + 1u) * NYU];
+    double pend_lo[NYU];
+    mpsp_uval_t uv[3];
+    ogk_status st;
+
+    block_hold_hi(blk, dyn, ctx->traj_t[k + 1u]);
+    mpsp_basis_control(dyn, t_lo + (0.5 * dt), h_mid, &uv[1]);
+    mpsp_basis_control(dyn, t_lo, h_lo, &uv[0]);
+    uv[2] = blk->hi;
+    st = mpsp_step_adjoint(dyn, &ctx->traj_x[k * NX], dt, 1, uv, NY, adj, adj, pend_lo, c_mid,
+                           c_hi);
+    if (st == OGK_OK) {
+        size_t j;
+        /* t_hi gathers stage 4 of this step, stage 1 of the step above and a
+         * switch there; t_lo + dt/2 gathers stages 2 and 3. */
+        for (j = 0u; j < NYU; ++j) {
+            c_hi[j] += pend[j];
+        }
+        (void)memcpy(pend, pend_lo, sizeof pend_lo);
+        /* two samples complete; h(t_lo), in slot n + 2, is the new held slot */
+        blk->n = n + 2u;
+        blk->hi = uv[0];
+        blk->hi_held = true;
     }
     return st;
 }
@@ -479,102 +579,75 @@ static ogk_status switch_compensation(mpsp_dyn_t *dyn, double t_hi, const double
 static ogk_status backward_recursion(ogk_mpsp_t *ctx)
 {
     mpsp_dyn_t dyn;
-    double adj[NX * L];
-    double adj_next[NX * L];
-    double pend[ACC_W];
-    double bu0[ACC_W];
-    double bum[ACC_W];
-    double bu1[ACC_W];
-    double h_hi[OGK_MPSP_MAX_BASIS];
-    double h_lo[OGK_MPSP_MAX_BASIS];
-    double h_mid[OGK_MPSP_MAX_BASIS];
-    double u_hi[3] = {0.0, 0.0, 0.0};
-    double u_lo[3] = {0.0, 0.0, 0.0};
-    double u_mid[3] = {0.0, 0.0, 0.0};
-    bool h_hi_ok = false;
+    sens_block_t blk;
+    double adj[NY * NX];
+    double pend[NYU];
     bool pend_nonzero = false;
-    size_t nodes;
     size_t kk;
     size_t r;
-    size_t i;
     ogk_status st = OGK_OK;
 
     mpsp_dyn_setup(&dyn, ctx, ctx->weights, ctx->thrust);
-    nodes = ctx->n_nodes;
+    blk.ctx = ctx;
+    blk.n = 0u;
+    blk.hi_held = false;
+    (void)memset(&blk.hi, 0, sizeof blk.hi);
 
     /* dY/dX(tf): Y = [r, v, lambda_m] */
     (void)memset(adj, 0, sizeof adj);
     for (r = 0u; r < 6u; ++r) {
-        adj[r * L + r] = 1.0;
+        adj[(r * NX) + r] = 1.0;
     }
-    adj[7u * L + 6u] = 1.0;
+    adj[(6u * NX) + 7u] = 1.0;
     (void)memset(pend, 0, sizeof pend);
-    (void)memset(ctx->bv_acc, 0, ctx->n_basis * ACC_W * sizeof ctx->bv_acc[0]);
+    (void)memset(ctx->bv_acc, 0, ctx->n_basis * NYU * sizeof ctx->bv_acc[0]);
 
-    for (kk = 1u; (kk < nodes) && (st == OGK_OK); ++kk) {
-        const size_t k = nodes - 1u - kk; /* step k: node k -> k + 1 */
-        const double t_lo = ctx->traj_t[k];
-        const double t_hi = ctx->traj_t[k + 1u];
-        const double dt = t_hi - t_lo;
+    for (kk = 1u; (kk < ctx->n_nodes) && (st == OGK_OK); ++kk) {
+        const size_t k = ctx->n_nodes - 1u - kk; /* step k: node k -> k + 1 */
         const int mode = (int)ctx->traj_mode[k];
 
+        if ((blk.n + 3u) > SB) {
+            block_flush(&blk); /* room for the 3 samples of a step */
+        }
         /* Switch at node k + 1 (mode changes there): eqs. (22)-(25). */
         if (ctx->traj_mode[k + 1u] != ctx->traj_mode[k]) {
-            st = switch_compensation(&dyn, t_hi, &ctx->traj_x[(k + 1u) * NX], mode, adj, pend);
+            st = switch_compensation(&dyn, ctx->traj_t[k + 1u], &ctx->traj_x[(k + 1u) * NX], mode,
+                                     adj, pend);
             pend_nonzero = true;
         }
-        if (st == OGK_OK) {
-            if (((mode == 1) || pend_nonzero) && (!h_hi_ok)) {
-                mpsp_basis(&dyn, t_hi, h_hi, NULL);
-                mpsp_control_from_basis(&dyn, h_hi, u_hi);
+        if ((st == OGK_OK) && (mode == 1)) {
+            st = thrust_step(&blk, &dyn, k, adj, pend);
+            pend_nonzero = true;
+        } else if (st == OGK_OK) {
+            mpsp_uval_t uv[3];
+            double unused[NYU];
+            (void)memset(uv, 0, sizeof uv);
+            if (pend_nonzero) { /* the node above ends a thrust arc or is a switch */
+                block_hold_hi(&blk, &dyn, ctx->traj_t[k + 1u]);
+                (void)memcpy(&ctx->sens_c[blk.n * NYU], pend, sizeof pend);
+                blk.n += 1u;
             }
-            if (mode == 1) {
-                mpsp_basis(&dyn, t_lo + (0.5 * dt), h_mid, NULL);
-                mpsp_basis(&dyn, t_lo, h_lo, NULL);
-                mpsp_control_from_basis(&dyn, h_mid, u_mid);
-                mpsp_control_from_basis(&dyn, h_lo, u_lo);
-            }
-            (void)memset(bu0, 0, sizeof bu0);
-            (void)memset(bum, 0, sizeof bum);
-            (void)memset(bu1, 0, sizeof bu1);
-            st = mpsp_step_adjoint(&dyn, &ctx->traj_x[k * NX], dt, mode, u_lo, u_mid, u_hi,
-                                   adj, adj_next, bu0, bum, bu1);
-        }
-        if (st == OGK_OK) {
-            (void)memcpy(adj, adj_next, sizeof adj);
-            if (mode == 1) {
-                /* t_hi gathers stage 4 of this step, stage 1 of the step above
-                 * and a switch there; t_lo + dt/2 gathers stages 2 and 3. */
-                for (i = 0u; i < ACC_W; ++i) {
-                    pend[i] += bu1[i];
-                }
-                accumulate_basis2(ctx->bv_acc, ctx->n_basis, pend, h_hi, bum, h_mid);
-                (void)memcpy(pend, bu0, sizeof pend);
-                pend_nonzero = true;
-                (void)memcpy(h_hi, h_lo, sizeof h_hi);
-                (void)memcpy(u_hi, u_lo, sizeof u_hi);
-                h_hi_ok = true;
-            } else {
-                if (pend_nonzero) {
-                    accumulate_basis(ctx->bv_acc, ctx->n_basis, pend, h_hi);
-                }
-                (void)memset(pend, 0, sizeof pend);
-                pend_nonzero = false;
-                h_hi_ok = false;
-            }
+            blk.hi_held = false;
+            (void)memset(pend, 0, sizeof pend);
+            pend_nonzero = false;
+            st = mpsp_step_adjoint(&dyn, &ctx->traj_x[k * NX], ctx->traj_t[k + 1u] - ctx->traj_t[k],
+                                   0, uv, NY, adj, adj, unused, unused, unused);
+        } else {
+            /* the switch's status returned */
         }
     }
     if (st == OGK_OK) {
-        if (pend_nonzero) {
-            if (!h_hi_ok) {
-                mpsp_basis(&dyn, ctx->traj_t[0], h_hi, NULL);
-            }
-            accumulate_basis(ctx->bv_acc, ctx->n_basis, pend, h_hi);
+        if (pend_nonzero) { /* t0 in thrust */
+            block_hold_hi(&blk, &dyn, ctx->traj_t[0]);
+            (void)memcpy(&ctx->sens_c[blk.n * NYU], pend, sizeof pend);
+            blk.n += 1u;
         }
-        unpack_basis(ctx->bv_acc, ctx->n_basis, NY, ctx->dy_dw);
+        blk.hi_held = false;
+        block_flush(&blk);
+        mpsp_bv_unpack(ctx->bv_acc, ctx->n_basis, ctx->dy_dw);
         /* Eq. (33): A_lambda is the lambda_m column of dY/dX(t0). */
         for (r = 0u; r < NY; ++r) {
-            ctx->dy_dlm0[r] = adj[7u * L + r];
+            ctx->dy_dlm0[r] = adj[(r * NX) + 7u];
         }
     }
     return st;

@@ -227,39 +227,31 @@ static void test_step_jacobian_coast(void **state)
 
 /* ---------------------------------------------------------------- whole arc vs FD */
 
+/* Switches of the trajectory the finite differences perturb (the same for
+ * every perturbed one). */
+static uint32_t arc_switches;
+
 static void propagate_y(const double *w, double lm0, double *y)
 {
     ogk_mpsp_prop_t prop;
     OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w, lm0, x0_3d, 1.0, &prop), OGK_OK);
-    assert_int_equal(prop.n_switches, 2);
+    assert_int_equal(prop.n_switches, arc_switches);
     (void)memcpy(y, prop.x_f, 6u * sizeof y[0]);
     y[6] = prop.x_f[7];
 }
 
-static void test_whole_arc_with_switches_fd(void **state)
+/* dY/dW and dY/dlambda_m0 of the arc from x0_3d with weights w3, held in
+ * ctx, against 4th-order central differences of ogk_mpsp_propagate. */
+static void check_arc_against_fd(double lm0, double *dydl)
 {
     const double d = 1e-3;
-    const double lm0 = 0.0;
-    double dydl[NY];
     double fd_dydl[NY];
     double ys[4][NY];
-    ogk_mpsp_prop_t prop;
-    size_t nw;
+    const size_t nw = ctx.n_weights;
     size_t i;
     size_t j;
     size_t p;
-    (void)state;
 
-    orbit_config(&cfg, ARC_STEPS);
-    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
-    nw = ctx.n_weights;
-    assert_int_equal(ctx.n_seg_nom, 3); /* counted at init: on, off, on */
-    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, lm0, x0_3d, 1.0, &prop), OGK_OK);
-    assert_int_equal(prop.n_switches, 2);
-    assert_int_equal(prop.mode0, 1);
-    assert_int_equal(prop.n_thrust_arcs, 2);
-    assert_true(prop.t_switch[0] > 0.3 && prop.t_switch[0] < 0.7);
-    assert_true(prop.t_switch[1] > 1.3 && prop.t_switch[1] < 1.7);
     OGK_ASSERT_STATUS(ogk_mpsp_sensitivity(&ctx, dydw, dydl), OGK_OK);
 
     for (j = 0u; j < nw; ++j) {
@@ -280,9 +272,49 @@ static void test_whole_arc_with_switches_fd(void **state)
     }
     assert_matrix_rel(dydw, fd_dydw, NY, nw, 1e-6);
     assert_matrix_rel(dydl, fd_dydl, NY, 1u, 1e-6);
+}
+
+static void test_whole_arc_with_switches_fd(void **state)
+{
+    const double lm0 = 0.0;
+    double dydl[NY];
+    ogk_mpsp_prop_t prop;
+    (void)state;
+
+    orbit_config(&cfg, ARC_STEPS);
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    assert_int_equal(ctx.n_seg_nom, 3); /* counted at init: on, off, on */
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, lm0, x0_3d, 1.0, &prop), OGK_OK);
+    assert_int_equal(prop.n_switches, 2);
+    assert_int_equal(prop.mode0, 1);
+    assert_int_equal(prop.n_thrust_arcs, 2);
+    assert_true(prop.t_switch[0] > 0.3 && prop.t_switch[0] < 0.7);
+    assert_true(prop.t_switch[1] > 1.3 && prop.t_switch[1] < 1.7);
+    arc_switches = prop.n_switches;
+    check_arc_against_fd(lm0, dydl);
     /* lambda_m0 moves both switches: A_lambda is not the no-switch value
      * [0, ..., 0, 1] that eq. (33) would give without eqs. (22)-(25). */
     assert_true(fabs(dydl[0]) > 1e-3);
+}
+
+/* The same arc with the cosine basis (1/2, cos k theta, k = 1..2n: the
+ * Apophis scenario's default) and lambda_m0 = -0.2: on, off, on, off (three
+ * switches), through the sweep's cosine harmonics. */
+static void test_whole_arc_cosine_basis_fd(void **state)
+{
+    const double lm0 = -0.2;
+    double dydl[NY];
+    ogk_mpsp_prop_t prop;
+    (void)state;
+
+    orbit_config(&cfg, ARC_STEPS);
+    cfg.fourier_kind = OGK_MPSP_BASIS_COSINE;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, lm0, x0_3d, 1.0, &prop), OGK_OK);
+    assert_int_equal(prop.n_switches, 3);
+    assert_int_equal(prop.mode0, 1);
+    arc_switches = prop.n_switches;
+    check_arc_against_fd(lm0, dydl);
 }
 
 /* ---------------------------------------------------------------- closed form */
@@ -537,6 +569,7 @@ int main(void)
         cmocka_unit_test(test_step_jacobian_thrust),
         cmocka_unit_test(test_step_jacobian_coast),
         cmocka_unit_test(test_whole_arc_with_switches_fd),
+        cmocka_unit_test(test_whole_arc_cosine_basis_fd),
         cmocka_unit_test(test_switch_time_closed_form),
         cmocka_unit_test(test_switch_jump_dw_closed_form),
         cmocka_unit_test(test_whole_arc_closed_form),

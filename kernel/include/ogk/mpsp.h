@@ -28,8 +28,8 @@
  * (Appendix A, transposed), with the switching compensation of eqs. (22)-(25)
  * at each switch node (eqs. 28-35).
  *
- * Memory: everything lives in ogk_mpsp_t (187 KiB with the default limits);
- * no heap, no globals, every loop bounded. Stack: about 5 KiB worst case
+ * Memory: everything lives in ogk_mpsp_t (199 KiB with the default limits);
+ * no heap, no globals, every loop bounded. Stack: about 4.5 KiB worst case
  * (docs/mpsp.md). */
 #ifndef OGK_MPSP_H
 #define OGK_MPSP_H
@@ -63,6 +63,11 @@ extern "C" {
  * from ogk_mpsp_propagate, a failed inner loop inside ogk_mpsp_solve). */
 #ifndef OGK_MPSP_MAX_SWITCHES
 #define OGK_MPSP_MAX_SWITCHES 16u
+#endif
+/* Sensitivity samples (basis row and its 7 x 3 coefficients) gathered
+ * before they are added to B_v in one blocked product, >= 3. */
+#ifndef OGK_MPSP_SENS_BLOCK
+#define OGK_MPSP_SENS_BLOCK 32u
 #endif
 /* Entries of the Newton history kept in the result. */
 #ifndef OGK_MPSP_MAX_LOG
@@ -181,9 +186,12 @@ typedef struct {
     /* Sensitivities of the trajectory held (eqs. 33 and 40). */
     double dy_dw[OGK_MPSP_NY * OGK_MPSP_MAX_WEIGHTS]; /* B_v, row-major 7 x n_weights */
     double dy_dlm0[OGK_MPSP_NY];                      /* A_lambda */
-    /* B_v being accumulated, basis-major: acc[q][r * 3 + c], 8 x 3 columns
-     * (padded so the inner loop has a fixed length). */
-    double bv_acc[OGK_MPSP_MAX_BASIS * OGK_MPSP_NX * OGK_MPSP_NU];
+    /* B_v being accumulated, basis-major: bv_acc[q][r * 3 + c] (eq. 40), and
+     * the samples not yet added to it: basis rows h(t) and their 7 x 3
+     * control sensitivities bU(t), added OGK_MPSP_SENS_BLOCK at a time. */
+    double bv_acc[OGK_MPSP_MAX_BASIS * OGK_MPSP_NY * OGK_MPSP_NU];
+    double sens_h[OGK_MPSP_SENS_BLOCK * OGK_MPSP_MAX_BASIS];
+    double sens_c[OGK_MPSP_SENS_BLOCK * OGK_MPSP_NY * OGK_MPSP_NU];
     /* Newton workspace (eqs. 44-45 as a minimum-norm problem). */
     double newton_m[OGK_MPSP_NY * OGK_MPSP_MAX_UNKNOWNS];
     double newton_z[OGK_MPSP_MAX_UNKNOWNS];
