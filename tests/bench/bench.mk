@@ -109,18 +109,26 @@ $(ARM_BENCH_NMPC): tests/bench/bench_nmpc.c $(NMPC_CASE_H) $(ARM_RT_OBJ) $(ARM_B
 	  $(KINC) -Iport/include -I$(ARM_PORT) -I$(NMPC_B) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
 	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
 
+# The same re-solve with the exact Hessian (set after the same open loop; bench_nmpc.c).
+ARM_BENCH_NMPC_EXACT := $(ARM_B)/bench_nmpc_exact.elf
+$(ARM_BENCH_NMPC_EXACT): tests/bench/bench_nmpc.c $(NMPC_CASE_H) $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
+	$(ARM_CC) -std=c99 -Wall -Wextra -Werror -O2 -g $(ARM_CPU) -DOGK_BENCH_BARE_METAL -DBENCH_NMPC_HESSIAN=1 \
+	  $(KINC) -Iport/include -I$(ARM_PORT) -I$(NMPC_B) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
+	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
+
 .PHONY: bench-nmpc bench-nmpc-profile
-bench-nmpc: $(BENCH_NMPC) $(ARM_BENCH_NMPC) $(ARM_CI) qemu-plugin $(FFI_STAMP)
-	@echo "== NMPC warm re-solve vs CasADi + IPOPT (docs/nmpc.md, \"Cost\") =="
+bench-nmpc: $(BENCH_NMPC) $(ARM_BENCH_NMPC) $(ARM_BENCH_NMPC_EXACT) $(ARM_CI) qemu-plugin $(FFI_STAMP)
+	@echo "== NMPC warm re-solve: the kernel against FATROP + JIT and IPOPT + JIT (docs/nmpc.md, \"Cost\") =="
 	@rm -f $(NMPC_B)/*.txt
-	@$(BENCH_NMPC) time > $(NMPC_B)/host.txt
-	@$(BENCH_NMPC) time tight > $(NMPC_B)/host_tight.txt
-	@for m in "" tight; do \
+	@for m in "" tol0 exact "exact tol0"; do $(BENCH_NMPC) time $$m; done > $(NMPC_B)/host.txt
+	@for m in "" tol0 exact "exact tol0"; do \
 	  n=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
 	     --collect-atstart=no --toggle-collect=bench_nmpc_replan_once \
 	     $(BENCH_NMPC) once $$m 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'); \
-	  echo "nmpc$${m:+_$$m}_replan_callgrind $$n"; \
+	  k=$$(echo "nmpc $$m" | sed 's/ *$$//; s/ /_/g'); echo "$${k}_replan_callgrind $$n"; \
 	done > $(NMPC_B)/callgrind.txt
+	@port/qemu-plugin/count_insns.sh $(ARM_BENCH_NMPC_EXACT) bench_nmpc_replan_once 2> /dev/null | \
+	  awk '$$2 == "fn" && $$3 == "bench_nmpc_replan_once" { print "nmpc_exact_replan_m7_insns", $$9 }' > $(NMPC_B)/m7_exact.txt
 	@port/qemu-plugin/count_insns.sh $(ARM_BENCH_NMPC) bench_nmpc_replan_once 2> $(NMPC_B)/m7_run.log | \
 	  awk '$$2 == "fn" && $$3 == "bench_nmpc_replan_once" { print "nmpc_replan_m7_insns", $$9 }' > $(NMPC_B)/m7.txt
 	@sed -n 's/^\(nmpc_m7_[a-z0-9_]* [0-9.e+-]*\).*/\1/p; s/.*stack high-water mark: \([0-9]*\) of.*/nmpc_m7_stack_hwm \1/p' \

@@ -30,6 +30,8 @@ from ogk_host.rendezvous.nlp import RendezvousNlp
 from ogk_host.rendezvous.plan import Plan
 
 NX = 5
+#: bumped when the JIT options change, so a cached solver of older options is rebuilt
+JIT_FORMAT = 2
 
 
 @dataclass(frozen=True)
@@ -45,7 +47,7 @@ class PeerSolve:
 
 
 def _jit_opts(cache: Path, name: str) -> dict:
-    return {"jit": True, "compiler": "shell", "jit_temp_suffix": False, "jit_name": name,
+    return {"jit": True, "compiler": "shell", "jit_temp_suffix": False, "jit_name": name, "jit_cleanup": False,
             "jit_serialize": "link", "jit_options": {"flags": ["-O2"], "verbose": False, "cleanup": False,
                                                      "directory": f"{cache.resolve()}/"}}
 
@@ -70,7 +72,7 @@ def _cached(cache: Path | None, key: str, build) -> ca.Function:
 
 
 def _problem_hash(nlp: RendezvousNlp, n: int, *parts: object) -> str:
-    h = hashlib.sha256(repr((nlp.scenario, n, nlp.rk4_steps, nlp.third_bodies, nlp.objective,
+    h = hashlib.sha256(repr((JIT_FORMAT, nlp.scenario, n, nlp.rk4_steps, nlp.third_bodies, nlp.objective,
                              nlp.horizon_bounds, ca.__version__) + parts).encode())
     return h.hexdigest()[:12]
 
