@@ -31,7 +31,7 @@ from ogk_host.rendezvous.plan import Plan
 
 NX = 5
 #: bumped when the JIT options change, so a cached solver of older options is rebuilt
-JIT_FORMAT = 2
+JIT_FORMAT = 3
 
 
 @dataclass(frozen=True)
@@ -47,9 +47,10 @@ class PeerSolve:
 
 
 def _jit_opts(cache: Path, name: str) -> dict:
+    """CasADi's JIT through gcc -O2, the object and library in `cache` (an absolute path)."""
     return {"jit": True, "compiler": "shell", "jit_temp_suffix": False, "jit_name": name, "jit_cleanup": False,
             "jit_serialize": "link", "jit_options": {"flags": ["-O2"], "verbose": False, "cleanup": False,
-                                                     "directory": f"{cache.resolve()}/"}}
+                                                     "directory": f"{cache}/"}}
 
 
 def _cached(cache: Path | None, key: str, build) -> ca.Function:
@@ -57,6 +58,7 @@ def _cached(cache: Path | None, key: str, build) -> ca.Function:
     cache None: built without JIT and not saved (the tests' check of the transcription)."""
     if cache is None:
         return build(key)
+    cache = cache.resolve()
     cache.mkdir(parents=True, exist_ok=True)
     path = cache / f"{key}.casadi"
     if path.exists():
@@ -64,7 +66,6 @@ def _cached(cache: Path | None, key: str, build) -> ca.Function:
             return ca.Function.load(str(path))
         except RuntimeError:
             path.unlink()
-    cache = cache.resolve()
     with contextlib.chdir(cache):   # CasADi writes the generated <name>.c into the working directory
         solver = build(key)
     solver.save(str(path))
@@ -91,6 +92,7 @@ class IpoptJit:
     def __init__(self, nlp: RendezvousNlp, n: int, cache: Path | None, tol: float, constr_viol_tol: float,
                  warm: bool) -> None:
         self.nlp, self.n = nlp, n
+        cache = cache.resolve() if cache is not None else None
         problem, self.bounds = nlp.problem(n, "MX")
         opts = dict(nlp.ipopt)
         opts.update({"ipopt.tol": tol, "ipopt.constr_viol_tol": constr_viol_tol})
@@ -129,6 +131,7 @@ class FatropJit:
         if nlp.max_sweep_rad is not None or nlp.third_bodies or nlp.arrival_max is not None:
             raise ValueError("the FATROP peer covers the bench's NLP: no sweep rows, third bodies or deadline")
         self.nlp, self.n = nlp, n
+        cache = cache.resolve() if cache is not None else None
         nu, m = nlp.nu, nlp.model
         nz = NX + nu + 1
         # MX: the subinterval map stays one function called N times, so the JIT compiles its derivatives
