@@ -211,3 +211,23 @@ bench: bench-blt
 # Dense QP against DAQP and qpOASES (docs/qp.md): after the NMPC section, whose case header it uses.
 include tests/bench/bench_qp.mk
 bench: bench-qp
+
+# ---------------------------------------------------------------- flops per call (docs/performance.md)
+# Double-precision flops of each hot path's one call, counted exactly from callgrind's per-instruction
+# counts and the binaries' disassembly (tests/bench/flops.py), beside its instructions.
+FLOPS := $(VPY) tests/bench/flops.py
+.PHONY: bench-flops
+bench-flops: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE) $(BENCH_MPSP) $(BENCH_NMPC) $(BENCH_BLT) | apt
+	@echo "== flops per call (x86-64 gcc -O2, callgrind; docs/performance.md) =="
+	@$(FLOPS) rk4_step bench_rk4_step_once -- $(BENCH_CORE) once rk4_step
+	@$(FLOPS) qp bench_qp_once -- $(BENCH_CORE) once qp
+	@$(FLOPS) nog_sample bench_nog_sample_once -- $(BENCH_GNC) $(NOG_TABLE) once nog_sample
+	@$(FLOPS) cpd_step bench_cpd_step_once -- $(BENCH_GNC) $(NOG_TABLE) once cpd_step
+	@$(FLOPS) mpsp_iter bench_mpsp_iter_once -- $(BENCH_MPSP) once mpsp_iter
+	@$(FLOPS) nmpc_replan bench_nmpc_replan_once -- $(BENCH_NMPC) once
+	@$(FLOPS) "nmpc_replan exact" bench_nmpc_replan_once -- $(BENCH_NMPC) once exact
+	@$(FLOPS) "nmpc_replan exact tol0" bench_nmpc_replan_once -- $(BENCH_NMPC) once exact tol0
+	@$(FLOPS) "blt iteration sb_var" bench_blt_iteration_once -- $(BENCH_BLT) once sb_var iteration
+	@$(FLOPS) "blt iteration ump_var" bench_blt_iteration_once -- $(BENCH_BLT) once ump_var iteration
+
+bench: bench-flops
