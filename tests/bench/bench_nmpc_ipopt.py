@@ -32,8 +32,6 @@ from __future__ import annotations
 import argparse
 import hashlib
 import math
-import re
-import subprocess
 import statistics
 import sys
 import time
@@ -42,6 +40,7 @@ from pathlib import Path
 
 import numpy as np
 
+import flops
 from bench_figures import read_figures
 from nmpc_peers import FatropJit, IpoptJit, PeerSolve
 from ogk_bindings._ffi import ffi
@@ -306,6 +305,9 @@ def run(args: argparse.Namespace) -> int:
     print(f"at the kernel's default configuration (t_f {(kw.t_f - t_ref) * tu_s:.1f} s from the optimum): {r_default:.2f}x "
           f"the strongest peer in CPU{ins} (goal >= {GOAL_DEFAULT:g}x: "
           f"{'MET' if r_default >= GOAL_DEFAULT else 'NOT MET'})")
+    if "nmpc_peer_fatrop_flops" in fig:
+        print("double flops per call (tests/bench/flops.py; the kernel's in make bench-flops): " + ", ".join(
+            f"{r.label.split(',')[0]} {int(fig[f'nmpc_peer_{peer_key(r.label)}_flops']):,}" for r in peers))
     print(f"cold open loop N = {guess.nodes}: kernel {kern['open_cpu'] * 1e3:.1f} ms CPU, {kern['open'].sqp_iterations} "
           f"SQP iterations; IPOPT + JIT {extra['open_cpu']:.1f} ms CPU, {extra['open'].iterations} iterations; "
           f"t_f {days(kern['open'].t_f):.6f} / {days(extra['open'].plan.horizon):.6f} d")
@@ -351,8 +353,8 @@ def peer_once(which: str, calls: int) -> int:
 
 
 def peer_insns(out: Path) -> int:
-    """`nmpc_peer_<which>_callgrind N` per peer into `out`: the instructions of one warm solver call (x86-64
-    callgrind, 2 calls minus 1). Deterministic, so cached under build/bench/nmpc/peers by the start it
+    """`nmpc_peer_<which>_callgrind N` and `_flops F` per peer into `out`: the instructions and double flops of
+    one warm solver call (x86-64 callgrind, tests/bench/flops.py; 2 calls minus 1). Deterministic, so cached under build/bench/nmpc/peers by the start it
     solves from (the kernel's open loop moves it) and the peer's options: ~1 min per valgrind run otherwise."""
     scenario, cfg, guess, x0 = case()
     kern = kernel_runs(cfg, guess, x0, 1, 1)
@@ -361,18 +363,15 @@ def peer_insns(out: Path) -> int:
     lines = []
     for which, toggle in PEER_TOGGLE.items():
         key = hashlib.sha256(blob + which.encode()).hexdigest()[:16]
-        cached = peer_cache() / f"insns_{key}.txt"
+        cached = peer_cache() / f"counts_{key}.txt"
         if not cached.exists():
-            counts = []
-            for calls in (1, 2):
-                res = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
-                                      "--collect-atstart=no", f"--toggle-collect={toggle}", sys.executable,
-                                      __file__, "peer-once", which, "--calls", str(calls)],
-                                     capture_output=True, text=True, check=True)
-                counts.append(int(re.findall(r"Collected : (\d+)", res.stderr)[-1]))
+            runs = [flops.count(toggle, [sys.executable, __file__, "peer-once", which, "--calls", str(calls)])
+                    for calls in (1, 2)]
             cached.parent.mkdir(parents=True, exist_ok=True)
-            cached.write_text(f"{counts[1] - counts[0]}\n")
-        lines.append(f"nmpc_peer_{which}_callgrind {cached.read_text().strip()}")
+            cached.write_text(f"{runs[1][0] - runs[0][0]} {runs[1][1] - runs[0][1]}\n")
+        insns, fl = cached.read_text().split()
+        lines.append(f"nmpc_peer_{which}_callgrind {insns}")
+        lines.append(f"nmpc_peer_{which}_flops {fl}")
     out.write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
     return 0

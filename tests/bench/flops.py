@@ -41,7 +41,10 @@ def flops_of(mnemonic: str, operands: str) -> int:
 
 @lru_cache(maxsize=None)
 def disassembly(obj: str) -> dict[int, tuple[str, str]]:
-    """address -> (mnemonic, operands) of every instruction of an ELF object (its own addresses)."""
+    """address -> (mnemonic, operands) of every instruction of an ELF object (its own addresses); empty
+    for an object callgrind could not name ("???": code without a file, e.g. a trampoline)."""
+    if not Path(obj).is_file():
+        return {}
     out = subprocess.run(["objdump", "-d", "--no-show-raw-insn", obj], capture_output=True, text=True,
                          check=True).stdout
     table: dict[int, tuple[str, str]] = {}
