@@ -49,12 +49,10 @@ void ogk_i_nmpc_jx_times(const double *jx, const double *y, size_t stride,
 #define OGK_I_NMPC_MAXV_Z ((((size_t)OGK_NMPC_MAX_NODES + 1u) * (size_t)OGK_NMPC_MAX_NU) + 1u)
 
 /* Layout of one RK4 step of the tape (OGK_NMPC_TAPE_STEP doubles): the
- * step's starting sensitivity matrix S, sum_j b_j K_j (b = 1, 2, 2, 1),
- * then four stage records of OGK_I_NMPC_TAPE_STAGE doubles: stage state,
- * stage derivative k, cos/sin of the stage angle, the model's Jacobian,
- * k's sensitivity matrix. */
-#define OGK_I_NMPC_TAPE_KSUM ((size_t)OGK_NMPC_NX * OGK_I_NMPC_NCOL_Z)
-#define OGK_I_NMPC_TAPE_STAGE0 (2u * (size_t)OGK_NMPC_NX * OGK_I_NMPC_NCOL_Z)
+ * step's starting sensitivity matrix S, then four stage records of
+ * OGK_I_NMPC_TAPE_STAGE doubles: stage state, stage derivative k, cos/sin of
+ * the stage angle, the model's Jacobian, k's sensitivity matrix. */
+#define OGK_I_NMPC_TAPE_STAGE0 ((size_t)OGK_NMPC_NX * OGK_I_NMPC_NCOL_Z)
 #define OGK_I_NMPC_TAPE_X ((size_t)0u)
 #define OGK_I_NMPC_TAPE_K ((size_t)OGK_NMPC_NX)
 #define OGK_I_NMPC_TAPE_TRIG (2u * (size_t)OGK_NMPC_NX)
@@ -63,7 +61,7 @@ void ogk_i_nmpc_jx_times(const double *jx, const double *y, size_t stride,
 #define OGK_I_NMPC_TAPE_STAGE (OGK_I_NMPC_TAPE_KS + ((size_t)OGK_NMPC_NX * OGK_I_NMPC_NCOL_Z))
 #define OGK_I_NMPC_TAPE_STEP_Z (OGK_I_NMPC_TAPE_STAGE0 + (4u * OGK_I_NMPC_TAPE_STAGE))
 /* the same layout in the preprocessor's arithmetic, against ogk/nmpc.h's size */
-#if ((2u * OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS) \
+#if ((OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS) \
      + (4u * ((2u * OGK_NMPC_NX) + 2u + (OGK_NMPC_NX * OGK_NMPC_NX) + (OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS)))) \
     != OGK_NMPC_TAPE_STEP
 #error "OGK_NMPC_TAPE_STEP (ogk/nmpc.h) does not match the tape layout"

@@ -177,13 +177,6 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
                     }
                     s_mat[(i * NCOL) + col_h] += (inv_steps / 6.0) * k_sum;
                 }
-                if (tape_step != NULL) {
-                    /* sum_j b_j K_j again, for the second-order sweep only */
-                    for (i = 0u; i < (NX * NCOL); ++i) {
-                        tape_step[OGK_I_NMPC_TAPE_KSUM + i] = k_mat[0][i] + (2.0 * k_mat[1][i])
-                            + (2.0 * k_mat[2][i]) + k_mat[3][i];
-                    }
-                }
             }
         }
     }

@@ -38,22 +38,16 @@ static void jx_transpose_times(const double *jx, const double *a, double *out)
 }
 
 /* The cross term of a product of h with a stage derivative k (K = dk/dp):
- * hess[h][c] and hess[c][h] += scale (K^T a)_c, accumulated in the upper
- * triangle (the diagonal entry twice). */
+ * hess[h][c] and hess[c][h] += scale (K^T a)_c. Every such term lands in
+ * h's row and column, so they are summed in g_h over the interval and added
+ * to the upper triangle once (the diagonal entry twice). */
 static void add_h_cross(const double *k_sens, const double *a, double scale, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (K, adjoint, factor) in the order of the product; callers in this file */
-                        size_t col_h, size_t ncol, double *hess)
+                        size_t ncol, double *g_h)
 {
     size_t c;
     for (c = 0u; c < ncol; ++c) {
-        const double v = scale * ((k_sens[c] * a[0]) + (k_sens[NCOL + c] * a[1]) + (k_sens[(2u * NCOL) + c] * a[2])
-                                  + (k_sens[(3u * NCOL) + c] * a[3]) + (k_sens[(4u * NCOL) + c] * a[4]));
-        if (c < col_h) {
-            hess[(c * NCOL) + col_h] += v;
-        } else if (c > col_h) {
-            hess[(col_h * NCOL) + c] += v;
-        } else {
-            hess[(col_h * NCOL) + col_h] += 2.0 * v;
-        }
+        g_h[c] += scale * ((k_sens[c] * a[0]) + (k_sens[NCOL + c] * a[1]) + (k_sens[(2u * NCOL) + c] * a[2])
+                           + (k_sens[(3u * NCOL) + c] * a[3]) + (k_sens[(4u * NCOL) + c] * a[4]));
     }
 }
 
@@ -62,9 +56,11 @@ static void add_h_cross(const double *k_sens, const double *a, double scale, /* 
  * and s at U_{k+1}, the time row s at h and 1 at t_start; hz is the upper
  * triangle of the model's Hessian (ogk_i_nmpc_rhs_hess), whose structural
  * nonzeros are written out: m_a = (hz Z)_a for each argument a, then
- * sum_a Z_a^T m_a. theta and t have curvature only with attracting bodies. */
+ * sum_a Z_a^T m_a (the mass row's terms only where that row is not 0 when
+ * sparse_m). theta and t have curvature only with attracting bodies. */
 static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (model Hessian, state sensitivities, nu) as in the stage; its only caller is ogk_i_nmpc_shoot_hess */
-                                double s_frac, bool bodies, size_t ncol, double *hess)
+                                double s_frac, bool bodies, bool sparse_m, size_t ncol, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                                double *hess)
 {
     const size_t i_a = NX;                        /* alpha's z index and U_k's column */
     const size_t i_t = NX + (size_t)nu;           /* t's z index */
@@ -133,8 +129,19 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
         const double z_vr = row_vr[a];
         const double z_vt = row_vt[a];
         const double z_m = row_m[a];
-        for (c = a; c < ncol; ++c) {
-            hrow[c] += (z_r * m_r[c]) + (z_vr * m_vr[c]) + (z_vt * m_vt[c]) + (z_m * m_m[c]);
+        if (sparse_m) {
+            for (c = a; c < ncol; ++c) {
+                hrow[c] += (z_r * m_r[c]) + (z_vr * m_vr[c]) + (z_vt * m_vt[c]);
+            }
+            if (z_m != 0.0) {
+                for (c = a; c < ncol; ++c) {
+                    hrow[c] += z_m * m_m[c];
+                }
+            }
+        } else {
+            for (c = a; c < ncol; ++c) {
+                hrow[c] += (z_r * m_r[c]) + (z_vr * m_vr[c]) + (z_vt * m_vt[c]) + (z_m * m_m[c]);
+            }
         }
         if (bodies) {
             const double z_th = row_th[a];
@@ -177,16 +184,23 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
     double lambda[NX];
     double ybar[NX];
     double kbar[NX];
+    double kb[NX];
     double y_sens[NX * NCOL];
     double hz[NZ * NZ];
+    double g_h[NCOL];
     double u[OGK_NMPC_MAX_NU];
     const bool bodies = ncol > (col_h + 1u);
+    /* a constant engine without a throttle: m' = -mdot_max does not depend on
+     * z, so the mass row of Z is e_m plus its column h (m_0 - mdot t): the
+     * triangle adds its row only where it is not 0 */
+    const bool sparse_m = (cfg->power != OGK_NMPC_POWER_SOLAR) && (nu == 1u);
     uint32_t n;
     size_t i;
     size_t c;
 
     (void)memset(hess, 0, NCOL * NCOL * sizeof(double));
     (void)memcpy(lambda, w, sizeof(lambda));
+    (void)memset(g_h, 0, sizeof(g_h));
     for (n = steps; (n > 0u) && (n <= OGK_NMPC_MAX_RK4_STEPS); --n) {
         const double *rec_step = &tape[((size_t)n - 1u) * OGK_I_NMPC_TAPE_STEP_Z];
         const double *s_mat = rec_step;
@@ -195,24 +209,28 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
 
         (void)memcpy(lambda_next, lambda, sizeof(lambda));
         (void)memset(ybar, 0, sizeof(ybar));
-        add_h_cross(&rec_step[OGK_I_NMPC_TAPE_KSUM], lambda_next, inv_steps / 6.0, col_h, ncol, hess);
         for (j = 4u; j > 0u; --j) {
             const uint32_t js = j - 1u;
             const double *rec = &rec_step[OGK_I_NMPC_TAPE_STAGE0 + ((size_t)js * OGK_I_NMPC_TAPE_STAGE)];
             const double s_frac = (((double)n - 1.0) + c_off[js]) * inv_steps;
             const double t_stage = t_start + (s_frac * h);
-            /* x_{n+1} = x_n + (h / 6M) sum b_j k_j: the adjoint of k_j (its h
-             * cross term, summed over the stages, is added below) */
+            /* k_j enters x_{n+1} = x_n + (h / 6M) sum b_j k_j and y_{j+1} =
+             * x_n + c_{j+1} (h / M) k_j (ybar holds ybar_{j+1}): with
+             * kb = (b_j / 6) lambda_{n+1} + c_{j+1} ybar_{j+1}, its adjoint is
+             * kbar_j = (h / M) kb and both products' h cross terms are
+             * (1 / M) K_j^T kb */
             for (i = 0u; i < NX; ++i) {
-                kbar[i] = (dt / 6.0) * w_rk[js] * lambda_next[i];
+                kb[i] = (w_rk[js] / 6.0) * lambda_next[i];
             }
             if (js < 3u) {
-                /* y_{j+1} = x_n + c_{j+1} (h / M) k_j (ybar holds ybar_{j+1}) */
                 for (i = 0u; i < NX; ++i) {
-                    kbar[i] += c_off[js + 1u] * dt * ybar[i];
+                    kb[i] += c_off[js + 1u] * ybar[i];
                 }
-                add_h_cross(&rec[OGK_I_NMPC_TAPE_KS], ybar, c_off[js + 1u] * inv_steps, col_h, ncol, hess);
             }
+            for (i = 0u; i < NX; ++i) {
+                kbar[i] = dt * kb[i];
+            }
+            add_h_cross(&rec[OGK_I_NMPC_TAPE_KS], kb, inv_steps, ncol, g_h);
             /* Z_j's state rows: Y_j = S_n + c_j dt K_{j-1} (+ c_j / M k_{j-1} in column h) */
             if (js == 0u) {
                 (void)memcpy(y_sens, s_mat, sizeof(y_sens));
@@ -230,11 +248,21 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
                 u[i] = u0[i] + ((u1[i] - u0[i]) * s_frac);
             }
             ogk_i_nmpc_rhs_hess(cfg, nu, t_stage, &rec[OGK_I_NMPC_TAPE_X], u, &rec[OGK_I_NMPC_TAPE_TRIG], kbar, hz);
-            add_stage_curvature(hz, y_sens, nu, s_frac, bodies, ncol, hess);
+            add_stage_curvature(hz, y_sens, nu, s_frac, bodies, sparse_m, ncol, hess);
             jx_transpose_times(&rec[OGK_I_NMPC_TAPE_JX], kbar, ybar);
             for (i = 0u; i < NX; ++i) {
                 lambda[i] += ybar[i];
             }
+        }
+    }
+    /* the h cross terms into h's row and column (upper triangle) */
+    for (c = 0u; c < ncol; ++c) {
+        if (c < col_h) {
+            hess[(c * NCOL) + col_h] += g_h[c];
+        } else if (c > col_h) {
+            hess[(col_h * NCOL) + c] += g_h[c];
+        } else {
+            hess[(col_h * NCOL) + col_h] += 2.0 * g_h[c];
         }
     }
     /* the lower triangle mirrored */

@@ -88,11 +88,10 @@ extern "C" {
 #define OGK_NMPC_MAX_DIR (OGK_NMPC_NX + (2u * OGK_NMPC_MAX_NU) + 1u)
 /* Doubles the exact Hessian records per RK4 step of one subinterval (the
  * forward sweep's tape, read back by the second-order adjoint sweep): the
- * step's sensitivity matrix and the weighted sum of its stages' (each
- * 5 x (OGK_NMPC_MAX_DIR + 1)) and, per stage, its state (5), its derivative
- * k (5), cos/sin of its angle (2), the model's Jacobian (5 x 5) and k's
- * sensitivities (5 x (OGK_NMPC_MAX_DIR + 1)). */
-#define OGK_NMPC_TAPE_STEP ((2u * OGK_NMPC_NX * (OGK_NMPC_MAX_DIR + 1u)) \
+ * step's sensitivity matrix (5 x (OGK_NMPC_MAX_DIR + 1)) and, per stage, its
+ * state (5), its derivative k (5), cos/sin of its angle (2), the model's
+ * Jacobian (5 x 5) and k's sensitivities (5 x (OGK_NMPC_MAX_DIR + 1)). */
+#define OGK_NMPC_TAPE_STEP ((OGK_NMPC_NX * (OGK_NMPC_MAX_DIR + 1u)) \
     + (4u * ((2u * OGK_NMPC_NX) + 2u + (OGK_NMPC_NX * OGK_NMPC_NX) + (OGK_NMPC_NX * (OGK_NMPC_MAX_DIR + 1u)))))
 
 /* ogk_nmpc_config_t.objective */
