@@ -129,32 +129,17 @@ def python_timings(qps, reps: int):
     """Per QP: (t_kernel_cffi, t_daqp_py, t_qpoases, f_kernel, f_daqp, f_qpoases), ns and objectives."""
     import casadi
     import daqp
-    from ogk_bindings._ffi import ffi, lib
+    from ogk_bindings._ffi import lib
+    from ogk_bindings.qp import QpSolve
 
     INF = float(lib.OGK_QP_INF)
     rows = []
     for qp in qps:
         n, me, mi = qp.n, len(qp.b_eq), len(qp.b_in)
         # kernel through cffi, arrays and structs built once
-        keep = []
-
-        def arr(a):
-            if a.size == 0:
-                return ffi.NULL
-            buf = ffi.from_buffer("double[]", a)
-            keep.append(buf)
-            return buf
-
-        p = ffi.new("ogk_qp_problem_t *")
-        p.n, p.m_eq, p.m_in = n, me, mi
-        p.H, p.g = arr(qp.H), arr(qp.g)
-        p.A_eq, p.b_eq = arr(qp.A_eq), arr(qp.b_eq)
-        p.A_in, p.b_in = arr(qp.A_in), arr(qp.b_in)
-        p.lb, p.ub = arr(qp.lb), arr(qp.ub)
-        ws = ffi.new("ogk_qp_workspace_t *")
-        sol = ffi.new("ogk_qp_solution_t *")
-        t_k = cpu_median(lambda: lib.ogk_qp_solve(ws, p, sol), reps)
-        f_k = float(sol.objective)
+        q = QpSolve(qp.H, qp.g, qp.A_eq, qp.b_eq, qp.A_in, qp.b_in, qp.lb, qp.ub)
+        t_k = cpu_median(q.solve, reps)
+        f_k = float(q.solution.objective)
         # daqp.solve: bounds first (ms = n), then the rows; equalities by sense 5
         A = np.ascontiguousarray(np.vstack([qp.A_eq, qp.A_in]))
         bu = np.concatenate([np.where(qp.ub >= INF, 1e30, qp.ub), qp.b_eq, np.full(mi, 1e30)])

@@ -9,7 +9,8 @@ import casadi
 import numpy as np
 import pytest
 
-from ogk_bindings._ffi import ffi, lib
+from ogk_bindings._ffi import lib
+from ogk_bindings.qp import QpSolve
 
 INF = float(lib.OGK_QP_INF)
 
@@ -36,35 +37,9 @@ class QP:
 
     def kernel(self):
         """(status, x, y_eq, y_in, z_lb, z_ub, objective, iterations, n_active)."""
-        p = ffi.new("ogk_qp_problem_t *")
-        keep = []
-
-        def arr(a):
-            if a.size == 0:
-                return ffi.NULL
-            buf = ffi.from_buffer("double[]", a)
-            keep.append(buf)
-            return buf
-
-        p.n = self.n
-        p.m_eq = len(self.b_eq)
-        p.m_in = len(self.b_in)
-        p.H, p.g = arr(self.H), arr(self.g)
-        p.A_eq, p.b_eq = arr(self.A_eq), arr(self.b_eq)
-        p.A_in, p.b_in = arr(self.A_in), arr(self.b_in)
-        p.lb, p.ub = arr(self.lb), arr(self.ub)
-        ws = ffi.new("ogk_qp_workspace_t *")
-        sol = ffi.new("ogk_qp_solution_t *")
-        st = lib.ogk_qp_solve(ws, p, sol)
-        n, me, mi = self.n, len(self.b_eq), len(self.b_in)
-        def vec(c, k):
-            return np.array(ffi.unpack(c, k), dtype=float)
-
-        return dict(
-            status=st,
-            x=vec(sol.x, n), y_eq=vec(sol.y_eq, me), y_in=vec(sol.y_in, mi),
-            z_lb=vec(sol.z_lb, n), z_ub=vec(sol.z_ub, n), objective=sol.objective,
-            iterations=sol.iterations, n_active=sol.n_active)
+        q = QpSolve(self.H, self.g, self.A_eq, self.b_eq, self.A_in, self.b_in, self.lb, self.ub)
+        st = q.solve()
+        return dict(status=st, **q.result())
 
     def qpoases(self) -> tuple[np.ndarray, float, bool]:
         """x, objective and success of qpOASES (dense, tight tolerances)."""
