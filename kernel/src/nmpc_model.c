@@ -41,6 +41,34 @@ static void engine_limits(const ogk_nmpc_config_t *cfg, double r, engine_limits_
     }
 }
 
+/* Third body b seen from the spacecraft at (r, theta) and time t: D =
+ * phi_b(t) - theta, d = r_sc - r_b in the spacecraft's axes = (r - R cos D,
+ * -R sin D), and |d|^2 + eps^2 (eps the softening length). Shared by the
+ * acceleration and its Hessian so that both see the same body. */
+typedef struct {
+    double mu;   /* [LU^3/TU^2] */
+    double big_r; /* [LU] the body's orbit radius R */
+    double cd;   /* cos D */
+    double sd;   /* sin D */
+    double d_r;  /* [LU] */
+    double d_t;  /* [LU] */
+    double d2;   /* [LU^2] |d|^2 + eps^2 */
+} body_geom_t;
+
+static void body_geometry(const ogk_nmpc_config_t *cfg, uint32_t b, double t, double r, double theta, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (t, r, theta) in the model's order; its callers are body_accel and body_hess */
+                          body_geom_t *g)
+{
+    const double delta = (cfg->body_phase0[b] + (cfg->body_rate[b] * t)) - theta;
+    const double eps = cfg->body_softening[b];
+    g->mu = cfg->body_mu[b];
+    g->big_r = cfg->body_radius[b];
+    g->cd = cos(delta);
+    g->sd = sin(delta);
+    g->d_r = r - (g->big_r * g->cd);
+    g->d_t = -g->big_r * g->sd;
+    g->d2 = (g->d_r * g->d_r) + (g->d_t * g->d_t) + (eps * eps);
+}
+
 /* Acceleration of third body b in the spacecraft's (radial, circumferential)
  * axes: direct -mu d / |d|^3 with d = r_sc - r_b, and indirect -mu r_b / R^3
  * (the Sun-centred frame accelerates towards the body), |d|^2 + eps^2 in
@@ -52,15 +80,15 @@ static ogk_status body_accel(const ogk_nmpc_config_t *cfg, uint32_t b, double t,
                              double r, double theta, double *acc, double jac[2][3])
 {
     ogk_status st = OGK_OK;
-    const double mu_b = cfg->body_mu[b];
-    const double big_r = cfg->body_radius[b];
-    const double delta = (cfg->body_phase0[b] + (cfg->body_rate[b] * t)) - theta;
-    const double cd = cos(delta);
-    const double sd = sin(delta);
-    const double d_r = r - (big_r * cd);
-    const double d_t = -big_r * sd;
-    const double eps = cfg->body_softening[b];
-    const double d2 = (d_r * d_r) + (d_t * d_t) + (eps * eps);
+    body_geom_t geo;
+    body_geometry(cfg, b, t, r, theta, &geo);
+    const double mu_b = geo.mu;
+    const double big_r = geo.big_r;
+    const double cd = geo.cd;
+    const double sd = geo.sd;
+    const double d_r = geo.d_r;
+    const double d_t = geo.d_t;
+    const double d2 = geo.d2;
     const double ind = mu_b / (big_r * big_r);
 
     if (!(d2 > 1.0e-30)) {
@@ -255,15 +283,15 @@ static void engine_curvature(const ogk_nmpc_config_t *cfg, double r, double *thr
 static void body_hess(const ogk_nmpc_config_t *cfg, uint32_t b, double t, double r, double theta, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (t, r, theta) in body_accel's order; checked by central differences of the interval's gradient (test_nmpc.c) */
                       const double *kappa, double *out)
 {
-    const double mu_b = cfg->body_mu[b];
-    const double big_r = cfg->body_radius[b];
-    const double delta = (cfg->body_phase0[b] + (cfg->body_rate[b] * t)) - theta;
-    const double cd = cos(delta);
-    const double sd = sin(delta);
-    const double d_r = r - (big_r * cd);
-    const double d_t = -big_r * sd;
-    const double eps = cfg->body_softening[b];
-    const double rho2 = (d_r * d_r) + (d_t * d_t) + (eps * eps);
+    body_geom_t geo;
+    body_geometry(cfg, b, t, r, theta, &geo);
+    const double mu_b = geo.mu;
+    const double big_r = geo.big_r;
+    const double cd = geo.cd;
+    const double sd = geo.sd;
+    const double d_r = geo.d_r;
+    const double d_t = geo.d_t;
+    const double rho2 = geo.d2;
     const double rho = sqrt(rho2);
     const double k3 = mu_b / (rho2 * rho);
     const double k5 = 3.0 * k3 / rho2;
