@@ -39,6 +39,17 @@ static void mars_config(ogk_nmpc_config_t *c, uint32_t nodes)
     nmpc_fx_mars(c, nodes);
 }
 
+/* The solar-electric, throttled engine with Earth- and Mars-like bodies: every term of eqs. (11)-(14). */
+static void solar_two_bodies_config(ogk_nmpc_config_t *c)
+{
+    mars_config(c, 8u);
+    c->engine = OGK_NMPC_ENGINE_THROTTLED;
+    nmpc_fx_solar(c, 1.0000000002, 0.05);
+    c->n_bodies = 2u;
+    nmpc_fx_body(c, 0u, 3.0e-6, 1.0, -0.1, 1.0);
+    nmpc_fx_body(c, 1u, 3.2e-7, 1.52, 2.27, 0.53);
+}
+
 static void mars_guess(const ogk_nmpc_config_t *c, uint32_t nodes, double t_f, ogk_nmpc_plan_t *p)
 {
     nmpc_fx_mars_guess(c, nodes, t_f, p);
@@ -170,12 +181,7 @@ static void test_interval_sensitivities(void **state)
     double worst = 0.0;
     int col;
     (void)state;
-    mars_config(&c, 8u);
-    c.engine = OGK_NMPC_ENGINE_THROTTLED;
-    nmpc_fx_solar(&c, 1.0000000002, 0.05);
-    c.n_bodies = 2u;
-    nmpc_fx_body(&c, 0u, 3.0e-6, 1.0, -0.1, 1.0);
-    nmpc_fx_body(&c, 1u, 3.2e-7, 1.52, 2.27, 0.53);
+    solar_two_bodies_config(&c);
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_interval(&ctx, t0, h, x0, u0, u1, x1, fx, fu0, fu1, fh, ft), OGK_OK);
     for (col = 0; col < 11; ++col) {
@@ -287,12 +293,7 @@ static void test_interval_second_derivatives(void **state)
     double hess[11 * 11];
     (void)state;
     /* solar-electric, throttled, two third bodies: every entry of eq. (11)-(14)'s Hessian */
-    mars_config(&c, 8u);
-    c.engine = OGK_NMPC_ENGINE_THROTTLED;
-    nmpc_fx_solar(&c, 1.0000000002, 0.05);
-    c.n_bodies = 2u;
-    nmpc_fx_body(&c, 0u, 3.0e-6, 1.0, -0.1, 1.0);
-    nmpc_fx_body(&c, 1u, 3.2e-7, 1.52, 2.27, 0.53);
+    solar_two_bodies_config(&c);
     c.body_softening[1] = 0.01;
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     assert_true(check_interval_hess(2u, u0, u1) > 0.1);
