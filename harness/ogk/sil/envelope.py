@@ -5,7 +5,7 @@ Envelope (`ogk.campaign/1`, written atomically, NaN as null):
   options (what the runs depend on besides id and seed), seed, runs, workers, resumed_runs,
   failures (count), failure_reasons {reason: count}, failed_runs [{run_id, reason}],
   acceptance (the criterion as the scenario states it),
-  quantities {key: {n, mean, std, worst: {run_id, value}}}  (worst: the largest |value|),
+  quantities {key: {n, mean, std, worst: {run_id, value}}}  (worst: the largest |value|, the lowest run id on a tie),
   paper (the paper's columns beside ours, only when the scenario carries them),
   per_run_table (the Parquet file's name), timing {wall_s, cpu_s}, target ("host" or "m7"),
   pil (a target campaign only: worst case per entry point, host vs target; ogk.sil.target_summary)
@@ -52,8 +52,8 @@ def _number(value: Any) -> float | None:
 
 
 def quantity_summary(records: Sequence[Record], keys: Sequence[str]) -> dict[str, Any]:
-    """Mean, sample std (ddof 1) and the worst run (largest |value|) of each key over the runs
-    where it is a finite number."""
+    """Mean, sample std (ddof 1) and the worst run (largest |value|; of equal ones, the lowest run id) of
+    each key over the runs where it is a finite number."""
     out: dict[str, Any] = {}
     for key in keys:
         pairs = [(int(r["run_id"]), v) for r in records
