@@ -7,6 +7,12 @@ import numpy as np
 import pytest
 
 
+def pytest_configure(config: pytest.Config) -> None:
+    """The `req` marker: the requirements of docs/requirements.md a test verifies (collected by
+    tests/trace/check_trace.py from the source, `make trace`; pytest itself only registers it)."""
+    config.addinivalue_line("markers", "req(*ids): requirements verified (OGK-XXX-NNN, docs/requirements.md)")
+
+
 @pytest.fixture
 def rng() -> np.random.Generator:
     """Fixed seed: every run checks the same random cases (reproducible failures)."""

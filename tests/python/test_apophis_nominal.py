@@ -150,6 +150,7 @@ def reintegrated(stored: dict):
 
 
 # ---------------------------------------------------------------- scenario
+@pytest.mark.req("OGK-MPSP-011")
 def test_scenario_units_and_errata(scenario) -> None:
     units = scenario.units
     problem = normalised_problem(scenario)
@@ -173,6 +174,7 @@ def test_scenario_units_and_errata(scenario) -> None:
 
 
 # ---------------------------------------------------------------- stored nominal, independent checks
+@pytest.mark.req("OGK-MPSP-011")
 def test_nominal_final_mass_and_structure(reintegrated) -> None:
     model, arcs = reintegrated
     mass_kg = final_state(arcs)[6] * model.mass_unit_kg
@@ -182,11 +184,13 @@ def test_nominal_final_mass_and_structure(reintegrated) -> None:
     assert throttles[0] == 1.0 and throttles[-1] == 1.0
 
 
+@pytest.mark.req("OGK-MPSP-011")
 def test_nominal_is_an_extremal(reintegrated) -> None:
     model, arcs = reintegrated
     assert_extremal(model, arcs)
 
 
+@pytest.mark.req("OGK-MPSP-011")
 def test_stored_switch_times_reproduced(reintegrated, stored: dict) -> None:
     _, arcs = reintegrated
     mine = np.array([a[0] for a in arcs[1:]])
@@ -195,6 +199,7 @@ def test_stored_switch_times_reproduced(reintegrated, stored: dict) -> None:
     assert np.max(np.abs(mine - theirs)) < 1e-7                     # TU (~0.5 s)
 
 
+@pytest.mark.req("OGK-MPSP-011")
 def test_shooting_jacobian_matches_finite_differences(scenario, stored: dict) -> None:
     """Variational equations with the switch jump of eq. (24) vs central differences."""
     problem = normalised_problem(scenario)
@@ -214,6 +219,7 @@ def test_shooting_jacobian_matches_finite_differences(scenario, stored: dict) ->
     assert np.max(np.abs(jac - fd)) < 1e-5 * np.max(np.abs(fd))
 
 
+@pytest.mark.req("OGK-MPSP-011")
 def test_load_solution_residual(scenario) -> None:
     solution = indirect.load_solution(scenario)
     assert np.linalg.norm(solution.residual) < 1e-9
@@ -221,6 +227,7 @@ def test_load_solution_residual(scenario) -> None:
 
 
 # ---------------------------------------------------------------- perturbed problem, warm start
+@pytest.mark.req("OGK-MPSP-011")
 def test_warm_started_perturbed_solution_is_an_extremal(scenario) -> None:
     nominal = indirect.load_solution(scenario)
     case = initial_state_case(scenario, 1.0)
@@ -240,6 +247,7 @@ def nominal_control(scenario):
     return nominal, t, lam_v
 
 
+@pytest.mark.req("OGK-MPSP-011", "OGK-MPSP-007")
 def test_mpsp_grid(scenario, nominal_control) -> None:
     """Eq. (18): no interval longer than h_max, every switch time a node."""
     nominal, t, _ = nominal_control
@@ -249,6 +257,7 @@ def test_mpsp_grid(scenario, nominal_control) -> None:
     assert all(np.min(np.abs(t - ts)) < 1e-12 for ts in nominal.switch_times)
 
 
+@pytest.mark.req("OGK-MPSP-011", "OGK-MPSP-002")
 def test_fourier_basis_fit(scenario, nominal_control) -> None:
     """Measured fits of the nominal lambda_v at order 15 (31 weights per axis), see the docs."""
     _, t, lam_v = nominal_control
@@ -264,6 +273,7 @@ def test_fourier_basis_fit(scenario, nominal_control) -> None:
     assert cosine_2tf.condition_number < 2.0
 
 
+@pytest.mark.req("OGK-MPSP-011")
 def test_fitted_control_flies_close_to_target(scenario, nominal_control) -> None:
     """Eq. (16) flown with U = P eps_0 and the nominal lambda_m0 lands well inside Delta_max."""
     nominal, _, _ = nominal_control
@@ -276,6 +286,7 @@ def test_fitted_control_flies_close_to_target(scenario, nominal_control) -> None
     assert np.linalg.norm(delta_y_printed) > 0.1       # the measure tells the bases apart
 
 
+@pytest.mark.req("OGK-MPSP-011")
 def test_initial_weights_eq50(scenario, nominal_control) -> None:
     nominal, t, lam_v = nominal_control
     weights = fourier.initial_weights(scenario, nominal)
@@ -297,6 +308,7 @@ def test_initial_weights_eq50(scenario, nominal_control) -> None:
 
 
 # ---------------------------------------------------------------- slow: regenerate from scratch
+@pytest.mark.req("OGK-MPSP-011")
 @pytest.mark.slow
 def test_regenerate_nominal_from_scratch(scenario, stored: dict) -> None:
     solution = indirect.solve_fuel_optimal(scenario, None)
@@ -309,6 +321,7 @@ def test_regenerate_nominal_from_scratch(scenario, stored: dict) -> None:
 REFERENCES_FILE = REPO / "host" / "ogk_host" / "low_thrust_transfer" / "data" / "perturbed_optima.json"
 
 
+@pytest.mark.req("OGK-MPSP-011")
 @pytest.mark.parametrize("label", ["kappa=-2.5", "cube vertex 8", "eta=-10%"])
 def test_stored_perturbed_optimum_is_an_extremal(label: str) -> None:
     """Hard cases of `python -m ogk_host.low_thrust_transfer references`: two shallow arcs of ~4 days whose S dips
@@ -326,6 +339,7 @@ def test_stored_perturbed_optimum_is_an_extremal(label: str) -> None:
     assert mine.shape == stored_switches.shape and np.max(np.abs(mine - stored_switches)) < 1e-7
 
 
+@pytest.mark.req("OGK-MPSP-011")
 def test_short_arcs_found_with_and_without_variational_equations(scenario) -> None:
     """The STM-augmented integration takes longer steps; the extremum events of S must still catch a
     zero pair inside one step (this once lost the 4-day arcs of kappa = -2.5 and stalled Newton)."""

@@ -29,6 +29,8 @@ REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "tests" / "bench"))
 from nmpc_peers import FatropJit, IpoptJit  # noqa: E402
 
+pytestmark = pytest.mark.req("OGK-NMPC-003")
+
 MU_SUN = 1.32712440018e20
 R_T = 1.38 * 1.49597871e11
 NODES = 8

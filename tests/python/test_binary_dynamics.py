@@ -69,6 +69,7 @@ def _outside_points(model: Model, rng: np.random.Generator, n: int) -> np.ndarra
 
 # ---------------------------------------------------------------------------------------- scenario and units
 
+@pytest.mark.req("OGK-BLT-001")
 def test_scenario_carries_table_1_as_printed(scenario) -> None:
     raw = tomllib.loads(SCENARIO.read_text())
     for (section, key), value in PRINTED.items():
@@ -80,6 +81,7 @@ def test_scenario_carries_table_1_as_printed(scenario) -> None:
     assert isinstance(scenario.paper_results, dict)
 
 
+@pytest.mark.req("OGK-BLT-001")
 def test_units_and_the_gm_mismatch(scenario) -> None:
     u = scenario.units
     assert u.length_m == 2550.0
@@ -93,6 +95,7 @@ def test_units_and_the_gm_mismatch(scenario) -> None:
     assert 0.0020 < u.gm_mismatch < 0.0022         # +0.21 % (docs/blt-ground.md)
 
 
+@pytest.mark.req("OGK-BLT-001")
 def test_ellipsoids_weigh_table_1_masses(scenario) -> None:
     s, g = scenario.system, scenario.gravity
     for body, mass, rho in ((g.primary, s.primary_mass_kg, s.primary_density_kg_m3),
@@ -104,6 +107,7 @@ def test_ellipsoids_weigh_table_1_masses(scenario) -> None:
     assert g.secondary.c22 > 0.0                                # long axis along x, towards the primary
 
 
+@pytest.mark.req("OGK-BLT-001")
 def test_kernel_model_keys_and_values(scenario) -> None:
     f_n = 0.024
     km = kernel_model(scenario, f_n, srp=True, sun=True, step_max=0.02)
@@ -142,6 +146,7 @@ def _rewrite(tmp_path: Path, old: str, new: str) -> Path:
     return p
 
 
+@pytest.mark.req("OGK-BLT-001", "OGK-HAR-005")
 @pytest.mark.parametrize("old,new,key", [
     ("separation_m = 2550.0", "separation_m = 2550.0\nseparaton_m = 1.0", "system.separaton_m"),
     ("separation_m = 2550.0", "separation_m = -2550.0", "system.separation_m"),
@@ -161,6 +166,7 @@ def test_loader_names_the_key(tmp_path: Path, old: str, new: str, key: str) -> N
     assert err.value.key == key, str(err.value)
 
 
+@pytest.mark.req("OGK-BLT-001", "OGK-HAR-006")
 def test_transfers_and_paper_results_pass_through(tmp_path: Path) -> None:
     extra = ('\n[transfers.l1_to_l2]\nkind = "bmp"\nthrust_n = 0.024\nsegments = [["burn", 1.0], ["coast", 2.0]]\n'
              '\n[paper_results]\nfig10d_time_h = 5.88\nfig10d_fuel_kg = 0.01628\nnote = "Fig. 10d"\n')
@@ -182,6 +188,7 @@ def test_transfers_and_paper_results_pass_through(tmp_path: Path) -> None:
 
 # ---------------------------------------------------------------------------------------- gravity
 
+@pytest.mark.req("OGK-BLT-001")
 def test_gravity_is_the_gradient_of_the_potential(model: Model, rng: np.random.Generator) -> None:
     pts = _outside_points(model, rng, 40)
     h = 1e-6
@@ -190,6 +197,7 @@ def test_gravity_is_the_gradient_of_the_potential(model: Model, rng: np.random.G
     assert np.max(np.abs(dyn.gravity(model, pts) - fd)) < 1e-8
 
 
+@pytest.mark.req("OGK-BLT-001")
 def test_gravity_gradient_is_the_derivative_of_gravity(model: Model, rng: np.random.Generator) -> None:
     pts = _outside_points(model, rng, 40)
     h = 1e-6
@@ -202,6 +210,7 @@ def test_gravity_gradient_is_the_derivative_of_gravity(model: Model, rng: np.ran
     assert np.max(np.abs(np.trace(hess, axis1=-2, axis2=-1))) < 1e-11
 
 
+@pytest.mark.req("OGK-BLT-001")
 def test_degree2_potential_is_eq_7(model: Model, rng: np.random.Generator) -> None:
     """The Cartesian form against eq. (7) with P20 = (3 sin^2 d - 1)/2, P22 = 3 cos^2 d, longitude lambda."""
     pts = _outside_points(model, rng, 20)
@@ -238,6 +247,7 @@ def _ellipsoid_potential(axes: tuple[float, float, float], p: np.ndarray) -> flo
     return 0.75 * val
 
 
+@pytest.mark.req("OGK-BLT-001")
 def test_ellipsoid_c20_c22_match_the_exact_ellipsoid(scenario) -> None:
     """Far from the secondary's ellipsoid (8 equal-volume radii) the exact potential minus GM/r is its
     degree-2 term to within the degree-4 remainder (< 3 % of the quadrupole). The sphere's potential is exactly GM/r."""
@@ -256,6 +266,7 @@ def test_ellipsoid_c20_c22_match_the_exact_ellipsoid(scenario) -> None:
         assert abs(deg2 - exact) < 0.03 * scale, direction
 
 
+@pytest.mark.req("OGK-BLT-001")
 def test_fast_field_equals_the_vectorised_functions(model: Model, rng: np.random.Generator) -> None:
     field = GravityField(model)
     for p in _outside_points(model, rng, 10):
@@ -265,6 +276,7 @@ def test_fast_field_equals_the_vectorised_functions(model: Model, rng: np.random
         assert np.array_equal(dyn.gravity_derivative(model, y[:6]), dyn.state_derivative(model, 0.0, y[:6]))
 
 
+@pytest.mark.req("OGK-BLT-001")
 def test_jacobian_is_the_derivative_of_the_vector_field(model: Model, rng: np.random.Generator) -> None:
     h = 1e-6
     for p in _outside_points(model, rng, 5):
@@ -276,6 +288,7 @@ def test_jacobian_is_the_derivative_of_the_vector_field(model: Model, rng: np.ra
 
 # ---------------------------------------------------------------------------------------- perturbations
 
+@pytest.mark.req("OGK-BLT-001")
 def test_solar_tide_is_eq_10(scenario) -> None:
     m = model_from_scenario(scenario, srp=True, sun=True)
     d_lu = scenario.sun.distance_m / scenario.units.length_m
@@ -293,6 +306,7 @@ def test_solar_tide_is_eq_10(scenario) -> None:
         assert np.dot(srp, s_hat) == pytest.approx(-m.srp_accel / 0.8, rel=1e-15)   # away from the Sun
 
 
+@pytest.mark.req("OGK-BLT-001", "OGK-BLT-008")
 def test_blt_thrust_and_closed_form_mass(scenario) -> None:
     m = model_from_scenario(scenario, 0.024)
     a, b = np.array([1.0, -2.0, 0.5]), np.array([0.3, 0.1, -0.4])
@@ -307,6 +321,7 @@ def test_blt_thrust_and_closed_form_mass(scenario) -> None:
 
 # ---------------------------------------------------------------------------------------- Jacobi constant
 
+@pytest.mark.req("OGK-BLT-001")
 def test_jacobi_conserved_gravity_only_not_with_srp(scenario, model: Model) -> None:
     x0 = np.array([1.168, 0.0, 0.01, 0.0, 0.313, 0.0])      # near the L2 Lyapunov orbit: no impact in 3 TU
     sol = solve_ivp(lambda t, x: dyn.state_derivative(model, t, x), (0.0, 3.0), x0, method="DOP853",
@@ -326,6 +341,7 @@ CHAIN = [("burn", [1.0, 0.2, 0.1], [-0.3, 0.5, 0.0], 0.4), ("coast", 1.0),
          ("burn", [0.0, 1.0, 0.0], [0.2, 0.0, -0.1], 0.3)]
 
 
+@pytest.mark.req("OGK-BLT-002")
 def test_reference_forward_then_backward_returns_the_start(scenario) -> None:
     m = Model.from_dict(kernel_model(scenario, 0.024, srp=True, sun=True, step_max=0.01))
     x0 = np.array([0.66, 0.0, 0.0, 0.0, 0.5, 0.0])
@@ -339,6 +355,7 @@ def test_reference_forward_then_backward_returns_the_start(scenario) -> None:
     assert np.allclose(back.interfaces[::-1], fwd.interfaces, atol=1e-10)
 
 
+@pytest.mark.req("OGK-BLT-002")
 def test_reference_closest_approach_and_impact(scenario) -> None:
     m = Model.from_dict(kernel_model(scenario, 0.024, srp=True, sun=True, step_max=0.01))
     x0 = np.array([0.66, 0.0, 0.0, 0.0, 0.5, 0.0])
@@ -365,6 +382,7 @@ def test_reference_closest_approach_and_impact(scenario) -> None:
     assert hit.closest_approach[1] == pytest.approx(m.body_radius[1], abs=1e-9)
 
 
+@pytest.mark.req("OGK-BLT-002", "OGK-HAR-005")
 def test_reference_rejects_bad_segments(model: Model) -> None:
     x0 = np.array([0.66, 0.0, 0.0, 0.0, 0.5, 0.0])
     for bad in ([("coast", -1.0)], [("burn", [1, 0], [0, 0, 0], 1.0)], [("glide", 1.0)], [("burn", [1, 0, 0], 1.0)]):

@@ -35,6 +35,8 @@ from ogk_host.binary.orbits import (collinear_points, continue_family, correct_o
                                     scenario_orbit)
 from ogk_host.binary.scenario import load_scenario
 
+pytestmark = pytest.mark.req("OGK-BLT-009")
+
 SCENARIO = Path(__file__).resolve().parents[2] / "scenarios" / "moshup.toml"
 MU_EM = 0.01215058560962404
 EM = Model(mu=MU_EM)

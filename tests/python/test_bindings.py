@@ -106,6 +106,7 @@ def _resolved(value: str) -> str:
     return value
 
 
+@pytest.mark.req("OGK-HAR-010")
 def test_scan_found_the_api() -> None:
     """The scan itself works (guards against a regex that silently matches nothing)."""
     names = {n for _, _, n in FUNCTIONS}
@@ -128,6 +129,7 @@ MOVED = {
 }
 
 
+@pytest.mark.req("OGK-HAR-010")
 def test_test_headers_found() -> None:
     """Each test header is scanned and holds (at least) what moved into it."""
     names = {h.name for h in TEST_HEADERS}
@@ -136,6 +138,7 @@ def test_test_headers_found() -> None:
         assert {n for _, n in _functions(h)} >= MOVED.get(h.name, set()), h.name
 
 
+@pytest.mark.req("OGK-HAR-010")
 @pytest.mark.parametrize("header", TEST_HEADERS, ids=[h.name for h in TEST_HEADERS])
 def test_test_entry_points_not_public(header: Path) -> None:
     """A test entry point is declared by its test header only, and the law's public header
@@ -149,6 +152,7 @@ def test_test_entry_points_not_public(header: Path) -> None:
     assert f"ogk/internal/{header.name}" in public_header.read_text(), public_header.name
 
 
+@pytest.mark.req("OGK-HAR-010")
 @pytest.mark.parametrize("header,ret,name", FUNCTIONS, ids=[f[2] for f in FUNCTIONS])
 def test_function_reachable(header: str, ret: str, name: str) -> None:
     assert hasattr(lib, name), f"{header}: {name} missing from the bindings"
@@ -156,17 +160,20 @@ def test_function_reachable(header: str, ret: str, name: str) -> None:
     assert ffi.typeof(getattr(lib, name)).result is ffi.typeof("ogk_status")
 
 
+@pytest.mark.req("OGK-HAR-010")
 @pytest.mark.parametrize("header,name,fields", STRUCTS, ids=[s[1] for s in STRUCTS])
 def test_struct_fields(header: str, name: str, fields: list[str]) -> None:
     have = [f for f, _ in ffi.typeof(name).fields]
     assert have == fields, f"{header}: {name} fields differ (header {fields}, bindings {have})"
 
 
+@pytest.mark.req("OGK-HAR-010")
 @pytest.mark.parametrize("header,name", ENUMERATORS, ids=[e[1] for e in ENUMERATORS])
 def test_enumerator_readable(header: str, name: str) -> None:
     assert isinstance(getattr(lib, name), int), f"{header}: {name}"
 
 
+@pytest.mark.req("OGK-HAR-010")
 @pytest.mark.parametrize("header,name,value", MACROS, ids=[m[1] for m in MACROS])
 def test_macro_readable(header: str, name: str, value: str) -> None:
     v = getattr(lib, name)
@@ -183,6 +190,7 @@ def test_macro_readable(header: str, name: str, value: str) -> None:
             assert v == int(value.rstrip("uUlL"), 0), f"{header}: {name}"
 
 
+@pytest.mark.req("OGK-HAR-010", "OGK-CORE-019")
 def test_thrust_cmd_wrapper_covers_the_struct() -> None:
     """kernel.ThrustCmd carries every field of ogk_thrust_cmd_t through to_c / from_c, and Frame
     is ogk_frame_t (the typed wrapper every law's thrust_cmd(t) returns)."""

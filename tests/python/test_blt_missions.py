@@ -210,6 +210,7 @@ def _orbit(path: Path, name: str) -> Any:
     return scenario_orbit(load_scenario(path), name)
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-BLT-010")
 @pytest.mark.parametrize("mission", MISSIONS)
 def test_scenario_is_the_published_system_without_paper_results(missions: dict[str, Path], mission: str) -> None:
     sc = load_scenario(missions[mission])
@@ -221,6 +222,7 @@ def test_scenario_is_the_published_system_without_paper_results(missions: dict[s
     assert abs(sc.units.gm_mismatch) < 0.05
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-BLT-009")
 @pytest.mark.parametrize("halo", ("l1_halo_south", "l2_halo_south"))
 @pytest.mark.parametrize("mission", MISSIONS)
 def test_halo_orbits_are_periodic_in_our_own_propagation(missions: dict[str, Path], mission: str,
@@ -256,6 +258,7 @@ def _strict_json(path: Path) -> dict[str, Any]:
     return doc
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-BLT-010")
 @pytest.mark.parametrize("kind", ("lyapunov", "halo"))
 @pytest.mark.parametrize("mission", MISSIONS)
 def test_ogk_run_converges_and_our_propagation_confirms(missions: dict[str, Path], mission: str, kind: str,
@@ -288,6 +291,7 @@ def test_ogk_run_converges_and_our_propagation_confirms(missions: dict[str, Path
           f"fuel {doc['fuel_g']:.3f} g, |e| kernel {doc['final_error']:.3e}, ours (DOP853) {err:.3e}")
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-BLT-010")
 @pytest.mark.parametrize("mission", MISSIONS)
 def test_ogk_mc_runs_without_paper_data(missions: dict[str, Path], mission: str, tmp_path: Path) -> None:
     out = tmp_path / "mc.json"
@@ -304,11 +308,13 @@ def test_ogk_mc_runs_without_paper_data(missions: dict[str, Path], mission: str,
     assert level["summary"]["hybrid"]["converged"] >= 1
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-HAR-008")
 def test_the_family_has_no_tables(missions: dict[str, Path]) -> None:
     r = _ogk("tables", str(missions["fg3"]))
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "has no `ogk tables`" in r.stderr
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-HAR-005")
 def test_an_orbit_that_hits_a_body_is_one_line(tmp_path: Path) -> None:
     """A Lyapunov amplitude beyond the distance from L1 to Dimorphos' impact sphere: exit 2, one line naming
     the orbit, not a scipy traceback."""
@@ -320,6 +326,7 @@ def test_an_orbit_that_hits_a_body_is_one_line(tmp_path: Path) -> None:
     assert r.stderr.count("\n") == 1 and "[orbits.l1_lyapunov]" in r.stderr and "impact sphere" in r.stderr
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-BLT-009")
 @pytest.mark.parametrize("az_m", (20.0, 60.0))
 def test_didymos_halos_across_the_amplitudes_that_used_to_fail(missions: dict[str, Path], az_m: float) -> None:
     """The failure this file was written for: every Didymos halo of Az 20-60 m ended in a scipy traceback in

@@ -44,6 +44,7 @@ def _check_converged(d: T.Design, tol: float) -> None:
         assert ref.closest_approach[i] > d.model.body_radius[i]
 
 
+@pytest.mark.req("OGK-BLT-010", "OGK-BLT-004")
 @pytest.mark.parametrize("corrector", ("lm", "hybrid"))
 @pytest.mark.parametrize("name", SINGLE)
 def test_single_burn_converges_with_the_damped_correctors(name: str, corrector: str) -> None:
@@ -52,6 +53,7 @@ def test_single_burn_converges_with_the_damped_correctors(name: str, corrector: 
     _check_converged(designed(name, corrector), 1e-6)
 
 
+@pytest.mark.req("OGK-BLT-010", "OGK-BLT-004")
 @pytest.mark.parametrize("name", ("l2_to_l1_lyapunov", "l1_to_l2_lyapunov", "l1_to_l2_halo"))
 def test_single_burn_converges_with_plain_nrpc(name: str) -> None:
     d = designed(name, "nrpc")
@@ -59,6 +61,7 @@ def test_single_burn_converges_with_plain_nrpc(name: str) -> None:
     assert d.report.iterations <= 40
 
 
+@pytest.mark.req("OGK-BLT-010")
 def test_single_burn_figures_are_of_the_papers_order() -> None:
     """The paper's 24 mN L2 -> L1 halo single burn: 190 min and 13.64 g (sec. IV.B). Our orbits' amplitudes
     are not the paper's (it prints none), so only the order is asserted: within 25 %; and fuel = mdot T."""
@@ -71,6 +74,7 @@ def test_single_burn_figures_are_of_the_papers_order() -> None:
     assert fig["fuel_g"] == pytest.approx(mdot * fig["burn_time_s"] * 1e3, rel=1e-9)
 
 
+@pytest.mark.req("OGK-BLT-010")
 @pytest.mark.parametrize("corrector", ("nrpc", "lm", "hybrid"))
 def test_ump_transfer_of_table3_converges(corrector: str) -> None:
     """Done-when: the UMP burn-coast-burn transfer used for Table 3 converges (bilateral arcs, a free node)."""
@@ -79,6 +83,7 @@ def test_ump_transfer_of_table3_converges(corrector: str) -> None:
     _check_converged(d, 1e-6)
 
 
+@pytest.mark.req("OGK-BLT-010")
 def test_bmp_transfer_converges() -> None:
     """BMPIG (eqs. 36-43) L1 -> L2 Lyapunov through x = 1 - mu: three burns, two coasts, one free node."""
     d = designed("l1_to_l2_lyapunov_bmp", "hybrid")
@@ -88,6 +93,7 @@ def test_bmp_transfer_converges() -> None:
     assert d.report.burn_time < 0.5 * single.report.burn_time   # the manifolds do most of the work
 
 
+@pytest.mark.req("OGK-BLT-010")
 def test_halo_bmp_of_fig_11b_converges() -> None:
     """Fig. 11b, L1 halo -> L2 halo by bilateral manifold patching ([transfers.l1_to_l2_halo_bmp] of
     moshup.toml): at the Lyapunov BMP's d = 0.05 VU every manifold of the L1 halo hits a body before the cut
@@ -103,6 +109,7 @@ def test_halo_bmp_of_fig_11b_converges() -> None:
     assert fig["flight_time_s"] > 3.0 * fig["burn_time_s"]
 
 
+@pytest.mark.req("OGK-BLT-010")
 @pytest.mark.parametrize("name", ("l2_to_l1_halo", "l1_to_l2_halo"))
 def test_halo_single_burns_converge_in_the_point_mass_model(name: str, tmp_path: Path) -> None:
     """[solver] gravity = "point-mass": the direct solve stalls (L2 -> L1) or its guess grazes Beta (L1 -> L2);
@@ -121,6 +128,7 @@ def test_halo_single_burns_converge_in_the_point_mass_model(name: str, tmp_path:
     assert abs(fig["burn_time_s"] / 11400.0 - 1.0) < 0.25 and abs(fig["fuel_g"] / 13.64 - 1.0) < 0.25
 
 
+@pytest.mark.req("OGK-BLT-002")
 def test_kernel_propagation_matches_dop853() -> None:
     """The kernel's RK4 (2e-3 TU steps) against DOP853 on the converged L2 -> L1 Lyapunov burn, forward."""
     d = designed("l2_to_l1_lyapunov", "lm")
@@ -132,6 +140,7 @@ def test_kernel_propagation_matches_dop853() -> None:
     assert np.max(np.abs(x_kernel - ref.state)) < 1e-9
 
 
+@pytest.mark.req("OGK-BLT-010")
 def test_monte_carlo_draws_are_reproducible_and_bounded() -> None:
     d = designed("circle_to_l2_ump", "nrpc")
     nom = Nominal(model=d.model, layout=d.guess.layout, transfer=d.transfer, circle_radius=4000.0 / 2550.0,
@@ -151,6 +160,7 @@ def _ogk(*args: str) -> subprocess.CompletedProcess[str]:
                           cwd=REPO, timeout=600)
 
 
+@pytest.mark.req("OGK-BLT-010", "OGK-HAR-002")
 def test_ogk_blt_writes_json_and_plots(tmp_path: Path) -> None:
     r = _ogk("blt", "moshup", "--transfer", "l1_to_l2_lyapunov", "--json", str(tmp_path / "t.json"),
              "--plots", str(tmp_path / "p"))
@@ -164,6 +174,7 @@ def test_ogk_blt_writes_json_and_plots(tmp_path: Path) -> None:
                                                                    "l1_to_l2_lyapunov_synodic.png"]
 
 
+@pytest.mark.req("OGK-BLT-010", "OGK-HAR-002")
 def test_ogk_mc_small_campaign(tmp_path: Path) -> None:
     r = _ogk("mc", "moshup", "--perturbation", "20", "--runs", "6", "--seed", "4242", "--workers", "1",
              "--json", str(tmp_path / "mc.json"))
@@ -184,6 +195,7 @@ def test_ogk_mc_small_campaign(tmp_path: Path) -> None:
     assert "80.51" in r.stdout        # Table 3's 20 % figure printed beside ours
 
 
+@pytest.mark.req("OGK-HAR-005")
 @pytest.mark.parametrize("args", (("blt", "moshup", "--transfer", "nope", "--json", "/tmp/x.json"),
                                   ("mc", "moshup", "--perturbation", "0", "--json", "/tmp/x.json")))
 def test_bad_input_exits_2(args: tuple[str, ...]) -> None:

@@ -86,6 +86,7 @@ def ogk(*args: str, timeout: float = 600.0) -> subprocess.CompletedProcess[str]:
     return subprocess.run([*OGK, *args], capture_output=True, text=True, timeout=timeout)
 
 
+@pytest.mark.req("OGK-HAR-001", "OGK-HAR-002")
 @pytest.mark.parametrize("family", FAMILIES)
 def test_ogk_mc_writes_envelope_and_table_and_replay_is_bit_exact(family, tmp_path):
     scenario, _ = FAMILIES[family]
@@ -118,6 +119,7 @@ def test_ogk_mc_writes_envelope_and_table_and_replay_is_bit_exact(family, tmp_pa
     assert rep.returncode in (0, 1) and doc["mission"] in rep.stdout, rep.stderr
 
 
+@pytest.mark.req("OGK-HAR-001")
 @pytest.mark.parametrize("family", FAMILIES)
 def test_records_do_not_depend_on_workers_or_chunks(family):
     plan = plan_of(family)
@@ -129,6 +131,7 @@ def test_records_do_not_depend_on_workers_or_chunks(family):
     assert same(without_timing(alone.records), without_timing(one.records[3:4]))
 
 
+@pytest.mark.req("OGK-HAR-003")
 @pytest.mark.parametrize("family", FAMILIES)
 def test_a_run_that_raises_in_a_worker_aborts_naming_runs_and_status(family):
     def fault(i):
@@ -141,6 +144,7 @@ def test_a_run_that_raises_in_a_worker_aborts_naming_runs_and_status(family):
     assert err.value.status is not None
 
 
+@pytest.mark.req("OGK-HAR-003")
 @pytest.mark.parametrize("family", FAMILIES)
 def test_a_killed_worker_is_reported_with_its_runs(family):
     def fault(i):
@@ -152,6 +156,7 @@ def test_a_killed_worker_is_reported_with_its_runs(family):
     assert err.value.run_ids == [4, 5] and "SIGKILL" in err.value.reason
 
 
+@pytest.mark.req("OGK-HAR-003")
 @pytest.mark.parametrize("family", FAMILIES)
 def test_watchdog_kills_a_hung_chunk(family):
     def fault(i):
@@ -165,6 +170,7 @@ def test_watchdog_kills_a_hung_chunk(family):
     assert time.perf_counter() - start < 30.0
 
 
+@pytest.mark.req("OGK-HAR-004")
 @pytest.mark.parametrize("family", FAMILIES)
 def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(family, tmp_path):
     plan = plan_of(family)
@@ -184,6 +190,7 @@ def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(fa
     assert same(without_timing(resumed.records), without_timing(whole.records))
 
 
+@pytest.mark.req("OGK-HAR-005")
 @pytest.mark.parametrize("family", FAMILIES)
 def test_unwritable_output_is_one_line_before_any_flight(family, tmp_path):
     scenario, _ = FAMILIES[family]

@@ -74,6 +74,7 @@ def corrupted(tables, tmp_path_factory):
     return NogTables(d, bundle, tables.manifest, tables.sha256)
 
 
+@pytest.mark.req("OGK-HAR-003", "OGK-CORE-001")
 def test_kernel_error_is_picklable():
     import pickle
     err = pickle.loads(pickle.dumps(KernelError(3, "ogk_nog_table_load", partial=lambda: 0)))
@@ -81,6 +82,7 @@ def test_kernel_error_is_picklable():
     assert err.name.startswith("OGK_E_")
 
 
+@pytest.mark.req("OGK-HAR-003", "OGK-HAR-008")
 def test_corrupted_table_with_two_workers_aborts_naming_runs_and_status(scn, corrupted):
     t0 = time.monotonic()
     with pytest.raises(CampaignAborted) as info:
@@ -95,6 +97,7 @@ def test_corrupted_table_with_two_workers_aborts_naming_runs_and_status(scn, cor
     assert time.monotonic() - t0 < 30.0
 
 
+@pytest.mark.req("OGK-HAR-003")
 def test_ogk_mc_prints_one_line_and_exits_1_when_a_worker_raises(corrupted, tmp_path, capsys,
                                                                  monkeypatch):
     from ogk.cli import main
@@ -118,6 +121,7 @@ class _KillsItself(NominalOpenLoopGuidance):
         super().__init__(setup, cutoff_s=12.0)
 
 
+@pytest.mark.req("OGK-HAR-003")
 def test_killed_worker_is_reported_with_its_runs(scn, tmp_path):
     log = tmp_path / "mc.json.runs.jsonl"
     with pytest.raises(CampaignAborted) as info:
@@ -131,6 +135,7 @@ def test_killed_worker_is_reported_with_its_runs(scn, tmp_path):
     assert 2 not in kept and 3 not in kept             # what finished is kept, nothing else
 
 
+@pytest.mark.req("OGK-HAR-003")
 def test_ogk_mc_reports_a_killed_worker_in_one_line(tmp_path, capsys, monkeypatch):
     from ogk.cli import main
     from ogk.missions.orbit_injection import guidance as guidance_module
@@ -156,6 +161,7 @@ class _Hangs(NominalOpenLoopGuidance):
         super().__init__(setup, cutoff_s=12.0)
 
 
+@pytest.mark.req("OGK-HAR-003")
 def test_watchdog_kills_a_hung_chunk(scn):
     t0 = time.monotonic()
     with pytest.raises(CampaignAborted) as info:
@@ -186,6 +192,7 @@ def reference(tables):
     return _nog(tables, "point-mass", rate_hz=25.0)
 
 
+@pytest.mark.req("OGK-HAR-001")
 def test_per_run_values_do_not_depend_on_workers_or_chunks(tables):
     """6-DOF (a landing step of one run used to change the eq. 55 factor of the other runs of its
     chunk by an ulp, which the attitude loop carried to 1e-14: run 0 of these differed): 1 worker
@@ -208,6 +215,7 @@ def _wait_for_runs(log: Path, proc: subprocess.Popen, n: int, timeout: float) ->
     raise AssertionError(f"no {n} runs in {log} (exit {proc.poll()})")
 
 
+@pytest.mark.req("OGK-HAR-004")
 def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(reference,
                                                                               tmp_path):
     out = tmp_path / "mc.json"

@@ -6,6 +6,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 OGK = Path(sys.executable).parent / "ogk"
 
 
@@ -13,12 +15,14 @@ def run(*args: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run([str(OGK), *args], capture_output=True, text=True, timeout=60)
 
 
+@pytest.mark.req("OGK-HAR-013")
 def test_help() -> None:
     out = run("--help")
     assert out.returncode == 0, out.stderr
     assert "version" in out.stdout and "demo" in out.stdout
 
 
+@pytest.mark.req("OGK-HAR-013")
 def test_scenario_command_help_without_scenario() -> None:
     """`ogk tables --help` prints the command's help and exits 0; after a SCENARIO, --help is the
     family's."""
@@ -31,6 +35,7 @@ def test_scenario_command_help_without_scenario() -> None:
     assert "--out" in out.stdout
 
 
+@pytest.mark.req("OGK-HAR-013", "OGK-CORE-002")
 def test_version() -> None:
     out = run("version")
     assert out.returncode == 0, out.stderr
@@ -38,6 +43,7 @@ def test_version() -> None:
     assert re.search(r"kernel\s+\d+\.\d+\.\d+", out.stdout)
 
 
+@pytest.mark.req("OGK-HAR-013", "OGK-CORE-014")
 def test_demo_switching() -> None:
     out = run("demo", "switching")
     assert out.returncode == 0, out.stdout + out.stderr
@@ -47,6 +53,7 @@ def test_demo_switching() -> None:
     assert len(errors) == 2 and max(abs(e) for e in errors) < 1e-10
 
 
+@pytest.mark.req("OGK-HAR-013")
 def test_no_command_is_usage_error() -> None:
     out = run()
     assert out.returncode == 2

@@ -13,6 +13,8 @@ from pathlib import Path
 
 import pytest
 
+pytestmark = pytest.mark.req("OGK-HAR-005")
+
 OGK = Path(sys.executable).parent / "ogk"
 SCENARIO = Path(__file__).resolve().parents[2] / "scenarios" / "leo_geo.toml"
 

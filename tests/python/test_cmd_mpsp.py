@@ -39,6 +39,7 @@ def _assert_within_paper_tolerances(doc: dict[str, object]) -> None:
     assert float(doc["cpu_s"]) > 0.0  # type: ignore[arg-type]
 
 
+@pytest.mark.req("OGK-MPSP-012")
 @pytest.mark.parametrize(("kind", "param", "paper_ni"), [
     ("terminal", "-0.02,-0.02,0.02", 9),   # Table 4/5 case 7: nominal thrust sequence kept
     ("thrust", "3", 4),                    # Table 6 eta = +3 %
@@ -55,6 +56,7 @@ def test_case_converges_within_paper_tolerances(tmp_path: Path, kind: str, param
     assert 20.5 < float(doc["final_mass_kg"]) < 21.5  # type: ignore[arg-type]
 
 
+@pytest.mark.req("OGK-MPSP-012")
 def test_initial_case_fuel_increase_against_fresh_reoptimisation(tmp_path: Path) -> None:
     """Table 3 kappa = -1 (paper: NI 5, FI 2.28 %): FI of the command against a fuel-optimal solution
     of the same perturbed problem computed here, verified by re-integrating its costates."""
@@ -87,6 +89,7 @@ def test_initial_case_fuel_increase_against_fresh_reoptimisation(tmp_path: Path)
     assert entry["final_mass_kg"] == pytest.approx(m_opt, abs=1e-6)
 
 
+@pytest.mark.req("OGK-HAR-008")
 def test_stale_or_corrupt_reference_is_recomputed(tmp_path: Path) -> None:
     """A cache entry of another scenario file, or whose costates do not re-integrate to the target,
     is not trusted."""
@@ -103,6 +106,7 @@ def test_stale_or_corrupt_reference_is_recomputed(tmp_path: Path) -> None:
     assert doc["fuel_increase_pct"] is not None and -0.5 < float(doc["fuel_increase_pct"]) < 6.1  # type: ignore[arg-type]
 
 
+@pytest.mark.req("OGK-HAR-005")
 def test_bad_arguments_are_rejected(tmp_path: Path) -> None:
     assert main(["mpsp", "apophis", "--case", "terminal", "--param", "0.02,0.02",
                  "--no-reference"]) == 2

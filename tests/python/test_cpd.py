@@ -28,6 +28,7 @@ M_XC_MAX = 30.0
 
 
 # ----------------------------------------------------------------- gain design
+@pytest.mark.req("OGK-CPD-011")
 def test_printed_gains_follow_from_printed_g() -> None:
     """Sec. 5.3 on eq. (54)'s printed G reproduces the printed gains to their 3 digits."""
     design = cd.printed_design().as_config_dict()
@@ -41,6 +42,7 @@ def test_printed_gains_follow_from_printed_g() -> None:
     assert axis.k_d == pytest.approx(7.20, abs=0.012)       # 7.19
 
 
+@pytest.mark.req("OGK-CPD-011")
 def test_scout_pitch_gains_from_printed_g() -> None:
     """Sec. 7: omega_n = 4.24, zeta = 1 on G_y = 361.05 s^-2 gives k_py = 0.050, k_dy = 0.023."""
     axis = cd.design_axis(361.05, 4.24, 1.0)
@@ -48,6 +50,7 @@ def test_scout_pitch_gains_from_printed_g() -> None:
     assert round(axis.k_d, 3) == 0.023
 
 
+@pytest.mark.req("OGK-CPD-011")
 def test_true_effectiveness_is_about_8_2() -> None:
     """Erratum on eq. (54): G_y = T l0 / I_y0 with T = n0 m0 is ~8.18 s^-2, not 0.83."""
     vehicle = cd.leo_geo_vehicle()
@@ -68,6 +71,7 @@ def test_true_effectiveness_is_about_8_2() -> None:
     assert gains.yaw == gains.pitch
 
 
+@pytest.mark.req("OGK-CPD-011")
 def test_scenario_file_agrees_with_design() -> None:
     """scenarios/leo_geo.toml's [cpd.rederived] gains are what this tool designs from its data."""
     with open(cd.LEO_GEO_SCENARIO, "rb") as fh:
@@ -87,6 +91,7 @@ def _omega_zeta_from_roots(g: float, k_p: float, k_d: float) -> tuple[float, flo
     return omega_n, zeta
 
 
+@pytest.mark.req("OGK-CPD-011")
 @pytest.mark.parametrize("omega_n,zeta", [(4.24, 0.707), (2.0, 0.5), (6.0, 1.0)])
 def test_designed_poles_meet_specs_over_the_burn(omega_n: float, zeta: float) -> None:
     """zeta >= zeta_min and omega_n >= omega_min for all G in [G_min, G_max] (eq. 48 poles),
@@ -107,6 +112,7 @@ def test_designed_poles_meet_specs_over_the_burn(omega_n: float, zeta: float) ->
             _omega_zeta_from_roots(axis.g_max, axis.k_p, axis.k_d)[1], rel=1e-10)
 
 
+@pytest.mark.req("OGK-CPD-011")
 def test_printed_gains_on_true_g_are_far_faster_than_designed() -> None:
     """Printed pitch gains on the true G: omega_n 13..24 rad/s, zeta 2.2..4.0 (not 4.24, 0.707)."""
     g_min, g_max = cd.effectiveness_range(cd.leo_geo_vehicle())
@@ -117,6 +123,7 @@ def test_printed_gains_on_true_g_are_far_faster_than_designed() -> None:
     assert (round(z0, 1), round(z1, 1)) == (2.2, 4.0)
 
 
+@pytest.mark.req("OGK-CPD-011", "OGK-CPD-006")
 def test_actuator_loop_stability_is_the_papers_condition(rng: np.random.Generator) -> None:
     """tau s^3 + s^2 + G k_d s + G k_p is Hurwitz iff k_d > k_p tau (sec. 5.2)."""
     for _ in range(200):
@@ -126,6 +133,7 @@ def test_actuator_loop_stability_is_the_papers_condition(rng: np.random.Generato
             assert (np.max(poles.real) < 0) == stable
 
 
+@pytest.mark.req("OGK-CPD-011")
 def test_phase_margin_definition() -> None:
     """|L(j w_c)| = 1 and PM = 180 + arg L(j w_c), evaluated here from the transfer function."""
     for g, k_p, k_d in ((8.18, 21.6, 7.2), (26.8, 2.198, 0.733), (1 / 1200, 21573.0, 7194.0)):
@@ -169,6 +177,7 @@ def _simulate_sampled_pitch(g: float, gains: cd.AxisGains, period: float, n: int
     return errors, n_sat
 
 
+@pytest.mark.req("OGK-CPD-011", "OGK-CPD-012")
 def test_max_stable_period_matches_kernel_in_the_loop() -> None:
     """The printed gains at the end of the burn (G = 26.8 s^-2): stable just below the predicted
     longest control period, unstable just above it, with the kernel computing the command."""
@@ -189,6 +198,7 @@ def test_max_stable_period_matches_kernel_in_the_loop() -> None:
     assert cd.sampled_spectral_radius(g, gains.k_p, gains.k_d, TAU, 1.05 * t_max) > 1.0
 
 
+@pytest.mark.req("OGK-CPD-011")
 def test_report_runs() -> None:
     text = cd.report(n_g=3)
     assert "RE-DERIVED" in text and "PRINTED" in text
@@ -238,6 +248,7 @@ def _random_case(rng: np.random.Generator) -> dict[str, float]:
             "phi": rng.uniform(-1.4, 1.4)}
 
 
+@pytest.mark.req("OGK-CPD-002")
 def test_commanded_attitude_matches_numpy(rng: np.random.Generator) -> None:
     alpha, beta = rng.uniform(-np.pi, np.pi, 300), rng.uniform(-1.5, 1.5, 300)
     xi, phi = rng.uniform(-np.pi, np.pi, 300), rng.uniform(-1.5, 1.5, 300)
@@ -251,6 +262,7 @@ def test_commanded_attitude_matches_numpy(rng: np.random.Generator) -> None:
         np.testing.assert_allclose(x_b, _direction(alpha[k], beta[k], xi[k], phi[k]), atol=1e-13)
 
 
+@pytest.mark.req("OGK-CPD-003")
 def test_thrust_angles_match_numpy(rng: np.random.Generator) -> None:
     for _ in range(300):
         c = _random_case(rng)
@@ -295,6 +307,7 @@ def _config(pointing: cpd.Pointing, gains: cd.CpdGains | None = None) -> cpd.Cpd
                          phi_c=0.1, pointing=pointing)
 
 
+@pytest.mark.req("OGK-CPD-001")
 @pytest.mark.parametrize("pointing", [cpd.Pointing.BODY, cpd.Pointing.EULER])
 def test_step_matches_numpy(pointing: cpd.Pointing, rng: np.random.Generator) -> None:
     """Random attitudes (large errors, saturated) and near-commanded ones (linear)."""
@@ -322,6 +335,7 @@ def test_step_matches_numpy(pointing: cpd.Pointing, rng: np.random.Generator) ->
     assert n_linear > 100          # both regimes were exercised
 
 
+@pytest.mark.req("OGK-CPD-004")
 def test_body_error_is_roll_independent(rng: np.random.Generator) -> None:
     for _ in range(50):
         c = _random_case(rng)
@@ -333,6 +347,7 @@ def test_body_error_is_roll_independent(rng: np.random.Generator) -> None:
         np.testing.assert_allclose(mags, mags[0], atol=1e-12)
 
 
+@pytest.mark.req("OGK-CPD-007")
 def test_safe_command_and_errors() -> None:
     ctl = cpd.Cpd(_config(cpd.Pointing.BODY))
     with pytest.raises(KernelError) as info:
@@ -354,6 +369,7 @@ def test_safe_command_and_errors() -> None:
                                [math.pi, math.pi, 7.0 - 2 * math.pi], atol=1e-15)
 
 
+@pytest.mark.req("OGK-CPD-012", "OGK-CPD-008")
 def test_capture_study_small_dispersion() -> None:
     """Both pointing modes capture a small initial error (1 deg, 0.5 deg/s) within 10 s, and agree
     there (near zero roll the body-axis error equals the Euler differences to first order)."""
@@ -366,6 +382,7 @@ def test_capture_study_small_dispersion() -> None:
     np.testing.assert_allclose(body.max_error_deg, euler.max_error_deg, atol=0.05)
 
 
+@pytest.mark.req("OGK-CPD-012")
 def test_study_euler_helpers_match_scipy(rng: np.random.Generator) -> None:
     """The capture study's DCM of eq. (9) and its inverse, against scipy's intrinsic z-y-x."""
     psi, theta, phi = rng.uniform(-3, 3, 50), rng.uniform(-1.5, 1.5, 50), rng.uniform(-3, 3, 50)
@@ -376,6 +393,7 @@ def test_study_euler_helpers_match_scipy(rng: np.random.Generator) -> None:
     np.testing.assert_allclose(np.stack(back), np.stack([psi, theta, phi]), atol=1e-12)
 
 
+@pytest.mark.req("OGK-CPD-012", "OGK-CPD-001")
 def test_capture_study_kernel_equals_numpy_prototype() -> None:
     """The study's numpy prototype of the BODY law flies the same trajectories as the kernel (so the
     prototype's shaped variant in docs/cpd.md differs only by the shaping)."""
@@ -388,6 +406,7 @@ def test_capture_study_kernel_equals_numpy_prototype() -> None:
 
 
 # ----------------------------------------------------------------- the typed wrapper cannot drift
+@pytest.mark.req("OGK-CPD-006", "OGK-HAR-010")
 def test_config_wrapper_follows_the_c_struct() -> None:
     """CpdConfig starts from ogk_cpd_config_default and knows every field of the C struct, by name."""
     from ogk_bindings._ffi import ffi, lib
@@ -411,6 +430,7 @@ def test_config_wrapper_follows_the_c_struct() -> None:
     cpd.Cpd(d)                                  # the defaults are a configuration init accepts
 
 
+@pytest.mark.req("OGK-HAR-010")
 def test_input_and_output_wrappers_match_the_c_structs() -> None:
     from ogk_bindings._ffi import ffi
     for cls, ctype in ((cpd.CpdInput, "ogk_cpd_input_t"), (cpd.CpdOutput, "ogk_cpd_output_t")):
@@ -418,6 +438,7 @@ def test_input_and_output_wrappers_match_the_c_structs() -> None:
             [name for name, _ in ffi.typeof(ctype).fields], ctype
 
 
+@pytest.mark.req("OGK-CPD-006")
 def test_reset_returns_to_the_initialised_state() -> None:
     cfg = cpd.CpdConfig(ff_period_s=0.02, ff_rate_max=0.05)
     a, b = cpd.Cpd(cfg), cpd.Cpd(cfg)

@@ -8,6 +8,8 @@ import pytest
 
 from ogk_bindings import kernel
 
+pytestmark = pytest.mark.req("OGK-CORE-016")
+
 
 def test_known_check_value() -> None:
     # The standard CRC-32 check value of "123456789".

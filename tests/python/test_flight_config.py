@@ -23,6 +23,8 @@ import pytest
 from ogk_bindings._ffi import ffi, lib
 from ogk_host.cgen import ConfigItem, c_double, write_c_config
 
+pytestmark = pytest.mark.req("OGK-HAR-009")
+
 REPO = Path(__file__).resolve().parents[2]
 STRICT = ["-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-Wconversion",
           "-Wdouble-promotion", "-Wshadow"]

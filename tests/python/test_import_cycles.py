@@ -15,6 +15,9 @@ exempt.
 from __future__ import annotations
 
 import grimp
+import pytest
+
+pytestmark = pytest.mark.req("OGK-HAR-011")
 
 PACKAGES = ("ogk", "ogk_host", "ogk_bindings")
 

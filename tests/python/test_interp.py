@@ -8,6 +8,8 @@ from scipy.interpolate import PchipInterpolator
 from ogk_bindings import kernel
 from ogk_bindings._ffi import lib
 
+pytestmark = pytest.mark.req("OGK-CORE-015")
+
 
 def random_grid(rng: np.random.Generator, n: int) -> np.ndarray:
     """Non-uniform strictly increasing grid on [0, 1] (spacing ratios up to ~20)."""

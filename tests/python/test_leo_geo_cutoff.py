@@ -27,6 +27,8 @@ from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, prepare
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
 from ogk.missions.orbit_injection.sil import EndGamePlan, SilSettings, simulate
 
+pytestmark = pytest.mark.req("OGK-NOG-016", "OGK-NOG-018")
+
 WORST_RUNS = [102, 191, 255, 498, 631, 950]   # seed 424242, paper's end-game beyond 20 m/s
 SEED = 424242
 

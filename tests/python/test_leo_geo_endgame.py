@@ -23,6 +23,8 @@ from ogk.missions.orbit_injection import campaign
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches
 from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, prepare_tables
 
+pytestmark = pytest.mark.req("OGK-NOG-018", "OGK-NOG-009")
+
 _LOG: list["_Recording"] = []
 
 

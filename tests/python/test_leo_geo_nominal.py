@@ -36,6 +36,7 @@ def nominal(scenario: OrbitInjectionScenario) -> Nominal:
     return solve_nominal(scenario)
 
 
+@pytest.mark.req("OGK-NOG-013", "OGK-CPD-011")
 def test_scenario_matches_erratum_and_gain_rule(scenario: OrbitInjectionScenario) -> None:
     """a and e are the LEO(400 km)-GEO Hohmann ellipse; rederived CPD gains follow sec. 5.3."""
     orbit = scenario.pre_ignition
@@ -64,6 +65,7 @@ def test_scenario_matches_erratum_and_gain_rule(scenario: OrbitInjectionScenario
         2.0 / scenario.actuators.time_constant_y_s * cpd.deflection_y_command_max_rad)
 
 
+@pytest.mark.req("OGK-NOG-013")
 def test_min_time_and_ignition_anomaly_match_paper(nominal: Nominal,
                                                    scenario: OrbitInjectionScenario) -> None:
     """t_f* within 0.2 s of both published values (105.9 s text, 105.8 s Table 6); f0* within 0.1 deg."""
@@ -75,6 +77,7 @@ def test_min_time_and_ignition_anomaly_match_paper(nominal: Nominal,
     assert math.degrees(nominal.f0) == pytest.approx(179.87, abs=0.01)
 
 
+@pytest.mark.req("OGK-NOG-013")
 def test_necessary_condition_residuals_are_tiny(nominal: Nominal) -> None:
     """Terminal states, lambda_t(1), f0 transversality and h = -1, re-integrated at rtol 1e-12."""
     assert np.max(np.abs(nominal.residuals)) < 1e-11
@@ -83,6 +86,7 @@ def test_necessary_condition_residuals_are_tiny(nominal: Nominal) -> None:
     assert lam0[dyn.XI] == 0.0 and lam0[dyn.PHI] == 0.0 and lam0[dyn.VN] == 0.0
 
 
+@pytest.mark.req("OGK-NOG-013")
 def test_independent_cartesian_reintegration_hits_geo(nominal: Nominal,
                                                       scenario: OrbitInjectionScenario) -> None:
     """Inertial Cartesian SI re-integration with the nominal steering reaches R_f, v_r = 0, v_c."""
@@ -128,6 +132,7 @@ def test_independent_cartesian_reintegration_hits_geo(nominal: Nominal,
     assert abs(pos[2]) < 1e-9 and abs(vel[2]) < 1e-12
 
 
+@pytest.mark.req("OGK-NOG-013")
 def test_free_ignition_anomaly_is_a_minimum(nominal: Nominal) -> None:
     """t_f(f0* +- 0.1 deg) > t_f*, symmetric to first order (transversality = stationarity)."""
     delta = math.radians(0.1)
@@ -138,6 +143,7 @@ def test_free_ignition_anomaly_is_a_minimum(nominal: Nominal) -> None:
     assert abs(rise_plus - rise_minus) < 0.02 * (rise_plus + rise_minus)
 
 
+@pytest.mark.req("OGK-NOG-013")
 def test_second_order_sufficient_conditions(nominal: Nominal) -> None:
     """H_uu positive definite along the path; the gain solve never approaches singularity (no
     conjugate point): the equilibrated condition number of the 8x8 system stays ~10."""
@@ -147,6 +153,7 @@ def test_second_order_sufficient_conditions(nominal: Nominal) -> None:
     assert np.all(np.isfinite(table.gain))
 
 
+@pytest.mark.req("OGK-NOG-013", "OGK-HAR-008")
 def test_derived_settings_reproduce_the_scenario(scenario: OrbitInjectionScenario) -> None:
     """derive.py's rules give today's scenario values: the sec. 5.3 gains equal [cpd.rederived]
     (to the 1-ulp rounding of the printed decimals), the freeze rule Delta t_S / 4 = 0.5 s, and the
@@ -168,6 +175,7 @@ def test_derived_settings_reproduce_the_scenario(scenario: OrbitInjectionScenari
                                                               0.09278294104700377)), rel=1e-15)
 
 
+@pytest.mark.req("OGK-HAR-008")
 def test_settings_provenance(scenario: OrbitInjectionScenario) -> None:
     """Scenario values win; a silent scenario gets the derived ones, marked as such."""
     import dataclasses

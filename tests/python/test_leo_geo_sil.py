@@ -41,6 +41,7 @@ def _numbers(res) -> np.ndarray:
                            res.draws.d_state.T, res.draws.thrust_coeffs.T])
 
 
+@pytest.mark.req("OGK-HAR-001")
 def test_same_seed_same_numbers_for_any_worker_count_and_chunking(scn):
     """6-DOF, every dispersion, 7 runs: 1 worker / 1 chunk, 2 workers / 2 chunks and 1 worker / 3
     chunks give bit-identical results; re-flying runs 5 and 2 alone reproduces them."""
@@ -59,6 +60,7 @@ def test_same_seed_same_numbers_for_any_worker_count_and_chunking(scn):
     assert not np.array_equal(_numbers(other), _numbers(one))
 
 
+@pytest.mark.req("OGK-NOG-018")
 def test_dispersion_draws_follow_tables_3_to_5(scn):
     """2000 draws: sample sigmas within 5 % of Tables 3-4 and eq. (55); switching a group off
     zeroes it without changing the others."""
@@ -77,6 +79,7 @@ def test_dispersion_draws_follow_tables_3_to_5(scn):
     np.testing.assert_array_equal(no_att.thrust_coeffs, draws.thrust_coeffs)
 
 
+@pytest.mark.req("OGK-CPD-012", "OGK-CPD-005")
 def test_cpd_in_the_loop_keeps_attitude_on_the_command(scn, ref):
     """6-DOF, Table 3-5 dispersions, kernel CPD (body-axis pointing): after 25 s the thrust axis
     x_b is within 0.5 deg of the commanded direction in every run, and the actuator rates never
@@ -120,6 +123,7 @@ class _Faulty(NominalOpenLoopGuidance):
         return a, b
 
 
+@pytest.mark.req("OGK-HAR-006")
 def test_failures_are_counted_with_reasons(scn):
     res = run_campaign(scn, runs=3, seed=1, truth="point-mass", guidance_factory=_Faulty,
                        settings=SilSettings(t_max_s=10.0))
@@ -132,6 +136,7 @@ def test_failures_are_counted_with_reasons(scn):
     json.dumps(doc, allow_nan=False)                      # NaN written as null
 
 
+@pytest.mark.req("OGK-HAR-006", "OGK-NOG-018")
 def test_runs_beyond_the_scenario_tolerances_fail_with_their_reason(tmp_path):
     """The stated criterion: the paper's scenario (1 km, 20 m/s) fails every 12 s burn (it ends near
     the right radius but ~1.3 km/s short) and says so per run in the report and the JSON; the
@@ -151,6 +156,7 @@ def test_runs_beyond_the_scenario_tolerances_fail_with_their_reason(tmp_path):
     assert res.mean()["dvt_f_mps"] == pytest.approx(float(np.mean(res.errors["dvt_f_mps"])))
 
 
+@pytest.mark.req("OGK-HAR-002")
 def test_json_statistics_and_side_by_side_report(scn, tmp_path):
     res = run_campaign(scn, runs=5, seed=8, truth="point-mass", guidance_factory=SHORT)
     path = tmp_path / "mc.json"
@@ -183,6 +189,7 @@ PAPER_TABLE7_STD = {"dr_f_m": 4.26, "dphi_f_deg": 2.9e-6, "dvr_f_mps": 3.10, "dv
                     "dvn_f_mps": 1.98, "tf_s": 2.34}
 
 
+@pytest.mark.req("OGK-HAR-002")
 def test_paper_tables_match_the_scenario_file(scn):
     """The report's paper columns come from scenarios/leo_geo.toml [paper_results]; checked against
     the tables typed above from the paper."""
@@ -193,6 +200,7 @@ def test_paper_tables_match_the_scenario_file(scn):
     assert [PAPER_TABLE7_STD[k] for k in keys] == list(p.table7_sigma)
 
 
+@pytest.mark.req("OGK-HAR-002")
 def test_report_prints_paper_columns_only_for_a_scenario_with_paper_results(scn):
     res = run_campaign(scn, runs=1, seed=8, truth="point-mass", guidance_factory=SHORT,
                        dispersions=False)
@@ -203,6 +211,7 @@ def test_report_prints_paper_columns_only_for_a_scenario_with_paper_results(scn)
     assert "Table" not in text and "paper" not in text and "bare_mission" in text
 
 
+@pytest.mark.req("OGK-HAR-002", "OGK-NOG-018")
 def test_ogk_mc_command(tmp_path, capsys):
     from ogk.cli import main
     out = tmp_path / "mc.json"

@@ -51,6 +51,7 @@ def bundle():
     return build_nog_bundle(nominal, compute_gain_table(nominal))
 
 
+@pytest.mark.req("OGK-HAR-009", "OGK-NOG-001")
 def test_generated_c_table_loads_with_ground_values(bundle, tmp_path):
     image_path = tmp_path / "bundle.ogkt"
     tablefile.write_table(image_path, bundle.kind, bundle.grid, bundle.data)
@@ -77,6 +78,7 @@ def test_generated_c_table_loads_with_ground_values(bundle, tmp_path):
     assert lines[-1] == "corrupted 17"                            # OGK_E_TABLE_CRC
 
 
+@pytest.mark.req("OGK-NOG-006", "OGK-NOG-014")
 def test_bundle_through_bindings_flies_nominal(bundle, tmp_path):
     from ogk_bindings._ffi import ffi, lib
     image_path = tmp_path / "bundle.ogkt"
@@ -101,6 +103,7 @@ def test_bundle_through_bindings_flies_nominal(bundle, tmp_path):
 
 # --- grid capacity and provenance (host/ogk_host/orbit_injection/{gains,tables}.py) -------------
 
+@pytest.mark.req("OGK-HAR-008", "OGK-CORE-005")
 def test_grid_fits_kernel_capacity_for_long_burns():
     """The capacity is the kernel's; every chosen grid keeps the 5 % spacing bound and fits it."""
     from ogk_bindings._ffi import lib
@@ -116,6 +119,7 @@ def test_grid_fits_kernel_capacity_for_long_burns():
         assert np.all(-np.diff(togo) <= gains.MAX_RELATIVE_SPACING * togo[:-1] * (1 + 1e-12))
 
 
+@pytest.mark.req("OGK-HAR-005")
 def test_grid_capacity_error_names_the_setting():
     from ogk_bindings.errors import OgkInputError
     from ogk_host.orbit_injection import gains
@@ -133,6 +137,7 @@ def table_dir(tmp_path_factory):
     return out, manifest
 
 
+@pytest.mark.req("OGK-HAR-008")
 def test_manifest_records_provenance(table_dir):
     import hashlib
     from ogk_host.orbit_injection import tables
@@ -161,6 +166,7 @@ def _copy(src, dst):
     return dst
 
 
+@pytest.mark.req("OGK-HAR-008")
 def test_check_tables_rejects_other_scenario_corruption_and_tf(table_dir, tmp_path):
     from ogk_bindings.errors import TableError
     from ogk_host.orbit_injection import tables
@@ -191,6 +197,7 @@ def test_check_tables_rejects_other_scenario_corruption_and_tf(table_dir, tmp_pa
         tables.check_tables(bad, DEFAULT_SCENARIO_PATH)
 
 
+@pytest.mark.req("OGK-HAR-008")
 def test_writer_never_overwrites_a_foreign_directory(table_dir, tmp_path):
     from ogk_bindings.errors import TableError
     from ogk_host.orbit_injection import tables
@@ -209,6 +216,7 @@ def test_writer_never_overwrites_a_foreign_directory(table_dir, tmp_path):
     assert (ours / "manifest.json").stat().st_mtime_ns == stamp
 
 
+@pytest.mark.req("OGK-HAR-008")
 def test_ensure_generates_default_dir_then_checks(monkeypatch, tmp_path):
     from ogk_host import scenario_file
     from ogk_host.orbit_injection import tables

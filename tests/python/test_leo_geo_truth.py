@@ -69,6 +69,7 @@ def random_angles(rng, n):
                 dz=rng.uniform(-0.05, 0.05, n))
 
 
+@pytest.mark.req("OGK-NOG-019")
 def test_dcm_eq9_matches_turned_axes_and_quaternion_round_trip(rng):
     a = random_angles(rng, 50)
     c = tm.dcm_body_from_a(a["psi"], a["theta"], a["roll"])
@@ -83,6 +84,7 @@ def test_dcm_eq9_matches_turned_axes_and_quaternion_round_trip(rng):
                                np.stack([a["psi"], a["theta"], a["roll"]]), atol=1e-12)
 
 
+@pytest.mark.req("OGK-NOG-019", "OGK-CPD-003")
 def test_thrust_angles_eqs_49_52_vs_vector_construction_and_kernel(rng):
     """alpha_a, beta_a from the rotation matrices of eqs. (49)-(52), from the quaternion path the
     truth integrates, from a vector construction, and from the kernel's ogk_cpd_thrust_angles."""
@@ -113,6 +115,7 @@ def test_thrust_angles_eqs_49_52_vs_vector_construction_and_kernel(rng):
         assert out_b[0] == pytest.approx(beta[i], abs=1e-13)
 
 
+@pytest.mark.req("OGK-NOG-019", "OGK-CPD-002")
 def test_commanded_attitude_eqs_38_39_points_x_body_along_command(rng):
     n = 30
     a = random_angles(rng, n)
@@ -126,6 +129,7 @@ def test_commanded_attitude_eqs_38_39_points_x_body_along_command(rng):
         np.testing.assert_allclose(x_b, u, atol=1e-14)
 
 
+@pytest.mark.req("OGK-NOG-019")
 def test_quaternion_kinematics_equal_euler_rates_eqs_10_12(rng, params):
     """dq/dt of the truth, mapped to Euler angles by central differences, equals eqs. (10)-(12)."""
     n = 25
@@ -148,6 +152,7 @@ def test_quaternion_kinematics_equal_euler_rates_eqs_10_12(rng, params):
     np.testing.assert_allclose(diff[2], roll_dot, rtol=1e-6, atol=1e-8)
 
 
+@pytest.mark.req("OGK-NOG-019")
 def test_aligned_6dof_translational_rates_equal_point_mass(rng, params):
     """Attitude along (alpha, beta) (eqs. 38-39, any roll), zero deflection: the 6-DOF and the
     point-mass right-hand sides of eqs. (3)-(6) coincide."""
@@ -194,6 +199,7 @@ def kepler_propagate(mu: float, rv0: np.ndarray, dt: float) -> np.ndarray:
     return np.concatenate([f_l * r0 + g_l * v0, fd * r0 + gd * v0])
 
 
+@pytest.mark.req("OGK-NOG-019")
 def test_zero_thrust_matches_kepler_and_conserves_energy_momentum(params):
     """Eqs. (3)-(6) without thrust, fixed-step RK4 (h = 2 s, 4000 s) on an inclined eccentric
     orbit, against a Kepler propagation; energy and angular momentum conserved."""
@@ -217,6 +223,7 @@ def test_zero_thrust_matches_kepler_and_conserves_energy_momentum(params):
     np.testing.assert_allclose(np.cross(got[:3], got[3:]), np.cross(rv0[:3], rv0[3:]), rtol=1e-11)
 
 
+@pytest.mark.req("OGK-NOG-019")
 def test_frozen_attitude_6dof_matches_cartesian_thrusting_flight(params):
     """Zero rates and actuators at rest: the attitude stays fixed in inertial space, so the thrust
     acceleration T/m(t) acts along a fixed inertial direction. Compare eqs. (3)-(6) (spherical,
@@ -245,6 +252,7 @@ def test_frozen_attitude_6dof_matches_cartesian_thrusting_flight(params):
     np.testing.assert_allclose(got[3:], sol.y[3:, -1], atol=1e-6)
 
 
+@pytest.mark.req("OGK-NOG-019")
 def test_pure_roll_torque_spins_up_P_as_M_over_Ix(params):
     """Constant roll torque M with I_x(t) = I_x0 + Idot_x t (eq. 53): P = M/Idot ln(1 + Idot t/I_x0)
     and Phi = (M/Idot) [(I_x0/Idot + t) ln(1 + Idot t/I_x0) - t]."""
@@ -267,6 +275,7 @@ def test_pure_roll_torque_spins_up_P_as_M_over_Ix(params):
     assert roll[0] == pytest.approx(torque / idot * ((i0 / idot + t) * log_term - t), rel=1e-10)
 
 
+@pytest.mark.req("OGK-NOG-019")
 def test_actuator_first_order_lag_then_output_saturation(params):
     """Eqs. (16)-(18): the state follows c (1 - exp(-t/tau)); the output sat(state + noise) is
     clipped at Mbar_x = 60 N m and Deltabar = 3 deg; the rate dynamics see the clipped output."""
@@ -297,6 +306,7 @@ def test_actuator_first_order_lag_then_output_saturation(params):
         / params.inertia0[1])
 
 
+@pytest.mark.req("OGK-NOG-019")
 def test_thrust_fluctuation_eq55_scales_thrust_not_mass_flow(rng, params):
     coeffs = rng.normal(0.0, 0.02, (10, 7))
     t = rng.uniform(0.0, 110.0, 7)
@@ -315,6 +325,7 @@ def test_thrust_fluctuation_eq55_scales_thrust_not_mass_flow(rng, params):
     assert params.mass_flow == pytest.approx(params.mass0 * n0 / c)
 
 
+@pytest.mark.req("OGK-NOG-019")
 def test_point_mass_open_loop_nominal_reproduces_ground_nominal(scn, ref):
     """The truth and the ground tools agree: u*(t) flown open loop with the point-mass truth
     (RK4, 20 ms, cut-off exactly at t_f*) lands on the ground nominal's final state."""
@@ -333,6 +344,7 @@ def test_point_mass_open_loop_nominal_reproduces_ground_nominal(scn, ref):
         assert abs(res.errors[key][0]) < 1e-3
 
 
+@pytest.mark.req("OGK-NOG-019")
 def test_truth_step_is_converged_by_halving(scn, ref):
     """6-DOF with every dispersion and the CPD in the loop, 30 s: halving the truth step (20 ms ->
     10 ms, control rate fixed) changes the state by far less than any reported figure."""

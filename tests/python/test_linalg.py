@@ -13,6 +13,7 @@ def well_conditioned(rng: np.random.Generator, n: int) -> np.ndarray:
     return rng.standard_normal((n, n)) + n * np.eye(n)
 
 
+@pytest.mark.req("OGK-CORE-011")
 @pytest.mark.parametrize("n", [1, 2, 5, 16])
 def test_lu_solve_and_inverse(rng: np.random.Generator, n: int) -> None:
     A = rng.standard_normal((n, n)) + 0.5 * np.eye(n)
@@ -25,6 +26,7 @@ def test_lu_solve_and_inverse(rng: np.random.Generator, n: int) -> None:
     np.testing.assert_allclose(kernel.lu_inverse(A), np.linalg.inv(A), rtol=tol, atol=tol)
 
 
+@pytest.mark.req("OGK-CORE-011")
 @pytest.mark.parametrize("n", [2, 6, 16])
 def test_lu_rcond_is_exact_1norm(rng: np.random.Generator, n: int) -> None:
     A = rng.standard_normal((n, n))
@@ -34,6 +36,7 @@ def test_lu_rcond_is_exact_1norm(rng: np.random.Generator, n: int) -> None:
     assert lu.anorm1 == pytest.approx(np.linalg.norm(A, 1), rel=1e-15)
 
 
+@pytest.mark.req("OGK-CORE-011")
 def test_lu_singular_and_ill_conditioned() -> None:
     with pytest.raises(kernel.KernelError) as info:
         kernel.lu_solve(np.array([[1.0, 2.0], [2.0, 4.0]]), [1.0, 1.0])
@@ -48,6 +51,7 @@ def test_lu_singular_and_ill_conditioned() -> None:
     assert rcond == pytest.approx(expected, rel=0.5)
 
 
+@pytest.mark.req("OGK-CORE-011", "OGK-CORE-005")
 def test_lu_dimension_limit(rng: np.random.Generator) -> None:
     n = int(lib.OGK_LA_MAX_N) + 1
     with pytest.raises(kernel.KernelError) as info:
@@ -55,6 +59,7 @@ def test_lu_dimension_limit(rng: np.random.Generator) -> None:
     assert info.value.code == lib.OGK_E_DIM
 
 
+@pytest.mark.req("OGK-CORE-011")
 @pytest.mark.parametrize("n", [1, 4, 16])
 def test_cholesky_solve(rng: np.random.Generator, n: int) -> None:
     M = rng.standard_normal((n, n))
@@ -64,6 +69,7 @@ def test_cholesky_solve(rng: np.random.Generator, n: int) -> None:
                                rtol=1e-12, atol=1e-13)
 
 
+@pytest.mark.req("OGK-CORE-011")
 def test_cholesky_rejects_indefinite_and_unsymmetric() -> None:
     for A in (np.array([[1.0, 2.0], [2.0, 1.0]]), np.array([[2.0, 1.0], [0.0, 2.0]])):
         with pytest.raises(kernel.KernelError) as info:
@@ -71,6 +77,7 @@ def test_cholesky_rejects_indefinite_and_unsymmetric() -> None:
         assert info.value.code == lib.OGK_E_NOT_POSDEF
 
 
+@pytest.mark.req("OGK-CORE-012")
 @pytest.mark.parametrize("m, n", [(3, 3), (20, 5), (128, 16)])
 def test_lstsq_vs_numpy(rng: np.random.Generator, m: int, n: int) -> None:
     A = rng.standard_normal((m, n))
@@ -79,6 +86,7 @@ def test_lstsq_vs_numpy(rng: np.random.Generator, m: int, n: int) -> None:
     np.testing.assert_allclose(kernel.lstsq(A, b), expected, rtol=1e-11, atol=1e-12)
 
 
+@pytest.mark.req("OGK-CORE-012")
 @pytest.mark.parametrize("m, n", [(3, 3), (5, 20), (16, 128)])
 def test_minnorm_vs_numpy(rng: np.random.Generator, m: int, n: int) -> None:
     A = rng.standard_normal((m, n))
@@ -88,6 +96,7 @@ def test_minnorm_vs_numpy(rng: np.random.Generator, m: int, n: int) -> None:
     np.testing.assert_allclose(A @ x, b, atol=1e-12)
 
 
+@pytest.mark.req("OGK-CORE-012")
 def test_lstsq_rank_deficient() -> None:
     A = np.ones((6, 2))
     with pytest.raises(kernel.KernelError) as info:
@@ -95,6 +104,7 @@ def test_lstsq_rank_deficient() -> None:
     assert info.value.code in (lib.OGK_E_SINGULAR, lib.OGK_E_ILL_CONDITIONED)
 
 
+@pytest.mark.req("OGK-CORE-010")
 def test_products_vs_numpy(rng: np.random.Generator) -> None:
     A = rng.standard_normal((7, 4))
     B = rng.standard_normal((4, 9))
@@ -103,6 +113,7 @@ def test_products_vs_numpy(rng: np.random.Generator) -> None:
     np.testing.assert_allclose(kernel.mat_mul(A, B), A @ B, rtol=1e-14, atol=1e-14)
 
 
+@pytest.mark.req("OGK-HAR-010")
 def test_wrapper_checks_vector_lengths(rng: np.random.Generator) -> None:
     """The C functions cannot see buffer sizes; the wrappers must refuse short vectors."""
     A = well_conditioned(rng, 4)

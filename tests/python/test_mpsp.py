@@ -83,6 +83,7 @@ def nominal() -> tuple[np.ndarray, list[float]]:
     return reference(W3, 0.0)
 
 
+@pytest.mark.req("OGK-MPSP-002")
 def test_basis_matches_numpy() -> None:
     g = Mpsp(make_config(np.zeros(3), np.zeros(3)))
     t = np.linspace(0.0, TF, 7)
@@ -92,6 +93,7 @@ def test_basis_matches_numpy() -> None:
     np.testing.assert_allclose(h @ W3[:7], lv[:, 0], atol=1e-14)
 
 
+@pytest.mark.req("OGK-MPSP-002")
 def test_paper_bases_match_eta_definitions() -> None:
     """The ground side's eta bases (host/ogk_host/low_thrust_transfer/fourier.py) in the kernel's terms."""
     t0, tf, order = 0.3, 7.3, 4
@@ -120,6 +122,7 @@ def test_paper_bases_match_eta_definitions() -> None:
     np.testing.assert_allclose(lv, (want @ w.reshape(3, -1).T), atol=1e-12)
 
 
+@pytest.mark.req("OGK-MPSP-001")
 def test_propagation_matches_dop853(nominal: tuple[np.ndarray, list[float]]) -> None:
     x_ref, sw_ref = nominal
     g = Mpsp(make_config(x_ref[:3], x_ref[3:6]))
@@ -131,6 +134,7 @@ def test_propagation_matches_dop853(nominal: tuple[np.ndarray, list[float]]) -> 
     assert np.all(np.diff(traj.t) > 0.0)
 
 
+@pytest.mark.req("OGK-MPSP-003")
 def test_sensitivities_match_reference_differences(
         nominal: tuple[np.ndarray, list[float]]) -> None:
     x_ref, _ = nominal
@@ -147,6 +151,7 @@ def test_sensitivities_match_reference_differences(
         np.testing.assert_allclose(dydw[:, j], fd, rtol=1e-5, atol=1e-7)
 
 
+@pytest.mark.req("OGK-MPSP-005")
 def test_solved_rendezvous_is_flown_by_reference(nominal: tuple[np.ndarray, list[float]]) -> None:
     x_ref, _ = nominal
     g = Mpsp(make_config(x_ref[:3], x_ref[3:6]))
@@ -161,6 +166,7 @@ def test_solved_rendezvous_is_flown_by_reference(nominal: tuple[np.ndarray, list
     assert x_fly[6] == pytest.approx(res.m_f, abs=1e-8)
 
 
+@pytest.mark.req("OGK-MPSP-008", "OGK-CORE-001")
 def test_errors_map_to_status() -> None:
     with pytest.raises(KernelError) as err:
         Mpsp(make_config(np.zeros(3), np.zeros(3), h_max=-1.0))
@@ -174,6 +180,7 @@ def test_errors_map_to_status() -> None:
     assert err.value.status == Status.OGK_E_NONFINITE
 
 
+@pytest.mark.req("OGK-MPSP-012")
 def test_apophis_cases_against_paper_table_iterations() -> None:
     """The kernel on the paper's mission (ground nominal of host/ogk_host/low_thrust_transfer, Fourier basis of
     fundamental period 2 t_f): cases whose thrust sequence stays nominal converge in the Newton
@@ -209,6 +216,7 @@ def test_apophis_cases_against_paper_table_iterations() -> None:
 
 
 # ----------------------------------------------------------------- the typed wrapper cannot drift
+@pytest.mark.req("OGK-MPSP-007", "OGK-HAR-010")
 def test_config_defaults_come_from_c_and_names_are_checked() -> None:
     from ogk_bindings._ffi import ffi, lib
     ref = ffi.new("ogk_mpsp_config_t *")
@@ -229,6 +237,7 @@ def test_config_defaults_come_from_c_and_names_are_checked() -> None:
     assert cfg.replace(max_newton=7).max_newton == 7 and cfg.max_newton == ref.max_newton
 
 
+@pytest.mark.req("OGK-MPSP-007")
 def test_reset_gives_the_same_solve() -> None:
     g = Mpsp(make_config(np.ones(3), np.zeros(3)))
     prop = g.propagate(W3, 0.0, X0)

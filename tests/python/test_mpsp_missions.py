@@ -223,6 +223,7 @@ def _fly_new_mission(scenario: Path, tmp_path: Path, capsys: pytest.CaptureFixtu
         shutil.rmtree(out, ignore_errors=True)
 
 
+@pytest.mark.req("OGK-HAR-007")
 def test_new_mission_at_the_thrust_edge(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """The Apophis target at 1.35 mN, 10 % below the paper's thrust: the edge of this transfer's
     envelope (at 1.3 mN no fuel-optimal nominal exists: the thrust continuation stalls, and 1.2 mN
@@ -241,6 +242,7 @@ def test_new_mission_at_the_thrust_edge(tmp_path: Path, capsys: pytest.CaptureFi
     _fly_new_mission(scenario, tmp_path, capsys, "from the cached nominal")
 
 
+@pytest.mark.req("OGK-HAR-007")
 def test_new_mission_bennu_like(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """A Bennu-like target, 2.5 mN, 1200 days: its nominal solved from scratch (about 2 min)."""
     rf, vf = bennu_like_target()
@@ -250,6 +252,7 @@ def test_new_mission_bennu_like(tmp_path: Path, capsys: pytest.CaptureFixture[st
     _fly_new_mission(scenario, tmp_path, capsys, "homotopy")
 
 
+@pytest.mark.req("OGK-HAR-008")
 def test_comment_change_keeps_the_cache(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """The shipped nominal is a cache keyed by the physics: a comment or a [mpsp] change reuses it,
     a changed duration does not (checked without solving: the cache key differs)."""
@@ -269,6 +272,7 @@ def test_comment_change_keeps_the_cache(tmp_path: Path, capsys: pytest.CaptureFi
     assert physics_sha256(longer) != shipped["physics_sha256"]
 
 
+@pytest.mark.req("OGK-HAR-008")
 def test_products_of_another_scenario_refused(tmp_path: Path,
                                               capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "apophis"
@@ -300,6 +304,7 @@ BAD = [
 ]
 
 
+@pytest.mark.req("OGK-HAR-005")
 @pytest.mark.parametrize("verb", ["run", "tables", "mc"])
 @pytest.mark.parametrize("key,value,reason", BAD, ids=[f"{k}={v}" for k, v, _ in BAD])
 def test_bad_scenario_values(tmp_path: Path, capsys: pytest.CaptureFixture[str], verb: str,
@@ -317,6 +322,7 @@ def test_bad_scenario_values(tmp_path: Path, capsys: pytest.CaptureFixture[str],
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.req("OGK-HAR-005")
 @pytest.mark.parametrize("case,param,reason", [
     ("thrust", "nan", "--param: eta [%] must be finite"),
     ("thrust", "-100", "--param: eta must be > -100"),
@@ -333,6 +339,7 @@ def test_bad_param(capsys: pytest.CaptureFixture[str], case: str, param: str, re
     assert err == err.splitlines()[0] and err.startswith(f"ogk run: {reason}"), err
 
 
+@pytest.mark.req("OGK-HAR-006")
 def test_beyond_acceptance_is_a_failure(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """A converged case whose terminal error exceeds [acceptance]: exit 1 with the reason."""
     scenario = tmp_path / "strict.toml"
@@ -348,6 +355,7 @@ def test_beyond_acceptance_is_a_failure(tmp_path: Path, capsys: pytest.CaptureFi
         shutil.rmtree(out, ignore_errors=True)
 
 
+@pytest.mark.req("OGK-HAR-005", "OGK-MPSP-002")
 @pytest.mark.parametrize("verb", ["run", "mc"])
 @pytest.mark.parametrize("option,value,reason", [
     ("--order", "16", "--order: must be in 1..15"),

@@ -180,6 +180,7 @@ def flown(tmp_path_factory: pytest.TempPathFactory) -> dict[str, dict]:
     return out
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-NOG-018")
 @pytest.mark.parametrize("mission", MISSIONS, ids=lambda m: m.name)
 def test_campaign_meets_the_stated_tolerances(flown: dict, mission: Mission) -> None:
     run = flown[mission.name]
@@ -196,6 +197,7 @@ def test_campaign_meets_the_stated_tolerances(flown: dict, mission: Mission) -> 
     assert doc["nominal_tf_s"] == pytest.approx(run["manifest"]["t_f_s"], rel=1e-9)
 
 
+@pytest.mark.req("OGK-HAR-001")
 @pytest.mark.parametrize("mission", MISSIONS, ids=lambda m: m.name)
 def test_ogk_run_flies_run_0_of_the_campaign(flown: dict, mission: Mission) -> None:
     """`ogk run --seed S` is one flight: run 0 of `ogk mc --seed S`, to the bit, within the tolerances."""
@@ -209,10 +211,12 @@ def test_ogk_run_flies_run_0_of_the_campaign(flown: dict, mission: Mission) -> N
         assert abs(one["per_run"][0][key]) <= tol
 
 
+@pytest.mark.req("OGK-HAR-007")
 def test_one_mission_burns_longer_than_125_s(flown: dict) -> None:
     assert max(r["manifest"]["t_f_s"] for r in flown.values()) > 125.0
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-NOG-013")
 @pytest.mark.parametrize("mission", MISSIONS, ids=lambda m: m.name)
 def test_nominal_agrees_with_an_independent_direct_re_solve(flown: dict, mission: Mission) -> None:
     manifest = flown[mission.name]["manifest"]
@@ -226,6 +230,7 @@ def test_nominal_agrees_with_an_independent_direct_re_solve(flown: dict, mission
     assert abs(math.degrees(f0 - f0_star)) < 0.01
 
 
+@pytest.mark.req("OGK-HAR-008")
 def test_tables_of_another_scenario_are_refused(flown: dict, tmp_path: Path) -> None:
     a, b = (flown[m.name] for m in MISSIONS[:2])
     out = ogk("mc", str(a["scenario"]), "--runs", "1", "--seed", "1", "--tables", str(b["tables"]),
@@ -235,6 +240,7 @@ def test_tables_of_another_scenario_are_refused(flown: dict, tmp_path: Path) -> 
     assert not (tmp_path / "x.json").exists()
 
 
+@pytest.mark.req("OGK-HAR-008")
 def test_corrupted_table_is_refused(flown: dict, tmp_path: Path) -> None:
     src = flown[MISSIONS[0].name]
     copy = tmp_path / "tables"
@@ -252,6 +258,7 @@ def test_corrupted_table_is_refused(flown: dict, tmp_path: Path) -> None:
     assert len(out.stderr.strip().splitlines()) == 1 and "Traceback" not in out.stderr
 
 
+@pytest.mark.req("OGK-HAR-008")
 def test_a_users_directory_is_never_written(flown: dict, tmp_path: Path) -> None:
     mine = tmp_path / "my_tables"
     mine.mkdir()
@@ -265,6 +272,7 @@ def test_a_users_directory_is_never_written(flown: dict, tmp_path: Path) -> None
     assert out.returncode == 2 and sorted(p.name for p in mine.iterdir()) == ["notes.txt"]
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-NOG-009")
 def test_burn_scaled_settings_are_derived_and_flown(flown: dict) -> None:
     """The edge mission leaves dtf_max_s and the windows out: the manifest records them as derived,
     within the kernel's bound (|dt_f| clip <= t_f*/2) and growing with the burn (longer than the
@@ -279,6 +287,7 @@ def test_burn_scaled_settings_are_derived_and_flown(flown: dict) -> None:
     assert "warning" not in run["mc"].stderr
 
 
+@pytest.mark.req("OGK-HAR-005")
 def test_short_burn_corner_names_each_key_outside_the_linear_domain(tmp_path: Path) -> None:
     """At the short-burn corner the paper's dispersions (5 km, 30 m/s) are large against the burn
     (n0 t_f*^2 = 25.7 km, Delta v = 661 m/s): one warning line per key, and the derived |dt_f| clip

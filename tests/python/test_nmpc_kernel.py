@@ -40,6 +40,7 @@ def kernel_for(path: str, **overrides: object) -> tuple[Nmpc, object]:
     return Nmpc(kernel_config(scen, strategy_settings(scen, "snns"), **overrides)), scen
 
 
+@pytest.mark.req("OGK-NMPC-001")
 @pytest.mark.parametrize("path", [MIN_TIME, NEP_FUEL, SEP_FUEL])
 def test_model_matches_the_ground_model(path: str) -> None:
     g, scen = kernel_for(path, third_bodies=True)
@@ -59,6 +60,7 @@ def test_model_matches_the_ground_model(path: str) -> None:
         np.testing.assert_allclose(g.model_rhs(t, x, u), ref, rtol=1e-12, atol=1e-14)
 
 
+@pytest.mark.req("OGK-NMPC-002")
 def test_interval_matches_numpy_rk4_and_finite_differences() -> None:
     g, scen = kernel_for(MIN_TIME)
     model = Model.for_scenario(scen)
@@ -80,6 +82,7 @@ def test_interval_matches_numpy_rk4_and_finite_differences() -> None:
     assert np.max(np.abs(dfdu0)) > 1e-3
 
 
+@pytest.mark.req("OGK-NMPC-002")
 @pytest.mark.parametrize("path,bodies", [(MIN_TIME, False), (SEP_FUEL, True)])
 def test_interval_second_derivatives_match_casadi(path: str, bodies: bool) -> None:
     """sum_i w_i d2F_i/dp2, p = (x, u0, u1, h, t0): the kernel's forward-over-adjoint sweep against CasADi's
@@ -144,6 +147,7 @@ class _P:
         self.nodes = p.states.shape[0] - 1
 
 
+@pytest.mark.req("OGK-NMPC-003")
 def test_open_loop_min_time_equals_ipopt_and_reintegrates() -> None:
     g, scen = kernel_for(MIN_TIME, tol_stat=1e-9, tol_obj=0.0)
     x0 = Model.for_scenario(scen).x0
@@ -161,6 +165,7 @@ def test_open_loop_min_time_equals_ipopt_and_reintegrates() -> None:
     assert dpos_km < 100.0 and dvel < 0.01               # the RK4 error of docs/nmpc.md (30 km, 2.4 mm/s)
 
 
+@pytest.mark.req("OGK-NMPC-003")
 def test_exact_hessian_open_loop_reaches_ipopt_at_the_default_tolerance() -> None:
     """The exact Hessian (OGK_NMPC_HESSIAN_EXACT) at the kernel's default tol_obj lands on IPOPT's optimum of
     the same transcription within 1 s of t_f (BFGS needs tol_obj = 0 and more iterations for that: 127
@@ -185,6 +190,7 @@ def test_exact_hessian_open_loop_reaches_ipopt_at_the_default_tolerance() -> Non
     assert rep.sqp_iterations < rep_bfgs.sqp_iterations
 
 
+@pytest.mark.req("OGK-NMPC-003")
 def test_open_loop_min_fuel_equals_ipopt_fuel() -> None:
     scen = load_scenario(NEP_FUEL)
     x0 = Model.for_scenario(scen).x0
@@ -204,6 +210,7 @@ def test_open_loop_min_fuel_equals_ipopt_fuel() -> None:
     assert np.all((w >= 0.0) & (w <= 1.0)) and np.any(w < 0.05) and np.any(w > 0.95)
 
 
+@pytest.mark.req("OGK-NMPC-010")
 def test_unperturbed_snns_closed_loop_reaches_mars_before_the_open_loop() -> None:
     scen = load_scenario(MIN_TIME)
     r = fly(scen, KernelGuidance(scen, strategy_settings(scen, "snns")), perturbed=False, seed=0)
@@ -215,6 +222,7 @@ def test_unperturbed_snns_closed_loop_reaches_mars_before_the_open_loop() -> Non
     assert r.fuel_kg == pytest.approx(mdot * r.t_f_days * DAY_S, rel=1e-6)
 
 
+@pytest.mark.req("OGK-NMPC-010")
 def test_perturbed_snns_closed_loop_on_its_own_seed() -> None:
     scen = load_scenario(MIN_TIME)
     r = fly(scen, KernelGuidance(scen, strategy_settings(scen, "snns")), perturbed=True, seed=101)
@@ -222,6 +230,7 @@ def test_perturbed_snns_closed_loop_on_its_own_seed() -> None:
     assert r.final_position_miss_km < scen.convergence.target_soi_radius_m / 1e3
 
 
+@pytest.mark.req("OGK-NMPC-008")
 def test_bad_inputs_raise() -> None:
     g, scen = kernel_for(MIN_TIME)
     with pytest.raises(KernelError):
@@ -232,6 +241,7 @@ def test_bad_inputs_raise() -> None:
         g.load_plan(0.0, 6.0, np.zeros((40, 5)), np.zeros((40, 1)))
 
 
+@pytest.mark.req("OGK-HAR-001")
 def test_campaign_seed_lists() -> None:
     from ogk.missions.rendezvous.campaign import parse_seeds
     assert parse_seeds("1-10") == list(range(1, 11))

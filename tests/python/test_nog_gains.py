@@ -56,6 +56,7 @@ def _displacement(nominal: Nominal, seed: int) -> np.ndarray:
     return nominal.problem.units.state_from_si(signs * sigma_si)
 
 
+@pytest.mark.req("OGK-NOG-014")
 def test_partials_match_complex_step(nominal: Nominal) -> None:
     """f_x, f_u, h_x, h_xx, h_xu, h_uu (hand-derived) vs complex-step derivatives, 3-D states."""
     model = nominal.model
@@ -86,6 +87,7 @@ def test_partials_match_complex_step(nominal: Nominal) -> None:
         assert h == pytest.approx(float(lam @ dyn.state_rate(model, x, u)), rel=1e-14)
 
 
+@pytest.mark.req("OGK-NOG-014")
 def test_accessory_matrices_on_planar_nominal(nominal: Nominal, table: GainTable) -> None:
     """On the nominal H_ux, H_ua, F vanish and H_uu = t_f a(t) |lambda_v| I (VTD-NOG-NOTES sec. 2)."""
     x, lam = table.z[:, :dyn.N_X], table.z[:, dyn.N_X:]
@@ -101,6 +103,7 @@ def test_accessory_matrices_on_planar_nominal(nominal: Nominal, table: GainTable
     np.testing.assert_allclose(np.sum(lam * mats.D, axis=1), -1.0, atol=1e-11)
 
 
+@pytest.mark.req("OGK-NOG-014")
 def test_gain_solve_is_well_conditioned_after_equilibration(table: GainTable) -> None:
     """Raw cond(K_k) spans 6e5..4e10 over the default grid in canonical units (scaling only);
     equilibrated it stays ~10.2."""
@@ -109,6 +112,7 @@ def test_gain_solve_is_well_conditioned_after_equilibration(table: GainTable) ->
     assert np.all(table.cond_equilibrated < 20.0)
 
 
+@pytest.mark.req("OGK-NOG-014")
 @pytest.mark.parametrize("tau_k", TAU_CHECK)
 def test_gains_predict_exact_resolve_to_second_order(nominal: Nominal, check_table: GainTable,
                                                      tau_k: float) -> None:
@@ -147,6 +151,7 @@ def test_gains_predict_exact_resolve_to_second_order(nominal: Nominal, check_tab
         assert np.max(errors_arr[-1, group]) < 1e-2 * np.max(pred_arr[-1, group])
 
 
+@pytest.mark.req("OGK-NOG-014", "OGK-NOG-007")
 def test_first_order_hold_serves_du_inside_interval(nominal: Nominal, table: GainTable) -> None:
     """du from the table's first-order costate hold vs the exact linear neighboring extremal over one
     sampling interval; the zero-order hold is shown to be much worse (both measured)."""
@@ -167,6 +172,7 @@ def test_first_order_hold_serves_du_inside_interval(nominal: Nominal, table: Gai
         assert err_zero > 100.0 * err_first
 
 
+@pytest.mark.req("OGK-NOG-014")
 def test_table_interpolation_between_nodes(nominal: Nominal, table: GainTable) -> None:
     """Gains linearly interpolated at mid-nodes vs gains computed there: <1 % of the gain size."""
     mids = 0.5 * (table.tau[:-1] + table.tau[1:])
@@ -179,6 +185,7 @@ def test_table_interpolation_between_nodes(nominal: Nominal, table: GainTable) -
     assert np.all(rel < 1e-2)
 
 
+@pytest.mark.req("OGK-NOG-014")
 def test_table_files_round_trip_in_si(nominal: Nominal, table: GainTable, tmp_path) -> None:
     """The .ogkt files decode with the documented kinds/dims and reproduce the canonical gains in SI."""
     manifest = tables.write_nog_tables(tmp_path, nominal=nominal, table=table)
@@ -205,6 +212,7 @@ def test_table_files_round_trip_in_si(nominal: Nominal, table: GainTable, tmp_pa
                                rtol=1e-10, atol=1e-9)
 
 
+@pytest.mark.req("OGK-NOG-014")
 def test_check_detects_a_first_order_gain_error(nominal: Nominal, check_table: GainTable) -> None:
     """Negative control: dropping the real-time column of the gains (treating t_k as t_f* tau_k)
     leaves a first-order error at tau_k = 0.5, and the same check then measures ~x10 per decade."""
@@ -223,6 +231,7 @@ def test_check_detects_a_first_order_gain_error(nominal: Nominal, check_table: G
     assert 5.0 < ratio < 20.0
 
 
+@pytest.mark.req("OGK-NOG-014")
 def test_flight_bundle_matches_nog_h_layout(nominal: Nominal, table: GainTable, tmp_path) -> None:
     """nog_bundle.ogkt: kind/length/grid of kernel/include/ogk/nog.h, blocks equal to the
     separate tables, tau = 1 node with zero gains, x*' of the time state = t_f* everywhere."""

@@ -135,12 +135,14 @@ def check_point(base: OrbitInjectionScenario, ratio: float, n0: float, c: float,
     return out
 
 
+@pytest.mark.req("OGK-NOG-013", "OGK-HAR-007")
 @pytest.mark.parametrize("ratio,n0,c", CORNERS + INTERIOR)
 def test_envelope_point_is_a_verified_minimum(base: OrbitInjectionScenario, ratio: float, n0: float,
                                              c: float) -> None:
     check_point(base, ratio, n0, c)
 
 
+@pytest.mark.req("OGK-NOG-013", "OGK-HAR-007")
 def test_paper_case_unchanged(base: OrbitInjectionScenario) -> None:
     """The paper's scenario gives today's optimum (docs/vtd-nog.md sec. 2) from the continuation
     seed directly (zero continuation steps beyond the seed's Newton polish)."""
@@ -150,6 +152,7 @@ def test_paper_case_unchanged(base: OrbitInjectionScenario) -> None:
     assert nom.method == "continuation" and nom.scan_candidates == 0
 
 
+@pytest.mark.req("OGK-NOG-013", "OGK-HAR-007")
 @pytest.mark.slow
 def test_continuation_and_scan_agree_on_the_paper(base: OrbitInjectionScenario) -> None:
     cont = solve_nominal(base, method="continuation")
@@ -158,6 +161,7 @@ def test_continuation_and_scan_agree_on_the_paper(base: OrbitInjectionScenario) 
     assert cont.f0 == pytest.approx(scan.f0, abs=1e-9)
 
 
+@pytest.mark.req("OGK-NOG-013", "OGK-HAR-007")
 @pytest.mark.slow
 @pytest.mark.parametrize("ratio", (1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0))
 @pytest.mark.parametrize("n0", (0.5, 1.0, 1.5))
@@ -166,6 +170,7 @@ def test_exhaustive_envelope(base: OrbitInjectionScenario, ratio: float, n0: flo
     check_point(base, ratio, n0, c)
 
 
+@pytest.mark.req("OGK-NOG-013", "OGK-HAR-007")
 @pytest.mark.slow
 @pytest.mark.parametrize("r_f_km", (30000.0, 41000.0))
 def test_paper_ellipse_with_another_target(base: OrbitInjectionScenario, r_f_km: float) -> None:
@@ -182,6 +187,7 @@ def test_paper_ellipse_with_another_target(base: OrbitInjectionScenario, r_f_km:
     assert abs(res["end_transversality"]) < 1e-8 and abs(res["start_transversality_rel"]) < 1e-9
 
 
+@pytest.mark.req("OGK-HAR-005")
 @pytest.mark.slow
 def test_infeasible_burn_fails_with_one_line(base: OrbitInjectionScenario) -> None:
     """c = 400 m/s cannot give the 1.47 km/s of the burn before burnout (400 ln 20 = 1.2 km/s at

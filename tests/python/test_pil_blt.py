@@ -69,6 +69,7 @@ def campaign(tmp_path_factory: pytest.TempPathFactory) -> dict:
             "summary": summary, "text": target_summary.format_summary(summary)}
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-BLT-010")
 def test_target_campaign_passes_and_agrees_with_the_host(campaign: dict) -> None:
     from ogk.missions.binary.pil import BOUNDS
     plan, flown = campaign["plan"], campaign["flown"]
@@ -88,6 +89,7 @@ def test_target_campaign_passes_and_agrees_with_the_host(campaign: dict) -> None
     assert "within the stated bounds" in campaign["text"]
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-BLT-010")
 def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     for r in campaign["records"]:
         assert r["pil.ogk_blt_init.calls"] == 3 and r["pil.ogk_blt_solve.calls"] == 3
@@ -106,6 +108,7 @@ def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     assert "On the target (m7)" in campaign["text"]
 
 
+@pytest.mark.req("OGK-HAR-012")
 def test_frames_flatten_the_kernel_structs_both_ways() -> None:
     from ogk_bindings._ffi import ffi
     from ogk_bindings.blt import BltConfig, Transfer
@@ -127,6 +130,7 @@ def test_frames_flatten_the_kernel_structs_both_ways() -> None:
     assert len(flatten(ffi.new("ogk_blt_report_t *"))) == REPORT_N
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-BLT-010")
 def test_reactions_on_the_target(campaign: dict) -> None:
     from ogk_bindings.kernel import KernelError
     from ogk.missions.binary import campaign as campaign_mod

@@ -66,6 +66,7 @@ def campaign(tmp_path_factory: pytest.TempPathFactory) -> dict:
             "host": pq.read_table(d / "host.parquet").to_pylist()}
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-MPSP-012")
 def test_target_campaign_passes_and_agrees_with_the_host(campaign: dict) -> None:
     from ogk.missions.low_thrust_transfer.pil import BOUNDS
     doc = campaign["doc"]
@@ -89,6 +90,7 @@ def test_target_campaign_passes_and_agrees_with_the_host(campaign: dict) -> None
     assert sorted(r["kind"] for r in campaign["records"]) == ["initial", "terminal", "thrust"]
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-MPSP-012")
 def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     for r in campaign["records"]:
         for e in ENTRIES:
@@ -104,18 +106,21 @@ def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     assert "On the target (m7)" in campaign["stdout"] and "Host vs target" in campaign["stdout"]
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-CORE-006")
 def test_stack_is_within_the_static_worst_case(campaign: dict) -> None:
     """What the painted window measured on the target is at most gcc's static worst case per entry
     point (make arm-stack: own frame + deepest path through the kernel's call graph) plus libm."""
     assert_stack_within_static(campaign["doc"]["pil"]["entry_points"], ENTRIES)
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-MPSP-012")
 def test_replay_flies_the_run_again_on_the_target(campaign: dict) -> None:
     out = ogk("replay", str(campaign["dir"] / "m7.json"), "1")
     assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
     assert "bit-exact" in out.stdout
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-MPSP-012")
 def test_flight_software_reacts_to_every_status_on_the_target(campaign: dict) -> None:
     """mpsp_flight.c's reactions, on the target: a bad request is refused and the plan held kept
     (HOLD: the nominal before the first re-plan, the last plan after it), a request MPSP cannot

@@ -98,6 +98,7 @@ def _agrees_replan_by_replan(r: dict, but_last: bool = False) -> None:
     assert r["pil.command_mismatch"] == 0
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-NMPC-010")
 def test_a_whole_perturbed_snns_closed_loop_flies_on_the_target(whole_flight: dict) -> None:
     doc = whole_flight["doc"]
     assert doc["target"] == "m7" and doc["runs"] == 1 and doc["failures"] == 0
@@ -127,6 +128,7 @@ def test_a_whole_perturbed_snns_closed_loop_flies_on_the_target(whole_flight: di
     assert "On the target (m7)" in whole_flight["stdout"] and "Host vs target" in whole_flight["stdout"]
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-NMPC-010")
 def test_min_fuel_first_replans_agree_with_the_host(min_fuel: dict) -> None:
     from ogk.missions.rendezvous.pil import BOUNDS
     doc = min_fuel["doc"]
@@ -146,6 +148,7 @@ def test_min_fuel_first_replans_agree_with_the_host(min_fuel: dict) -> None:
     assert r["pil.ogk_nmpc_replan.calls"] == REPLANS - 1
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-NMPC-010")
 def test_replay_flies_the_run_again_on_the_target(min_fuel: dict) -> None:
     out = ogk("replay", str(min_fuel["dir"] / "m7.json"), "0")
     assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
@@ -155,6 +158,7 @@ def test_replay_flies_the_run_again_on_the_target(min_fuel: dict) -> None:
 #: newlib's libm functions (sin, cos, pow) are outside gcc's call graph: their frames on top
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-CORE-006")
 def test_stack_is_within_the_static_worst_case(whole_flight: dict) -> None:
     """What the painted window measured on the target is at most gcc's static worst case per entry
     point (make arm-stack: own frame + deepest path through the kernel's call graph) plus libm."""
@@ -164,6 +168,7 @@ def test_stack_is_within_the_static_worst_case(whole_flight: dict) -> None:
     assert worst["ogk_nmpc_solve"]["stack_bytes"]["value"] > 0.9 * static["ogk_nmpc_solve"]
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-NMPC-010")
 def test_the_flight_program_reacts_to_a_rejected_measurement(whole_flight: dict) -> None:
     """nmpc_flight.c's reactions over the link: a non-finite measurement before any plan is HOLD
     with NONFINITE and the safe command (engine off); the next valid one starts cold and flies; a
@@ -194,6 +199,7 @@ def test_the_flight_program_reacts_to_a_rejected_measurement(whole_flight: dict)
         session.close()
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-HAR-005")
 def test_the_ground_solver_is_refused_on_the_target(tmp_path: Path) -> None:
     out = ogk("mc", "rendezvous_nep_min_time", "--target", "m7", "--runs", "1", "--solver", "ipopt",
               "--json", str(tmp_path / "x.json"), timeout=120)
@@ -203,6 +209,7 @@ def test_the_ground_solver_is_refused_on_the_target(tmp_path: Path) -> None:
     assert not (tmp_path / "x.json").exists()
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-NMPC-010")
 def test_ogk_run_flies_the_replans_on_the_target(tmp_path: Path) -> None:
     """`ogk run ... --target m7`: the same flight as on the host (3 unperturbed replans), every replan
     made by the flight program, its figures per entry point in the JSON."""

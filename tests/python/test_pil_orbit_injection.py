@@ -64,6 +64,7 @@ def campaign(tmp_path_factory: pytest.TempPathFactory) -> dict:
             "host": pq.read_table(d / "host.parquet").to_pylist()}
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-NOG-018")
 def test_target_campaign_passes_and_agrees_with_the_host(campaign: dict) -> None:
     doc = campaign["doc"]
     assert doc["target"] == "m7" and doc["failures"] == 0 and doc["runs"] == 3
@@ -81,6 +82,7 @@ def test_target_campaign_passes_and_agrees_with_the_host(campaign: dict) -> None
         [host[r["run_id"]]["d_state"] for r in campaign["records"]]
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-NOG-018")
 def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     for r in campaign["records"]:
         ticks = r[f"pil.ogk_cpd_step.calls"]
@@ -97,18 +99,21 @@ def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     assert "On the target (m7)" in campaign["stdout"] and "Host vs target" in campaign["stdout"]
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-CORE-006")
 def test_stack_is_within_the_static_worst_case(campaign: dict) -> None:
     """What the painted window measured on the target is at most gcc's static worst case per entry
     point (make arm-stack: own frame + deepest path through the kernel's call graph) plus libm."""
     assert_stack_within_static(campaign["doc"]["pil"]["entry_points"], ENTRIES)
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-NOG-018")
 def test_replay_flies_the_run_again_on_the_target(campaign: dict) -> None:
     out = ogk("replay", str(campaign["dir"] / "m7.json"), "2")
     assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
     assert "bit-exact" in out.stdout
 
 
+@pytest.mark.req("OGK-HAR-012")
 def test_call_log_is_cut_into_runs_and_steps() -> None:
     log = ["a 10", "b 7", pil.TICK_MARK + " 4", "a 12", pil.TICK_MARK + " 4", "b 9", "a 12",
            pil.TICK_MARK + " 4", pil.RUN_MARK + " 5", "a 3", pil.TICK_MARK + " 4", pil.RUN_MARK + " 5"]
@@ -125,6 +130,7 @@ def test_call_log_is_cut_into_runs_and_steps() -> None:
     assert pil.entry_keys(runs[1], [0, 0], 0, ("a", "b"))["pil.b.insn_max"] is None
 
 
+@pytest.mark.req("OGK-HAR-012")
 def test_host_vs_target_names_the_worst_run() -> None:
     target = [{"run_id": 0, "x": 1.0, "failure": ""}, {"run_id": 1, "x": 2.5, "failure": ""},
               {"run_id": 2, "x": np.nan, "failure": "guidance"}]
@@ -137,6 +143,7 @@ def test_host_vs_target_names_the_worst_run() -> None:
     assert target_summary.host_vs_target(target[:2], host[:2], {"x": 0.6})["within_bounds"]
 
 
+@pytest.mark.req("OGK-HAR-012", "OGK-HAR-005")
 @pytest.mark.parametrize("option", [("--truth", "point-mass"), ("--control-rate", "25"),
                                     ("--cpd-gains", "printed"), ("--paper-end-game",)])
 def test_options_the_flight_configuration_does_not_fly_are_refused(option: tuple[str, ...],

@@ -12,6 +12,8 @@ import pytest
 from ogk_bindings._ffi import lib
 from ogk_bindings.qp import QpSolve
 
+pytestmark = pytest.mark.req("OGK-CORE-018")
+
 INF = float(lib.OGK_QP_INF)
 
 

@@ -40,6 +40,7 @@ def hand_plan(nodes: int = 6, nu: int = 2, t0: float = 0.7, horizon: float = 3.0
 
 # -- strategies ---------------------------------------------------------------------------------------------
 
+@pytest.mark.req("OGK-NMPC-004")
 def test_snns_shift_keeps_remaining_nodes_bit_identical() -> None:
     plan = hand_plan()
     x = np.arange(5.0)
@@ -58,6 +59,7 @@ def test_snns_shift_keeps_remaining_nodes_bit_identical() -> None:
         st.snns_shift(hand_plan(nodes=1), x)
 
 
+@pytest.mark.req("OGK-NMPC-004")
 def test_subdivision_reproduces_the_piecewise_linear_control() -> None:
     plan = hand_plan(nodes=5)
     dbl = st.subdivide(plan)
@@ -71,6 +73,7 @@ def test_subdivision_reproduces_the_piecewise_linear_control() -> None:
     assert np.allclose(dbl.states[1::2], 0.5 * (plan.states[:-1] + plan.states[1:]))
 
 
+@pytest.mark.req("OGK-NMPC-004")
 def test_cncn_regrid_reproduces_the_old_control_at_the_new_nodes() -> None:
     plan = hand_plan(nodes=6, nu=1)
     t = plan.t0 + 0.37 * plan.step
@@ -93,6 +96,7 @@ def test_cncn_regrid_reproduces_the_old_control_at_the_new_nodes() -> None:
         st.regrid(plan, plan.t_f + 1.0, x, 4)
 
 
+@pytest.mark.req("OGK-NMPC-004")
 def test_snns_guess_respects_min_nodes() -> None:
     plan = hand_plan(nodes=5, nu=1)
     x = np.zeros(5)
@@ -104,6 +108,7 @@ def test_snns_guess_respects_min_nodes() -> None:
         assert np.allclose(g.controls[k], plan.control_at(tk), atol=1e-14)
 
 
+@pytest.mark.req("OGK-NMPC-004")
 @pytest.mark.parametrize("cost_n, cost_2n, threshold, adopt", [
     (100.0, 98.0, 1.0, True),      # 2 % better: greater than 1 % (erratum: the text says "less")
     (100.0, 99.5, 1.0, False),     # 0.5 % better
@@ -119,6 +124,7 @@ def test_doubling_test(cost_n: float | None, cost_2n: float | None, threshold: f
 
 # -- scenario [nmpc] ----------------------------------------------------------------------------------------
 
+@pytest.mark.req("OGK-HAR-008")
 def test_nmpc_table_is_read_and_checked(tmp_path: Path) -> None:
     s = load_scenario()
     assert s.nmpc.strategy == "snns" and s.nmpc.third_bodies_in_model is False
@@ -147,6 +153,7 @@ def scenario():  # type: ignore[no-untyped-def]
     return load_scenario()
 
 
+@pytest.mark.req("OGK-NMPC-011")
 def test_ipopt_guidance_keeps_a_bounded_number_of_solvers(scenario) -> None:  # type: ignore[no-untyped-def]
     """BoundedNlp: at most SOLVER_CACHE_SIZE solvers, least recently used dropped, and only their symbolic
     NLPs (an unbounded cache held one CasADi solver per node count: GBs over a perturbed flight)."""
@@ -164,6 +171,7 @@ def test_ipopt_guidance_keeps_a_bounded_number_of_solvers(scenario) -> None:  # 
     assert nlp._solver(6, False) is nlp._solver(6, False)                           # kept ones are reused
 
 
+@pytest.mark.req("OGK-NMPC-010")
 def test_short_unperturbed_closed_loop_keeps_the_open_loop_plan(scenario) -> None:  # type: ignore[no-untyped-def]
     """Bellman (sec. 2.2), short variant: 3 SNNS replans (no doubling test, to build 3 solvers only) from the
     measured unperturbed state re-find the open loop's t_f* within 1e-3 d and keep its subinterval grid."""
@@ -201,6 +209,7 @@ class _OpenLoop:
         return self.inner.command(t)
 
 
+@pytest.mark.req("OGK-NMPC-010")
 @pytest.mark.slow
 def test_unperturbed_snns_closed_loop_reproduces_the_open_loop(scenario) -> None:  # type: ignore[no-untyped-def]
     """Bellman (sec. 2.2): without disturbance the SNNS closed loop flies the open-loop optimum. Both flights
@@ -229,6 +238,7 @@ def run(*args: str, timeout: float = 120) -> subprocess.CompletedProcess[str]:
     return subprocess.run([str(OGK), *args], capture_output=True, text=True, timeout=timeout)
 
 
+@pytest.mark.req("OGK-HAR-005")
 @pytest.mark.parametrize("args, words", [
     (["--seed", "-1"], ["--seed", ">= 0"]),
     (["--max-replans", "0"], ["--max-replans"]),
@@ -246,6 +256,7 @@ def test_cli_bad_input_is_one_line(tmp_path: Path, args: list[str], words: list[
         assert w in lines[0]
 
 
+@pytest.mark.req("OGK-HAR-013")
 def test_cli_help_names_the_default_solver() -> None:
     """`ogk nmpc` flies the flight code unless told otherwise, and its help says so."""
     out = run("nmpc", "rendezvous_nep_min_time", "--help")
@@ -253,6 +264,7 @@ def test_cli_help_names_the_default_solver() -> None:
     assert "default: kernel" in " ".join(out.stdout.split())
 
 
+@pytest.mark.req("OGK-HAR-005")
 def test_cli_other_family_and_bad_scenario(tmp_path: Path) -> None:
     out = run("nmpc", "leo-geo", "--json", str(tmp_path / "r.json"))
     assert out.returncode == 2 and "has no `ogk nmpc`" in out.stderr
@@ -262,6 +274,7 @@ def test_cli_other_family_and_bad_scenario(tmp_path: Path) -> None:
     assert out.returncode == 2 and "nmpc.max_replans" in out.stderr and "Traceback" not in out.stderr
 
 
+@pytest.mark.req("OGK-HAR-002")
 def test_cli_json_keys_and_plots(tmp_path: Path) -> None:
     """Two CNCN replans (one node count, ~10 s): not converged (exit 1), every key written, 3 figures."""
     out_json = tmp_path / "r.json"
@@ -317,6 +330,7 @@ class _EarthOnTheWay:
         return np.array([x0[0], x0[1] + x0[3] / x0[0] * t, 0.0, x0[3]])
 
 
+@pytest.mark.req("OGK-NMPC-010")
 def test_a_flight_through_a_planet_ends_there(scenario) -> None:  # type: ignore[no-untyped-def]
     """The truth's planets are point masses: passing inside Earth's radius ends the flight, not converged."""
     from ogk.missions.rendezvous.truth import TruthModel

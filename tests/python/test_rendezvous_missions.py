@@ -138,6 +138,7 @@ def flown(tmp_path_factory: pytest.TempPathFactory) -> dict[str, dict]:
     return out
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-NMPC-010")
 @pytest.mark.parametrize("name", IDS)
 def test_ogk_run_arrives_within_the_propellant(flown: dict, name: str) -> None:
     f = flown[name]
@@ -153,6 +154,7 @@ def test_ogk_run_arrives_within_the_propellant(flown: dict, name: str) -> None:
     assert f["result"].fuel_kg == pytest.approx(doc["fuel_kg"], rel=1e-12)
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-NMPC-010")
 @pytest.mark.parametrize("name", IDS)
 def test_flown_control_reproduces_the_arrival(flown: dict, name: str) -> None:
     """A Cartesian SI propagation (written here) of the plans the kernel flew ends where the truth did,
@@ -207,6 +209,7 @@ def test_flown_control_reproduces_the_arrival(flown: dict, name: str) -> None:
     assert s0["mass_kg"] - y[4] <= m.m0_kg - m.dry_kg
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-NMPC-010")
 @pytest.mark.parametrize("name", IDS)
 def test_fuel_and_time_against_the_hohmann_transfer(flown: dict, name: str) -> None:
     f = flown[name]
@@ -222,6 +225,7 @@ def test_fuel_and_time_against_the_hohmann_transfer(flown: dict, name: str) -> N
     assert 0.5 * t_h <= t_f <= 3.0 * t_h, (t_f / DAY_S, t_h / DAY_S)
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-NMPC-010")
 @pytest.mark.parametrize("name", IDS)
 def test_short_campaign(flown: dict, name: str, tmp_path: Path) -> None:
     f = flown[name]
@@ -251,18 +255,21 @@ def _one_line(res: subprocess.CompletedProcess[str], path: Path, key: str) -> st
     return lines[0]
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-HAR-005")
 def test_a_vehicle_outside_the_envelope_is_one_line(tmp_path: Path) -> None:
     path = write_scenario(MISSIONS[1], tmp_path, m0_kg=150.0, dry_kg=75.0)   # 0.8 N / 150 kg = 5.3e-3
     line = _one_line(ogk("run", str(path), "--json", str(tmp_path / "r.json")), path, "propulsion.thrust_max_n")
     assert "envelope" in line and "0.0032" in line
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-HAR-005")
 def test_too_little_propellant_for_the_hohmann_dv_is_one_line(tmp_path: Path) -> None:
     path = write_scenario(MISSIONS[0], tmp_path, dry_kg=1300.0)   # 200 kg: 4.3 km/s < Hohmann 5.2 km/s
     line = _one_line(ogk("run", str(path), "--json", str(tmp_path / "r.json")), path, "propulsion.thrust_max_n")
     assert "not enough propellant" in line and "Hohmann" in line
 
 
+@pytest.mark.req("OGK-HAR-005")
 def test_an_old_mars_key_names_its_new_name(tmp_path: Path) -> None:
     path = write_scenario(MISSIONS[0], tmp_path)
     path.write_text(path.read_text().replace("target_soi_radius_m =", "mars_soi_radius_m ="))
@@ -271,6 +278,7 @@ def test_an_old_mars_key_names_its_new_name(tmp_path: Path) -> None:
     assert "[convergence] target_soi_radius_m" in line
 
 
+@pytest.mark.req("OGK-HAR-007", "OGK-NMPC-010")
 def test_a_plan_beyond_the_propellant_stops_with_its_reason(tmp_path: Path) -> None:
     """The light vehicle at constant thrust (minimum time): its fastest transfer burns ~250 kg, it has
     150: the first plan is refused, the record says why, exit 1 (the user's OGK_E_RANGE traceback)."""

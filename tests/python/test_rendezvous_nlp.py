@@ -95,6 +95,7 @@ def sep_fuel() -> tuple[RendezvousNlp, NlpResult]:
     return nlp, res
 
 
+@pytest.mark.req("OGK-NMPC-011")
 def test_min_time_equals_min_time_ocp() -> None:
     """Test case (1) through the general NLP: the same optimum as ocp.MinTimeOcp (370.1208 d)."""
     scenario = load_scenario(NEP_TIME)
@@ -112,6 +113,7 @@ def test_min_time_equals_min_time_ocp() -> None:
     assert nlp.constraint_violation(0.0, nlp.model.x0, res.plan) < 1e-11
 
 
+@pytest.mark.req("OGK-NMPC-011")
 @pytest.mark.parametrize("case, days, fuel, isp", [
     ("nep", 488.447, 260.211, (ISP, ISP)),
     # SEP: the effective Isp T_max / (g0 mdot_max) is 3928 s at 1 AU, 3775 s at r_M.
@@ -143,6 +145,7 @@ def test_min_fuel_open_loop(case: str, days: float, fuel: float, isp: tuple[floa
     assert m_f == pytest.approx(M0 - nlp.kg(res.objective), abs=1e-3)
 
 
+@pytest.mark.req("OGK-NMPC-011")
 def test_warm_resolve_from_shifted_plan(nep_fuel: tuple[RendezvousNlp, NlpResult]) -> None:
     """The SNN step of sec. 2.3.2: drop the first subinterval, start from the state the first one
     reaches (plus a 10 m/s radial error), N = 29. Primal + dual warm start (NlpDuals.shifted) against
@@ -165,6 +168,7 @@ def test_warm_resolve_from_shifted_plan(nep_fuel: tuple[RendezvousNlp, NlpResult
     assert (29, True) in nlp._solvers and (29, False) in nlp._solvers and (30, False) in nlp._solvers
 
 
+@pytest.mark.req("OGK-NMPC-011", "OGK-NMPC-001")
 def test_third_bodies_in_the_predictive_model() -> None:
     """Option third_bodies: min-time t_f moves by days (measured 370.1208 -> 376.3158 d: Earth pulls
     backward with ~4.7e-4 m/s^2 at departure, more than the thrust, for the first days), and the plan
@@ -190,6 +194,7 @@ def test_third_bodies_in_the_predictive_model() -> None:
     assert misses[1] < 1e4 * KM and misses[0] > 1e7 * KM
 
 
+@pytest.mark.req("OGK-NMPC-011", "OGK-HAR-005")
 def test_bad_inputs_raise(nep_fuel: tuple[RendezvousNlp, NlpResult]) -> None:
     nlp, res = nep_fuel
     x0, p = nlp.model.x0, res.plan

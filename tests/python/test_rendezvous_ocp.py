@@ -64,6 +64,7 @@ TABLE_A1 = {
 }
 
 
+@pytest.mark.req("OGK-NMPC-011")
 def test_scenario_carries_table_a1() -> None:
     raw = tomllib.loads(SCENARIO.read_text())
     for (table, key), paper in TABLE_A1.items():
@@ -87,6 +88,7 @@ def optimum(ocp: MinTimeOcp) -> OcpResult:
     return ocp.solve(default_guess(ocp))
 
 
+@pytest.mark.req("OGK-NMPC-011")
 def test_documented_guess_reaches_paper_optimum(optimum: OcpResult) -> None:
     assert optimum.converged, optimum.status
     assert optimum.t_f_days <= 370.3
@@ -126,6 +128,7 @@ def reintegrate(optimum: OcpResult) -> tuple[float, float, float]:
     return float(np.linalg.norm(pos - pos_m)), float(np.linalg.norm(vel - vel_m)), float(x[4])
 
 
+@pytest.mark.req("OGK-NMPC-011")
 def test_reintegrated_control_meets_mars(optimum: OcpResult) -> None:
     """The optimal control flown by an integrator that is not the OCP's meets Mars (eq. 5).
 
@@ -140,6 +143,7 @@ def test_reintegrated_control_meets_mars(optimum: OcpResult) -> None:
     assert mass_f == pytest.approx(1500.0 - optimum.fuel_kg, abs=1e-6)
 
 
+@pytest.mark.req("OGK-NMPC-011")
 def test_multi_start_finds_nothing_better(ocp: MinTimeOcp, optimum: OcpResult) -> None:
     results, optima = multi_start(ocp)
     assert len(results) == 8 and optima
@@ -148,6 +152,7 @@ def test_multi_start_finds_nothing_better(ocp: MinTimeOcp, optimum: OcpResult) -
     assert [o.t_f_days for o in optima] == sorted(o.t_f_days for o in optima)
 
 
+@pytest.mark.req("OGK-NMPC-011", "OGK-HAR-005")
 @pytest.mark.parametrize("table, key, value, needle", [
     ("propulsion", "thrust_max_nn", 0.5, "propulsion.thrust_max_nn: unknown key"),
     ("propulsion", "thrust_max_n", -0.5, "propulsion.thrust_max_n: must be > 0"),
@@ -168,6 +173,7 @@ def test_loader_rejects_bad_input(tmp_path: Path, table: str, key: str, value: f
     assert needle in str(info.value)
 
 
+@pytest.mark.req("OGK-NMPC-011")
 def test_numpy_and_casadi_models_agree(ocp: MinTimeOcp, optimum: OcpResult) -> None:
     """dynamics.rhs (numpy) equals dynamics.casadi_rhs, and dynamics.rk4_interval reproduces the
     OCP's node states from its own angles (multiple-shooting continuity, IPOPT's tolerance)."""
@@ -192,6 +198,7 @@ SEP_PRINTED = {"power_a1": 1.1063, "power_a2": 0.1495, "power_a3": -0.2990, "pow
                "mass_rate_c1_kg_s": -0.4756e-6, "mass_rate_c2_kg_s_per_w": -0.9021e-6 / 1e3}  # mg/s, mg/s/kW
 
 
+@pytest.mark.req("OGK-NMPC-011")
 @pytest.mark.parametrize("name", ["rendezvous_nep_min_fuel", "rendezvous_sep_min_fuel"])
 def test_min_fuel_scenarios_carry_table_a1(name: str) -> None:
     """The two minimum-fuel cases of sec. 4.2 (not solved yet): Table A.1's values, read raw, and
@@ -218,6 +225,7 @@ def test_min_fuel_scenarios_carry_table_a1(name: str) -> None:
         MinTimeOcp(scenario)
 
 
+@pytest.mark.req("OGK-NMPC-011", "OGK-NMPC-007")
 def test_bounded_angle_sweep(optimum: OcpResult) -> None:
     """Option max_sweep_rad (not in the paper): |alpha_{k+1} - alpha_k| <= pi forbids the windings of
     more than a turn per subinterval that every other optimum of the survey uses (docs/nmpc.md). From

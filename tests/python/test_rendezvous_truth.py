@@ -20,6 +20,8 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.rendezvous.dynamics import Engine, rhs, rk4_interval, throttle_rhs
 from ogk_host.rendezvous.scenario import load_scenario
 
+pytestmark = pytest.mark.req("OGK-NMPC-011")
+
 SCEN = Path(__file__).resolve().parents[2] / "scenarios"
 NEP_TIME, NEP_FUEL, SEP_FUEL = (SCEN / f"rendezvous_{n}.toml" for n in ("nep_min_time", "nep_min_fuel",
                                                                          "sep_min_fuel"))

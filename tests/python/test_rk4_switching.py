@@ -47,6 +47,7 @@ def switch_times(D: float, T: float, u: float) -> tuple[float, float]:
     return t1, T - t1
 
 
+@pytest.mark.req("OGK-CORE-014")
 @pytest.mark.parametrize("D, T, u, h", CASES)
 def test_switch_times_and_states(D: float, T: float, u: float, h: float) -> None:
     x0 = closed_form(D, T, u, 0.0)
@@ -75,6 +76,7 @@ def test_switch_times_and_states(D: float, T: float, u: float, h: float) -> None
     assert np.array_equal(dense.x[-1], res.xf)
     assert abs(res.xf[0] - D) <= 1e-10 * D and abs(res.xf[1]) <= 1e-10 * max(1.0, D)
 
+@pytest.mark.req("OGK-CORE-014")
 def test_switch_on_a_grid_point_not_double_counted() -> None:
     """h chosen so that t1 is (to rounding) a grid point: still exactly two switches."""
     D, T, u = 1.0, 3.0, 1.0
@@ -86,6 +88,7 @@ def test_switch_on_a_grid_point_not_double_counted() -> None:
         assert abs(event.t - t_ex) < 1e-10
 
 
+@pytest.mark.req("OGK-CORE-014")
 def test_without_switch_function_no_events() -> None:
     """Same model, switching disabled: thrust stays on; r = u t^2/2 exactly."""
     model = models.min_fuel_double_integrator(1.0)
@@ -96,6 +99,7 @@ def test_without_switch_function_no_events() -> None:
     assert res.xf[1] == pytest.approx(1.0, abs=1e-14)
 
 
+@pytest.mark.req("OGK-CORE-014", "OGK-HAR-013")
 def test_demo_reports_closed_form_agreement() -> None:
     from ogk.sil.demo_switching import format_report, run_switching_demo
 
@@ -106,6 +110,7 @@ def test_demo_reports_closed_form_agreement() -> None:
     assert "closed form" in text and "final state" in text
 
 
+@pytest.mark.req("OGK-CORE-014")
 def test_bad_switch_tolerances() -> None:
     model = models.min_fuel_double_integrator(1.0)
     for s_tol, t_tol in [(-1.0, 1e-12), (1e-12, 0.0), (np.nan, 1e-12)]:
@@ -123,6 +128,7 @@ def oscillator_crossings(omega: float, h: float, n_cross: int) -> tuple[np.ndarr
     return t_exact, res
 
 
+@pytest.mark.req("OGK-CORE-014")
 def test_oscillator_crossings_fourth_order() -> None:
     """q = cos(omega t) crosses zero at (k + 1/2) pi / omega; on smooth motion the located
     times carry the RK4 phase error, O(h^4): halving h divides it by ~16."""
@@ -140,6 +146,7 @@ def test_oscillator_crossings_fourth_order() -> None:
     assert 13.0 < errors[0] / errors[1] < 19.0, errors
 
 
+@pytest.mark.req("OGK-CORE-014")
 def test_switch_overflow_keeps_partial_result() -> None:
     """More crossings than OGK_RK4_MAX_SWITCHES: OGK_E_SWITCH_OVERFLOW, the stored
     events intact and the propagation stopped at the first switch that did not fit."""

@@ -44,6 +44,7 @@ def propagate(n_steps: int) -> kernel.Rk4Result:
                                 PERIOD / n_steps, dense_capacity=n_steps + 2)
 
 
+@pytest.mark.req("OGK-CORE-013")
 def test_one_orbit_fourth_order(reference) -> None:  # type: ignore[no-untyped-def]
     errors = {}
     for n in (400, 800):
@@ -63,6 +64,7 @@ def test_one_orbit_fourth_order(reference) -> None:  # type: ignore[no-untyped-d
     assert errors[800] < 2e-8, errors
 
 
+@pytest.mark.req("OGK-CORE-013")
 def test_energy_drift_small() -> None:
     res = propagate(800)
     assert res.dense is not None
@@ -80,6 +82,7 @@ def textbook_rk4_step(f, t: float, x: np.ndarray, h: float) -> np.ndarray:  # ty
     return x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
 
 
+@pytest.mark.req("OGK-CORE-013")
 @pytest.mark.parametrize("dt", [0.01, 0.3, -0.2])
 def test_single_step_matches_textbook_rk4(dt: float) -> None:
     x = periapsis_state()
@@ -88,6 +91,7 @@ def test_single_step_matches_textbook_rk4(dt: float) -> None:
     np.testing.assert_allclose(got, expected, rtol=1e-14, atol=1e-15)
 
 
+@pytest.mark.req("OGK-CORE-013")
 def test_decay_matches_rk4_stability_polynomial() -> None:
     """For x' = -k x every RK4 step multiplies x by R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24,
     z = -k h: the discrete solution is known exactly (and close to exp(-k t))."""
@@ -99,6 +103,7 @@ def test_decay_matches_rk4_stability_polynomial() -> None:
     assert res.xf[0] == pytest.approx(2.0 * np.exp(-k * n * h), rel=1e-5)
 
 
+@pytest.mark.req("OGK-CORE-013")
 def test_last_step_shortened_to_land_on_tf() -> None:
     k, h, tf = 0.9, 0.1, 0.35  # 3 full steps and one of 0.05
     res = kernel.rk4_propagate(models.decay(k), [1.0], 0.0, tf, h, dense_capacity=10)
@@ -109,6 +114,7 @@ def test_last_step_shortened_to_land_on_tf() -> None:
     assert res.xf[0] == pytest.approx(R(-k * h) ** 3 * R(-k * 0.05), rel=1e-14)
 
 
+@pytest.mark.req("OGK-CORE-013")
 def test_callback_failure_is_reported() -> None:
     with pytest.raises(kernel.KernelError) as info:
         kernel.rk4_propagate(models.decay(1.0, t_fail=0.5), [1.0], 0.0, 1.0, 0.1)
@@ -118,6 +124,7 @@ def test_callback_failure_is_reported() -> None:
     assert partial.t_reached <= 0.5 + 1e-12
 
 
+@pytest.mark.req("OGK-CORE-013", "OGK-CORE-021")
 def test_invalid_arguments() -> None:
     model = models.decay(1.0)
     for h in (0.0, -0.1, np.nan):

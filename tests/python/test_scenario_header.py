@@ -55,12 +55,14 @@ def edited(tmp_path: Path, name: str, old: str, new: str) -> Path:
 
 # ------------------------------------------------------------------------------------ the header
 
+@pytest.mark.req("OGK-HAR-006")
 def test_the_families_are_the_registry_s() -> None:
     assert set(MISSIONS) == set(registry.PACKAGES) == set(LOADERS)
     for mission, module in LOADERS.items():
         assert module.SCHEMA == schema_of(mission) == f"ogk.{mission}/1"
 
 
+@pytest.mark.req("OGK-HAR-006")
 @pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.stem)
 def test_every_shipped_scenario_carries_the_header(path: Path) -> None:
     raw = read_toml(path)
@@ -115,6 +117,7 @@ OLD = [
 ]
 
 
+@pytest.mark.req("OGK-HAR-006")
 @pytest.mark.parametrize("name, old, new, key, spelling", OLD,
                          ids=[f"{o[0]}:{o[3]}" for o in OLD])
 def test_old_spelling_is_one_line_with_the_new_name(tmp_path: Path, name: str, old: str, new: str,
@@ -139,6 +142,7 @@ def test_old_spelling_is_one_line_with_the_new_name(tmp_path: Path, name: str, o
 
 # ------------------------------------------------------------------------------------ acceptance
 
+@pytest.mark.req("OGK-HAR-006")
 def test_orbit_injection_default_acceptance(tmp_path: Path) -> None:
     path = edited(tmp_path, "leo_geo", r"^\[acceptance\]\n(?:(?!\[).*\n)*", "")
     scn = injection.load_scenario(path)
@@ -147,6 +151,7 @@ def test_orbit_injection_default_acceptance(tmp_path: Path) -> None:
     assert injection.load_scenario(SCENARIOS / "leo_geo.toml").acceptance.velocity_error_m_s == 20.0
 
 
+@pytest.mark.req("OGK-HAR-006")
 def test_low_thrust_transfer_default_acceptance_is_the_mpsp_tolerance(tmp_path: Path) -> None:
     scn = transfer.load_scenario(SCENARIOS / "apophis_cubesat.toml")
     assert "acceptance" not in read_toml(scn.path)
@@ -162,6 +167,7 @@ def test_low_thrust_transfer_default_acceptance_is_the_mpsp_tolerance(tmp_path: 
     assert err.value.key == "acceptance.position_error_m" and "unknown key" in str(err.value)
 
 
+@pytest.mark.req("OGK-HAR-006")
 def test_rendezvous_default_acceptance_is_the_arrival_condition(tmp_path: Path) -> None:
     from ogk.missions.rendezvous.family import judge
     scn = rendezvous.load_scenario(SCENARIOS / "rendezvous_nep_min_time.toml")
@@ -181,6 +187,7 @@ def test_rendezvous_default_acceptance_is_the_arrival_condition(tmp_path: Path) 
     assert judge(limited, arrived).startswith("propellant: 600 kg > 550")
 
 
+@pytest.mark.req("OGK-HAR-006")
 def test_binary_default_acceptance_is_the_corrector_tolerance(tmp_path: Path) -> None:
     from ogk_host.binary import transfers as T
     scn = binary.load_scenario(SCENARIOS / "moshup.toml")
@@ -194,6 +201,7 @@ def test_binary_default_acceptance_is_the_corrector_tolerance(tmp_path: Path) ->
 
 # ------------------------------------------------------------------------------------ paper results
 
+@pytest.mark.req("OGK-HAR-006")
 @pytest.mark.parametrize("name", ["leo_geo", "apophis_cubesat", "rendezvous_nep_min_time", "moshup"])
 def test_every_family_loads_without_paper_results(tmp_path: Path, name: str) -> None:
     text = (SCENARIOS / f"{name}.toml").read_text()
@@ -206,6 +214,7 @@ def test_every_family_loads_without_paper_results(tmp_path: Path, name: str) -> 
     assert scn.paper_results is None
 
 
+@pytest.mark.req("OGK-HAR-006", "OGK-HAR-002")
 def test_binary_report_prints_the_paper_column_only_with_paper_figures() -> None:
     from ogk.missions.binary.adapter import report_lines
     doc = {"scenario": "s", "transfer": "t", "kind": "single-burn", "thrust_n": 0.024, "corrector": "nrpc",
@@ -218,6 +227,7 @@ def test_binary_report_prints_the_paper_column_only_with_paper_figures() -> None
     assert "paper" in with_paper[1] and "13.64" in "\n".join(with_paper)
 
 
+@pytest.mark.req("OGK-HAR-006", "OGK-HAR-002")
 def test_mpsp_campaign_without_paper_results(tmp_path: Path) -> None:
     """`ogk mc` of the Apophis scenario with its paper tables removed: the paper's cases fly, the
     report has no paper column and the JSON no NaN (null where a number is missing)."""

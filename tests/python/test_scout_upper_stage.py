@@ -76,6 +76,7 @@ def reference_splines(raw: dict) -> tuple[CubicSpline, CubicSpline]:
             CubicSpline(t, np.array(th["mass_kg"]), bc_type="not-a-knot"))
 
 
+@pytest.mark.req("OGK-NOG-015")
 def test_scenario_carries_the_papers_section_7_data(scn, raw) -> None:
     """Eq. (56), Tables 8-12, eq. (57) and the printed CPD gains (sec. 7 text)."""
     init = scn.initial_state
@@ -108,6 +109,7 @@ def test_scenario_carries_the_papers_section_7_data(scn, raw) -> None:
     assert gains.kd_roll_n_m_s_per_rad == pytest.approx(printed.kd_roll_n_m_s_per_rad, rel=0.02)
 
 
+@pytest.mark.req("OGK-NOG-015")
 def test_tabulated_thrust_equals_reference_spline_and_documented_model(scn, raw) -> None:
     """a = T/m and its first two derivatives equal a scipy spline of the raw arrays; the table
     samples the documented closed form (T_min + dT sin(pi t / t_b), constant c = 2800 m/s)."""
@@ -132,6 +134,7 @@ def test_tabulated_thrust_equals_reference_spline_and_documented_model(scn, raw)
     assert scn.thrust.thrust_at(np.array([32.5]))[0] == 0.0                       # burnt out
 
 
+@pytest.mark.req("OGK-NOG-015")
 def test_minimum_time_matches_the_paper(scn, nominal: Nominal) -> None:
     """Sec. 7: "The minimum time needed for orbit injection is 25.8 s" (within 0.2 s)."""
     assert scn.paper.min_time_s == 25.8
@@ -140,6 +143,7 @@ def test_minimum_time_matches_the_paper(scn, nominal: Nominal) -> None:
     assert nominal.method == "scan"
 
 
+@pytest.mark.req("OGK-NOG-015")
 def test_nominal_against_independent_si_integration(scn, raw, nominal: Nominal) -> None:
     """Planar state + costate equations in SI (written here) with T/m from the reference spline,
     integrated by solve_ivp from the nominal's x(0), lambda(0) over t_f*: injection on eq. (20)."""
@@ -164,6 +168,7 @@ def test_nominal_against_independent_si_integration(scn, raw, nominal: Nominal) 
     assert abs(vr) < 1e-5 and abs(vt - math.sqrt(MU / scn.target_radius_m)) < 1e-5   # m/s
 
 
+@pytest.mark.req("OGK-NOG-015")
 def test_tabulated_path_reproduces_the_constant_thrust_formula() -> None:
     """LEO-to-GEO through a table of the sec. 6 formula (constant T, m linear, sampled every 5 s;
     exact for cubic splines): the same t_f*, f0* and gains as the formula path."""
@@ -192,6 +197,7 @@ def check_table(nominal: Nominal):
     return compute_gain_table(nominal, np.array(TAU_CHECK + (0.9,)))
 
 
+@pytest.mark.req("OGK-NOG-015")
 @pytest.mark.parametrize("tau_k", TAU_CHECK)
 def test_gains_predict_the_exact_re_solve_to_second_order(nominal: Nominal, check_table,
                                                           tau_k: float) -> None:
@@ -218,6 +224,7 @@ def test_gains_predict_the_exact_re_solve_to_second_order(nominal: Nominal, chec
     assert errors[1] < errors[0] / 30.0        # quadratic: x100 per decade (x10 if first order)
 
 
+@pytest.mark.req("OGK-NOG-015", "OGK-NOG-019")
 def test_truth_model_flies_the_table_and_lands_on_the_nominal(scn, raw) -> None:
     """Truth T/m = reference spline; u*(t) open loop (point-mass truth, RK4 20 ms) lands on the
     ground nominal's final state and on eq. (20)."""
@@ -240,6 +247,7 @@ def test_truth_model_flies_the_table_and_lands_on_the_nominal(scn, raw) -> None:
         assert abs(res.errors[key][0]) < 1e-2
 
 
+@pytest.mark.req("OGK-NOG-015", "OGK-HAR-007")
 def test_both_missions_take_one_path_and_the_code_names_neither() -> None:
     """Issue 9's "no mission-specific branch": both scenario files resolve to the same family adapter
     and load into the same scenario type through the same loader; no source file of kernel/, harness/
@@ -258,6 +266,7 @@ def test_both_missions_take_one_path_and_the_code_names_neither() -> None:
     assert named == [], named
 
 
+@pytest.mark.req("OGK-NOG-015", "OGK-NOG-017")
 def test_shaped_window_steers_out_the_radius_and_the_plane(scn) -> None:
     """The scenario's end-game (ogk_terminal with radius and plane shaping in the last 2 s, v_go in
     the last 0.9 s) against the same window unshaped (gains 0: v_go throughout, the radius and the
@@ -289,6 +298,7 @@ def test_shaped_window_steers_out_the_radius_and_the_plane(scn) -> None:
     assert shaped["dphi_f_deg"] < plain["dphi_f_deg"] / 10.0
 
 
+@pytest.mark.req("OGK-NOG-015", "OGK-NOG-018")
 def test_short_sil_campaign_has_no_failure(tmp_path: Path) -> None:
     """`ogk mc` end to end: 4 runs, 6-DOF truth, every dispersion of Tables 10-12, kernel VTD-NOG
     and CPD: exit 0, no failure, injection errors inside the scenario's acceptance."""

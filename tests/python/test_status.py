@@ -21,6 +21,7 @@ EXPECTED = [
 ]
 
 
+@pytest.mark.req("OGK-CORE-001")
 def test_status_names_match_header() -> None:
     assert int(lib.OGK_STATUS_COUNT) == len(EXPECTED)
     for code, name in enumerate(EXPECTED):
@@ -29,11 +30,13 @@ def test_status_names_match_header() -> None:
         assert kernel.Status[name] == code
 
 
+@pytest.mark.req("OGK-CORE-001")
 @pytest.mark.parametrize("code", [-1, len(EXPECTED), 1000])
 def test_unknown_status_name(code: int) -> None:
     assert kernel.status_name(code) == "OGK_E_UNKNOWN"
 
 
+@pytest.mark.req("OGK-CORE-001")
 def test_kernel_error_carries_code_and_name() -> None:
     with pytest.raises(kernel.KernelError) as info:
         kernel.interp_locate([0.0, 1.0], 2.0)
@@ -45,6 +48,7 @@ def test_kernel_error_carries_code_and_name() -> None:
     assert "OGK_E_RANGE" in str(err)
 
 
+@pytest.mark.req("OGK-CORE-002")
 def test_version_matches_header() -> None:
     v = kernel.version()
     assert v == f"{lib.OGK_VERSION_MAJOR}.{lib.OGK_VERSION_MINOR}.{lib.OGK_VERSION_PATCH}"

@@ -47,6 +47,7 @@ def expect_code(blob: bytes, code: int, s: kernel.TableSpec | None = None) -> No
 
 
 # ----------------------------------------------------------------- format layout
+@pytest.mark.req("OGK-CORE-017")
 def test_header_layout_by_hand(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     """Decode the header with explicit offsets (independent of the writer's struct)."""
     grid, data, blob = table
@@ -65,6 +66,7 @@ def test_header_layout_by_hand(table: tuple[np.ndarray, np.ndarray, bytes]) -> N
 
 
 # ----------------------------------------------------------------- round trips
+@pytest.mark.req("OGK-CORE-017")
 def test_kernel_round_trip_is_bit_exact(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     grid, data, blob = table
     loaded = kernel.table_load(blob, spec())
@@ -73,12 +75,14 @@ def test_kernel_round_trip_is_bit_exact(table: tuple[np.ndarray, np.ndarray, byt
     assert np.array_equal(loaded.data, data)
 
 
+@pytest.mark.req("OGK-CORE-017")
 def test_kernel_accepts_wildcard_dims(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     _, data, blob = table
     loaded = kernel.table_load(blob, spec(dims=(0, 0)))
     assert np.array_equal(loaded.data, data)
 
 
+@pytest.mark.req("OGK-CORE-017")
 def test_kernel_get_single_values(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     _, data, blob = table
     view = kernel.TableView(blob, spec())
@@ -92,6 +96,7 @@ def test_kernel_get_single_values(table: tuple[np.ndarray, np.ndarray, bytes]) -
         assert info.value.code == lib.OGK_E_RANGE
 
 
+@pytest.mark.req("OGK-CORE-017")
 @pytest.mark.parametrize("shape", [(1, 1), (5, 7), (4, 2, 3), (3, 1, 2, 3, 2)])
 def test_round_trip_shapes(rng: np.random.Generator, shape: tuple[int, ...]) -> None:
     grid = np.cumsum(rng.uniform(0.1, 1.0, shape[0]))
@@ -104,6 +109,7 @@ def test_round_trip_shapes(rng: np.random.Generator, shape: tuple[int, ...]) -> 
     assert py.dims == shape[1:]
 
 
+@pytest.mark.req("OGK-CORE-017")
 def test_file_write_read(tmp_path: Path, table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     grid, data, blob = table
     path = tmp_path / "gains.ogkt"
@@ -114,6 +120,7 @@ def test_file_write_read(tmp_path: Path, table: tuple[np.ndarray, np.ndarray, by
 
 
 # ----------------------------------------------------------------- corruptions
+@pytest.mark.req("OGK-CORE-017")
 def test_payload_byte_flip_is_crc(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     _, _, blob = table
     for off in (48, 48 + 8 * GRID_SIZE + 17, len(blob) - 8):  # low mantissa bytes
@@ -122,6 +129,7 @@ def test_payload_byte_flip_is_crc(table: tuple[np.ndarray, np.ndarray, bytes]) -
         expect_code(bytes(bad), lib.OGK_E_TABLE_CRC)
 
 
+@pytest.mark.req("OGK-CORE-017")
 @pytest.mark.parametrize("offset", [4, 6, 8, 12, 14, 16, 20, 32, 36, 40, 44, 47])
 def test_header_byte_flip_is_crc(table: tuple[np.ndarray, np.ndarray, bytes],
                                  offset: int) -> None:
@@ -131,6 +139,7 @@ def test_header_byte_flip_is_crc(table: tuple[np.ndarray, np.ndarray, bytes],
     expect_code(bytes(bad), lib.OGK_E_TABLE_CRC)
 
 
+@pytest.mark.req("OGK-CORE-017")
 @pytest.mark.parametrize("fix_crc", [True, False])
 def test_bad_magic(table: tuple[np.ndarray, np.ndarray, bytes], fix_crc: bool) -> None:
     _, _, blob = table
@@ -138,24 +147,28 @@ def test_bad_magic(table: tuple[np.ndarray, np.ndarray, bytes], fix_crc: bool) -
     expect_code(b"PNG\x00" + blob[4:20], lib.OGK_E_TABLE_MAGIC)  # short and wrong
 
 
+@pytest.mark.req("OGK-CORE-017")
 def test_bad_version(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     _, _, blob = table
     for v in (0, 2, 0x0100):
         expect_code(reheader(blob, version=v), lib.OGK_E_TABLE_VERSION)
 
 
+@pytest.mark.req("OGK-CORE-017")
 def test_bad_element_type_or_kind(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     _, _, blob = table
     expect_code(reheader(blob, elem_type=2), lib.OGK_E_TABLE_TYPE)
     expect_code(blob, lib.OGK_E_TABLE_TYPE, spec(kind=KIND + 1))
 
 
+@pytest.mark.req("OGK-CORE-017")
 def test_nonzero_reserved_rejected(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     _, _, blob = table
     with pytest.raises(kernel.KernelError):
         kernel.table_load(reheader(blob, reserved=1), spec())
 
 
+@pytest.mark.req("OGK-CORE-017")
 @pytest.mark.parametrize("changes", [
     {"dims": (3, 3)}, {"dims": (2, 2)}, {"dims": (6,)}, {"dims": (3, 2, 1)},
     {"min_grid": GRID_SIZE + 1}, {"max_grid": GRID_SIZE - 1},
@@ -166,6 +179,7 @@ def test_wrong_expected_dims(table: tuple[np.ndarray, np.ndarray, bytes],
     expect_code(blob, lib.OGK_E_TABLE_DIM, spec(**changes))
 
 
+@pytest.mark.req("OGK-CORE-017")
 def test_inconsistent_header_dims(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     _, _, blob = table
     expect_code(reheader(blob, ndims=0), lib.OGK_E_TABLE_DIM, spec(dims=()))
@@ -175,6 +189,7 @@ def test_inconsistent_header_dims(table: tuple[np.ndarray, np.ndarray, bytes]) -
     expect_code(reheader(blob, grid_size=0), lib.OGK_E_TABLE_DIM, spec(min_grid=0))
 
 
+@pytest.mark.req("OGK-CORE-017")
 @pytest.mark.parametrize("keep", [0, 1, 10, 47, 48, 100, -1])
 def test_truncated(table: tuple[np.ndarray, np.ndarray, bytes], keep: int) -> None:
     _, _, blob = table
@@ -182,6 +197,7 @@ def test_truncated(table: tuple[np.ndarray, np.ndarray, bytes], keep: int) -> No
     expect_code(short, lib.OGK_E_TABLE_TRUNCATED)
 
 
+@pytest.mark.req("OGK-CORE-017")
 def test_too_long_or_size_field_wrong(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     _, _, blob = table
     expect_code(blob + b"\x00", lib.OGK_E_TABLE_SIZE)
@@ -190,6 +206,7 @@ def test_too_long_or_size_field_wrong(table: tuple[np.ndarray, np.ndarray, bytes
     expect_code(reheader(blob, payload_bytes=hdr.payload_bytes + 8), lib.OGK_E_TABLE_SIZE)
 
 
+@pytest.mark.req("OGK-CORE-017")
 def test_nonfinite_value_with_valid_crcs(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     _, _, blob = table
     for bad_value in (np.nan, np.inf):
@@ -204,6 +221,7 @@ def test_nonfinite_value_with_valid_crcs(table: tuple[np.ndarray, np.ndarray, by
 
 
 # ----------------------------------------------------------------- pure-Python reader / writer
+@pytest.mark.req("OGK-HAR-008", "OGK-CORE-017")
 def test_python_reader_rejects_corruptions(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
     _, _, blob = table
     flipped = bytearray(blob)
@@ -224,6 +242,7 @@ def test_python_reader_rejects_corruptions(table: tuple[np.ndarray, np.ndarray, 
         tf.decode_table(blob, kind=KIND + 1)
 
 
+@pytest.mark.req("OGK-HAR-008")
 @pytest.mark.parametrize("grid, data", [
     (np.arange(3.0), np.zeros(3)),                   # no entry dimension
     (np.arange(3.0), np.zeros((4, 2))),              # grid / data mismatch

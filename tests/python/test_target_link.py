@@ -20,6 +20,8 @@ import pytest
 from ogk.sil.target_link import ECHO, ERROR, MAX_PAYLOAD, TargetLink, TargetLinkError, f64_payload, \
     f64_values, frame
 
+pytestmark = pytest.mark.req("OGK-HAR-012")
+
 REPO = Path(__file__).resolve().parents[2]
 ELF = REPO / "build" / "arm" / "link" / "link_echo.elf"
 

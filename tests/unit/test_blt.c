@@ -182,6 +182,7 @@ static void assert_safe_command(const ogk_blt_command_t *cmd)
 
 /* ------------------------------------------------------------------ configuration */
 
+/* req: OGK-BLT-007 */
 static void test_config_default_and_mission_data(void **state)
 {
     ogk_blt_config_t c;
@@ -392,6 +393,7 @@ static void check_rejected(const ogk_blt_config_t *c, ogk_status expected, const
     OGK_ASSERT_STATUS(ogk_blt_evaluate(&ctx, &tr, &rep), OGK_E_NOT_INIT);
 }
 
+/* req: OGK-BLT-007 */
 static void test_init_rejections(void **state)
 {
     ogk_blt_config_t c;
@@ -477,6 +479,7 @@ static void test_init_rejections(void **state)
 }
 
 /* Reset: the derived state byte for byte as after a fresh init, and the next solve bit for bit. */
+/* req: OGK-BLT-007 */
 static void test_reset_equals_fresh_init(void **state)
 {
     static ogk_blt_transfer_t tr;
@@ -569,6 +572,7 @@ static void check_bad_transfer(const ogk_blt_transfer_t *bad, const ogk_blt_tran
     assert_int_equal((int)cmd.engine_on, 1);
 }
 
+/* req: OGK-BLT-007 */
 static void test_bad_transfers(void **state)
 {
     static ogk_blt_transfer_t tr;
@@ -653,6 +657,7 @@ static void test_bad_transfers(void **state)
     }
 }
 
+/* req: OGK-BLT-007 OGK-BLT-006 */
 static void test_null_and_not_init(void **state)
 {
     static ogk_blt_t zeroed; /* never initialised */
@@ -715,6 +720,7 @@ static void test_null_and_not_init(void **state)
 
 /* ------------------------------------------------------------------ the BLT law, eq. (22) */
 
+/* req: OGK-BLT-008 OGK-BLT-006 */
 static void test_command_blt_law(void **state)
 {
     static ogk_blt_transfer_t tr;
@@ -836,6 +842,7 @@ static void check_jacobians(const ogk_blt_config_t *c, const ogk_blt_transfer_t 
 /* (a) a single burn with every model term on: degree-2 gravity of both bodies, SRP, the solar
  * tide (a time-dependent field), mass flow; a burn starting at t0 = 0.25, mass0 = 0.9, and two free
  * start components besides A, B, T. */
+/* req: OGK-BLT-003 OGK-BLT-001 */
 static void test_jacobian_single_burn_all_terms(void **state)
 {
     static ogk_blt_transfer_t tr;
@@ -852,6 +859,7 @@ static void test_jacobian_single_burn_all_terms(void **state)
 /* (b) burn-coast-burn with a free node at interface 2: the first arc meets at the end of the first
  * burn (the coast propagated backward from the node), the second arc forward to the target; x0's
  * x and vy free. */
+/* req: OGK-BLT-003 */
 static void test_jacobian_bcb_free_node(void **state)
 {
     static ogk_blt_transfer_t tr;
@@ -923,30 +931,35 @@ static void solve_known_single_burn(uint32_t corrector, uint32_t jacobian)
     OGK_ASSERT_NEAR(cmd.u_hat[2], u[2], 1e-8);
 }
 
+/* req: OGK-BLT-004 */
 static void test_corrector_nrpc_central(void **state)
 {
     (void)state;
     solve_known_single_burn(OGK_BLT_CORR_NRPC, OGK_BLT_JAC_CENTRAL);
 }
 
+/* req: OGK-BLT-004 OGK-BLT-003 */
 static void test_corrector_nrpc_variational(void **state)
 {
     (void)state;
     solve_known_single_burn(OGK_BLT_CORR_NRPC, OGK_BLT_JAC_VARIATIONAL);
 }
 
+/* req: OGK-BLT-004 */
 static void test_corrector_lm_central(void **state)
 {
     (void)state;
     solve_known_single_burn(OGK_BLT_CORR_LM, OGK_BLT_JAC_CENTRAL);
 }
 
+/* req: OGK-BLT-004 */
 static void test_corrector_lm_variational(void **state)
 {
     (void)state;
     solve_known_single_burn(OGK_BLT_CORR_LM, OGK_BLT_JAC_VARIATIONAL);
 }
 
+/* req: OGK-BLT-004 */
 static void test_corrector_hybrid_variational(void **state)
 {
     (void)state;
@@ -956,6 +969,7 @@ static void test_corrector_hybrid_variational(void **state)
 /* The burn-coast-burn with its free node (23 unknowns, 12 errors: not unique, so only convergence
  * and consistency are checked): both correctors, the variational Jacobian, and NRPC with central
  * differences. */
+/* req: OGK-BLT-004 */
 static void test_corrector_bcb_free_node(void **state)
 {
     static ogk_blt_transfer_t tr;
@@ -1014,6 +1028,7 @@ static void test_corrector_bcb_free_node(void **state)
 
 /* ------------------------------------------------------------------ impact and iteration limit */
 
+/* req: OGK-BLT-005 OGK-BLT-002 */
 static void test_impact_through_secondary(void **state)
 {
     static ogk_blt_transfer_t g;
@@ -1060,6 +1075,7 @@ static void test_impact_through_secondary(void **state)
     assert_true(rep.min_distance[0] <= c.model.body_radius[0]);
 }
 
+/* req: OGK-BLT-006 */
 static void test_iteration_limit(void **state)
 {
     static ogk_blt_transfer_t tr;
@@ -1144,6 +1160,7 @@ static double jacobi(const double *x)
  * difference is the amplitude effect and not an error is checked by its scaling: doubling Ax
  * must multiply P - P0 by 4 (+-2 %). The integration (RK4, 5e-3 TU) and the convergence
  * (|e| <= 1e-12, a crossing time to ~1e-9 TU at |vy| ~ 8e-4 VU) are far below both. */
+/* req: OGK-BLT-001 OGK-BLT-004 */
 static void test_lyapunov_small_amplitude(void **state)
 {
     static ogk_blt_transfer_t out;
@@ -1177,6 +1194,7 @@ static void test_lyapunov_small_amplitude(void **state)
  * the full period 2T from x0 it closes on itself, it crosses the x-axis perpendicularly at T
  * with the Jacobi constant of x0, and its period lies above the linear one by far more than at
  * Ax = 1e-4. */
+/* req: OGK-BLT-001 OGK-BLT-004 */
 static void test_lyapunov_finite_amplitude(void **state)
 {
     static ogk_blt_transfer_t out;

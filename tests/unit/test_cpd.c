@@ -185,6 +185,7 @@ static ogk_cpd_input_t zero_input(void)
 /* ================================================================ geometry */
 
 /* Eqs. (38)-(39): x_b along the commanded direction, for any roll. */
+/* req: OGK-CPD-002 */
 static void test_commanded_attitude_points_x_body(void **state)
 {
     uint64_t seed = 12345u;
@@ -210,6 +211,7 @@ static void test_commanded_attitude_points_x_body(void **state)
 
 /* The paper's nominal geometry: at xi = phi = 0, alpha_c turns the vehicle in
  * pitch and beta_c in yaw (a1 = c2 = t). */
+/* req: OGK-CPD-002 */
 static void test_commanded_attitude_known_values(void **state)
 {
     double psi_c;
@@ -241,6 +243,7 @@ static void test_commanded_attitude_known_values(void **state)
 /* Eqs. (49)-(52): zero deflection at the commanded attitude gives back the
  * commanded angles; any deflection gives the direction of eq. (50) built from
  * the independent body axes. */
+/* req: OGK-CPD-003 */
 static void test_thrust_angles_round_trip_and_deflection(void **state)
 {
     uint64_t seed = 777u;
@@ -288,6 +291,7 @@ static void test_thrust_angles_round_trip_and_deflection(void **state)
  * n-component sin(pi) = 1.2e-16 is the rounding), so psi_c = pi, theta_c = 0.
  * Actual: zero attitude puts x_b on a1 = c2, which at xi = -pi is -t(xi), so
  * alpha_a = pi, beta_a = 0 (the same as at xi = +pi). */
+/* req: OGK-CPD-003 */
 static void test_thrust_angles_branch_cut(void **state)
 {
     double psi_c;
@@ -314,6 +318,7 @@ static void test_thrust_angles_branch_cut(void **state)
 
 /* Small deflections: d alpha, d beta from the first-order expansion of eq. (52)
  * with dT = Dz y_b + Dy z_b. */
+/* req: OGK-CPD-003 */
 static void test_thrust_angles_small_deflection(void **state)
 {
     const double d = 1.0e-6;
@@ -381,6 +386,7 @@ static void test_thrust_angles_small_deflection(void **state)
 /* Body-mode error: magnitude = true angle between x_b and T_c; rotating x_b
  * about the error vector by its magnitude lands on T_c; same magnitude for
  * every roll, and the vector turns with roll as a body-fixed vector must. */
+/* req: OGK-CPD-004 */
 static void test_body_pointing_error_geometry(void **state)
 {
     uint64_t seed = 99u;
@@ -428,6 +434,7 @@ static void test_body_pointing_error_geometry(void **state)
 }
 
 /* Small errors at zero roll: body mode = Euler differences (the signs of eq. 46). */
+/* req: OGK-CPD-004 */
 static void test_body_error_matches_euler_near_zero_roll(void **state)
 {
     double psi_c;
@@ -463,6 +470,7 @@ static void test_body_error_matches_euler_near_zero_roll(void **state)
 
 /* Commanded direction behind the vehicle: error magnitude near pi, flagged,
  * deflections saturated; exactly behind -> (pi, 0). */
+/* req: OGK-CPD-004 */
 static void test_body_error_behind(void **state)
 {
     ogk_cpd_t ctx;
@@ -504,6 +512,7 @@ static void test_body_error_behind(void **state)
 
 /* Linear region: outputs equal eqs. (45)-(46); each channel saturates alone at
  * +-limit with its own flag. */
+/* req: OGK-CPD-001 */
 static void test_control_law_and_saturation(void **state)
 {
     const ogk_cpd_pointing_t modes[2] = {OGK_CPD_POINTING_BODY, OGK_CPD_POINTING_EULER};
@@ -581,6 +590,7 @@ static void test_control_law_and_saturation(void **state)
 }
 
 /* Euler mode wraps the roll and yaw errors: 350 deg of yaw error is -10 deg. */
+/* req: OGK-CPD-004 OGK-CORE-020 */
 static void test_euler_mode_wraps_errors(void **state)
 {
     ogk_cpd_config_t cfg = rederived_config(OGK_CPD_POINTING_EULER);
@@ -600,6 +610,7 @@ static void test_euler_mode_wraps_errors(void **state)
     OGK_ASSERT_NEAR(out.phi_c, 170.0 * DEG, 0.0);
 }
 
+/* req: OGK-CORE-020 */
 static void test_wrap_pi(void **state)
 {
     const double cases[][2] = {
@@ -643,6 +654,7 @@ static void test_wrap_pi(void **state)
 /* Eq. (47): whatever the inputs, the commands are bounded, so the first-order
  * actuators of eqs. (16)-(18) (integrated here) move no faster than
  * 2 limit / tau. Worst case: saturated commands alternating sign. */
+/* req: OGK-CPD-005 */
 static void test_actuator_rate_bound(void **state)
 {
     const double dt = 0.01;  /* [s] control sample */
@@ -815,6 +827,7 @@ static axis_state simulate_axis(const ogk_cpd_config_t *cfg0, axis_id axis, doub
  * printed ones on the paper's G = 0.83 s^-2, the re-derived ones on the true
  * G = T l0 / I_y0 = 8.18 s^-2; from a small error (linear CPD) and from the
  * Table 4 1-sigma dispersion (10 deg, 10 deg/s: saturated CPD). */
+/* req: OGK-CPD-012 */
 static void test_single_axis_closed_loop_converges(void **state)
 {
     const ogk_cpd_pointing_t modes[2] = {OGK_CPD_POINTING_BODY, OGK_CPD_POINTING_EULER};
@@ -964,6 +977,7 @@ static void simulate_rigid_body(ogk_cpd_pointing_t mode, double *max_err, double
 /* The errata's point, on the full nonlinear attitude dynamics: at 120 deg of
  * roll the literal Euler-error law (eq. 46) drives the pointing error away,
  * the body-axis pointing error brings it to zero. */
+/* req: OGK-CPD-012 OGK-CPD-004 */
 static void test_rigid_body_at_large_roll(void **state)
 {
     double max_err;
@@ -978,6 +992,7 @@ static void test_rigid_body_at_large_roll(void **state)
 
 /* ================================================================ errors */
 
+/* req: OGK-CPD-006 */
 static void test_init_rejects_bad_config(void **state)
 {
     const ogk_cpd_config_t good = rederived_config(OGK_CPD_POINTING_BODY);
@@ -1062,6 +1077,7 @@ static void assert_safe(const ogk_cpd_output_t *out)
 
 /* NaN/Inf or out-of-range inputs: defined safe command, flagged; the context
  * stays usable. NULL arguments. */
+/* req: OGK-CPD-007 */
 static void test_step_bad_inputs_give_safe_command(void **state)
 {
     const ogk_cpd_config_t cfg = rederived_config(OGK_CPD_POINTING_BODY);
@@ -1113,6 +1129,7 @@ static void test_step_bad_inputs_give_safe_command(void **state)
     OGK_ASSERT_STATUS(ogk_cpd_step(&ctx, &good, &out), OGK_OK);
 }
 
+/* req: OGK-CPD-007 */
 static void test_geometry_functions_bad_inputs(void **state)
 {
     double a;
@@ -1146,6 +1163,7 @@ static void test_geometry_functions_bad_inputs(void **state)
 
 /* Braking-curve cap (ogk_cpd_config_t.approach_accel_*): in the linear band it
  * is the paper's law; for a large error the rate command is sqrt(2 a |e|). */
+/* req: OGK-CPD-008 */
 static void test_braking_cap_formula(void **state)
 {
     ogk_cpd_config_t paper = rederived_config(OGK_CPD_POINTING_EULER);
@@ -1208,6 +1226,7 @@ static void test_braking_cap_formula(void **state)
  * (margin 0.5 on the saturated acceleration) the error is captured to 0.5 deg
  * within 16 s (stopping alone takes w0 / a_sat = 4.7 s and 59 deg), and the
  * excursion stays below the ballistic stopping angle w0^2 / (2 a_sat) plus 20 %. */
+/* req: OGK-CPD-008 */
 static void test_braking_cap_captures_large_rate(void **state)
 {
     const double g_true = THRUST_N * ARM_M / IY_KG_M2;
@@ -1235,6 +1254,7 @@ static void test_braking_cap_captures_large_rate(void **state)
  * feed-forward-free law by k_d times a body rate of magnitude omega; the
  * first step (no previous direction) and a command step beyond the clip are
  * handled as documented. */
+/* req: OGK-CPD-009 */
 static void test_feedforward_turn_rate(void **state)
 {
     const double dt = 0.02;
@@ -1285,6 +1305,7 @@ static void test_feedforward_turn_rate(void **state)
 
 /* ================================================================ contract */
 
+/* req: OGK-CPD-006 OGK-CPD-010 */
 static void test_config_default_reset_and_thrust_cmd(void **state)
 {
     ogk_cpd_config_t cfg;
@@ -1363,6 +1384,7 @@ static void test_config_default_reset_and_thrust_cmd(void **state)
 /* Every output is finite whatever the input's size: absurd but finite gains
  * (1e300, still k_d > k_p tau) and rates of +-1e308 on every axis, both
  * pointing modes. */
+/* req: OGK-CPD-007 */
 static void test_outputs_finite_for_absurd_finite_input(void **state)
 {
     static const double rates[3] = {1e308, -1e308, 0.0};

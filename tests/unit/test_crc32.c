@@ -20,6 +20,7 @@ static uint32_t crc32_bitwise(const uint8_t *data, size_t len)
     return ~c;
 }
 
+/* req: OGK-CORE-016 */
 static void test_check_value(void **state)
 {
     /* The catalogued check value of CRC-32/ISO-HDLC for "123456789". */
@@ -30,6 +31,7 @@ static void test_check_value(void **state)
     assert_int_equal(crc, 0xCBF43926u);
 }
 
+/* req: OGK-CORE-016 */
 static void test_incremental_matches_bitwise(void **state)
 {
     uint8_t buf[1000];
@@ -46,6 +48,7 @@ static void test_incremental_matches_bitwise(void **state)
     assert_int_equal(crc, crc32_bitwise(buf, sizeof buf));
 }
 
+/* req: OGK-CORE-016 OGK-CORE-021 */
 static void test_empty_and_null(void **state)
 {
     uint32_t crc = 0u;

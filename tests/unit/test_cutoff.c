@@ -54,6 +54,7 @@ static ogk_cutoff_out_t fly(ogk_cutoff_t *ctx, double t0, double t_end, double t
     return out;
 }
 
+/* req: OGK-NOG-016 */
 static void test_crossing_between_control_steps(void **state)
 {
     const ogk_cutoff_config_t cfg = config();
@@ -88,6 +89,7 @@ static void test_crossing_between_control_steps(void **state)
     }
 }
 
+/* req: OGK-NOG-016 */
 static void test_prediction_early_is_overridden(void **state)
 {
     const ogk_cutoff_config_t cfg = config();
@@ -100,6 +102,7 @@ static void test_prediction_early_is_overridden(void **state)
     OGK_ASSERT_NEAR(out.t_cutoff_s, T_CROSS, 1.0e-5);
 }
 
+/* req: OGK-NOG-016 */
 static void test_not_armed_before_window(void **state)
 {
     const ogk_cutoff_config_t cfg = config();
@@ -119,6 +122,7 @@ static void test_not_armed_before_window(void **state)
     OGK_ASSERT_NEAR(out.t_cutoff_s, T_CROSS + 18.0, 1.0e-9);
 }
 
+/* req: OGK-NOG-016 */
 static void test_backstop_when_energy_short(void **state)
 {
     ogk_cutoff_config_t cfg = config();
@@ -133,6 +137,7 @@ static void test_backstop_when_energy_short(void **state)
     OGK_ASSERT_NEAR(out.t_cutoff_s, 114.0, 1.0e-9);
 }
 
+/* req: OGK-NOG-016 */
 static void test_bad_input_changes_nothing(void **state)
 {
     const ogk_cutoff_config_t cfg = config();
@@ -176,6 +181,7 @@ static void test_bad_input_changes_nothing(void **state)
 
 /* Found by tests/fuzz/fuzz_cutoff_step.c: two calls a subnormal time apart
  * made the energy rate overflow to inf (and the output non-finite). */
+/* req: OGK-NOG-016 */
 static void test_rate_overflow_is_no_rate(void **state)
 {
     const ogk_cutoff_config_t cfg = config();
@@ -193,6 +199,7 @@ static void test_rate_overflow_is_no_rate(void **state)
     assert_true((out.flags & OGK_CUTOFF_FLAG_DECIDED) == 0u);
 }
 
+/* req: OGK-NOG-016 */
 static void test_contract(void **state)
 {
     ogk_cutoff_config_t cfg = config();

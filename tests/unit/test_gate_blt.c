@@ -69,6 +69,7 @@ static void trial_impact_problem(ogk_blt_config_t *c)
     (void)memcpy(g.seg[0], p, sizeof(p));
 }
 
+/* req: OGK-BLT-005 */
 static void test_trial_step_through_secondary(void **state)
 {
     ogk_blt_config_t c;
@@ -125,6 +126,7 @@ static void test_trial_step_through_secondary(void **state)
 
 /* tol below what double precision reaches: both searches run out after converging as far as they
  * can. */
+/* req: OGK-BLT-006 */
 static void test_unreachable_tolerance_stalls(void **state)
 {
     ogk_blt_config_t c;
@@ -162,6 +164,7 @@ static void test_unreachable_tolerance_stalls(void **state)
 }
 
 /* A coast with free T aimed at z = 0.5 from a planar state: z stays 0, J = dz/dT = vz = 0. */
+/* req: OGK-BLT-006 */
 static void test_zero_jacobian_singular(void **state)
 {
     ogk_blt_config_t c;
@@ -197,6 +200,7 @@ static void test_zero_jacobian_singular(void **state)
     assert_int_equal((int)rep.flags, (int)(OGK_BLT_FLAG_SINGULAR | OGK_BLT_FLAG_STALLED | OGK_BLT_FLAG_SAFE));
 }
 
+/* req: OGK-BLT-003 OGK-BLT-006 */
 static void test_jacobian_failures(void **state)
 {
     ogk_blt_config_t c;
@@ -260,6 +264,7 @@ static void test_jacobian_failures(void **state)
 /* The known burn with the mass running out 0.0045 after it (mass_flow 1.25), from a guess 7 %
  * short: the Newton steps lengthen the burn past the mass (no finite right-hand side), are halved
  * as after an impact, and converge. */
+/* req: OGK-BLT-005 */
 static void test_trial_runs_out_of_mass(void **state)
 {
     ogk_blt_config_t c;
@@ -286,6 +291,7 @@ static void test_trial_runs_out_of_mass(void **state)
 /* Rows of J 14 orders of magnitude apart: a coast with free T and vx0 aimed at
  * x and z from z0 = 1e-14 (out-of-plane motion of that size): J J^T's reciprocal condition is
  * below OGK_LA_RCOND_MIN, ogk_minnorm says ILL_CONDITIONED and the corrector takes the step. */
+/* req: OGK-BLT-006 */
 static void test_ill_conditioned_step(void **state)
 {
     static ogk_qr_t qr;
@@ -319,6 +325,7 @@ static void test_ill_conditioned_step(void **state)
 
 /* ------------------------------------------------------------------ A + B tau = 0 */
 
+/* req: OGK-BLT-005 OGK-BLT-008 */
 static void test_direction_through_zero(void **state)
 {
     ogk_blt_config_t c;
@@ -393,6 +400,7 @@ static void test_direction_through_zero(void **state)
 }
 
 /* A finite state whose first step overflows (vx = 1e308: the Coriolis term is -2e308). */
+/* req: OGK-BLT-002 OGK-BLT-006 */
 static void test_state_overflow(void **state)
 {
     ogk_blt_config_t c;
@@ -457,6 +465,7 @@ static void check_layout(const ogk_blt_config_t *c0, const char *what)
     assert_true(rep.err_norm <= c.tol);
 }
 
+/* req: OGK-BLT-003 OGK-BLT-007 */
 static void test_arc_layouts(void **state)
 {
     ogk_blt_config_t c;
@@ -483,6 +492,7 @@ static void test_arc_layouts(void **state)
 }
 
 /* A failure inside a multi-segment arc stops it and the arcs after it. */
+/* req: OGK-BLT-002 */
 static void test_arc_stops(void **state)
 {
     ogk_blt_config_t c;
@@ -538,6 +548,7 @@ static void test_arc_stops(void **state)
 /* ------------------------------------------------------------------ limits and options */
 
 /* A coast of exactly time_max = 20000 step_max (the steps' bound) against half as many steps. */
+/* req: OGK-BLT-007 OGK-CORE-005 */
 static void test_max_segment_steps(void **state)
 {
     ogk_blt_config_t c;
@@ -566,6 +577,7 @@ static void test_max_segment_steps(void **state)
 }
 
 /* normalise_ab off: the solve converges with [A; B] at the guess's scale. */
+/* req: OGK-BLT-004 */
 static void test_normalise_off(void **state)
 {
     ogk_blt_config_t c;

@@ -30,6 +30,7 @@ static ogk_cpd_config_t default_config(void)
  * commanded direction comes out as t_b = (-1, 0, 0) exactly: behind, with no lateral part to
  * give a rotation axis. The rotation vector is then pi about y_b (deterministic); its length
  * is the pointing angle pi whichever axis is chosen. */
+/* req: OGK-CPD-004 */
 static void test_exactly_behind(void **state)
 {
     const double psi = 0.0;
@@ -71,6 +72,7 @@ static void test_exactly_behind(void **state)
 }
 
 /* Negative braking accelerations and a negative feed-forward clip are refused one by one. */
+/* req: OGK-CPD-006 */
 static void test_config_sign_bounds(void **state)
 {
     ogk_cpd_t ctx;
@@ -100,6 +102,7 @@ static void test_config_sign_bounds(void **state)
 /* A control period of 1e-320 s (subnormal, finite, > 0: accepted) makes the feed-forward rate
  * (d_prev x d_now) / period overflow; its clip turns inf into NaN. The step must answer with
  * the safe command (all zero, SAFE) and OGK_E_SAFE_COMMAND, and keep it as its last command. */
+/* req: OGK-CPD-009 OGK-CPD-007 */
 static void test_overflowing_feedforward_gives_safe_command(void **state)
 {
     ogk_cpd_t ctx;

@@ -20,6 +20,7 @@
 static const double grid3[3] = {0.0, 1.0, 3.0};
 static const double vals3[3] = {1.0, 2.0, 4.0};
 
+/* req: OGK-CORE-015 OGK-CORE-021 */
 static void test_interp_null_arguments(void **state)
 {
     double out[2] = {-7.0, -7.0};
@@ -42,6 +43,7 @@ static void test_interp_null_arguments(void **state)
     OGK_ASSERT_NEAR(slopes[0], -7.0, 0.0);
 }
 
+/* req: OGK-CORE-015 OGK-CORE-021 */
 static void test_interp_dimensions(void **state)
 {
     double out[2] = {-7.0, -7.0};
@@ -62,6 +64,7 @@ static void test_interp_dimensions(void **state)
     OGK_ASSERT_NEAR(slopes[0], -7.0, 0.0);
 }
 
+/* req: OGK-CORE-015 OGK-CORE-021 */
 static void test_interp_nonfinite(void **state)
 {
     double grid[3] = {0.0, 1.0, 3.0};
@@ -96,6 +99,7 @@ static double fb_slope(double h0, double h1, double d0, double d1)
 
 /* The scaled form of the interior slope is taken when one secant or one weight leaves
  * [1e-150, 1e150]; it must agree with the formula. One case per operand. */
+/* req: OGK-CORE-015 */
 static void test_interp_scaled_harmonic_slope(void **state)
 {
     double slopes[3];
@@ -169,6 +173,7 @@ static void expect_open(const ogk_table_spec_t *s, ogk_status expected)
     assert_int_equal(v.grid_size, 0u);
 }
 
+/* req: OGK-CORE-017 */
 static void test_table_dims_outside_spec(void **state)
 {
     const uint32_t d2[2] = {2u, 3u};
@@ -198,6 +203,7 @@ static void test_table_dims_outside_spec(void **state)
     expect_open(&s, OGK_E_TABLE_TYPE);
 }
 
+/* req: OGK-CORE-017 */
 static void test_table_grid_outside_spec(void **state)
 {
     const uint32_t d2[2] = {2u, 3u};
@@ -212,6 +218,7 @@ static void test_table_grid_outside_spec(void **state)
 }
 
 /* Sizes whose products would overflow 32 bits: rejected before any multiplication wraps. */
+/* req: OGK-CORE-017 */
 static void test_table_size_overflow(void **state)
 {
     ogk_table_spec_t s1 = any_spec(1u);
@@ -239,6 +246,7 @@ static void test_table_size_overflow(void **state)
     }
 }
 
+/* req: OGK-CORE-017 */
 static void test_table_short_buffers(void **state)
 {
     const uint32_t d2[2] = {2u, 3u};
@@ -261,6 +269,7 @@ static void test_table_short_buffers(void **state)
 #define NVAL (GRID * (1u + ENTRY))
 static uint8_t tbuf[OGK_TABLE_HEADER_SIZE + 8u * NVAL];
 
+/* req: OGK-CORE-017 OGK-CORE-021 */
 static void test_table_readers_reject(void **state)
 {
     const uint32_t d1[1] = {ENTRY};

@@ -86,6 +86,7 @@ static ogk_rk4_problem_t problem(ogk_switch_fn sw, double *t_root)
     return p;
 }
 
+/* req: OGK-CORE-013 OGK-CORE-021 */
 static void test_rk4_problem_and_argument_checks(void **state)
 {
     double t_root = 0.37;
@@ -148,6 +149,7 @@ static void test_rk4_problem_and_argument_checks(void **state)
     OGK_ASSERT_NEAR(res.t_reached, 0.0, 0.0);
 }
 
+/* req: OGK-CORE-014 */
 static void test_rk4_degenerate_grids_and_switches(void **state)
 {
     double t_root = 0.37;
@@ -198,6 +200,7 @@ static void test_rk4_degenerate_grids_and_switches(void **state)
 
 /* The dense output has room for t0 and the first step's end only: it runs out at the
  * switch node inside the second step. */
+/* req: OGK-CORE-014 */
 static void test_rk4_dense_full_at_switch(void **state)
 {
     double t_root = 0.37;
@@ -226,6 +229,7 @@ static void test_rk4_dense_full_at_switch(void **state)
 
 static ogk_qr_t qr_ws;
 
+/* req: OGK-CORE-021 OGK-CORE-011 */
 static void test_linalg_first_entry_failures(void **state)
 {
     ogk_lu_t lu;
@@ -286,6 +290,7 @@ static int setup_mpsp(void **state)
 
 /* Every range check of ogk_mpsp_init on its own (ogk/mpsp.h): one field out of range, the
  * rest the fixture's valid mission. */
+/* req: OGK-MPSP-007 */
 static void test_mpsp_config_one_field_at_a_time(void **state)
 {
     static ogk_mpsp_t tmp;
@@ -345,6 +350,7 @@ static double traj_t[OGK_MPSP_MAX_NODES];
 static double traj_x[OGK_MPSP_MAX_NODES * 8u];
 static uint8_t traj_mode[OGK_MPSP_MAX_NODES];
 
+/* req: OGK-MPSP-009 */
 static void test_mpsp_readouts(void **state)
 {
     ogk_mpsp_prop_t a;
@@ -407,6 +413,7 @@ static void test_mpsp_readouts(void **state)
     }
 }
 
+/* req: OGK-MPSP-002 OGK-MPSP-008 */
 static void test_mpsp_control_rejections(void **state)
 {
     double lv[3] = {-7.0, -7.0, -7.0};
@@ -434,6 +441,7 @@ static void test_mpsp_control_rejections(void **state)
 }
 
 /* ogk_mpsp_newton_update: each argument rejected on its own, nothing written. */
+/* req: OGK-MPSP-004 OGK-MPSP-008 */
 static void test_mpsp_newton_update_arguments(void **state)
 {
     static ogk_mpsp_t blank; /* never initialised */
@@ -465,6 +473,7 @@ static double jw_full[8u * 21u];
 static double jx_part[64];
 static double jw_part[8u * 21u];
 
+/* req: OGK-MPSP-003 */
 static void test_mpsp_partial_jacobians(void **state)
 {
     double x[8];
@@ -527,6 +536,7 @@ static void test_mpsp_partial_jacobians(void **state)
 /* dS/dt = S_U dU/dt (eq. 15): a constant lambda_v (only the constant basis weights) has
  * dS/dt = 0, a switch there is tangential and its time not differentiable; a rate that
  * overflows (sine weights of 1e308 at t_ref) is no better. Both are OGK_E_SINGULAR. */
+/* req: OGK-MPSP-003 */
 static void test_mpsp_tangential_switch(void **state)
 {
     double x[8];
@@ -558,6 +568,7 @@ static void test_mpsp_tangential_switch(void **state)
  * fixture's command flies 3 segments (2 switches). At N_seg,tol = 0 every Newton step is refused
  * (|3 - 1| > 0), the direct loop and the first continuation fail; N_seg,tol is widened by
  * n_seg_tol_step = 2 and the solve converges there, to the target it was given. */
+/* req: OGK-MPSP-005 */
 static void test_mpsp_segment_tolerance_widened(void **state)
 {
     static ogk_mpsp_result_t res;

@@ -27,6 +27,7 @@ static int setup(void **state)
     return ogk_mpsp_init(&ctx, &cfg) == OGK_OK ? 0 : -1;
 }
 
+/* req: OGK-MPSP-007 */
 static void test_config_grid_and_phase(void **state)
 {
     ogk_mpsp_config_t c;
@@ -50,6 +51,7 @@ static void test_config_grid_and_phase(void **state)
 
 /* The edges of the configuration ranges (ogk/mpsp.h): each admitted or refused
  * value at its bound. */
+/* req: OGK-MPSP-007 */
 static void test_config_range_edges(void **state)
 {
     ogk_mpsp_config_t c;
@@ -81,6 +83,7 @@ static void test_config_range_edges(void **state)
     OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_E_CONFIG);
 }
 
+/* req: OGK-MPSP-001 OGK-MPSP-008 */
 static void test_propagate_rejections(void **state)
 {
     ogk_mpsp_prop_t prop;
@@ -105,6 +108,7 @@ static void test_propagate_rejections(void **state)
     assert_true(ogk_mpsp_propagate(&ctx, w3, 0.0, x, 1.0, &prop) != OGK_OK);
 }
 
+/* req: OGK-MPSP-009 OGK-MPSP-008 */
 static void test_readout_rejections(void **state)
 {
     ogk_mpsp_prop_t prop;
@@ -139,6 +143,7 @@ static void test_readout_rejections(void **state)
     }
 }
 
+/* req: OGK-MPSP-004 */
 static void test_newton_update_rejections(void **state)
 {
     double dy[OGK_MPSP_NY];
@@ -163,6 +168,7 @@ static void test_newton_update_rejections(void **state)
     OGK_ASSERT_NEAR(lm, 0.0, 0.0); /* dy = 0: no step */
 }
 
+/* req: OGK-MPSP-006 */
 static void test_solve_with_failing_propagation(void **state)
 {
     ogk_mpsp_result_t res;
@@ -182,6 +188,7 @@ static void test_solve_with_failing_propagation(void **state)
 
 /* ogk_mpsp_step_jacobian and ogk_mpsp_switch_jump: argument rejections, and states where
  * eq. (16) is undefined (mass 0, r = 0 with gravity, lambda_v = 0 while thrusting). */
+/* req: OGK-MPSP-003 */
 static void test_jacobian_and_jump_rejections(void **state)
 {
     double x[8];

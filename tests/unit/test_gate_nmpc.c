@@ -202,6 +202,7 @@ static void check_rejected(const ogk_nmpc_config_t *c, ogk_status expected, cons
     OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_E_NOT_INIT);
 }
 
+/* req: OGK-NMPC-008 */
 static void test_init_rejects_every_field(void **state)
 {
     ogk_nmpc_config_t c;
@@ -296,6 +297,7 @@ static void assert_safe(const ogk_nmpc_command_t *cmd, double t)
     }
 }
 
+/* req: OGK-NMPC-008 */
 static void test_bad_inputs_every_function(void **state)
 {
     static ogk_nmpc_t zeroed; /* never initialised */
@@ -473,6 +475,7 @@ static void test_bad_inputs_every_function(void **state)
 
 /* ------------------------------------------------------------------ model branches */
 
+/* req: OGK-NMPC-001 */
 static void test_model_throttle_solar_overflow_and_body_centre(void **state)
 {
     ogk_nmpc_config_t c;
@@ -576,6 +579,7 @@ static void solve_solar_engine_and_bodies(uint32_t hessian)
     OGK_ASSERT_NEAR(rep.objective, plan2.x[4] - plan2.x[4u * NX + 4u], 0.0);
 }
 
+/* req: OGK-NMPC-001 OGK-NMPC-003 */
 static void test_solve_solar_engine_and_bodies(void **state)
 {
     (void)state;
@@ -585,6 +589,7 @@ static void test_solve_solar_engine_and_bodies(void **state)
 
 /* The sweep bound: no |alpha_{k+1} - alpha_k| above max_sweep, and t_f no earlier than the
  * unconstrained optimum (a constraint cannot shorten a minimum-time transfer). */
+/* req: OGK-NMPC-007 */
 static void test_solve_sweep_bound(void **state)
 {
     ogk_nmpc_config_t c;
@@ -621,6 +626,7 @@ static void test_solve_sweep_bound(void **state)
 
 /* The target out of reach (thrust too weak for the fixed horizon): every QP is infeasible, with
  * the step box opened too, so the elastic QP runs; the solve fails and the previous plan flies. */
+/* req: OGK-NMPC-006 */
 static void test_solve_elastic_qp(void **state)
 {
     ogk_nmpc_config_t c;
@@ -662,6 +668,7 @@ static void test_solve_elastic_qp(void **state)
  * cannot turn round to brake in time): the QPs go elastic, then no step is accepted even after
  * the BFGS/filter restarts; the line search failure is reported (LS_FAILED, OGK_E_NOT_CONVERGED)
  * and the loaded plan is kept. */
+/* req: OGK-NMPC-005 */
 static void test_solve_line_search_failure(void **state)
 {
     ogk_nmpc_config_t c;
@@ -688,6 +695,7 @@ static void test_solve_line_search_failure(void **state)
 
 /* A guess whose first interval falls through the centre: the first evaluation fails
  * (OGK_E_NONFINITE), no QP is solved, the plan is kept. */
+/* req: OGK-NMPC-005 */
 static void test_solve_guess_outside_domain(void **state)
 {
     ogk_nmpc_config_t c;
@@ -724,6 +732,7 @@ static double solve_radial_open_loop(ogk_nmpc_config_t *c, uint32_t nodes, ogk_n
 
 /* SNNS below min_nodes: the rest of the plan is regridded to min_nodes (or kept at its own N when
  * that is smaller), over [t, t_f]. */
+/* req: OGK-NMPC-004 */
 static void test_snns_min_nodes_regrid(void **state)
 {
     ogk_nmpc_config_t c;
@@ -779,6 +788,7 @@ static void test_snns_min_nodes_regrid(void **state)
 /* The doubling test (sec. 2.3.3) on the radial transfer, whose discrete optimum improves with N:
  * threshold 0 adopts 2N (SUBDIVIDED, a t_f no later than with N); a huge threshold keeps N; the
  * subdivision budget stops it. */
+/* req: OGK-NMPC-004 */
 static void test_snns_doubling(void **state)
 {
     ogk_nmpc_config_t c;
@@ -824,6 +834,7 @@ static void test_snns_doubling(void **state)
 
 /* A replan that fails flies the shifted previous plan (STALE, SAFE), with and without the doubling
  * test, and the status says why; then the plan is stretched when t >= t_f. */
+/* req: OGK-NMPC-005 */
 static void test_stale_and_stretched_plans(void **state)
 {
     ogk_nmpc_config_t c;
@@ -881,6 +892,7 @@ static void test_stale_and_stretched_plans(void **state)
 }
 
 /* CNCN after a failed solve: the regridded previous plan is flown (STALE) and has the same N. */
+/* req: OGK-NMPC-005 OGK-NMPC-004 */
 static void test_cncn_stale(void **state)
 {
     ogk_nmpc_config_t c;
@@ -905,6 +917,7 @@ static void test_cncn_stale(void **state)
 }
 
 /* Throttled plans: the throttle of every node in [0, 1], r > 0 checked before it. */
+/* req: OGK-NMPC-008 */
 static void test_load_plan_throttle_range(void **state)
 {
     ogk_nmpc_config_t c;
@@ -933,6 +946,7 @@ static void test_load_plan_throttle_range(void **state)
 /* A replan before the plan's t0: nothing is flown, the horizon t_f - t is above horizon_max by
  * more than one step, so the first QP's bound on dT is the single point horizon_max - T (its
  * upper bound clipped to its lower one); the plan flown ends within horizon_max of t. */
+/* req: OGK-NMPC-008 */
 static void test_replan_before_t0(void **state)
 {
     ogk_nmpc_config_t c;
@@ -959,6 +973,7 @@ static void test_replan_before_t0(void **state)
 /* The doubling test after a failed N solve: the 2N plan is built from the shifted plan anchored
  * at the measured state; here that state falls through the centre, so the N solve fails
  * (OGK_E_NONFINITE) and so does the subdivision's midpoint propagation: no 2N solve. */
+/* req: OGK-NMPC-004 OGK-NMPC-005 */
 static void test_doubling_after_failure_subdivision_fails(void **state)
 {
     ogk_nmpc_config_t c;
@@ -982,6 +997,7 @@ static void test_doubling_after_failure_subdivision_fails(void **state)
 
 /* The doubling test with J_N = 0 (a coast, minimum fuel): the relative gain is taken against
  * 1e-12 instead of |J_N|; 2N cannot burn less than nothing, so N is kept. */
+/* req: OGK-NMPC-004 */
 static void test_doubling_zero_objective(void **state)
 {
     ogk_nmpc_config_t c;
@@ -1005,6 +1021,7 @@ static void test_doubling_zero_objective(void **state)
 
 /* ------------------------------------------------------------------ command */
 
+/* req: OGK-NMPC-009 */
 static void test_command_edges(void **state)
 {
     ogk_nmpc_config_t c;

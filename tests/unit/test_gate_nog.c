@@ -92,6 +92,7 @@ static void expect_load(ogk_status expected)
     OGK_ASSERT_NEAR(table.t_f_star_s, 0.0, 0.0);
 }
 
+/* req: OGK-NOG-001 */
 static void test_table_content_rejections(void **state)
 {
     size_t k;
@@ -126,6 +127,7 @@ static void test_table_content_rejections(void **state)
     }
 }
 
+/* req: OGK-NOG-004 OGK-NOG-012 */
 static void test_null_and_uninitialised(void **state)
 {
     ogk_nog_t zero;
@@ -163,6 +165,7 @@ static void test_null_and_uninitialised(void **state)
 }
 
 /* Every bound of ogk_nog_config_t on its own (ogk/nog.h). */
+/* req: OGK-NOG-004 */
 static void test_config_bounds(void **state)
 {
     ogk_nog_t ctx;
@@ -197,6 +200,7 @@ static void test_config_bounds(void **state)
 }
 
 /* A view or table struct is caller memory: one edited by hand (marker kept) is refused. */
+/* req: OGK-NOG-003 OGK-NOG-004 */
 static void test_bound_struct_out_of_range(void **state)
 {
     ogk_nog_table_view_t view;
@@ -233,6 +237,7 @@ static void expect_stale(ogk_nog_t *ctx)
 
 /* A bound view or table overwritten by a struct copy of another one that happens to carry
  * the same generation count: the generation alone does not see it, the other fields do. */
+/* req: OGK-NOG-003 */
 static void test_stale_after_struct_copy(void **state)
 {
     ogk_nog_table_view_t v5;
@@ -288,6 +293,7 @@ static void test_stale_after_struct_copy(void **state)
 }
 
 /* 1 - tau < tau_freeze before the last gain node: frozen, the gains are not used. */
+/* req: OGK-NOG-009 */
 static void test_freeze_margin(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -310,6 +316,7 @@ static void test_freeze_margin(void **state)
 }
 
 /* Finite gains, a costate-rate gain of 1e308: dlam' overflows while dlam does not. */
+/* req: OGK-NOG-011 */
 static void test_overflowing_rate_gain(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -334,6 +341,7 @@ static void test_overflowing_rate_gain(void **state)
 
 /* The RAM table's costate turned NaN after it was validated (memory upset): init holds the
  * zero direction, every command and sample flies a finite held direction and says so. */
+/* req: OGK-NOG-011 */
 static void test_costate_corrupted_after_load(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -370,6 +378,7 @@ static void test_costate_corrupted_after_load(void **state)
 
 /* As above with only the out-of-plane costate bad: alpha is finite, beta is not; the whole
  * direction is held, never half of it. */
+/* req: OGK-NOG-011 */
 static void test_out_of_plane_costate_corrupted(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -390,6 +399,7 @@ static void test_out_of_plane_costate_corrupted(void **state)
 }
 
 /* A NaN time tag: rejected, and the context does not move (no time to move it to). */
+/* req: OGK-NOG-010 */
 static void test_nan_time_tag(void **state)
 {
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);

@@ -57,6 +57,7 @@ static ogk_rk4_problem_t problem(counter_t *c, int with_switch)
     return p;
 }
 
+/* req: OGK-CORE-013 OGK-CORE-021 */
 static void test_step_rejections_and_stage_failures(void **state)
 {
     counter_t c;
@@ -84,6 +85,7 @@ static void test_step_rejections_and_stage_failures(void **state)
     OGK_ASSERT_REL(xn[0], exp(-0.1), 1e-6, 0.0);
 }
 
+/* req: OGK-CORE-013 */
 static void test_propagate_fails_at_every_callback(void **state)
 {
     counter_t c;
@@ -122,6 +124,7 @@ static void test_propagate_fails_at_every_callback(void **state)
     }
 }
 
+/* req: OGK-CORE-011 OGK-CORE-021 */
 static void test_factorizations_not_held(void **state)
 {
     ogk_lu_t lu;

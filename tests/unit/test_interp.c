@@ -5,6 +5,7 @@
 
 #include "ogk/interp.h"
 
+/* req: OGK-CORE-015 */
 static void test_linear_exact_on_affine_data(void **state)
 {
     const double grid[4] = {0.0, 0.1, 0.5, 1.0};
@@ -24,6 +25,7 @@ static void test_linear_exact_on_affine_data(void **state)
     }
 }
 
+/* req: OGK-CORE-015 */
 static void test_out_of_range_is_reported(void **state)
 {
     const double grid[3] = {0.0, 0.5, 1.0};
@@ -41,6 +43,7 @@ static void test_out_of_range_is_reported(void **state)
     OGK_ASSERT_NEAR(out, 3.0, 0.0);
 }
 
+/* req: OGK-CORE-015 */
 static void test_bad_grid(void **state)
 {
     const double flat[3] = {0.0, 0.5, 0.5};
@@ -55,6 +58,7 @@ static void test_bad_grid(void **state)
     OGK_ASSERT_STATUS(ogk_interp_linear(NULL, 3u, values, 1u, 0.1, &out), OGK_E_NULL);
 }
 
+/* req: OGK-CORE-015 */
 static void test_pchip_slopes_by_hand(void **state)
 {
     /* h = (1, 2), secants d = (1, 2). Interior (Fritsch-Butland weighted
@@ -80,6 +84,7 @@ static void test_pchip_slopes_by_hand(void **state)
  * above, y, and the affine images 2 y + 7 and -y: pchip slopes scale with the
  * data (the clamps compare signs and ratios only) and ignore a constant, so
  * they are (2/3, 9/7, 8/3), twice that, and minus that. */
+/* req: OGK-CORE-015 */
 static void test_pchip_end_slopes_of_every_column(void **state)
 {
     const double grid[3] = {0.0, 1.0, 3.0};
@@ -104,6 +109,7 @@ static void test_pchip_end_slopes_of_every_column(void **state)
     }
 }
 
+/* req: OGK-CORE-015 */
 static void test_pchip_interpolates_and_preserves_shape(void **state)
 {
     /* Monotone step-like data with a flat part and an extremum. */
@@ -137,6 +143,7 @@ static void test_pchip_interpolates_and_preserves_shape(void **state)
     }
 }
 
+/* req: OGK-CORE-015 */
 static void test_pchip_two_points_is_linear(void **state)
 {
     const double grid[2] = {0.0, 1.0};
@@ -151,6 +158,7 @@ static void test_pchip_two_points_is_linear(void **state)
 
 /* Two nodes, two quantities: each column's slope is its own secant, (4 - 2)
  * and (-3 - 10), at both nodes, and the interpolant is each column's line. */
+/* req: OGK-CORE-015 */
 static void test_pchip_two_points_every_column(void **state)
 {
     const double grid[2] = {0.0, 1.0};
@@ -168,6 +176,7 @@ static void test_pchip_two_points_every_column(void **state)
     OGK_ASSERT_NEAR(out[1], 10.0 - 13.0 * 0.3, 1e-14);
 }
 
+/* req: OGK-CORE-015 */
 static void test_locate_edges(void **state)
 {
     const double grid[4] = {0.0, 0.25, 0.5, 1.0};
@@ -187,6 +196,7 @@ static void test_locate_edges(void **state)
  * sign; 3 d0 when the secants differ in sign and |s| > 3 |d0|; s otherwise.
  * Both ends (the right one on the mirrored data), each branch and its
  * neighbour, so a flipped or dropped clamp condition fails here. */
+/* req: OGK-CORE-015 */
 static void test_pchip_end_slope_clamp(void **state)
 {
     static const struct {
@@ -219,6 +229,7 @@ static void test_pchip_end_slope_clamp(void **state)
  * (w0 / d0 for a subnormal d0 was +inf, flattening the slope to 0) nor
  * underflows (d0 * d1 of two tiny secants was 0, taken as an extremum); huge
  * ones stay finite; an infinite secant is reported. */
+/* req: OGK-CORE-015 */
 static void test_pchip_tiny_and_huge_secants(void **state)
 {
     const double grid[3] = {0.0, 0.5, 1.0};

@@ -119,6 +119,7 @@ static void fill_hilbert_inverse(double *Hinv, unsigned n)
 
 /* ------------------------------------------------------------------ products */
 
+/* req: OGK-CORE-010 */
 static void test_products_hand(void **state)
 {
     /* A = [1 2 3; 4 5 6], B = [7 8; 9 10; 11 12], A B = [58 64; 139 154]. */
@@ -171,6 +172,7 @@ static void test_products_hand(void **state)
 }
 
 /* Largest allowed sizes, compared with sums written out here. */
+/* req: OGK-CORE-010 OGK-CORE-005 */
 static void test_products_max_size(void **state)
 {
     enum { L = OGK_LA_MAX_LONG, S = OGK_LA_MAX_N };
@@ -236,6 +238,7 @@ static void test_products_max_size(void **state)
     }
 }
 
+/* req: OGK-CORE-010 OGK-CORE-021 */
 static void test_products_errors(void **state)
 {
     double A[4] = {1, 2, 3, 4};
@@ -283,6 +286,7 @@ static void test_products_errors(void **state)
 
 /* ------------------------------------------------------------------ LU */
 
+/* req: OGK-CORE-011 */
 static void test_lu_random_solve_inverse(void **state)
 {
     static const size_t sizes[] = {1, 2, 3, 5, 8, 13, 16};
@@ -334,6 +338,7 @@ static void test_lu_random_solve_inverse(void **state)
 }
 
 /* rcond of diag(d) = min|d| / max|d| exactly; |A|_1 = max|d|; perm from pivoting. */
+/* req: OGK-CORE-011 */
 static void test_lu_rcond_closed_form(void **state)
 {
     static ogk_lu_t lu;
@@ -377,6 +382,7 @@ static void test_lu_rcond_closed_form(void **state)
 }
 
 /* Hilbert matrices against the closed-form integer inverse. */
+/* req: OGK-CORE-011 */
 static void test_lu_hilbert(void **state)
 {
     static ogk_lu_t lu;
@@ -435,6 +441,7 @@ static void test_lu_hilbert(void **state)
     OGK_ASSERT_STATUS(ogk_lu_inverse(&lu, Hinv), OGK_OK);
 }
 
+/* req: OGK-CORE-011 */
 static void test_lu_singular(void **state)
 {
     static ogk_lu_t lu;
@@ -472,6 +479,7 @@ static void test_lu_singular(void **state)
     assert_int_equal(lu.n, 0);
 }
 
+/* req: OGK-CORE-011 OGK-CORE-021 */
 static void test_lu_errors(void **state)
 {
     static ogk_lu_t lu;
@@ -523,6 +531,7 @@ static void test_lu_errors(void **state)
 
 /* ------------------------------------------------------------------ Cholesky */
 
+/* req: OGK-CORE-011 */
 static void test_chol_closed_form(void **state)
 {
     static ogk_chol_t ch;
@@ -544,6 +553,7 @@ static void test_chol_closed_form(void **state)
     OGK_ASSERT_NEAR(x[1], -1.0, 1e-15);
 }
 
+/* req: OGK-CORE-011 */
 static void test_chol_random_spd(void **state)
 {
     static ogk_chol_t ch;
@@ -595,6 +605,7 @@ static void test_chol_random_spd(void **state)
     }
 }
 
+/* req: OGK-CORE-011 */
 static void test_chol_rejects(void **state)
 {
     static ogk_chol_t ch;
@@ -650,6 +661,7 @@ static void test_chol_rejects(void **state)
 
 /* Line fit y = c0 + c1 t through (0,1) (1,2) (2,2) (3,5): the normal equations
  * [4 6; 6 14] c = [10; 21] give c = [0.7; 1.2] by hand (det 20). */
+/* req: OGK-CORE-012 */
 static void test_lstsq_line_fit(void **state)
 {
     static ogk_qr_t ws;
@@ -665,6 +677,7 @@ static void test_lstsq_line_fit(void **state)
     assert_int_equal(ws.short_dim, 2);
 }
 
+/* req: OGK-CORE-012 */
 static void test_lstsq_random(void **state)
 {
     static ogk_qr_t ws;
@@ -718,6 +731,7 @@ static void test_lstsq_random(void **state)
     }
 }
 
+/* req: OGK-CORE-012 */
 static void test_lstsq_rank_deficient(void **state)
 {
     static ogk_qr_t ws;
@@ -760,6 +774,7 @@ static void test_lstsq_rank_deficient(void **state)
 
 /* ------------------------------------------------------------------ minimum norm */
 
+/* req: OGK-CORE-012 */
 static void test_minnorm_hand(void **state)
 {
     static ogk_qr_t ws;
@@ -782,6 +797,7 @@ static void test_minnorm_hand(void **state)
     assert_int_equal(ws.short_dim, 2);
 }
 
+/* req: OGK-CORE-012 */
 static void test_minnorm_random(void **state)
 {
     static ogk_qr_t ws;
@@ -861,6 +877,7 @@ static void test_minnorm_random(void **state)
 }
 
 /* Square case: the minimum-norm solution is the unique solution. */
+/* req: OGK-CORE-012 */
 static void test_minnorm_square_matches_lu(void **state)
 {
     static ogk_qr_t ws;
@@ -887,6 +904,7 @@ static void test_minnorm_square_matches_lu(void **state)
     }
 }
 
+/* req: OGK-CORE-012 OGK-CORE-021 */
 static void test_qr_errors(void **state)
 {
     static ogk_qr_t ws;

@@ -212,6 +212,7 @@ static void check_step(int mode, uint32_t kind)
     }
 }
 
+/* req: OGK-MPSP-003 */
 static void test_step_jacobian_thrust(void **state)
 {
     (void)state;
@@ -219,6 +220,7 @@ static void test_step_jacobian_thrust(void **state)
     check_step(1, OGK_MPSP_BASIS_COSINE);
 }
 
+/* req: OGK-MPSP-003 */
 static void test_step_jacobian_coast(void **state)
 {
     (void)state;
@@ -274,6 +276,7 @@ static void check_arc_against_fd(double lm0, double *dydl)
     assert_matrix_rel(dydl, fd_dydl, NY, 1u, 1e-6);
 }
 
+/* req: OGK-MPSP-003 */
 static void test_whole_arc_with_switches_fd(void **state)
 {
     const double lm0 = 0.0;
@@ -300,6 +303,7 @@ static void test_whole_arc_with_switches_fd(void **state)
 /* The same arc with the cosine basis (1/2, cos k theta, k = 1..2n: the
  * Apophis scenario's default) and lambda_m0 = -0.2: on, off, on, off (three
  * switches), through the sweep's cosine harmonics. */
+/* req: OGK-MPSP-003 OGK-MPSP-002 */
 static void test_whole_arc_cosine_basis_fd(void **state)
 {
     const double lm0 = -0.2;
@@ -324,6 +328,7 @@ static double ff_q(double a0, double a1, double lm0, double m0)
     return ((1.0 - lm0) * m0 / FF_C - 0.5 * a0) / a1;
 }
 
+/* req: OGK-MPSP-003 */
 static void test_switch_time_closed_form(void **state)
 {
     /* Closed forms: t_s = acos(q)/pi, q = (lambda* - a0/2)/a1,
@@ -372,6 +377,7 @@ static void test_switch_time_closed_form(void **state)
  * v_x row of eq. 24 above), and for every i, j, k the identity
  * jw[i][k] dts_dx[j] = (jx[i][j] - delta_ij) dts_dw[k] (both are dxdot_i S_x,j S_U,k h_k / Sdot^2).
  * Kills the sign mutant of the eq. (25) term (issue 8: no test passed jw before). */
+/* req: OGK-MPSP-003 */
 static void test_switch_jump_dw_closed_form(void **state)
 {
     const double q = ff_q(FF_A0, FF_A1, FF_LM0, FF_M0);
@@ -422,6 +428,7 @@ static double ff_cross(double t, double ts)
     return FF_T / (m * lam);
 }
 
+/* req: OGK-MPSP-003 OGK-MPSP-001 */
 static void test_whole_arc_closed_form(void **state)
 {
     const double q = ff_q(FF_A0, FF_A1, FF_LM0, FF_M0);
@@ -478,6 +485,7 @@ static void test_whole_arc_closed_form(void **state)
 
 /* ---------------------------------------------------------------- read-out */
 
+/* req: OGK-MPSP-002 OGK-MPSP-009 */
 static void test_control_and_state_readout(void **state)
 {
     const double t = 0.77;

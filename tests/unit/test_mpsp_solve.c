@@ -117,6 +117,7 @@ static void check_quadratic_tail(void)
     assert_true(res.dy_norm_log[n - 1u] <= 10.0 * res.dy_norm_log[n - 2u] * res.dy_norm_log[n - 2u]);
 }
 
+/* req: OGK-MPSP-005 */
 static void test_nominal_needs_no_iteration(void **state)
 {
     double target[6];
@@ -132,6 +133,7 @@ static void test_nominal_needs_no_iteration(void **state)
     check_flown(x0_3d, 1.0, target, 1e-10);
 }
 
+/* req: OGK-MPSP-005 OGK-MPSP-004 */
 static void test_newton_recovers_perturbed_target(void **state)
 {
     double target[6];
@@ -155,6 +157,7 @@ static void test_newton_recovers_perturbed_target(void **state)
     check_flown(x0_3d, 1.0, target, 1e-10);
 }
 
+/* req: OGK-MPSP-005 */
 static void test_thrust_and_initial_state_perturbations(void **state)
 {
     double target[6];
@@ -178,6 +181,7 @@ static void test_thrust_and_initial_state_perturbations(void **state)
     check_flown(x0, 1.0, target, 1e-10);
 }
 
+/* req: OGK-MPSP-005 */
 static void test_continuation_when_newton_is_not_allowed(void **state)
 {
     double target[6];
@@ -203,6 +207,7 @@ static void test_continuation_when_newton_is_not_allowed(void **state)
 /* Algorithm 1's Newton budget: max_newton steps are all taken and the result of the last one is
  * checked (j = 0 .. max_newton: the check after the last step is what converges here). With one
  * step fewer the direct loop fails and the continuation has to take over. */
+/* req: OGK-MPSP-005 */
 static void test_newton_budget_is_exact(void **state)
 {
     double target[6];
@@ -237,6 +242,7 @@ static void test_newton_budget_is_exact(void **state)
  * tolerance: accepted, since the test is |dN| > N_seg,tol), 0 -> 2 -> 4 for 6. Kills the
  * N_seg,tol step mutants (issue 8): a step of 1 (6: 3 instead of 4), no step (never solved),
  * and >= for > in the check (5: 4 instead of 2). */
+/* req: OGK-MPSP-005 */
 static void test_segment_tolerance_widened_by_its_step(void **state)
 {
     static const uint32_t n_seg_nom[2] = {5u, 6u};
@@ -266,6 +272,7 @@ static void test_segment_tolerance_widened_by_its_step(void **state)
     }
 }
 
+/* req: OGK-MPSP-006 */
 static void test_failure_returns_safe_command(void **state)
 {
     double target[6];
@@ -295,6 +302,7 @@ static void test_failure_returns_safe_command(void **state)
     assert_true(res.n_seg_tol > cfg_work.n_seg_tol); /* Alg. 2 widened N_seg,tol */
 }
 
+/* req: OGK-MPSP-007 */
 static void test_init_rejects_bad_config(void **state)
 {
     (void)state;
@@ -341,6 +349,7 @@ static void test_init_rejects_bad_config(void **state)
     OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg_work), OGK_E_CONFIG);
 }
 
+/* req: OGK-MPSP-008 */
 static void test_entry_points_reject_bad_input(void **state)
 {
     static ogk_mpsp_t blank;
@@ -420,6 +429,7 @@ static void test_entry_points_reject_bad_input(void **state)
 
 /* The contract: config_default holds the paper's algorithm settings and
  * zeros for the mission data (rejected); reset returns to the init state. */
+/* req: OGK-MPSP-007 */
 static void test_config_default_and_reset(void **state)
 {
     static ogk_mpsp_result_t first;

@@ -55,6 +55,7 @@ static void mars_guess(const ogk_nmpc_config_t *c, uint32_t nodes, double t_f, o
     nmpc_fx_mars_guess(c, nodes, t_f, p);
 }
 
+/* req: OGK-NMPC-008 */
 static void test_config_default_and_init(void **state)
 {
     ogk_nmpc_config_t c;
@@ -101,6 +102,7 @@ static void test_config_default_and_init(void **state)
     }
 }
 
+/* req: OGK-NMPC-001 */
 static void test_model_closed_form(void **state)
 {
     ogk_nmpc_config_t c;
@@ -124,6 +126,7 @@ static void test_model_closed_form(void **state)
     }
 }
 
+/* req: OGK-NMPC-001 */
 static void test_third_bodies_cartesian(void **state)
 {
     ogk_nmpc_config_t c;
@@ -163,6 +166,7 @@ static void test_third_bodies_cartesian(void **state)
     assert_true(fabs(ax) > 1.0e-2);
 }
 
+/* req: OGK-NMPC-002 */
 static void test_interval_sensitivities(void **state)
 {
     ogk_nmpc_config_t c;
@@ -284,6 +288,7 @@ static double check_interval_hess(uint32_t nu, const double *u0, const double *u
     return worst;
 }
 
+/* req: OGK-NMPC-002 */
 static void test_interval_second_derivatives(void **state)
 {
     ogk_nmpc_config_t c;
@@ -334,6 +339,7 @@ static double radial_transfer(uint32_t nodes, uint32_t hessian, uint32_t *iterat
     return rep.t_f;
 }
 
+/* req: OGK-NMPC-003 */
 static void test_sqp_known_solution(void **state)
 {
     const double t_star = 2.0 * sqrt(0.5 / 0.1);
@@ -356,6 +362,7 @@ static void test_sqp_known_solution(void **state)
  * discrete optimum, in fewer SQP iterations than BFGS; then the Earth-to-Mars
  * open loop and an SNNS and a CNCN replan (the warm starts) reach BFGS's
  * converged optimum (tol_obj = 0) within 1e-8 TU (0.05 s). */
+/* req: OGK-NMPC-003 */
 static void test_sqp_exact_hessian(void **state)
 {
     const double t_star = 2.0 * sqrt(0.5 / 0.1);
@@ -417,6 +424,7 @@ static void test_sqp_exact_hessian(void **state)
 
 /* Minimum fuel with the target on the spacecraft's own circular orbit and
  * phase: coasting is optimal, fuel 0. */
+/* req: OGK-NMPC-003 */
 static void test_coast_rendezvous_zero_fuel(void **state)
 {
     ogk_nmpc_config_t c;
@@ -468,6 +476,7 @@ static void test_coast_rendezvous_zero_fuel(void **state)
 }
 
 /* Earth-to-Mars N = 8: the open loop, then one SNNS and one CNCN replan. */
+/* req: OGK-NMPC-004 OGK-NMPC-009 */
 static void test_strategies_and_command(void **state)
 {
     ogk_nmpc_config_t c;
@@ -528,6 +537,7 @@ static void test_strategies_and_command(void **state)
 
 /* A solve that cannot finish flies the previous plan, says so, and leaves
  * the context usable. */
+/* req: OGK-NMPC-005 OGK-NMPC-008 */
 static void test_failure_and_bad_input(void **state)
 {
     ogk_nmpc_config_t c;
@@ -630,6 +640,7 @@ static void keepout_detour(uint32_t hessian)
 }
 
 /* With both Hessians (the exact one leaves the keep-out's curvature out). */
+/* req: OGK-NMPC-007 */
 static void test_keepout_detour(void **state)
 {
     (void)state;
@@ -638,6 +649,7 @@ static void test_keepout_detour(void **state)
 }
 
 /* reset gives back the context of a fresh init: the same open loop bit for bit */
+/* req: OGK-NMPC-008 */
 static void test_reset_equals_init(void **state)
 {
     ogk_nmpc_config_t c;

@@ -89,6 +89,7 @@ static int setup(void **state)
     return (ogk_nog_init(&nog, &cfg) == OGK_OK) ? 0 : -1;
 }
 
+/* req: OGK-NOG-001 */
 static void test_table_load_and_rejections(void **state)
 {
     (void)state;
@@ -108,6 +109,7 @@ static void test_table_load_and_rejections(void **state)
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
 }
 
+/* req: OGK-NOG-006 */
 static void test_on_nominal_no_correction(void **state)
 {
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
@@ -123,6 +125,7 @@ static void test_on_nominal_no_correction(void **state)
     assert_int_equal(s.flags, 0u);
 }
 
+/* req: OGK-NOG-005 */
 static void test_flight_time_update_and_eq31(void **state)
 {
     /* dv_t = +1.5 m/s at t = 0: dt_f = 3 s. Next sample at t = 2:
@@ -166,6 +169,7 @@ static void test_flight_time_update_and_eq31(void **state)
  * exactly), [dlam_k; dt_f] = G dx_k moves lambda_r only (G row 0, K_L1_R dr)
  * with the rate N dx_k (K_L1_RATE dr), and the flown direction, -lambda_v of
  * eq. (27), stays the nominal one, as does t_f. */
+/* req: OGK-NOG-007 */
 static void test_radius_error_moves_lambda_r_only(void **state)
 {
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
@@ -197,6 +201,7 @@ static void test_radius_error_moves_lambda_r_only(void **state)
  * straight line with its own slope is the line, x*(tau) = x0 + tau x', so
  * dx = 0 (to rounding of 7e6..9e6 m), no correction, t_f = t_f*. tau = 0.4
  * and 0.6 are interior points of [0.25, 0.5] and [0.5, 0.75]. */
+/* req: OGK-NOG-006 */
 static void test_on_nominal_in_every_interval(void **state)
 {
     static const double taus[3] = {0.0, 0.4, 0.6};
@@ -219,6 +224,7 @@ static void test_on_nominal_in_every_interval(void **state)
     }
 }
 
+/* req: OGK-NOG-007 */
 static void test_out_of_plane_with_first_order_hold(void **state)
 {
     /* dv_n = 2 m/s: dlam_vn = 0.02 at tau_k, rate 0.04 per unit tau; beta
@@ -247,6 +253,7 @@ static void test_out_of_plane_with_first_order_hold(void **state)
     assert_int_equal(c.flags, OGK_THRUST_FLAG_ENGINE_ON);
 }
 
+/* req: OGK-NOG-009 */
 static void test_end_game_limits(void **state)
 {
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
@@ -263,6 +270,7 @@ static void test_end_game_limits(void **state)
 /* |dt_f| at the bound is not clipped: dv_t = 5 m/s gives dt_f = 10 s =
  * dtf_max exactly (2 x 5, both exact), flown as is and not flagged LIMITED;
  * one ulp more of dv_t is clipped to 10 s and flagged. */
+/* req: OGK-NOG-009 */
 static void test_dt_f_at_the_bound_is_not_limited(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -283,6 +291,7 @@ static void test_dt_f_at_the_bound_is_not_limited(void **state)
 /* du_max = pi admits every direction: a correction that reverses the thrust
  * exactly (dlam_v = -2 lambda*_v, from a gain on dphi = 1 rad, so lambda_v
  * = -lambda*_v) flies unscaled and unflagged, alpha = ALPHA0 - pi. */
+/* req: OGK-NOG-009 */
 static void test_du_max_pi_admits_a_reversal(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -308,6 +317,7 @@ static void test_du_max_pi_admits_a_reversal(void **state)
     assert_true((s.flags & OGK_NOG_FLAG_LIMITED) != 0u);
 }
 
+/* req: OGK-NOG-008 OGK-NOG-009 */
 static void test_freeze_and_termination(void **state)
 {
     /* Last gain node at tau = 0.75: a sample at tau = 0.8 is frozen. */
@@ -349,6 +359,7 @@ static void test_freeze_and_termination(void **state)
  * closed: at 210 s the time is usable but past the cut-off, so the sample is
  * shown at tau = 210 / 100 = 2.1 (CUTOFF), not committed; one ulp later it is
  * outside the envelope and nothing moves (tau_k = 0 of the first sample). */
+/* req: OGK-NOG-010 */
 static void test_sample_at_the_envelope_time_bound(void **state)
 {
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
@@ -368,6 +379,7 @@ static void test_sample_at_the_envelope_time_bound(void **state)
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u && (s.flags & OGK_NOG_FLAG_CUTOFF) == 0u);
 }
 
+/* req: OGK-NOG-010 OGK-NOG-012 */
 static void test_bad_navigation_gives_safe_command(void **state)
 {
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
@@ -396,6 +408,7 @@ static void test_bad_navigation_gives_safe_command(void **state)
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) == 0u);
 }
 
+/* req: OGK-NOG-004 */
 static void test_init_errors(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -428,6 +441,7 @@ static void test_init_errors(void **state)
 /* The documented ranges of ogk_nog_config_t, at their closed ends and one
  * ulp outside: Delta t_S in (0, t_f*], dt_f max in (0, t_f* / 2], du max in
  * (0, pi], tau_freeze in [0, 1). */
+/* req: OGK-NOG-004 */
 static void test_config_range_boundaries(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -456,6 +470,7 @@ static void test_config_range_boundaries(void **state)
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
 }
 
+/* req: OGK-NOG-004 */
 static void test_config_default(void **state)
 {
     ogk_nog_config_t cfg;
@@ -495,6 +510,7 @@ static void fly_both(ogk_nog_t *a, ogk_nog_t *b)
     }
 }
 
+/* req: OGK-NOG-002 */
 static void test_table_view_in_place(void **state)
 {
     ogk_nog_table_view_t view;
@@ -518,6 +534,7 @@ static void test_table_view_in_place(void **state)
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG); /* both bound */
 }
 
+/* req: OGK-NOG-002 */
 static void test_table_view_rejections(void **state)
 {
     ogk_nog_table_view_t view;
@@ -561,6 +578,7 @@ static void test_table_view_rejections(void **state)
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
 }
 
+/* req: OGK-NOG-004 */
 static void test_reset(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -617,6 +635,7 @@ static void check_stale(ogk_nog_t *ctx, double held_beta)
     OGK_ASSERT_STATUS(ogk_nog_reset(ctx), OGK_E_TABLE_STALE);
 }
 
+/* req: OGK-NOG-003 */
 static void test_stale_table_after_failed_reload(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -640,6 +659,7 @@ static void test_stale_table_after_failed_reload(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
 }
 
+/* req: OGK-NOG-003 */
 static void test_stale_view_after_failed_reload(void **state)
 {
     ogk_nog_table_view_t view;
@@ -672,6 +692,7 @@ static void test_stale_view_after_failed_reload(void **state)
 
 /* Finite input outside the envelope of ogk/nog.h: OGK_E_RANGE before any
  * arithmetic, every output finite, the nominal (no correction yet) flown. */
+/* req: OGK-NOG-010 */
 static void test_envelope_rejects_absurd_inputs(void **state)
 {
     ogk_nog_sample_t s;
@@ -720,6 +741,7 @@ static void test_envelope_rejects_absurd_inputs(void **state)
 /* One bad sample (absurd time, a time past the cut-off, NaN with an absurd
  * time) latches nothing: the next good sample, and the commands before it,
  * fly as if it had not been taken (the engine is not cut off). */
+/* req: OGK-NOG-010 */
 static void test_one_bad_sample_does_not_latch(void **state)
 {
     static const double bad_t[3] = {1.0e6, 150.0, 2.0 + 1.0e6};
@@ -763,6 +785,7 @@ static void test_one_bad_sample_does_not_latch(void **state)
 
 /* A valid-CRC table whose gains are 1e308: finite input, overflowing
  * correction. The step reports it and flies the last good correction. */
+/* req: OGK-NOG-011 */
 static void test_huge_gains_give_safe_command(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -801,6 +824,7 @@ static void test_huge_gains_give_safe_command(void **state)
 /* Only the flight-time row of G overflows (dt_f = 1e308 x 10 s per m/s =
  * inf, every dlam finite): a fault of the table, reported as the safe
  * command, not clipped to dtf_max like a large finite dt_f. */
+/* req: OGK-NOG-011 */
 static void test_overflowing_dt_f_alone_gives_safe_command(void **state)
 {
     ogk_nog_config_t cfg = config();
@@ -831,6 +855,7 @@ static void test_overflowing_dt_f_alone_gives_safe_command(void **state)
  * sample at tau = 0.75. There the costate is +inf (thrust along -r: alpha =
  * -pi/2, beta = 0, finite, flown); at tau = 0.875 it is -inf + inf = NaN: the
  * command reports OGK_E_SAFE_COMMAND and flies those held angles. */
+/* req: OGK-NOG-011 */
 static void test_overflowing_costate_gives_safe_command(void **state)
 {
     const double big = 1.7e308;

@@ -425,6 +425,7 @@ static ogk_qp_problem_t small_problem(void)
     return p;
 }
 
+/* req: OGK-CORE-018 */
 static void test_null_and_dims(void **state)
 {
     ogk_qp_problem_t p = small_problem();
@@ -472,6 +473,7 @@ static void test_null_and_dims(void **state)
     OGK_ASSERT_NEAR(sol.x[1], 2.5, 1e-15);
 }
 
+/* req: OGK-CORE-018 */
 static void test_nonfinite_and_range(void **state)
 {
     ogk_qp_problem_t p = small_problem();
@@ -534,6 +536,7 @@ static void test_nonfinite_and_range(void **state)
     OGK_ASSERT_NEAR(sol.z_ub[0] - sol.z_lb[0], 2.0, 1e-14);
 }
 
+/* req: OGK-CORE-018 */
 static void test_not_posdef(void **state)
 {
     ogk_qp_problem_t p = small_problem();
@@ -565,6 +568,7 @@ static void test_not_posdef(void **state)
 
 /* Infeasible: x1 + x2 = 5 with 0 <= x <= 2; x1 >= 1 with x1 <= 0 (rows);
  * inconsistent dependent equality rows. */
+/* req: OGK-CORE-018 */
 static void test_infeasible(void **state)
 {
     ogk_qp_problem_t p = small_problem();
@@ -617,6 +621,7 @@ static void test_infeasible(void **state)
 
 /* ------------------------------------------------------------------ closed forms */
 
+/* req: OGK-CORE-018 */
 static void test_unconstrained(void **state)
 {
     uint64_t s = 11u;
@@ -646,6 +651,7 @@ static void test_unconstrained(void **state)
 }
 
 /* Equality-only QP: [H -A^T; A 0] [x; y] = [-g; b]. */
+/* req: OGK-CORE-018 */
 static void test_equality_only(void **state)
 {
     uint64_t s = 12u;
@@ -703,6 +709,7 @@ static const double nw_b[3] = {-2.0, -6.0, -2.0};
 static const double nw_lb[2] = {0.0, 0.0};
 static const double nw_ub[2] = {OGK_QP_INF, OGK_QP_INF};
 
+/* req: OGK-CORE-018 */
 static void test_hand_example(void **state)
 {
     ogk_qp_problem_t p = small_problem();
@@ -733,6 +740,7 @@ static void test_hand_example(void **state)
  * optimum, multipliers not unique: y1 + 2 y1' = 0.8); and H = I, g = 0 with
  * x >= 1 (bounds) and x1 + x2 >= 2: optimum (1, 1) with all three active in
  * exact arithmetic, the row redundant. */
+/* req: OGK-CORE-018 */
 static void test_degenerate(void **state)
 {
     ogk_qp_problem_t p = small_problem();
@@ -780,6 +788,7 @@ static void test_degenerate(void **state)
 /* Dependent equality rows: consistent ones solve (the dependent row is
  * skipped, its multiplier 0), inconsistent ones are OGK_E_INFEASIBLE
  * (test_infeasible). */
+/* req: OGK-CORE-018 */
 static void test_dependent_equalities(void **state)
 {
     ogk_qp_problem_t p = small_problem();
@@ -839,6 +848,7 @@ static void test_dependent_equalities(void **state)
 /* Row scaling: the N&W problem with its rows multiplied by 1e200 and by
  * 1e-200 (squares overflow / underflow) gives the same x, and multipliers
  * divided by the factor; a solution that overflows is OGK_E_NONFINITE. */
+/* req: OGK-CORE-018 */
 static void test_scaled_rows_and_overflow(void **state)
 {
     ogk_qp_problem_t p = small_problem();
@@ -883,6 +893,7 @@ static void test_scaled_rows_and_overflow(void **state)
 /* ------------------------------------------------------------------ random */
 
 /* n <= 6: the kernel against the brute-force enumeration, plus KKT. */
+/* req: OGK-CORE-018 */
 static void test_random_vs_brute_force(void **state)
 {
     uint64_t s = 20261208u;
@@ -916,6 +927,7 @@ static void test_random_vs_brute_force(void **state)
 
 /* Target size of the SQP: n = 32..48, 4 equalities, bounds on a third of the
  * variables, 8..16 rows: KKT conditions. */
+/* req: OGK-CORE-018 */
 static void test_random_target_size(void **state)
 {
     uint64_t s = 31337u;

@@ -133,6 +133,7 @@ static ogk_rk4_result_t res;
 
 /* ---------------------------------------------------------------- tests */
 
+/* req: OGK-CORE-013 */
 static void test_single_step_is_taylor_polynomial(void **state)
 {
     const double h = 0.1;
@@ -163,6 +164,7 @@ static double orbit_error(size_t steps)
     return err;
 }
 
+/* req: OGK-CORE-013 */
 static void test_fourth_order_convergence_two_body(void **state)
 {
     const double e1 = orbit_error(400u);
@@ -176,6 +178,7 @@ static void test_fourth_order_convergence_two_body(void **state)
     assert_int_equal(res.n_steps, 800u);
 }
 
+/* req: OGK-CORE-014 */
 static void test_bang_off_bang_double_integrator(void **state)
 {
     primer_t pr = {3.0, 1.0};
@@ -199,6 +202,7 @@ static void test_bang_off_bang_double_integrator(void **state)
     OGK_ASSERT_NEAR(res.t_reached, 6.0, 0.0);
 }
 
+/* req: OGK-CORE-014 */
 static void test_state_dependent_switch_with_dense_output(void **state)
 {
     /* x'' = mode, x(0) = 0.1, v(0) = 0, S = sin x: switches where x = k pi. */
@@ -242,6 +246,7 @@ static void test_state_dependent_switch_with_dense_output(void **state)
     OGK_ASSERT_NEAR(dense.x[2u * (dense.count - 1u)], xf[0], 0.0);
 }
 
+/* req: OGK-CORE-014 */
 static void test_switch_overflow_is_an_error(void **state)
 {
     ogk_rk4_problem_t p = problem(1u, 0.01, growth, sin_t_switch, NULL);
@@ -256,6 +261,7 @@ static void test_switch_overflow_is_an_error(void **state)
     OGK_ASSERT_NEAR(xf[0], exp(res.t_reached), 1e-6 * exp(res.t_reached));
 }
 
+/* req: OGK-CORE-014 */
 static void test_discontinuous_switch_stops_on_time_tolerance(void **state)
 {
     ogk_rk4_problem_t p = problem(1u, 0.3, growth, jump_switch, NULL);
@@ -269,6 +275,7 @@ static void test_discontinuous_switch_stops_on_time_tolerance(void **state)
     assert_true(res.sw[0].t >= 1.0 && res.sw[0].t - 1.0 <= 1e-9);
 }
 
+/* req: OGK-CORE-013 OGK-CORE-021 */
 static void test_bad_inputs(void **state)
 {
     ogk_rk4_problem_t p = problem(1u, 0.1, growth, NULL, NULL);
@@ -300,6 +307,7 @@ static void test_bad_inputs(void **state)
     OGK_ASSERT_STATUS(ogk_rk4_propagate(&p, 0.0, x0, 0, 1.0, &res, xf, NULL), OGK_E_RANGE);
 }
 
+/* req: OGK-CORE-013 */
 static void test_callback_failure_and_nan_stop_cleanly(void **state)
 {
     ogk_rk4_problem_t p = problem(1u, 0.1, failing_rhs, NULL, NULL);
@@ -314,6 +322,7 @@ static void test_callback_failure_and_nan_stop_cleanly(void **state)
     assert_true(isfinite(xf[0]));
 }
 
+/* req: OGK-CORE-013 */
 static void test_step_count_has_no_sliver(void **state)
 {
     /* 1.0 / 0.1 is not exactly 10 in binary: still 10 steps, none tiny. */

@@ -6,6 +6,7 @@
 #include "ogk/status.h"
 #include "ogk/version.h"
 
+/* req: OGK-CORE-001 */
 static void test_each_code_named_and_distinct(void **state)
 {
     unsigned i, j;
@@ -24,6 +25,7 @@ static void test_each_code_named_and_distinct(void **state)
     assert_true(strcmp(names[OGK_E_SAFE_COMMAND], "OGK_E_SAFE_COMMAND") == 0);
 }
 
+/* req: OGK-CORE-001 */
 static void test_unknown_code_and_null(void **state)
 {
     const char *name = NULL;
@@ -33,6 +35,7 @@ static void test_unknown_code_and_null(void **state)
     OGK_ASSERT_STATUS(ogk_status_name(OGK_OK, NULL), OGK_E_NULL);
 }
 
+/* req: OGK-CORE-002 */
 static void test_version(void **state)
 {
     const char *text = NULL;

@@ -57,6 +57,7 @@ static ogk_table_spec_t spec(void)
 
 static uint8_t table_buf[TABLE_BYTES + 8u];
 
+/* req: OGK-CORE-017 */
 static void test_valid_table_reads_back(void **state)
 {
     ogk_table_spec_t s = spec();
@@ -90,6 +91,7 @@ static void test_valid_table_reads_back(void **state)
 
 /* The smallest entry, one scalar per node (ndims 1, dims {1}: entry_len 1):
  * grid t_k = k and values y_k = 2 k + 0.5 read back exactly. */
+/* req: OGK-CORE-017 */
 static void test_scalar_entries(void **state)
 {
     const uint32_t dims[1] = {1u};
@@ -119,6 +121,7 @@ static void test_scalar_entries(void **state)
     OGK_ASSERT_STATUS(ogk_table_get(&v, 0u, 1u, &value), OGK_E_RANGE);
 }
 
+/* req: OGK-CORE-017 */
 static void test_corrupted_payload_byte(void **state)
 {
     ogk_table_spec_t s = spec();
@@ -130,6 +133,7 @@ static void test_corrupted_payload_byte(void **state)
     assert_null(v.buf); /* view cleared: nothing can be read from it */
 }
 
+/* req: OGK-CORE-017 */
 static void test_corrupted_header_byte(void **state)
 {
     ogk_table_spec_t s = spec();
@@ -140,6 +144,7 @@ static void test_corrupted_header_byte(void **state)
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_CRC);
 }
 
+/* req: OGK-CORE-017 */
 static void test_wrong_dimension(void **state)
 {
     ogk_table_spec_t s = spec();
@@ -156,6 +161,7 @@ static void test_wrong_dimension(void **state)
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_DIM);
 }
 
+/* req: OGK-CORE-017 */
 static void test_truncated_and_oversized(void **state)
 {
     ogk_table_spec_t s = spec();
@@ -167,6 +173,7 @@ static void test_truncated_and_oversized(void **state)
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES + 8u, &s, &v), OGK_E_TABLE_SIZE);
 }
 
+/* req: OGK-CORE-017 */
 static void test_magic_version_type_kind(void **state)
 {
     ogk_table_spec_t s = spec();
@@ -188,6 +195,7 @@ static void test_magic_version_type_kind(void **state)
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_TYPE);
 }
 
+/* req: OGK-CORE-017 */
 static void test_inconsistent_payload_size_and_nan(void **state)
 {
     ogk_table_spec_t s = spec();
@@ -205,6 +213,7 @@ static void test_inconsistent_payload_size_and_nan(void **state)
 
 /* The finiteness scan covers the whole payload, both ends included: the
  * first value (grid[0]) and the last (the last entry's last element). */
+/* req: OGK-CORE-017 */
 static void test_nonfinite_first_and_last_value(void **state)
 {
     ogk_table_spec_t s = spec();
@@ -233,6 +242,7 @@ static void test_nonfinite_first_and_last_value(void **state)
  * truncated (only the header is there); one value more, 2^25 = 32 x 2^20
  * (entries of 31), is too large. Both stop before the payload is read, so
  * the payload CRC is not needed. */
+/* req: OGK-CORE-017 */
 static void test_largest_payload_size(void **state)
 {
     static uint8_t hdr[OGK_TABLE_HEADER_SIZE];
@@ -253,6 +263,7 @@ static void test_largest_payload_size(void **state)
     OGK_ASSERT_STATUS(ogk_table_open(hdr, sizeof hdr, &s, &v), OGK_E_TABLE_SIZE);
 }
 
+/* req: OGK-CORE-017 OGK-CORE-021 */
 static void test_null_and_unopened(void **state)
 {
     ogk_table_spec_t s = spec();

@@ -59,6 +59,7 @@ static void assert_along(const ogk_thrust_cmd_t *cmd, double g_r, double g_t, do
     OGK_ASSERT_NEAR(cmd->throttle, ((cmd->flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u) ? 1.0 : 0.0, 0.0);
 }
 
+/* req: OGK-NOG-017 */
 static void test_outside_window_passes_law_command(void **state)
 {
     const ogk_terminal_config_t cfg = config();
@@ -73,6 +74,7 @@ static void test_outside_window_passes_law_command(void **state)
     assert_false(ctx.engaged);
 }
 
+/* req: OGK-NOG-017 */
 static void test_window_steers_along_vgo_and_latches(void **state)
 {
     const ogk_terminal_config_t cfg = config();
@@ -98,6 +100,7 @@ static void test_window_steers_along_vgo_and_latches(void **state)
 
 /* Thrust along v_go shrinks v_go along its own direction: with gravity left
  * out, the command does not turn at all while v_go is nulled. */
+/* req: OGK-NOG-017 */
 static void test_direction_constant_while_vgo_shrinks(void **state)
 {
     const ogk_terminal_config_t cfg = config();
@@ -129,6 +132,7 @@ static void test_direction_constant_while_vgo_shrinks(void **state)
     assert_true(k > 100); /* 60 m/s at 17.7 m/s^2: about 170 steps of 20 ms */
 }
 
+/* req: OGK-NOG-017 */
 static void test_vgo_zero_holds_direction(void **state)
 {
     const ogk_terminal_config_t cfg = config();
@@ -143,6 +147,7 @@ static void test_vgo_zero_holds_direction(void **state)
     OGK_ASSERT_NEAR(out.beta_rad, law.beta_rad, 0.0);
 }
 
+/* req: OGK-NOG-017 */
 static void test_rejections_change_nothing(void **state)
 {
     const ogk_terminal_config_t cfg = config();
@@ -196,6 +201,7 @@ static void test_rejections_change_nothing(void **state)
  * plan's acceleration, integrated here in closed form over its duration, must take
  * the velocity to 0 and the position to (1 - k) times the miss of a linear
  * decay, x + x' T / 2 (ogk/terminal.h), on both axes, for k = 1 and k = 0.4. */
+/* req: OGK-NOG-017 */
 static void test_shaped_plan_meets_its_end_conditions(void **state)
 {
     static const double gains[2] = {1.0, 0.4};
@@ -383,6 +389,7 @@ static ogk_nav_state_t fly_end(double shape_gain)
     return nav;
 }
 
+/* req: OGK-NOG-017 */
 static void test_shaped_window_steers_out_the_position_miss(void **state)
 {
     const ogk_nav_state_t pure = fly_end(0.0);
@@ -403,6 +410,7 @@ static void test_shaped_window_steers_out_the_position_miss(void **state)
 /* The shaped window's fallbacks: the law's time to go while the energy is not
  * rising (or on a repeated time tag), and v_go steering when the plan
  * overflows (a radius near 0, inside the envelope). */
+/* req: OGK-NOG-017 */
 static void test_shaped_fallbacks(void **state)
 {
     ogk_terminal_config_t cfg = config();
@@ -461,6 +469,7 @@ static void test_shaped_fallbacks(void **state)
     assert_false(ctx.plan.in_hold);
 }
 
+/* req: OGK-NOG-017 */
 static void test_contract(void **state)
 {
     ogk_terminal_config_t cfg = config();

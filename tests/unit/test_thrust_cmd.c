@@ -56,6 +56,7 @@ static double angle_between(const double *a, const double *b)
     return atan2(sqrt(dot(c, c)), dot(a, b));
 }
 
+/* req: OGK-CORE-019 */
 static void test_angles_and_unit_vectors(void **state)
 {
     int i;
@@ -113,6 +114,7 @@ static void test_angles_and_unit_vectors(void **state)
     }
 }
 
+/* req: OGK-CORE-019 */
 static void test_angle_and_vector_rejections(void **state)
 {
     double u[3] = {7.0, 7.0, 7.0};
@@ -143,6 +145,7 @@ static void test_angle_and_vector_rejections(void **state)
     OGK_ASSERT_NEAR(b, 7.0, 0.0);
 }
 
+/* req: OGK-CORE-019 */
 static void test_builders(void **state)
 {
     ogk_thrust_cmd_t c;
@@ -231,6 +234,7 @@ static void test_builders(void **state)
 }
 
 /* r-t-n from an inertial vector against the axes built by cross products, at positions all round. */
+/* req: OGK-CORE-019 */
 static void test_inertial_to_rtn(void **state)
 {
     int i;
@@ -282,6 +286,7 @@ static void test_inertial_to_rtn(void **state)
     }
 }
 
+/* req: OGK-CORE-019 */
 static void test_to_rtn_frames_and_rejections(void **state)
 {
     ogk_thrust_cmd_t in;
@@ -360,6 +365,7 @@ static void test_to_rtn_frames_and_rejections(void **state)
 }
 
 /* Synodic -> inertial against R3(-angle) written out, then on to CPD. */
+/* req: OGK-CORE-019 OGK-CPD-010 */
 static void test_synodic_to_inertial_and_cpd(void **state)
 {
     static const double angles[5] = {0.0, 0.5 * PI, -2.0, 3.0, 7.5};
@@ -437,6 +443,7 @@ static void test_synodic_to_inertial_and_cpd(void **state)
 }
 
 /* CPD from any law: the r-t-n and inertial forms of one direction give the same CPD output. */
+/* req: OGK-CPD-010 */
 static void test_cpd_same_output_from_either_frame(void **state)
 {
     ogk_cpd_config_t cfg;

@@ -90,6 +90,7 @@ static void nmpc_setup(uint32_t engine)
     OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&nmpc, &plan), OGK_OK);
 }
 
+/* req: OGK-NMPC-009 */
 static void test_nmpc_angle_from_the_vertical(void **state)
 {
     uint32_t i;
@@ -128,6 +129,7 @@ static void test_nmpc_angle_from_the_vertical(void **state)
     OGK_ASSERT_NEAR(angle_diff(c.alpha_rad, (0.5 * PI) - 4.0), 0.0, 1e-14);
 }
 
+/* req: OGK-NMPC-009 */
 static void test_nmpc_throttle_and_safe(void **state)
 {
     ogk_thrust_cmd_t c;
@@ -164,6 +166,7 @@ static void test_nmpc_throttle_and_safe(void **state)
 
 /* CPD fed NMPC's r-t-n command equals CPD fed the same thrust as an inertial Cartesian vector,
  * cos(a) (cos theta, sin theta, 0) + sin(a) (-sin theta, cos theta, 0), at polar angle theta. */
+/* req: OGK-NMPC-009 OGK-CPD-010 */
 static void test_nmpc_feeds_cpd(void **state)
 {
     ogk_nmpc_command_t nc;
@@ -215,6 +218,7 @@ static void mpsp_lambda_v(const ogk_mpsp_config_t *c, const double *w, double t,
     }
 }
 
+/* req: OGK-MPSP-010 */
 static void test_mpsp_primer_vector_and_bang_off_bang(void **state)
 {
     ogk_mpsp_config_t c;
@@ -267,6 +271,7 @@ static void test_mpsp_primer_vector_and_bang_off_bang(void **state)
     assert_true((n_thrust > 10u) && (n_coast > 10u)); /* both arcs sampled */
 }
 
+/* req: OGK-MPSP-010 */
 static void test_mpsp_rejections(void **state)
 {
     ogk_mpsp_config_t c;
@@ -315,6 +320,7 @@ static void blt_direction(const double *seg, double tau, double *u)
     u[2] = w[2] / n;
 }
 
+/* req: OGK-BLT-008 */
 static void test_blt_burn_coast_and_after(void **state)
 {
     ogk_blt_config_t c;
@@ -394,6 +400,7 @@ static void test_blt_burn_coast_and_after(void **state)
 }
 
 /* BLT's synodic command reaches CPD through the binary's angle (omega = 1: angle = theta0 + t). */
+/* req: OGK-BLT-008 OGK-CPD-010 */
 static void test_blt_synodic_to_cpd(void **state)
 {
     ogk_blt_config_t c;
