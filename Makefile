@@ -137,11 +137,22 @@ include tests/gates/gates.mk
 misra: | apt
 	$(PYTHON) tests/misra/misra_gate.py --build $(B)/misra
 
+# ---------------------------------------------------------------- requirements traceability
+# docs/requirements.md, the req: tags of the tests and tests/trace/gates.txt: `make trace` fails on an
+# untagged test, a requirement without a test, an unknown id or a stale docs/traceability.md
+# (stdlib Python, parses the sources: under a second); `make trace-matrix` regenerates the matrix.
+.PHONY: trace trace-matrix
+trace:
+	$(PYTHON) tests/trace/check_trace.py
+trace-matrix:
+	$(PYTHON) tests/trace/check_trace.py --write
+
 # ---------------------------------------------------------------- top-level
 .PHONY: all test run clean
 all: deps kernel-host arm-lib ffi
 
 test: deps
+	$(MAKE) trace
 	$(MAKE) lint
 	$(MAKE) test-unit-host
 	$(MAKE) test-unit-arm
