@@ -89,7 +89,7 @@ def test_target_campaign_passes_and_agrees_with_the_host(campaign: dict) -> None
     assert "within the stated bounds" in campaign["text"]
 
 
-@pytest.mark.req("OGK-HAR-012", "OGK-BLT-010")
+@pytest.mark.req("OGK-HAR-012", "OGK-BLT-011")
 def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     for r in campaign["records"]:
         assert r["pil.ogk_blt_init.calls"] == 3 and r["pil.ogk_blt_solve.calls"] == 3

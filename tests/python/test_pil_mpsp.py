@@ -90,7 +90,7 @@ def test_target_campaign_passes_and_agrees_with_the_host(campaign: dict) -> None
     assert sorted(r["kind"] for r in campaign["records"]) == ["initial", "terminal", "thrust"]
 
 
-@pytest.mark.req("OGK-HAR-012", "OGK-MPSP-012")
+@pytest.mark.req("OGK-HAR-012", "OGK-MPSP-013")
 def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     for r in campaign["records"]:
         for e in ENTRIES:
@@ -106,7 +106,7 @@ def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     assert "On the target (m7)" in campaign["stdout"] and "Host vs target" in campaign["stdout"]
 
 
-@pytest.mark.req("OGK-HAR-012", "OGK-CORE-006")
+@pytest.mark.req("OGK-HAR-012", "OGK-CORE-006", "OGK-MPSP-013")
 def test_stack_is_within_the_static_worst_case(campaign: dict) -> None:
     """What the painted window measured on the target is at most gcc's static worst case per entry
     point (make arm-stack: own frame + deepest path through the kernel's call graph) plus libm."""

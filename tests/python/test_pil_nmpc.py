@@ -98,7 +98,7 @@ def _agrees_replan_by_replan(r: dict, but_last: bool = False) -> None:
     assert r["pil.command_mismatch"] == 0
 
 
-@pytest.mark.req("OGK-HAR-012", "OGK-NMPC-010")
+@pytest.mark.req("OGK-HAR-012", "OGK-NMPC-010", "OGK-NMPC-012")
 def test_a_whole_perturbed_snns_closed_loop_flies_on_the_target(whole_flight: dict) -> None:
     doc = whole_flight["doc"]
     assert doc["target"] == "m7" and doc["runs"] == 1 and doc["failures"] == 0
@@ -158,7 +158,7 @@ def test_replay_flies_the_run_again_on_the_target(min_fuel: dict) -> None:
 #: newlib's libm functions (sin, cos, pow) are outside gcc's call graph: their frames on top
 
 
-@pytest.mark.req("OGK-HAR-012", "OGK-CORE-006")
+@pytest.mark.req("OGK-HAR-012", "OGK-CORE-006", "OGK-NMPC-012")
 def test_stack_is_within_the_static_worst_case(whole_flight: dict) -> None:
     """What the painted window measured on the target is at most gcc's static worst case per entry
     point (make arm-stack: own frame + deepest path through the kernel's call graph) plus libm."""

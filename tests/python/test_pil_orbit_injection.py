@@ -82,7 +82,7 @@ def test_target_campaign_passes_and_agrees_with_the_host(campaign: dict) -> None
         [host[r["run_id"]]["d_state"] for r in campaign["records"]]
 
 
-@pytest.mark.req("OGK-HAR-012", "OGK-NOG-018")
+@pytest.mark.req("OGK-HAR-012", "OGK-NOG-018", "OGK-NOG-020", "OGK-CPD-013")
 def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     for r in campaign["records"]:
         ticks = r[f"pil.ogk_cpd_step.calls"]
@@ -99,7 +99,7 @@ def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
     assert "On the target (m7)" in campaign["stdout"] and "Host vs target" in campaign["stdout"]
 
 
-@pytest.mark.req("OGK-HAR-012", "OGK-CORE-006")
+@pytest.mark.req("OGK-HAR-012", "OGK-CORE-006", "OGK-NOG-020")
 def test_stack_is_within_the_static_worst_case(campaign: dict) -> None:
     """What the painted window measured on the target is at most gcc's static worst case per entry
     point (make arm-stack: own frame + deepest path through the kernel's call graph) plus libm."""
