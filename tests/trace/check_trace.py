@@ -140,7 +140,7 @@ def _pytestmark(body: list[ast.stmt]) -> list[ast.AST]:
 
 def py_tests(root: Path, rep: Report) -> list[Test]:
     tests: list[Test] = []
-    for path in sorted((root / "tests" / "python").glob("test_*.py")):
+    for path in sorted((root / "tests" / "python").rglob("test_*.py")):
         rel = path.relative_to(root).as_posix()
         tree = ast.parse(path.read_text(), filename=rel)
         mod_ids, mod_names = _marks(_pytestmark(tree.body))
