@@ -7,6 +7,7 @@ SHELL := /bin/bash
 
 # ---------------------------------------------------------------- setup
 APT_PKGS := build-essential valgrind clang clang-tidy libclang-rt-14-dev \
+  clang-19 llvm-19 libclang-rt-19-dev \
   libcmocka-dev cppcheck gcovr libeigen3-dev gcc-arm-none-eabi \
   libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm qemu-user \
   python3-venv pkg-config

@@ -7,8 +7,12 @@
 #   make fuzz-short              every libFuzzer harness of tests/fuzz for FUZZ_SHORT_SECONDS each
 #                                (about a minute in all; for make test)
 #   make fuzz FUZZ_SECONDS=N     the same, N seconds per harness
-#   make coverage                the unit tests built with gcc --coverage, gcovr over kernel/:
-#                                fails under COVERAGE_LINES / COVERAGE_BRANCHES (docs/coverage.md)
+#   make coverage                coverage-gcov and mcdc (docs/coverage.md)
+#   make coverage-gcov           the unit tests built with gcc --coverage, gcovr over kernel/:
+#                                fails under COVERAGE_LINES / COVERAGE_BRANCHES
+#   make mcdc                    the unit tests built with clang-19 -fcoverage-mcdc, llvm-cov-19 over
+#                                kernel/src: fails under COVERAGE_MCDC or on a missed condition that
+#                                docs/mcdc-exceptions.md does not list
 #   make mutants                 deterministic mutation run over kernel/src (tests/gates/mutants.py),
 #                                C unit tests only; prints killed/survived and the score
 #   make gates                   tidy fuzz-short coverage (what make test should run)
@@ -85,8 +89,9 @@ $(COV_B)/test_%: tests/unit/test_%.c $(wildcard tests/unit/*.h) $(COV_KOBJ) | ap
 	@mkdir -p $(@D)
 	gcc -std=c99 -Wall -Wextra -Werror $(COV_FLAGS) $(KINC) -Itests/unit $< $(COV_KOBJ) -o $@ -lcmocka -lm
 
-.PHONY: coverage
-coverage: $(COV_TESTS)
+.PHONY: coverage coverage-gcov
+coverage: coverage-gcov mcdc
+coverage-gcov: $(COV_TESTS)
 	@find $(COV_B) -name '*.gcda' -delete
 	@fail=0; for t in $(COV_TESTS); do $$t > $$t.log 2>&1 || { cat $$t.log; fail=1; }; done; \
 	if [ $$fail -ne 0 ]; then echo "coverage: a unit test failed"; exit 1; fi
@@ -95,6 +100,50 @@ coverage: $(COV_TESTS)
 	  --fail-under-line $(COVERAGE_LINES) --fail-under-branch $(COVERAGE_BRANCHES) . ; rc=$$?; \
 	if [ $$rc -ne 0 ]; then echo "coverage: under the thresholds (lines $(COVERAGE_LINES) %, branches $(COVERAGE_BRANCHES) %); per file: $(COV_B)/coverage.txt"; exit 1; fi; \
 	echo "coverage: at or above lines $(COVERAGE_LINES) %, branches $(COVERAGE_BRANCHES) % (per file: $(COV_B)/coverage.txt)"
+
+# ---------------------------------------------------------------- MC/DC (clang-19, llvm-cov-19)
+# Every tests/unit/test_*.c linked with the kernel built by clang-19 with the strict flags and
+# source-based coverage with MC/DC (-O0, no sanitizers), run (one raw profile per test), merged by
+# llvm-profdata-19, reported by llvm-cov-19 over kernel/src: the per-file MC/DC column in
+# $(MCDC_B)/mcdc-report.txt, every condition's independence pairs in $(MCDC_B)/mcdc-show.txt.
+# tests/gates/mcdc_check.py fails under COVERAGE_MCDC (percent of conditions, a ratchet like lines
+# and branches), on a missed condition that docs/mcdc-exceptions.md does not list, and reports the
+# listed ones now covered (docs/coverage.md, "MC/DC").
+MCDC_B := $(B)/mcdc
+MCDC_CC ?= clang-19
+MCDC_PROFDATA ?= llvm-profdata-19
+MCDC_COV ?= llvm-cov-19
+COVERAGE_MCDC ?= 92
+MCDC_EXCEPTIONS := docs/mcdc-exceptions.md
+MCDC_FLAGS := -O0 -g -fprofile-instr-generate -fcoverage-mapping -fcoverage-mcdc
+MCDC_KOBJ := $(patsubst kernel/src/%.c,$(MCDC_B)/kernel/%.o,$(KSRC))
+MCDC_SRC := $(KSRC) $(wildcard kernel/src/*.h)
+MCDC_TESTS := $(patsubst tests/unit/%.c,$(MCDC_B)/%,$(UNIT_SRC))
+
+$(MCDC_B)/kernel/%.o: kernel/src/%.c $(KHDR) | apt
+	@mkdir -p $(@D)
+	@# clang's "unsupported MC/DC boolean expression" is a warning -Werror does not turn into an error:
+	@# kept in $@.err, where mcdc_check.py reads the decisions left uninstrumented.
+	$(MCDC_CC) $(STRICT) $(MCDC_FLAGS) $(KINC) -c $< -o $@ 2> $@.err || { cat $@.err; exit 1; }
+$(MCDC_B)/test_%: tests/unit/test_%.c $(wildcard tests/unit/*.h) $(MCDC_KOBJ) | apt
+	@mkdir -p $(@D)
+	$(MCDC_CC) -std=c99 -Wall -Wextra -Werror $(MCDC_FLAGS) $(KINC) -Itests/unit $< $(MCDC_KOBJ) -o $@ -lcmocka -lm
+
+.PHONY: mcdc
+mcdc: $(MCDC_TESTS)
+	@rm -f $(MCDC_B)/*.profraw
+	@fail=0; for t in $(MCDC_TESTS); do LLVM_PROFILE_FILE=$$t.profraw $$t > $$t.log 2>&1 || { cat $$t.log; fail=1; }; done; \
+	if [ $$fail -ne 0 ]; then echo "mcdc: a unit test failed"; exit 1; fi
+	@$(MCDC_PROFDATA) merge -sparse -o $(MCDC_B)/kernel.profdata $(MCDC_B)/*.profraw
+	@objs=$$(for t in $(MCDC_TESTS); do printf -- '-object %s ' $$t; done); \
+	$(MCDC_COV) report -show-mcdc-summary -instr-profile=$(MCDC_B)/kernel.profdata \
+	  $(firstword $(MCDC_TESTS)) $$objs $(MCDC_SRC) > $(MCDC_B)/mcdc-report.txt && \
+	$(MCDC_COV) show -show-mcdc -show-line-counts=false -show-regions=false -use-color=false \
+	  -instr-profile=$(MCDC_B)/kernel.profdata $(firstword $(MCDC_TESTS)) $$objs $(MCDC_SRC) \
+	  > $(MCDC_B)/mcdc-show.txt
+	@python3 tests/gates/mcdc_check.py --report $(MCDC_B)/mcdc-report.txt --show $(MCDC_B)/mcdc-show.txt \
+	  --compile-logs '$(MCDC_B)/kernel/*.o.err' --exceptions $(MCDC_EXCEPTIONS) \
+	  --threshold $(COVERAGE_MCDC) --missed-out $(MCDC_B)/mcdc-missed.txt
 
 # ---------------------------------------------------------------- mutation run (not in make test)
 # tests/gates/mutants.py: MUTANTS_COUNT operator/constant mutants sampled with MUTANTS_SEED from
