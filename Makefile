@@ -133,6 +133,8 @@ include port/cortex-m7/pil/pil.mk
 # ---------------------------------------------------------------- gates (issue 8): make tidy,
 # fuzz-short / fuzz, coverage, mutants (not in make test), misra (a ratchet, in make lint)
 include tests/gates/gates.mk
+# certification evidence (docs/profile.md): make stack-bound-m7
+include port/profile/profile.mk
 
 .PHONY: misra
 misra: | apt
@@ -157,7 +159,7 @@ test: deps
 	$(MAKE) lint
 	$(MAKE) test-unit-host
 	$(MAKE) test-unit-arm
-	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack
+	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack stack-bound-m7
 	$(MAKE) test-flight-app
 	$(MAKE) test-eigen
 	$(MAKE) gates

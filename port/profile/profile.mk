@@ -1,0 +1,51 @@
+# port/profile/profile.mk -- certification evidence (issue 22, docs/profile.md). Included by the top-level
+# Makefile after the ports.
+#
+#   make stack-bound-m7   worst-case stack of every public entry point on the Cortex-M7, libm, libc and the
+#                         kernel's own callbacks included: the disassembly of the linked unit-test ELFs, each
+#                         frame checked against gcc -fstack-usage (port/profile/stack_bound.py). Fails on
+#                         recursion, an unsized frame or a frame gcc disagrees with. In make test.
+
+PROFILE_B := $(B)/profile
+ARM_UNIT_ELF := $(patsubst tests/unit/%.c,$(ARM_B)/%.elf,$(ARM_UNIT_SRC))
+PROFILE_PY := $(wildcard port/profile/*.py)
+
+.PHONY: stack-bound-m7
+stack-bound-m7: $(PROFILE_B)/stack_m7.json
+$(PROFILE_B)/stack_m7.json: $(ARM_UNIT_ELF) $(ARM_KOBJ) $(PROFILE_PY)
+	@mkdir -p $(@D)
+	python3 port/profile/stack_bound.py --isa thumb --objdump arm-none-eabi-objdump \
+	  --su-dir $(ARM_B)/kernel --objects $(ARM_KOBJ) --json $@.tmp -- $(ARM_UNIT_ELF) \
+	  && mv $@.tmp $@
+
+# ---------------------------------------------------------------- make profile (not in make test: minutes)
+#   make profile          build/profile/profile.json and docs/profile.md: per target, every public entry
+#                         point's stack bound, the painted stack and QEMU's instructions per call at the
+#                         worst input of small processor-in-the-loop campaigns of every family (fixed seed
+#                         and runs: identical from run to run), code / read-only / RAM per module and the
+#                         size of every public type. Fails if a painted stack exceeds its bound.
+PROFILE_SEED := 20261203
+# scenario:runs -- one or more missions of every family, flown on the emulated Cortex-M7
+PROFILE_CAMPAIGNS := leo_geo:8 scout_upper_stage:4 apophis_cubesat:4 rendezvous_nep_min_time:2 \
+  rendezvous_sep_min_fuel:2 moshup:6
+PROFILE_PIL_M7 := $(foreach c,$(PROFILE_CAMPAIGNS),$(PROFILE_B)/pil_m7/$(firstword $(subst :, ,$(c))).json)
+
+.PHONY: profile footprint-m7 profile-pil-m7
+footprint-m7: $(PROFILE_B)/footprint_m7.json
+$(PROFILE_B)/footprint_m7.json: $(ARM_KOBJ) $(KHDR) $(PROFILE_PY)
+	@mkdir -p $(@D)
+	python3 port/profile/footprint.py --cc "$(ARM_CC) -std=c99 $(ARM_CPU)" --size arm-none-eabi-size \
+	  --nm arm-none-eabi-nm --json $@ -- $(ARM_KOBJ)
+
+# Each campaign's envelope is rebuilt when the kernel, the ports or its scenario change.
+$(PROFILE_B)/pil_m7/%.json: scenarios/%.toml $(ARM_B)/libogk.a $(FFI_STAMP)
+	@mkdir -p $(@D)
+	$(VENV)/bin/ogk mc $* --target m7 --runs $(lastword $(subst :, ,$(filter $*:%,$(PROFILE_CAMPAIGNS)))) \
+	  --seed $(PROFILE_SEED) --workers 2 --json $@
+profile-pil-m7: $(PROFILE_PIL_M7)
+
+profile: deps stack-bound-m7 footprint-m7 profile-pil-m7
+	python3 port/profile/profile.py --stack m7=$(PROFILE_B)/stack_m7.json \
+	  --footprint m7=$(PROFILE_B)/footprint_m7.json \
+	  --campaign $(foreach f,$(PROFILE_PIL_M7),m7=$(f)) \
+	  --json $(PROFILE_B)/profile.json --doc docs/profile.md
