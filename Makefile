@@ -159,7 +159,7 @@ test: deps
 	$(MAKE) lint
 	$(MAKE) test-unit-host
 	$(MAKE) test-unit-arm
-	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack stack-bound-m7
+	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack stack-bound-m7 footprint-m7
 	$(MAKE) test-flight-app
 	$(MAKE) test-eigen
 	$(MAKE) gates

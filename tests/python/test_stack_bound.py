@@ -13,6 +13,8 @@ from pathlib import Path
 
 import pytest
 
+pytestmark = pytest.mark.req("OGK-CORE-006")
+
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "port" / "profile"))
 from elf_stack import bounds, by_name, disassemble  # noqa: E402
