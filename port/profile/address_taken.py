@@ -19,9 +19,21 @@ _CALLS = re.compile(r"^R_(?:ARM_(?:THM_CALL|THM_JUMP\d+|CALL|JUMP24|PC24|PLT32|V
                     r"SPARC_(?:WDISP\d+|WPLT30|DISP\d+|NONE))$")
 
 
+_SYM = re.compile(r"^([0-9a-f]+)\s+\S*\s+F\s+(\S+)\s+[0-9a-f]+\s+(\S+)$")
+
+
+def _functions_by_section(objdump: str, obj: Path) -> dict[tuple[str, int], str]:
+    """(section, offset) -> function, to resolve a relocation against a section symbol plus offset
+    (a static function's address without -ffunction-sections: `.text+0x1a4`)."""
+    text = subprocess.run([objdump, "-t", str(obj)], check=True, capture_output=True, text=True).stdout
+    return {(m.group(2), int(m.group(1), 16)): m.group(3)
+            for line in text.splitlines() if (m := _SYM.match(line))}
+
+
 def address_taken(objdump: str, objects: list[Path]) -> set[str]:
     names: set[str] = set()
     for obj in objects:
+        at = _functions_by_section(objdump, obj)
         text = subprocess.run([objdump, "-r", str(obj)], check=True, capture_output=True,
                               text=True).stdout
         section = ""
@@ -35,8 +47,10 @@ def address_taken(objdump: str, objects: list[Path]) -> set[str]:
                 continue
             if _CALLS.match(r.group(1)):
                 continue
-            sym = r.group(2).split("+")[0]
-            if sym.startswith(".text."):
+            sym, _, off = r.group(2).partition("+")
+            if (sym, int(off or "0", 16)) in at:
+                names.add(at[(sym, int(off or "0", 16))])
+            elif sym.startswith(".text."):
                 names.add(sym[len(".text."):])
             elif not sym.startswith("."):
                 names.add(sym)

@@ -38,7 +38,7 @@ $(PROFILE_B)/footprint_m7.json: $(ARM_KOBJ) $(KHDR) $(PROFILE_PY)
 	  --nm arm-none-eabi-nm --json $@ -- $(ARM_KOBJ)
 
 # Each campaign's envelope is rebuilt when the kernel, the ports or its scenario change.
-$(PROFILE_B)/pil_m7/%.json: scenarios/%.toml $(ARM_B)/libogk.a $(FFI_STAMP)
+$(PROFILE_B)/pil_m7/%.json: scenarios/%.toml $(ARM_B)/libogk.a $(ARM_RT_OBJ) $(QP_SO) $(FFI_STAMP)
 	@mkdir -p $(@D)
 	$(VENV)/bin/ogk mc $* --target m7 --runs $(lastword $(subst :, ,$(filter $*:%,$(PROFILE_CAMPAIGNS)))) \
 	  --seed $(PROFILE_SEED) --workers 2 --json $@

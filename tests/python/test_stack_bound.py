@@ -147,3 +147,22 @@ def test_stack_bound_cli_flags_a_frame_mismatch(built, tmp_path):
     assert r.returncode == 1
     assert f"leaf: disassembly {gcc['leaf']} B, gcc {gcc['leaf'] + 8} B" in r.stdout
     assert json.loads(out.read_text())["problems"]
+
+
+@pytest.mark.parametrize("sections", [[], ["-ffunction-sections"]])
+def test_static_callbacks_are_address_taken(built, tmp_path, sections):
+    """A static function whose address is passed on is a possible target of an indirect call, whether its
+    relocation names its own section (-ffunction-sections) or the .text section plus an offset."""
+    from address_taken import address_taken
+    isa, _, _, _ = built
+    cc, objdump = TARGETS[isa]
+    (tmp_path / "cb.c").write_text(
+        "typedef int (*fn)(int);\nint apply(fn f, int x);\n"
+        "static int twice(int x) { return 2 * x; }\nstatic int thrice(int x) { return 3 * x; }\n"
+        "static int unused_direct(int x) { return x + 1; }\n"
+        "int use(int x);\nint use(int x) { return apply(x ? twice : thrice, unused_direct(x)); }\n")
+    subprocess.run(cc[:1] + cc[1:] + ["-std=c99", "-O2"] + sections + ["-c", "cb.c", "-o", "cb.o"],
+                   cwd=tmp_path, check=True)
+    taken = address_taken(objdump, [tmp_path / "cb.o"])
+    assert {"twice", "thrice"} <= taken
+    assert "unused_direct" not in taken and "use" not in taken
