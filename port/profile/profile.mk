@@ -37,11 +37,18 @@ $(PROFILE_B)/footprint_m7.json: $(ARM_KOBJ) $(KHDR) $(PROFILE_PY)
 	python3 port/profile/footprint.py --cc "$(ARM_CC) -std=c99 $(ARM_CPU)" --size arm-none-eabi-size \
 	  --nm arm-none-eabi-nm --json $@ -- $(ARM_KOBJ)
 
-# Each campaign's envelope is rebuilt when the kernel, the ports or its scenario change.
+# Each campaign's envelope is rebuilt when the kernel, the ports or its scenario change. A campaign
+# whose runs fail their mission criterion, or whose target results leave the host's bounds (a perturbed
+# rendezvous flown to its end amplifies libm's ulps into days, docs/pil.md), exits 1 with its envelope
+# written: its resource figures stand, and profile.json lists its failures and host-vs-target verdict.
+# Any other exit (bad input, interrupted, no envelope) fails the profile and leaves nothing behind.
 $(PROFILE_B)/pil_m7/%.json: scenarios/%.toml $(ARM_B)/libogk.a $(ARM_RT_OBJ) $(QP_SO) $(FFI_STAMP)
 	@mkdir -p $(@D)
+	rm -f $@ $(@:.json=.tmp.json)*
 	$(VENV)/bin/ogk mc $* --target m7 --runs $(lastword $(subst :, ,$(filter $*:%,$(PROFILE_CAMPAIGNS)))) \
-	  --seed $(PROFILE_SEED) --workers 2 --json $@
+	  --seed $(PROFILE_SEED) --workers 2 --json $(@:.json=.tmp.json); rc=$$?; \
+	  if [ $$rc -gt 1 ] || [ ! -f $(@:.json=.tmp.json) ]; then exit 1; fi
+	mv $(@:.json=.tmp.json) $@
 profile-pil-m7: $(PROFILE_PIL_M7)
 
 profile: deps stack-bound-m7 footprint-m7 profile-pil-m7

@@ -29,8 +29,11 @@ def merge_campaigns(files: list[tuple[str, Path]]) -> tuple[dict, list[dict]]:
     for target, path in files:
         env = json.loads(path.read_text())
         name = Path(env.get("scenario_path") or env.get("scenario", path.stem)).stem
+        hvt = (env.get("pil") or {}).get("host_vs_target") or {}
         listed.append({"target": target, "scenario": name, "runs": env.get("runs"),
-                       "seed": env.get("seed"), "scenario_sha256": env.get("scenario_sha256")})
+                       "seed": env.get("seed"), "scenario_sha256": env.get("scenario_sha256"),
+                       "failed_runs": env.get("failures"),
+                       "host_vs_target_within_bounds": hvt.get("within_bounds")})
         for entry, e in (env.get("pil") or {}).get("entry_points", {}).items():
             w = worst.setdefault(target, {}).setdefault(entry, {"calls": 0, "insn_max": None,
                                                                   "stack_painted": None})
@@ -86,7 +89,12 @@ def markdown(doc: dict) -> str:
            "input the processor-in-the-loop campaigns recorded. Instructions: QEMU's count per call, "
            "worst over those inputs.", ""]
     out += ["Campaigns flown for this profile:", ""]
-    out += [f"- `{c['scenario']}` on `{c['target']}`: {c['runs']} runs, seed {c['seed']}" for c in doc["campaigns"]]
+    for c in doc["campaigns"]:
+        verdict = {True: "within the stated bounds", False: "OUTSIDE the stated bounds",
+                   None: "not compared"}[c.get("host_vs_target_within_bounds")]
+        out.append(f"- `{c['scenario']}` on `{c['target']}`: {c['runs']} runs, seed {c['seed']}; "
+                   f"{c.get('failed_runs') or 0} failed their mission criterion; host against target "
+                   f"{verdict}")
     for target, t in doc["targets"].items():
         out += ["", f"## {target}", "", "| entry point | stack bound [B] | painted max [B] | worst instructions "
                 "| where (scenario, run, step) | calls | deepest path |", "|---|---:|---:|---:|---|---:|---|"]
