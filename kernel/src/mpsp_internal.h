@@ -102,22 +102,34 @@ ogk_status mpsp_stage_eval(const mpsp_dyn_t *dyn, const double *x, const mpsp_uv
 /* The RK4 problem of eq. (16) on dyn (its callbacks take user = dyn). */
 void mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, mpsp_dyn_t *dyn);
 
-/* ---- mpsp_sensitivity.c */
+/* ---- mpsp_adjoint.c */
 /* Adjoint rows: row vectors w_r (rows of d(.)/dX), row-major,
  * w[r * OGK_MPSP_NX + i]. Control sensitivities of row r at one time:
  * bu[r * 3 + c]. */
+
+/* Two adjoint rows per pass where the target has 2-lane double SIMD that gcc
+ * -O2 uses without options (SSE2: every x86-64); one row at a time elsewhere
+ * (the Cortex-M7's FPU is scalar: lane arrays would only cost it loads and
+ * stores). Both give the same numbers to the bit (docs/mpsp.md, section 8). */
+#if defined(__SSE2__)
+#define MPSP_PAIR_ROWS true
+#else
+#define MPSP_PAIR_ROWS false
+#endif
 
 /* Adjoint of one RK4 step (Appendix A, transposed): for the n_rows rows
  * adj_in of d(.)/dX_next, writes w dX_next/dX to adj_out (may be adj_in) and,
  * in thrust, w dX_next/dU at the stage times into bu_start (U at t), bu_mid
  * (t + dt/2, stages 2 and 3) and bu_end (t + dt), each n_rows x 3
  * (overwritten; left untouched in coast, where U does not enter eq. 16).
- * uv[0..2] is U at t, t + dt/2, t + dt (not read in coast). */
+ * uv[0..2] is U at t, t + dt/2, t + dt (not read in coast). pair_rows: two
+ * adjacent rows with r or v components per pass (MPSP_PAIR_ROWS), else one. */
 ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, int mode,
-                             const mpsp_uval_t *uv, size_t n_rows, const double *adj_in,
-                             double *adj_out, double *bu_start, double *bu_mid,
-                             double *bu_end);
+                             const mpsp_uval_t *uv, bool pair_rows, size_t n_rows,
+                             const double *adj_in, double *adj_out, double *bu_start,
+                             double *bu_mid, double *bu_end);
 
+/* ---- mpsp_sensitivity.c */
 /* Terms of the switching compensation at (t_s, x_s) (eqs. 24-25, B.2):
  * dX+ = dX- + dxdot (s_x dX- + s_u dU) / s_dot; dt_s = -(s_x dX- + s_u dU) / s_dot. */
 typedef struct {

@@ -21,213 +21,6 @@
 #define MB OGK_MPSP_MAX_BASIS
 #define SB ((size_t)OGK_MPSP_SENS_BLOCK)
 
-/* The partials of eq. (16) at the four stage states of the RK4 step from x
- * (ogk_rk4_step's stages, same arithmetic); uv[0..2] is U at t, t + dt/2,
- * t + dt, used by stages 1, 2-3 and 4. */
-static ogk_status stage_partials(const mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                 const mpsp_uval_t *uv, mpsp_stage_t *sd)
-{
-    static const size_t stage_u[4] = {0u, 1u, 1u, 2u};
-    double xs[NX];
-    double k[NX];
-    const double half = 0.5 * dt;
-    size_t i;
-    size_t s;
-    ogk_status st = OGK_OK;
-
-    (void)memcpy(xs, x, sizeof xs);
-    for (s = 0u; (s < 4u) && (st == OGK_OK); ++s) {
-        if (s < 3u) {
-            const double step = (s == 2u) ? dt : half;
-            st = mpsp_stage_eval(dyn, xs, &uv[stage_u[s]], mode, k, &sd[s]);
-            for (i = 0u; i < NX; ++i) {
-                xs[i] = x[i] + (step * k[i]);
-            }
-        } else {
-            st = mpsp_stage_eval(dyn, xs, &uv[stage_u[s]], mode, NULL, &sd[s]);
-        }
-    }
-    return st;
-}
-
-/* Stage s of the reverse sweep for one row, z = bK_s with z_v = zv and
- * z_lm = zl: bx = (z A_s)_r = G z_v, b = z D_s (thrust only); returns
- * (z A_s)_m = a_vm z_v.e + a_lm z_lm. A and D as in reverse_row. */
-static inline double stage_back(const mpsp_stage_t *p, const double *zv, double zl, bool thrust, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                         double *bx, double *b)
-{
-    const double ze = (zv[0] * p->e[0]) + (zv[1] * p->e[1]) + (zv[2] * p->e[2]);
-    bx[0] = (zv[0] * p->g[0]) + (zv[1] * p->g[1]) + (zv[2] * p->g[2]);
-    bx[1] = (zv[0] * p->g[1]) + (zv[1] * p->g[3]) + (zv[2] * p->g[4]);
-    bx[2] = (zv[0] * p->g[2]) + (zv[1] * p->g[4]) + (zv[2] * p->g[5]);
-    if (thrust) {
-        const double alpha = (p->d_l * zl) - (p->d_v * ze);
-        b[0] = (p->d_v * zv[0]) + (alpha * p->e[0]);
-        b[1] = (p->d_v * zv[1]) + (alpha * p->e[1]);
-        b[2] = (p->d_v * zv[2]) + (alpha * p->e[2]);
-    }
-    return (p->a_vm * ze) + (p->a_lm * zl);
-}
-
-/* One adjoint row w through the reverse sweep of a step with stage partials
- * sd (X_next = X + dt/6 (K1 + 2 K2 + 2 K3 + K4)):
- *   bK4 = dt/6 w,            bX4 = bK4 A4
- *   bK3 = dt/3 w + dt bX4,   bX3 = bK3 A3
- *   bK2 = dt/3 w + dt/2 bX3, bX2 = bK2 A2
- *   bK1 = dt/6 w + dt/2 bX2, bX1 = bK1 A1
- *   w dX_next/dX = w + bX1 + bX2 + bX3 + bX4,  w dX_next/dU_i = bKi Di,
- * with A = d f/d X and D = d f/d U of mpsp_stage_t; for z = bK,
- *   (z A)_r = z_v G,  (z A)_v = z_r,  (z A)_m = a_vm z_v.e + a_lm z_lm,  (z A)_lm = 0,
- *   z D = d_v z_v + (d_l z_lm - d_v z_v.e) e.
- * f_m is constant and no f depends on lambda_m, so z_m never enters and the
- * lambda_m component of w passes unchanged (z_lm = (dt/6 or dt/3) w_lm); with
- * (bX)_v = (bK)_r the sweep needs only z_v and bX_r per stage:
- *   (bK4)_v = dt/6 w_v,  (bK3)_v = dt/3 w_v + dt (dt/6 w_r),
- *   (bK2)_v = dt/3 w_v + dt/2 (dt/3 w_r + dt (bX4)_r),
- *   (bK1)_v = dt/6 w_v + dt/2 (dt/3 w_r + dt/2 (bX3)_r).
- * b_start, b_mid, b_end (3 each) receive w dX_next/dU at t, t + dt/2 and
- * t + dt in thrust. w_out may be w. */
-static void reverse_row(const mpsp_stage_t *sd, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                        double *w_out, double *b_start, double *b_mid, double *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-{
-    const double half = 0.5 * dt;
-    const double c6 = dt / 6.0;
-    const double c3 = dt / 3.0;
-    double zv[3];
-    double bx4[3];
-    double bx3[3];
-    double bx[3];
-    double b[3];
-    double bm[3];
-    double ar[3];
-    double av[3];
-    double zr2[3];
-    double am;
-
-    /* stage 4: (bK4)_v = dt/6 w_v */
-    zv[0] = c6 * w[3];
-    zv[1] = c6 * w[4];
-    zv[2] = c6 * w[5];
-    am = w[6] + stage_back(&sd[3], zv, c6 * w[7], thrust, bx4, b);
-    if (thrust) {
-        b_end[0] = b[0];
-        b_end[1] = b[1];
-        b_end[2] = b[2];
-    }
-    /* stage 3: (bK3)_v = dt/3 w_v + dt (bK4)_r, (bK4)_r = dt/6 w_r */
-    zv[0] = (c3 * w[3]) + (dt * (c6 * w[0]));
-    zv[1] = (c3 * w[4]) + (dt * (c6 * w[1]));
-    zv[2] = (c3 * w[5]) + (dt * (c6 * w[2]));
-    am += stage_back(&sd[2], zv, c3 * w[7], thrust, bx3, bm);
-    /* stage 2: (bK3)_r = dt/3 w_r + dt (bX4)_r, (bK2)_v = dt/3 w_v + dt/2 (bK3)_r */
-    zv[0] = (c3 * w[0]) + (dt * bx4[0]);
-    zv[1] = (c3 * w[1]) + (dt * bx4[1]);
-    zv[2] = (c3 * w[2]) + (dt * bx4[2]);
-    av[0] = (w[3] + (c6 * w[0])) + zv[0];
-    av[1] = (w[4] + (c6 * w[1])) + zv[1];
-    av[2] = (w[5] + (c6 * w[2])) + zv[2];
-    zv[0] = (c3 * w[3]) + (half * zv[0]);
-    zv[1] = (c3 * w[4]) + (half * zv[1]);
-    zv[2] = (c3 * w[5]) + (half * zv[2]);
-    ar[0] = (w[0] + bx4[0]) + bx3[0];
-    ar[1] = (w[1] + bx4[1]) + bx3[1];
-    ar[2] = (w[2] + bx4[2]) + bx3[2];
-    am += stage_back(&sd[1], zv, c3 * w[7], thrust, bx, b);
-    if (thrust) {
-        b_mid[0] = bm[0] + b[0];
-        b_mid[1] = bm[1] + b[1];
-        b_mid[2] = bm[2] + b[2];
-    }
-    /* stage 1: (bK2)_r = dt/3 w_r + dt/2 (bX3)_r, (bK1)_v = dt/6 w_v + dt/2 (bK2)_r,
-     * (bK1)_r = dt/6 w_r + dt/2 (bX2)_r */
-    zr2[0] = (c3 * w[0]) + (half * bx3[0]);
-    zr2[1] = (c3 * w[1]) + (half * bx3[1]);
-    zr2[2] = (c3 * w[2]) + (half * bx3[2]);
-    av[0] = (av[0] + zr2[0]) + ((c6 * w[0]) + (half * bx[0]));
-    av[1] = (av[1] + zr2[1]) + ((c6 * w[1]) + (half * bx[1]));
-    av[2] = (av[2] + zr2[2]) + ((c6 * w[2]) + (half * bx[2]));
-    ar[0] += bx[0];
-    ar[1] += bx[1];
-    ar[2] += bx[2];
-    zv[0] = (c6 * w[3]) + (half * zr2[0]);
-    zv[1] = (c6 * w[4]) + (half * zr2[1]);
-    zv[2] = (c6 * w[5]) + (half * zr2[2]);
-    am += stage_back(&sd[0], zv, c6 * w[7], thrust, bx, b);
-    if (thrust) {
-        b_start[0] = b[0];
-        b_start[1] = b[1];
-        b_start[2] = b[2];
-    }
-    /* w dX_next/dX = w + bX1 + bX2 + bX3 + bX4, (bX)_v = (bK)_r; lambda_m passes */
-    w_out[7] = w[7];
-    w_out[0] = ar[0] + bx[0];
-    w_out[1] = ar[1] + bx[1];
-    w_out[2] = ar[2] + bx[2];
-    w_out[3] = av[0];
-    w_out[4] = av[1];
-    w_out[5] = av[2];
-    w_out[6] = am;
-}
-
-/* reverse_row for a row with w_r = w_v = 0 (the row of lambda_m(tf): switches
- * change only its m and lambda_m components, S_X = [0_6, ., .]): z_v = 0 at
- * every stage, so bX_r = 0, the row keeps w_r = w_v = 0 and
- *   (w dX_next/dX)_m = w_m + sum_s a_lm,s z_lm,s,   w dX_next/dU_s = d_l,s z_lm,s e_s,
- * the same numbers as reverse_row gives with z_v = 0. */
-static void reverse_row_mass(const mpsp_stage_t *sd, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                             double *w_out, double *b_start, double *b_mid, double *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-{
-    const double z6 = (dt / 6.0) * w[7];
-    const double z3 = (dt / 3.0) * w[7];
-    double am = w[6] + (sd[3].a_lm * z6);
-
-    am += sd[2].a_lm * z3;
-    am += sd[1].a_lm * z3;
-    am += sd[0].a_lm * z6;
-    if (thrust) {
-        size_t i;
-        for (i = 0u; i < 3u; ++i) {
-            b_end[i] = (sd[3].d_l * z6) * sd[3].e[i];
-            b_mid[i] = ((sd[2].d_l * z3) * sd[2].e[i]) + ((sd[1].d_l * z3) * sd[1].e[i]);
-            b_start[i] = (sd[0].d_l * z6) * sd[0].e[i];
-        }
-    }
-    w_out[0] = 0.0;
-    w_out[1] = 0.0;
-    w_out[2] = 0.0;
-    w_out[3] = 0.0;
-    w_out[4] = 0.0;
-    w_out[5] = 0.0;
-    w_out[6] = am;
-    w_out[7] = w[7];
-}
-
-ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                             const mpsp_uval_t *uv, size_t n_rows, const double *adj_in,
-                             double *adj_out, double *bu_start, double *bu_mid, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                             double *bu_end)
-{
-    mpsp_stage_t sd[4];
-    const ogk_status st = stage_partials(dyn, x, dt, mode, uv, sd);
-
-    if (st == OGK_OK) {
-        size_t r;
-        for (r = 0u; r < n_rows; ++r) {
-            const double *w = &adj_in[r * NX];
-            if ((w[0] == 0.0) && (w[1] == 0.0) && (w[2] == 0.0) && (w[3] == 0.0) &&
-                (w[4] == 0.0) && (w[5] == 0.0)) {
-                /* a row of m and lambda_m only (that of lambda_m(tf)): it stays so */
-                reverse_row_mass(sd, dt, mode == 1, w, &adj_out[r * NX], &bu_start[r * 3u],
-                                 &bu_mid[r * 3u], &bu_end[r * 3u]);
-            } else {
-                reverse_row(sd, dt, mode == 1, w, &adj_out[r * NX], &bu_start[r * 3u],
-                            &bu_mid[r * 3u], &bu_end[r * 3u]);
-            }
-        }
-    }
-    return st;
-}
-
 ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
                            int mode_before, mpsp_jump_t *jump)
 {
@@ -327,7 +120,9 @@ static ogk_status step_partials(const ogk_mpsp_t *ctx, const mpsp_dyn_t *dyn, do
     uval_from_basis(dyn, h0, &uv[0]);
     uval_from_basis(dyn, hm, &uv[1]);
     uval_from_basis(dyn, h1, &uv[2]);
-    st = mpsp_step_adjoint(dyn, x, dt, mode, uv, NX, adj, adj, b0, bm, b1);
+    /* one row at a time on every target: the paired rows of the sweep are
+     * checked against this path by the unit tests */
+    st = mpsp_step_adjoint(dyn, x, dt, mode, uv, false, NX, adj, adj, b0, bm, b1);
     if ((st == OGK_OK) && (dfdx != NULL)) {
         (void)memcpy(dfdx, adj, sizeof adj); /* row i of adj is d X_next[i] / dX */
     }
@@ -555,8 +350,8 @@ static ogk_status thrust_step(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, doub
     mpsp_basis_control(dyn, t_lo + (0.5 * dt), h_mid, &uv[1]);
     mpsp_basis_control(dyn, t_lo, h_lo, &uv[0]);
     uv[2] = blk->hi;
-    st = mpsp_step_adjoint(dyn, &ctx->traj_x[k * NX], dt, 1, uv, NY, adj, adj, pend_lo, c_mid,
-                           c_hi);
+    st = mpsp_step_adjoint(dyn, &ctx->traj_x[k * NX], dt, 1, uv, MPSP_PAIR_ROWS, NY, adj, adj,
+                           pend_lo, c_mid, c_hi);
     if (st == OGK_OK) {
         size_t j;
         /* t_hi gathers stage 4 of this step, stage 1 of the step above and a
@@ -631,7 +426,8 @@ static ogk_status backward_recursion(ogk_mpsp_t *ctx)
             (void)memset(pend, 0, sizeof pend);
             pend_nonzero = false;
             st = mpsp_step_adjoint(&dyn, &ctx->traj_x[k * NX], ctx->traj_t[k + 1u] - ctx->traj_t[k],
-                                   0, uv, NY, adj, adj, unused, unused, unused);
+                                   0, uv, MPSP_PAIR_ROWS, NY, adj, adj, unused, unused,
+                                   unused);
         } else {
             /* the switch's status returned */
         }

@@ -321,6 +321,93 @@ static void test_whole_arc_cosine_basis_fd(void **state)
     check_arc_against_fd(lm0, dydl);
 }
 
+/* ---------------------------------------------------------------- sweep vs step chain */
+
+static double chain_p[NY * NX];
+static double chain_g[NY * OGK_MPSP_MAX_WEIGHTS];
+static double chain_m[NX * OGK_MPSP_MAX_WEIGHTS];
+static double chain_dfdx[NX * NX];
+static double chain_tmp[NY * NX];
+
+/* p (NY x NX) := p m and g (NY x nw) += p mw, for one step or switch with
+ * Jacobians m = dX_after/dX_before (NX x NX) and mw = dX_after/dW. */
+static void chain_apply(const double *m, const double *mw, size_t nw)
+{
+    size_t r;
+    size_t c;
+    size_t i;
+    for (r = 0u; r < NY; ++r) {
+        for (c = 0u; c < nw; ++c) {
+            for (i = 0u; i < NX; ++i) {
+                chain_g[r * nw + c] += chain_p[r * NX + i] * mw[i * nw + c];
+            }
+        }
+        for (c = 0u; c < NX; ++c) {
+            double a = 0.0;
+            for (i = 0u; i < NX; ++i) {
+                a += chain_p[r * NX + i] * m[i * NX + c];
+            }
+            chain_tmp[r * NX + c] = a;
+        }
+    }
+    (void)memcpy(chain_p, chain_tmp, sizeof chain_p);
+}
+
+/* The backward sweep of ogk_mpsp_sensitivity (two adjoint rows per pass on
+ * an SSE2 host, one at a time on the Cortex-M7) against the chain rule over
+ * the held trajectory, built from the one-step Jacobians (one row at a time
+ * on every target, FD-checked above) and the switch Jacobians of eqs.
+ * (24)-(25): dY/dW = sum_k Phi(tf, t_k+1) dX_k+1/dW, A_lambda the lambda_m
+ * column of Phi(tf, t0); thrust, coast and three switches. */
+static void test_sweep_matches_step_chain(void **state)
+{
+    const double lm0 = -0.2;
+    double dydl[NY];
+    double xn[NX];
+    ogk_mpsp_prop_t prop;
+    size_t nw;
+    size_t kk;
+    size_t r;
+    (void)state;
+
+    orbit_config(&cfg, 200.0);
+    cfg.fourier_kind = OGK_MPSP_BASIS_COSINE;
+    OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, lm0, x0_3d, 1.0, &prop), OGK_OK);
+    assert_int_equal(prop.n_switches, 3);
+    OGK_ASSERT_STATUS(ogk_mpsp_sensitivity(&ctx, dydw, dydl), OGK_OK);
+
+    nw = ctx.n_weights;
+    (void)memset(chain_p, 0, sizeof chain_p);
+    (void)memset(chain_g, 0, sizeof chain_g);
+    for (r = 0u; r < 6u; ++r) {
+        chain_p[r * NX + r] = 1.0; /* Y = [r, v, lambda_m] */
+    }
+    chain_p[6u * NX + 7u] = 1.0;
+    for (kk = 1u; kk < ctx.n_nodes; ++kk) {
+        const size_t k = ctx.n_nodes - 1u - kk;
+        const int mode = (int)ctx.traj_mode[k];
+        if (ctx.traj_mode[k + 1u] != ctx.traj_mode[k]) {
+            OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, w3, 1.0, ctx.traj_t[k + 1u],
+                                                   &ctx.traj_x[(k + 1u) * NX], mode,
+                                                   chain_dfdx, chain_m, NULL, NULL),
+                              OGK_OK);
+            chain_apply(chain_dfdx, chain_m, nw);
+        }
+        OGK_ASSERT_STATUS(ogk_mpsp_step_jacobian(&ctx, w3, 1.0, ctx.traj_t[k],
+                                                 &ctx.traj_x[k * NX],
+                                                 ctx.traj_t[k + 1u] - ctx.traj_t[k], mode, xn,
+                                                 chain_dfdx, chain_m),
+                          OGK_OK);
+        chain_apply(chain_dfdx, chain_m, nw);
+    }
+    assert_matrix_rel(dydw, chain_g, NY, nw, 1e-12);
+    for (r = 0u; r < NY; ++r) {
+        assert_true(fabs(dydl[r] - chain_p[r * NX + 7u]) <=
+                    1e-12 * fmax(fabs(chain_p[r * NX + 7u]), 1.0));
+    }
+}
+
 /* ---------------------------------------------------------------- closed form */
 
 static double ff_q(double a0, double a1, double lm0, double m0)
@@ -578,6 +665,7 @@ int main(void)
         cmocka_unit_test(test_step_jacobian_coast),
         cmocka_unit_test(test_whole_arc_with_switches_fd),
         cmocka_unit_test(test_whole_arc_cosine_basis_fd),
+        cmocka_unit_test(test_sweep_matches_step_chain),
         cmocka_unit_test(test_switch_time_closed_form),
         cmocka_unit_test(test_switch_jump_dw_closed_form),
         cmocka_unit_test(test_whole_arc_closed_form),
