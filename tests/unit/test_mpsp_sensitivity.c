@@ -359,6 +359,7 @@ static void chain_apply(const double *m, const double *mw, size_t nw)
  * on every target, FD-checked above) and the switch Jacobians of eqs.
  * (24)-(25): dY/dW = sum_k Phi(tf, t_k+1) dX_k+1/dW, A_lambda the lambda_m
  * column of Phi(tf, t0); thrust, coast and three switches. */
+/* req: OGK-MPSP-003 */
 static void test_sweep_matches_step_chain(void **state)
 {
     const double lm0 = -0.2;
