@@ -510,7 +510,7 @@ static void fly_both(ogk_nog_t *a, ogk_nog_t *b)
     }
 }
 
-/* req: OGK-NOG-002 */
+/* req: OGK-NOG-002 OGK-CORE-023 */
 static void test_table_view_in_place(void **state)
 {
     ogk_nog_table_view_t view;
@@ -554,7 +554,7 @@ static void test_table_view_in_place(void **state)
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG); /* both bound */
 }
 
-/* req: OGK-NOG-002 */
+/* req: OGK-NOG-002 OGK-CORE-023 */
 static void test_table_view_rejections(void **state)
 {
     ogk_nog_table_view_t view;

@@ -278,6 +278,7 @@ static void test_null_and_unopened(void **state)
     OGK_ASSERT_STATUS(ogk_table_read_grid(&v, grid, GRID), OGK_E_NOT_INIT);
 }
 
+/* req: OGK-CORE-017 OGK-CORE-023 */
 /* The byte-order probe: pi's binary64 bits 0x400921FB54442D18 (IEEE-754),
  * least significant byte first, accepted; every reordering refused. */
 static void test_byte_order_probe(void **state)
