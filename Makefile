@@ -10,7 +10,7 @@ APT_PKGS := build-essential valgrind clang clang-tidy libclang-rt-14-dev \
   clang-19 llvm-19 libclang-rt-19-dev \
   libcmocka-dev cppcheck gcovr libeigen3-dev gcc-arm-none-eabi \
   libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm qemu-user \
-  python3-venv pkg-config
+  python3-venv pkg-config gcc-sparc64-linux-gnu libc6-dev-sparc-sparc64-cross
 PYTHON ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
@@ -127,6 +127,9 @@ include tests/bench/bench.mk
 # ---------------------------------------------------------------- Cortex-M7 flight application
 # (docs/flight-integration.md): make test-flight-app, flight-app-size, flight-app-stack
 include port/cortex-m7/flightapp/flightapp.mk
+# 32-bit big-endian SPARC V8 (LEON3) under qemu-user (docs/ports.md): make test-unit-sparc,
+# test-flight-app-sparc, test-flt-eval
+include port/sparc-v8/sparc-v8.mk
 # processor-in-the-loop flight programs (docs/pil.md): make pil-program PIL_PROGRAM=oi PIL_OUT=DIR
 include port/cortex-m7/pil/pil.mk
 
@@ -161,6 +164,7 @@ test: deps
 	$(MAKE) test-unit-arm
 	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack stack-bound-m7 footprint-m7
 	$(MAKE) test-flight-app
+	$(MAKE) test-unit-sparc test-flight-app-sparc test-flt-eval
 	$(MAKE) test-eigen
 	$(MAKE) gates
 	$(MAKE) test-imports

@@ -130,7 +130,7 @@ static ogk_status view_payload(ogk_nog_table_view_t *view, const uint8_t *buf, s
     ogk_status st;
 
     /* Grid then entries, both in the table's little-endian binary64 (the
-     * target's own representation, checked below by the grid values). The
+     * target's own representation: ogk_table_check_in_place passed). The
      * bytes are only ever read, as double, through these pointers. */
     view->tau = (const double *)(const void *)&buf[OGK_TABLE_HEADER_SIZE];
     view->entry = &view->tau[grid_size];
@@ -160,6 +160,13 @@ static ogk_status point_view(ogk_nog_table_view_t *view, const uint8_t *buf, siz
         st = OGK_E_ALIGN;
     } else {
         st = open_table(buf, len, &tv);
+        if (st == OGK_OK) {
+            /* Read in place only where a double is the file's little-endian
+             * binary64; elsewhere (SPARC/LEON, PowerPC) ogk_nog_table_load
+             * decodes the same image. After the file checks: a corrupt image
+             * is reported as such on every target. */
+            st = ogk_table_check_in_place();
+        }
         if (st == OGK_OK) {
             st = view_payload(view, buf, tv.grid_size);
         }

@@ -284,3 +284,30 @@ ogk_status ogk_table_get(const ogk_table_view_t *view, uint32_t k,
     }
     return st;
 }
+
+ogk_status ogk_table_check_f64_bytes(const uint8_t *bytes)
+{
+    /* OGK_TABLE_ORDER_PROBE as the file stores it: the bits 0x400921FB54442D18,
+     * least significant byte first. */
+    static const uint8_t probe_le[8] = {0x18u, 0x2Du, 0x44u, 0x54u, 0xFBu, 0x21u, 0x09u, 0x40u};
+    ogk_status st;
+
+    if (bytes == NULL) {
+        st = OGK_E_NULL;
+    } else if (memcmp(bytes, probe_le, sizeof probe_le) != 0) {
+        st = OGK_E_BYTE_ORDER;
+    } else {
+        st = OGK_OK;
+    }
+    return st;
+}
+
+ogk_status ogk_table_check_in_place(void)
+{
+    static const double probe = OGK_TABLE_ORDER_PROBE;
+
+    /* The target's object representation of the probe, read through a
+     * character type (C99 6.2.6.1p4, 6.5p7; the exception of MISRA rule 11.3);
+     * ogk/status.h makes double binary64, 8 bytes. */
+    return ogk_table_check_f64_bytes((const uint8_t *)&probe);
+}

@@ -18,6 +18,7 @@ EXPECTED = [
     "OGK_E_INFEASIBLE",
     "OGK_E_ITER_LIMIT",
     "OGK_E_FRAME",
+    "OGK_E_BYTE_ORDER",
 ]
 
 

@@ -209,7 +209,10 @@ static void test_bound_struct_out_of_range(void **state)
     ogk_nog_t ctx;
     (void)state;
     (void)memset(&view, 0, sizeof view);
-    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, img5.b, TABLE_BYTES(5u)), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, img5.b, TABLE_BYTES(5u)), OGK_TEST_VIEW_OK);
+    if (OGK_TEST_BIG_ENDIAN) {
+        return; /* no in-place view on this target (test_nog's test_table_view_in_place) */
+    }
     cfg.table = NULL;
     cfg.view = &edited;
     edited = view;
@@ -235,6 +238,33 @@ static void expect_stale(ogk_nog_t *ctx)
     OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, 1e-12);
 }
 
+/* The views of test_stale_after_struct_copy copied over the bound one (little-endian targets:
+ * elsewhere there is no in-place view to bind). */
+static void stale_views(const ogk_nog_table_view_t *v5, const ogk_nog_table_view_t *v4,
+                        const ogk_nog_table_view_t *v5b, const ogk_nog_table_view_t *failed)
+{
+    ogk_nog_table_view_t bound;
+    ogk_nog_config_t cfg = config();
+    ogk_nog_t ctx;
+    cfg.table = NULL;
+    cfg.view = &bound;
+    /* a failed view copied over it (no marker) */
+    bound = *v5;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    bound = *failed;
+    expect_stale(&ctx);
+    /* a good view of another grid size */
+    bound = *v5;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    bound = *v4;
+    expect_stale(&ctx);
+    /* a good view of the same size in other bytes */
+    bound = *v5;
+    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
+    bound = *v5b;
+    expect_stale(&ctx);
+}
+
 /* A bound view or table overwritten by a struct copy of another one that happens to carry
  * the same generation count: the generation alone does not see it, the other fields do. */
 /* req: OGK-NOG-003 */
@@ -244,7 +274,6 @@ static void test_stale_after_struct_copy(void **state)
     ogk_nog_table_view_t v4;
     ogk_nog_table_view_t v5b;
     ogk_nog_table_view_t failed;
-    ogk_nog_table_view_t bound;
     ogk_nog_config_t cfg = config();
     ogk_nog_t ctx;
     (void)state;
@@ -254,29 +283,14 @@ static void test_stale_after_struct_copy(void **state)
     (void)memset(&v4, 0, sizeof v4);
     (void)memset(&v5b, 0, sizeof v5b);
     (void)memset(&failed, 0, sizeof failed);
-    (void)memset(&bound, 0, sizeof bound);
-    OGK_ASSERT_STATUS(ogk_nog_table_view(&v5, img5.b, TABLE_BYTES(5u)), OGK_OK);
-    OGK_ASSERT_STATUS(ogk_nog_table_view(&v4, img4.b, TABLE_BYTES(4u)), OGK_OK);
-    OGK_ASSERT_STATUS(ogk_nog_table_view(&v5b, img5b.b, TABLE_BYTES(5u)), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&v5, img5.b, TABLE_BYTES(5u)), OGK_TEST_VIEW_OK);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&v4, img4.b, TABLE_BYTES(4u)), OGK_TEST_VIEW_OK);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&v5b, img5b.b, TABLE_BYTES(5u)), OGK_TEST_VIEW_OK);
     OGK_ASSERT_STATUS(ogk_nog_table_view(&failed, img5.b, 20u), OGK_E_TABLE_TRUNCATED);
     assert_int_equal(failed.generation, v5.generation); /* all viewed once */
-    cfg.table = NULL;
-    cfg.view = &bound;
-    /* a failed view copied over it (no marker) */
-    bound = v5;
-    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
-    bound = failed;
-    expect_stale(&ctx);
-    /* a good view of another grid size */
-    bound = v5;
-    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
-    bound = v4;
-    expect_stale(&ctx);
-    /* a good view of the same size in other bytes */
-    bound = v5;
-    OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
-    bound = v5b;
-    expect_stale(&ctx);
+    if (!OGK_TEST_BIG_ENDIAN) {
+        stale_views(&v5, &v4, &v5b, &failed);
+    }
     /* the RAM table: a copy of another table loaded as often, of another grid size */
     build(img5.b, 5u, TF_STAR);
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table_other, img4.b, TABLE_BYTES(4u)), OGK_OK);

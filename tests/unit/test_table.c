@@ -278,6 +278,36 @@ static void test_null_and_unopened(void **state)
     OGK_ASSERT_STATUS(ogk_table_read_grid(&v, grid, GRID), OGK_E_NOT_INIT);
 }
 
+/* req: OGK-CORE-017 OGK-CORE-023 */
+/* The byte-order probe: pi's binary64 bits 0x400921FB54442D18 (IEEE-754),
+ * least significant byte first, accepted; every reordering refused. */
+static void test_byte_order_probe(void **state)
+{
+    static const uint8_t le[8] = {0x18u, 0x2Du, 0x44u, 0x54u, 0xFBu, 0x21u, 0x09u, 0x40u};
+    uint8_t b[8];
+    unsigned i;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_table_check_f64_bytes(le), OGK_OK);
+    tw_put_f64(b, OGK_TABLE_ORDER_PROBE); /* the test's own little-endian writer agrees */
+    assert_true(memcmp(b, le, sizeof b) == 0);
+    OGK_ASSERT_STATUS(ogk_table_check_f64_bytes(b), OGK_OK);
+    for (i = 0u; i < 8u; ++i) {
+        b[i] = le[7u - i]; /* big-endian (SPARC V8, PowerPC) */
+    }
+    OGK_ASSERT_STATUS(ogk_table_check_f64_bytes(b), OGK_E_BYTE_ORDER);
+    for (i = 0u; i < 8u; ++i) {
+        b[i] = le[(i + 4u) % 8u]; /* 32-bit words swapped (old ARM FPA) */
+    }
+    OGK_ASSERT_STATUS(ogk_table_check_f64_bytes(b), OGK_E_BYTE_ORDER);
+    memcpy(b, le, sizeof b);
+    b[7] ^= 0x80u; /* -pi: one bit off */
+    OGK_ASSERT_STATUS(ogk_table_check_f64_bytes(b), OGK_E_BYTE_ORDER);
+    OGK_ASSERT_STATUS(ogk_table_check_f64_bytes(NULL), OGK_E_NULL);
+    /* This target, against the compiler's own statement of its byte order. */
+    OGK_ASSERT_STATUS(ogk_table_check_in_place(),
+                      OGK_TEST_BIG_ENDIAN ? OGK_E_BYTE_ORDER : OGK_OK);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -292,6 +322,7 @@ int main(void)
         cmocka_unit_test(test_nonfinite_first_and_last_value),
         cmocka_unit_test(test_largest_payload_size),
         cmocka_unit_test(test_null_and_unopened),
+        cmocka_unit_test(test_byte_order_probe),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -107,8 +107,10 @@ typedef struct {
  * kind, dims, grid size, length, both CRCs, finite values, grid from 0 to 1,
  * t_f* consistency) and then points the view into buf: the payload is read in
  * place as IEEE-754 binary64, so buf must be 8-byte aligned (OGK_E_ALIGN
- * otherwise) and the target little-endian like the file format (both targets
- * are; a big-endian target fails the grid check, OGK_E_TABLE_DIM). The payload
+ * otherwise) and the target must store a double as the file does, little-endian
+ * (x86-64 and Cortex-M7 do; on a big-endian target such as SPARC/LEON or
+ * PowerPC a valid image gives OGK_E_BYTE_ORDER: decode it with
+ * ogk_nog_table_load instead, docs/ports.md). The payload
  * starts at offset OGK_TABLE_HEADER_SIZE = 48, a multiple of 8, so an aligned
  * buffer aligns every value. On failure the view is zeroed (unusable) and the
  * specific code returned. Every call (also with buf NULL or failing) bumps

@@ -1,6 +1,29 @@
-/* ogk/status.h -- status codes returned by every public kernel function. */
+/* ogk/status.h -- status codes returned by every public kernel function.
+ *
+ * Also the kernel's floating-point evaluation guard: every kernel header
+ * includes this one, so every kernel and application translation unit sees it. */
 #ifndef OGK_STATUS_H
 #define OGK_STATUS_H
+
+#include <float.h>
+
+/* The kernel's boundary checks (a value against its bound, a step landing
+ * exactly on a node or a cut-off) assume that every double expression is
+ * evaluated in double (C99 5.2.4.2.2, FLT_EVAL_METHOD 0). With excess
+ * precision (x87 without SSE: FLT_EVAL_METHOD 2) the same source gives other
+ * answers at those boundaries (issue 22: 8 unit tests fail), so such a build
+ * is refused here rather than flown (docs/ports.md, "Floating-point
+ * evaluation"). A C99 <float.h> always defines the macro; testing defined()
+ * first only spares analysers that read no system header (cppcheck), which
+ * would otherwise stop at the #error and report nothing. */
+#if defined(FLT_EVAL_METHOD) && (FLT_EVAL_METHOD != 0)
+#error "ogk needs FLT_EVAL_METHOD == 0 (double evaluated as double); x87: build with -msse2 -mfpmath=sse"
+#endif
+/* double must be IEEE-754 binary64 (the table format's element type). */
+#if defined(DBL_MANT_DIG) && defined(DBL_MAX_EXP) && \
+    ((DBL_MANT_DIG != 53) || (DBL_MAX_EXP != 1024))
+#error "ogk needs double to be IEEE-754 binary64"
+#endif
 
 #ifdef __cplusplus
 extern "C" {
@@ -35,7 +58,8 @@ typedef enum {
     OGK_E_INFEASIBLE = 24,      /* a constrained subproblem (QP) has no feasible point */
     OGK_E_ITER_LIMIT = 25,      /* an iterative solver reached its iteration bound before its tolerance */
     OGK_E_FRAME = 26,           /* a thrust command's frame is unknown, or one the consumer cannot convert */
-    OGK_STATUS_COUNT = 27
+    OGK_E_BYTE_ORDER = 27,      /* the target's double is not the file's little-endian binary64: cannot read in place */
+    OGK_STATUS_COUNT = 28
 } ogk_status;
 
 /* Stores in *name the code's identifier ("OGK_E_DIM", ...). Unknown codes

@@ -15,7 +15,9 @@
  *    44     4  CRC-32 of bytes 0..43 of the header
  *   48 ...     payload: grid[grid size] then entry k (prod(dims) values,
  *              row-major) for k = 0..grid-1
- * The loader validates every field before anything is read from the payload. */
+ * The loader validates every field before anything is read from the payload.
+ * The decoding readers below work on any target; reading the payload in place
+ * as double needs a little-endian binary64 target (ogk_table_check_in_place). */
 #ifndef OGK_TABLE_H
 #define OGK_TABLE_H
 
@@ -71,6 +73,24 @@ ogk_status ogk_table_read_data(const ogk_table_view_t *view, double *data_out,
 /* Reads value `index` (0..entry_len-1) of entry k. */
 ogk_status ogk_table_get(const ogk_table_view_t *view, uint32_t k,
                          uint32_t index, double *value);
+
+/* The byte-order probe: pi, whose binary64 bits 0x400921FB54442D18 are eight
+ * different bytes, so any reordering of them (big-endian, word-swapped) shows. */
+#define OGK_TABLE_ORDER_PROBE 3.141592653589793
+
+/* OGK_OK when bytes[0..7] are OGK_TABLE_ORDER_PROBE in the file's
+ * representation (little-endian binary64: 18 2D 44 54 FB 21 09 40),
+ * OGK_E_BYTE_ORDER when they are not, OGK_E_NULL. */
+ogk_status ogk_table_check_f64_bytes(const uint8_t *bytes);
+
+/* OGK_OK when this target stores a double exactly as the file does, so a
+ * payload may be read in place as double (ogk_nog_table_view); OGK_E_BYTE_ORDER
+ * on a big-endian (SPARC/LEON, PowerPC, MIPS BE) or word-swapped target, where
+ * only the decoding readers work (ogk_table_read_*, ogk_table_get,
+ * ogk_nog_table_load: they assemble each value from its bytes on any target).
+ * Checks the target's own representation of OGK_TABLE_ORDER_PROBE at run time:
+ * C99 has no portable byte-order macro. */
+ogk_status ogk_table_check_in_place(void);
 
 #ifdef __cplusplus
 }

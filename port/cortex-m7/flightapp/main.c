@@ -315,6 +315,22 @@ static void error_reactions(void)
                         &ogk_flight_nog_config, &ogk_flight_cpd_config,
                         OGK_PLANT_CONTROL_RATE_HZ);
     expect("table image at a 4-byte offset", a, OGK_FLIGHT_ABORT, f->last_status);
+#else
+    /* The same image read in place: only where a double is the image's little-endian binary64
+     * (the compiler's __BYTE_ORDER__ is the reference); elsewhere OGK_E_BYTE_ORDER -> abort. */
+    {
+        static ogk_nog_table_view_t view;
+#if defined(__BYTE_ORDER__) && (__BYTE_ORDER__ == __ORDER_BIG_ENDIAN__)
+        const ogk_status in_place = OGK_E_BYTE_ORDER;
+#else
+        const ogk_status in_place = OGK_OK;
+#endif
+        const ogk_status st = ogk_nog_table_view(&view, ogk_nog_bundle, ogk_nog_bundle_len);
+        printf("flightapp: the image read in place on this target: %s\n", status_name(st));
+        check(st == in_place, "in-place view: OK on little-endian, OGK_E_BYTE_ORDER on big-endian");
+        check(ogk_flight_reaction(OGK_FLIGHT_CALL_TABLE, OGK_E_BYTE_ORDER) == OGK_FLIGHT_ABORT,
+              "OGK_E_BYTE_ORDER at table load -> abort");
+    }
 #endif
     /* A configuration the kernel rejects: do not ignite. */
     bad_nog.dtf_max_s = 0.0;

@@ -59,6 +59,11 @@ ogk_flight_action ogk_flight_reaction(ogk_flight_call call, ogk_status st)
         /* The image is not 8-byte aligned (a build defect; the generated C aligns it): reading
          * it again does not help. Do not ignite (or decode it with ogk_nog_table_load). */
         return OGK_FLIGHT_ABORT;
+    case OGK_E_BYTE_ORDER:
+        /* A valid image, but this target does not store a double as the image does (big-endian:
+         * SPARC/LEON, PowerPC), so it cannot be read in place: a build defect, reading it again
+         * does not help. Do not ignite; build with OGK_FLIGHT_TABLE_COPY=1 (docs/ports.md). */
+        return OGK_FLIGHT_ABORT;
     case OGK_E_NULL:
     case OGK_E_DIM:
     case OGK_E_SINGULAR:

@@ -34,7 +34,8 @@
 /* The table is read in place from the const image (ogk_nog_table_view: no RAM copy, the image must
  * stay unchanged and 8-byte aligned, which the generated C ensures). -DOGK_FLIGHT_TABLE_COPY=1
  * decodes it into RAM instead (ogk_nog_table_load, 268 KiB), e.g. for an uplinked image whose
- * buffer is reused. */
+ * buffer is reused, or on a big-endian target (SPARC/LEON, PowerPC), where the in-place view answers
+ * OGK_E_BYTE_ORDER (docs/ports.md). */
 #ifndef OGK_FLIGHT_TABLE_COPY
 #define OGK_FLIGHT_TABLE_COPY 0
 #endif
