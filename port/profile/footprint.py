@@ -31,7 +31,9 @@ def sections(size_tool: str, obj: Path) -> dict[str, int]:
         name, n = parts[0], int(parts[1])
         if name.startswith(".text"):
             out["code"] += n
-        elif name.startswith(".rodata"):
+        elif name.startswith((".rodata", ".data.rel.ro")):
+            # .data.rel.ro: const data holding addresses (a table of names), written once by the
+            # loader under position-independent code and read-only after it (RELRO)
             out["rodata"] += n
         elif name.startswith(".data"):
             out["data"] += n

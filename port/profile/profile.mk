@@ -10,13 +10,29 @@ PROFILE_B := $(B)/profile
 ARM_UNIT_ELF := $(patsubst tests/unit/%.c,$(ARM_B)/%.elf,$(ARM_UNIT_SRC))
 PROFILE_PY := $(wildcard port/profile/*.py)
 
-.PHONY: stack-bound-m7
+.PHONY: stack-bound-m7 stack-bound-sparc footprint-sparc
 stack-bound-m7: $(PROFILE_B)/stack_m7.json
 $(PROFILE_B)/stack_m7.json: $(ARM_UNIT_ELF) $(ARM_KOBJ) $(PROFILE_PY)
 	@mkdir -p $(@D)
 	python3 port/profile/stack_bound.py --isa thumb --objdump arm-none-eabi-objdump \
 	  --su-dir $(ARM_B)/kernel --objects $(ARM_KOBJ) --json $@.tmp -- $(ARM_UNIT_ELF) \
 	  && mv $@.tmp $@
+
+# The same on SPARC V8 (the static glibc of the qemu-user route; docs/ports.md). glibc's libm there is
+# built with the stack protector: its abort path, __stack_chk_fail, sizes its message on the stack from a
+# register and ends the process, so it is named a terminating path (its own frame still counts).
+SPARC_UNIT_EXE := $(patsubst tests/unit/%.c,$(SPARC_B)/%,$(SPARC_UNIT_SRC))
+stack-bound-sparc: $(PROFILE_B)/stack_sparc.json
+$(PROFILE_B)/stack_sparc.json: $(SPARC_UNIT_EXE) $(SPARC_KOBJ) $(PROFILE_PY)
+	@mkdir -p $(@D)
+	python3 port/profile/stack_bound.py --isa sparc --objdump sparc64-linux-gnu-objdump \
+	  --su-dir $(SPARC_B)/kernel --objects $(SPARC_KOBJ) --no-return __stack_chk_fail \
+	  --json $@.tmp -- $(SPARC_UNIT_EXE) && mv $@.tmp $@
+footprint-sparc: $(PROFILE_B)/footprint_sparc.json
+$(PROFILE_B)/footprint_sparc.json: $(SPARC_KOBJ) $(KHDR) $(PROFILE_PY)
+	@mkdir -p $(@D)
+	python3 port/profile/footprint.py --cc "$(SPARC_CC) -std=c99 $(SPARC_CPU)" \
+	  --size sparc64-linux-gnu-size --nm sparc64-linux-gnu-nm --json $@ -- $(SPARC_KOBJ)
 
 # ---------------------------------------------------------------- make profile (not in make test: minutes)
 #   make profile          build/profile/profile.json and docs/profile.md: per target, every public entry
@@ -51,8 +67,8 @@ $(PROFILE_B)/pil_m7/%.json: scenarios/%.toml $(ARM_B)/libogk.a $(ARM_RT_OBJ) $(Q
 	mv $(@:.json=.tmp.json) $@
 profile-pil-m7: $(PROFILE_PIL_M7)
 
-profile: deps stack-bound-m7 footprint-m7 profile-pil-m7
-	python3 port/profile/profile.py --stack m7=$(PROFILE_B)/stack_m7.json \
-	  --footprint m7=$(PROFILE_B)/footprint_m7.json \
+profile: deps stack-bound-m7 footprint-m7 stack-bound-sparc footprint-sparc profile-pil-m7
+	python3 port/profile/profile.py --stack m7=$(PROFILE_B)/stack_m7.json sparc=$(PROFILE_B)/stack_sparc.json \
+	  --footprint m7=$(PROFILE_B)/footprint_m7.json sparc=$(PROFILE_B)/footprint_sparc.json \
 	  --campaign $(foreach f,$(PROFILE_PIL_M7),m7=$(f)) \
 	  --json $(PROFILE_B)/profile.json --doc docs/profile.md

@@ -25,7 +25,9 @@ SPARC_TIMEOUT ?= 300
 SPARC_UNIT_SRC ?= $(UNIT_SRC)
 
 # Kernel: the flight flags (the cross gcc 12.2 defines FLT_EVAL_METHOD 0 and __BYTE_ORDER__ big).
-SPARC_KFLAGS := $(STRICT) $(SPARC_CPU) -O2 -g
+# -fstack-usage: build/sparc/kernel/*.su, gcc's frame of every function, against which the stack bound
+# (port/profile, make stack-bound-sparc) checks its reading of the disassembly.
+SPARC_KFLAGS := $(STRICT) $(SPARC_CPU) -O2 -g -fstack-usage
 SPARC_KOBJ := $(patsubst kernel/src/%.c,$(SPARC_B)/kernel/%.o,$(KSRC))
 
 # Runtime linked into every test: the cmocka shim and the host port counter.

@@ -49,3 +49,20 @@ def test_every_law_context_is_sized(tmp_path):
     for ctx in ("ogk_nog_t", "ogk_cpd_t", "ogk_cutoff_t", "ogk_terminal_t", "ogk_mpsp_t", "ogk_nmpc_t",
                 "ogk_blt_t"):
         assert types[ctx] > 0
+
+
+def test_const_table_of_addresses_is_read_only_under_pie(tmp_path):
+    """A const table of pointers is relocated once by the loader under position-independent code
+    (.data.rel.ro on SPARC's Debian gcc): read-only data, not a mutable global."""
+    cc = "sparc64-linux-gnu-gcc -std=c99 -m32 -mcpu=v8 -fPIE"
+    (tmp_path / "n.c").write_text('static const char *const names[2] = {"first", "second"};\n'
+                                  "const char *name(unsigned i);\n"
+                                  "const char *name(unsigned i) { return names[i & 1u]; }\n")
+    subprocess.run(cc.split() + ["-O2", "-c", "n.c", "-o", "n.o"], cwd=tmp_path, check=True)
+    out = tmp_path / "f.json"
+    r = subprocess.run([sys.executable, str(ROOT / "port/profile/footprint.py"), "--cc", cc,
+                        "--size", "sparc64-linux-gnu-size", "--nm", "sparc64-linux-gnu-nm", "--json",
+                        str(out), "--", str(tmp_path / "n.o")], capture_output=True, text=True)
+    f = json.loads(out.read_text())
+    assert r.returncode == 0, r.stdout
+    assert f["total"]["data"] == 0 and f["modules"]["n"]["rodata"] >= 8
