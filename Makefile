@@ -9,7 +9,7 @@ SHELL := /bin/bash
 APT_PKGS := build-essential valgrind clang clang-tidy libclang-rt-14-dev \
   libcmocka-dev cppcheck gcovr libeigen3-dev gcc-arm-none-eabi \
   libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm qemu-user \
-  python3-venv pkg-config
+  python3-venv pkg-config frama-c-base
 PYTHON ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
@@ -133,6 +133,9 @@ include port/cortex-m7/pil/pil.mk
 # fuzz-short / fuzz, coverage, mutants (not in make test), misra (a ratchet, in make lint)
 include tests/gates/gates.mk
 
+# ---------------------------------------------------------------- Frama-C EVA (issue 22): make eva
+include tests/eva/eva.mk
+
 .PHONY: misra
 misra: | apt
 	$(PYTHON) tests/misra/misra_gate.py --build $(B)/misra
@@ -149,6 +152,7 @@ test: deps
 	$(MAKE) test-flight-app
 	$(MAKE) test-eigen
 	$(MAKE) gates
+	$(MAKE) eva
 	$(MAKE) test-imports
 	$(MAKE) test-python
 
