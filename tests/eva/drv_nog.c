@@ -1,6 +1,7 @@
 /* tests/eva/drv_nog.c -- EVA driver of ogk_nog_* (ogk/nog.h): a validated
  * three-node view (the state ogk_nog_table_view leaves it in: grid 0, 0.5, 1,
- * every entry finite, here any value in [-1e9, 1e9], t_f* in [1, 1e5] s),
+ * every entry finite, here any value in [-1e9, 1e9], t_f* in [100, 1e5] s:
+ * init rejects t_f* below twice the default dtf_max of 40 s),
  * the default configuration bound to it, three samples inside the
  * navigation envelope of ogk/nog.h and commands at any finite time, then
  * samples outside the envelope. */
@@ -29,7 +30,7 @@ void eva_nog(void)
     view.tau = tau;
     view.entry = entry;
     view.n_grid = N_GRID;
-    view.t_f_star_s = eva_in(1.0, 1.0e5);
+    view.t_f_star_s = eva_in(100.0, 1.0e5);
     view.init_marker = OGK_NOG_VIEW_MARKER;
     view.generation = 0u;
     (void)ogk_nog_config_default(&cfg);
