@@ -54,6 +54,7 @@ DRIVERS = (
     Driver("cpd", (K + "cpd.c", K + "thrust_cmd.c"), "drv_cpd.c"),
     Driver("nog", (K + "nog.c", K + "interp.c", K + "linalg.c", K + "table.c", K + "crc32.c",
                    K + "thrust_cmd.c"), "drv_nog.c"),
+    Driver("qp", (K + "qp.c", K + "qp_blas.c"), "drv_qp.c"),
 )
 
 TIMEOUT_S = 300
