@@ -10,7 +10,8 @@ APT_PKGS := build-essential valgrind clang clang-tidy libclang-rt-14-dev \
   clang-19 llvm-19 libclang-rt-19-dev \
   libcmocka-dev cppcheck gcovr libeigen3-dev gcc-arm-none-eabi \
   libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm qemu-user \
-  python3-venv pkg-config gcc-sparc64-linux-gnu libc6-dev-sparc-sparc64-cross
+  python3-venv pkg-config gcc-sparc64-linux-gnu libc6-dev-sparc-sparc64-cross \
+  lib32gcc-12-dev-sparc64-cross frama-c-base
 PYTHON ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
@@ -139,6 +140,9 @@ include tests/gates/gates.mk
 # certification evidence (docs/profile.md): make stack-bound-m7
 include port/profile/profile.mk
 
+# ---------------------------------------------------------------- Frama-C EVA (issue 22): make eva
+include tests/eva/eva.mk
+
 .PHONY: misra
 misra: | apt
 	$(PYTHON) tests/misra/misra_gate.py --build $(B)/misra
@@ -167,6 +171,7 @@ test: deps
 	$(MAKE) test-unit-sparc test-flight-app-sparc test-flt-eval stack-bound-sparc footprint-sparc
 	$(MAKE) test-eigen
 	$(MAKE) gates
+	$(MAKE) eva
 	$(MAKE) test-imports
 	$(MAKE) test-python
 

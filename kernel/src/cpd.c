@@ -19,6 +19,11 @@
  * undefined (the vector is along +-a3 to within 1e-12 rad). */
 #define CPD_YAW_EPS 1.0e-12
 
+/* Below this lateral component of the commanded direction in body axes the
+ * pointing error's axis is undefined (pointing_error_body): 1e-300 rad is
+ * zero for every purpose, and it keeps angle / lateral far from overflow. */
+#define CPD_LATERAL_MIN 1.0e-300
+
 /* Row-major 3x3 matrix (a struct, so const pointers to it are plain C99). */
 typedef struct {
     double m[3][3];
@@ -201,10 +206,17 @@ static void pointing_error_body(const double t_b[3], double *err_y, double *err_
 {
     const double lateral = hypot(t_b[1], t_b[2]);
     const double angle = atan2(lateral, t_b[0]);
-    if (lateral > 0.0) {
+    /* A subnormal lateral (direction behind to within 1e-308 rad) made
+     * angle / lateral overflow (pi / 1e-310 = inf). Below CPD_LATERAL_MIN the
+     * axis is as undefined as at zero; above it |t_b[i]| * angle / lateral
+     * <= 3 pi 1e300 is finite even for EVA, which bounds each component of
+     * the unit vector t_b only by 3 (docs/eva.md). */
+    if (lateral >= CPD_LATERAL_MIN) {
         const double scale = angle / lateral; /* -> 1 as the error -> 0 */
-        *err_y = -t_b[2] * scale;
-        *err_z = t_b[1] * scale;
+        /* |t_b[i]| <= lateral, so each is within the angle <= pi: the clamp
+         * only catches rounding, and tells EVA so. */
+        *err_y = fmin(fmax(-t_b[2] * scale, -CPD_PI), CPD_PI);
+        *err_z = fmin(fmax(t_b[1] * scale, -CPD_PI), CPD_PI);
     } else if (t_b[0] >= 0.0) {
         *err_y = 0.0;
         *err_z = 0.0;

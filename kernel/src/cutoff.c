@@ -8,6 +8,18 @@
 
 #define OGK_CUTOFF_INIT_MARKER 0x43555430u /* "CUT0" */
 
+/* Shortest time between two accepted calls over which the energy rate is
+ * measured [s]: closer calls (a malformed time tag; the control period is
+ * milliseconds) give no rate, instead of a difference quotient over a
+ * subnormal step that overflows. */
+#define CUTOFF_DT_MIN_S 1.0e-9
+
+/* Smallest energy rate extrapolated to the crossing [W/kg]: below it the
+ * crossing is beyond any control period for any gap above 1e-100 J/kg, and
+ * for physical energies (gap below 1e200 J/kg) gap / rate stays finite; with
+ * an absurd mu an infinite t_cross only fails the comparison below. */
+#define CUTOFF_RATE_MIN_W_KG 1.0e-100
+
 ogk_status ogk_cutoff_config_default(ogk_cutoff_config_t *cfg)
 {
     ogk_status st = OGK_OK;
@@ -121,9 +133,13 @@ static void accept(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, double t_predi
     double rate = 0.0;
 
     if (ctx->have_prev) {
-        rate = (energy - ctx->energy_prev_j_kg) / (nav->t_s - ctx->t_prev_s);
+        /* > 0 by the envelope (t_s after t_prev_s) */
+        const double dt = nav->t_s - ctx->t_prev_s;
+        if (dt >= CUTOFF_DT_MIN_S) {
+            rate = (energy - ctx->energy_prev_j_kg) / dt;
+        }
         if (!isfinite(rate)) {
-            rate = 0.0; /* calls closer than the energy change allows: no extrapolation now */
+            rate = 0.0; /* an energy change beyond DBL_MAX (absurd mu): no extrapolation now */
         }
     }
     out->flags = 0u;
@@ -132,7 +148,7 @@ static void accept(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, double t_predi
         if (energy >= ctx->energy_target_j_kg) {
             ctx->t_cutoff_s = nav->t_s; /* reached already: now */
             ctx->decided = true;
-        } else if (rate > 0.0) {
+        } else if (rate >= CUTOFF_RATE_MIN_W_KG) {
             /* Linear extrapolation of the energy over the coming period. */
             const double t_cross = nav->t_s + ((ctx->energy_target_j_kg - energy) / rate);
             if (t_cross <= (nav->t_s + ctx->cfg.control_period_s)) {

@@ -582,14 +582,18 @@ static bool compute_correction(ogk_nog_t *ctx, const double *dx)
     double nrate[NX * NX];
     double out8[N_GAIN_ROWS];
     double dlam_rate[NX];
+    bool products_ok;
     bool finite = true;
 
     linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_GAIN, (size_t)N_GAIN_ROWS * NX, gain);
     linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_NRATE, (size_t)NX * NX, nrate);
-    (void)ogk_mat_vec(gain, N_GAIN_ROWS, NX, dx, out8);
-    (void)ogk_mat_vec(nrate, NX, NX, dx, dlam_rate);
-    if (!ogk_i_all_finite(out8, N_GAIN_ROWS) || !ogk_i_all_finite(dlam_rate, NX)) {
-        finite = false; /* finite gains and dx, but their products overflow */
+    /* A product that fails leaves its output unwritten: the short-circuit
+     * never reads it (the statuses were discarded before, and out8 was then
+     * read uninitialised). */
+    products_ok = (ogk_mat_vec(gain, N_GAIN_ROWS, NX, dx, out8) == OGK_OK) &&
+                  (ogk_mat_vec(nrate, NX, NX, dx, dlam_rate) == OGK_OK);
+    if (!products_ok || !ogk_i_all_finite(out8, N_GAIN_ROWS) || !ogk_i_all_finite(dlam_rate, NX)) {
+        finite = false; /* a failed product, or finite gains and dx whose products overflow */
     } else {
         apply_correction(ctx, out8, dlam_rate);
     }

@@ -468,6 +468,26 @@ static void test_body_error_matches_euler_near_zero_roll(void **state)
     OGK_ASSERT_NEAR(ez, 0.0, 1e-14);
 }
 
+/* req: OGK-CPD-004 */
+/* Found by Frama-C EVA (docs/eva.md): a commanded direction behind x_b to
+ * within a subnormal lateral component. xi = pi turns r-t-n half-way round
+ * (cos = -1, sin(pi) = s = 1.22e-16); alpha = -s cancels the s leak exactly
+ * (cb s - s cb = 0) and beta = 1e-310 leaves t_b = (-1, -1e-310, -0), so
+ * hypot = 1e-310 and the rotation angle is pi: angle / lateral overflowed to
+ * inf and the error came back (NaN, -inf) with OGK_OK. The true error is a
+ * half turn about an axis normal to x_b: magnitude pi, finite. */
+static void test_body_error_behind_subnormal_lateral(void **state)
+{
+    const double s = sin(PI);
+    double ey = 0.0;
+    double ez = 0.0;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(0.0, 0.0, 0.0, -s, 1e-310, PI, 0.0, &ey, &ez),
+                      OGK_OK);
+    assert_true(isfinite(ey) && isfinite(ez));
+    OGK_ASSERT_NEAR(hypot(ey, ez), PI, 1e-15);
+}
+
 /* Commanded direction behind the vehicle: error magnitude near pi, flagged,
  * deflections saturated; exactly behind -> (pi, 0). */
 /* req: OGK-CPD-004 */
@@ -1437,6 +1457,7 @@ int main(void)
         cmocka_unit_test(test_body_pointing_error_geometry),
         cmocka_unit_test(test_body_error_matches_euler_near_zero_roll),
         cmocka_unit_test(test_body_error_behind),
+        cmocka_unit_test(test_body_error_behind_subnormal_lateral),
         cmocka_unit_test(test_control_law_and_saturation),
         cmocka_unit_test(test_euler_mode_wraps_errors),
         cmocka_unit_test(test_wrap_pi),

@@ -200,6 +200,28 @@ static void test_rate_overflow_is_no_rate(void **state)
 }
 
 /* req: OGK-NOG-016 */
+/* Calls at least the minimum step apart whose energies differ by more than
+ * DBL_MAX times that step (mu = 1e308: -1e308 J/kg at r = 1 m, -1e307 at
+ * 10 m, 1 ns apart): the quotient overflows, and no rate is used. */
+static void test_rate_of_absurd_mu_is_no_rate(void **state)
+{
+    ogk_cutoff_config_t cfg = config();
+    ogk_cutoff_t ctx;
+    ogk_cutoff_out_t out;
+    ogk_nav_state_t nav = burn_state(100.0);
+    (void)state;
+    cfg.mu_m3_s2 = 1.0e308;
+    OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_OK);
+    nav.r_m = 1.0;
+    OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &nav, 100.5, &out), OGK_OK);
+    nav.t_s += 1.0e-9;
+    nav.r_m = 10.0;
+    OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &nav, 100.5, &out), OGK_OK);
+    OGK_ASSERT_NEAR(out.energy_rate_w_kg, 0.0, 0.0);
+    assert_true(isfinite(out.t_cutoff_s) && isfinite(out.energy_j_kg));
+}
+
+/* req: OGK-NOG-016 */
 static void test_contract(void **state)
 {
     ogk_cutoff_config_t cfg = config();
@@ -250,6 +272,7 @@ int main(void)
         cmocka_unit_test(test_backstop_when_energy_short),
         cmocka_unit_test(test_bad_input_changes_nothing),
         cmocka_unit_test(test_rate_overflow_is_no_rate),
+        cmocka_unit_test(test_rate_of_absurd_mu_is_no_rate),
         cmocka_unit_test(test_contract),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -139,6 +139,7 @@ typedef struct {
 
 /* Fills every field with the defaults documented at ogk_cpd_config_t (a
  * configuration ogk_cpd_init accepts). OGK_E_NULL. */
+/*@ requires cfg_valid: cfg == \null || \valid(cfg); */
 ogk_status ogk_cpd_config_default(ogk_cpd_config_t *cfg);
 
 /* Validates cfg and copies it into ctx. Rejections leave ctx zeroed (every
@@ -146,11 +147,15 @@ ogk_status ogk_cpd_config_default(ogk_cpd_config_t *cfg);
  * OGK_E_NONFINITE (a NaN/Inf field), OGK_E_CONFIG (a gain, limit or time
  * constant <= 0, k_d <= k_p tau on any axis -- the convergence condition of
  * sec. 5.2 --, |phi_c| > pi, or an unknown pointing mode). */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx);
+    requires cfg_valid: cfg == \null || \valid_read(cfg);
+*/
 ogk_status ogk_cpd_init(ogk_cpd_t *ctx, const ogk_cpd_config_t *cfg);
 
 /* Back to the state right after ogk_cpd_init (no previous direction for the
  * feed-forward, last = safe command), configuration kept. OGK_E_NULL,
  * OGK_E_NOT_INIT. */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx); */
 ogk_status ogk_cpd_reset(ogk_cpd_t *ctx);
 
 /* Sets the guidance part of a CPD input from any law's thrust command
@@ -176,6 +181,10 @@ ogk_status ogk_cpd_input_from_thrust_cmd(ogk_cpd_input_t *in, const ogk_thrust_c
  * output would not be finite: absurd gains meeting absurd rates). Every
  * output is finite whatever the status. The context stays usable after any
  * of these. */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx);
+    requires in_valid: in == \null || \valid_read(in);
+    requires out_valid: out == \null || \valid(out);
+*/
 ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
                         ogk_cpd_output_t *out);
 

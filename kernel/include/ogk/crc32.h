@@ -13,6 +13,9 @@ extern "C" {
 
 /* *crc = CRC-32 of data[0..len-1], continuing from a previous value: pass
  * *crc = 0 for a new computation (len may be 0; data may be NULL only then). */
+/*@ requires crc_valid: crc == \null || \valid(crc);
+    requires data_valid: data == \null || \valid_read(data + (0 .. len - 1));
+*/
 ogk_status ogk_crc32_update(uint32_t *crc, const uint8_t *data, size_t len);
 
 #ifdef __cplusplus

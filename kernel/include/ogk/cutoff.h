@@ -74,12 +74,17 @@ typedef struct {
 } ogk_cutoff_out_t;
 
 /* Defaults: mu of the Earth, target 42164 km, arm 2 s, extend 10 s, 20 ms. */
+/*@ requires cfg_valid: cfg == \null || \valid(cfg); */
 ogk_status ogk_cutoff_config_default(ogk_cutoff_config_t *cfg);
 
 /* OGK_E_CONFIG for a non-finite or out-of-range field (context untouched). */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx);
+    requires cfg_valid: cfg == \null || \valid_read(cfg);
+*/
 ogk_status ogk_cutoff_init(ogk_cutoff_t *ctx, const ogk_cutoff_config_t *cfg);
 
 /* Back to the state after init (a new burn). */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx); */
 ogk_status ogk_cutoff_reset(ogk_cutoff_t *ctx);
 
 /* One control period: nav at nav->t_s, the guidance's predicted cut-off
@@ -90,6 +95,10 @@ ogk_status ogk_cutoff_reset(ogk_cutoff_t *ctx);
  * the decided one; else the backstop of the prediction if it is usable; else
  * the last accepted call's backstop; else (nothing known yet)
  * OGK_CUTOFF_T_MAX_S, i.e. the monitor never stops an engine on bad data. */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx);
+    requires nav_valid: nav == \null || \valid_read(nav);
+    requires out_valid: out == \null || \valid(out);
+*/
 ogk_status ogk_cutoff_step(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s,
                            ogk_cutoff_out_t *out);
 

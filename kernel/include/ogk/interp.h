@@ -15,9 +15,14 @@ extern "C" {
 #endif
 
 /* Checks that grid[0..n_grid-1] is finite and strictly increasing, n_grid >= 2. */
+/*@ requires grid_valid: grid == \null || \valid_read(grid + (0 .. n_grid - 1)); */
 ogk_status ogk_interp_check_grid(const double *grid, size_t n_grid);
 
 /* Piecewise-linear interpolation of m quantities at tau. */
+/*@ requires grid_valid: grid == \null || \valid_read(grid + (0 .. n_grid - 1));
+    requires values_valid: values == \null || \valid_read(values + (0 .. n_grid * m - 1));
+    requires out_valid: out == \null || \valid(out + (0 .. m - 1));
+*/
 ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
                              const double *values, size_t m,
                              double tau, double *out);
@@ -29,16 +34,28 @@ ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
  * huge secants are handled without overflow or underflow (a scaled form of the
  * harmonic mean, the same result to rounding); OGK_E_RANGE if a secant itself
  * is not finite (value steps near DBL_MAX, or a subnormal grid step). */
+/*@ requires grid_valid: grid == \null || \valid_read(grid + (0 .. n_grid - 1));
+    requires values_valid: values == \null || \valid_read(values + (0 .. n_grid * m - 1));
+    requires slopes_valid: slopes == \null || \valid(slopes + (0 .. n_grid * m - 1));
+*/
 ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
                                    const double *values, size_t m,
                                    double *slopes);
 
+/*@ requires grid_valid: grid == \null || \valid_read(grid + (0 .. n_grid - 1));
+    requires values_valid: values == \null || \valid_read(values + (0 .. n_grid * m - 1));
+    requires slopes_valid: slopes == \null || \valid_read(slopes + (0 .. n_grid * m - 1));
+    requires out_valid: out == \null || \valid(out + (0 .. m - 1));
+*/
 ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
                             const double *values, const double *slopes,
                             size_t m, double tau, double *out);
 
 /* Index k of the interval [grid[k], grid[k+1]] holding tau (the last interval
  * for tau == grid[n_grid-1]). */
+/*@ requires grid_valid: grid == \null || \valid_read(grid + (0 .. n_grid - 1));
+    requires k_valid: k == \null || \valid(k);
+*/
 ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
                              size_t *k);
 

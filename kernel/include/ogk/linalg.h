@@ -23,10 +23,18 @@ extern "C" {
 #define OGK_LA_RCOND_MIN 1.0e-13
 
 /* y = A x,  A: rows x cols,  rows, cols <= OGK_LA_MAX_LONG. */
+/*@ requires A_valid: A == \null || \valid_read(A + (0 .. rows * cols - 1));
+    requires x_valid: x == \null || \valid_read(x + (0 .. cols - 1));
+    requires y_valid: y == \null || \valid(y + (0 .. rows - 1));
+*/
 ogk_status ogk_mat_vec(const double *A, size_t rows, size_t cols,
                        const double *x, double *y);
 
 /* y = A^T x,  A: rows x cols,  y has cols entries. */
+/*@ requires A_valid: A == \null || \valid_read(A + (0 .. rows * cols - 1));
+    requires x_valid: x == \null || \valid_read(x + (0 .. rows - 1));
+    requires y_valid: y == \null || \valid(y + (0 .. cols - 1));
+*/
 ogk_status ogk_mat_t_vec(const double *A, size_t rows, size_t cols,
                          const double *x, double *y);
 
@@ -58,6 +66,9 @@ typedef struct {
 /* Factors the n x n matrix A. OGK_E_SINGULAR when a pivot is zero to working
  * precision (lu->n is then 0); OGK_E_ILL_CONDITIONED when rcond < OGK_LA_RCOND_MIN
  * (factors kept, solves allowed). */
+/*@ requires lu_valid: lu == \null || \valid(lu);
+    requires A_valid: A == \null || n > OGK_LA_MAX_N || \valid_read(A + (0 .. n * n - 1));
+*/
 ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n);
 
 /* Solves A x = b with a held factorization; x may alias b. */
@@ -74,6 +85,9 @@ typedef struct {
 
 /* Factors A (only its lower triangle is read; symmetry is checked to
  * 1e-12 relative). OGK_E_NOT_POSDEF when not positive definite or not symmetric. */
+/*@ requires ch_valid: ch == \null || \valid(ch);
+    requires A_valid: A == \null || n > OGK_LA_MAX_N || \valid_read(A + (0 .. n * n - 1));
+*/
 ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n);
 
 /* Solves A x = b with a held factorization; x may alias b. */

@@ -17,6 +17,7 @@ extern "C" {
 /* *wrapped = angle + 2 pi k in (-pi, pi]; exact (the angle itself) for angle
  * in (-pi, pi]. OGK_E_NULL, OGK_E_NONFINITE, OGK_E_RANGE (|angle| >
  * OGK_ANGLE_LIMIT). The one wrap every law uses (kernel/src/ogk_checks.h). */
+/*@ requires wrapped_valid: wrapped == \null || \valid(wrapped); */
 ogk_status ogk_wrap_pi(double angle, double *wrapped);
 
 #ifdef __cplusplus

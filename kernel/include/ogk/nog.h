@@ -176,6 +176,7 @@ typedef struct {
 
 /* Fills every field with the defaults documented in ogk_nog_config_t
  * (table = view = NULL: bind one before ogk_nog_init). OGK_E_NULL. */
+/*@ requires cfg_valid: cfg == \null || \valid(cfg); */
 ogk_status ogk_nog_config_default(ogk_nog_config_t *cfg);
 
 /* Checks the configuration and resets the context to the nominal (tau = 0,
@@ -184,11 +185,15 @@ ogk_status ogk_nog_config_default(ogk_nog_config_t *cfg);
  * (ranges in ogk_nog_config_t) or both table and view set,
  * OGK_E_NOT_INIT for an empty table or an unvalidated view; the context is
  * then unusable (init_marker 0) until a good init. */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx);
+    requires cfg_valid: cfg == \null || \valid_read(cfg);
+*/
 ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg);
 
 /* Back to the state right after ogk_nog_init (nominal, no sample taken),
  * configuration and table binding kept. OGK_E_NULL, OGK_E_NOT_INIT,
  * OGK_E_TABLE_STALE (the table was reloaded: re-initialise instead). */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx); */
 ogk_status ogk_nog_reset(ogk_nog_t *ctx);
 
 /* Navigation envelope of ogk_nog_sample, checked before any arithmetic
@@ -235,6 +240,10 @@ ogk_status ogk_nog_reset(ogk_nog_t *ctx);
  * ENGINE_ON from that time on, and no later sample can reopen it, since every
  * later one has tau > 1. Every output (tau, t_f, cut-off time, dx, angles) is
  * finite whatever the status. */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx);
+    requires nav_valid: nav == \null || \valid_read(nav);
+    requires out_valid: out == \null || \valid(out);
+*/
 ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sample_t *out);
 
 /* Thrust-direction command at time t_s (>= the current sample's time; before
@@ -253,12 +262,18 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sa
  * cut-off (computed without the table). OGK_E_SAFE_COMMAND: the costate at t
  * is not finite (table values too large); same held angles. The angles are
  * finite whatever the status. */
+/*@ requires ctx_valid: ctx == \null || \valid_read(ctx);
+    requires out_valid: out == \null || \valid(out);
+*/
 ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out);
 
 /* *tau = normalised time of eq. (31) at t_s >= the current sample's time with
  * the t_f in force (clamped to 1 after the cut-off), for telemetry.
  * OGK_E_NULL, OGK_E_NOT_INIT, OGK_E_TABLE_STALE, OGK_E_NONFINITE, OGK_E_RANGE
  * (t_s before the current sample). */
+/*@ requires ctx_valid: ctx == \null || \valid_read(ctx);
+    requires tau_valid: tau == \null || \valid(tau);
+*/
 ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau);
 
 #ifdef __cplusplus

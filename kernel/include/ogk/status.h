@@ -64,6 +64,7 @@ typedef enum {
 
 /* Stores in *name the code's identifier ("OGK_E_DIM", ...). Unknown codes
  * give "OGK_E_UNKNOWN" and return OGK_E_RANGE. */
+/*@ requires name_valid: name == \null || \valid(name); */
 ogk_status ogk_status_name(ogk_status code, const char **name);
 
 #ifdef __cplusplus

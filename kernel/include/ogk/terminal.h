@@ -110,12 +110,17 @@ typedef struct {
 
 /* Defaults: mu of the Earth, target 42164 km, window 3 s, no shaping
  * (shape_gain = shape_gain_normal = 0, shape_hold_s 1 s). */
+/*@ requires cfg_valid: cfg == \null || \valid(cfg); */
 ogk_status ogk_terminal_config_default(ogk_terminal_config_t *cfg);
 
 /* OGK_E_CONFIG for a non-finite or out-of-range field (context untouched). */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx);
+    requires cfg_valid: cfg == \null || \valid_read(cfg);
+*/
 ogk_status ogk_terminal_init(ogk_terminal_t *ctx, const ogk_terminal_config_t *cfg);
 
 /* Back to the state after init (a new burn). */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx); */
 ogk_status ogk_terminal_reset(ogk_terminal_t *ctx);
 
 /* One control period: nav at nav->t_s (t, r, phi, v_r, v_t, v_n read; xi
@@ -128,6 +133,11 @@ ogk_status ogk_terminal_reset(ogk_terminal_t *ctx);
  * OGK_THRUST_FLAG_ENGINE_ON bit as law_cmd, law_flags ENGAGED). OGK_E_NONFINITE
  * (any of those values) / OGK_E_RANGE: context unchanged; *out as described in
  * the header comment. */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx);
+    requires nav_valid: nav == \null || \valid_read(nav);
+    requires law_cmd_valid: law_cmd == \null || \valid_read(law_cmd);
+    requires out_valid: out == \null || \valid(out);
+*/
 ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s,
                              const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out);
 

@@ -1,0 +1,167 @@
+"""Frama-C EVA over the kernel's public entry points (`make eva`, run by `make test`).
+
+Each driver of DRIVERS (tests/eva/drv_*.c) calls the public functions of one module with the ranges
+their contracts allow (the ACSL `requires` of kernel/include/ogk/*.h, Frama_C_*_interval values).
+EVA runs once per driver; this script parses its report and counts, per driver:
+
+- the alarms EVA emits (`[eva:alarm]`: a possible run-time error: overflow, division by zero,
+  invalid memory access, uninitialised read, a non-finite double), and
+- the logical properties it cannot prove or finds false (preconditions of the kernel's and libm's
+  contracts, tests/eva/libm_spec.h; assertions),
+
+and fails when a driver's count exceeds tests/eva/baseline.json (the baseline may only go down,
+`--update` lowers it), when a driver of ZERO has any, or when a driver does not reach the end of its
+main function (an analysis that stops early proves nothing). docs/eva.md lists the remaining alarms.
+"""
+from __future__ import annotations
+
+import argparse
+import concurrent.futures
+import json
+import re
+import shutil
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+BASELINE = ROOT / "tests" / "eva" / "baseline.json"
+K = "kernel/src/"
+
+
+@dataclass(frozen=True)
+class Driver:
+    name: str                  # the driver's main function, eva_<name>
+    sources: tuple[str, ...]   # kernel sources analysed with it
+    driver: str                # tests/eva/drv_*.c
+    options: tuple[str, ...] = field(default=())
+
+
+# The modules whose drivers must stay at zero (issue 22, item 3).
+ZERO = {"crc32", "mathutil", "status", "rk4", "cpd", "terminal", "cutoff"}
+
+DRIVERS = (
+    Driver("crc32", (K + "crc32.c",), "drv_core.c"),
+    Driver("mathutil", (K + "mathutil.c",), "drv_core.c"),
+    Driver("status", (K + "status.c",), "drv_core.c"),
+    Driver("interp", (K + "interp.c",), "drv_interp.c"),
+    Driver("rk4", (K + "rk4.c",), "drv_rk4.c"),
+    Driver("linalg", (K + "linalg.c",), "drv_linalg.c"),
+    Driver("cutoff", (K + "cutoff.c",), "drv_cutoff.c"),
+    Driver("terminal", (K + "terminal.c", K + "thrust_cmd.c"), "drv_terminal.c"),
+    Driver("cpd", (K + "cpd.c", K + "thrust_cmd.c"), "drv_cpd.c"),
+    Driver("nog", (K + "nog.c", K + "interp.c", K + "linalg.c", K + "table.c", K + "crc32.c",
+                   K + "thrust_cmd.c"), "drv_nog.c"),
+    Driver("qp", (K + "qp.c", K + "qp_blas.c"), "drv_qp.c"),
+)
+
+TIMEOUT_S = 300
+COMMON = ("-eva", "-machdep", "x86_32", "-eva-precision", "3", "-eva-split-return", "auto",
+          "-cpp-extra-args=-Ikernel/include -Ikernel/src -Itests/eva -DOGK_EVA")
+ALARM = re.compile(r"^\[eva:alarm\] (?P<where>[^:]+:\d+): Warning:\s*(?P<what>.*)$")
+PROP = re.compile(r"^\s*(?P<kind>Assertions|Preconditions)\s+(?P<valid>\d+) valid\s+(?P<unknown>\d+) "
+                  r"unknown\s+(?P<invalid>\d+) invalid")
+
+
+def run(d: Driver) -> dict:
+    cmd = ["frama-c", *COMMON, *d.options, *d.sources, "tests/eva/" + d.driver, "-main", "eva_" + d.name]
+    t0 = time.monotonic()
+    try:
+        proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, check=False,
+                              timeout=TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        return {"name": d.name, "rc": -1, "alarms": [], "unproven": 0, "unproven_lines": [],
+                "finished": False, "secs": float(TIMEOUT_S), "reached": "?", "cmd": " ".join(cmd),
+                "tail": f"timed out after {TIMEOUT_S} s"}
+    secs = time.monotonic() - t0
+    out = proc.stdout + proc.stderr
+    lines = out.splitlines()
+    alarms = []
+    unproven_lines = []
+    for i, line in enumerate(lines):
+        m = ALARM.match(line)
+        if m:
+            what = m["what"]
+            # the alarm's annotation is on the following indented line(s)
+            j = i + 1
+            while j < len(lines) and lines[j].startswith("  ") and not lines[j].startswith("  ---"):
+                what += " " + lines[j].strip()
+                j += 1
+            # an unproven precondition is reported as an alarm too: counted once, with the
+            # summary's unknown/invalid properties below
+            if "precondition" in what or "assertion" in what:
+                unproven_lines.append(f"{m['where']}: {what}")
+            else:
+                alarms.append(f"{m['where']}: {what}")
+    unproven = 0
+    for line in lines:
+        m = PROP.match(line)
+        if m:
+            unproven += int(m["unknown"]) + int(m["invalid"])
+    finished = f"Values at end of function eva_{d.name}:" in out
+    reach = re.search(r"(\d+) statements reached \(out of (\d+)\)", out)
+    reached = f"{reach[1]}/{reach[2]} stmts" if reach else "?"
+    return {"name": d.name, "rc": proc.returncode, "alarms": alarms, "unproven": unproven,
+            "unproven_lines": unproven_lines, "finished": finished, "secs": secs, "reached": reached,
+            "cmd": " ".join(cmd), "tail": "\n".join(lines[-40:])}
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--update", action="store_true", help="lower the baseline to today's counts")
+    ap.add_argument("--init", action="store_true", help="write the baseline from scratch")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--only", nargs="*", help="run only these drivers (no gate, prints the alarms)")
+    args = ap.parse_args(argv)
+    if shutil.which("frama-c") is None:
+        print("eva: frama-c not found (frama-c-base, APT_PKGS)", file=sys.stderr)
+        return 1
+    drivers = [d for d in DRIVERS if not args.only or d.name in args.only]
+    t0 = time.monotonic()
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        results = list(pool.map(run, drivers))
+    baseline = json.loads(BASELINE.read_text()) if BASELINE.exists() else {}
+    failed = False
+    counts = {}
+    for r in results:
+        n = len(r["alarms"]) + r["unproven"]
+        counts[r["name"]] = n
+        base = baseline.get(r["name"])
+        verdict = "ok"
+        if r["rc"] != 0 or not r["finished"]:
+            verdict = "FAIL (analysis did not finish)"
+        elif r["name"] in ZERO and n > 0:
+            verdict = "FAIL (must be zero)"
+        elif not args.init and (base is None or n > base):
+            verdict = f"FAIL (baseline {base})"
+        elif base is not None and n < base:
+            verdict = f"ok (below baseline {base}: --update)"
+        failed |= verdict.startswith("FAIL")
+        print(f"eva: {r['name']:<14} {len(r['alarms']):3d} alarms {r['unproven']:3d} unproven "
+              f"{r['reached']:>13} ({r['secs']:5.1f} s) {verdict}")
+        if n and (verdict.startswith("FAIL") or args.only):
+            for a in r["alarms"]:
+                print(f"    alarm: {a}")
+            for u in r["unproven_lines"]:
+                print(f"    unproven: {u}")
+        if r["rc"] != 0 or not r["finished"]:
+            print(f"    command: {r['cmd']}\n" + r["tail"])
+    print(f"eva: {len(results)} drivers, {sum(counts.values())} alarms+unproven in all, "
+          f"{time.monotonic() - t0:.0f} s")
+    if args.only:
+        return 1 if failed else 0
+    if args.init or args.update:
+        new = dict(baseline)
+        for name, n in counts.items():
+            if args.init or n < new.get(name, n + 1):
+                new[name] = n
+        BASELINE.write_text(json.dumps(dict(sorted(new.items())), indent=1) + "\n")
+        print(f"eva: baseline written ({BASELINE.relative_to(ROOT)})")
+        return 0
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
