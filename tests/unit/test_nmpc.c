@@ -540,6 +540,7 @@ static void test_strategies_and_command(void **state)
  * swept again), in status, iterations and plan; for BFGS and the exact Hessian, one and two subintervals
  * dropped, an attracting body (its keys hold t_start), and the model changed between the solves (the kept
  * sensitivities are then of another model and must not be used). */
+/* req: OGK-NMPC-004 */
 static void test_warm_sensitivities_exact(void **state)
 {
     enum { CASES = 5 };
