@@ -123,8 +123,7 @@ static void nmpc_prepare(ogk_nmpc_t *ctx)
     (void)memset(&ctx->plan, 0, sizeof(ctx->plan));
     (void)memset(&ctx->work, 0, sizeof(ctx->work));
     /* no sensitivities kept: every key 0 (none matches), for this model */
-    (void)memset(ctx->sens_key, 0, sizeof(ctx->sens_key));
-    (void)memcpy(&ctx->sens_cfg, &ctx->cfg, sizeof(ctx->sens_cfg));
+    ogk_i_nmpc_cache_reset(ctx);
 }
 
 ogk_status ogk_nmpc_init(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg)

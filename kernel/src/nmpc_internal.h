@@ -91,13 +91,15 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu,
                            const double *u1, const double *tape,
                            const double *w, double *hess);
 
-/* The sensitivities kept with their inputs (nmpc_sens_cache.c). begin: at
- * the start of an evaluation; every key zeroed (none matches) when the
- * model differs from the keys' (ctx->sens_cfg, then set to ctx->cfg).
+/* The sensitivities kept with their inputs (nmpc_sens_cache.c). reset:
+ * every key zeroed (none matches), the model's fields of ctx->cfg kept as
+ * the keys' (ctx->sens_model). begin: at the start of an evaluation; reset
+ * when the model's fields differ from the keys'.
  * key: interval k's key of plan p (OGK_NMPC_SENS_KEY doubles, the rest 0);
  * returns the doubles that count. hit: slot k's key is these bits. store:
  * slot k's key (its data written by the caller; key NULL: forgotten, 0). drop: the slots moved with
  * ogk_i_nmpc_plan_drop(p, count) of a plan of `nodes` subintervals. */
+void ogk_i_nmpc_cache_reset(ogk_nmpc_t *ctx);
 void ogk_i_nmpc_cache_begin(ogk_nmpc_t *ctx);
 size_t ogk_i_nmpc_cache_key(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t k,
                             double t_start, double h, double *key);

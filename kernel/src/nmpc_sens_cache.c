@@ -19,6 +19,7 @@
 #define NX ((size_t)OGK_NMPC_NX)
 /* OGK_NMPC_SENS_KEY from the atoms (no composite expression cast) */
 #define KEY (((size_t)OGK_NMPC_NX + (2u * (size_t)OGK_NMPC_MAX_NU)) + 2u)
+#define MODEL (16u + (5u * (size_t)OGK_NMPC_MAX_BODIES))
 
 /* True when a[0..n) and b[0..n) are the same bits: equal and of the same
  * sign (only the zeros have two encodings; a NaN equals nothing, so it is
@@ -33,33 +34,44 @@ static bool same_bits(const double *a, const double *b, size_t n)
     return same;
 }
 
-/* True when the fields ogk_i_nmpc_shoot reads are the same bits in a and b. */
-static bool same_model(const ogk_nmpc_config_t *a, const ogk_nmpc_config_t *b)
+/* The fields ogk_i_nmpc_shoot reads, as doubles (the integers exactly). */
+static void model_fields(const ogk_nmpc_config_t *cfg, double *out)
 {
-    return same_bits(&a->mu, &b->mu, 1u)
-        && (a->engine == b->engine)
-        && (a->power == b->power)
-        && same_bits(&a->thrust_max, &b->thrust_max, 1u)
-        && same_bits(&a->mass_flow_max, &b->mass_flow_max, 1u)
-        && same_bits(&a->solar_length_unit, &b->solar_length_unit, 1u)
-        && same_bits(a->solar_a, b->solar_a, 4u)
-        && same_bits(a->solar_thrust, b->solar_thrust, 2u)
-        && same_bits(a->solar_flow, b->solar_flow, 2u)
-        && (a->n_bodies == b->n_bodies)
-        && same_bits(a->body_mu, b->body_mu, OGK_NMPC_MAX_BODIES)
-        && same_bits(a->body_radius, b->body_radius, OGK_NMPC_MAX_BODIES)
-        && same_bits(a->body_phase0, b->body_phase0, OGK_NMPC_MAX_BODIES)
-        && same_bits(a->body_rate, b->body_rate, OGK_NMPC_MAX_BODIES)
-        && same_bits(a->body_softening, b->body_softening, OGK_NMPC_MAX_BODIES)
-        && (a->rk4_steps == b->rk4_steps);
+    size_t b;
+    out[0] = cfg->mu;
+    out[1] = (double)cfg->engine;
+    out[2] = (double)cfg->power;
+    out[3] = cfg->thrust_max;
+    out[4] = cfg->mass_flow_max;
+    out[5] = cfg->solar_length_unit;
+    out[6] = (double)cfg->n_bodies;
+    out[7] = (double)cfg->rk4_steps;
+    (void)memcpy(&out[8], cfg->solar_a, sizeof(cfg->solar_a));
+    (void)memcpy(&out[12], cfg->solar_thrust, sizeof(cfg->solar_thrust));
+    (void)memcpy(&out[14], cfg->solar_flow, sizeof(cfg->solar_flow));
+    for (b = 0u; b < (size_t)OGK_NMPC_MAX_BODIES; ++b) {
+        double *body = &out[16u + (5u * b)];
+        body[0] = cfg->body_mu[b];
+        body[1] = cfg->body_radius[b];
+        body[2] = cfg->body_phase0[b];
+        body[3] = cfg->body_rate[b];
+        body[4] = cfg->body_softening[b];
+    }
+}
+
+void ogk_i_nmpc_cache_reset(ogk_nmpc_t *ctx)
+{
+    /* a key with h = 0 matches no interval (h > 0) */
+    (void)memset(ctx->sens_key, 0, sizeof(ctx->sens_key));
+    model_fields(&ctx->cfg, ctx->sens_model);
 }
 
 void ogk_i_nmpc_cache_begin(ogk_nmpc_t *ctx)
 {
-    if (!same_model(&ctx->cfg, &ctx->sens_cfg)) {
-        /* a key with h = 0 matches no interval (h > 0) */
-        (void)memset(ctx->sens_key, 0, sizeof(ctx->sens_key));
-        (void)memcpy(&ctx->sens_cfg, &ctx->cfg, sizeof(ctx->sens_cfg));
+    double model[OGK_NMPC_SENS_MODEL];
+    model_fields(&ctx->cfg, model);
+    if (!same_bits(model, ctx->sens_model, MODEL)) {
+        ogk_i_nmpc_cache_reset(ctx);
     }
 }
 
@@ -82,17 +94,17 @@ size_t ogk_i_nmpc_cache_key(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, siz
 
 bool ogk_i_nmpc_cache_hit(const ogk_nmpc_t *ctx, size_t k, const double *key, size_t n_key)
 {
-    return (k < (size_t)OGK_NMPC_MAX_NODES) && same_bits(&ctx->sens_key[k * KEY], key, n_key);
+    /* k < OGK_NMPC_MAX_NODES: the caller's loop bound */
+    return same_bits(&ctx->sens_key[k * KEY], key, n_key);
 }
 
 void ogk_i_nmpc_cache_store(ogk_nmpc_t *ctx, size_t k, const double *key)
 {
-    if (k < (size_t)OGK_NMPC_MAX_NODES) {
-        if (key != NULL) {
-            (void)memcpy(&ctx->sens_key[k * KEY], key, KEY * sizeof(double));
-        } else {
-            (void)memset(&ctx->sens_key[k * KEY], 0, KEY * sizeof(double));
-        }
+    /* k < OGK_NMPC_MAX_NODES: the caller's loop bound */
+    if (key != NULL) {
+        (void)memcpy(&ctx->sens_key[k * KEY], key, KEY * sizeof(double));
+    } else {
+        (void)memset(&ctx->sens_key[k * KEY], 0, KEY * sizeof(double));
     }
 }
 

@@ -97,6 +97,8 @@ extern "C" {
 /* ogk_nmpc_config_t.objective */
 /* doubles of one subinterval's sensitivity key: X_k, U_k, U_k+1, h, t_start */
 #define OGK_NMPC_SENS_KEY (OGK_NMPC_NX + (2u * OGK_NMPC_MAX_NU) + 2u)
+/* doubles of the predictive model's fields (the configuration's mu .. body_softening and rk4_steps) */
+#define OGK_NMPC_SENS_MODEL (16u + (5u * OGK_NMPC_MAX_BODIES))
 
 #define OGK_NMPC_MIN_TIME 0u
 #define OGK_NMPC_MIN_FUEL 1u
@@ -246,7 +248,7 @@ typedef struct {
      * with an attracting body) and the predictive model they used: an interval whose inputs are the
      * same bits is not swept again (a warm start's shifted intervals; docs/nmpc-flight.md, 2c) */
     double sens_key[OGK_NMPC_MAX_NODES * OGK_NMPC_SENS_KEY];
-    ogk_nmpc_config_t sens_cfg; /* the model of every key (keys all 0, matching no interval, after a change) */
+    double sens_model[OGK_NMPC_SENS_MODEL]; /* the model of every key (keys all 0, matching no interval, after a change) */
     /* exact Hessian: per subinterval k the block sum_i mu_k,i d2F_k,i in (X_k, U_k, U_k+1, T),
      * OGK_NMPC_MAX_DIR square, and the tape of the interval being swept */
     double hess_blk[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR];
