@@ -122,6 +122,8 @@ static void nmpc_prepare(ogk_nmpc_t *ctx)
     ctx->hess_valid = 0u;
     (void)memset(&ctx->plan, 0, sizeof(ctx->plan));
     (void)memset(&ctx->work, 0, sizeof(ctx->work));
+    /* no sensitivities kept: every key 0 (none matches), for this model */
+    ogk_i_nmpc_cache_reset(ctx);
 }
 
 ogk_status ogk_nmpc_init(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg)
@@ -327,6 +329,7 @@ static void shift_plan(ogk_nmpc_t *ctx, double t)
     if (ctx->cfg.strategy == OGK_NMPC_SNNS) {
         if ((count >= 1u) && ((p->nodes - count) >= ctx->cfg.min_nodes) && (count < p->nodes)) {
             /* SNN: the flown subintervals leave the plan, the rest is the guess */
+            ogk_i_nmpc_cache_drop(ctx, p->nodes, count, ctx->nu);
             ogk_i_nmpc_plan_drop(p, count);
             if (ctx->hess_valid != 0u) {
                 hessian_drop(ctx->hess, nv, (size_t)count * ctx->nu);

@@ -91,6 +91,22 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu,
                            const double *u1, const double *tape,
                            const double *w, double *hess);
 
+/* The sensitivities kept with their inputs (nmpc_sens_cache.c). reset:
+ * every key zeroed (none matches), the model's fields of ctx->cfg kept as
+ * the keys' (ctx->sens_model). begin: at the start of an evaluation; reset
+ * when the model's fields differ from the keys'.
+ * key: interval k's key of plan p (OGK_NMPC_SENS_KEY doubles, the rest 0);
+ * returns the doubles that count. hit: slot k's key is these bits. store:
+ * slot k's key (its data written by the caller; key NULL: forgotten, 0). drop: the slots moved with
+ * ogk_i_nmpc_plan_drop(p, count) of a plan of `nodes` subintervals. */
+void ogk_i_nmpc_cache_reset(ogk_nmpc_t *ctx);
+void ogk_i_nmpc_cache_begin(ogk_nmpc_t *ctx);
+size_t ogk_i_nmpc_cache_key(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t k,
+                            double t_start, double h, double *key);
+bool ogk_i_nmpc_cache_hit(const ogk_nmpc_t *ctx, size_t k, const double *key, size_t n_key);
+void ogk_i_nmpc_cache_store(ogk_nmpc_t *ctx, size_t k, const double *key);
+void ogk_i_nmpc_cache_drop(ogk_nmpc_t *ctx, uint32_t nodes, uint32_t count, uint32_t nu);
+
 /* Terminal residual c = (r - R_T, theta - theta_T(t_f), v_r, v_theta - v_T)
  * of eq. (5) at state x and time t_f. */
 void ogk_i_nmpc_terminal(const ogk_nmpc_config_t *cfg, const double *x,

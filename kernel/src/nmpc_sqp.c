@@ -88,6 +88,9 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
     size_t j;
 
     (void)memset(sens, 0, sizeof(sens));
+    if (with_sens) {
+        ogk_i_nmpc_cache_begin(ctx);
+    }
     if (second) {
         /* w_{N-1} = dJ/dX_N - dc/dX_N^T y (c of eq. 5: the first four states) */
         for (i = 0u; i < NC; ++i) {
@@ -98,16 +101,27 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
     for (n = 0u; (n < p->nodes) && (n < OGK_NMPC_MAX_NODES) && (st == OGK_OK); ++n) {
         const size_t k = second ? ((size_t)p->nodes - 1u - n) : n;
         const double t_start = p->t0 + ((double)k * h);
-        st = ogk_i_nmpc_shoot(&ctx->cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu],
-                              &p->u[(k + 1u) * nu], x1, with_sens ? sens : NULL,
-                              second ? ctx->tape : NULL);
+        double key[OGK_NMPC_SENS_KEY];
+        /* the same inputs as the slot's: its F_k and sensitivities are this
+         * sweep's bits (nmpc_sens_cache.c); the exact Hessian needs the
+         * sweep's tape, and its slots are only forgotten */
+        const bool keyed = with_sens && !second;
+        const size_t n_key = keyed ? ogk_i_nmpc_cache_key(ctx, p, k, t_start, h, key) : 0u;
+        const bool hit = keyed && ogk_i_nmpc_cache_hit(ctx, k, key, n_key);
+        if (hit) {
+            (void)memcpy(x1, &ctx->sens_f[k * NX], sizeof(x1));
+        } else {
+            st = ogk_i_nmpc_shoot(&ctx->cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu],
+                                  &p->u[(k + 1u) * nu], x1, with_sens ? sens : NULL,
+                                  second ? ctx->tape : NULL);
+        }
         if (st == OGK_OK) {
             for (i = 0u; i < NX; ++i) {
                 const double d = x1[i] - p->x[((k + 1u) * NX) + i];
                 l1 += fabs(d);
                 mx = (fabs(d) > mx) ? fabs(d) : mx;
             }
-            if (with_sens) {
+            if (with_sens && !hit) {
                 const size_t col_h = NX + (2u * (size_t)nu);
                 (void)memcpy(&ctx->sens_f[k * NX], x1, sizeof(x1));
                 for (i = 0u; i < NX; ++i) {
@@ -118,9 +132,16 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
                         ctx->sens_b0[(k * NX * nu) + (i * nu) + j] = sens[(i * NCOL) + NX + j];
                         ctx->sens_b1[(k * NX * nu) + (i * nu) + j] = sens[(i * NCOL) + NX + nu + j];
                     }
-                    /* h = T / N and t_start = t0 + k T / N */
-                    ctx->sens_t[(k * NX) + i] = (sens[(i * NCOL) + col_h]
-                        + ((double)k * sens[(i * NCOL) + col_h + 1u])) / (double)p->nodes;
+                    ctx->sens_h[(k * NX) + i] = sens[(i * NCOL) + col_h];
+                    ctx->sens_ts[(k * NX) + i] = sens[(i * NCOL) + col_h + 1u];
+                }
+                ogk_i_nmpc_cache_store(ctx, k, keyed ? key : NULL);
+            }
+            if (with_sens) {
+                /* h = T / N and t_start = t0 + k T / N */
+                for (i = 0u; i < NX; ++i) {
+                    ctx->sens_t[(k * NX) + i] = (ctx->sens_h[(k * NX) + i]
+                        + ((double)k * ctx->sens_ts[(k * NX) + i])) / (double)p->nodes;
                 }
             }
             if (second) {

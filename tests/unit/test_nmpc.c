@@ -535,6 +535,71 @@ static void test_strategies_and_command(void **state)
     OGK_ASSERT_NEAR(rep.t_f, t_f, 5e-3);
 }
 
+/* The warm start's kept sensitivities (nmpc_sens_cache.c) change no bit: each replan equals the same
+ * replan from a copy of the context with every kept sensitivity forgotten (all keys 0: every interval
+ * swept again), in status, iterations and plan; for BFGS and the exact Hessian, one and two subintervals
+ * dropped, an attracting body (its keys hold t_start), and the model changed between the solves (the kept
+ * sensitivities are then of another model and must not be used). */
+/* req: OGK-NMPC-004 */
+static void test_warm_sensitivities_exact(void **state)
+{
+    enum { CASES = 6 };
+    static const uint32_t hessian[CASES] = { OGK_NMPC_HESSIAN_BFGS, OGK_NMPC_HESSIAN_EXACT, OGK_NMPC_HESSIAN_BFGS,
+                                             OGK_NMPC_HESSIAN_BFGS, OGK_NMPC_HESSIAN_BFGS, OGK_NMPC_HESSIAN_BFGS };
+    static const uint32_t drop[CASES] = { 1u, 1u, 2u, 1u, 1u, 1u };
+    static const uint32_t bodies[CASES] = { 0u, 0u, 0u, 1u, 0u, 0u };
+    /* 1: the thrust 1 % up; 2: an unused field's +0 made -0 (another bit, the same value) */
+    static const int model_change[CASES] = { 0, 0, 0, 0, 1, 2 };
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    ogk_nmpc_report_t rep_ref;
+    uint32_t i;
+    (void)state;
+    for (i = 0u; i < (uint32_t)CASES; ++i) {
+        ogk_status st;
+        ogk_status st_ref;
+        mars_config(&c, 8u);
+        c.hessian = hessian[i];
+        c.n_bodies = bodies[i];
+        nmpc_fx_body(&c, 0u, 3.0e-6, 1.0, -0.1, 1.0);
+        OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+        mars_guess(&c, 8u, 6.4, &plan);
+        OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+        in.t = 0.0;
+        (void)memcpy(in.x, plan.x, sizeof in.x);
+        OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan), OGK_OK);
+        /* at node drop[i], its state 1e-4 off */
+        in.t = plan.t0 + ((double)drop[i] * (plan.horizon / (double)plan.nodes));
+        (void)memcpy(in.x, &plan.x[drop[i] * NX], sizeof in.x);
+        in.x[0] += 1.0e-4;
+        in.x[3] += 1.0e-4;
+        if (model_change[i] == 1) {
+            /* as a test or a benchmark may set the context's configuration between solves */
+            ctx.cfg.thrust_max *= 1.01;
+        } else if (model_change[i] == 2) {
+            ctx.cfg.body_softening[1] = -0.0;
+        }
+        (void)memcpy(&ctx2, &ctx, sizeof ctx2);
+        (void)memset(ctx2.sens_key, 0, sizeof ctx2.sens_key);
+        st = ogk_nmpc_replan(&ctx, &in, &rep);
+        st_ref = ogk_nmpc_replan(&ctx2, &in, &rep_ref);
+        print_message("case %u: status %d, t_f %.17g, %u SQP iterations (recomputed: %d, %.17g, %u)\n",
+                      (unsigned)i, (int)st, rep.t_f, (unsigned)rep.sqp_iterations, (int)st_ref, rep_ref.t_f,
+                      (unsigned)rep_ref.sqp_iterations);
+        OGK_ASSERT_STATUS(st, OGK_OK);
+        OGK_ASSERT_STATUS(st_ref, OGK_OK);
+        assert_int_equal((int)rep.nodes, (int)(8u - drop[i]));
+        assert_int_equal((int)rep.sqp_iterations, (int)rep_ref.sqp_iterations);
+        assert_int_equal((int)rep.qp_iterations, (int)rep_ref.qp_iterations);
+        assert_true(memcmp(&rep.t_f, &rep_ref.t_f, sizeof rep.t_f) == 0);
+        OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx2, &plan2), OGK_OK);
+        assert_true(memcmp(&plan, &plan2, sizeof plan) == 0);
+    }
+}
+
 /* A solve that cannot finish flies the previous plan, says so, and leaves
  * the context usable. */
 /* req: OGK-NMPC-005 OGK-NMPC-008 */
@@ -686,6 +751,7 @@ int main(void)
         cmocka_unit_test(test_sqp_exact_hessian),
         cmocka_unit_test(test_coast_rendezvous_zero_fuel),
         cmocka_unit_test(test_strategies_and_command),
+        cmocka_unit_test(test_warm_sensitivities_exact),
         cmocka_unit_test(test_failure_and_bad_input),
         cmocka_unit_test(test_keepout_detour),
         cmocka_unit_test(test_reset_equals_init),

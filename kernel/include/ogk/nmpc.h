@@ -95,6 +95,11 @@ extern "C" {
     + (4u * ((2u * OGK_NMPC_NX) + 2u + (OGK_NMPC_NX * OGK_NMPC_NX) + (OGK_NMPC_NX * (OGK_NMPC_MAX_DIR + 1u)))))
 
 /* ogk_nmpc_config_t.objective */
+/* doubles of one subinterval's sensitivity key: X_k, U_k, U_k+1, h, t_start */
+#define OGK_NMPC_SENS_KEY (OGK_NMPC_NX + (2u * OGK_NMPC_MAX_NU) + 2u)
+/* doubles of the predictive model's fields (the configuration's mu .. body_softening and rk4_steps) */
+#define OGK_NMPC_SENS_MODEL (16u + (5u * OGK_NMPC_MAX_BODIES))
+
 #define OGK_NMPC_MIN_TIME 0u
 #define OGK_NMPC_MIN_FUEL 1u
 /* ogk_nmpc_config_t.engine */
@@ -237,6 +242,13 @@ typedef struct {
     double sens_b0[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_MAX_NU]; /* dF_k/dU_k */
     double sens_b1[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_MAX_NU]; /* dF_k/dU_k+1 */
     double sens_t[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                   /* dF_k/dT */
+    double sens_h[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                   /* dF_k/dh (h = T / N) */
+    double sens_ts[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                  /* dF_k/dt_start (0 without attracting bodies) */
+    /* what subinterval k's sensitivities above were computed from (X_k, U_k, U_k+1, h, and t_start
+     * with an attracting body) and the predictive model they used: an interval whose inputs are the
+     * same bits is not swept again (a warm start's shifted intervals; docs/nmpc-flight.md, 2c) */
+    double sens_key[OGK_NMPC_MAX_NODES * OGK_NMPC_SENS_KEY];
+    double sens_model[OGK_NMPC_SENS_MODEL]; /* the model of every key (keys all 0, matching no interval, after a change) */
     /* exact Hessian: per subinterval k the block sum_i mu_k,i d2F_k,i in (X_k, U_k, U_k+1, T),
      * OGK_NMPC_MAX_DIR square, and the tape of the interval being swept */
     double hess_blk[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR];

@@ -1,0 +1,126 @@
+/* nmpc_sens_cache.c -- the sensitivities of a subinterval kept with the
+ * inputs they were computed from (docs/nmpc-flight.md, section 2c).
+ *
+ * ogk_i_nmpc_shoot is a deterministic function of the predictive model
+ * (the configuration's model fields and rk4_steps), nu, X_k, U_k, U_{k+1},
+ * h and, when a third body attracts, t_start (the model is autonomous
+ * otherwise). Its outputs for the same bits of these inputs are the same
+ * bits, so an interval whose inputs match its slot's key takes the stored
+ * F_k and sensitivities instead of a new sweep: after the SNNS shift a warm
+ * start's intervals 1 .. N-1 are the converged plan's intervals 2 .. N, and
+ * only the first (the new measured state) is swept. Anything else (another
+ * model, a regridded plan, a rejected trial's slot) fails the comparison
+ * and is swept as before. */
+#include "nmpc_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define NX ((size_t)OGK_NMPC_NX)
+/* OGK_NMPC_SENS_KEY from the atoms (no composite expression cast) */
+#define KEY (((size_t)OGK_NMPC_NX + (2u * (size_t)OGK_NMPC_MAX_NU)) + 2u)
+#define MODEL (16u + (5u * (size_t)OGK_NMPC_MAX_BODIES))
+
+/* True when a[0..n) and b[0..n) are the same bits: equal and of the same
+ * sign (only the zeros have two encodings; a NaN equals nothing, so it is
+ * never taken for a stored input). */
+static bool same_bits(const double *a, const double *b, size_t n)
+{
+    bool same = true;
+    size_t i;
+    for (i = 0u; (i < n) && same; ++i) {
+        same = (a[i] == b[i]) && ((signbit(a[i]) != 0) == (signbit(b[i]) != 0));
+    }
+    return same;
+}
+
+/* The fields ogk_i_nmpc_shoot reads, as doubles (the integers exactly). */
+static void model_fields(const ogk_nmpc_config_t *cfg, double *out)
+{
+    size_t b;
+    out[0] = cfg->mu;
+    out[1] = (double)cfg->engine;
+    out[2] = (double)cfg->power;
+    out[3] = cfg->thrust_max;
+    out[4] = cfg->mass_flow_max;
+    out[5] = cfg->solar_length_unit;
+    out[6] = (double)cfg->n_bodies;
+    out[7] = (double)cfg->rk4_steps;
+    (void)memcpy(&out[8], cfg->solar_a, sizeof(cfg->solar_a));
+    (void)memcpy(&out[12], cfg->solar_thrust, sizeof(cfg->solar_thrust));
+    (void)memcpy(&out[14], cfg->solar_flow, sizeof(cfg->solar_flow));
+    for (b = 0u; b < (size_t)OGK_NMPC_MAX_BODIES; ++b) {
+        double *body = &out[16u + (5u * b)];
+        body[0] = cfg->body_mu[b];
+        body[1] = cfg->body_radius[b];
+        body[2] = cfg->body_phase0[b];
+        body[3] = cfg->body_rate[b];
+        body[4] = cfg->body_softening[b];
+    }
+}
+
+void ogk_i_nmpc_cache_reset(ogk_nmpc_t *ctx)
+{
+    /* a key with h = 0 matches no interval (h > 0) */
+    (void)memset(ctx->sens_key, 0, sizeof(ctx->sens_key));
+    model_fields(&ctx->cfg, ctx->sens_model);
+}
+
+void ogk_i_nmpc_cache_begin(ogk_nmpc_t *ctx)
+{
+    double model[OGK_NMPC_SENS_MODEL];
+    model_fields(&ctx->cfg, model);
+    if (!same_bits(model, ctx->sens_model, MODEL)) {
+        ogk_i_nmpc_cache_reset(ctx);
+    }
+}
+
+size_t ogk_i_nmpc_cache_key(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t k, /* NOLINT(bugprone-easily-swappable-parameters): internal, the interval then its (t_start, h) in ogk_i_nmpc_shoot's order; callers in nmpc_sqp.c */
+                            double t_start, double h, double *key)
+{
+    const size_t nu = (size_t)p->nu;
+    size_t n = (NX + (2u * nu)) + 1u;
+    (void)memset(key, 0, KEY * sizeof(double));
+    (void)memcpy(key, &p->x[k * NX], NX * sizeof(double));
+    (void)memcpy(&key[NX], &p->u[k * nu], 2u * nu * sizeof(double));
+    key[n - 1u] = h;
+    if (ogk_i_nmpc_ncol(&ctx->cfg, p->nu) > n) {
+        /* an attracting body: the model depends on time */
+        key[n] = t_start;
+        n += 1u;
+    }
+    return n;
+}
+
+bool ogk_i_nmpc_cache_hit(const ogk_nmpc_t *ctx, size_t k, const double *key, size_t n_key)
+{
+    /* k < OGK_NMPC_MAX_NODES: the caller's loop bound */
+    return same_bits(&ctx->sens_key[k * KEY], key, n_key);
+}
+
+void ogk_i_nmpc_cache_store(ogk_nmpc_t *ctx, size_t k, const double *key)
+{
+    /* k < OGK_NMPC_MAX_NODES: the caller's loop bound */
+    if (key != NULL) {
+        (void)memcpy(&ctx->sens_key[k * KEY], key, KEY * sizeof(double));
+    } else {
+        (void)memset(&ctx->sens_key[k * KEY], 0, KEY * sizeof(double));
+    }
+}
+
+void ogk_i_nmpc_cache_drop(ogk_nmpc_t *ctx, uint32_t nodes, uint32_t count, uint32_t nu) /* NOLINT(bugprone-easily-swappable-parameters): internal, the plan's node count then the dropped count, as ogk_i_nmpc_plan_drop; its only caller is nmpc.c */
+{
+    /* slots count .. nodes - 1 move to 0 .. nodes - count - 1, keys with
+     * their data; the slots above keep theirs (each slot stays a matching
+     * pair) */
+    const size_t keep = (size_t)nodes - (size_t)count; /* caller: count < nodes <= OGK_NMPC_MAX_NODES */
+    const size_t c = (size_t)count;
+    const size_t u = (size_t)nu;
+    (void)memmove(ctx->sens_f, &ctx->sens_f[c * NX], keep * NX * sizeof(double));
+    (void)memmove(ctx->sens_a, &ctx->sens_a[c * NX * NX], keep * NX * NX * sizeof(double));
+    (void)memmove(ctx->sens_b0, &ctx->sens_b0[c * NX * u], keep * NX * u * sizeof(double));
+    (void)memmove(ctx->sens_b1, &ctx->sens_b1[c * NX * u], keep * NX * u * sizeof(double));
+    (void)memmove(ctx->sens_h, &ctx->sens_h[c * NX], keep * NX * sizeof(double));
+    (void)memmove(ctx->sens_ts, &ctx->sens_ts[c * NX], keep * NX * sizeof(double));
+    (void)memmove(ctx->sens_key, &ctx->sens_key[c * KEY], keep * KEY * sizeof(double));
+}
