@@ -168,7 +168,7 @@ test: deps
 	$(MAKE) test-unit-arm
 	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack stack-bound-m7 footprint-m7
 	$(MAKE) test-flight-app
-	$(MAKE) test-unit-sparc test-flight-app-sparc test-flt-eval stack-bound-sparc footprint-sparc
+	$(MAKE) test-unit-sparc test-flight-app-sparc test-flt-eval stack-bound-sparc footprint-sparc test-qemu-plugin-sparc
 	$(MAKE) test-eigen
 	$(MAKE) gates
 	$(MAKE) eva

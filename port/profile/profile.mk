@@ -67,8 +67,20 @@ $(PROFILE_B)/pil_m7/%.json: scenarios/%.toml $(ARM_B)/libogk.a $(ARM_RT_OBJ) $(Q
 	mv $(@:.json=.tmp.json) $@
 profile-pil-m7: $(PROFILE_PIL_M7)
 
-profile: deps stack-bound-m7 footprint-m7 stack-bound-sparc footprint-sparc profile-pil-m7
+# SPARC V8: instructions per call of the orbit-injection entry points over the flight application's
+# whole flight (port/cortex-m7/flightapp built for SPARC, table decoded into RAM), by the QEMU plugin
+# under qemu-user (calls return after their delay slot; make test-qemu-plugin-sparc checks it).
+PROFILE_FA_ENTRIES := ogk_nog_sample ogk_nog_command ogk_cpd_step ogk_cpd_input_from_thrust_cmd \
+  ogk_nog_table_load ogk_nog_init ogk_cpd_init
+$(PROFILE_B)/insns_sparc_flightapp.txt: $(SPARC_FA) $(QP_SO)
+	@mkdir -p $(@D)
+	QEMU_PLUGIN_SO=$(QP_SO) port/qemu-plugin/count_insns_user.sh $(SPARC_QEMU) sparc64-linux-gnu-nm \
+	  $(SPARC_FA) $(PROFILE_FA_ENTRIES) > $@.tmp 2> /dev/null && mv $@.tmp $@
+
+profile: deps stack-bound-m7 footprint-m7 stack-bound-sparc footprint-sparc profile-pil-m7 \
+  $(PROFILE_B)/insns_sparc_flightapp.txt
 	python3 port/profile/profile.py --stack m7=$(PROFILE_B)/stack_m7.json sparc=$(PROFILE_B)/stack_sparc.json \
 	  --footprint m7=$(PROFILE_B)/footprint_m7.json sparc=$(PROFILE_B)/footprint_sparc.json \
 	  --campaign $(foreach f,$(PROFILE_PIL_M7),m7=$(f)) \
+	  --program sparc=flightapp=$(PROFILE_B)/insns_sparc_flightapp.txt \
 	  --json $(PROFILE_B)/profile.json --doc docs/profile.md

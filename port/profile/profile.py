@@ -6,6 +6,8 @@ generated docs/profile.md. Inputs, all produced by `make profile` in the same ru
   --campaign T=FILE...  processor-in-the-loop envelopes (`ogk mc ... --target T`): instructions per call
                         and the painted stack of every entry point the flight programs call, worst over
                         the recorded inputs, with the run and step that produced it.
+  --program T=NAME=FILE the QEMU plugin's report (count_insns*.sh) of a program run on target T: the
+                        worst instructions per call of its entry points over that run (no painting).
 The painted stack of every entry point must stay under its static bound (exit 1 otherwise): the
 measurement cross-checks the bound on the worst input the campaigns recorded. Nothing timed goes in:
 the profile is identical from run to run.
@@ -14,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 from pathlib import Path
 
@@ -22,13 +25,29 @@ def _pairs(items: list[str]) -> list[tuple[str, Path]]:
     return [(i.split("=", 1)[0], Path(i.split("=", 1)[1])) for i in items]
 
 
-def merge_campaigns(files: list[tuple[str, Path]]) -> tuple[dict, list[dict]]:
+_FN = re.compile(r"^insn_count fn (\S+) entry 0x[0-9a-f]+ calls (\d+) total \d+ min \d+ max (\d+)")
+
+
+def program_envelope(name: str, report: Path) -> dict:
+    """A plugin report as the entries of a campaign envelope (the run and step are unknown: -1)."""
+    entries = {}
+    for line in report.read_text().splitlines():
+        m = _FN.match(line)
+        if m and int(m.group(2)) > 0:
+            entries[m.group(1)] = {"calls": int(m.group(2)),
+                                   "insn_max": {"value": int(m.group(3)), "run_id": -1, "step": -1}}
+    return {"scenario": name, "runs": 1, "seed": None, "pil": {"entry_points": entries}}
+
+
+def merge_campaigns(files: list[tuple[str, Path]],
+                    programs: list[tuple[str, str, Path]] = ()) -> tuple[dict, list[dict]]:
     """target -> entry -> worst instructions and painted stack over every campaign, with where."""
     worst: dict[str, dict[str, dict]] = {}
     listed: list[dict] = []
-    for target, path in files:
-        env = json.loads(path.read_text())
-        name = Path(env.get("scenario_path") or env.get("scenario", path.stem)).stem
+    loaded = [(t, json.loads(p.read_text())) for t, p in files]
+    loaded += [(t, program_envelope(n, p)) for t, n, p in programs]
+    for target, env in loaded:
+        name = Path(env.get("scenario_path") or env["scenario"]).stem
         hvt = (env.get("pil") or {}).get("host_vs_target") or {}
         listed.append({"target": target, "scenario": name, "runs": env.get("runs"),
                        "seed": env.get("seed"), "scenario_sha256": env.get("scenario_sha256"),
@@ -50,8 +69,8 @@ def merge_campaigns(files: list[tuple[str, Path]]) -> tuple[dict, list[dict]]:
 
 
 def build(stack: list[tuple[str, Path]], foot: list[tuple[str, Path]],
-          camp: list[tuple[str, Path]]) -> tuple[dict, list[str]]:
-    worst, listed = merge_campaigns(camp)
+          camp: list[tuple[str, Path]], programs: list[tuple[str, str, Path]] = ()) -> tuple[dict, list[str]]:
+    worst, listed = merge_campaigns(camp, programs)
     problems: list[str] = []
     targets: dict[str, dict] = {}
     for target, path in stack:
@@ -90,6 +109,10 @@ def markdown(doc: dict) -> str:
            "worst over those inputs.", ""]
     out += ["Campaigns flown for this profile:", ""]
     for c in doc["campaigns"]:
+        if c["seed"] is None:
+            out.append(f"- `{c['scenario']}` on `{c['target']}`: one run of the program under the "
+                       "QEMU plugin (instructions per call; no painted stack)")
+            continue
         verdict = {True: "within the stated bounds", False: "OUTSIDE the stated bounds",
                    None: "not compared"}[c.get("host_vs_target_within_bounds")]
         out.append(f"- `{c['scenario']}` on `{c['target']}`: {c['runs']} runs, seed {c['seed']}; "
@@ -101,7 +124,8 @@ def markdown(doc: dict) -> str:
         for entry, e in t.get("entry_points", {}).items():
             p = e.get("stack_painted")
             im = e.get("insn_max")
-            where = f"{im['scenario']} {im['run_id']} {im['step']}" if im else ""
+            where = (f"{im['scenario']} {im['run_id']} {im['step']}" if im and im["run_id"] >= 0
+                     else f"{im['scenario']} (whole run)" if im else "")
             path = " > ".join(e["deepest_path"][1:6])
             out.append(f"| `{entry}` | {e['stack_bound']} | {p['value'] if p else ''} | "
                        f"{im['value'] if im else ''} | {where} | {e.get('calls', '')} | {path} |")
@@ -124,10 +148,12 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--stack", nargs="+", default=[])
     ap.add_argument("--footprint", nargs="*", default=[])
     ap.add_argument("--campaign", nargs="*", default=[])
+    ap.add_argument("--program", nargs="*", default=[])
     ap.add_argument("--json", type=Path, required=True)
     ap.add_argument("--doc", type=Path, required=True)
     a = ap.parse_args(argv)
-    doc, problems = build(_pairs(a.stack), _pairs(a.footprint), _pairs(a.campaign))
+    programs = [(i.split("=", 2)[0], i.split("=", 2)[1], Path(i.split("=", 2)[2])) for i in a.program]
+    doc, problems = build(_pairs(a.stack), _pairs(a.footprint), _pairs(a.campaign), programs)
     doc["problems"] = problems
     a.json.parent.mkdir(parents=True, exist_ok=True)
     a.json.write_text(json.dumps(doc, indent=1, sort_keys=True) + "\n")

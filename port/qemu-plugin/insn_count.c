@@ -68,19 +68,17 @@ static fn_counter fns[MAX_ITEMS];
 static size_t n_fns;
 static range_counter ranges[MAX_ITEMS];
 static size_t n_ranges;
-static uint64_t previous_tb_end;
-static int previous_tb_called; /* the previous block ended with bl/blx */
+static uint64_t previous_ret; /* return address of the call that ended the previous block, or 0 */
+static int sparc_guest;        /* SPARC: a call returns to its address + 8 (after the delay slot) */
 static char out_path[4096];
 static FILE *calls_file; /* calls=PATH: one line per completed call */
 
-/* Translation block start and end (address after its last instruction),
- * packed in the callback's userdata: guest addresses are 32-bit and Thumb
- * instructions 2-byte aligned, so bit 0 of the end flags a block whose last
- * instruction is a call. */
-static void *pack_tb(uint64_t start, uint64_t end, int ends_with_call)
+/* Translation block start and, for a block that ends with a call, the call's
+ * return address (0 otherwise), packed in the callback's userdata: guest
+ * addresses are 32-bit. */
+static void *pack_tb(uint64_t start, uint64_t ret)
 {
-    return (void *)(uintptr_t)(((start & 0xFFFFFFFFu) << 32) | (end & 0xFFFFFFFEu) |
-                               (ends_with_call ? 1u : 0u));
+    return (void *)(uintptr_t)(((start & 0xFFFFFFFFu) << 32) | (ret & 0xFFFFFFFFu));
 }
 
 /* Thumb BL / BLX (immediate) / BLX (register) (ARMv7-M ARM A7.7.18-19). */
@@ -103,13 +101,24 @@ static int is_thumb_call(const struct qemu_plugin_insn *insn)
     return 0;
 }
 
+/* SPARC V8 call (format 1) or jmpl with rd = %o7 (a call through a register);
+ * instructions are big-endian words (SPARC Architecture Manual V8, B.24, B.25). */
+static int is_sparc_call(const struct qemu_plugin_insn *insn)
+{
+    const uint8_t *b = qemu_plugin_insn_data(insn);
+    if (b == NULL || qemu_plugin_insn_size(insn) != 4) {
+        return 0;
+    }
+    const uint32_t w = ((uint32_t)b[0] << 24) | ((uint32_t)b[1] << 16) | ((uint32_t)b[2] << 8) | b[3];
+    return (w >> 30) == 1u || ((w >> 30) == 2u && ((w >> 19) & 0x3Fu) == 0x38u && ((w >> 25) & 0x1Fu) == 15u);
+}
+
 static void on_tb_exec(unsigned int vcpu_index, void *userdata)
 {
     (void)vcpu_index;
     const uint64_t packed = (uint64_t)(uintptr_t)userdata;
     const uint64_t start = packed >> 32;
-    const uint64_t end = packed & 0xFFFFFFFEu;
-    const int ends_with_call = (int)(packed & 1u);
+    const uint64_t ret = packed & 0xFFFFFFFFu;
     for (size_t i = 0; i < n_fns; ++i) {
         fn_counter *fn = &fns[i];
         if (fn->active && start == fn->return_addr) {
@@ -126,25 +135,27 @@ static void on_tb_exec(unsigned int vcpu_index, void *userdata)
             }
             fn->active = 0;
         }
-        if (!fn->active && start == fn->entry && !previous_tb_called) {
+        if (!fn->active && start == fn->entry && previous_ret == 0u) {
             fn->skipped += 1; /* tail branch or fall-through: return unknown */
         } else if (!fn->active && start == fn->entry) {
             fn->active = 1;
-            fn->return_addr = previous_tb_end;
+            fn->return_addr = previous_ret;
             fn->start_total = total_insns; /* this block's instructions not yet counted */
             fn->calls += 1;
         }
     }
-    previous_tb_end = end;
-    previous_tb_called = ends_with_call;
+    /* A SPARC call whose delay slot QEMU translated as a block of its own: the
+     * call is still pending while that block (at the return address - 4) runs. */
+    if (ret != 0u || !(sparc_guest && previous_ret != 0u && start + 4u == previous_ret)) {
+        previous_ret = ret;
+    }
 }
 
 static void on_tb_translate(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
 {
     (void)id;
     const size_t n = qemu_plugin_tb_n_insns(tb);
-    uint64_t end = qemu_plugin_tb_vaddr(tb);
-    int ends_with_call = 0;
+    uint64_t ret = 0u;
     for (size_t k = 0; k < n; ++k) {
         struct qemu_plugin_insn *insn = qemu_plugin_tb_get_insn(tb, k);
         const uint64_t addr = qemu_plugin_insn_vaddr(insn);
@@ -156,14 +167,18 @@ static void on_tb_translate(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
                     insn, QEMU_PLUGIN_INLINE_ADD_U64, &ranges[r].executed, 1);
             }
         }
-        end = addr + qemu_plugin_insn_size(insn);
-        if (k + 1 == n) {
-            ends_with_call = is_thumb_call(insn);
+        if (sparc_guest) {
+            /* the call is the last instruction, or the last but its delay slot */
+            if (k + 2 >= n && is_sparc_call(insn)) {
+                ret = addr + 8u;
+            }
+        } else if (k + 1 == n && is_thumb_call(insn)) {
+            ret = addr + qemu_plugin_insn_size(insn);
         }
     }
     if (n_fns > 0) {
         qemu_plugin_register_vcpu_tb_exec_cb(tb, on_tb_exec, QEMU_PLUGIN_CB_NO_REGS,
-                                             pack_tb(qemu_plugin_tb_vaddr(tb), end, ends_with_call));
+                                             pack_tb(qemu_plugin_tb_vaddr(tb), ret));
     }
 }
 
@@ -309,6 +324,7 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
             return -1;
         }
     }
+    sparc_guest = info->target_name != NULL && strncmp(info->target_name, "sparc", 5) == 0;
     qemu_plugin_register_vcpu_tb_trans_cb(id, on_tb_translate);
     qemu_plugin_register_atexit_cb(id, on_exit_report, NULL);
     return 0;

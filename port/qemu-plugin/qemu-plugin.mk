@@ -3,6 +3,7 @@
 #   make qemu-plugin        build/qemu-plugin/libinsn_count.so
 #   make test-qemu-plugin   known-answer + repeatability check
 #   port/qemu-plugin/count_insns.sh ELF FUNCTION...   per-function counts
+#   make test-qemu-plugin-sparc, port/qemu-plugin/count_insns_user.sh   the same on SPARC V8 (qemu-user)
 QP_B := $(B)/qemu-plugin
 QP_SO := $(QP_B)/libinsn_count.so
 
@@ -18,3 +19,13 @@ $(QP_B)/known_counts.elf: port/qemu-plugin/known_counts.c $(ARM_RT_OBJ) $(ARM_LD
 	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
 test-qemu-plugin: $(QP_SO) $(QP_B)/known_counts.elf
 	QEMU_PLUGIN_SO=$(QP_SO) port/qemu-plugin/check_plugin.sh $(QP_B)/known_counts.elf
+
+# The same known answers on SPARC V8 under qemu-user (calls return after their delay slot):
+#   make test-qemu-plugin-sparc
+$(QP_B)/known_counts_sparc: port/qemu-plugin/known_counts_sparc.c | apt
+	@mkdir -p $(@D)
+	sparc64-linux-gnu-gcc -m32 -mcpu=v8 -std=gnu99 -Wall -Wextra -Werror -O2 -static $< -o $@
+.PHONY: test-qemu-plugin-sparc
+test-qemu-plugin-sparc: $(QP_SO) $(QP_B)/known_counts_sparc
+	QEMU_PLUGIN_SO=$(QP_SO) COUNTER="count_insns_user.sh qemu-sparc32plus sparc64-linux-gnu-nm" \
+	  TEN=12 CALLS=17 port/qemu-plugin/check_plugin.sh $(QP_B)/known_counts_sparc

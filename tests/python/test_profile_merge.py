@@ -63,3 +63,24 @@ def test_measured_entry_without_bound_fails(tmp_path):
     r, _, _ = run(tmp_path, bound=512, extra={"ogk_b_step": entry(1, 10, 0, 0, 8, 0)})
     assert r.returncode == 1
     assert "ogk_b_step: measured by a campaign but has no static bound" in r.stdout
+
+
+def test_a_program_report_adds_its_worst_call(tmp_path):
+    """The plugin's report of a whole program run gives each entry's worst call, marked as a whole run."""
+    stack = tmp_path / "stack.json"
+    stack.write_text(json.dumps({"isa": "sparc", "problems": [], "entry_points": {
+        "ogk_a_step": {"bytes": 900, "frame": 96, "path": ["ogk_a_step"], "outside_kernel": [],
+                       "indirect": False}}}))
+    rep = tmp_path / "rep.txt"
+    rep.write_text("insn_count total 99\n"
+                   "insn_count fn ogk_a_step entry 0x00010600 calls 7 total 70 min 4 max 31\n"
+                   "insn_count fn ogk_never entry 0x00010700 calls 0 total 0 min 0 max 0\n"
+                   "insn_count range ogk_a_step 0x00010600-0x00010640 executed 50\n")
+    out, doc = tmp_path / "p.json", tmp_path / "p.md"
+    r = subprocess.run([sys.executable, str(ROOT / "port/profile/profile.py"), "--stack", f"sparc={stack}",
+                        "--program", f"sparc=demo_app={rep}", "--json", str(out), "--doc", str(doc)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout
+    e = json.loads(out.read_text())["targets"]["sparc"]["entry_points"]["ogk_a_step"]
+    assert e["calls"] == 7 and e["insn_max"]["value"] == 31 and e["stack_painted"] is None
+    assert "| `ogk_a_step` | 900 |  | 31 | demo_app (whole run) | 7 |" in doc.read_text()
