@@ -5,25 +5,12 @@
 #include <float.h>
 #include <string.h>
 
+#include "endgame_fixture.h"
 #include "ogk/cutoff.h"
 
-#define MU 3.986004e14
-#define A_TARGET 42164.0e3
 #define ACCEL 17.7   /* [m/s^2] thrust acceleration at the end of the LEO-to-GEO burn */
 #define DT 0.02      /* [s] control period */
 #define T_CROSS 105.8123 /* [s] time the energy reaches the target (not on the 20 ms grid) */
-
-static ogk_cutoff_config_t config(void)
-{
-    ogk_cutoff_config_t cfg;
-    (void)ogk_cutoff_config_default(&cfg);
-    cfg.mu_m3_s2 = MU;
-    cfg.target_sma_m = A_TARGET;
-    cfg.arm_before_s = 2.0;
-    cfg.extend_max_s = 10.0;
-    cfg.control_period_s = DT;
-    return cfg;
-}
 
 /* On the target circle r = a, with the speed reaching the circular speed at
  * T_CROSS while accelerating at ACCEL along the velocity (transverse): the
@@ -57,7 +44,7 @@ static ogk_cutoff_out_t fly(ogk_cutoff_t *ctx, double t0, double t_end, double t
 /* req: OGK-NOG-016 */
 static void test_crossing_between_control_steps(void **state)
 {
-    const ogk_cutoff_config_t cfg = config();
+    const ogk_cutoff_config_t cfg = cutoff_config(DT);
     ogk_cutoff_t ctx;
     ogk_cutoff_out_t out;
     (void)state;
@@ -92,7 +79,7 @@ static void test_crossing_between_control_steps(void **state)
 /* req: OGK-NOG-016 */
 static void test_prediction_early_is_overridden(void **state)
 {
-    const ogk_cutoff_config_t cfg = config();
+    const ogk_cutoff_config_t cfg = cutoff_config(DT);
     ogk_cutoff_t ctx;
     ogk_cutoff_out_t out;
     (void)state;
@@ -105,7 +92,7 @@ static void test_prediction_early_is_overridden(void **state)
 /* req: OGK-NOG-016 */
 static void test_not_armed_before_window(void **state)
 {
-    const ogk_cutoff_config_t cfg = config();
+    const ogk_cutoff_config_t cfg = cutoff_config(DT);
     ogk_cutoff_t ctx;
     ogk_cutoff_out_t out;
     (void)state;
@@ -125,7 +112,7 @@ static void test_not_armed_before_window(void **state)
 /* req: OGK-NOG-016 */
 static void test_backstop_when_energy_short(void **state)
 {
-    ogk_cutoff_config_t cfg = config();
+    ogk_cutoff_config_t cfg = cutoff_config(DT);
     ogk_cutoff_t ctx;
     ogk_cutoff_out_t out;
     (void)state;
@@ -140,7 +127,7 @@ static void test_backstop_when_energy_short(void **state)
 /* req: OGK-NOG-016 */
 static void test_bad_input_changes_nothing(void **state)
 {
-    const ogk_cutoff_config_t cfg = config();
+    const ogk_cutoff_config_t cfg = cutoff_config(DT);
     ogk_cutoff_t ctx;
     ogk_cutoff_t before;
     ogk_cutoff_out_t out;
@@ -184,7 +171,7 @@ static void test_bad_input_changes_nothing(void **state)
 /* req: OGK-NOG-016 */
 static void test_rate_overflow_is_no_rate(void **state)
 {
-    const ogk_cutoff_config_t cfg = config();
+    const ogk_cutoff_config_t cfg = cutoff_config(DT);
     ogk_cutoff_t ctx;
     ogk_cutoff_out_t out;
     ogk_nav_state_t nav = burn_state(0.0);
@@ -205,7 +192,7 @@ static void test_rate_overflow_is_no_rate(void **state)
  * 10 m, 1 ns apart): the quotient overflows, and no rate is used. */
 static void test_rate_of_absurd_mu_is_no_rate(void **state)
 {
-    ogk_cutoff_config_t cfg = config();
+    ogk_cutoff_config_t cfg = cutoff_config(DT);
     ogk_cutoff_t ctx;
     ogk_cutoff_out_t out;
     ogk_nav_state_t nav = burn_state(100.0);
@@ -224,7 +211,7 @@ static void test_rate_of_absurd_mu_is_no_rate(void **state)
 /* req: OGK-NOG-016 */
 static void test_contract(void **state)
 {
-    ogk_cutoff_config_t cfg = config();
+    ogk_cutoff_config_t cfg = cutoff_config(DT);
     ogk_cutoff_t ctx;
     ogk_cutoff_out_t out;
     const ogk_nav_state_t nav = burn_state(100.0);
@@ -241,21 +228,21 @@ static void test_contract(void **state)
     OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &nav, 106.0, NULL), OGK_E_NULL);
     cfg.mu_m3_s2 = 0.0;
     OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_E_CONFIG);
-    cfg = config();
+    cfg = cutoff_config(DT);
     cfg.target_sma_m = -1.0;
     OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_E_CONFIG);
-    cfg = config();
+    cfg = cutoff_config(DT);
     cfg.arm_before_s = -0.1;
     OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_E_CONFIG);
-    cfg = config();
+    cfg = cutoff_config(DT);
     cfg.extend_max_s = INFINITY;
     OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_E_CONFIG);
-    cfg = config();
+    cfg = cutoff_config(DT);
     cfg.control_period_s = 0.0;
     OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_E_CONFIG);
     assert_int_not_equal((int)ctx.init_marker, 0x43555430); /* rejected config: still not initialised */
     /* The closed bounds are admitted: extend_max_s = T_MAX, a prediction at t = 0. */
-    cfg = config();
+    cfg = cutoff_config(DT);
     cfg.extend_max_s = OGK_CUTOFF_T_MAX_S;
     OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_OK);
     OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &nav, 0.0, &out), OGK_OK);

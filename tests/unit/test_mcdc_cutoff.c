@@ -9,22 +9,9 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "endgame_fixture.h"
 #include "ogk/cutoff.h"
 
-#define MU 3.986004e14
-#define A_TARGET 42164.0e3
-
-static ogk_cutoff_config_t config(void)
-{
-    ogk_cutoff_config_t cfg;
-    (void)ogk_cutoff_config_default(&cfg);
-    cfg.mu_m3_s2 = MU;
-    cfg.target_sma_m = A_TARGET;
-    cfg.arm_before_s = 2.0;
-    cfg.extend_max_s = 10.0;
-    cfg.control_period_s = 0.02;
-    return cfg;
-}
 
 static ogk_nav_state_t nav_at(double t_s)
 {
@@ -42,7 +29,7 @@ static ogk_nav_state_t nav_at(double t_s)
  * byte-identical (OGK_E_CONFIG leaves it untouched, ogk/cutoff.h). */
 static void init_with(size_t offset, double value, ogk_status want)
 {
-    ogk_cutoff_config_t cfg = config();
+    ogk_cutoff_config_t cfg = cutoff_config(0.02);
     ogk_cutoff_t ctx;
     ogk_cutoff_t before;
     (void)memset(&ctx, 0x5a, sizeof ctx);
@@ -78,7 +65,7 @@ static void test_each_config_bound_decides_alone(void **state)
  * reports the backstop t_predicted + extend_max_s (or T_MAX with no usable prediction). */
 static void step_with(size_t offset, double value, double t_predicted, ogk_status want)
 {
-    const ogk_cutoff_config_t cfg = config();
+    const ogk_cutoff_config_t cfg = cutoff_config(0.02);
     ogk_cutoff_t ctx;
     ogk_cutoff_t before;
     ogk_nav_state_t nav = nav_at(100.0);

@@ -10,20 +10,9 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "endgame_fixture.h"
 #include "ogk/terminal.h"
 
-#define MU 3.986004e14
-#define R_F 42164.0e3
-
-static ogk_terminal_config_t config(void)
-{
-    ogk_terminal_config_t cfg;
-    (void)ogk_terminal_config_default(&cfg);
-    cfg.mu_m3_s2 = MU;
-    cfg.target_radius_m = R_F;
-    cfg.window_s = 3.0;
-    return cfg;
-}
 
 static ogk_nav_state_t nav_at(double t_s)
 {
@@ -37,23 +26,11 @@ static ogk_nav_state_t nav_at(double t_s)
     return nav;
 }
 
-static ogk_thrust_cmd_t law_command(double t_s)
-{
-    ogk_thrust_cmd_t cmd;
-    (void)memset(&cmd, 0, sizeof cmd);
-    cmd.t_s = t_s;
-    cmd.alpha_rad = 0.5;
-    cmd.beta_rad = -0.25;
-    cmd.flags = OGK_THRUST_FLAG_ENGINE_ON;
-    cmd.law_flags = 0x2u;
-    return cmd;
-}
-
 /* One configuration field set to value: init gives want; a rejection leaves the context
  * byte-identical; an accepted one has the circular speed sqrt(mu / R_f) of eq. (20). */
 static void init_with(size_t offset, double value, ogk_status want)
 {
-    ogk_terminal_config_t cfg = config();
+    ogk_terminal_config_t cfg = terminal_config();
     ogk_terminal_t ctx;
     ogk_terminal_t before;
     (void)memset(&ctx, 0x5a, sizeof ctx);
@@ -86,7 +63,7 @@ static void test_each_config_bound_decides_alone(void **state)
  * rejection the context is unchanged and the output is the law's command marked safe. */
 static void step_with(size_t offset, double value, double t_predicted, ogk_status want)
 {
-    const ogk_terminal_config_t cfg = config();
+    const ogk_terminal_config_t cfg = terminal_config();
     ogk_terminal_t ctx;
     ogk_terminal_t before;
     ogk_nav_state_t nav = nav_at(100.0);
@@ -132,7 +109,7 @@ static void test_each_envelope_bound_decides_alone(void **state)
 /* req: OGK-NOG-017 */
 static void test_nan_beta_alone_gives_last_terminal_command(void **state)
 {
-    const ogk_terminal_config_t cfg = config();
+    const ogk_terminal_config_t cfg = terminal_config();
     ogk_terminal_t ctx;
     ogk_terminal_t before;
     ogk_nav_state_t nav = nav_at(100.0);

@@ -5,20 +5,9 @@
 
 #include <string.h>
 
+#include "endgame_fixture.h"
 #include "ogk/terminal.h"
 
-#define MU 3.986004e14
-#define R_F 42164.0e3
-
-static ogk_terminal_config_t config(void)
-{
-    ogk_terminal_config_t cfg;
-    (void)ogk_terminal_config_default(&cfg);
-    cfg.mu_m3_s2 = MU;
-    cfg.target_radius_m = R_F;
-    cfg.window_s = 3.0;
-    return cfg;
-}
 
 static ogk_nav_state_t nav_at(double t_s, double v_r, double dv_t, double v_n)
 {
@@ -30,18 +19,6 @@ static ogk_nav_state_t nav_at(double t_s, double v_r, double dv_t, double v_n)
     nav.v_t_mps = sqrt(MU / R_F) + dv_t;
     nav.v_n_mps = v_n;
     return nav;
-}
-
-static ogk_thrust_cmd_t law_command(double t_s)
-{
-    ogk_thrust_cmd_t cmd;
-    (void)memset(&cmd, 0, sizeof cmd);
-    cmd.t_s = t_s;
-    cmd.alpha_rad = 0.5;
-    cmd.beta_rad = -0.25;
-    cmd.flags = OGK_THRUST_FLAG_ENGINE_ON;
-    cmd.law_flags = 0x2u;
-    return cmd;
 }
 
 /* The command's thrust direction (ogk/types.h) against v_go / |v_go|. */
@@ -62,7 +39,7 @@ static void assert_along(const ogk_thrust_cmd_t *cmd, double g_r, double g_t, do
 /* req: OGK-NOG-017 */
 static void test_outside_window_passes_law_command(void **state)
 {
-    const ogk_terminal_config_t cfg = config();
+    const ogk_terminal_config_t cfg = terminal_config();
     ogk_terminal_t ctx;
     const ogk_nav_state_t nav = nav_at(100.0, 3.0, -40.0, -4.0);
     const ogk_thrust_cmd_t law = law_command(100.0);
@@ -77,7 +54,7 @@ static void test_outside_window_passes_law_command(void **state)
 /* req: OGK-NOG-017 */
 static void test_window_steers_along_vgo_and_latches(void **state)
 {
-    const ogk_terminal_config_t cfg = config();
+    const ogk_terminal_config_t cfg = terminal_config();
     ogk_terminal_t ctx;
     ogk_nav_state_t nav = nav_at(100.0, 3.0, -40.0, -4.0);
     ogk_thrust_cmd_t law = law_command(100.0);
@@ -103,7 +80,7 @@ static void test_window_steers_along_vgo_and_latches(void **state)
 /* req: OGK-NOG-017 */
 static void test_direction_constant_while_vgo_shrinks(void **state)
 {
-    const ogk_terminal_config_t cfg = config();
+    const ogk_terminal_config_t cfg = terminal_config();
     ogk_terminal_t ctx;
     ogk_nav_state_t nav = nav_at(104.0, 5.0, -60.0, -3.0);
     ogk_thrust_cmd_t out;
@@ -135,7 +112,7 @@ static void test_direction_constant_while_vgo_shrinks(void **state)
 /* req: OGK-NOG-017 */
 static void test_vgo_zero_holds_direction(void **state)
 {
-    const ogk_terminal_config_t cfg = config();
+    const ogk_terminal_config_t cfg = terminal_config();
     ogk_terminal_t ctx;
     const ogk_nav_state_t nav = nav_at(105.0, 0.0, 0.0, 0.0);
     const ogk_thrust_cmd_t law = law_command(105.0);
@@ -150,7 +127,7 @@ static void test_vgo_zero_holds_direction(void **state)
 /* req: OGK-NOG-017 */
 static void test_rejections_change_nothing(void **state)
 {
-    const ogk_terminal_config_t cfg = config();
+    const ogk_terminal_config_t cfg = terminal_config();
     ogk_terminal_t ctx;
     ogk_terminal_t before;
     ogk_nav_state_t nav = nav_at(100.0, 3.0, -40.0, -4.0);
@@ -208,7 +185,7 @@ static void test_shaped_plan_meets_its_end_conditions(void **state)
     size_t g;
     (void)state;
     for (g = 0u; g < 2u; ++g) {
-        ogk_terminal_config_t cfg = config();
+        ogk_terminal_config_t cfg = terminal_config();
         ogk_terminal_t ctx;
         ogk_nav_state_t nav = nav_at(100.0, 12.0, -45.0, -3.0);
         const ogk_thrust_cmd_t law = law_command(100.0);
@@ -334,7 +311,7 @@ static void axpy(const state6_t *s, double h, const state6_t *d, state6_t *out)
 /* Flies the end of the burn; returns the final nav state (r-t-n). */
 static ogk_nav_state_t fly_end(double shape_gain)
 {
-    ogk_terminal_config_t cfg = config();
+    ogk_terminal_config_t cfg = terminal_config();
     ogk_terminal_t ctx;
     const double accel = 17.7;
     const double h = 0.02;
@@ -413,7 +390,7 @@ static void test_shaped_window_steers_out_the_position_miss(void **state)
 /* req: OGK-NOG-017 */
 static void test_shaped_fallbacks(void **state)
 {
-    ogk_terminal_config_t cfg = config();
+    ogk_terminal_config_t cfg = terminal_config();
     ogk_terminal_t ctx;
     ogk_nav_state_t nav = nav_at(100.0, 12.0, -45.0, -3.0);
     const ogk_thrust_cmd_t law = law_command(100.0);
@@ -472,7 +449,7 @@ static void test_shaped_fallbacks(void **state)
 /* req: OGK-NOG-017 */
 static void test_contract(void **state)
 {
-    ogk_terminal_config_t cfg = config();
+    ogk_terminal_config_t cfg = terminal_config();
     ogk_terminal_t ctx;
     const ogk_nav_state_t nav = nav_at(100.0, 0.0, -1.0, 0.0);
     const ogk_thrust_cmd_t law = law_command(100.0);
@@ -491,30 +468,30 @@ static void test_contract(void **state)
     OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 101.0, &law, NULL), OGK_E_NULL);
     cfg.mu_m3_s2 = -1.0;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
-    cfg = config();
+    cfg = terminal_config();
     cfg.target_radius_m = 0.0;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
-    cfg = config();
+    cfg = terminal_config();
     cfg.window_s = NAN;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
-    cfg = config();
+    cfg = terminal_config();
     cfg.mu_m3_s2 = 1.0e308;
     cfg.target_radius_m = 1.0e-300; /* circular speed overflows */
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
     /* Any positive mu and radius are admitted (a normalised problem: mu = 0.5, R_f = 0.5). */
-    cfg = config();
+    cfg = terminal_config();
     cfg.mu_m3_s2 = 0.5;
     cfg.target_radius_m = 0.5;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
     OGK_ASSERT_NEAR(ctx.v_target_mps, 1.0, 0.0);
     /* window 0: never engaged */
-    cfg = config();
+    cfg = terminal_config();
     cfg.window_s = 0.0;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
     OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 100.0, &law, &out), OGK_OK);
     assert_true(memcmp(&out, &law, sizeof out) == 0);
     /* shaping: gain in [0, 1], hold in [HOLD_MIN, window] when the gain is positive */
-    cfg = config();
+    cfg = terminal_config();
     cfg.shape_gain = 1.5;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
     cfg.shape_gain = -0.1;
