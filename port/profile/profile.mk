@@ -74,8 +74,8 @@ PROFILE_FA_ENTRIES := ogk_nog_sample ogk_nog_command ogk_cpd_step ogk_cpd_input_
   ogk_nog_table_load ogk_nog_init ogk_cpd_init
 $(PROFILE_B)/insns_sparc_flightapp.txt: $(SPARC_FA) $(QP_SO)
 	@mkdir -p $(@D)
-	QEMU_PLUGIN_SO=$(QP_SO) port/qemu-plugin/count_insns_user.sh $(SPARC_QEMU) sparc64-linux-gnu-nm \
-	  $(SPARC_FA) $(PROFILE_FA_ENTRIES) > $@.tmp 2> /dev/null && mv $@.tmp $@
+	QEMU_PLUGIN_SO=$(QP_SO) QEMU_USER=$(SPARC_QEMU) NM=sparc64-linux-gnu-nm \
+	  port/qemu-plugin/count_insns.sh $(SPARC_FA) $(PROFILE_FA_ENTRIES) > $@.tmp 2> /dev/null && mv $@.tmp $@
 
 profile: deps stack-bound-m7 footprint-m7 stack-bound-sparc footprint-sparc profile-pil-m7 \
   $(PROFILE_B)/insns_sparc_flightapp.txt

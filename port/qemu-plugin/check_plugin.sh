@@ -2,16 +2,15 @@
 # check_plugin.sh ELF -- known-answer test of the insn_count plugin on
 # known_counts.elf (expected values from the construction of known_counts.c)
 # and a repeatability check (two runs, identical reports).
-# SPARC V8 (known_counts_sparc.c, qemu-user): COUNTER="count_insns_user.sh qemu-sparc32plus
-# sparc64-linux-gnu-nm" TEN=12 CALLS=17 (ten_nops: 10 nops, retl and its delay slot; calls_ten_nops:
-# save, call, delay nop, ret, restore). Defaults: Thumb-2 on the Cortex-M7 (11 and 14).
+# SPARC V8 (known_counts_sparc.c, qemu-user): QEMU_USER=qemu-sparc32plus NM=sparc64-linux-gnu-nm
+# TEN=12 CALLS=17 (ten_nops: 10 nops, retl and its delay slot; calls_ten_nops: save, call, delay
+# nop, ret, restore). Defaults: Thumb-2 on the Cortex-M7 (11 and 14).
 set -u
 here=$(dirname "$0")
 elf=${1:?usage: check_plugin.sh known_counts.elf}
 TEN=${TEN:-11}
 CALLS=${CALLS:-14}
-read -r -a counter <<< "${COUNTER:-count_insns.sh}"
-count() { "$here/${counter[0]}" "${counter[@]:1}" "$@"; }
+count() { "$here/count_insns.sh" "$@"; }
 r1=$(count "$elf" ten_nops calls_ten_nops 2>/dev/null); rc=$?
 r2=$(count "$elf" ten_nops calls_ten_nops 2>/dev/null)
 echo "$r1"

@@ -3,7 +3,7 @@
 #   make qemu-plugin        build/qemu-plugin/libinsn_count.so
 #   make test-qemu-plugin   known-answer + repeatability check
 #   port/qemu-plugin/count_insns.sh ELF FUNCTION...   per-function counts
-#   make test-qemu-plugin-sparc, port/qemu-plugin/count_insns_user.sh   the same on SPARC V8 (qemu-user)
+#   make test-qemu-plugin-sparc   the same on SPARC V8 (qemu-user; count_insns.sh with QEMU_USER, NM)
 QP_B := $(B)/qemu-plugin
 QP_SO := $(QP_B)/libinsn_count.so
 
@@ -27,5 +27,5 @@ $(QP_B)/known_counts_sparc: port/qemu-plugin/known_counts_sparc.c | apt
 	sparc64-linux-gnu-gcc -m32 -mcpu=v8 -std=gnu99 -Wall -Wextra -Werror -O2 -static $< -o $@
 .PHONY: test-qemu-plugin-sparc
 test-qemu-plugin-sparc: $(QP_SO) $(QP_B)/known_counts_sparc
-	QEMU_PLUGIN_SO=$(QP_SO) COUNTER="count_insns_user.sh qemu-sparc32plus sparc64-linux-gnu-nm" \
+	QEMU_PLUGIN_SO=$(QP_SO) QEMU_USER=qemu-sparc32plus NM=sparc64-linux-gnu-nm \
 	  TEN=12 CALLS=17 port/qemu-plugin/check_plugin.sh $(QP_B)/known_counts_sparc
