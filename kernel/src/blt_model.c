@@ -150,8 +150,10 @@ bool blt_rhs(const ogk_blt_model_t *m, const blt_seg_t *seg, double tau, const d
 static double segment_start_time(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k)
 {
     double t = tr->t0;
+    /* k clamped once to n_segments (every caller passes k < n_segments): one condition */
+    const uint32_t k_b = (k < cfg->n_segments) ? k : cfg->n_segments;
     uint32_t j;
-    for (j = 0u; (j < k) && (j < cfg->n_segments); ++j) {
+    for (j = 0u; j < k_b; ++j) {
         t += tr->seg[j][6];
     }
     return t;
@@ -160,8 +162,10 @@ static double segment_start_time(const ogk_blt_config_t *cfg, const ogk_blt_tran
 static double segment_start_mass(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k)
 {
     double burned = 0.0;
+    /* k clamped once to n_segments (every caller passes k < n_segments): one condition */
+    const uint32_t k_b = (k < cfg->n_segments) ? k : cfg->n_segments;
     uint32_t j;
-    for (j = 0u; (j < k) && (j < cfg->n_segments); ++j) {
+    for (j = 0u; j < k_b; ++j) {
         if (cfg->segment_kind[j] == OGK_BLT_SEG_BURN) {
             burned += tr->seg[j][6];
         }

@@ -508,7 +508,9 @@ static ogk_status chol_decompose(ogk_chol_t *ch, const double *A, size_t n)
 
     (void)memset(ch->l, 0, la_bytes(n * n));
     for (i = 0u; (i < n) && (st == OGK_OK); ++i) {
-        for (j = 0u; (j <= i) && (st == OGK_OK); ++j) {
+        /* st changes only at j == i, the inner loop's last pass: j <= i alone
+         * ends it there, and the outer test stops the factorization */
+        for (j = 0u; j <= i; ++j) {
             double sum = A[(i * n) + j];
             for (k = 0u; k < j; ++k) {
                 sum -= ch->l[(i * n) + k] * ch->l[(j * n) + k];

@@ -164,7 +164,9 @@ static ogk_status state_in_interval(const ogk_mpsp_t *ctx, double t, size_t k, d
     seg_hi = ctx->n_nodes - 1u;
     for (i = 0u; i < ctx->n_switch_nodes; ++i) {
         const size_t s = ctx->switch_node[i];
-        if ((s <= k) && (s > seg_lo)) {
+        /* switch nodes increase and are never node 0 (ogk_rk4_propagate), so
+         * s > seg_lo holds whenever s <= k: the last such s is the lower end */
+        if (s <= k) {
             seg_lo = s;
         }
         if ((s >= (k + 1u)) && (s < seg_hi)) {
@@ -200,8 +202,8 @@ ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x)
     if ((ctx == NULL) || (x == NULL)) {
         st = OGK_E_NULL;
     } else if ((ctx->init_marker != OGK_MPSP_INIT_MARKER) ||
-               /* no trajectory held */
-               ((ctx->traj_valid == 0u) || (ctx->n_nodes < 2u))) {
+               /* no trajectory held (a valid one has t0 and tf: n_nodes >= 2) */
+               (ctx->traj_valid == 0u)) {
         st = OGK_E_NOT_INIT;
     } else if (!isfinite(t)) {
         st = OGK_E_NONFINITE;

@@ -462,7 +462,8 @@ ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, double *dy_dw, double *dy_dlm0)
 {
     ogk_status st = check_ctx(ctx);
 
-    if ((st == OGK_OK) && ((ctx->traj_valid == 0u) || (ctx->n_nodes < 2u))) {
+    /* a valid trajectory has t0 and tf: n_nodes >= 2 */
+    if ((st == OGK_OK) && (ctx->traj_valid == 0u)) {
         st = OGK_E_NOT_INIT;
     }
     if (st == OGK_OK) {

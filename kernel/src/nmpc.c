@@ -94,6 +94,8 @@ static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
         && (c->doubling_threshold >= 0.0)
         && (c->doubling_max_nodes <= (OGK_NMPC_MAX_NODES / 2u))
         && (c->n_bodies <= OGK_NMPC_MAX_BODIES);
+    /* clamped so the loop has a fixed bound; n_bodies > MAX has made ok false above */
+    const uint32_t n_bodies = ogk_i_min_u32(c->n_bodies, OGK_NMPC_MAX_BODIES);
     uint32_t b;
     if (ok && (c->power == OGK_NMPC_POWER_SOLAR)) {
         ok = c->solar_length_unit > 0.0;
@@ -102,7 +104,7 @@ static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
     } else {
         /* already rejected */
     }
-    for (b = 0u; ok && (b < c->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
+    for (b = 0u; ok && (b < n_bodies); ++b) {
         ok = (c->body_mu[b] >= 0.0) && (c->body_radius[b] > 0.0) && (c->body_softening[b] >= 0.0)
             && (c->keepout_radius[b] >= 0.0);
     }
@@ -327,7 +329,8 @@ static void shift_plan(ogk_nmpc_t *ctx, double t)
         count = p->nodes;
     }
     if (ctx->cfg.strategy == OGK_NMPC_SNNS) {
-        if ((count >= 1u) && ((p->nodes - count) >= ctx->cfg.min_nodes) && (count < p->nodes)) {
+        /* count <= nodes, and nodes - count >= min_nodes >= 1 (ogk_nmpc_init) gives count < nodes */
+        if ((count >= 1u) && ((p->nodes - count) >= ctx->cfg.min_nodes)) {
             /* SNN: the flown subintervals leave the plan, the rest is the guess */
             ogk_i_nmpc_cache_drop(ctx, p->nodes, count, ctx->nu);
             ogk_i_nmpc_plan_drop(p, count);
@@ -365,7 +368,7 @@ static ogk_status doubling_test(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
     const uint32_t n = ctx->plan.nodes;
 
     if ((cfg->strategy == OGK_NMPC_SNNS) && (ctx->subdivisions < cfg->max_subdivisions)
-        && (n <= cfg->doubling_max_nodes) && ((2u * n) <= OGK_NMPC_MAX_NODES)) {
+        && (n <= cfg->doubling_max_nodes)) { /* 2 n <= OGK_NMPC_MAX_NODES: doubling_max_nodes <= MAX / 2 (init) */
         ogk_status st_sub;
         if (st_n != OGK_OK) {
             anchor_work(ctx, in);

@@ -13,6 +13,7 @@
  * rho b), then shifted (H + delta I) when still not positive definite, and
  * *shifted says so (the SQP then takes the scaled identity instead). */
 #include "nmpc_internal.h"
+#include "ogk_checks.h"
 
 #include <math.h>
 #include <string.h>
@@ -45,11 +46,13 @@ void ogk_i_nmpc_hess_block(uint32_t nu, size_t ncol, size_t k, uint32_t nodes, /
     const double inv_n = 1.0 / (double)nodes;
     const bool with_ts = ncol > nb;
     double t_col[NCOL];
+    /* ncol <= NCOL (ogk_i_nmpc_ncol): clamped once so the loop keeps a fixed bound */
+    const size_t ncol_b = ogk_i_min_size(ncol, NCOL);
     size_t a;
     size_t b;
 
     (void)memset(t_col, 0, sizeof(t_col));
-    for (a = 0u; (a < ncol) && (a < NCOL); ++a) {
+    for (a = 0u; a < ncol_b; ++a) {
         t_col[a] = w_int[(a * NCOL) + col_h];
         if (with_ts) {
             t_col[a] += kk * w_int[(a * NCOL) + col_h + 1u];

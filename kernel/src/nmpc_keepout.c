@@ -3,6 +3,7 @@
  * body b's centre, its violation in the filter's measure and its
  * linearised rows in the condensed QP. Moved out of nmpc_sqp.c unchanged. */
 #include "nmpc_internal.h"
+#include "ogk_checks.h"
 
 #include <math.h>
 
@@ -40,11 +41,15 @@ void ogk_i_nmpc_keepout_violation(const ogk_nmpc_config_t *cfg, const ogk_nmpc_p
                                   double *largest)
 {
     const double h = p->horizon / (double)p->nodes;
+    /* n_bodies <= OGK_NMPC_MAX_BODIES and nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init,
+     * the plan's checks): clamped once so each loop keeps a fixed bound */
+    const size_t n_bodies = ogk_i_min_size(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
+    const size_t nodes = ogk_i_min_size(p->nodes, OGK_NMPC_MAX_NODES);
     size_t k;
     size_t b;
-    for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
+    for (b = 0u; b < n_bodies; ++b) {
         if (cfg->keepout_radius[b] > 0.0) {
-            for (k = 1u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
+            for (k = 1u; k < nodes; ++k) {
                 double dr;
                 double dth;
                 double dt;
@@ -68,9 +73,11 @@ void ogk_i_nmpc_keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t n
 {
     const ogk_nmpc_config_t *cfg = &ctx->cfg;
     const double h = p->horizon / (double)p->nodes;
+    /* n_bodies <= OGK_NMPC_MAX_BODIES (ogk_nmpc_init): clamped once, a fixed bound */
+    const size_t n_bodies = ogk_i_min_size(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
     size_t b;
     size_t c;
-    for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
+    for (b = 0u; b < n_bodies; ++b) {
         if ((cfg->keepout_radius[b] > 0.0) && (ctx->ko_rows < OGK_NMPC_MAX_NODES)) {
             double dr;
             double dth;

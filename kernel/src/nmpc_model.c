@@ -143,10 +143,12 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /
         engine_limits_t lim;
         double pert[2] = { 0.0, 0.0 };
         double pert_jac[2][3] = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0 } };
+        /* n_bodies <= OGK_NMPC_MAX_BODIES (ogk_nmpc_init): clamped once, a fixed bound */
+        const uint32_t n_bodies = ogk_i_min_u32(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
         uint32_t b;
 
         engine_limits(cfg, r, &lim);
-        for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES) && (st == OGK_OK); ++b) {
+        for (b = 0u; (b < n_bodies) && (st == OGK_OK); ++b) {
             if (cfg->body_mu[b] > 0.0) { /* mu = 0: an ephemeris for the keep-out only */
                 st = body_accel(cfg, b, t, r, x[1], pert, (jx != NULL) ? pert_jac : NULL);
             }
@@ -337,6 +339,8 @@ void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /*
     engine_limits_t lim;
     double thrust_drr;
     double flow_drr;
+    /* n_bodies <= OGK_NMPC_MAX_BODIES (ogk_nmpc_init): clamped once, a fixed bound */
+    const uint32_t n_bodies = ogk_i_min_u32(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
     uint32_t b;
 
     engine_limits(cfg, r, &lim);
@@ -363,7 +367,7 @@ void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /*
         hz[(i_a * zs) + i_w] = lim.thrust * inv_m * q_a;
     }
     /* third bodies: (r, D) with D = phi_b(t) - theta, dD/dtheta = -1, dD/dt = rate */
-    for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
+    for (b = 0u; b < n_bodies; ++b) {
         if (cfg->body_mu[b] > 0.0) {
             double hb[3];
             const double rate = cfg->body_rate[b];

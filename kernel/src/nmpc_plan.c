@@ -4,6 +4,7 @@
  * node count by interpolation (CNCN), and subdividing every subinterval in
  * two (the SNNS doubling). */
 #include "nmpc_internal.h"
+#include "ogk_checks.h"
 
 #include <string.h>
 
@@ -28,8 +29,10 @@ void ogk_i_nmpc_plan_control(const ogk_nmpc_plan_t *p, double t, double *u)
     uint32_t k;
     double frac;
     uint32_t i;
+    /* nu <= OGK_NMPC_MAX_NU (ogk_nmpc_init): clamped once, a fixed bound */
+    const uint32_t nu = ogk_i_min_u32(p->nu, OGK_NMPC_MAX_NU);
     locate(p, t, &k, &frac);
-    for (i = 0u; (i < p->nu) && (i < OGK_NMPC_MAX_NU); ++i) {
+    for (i = 0u; i < nu; ++i) {
         u[i] = ((1.0 - frac) * p->u[(k * p->nu) + i]) + (frac * p->u[((k + 1u) * p->nu) + i]);
     }
 }
@@ -49,6 +52,10 @@ void ogk_i_nmpc_plan_regrid(const ogk_nmpc_plan_t *src, double t0,
                             uint32_t nodes, ogk_nmpc_plan_t *dst)
 {
     const double t_f = src->t0 + src->horizon;
+    /* nodes <= OGK_NMPC_MAX_NODES and nu <= OGK_NMPC_MAX_NU (callers, ogk_nmpc_init):
+     * clamped once so each loop keeps a fixed bound */
+    const uint32_t nodes_b = ogk_i_min_u32(nodes, OGK_NMPC_MAX_NODES);
+    const uint32_t nu = ogk_i_min_u32(src->nu, OGK_NMPC_MAX_NU);
     uint32_t j;
     uint32_t i;
 
@@ -57,7 +64,7 @@ void ogk_i_nmpc_plan_regrid(const ogk_nmpc_plan_t *src, double t0,
     dst->nodes = nodes;
     dst->nu = src->nu;
     (void)memcpy(dst->lambda, src->lambda, sizeof(dst->lambda));
-    for (j = 0u; (j <= nodes) && (j <= OGK_NMPC_MAX_NODES); ++j) {
+    for (j = 0u; j <= nodes_b; ++j) {
         const double t = t0 + ((dst->horizon * (double)j) / (double)nodes);
         uint32_t k;
         double frac;
@@ -66,7 +73,7 @@ void ogk_i_nmpc_plan_regrid(const ogk_nmpc_plan_t *src, double t0,
             dst->x[(j * NX) + i] = ((1.0 - frac) * src->x[(k * NX) + i])
                 + (frac * src->x[(((size_t)k + 1u) * NX) + i]);
         }
-        for (i = 0u; (i < src->nu) && (i < OGK_NMPC_MAX_NU); ++i) {
+        for (i = 0u; i < nu; ++i) {
             dst->u[(j * src->nu) + i] = ((1.0 - frac) * src->u[(k * src->nu) + i])
                 + (frac * src->u[((k + 1u) * src->nu) + i]);
         }
@@ -80,6 +87,9 @@ ogk_status ogk_i_nmpc_plan_subdivide(const ogk_nmpc_config_t *cfg,
     ogk_status st = OGK_OK;
     const uint32_t nu = src->nu;
     const double h_half = 0.5 * src->horizon / (double)src->nodes;
+    /* src->nodes <= doubling_max_nodes <= OGK_NMPC_MAX_NODES / 2 (ogk_nmpc_init):
+     * clamped once so the loop keeps a fixed bound */
+    const uint32_t half = ogk_i_min_u32(src->nodes, (OGK_NMPC_MAX_NODES / 2u));
     uint32_t k;
     uint32_t i;
 
@@ -88,7 +98,7 @@ ogk_status ogk_i_nmpc_plan_subdivide(const ogk_nmpc_config_t *cfg,
     dst->nodes = 2u * src->nodes;
     dst->nu = nu;
     (void)memcpy(dst->lambda, src->lambda, sizeof(dst->lambda));
-    for (k = 0u; (k < src->nodes) && (k < (OGK_NMPC_MAX_NODES / 2u)) && (st == OGK_OK); ++k) {
+    for (k = 0u; (k < half) && (st == OGK_OK); ++k) {
         double u_mid[OGK_NMPC_MAX_NU];
         for (i = 0u; i < nu; ++i) {
             /* piecewise linear: the midpoint value is exact */

@@ -6,6 +6,7 @@
  * map it constrains; with a tape, the forward sweep records what the
  * second-order adjoint sweep (nmpc_shoot_hess.c) reads back. */
 #include "nmpc_internal.h"
+#include "ogk_checks.h"
 
 #include <math.h>
 #include <stdbool.h>
@@ -59,8 +60,10 @@ static void stage_k(const double *jx, const double *ju, const double *jt, /* NOL
 static bool attracting_bodies(const ogk_nmpc_config_t *cfg)
 {
     bool any = false;
+    /* n_bodies <= OGK_NMPC_MAX_BODIES (ogk_nmpc_init): clamped once, a fixed bound */
+    const uint32_t n_bodies = ogk_i_min_u32(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
     uint32_t b;
-    for (b = 0u; (b < cfg->n_bodies) && (b < OGK_NMPC_MAX_BODIES); ++b) {
+    for (b = 0u; b < n_bodies; ++b) {
         any = any || (cfg->body_mu[b] > 0.0);
     }
     return any;
@@ -84,6 +87,9 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
     static const uint32_t trig_index[4] = { 0u, 1u, 1u, 2u };
     ogk_status st = OGK_OK;
     const uint32_t steps = cfg->rk4_steps;
+    /* rk4_steps <= OGK_NMPC_MAX_RK4_STEPS (ogk_nmpc_init): clamped once so the
+     * loops below keep a fixed bound with one condition for it */
+    const uint32_t steps_b = ogk_i_min_u32(steps, OGK_NMPC_MAX_RK4_STEPS);
     const double dt = h / (double)steps;
     const double inv_steps = 1.0 / (double)steps;
     const size_t col_h = NX + (2u * (size_t)nu);
@@ -109,7 +115,7 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
     /* cos and sin of the angle at the 2 steps + 1 distinct stage offsets
      * (a step's last stage is the next one's first), the same arithmetic as
      * the stage loop's s_frac */
-    for (i = 0u; (i <= (2u * (size_t)steps)) && (i <= (2u * (size_t)OGK_NMPC_MAX_RK4_STEPS)); ++i) {
+    for (i = 0u; i <= (2u * (size_t)steps_b); ++i) {
         const size_t i_step = i / 2u; /* the step of stage offset i (exact integer division) */
         const double s_frac = ((double)i_step + (((i % 2u) != 0u) ? 0.5 : 0.0)) * inv_steps;
         const double angle = u0[0] + ((u1[0] - u0[0]) * s_frac);
@@ -122,7 +128,7 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
             s_mat[(i * NCOL) + i] = 1.0;
         }
     }
-    for (step = 0u; (step < steps) && (step < OGK_NMPC_MAX_RK4_STEPS) && (st == OGK_OK); ++step) {
+    for (step = 0u; (step < steps_b) && (st == OGK_OK); ++step) {
         double *tape_step = taped ? &tape[(size_t)step * OGK_I_NMPC_TAPE_STEP_Z] : NULL;
         if (tape_step != NULL) {
             (void)memcpy(tape_step, s_mat, sizeof(s_mat));

@@ -194,6 +194,9 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
      * z, so the mass row of Z is e_m plus its column h (m_0 - mdot t): the
      * triangle adds its row only where it is not 0 */
     const bool sparse_m = (cfg->power != OGK_NMPC_POWER_SOLAR) && (nu == 1u);
+    /* steps <= OGK_NMPC_MAX_RK4_STEPS (ogk_nmpc_init): the start of the backward
+     * sweep bounded once (0, no step, beyond it as before) so the loop keeps a fixed bound */
+    const uint32_t n_top = (steps <= OGK_NMPC_MAX_RK4_STEPS) ? steps : 0u;
     uint32_t n;
     size_t i;
     size_t c;
@@ -201,7 +204,7 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
     (void)memset(hess, 0, NCOL * NCOL * sizeof(double));
     (void)memcpy(lambda, w, sizeof(lambda));
     (void)memset(g_h, 0, sizeof(g_h));
-    for (n = steps; (n > 0u) && (n <= OGK_NMPC_MAX_RK4_STEPS); --n) {
+    for (n = n_top; n > 0u; --n) {
         const double *rec_step = &tape[((size_t)n - 1u) * OGK_I_NMPC_TAPE_STEP_Z];
         const double *s_mat = rec_step;
         double lambda_next[NX];

@@ -77,12 +77,15 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
     /* the exact Hessian's blocks come with the sensitivities, for the
      * multipliers y of eq. (5); the intervals then go from the last to the
      * first, carrying the continuity multiplier w backwards */
-    const bool second = with_sens && (y != NULL) && (ctx->cfg.hessian == OGK_NMPC_HESSIAN_EXACT);
+    const double *y_w = with_sens ? y : NULL; /* y != NULL only with the exact Hessian (both callers) */
+    const bool second = y_w != NULL;
     double sens[NX * NCOL];
     double x1[NX];
     double w[NX];
     double l1 = 0.0;
     double mx = 0.0;
+    /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan): clamped once, a fixed bound */
+    const size_t nodes = ogk_i_min_size(p->nodes, OGK_NMPC_MAX_NODES);
     size_t n;
     size_t i;
     size_t j;
@@ -94,11 +97,11 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
     if (second) {
         /* w_{N-1} = dJ/dX_N - dc/dX_N^T y (c of eq. 5: the first four states) */
         for (i = 0u; i < NC; ++i) {
-            w[i] = -y[i];
+            w[i] = -y_w[i];
         }
         w[4] = (ctx->cfg.objective == OGK_NMPC_MIN_FUEL) ? -1.0 : 0.0;
     }
-    for (n = 0u; (n < p->nodes) && (n < OGK_NMPC_MAX_NODES) && (st == OGK_OK); ++n) {
+    for (n = 0u; (n < nodes) && (st == OGK_OK); ++n) {
         const size_t k = second ? ((size_t)p->nodes - 1u - n) : n;
         const double t_start = p->t0 + ((double)k * h);
         double key[OGK_NMPC_SENS_KEY];
@@ -184,6 +187,8 @@ static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, doubl
     const size_t col_t = nv - 1u;
     double g_next[NX * MAXV];
     double e_next[NX];
+    /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan): clamped once, a fixed bound */
+    const size_t nodes = ogk_i_min_size(p->nodes, OGK_NMPC_MAX_NODES);
     size_t k;
     size_t i;
     size_t j;
@@ -195,7 +200,7 @@ static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, doubl
     if (hess != NULL) {
         (void)memset(hess, 0, nv * nv * sizeof(double));
     }
-    for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
+    for (k = 0u; k < nodes; ++k) {
         const double *a = &ctx->sens_a[k * NX * NX];
         if (hess != NULL) {
             /* the exact Hessian's interval k, with cond_g = dX_k/dv */
@@ -278,11 +283,15 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
     const uint32_t nu = p->nu;
     const ogk_nmpc_config_t *cfg = &ctx->cfg;
     size_t rows = 0u;
+    /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan) and ko_rows <= OGK_NMPC_MAX_NODES
+     * (ogk_i_nmpc_keepout_rows): clamped once so each loop keeps a fixed bound */
+    const uint32_t nodes = ogk_i_min_u32(p->nodes, OGK_NMPC_MAX_NODES);
+    const size_t ko_rows = ogk_i_min_size(ctx->ko_rows, OGK_NMPC_MAX_NODES);
     uint32_t k;
     double lo;
     double hi;
 
-    for (k = 0u; (k <= p->nodes) && (k <= OGK_NMPC_MAX_NODES); ++k) {
+    for (k = 0u; k <= nodes; ++k) {
         ctx->qp_lb[(size_t)k * nu] = -cfg->step_max_alpha * box_scale;
         ctx->qp_ub[(size_t)k * nu] = cfg->step_max_alpha * box_scale;
         if (nu > 1u) {
@@ -301,7 +310,7 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
     ctx->qp_ub[nv - 1u] = (hi > lo) ? hi : lo;
     if (cfg->max_sweep > 0.0) {
         (void)memset(ctx->qp_ain, 0, 2u * (size_t)p->nodes * nv * sizeof(double));
-        for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
+        for (k = 0u; k < nodes; ++k) {
             const double sweep = p->u[((size_t)k + 1u) * nu] - p->u[(size_t)k * nu];
             /* -max <= sweep + da_{k+1} - da_k <= max */
             ctx->qp_ain[(rows * nv) + (((size_t)k + 1u) * nu)] = 1.0;
@@ -314,7 +323,7 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
             ++rows;
         }
     }
-    for (k = 0u; (k < ctx->ko_rows) && (k < OGK_NMPC_MAX_NODES); ++k) {
+    for (k = 0u; k < ko_rows; ++k) {
         (void)memcpy(&ctx->qp_ain[rows * nv], &ctx->ko_a[(size_t)k * nv], nv * sizeof(double));
         ctx->qp_bin[rows] = ctx->ko_b[k];
         ++rows;
@@ -326,12 +335,14 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
 static void expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const double *v, size_t nv)
 {
     const uint32_t nu = p->nu;
+    /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan): clamped once, a fixed bound */
+    const size_t nodes = ogk_i_min_size(p->nodes, OGK_NMPC_MAX_NODES);
     size_t k;
     size_t i;
     size_t j;
 
     (void)memset(ctx->dx, 0, NX * sizeof(double));
-    for (k = 0u; (k < p->nodes) && (k < OGK_NMPC_MAX_NODES); ++k) {
+    for (k = 0u; k < nodes; ++k) {
         for (i = 0u; i < NX; ++i) {
             double acc = ctx->sens_f[(k * NX) + i] - p->x[((k + 1u) * NX) + i];
             for (j = 0u; j < NX; ++j) {
@@ -496,7 +507,10 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     ogk_nmpc_plan_t *p = &ctx->work;
     const ogk_nmpc_config_t *cfg = &ctx->cfg;
     const size_t nv = n_vars(p);
-    const uint32_t iter_limit = cold ? cfg->max_iter_cold : cfg->max_iter;
+    /* max_iter, max_iter_cold <= OGK_NMPC_MAX_SQP_ITER (ogk_nmpc_init): clamped once so
+     * the iteration loop keeps a fixed bound */
+    const uint32_t iter_req = cold ? cfg->max_iter_cold : cfg->max_iter;
+    const uint32_t iter_limit = ogk_i_min_u32(iter_req, OGK_NMPC_MAX_SQP_ITER);
     ogk_status st = OGK_OK;
     bool done = false;
     bool have_prev = false;
@@ -537,10 +551,10 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     }
     (void)memcpy(y_prev, p->lambda, sizeof(y_prev));
     rep->stat = 0.0;
-    for (iter = 0u; (iter < iter_limit) && (iter < OGK_NMPC_MAX_SQP_ITER) && !done; ++iter) {
+    for (iter = 0u; (iter < iter_limit) && !done; ++iter) {
         /* a cold solve has no multipliers for its first exact Hessian: that
          * iteration's QP gets the scaled identity */
-        const bool second = exact && !(cold && (iter == 0u));
+        const bool second = exact && ((!cold) || (iter != 0u));
         if (!have_eval) {
             st = evaluate(ctx, p, true, second ? y_prev : NULL, &viol_l1, &viol_max, c_term);
         }
@@ -562,7 +576,9 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                     rho = 0.0;
                     ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
                 }
-            } else if (have_prev && !exact) {
+            } else if (have_prev) {
+                /* not exact: with the exact Hessian second is false only in a cold
+                 * solve's first iteration, where have_prev is still false */
                 /* y = grad L(new iterate) - grad L(old iterate), both with the last QP's multipliers */
                 lagrangian_gradient(ctx, nv, g_obj, y_prev, grad_new);
                 for (i = 0u; i < nv; ++i) {
@@ -693,8 +709,11 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                             || (phi_t <= (phi0 - (FILTER_GAMMA * theta0)));
                     }
                     if (accepted) {
+                        /* n_filter <= FILTER_SIZE (an entry is added only below it):
+                         * clamped once so the loop keeps a fixed bound */
+                        const uint32_t n_f = ogk_i_min_u32(n_filter, FILTER_SIZE);
                         uint32_t f;
-                        for (f = 0u; (f < n_filter) && (f < FILTER_SIZE) && accepted; ++f) {
+                        for (f = 0u; (f < n_f) && accepted; ++f) {
                             if ((t_l1 >= filter_theta[f]) && (phi_t >= filter_phi[f])) {
                                 accepted = false;
                             }

@@ -361,7 +361,8 @@ static bool table_current(const ogk_nog_t *ctx)
         current = (ctx->cfg.table->generation == ctx->table_generation) &&
                   (ctx->cfg.table->n_grid == ctx->tbl.n_grid);
     } else {
-        current = (ctx->cfg.view != NULL) && (ctx->cfg.view->generation == ctx->table_generation) &&
+        /* cfg.view != NULL: with cfg.table NULL, ogk_nog_init required it */
+        current = (ctx->cfg.view->generation == ctx->table_generation) &&
                   (ctx->cfg.view->init_marker == OGK_NOG_VIEW_MARKER) &&
                   (ctx->cfg.view->n_grid == ctx->tbl.n_grid) && (ctx->cfg.view->tau == ctx->tbl.tau);
     }
@@ -522,7 +523,9 @@ static void safe_sample(ogk_nog_t *ctx, double t_s, bool readable, ogk_nog_sampl
     ogk_nog_t at;
 
     ctx->flags = OGK_NOG_FLAG_SAFE;
-    if (isfinite(t_s) && (t_s >= ctx->t_k_s) && (t_s >= 0.0) && (t_s <= t_sample_max(ctx))) {
+    /* t_s >= 0 follows from t_s >= t_k_s >= 0 (t_k_s starts at 0 and takes only
+     * times that passed this test or nog_nav_in_envelope's t_s >= 0) */
+    if (isfinite(t_s) && (t_s >= ctx->t_k_s) && (t_s <= t_sample_max(ctx))) {
         /* Bounded by the envelope: finite. */
         const double tau = ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s;
         if (tau <= 1.0) {

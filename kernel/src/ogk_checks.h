@@ -1,12 +1,14 @@
 /* ogk_checks.h -- internal helpers shared by every law (not public API): the
- * finite check of an input vector and the unchecked angle wrap behind
- * ogk_wrap_pi (ogk/mathutil.h). static inline so the hot paths pay no call. */
+ * finite check of an input vector, the unchecked angle wrap behind
+ * ogk_wrap_pi (ogk/mathutil.h) and the clamp of a loop dimension to its
+ * bound. static inline so the hot paths pay no call. */
 #ifndef OGK_CHECKS_H
 #define OGK_CHECKS_H
 
 #include <math.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #define OGK_I_PI 3.14159265358979323846
 #define OGK_I_TWO_PI 6.28318530717958647692
@@ -22,6 +24,20 @@ static inline bool ogk_i_all_finite(const double *v, size_t n)
         }
     }
     return finite;
+}
+
+/* min(n, bound): a loop's dimension clamped once to its compile-time bound
+ * before the loop, so the loop keeps a fixed bound with one condition (the
+ * dimension was checked against the bound at init: MC/DC could never show a
+ * second `k < BOUND` operand, docs/mcdc-exceptions.md). */
+static inline size_t ogk_i_min_size(size_t n, size_t bound)
+{
+    return (n < bound) ? n : bound;
+}
+
+static inline uint32_t ogk_i_min_u32(uint32_t n, uint32_t bound)
+{
+    return (n < bound) ? n : bound;
 }
 
 /* angle + 2 pi k in (-pi, pi], angle finite. fmod is exact, so an angle

@@ -170,7 +170,9 @@ static ogk_status bisect_switch(stepper_t *s, double t, const double *x,
     for (it = 0u; (it < OGK_RK4_MAX_BISECTIONS) && (st == OGK_OK) && (!found); ++it) {
         const double mid = lo + (0.5 * (hi - lo));
         double s_mid = 0.0;
-        if ((!((mid > lo) && (mid < hi))) || ((hi - lo) <= s->p->t_tol)) {
+        /* !(mid > lo && mid < hi) written by De Morgan (the same for NaN), so that
+         * clang's MC/DC instruments the decision */
+        if ((!(mid > lo)) || (!(mid < hi)) || ((hi - lo) <= s->p->t_tol)) {
             break; /* bracket at the time tolerance or at its last bit */
         }
         st = step_raw(s, t, x, mid, mode, x_s);
