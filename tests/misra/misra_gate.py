@@ -44,7 +44,22 @@ def run_cppcheck(build: Path) -> list[tuple[str, int, str]]:
             raise SystemExit(f"misra: cppcheck failed: {line}")
     if proc.returncode != 0:
         raise SystemExit(f"misra: cppcheck exited {proc.returncode}: {proc.stderr[-500:]}")
+    blind = unanalysed(build, sources)
+    if blind:
+        raise SystemExit("misra: cppcheck analysed no code of " + ", ".join(blind) + " (a #error or a "
+                         "preprocessing failure stopped it, and the addon then finds nothing there)")
     return found
+
+
+def unanalysed(build: Path, sources: list[str]) -> list[str]:
+    """Sources whose dump holds raw tokens only: cppcheck stopped before its token list (an #error
+    it hit, e.g. a guard testing a macro it cannot see), so a zero count there would mean nothing."""
+    out = []
+    for src in sources:
+        dumps = sorted(build.glob(Path(src).stem + ".a*.dump"))
+        if not dumps or not any("<token " in d.read_text(errors="replace") for d in dumps):
+            out.append(src)
+    return out
 
 
 def main(argv: list[str] | None = None) -> int:
