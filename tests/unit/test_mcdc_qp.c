@@ -14,6 +14,17 @@ static ogk_qp_workspace_t ws;
 static const double H[4] = {1.0, 0.0, 0.0, 1.0};
 static const double G[2] = {-2.0, -3.0};
 
+/* min 1/2 x'Hx + g'x over two variables, no constraint yet: each test adds its own. */
+static ogk_qp_problem_t two_variable_problem(void)
+{
+    ogk_qp_problem_t p;
+    (void)memset(&p, 0, sizeof p);
+    p.n = 2u;
+    p.H = H;
+    p.g = G;
+    return p;
+}
+
 /* req: OGK-CORE-018 OGK-CORE-021 */
 static void test_inequalities_without_b_in(void **state)
 {
@@ -21,10 +32,7 @@ static void test_inequalities_without_b_in(void **state)
     ogk_qp_problem_t p;
     ogk_qp_solution_t sol;
     (void)state;
-    (void)memset(&p, 0, sizeof p);
-    p.n = 2u;
-    p.H = H;
-    p.g = G;
+    p = two_variable_problem();
     p.m_in = 1u;
     p.A_in = a_in;
     p.b_in = NULL;
@@ -40,10 +48,7 @@ static void test_lower_bounds_only(void **state)
     ogk_qp_problem_t p;
     ogk_qp_solution_t sol;
     (void)state;
-    (void)memset(&p, 0, sizeof p);
-    p.n = 2u;
-    p.H = H;
-    p.g = G;
+    p = two_variable_problem();
     p.lb = lb;
     p.ub = NULL;
     OGK_ASSERT_STATUS(ogk_qp_solve(&ws, &p, &sol), OGK_OK);
@@ -64,10 +69,7 @@ static void test_inconsistent_zero_equality_first(void **state)
     ogk_qp_problem_t p;
     ogk_qp_solution_t sol;
     (void)state;
-    (void)memset(&p, 0, sizeof p);
-    p.n = 2u;
-    p.H = H;
-    p.g = G;
+    p = two_variable_problem();
     p.m_eq = 2u;
     p.A_eq = a_eq;
     p.b_eq = b_eq;
