@@ -95,11 +95,6 @@ ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
     return st;
 }
 
-static int sign_of(double v)
-{
-    return (v > 0.0) ? 1 : ((v < 0.0) ? -1 : 0);
-}
-
 /* Magnitudes inside which the direct form of the interior slope cannot
  * overflow or lose its terms to underflow: every w / d is then within
  * [1e-300, 1e300]. Normal data (grid steps and secants far from 1e+-150) take
@@ -107,35 +102,79 @@ static int sign_of(double v)
 #define OGK_INTERP_DIRECT_LO 1.0e-150
 #define OGK_INTERP_DIRECT_HI 1.0e150
 
+/* 2^537 and 2^-537: a ratio a / b of magnitudes b < 2^-537 is taken as
+ * (a 2^537) / (b 2^537), the same quotient (scaling by a power of two is
+ * exact here) with a divisor of at least 2^-537. */
+#define OGK_INTERP_SCALE_UP 0x1p537
+#define OGK_INTERP_SCALE_DOWN 0x1p-537
+
+static int sign_of(double v)
+{
+    return (v > 0.0) ? 1 : ((v < 0.0) ? -1 : 0);
+}
+
 static bool in_direct_range(double v)
 {
     const double a = fabs(v);
     return (a >= OGK_INTERP_DIRECT_LO) && (a <= OGK_INTERP_DIRECT_HI);
 }
 
-/* Weighted harmonic mean (w0 + w1) / (w0 / d0 + w1 / d1) of two secants of
- * the same sign (w0, w1 > 0). For a subnormal or huge secant (or weight) the
- * direct form overflows in w / d (Frama-C: w0 / d0 for a subnormal d0), so
- * it is evaluated scaled, as m (u0 + u1) e0 e1 / (u0 e1 + u1 e0) with
- * e = d / max|d| and u = w / max(w): |e| <= 1 with one |e| = 1, u in [1/2, 1]
- * (w0 / w1 is within [1/2, 2]), so no step overflows and the result, which
- * lies between d0 and d1, is exact to rounding or (when e0 e1 underflows)
- * within a subnormal of it. */
-static double harmonic_slope(double w0, double w1, double d0, double d1)
+/* a_lo / a_hi for 0 < a_lo <= a_hi, in [0, 1]. The branches on a_hi bound the
+ * quotient without a relation between the operands (what a non-relational
+ * analysis such as Frama-C EVA can use, docs/eva.md); each gives the correctly
+ * rounded a_lo / a_hi, and the fmin calls only restate a_lo <= a_hi. */
+static double magnitude_ratio(double a_lo, double a_hi)
+{
+    double r;
+    if (a_hi >= 1.0) {
+        r = a_lo / a_hi;
+    } else if (a_hi >= OGK_INTERP_SCALE_DOWN) {
+        r = fmin(a_lo, 1.0) / a_hi;
+    } else {
+        r = (fmin(a_lo, OGK_INTERP_SCALE_DOWN) * OGK_INTERP_SCALE_UP) /
+            (a_hi * OGK_INTERP_SCALE_UP);
+    }
+    return fmin(r, 1.0);
+}
+
+/* Weighted harmonic mean (w0 + w1) / (w0 / a0 + w1 / a1) of two secant
+ * magnitudes a0, a1 > 0 (weights w0, w1 > 0, w0 / w1 within [1/2, 2]). The
+ * direct form runs only when every operand is within [1e-150, 1e150] (tested
+ * on the operands themselves, so the analysis bounds each quotient). Else,
+ * with a_hi = max(a0, a1), e = min(a0, a1) / a_hi in [0, 1] and the weights
+ * scaled to u = w / max(w) in [1/2, 1], it is a_hi q with
+ * q = e (u_hi + u_lo) / (u_hi e + u_lo) in [0, 1] (u_hi the weight of a_hi):
+ * no step overflows, the result lies between a0 and a1, exact to rounding or
+ * (when e underflows) within a subnormal of e times a_hi. */
+static double harmonic_magnitude(double w0, double w1, double a0, double a1)
 {
     double slope;
 
-    if (in_direct_range(d0) && in_direct_range(d1) && in_direct_range(w0) &&
-        in_direct_range(w1)) {
-        slope = (w0 + w1) / ((w0 / d0) + (w1 / d1));
+    if ((a0 >= OGK_INTERP_DIRECT_LO) && (a0 <= OGK_INTERP_DIRECT_HI) &&
+        (a1 >= OGK_INTERP_DIRECT_LO) && (a1 <= OGK_INTERP_DIRECT_HI) &&
+        in_direct_range(w0) && in_direct_range(w1)) {
+        slope = (w0 + w1) / ((w0 / a0) + (w1 / a1));
     } else {
-        const double m = fmax(fabs(d0), fabs(d1));
         const double wm = fmax(w0, w1);
-        const double e0 = d0 / m;
-        const double e1 = d1 / m;
         const double u0 = w0 / wm;
         const double u1 = w1 / wm;
-        slope = m * (((u0 + u1) / ((u0 * e1) + (u1 * e0))) * e0 * e1);
+        double a_hi;
+        double u_hi;
+        double u_lo;
+        double e;
+        if (a0 >= a1) {
+            a_hi = a0;
+            u_hi = u0;
+            u_lo = u1;
+            e = magnitude_ratio(a1, a0);
+        } else {
+            a_hi = a1;
+            u_hi = u1;
+            u_lo = u0;
+            e = magnitude_ratio(a0, a1);
+        }
+        /* q <= 1 since e <= 1; fmin only catches rounding. */
+        slope = a_hi * fmin((e * (u_hi + u_lo)) / ((u_hi * e) + u_lo), 1.0);
     }
     return slope;
 }
@@ -179,12 +218,18 @@ static void pchip_fill_slopes(const double *grid, size_t n_grid,
             const double h1 = grid[k + 1u] - grid[k];
             const double d0 = (values[(k * m) + j] - values[((k - 1u) * m) + j]) / h0;
             const double d1 = (values[((k + 1u) * m) + j] - values[(k * m) + j]) / h1;
+            const double w0 = (2.0 * h1) + h0;
+            const double w1 = h1 + (2.0 * h0);
             /* Signs, not d0 * d1: the product of two tiny secants of the same
-             * sign underflows to 0 and would flatten a monotone run. */
-            if (sign_of(d0) * sign_of(d1) <= 0) {
-                slopes[(k * m) + j] = 0.0;
+             * sign underflows to 0 and would flatten a monotone run. Tested on
+             * the secants themselves (not through sign_of) so the analysis
+             * knows each magnitude is positive. */
+            if ((d0 > 0.0) && (d1 > 0.0)) {
+                slopes[(k * m) + j] = harmonic_magnitude(w0, w1, d0, d1);
+            } else if ((d0 < 0.0) && (d1 < 0.0)) {
+                slopes[(k * m) + j] = -harmonic_magnitude(w0, w1, -d0, -d1);
             } else {
-                slopes[(k * m) + j] = harmonic_slope((2.0 * h1) + h0, h1 + (2.0 * h0), d0, d1);
+                slopes[(k * m) + j] = 0.0;
             }
         }
         {

@@ -56,8 +56,18 @@ static bool la_all_finite(const double *v, size_t count)
     return finite;
 }
 
+/* 2^-400 and 2^400: below 2^-400, la_norm2 scales its quotients up. */
+#define OGK_LA_SCALE_DOWN 0x1p-400
+#define OGK_LA_SCALE_UP 0x1p400
+
 /* Euclidean norm of v[0], v[stride], ..., v[(count-1) stride], scaled by the
- * largest magnitude so that squares neither overflow nor underflow. */
+ * largest magnitude so that squares neither overflow nor underflow. Each
+ * quotient t = v_i / scale is in [-1, 1]. For scale >= 2^-400 it is bounded
+ * without a relation between v_i and scale by |v_i| 2^400, whose square is
+ * finite for |v_i| < 2^112, what a non-relational analysis (Frama-C EVA,
+ * docs/eva.md) can use; below, both are scaled by 2^400 (exact: the same
+ * correctly rounded t) and t <= 1 restated, and the sum of squares is
+ * restated to be at most count. */
 static double la_norm2(const double *v, size_t count, size_t stride) /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
 {
     double scale = 0.0;
@@ -70,13 +80,23 @@ static double la_norm2(const double *v, size_t count, size_t stride) /* NOLINT(b
             scale = a;
         }
     }
-    if (scale != 0.0) {
+    if (scale > 0.0) {
         double ssq = 0.0;
-        for (i = 0u; i < count; ++i) {
-            const double t = v[i * stride] / scale;
-            ssq += t * t;
+        if (scale >= OGK_LA_SCALE_DOWN) {
+            for (i = 0u; i < count; ++i) {
+                const double t = v[i * stride] / scale;
+                ssq += t * t;
+            }
+        } else {
+            const double scale_up = scale * OGK_LA_SCALE_UP;
+            for (i = 0u; i < count; ++i) {
+                const double t = fmin((fmin(fabs(v[i * stride]), OGK_LA_SCALE_DOWN) *
+                                       OGK_LA_SCALE_UP) / scale_up, 1.0);
+                ssq += t * t;
+            }
         }
-        norm = scale * sqrt(ssq);
+        /* every t^2 <= 1: the fmin restates ssq <= count */
+        norm = scale * sqrt(fmin(ssq, (double)count));
     }
     return norm;
 }
@@ -308,7 +328,8 @@ static void lu_load(ogk_lu_t *lu, const double *A, size_t n)
 }
 
 /* Gaussian elimination with partial pivoting of the n x n matrix loaded in
- * lu (lu_load). OGK_E_SINGULAR at the first pivot at or below eps |A|_1.
+ * lu (lu_load). OGK_E_SINGULAR at the first pivot at or below eps |A|_1 or
+ * OGK_LA_PIVOT_MIN (ogk/linalg.h).
  *
  * A pivot at or below eps |A|_1 is zero to working precision. Any such
  * pivot implies rcond <= n eps < OGK_LA_RCOND_MIN (the trailing block of
@@ -328,14 +349,16 @@ static ogk_status lu_eliminate(ogk_lu_t *lu, size_t n)
     for (k = 0u; (k < n) && (st == OGK_OK); ++k) {
         size_t p = k;
         double pmax = fabs(f[(k * n) + k]);
+        bool negative = f[(k * n) + k] < 0.0;
         for (i = k + 1u; i < n; ++i) {
             const double a = fabs(f[(i * n) + k]);
             if (a > pmax) {
                 pmax = a;
                 p = i;
+                negative = f[(i * n) + k] < 0.0;
             }
         }
-        if (!(pmax > pivot_tol)) {
+        if (!(pmax > pivot_tol) || !(pmax > OGK_LA_PIVOT_MIN)) {
             st = OGK_E_SINGULAR;
         } else {
             if (p != k) {
@@ -349,7 +372,11 @@ static ogk_status lu_eliminate(ogk_lu_t *lu, size_t n)
                 }
             }
             for (i = k + 1u; i < n; ++i) {
-                const double l_ik = f[(i * n) + k] / f[(k * n) + k];
+                /* f_ik / f_kk as +-(f_ik / pmax): the same quotient, with a
+                 * divisor the analysis knows is above OGK_LA_PIVOT_MIN; |l_ik| <= 1
+                 * by the pivot choice, so the clamp only restates it. */
+                const double q = fmin(fmax(f[(i * n) + k] / pmax, -1.0), 1.0);
+                const double l_ik = negative ? -q : q;
                 f[(i * n) + k] = l_ik;
                 for (j = k + 1u; j < n; ++j) {
                     f[(i * n) + j] -= l_ik * f[(k * n) + j];
@@ -508,6 +535,11 @@ static ogk_status chol_decompose(ogk_chol_t *ch, const double *A, size_t n)
 
     (void)memset(ch->l, 0, la_bytes(n * n));
     for (i = 0u; (i < n) && (st == OGK_OK); ++i) {
+        /* |l_ij| <= sqrt(a_ii) for A = L L^T (row i of L has norm sqrt(a_ii));
+         * twice that bound is never reached by an accepted factorization (an
+         * l_ij beyond it makes d_i negative), so its clamp below only bounds
+         * the products for the analysis (docs/eva.md). */
+        const double l_bound = 2.0 * sqrt(fabs(A[(i * n) + i]));
         /* st changes only at j == i, the inner loop's last pass: j <= i alone
          * ends it there, and the outer test stops the factorization */
         for (j = 0u; j <= i; ++j) {
@@ -518,15 +550,17 @@ static ogk_status chol_decompose(ogk_chol_t *ch, const double *A, size_t n)
             if (i == j) {
                 /* d_i = a_ii - |l_i|^2 is the Schur-complement pivot; for SPD A,
                  * cond_2(A) >= a_ii / d_i, so d_i <= eps a_ii means A is not
-                 * positive definite to working precision. */
-                if ((!(A[(i * n) + i] > 0.0)) || (!(sum > (DBL_EPSILON * A[(i * n) + i])))) {
+                 * positive definite to working precision; so does a d_i at or
+                 * below OGK_LA_PIVOT_MIN (absolute floor, ogk/linalg.h). */
+                if ((!(A[(i * n) + i] > 0.0)) || (!(sum > (DBL_EPSILON * A[(i * n) + i]))) ||
+                    (!(sum > OGK_LA_PIVOT_MIN))) {
                     (void)memset(ch->l, 0, la_bytes(n * n));
                     st = OGK_E_NOT_POSDEF;
                 } else {
                     ch->l[(i * n) + i] = sqrt(sum);
                 }
             } else {
-                ch->l[(i * n) + j] = sum / ch->l[(j * n) + j];
+                ch->l[(i * n) + j] = fmin(fmax(sum / ch->l[(j * n) + j], -l_bound), l_bound);
             }
         }
     }
@@ -627,20 +661,28 @@ static void qr_factor(ogk_qr_t *ws)
     for (k = 0u; k < cols; ++k) {
         const double alpha = a[(k * cols) + k];
         const double xnorm = la_norm2(&a[((k + 1u) * cols) + k], rows - k - 1u, cols);
+        const double r = hypot(alpha, xnorm);
         double beta;
         double tau;
         double v_scale;
 
-        if (xnorm == 0.0) {
-            /* Column already upper triangular: H = I (dlarfg convention). */
+        if ((!(xnorm > 0.0)) || (!(r > OGK_LA_PIVOT_MIN))) {
+            /* Column already upper triangular: H = I (dlarfg convention); or
+             * its norm r is at or below OGK_LA_PIVOT_MIN: H = I too, and
+             * R_kk = alpha (|alpha| <= r) makes the rank test answer
+             * OGK_E_SINGULAR (qr_r_norm1). */
             ws->tau[k] = 0.0;
             continue;
         }
-        beta = -copysign(hypot(alpha, xnorm), alpha);
-        tau = (beta - alpha) / beta;
-        v_scale = 1.0 / (alpha - beta);
+        beta = -copysign(r, alpha);
+        /* (beta - alpha) / beta and 1 / (alpha - beta) with beta = -sign(alpha) r,
+         * written on magnitudes (the same operations, bit for bit): the divisors
+         * r and |alpha| + r exceed OGK_LA_PIVOT_MIN. tau lies in [1, 2] and
+         * |v_i| <= xnorm / (|alpha| + r) <= 1: the clamps only catch rounding. */
+        tau = fmin((r + fabs(alpha)) / r, 2.0);
+        v_scale = copysign(1.0 / (fabs(alpha) + r), alpha);
         for (i = k + 1u; i < rows; ++i) {
-            a[(i * cols) + k] *= v_scale;
+            a[(i * cols) + k] = fmin(fmax(a[(i * cols) + k] * v_scale, -1.0), 1.0);
         }
         a[(k * cols) + k] = beta;
         ws->tau[k] = tau;
@@ -681,7 +723,7 @@ static void qr_apply_reflector(const ogk_qr_t *ws, size_t k, double *y)
 }
 
 /* *rnorm1 = |R|_1; OGK_E_SINGULAR (and *rnorm1 unspecified) at the first
- * diagonal entry of R at or below tol. */
+ * diagonal entry of R at or below tol or OGK_LA_PIVOT_MIN. */
 static ogk_status qr_r_norm1(const ogk_qr_t *ws, double tol, double *rnorm1)
 {
     const size_t cols = ws->short_dim;
@@ -692,7 +734,8 @@ static ogk_status qr_r_norm1(const ogk_qr_t *ws, double tol, double *rnorm1)
 
     *rnorm1 = 0.0;
     for (j = 0u; (j < cols) && (st == OGK_OK); ++j) {
-        if (!(fabs(a[(j * cols) + j]) > tol)) {
+        if ((!(fabs(a[(j * cols) + j]) > tol)) ||
+            (!(fabs(a[(j * cols) + j]) > OGK_LA_PIVOT_MIN))) {
             st = OGK_E_SINGULAR;
         } else {
             double colsum = 0.0;

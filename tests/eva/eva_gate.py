@@ -40,7 +40,7 @@ class Driver:
 
 
 # The modules whose drivers must stay at zero (issue 22, item 3).
-ZERO = {"crc32", "mathutil", "status", "rk4", "cpd", "terminal", "cutoff"}
+ZERO = {"crc32", "mathutil", "status", "rk4", "cpd", "terminal", "cutoff", "interp"}
 
 DRIVERS = (
     Driver("crc32", (K + "crc32.c",), "drv_core.c"),
@@ -125,6 +125,7 @@ def main(argv: list[str] | None = None) -> int:
     baseline = json.loads(BASELINE.read_text()) if BASELINE.exists() else {}
     failed = False
     counts = {}
+    unfinished = {r["name"] for r in results if r["rc"] != 0 or not r["finished"]}
     for r in results:
         n = len(r["alarms"]) + r["unproven"]
         counts[r["name"]] = n
@@ -155,6 +156,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.init or args.update:
         new = dict(baseline)
         for name, n in counts.items():
+            if name in unfinished:
+                continue  # an analysis that stopped early counted nothing: keep its baseline
             if args.init or n < new.get(name, n + 1):
                 new[name] = n
         BASELINE.write_text(json.dumps(dict(sorted(new.items())), indent=1) + "\n")

@@ -257,6 +257,72 @@ static void test_pchip_tiny_and_huge_secants(void **state)
     OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid1, 3u, over, 1u, slopes), OGK_E_RANGE);
 }
 
+/* Interior slope of two secants d0, d1 on the uniform grid {0, 1, 2} (equal
+ * weights): the harmonic mean 2 d0 d1 / (d0 + d1), or 0 at an extremum. */
+static double interior_slope(double d0, double d1)
+{
+    const double grid[3] = {0.0, 1.0, 2.0};
+    const double values[3] = {-d0, 0.0, d1};
+    double slopes[3];
+    OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 3u, values, 1u, slopes), OGK_OK);
+    return slopes[1];
+}
+
+/* Every path of the harmonic mean: the direct form, each operand outside
+ * [1e-150, 1e150] alone (secants and weights), the scaled form with the larger
+ * magnitude first or second and above 1, within [2^-537, 1) or below 2^-537,
+ * both signs and the extrema. Expected values are 2 d0 d1 / (d0 + d1) by hand
+ * (weights (2 h1 + h0, h1 + 2 h0) for the non-uniform grids: 9 / 7 and 1.44). */
+/* req: OGK-CORE-015 */
+static void test_pchip_harmonic_mean_every_path(void **state)
+{
+    static const struct {
+        double d0;
+        double d1;
+        double slope;
+    } cases[] = {
+        {1.0, 3.0, 1.5},
+        {3.0e200, 1.0e200, 1.5e200},
+        {1.0e200, 3.0e200, 1.5e200},
+        {-3.0e200, -1.0e200, -1.5e200},
+        {3.0e-155, 1.0e-155, 1.5e-155},
+        {1.0e-155, 3.0e-155, 1.5e-155},
+        {3.0e-200, 1.0e-200, 1.5e-200},
+        {-1.0e-200, -3.0e-200, -1.5e-200},
+        {1.0, 1.0e-160, 2.0e-160},
+        {1.0e-160, 1.0, 2.0e-160},
+        {1.0, 1.0e160, 2.0},
+        {1.0e160, 1.0, 2.0},
+        {1.0, -1.0, 0.0},
+        {-1.0, 1.0, 0.0},
+        {-1.0, 0.0, 0.0},
+        {0.0, 1.0, 0.0},
+    };
+    /* secants 1 and 2 over steps (h0, h1): values {-h0, 0, 2 h1} */
+    static const struct {
+        double h0;
+        double h1;
+        double slope;
+    } weighted[] = {
+        {1.0e-200, 2.0e-200, 9.0 / 7.0}, /* both weights below 1e-150 */
+        {1.0e200, 2.0e200, 9.0 / 7.0},   /* both above 1e150 */
+        {5.0e149, 1.0e149, 1.44},        /* w0 = 7e149 inside, w1 = 1.1e150 above */
+        {1.0e149, 5.0e149, 1.8 / 1.45},  /* w0 = 1.1e150 above, w1 = 7e149 inside */
+    };
+    size_t k;
+    (void)state;
+    for (k = 0u; k < sizeof cases / sizeof cases[0]; ++k) {
+        OGK_ASSERT_REL(interior_slope(cases[k].d0, cases[k].d1), cases[k].slope, 1e-14, 0.0);
+    }
+    for (k = 0u; k < sizeof weighted / sizeof weighted[0]; ++k) {
+        const double grid[3] = {0.0, weighted[k].h0, weighted[k].h0 + weighted[k].h1};
+        const double values[3] = {-weighted[k].h0, 0.0, 2.0 * weighted[k].h1};
+        double slopes[3];
+        OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 3u, values, 1u, slopes), OGK_OK);
+        OGK_ASSERT_REL(slopes[1], weighted[k].slope, 1e-14, 0.0);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -271,6 +337,7 @@ int main(void)
         cmocka_unit_test(test_locate_edges),
         cmocka_unit_test(test_pchip_end_slope_clamp),
         cmocka_unit_test(test_pchip_tiny_and_huge_secants),
+        cmocka_unit_test(test_pchip_harmonic_mean_every_path),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -948,6 +948,93 @@ static void test_qr_errors(void **state)
     assert_int_equal(ws.short_dim, 0);
 }
 
+/* The absolute floor OGK_LA_PIVOT_MIN (ogk/linalg.h): a matrix whose pivots
+ * are at or below 1e-300 is singular (LU), not positive definite (Cholesky)
+ * or rank deficient (QR), though its relative tests alone accepted it (each
+ * of these calls answered OGK_OK before the floor); just above the floor the
+ * factorizations still solve exactly. */
+/* req: OGK-CORE-011 OGK-CORE-012 */
+static void test_absolute_pivot_floor(void **state)
+{
+    static ogk_lu_t lu;
+    static ogk_chol_t ch;
+    static ogk_qr_t qr;
+    static const double below[4] = {1e-305, 0, 0, 1e-305};
+    static const double above[4] = {2e-300, 0, 0, 2e-300};
+    static const double tall[6] = {1e-305, 0, 1e-305, 1e-305, 0, 1e-305};
+    static const double wide[6] = {1e-305, 1e-305, 0, 0, 1e-305, 1e-305};
+    const double b[3] = {2e-300, 4e-300, 0};
+    double x[3];
+    (void)state;
+
+    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, below, 2), OGK_E_SINGULAR);
+    assert_int_equal(lu.n, 0);
+    OGK_ASSERT_STATUS(ogk_chol_factor(&ch, below, 2), OGK_E_NOT_POSDEF);
+    assert_int_equal(ch.n, 0);
+    OGK_ASSERT_STATUS(ogk_lstsq(&qr, tall, 3, 2, b, x), OGK_E_SINGULAR);
+    OGK_ASSERT_STATUS(ogk_minnorm(&qr, wide, 2, 3, b, x), OGK_E_SINGULAR);
+
+    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, above, 2), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_OK);
+    OGK_ASSERT_REL(x[0], 1.0, 1e-15, 0.0);
+    OGK_ASSERT_REL(x[1], 2.0, 1e-15, 0.0);
+    OGK_ASSERT_STATUS(ogk_chol_factor(&ch, above, 2), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_chol_solve(&ch, b, x), OGK_OK);
+    OGK_ASSERT_REL(x[0], 1.0, 1e-15, 0.0);
+    OGK_ASSERT_REL(x[1], 2.0, 1e-15, 0.0);
+}
+
+/* lstsq and minnorm are scale-invariant down to tiny matrices: A s x = b s has
+ * the solution of A x = b for s = 1, 2^-300 and 2^-660 (exact scalings; the
+ * norms then take both branches of la_norm2, scale above and below 2^-400). Solutions by hand: the consistent system
+ * [[1,0],[1,1],[0,1]] x = (2, 1, -1) has x = (2, -1); the minimum-norm
+ * solution of [[1,1,0],[0,1,1]] x = (1, 1) is (1, 2, 1) / 3. A column that is
+ * already triangular (H = I) solves as well. */
+/* req: OGK-CORE-012 */
+static void test_qr_tiny_scales(void **state)
+{
+    static ogk_qr_t qr;
+    static const double tall[6] = {1, 0, 1, 1, 0, 1};
+    static const double tall_b[3] = {2, 1, -1};
+    static const double wide[6] = {1, 1, 0, 0, 1, 1};
+    static const double wide_b[2] = {1, 1};
+    static const double upper[6] = {2, 1, 0, 1, 0, 0};
+    static const double upper_b[3] = {3, 1, 5};
+    const double scales[3] = {1.0, 0x1p-300, 0x1p-660};
+    double a[6];
+    double b[3];
+    double x[3];
+    size_t k;
+    size_t i;
+    (void)state;
+
+    for (k = 0u; k < 3u; ++k) {
+        for (i = 0u; i < 6u; ++i) {
+            a[i] = tall[i] * scales[k];
+        }
+        for (i = 0u; i < 3u; ++i) {
+            b[i] = tall_b[i] * scales[k];
+        }
+        OGK_ASSERT_STATUS(ogk_lstsq(&qr, a, 3, 2, b, x), OGK_OK);
+        OGK_ASSERT_REL(x[0], 2.0, 1e-14, 0.0);
+        OGK_ASSERT_REL(x[1], -1.0, 1e-14, 0.0);
+        for (i = 0u; i < 6u; ++i) {
+            a[i] = wide[i] * scales[k];
+        }
+        for (i = 0u; i < 2u; ++i) {
+            b[i] = wide_b[i] * scales[k];
+        }
+        OGK_ASSERT_STATUS(ogk_minnorm(&qr, a, 2, 3, b, x), OGK_OK);
+        OGK_ASSERT_REL(x[0], 1.0 / 3.0, 1e-14, 0.0);
+        OGK_ASSERT_REL(x[1], 2.0 / 3.0, 1e-14, 0.0);
+        OGK_ASSERT_REL(x[2], 1.0 / 3.0, 1e-14, 0.0);
+    }
+    /* [[2,1],[0,1],[0,0]] x = (3, 1, 5): x = (1, 1), the third row a residual */
+    OGK_ASSERT_STATUS(ogk_lstsq(&qr, upper, 3, 2, upper_b, x), OGK_OK);
+    OGK_ASSERT_REL(x[0], 1.0, 1e-15, 0.0);
+    OGK_ASSERT_REL(x[1], 1.0, 1e-15, 0.0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -969,6 +1056,8 @@ int main(void)
         cmocka_unit_test(test_minnorm_random),
         cmocka_unit_test(test_minnorm_square_matches_lu),
         cmocka_unit_test(test_qr_errors),
+        cmocka_unit_test(test_absolute_pivot_floor),
+        cmocka_unit_test(test_qr_tiny_scales),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

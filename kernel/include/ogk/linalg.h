@@ -22,6 +22,15 @@ extern "C" {
  * OGK_E_ILL_CONDITIONED (its factors are still stored and usable). */
 #define OGK_LA_RCOND_MIN 1.0e-13
 
+/* Absolute floor of the pivots: an LU pivot, a Cholesky Schur-complement pivot
+ * d_i or a diagonal entry of R (QR) at or below it counts as zero, giving
+ * OGK_E_SINGULAR (LU, QR) or OGK_E_NOT_POSDEF (Cholesky), as the relative tests
+ * (|pivot| <= eps |A|) already do for any matrix whose norm exceeds
+ * 1e-300 / eps (about 4.5e-285).
+ * It bounds every division of the factorizations, which lets a non-relational
+ * analysis prove them finite (docs/eva.md). */
+#define OGK_LA_PIVOT_MIN 1.0e-300
+
 /* y = A x,  A: rows x cols,  rows, cols <= OGK_LA_MAX_LONG. */
 /*@ requires A_valid: A == \null || \valid_read(A + (0 .. rows * cols - 1));
     requires x_valid: x == \null || \valid_read(x + (0 .. cols - 1));
@@ -64,8 +73,8 @@ typedef struct {
 } ogk_lu_t;
 
 /* Factors the n x n matrix A. OGK_E_SINGULAR when a pivot is zero to working
- * precision (lu->n is then 0); OGK_E_ILL_CONDITIONED when rcond < OGK_LA_RCOND_MIN
- * (factors kept, solves allowed). */
+ * precision or at most OGK_LA_PIVOT_MIN (lu->n is then 0); OGK_E_ILL_CONDITIONED
+ * when rcond < OGK_LA_RCOND_MIN (factors kept, solves allowed). */
 /*@ requires lu_valid: lu == \null || \valid(lu);
     requires A_valid: A == \null || n > OGK_LA_MAX_N || \valid_read(A + (0 .. n * n - 1));
 */
@@ -84,7 +93,8 @@ typedef struct {
 } ogk_chol_t;
 
 /* Factors A (only its lower triangle is read; symmetry is checked to
- * 1e-12 relative). OGK_E_NOT_POSDEF when not positive definite or not symmetric. */
+ * 1e-12 relative). OGK_E_NOT_POSDEF when not positive definite or not symmetric
+ * (a pivot d_i at or below eps a_ii or OGK_LA_PIVOT_MIN). */
 /*@ requires ch_valid: ch == \null || \valid(ch);
     requires A_valid: A == \null || n > OGK_LA_MAX_N || \valid_read(A + (0 .. n * n - 1));
 */
@@ -103,7 +113,8 @@ typedef struct {
 
 /* Least squares: x = argmin |A x - b|_2 for A: m x n with m >= n, full column
  * rank (n <= OGK_LA_MAX_N, m <= OGK_LA_MAX_LONG). ws is caller-owned scratch.
- * OGK_E_SINGULAR / OGK_E_ILL_CONDITIONED on (near) rank deficiency. */
+ * OGK_E_SINGULAR / OGK_E_ILL_CONDITIONED on (near) rank deficiency (a diagonal
+ * entry of R at or below OGK_LA_PIVOT_MIN is singular). */
 ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
                      const double *b, double *x);
 
