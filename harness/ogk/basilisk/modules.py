@@ -80,8 +80,8 @@ class OgkInjectionFsw(sysModel.SysModel):
         if abs(phase - round(phase)) > 1e-6:
             return                 # a dynamics step between control ticks: commands held
         if round(phase) != self._k:
-            raise RuntimeError(f"OgkInjectionFsw runs every {1.0 / self.settings.control_rate_hz:g}"
-                               f" s (a multiple of its task's period): tick {self._k} is due at "
+            raise RuntimeError(f"OgkInjectionFsw runs every {1.0 / self.settings.control_rate_hz:g} s"
+                               f" (a multiple of its task's period): tick {self._k} is due at "
                                f"{self._k / self.settings.control_rate_hz:.6f} s, called at "
                                f"{t:.6f} s")
         if self.failure or t >= self.t_cutoff_s:
