@@ -603,8 +603,9 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
     uint32_t flags = 0u;
     uint32_t iterations = 0u;
     uint32_t propagations = 0u;
-    double e_norm = HUGE_VAL;
-    double e_norm0 = HUGE_VAL;
+    bool have_e = false; /* an error vector exists (its norms below) */
+    double e_norm = 0.0;
+    double e_norm0 = 0.0;
 
     (void)memset(&ev, 0, sizeof(ev));
     if (rep == NULL) {
@@ -635,6 +636,7 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
     if (st == OGK_OK) {
         bool go = true;
         blt_eval_t ev_cur = ev;
+        have_e = true;
         e_norm = norm2(ctx->e, ctx->n_errors);
         e_norm0 = e_norm;
         while (go) {
@@ -674,9 +676,11 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
         rep->flags = flags | (((flags & OGK_BLT_FLAG_CONVERGED) == 0u) ? OGK_BLT_FLAG_SAFE : 0u);
         rep->iterations = iterations;
         rep->propagations = propagations;
-        rep->err_norm0 = e_norm0;
+        /* HUGE_VAL when no error vector exists (bad input, guess hits a body): the
+         * infinity is made only on that path (docs/eva.md, BLT) */
+        rep->err_norm0 = have_e ? e_norm0 : HUGE_VAL;
         if (st != OGK_OK) {
-            rep->err_norm = e_norm; /* HUGE_VAL when no error vector exists (bad input, guess hits a body) */
+            rep->err_norm = have_e ? e_norm : HUGE_VAL;
         }
     }
     return st;

@@ -3,6 +3,7 @@
  * (eqs. 65 and 70) and, optionally, their sensitivities by the variational equations. */
 #include "blt_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -346,8 +347,10 @@ void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double 
 
     ev->impact = false;
     ev->bad_rhs = false;
-    ev->min_distance[0] = HUGE_VAL;
-    ev->min_distance[1] = HUGE_VAL;
+    /* DBL_MAX, not HUGE_VAL: track_bodies replaces it by the first finite distance, and
+     * no infinity is ever computed (docs/eva.md, BLT) */
+    ev->min_distance[0] = DBL_MAX;
+    ev->min_distance[1] = DBL_MAX;
     for (a = 0u; (a <= last) && !ev->impact && !ev->bad_rhs; ++a) {
         const uint32_t lo = ctx->anchor[a];
         const uint32_t hi = ctx->anchor[a + 1u];
@@ -433,8 +436,10 @@ void blt_chain(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double x_end[OGK_BL
 
     ev->impact = false;
     ev->bad_rhs = false;
-    ev->min_distance[0] = HUGE_VAL;
-    ev->min_distance[1] = HUGE_VAL;
+    /* DBL_MAX, not HUGE_VAL: track_bodies replaces it by the first finite distance, and
+     * no infinity is ever computed (docs/eva.md, BLT) */
+    ev->min_distance[0] = DBL_MAX;
+    ev->min_distance[1] = DBL_MAX;
     (void)memcpy(y, tr->x0, sizeof(double) * NX);
     track_bodies(&cfg->model, y, ev);
     for (k = 0u; (k < cfg->n_segments) && !ev->impact && !ev->bad_rhs; ++k) {

@@ -212,7 +212,10 @@ static void hermite(const ogk_nog_table_view_t *tbl, double tau, size_t off_val,
     a = entry_row(tbl, k);
     b = entry_row(tbl, k + 1u);
     h = tbl->tau[k + 1u] - tbl->tau[k];
-    s = (tau - tbl->tau[k]) / h;
+    /* s in [0, 1]: every caller passes tau in [0, 1], which ogk_interp_locate
+     * brackets by [tau[k], tau[k+1]], and rounding is monotonic; the clamp
+     * changes no value and states the range for the analysis (docs/eva.md). */
+    s = fmin(fmax((tau - tbl->tau[k]) / h, 0.0), 1.0);
     h00 = (1.0 + (2.0 * s)) * (1.0 - s) * (1.0 - s);
     h10 = s * (1.0 - s) * (1.0 - s);
     h01 = s * s * (3.0 - (2.0 * s));
@@ -236,7 +239,8 @@ static void linear_block(const ogk_nog_table_view_t *tbl, double tau, size_t off
     (void)ogk_interp_locate(tbl->tau, tbl->n_grid, tau, &k);
     a = entry_row(tbl, k);
     b = entry_row(tbl, k + 1u);
-    w = (tau - tbl->tau[k]) / (tbl->tau[k + 1u] - tbl->tau[k]);
+    /* w in [0, 1] as hermite's s: a clamp that changes no value. */
+    w = fmin(fmax((tau - tbl->tau[k]) / (tbl->tau[k + 1u] - tbl->tau[k]), 0.0), 1.0);
     for (i = 0u; i < n; ++i) {
         out[i] = a[off + i] + (w * (b[off + i] - a[off + i]));
     }
@@ -527,7 +531,9 @@ static void safe_sample(ogk_nog_t *ctx, double t_s, bool readable, ogk_nog_sampl
      * times that passed this test or nog_nav_in_envelope's t_s >= 0) */
     if (isfinite(t_s) && (t_s >= ctx->t_k_s) && (t_s <= t_sample_max(ctx))) {
         /* Bounded by the envelope: finite. */
-        const double tau = ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s;
+        /* tau >= tau_k as t_s >= t_k_s: the fmax changes no value and
+         * keeps tau_k in [0, 1] visible to the analysis (docs/eva.md). */
+        const double tau = fmax(ctx->tau_k + ((t_s - ctx->t_k_s) / ctx->t_f_s), ctx->tau_k);
         if (tau <= 1.0) {
             hold_correction(ctx, t_s, tau);
             at = *ctx;
@@ -559,9 +565,10 @@ static void apply_correction(ogk_nog_t *ctx, const double *out8, const double *d
     double scale;
     size_t i;
 
-    dt_f = out8[NX];
-    if (fabs(dt_f) > ctx->cfg.dtf_max_s) {
-        dt_f = copysign(ctx->cfg.dtf_max_s, dt_f);
+    /* dt_f clipped to [-dtf_max, dtf_max] (finite: compute_correction
+     * checked it), so t_f >= t_f* - dtf_max >= t_f* / 2 > 0 (init's check). */
+    dt_f = fmin(fmax(out8[NX], -ctx->cfg.dtf_max_s), ctx->cfg.dtf_max_s);
+    if (dt_f != out8[NX]) {
         ctx->flags |= OGK_NOG_FLAG_LIMITED;
     }
     hermite(tbl, ctx->tau_k, OGK_NOG_OFF_LAM, OGK_NOG_OFF_LAMDOT, NX, lam_star);
@@ -691,8 +698,10 @@ static ogk_status sample_current(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk
         safe_sample(ctx, nav->t_s, true, out);
         st = OGK_E_RANGE;
     } else {
+        /* tau >= tau_k (t_s > t_k_s after the first sample): the fmax, as in
+         * safe_sample, changes no value. */
         tau = (ctx->n_samples == 0u) ? (nav->t_s / tbl->t_f_star_s)
-                                     : (ctx->tau_k + ((nav->t_s - ctx->t_k_s) / ctx->t_f_s));
+                                     : fmax(ctx->tau_k + ((nav->t_s - ctx->t_k_s) / ctx->t_f_s), ctx->tau_k);
         if (tau > 1.0) {
             /* Sampled after the predicted cut-off (tau outside [0, 1]): nothing to
              * guide, and nothing to commit (a wrong time tag must not stop the
