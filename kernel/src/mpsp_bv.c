@@ -8,6 +8,9 @@
 /* Coefficients of one sensitivity sample: bU(t), row r, component c at r * 3 + c. */
 #define NYU (NY * 3u)
 #define MB OGK_MPSP_MAX_BASIS
+/* h_q of sample b at hb[b * HR + q * HL] (OGK_MPSP_H_LANES entries each). */
+#define HL ((size_t)OGK_MPSP_H_LANES)
+#define HR (MB * HL)
 
 /* acc[q + i][j] += sum_b h_b[q + i] c_b[j], i < 3, for one coefficient j:
  * the column that the 4-wide tiles of mpsp_bv_block_product leave over
@@ -23,15 +26,142 @@ static void block_cols_3x1(double *acc, size_t q, size_t j, const double *hb, co
 
     for (b = 0u; b < n; ++b) {
         const double c0 = cb[(b * NYU) + j];
-        a0 += hb[(b * MB) + q] * c0;
-        a1 += hb[(b * MB) + q + 1u] * c0;
-        a2 += hb[(b * MB) + q + 2u] * c0;
+        a0 += hb[(b * HR) + (q * HL)] * c0;
+        a1 += hb[(b * HR) + ((q + 1u) * HL)] * c0;
+        a2 += hb[(b * HR) + ((q + 2u) * HL)] * c0;
     }
     acc[i0] = a0;
     acc[i0 + NYU] = a1;
     acc[i0 + (2u * NYU)] = a2;
 }
 
+#if defined(__SSE2__)
+/* acc[q + i][j + p] += sum_b h_b[q + i] c_b[j + p], i < 3, p < 6: 18
+ * accumulators, the coefficient pairs (j + 2 m, j + 2 m + 1) adjacent in acc
+ * and in cb and h_b[q + i] held twice in hb, so that gcc -O2 on x86-64 adds
+ * each pair with one SSE2 multiply and add (SLP) and reads every operand as a
+ * pair: 18 multiply-adds for 6 loads per sample. */
+static void tile_3x6(double *acc, size_t q, size_t j, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                     size_t n)
+{
+    const size_t i0 = (q * NYU) + j;
+    const size_t i1 = i0 + NYU;
+    const size_t i2 = i1 + NYU;
+    double a00 = acc[i0];
+    double a01 = acc[i0 + 1u];
+    double a02 = acc[i0 + 2u];
+    double a03 = acc[i0 + 3u];
+    double a04 = acc[i0 + 4u];
+    double a05 = acc[i0 + 5u];
+    double a10 = acc[i1];
+    double a11 = acc[i1 + 1u];
+    double a12 = acc[i1 + 2u];
+    double a13 = acc[i1 + 3u];
+    double a14 = acc[i1 + 4u];
+    double a15 = acc[i1 + 5u];
+    double a20 = acc[i2];
+    double a21 = acc[i2 + 1u];
+    double a22 = acc[i2 + 2u];
+    double a23 = acc[i2 + 3u];
+    double a24 = acc[i2 + 4u];
+    double a25 = acc[i2 + 5u];
+    size_t b;
+
+    for (b = 0u; b < n; ++b) {
+        const double *c = &cb[(b * NYU) + j];
+        const double *h = &hb[(b * HR) + (q * HL)];
+        a00 += h[0] * c[0];
+        a01 += h[1] * c[1];
+        a02 += h[0] * c[2];
+        a03 += h[1] * c[3];
+        a04 += h[0] * c[4];
+        a05 += h[1] * c[5];
+        a10 += h[2] * c[0];
+        a11 += h[3] * c[1];
+        a12 += h[2] * c[2];
+        a13 += h[3] * c[3];
+        a14 += h[2] * c[4];
+        a15 += h[3] * c[5];
+        a20 += h[4] * c[0];
+        a21 += h[5] * c[1];
+        a22 += h[4] * c[2];
+        a23 += h[5] * c[3];
+        a24 += h[4] * c[4];
+        a25 += h[5] * c[5];
+    }
+    acc[i0] = a00;
+    acc[i0 + 1u] = a01;
+    acc[i0 + 2u] = a02;
+    acc[i0 + 3u] = a03;
+    acc[i0 + 4u] = a04;
+    acc[i0 + 5u] = a05;
+    acc[i1] = a10;
+    acc[i1 + 1u] = a11;
+    acc[i1 + 2u] = a12;
+    acc[i1 + 3u] = a13;
+    acc[i1 + 4u] = a14;
+    acc[i1 + 5u] = a15;
+    acc[i2] = a20;
+    acc[i2 + 1u] = a21;
+    acc[i2 + 2u] = a22;
+    acc[i2 + 3u] = a23;
+    acc[i2 + 4u] = a24;
+    acc[i2 + 5u] = a25;
+}
+
+/* tile_3x6 for one coefficient pair (j, j + 1). */
+static void tile_3x2(double *acc, size_t q, size_t j, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                     size_t n)
+{
+    const size_t i0 = (q * NYU) + j;
+    const size_t i1 = i0 + NYU;
+    const size_t i2 = i1 + NYU;
+    double a00 = acc[i0];
+    double a01 = acc[i0 + 1u];
+    double a10 = acc[i1];
+    double a11 = acc[i1 + 1u];
+    double a20 = acc[i2];
+    double a21 = acc[i2 + 1u];
+    size_t b;
+
+    for (b = 0u; b < n; ++b) {
+        const double *c = &cb[(b * NYU) + j];
+        const double *h = &hb[(b * HR) + (q * HL)];
+        a00 += h[0] * c[0];
+        a01 += h[1] * c[1];
+        a10 += h[2] * c[0];
+        a11 += h[3] * c[1];
+        a20 += h[4] * c[0];
+        a21 += h[5] * c[1];
+    }
+    acc[i0] = a00;
+    acc[i0 + 1u] = a01;
+    acc[i1] = a10;
+    acc[i1 + 1u] = a11;
+    acc[i2] = a20;
+    acc[i2 + 1u] = a21;
+}
+
+/* acc[q][j] += sum_b h_b[q] c_b[j] over the n samples held (eq. 40 with
+ * dU = P dW: B_v += bU h^T per sample), j < NYU: register tiles of 3 basis
+ * functions x 6 coefficients (tile_3x6), the 3 coefficients left over (NYU =
+ * 21) as a pair and a column. Every accumulator adds the samples in the
+ * order b = 0, 1, ..., as the one-lane tiles below: the same numbers. */
+void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                           size_t n)
+{
+    size_t q;
+    size_t j;
+    size_t b;
+
+    for (q = 0u; (q + 3u) <= n_basis; q += 3u) {
+        for (j = 0u; (j + 6u) <= NYU; j += 6u) {
+            tile_3x6(acc, q, j, hb, cb, n);
+        }
+        tile_3x2(acc, q, j, hb, cb, n); /* NYU = 21: coefficients 18, 19 */
+        block_cols_3x1(acc, q, j + 2u, hb, cb, n); /* and 20 */
+    }
+#else
 /* acc[q][j] += sum_b h_b[q] c_b[j] over the n samples held (eq. 40 with
  * dU = P dW: B_v += bU h^T per sample), j < NYU. Register tiles of 3 basis
  * functions x 4 coefficients: 12 multiply-adds for 7 loads per sample, and
@@ -63,7 +193,7 @@ void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const 
             double a23 = acc[i2 + 3u];
             for (b = 0u; b < n; ++b) {
                 const double *c = &cb[(b * NYU) + j];
-                const double *h = &hb[(b * MB) + q];
+                const double *h = &hb[(b * HR) + q];
                 const double h0 = h[0];
                 const double h1 = h[1];
                 const double h2 = h[2];
@@ -101,13 +231,14 @@ void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const 
             block_cols_3x1(acc, q, j, hb, cb, n);
         }
     }
+#endif
     for (; q < n_basis; ++q) { /* the basis functions left over (2 n + 1 is odd) */
         for (j = 0u; j < NYU; j += 3u) {
             double a0 = acc[(q * NYU) + j];
             double a1 = acc[(q * NYU) + j + 1u];
             double a2 = acc[(q * NYU) + j + 2u];
             for (b = 0u; b < n; ++b) {
-                const double hq = hb[(b * MB) + q];
+                const double hq = hb[(b * HR) + (q * HL)];
                 const size_t ic = (b * NYU) + j;
                 a0 += hq * cb[ic];
                 a1 += hq * cb[ic + 1u];

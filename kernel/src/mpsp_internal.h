@@ -49,6 +49,35 @@ typedef struct {
     double anchor_c;    /* [-] cos(omega (anchor_t - t_ref)) */
     double anchor_s;    /* [-] sin(omega (anchor_t - t_ref)) */
     bool anchor_ok;
+#if defined(__SSE2__)
+    /* U at two times per pass (mpsp_control.c): the weights with each entry
+     * twice, w2[2 i + l] = w[i], so that lane l of a 2-lane product reads its
+     * own copy (gcc -O2 then multiplies both lanes in one SSE2 instruction). */
+    double w2[2u * OGK_MPSP_MAX_WEIGHTS];
+    /* The propagation's grid (ogk_rk4_propagate's t0 + k h, last node tf), to
+     * tell the end of an RK4 step from its midpoint, and U there, computed
+     * with the midpoint's (mpsp_control_at). */
+    double grid_t0;     /* [TU] */
+    double grid_h;      /* [TU] */
+    double grid_tf;     /* [TU] */
+    double next_t;      /* [TU] time of next_u */
+    double next_u[3];   /* [-] U(next_t) */
+    bool next_ok;
+    /* The anchor before next_u's phase was taken: restored when next_u is
+     * not asked for, so the phases are those of the one-time path. */
+    double undo_t;      /* [TU] */
+    double undo_c;      /* [-] */
+    double undo_s;      /* [-] */
+    bool undo_ok;
+    /* The propagation's own: U at a midpoint and the step's end made in one
+     * pass, and kept in keep_t / keep_u (ogk_mpsp_t's) for the sweep. Set by
+     * mpsp_propagate_ctx only (other callers of mpsp_control_at, such as the
+     * test entry points' ogk_rk4_step, take U one time at a time). */
+    bool pairing;
+    double keep_scale;  /* [1/TU] 2 / h: half grid steps per TU */
+    double *keep_t;     /* [TU] */
+    double *keep_u;     /* [-] */
+#endif
 } mpsp_dyn_t;
 
 /* Partial derivatives of eq. (16) at one RK4 stage state (derived in
@@ -88,6 +117,15 @@ void mpsp_phase(mpsp_dyn_t *dyn, double t, double *c1, double *s1);
 void mpsp_basis_control(mpsp_dyn_t *dyn, double t, double *h, mpsp_uval_t *uv);
 /* U(t) through the cache. */
 void mpsp_control_at(mpsp_dyn_t *dyn, double t, double *u);
+#if defined(__SSE2__)
+/* The basis rows h(t[0]) into h_a and h(t[1]) into h_b, each entry twice
+ * (OGK_MPSP_H_LANES), in one pass: the harmonics of mpsp_basis_control,
+ * phases taken in the order t[0], t[1]. */
+void mpsp_basis2(mpsp_dyn_t *dyn, const double *t, double *h_a, double *h_b);
+/* U and |U| at t (t0 <= t <= tf) from ctx->keep_u: false if they were not
+ * kept for t. */
+bool mpsp_keep_find(const ogk_mpsp_t *ctx, const mpsp_dyn_t *dyn, double t, mpsp_uval_t *uv);
+#endif
 /* Eq. (16) with U given; OGK_E_CALLBACK on m <= 0 or |U| = 0 while thrusting. */
 ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int mode,
                     double *xdot);
@@ -144,7 +182,9 @@ ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
 
 /* ---- mpsp_bv.c */
 /* acc[q][r * 3 + c] += sum_b hb[b][q] cb[b][r * 3 + c] over the n samples b
- * (hb rows OGK_MPSP_MAX_BASIS apart, cb rows 21 apart): B_v += bU h^T. */
+ * (hb rows OGK_MPSP_MAX_BASIS * OGK_MPSP_H_LANES apart, h_q at [q *
+ * OGK_MPSP_H_LANES] and, with 2 lanes, again at the next entry; cb rows 21
+ * apart): B_v += bU h^T. */
 void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb,
                            size_t n);
 /* B_v row-major (7 x 3 n_basis) from the basis-major accumulator. */

@@ -40,6 +40,16 @@ ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lam
     (void)memcpy(xs, x0, OGK_MPSP_NX0 * sizeof xs[0]);
     xs[7] = lambda_m0;
     mpsp_dyn_setup(&dyn, ctx, ctx->weights, thrust);
+#if defined(__SSE2__)
+    /* U made two at a time is kept for the sweep (empty slots: a time no
+     * node or midpoint has) */
+    for (i = 0u; i < OGK_MPSP_KEEP_U_SLOTS; ++i) {
+        ctx->keep_t[i] = -HUGE_VAL;
+    }
+    dyn.pairing = true;
+    dyn.keep_t = ctx->keep_t;
+    dyn.keep_u = ctx->keep_u;
+#endif
     mpsp_rk4_problem(&prob, ctx, &dyn);
     /* Initial mode from the sign of S(t0) (eq. 11; S = 0 taken as coast). */
     mpsp_control_at(&dyn, ctx->cfg.t0, u0);

@@ -19,6 +19,8 @@
 /* Coefficients of one sensitivity sample: bU(t), row r, component c at r * 3 + c. */
 #define NYU (NY * 3u)
 #define MB OGK_MPSP_MAX_BASIS
+/* A basis row of the sample block: OGK_MPSP_H_LANES entries per function. */
+#define HR (MB * (size_t)OGK_MPSP_H_LANES)
 #define SB ((size_t)OGK_MPSP_SENS_BLOCK)
 
 ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
@@ -71,6 +73,32 @@ static void uval_from_basis(const mpsp_dyn_t *dyn, const double *h, mpsp_uval_t 
     mpsp_control_from_basis(dyn, h, uv->u);
     uv->lam = sqrt((uv->u[0] * uv->u[0]) + (uv->u[1] * uv->u[1]) + (uv->u[2] * uv->u[2]));
 }
+
+#if defined(__SSE2__)
+/* U and |U| from a sample block row (each entry twice): the sums of
+ * mpsp_control_from_basis in the same order (for U not kept by the
+ * propagation). */
+static void uval_from_h2(const mpsp_dyn_t *dyn, const double *h2, mpsp_uval_t *uv)
+{
+    const size_t nb = dyn->n_basis;
+    const double *w = dyn->w;
+    double u0 = 0.0;
+    double u1 = 0.0;
+    double u2 = 0.0;
+    size_t q;
+
+    for (q = 0u; q < nb; ++q) {
+        const double hq = h2[2u * q];
+        u0 += hq * w[q];
+        u1 += hq * w[nb + q];
+        u2 += hq * w[(2u * nb) + q];
+    }
+    uv->u[0] = u0;
+    uv->u[1] = u1;
+    uv->u[2] = u2;
+    uv->lam = sqrt((u0 * u0) + (u1 * u1) + (u2 * u2));
+}
+#endif
 
 /* out[r][c n_basis + q] += coef[r * 3 + c] h[q], row-major rows x 3 n_basis
  * (the one-step Jacobian; not on the hot path). */
@@ -312,7 +340,8 @@ static void block_flush(sens_block_t *blk)
     ogk_mpsp_t *ctx = blk->ctx;
     mpsp_bv_block_product(ctx->bv_acc, ctx->n_basis, ctx->sens_h, ctx->sens_c, blk->n);
     if (blk->hi_held && (blk->n > 0u)) {
-        (void)memcpy(ctx->sens_h, &ctx->sens_h[blk->n * MB], ctx->n_basis * sizeof ctx->sens_h[0]);
+        (void)memcpy(ctx->sens_h, &ctx->sens_h[blk->n * HR],
+                     ctx->n_basis * OGK_MPSP_H_LANES * sizeof ctx->sens_h[0]);
     }
     blk->n = 0u;
 }
@@ -321,7 +350,18 @@ static void block_flush(sens_block_t *blk)
 static void block_hold_hi(sens_block_t *blk, mpsp_dyn_t *dyn, double t_hi)
 {
     if (!blk->hi_held) {
-        mpsp_basis_control(dyn, t_hi, &blk->ctx->sens_h[blk->n * MB], &blk->hi);
+        double *row = &blk->ctx->sens_h[blk->n * HR];
+#if defined(__SSE2__)
+        double h[MB];
+        size_t q;
+        mpsp_basis_control(dyn, t_hi, h, &blk->hi);
+        for (q = 0u; q < dyn->n_basis; ++q) { /* each value twice (OGK_MPSP_H_LANES) */
+            row[2u * q] = h[q];
+            row[(2u * q) + 1u] = h[q];
+        }
+#else
+        mpsp_basis_control(dyn, t_hi, row, &blk->hi);
+#endif
         blk->hi_held = true;
     }
 }
@@ -338,8 +378,8 @@ static ogk_status thrust_step(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, doub
     const double t_lo = ctx->traj_t[k];
     const double dt = ctx->traj_t[k + 1u] - t_lo;
     const size_t n = blk->n;
-    double *h_mid = &ctx->sens_h[(n + 1u) * MB];
-    double *h_lo = &ctx->sens_h[(n + 2u) * MB];
+    double *h_mid = &ctx->sens_h[(n + 1u) * HR];
+    double *h_lo = &ctx->sens_h[(n + 2u) * HR];
     double *c_hi = &ctx->sens_c[n * NYU];
     double *c_mid = &ctx->sens_c[(n + 1u) * NYU];
     double pend_lo[NYU];
@@ -347,8 +387,29 @@ static ogk_status thrust_step(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, doub
     ogk_status st;
 
     block_hold_hi(blk, dyn, ctx->traj_t[k + 1u]);
+#if defined(__SSE2__)
+    {
+        /* the midpoint, then t_lo: the phase order of the one-time path */
+        const double t_pair[2] = {t_lo + (0.5 * dt), t_lo};
+        mpsp_uval_t uv_pair[2];
+        /* U kept by the propagation (made there for these very times), else
+         * made here with h; either way the same phases in the same order */
+        const bool kept_mid = mpsp_keep_find(ctx, dyn, t_pair[0], &uv_pair[0]);
+        const bool kept_lo = mpsp_keep_find(ctx, dyn, t_pair[1], &uv_pair[1]);
+        mpsp_basis2(dyn, t_pair, h_mid, h_lo);
+        if (!kept_mid) { /* the last step before a switch (bisection's) */
+            uval_from_h2(dyn, h_mid, &uv_pair[0]);
+        }
+        if (!kept_lo) { /* a switch node or t0 */
+            uval_from_h2(dyn, h_lo, &uv_pair[1]);
+        }
+        uv[1] = uv_pair[0];
+        uv[0] = uv_pair[1];
+    }
+#else
     mpsp_basis_control(dyn, t_lo + (0.5 * dt), h_mid, &uv[1]);
     mpsp_basis_control(dyn, t_lo, h_lo, &uv[0]);
+#endif
     uv[2] = blk->hi;
     st = mpsp_step_adjoint(dyn, &ctx->traj_x[k * NX], dt, 1, uv, MPSP_PAIR_ROWS, NY, adj, adj,
                            pend_lo, c_mid, c_hi);

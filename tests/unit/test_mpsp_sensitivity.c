@@ -409,6 +409,52 @@ static void test_sweep_matches_step_chain(void **state)
     }
 }
 
+#if defined(__SSE2__)
+/* Where the propagation keeps U for the sweep (SSE2 hosts, docs/mpsp.md
+ * section 8): the sweep with the U kept (made two times per pass in the
+ * propagation, from its own phase anchors) against the sweep with every U
+ * made again from the sample rows (the kept slots emptied), on the arcs of
+ * both basis kinds: the same B_v and A_lambda to rounding (the phases
+ * differ by a few ulp). The kept path is taken: a slot per thrust step at
+ * least is filled. */
+/* req: OGK-MPSP-003 */
+static void test_sweep_kept_u_matches_remade(void **state)
+{
+    static double dydw_kept[NY * OGK_MPSP_MAX_WEIGHTS];
+    static const uint32_t kinds[2] = {OGK_MPSP_BASIS_FOURIER, OGK_MPSP_BASIS_COSINE};
+    double dydl_kept[NY];
+    double dydl[NY];
+    ogk_mpsp_prop_t prop;
+    size_t b;
+    size_t i;
+    (void)state;
+
+    for (b = 0u; b < 2u; ++b) {
+        size_t n_kept = 0u;
+        size_t n_thrust = 0u;
+        orbit_config(&cfg, 200.0);
+        cfg.fourier_kind = kinds[b];
+        OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, -0.2, x0_3d, 1.0, &prop), OGK_OK);
+        assert_true(prop.n_switches >= 2u);
+        for (i = 0u; i < OGK_MPSP_KEEP_U_SLOTS; ++i) {
+            n_kept += (ctx.keep_t[i] >= cfg.t0) ? 1u : 0u;
+        }
+        for (i = 0u; (i + 1u) < ctx.n_nodes; ++i) {
+            n_thrust += (ctx.traj_mode[i] == 1u) ? 1u : 0u;
+        }
+        assert_true(n_kept >= n_thrust);
+        OGK_ASSERT_STATUS(ogk_mpsp_sensitivity(&ctx, dydw_kept, dydl_kept), OGK_OK);
+        for (i = 0u; i < OGK_MPSP_KEEP_U_SLOTS; ++i) {
+            ctx.keep_t[i] = -HUGE_VAL;
+        }
+        OGK_ASSERT_STATUS(ogk_mpsp_sensitivity(&ctx, dydw, dydl), OGK_OK);
+        assert_matrix_rel(dydw_kept, dydw, NY, ctx.n_weights, 1e-12);
+        assert_matrix_rel(dydl_kept, dydl, NY, 1u, 1e-12);
+    }
+}
+#endif
+
 /* ---------------------------------------------------------------- closed form */
 
 static double ff_q(double a0, double a1, double lm0, double m0)
@@ -667,6 +713,9 @@ int main(void)
         cmocka_unit_test(test_whole_arc_with_switches_fd),
         cmocka_unit_test(test_whole_arc_cosine_basis_fd),
         cmocka_unit_test(test_sweep_matches_step_chain),
+#if defined(__SSE2__)
+        cmocka_unit_test(test_sweep_kept_u_matches_remade),
+#endif
         cmocka_unit_test(test_switch_time_closed_form),
         cmocka_unit_test(test_switch_jump_dw_closed_form),
         cmocka_unit_test(test_whole_arc_closed_form),

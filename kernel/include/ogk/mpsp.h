@@ -69,6 +69,22 @@ extern "C" {
 #ifndef OGK_MPSP_SENS_BLOCK
 #define OGK_MPSP_SENS_BLOCK 32u
 #endif
+/* Entries per basis function in the sample block: 2 where gcc -O2 has
+ * 2-lane double SIMD without options (SSE2: every x86-64), each h value held
+ * twice so that B_v's blocked product reads it as a pair; 1 elsewhere (the
+ * Cortex-M7's FPU is scalar). */
+#if defined(__SSE2__)
+#define OGK_MPSP_H_LANES 2u
+#else
+#define OGK_MPSP_H_LANES 1u
+#endif
+/* U = lambda_v and |U| kept by the propagation for the sensitivity sweep
+ * where the paired passes run (SSE2), one slot per half grid step (node k:
+ * slot 2 k, the midpoint of step k: 2 k + 1); host memory, not kept on the
+ * Cortex-M7 (the sweep makes U there again). */
+#if defined(__SSE2__)
+#define OGK_MPSP_KEEP_U_SLOTS ((2u * OGK_MPSP_MAX_STEPS) + 2u)
+#endif
 /* Entries of the Newton history kept in the result. */
 #ifndef OGK_MPSP_MAX_LOG
 #define OGK_MPSP_MAX_LOG 64u
@@ -190,8 +206,15 @@ typedef struct {
      * the samples not yet added to it: basis rows h(t) and their 7 x 3
      * control sensitivities bU(t), added OGK_MPSP_SENS_BLOCK at a time. */
     double bv_acc[OGK_MPSP_MAX_BASIS * OGK_MPSP_NY * OGK_MPSP_NU];
-    double sens_h[OGK_MPSP_SENS_BLOCK * OGK_MPSP_MAX_BASIS];
+    double sens_h[OGK_MPSP_SENS_BLOCK * OGK_MPSP_MAX_BASIS * OGK_MPSP_H_LANES];
     double sens_c[OGK_MPSP_SENS_BLOCK * OGK_MPSP_NY * OGK_MPSP_NU];
+#if defined(__SSE2__)
+    /* U and |U| of the trajectory held at the times the propagation made them
+     * two at a time: keep_u[4 j .. 4 j + 3] = U(keep_t[j]), |U|, in the slot j
+     * of the half grid step nearest keep_t[j] (NaN: empty). */
+    double keep_t[OGK_MPSP_KEEP_U_SLOTS];      /* [TU] */
+    double keep_u[OGK_MPSP_KEEP_U_SLOTS * 4u]; /* [-] */
+#endif
     /* Newton workspace (eqs. 44-45 as a minimum-norm problem). */
     double newton_m[OGK_MPSP_NY * OGK_MPSP_MAX_UNKNOWNS];
     double newton_z[OGK_MPSP_MAX_UNKNOWNS];
