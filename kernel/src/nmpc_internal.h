@@ -12,15 +12,19 @@
 
 /* Columns of the sensitivity matrix of one interval, in this order:
  * X_k (5), U_k (nu), U_{k+1} (nu), h (1), t_start (1): the directions of
- * ogk/nmpc.h (h standing for T) and t_start. */
-#define OGK_I_NMPC_MAX_COLS (OGK_NMPC_MAX_DIR + 1u)
+ * ogk/nmpc.h (h standing for T) and t_start; the row stride rounded up to
+ * an even count (OGK_NMPC_SENS_COLS), so that the forward sweep's column
+ * loops go by pairs (nmpc_shoot.c). */
+#define OGK_I_NMPC_MAX_COLS OGK_I_NMPC_NCOL_Z
 /* Arguments of the model f(z): z = (x (5), u (nu), t), stored with this
  * stride (the largest nu). */
 #define OGK_I_NMPC_NZ (OGK_NMPC_NX + OGK_NMPC_MAX_NU + 1u)
 
 /* xdot = f(t, x, u) and, when jx is not NULL, its Jacobians: jx (5 x 5,
- * row-major), ju (5 x nu), jt (5). trig: cos and sin of u[0] when the caller
- * has them, NULL to compute them here. OGK_E_NONFINITE when x leaves the
+ * row-major), ju (5 x nu), jt (5); only the structural nonzeros of jx and ju
+ * are written (the others are 0 at every x: the caller zeroes them once).
+ * trig: cos and sin of u[0] when the caller has them, NULL to compute them
+ * here. OGK_E_NONFINITE when x leaves the
  * model's domain (r <= 0, m <= 0, a third body hit) or a value is not finite. */
 ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
                           const double *x, const double *u, const double *trig,
@@ -34,16 +38,10 @@ void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
                          const double *x, const double *u, const double *trig,
                          const double *kappa, double *hz);
 
-/* k = jx y for the first ncol columns of y and k (row stride `stride`),
- * jx a Jacobian of ogk_i_nmpc_rhs: only its structural nonzeros are used
- * (13 of 25; the sensitivity sweep's inner product). */
-void ogk_i_nmpc_jx_times(const double *jx, const double *y, size_t stride,
-                         size_t ncol, double *k);
-
 /* size_t forms of the limits (built from the atoms, so that no composite
  * expression is cast): sensitivity columns, model arguments, directions,
  * QP unknowns. */
-#define OGK_I_NMPC_NCOL_Z (((size_t)OGK_NMPC_NX + (2u * (size_t)OGK_NMPC_MAX_NU)) + 2u)
+#define OGK_I_NMPC_NCOL_Z (((((size_t)OGK_NMPC_NX + (2u * (size_t)OGK_NMPC_MAX_NU)) + 3u) / 2u) * 2u)
 #define OGK_I_NMPC_NZ_Z (((size_t)OGK_NMPC_NX + (size_t)OGK_NMPC_MAX_NU) + 1u)
 #define OGK_I_NMPC_NDIR_Z (((size_t)OGK_NMPC_NX + (2u * (size_t)OGK_NMPC_MAX_NU)) + 1u)
 #define OGK_I_NMPC_MAXV_Z ((((size_t)OGK_NMPC_MAX_NODES + 1u) * (size_t)OGK_NMPC_MAX_NU) + 1u)
@@ -61,8 +59,8 @@ void ogk_i_nmpc_jx_times(const double *jx, const double *y, size_t stride,
 #define OGK_I_NMPC_TAPE_STAGE (OGK_I_NMPC_TAPE_KS + ((size_t)OGK_NMPC_NX * OGK_I_NMPC_NCOL_Z))
 #define OGK_I_NMPC_TAPE_STEP_Z (OGK_I_NMPC_TAPE_STAGE0 + (4u * OGK_I_NMPC_TAPE_STAGE))
 /* the same layout in the preprocessor's arithmetic, against ogk/nmpc.h's size */
-#if ((OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS) \
-     + (4u * ((2u * OGK_NMPC_NX) + 2u + (OGK_NMPC_NX * OGK_NMPC_NX) + (OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS)))) \
+#if ((OGK_NMPC_NX * OGK_NMPC_SENS_COLS) \
+     + (4u * ((2u * OGK_NMPC_NX) + 2u + (OGK_NMPC_NX * OGK_NMPC_NX) + (OGK_NMPC_NX * OGK_NMPC_SENS_COLS)))) \
     != OGK_NMPC_TAPE_STEP
 #error "OGK_NMPC_TAPE_STEP (ogk/nmpc.h) does not match the tape layout"
 #endif

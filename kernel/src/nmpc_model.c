@@ -167,7 +167,6 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /
             }
             if ((st == OGK_OK) && (jx != NULL)) {
                 const double acc_dr = throttle * lim.thrust_dr / m;
-                (void)memset(jx, 0, sizeof(double) * OGK_NMPC_NX * OGK_NMPC_NX);
                 jx[(0u * OGK_NMPC_NX) + 2u] = 1.0;
                 jx[(1u * OGK_NMPC_NX) + 0u] = -v_t * inv_r * inv_r;
                 jx[(1u * OGK_NMPC_NX) + 3u] = inv_r;
@@ -183,7 +182,6 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /
                 jx[(3u * OGK_NMPC_NX) + 4u] = -acc * sa / m;
                 jx[(4u * OGK_NMPC_NX) + 0u] = -throttle * lim.flow_dr;
                 if (ju != NULL) {
-                    (void)memset(ju, 0, sizeof(double) * OGK_NMPC_NX * nu);
                     ju[(2u * nu) + 0u] = -acc * sa;
                     ju[(3u * nu) + 0u] = acc * ca;
                     if (nu > 1u) {
@@ -203,28 +201,6 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /
         }
     }
     return st;
-}
-
-void ogk_i_nmpc_jx_times(const double *jx, const double *y, size_t stride, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (k = jx y, y's stride and columns); its only caller is stage_k (nmpc_shoot.c), checked by central differences (test_nmpc.c) */
-                         size_t ncol, double *k)
-{
-    /* the structure of eq. (11)-(14)'s Jacobian (ogk_i_nmpc_rhs): r' = v_r;
-     * theta' depends on r, v_theta; v_r', v_theta' on every state (theta
-     * through the third bodies); m' on r (solar-electric) */
-    const double *y0 = &y[0u * stride];
-    const double *y1 = &y[1u * stride];
-    const double *y2 = &y[2u * stride];
-    const double *y3 = &y[3u * stride];
-    const double *y4 = &y[4u * stride];
-    size_t c;
-    for (c = 0u; c < ncol; ++c) {
-        k[(0u * stride) + c] = y2[c];
-        k[(1u * stride) + c] = (jx[5] * y0[c]) + (jx[8] * y3[c]);
-        k[(2u * stride) + c] = (jx[10] * y0[c]) + (jx[11] * y1[c]) + (jx[13] * y3[c]) + (jx[14] * y4[c]);
-        k[(3u * stride) + c] = (jx[15] * y0[c]) + (jx[16] * y1[c]) + (jx[17] * y2[c]) + (jx[18] * y3[c])
-            + (jx[19] * y4[c]);
-        k[(4u * stride) + c] = jx[20] * y0[c];
-    }
 }
 
 void ogk_i_nmpc_terminal(const ogk_nmpc_config_t *cfg, const double *x,

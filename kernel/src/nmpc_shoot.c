@@ -15,19 +15,47 @@
 #define NX ((size_t)OGK_NMPC_NX)
 #define NCOL OGK_I_NMPC_NCOL_Z
 
-/* Y = S + a K_prev (+ b k_prev in column col_h), for the first `ncol` columns. */
+/* The column loops below go by pairs (c, c + 1) over ncol rounded up to
+ * even (the row stride OGK_I_NMPC_NCOL_Z is even; a padding column starts at
+ * zero and stays zero: no term below writes it but the pair's linear ones).
+ * Every matrix is a local array of ogk_i_nmpc_shoot (these helpers are
+ * inlined there), so gcc -O2 knows that they do not overlap and computes
+ * each pair with one packed operation on x86-64; the arithmetic of each
+ * column is unchanged (the same operations in the same order). */
+
+/* Y = S + a K_prev (+ b k_prev in column col_h), for the first `ncol_e` columns. */
 static void stage_sens(const double *s, const double *k_prev_sens, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the terms of Y = S + a K_prev in order; its only caller is ogk_i_nmpc_shoot, checked by central differences (test_nmpc.c) */
                        const double *k_prev, double a, double b, size_t col_h, /* NOLINT(bugprone-easily-swappable-parameters): as above */
-                       size_t ncol, double *y)
+                       size_t ncol_e, double *y)
 {
     size_t i;
     size_t c;
     for (i = 0u; i < NX; ++i) {
-        for (c = 0u; c < ncol; ++c) {
-            y[(i * NCOL) + c] = s[(i * NCOL) + c] + (a * k_prev_sens[(i * NCOL) + c]);
+        const size_t row = i * NCOL;
+        for (c = 0u; c < ncol_e; c += 2u) {
+            y[row + c] = s[row + c] + (a * k_prev_sens[row + c]);
+            y[row + c + 1u] = s[row + c + 1u] + (a * k_prev_sens[row + c + 1u]);
         }
-        y[(i * NCOL) + col_h] += b * k_prev[i];
+        y[row + col_h] += b * k_prev[i];
     }
+}
+
+/* Column l of k = jx y, jx a Jacobian of ogk_i_nmpc_rhs: only the
+ * structural nonzeros of eq. (11)-(14)'s Jacobian are used (13 of 25):
+ * r' = v_r; theta' depends on r, v_theta; v_r', v_theta' on every state
+ * (theta through the third bodies); m' on r (solar-electric). */
+static inline void jx_column(const double *jx, const double *y, size_t l, double *k) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, k = jx y in the order of the product; its only caller is stage_k, checked by central differences (test_nmpc.c) */
+{
+    const double y0 = y[(0u * NCOL) + l];
+    const double y1 = y[(1u * NCOL) + l];
+    const double y2 = y[(2u * NCOL) + l];
+    const double y3 = y[(3u * NCOL) + l];
+    const double y4 = y[(4u * NCOL) + l];
+    k[(0u * NCOL) + l] = y2;
+    k[(1u * NCOL) + l] = (jx[5] * y0) + (jx[8] * y3);
+    k[(2u * NCOL) + l] = (jx[10] * y0) + (jx[11] * y1) + (jx[13] * y3) + (jx[14] * y4);
+    k[(3u * NCOL) + l] = (jx[15] * y0) + (jx[16] * y1) + (jx[17] * y2) + (jx[18] * y3) + (jx[19] * y4);
+    k[(4u * NCOL) + l] = jx[20] * y0;
 }
 
 /* K = fx Y + fu dU/dp + ft dt/dp for one stage. */
@@ -41,18 +69,47 @@ static void stage_k(const double *jx, const double *ju, const double *jt, /* NOL
     const size_t col_t = col_h + 1u;
     size_t i;
     size_t j;
-    ogk_i_nmpc_jx_times(jx, y, NCOL, ncol, k);
-    for (i = 0u; i < NX; ++i) {
+    const size_t ncol_e = ncol + (ncol % 2u);
+    size_t c;
+    for (c = 0u; c < ncol_e; c += 2u) {
+        jx_column(jx, y, c, k);
+        jx_column(jx, y, c + 1u, k);
+    }
+    /* r' and theta' depend on neither u nor t, m' not on t, and only the
+     * third bodies bring t in (ogk_i_nmpc_rhs): the other rows of ju and jt
+     * are structurally 0 */
+    for (i = 2u; i < NX; ++i) {
         for (j = 0u; j < nu; ++j) {
             k[(i * NCOL) + col_u0 + j] += ju[(i * nu) + j] * (1.0 - s_frac);
             k[(i * NCOL) + col_u1 + j] += ju[(i * nu) + j] * s_frac;
         }
-        /* stage time t_start + s h: d/dh = s, d/dt_start = 1 */
-        k[(i * NCOL) + col_h] += jt[i] * s_frac;
-        if (ncol > col_t) {
+    }
+    if (ncol > col_t) {
+        for (i = 2u; i < 4u; ++i) {
+            /* stage time t_start + s h: d/dh = s, d/dt_start = 1 */
+            k[(i * NCOL) + col_h] += jt[i] * s_frac;
             k[(i * NCOL) + col_t] += jt[i];
         }
     }
+}
+
+/* S += (dt / 6) sum_j b_j K_j at the entries e, e + 1 (the RK4 step's
+ * sensitivity, b = 1, 2, 2, 1; k0 .. k3 the stages' K). */
+static void step_sens_pair(const double *k0, const double *k1, const double *k2, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the stages in order; its only caller is ogk_i_nmpc_shoot, checked by central differences (test_nmpc.c) */
+                           const double *k3, size_t e, double dt6, double *s)
+{
+    double acc0 = 0.0;
+    double acc1 = 0.0;
+    acc0 += k0[e];
+    acc1 += k0[e + 1u];
+    acc0 += 2.0 * k1[e];
+    acc1 += 2.0 * k1[e + 1u];
+    acc0 += 2.0 * k2[e];
+    acc1 += 2.0 * k2[e + 1u];
+    acc0 += k3[e];
+    acc1 += k3[e + 1u];
+    s[e] += dt6 * acc0;
+    s[e + 1u] += dt6 * acc1;
 }
 
 /* True when a third body pulls (mu > 0): the model then depends on time. A
@@ -94,6 +151,7 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
     const double inv_steps = 1.0 / (double)steps;
     const size_t col_h = NX + (2u * (size_t)nu);
     const size_t ncol = ogk_i_nmpc_ncol(cfg, nu);
+    const size_t ncol_e = ncol + (ncol % 2u);
     const bool taped = (sens != NULL) && (tape != NULL);
     double x[NX];
     double stage_x[NX];
@@ -123,6 +181,9 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
         trig[i][1] = sin(angle);
     }
     if (sens != NULL) {
+        /* the Jacobians' structural zeros, which ogk_i_nmpc_rhs does not write */
+        (void)memset(jx, 0, sizeof(jx));
+        (void)memset(ju, 0, sizeof(ju));
         (void)memset(s_mat, 0, sizeof(s_mat));
         for (i = 0u; i < NX; ++i) {
             s_mat[(i * NCOL) + i] = 1.0;
@@ -139,21 +200,24 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
             for (i = 0u; i < nu; ++i) {
                 u[i] = u0[i] + ((u1[i] - u0[i]) * s_frac);
             }
-            for (i = 0u; i < NX; ++i) {
-                stage_x[i] = (j == 0u) ? x[i] : (x[i] + (c_off[j] * dt * k[j - 1u][i]));
+            if (j == 0u) {
+                (void)memcpy(stage_x, x, sizeof(stage_x));
+            } else {
+                const double c_dt = c_off[j] * dt;
+                for (i = 0u; i < NX; ++i) {
+                    stage_x[i] = x[i] + (c_dt * k[j - 1u][i]);
+                }
             }
             st = ogk_i_nmpc_rhs(cfg, nu, t_stage, stage_x, u, trig[(2u * step) + trig_index[j]], k[j],
                                 (sens != NULL) ? jx : NULL, ju, jt);
             if ((st == OGK_OK) && (sens != NULL)) {
-                if (j == 0u) {
-                    /* the first stage is at the step's start: Y = S */
-                    stage_k(jx, ju, jt, s_mat, nu, s_frac, ncol, k_mat[j]);
-                } else {
-                    /* y = x + c dt k_prev, dt = h / steps */
+                if (j != 0u) {
+                    /* y = x + c dt k_prev, dt = h / steps (the first stage is
+                     * at the step's start: Y = S) */
                     stage_sens(s_mat, k_mat[j - 1u], k[j - 1u], c_off[j] * dt,
-                               c_off[j] * inv_steps, col_h, ncol, y_mat);
-                    stage_k(jx, ju, jt, y_mat, nu, s_frac, ncol, k_mat[j]);
+                               c_off[j] * inv_steps, col_h, ncol_e, y_mat);
                 }
+                stage_k(jx, ju, jt, (j == 0u) ? s_mat : y_mat, nu, s_frac, ncol, k_mat[j]);
                 if (tape_step != NULL) {
                     double *rec = &tape_step[OGK_I_NMPC_TAPE_STAGE0 + ((size_t)j * OGK_I_NMPC_TAPE_STAGE)];
                     (void)memcpy(&rec[OGK_I_NMPC_TAPE_X], stage_x, sizeof(stage_x));
@@ -171,12 +235,8 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
             if (sens != NULL) {
                 for (i = 0u; i < NX; ++i) {
                     double k_sum = 0.0;
-                    for (c = 0u; c < ncol; ++c) {
-                        double acc = 0.0;
-                        for (j = 0u; j < 4u; ++j) {
-                            acc += w_rk[j] * k_mat[j][(i * NCOL) + c];
-                        }
-                        s_mat[(i * NCOL) + c] += (dt / 6.0) * acc;
+                    for (c = 0u; c < ncol_e; c += 2u) {
+                        step_sens_pair(k_mat[0], k_mat[1], k_mat[2], k_mat[3], (i * NCOL) + c, dt / 6.0, s_mat);
                     }
                     for (j = 0u; j < 4u; ++j) {
                         k_sum += w_rk[j] * k[j][i];

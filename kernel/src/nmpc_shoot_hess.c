@@ -26,8 +26,16 @@
 #define NCOL OGK_I_NMPC_NCOL_Z
 #define NZ OGK_I_NMPC_NZ_Z
 
+/* The column loops below go by pairs (c, c + 1) over ncol rounded up to
+ * even (ncol_e; the row stride NCOL is even and the tape's padding column is
+ * 0): every array they write is a local of ogk_i_nmpc_shoot_hess or its
+ * output, and the helpers are inlined there, so gcc -O2 computes each pair
+ * with one packed operation on x86-64, the arithmetic of each entry
+ * unchanged. (The triangle's rows, 1 to ncol entries long, stay scalar: by
+ * pairs they cost more, x86-64 and Cortex-M7 alike; docs/nmpc-flight.md 2d.) */
+
 /* out = jx^T a over the Jacobian's structural nonzeros (13 of 25, those of
- * ogk_i_nmpc_jx_times; jx[2] = dr'/dv_r = 1). */
+ * jx_column in nmpc_shoot.c; jx[2] = dr'/dv_r = 1). */
 static void jx_transpose_times(const double *jx, const double *a, double *out)
 {
     out[0] = (jx[5] * a[1]) + (jx[10] * a[2]) + (jx[15] * a[3]) + (jx[20] * a[4]);
@@ -42,13 +50,32 @@ static void jx_transpose_times(const double *jx, const double *a, double *out)
  * h's row and column, so they are summed in g_h over the interval and added
  * to the upper triangle once (the diagonal entry twice). */
 static void add_h_cross(const double *k_sens, const double *a, double scale, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (K, adjoint, factor) in the order of the product; callers in this file */
-                        size_t ncol, double *g_h)
+                        size_t ncol_e, double *g_h)
 {
     size_t c;
-    for (c = 0u; c < ncol; ++c) {
+    for (c = 0u; c < ncol_e; c += 2u) {
+        const size_t l = c + 1u;
         g_h[c] += scale * ((k_sens[c] * a[0]) + (k_sens[NCOL + c] * a[1]) + (k_sens[(2u * NCOL) + c] * a[2])
                            + (k_sens[(3u * NCOL) + c] * a[3]) + (k_sens[(4u * NCOL) + c] * a[4]));
+        g_h[l] += scale * ((k_sens[l] * a[0]) + (k_sens[NCOL + l] * a[1]) + (k_sens[(2u * NCOL) + l] * a[2])
+                           + (k_sens[(3u * NCOL) + l] * a[3]) + (k_sens[(4u * NCOL) + l] * a[4]));
     }
+}
+
+/* Column l of m_a = (hz Z)_a for the state arguments r, v_r, v_theta and m
+ * (hz's structural nonzeros without theta, t and the controls). */
+static inline void stage_m_column(const double *hz, const double *y_sens, size_t l, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, its only caller is add_stage_curvature */
+                                  double *m_r, double *m_vr, double *m_vt, double *m_m) /* NOLINT(bugprone-easily-swappable-parameters): as above */
+{
+    const double z_r = y_sens[(0u * NCOL) + l];
+    const double z_vr = y_sens[(2u * NCOL) + l];
+    const double z_vt = y_sens[(3u * NCOL) + l];
+    const double z_m = y_sens[(4u * NCOL) + l];
+    m_r[l] = (hz[(0u * NZ) + 0u] * z_r) + (hz[(0u * NZ) + 2u] * z_vr) + (hz[(0u * NZ) + 3u] * z_vt)
+        + (hz[(0u * NZ) + 4u] * z_m);
+    m_vr[l] = (hz[(0u * NZ) + 2u] * z_r) + (hz[(2u * NZ) + 3u] * z_vt);
+    m_vt[l] = (hz[(0u * NZ) + 3u] * z_r) + (hz[(2u * NZ) + 3u] * z_vr) + (hz[(3u * NZ) + 3u] * z_vt);
+    m_m[l] = (hz[(0u * NZ) + 4u] * z_r) + (hz[(4u * NZ) + 4u] * z_m);
 }
 
 /* hess (upper triangle) += Z^T hz Z for one stage. Z = dz/dp has the state
@@ -62,6 +89,7 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
                                 double s_frac, bool bodies, bool sparse_m, size_t ncol, /* NOLINT(bugprone-easily-swappable-parameters): as above */
                                 double *hess)
 {
+    const size_t ncol_e = ncol + (ncol % 2u);
     const size_t i_a = NX;                        /* alpha's z index and U_k's column */
     const size_t i_t = NX + (size_t)nu;           /* t's z index */
     const size_t col_h = NX + (2u * (size_t)nu);
@@ -83,15 +111,20 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
 
     (void)memset(m_r, 0, sizeof(m_r));
     (void)memset(m_m, 0, sizeof(m_m));
+    /* set below over the columns' pairs; zeroed for the analyser, which does not follow the pairs */
+    (void)memset(m_vr, 0, sizeof(m_vr));
+    (void)memset(m_vt, 0, sizeof(m_vt));
     (void)memset(m_ctl, 0, sizeof(m_ctl));
-    for (c = 0u; c < ncol; ++c) {
-        m_r[c] = (hz[(0u * NZ) + 0u] * row_r[c]) + (hz[(0u * NZ) + 2u] * row_vr[c]) + (hz[(0u * NZ) + 3u] * row_vt[c])
-            + (hz[(0u * NZ) + 4u] * row_m[c]);
-        m_vr[c] = (hz[(0u * NZ) + 2u] * row_r[c]) + (hz[(2u * NZ) + 3u] * row_vt[c]);
-        m_vt[c] = (hz[(0u * NZ) + 3u] * row_r[c]) + (hz[(2u * NZ) + 3u] * row_vr[c]) + (hz[(3u * NZ) + 3u] * row_vt[c]);
-        m_m[c] = (hz[(0u * NZ) + 4u] * row_r[c]) + (hz[(4u * NZ) + 4u] * row_m[c]);
-        for (j = 0u; j < (size_t)nu; ++j) {
-            m_ctl[j][c] = (hz[(0u * NZ) + (i_a + j)] * row_r[c]) + (hz[(4u * NZ) + (i_a + j)] * row_m[c]);
+    for (c = 0u; c < ncol_e; c += 2u) {
+        stage_m_column(hz, y_sens, c, m_r, m_vr, m_vt, m_m);
+        stage_m_column(hz, y_sens, c + 1u, m_r, m_vr, m_vt, m_m);
+    }
+    for (j = 0u; j < (size_t)nu; ++j) {
+        const double h_r = hz[(0u * NZ) + (i_a + j)];
+        const double h_m = hz[(4u * NZ) + (i_a + j)];
+        for (c = 0u; c < ncol_e; c += 2u) {
+            m_ctl[j][c] = (h_r * row_r[c]) + (h_m * row_m[c]);
+            m_ctl[j][c + 1u] = (h_r * row_r[c + 1u]) + (h_m * row_m[c + 1u]);
         }
     }
     /* the control rows' entries: (1 - s) in column NX + j, s in column NX + nu + j */
@@ -181,6 +214,7 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
     const double inv_steps = 1.0 / (double)steps;
     const size_t ncol = ogk_i_nmpc_ncol(cfg, nu);
     const size_t col_h = NX + (2u * (size_t)nu);
+    const size_t ncol_e = ncol + (ncol % 2u);
     double lambda[NX];
     double ybar[NX];
     double kbar[NX];
@@ -233,16 +267,19 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
             for (i = 0u; i < NX; ++i) {
                 kbar[i] = dt * kb[i];
             }
-            add_h_cross(&rec[OGK_I_NMPC_TAPE_KS], kb, inv_steps, ncol, g_h);
+            add_h_cross(&rec[OGK_I_NMPC_TAPE_KS], kb, inv_steps, ncol_e, g_h);
             /* Z_j's state rows: Y_j = S_n + c_j dt K_{j-1} (+ c_j / M k_{j-1} in column h) */
             if (js == 0u) {
                 (void)memcpy(y_sens, s_mat, sizeof(y_sens));
             } else {
                 const double *prev = &rec_step[OGK_I_NMPC_TAPE_STAGE0 + (((size_t)js - 1u) * OGK_I_NMPC_TAPE_STAGE)];
+                const double c_dt = c_off[js] * dt;
                 for (i = 0u; i < NX; ++i) {
-                    for (c = 0u; c < ncol; ++c) {
-                        y_sens[(i * NCOL) + c] = s_mat[(i * NCOL) + c]
-                            + (c_off[js] * dt * prev[OGK_I_NMPC_TAPE_KS + (i * NCOL) + c]);
+                    const size_t row = i * NCOL;
+                    for (c = 0u; c < ncol_e; c += 2u) {
+                        y_sens[row + c] = s_mat[row + c] + (c_dt * prev[OGK_I_NMPC_TAPE_KS + row + c]);
+                        y_sens[row + c + 1u] = s_mat[row + c + 1u]
+                            + (c_dt * prev[OGK_I_NMPC_TAPE_KS + row + c + 1u]);
                     }
                     y_sens[(i * NCOL) + col_h] += c_off[js] * inv_steps * prev[OGK_I_NMPC_TAPE_K + i];
                 }

@@ -211,12 +211,17 @@ static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, doubl
         const size_t n_used = (k + 2u) * nu;
         for (i = 0u; i < NX; ++i) {
             double acc_e = 0.0;
-            for (c = 0u; c < n_used; ++c) {
-                double acc = 0.0;
+            /* by pairs (packed on x86-64); an odd n_used's extra column is 0
+             * (U_{k+2}) or T's (set below), and is not copied back */
+            for (c = 0u; c < n_used; c += 2u) {
+                double acc0 = 0.0;
+                double acc1 = 0.0;
                 for (j = 0u; j < NX; ++j) {
-                    acc += a[(i * NX) + j] * ctx->cond_g[(j * nv) + c];
+                    acc0 += a[(i * NX) + j] * ctx->cond_g[(j * nv) + c];
+                    acc1 += a[(i * NX) + j] * ctx->cond_g[(j * nv) + c + 1u];
                 }
-                g_next[(i * nv) + c] = acc;
+                g_next[(i * nv) + c] = acc0;
+                g_next[(i * nv) + c + 1u] = acc1;
             }
             {
                 double acc = 0.0;

@@ -86,13 +86,17 @@ extern "C" {
 #define OGK_NMPC_MAX_QP (OGK_NMPC_MAX_VARS + (2u * OGK_NMPC_NC))
 /* Sensitivity directions of one subinterval: X_k, U_k, U_{k+1}, T. */
 #define OGK_NMPC_MAX_DIR (OGK_NMPC_NX + (2u * OGK_NMPC_MAX_NU) + 1u)
+/* Row stride of one subinterval's sensitivity matrices: its directions and
+ * the start time (OGK_NMPC_MAX_DIR + 1), rounded up to an even count (the
+ * forward sweep goes through the columns by pairs). */
+#define OGK_NMPC_SENS_COLS (((OGK_NMPC_MAX_DIR + 2u) / 2u) * 2u)
 /* Doubles the exact Hessian records per RK4 step of one subinterval (the
  * forward sweep's tape, read back by the second-order adjoint sweep): the
- * step's sensitivity matrix (5 x (OGK_NMPC_MAX_DIR + 1)) and, per stage, its
+ * step's sensitivity matrix (5 x OGK_NMPC_SENS_COLS) and, per stage, its
  * state (5), its derivative k (5), cos/sin of its angle (2), the model's
- * Jacobian (5 x 5) and k's sensitivities (5 x (OGK_NMPC_MAX_DIR + 1)). */
-#define OGK_NMPC_TAPE_STEP ((OGK_NMPC_NX * (OGK_NMPC_MAX_DIR + 1u)) \
-    + (4u * ((2u * OGK_NMPC_NX) + 2u + (OGK_NMPC_NX * OGK_NMPC_NX) + (OGK_NMPC_NX * (OGK_NMPC_MAX_DIR + 1u)))))
+ * Jacobian (5 x 5) and k's sensitivities (5 x OGK_NMPC_SENS_COLS). */
+#define OGK_NMPC_TAPE_STEP ((OGK_NMPC_NX * OGK_NMPC_SENS_COLS) \
+    + (4u * ((2u * OGK_NMPC_NX) + 2u + (OGK_NMPC_NX * OGK_NMPC_NX) + (OGK_NMPC_NX * OGK_NMPC_SENS_COLS))))
 
 /* ogk_nmpc_config_t.objective */
 /* doubles of one subinterval's sensitivity key: X_k, U_k, U_k+1, h, t_start */
