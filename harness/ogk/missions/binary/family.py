@@ -48,7 +48,8 @@ class _Base:
 class BinaryFamily:
     name = "binary-asteroid"
     laws = LAWS
-    targets = ("host", "m7")        #: m7: the corrector calls on the emulated Cortex-M7 (pil.py)
+    #: m7 / sparc: the corrector calls on the emulated Cortex-M7 / SPARC V8 (pil.py)
+    targets = ("host", "m7", "sparc")
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         """The scenario's [monte_carlo] runs per level times its [dispersions] levels (Table 3: 600 x 6)."""
@@ -157,7 +158,7 @@ class BinaryFamily:
 
         from . import pil
         base: _Base = plan.base
-        program = pil.flight_program(nominal, scenario, base.transfer)
+        program = pil.flight_program(nominal, scenario, base.transfer, str(options["target"]))
         plan.fly = pil.TargetJob(nominal, base.correctors, levels, sigma, program)
         plan.target = str(options["target"])
         plan.options = {**plan.options, "target": plan.target}

@@ -60,7 +60,7 @@ class LowThrustFamily:
     laws = LAWS
 
     fixed_lists = True           #: --cases paper: the number of runs is the list's
-    targets = ("host", "m7")     #: --target m7: the solves on the flight program (pil.py)
+    targets = ("host", "m7", "sparc")   #: --target m7 / sparc: the solves on the flight program (pil.py)
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         return None              # the command states it, or the paper's list does
@@ -169,7 +169,7 @@ class LowThrustFamily:
         from ogk.sil.pil_build import file_sha256
 
         from . import pil
-        program = pil.flight_program(setup, plan.scenario_path)
+        program = pil.flight_program(setup, plan.scenario_path, str(opts["target"]))
         plan.fly = pil.TargetJob(case_of, record_of, program, t0=float(setup.guidance.cfg.t0))
         plan.target = str(opts["target"])
         plan.options = {**plan.options, "target": plan.target}   # `ogk replay` flies it there

@@ -51,7 +51,7 @@ class _Base:
 class OrbitInjectionFamily:
     name = "orbit-injection"
     laws = LAWS
-    targets = ("host", "m7")        #: m7: port/cortex-m7/pil/oi_pil.c (pil.py)
+    targets = ("host", "m7", "sparc")   #: m7 / sparc: port/cortex-m7/pil/oi_pil.c (pil.py)
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         return None              # the command states the number of runs
@@ -144,7 +144,7 @@ class OrbitInjectionFamily:
 
         from . import pil
         pil.check_target_settings(plan.base.settings, opts)
-        program = pil.flight_program(tables, scenario)
+        program = pil.flight_program(tables, scenario, str(opts["target"]))
         job = dataclasses.replace(plan.base.job, settings=dataclasses.replace(
             plan.base.settings, history_runs=0))
         plan.fly = pil.TargetJob(job, program)

@@ -69,7 +69,7 @@ def flight_record(summary: Mapping[str, Any]) -> Record:
 class RendezvousFamily:
     name = "low-thrust-rendezvous"
     laws = LAWS
-    targets = ("host", "m7")        #: m7: port/cortex-m7/pil/nmpc_pil.c (pil.py)
+    targets = ("host", "m7", "sparc")   #: m7 / sparc: port/cortex-m7/pil/nmpc_pil.c (pil.py)
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         return None              # the command states the number of runs
@@ -163,7 +163,7 @@ class RendezvousFamily:
         if plan.options["solver"] != "kernel":
             raise OgkInputError(f"--target {target} flies the kernel's ogk_nmpc, got "
                                 f"{plan.options['solver']!r}", key="--solver")
-        program = pil.flight_program(path, scenario, strategy, third)
+        program = pil.flight_program(path, scenario, strategy, third, target)
         plan.fly = pil.TargetJob(scenario, settings, strategy, perturbed,
                                  None if max_replans is None else int(max_replans), program,
                                  flight_record, RESULTS)
