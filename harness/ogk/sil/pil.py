@@ -48,6 +48,16 @@ class FlightProgram:
     target: str = "m7"              #: the processor it is built for (TARGETS, not "host")
 
 
+def target_why(target: str, why: str) -> str:
+    """A family's reason why host and target differ (written for the Cortex-M7 and newlib), with
+    what is different on SPARC V8."""
+    if target != "sparc":
+        return why
+    return ("on SPARC V8 both sides use glibc's libm (the target's built for v8plus, not x86-64's), "
+            "so the differences are those of the libm builds and of the code generation; the "
+            "Cortex-M7's reasons and bounds: " + why)
+
+
 @lru_cache(maxsize=16)
 def _symbols(elf: str, mtime_ns: int, nm: str = "arm-none-eabi-nm") -> dict[str, int]:
     """Function name -> address (Thumb bit cleared; SPARC instructions are 4-aligned) of an ELF."""

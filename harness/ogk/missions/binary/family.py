@@ -154,6 +154,7 @@ class BinaryFamily:
                    levels: tuple[float, ...], sigma: float, scenario: Path) -> None:
         """The plan with every corrector call made by the scenario's flight program on the emulated
         Cortex-M7 (pil.py); the draws, the DOP853 checks and the judging stay on the host."""
+        from ogk.sil.pil import target_why
         from ogk.sil.pil_build import file_sha256
 
         from . import pil
@@ -165,7 +166,7 @@ class BinaryFamily:
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = {k: v for k, v in pil.BOUNDS.items()
                               if k.split(".")[0] in base.correctors}
-        plan.target_why = pil.BOUNDS_WHY
+        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
         plan.watchdog_per_run_s = 120.0
 
     # ------------------------------------------------------------------ reports

@@ -166,6 +166,7 @@ class LowThrustFamily:
                    case_of: Any, record_of: Any) -> None:
         """The plan's solves made by the scenario's flight program on the emulated Cortex-M7
         (pil.py); the cases, records and judging stay the host's."""
+        from ogk.sil.pil import target_why
         from ogk.sil.pil_build import file_sha256
 
         from . import pil
@@ -175,7 +176,7 @@ class LowThrustFamily:
         plan.options = {**plan.options, "target": plan.target}   # `ogk replay` flies it there
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = dict(pil.BOUNDS)
-        plan.target_why = pil.BOUNDS_WHY
+        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
         plan.watchdog_per_run_s = pil.SOLVE_TIMEOUT_S
 
     def _paper(self, setup: MpspSetup, papers: list[Case],

@@ -140,6 +140,7 @@ class OrbitInjectionFamily:
     @staticmethod
     def _on_target(plan: CampaignPlan, opts: dict[str, Any], tables: Any, scenario: Path) -> None:
         """The plan flown by the scenario's flight program on the emulated Cortex-M7 (pil.py)."""
+        from ogk.sil.pil import target_why
         from ogk.sil.pil_build import file_sha256
 
         from . import pil
@@ -151,7 +152,7 @@ class OrbitInjectionFamily:
         plan.target = str(opts["target"])
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = dict(pil.BOUNDS)
-        plan.target_why = pil.BOUNDS_WHY
+        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
         plan.watchdog_per_run_s = 60.0
 
     # ------------------------------------------------------------------ reports

@@ -157,6 +157,7 @@ class RendezvousFamily:
                    max_replans: Any) -> None:
         """The plan's replans made by the scenario's flight program on the emulated Cortex-M7
         (pil.py); the truth, the noise and the judging stay on the host."""
+        from ogk.sil.pil import target_why
         from ogk.sil.pil_build import file_sha256
 
         from . import pil
@@ -171,7 +172,7 @@ class RendezvousFamily:
         plan.options = {**plan.options, "target": target}
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = dict(pil.BOUNDS)
-        plan.target_why = pil.BOUNDS_WHY
+        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
         plan.watchdog_per_run_s = 7200.0     # a whole closed loop of QEMU re-solves
 
     def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
