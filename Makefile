@@ -133,6 +133,8 @@ include port/cortex-m7/flightapp/flightapp.mk
 include port/sparc-v8/sparc-v8.mk
 # processor-in-the-loop flight programs (docs/pil.md): make pil-program PIL_PROGRAM=oi PIL_OUT=DIR
 include port/cortex-m7/pil/pil.mk
+# ... and the same programs for SPARC V8 Linux user mode: make pil-program-sparc PIL_PROGRAM=oi PIL_OUT=DIR
+include port/sparc-v8/pil.mk
 
 # ---------------------------------------------------------------- gates (issue 8): make tidy,
 # fuzz-short / fuzz, coverage, mutants (not in make test), misra (a ratchet, in make lint)

@@ -15,7 +15,7 @@ import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from isa import READERS
+from isa import READERS, dead_code, local_jumps
 
 _HEAD = re.compile(r"^([0-9a-f]+) <([^>]+)>:$")
 _LINE = re.compile(r"^\s*([0-9a-f]+):\s+(\S.*)$")
@@ -28,6 +28,7 @@ class Func:
     frame: int = 0
     calls: set[int] = field(default_factory=set)   # start addresses of the functions it calls
     indirect: bool = False
+    local_jumps: int = 0     # computed jumps proven to stay inside the function (isa.local_jumps)
     unknown_sp: bool = False
 
 
@@ -38,13 +39,18 @@ class Bound:
     why: str = ""
 
 
-def disassemble(objdump: str, elf: Path, isa: str) -> dict[int, Func]:
+def disassemble(objdump: str, elf: Path, isa: str, no_return: frozenset[str] = frozenset()
+                ) -> dict[int, Func]:
+    """Every function of `elf` (`no_return`: terminating functions: SPARC code after a call of one
+    is unreachable, isa.dead_code)."""
     text = subprocess.run([objdump, "-d", "--no-show-raw-insn", str(elf)], check=True,
                           capture_output=True, text=True).stdout
     read = READERS[isa]
     funcs: dict[int, Func] = {}
     cur: Func | None = None
-    raw: list[tuple[Func, int, bool]] = []
+    raw: list[tuple[Func, int, bool, int]] = []
+    code: dict[int, list[tuple[int, str]]] = {}     # SPARC: a function's instructions, in order
+    jumps: dict[int, list[int]] = {}                # ... and its calls / jumps through a register
     for line in text.splitlines():
         h = _HEAD.match(line)
         if h:
@@ -56,12 +62,34 @@ def disassemble(objdump: str, elf: Path, isa: str) -> dict[int, Func]:
             continue
         ins = read(m.group(2).replace("\t", " "))
         cur.frame += ins.push
+        addr = int(m.group(1), 16)
+        if isa == "sparc":
+            code.setdefault(cur.start, []).append((addr, m.group(2).replace("\t", " ")))
+            if ins.indirect:
+                jumps.setdefault(cur.start, []).append(addr)
         cur.indirect |= ins.indirect
         cur.unknown_sp |= ins.unknown_sp
         if ins.target is not None:
-            raw.append((cur, ins.target, ins.call))
+            raw.append((cur, ins.target, ins.call, addr))
     starts = sorted(funcs)
-    for f, target, call in raw:
+    # a SPARC function whose every jump through a register is a computed jump proven to stay inside
+    # it (isa.local_jumps) calls nothing through a register; in such a function the code no path
+    # reaches (isa.dead_code) calls nothing either
+    entries = {t for _, t, _, _ in raw}
+    dead: set[int] = set()
+    ends = frozenset(a for a, f in funcs.items() if f.name in no_return)
+    for a in (starts if isa == "sparc" else []):
+        proven = {}
+        if a in jumps:
+            end = code[a][-1][0] + 4        # past its last instruction (objdump's listing of it)
+            proven = local_jumps(code[a], a, end, entries)
+            funcs[a].local_jumps = sum(1 for j in jumps[a] if j in proven)
+            funcs[a].indirect = any(j not in proven for j in jumps[a])
+        if not funcs[a].indirect and a in code:
+            dead |= dead_code(code[a], a, entries, [(lo, hi) for lo, hi, _ in proven.values()], ends)
+    for f, target, call, src in raw:
+        if src in dead:
+            continue
         owner = starts[bisect.bisect_right(starts, target) - 1] if target >= starts[0] else None
         if owner is not None and (owner != f.start or (call and target == f.start)):
             f.calls.add(owner)      # leaves f (a call or a tail call), or calls itself

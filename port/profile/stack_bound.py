@@ -66,7 +66,7 @@ def main(argv: list[str]) -> int:
     frames_checked: set[str] = set()
     taken_found: set[str] = set()
     for elf in a.elfs:
-        funcs = disassemble(a.objdump, elf, a.isa)
+        funcs = disassemble(a.objdump, elf, a.isa, frozenset(a.no_return))
         names: dict[str, list[int]] = {}
         for n, addrs in by_name(funcs).items():
             names.setdefault(plain(n), []).extend(addrs)

@@ -166,3 +166,89 @@ def test_static_callbacks_are_address_taken(built, tmp_path, sections):
     taken = address_taken(objdump, [tmp_path / "cb.o"])
     assert {"twice", "thrice"} <= taken
     assert "unused_direct" not in taken and "use" not in taken
+
+
+# ---------------------------------------------------------------- SPARC: computed jumps, v9 branches, dead code
+# Hand-written instruction sequences in objdump's text (the shapes of glibc's v8plus memset and
+# memcpy); the expected target ranges are worked out here from the SPARC semantics, not read from
+# the code under test.
+from isa import dead_code, local_jumps, sparc  # noqa: E402
+
+MEMSET_LIKE = [(0x1000, "save  %sp, -96, %sp"),          # an entry (the function's start)
+               (0x1004, "andcc  %o2, 0x78, %g5"),        # g5 in [0, 0x78]
+               (0x1008, "be,pn   %xcc, 1060 <f+0x60>"),
+               (0x100c, "andcc  %o2, 7, %o2"),           # writes o2, not g5
+               (0x1010, "rd  %pc, %o4"),                 # o4 = 0x1010
+               (0x1014, "srl  %g5, 1, %o3"),             # o3 in [0, 0x3c]
+               (0x1018, "sub  %o4, %o3, %o4"),           # o4 in [0x1010 - 0x3c, 0x1010]
+               (0x101c, "jmp  %o4 + 0x50"),              # targets [0x1024, 0x1060]
+               (0x1020, "add  %o0, %g5, %o0")] + \
+              [(0x1024 + 4 * i, "stx  %o1, [ %o0 + -8 ]") for i in range(16)] + \
+              [(0x1064, "retl "), (0x1068, "nop ")]
+
+
+def test_a_pc_relative_computed_jump_is_bounded_inside_its_function() -> None:
+    got = local_jumps(MEMSET_LIKE, 0x1000, 0x106c, {0x1060})
+    assert got == {0x101c: (0x1010 - 0x3c + 0x50, 0x1010 + 0x50, 0x1004)}
+
+
+def test_a_computed_jump_is_not_proven_when_anything_may_break_the_reasoning() -> None:
+    # a branch may enter between the mask and the jump: the index is unknown there
+    assert local_jumps(MEMSET_LIKE, 0x1000, 0x106c, {0x1060, 0x1014}) == {}
+    # the index rewritten by an instruction the analysis does not model
+    changed = [(a, "ld  [ %o0 ], %g5" if a == 0x100c else t) for a, t in MEMSET_LIKE]
+    assert local_jumps(changed, 0x1000, 0x106c, {0x1060}) == {}
+    # the highest target (0x1010 + 0x150) past the function's end
+    far = [(a, "jmp  %o4 + 0x150" if a == 0x101c else t) for a, t in MEMSET_LIKE]
+    assert local_jumps(far, 0x1000, 0x106c, {0x1060}) == {}
+    # a jump through a register loaded from memory (a function pointer): never proven
+    ptr = [(0x2000, "ld  [ %o0 ], %g1"), (0x2004, "jmp  %g1"), (0x2008, "restore ")]
+    assert local_jumps(ptr, 0x2000, 0x200c, set()) == {}
+    # an annulled branch before the jump: its delay slot may be skipped, so nothing is known after
+    ann = [(a, "bne,a   %xcc, 1060 <f+0x60>" if a == 0x1008 else t) for a, t in MEMSET_LIKE]
+    assert local_jumps(ann, 0x1000, 0x106c, {0x1060}) == {}
+
+
+def test_the_memcpy_large_shape_pc_plus_a_shifted_index() -> None:
+    code = [(0x3000, "and  %g2, 7, %g2"), (0x3004, "rd  %pc, %g5"), (0x3008, "addcc  %g5, 0xf8, %g5"),
+            (0x300c, "sll  %g2, 9, %g2"), (0x3010, "jmp  %g5 + %g2"), (0x3014, "nop ")]
+    got = local_jumps(code, 0x3000, 0x4000, set())
+    assert got == {0x3010: (0x3004 + 0xf8, 0x3004 + 0xf8 + (7 << 9), 0x3000)}
+    assert local_jumps(code, 0x3000, 0x3004 + 0xf8 + (7 << 9), set()) == {}   # one byte short
+
+
+def test_v9_branches_are_read_so_a_tail_call_by_branch_is_an_edge() -> None:
+    # __math_uflow's `b %xcc, xflow` (V9 form) leaves the function: the reader must see its target
+    assert sparc("b  %xcc, 381e0 <xflow>").target == 0x381E0
+    assert sparc("be,pn   %xcc, 40154 <memcpy+0x2b4>").target == 0x40154
+    assert sparc("bne,a,pt  %icc, 1234 <g>").target == 0x1234
+    assert sparc("brz,pn  %o1, 4a0 <h>").target == 0x4A0
+    assert sparc("btst  8, %o2").target is None
+
+
+def test_code_after_a_return_or_a_terminating_call_is_dead_until_something_enters() -> None:
+    code = [(0x100, "retl "), (0x104, "add  %o7, %l7, %l7"),          # delay slot: executed
+            (0x108, "b,a   %xcc, 200 <deregister_tm_clones>"),         # padding no path reaches
+            (0x10c, "nop "), (0x110, "call  300 <__stack_chk_fail>"), (0x114, "nop ")]
+    assert dead_code(code, 0x100, set(), []) == {0x108, 0x10c, 0x110, 0x114}
+    # the same padding entered by a branch from elsewhere is live
+    assert dead_code(code, 0x100, {0x10c}, []) == {0x108}
+    # inside a proven computed jump's targets: live
+    assert dead_code(code, 0x100, set(), [(0x108, 0x10c)]) == set()
+    # after a call of a terminating function
+    tail = [(0x400, "call  300 <__stack_chk_fail>"), (0x404, "nop "), (0x408, "b,a  %xcc, 500 <g>")]
+    assert dead_code(tail, 0x400, set(), [], frozenset({0x300})) == {0x408}
+    assert dead_code(tail, 0x400, set(), []) == set()
+
+
+def test_libc_memset_and_memcpy_call_nothing_through_a_register(built) -> None:
+    """The libc linked into the program: on SPARC (glibc's v8plus memset and memcpy) their computed
+    jumps are proven local, so the bound no longer routes `memset > mpsp_switch_cb > ...` through
+    them (docs/profile.md before the fix); newlib's on the Cortex-M7 have none."""
+    isa, _, funcs, _ = built
+    names = by_name(funcs)
+    for name in ("memset", "memcpy") if isa == "sparc" else ("memset",):   # newlib links no memcpy here
+        assert name in names, (isa, name)
+        f = funcs[names[name][0]]
+        assert not f.indirect, (isa, name)
+        assert (f.local_jumps >= 1) == (isa == "sparc"), (isa, name)

@@ -1,6 +1,7 @@
-"""Processor in the loop (docs/pil.md): a family's flight program on the emulated Cortex-M7, talked
-to over the link (ogk.sil.target_link), with the instructions of every entry-point call counted by
-QEMU's insn_count plugin and the stack of every call measured on the target (painted window).
+"""Processor in the loop (docs/pil.md): a family's flight program on an emulated target (TARGETS:
+the Cortex-M7 under qemu-system-arm, or big-endian SPARC V8 Linux user mode under qemu-sparc32plus),
+talked to over the link (ogk.sil.target_link), with the instructions of every entry-point call counted
+by QEMU's insn_count plugin and the stack of every call measured on the target (painted window).
 
 `PilSession(program)` starts one QEMU for a sequence of runs. A family's chunk flight
   * `exchange(kind, values)` at every step (binary64 values in and out; or `send` to several
@@ -31,7 +32,9 @@ from .target_link import ERROR, TargetLink, TargetLinkError, f64_payload, f64_va
 RUN_END = 16                        #: OGK_PIL_RUN_END (port/cortex-m7/pil/ogk_pil.h)
 TICK_MARK = "ogk_pil_tick_mark"     #: called by the program after every step it answers
 RUN_MARK = "ogk_pil_run_mark"       #: ... and after every run
-TARGETS = ("host", "m7")            #: where a campaign's flight software runs
+TARGETS = ("host", "m7", "sparc")   #: where a campaign's flight software runs
+#: target -> the nm that reads its flight programs' symbols
+NM = {"m7": "arm-none-eabi-nm", "sparc": "sparc64-linux-gnu-nm"}
 PLUGIN = Path(__file__).resolve().parents[3] / "build" / "qemu-plugin" / "libinsn_count.so"
 
 
@@ -42,13 +45,23 @@ class FlightProgram:
     elf: Path
     entry_points: tuple[str, ...]
     timeout_s: float = 30.0         #: the longest a step may take on QEMU
+    target: str = "m7"              #: the processor it is built for (TARGETS, not "host")
+
+
+def target_why(target: str, why: str) -> str:
+    """A family's reason why host and target differ (written for the Cortex-M7 and newlib), with
+    what is different on SPARC V8."""
+    if target != "sparc":
+        return why
+    return ("on SPARC V8 both sides use glibc's libm (the target's built for v8plus, not x86-64's), "
+            "so the differences are those of the libm builds and of the code generation; the "
+            "Cortex-M7's reasons and bounds: " + why)
 
 
 @lru_cache(maxsize=16)
-def _symbols(elf: str, mtime_ns: int) -> dict[str, int]:
-    """Function name -> address (Thumb bit cleared) of an ELF."""
-    out = subprocess.run(["arm-none-eabi-nm", "-S", elf], check=True, capture_output=True,
-                         text=True).stdout
+def _symbols(elf: str, mtime_ns: int, nm: str = "arm-none-eabi-nm") -> dict[str, int]:
+    """Function name -> address (Thumb bit cleared; SPARC instructions are 4-aligned) of an ELF."""
+    out = subprocess.run([nm, "-S", elf], check=True, capture_output=True, text=True).stdout
     syms: dict[str, int] = {}
     for line in out.splitlines():
         parts = line.split()
@@ -61,7 +74,7 @@ def plugin_arguments(program: FlightProgram, calls_path: Path, report_path: Path
     """The -plugin argument: one fn= item per entry point and marker, the call log, the report."""
     if not PLUGIN.is_file():
         raise TargetLinkError(f"{PLUGIN} not built (make qemu-plugin)")
-    syms = _symbols(str(program.elf), program.elf.stat().st_mtime_ns)
+    syms = _symbols(str(program.elf), program.elf.stat().st_mtime_ns, NM[program.target])
     items = []
     for name in (*program.entry_points, TICK_MARK, RUN_MARK):
         if name not in syms:
@@ -122,7 +135,7 @@ class PilSession:
         self._calls = Path(self._dir.name) / "calls.log"
         plugin = plugin_arguments(program, self._calls, Path(self._dir.name) / "report.txt")
         self.link = TargetLink(program.elf, timeout_s=program.timeout_s,
-                               extra_args=("-plugin", plugin))
+                               extra_args=("-plugin", plugin), target=program.target)
         self._runs: list[int] = []
         self._stack: list[tuple[list[int], int]] = []
         self.exchanges = 0

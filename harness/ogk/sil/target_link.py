@@ -1,6 +1,7 @@
 """The host end of the processor-in-the-loop link (docs/pil.md; the target end is
-port/cortex-m7/link/ogk_link.h): one flight program on QEMU's mps2-an500, framed messages over its
-semihosting console (the program's stdin and stdout).
+port/cortex-m7/link/ogk_link.h): one flight program on QEMU, framed messages over its stdin and
+stdout: on the Cortex-M7 (target "m7") QEMU's mps2-an500 and its semihosting console; on SPARC V8
+(target "sparc") a static Linux program under qemu-sparc32plus (user mode: glibc's read/write).
 
 Frame (every field little-endian): b"OGKL" | type u16 | length u16 | payload | CRC-32 u32 of type,
 length and payload (zlib's). The runtime's own text (the stack report at exit, a fault report) also
@@ -29,6 +30,18 @@ MAX_PAYLOAD = 1024           #: OGK_LINK_MAX_PAYLOAD
 STOP, ERROR, ECHO = 1, 2, 3  #: OGK_LINK_STOP, OGK_LINK_ERROR, OGK_LINK_ECHO
 QEMU = ("qemu-system-arm", "-M", "mps2-an500", "-nographic", "-monitor", "none", "-serial", "none",
         "-semihosting-config", "enable=on,target=native")
+QEMU_SPARC = ("qemu-sparc32plus",)
+#: target -> (how QEMU is named in messages, the command line before the extra arguments)
+TARGET_QEMU = {"m7": ("qemu mps2-an500", QEMU), "sparc": ("qemu-sparc32plus", QEMU_SPARC)}
+
+
+def qemu_command(target: str, elf: Path, extra_args: tuple[str, ...] = ()) -> list[str]:
+    """The command line that runs `elf` on `target` (system emulation loads it as the kernel; user
+    mode runs it as the program)."""
+    if target not in TARGET_QEMU:
+        raise TargetLinkError(f"no QEMU for target {target!r} (known: {', '.join(TARGET_QEMU)})")
+    base = TARGET_QEMU[target][1]
+    return [*base, *extra_args, "-kernel", str(elf)] if target == "m7" else [*base, *extra_args, str(elf)]
 
 
 class TargetLinkError(RuntimeError):
@@ -53,14 +66,25 @@ def f64_values(payload: bytes) -> NDArray[np.float64]:
 
 
 class TargetLink:
-    """One flight program on the emulated Cortex-M7, talked to in frames."""
+    """One flight program on an emulated target ("m7" or "sparc"), talked to in frames."""
 
-    def __init__(self, elf: str | Path, timeout_s: float = 10.0, extra_args: tuple[str, ...] = ()) -> None:
+    def __init__(self, elf: str | Path, timeout_s: float = 10.0, extra_args: tuple[str, ...] = (),
+                 target: str = "m7") -> None:
         self.elf = Path(elf)
         if not self.elf.is_file():
             raise TargetLinkError(f"{self.elf}: no such flight program (make link-echo builds the link's)")
         self.timeout_s = timeout_s
-        self._proc = subprocess.Popen([*QEMU, *extra_args, "-kernel", str(self.elf)],
+        self.target = target
+        # SPARC runs in user mode: the guest's initial stack holds its environment and program path,
+        # so their lengths move every stack address, and glibc's memcpy/memset take other branches
+        # for other alignments (instruction counts differed by up to 0.6 % between an `ogk mc` run
+        # and the same run under make). A fixed empty environment and the path "./NAME" (flown
+        # copies are NAME-<sha16>.elf: one length) give the same stack on every run and clone.
+        user = target != "m7"
+        self._proc = subprocess.Popen(qemu_command(target, Path("./" + self.elf.name) if user
+                                                   else self.elf, extra_args),
+                                      cwd=self.elf.parent if user else None,
+                                      env={} if user else None,
                                       stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                       stderr=subprocess.STDOUT)
         assert self._proc.stdin is not None and self._proc.stdout is not None
@@ -161,5 +185,5 @@ class TargetLink:
             self._drain()
         tail = " | ".join(self.output.strip().splitlines()[-3:])
         ended = "running" if code is None else f"exit {code}"
-        return TargetLinkError(f"{self.elf.name} on qemu mps2-an500 ({ended}): {what}"
+        return TargetLinkError(f"{self.elf.name} on {TARGET_QEMU[self.target][0]} ({ended}): {what}"
                                + (f"; output: {tail}" if tail else ""))

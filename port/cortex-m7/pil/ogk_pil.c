@@ -25,10 +25,21 @@ __attribute__((noinline)) uint32_t *ogk_pil_stack_paint(void)
     volatile uint32_t *word;
     uint32_t *lo;
     uint32_t i;
+#if defined(__sparc__)
+    /* SPARC: gcc gives this function a register window (`save %sp, -96, %sp`; checked on the
+     * built program, tests/python/test_pil_sparc.py), so its %fp is the caller's %sp. */
+    __asm__ volatile("mov %%fp, %0" : "=r"(sp));
+#else
+    /* The leaf keeps no frame (a BL pushes nothing; checked in the disassembly, docs/pil.md): its
+     * sp is the caller's. */
     __asm__ volatile("mov %0, sp" : "=r"(sp));
-    /* The window ends at this leaf's stack pointer, which is the caller's: the leaf keeps no frame
-     * (a BL pushes nothing; checked in the disassembly, docs/pil.md), and AAPCS keeps it 8-aligned
-     * at a call. So the figure is every byte the next call writes below the caller's pointer. */
+#endif
+    /* The window ends at the caller's stack pointer, which AAPCS and the SPARC ABI keep 8-aligned
+     * at a call. So the figure is every byte the next call writes below the caller's pointer. On
+     * SPARC the caller's register-window save area lies above its %sp, outside the window; a
+     * callee's save area is written only when its window spills (a call deeper than the register
+     * windows hold), so the painted figure can stay below gcc's frames by the save areas still in
+     * registers: a measurement, never above the static bound. */
     lo = (uint32_t *)((sp & ~(uintptr_t)7u) - OGK_PIL_STACK_WINDOW);
     word = lo;
     for (i = 0u; i < PIL_WORDS; ++i) {

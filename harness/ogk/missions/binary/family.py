@@ -48,7 +48,8 @@ class _Base:
 class BinaryFamily:
     name = "binary-asteroid"
     laws = LAWS
-    targets = ("host", "m7")        #: m7: the corrector calls on the emulated Cortex-M7 (pil.py)
+    #: m7 / sparc: the corrector calls on the emulated Cortex-M7 / SPARC V8 (pil.py)
+    targets = ("host", "m7", "sparc")
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         """The scenario's [monte_carlo] runs per level times its [dispersions] levels (Table 3: 600 x 6)."""
@@ -153,18 +154,19 @@ class BinaryFamily:
                    levels: tuple[float, ...], sigma: float, scenario: Path) -> None:
         """The plan with every corrector call made by the scenario's flight program on the emulated
         Cortex-M7 (pil.py); the draws, the DOP853 checks and the judging stay on the host."""
+        from ogk.sil.pil import target_why
         from ogk.sil.pil_build import file_sha256
 
         from . import pil
         base: _Base = plan.base
-        program = pil.flight_program(nominal, scenario, base.transfer)
+        program = pil.flight_program(nominal, scenario, base.transfer, str(options["target"]))
         plan.fly = pil.TargetJob(nominal, base.correctors, levels, sigma, program)
         plan.target = str(options["target"])
         plan.options = {**plan.options, "target": plan.target}
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = {k: v for k, v in pil.BOUNDS.items()
                               if k.split(".")[0] in base.correctors}
-        plan.target_why = pil.BOUNDS_WHY
+        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
         plan.watchdog_per_run_s = 120.0
 
     # ------------------------------------------------------------------ reports

@@ -109,14 +109,15 @@ TRANSFER_N = len(flatten(ffi.new("ogk_blt_transfer_t *")))
 
 # ------------------------------------------------------------------------------------------ the program
 
-def flight_program(nominal: campaign.Nominal, scenario_path: Path, transfer: str) -> FlightProgram:
+def flight_program(nominal: campaign.Nominal, scenario_path: Path, transfer: str,
+                   target: str = "m7") -> FlightProgram:
     """The scenario's flight program for the corrector configurations of its Monte Carlo nominal
     (a build per distinct configuration set: the key is the SHA-256 of their values)."""
     configs = slot_configs(nominal)
     key = hashlib.sha256(np.array([v for c in configs for v in flatten(c.to_c())]).tobytes())
     out = PIL_BUILD / "binary" / f"{Path(scenario_path).stem}-{key.hexdigest()[:12]}"
     return FlightProgram(build_program("blt", out, lambda c_dir: write_flight_config(
-        c_dir, Path(scenario_path), configs, transfer)), ENTRY_POINTS)
+        c_dir, Path(scenario_path), configs, transfer), target), ENTRY_POINTS, target=target)
 
 
 class TargetCorrector:

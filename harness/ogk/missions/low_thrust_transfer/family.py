@@ -60,7 +60,7 @@ class LowThrustFamily:
     laws = LAWS
 
     fixed_lists = True           #: --cases paper: the number of runs is the list's
-    targets = ("host", "m7")     #: --target m7: the solves on the flight program (pil.py)
+    targets = ("host", "m7", "sparc")   #: --target m7 / sparc: the solves on the flight program (pil.py)
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         return None              # the command states it, or the paper's list does
@@ -166,16 +166,17 @@ class LowThrustFamily:
                    case_of: Any, record_of: Any) -> None:
         """The plan's solves made by the scenario's flight program on the emulated Cortex-M7
         (pil.py); the cases, records and judging stay the host's."""
+        from ogk.sil.pil import target_why
         from ogk.sil.pil_build import file_sha256
 
         from . import pil
-        program = pil.flight_program(setup, plan.scenario_path)
+        program = pil.flight_program(setup, plan.scenario_path, str(opts["target"]))
         plan.fly = pil.TargetJob(case_of, record_of, program, t0=float(setup.guidance.cfg.t0))
         plan.target = str(opts["target"])
         plan.options = {**plan.options, "target": plan.target}   # `ogk replay` flies it there
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = dict(pil.BOUNDS)
-        plan.target_why = pil.BOUNDS_WHY
+        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
         plan.watchdog_per_run_s = pil.SOLVE_TIMEOUT_S
 
     def _paper(self, setup: MpspSetup, papers: list[Case],

@@ -50,7 +50,7 @@ BOUNDS_WHY = ("the same C on both sides and the same configuration (generated fr
               "cases, against a 500 km tolerance), the final mass within 1e-9 kg")
 
 
-def flight_program(setup: Any, scenario_path: Path) -> FlightProgram:
+def flight_program(setup: Any, scenario_path: Path, target: str = "m7") -> FlightProgram:
     """The scenario's flight program, built for the configuration the campaign flies: one build
     per scenario file (SHA-256), basis, order and C configuration (its bytes: the nominal weights
     and every [mpsp] setting)."""
@@ -65,8 +65,8 @@ def flight_program(setup: Any, scenario_path: Path) -> FlightProgram:
     def generate(c_dir: Path) -> None:
         write_flight_config(c_dir.parent, scenario_path, setup)   # writes OUT/c/...
 
-    return FlightProgram(build_program("mpsp", out, generate), ENTRY_POINTS,
-                         timeout_s=SOLVE_TIMEOUT_S)
+    return FlightProgram(build_program("mpsp", out, generate, target), ENTRY_POINTS,
+                         timeout_s=SOLVE_TIMEOUT_S, target=target)
 
 
 def _config_digest(cfg: Any) -> str:

@@ -51,7 +51,7 @@ class _Base:
 class OrbitInjectionFamily:
     name = "orbit-injection"
     laws = LAWS
-    targets = ("host", "m7")        #: m7: port/cortex-m7/pil/oi_pil.c (pil.py)
+    targets = ("host", "m7", "sparc")   #: m7 / sparc: port/cortex-m7/pil/oi_pil.c (pil.py)
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         return None              # the command states the number of runs
@@ -140,18 +140,19 @@ class OrbitInjectionFamily:
     @staticmethod
     def _on_target(plan: CampaignPlan, opts: dict[str, Any], tables: Any, scenario: Path) -> None:
         """The plan flown by the scenario's flight program on the emulated Cortex-M7 (pil.py)."""
+        from ogk.sil.pil import target_why
         from ogk.sil.pil_build import file_sha256
 
         from . import pil
         pil.check_target_settings(plan.base.settings, opts)
-        program = pil.flight_program(tables, scenario)
+        program = pil.flight_program(tables, scenario, str(opts["target"]))
         job = dataclasses.replace(plan.base.job, settings=dataclasses.replace(
             plan.base.settings, history_runs=0))
         plan.fly = pil.TargetJob(job, program)
         plan.target = str(opts["target"])
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = dict(pil.BOUNDS)
-        plan.target_why = pil.BOUNDS_WHY
+        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
         plan.watchdog_per_run_s = 60.0
 
     # ------------------------------------------------------------------ reports

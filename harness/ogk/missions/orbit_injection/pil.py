@@ -39,7 +39,7 @@ BOUNDS_WHY = ("the same C on both sides; newlib's libm (sin, cos, atan2) differs
               "FMA in ISO C mode on either side")
 
 
-def flight_program(tables: Any, scenario_path: Path) -> FlightProgram:
+def flight_program(tables: Any, scenario_path: Path, target: str = "m7") -> FlightProgram:
     """The scenario's flight program, built for the tables the campaign flies."""
     from ogk_host.cgen import write_c_table
 
@@ -53,7 +53,7 @@ def flight_program(tables: Any, scenario_path: Path) -> FlightProgram:
         # write_flight_config writes into OUT/c
         write_flight_config(c_dir.parent, scenario_path, tables.bundle)
 
-    return FlightProgram(build_program("oi", out, generate), ENTRY_POINTS)
+    return FlightProgram(build_program("oi", out, generate, target), ENTRY_POINTS, target=target)
 
 
 class TargetFlightComputer:

@@ -69,7 +69,7 @@ def flight_record(summary: Mapping[str, Any]) -> Record:
 class RendezvousFamily:
     name = "low-thrust-rendezvous"
     laws = LAWS
-    targets = ("host", "m7")        #: m7: port/cortex-m7/pil/nmpc_pil.c (pil.py)
+    targets = ("host", "m7", "sparc")   #: m7 / sparc: port/cortex-m7/pil/nmpc_pil.c (pil.py)
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         return None              # the command states the number of runs
@@ -157,13 +157,14 @@ class RendezvousFamily:
                    max_replans: Any) -> None:
         """The plan's replans made by the scenario's flight program on the emulated Cortex-M7
         (pil.py); the truth, the noise and the judging stay on the host."""
+        from ogk.sil.pil import target_why
         from ogk.sil.pil_build import file_sha256
 
         from . import pil
         if plan.options["solver"] != "kernel":
             raise OgkInputError(f"--target {target} flies the kernel's ogk_nmpc, got "
                                 f"{plan.options['solver']!r}", key="--solver")
-        program = pil.flight_program(path, scenario, strategy, third)
+        program = pil.flight_program(path, scenario, strategy, third, target)
         plan.fly = pil.TargetJob(scenario, settings, strategy, perturbed,
                                  None if max_replans is None else int(max_replans), program,
                                  flight_record, RESULTS)
@@ -171,7 +172,7 @@ class RendezvousFamily:
         plan.options = {**plan.options, "target": target}
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
         plan.target_bounds = dict(pil.BOUNDS)
-        plan.target_why = pil.BOUNDS_WHY
+        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
         plan.watchdog_per_run_s = 7200.0     # a whole closed loop of QEMU re-solves
 
     def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:

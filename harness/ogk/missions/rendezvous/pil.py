@@ -76,7 +76,7 @@ def program_key(scenario_path: Path, strategy: str, third_bodies: str) -> str:
 
 
 def flight_program(scenario_path: Path, scenario: RendezvousScenario, strategy: str,
-                   third_bodies: str) -> FlightProgram:
+                   third_bodies: str, target: str = "m7") -> FlightProgram:
     """The scenario's flight program, built for the strategy and predictive model flown (`scenario`:
     the file's, with the campaign's third bodies in its model)."""
     from .flight_config import write_flight_config
@@ -86,8 +86,8 @@ def flight_program(scenario_path: Path, scenario: RendezvousScenario, strategy: 
     def generate(c_dir: Path) -> None:
         write_flight_config(c_dir.parent, Path(scenario_path), scenario, strategy, third_bodies)
 
-    return FlightProgram(build_program("nmpc", out, generate), ENTRY_POINTS,
-                         timeout_s=STEP_TIMEOUT_S)
+    return FlightProgram(build_program("nmpc", out, generate, target), ENTRY_POINTS,
+                         timeout_s=STEP_TIMEOUT_S, target=target)
 
 
 class TargetGuidance:
