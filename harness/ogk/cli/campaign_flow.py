@@ -10,7 +10,7 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import file_sha256, read_header
 
 from ogk.missions import registry
-from ogk.sil import engine, envelope, target_summary
+from ogk.sil import dispersion_check, engine, envelope, target_summary
 from ogk.sil.family import CampaignPlan
 from ogk.sil.outputs import check_output_dir, check_output_file
 
@@ -85,7 +85,11 @@ def report(campaign: str) -> int:
     print(fam.report(flown)[0])
     print()
     print(generic_report(doc))
-    return 0 if not doc["failures"] else 1
+    disp = dispersion_check.check_plan(plan, records)     # the same verdict as `ogk mc`'s
+    if disp is not None:
+        print()
+        print(disp.summary())
+    return 0 if not doc["failures"] and (disp is None or not disp.structural_errors) else 1
 
 
 def generic_report(doc: dict[str, Any]) -> str:

@@ -1,6 +1,8 @@
 """`ogk mc SCENARIO` for any family: the engine's options, the plan of the family (ogk.sil.family),
 the flight (ogk.sil.engine), the report the family prints, the envelope and Parquet table
-(ogk.sil.envelope). Exit 0 when every run passed the scenario's acceptance, 1 otherwise."""
+(ogk.sil.envelope), the dispersion check (ogk.sil.dispersion_check). Exit 0 when every run passed
+the scenario's acceptance and every declared dispersion was applied, 1 otherwise (a failed
+distribution test is a warning: a correct campaign fails it with the check's significance)."""
 from __future__ import annotations
 
 import argparse
@@ -10,7 +12,7 @@ from typing import Any
 from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader
 
-from . import engine, envelope, target_summary
+from . import dispersion_check, engine, envelope, target_summary
 from .family import CampaignPlan
 from .outputs import check_output_dir, check_output_file, remove_stale
 from .pil import TARGETS
@@ -127,14 +129,19 @@ def fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace) -> int:
         pil = target_summary.summary(plan.target, flown.records, host.records, plan.target_bounds,
                                      plan.target_why, flown.wall_s, flown.workers)
     text, extra = fam.report(flown)
+    disp = dispersion_check.check_plan(plan, flown.records)   # dispersions proven applied
     print(text)
     if pil is not None:
         print()
         print(target_summary.format_summary(pil))
+    if disp is not None:
+        print()
+        print(disp.summary())
     if flown.resumed_runs:
         print(f"\n{flown.resumed_runs} of {len(flown.records)} runs taken from "
               f"{engine.run_log_path(args.json)}")
-    envelope.write_campaign(args.json, flown, extra, pil)
+    envelope.write_campaign(args.json, flown, extra, pil,
+                            None if disp is None else disp.to_json())
     print(f"\nwrote {args.json} and {envelope.table_path(args.json)} "
           f"({len(flown.records)} runs, {flown.wall_s:.1f} s wall, {flown.workers} workers)")
     if args.plots and hasattr(fam, "plots"):
@@ -146,4 +153,7 @@ def fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace) -> int:
     agree = pil is None or pil["host_vs_target"]["within_bounds"]
     if not agree:
         print("the target campaign differs from the host's beyond the stated bounds (above)")
-    return 0 if not flown.failures() and agree else 1
+    if disp is not None and disp.structural_errors:
+        print("a declared dispersion is not applied as the scenario states (above)")
+    applied = disp is None or not disp.structural_errors   # a distribution test: a warning only
+    return 0 if not flown.failures() and agree and applied else 1

@@ -8,12 +8,14 @@ Envelope (`ogk.campaign/1`, written atomically, NaN as null):
   quantities {key: {n, mean, std, worst: {run_id, value}}}  (worst: the largest |value|, the lowest run id on a tie),
   paper (the paper's columns beside ours, only when the scenario carries them),
   per_run_table (the Parquet file's name), timing {wall_s, cpu_s}, target ("host" or "m7"),
-  pil (a target campaign only: worst case per entry point, host vs target; ogk.sil.target_summary)
+  pil (a target campaign only: worst case per entry point, host vs target; ogk.sil.target_summary),
+  dispersion_check (each declared dispersion against the records; ogk.sil.dispersion_check)
 A family may add its own keys (its report's figures, older names kept as aliases): never one of
 the above.
 
 Parquet (`<json stem>.parquet` beside the JSON, pyarrow): one row per run, in run-id order: run_id,
-run_seed, every drawn value, every result, failure ("" when the run passed).
+run_seed, every drawn value, every result, failure ("" when the run passed); the value of each
+declared dispersion as applied under disp.<[dispersions] key> (ogk.sil.dispersion_check).
 """
 from __future__ import annotations
 
@@ -34,7 +36,7 @@ SCHEMA = "ogk.campaign/1"
 ENVELOPE_KEYS = ("schema", "family", "law", "mission", "scenario_path", "scenario_sha256",
                  "products", "options", "seed", "runs", "workers", "resumed_runs", "failures",
                  "failure_reasons", "failed_runs", "acceptance", "quantities", "paper",
-                 "per_run_table", "timing", "target", "pil")
+                 "per_run_table", "timing", "target", "pil", "dispersion_check")
 
 
 def table_path(json_path: str | Path) -> Path:
@@ -82,7 +84,8 @@ def failure_reasons(records: Sequence[Record]) -> dict[str, int]:
 
 def envelope(flown: Flown, extra: Mapping[str, Any] | None = None,
              json_path: str | Path | None = None,
-             pil: Mapping[str, Any] | None = None) -> dict[str, Any]:
+             pil: Mapping[str, Any] | None = None,
+             dispersion_check: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """The campaign's JSON document (module doc); `extra`: the family's own keys."""
     plan, recs = flown.plan, flown.records
     doc: dict[str, Any] = dict(extra or {})
@@ -104,6 +107,8 @@ def envelope(flown: Flown, extra: Mapping[str, Any] | None = None,
         doc["paper"] = paper
     if pil is not None:
         doc["pil"] = dict(pil)
+    if dispersion_check is not None:
+        doc["dispersion_check"] = dict(dispersion_check)
     return finite_or_none(doc)
 
 
@@ -142,11 +147,12 @@ def read_table(path: str | Path) -> list[Record]:
 
 def write_campaign(json_path: str | Path, flown: Flown,
                    extra: Mapping[str, Any] | None = None,
-                   pil: Mapping[str, Any] | None = None) -> dict[str, Any]:
+                   pil: Mapping[str, Any] | None = None,
+                   dispersion_check: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Writes the Parquet table, then the envelope (the envelope last: a JSON that exists names a
     complete table). Returns the envelope."""
     write_table(table_path(json_path), flown.records)
-    doc = envelope(flown, extra, json_path, pil)
+    doc = envelope(flown, extra, json_path, pil, dispersion_check)
     write_atomic(json_path, json.dumps(doc, indent=1) + "\n")
     return doc
 

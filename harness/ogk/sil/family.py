@@ -22,6 +22,11 @@ and the campaign plan says everything the engine needs and nothing of the physic
   detail(run_id, run_seed, plots_dir)       one run again with its time histories and plots
   target, target_bounds, target_why         where the flight software runs; for "m7" the bound of
                                             each quantity against the host on the same draws
+  dispersions                               the scenario's [dispersions] as the family applies them
+                                            (ogk.sil.dispersion_check.Declaration): each record
+                                            carries disp.<key>, checked after the campaign
+  draw(run_ids, run_seeds) -> [record]      optional: the disp.* keys of runs without flying them,
+                                            by the code the flight's records come from
 
 A family that flies on the target lists it in `targets` (("host", "m7")) and reads
 options["target"] (absent: "host").
@@ -78,6 +83,10 @@ class CampaignPlan:
     #: they differ at all (docs/pil.md, "Host vs target")
     target_bounds: dict[str, float] = dataclasses.field(default_factory=dict)
     target_why: str = ""
+    #: the scenario's [dispersions] and how each key is applied (ogk.sil.dispersion_check)
+    dispersions: Any = None
+    #: the disp.* keys of a chunk of runs drawn without flying (None: the family cannot)
+    draw: ChunkFlight | None = None
 
     def key(self, seed: int) -> dict[str, Any]:
         """What the runs depend on besides their ids: the run log's key."""

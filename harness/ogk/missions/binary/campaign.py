@@ -10,7 +10,8 @@ perturbation: "perturbed by values up to p"),
   - the free node: re-predicted from the perturbed parameters (backward from the target, as the guess stage
     does; eq. 72); the target is not perturbed ("the orbit determination ... is assumed to be accurate").
 Run i of a campaign flies level i mod L (L levels) from its own stream (ogk.sil.seeds, the campaign
-engine's): a run is reproducible alone, and the same draw serves every corrector."""
+engine's): a run is reproducible alone, and the same draw serves every corrector. A record carries
+the level and the perturbations as applied (disp.*, dispersions.py)."""
 from __future__ import annotations
 
 import dataclasses
@@ -24,6 +25,7 @@ from ogk_bindings.blt import HYBRID, LM, NRPC, Blt, Transfer
 from ogk_host.binary.dynamics import Model
 from ogk_host.binary.guess import Circle, Layout, kernel_config, predicted_node
 
+from .dispersions import applied_record, record_keys
 from .trajectory import reference_errors
 
 CORRECTORS = {"nrpc": NRPC, "lm": LM, "hybrid": HYBRID}
@@ -50,8 +52,21 @@ class Nominal:
 
 
 def draw(nominal: Nominal, level: float, sigma_fraction: float,
-         rng: np.random.Generator) -> tuple[Transfer, dict[str, Any]]:
-    """A perturbed problem and guess (see the module docstring) and the draw itself."""
+         rng: np.random.Generator, applied: dict[str, Any] | None = None
+         ) -> tuple[Transfer, dict[str, Any]]:
+    """A perturbed problem and guess (see the module docstring) and the draw itself; `applied`
+    gets the run's disp.* keys (dispersions.py) before the free node is predicted."""
+    guess, d = perturbed(nominal, level, sigma_fraction, rng)
+    if applied is not None:
+        applied.update(applied_record(nominal, level, guess))
+    if nominal.layout.free_nodes:
+        guess.nodes = predicted_node(nominal.model, nominal.layout, guess, how="backward")
+    return guess, d
+
+
+def perturbed(nominal: Nominal, level: float, sigma_fraction: float,
+              rng: np.random.Generator) -> tuple[Transfer, dict[str, Any]]:
+    """The perturbed problem, its node not yet re-predicted, and the draw itself."""
     tr = nominal.transfer
     n_seg = tr.segments.shape[0]
     xi = np.clip(rng.normal(0.0, sigma_fraction, size=(n_seg * 7 + 1)), -1.0, 1.0)
@@ -66,8 +81,6 @@ def draw(nominal: Nominal, level: float, sigma_fraction: float,
     shift = level * xi[-1] * tr.segments[0, 6]
     x0 = circle.state(lon0 + circle.synodic_rate * shift)
     guess = Transfer(t0=tr.t0, x0=x0, xf=tr.xf.copy(), segments=seg, nodes=tr.nodes.copy(), mass0=tr.mass0)
-    if nominal.layout.free_nodes:
-        guess.nodes = predicted_node(nominal.model, nominal.layout, guess, how="backward")
     return guess, dict(xi=xi.tolist(), departure_shift=shift)
 
 
@@ -94,14 +107,16 @@ def fly_run(nominal: Nominal, solvers: dict[str, Blt], level: float, sigma_fract
     """One perturbed problem corrected by each corrector on the same draw: a flat record
     (`<corrector>.converged`, `.reason`, `.iterations`, ...; timings under `timing.`)."""
     out: dict[str, Any] = {"level_percent": 100.0 * level}
+    applied: dict[str, Any] = dict.fromkeys(record_keys(nominal))
     try:
-        guess, d = draw(nominal, level, sigma_fraction, rng)
+        guess, d = draw(nominal, level, sigma_fraction, rng, applied)
     except (ValueError, RuntimeError) as exc:       # the perturbed prediction itself fails (impact, mass)
         out["draw.xi"] = None
         out["draw.departure_shift"] = None
         for name in solvers:
             out.update({f"{name}.converged": False, f"{name}.reason": f"no guess: {exc}"})
-        return out
+        return {**out, **applied}
+    out.update(applied)
     out["draw.xi"] = d["xi"]
     out["draw.departure_shift"] = float(d["departure_shift"])
     for name, kernel in solvers.items():

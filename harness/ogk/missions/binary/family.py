@@ -25,12 +25,14 @@ from ogk_host.binary.orbits import CorrectionError
 from ogk_host.binary.scenario import LAWS, BinaryScenario, load_scenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
+from ogk.sil.dispersion_check import scenario_table
 from ogk.sil.engine import Flown
 from ogk.sil.family import CampaignPlan, Record, per_run
 from ogk.sil.progress import Working
 from ogk.sil.seeds import run_generator
 
 from . import campaign
+from .dispersions import applied_record, declared
 
 ALL = ("nrpc", "lm", "hybrid")
 
@@ -43,6 +45,15 @@ class _Base:
     correctors: tuple[str, ...]
     levels_percent: tuple[float, ...]
     paper: dict[float, float]         #: level [%] -> the paper's converged % (empty: no paper column)
+
+
+def draw_record(nominal: campaign.Nominal, levels: tuple[float, ...], sigma: float, run_id: int,
+                run_seed: int) -> Record:
+    """Run `run_id`'s disp.* keys without correcting it: its level and its perturbed problem, drawn
+    as fly_one draws them (campaign.perturbed; the node's re-prediction changes no disp.* key)."""
+    level = levels[run_id % len(levels)] / 100.0
+    guess, _ = campaign.perturbed(nominal, level, sigma, run_generator(run_seed))
+    return applied_record(nominal, level, guess)
 
 
 class BinaryFamily:
@@ -144,7 +155,10 @@ class BinaryFamily:
             acceptance={"dop853_tolerance": accept_tol,
                         "error_tolerance": scenario.acceptance.error_tolerance,
                         "non_convergence": "measured, not a failure"},
-            watchdog_per_run_s=30.0, base=base)
+            watchdog_per_run_s=30.0, base=base,
+            dispersions=declared(scenario_table(header.path), nominal, levels, sigma),
+            draw=per_run(lambda run_id, run_seed: draw_record(nominal, levels, sigma, run_id,
+                                                              run_seed)))
         if options.get("target", "host") != "host":
             self._on_target(plan, options, nominal, levels, sigma, Path(header.path))
         return plan

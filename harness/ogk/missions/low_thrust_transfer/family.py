@@ -10,7 +10,8 @@ Two campaigns:
                                5, 6: 23 runs, no draw), the paper's columns beside ours when the
                                scenario has [paper_results].
 With --reference, each run also gets the fuel-optimal re-solve of the same problem (cached) and
-its fuel increase FI.
+its fuel increase FI. Each record carries the perturbation as the solve was given it (disp.*,
+dispersions.py).
 
 Acceptance: MPSP converged, and its terminal errors within the scenario's [acceptance]
 (`scenario.acceptance`: position_error_km, velocity_error_km_s; default the [mpsp] tolerances
@@ -30,12 +31,14 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.low_thrust_transfer.scenario import FOURIER_BASES, LAWS, MAX_FOURIER_ORDER, load_scenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
+from ogk.sil.dispersion_check import scenario_table
 from ogk.sil.engine import Flown
 from ogk.sil.family import CampaignPlan, Record, per_run
 from ogk.sil.seeds import run_generator
 
 from .cases import KINDS, MpspSetup, Case, build_setup, initial_case, paper_cases, run_case
 from .cases import terminal_case, thrust_case
+from .dispersions import applied_record, declared
 from .report import CaseRecord, header, make_record, paper_rows, table_line
 
 RESULTS = ("converged", "newton_iterations", "outer_steps", "dr_f_km", "dv_f_kmps", "lambda_mf",
@@ -128,6 +131,7 @@ class LowThrustFamily:
                            "delta_rf_lu": list(case.param) if case.kind == "terminal" else None,
                            "eta_percent": float(case.param) if case.kind == "thrust" else None}
             out.update({k: rec[k] for k in RESULTS})
+            out.update(applied_record(setup, case))      # what the solve was given (dispersions.py)
             out["reference_final_mass_kg"] = None if ref is None else ref.final_mass_kg
             out["timing.cpu_s"] = rec["cpu_s"]
             return out
@@ -156,7 +160,9 @@ class LowThrustFamily:
             max_runs=None if papers is None else len(papers),
             acceptance={"converged": True, "dr_f_km": acc.position_error_km,
                         "dv_f_kmps": acc.velocity_error_km_s},
-            watchdog_per_run_s=120.0, base=(setup, papers))
+            watchdog_per_run_s=120.0, base=(setup, papers),
+            dispersions=declared(setup, scenario_table(header.path), which),
+            draw=per_run(lambda run_id, run_seed: applied_record(setup, case_of(run_id, run_seed))))
         if options.get("target", "host") != "host":
             self._on_target(plan, options, setup, case_of, record_of)
         return plan

@@ -30,6 +30,7 @@ from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
+from ogk.sil.dispersion_check import scenario_table
 from ogk.sil.criteria import (apply_tolerances, failure_list, failure_reasons, statistics,
                               tail_statistics)
 from ogk.sil.outputs import write_atomic
@@ -39,7 +40,8 @@ from ogk.sil.family import CampaignPlan
 from ogk.sil.runlog import RunLog
 from ogk.sil.runner import Watchdog, run_ids_for
 
-from .dispersions import DispersionSwitches, RunDraws, draw_runs
+from .dispersions import (DispersionSwitches, RunDraws, declared, dispersion_records, draw_runs,
+                          with_first_actuation)
 from .guidance import GuidanceFactory, GuidanceSetup
 from .nominal_ref import NominalReference, nominal_reference
 from .sil import ERROR_KEYS, RATE_KEYS, EndGamePlan, History, SilSettings, simulate
@@ -215,7 +217,7 @@ class _Job:
 
     def __call__(self, run_ids: NDArray[np.int64],
                  run_seeds: NDArray[np.uint64] | None = None) -> tuple[RunDraws, Any]:
-        draws, gens = draw_runs(self.scenario, self.seed, run_ids, self.switches, run_seeds)
+        draws, gens = self.draws(run_ids, run_seeds)
         plan = EndGamePlan.of(self.scenario, self.settings)
         guidance = self.guidance_factory(GuidanceSetup(self.scenario, self.reference, draws.run_id,
                                                        plan.fine_interval_s))
@@ -223,6 +225,20 @@ class _Job:
         res = simulate(self.scenario, self.reference, draws, gens, self.switches, guidance,
                        self.settings)
         return draws, res
+
+    def draws(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64] | None = None
+              ) -> tuple[RunDraws, list[np.random.Generator]]:
+        """The runs' draws, with the first actuation noise the truth will receive (simulate:
+        on when the switch is and the truth is 6-DOF), and their generators positioned for the
+        actuation noise."""
+        draws, gens = draw_runs(self.scenario, self.seed, run_ids, self.switches, run_seeds)
+        return with_first_actuation(self.scenario, draws, gens, self.switches.actuation
+                                    and self.settings.truth == "6dof"), gens
+
+    def draw_records(self, run_ids: NDArray[np.int64],
+                     run_seeds: NDArray[np.uint64]) -> list[dict[str, Any]]:
+        """The disp.* keys of the runs, drawn without flying (the plan's `draw`)."""
+        return dispersion_records(self.draws(run_ids, run_seeds)[0])
 
 
 def _merge_history(parts: list[History | None]) -> History | None:
@@ -271,8 +287,8 @@ def _run_records(draws: RunDraws, res: Any) -> list[dict[str, Any]]:
              "rates0_radps": draws.rates0[i].tolist(),
              "thrust_coeffs": draws.thrust_coeffs[i].tolist(),
              **{k: float(res.errors[k][i]) for k in ERROR_KEYS},
-             **{k: float(res.max_rates[k][i]) for k in RATE_KEYS}}
-            for i in range(draws.n_runs)]
+             **{k: float(res.max_rates[k][i]) for k in RATE_KEYS}, **disp}
+            for i, disp in enumerate(dispersion_records(draws))]
 
 
 def _assemble(records: list[dict[str, Any]]) -> tuple[RunDraws, dict[str, F64], dict[str, F64],
@@ -318,13 +334,16 @@ def campaign_plan(scenario: OrbitInjectionScenario, ref: NominalReference, switc
 
     key = run_key(scenario, 0, settings.truth, name, switches, settings, sha, tables)
     key.pop("seed")
+    table = {} if scenario_path is None else scenario_table(scenario_path)
     return CampaignPlan(
         family="orbit-injection", law=law, mission=scenario.name,
         scenario_path=Path(scenario_path) if scenario_path is not None else Path(""),
         scenario_sha256=sha or "", options=options if options is not None else key,
         products={} if tables is None else {"nog_tables": tables.sha256},
         fly=_ChunkFlight(job), judge=judge, quantities=ERROR_KEYS,
-        acceptance=tol, watchdog_per_run_s=2.0, base=job)
+        acceptance=tol, watchdog_per_run_s=2.0, base=job,
+        dispersions=declared(scenario, table, switches, settings.truth == "6dof"),
+        draw=job.draw_records)
 
 
 def run_campaign(scenario: OrbitInjectionScenario, runs: int, seed: int, workers: int = 1,

@@ -5,17 +5,26 @@ Each generator is consumed in a fixed order: 5 initial-state normals, 3 attitude
 coefficients (always drawn, scaled by 0 when a group is switched off, so switching one group off does
 not change the others), then the actuation noise, 3 normals per control step in blocks of
 NOISE_BLOCK steps.
+
+Records (ogk.sil.dispersion_check, naming rule disp.<[dispersions] key>): each run carries the
+values its flight is given: disp.initial_state.* and disp.attitude.* (Tables 3-4), the eq. (55)
+coefficients a_1..a_10 as disp.thrust.coefficient_sigma[0..9], and disp.actuators.* the actuation
+noise of the first control step (Table 5; 0 when the noise is off or the truth is point-mass,
+which has no actuators). `declared` states the distribution of each.
 """
 from __future__ import annotations
 
+import copy
 import dataclasses
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
+from ogk.sil.dispersion_check import Constant, Declaration, Declared, Gaussian, Parameter
 from ogk.sil.seeds import run_generator, run_seed
 
 __all__ = ["ActuationNoise", "DispersionSwitches", "RunDraws", "draw_runs", "run_generator",
@@ -56,6 +65,9 @@ class RunDraws:
     d_attitude: F64                #: (N, 3) [dPsi, dTheta, dPhi] [rad]
     rates0: F64                    #: (N, 3) [P0, Q0, R0] [rad/s]
     thrust_coeffs: F64             #: (N, 10) eq. (55) a_1..a_10 [-]
+    #: (N, 3) [dM_x, dDelta_y, dDelta_z] actuation noise of the first control step, as the truth
+    #: receives it (`with_first_actuation`); None when not known (draws rebuilt from records)
+    actuation0: F64 | None = None
 
     @property
     def n_runs(self) -> int:
@@ -63,11 +75,14 @@ class RunDraws:
 
     def subset(self, index: NDArray[np.int64] | slice) -> "RunDraws":
         return RunDraws(self.run_id[index], self.run_seed[index], self.d_state[index],
-                        self.d_attitude[index], self.rates0[index], self.thrust_coeffs[index])
+                        self.d_attitude[index], self.rates0[index], self.thrust_coeffs[index],
+                        None if self.actuation0 is None else self.actuation0[index])
 
     @staticmethod
     def concatenate(parts: Sequence["RunDraws"]) -> "RunDraws":
+        known = all(p.actuation0 is not None for p in parts)
         return RunDraws(*(np.concatenate([getattr(p, f.name) for p in parts])
+                          if f.name != "actuation0" or known else None
                           for f in dataclasses.fields(RunDraws)))
 
 
@@ -108,6 +123,81 @@ def draw_runs(scn: OrbitInjectionScenario, master_seed: int, run_ids: Sequence[i
     return RunDraws(ids, seeds, d_state, d_att, rates, coeffs), gens
 
 
+def _noise_block(g: np.random.Generator) -> F64:
+    """NOISE_BLOCK control steps of unit actuation noise of one run: (NOISE_BLOCK, 3)."""
+    return g.standard_normal((NOISE_BLOCK, 3))
+
+
+def with_first_actuation(scn: OrbitInjectionScenario, draws: RunDraws,
+                         generators: list[np.random.Generator], applied: bool) -> RunDraws:
+    """`draws` with the actuation noise of the first control step as ActuationNoise will give it
+    to the truth (`applied`: the noise is on and the truth has actuators, as in sil.simulate),
+    drawn from copies of the generators: the flight's streams are not touched."""
+    ad = scn.actuator_dispersion
+    sigma = np.array([ad.roll_torque_n_m, ad.deflection_y_rad, ad.deflection_z_rad])
+    first = np.zeros((draws.n_runs, 3))
+    if applied:
+        for k, g in enumerate(generators):
+            first[k] = _noise_block(copy.deepcopy(g))[0] * sigma
+    return dataclasses.replace(draws, actuation0=first)
+
+
+#: record key -> (RunDraws field, column) of the values a run is given
+RECORD_COLUMNS: dict[str, tuple[str, int]] = {
+    "initial_state.radius_m": ("d_state", 0),
+    "initial_state.declination_rad": ("d_state", 2),
+    "initial_state.radial_velocity_m_s": ("d_state", 3),
+    "initial_state.transverse_velocity_m_s": ("d_state", 4),
+    "initial_state.normal_velocity_m_s": ("d_state", 5),
+    "attitude.yaw_rad": ("d_attitude", 0),        # Psi_0
+    "attitude.pitch_rad": ("d_attitude", 1),      # Theta_0
+    "attitude.roll_rad": ("d_attitude", 2),       # Phi_0
+    "attitude.roll_rate_rad_s": ("rates0", 0),    # P_0
+    "attitude.pitch_rate_rad_s": ("rates0", 1),   # Q_0
+    "attitude.yaw_rate_rad_s": ("rates0", 2),     # R_0
+    "actuators.roll_torque_n_m": ("actuation0", 0),
+    "actuators.deflection_y_rad": ("actuation0", 1),
+    "actuators.deflection_z_rad": ("actuation0", 2),
+}
+
+
+def dispersion_records(draws: RunDraws) -> list[dict[str, float | None]]:
+    """The disp.* keys of each run (module doc)."""
+    out = []
+    for i in range(draws.n_runs):
+        rec: dict[str, float | None] = {}
+        for key, (field, col) in RECORD_COLUMNS.items():
+            arr = getattr(draws, field)
+            rec["disp." + key] = None if arr is None else float(arr[i, col])
+        rec.update({f"disp.thrust.coefficient_sigma[{j}]": float(draws.thrust_coeffs[i, j])
+                    for j in range(N_THRUST_COEFFS)})
+        out.append(rec)
+    return out
+
+
+def declared(scn: OrbitInjectionScenario, table: dict[str, Any], switches: DispersionSwitches,
+             six_dof: bool) -> Declaration:
+    """The scenario's [dispersions] as a campaign applies them: each key a zero-mean Gaussian of
+    its 1-sigma (Tables 3-5, eq. 55), a constant 0 when its group is switched off or its sigma is
+    0 (or, for the actuators, when the truth has none)."""
+    isd, att, ad = scn.initial_state_dispersion, scn.attitude_dispersion, scn.actuator_dispersion
+    groups = {"initial_state": (isd, switches.initial_state), "attitude": (att, switches.attitude),
+              "actuators": (ad, switches.actuation and six_dof)}
+    out = []
+    for key in RECORD_COLUMNS:
+        group, name = key.split(".")
+        obj, on = groups[group]
+        sigma = float(getattr(obj, name))
+        out.append(Declared(key, Gaussian(sigma) if on and sigma > 0.0 else Constant(0.0)))
+    sigma = float(scn.thrust_dispersion.coefficient_sigma)
+    out.append(Declared("thrust.coefficient_sigma",
+                        Gaussian(sigma) if switches.thrust and sigma > 0.0 else Constant(0.0),
+                        size=2 * int(scn.thrust_dispersion.harmonics)))
+    out.append(Declared("thrust.harmonics", Parameter(
+        "thrust.coefficient_sigma", "eq. (55): 2 x harmonics coefficients a_k")))
+    return Declaration(table, tuple(out))
+
+
 class ActuationNoise:
     """Table 5 actuation errors, one draw per run per control step (held over the step).
 
@@ -129,7 +219,7 @@ class ActuationNoise:
             return self._zeros
         if self._pos == NOISE_BLOCK:
             for k, g in enumerate(self._gens):
-                self._block[:, :, k] = g.standard_normal((NOISE_BLOCK, 3))
+                self._block[:, :, k] = _noise_block(g)
             self._block *= self._sigma[None, :, None]
             self._pos = 0
         out = self._block[self._pos]

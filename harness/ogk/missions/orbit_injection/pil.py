@@ -101,7 +101,6 @@ class TargetJob:
     def __call__(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64]
                  ) -> list[dict[str, Any]]:
         from .campaign import _run_records
-        from .dispersions import draw_runs
 
         job = self.host_job
 
@@ -109,7 +108,7 @@ class TargetJob:
             records: list[dict[str, Any]] = []
             for g in range(0, run_ids.size, len(sessions)):
                 ids, seeds = run_ids[g:g + len(sessions)], run_seeds[g:g + len(sessions)]
-                draws, gens = draw_runs(job.scenario, job.seed, ids, job.switches, seeds)
+                draws, gens = job.draws(ids, seeds)
                 fc = TargetFlightComputer(sessions[:ids.size])
                 res = simulate(job.scenario, job.reference, draws, gens, job.switches,
                                _NoGuidance(), job.settings, flight_computer=fc)

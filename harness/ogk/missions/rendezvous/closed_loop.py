@@ -33,8 +33,7 @@ from numpy.typing import NDArray
 from ogk_host.rendezvous.dynamics import DAY_S, Engine, Model
 from ogk_host.rendezvous.scenario import RendezvousScenario
 
-from ogk.sil.seeds import run_generator
-
+from .dispersions import FIRST_OFFSET_KEY, AngleNoise, sigma_flown
 from .guidance_base import Guidance, ReplanInfo
 from .truth import TruthModel
 
@@ -109,6 +108,7 @@ class FlightResult:
     units: Any = None
     closest_approach: dict[str, float] = dataclasses.field(default_factory=dict)
     earth_encounter: dict[str, float] = dataclasses.field(default_factory=dict)  #: closest to Earth
+    first_angle_offset_rad: float | None = None   #: the first thrust-angle noise flown (dispersions.py)
 
     def summary(self) -> dict[str, Any]:
         ms = np.asarray(self.solve_ms) if self.solve_ms else np.zeros(1)
@@ -123,7 +123,8 @@ class FlightResult:
                 "solve_ms": {"median": float(np.median(ms)), "max": float(np.max(ms)),
                              "total": float(np.sum(ms))},
                 "max_comp_fraction": self.max_comp_fraction,
-                "closest_approach": self.closest_approach, "earth_encounter": self.earth_encounter}
+                "closest_approach": self.closest_approach, "earth_encounter": self.earth_encounter,
+                FIRST_OFFSET_KEY: self.first_angle_offset_rad}
 
     def to_json(self) -> dict[str, Any]:
         doc = self.summary()
@@ -179,16 +180,10 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
     conv = scenario.convergence
     max_replans = max_replans or scenario.nmpc.max_replans
     t_max = (max_flight_days or scenario.nmpc.max_flight_days) * DAY_S / units.time_s
-    sigma = scenario.dispersions.thrust_angle_sigma_rad if perturbed else 0.0
     period_s = scenario.dispersions.thrust_angle_draw_period_s
     period = period_s / units.time_s
-    rng = run_generator(seed)   # Generator(PCG64(seed)): the engine's stream of one run
-    draws: dict[int, float] = {}
-
-    def offset_for(k: int) -> float:
-        if k not in draws:
-            draws[k] = float(rng.normal(0.0, sigma)) if sigma > 0.0 else 0.0
-        return draws[k]
+    noise = AngleNoise(sigma_flown(scenario, perturbed), seed)   # dispersions.py
+    offset_for = noise.offset
 
     def arrived(t: float, x: FloatArray) -> bool:
         dr, dv = truth.miss(t, x)
@@ -347,4 +342,5 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
                           "velocity_miss_m_s": float(misses[k_best, 1])},
         earth_encounter={"distance_km": float(d_earth[k_emin]) / 1e3,
                          "t_days": float(t_arr[k_emin]) * units.time_s / DAY_S,
-                         "start_distance_km": float(d_earth[0]) / 1e3})
+                         "start_distance_km": float(d_earth[0]) / 1e3},
+        first_angle_offset_rad=noise.first_rad)

@@ -22,8 +22,11 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.rendezvous.scenario import LAWS, Acceptance, RendezvousScenario, load_scenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
+from ogk.sil.dispersion_check import scenario_table
 from ogk.sil.engine import Flown
 from ogk.sil.family import CampaignPlan, Detail, Record, per_run
+
+from .dispersions import FIRST_OFFSET_KEY, declared, draw_records
 
 STRATEGIES = ("snns", "cncn")
 SOLVERS = ("kernel", "ipopt")
@@ -60,6 +63,7 @@ def flight_record(summary: Mapping[str, Any]) -> Record:
     """A flat record of one closed-loop flight (FlightResult.summary())."""
     rec: Record = {"converged": bool(summary["converged"]), "reason": str(summary["reason"])}
     rec.update({k: summary.get(k) for k in RESULTS})
+    rec[FIRST_OFFSET_KEY] = summary.get(FIRST_OFFSET_KEY)   # the noise flown (dispersions.py)
     rec["timing.solve_ms_median"] = summary["solve_ms"]["median"]
     rec["timing.solve_ms_max"] = summary["solve_ms"]["max"]
     rec["timing.max_comp_fraction"] = summary["max_comp_fraction"]   # CPU time / control period
@@ -121,7 +125,8 @@ class RendezvousFamily:
             try:
                 rec = flight_record(flight(run_seed).summary())
             except RuntimeError as err:   # the truth integration stopped (e.g. through a planet)
-                rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(RESULTS)}
+                rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(RESULTS),
+                       FIRST_OFFSET_KEY: None}
             rec["timing.wall_s"] = time.perf_counter() - start
             return rec
 
@@ -145,7 +150,9 @@ class RendezvousFamily:
             acceptance={"arrival": f"the [convergence] test: inside {scenario.target_name}'s sphere of "
                                    "influence within its velocity tolerance; propellant within the dry mass",
                         **dataclasses.asdict(scenario.acceptance)},
-            detail=detail, watchdog_per_run_s=600.0, base=scenario)
+            detail=detail, watchdog_per_run_s=600.0, base=scenario,
+            dispersions=declared(scenario, scenario_table(header.path), perturbed),
+            draw=lambda ids, seeds: draw_records(scenario, perturbed, ids, seeds))
         if options.get("target", "host") != "host":
             self._on_target(plan, str(options["target"]), Path(header.path), scenario, settings,
                             strategy, third, perturbed, max_replans)

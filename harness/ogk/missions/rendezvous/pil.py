@@ -32,6 +32,7 @@ from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
 from . import strategy as st
+from .dispersions import FIRST_OFFSET_KEY
 from .guidance_base import ReplanInfo
 
 F64 = NDArray[np.float64]
@@ -231,7 +232,8 @@ class TargetJob:
                 except TargetLinkError:
                     raise
                 except RuntimeError as err:   # the truth integration stopped (family.fly_one)
-                    rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(self.results)}
+                    rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(self.results),
+                           FIRST_OFFSET_KEY: None}
                 rec["timing.wall_s"] = time.perf_counter() - start
                 rec["pil.command_mismatch"] = guidance.command_mismatch
                 rec.update(shadow_keys(guidance, tu_days))
