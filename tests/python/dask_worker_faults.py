@@ -2,7 +2,7 @@
 chunk a worker starts is logged to $OGK_TEST_DASK_DIR/chunks.log ("pid run_ids"), and a chunk that
 holds run i while $OGK_TEST_DASK_DIR/kill-i exists kills its own worker (SIGKILL), once: the file is
 renamed first, so the chunk flown again elsewhere runs normally; with $OGK_TEST_DASK_DIR/raise-i
-instead, the chunk raises a KernelError (once). The task is replaced by name in
+instead, the chunk raises a KernelError (once); with hang-i, it sleeps 40 s first (once). The task is replaced by name in
 ogk.sil.dask_executor, which is where the client's pickled reference to it resolves."""
 from __future__ import annotations
 
@@ -25,6 +25,10 @@ def fly_chunk(shipment, seed, run_ids):   # noqa: ANN001, ANN201 - the wrapped t
         with open(os.path.join(where, "chunks.log"), "a", encoding="utf-8") as fh:
             fh.write(f"{os.getpid()} {' '.join(str(int(i)) for i in run_ids)}\n")
         for i in run_ids:
+            armed = os.path.join(where, f"hang-{int(i)}")
+            if os.path.exists(armed):
+                os.rename(armed, armed + ".done")
+                time.sleep(40.0)
             armed = os.path.join(where, f"raise-{int(i)}")
             if os.path.exists(armed):
                 os.rename(armed, armed + ".done")

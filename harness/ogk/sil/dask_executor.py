@@ -14,8 +14,9 @@ Faults, in one line as the local runner's (CampaignAborted naming the chunk's ru
   * a worker lost mid-chunk (killed, its machine gone): the scheduler re-runs that chunk elsewhere,
     the finished chunks are kept (their results are already here); only a chunk that killed
     `distributed.scheduler.allowed-failures` + 1 workers (default 4) aborts the campaign;
-  * no chunk finished for the watchdog's limit of one chunk (120 s + S per run; the first chunk of
-    a worker also rebuilds the plan): the chunks in flight are named and cancelled.
+  * no chunk finished for the watchdog's limit of one chunk (120 s + S per run; PLAN_ALLOWANCE_S
+    more until the first chunk finishes, since it also rebuilds the plan): the chunks in flight
+    are named and cancelled.
 Ctrl-C or SIGTERM cancels the chunks and raises KeyboardInterrupt (the engine keeps the log).
 """
 from __future__ import annotations
@@ -40,6 +41,10 @@ from .shipping import Shipment, plan_of, ship
 
 #: seconds to wait for a scheduler named by --dask ADDRESS
 CONNECT_TIMEOUT_S = 15
+#: the watchdog's extra allowance until the first chunk finishes: every worker's first chunk also
+#: rebuilds the plan (binary family ~30 s of CPU; ten times that on a crowded machine: an OI
+#: warm-up chunk once took 116 s at load average 23, next to the 122 s limit)
+PLAN_ALLOWANCE_S = 600.0
 
 
 def fly_chunk(shipment: Shipment, seed: int, run_ids: list[int]) -> tuple[list[Record], float]:
@@ -117,16 +122,18 @@ class DaskExecutor:
                    for k, p in enumerate(pieces)}
         limit = watchdog.limit_s(max(p.size for p in pieces))
         worker_cpu = 0.0
+        wait_s = limit + PLAN_ALLOWANCE_S
         old_term = _sigterm_raises()
         try:
             while pending:
                 try:
-                    done, _ = wait(list(pending), timeout=limit, return_when="FIRST_COMPLETED")
+                    done, _ = wait(list(pending), timeout=wait_s, return_when="FIRST_COMPLETED")
                 except TimeoutError:
                     flying = self._in_flight(tag, pieces)
-                    raise CampaignAborted(f"watchdog: no chunk finished for {limit:.0f} s "
+                    raise CampaignAborted(f"watchdog: no chunk finished for {wait_s:.0f} s "
                                           f"({watchdog.base_s:g} s + {watchdog.per_run_s:g} s per "
                                           f"run); chunks in flight cancelled", flying) from None
+                wait_s = limit
                 for fut in sorted(done, key=lambda f: pending[f]):
                     k = pending.pop(fut)
                     records, cpu = self._result(fut, pieces[k])
