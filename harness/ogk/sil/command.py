@@ -72,7 +72,7 @@ def check_engine_arguments(args: argparse.Namespace) -> None:
         raise OgkInputError(f"must be >= 0, got {args.seed}", key="--seed")
     if args.workers < 1:
         raise OgkInputError(f"must be >= 1, got {args.workers}", key="--workers")
-    if args.dask is not None:
+    if getattr(args, "dask", None) is not None:     # `ogk run` checks these options too, without it
         from .dask_executor import check_address
         check_address(args.dask)
         if args.workers != 1:
@@ -114,7 +114,7 @@ def fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace) -> int:
     cluster (ogk.sil.dask_executor), the same campaign."""
     check_engine_arguments(args)
     check_target(fam, args)
-    if args.dask is None:
+    if getattr(args, "dask", None) is None:
         return _fly(fam, header, args, None)
     from .dask_executor import DaskExecutor
     with DaskExecutor(args.dask, fam) as executor:
