@@ -49,6 +49,10 @@ def add_engine_arguments(p: argparse.ArgumentParser, family: Any,
     p.add_argument("--chunk-runs", type=int, default=None, metavar="K",
                    help=f"at most K runs per chunk (default {engine.DEFAULT_CHUNK_RUNS}); finished "
                         "chunks are kept in <json>.runs.jsonl as they complete")
+    p.add_argument("--dask", default=None, metavar="ADDRESS",
+                   help="fly the chunks on a Dask cluster: a running scheduler's ADDRESS "
+                        "(tcp://HOST:PORT) or local:N (N worker processes started here); the "
+                        "records are the same bit for bit (docs/scale-out.md)")
     add_target_argument(p)
     p.add_argument("--watchdog-per-run", type=float, default=None, metavar="S",
                    help="a chunk without a result after 120 s + S s per run is killed and the "
@@ -70,6 +74,12 @@ def check_engine_arguments(args: argparse.Namespace) -> None:
         raise OgkInputError(f"must be >= 0, got {args.seed}", key="--seed")
     if args.workers < 1:
         raise OgkInputError(f"must be >= 1, got {args.workers}", key="--workers")
+    if getattr(args, "dask", None) is not None:     # `ogk run` checks these options too, without it
+        from .dask_executor import check_address
+        check_address(args.dask)
+        if args.workers != 1:
+            raise OgkInputError("the Dask cluster's workers fly the chunks: give --workers or "
+                                "--dask, not both", key="--workers")
     if args.chunk_runs is not None and args.chunk_runs < 1:
         raise OgkInputError(f"must be >= 1, got {args.chunk_runs}", key="--chunk-runs")
     if args.watchdog_per_run is not None and not args.watchdog_per_run > 0.0:
@@ -83,7 +93,7 @@ def check_engine_arguments(args: argparse.Namespace) -> None:
 
 
 ENGINE_OPTIONS = ("runs", "seed", "workers", "json", "plots", "resume", "chunk_runs",
-                  "watchdog_per_run", "debug")
+                  "watchdog_per_run", "debug", "dask")
 
 
 def family_options(args: argparse.Namespace) -> dict[str, Any]:
@@ -102,9 +112,18 @@ def check_target(fam: Any, args: argparse.Namespace) -> None:
 
 
 def fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace) -> int:
-    """`ogk mc SCENARIO ...` for any family `fam` (its FAMILY object)."""
+    """`ogk mc SCENARIO ...` for any family `fam` (its FAMILY object); with `--dask` on a Dask
+    cluster (ogk.sil.dask_executor), the same campaign."""
     check_engine_arguments(args)
     check_target(fam, args)
+    if getattr(args, "dask", None) is None:
+        return _fly(fam, header, args, None)
+    from .dask_executor import DaskExecutor
+    with DaskExecutor(args.dask, fam) as executor:
+        return _fly(fam, header, args, executor)
+
+
+def _fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace, executor: Any) -> int:
     if args.runs is None and not getattr(fam, "fixed_lists", False):
         raise OgkInputError("required: the number of runs", key="--runs")
     remove_stale(args.json)
@@ -119,13 +138,15 @@ def fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace) -> int:
     wd = Watchdog(per_run_s=args.watchdog_per_run) if args.watchdog_per_run else None
     flown = engine.fly_campaign(plan, args.runs, args.seed, args.workers,
                                 chunk_runs=args.chunk_runs, watchdog=wd,
-                                run_log=engine.run_log_path(args.json), resume=args.resume)
+                                run_log=engine.run_log_path(args.json), resume=args.resume,
+                                executor=executor)
     pil = None
     if plan.target != "host":
         # the host campaign on the same draws: what the target changes, per run
         opts = {k: v for k, v in family_options(args).items() if k != "target"}
         host = engine.fly_campaign(fam.plan(header, opts), args.runs, args.seed, args.workers,
-                                   run_ids=flown.run_ids, chunk_runs=args.chunk_runs)
+                                   run_ids=flown.run_ids, chunk_runs=args.chunk_runs,
+                                   executor=executor)
         pil = target_summary.summary(plan.target, flown.records, host.records, plan.target_bounds,
                                      plan.target_why, flown.wall_s, flown.workers)
     text, extra = fam.report(flown)

@@ -62,8 +62,8 @@ def seeds_of(seed: int, ids: NDArray[np.int64]) -> NDArray[np.uint64]:
 
 @dataclasses.dataclass(frozen=True)
 class JudgedChunk:
-    """The job handed to the runner (and `ogk replay`): flies a chunk, stamps each run's id and
-    seed, judges it."""
+    """The job handed to the runner, the Dask executor and `ogk replay`: flies a chunk, stamps each
+    run's id and seed, judges it (on one BLAS thread, as everything in ogk.sil: its __init__)."""
 
     plan: CampaignPlan
     seed: int
@@ -82,11 +82,14 @@ def fly_campaign(plan: CampaignPlan, runs: int, seed: int, workers: int = 1, *,
                  run_ids: Sequence[int] | None = None, chunk_runs: int | None = None,
                  chunks: int | None = None, watchdog: Watchdog | None = None,
                  run_log: str | Path | None = None, resume: bool = False,
-                 progress: bool | None = None) -> Flown:
+                 progress: bool | None = None, executor: Any = None) -> Flown:
     """Flies runs 0..runs-1 (or `run_ids`) of `plan`. With `run_log` each finished chunk's
     records are appended as they complete, and `resume` keeps the records of an earlier campaign
     with the same key and flies only the others. Raises CampaignAborted on a fault and
-    CampaignInterrupted on Ctrl-C / SIGTERM (the finished runs stay in the run log)."""
+    CampaignInterrupted on Ctrl-C / SIGTERM (the finished runs stay in the run log).
+    `executor`: None, the forked workers of ogk.sil.runner; or an object with
+    `run(plan, seed, ids, chunk_runs, watchdog, on_chunk) -> (workers, cpu_s)` flying the same
+    JudgedChunk elsewhere (ogk.sil.dask_executor.DaskExecutor); the run log is the same."""
     t0 = time.perf_counter()
     ids = run_ids_for(runs, run_ids)
     log = None if run_log is None else RunLog(run_log, plan.key(seed), resume=resume)
@@ -107,8 +110,11 @@ def fly_campaign(plan: CampaignPlan, runs: int, seed: int, workers: int = 1, *,
         wd = watchdog or Watchdog(per_run_s=plan.watchdog_per_run_s)
         size = chunk_runs or DEFAULT_CHUNK_RUNS
         try:
-            _, used, cpu_s = run_chunks(JudgedChunk(plan, int(seed)), todo, workers, chunks,
-                                        chunk_runs=size, watchdog=wd, on_chunk=keep)
+            if executor is not None:
+                used, cpu_s = executor.run(plan, int(seed), todo, size, wd, keep)
+            else:
+                _, used, cpu_s = run_chunks(JudgedChunk(plan, int(seed)), todo, workers, chunks,
+                                            chunk_runs=size, watchdog=wd, on_chunk=keep)
         except KeyboardInterrupt:
             kept = sum(1 for i in ids.tolist() if i in records)
             where = (f"{kept} of {ids.size} runs kept in {log.path}; the same command with "
