@@ -56,7 +56,7 @@ DRIVERS = (
     Driver("nog", (K + "nog.c", K + "interp.c", K + "linalg.c", K + "table.c", K + "crc32.c",
                    K + "thrust_cmd.c"), "drv_nog.c"),
     Driver("qp", (K + "qp.c", K + "qp_blas.c"), "drv_qp.c"),
-    Driver("mpsp", (K + "mpsp.c", K + "mpsp_adjoint.c", K + "mpsp_bv.c", K + "mpsp_dynamics.c",
+    Driver("mpsp", (K + "mpsp.c", K + "mpsp_adjoint.c", K + "mpsp_bv.c", K + "mpsp_control.c", K + "mpsp_dynamics.c",
                     K + "mpsp_propagate.c", K + "mpsp_sensitivity.c", K + "rk4.c", K + "linalg.c",
                     K + "interp.c", K + "thrust_cmd.c"),
            "drv_mpsp.c", defines=("OGK_MPSP_MAX_ORDER=1u", "OGK_MPSP_MAX_STEPS=2u", "OGK_MPSP_MAX_SWITCHES=2u",
