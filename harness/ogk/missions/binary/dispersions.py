@@ -13,7 +13,7 @@ not perturbed (xi drawn and unused), so they are not recorded.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
@@ -22,9 +22,16 @@ from ogk.sil.dispersion_check import Cycle, Declaration, Declared, Gaussian
 if TYPE_CHECKING:
     from ogk_bindings.blt import Transfer
 
-    from .campaign import Nominal
-
 LEVEL_KEY = "disp.levels_percent"
+
+
+class Nominal(Protocol):
+    """What the dispersions read of campaign.Nominal (a protocol, so that this module does not
+    import campaign.py, which imports it)."""
+
+    layout: Any           #: the chain's layout: .kinds, "burn" or a coast per segment
+    transfer: Any         #: the nominal Transfer
+    circle_radius: float  #: the binary's circle radius [normalised]
 
 
 def n_applied(nominal: "Nominal") -> int:
