@@ -179,9 +179,15 @@ def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(fa
     def fault(i):
         if i == 4:
             os.kill(os.getpid(), signal.SIGINT)     # one worker: the chunks fly in this process
-    with pytest.raises(CampaignInterrupted) as err:
-        fly_campaign(faulty(plan, fault), 6, 5, workers=1, chunk_runs=2, run_log=log,
-                     progress=False)
+    # Ctrl-C as on a terminal: a test run started as a background job by a shell without job
+    # control (`make test &`) inherits SIGINT ignored, and Python then keeps it ignored
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(CampaignInterrupted) as err:
+            fly_campaign(faulty(plan, fault), 6, 5, workers=1, chunk_runs=2, run_log=log,
+                         progress=False)
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert "4 of 6 runs kept" in err.value.line()
     resumed = fly_campaign(plan, 6, 5, workers=2, chunk_runs=2, run_log=log, resume=True,
                            progress=False)
