@@ -38,7 +38,10 @@ def fly_chunk(shipment, seed, run_ids):   # noqa: ANN001, ANN201 - the wrapped t
                 os.rename(armed, armed + ".done")
             except FileNotFoundError:
                 continue
-            time.sleep(1.0)     # the client has fetched the chunks this worker finished before
+            # 3 s: the client has fetched the chunks this worker finished before, and the
+            # scheduler's memory manager (a 2 s cycle) has dropped the shipment's extra replicas,
+            # so half the time this worker holds its only copy (the executor must recover it)
+            time.sleep(3.0)
             os.kill(os.getpid(), signal.SIGKILL)
     return _fly_chunk(shipment, seed, run_ids)
 

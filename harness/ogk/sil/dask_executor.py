@@ -3,8 +3,11 @@ docs/scale-out.md): the same chunks as the forked runner (ogk.sil.runner.split_c
 the workers of a Dask cluster, for every family and target.
 
 The campaign goes out once as a `Shipment` (ogk.sil.shipping: scenario, options, ground products
-with their SHA-256), broadcast to every worker; each chunk is a task `fly_chunk(shipment, seed,
-run_ids)` that rebuilds the plan on the worker (once per process, checked against the shipment)
+with their SHA-256), as the result of a task of its own rather than scattered data: the scheduler's
+memory manager keeps one replica of scattered data, and a worker lost with it would take every chunk
+with it ("already forgotten"), where a task's result is recomputed on another worker. Each chunk is a
+task `fly_chunk(shipment, seed, run_ids)` that rebuilds the plan on the worker (once per process,
+checked against the shipment)
 and returns the records of `JudgedChunk`, the very job of the local runner, so a run's record is
 the same bit for bit whichever executor flew it. Records come back as each chunk finishes and go
 to the engine's `on_chunk` (the run log: resume works across executors).
@@ -53,6 +56,11 @@ def fly_chunk(shipment: Shipment, seed: int, run_ids: list[int]) -> tuple[list[R
     plan = plan_of(shipment)
     records = JudgedChunk(plan, int(seed))(np.asarray(run_ids, dtype=np.int64))
     return records, time.process_time() - cpu0
+
+
+def shipment_task(shipment: Shipment) -> Shipment:
+    """The task whose result is the campaign's shipment (module doc: recomputable if lost)."""
+    return shipment
 
 
 def check_address(spec: str) -> str:
@@ -115,8 +123,9 @@ class DaskExecutor:
         workers = self.workers()
         pieces = split_chunks(ids, workers, None, chunk_runs)
         cpu0 = os.times()
-        shipment = self.client.scatter(ship(plan, self.family), broadcast=True, hash=False)
         tag = uuid.uuid4().hex[:12]
+        shipment = self.client.submit(shipment_task, ship(plan, self.family),
+                                      key=f"ogk-shipment-{tag}", pure=False, priority=1)
         pending = {self.client.submit(fly_chunk, shipment, int(seed), p.tolist(),
                                       key=f"ogk-chunk-{tag}-{k}", priority=-k, pure=False): k
                    for k, p in enumerate(pieces)}
