@@ -983,7 +983,6 @@ static bool qr_minnorm_solve(const ogk_qr_t *ws, const double *b, double *x)
     bool ok = true;
     size_t i;
     size_t j;
-    size_t kk;
     double z[OGK_LA_MAX_N];
 
     /* A = R^T Q^T: R^T z = b (forward substitution), then x = Q [z; 0]. */
@@ -995,6 +994,7 @@ static bool qr_minnorm_solve(const ogk_qr_t *ws, const double *b, double *x)
         ok = la_div(sum, ws->qr[(i * m) + i], &z[i]);
     }
     if (ok) {
+        size_t kk;
         for (i = 0u; i < m; ++i) {
             x[i] = z[i];
         }
