@@ -75,7 +75,7 @@ static ogk_status la_all_bounded(const double *v, size_t count)
  * The sign is restored after dividing the magnitudes (IEEE 754 division is
  * sign-symmetric): *q is num / den bit for bit. One compare and one branch
  * more than a bare division for |den| >= 1. */
-static bool la_div(double num, double den, double *q)
+static bool la_div(double num, double den, double *q) /* NOLINT(bugprone-easily-swappable-parameters): num / den, the order of the quotient written */
 {
     const double ad = fabs(den);
     double t = 0.0;
