@@ -1198,6 +1198,18 @@ static void test_rcond_beyond_bound(void **state)
     OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_OK);
     OGK_ASSERT_REL(x[0], 1e13 * (1.0 + 1e13) * (1.0 + 1e13), 1e-14, 0.0);
     OGK_ASSERT_REL(x[2], 1e13, 1e-15, 0.0);
+    /* The same matrix through ogk_lstsq (m = n = 16): upper triangular, so R = A
+     * (every reflector H = I), |r_kk| = 1 passes the rank test, and cond_1(R)
+     * past the bound makes it ill-conditioned, x still solved (k = 3) ... */
+    {
+        static ogk_qr_t qr;
+        OGK_ASSERT_STATUS(ogk_lstsq(&qr, A, 16, 16, b, x), OGK_E_ILL_CONDITIONED);
+        OGK_ASSERT_REL(x[0], 1e13 * (1.0 + 1e13) * (1.0 + 1e13), 1e-14, 0.0);
+        /* ... and k = 15 beyond OGK_LA_SOLVE_MAX */
+        b[3] = 0.0;
+        b[15] = 1.0;
+        OGK_ASSERT_STATUS(ogk_lstsq(&qr, A, 16, 16, b, x), OGK_E_OVERFLOW);
+    }
 }
 
 /* Each band of the checked division (linalg.c, la_div) at its edge, through
