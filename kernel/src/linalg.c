@@ -44,16 +44,65 @@ static bool la_dim_ok(size_t dim, size_t dim_max)
     return (dim > 0u) && (dim <= dim_max);
 }
 
-static bool la_all_finite(const double *v, size_t count)
+/* OGK_OK when every v[i] is within OGK_LA_VALUE_MAX (ogk/linalg.h),
+ * OGK_E_NONFINITE at a NaN or infinity, else OGK_E_RANGE; one pass, one
+ * compare per entry (NaN fails it too) as the finite check it replaces. */
+static ogk_status la_all_bounded(const double *v, size_t count)
 {
-    bool finite = true;
+    ogk_status st = OGK_OK;
     size_t i;
-    for (i = 0u; (i < count) && finite; ++i) {
-        if (!isfinite(v[i])) {
-            finite = false;
+    for (i = 0u; (i < count) && (st != OGK_E_NONFINITE); ++i) {
+        if (!(fabs(v[i]) <= OGK_LA_VALUE_MAX)) {
+            st = isfinite(v[i]) ? OGK_E_RANGE : OGK_E_NONFINITE;
         }
     }
-    return finite;
+    return st;
+}
+
+/* 2^-512 and 2^512: la_div's band for its smallest divisors. */
+#define OGK_LA_DIV_LOW 0x1p-512
+#define OGK_LA_DIV_UP 0x1p512
+
+/* *q = num / den when |num / den| <= OGK_LA_SOLVE_MAX (ogk/linalg.h) and
+ * |den| > OGK_LA_PIVOT_MIN; false, *q unwritten, otherwise (NaN operands too).
+ * The quotient is decided before it is formed, on three bands of |den|
+ * whose bounds are constants, so that a non-relational analysis (Frama-C
+ * EVA, docs/eva.md) bounds it from the operands' own ranges:
+ *   |den| >= 1:          |num / den| <= |num|, finite;
+ *   2^-512 <= |den| < 1: |q| <= MAX needs |num| <= MAX, then |num / den| <= MAX 2^512 (1.3e304);
+ *   below 2^-512:        |q| <= MAX needs |num| <= MAX 2^-512; both scaled by 2^512
+ *                        (exact: the same real quotient, the same rounding).
+ * The sign is restored after dividing the magnitudes (IEEE 754 division is
+ * sign-symmetric): *q is num / den bit for bit. One compare and one branch
+ * more than a bare division for |den| >= 1. */
+static bool la_div(double num, double den, double *q) /* NOLINT(bugprone-easily-swappable-parameters): num / den, the order of the quotient written */
+{
+    const double ad = fabs(den);
+    double t = 0.0;
+    bool ok = false;
+
+    if (ad >= 1.0) {
+        t = num / ad;
+        ok = true;
+    } else if (ad >= OGK_LA_DIV_LOW) {
+        if ((num <= OGK_LA_SOLVE_MAX) && (num >= -OGK_LA_SOLVE_MAX)) {
+            t = num / ad;
+            ok = true;
+        }
+    } else if ((ad > OGK_LA_PIVOT_MIN) && (num <= (OGK_LA_SOLVE_MAX * OGK_LA_DIV_LOW)) &&
+               (num >= -(OGK_LA_SOLVE_MAX * OGK_LA_DIV_LOW))) {
+        t = (num * OGK_LA_DIV_UP) / (ad * OGK_LA_DIV_UP);
+        ok = true;
+    } else {
+        /* a pivot at or below the floor (an overwritten factorization), a
+         * quotient too large, or NaN: not divided */
+    }
+    if (ok && (t <= OGK_LA_SOLVE_MAX) && (t >= -OGK_LA_SOLVE_MAX)) {
+        *q = (den < 0.0) ? -t : t;
+    } else {
+        ok = false;
+    }
+    return ok;
 }
 
 /* 2^-400 and 2^400: below 2^-400, la_norm2 scales its quotients up. */
@@ -135,10 +184,8 @@ static ogk_status la_square_check(const double *A, size_t n, const void *fact,
         st = OGK_E_DIM;
     } else if (la_overlap(A, la_bytes(n * n), fact, fact_bytes)) {
         st = OGK_E_RANGE;
-    } else if (!la_all_finite(A, n * n)) {
-        st = OGK_E_NONFINITE;
     } else {
-        st = OGK_OK;
+        st = la_all_bounded(A, n * n);
     }
     return st;
 }
@@ -265,11 +312,13 @@ static ogk_status lu_check_held(const ogk_lu_t *lu)
     return st;
 }
 
-/* Solves L U y_out = y_in in place, y_in already permuted (= P b). */
-static void lu_substitute(const ogk_lu_t *lu, double *y)
+/* Solves L U y_out = y_in in place, y_in already permuted (= P b); false
+ * (y partly overwritten) when a quotient would exceed OGK_LA_SOLVE_MAX (la_div). */
+static bool lu_substitute(const ogk_lu_t *lu, double *y)
 {
     const size_t n = lu->n;
     const double *f = lu->lu;
+    bool ok = true;
     size_t i;
     size_t j;
     size_t ii;
@@ -282,25 +331,28 @@ static void lu_substitute(const ogk_lu_t *lu, double *y)
         }
         y[i] = sum;
     }
-    /* Backward: U upper triangular, nonzero diagonal (checked at factor time). */
-    for (ii = 0u; ii < n; ++ii) {
+    /* Backward: U upper triangular, |u_kk| > OGK_LA_PIVOT_MIN (checked at
+     * factor time, and again by la_div); every x_j <= OGK_LA_SOLVE_MAX. */
+    for (ii = 0u; (ii < n) && ok; ++ii) {
         const size_t row = n - 1u - ii;
         double sum = y[row];
         for (j = row + 1u; j < n; ++j) {
             sum -= f[(row * n) + j] * y[j];
         }
-        y[row] = sum / f[(row * n) + row];
+        ok = la_div(sum, f[(row * n) + row], &y[row]);
     }
+    return ok;
 }
 
-/* Column j of A^-1 into col[0..n-1]: solves A z = e_j, i.e. L U z = P e_j. */
-static void lu_inverse_column(const ogk_lu_t *lu, size_t j, double *col)
+/* Column j of A^-1 times s into col[0..n-1]: solves A z = s e_j, i.e.
+ * L U z = P s e_j; false as lu_substitute. */
+static bool lu_inverse_column(const ogk_lu_t *lu, size_t j, double s, double *col)
 {
     size_t i;
     for (i = 0u; i < lu->n; ++i) {
-        col[i] = (lu->perm[i] == j) ? 1.0 : 0.0;
+        col[i] = (lu->perm[i] == j) ? s : 0.0;
     }
-    lu_substitute(lu, col);
+    return lu_substitute(lu, col);
 }
 
 /* Loads A (n x n, checked) into lu: copy, 1-norm (largest absolute column
@@ -388,31 +440,31 @@ static ogk_status lu_eliminate(ogk_lu_t *lu, size_t n)
 }
 
 /* lu->rcond of a held factorization, with the exact |A^-1|_1 from the
- * factors (largest absolute column sum). */
+ * factors (largest absolute column sum), computed as |A_1 A^-1|_1 from the
+ * columns A^-1 (|A|_1 e_j): scale-free, each entry at most 1 / rcond, so
+ * within OGK_LA_SOLVE_MAX for any rcond worth reporting; rcond = 0 when a
+ * column exceeds it (rcond < 1e-150: ill-conditioned either way). The
+ * product |A|_1 |A^-1|_1 is at least 1 (|A A^-1|_1 = 1): the fmax only
+ * restates it against rounding and bounds the reciprocal for the analysis. */
 static void lu_set_rcond(ogk_lu_t *lu)
 {
     size_t i;
     size_t j;
-    double ainv_norm1 = 0.0;
+    double cond1 = 0.0;
+    bool ok = true;
     double col[OGK_LA_MAX_N];
 
-    for (j = 0u; j < lu->n; ++j) {
+    for (j = 0u; (j < lu->n) && ok; ++j) {
         double colsum = 0.0;
-        lu_inverse_column(lu, j, col);
-        for (i = 0u; i < lu->n; ++i) {
+        ok = lu_inverse_column(lu, j, lu->anorm1, col);
+        for (i = 0u; (i < lu->n) && ok; ++i) {
             colsum += fabs(col[i]);
         }
-        if (!isfinite(colsum)) {
-            ainv_norm1 = HUGE_VAL;
-            break;
-        }
-        if (colsum > ainv_norm1) {
-            ainv_norm1 = colsum;
+        if (colsum > cond1) {
+            cond1 = colsum;
         }
     }
-    /* Divide in this order: each quotient stays representable for any A
-     * whose norm and inverse norm are finite. 1/inf gives rcond = 0. */
-    lu->rcond = (1.0 / ainv_norm1) / lu->anorm1;
+    lu->rcond = ok ? (1.0 / fmax(cond1, 1.0)) : 0.0;
 }
 
 ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
@@ -453,17 +505,21 @@ ogk_status ogk_lu_solve(const ogk_lu_t *lu, const double *b, double *x)
     if (st == OGK_OK) {
         if (la_overlap(x, la_bytes(lu->n), lu, sizeof *lu)) {
             st = OGK_E_RANGE;
-        } else if (!la_all_finite(b, lu->n)) {
-            st = OGK_E_NONFINITE;
         } else {
+            st = la_all_bounded(b, lu->n);
+        }
+        if (st == OGK_OK) {
             size_t i;
             double y[OGK_LA_MAX_N];
             /* b is read completely before x is written, so x may alias b. */
             for (i = 0u; i < lu->n; ++i) {
                 y[i] = b[lu->perm[i]];
             }
-            lu_substitute(lu, y);
-            (void)memcpy(x, y, la_bytes(lu->n));
+            if (lu_substitute(lu, y)) {
+                (void)memcpy(x, y, la_bytes(lu->n));
+            } else {
+                st = OGK_E_OVERFLOW;
+            }
         }
     }
     return st;
@@ -485,10 +541,13 @@ ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv)
             size_t i;
             size_t j;
             double col[OGK_LA_MAX_N];
-            for (j = 0u; j < lu->n; ++j) {
-                lu_inverse_column(lu, j, col);
-                for (i = 0u; i < lu->n; ++i) {
-                    Ainv[(i * lu->n) + j] = col[i];
+            for (j = 0u; (j < lu->n) && (st == OGK_OK); ++j) {
+                if (lu_inverse_column(lu, j, 1.0, col)) {
+                    for (i = 0u; i < lu->n; ++i) {
+                        Ainv[(i * lu->n) + j] = col[i];
+                    }
+                } else {
+                    st = OGK_E_OVERFLOW;
                 }
             }
         }
@@ -590,33 +649,36 @@ ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n)
 }
 
 /* L y = b, then L^T x = y with a held factorization of order n; b is read
- * completely before x is written. */
-static void chol_substitute(const ogk_chol_t *ch, const double *b, double *x)
+ * completely before x is written; false, x unwritten, when a quotient would
+ * exceed OGK_LA_SOLVE_MAX (la_div). */
+static bool chol_substitute(const ogk_chol_t *ch, const double *b, double *x)
 {
     const size_t n = ch->n;
+    bool ok = true;
     size_t i;
     size_t j;
     size_t ii;
     double y[OGK_LA_MAX_N];
 
-    for (i = 0u; i < n; ++i) {
+    for (i = 0u; (i < n) && ok; ++i) {
         double sum = b[i];
         for (j = 0u; j < i; ++j) {
             sum -= ch->l[(i * n) + j] * y[j];
         }
-        y[i] = sum / ch->l[(i * n) + i];
+        ok = la_div(sum, ch->l[(i * n) + i], &y[i]);
     }
-    for (ii = 0u; ii < n; ++ii) {
+    for (ii = 0u; (ii < n) && ok; ++ii) {
         const size_t row = n - 1u - ii;
         double sum = y[row];
         for (j = row + 1u; j < n; ++j) {
             sum -= ch->l[(j * n) + row] * y[j];
         }
-        y[row] = sum / ch->l[(row * n) + row];
+        ok = la_div(sum, ch->l[(row * n) + row], &y[row]);
     }
-    for (i = 0u; i < n; ++i) {
-        x[i] = y[i];
+    if (ok) {
+        (void)memcpy(x, y, la_bytes(n));
     }
+    return ok;
 }
 
 ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x)
@@ -631,11 +693,11 @@ ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x)
         st = OGK_E_DIM;
     } else if (la_overlap(x, la_bytes(ch->n), ch, sizeof *ch)) {
         st = OGK_E_RANGE;
-    } else if (!la_all_finite(b, ch->n)) {
-        st = OGK_E_NONFINITE;
     } else {
-        st = OGK_OK;
-        chol_substitute(ch, b, x);
+        st = la_all_bounded(b, ch->n);
+    }
+    if ((st == OGK_OK) && !chol_substitute(ch, b, x)) {
+        st = OGK_E_OVERFLOW;
     }
     return st;
 }
@@ -750,41 +812,40 @@ static ogk_status qr_r_norm1(const ogk_qr_t *ws, double tol, double *rnorm1)
     return st;
 }
 
-/* |R^-1|_1, column j of R^-1 by back substitution on e_j (nonzero in rows
- * 0..j only); HUGE_VAL as soon as a column sum is not finite (the largest
- * of finite column sums is finite, so HUGE_VAL means exactly that). */
-static double qr_r_inv_norm1(const ogk_qr_t *ws)
+/* |R|_1 |R^-1|_1 = max_j |R^-1 (s e_j)|_1 with s = |R|_1, column j by back
+ * substitution on s e_j (nonzero in rows 0..j only): scale-free, each entry at
+ * most 1 / rcond(R) (as lu_set_rcond). false when an entry would exceed
+ * OGK_LA_SOLVE_MAX (la_div): rcond(R) below 1e-150. */
+static bool qr_r_cond1(const ogk_qr_t *ws, double s, double *cond1)
 {
     const size_t cols = ws->short_dim;
     const double *a = ws->qr;
-    double rinv_norm1 = 0.0;
+    bool ok = true;
     double z[OGK_LA_MAX_N];
     size_t j;
     size_t p;
     size_t ii;
 
-    for (j = 0u; j < cols; ++j) {
-        double colsum;
-        z[j] = 1.0 / a[(j * cols) + j];
-        colsum = fabs(z[j]);
-        for (ii = 0u; ii < j; ++ii) {
+    *cond1 = 0.0;
+    for (j = 0u; (j < cols) && ok; ++j) {
+        double colsum = 0.0;
+        ok = la_div(s, a[(j * cols) + j], &z[j]);
+        for (ii = 0u; (ii < j) && ok; ++ii) {
             const size_t row = j - 1u - ii;
             double sum = 0.0;
             for (p = row + 1u; p <= j; ++p) {
                 sum += a[(row * cols) + p] * z[p];
             }
-            z[row] = -sum / a[(row * cols) + row];
-            colsum += fabs(z[row]);
+            ok = la_div(-sum, a[(row * cols) + row], &z[row]);
         }
-        if (!isfinite(colsum)) {
-            rinv_norm1 = HUGE_VAL;
-            break;
+        for (ii = 0u; (ii <= j) && ok; ++ii) {
+            colsum += fabs(z[ii]);
         }
-        if (colsum > rinv_norm1) {
-            rinv_norm1 = colsum;
+        if (colsum > *cond1) {
+            *cond1 = colsum;
         }
     }
-    return rinv_norm1;
+    return ok;
 }
 
 /* Rank test on R: SINGULAR when a diagonal entry is at or below
@@ -800,9 +861,10 @@ static ogk_status qr_rank_check(const ogk_qr_t *ws, double colnorm_max)
     ogk_status st = qr_r_norm1(ws, tol, &rnorm1);
 
     if (st == OGK_OK) {
-        const double rinv_norm1 = qr_r_inv_norm1(ws);
-        if ((!isfinite(rinv_norm1)) ||
-            (!(((1.0 / rinv_norm1) / rnorm1) >= OGK_LA_RCOND_MIN))) {
+        /* cond1 >= 1 (|R R^-1|_1 = 1): the fmax only restates it */
+        double cond1;
+        if ((!qr_r_cond1(ws, rnorm1, &cond1)) ||
+            (!((1.0 / fmax(cond1, 1.0)) >= OGK_LA_RCOND_MIN))) {
             st = OGK_E_ILL_CONDITIONED;
         }
     }
@@ -826,19 +888,28 @@ static ogk_status qr_problem_check(const ogk_qr_t *ws, const double *A, size_t m
                la_overlap(x, la_bytes(n), A, la_bytes(m * n)) ||
                la_overlap(x, la_bytes(n), b, la_bytes(m))) {
         st = OGK_E_RANGE;
-    } else if (!la_all_finite(A, m * n) || !la_all_finite(b, m)) {
-        st = OGK_E_NONFINITE;
     } else {
-        st = OGK_OK;
+        /* NaN or Inf anywhere first, then magnitudes (la_all_bounded) */
+        const ogk_status st_a = la_all_bounded(A, m * n);
+        const ogk_status st_b = la_all_bounded(b, m);
+        if ((st_a == OGK_E_NONFINITE) || (st_b == OGK_E_NONFINITE)) {
+            st = OGK_E_NONFINITE;
+        } else if (st_a != OGK_OK) {
+            st = st_a;
+        } else {
+            st = st_b;
+        }
     }
     return st;
 }
 
-/* x = R^-1 (Q^T b)(0:n-1) with the factors of ogk_lstsq in ws (m x n). */
-static void qr_lstsq_solve(const ogk_qr_t *ws, const double *b, double *x)
+/* x = R^-1 (Q^T b)(0:n-1) with the factors of ogk_lstsq in ws (m x n);
+ * false, x unwritten, when an entry would exceed OGK_LA_SOLVE_MAX (la_div). */
+static bool qr_lstsq_solve(const ogk_qr_t *ws, const double *b, double *x)
 {
     const size_t m = ws->long_dim;
     const size_t n = ws->short_dim;
+    bool ok = true;
     size_t i;
     size_t k;
     size_t ii;
@@ -850,15 +921,18 @@ static void qr_lstsq_solve(const ogk_qr_t *ws, const double *b, double *x)
     for (k = 0u; k < n; ++k) {
         qr_apply_reflector(ws, k, y);
     }
-    for (ii = 0u; ii < n; ++ii) {
+    for (ii = 0u; (ii < n) && ok; ++ii) {
         const size_t row = n - 1u - ii;
         double sum = y[row];
         for (i = row + 1u; i < n; ++i) {
             sum -= ws->qr[(row * n) + i] * y[i];
         }
-        y[row] = sum / ws->qr[(row * n) + row];
+        ok = la_div(sum, ws->qr[(row * n) + row], &y[row]);
     }
-    (void)memcpy(x, y, la_bytes(n));
+    if (ok) {
+        (void)memcpy(x, y, la_bytes(n));
+    }
+    return ok;
 }
 
 ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
@@ -890,43 +964,49 @@ ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
         st = qr_rank_check(ws, colnorm_max);
         if (st == OGK_E_SINGULAR) {
             qr_invalidate(ws);
+        } else if (!qr_lstsq_solve(ws, b, x)) {
+            st = OGK_E_OVERFLOW;
         } else {
             /* OGK_OK or OGK_E_ILL_CONDITIONED: x is computed either way. */
-            qr_lstsq_solve(ws, b, x);
         }
     }
     return st;
 }
 
 /* x = Q [z; 0] with R^T z = b, the factors of A^T (ogk_minnorm) in ws
- * (n x m); b is read completely before x is written. */
-static void qr_minnorm_solve(const ogk_qr_t *ws, const double *b, double *x)
+ * (n x m); b is read completely before x is written; false, x unwritten, when
+ * an entry of z would exceed OGK_LA_SOLVE_MAX (la_div; |x|_2 = |z|_2). */
+static bool qr_minnorm_solve(const ogk_qr_t *ws, const double *b, double *x)
 {
     const size_t n = ws->long_dim;
     const size_t m = ws->short_dim;
+    bool ok = true;
     size_t i;
     size_t j;
-    size_t kk;
     double z[OGK_LA_MAX_N];
 
     /* A = R^T Q^T: R^T z = b (forward substitution), then x = Q [z; 0]. */
-    for (i = 0u; i < m; ++i) {
+    for (i = 0u; (i < m) && ok; ++i) {
         double sum = b[i];
         for (j = 0u; j < i; ++j) {
             sum -= ws->qr[(j * m) + i] * z[j];
         }
-        z[i] = sum / ws->qr[(i * m) + i];
+        ok = la_div(sum, ws->qr[(i * m) + i], &z[i]);
     }
-    for (i = 0u; i < m; ++i) {
-        x[i] = z[i];
+    if (ok) {
+        size_t kk;
+        for (i = 0u; i < m; ++i) {
+            x[i] = z[i];
+        }
+        for (i = m; i < n; ++i) {
+            x[i] = 0.0;
+        }
+        /* Q = H_0 H_1 ... H_{m-1}: apply the last reflector first. */
+        for (kk = 0u; kk < m; ++kk) {
+            qr_apply_reflector(ws, m - 1u - kk, x);
+        }
     }
-    for (i = m; i < n; ++i) {
-        x[i] = 0.0;
-    }
-    /* Q = H_0 H_1 ... H_{m-1}: apply the last reflector first. */
-    for (kk = 0u; kk < m; ++kk) {
-        qr_apply_reflector(ws, m - 1u - kk, x);
-    }
+    return ok;
 }
 
 ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
@@ -964,9 +1044,10 @@ ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
         st = qr_rank_check(ws, rownorm_max);
         if (st == OGK_E_SINGULAR) {
             qr_invalidate(ws);
+        } else if (!qr_minnorm_solve(ws, b, x)) {
+            st = OGK_E_OVERFLOW;
         } else {
             /* OGK_OK or OGK_E_ILL_CONDITIONED: x is computed either way. */
-            qr_minnorm_solve(ws, b, x);
         }
     }
     return st;

@@ -35,6 +35,7 @@ ogk_status ogk_status_name(ogk_status code, const char **name)
         "OGK_E_ITER_LIMIT",
         "OGK_E_FRAME",
         "OGK_E_BYTE_ORDER",
+        "OGK_E_OVERFLOW",
     };
     ogk_status st;
 

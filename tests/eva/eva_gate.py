@@ -42,7 +42,7 @@ class Driver:
 
 
 # The modules whose drivers must stay at zero (issue 22, item 3).
-ZERO = {"crc32", "mathutil", "status", "rk4", "cpd", "terminal", "cutoff", "interp", "nog"}
+ZERO = {"crc32", "mathutil", "status", "rk4", "cpd", "terminal", "cutoff", "interp", "nog", "linalg"}
 
 DRIVERS = (
     Driver("crc32", (K + "crc32.c",), "drv_core.c"),

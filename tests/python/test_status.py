@@ -19,6 +19,7 @@ EXPECTED = [
     "OGK_E_ITER_LIMIT",
     "OGK_E_FRAME",
     "OGK_E_BYTE_ORDER",
+    "OGK_E_OVERFLOW",
 ]
 
 

@@ -1035,6 +1035,257 @@ static void test_qr_tiny_scales(void **state)
     OGK_ASSERT_REL(x[1], 1.0, 1e-15, 0.0);
 }
 
+/* Inputs are bounded by OGK_LA_VALUE_MAX (1e150, ogk/linalg.h): a larger
+ * finite entry of A or b gives OGK_E_RANGE, a NaN or Inf anywhere (even after
+ * a large entry) OGK_E_NONFINITE. Before the bound, 0.5 I with b = 1.5e308
+ * solved to x = 3e308 = inf with OGK_OK (the EVA finding of docs/eva.md). */
+/* req: OGK-CORE-025 */
+static void test_input_bound(void **state)
+{
+    static ogk_lu_t lu;
+    static ogk_chol_t ch;
+    static ogk_qr_t qr;
+    static const double half[4] = {0.5, 0, 0, 0.5};
+    static const double big[4] = {1e200, 0, 0, 1};
+    static const double big_nan[4] = {1e200, NAN, 0, 1};
+    static const double tall[6] = {1, 0, 0, 1, 0, 0};
+    static const double tall_big[6] = {1, 0, 0, 2e150, 0, 0};
+    static const double tall_nan[6] = {1, 0, 0, NAN, 0, 0};
+    const double b_huge[3] = {1.5e308, 1.0, 0.0};
+    const double b_ok[3] = {1.0, 2.0, 0.0};
+    double x[3] = {7.0, 7.0, 7.0};
+    (void)state;
+
+    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, half, 2), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b_huge, x), OGK_E_RANGE);
+    OGK_ASSERT_NEAR(x[0], 7.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_chol_factor(&ch, half, 2), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_chol_solve(&ch, b_huge, x), OGK_E_RANGE);
+    OGK_ASSERT_NEAR(x[0], 7.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, big, 2), OGK_E_RANGE);
+    assert_int_equal(lu.n, 0);
+    OGK_ASSERT_STATUS(ogk_chol_factor(&ch, big, 2), OGK_E_RANGE);
+    assert_int_equal(ch.n, 0);
+    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, big_nan, 2), OGK_E_NONFINITE);
+    /* lstsq / minnorm: A or b out of bound; NaN in either wins */
+    OGK_ASSERT_STATUS(ogk_lstsq(&qr, tall, 3, 2, b_huge, x), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_lstsq(&qr, tall_big, 3, 2, b_ok, x), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_lstsq(&qr, tall_nan, 3, 2, b_huge, x), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_minnorm(&qr, tall, 2, 3, b_huge, x), OGK_E_RANGE);
+    OGK_ASSERT_NEAR(x[0], 7.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_lstsq(&qr, tall, 3, 2, b_ok, x), OGK_OK);
+    OGK_ASSERT_NEAR(x[0], 1.0, 1e-15);
+    OGK_ASSERT_NEAR(x[1], 2.0, 1e-15);
+}
+
+/* Every quotient of the substitutions is bounded by OGK_LA_SOLVE_MAX (1e150,
+ * ogk/linalg.h): a solution beyond it gives OGK_E_OVERFLOW and x unwritten.
+ * Truth by hand: A = s I has x = b / s. With s = 1e-250 (pivots above the
+ * floor 1e-300, rcond 1) and b_0 = 1e100, x_0 = 1e350: each of these calls
+ * returned OGK_OK with x_0 = inf before the bound. x = 1e140 is still solved. */
+/* req: OGK-CORE-025 */
+static void test_solves_overflow(void **state)
+{
+    static ogk_lu_t lu;
+    static ogk_chol_t ch;
+    static ogk_qr_t qr;
+    static const double tiny2[4] = {1e-250, 0, 0, 1e-250};
+    static const double tall[6] = {1e-250, 0, 0, 1e-250, 0, 0};
+    static const double wide[6] = {1e-250, 0, 0, 0, 1e-250, 0};
+    const double b_over[3] = {1e100, 1.0, 0.0};
+    const double b_in[3] = {1e-110, -1e-110, 0.0};
+    double x[3] = {7.0, 7.0, 7.0};
+    (void)state;
+
+    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, tiny2, 2), OGK_OK);
+    OGK_ASSERT_REL(lu.rcond, 1.0, 1e-15, 0.0);
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b_over, x), OGK_E_OVERFLOW);
+    OGK_ASSERT_NEAR(x[0], 7.0, 0.0);
+    OGK_ASSERT_NEAR(x[1], 7.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b_in, x), OGK_OK);
+    OGK_ASSERT_REL(x[0], 1e140, 1e-15, 0.0);
+    OGK_ASSERT_REL(x[1], -1e140, 1e-15, 0.0);
+
+    x[0] = 7.0;
+    x[1] = 7.0;
+    OGK_ASSERT_STATUS(ogk_chol_factor(&ch, tiny2, 2), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_chol_solve(&ch, b_over, x), OGK_E_OVERFLOW);
+    OGK_ASSERT_NEAR(x[0], 7.0, 0.0);
+    OGK_ASSERT_NEAR(x[1], 7.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_chol_solve(&ch, b_in, x), OGK_OK);
+    OGK_ASSERT_REL(x[0], 1e140, 1e-15, 0.0);
+    OGK_ASSERT_REL(x[1], -1e140, 1e-15, 0.0);
+
+    x[0] = 7.0;
+    x[1] = 7.0;
+    OGK_ASSERT_STATUS(ogk_lstsq(&qr, tall, 3, 2, b_over, x), OGK_E_OVERFLOW);
+    OGK_ASSERT_NEAR(x[0], 7.0, 0.0);
+    OGK_ASSERT_NEAR(x[1], 7.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_lstsq(&qr, tall, 3, 2, b_in, x), OGK_OK);
+    OGK_ASSERT_REL(x[0], 1e140, 1e-15, 0.0);
+    OGK_ASSERT_REL(x[1], -1e140, 1e-15, 0.0);
+
+    x[0] = 7.0;
+    x[1] = 7.0;
+    x[2] = 7.0;
+    OGK_ASSERT_STATUS(ogk_minnorm(&qr, wide, 2, 3, b_over, x), OGK_E_OVERFLOW);
+    OGK_ASSERT_NEAR(x[0], 7.0, 0.0);
+    OGK_ASSERT_NEAR(x[2], 7.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_minnorm(&qr, wide, 2, 3, b_in, x), OGK_OK);
+    OGK_ASSERT_REL(x[0], 1e140, 1e-15, 0.0);
+    OGK_ASSERT_REL(x[1], -1e140, 1e-15, 0.0);
+    OGK_ASSERT_NEAR(x[2], 0.0, 0.0);
+}
+
+/* The inverse and rcond of a matrix whose inverse overflows: A = s U with U
+ * unit upper bidiagonal (-c above the diagonal), s = 2e-300, c = 1e6.
+ * By hand, A^-1 = (1/s) [[1, c, c^2], [0, 1, c], [0, 0, 1]], so |A|_1 =
+ * s (1 + c), |A^-1|_1 = (1 + c + c^2) / s and rcond = 1 / ((1 + c)(1 + c +
+ * c^2)) = 1e-18; the corner c^2 / s = 5e311 is beyond DBL_MAX. Before the
+ * bound, ogk_lu_inverse returned OGK_OK with that entry infinite, and rcond
+ * was 0 (its column sum overflowed); now rcond is computed scale-free (on
+ * A^-1 |A|_1 e_j) and the inverse gives OGK_E_OVERFLOW. */
+/* req: OGK-CORE-025 OGK-CORE-011 */
+static void test_inverse_overflow(void **state)
+{
+    static ogk_lu_t lu;
+    const double s = 2e-300;
+    const double c = 1e6;
+    double A[9] = {0};
+    double Ainv[9];
+    (void)state;
+
+    A[0] = s;
+    A[1] = -c * s;
+    A[4] = s;
+    A[5] = -c * s;
+    A[8] = s;
+    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, A, 3), OGK_E_ILL_CONDITIONED);
+    OGK_ASSERT_REL(lu.rcond, 1.0 / ((1.0 + c) * (1.0 + c + (c * c))), 1e-12, 0.0);
+    OGK_ASSERT_STATUS(ogk_lu_inverse(&lu, Ainv), OGK_E_OVERFLOW);
+}
+
+/* rcond is reported 0 once |A|_1 |A^-1|_1 passes OGK_LA_SOLVE_MAX: the 16 x 16
+ * unit upper triangular matrix with -1e13 above the diagonal has pivots 1
+ * (no row exchange; each above eps |A|_1 = 0.033). By hand, A x = e_k has
+ * x_k = 1, x_{k-1} = c and x_i = (1 + c) x_{i+1} above: x_0 = c (1 + c)^(k-1),
+ * so A^-1 e_15 has the entry 1e195 (the solve gives OGK_E_OVERFLOW too). */
+/* req: OGK-CORE-025 OGK-CORE-011 */
+static void test_rcond_beyond_bound(void **state)
+{
+    static ogk_lu_t lu;
+    static double A[16 * 16];
+    double b[16] = {0};
+    double x[16];
+    size_t i;
+    size_t j;
+    (void)state;
+
+    for (i = 0; i < 16u; ++i) {
+        for (j = 0; j < 16u; ++j) {
+            A[(i * 16u) + j] = (i == j) ? 1.0 : ((j > i) ? -1e13 : 0.0);
+        }
+    }
+    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, A, 16), OGK_E_ILL_CONDITIONED);
+    OGK_ASSERT_NEAR(lu.rcond, 0.0, 0.0);
+    b[15] = 1.0;
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_E_OVERFLOW);
+    /* k = 3: x_0 = c (1 + c)^2 = 1e39, within the bound */
+    for (i = 0; i < 16u; ++i) {
+        b[i] = 0.0;
+    }
+    b[3] = 1.0;
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_OK);
+    OGK_ASSERT_REL(x[0], 1e13 * (1.0 + 1e13) * (1.0 + 1e13), 1e-14, 0.0);
+    OGK_ASSERT_REL(x[2], 1e13, 1e-15, 0.0);
+    /* The same matrix through ogk_lstsq (m = n = 16): upper triangular, so R = A
+     * (every reflector H = I), |r_kk| = 1 passes the rank test, and cond_1(R)
+     * past the bound makes it ill-conditioned, x still solved (k = 3) ... */
+    {
+        static ogk_qr_t qr;
+        OGK_ASSERT_STATUS(ogk_lstsq(&qr, A, 16, 16, b, x), OGK_E_ILL_CONDITIONED);
+        OGK_ASSERT_REL(x[0], 1e13 * (1.0 + 1e13) * (1.0 + 1e13), 1e-14, 0.0);
+        /* ... and k = 15 beyond OGK_LA_SOLVE_MAX */
+        b[3] = 0.0;
+        b[15] = 1.0;
+        OGK_ASSERT_STATUS(ogk_lstsq(&qr, A, 16, 16, b, x), OGK_E_OVERFLOW);
+    }
+}
+
+/* Each band of the checked division (linalg.c, la_div) at its edge, through
+ * the public solves; truths by hand. A = [[d, 0], [d, d]] factors as L =
+ * [[1, 0], [1, 1]], U = d I (no exchange), so with b = (p, -p) the forward
+ * pass gives y = (p, -2p) and x = (p / d, -2p / d): a numerator of 2p, of
+ * either sign, in the backward pass. */
+/* req: OGK-CORE-025 */
+static void test_division_bands(void **state)
+{
+    static ogk_lu_t lu;
+    static ogk_chol_t ch;
+    double A[4];
+    double b[2];
+    double x[2];
+    const double d_values[2] = {1.0, 0.5};
+    size_t k;
+    (void)state;
+
+    for (k = 0u; k < 2u; ++k) {
+        const double d = d_values[k];
+        A[0] = d;
+        A[1] = 0.0;
+        A[2] = d;
+        A[3] = d;
+        OGK_ASSERT_STATUS(ogk_lu_factor(&lu, A, 2), OGK_OK);
+        /* x = (1e150 / d, -2e150 / d) is beyond the bound, with either sign first */
+        b[0] = 1e150;
+        b[1] = -1e150;
+        OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_E_OVERFLOW);
+        b[0] = -1e150;
+        b[1] = 1e150;
+        OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_E_OVERFLOW);
+        /* x = (p / d, -2p / d) within it */
+        b[0] = 1e149;
+        b[1] = -1e149;
+        OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_OK);
+        OGK_ASSERT_REL(x[0], 1e149 / d, 1e-15, 0.0);
+        OGK_ASSERT_REL(x[1], -2e149 / d, 1e-15, 0.0);
+    }
+    /* 0.5 I: a numerator within the bound whose quotient is not (2e150) */
+    A[0] = 0.5;
+    A[1] = 0.0;
+    A[2] = 0.0;
+    A[3] = 0.5;
+    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, A, 2), OGK_OK);
+    b[0] = 1e150;
+    b[1] = 0.0;
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_E_OVERFLOW);
+    b[0] = -1e150;
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_E_OVERFLOW);
+    /* below 2^-512: d = 1e-200, numerators above and below +-1e150 2^-512
+     * (7.5e-5), and one within it whose quotient is not (1e-5 / 1e-200) */
+    A[0] = 1e-200;
+    A[3] = 1e-200;
+    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, A, 2), OGK_OK);
+    b[0] = 1e-4;
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_E_OVERFLOW);
+    b[0] = -1e-4;
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_E_OVERFLOW);
+    b[0] = 1e-5;
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_E_OVERFLOW);
+    b[0] = -1e-60;
+    b[1] = 3e-60;
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_OK);
+    OGK_ASSERT_REL(x[0], -1e140, 1e-15, 0.0);
+    OGK_ASSERT_REL(x[1], 3e140, 1e-15, 0.0);
+    /* a factorization overwritten with a zero pivot (the struct is the
+     * caller's): the division is refused, not made (it gave inf before) */
+    OGK_ASSERT_STATUS(ogk_chol_factor(&ch, A, 2), OGK_OK);
+    ch.l[3] = 0.0;
+    OGK_ASSERT_STATUS(ogk_chol_solve(&ch, b, x), OGK_E_OVERFLOW);
+    lu.lu[0] = 0.0;
+    OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_E_OVERFLOW);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1058,6 +1309,11 @@ int main(void)
         cmocka_unit_test(test_qr_errors),
         cmocka_unit_test(test_absolute_pivot_floor),
         cmocka_unit_test(test_qr_tiny_scales),
+        cmocka_unit_test(test_input_bound),
+        cmocka_unit_test(test_solves_overflow),
+        cmocka_unit_test(test_inverse_overflow),
+        cmocka_unit_test(test_rcond_beyond_bound),
+        cmocka_unit_test(test_division_bands),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

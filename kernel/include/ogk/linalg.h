@@ -31,23 +31,54 @@ extern "C" {
  * analysis prove them finite (docs/eva.md). */
 #define OGK_LA_PIVOT_MIN 1.0e-300
 
-/* y = A x,  A: rows x cols,  rows, cols <= OGK_LA_MAX_LONG. */
+/* Magnitude bound of the inputs: an entry of a matrix handed to a
+ * factorization or of a right-hand side above it gives OGK_E_RANGE (NaN or Inf
+ * still OGK_E_NONFINITE). The products do not check it (cost): their callers
+ * must keep their operands within it (the ACSL requires below), and then no
+ * product can overflow (at most OGK_LA_MAX_LONG terms of 1e300 each). */
+#define OGK_LA_VALUE_MAX 1.0e150
+
+/* Magnitude bound of every entry of a solution (the solves, ogk_lstsq,
+ * ogk_minnorm, ogk_lu_inverse) and of every intermediate of the substitutions.
+ * Each division is checked before it is made: a quotient beyond this bound
+ * gives OGK_E_OVERFLOW and no output (x is left unwritten). With inputs within
+ * OGK_LA_VALUE_MAX every sum of the substitutions is below 1e306 (at most 15
+ * products of a factor entry, <= 2^15 OGK_LA_VALUE_MAX with LU's growth, and
+ * a solution entry), so no operation of the solves can overflow
+ * (docs/linalg.md, docs/eva.md). The rcond of ogk_lu_factor and of the QR rank
+ * test is computed on A^-1 |A|_1 e_j, whose entries stay below this bound for
+ * any rcond >= n / OGK_LA_SOLVE_MAX; a smaller rcond is reported as 0
+ * (OGK_E_ILL_CONDITIONED either way). */
+#define OGK_LA_SOLVE_MAX 1.0e150
+
+/* y = A x,  A: rows x cols,  rows, cols <= OGK_LA_MAX_LONG. The entries of A
+ * and x must be within OGK_LA_VALUE_MAX (not checked: cost), so y is finite. */
 /*@ requires A_valid: A == \null || \valid_read(A + (0 .. rows * cols - 1));
     requires x_valid: x == \null || \valid_read(x + (0 .. cols - 1));
     requires y_valid: y == \null || \valid(y + (0 .. rows - 1));
+    requires A_bounded: A == \null || rows > OGK_LA_MAX_LONG || cols > OGK_LA_MAX_LONG ||
+        (\forall integer i; 0 <= i < rows * cols ==> -OGK_LA_VALUE_MAX <= A[i] <= OGK_LA_VALUE_MAX);
+    requires x_bounded: x == \null || cols > OGK_LA_MAX_LONG ||
+        (\forall integer i; 0 <= i < cols ==> -OGK_LA_VALUE_MAX <= x[i] <= OGK_LA_VALUE_MAX);
 */
 ogk_status ogk_mat_vec(const double *A, size_t rows, size_t cols,
                        const double *x, double *y);
 
-/* y = A^T x,  A: rows x cols,  y has cols entries. */
+/* y = A^T x,  A: rows x cols,  y has cols entries; operands within
+ * OGK_LA_VALUE_MAX as for ogk_mat_vec. */
 /*@ requires A_valid: A == \null || \valid_read(A + (0 .. rows * cols - 1));
     requires x_valid: x == \null || \valid_read(x + (0 .. rows - 1));
     requires y_valid: y == \null || \valid(y + (0 .. cols - 1));
+    requires A_bounded: A == \null || rows > OGK_LA_MAX_LONG || cols > OGK_LA_MAX_LONG ||
+        (\forall integer i; 0 <= i < rows * cols ==> -OGK_LA_VALUE_MAX <= A[i] <= OGK_LA_VALUE_MAX);
+    requires x_bounded: x == \null || rows > OGK_LA_MAX_LONG ||
+        (\forall integer i; 0 <= i < rows ==> -OGK_LA_VALUE_MAX <= x[i] <= OGK_LA_VALUE_MAX);
 */
 ogk_status ogk_mat_t_vec(const double *A, size_t rows, size_t cols,
                          const double *x, double *y);
 
-/* C = A B,  A: r x k, B: k x c, C: r x c; each dimension <= OGK_LA_MAX_LONG. */
+/* C = A B,  A: r x k, B: k x c, C: r x c; each dimension <= OGK_LA_MAX_LONG.
+ * The entries of the operands of all products must be within OGK_LA_VALUE_MAX. */
 ogk_status ogk_mat_mul(const double *A, size_t r, size_t k,
                        const double *B, size_t c, double *C);
 
@@ -72,7 +103,8 @@ typedef struct {
     double rcond;                           /* [-] reciprocal 1-norm condition number, 1/(|A|_1 |A^-1|_1) */
 } ogk_lu_t;
 
-/* Factors the n x n matrix A. OGK_E_SINGULAR when a pivot is zero to working
+/* Factors the n x n matrix A (entries within OGK_LA_VALUE_MAX, OGK_E_RANGE
+ * otherwise). OGK_E_SINGULAR when a pivot is zero to working
  * precision or at most OGK_LA_PIVOT_MIN (lu->n is then 0); OGK_E_ILL_CONDITIONED
  * when rcond < OGK_LA_RCOND_MIN (factors kept, solves allowed). */
 /*@ requires lu_valid: lu == \null || \valid(lu);
@@ -80,10 +112,13 @@ typedef struct {
 */
 ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n);
 
-/* Solves A x = b with a held factorization; x may alias b. */
+/* Solves A x = b with a held factorization; x may alias b. b within
+ * OGK_LA_VALUE_MAX (OGK_E_RANGE); OGK_E_OVERFLOW, x unwritten, when an entry
+ * of x or of the substitution's intermediates would exceed OGK_LA_SOLVE_MAX. */
 ogk_status ogk_lu_solve(const ogk_lu_t *lu, const double *b, double *x);
 
-/* Ainv = A^-1 (n x n) with a held factorization. */
+/* Ainv = A^-1 (n x n) with a held factorization; OGK_E_OVERFLOW (Ainv
+ * partly written) when an entry would exceed OGK_LA_SOLVE_MAX. */
 ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv);
 
 /* Cholesky factorization A = L L^T of a symmetric positive definite matrix. */
@@ -92,7 +127,8 @@ typedef struct {
     size_t n;                              /* [-] order; 0 when no valid factorization is held */
 } ogk_chol_t;
 
-/* Factors A (only its lower triangle is read; symmetry is checked to
+/* Factors A (entries within OGK_LA_VALUE_MAX, OGK_E_RANGE otherwise; only its
+ * lower triangle is read; symmetry is checked to
  * 1e-12 relative). OGK_E_NOT_POSDEF when not positive definite or not symmetric
  * (a pivot d_i at or below eps a_ii or OGK_LA_PIVOT_MIN). */
 /*@ requires ch_valid: ch == \null || \valid(ch);
@@ -100,7 +136,8 @@ typedef struct {
 */
 ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n);
 
-/* Solves A x = b with a held factorization; x may alias b. */
+/* Solves A x = b with a held factorization; x may alias b. b within
+ * OGK_LA_VALUE_MAX (OGK_E_RANGE); OGK_E_OVERFLOW, x unwritten, as ogk_lu_solve. */
 ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x);
 
 /* Householder QR workspace for least-squares and minimum-norm problems. */
@@ -114,13 +151,16 @@ typedef struct {
 /* Least squares: x = argmin |A x - b|_2 for A: m x n with m >= n, full column
  * rank (n <= OGK_LA_MAX_N, m <= OGK_LA_MAX_LONG). ws is caller-owned scratch.
  * OGK_E_SINGULAR / OGK_E_ILL_CONDITIONED on (near) rank deficiency (a diagonal
- * entry of R at or below OGK_LA_PIVOT_MIN is singular). */
+ * entry of R at or below OGK_LA_PIVOT_MIN is singular). A and b within
+ * OGK_LA_VALUE_MAX (OGK_E_RANGE); OGK_E_OVERFLOW when an entry of x would
+ * exceed OGK_LA_SOLVE_MAX (x then unwritten). */
 ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
                      const double *b, double *x);
 
 /* Minimum norm: x = argmin |x|_2 subject to A x = b for A: m x n with m <= n,
  * full row rank (m <= OGK_LA_MAX_N, n <= OGK_LA_MAX_LONG), computed from a QR
- * factorization of A^T (equal to A^T (A A^T)^-1 b without forming A A^T). */
+ * factorization of A^T (equal to A^T (A A^T)^-1 b without forming A A^T).
+ * Bounds and OGK_E_OVERFLOW as ogk_lstsq. */
 ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
                        const double *b, double *x);
 

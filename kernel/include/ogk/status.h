@@ -59,7 +59,8 @@ typedef enum {
     OGK_E_ITER_LIMIT = 25,      /* an iterative solver reached its iteration bound before its tolerance */
     OGK_E_FRAME = 26,           /* a thrust command's frame is unknown, or one the consumer cannot convert */
     OGK_E_BYTE_ORDER = 27,      /* the target's double is not the file's little-endian binary64: cannot read in place */
-    OGK_STATUS_COUNT = 28
+    OGK_E_OVERFLOW = 28,        /* a result would exceed its documented bound (linalg: OGK_LA_SOLVE_MAX); not computed */
+    OGK_STATUS_COUNT = 29
 } ogk_status;
 
 /* Stores in *name the code's identifier ("OGK_E_DIM", ...). Unknown codes

@@ -68,6 +68,7 @@ ogk_flight_action ogk_flight_reaction(ogk_flight_call call, ogk_status st)
     case OGK_E_DIM:
     case OGK_E_SINGULAR:
     case OGK_E_ILL_CONDITIONED:
+    case OGK_E_OVERFLOW:
     case OGK_E_NOT_POSDEF:
     case OGK_E_SWITCH_OVERFLOW:
     case OGK_E_STEP_LIMIT:
