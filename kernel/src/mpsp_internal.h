@@ -107,8 +107,8 @@ void mpsp_dyn_setup(mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weight
                     double thrust);
 /* h(t) (n_basis) and optionally dh/dt. */
 void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot);
-/* U = P(t) W from a basis vector. */
-void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, double *u);
+/* U = P(t) W from a basis vector, h_q at h[q * stride]. */
+void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, size_t stride, double *u);
 /* cos and sin of the basis phase theta = omega (t - t_ref): rotated from the
  * last phase taken from cos() and sin() (the anchor, kept in dyn) when theta
  * is within MPSP_PHASE_REACH of it, else from cos() and sin() (new anchor). */
