@@ -93,9 +93,9 @@ typedef struct {
  * broadcast per pass (made once here, read three times per stage by the six
  * rows); 1 elsewhere. */
 #if defined(__SSE2__)
-#define MPSP_SL 2u
+#define MPSP_SL ((size_t)2u)
 #else
-#define MPSP_SL 1u
+#define MPSP_SL ((size_t)1u)
 #endif
 typedef struct {
     double g[6u * MPSP_SL]; /* [1/TU^2] G(r): g_xx, g_xy, g_xz, g_yy, g_yz, g_zz */
