@@ -41,21 +41,26 @@ static ogk_status stage_partials(const mpsp_dyn_t *dyn, const double *x, double 
 
 /* Stage s of the reverse sweep for one row, z = bK_s with z_v = zv and
  * z_lm = zl: bx = (z A_s)_r = G z_v, b = z D_s (thrust only); returns
- * (z A_s)_m = a_vm z_v.e + a_lm z_lm. A and D as in reverse_row. */
+ * (z A_s)_m = a_vm z_v.e + a_lm z_lm, 0 in coast (a_vm = a_lm = 0 there).
+ * A and D as in reverse_row; lane 0 of the partials (mpsp_stage_t). */
 static inline double stage_back(const mpsp_stage_t *p, const double *zv, double zl, bool thrust, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                          double *bx, double *b)
 {
-    const double ze = (zv[0] * p->e[0]) + (zv[1] * p->e[1]) + (zv[2] * p->e[2]);
-    bx[0] = (zv[0] * p->g[0]) + (zv[1] * p->g[1]) + (zv[2] * p->g[2]);
-    bx[1] = (zv[0] * p->g[1]) + (zv[1] * p->g[3]) + (zv[2] * p->g[4]);
-    bx[2] = (zv[0] * p->g[2]) + (zv[1] * p->g[4]) + (zv[2] * p->g[5]);
+    const double *g = p->g;
+    double ret = 0.0;
+    bx[0] = (zv[0] * g[0]) + (zv[1] * g[MPSP_SL]) + (zv[2] * g[2u * MPSP_SL]);
+    bx[1] = (zv[0] * g[MPSP_SL]) + (zv[1] * g[3u * MPSP_SL]) + (zv[2] * g[4u * MPSP_SL]);
+    bx[2] = (zv[0] * g[2u * MPSP_SL]) + (zv[1] * g[4u * MPSP_SL]) + (zv[2] * g[5u * MPSP_SL]);
     if (thrust) {
-        const double alpha = (p->d_l * zl) - (p->d_v * ze);
-        b[0] = (p->d_v * zv[0]) + (alpha * p->e[0]);
-        b[1] = (p->d_v * zv[1]) + (alpha * p->e[1]);
-        b[2] = (p->d_v * zv[2]) + (alpha * p->e[2]);
+        const double *e = p->e;
+        const double ze = (zv[0] * e[0]) + (zv[1] * e[MPSP_SL]) + (zv[2] * e[2u * MPSP_SL]);
+        const double alpha = (p->d_l[0] * zl) - (p->d_v[0] * ze);
+        b[0] = (p->d_v[0] * zv[0]) + (alpha * e[0]);
+        b[1] = (p->d_v[0] * zv[1]) + (alpha * e[MPSP_SL]);
+        b[2] = (p->d_v[0] * zv[2]) + (alpha * e[2u * MPSP_SL]);
+        ret = (p->a_vm[0] * ze) + (p->a_lm[0] * zl);
     }
-    return (p->a_vm * ze) + (p->a_lm * zl);
+    return ret;
 }
 
 /* One adjoint row w through the reverse sweep of a step with stage partials
@@ -168,17 +173,18 @@ static void reverse_row_mass(const mpsp_stage_t *sd, double dt, bool thrust, con
 {
     const double z6 = (dt / 6.0) * w[7];
     const double z3 = (dt / 3.0) * w[7];
-    double am = w[6] + (sd[3].a_lm * z6);
+    double am = w[6] + (sd[3].a_lm[0] * z6);
 
-    am += sd[2].a_lm * z3;
-    am += sd[1].a_lm * z3;
-    am += sd[0].a_lm * z6;
+    am += sd[2].a_lm[0] * z3;
+    am += sd[1].a_lm[0] * z3;
+    am += sd[0].a_lm[0] * z6;
     if (thrust) {
         size_t i;
         for (i = 0u; i < 3u; ++i) {
-            b_end[i] = (sd[3].d_l * z6) * sd[3].e[i];
-            b_mid[i] = ((sd[2].d_l * z3) * sd[2].e[i]) + ((sd[1].d_l * z3) * sd[1].e[i]);
-            b_start[i] = (sd[0].d_l * z6) * sd[0].e[i];
+            const size_t j = i * MPSP_SL;
+            b_end[i] = (sd[3].d_l[0] * z6) * sd[3].e[j];
+            b_mid[i] = ((sd[2].d_l[0] * z3) * sd[2].e[j]) + ((sd[1].d_l[0] * z3) * sd[1].e[j]);
+            b_start[i] = (sd[0].d_l[0] * z6) * sd[0].e[j];
         }
     }
     w_out[0] = 0.0;
@@ -197,43 +203,51 @@ static void reverse_row_mass(const mpsp_stage_t *sd, double dt, bool thrust, con
  * stage_back's return value. Every input is read into locals before any
  * output is written (no aliasing to assume), and each statement is a loop
  * over the lanes, so that gcc -O2 on x86-64 carries a pair in one SSE2
- * register (SLP). */
+ * register (SLP); the partials are read as pairs (MPSP_SL = 2). */
 static void stage_back2(const mpsp_stage_t *p, const double *zv_in, const double *zl_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                         bool thrust, double *bx_out, double *b_out, double *ret) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
+    const double *g = p->g;
     double zv[6];
-    double zl[2];
-    double ze[2];
     double bx[6];
-    double r[2];
     size_t l;
 
     for (l = 0u; l < 2u; ++l) {
         zv[l] = zv_in[l];
         zv[2u + l] = zv_in[2u + l];
         zv[4u + l] = zv_in[4u + l];
-        zl[l] = zl_in[l];
     }
     for (l = 0u; l < 2u; ++l) {
-        ze[l] = (zv[l] * p->e[0]) + (zv[2u + l] * p->e[1]) + (zv[4u + l] * p->e[2]);
-        bx[l] = (zv[l] * p->g[0]) + (zv[2u + l] * p->g[1]) + (zv[4u + l] * p->g[2]);
-        bx[2u + l] = (zv[l] * p->g[1]) + (zv[2u + l] * p->g[3]) + (zv[4u + l] * p->g[4]);
-        bx[4u + l] = (zv[l] * p->g[2]) + (zv[2u + l] * p->g[4]) + (zv[4u + l] * p->g[5]);
-        r[l] = (p->a_vm * ze[l]) + (p->a_lm * zl[l]);
+        bx[l] = (zv[l] * g[l]) + (zv[2u + l] * g[2u + l]) + (zv[4u + l] * g[4u + l]);
+        bx[2u + l] = (zv[l] * g[2u + l]) + (zv[2u + l] * g[6u + l]) + (zv[4u + l] * g[8u + l]);
+        bx[4u + l] = (zv[l] * g[4u + l]) + (zv[2u + l] * g[8u + l]) + (zv[4u + l] * g[10u + l]);
     }
     if (thrust) {
+        const double *e = p->e;
+        double zl[2];
+        double ze[2];
+        double r[2];
         double b[6];
         for (l = 0u; l < 2u; ++l) {
-            const double alpha = (p->d_l * zl[l]) - (p->d_v * ze[l]);
-            b[l] = (p->d_v * zv[l]) + (alpha * p->e[0]);
-            b[2u + l] = (p->d_v * zv[2u + l]) + (alpha * p->e[1]);
-            b[4u + l] = (p->d_v * zv[4u + l]) + (alpha * p->e[2]);
+            zl[l] = zl_in[l];
+        }
+        for (l = 0u; l < 2u; ++l) {
+            double alpha;
+            ze[l] = (zv[l] * e[l]) + (zv[2u + l] * e[2u + l]) + (zv[4u + l] * e[4u + l]);
+            alpha = (p->d_l[l] * zl[l]) - (p->d_v[l] * ze[l]);
+            b[l] = (p->d_v[l] * zv[l]) + (alpha * e[l]);
+            b[2u + l] = (p->d_v[l] * zv[2u + l]) + (alpha * e[2u + l]);
+            b[4u + l] = (p->d_v[l] * zv[4u + l]) + (alpha * e[4u + l]);
+            r[l] = (p->a_vm[l] * ze[l]) + (p->a_lm[l] * zl[l]);
         }
         (void)memcpy(b_out, b, sizeof b);
+        ret[0] = r[0];
+        ret[1] = r[1];
+    } else { /* a_vm = a_lm = 0 in coast */
+        ret[0] = 0.0;
+        ret[1] = 0.0;
     }
     (void)memcpy(bx_out, bx, sizeof bx);
-    ret[0] = r[0];
-    ret[1] = r[1];
 }
 
 /* reverse_row for the two rows w_in[0..7] and w_in[8..15] (both with nonzero

@@ -142,6 +142,85 @@ static void tile_3x2(double *acc, size_t q, size_t j, const double *hb, const do
     acc[i2 + 1u] = a21;
 }
 
+/* acc[q][j] += sum_b h_b[q] c_b[j], j < NYU, for one basis function q (the
+ * one the 3-row tiles leave over): 10 coefficient pairs and a column, each
+ * pair with one SSE2 multiply and add per sample (h_q held twice); the
+ * samples in the order b = 0, 1, ..., as every tile: the same numbers as the
+ * one-lane loop of the other targets. */
+static void tile_1x21(double *acc, size_t q, const double *hb, const double *cb, size_t n) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+{
+    double *ar = &acc[q * NYU];
+    double a00 = ar[0];
+    double a01 = ar[1];
+    double a02 = ar[2];
+    double a03 = ar[3];
+    double a04 = ar[4];
+    double a05 = ar[5];
+    double a06 = ar[6];
+    double a07 = ar[7];
+    double a08 = ar[8];
+    double a09 = ar[9];
+    double a10 = ar[10];
+    double a11 = ar[11];
+    double a12 = ar[12];
+    double a13 = ar[13];
+    double a14 = ar[14];
+    double a15 = ar[15];
+    double a16 = ar[16];
+    double a17 = ar[17];
+    double a18 = ar[18];
+    double a19 = ar[19];
+    double a20 = ar[20];
+    size_t b;
+
+    for (b = 0u; b < n; ++b) {
+        const double *c = &cb[b * NYU];
+        const double *h = &hb[(b * HR) + (q * HL)];
+        a00 += h[0] * c[0];
+        a01 += h[1] * c[1];
+        a02 += h[0] * c[2];
+        a03 += h[1] * c[3];
+        a04 += h[0] * c[4];
+        a05 += h[1] * c[5];
+        a06 += h[0] * c[6];
+        a07 += h[1] * c[7];
+        a08 += h[0] * c[8];
+        a09 += h[1] * c[9];
+        a10 += h[0] * c[10];
+        a11 += h[1] * c[11];
+        a12 += h[0] * c[12];
+        a13 += h[1] * c[13];
+        a14 += h[0] * c[14];
+        a15 += h[1] * c[15];
+        a16 += h[0] * c[16];
+        a17 += h[1] * c[17];
+        a18 += h[0] * c[18];
+        a19 += h[1] * c[19];
+        a20 += h[0] * c[20];
+    }
+    ar[0] = a00;
+    ar[1] = a01;
+    ar[2] = a02;
+    ar[3] = a03;
+    ar[4] = a04;
+    ar[5] = a05;
+    ar[6] = a06;
+    ar[7] = a07;
+    ar[8] = a08;
+    ar[9] = a09;
+    ar[10] = a10;
+    ar[11] = a11;
+    ar[12] = a12;
+    ar[13] = a13;
+    ar[14] = a14;
+    ar[15] = a15;
+    ar[16] = a16;
+    ar[17] = a17;
+    ar[18] = a18;
+    ar[19] = a19;
+    ar[20] = a20;
+}
+
 /* acc[q][j] += sum_b h_b[q] c_b[j] over the n samples held (eq. 40 with
  * dU = P dW: B_v += bU h^T per sample), j < NYU: register tiles of 3 basis
  * functions x 6 coefficients (tile_3x6), the 3 coefficients left over (NYU =
@@ -160,6 +239,10 @@ void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const 
         }
         tile_3x2(acc, q, j, hb, cb, n); /* NYU = 21: coefficients 18, 19 */
         block_cols_3x1(acc, q, j + 2u, hb, cb, n); /* and 20 */
+    }
+    if (q < n_basis) { /* a basis function left over (2 n + 1 is odd) */
+        tile_1x21(acc, q, hb, cb, n);
+        q += 1u;
     }
 #else
 /* acc[q][j] += sum_b h_b[q] c_b[j] over the n samples held (eq. 40 with
@@ -232,7 +315,7 @@ void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const 
         }
     }
 #endif
-    for (; q < n_basis; ++q) { /* the basis functions left over (2 n + 1 is odd) */
+    for (; q < n_basis; ++q) { /* the basis functions left over */
         for (j = 0u; j < NYU; j += 3u) {
             double a0 = acc[(q * NYU) + j];
             double a1 = acc[(q * NYU) + j + 1u];

@@ -91,8 +91,10 @@ void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot) /* NOL
 }
 
 /* One pass over the basis for the three components (each sum in the order
- * q = 0, 1, ..., as control_cs and mpsp_basis_control). */
-void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, double *u)
+ * q = 0, 1, ..., as control_cs and mpsp_basis_control); h_q at h[q * stride]
+ * (stride 1: a plain basis row; OGK_MPSP_H_LANES: a row of the sensitivity
+ * sample block, each entry held twice). */
+void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, size_t stride, double *u)
 {
     const size_t nb = dyn->n_basis;
     const double *w = dyn->w;
@@ -101,7 +103,7 @@ void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, double *u)
     double u2 = 0.0;
     size_t q;
     for (q = 0u; q < nb; ++q) {
-        const double hq = h[q];
+        const double hq = h[q * stride];
         u0 += hq * w[q];
         u1 += hq * w[nb + q];
         u2 += hq * w[(2u * nb) + q];

@@ -119,11 +119,18 @@ double mpsp_switch_value(const mpsp_dyn_t *dyn, const double *x, const double *u
     return 1.0 - x[7] - norm3(u) * dyn->c_exhaust / x[6];
 }
 
-/* G = mu/r^3 (3 r r^T / r^2 - I), upper triangle; *kg = -mu/r^3 as in
- * mpsp_rhs (0 and G = 0 without a central body). OGK_E_CALLBACK at r = 0. */
-/* G = mu/r^3 (3 r r^T / r^2 - I), upper triangle, and *kg = -mu/r^3 (0 and
- * G = 0 without a central body): one square root and one division.
- * OGK_E_CALLBACK at r = 0. */
+/* v into entry i of a stage partial held MPSP_SL times (mpsp_stage_t). */
+static void put_sl(double *a, size_t i, double v)
+{
+    size_t l;
+    for (l = 0u; l < MPSP_SL; ++l) {
+        a[(i * MPSP_SL) + l] = v;
+    }
+}
+
+/* G = mu/r^3 (3 r r^T / r^2 - I), upper triangle (held as mpsp_stage_t.g),
+ * and *kg = -mu/r^3 (0 and G = 0 without a central body): one square root
+ * and one division. OGK_E_CALLBACK at r = 0. */
 static ogk_status gravity_gradient(const mpsp_dyn_t *dyn, const double *x, double *kg,
                                    double *g)
 {
@@ -139,17 +146,17 @@ static ogk_status gravity_gradient(const mpsp_dyn_t *dyn, const double *x, doubl
             const double k = dyn->mu * inv_r2 * inv_r;
             const double k3 = 3.0 * k * inv_r2;
             *kg = -k;
-            g[0] = (k3 * x[0] * x[0]) - k;
-            g[1] = k3 * x[0] * x[1];
-            g[2] = k3 * x[0] * x[2];
-            g[3] = (k3 * x[1] * x[1]) - k;
-            g[4] = k3 * x[1] * x[2];
-            g[5] = (k3 * x[2] * x[2]) - k;
+            put_sl(g, 0u, (k3 * x[0] * x[0]) - k);
+            put_sl(g, 1u, k3 * x[0] * x[1]);
+            put_sl(g, 2u, k3 * x[0] * x[2]);
+            put_sl(g, 3u, (k3 * x[1] * x[1]) - k);
+            put_sl(g, 4u, k3 * x[1] * x[2]);
+            put_sl(g, 5u, (k3 * x[2] * x[2]) - k);
         }
     } else {
         size_t i;
         *kg = 0.0;
-        for (i = 0u; i < 6u; ++i) {
+        for (i = 0u; i < (6u * MPSP_SL); ++i) {
             g[i] = 0.0;
         }
     }
@@ -181,13 +188,13 @@ ogk_status mpsp_stage_eval(const mpsp_dyn_t *dyn, const double *x, const mpsp_uv
             const double t_m = dyn->thrust / m;
             const double t_m2 = t_m / m;
             const double a = t_m * inv_lam; /* T/(m |U|) */
-            sd->e[0] = uv->u[0] * inv_lam;
-            sd->e[1] = uv->u[1] * inv_lam;
-            sd->e[2] = uv->u[2] * inv_lam;
-            sd->a_vm = t_m2;
-            sd->a_lm = 2.0 * t_m2 * lam / m;
-            sd->d_v = -a;
-            sd->d_l = -t_m2;
+            put_sl(sd->e, 0u, uv->u[0] * inv_lam);
+            put_sl(sd->e, 1u, uv->u[1] * inv_lam);
+            put_sl(sd->e, 2u, uv->u[2] * inv_lam);
+            put_sl(sd->a_vm, 0u, t_m2);
+            put_sl(sd->a_lm, 0u, 2.0 * t_m2 * lam / m);
+            put_sl(sd->d_v, 0u, -a);
+            put_sl(sd->d_l, 0u, -t_m2);
             if (xdot != NULL) { /* eq. (16), thrust */
                 xdot[3] = (kg * x[0]) - (a * uv->u[0]);
                 xdot[4] = (kg * x[1]) - (a * uv->u[1]);
@@ -196,13 +203,11 @@ ogk_status mpsp_stage_eval(const mpsp_dyn_t *dyn, const double *x, const mpsp_uv
                 xdot[7] = -t_m2 * lam;
             }
         } else {
-            sd->e[0] = 0.0;
-            sd->e[1] = 0.0;
-            sd->e[2] = 0.0;
-            sd->a_vm = 0.0;
-            sd->a_lm = 0.0;
-            sd->d_v = 0.0;
-            sd->d_l = 0.0;
+            (void)memset(sd->e, 0, sizeof sd->e);
+            (void)memset(sd->a_vm, 0, sizeof sd->a_vm);
+            (void)memset(sd->a_lm, 0, sizeof sd->a_lm);
+            (void)memset(sd->d_v, 0, sizeof sd->d_v);
+            (void)memset(sd->d_l, 0, sizeof sd->d_l);
             if (xdot != NULL) { /* eq. (16), coast */
                 xdot[3] = kg * x[0];
                 xdot[4] = kg * x[1];

@@ -87,13 +87,23 @@ typedef struct {
  * with e = U/|U|, a_vm = u T/m^2, a_lm = 2 u T |U|/m^3, d_v = -u T/(m |U|),
  * d_l = -u T/m^2. All thrust terms are 0 in coast. G is symmetric: only its
  * upper triangle is kept. */
+/* Each value is held MPSP_SL times in a row (entry i of g at g[i * MPSP_SL
+ * + l], l < MPSP_SL): 2 where the adjoint rows go two per pass (SSE2), so
+ * that a pair reads its partial with one load instead of a load and a
+ * broadcast per pass (made once here, read three times per stage by the six
+ * rows); 1 elsewhere. */
+#if defined(__SSE2__)
+#define MPSP_SL ((size_t)2u)
+#else
+#define MPSP_SL ((size_t)1u)
+#endif
 typedef struct {
-    double g[6];        /* [1/TU^2] G(r): g_xx, g_xy, g_xz, g_yy, g_yz, g_zz */
-    double e[3];        /* [-] U/|U| (0 in coast) */
-    double a_vm;
-    double a_lm;
-    double d_v;
-    double d_l;
+    double g[6u * MPSP_SL]; /* [1/TU^2] G(r): g_xx, g_xy, g_xz, g_yy, g_yz, g_zz */
+    double e[3u * MPSP_SL]; /* [-] U/|U| (0 in coast) */
+    double a_vm[MPSP_SL];
+    double a_lm[MPSP_SL];
+    double d_v[MPSP_SL];
+    double d_l[MPSP_SL];
 } mpsp_stage_t;
 
 /* U = lambda_v at one time and its norm |U| (eq. 16 needs both). */
@@ -107,8 +117,8 @@ void mpsp_dyn_setup(mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weight
                     double thrust);
 /* h(t) (n_basis) and optionally dh/dt. */
 void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot);
-/* U = P(t) W from a basis vector. */
-void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, double *u);
+/* U = P(t) W from a basis vector, h_q at h[q * stride]. */
+void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, size_t stride, double *u);
 /* cos and sin of the basis phase theta = omega (t - t_ref): rotated from the
  * last phase taken from cos() and sin() (the anchor, kept in dyn) when theta
  * is within MPSP_PHASE_REACH of it, else from cos() and sin() (new anchor). */

@@ -244,9 +244,9 @@ ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double
         double hdot[OGK_MPSP_MAX_BASIS];
         mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max);
         mpsp_basis(&dyn, t, h, hdot);
-        mpsp_control_from_basis(&dyn, h, lambda_v);
+        mpsp_control_from_basis(&dyn, h, 1u, lambda_v);
         if (lambda_v_dot != NULL) {
-            mpsp_control_from_basis(&dyn, hdot, lambda_v_dot);
+            mpsp_control_from_basis(&dyn, hdot, 1u, lambda_v_dot);
         }
         /* Finite weights can still overflow the sum, and a time far from t_ref the phase (found by
          * tests/fuzz/fuzz_mpsp_init.c): never OGK_OK with a non-finite output. */
@@ -271,7 +271,7 @@ static ogk_status thrust_cmd_held(const ogk_mpsp_t *ctx, double t, ogk_thrust_cm
         double norm;
         mpsp_dyn_setup(&dyn, ctx, ctx->weights, ctx->thrust);
         mpsp_basis(&dyn, t, h, NULL);
-        mpsp_control_from_basis(&dyn, h, lv);
+        mpsp_control_from_basis(&dyn, h, 1u, lv);
         norm = hypot(hypot(lv[0], lv[1]), lv[2]);
         if (!(norm > 0.0) || !isfinite(norm)) {
             st = OGK_E_SAFE_COMMAND; /* no primer direction */

@@ -36,8 +36,8 @@ ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
     ogk_status st;
 
     mpsp_basis(dyn, t_s, h, hdot);
-    mpsp_control_from_basis(dyn, h, u);
-    mpsp_control_from_basis(dyn, hdot, udot);
+    mpsp_control_from_basis(dyn, h, 1u, u);
+    mpsp_control_from_basis(dyn, hdot, 1u, udot);
     st = mpsp_rhs(dyn, x_s, u, mode_before, f_before);
     if (st == OGK_OK) {
         st = mpsp_rhs(dyn, x_s, u, 1 - mode_before, f_after);
@@ -67,38 +67,13 @@ ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
     return st;
 }
 
-/* U and |U| from a basis row. */
-static void uval_from_basis(const mpsp_dyn_t *dyn, const double *h, mpsp_uval_t *uv)
+/* U and |U| from a basis row, h_q at h[q * stride] (1, or OGK_MPSP_H_LANES
+ * for a row of the sample block: U not kept by the propagation). */
+static void uval_from_basis(const mpsp_dyn_t *dyn, const double *h, size_t stride, mpsp_uval_t *uv)
 {
-    mpsp_control_from_basis(dyn, h, uv->u);
+    mpsp_control_from_basis(dyn, h, stride, uv->u);
     uv->lam = sqrt((uv->u[0] * uv->u[0]) + (uv->u[1] * uv->u[1]) + (uv->u[2] * uv->u[2]));
 }
-
-#if defined(__SSE2__)
-/* U and |U| from a sample block row (each entry twice): the sums of
- * mpsp_control_from_basis in the same order (for U not kept by the
- * propagation). */
-static void uval_from_h2(const mpsp_dyn_t *dyn, const double *h2, mpsp_uval_t *uv)
-{
-    const size_t nb = dyn->n_basis;
-    const double *w = dyn->w;
-    double u0 = 0.0;
-    double u1 = 0.0;
-    double u2 = 0.0;
-    size_t q;
-
-    for (q = 0u; q < nb; ++q) {
-        const double hq = h2[2u * q];
-        u0 += hq * w[q];
-        u1 += hq * w[nb + q];
-        u2 += hq * w[(2u * nb) + q];
-    }
-    uv->u[0] = u0;
-    uv->u[1] = u1;
-    uv->u[2] = u2;
-    uv->lam = sqrt((u0 * u0) + (u1 * u1) + (u2 * u2));
-}
-#endif
 
 /* out[r][c n_basis + q] += coef[r * 3 + c] h[q], row-major rows x 3 n_basis
  * (the one-step Jacobian; not on the hot path). */
@@ -145,9 +120,9 @@ static ogk_status step_partials(const ogk_mpsp_t *ctx, const mpsp_dyn_t *dyn, do
     for (i = 0u; i < NX; ++i) {
         adj[(i * NX) + i] = 1.0; /* row i seeds d X_next[i] */
     }
-    uval_from_basis(dyn, h0, &uv[0]);
-    uval_from_basis(dyn, hm, &uv[1]);
-    uval_from_basis(dyn, h1, &uv[2]);
+    uval_from_basis(dyn, h0, 1u, &uv[0]);
+    uval_from_basis(dyn, hm, 1u, &uv[1]);
+    uval_from_basis(dyn, h1, 1u, &uv[2]);
     /* one row at a time on every target: the paired rows of the sweep are
      * checked against this path by the unit tests */
     st = mpsp_step_adjoint(dyn, x, dt, mode, uv, false, NX, adj, adj, b0, bm, b1);
@@ -398,10 +373,10 @@ static ogk_status thrust_step(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, doub
         const bool kept_lo = mpsp_keep_find(ctx, dyn, t_pair[1], &uv_pair[1]);
         mpsp_basis2(dyn, t_pair, h_mid, h_lo);
         if (!kept_mid) { /* the last step before a switch (bisection's) */
-            uval_from_h2(dyn, h_mid, &uv_pair[0]);
+            uval_from_basis(dyn, h_mid, OGK_MPSP_H_LANES, &uv_pair[0]);
         }
         if (!kept_lo) { /* a switch node or t0 */
-            uval_from_h2(dyn, h_lo, &uv_pair[1]);
+            uval_from_basis(dyn, h_lo, OGK_MPSP_H_LANES, &uv_pair[1]);
         }
         uv[1] = uv_pair[0];
         uv[0] = uv_pair[1];
