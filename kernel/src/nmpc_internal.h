@@ -1,7 +1,7 @@
 /* nmpc_internal.h -- internal interfaces of ogk_nmpc (not public API):
  * the predictive model (nmpc_model.c), one shooting interval with its
- * sensitivities (nmpc_shoot.c), the SQP (nmpc_sqp.c) and the strategies'
- * plan operations (nmpc_plan.c). */
+ * sensitivities (nmpc_shoot.c), the SQP (nmpc_sqp.c) with its condensing
+ * (nmpc_condense.c) and the strategies' plan operations (nmpc_plan.c). */
 #ifndef OGK_NMPC_INTERNAL_H
 #define OGK_NMPC_INTERNAL_H
 
@@ -109,6 +109,17 @@ void ogk_i_nmpc_cache_drop(ogk_nmpc_t *ctx, uint32_t nodes, uint32_t count, uint
  * of eq. (5) at state x and time t_f. */
 void ogk_i_nmpc_terminal(const ogk_nmpc_config_t *cfg, const double *x,
                          double t_f, double *c);
+
+/* The condensed QP (nmpc_condense.c), nv = (N + 1) nu + 1 unknowns.
+ * condense: ctx->cond_g = G_N = dX_N/dv and ctx->cond_e = e_N from the
+ * context's sensitivities, the keep-out rows, and with hess != NULL the
+ * exact reduced Hessian (nv x nv, full) from ctx->hess_blk. linear_terms:
+ * g_obj (nv) and eq. (5)'s rows qp_aeq, qp_beq (c_term: eq. 5's residual).
+ * expand_step: ctx->dx = the state corrections of the QP step v. */
+void ogk_i_nmpc_condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, double *hess);
+void ogk_i_nmpc_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, const double *c_term,
+                             double *g_obj);
+void ogk_i_nmpc_expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const double *v, size_t nv);
 
 /* The SQP on ctx->work (node 0 and t0 already set) with the BFGS matrix
  * hess (nv x nv), restarted from the scaled identity when cold. Adds its
