@@ -111,11 +111,11 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
 
     (void)memset(m_r, 0, sizeof(m_r));
     (void)memset(m_m, 0, sizeof(m_m));
-    /* set below over the columns' pairs; zeroed for the analyser, which does not follow the pairs */
-    (void)memset(m_vr, 0, sizeof(m_vr));
-    (void)memset(m_vt, 0, sizeof(m_vt));
     (void)memset(m_ctl, 0, sizeof(m_ctl));
-    for (c = 0u; c < ncol_e; c += 2u) {
+    /* by pairs up to ncol (the last pair of an odd ncol writes its padding
+     * column too): m_vr, m_vt are read below only in the columns < ncol that
+     * this loop sets, which the analyser follows with the bound ncol */
+    for (c = 0u; c < ncol; c += 2u) {
         stage_m_column(hz, y_sens, c, m_r, m_vr, m_vt, m_m);
         stage_m_column(hz, y_sens, c + 1u, m_r, m_vr, m_vt, m_m);
     }
