@@ -154,6 +154,10 @@ void ogk_i_nmpc_hess_mirror(double *hess, size_t nv);
 double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq,
                                  double fallback, double rho_hint, double *out, double *work, bool *shifted);
 
+/* hess (nv x nv, H0 + rho A_old^T A_old, A NC x nv) := H0 + rho A_new^T
+ * A_new: the exact Hessian of the last iteration held (nmpc_sqp.c). */
+void ogk_i_nmpc_hess_reshift(double *hess, size_t nv, const double *a_old, const double *a_new, double rho);
+
 /* Damped BFGS (Powell) update of hess with step s and gradient change y (y
  * is damped in place); first: Shanno-Phua scaling of the initial matrix. */
 void ogk_i_nmpc_bfgs_update(double *hess, size_t nv, const double *s, double *y, bool first);

@@ -60,6 +60,11 @@
 #define RESTORE_VIOL_MAX 1.0e-4
 /* Factor on the step box of a QP retried after OGK_E_INFEASIBLE. */
 #define BOX_OPEN 1.0e3
+/* The exact Hessian is held for the next iteration when a full step's QP
+ * predicted |dJ| within this factor of the stop (tol_obj max(|J|, 1)): the
+ * next step, Newton's from there, is expected to be the last, and its
+ * Hessian only scales a step of that size (docs/nmpc-flight.md). */
+#define HESS_HOLD 10.0
 
 static size_t n_vars(const ogk_nmpc_plan_t *p)
 {
@@ -423,6 +428,9 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     bool exact = (cfg->hessian == OGK_NMPC_HESSIAN_EXACT);
     double rho;
     double rho_last = 0.0;
+    /* the exact Hessian of the last iteration held for this one (HESS_HOLD) */
+    bool hold_next = false;
+    bool hold_ok = false;
 
     if (cold) {
         ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
@@ -433,15 +441,29 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
         /* a cold solve has no multipliers for its first exact Hessian: that
          * iteration's QP gets the scaled identity */
         const bool second = exact && ((!cold) || (iter != 0u));
+        /* held only after a full step of an exact iteration evaluated without
+         * second derivatives (the line search below, which then also sets
+         * have_eval; a restart, which ends exact, sets neither), never twice
+         * in a row */
+        const bool held = hold_next;
+        hold_next = false;
         if (!have_eval) {
             st = evaluate(ctx, p, true, second ? y_prev : NULL, &viol_l1, &viol_max, c_term);
         }
         have_eval = false;
         if (st == OGK_OK) {
-            ogk_i_nmpc_condense(ctx, p, nv, second ? hess : NULL);
+            if (held) {
+                /* the last iteration's eq. (5) rows, for its shift (scratch free: no condensed Hessian) */
+                (void)memcpy(ctx->hess_tmp, ctx->qp_aeq, NC * nv * sizeof(double));
+            }
+            ogk_i_nmpc_condense(ctx, p, nv, (second && !held) ? hess : NULL);
             ogk_i_nmpc_linear_terms(ctx, p, nv, c_term, g_obj);
             rho = 0.0;
-            if (second) {
+            if (held) {
+                /* the last iteration's H + rho A^T A with its A replaced by this one's */
+                ogk_i_nmpc_hess_reshift(hess, nv, ctx->hess_tmp, ctx->qp_aeq, rho_last);
+                rho = rho_last;
+            } else if (second) {
                 bool shifted = false;
                 rho = ogk_i_nmpc_hess_convexify(hess, nv, ctx->qp_aeq, cfg->hessian_init, rho_last, ctx->el_h,
                                                 ctx->el_ain, &shifted);
@@ -520,7 +542,11 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 for (i = 0u; i < nv; ++i) {
                     pred += g_obj[i] * ctx->qp_sol.x[i];
                 }
-                flat = (cfg->tol_obj > 0.0) && (fabs(pred) <= (cfg->tol_obj * ((j_now > 1.0) ? j_now : 1.0)));
+                const double stop = cfg->tol_obj * ((j_now > 1.0) ? j_now : 1.0);
+                flat = (cfg->tol_obj > 0.0) && (fabs(pred) <= stop);
+                /* a step from an exact, not held Hessian that factored with its shift
+                 * alone (rho > 0 only then); never with tol_obj = 0 (stop = 0) */
+                hold_ok = !held && (rho > 0.0) && (fabs(pred) < (HESS_HOLD * stop));
             }
             if ((viol_max <= cfg->tol_feas) && ((stat <= cfg->tol_stat) || flat)) {
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
@@ -571,7 +597,8 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 /* the full step is evaluated with its sensitivities: taken
                  * (the usual case near the solution), it is the next
                  * iteration's linearisation */
-                ts = evaluate(ctx, &ctx->trial, (ls == 0u) && !newton_last, exact ? ctx->qp_sol.y_eq : NULL,
+                ts = evaluate(ctx, &ctx->trial, (ls == 0u) && !newton_last,
+                              (exact && !hold_ok) ? ctx->qp_sol.y_eq : NULL,
                               &t_l1, &t_max, c_trial);
                 first_l1 = t_l1;
                 first_max = t_max;
@@ -658,6 +685,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                     done = true;
                 } else if ((alpha >= 1.0) && !newton_last) {
                     have_eval = true;
+                    hold_next = hold_ok;
                     viol_l1 = first_l1;
                     viol_max = first_max;
                     (void)memcpy(c_term, c_trial, sizeof(c_term));
