@@ -162,7 +162,13 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
         const double z_vr = row_vr[a];
         const double z_vt = row_vt[a];
         const double z_m = row_m[a];
-        if (sparse_m) {
+        /* without attracting bodies the model does not depend on theta: Z's
+         * theta column (a = 1) is 0 in the rows r, v_r, v_theta and m (the
+         * forward sweep propagates exact zeros), so its row adds nothing */
+        const bool theta_zero = (a == 1u) && !bodies;
+        if (theta_zero) {
+            /* row 1 of the triangle: no state term */
+        } else if (sparse_m) {
             for (c = a; c < ncol; ++c) {
                 hrow[c] += (z_r * m_r[c]) + (z_vr * m_vr[c]) + (z_vt * m_vt[c]);
             }
