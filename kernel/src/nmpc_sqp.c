@@ -64,7 +64,7 @@
  * predicted |dJ| within this factor of the stop (tol_obj max(|J|, 1)): the
  * next step, Newton's from there, is expected to be the last, and its
  * Hessian only scales a step of that size (docs/nmpc-flight.md). */
-#define HESS_HOLD 10.0
+#define HESS_HOLD 100.0
 
 static size_t n_vars(const ogk_nmpc_plan_t *p)
 {
