@@ -61,9 +61,11 @@
 /* Factor on the step box of a QP retried after OGK_E_INFEASIBLE. */
 #define BOX_OPEN 1.0e3
 /* The exact Hessian is held for the next iteration when a full step's QP
- * predicted |dJ| within this factor of the stop (tol_obj max(|J|, 1)): the
- * next step, Newton's from there, is expected to be the last, and its
- * Hessian only scales a step of that size (docs/nmpc-flight.md). */
+ * predicted |dJ| within this factor of the stop (tol_obj max(|J|, 1)) and
+ * the contraction from the last iteration's prediction, carried one step
+ * further, lands within the stop (|dJ_k|^2 <= stop |dJ_k-1|): the next step
+ * is then expected to be the last, and its Hessian only scales a step of
+ * that size (docs/nmpc-flight.md). */
 #define HESS_HOLD 100.0
 
 static size_t n_vars(const ogk_nmpc_plan_t *p)
@@ -431,6 +433,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     /* the exact Hessian of the last iteration held for this one (HESS_HOLD) */
     bool hold_next = false;
     bool hold_ok = false;
+    double pred_prev = 0.0; /* |dJ| predicted by the last iteration's QP (0: none yet) */
 
     if (cold) {
         ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
@@ -545,8 +548,11 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 const double stop = cfg->tol_obj * ((j_now > 1.0) ? j_now : 1.0);
                 flat = (cfg->tol_obj > 0.0) && (fabs(pred) <= stop);
                 /* a step from an exact, not held Hessian that factored with its shift
-                 * alone (rho > 0 only then); never with tol_obj = 0 (stop = 0) */
-                hold_ok = !held && (rho > 0.0) && (fabs(pred) < (HESS_HOLD * stop));
+                 * alone (rho > 0 only then), converging (HESS_HOLD); never with
+                 * tol_obj = 0 (stop = 0) */
+                hold_ok = !held && (rho > 0.0) && (fabs(pred) < (HESS_HOLD * stop))
+                    && ((pred * pred) <= (stop * pred_prev));
+                pred_prev = fabs(pred);
             }
             if ((viol_max <= cfg->tol_feas) && ((stat <= cfg->tol_stat) || flat)) {
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));

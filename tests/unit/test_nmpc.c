@@ -424,9 +424,9 @@ static void test_sqp_exact_hessian(void **state)
 
 /* The exact Hessian held for the last step (nmpc_sqp.c, HESS_HOLD) at the
  * default tol_obj: from the same open loop and the same perturbed state, the
- * SNNS replan lands on the t_f of the replan that never holds it (tol_obj =
- * 0: every iteration's Hessian exact, stopped by stationarity alone) within
- * 1e-9 TU, feasible, in no more SQP iterations. */
+ * CNCN replan (which holds it once) lands on the t_f of the replan that never
+ * holds it (tol_obj = 0: every iteration's Hessian exact, stopped by
+ * stationarity alone) within 1e-9 TU, feasible, in no more SQP iterations. */
 /* req: OGK-NMPC-003 */
 static void test_sqp_exact_hessian_held(void **state)
 {
@@ -436,6 +436,7 @@ static void test_sqp_exact_hessian_held(void **state)
     ogk_nmpc_report_t rep_ref;
     (void)state;
     mars_config(&c, 8u);
+    c.strategy = OGK_NMPC_CNCN;
     c.tol_obj = 1.0e-7;
     c.tol_stat = 1.0e-7;
     c.hessian = OGK_NMPC_HESSIAN_EXACT;
