@@ -255,6 +255,26 @@ double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq, /*
     return rho_used;
 }
 
+void ogk_i_nmpc_hess_reshift(double *hess, size_t nv, const double *a_old, const double *a_new, /* NOLINT(bugprone-easily-swappable-parameters): internal, (H, order, old rows, new rows, rho) in the formula's order; its only caller is ogk_i_nmpc_sqp */
+                             double rho)
+{
+    /* H0 + rho A_old^T A_old -> H0 + rho A_new^T A_new: the QP's step on
+     * A_new v = b and its multipliers' correction (y - rho b) stay exact
+     * for the held H0 */
+    size_t i;
+    size_t j;
+    size_t r;
+    for (i = 0u; i < nv; ++i) {
+        for (j = 0u; j < nv; ++j) {
+            double acc = 0.0;
+            for (r = 0u; r < NC; ++r) {
+                acc += (a_new[(r * nv) + i] * a_new[(r * nv) + j]) - (a_old[(r * nv) + i] * a_old[(r * nv) + j]);
+            }
+            hess[(i * nv) + j] += rho * acc;
+        }
+    }
+}
+
 /* Damped BFGS update of H with the step s and the gradient change y. */
 void ogk_i_nmpc_bfgs_update(double *hess, size_t nv, const double *s, double *y, bool first)
 {

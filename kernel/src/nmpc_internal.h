@@ -1,7 +1,7 @@
 /* nmpc_internal.h -- internal interfaces of ogk_nmpc (not public API):
  * the predictive model (nmpc_model.c), one shooting interval with its
- * sensitivities (nmpc_shoot.c), the SQP (nmpc_sqp.c) and the strategies'
- * plan operations (nmpc_plan.c). */
+ * sensitivities (nmpc_shoot.c), the SQP (nmpc_sqp.c) with its condensing
+ * (nmpc_condense.c) and the strategies' plan operations (nmpc_plan.c). */
 #ifndef OGK_NMPC_INTERNAL_H
 #define OGK_NMPC_INTERNAL_H
 
@@ -110,6 +110,17 @@ void ogk_i_nmpc_cache_drop(ogk_nmpc_t *ctx, uint32_t nodes, uint32_t count, uint
 void ogk_i_nmpc_terminal(const ogk_nmpc_config_t *cfg, const double *x,
                          double t_f, double *c);
 
+/* The condensed QP (nmpc_condense.c), nv = (N + 1) nu + 1 unknowns.
+ * condense: ctx->cond_g = G_N = dX_N/dv and ctx->cond_e = e_N from the
+ * context's sensitivities, the keep-out rows, and with hess != NULL the
+ * exact reduced Hessian (nv x nv, full) from ctx->hess_blk. linear_terms:
+ * g_obj (nv) and eq. (5)'s rows qp_aeq, qp_beq (c_term: eq. 5's residual).
+ * expand_step: ctx->dx = the state corrections of the QP step v. */
+void ogk_i_nmpc_condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, double *hess);
+void ogk_i_nmpc_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, const double *c_term,
+                             double *g_obj);
+void ogk_i_nmpc_expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const double *v, size_t nv);
+
 /* The SQP on ctx->work (node 0 and t0 already set) with the BFGS matrix
  * hess (nv x nv), restarted from the scaled identity when cold. Adds its
  * iterations to rep and sets rep->feas, rep->stat. */
@@ -142,6 +153,10 @@ void ogk_i_nmpc_hess_mirror(double *hess, size_t nv);
  * (H not convex on eq. 5's null space). */
 double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq,
                                  double fallback, double rho_hint, double *out, double *work, bool *shifted);
+
+/* hess (nv x nv, H0 + rho A_old^T A_old, A NC x nv) := H0 + rho A_new^T
+ * A_new: the exact Hessian of the last iteration held (nmpc_sqp.c). */
+void ogk_i_nmpc_hess_reshift(double *hess, size_t nv, const double *a_old, const double *a_new, double rho);
 
 /* Damped BFGS (Powell) update of hess with step s and gradient change y (y
  * is damped in place); first: Shanno-Phua scaling of the initial matrix. */

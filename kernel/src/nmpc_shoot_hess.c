@@ -111,11 +111,11 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
 
     (void)memset(m_r, 0, sizeof(m_r));
     (void)memset(m_m, 0, sizeof(m_m));
-    /* set below over the columns' pairs; zeroed for the analyser, which does not follow the pairs */
-    (void)memset(m_vr, 0, sizeof(m_vr));
-    (void)memset(m_vt, 0, sizeof(m_vt));
     (void)memset(m_ctl, 0, sizeof(m_ctl));
-    for (c = 0u; c < ncol_e; c += 2u) {
+    /* by pairs up to ncol (the last pair of an odd ncol writes its padding
+     * column too): m_vr, m_vt are read below only in the columns < ncol that
+     * this loop sets, which the analyser follows with the bound ncol */
+    for (c = 0u; c < ncol; c += 2u) {
         stage_m_column(hz, y_sens, c, m_r, m_vr, m_vt, m_m);
         stage_m_column(hz, y_sens, c + 1u, m_r, m_vr, m_vt, m_m);
     }
@@ -162,7 +162,13 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
         const double z_vr = row_vr[a];
         const double z_vt = row_vt[a];
         const double z_m = row_m[a];
-        if (sparse_m) {
+        /* without attracting bodies the model does not depend on theta: Z's
+         * theta column (a = 1) is 0 in the rows r, v_r, v_theta and m (the
+         * forward sweep propagates exact zeros), so its row adds nothing */
+        const bool theta_zero = (a == 1u) && !bodies;
+        if (theta_zero) {
+            /* row 1 of the triangle: no state term */
+        } else if (sparse_m) {
             for (c = a; c < ncol; ++c) {
                 hrow[c] += (z_r * m_r[c]) + (z_vr * m_vr[c]) + (z_vt * m_vt[c]);
             }

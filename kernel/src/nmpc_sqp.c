@@ -1,8 +1,9 @@
 /* nmpc_sqp.c -- the NMPC's SQP on the multiple-shooting transcription
  * (docs/nmpc.md, "Flight solver"):
  *   1. every interval F_k with its exact sensitivities (nmpc_shoot.c);
- *   2. the state corrections condensed away: dX_{k+1} = A_k dX_k + B0_k dU_k
- *      + B1_k dU_{k+1} + t_k dT + d_k, dX_0 = 0 (d_k = F_k - X_{k+1}), so the
+ *   2. the state corrections condensed away (nmpc_condense.c):
+ *      dX_{k+1} = A_k dX_k + B0_k dU_k + B1_k dU_{k+1} + t_k dT + d_k,
+ *      dX_0 = 0 (d_k = F_k - X_{k+1}), so the
  *      QP unknowns are v = (dU_0 .. dU_N, dT) and only dX_N enters it
  *      (no path constraints on the states);
  *   3. the QP  min g^T v + 1/2 v^T H v  s.t. the linearised eq. (5), throttle
@@ -59,6 +60,13 @@
 #define RESTORE_VIOL_MAX 1.0e-4
 /* Factor on the step box of a QP retried after OGK_E_INFEASIBLE. */
 #define BOX_OPEN 1.0e3
+/* The exact Hessian is held for the next iteration when a full step's QP
+ * predicted |dJ| within this factor of the stop (tol_obj max(|J|, 1)) and
+ * the contraction from the last iteration's prediction, carried one step
+ * further, lands within the stop (|dJ_k|^2 <= stop |dJ_k-1|): the next step
+ * is then expected to be the last, and its Hessian only scales a step of
+ * that size (docs/nmpc-flight.md). */
+#define HESS_HOLD 100.0
 
 static size_t n_vars(const ogk_nmpc_plan_t *p)
 {
@@ -180,107 +188,6 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
     return st;
 }
 
-/* G_N = dX_N/dv and e_N = dX_N(v = 0) by the forward recursion. */
-static void condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, double *hess)
-{
-    const uint32_t nu = p->nu;
-    const size_t col_t = nv - 1u;
-    double g_next[NX * MAXV];
-    double e_next[NX];
-    /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan): clamped once, a fixed bound */
-    const size_t nodes = ogk_i_min_size(p->nodes, OGK_NMPC_MAX_NODES);
-    size_t k;
-    size_t i;
-    size_t j;
-    size_t c;
-
-    (void)memset(ctx->cond_g, 0, NX * nv * sizeof(double));
-    (void)memset(ctx->cond_e, 0, sizeof(ctx->cond_e));
-    ctx->ko_rows = 0u;
-    if (hess != NULL) {
-        (void)memset(hess, 0, nv * nv * sizeof(double));
-    }
-    for (k = 0u; k < nodes; ++k) {
-        const double *a = &ctx->sens_a[k * NX * NX];
-        if (hess != NULL) {
-            /* the exact Hessian's interval k, with cond_g = dX_k/dv */
-            ogk_i_nmpc_hess_add(hess, nv, nu, k, ctx->cond_g,
-                                &ctx->hess_blk[k * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR], ctx->hess_tmp);
-        }
-        /* columns that can be nonzero after interval k: U_0..U_{k+1}, T */
-        const size_t n_used = (k + 2u) * nu;
-        for (i = 0u; i < NX; ++i) {
-            double acc_e = 0.0;
-            /* by pairs (packed on x86-64); an odd n_used's extra column is 0
-             * (U_{k+2}) or T's (set below), and is not copied back */
-            for (c = 0u; c < n_used; c += 2u) {
-                double acc0 = 0.0;
-                double acc1 = 0.0;
-                for (j = 0u; j < NX; ++j) {
-                    acc0 += a[(i * NX) + j] * ctx->cond_g[(j * nv) + c];
-                    acc1 += a[(i * NX) + j] * ctx->cond_g[(j * nv) + c + 1u];
-                }
-                g_next[(i * nv) + c] = acc0;
-                g_next[(i * nv) + c + 1u] = acc1;
-            }
-            {
-                double acc = 0.0;
-                for (j = 0u; j < NX; ++j) {
-                    acc += a[(i * NX) + j] * ctx->cond_g[(j * nv) + col_t];
-                    acc_e += a[(i * NX) + j] * ctx->cond_e[j];
-                }
-                g_next[(i * nv) + col_t] = acc + ctx->sens_t[(k * NX) + i];
-            }
-            for (j = 0u; j < nu; ++j) {
-                g_next[(i * nv) + (k * nu) + j] += ctx->sens_b0[(k * NX * nu) + (i * nu) + j];
-                g_next[(i * nv) + ((k + 1u) * nu) + j] += ctx->sens_b1[(k * NX * nu) + (i * nu) + j];
-            }
-            e_next[i] = acc_e + (ctx->sens_f[(k * NX) + i] - p->x[((k + 1u) * NX) + i]);
-        }
-        for (i = 0u; i < NX; ++i) {
-            for (c = 0u; c < n_used; ++c) {
-                ctx->cond_g[(i * nv) + c] = g_next[(i * nv) + c];
-            }
-            ctx->cond_g[(i * nv) + col_t] = g_next[(i * nv) + col_t];
-        }
-        (void)memcpy(ctx->cond_e, e_next, sizeof(e_next));
-        if ((k + 1u) < p->nodes) {
-            ogk_i_nmpc_keepout_rows(ctx, p, nv, k + 1u, ctx->cond_g, ctx->cond_e);
-        }
-    }
-    if (hess != NULL) {
-        ogk_i_nmpc_hess_mirror(hess, nv);
-    }
-}
-
-/* Objective gradient in v and the QP's equality rows (linearised eq. 5). */
-static void build_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
-                               size_t nv, const double *c_term, double *g_obj)
-{
-    const size_t col_t = nv - 1u;
-    size_t i;
-    size_t c;
-
-    (void)memset(g_obj, 0, nv * sizeof(double));
-    if (ctx->cfg.objective == OGK_NMPC_MIN_FUEL) {
-        for (c = 0u; c < nv; ++c) {
-            g_obj[c] = -ctx->cond_g[(4u * nv) + c]; /* J = m_0 - m_N (+ time_weight T) */
-        }
-        g_obj[col_t] += ctx->cfg.time_weight;
-    } else {
-        g_obj[col_t] = 1.0; /* J = T */
-    }
-    for (i = 0u; i < NC; ++i) {
-        for (c = 0u; c < nv; ++c) {
-            ctx->qp_aeq[(i * nv) + c] = ctx->cond_g[(i * nv) + c];
-        }
-        ctx->qp_beq[i] = -(c_term[i] + ctx->cond_e[i]);
-    }
-    /* theta_T(t_f) moves with T */
-    ctx->qp_aeq[(1u * nv) + col_t] -= ctx->cfg.target_rate;
-    (void)p;
-}
-
 /* Bounds of the QP unknowns and the sweep rows; returns the number of rows. */
 static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, nv and the box factor; every caller is in this file */
                            double box_scale)
@@ -334,33 +241,6 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
         ++rows;
     }
     return rows;
-}
-
-/* State part of the step: dX_{k+1} = A_k dX_k + B0 dU_k + B1 dU_{k+1} + t_k dT + d_k. */
-static void expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const double *v, size_t nv)
-{
-    const uint32_t nu = p->nu;
-    /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan): clamped once, a fixed bound */
-    const size_t nodes = ogk_i_min_size(p->nodes, OGK_NMPC_MAX_NODES);
-    size_t k;
-    size_t i;
-    size_t j;
-
-    (void)memset(ctx->dx, 0, NX * sizeof(double));
-    for (k = 0u; k < nodes; ++k) {
-        for (i = 0u; i < NX; ++i) {
-            double acc = ctx->sens_f[(k * NX) + i] - p->x[((k + 1u) * NX) + i];
-            for (j = 0u; j < NX; ++j) {
-                acc += ctx->sens_a[(k * NX * NX) + (i * NX) + j] * ctx->dx[(k * NX) + j];
-            }
-            for (j = 0u; j < nu; ++j) {
-                acc += ctx->sens_b0[(k * NX * nu) + (i * nu) + j] * v[(k * nu) + j];
-                acc += ctx->sens_b1[(k * NX * nu) + (i * nu) + j] * v[((k + 1u) * nu) + j];
-            }
-            acc += ctx->sens_t[(k * NX) + i] * v[nv - 1u];
-            ctx->dx[((k + 1u) * NX) + i] = acc;
-        }
-    }
 }
 
 /* trial = work + alpha * step */
@@ -496,7 +376,7 @@ static bool feasibility_step(ogk_nmpc_t *ctx, ogk_nmpc_plan_t *p, size_t nv, siz
     if (ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol) == OGK_OK) {
         double c_trial[NC];
         rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
-        expand_step(ctx, p, ctx->qp_sol.x, nv);
+        ogk_i_nmpc_expand_step(ctx, p, ctx->qp_sol.x, nv);
         take_step(ctx, p, ctx->qp_sol.x, nv, 1.0, &ctx->trial);
         if ((evaluate(ctx, &ctx->trial, false, NULL, &t_l1, &t_max, c_trial) == OGK_OK) && (t_l1 < viol_l1)) {
             (void)memcpy(p, &ctx->trial, sizeof(*p));
@@ -550,6 +430,10 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     bool exact = (cfg->hessian == OGK_NMPC_HESSIAN_EXACT);
     double rho;
     double rho_last = 0.0;
+    /* the exact Hessian of the last iteration held for this one (HESS_HOLD) */
+    bool hold_next = false;
+    bool hold_ok = false;
+    double pred_prev = 0.0; /* |dJ| predicted by the last iteration's QP (0: none yet) */
 
     if (cold) {
         ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
@@ -560,15 +444,29 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
         /* a cold solve has no multipliers for its first exact Hessian: that
          * iteration's QP gets the scaled identity */
         const bool second = exact && ((!cold) || (iter != 0u));
+        /* held only after a full step of an exact iteration evaluated without
+         * second derivatives (the line search below, which then also sets
+         * have_eval; a restart, which ends exact, sets neither), never twice
+         * in a row */
+        const bool held = hold_next;
+        hold_next = false;
         if (!have_eval) {
             st = evaluate(ctx, p, true, second ? y_prev : NULL, &viol_l1, &viol_max, c_term);
         }
         have_eval = false;
         if (st == OGK_OK) {
-            condense(ctx, p, nv, second ? hess : NULL);
-            build_linear_terms(ctx, p, nv, c_term, g_obj);
+            if (held) {
+                /* the last iteration's eq. (5) rows, for its shift (scratch free: no condensed Hessian) */
+                (void)memcpy(ctx->hess_tmp, ctx->qp_aeq, NC * nv * sizeof(double));
+            }
+            ogk_i_nmpc_condense(ctx, p, nv, (second && !held) ? hess : NULL);
+            ogk_i_nmpc_linear_terms(ctx, p, nv, c_term, g_obj);
             rho = 0.0;
-            if (second) {
+            if (held) {
+                /* the last iteration's H + rho A^T A with its A replaced by this one's */
+                ogk_i_nmpc_hess_reshift(hess, nv, ctx->hess_tmp, ctx->qp_aeq, rho_last);
+                rho = rho_last;
+            } else if (second) {
                 bool shifted = false;
                 rho = ogk_i_nmpc_hess_convexify(hess, nv, ctx->qp_aeq, cfg->hessian_init, rho_last, ctx->el_h,
                                                 ctx->el_ain, &shifted);
@@ -647,7 +545,14 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 for (i = 0u; i < nv; ++i) {
                     pred += g_obj[i] * ctx->qp_sol.x[i];
                 }
-                flat = (cfg->tol_obj > 0.0) && (fabs(pred) <= (cfg->tol_obj * ((j_now > 1.0) ? j_now : 1.0)));
+                const double stop = cfg->tol_obj * ((j_now > 1.0) ? j_now : 1.0);
+                flat = (cfg->tol_obj > 0.0) && (fabs(pred) <= stop);
+                /* a step from an exact, not held Hessian that factored with its shift
+                 * alone (rho > 0 only then), converging (HESS_HOLD); never with
+                 * tol_obj = 0 (stop = 0) */
+                hold_ok = !held && (rho > 0.0) && (fabs(pred) < (HESS_HOLD * stop))
+                    && ((pred * pred) <= (stop * pred_prev));
+                pred_prev = fabs(pred);
             }
             if ((viol_max <= cfg->tol_feas) && ((stat <= cfg->tol_stat) || flat)) {
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
@@ -681,7 +586,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             bool f_type = false;
             uint32_t ls;
 
-            expand_step(ctx, p, ctx->qp_sol.x, nv);
+            ogk_i_nmpc_expand_step(ctx, p, ctx->qp_sol.x, nv);
             dphi = (cfg->objective == OGK_NMPC_MIN_FUEL)
                 ? (-ctx->dx[(p->nodes * NX) + 4u] + (cfg->time_weight * ctx->qp_sol.x[nv - 1u]))
                 : ctx->qp_sol.x[nv - 1u];
@@ -698,7 +603,8 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 /* the full step is evaluated with its sensitivities: taken
                  * (the usual case near the solution), it is the next
                  * iteration's linearisation */
-                ts = evaluate(ctx, &ctx->trial, (ls == 0u) && !newton_last, exact ? ctx->qp_sol.y_eq : NULL,
+                ts = evaluate(ctx, &ctx->trial, (ls == 0u) && !newton_last,
+                              (exact && !hold_ok) ? ctx->qp_sol.y_eq : NULL,
                               &t_l1, &t_max, c_trial);
                 first_l1 = t_l1;
                 first_max = t_max;
@@ -785,6 +691,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                     done = true;
                 } else if ((alpha >= 1.0) && !newton_last) {
                     have_eval = true;
+                    hold_next = hold_ok;
                     viol_l1 = first_l1;
                     viol_max = first_max;
                     (void)memcpy(c_term, c_trial, sizeof(c_term));

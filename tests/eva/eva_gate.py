@@ -62,7 +62,7 @@ DRIVERS = (
                     K + "interp.c", K + "thrust_cmd.c"),
            "drv_mpsp.c", defines=("OGK_MPSP_MAX_ORDER=1u", "OGK_MPSP_MAX_STEPS=2u", "OGK_MPSP_MAX_SWITCHES=2u",
                                   "OGK_MPSP_SENS_BLOCK=3u", "OGK_MPSP_MAX_LOG=4u", "OGK_RK4_MAX_SWITCHES=2u")),
-    Driver("nmpc", (K + "nmpc.c", K + "nmpc_hess.c", K + "nmpc_keepout.c", K + "nmpc_model.c",
+    Driver("nmpc", (K + "nmpc.c", K + "nmpc_condense.c", K + "nmpc_hess.c", K + "nmpc_keepout.c", K + "nmpc_model.c",
                     K + "nmpc_plan.c", K + "nmpc_sens_cache.c", K + "nmpc_shoot.c", K + "nmpc_shoot_hess.c",
                     K + "nmpc_sqp.c", K + "qp.c", K + "qp_blas.c", K + "thrust_cmd.c"),
            "drv_nmpc.c", defines=("OGK_NMPC_MAX_NODES=2u", "OGK_NMPC_MAX_RK4_STEPS=2u", "OGK_QP_MAX_N=15u",

@@ -422,6 +422,50 @@ static void test_sqp_exact_hessian(void **state)
     }
 }
 
+/* The exact Hessian held for the last step (nmpc_sqp.c, HESS_HOLD) at the
+ * default tol_obj: from the same open loop and the same perturbed state, the
+ * CNCN replan (which holds it once) lands on the t_f of the replan that never
+ * holds it (tol_obj = 0: every iteration's Hessian exact, stopped by
+ * stationarity alone) within 1e-9 TU, feasible, in no more SQP iterations. */
+/* req: OGK-NMPC-003 */
+static void test_sqp_exact_hessian_held(void **state)
+{
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    ogk_nmpc_report_t rep_ref;
+    (void)state;
+    mars_config(&c, 8u);
+    c.strategy = OGK_NMPC_CNCN;
+    c.tol_obj = 1.0e-7;
+    c.tol_stat = 1.0e-7;
+    c.hessian = OGK_NMPC_HESSIAN_EXACT;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    mars_guess(&c, 8u, 6.4, &plan);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    /* the reference: the same context, only tol_obj = 0 (and its stationarity test) for the replan */
+    (void)memcpy(&ctx2, &ctx, sizeof ctx2);
+    ctx2.cfg.tol_obj = 0.0;
+    ctx2.cfg.tol_stat = 1.0e-9;
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
+    in.t = rep.t_next;
+    (void)memcpy(in.x, &plan2.x[NX], sizeof in.x);
+    in.x[0] += 1.0e-4;
+    in.x[3] += 1.0e-4;
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &in, &rep), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx2, &in, &rep_ref), OGK_OK);
+    print_message("exact replan: held t_f %.12f (%u SQP iterations), never held %.12f (%u)\n", rep.t_f,
+                  (unsigned)rep.sqp_iterations, rep_ref.t_f, (unsigned)rep_ref.sqp_iterations);
+    assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
+    assert_true((rep_ref.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
+    OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, 1.0e-9);
+    assert_true(rep.feas <= c.tol_feas);
+    assert_true(rep.sqp_iterations <= rep_ref.sqp_iterations);
+}
+
 /* Minimum fuel with the target on the spacecraft's own circular orbit and
  * phase: coasting is optimal, fuel 0. */
 /* req: OGK-NMPC-003 */
@@ -749,6 +793,7 @@ int main(void)
         cmocka_unit_test(test_interval_second_derivatives),
         cmocka_unit_test(test_sqp_known_solution),
         cmocka_unit_test(test_sqp_exact_hessian),
+        cmocka_unit_test(test_sqp_exact_hessian_held),
         cmocka_unit_test(test_coast_rendezvous_zero_fuel),
         cmocka_unit_test(test_strategies_and_command),
         cmocka_unit_test(test_warm_sensitivities_exact),
