@@ -362,6 +362,19 @@ static void test_sqp_known_solution(void **state)
  * discrete optimum, in fewer SQP iterations than BFGS; then the Earth-to-Mars
  * open loop and an SNNS and a CNCN replan (the warm starts) reach BFGS's
  * converged optimum (tol_obj = 0) within 1e-8 TU (0.05 s). */
+/* One replan at the plan's first node, the state 1e-4 off the plan's, made
+ * by ctx (into rep, whose t_next it reads) and by the reference ctx2. */
+static void replan_both_off_plan(ogk_nmpc_input_t *in, ogk_nmpc_report_t *rep, ogk_nmpc_report_t *rep_ref)
+{
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
+    in->t = rep->t_next;
+    (void)memcpy(in->x, &plan2.x[NX], sizeof in->x);
+    in->x[0] += 1.0e-4;
+    in->x[3] += 1.0e-4;
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, in, rep), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx2, in, rep_ref), OGK_OK);
+}
+
 /* req: OGK-NMPC-003 */
 static void test_sqp_exact_hessian(void **state)
 {
@@ -405,13 +418,7 @@ static void test_sqp_exact_hessian(void **state)
         assert_true(rep.feas <= c.tol_feas);
         assert_true(rep.sqp_iterations < rep_ref.sqp_iterations);
         /* one replan at the first node, the state 1e-4 off the plan's */
-        OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
-        in.t = rep.t_next;
-        (void)memcpy(in.x, &plan2.x[NX], sizeof in.x);
-        in.x[0] += 1.0e-4;
-        in.x[3] += 1.0e-4;
-        OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &in, &rep), OGK_OK);
-        OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx2, &in, &rep_ref), OGK_OK);
+        replan_both_off_plan(&in, &rep, &rep_ref);
         print_message("%s replan: exact t_f %.12f (%u SQP iterations), BFGS tol_obj 0 %.12f (%u)\n",
                       (strategy == OGK_NMPC_SNNS) ? "SNNS" : "CNCN", rep.t_f, (unsigned)rep.sqp_iterations,
                       rep_ref.t_f, (unsigned)rep_ref.sqp_iterations);
@@ -450,13 +457,7 @@ static void test_sqp_exact_hessian_held(void **state)
     (void)memcpy(&ctx2, &ctx, sizeof ctx2);
     ctx2.cfg.tol_obj = 0.0;
     ctx2.cfg.tol_stat = 1.0e-9;
-    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
-    in.t = rep.t_next;
-    (void)memcpy(in.x, &plan2.x[NX], sizeof in.x);
-    in.x[0] += 1.0e-4;
-    in.x[3] += 1.0e-4;
-    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &in, &rep), OGK_OK);
-    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx2, &in, &rep_ref), OGK_OK);
+    replan_both_off_plan(&in, &rep, &rep_ref);
     print_message("exact replan: held t_f %.12f (%u SQP iterations), never held %.12f (%u)\n", rep.t_f,
                   (unsigned)rep.sqp_iterations, rep_ref.t_f, (unsigned)rep_ref.sqp_iterations);
     assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
