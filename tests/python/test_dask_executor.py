@@ -216,6 +216,39 @@ def test_shipped_products_are_checked_by_sha256_on_the_worker(tmp_path):
         shipping.materialise(torn)
 
 
+@pytest.mark.req("OGK-HAR-017")
+def test_a_worker_with_other_numerics_refuses_the_chunk():
+    """A worker whose BLAS picked other kernels (OPENBLAS_CORETYPE=Sandybridge, which changes a
+    perturbed NMPC flight's end: docs/notes/session-12.md) and whose numpy dispatches less SIMD
+    has another numerics fingerprint, measured in a process of its own; a shipment from a client
+    with that fingerprint is refused here, naming both differences, and the envelope of a
+    campaign records this host's fingerprint."""
+    import dataclasses
+
+    from ogk.sil import numerics
+    here = numerics.fingerprint()
+    core = "Nehalem" if "Sandybridge" in here["blas"] else "Sandybridge"
+    from numpy._core import _multiarray_umath as um
+    simd = [t for t in here["numpy_simd"].split(",")      # a dispatched target, never baseline
+            if t.startswith("X86_V") and t not in um.__cpu_baseline__][-1:]
+    env = {**os.environ, "OPENBLAS_CORETYPE": core, "NPY_DISABLE_CPU_FEATURES": ",".join(simd)}
+    out = subprocess.run([sys.executable, "-c", "import json; from ogk.sil.numerics import "
+                          "fingerprint; print(json.dumps(fingerprint()))"],
+                         env=env, capture_output=True, text=True, check=True)
+    other = json.loads(out.stdout)
+    assert core in other["blas"] and core not in here["blas"]
+    # numpy refuses to disable its baseline: only a dispatched target (X86_V3 here) can go
+    differ = ["blas", "numpy_simd"] if other["numpy_simd"] != here["numpy_simd"] else ["blas"]
+    assert sorted(k for k in here if here[k] != other[k]) == differ
+    plan = plan_of("low-thrust-transfer")
+    shipment = shipping.ship(plan, family_object("low-thrust-transfer"))
+    assert shipment.numerics == here
+    with pytest.raises(OgkInputError, match="numerics differ.*blas"):
+        shipping.plan_of(dataclasses.replace(shipment, numerics=other))
+    flown = fly_campaign(plan, 1, 3, workers=1, progress=False)
+    assert envelope.envelope(flown)["numerics"] == here
+
+
 @pytest.mark.req("OGK-HAR-017", "OGK-HAR-005")
 def test_ogk_mc_dask_local_writes_the_local_table_and_bad_addresses_are_one_line(tmp_path, capsys):
     family = "low-thrust-transfer"

@@ -10,7 +10,7 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import file_sha256, read_header
 
 from ogk.missions import registry
-from ogk.sil import dispersion_check, engine, envelope, target_summary
+from ogk.sil import dispersion_check, engine, envelope, numerics, target_summary
 from ogk.sil.family import CampaignPlan
 from ogk.sil.outputs import check_output_dir, check_output_file
 
@@ -48,6 +48,11 @@ def replay(campaign: str, run_id: int, plots: str | None, json_out: str | None) 
     if plots:
         check_output_dir(plots, "--plots")
     fam, plan = campaign_plan(doc, campaign)
+    differ = numerics.differences(numerics.fingerprint(), doc.get("numerics") or {},
+                                  "in the campaign")
+    if doc.get("numerics") and differ:
+        print("note: this machine's numerics differ from the campaign's, so the run may differ in "
+              "its last bits (" + "; ".join(differ) + ")")
     again = engine.JudgedChunk(plan, int(doc["seed"]))(np.array([run_id], dtype=np.int64))[0]
     diff = envelope.record_differences(stored[run_id], again)
     print(f"{plan.mission}: run {run_id} of {campaign} (seed {doc['seed']}, run seed "

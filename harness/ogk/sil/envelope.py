@@ -9,7 +9,9 @@ Envelope (`ogk.campaign/1`, written atomically, NaN as null):
   paper (the paper's columns beside ours, only when the scenario carries them),
   per_run_table (the Parquet file's name), timing {wall_s, cpu_s}, target ("host" or "m7"),
   pil (a target campaign only: worst case per entry point, host vs target; ogk.sil.target_summary),
-  dispersion_check (each declared dispersion against the records; ogk.sil.dispersion_check)
+  dispersion_check (each declared dispersion against the records; ogk.sil.dispersion_check),
+  numerics (this host's numerics fingerprint: numpy, its SIMD targets, the BLAS kernels;
+  ogk.sil.numerics; `ogk replay` on another machine says when it differs)
 A family may add its own keys (its report's figures, older names kept as aliases): never one of
 the above.
 
@@ -27,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from . import numerics
 from .engine import Flown
 from .family import Record
 from .outputs import write_atomic
@@ -36,7 +39,7 @@ SCHEMA = "ogk.campaign/1"
 ENVELOPE_KEYS = ("schema", "family", "law", "mission", "scenario_path", "scenario_sha256",
                  "products", "options", "seed", "runs", "workers", "resumed_runs", "failures",
                  "failure_reasons", "failed_runs", "acceptance", "quantities", "paper",
-                 "per_run_table", "timing", "target", "pil", "dispersion_check")
+                 "per_run_table", "timing", "target", "pil", "dispersion_check", "numerics")
 
 
 def table_path(json_path: str | Path) -> Path:
@@ -102,7 +105,8 @@ def envelope(flown: Flown, extra: Mapping[str, Any] | None = None,
         "failed_runs": flown.failures(), "acceptance": plan.acceptance,
         "quantities": quantity_summary(recs, plan.quantities),
         "per_run_table": None if json_path is None else table_path(json_path).name,
-        "timing": {"wall_s": flown.wall_s, "cpu_s": flown.cpu_s}, "target": plan.target})
+        "timing": {"wall_s": flown.wall_s, "cpu_s": flown.cpu_s}, "target": plan.target,
+        "numerics": numerics.fingerprint()})
     if paper is not None:
         doc["paper"] = paper
     if pil is not None:

@@ -10,7 +10,9 @@ A `Shipment` carries everything a run depends on besides its id and seed, as dat
 A path under the client's repository travels relative to it and lands under the worker's; any
 other path lands where it is on the client (a shared or identical path on a cluster).
 
-On the worker (`plan_of`): each file present is checked against its SHA-256 and a missing one is
+On the worker (`plan_of`): the worker's numerics fingerprint (ogk.sil.numerics) must equal the
+client's, or the chunk is refused (OgkInputError naming what differs): the records would not be the
+local executor's bit for bit. Then each file present is checked against its SHA-256 and a missing one is
 written (atomically) and checked again; a copy that differs is refused (OgkInputError, one line
 naming the file), never overwritten. Then the family rebuilds the plan from the scenario and the
 options, exactly as `ogk replay` does (ogk.cli.campaign_flow), and the rebuilt plan's scenario
@@ -30,6 +32,7 @@ from typing import Any
 from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import read_header
 
+from . import numerics
 from .family import CampaignPlan
 from .pil_build import ROOT
 
@@ -62,6 +65,7 @@ class Shipment:
     products: dict[str, Any]
     files: tuple[ShippedFile, ...]
     client_root: str
+    numerics: dict[str, str] = dataclasses.field(default_factory=dict)  #: the client's (ogk.sil.numerics)
 
     @property
     def key(self) -> str:
@@ -119,7 +123,8 @@ def ship(plan: CampaignPlan, family: Any) -> Shipment:
     shipment = Shipment(family=family, scenario=_file(Path(plan.scenario_path)),
                         options=json.loads(json.dumps(plan.options)),
                         products=json.loads(json.dumps(plan.products)),
-                        files=tuple(files[k] for k in sorted(files)), client_root=str(ROOT))
+                        files=tuple(files[k] for k in sorted(files)), client_root=str(ROOT),
+                        numerics=numerics.fingerprint())
     if shipment.shipped_bytes > MAX_SHIPPED_BYTES:
         raise OgkInputError(f"the ground products weigh {shipment.shipped_bytes} bytes, more than "
                             f"the {MAX_SHIPPED_BYTES} a shipment carries", key="--dask")
@@ -162,6 +167,13 @@ def plan_of(shipment: Shipment) -> CampaignPlan:
     plan = _PLANS.get(key)
     if plan is not None:
         return plan
+    differ = numerics.differences(numerics.fingerprint(), shipment.numerics)
+    if differ:
+        raise OgkInputError("this worker's numerics differ from the client's, so its records would "
+                            "not be bit for bit the local campaign's (" + "; ".join(differ) + "): "
+                            "run the workers on the client's CPU kind and packages, or set "
+                            "OPENBLAS_CORETYPE and NPY_DISABLE_CPU_FEATURES alike everywhere "
+                            "(docs/scale-out.md)", key="--dask")
     scenario = materialise(shipment.scenario)
     for f in shipment.files:
         materialise(f)
