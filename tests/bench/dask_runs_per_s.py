@@ -7,7 +7,7 @@ from ogk.sil.engine import fly_campaign
 from ogk.sil.dask_executor import DaskExecutor
 
 CASES = {  # family: (scenario, options, runs, chunk_runs)
-    "orbit-injection": ("leo-geo", {}, 40, 10),
+    "orbit-injection": ("leo-geo", {}, 1000, 250),   # the default chunk: flown vectorised
     "low-thrust-transfer": ("apophis", {}, 40, 10),
     "low-thrust-rendezvous": ("rendezvous_nep_min_time", {}, 4, 1),
     "binary-asteroid": ("moshup", {"perturbation": [10.0, 40.0]}, 16, 4),

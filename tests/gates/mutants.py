@@ -86,10 +86,11 @@ FIXED = [
      "an overflowing dt_f alone clipped to dtf_max instead of the safe command "
      "(test_nog: test_overflowing_dt_f_alone_gives_safe_command)"),
     ("kernel/src/nog.c",
-     "if (fabs(dt_f) > ctx->cfg.dtf_max_s)", "if (fabs(dt_f) >= ctx->cfg.dtf_max_s)",
+     "if (dt_f != out8[NX])", "if (fabs(dt_f) >= ctx->cfg.dtf_max_s)",
      "dt_f exactly at dtf_max flagged LIMITED (test_nog: test_dt_f_at_the_bound_is_not_limited)"),
     ("kernel/src/nog.c",
-     "(t_s >= 0.0) && (t_s <= t_sample_max(ctx))", "(t_s >= 0.0) && (t_s < t_sample_max(ctx))",
+     "(t_s >= ctx->t_k_s) && (t_s <= t_sample_max(ctx))",
+     "(t_s >= ctx->t_k_s) && (t_s < t_sample_max(ctx))",
      "safe_sample: t_s = 2 t_f* + dtf_max (inside the closed envelope) treated as unusable "
      "(test_nog: test_sample_at_the_envelope_time_bound)"),
     ("kernel/src/nog.c",
