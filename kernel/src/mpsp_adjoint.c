@@ -422,3 +422,84 @@ ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, 
     }
     return st;
 }
+
+/* One row of the second-order sweep (OGK_MPSP_SWEEP_MID2) with the partials p
+ * at the step midpoint: w Phi with Phi = I + dt J + dt^2/2 J^2, J = d f/d X
+ * there, applied as two row-times-J products without forming Phi:
+ *   p1 = w J:  (p1)_r = G w_v,  (p1)_v = w_r,  (p1)_m = a_vm w_v.e + a_lm w_lm,  (p1)_lm = 0
+ *   p2 = p1 J: (p2)_r = G w_r,  (p2)_v = G w_v, (p2)_m = a_vm w_r.e,             (p2)_lm = 0
+ * and the control sensitivity of the step by the midpoint rule,
+ *   b = dt (w + dt/2 p1) D = z D,  z_v = dt (w_v + dt/2 w_r),  z_lm = dt w_lm,
+ *   z D = d_v z_v + (d_l z_lm - d_v z_v.e) e            (thrust only).
+ * Phi agrees with the step's transition to O(dt^3) (Magnus at the midpoint)
+ * and b with the step's integral of w Phi(t_next, s) D(s) dU(s) to O(dt^3):
+ * O(dt^2) over the arc. w_out may be w. */
+static void mid2_row(const mpsp_stage_t *p, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
+                     double *w_out, double *b)
+{
+    const double *g = p->g;
+    const double hh = 0.5 * dt * dt;
+    double gv[3];
+    double gr[3];
+    double wm = w[6];
+    const double wlm = w[7];
+
+    gv[0] = (w[3] * g[0]) + (w[4] * g[MPSP_SL]) + (w[5] * g[2u * MPSP_SL]);
+    gv[1] = (w[3] * g[MPSP_SL]) + (w[4] * g[3u * MPSP_SL]) + (w[5] * g[4u * MPSP_SL]);
+    gv[2] = (w[3] * g[2u * MPSP_SL]) + (w[4] * g[4u * MPSP_SL]) + (w[5] * g[5u * MPSP_SL]);
+    gr[0] = (w[0] * g[0]) + (w[1] * g[MPSP_SL]) + (w[2] * g[2u * MPSP_SL]);
+    gr[1] = (w[0] * g[MPSP_SL]) + (w[1] * g[3u * MPSP_SL]) + (w[2] * g[4u * MPSP_SL]);
+    gr[2] = (w[0] * g[2u * MPSP_SL]) + (w[1] * g[4u * MPSP_SL]) + (w[2] * g[5u * MPSP_SL]);
+    if (thrust) {
+        const double *e = p->e;
+        const double half = 0.5 * dt;
+        const double ve = (w[3] * e[0]) + (w[4] * e[MPSP_SL]) + (w[5] * e[2u * MPSP_SL]);
+        const double re = (w[0] * e[0]) + (w[1] * e[MPSP_SL]) + (w[2] * e[2u * MPSP_SL]);
+        const double zl = dt * wlm;
+        const double ze = dt * (ve + (half * re));
+        const double alpha = (p->d_l[0] * zl) - (p->d_v[0] * ze);
+        const double dvd = p->d_v[0] * dt;
+        wm += (dt * ((p->a_vm[0] * ve) + (p->a_lm[0] * wlm))) + (hh * (p->a_vm[0] * re));
+        b[0] = (dvd * (w[3] + (half * w[0]))) + (alpha * e[0]);
+        b[1] = (dvd * (w[4] + (half * w[1]))) + (alpha * e[MPSP_SL]);
+        b[2] = (dvd * (w[5] + (half * w[2]))) + (alpha * e[2u * MPSP_SL]);
+    }
+    {
+        const double v0 = w[3] + (dt * w[0]) + (hh * gv[0]);
+        const double v1 = w[4] + (dt * w[1]) + (hh * gv[1]);
+        const double v2 = w[5] + (dt * w[2]) + (hh * gv[2]);
+        w_out[0] = w[0] + (dt * gv[0]) + (hh * gr[0]);
+        w_out[1] = w[1] + (dt * gv[1]) + (hh * gr[1]);
+        w_out[2] = w[2] + (dt * gv[2]) + (hh * gr[2]);
+        w_out[3] = v0;
+        w_out[4] = v1;
+        w_out[5] = v2;
+        w_out[6] = wm;
+        w_out[7] = wlm;
+    }
+}
+
+ogk_status mpsp_step_adjoint_mid2(const mpsp_dyn_t *dyn, const double *x_lo, const double *x_hi, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
+                                  double dt, int mode, const mpsp_uval_t *uv_mid, size_t n_rows,
+                                  double *adj, double *bu_mid)
+{
+    mpsp_stage_t sd;
+    double xm[NX];
+    size_t i;
+    ogk_status st;
+
+    /* the midpoint state as the mean of the nodes: O(dt^2) from the
+     * trajectory's, which moves Phi and b by O(dt^3) per step */
+    for (i = 0u; i < NX; ++i) {
+        xm[i] = 0.5 * (x_lo[i] + x_hi[i]);
+    }
+    st = mpsp_stage_eval(dyn, xm, uv_mid, mode, NULL, &sd);
+    if (st == OGK_OK) {
+        const bool thrust = (mode == 1);
+        size_t r;
+        for (r = 0u; r < n_rows; ++r) {
+            mid2_row(&sd, dt, thrust, &adj[r * NX], &adj[r * NX], &bu_mid[r * 3u]);
+        }
+    }
+    return st;
+}

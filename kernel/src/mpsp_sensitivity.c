@@ -485,6 +485,95 @@ static ogk_status backward_recursion(ogk_mpsp_t *ctx)
     return st;
 }
 
+/* A sample of B_v at time t with coefficients coef (NYU): basis row into the
+ * next slot of the block (U there not needed), coefficients copied. */
+static void block_push(sens_block_t *blk, mpsp_dyn_t *dyn, double t, const double *coef)
+{
+    blk->hi_held = false;
+    block_hold_hi(blk, dyn, t);
+    (void)memcpy(&blk->ctx->sens_c[blk->n * NYU], coef, NYU * sizeof coef[0]);
+    blk->n += 1u;
+    blk->hi_held = false;
+}
+
+/* The backward recursion of the second-order sweep (OGK_MPSP_SWEEP_MID2):
+ * the switching compensation as in backward_recursion (exact, a sample of
+ * B_v at each switch), each step by mpsp_step_adjoint_mid2 and, in thrust,
+ * one sample of B_v at the step's midpoint; results as backward_recursion. */
+static ogk_status backward_recursion_mid2(ogk_mpsp_t *ctx)
+{
+    mpsp_dyn_t dyn;
+    sens_block_t blk;
+    double adj[NY * NX];
+    double pend[NYU];
+    size_t kk;
+    size_t r;
+    ogk_status st = OGK_OK;
+
+    mpsp_dyn_setup(&dyn, ctx, ctx->weights, ctx->thrust);
+    blk.ctx = ctx;
+    blk.n = 0u;
+    blk.hi_held = false;
+    (void)memset(&blk.hi, 0, sizeof blk.hi);
+
+    (void)memset(adj, 0, sizeof adj);
+    for (r = 0u; r < 6u; ++r) {
+        adj[(r * NX) + r] = 1.0;
+    }
+    adj[(6u * NX) + 7u] = 1.0;
+    (void)memset(ctx->bv_acc, 0, ctx->n_basis * NYU * sizeof ctx->bv_acc[0]);
+
+    for (kk = 1u; (kk < ctx->n_nodes) && (st == OGK_OK); ++kk) {
+        const size_t k = ctx->n_nodes - 1u - kk; /* step k: node k -> k + 1 */
+        const int mode = (int)ctx->traj_mode[k];
+        const double t_lo = ctx->traj_t[k];
+        const double dt = ctx->traj_t[k + 1u] - t_lo;
+
+        if ((blk.n + 2u) > SB) {
+            block_flush(&blk); /* room for a switch and a midpoint sample */
+        }
+        if (ctx->traj_mode[k + 1u] != ctx->traj_mode[k]) { /* eqs. (22)-(25) */
+            (void)memset(pend, 0, sizeof pend);
+            st = switch_compensation(&dyn, ctx->traj_t[k + 1u], &ctx->traj_x[(k + 1u) * NX], mode,
+                                     adj, pend);
+            if (st == OGK_OK) {
+                block_push(&blk, &dyn, ctx->traj_t[k + 1u], pend);
+            }
+        }
+        if ((st == OGK_OK) && (mode == 1)) {
+            const double t_mid = t_lo + (0.5 * dt);
+            mpsp_uval_t uv;
+            /* h(t_mid) into slot n, U there (kept by the propagation where
+             * it was made for this very time, else from the row) */
+            blk.hi_held = false;
+            block_hold_hi(&blk, &dyn, t_mid);
+            uv = blk.hi;
+#if defined(__SSE2__)
+            (void)mpsp_keep_find(ctx, &dyn, t_mid, &uv);
+#endif
+            st = mpsp_step_adjoint_mid2(&dyn, &ctx->traj_x[k * NX], &ctx->traj_x[(k + 1u) * NX], dt,
+                                        1, &uv, NY, adj, &ctx->sens_c[blk.n * NYU]);
+            blk.n += 1u;
+            blk.hi_held = false;
+        } else if (st == OGK_OK) {
+            mpsp_uval_t uv;
+            (void)memset(&uv, 0, sizeof uv);
+            st = mpsp_step_adjoint_mid2(&dyn, &ctx->traj_x[k * NX], &ctx->traj_x[(k + 1u) * NX], dt,
+                                        0, &uv, NY, adj, pend);
+        } else {
+            /* the switch's status returned */
+        }
+    }
+    if (st == OGK_OK) {
+        block_flush(&blk);
+        mpsp_bv_unpack(ctx->bv_acc, ctx->n_basis, ctx->dy_dw);
+        for (r = 0u; r < NY; ++r) {
+            ctx->dy_dlm0[r] = adj[(r * NX) + 7u];
+        }
+    }
+    return st;
+}
+
 /* Backward recursion over the dense trajectory held (eqs. 28-35):
  *   w = dY/dX(tf) (selection of r, v, lambda_m);
  *   for each node k+1 (from the end): at a switch node
@@ -504,7 +593,8 @@ ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, double *dy_dw, double *dy_dlm0)
     }
     if (st == OGK_OK) {
         ctx->sens_valid = 0u;
-        st = backward_recursion(ctx);
+        st = (ctx->cfg.sens_sweep == OGK_MPSP_SWEEP_MID2) ? backward_recursion_mid2(ctx)
+                                                          : backward_recursion(ctx);
     }
     if (st == OGK_OK) {
         if (!ogk_i_all_finite(ctx->dy_dw, NY * ctx->n_weights) ||
