@@ -435,7 +435,7 @@ ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, 
  * and b with the step's integral of w Phi(t_next, s) D(s) dU(s) to O(dt^3):
  * O(dt^2) over the arc. w_out may be w. */
 static void mid2_row(const mpsp_stage_t *p, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
-                     double *w_out, double *b)
+                     double *w_out, double *b) /* NOLINT(bugprone-easily-swappable-parameters): row out, its control sensitivity; unit-tested against the exact sweep */
 {
     const double *g = p->g;
     const double hh = 0.5 * dt * dt;
@@ -479,8 +479,8 @@ static void mid2_row(const mpsp_stage_t *p, double dt, bool thrust, const double
     }
 }
 
-ogk_status mpsp_step_adjoint_mid2(const mpsp_dyn_t *dyn, const double *x_lo, const double *x_hi, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
-                                  double dt, int mode, const mpsp_uval_t *uv_mid, size_t n_rows,
+ogk_status mpsp_step_adjoint_mid2(const mpsp_dyn_t *dyn, const double *x_lo, const double *x_hi, /* NOLINT(bugprone-easily-swappable-parameters): the step's two nodes; unit-tested against the exact sweep */
+                                  double dt, int mode, const mpsp_uval_t *uv_mid, size_t n_rows, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); unit-tested against the exact sweep */
                                   double *adj, double *bu_mid)
 {
     mpsp_stage_t sd;
