@@ -479,6 +479,88 @@ static void mid2_row(const mpsp_stage_t *p, double dt, bool thrust, const double
     }
 }
 
+#if defined(__SSE2__)
+/* mid2_row for the two rows w_in[0..7] and w_in[8..15] (lanes l = 0, 1;
+ * component i of lane l at [i * 2 + l]): the same arithmetic in the same
+ * order per row, each statement a loop over the lanes (gcc -O2 carries a pair
+ * in one SSE2 register), the partials read as pairs (MPSP_SL = 2); w_out (may
+ * be w_in) and b (2 rows of 3) written after every input is read. */
+static void mid2_rows2(const mpsp_stage_t *p, double dt, bool thrust, const double *w_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
+                       double *w_out, double *b_out) /* NOLINT(bugprone-easily-swappable-parameters): rows out, their control sensitivities; unit-tested against the exact sweep */
+{
+    const double *g = p->g;
+    const double hh = 0.5 * dt * dt;
+    double w[NX * 2u];
+    double gv[6];
+    double gr[6];
+    double wo[NX * 2u];
+    double b[6];
+    size_t l;
+
+    for (l = 0u; l < 2u; ++l) {
+        const double *wl = &w_in[l * NX];
+        w[l] = wl[0];
+        w[2u + l] = wl[1];
+        w[4u + l] = wl[2];
+        w[6u + l] = wl[3];
+        w[8u + l] = wl[4];
+        w[10u + l] = wl[5];
+        w[12u + l] = wl[6];
+        w[14u + l] = wl[7];
+    }
+    for (l = 0u; l < 2u; ++l) {
+        gv[l] = (w[6u + l] * g[l]) + (w[8u + l] * g[2u + l]) + (w[10u + l] * g[4u + l]);
+        gv[2u + l] = (w[6u + l] * g[2u + l]) + (w[8u + l] * g[6u + l]) + (w[10u + l] * g[8u + l]);
+        gv[4u + l] = (w[6u + l] * g[4u + l]) + (w[8u + l] * g[8u + l]) + (w[10u + l] * g[10u + l]);
+        gr[l] = (w[l] * g[l]) + (w[2u + l] * g[2u + l]) + (w[4u + l] * g[4u + l]);
+        gr[2u + l] = (w[l] * g[2u + l]) + (w[2u + l] * g[6u + l]) + (w[4u + l] * g[8u + l]);
+        gr[4u + l] = (w[l] * g[4u + l]) + (w[2u + l] * g[8u + l]) + (w[4u + l] * g[10u + l]);
+        wo[12u + l] = w[12u + l];
+    }
+    if (thrust) {
+        const double *e = p->e;
+        const double half = 0.5 * dt;
+        for (l = 0u; l < 2u; ++l) {
+            const double ve = (w[6u + l] * e[l]) + (w[8u + l] * e[2u + l]) + (w[10u + l] * e[4u + l]);
+            const double re = (w[l] * e[l]) + (w[2u + l] * e[2u + l]) + (w[4u + l] * e[4u + l]);
+            const double zl = dt * w[14u + l];
+            const double ze = dt * (ve + (half * re));
+            const double alpha = (p->d_l[l] * zl) - (p->d_v[l] * ze);
+            const double dvd = p->d_v[l] * dt;
+            wo[12u + l] += (dt * ((p->a_vm[l] * ve) + (p->a_lm[l] * w[14u + l]))) +
+                           (hh * (p->a_vm[l] * re));
+            b[l] = (dvd * (w[6u + l] + (half * w[l]))) + (alpha * e[l]);
+            b[2u + l] = (dvd * (w[8u + l] + (half * w[2u + l]))) + (alpha * e[2u + l]);
+            b[4u + l] = (dvd * (w[10u + l] + (half * w[4u + l]))) + (alpha * e[4u + l]);
+        }
+        for (l = 0u; l < 2u; ++l) {
+            b_out[l * 3u] = b[l];
+            b_out[(l * 3u) + 1u] = b[2u + l];
+            b_out[(l * 3u) + 2u] = b[4u + l];
+        }
+    }
+    for (l = 0u; l < 2u; ++l) {
+        wo[l] = w[l] + (dt * gv[l]) + (hh * gr[l]);
+        wo[2u + l] = w[2u + l] + (dt * gv[2u + l]) + (hh * gr[2u + l]);
+        wo[4u + l] = w[4u + l] + (dt * gv[4u + l]) + (hh * gr[4u + l]);
+        wo[6u + l] = w[6u + l] + (dt * w[l]) + (hh * gv[l]);
+        wo[8u + l] = w[8u + l] + (dt * w[2u + l]) + (hh * gv[2u + l]);
+        wo[10u + l] = w[10u + l] + (dt * w[4u + l]) + (hh * gv[4u + l]);
+    }
+    for (l = 0u; l < 2u; ++l) {
+        double *o = &w_out[l * NX];
+        o[0] = wo[l];
+        o[1] = wo[2u + l];
+        o[2] = wo[4u + l];
+        o[3] = wo[6u + l];
+        o[4] = wo[8u + l];
+        o[5] = wo[10u + l];
+        o[6] = wo[12u + l];
+        o[7] = w[14u + l];
+    }
+}
+#endif /* __SSE2__ */
+
 ogk_status mpsp_step_adjoint_mid2(const mpsp_dyn_t *dyn, const double *x_lo, const double *x_hi, /* NOLINT(bugprone-easily-swappable-parameters): the step's two nodes; unit-tested against the exact sweep */
                                   double dt, int mode, const mpsp_uval_t *uv_mid, size_t n_rows, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); unit-tested against the exact sweep */
                                   double *adj, double *bu_mid)
@@ -496,8 +578,13 @@ ogk_status mpsp_step_adjoint_mid2(const mpsp_dyn_t *dyn, const double *x_lo, con
     st = mpsp_stage_eval(dyn, xm, uv_mid, mode, NULL, &sd);
     if (st == OGK_OK) {
         const bool thrust = (mode == 1);
-        size_t r;
-        for (r = 0u; r < n_rows; ++r) {
+        size_t r = 0u;
+#if defined(__SSE2__)
+        for (; (r + 1u) < n_rows; r += 2u) { /* two rows per pass */
+            mid2_rows2(&sd, dt, thrust, &adj[r * NX], &adj[r * NX], &bu_mid[r * 3u]);
+        }
+#endif
+        for (; r < n_rows; ++r) {
             mid2_row(&sd, dt, thrust, &adj[r * NX], &adj[r * NX], &bu_mid[r * 3u]);
         }
     }
