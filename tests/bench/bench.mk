@@ -225,6 +225,7 @@ bench-flops: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE) $(BENCH_MPSP) $(BENCH_NMPC)
 	@$(FLOPS) nog_sample bench_nog_sample_once -- $(BENCH_GNC) $(NOG_TABLE) once nog_sample
 	@$(FLOPS) cpd_step bench_cpd_step_once -- $(BENCH_GNC) $(NOG_TABLE) once cpd_step
 	@$(FLOPS) mpsp_iter bench_mpsp_iter_once -- $(BENCH_MPSP) once mpsp_iter
+	@$(FLOPS) "mpsp_iter mid2" bench_mpsp_iter_mid2_once -- $(BENCH_MPSP) once mpsp_iter_mid2
 	@$(FLOPS) nmpc_replan bench_nmpc_replan_once -- $(BENCH_NMPC) once
 	@$(FLOPS) "nmpc_replan exact" bench_nmpc_replan_once -- $(BENCH_NMPC) once exact
 	@$(FLOPS) "nmpc_replan exact tol0" bench_nmpc_replan_once -- $(BENCH_NMPC) once exact tol0
