@@ -238,7 +238,8 @@ typedef struct {
 /* Fills every field with its default: the algorithm settings as in the
  * paper (delta_max 1, delta_tau_0 0.5, delta_tau_min 0.1, R_eps = I,
  * R_lambda = 1, s_tol 1e-12, max_newton 100, max_outer 50, n_seg_tol 0,
- * n_seg_tol_step 2, n_seg_nom 0 = counted at init, FOURIER basis, t_ref 0);
+ * n_seg_tol_step 2, n_seg_nom 0 = counted at init, FOURIER basis, t_ref 0,
+ * sens_sweep OGK_MPSP_SWEEP_MID2);
  * the mission data (mu, t_max, c_exhaust, t0, tf, x0_nom, r_f, v_f,
  * fourier_order, fourier_period, h_max, tol_r, tol_v, tol_lambda_m,
  * weights_nom, lambda_m0_nom) is 0 and must be set before ogk_mpsp_init
