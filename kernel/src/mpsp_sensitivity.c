@@ -498,8 +498,7 @@ static double step_mid(const ogk_mpsp_t *ctx, size_t k)
 static void mid2_push_switch(sens_block_t *blk, mpsp_dyn_t *dyn, double t_s, const double *coef)
 {
     ogk_mpsp_t *ctx = blk->ctx;
-    const bool held = blk->hi_held;
-    const mpsp_uval_t held_u = blk->hi;
+    const bool held = blk->hi_held; /* its U is not held: mid2_row_at takes it anew */
     double *row = &ctx->sens_h[blk->n * HR];
 
     if (held) {
@@ -510,7 +509,6 @@ static void mid2_push_switch(sens_block_t *blk, mpsp_dyn_t *dyn, double t_s, con
     (void)memcpy(&ctx->sens_c[blk->n * NYU], coef, NYU * sizeof coef[0]);
     blk->n += 1u;
     blk->hi_held = held;
-    blk->hi = held_u;
 }
 
 /* The basis row of thrust step k's midpoint in slot n and U there. On SSE2
