@@ -30,7 +30,7 @@ from ogk_bindings.kernel import Status, ThrustCmd, _check, _thrust_cmd_call
 F64 = NDArray[np.float64]
 
 __all__ = ["BASIS_COSINE", "BASIS_FOURIER", "NX", "NY", "MAX_ORDER", "MAX_SWITCHES", "Mpsp",
-           "MpspConfig", "MpspResult", "Trajectory", "fourier_basis", "n_weights", "paper_basis"]
+           "SWEEP_MID2", "SWEEP_RK4", "MpspConfig", "MpspResult", "Trajectory", "fourier_basis", "n_weights", "paper_basis"]
 
 NX: int = int(lib.OGK_MPSP_NX)
 """Size of the MPSP state X = [r, v, m, lambda_m]."""
@@ -42,6 +42,10 @@ BASIS_FOURIER: int = int(lib.OGK_MPSP_BASIS_FOURIER)
 """h = [1/2, cos k th, sin k th (k = 1..n)] (eq. C.1)."""
 BASIS_COSINE: int = int(lib.OGK_MPSP_BASIS_COSINE)
 """h = [1/2, cos k th (k = 1..2n)]."""
+SWEEP_RK4: int = int(lib.OGK_MPSP_SWEEP_RK4)
+"""sens_sweep: the exact derivative of the RK4 steps (docs/mpsp.md, section 3)."""
+SWEEP_MID2: int = int(lib.OGK_MPSP_SWEEP_MID2)
+"""sens_sweep: second-order transition at the step midpoints, O(h^2) (docs/mpsp.md, section 8)."""
 _MAX_WEIGHTS: int = int(lib.OGK_MPSP_MAX_WEIGHTS)
 _MAX_NODES: int = int(lib.OGK_MPSP_MAX_NODES)
 

@@ -112,7 +112,8 @@ static ogk_status check_config(const ogk_mpsp_config_t *cfg)
         st = OGK_E_NONFINITE;
     } else if ((cfg->fourier_order < 1u) || (cfg->fourier_order > OGK_MPSP_MAX_ORDER) ||
                ((cfg->fourier_kind != OGK_MPSP_BASIS_FOURIER) &&
-                (cfg->fourier_kind != OGK_MPSP_BASIS_COSINE))) {
+                (cfg->fourier_kind != OGK_MPSP_BASIS_COSINE)) ||
+               ((cfg->sens_sweep != OGK_MPSP_SWEEP_RK4) && (cfg->sens_sweep != OGK_MPSP_SWEEP_MID2))) {
         st = OGK_E_CONFIG;
     } else {
         st = check_config_weights(cfg);
@@ -134,6 +135,7 @@ static void config_defaults(ogk_mpsp_config_t *cfg)
     (void)memset(cfg, 0, sizeof *cfg);
     cfg->fourier_kind = OGK_MPSP_BASIS_FOURIER;
     cfg->fourier_t_ref = 0.0;
+    cfg->sens_sweep = OGK_MPSP_SWEEP_MID2; /* the second-order sweep: the same Newton iterations (+-1) on the 23 Apophis cases, 0.58x the instructions per iteration (docs/mpsp.md, section 8) */
     cfg->delta_max = 1.0;       /* Delta_max of Alg. 1 */
     cfg->delta_tau_0 = 0.5;     /* first continuation step of Alg. 2 */
     cfg->delta_tau_min = 0.1;   /* the paper's 0.1 */

@@ -422,3 +422,171 @@ ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, 
     }
     return st;
 }
+
+/* One row of the second-order sweep (OGK_MPSP_SWEEP_MID2) with the partials p
+ * at the step midpoint: w Phi with Phi = I + dt J + dt^2/2 J^2, J = d f/d X
+ * there, applied as two row-times-J products without forming Phi:
+ *   p1 = w J:  (p1)_r = G w_v,  (p1)_v = w_r,  (p1)_m = a_vm w_v.e + a_lm w_lm,  (p1)_lm = 0
+ *   p2 = p1 J: (p2)_r = G w_r,  (p2)_v = G w_v, (p2)_m = a_vm w_r.e,             (p2)_lm = 0
+ * and the control sensitivity of the step by the midpoint rule,
+ *   b = dt (w + dt/2 p1) D = z D,  z_v = dt (w_v + dt/2 w_r),  z_lm = dt w_lm,
+ *   z D = d_v z_v + (d_l z_lm - d_v z_v.e) e            (thrust only).
+ * Phi agrees with the step's transition to O(dt^3) (Magnus at the midpoint)
+ * and b with the step's integral of w Phi(t_next, s) D(s) dU(s) to O(dt^3):
+ * O(dt^2) over the arc. w_out may be w. */
+static void mid2_row(const mpsp_stage_t *p, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
+                     double *w_out, double *b) /* NOLINT(bugprone-easily-swappable-parameters): row out, its control sensitivity; unit-tested against the exact sweep */
+{
+    const double *g = p->g;
+    const double hh = 0.5 * dt * dt;
+    double gv[3];
+    double gr[3];
+    double wm = w[6];
+    const double wlm = w[7];
+
+    gv[0] = (w[3] * g[0]) + (w[4] * g[MPSP_SL]) + (w[5] * g[2u * MPSP_SL]);
+    gv[1] = (w[3] * g[MPSP_SL]) + (w[4] * g[3u * MPSP_SL]) + (w[5] * g[4u * MPSP_SL]);
+    gv[2] = (w[3] * g[2u * MPSP_SL]) + (w[4] * g[4u * MPSP_SL]) + (w[5] * g[5u * MPSP_SL]);
+    gr[0] = (w[0] * g[0]) + (w[1] * g[MPSP_SL]) + (w[2] * g[2u * MPSP_SL]);
+    gr[1] = (w[0] * g[MPSP_SL]) + (w[1] * g[3u * MPSP_SL]) + (w[2] * g[4u * MPSP_SL]);
+    gr[2] = (w[0] * g[2u * MPSP_SL]) + (w[1] * g[4u * MPSP_SL]) + (w[2] * g[5u * MPSP_SL]);
+    if (thrust) {
+        const double *e = p->e;
+        const double half = 0.5 * dt;
+        const double ve = (w[3] * e[0]) + (w[4] * e[MPSP_SL]) + (w[5] * e[2u * MPSP_SL]);
+        const double re = (w[0] * e[0]) + (w[1] * e[MPSP_SL]) + (w[2] * e[2u * MPSP_SL]);
+        const double zl = dt * wlm;
+        const double ze = dt * (ve + (half * re));
+        const double alpha = (p->d_l[0] * zl) - (p->d_v[0] * ze);
+        const double dvd = p->d_v[0] * dt;
+        wm += (dt * ((p->a_vm[0] * ve) + (p->a_lm[0] * wlm))) + (hh * (p->a_vm[0] * re));
+        b[0] = (dvd * (w[3] + (half * w[0]))) + (alpha * e[0]);
+        b[1] = (dvd * (w[4] + (half * w[1]))) + (alpha * e[MPSP_SL]);
+        b[2] = (dvd * (w[5] + (half * w[2]))) + (alpha * e[2u * MPSP_SL]);
+    }
+    {
+        const double v0 = w[3] + (dt * w[0]) + (hh * gv[0]);
+        const double v1 = w[4] + (dt * w[1]) + (hh * gv[1]);
+        const double v2 = w[5] + (dt * w[2]) + (hh * gv[2]);
+        w_out[0] = w[0] + (dt * gv[0]) + (hh * gr[0]);
+        w_out[1] = w[1] + (dt * gv[1]) + (hh * gr[1]);
+        w_out[2] = w[2] + (dt * gv[2]) + (hh * gr[2]);
+        w_out[3] = v0;
+        w_out[4] = v1;
+        w_out[5] = v2;
+        w_out[6] = wm;
+        w_out[7] = wlm;
+    }
+}
+
+#if defined(__SSE2__)
+/* mid2_row for the two rows w_in[0..7] and w_in[8..15] (lanes l = 0, 1;
+ * component i of lane l at [i * 2 + l]): the same arithmetic in the same
+ * order per row, each statement a loop over the lanes (gcc -O2 carries a pair
+ * in one SSE2 register), the partials read as pairs (MPSP_SL = 2); w_out (may
+ * be w_in) and b (2 rows of 3) written after every input is read. */
+static void mid2_rows2(const mpsp_stage_t *p, double dt, bool thrust, const double *w_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
+                       double *w_out, double *b_out) /* NOLINT(bugprone-easily-swappable-parameters): rows out, their control sensitivities; unit-tested against the exact sweep */
+{
+    const double *g = p->g;
+    const double hh = 0.5 * dt * dt;
+    double w[NX * 2u];
+    double gv[6];
+    double gr[6];
+    double wo[NX * 2u];
+    double b[6];
+    size_t l;
+
+    for (l = 0u; l < 2u; ++l) {
+        const double *wl = &w_in[l * NX];
+        w[l] = wl[0];
+        w[2u + l] = wl[1];
+        w[4u + l] = wl[2];
+        w[6u + l] = wl[3];
+        w[8u + l] = wl[4];
+        w[10u + l] = wl[5];
+        w[12u + l] = wl[6];
+        w[14u + l] = wl[7];
+    }
+    for (l = 0u; l < 2u; ++l) {
+        gv[l] = (w[6u + l] * g[l]) + (w[8u + l] * g[2u + l]) + (w[10u + l] * g[4u + l]);
+        gv[2u + l] = (w[6u + l] * g[2u + l]) + (w[8u + l] * g[6u + l]) + (w[10u + l] * g[8u + l]);
+        gv[4u + l] = (w[6u + l] * g[4u + l]) + (w[8u + l] * g[8u + l]) + (w[10u + l] * g[10u + l]);
+        gr[l] = (w[l] * g[l]) + (w[2u + l] * g[2u + l]) + (w[4u + l] * g[4u + l]);
+        gr[2u + l] = (w[l] * g[2u + l]) + (w[2u + l] * g[6u + l]) + (w[4u + l] * g[8u + l]);
+        gr[4u + l] = (w[l] * g[4u + l]) + (w[2u + l] * g[8u + l]) + (w[4u + l] * g[10u + l]);
+        wo[12u + l] = w[12u + l];
+    }
+    if (thrust) {
+        const double *e = p->e;
+        const double half = 0.5 * dt;
+        for (l = 0u; l < 2u; ++l) {
+            const double ve = (w[6u + l] * e[l]) + (w[8u + l] * e[2u + l]) + (w[10u + l] * e[4u + l]);
+            const double re = (w[l] * e[l]) + (w[2u + l] * e[2u + l]) + (w[4u + l] * e[4u + l]);
+            const double zl = dt * w[14u + l];
+            const double ze = dt * (ve + (half * re));
+            const double alpha = (p->d_l[l] * zl) - (p->d_v[l] * ze);
+            const double dvd = p->d_v[l] * dt;
+            wo[12u + l] += (dt * ((p->a_vm[l] * ve) + (p->a_lm[l] * w[14u + l]))) +
+                           (hh * (p->a_vm[l] * re));
+            b[l] = (dvd * (w[6u + l] + (half * w[l]))) + (alpha * e[l]);
+            b[2u + l] = (dvd * (w[8u + l] + (half * w[2u + l]))) + (alpha * e[2u + l]);
+            b[4u + l] = (dvd * (w[10u + l] + (half * w[4u + l]))) + (alpha * e[4u + l]);
+        }
+        for (l = 0u; l < 2u; ++l) {
+            b_out[l * 3u] = b[l];
+            b_out[(l * 3u) + 1u] = b[2u + l];
+            b_out[(l * 3u) + 2u] = b[4u + l];
+        }
+    }
+    for (l = 0u; l < 2u; ++l) {
+        wo[l] = w[l] + (dt * gv[l]) + (hh * gr[l]);
+        wo[2u + l] = w[2u + l] + (dt * gv[2u + l]) + (hh * gr[2u + l]);
+        wo[4u + l] = w[4u + l] + (dt * gv[4u + l]) + (hh * gr[4u + l]);
+        wo[6u + l] = w[6u + l] + (dt * w[l]) + (hh * gv[l]);
+        wo[8u + l] = w[8u + l] + (dt * w[2u + l]) + (hh * gv[2u + l]);
+        wo[10u + l] = w[10u + l] + (dt * w[4u + l]) + (hh * gv[4u + l]);
+    }
+    for (l = 0u; l < 2u; ++l) {
+        double *o = &w_out[l * NX];
+        o[0] = wo[l];
+        o[1] = wo[2u + l];
+        o[2] = wo[4u + l];
+        o[3] = wo[6u + l];
+        o[4] = wo[8u + l];
+        o[5] = wo[10u + l];
+        o[6] = wo[12u + l];
+        o[7] = w[14u + l];
+    }
+}
+#endif /* __SSE2__ */
+
+ogk_status mpsp_step_adjoint_mid2(const mpsp_dyn_t *dyn, const double *x_lo, const double *x_hi, /* NOLINT(bugprone-easily-swappable-parameters): the step's two nodes; unit-tested against the exact sweep */
+                                  double dt, int mode, const mpsp_uval_t *uv_mid, size_t n_rows, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); unit-tested against the exact sweep */
+                                  double *adj, double *bu_mid)
+{
+    mpsp_stage_t sd;
+    double xm[NX];
+    size_t i;
+    ogk_status st;
+
+    /* the midpoint state as the mean of the nodes: O(dt^2) from the
+     * trajectory's, which moves Phi and b by O(dt^3) per step */
+    for (i = 0u; i < NX; ++i) {
+        xm[i] = 0.5 * (x_lo[i] + x_hi[i]);
+    }
+    st = mpsp_stage_eval(dyn, xm, uv_mid, mode, NULL, &sd);
+    if (st == OGK_OK) {
+        const bool thrust = (mode == 1);
+        size_t r = 0u;
+#if defined(__SSE2__)
+        for (; (r + 1u) < n_rows; r += 2u) { /* two rows per pass */
+            mid2_rows2(&sd, dt, thrust, &adj[r * NX], &adj[r * NX], &bu_mid[r * 3u]);
+        }
+#endif
+        for (; r < n_rows; ++r) {
+            mid2_row(&sd, dt, thrust, &adj[r * NX], &adj[r * NX], &bu_mid[r * 3u]);
+        }
+    }
+    return st;
+}

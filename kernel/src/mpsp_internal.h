@@ -177,6 +177,15 @@ ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, 
                              const double *adj_in, double *adj_out, double *bu_start,
                              double *bu_mid, double *bu_end);
 
+/* The step's adjoint of the second-order sweep (OGK_MPSP_SWEEP_MID2): the
+ * n_rows rows of adj (in place) times I + dt J + dt^2/2 J^2 with J = d f/d X
+ * at the mean of the nodes x_lo, x_hi and U = uv_mid (the midpoint's; not
+ * read in coast); in thrust, bu_mid (n_rows x 3, overwritten) receives the
+ * control sensitivity of the whole step at its midpoint (weight dt). */
+ogk_status mpsp_step_adjoint_mid2(const mpsp_dyn_t *dyn, const double *x_lo, const double *x_hi,
+                                  double dt, int mode, const mpsp_uval_t *uv_mid, size_t n_rows,
+                                  double *adj, double *bu_mid);
+
 /* ---- mpsp_sensitivity.c */
 /* Terms of the switching compensation at (t_s, x_s) (eqs. 24-25, B.2):
  * dX+ = dX- + dxdot (s_x dX- + s_u dU) / s_dot; dt_s = -(s_x dX- + s_u dU) / s_dot. */

@@ -485,6 +485,130 @@ static ogk_status backward_recursion(ogk_mpsp_t *ctx)
     return st;
 }
 
+/* The midpoint of step k (node k -> k + 1), as both sweeps compute it. */
+static double step_mid(const ogk_mpsp_t *ctx, size_t k)
+{
+    const double t_lo = ctx->traj_t[k];
+    return t_lo + (0.5 * (ctx->traj_t[k + 1u] - t_lo));
+}
+
+/* A switch's sample of B_v at t_s with coefficients coef (NYU) into slot n;
+ * a basis row held there (blk->hi_held: the next midpoint's, SSE2) moves up
+ * to slot n + 1 and stays held. */
+static void mid2_push_switch(sens_block_t *blk, mpsp_dyn_t *dyn, double t_s, const double *coef)
+{
+    ogk_mpsp_t *ctx = blk->ctx;
+    const bool held = blk->hi_held; /* its U is not held: mid2_row_at takes it anew */
+    double *row = &ctx->sens_h[blk->n * HR];
+
+    if (held) {
+        (void)memcpy(&row[HR], row, dyn->n_basis * OGK_MPSP_H_LANES * sizeof row[0]);
+    }
+    blk->hi_held = false;
+    block_hold_hi(blk, dyn, t_s);
+    (void)memcpy(&ctx->sens_c[blk->n * NYU], coef, NYU * sizeof coef[0]);
+    blk->n += 1u;
+    blk->hi_held = held;
+}
+
+/* The basis row of thrust step k's midpoint in slot n and U there. On SSE2
+ * the row is made two midpoints per pass (mpsp_basis2: this step's and step
+ * k - 1's, which the sweep takes next), the second held in slot n + 1, and U
+ * comes from the propagation (mpsp_keep_find) or else from the row; elsewhere
+ * mpsp_basis_control makes the row and U. */
+static void mid2_row_at(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, mpsp_uval_t *uv)
+{
+    const double t_mid = step_mid(blk->ctx, k);
+#if defined(__SSE2__)
+    ogk_mpsp_t *ctx = blk->ctx;
+    double *row = &ctx->sens_h[blk->n * HR];
+    const bool made = !blk->hi_held; /* else made with step k + 1's */
+    if (made) {
+        const double t_pair[2] = {t_mid, (k > 0u) ? step_mid(ctx, k - 1u) : t_mid};
+        mpsp_basis2(dyn, t_pair, row, &row[HR]);
+    }
+    if (!mpsp_keep_find(ctx, dyn, t_mid, uv)) { /* the last step before a switch */
+        uval_from_basis(dyn, row, OGK_MPSP_H_LANES, uv);
+    }
+    blk->hi_held = made && (k > 0u); /* slot n + 1: step k - 1's midpoint */
+#else
+    blk->hi_held = false;
+    block_hold_hi(blk, dyn, t_mid);
+    *uv = blk->hi;
+    blk->hi_held = false;
+#endif
+}
+
+/* The backward recursion of the second-order sweep (OGK_MPSP_SWEEP_MID2):
+ * the switching compensation as in backward_recursion (exact, a sample of
+ * B_v at each switch), each step by mpsp_step_adjoint_mid2 and, in thrust,
+ * one sample of B_v at the step's midpoint; results as backward_recursion. */
+static ogk_status backward_recursion_mid2(ogk_mpsp_t *ctx)
+{
+    mpsp_dyn_t dyn;
+    sens_block_t blk;
+    double adj[NY * NX];
+    double pend[NYU];
+    size_t kk;
+    size_t r;
+    ogk_status st = OGK_OK;
+
+    mpsp_dyn_setup(&dyn, ctx, ctx->weights, ctx->thrust);
+    blk.ctx = ctx;
+    blk.n = 0u;
+    blk.hi_held = false;
+    (void)memset(&blk.hi, 0, sizeof blk.hi);
+
+    (void)memset(adj, 0, sizeof adj);
+    for (r = 0u; r < 6u; ++r) {
+        adj[(r * NX) + r] = 1.0;
+    }
+    adj[(6u * NX) + 7u] = 1.0;
+    (void)memset(ctx->bv_acc, 0, ctx->n_basis * NYU * sizeof ctx->bv_acc[0]);
+
+    for (kk = 1u; (kk < ctx->n_nodes) && (st == OGK_OK); ++kk) {
+        const size_t k = ctx->n_nodes - 1u - kk; /* step k: node k -> k + 1 */
+        const int mode = (int)ctx->traj_mode[k];
+        const double dt = ctx->traj_t[k + 1u] - ctx->traj_t[k];
+
+        if ((blk.n + 3u) > SB) {
+            block_flush(&blk); /* room for a switch, a midpoint and a held row */
+        }
+        if (ctx->traj_mode[k + 1u] != ctx->traj_mode[k]) { /* eqs. (22)-(25) */
+            (void)memset(pend, 0, sizeof pend);
+            st = switch_compensation(&dyn, ctx->traj_t[k + 1u], &ctx->traj_x[(k + 1u) * NX], mode,
+                                     adj, pend);
+            if (st == OGK_OK) {
+                mid2_push_switch(&blk, &dyn, ctx->traj_t[k + 1u], pend);
+            }
+        }
+        if ((st == OGK_OK) && (mode == 1)) {
+            mpsp_uval_t uv;
+            mid2_row_at(&blk, &dyn, k, &uv);
+            st = mpsp_step_adjoint_mid2(&dyn, &ctx->traj_x[k * NX], &ctx->traj_x[(k + 1u) * NX], dt,
+                                        1, &uv, NY, adj, &ctx->sens_c[blk.n * NYU]);
+            blk.n += 1u;
+        } else if (st == OGK_OK) {
+            mpsp_uval_t uv;
+            (void)memset(&uv, 0, sizeof uv);
+            blk.hi_held = false; /* a held midpoint row is not needed in coast */
+            st = mpsp_step_adjoint_mid2(&dyn, &ctx->traj_x[k * NX], &ctx->traj_x[(k + 1u) * NX], dt,
+                                        0, &uv, NY, adj, pend);
+        } else {
+            /* the switch's status returned */
+        }
+    }
+    if (st == OGK_OK) {
+        blk.hi_held = false;
+        block_flush(&blk);
+        mpsp_bv_unpack(ctx->bv_acc, ctx->n_basis, ctx->dy_dw);
+        for (r = 0u; r < NY; ++r) {
+            ctx->dy_dlm0[r] = adj[(r * NX) + 7u];
+        }
+    }
+    return st;
+}
+
 /* Backward recursion over the dense trajectory held (eqs. 28-35):
  *   w = dY/dX(tf) (selection of r, v, lambda_m);
  *   for each node k+1 (from the end): at a switch node
@@ -504,7 +628,8 @@ ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, double *dy_dw, double *dy_dlm0)
     }
     if (st == OGK_OK) {
         ctx->sens_valid = 0u;
-        st = backward_recursion(ctx);
+        st = (ctx->cfg.sens_sweep == OGK_MPSP_SWEEP_MID2) ? backward_recursion_mid2(ctx)
+                                                          : backward_recursion(ctx);
     }
     if (st == OGK_OK) {
         if (!ogk_i_all_finite(ctx->dy_dw, NY * ctx->n_weights) ||

@@ -49,7 +49,7 @@ bench: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE) $(FFI_STAMP)
 # MPSP (kernel/include/ogk/mpsp.h): one Newton iteration at flight size (2000
 # RK4 steps, Fourier order 15: 94 unknowns) and its parts; see docs/mpsp.md.
 BENCH_MPSP := $(BENCH_DIR)/bench_mpsp
-MPSP_CASES := mpsp_iter mpsp_prop mpsp_sens mpsp_update
+MPSP_CASES := mpsp_iter mpsp_prop mpsp_sens mpsp_update mpsp_iter_mid2 mpsp_sens_mid2
 
 $(BENCH_MPSP): tests/bench/bench_mpsp.c tests/bench/bench_timer.h $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
 	@mkdir -p $(@D)
@@ -62,7 +62,7 @@ bench-mpsp: $(BENCH_MPSP)
 	  n=$$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
 	       --collect-atstart=no --toggle-collect=bench_$${c}_once \
 	       $(BENCH_MPSP) once $$c 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'); \
-	  printf '%-11s %9s instructions/call (callgrind)   ' $$c "$$n"; \
+	  printf '%-14s %9s instructions/call (callgrind)   ' $$c "$$n"; \
 	  $(BENCH_MPSP) time $$c; \
 	done
 
@@ -80,7 +80,8 @@ $(ARM_BENCH_MPSP): tests/bench/bench_mpsp.c $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(AR
 bench-arm: $(ARM_BENCH_MPSP) qemu-plugin
 	@echo "== ogk bench (Cortex-M7 on QEMU mps2-an500, instruction counts) =="
 	@port/qemu-plugin/count_insns.sh $(ARM_BENCH_MPSP) bench_mpsp_iter_once bench_mpsp_prop_once \
-	  bench_mpsp_sens_once bench_mpsp_update_once 2>/dev/null
+	  bench_mpsp_sens_once bench_mpsp_update_once bench_mpsp_iter_mid2_once \
+	  bench_mpsp_sens_mid2_once 2>/dev/null
 bench: bench-arm
 
 # ---------------------------------------------------------------- NMPC warm re-solve (docs/nmpc.md, "Cost")
@@ -224,6 +225,7 @@ bench-flops: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE) $(BENCH_MPSP) $(BENCH_NMPC)
 	@$(FLOPS) nog_sample bench_nog_sample_once -- $(BENCH_GNC) $(NOG_TABLE) once nog_sample
 	@$(FLOPS) cpd_step bench_cpd_step_once -- $(BENCH_GNC) $(NOG_TABLE) once cpd_step
 	@$(FLOPS) mpsp_iter bench_mpsp_iter_once -- $(BENCH_MPSP) once mpsp_iter
+	@$(FLOPS) "mpsp_iter mid2" bench_mpsp_iter_mid2_once -- $(BENCH_MPSP) once mpsp_iter_mid2
 	@$(FLOPS) nmpc_replan bench_nmpc_replan_once -- $(BENCH_NMPC) once
 	@$(FLOPS) "nmpc_replan exact" bench_nmpc_replan_once -- $(BENCH_NMPC) once exact
 	@$(FLOPS) "nmpc_replan exact tol0" bench_nmpc_replan_once -- $(BENCH_NMPC) once exact tol0

@@ -13,7 +13,8 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from ogk_bindings.kernel import KernelError, Status
-from ogk_bindings.mpsp import BASIS_COSINE, Mpsp, MpspConfig, fourier_basis, paper_basis
+from ogk_bindings.mpsp import (BASIS_COSINE, SWEEP_MID2, SWEEP_RK4, Mpsp, MpspConfig, fourier_basis,
+                               paper_basis)
 
 W3 = np.array([2.0, 0.05, 0.02, 0.6, 0.03, -0.02, 0.01,
                0.6, 0.0, 0.2, 0.01, -0.02, 0.0, 0.01,
@@ -138,7 +139,7 @@ def test_propagation_matches_dop853(nominal: tuple[np.ndarray, list[float]]) -> 
 def test_sensitivities_match_reference_differences(
         nominal: tuple[np.ndarray, list[float]]) -> None:
     x_ref, _ = nominal
-    g = Mpsp(make_config(x_ref[:3], x_ref[3:6]))
+    g = Mpsp(make_config(x_ref[:3], x_ref[3:6], sens_sweep=SWEEP_RK4))   # the exact sweep
     g.propagate(W3, 0.0, X0)
     dydw, dydl = g.sensitivity()
     d = 1e-4
@@ -149,6 +150,34 @@ def test_sensitivities_match_reference_differences(
         e[j] = d
         fd = (output(reference(W3 + e, 0.0)[0]) - output(reference(W3 - e, 0.0)[0])) / (2 * d)
         np.testing.assert_allclose(dydw[:, j], fd, rtol=1e-5, atol=1e-7)
+
+
+@pytest.mark.req("OGK-MPSP-003", "OGK-MPSP-007")
+def test_mid2_sweep_is_second_order_close_to_exact(nominal: tuple[np.ndarray, list[float]]) -> None:
+    """The default sweep (SWEEP_MID2: I + h J + h^2/2 J^2 at the step midpoints, B_v by the midpoint
+    rule) against the exact RK4 sweep on the same trajectory: O(h^3) per step, so row-wise relative
+    differences <= K h^2 t_f with K = |J|^3/6 = 4.5 (|J| <= 3 on this orbit; the C unit test
+    test_mid2_sweep_second_order derives it); and against the scipy differences within that bound."""
+    x_ref, _ = nominal
+    sens = {}
+    for sweep in (SWEEP_RK4, SWEEP_MID2):
+        g = Mpsp(make_config(x_ref[:3], x_ref[3:6], sens_sweep=sweep))
+        g.propagate(W3, 0.0, X0)
+        sens[sweep] = g.sensitivity()
+    h = TF / 2000
+    bound = 4.5 * h * h * TF
+    (w_e, l_e), (w_c, l_c) = sens[SWEEP_RK4], sens[SWEEP_MID2]
+    rel_w = np.max(np.abs(w_c - w_e), axis=1) / np.max(np.abs(w_e), axis=1)
+    rel_l = np.max(np.abs(l_c - l_e)) / np.max(np.abs(l_e))
+    assert 0.0 < np.max(rel_w) <= bound and rel_l <= bound
+    d = 1e-4
+    e = np.zeros_like(W3)
+    e[9] = d
+    fd = (output(reference(W3 + e, 0.0)[0]) - output(reference(W3 - e, 0.0)[0])) / (2 * d)
+    np.testing.assert_allclose(w_c[:, 9], fd, rtol=0.0, atol=bound * np.max(np.abs(w_e)) + 1e-7)
+    with pytest.raises(KernelError) as err:
+        Mpsp(make_config(x_ref[:3], x_ref[3:6], sens_sweep=2))
+    assert err.value.status == Status.OGK_E_CONFIG
 
 
 @pytest.mark.req("OGK-MPSP-005")
@@ -225,7 +254,7 @@ def test_config_defaults_come_from_c_and_names_are_checked() -> None:
     assert list(MpspConfig.fields()) == [n for n, _ in ffi.typeof("ogk_mpsp_config_t").fields]
     for name in ("delta_max", "delta_tau_0", "delta_tau_min", "r_lambda", "s_tol", "max_newton",
                  "max_outer", "n_seg_tol", "n_seg_tol_step", "n_seg_nom", "fourier_kind",
-                 "fourier_t_ref"):
+                 "fourier_t_ref", "sens_sweep"):
         assert getattr(cfg, name) == getattr(ref, name), name
     nw = 3 * (2 * ORDER + 1)
     assert cfg.r_eps.shape == (nw,) and np.all(cfg.r_eps == 1.0)       # R_eps = I from C

@@ -181,6 +181,56 @@ static void test_thrust_and_initial_state_perturbations(void **state)
     check_flown(x0, 1.0, target, 1e-10);
 }
 
+/* The second-order sweep (OGK_MPSP_SWEEP_MID2, the default of
+ * ogk_mpsp_config_default): Newton's residual is the exact propagation's, so
+ * the solution meets the same tolerances, flown again; its Jacobian is
+ * within O(h^2) of the exact one (test_mpsp_sensitivity.c), so the iteration
+ * counts stay within one of the exact sweep's on the same perturbations
+ * (target offset, eta = +5 %, initial-state offset). */
+/* req: OGK-MPSP-005 OGK-MPSP-003 */
+static void test_mid2_sweep_same_iterations(void **state)
+{
+    static ogk_mpsp_config_t cfg_mid2;
+    double target[6];
+    double target_p[6];
+    double x0[7];
+    uint32_t ni[2][3];
+    size_t sw;
+    (void)state;
+    nominal_target(target);
+    (void)memcpy(target_p, target, sizeof target_p);
+    target_p[0] += 1e-2;
+    target_p[1] -= 5e-3;
+    target_p[2] -= 5e-3;
+    target_p[4] += 5e-3;
+    (void)memcpy(x0, x0_3d, sizeof x0);
+    x0[0] += 2e-3;
+    x0[4] -= 1e-3;
+    x0[5] += 1e-3;
+    cfg_mid2 = cfg;
+    for (sw = 0u; sw < 2u; ++sw) {
+        cfg_mid2.sens_sweep = (sw == 0u) ? OGK_MPSP_SWEEP_RK4 : OGK_MPSP_SWEEP_MID2;
+        OGK_ASSERT_STATUS(ogk_mpsp_init(&ctx, &cfg_mid2), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_mpsp_solve(&ctx, x0_3d, 1.0, target_p, &res), OGK_OK);
+        assert_int_equal(res.converged, 1);
+        ni[sw][0] = res.newton_iterations;
+        check_flown(x0_3d, 1.0, target_p, 1e-10);
+        OGK_ASSERT_STATUS(ogk_mpsp_solve(&ctx, x0_3d, 1.05, NULL, &res), OGK_OK);
+        assert_int_equal(res.converged, 1);
+        ni[sw][1] = res.newton_iterations;
+        check_flown(x0_3d, 1.05, target, 1e-10);
+        OGK_ASSERT_STATUS(ogk_mpsp_solve(&ctx, x0, 1.0, NULL, &res), OGK_OK);
+        assert_int_equal(res.converged, 1);
+        ni[sw][2] = res.newton_iterations;
+        check_flown(x0, 1.0, target, 1e-10);
+    }
+    for (sw = 0u; sw < 3u; ++sw) {
+        print_message("Newton iterations, exact / mid2 sweep: %u / %u\n", (unsigned)ni[0][sw],
+                      (unsigned)ni[1][sw]);
+        assert_true((ni[1][sw] + 1u >= ni[0][sw]) && (ni[1][sw] <= ni[0][sw] + 1u));
+    }
+}
+
 /* req: OGK-MPSP-005 */
 static void test_continuation_when_newton_is_not_allowed(void **state)
 {
@@ -500,6 +550,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_nominal_needs_no_iteration),
         cmocka_unit_test(test_newton_recovers_perturbed_target),
+        cmocka_unit_test(test_mid2_sweep_same_iterations),
         cmocka_unit_test(test_thrust_and_initial_state_perturbations),
         cmocka_unit_test(test_continuation_when_newton_is_not_allowed),
         cmocka_unit_test(test_segment_tolerance_widened_by_its_step),

@@ -105,6 +105,13 @@ extern "C" {
 #define OGK_MPSP_BASIS_FOURIER 0u /* 1/2, cos k theta, sin k theta, k = 1..n (eq. C.1) */
 #define OGK_MPSP_BASIS_COSINE 1u  /* 1/2, cos k theta, k = 1..2n (even extension) */
 
+/* Sensitivity sweeps (ogk_mpsp_config_t.sens_sweep): how ogk_mpsp_sensitivity
+ * carries dY/dX back over one RK4 step (docs/mpsp.md, sections 3 and 8).
+ * The residual is always that of the exact propagation, so the sweep only
+ * sets Newton's rate of convergence, not the accuracy of the solution. */
+#define OGK_MPSP_SWEEP_RK4 0u  /* exact derivative of the RK4 step (four stages; B_v sampled at nodes and midpoints) */
+#define OGK_MPSP_SWEEP_MID2 1u /* second-order transition I + h J + h^2/2 J^2, J at the step midpoint; B_v one midpoint sample per step (O(h^2)) */
+
 /* Configuration, read-only after ogk_mpsp_init (copied into the context).
  * Units: any consistent normalised set (LU, TU, MU); [T] = MU LU / TU^2. */
 typedef struct {
@@ -138,6 +145,7 @@ typedef struct {
     double lambda_m0_nom;       /* [-] nominal lambda_m(t0) */
     uint32_t n_seg_nom;         /* [-] N_seg,nom = thrust + coast segments of the nominal; 0: counted at init
                                    by propagating the nominal weights from x0_nom */
+    uint32_t sens_sweep;        /* [-] OGK_MPSP_SWEEP_RK4 (exact) or OGK_MPSP_SWEEP_MID2 (cheaper, O(h^2)) */
 } ogk_mpsp_config_t;
 
 /* Summary of one propagation (the trajectory itself stays in the context). */
@@ -230,7 +238,8 @@ typedef struct {
 /* Fills every field with its default: the algorithm settings as in the
  * paper (delta_max 1, delta_tau_0 0.5, delta_tau_min 0.1, R_eps = I,
  * R_lambda = 1, s_tol 1e-12, max_newton 100, max_outer 50, n_seg_tol 0,
- * n_seg_tol_step 2, n_seg_nom 0 = counted at init, FOURIER basis, t_ref 0);
+ * n_seg_tol_step 2, n_seg_nom 0 = counted at init, FOURIER basis, t_ref 0,
+ * sens_sweep OGK_MPSP_SWEEP_MID2);
  * the mission data (mu, t_max, c_exhaust, t0, tf, x0_nom, r_f, v_f,
  * fourier_order, fourier_period, h_max, tol_r, tol_v, tol_lambda_m,
  * weights_nom, lambda_m0_nom) is 0 and must be set before ogk_mpsp_init
