@@ -250,6 +250,25 @@ static void stage_back2(const mpsp_stage_t *p, const double *zv_in, const double
     (void)memcpy(bx_out, bx, sizeof bx);
 }
 
+/* Two adjoint rows w_in[0..7], w_in[8..15] into lanes: component i of row l
+ * at w[i * 2 + l], the layout of the paired passes below. */
+static inline void rows2_to_lanes(const double *w_in, double *w)
+{
+    size_t l;
+
+    for (l = 0u; l < 2u; ++l) {
+        const double *wl = &w_in[l * NX];
+        w[l] = wl[0];
+        w[2u + l] = wl[1];
+        w[4u + l] = wl[2];
+        w[6u + l] = wl[3];
+        w[8u + l] = wl[4];
+        w[10u + l] = wl[5];
+        w[12u + l] = wl[6];
+        w[14u + l] = wl[7];
+    }
+}
+
 /* reverse_row for the two rows w_in[0..7] and w_in[8..15] (both with nonzero
  * r or v components): the same arithmetic in the same order per row, so the
  * same numbers to the bit. w_out (2 rows, may be w_in) and b_start, b_mid,
@@ -278,17 +297,7 @@ static void reverse_rows2(const mpsp_stage_t *sd, double dt, bool thrust, const 
     double ret[2];
     size_t l;
 
-    for (l = 0u; l < 2u; ++l) {
-        const double *wl = &w_in[l * NX];
-        w[l] = wl[0];
-        w[2u + l] = wl[1];
-        w[4u + l] = wl[2];
-        w[6u + l] = wl[3];
-        w[8u + l] = wl[4];
-        w[10u + l] = wl[5];
-        w[12u + l] = wl[6];
-        w[14u + l] = wl[7];
-    }
+    rows2_to_lanes(w_in, w);
     /* stage 4: (bK4)_v = dt/6 w_v */
     for (l = 0u; l < 2u; ++l) {
         zv[l] = c6 * w[6u + l];
@@ -497,17 +506,7 @@ static void mid2_rows2(const mpsp_stage_t *p, double dt, bool thrust, const doub
     double b[6];
     size_t l;
 
-    for (l = 0u; l < 2u; ++l) {
-        const double *wl = &w_in[l * NX];
-        w[l] = wl[0];
-        w[2u + l] = wl[1];
-        w[4u + l] = wl[2];
-        w[6u + l] = wl[3];
-        w[8u + l] = wl[4];
-        w[10u + l] = wl[5];
-        w[12u + l] = wl[6];
-        w[14u + l] = wl[7];
-    }
+    rows2_to_lanes(w_in, w);
     for (l = 0u; l < 2u; ++l) {
         gv[l] = (w[6u + l] * g[l]) + (w[8u + l] * g[2u + l]) + (w[10u + l] * g[4u + l]);
         gv[2u + l] = (w[6u + l] * g[2u + l]) + (w[8u + l] * g[6u + l]) + (w[10u + l] * g[8u + l]);

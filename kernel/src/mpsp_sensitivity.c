@@ -404,6 +404,40 @@ static ogk_status thrust_step(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, doub
     return st;
 }
 
+/* The end of both sweeps: the last samples into B_v, B_v unpacked into
+ * dY/dw, and A_lambda, the lambda_m column of dY/dX(t0) (eq. 33). */
+static void recursion_finish(ogk_mpsp_t *ctx, sens_block_t *blk, const double *adj)
+{
+    size_t r;
+
+    blk->hi_held = false;
+    block_flush(blk);
+    mpsp_bv_unpack(ctx->bv_acc, ctx->n_basis, ctx->dy_dw);
+    for (r = 0u; r < NY; ++r) {
+        ctx->dy_dlm0[r] = adj[(r * NX) + 7u];
+    }
+}
+
+/* The start of both sweeps: the dynamics of the current weights, an empty
+ * sample block, dY/dX(tf) with Y = [r, v, lambda_m] (adj, NY x NX) and B_v's
+ * accumulators cleared. */
+static void recursion_start(ogk_mpsp_t *ctx, mpsp_dyn_t *dyn, sens_block_t *blk, double *adj)
+{
+    size_t r;
+
+    mpsp_dyn_setup(dyn, ctx, ctx->weights, ctx->thrust);
+    blk->ctx = ctx;
+    blk->n = 0u;
+    blk->hi_held = false;
+    (void)memset(&blk->hi, 0, sizeof blk->hi);
+    (void)memset(adj, 0, NY * NX * sizeof adj[0]);
+    for (r = 0u; r < 6u; ++r) {
+        adj[(r * NX) + r] = 1.0;
+    }
+    adj[(6u * NX) + 7u] = 1.0;
+    (void)memset(ctx->bv_acc, 0, ctx->n_basis * NYU * sizeof ctx->bv_acc[0]);
+}
+
 /* The backward recursion of ogk_mpsp_sensitivity over the trajectory held
  * (at least 2 nodes): ctx->dy_dw and ctx->dy_dlm0, both left as they were
  * when a step or switch fails. */
@@ -415,23 +449,10 @@ static ogk_status backward_recursion(ogk_mpsp_t *ctx)
     double pend[NYU];
     bool pend_nonzero = false;
     size_t kk;
-    size_t r;
     ogk_status st = OGK_OK;
 
-    mpsp_dyn_setup(&dyn, ctx, ctx->weights, ctx->thrust);
-    blk.ctx = ctx;
-    blk.n = 0u;
-    blk.hi_held = false;
-    (void)memset(&blk.hi, 0, sizeof blk.hi);
-
-    /* dY/dX(tf): Y = [r, v, lambda_m] */
-    (void)memset(adj, 0, sizeof adj);
-    for (r = 0u; r < 6u; ++r) {
-        adj[(r * NX) + r] = 1.0;
-    }
-    adj[(6u * NX) + 7u] = 1.0;
+    recursion_start(ctx, &dyn, &blk, adj);
     (void)memset(pend, 0, sizeof pend);
-    (void)memset(ctx->bv_acc, 0, ctx->n_basis * NYU * sizeof ctx->bv_acc[0]);
 
     for (kk = 1u; (kk < ctx->n_nodes) && (st == OGK_OK); ++kk) {
         const size_t k = ctx->n_nodes - 1u - kk; /* step k: node k -> k + 1 */
@@ -474,13 +495,7 @@ static ogk_status backward_recursion(ogk_mpsp_t *ctx)
             (void)memcpy(&ctx->sens_c[blk.n * NYU], pend, sizeof pend);
             blk.n += 1u;
         }
-        blk.hi_held = false;
-        block_flush(&blk);
-        mpsp_bv_unpack(ctx->bv_acc, ctx->n_basis, ctx->dy_dw);
-        /* Eq. (33): A_lambda is the lambda_m column of dY/dX(t0). */
-        for (r = 0u; r < NY; ++r) {
-            ctx->dy_dlm0[r] = adj[(r * NX) + 7u];
-        }
+        recursion_finish(ctx, &blk, adj);
     }
     return st;
 }
@@ -550,21 +565,9 @@ static ogk_status backward_recursion_mid2(ogk_mpsp_t *ctx)
     double adj[NY * NX];
     double pend[NYU];
     size_t kk;
-    size_t r;
     ogk_status st = OGK_OK;
 
-    mpsp_dyn_setup(&dyn, ctx, ctx->weights, ctx->thrust);
-    blk.ctx = ctx;
-    blk.n = 0u;
-    blk.hi_held = false;
-    (void)memset(&blk.hi, 0, sizeof blk.hi);
-
-    (void)memset(adj, 0, sizeof adj);
-    for (r = 0u; r < 6u; ++r) {
-        adj[(r * NX) + r] = 1.0;
-    }
-    adj[(6u * NX) + 7u] = 1.0;
-    (void)memset(ctx->bv_acc, 0, ctx->n_basis * NYU * sizeof ctx->bv_acc[0]);
+    recursion_start(ctx, &dyn, &blk, adj);
 
     for (kk = 1u; (kk < ctx->n_nodes) && (st == OGK_OK); ++kk) {
         const size_t k = ctx->n_nodes - 1u - kk; /* step k: node k -> k + 1 */
@@ -599,12 +602,7 @@ static ogk_status backward_recursion_mid2(ogk_mpsp_t *ctx)
         }
     }
     if (st == OGK_OK) {
-        blk.hi_held = false;
-        block_flush(&blk);
-        mpsp_bv_unpack(ctx->bv_acc, ctx->n_basis, ctx->dy_dw);
-        for (r = 0u; r < NY; ++r) {
-            ctx->dy_dlm0[r] = adj[(r * NX) + 7u];
-        }
+        recursion_finish(ctx, &blk, adj);
     }
     return st;
 }
