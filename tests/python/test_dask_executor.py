@@ -243,7 +243,8 @@ def test_a_worker_with_other_numerics_refuses_the_chunk():
     plan = plan_of("low-thrust-transfer")
     shipment = shipping.ship(plan, family_object("low-thrust-transfer"))
     assert shipment.numerics == here
-    with pytest.raises(OgkInputError, match="numerics differ.*blas"):
+    assert shipping.plan_of(shipment).products == plan.products   # built and cached here
+    with pytest.raises(OgkInputError, match="numerics differ.*blas"):  # refused all the same
         shipping.plan_of(dataclasses.replace(shipment, numerics=other))
     flown = fly_campaign(plan, 1, 3, workers=1, progress=False)
     assert envelope.envelope(flown)["numerics"] == here

@@ -14,6 +14,7 @@ the same on every machine before Python starts, make a mixed cluster's fingerpri
 """
 from __future__ import annotations
 
+import functools
 import platform
 import sys
 
@@ -42,11 +43,17 @@ def _blas() -> str:
 
 def fingerprint() -> dict[str, str]:
     """The numerics fingerprint of this process (module doc): name -> value, all strings."""
+    return dict(_fingerprint())
+
+
+@functools.lru_cache(maxsize=1)
+def _fingerprint() -> tuple[tuple[str, str], ...]:
+    """Made once per process: the kernels are chosen when the libraries load."""
     import scipy
     import scipy.linalg  # noqa: F401  (loads scipy's BLAS, so that it is listed)
-    return {"machine": platform.machine(), "byteorder": sys.byteorder,
-            "python": platform.python_version(), "numpy": np.__version__,
-            "scipy": scipy.__version__, "numpy_simd": _numpy_simd(), "blas": _blas()}
+    return (("machine", platform.machine()), ("byteorder", sys.byteorder),
+            ("python", platform.python_version()), ("numpy", np.__version__),
+            ("scipy", scipy.__version__), ("numpy_simd", _numpy_simd()), ("blas", _blas()))
 
 
 def differences(ours: dict[str, str], theirs: dict[str, str],

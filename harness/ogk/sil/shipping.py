@@ -163,10 +163,7 @@ _PLANS: dict[str, CampaignPlan] = {}
 def plan_of(shipment: Shipment) -> CampaignPlan:
     """The campaign's plan on this worker: products checked or written, plan rebuilt by the family
     and checked against the shipment (module doc); built once per process and shipment."""
-    key = shipment.key
-    plan = _PLANS.get(key)
-    if plan is not None:
-        return plan
+    # checked before the plan cache: the key leaves the client's numerics out
     differ = numerics.differences(numerics.fingerprint(), shipment.numerics)
     if differ:
         raise OgkInputError("this worker's numerics differ from the client's, so its records would "
@@ -174,6 +171,10 @@ def plan_of(shipment: Shipment) -> CampaignPlan:
                             "run the workers on the client's CPU kind and packages, or set "
                             "OPENBLAS_CORETYPE and NPY_DISABLE_CPU_FEATURES alike everywhere "
                             "(docs/scale-out.md)", key="--dask")
+    key = shipment.key
+    plan = _PLANS.get(key)
+    if plan is not None:
+        return plan
     scenario = materialise(shipment.scenario)
     for f in shipment.files:
         materialise(f)
