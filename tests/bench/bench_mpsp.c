@@ -96,9 +96,12 @@ static int setup(uint32_t sweep)
     return 0;
 }
 
-/* The update always starts from the nominal weights, so the trajectory (and
- * the cost) is the same at every call. */
-__attribute__((noinline)) static int bench_mpsp_iter_once(void)
+/* One Newton iteration: sensitivities, update, propagation. The update always
+ * starts from the nominal weights, so the trajectory (and the cost) is the
+ * same at every call. Inlined into each named entry below (a call would be a
+ * tail jump, not a function of its own for callgrind and the QEMU plugin);
+ * each entry sinks another element, so that gcc does not fold them. */
+__attribute__((always_inline)) static inline int newton_iteration(size_t sink_at)
 {
     double lm0 = 0.0;
     ogk_mpsp_prop_t prop;
@@ -109,28 +112,20 @@ __attribute__((noinline)) static int bench_mpsp_iter_once(void)
     }
     if (st == 0) {
         st = (int)ogk_mpsp_propagate(&ctx, w_new, lm0, cfg.x0_nom, 1.0, &prop);
-        sink = prop.x_f[0];
+        sink = prop.x_f[sink_at];
     }
     return st;
 }
 
-/* The same bodies under their own names (callgrind, the QEMU plugin), run
- * after setup(OGK_MPSP_SWEEP_MID2); written out (not calls, which gcc turns
- * into tail jumps) and sinking another entry (not folded with the above). */
+__attribute__((noinline)) static int bench_mpsp_iter_once(void)
+{
+    return newton_iteration(0u);
+}
+
+/* The same iteration after setup(OGK_MPSP_SWEEP_MID2), under its own name. */
 __attribute__((noinline)) static int bench_mpsp_iter_mid2_once(void)
 {
-    double lm0 = 0.0;
-    ogk_mpsp_prop_t prop;
-    int st = (int)ogk_mpsp_sensitivity(&ctx, NULL, NULL);
-    memcpy(w_new, cfg.weights_nom, ctx.n_weights * sizeof w_new[0]);
-    if (st == 0) {
-        st = (int)ogk_mpsp_newton_update(&ctx, dy_fixed, w_new, &lm0);
-    }
-    if (st == 0) {
-        st = (int)ogk_mpsp_propagate(&ctx, w_new, lm0, cfg.x0_nom, 1.0, &prop);
-        sink = prop.x_f[1];
-    }
-    return st;
+    return newton_iteration(1u);
 }
 
 __attribute__((noinline)) static int bench_mpsp_sens_mid2_once(void)
