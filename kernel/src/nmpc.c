@@ -63,7 +63,7 @@ static bool nmpc_config_finite(const ogk_nmpc_config_t *c)
         c->mu, c->thrust_max, c->mass_flow_max, c->solar_length_unit,
         c->target_radius, c->target_phase0, c->target_rate, c->horizon_min,
         c->horizon_max, c->max_sweep, c->time_weight, c->tol_feas, c->tol_stat, c->tol_obj, c->hessian_init,
-        c->step_max_alpha, c->step_max_horizon, c->elastic_weight, c->doubling_threshold
+        c->step_max_alpha, c->step_max_horizon, c->elastic_weight, c->doubling_threshold, c->mass_min
     };
     return ogk_i_all_finite(scalars, sizeof(scalars) / sizeof(scalars[0]))
         && ogk_i_all_finite(c->solar_a, 4u) && ogk_i_all_finite(c->solar_thrust, 2u)
@@ -73,7 +73,9 @@ static bool nmpc_config_finite(const ogk_nmpc_config_t *c)
         && ogk_i_all_finite(c->body_phase0, OGK_NMPC_MAX_BODIES)
         && ogk_i_all_finite(c->body_rate, OGK_NMPC_MAX_BODIES)
         && ogk_i_all_finite(c->body_softening, OGK_NMPC_MAX_BODIES)
-        && ogk_i_all_finite(c->keepout_radius, OGK_NMPC_MAX_BODIES);
+        && ogk_i_all_finite(c->keepout_radius, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->terminal_box, OGK_NMPC_NC)
+        && ogk_i_all_finite(c->body_release, OGK_NMPC_MAX_BODIES);
 }
 
 static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
@@ -85,7 +87,9 @@ static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
         && (c->nodes >= 1u) && (c->nodes <= OGK_NMPC_MAX_NODES)
         && (c->rk4_steps >= 1u) && (c->rk4_steps <= OGK_NMPC_MAX_RK4_STEPS)
         && (c->horizon_min > 0.0) && (c->horizon_max > c->horizon_min)
-        && (c->max_sweep >= 0.0) && (c->time_weight >= 0.0)
+        && (c->max_sweep >= 0.0) && (c->time_weight >= 0.0) && (c->mass_min >= 0.0)
+        && (c->terminal_box[0] >= 0.0) && (c->terminal_box[1] >= 0.0)
+        && (c->terminal_box[2] >= 0.0) && (c->terminal_box[3] >= 0.0)
         && (c->max_iter >= 1u) && (c->max_iter <= OGK_NMPC_MAX_SQP_ITER)
         && (c->max_iter_cold >= 1u) && (c->max_iter_cold <= OGK_NMPC_MAX_SQP_ITER)
         && (c->tol_feas > 0.0) && (c->tol_stat > 0.0) && (c->tol_obj >= 0.0) && (c->hessian_init > 0.0)
@@ -106,13 +110,15 @@ static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
     }
     for (b = 0u; ok && (b < n_bodies); ++b) {
         ok = (c->body_mu[b] >= 0.0) && (c->body_radius[b] > 0.0) && (c->body_softening[b] >= 0.0)
-            && (c->keepout_radius[b] >= 0.0);
+            && (c->keepout_radius[b] >= 0.0) && (c->body_release[b] >= 0.0);
     }
     return ok;
 }
 
 static void nmpc_prepare(ogk_nmpc_t *ctx)
 {
+    /* every third body back in the predictive model */
+    (void)memcpy(ctx->cfg.body_mu, ctx->body_mu_init, sizeof(ctx->cfg.body_mu));
     if (ctx->cfg.engine == OGK_NMPC_ENGINE_THROTTLED) {
         ctx->nu = 2u;
     } else {
@@ -141,6 +147,7 @@ ogk_status ogk_nmpc_init(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg)
             st = OGK_E_CONFIG;
         } else {
             (void)memcpy(&ctx->cfg, cfg, sizeof(*cfg));
+            (void)memcpy(ctx->body_mu_init, cfg->body_mu, sizeof(ctx->body_mu_init));
             nmpc_prepare(ctx);
             ctx->init_marker = OGK_NMPC_INIT_MARKER;
         }
@@ -254,6 +261,22 @@ static void fill_report(const ogk_nmpc_t *ctx, ogk_nmpc_report_t *rep)
     rep->objective = ogk_i_nmpc_objective(&ctx->cfg, p);
 }
 
+/* A body whose release radius the measured state is beyond leaves the
+ * predictive model for good (body_release); FLAG_RELEASED in rep. */
+static void release_bodies(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in, ogk_nmpc_report_t *rep)
+{
+    /* n_bodies <= OGK_NMPC_MAX_BODIES (ogk_nmpc_init): clamped once, a fixed bound */
+    const size_t n_bodies = ogk_i_min_size(ctx->cfg.n_bodies, OGK_NMPC_MAX_BODIES);
+    size_t b;
+    for (b = 0u; b < n_bodies; ++b) {
+        if ((ctx->cfg.body_release[b] > 0.0) && (ctx->cfg.body_mu[b] > 0.0)
+            && (ogk_i_nmpc_body_distance(&ctx->cfg, b, in->x, in->t) > ctx->cfg.body_release[b])) {
+            ctx->cfg.body_mu[b] = 0.0;
+            rep->flags |= OGK_NMPC_FLAG_RELEASED;
+        }
+    }
+}
+
 /* work := plan re-anchored at (t, x): node 0 measured, same t_f. */
 static void anchor_work(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in)
 {
@@ -289,6 +312,7 @@ ogk_status ogk_nmpc_solve(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
 {
     ogk_status st = check_input(ctx, in, rep);
     if (st == OGK_OK) {
+        release_bodies(ctx, in, rep);
         anchor_work(ctx, in);
         st = solve_work(ctx, rep);
         fill_report(ctx, rep);
@@ -411,6 +435,7 @@ ogk_status ogk_nmpc_replan(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
 {
     ogk_status st = check_input(ctx, in, rep);
     if (st == OGK_OK) {
+        release_bodies(ctx, in, rep);
         ctx->plan_flags = 0u;
         if (((ctx->plan.t0 + ctx->plan.horizon) - in->t) < ctx->cfg.horizon_min) {
             /* t_f reached before the target: the plan is stretched to end

@@ -39,6 +39,8 @@ void ogk_i_nmpc_condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, d
     }
     for (k = 0u; k < nodes; ++k) {
         const double *a = &ctx->sens_a[k * NX * NX];
+        /* the keep-out along interval k's arc, with cond_g = dX_k/dv, cond_e = e_k */
+        ogk_i_nmpc_keepout_arc_rows(ctx, p, nv, k, ctx->cond_g, ctx->cond_e);
         if (hess != NULL) {
             /* the exact Hessian's interval k, with cond_g = dX_k/dv */
             ogk_i_nmpc_hess_add(hess, nv, nu, k, ctx->cond_g,

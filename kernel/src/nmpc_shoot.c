@@ -138,6 +138,15 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
                             const double *u0, const double *u1, double *xf,
                             double *sens, double *tape)
 {
+    return ogk_i_nmpc_shoot_arc(cfg, nu, t_start, h, x0, u0, u1, xf, sens, tape, cfg->rk4_steps, NULL);
+}
+
+ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (nu, t_start, h as in ogk_nmpc_interval); checked by central differences (test_nmpc.c) */
+                                double t_start, double h, const double *x0,
+                                const double *u0, const double *u1, double *xf,
+                                double *sens, double *tape, uint32_t steps_run,
+                                ogk_i_nmpc_arc_t *arc)
+{
     /* RK4 stage offsets (fractions of one step) and weights */
     static const double c_off[4] = { 0.0, 0.5, 0.5, 1.0 };
     static const double w_rk[4] = { 1.0, 2.0, 2.0, 1.0 };
@@ -146,7 +155,7 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
     const uint32_t steps = cfg->rk4_steps;
     /* rk4_steps <= OGK_NMPC_MAX_RK4_STEPS (ogk_nmpc_init): clamped once so the
      * loops below keep a fixed bound with one condition for it */
-    const uint32_t steps_b = ogk_i_min_u32(steps, OGK_NMPC_MAX_RK4_STEPS);
+    const uint32_t steps_b = ogk_i_min_u32(ogk_i_min_u32(steps_run, steps), OGK_NMPC_MAX_RK4_STEPS);
     const double dt = h / (double)steps;
     const double inv_steps = 1.0 / (double)steps;
     const size_t col_h = NX + (2u * (size_t)nu);
@@ -231,6 +240,11 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
         if (st == OGK_OK) {
             for (i = 0u; i < NX; ++i) {
                 x[i] += (dt / 6.0) * (k[0][i] + (2.0 * k[1][i]) + (2.0 * k[2][i]) + k[3][i]);
+            }
+            if ((arc != NULL) && ((step + 1u) < steps)) {
+                /* an interior step end of the arc (the interval's ends are nodes) */
+                const uint32_t step_end = step + 1u;
+                ogk_i_nmpc_keepout_scan(cfg, x, t_start + ((double)step_end * inv_steps * h), step_end, arc);
             }
             if (sens != NULL) {
                 for (i = 0u; i < NX; ++i) {

@@ -73,6 +73,22 @@ static size_t n_vars(const ogk_nmpc_plan_t *p)
     return ((size_t)p->nodes + 1u) * (size_t)p->nu + 1u;
 }
 
+/* True when eq. (5) is a terminal set (a half-width > 0): its rows are then
+ * two inequalities each, not equalities (docs/nmpc-flight.md, "Robustness"). */
+static bool terminal_set(const ogk_nmpc_config_t *cfg)
+{
+    return (cfg->terminal_box[0] > 0.0) || (cfg->terminal_box[1] > 0.0)
+        || (cfg->terminal_box[2] > 0.0) || (cfg->terminal_box[3] > 0.0);
+}
+
+/* How far terminal residual i lies outside its half-width (|c_i| for eq. 5
+ * exactly: |c_i| - 0 is |c_i| to the bit). */
+static double terminal_excess(const ogk_nmpc_config_t *cfg, const double *c, size_t i)
+{
+    const double e = fabs(c[i]) - cfg->terminal_box[i];
+    return (e > 0.0) ? e : 0.0;
+}
+
 /* Merit pieces of a plan: l1 and max norms of every defect and terminal
  * residual. Stores F_k and the sensitivities in ctx when with_sens. */
 static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
@@ -119,14 +135,27 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
         const bool keyed = with_sens && !second;
         const size_t n_key = keyed ? ogk_i_nmpc_cache_key(ctx, p, k, t_start, h, key) : 0u;
         const bool hit = keyed && ogk_i_nmpc_cache_hit(ctx, k, key, n_key);
+        ogk_i_nmpc_arc_t arc;
+        ogk_i_nmpc_arc_clear(&arc);
         if (hit) {
             (void)memcpy(x1, &ctx->sens_f[k * NX], sizeof(x1));
+            for (i = 0u; i < OGK_NMPC_MAX_BODIES; ++i) {
+                arc.d[i] = ctx->arc_d[(k * OGK_NMPC_MAX_BODIES) + i];
+                arc.step[i] = ctx->arc_step[(k * OGK_NMPC_MAX_BODIES) + i];
+            }
         } else {
-            st = ogk_i_nmpc_shoot(&ctx->cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu],
-                                  &p->u[(k + 1u) * nu], x1, with_sens ? sens : NULL,
-                                  second ? ctx->tape : NULL);
+            st = ogk_i_nmpc_shoot_arc(&ctx->cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu],
+                                      &p->u[(k + 1u) * nu], x1, with_sens ? sens : NULL,
+                                      second ? ctx->tape : NULL, ctx->cfg.rk4_steps, &arc);
         }
         if (st == OGK_OK) {
+            ogk_i_nmpc_keepout_arc_violation(&ctx->cfg, p, k, &arc, &l1, &mx);
+            if (with_sens && !hit) {
+                for (i = 0u; i < OGK_NMPC_MAX_BODIES; ++i) {
+                    ctx->arc_d[(k * OGK_NMPC_MAX_BODIES) + i] = arc.d[i];
+                    ctx->arc_step[(k * OGK_NMPC_MAX_BODIES) + i] = arc.step[i];
+                }
+            }
             for (i = 0u; i < NX; ++i) {
                 const double d = x1[i] - p->x[((k + 1u) * NX) + i];
                 l1 += fabs(d);
@@ -178,8 +207,17 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
     if (st == OGK_OK) {
         ogk_i_nmpc_terminal(&ctx->cfg, &p->x[(size_t)p->nodes * NX], p->t0 + p->horizon, c_term);
         for (i = 0u; i < NC; ++i) {
-            l1 += fabs(c_term[i]);
-            mx = (fabs(c_term[i]) > mx) ? fabs(c_term[i]) : mx;
+            const double e = terminal_excess(&ctx->cfg, c_term, i);
+            l1 += e;
+            mx = (e > mx) ? e : mx;
+        }
+        if (ctx->cfg.mass_min > 0.0) {
+            /* the propellant limit (m decreases along the arcs: the final node bounds them) */
+            const double e = ctx->cfg.mass_min - p->x[((size_t)p->nodes * NX) + 4u];
+            if (e > 0.0) {
+                l1 += e;
+                mx = (e > mx) ? e : mx;
+            }
         }
         ogk_i_nmpc_keepout_violation(&ctx->cfg, p, &l1, &mx);
         *viol_l1 = l1;
@@ -188,7 +226,10 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
     return st;
 }
 
-/* Bounds of the QP unknowns and the sweep rows; returns the number of rows. */
+/* Bounds of the QP unknowns and its inequality rows: the sweep rows, the
+ * keep-out rows, then (a terminal set) two rows per condition of eq. (5),
+ * lower then upper, and the propellant row; returns the number of rows.
+ * Needs the linear terms (qp_aeq, qp_beq) of the iterate. */
 static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, nv and the box factor; every caller is in this file */
                            double box_scale)
 {
@@ -240,7 +281,47 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
         ctx->qp_bin[rows] = ctx->ko_b[k];
         ++rows;
     }
+    if (terminal_set(cfg)) {
+        size_t i;
+        size_t c;
+        for (i = 0u; i < NC; ++i) {
+            /* b - half <= A_i v <= b + half, b = -(c_i + e_i): the linearised
+             * residual c_i + e_i + A_i v within +-half */
+            for (c = 0u; c < nv; ++c) {
+                ctx->qp_ain[(rows * nv) + c] = ctx->qp_aeq[(i * nv) + c];
+                ctx->qp_ain[((rows + 1u) * nv) + c] = -ctx->qp_aeq[(i * nv) + c];
+            }
+            ctx->qp_bin[rows] = ctx->qp_beq[i] - cfg->terminal_box[i];
+            ctx->qp_bin[rows + 1u] = -ctx->qp_beq[i] - cfg->terminal_box[i];
+            rows += 2u;
+        }
+    }
+    if (cfg->mass_min > 0.0) {
+        /* m_N + dm_N >= mass_min, dm_N = G_N[4] v + e_N[4] */
+        (void)memcpy(&ctx->qp_ain[rows * nv], &ctx->cond_g[4u * nv], nv * sizeof(double));
+        ctx->qp_bin[rows] = cfg->mass_min - p->x[((size_t)p->nodes * NX) + 4u] - ctx->cond_e[4];
+        ++rows;
+    }
     return rows;
+}
+
+/* Index of the first terminal-set row in the rows of build_bounds. */
+static size_t terminal_row0(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p)
+{
+    const size_t sweep_rows = (ctx->cfg.max_sweep > 0.0) ? (2u * (size_t)p->nodes) : 0u;
+    return sweep_rows + ogk_i_min_size(ctx->ko_rows, OGK_NMPC_MAX_NODES);
+}
+
+/* With a terminal set, the QP's multipliers of eq. (5)'s conditions are
+ * those of their two rows (y_lo - y_hi: the signed multiplier of c_i). */
+static void terminal_multipliers(ogk_nmpc_t *ctx, size_t row0)
+{
+    if (terminal_set(&ctx->cfg)) {
+        size_t i;
+        for (i = 0u; i < NC; ++i) {
+            ctx->qp_sol.y_eq[i] = ctx->qp_sol.y_in[row0 + (2u * i)] - ctx->qp_sol.y_in[row0 + (2u * i) + 1u];
+        }
+    }
 }
 
 /* trial = work + alpha * step */
@@ -269,12 +350,15 @@ static void take_step(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const dou
 
 /* The elastic QP (SNOPT's elastic mode, on eq. 5 only): unknowns
  * (v, s+, s-), A_eq v + s+ - s- = b_eq, s+-  >= 0, cost + elastic_weight
- * (s+ + s-) and a small curvature on the slacks (the QP needs H > 0). */
+ * (s+ + s-) and a small curvature on the slacks (the QP needs H > 0). With a
+ * terminal set the slacks relax its rows instead (row0: the first), s+ the
+ * lower and s- the upper one of each condition. */
 static ogk_status solve_elastic(ogk_nmpc_t *ctx, const double *hess, const double *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the QP's (H, g) in order; its only caller is ogk_i_nmpc_sqp */
-                                size_t nv, size_t rows) /* NOLINT(bugprone-easily-swappable-parameters): as above, sizes (unknowns, inequality rows) */
+                                size_t nv, size_t rows, size_t row0) /* NOLINT(bugprone-easily-swappable-parameters): as above, sizes (unknowns, inequality rows, first terminal row) */
 {
     const size_t ne = nv + (2u * NC);
     const double w = ctx->cfg.elastic_weight;
+    const bool eq5 = !terminal_set(&ctx->cfg);
     ogk_qp_problem_t qp;
     size_t i;
     size_t j;
@@ -312,13 +396,19 @@ static ogk_status solve_elastic(ogk_nmpc_t *ctx, const double *hess, const doubl
             ctx->el_ain[(i * ne) + j] = 0.0;
         }
     }
+    if (!eq5) {
+        for (i = 0u; i < NC; ++i) {
+            ctx->el_ain[((row0 + (2u * i)) * ne) + nv + i] = 1.0;
+            ctx->el_ain[((row0 + (2u * i) + 1u) * ne) + nv + NC + i] = 1.0;
+        }
+    }
     qp.n = ne;
-    qp.m_eq = NC;
+    qp.m_eq = eq5 ? NC : 0u;
     qp.m_in = rows;
     qp.H = ctx->el_h;
     qp.g = ctx->el_g;
-    qp.A_eq = ctx->el_aeq;
-    qp.b_eq = ctx->qp_beq;
+    qp.A_eq = eq5 ? ctx->el_aeq : NULL;
+    qp.b_eq = eq5 ? ctx->qp_beq : NULL;
     qp.A_in = (rows > 0u) ? ctx->el_ain : NULL;
     qp.b_in = (rows > 0u) ? ctx->qp_bin : NULL;
     qp.lb = ctx->el_lb;
@@ -346,13 +436,14 @@ static void lagrangian_gradient(const ogk_nmpc_t *ctx, size_t nv, const double *
 static void step_qp(const ogk_nmpc_t *ctx, size_t nv, size_t rows, const double *hess, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the QP's sizes then its H and g; callers in this file only */
                     const double *g, ogk_qp_problem_t *qp)
 {
+    const bool eq5 = !terminal_set(&ctx->cfg);
     qp->n = nv;
-    qp->m_eq = NC;
+    qp->m_eq = eq5 ? NC : 0u;
     qp->m_in = rows;
     qp->H = hess;
     qp->g = g;
-    qp->A_eq = ctx->qp_aeq;
-    qp->b_eq = ctx->qp_beq;
+    qp->A_eq = eq5 ? ctx->qp_aeq : NULL;
+    qp->b_eq = eq5 ? ctx->qp_beq : NULL;
     qp->A_in = (rows > 0u) ? ctx->qp_ain : NULL;
     qp->b_in = (rows > 0u) ? ctx->qp_bin : NULL;
     qp->lb = ctx->qp_lb;
@@ -511,15 +602,28 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 if (st == OGK_E_INFEASIBLE) {
                     rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
                     (void)build_bounds(ctx, p, nv, box);
-                    st = solve_elastic(ctx, hess, g_obj, nv, rows);
+                    st = solve_elastic(ctx, hess, g_obj, nv, rows, terminal_row0(ctx, p));
                     rep->flags |= OGK_NMPC_FLAG_ELASTIC;
                     rho = 0.0; /* the slacks take the residual: no shift to undo */
                 }
             }
+            if (st == OGK_OK) {
+                terminal_multipliers(ctx, terminal_row0(ctx, p));
+            }
             if ((st == OGK_OK) && (rho > 0.0)) {
-                /* H + rho A^T A: the multipliers of eq. (5) are y - rho b_eq */
+                /* H + rho A^T A: the multipliers of eq. (5) are y - rho A v, and A v
+                 * = b_eq with eq. (5) exactly */
                 for (i = 0u; i < NC; ++i) {
-                    ctx->qp_sol.y_eq[i] -= rho * ctx->qp_beq[i];
+                    if (terminal_set(cfg)) {
+                        size_t c;
+                        double av = 0.0;
+                        for (c = 0u; c < nv; ++c) {
+                            av += ctx->qp_aeq[(i * nv) + c] * ctx->qp_sol.x[c];
+                        }
+                        ctx->qp_sol.y_eq[i] -= rho * av;
+                    } else {
+                        ctx->qp_sol.y_eq[i] -= rho * ctx->qp_beq[i];
+                    }
                 }
             }
             rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;

@@ -136,6 +136,13 @@ BAD_RANGE(body0_soft_neg, c->n_bodies = 2u; c->body_softening[0] = -1.0e-9)
 BAD_RANGE(body1_mu_neg, c->n_bodies = 2u; c->body_mu[1] = -1.0e-9)
 BAD_RANGE(body1_radius_zero, c->n_bodies = 2u; c->body_radius[1] = 0.0)
 BAD_RANGE(body1_soft_neg, c->n_bodies = 2u; c->body_softening[1] = -1.0e-9)
+BAD_RANGE(release0_neg, c->n_bodies = 2u; c->body_release[0] = -1.0e-9)
+BAD_RANGE(release1_neg, c->n_bodies = 2u; c->body_release[1] = -1.0e-9)
+BAD_RANGE(mass_min_neg, c->mass_min = -1.0e-12)
+BAD_RANGE(box0_neg, c->terminal_box[0] = -1.0e-12)
+BAD_RANGE(box1_neg, c->terminal_box[1] = -1.0e-12)
+BAD_RANGE(box2_neg, c->terminal_box[2] = -1.0e-12)
+BAD_RANGE(box3_neg, c->terminal_box[3] = -1.0e-12)
 
 static const config_case_t range_cases[] = {
     { "mu", mu_zero, OGK_E_CONFIG },
@@ -178,6 +185,13 @@ static const config_case_t range_cases[] = {
     { "body_mu[1]", body1_mu_neg, OGK_E_CONFIG },
     { "body_radius[1]", body1_radius_zero, OGK_E_CONFIG },
     { "body_softening[1]", body1_soft_neg, OGK_E_CONFIG },
+    { "body_release[0]", release0_neg, OGK_E_CONFIG },
+    { "body_release[1]", release1_neg, OGK_E_CONFIG },
+    { "mass_min", mass_min_neg, OGK_E_CONFIG },
+    { "terminal_box[0]", box0_neg, OGK_E_CONFIG },
+    { "terminal_box[1]", box1_neg, OGK_E_CONFIG },
+    { "terminal_box[2]", box2_neg, OGK_E_CONFIG },
+    { "terminal_box[3]", box3_neg, OGK_E_CONFIG },
 };
 
 /* A valid configuration with two bodies, so that the per-body checks are reached. */
@@ -243,7 +257,12 @@ static void test_init_rejects_every_field(void **state)
             fields[n++] = &p->body_rate[b];
             fields[n++] = &p->body_softening[b];
             fields[n++] = &p->keepout_radius[b];
+            fields[n++] = &p->body_release[b];
         }
+        for (b = 0u; b < OGK_NMPC_NC; ++b) {
+            fields[n++] = &p->terminal_box[b];
+        }
+        fields[n++] = &p->mass_min;
         fields[n++] = &p->target_radius;
         fields[n++] = &p->target_phase0;
         fields[n++] = &p->target_rate;
@@ -625,8 +644,9 @@ static void test_solve_sweep_bound(void **state)
 }
 
 /* The target out of reach (thrust too weak for the fixed horizon): every QP is infeasible, with
- * the step box opened too, so the elastic QP runs; the solve fails and the previous plan flies. */
-/* req: OGK-NMPC-006 */
+ * the step box opened too, so the elastic QP runs; the solve fails and the previous plan flies.
+ * Also with a terminal set (its rows relaxed instead of eq. 5's equalities). */
+/* req: OGK-NMPC-006 OGK-NMPC-013 */
 static void test_solve_elastic_qp(void **state)
 {
     ogk_nmpc_config_t c;
@@ -635,9 +655,13 @@ static void test_solve_elastic_qp(void **state)
     ogk_nmpc_command_t cmd;
     int pass;
     (void)state;
-    for (pass = 0; pass < 2; ++pass) {
+    for (pass = 0; pass < 3; ++pass) {
         ogk_status st;
         coast_config(&c, 3u);
+        if (pass == 2) {
+            c.terminal_box[0] = 1.0e-3;
+            c.terminal_box[2] = 1.0e-3;
+        }
         c.thrust_max = 1.0e-3;
         c.target_radius = 1.5;
         c.horizon_min = 1.0;

@@ -758,6 +758,209 @@ static void test_keepout_detour(void **state)
     keepout_detour(OGK_NMPC_HESSIAN_EXACT);
 }
 
+/* The terminal set (terminal_box): the radial transfer to |r - 1.5| <= delta
+ * with |v_r| <= nu. Its continuous optimum accelerates, then brakes, and
+ * arrives at r = 1.5 - delta still moving out at v_r = nu: a (t1^2) -
+ * nu^2 / (2 a) = D - delta and T* = 2 t1 - nu / a; the discrete optimum lies
+ * above it by O(h^2), with both Hessians, and below the exact eq. (5)'s. */
+static void terminal_set_radial(uint32_t hessian)
+{
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    const double a = 0.1;
+    const double delta = 0.05;
+    const double nu = 0.02;
+    const double t1 = sqrt(((0.5 - delta) + ((nu * nu) / (2.0 * a))) / a);
+    const double t_star = (2.0 * t1) - (nu / a);
+    nmpc_fx_radial(&c, 20u, 4u, 300u);
+    c.hessian = hessian;
+    c.terminal_box[0] = delta;
+    c.terminal_box[1] = 1.0e-3;
+    c.terminal_box[2] = nu;
+    c.terminal_box[3] = 1.0e-3;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    nmpc_fx_radial_guess(20u, 5.0, &plan);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
+    print_message("terminal set (%s Hessian): t_f %.6f against T* %.6f (exact eq. 5: %.6f), r_N %.8f, v_r,N %.8f, "
+                  "%u SQP iterations\n", (hessian == OGK_NMPC_HESSIAN_EXACT) ? "exact" : "BFGS", rep.t_f, t_star,
+                  2.0 * sqrt(0.5 / a), plan2.x[20u * NX], plan2.x[20u * NX + 2u], (unsigned)rep.sqp_iterations);
+    assert_true(rep.t_f >= t_star * (1.0 - 1.0e-6));
+    assert_true(rep.t_f <= t_star * 1.003);
+    assert_true(rep.t_f < 2.0 * sqrt(0.5 / a));
+    /* it arrives on the box: the near face in r, moving out at nu */
+    OGK_ASSERT_NEAR(plan2.x[20u * NX], 1.5 - delta, 1.0e-9);
+    OGK_ASSERT_NEAR(plan2.x[20u * NX + 2u], nu, 1.0e-9);
+    assert_true(rep.feas <= 1.0e-10);
+}
+
+/* req: OGK-NMPC-013 */
+static void test_terminal_set(void **state)
+{
+    (void)state;
+    terminal_set_radial(OGK_NMPC_HESSIAN_BFGS);
+    terminal_set_radial(OGK_NMPC_HESSIAN_EXACT);
+}
+
+/* The propellant limit (mass_min): Earth to Mars at constant thrust, m_N =
+ * 1 - mdot T. Below the open loop's final mass it changes nothing; above it
+ * no plan meets it (minimum time is the least burn), so the solve fails, the
+ * loaded plan stays flown (STALE), and the context stays usable. */
+/* req: OGK-NMPC-013 OGK-NMPC-005 */
+static void test_propellant_limit(void **state)
+{
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    double t_free;
+    double m_free;
+    (void)state;
+    mars_config(&c, 8u);
+    c.tol_obj = 0.0; /* converged optima (stationarity 1e-7), comparable to 1e-6 TU */
+    mars_guess(&c, 8u, 6.4, &plan);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    t_free = rep.t_f;
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
+    m_free = plan2.x[8u * NX + 4u];
+    OGK_ASSERT_NEAR(m_free, 1.0 - (c.mass_flow_max * t_free), 1.0e-9);
+    c.mass_min = m_free - 0.01;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    OGK_ASSERT_NEAR(rep.t_f, t_free, 1.0e-6);
+    c.mass_min = m_free + 0.01;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    assert_true(ogk_nmpc_solve(&ctx, &in, &rep) != OGK_OK);
+    assert_true((rep.flags & OGK_NMPC_FLAG_STALE) != 0u);
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
+    assert_true(plan2.horizon == plan.horizon);
+    assert_true(memcmp(plan2.u, plan.u, sizeof plan.u) == 0);
+}
+
+/* The keep-out along the arcs: a body almost on the radial path, between
+ * the optimum's nodes 5 and 6 (r = 1.175 and 1.250, 0.039 and 0.041 LU from
+ * it), so that every node of that plan stays outside a 0.03 LU radius while
+ * its arc between them passes 0.013 LU from the body. Every RK4 step end of every subinterval (the
+ * kernel's own sweep, redone here from the node by ogk_nmpc_interval over
+ * the fraction j / M of the subinterval, the control interpolated to match)
+ * stays outside the radius, not only the nodes. */
+/* req: OGK-NMPC-013 OGK-NMPC-007 */
+static void test_keepout_along_arcs(void **state)
+{
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    uint32_t k;
+    uint32_t j;
+    const uint32_t nodes = 12u;
+    const uint32_t steps = 4u;
+    const double radius = 0.03;
+    const double r_b = 1.212;
+    const double phase = 0.002;
+    double closest = 1.0e9;
+    double closest_node = 1.0e9;
+    (void)state;
+    nmpc_fx_radial(&c, nodes, steps, 300u);
+    c.n_bodies = 1u;
+    nmpc_fx_body(&c, 0u, 0.0, r_b, phase, 0.0);
+    /* the straight optimum first (no keep-out), then re-solved from it with the keep-out: its nodes
+     * all satisfy it, its arc does not */
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    nmpc_fx_radial_guess(nodes, 5.0, &plan);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan), OGK_OK);
+    c.keepout_radius[0] = radius;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
+    for (k = 0u; k < nodes; ++k) {
+        const double h = plan2.horizon / (double)nodes;
+        const double rn = plan2.x[k * NX];
+        const double thn = plan2.x[k * NX + 1u];
+        closest_node = fmin(closest_node, sqrt(rn * rn + r_b * r_b - 2.0 * rn * r_b * cos(thn - phase)));
+        for (j = 1u; j < steps; ++j) {
+            const double frac = (double)j / (double)steps;
+            const double u1 = plan2.u[k] + (frac * (plan2.u[k + 1u] - plan2.u[k]));
+            double xs[NX];
+            double r;
+            double th;
+            OGK_ASSERT_STATUS(ogk_nmpc_interval(&ctx, plan2.t0 + ((double)k * h), frac * h, &plan2.x[k * NX],
+                                                &plan2.u[k], &u1, xs, NULL, NULL, NULL, NULL, NULL), OGK_OK);
+            r = xs[0];
+            th = xs[1];
+            closest = fmin(closest, sqrt(r * r + r_b * r_b - 2.0 * r * r_b * cos(th - phase)));
+        }
+    }
+    print_message("keep-out along the arcs: closest step end %.9f, closest node %.9f, radius %.9f, t_f %.6f\n",
+                  closest, closest_node, radius, rep.t_f);
+    assert_true(closest >= radius * (1.0 - 1.0e-5));
+    assert_true(closest_node > radius);
+}
+
+/* body_release: a body in the predictive model while the measured state is
+ * within its release radius, out of it for good from the first call beyond
+ * (FLAG_RELEASED once), back after reset. */
+/* req: OGK-NMPC-013 OGK-NMPC-008 */
+static void test_body_release(void **state)
+{
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    const double x_near[NX] = { 1.0, 0.0, 0.0, 1.0, 1.0 };
+    const double u[2] = { 1.0, 1.0 };
+    double f_on[NX];
+    double f_off[NX];
+    double f_none[NX];
+    (void)state;
+    mars_config(&c, 8u);
+    c.n_bodies = 1u;
+    nmpc_fx_body(&c, 0u, 3.0e-6, 1.0, -0.01, 1.0); /* Earth-like, 0.01 LU from the start */
+    c.body_release[0] = 0.05;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, x_near, u, f_on), OGK_OK);
+    mars_guess(&c, 8u, 6.4, &plan);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    (void)ogk_nmpc_solve(&ctx, &in, &rep);
+    assert_true((rep.flags & OGK_NMPC_FLAG_RELEASED) == 0u);
+    OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, x_near, u, f_off), OGK_OK);
+    assert_true(memcmp(f_on, f_off, sizeof f_on) == 0);
+    /* 0.1 rad ahead: 0.11 LU from the body, beyond 0.05 */
+    in.x[1] = 0.1;
+    (void)ogk_nmpc_solve(&ctx, &in, &rep);
+    assert_true((rep.flags & OGK_NMPC_FLAG_RELEASED) != 0u);
+    OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, x_near, u, f_off), OGK_OK);
+    c.n_bodies = 0u;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx2, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx2, 0.0, x_near, u, f_none), OGK_OK);
+    assert_true(memcmp(f_off, f_none, sizeof f_off) == 0);
+    assert_true(fabs(f_on[3] - f_none[3]) > 1.0e-3); /* the body pulled */
+    /* back inside: released for good */
+    in.x[1] = 0.0;
+    (void)ogk_nmpc_solve(&ctx, &in, &rep);
+    assert_true((rep.flags & OGK_NMPC_FLAG_RELEASED) == 0u);
+    OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, x_near, u, f_off), OGK_OK);
+    assert_true(memcmp(f_off, f_none, sizeof f_off) == 0);
+    /* reset: in the model again */
+    OGK_ASSERT_STATUS(ogk_nmpc_reset(&ctx), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, x_near, u, f_off), OGK_OK);
+    assert_true(memcmp(f_on, f_off, sizeof f_on) == 0);
+}
+
 /* reset gives back the context of a fresh init: the same open loop bit for bit */
 /* req: OGK-NMPC-008 */
 static void test_reset_equals_init(void **state)
@@ -800,6 +1003,10 @@ int main(void)
         cmocka_unit_test(test_warm_sensitivities_exact),
         cmocka_unit_test(test_failure_and_bad_input),
         cmocka_unit_test(test_keepout_detour),
+        cmocka_unit_test(test_terminal_set),
+        cmocka_unit_test(test_propellant_limit),
+        cmocka_unit_test(test_keepout_along_arcs),
+        cmocka_unit_test(test_body_release),
         cmocka_unit_test(test_reset_equals_init),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

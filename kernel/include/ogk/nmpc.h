@@ -79,9 +79,10 @@ extern "C" {
 
 /* QP unknowns: the node-control corrections and the horizon correction. */
 #define OGK_NMPC_MAX_VARS (((OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU) + 1u)
-/* General inequality rows of the QP: the sweep bound (2 per subinterval)
- * and the keep-out (at most one per node, OGK_NMPC_MAX_NODES in all). */
-#define OGK_NMPC_MAX_ROWS (3u * OGK_NMPC_MAX_NODES)
+/* General inequality rows of the QP: the sweep bound (2 per subinterval),
+ * the keep-out (OGK_NMPC_MAX_NODES rows in all, nodes and arcs), the
+ * terminal set (2 per condition of eq. 5) and the propellant limit (1). */
+#define OGK_NMPC_MAX_ROWS ((3u * OGK_NMPC_MAX_NODES) + (2u * OGK_NMPC_NC) + 1u)
 /* Unknowns of the elastic QP: v and the slacks s+, s- of eq. (5). */
 #define OGK_NMPC_MAX_QP (OGK_NMPC_MAX_VARS + (2u * OGK_NMPC_NC))
 /* Sensitivity directions of one subinterval: X_k, U_k, U_{k+1}, T. */
@@ -127,6 +128,7 @@ extern "C" {
 #define OGK_NMPC_FLAG_LS_FAILED 0x10u   /* the line search found no acceptable step (solve failed) */
 #define OGK_NMPC_FLAG_END_OF_PLAN 0x20u /* command asked past t_f: the last node's control is held */
 #define OGK_NMPC_FLAG_ELASTIC 0x40u     /* a QP was infeasible and solved in elastic mode (eq. 5 relaxed) */
+#define OGK_NMPC_FLAG_RELEASED 0x80u    /* a third body's gravity left the predictive model at this call (body_release) */
 
 #define OGK_NMPC_INIT_MARKER 0x4E4D5043u /* "NMPC" */
 
@@ -148,14 +150,25 @@ typedef struct {
     double body_phase0[OGK_NMPC_MAX_BODIES]; /* [rad] their polar angles at t = 0 */
     double body_rate[OGK_NMPC_MAX_BODIES];   /* [rad/TU] their angular rates */
     double body_softening[OGK_NMPC_MAX_BODIES]; /* [LU] Plummer length eps, |d|^3 -> (|d|^2 + eps^2)^(3/2), >= 0 (0: point mass) */
-    double keepout_radius[OGK_NMPC_MAX_BODIES]; /* [LU] nodes 1..N-1 stay this far from body b's centre (b < n_bodies; body_mu may be 0 for an ephemeris only), >= 0 (0: none) */
+    double keepout_radius[OGK_NMPC_MAX_BODIES]; /* [LU] nodes 1..N-1 and the arcs between the nodes (their interior RK4 step ends) stay this far from body b's centre (b < n_bodies; body_mu may be 0 for an ephemeris only), >= 0 (0: none) */
+    double body_release[OGK_NMPC_MAX_BODIES];   /* [LU] body b's gravity leaves the predictive model for good at the first solve or replan
+                                                 *      whose measured state is farther than this from its centre (its ephemeris stays, for the
+                                                 *      keep-out): a departure planet modelled only while it dominates, inside its Hill sphere
+                                                 *      (docs/nmpc-flight.md, "Robustness"), >= 0 (0: never, the default) */
     /* target: circular orbit (eqs. 5-6) */
     double target_radius;       /* [LU] R_T, > 0; must be set */
     double target_phase0;       /* [rad] theta_T at t = 0 */
     double target_rate;         /* [rad/TU] theta_T' (sqrt(mu / R_T^3) on a Keplerian orbit) */
+    double terminal_box[OGK_NMPC_NC]; /* [LU, rad, LU/TU, LU/TU] the terminal set: |r - R_T|, |theta - theta_T(t_f)|,
+                                 *     |v_r|, |v_theta - v_T| at t_f within these half-widths, each >= 0; all 0
+                                 *     (the default): eq. (5) exactly, as the paper. Beyond the paper: with eq. (5)
+                                 *     exact a disturbed minimum-time plan has no slack near the end and its re-solve
+                                 *     jumps to another branch (docs/nmpc-flight.md, "Robustness") */
     /* transcription */
     uint32_t objective;         /* [-] OGK_NMPC_MIN_TIME or OGK_NMPC_MIN_FUEL */
     double time_weight;         /* [MU/TU] minimum fuel only: J = m_0 - m_N + time_weight T, >= 0 (default 0: the paper's) */
+    double mass_min;            /* [MU] the propellant limit: the final node's mass m_N >= mass_min (the dry mass;
+                                 *     m decreases along every arc, so m_N bounds them all), >= 0 (default 0: none) */
     uint32_t nodes;             /* [-] N of the first plan, 1..OGK_NMPC_MAX_NODES (default 30) */
     uint32_t rk4_steps;         /* [-] RK4 steps per subinterval, 1..OGK_NMPC_MAX_RK4_STEPS (default 8) */
     double horizon_min;         /* [TU] lower bound of T, > 0 (default 1e-3) */
@@ -228,7 +241,8 @@ typedef struct {
 
 /* Context. Treat as opaque; read it through the functions below. */
 typedef struct {
-    ogk_nmpc_config_t cfg;
+    ogk_nmpc_config_t cfg;      /* the configuration; body_mu[b] is 0 once body b is released (body_release) */
+    double body_mu_init[OGK_NMPC_MAX_BODIES]; /* [LU^3/TU^2] the configuration's body_mu, restored by reset */
     uint32_t nu;                /* [-] controls per node */
     uint32_t subdivisions;      /* [-] doublings made since init or reset */
     uint32_t plan_flags;        /* [-] OGK_NMPC_FLAG_* of the plan flown */
@@ -253,6 +267,10 @@ typedef struct {
      * same bits is not swept again (a warm start's shifted intervals; docs/nmpc-flight.md, 2c) */
     double sens_key[OGK_NMPC_MAX_NODES * OGK_NMPC_SENS_KEY];
     double sens_model[OGK_NMPC_SENS_MODEL]; /* the model of every key (keys all 0, matching no interval, after a change) */
+    /* the keep-out along subinterval k's arc, from the same sweep as its sensitivities: per body b the
+     * smallest distance of the interior RK4 step ends and the step it is reached at (0: none) */
+    double arc_d[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_BODIES];     /* [LU] */
+    uint32_t arc_step[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_BODIES]; /* [-] 1 .. rk4_steps - 1, 0: none */
     /* exact Hessian: per subinterval k the block sum_i mu_k,i d2F_k,i in (X_k, U_k, U_k+1, T),
      * OGK_NMPC_MAX_DIR square, and the tape of the interval being swept */
     double hess_blk[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR];
