@@ -186,6 +186,13 @@ test-static-gates:
 test-python-prereqs: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_B)/rt/startup.o \
   $(ARM_B)/rt/ogk_port_cm7.o
 
+# Long campaigns of every family's shipped scenarios (soak.toml: >= 1,000 runs each on fixed seeds no test
+# uses) through the one engine, summarised per family; exit 1 when a campaign loses a flight its law's
+# stated envelope does not allow (docs/campaigns.md, "make soak"). Not part of `make test`: ~30 min.
+.PHONY: soak
+soak: $(FFI_STAMP)
+	$(VENV)/bin/ogk soak --out $(B)/soak
+
 # The main job, through the verbs every family has (ogk tables / mc / run): LEO-to-GEO VTD-NOG + CPD,
 # ground tables (build/tables/leo_geo-<sha12>) then a 100-run SIL Monte Carlo flying them, against the
 # paper's Table 7 (envelope JSON, Parquet table and PNG plots in build/mc); MPSP on the 23 Apophis cases

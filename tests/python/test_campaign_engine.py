@@ -101,8 +101,30 @@ def test_ogk_mc_writes_envelope_and_table_and_replay_is_bit_exact(family, tmp_pa
     assert len(doc["scenario_sha256"]) == 64 and Path(doc["scenario_path"]).is_file()
     assert doc["failures"] == len(doc["failed_runs"]) == (res.returncode == 1) * doc["failures"]
     for q in doc["quantities"].values():
-        assert set(q) == {"n", "mean", "std", "worst"}
+        assert set(q) == {"n", "mean", "std", "median", "robust_std", "worst", "farthest"}
     rows = envelope.read_table(tmp_path / doc["per_run_table"])
+    # every failed run: its class, its stream and the command that replays it
+    for f in doc["failed_runs"]:
+        assert f["class"] and f["replay"] == f"ogk replay {out} {f['run_id']}"
+        assert f["run_seed"] == rows[f["run_id"]]["run_seed"]
+    rob = doc["robustness"]
+    assert rob["runs"] == 4 and rob["lost_flights"] == len(rob["lost_runs"]) >= doc["failures"]
+    # the median and the distances from it, recomputed from the table (numpy / scipy)
+    from scipy.stats import median_abs_deviation
+    for key, q in doc["quantities"].items():
+        vals = np.array([float(r[key]) for r in rows if isinstance(r.get(key), (int, float))
+                         and np.isfinite(r[key])])
+        if vals.size < 2:
+            continue
+        med = float(np.median(vals))
+        assert q["median"] == pytest.approx(med, rel=1e-12, abs=1e-300)
+        mad = median_abs_deviation(vals, scale="normal")
+        rstd = mad if mad > 0 else np.sqrt(np.pi / 2) * np.mean(np.abs(vals - med))
+        assert q["robust_std"] == pytest.approx(rstd, rel=1e-9, abs=1e-300)
+        far = np.max(np.abs(vals - med))
+        assert abs(q["farthest"]["value"] - med) == pytest.approx(far, rel=1e-12, abs=1e-300)
+        if q["std"] > 0:
+            assert q["farthest"]["from_median_std"] == pytest.approx(far / q["std"], rel=1e-9)
     assert [r["run_id"] for r in rows] == list(range(4))
     assert all({"run_id", "run_seed", "failure"} <= set(r) for r in rows)
     assert len({r["run_seed"] for r in rows}) == 4          # four independent streams

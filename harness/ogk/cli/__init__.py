@@ -30,6 +30,7 @@ SUBCOMMANDS: tuple[str, ...] = (
     "ogk.cli.cmd_mpsp",
     "ogk.cli.cmd_nmpc",
     "ogk.cli.cmd_blt",
+    "ogk.cli.cmd_soak",
 )
 
 

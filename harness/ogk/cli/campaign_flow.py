@@ -98,17 +98,27 @@ def report(campaign: str) -> int:
 
 
 def generic_report(doc: dict[str, Any]) -> str:
-    """Quantities, failures and (when present) the paper's columns of any campaign."""
+    """Quantities (with the worst run's distance from the median), failures with their classes and
+    replay commands, the robustness summary and (when present) the paper's columns of any campaign;
+    an envelope written before these keys existed gets the columns it has."""
+    from ogk.sil import robustness
     lines = [f"{doc['mission']} ({doc['family']}, {doc['law']}): {doc['runs']} runs, seed "
-             f"{doc['seed']}, {doc['failures']} failed",
-             f"  {'quantity':28s} {'mean':>14s} {'std':>14s} {'worst':>14s}  run"]
-    for key, q in doc["quantities"].items():
-        if q["n"]:
-            lines.append(f"  {key:28s} {q['mean']:14.6g} {q['std']:14.6g} "
-                         f"{q['worst']['value']:14.6g}  {q['worst']['run_id']}")
+             f"{doc['seed']}, {doc['failures']} failed"]
+    if all("median" in q for q in doc["quantities"].values()):
+        lines.append(robustness.format_quantities(doc["quantities"]))
+    else:
+        lines.append(f"  {'quantity':28s} {'mean':>14s} {'std':>14s} {'worst':>14s}  run")
+        for key, q in doc["quantities"].items():
+            if q["n"]:
+                lines.append(f"  {key:28s} {q['mean']:14.6g} {q['std']:14.6g} "
+                             f"{q['worst']['value']:14.6g}  {q['worst']['run_id']}")
     for reason, n in doc["failure_reasons"].items():
         lines.append(f"  failed: {n} x {reason}")
+    for f in doc["failed_runs"]:
+        if f.get("replay"):
+            lines.append(f"  run {f['run_id']} ({f['class']}): {f['replay']}")
+    if doc.get("robustness"):
+        lines.append(robustness.format_summary(doc["robustness"], doc["family"], doc["mission"]))
     if doc.get("pil"):
         lines.append(target_summary.format_summary(doc["pil"]))
     return "\n".join(lines)
-

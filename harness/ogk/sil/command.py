@@ -12,7 +12,7 @@ from typing import Any
 from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader
 
-from . import dispersion_check, engine, envelope, target_summary
+from . import dispersion_check, engine, envelope, robustness, target_summary
 from .family import CampaignPlan
 from .outputs import check_output_dir, check_output_file, remove_stale
 from .pil import TARGETS
@@ -161,8 +161,12 @@ def _fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace, executor: A
     if flown.resumed_runs:
         print(f"\n{flown.resumed_runs} of {len(flown.records)} runs taken from "
               f"{engine.run_log_path(args.json)}")
-    envelope.write_campaign(args.json, flown, extra, pil,
-                            None if disp is None else disp.to_json())
+    doc = envelope.write_campaign(args.json, flown, extra, pil,
+                                  None if disp is None else disp.to_json())
+    print()
+    print(robustness.format_quantities(doc["quantities"]))
+    print()
+    print(robustness.format_summary(doc["robustness"], plan.family, plan.mission))
     print(f"\nwrote {args.json} and {envelope.table_path(args.json)} "
           f"({len(flown.records)} runs, {flown.wall_s:.1f} s wall, {flown.workers} workers)")
     if args.plots and hasattr(fam, "plots"):

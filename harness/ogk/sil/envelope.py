@@ -3,9 +3,15 @@
 Envelope (`ogk.campaign/1`, written atomically, NaN as null):
   schema, family, law, mission, scenario_path, scenario_sha256, products {name: SHA-256},
   options (what the runs depend on besides id and seed), seed, runs, workers, resumed_runs,
-  failures (count), failure_reasons {reason: count}, failed_runs [{run_id, reason}],
+  failures (count), failure_reasons {reason: count}, failure_classes {class: count},
+  failed_runs [{run_id, reason, class, run_seed, replay}] (replay: the `ogk replay` command of the run),
   acceptance (the criterion as the scenario states it),
-  quantities {key: {n, mean, std, worst: {run_id, value}}}  (worst: the largest |value|, the lowest run id on a tie),
+  quantities {key: {n, mean, std, median, robust_std, worst: {run_id, value, from_median_std,
+    from_median_robust_std}, farthest: {the same}}}  (worst: the largest |value|, the lowest run id
+    on a tie; farthest: the run farthest from the median; ogk.sil.robustness),
+  robustness {runs, lost_flights, lost_by_class {class: {count, runs}}, lost_runs [...],
+    failed_solves {total, runs_with_any, per_run_max, run_of_max, by_class} | null, worst_run}
+    (ogk.sil.robustness),
   paper (the paper's columns beside ours, only when the scenario carries them),
   per_run_table (the Parquet file's name), timing {wall_s, cpu_s}, target ("host" or "m7"),
   pil (a target campaign only: worst case per entry point, host vs target; ogk.sil.target_summary),
@@ -29,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from . import numerics
+from . import numerics, robustness
 from .engine import Flown
 from .family import Record
 from .outputs import write_atomic
@@ -38,8 +44,9 @@ from .report import finite_or_none
 SCHEMA = "ogk.campaign/1"
 ENVELOPE_KEYS = ("schema", "family", "law", "mission", "scenario_path", "scenario_sha256",
                  "products", "options", "seed", "runs", "workers", "resumed_runs", "failures",
-                 "failure_reasons", "failed_runs", "acceptance", "quantities", "paper",
-                 "per_run_table", "timing", "target", "pil", "dispersion_check", "numerics")
+                 "failure_reasons", "failure_classes", "failed_runs", "acceptance", "quantities",
+                 "paper", "per_run_table", "timing", "target", "pil", "dispersion_check", "numerics",
+                 "robustness")
 
 
 def table_path(json_path: str | Path) -> Path:
@@ -57,20 +64,22 @@ def _number(value: Any) -> float | None:
 
 
 def quantity_summary(records: Sequence[Record], keys: Sequence[str]) -> dict[str, Any]:
-    """Mean, sample std (ddof 1) and the worst run (largest |value|; of equal ones, the lowest run id) of
-    each key over the runs where it is a finite number."""
+    """Mean, sample std (ddof 1), median, robust std and the worst run (largest |value|; of equal ones,
+    the lowest run id) and the run farthest from the median, each with its distance from the median in
+    both sigmas (ogk.sil.robustness), of each key over the runs where it is a finite number."""
     out: dict[str, Any] = {}
     for key in keys:
         pairs = [(int(r["run_id"]), v) for r in records
                  if (v := _number(r.get(key))) is not None and math.isfinite(v)]
         if not pairs:
-            out[key] = {"n": 0, "mean": None, "std": None, "worst": None}
+            out[key] = {"n": 0, "mean": None, "std": None, "median": None, "robust_std": None,
+                        "worst": None, "farthest": None}
             continue
         vals = np.array([v for _, v in pairs])
         k = int(np.argmax(np.abs(vals)))
         out[key] = {"n": len(pairs), "mean": float(vals.mean()),
                     "std": float(vals.std(ddof=1)) if vals.size > 1 else 0.0,
-                    "worst": {"run_id": pairs[k][0], "value": float(vals[k])}}
+                    **robustness.spread([i for i, _ in pairs], vals, k)}
     return out
 
 
@@ -96,14 +105,24 @@ def envelope(flown: Flown, extra: Mapping[str, Any] | None = None,
     if clash:
         raise ValueError(f"family keys shadow the envelope: {clash}")
     paper = plan.paper(recs) if plan.paper is not None else None
+    path = None if json_path is None else str(json_path)
+    lost = robustness.lost_runs(recs, plan.classify, plan.lost, path)
+    failed = [{k: f[k] for k in ("run_id", "reason", "class", "run_seed", "replay")}
+              for f in lost if f["acceptance"]]
+    classes: dict[str, int] = {}
+    for f in failed:
+        classes[f["class"]] = classes.get(f["class"], 0) + 1
+    quantities = quantity_summary(recs, plan.quantities)
+    rob = robustness.summary(recs, quantities, lost, robustness.failed_solves(recs, plan.solve_failures))
+    rob["lost_runs"] = lost
     doc.update({
         "schema": SCHEMA, "family": plan.family, "law": plan.law, "mission": plan.mission,
         "scenario_path": str(plan.scenario_path), "scenario_sha256": plan.scenario_sha256,
         "products": plan.products, "options": plan.options, "seed": flown.seed, "runs": len(recs),
         "workers": flown.workers, "resumed_runs": flown.resumed_runs,
         "failures": len(flown.failures()), "failure_reasons": failure_reasons(recs),
-        "failed_runs": flown.failures(), "acceptance": plan.acceptance,
-        "quantities": quantity_summary(recs, plan.quantities),
+        "failure_classes": classes, "failed_runs": failed, "acceptance": plan.acceptance,
+        "quantities": quantities, "robustness": rob,
         "per_run_table": None if json_path is None else table_path(json_path).name,
         "timing": {"wall_s": flown.wall_s, "cpu_s": flown.cpu_s}, "target": plan.target,
         "numerics": numerics.fingerprint()})

@@ -27,6 +27,12 @@ and the campaign plan says everything the engine needs and nothing of the physic
                                             carries disp.<key>, checked after the campaign
   draw(run_ids, run_seeds) -> [record]      optional: the disp.* keys of runs without flying them,
                                             by the code the flight's records come from
+  classify(record) -> str                  optional: the class of a failed run (default: its reason
+                                            without numbers, ogk.sil.robustness.failure_class)
+  lost(record) -> reason                    optional: why a run that passed the acceptance is still a
+                                            lost flight (the binary family: its corrector did not converge)
+  solve_failures(record) -> [class]         optional: each failed solve of the run (default: the
+                                            record's `failed_solves` count, unclassified)
 
 A family that flies on the target lists it in `targets` (("host", "m7")) and reads
 options["target"] (absent: "host").
@@ -87,6 +93,12 @@ class CampaignPlan:
     dispersions: Any = None
     #: the disp.* keys of a chunk of runs drawn without flying (None: the family cannot)
     draw: ChunkFlight | None = None
+    #: the class of a failed run (None: ogk.sil.robustness.failure_class of its reason)
+    classify: Callable[[Record], str] | None = None
+    #: "" or why a run that passed the acceptance is still a lost flight (ogk.sil.robustness)
+    lost: Callable[[Record], str] | None = None
+    #: the class of each failed solve of a run (None: the record's `failed_solves` count, if any)
+    solve_failures: Callable[[Record], Sequence[str]] | None = None
 
     def key(self, seed: int) -> dict[str, Any]:
         """What the runs depend on besides their ids: the run log's key."""

@@ -136,6 +136,20 @@ class BinaryFamily:
                             f"{accept_tol:g}")
             return ""
 
+        # the corrector the flight software flies: the scenario's [solver] corrector (the others are the
+        # campaign's comparisons); when it did not converge the transfer is not flown (safe command,
+        # engine off): a lost flight for the robustness summary (ogk.sil.robustness), not a failure
+        flight = solver.corrector if solver.corrector in correctors else correctors[-1]
+
+        def lost(rec: Record) -> str:
+            if rec.get(f"{flight}.converged"):
+                return ""
+            return f"{flight}: {rec.get(f'{flight}.reason') or 'not converged'}"
+
+        def solve_failures(rec: Record) -> list[str]:
+            return [f"{c}: {rec.get(f'{c}.reason') or 'not converged'}" for c in correctors
+                    if not rec.get(f"{c}.converged")]
+
         nominal_sha = hashlib.sha256(np.ascontiguousarray(d.transfer.segments).tobytes()
                                      + np.ascontiguousarray(d.transfer.nodes).tobytes()).hexdigest()
         table3 = (scenario.paper_results or {}).get("table3") or {}
@@ -155,7 +169,7 @@ class BinaryFamily:
             acceptance={"dop853_tolerance": accept_tol,
                         "error_tolerance": scenario.acceptance.error_tolerance,
                         "non_convergence": "measured, not a failure"},
-            watchdog_per_run_s=30.0, base=base,
+            watchdog_per_run_s=30.0, base=base, lost=lost, solve_failures=solve_failures,
             dispersions=declared(scenario_table(header.path), nominal, levels, sigma),
             draw=per_run(lambda run_id, run_seed: draw_record(nominal, levels, sigma, run_id,
                                                               run_seed)))

@@ -161,6 +161,8 @@ class LowThrustFamily:
             acceptance={"converged": True, "dr_f_km": acc.position_error_km,
                         "dv_f_kmps": acc.velocity_error_km_s},
             watchdog_per_run_s=120.0, base=(setup, papers),
+            # a run is one MPSP solve (Algorithms 1-2): it failed when it did not converge
+            solve_failures=lambda rec: [] if rec["converged"] else ["MPSP did not converge"],
             dispersions=declared(setup, scenario_table(header.path), which),
             draw=per_run(lambda run_id, run_seed: applied_record(setup, case_of(run_id, run_seed))))
         if options.get("target", "host") != "host":
