@@ -261,7 +261,8 @@ static void fill_report(const ogk_nmpc_t *ctx, ogk_nmpc_report_t *rep)
     rep->objective = ogk_i_nmpc_objective(&ctx->cfg, p);
 }
 
-/* A body whose release radius the measured state is beyond leaves the
+/* A body whose release radius the measured state is beyond, on an escape
+ * orbit from it (two-body energy >= 0: it does not fall back), leaves the
  * predictive model for good (body_release); FLAG_RELEASED in rep. */
 static void release_bodies(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in, ogk_nmpc_report_t *rep)
 {
@@ -270,7 +271,8 @@ static void release_bodies(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in, ogk_nmpc
     size_t b;
     for (b = 0u; b < n_bodies; ++b) {
         if ((ctx->cfg.body_release[b] > 0.0) && (ctx->cfg.body_mu[b] > 0.0)
-            && (ogk_i_nmpc_body_distance(&ctx->cfg, b, in->x, in->t) > ctx->cfg.body_release[b])) {
+            && (ogk_i_nmpc_body_distance(&ctx->cfg, b, in->x, in->t) > ctx->cfg.body_release[b])
+            && (ogk_i_nmpc_body_energy(&ctx->cfg, b, in->x, in->t) >= 0.0)) {
             ctx->cfg.body_mu[b] = 0.0;
             rep->flags |= OGK_NMPC_FLAG_RELEASED;
         }

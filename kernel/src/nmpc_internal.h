@@ -69,28 +69,34 @@ void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
  * t_start only when a third body attracts (the model then depends on t). */
 size_t ogk_i_nmpc_ncol(const ogk_nmpc_config_t *cfg, uint32_t nu);
 
-/* The keep-out along one arc: per body b with a keep-out radius, the smallest
- * distance of the interval's interior RK4 step ends from its centre and that
- * step (1 .. rk4_steps - 1; 0 and OGK_I_NMPC_ARC_NONE: none). */
-#define OGK_I_NMPC_ARC_NONE 1.0e300
+/* The keep-out along one arc (the interior RK4 step ends of a subinterval):
+ * r_start, set by the caller, the radius required at the arc's start (R, or
+ * on the first subinterval a measured state's distance inside R: the
+ * required radius then grows straight to R at its end); per body b the step
+ * ends within three radii (bit j: step j's end); the sum and the largest of
+ * the violations max(0, R_required - d). */
 typedef struct {
-    double d[OGK_NMPC_MAX_BODIES];      /* [LU] */
-    uint32_t step[OGK_NMPC_MAX_BODIES]; /* [-] */
+    double r_start[OGK_NMPC_MAX_BODIES]; /* [LU] */
+    uint32_t mask[OGK_NMPC_MAX_BODIES];  /* [-] */
+    double viol_sum;                     /* [LU] */
+    double viol_max;                     /* [LU] */
 } ogk_i_nmpc_arc_t;
+/* Doubles recorded per step end by ogk_i_nmpc_shoot_arc's rec: the state and its sensitivities. */
+#define OGK_I_NMPC_REC_STRIDE ((size_t)OGK_NMPC_NX + ((size_t)OGK_NMPC_NX * OGK_I_NMPC_NCOL_Z))
 
-/* arc := none for every body. */
-void ogk_i_nmpc_arc_clear(ogk_i_nmpc_arc_t *arc);
+/* arc of subinterval k of plan p, before its sweep: no step end, no
+ * violation, the radius required at the start (see ogk_i_nmpc_arc_t). */
+void ogk_i_nmpc_arc_start(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, size_t k,
+                          ogk_i_nmpc_arc_t *arc);
 
-/* The sweep of ogk_i_nmpc_shoot run for its first steps_run steps only
- * (1 .. cfg->rk4_steps; the control still linear over the whole interval):
- * xf and sens are then the state at step steps_run's end and its
- * sensitivities. arc (or NULL): the keep-out scan of the interior step ends
- * swept (ogk_i_nmpc_keepout_scan). */
+/* The sweep of ogk_i_nmpc_shoot with two additions: arc (or NULL): the
+ * keep-out scan of the interior step ends (ogk_i_nmpc_keepout_scan); ends (or
+ * NULL, with sens): the state and its sensitivities at each interior step
+ * end j, at ends + (j - 1) OGK_I_NMPC_REC_STRIDE. */
 ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu,
                                 double t_start, double h, const double *x0,
                                 const double *u0, const double *u1, double *xf,
-                                double *sens, double *tape, uint32_t steps_run,
-                                ogk_i_nmpc_arc_t *arc);
+                                double *sens, double *tape, ogk_i_nmpc_arc_t *arc, double *ends);
 
 /* F = x at the end of one interval [t_start, t_start + h] from x0 with the
  * control linear from u0 to u1. When sens is not NULL it receives the
@@ -196,19 +202,17 @@ void ogk_i_nmpc_keepout_violation(const ogk_nmpc_config_t *cfg, const ogk_nmpc_p
                                   double *largest);
 void ogk_i_nmpc_keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, size_t k,
                              const double *g, const double *e);
-/* body_distance: |r - r_b| of state x at time t from body b's centre.
+/* body_distance: |r - r_b| of state x at time t from body b's centre;
+ * body_energy: its two-body energy relative to body b, |v - v_b|^2 / 2 -
+ * mu_b / |r - r_b| [LU^2/TU^2] (>= 0: on an escape orbit from b).
  * Along the arcs: scan: one step end x at time t (step index `step`) into
- * arc; arc_violation: adds max(0, R_eff - d) of interval k's arc to *sum and
- * *largest (R_eff = R, or on interval 0 when node 0 is inside the radius the
- * straight recovery from node 0's distance to R at node 1); arc_rows: the
- * linearised row of interval k's closest step end per body (g, e: node k's
- * condensed sensitivities, the sensitivities of the step end from a partial
- * sweep), from ctx->arc_d / arc_step. */
+ * arc; arc_rows: the linearised rows of interval k's step ends in
+ * ctx->arc_mask (g, e: node k's condensed sensitivities; the step ends'
+ * from a sweep recorded in the context's tape, free during condensing). */
 double ogk_i_nmpc_body_distance(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t);
+double ogk_i_nmpc_body_energy(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t);
 void ogk_i_nmpc_keepout_scan(const ogk_nmpc_config_t *cfg, const double *x, double t, uint32_t step,
                              ogk_i_nmpc_arc_t *arc);
-void ogk_i_nmpc_keepout_arc_violation(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, size_t k,
-                                      const ogk_i_nmpc_arc_t *arc, double *sum, double *largest);
 void ogk_i_nmpc_keepout_arc_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, size_t k,
                                  const double *g, const double *e);
 

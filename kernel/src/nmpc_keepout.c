@@ -78,7 +78,7 @@ void ogk_i_nmpc_keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t n
     size_t b;
     size_t c;
     for (b = 0u; b < n_bodies; ++b) {
-        if ((cfg->keepout_radius[b] > 0.0) && (ctx->ko_rows < OGK_NMPC_MAX_NODES)) {
+        if ((cfg->keepout_radius[b] > 0.0) && (ctx->ko_rows < OGK_NMPC_MAX_KO_ROWS)) {
             double dr;
             double dth;
             double dt;
@@ -111,13 +111,47 @@ double ogk_i_nmpc_body_distance(const ogk_nmpc_config_t *cfg, size_t b, const do
     return keepout_distance(cfg, b, x, t, &dr, &dth, &dt);
 }
 
-void ogk_i_nmpc_arc_clear(ogk_i_nmpc_arc_t *arc)
+double ogk_i_nmpc_body_energy(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t)
 {
+    const double phi = cfg->body_phase0[b] + (cfg->body_rate[b] * t);
+    const double ct = cos(x[1]);
+    const double st = sin(x[1]);
+    const double cp = cos(phi);
+    const double sp = sin(phi);
+    const double vb = cfg->body_radius[b] * cfg->body_rate[b];
+    /* Cartesian velocities: the spacecraft's (v_r, v_theta) rotated by theta, the body's R phi' e_phi */
+    const double dvx = ((x[2] * ct) - (x[3] * st)) + (vb * sp);
+    const double dvy = ((x[2] * st) + (x[3] * ct)) - (vb * cp);
+    const double d = ogk_i_nmpc_body_distance(cfg, b, x, t);
+    const double pot = (d > 1.0e-300) ? (cfg->body_mu[b] / d) : 0.0;
+    return (0.5 * ((dvx * dvx) + (dvy * dvy))) - pot;
+}
+
+void ogk_i_nmpc_arc_start(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, size_t k,
+                          ogk_i_nmpc_arc_t *arc)
+{
+    const size_t n_bodies = ogk_i_min_size(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
     size_t b;
+    arc->viol_sum = 0.0;
+    arc->viol_max = 0.0;
     for (b = 0u; b < OGK_NMPC_MAX_BODIES; ++b) {
-        arc->d[b] = OGK_I_NMPC_ARC_NONE;
-        arc->step[b] = 0u;
+        arc->mask[b] = 0u;
+        arc->r_start[b] = cfg->keepout_radius[b];
     }
+    if (k == 0u) {
+        for (b = 0u; b < n_bodies; ++b) {
+            /* a measured state the truth has pushed inside: the required radius grows straight from
+             * its distance to R at node 1 (every plan would be infeasible otherwise) */
+            const double d0 = ogk_i_nmpc_body_distance(cfg, b, p->x, p->t0);
+            arc->r_start[b] = (d0 < cfg->keepout_radius[b]) ? d0 : cfg->keepout_radius[b];
+        }
+    }
+}
+
+/* The radius required at step end j of steps of an arc starting at r_start. */
+static double arc_radius(const ogk_nmpc_config_t *cfg, size_t b, double r_start, uint32_t j)
+{
+    return r_start + ((cfg->keepout_radius[b] - r_start) * (double)j / (double)cfg->rk4_steps);
 }
 
 void ogk_i_nmpc_keepout_scan(const ogk_nmpc_config_t *cfg, const double *x, double t, uint32_t step,
@@ -128,49 +162,15 @@ void ogk_i_nmpc_keepout_scan(const ogk_nmpc_config_t *cfg, const double *x, doub
     size_t b;
     for (b = 0u; b < n_bodies; ++b) {
         if (cfg->keepout_radius[b] > 0.0) {
-            double dr;
-            double dth;
-            double dt;
-            const double d = keepout_distance(cfg, b, x, t, &dr, &dth, &dt);
-            if (d < arc->d[b]) {
-                arc->d[b] = d;
-                arc->step[b] = step;
-            }
-        }
-    }
-}
-
-/* The radius required of the arc of interval k at step j: R, or on interval 0
- * when node 0 (the measured state) is inside R, the straight recovery from
- * its distance d0 to R at node 1 (a measured state the truth has pushed
- * inside would otherwise make every plan infeasible). */
-static double arc_radius(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, size_t b, size_t k,
-                         uint32_t j)
-{
-    double req = cfg->keepout_radius[b];
-    if (k == 0u) {
-        double dr;
-        double dth;
-        double dt;
-        const double d0 = keepout_distance(cfg, b, p->x, p->t0, &dr, &dth, &dt);
-        if (d0 < req) {
-            req = d0 + ((req - d0) * (double)j / (double)cfg->rk4_steps);
-        }
-    }
-    return req;
-}
-
-void ogk_i_nmpc_keepout_arc_violation(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, size_t k,
-                                      const ogk_i_nmpc_arc_t *arc, double *sum, double *largest)
-{
-    const size_t n_bodies = ogk_i_min_size(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
-    size_t b;
-    for (b = 0u; b < n_bodies; ++b) {
-        if ((cfg->keepout_radius[b] > 0.0) && (arc->step[b] > 0u)) {
-            const double v = arc_radius(cfg, p, b, k, arc->step[b]) - arc->d[b];
+            const double d = ogk_i_nmpc_body_distance(cfg, b, x, t);
+            const double v = arc_radius(cfg, b, arc->r_start[b], step) - d;
             if (v > 0.0) {
-                *sum += v;
-                *largest = (v > *largest) ? v : *largest;
+                arc->viol_sum += v;
+                arc->viol_max = (v > arc->viol_max) ? v : arc->viol_max;
+            }
+            if (d < (KEEPOUT_ACTIVE * cfg->keepout_radius[b])) {
+                /* step <= OGK_NMPC_MAX_RK4_STEPS - 1 = 31: one bit of the mask */
+                arc->mask[b] |= (uint32_t)1u << step;
             }
         }
     }
@@ -184,33 +184,44 @@ void ogk_i_nmpc_keepout_arc_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size
     const double h = p->horizon / (double)p->nodes;
     const double t_start = p->t0 + ((double)k * h);
     const size_t n_bodies = ogk_i_min_size(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
+    const uint32_t steps = ogk_i_min_u32(cfg->rk4_steps, OGK_NMPC_MAX_RK4_STEPS);
     const size_t col_u0 = NX;
     const size_t col_u1 = NX + (size_t)nu;
     const size_t col_h = NX + (2u * (size_t)nu);
     const size_t ncol = ogk_i_nmpc_ncol(cfg, nu);
+    uint32_t any = 0u;
+    ogk_i_nmpc_arc_t arc;
     size_t b;
+    uint32_t j;
     size_t c;
     size_t i;
     for (b = 0u; b < n_bodies; ++b) {
-        const size_t slot = (k * OGK_NMPC_MAX_BODIES) + b;
-        const uint32_t j = ctx->arc_step[slot];
-        if ((cfg->keepout_radius[b] > 0.0) && (j > 0u) && (ctx->ko_rows < OGK_NMPC_MAX_NODES)
-            && (ctx->arc_d[slot] < (KEEPOUT_ACTIVE * cfg->keepout_radius[b]))) {
-            double xs[NX];
-            double sens[NX * OGK_I_NMPC_MAX_COLS];
-            /* the state at step j's end and its sensitivities (X_k, U_k, U_k+1, h[, t_start]) */
-            if (ogk_i_nmpc_shoot_arc(cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu], &p->u[(k + 1u) * nu],
-                                     xs, sens, NULL, j, NULL) == OGK_OK) {
+        any |= ctx->arc_mask[(k * OGK_NMPC_MAX_BODIES) + b];
+    }
+    ogk_i_nmpc_arc_start(cfg, p, k, &arc);
+    if (any != 0u) {
+        double xf[NX];
+        double sens[NX * OGK_I_NMPC_MAX_COLS];
+        /* the step ends' states and sensitivities (X_k, U_k, U_k+1, h[, t_start]), recorded in the
+         * tape (the exact Hessian's, free while condensing) */
+        any = (ogk_i_nmpc_shoot_arc(cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu], &p->u[(k + 1u) * nu],
+                                    xf, sens, NULL, NULL, ctx->tape) == OGK_OK) ? any : 0u;
+    }
+    for (b = 0u; (b < n_bodies) && (any != 0u); ++b) {
+        const uint32_t mask = ctx->arc_mask[(k * OGK_NMPC_MAX_BODIES) + b];
+        for (j = 1u; j < steps; ++j) {
+            if ((((mask >> j) & 1u) != 0u) && (ctx->ko_rows < OGK_NMPC_MAX_KO_ROWS)) {
+                const double *rec = &ctx->tape[((size_t)j - 1u) * OGK_I_NMPC_REC_STRIDE];
+                const double *s_r = &rec[NX + (0u * OGK_I_NMPC_MAX_COLS)];
+                const double *s_th = &rec[NX + (1u * OGK_I_NMPC_MAX_COLS)];
                 const double frac = (double)j / (double)cfg->rk4_steps;
                 double dr;
                 double dth;
                 double dt;
-                const double d = keepout_distance(cfg, b, xs, t_start + (frac * h), &dr, &dth, &dt);
-                const double *s_r = &sens[0u * OGK_I_NMPC_MAX_COLS];
-                const double *s_th = &sens[1u * OGK_I_NMPC_MAX_COLS];
+                const double d = keepout_distance(cfg, b, rec, t_start + (frac * h), &dr, &dth, &dt);
                 double *row = &ctx->ko_a[ctx->ko_rows * nv];
                 double offset = 0.0;
-                /* dd/dv = (dr, dth) (S_X G_k + S_U0 E_k + S_U1 E_k+1 + S_h dh/dT + S_ts dts/dT) + dd/dt dt_s/dT */
+                /* dd/dv = (dr, dth) (S_X G_k + S_U0 E_k + S_U1 E_k+1 + S_h dh/dT + S_ts dts/dT) + dd/dt dt_j/dT */
                 for (c = 0u; c < nv; ++c) {
                     double acc = 0.0;
                     for (i = 0u; i < NX; ++i) {
@@ -227,15 +238,14 @@ void ogk_i_nmpc_keepout_arc_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size
                 }
                 {
                     /* h = T / N, t_start = t0 + k T / N, the step end at t_start + frac h */
-                    double d_dt = (dr * s_r[col_h]) + (dth * s_th[col_h]);
-                    d_dt /= (double)p->nodes;
+                    double d_dt = ((dr * s_r[col_h]) + (dth * s_th[col_h])) / (double)p->nodes;
                     if (ncol > (col_h + 1u)) {
                         d_dt += ((dr * s_r[col_h + 1u]) + (dth * s_th[col_h + 1u])) * (double)k / (double)p->nodes;
                     }
                     d_dt += dt * ((double)k + frac) / (double)p->nodes;
                     row[nv - 1u] += d_dt;
                 }
-                ctx->ko_b[ctx->ko_rows] = arc_radius(cfg, p, b, k, j) - d - offset;
+                ctx->ko_b[ctx->ko_rows] = arc_radius(cfg, b, arc.r_start[b], j) - d - offset;
                 ctx->ko_rows += 1u;
             }
         }

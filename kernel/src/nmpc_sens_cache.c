@@ -123,7 +123,7 @@ void ogk_i_nmpc_cache_drop(ogk_nmpc_t *ctx, uint32_t nodes, uint32_t count, uint
     (void)memmove(ctx->sens_h, &ctx->sens_h[c * NX], keep * NX * sizeof(double));
     (void)memmove(ctx->sens_ts, &ctx->sens_ts[c * NX], keep * NX * sizeof(double));
     (void)memmove(ctx->sens_key, &ctx->sens_key[c * KEY], keep * KEY * sizeof(double));
-    (void)memmove(ctx->arc_d, &ctx->arc_d[c * OGK_NMPC_MAX_BODIES], keep * OGK_NMPC_MAX_BODIES * sizeof(double));
-    (void)memmove(ctx->arc_step, &ctx->arc_step[c * OGK_NMPC_MAX_BODIES],
+    (void)memmove(ctx->arc_mask, &ctx->arc_mask[c * OGK_NMPC_MAX_BODIES],
                   keep * OGK_NMPC_MAX_BODIES * sizeof(uint32_t));
+    (void)memmove(ctx->arc_viol, &ctx->arc_viol[c * 2u], keep * 2u * sizeof(double));
 }

@@ -138,14 +138,13 @@ ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT
                             const double *u0, const double *u1, double *xf,
                             double *sens, double *tape)
 {
-    return ogk_i_nmpc_shoot_arc(cfg, nu, t_start, h, x0, u0, u1, xf, sens, tape, cfg->rk4_steps, NULL);
+    return ogk_i_nmpc_shoot_arc(cfg, nu, t_start, h, x0, u0, u1, xf, sens, tape, NULL, NULL);
 }
 
 ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (nu, t_start, h as in ogk_nmpc_interval); checked by central differences (test_nmpc.c) */
                                 double t_start, double h, const double *x0,
                                 const double *u0, const double *u1, double *xf,
-                                double *sens, double *tape, uint32_t steps_run,
-                                ogk_i_nmpc_arc_t *arc)
+                                double *sens, double *tape, ogk_i_nmpc_arc_t *arc, double *ends)
 {
     /* RK4 stage offsets (fractions of one step) and weights */
     static const double c_off[4] = { 0.0, 0.5, 0.5, 1.0 };
@@ -155,7 +154,7 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
     const uint32_t steps = cfg->rk4_steps;
     /* rk4_steps <= OGK_NMPC_MAX_RK4_STEPS (ogk_nmpc_init): clamped once so the
      * loops below keep a fixed bound with one condition for it */
-    const uint32_t steps_b = ogk_i_min_u32(ogk_i_min_u32(steps_run, steps), OGK_NMPC_MAX_RK4_STEPS);
+    const uint32_t steps_b = ogk_i_min_u32(steps, OGK_NMPC_MAX_RK4_STEPS);
     const double dt = h / (double)steps;
     const double inv_steps = 1.0 / (double)steps;
     const size_t col_h = NX + (2u * (size_t)nu);
@@ -241,11 +240,6 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
             for (i = 0u; i < NX; ++i) {
                 x[i] += (dt / 6.0) * (k[0][i] + (2.0 * k[1][i]) + (2.0 * k[2][i]) + k[3][i]);
             }
-            if ((arc != NULL) && ((step + 1u) < steps)) {
-                /* an interior step end of the arc (the interval's ends are nodes) */
-                const uint32_t step_end = step + 1u;
-                ogk_i_nmpc_keepout_scan(cfg, x, t_start + ((double)step_end * inv_steps * h), step_end, arc);
-            }
             if (sens != NULL) {
                 for (i = 0u; i < NX; ++i) {
                     double k_sum = 0.0;
@@ -256,6 +250,18 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
                         k_sum += w_rk[j] * k[j][i];
                     }
                     s_mat[(i * NCOL) + col_h] += (inv_steps / 6.0) * k_sum;
+                }
+            }
+            if ((step + 1u) < steps) {
+                /* an interior step end of the arc (the interval's ends are nodes) */
+                const uint32_t step_end = step + 1u;
+                if (arc != NULL) {
+                    ogk_i_nmpc_keepout_scan(cfg, x, t_start + ((double)step_end * inv_steps * h), step_end, arc);
+                }
+                if ((ends != NULL) && (sens != NULL)) {
+                    double *r = &ends[(size_t)step * OGK_I_NMPC_REC_STRIDE];
+                    (void)memcpy(r, x, sizeof(x));
+                    (void)memcpy(&r[NX], s_mat, sizeof(s_mat));
                 }
             }
         }

@@ -81,6 +81,14 @@ static bool terminal_set(const ogk_nmpc_config_t *cfg)
         || (cfg->terminal_box[2] > 0.0) || (cfg->terminal_box[3] > 0.0);
 }
 
+/* The merit's objective: J, plus with a terminal set its l1 excess priced at
+ * elastic_weight (an exact penalty: the set is reached whenever the vehicle
+ * can reach it, and otherwise the plan ends as close to it as it can). */
+static double penalized(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, double t_excess)
+{
+    return ogk_i_nmpc_objective(cfg, p) + (cfg->elastic_weight * t_excess);
+}
+
 /* How far terminal residual i lies outside its half-width (|c_i| for eq. 5
  * exactly: |c_i| - 0 is |c_i| to the bit). */
 static double terminal_excess(const ogk_nmpc_config_t *cfg, const double *c, size_t i)
@@ -93,7 +101,7 @@ static double terminal_excess(const ogk_nmpc_config_t *cfg, const double *c, siz
  * residual. Stores F_k and the sensitivities in ctx when with_sens. */
 static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
                            bool with_sens, const double *y, double *viol_l1, double *viol_max, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, outputs in the order of the merit pair (l1, max) and c; every caller is in this file */
-                           double *c_term)
+                           double *c_term, double *t_excess)
 {
     ogk_status st = OGK_OK;
     const uint32_t nu = p->nu;
@@ -136,25 +144,26 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
         const size_t n_key = keyed ? ogk_i_nmpc_cache_key(ctx, p, k, t_start, h, key) : 0u;
         const bool hit = keyed && ogk_i_nmpc_cache_hit(ctx, k, key, n_key);
         ogk_i_nmpc_arc_t arc;
-        ogk_i_nmpc_arc_clear(&arc);
+        ogk_i_nmpc_arc_start(&ctx->cfg, p, k, &arc);
         if (hit) {
             (void)memcpy(x1, &ctx->sens_f[k * NX], sizeof(x1));
-            for (i = 0u; i < OGK_NMPC_MAX_BODIES; ++i) {
-                arc.d[i] = ctx->arc_d[(k * OGK_NMPC_MAX_BODIES) + i];
-                arc.step[i] = ctx->arc_step[(k * OGK_NMPC_MAX_BODIES) + i];
-            }
+            arc.viol_sum = ctx->arc_viol[2u * k];
+            arc.viol_max = ctx->arc_viol[(2u * k) + 1u];
         } else {
             st = ogk_i_nmpc_shoot_arc(&ctx->cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu],
                                       &p->u[(k + 1u) * nu], x1, with_sens ? sens : NULL,
-                                      second ? ctx->tape : NULL, ctx->cfg.rk4_steps, &arc);
+                                      second ? ctx->tape : NULL, &arc, NULL);
         }
         if (st == OGK_OK) {
-            ogk_i_nmpc_keepout_arc_violation(&ctx->cfg, p, k, &arc, &l1, &mx);
+            /* the keep-out along the arc */
+            l1 += arc.viol_sum;
+            mx = (arc.viol_max > mx) ? arc.viol_max : mx;
             if (with_sens && !hit) {
                 for (i = 0u; i < OGK_NMPC_MAX_BODIES; ++i) {
-                    ctx->arc_d[(k * OGK_NMPC_MAX_BODIES) + i] = arc.d[i];
-                    ctx->arc_step[(k * OGK_NMPC_MAX_BODIES) + i] = arc.step[i];
+                    ctx->arc_mask[(k * OGK_NMPC_MAX_BODIES) + i] = arc.mask[i];
                 }
+                ctx->arc_viol[2u * k] = arc.viol_sum;
+                ctx->arc_viol[(2u * k) + 1u] = arc.viol_max;
             }
             for (i = 0u; i < NX; ++i) {
                 const double d = x1[i] - p->x[((k + 1u) * NX) + i];
@@ -206,10 +215,17 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
     }
     if (st == OGK_OK) {
         ogk_i_nmpc_terminal(&ctx->cfg, &p->x[(size_t)p->nodes * NX], p->t0 + p->horizon, c_term);
+        *t_excess = 0.0;
         for (i = 0u; i < NC; ++i) {
             const double e = terminal_excess(&ctx->cfg, c_term, i);
-            l1 += e;
-            mx = (e > mx) ? e : mx;
+            if (terminal_set(&ctx->cfg)) {
+                /* the terminal set is elastic: its excess is priced in the merit's
+                 * objective (penalized), not in its violation */
+                *t_excess += e;
+            } else {
+                l1 += e;
+                mx = (e > mx) ? e : mx;
+            }
         }
         if (ctx->cfg.mass_min > 0.0) {
             /* the propellant limit (m decreases along the arcs: the final node bounds them) */
@@ -239,7 +255,7 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
     /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan) and ko_rows <= OGK_NMPC_MAX_NODES
      * (ogk_i_nmpc_keepout_rows): clamped once so each loop keeps a fixed bound */
     const uint32_t nodes = ogk_i_min_u32(p->nodes, OGK_NMPC_MAX_NODES);
-    const size_t ko_rows = ogk_i_min_size(ctx->ko_rows, OGK_NMPC_MAX_NODES);
+    const size_t ko_rows = ogk_i_min_size(ctx->ko_rows, OGK_NMPC_MAX_KO_ROWS);
     uint32_t k;
     double lo;
     double hi;
@@ -309,7 +325,7 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
 static size_t terminal_row0(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p)
 {
     const size_t sweep_rows = (ctx->cfg.max_sweep > 0.0) ? (2u * (size_t)p->nodes) : 0u;
-    return sweep_rows + ogk_i_min_size(ctx->ko_rows, OGK_NMPC_MAX_NODES);
+    return sweep_rows + ogk_i_min_size(ctx->ko_rows, OGK_NMPC_MAX_KO_ROWS);
 }
 
 /* With a terminal set, the QP's multipliers of eq. (5)'s conditions are
@@ -322,6 +338,17 @@ static void terminal_multipliers(ogk_nmpc_t *ctx, size_t row0)
             ctx->qp_sol.y_eq[i] = ctx->qp_sol.y_in[row0 + (2u * i)] - ctx->qp_sol.y_in[row0 + (2u * i) + 1u];
         }
     }
+}
+
+/* The terminal set's excess after an elastic QP's step: the sum of its slacks. */
+static double elastic_excess(const ogk_nmpc_t *ctx, size_t nv)
+{
+    double sum = 0.0;
+    size_t i;
+    for (i = nv; i < (nv + (2u * NC)); ++i) {
+        sum += ctx->qp_sol.x[i];
+    }
+    return sum;
 }
 
 /* trial = work + alpha * step */
@@ -466,10 +493,12 @@ static bool feasibility_step(ogk_nmpc_t *ctx, ogk_nmpc_plan_t *p, size_t nv, siz
     step_qp(ctx, nv, rows, ctx->el_h, zero, &qp);
     if (ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol) == OGK_OK) {
         double c_trial[NC];
+        double t_exc = 0.0;
         rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
         ogk_i_nmpc_expand_step(ctx, p, ctx->qp_sol.x, nv);
         take_step(ctx, p, ctx->qp_sol.x, nv, 1.0, &ctx->trial);
-        if ((evaluate(ctx, &ctx->trial, false, NULL, &t_l1, &t_max, c_trial) == OGK_OK) && (t_l1 < viol_l1)) {
+        if ((evaluate(ctx, &ctx->trial, false, NULL, &t_l1, &t_max, c_trial, &t_exc) == OGK_OK)
+            && (t_l1 < viol_l1)) {
             (void)memcpy(p, &ctx->trial, sizeof(*p));
             taken = true;
         }
@@ -513,6 +542,9 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     double first_max = 0.0;
     double viol_l1 = 0.0;
     double viol_max = 0.0;
+    double t_excess = 0.0;   /* l1 excess of the terminal set (elastic: priced in the merit) */
+    double first_exc = 0.0;
+    const bool elastic_set = terminal_set(cfg);
     uint32_t iter;
     size_t i;
     size_t rows;
@@ -542,7 +574,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
         const bool held = hold_next;
         hold_next = false;
         if (!have_eval) {
-            st = evaluate(ctx, p, true, second ? y_prev : NULL, &viol_l1, &viol_max, c_term);
+            st = evaluate(ctx, p, true, second ? y_prev : NULL, &viol_l1, &viol_max, c_term, &t_excess);
         }
         have_eval = false;
         if (st == OGK_OK) {
@@ -586,14 +618,31 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             }
             rows = build_bounds(ctx, p, nv, box);
             step_qp(ctx, nv, rows, hess, g_obj, &qp);
-            st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+            if (elastic_set) {
+                /* the terminal set's rows always elastic (their slacks priced at
+                 * elastic_weight, as the merit prices the excess) */
+                st = solve_elastic(ctx, hess, g_obj, nv, rows, terminal_row0(ctx, p));
+            } else {
+                st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+            }
             if (st == OGK_E_NOT_POSDEF) {
                 ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
                 first_update = true;
                 rho = 0.0;
-                st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+                if (elastic_set) {
+                    st = solve_elastic(ctx, hess, g_obj, nv, rows, terminal_row0(ctx, p));
+                } else {
+                    st = ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+                }
             }
-            if (st == OGK_E_INFEASIBLE) {
+            if ((st == OGK_E_INFEASIBLE) && elastic_set) {
+                /* the other rows (keep-out, propellant, sweep) out of the step box's reach:
+                 * once more with the box opened */
+                rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
+                (void)build_bounds(ctx, p, nv, BOX_OPEN);
+                st = solve_elastic(ctx, hess, g_obj, nv, rows, terminal_row0(ctx, p));
+                rep->flags |= OGK_NMPC_FLAG_ELASTIC;
+            } else if (st == OGK_E_INFEASIBLE) {
                 /* the step box made the linearised eq. (5) unreachable: once more
                  * with the box opened (the physical bounds stay) */
                 rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
@@ -606,6 +655,8 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                     rep->flags |= OGK_NMPC_FLAG_ELASTIC;
                     rho = 0.0; /* the slacks take the residual: no shift to undo */
                 }
+            } else {
+                /* solved, or a failure the step box does not cause */
             }
             if (st == OGK_OK) {
                 terminal_multipliers(ctx, terminal_row0(ctx, p));
@@ -643,11 +694,15 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             }
             rep->stat = stat;
             {
-                /* predicted change of J by the QP step (its defect part included) */
+                /* predicted change of J by the QP step (its defect part included),
+                 * with a terminal set of its priced excess too */
                 double pred = (cfg->objective == OGK_NMPC_MIN_FUEL) ? -ctx->cond_e[4] : 0.0;
                 const double j_now = fabs(ogk_i_nmpc_objective(cfg, p));
                 for (i = 0u; i < nv; ++i) {
                     pred += g_obj[i] * ctx->qp_sol.x[i];
+                }
+                if (elastic_set) {
+                    pred += cfg->elastic_weight * (elastic_excess(ctx, nv) - t_excess);
                 }
                 const double stop = cfg->tol_obj * ((j_now > 1.0) ? j_now : 1.0);
                 flat = (cfg->tol_obj > 0.0) && (fabs(pred) <= stop);
@@ -661,6 +716,10 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             if ((viol_max <= cfg->tol_feas) && ((stat <= cfg->tol_stat) || flat)) {
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
                 done = true;
+                if (t_excess > cfg->tol_feas) {
+                    /* the vehicle cannot reach the terminal set: the plan ends as close to it as it can */
+                    rep->flags |= OGK_NMPC_FLAG_OUTSIDE_SET;
+                }
             } else if (!exact && flat && (viol_max <= RESTORE_VIOL_MAX) && (restores < MAX_RESTORES)) {
                 /* the step predicts no change of J, only feasibility is left:
                  * a minimum-norm step onto the linearised constraints (H = I,
@@ -678,7 +737,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
         } else if (!done) {
             /* filter line search (Waechter & Biegler 2006, without the
              * restoration phase): theta = l1 violation, phi = J */
-            const double phi0 = ogk_i_nmpc_objective(cfg, p);
+            const double phi0 = penalized(cfg, p, t_excess);
             const double theta0 = viol_l1;
             /* an exact-Hessian step that predicts no change of J is the
              * last Newton step when its full step is feasible: that trial
@@ -694,6 +753,9 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             dphi = (cfg->objective == OGK_NMPC_MIN_FUEL)
                 ? (-ctx->dx[(p->nodes * NX) + 4u] + (cfg->time_weight * ctx->qp_sol.x[nv - 1u]))
                 : ctx->qp_sol.x[nv - 1u];
+            if (elastic_set) {
+                dphi += cfg->elastic_weight * (elastic_excess(ctx, nv) - t_excess);
+            }
             if (first_iter) {
                 theta_max = 1.0e4 * ((theta0 > 1.0) ? theta0 : 1.0);
                 theta_min = 1.0e-4 * ((theta0 > 1.0) ? theta0 : 1.0);
@@ -702,6 +764,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             for (ls = 0u; (ls < OGK_NMPC_MAX_LINE_SEARCH) && !accepted; ++ls) {
                 double t_l1 = 0.0;
                 double t_max = 0.0;
+                double t_exc = 0.0;
                 ogk_status ts;
                 take_step(ctx, p, ctx->qp_sol.x, nv, alpha, &ctx->trial);
                 /* the full step is evaluated with its sensitivities: taken
@@ -709,11 +772,12 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                  * iteration's linearisation */
                 ts = evaluate(ctx, &ctx->trial, (ls == 0u) && !newton_last,
                               (exact && !hold_ok) ? ctx->qp_sol.y_eq : NULL,
-                              &t_l1, &t_max, c_trial);
+                              &t_l1, &t_max, c_trial, &t_exc);
                 first_l1 = t_l1;
                 first_max = t_max;
+                first_exc = t_exc;
                 if ((ts == OGK_OK) && (t_l1 <= theta_max)) {
-                    const double phi_t = ogk_i_nmpc_objective(cfg, &ctx->trial);
+                    const double phi_t = penalized(cfg, &ctx->trial, t_exc);
                     const double m_alpha = alpha * dphi;
                     f_type = (dphi < 0.0) && (theta0 <= theta_min)
                         && ((alpha * pow(-m_alpha, FILTER_S_PHI)) > pow(theta0, FILTER_S_THETA));
@@ -793,11 +857,15 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                      * change of J (|dJ| <= tol_obj max(|J|, 1)) landed feasible */
                     viol_max = first_max;
                     done = true;
+                    if (first_exc > cfg->tol_feas) {
+                        rep->flags |= OGK_NMPC_FLAG_OUTSIDE_SET;
+                    }
                 } else if ((alpha >= 1.0) && !newton_last) {
                     have_eval = true;
                     hold_next = hold_ok;
                     viol_l1 = first_l1;
                     viol_max = first_max;
+                    t_excess = first_exc;
                     (void)memcpy(c_term, c_trial, sizeof(c_term));
                 } else {
                     /* evaluated again, with its sensitivities, next iteration */

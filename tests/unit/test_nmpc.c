@@ -911,8 +911,9 @@ static void test_keepout_along_arcs(void **state)
 }
 
 /* body_release: a body in the predictive model while the measured state is
- * within its release radius, out of it for good from the first call beyond
- * (FLAG_RELEASED once), back after reset. */
+ * within its release radius or bound to it (moving with it), out of it for
+ * good from the first call beyond on an escape orbit (FLAG_RELEASED once),
+ * back after reset. */
 /* req: OGK-NMPC-013 OGK-NMPC-008 */
 static void test_body_release(void **state)
 {
@@ -939,8 +940,17 @@ static void test_body_release(void **state)
     assert_true((rep.flags & OGK_NMPC_FLAG_RELEASED) == 0u);
     OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, x_near, u, f_off), OGK_OK);
     assert_true(memcmp(f_on, f_off, sizeof f_on) == 0);
-    /* 0.1 rad ahead: 0.11 LU from the body, beyond 0.05 */
+    /* 0.1 rad ahead (0.11 LU from the body, beyond 0.05) but moving with it: bound, kept */
     in.x[1] = 0.1;
+    in.x[2] = sin(0.11);
+    in.x[3] = cos(0.11);
+    (void)ogk_nmpc_solve(&ctx, &in, &rep);
+    assert_true((rep.flags & OGK_NMPC_FLAG_RELEASED) == 0u);
+    OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, x_near, u, f_off), OGK_OK);
+    assert_true(memcmp(f_on, f_off, sizeof f_on) == 0);
+    /* on the spacecraft's own circular orbit: 0.11 away at about 0.1 LU/TU, escaping */
+    in.x[2] = plan.x[2];
+    in.x[3] = plan.x[3];
     (void)ogk_nmpc_solve(&ctx, &in, &rep);
     assert_true((rep.flags & OGK_NMPC_FLAG_RELEASED) != 0u);
     OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, x_near, u, f_off), OGK_OK);

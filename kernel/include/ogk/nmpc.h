@@ -79,10 +79,13 @@ extern "C" {
 
 /* QP unknowns: the node-control corrections and the horizon correction. */
 #define OGK_NMPC_MAX_VARS (((OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU) + 1u)
+/* Keep-out rows of the QP: nodes and the RK4 step ends of the arcs within
+ * three radii of a body. */
+#define OGK_NMPC_MAX_KO_ROWS (2u * OGK_NMPC_MAX_NODES)
 /* General inequality rows of the QP: the sweep bound (2 per subinterval),
- * the keep-out (OGK_NMPC_MAX_NODES rows in all, nodes and arcs), the
- * terminal set (2 per condition of eq. 5) and the propellant limit (1). */
-#define OGK_NMPC_MAX_ROWS ((3u * OGK_NMPC_MAX_NODES) + (2u * OGK_NMPC_NC) + 1u)
+ * the keep-out, the terminal set (2 per condition of eq. 5) and the
+ * propellant limit (1). */
+#define OGK_NMPC_MAX_ROWS ((2u * OGK_NMPC_MAX_NODES) + OGK_NMPC_MAX_KO_ROWS + (2u * OGK_NMPC_NC) + 1u)
 /* Unknowns of the elastic QP: v and the slacks s+, s- of eq. (5). */
 #define OGK_NMPC_MAX_QP (OGK_NMPC_MAX_VARS + (2u * OGK_NMPC_NC))
 /* Sensitivity directions of one subinterval: X_k, U_k, U_{k+1}, T. */
@@ -129,6 +132,8 @@ extern "C" {
 #define OGK_NMPC_FLAG_END_OF_PLAN 0x20u /* command asked past t_f: the last node's control is held */
 #define OGK_NMPC_FLAG_ELASTIC 0x40u     /* a QP was infeasible and solved in elastic mode (eq. 5 relaxed) */
 #define OGK_NMPC_FLAG_RELEASED 0x80u    /* a third body's gravity left the predictive model at this call (body_release) */
+#define OGK_NMPC_FLAG_OUTSIDE_SET 0x100u /* converged outside the terminal set (terminal_box): the vehicle cannot reach it;
+                                          * the plan ends as close to it as it can (l1, priced at elastic_weight) */
 
 #define OGK_NMPC_INIT_MARKER 0x4E4D5043u /* "NMPC" */
 
@@ -152,8 +157,9 @@ typedef struct {
     double body_softening[OGK_NMPC_MAX_BODIES]; /* [LU] Plummer length eps, |d|^3 -> (|d|^2 + eps^2)^(3/2), >= 0 (0: point mass) */
     double keepout_radius[OGK_NMPC_MAX_BODIES]; /* [LU] nodes 1..N-1 and the arcs between the nodes (their interior RK4 step ends) stay this far from body b's centre (b < n_bodies; body_mu may be 0 for an ephemeris only), >= 0 (0: none) */
     double body_release[OGK_NMPC_MAX_BODIES];   /* [LU] body b's gravity leaves the predictive model for good at the first solve or replan
-                                                 *      whose measured state is farther than this from its centre (its ephemeris stays, for the
-                                                 *      keep-out): a departure planet modelled only while it dominates, inside its Hill sphere
+                                                 *      whose measured state is farther than this from its centre and on an escape orbit from
+                                                 *      it (two-body energy >= 0; its ephemeris stays, for the keep-out): a departure planet
+                                                 *      modelled only while it matters, inside its Hill sphere or bound to it
                                                  *      (docs/nmpc-flight.md, "Robustness"), >= 0 (0: never, the default) */
     /* target: circular orbit (eqs. 5-6) */
     double target_radius;       /* [LU] R_T, > 0; must be set */
@@ -268,9 +274,9 @@ typedef struct {
     double sens_key[OGK_NMPC_MAX_NODES * OGK_NMPC_SENS_KEY];
     double sens_model[OGK_NMPC_SENS_MODEL]; /* the model of every key (keys all 0, matching no interval, after a change) */
     /* the keep-out along subinterval k's arc, from the same sweep as its sensitivities: per body b the
-     * smallest distance of the interior RK4 step ends and the step it is reached at (0: none) */
-    double arc_d[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_BODIES];     /* [LU] */
-    uint32_t arc_step[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_BODIES]; /* [-] 1 .. rk4_steps - 1, 0: none */
+     * interior RK4 step ends within three keep-out radii (bit j: step j's end), and the arc's violation */
+    uint32_t arc_mask[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_BODIES]; /* [-] */
+    double arc_viol[OGK_NMPC_MAX_NODES * 2u];   /* [LU] sum and largest of max(0, R - d) over the arc's step ends */
     /* exact Hessian: per subinterval k the block sum_i mu_k,i d2F_k,i in (X_k, U_k, U_k+1, T),
      * OGK_NMPC_MAX_DIR square, and the tape of the interval being swept */
     double hess_blk[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR];
@@ -289,8 +295,8 @@ typedef struct {
     double qp_beq[OGK_NMPC_NC];
     double qp_ain[OGK_NMPC_MAX_ROWS * OGK_NMPC_MAX_VARS];
     double qp_bin[OGK_NMPC_MAX_ROWS];
-    double ko_a[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_VARS]; /* keep-out rows of the condensed QP */
-    double ko_b[OGK_NMPC_MAX_NODES];
+    double ko_a[OGK_NMPC_MAX_KO_ROWS * OGK_NMPC_MAX_VARS]; /* keep-out rows of the condensed QP */
+    double ko_b[OGK_NMPC_MAX_KO_ROWS];
     size_t ko_rows;             /* [-] keep-out rows in use */
     double qp_lb[OGK_NMPC_MAX_VARS];
     double qp_ub[OGK_NMPC_MAX_VARS];

@@ -35,7 +35,7 @@ extern "C" {
 #endif
 /* Largest number of general inequality rows (bounds are extra). */
 #ifndef OGK_QP_MAX_IN
-#define OGK_QP_MAX_IN 112u
+#define OGK_QP_MAX_IN 140u
 #endif
 
 /* A bound of this magnitude or more (either sign) means "no bound". */
