@@ -21,7 +21,7 @@ from scipy.integrate import solve_ivp
 
 from ogk_host.rendezvous.dynamics import DAY_S, Engine, Model, planets, rk4_interval, third_body_accel, throttle_rhs
 from ogk_host.rendezvous.nlp import RendezvousNlp, min_fuel_guess, min_time_guess
-from ogk_host.rendezvous.scenario import load_scenario
+from ogk_host.rendezvous.scenario import load_scenario, paper_problem
 
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import KernelError
@@ -36,7 +36,9 @@ SEP_FUEL = "scenarios/rendezvous_sep_min_fuel.toml"
 
 
 def kernel_for(path: str, **overrides: object) -> tuple[Nmpc, object]:
-    scen = load_scenario(path)
+    """The kernel on the paper's problem (the ground NLP's: no robustness options, no propellant row)."""
+    scen = paper_problem(load_scenario(path))
+    overrides.setdefault("mass_min", 0.0)
     return Nmpc(kernel_config(scen, strategy_settings(scen, "snns"), **overrides)), scen
 
 
@@ -192,10 +194,10 @@ def test_exact_hessian_open_loop_reaches_ipopt_at_the_default_tolerance() -> Non
 
 @pytest.mark.req("OGK-NMPC-003")
 def test_open_loop_min_fuel_equals_ipopt_fuel() -> None:
-    scen = load_scenario(NEP_FUEL)
+    scen = paper_problem(load_scenario(NEP_FUEL))
     x0 = Model.for_scenario(scen).x0
     guess, _ = min_fuel_guess(scen)                      # the min-time optimum at full throttle
-    g = Nmpc(kernel_config(scen, strategy_settings(scen, "snns"), time_weight=0.0))   # the paper J
+    g = Nmpc(kernel_config(scen, strategy_settings(scen, "snns"), time_weight=0.0, mass_min=0.0))   # the paper J
     g.load_plan(guess.t0, guess.horizon, guess.states, guess.controls)
     rep = g.solve(0.0, x0)
     assert rep.converged, rep.status
@@ -212,13 +214,23 @@ def test_open_loop_min_fuel_equals_ipopt_fuel() -> None:
 
 @pytest.mark.req("OGK-NMPC-010")
 def test_unperturbed_snns_closed_loop_reaches_mars_before_the_open_loop() -> None:
-    scen = load_scenario(MIN_TIME)
+    # the paper's problem (no robustness options): its 353.37 d is the first instant inside Mars' SOI,
+    # ~17 d before t_f* = 370.12 d
+    scen = paper_problem(load_scenario(MIN_TIME))
     r = fly(scen, KernelGuidance(scen, strategy_settings(scen, "snns")), perturbed=False, seed=0)
     assert r.converged and r.reason == "rendezvous"
     assert r.failed_solves == 0
-    # the paper's 353.37 d is the first instant inside Mars' SOI, ~17 d before t_f* = 370.12 d
     assert 345.0 < r.t_f_days < 360.0
     mdot = scen.propulsion.mass_flow_at_max_kg_s
+    assert r.fuel_kg == pytest.approx(mdot * r.t_f_days * DAY_S, rel=1e-6)
+    # the shipped law (12 % thrust margin, terminal set, Earth while departing): the same engine arrives
+    # before its own first plan's t_f, which its margin makes later than the paper's
+    law = load_scenario(MIN_TIME)
+    g = KernelGuidance(law, strategy_settings(law, "snns"))
+    r = fly(law, g, perturbed=False, seed=0)
+    assert r.converged and r.failed_solves == 0
+    assert r.history[0].planned_t_f_days > 370.12
+    assert r.t_f_days < r.history[0].planned_t_f_days
     assert r.fuel_kg == pytest.approx(mdot * r.t_f_days * DAY_S, rel=1e-6)
 
 

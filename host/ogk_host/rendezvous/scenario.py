@@ -221,6 +221,11 @@ class OcpSettings:
     transfer_time_max_s: float | None = None
 
 
+#: [nmpc] departure_planet_in_model: "no" (the paper's predictive model), "hill-sphere" (Earth's gravity in
+#: the flight solver's predictive model until a replan's measured state is beyond Earth's Hill sphere)
+DEPARTURE_PLANET_IN_MODEL = ("no", "hill-sphere")
+
+
 @dataclasses.dataclass(frozen=True)
 class NmpcSettings:
     """The closed loop of sec. 2.3 (`ogk nmpc`, harness/ogk/missions/rendezvous). The paper gives none of the
@@ -238,7 +243,11 @@ class NmpcSettings:
     constr_viol_tol: float              #: IPOPT constr_viol_tol
     max_iter: int                       #: IPOPT max_iter per solve
     fuel_time_weight_kg_per_day: float = 0.0  #: min-fuel closed loop: J = fuel + w T (beyond the paper; 0 = its J)
-    earth_keepout_radius_m: float = 0.0  #: flight solver: interior plan nodes stay this far from Earth (0: none)
+    earth_keepout_radius_m: float = 0.0  #: flight solver: plan nodes and arcs stay this far from Earth (0: none)
+    #: flight solver, beyond the paper (docs/nmpc-flight.md, "Robustness"):
+    thrust_margin_percent: float = 0.0   #: the plan's engine is this much weaker than the nominal one [%]
+    terminal_set_fraction: float = 0.0   #: the plan ends inside this fraction of the arrival test (0: eq. 5 exactly)
+    departure_planet_in_model: str = "no"  #: "hill-sphere": Earth's gravity predicted until the flight leaves its Hill sphere
 
 
 @dataclasses.dataclass(frozen=True)
@@ -267,6 +276,13 @@ class RendezvousScenario:
     def mars_mean_motion_rad_s(self) -> float:
         """sqrt(mu / r_T^3), eq. (6)."""
         return math.sqrt(self.problem.sun_mu_m3_s2 / self.problem.target_orbit_radius_m ** 3)
+
+    @property
+    def earth_hill_radius_m(self) -> float:
+        """Earth's Hill radius r_E (m_E / (3 m_S))^(1/3) [m]: inside it Earth, not the Sun, dominates the
+        spacecraft's motion relative to Earth (1.497e9 m for Table A.1)."""
+        p = self.problem
+        return p.earth_orbit_radius_m * (p.earth_mass_kg / (3.0 * p.sun_mass_kg)) ** (1.0 / 3.0)
 
     @property
     def propellant_kg(self) -> float:
@@ -432,7 +448,13 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                         fuel_time_weight_kg_per_day=nmpc_s.number("fuel_time_weight_kg_per_day", default=0.0,
                                                                   nonnegative=True),
                         earth_keepout_radius_m=nmpc_s.number("earth_keepout_radius_m", default=0.0,
-                                                             nonnegative=True))
+                                                             nonnegative=True),
+                        thrust_margin_percent=nmpc_s.number("thrust_margin_percent", default=0.0, lo=0.0,
+                                                            hi=50.0),
+                        terminal_set_fraction=nmpc_s.number("terminal_set_fraction", default=0.0, lo=0.0,
+                                                            hi=0.9),
+                        departure_planet_in_model=nmpc_s.text("departure_planet_in_model", default="no",
+                                                              choices=DEPARTURE_PLANET_IN_MODEL))
     nmpc_s.finish()
 
     paper: dict[str, float] | None = None
@@ -451,6 +473,15 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                               perturbations=perturbations, propulsion=propulsion,
                               convergence=convergence, ocp=ocp, law=law, paper_results=paper,
                               nmpc=nmpc, dispersions=dispersions, acceptance=acceptance)
+
+
+def paper_problem(scenario: RendezvousScenario) -> RendezvousScenario:
+    """The scenario with the flight solver's robustness of [nmpc] off: no thrust margin, eq. (5) exactly,
+    no departure planet in the predictive model, no keep-out (docs/nmpc-flight.md, "Robustness"). It is
+    the paper's NMPC problem, the one the ground NLP (nlp.py) and the peers of `make bench` solve."""
+    return dataclasses.replace(scenario, nmpc=dataclasses.replace(
+        scenario.nmpc, thrust_margin_percent=0.0, terminal_set_fraction=0.0, departure_planet_in_model="no",
+        earth_keepout_radius_m=0.0))
 
 
 def _read_acceptance(sec: Section, convergence: Convergence, propellant_kg: float) -> Acceptance:

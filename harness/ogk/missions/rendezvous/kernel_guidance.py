@@ -11,6 +11,7 @@ regrid, the stale-plan fallback); this adapter only maps the scenario to the ker
 """
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
@@ -31,23 +32,30 @@ FloatArray = NDArray[np.float64]
 def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
                   third_bodies: bool | None = None, **overrides: object) -> NmpcConfig:
     """The kernel configuration of a scenario: model, target and transcription from the scenario, the
-    strategy's parameters from [nmpc] (the doubling test runs while 2N fits OGK_NMPC_MAX_NODES)."""
+    strategy's parameters from [nmpc] (the doubling test runs while 2N fits OGK_NMPC_MAX_NODES), and the
+    robustness of docs/nmpc-flight.md, "Robustness" (beyond the paper): the plan's engine derated by
+    [nmpc] thrust_margin_percent (thrust and flow alike: the nominal specific impulse), the terminal set
+    of [nmpc] terminal_set_fraction, the propellant limit at the dry mass, Earth's gravity until the
+    flight leaves its Hill sphere ([nmpc] departure_planet_in_model), the keep-out along the arcs."""
     model = Model.for_scenario(scenario)
     engine = Engine.for_scenario(scenario)
+    units = model.units
     n = scenario.nmpc
     use_bodies = n.third_bodies_in_model if third_bodies is None else third_bodies
+    derate = 1.0 - n.thrust_margin_percent / 100.0
     fields: dict[str, object] = dict(
         mu=1.0,
         engine=0 if engine.nu == 1 else 1,
         power=1 if engine.solar else 0,
-        thrust_max=engine.thrust if not engine.solar else 1.0,
-        mass_flow_max=engine.mass_flow if not engine.solar else 1.0,
+        thrust_max=engine.thrust * derate if not engine.solar else 1.0,
+        mass_flow_max=engine.mass_flow * derate if not engine.solar else 1.0,
         solar_length_unit=1.0 / engine.au_per_lu,
-        solar_a=list(engine.power), solar_thrust=list(engine.thrust_coef), solar_flow=list(engine.flow_coef),
+        solar_a=list(engine.power), solar_thrust=[v * derate for v in engine.thrust_coef],
+        solar_flow=[v * derate for v in engine.flow_coef],
         target_radius=model.mars_radius, target_phase0=model.mars_theta0, target_rate=model.mars_rate,
         objective=0 if scenario.ocp.objective == "min-time" else 1,
         # [nmpc] fuel_time_weight_kg_per_day in MU/TU (minimum fuel only)
-        time_weight=n.fuel_time_weight_kg_per_day * model.units.time_s / DAY_S / model.units.mass_kg,
+        time_weight=n.fuel_time_weight_kg_per_day * units.time_s / DAY_S / units.mass_kg,
         nodes=scenario.ocp.nodes, rk4_steps=n.rk4_steps_per_interval,
         horizon_min=max(strategy.min_horizon, 1e-3),
         strategy=SNNS if strategy.name == "snns" else CNCN,
@@ -55,7 +63,11 @@ def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
         doubling_threshold=strategy.doubling_threshold_percent / 100.0,
         doubling_max_nodes=MAX_NODES // 2,
         max_iter=200, max_iter_cold=500, tol_feas=1e-9, tol_stat=1e-6,
+        terminal_box=terminal_box(scenario),
+        # the propellant limit: a plan never burns below the dry mass
+        mass_min=scenario.dry_mass_kg / units.mass_kg,
     )
+    earth = planets(scenario)[0]
     if use_bodies:
         # as the ground NLP (nlp.py): Earth a point mass, Mars softened by its sphere of influence (the
         # plan ends at Mars' centre, where a point mass is singular)
@@ -63,15 +75,37 @@ def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
         fields.update(n_bodies=len(bodies), body_mu=[b.mu for b in bodies],
                       body_radius=[b.radius for b in bodies], body_phase0=[b.theta0 for b in bodies],
                       body_rate=[b.rate for b in bodies], body_softening=[b.softening for b in bodies])
-    keepout = n.earth_keepout_radius_m / model.units.length_m
+    elif n.departure_planet_in_model == "hill-sphere":
+        # the paper's predictive model, but for Earth while the flight is inside its Hill sphere: there the
+        # paper's start (zero Earth-relative velocity at 0.62 Hill radii) is bound to Earth, which pulls
+        # harder than the engine; released for good at the first replan beyond it
+        fields.update(n_bodies=1, body_mu=[earth.mu], body_radius=[earth.radius],
+                      body_phase0=[earth.theta0], body_rate=[earth.rate],
+                      body_release=[scenario.earth_hill_radius_m / units.length_m])
+    keepout = n.earth_keepout_radius_m / units.length_m
     if keepout > 0.0:
-        earth = planets(scenario)[0]
-        if not use_bodies:   # Earth's ephemeris only (no gravity) for the keep-out
+        if not use_bodies and n.departure_planet_in_model != "hill-sphere":
+            # Earth's ephemeris only (no gravity) for the keep-out
             fields.update(n_bodies=1, body_mu=[0.0], body_radius=[earth.radius], body_phase0=[earth.theta0],
                           body_rate=[earth.rate])
         fields.update(keepout_radius=[keepout])
     fields.update(overrides)
     return NmpcConfig(**fields)
+
+
+def terminal_box(scenario: RendezvousScenario) -> list[float]:
+    """The plan's terminal set [LU, rad, VU, VU]: the square inscribed in [nmpc] terminal_set_fraction of
+    the arrival test's sphere (position: the target's sphere of influence; velocity: the arrival's
+    velocity tolerance), half-width f R / sqrt(2) in r and in R_T theta, f v / sqrt(2) in v_r and v_theta;
+    all 0 (eq. 5 exactly, the paper) when the fraction is 0."""
+    f = scenario.nmpc.terminal_set_fraction
+    if not f > 0.0:
+        return [0.0] * 4
+    model = Model.for_scenario(scenario)
+    units = model.units
+    half_r = f * scenario.convergence.target_soi_radius_m / units.length_m / math.sqrt(2.0)
+    half_v = f * scenario.convergence.velocity_error_m_s / units.velocity_m_s / math.sqrt(2.0)
+    return [half_r, half_r / model.mars_radius, half_v, half_v]
 
 
 def to_plan(p) -> Plan:  # type: ignore[no-untyped-def]
