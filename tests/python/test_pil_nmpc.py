@@ -119,7 +119,8 @@ def test_a_whole_perturbed_snns_closed_loop_flies_on_the_target(whole_flight: di
     assert hv["runs_compared"] == 1 and "t_f_days" in hv["quantities"]
     (r,) = whole_flight["records"]
     # the flight ran to its end: arrival, or the judged end of a flight the loop amplified
-    assert r["reason"] in ("rendezvous", "target_impact") and r["subdivisions"] >= 1
+    assert r["reason"] in ("rendezvous", "target_impact")
+    assert r["solves"] > r["replans"]      # the SNNS doubling test ran (a 2N solve beside the N one)
     _agrees_replan_by_replan(r, whole=True)
     # one replan per step: the first solve, then ogk_nmpc_replan; get_plan and command at each
     n = r["pil.shadow_replans"]

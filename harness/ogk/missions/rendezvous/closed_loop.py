@@ -220,6 +220,14 @@ def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed:
             break
         need_kg = (float(x[4]) - float(info.plan.states[-1, 4])) * units.mass_kg
         left_kg = float(x[4]) * units.mass_kg - scenario.dry_mass_kg
+        if not history and info.converged and info.outside_set:
+            # the flight solver's propellant row holds and its terminal set is priced: a first plan that
+            # ends outside the set is the closest the vehicle can get (docs/nmpc-flight.md, "Robustness")
+            reason = (f"propellant: the plan to {scenario.target_name} needs more than the {left_kg:.1f} kg "
+                      f"left (dry mass {scenario.dry_mass_kg:g} kg): the closest plan within it ends outside "
+                      f"the target's set")
+            history.append(_record(0, t, x, info, t, 0.0, truth, scenario, units))
+            break
         if info.converged and need_kg > left_kg + PROPELLANT_SLACK_KG:
             reason = (f"propellant: the plan to {scenario.target_name} needs {need_kg:.1f} kg, "
                       f"{left_kg:.1f} kg left (dry mass {scenario.dry_mass_kg:g} kg)")

@@ -145,7 +145,7 @@ class RendezvousFamily:
                      "third_bodies_in_model": third, "max_replans": max_replans},
             products={}, fly=per_run(fly_one),
             judge=lambda rec: judge(scenario.acceptance, rec),
-            quantities=("t_f_days", "fuel_kg", "final_position_miss_km",
+            quantities=("t_f_days", "fuel_kg", "fuel_nominal_mdot_kg", "final_position_miss_km",
                         "final_velocity_miss_m_s", "failed_solves"),
             acceptance={"arrival": f"the [convergence] test: inside {scenario.target_name}'s sphere of "
                                    "influence within its velocity tolerance; propellant within the dry mass",
@@ -196,7 +196,33 @@ class RendezvousFamily:
                          f"{_f(r['solves'], '6d')}  {_f(r['failed_solves'], '6d')}  "
                          f"{_f(r['subdivisions'], '6d')}  {_f(r['timing.solve_ms_median'], '9.2f')}")
         reached = sum(1 for r in recs if r["converged"])
-        return "\n".join(lines), {"reached_target": reached, "reached_mars": reached}   # reached_mars: older name
+        extra: dict[str, Any] = {"reached_target": reached, "reached_mars": reached}   # reached_mars: older name
+        paper = paper_row(flown.plan.base, str(opts["strategy"]), not bool(opts["unperturbed"]), recs)
+        if paper is not None:
+            lines.append(paper["line"])
+            extra["paper_row"] = {k: v for k, v in paper.items() if k != "line"}
+        return "\n".join(lines), extra
+
+
+def paper_row(scenario: Any, strategy: str, perturbed: bool, recs: Any) -> dict[str, Any] | None:
+    """The paper's row of the same case (Table I or II, [paper_results]) beside the campaign: how many
+    runs arrived no later than its t_f and within its fuel (the paper's accounting: nominal mass flow x
+    thrusting time, errata), None when the scenario has no such row."""
+    from .adapter import paper_values
+    if getattr(scenario, "paper_results", None) is None:
+        return None
+    paper = paper_values(scenario, strategy, perturbed)
+    t_p, f_p = paper["t_f_days"], paper["fuel_kg"]
+    if t_p is None or f_p is None:
+        return None
+    met = sum(1 for r in recs if r["converged"] and r["t_f_days"] is not None
+              and r["t_f_days"] <= t_p and r["fuel_nominal_mdot_kg"] <= f_p)
+    table = "Table I" if scenario.ocp.objective == "min-time" else "Table II"
+    case = "perturbed" if perturbed else "unperturbed"
+    line = (f"  paper ({table}, {strategy.upper()} {case}): {t_p:.2f} d, {f_p:.2f} kg (nominal mdot); "
+            f"met or beaten (time and fuel) by {met} of {len(recs)} runs")
+    return {"table": table, "t_f_days": t_p, "fuel_nominal_mdot_kg": f_p, "runs_meeting": met,
+            "runs": len(recs), "line": line}
 
 
 def _f(value: Any, fmt: str) -> str:

@@ -52,6 +52,7 @@ class ReplanInfo:
     status_n: str = ""          #: status of the N solve (SNNS: before the doubling test)
     cost_n: float | None = None     #: cost-to-go of the N solve (None when it failed)
     cost_2n: float | None = None    #: cost-to-go of the 2N solve (None: failed or not tried)
+    outside_set: bool = False       #: the plan converged outside its terminal set: the target is out of reach
 
 
 class Guidance(Protocol):

@@ -21,7 +21,7 @@ from ogk_host.rendezvous.nlp import MIN_FUEL_GUESS_THROTTLE
 from ogk_host.rendezvous.plan import Plan
 from ogk_host.rendezvous.scenario import RendezvousScenario
 
-from ogk_bindings.nmpc import CNCN, FLAG_SUBDIVIDED, MAX_NODES, SNNS, Nmpc, NmpcConfig
+from ogk_bindings.nmpc import CNCN, FLAG_OUTSIDE_SET, FLAG_SUBDIVIDED, MAX_NODES, SNNS, Nmpc, NmpcConfig
 
 from . import strategy as st
 from .guidance_base import ReplanInfo, first_guesses
@@ -154,7 +154,8 @@ class KernelGuidance:
         return ReplanInfo(t=t, t_next=rep.t_next, converged=rep.converged, failed=not rep.converged,
                           iterations=rep.sqp_iterations, solve_time_s=elapsed, solves=rep.solves,
                           nodes=rep.nodes, subdivided=subdivided,
-                          objective=rep.objective if rep.converged else None, status=rep.status, plan=plan)
+                          objective=rep.objective if rep.converged else None, status=rep.status, plan=plan,
+                          outside_set=rep.converged and bool(rep.flags & FLAG_OUTSIDE_SET))
 
     def _first_solve(self, g: Plan, t: float, x: FloatArray):  # type: ignore[no-untyped-def]
         """The open loop from one guess (min-fuel: through the min-time optimum at full throttle)."""
