@@ -18,6 +18,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 from ogk_bindings.errors import OgkInputError
 from ogk_host.rendezvous.scenario import LAWS, Acceptance, RendezvousScenario, load_scenario
 from ogk_host.scenario_file import ScenarioHeader, file_sha256
@@ -41,6 +42,29 @@ def with_model(scenario: RendezvousScenario, third_bodies: str) -> RendezvousSce
         return scenario
     return dataclasses.replace(scenario, nmpc=dataclasses.replace(
         scenario.nmpc, third_bodies_in_model=third_bodies == "yes"))
+
+
+def moved_start(scenario: RendezvousScenario, move: str | None) -> RendezvousScenario:
+    """The scenario with its initial radius moved by `move`: '<k>ulp' (k steps to the next
+    representable double, outward for k > 0) or '<x>m' (x metres); None or '' leaves it."""
+    if not move:
+        return scenario
+    text = str(move).strip()
+    r = scenario.initial.radius_m
+    try:
+        if text.endswith("ulp"):
+            k = int(text[:-3])
+            if abs(k) > 10**6:
+                raise ValueError
+            for _ in range(abs(k)):
+                r = float(np.nextafter(r, np.inf if k > 0 else -np.inf))
+        elif text.endswith("m"):
+            r = r + float(text[:-1])
+        else:
+            raise ValueError
+    except ValueError:
+        raise OgkInputError(f"'<k>ulp' or '<x>m', got {move!r}", key="--move-start") from None
+    return dataclasses.replace(scenario, initial=dataclasses.replace(scenario.initial, radius_m=r))
 
 
 def judge(acceptance: Acceptance, rec: Mapping[str, Any]) -> str:
@@ -95,6 +119,10 @@ class RendezvousFamily:
                        default="scenario", help="Earth and Mars gravity in the predictive model")
         p.add_argument("--max-replans", type=int, default=None, metavar="K",
                        help="replan limit of a flight (default: the scenario's)")
+        p.add_argument("--move-start", default=None, metavar="MOVE",
+                       help="the first measured state's radius moved by MOVE: '<k>ulp' (k representable "
+                            "doubles) or '<x>m' (metres); the sensitivity study "
+                            "(python -m ogk.missions.rendezvous.sensitivity)")
 
     def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
         from .closed_loop import fly
@@ -102,7 +130,8 @@ class RendezvousFamily:
         from .guidance_factory import make_guidance
 
         third = str(options.get("third_bodies_in_model") or "scenario")
-        scenario = with_model(self.load(header), third)
+        move = options.get("move_start")
+        scenario = moved_start(with_model(self.load(header), third), move)
         strategy = str(options.get("strategy") or scenario.nmpc.strategy)
         solver = str(options.get("solver") or "kernel")
         if strategy not in STRATEGIES:
@@ -142,7 +171,8 @@ class RendezvousFamily:
             family=self.name, law=header.law, mission=scenario.name,
             scenario_path=Path(header.path), scenario_sha256=file_sha256(header.path),
             options={"strategy": strategy, "solver": solver, "unperturbed": not perturbed,
-                     "third_bodies_in_model": third, "max_replans": max_replans},
+                     "third_bodies_in_model": third, "max_replans": max_replans,
+                     **({"move_start": str(move)} if move else {})},
             products={}, fly=per_run(fly_one),
             judge=lambda rec: judge(scenario.acceptance, rec),
             quantities=("t_f_days", "fuel_kg", "fuel_nominal_mdot_kg", "final_position_miss_km",
