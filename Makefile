@@ -196,7 +196,7 @@ soak: $(FFI_STAMP)
 # The main job, through the verbs every family has (ogk tables / mc / run): LEO-to-GEO VTD-NOG + CPD,
 # ground tables (build/tables/leo_geo-<sha12>) then a 100-run SIL Monte Carlo flying them, against the
 # paper's Table 7 (envelope JSON, Parquet table and PNG plots in build/mc); MPSP on the 23 Apophis cases
-# against Wang & Topputo's Tables 3, 5, 6 (build/apophis); the Earth-to-Mars NMPC against Table I
+# against Wang & Topputo's Tables 3, 5, 6 (build/apophis); the Earth-to-Mars NMPC against Tables I and II
 # (build/nmpc); the six BLT transfers about Moshup and the Table 3 campaign (build/blt; 600 runs per level).
 run: all $(QP_SO)
 	$(VENV)/bin/ogk demo switching
@@ -211,12 +211,19 @@ run: all $(QP_SO)
 	# the 23 paper cases solved on the emulated Cortex-M7, the host's iteration counts beside them
 	$(VENV)/bin/ogk mc apophis_cubesat --cases paper --target m7 --workers 2 \
 	  --json $(B)/pil/apophis_paper_m7.json
+	# the paper's problem unperturbed (Table I's rows), then the shipped law (its robustness of
+	# docs/nmpc-flight.md, "Robustness"): unperturbed, one perturbed flight with plots, and the
+	# perturbed campaigns beside Tables I and II
+	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy snns --solver kernel --paper-problem \
+	  --json $(B)/nmpc/snns_unperturbed_paper_problem.json
+	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy cncn --solver kernel --paper-problem \
+	  --json $(B)/nmpc/cncn_unperturbed_paper_problem.json
 	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy snns --solver kernel \
 	  --json $(B)/nmpc/snns_unperturbed.json --plots $(B)/nmpc/plots
-	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy cncn --solver kernel \
-	  --json $(B)/nmpc/cncn_unperturbed.json --plots $(B)/nmpc/plots
 	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy snns --solver kernel --perturbed --seed 1 \
-	  --third-bodies-in-model yes --json $(B)/nmpc/snns_perturbed_seed1.json --plots $(B)/nmpc/plots
+	  --json $(B)/nmpc/snns_perturbed_seed1.json --plots $(B)/nmpc/plots
+	for s in rendezvous_nep_min_time rendezvous_nep_min_fuel rendezvous_sep_min_fuel; do \
+	  $(VENV)/bin/ogk mc $$s --runs 24 --seed 1 --workers 2 --json $(B)/nmpc/$${s}_24.json || exit 1; done
 	for t in l2_to_l1_lyapunov l1_to_l2_lyapunov l2_to_l1_halo l1_to_l2_halo l1_to_l2_lyapunov_bmp l1_to_l2_halo_bmp \
 	  circle_to_l2_ump; do \
 	  $(VENV)/bin/ogk run moshup --transfer $$t --json $(B)/blt/$$t.json --plots $(B)/blt/plots || exit 1; done

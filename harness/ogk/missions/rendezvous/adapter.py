@@ -46,6 +46,10 @@ def add_nmpc_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--max-replans", type=int, default=None, metavar="K",
                    help="stop after K replans (default: the scenario's [nmpc] max_replans)")
     p.add_argument("--trace", action="store_true", help="print one line per replan")
+    p.add_argument("--paper-problem", action="store_true",
+                   help="fly the paper's problem: the flight solver's robustness of [nmpc] off (no thrust "
+                        "margin, eq. 5 exactly, no departure planet, no keep-out; docs/nmpc-flight.md, "
+                        "\"Robustness\"), e.g. to reproduce Table I's unperturbed row")
     p.add_argument("--target", choices=("host", "m7"), default="host",
                    help="host: the kernel in this process (default); m7: every replan made by the "
                         "scenario's flight program on the emulated Cortex-M7 (docs/pil.md)")
@@ -126,6 +130,9 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
         import dataclasses
         scenario = dataclasses.replace(scenario, nmpc=dataclasses.replace(
             scenario.nmpc, third_bodies_in_model=args.third_bodies_in_model == "yes"))
+    if args.paper_problem:
+        from ogk_host.rendezvous.scenario import paper_problem
+        scenario = paper_problem(scenario)
     strategy_name = args.strategy or scenario.nmpc.strategy
 
     from .closed_loop import fly
@@ -181,7 +188,7 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     doc.update({"scenario_path": str(header.path), "scenario_sha256": header.sha256,
                 "objective": scenario.ocp.objective,
                 "third_bodies_in_model": scenario.nmpc.third_bodies_in_model,
-                "wall_s": wall})
+                "paper_problem": bool(args.paper_problem), "wall_s": wall})
     if scenario.paper_results:      # the paper's figures only for a scenario that carries them
         doc["paper"] = paper_values(scenario, strategy_name, args.perturbed)
     for line in report_lines(scenario, doc):
