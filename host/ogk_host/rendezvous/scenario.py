@@ -224,6 +224,8 @@ class OcpSettings:
 #: [nmpc] departure_planet_in_model: "no" (the paper's predictive model), "hill-sphere" (Earth's gravity in
 #: the flight solver's predictive model until a replan's measured state is beyond Earth's Hill sphere)
 DEPARTURE_PLANET_IN_MODEL = ("no", "hill-sphere")
+#: [nmpc] hessian: the flight solver's QP Hessian
+NMPC_HESSIANS = ("bfgs", "exact")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -248,6 +250,7 @@ class NmpcSettings:
     thrust_margin_percent: float = 0.0   #: the plan's engine is this much weaker than the nominal one [%]
     terminal_set_fraction: float = 0.0   #: the plan ends inside this fraction of the arrival test (0: eq. 5 exactly)
     departure_planet_in_model: str = "no"  #: "hill-sphere": Earth's gravity predicted until the flight leaves its Hill sphere
+    hessian: str = "bfgs"                #: flight solver's QP Hessian: "bfgs" (damped BFGS) or "exact" (docs/nmpc-flight.md)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -454,7 +457,8 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
                         terminal_set_fraction=nmpc_s.number("terminal_set_fraction", default=0.0, lo=0.0,
                                                             hi=0.9),
                         departure_planet_in_model=nmpc_s.text("departure_planet_in_model", default="no",
-                                                              choices=DEPARTURE_PLANET_IN_MODEL))
+                                                              choices=DEPARTURE_PLANET_IN_MODEL),
+                        hessian=nmpc_s.text("hessian", default="bfgs", choices=NMPC_HESSIANS))
     nmpc_s.finish()
 
     paper: dict[str, float] | None = None

@@ -46,6 +46,8 @@ def add_nmpc_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--max-replans", type=int, default=None, metavar="K",
                    help="stop after K replans (default: the scenario's [nmpc] max_replans)")
     p.add_argument("--trace", action="store_true", help="print one line per replan")
+    p.add_argument("--hessian", choices=("scenario", "bfgs", "exact"), default="scenario",
+                   help="the flight solver's QP Hessian (default: the scenario's [nmpc] hessian)")
     p.add_argument("--paper-problem", action="store_true",
                    help="fly the paper's problem: the flight solver's robustness of [nmpc] off (no thrust "
                         "margin, eq. 5 exactly, no departure planet, no keep-out; docs/nmpc-flight.md, "
@@ -133,6 +135,9 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
     if args.paper_problem:
         from ogk_host.rendezvous.scenario import paper_problem
         scenario = paper_problem(scenario)
+    if args.hessian != "scenario":
+        import dataclasses
+        scenario = dataclasses.replace(scenario, nmpc=dataclasses.replace(scenario.nmpc, hessian=args.hessian))
     strategy_name = args.strategy or scenario.nmpc.strategy
 
     from .closed_loop import fly

@@ -119,6 +119,8 @@ class RendezvousFamily:
                        default="scenario", help="Earth and Mars gravity in the predictive model")
         p.add_argument("--max-replans", type=int, default=None, metavar="K",
                        help="replan limit of a flight (default: the scenario's)")
+        p.add_argument("--hessian", choices=("scenario", "bfgs", "exact"), default="scenario",
+                       help="the flight solver's QP Hessian (default: the scenario's [nmpc] hessian)")
         p.add_argument("--move-start", default=None, metavar="MOVE",
                        help="the first measured state's radius moved by MOVE: '<k>ulp' (k representable "
                             "doubles) or '<x>m' (metres); the sensitivity study "
@@ -132,6 +134,9 @@ class RendezvousFamily:
         third = str(options.get("third_bodies_in_model") or "scenario")
         move = options.get("move_start")
         scenario = moved_start(with_model(self.load(header), third), move)
+        hessian = str(options.get("hessian") or "scenario")
+        if hessian != "scenario":
+            scenario = dataclasses.replace(scenario, nmpc=dataclasses.replace(scenario.nmpc, hessian=hessian))
         strategy = str(options.get("strategy") or scenario.nmpc.strategy)
         solver = str(options.get("solver") or "kernel")
         if strategy not in STRATEGIES:
@@ -172,7 +177,8 @@ class RendezvousFamily:
             scenario_path=Path(header.path), scenario_sha256=file_sha256(header.path),
             options={"strategy": strategy, "solver": solver, "unperturbed": not perturbed,
                      "third_bodies_in_model": third, "max_replans": max_replans,
-                     **({"move_start": str(move)} if move else {})},
+                     **({"move_start": str(move)} if move else {}),
+                     **({"hessian": hessian} if hessian != "scenario" else {})},
             products={}, fly=per_run(fly_one),
             judge=lambda rec: judge(scenario.acceptance, rec),
             quantities=("t_f_days", "fuel_kg", "fuel_nominal_mdot_kg", "final_position_miss_km",

@@ -63,6 +63,7 @@ def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
         doubling_threshold=strategy.doubling_threshold_percent / 100.0,
         doubling_max_nodes=MAX_NODES // 2,
         max_iter=200, max_iter_cold=500, tol_feas=1e-9, tol_stat=1e-6,
+        hessian=1 if n.hessian == "exact" else 0,
         terminal_box=terminal_box(scenario),
         # the propellant limit: a plan never burns below the dry mass
         mass_min=scenario.dry_mass_kg / units.mass_kg,
