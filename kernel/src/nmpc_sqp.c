@@ -67,9 +67,7 @@
  * is then expected to be the last, and its Hessian only scales a step of
  * that size (docs/nmpc-flight.md). */
 #define HESS_HOLD 100.0
-/* Exact-Hessian iterations on the scaled identity in a row (H not convex on
- * eq. 5's null space) before the rest of the solve goes on BFGS. */
-#define IDENTITY_MAX 10u
+
 
 static size_t n_vars(const ogk_nmpc_plan_t *p)
 {
@@ -560,7 +558,6 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     bool hold_next = false;
     bool hold_ok = false;
     double pred_prev = 0.0; /* |dJ| predicted by the last iteration's QP (0: none yet) */
-    uint32_t identity_steps = 0u; /* exact Hessian iterations on the scaled identity, in a row */
 
     if (cold) {
         ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
@@ -602,20 +599,19 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                     /* not convex on the null space of eq. (5): far from a minimum the
                      * exact model misleads (measured: closed loops with Earth in the
                      * model stalled at the iteration limit); this step on the scaled
-                     * identity; after IDENTITY_MAX such steps in a row the rest of the
-                     * solve on BFGS (with a throttle the exact Hessian is not convex
-                     * there at any iterate: a minimum-fuel open loop crept 500
-                     * identity steps from its guess, against 47 iterations with BFGS) */
+                     * identity. With a throttle the rest of the solve goes on BFGS: the
+                     * throttle enters the dynamics and the cost linearly, the exact
+                     * Hessian is not convex there at any iterate, and a minimum-fuel open
+                     * loop crept 500 identity steps from its guess (47 iterations on BFGS).
+                     * Without one it turns convex near the minimum (the minimum-time open
+                     * loop: more than 60 identity steps in a row, then exact steps) */
                     rho = 0.0;
                     ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
-                    identity_steps += 1u;
-                    if (identity_steps >= IDENTITY_MAX) {
+                    if (p->nu > 1u) {
                         exact = false;
                         first_update = true;
                         have_prev = false;
                     }
-                } else {
-                    identity_steps = 0u;
                 }
             } else if (have_prev) {
                 /* not exact: with the exact Hessian second is false only in a cold
