@@ -66,7 +66,7 @@ def _check_mpsp(doc: dict[str, Any], records: list[dict[str, Any]], max_iteratio
 @pytest.mark.req("OGK-MPSP-014", "OGK-HAR-018")
 def test_mpsp_apophis_dispersed_campaign_loses_nothing() -> None:
     """Apophis at the scenario's dispersions (kappa in [-3, 3.5], the 0.04 LU cube, eta +-10 %), 450 runs:
-    every one converges within the tolerances (the 1,000-run audits, seeds 2026120410 and 2026120452: 0 lost,
+    every one converges within the tolerances (the 1,000-run audit, seed 2026120410, and the soak's apophis campaign: 0 lost,
     worst 101 Newton iterations)."""
     doc, records = campaign(SCENARIO_DIR / "apophis_cubesat.toml", 450, 2026120430)
     _check_mpsp(doc, records, 110)
