@@ -45,6 +45,7 @@ void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
 #define OGK_I_NMPC_NZ_Z (((size_t)OGK_NMPC_NX + (size_t)OGK_NMPC_MAX_NU) + 1u)
 #define OGK_I_NMPC_NDIR_Z (((size_t)OGK_NMPC_NX + (2u * (size_t)OGK_NMPC_MAX_NU)) + 1u)
 #define OGK_I_NMPC_MAXV_Z ((((size_t)OGK_NMPC_MAX_NODES + 1u) * (size_t)OGK_NMPC_MAX_NU) + 1u)
+#define OGK_I_NMPC_MAX_KO_ROWS_Z (2u * (size_t)OGK_NMPC_MAX_NODES)
 
 /* Layout of one RK4 step of the tape (OGK_NMPC_TAPE_STEP doubles): the
  * step's starting sensitivity matrix S, then four stage records of
@@ -59,6 +60,9 @@ void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
 #define OGK_I_NMPC_TAPE_STAGE (OGK_I_NMPC_TAPE_KS + ((size_t)OGK_NMPC_NX * OGK_I_NMPC_NCOL_Z))
 #define OGK_I_NMPC_TAPE_STEP_Z (OGK_I_NMPC_TAPE_STAGE0 + (4u * OGK_I_NMPC_TAPE_STAGE))
 /* the same layout in the preprocessor's arithmetic, against ogk/nmpc.h's size */
+#if OGK_NMPC_MAX_KO_ROWS != (2u * OGK_NMPC_MAX_NODES)
+#error "OGK_I_NMPC_MAX_KO_ROWS_Z does not match OGK_NMPC_MAX_KO_ROWS (ogk/nmpc.h)"
+#endif
 #if ((OGK_NMPC_NX * OGK_NMPC_SENS_COLS) \
      + (4u * ((2u * OGK_NMPC_NX) + 2u + (OGK_NMPC_NX * OGK_NMPC_NX) + (OGK_NMPC_NX * OGK_NMPC_SENS_COLS)))) \
     != OGK_NMPC_TAPE_STEP

@@ -78,7 +78,7 @@ void ogk_i_nmpc_keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t n
     size_t b;
     size_t c;
     for (b = 0u; b < n_bodies; ++b) {
-        if ((cfg->keepout_radius[b] > 0.0) && (ctx->ko_rows < OGK_NMPC_MAX_KO_ROWS)) {
+        if ((cfg->keepout_radius[b] > 0.0) && (ctx->ko_rows < OGK_I_NMPC_MAX_KO_ROWS_Z)) {
             double dr;
             double dth;
             double dt;
@@ -154,7 +154,7 @@ static double arc_radius(const ogk_nmpc_config_t *cfg, size_t b, double r_start,
     return r_start + ((cfg->keepout_radius[b] - r_start) * (double)j / (double)cfg->rk4_steps);
 }
 
-void ogk_i_nmpc_keepout_scan(const ogk_nmpc_config_t *cfg, const double *x, double t, uint32_t step,
+void ogk_i_nmpc_keepout_scan(const ogk_nmpc_config_t *cfg, const double *x, double t, uint32_t step, /* NOLINT(bugprone-easily-swappable-parameters): internal, the step end's time then its index, as ogk_i_nmpc_shoot_arc computes them; checked by test_keepout_along_arcs */
                              ogk_i_nmpc_arc_t *arc)
 {
     /* n_bodies <= OGK_NMPC_MAX_BODIES (ogk_nmpc_init): clamped once, a fixed bound */
@@ -210,7 +210,7 @@ void ogk_i_nmpc_keepout_arc_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size
     for (b = 0u; (b < n_bodies) && (any != 0u); ++b) {
         const uint32_t mask = ctx->arc_mask[(k * OGK_NMPC_MAX_BODIES) + b];
         for (j = 1u; j < steps; ++j) {
-            if ((((mask >> j) & 1u) != 0u) && (ctx->ko_rows < OGK_NMPC_MAX_KO_ROWS)) {
+            if ((((mask >> j) & 1u) != 0u) && (ctx->ko_rows < OGK_I_NMPC_MAX_KO_ROWS_Z)) {
                 const double *rec = &ctx->tape[((size_t)j - 1u) * OGK_I_NMPC_REC_STRIDE];
                 const double *s_r = &rec[NX + (0u * OGK_I_NMPC_MAX_COLS)];
                 const double *s_th = &rec[NX + (1u * OGK_I_NMPC_MAX_COLS)];

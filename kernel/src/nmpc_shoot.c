@@ -251,18 +251,17 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
                     }
                     s_mat[(i * NCOL) + col_h] += (inv_steps / 6.0) * k_sum;
                 }
-            }
-            if ((step + 1u) < steps) {
-                /* an interior step end of the arc (the interval's ends are nodes) */
-                const uint32_t step_end = step + 1u;
-                if (arc != NULL) {
-                    ogk_i_nmpc_keepout_scan(cfg, x, t_start + ((double)step_end * inv_steps * h), step_end, arc);
-                }
-                if ((ends != NULL) && (sens != NULL)) {
+                if ((ends != NULL) && ((step + 1u) < steps)) {
+                    /* an interior step end's state and sensitivities (ends needs sens) */
                     double *r = &ends[(size_t)step * OGK_I_NMPC_REC_STRIDE];
                     (void)memcpy(r, x, sizeof(x));
                     (void)memcpy(&r[NX], s_mat, sizeof(s_mat));
                 }
+            }
+            if ((arc != NULL) && ((step + 1u) < steps)) {
+                /* an interior step end of the arc (the interval's ends are nodes) */
+                const uint32_t step_end = step + 1u;
+                ogk_i_nmpc_keepout_scan(cfg, x, t_start + ((double)step_end * inv_steps * h), step_end, arc);
             }
         }
     }

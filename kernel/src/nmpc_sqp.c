@@ -256,7 +256,7 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
     /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan) and ko_rows <= OGK_NMPC_MAX_NODES
      * (ogk_i_nmpc_keepout_rows): clamped once so each loop keeps a fixed bound */
     const uint32_t nodes = ogk_i_min_u32(p->nodes, OGK_NMPC_MAX_NODES);
-    const size_t ko_rows = ogk_i_min_size(ctx->ko_rows, OGK_NMPC_MAX_KO_ROWS);
+    const size_t ko_rows = ogk_i_min_size(ctx->ko_rows, OGK_I_NMPC_MAX_KO_ROWS_Z);
     uint32_t k;
     double lo;
     double hi;
@@ -326,7 +326,7 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
 static size_t terminal_row0(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p)
 {
     const size_t sweep_rows = (ctx->cfg.max_sweep > 0.0) ? (2u * (size_t)p->nodes) : 0u;
-    return sweep_rows + ogk_i_min_size(ctx->ko_rows, OGK_NMPC_MAX_KO_ROWS);
+    return sweep_rows + ogk_i_min_size(ctx->ko_rows, OGK_I_NMPC_MAX_KO_ROWS_Z);
 }
 
 /* With a terminal set, the QP's multipliers of eq. (5)'s conditions are

@@ -66,7 +66,7 @@ DRIVERS = (
                     K + "nmpc_plan.c", K + "nmpc_sens_cache.c", K + "nmpc_shoot.c", K + "nmpc_shoot_hess.c",
                     K + "nmpc_sqp.c", K + "qp.c", K + "qp_blas.c", K + "thrust_cmd.c"),
            "drv_nmpc.c", defines=("OGK_NMPC_MAX_NODES=2u", "OGK_NMPC_MAX_RK4_STEPS=2u", "OGK_QP_MAX_N=15u",
-                                  "OGK_QP_MAX_EQ=4u", "OGK_QP_MAX_IN=6u")),
+                                  "OGK_QP_MAX_EQ=4u", "OGK_QP_MAX_IN=17u")),
     Driver("blt", (K + "blt.c", K + "blt_arc.c", K + "blt_model.c", K + "linalg.c", K + "thrust_cmd.c"),
            "drv_blt.c", defines=("OGK_BLT_MAX_SEGMENTS=1u", "OGK_BLT_MAX_SEGMENT_STEPS=4u")),
 )

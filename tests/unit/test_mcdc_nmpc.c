@@ -266,6 +266,84 @@ static void test_sqp_from_far_guesses(void **state)
     OGK_ASSERT_NEAR(t_far, t_ref, 1.0e-7);
 }
 
+/* The terminal set of one condition at a time: each half-width alone makes eq. (5) a set (the solve's
+ * final residual of that condition within its half-width, and the others at 0 to the tolerance); and a
+ * terminal set with a propellant limit no plan meets (the radial transfer does not burn: its mass stays
+ * 1 against a limit of 1.5): the elastic-set QP is infeasible, once more with the step box opened, and
+ * the solve fails, its plan kept. */
+/* req: OGK-NMPC-013 */
+static void test_terminal_set_each_condition(void **state)
+{
+    ogk_nmpc_config_t cfg;
+    ogk_nmpc_plan_t plan;
+    ogk_nmpc_plan_t got;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    const double half[4] = { 0.02, 0.01, 0.01, 0.02 };
+    size_t i;
+    (void)state;
+    for (i = 1u; i < 4u; ++i) {
+        nmpc_fx_radial(&cfg, 8u, 4u, 200u);
+        cfg.terminal_box[i] = half[i];
+        OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &cfg), OGK_OK);
+        nmpc_fx_radial_guess(8u, 5.0, &plan);
+        OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+        in.t = 0.0;
+        (void)memcpy(in.x, plan.x, sizeof in.x);
+        OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+        assert_true((rep.flags & OGK_NMPC_FLAG_OUTSIDE_SET) == 0u);
+        OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &got), OGK_OK);
+        /* r on its target (its half-width is 0); v_r too, or with a half-width moving out at it
+         * (minimum time takes the slack) */
+        OGK_ASSERT_NEAR(got.x[8u * NX], 1.5, 1.0e-9);
+        OGK_ASSERT_NEAR(got.x[8u * NX + 2u], (i == 2u) ? half[2] : 0.0, 1.0e-7);
+    }
+    nmpc_fx_radial(&cfg, 8u, 4u, 20u);
+    cfg.terminal_box[0] = 0.01;
+    cfg.mass_min = 1.5;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &cfg), OGK_OK);
+    nmpc_fx_radial_guess(8u, 5.0, &plan);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_E_INFEASIBLE);
+    assert_true((rep.flags & (OGK_NMPC_FLAG_ELASTIC | OGK_NMPC_FLAG_STALE))
+                == (OGK_NMPC_FLAG_ELASTIC | OGK_NMPC_FLAG_STALE));
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &got), OGK_OK);
+    assert_true(memcmp(&got, &plan, sizeof plan) == 0);
+}
+
+/* The keep-out row store full: a body off the radial path at 0.6-0.7 LU with a 0.3 LU radius, every
+ * node and every arc step end within three radii (31 nodes and 96 step ends on 32 subintervals of 4
+ * steps, more than the OGK_NMPC_MAX_KO_ROWS rows kept); the keep-out is not active (the straight path
+ * stays 0.6 LU away), so the solve reaches the same discrete optimum as without a body. */
+/* req: OGK-NMPC-007 OGK-NMPC-013 */
+static void test_keepout_row_store_full(void **state)
+{
+    ogk_nmpc_config_t cfg;
+    ogk_nmpc_plan_t plan;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    double t_free;
+    (void)state;
+    nmpc_fx_radial(&cfg, 32u, 4u, 200u);
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &cfg), OGK_OK);
+    nmpc_fx_radial_guess(32u, 5.0, &plan);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    t_free = rep.t_f;
+    cfg.n_bodies = 1u;
+    nmpc_fx_body(&cfg, 0u, 0.0, 1.25, 0.5, 0.0);
+    cfg.keepout_radius[0] = 0.3;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    assert_int_equal((int)ctx.ko_rows, (int)OGK_NMPC_MAX_KO_ROWS);
+    OGK_ASSERT_NEAR(rep.t_f, t_free, 1.0e-6);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -275,6 +353,8 @@ int main(void)
         cmocka_unit_test(test_interval_hess_throttled),
         cmocka_unit_test(test_model_first_of_two_bodies_fails),
         cmocka_unit_test(test_sqp_from_far_guesses),
+        cmocka_unit_test(test_terminal_set_each_condition),
+        cmocka_unit_test(test_keepout_row_store_full),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
