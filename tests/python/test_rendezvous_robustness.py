@@ -100,3 +100,22 @@ def test_the_outcome_does_not_turn_on_an_ulp() -> None:
     (r,) = doc["runs"]
     assert r["lost"] == 0 and r["failed_solves_max"] <= 2
     assert r["t_f_spread_all_days"] <= 0.1, r["by_move"]
+
+
+@pytest.mark.req("OGK-NMPC-014")
+def test_a_truth_failure_is_a_lost_flight_not_a_crash(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A flight whose truth integration stops (a RuntimeError of the propagator, as a flight through a
+    planet's centre gives) is a lost run with its reason, and the campaign still reports: the law before
+    issue 32 lost one run of 200 so (seed 2026120471) and `ogk mc` then died in its report."""
+    from ogk.missions.rendezvous import closed_loop
+    from ogk.missions.rendezvous.family import FAMILY as fam
+
+    def broken(*args: Any, **kwargs: Any) -> Any:
+        raise RuntimeError("truth propagation failed at t = 1.75707: Required step size is less than spacing")
+    monkeypatch.setattr(closed_loop, "fly", broken)
+    plan = fam.plan(read_header(REPO / "scenarios" / "rendezvous_nep_min_time.toml"), {})
+    flown = fly_campaign(plan, 2, 2026120487, workers=1, progress=False)
+    assert [r["failure"] for r in flown.records] == ["not arrived: truth: truth propagation failed at t = "
+                                                     "1.75707: Required step size is less than spacing"] * 2
+    text, extra = fam.report(flown)
+    assert "Mars reached on 0 of 2 runs" in text and extra["reached_target"] == 0

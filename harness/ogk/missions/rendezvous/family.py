@@ -83,6 +83,10 @@ def judge(acceptance: Acceptance, rec: Mapping[str, Any]) -> str:
     return ""
 
 
+#: the per-run timing keys of flight_record (None on a run that did not fly to its end)
+TIMING = ("timing.solve_ms_median", "timing.solve_ms_max", "timing.max_comp_fraction")
+
+
 def flight_record(summary: Mapping[str, Any]) -> Record:
     """A flat record of one closed-loop flight (FlightResult.summary())."""
     rec: Record = {"converged": bool(summary["converged"]), "reason": str(summary["reason"])}
@@ -160,7 +164,7 @@ class RendezvousFamily:
                 rec = flight_record(flight(run_seed).summary())
             except RuntimeError as err:   # the truth integration stopped (e.g. through a planet)
                 rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(RESULTS),
-                       FIRST_OFFSET_KEY: None}
+                       FIRST_OFFSET_KEY: None, **dict.fromkeys(TIMING)}
             rec["timing.wall_s"] = time.perf_counter() - start
             return rec
 
@@ -230,7 +234,7 @@ class RendezvousFamily:
             lines.append(f"  {r['run_id']:3d}  {'yes' if r['converged'] else 'NO ':7s}  "
                          f"{_f(r['t_f_days'], '8.2f')}  {_f(r['fuel_kg'], '9.2f')}  "
                          f"{_f(r['solves'], '6d')}  {_f(r['failed_solves'], '6d')}  "
-                         f"{_f(r['subdivisions'], '6d')}  {_f(r['timing.solve_ms_median'], '9.2f')}")
+                         f"{_f(r['subdivisions'], '6d')}  {_f(r.get('timing.solve_ms_median'), '9.2f')}")
         reached = sum(1 for r in recs if r["converged"])
         extra: dict[str, Any] = {"reached_target": reached, "reached_mars": reached}   # reached_mars: older name
         paper = paper_row(flown.plan.base, str(opts["strategy"]), not bool(opts["unperturbed"]), recs)

@@ -234,7 +234,8 @@ class TargetJob:
                     raise
                 except RuntimeError as err:   # the truth integration stopped (family.fly_one)
                     rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(self.results),
-                           FIRST_OFFSET_KEY: None}
+                           FIRST_OFFSET_KEY: None, "timing.solve_ms_median": None, "timing.solve_ms_max": None,
+                           "timing.max_comp_fraction": None}
                 rec["timing.wall_s"] = time.perf_counter() - start
                 rec["pil.command_mismatch"] = guidance.command_mismatch
                 rec.update(shadow_keys(guidance, tu_days))
