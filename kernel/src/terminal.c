@@ -170,17 +170,24 @@ static void plan_axis(double x, double x_dot, double duration_s, double k, doubl
     *accel1 = ((12.0 * k * x) / (t2 * duration_s)) + ((6.0 * k * x_dot) / t2);
 }
 
+/* The position misses a shaped plan steers out. */
+typedef struct {
+    double x;     /* [m] radius miss, r - R_f */
+    double z;     /* [m] plane-normal position, r sin(phi) */
+    double z_dot; /* [m/s] its rate */
+} plan_miss_t;
+
 /* The scale on both shape gains that keeps the plan's tilt from v_go within
  * the turn limit (terminal.h, "Turn limit"): the position part of the plan
  * is k Q / T per axis, Q = 3 x' + 6 x / T, at most in size at the plan's
  * start and end, against |v_go| / T along v_go, so its tilt is
  * atan(|(k_r Q_r, k_n Q_n)| / |v_go|). 1 when the limit does not bind;
  * 0 (v_go steering) when |v_go| is 0 and the plan has a position part. */
-static double plan_gain_scale(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double x, double z,
-                              double z_dot, double duration_s)
+static double plan_gain_scale(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav, const plan_miss_t *miss,
+                              double duration_s)
 {
-    const double q_r = ctx->cfg.shape_gain * ((3.0 * nav->v_r_mps) + ((6.0 * x) / duration_s));
-    const double q_n = ctx->cfg.shape_gain_normal * ((3.0 * z_dot) + ((6.0 * z) / duration_s));
+    const double q_r = ctx->cfg.shape_gain * ((3.0 * nav->v_r_mps) + ((6.0 * miss->x) / duration_s));
+    const double q_n = ctx->cfg.shape_gain_normal * ((3.0 * miss->z_dot) + ((6.0 * miss->z) / duration_s));
     const double q = hypot(q_r, q_n);
     const double vgo = hypot(hypot(nav->v_r_mps, ctx->v_target_mps - nav->v_t_mps), nav->v_n_mps);
     const double allowed = ctx->shape_tilt_max_tan * vgo;
@@ -197,19 +204,21 @@ static double plan_gain_scale(const ogk_terminal_t *ctx, const ogk_nav_state_t *
 static bool plan_from(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double duration_s)
 {
     const double r = nav->r_m;
-    const double z = r * sin(nav->phi_rad);
-    const double z_dot = (nav->v_r_mps * sin(nav->phi_rad)) + (nav->v_n_mps * cos(nav->phi_rad));
+    const plan_miss_t miss = {r - ctx->cfg.target_radius_m, r * sin(nav->phi_rad),
+                              (nav->v_r_mps * sin(nav->phi_rad)) + (nav->v_n_mps * cos(nav->phi_rad))};
+    const double z = miss.z;
+    const double z_dot = miss.z_dot;
     const double mu_r2 = ctx->cfg.mu_m3_s2 / (r * r);
     const double g_r = (((nav->v_t_mps * nav->v_t_mps) + (nav->v_n_mps * nav->v_n_mps)) / r) - mu_r2;
     const double g_n = -(mu_r2 * z) / r;
-    const double scale = plan_gain_scale(ctx, nav, r - ctx->cfg.target_radius_m, z, z_dot, duration_s);
+    const double scale = plan_gain_scale(ctx, nav, &miss, duration_s);
     double a_r0 = 0.0;
     double a_r1 = 0.0;
     double a_n0 = 0.0;
     double a_n1 = 0.0;
     bool finite;
 
-    plan_axis(r - ctx->cfg.target_radius_m, nav->v_r_mps, duration_s, scale * ctx->cfg.shape_gain, &a_r0, &a_r1);
+    plan_axis(miss.x, nav->v_r_mps, duration_s, scale * ctx->cfg.shape_gain, &a_r0, &a_r1);
     plan_axis(z, z_dot, duration_s, scale * ctx->cfg.shape_gain_normal, &a_n0, &a_n1);
     {
         const double v[6] = {a_r0 - g_r, a_r1, a_n0 - g_n, a_n1, (ctx->v_target_mps - nav->v_t_mps) / duration_s,
