@@ -449,15 +449,18 @@ static void test_shaped_fallbacks(void **state)
 /* The angle between the shaped plan's thrust direction at time t of the plan
  * and its direction with no position part (k = 0: the velocity-nulling plan,
  * -x'/T - g_r, (v_c - v_t)/T, -z'/T - g_n), both rebuilt here from the plan's
- * coefficients and the state (phi = 0: z = 0). */
+ * coefficients and the state. */
 static double plan_tilt(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t)
 {
     const double T = ctx->plan.duration_s;
     const double g_r = (((nav->v_t_mps * nav->v_t_mps) + (nav->v_n_mps * nav->v_n_mps)) / nav->r_m) -
                        (MU / (nav->r_m * nav->r_m));
+    const double z = nav->r_m * sin(nav->phi_rad);
+    const double z_dot = (nav->v_r_mps * sin(nav->phi_rad)) + (nav->v_n_mps * cos(nav->phi_rad));
+    const double g_n = -(MU * z) / (nav->r_m * nav->r_m * nav->r_m);
     const double p[3] = {ctx->plan.accel_r0_mps2 + (ctx->plan.accel_r1_mps3 * t), ctx->plan.accel_t_mps2,
                          ctx->plan.accel_n0_mps2 + (ctx->plan.accel_n1_mps3 * t)};
-    const double v[3] = {(-nav->v_r_mps / T) - g_r, (sqrt(MU / R_F) - nav->v_t_mps) / T, -nav->v_n_mps / T};
+    const double v[3] = {(-nav->v_r_mps / T) - g_r, (sqrt(MU / R_F) - nav->v_t_mps) / T, (-z_dot / T) - g_n};
     const double cross[3] = {(p[1] * v[2]) - (p[2] * v[1]), (p[2] * v[0]) - (p[0] * v[2]),
                              (p[0] * v[1]) - (p[1] * v[0])};
     const double dot = (p[0] * v[0]) + (p[1] * v[1]) + (p[2] * v[2]);
@@ -494,6 +497,7 @@ static void test_turn_limit_bounds_the_plans_tilt(void **state)
     cfg.turn_accel_rad_s2 = a;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
     assert_true(ctx.tilt_limited);
+    OGK_ASSERT_NEAR(ctx.plan.gain_scale, 1.0, 0.0); /* no plan yet: unscaled */
     /* rest to rest in S / 2 = 1 s: 0.5 s accelerating at a, 0.5 s braking, 1e-5 s steps */
     for (k = 0; k < 100000; ++k) {
         const double acc = (k < 50000) ? a : -a;
@@ -519,6 +523,27 @@ static void test_turn_limit_bounds_the_plans_tilt(void **state)
         OGK_ASSERT_NEAR(nav.v_r_mps + ((ctx.plan.accel_r0_mps2 + g_r) * t_go) +
                             (0.5 * ctx.plan.accel_r1_mps3 * t_go * t_go),
                         0.0, 1e-12);
+    }
+    /* a plane-normal miss alone (420 m out of plane, closing at 20 m/s): bounded the same way, the
+     * normal gain scaled; the radial plan is then the velocity-nulling one */
+    {
+        ogk_nav_state_t plane = nav_at(100.0, 0.0, -45.0, 20.0);
+        plane.r_m = R_F;
+        plane.phi_rad = 1.0e-5;
+        OGK_ASSERT_STATUS(ogk_terminal_init(&free_ctx, &cfg), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_terminal_step(&free_ctx, &plane, 100.0 + t_go, &law, &free_out), OGK_OK);
+        assert_true(free_ctx.plan.gain_scale < 0.2);
+        assert_true(plan_tilt(&free_ctx, &plane, 0.0) <= free_ctx.shape_tilt_max_rad * (1.0 + 1e-9));
+        assert_true(plan_tilt(&free_ctx, &plane, t_go) <= free_ctx.shape_tilt_max_rad * (1.0 + 1e-9));
+        assert_true(plan_tilt(&free_ctx, &plane, 0.0) > 0.5 * free_ctx.shape_tilt_max_rad);
+        /* the scaled position part is exactly the allowed one: s k |3 z' + 6 z / T| = tan(bound) |v_go| */
+        {
+            const double z = plane.r_m * sin(plane.phi_rad);
+            const double z_dot = plane.v_n_mps * cos(plane.phi_rad);
+            const double vgo = sqrt((45.0 * 45.0) + (20.0 * 20.0));
+            OGK_ASSERT_REL(free_ctx.plan.gain_scale * fabs((3.0 * z_dot) + ((6.0 * z) / t_go)),
+                           tan(free_ctx.shape_tilt_max_rad) * vgo, 1e-12, 0.0);
+        }
     }
     /* no limit: the same state tilts the plan further */
     cfg.turn_accel_rad_s2 = 0.0;
