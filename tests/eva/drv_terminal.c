@@ -1,9 +1,7 @@
 /* tests/eva/drv_terminal.c -- EVA driver of ogk_terminal_* (ogk/terminal.h):
  * the default configuration, three steps inside the navigation envelope
  * (radius from 1 m) with any finite prediction and law command angles, then
- * one on any finite state (the envelope rejections); then the shaped window
- * with the turn limit (gains 1, hold 1 s, turn acceleration in (0, 20]
- * rad/s^2), three more steps inside the envelope. */
+ * one on any finite state (the envelope rejections). */
 #include "eva_driver.h"
 #include "ogk/terminal.h"
 
@@ -38,17 +36,6 @@ void eva_terminal(void)
         nav = eva_nav_outside(i);
         law.t_s = nav.t_s;
         (void)ogk_terminal_step(&ctx, &nav, eva_any_finite(), &law, &out);
-    }
-    cfg.shape_gain = 1.0;
-    cfg.shape_gain_normal = 1.0;
-    cfg.shape_hold_s = 1.0;
-    cfg.turn_accel_rad_s2 = Frama_C_double_interval(1.0e-3, 20.0);
-    if (ogk_terminal_init(&ctx, &cfg) == OGK_OK) {
-        for (i = 0; i < 3; ++i) {
-            nav = eva_nav_in_envelope(1.0);
-            law.t_s = nav.t_s;
-            (void)ogk_terminal_step(&ctx, &nav, eva_any_finite(), &law, &out);
-        }
     }
     (void)ogk_terminal_reset(&ctx);
     (void)ogk_terminal_step(&ctx, NULL, 0.0, &law, &out);
