@@ -34,9 +34,9 @@
   thrust, eq. 53's arm and inertias), the smallest over the terminal window [t_f* - window, t_f*]:
   the attitude loop turns the thrust direction no faster than that. The kernel bounds each shaped
   plan's tilt from the velocity to be gained to a S^2 / 16, S = window - hold. Measured: the paper's
-  mission 0.273 rad/s^2 (bound 62 deg: no plan of 1000 runs reaches it), Scout 19.9 (none), the
-  short-burn corner 0.198 (2.6 deg: v_go steering; 52 -> 1 failure in 1000 runs of seed 4242,
-  radius sigma 1.5 km, velocities 30 m/s). The bound is necessary, not sufficient: the paper's
+  mission 0.273 rad/s^2 (bound 62 deg: no plan of 1000 runs reaches it), the section-7 upper stage
+  19.9 (no bound below 1.5 rad), the short-burn corner 0.198 (2.6 deg: v_go steering; 52 -> 1
+  failure in 1000 runs of seed 4242, radius sigma 1.5 km, velocities 30 m/s). The bound is necessary, not sufficient: the paper's
   10 s window copied onto that corner (bound 42 deg) still fails 8.6 % (docs/vtd-nog.md). Taken from
   `guidance.end_game.terminal_turn_accel_rad_s2` when present.
 - The envelope (`envelope_warnings(scn, t_f_star_s)`): one line per setting outside what was
@@ -235,10 +235,14 @@ def resolve(scn: OrbitInjectionScenario, t_f_star_s: float) -> OrbitInjectionSce
     return dataclasses.replace(scn, end_game=dataclasses.replace(scn.end_game, **values))
 
 
-def require_resolved(scn: OrbitInjectionScenario) -> None:
-    """ValueError when a burn-scaled setting is still unset (a caller skipped `resolve`)."""
-    missing = [key for key in ("dtf_max_s", "fine_window_s", "terminal_window_s", TURN_ACCEL_KEY)
-               if getattr(scn.end_game, key) is None]
+#: The end-game settings `resolve` fills from t_f*: the windows and clip, and the turn limit
+WINDOW_KEYS = ("dtf_max_s", "fine_window_s", "terminal_window_s")
+
+
+def require_resolved(scn: OrbitInjectionScenario, keys: tuple[str, ...] = WINDOW_KEYS) -> None:
+    """ValueError when a burn-scaled setting of `keys` is still unset (a caller skipped `resolve`);
+    by default the windows and clip (the terminal stage's configuration also needs TURN_ACCEL_KEY)."""
+    missing = [key for key in keys if getattr(scn.end_game, key) is None]
     if missing:
         raise ValueError(f"end-game settings {missing} not resolved: call derive.resolve(scn, t_f*)")
 

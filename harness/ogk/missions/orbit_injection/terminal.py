@@ -26,7 +26,7 @@ def terminal_config(scn: OrbitInjectionScenario) -> object:
         raise KernelError(status, "ogk_terminal_config_default")
     cfg.mu_m3_s2 = scn.mu_m3_s2
     cfg.target_radius_m = scn.target_radius_m
-    derive.require_resolved(scn)
+    derive.require_resolved(scn, derive.WINDOW_KEYS + (derive.TURN_ACCEL_KEY,))
     cfg.window_s = scn.end_game.terminal_window_s
     cfg.shape_gain = scn.end_game.terminal_shape_gain
     cfg.shape_gain_normal = scn.end_game.terminal_shape_gain_normal
