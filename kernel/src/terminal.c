@@ -23,6 +23,7 @@ ogk_status ogk_terminal_config_default(ogk_terminal_config_t *cfg)
         cfg->shape_gain_normal = 0.0;
         cfg->shape_hold_s = 1.0;
         cfg->shape_lead_s = 0.0;
+        cfg->turn_accel_rad_s2 = 0.0;
     }
     return st;
 }
@@ -43,10 +44,11 @@ static bool terminal_shape_valid(const ogk_terminal_config_t *cfg)
 
 static bool terminal_config_valid(const ogk_terminal_config_t *cfg)
 {
-    const double v[7] = {cfg->mu_m3_s2, cfg->target_radius_m, cfg->window_s, cfg->shape_gain,
-                         cfg->shape_gain_normal, cfg->shape_hold_s, cfg->shape_lead_s};
+    const double v[8] = {cfg->mu_m3_s2, cfg->target_radius_m, cfg->window_s, cfg->shape_gain,
+                         cfg->shape_gain_normal, cfg->shape_hold_s, cfg->shape_lead_s, cfg->turn_accel_rad_s2};
 
-    return ogk_i_all_finite(v, 7u) && (cfg->shape_lead_s >= 0.0) && (cfg->shape_lead_s <= OGK_TERMINAL_T_MAX_S) && (cfg->mu_m3_s2 > 0.0) && (cfg->target_radius_m > 0.0) &&
+    return ogk_i_all_finite(v, 8u) && (cfg->turn_accel_rad_s2 >= 0.0) &&
+           (cfg->turn_accel_rad_s2 <= OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2) && (cfg->shape_lead_s >= 0.0) && (cfg->shape_lead_s <= OGK_TERMINAL_T_MAX_S) && (cfg->mu_m3_s2 > 0.0) && (cfg->target_radius_m > 0.0) &&
            (cfg->target_radius_m <= OGK_TERMINAL_R_MAX_M) && (cfg->window_s >= 0.0) &&
            (cfg->window_s <= OGK_TERMINAL_T_MAX_S) &&
            isfinite(sqrt(cfg->mu_m3_s2 / cfg->target_radius_m)) && terminal_shape_valid(cfg);
@@ -64,10 +66,28 @@ static void terminal_clear(ogk_terminal_t *ctx)
     ctx->plan.accel_n0_mps2 = 0.0;
     ctx->plan.accel_n1_mps3 = 0.0;
     ctx->plan.accel_t_mps2 = 0.0;
+    ctx->plan.gain_scale = 1.0;
     ctx->plan.in_hold = false;
     ctx->last_t_s = 0.0;
     ctx->last_energy_j_kg = 0.0;
     ctx->has_last = false;
+}
+
+/* The turn limit (terminal.h, "Turn limit"): the largest tilt th from v_go
+ * that a vehicle turning at an angular acceleration of at most a can leave
+ * and regain within the shaped part of the window S = window - hold, two
+ * rest-to-rest turns of 2 sqrt(th / a) each: th = a S^2 / 16. It binds only
+ * with shaping, a > 0 and th below OGK_TERMINAL_TILT_MAX_RAD. S >= 0: the
+ * hold is at most the window when shaped (terminal_shape_valid). */
+static void terminal_turn_limit(ogk_terminal_t *ctx)
+{
+    const double shaped_s = ctx->cfg.window_s - ctx->cfg.shape_hold_s;
+    const double tilt = 0.0625 * ctx->cfg.turn_accel_rad_s2 * shaped_s * shaped_s;
+
+    ctx->tilt_limited = terminal_shaped(&ctx->cfg) && (ctx->cfg.turn_accel_rad_s2 > 0.0) &&
+                        (tilt < OGK_TERMINAL_TILT_MAX_RAD);
+    ctx->shape_tilt_max_rad = ctx->tilt_limited ? tilt : OGK_TERMINAL_TILT_MAX_RAD;
+    ctx->shape_tilt_max_tan = tan(ctx->shape_tilt_max_rad);
 }
 
 ogk_status ogk_terminal_init(ogk_terminal_t *ctx, const ogk_terminal_config_t *cfg)
@@ -81,6 +101,7 @@ ogk_status ogk_terminal_init(ogk_terminal_t *ctx, const ogk_terminal_config_t *c
     } else {
         ctx->cfg = *cfg;
         ctx->v_target_mps = sqrt(cfg->mu_m3_s2 / cfg->target_radius_m); /* eq. (20): v_tf */
+        terminal_turn_limit(ctx);
         terminal_clear(ctx);
         ctx->init_marker = OGK_TERMINAL_INIT_MARKER;
     }
@@ -149,27 +170,60 @@ static void plan_axis(double x, double x_dot, double duration_s, double k, doubl
     *accel1 = ((12.0 * k * x) / (t2 * duration_s)) + ((6.0 * k * x_dot) / t2);
 }
 
+/* The position misses a shaped plan steers out. */
+typedef struct {
+    double x;     /* [m] radius miss, r - R_f */
+    double z;     /* [m] plane-normal position, r sin(phi) */
+    double z_dot; /* [m/s] its rate */
+} plan_miss_t;
+
+/* The scale on both shape gains that keeps the plan's tilt from v_go within
+ * the turn limit (terminal.h, "Turn limit"): the position part of the plan
+ * is k Q / T per axis, Q = 3 x' + 6 x / T, at most in size at the plan's
+ * start and end, against |v_go| / T along v_go, so its tilt is
+ * atan(|(k_r Q_r, k_n Q_n)| / |v_go|). 1 when the limit does not bind;
+ * 0 (v_go steering) when |v_go| is 0 and the plan has a position part. */
+static double plan_gain_scale(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav, const plan_miss_t *miss,
+                              double duration_s)
+{
+    const double q_r = ctx->cfg.shape_gain * ((3.0 * nav->v_r_mps) + ((6.0 * miss->x) / duration_s));
+    const double q_n = ctx->cfg.shape_gain_normal * ((3.0 * miss->z_dot) + ((6.0 * miss->z) / duration_s));
+    const double q = hypot(q_r, q_n);
+    const double vgo = hypot(hypot(nav->v_r_mps, ctx->v_target_mps - nav->v_t_mps), nav->v_n_mps);
+    const double allowed = ctx->shape_tilt_max_tan * vgo;
+    double scale = 1.0;
+
+    if (ctx->tilt_limited && (q > allowed)) {
+        scale = allowed / q; /* q > allowed >= 0: in [0, 1) */
+    }
+    return scale;
+}
+
 /* The shaped plan from the state at nav->t_s with duration_s to go; false
  * (plan unchanged) if a term overflows (a radius near 0 in the envelope). */
 static bool plan_from(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double duration_s)
 {
     const double r = nav->r_m;
-    const double z = r * sin(nav->phi_rad);
-    const double z_dot = (nav->v_r_mps * sin(nav->phi_rad)) + (nav->v_n_mps * cos(nav->phi_rad));
+    const plan_miss_t miss = {r - ctx->cfg.target_radius_m, r * sin(nav->phi_rad),
+                              (nav->v_r_mps * sin(nav->phi_rad)) + (nav->v_n_mps * cos(nav->phi_rad))};
+    const double z = miss.z;
+    const double z_dot = miss.z_dot;
     const double mu_r2 = ctx->cfg.mu_m3_s2 / (r * r);
     const double g_r = (((nav->v_t_mps * nav->v_t_mps) + (nav->v_n_mps * nav->v_n_mps)) / r) - mu_r2;
     const double g_n = -(mu_r2 * z) / r;
+    const double scale = plan_gain_scale(ctx, nav, &miss, duration_s);
     double a_r0 = 0.0;
     double a_r1 = 0.0;
     double a_n0 = 0.0;
     double a_n1 = 0.0;
     bool finite;
 
-    plan_axis(r - ctx->cfg.target_radius_m, nav->v_r_mps, duration_s, ctx->cfg.shape_gain, &a_r0, &a_r1);
-    plan_axis(z, z_dot, duration_s, ctx->cfg.shape_gain_normal, &a_n0, &a_n1);
+    plan_axis(miss.x, nav->v_r_mps, duration_s, scale * ctx->cfg.shape_gain, &a_r0, &a_r1);
+    plan_axis(z, z_dot, duration_s, scale * ctx->cfg.shape_gain_normal, &a_n0, &a_n1);
     {
-        const double v[5] = {a_r0 - g_r, a_r1, a_n0 - g_n, a_n1, (ctx->v_target_mps - nav->v_t_mps) / duration_s};
-        finite = ogk_i_all_finite(v, 5u);
+        const double v[6] = {a_r0 - g_r, a_r1, a_n0 - g_n, a_n1, (ctx->v_target_mps - nav->v_t_mps) / duration_s,
+                             scale};
+        finite = ogk_i_all_finite(v, 6u);
         if (finite) {
             ctx->plan.t0_s = nav->t_s;
             ctx->plan.duration_s = duration_s;
@@ -178,6 +232,7 @@ static bool plan_from(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double du
             ctx->plan.accel_n0_mps2 = v[2];
             ctx->plan.accel_n1_mps3 = v[3];
             ctx->plan.accel_t_mps2 = v[4];
+            ctx->plan.gain_scale = scale;
         }
     }
     return finite;

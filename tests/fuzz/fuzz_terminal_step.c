@@ -1,6 +1,7 @@
 /* fuzz_terminal_step.c -- ogk_terminal_step with arbitrary navigation inputs, predictions and law
  * commands. Input: one mode byte (bits 0-3: position-shaping gain in sixteenths, 0 = pure v_go;
- * bit 4: hold = the whole window; bit 5: 0.5 s lead; bit 6: radius only, no plane-normal shaping), then up to 64
+ * bit 4: hold = the whole window; bit 5: 0.5 s lead; bit 6: radius only, no plane-normal shaping;
+ * bit 7: the turn limit of a slow-turning vehicle, 0.2 rad/s^2), then up to 64
  * steps of 9 raw doubles (t, r, phi, v_r, v_t, v_n, t_predicted, alpha, beta); a step whose first
  * byte is odd is a plausible end-of-burn state instead (one-byte offsets).
  * Oracle (terminal.h): the output angles are finite whenever the law's are, or the context has a
@@ -30,6 +31,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         cfg.shape_hold_s = 0.5;
         cfg.shape_hold_s = ((mode & 0x10u) != 0u) ? cfg.window_s : cfg.shape_hold_s;
         cfg.shape_lead_s = ((mode & 0x20u) != 0u) ? 0.5 : 0.0;
+        cfg.turn_accel_rad_s2 = ((mode & 0x80u) != 0u) ? 0.2 : 0.0;
     }
     FZ_CHECK(ogk_terminal_init(&term, &cfg) == OGK_OK);
     while (r.n > 0u && steps < 64) {

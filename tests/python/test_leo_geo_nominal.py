@@ -195,6 +195,15 @@ def test_settings_provenance(scenario: OrbitInjectionScenario) -> None:
     record = eff.as_manifest()
     assert record["cpd_gains"]["source"] == "derived"
     assert record["freeze_time_to_go_s"] == {"value": 0.5, "source": "derived"}
+    # the terminal turn limit: the TVC's angular acceleration at the 0.65 deg command limit, smallest
+    # at the start of the 10 s window (the arm grows, the inertia shrinks), from Table 1 and eq. (53)
+    t_f, window = 105.80878, 10.0
+    turn = dict((k, (v, src)) for k, v, src in derive.burn_scaled(scenario, t_f))
+    t0 = t_f - window
+    thrust = 1.112 * 9.80665 * 2400.0
+    expected = thrust * (0.25 + 2.4e-3 * t0) / (800.0 - 2.91 * t0) * math.sin(math.radians(0.65))
+    assert turn["terminal_turn_accel_rad_s2"] == (pytest.approx(expected, rel=1e-12), "derived")
+    assert expected == pytest.approx(0.2734, abs=5e-5)
     # another vehicle: twice the thrust halves the pitch/yaw gains
     heavy = dataclasses.replace(silent, thrust=dataclasses.replace(
         scenario.thrust, initial_accel_g0=2.0 * scenario.thrust.initial_accel_g0))

@@ -154,7 +154,9 @@ def test_manifest_records_provenance(table_dir):
     for entry in manifest["files"]:
         assert hashlib.sha256((out / entry["file"]).read_bytes()).hexdigest() == entry["sha256"]
     assert set(manifest["settings"]) == {"cpd_gains", "freeze_time_to_go_s", "braking_accels_rad_s2",
-                                         "dtf_max_s", "fine_window_s", "terminal_window_s"}
+                                         "dtf_max_s", "fine_window_s", "terminal_window_s",
+                                         "terminal_turn_accel_rad_s2"}
+    assert manifest["settings"]["terminal_turn_accel_rad_s2"]["source"] == "derived"
     assert all(rec["source"] in ("scenario", "derived") for rec in manifest["settings"].values())
     assert tables.check_tables(out, DEFAULT_SCENARIO_PATH, reference_tf_s=manifest["t_f_s"]) == manifest
     name = tables.default_table_dir(DEFAULT_SCENARIO_PATH).name

@@ -57,6 +57,11 @@ static void test_each_config_bound_decides_alone(void **state)
     init_with(offsetof(ogk_terminal_config_t, window_s), nextafter(0.0, -1.0), OGK_E_CONFIG);
     init_with(offsetof(ogk_terminal_config_t, window_s), OGK_TERMINAL_T_MAX_S, OGK_OK);
     init_with(offsetof(ogk_terminal_config_t, window_s), nextafter(OGK_TERMINAL_T_MAX_S, DBL_MAX), OGK_E_CONFIG);
+    init_with(offsetof(ogk_terminal_config_t, turn_accel_rad_s2), 0.0, OGK_OK);
+    init_with(offsetof(ogk_terminal_config_t, turn_accel_rad_s2), nextafter(0.0, -1.0), OGK_E_CONFIG);
+    init_with(offsetof(ogk_terminal_config_t, turn_accel_rad_s2), OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2, OGK_OK);
+    init_with(offsetof(ogk_terminal_config_t, turn_accel_rad_s2),
+              nextafter(OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2, DBL_MAX), OGK_E_CONFIG);
 }
 
 /* A nav field set to value, outside the window (t_predicted - t = 500 s > 3 s): want; on a

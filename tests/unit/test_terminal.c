@@ -446,6 +446,173 @@ static void test_shaped_fallbacks(void **state)
     assert_false(ctx.plan.in_hold);
 }
 
+/* The angle between the shaped plan's thrust direction at time t of the plan
+ * and its direction with no position part (k = 0: the velocity-nulling plan,
+ * -x'/T - g_r, (v_c - v_t)/T, -z'/T - g_n), both rebuilt here from the plan's
+ * coefficients and the state. */
+static double plan_tilt(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t)
+{
+    const double T = ctx->plan.duration_s;
+    const double g_r = (((nav->v_t_mps * nav->v_t_mps) + (nav->v_n_mps * nav->v_n_mps)) / nav->r_m) -
+                       (MU / (nav->r_m * nav->r_m));
+    const double z = nav->r_m * sin(nav->phi_rad);
+    const double z_dot = (nav->v_r_mps * sin(nav->phi_rad)) + (nav->v_n_mps * cos(nav->phi_rad));
+    const double g_n = -(MU * z) / (nav->r_m * nav->r_m * nav->r_m);
+    const double p[3] = {ctx->plan.accel_r0_mps2 + (ctx->plan.accel_r1_mps3 * t), ctx->plan.accel_t_mps2,
+                         ctx->plan.accel_n0_mps2 + (ctx->plan.accel_n1_mps3 * t)};
+    const double v[3] = {(-nav->v_r_mps / T) - g_r, (sqrt(MU / R_F) - nav->v_t_mps) / T, (-z_dot / T) - g_n};
+    const double cross[3] = {(p[1] * v[2]) - (p[2] * v[1]), (p[2] * v[0]) - (p[0] * v[2]),
+                             (p[0] * v[1]) - (p[1] * v[0])};
+    const double dot = (p[0] * v[0]) + (p[1] * v[1]) + (p[2] * v[2]);
+    return atan2(sqrt((cross[0] * cross[0]) + (cross[1] * cross[1]) + (cross[2] * cross[2])), dot);
+}
+
+/* Turn limit (terminal.h): the bound is the angle a vehicle turning at an
+ * angular acceleration a leaves and regains from rest within the shaped part
+ * S = window - hold of the window, here integrated step by step (bang-bang,
+ * S / 4 accelerating, S / 4 braking, then back); a plan whose tilt from the
+ * velocity-nulling direction would exceed it is scaled down to it, at its
+ * start and at its end, and the same state with no limit tilts further; a
+ * plan inside the bound is the unlimited one to the bit. */
+/* req: OGK-NOG-021 */
+static void test_turn_limit_bounds_the_plans_tilt(void **state)
+{
+    ogk_terminal_config_t cfg = terminal_config();
+    ogk_terminal_t ctx;
+    ogk_terminal_t free_ctx;
+    ogk_nav_state_t nav = nav_at(100.0, 30.0, -45.0, 0.0);
+    const ogk_thrust_cmd_t law = law_command(100.0);
+    ogk_thrust_cmd_t out;
+    ogk_thrust_cmd_t free_out;
+    const double a = 0.2;       /* [rad/s^2] the short-burn corner's vehicle at the end of its burn */
+    const double t_go = 2.5;
+    double angle = 0.0;
+    double rate = 0.0;
+    int k;
+    (void)state;
+    cfg.shape_gain = 1.0;
+    cfg.shape_gain_normal = 1.0;
+    cfg.shape_hold_s = 1.0;
+    cfg.window_s = 3.0;
+    cfg.turn_accel_rad_s2 = a;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    assert_true(ctx.tilt_limited);
+    OGK_ASSERT_NEAR(ctx.plan.gain_scale, 1.0, 0.0); /* no plan yet: unscaled */
+    /* rest to rest in S / 2 = 1 s: 0.5 s accelerating at a, 0.5 s braking, 1e-5 s steps */
+    for (k = 0; k < 100000; ++k) {
+        const double acc = (k < 50000) ? a : -a;
+        angle += (rate * 1.0e-5) + (0.5 * acc * 1.0e-10);
+        rate += acc * 1.0e-5;
+    }
+    OGK_ASSERT_NEAR(rate, 0.0, 1e-12);
+    OGK_ASSERT_REL(ctx.shape_tilt_max_rad, angle, 1e-9, 0.0);
+    OGK_ASSERT_REL(tan(ctx.shape_tilt_max_rad), ctx.shape_tilt_max_tan, 1e-15, 0.0);
+    /* a 400 m radius miss rising at 30 m/s with 2.5 s to go: far beyond the bound */
+    nav.r_m = R_F + 400.0;
+    OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 100.0 + t_go, &law, &out), OGK_OK);
+    assert_false(ctx.plan.in_hold);
+    assert_true(ctx.plan.gain_scale > 0.0);
+    assert_true(ctx.plan.gain_scale < 0.1);
+    assert_true(plan_tilt(&ctx, &nav, 0.0) <= ctx.shape_tilt_max_rad * (1.0 + 1e-9));
+    assert_true(plan_tilt(&ctx, &nav, t_go) <= ctx.shape_tilt_max_rad * (1.0 + 1e-9));
+    assert_true(plan_tilt(&ctx, &nav, 0.0) > 0.5 * ctx.shape_tilt_max_rad); /* scaled to it, not to 0 */
+    /* the plan still nulls the radial velocity at its end (a plan with a smaller gain) */
+    {
+        const double g_r = (((nav.v_t_mps * nav.v_t_mps) + (nav.v_n_mps * nav.v_n_mps)) / nav.r_m) -
+                           (MU / (nav.r_m * nav.r_m));
+        OGK_ASSERT_NEAR(nav.v_r_mps + ((ctx.plan.accel_r0_mps2 + g_r) * t_go) +
+                            (0.5 * ctx.plan.accel_r1_mps3 * t_go * t_go),
+                        0.0, 1e-12);
+    }
+    /* a plane-normal miss alone (420 m out of plane, closing at 20 m/s): bounded the same way, the
+     * normal gain scaled; the radial plan is then the velocity-nulling one */
+    {
+        ogk_nav_state_t plane = nav_at(100.0, 0.0, -45.0, 20.0);
+        plane.r_m = R_F;
+        plane.phi_rad = 1.0e-5;
+        OGK_ASSERT_STATUS(ogk_terminal_init(&free_ctx, &cfg), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_terminal_step(&free_ctx, &plane, 100.0 + t_go, &law, &free_out), OGK_OK);
+        assert_true(free_ctx.plan.gain_scale < 0.2);
+        assert_true(plan_tilt(&free_ctx, &plane, 0.0) <= free_ctx.shape_tilt_max_rad * (1.0 + 1e-9));
+        assert_true(plan_tilt(&free_ctx, &plane, t_go) <= free_ctx.shape_tilt_max_rad * (1.0 + 1e-9));
+        assert_true(plan_tilt(&free_ctx, &plane, 0.0) > 0.5 * free_ctx.shape_tilt_max_rad);
+        /* the scaled position part is exactly the allowed one: s k |3 z' + 6 z / T| = tan(bound) |v_go| */
+        {
+            const double z = plane.r_m * sin(plane.phi_rad);
+            const double z_dot = plane.v_n_mps * cos(plane.phi_rad);
+            const double vgo = sqrt((45.0 * 45.0) + (20.0 * 20.0));
+            OGK_ASSERT_REL(free_ctx.plan.gain_scale * fabs((3.0 * z_dot) + ((6.0 * z) / t_go)),
+                           tan(free_ctx.shape_tilt_max_rad) * vgo, 1e-12, 0.0);
+        }
+    }
+    /* no limit: the same state tilts the plan further */
+    cfg.turn_accel_rad_s2 = 0.0;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&free_ctx, &cfg), OGK_OK);
+    assert_false(free_ctx.tilt_limited);
+    OGK_ASSERT_STATUS(ogk_terminal_step(&free_ctx, &nav, 100.0 + t_go, &law, &free_out), OGK_OK);
+    OGK_ASSERT_NEAR(free_ctx.plan.gain_scale, 1.0, 0.0);
+    assert_true(plan_tilt(&free_ctx, &nav, 0.0) > 5.0 * ctx.shape_tilt_max_rad);
+    assert_true(fabs(free_out.alpha_rad - out.alpha_rad) > 0.1);
+    /* a 0.3 m miss at 0.02 m/s (tilt 0.017 rad): inside the bound, the unlimited plan to the bit */
+    cfg.turn_accel_rad_s2 = a;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    nav = nav_at(100.0, 0.02, -45.0, 0.0);
+    nav.r_m = R_F + 0.3;
+    OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 100.0 + t_go, &law, &out), OGK_OK);
+    OGK_ASSERT_NEAR(ctx.plan.gain_scale, 1.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_terminal_init(&free_ctx, &cfg), OGK_OK);
+    free_ctx.tilt_limited = false;
+    OGK_ASSERT_STATUS(ogk_terminal_step(&free_ctx, &nav, 100.0 + t_go, &law, &free_out), OGK_OK);
+    assert_true(memcmp(&out, &free_out, sizeof out) == 0);
+}
+
+/* The turn limit binds only with shaping, a > 0 and a bound below
+ * OGK_TERMINAL_TILT_MAX_RAD; a vehicle that barely turns (a = 1e-9 rad/s^2)
+ * flies the velocity-nulling plan, its position part scaled to ~0. */
+/* req: OGK-NOG-021 */
+static void test_turn_limit_binds_only_when_it_can(void **state)
+{
+    ogk_terminal_config_t cfg = terminal_config();
+    ogk_terminal_t ctx;
+    ogk_nav_state_t nav = nav_at(100.0, 30.0, -45.0, -3.0);
+    const ogk_thrust_cmd_t law = law_command(100.0);
+    ogk_thrust_cmd_t out;
+    (void)state;
+    cfg.turn_accel_rad_s2 = 0.2;              /* not shaped: v_go steering, no limit */
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    assert_false(ctx.tilt_limited);
+    OGK_ASSERT_NEAR(ctx.shape_tilt_max_rad, OGK_TERMINAL_TILT_MAX_RAD, 0.0);
+    cfg.shape_gain = 1.0;
+    cfg.shape_hold_s = 1.0;
+    cfg.turn_accel_rad_s2 = OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2; /* a S^2 / 16 far above TILT_MAX */
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    assert_false(ctx.tilt_limited);
+    cfg.window_s = 3.0; /* S = 2 s: a = 16 TILT_MAX / S^2 = 6 puts the bound at TILT_MAX, exactly */
+    cfg.turn_accel_rad_s2 = 16.0 * OGK_TERMINAL_TILT_MAX_RAD / 4.0;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    assert_false(ctx.tilt_limited);
+    cfg.turn_accel_rad_s2 = nextafter(16.0 * OGK_TERMINAL_TILT_MAX_RAD / 4.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    assert_true(ctx.tilt_limited);
+    cfg.window_s = 3.0;
+    cfg.turn_accel_rad_s2 = 1.0e-9;
+    cfg.shape_gain_normal = 1.0;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    nav.r_m = R_F + 400.0;
+    nav.phi_rad = 1.0e-6;
+    OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.5, &law, &out), OGK_OK);
+    assert_true(ctx.plan.gain_scale < 1.0e-6);
+    /* the velocity-nulling plan: thrust along (v_go - g T) / T, v_go's in-plane angle but for
+     * g_r T = -0.016 m/s (2.5e-4 rad) */
+    assert_true(fabs(out.alpha_rad - atan2(-30.0, 45.0)) < 1.0e-3);
+    /* no velocity to be gained with a position miss: scale 0, the k = 0 plan */
+    nav = nav_at(100.0, 0.0, 0.0, 0.0);
+    nav.r_m = R_F + 400.0;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.5, &law, &out), OGK_OK);
+    OGK_ASSERT_NEAR(ctx.plan.gain_scale, 0.0, 0.0);
+}
+
 /* req: OGK-NOG-017 */
 static void test_contract(void **state)
 {
@@ -518,7 +685,22 @@ static void test_contract(void **state)
     cfg.shape_gain = 1.0;
     cfg.shape_hold_s = OGK_TERMINAL_HOLD_MIN_S;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
-
+    /* turn limit: finite, in [0, TURN_ACCEL_MAX] */
+    cfg.turn_accel_rad_s2 = -1.0e-3;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.turn_accel_rad_s2 = NAN;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.turn_accel_rad_s2 = INFINITY;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.turn_accel_rad_s2 = 2.0 * OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_E_CONFIG);
+    cfg.turn_accel_rad_s2 = 0.2;
+    OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
+    /* reset keeps the configuration and the bound it gives */
+    OGK_ASSERT_STATUS(ogk_terminal_reset(&ctx), OGK_OK);
+    assert_true(ctx.tilt_limited);
+    OGK_ASSERT_REL(ctx.shape_tilt_max_rad, 0.0625 * 0.2 * (3.0 - OGK_TERMINAL_HOLD_MIN_S) * (3.0 - OGK_TERMINAL_HOLD_MIN_S),
+                   1e-15, 0.0);
 }
 
 int main(void)
@@ -532,6 +714,8 @@ int main(void)
         cmocka_unit_test(test_shaped_plan_meets_its_end_conditions),
         cmocka_unit_test(test_shaped_window_steers_out_the_position_miss),
         cmocka_unit_test(test_shaped_fallbacks),
+        cmocka_unit_test(test_turn_limit_bounds_the_plans_tilt),
+        cmocka_unit_test(test_turn_limit_binds_only_when_it_can),
         cmocka_unit_test(test_contract),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -28,12 +28,25 @@
   only with the energy cut-off (the paper's end-game has none). Measured at the short-burn corner
   of the envelope (t_f* = 41.8 s, 200 runs, seed 777): a copied 10 s terminal window fails 18
   runs, 5 s fails 1 (docs/vtd-nog.md).
+- The terminal stage's turn limit (docs/vtd-nog.md, "Terminal steering within the vehicle's turn
+  rate"; kernel ogk_terminal_config_t.turn_accel_rad_s2): the angular acceleration the vehicle's TVC
+  gives at its command limit, sin(Delta_c) T l(t) / I(t) (pitch and yaw, the smaller; T the smallest
+  thrust, eq. 53's arm and inertias), the smallest over the terminal window [t_f* - window, t_f*]:
+  the attitude loop turns the thrust direction no faster than that. The kernel bounds each shaped
+  plan's tilt from the velocity to be gained to a S^2 / 16, S = window - hold. Measured: the paper's
+  mission 0.273 rad/s^2 (bound 62 deg: no plan of 1000 runs reaches it), the section-7 upper stage
+  19.9 (no bound below 1.5 rad), the short-burn corner 0.198 (2.6 deg: v_go steering; 52 -> 1
+  failure in 1000 runs of seed 4242, radius sigma 1.5 km, velocities 30 m/s). The bound is necessary, not sufficient: the paper's
+  10 s window copied onto that corner (bound 42 deg) still fails 8.6 % (docs/vtd-nog.md). Taken from
+  `guidance.end_game.terminal_turn_accel_rad_s2` when present.
 - The envelope (`envelope_warnings(scn, t_f_star_s)`): one line per setting outside what was
   measured to fly, naming its key: the nominal's envelope (R_f / perigee 1.5..8, n0 0.5..1.5 g0,
   c 2.5..4.5 km/s), a window or clip set above 2x its rule, and the initial-state dispersions
   beyond the linear domain of the neighbouring-optimal law (3 sigma of the radius above 0.2 n0
   t_f*^2, 3 sigma of a velocity component above 0.1 of the burn's Delta v; the paper's mission is
-  at 0.12 and 0.062).
+  at 0.12 and 0.062), each dispersion line with what was measured beyond it at the short-burn
+  corner (`RADIUS_BEYOND_MEASURED`, `VELOCITY_BEYOND_MEASURED`; inside the domain that corner
+  fails 0 of 1000 runs on two seeds).
 
 Written against the scenario loader both before and after its keys became optional
 (`getattr(..., None)`): a missing `[cpd.rederived]` is `scn.cpd.rederived is None`, a missing
@@ -63,11 +76,27 @@ WINDOW_WARNING_FACTOR = 2.0
 #: Linear domain of VTD-NOG (module docstring): 3 sigma radius / (n0 t_f*^2), 3 sigma velocity / Delta v.
 RADIUS_DISPERSION_FRACTION = 0.2
 VELOCITY_DISPERSION_FRACTION = 0.1
+#: What was measured beyond the linear domain, quoted by each warning (docs/vtd-nog.md, "Envelope
+#: warnings"): the short-burn corner (R_f / r_p 1.5, 1.5 g0, 4.5 km/s, derived settings), 1000 runs,
+#: 6-DOF, every dispersion, `ogk mc FILE --runs 1000 --seed S --workers 2`: radius 3 sigma at 0.29 n0
+#: t_f*^2 (2.5 km, velocities 22 m/s) 15 failures (seed 83219); at 0.58 (the paper's 5 km, 30 m/s)
+#: 200 (seed 83219); velocity 3 sigma at 0.136 of Delta v (30 m/s, radius 1.5 km) 1 and 2 (seeds 606032,
+#: 711032); inside the domain (1.5 km, 20 m/s) 0 and 0 (the same seeds).
+#: the paper's 10 s terminal and 20 s fine windows copied onto the corner (dispersions inside the
+#: domain, 1.5 km / 20 m/s): 86 failures (seed 83219), against 0 with the rule's windows
+WINDOW_BEYOND_MEASURED = ("measured at the short-burn corner: the paper's 10 s and 20 s windows copied "
+                          "fail 8.6 % of 1000 runs inside the linear domain")
+RADIUS_BEYOND_MEASURED = "measured at the short-burn corner, 1000 runs: 1.5 % fail at 0.29, 20 % at 0.58"
+VELOCITY_BEYOND_MEASURED = ("measured at the short-burn corner, 1000 runs with the radius inside its "
+                            "domain: 0.1-0.2 % fail at 0.136")
 #: The nominal's envelope (docs/vtd-nog.md sec. 2): R_f / perigee, n0 [g0], c [m/s].
 ENVELOPE_RADIUS_RATIO = (1.5, 8.0)
 ENVELOPE_ACCEL_G0 = (0.5, 1.5)
 ENVELOPE_EXHAUST_M_S = (2500.0, 4500.0)
 EG_KEY = "guidance.end_game."
+#: The terminal stage's turn limit (module docstring) and the samples of the window it is taken over.
+TURN_ACCEL_KEY = "terminal_turn_accel_rad_s2"
+TURN_ACCEL_SAMPLES = 201
 G0 = 9.80665   #: standard gravity [m/s^2], for n0 in g0
 
 
@@ -172,13 +201,28 @@ def burn_rules(scn: OrbitInjectionScenario, t_f_star_s: float) -> dict[str, floa
                                      scn.end_game.terminal_shape_hold_s)}
 
 
+def turn_accel_rule(scn: OrbitInjectionScenario, t_f_star_s: float, window_s: float) -> float:
+    """The vehicle's angular acceleration at its TVC command limit [rad/s^2], the smallest over the
+    terminal window [t_f* - window, t_f*] and over pitch and yaw (module docstring)."""
+    t = np.linspace(max(0.0, t_f_star_s - window_s), t_f_star_s, TURN_ACCEL_SAMPLES)
+    g = vehicle(scn).effectiveness(t)           # (G_x, G_y, G_z)(t), G_y = T l / I_y [1/s^2]
+    cpd = scn.cpd
+    return float(min(np.min(g[1]) * math.sin(cpd.deflection_y_command_max_rad),
+                     np.min(g[2]) * math.sin(cpd.deflection_z_command_max_rad)))
+
+
 def burn_scaled(scn: OrbitInjectionScenario, t_f_star_s: float) -> tuple[tuple[str, float, str], ...]:
-    """(key, value, source) of dtf_max_s, fine_window_s and terminal_window_s for a burn of t_f*: the
-    scenario's value where it sets one, else the rule's."""
+    """(key, value, source) of dtf_max_s, fine_window_s, terminal_window_s and the terminal turn
+    limit terminal_turn_accel_rad_s2 (over the window in force) for a burn of t_f*: the scenario's
+    value where it sets one, else the rule's."""
     out = []
     for key, rule in burn_rules(scn, t_f_star_s).items():
         stored = getattr(scn.end_game, key)
         out.append((key, float(stored), SCENARIO) if stored is not None else (key, rule, DERIVED))
+    window = next(value for key, value, _ in out if key == "terminal_window_s")
+    stored = scn.end_game.terminal_turn_accel_rad_s2
+    out.append((TURN_ACCEL_KEY, float(stored), SCENARIO) if stored is not None
+               else (TURN_ACCEL_KEY, turn_accel_rule(scn, t_f_star_s, window), DERIVED))
     return tuple(out)
 
 
@@ -191,10 +235,14 @@ def resolve(scn: OrbitInjectionScenario, t_f_star_s: float) -> OrbitInjectionSce
     return dataclasses.replace(scn, end_game=dataclasses.replace(scn.end_game, **values))
 
 
-def require_resolved(scn: OrbitInjectionScenario) -> None:
-    """ValueError when a burn-scaled setting is still unset (a caller skipped `resolve`)."""
-    missing = [key for key in ("dtf_max_s", "fine_window_s", "terminal_window_s")
-               if getattr(scn.end_game, key) is None]
+#: The end-game settings `resolve` fills from t_f*: the windows and clip, and the turn limit
+WINDOW_KEYS = ("dtf_max_s", "fine_window_s", "terminal_window_s")
+
+
+def require_resolved(scn: OrbitInjectionScenario, keys: tuple[str, ...] = WINDOW_KEYS) -> None:
+    """ValueError when a burn-scaled setting of `keys` is still unset (a caller skipped `resolve`);
+    by default the windows and clip (the terminal stage's configuration also needs TURN_ACCEL_KEY)."""
+    missing = [key for key in keys if getattr(scn.end_game, key) is None]
     if missing:
         raise ValueError(f"end-game settings {missing} not resolved: call derive.resolve(scn, t_f*)")
 
@@ -223,18 +271,21 @@ def envelope_warnings(scn: OrbitInjectionScenario, t_f_star_s: float) -> list[tu
                             f"where the nominal and its campaigns are verified"))
     rules = burn_rules(scn, t_f_star_s)
     for key, value, source in burn_scaled(scn, t_f_star_s):
+        if key not in rules:       # the turn limit: vehicle data, no window rule
+            continue
         rule = rules[key]
         if source == SCENARIO and value > WINDOW_WARNING_FACTOR * rule:
             out.append((EG_KEY + key, f"{value:g} s is {value / t_f_star_s:.0%} of this burn "
                         f"(t_f* = {t_f_star_s:.4g} s), above {WINDOW_WARNING_FACTOR:g}x the rule's "
-                        f"{rule:.3g} s: leave the key out to fly the rule"))
+                        f"{rule:.3g} s: leave the key out to fly the rule ({WINDOW_BEYOND_MEASURED})"))
     isd = scn.initial_state_dispersion
     radius_scale = scn.thrust.initial_accel_m_s2 * t_f_star_s ** 2
     if 3.0 * isd.radius_m > RADIUS_DISPERSION_FRACTION * radius_scale:
         out.append(("dispersions.initial_state.radius_m",
                     f"3 sigma = {3.0 * isd.radius_m:g} m is {3.0 * isd.radius_m / radius_scale:.2f} "
                     f"n0 t_f*^2, beyond the linear domain of VTD-NOG ({RADIUS_DISPERSION_FRACTION:g}; "
-                    f"<= {RADIUS_DISPERSION_FRACTION * radius_scale / 3.0:.4g} m sigma for this burn)"))
+                    f"<= {RADIUS_DISPERSION_FRACTION * radius_scale / 3.0:.4g} m sigma for this burn; "
+                    f"{RADIUS_BEYOND_MEASURED})"))
     dv = delta_v_m_s(scn, t_f_star_s)
     for name in ("radial_velocity_m_s", "transverse_velocity_m_s", "normal_velocity_m_s"):
         sigma = float(getattr(isd, name))
@@ -243,6 +294,6 @@ def envelope_warnings(scn: OrbitInjectionScenario, t_f_star_s: float) -> list[tu
                         f"3 sigma = {3.0 * sigma:g} m/s is {3.0 * sigma / dv:.3f} of the burn's "
                         f"Delta v ({dv:.4g} m/s), beyond the linear domain of VTD-NOG "
                         f"({VELOCITY_DISPERSION_FRACTION:g}; <= {VELOCITY_DISPERSION_FRACTION * dv / 3.0:.3g} "
-                        f"m/s sigma for this burn)"))
+                        f"m/s sigma for this burn; {VELOCITY_BEYOND_MEASURED})"))
     return out
 

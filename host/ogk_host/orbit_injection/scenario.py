@@ -415,6 +415,9 @@ class EndGame:
     terminal_shape_gain_normal: float = 0.0
     terminal_shape_hold_s: float = 1.0
     terminal_shape_lead_s: float = 0.0
+    #: kernel ogk_terminal turn limit: the vehicle's angular acceleration at its TVC command limit in
+    #: the terminal window [rad/s^2] (0: none); None: derived from the vehicle (derive.resolve)
+    terminal_turn_accel_rad_s2: float | None = None
 
     @property
     def terminal_shaped(self) -> bool:
@@ -575,7 +578,10 @@ def load_scenario(path: str | Path | None = None) -> OrbitInjectionScenario:
                        terminal_shape_hold_s=eg_s.number("terminal_shape_hold_s", 1.0,
                                                          positive=True),
                        terminal_shape_lead_s=eg_s.number("terminal_shape_lead_s", 0.0,
-                                                         nonnegative=True, hi=1.0e7))
+                                                         nonnegative=True, hi=1.0e7),
+                       # kernel OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2
+                       terminal_turn_accel_rad_s2=eg_s.number("terminal_turn_accel_rad_s2", None,
+                                                              nonnegative=True, hi=1.0e4))
     shaped = end_game.terminal_shaped
     if (shaped and end_game.terminal_window_s is not None
             and not end_game.terminal_shape_hold_s <= end_game.terminal_window_s):

@@ -38,6 +38,22 @@
  * the position miss left is then about x' shape_hold_s / 2, with x' small).
  * Measured against flying the frozen plan open loop to its end: docs/vtd-nog.md.
  *
+ * Turn limit (turn_accel_rad_s2 > 0; beyond the paper, docs/vtd-nog.md,
+ * "Terminal steering within the vehicle's turn rate"). Thrust along v_go asks
+ * for no turn (above); only the shaping does: the plan's direction leaves v_go
+ * by the tilt whose tangent is k |Q| / |v_go|, Q = 3 x' + 6 x / T per axis (the
+ * position part of the plan, -k Q / T at its start and +k Q / T at its end,
+ * against the velocity part |v_go| / T), and must come back to v_go at the
+ * hold. A vehicle whose thrust direction turns at an angular acceleration of
+ * at most a (the TVC command limit times T l / I) turns through an angle th
+ * from rest to rest in 2 sqrt(th / a) at best, so out and back within the
+ * shaped part of the window, window_s - shape_hold_s = S, only for
+ *   th <= a S^2 / 16.
+ * Each plan's gains are scaled down, both axes alike, until its tilt is within
+ * that bound (shape_tilt_max_rad; at most OGK_TERMINAL_TILT_MAX_RAD): a short
+ * window on a slow-turning vehicle flies v_go, with the position miss that
+ * leaves, instead of a plan it cannot follow. 0 (the default): no bound.
+ *
  * Use: once per control period, after the guidance law's command:
  * ogk_terminal_step(ctx, nav, t_predicted, &law_cmd, &cmd); fly cmd. Once
  * engaged, the stage stays engaged for the burn (a later prediction that
@@ -68,6 +84,10 @@ extern "C" {
 #define OGK_TERMINAL_VGO_MIN_MPS 1.0e-3
 /* Smallest shape_hold_s: the plan's gains grow like 1 / hold^3. */
 #define OGK_TERMINAL_HOLD_MIN_S 1.0e-3
+/* [rad/s^2] Largest turn_accel_rad_s2 (a bound far above any vehicle's; keeps a S^2 / 16 finite). */
+#define OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2 1.0e4
+/* [rad] Largest tilt bound: at or beyond it the turn limit does not bind (tan stays finite). */
+#define OGK_TERMINAL_TILT_MAX_RAD 1.5
 
 /* law_flags of the output command while engaged (the law's own flags are
  * replaced: the command is not the law's). */
@@ -81,6 +101,7 @@ typedef struct {
     double shape_gain_normal; /* [-] k of the plane-normal position miss, [0, 1] (0: not steered) */
     double shape_lead_s;    /* [s] the command is the plan's direction this long ahead (attitude-loop lag), [0, T_MAX] (0: none) */
     double shape_hold_s;    /* [s] time to go below which v_go steering takes over, [HOLD_MIN, window_s] when shape_gain > 0 */
+    double turn_accel_rad_s2; /* [rad/s^2] the vehicle's angular acceleration at its TVC command limit in the window (turn limit), [0, TURN_ACCEL_MAX] (0: no limit) */
 } ogk_terminal_config_t;
 
 /* The last linear-acceleration plan of the shaped window (r-t-n). */
@@ -92,6 +113,7 @@ typedef struct {
     double accel_n0_mps2;   /* [m/s^2] plane-normal thrust acceleration at t0_s */
     double accel_n1_mps3;   /* [m/s^3] its rate */
     double accel_t_mps2;    /* [m/s^2] tangential thrust acceleration, held */
+    double gain_scale;      /* [-] scale on both shape gains that kept the plan within the turn limit, [0, 1] */
     bool in_hold;           /* [-] past the hold: v_go steering (latched) */
 } ogk_terminal_plan_t;
 
@@ -102,6 +124,9 @@ typedef struct {
     double beta_rad;        /* [rad] last terminal command, out-of-plane angle */
     bool engaged;           /* [-] in the terminal window (latched) */
     ogk_terminal_plan_t plan; /* [-] shaped window only */
+    double shape_tilt_max_rad; /* [rad] largest tilt of a plan from v_go (turn limit), set by init */
+    double shape_tilt_max_tan; /* [-] its tangent */
+    bool tilt_limited;      /* [-] the turn limit binds (turn_accel_rad_s2 > 0, bound below TILT_MAX, shaped) */
     double last_t_s;        /* [s] time of the last accepted step */
     double last_energy_j_kg; /* [J/kg] specific orbital energy at last_t_s */
     bool has_last;          /* [-] last_t_s, last_energy_j_kg are set */
@@ -109,7 +134,8 @@ typedef struct {
 } ogk_terminal_t;
 
 /* Defaults: mu of the Earth, target 42164 km, window 3 s, no shaping
- * (shape_gain = shape_gain_normal = 0, shape_hold_s 1 s). */
+ * (shape_gain = shape_gain_normal = 0, shape_hold_s 1 s), no turn limit
+ * (turn_accel_rad_s2 = 0). */
 /*@ requires cfg_valid: cfg == \null || \valid(cfg); */
 ogk_status ogk_terminal_config_default(ogk_terminal_config_t *cfg);
 

@@ -7,6 +7,7 @@ point-mass truth) goes through the campaign engine (family.py).
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 
 from ogk_host.orbit_injection.scenario import LAWS as SCENARIO_LAWS
@@ -29,9 +30,10 @@ def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
     from ogk_host.cgen import write_c_table
     from ogk_host.orbit_injection import tables as ground
 
-    from ogk_host.orbit_injection.derive import resolve
+    from ogk_host.orbit_injection.derive import TURN_ACCEL_KEY, resolve
 
     from .family import warn_outside_envelope
+    from .terminal import shape_tilt_bound_rad
     from .flight_config import write_flight_config
 
     scn = load_scenario(header.path)  # every bad key reported before the nominal is solved
@@ -45,10 +47,17 @@ def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
                                                      "with ogk_nog_table_load() (ogk/nog.h).")
     print(f"{header.name}: t_f* = {manifest['t_f_s']:.6f} s, "
           f"f0* = {manifest['ignition_true_anomaly_deg']:.6f} deg")
-    warn_outside_envelope(resolve(scn, manifest["t_f_s"]), manifest["t_f_s"])
+    resolved = resolve(scn, manifest["t_f_s"])
+    warn_outside_envelope(resolved, manifest["t_f_s"])
     for key, entry in manifest["settings"].items():
         if key.endswith("_window_s") or key == "dtf_max_s":
             print(f"  {key} = {entry['value']:.4g} s ({entry['source']})")
+    turn = manifest["settings"].get(TURN_ACCEL_KEY)
+    if turn is not None and resolved.end_game.terminal_window_s:
+        tilt = shape_tilt_bound_rad(resolved)
+        print(f"  {TURN_ACCEL_KEY} = {turn['value']:.4g} rad/s^2 ({turn['source']}): "
+              + ("the shaped plans are not limited" if tilt is None else
+                 f"shaped plans tilt at most {math.degrees(tilt):.3g} deg from v_go"))
     for name, value in manifest.get("residuals", {}).items():
         print(f"  residual {name:22s} {value: .3e}")
     for entry in manifest["files"]:

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 from .attitude import CpdBatchControl
@@ -33,6 +34,7 @@ class KernelFlightSoftware:
                  run_ids: NDArray[np.int64], settings: SilSettings = SilSettings()) -> None:
         n = int(np.asarray(run_ids).size)
         ctrl_dt = 1.0 / settings.control_rate_hz
+        scn = derive.resolve(scn, ref.tf_s)   # as sil.simulate: what the scenario leaves to t_f*
         self.plan = EndGamePlan.of(scn, settings)
         self.guidance = KernelNogGuidance(
             GuidanceSetup(scn, ref, np.asarray(run_ids, dtype=np.int64),

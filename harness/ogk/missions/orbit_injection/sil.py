@@ -204,6 +204,9 @@ def simulate(scn: OrbitInjectionScenario, ref: NominalReference, draws: RunDraws
     the end-game and CPD are not called here."""
     if settings.truth not in TRUTHS:
         raise ValueError(f"truth must be one of {TRUTHS}, got {settings.truth!r}")
+    # what the scenario leaves to the nominal (the terminal stage's turn limit of a shipped scenario;
+    # a scenario that sets everything comes back unchanged): derive.resolve, with this t_f*
+    scn = derive.resolve(scn, ref.tf_s)
     six_dof = settings.truth == "6dof"
     n = draws.n_runs
     if flight_computer is not None and not six_dof:

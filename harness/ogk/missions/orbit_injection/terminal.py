@@ -26,13 +26,26 @@ def terminal_config(scn: OrbitInjectionScenario) -> object:
         raise KernelError(status, "ogk_terminal_config_default")
     cfg.mu_m3_s2 = scn.mu_m3_s2
     cfg.target_radius_m = scn.target_radius_m
-    derive.require_resolved(scn)
+    derive.require_resolved(scn, derive.WINDOW_KEYS + (derive.TURN_ACCEL_KEY,))
     cfg.window_s = scn.end_game.terminal_window_s
     cfg.shape_gain = scn.end_game.terminal_shape_gain
     cfg.shape_gain_normal = scn.end_game.terminal_shape_gain_normal
     cfg.shape_hold_s = scn.end_game.terminal_shape_hold_s
     cfg.shape_lead_s = scn.end_game.terminal_shape_lead_s
+    # the turn limit (terminal.h): the vehicle's TVC-limited angular acceleration in the window
+    cfg.turn_accel_rad_s2 = scn.end_game.terminal_turn_accel_rad_s2
     return cfg
+
+
+def shape_tilt_bound_rad(scn: OrbitInjectionScenario) -> float | None:
+    """The largest tilt of a shaped plan from v_go that the kernel flies for this scenario (the turn
+    limit of ogk/terminal.h, as ogk_terminal_init computes it), or None when it does not bind (no
+    shaping, no turn limit, or a bound at OGK_TERMINAL_TILT_MAX_RAD)."""
+    ctx = ffi.new("ogk_terminal_t *")
+    status = lib.ogk_terminal_init(ctx, terminal_config(scn))
+    if status != lib.OGK_OK:
+        raise KernelError(status, "ogk_terminal_init")
+    return float(ctx.shape_tilt_max_rad) if ctx.tilt_limited else None
 
 
 class TerminalSteering:
