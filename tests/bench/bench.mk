@@ -152,6 +152,13 @@ bench-nmpc: $(BENCH_NMPC) $(ARM_BENCH_NMPC) $(ARM_BENCH_NMPC_EXACT) $(ARM_CI) qe
 	@$(VPY) tests/bench/bench_nmpc_ipopt.py peer-insns $(NMPC_B)/peers_callgrind.txt > /dev/null
 	@$(VPY) tests/bench/bench_nmpc_ipopt.py run --figures $(NMPC_B)
 
+# The re-solve's iteration counts under ulp moves of its start (x_1, t_1; then x_0 and the guess's
+# horizon through the open loop; then 200 one-ulp patterns of the guess), in each mode: one count each.
+.PHONY: bench-nmpc-scan
+bench-nmpc-scan: $(BENCH_NMPC)
+	@for m in "" tol0 exact "exact tol0"; do $(BENCH_NMPC) scan $$m | grep -v '^scan '; \
+	  $(BENCH_NMPC) scan $$m open | grep -v '^scan '; $(BENCH_NMPC) scan $$m guess 200; done
+
 # Where the re-solve's instructions go: callgrind of one re-solve, inclusive per function.
 bench-nmpc-profile: $(BENCH_NMPC)
 	valgrind --tool=callgrind --callgrind-out-file=$(NMPC_B)/callgrind.out \
