@@ -112,3 +112,58 @@ def test_header_holds_the_fixture_bit_for_bit(fixture, tmp_path) -> None:
     assert f"#define BENCH_NMPC_NODES {g['nodes']}u" in text
     # the same text from the same fixture: a pure transform
     assert nmpc_case.header_text(fixture, "tests/bench/fixtures/nmpc_case.json") == text
+
+
+def _ulps(x: float, k: int) -> float:
+    for _ in range(abs(k)):
+        x = float(np.nextafter(x, np.inf if k > 0 else -np.inf))
+    return x
+
+
+def test_re_solve_counts_stable_under_ulp_moves_of_the_start(fixture) -> None:
+    """The bench's re-solve (the kernel through cffi, from the fixture) in each mode of `bench_nmpc`: one SQP
+    and one QP count, and t_f within 1e-12 TU, when any component of its start (x_1, t_1) moves by 1 or 20
+    ulps either way (issue 32; `make bench-nmpc-scan` moves every ulp from -20 to 20 and the open loop's
+    start too)."""
+    import ogk_bindings._ffi as f
+    from ogk_bindings.nmpc import Nmpc
+
+    v = nmpc_case.values(fixture)
+    g = v["guess"]
+    k = Nmpc(NmpcConfig(**v["config"]))
+    k.load_plan(g["t0"], g["horizon"], np.array(g["states"]), np.array(g["controls"]))
+    rep = k.solve(0.0, np.array(v["x0"]))
+    assert rep.converged
+    plan = k.plan()
+    x1 = np.array(plan.states[1], dtype=np.float64)
+    x1[0] += v["replan"]["dr"]
+    x1[3] += v["replan"]["dvt"]
+    t1 = rep.t_next
+    size = f.ffi.sizeof("ogk_nmpc_t")
+    saved = f.ffi.new("ogk_nmpc_t *")
+    f.ffi.memmove(saved, k._ctx, size)   # noqa: SLF001 (the C bench's memcpy of the pre-replan context)
+    counts = {}
+    for label, tol_obj, hessian in [("default", None, None), ("tol0", 0.0, None), ("exact", None, 1),
+                                    ("exact tol0", 0.0, 1)]:
+        seen: set[tuple[int, int]] = set()
+        tfs = []
+        for comp in range(6):
+            for move in (-20, -1, 0, 1, 20):
+                x, t = x1.copy(), t1
+                if comp < 5:
+                    x[comp] = _ulps(float(x[comp]), move)
+                else:
+                    t = _ulps(t, move)
+                f.ffi.memmove(k._ctx, saved, size)   # noqa: SLF001
+                if tol_obj is not None:
+                    k._ctx.cfg.tol_obj = tol_obj   # noqa: SLF001
+                if hessian is not None:
+                    k._ctx.cfg.hessian = hessian   # noqa: SLF001
+                r = k.replan(t, x)
+                assert r.converged, (label, comp, move, r.status)
+                seen.add((r.sqp_iterations, r.qp_iterations))
+                tfs.append(r.t_f)
+        counts[label] = seen
+        assert len(seen) == 1, (label, seen)
+        assert max(tfs) - min(tfs) <= 1e-12, (label, max(tfs) - min(tfs))
+    print({k_: sorted(c) for k_, c in counts.items()})
