@@ -85,8 +85,9 @@ bench-arm: $(ARM_BENCH_MPSP) qemu-plugin
 bench: bench-arm
 
 # ---------------------------------------------------------------- NMPC warm re-solve (docs/nmpc.md, "Cost")
-# One ogk_nmpc_replan at N = 30 -> 29 after the open loop (the case: tests/bench/bench_nmpc_ipopt.py,
-# generated into bench_nmpc_case.h bit-exact from the scenario): host ns (median), callgrind instructions
+# One ogk_nmpc_replan at N = 30 -> 29 after the open loop (the case: the committed fixture
+# tests/bench/fixtures/nmpc_case.json, the paper's problem, bench_nmpc_case.h its bit-exact transform,
+# tests/bench/nmpc_case.py): host ns (median), callgrind instructions
 # of exactly one re-solve, Cortex-M7 instructions (QEMU plugin), the static worst-case stack (gcc call
 # graphs) and the QEMU high-water mark; then the strongest peers on the same re-solve from the same start,
 # FATROP and IPOPT JIT-compiled by gcc -O2 (tests/bench/nmpc_peers.py: compiled once per machine into
@@ -97,8 +98,19 @@ NMPC_CASE_H := $(NMPC_B)/bench_nmpc_case.h
 BENCH_NMPC := $(BENCH_DIR)/bench_nmpc
 ARM_BENCH_NMPC := $(ARM_B)/bench_nmpc.elf
 
-$(NMPC_CASE_H): tests/bench/bench_nmpc_ipopt.py scenarios/rendezvous_nep_min_time.toml $(FFI_STAMP)
-	$(VPY) tests/bench/bench_nmpc_ipopt.py header $@
+NMPC_CASE_JSON := tests/bench/fixtures/nmpc_case.json
+
+# The C header: a pure transform of the committed fixture (stdlib Python, bit-exact; tests/bench/nmpc_case.py).
+$(NMPC_CASE_H): $(NMPC_CASE_JSON) tests/bench/nmpc_case.py
+	python3 tests/bench/nmpc_case.py header $(NMPC_CASE_JSON) $@
+
+# The fixture made again from the scenario (through numpy: its last bits are this machine's; commit it
+# only with a reason, docs/nmpc.md section 10), and the committed one checked against a fresh generation.
+.PHONY: bench-nmpc-case bench-nmpc-case-check
+bench-nmpc-case: $(FFI_STAMP)
+	$(VPY) tests/bench/nmpc_case.py generate $(NMPC_CASE_JSON)
+bench-nmpc-case-check: $(FFI_STAMP)
+	$(VPY) tests/bench/nmpc_case.py check $(NMPC_CASE_JSON)
 
 $(BENCH_NMPC): tests/bench/bench_nmpc.c $(NMPC_CASE_H) $(B)/host/libogk.a $(PORT_HOST_SRC) | apt
 	@mkdir -p $(@D)
@@ -139,6 +151,13 @@ bench-nmpc: $(BENCH_NMPC) $(ARM_BENCH_NMPC) $(ARM_BENCH_NMPC_EXACT) $(ARM_CI) qe
 	  $(NMPC_B)/stack_report.log > $(NMPC_B)/stack.txt
 	@$(VPY) tests/bench/bench_nmpc_ipopt.py peer-insns $(NMPC_B)/peers_callgrind.txt > /dev/null
 	@$(VPY) tests/bench/bench_nmpc_ipopt.py run --figures $(NMPC_B)
+
+# The re-solve's iteration counts under ulp moves of its start (x_1, t_1; then x_0 and the guess's
+# horizon through the open loop; then 200 one-ulp patterns of the guess), in each mode: one count each.
+.PHONY: bench-nmpc-scan
+bench-nmpc-scan: $(BENCH_NMPC)
+	@for m in "" tol0 exact "exact tol0"; do $(BENCH_NMPC) scan $$m | grep -v '^scan '; \
+	  $(BENCH_NMPC) scan $$m open | grep -v '^scan '; $(BENCH_NMPC) scan $$m guess 200; done
 
 # Where the re-solve's instructions go: callgrind of one re-solve, inclusive per function.
 bench-nmpc-profile: $(BENCH_NMPC)

@@ -20,10 +20,25 @@
  *                       (`make bench-nmpc`); prints "nmpc_m7_<key> <value>"
  *                       lines, among them the stack used by the re-solve
  *
- * The case (docs/nmpc.md, "Cost"; generated into bench_nmpc_case.h by
- * tests/bench/bench_nmpc_ipopt.py header from the scenario, bit-exact):
- * scenarios/rendezvous_nep_min_time.toml with the configuration of
- * kernel_config() (what `ogk nmpc --solver kernel` flies), the open loop
+ *   bench_nmpc scan [tol0] [exact|bfgs] [-v] [ULPS]
+ *                       the re-solve's stability under ulp moves of its start:
+ *                       each component of x_1 and t_1 moved by -ULPS..ULPS
+ *                       ulps (default 20), one re-solve each from the saved
+ *                       context; the distinct SQP and QP counts and the t_f
+ *                       range ("nmpc<mode>_scan_*" lines; -v: every solve)
+ *   bench_nmpc scan ... open     the same with x_0 (0..4) or the guess's
+ *                       horizon (5) moved instead: the open loop again each
+ *                       time, then the re-solve from its plan
+ *   bench_nmpc scan ... guess N  N patterns of one-ulp moves of the guess
+ *                       (each double with probability 1/8), open loop and
+ *                       re-solve each
+ *
+ * The case (docs/nmpc.md, section 10; the committed fixture
+ * tests/bench/fixtures/nmpc_case.json, of which bench_nmpc_case.h is the
+ * bit-exact transform by tests/bench/nmpc_case.py header): the paper's
+ * problem, paper_problem() of scenarios/rendezvous_nep_min_time.toml with
+ * the configuration of kernel_config(..., mass_min = 0) (the robustness
+ * options of [nmpc] off), the open loop
  * ogk_nmpc_solve from the documented guess (guidance_base.first_guess), then one
  * SNNS ogk_nmpc_replan at the plan's first node time t_next from the plan's
  * node-1 state with r + 1e-4 LU and v_theta + 1e-4 VU (N 30 -> 29; its BFGS
@@ -35,6 +50,7 @@
 #endif
 #include <stdio.h>
 #include <stdlib.h>
+#include <math.h>
 #include <string.h>
 #ifndef OGK_BENCH_BARE_METAL
 #include <time.h>
@@ -62,6 +78,28 @@ static volatile double sink;
 #endif
 static int opt_tol0 = BENCH_NMPC_TOL0;          /* tol_obj = 0 */
 static int opt_hessian = BENCH_NMPC_HESSIAN;    /* OGK_NMPC_HESSIAN_*, -1: the configuration's */
+/* bench_nmpc scan open: the open loop's x0 (components 0..4) or the guess's
+ * horizon (5) moved by open_move_ulps ulps */
+static int open_move_comp = -1;
+static int open_move_ulps = 0;
+/* bench_nmpc scan guess: every double of the guess (node states past x0,
+ * controls, horizon) moved by one ulp up or down with probability 1/8,
+ * from a pattern numbered guess_seed (0: the guess as it is) */
+static uint32_t guess_seed = 0u;
+static double ulps(double x, int k);
+
+/* x moved by k ulps (k > 0 up, k < 0 down). */
+static double ulps(double x, int k)
+{
+    int i;
+    for (i = 0; i < k; ++i) {
+        x = nextafter(x, INFINITY);
+    }
+    for (i = 0; i > k; --i) {
+        x = nextafter(x, -INFINITY);
+    }
+    return x;
+}
 
 /* init, the documented guess, the open loop. */
 static int setup(void)
@@ -75,12 +113,32 @@ static int setup(void)
     (void)memset(&plan, 0, sizeof plan);
     plan.t0 = bench_nmpc_guess_t0;
     plan.horizon = bench_nmpc_guess_horizon;
+    if (open_move_comp == 5) {
+        plan.horizon = ulps(plan.horizon, open_move_ulps);
+    }
+    if (guess_seed != 0u) {
+        uint32_t r = guess_seed * 2654435761u;
+        size_t j;
+        for (j = OGK_NMPC_NX; j <= (BENCH_NMPC_NODES + 1u) * OGK_NMPC_NX + BENCH_NMPC_NODES + 1u; ++j) {
+            double *v = (j < (BENCH_NMPC_NODES + 1u) * OGK_NMPC_NX) ? &plan.x[j]
+                : ((j < (BENCH_NMPC_NODES + 1u) * OGK_NMPC_NX + BENCH_NMPC_NODES + 1u)
+                   ? &plan.u[j - (BENCH_NMPC_NODES + 1u) * OGK_NMPC_NX] : &plan.horizon);
+            r = r * 1664525u + 1013904223u;
+            if ((r >> 29) == 0u) {
+                *v = ulps(*v, ((r >> 28) & 1u) ? 1 : -1);
+            }
+        }
+    }
     plan.nodes = BENCH_NMPC_NODES;
     plan.nu = 1u;
     (void)memcpy(plan.x, bench_nmpc_guess_x, sizeof bench_nmpc_guess_x);
     (void)memcpy(plan.u, bench_nmpc_guess_u, sizeof bench_nmpc_guess_u);
     in.t = 0.0;
     (void)memcpy(in.x, bench_nmpc_x0, sizeof in.x);
+    if ((open_move_comp >= 0) && (open_move_comp < 5)) {
+        in.x[open_move_comp] = ulps(in.x[open_move_comp], open_move_ulps);
+        plan.x[open_move_comp] = in.x[open_move_comp];
+    }
     st = ogk_nmpc_init(&ctx, &cfg);
     if (st == OGK_OK) {
         st = ogk_nmpc_load_plan(&ctx, &plan);
@@ -180,6 +238,141 @@ static int cmp_double(const void *a, const void *b)
 
 #define MAX_REPS 401
 
+#define SCAN_MAX_ULPS 20
+
+/* bench_nmpc scan: the re-solve from the start (x_1, t_1) with one component
+ * moved by -max..-1, 1..max ulps (the others as the bench's), each from the
+ * saved context: one line per solve ("scan <component> <ulps> <status> <SQP>
+ * <QP> <t_f>"), then the distinct (SQP, QP) counts with how often each came
+ * and the t_f range. Component 0..4: x_1 (r, theta, v_r, v_theta, m); 5: t_1. */
+static int scan_guess(const char *key, int patterns, int verbose)
+{
+    static unsigned hist_sqp[OGK_NMPC_MAX_SQP_ITER + 1u];
+    static unsigned hist_open[OGK_NMPC_MAX_SQP_ITER + 1u];
+    double tf_min = INFINITY;
+    double tf_max = -INFINITY;
+    unsigned failed = 0u;
+    unsigned i;
+    int k;
+    for (k = 1; k <= patterns; ++k) {
+        guess_seed = (uint32_t)k;
+        if ((setup() != 0) || (bench_nmpc_replan_once() != 0)
+            || ((rep_replan.flags & OGK_NMPC_FLAG_CONVERGED) == 0u)) {
+            failed += 1u;
+            continue;
+        }
+        hist_open[rep_open.sqp_iterations <= OGK_NMPC_MAX_SQP_ITER ? rep_open.sqp_iterations : 0u] += 1u;
+        hist_sqp[rep_replan.sqp_iterations <= OGK_NMPC_MAX_SQP_ITER ? rep_replan.sqp_iterations : 0u] += 1u;
+        tf_min = (rep_replan.t_f < tf_min) ? rep_replan.t_f : tf_min;
+        tf_max = (rep_replan.t_f > tf_max) ? rep_replan.t_f : tf_max;
+        if (verbose) {
+            printf("scan guess %d %u %u %u %.17g\n", k, (unsigned)rep_open.sqp_iterations,
+                   (unsigned)rep_replan.sqp_iterations, (unsigned)rep_replan.qp_iterations, rep_replan.t_f);
+        }
+    }
+    guess_seed = 0u;
+    printf("%s_scan_guess_solves %d (ulp patterns of the guess), failed %u\n%s_scan_guess_open_sqp", key, patterns,
+           failed, key);
+    for (i = 0u; i <= OGK_NMPC_MAX_SQP_ITER; ++i) {
+        if (hist_open[i] != 0u) {
+            printf(" %u:%u", i, hist_open[i]);
+        }
+    }
+    printf(" (open loop SQP iterations:solves)\n%s_scan_guess_sqp", key);
+    for (i = 0u; i <= OGK_NMPC_MAX_SQP_ITER; ++i) {
+        if (hist_sqp[i] != 0u) {
+            printf(" %u:%u", i, hist_sqp[i]);
+        }
+    }
+    printf(" (SQP iterations:solves)\n%s_scan_guess_tf %.17g %.17g (min, max TU; spread %.3g s)\n", key, tf_min,
+           tf_max, (tf_max - tf_min) * BENCH_NMPC_TU_S);
+    return failed == 0u ? 0 : 1;
+}
+
+static int scan(const char *key, int max_ulps, int verbose, int open)
+{
+    static const char *const names[6] = {"r", "theta", "v_r", "v_theta", "m", "t"};
+    static const char *const open_names[6] = {"x0_r", "x0_theta", "x0_v_r", "x0_v_theta", "x0_m", "horizon"};
+    static unsigned hist_open[OGK_NMPC_MAX_SQP_ITER + 1u];
+    static unsigned hist_sqp[OGK_NMPC_MAX_SQP_ITER + 1u];
+    static unsigned hist_qp[4096];
+    const ogk_nmpc_input_t base = in_replan;
+    double tf_min = INFINITY;
+    double tf_max = -INFINITY;
+    unsigned failed = 0u;
+    unsigned solves = 0u;
+    unsigned i;
+    int c;
+    int k;
+    (void)memcpy(&saved, &ctx, sizeof saved);
+    for (c = 0; c < 6; ++c) {
+        for (k = -max_ulps; k <= max_ulps; ++k) {
+            int st;
+            if (open) {
+                /* the open loop from a moved x0 or guess horizon, then the re-solve from its plan */
+                open_move_comp = c;
+                open_move_ulps = k;
+                if (setup() != 0) {
+                    failed += 1u;
+                    continue;
+                }
+                hist_open[rep_open.sqp_iterations <= OGK_NMPC_MAX_SQP_ITER ? rep_open.sqp_iterations : 0u] += 1u;
+            } else {
+                in_replan = base;
+                if (c < 5) {
+                    in_replan.x[c] = ulps(base.x[c], k);
+                } else {
+                    in_replan.t = ulps(base.t, k);
+                }
+                (void)memcpy(&ctx, &saved, sizeof ctx);
+            }
+            st = bench_nmpc_replan_once();
+            solves += 1u;
+            if ((st != 0) || ((rep_replan.flags & OGK_NMPC_FLAG_CONVERGED) == 0u)) {
+                failed += 1u;
+            } else {
+                hist_sqp[rep_replan.sqp_iterations <= OGK_NMPC_MAX_SQP_ITER ? rep_replan.sqp_iterations : 0u] += 1u;
+                hist_qp[rep_replan.qp_iterations < 4096u ? rep_replan.qp_iterations : 0u] += 1u;
+                tf_min = (rep_replan.t_f < tf_min) ? rep_replan.t_f : tf_min;
+                tf_max = (rep_replan.t_f > tf_max) ? rep_replan.t_f : tf_max;
+            }
+            if (verbose || (k == 0 && c == 0)) {
+                printf("scan %s %+d %d %u %u %.17g\n", open ? open_names[c] : names[c], k, st,
+                       (unsigned)rep_replan.sqp_iterations, (unsigned)rep_replan.qp_iterations, rep_replan.t_f);
+            }
+        }
+    }
+    in_replan = base;
+    (void)memcpy(&ctx, &saved, sizeof ctx);
+    open_move_comp = -1;
+    printf("%s_scan%s_solves %u (6 components x %d ulps either way and 0), failed %u\n", key,
+           open ? "_open" : "", solves, max_ulps, failed);
+    if (open) {
+        printf("%s_scan_open_open_sqp", key);
+        for (i = 0u; i <= OGK_NMPC_MAX_SQP_ITER; ++i) {
+            if (hist_open[i] != 0u) {
+                printf(" %u:%u", i, hist_open[i]);
+            }
+        }
+        printf(" (open loop SQP iterations:solves)\n");
+    }
+    printf("%s_scan%s_sqp", key, open ? "_open" : "");
+    for (i = 0u; i <= OGK_NMPC_MAX_SQP_ITER; ++i) {
+        if (hist_sqp[i] != 0u) {
+            printf(" %u:%u", i, hist_sqp[i]);
+        }
+    }
+    printf(" (SQP iterations:solves)\n%s_scan%s_qp", key, open ? "_open" : "");
+    for (i = 0u; i < 4096u; ++i) {
+        if (hist_qp[i] != 0u) {
+            printf(" %u:%u", i, hist_qp[i]);
+        }
+    }
+    printf(" (QP iterations:solves)\n%s_scan%s_tf %.17g %.17g (min, max TU; spread %.3g s)\n", key,
+           open ? "_open" : "", tf_min, tf_max, (tf_max - tf_min) * BENCH_NMPC_TU_S);
+    return failed == 0u ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
     static double t_ns[MAX_REPS];
@@ -187,8 +380,13 @@ int main(int argc, char **argv)
     static char key[32];
     int reps = 0;
     int i;
-    if (argc < 2 || (strcmp(argv[1], "time") != 0 && strcmp(argv[1], "once") != 0)) {
-        fprintf(stderr, "usage: %s time|once [tol0] [exact|bfgs]\n", argv[0]);
+    int max_ulps = SCAN_MAX_ULPS;
+    int verbose = 0;
+    int open = 0;
+    int guess = 0;
+    if (argc < 2 || (strcmp(argv[1], "time") != 0 && strcmp(argv[1], "once") != 0
+                     && strcmp(argv[1], "scan") != 0)) {
+        fprintf(stderr, "usage: %s time|once|scan [tol0] [exact|bfgs] [open|guess] [-v] [ULPS]\n", argv[0]);
         return 2;
     }
     for (i = 2; i < argc; ++i) {
@@ -198,6 +396,14 @@ int main(int argc, char **argv)
             opt_hessian = (int)OGK_NMPC_HESSIAN_BFGS;
         } else if (strcmp(argv[i], "exact") == 0) {
             opt_hessian = (int)OGK_NMPC_HESSIAN_EXACT;
+        } else if (strcmp(argv[i], "-v") == 0) {
+            verbose = 1;
+        } else if (strcmp(argv[i], "open") == 0) {
+            open = 1;
+        } else if (strcmp(argv[i], "guess") == 0) {
+            guess = 1;
+        } else if (atoi(argv[i]) > 0 && atoi(argv[i]) <= 1000) {
+            max_ulps = atoi(argv[i]);
         } else {
             fprintf(stderr, "usage: %s time|once [tol0] [exact|bfgs]\n", argv[0]);
             return 2;
@@ -207,6 +413,12 @@ int main(int argc, char **argv)
                    opt_hessian < 0 ? "" : (opt_hessian == (int)OGK_NMPC_HESSIAN_EXACT ? "_exact" : "_bfgs"),
                    opt_tol0 ? "_tol0" : "");
     (void)ogk_port_counter_init();
+    if (strcmp(argv[1], "scan") == 0) {
+        if (guess) {
+            return scan_guess(key, max_ulps, verbose);
+        }
+        return (setup() != 0) ? 1 : scan(key, max_ulps, verbose, open);
+    }
     if (strcmp(argv[1], "once") == 0) {
         if (setup() != 0 || bench_nmpc_replan_once() != 0 || check_replan() != 0) {
             return 1;

@@ -1,17 +1,20 @@
 """The NMPC's warm re-solve: the kernel (ogk_nmpc) against the strongest peers a user could pick, FATROP and
 IPOPT JIT-compiled by gcc -O2 (CasADi 3.8, tests/bench/nmpc_peers.py), same problem, same start, same run.
 
-    bench_nmpc_ipopt.py header OUT.h        the case as C (tests/bench/bench_nmpc.c includes it)
+    bench_nmpc_ipopt.py header OUT.h        the case as C (tests/bench/nmpc_case.py header: the fixture's
+                                            transform; tests/bench/bench_nmpc.c includes it)
     bench_nmpc_ipopt.py peer-insns OUT      callgrind instructions of one warm call of each peer (cached)
     bench_nmpc_ipopt.py run [--figures DIR] the peers and the kernel through cffi here, plus the C bench's
                                             figures (CPU, callgrind, Cortex-M7, stack) read from DIR: one table
 
-The case (docs/nmpc.md, "Cost"), identical for every solver:
+The case (docs/nmpc.md, "Cost"), identical for every solver, read from the committed fixture
+tests/bench/fixtures/nmpc_case.json (tests/bench/nmpc_case.py: generated once, bit-exact):
 
-1. scenario scenarios/rendezvous_nep_min_time.toml, N = 30, RK4 8 steps per subinterval; the kernel's
-   configuration is `kernel_config(scenario, strategy_settings(scenario))` (what `ogk nmpc --solver kernel`
-   flies: tol_feas 1e-9, tol_stat 1e-6, SNNS); the peers solve IpoptGuidance's NLP (RendezvousNlp, the
-   [nmpc] tol 1e-8, constr_viol_tol 1e-10, exact Hessian);
+1. the paper's problem: `paper_problem(scenario)` of scenarios/rendezvous_nep_min_time.toml (the robustness
+   of [nmpc] off), N = 30, RK4 8 steps per subinterval; the kernel's configuration is
+   `kernel_config(scenario, strategy_settings(scenario), mass_min=0.0)` (tol_feas 1e-9, tol_stat 1e-6,
+   SNNS, no terminal set, no propellant row, no body, no keep-out); the peers solve IpoptGuidance's NLP of
+   the same problem (RendezvousNlp, the [nmpc] tol 1e-8, constr_viol_tol 1e-10, exact Hessian);
 2. the kernel's open loop from the documented guess (`guidance_base.first_guess`: phase-matched, t_f 370 d,
    135 deg) at t = 0 from Table A.1's state;
 3. the start of the re-solve, the same for all: the kernel plan's node-1 time t_1 and state with r + DR LU and
@@ -41,31 +44,35 @@ from pathlib import Path
 import numpy as np
 
 import flops
+import nmpc_case
 from bench_figures import read_figures
 from nmpc_peers import FatropJit, IpoptJit, PeerSolve
 from ogk_bindings._ffi import ffi
 from ogk_bindings.nmpc import Nmpc, NmpcConfig
 from ogk.missions.rendezvous import strategy as st
-from ogk.missions.rendezvous.guidance_base import first_guess, strategy_settings
-from ogk.missions.rendezvous.kernel_guidance import kernel_config
 from ogk_host.rendezvous.dynamics import DAY_S, Model
 from ogk_host.rendezvous.nlp import NlpDuals, RendezvousNlp
 from ogk_host.rendezvous.plan import Plan
-from ogk_host.rendezvous.scenario import RendezvousScenario, load_scenario
+from ogk_host.rendezvous.scenario import RendezvousScenario, load_scenario, paper_problem
 
-SCENARIO = "scenarios/rendezvous_nep_min_time.toml"
-DR = 1e-4    #: [LU] radius perturbation of the replan state (15 000 km)
-DVT = 1e-4   #: [VU] v_theta perturbation of the replan state (2.98 m/s)
+SCENARIO = nmpc_case.SCENARIO
+_REPLAN = nmpc_case.values(nmpc_case.load())["replan"]
+DR = _REPLAN["dr"]    #: [LU] radius perturbation of the replan state (1e-4: 15 000 km)
+DVT = _REPLAN["dvt"]  #: [VU] v_theta perturbation of the replan state (1e-4: 2.98 m/s)
 
 
 # ------------------------------------------------------------------------------------------------ the case
 def case() -> tuple[RendezvousScenario, NmpcConfig, Plan, np.ndarray]:
-    """(scenario, kernel configuration, the open loop's guess, the initial state)."""
-    scenario = load_scenario(SCENARIO)
-    cfg = kernel_config(scenario, strategy_settings(scenario))
-    x0 = np.array(Model.for_scenario(scenario).x0, dtype=np.float64)
-    guess = first_guess(scenario, scenario.ocp.nodes, 0.0, x0, 1)
-    return scenario, cfg, guess, x0
+    """(the paper's problem, kernel configuration, the open loop's guess, the initial state): the
+    configuration, guess and x0 from the committed fixture (tests/bench/fixtures/nmpc_case.json, bit-exact,
+    the same bits as the C bench's header), the scenario for the peers' NLP."""
+    scenario = paper_problem(load_scenario(SCENARIO))
+    c = nmpc_case.values(nmpc_case.load())
+    cfg = NmpcConfig(**c["config"])
+    g = c["guess"]
+    guess = Plan(t0=g["t0"], horizon=g["horizon"], states=np.array(g["states"], dtype=np.float64),
+                 controls=np.array(g["controls"], dtype=np.float64))
+    return scenario, cfg, guess, np.array(c["x0"], dtype=np.float64)
 
 
 def replan_state(plan_states: np.ndarray) -> np.ndarray:
@@ -73,46 +80,6 @@ def replan_state(plan_states: np.ndarray) -> np.ndarray:
     x[0] += DR
     x[3] += DVT
     return x
-
-
-def _c_double(v: float) -> str:
-    return float(v).hex() if math.isfinite(v) else "(1.0 / 0.0)"
-
-
-def write_header(path: Path) -> None:
-    """The case as C: every ogk_nmpc_config_t field of kernel_config (hex floats: bit-exact), the guess,
-    x0 and the perturbation."""
-    scenario, cfg, guess, x0 = case()
-    lines = [f"/* Generated by tests/bench/bench_nmpc_ipopt.py header from {SCENARIO}: do not edit.",
-             " * The warm re-solve case of docs/nmpc.md, \"Cost\" (every configuration field, the guess",
-             " * guidance_base.first_guess, Table A.1's x0 and the replan perturbation, bit-exact). */",
-             "#ifndef BENCH_NMPC_CASE_H", "#define BENCH_NMPC_CASE_H", "",
-             f"#define BENCH_NMPC_NODES {guess.nodes}u",
-             f"#define BENCH_NMPC_DR {_c_double(DR)} /* {DR} LU on r */",
-             f"#define BENCH_NMPC_DVT {_c_double(DVT)} /* {DVT} VU on v_theta */", "",
-             "static void bench_nmpc_case_config(ogk_nmpc_config_t *c)", "{"]
-    for name, value in cfg.as_dict().items():
-        if isinstance(value, np.ndarray):
-            for i, v in enumerate(value):
-                lines.append(f"    c->{name}[{i}] = {_c_double(float(v))};")
-        elif isinstance(value, float):
-            lines.append(f"    c->{name} = {_c_double(value)}; /* {value!r} */")
-        else:
-            lines.append(f"    c->{name} = {int(value)}u;")
-    lines += ["}", "",
-              f"static const double bench_nmpc_guess_t0 = {_c_double(guess.t0)};",
-              f"static const double bench_nmpc_guess_horizon = {_c_double(guess.horizon)}; "
-              f"/* {guess.horizon!r} TU */",
-              "static const double bench_nmpc_x0[OGK_NMPC_NX] = {"
-              + ", ".join(_c_double(v) for v in x0) + "};",
-              f"static const double bench_nmpc_guess_x[({guess.nodes}u + 1u) * OGK_NMPC_NX] = {{"]
-    lines += ["    " + ", ".join(_c_double(v) for v in row) + "," for row in guess.states]
-    lines += ["};", f"static const double bench_nmpc_guess_u[{guess.nodes}u + 1u] = {{"]
-    lines += ["    " + ", ".join(_c_double(v) for v in guess.controls[i:i + 4, 0]) + ","
-              for i in range(0, guess.nodes + 1, 4)]
-    lines += ["};", "", "#endif /* BENCH_NMPC_CASE_H */", ""]
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text("\n".join(lines))
 
 
 # ------------------------------------------------------------------------------------------------ kernel
@@ -402,9 +369,8 @@ def main(argv: list[str] | None = None) -> int:
     r.add_argument("--replan-reps", type=int, default=21)
     r.add_argument("--warm-reps", type=int, default=21)
     args = p.parse_args(argv)
-    if args.cmd == "header":
-        write_header(args.out)
-        return 0
+    if args.cmd == "header":   # the fixture's pure transform (tests/bench/nmpc_case.py header)
+        return nmpc_case.main(["header", str(args.out)])
     if args.cmd == "peer-once":
         return peer_once(args.which, args.calls)
     if args.cmd == "peer-insns":

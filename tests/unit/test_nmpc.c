@@ -467,6 +467,88 @@ static void test_sqp_exact_hessian_held(void **state)
     assert_true(rep.sqp_iterations <= rep_ref.sqp_iterations);
 }
 
+/* x moved by k ulps (k > 0 up, k < 0 down). */
+static double move_ulps(double x, int k)
+{
+    int i;
+    for (i = 0; i < k; ++i) {
+        x = nextafter(x, INFINITY);
+    }
+    for (i = 0; i > k; --i) {
+        x = nextafter(x, -INFINITY);
+    }
+    return x;
+}
+
+/* The exact Hessian held through a warm solve's Newton phase (nmpc_sqp.c,
+ * HESS_HOLD_RATE; issue 32). Earth-to-Mars N = 12, the CNCN replan of
+ * test_sqp_exact_hessian_held's start: (a) it lands within 1e-9 TU of the
+ * never-held replan (tol_obj = 0) and holds the Hessian while each step's
+ * predicted |dJ| contracts, so it needs at least 3 SQP iterations fewer
+ * (4 against 7; with the rule of session 12, which held it only for a last
+ * step within 100 times the stop, 6: this assertion fails there); (b) its
+ * SQP count, and its t_f within 1e-12 TU, are the same when any component
+ * of the start (x, t) moves by 1, 2, 5 or 20 ulps either way (the bench's
+ * scan, `make bench-nmpc-scan`, on a smaller case; the rule of session 12
+ * passes (b) too: no ulp move was found that flips it). */
+/* req: OGK-NMPC-003 */
+static void test_sqp_exact_hessian_held_contracting(void **state)
+{
+    static const int moves[8] = { -20, -5, -2, -1, 1, 2, 5, 20 };
+    ogk_nmpc_config_t c;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_input_t start;
+    ogk_nmpc_report_t rep;
+    ogk_nmpc_report_t rep_ref;
+    uint32_t comp;
+    uint32_t m;
+    (void)state;
+    mars_config(&c, 12u);
+    c.strategy = OGK_NMPC_CNCN;
+    c.tol_obj = 1.0e-7;
+    c.tol_stat = 1.0e-7;
+    c.hessian = OGK_NMPC_HESSIAN_EXACT;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    mars_guess(&c, 12u, 6.4, &plan);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in.t = 0.0;
+    (void)memcpy(in.x, plan.x, sizeof in.x);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
+    (void)memcpy(&ctx2, &ctx, sizeof ctx2);
+    ctx2.cfg.tol_obj = 0.0;
+    ctx2.cfg.tol_stat = 1.0e-9;
+    /* ctx2 first: the never-held reference; ctx (held) is then the saved context of the moves */
+    OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
+    start.t = rep.t_next;
+    (void)memcpy(start.x, &plan2.x[NX], sizeof start.x);
+    start.x[0] += 1.0e-4;
+    start.x[3] += 1.0e-4;
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx2, &start, &rep_ref), OGK_OK);
+    (void)memcpy(&ctx2, &ctx, sizeof ctx2);
+    OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &start, &rep), OGK_OK);
+    print_message("exact CNCN replan N = 12: held t_f %.13f (%u SQP iterations), never held %.13f (%u)\n", rep.t_f,
+                  (unsigned)rep.sqp_iterations, rep_ref.t_f, (unsigned)rep_ref.sqp_iterations);
+    assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
+    OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, 1.0e-9);
+    assert_true(rep.feas <= c.tol_feas);
+    assert_true((rep.sqp_iterations + 3u) <= rep_ref.sqp_iterations);
+    for (comp = 0u; comp <= NX; ++comp) {
+        for (m = 0u; m < 8u; ++m) {
+            ogk_nmpc_report_t rep_m;
+            in = start;
+            if (comp < NX) {
+                in.x[comp] = move_ulps(start.x[comp], moves[m]);
+            } else {
+                in.t = move_ulps(start.t, moves[m]);
+            }
+            (void)memcpy(&ctx, &ctx2, sizeof ctx);
+            OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &in, &rep_m), OGK_OK);
+            assert_int_equal(rep_m.sqp_iterations, rep.sqp_iterations);
+            OGK_ASSERT_NEAR(rep_m.t_f, rep.t_f, 1.0e-12);
+        }
+    }
+}
+
 /* Minimum fuel with the target on the spacecraft's own circular orbit and
  * phase: coasting is optimal, fuel 0. */
 /* req: OGK-NMPC-003 */
@@ -1008,6 +1090,7 @@ int main(void)
         cmocka_unit_test(test_sqp_known_solution),
         cmocka_unit_test(test_sqp_exact_hessian),
         cmocka_unit_test(test_sqp_exact_hessian_held),
+        cmocka_unit_test(test_sqp_exact_hessian_held_contracting),
         cmocka_unit_test(test_coast_rendezvous_zero_fuel),
         cmocka_unit_test(test_strategies_and_command),
         cmocka_unit_test(test_warm_sensitivities_exact),
