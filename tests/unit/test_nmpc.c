@@ -429,6 +429,28 @@ static void test_sqp_exact_hessian(void **state)
     }
 }
 
+/* Earth to Mars on `nodes` subintervals, CNCN, the exact Hessian at tol_obj 1e-7: its open loop
+ * solved in ctx (from in, into rep), and ctx2 the same context with tol_obj 0 (the stationarity test
+ * alone, 1e-9) for the replans: the never-held reference. */
+static void exact_cncn_open_loop(uint32_t nodes, ogk_nmpc_input_t *in, ogk_nmpc_report_t *rep)
+{
+    ogk_nmpc_config_t c;
+    mars_config(&c, nodes);
+    c.strategy = OGK_NMPC_CNCN;
+    c.tol_obj = 1.0e-7;
+    c.tol_stat = 1.0e-7;
+    c.hessian = OGK_NMPC_HESSIAN_EXACT;
+    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
+    mars_guess(&c, nodes, 6.4, &plan);
+    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
+    in->t = 0.0;
+    (void)memcpy(in->x, plan.x, sizeof in->x);
+    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, in, rep), OGK_OK);
+    (void)memcpy(&ctx2, &ctx, sizeof ctx2);
+    ctx2.cfg.tol_obj = 0.0;
+    ctx2.cfg.tol_stat = 1.0e-9;
+}
+
 /* The exact Hessian held for the last step (nmpc_sqp.c, HESS_HOLD) at the
  * default tol_obj: from the same open loop and the same perturbed state, the
  * CNCN replan (which holds it once) lands on the t_f of the replan that never
@@ -437,33 +459,18 @@ static void test_sqp_exact_hessian(void **state)
 /* req: OGK-NMPC-003 */
 static void test_sqp_exact_hessian_held(void **state)
 {
-    ogk_nmpc_config_t c;
     ogk_nmpc_input_t in;
     ogk_nmpc_report_t rep;
     ogk_nmpc_report_t rep_ref;
     (void)state;
-    mars_config(&c, 8u);
-    c.strategy = OGK_NMPC_CNCN;
-    c.tol_obj = 1.0e-7;
-    c.tol_stat = 1.0e-7;
-    c.hessian = OGK_NMPC_HESSIAN_EXACT;
-    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
-    mars_guess(&c, 8u, 6.4, &plan);
-    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
-    in.t = 0.0;
-    (void)memcpy(in.x, plan.x, sizeof in.x);
-    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
-    /* the reference: the same context, only tol_obj = 0 (and its stationarity test) for the replan */
-    (void)memcpy(&ctx2, &ctx, sizeof ctx2);
-    ctx2.cfg.tol_obj = 0.0;
-    ctx2.cfg.tol_stat = 1.0e-9;
+    exact_cncn_open_loop(8u, &in, &rep);
     replan_both_off_plan(&in, &rep, &rep_ref);
     print_message("exact replan: held t_f %.12f (%u SQP iterations), never held %.12f (%u)\n", rep.t_f,
                   (unsigned)rep.sqp_iterations, rep_ref.t_f, (unsigned)rep_ref.sqp_iterations);
     assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
     assert_true((rep_ref.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
     OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, 1.0e-9);
-    assert_true(rep.feas <= c.tol_feas);
+    assert_true(rep.feas <= ctx.cfg.tol_feas);
     assert_true(rep.sqp_iterations <= rep_ref.sqp_iterations);
 }
 
@@ -495,7 +502,6 @@ static double move_ulps(double x, int k)
 static void test_sqp_exact_hessian_held_contracting(void **state)
 {
     static const int moves[8] = { -20, -5, -2, -1, 1, 2, 5, 20 };
-    ogk_nmpc_config_t c;
     ogk_nmpc_input_t in;
     ogk_nmpc_input_t start;
     ogk_nmpc_report_t rep;
@@ -503,20 +509,7 @@ static void test_sqp_exact_hessian_held_contracting(void **state)
     uint32_t comp;
     uint32_t m;
     (void)state;
-    mars_config(&c, 12u);
-    c.strategy = OGK_NMPC_CNCN;
-    c.tol_obj = 1.0e-7;
-    c.tol_stat = 1.0e-7;
-    c.hessian = OGK_NMPC_HESSIAN_EXACT;
-    OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
-    mars_guess(&c, 12u, 6.4, &plan);
-    OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
-    in.t = 0.0;
-    (void)memcpy(in.x, plan.x, sizeof in.x);
-    OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
-    (void)memcpy(&ctx2, &ctx, sizeof ctx2);
-    ctx2.cfg.tol_obj = 0.0;
-    ctx2.cfg.tol_stat = 1.0e-9;
+    exact_cncn_open_loop(12u, &in, &rep);
     /* ctx2 first: the never-held reference; ctx (held) is then the saved context of the moves */
     OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
     start.t = rep.t_next;
@@ -530,7 +523,7 @@ static void test_sqp_exact_hessian_held_contracting(void **state)
                   (unsigned)rep.sqp_iterations, rep_ref.t_f, (unsigned)rep_ref.sqp_iterations);
     assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
     OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, 1.0e-9);
-    assert_true(rep.feas <= c.tol_feas);
+    assert_true(rep.feas <= ctx.cfg.tol_feas);
     assert_true((rep.sqp_iterations + 3u) <= rep_ref.sqp_iterations);
     for (comp = 0u; comp <= NX; ++comp) {
         for (m = 0u; m < 8u; ++m) {
