@@ -218,7 +218,7 @@ class RendezvousFamily:
         plan.target = target
         plan.options = {**plan.options, "target": target}
         plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
-        plan.target_bounds = dict(pil.BOUNDS)
+        plan.target_bounds = pil.target_bounds(scenario)
         plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
         plan.watchdog_per_run_s = 7200.0     # a whole closed loop of QEMU re-solves
 

@@ -51,21 +51,49 @@ SOLVER_CODES = {int(lib.OGK_OK), int(lib.OGK_E_ITER_LIMIT), int(lib.OGK_E_NOT_CO
 #: the longest one replan may take on QEMU (a cold first replan through every guess)
 STEP_TIMEOUT_S = 900.0
 
-#: Host vs target on the same noise streams (docs/flight-integration-nmpc.md, "Host vs target"): the
-#: largest per-run difference. Measured on flights of up to 8 replans (rendezvous_nep_min_time SNNS
-#: perturbed, 8 runs: t_f 3.2e-11 d, fuel 4.2e-11 kg, misses 9.9e-5 km, 7.0e-8 m/s; a lighter NEP
-#: min-fuel vehicle, 2 runs x 3 replans: 1.9e-9 d, 0 kg, 1.6e-3 km, 2.2e-7 m/s; failed solves equal).
-#: A whole perturbed closed loop is NOT held to them: it amplifies an ulp into days (the host against
-#: itself with the first measured radius moved by one ulp: t_f up to 222 d apart, arrival flipped).
-BOUNDS = {"t_f_days": 0.01, "fuel_kg": 1.0e-3, "final_position_miss_km": 1.0,
-          "final_velocity_miss_m_s": 1.0e-3, "failed_solves": 0.0}
+#: Host vs target on the same noise streams (docs/pil.md, "Host vs target"): the largest per-run
+#: difference of whole perturbed flights. The arrival time is held to TF_BOUND_DAYS (issue 32's bound);
+#: the other quantities are what that difference can move at arrival (target_bounds), so that the
+#: bounds are one statement and not four.
+TF_BOUND_DAYS = 0.01
 BOUNDS_WHY = ("the same C on both sides on the same inputs (the plan crosses the link bit for bit); "
               "newlib's libm (sin, cos, pow) is not glibc's, so the first solve already differs by "
               "~1e-13 d in t_f, and the closed loop carries that to the end of the flight. Since the "
               "law's robustness (docs/nmpc-flight.md, \"Robustness\") the loop does not amplify it: "
-              "whole perturbed flights agree to ~1e-5 d (8 runs of seed 2026120460: 6.2e-6 d, "
-              "8.2e-6 kg), and the first measured radius moved by 1..20 ulp moves the arrival by "
-              "less than 2e-6 d")
+              "whole perturbed flights agree within 6.5e-3 d (48 runs on seeds 2026120514, 2026120519 and "
+              "2026120520: at most 2.8e-4, 6.5e-3 and 6.2e-3 d). The t_f bound is 0.01 d; fuel and the arrival "
+              "misses are bounded by what 0.01 d moves at arrival (the engine's largest mass flow, the "
+              "arrival test's speed, the engine's and the target's acceleration)")
+
+
+def target_bounds(sc: RendezvousScenario) -> dict[str, float]:
+    """The host-vs-target bounds of one scenario's whole flights: t_f within TF_BOUND_DAYS, and what
+    an arrival that much earlier or later moves. Fuel: the engine's largest mass flow between the two
+    orbits times dt. Position miss: the relative speed, below the arrival test's velocity_error (plus
+    what the acceleration adds over dt), times dt. Velocity miss: the relative acceleration at arrival
+    (the engine at the target's orbit over the dry mass, the target's pull at its SOI radius, the
+    Sun's tide across it) times dt."""
+    dt = TF_BOUND_DAYS * 86400.0
+    pr, cv, prop = sc.problem, sc.convergence, sc.propulsion
+    r_lo, r_hi = sorted((sc.initial.radius_m, pr.target_orbit_radius_m))
+    flow = max(_engine(prop, r)[1] for r in np.linspace(r_lo, r_hi, 65))
+    thrust_t, _ = _engine(prop, pr.target_orbit_radius_m)
+    r_soi = cv.target_soi_radius_m
+    accel = (thrust_t / sc.dry_mass_kg + sc.perturbations.target_mu_m3_s2 / r_soi ** 2
+             + 2.0 * pr.sun_mu_m3_s2 * r_soi / pr.target_orbit_radius_m ** 3)
+    return {"t_f_days": TF_BOUND_DAYS, "fuel_kg": flow * dt,
+            "final_position_miss_km": (cv.velocity_error_m_s + accel * dt) * dt / 1e3,
+            "final_velocity_miss_m_s": accel * dt, "failed_solves": 0.0}
+
+
+def _engine(prop: Any, radius_m: float) -> tuple[float, float]:
+    """T_max [N] and |mdot| at T_max [kg/s] at a heliocentric radius (eqs. 12-14)."""
+    if prop.solar is None:
+        return float(prop.thrust_max_n), float(prop.mass_flow_at_max_kg_s)
+    sol = prop.solar
+    power = sol.reference_power_w(prop.thrust_max_n) * sol.power_ratio(float(radius_m))
+    return (sol.thrust_b1_n + sol.thrust_b2_n_per_w * power,
+            -(sol.mass_rate_c1_kg_s + sol.mass_rate_c2_kg_s_per_w * power))
 
 
 def program_key(scenario_path: Path, strategy: str, third_bodies: str) -> str:
@@ -178,7 +206,7 @@ class TargetGuidance:
 
 
 #: a replan "agrees" with the host's lock-step solve when their planned t_f differ by at most this [d]: the
-#: whole flight's t_f bound (BOUNDS). Most replans agree to 1e-12 d; a plan's t_f is a planning quantity, and
+#: whole flight's t_f bound (TF_BOUND_DAYS). Most replans agree to 1e-12 d; a plan's t_f is a planning quantity, and
 #: where the terminal set leaves it weakly determined one replan can differ by more than the flights do
 #: (seed 2, run 0: replan 20 by 2.5e-3 d, the whole flights by 3.8e-6 d)
 SHADOW_AGREE_DAYS = 1.0e-2
