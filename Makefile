@@ -193,6 +193,16 @@ test-python-prereqs: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(
 soak: $(FFI_STAMP)
 	$(VENV)/bin/ogk soak --out $(B)/soak
 
+# Campaign records (tests/records/records.toml, issue 33): every shipped scenario flown through `ogk mc` on
+# the host and the emulated Cortex-M7, compared bit for bit with the committed records (make test checks the
+# quick entries: tests/python/test_campaign_records.py). `make records` rewrites them: only for an intended,
+# explained change of output.
+.PHONY: records records-check
+records-check: test-python-prereqs
+	$(VENV)/bin/python tests/python/campaign_records.py check --all
+records: test-python-prereqs
+	$(VENV)/bin/python tests/python/campaign_records.py write --all
+
 # The main job, through the verbs every family has (ogk tables / mc / run): LEO-to-GEO VTD-NOG + CPD,
 # ground tables (build/tables/leo_geo-<sha12>) then a 100-run SIL Monte Carlo flying them, against the
 # paper's Table 7 (envelope JSON, Parquet table and PNG plots in build/mc); MPSP on the 23 Apophis cases

@@ -1,0 +1,55 @@
+"""Issue 33's regression test: the restructuring changes no output. Every quick entry of
+tests/records/records.toml (every shipped scenario on the host, one per family on the emulated
+Cortex-M7) flown again through `ogk mc` equals its committed record bit for bit (timing excluded; the
+target's instruction and stack counts within 3 %). `make records-check` flies every entry."""
+from __future__ import annotations
+
+import copy
+from pathlib import Path
+
+import pytest
+
+import campaign_records as cr
+
+QUICK = [e for e in cr.entries() if e.quick]
+
+
+@pytest.mark.req("OGK-HAR-002")
+@pytest.mark.parametrize("entry", QUICK, ids=[e.name for e in QUICK])
+def test_campaign_equals_its_record(entry: cr.Entry, tmp_path: Path) -> None:
+    stored = cr.read(entry)
+    assert len(stored) > 1, f"{entry.path} holds no run"
+    diff = cr.differences(stored, cr.fly(entry, tmp_path))
+    assert not diff, "\n".join(diff[:20])
+
+
+def test_every_shipped_scenario_is_recorded_on_host_and_target() -> None:
+    shipped = {p.stem for p in (cr.ROOT / "scenarios").glob("*.toml")}
+    names = {e.name for e in cr.entries()}
+    for s in shipped:
+        assert f"{s}.host" in names and f"{s}.m7" in names, s
+        assert any(e.scenario == s and e.quick for e in cr.entries()), s
+
+
+def test_the_comparison_sees_one_ulp_and_tolerates_counts_within_3_percent() -> None:
+    """The comparator itself: a result moved by one ulp is a difference, an instruction count moved
+    by 2 % is not, by 4 % is."""
+    import math
+    log = [{"key": {"seed": 1}, "schema": "ogk.runlog/1"},
+           {"run_id": 0, "t_f_days": 374.5, "pil.ogk_nmpc_solve.insn_max": 1000,
+            "pil.ogk_nmpc_solve.calls": 3, "failure": ""}]
+    assert cr.differences(log, copy.deepcopy(log)) == []
+    moved = copy.deepcopy(log)
+    moved[1]["t_f_days"] = math.nextafter(374.5, 400.0)
+    assert cr.differences(log, moved)
+    counted = copy.deepcopy(log)
+    counted[1]["pil.ogk_nmpc_solve.insn_max"] = 1020
+    assert cr.differences(log, counted) == []
+    counted[1]["pil.ogk_nmpc_solve.insn_max"] = 1040
+    assert cr.differences(log, counted)
+    calls = copy.deepcopy(log)
+    calls[1]["pil.ogk_nmpc_solve.calls"] = 4
+    assert cr.differences(log, calls)
+    typed = copy.deepcopy(log)
+    typed[1]["t_f_days"] = 374          # an int where a float was recorded
+    assert cr.differences(log, typed)
