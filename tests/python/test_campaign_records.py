@@ -14,7 +14,7 @@ import campaign_records as cr
 QUICK = [e for e in cr.entries() if e.quick]
 
 
-@pytest.mark.req("OGK-HAR-002")
+@pytest.mark.req("OGK-HAR-020")
 @pytest.mark.parametrize("entry", QUICK, ids=[e.name for e in QUICK])
 def test_campaign_equals_its_record(entry: cr.Entry, tmp_path: Path) -> None:
     stored = cr.read(entry)
@@ -23,6 +23,7 @@ def test_campaign_equals_its_record(entry: cr.Entry, tmp_path: Path) -> None:
     assert not diff, "\n".join(diff[:20])
 
 
+@pytest.mark.req("OGK-HAR-020")
 def test_every_shipped_scenario_is_recorded_on_host_and_target() -> None:
     shipped = {p.stem for p in (cr.ROOT / "scenarios").glob("*.toml")}
     names = {e.name for e in cr.entries()}
@@ -31,6 +32,7 @@ def test_every_shipped_scenario_is_recorded_on_host_and_target() -> None:
         assert any(e.scenario == s and e.quick for e in cr.entries()), s
 
 
+@pytest.mark.req("OGK-HAR-020")
 def test_the_comparison_sees_one_ulp_and_tolerates_counts_within_3_percent() -> None:
     """The comparator itself: a result moved by one ulp is a difference, an instruction count moved
     by 2 % is not, by 4 % is."""

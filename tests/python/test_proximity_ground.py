@@ -18,6 +18,8 @@ from ogk_host.proximity.dynamics import Vehicle, coast_stm, rhs, rk4_interval
 from ogk_host.proximity.impulsive_bound import delta_v_lower_bound
 from ogk_host.proximity.problem import Approach
 
+pytestmark = pytest.mark.req("OGK-NMPC-015")
+
 N_RAD_S = math.sqrt(3.986004418e14 / 6.9e6 ** 3)
 VEHICLE = Vehicle(thrust_max_n=0.8, exhaust_velocity_m_s=2100.0, initial_mass_kg=180.0, dry_mass_kg=140.0)
 APPROACH = Approach(N_RAD_S, VEHICLE, start=(0.0, 1500.0, 0.0, 0.0),
