@@ -58,7 +58,7 @@ DRIVERS = (
                    K + "thrust_cmd.c"), "drv_nog.c"),
     Driver("qp", (K + "qp.c", K + "qp_blas.c", K + "chol.c"), "drv_qp.c"),
     Driver("mpsp", (K + "mpsp.c", K + "mpsp_adjoint.c", K + "mpsp_bv.c", K + "mpsp_control.c", K + "mpsp_dynamics.c",
-                    K + "mpsp_propagate.c", K + "mpsp_sensitivity.c", K + "rk4.c", K + "linalg.c", K + "chol.c",
+                    K + "mpsp_propagate.c", K + "mpsp_sensitivity.c", K + "rk4.c", K + "linalg.c", K + "chol.c", K + "newton.c",
                     K + "interp.c", K + "thrust_cmd.c"),
            "drv_mpsp.c", defines=("OGK_MPSP_MAX_ORDER=1u", "OGK_MPSP_MAX_STEPS=2u", "OGK_MPSP_MAX_SWITCHES=2u",
                                   "OGK_MPSP_SENS_BLOCK=3u", "OGK_MPSP_MAX_LOG=4u", "OGK_RK4_MAX_SWITCHES=2u")),
@@ -67,7 +67,8 @@ DRIVERS = (
                     K + "nmpc_sqp.c", K + "qp.c", K + "qp_blas.c", K + "chol.c", K + "thrust_cmd.c"),
            "drv_nmpc.c", defines=("OGK_NMPC_MAX_NODES=2u", "OGK_NMPC_MAX_RK4_STEPS=2u", "OGK_QP_MAX_N=15u",
                                   "OGK_QP_MAX_EQ=4u", "OGK_QP_MAX_IN=17u")),
-    Driver("blt", (K + "blt.c", K + "blt_arc.c", K + "blt_model.c", K + "linalg.c", K + "chol.c", K + "thrust_cmd.c"),
+    Driver("blt", (K + "blt.c", K + "blt_arc.c", K + "blt_model.c", K + "linalg.c", K + "chol.c", K + "newton.c",
+                   K + "thrust_cmd.c"),
            "drv_blt.c", defines=("OGK_BLT_MAX_SEGMENTS=1u", "OGK_BLT_MAX_SEGMENT_STEPS=4u")),
 )
 
