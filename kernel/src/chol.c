@@ -2,6 +2,7 @@
  * QP's blocked right-looking form, which every user shares (docs/qp.md,
  * "Cost"; docs/linalg.md). */
 #include "chol_internal.h"
+#include "ogk_checks.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -64,7 +65,7 @@ ogk_status ogk_i_chol_upper(double *U, const double *a, size_t n, const ogk_i_ch
     size_t k;
     size_t kb;
     for (kb = 0u; (kb < n) && (st == OGK_OK); kb += 4u) {
-        const size_t kend = ((kb + 4u) < n) ? (kb + 4u) : n;
+        const size_t kend = ogk_i_min_size(kb + 4u, n); /* the panel's end */
         for (k = kb; (k < kend) && (st == OGK_OK); ++k) {
             const double akk = a[(k * n) + k];
             const double piv = U[(k * n) + k];

@@ -1,5 +1,6 @@
 /* rk4.c -- fixed-step classical RK4 with switching detection by bisection. */
 #include "ogk/rk4.h"
+#include "rk4_internal.h"
 
 #include <stdbool.h>
 #include <math.h>
@@ -55,7 +56,6 @@ static ogk_status step_raw(stepper_t *s, double t, const double *x, double dt,
     double xs[OGK_RK4_MAX_STATE];
     const size_t n = s->p->n;
     const double half = 0.5 * dt;
-    size_t i;
     ogk_status st = OGK_OK;
 
     s->n_rhs += 4u;
@@ -63,33 +63,25 @@ static ogk_status step_raw(stepper_t *s, double t, const double *x, double dt,
         st = OGK_E_CALLBACK;
     }
     if (st == OGK_OK) {
-        for (i = 0u; i < n; ++i) {
-            xs[i] = x[i] + (half * k1[i]);
-        }
+        ogk_i_rk4_stage_state(x, half, k1, n, xs);
         if (s->p->rhs(s->p->user, t + half, xs, mode, k2) != OGK_OK) {
             st = OGK_E_CALLBACK;
         }
     }
     if (st == OGK_OK) {
-        for (i = 0u; i < n; ++i) {
-            xs[i] = x[i] + (half * k2[i]);
-        }
+        ogk_i_rk4_stage_state(x, half, k2, n, xs);
         if (s->p->rhs(s->p->user, t + half, xs, mode, k3) != OGK_OK) {
             st = OGK_E_CALLBACK;
         }
     }
     if (st == OGK_OK) {
-        for (i = 0u; i < n; ++i) {
-            xs[i] = x[i] + (dt * k3[i]);
-        }
+        ogk_i_rk4_stage_state(x, dt, k3, n, xs);
         if (s->p->rhs(s->p->user, t + dt, xs, mode, k4) != OGK_OK) {
             st = OGK_E_CALLBACK;
         }
     }
     if (st == OGK_OK) {
-        for (i = 0u; i < n; ++i) {
-            x_next[i] = x[i] + ((dt / 6.0) * (k1[i] + (2.0 * (k2[i] + k3[i])) + k4[i]));
-        }
+        ogk_i_rk4_next_grouped(x, k1, k2, k3, k4, dt, n, x_next);
         st = all_finite(x_next, n) ? OGK_OK : OGK_E_NONFINITE;
     }
     return st;
