@@ -1,5 +1,6 @@
 /* rk4.c -- fixed-step classical RK4 with switching detection by bisection. */
 #include "ogk/rk4.h"
+#include "ogk_checks.h"
 #include "rk4_internal.h"
 
 #include <stdbool.h>
@@ -14,18 +15,6 @@ typedef struct {
     const ogk_rk4_problem_t *p;
     size_t n_rhs;
 } stepper_t;
-
-static bool all_finite(const double *x, size_t n)
-{
-    bool finite = true;
-    size_t i;
-    for (i = 0u; (i < n) && finite; ++i) {
-        if (!isfinite(x[i])) {
-            finite = false;
-        }
-    }
-    return finite;
-}
 
 static ogk_status check_problem(const ogk_rk4_problem_t *p)
 {
@@ -82,7 +71,7 @@ static ogk_status step_raw(stepper_t *s, double t, const double *x, double dt,
     }
     if (st == OGK_OK) {
         ogk_i_rk4_next_grouped(x, k1, k2, k3, k4, dt, n, x_next);
-        st = all_finite(x_next, n) ? OGK_OK : OGK_E_NONFINITE;
+        st = ogk_i_all_finite(x_next, n) ? OGK_OK : OGK_E_NONFINITE;
     }
     return st;
 }
@@ -95,7 +84,7 @@ ogk_status ogk_rk4_step(const ogk_rk4_problem_t *p, double t, const double *x,
     if (st == OGK_OK) {
         if ((x == NULL) || (x_next == NULL)) {
             st = OGK_E_NULL;
-        } else if (!isfinite(t) || !isfinite(dt) || !all_finite(x, p->n)) {
+        } else if (!isfinite(t) || !isfinite(dt) || !ogk_i_all_finite(x, p->n)) {
             st = OGK_E_NONFINITE;
         } else if (dt == 0.0) {
             st = OGK_E_RANGE;
@@ -228,7 +217,7 @@ static ogk_status grid_steps(const ogk_rk4_problem_t *p, double t0, const double
     ogk_status st;
     double ratio = 0.0;
 
-    if (!isfinite(t0) || !isfinite(tf) || !all_finite(x0, p->n)) {
+    if (!isfinite(t0) || !isfinite(tf) || !ogk_i_all_finite(x0, p->n)) {
         st = OGK_E_NONFINITE;
     } else if ((!(tf > t0)) || ((mode0 != 0) && (mode0 != 1))) {
         st = OGK_E_RANGE;
