@@ -32,7 +32,7 @@ static void stage_sens(const double *s, const double *k_prev_sens, /* NOLINT(bug
     size_t i;
     for (i = 0u; i < NX; ++i) {
         const size_t row = i * NCOL;
-        ogk_i_rk4_stage_state_pairs(&s[row], a, &k_prev_sens[row], ncol_e, &y[row]);
+        ogk_i_rk4_stage_state_pairs(s, a, k_prev_sens, row, ncol_e, y);
         y[row + col_h] += b * k_prev[i];
     }
 }
@@ -213,8 +213,7 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
                 for (i = 0u; i < NX; ++i) {
                     const size_t row = i * NCOL;
                     /* S += dt/6 sum_j b_j K_j, then the step's own d/dh: (1 / 6M) sum_j b_j k_j */
-                    ogk_i_rk4_accumulate_pairs(&s_mat[row], &k_mat[0][row], &k_mat[1][row], &k_mat[2][row], &k_mat[3][row],
-                                               dt / 6.0, ncol_e);
+                    ogk_i_rk4_accumulate_pairs(s_mat, k_mat[0], k_mat[1], k_mat[2], k_mat[3], dt / 6.0, row, ncol_e);
                     s_mat[row + col_h] =
                         ogk_i_rk4_step_entry(s_mat[row + col_h], inv_steps / 6.0, k[0][i], k[1][i], k[2][i], k[3][i]);
                 }

@@ -281,7 +281,7 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
                 const double c_dt = ogk_i_rk4_c(js) * dt;
                 for (i = 0u; i < NX; ++i) {
                     const size_t row = i * NCOL;
-                    ogk_i_rk4_stage_state_pairs(&s_mat[row], c_dt, &prev[OGK_I_NMPC_TAPE_KS + row], ncol_e, &y_sens[row]);
+                    ogk_i_rk4_stage_state_pairs(s_mat, c_dt, &prev[OGK_I_NMPC_TAPE_KS], row, ncol_e, y_sens);
                     y_sens[(i * NCOL) + col_h] += ogk_i_rk4_c(js) * inv_steps * prev[OGK_I_NMPC_TAPE_K + i];
                 }
             }

@@ -63,29 +63,31 @@ static inline void ogk_i_rk4_accumulate(double *x, const double *k1, const doubl
     }
 }
 
-/* The same by pairs (n even): where the arrays are the NMPC's local
+/* The same over the entries lo .. lo + n - 1 by pairs (n even), each
+ * array indexed from its own start: where the arrays are the NMPC's local
  * sensitivity matrices (rows of even stride, not overlapping), gcc -O2
- * computes each pair with one packed operation on x86-64 (nmpc_shoot.c). */
-static inline void ogk_i_rk4_stage_state_pairs(const double *x, double c, const double *k_prev, size_t n, double *y) /* NOLINT(bugprone-easily-swappable-parameters): as ogk_i_rk4_stage_state */
+ * computes each pair with one packed operation on x86-64, and the
+ * Cortex-M7 addresses them from one index (nmpc_shoot.c). */
+static inline void ogk_i_rk4_stage_state_pairs(const double *x, double c, const double *k_prev, size_t lo, size_t n, /* NOLINT(bugprone-easily-swappable-parameters): as ogk_i_rk4_stage_state, then the range */
+                                               double *y)
 {
     size_t i;
-    for (i = 0u; (i + 2u) <= n; i += 2u) {
-        const double ya = ogk_i_rk4_stage_entry(x[i], c, k_prev[i]);
-        const double yb = ogk_i_rk4_stage_entry(x[i + 1u], c, k_prev[i + 1u]);
-        y[i] = ya;
-        y[i + 1u] = yb;
+    for (i = 0u; i < n; i += 2u) {
+        y[lo + i] = ogk_i_rk4_stage_entry(x[lo + i], c, k_prev[lo + i]);
+        y[lo + i + 1u] = ogk_i_rk4_stage_entry(x[lo + i + 1u], c, k_prev[lo + i + 1u]);
     }
 }
 
 static inline void ogk_i_rk4_accumulate_pairs(double *x, const double *k1, const double *k2, const double *k3, /* NOLINT(bugprone-easily-swappable-parameters): as ogk_i_rk4_accumulate */
-                                              const double *k4, double b6, size_t n) /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                                              const double *k4, double b6, size_t lo, size_t n) /* NOLINT(bugprone-easily-swappable-parameters): as above */
 {
     size_t i;
-    for (i = 0u; (i + 2u) <= n; i += 2u) {
-        const double xa = ogk_i_rk4_step_entry(x[i], b6, k1[i], k2[i], k3[i], k4[i]);
-        const double xb = ogk_i_rk4_step_entry(x[i + 1u], b6, k1[i + 1u], k2[i + 1u], k3[i + 1u], k4[i + 1u]);
-        x[i] = xa;
-        x[i + 1u] = xb;
+    for (i = 0u; i < n; i += 2u) {
+        const size_t e = lo + i;
+        const double xa = ogk_i_rk4_step_entry(x[e], b6, k1[e], k2[e], k3[e], k4[e]);
+        const double xb = ogk_i_rk4_step_entry(x[e + 1u], b6, k1[e + 1u], k2[e + 1u], k3[e + 1u], k4[e + 1u]);
+        x[e] = xa;
+        x[e + 1u] = xb;
     }
 }
 
