@@ -3,6 +3,7 @@
  * (Levenberg-Marquardt on the same minimum-norm problem), evaluation and the thrust command.
  * Design notes: docs/blt.md. */
 #include "blt_internal.h"
+#include "newton_internal.h"
 #include "ogk/internal/blt_test.h"
 #include "thrust_cmd_internal.h"
 
@@ -440,35 +441,19 @@ ogk_status ogk_blt_jacobian(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double
 /* ------------------------------------------------------------------ corrector */
 
 /* du = the minimum-norm solution of [J, sqrt(lambda) I] [du; s] = -e: eq. (64) for lambda = 0,
- * the Levenberg-Marquardt step -J^T (J J^T + lambda I)^-1 e otherwise. */
+ * the Levenberg-Marquardt step -J^T (J J^T + lambda I)^-1 e otherwise (newton.c). */
 static bool corrector_step(ogk_blt_t *ctx, double lambda)
 {
     const uint32_t nu = ctx->n_unknowns;
     const uint32_t ne = ctx->n_errors;
-    const double root = sqrt(lambda);
-    uint32_t na = nu;
     double rhs[OGK_BLT_MAX_ERRORS];
-    ogk_status st;
     uint32_t i;
-    uint32_t j;
 
-    if (lambda > 0.0) {
-        na += ne;
-    }
     for (i = 0u; i < ne; ++i) {
-        for (j = 0u; j < nu; ++j) {
-            ctx->jaug[(i * na) + j] = ctx->jac[(i * nu) + j];
-        }
-        for (j = nu; j < na; ++j) {
-            ctx->jaug[(i * na) + j] = ((j - nu) == i) ? root : 0.0;
-        }
         rhs[i] = -ctx->e[i];
     }
-    st = ogk_minnorm(&ctx->qr, ctx->jaug, ne, na, rhs, ctx->step_aug);
-    if ((st == OGK_OK) || (st == OGK_E_ILL_CONDITIONED)) {
-        (void)memcpy(ctx->du, ctx->step_aug, sizeof(double) * nu);
-    }
-    return ((st == OGK_OK) || (st == OGK_E_ILL_CONDITIONED)) && ogk_i_all_finite(ctx->du, nu);
+    return ogk_i_newton_minnorm(&ctx->qr, ctx->jac, ne, nu, lambda, rhs, ctx->jaug, ctx->step_aug, ctx->du) ==
+           OGK_OK;
 }
 
 /* trial = cur + alpha du, tidied; its errors into ctx->e_trial. */

@@ -2,6 +2,7 @@
  * segments forward and backward with impact detection, the arcs' errors at their meeting points
  * (eqs. 65 and 70) and, optionally, their sensitivities by the variational equations. */
 #include "blt_internal.h"
+#include "rk4_internal.h"
 
 #include <float.h>
 #include <math.h>
@@ -258,28 +259,19 @@ static void prop_segment(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, doubl
     for (s = 0u; (s < n) && go; ++s) {
         const double tau = backward ? (duration - (((double)s) * (duration / (double)n)))
                                     : (((double)s) * (duration / (double)n));
-        size_t i;
         bool ok;
         ok = rhs_aug(ctx, seg, k, tau, y, k1, nu);
-        for (i = 0u; i < dim; ++i) {
-            tmp[i] = y[i] + (0.5 * h * k1[i]);
-        }
+        ogk_i_rk4_stage_state(y, 0.5 * h, k1, dim, tmp);
         ok = ok && rhs_aug(ctx, seg, k, tau + (0.5 * h), tmp, k2, nu);
-        for (i = 0u; i < dim; ++i) {
-            tmp[i] = y[i] + (0.5 * h * k2[i]);
-        }
+        ogk_i_rk4_stage_state(y, 0.5 * h, k2, dim, tmp);
         ok = ok && rhs_aug(ctx, seg, k, tau + (0.5 * h), tmp, k3, nu);
-        for (i = 0u; i < dim; ++i) {
-            tmp[i] = y[i] + (h * k3[i]);
-        }
+        ogk_i_rk4_stage_state(y, h, k3, dim, tmp);
         ok = ok && rhs_aug(ctx, seg, k, tau + h, tmp, k4, nu);
         if (!ok) {
             ev->bad_rhs = true;
             go = false;
         } else {
-            for (i = 0u; i < dim; ++i) {
-                y[i] += (h / 6.0) * (k1[i] + (2.0 * k2[i]) + (2.0 * k3[i]) + k4[i]);
-            }
+            ogk_i_rk4_accumulate(y, k1, k2, k3, k4, h / 6.0, dim);
             track_bodies(&ctx->cfg.model, y, ev);
             go = !ev->impact && ogk_i_all_finite(y, NX);
             if (!ogk_i_all_finite(y, NX)) {

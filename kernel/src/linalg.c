@@ -4,13 +4,15 @@
  *   LU      Gaussian elimination with partial pivoting (Sec. 3.4); rcond is
  *           exact: 1 / (|A|_1 |A^-1|_1) with A^-1 built column by column from
  *           the factors (n <= OGK_LA_MAX_N bounds the O(n^3) cost).
- *   Chol    row-oriented Cholesky-Banachiewicz (Sec. 4.2).
+ *   Chol    the kernel's one Cholesky (chol.c): right-looking, by rows of
+ *           U = L^T (Sec. 4.2, Algorithm 4.2.2), shared with the QP.
  *   QR      Householder reflectors in LAPACK dlarfg form (Sec. 5.1, 5.2):
  *           H = I - tau v v^T, v(0) = 1, R on and above the diagonal, v below it.
  *   lstsq   x = R^-1 (Q^T b)(0:n-1)                      (Sec. 5.3)
  *   minnorm A^T = Q R,  z = R^-T b,  x = Q [z; 0]         (Sec. 5.6)
  * Design note with thresholds, error codes and stack use: docs/linalg.md. */
 #include "ogk/linalg.h"
+#include "chol_internal.h"
 
 #include <float.h>
 #include <math.h>
@@ -583,45 +585,44 @@ static ogk_status chol_symmetry_check(const double *A, size_t n)
     return symmetric ? OGK_OK : OGK_E_NOT_POSDEF;
 }
 
-/* Cholesky-Banachiewicz on the lower triangle of A (n x n, checked) into
- * ch->l; on OGK_E_NOT_POSDEF ch->l is left zero. */
+/* A = L L^T (A n x n, checked) into ch->l by the kernel's one Cholesky
+ * (chol.c) on A's lower triangle, read as the upper triangle of U = L^T and
+ * factored in ch->l, then transposed in place; on OGK_E_NOT_POSDEF ch->l is
+ * left zero. */
 static ogk_status chol_decompose(ogk_chol_t *ch, const double *A, size_t n)
 {
-    ogk_status st = OGK_OK;
+    ogk_status st;
     size_t i;
     size_t j;
-    size_t k;
+    ogk_i_chol_rule_t rule;
 
     (void)memset(ch->l, 0, la_bytes(n * n));
-    for (i = 0u; (i < n) && (st == OGK_OK); ++i) {
-        /* |l_ij| <= sqrt(a_ii) for A = L L^T (row i of L has norm sqrt(a_ii));
-         * twice that bound is never reached by an accepted factorization (an
-         * l_ij beyond it makes d_i negative), so its clamp below only bounds
-         * the products for the analysis (docs/eva.md). */
-        const double l_bound = 2.0 * sqrt(fabs(A[(i * n) + i]));
-        /* st changes only at j == i, the inner loop's last pass: j <= i alone
-         * ends it there, and the outer test stops the factorization */
+    for (i = 0u; i < n; ++i) {
         for (j = 0u; j <= i; ++j) {
-            double sum = A[(i * n) + j];
-            for (k = 0u; k < j; ++k) {
-                sum -= ch->l[(i * n) + k] * ch->l[(j * n) + k];
-            }
-            if (i == j) {
-                /* d_i = a_ii - |l_i|^2 is the Schur-complement pivot; for SPD A,
-                 * cond_2(A) >= a_ii / d_i, so d_i <= eps a_ii means A is not
-                 * positive definite to working precision; so does a d_i at or
-                 * below OGK_LA_PIVOT_MIN (absolute floor, ogk/linalg.h). */
-                if ((!(A[(i * n) + i] > 0.0)) || (!(sum > (DBL_EPSILON * A[(i * n) + i]))) ||
-                    (!(sum > OGK_LA_PIVOT_MIN))) {
-                    (void)memset(ch->l, 0, la_bytes(n * n));
-                    st = OGK_E_NOT_POSDEF;
-                } else {
-                    ch->l[(i * n) + i] = sqrt(sum);
-                }
-            } else {
-                ch->l[(i * n) + j] = fmin(fmax(sum / ch->l[(j * n) + j], -l_bound), l_bound);
+            ch->l[(j * n) + i] = A[(i * n) + j];
+        }
+    }
+    /* a pivot d_i must exceed eps a_ii and the absolute floor
+     * OGK_LA_PIVOT_MIN (ogk/linalg.h) */
+    rule.rel = DBL_EPSILON;
+    rule.floor = OGK_LA_PIVOT_MIN;
+    /* |l_ij| <= sqrt(a_ii) for A = L L^T (row i of L has norm sqrt(a_ii));
+     * twice that bound is never reached by an accepted factorization (an
+     * l_ij beyond it makes d_i negative), so its clamp only bounds the
+     * products for the analysis (docs/eva.md) */
+    rule.bounded = true;
+    rule.divide = true;
+    st = ogk_i_chol_upper(ch->l, A, n, &rule);
+    if (st == OGK_OK) {
+        /* U = L^T to L: row-major lower, zero above the diagonal */
+        for (i = 1u; i < n; ++i) {
+            for (j = 0u; j < i; ++j) {
+                ch->l[(i * n) + j] = ch->l[(j * n) + i];
+                ch->l[(j * n) + i] = 0.0;
             }
         }
+    } else {
+        (void)memset(ch->l, 0, la_bytes(n * n));
     }
     return st;
 }

@@ -3,6 +3,7 @@
  * and the continuation outer loop (Algorithm 2, with the missing `else`
  * restored). Design notes: docs/mpsp.md. */
 #include "mpsp_internal.h"
+#include "newton_internal.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -255,19 +256,14 @@ static ogk_status newton_step(ogk_mpsp_t *ctx, const double *dy, double *weights
         }
         ctx->newton_m[(r * nu) + nw] = ctx->dy_dlm0[r] * ctx->inv_sqrt_r_lambda;
     }
-    st = ogk_minnorm(&ctx->qr, ctx->newton_m, NY, nu, dy, ctx->newton_z);
-    if ((st != OGK_OK) && (st != OGK_E_ILL_CONDITIONED)) {
-        /* the solver's status returned; ill-conditioned still gives the
-         * least-norm step: taken */
-    } else if (!ogk_i_all_finite(ctx->newton_z, nu)) {
-        st = OGK_E_NONFINITE;
-    } else {
+    /* ill-conditioned still gives the least-norm step: taken (newton.c) */
+    st = ogk_i_newton_minnorm(&ctx->qr, ctx->newton_m, NY, nu, 0.0, dy, NULL, ctx->newton_z, NULL);
+    if (st == OGK_OK) {
         /* Eq. (46): epsilon_{j+1} = epsilon_j - d epsilon_j, same for lambda_m0. */
         for (i = 0u; i < nw; ++i) {
             weights[i] -= ctx->newton_z[i] * ctx->inv_sqrt_r_eps[i];
         }
         *lambda_m0 -= ctx->newton_z[nw] * ctx->inv_sqrt_r_lambda;
-        st = OGK_OK;
     }
     return st;
 }

@@ -5,6 +5,7 @@
  * -O2 carries the pair in SSE2 registers). Derivation and costs: docs/mpsp.md,
  * sections 3 and 8. */
 #include "mpsp_internal.h"
+#include "rk4_internal.h"
 
 #include <string.h>
 
@@ -20,7 +21,6 @@ static ogk_status stage_partials(const mpsp_dyn_t *dyn, const double *x, double 
     double xs[NX];
     double k[NX];
     const double half = 0.5 * dt;
-    size_t i;
     size_t s;
     ogk_status st = OGK_OK;
 
@@ -29,9 +29,7 @@ static ogk_status stage_partials(const mpsp_dyn_t *dyn, const double *x, double 
         if (s < 3u) {
             const double step = (s == 2u) ? dt : half;
             st = mpsp_stage_eval(dyn, xs, &uv[stage_u[s]], mode, k, &sd[s]);
-            for (i = 0u; i < NX; ++i) {
-                xs[i] = x[i] + (step * k[i]);
-            }
+            ogk_i_rk4_stage_state(x, step, k, NX, xs);
         } else {
             st = mpsp_stage_eval(dyn, xs, &uv[stage_u[s]], mode, NULL, &sd[s]);
         }

@@ -13,6 +13,7 @@
  * rho b), then shifted (H + delta I) when still not positive definite, and
  * *shifted says so (the SQP then takes the scaled identity instead). */
 #include "nmpc_internal.h"
+#include "chol_internal.h"
 #include "ogk_checks.h"
 
 #include <math.h>
@@ -145,34 +146,24 @@ void ogk_i_nmpc_hess_mirror(double *hess, size_t nv)
     }
 }
 
-/* In-place Cholesky of the n x n matrix a (lower triangle); false when a
- * pivot is not above pivot_min. */
-static bool cholesky_ok(double *a, size_t n, double pivot_min) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (matrix, order, pivot floor); its only caller is try_shift */
+/* True when the n x n matrix a factors by the kernel's one Cholesky
+ * (chol.c) with every pivot above pivot_min; its lower triangle is read (a
+ * need not be symmetric to the bit), as the upper triangle of work. */
+static bool cholesky_ok(const double *a, size_t n, double pivot_min, double *work) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (matrix, order, pivot floor, scratch); its only caller is try_shift */
 {
-    bool ok = true;
+    ogk_i_chol_rule_t rule;
     size_t i;
     size_t j;
-    size_t l;
-    for (j = 0u; (j < n) && ok; ++j) {
-        double d = a[(j * n) + j];
-        for (l = 0u; l < j; ++l) {
-            d -= a[(j * n) + l] * a[(j * n) + l];
-        }
-        if (!(d > pivot_min)) {
-            ok = false;
-        } else {
-            const double ljj = sqrt(d);
-            a[(j * n) + j] = ljj;
-            for (i = j + 1u; i < n; ++i) {
-                double s = a[(i * n) + j];
-                for (l = 0u; l < j; ++l) {
-                    s -= a[(i * n) + l] * a[(j * n) + l];
-                }
-                a[(i * n) + j] = s / ljj;
-            }
+    for (i = 0u; i < n; ++i) {
+        for (j = 0u; j <= i; ++j) {
+            work[(j * n) + i] = a[(i * n) + j];
         }
     }
-    return ok;
+    rule.rel = 0.0;
+    rule.floor = pivot_min;
+    rule.bounded = false;
+    rule.divide = true;
+    return ogk_i_chol_upper(work, a, n, &rule) == OGK_OK;
 }
 
 /* try := hess + rho A^T A + delta I; true when it factors. */
@@ -191,8 +182,7 @@ static bool try_shift(const double *hess, size_t nv, const double *a_eq, double 
             out[(i * nv) + j] = acc + ((i == j) ? delta : 0.0);
         }
     }
-    (void)memcpy(work, out, nv * nv * sizeof(double));
-    return cholesky_ok(work, nv, pivot_min);
+    return cholesky_ok(out, nv, pivot_min, work);
 }
 
 double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq, /* NOLINT(bugprone-easily-swappable-parameters): internal, (H, order, A_eq, fallback scale, last rho) as nmpc_internal.h states; checked through the SQP tests */

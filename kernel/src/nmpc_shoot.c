@@ -6,6 +6,7 @@
  * map it constrains; with a tape, the forward sweep records what the
  * second-order adjoint sweep (nmpc_shoot_hess.c) reads back. */
 #include "nmpc_internal.h"
+#include "rk4_internal.h"
 #include "ogk_checks.h"
 
 #include <math.h>
@@ -29,13 +30,9 @@ static void stage_sens(const double *s, const double *k_prev_sens, /* NOLINT(bug
                        size_t ncol_e, double *y)
 {
     size_t i;
-    size_t c;
     for (i = 0u; i < NX; ++i) {
         const size_t row = i * NCOL;
-        for (c = 0u; c < ncol_e; c += 2u) {
-            y[row + c] = s[row + c] + (a * k_prev_sens[row + c]);
-            y[row + c + 1u] = s[row + c + 1u] + (a * k_prev_sens[row + c + 1u]);
-        }
+        ogk_i_rk4_stage_state_pairs(s, a, k_prev_sens, row, ncol_e, y);
         y[row + col_h] += b * k_prev[i];
     }
 }
@@ -93,25 +90,6 @@ static void stage_k(const double *jx, const double *ju, const double *jt, /* NOL
     }
 }
 
-/* S += (dt / 6) sum_j b_j K_j at the entries e, e + 1 (the RK4 step's
- * sensitivity, b = 1, 2, 2, 1; k0 .. k3 the stages' K). */
-static void step_sens_pair(const double *k0, const double *k1, const double *k2, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the stages in order; its only caller is ogk_i_nmpc_shoot, checked by central differences (test_nmpc.c) */
-                           const double *k3, size_t e, double dt6, double *s)
-{
-    double acc0 = 0.0;
-    double acc1 = 0.0;
-    acc0 += k0[e];
-    acc1 += k0[e + 1u];
-    acc0 += 2.0 * k1[e];
-    acc1 += 2.0 * k1[e + 1u];
-    acc0 += 2.0 * k2[e];
-    acc1 += 2.0 * k2[e + 1u];
-    acc0 += k3[e];
-    acc1 += k3[e + 1u];
-    s[e] += dt6 * acc0;
-    s[e + 1u] += dt6 * acc1;
-}
-
 /* True when a third body pulls (mu > 0): the model then depends on time. A
  * body with mu = 0 is an ephemeris for the keep-out only. */
 static bool attracting_bodies(const ogk_nmpc_config_t *cfg)
@@ -146,9 +124,6 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
                                 const double *u0, const double *u1, double *xf,
                                 double *sens, double *tape, ogk_i_nmpc_arc_t *arc, double *ends)
 {
-    /* RK4 stage offsets (fractions of one step) and weights */
-    static const double c_off[4] = { 0.0, 0.5, 0.5, 1.0 };
-    static const double w_rk[4] = { 1.0, 2.0, 2.0, 1.0 };
     static const uint32_t trig_index[4] = { 0u, 1u, 1u, 2u };
     ogk_status st = OGK_OK;
     const uint32_t steps = cfg->rk4_steps;
@@ -175,7 +150,6 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
     uint32_t step;
     uint32_t j;
     size_t i;
-    size_t c;
 
     (void)memcpy(x, x0, sizeof(x));
     /* cos and sin of the angle at the 2 steps + 1 distinct stage offsets
@@ -203,7 +177,7 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
             (void)memcpy(tape_step, s_mat, sizeof(s_mat));
         }
         for (j = 0u; (j < 4u) && (st == OGK_OK); ++j) {
-            const double s_frac = ((double)step + c_off[j]) * inv_steps;
+            const double s_frac = ((double)step + ogk_i_rk4_c(j)) * inv_steps;
             const double t_stage = t_start + (s_frac * h);
             for (i = 0u; i < nu; ++i) {
                 u[i] = u0[i] + ((u1[i] - u0[i]) * s_frac);
@@ -211,10 +185,7 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
             if (j == 0u) {
                 (void)memcpy(stage_x, x, sizeof(stage_x));
             } else {
-                const double c_dt = c_off[j] * dt;
-                for (i = 0u; i < NX; ++i) {
-                    stage_x[i] = x[i] + (c_dt * k[j - 1u][i]);
-                }
+                ogk_i_rk4_stage_state(x, ogk_i_rk4_c(j) * dt, k[j - 1u], NX, stage_x);
             }
             st = ogk_i_nmpc_rhs(cfg, nu, t_stage, stage_x, u, trig[(2u * step) + trig_index[j]], k[j],
                                 (sens != NULL) ? jx : NULL, ju, jt);
@@ -222,8 +193,8 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
                 if (j != 0u) {
                     /* y = x + c dt k_prev, dt = h / steps (the first stage is
                      * at the step's start: Y = S) */
-                    stage_sens(s_mat, k_mat[j - 1u], k[j - 1u], c_off[j] * dt,
-                               c_off[j] * inv_steps, col_h, ncol_e, y_mat);
+                    stage_sens(s_mat, k_mat[j - 1u], k[j - 1u], ogk_i_rk4_c(j) * dt,
+                               ogk_i_rk4_c(j) * inv_steps, col_h, ncol_e, y_mat);
                 }
                 stage_k(jx, ju, jt, (j == 0u) ? s_mat : y_mat, nu, s_frac, ncol, k_mat[j]);
                 if (tape_step != NULL) {
@@ -237,19 +208,14 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
             }
         }
         if (st == OGK_OK) {
-            for (i = 0u; i < NX; ++i) {
-                x[i] += (dt / 6.0) * (k[0][i] + (2.0 * k[1][i]) + (2.0 * k[2][i]) + k[3][i]);
-            }
+            ogk_i_rk4_accumulate(x, k[0], k[1], k[2], k[3], dt / 6.0, NX);
             if (sens != NULL) {
                 for (i = 0u; i < NX; ++i) {
-                    double k_sum = 0.0;
-                    for (c = 0u; c < ncol_e; c += 2u) {
-                        step_sens_pair(k_mat[0], k_mat[1], k_mat[2], k_mat[3], (i * NCOL) + c, dt / 6.0, s_mat);
-                    }
-                    for (j = 0u; j < 4u; ++j) {
-                        k_sum += w_rk[j] * k[j][i];
-                    }
-                    s_mat[(i * NCOL) + col_h] += (inv_steps / 6.0) * k_sum;
+                    const size_t row = i * NCOL;
+                    /* S += dt/6 sum_j b_j K_j, then the step's own d/dh: (1 / 6M) sum_j b_j k_j */
+                    ogk_i_rk4_accumulate_pairs(s_mat, k_mat[0], k_mat[1], k_mat[2], k_mat[3], dt / 6.0, row, ncol_e);
+                    s_mat[row + col_h] =
+                        ogk_i_rk4_step_entry(s_mat[row + col_h], inv_steps / 6.0, k[0][i], k[1][i], k[2][i], k[3][i]);
                 }
                 if ((ends != NULL) && ((step + 1u) < steps)) {
                     /* an interior step end's state and sensitivities (ends needs sens) */

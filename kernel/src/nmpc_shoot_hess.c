@@ -18,6 +18,7 @@
  * + sum_j ybar_j, lambda_M = w. Checked against central differences of
  * w . dF/dp (test_nmpc.c). */
 #include "nmpc_internal.h"
+#include "rk4_internal.h"
 
 #include <stdbool.h>
 #include <string.h>
@@ -212,9 +213,6 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
                            const double *u1, const double *tape, /* NOLINT(bugprone-easily-swappable-parameters): as above */
                            const double *w, double *hess)
 {
-    /* RK4 stage offsets and weights, as the forward sweep's */
-    static const double c_off[4] = { 0.0, 0.5, 0.5, 1.0 };
-    static const double w_rk[4] = { 1.0, 2.0, 2.0, 1.0 };
     const uint32_t steps = cfg->rk4_steps;
     const double dt = h / (double)steps;
     const double inv_steps = 1.0 / (double)steps;
@@ -255,7 +253,7 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
         for (j = 4u; j > 0u; --j) {
             const uint32_t js = j - 1u;
             const double *rec = &rec_step[OGK_I_NMPC_TAPE_STAGE0 + ((size_t)js * OGK_I_NMPC_TAPE_STAGE)];
-            const double s_frac = (((double)n - 1.0) + c_off[js]) * inv_steps;
+            const double s_frac = (((double)n - 1.0) + ogk_i_rk4_c(js)) * inv_steps;
             const double t_stage = t_start + (s_frac * h);
             /* k_j enters x_{n+1} = x_n + (h / 6M) sum b_j k_j and y_{j+1} =
              * x_n + c_{j+1} (h / M) k_j (ybar holds ybar_{j+1}): with
@@ -263,31 +261,28 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
              * kbar_j = (h / M) kb and both products' h cross terms are
              * (1 / M) K_j^T kb */
             for (i = 0u; i < NX; ++i) {
-                kb[i] = (w_rk[js] / 6.0) * lambda_next[i];
+                kb[i] = (ogk_i_rk4_w6(js) / 6.0) * lambda_next[i];
             }
             if (js < 3u) {
                 for (i = 0u; i < NX; ++i) {
-                    kb[i] += c_off[js + 1u] * ybar[i];
+                    kb[i] += ogk_i_rk4_c(js + 1u) * ybar[i];
                 }
             }
             for (i = 0u; i < NX; ++i) {
                 kbar[i] = dt * kb[i];
             }
             add_h_cross(&rec[OGK_I_NMPC_TAPE_KS], kb, inv_steps, ncol_e, g_h);
-            /* Z_j's state rows: Y_j = S_n + c_j dt K_{j-1} (+ c_j / M k_{j-1} in column h) */
+            /* Z_j's state rows: Y_j = S_n + c_j dt K_{j-1} (+ c_j / M k_{j-1} in column h), the
+             * forward sweep's stage state again (rk4_internal.h) */
             if (js == 0u) {
                 (void)memcpy(y_sens, s_mat, sizeof(y_sens));
             } else {
                 const double *prev = &rec_step[OGK_I_NMPC_TAPE_STAGE0 + (((size_t)js - 1u) * OGK_I_NMPC_TAPE_STAGE)];
-                const double c_dt = c_off[js] * dt;
+                const double c_dt = ogk_i_rk4_c(js) * dt;
                 for (i = 0u; i < NX; ++i) {
                     const size_t row = i * NCOL;
-                    for (c = 0u; c < ncol_e; c += 2u) {
-                        y_sens[row + c] = s_mat[row + c] + (c_dt * prev[OGK_I_NMPC_TAPE_KS + row + c]);
-                        y_sens[row + c + 1u] = s_mat[row + c + 1u]
-                            + (c_dt * prev[OGK_I_NMPC_TAPE_KS + row + c + 1u]);
-                    }
-                    y_sens[(i * NCOL) + col_h] += c_off[js] * inv_steps * prev[OGK_I_NMPC_TAPE_K + i];
+                    ogk_i_rk4_stage_state_pairs(s_mat, c_dt, &prev[OGK_I_NMPC_TAPE_KS], row, ncol_e, y_sens);
+                    y_sens[(i * NCOL) + col_h] += ogk_i_rk4_c(js) * inv_steps * prev[OGK_I_NMPC_TAPE_K + i];
                 }
             }
             for (i = 0u; i < (size_t)nu; ++i) {

@@ -4,6 +4,7 @@
  * operations in the same order as the one-row loop, so the results are the
  * same to the bit (docs/qp.md, "Cost"). */
 #include "qp_internal.h"
+#include "chol_internal.h"
 
 #include <math.h>
 #include <stdbool.h>
@@ -20,21 +21,6 @@ static size_t qp_row_end(bool lower, size_t n, size_t end)
         len = end;
     }
     return len;
-}
-
-/* row[0..len-1] -= a * u[0..len-1], two columns per step (one SIMD pair on SSE2). */
-static void qp_axpy_sub(double *row, double a, const double *u, size_t len)
-{
-    size_t c = 0u;
-    for (; (c + 2u) <= len; c += 2u) {
-        const double ra = row[c] - (a * u[c]);
-        const double rb = row[c + 1u] - (a * u[c + 1u]);
-        row[c] = ra;
-        row[c + 1u] = rb;
-    }
-    if (c < len) {
-        row[c] -= a * u[c];
-    }
 }
 
 void ogk_i_qp_mat_vec(const double *J, size_t m, size_t n, bool lower, const double *a, double sign, double *d) /* NOLINT(bugprone-easily-swappable-parameters): internal, every call in qp.c */
@@ -175,45 +161,18 @@ void ogk_i_qp_rank1_rows(double *J, size_t n, size_t k0, const double *v, const 
         }
     }
     for (; k < n; ++k) {
-        qp_axpy_sub(&J[k * n], v[k], w, n);
-    }
-}
-
-/* Row i of the trailing matrix (columns i..n-1) minus the outer products of
- * the four pivot rows k..k+3, in that order (the order of four one-row
- * updates), two columns per step (one SIMD pair on SSE2). */
-static void qp_trailing_rank4(double *U, size_t n, size_t k, size_t i) /* NOLINT(bugprone-easily-swappable-parameters): pivot block k, row i; a swap fails the unit tests */
-{
-    const double *u0 = &U[k * n];
-    const double *u1 = &u0[n];
-    const double *u2 = &u1[n];
-    const double *u3 = &u2[n];
-    const double a0 = u0[i];
-    const double a1 = u1[i];
-    const double a2 = u2[i];
-    const double a3 = u3[i];
-    double *row = &U[i * n];
-    size_t c = i;
-    for (; (c + 2u) <= n; c += 2u) {
-        const double ra = (((row[c] - (a0 * u0[c])) - (a1 * u1[c])) - (a2 * u2[c])) - (a3 * u3[c]);
-        const double rb = (((row[c + 1u] - (a0 * u0[c + 1u])) - (a1 * u1[c + 1u])) - (a2 * u2[c + 1u])) -
-                          (a3 * u3[c + 1u]);
-        row[c] = ra;
-        row[c + 1u] = rb;
-    }
-    if (c < n) {
-        row[c] = (((row[c] - (a0 * u0[c])) - (a1 * u1[c])) - (a2 * u2[c])) - (a3 * u3[c]);
+        ogk_i_row_axpy_sub(&J[k * n], v[k], w, n);
     }
 }
 
 ogk_status ogk_i_qp_cholesky(const double *H, size_t n, double *U)
 {
-    ogk_status st = OGK_OK;
+    static const ogk_i_chol_rule_t rule = {OGK_QP_PIVOT_TOL, 0.0, false, false};
+    ogk_status st;
     double hmax = 0.0;
     double asym = 0.0;
     size_t i;
     size_t k;
-    size_t kb;
     /* the upper triangle of (H + H^T)/2; the pairs H(i, k), H(k, i) also
      * give max |H| and the asymmetry */
     for (k = 0u; k < n; ++k) {
@@ -229,37 +188,9 @@ ogk_status ogk_i_qp_cholesky(const double *H, size_t n, double *U)
             U[(k * n) + i] = 0.5 * (lo + up);
         }
     }
-    /* right-looking (outer-product) Cholesky, H = U^T U, by panels of four
-     * pivot rows: row k of U is the reduced row k over its pivot, and its
-     * outer product leaves the rows below (Golub & Van Loan, Algorithm 4.2.2
-     * by rows); inside a panel row by row, below it the four outer products
-     * in one pass per row (same order of operations) */
-    for (kb = 0u; (kb < n) && (st == OGK_OK); kb += 4u) {
-        const size_t kend = qp_row_end(true, n, kb + 4u); /* min(kb + 4, n) */
-        for (k = kb; (k < kend) && (st == OGK_OK); ++k) {
-            const double hkk = H[(k * n) + k];
-            const double piv = U[(k * n) + k];
-            if ((hkk <= 0.0) || (piv <= (OGK_QP_PIVOT_TOL * hkk))) {
-                st = OGK_E_NOT_POSDEF;
-            } else {
-                const double ukk = sqrt(piv);
-                const double inv = 1.0 / ukk;
-                double *uk = &U[k * n];
-                uk[k] = ukk;
-                for (i = k + 1u; i < n; ++i) {
-                    uk[i] *= inv;
-                }
-                for (i = k + 1u; i < kend; ++i) {
-                    qp_axpy_sub(&U[(i * n) + i], uk[i], &uk[i], n - i);
-                }
-            }
-        }
-        if ((st == OGK_OK) && (kend == (kb + 4u))) {
-            for (i = kend; i < n; ++i) {
-                qp_trailing_rank4(U, n, kb, i);
-            }
-        }
-    }
+    /* H = U^T U by the kernel's one Cholesky (chol.c): a pivot must exceed
+     * OGK_QP_PIVOT_TOL H_kk */
+    st = ogk_i_chol_upper(U, H, n, &rule);
     if ((st == OGK_OK) && (asym > (OGK_QP_SYM_TOL * hmax))) {
         st = OGK_E_NOT_POSDEF;
     }
@@ -299,7 +230,7 @@ void ogk_i_qp_inverse_lower(const double *U, size_t n, double *Li)
             }
         }
         for (; k < i; ++k) {
-            qp_axpy_sub(row, U[(k * n) + i], &Li[k * n], k + 1u);
+            ogk_i_row_axpy_sub(row, U[(k * n) + i], &Li[k * n], k + 1u);
         }
         row[i] = 1.0;
         for (c = 0u; c <= i; ++c) {

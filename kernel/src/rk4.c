@@ -1,5 +1,7 @@
 /* rk4.c -- fixed-step classical RK4 with switching detection by bisection. */
 #include "ogk/rk4.h"
+#include "ogk_checks.h"
+#include "rk4_internal.h"
 
 #include <stdbool.h>
 #include <math.h>
@@ -13,18 +15,6 @@ typedef struct {
     const ogk_rk4_problem_t *p;
     size_t n_rhs;
 } stepper_t;
-
-static bool all_finite(const double *x, size_t n)
-{
-    bool finite = true;
-    size_t i;
-    for (i = 0u; (i < n) && finite; ++i) {
-        if (!isfinite(x[i])) {
-            finite = false;
-        }
-    }
-    return finite;
-}
 
 static ogk_status check_problem(const ogk_rk4_problem_t *p)
 {
@@ -55,7 +45,6 @@ static ogk_status step_raw(stepper_t *s, double t, const double *x, double dt,
     double xs[OGK_RK4_MAX_STATE];
     const size_t n = s->p->n;
     const double half = 0.5 * dt;
-    size_t i;
     ogk_status st = OGK_OK;
 
     s->n_rhs += 4u;
@@ -63,34 +52,26 @@ static ogk_status step_raw(stepper_t *s, double t, const double *x, double dt,
         st = OGK_E_CALLBACK;
     }
     if (st == OGK_OK) {
-        for (i = 0u; i < n; ++i) {
-            xs[i] = x[i] + (half * k1[i]);
-        }
+        ogk_i_rk4_stage_state(x, half, k1, n, xs);
         if (s->p->rhs(s->p->user, t + half, xs, mode, k2) != OGK_OK) {
             st = OGK_E_CALLBACK;
         }
     }
     if (st == OGK_OK) {
-        for (i = 0u; i < n; ++i) {
-            xs[i] = x[i] + (half * k2[i]);
-        }
+        ogk_i_rk4_stage_state(x, half, k2, n, xs);
         if (s->p->rhs(s->p->user, t + half, xs, mode, k3) != OGK_OK) {
             st = OGK_E_CALLBACK;
         }
     }
     if (st == OGK_OK) {
-        for (i = 0u; i < n; ++i) {
-            xs[i] = x[i] + (dt * k3[i]);
-        }
+        ogk_i_rk4_stage_state(x, dt, k3, n, xs);
         if (s->p->rhs(s->p->user, t + dt, xs, mode, k4) != OGK_OK) {
             st = OGK_E_CALLBACK;
         }
     }
     if (st == OGK_OK) {
-        for (i = 0u; i < n; ++i) {
-            x_next[i] = x[i] + ((dt / 6.0) * (k1[i] + (2.0 * (k2[i] + k3[i])) + k4[i]));
-        }
-        st = all_finite(x_next, n) ? OGK_OK : OGK_E_NONFINITE;
+        ogk_i_rk4_next_grouped(x, k1, k2, k3, k4, dt, n, x_next);
+        st = ogk_i_all_finite(x_next, n) ? OGK_OK : OGK_E_NONFINITE;
     }
     return st;
 }
@@ -103,7 +84,7 @@ ogk_status ogk_rk4_step(const ogk_rk4_problem_t *p, double t, const double *x,
     if (st == OGK_OK) {
         if ((x == NULL) || (x_next == NULL)) {
             st = OGK_E_NULL;
-        } else if (!isfinite(t) || !isfinite(dt) || !all_finite(x, p->n)) {
+        } else if (!isfinite(t) || !isfinite(dt) || !ogk_i_all_finite(x, p->n)) {
             st = OGK_E_NONFINITE;
         } else if (dt == 0.0) {
             st = OGK_E_RANGE;
@@ -236,7 +217,7 @@ static ogk_status grid_steps(const ogk_rk4_problem_t *p, double t0, const double
     ogk_status st;
     double ratio = 0.0;
 
-    if (!isfinite(t0) || !isfinite(tf) || !all_finite(x0, p->n)) {
+    if (!isfinite(t0) || !isfinite(tf) || !ogk_i_all_finite(x0, p->n)) {
         st = OGK_E_NONFINITE;
     } else if ((!(tf > t0)) || ((mode0 != 0) && (mode0 != 1))) {
         st = OGK_E_RANGE;
