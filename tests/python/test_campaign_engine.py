@@ -57,7 +57,7 @@ def plan_of(family: str):
     if family not in _PLANS:
         scenario, options = FAMILIES[family]
         header = read_header(resolve_scenario(scenario))
-        fam = registry.campaign_family(header)
+        fam = registry.family(header)
         assert fam.name == family
         _PLANS[family] = fam.plan(header, dict(options))
     return _PLANS[family]

@@ -26,7 +26,7 @@ import ogk_host
 
 from ogk_bindings.kernel import KernelError
 from ogk.missions.orbit_injection import nog_guidance
-from ogk.missions.orbit_injection.campaign import run_campaign
+import oi_campaign
 from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
 from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, NogTables, prepare_tables
 from ogk.missions.orbit_injection.sil import SilSettings
@@ -86,7 +86,7 @@ def test_kernel_error_is_picklable():
 def test_corrupted_table_with_two_workers_aborts_naming_runs_and_status(scn, corrupted):
     t0 = time.monotonic()
     with pytest.raises(CampaignAborted) as info:
-        run_campaign(scn, runs=4, seed=1, workers=2, truth="point-mass",
+        oi_campaign.fly(scn, runs=4, seed=1, workers=2, truth="point-mass",
                      guidance_factory=KernelNogGuidance.for_tables(corrupted))
     err = info.value
     assert err.status is not None and err.status.startswith("OGK_E_TABLE")
@@ -125,7 +125,7 @@ class _KillsItself(NominalOpenLoopGuidance):
 def test_killed_worker_is_reported_with_its_runs(scn, tmp_path):
     log = tmp_path / "mc.json.runs.jsonl"
     with pytest.raises(CampaignAborted) as info:
-        run_campaign(scn, runs=6, seed=1, workers=2, chunks=3, truth="point-mass",
+        oi_campaign.fly(scn, runs=6, seed=1, workers=2, chunks=3, truth="point-mass",
                      guidance_factory=_KillsItself, run_log=log)
     line = str(info.value)
     assert line.startswith("campaign aborted: runs 2-3: worker pid ")
@@ -165,7 +165,7 @@ class _Hangs(NominalOpenLoopGuidance):
 def test_watchdog_kills_a_hung_chunk(scn):
     t0 = time.monotonic()
     with pytest.raises(CampaignAborted) as info:
-        run_campaign(scn, runs=2, seed=1, workers=2, truth="point-mass", guidance_factory=_Hangs,
+        oi_campaign.fly(scn, runs=2, seed=1, workers=2, truth="point-mass", guidance_factory=_Hangs,
                      watchdog=Watchdog(base_s=3.0, per_run_s=0.5))
     assert str(info.value).startswith("campaign aborted: runs 1: watchdog: no result after 4 s")
     assert time.monotonic() - t0 < 20.0
@@ -179,7 +179,7 @@ def _per_run(res) -> str:
 def _nog(tables, truth, workers=1, chunks=None, rate_hz=50.0):
     """Kernel VTD-NOG, 3 dispersed runs of seed 7 (their cut-offs differ: the runs land on
     different steps)."""
-    return run_campaign(load_scenario(), runs=3, seed=7, workers=workers, chunks=chunks,
+    return oi_campaign.fly(load_scenario(), runs=3, seed=7, workers=workers, chunks=chunks,
                         truth=truth, guidance_factory=KernelNogGuidance.for_tables(tables),
                         guidance_name="nog", tables=tables,
                         settings=SilSettings(control_rate_hz=rate_hz))

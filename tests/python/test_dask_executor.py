@@ -83,7 +83,7 @@ def cluster(tmp_path_factory):
 
 def family_object(family: str):
     scenario, _ = FAMILIES[family]
-    return registry.campaign_family(read_header(resolve_scenario(scenario)))
+    return registry.family(read_header(resolve_scenario(scenario)))
 
 
 def chunk_log(where: Path) -> list[tuple[int, ...]]:
@@ -115,7 +115,7 @@ def test_dask_target_m7_campaign_is_the_local_one(cluster):
     address, _ = cluster
     scenario, _ = FAMILIES["low-thrust-transfer"]
     header = read_header(resolve_scenario(scenario))
-    fam = registry.campaign_family(header)
+    fam = registry.family(header)
     plan = fam.plan(header, {"target": "m7"})
     assert plan.target == "m7" and "flight_program" in plan.products
     local = fly_campaign(plan, 1, 5, workers=1, progress=False)

@@ -11,7 +11,8 @@ import math
 import numpy as np
 import pytest
 
-from ogk.missions.orbit_injection.campaign import eq47_bounds, run_campaign
+import oi_campaign
+from ogk.missions.orbit_injection.flights import eq47_bounds
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs, run_seed
 from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
@@ -46,17 +47,17 @@ def test_same_seed_same_numbers_for_any_worker_count_and_chunking(scn):
     """6-DOF, every dispersion, 7 runs: 1 worker / 1 chunk, 2 workers / 2 chunks and 1 worker / 3
     chunks give bit-identical results; re-flying runs 5 and 2 alone reproduces them."""
     common = dict(runs=7, seed=2024, truth="6dof", guidance_factory=SHORT)
-    one = run_campaign(scn, workers=1, **common)
-    two = run_campaign(scn, workers=2, **common)
-    three_chunks = run_campaign(scn, workers=1, chunks=3, **common)
+    one = oi_campaign.fly(scn, workers=1, **common)
+    two = oi_campaign.fly(scn, workers=2, **common)
+    three_chunks = oi_campaign.fly(scn, workers=1, chunks=3, **common)
     assert one.n_failures == 0
     np.testing.assert_array_equal(_numbers(one), _numbers(two))
     np.testing.assert_array_equal(_numbers(one), _numbers(three_chunks))
-    again = run_campaign(scn, seed=2024, truth="6dof", guidance_factory=SHORT, runs=0,
+    again = oi_campaign.fly(scn, seed=2024, truth="6dof", guidance_factory=SHORT, runs=0,
                          run_ids=[5, 2])
     np.testing.assert_array_equal(_numbers(again), _numbers(one)[:, [5, 2]])
     assert list(again.draws.run_seed) == [run_seed(2024, 5), run_seed(2024, 2)]
-    other = run_campaign(scn, workers=1, runs=7, seed=2025, truth="6dof", guidance_factory=SHORT)
+    other = oi_campaign.fly(scn, workers=1, runs=7, seed=2025, truth="6dof", guidance_factory=SHORT)
     assert not np.array_equal(_numbers(other), _numbers(one))
 
 
@@ -125,7 +126,7 @@ class _Faulty(NominalOpenLoopGuidance):
 
 @pytest.mark.req("OGK-HAR-006")
 def test_failures_are_counted_with_reasons(scn):
-    res = run_campaign(scn, runs=3, seed=1, truth="point-mass", guidance_factory=_Faulty,
+    res = oi_campaign.fly(scn, runs=3, seed=1, truth="point-mass", guidance_factory=_Faulty,
                        settings=SilSettings(t_max_s=10.0))
     assert res.failure == ["", "guidance", "no_termination"]
     assert res.n_failures == 2 and res.failure_reasons() == {"guidance": 1, "no_termination": 1}
@@ -142,7 +143,7 @@ def test_runs_beyond_the_scenario_tolerances_fail_with_their_reason(tmp_path):
     the right radius but ~1.3 km/s short) and says so per run in the report and the JSON; the
     open-loop nominal passes it."""
     strict = load_scenario()
-    res = run_campaign(strict, runs=3, seed=8, truth="point-mass", guidance_factory=SHORT,
+    res = oi_campaign.fly(strict, runs=3, seed=8, truth="point-mass", guidance_factory=SHORT,
                        dispersions=False)
     assert res.n_failures == 3
     assert all(f.startswith("tolerance: |dvt_f_mps| = ") and f.endswith("> 20") for f in res.failure)
@@ -150,7 +151,7 @@ def test_runs_beyond_the_scenario_tolerances_fail_with_their_reason(tmp_path):
     assert doc["failures"] == 3 and [r["run_id"] for r in doc["failed_runs"]] == [0, 1, 2]
     assert doc["tolerances"]["dr_f_m"] == 1000.0 and doc["tolerances"]["dvt_f_mps"] == 20.0
     assert "failed run 0: tolerance" in format_report(res)
-    full = run_campaign(strict, runs=1, seed=8, truth="point-mass", dispersions=False)
+    full = oi_campaign.fly(strict, runs=1, seed=8, truth="point-mass", dispersions=False)
     assert full.n_failures == 0
     # a tolerance failure still flew: it stays in the statistics (counted, not dropped)
     assert res.mean()["dvt_f_mps"] == pytest.approx(float(np.mean(res.errors["dvt_f_mps"])))
@@ -158,7 +159,7 @@ def test_runs_beyond_the_scenario_tolerances_fail_with_their_reason(tmp_path):
 
 @pytest.mark.req("OGK-HAR-002")
 def test_json_statistics_and_side_by_side_report(scn, tmp_path):
-    res = run_campaign(scn, runs=5, seed=8, truth="point-mass", guidance_factory=SHORT)
+    res = oi_campaign.fly(scn, runs=5, seed=8, truth="point-mass", guidance_factory=SHORT)
     path = tmp_path / "mc.json"
     res.write_json(path)
     doc = json.loads(path.read_text())
@@ -175,7 +176,7 @@ def test_json_statistics_and_side_by_side_report(scn, tmp_path):
     assert seed5 == [run_seed(8, i) for i in range(5)]
     text = format_report(res)
     assert "Table 7" in text and "-2.1500" in text and "4.2600" in text
-    single = run_campaign(scn, runs=1, seed=8, truth="point-mass", guidance_factory=SHORT,
+    single = oi_campaign.fly(scn, runs=1, seed=8, truth="point-mass", guidance_factory=SHORT,
                           dispersions=False)
     assert "Table 6" in format_report(single) and "-1.8700" in format_report(single)
 
@@ -202,10 +203,10 @@ def test_paper_tables_match_the_scenario_file(scn):
 
 @pytest.mark.req("OGK-HAR-002")
 def test_report_prints_paper_columns_only_for_a_scenario_with_paper_results(scn):
-    res = run_campaign(scn, runs=1, seed=8, truth="point-mass", guidance_factory=SHORT,
+    res = oi_campaign.fly(scn, runs=1, seed=8, truth="point-mass", guidance_factory=SHORT,
                        dispersions=False)
     assert "Table 6" in format_report(res) and scn.name in format_report(res)
-    bare = run_campaign(dataclasses.replace(scn, paper=None, name="bare_mission"), runs=1,
+    bare = oi_campaign.fly(dataclasses.replace(scn, paper=None, name="bare_mission"), runs=1,
                         seed=8, truth="point-mass", guidance_factory=SHORT, dispersions=False)
     text = format_report(bare)
     assert "Table" not in text and "paper" not in text and "bare_mission" in text

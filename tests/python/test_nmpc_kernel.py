@@ -251,11 +251,3 @@ def test_bad_inputs_raise() -> None:
         g.command(float("nan"))
     with pytest.raises(ValueError):
         g.load_plan(0.0, 6.0, np.zeros((40, 5)), np.zeros((40, 1)))
-
-
-@pytest.mark.req("OGK-HAR-001")
-def test_campaign_seed_lists() -> None:
-    from ogk.missions.rendezvous.campaign import parse_seeds
-    assert parse_seeds("1-10") == list(range(1, 11))
-    assert parse_seeds("3,7,9-11") == [3, 7, 9, 10, 11]
-    assert parse_seeds("5") == [5]

@@ -59,7 +59,7 @@ def test_shipped_scenario_holds_its_dispersion_box(name: str, seed: int, third: 
     plan, records = campaign(REPO / "scenarios" / f"{name}.toml", seed, third_bodies_in_model=third)
     assert_holds_the_box(records)
     if "min_fuel" in name:
-        row = paper_row(plan.base, "snns", True, records)
+        row = paper_row(plan.base.scenario, "snns", True, records)
         assert row is not None and row["table"] == "Table II"
         assert row["runs_meeting"] == len(records), row
 

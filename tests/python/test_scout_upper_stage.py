@@ -249,7 +249,7 @@ def test_truth_model_flies_the_table_and_lands_on_the_nominal(scn, raw) -> None:
 
 @pytest.mark.req("OGK-NOG-015", "OGK-HAR-007")
 def test_both_missions_take_one_path_and_the_code_names_neither() -> None:
-    """Issue 9's "no mission-specific branch": both scenario files resolve to the same family adapter
+    """Issue 9's "no mission-specific branch": both scenario files resolve to the same family
     and load into the same scenario type through the same loader; no source file of kernel/, harness/
     or host/ names either mission (comments included, the Scout's data being in its TOML only)."""
     from ogk.missions.registry import family

@@ -4,7 +4,7 @@ every corrector call (ogk_blt_solve: NRPC, LM or hybrid) the host's campaign wou
 the same inputs; the host keeps the nominal design, the dispersions, the DOP853 checks and the judging.
 
   * `ogk mc SCENARIO --target m7` (family.py `_on_target`): TargetJob flies the chunk's runs with
-    campaign.fly_run on TargetCorrector contexts (one exchange per corrector call), configured from the
+    convergence_run.fly_run on TargetCorrector contexts (one exchange per corrector call), configured from the
     generated flight configuration (flight_config.py).
   * `corrections_on_target(session)`: every corrector call of the ground's design (guess stage,
     continuations) made on the target, each solve's configuration uplinked first (the continuations
@@ -30,7 +30,7 @@ from ogk.sil.pil import FlightProgram, PilSession, fly_sessions
 from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
-from . import campaign
+from . import convergence_run
 from .flight_config import SLOTS, slot_configs, write_flight_config
 
 BLT_INIT, BLT_LOAD, BLT_SOLVE = 32, 33, 34      #: frame types of blt_pil.c
@@ -109,7 +109,7 @@ TRANSFER_N = len(flatten(ffi.new("ogk_blt_transfer_t *")))
 
 # ------------------------------------------------------------------------------------------ the program
 
-def flight_program(nominal: campaign.Nominal, scenario_path: Path, transfer: str,
+def flight_program(nominal: convergence_run.Nominal, scenario_path: Path, transfer: str,
                    target: str = "m7") -> FlightProgram:
     """The scenario's flight program for the corrector configurations of its Monte Carlo nominal
     (a build per distinct configuration set: the key is the SHA-256 of their values)."""
@@ -121,7 +121,7 @@ def flight_program(nominal: campaign.Nominal, scenario_path: Path, transfer: str
 
 
 class TargetCorrector:
-    """campaign.fly_run's corrector (the `solve` of ogk_bindings.blt.Blt) on a slot of the program:
+    """convergence_run.fly_run's corrector (the `solve` of ogk_bindings.blt.Blt) on a slot of the program:
     one BLT_SOLVE exchange per call."""
 
     def __init__(self, session: PilSession, slot: int, n_segments: int, n_nodes: int) -> None:
@@ -158,10 +158,10 @@ def configure(session: PilSession, slot: int, cfg: BltConfig | None = None) -> N
 @dataclasses.dataclass(frozen=True)
 class TargetJob:
     """The chunk flight of `ogk mc --target m7`: one QEMU per chunk; each run re-initialises the
-    contexts from the generated configuration (BLT_INIT), then campaign.fly_run with the host's draw
+    contexts from the generated configuration (BLT_INIT), then convergence_run.fly_run with the host's draw
     (the same run stream) makes its corrector calls on them."""
 
-    nominal: campaign.Nominal
+    nominal: convergence_run.Nominal
     correctors: tuple[str, ...]
     levels: tuple[float, ...]                 #: [%]
     sigma: float
@@ -182,7 +182,7 @@ class TargetJob:
                 for name in self.correctors:      # each run: a fresh init of its contexts
                     configure(session, SLOTS.index(name))
                 level = self.levels[int(rid) % len(self.levels)]
-                records.append(campaign.fly_run(self.nominal, solvers, level / 100.0, self.sigma,
+                records.append(convergence_run.fly_run(self.nominal, solvers, level / 100.0, self.sigma,
                                                 run_generator(int(seed))))
                 session.end_run(int(rid))
             return records

@@ -100,7 +100,7 @@ class TargetJob:
 
     def __call__(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64]
                  ) -> list[dict[str, Any]]:
-        from .campaign import _run_records
+        from .flights import _run_records
 
         job = self.host_job
 

@@ -1,12 +1,8 @@
-"""Binary-asteroid transfers with BLT guidance and NRPC (Xiong & Wang is its first user).
-
-The family's adapter for ogk.missions.registry:
-  `ogk blt SCENARIO --transfer NAME --json FILE [--plots DIR]`: one transfer: the ground's initial guess, the
-      flight kernel's corrector in the realistic model, the independent DOP853 re-propagation of the result,
-      the paper's figures beside it. Exit 0 when the kernel converged and DOP853 confirms the tolerance.
-  `ogk run SCENARIO --transfer NAME ...`: the same (`ogk blt` is its older spelling).
-  `ogk mc SCENARIO`: the convergence Monte Carlo of Table 3, through the campaign engine (family.py).
-Exit 2 on bad input.
+"""`ogk run SCENARIO --transfer NAME --json FILE [--plots DIR]` of a binary-asteroid scenario (the
+family's `run`; `ogk blt` is its older spelling): one transfer: the ground's initial guess, the
+flight kernel's corrector in the realistic model, the independent DOP853 re-propagation of the
+result, the paper's figures beside it. Exit 0 when the kernel converged and DOP853 confirms the
+tolerance, 1 when not, 2 on bad input.
 """
 from __future__ import annotations
 
@@ -20,7 +16,6 @@ from typing import Any
 import numpy as np
 from ogk_host.binary import transfers as T
 from ogk_host.binary.orbits import CorrectionError, scenario_orbit
-from ogk_host.binary.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.binary.scenario import BinaryScenario, load_scenario
 from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader
@@ -30,16 +25,11 @@ from ogk.sil.report import finite_or_none
 from ogk.sil.progress import Working
 
 
-LAWS = SCENARIO_LAWS
-
-
 def _scenario(header: ScenarioHeader) -> BinaryScenario:
     return load_scenario(header.path)
 
 
-# ------------------------------------------------------------------------------------------ ogk blt
-
-def add_blt_arguments(p: argparse.ArgumentParser) -> None:
+def add_run_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--transfer", required=True, metavar="NAME", help="a [transfers.NAME] of the scenario")
     p.add_argument("--json", required=True, metavar="FILE", help="write the result as JSON")
     p.add_argument("--plots", default=None, metavar="DIR", help="PNG figures (synodic frame, C_J and control)")
@@ -119,7 +109,8 @@ def report_lines(doc: dict[str, Any]) -> list[str]:
     return lines
 
 
-def blt(header: ScenarioHeader, args: argparse.Namespace) -> int:
+def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
+    """One transfer (module doc)."""
     scenario = _scenario(header)
     out = check_output_file(args.json, "--json")
     plots = check_output_dir(args.plots, "--plots") if args.plots else None
@@ -194,9 +185,3 @@ def _transfer_plots(scenario: BinaryScenario, doc: dict[str, Any], out_dir: Path
              f"fuel {doc['fuel_g']:.2f} g, {'converged' if doc['converged'] else 'NOT converged'}")
     return transfer_figures(doc["transfer"], model, smp, orbit_states, scenario.units.length_m,
                             scenario.units.time_s, out_dir, title)
-
-
-# `ogk run` is the family's one-transfer verb; `ogk blt` its older spelling. `ogk mc` goes through
-# the campaign engine (family.py).
-add_run_arguments = add_blt_arguments
-run = blt
