@@ -1,12 +1,16 @@
 """SIL closed loop and Monte Carlo campaign of the LEO-to-GEO burn (harness/ogk/missions/orbit_injection):
 reproducibility across worker counts and chunking, re-flying one run, failure accounting, the CPD
-in the loop (attitude follows the command, eq. 47 rate bounds), JSON/report and the `ogk mc` command."""
+in the loop (attitude follows the command, eq. 47 rate bounds), JSON/report and the `ogk mc` command,
+a corrupted table reaching the workers, the 6-DOF per-run values independent of the chunking.
+The engine's own faults are test_campaign_faults.py's (the test family)."""
 from __future__ import annotations
 
 import dataclasses
 import functools
 import json
 import math
+import shutil
+import time
 
 import numpy as np
 import pytest
@@ -15,6 +19,8 @@ import oi_campaign
 from ogk.missions.orbit_injection.flights import eq47_bounds
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs, run_seed
 from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
+from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, NogTables, prepare_tables
+from ogk.sil.runner import CampaignAborted
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
 from ogk.missions.orbit_injection.report import format_report
 from ogk.missions.orbit_injection.sil import ERROR_KEYS, RATE_KEYS, SilSettings, simulate
@@ -225,3 +231,67 @@ def test_ogk_mc_command(tmp_path, capsys):
     assert abs(doc["mean"]["dr_f_m"]) < 1e-3 and doc["mean"]["tf_s"] == pytest.approx(105.8088,
                                                                                        abs=1e-4)
     assert math.isclose(doc["std"]["dvt_f_mps"], 0.0, abs_tol=1e-12)
+
+
+# ------------------------------------------------------------------ tables flown by the campaign
+@pytest.fixture(scope="module")
+def tables():
+    return prepare_tables(load_scenario())
+
+
+@pytest.fixture(scope="module")
+def corrupted(tables, tmp_path_factory):
+    """A copy of the scenario's tables with one byte of the bundle flipped (CRC no longer holds);
+    the campaign is handed it directly, so the parent's file check does not stop it first."""
+    d = tmp_path_factory.mktemp("bad_tables")
+    for p in tables.directory.iterdir():
+        if p.is_file():
+            shutil.copy(p, d / p.name)
+    bundle = d / tables.bundle.name
+    data = bytearray(bundle.read_bytes())
+    data[len(data) // 2] ^= 0x40
+    bundle.write_bytes(bytes(data))
+    return NogTables(d, bundle, tables.manifest, tables.sha256)
+
+
+@pytest.mark.req("OGK-HAR-003", "OGK-HAR-008")
+def test_corrupted_table_with_two_workers_aborts_naming_runs_and_status(scn, corrupted):
+    t0 = time.monotonic()
+    with pytest.raises(CampaignAborted) as info:
+        oi_campaign.fly(scn, runs=4, seed=1, workers=2, truth="point-mass",
+                        guidance_factory=KernelNogGuidance.for_tables(corrupted))
+    err = info.value
+    assert err.status is not None and err.status.startswith("OGK_E_TABLE")
+    line = str(err)
+    assert "\n" not in line and err.status in line and "ogk_nog_table_load" in line
+    assert line.startswith("campaign aborted: runs 0-1: ") or line.startswith(
+        "campaign aborted: runs 2-3: ")
+    assert time.monotonic() - t0 < 30.0
+
+
+def _per_run(res) -> str:
+    """Every per-run value of the JSON, as written (repr of each float: bit for bit)."""
+    return json.dumps(res.to_json_dict()["per_run"])
+
+
+def _nog(tables, truth, workers=1, chunks=None, rate_hz=50.0):
+    """Kernel VTD-NOG, 3 dispersed runs of seed 7 (their cut-offs differ: the runs land on
+    different steps)."""
+    return oi_campaign.fly(load_scenario(), runs=3, seed=7, workers=workers, chunks=chunks,
+                           truth=truth, guidance_factory=KernelNogGuidance.for_tables(tables),
+                           guidance_name="nog", tables=tables,
+                           settings=SilSettings(control_rate_hz=rate_hz))
+
+
+@pytest.mark.req("OGK-HAR-001")
+def test_per_run_values_do_not_depend_on_workers_or_chunks(tables):
+    """6-DOF (a landing step of one run used to change the eq. 55 factor of the other runs of its
+    chunk by an ulp, which the attitude loop carried to 1e-14: run 0 of these differed): 1 worker
+    / 1 chunk and 2 workers / 3 chunks write the same per-run values, bit for bit."""
+    one = _nog(tables, "6dof")
+    tf = one.errors["tf_s"]
+    assert np.unique(np.round(tf, 6)).size == tf.size      # every run lands on its own step
+    for workers, chunks in ((2, 3),):
+        other = _nog(tables, "6dof", workers, chunks)
+        assert _per_run(other) == _per_run(one), (workers, chunks)
+        assert other.to_json_dict()["std"] == one.to_json_dict()["std"]

@@ -53,6 +53,7 @@ it is written into the campaign envelope, and `ogk replay` rebuilds the plan fro
 """
 from __future__ import annotations
 
+import abc
 import argparse
 import dataclasses
 from collections.abc import Callable, Mapping, Sequence
@@ -184,9 +185,10 @@ class MissionFamily(Protocol):
         """The plan flown by its flight program on `target` (flight_program, target_job)."""
 
 
-class FamilyDefaults:
-    """The optional verbs of MissionFamily with their defaults; a family class derives from it and
-    overrides what it has. A verb a family does not have says so in one OgkInputError line."""
+class FamilyDefaults(abc.ABC):
+    """MissionFamily as a base class: the verbs every family has are abstract (a family class that
+    lacks one cannot be made), the optional ones have their defaults, which a family overrides
+    when it has the capability. A verb a family does not have says so in one OgkInputError line."""
 
     name: str = ""
     laws: tuple[str, ...] = ()
@@ -197,6 +199,24 @@ class FamilyDefaults:
     has_tables: bool = False
     #: a target campaign's watchdog allowance per run [s]
     target_watchdog_per_run_s: float = 60.0
+
+    @abc.abstractmethod
+    def load(self, header: ScenarioHeader) -> Any: ...
+
+    @abc.abstractmethod
+    def add_campaign_arguments(self, parser: argparse.ArgumentParser) -> None: ...
+
+    @abc.abstractmethod
+    def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan: ...
+
+    @abc.abstractmethod
+    def report(self, flown: Flown) -> tuple[str, dict[str, Any]]: ...
+
+    @abc.abstractmethod
+    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None: ...
+
+    @abc.abstractmethod
+    def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int: ...
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         return None
@@ -211,13 +231,6 @@ class FamilyDefaults:
         """`ogk tables SCENARIO`: none (has_tables is False)."""
         raise OgkInputError(f"family {self.name!r} has no `ogk tables` (it makes no ground tables)",
                             path=header.path)
-
-    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None:
-        return None
-
-    def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
-        """`ogk run SCENARIO`: none."""
-        raise OgkInputError(f"family {self.name!r} has no `ogk run`", path=header.path)
 
     def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
         raise OgkInputError(f"the {self.name} family has no flight program for target {target}",

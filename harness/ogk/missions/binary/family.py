@@ -83,12 +83,12 @@ class BinaryFamily(FamilyDefaults):
     def load(self, header: ScenarioHeader) -> BinaryScenario:
         return load_scenario(header.path)
 
-    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
-        p.add_argument("--perturbation", type=float, nargs="+", default=None, metavar="PCT",
+    def add_campaign_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--perturbation", type=float, nargs="+", default=None, metavar="PCT",
                        help="perturbation levels [%%] (default: the scenario's [dispersions] levels)")
-        p.add_argument("--corrector", choices=("all", *ALL), default="all",
+        parser.add_argument("--corrector", choices=("all", *ALL), default="all",
                        help="which corrector(s) to fly on the same draws (default all three)")
-        p.add_argument("--sigma-fraction", type=float, default=None, metavar="F",
+        parser.add_argument("--sigma-fraction", type=float, default=None, metavar="F",
                        help="sigma of a draw as a fraction of the level (default: the scenario's)")
 
     def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
@@ -185,9 +185,9 @@ class BinaryFamily(FamilyDefaults):
         return plan
 
     # ------------------------------------------------------------------ ogk run
-    def add_run_arguments(self, p: argparse.ArgumentParser) -> None:
+    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None:
         from .one_transfer import add_run_arguments
-        add_run_arguments(p)
+        add_run_arguments(parser)
 
     def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
         """`ogk run SCENARIO --transfer NAME`: one BLT transfer, checked by DOP853."""

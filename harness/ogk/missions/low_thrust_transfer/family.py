@@ -88,17 +88,17 @@ class LowThrustFamily(FamilyDefaults):
     def load(self, header: ScenarioHeader) -> Any:
         return load_scenario(header.path)
 
-    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
-        p.add_argument("--cases", choices=("dispersed", "paper"), default="dispersed",
+    def add_campaign_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--cases", choices=("dispersed", "paper"), default="dispersed",
                        help="dispersed draws (default) or the paper's 23 cases (--runs 23)")
-        p.add_argument("--basis", default=None, choices=FOURIER_BASES,
+        parser.add_argument("--basis", default=None, choices=FOURIER_BASES,
                        help="Fourier basis (printed, period_tf, period_2tf, cosine_2tf; default: "
                             "the scenario's)")
-        p.add_argument("--order", type=int, default=None, help="Fourier order (default: scenario)")
-        p.add_argument("--reference", action="store_true",
+        parser.add_argument("--order", type=int, default=None, help="Fourier order (default: scenario)")
+        parser.add_argument("--reference", action="store_true",
                        help="the fuel-optimal re-solve of every run's problem, for FI (cached in "
                             "--reference-dir)")
-        p.add_argument("--reference-dir", default=None,
+        parser.add_argument("--reference-dir", default=None,
                        help="cache of the fuel-optimal re-solves (default: reference/ in the "
                             "scenario's product directory build/tables/<name>-<sha12>)")
 
@@ -184,18 +184,18 @@ class LowThrustFamily(FamilyDefaults):
         return plan
 
     # ------------------------------------------------------------------ ogk tables, ogk run
-    def add_tables_arguments(self, p: argparse.ArgumentParser) -> None:
+    def add_tables_arguments(self, parser: argparse.ArgumentParser) -> None:
         from .ground_tables import add_tables_arguments
-        add_tables_arguments(p)
+        add_tables_arguments(parser)
 
     def tables(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
         """`ogk tables SCENARIO`: the fuel-optimal nominal, its manifest, the flight configuration."""
         from .ground_tables import write_ground_tables
         return write_ground_tables(header, args)
 
-    def add_run_arguments(self, p: argparse.ArgumentParser) -> None:
+    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None:
         from .one_case import add_run_arguments
-        add_run_arguments(p)
+        add_run_arguments(parser)
 
     def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
         """`ogk run SCENARIO`: one MPSP case (--case, --param) or the paper's (--paper-tables)."""

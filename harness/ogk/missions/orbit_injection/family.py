@@ -64,25 +64,25 @@ class OrbitInjectionFamily(FamilyDefaults):
     def load(self, header: ScenarioHeader) -> OrbitInjectionScenario:
         return load_scenario(header.path)
 
-    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
-        p.add_argument("--no-dispersions", action="store_true",
+    def add_campaign_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--no-dispersions", action="store_true",
                        help="no dispersions: alignment errors only (Table 6 case)")
-        p.add_argument("--truth", choices=("6dof", "point-mass"), default="6dof")
-        p.add_argument("--guidance", choices=("nog", "nominal"), default="nog",
+        parser.add_argument("--truth", choices=("6dof", "point-mass"), default="6dof")
+        parser.add_argument("--guidance", choices=("nog", "nominal"), default="nog",
                        help="nog: kernel VTD-NOG; nominal: open-loop u*(t) (a reference, not guidance)")
-        p.add_argument("--tables", default=None, metavar="DIR",
+        parser.add_argument("--tables", default=None, metavar="DIR",
                        help="VTD-NOG tables to fly (default: the scenario's own directory under "
                             "build/tables, generated when missing); checked against the scenario")
-        p.add_argument("--history-runs", type=int, default=50,
+        parser.add_argument("--history-runs", type=int, default=50,
                        help="runs whose time histories are drawn with --plots (default 50)")
-        p.add_argument("--control-rate", type=float, default=50.0, help="attitude control rate [Hz]")
-        p.add_argument("--truth-substeps", type=int, default=1,
+        parser.add_argument("--control-rate", type=float, default=50.0, help="attitude control rate [Hz]")
+        parser.add_argument("--truth-substeps", type=int, default=1,
                        help="truth RK4 steps per control step (default 1: 20 ms)")
-        p.add_argument("--cpd-gains", choices=("printed", "rederived"), default=None,
+        parser.add_argument("--cpd-gains", choices=("printed", "rederived"), default=None,
                        help="CPD gain set (default: the scenario's flown set)")
-        p.add_argument("--cpd-pointing", choices=("body", "euler"), default="body",
+        parser.add_argument("--cpd-pointing", choices=("body", "euler"), default="body",
                        help="CPD pitch/yaw error: body-axis (default) or eqs. 45-46 literally")
-        p.add_argument("--paper-end-game", action="store_true",
+        parser.add_argument("--paper-end-game", action="store_true",
                        help="fly the paper's end-game (cut-off predicted at the samples, eq. 32; "
                             "Delta t_S throughout) instead of the scenario's [guidance.end_game]")
 
@@ -140,23 +140,23 @@ class OrbitInjectionFamily(FamilyDefaults):
         return plan
 
     # ------------------------------------------------------------------ ogk tables, ogk run
-    def add_tables_arguments(self, p: argparse.ArgumentParser) -> None:
+    def add_tables_arguments(self, parser: argparse.ArgumentParser) -> None:
         from .ground_tables import add_tables_arguments
-        add_tables_arguments(p)
+        add_tables_arguments(parser)
 
     def tables(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
         """`ogk tables SCENARIO`: nominal, VTD-NOG gain tables, C table image, flight configuration."""
         from .ground_tables import write_ground_tables
         return write_ground_tables(header, args)
 
-    def add_run_arguments(self, p: argparse.ArgumentParser) -> None:
+    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None:
         from ogk.sil.command import add_target_argument
-        p.add_argument("--seed", type=int, default=1, help="seed of the flight's draws (run 0 of a "
+        parser.add_argument("--seed", type=int, default=1, help="seed of the flight's draws (run 0 of a "
                        "campaign with this seed; default 1)")
-        p.add_argument("--json", required=True, metavar="FILE", help="the flight as a campaign of one")
-        p.add_argument("--plots", default=None, metavar="DIR", help="PNG plots of the flight")
-        self.add_campaign_arguments(p)
-        add_target_argument(p)
+        parser.add_argument("--json", required=True, metavar="FILE", help="the flight as a campaign of one")
+        parser.add_argument("--plots", default=None, metavar="DIR", help="PNG plots of the flight")
+        self.add_campaign_arguments(parser)
+        add_target_argument(parser)
 
     def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
         """`ogk run SCENARIO`: one dispersed flight (run 0 of `ogk mc` with the same seed)."""

@@ -122,20 +122,20 @@ class RendezvousFamily(FamilyDefaults):
     def load(self, header: ScenarioHeader) -> RendezvousScenario:
         return load_scenario(header.path)
 
-    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
-        p.add_argument("--strategy", choices=STRATEGIES, default=None,
+    def add_campaign_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--strategy", choices=STRATEGIES, default=None,
                        help="SNNS or CNCN (default: the scenario's [nmpc] strategy)")
-        p.add_argument("--solver", choices=SOLVERS, default="kernel",
+        parser.add_argument("--solver", choices=SOLVERS, default="kernel",
                        help="kernel: the flight code's ogk_nmpc (default); ipopt: the ground peer")
-        p.add_argument("--unperturbed", action="store_true",
+        parser.add_argument("--unperturbed", action="store_true",
                        help="fly the unperturbed truth (every run is then the same flight)")
-        p.add_argument("--third-bodies-in-model", choices=("scenario", "yes", "no"),
+        parser.add_argument("--third-bodies-in-model", choices=("scenario", "yes", "no"),
                        default="scenario", help="Earth and Mars gravity in the predictive model")
-        p.add_argument("--max-replans", type=int, default=None, metavar="K",
+        parser.add_argument("--max-replans", type=int, default=None, metavar="K",
                        help="replan limit of a flight (default: the scenario's)")
-        p.add_argument("--hessian", choices=("scenario", "bfgs", "exact"), default="scenario",
+        parser.add_argument("--hessian", choices=("scenario", "bfgs", "exact"), default="scenario",
                        help="the flight solver's QP Hessian (default: the scenario's [nmpc] hessian)")
-        p.add_argument("--move-start", default=None, metavar="MOVE",
+        parser.add_argument("--move-start", default=None, metavar="MOVE",
                        help="the first measured state's radius moved by MOVE: '<k>ulp' (k representable "
                             "doubles) or '<x>m' (metres); the sensitivity study "
                             "(python -m ogk.missions.rendezvous.sensitivity)")
@@ -208,9 +208,9 @@ class RendezvousFamily(FamilyDefaults):
         return plan
 
     # ------------------------------------------------------------------ ogk run
-    def add_run_arguments(self, p: argparse.ArgumentParser) -> None:
+    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None:
         from .one_flight import add_run_arguments
-        add_run_arguments(p)
+        add_run_arguments(parser)
 
     def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
         """`ogk run SCENARIO`: one closed-loop NMPC flight, beside the paper's Table I or II."""
