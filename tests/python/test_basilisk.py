@@ -1,4 +1,4 @@
-"""ogk's orbit-injection flight software in Basilisk (harness/ogk/basilisk, docs/basilisk.md).
+"""ogk's orbit-injection flight software in Basilisk (harness/ogk/missions/orbit_injection/basilisk, docs/basilisk.md).
 
 Checked against references that do not share the code under test:
 - frames: Basilisk's own RigidBodyKinematics (MRP2C, C2MRP) and ogk's truth-model rotations;
@@ -24,8 +24,8 @@ import pytest
 
 from Basilisk.utilities import RigidBodyKinematics as rbk
 
-from ogk.basilisk import frames
-from ogk.basilisk.crosscheck import compare
+from ogk.missions.orbit_injection.basilisk import frames
+from ogk.missions.orbit_injection.basilisk.crosscheck import compare
 from ogk.missions.orbit_injection import truth as tm
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs
 from ogk.missions.orbit_injection.flight_software import KernelFlightSoftware
@@ -51,7 +51,7 @@ TOLERANCE = {"dr_f_m": 0.07, "dphi_f_deg": 4e-8, "dvr_f_mps": 0.4, "dvt_f_mps": 
 
 #: The same for the Scout upper stage's 26 s burn (scenarios/scout_upper_stage.toml, Pontani & Celani
 #: sec. 7: tabulated thrust, side-jet roll torque), derived the same way by
-#: `.venv/bin/python -m ogk.basilisk.step_study scenarios/scout_upper_stage.toml --seed 7 --runs 2`
+#: `.venv/bin/python -m ogk.missions.orbit_injection.basilisk.step_study scenarios/scout_upper_stage.toml --seed 7 --runs 2`
 #: (docs/basilisk.md, "Tolerances"): e_ogk (order 4.0-4.2) is 10^2-10^4 times below e_bsk (order
 #: 1.6-2.0); the observed differences are about 1 e_bsk.
 SCOUT_TOLERANCE = {"dr_f_m": 0.009, "dphi_f_deg": 6e-8, "dvr_f_mps": 0.2, "dvt_f_mps": 2e-3,

@@ -2,7 +2,7 @@
 through cffi (VTD-NOG sampling schedule, energy cut-off, terminal steering, CPD).
 
 It is the same sequence, the same calls in the same order, as the inline control sample of
-sil.simulate, packaged so that another simulator can fly it: the Basilisk module of ogk.basilisk
+sil.simulate, packaged so that another simulator can fly it: the Basilisk module of ogk.missions.orbit_injection.basilisk
 calls `tick` once per control period with Basilisk's navigation. tests/python/test_basilisk.py
 checks that sil.simulate with this flight computer gives bit-identical results to sil.simulate
 without it (so the software flown in Basilisk is the software of our campaigns).

@@ -2,7 +2,7 @@
 software (the kernel's VTD-NOG, end-game and CPD), two independent vehicle models
 (docs/basilisk.md). `compare` flies a list of runs in both and returns their injection errors.
 
-    .venv/bin/python -m ogk.basilisk.crosscheck [SCENARIO] --seed S --runs N [--substeps K]
+    .venv/bin/python -m ogk.missions.orbit_injection.basilisk.crosscheck [SCENARIO] --seed S --runs N [--substeps K]
 """
 from __future__ import annotations
 
@@ -89,7 +89,7 @@ def compare(scn: OrbitInjectionScenario, seed: int, run_ids: Sequence[int],
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m ogk.basilisk.crosscheck",
+    ap = argparse.ArgumentParser(prog="python -m ogk.missions.orbit_injection.basilisk.crosscheck",
                                  description="ogk's 6-DOF truth against Basilisk on the same runs")
     ap.add_argument("scenario", nargs="?", default="scenarios/leo_geo.toml")
     ap.add_argument("--seed", type=int, default=7)
