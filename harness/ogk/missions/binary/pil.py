@@ -26,7 +26,7 @@ from ogk_bindings._ffi import ffi
 from ogk_bindings.blt import BltConfig, BltReport, Transfer, _report
 from ogk_bindings.kernel import _check, status_name
 
-from ogk.sil.pil import FlightProgram, PilSession, fly_sessions
+from ogk.sil.pil import FlightProgram, PilSession, fly_runs_on_target
 from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
@@ -173,21 +173,16 @@ class TargetJob:
         n_seg = int(self.nominal.transfer.segments.shape[0])
         n_nodes = len(self.nominal.layout.free_nodes)
 
-        def fly_all(sessions: list[PilSession]) -> list[dict[str, Any]]:
-            session = sessions[0]
-            records: list[dict[str, Any]] = []
+        def fly_run(session: PilSession, run_id: int, run_seed: int) -> dict[str, Any]:
             solvers = {name: TargetCorrector(session, SLOTS.index(name), n_seg, n_nodes)
                        for name in self.correctors}
-            for rid, seed in zip(run_ids, run_seeds):
-                for name in self.correctors:      # each run: a fresh init of its contexts
-                    configure(session, SLOTS.index(name))
-                level = self.levels[int(rid) % len(self.levels)]
-                records.append(convergence_run.fly_run(self.nominal, solvers, level / 100.0, self.sigma,
-                                                run_generator(int(seed))))
-                session.end_run(int(rid))
-            return records
+            for name in self.correctors:      # each run: a fresh init of its contexts
+                configure(session, SLOTS.index(name))
+            level = self.levels[run_id % len(self.levels)]
+            return convergence_run.fly_run(self.nominal, solvers, level / 100.0, self.sigma,
+                                           run_generator(run_seed))
 
-        records, keys = fly_sessions(self.program, 1, fly_all)
+        records, keys = fly_runs_on_target(self.program, run_ids, run_seeds, fly_run)
         for rid, rec in zip(run_ids, records):
             # (timing.<corrector>.cpu_ms stays: here the host's CPU during the exchange; the
             # target's cost is pil.ogk_blt_solve.insn_*)

@@ -27,7 +27,7 @@ from ogk_host.rendezvous.scenario import RendezvousScenario
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import _check, status_name
 from ogk_bindings.nmpc import FLAG_SUBDIVIDED, NX, Nmpc
-from ogk.sil.pil import FlightProgram, PilSession, fly_sessions
+from ogk.sil.pil import FlightProgram, PilSession, fly_runs_on_target
 from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
@@ -255,31 +255,24 @@ class TargetJob:
         cfg = kernel_config(self.scenario, self.settings)
         tu_days = Model.for_scenario(self.scenario).units.time_s / DAY_S
 
-        def fly_all(sessions: list[PilSession]) -> list[dict[str, Any]]:
-            session = sessions[0]
-            records: list[dict[str, Any]] = []
-            for rid, seed in zip(run_ids, run_seeds):
-                start = time.perf_counter()
-                guidance = TargetGuidance(session, cfg, KernelGuidance(self.scenario, self.settings))
-                try:
-                    rec = self.record(fly(self.scenario, guidance, self.perturbed, int(seed),
-                                          self.strategy, "kernel",
-                                          max_replans=self.max_replans).summary())
-                except TargetLinkError:
-                    raise
-                except RuntimeError as err:   # the truth integration stopped (family.fly_one)
-                    rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(self.results),
-                           FIRST_OFFSET_KEY: None, "timing.solve_ms_median": None, "timing.solve_ms_max": None,
-                           "timing.max_comp_fraction": None}
-                rec["timing.wall_s"] = time.perf_counter() - start
-                rec["pil.command_mismatch"] = guidance.command_mismatch
-                rec.update(shadow_keys(guidance, tu_days))
-                session.end_run(int(rid))
-                rec["run_id"] = int(rid)
-                records.append(rec)
-            return records
+        def fly_run(session: PilSession, run_id: int, run_seed: int) -> dict[str, Any]:
+            start = time.perf_counter()
+            guidance = TargetGuidance(session, cfg, KernelGuidance(self.scenario, self.settings))
+            try:
+                rec = self.record(fly(self.scenario, guidance, self.perturbed, run_seed,
+                                      self.strategy, "kernel", max_replans=self.max_replans).summary())
+            except TargetLinkError:
+                raise
+            except RuntimeError as err:   # the truth integration stopped (family.fly_one)
+                rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(self.results),
+                       FIRST_OFFSET_KEY: None, "timing.solve_ms_median": None, "timing.solve_ms_max": None,
+                       "timing.max_comp_fraction": None}
+            rec["timing.wall_s"] = time.perf_counter() - start
+            rec["pil.command_mismatch"] = guidance.command_mismatch
+            rec.update(shadow_keys(guidance, tu_days))
+            return rec
 
-        records, keys = fly_sessions(self.program, 1, fly_all)
-        for rec in records:
-            rec.update(keys[int(rec.pop("run_id"))])
+        records, keys = fly_runs_on_target(self.program, run_ids, run_seeds, fly_run)
+        for rid, rec in zip(run_ids, records):
+            rec.update(keys[int(rid)])
         return records
