@@ -31,7 +31,7 @@ from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_ru
 from ogk.missions.orbit_injection.flight_software import KernelFlightSoftware
 from ogk.missions.orbit_injection.nog_guidance import prepare_tables
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
-from ogk.missions.orbit_injection.sil import ERROR_KEYS, SilSettings, simulate
+from ogk.missions.orbit_injection.sil import ERROR_KEYS, SilSettings, fly_runs
 from ogk_host.orbit_injection.scenario import load_scenario
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -104,7 +104,7 @@ def test_frames_against_basilisk_kinematics():
 
 
 class _FlownByTheComputer:
-    """sil.simulate's guidance when the flight computer flies the ticks (never called)."""
+    """sil.fly_runs's guidance when the flight computer flies the ticks (never called)."""
 
     flies_end_game = True
 
@@ -124,7 +124,7 @@ def test_flight_software_in_basilisk_is_the_campaigns(leo, dispersed):
     settings, sw = SilSettings(history_runs=max(RUNS) + 1, history_every=50), DispersionSwitches()
     draws, gens = draw_runs(scn, SEED, RUNS, sw)
     fc = KernelFlightSoftware(scn, ref, tables, draws.run_id, settings)
-    flown = simulate(scn, ref, draws, gens, sw, _FlownByTheComputer(), settings,
+    flown = fly_runs(scn, ref, draws, gens, sw, _FlownByTheComputer(), settings,
                      flight_computer=fc)
     assert flown.failure == dispersed.failures["ours"] == ["", ""]
     for key in ERROR_KEYS:

@@ -23,7 +23,7 @@ from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, NogTabl
 from ogk.sil.runner import CampaignAborted
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
 from ogk.missions.orbit_injection.report import format_report
-from ogk.missions.orbit_injection.sil import ERROR_KEYS, RATE_KEYS, SilSettings, simulate
+from ogk.missions.orbit_injection.sil import ERROR_KEYS, RATE_KEYS, SilSettings, fly_runs
 from ogk_host.orbit_injection.scenario import Acceptance, load_scenario
 
 
@@ -94,7 +94,7 @@ def test_cpd_in_the_loop_keeps_attitude_on_the_command(scn, ref):
     sw = DispersionSwitches()
     draws, gens = draw_runs(scn, 3, np.arange(4), sw)
     guidance = NominalOpenLoopGuidance(GuidanceSetup(scn, ref, draws.run_id), cutoff_s=40.0)
-    res = simulate(scn, ref, draws, gens, sw, guidance,
+    res = fly_runs(scn, ref, draws, gens, sw, guidance,
                    SilSettings(truth="6dof", history_runs=4, history_every=5))
     assert res.failure == [""] * 4
     h = res.history

@@ -41,7 +41,7 @@ from ogk.sil.family import CampaignPlan, ChunkFlight, FamilyDefaults, Record, pe
 from ogk.sil.pil import FlightProgram
 from ogk.sil.seeds import run_generator
 
-from .cases import KINDS, MpspSetup, Case, build_setup, initial_case, paper_cases, run_case
+from .cases import KINDS, MpspSetup, Case, build_setup, initial_case, paper_cases, fly_run
 from .cases import terminal_case, thrust_case
 from .dispersions import applied_record, declared
 from .pil import SOLVE_TIMEOUT_S
@@ -127,7 +127,7 @@ class LowThrustFamily(FamilyDefaults):
 
         def fly_one(run_id: int, run_seed: int) -> Record:
             case = case_of(run_id, run_seed)
-            res, cpu = run_case(setup, case)
+            res, cpu = fly_run(setup, case)
             return record_of(case, res, cpu)
 
         def record_of(case: Case, res: Any, cpu: float) -> Record:

@@ -80,11 +80,11 @@ def _reference(setup: Any, case: Any, args: argparse.Namespace) -> Any:
 
 
 def run_one(args: argparse.Namespace) -> int:
-    from ogk.missions.low_thrust_transfer.cases import build_setup, make_case, run_case
+    from ogk.missions.low_thrust_transfer.cases import build_setup, make_case, fly_run
     from ogk.missions.low_thrust_transfer.report import header, make_record, table_line
     setup = build_setup(args.basis, args.order, args.scenario)
     case = make_case(setup, args.case, args.param)
-    res, cpu = run_case(setup, case)
+    res, cpu = fly_run(setup, case)
     start = time.perf_counter()
     ref = _reference(setup, case, args)
     rec = make_record(setup, res, cpu, ref)
@@ -118,7 +118,7 @@ def judge(setup: Any, rec: Any) -> str:
 
 
 def run_tables(args: argparse.Namespace) -> int:
-    from ogk.missions.low_thrust_transfer.cases import build_setup, paper_cases, run_case
+    from ogk.missions.low_thrust_transfer.cases import build_setup, paper_cases, fly_run
     from ogk.missions.low_thrust_transfer.report import header, make_record, paper_rows, table_line
     setup = build_setup(args.basis, args.order, args.scenario)
     cases = paper_cases(setup)
@@ -134,7 +134,7 @@ def run_tables(args: argparse.Namespace) -> int:
     failures: list[str] = []
     ref_wall = 0.0
     for case, paper in zip(cases, papers):
-        res, cpu = run_case(setup, case)
+        res, cpu = fly_run(setup, case)
         start = time.perf_counter()
         ref = _reference(setup, case, args)
         ref_wall += time.perf_counter() - start

@@ -33,7 +33,7 @@ from .dispersions import (DispersionSwitches, RunDraws, declared, dispersion_rec
                           with_first_actuation)
 from .guidance import GuidanceFactory, GuidanceSetup
 from .nominal_ref import NominalReference
-from .sil import ERROR_KEYS, RATE_KEYS, EndGamePlan, History, SilSettings, simulate
+from .sil import ERROR_KEYS, RATE_KEYS, EndGamePlan, History, SilSettings, fly_runs
 
 if TYPE_CHECKING:
     from .nog_guidance import NogTables
@@ -211,13 +211,13 @@ class _Job:
         guidance = self.guidance_factory(GuidanceSetup(self.scenario, self.reference, draws.run_id,
                                                        plan.fine_interval_s))
         # (a guidance that flies no end-game ignores last_interval_s: sil.EndGamePlan.flown_by)
-        res = simulate(self.scenario, self.reference, draws, gens, self.switches, guidance,
+        res = fly_runs(self.scenario, self.reference, draws, gens, self.switches, guidance,
                        self.settings)
         return draws, res
 
     def draws(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64] | None = None
               ) -> tuple[RunDraws, list[np.random.Generator]]:
-        """The runs' draws, with the first actuation noise the truth will receive (simulate:
+        """The runs' draws, with the first actuation noise the truth will receive (fly_runs:
         on when the switch is and the truth is 6-DOF), and their generators positioned for the
         actuation noise."""
         draws, gens = draw_runs(self.scenario, self.seed, run_ids, self.switches, run_seeds)

@@ -1,6 +1,6 @@
 """Orbit injection on the emulated Cortex-M7 (docs/pil.md): the flight program
 port/cortex-m7/pil/oi_pil.c (VTD-NOG + energy cut-off + terminal + CPD, oi_flight.c) flies the
-control ticks, the host's 6-DOF truth (sil.simulate) flies the vehicle. One QEMU per chunk of runs;
+control ticks, the host's 6-DOF truth (sil.fly_runs) flies the vehicle. One QEMU per chunk of runs;
 each run is a fresh init of the flight software, its draws those of the host campaign.
 """
 from __future__ import annotations
@@ -17,7 +17,7 @@ from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
 from .attitude import AttitudeCommand
-from .sil import FAILURE_REASONS, SilSettings, Tick, simulate
+from .sil import FAILURE_REASONS, SilSettings, Tick, fly_runs
 
 F64 = NDArray[np.float64]
 
@@ -110,7 +110,7 @@ class TargetJob:
                 ids, seeds = run_ids[g:g + len(sessions)], run_seeds[g:g + len(sessions)]
                 draws, gens = job.draws(ids, seeds)
                 fc = TargetFlightComputer(sessions[:ids.size])
-                res = simulate(job.scenario, job.reference, draws, gens, job.switches,
+                res = fly_runs(job.scenario, job.reference, draws, gens, job.switches,
                                _NoGuidance(), job.settings, flight_computer=fc)
                 for s, rid in zip(sessions, ids):
                     s.end_run(int(rid))
@@ -124,7 +124,7 @@ class TargetJob:
 
 
 class _NoGuidance:
-    """simulate's guidance argument when the flight program flies the ticks (never called)."""
+    """fly_runs's guidance argument when the flight program flies the ticks (never called)."""
 
     flies_end_game = True
 

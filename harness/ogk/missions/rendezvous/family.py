@@ -141,7 +141,7 @@ class RendezvousFamily(FamilyDefaults):
                             "(python -m ogk.missions.rendezvous.sensitivity)")
 
     def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
-        from .closed_loop import fly
+        from .closed_loop import fly_run
         from .guidance_base import strategy_settings
         from .guidance_factory import make_guidance
 
@@ -165,7 +165,7 @@ class RendezvousFamily(FamilyDefaults):
 
         def flight(run_seed: int) -> Any:
             guidance = make_guidance(solver, scenario, settings)
-            return fly(scenario, guidance, perturbed, run_seed, strategy, solver,
+            return fly_run(scenario, guidance, perturbed, run_seed, strategy, solver,
                        max_replans=max_replans)
 
         def fly_one(run_id: int, run_seed: int) -> Record:

@@ -138,7 +138,7 @@ def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
         scenario = dataclasses.replace(scenario, nmpc=dataclasses.replace(scenario.nmpc, hessian=args.hessian))
     strategy_name = args.strategy or scenario.nmpc.strategy
 
-    from .closed_loop import fly
+    from .closed_loop import fly_run
     from .guidance_base import strategy_settings
     from .guidance_factory import make_guidance
 
@@ -173,7 +173,7 @@ def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
             if args.trace:
                 trace(rec)
         try:
-            result = fly(scenario, guidance, args.perturbed, args.seed, strategy_name, args.solver,
+            result = fly_run(scenario, guidance, args.perturbed, args.seed, strategy_name, args.solver,
                          max_replans=args.max_replans, progress=replanned)
             if session is not None:
                 session.end_run(0)

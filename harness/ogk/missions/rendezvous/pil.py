@@ -1,6 +1,6 @@
 """Low-thrust rendezvous on the emulated Cortex-M7 (docs/flight-integration-nmpc.md): the flight
 program port/cortex-m7/pil/nmpc_pil.c (ogk_nmpc re-solves, nmpc_flight.c) makes every replan of the
-closed loop, the host's truth (closed_loop.fly) flies the vehicle. One QEMU per chunk of runs; each
+closed loop, the host's truth (closed_loop.fly_run) flies the vehicle. One QEMU per chunk of runs; each
 run is a fresh init of the flight software, its thrust-angle noise that of the host campaign.
 
 One step = one replan exchange (NMPC_REPLAN): the measured (t, x) out, the report, the command at t
@@ -248,7 +248,7 @@ class TargetJob:
 
     def __call__(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64]
                  ) -> list[dict[str, Any]]:
-        from .closed_loop import fly
+        from .closed_loop import fly_run
         from .kernel_guidance import KernelGuidance, kernel_config
         from ogk_host.rendezvous.dynamics import DAY_S, Model
 
@@ -259,7 +259,7 @@ class TargetJob:
             start = time.perf_counter()
             guidance = TargetGuidance(session, cfg, KernelGuidance(self.scenario, self.settings))
             try:
-                rec = self.record(fly(self.scenario, guidance, self.perturbed, run_seed,
+                rec = self.record(fly_run(self.scenario, guidance, self.perturbed, run_seed,
                                       self.strategy, "kernel", max_replans=self.max_replans).summary())
             except TargetLinkError:
                 raise

@@ -23,7 +23,7 @@ from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_ru
 from ogk.missions.orbit_injection.guidance import GuidanceSetup
 from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, prepare_tables
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
-from ogk.missions.orbit_injection.sil import ERROR_KEYS, EndGamePlan, SilSettings, simulate
+from ogk.missions.orbit_injection.sil import ERROR_KEYS, EndGamePlan, SilSettings, fly_runs
 
 from . import injection
 
@@ -60,7 +60,7 @@ def compare(scn: OrbitInjectionScenario, seed: int, run_ids: Sequence[int],
             switches: DispersionSwitches = DispersionSwitches(),
             settings: SilSettings = SilSettings(), history_s: float = 0.0,
             ref: Any = None, tables: Any = None) -> Comparison:
-    """Flies `run_ids` of campaign `seed` in ogk's 6-DOF truth (one batch, sil.simulate) and one
+    """Flies `run_ids` of campaign `seed` in ogk's 6-DOF truth (one batch, sil.fly_runs) and one
     by one in Basilisk (injection.fly), with the scenario's tables (generated when missing)."""
     ref = nominal_reference(scn) if ref is None else ref
     tables = prepare_tables(scn) if tables is None else tables
@@ -74,7 +74,7 @@ def compare(scn: OrbitInjectionScenario, seed: int, run_ids: Sequence[int],
     plan = EndGamePlan.of(scn, settings)
     guidance = KernelNogGuidance(GuidanceSetup(scn, ref, draws.run_id, plan.fine_interval_s),
                                  tables.bundle)
-    res = simulate(scn, ref, draws, gens, switches, guidance, settings)
+    res = fly_runs(scn, ref, draws, gens, switches, guidance, settings)
     c1 = time.process_time()
     flights = []
     for rid in ids:
