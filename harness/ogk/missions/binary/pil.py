@@ -173,7 +173,7 @@ class TargetJob:
         n_seg = int(self.nominal.transfer.segments.shape[0])
         n_nodes = len(self.nominal.layout.free_nodes)
 
-        def fly_run(session: PilSession, run_id: int, run_seed: int) -> dict[str, Any]:
+        def fly_on_session(session: PilSession, run_id: int, run_seed: int) -> dict[str, Any]:
             solvers = {name: TargetCorrector(session, SLOTS.index(name), n_seg, n_nodes)
                        for name in self.correctors}
             for name in self.correctors:      # each run: a fresh init of its contexts
@@ -182,7 +182,7 @@ class TargetJob:
             return convergence_run.fly_run(self.nominal, solvers, level / 100.0, self.sigma,
                                            run_generator(run_seed))
 
-        records, keys = fly_runs_on_target(self.program, run_ids, run_seeds, fly_run)
+        records, keys = fly_runs_on_target(self.program, run_ids, run_seeds, fly_on_session)
         for rid, rec in zip(run_ids, records):
             # (timing.<corrector>.cpu_ms stays: here the host's CPU during the exchange; the
             # target's cost is pil.ogk_blt_solve.insn_*)

@@ -255,7 +255,7 @@ class TargetJob:
         cfg = kernel_config(self.scenario, self.settings)
         tu_days = Model.for_scenario(self.scenario).units.time_s / DAY_S
 
-        def fly_run(session: PilSession, run_id: int, run_seed: int) -> dict[str, Any]:
+        def fly_on_session(session: PilSession, run_id: int, run_seed: int) -> dict[str, Any]:
             start = time.perf_counter()
             guidance = TargetGuidance(session, cfg, KernelGuidance(self.scenario, self.settings))
             try:
@@ -272,7 +272,7 @@ class TargetJob:
             rec.update(shadow_keys(guidance, tu_days))
             return rec
 
-        records, keys = fly_runs_on_target(self.program, run_ids, run_seeds, fly_run)
+        records, keys = fly_runs_on_target(self.program, run_ids, run_seeds, fly_on_session)
         for rid, rec in zip(run_ids, records):
             rec.update(keys[int(rid)])
         return records
