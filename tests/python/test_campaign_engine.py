@@ -51,11 +51,11 @@ CLI_OPTIONS = {"binary-asteroid": ["--perturbation", "10", "40"]}
 
 #: every in-process test ends within this many seconds (conftest.alarm)
 ALARM_S = 240
-pytestmark = pytest.mark.usefixtures("alarm", "test_family")
+pytestmark = pytest.mark.usefixtures("alarm", "point_mass_registered")
 
 
 @pytest.fixture(scope="module")
-def test_family():
+def point_mass_registered():
     """The test family registered while this module runs (its one registry line)."""
     with point_mass_family.registered():
         yield

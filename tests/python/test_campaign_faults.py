@@ -169,7 +169,7 @@ def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(sc
     assert other.returncode == 2 and "belongs to another campaign (differs in seed)" in other.stderr
 
 
-@pytest.mark.req("OGK-HAR-007")
+@pytest.mark.req("OGK-HAR-021")
 def test_a_fifth_family_is_one_class_and_one_registry_line(scenario, tmp_path, capsys):
     """The test family, registered by one line, is flown by every verb of `ogk`: mc, replay,
     report, run; `ogk tables` says it has none."""

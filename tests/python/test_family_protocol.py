@@ -16,6 +16,8 @@ from ogk.sil.pil import TARGETS
 
 import point_mass_family
 
+pytestmark = pytest.mark.req("OGK-HAR-021")
+
 ROOT = Path(__file__).resolve().parents[2]
 FAMILIES = {name: registry.family_named(name) for name in registry.PACKAGES}
 FAMILIES[point_mass_family.MISSION] = point_mass_family.FAMILY
@@ -38,7 +40,6 @@ def test_the_protocol_names_every_verb_of_the_issue() -> None:
                                "run_aliases", "has_tables"}
 
 
-@pytest.mark.req("OGK-HAR-007")
 @pytest.mark.parametrize("name", sorted(FAMILIES))
 def test_every_family_implements_every_verb_with_the_protocols_signature(name: str) -> None:
     fam = FAMILIES[name]
