@@ -192,7 +192,12 @@ class BinaryFamily(FamilyDefaults):
     def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
         """`ogk run SCENARIO --transfer NAME`: one BLT transfer, checked by DOP853."""
         from .one_transfer import run
-        return run(header, args)
+        return run(header, args, lambda: self.scenario_program(header))
+
+    def scenario_program(self, header: ScenarioHeader) -> FlightProgram:
+        """The scenario's flight program: the one its `ogk mc --target m7` flies (built for the
+        corrector configurations of its [monte_carlo] nominal; a design's solves uplink their own)."""
+        return self.flight_program(self.plan(header, {}), "m7")
 
     # ------------------------------------------------------------------ on a target
     # every corrector call made by the scenario's flight program (pil.py); the draws, the DOP853

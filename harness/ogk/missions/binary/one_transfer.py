@@ -10,6 +10,7 @@ import argparse
 import dataclasses
 import json
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -20,6 +21,7 @@ from ogk_host.binary.scenario import BinaryScenario, load_scenario
 from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader
 
+from ogk.sil.pil import FlightProgram
 from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale, write_atomic
 from ogk.sil.report import finite_or_none
 from ogk.sil.progress import Working
@@ -109,8 +111,10 @@ def report_lines(doc: dict[str, Any]) -> list[str]:
     return lines
 
 
-def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
-    """One transfer (module doc)."""
+def run(header: ScenarioHeader, args: argparse.Namespace,
+        target_program: Callable[[], FlightProgram] | None = None) -> int:
+    """One transfer (module doc); with --target m7 every corrector solve on `target_program()`
+    (the family's: the flight program its `ogk mc --target m7` flies)."""
     scenario = _scenario(header)
     out = check_output_file(args.json, "--json")
     plots = check_output_dir(args.plots, "--plots") if args.plots else None
@@ -121,7 +125,10 @@ def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
     if args.thrust_n is not None and not args.thrust_n > 0.0:
         raise OgkInputError("must be > 0", key="--thrust-n")
     if getattr(args, "target", "host") == "m7":
-        doc = _blt_on_target(header, scenario, args.transfer, corrector, jacobian, args.thrust_n)
+        if target_program is None:
+            raise OgkInputError("this transfer has no flight program to fly on", key="--target")
+        doc = _blt_on_target(target_program(), scenario, args.transfer, corrector, jacobian,
+                             args.thrust_n)
     else:
         doc = blt_document(scenario, args.transfer, corrector, jacobian, args.thrust_n)
     if plots is not None:
@@ -137,7 +144,7 @@ def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
     return 0 if doc["converged"] and doc["dop853_meets_tol"] else 1
 
 
-def _blt_on_target(header: ScenarioHeader, scenario: BinaryScenario, name: str, corrector: str | None,
+def _blt_on_target(program: FlightProgram, scenario: BinaryScenario, name: str, corrector: str | None,
                    jacobian: str | None, thrust_n: float | None) -> dict[str, Any]:
     """blt_document with every corrector solve made by the scenario's flight program (pil.py): the
     document's keys plus target, flight_program (SHA-256), target_solves and the pil.* keys."""
@@ -145,8 +152,6 @@ def _blt_on_target(header: ScenarioHeader, scenario: BinaryScenario, name: str, 
     from ogk.sil.pil_build import file_sha256
 
     from .pil import corrections_on_target
-    from .pil_transfers import scenario_program
-    program = scenario_program(header)
     session = PilSession(program)
     try:
         with corrections_on_target(session) as log:

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import sys
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -29,15 +28,6 @@ from ogk.sil.pil import FlightProgram
 from .flights import CampaignResult, _assemble, _Job, _run_records, campaign_plan
 from .dispersions import DispersionSwitches
 from .sil import SilSettings
-
-
-def warn_outside_envelope(scn: OrbitInjectionScenario, t_f_star_s: float) -> int:
-    """One line on stderr per setting outside the measured envelope (derive.envelope_warnings),
-    FILE: KEY: warning: REASON; returns how many."""
-    found = derive.envelope_warnings(scn, t_f_star_s)
-    for key, reason in found:
-        print(f"{scn.path}: {key}: warning: {reason}", file=sys.stderr)
-    return len(found)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -121,7 +111,7 @@ class OrbitInjectionFamily(FamilyDefaults):
                                 f"{ref.tf_s:.6f} s: regenerate them with `ogk tables`",
                                 path=tables.directory)
         scn = derive.resolve(scn, ref.tf_s)     # what scales with the burn
-        warn_outside_envelope(scn, ref.tf_s)
+        derive.warn_outside_envelope(scn, ref.tf_s)
         history_runs = int(opts.pop("history_runs"))    # what is drawn, not what is flown
         plan = campaign_plan(scn, ref, switches, settings, factory, str(opts["guidance"]),
                              tables, header.path, header.law, opts)

@@ -24,12 +24,10 @@ def write_ground_tables(header: ScenarioHeader, args: argparse.Namespace) -> int
     """The scenario's ground products into --out (default its provenance directory)."""
     from ogk_host.cgen import write_c_table
     from ogk_host.orbit_injection import tables as ground
+    from ogk_host.orbit_injection.derive import TURN_ACCEL_KEY, resolve, warn_outside_envelope
 
-    from ogk_host.orbit_injection.derive import TURN_ACCEL_KEY, resolve
-
-    from .family import warn_outside_envelope
-    from .terminal import shape_tilt_bound_rad
     from .flight_config import write_flight_config
+    from .terminal import shape_tilt_bound_rad
 
     scn = load_scenario(header.path)  # every bad key reported before the nominal is solved
     out = Path(args.out) if args.out else ground.default_table_dir(header.path)
