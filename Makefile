@@ -117,6 +117,9 @@ ffi: $(FFI_STAMP)
 # The import contract of docs/architecture.md (pyproject.toml [tool.importlinter]).
 test-imports: $(VENV)/.installed
 	$(VENV)/bin/lint-imports --no-cache
+	@# one family interface (issue 33): every family and the test family are a MissionFamily
+	MYPYPATH=harness:host:bindings:tests/python $(VENV)/bin/mypy --follow-imports=silent \
+	  --ignore-missing-imports --cache-dir $(B)/mypy tests/typecheck/families.py
 
 test-python: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o
 	$(VPY) -m pytest -q -m "not slow" tests/python

@@ -25,7 +25,7 @@ FAMILIES[point_mass_family.MISSION] = point_mass_family.FAMILY
 #: the protocol's verbs (methods) and attributes, read from the protocol itself
 VERBS = sorted(n for n, v in vars(MissionFamily).items()
                if callable(v) and not n.startswith("_"))
-ATTRIBUTES = sorted(n for n in MissionFamily.__annotations__)
+ATTRIBUTES = sorted(n for n, v in vars(MissionFamily).items() if isinstance(v, property))
 
 
 def _parameters(function: object) -> list[str]:

@@ -130,15 +130,39 @@ class MissionFamily(Protocol):
     """Every verb of a mission family: the one interface through which the CLI (`ogk tables`,
     `ogk run`, `ogk mc`, `ogk replay`, `ogk report`) and the engine reach a family. A family is one
     class (`FamilyDefaults` gives the optional verbs their defaults) and one line of
-    ogk.missions.registry; tests/python/test_family_protocol.py checks every family against it."""
+    ogk.missions.registry. mypy checks every family against it (tests/typecheck/families.py, `make
+    test-imports`), tests/python/test_family_protocol.py its signatures and capabilities."""
 
-    name: str                       #: `mission = "..."` of the family's scenarios
-    laws: tuple[str, ...]           #: the guidance laws it flies ([guidance] law)
-    campaign_doc: str               #: one sentence for `ogk mc SCENARIO --help`: what a run is
-    targets: tuple[str, ...]        #: where its flight software runs (ogk.sil.pil.TARGETS)
-    fixed_lists: bool               #: a campaign may be a fixed list (then --runs may be omitted)
-    run_aliases: tuple[str, ...]    #: older spellings of `ogk run` for this family (`ogk nmpc`)
-    has_tables: bool                #: it makes ground tables (`ogk tables`)
+    # what it is and what it has (read-only: a family states them as class attributes)
+    @property
+    def name(self) -> str:
+        """`mission = "..."` of the family's scenarios."""
+
+    @property
+    def laws(self) -> tuple[str, ...]:
+        """The guidance laws it flies ([guidance] law)."""
+
+    @property
+    def campaign_doc(self) -> str:
+        """One sentence for `ogk mc SCENARIO --help`: what a run is."""
+
+    @property
+    def targets(self) -> tuple[str, ...]:
+        """Where its flight software runs (ogk.sil.pil.TARGETS)."""
+
+    @property
+    def fixed_lists(self) -> bool:
+        """A campaign may be a fixed list (then --runs may be omitted)."""
+
+    @property
+    def run_aliases(self) -> tuple[str, ...]:
+        """Older spellings of `ogk run` for this family (`ogk nmpc`)."""
+
+    @property
+    def has_tables(self) -> bool:
+        """It makes ground tables (`ogk tables`)."""
+
+    # its verbs
 
     def load(self, header: ScenarioHeader) -> Any:
         """The typed scenario (every bad key: one OgkInputError line)."""
