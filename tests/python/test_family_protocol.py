@@ -35,7 +35,8 @@ def _parameters(function: object) -> list[str]:
 def test_the_protocol_names_every_verb_of_the_issue() -> None:
     assert set(VERBS) >= {"load", "default_runs", "add_campaign_arguments", "plan", "report",
                           "plots", "add_tables_arguments", "tables", "add_run_arguments", "run",
-                          "flight_program", "target_job", "target_bounds", "on_target"}
+                          "flight_config", "flight_program", "target_job", "target_bounds",
+                          "on_target"}
     assert set(ATTRIBUTES) == {"name", "laws", "campaign_doc", "targets", "fixed_lists",
                                "run_aliases", "has_tables"}
 
@@ -65,7 +66,8 @@ def test_a_capability_is_declared_exactly_when_it_is_implemented(name: str) -> N
         return getattr(cls, verb) is not getattr(FamilyDefaults, verb)
     assert own("tables") == own("add_tables_arguments") == cls.has_tables, name
     on_target = set(cls.targets) != {"host"}
-    assert own("flight_program") == own("target_job") == own("target_bounds") == on_target, name
+    assert (own("flight_config") == own("flight_program") == own("target_job")
+            == own("target_bounds") == on_target), name
     assert own("run") and own("add_run_arguments") and own("plan") and own("report"), name
 
 

@@ -18,8 +18,10 @@ instance `FAMILY` (in ogk.missions.<family>.family) ogk.missions.registry finds 
   plots(flown, dir) -> [path]               the campaign's PNGs
   add_tables_arguments, tables(header, args)   `ogk tables SCENARIO`
   add_run_arguments, run(header, args)         `ogk run SCENARIO`: one flight with its plots
-  flight_program(plan, target), target_job(plan, program), target_bounds(plan), on_target(plan,
-  target)                                   the plan flown by its flight program on a target
+  flight_config(plan, dir), flight_program(plan, target), target_job(plan, program),
+  target_bounds(plan), on_target(plan, target)
+                                            the plan's flight build (its generated C), its
+                                            flight program, the plan flown by it on a target
 
 and the campaign plan says everything the engine needs and nothing of the physics:
 
@@ -195,8 +197,12 @@ class MissionFamily(Protocol):
     def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
         """`ogk run SCENARIO`: one flight, case or transfer with its plots; the exit code."""
 
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        """The generated C the plan's flight build compiles (a table image where the family has
+        one, the const configuration headers) written into out_dir/c; the files written."""
+
     def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
-        """The plan's flight program (its flight configuration generated as const C) for target."""
+        """The plan's flight program for target, built on its flight_config."""
 
     def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
         """The plan's chunk flight with the flight software on `program` (ogk.sil.pil)."""
@@ -255,6 +261,9 @@ class FamilyDefaults(abc.ABC):
         """`ogk tables SCENARIO`: none (has_tables is False)."""
         raise OgkInputError(f"family {self.name!r} has no `ogk tables` (it makes no ground tables)",
                             path=header.path)
+
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        raise OgkInputError(f"the {self.name} family has no flight build", key="--target")
 
     def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
         raise OgkInputError(f"the {self.name} family has no flight program for target {target}",

@@ -202,10 +202,18 @@ class BinaryFamily(FamilyDefaults):
     # ------------------------------------------------------------------ on a target
     # every corrector call made by the scenario's flight program (pil.py); the draws, the DOP853
     # checks and the judging stay on the host
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        """The three correctors' configurations of the [monte_carlo] nominal (the program's slots)."""
+        from .flight_config import slot_configs, write_flight_config
+        base: _Base = plan.base
+        return [write_flight_config(out_dir / "c", plan.scenario_path, slot_configs(base.nominal),
+                                    base.transfer)]
+
     def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
         from . import pil
         base: _Base = plan.base
-        return pil.flight_program(base.nominal, plan.scenario_path, base.transfer, target)
+        return pil.flight_program(base.nominal, plan.scenario_path,
+                                  lambda out: self.flight_config(plan, out), target)
 
     def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
         from . import pil

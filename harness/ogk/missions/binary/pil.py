@@ -16,7 +16,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import hashlib
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -31,7 +31,7 @@ from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
 from . import convergence_run
-from .flight_config import SLOTS, slot_configs, write_flight_config
+from .flight_config import SLOTS, slot_configs
 
 BLT_INIT, BLT_LOAD, BLT_SOLVE = 32, 33, 34      #: frame types of blt_pil.c
 #: the entry points of the program, in its stack-slot order (blt_flight.h)
@@ -109,15 +109,16 @@ TRANSFER_N = len(flatten(ffi.new("ogk_blt_transfer_t *")))
 
 # ------------------------------------------------------------------------------------------ the program
 
-def flight_program(nominal: convergence_run.Nominal, scenario_path: Path, transfer: str,
-                   target: str = "m7") -> FlightProgram:
+def flight_program(nominal: convergence_run.Nominal, scenario_path: Path,
+                   flight_config: Callable[[Path], object], target: str = "m7") -> FlightProgram:
     """The scenario's flight program for the corrector configurations of its Monte Carlo nominal
-    (a build per distinct configuration set: the key is the SHA-256 of their values)."""
+    (a build per distinct configuration set: the key is the SHA-256 of their values), its
+    generated C written by `flight_config(DIR)` into DIR/c (the family's flight_config)."""
     configs = slot_configs(nominal)
     key = hashlib.sha256(np.array([v for c in configs for v in flatten(c.to_c())]).tobytes())
     out = PIL_BUILD / "binary" / f"{Path(scenario_path).stem}-{key.hexdigest()[:12]}"
-    return FlightProgram(build_program("blt", out, lambda c_dir: write_flight_config(
-        c_dir, Path(scenario_path), configs, transfer), target), ENTRY_POINTS, target=target)
+    return FlightProgram(build_program("blt", out, lambda c_dir: flight_config(c_dir.parent),
+                                       target), ENTRY_POINTS, target=target)
 
 
 class TargetCorrector:

@@ -207,9 +207,15 @@ class LowThrustFamily(FamilyDefaults):
     # judging stay the host's
     target_watchdog_per_run_s = SOLVE_TIMEOUT_S
 
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        """The MPSP configuration header (the nominal's weights, every [mpsp] setting)."""
+        from .flight_config import write_flight_config
+        return write_flight_config(out_dir, plan.scenario_path, plan.base.setup)
+
     def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
         from . import pil
-        return pil.flight_program(plan.base.setup, plan.scenario_path, target)
+        return pil.flight_program(plan.base.setup, plan.scenario_path,
+                                  lambda out: self.flight_config(plan, out), target)
 
     def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
         from . import pil

@@ -49,23 +49,20 @@ BOUNDS_WHY = ("the same C on both sides and the same configuration (generated fr
               "cases, against a 500 km tolerance), the final mass within 1e-9 kg")
 
 
-def flight_program(setup: Any, scenario_path: Path, target: str = "m7") -> FlightProgram:
+def flight_program(setup: Any, scenario_path: Path, flight_config: Callable[[Path], object],
+                   target: str = "m7") -> FlightProgram:
     """The scenario's flight program, built for the configuration the campaign flies: one build
     per scenario file (SHA-256), basis, order and C configuration (its bytes: the nominal weights
-    and every [mpsp] setting)."""
+    and every [mpsp] setting), its generated C written by `flight_config(DIR)` into DIR/c (the
+    family's flight_config)."""
     from ogk_host.scenario_file import file_sha256
-
-    from .flight_config import write_flight_config
 
     key = (f"{file_sha256(scenario_path)[:12]}-{setup.basis}-{setup.order}-"
            f"{_config_digest(setup.guidance.cfg)}")
     out = PIL_BUILD / "low_thrust_transfer" / f"{Path(scenario_path).stem}-{key}"
-
-    def generate(c_dir: Path) -> None:
-        write_flight_config(c_dir.parent, scenario_path, setup)   # writes OUT/c/...
-
-    return FlightProgram(build_program("mpsp", out, generate, target), ENTRY_POINTS,
-                         timeout_s=SOLVE_TIMEOUT_S, target=target)
+    return FlightProgram(build_program("mpsp", out, lambda c_dir: flight_config(c_dir.parent),
+                                       target), ENTRY_POINTS, timeout_s=SOLVE_TIMEOUT_S,
+                         target=target)
 
 
 def _config_digest(cfg: Any) -> str:

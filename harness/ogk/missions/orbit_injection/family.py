@@ -157,11 +157,23 @@ class OrbitInjectionFamily(FamilyDefaults):
         return command.fly(self, header, args)
 
     # ------------------------------------------------------------------ on a target
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        """The table image of the tables flown and the configuration headers (flight_config.py)."""
+        from ogk_host.cgen import write_c_table
+
+        from .flight_config import write_flight_config
+        tables = plan.base.tables
+        image = write_c_table(tables.bundle.read_bytes(), "ogk_nog_bundle", out_dir / "c",
+                              plan.scenario_path,
+                              note="The PIL flight program's table image (ogk_nog_table_view).")
+        return [*image, *write_flight_config(out_dir, plan.scenario_path, tables.bundle)]
+
     def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
         """The scenario's flight program for the tables the campaign flies (pil.py)."""
         from . import pil
         pil.check_target_settings(plan.base.settings, plan.options)
-        return pil.flight_program(plan.base.tables, plan.scenario_path, target)
+        return pil.flight_program(plan.base.tables, lambda out: self.flight_config(plan, out),
+                                  target)
 
     def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
         from . import pil

@@ -6,6 +6,7 @@ each run is a fresh init of the flight software, its draws those of the host cam
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -39,21 +40,14 @@ BOUNDS_WHY = ("the same C on both sides; newlib's libm (sin, cos, atan2) differs
               "FMA in ISO C mode on either side")
 
 
-def flight_program(tables: Any, scenario_path: Path, target: str = "m7") -> FlightProgram:
-    """The scenario's flight program, built for the tables the campaign flies."""
-    from ogk_host.cgen import write_c_table
-
-    from .flight_config import write_flight_config
-
+def flight_program(tables: Any, flight_config: Callable[[Path], object],
+                   target: str = "m7") -> FlightProgram:
+    """The scenario's flight program, built for the tables the campaign flies: one build per
+    tables directory, its generated C written by `flight_config(DIR)` into DIR/c (the family's
+    flight_config)."""
     out = PIL_BUILD / "orbit_injection" / Path(tables.directory).name
-
-    def generate(c_dir: Path) -> None:
-        write_c_table(tables.bundle.read_bytes(), "ogk_nog_bundle", c_dir, scenario_path,
-                      note="The PIL flight program's table image (ogk_nog_table_view).")
-        # write_flight_config writes into OUT/c
-        write_flight_config(c_dir.parent, scenario_path, tables.bundle)
-
-    return FlightProgram(build_program("oi", out, generate, target), ENTRY_POINTS, target=target)
+    return FlightProgram(build_program("oi", out, lambda c_dir: flight_config(c_dir.parent), target),
+                         ENTRY_POINTS, target=target)
 
 
 class TargetFlightComputer:

@@ -220,14 +220,21 @@ class RendezvousFamily(FamilyDefaults):
     # ------------------------------------------------------------------ on a target
     # the plan's replans made by the scenario's flight program (pil.py); the truth, the noise and
     # the judging stay on the host
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        """The ogk_nmpc configuration and first guesses of the strategy and model flown."""
+        from .flight_config import write_flight_config
+        return [write_flight_config(out_dir, plan.scenario_path, plan.base.scenario,
+                                    str(plan.options["strategy"]),
+                                    str(plan.options["third_bodies_in_model"]))]
+
     def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
         from . import pil
         if plan.options["solver"] != "kernel":
             raise OgkInputError(f"--target {target} flies the kernel's ogk_nmpc, got "
                                 f"{plan.options['solver']!r}", key="--solver")
-        return pil.flight_program(plan.scenario_path, plan.base.scenario,
-                                  str(plan.options["strategy"]),
-                                  str(plan.options["third_bodies_in_model"]), target)
+        return pil.flight_program(plan.scenario_path, str(plan.options["strategy"]),
+                                  str(plan.options["third_bodies_in_model"]),
+                                  lambda out: self.flight_config(plan, out), target)
 
     def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
         from . import pil

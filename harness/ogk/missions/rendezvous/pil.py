@@ -110,19 +110,14 @@ def program_key(scenario_path: Path, strategy: str, third_bodies: str) -> str:
     return h.hexdigest()[:16]
 
 
-def flight_program(scenario_path: Path, scenario: RendezvousScenario, strategy: str,
-                   third_bodies: str, target: str = "m7") -> FlightProgram:
-    """The scenario's flight program, built for the strategy and predictive model flown (`scenario`:
-    the file's, with the campaign's third bodies in its model)."""
-    from .flight_config import write_flight_config
-
+def flight_program(scenario_path: Path, strategy: str, third_bodies: str,
+                   flight_config: Callable[[Path], object], target: str = "m7") -> FlightProgram:
+    """The scenario's flight program, built for the strategy and predictive model flown, its
+    generated C written by `flight_config(DIR)` into DIR/c (the family's flight_config)."""
     out = PIL_BUILD / "rendezvous" / program_key(scenario_path, strategy, third_bodies)
-
-    def generate(c_dir: Path) -> None:
-        write_flight_config(c_dir.parent, Path(scenario_path), scenario, strategy, third_bodies)
-
-    return FlightProgram(build_program("nmpc", out, generate, target), ENTRY_POINTS,
-                         timeout_s=STEP_TIMEOUT_S, target=target)
+    return FlightProgram(build_program("nmpc", out, lambda c_dir: flight_config(c_dir.parent),
+                                       target), ENTRY_POINTS, timeout_s=STEP_TIMEOUT_S,
+                         target=target)
 
 
 class TargetGuidance:
