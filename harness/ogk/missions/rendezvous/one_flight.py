@@ -151,9 +151,12 @@ def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
         from ogk.sil.pil import PilSession
 
         from . import pil
+        from .flight_config import write_flight_config
         from .kernel_guidance import kernel_config
-        program = pil.flight_program(Path(header.path), scenario, strategy_name,
-                                     args.third_bodies_in_model)
+        third = args.third_bodies_in_model
+        program = pil.flight_program(   # the flight configuration of this flight's scenario
+            Path(header.path), strategy_name, third,
+            lambda out: write_flight_config(out, Path(header.path), scenario, strategy_name, third))
         session = PilSession(program)
         guidance: Any = pil.TargetGuidance(session, kernel_config(scenario, settings))
     else:
