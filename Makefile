@@ -104,8 +104,11 @@ lint: | apt
 
 # ---------------------------------------------------------------- Python harness (cffi)
 FFI_STAMP := bindings/ogk_bindings/.ffi-built
-$(FFI_STAMP): $(KSRC) $(KHDR) $(wildcard bindings/csrc/*) $(wildcard harness/ogk/missions/*/csrc/*) bindings/build_ffi.py $(VENV)/.installed
+# The kernel's extension (bindings), then each family's C batch loops in an extension of its own,
+# built by the family layer on the kernel's types (harness/ogk/missions/build_csrc.py).
+$(FFI_STAMP): $(KSRC) $(KHDR) $(wildcard bindings/csrc/*) $(wildcard harness/ogk/missions/*/csrc/*) bindings/build_ffi.py harness/ogk/missions/build_csrc.py $(VENV)/.installed
 	$(VPY) bindings/build_ffi.py
+	$(VPY) harness/ogk/missions/build_csrc.py
 	touch $@
 .PHONY: ffi
 ffi: $(FFI_STAMP)
@@ -114,6 +117,9 @@ ffi: $(FFI_STAMP)
 # The import contract of docs/architecture.md (pyproject.toml [tool.importlinter]).
 test-imports: $(VENV)/.installed
 	$(VENV)/bin/lint-imports --no-cache
+	@# one family interface (issue 33): every family and the test family are a MissionFamily
+	MYPYPATH=harness:host:bindings:tests/python $(VENV)/bin/mypy --follow-imports=silent \
+	  --ignore-missing-imports --cache-dir $(B)/mypy tests/typecheck/families.py
 
 test-python: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o
 	$(VPY) -m pytest -q -m "not slow" tests/python
@@ -243,4 +249,4 @@ run: all $(QP_SO)
 	$(VENV)/bin/python -m ogk.missions.binary.pil_transfers moshup --json $(B)/pil/moshup_transfers_m7.json
 
 clean:
-	rm -rf $(B) $(FFI_STAMP) bindings/ogk_bindings/_ogk_cffi*
+	rm -rf $(B) $(FFI_STAMP) bindings/ogk_bindings/_ogk_cffi* harness/ogk/missions/*/_csrc_cffi*

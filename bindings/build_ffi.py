@@ -1,12 +1,13 @@
 """Builds the cffi extension ``ogk_bindings._ogk_cffi`` (API mode) in place.
 
 The extension compiles every kernel source (kernel/src/*.c) together with the
-test models of the bindings (bindings/csrc/*.c) and the C helpers of each mission
-family (harness/ogk/missions/<family>/csrc/*.c: batched calls of the kernel's step
-functions over many runs), so Python calls exactly the C the flight build compiles.
-The family helpers are linked into this one extension because they take the kernel's
-context structs, which must come from the same cffi instance; this is a build-time
-list of sources, not a Python import (the layers of docs/architecture.md hold).
+test models of the bindings (bindings/csrc/*.c), so Python calls exactly the C the
+flight build compiles. The mission families' C helpers (batched calls of the kernel's
+step functions over many runs, harness/ogk/missions/<family>/csrc/) are not built
+here: the family layer builds them (harness/ogk/missions/build_csrc.py) into
+extensions of their own that include this one's types (cffi's ffi.include) and
+reuse the functions below (`declarations`, `macros`, `include_source`,
+`kernel_sources`), so the bottom layer builds nothing of the top one.
 
 The cdefs are generated from the headers themselves at build time; nothing of
 a kernel type is restated here:
@@ -50,8 +51,8 @@ BINDINGS_DIR = Path(__file__).resolve().parent
 ROOT = BINDINGS_DIR.parent
 KERNEL_INCLUDE = ROOT / "kernel" / "include"
 KERNEL_SRC = ROOT / "kernel" / "src"
-#: C beside the kernel: the bindings' test models, then every family's helpers
-CSRC_DIRS = [BINDINGS_DIR / "csrc", *sorted((ROOT / "harness" / "ogk" / "missions").glob("*/csrc"))]
+#: C beside the kernel: the bindings' test models
+CSRC_DIRS = [BINDINGS_DIR / "csrc"]
 PACKAGE_DIR = BINDINGS_DIR / "ogk_bindings"
 BUILD_DIR = ROOT / "build" / "ffi"
 MODULE_NAME = "ogk_bindings._ogk_cffi"
@@ -93,8 +94,9 @@ def include_source(headers: list[Path]) -> str:
     return "".join(lines)
 
 
-def _preprocess(source: str, *flags: str) -> str:
-    cmd = [CC, "-std=c99", "-E", *flags, *DEFINES, *(f"-I{d}" for d in INCLUDE_DIRS), "-"]
+def _preprocess(source: str, *flags: str, include_dirs: list[str] | None = None) -> str:
+    dirs = INCLUDE_DIRS if include_dirs is None else include_dirs
+    cmd = [CC, "-std=c99", "-E", *flags, *DEFINES, *(f"-I{d}" for d in dirs), "-"]
     return subprocess.run(cmd, input=source, capture_output=True, text=True,
                           check=True).stdout
 
@@ -102,12 +104,12 @@ def _preprocess(source: str, *flags: str) -> str:
 _LINEMARKER = re.compile(r'^#\s*(\d+)\s+"([^"]*)"')
 
 
-def declarations(headers: list[Path]) -> str:
+def declarations(headers: list[Path], include_dirs: list[str] | None = None) -> str:
     """Types, enums and prototypes of `headers`, macro-expanded, nothing else."""
     ours = {str(h.resolve()) for h in headers}
     keep = False
     out: list[str] = []
-    for line in _preprocess(include_source(headers)).splitlines():
+    for line in _preprocess(include_source(headers), include_dirs=include_dirs).splitlines():
         m = _LINEMARKER.match(line)
         if m:
             path = m.group(2)
@@ -127,10 +129,11 @@ _MACRO = re.compile(r"^#define\s+(OGK_\w+)(?:\s+(.*))?$")
 _FLOAT = re.compile(r"(?<![\w.])(\d+\.\d*|\.\d+|\d+[eE][-+]?\d+)(?:[eE][-+]?\d+)?[fFlL]?(?![\w.])")
 
 
-def macros(headers: list[Path]) -> list[tuple[str, str, str]]:
-    """(name, kind, value) of the object-like OGK_* macros of `headers`,
-    kind in {"int", "double", "string"}; empty (include-guard) macros skipped."""
-    text = _preprocess(include_source(headers), "-dM")
+def macros(headers: list[Path], include_dirs: list[str] | None = None
+           ) -> list[tuple[str, str, str]]:
+    """(name, kind, value) of the object-like OGK_* macros of `headers` (and of what they
+    include), kind in {"int", "double", "string"}; empty (include-guard) macros skipped."""
+    text = _preprocess(include_source(headers), "-dM", include_dirs=include_dirs)
     values: dict[str, str] = {}
     for line in text.splitlines():
         m = _MACRO.match(line)
@@ -179,9 +182,17 @@ def generated_cdef() -> str:
 
 
 def kernel_sources() -> list[str]:
-    return [str(p) for p in sorted(KERNEL_SRC.glob("*.c"))] + [
-        str(p) for d in CSRC_DIRS for p in sorted(d.glob("*.c"))
-    ]
+    """The kernel's sources (every extension that calls the kernel compiles them, same flags)."""
+    return [str(p) for p in sorted(KERNEL_SRC.glob("*.c"))]
+
+
+def bound_sources() -> list[str]:
+    """What this extension compiles: the kernel, then the bindings' test models."""
+    return kernel_sources() + [str(p) for d in CSRC_DIRS for p in sorted(d.glob("*.c"))]
+
+
+#: the compiler options of every extension over the kernel
+COMPILE_ARGS = ["-std=c99", "-O2", *DEFINES]
 
 
 def make_builder() -> cffi.FFI:
@@ -194,9 +205,9 @@ def make_builder() -> cffi.FFI:
     ffibuilder.set_source(
         MODULE_NAME,
         include_source(headers),
-        sources=kernel_sources(),
+        sources=bound_sources(),
         include_dirs=INCLUDE_DIRS,
-        extra_compile_args=["-std=c99", "-O2", *DEFINES],
+        extra_compile_args=COMPILE_ARGS,
         libraries=["m"],
     )
     return ffibuilder

@@ -18,9 +18,9 @@ import sys
 from Basilisk.simulation import extForceTorque, simpleNav, spacecraft
 from Basilisk.utilities import SimulationBaseClass, macros, simIncludeGravBody
 
-from ogk.basilisk import frames
-from ogk.basilisk.crosscheck import main as crosscheck_main
-from ogk.basilisk.modules import OgkInjectionFsw, TvcEnginePlant
+from ogk.missions.orbit_injection.basilisk import frames
+from ogk.missions.orbit_injection.basilisk.crosscheck import main as crosscheck_main
+from ogk.missions.orbit_injection.basilisk.modules import OgkInjectionFsw, TvcEnginePlant
 from ogk.missions.orbit_injection import truth as tm
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs
 from ogk.missions.orbit_injection.nog_guidance import prepare_tables

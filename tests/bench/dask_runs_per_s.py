@@ -17,7 +17,7 @@ def main():
     only = sys.argv[1:] or list(CASES)
     for fam_name in only:
         scn, opts, runs, chunk = CASES[fam_name]
-        h = read_header(resolve_scenario(scn)); fam = registry.campaign_family(h)
+        h = read_header(resolve_scenario(scn)); fam = registry.family(h)
         plan = fam.plan(h, dict(opts))
         for n in (1, 2):
             with DaskExecutor(f"local:{n}", fam) as ex:

@@ -35,7 +35,7 @@ def main() -> int:
     lu_km, vu_km_s = setup.lu_km, setup.vu_km_s
     rows = []
     for case in cases.paper_cases(setup):
-        res, cpu = cases.run_case(setup, case)
+        res, cpu = cases.fly_run(setup, case)
         row = {"case": case.label, "ni": int(res.newton_iterations), "converged": bool(res.converged),
                "thrust_arcs": int(res.n_thrust_arcs), "dr_km": float(res.err_r) * lu_km,
                "dv_km_s": float(res.err_v) * vu_km_s, "lambda_mf": float(res.lambda_mf), "cpu_s": cpu}

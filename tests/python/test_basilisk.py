@@ -1,4 +1,4 @@
-"""ogk's orbit-injection flight software in Basilisk (harness/ogk/basilisk, docs/basilisk.md).
+"""ogk's orbit-injection flight software in Basilisk (harness/ogk/missions/orbit_injection/basilisk, docs/basilisk.md).
 
 Checked against references that do not share the code under test:
 - frames: Basilisk's own RigidBodyKinematics (MRP2C, C2MRP) and ogk's truth-model rotations;
@@ -24,14 +24,14 @@ import pytest
 
 from Basilisk.utilities import RigidBodyKinematics as rbk
 
-from ogk.basilisk import frames
-from ogk.basilisk.crosscheck import compare
+from ogk.missions.orbit_injection.basilisk import frames
+from ogk.missions.orbit_injection.basilisk.crosscheck import compare
 from ogk.missions.orbit_injection import truth as tm
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs
 from ogk.missions.orbit_injection.flight_software import KernelFlightSoftware
 from ogk.missions.orbit_injection.nog_guidance import prepare_tables
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
-from ogk.missions.orbit_injection.sil import ERROR_KEYS, SilSettings, simulate
+from ogk.missions.orbit_injection.sil import ERROR_KEYS, SilSettings, fly_runs
 from ogk_host.orbit_injection.scenario import load_scenario
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -51,7 +51,7 @@ TOLERANCE = {"dr_f_m": 0.07, "dphi_f_deg": 4e-8, "dvr_f_mps": 0.4, "dvt_f_mps": 
 
 #: The same for the Scout upper stage's 26 s burn (scenarios/scout_upper_stage.toml, Pontani & Celani
 #: sec. 7: tabulated thrust, side-jet roll torque), derived the same way by
-#: `.venv/bin/python -m ogk.basilisk.step_study scenarios/scout_upper_stage.toml --seed 7 --runs 2`
+#: `.venv/bin/python -m ogk.missions.orbit_injection.basilisk.step_study scenarios/scout_upper_stage.toml --seed 7 --runs 2`
 #: (docs/basilisk.md, "Tolerances"): e_ogk (order 4.0-4.2) is 10^2-10^4 times below e_bsk (order
 #: 1.6-2.0); the observed differences are about 1 e_bsk.
 SCOUT_TOLERANCE = {"dr_f_m": 0.009, "dphi_f_deg": 6e-8, "dvr_f_mps": 0.2, "dvt_f_mps": 2e-3,
@@ -104,7 +104,7 @@ def test_frames_against_basilisk_kinematics():
 
 
 class _FlownByTheComputer:
-    """sil.simulate's guidance when the flight computer flies the ticks (never called)."""
+    """sil.fly_runs's guidance when the flight computer flies the ticks (never called)."""
 
     flies_end_game = True
 
@@ -124,7 +124,7 @@ def test_flight_software_in_basilisk_is_the_campaigns(leo, dispersed):
     settings, sw = SilSettings(history_runs=max(RUNS) + 1, history_every=50), DispersionSwitches()
     draws, gens = draw_runs(scn, SEED, RUNS, sw)
     fc = KernelFlightSoftware(scn, ref, tables, draws.run_id, settings)
-    flown = simulate(scn, ref, draws, gens, sw, _FlownByTheComputer(), settings,
+    flown = fly_runs(scn, ref, draws, gens, sw, _FlownByTheComputer(), settings,
                      flight_computer=fc)
     assert flown.failure == dispersed.failures["ours"] == ["", ""]
     for key in ERROR_KEYS:

@@ -4,7 +4,8 @@ An independent scan of the header TEXT (comments stripped, regex; it shares no
 code with bindings/build_ffi.py, which works from the preprocessor) lists every
 public function, every field of every struct typedef, every enumerator and
 every object-like OGK_* macro of kernel/include/ogk/*.h, bindings/csrc/*.h and the families' csrc/*.h;
-each must be reachable through ``lib`` / ``ffi``. A header that gains a
+each must be reachable through ``lib`` / ``ffi`` (a family's csrc/*.h: through the family's own
+extension, ogk.missions.<family>._csrc_cffi, built by the family layer on the bindings' types). A header that gains a
 function, field or macro the bindings miss fails here.
 
 The kernel's test headers (kernel/include/ogk/internal/*.h: the test entry points
@@ -20,6 +21,8 @@ from pathlib import Path
 
 import pytest
 
+import importlib
+
 from ogk_bindings._ffi import ffi, lib
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -28,6 +31,16 @@ PUBLIC_HEADERS = sorted((ROOT / "kernel" / "include" / "ogk").glob("*.h")) + sor
     (ROOT / "harness" / "ogk" / "missions").glob("*/csrc/*.h"))
 TEST_HEADERS = sorted((ROOT / "kernel" / "include" / "ogk" / "internal").glob("*.h"))
 HEADERS = PUBLIC_HEADERS + TEST_HEADERS
+#: header name -> (ffi, lib) that must declare it: a family's csrc header, the family's extension
+BOUND = {h.name: (importlib.import_module(f"ogk.missions.{h.parent.parent.name}._csrc_cffi")
+                  if h.parent.name == "csrc" and "missions" in h.parts else None)
+         for h in HEADERS}
+
+
+def bound(header: str) -> tuple[object, object]:
+    """(ffi, lib) of the extension that declares `header`."""
+    module = BOUND.get(header)
+    return (ffi, lib) if module is None else (module.ffi, module.lib)
 
 
 def _strip_comments(text: str) -> str:
@@ -155,28 +168,29 @@ def test_test_entry_points_not_public(header: Path) -> None:
 @pytest.mark.req("OGK-HAR-010")
 @pytest.mark.parametrize("header,ret,name", FUNCTIONS, ids=[f[2] for f in FUNCTIONS])
 def test_function_reachable(header: str, ret: str, name: str) -> None:
-    assert hasattr(lib, name), f"{header}: {name} missing from the bindings"
+    its_ffi, its_lib = bound(header)
+    assert hasattr(its_lib, name), f"{header}: {name} missing from the bindings"
     assert ret == "ogk_status", f"{header}: {name} must return ogk_status (returns {ret})"
-    assert ffi.typeof(getattr(lib, name)).result is ffi.typeof("ogk_status")
+    assert its_ffi.typeof(getattr(its_lib, name)).result is its_ffi.typeof("ogk_status")
 
 
 @pytest.mark.req("OGK-HAR-010")
 @pytest.mark.parametrize("header,name,fields", STRUCTS, ids=[s[1] for s in STRUCTS])
 def test_struct_fields(header: str, name: str, fields: list[str]) -> None:
-    have = [f for f, _ in ffi.typeof(name).fields]
+    have = [f for f, _ in bound(header)[0].typeof(name).fields]
     assert have == fields, f"{header}: {name} fields differ (header {fields}, bindings {have})"
 
 
 @pytest.mark.req("OGK-HAR-010")
 @pytest.mark.parametrize("header,name", ENUMERATORS, ids=[e[1] for e in ENUMERATORS])
 def test_enumerator_readable(header: str, name: str) -> None:
-    assert isinstance(getattr(lib, name), int), f"{header}: {name}"
+    assert isinstance(getattr(bound(header)[1], name), int), f"{header}: {name}"
 
 
 @pytest.mark.req("OGK-HAR-010")
 @pytest.mark.parametrize("header,name,value", MACROS, ids=[m[1] for m in MACROS])
 def test_macro_readable(header: str, name: str, value: str) -> None:
-    v = getattr(lib, name)
+    v = getattr(bound(header)[1], name)
     value = _resolved(value)
     if value.startswith('"'):
         assert ffi.string(v).decode() == value.strip('"')

@@ -16,7 +16,7 @@ import pytest
 from ogk.sil import envelope
 
 from ogk_bindings.blt import Transfer
-from ogk.missions.binary.campaign import Nominal, draw
+from ogk.missions.binary.convergence_run import Nominal, draw
 from ogk.missions.binary.trajectory import reference_errors
 from ogk_host.binary import transfers as T
 from ogk_host.binary.reference import propagate_chain

@@ -16,7 +16,6 @@ import json
 import os
 import signal
 import subprocess
-import sys
 import time
 from pathlib import Path
 
@@ -31,21 +30,35 @@ from ogk.sil import envelope
 from ogk.sil.engine import fly_campaign
 from ogk.sil.runner import CampaignAborted, CampaignInterrupted, Watchdog
 
-OGK = [sys.executable, "-c", "import sys; from ogk.cli import main; sys.exit(main())"]
+import point_mass_family
 
-#: family -> (shipped scenario, the family's options of a short campaign)
+#: `ogk` in a subprocess that knows the test family too
+OGK = point_mass_family.OGK
+#: the test family's scenario, written by this test
+POINT_MASS = point_mass_family.write_scenario(
+    Path(__file__).resolve().parents[2] / "build" / "test-families" / "point_mass.toml")
+
+#: family -> (shipped scenario, the family's options of a short campaign); the test family's row
 FAMILIES = {
     "orbit-injection": ("leo-geo", {}),
     "low-thrust-transfer": ("apophis", {}),
     "low-thrust-rendezvous": ("rendezvous_nep_min_time", {}),
     "binary-asteroid": ("moshup", {"perturbation": [10.0, 40.0]}),
+    point_mass_family.MISSION: (str(POINT_MASS), {}),
 }
 CLI_OPTIONS = {"binary-asteroid": ["--perturbation", "10", "40"]}
 
 
 #: every in-process test ends within this many seconds (conftest.alarm)
 ALARM_S = 240
-pytestmark = pytest.mark.usefixtures("alarm")
+pytestmark = pytest.mark.usefixtures("alarm", "point_mass_registered")
+
+
+@pytest.fixture(scope="module")
+def point_mass_registered():
+    """The test family registered while this module runs (its one registry line)."""
+    with point_mass_family.registered():
+        yield
 
 
 
@@ -57,7 +70,7 @@ def plan_of(family: str):
     if family not in _PLANS:
         scenario, options = FAMILIES[family]
         header = read_header(resolve_scenario(scenario))
-        fam = registry.campaign_family(header)
+        fam = registry.family(header)
         assert fam.name == family
         _PLANS[family] = fam.plan(header, dict(options))
     return _PLANS[family]

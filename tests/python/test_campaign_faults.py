@@ -1,77 +1,50 @@
-"""Campaigns that survive faults (harness/ogk/sil/runner.py, runlog.py; docs/sil.md): a kernel error
-in a worker and a killed worker end the campaign with one line naming the runs and the status, the
-watchdog ends a hung chunk, Ctrl-C keeps the finished runs and `--resume` completes the campaign
-bit for bit, and the per-run numbers do not depend on the worker count or the chunking.
+"""Campaigns that survive faults (harness/ogk/sil/runner.py, runlog.py; docs/campaigns.md, "Faults"),
+flown by the test family (point_mass_family.py): a kernel error in a worker and a killed worker end
+the campaign with one line naming the runs and the status, the watchdog ends a hung chunk, Ctrl-C
+keeps the finished runs and `--resume` completes the campaign bit for bit; and the test family itself
+is a fifth family made of one class and one registry line, flown by every verb of `ogk`.
 
 Nothing here may hang: in-process campaigns run under an alarm, `ogk mc` under subprocess
 timeouts."""
 from __future__ import annotations
 
-import dataclasses
-import functools
 import json
-import os
-import shutil
 import signal
 import subprocess
-import sys
 import time
 from pathlib import Path
 
-import numpy as np
 import pytest
 
-import ogk
-import ogk_host
-
 from ogk_bindings.kernel import KernelError
-from ogk.missions.orbit_injection import nog_guidance
-from ogk.missions.orbit_injection.campaign import run_campaign
-from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
-from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, NogTables, prepare_tables
-from ogk.missions.orbit_injection.sil import SilSettings
+from ogk_host.scenario_file import read_header
+
+from ogk.cli import main
+from ogk.missions import registry
+from ogk.sil import envelope
+from ogk.sil.engine import fly_campaign
 from ogk.sil.runner import CampaignAborted, Watchdog
-from ogk_host.orbit_injection.scenario import Acceptance, load_scenario
 
-REPO = Path(__file__).resolve().parents[2]
-OGK = [sys.executable, "-c", "import sys; from ogk.cli import main; sys.exit(main())"]
-#: `ogk` subprocesses import the same packages as this test process
-ENV = {**os.environ, "PYTHONPATH": os.pathsep.join(
-    [str(Path(m.__file__).resolve().parents[1]) for m in (ogk, ogk_host)]
-    + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])}
-SHORT = functools.partial(NominalOpenLoopGuidance, cutoff_s=12.0)   # 12 s burns: fast tests
-
+import point_mass_family as pm
 
 #: every in-process test ends within this many seconds (conftest.alarm)
 ALARM_S = 90
-pytestmark = pytest.mark.usefixtures("alarm")
-
-
-
-@pytest.fixture(scope="module")
-def scn():
-    """The paper's scenario with opened tolerances (the tests check the machinery)."""
-    return dataclasses.replace(load_scenario(), acceptance=Acceptance(1e12, 10.0, 1e9))
+pytestmark = pytest.mark.usefixtures("alarm", "family")
 
 
 @pytest.fixture(scope="module")
-def tables():
-    return prepare_tables(load_scenario())
+def family():
+    with pm.registered():
+        yield pm.FAMILY
 
 
 @pytest.fixture(scope="module")
-def corrupted(tables, tmp_path_factory):
-    """A copy of the scenario's tables with one byte of the bundle flipped (CRC no longer holds);
-    the campaign is handed it directly, so the parent's file check does not stop it first."""
-    d = tmp_path_factory.mktemp("bad_tables")
-    for p in tables.directory.iterdir():
-        if p.is_file():
-            shutil.copy(p, d / p.name)
-    bundle = d / tables.bundle.name
-    data = bytearray(bundle.read_bytes())
-    data[len(data) // 2] ^= 0x40
-    bundle.write_bytes(bytes(data))
-    return NogTables(d, bundle, tables.manifest, tables.sha256)
+def scenario(tmp_path_factory) -> Path:
+    return pm.write_scenario(tmp_path_factory.mktemp("pm") / "point_mass.toml")
+
+
+def plan(scenario: Path, **options):
+    return pm.FAMILY.plan(read_header(scenario), options)
 
 
 @pytest.mark.req("OGK-HAR-003", "OGK-CORE-001")
@@ -82,51 +55,37 @@ def test_kernel_error_is_picklable():
     assert err.name.startswith("OGK_E_")
 
 
-@pytest.mark.req("OGK-HAR-003", "OGK-HAR-008")
-def test_corrupted_table_with_two_workers_aborts_naming_runs_and_status(scn, corrupted):
+@pytest.mark.req("OGK-HAR-003")
+def test_a_kernel_error_in_a_worker_aborts_naming_runs_and_status(scenario):
     t0 = time.monotonic()
     with pytest.raises(CampaignAborted) as info:
-        run_campaign(scn, runs=4, seed=1, workers=2, truth="point-mass",
-                     guidance_factory=KernelNogGuidance.for_tables(corrupted))
+        fly_campaign(plan(scenario, fault="raise:3"), 4, 1, workers=2, progress=False)
     err = info.value
-    assert err.status is not None and err.status.startswith("OGK_E_TABLE")
+    assert err.status == "OGK_E_DIM" and err.run_ids == [2, 3]
     line = str(err)
-    assert "\n" not in line and err.status in line and "ogk_nog_table_load" in line
-    assert line.startswith("campaign aborted: runs 0-1: ") or line.startswith(
-        "campaign aborted: runs 2-3: ")
+    assert "\n" not in line and err.status in line and "ogk_point_mass_step" in line
+    assert line.startswith("campaign aborted: runs 2-3: ")
     assert time.monotonic() - t0 < 30.0
 
 
 @pytest.mark.req("OGK-HAR-003")
-def test_ogk_mc_prints_one_line_and_exits_1_when_a_worker_raises(corrupted, tmp_path, capsys,
-                                                                 monkeypatch):
-    from ogk.cli import main
-    monkeypatch.setattr(nog_guidance, "prepare_tables", lambda scn, directory=None: corrupted)
+def test_ogk_mc_prints_one_line_and_exits_1_when_a_worker_raises(scenario, tmp_path, capsys):
     out = tmp_path / "mc.json"
     out.write_text("{}\n")                             # a previous campaign's result
-    code = main(["mc", "leo-geo", "--runs", "4", "--seed", "1", "--workers", "2",
-                 "--truth", "point-mass", "--json", str(out)])
+    code = main(["mc", str(scenario), "--runs", "4", "--seed", "1", "--workers", "2",
+                 "--fault", "raise:1", "--json", str(out)])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 1 and len(err) == 1
-    assert err[0].startswith("ogk mc: campaign aborted: runs ") and "OGK_E_TABLE" in err[0]
+    assert err[0].startswith("ogk mc: campaign aborted: runs 0-1: ") and "OGK_E_DIM" in err[0]
     assert not out.exists()                            # no stale JSON left looking new
 
 
-class _KillsItself(NominalOpenLoopGuidance):
-    """The worker holding run 3 is killed (SIGKILL) while it builds its guidance."""
-
-    def __init__(self, setup: GuidanceSetup) -> None:
-        if 3 in setup.run_ids.tolist():
-            os.kill(os.getpid(), signal.SIGKILL)
-        super().__init__(setup, cutoff_s=12.0)
-
-
 @pytest.mark.req("OGK-HAR-003")
-def test_killed_worker_is_reported_with_its_runs(scn, tmp_path):
+def test_killed_worker_is_reported_with_its_runs(scenario, tmp_path):
     log = tmp_path / "mc.json.runs.jsonl"
     with pytest.raises(CampaignAborted) as info:
-        run_campaign(scn, runs=6, seed=1, workers=2, chunks=3, truth="point-mass",
-                     guidance_factory=_KillsItself, run_log=log)
+        fly_campaign(plan(scenario, fault="kill:3"), 6, 1, workers=2, chunks=3, run_log=log,
+                     progress=False)
     line = str(info.value)
     assert line.startswith("campaign aborted: runs 2-3: worker pid ")
     assert "killed by SIGKILL" in line and "\n" not in line
@@ -136,14 +95,10 @@ def test_killed_worker_is_reported_with_its_runs(scn, tmp_path):
 
 
 @pytest.mark.req("OGK-HAR-003")
-def test_ogk_mc_reports_a_killed_worker_in_one_line(tmp_path, capsys, monkeypatch):
-    from ogk.cli import main
-    from ogk.missions.orbit_injection import guidance as guidance_module
-    monkeypatch.setattr(guidance_module, "NominalOpenLoopGuidance", _KillsItself)
+def test_ogk_mc_reports_a_killed_worker_in_one_line(scenario, tmp_path, capsys):
     out = tmp_path / "mc.json"
-    code = main(["mc", "leo-geo", "--runs", "6", "--seed", "1", "--workers", "2",
-                 "--chunk-runs", "2", "--truth", "point-mass", "--guidance", "nominal",
-                 "--json", str(out)])
+    code = main(["mc", str(scenario), "--runs", "6", "--seed", "1", "--workers", "2",
+                 "--chunk-runs", "2", "--fault", "kill:3", "--json", str(out)])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 1 and len(err) == 1, err
     assert err[0].startswith("ogk mc: campaign aborted: runs 2-3: worker pid "), err[0]
@@ -154,56 +109,14 @@ def test_ogk_mc_reports_a_killed_worker_in_one_line(tmp_path, capsys, monkeypatc
     assert 2 not in kept and 3 not in kept             # resumable: the finished chunks are kept
 
 
-class _Hangs(NominalOpenLoopGuidance):
-    def __init__(self, setup: GuidanceSetup) -> None:
-        if 1 in setup.run_ids.tolist():
-            time.sleep(3600)
-        super().__init__(setup, cutoff_s=12.0)
-
-
 @pytest.mark.req("OGK-HAR-003")
-def test_watchdog_kills_a_hung_chunk(scn):
+def test_watchdog_kills_a_hung_chunk(scenario):
     t0 = time.monotonic()
     with pytest.raises(CampaignAborted) as info:
-        run_campaign(scn, runs=2, seed=1, workers=2, truth="point-mass", guidance_factory=_Hangs,
-                     watchdog=Watchdog(base_s=3.0, per_run_s=0.5))
+        fly_campaign(plan(scenario, fault="hang:1"), 2, 1, workers=2,
+                     watchdog=Watchdog(base_s=3.0, per_run_s=0.5), progress=False)
     assert str(info.value).startswith("campaign aborted: runs 1: watchdog: no result after 4 s")
     assert time.monotonic() - t0 < 20.0
-
-
-def _per_run(res) -> str:
-    """Every per-run value of the JSON, as written (repr of each float: bit for bit)."""
-    return json.dumps(res.to_json_dict()["per_run"])
-
-
-def _nog(tables, truth, workers=1, chunks=None, rate_hz=50.0):
-    """Kernel VTD-NOG, 3 dispersed runs of seed 7 (their cut-offs differ: the runs land on
-    different steps)."""
-    return run_campaign(load_scenario(), runs=3, seed=7, workers=workers, chunks=chunks,
-                        truth=truth, guidance_factory=KernelNogGuidance.for_tables(tables),
-                        guidance_name="nog", tables=tables,
-                        settings=SilSettings(control_rate_hz=rate_hz))
-
-
-@pytest.fixture(scope="module")
-def reference(tables):
-    """Point-mass, 25 Hz, 1 worker, 1 chunk: what `ogk mc leo-geo --runs 3 --seed 7 --truth
-    point-mass --control-rate 25` must write, interrupted and resumed or not."""
-    return _nog(tables, "point-mass", rate_hz=25.0)
-
-
-@pytest.mark.req("OGK-HAR-001")
-def test_per_run_values_do_not_depend_on_workers_or_chunks(tables):
-    """6-DOF (a landing step of one run used to change the eq. 55 factor of the other runs of its
-    chunk by an ulp, which the attitude loop carried to 1e-14: run 0 of these differed): 1 worker
-    / 1 chunk and 2 workers / 3 chunks write the same per-run values, bit for bit."""
-    one = _nog(tables, "6dof")
-    tf = one.errors["tf_s"]
-    assert np.unique(np.round(tf, 6)).size == tf.size      # every run lands on its own step
-    for workers, chunks in ((2, 3),):
-        other = _nog(tables, "6dof", workers, chunks)
-        assert _per_run(other) == _per_run(one), (workers, chunks)
-        assert other.to_json_dict()["std"] == one.to_json_dict()["std"]
 
 
 def _wait_for_runs(log: Path, proc: subprocess.Popen, n: int, timeout: float) -> int:
@@ -216,24 +129,22 @@ def _wait_for_runs(log: Path, proc: subprocess.Popen, n: int, timeout: float) ->
 
 
 @pytest.mark.req("OGK-HAR-004")
-def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(reference,
-                                                                              tmp_path):
+def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(scenario, tmp_path):
     out = tmp_path / "mc.json"
     log = tmp_path / "mc.json.runs.jsonl"
     out.write_text("{}\n")                              # a previous campaign's result
+
     def command(seed: int) -> list[str]:
-        return [*OGK, "mc", "leo-geo", "--runs", "3", "--seed", str(seed), "--workers", "2",
-                "--chunk-runs", "1", "--truth", "point-mass", "--control-rate", "25",
-                "--json", str(out)]
+        return [*pm.OGK, "mc", str(scenario), "--runs", "3", "--seed", str(seed), "--workers",
+                "2", "--chunk-runs", "1", "--seconds-per-run", "1", "--json", str(out)]
     cmd = command(7)
     # SIGINT back to its default in the child: a test run started as a background job by a shell
     # without job control (`make test &`) inherits SIGINT ignored, and Python then keeps it ignored,
     # so the Ctrl-C below would be lost and the campaign would finish (exit 0).
-    proc = subprocess.Popen(cmd, cwd=REPO, env=ENV, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True,
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
-        kept = _wait_for_runs(log, proc, 1, 60.0)
+        _wait_for_runs(log, proc, 1, 60.0)
         proc.send_signal(signal.SIGINT)
         _, err = proc.communicate(timeout=30)
     finally:
@@ -244,15 +155,30 @@ def test_ctrl_c_keeps_finished_runs_and_resume_gives_the_uninterrupted_result(re
     assert not out.exists()
     kept = len(log.read_text().splitlines()) - 1
     assert 1 <= kept < 3
-    done = subprocess.run([*cmd, "--resume"], cwd=REPO, env=ENV, capture_output=True, text=True,
-                          timeout=90)
-    assert done.returncode in (0, 1), done.stderr      # 1: a run outside the tolerances
+    done = subprocess.run([*cmd, "--resume"], capture_output=True, text=True, timeout=90)
+    assert done.returncode in (0, 1), done.stderr      # 1: a run outside the tolerance
     assert f"{kept} of 3 runs taken from" in done.stdout
     doc = json.loads(out.read_text())
     assert doc["resumed_runs"] == kept
-    assert json.dumps(doc["per_run"]) == _per_run(reference)
-    assert doc["std"] == reference.to_json_dict()["std"]
+    rows = envelope.read_table(out.with_suffix(".parquet"))
+    uninterrupted = fly_campaign(plan(scenario, seconds_per_run=1.0), 3, 7, progress=False)
+    for row, rec in zip(rows, uninterrupted.records, strict=True):
+        assert not envelope.record_differences(row, rec), row["run_id"]
     # another seed does not resume from this file: one line, exit 2
-    other = subprocess.run([*command(8), "--resume"], cwd=REPO,
-                           capture_output=True, text=True, timeout=60)
+    other = subprocess.run([*command(8), "--resume"], capture_output=True, text=True, timeout=60)
     assert other.returncode == 2 and "belongs to another campaign (differs in seed)" in other.stderr
+
+
+@pytest.mark.req("OGK-HAR-021")
+def test_a_fifth_family_is_one_class_and_one_registry_line(scenario, tmp_path, capsys):
+    """The test family, registered by one line, is flown by every verb of `ogk`: mc, replay,
+    report, run; `ogk tables` says it has none."""
+    assert registry.family(read_header(scenario)) is pm.FAMILY
+    out = tmp_path / "mc.json"
+    assert main(["mc", str(scenario), "--runs", "5", "--seed", "3", "--json", str(out)]) in (0, 1)
+    assert "point_mass: 5 runs" in capsys.readouterr().out
+    assert main(["replay", str(out), "4"]) == 0 and "bit-exact" in capsys.readouterr().out
+    assert main(["report", str(out)]) in (0, 1) and "point_mass" in capsys.readouterr().out
+    assert main(["run", str(scenario), "--x0", "2"]) == 0 and "x_f" in capsys.readouterr().out
+    assert main(["tables", str(scenario)]) == 2
+    assert "has no `ogk tables`" in capsys.readouterr().err

@@ -138,7 +138,7 @@ def test_the_shipped_soak_plan() -> None:
     plan = soak.load_plan()
     from ogk.missions import registry
     from ogk_host.scenario_file import read_header, resolve_scenario
-    families = {registry.campaign_family(read_header(resolve_scenario(c.scenario))).name for c in plan}
+    families = {registry.family(read_header(resolve_scenario(c.scenario))).name for c in plan}
     assert families == {"orbit-injection", "low-thrust-transfer", "low-thrust-rendezvous", "binary-asteroid"}
     assert all(c.runs >= 1000 for c in plan)
     assert len({c.seed for c in plan}) == len(plan)

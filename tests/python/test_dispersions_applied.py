@@ -49,15 +49,15 @@ _PLANS: dict[tuple[str, str], object] = {}
 
 def _plan(scenario: str | Path, options: dict | None = None, key: str | None = None):
     """The family's real campaign plan of a scenario (built once per module). Scout: the
-    family's plan builder without the nominal (`campaign_plan` with no reference, as
-    `run_campaign` probes it): the draws do not depend on the nominal, which takes 90 s to solve."""
+    family's plan builder without the nominal (`flights.campaign_plan` with no reference): the
+    draws do not depend on the nominal, which takes 90 s to solve."""
     options = dict(SHIPPED.get(str(scenario), ({}, 0, 0))[0] if options is None else options)
     k = (str(scenario), key or repr(sorted(options.items())))
     if k not in _PLANS:
         header = read_header(resolve_scenario(str(scenario)))
-        fam = registry.campaign_family(header)
+        fam = registry.family(header)
         if str(scenario) == "scout_upper_stage":
-            from ogk.missions.orbit_injection.campaign import campaign_plan
+            from ogk.missions.orbit_injection.flights import campaign_plan
             from ogk.missions.orbit_injection.dispersions import DispersionSwitches
             from ogk.missions.orbit_injection.guidance import NominalOpenLoopGuidance
             from ogk.missions.orbit_injection.sil import SilSettings
@@ -196,15 +196,15 @@ def _forget(monkeypatch, scenario: str) -> str:
     """Monkeypatches the family so that it draws a dispersion and does not apply it; returns the
     dispersion's key."""
     if scenario == "leo_geo":
-        from ogk.missions.orbit_injection import campaign
-        real = campaign.draw_runs
+        from ogk.missions.orbit_injection import flights
+        real = flights.draw_runs
 
         def draw_runs(*a, **k):
             draws, gens = real(*a, **k)
             d_state = draws.d_state.copy()
             d_state[:, 0] = 0.0                      # the radius sigma forgotten
             return dataclasses.replace(draws, d_state=d_state), gens
-        monkeypatch.setattr(campaign, "draw_runs", draw_runs)
+        monkeypatch.setattr(flights, "draw_runs", draw_runs)
         return "initial_state.radius_m"
     if scenario == "rendezvous_nep_min_time":
         from ogk.missions.rendezvous import closed_loop, dispersions
@@ -217,7 +217,7 @@ def _forget(monkeypatch, scenario: str) -> str:
         monkeypatch.setattr(family, "thrust_case", lambda setup, eta: dataclasses.replace(
             real_t(setup, eta), thrust_scale=1.0))   # eta drawn, T_max left nominal
         return "thrust.eta_percent"
-    from ogk.missions.binary import campaign as bc
+    from ogk.missions.binary import convergence_run as bc
     real_p = bc.perturbed
 
     def perturbed(nominal, level, sigma_fraction, rng):
@@ -249,16 +249,16 @@ def test_a_dispersion_drawn_and_not_applied_fails_the_check(scenario, monkeypatc
 def test_a_dispersion_applied_in_the_wrong_unit_fails_the_distribution_test(monkeypatch):
     """The declination sigma applied in degrees instead of radians (x 57.3): spread > 0, so only
     the distribution tests can see it, and they do."""
-    from ogk.missions.orbit_injection import campaign
+    from ogk.missions.orbit_injection import flights
     plan = _plan("leo_geo")
-    real = campaign.draw_runs
+    real = flights.draw_runs
 
     def draw_runs(*a, **k):
         draws, gens = real(*a, **k)
         d_state = draws.d_state.copy()
         d_state[:, 2] *= 180.0 / math.pi
         return dataclasses.replace(draws, d_state=d_state), gens
-    monkeypatch.setattr(campaign, "draw_runs", draw_runs)
+    monkeypatch.setattr(flights, "draw_runs", draw_runs)
     res = dc.check_plan(plan, dc.draw_only(plan, 200, SEED))
     assert not res.structural_errors
     assert {m.split(":")[0] for m in res.statistical_failures} == {"initial_state.declination_rad"}
@@ -388,7 +388,7 @@ def test_ogk_mc_reports_the_check_and_exits_1_when_a_dispersion_is_not_applied(
 
     from ogk.sil import command
     header = read_header(resolve_scenario("leo-geo"))
-    fam = registry.campaign_family(header)
+    fam = registry.family(header)
 
     def mc(out: Path) -> int:
         args = command.parser_for(fam, "ogk mc", header).parse_args(

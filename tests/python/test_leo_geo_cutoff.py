@@ -25,7 +25,7 @@ from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_ru
 from ogk.missions.orbit_injection.guidance import GuidanceSetup
 from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, prepare_tables
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
-from ogk.missions.orbit_injection.sil import EndGamePlan, SilSettings, simulate
+from ogk.missions.orbit_injection.sil import EndGamePlan, SilSettings, fly_runs
 
 pytestmark = pytest.mark.req("OGK-NOG-016", "OGK-NOG-018")
 
@@ -51,7 +51,7 @@ def flown() -> dict[str, dict[str, np.ndarray]]:
         draws, gens = draw_runs(scn, SEED, WORST_RUNS, DispersionSwitches())
         guidance = KernelNogGuidance(GuidanceSetup(scn, ref, draws.run_id, plan.fine_interval_s),
                                      bundle)
-        res = simulate(scn, ref, draws, gens, DispersionSwitches(), guidance, settings)
+        res = fly_runs(scn, ref, draws, gens, DispersionSwitches(), guidance, settings)
         assert res.failure == [""] * len(WORST_RUNS)
         out[end_game] = res.errors
     return out

@@ -19,7 +19,7 @@ import pytest
 
 from ogk_host.orbit_injection.scenario import Acceptance, load_scenario
 
-from ogk.missions.orbit_injection import campaign
+import oi_campaign
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches
 from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, prepare_tables
 
@@ -41,10 +41,9 @@ def _fly(sigma: float):
     scn = dataclasses.replace(scn, thrust_dispersion=dataclasses.replace(
         scn.thrust_dispersion, coefficient_sigma=sigma), acceptance=Acceptance(1e9, 1.0, 1e9))
     _LOG.clear()
-    res = campaign.run_campaign(scn, runs=40, seed=7,
-                                dispersions=DispersionSwitches(True, False, True, False),
-                                truth="point-mass", guidance_factory=_Recording,
-                                guidance_name="nog")
+    res = oi_campaign.fly(scn, runs=40, seed=7,
+                          dispersions=DispersionSwitches(True, False, True, False),
+                          truth="point-mass", guidance_factory=_Recording, guidance_name="nog")
     doc = res.to_json_dict(per_run=True)
     flags = np.array(_LOG[0].flag_history)
     return scn, doc, flags

@@ -1,22 +1,29 @@
 """SIL closed loop and Monte Carlo campaign of the LEO-to-GEO burn (harness/ogk/missions/orbit_injection):
 reproducibility across worker counts and chunking, re-flying one run, failure accounting, the CPD
-in the loop (attitude follows the command, eq. 47 rate bounds), JSON/report and the `ogk mc` command."""
+in the loop (attitude follows the command, eq. 47 rate bounds), JSON/report and the `ogk mc` command,
+a corrupted table reaching the workers, the 6-DOF per-run values independent of the chunking.
+The engine's own faults are test_campaign_faults.py's (the test family)."""
 from __future__ import annotations
 
 import dataclasses
 import functools
 import json
 import math
+import shutil
+import time
 
 import numpy as np
 import pytest
 
-from ogk.missions.orbit_injection.campaign import eq47_bounds, run_campaign
+import oi_campaign
+from ogk.missions.orbit_injection.flights import eq47_bounds
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs, run_seed
 from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
+from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, NogTables, prepare_tables
+from ogk.sil.runner import CampaignAborted
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
 from ogk.missions.orbit_injection.report import format_report
-from ogk.missions.orbit_injection.sil import ERROR_KEYS, RATE_KEYS, SilSettings, simulate
+from ogk.missions.orbit_injection.sil import ERROR_KEYS, RATE_KEYS, SilSettings, fly_runs
 from ogk_host.orbit_injection.scenario import Acceptance, load_scenario
 
 
@@ -46,17 +53,17 @@ def test_same_seed_same_numbers_for_any_worker_count_and_chunking(scn):
     """6-DOF, every dispersion, 7 runs: 1 worker / 1 chunk, 2 workers / 2 chunks and 1 worker / 3
     chunks give bit-identical results; re-flying runs 5 and 2 alone reproduces them."""
     common = dict(runs=7, seed=2024, truth="6dof", guidance_factory=SHORT)
-    one = run_campaign(scn, workers=1, **common)
-    two = run_campaign(scn, workers=2, **common)
-    three_chunks = run_campaign(scn, workers=1, chunks=3, **common)
+    one = oi_campaign.fly(scn, workers=1, **common)
+    two = oi_campaign.fly(scn, workers=2, **common)
+    three_chunks = oi_campaign.fly(scn, workers=1, chunks=3, **common)
     assert one.n_failures == 0
     np.testing.assert_array_equal(_numbers(one), _numbers(two))
     np.testing.assert_array_equal(_numbers(one), _numbers(three_chunks))
-    again = run_campaign(scn, seed=2024, truth="6dof", guidance_factory=SHORT, runs=0,
+    again = oi_campaign.fly(scn, seed=2024, truth="6dof", guidance_factory=SHORT, runs=0,
                          run_ids=[5, 2])
     np.testing.assert_array_equal(_numbers(again), _numbers(one)[:, [5, 2]])
     assert list(again.draws.run_seed) == [run_seed(2024, 5), run_seed(2024, 2)]
-    other = run_campaign(scn, workers=1, runs=7, seed=2025, truth="6dof", guidance_factory=SHORT)
+    other = oi_campaign.fly(scn, workers=1, runs=7, seed=2025, truth="6dof", guidance_factory=SHORT)
     assert not np.array_equal(_numbers(other), _numbers(one))
 
 
@@ -87,7 +94,7 @@ def test_cpd_in_the_loop_keeps_attitude_on_the_command(scn, ref):
     sw = DispersionSwitches()
     draws, gens = draw_runs(scn, 3, np.arange(4), sw)
     guidance = NominalOpenLoopGuidance(GuidanceSetup(scn, ref, draws.run_id), cutoff_s=40.0)
-    res = simulate(scn, ref, draws, gens, sw, guidance,
+    res = fly_runs(scn, ref, draws, gens, sw, guidance,
                    SilSettings(truth="6dof", history_runs=4, history_every=5))
     assert res.failure == [""] * 4
     h = res.history
@@ -125,7 +132,7 @@ class _Faulty(NominalOpenLoopGuidance):
 
 @pytest.mark.req("OGK-HAR-006")
 def test_failures_are_counted_with_reasons(scn):
-    res = run_campaign(scn, runs=3, seed=1, truth="point-mass", guidance_factory=_Faulty,
+    res = oi_campaign.fly(scn, runs=3, seed=1, truth="point-mass", guidance_factory=_Faulty,
                        settings=SilSettings(t_max_s=10.0))
     assert res.failure == ["", "guidance", "no_termination"]
     assert res.n_failures == 2 and res.failure_reasons() == {"guidance": 1, "no_termination": 1}
@@ -142,7 +149,7 @@ def test_runs_beyond_the_scenario_tolerances_fail_with_their_reason(tmp_path):
     the right radius but ~1.3 km/s short) and says so per run in the report and the JSON; the
     open-loop nominal passes it."""
     strict = load_scenario()
-    res = run_campaign(strict, runs=3, seed=8, truth="point-mass", guidance_factory=SHORT,
+    res = oi_campaign.fly(strict, runs=3, seed=8, truth="point-mass", guidance_factory=SHORT,
                        dispersions=False)
     assert res.n_failures == 3
     assert all(f.startswith("tolerance: |dvt_f_mps| = ") and f.endswith("> 20") for f in res.failure)
@@ -150,7 +157,7 @@ def test_runs_beyond_the_scenario_tolerances_fail_with_their_reason(tmp_path):
     assert doc["failures"] == 3 and [r["run_id"] for r in doc["failed_runs"]] == [0, 1, 2]
     assert doc["tolerances"]["dr_f_m"] == 1000.0 and doc["tolerances"]["dvt_f_mps"] == 20.0
     assert "failed run 0: tolerance" in format_report(res)
-    full = run_campaign(strict, runs=1, seed=8, truth="point-mass", dispersions=False)
+    full = oi_campaign.fly(strict, runs=1, seed=8, truth="point-mass", dispersions=False)
     assert full.n_failures == 0
     # a tolerance failure still flew: it stays in the statistics (counted, not dropped)
     assert res.mean()["dvt_f_mps"] == pytest.approx(float(np.mean(res.errors["dvt_f_mps"])))
@@ -158,7 +165,7 @@ def test_runs_beyond_the_scenario_tolerances_fail_with_their_reason(tmp_path):
 
 @pytest.mark.req("OGK-HAR-002")
 def test_json_statistics_and_side_by_side_report(scn, tmp_path):
-    res = run_campaign(scn, runs=5, seed=8, truth="point-mass", guidance_factory=SHORT)
+    res = oi_campaign.fly(scn, runs=5, seed=8, truth="point-mass", guidance_factory=SHORT)
     path = tmp_path / "mc.json"
     res.write_json(path)
     doc = json.loads(path.read_text())
@@ -175,7 +182,7 @@ def test_json_statistics_and_side_by_side_report(scn, tmp_path):
     assert seed5 == [run_seed(8, i) for i in range(5)]
     text = format_report(res)
     assert "Table 7" in text and "-2.1500" in text and "4.2600" in text
-    single = run_campaign(scn, runs=1, seed=8, truth="point-mass", guidance_factory=SHORT,
+    single = oi_campaign.fly(scn, runs=1, seed=8, truth="point-mass", guidance_factory=SHORT,
                           dispersions=False)
     assert "Table 6" in format_report(single) and "-1.8700" in format_report(single)
 
@@ -202,10 +209,10 @@ def test_paper_tables_match_the_scenario_file(scn):
 
 @pytest.mark.req("OGK-HAR-002")
 def test_report_prints_paper_columns_only_for_a_scenario_with_paper_results(scn):
-    res = run_campaign(scn, runs=1, seed=8, truth="point-mass", guidance_factory=SHORT,
+    res = oi_campaign.fly(scn, runs=1, seed=8, truth="point-mass", guidance_factory=SHORT,
                        dispersions=False)
     assert "Table 6" in format_report(res) and scn.name in format_report(res)
-    bare = run_campaign(dataclasses.replace(scn, paper=None, name="bare_mission"), runs=1,
+    bare = oi_campaign.fly(dataclasses.replace(scn, paper=None, name="bare_mission"), runs=1,
                         seed=8, truth="point-mass", guidance_factory=SHORT, dispersions=False)
     text = format_report(bare)
     assert "Table" not in text and "paper" not in text and "bare_mission" in text
@@ -224,3 +231,67 @@ def test_ogk_mc_command(tmp_path, capsys):
     assert abs(doc["mean"]["dr_f_m"]) < 1e-3 and doc["mean"]["tf_s"] == pytest.approx(105.8088,
                                                                                        abs=1e-4)
     assert math.isclose(doc["std"]["dvt_f_mps"], 0.0, abs_tol=1e-12)
+
+
+# ------------------------------------------------------------------ tables flown by the campaign
+@pytest.fixture(scope="module")
+def tables():
+    return prepare_tables(load_scenario())
+
+
+@pytest.fixture(scope="module")
+def corrupted(tables, tmp_path_factory):
+    """A copy of the scenario's tables with one byte of the bundle flipped (CRC no longer holds);
+    the campaign is handed it directly, so the parent's file check does not stop it first."""
+    d = tmp_path_factory.mktemp("bad_tables")
+    for p in tables.directory.iterdir():
+        if p.is_file():
+            shutil.copy(p, d / p.name)
+    bundle = d / tables.bundle.name
+    data = bytearray(bundle.read_bytes())
+    data[len(data) // 2] ^= 0x40
+    bundle.write_bytes(bytes(data))
+    return NogTables(d, bundle, tables.manifest, tables.sha256)
+
+
+@pytest.mark.req("OGK-HAR-003", "OGK-HAR-008")
+def test_corrupted_table_with_two_workers_aborts_naming_runs_and_status(scn, corrupted):
+    t0 = time.monotonic()
+    with pytest.raises(CampaignAborted) as info:
+        oi_campaign.fly(scn, runs=4, seed=1, workers=2, truth="point-mass",
+                        guidance_factory=KernelNogGuidance.for_tables(corrupted))
+    err = info.value
+    assert err.status is not None and err.status.startswith("OGK_E_TABLE")
+    line = str(err)
+    assert "\n" not in line and err.status in line and "ogk_nog_table_load" in line
+    assert line.startswith("campaign aborted: runs 0-1: ") or line.startswith(
+        "campaign aborted: runs 2-3: ")
+    assert time.monotonic() - t0 < 30.0
+
+
+def _per_run(res) -> str:
+    """Every per-run value of the JSON, as written (repr of each float: bit for bit)."""
+    return json.dumps(res.to_json_dict()["per_run"])
+
+
+def _nog(tables, truth, workers=1, chunks=None, rate_hz=50.0):
+    """Kernel VTD-NOG, 3 dispersed runs of seed 7 (their cut-offs differ: the runs land on
+    different steps)."""
+    return oi_campaign.fly(load_scenario(), runs=3, seed=7, workers=workers, chunks=chunks,
+                           truth=truth, guidance_factory=KernelNogGuidance.for_tables(tables),
+                           guidance_name="nog", tables=tables,
+                           settings=SilSettings(control_rate_hz=rate_hz))
+
+
+@pytest.mark.req("OGK-HAR-001")
+def test_per_run_values_do_not_depend_on_workers_or_chunks(tables):
+    """6-DOF (a landing step of one run used to change the eq. 55 factor of the other runs of its
+    chunk by an ulp, which the attitude loop carried to 1e-14: run 0 of these differed): 1 worker
+    / 1 chunk and 2 workers / 3 chunks write the same per-run values, bit for bit."""
+    one = _nog(tables, "6dof")
+    tf = one.errors["tf_s"]
+    assert np.unique(np.round(tf, 6)).size == tf.size      # every run lands on its own step
+    for workers, chunks in ((2, 3),):
+        other = _nog(tables, "6dof", workers, chunks)
+        assert _per_run(other) == _per_run(one), (workers, chunks)
+        assert other.to_json_dict()["std"] == one.to_json_dict()["std"]

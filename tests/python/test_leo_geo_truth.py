@@ -14,7 +14,7 @@ from ogk.missions.orbit_injection import truth as tm
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs
 from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
-from ogk.missions.orbit_injection.sil import SilSettings, _Rk4, simulate
+from ogk.missions.orbit_injection.sil import SilSettings, _Rk4, fly_runs
 from ogk_host.orbit_injection.scenario import load_scenario
 
 
@@ -332,7 +332,7 @@ def test_point_mass_open_loop_nominal_reproduces_ground_nominal(scn, ref):
     sw = DispersionSwitches.none()
     draws, gens = draw_runs(scn, 0, [0], sw)
     guidance = NominalOpenLoopGuidance(GuidanceSetup(scn, ref, draws.run_id))
-    res = simulate(scn, ref, draws, gens, sw, guidance, SilSettings(truth="point-mass"))
+    res = fly_runs(scn, ref, draws, gens, sw, guidance, SilSettings(truth="point-mass"))
     assert res.failure == [""]
     assert res.errors["tf_s"][0] == ref.tf_s
     final, expect = res.final_state[0], ref.final_state
@@ -353,7 +353,7 @@ def test_truth_step_is_converged_by_halving(scn, ref):
     for substeps in (1, 2):
         draws, gens = draw_runs(scn, 11, np.arange(3), sw)
         guidance = NominalOpenLoopGuidance(GuidanceSetup(scn, ref, draws.run_id), cutoff_s=30.0)
-        res = simulate(scn, ref, draws, gens, sw, guidance,
+        res = fly_runs(scn, ref, draws, gens, sw, guidance,
                        SilSettings(truth="6dof", truth_substeps=substeps))
         assert res.failure == ["", "", ""]
         finals.append(res.final_state)

@@ -26,7 +26,7 @@ from ogk_host.rendezvous.scenario import load_scenario, paper_problem
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import KernelError
 from ogk_bindings.nmpc import Nmpc
-from ogk.missions.rendezvous.closed_loop import fly
+from ogk.missions.rendezvous.closed_loop import fly_run
 from ogk.missions.rendezvous.guidance_base import first_guess, strategy_settings
 from ogk.missions.rendezvous.kernel_guidance import KernelGuidance, kernel_config
 
@@ -217,7 +217,7 @@ def test_unperturbed_snns_closed_loop_reaches_mars_before_the_open_loop() -> Non
     # the paper's problem (no robustness options): its 353.37 d is the first instant inside Mars' SOI,
     # ~17 d before t_f* = 370.12 d
     scen = paper_problem(load_scenario(MIN_TIME))
-    r = fly(scen, KernelGuidance(scen, strategy_settings(scen, "snns")), perturbed=False, seed=0)
+    r = fly_run(scen, KernelGuidance(scen, strategy_settings(scen, "snns")), perturbed=False, seed=0)
     assert r.converged and r.reason == "rendezvous"
     assert r.failed_solves == 0
     assert 345.0 < r.t_f_days < 360.0
@@ -227,7 +227,7 @@ def test_unperturbed_snns_closed_loop_reaches_mars_before_the_open_loop() -> Non
     # before its own first plan's t_f, which its margin makes later than the paper's
     law = load_scenario(MIN_TIME)
     g = KernelGuidance(law, strategy_settings(law, "snns"))
-    r = fly(law, g, perturbed=False, seed=0)
+    r = fly_run(law, g, perturbed=False, seed=0)
     assert r.converged and r.failed_solves == 0
     assert r.history[0].planned_t_f_days > 370.12
     assert r.t_f_days < r.history[0].planned_t_f_days
@@ -237,7 +237,7 @@ def test_unperturbed_snns_closed_loop_reaches_mars_before_the_open_loop() -> Non
 @pytest.mark.req("OGK-NMPC-010")
 def test_perturbed_snns_closed_loop_on_its_own_seed() -> None:
     scen = load_scenario(MIN_TIME)
-    r = fly(scen, KernelGuidance(scen, strategy_settings(scen, "snns")), perturbed=True, seed=101)
+    r = fly_run(scen, KernelGuidance(scen, strategy_settings(scen, "snns")), perturbed=True, seed=101)
     assert r.converged
     assert r.final_position_miss_km < scen.convergence.target_soi_radius_m / 1e3
 
@@ -251,11 +251,3 @@ def test_bad_inputs_raise() -> None:
         g.command(float("nan"))
     with pytest.raises(ValueError):
         g.load_plan(0.0, 6.0, np.zeros((40, 5)), np.zeros((40, 1)))
-
-
-@pytest.mark.req("OGK-HAR-001")
-def test_campaign_seed_lists() -> None:
-    from ogk.missions.rendezvous.campaign import parse_seeds
-    assert parse_seeds("1-10") == list(range(1, 11))
-    assert parse_seeds("3,7,9-11") == [3, 7, 9, 10, 11]
-    assert parse_seeds("5") == [5]

@@ -48,7 +48,7 @@ def moshup_28mn(directory: Path) -> Path:
 @pytest.fixture(scope="module")
 def campaign(tmp_path_factory: pytest.TempPathFactory) -> dict:
     from ogk_host.scenario_file import read_header
-    from ogk.missions.binary import campaign as blt_campaign
+    from ogk.missions.binary import convergence_run as blt_campaign
     from ogk.missions.binary.family import FAMILY
     from ogk.sil import engine, target_summary
     from ogk.sil.seeds import run_generator, run_seed
@@ -133,7 +133,7 @@ def test_frames_flatten_the_kernel_structs_both_ways() -> None:
 @pytest.mark.req("OGK-HAR-012", "OGK-BLT-010")
 def test_reactions_on_the_target(campaign: dict) -> None:
     from ogk_bindings.kernel import KernelError
-    from ogk.missions.binary import campaign as campaign_mod
+    from ogk.missions.binary import convergence_run as campaign_mod
     from ogk.missions.binary import pil
     from ogk.missions.binary.flight_config import slot_configs
     from ogk.sil.pil import PilSession

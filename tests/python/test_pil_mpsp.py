@@ -130,16 +130,20 @@ def test_flight_software_reacts_to_every_status_on_the_target(campaign: dict) ->
     which the link cannot make: they are the kernel tests'.)"""
     import numpy as np
 
+    from ogk_host.scenario_file import read_header
+
     from ogk.missions.low_thrust_transfer import pil
-    from ogk.missions.low_thrust_transfer.cases import build_setup, thrust_case
+    from ogk.missions.low_thrust_transfer.cases import thrust_case
+    from ogk.missions.low_thrust_transfer.family import FAMILY
     from ogk.sil.pil import PilSession
     fly, safe, hold = 0.0, 1.0, 2.0
     ok, nonfinite, out_of_range, not_converged = 0.0, 2.0, 4.0, 20.0
     scenario = campaign["dir"] / "pil_mpsp_small.toml"
-    setup = build_setup(scenario_path=scenario)
+    plan = FAMILY.plan(read_header(scenario), {})
+    setup = plan.base.setup
     case = thrust_case(setup, 3.0)
     host = setup.guidance.solve(case.x0, case.thrust_scale, case.target)
-    session = PilSession(pil.flight_program(setup, scenario))
+    session = PilSession(FAMILY.flight_program(plan, "m7"))
     try:
         init = session.exchange(pil.MPSP_INIT, [])
         assert init[0] == fly and init[1] == setup.guidance.n_weights

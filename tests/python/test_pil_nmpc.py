@@ -190,12 +190,16 @@ def test_the_flight_program_reacts_to_a_rejected_measurement(whole_flight: dict)
     from ogk_host.rendezvous.dynamics import Model
     from ogk_host.rendezvous.scenario import load_scenario
 
+    from ogk_host.scenario_file import read_header
+
     from ogk.missions.rendezvous import pil
+    from ogk.missions.rendezvous.family import FAMILY
     from ogk.sil.pil import PilSession
     path = ROOT / "scenarios" / "rendezvous_nep_min_time.toml"
     scenario = load_scenario(path)
     x0 = Model.for_scenario(scenario).x0
-    session = PilSession(pil.flight_program(path, scenario, "snns", "scenario"))
+    plan = FAMILY.plan(read_header(path), {"strategy": "snns"})
+    session = PilSession(FAMILY.flight_program(plan, "m7"))
     try:
         assert session.exchange(pil.NMPC_INIT, [])[0] == 0.0             # FLY
         r = session.exchange(pil.NMPC_REPLAN, [0.0, np.nan, *x0[1:]])

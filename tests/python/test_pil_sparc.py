@@ -28,7 +28,7 @@ CORRECTORS = ("nrpc", "lm", "hybrid")
 @pytest.fixture(scope="module")
 def campaign() -> dict:
     from ogk_host.scenario_file import read_header
-    from ogk.missions.binary import campaign as blt_campaign
+    from ogk.missions.binary import convergence_run as blt_campaign
     from ogk.missions.binary.family import FAMILY
     from ogk.sil import engine, target_summary
     from ogk.sil.seeds import run_generator, run_seed

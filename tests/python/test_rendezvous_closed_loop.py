@@ -23,7 +23,7 @@ from ogk_host.rendezvous.plan import Plan
 from ogk_host.rendezvous.scenario import DEFAULT_SCENARIO_PATH, load_scenario
 
 from ogk.missions.rendezvous import strategy as st
-from ogk.missions.rendezvous.closed_loop import fly
+from ogk.missions.rendezvous.closed_loop import fly_run
 from ogk.missions.rendezvous.guidance import IpoptGuidance
 from ogk.missions.rendezvous.guidance_base import ReplanInfo, strategy_settings
 
@@ -177,7 +177,7 @@ def test_short_unperturbed_closed_loop_keeps_the_open_loop_plan(scenario) -> Non
     measured unperturbed state re-find the open loop's t_f* within 1e-3 d and keep its subinterval grid."""
     settings = dataclasses.replace(strategy_settings(scenario, "snns"), max_subdivisions=0)
     guidance = IpoptGuidance(scenario, settings)
-    result = fly(scenario, guidance, perturbed=False, seed=0, strategy_name="snns", solver_name="ipopt",
+    result = fly_run(scenario, guidance, perturbed=False, seed=0, strategy_name="snns", solver_name="ipopt",
                  max_replans=3)
     assert not result.converged and result.reason == "max_replans"
     assert [h.nodes for h in result.history] == [30, 29, 28]
@@ -219,11 +219,11 @@ def test_unperturbed_snns_closed_loop_reproduces_the_open_loop(scenario) -> None
     (docs/nmpc.md, RK4 table), and each re-plan's t_f stays within 4e-4 d of t_f*; 0.01 d (14 min) is 25 x
     that and 1/1700 of the 16.9 d the paper attributes to its subdivisions."""
     guidance = IpoptGuidance(scenario, strategy_settings(scenario, "snns"))
-    closed = fly(scenario, guidance, perturbed=False, seed=0, strategy_name="snns", solver_name="ipopt")
+    closed = fly_run(scenario, guidance, perturbed=False, seed=0, strategy_name="snns", solver_name="ipopt")
     assert closed.converged and closed.failed_solves == 0
     for h in closed.history:
         assert h.planned_t_f_days == pytest.approx(OPEN_LOOP_TF_DAYS, abs=2e-3)
-    open_loop = fly(scenario, _OpenLoop(IpoptGuidance(scenario, dataclasses.replace(
+    open_loop = fly_run(scenario, _OpenLoop(IpoptGuidance(scenario, dataclasses.replace(
         strategy_settings(scenario, "snns"), max_subdivisions=0))), perturbed=False, seed=0)
     assert open_loop.converged and len(open_loop.history) == 1
     assert closed.t_f_days == pytest.approx(open_loop.t_f_days, abs=0.01)
@@ -337,8 +337,8 @@ def test_a_flight_through_a_planet_ends_there(scenario) -> None:  # type: ignore
     truth = TruthModel.for_scenario(scenario, perturbed=False)
     x0 = Model.for_scenario(scenario).x0
     plan = Plan(t0=0.0, horizon=1.0, states=np.tile(x0, (2, 1)), controls=np.full((2, 1), 0.5 * math.pi))
-    result = fly(scenario, _Coast(plan), perturbed=False, seed=0, truth=_EarthOnTheWay(truth), max_replans=5)
+    result = fly_run(scenario, _Coast(plan), perturbed=False, seed=0, truth=_EarthOnTheWay(truth), max_replans=5)
     assert not result.converged and result.reason == "earth_impact"
     assert len(result.history) == 1 and result.t_f_days < 2.0
-    free = fly(scenario, _Coast(plan), perturbed=False, seed=0, truth=truth, max_replans=2)
+    free = fly_run(scenario, _Coast(plan), perturbed=False, seed=0, truth=truth, max_replans=2)
     assert free.reason == "max_replans"

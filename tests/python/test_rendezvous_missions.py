@@ -110,7 +110,7 @@ def hohmann(r1: float, r2: float) -> tuple[float, float]:
 @pytest.fixture(scope="module")
 def flown(tmp_path_factory: pytest.TempPathFactory) -> dict[str, dict]:
     """Each mission through `ogk run` (kernel), and the same flight in-process with its plans recorded."""
-    from ogk.missions.rendezvous.closed_loop import fly
+    from ogk.missions.rendezvous.closed_loop import fly_run
     from ogk.missions.rendezvous.guidance_base import strategy_settings
     from ogk.missions.rendezvous.kernel_guidance import KernelGuidance
     from ogk_host.rendezvous.scenario import load_scenario
@@ -131,7 +131,7 @@ def flown(tmp_path_factory: pytest.TempPathFactory) -> dict[str, dict]:
             return info
 
         guidance.replan = recording    # type: ignore[method-assign]
-        result = fly(scenario, guidance, False, 1, "snns", "kernel")
+        result = fly_run(scenario, guidance, False, 1, "snns", "kernel")
         out[m.name] = {"mission": m, "path": path, "run": res, "doc": json.loads((d / "run.json").read_text())
                        if (d / "run.json").exists() else None, "result": result, "plans": plans,
                        "raw": tomllib.loads(path.read_text())}

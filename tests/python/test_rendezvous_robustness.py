@@ -59,7 +59,7 @@ def test_shipped_scenario_holds_its_dispersion_box(name: str, seed: int, third: 
     plan, records = campaign(REPO / "scenarios" / f"{name}.toml", seed, third_bodies_in_model=third)
     assert_holds_the_box(records)
     if "min_fuel" in name:
-        row = paper_row(plan.base, "snns", True, records)
+        row = paper_row(plan.base.scenario, "snns", True, records)
         assert row is not None and row["table"] == "Table II"
         assert row["runs_meeting"] == len(records), row
 
@@ -112,7 +112,7 @@ def test_a_truth_failure_is_a_lost_flight_not_a_crash(monkeypatch: pytest.Monkey
 
     def broken(*args: Any, **kwargs: Any) -> Any:
         raise RuntimeError("truth propagation failed at t = 1.75707: Required step size is less than spacing")
-    monkeypatch.setattr(closed_loop, "fly", broken)
+    monkeypatch.setattr(closed_loop, "fly_run", broken)
     plan = fam.plan(read_header(REPO / "scenarios" / "rendezvous_nep_min_time.toml"), {})
     flown = fly_campaign(plan, 2, 2026120487, workers=1, progress=False)
     assert [r["failure"] for r in flown.records] == ["not arrived: truth: truth propagation failed at t = "

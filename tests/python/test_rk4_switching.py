@@ -101,7 +101,7 @@ def test_without_switch_function_no_events() -> None:
 
 @pytest.mark.req("OGK-CORE-014", "OGK-HAR-013")
 def test_demo_reports_closed_form_agreement() -> None:
-    from ogk.sil.demo_switching import format_report, run_switching_demo
+    from ogk.demos.switching import format_report, run_switching_demo
 
     demo = run_switching_demo()
     assert demo.ok(1e-10)

@@ -33,7 +33,7 @@ TABLES = REPO / "build" / "tables"
 def campaign(scenario: Path, runs: int, seed: int, **options: Any) -> tuple[dict[str, Any], list[dict[str, Any]]]:
     """The envelope and the records of `runs` runs of the scenario's family campaign (2 workers, as `ogk mc`)."""
     header = read_header(scenario)
-    plan = registry.campaign_family(header).plan(header, options)
+    plan = registry.family(header).plan(header, options)
     flown = fly_campaign(plan, runs, seed, workers=2, progress=False)
     return envelope.envelope(flown, json_path="mc.json"), flown.records
 

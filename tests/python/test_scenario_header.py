@@ -216,7 +216,7 @@ def test_every_family_loads_without_paper_results(tmp_path: Path, name: str) -> 
 
 @pytest.mark.req("OGK-HAR-006", "OGK-HAR-002")
 def test_binary_report_prints_the_paper_column_only_with_paper_figures() -> None:
-    from ogk.missions.binary.adapter import report_lines
+    from ogk.missions.binary.one_transfer import report_lines
     doc = {"scenario": "s", "transfer": "t", "kind": "single-burn", "thrust_n": 0.024, "corrector": "nrpc",
            "jacobian": "variational", "converged": True, "status": "OGK_OK", "iterations": 5,
            "final_error": 1e-7, "final_error_dop853": 1e-7, "burn_time_s": 600.0, "flight_time_s": 600.0,

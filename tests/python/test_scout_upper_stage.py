@@ -37,7 +37,7 @@ from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_ru
 from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
 from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, prepare_tables
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
-from ogk.missions.orbit_injection.sil import EndGamePlan, SilSettings, simulate
+from ogk.missions.orbit_injection.sil import EndGamePlan, SilSettings, fly_runs
 from ogk_host.orbit_injection import dynamics as dyn
 from ogk_host.orbit_injection.derive import effective_settings
 from ogk_host.orbit_injection.gains import compute_gain_table, predict_correction
@@ -238,7 +238,7 @@ def test_truth_model_flies_the_table_and_lands_on_the_nominal(scn, raw) -> None:
     sw = DispersionSwitches.none()
     draws, gens = draw_runs(scn, 0, [0], sw)
     guidance = NominalOpenLoopGuidance(GuidanceSetup(scn, ref, draws.run_id))
-    res = simulate(scn, ref, draws, gens, sw, guidance, SilSettings(truth="point-mass"))
+    res = fly_runs(scn, ref, draws, gens, sw, guidance, SilSettings(truth="point-mass"))
     assert res.failure == [""]
     final, expect = res.final_state[0], ref.final_state
     assert abs(final[0] - expect[0]) < 1e-2
@@ -249,7 +249,7 @@ def test_truth_model_flies_the_table_and_lands_on_the_nominal(scn, raw) -> None:
 
 @pytest.mark.req("OGK-NOG-015", "OGK-HAR-007")
 def test_both_missions_take_one_path_and_the_code_names_neither() -> None:
-    """Issue 9's "no mission-specific branch": both scenario files resolve to the same family adapter
+    """Issue 9's "no mission-specific branch": both scenario files resolve to the same family
     and load into the same scenario type through the same loader; no source file of kernel/, harness/
     or host/ names either mission (comments included, the Scout's data being in its TOML only)."""
     from ogk.missions.registry import family
@@ -284,7 +284,7 @@ def test_shaped_window_steers_out_the_radius_and_the_plane(scn) -> None:
         draws, gens = draw_runs(flown, 424242, list(range(6)), sw)
         guidance = KernelNogGuidance(GuidanceSetup(flown, ref, draws.run_id, plan.fine_interval_s),
                                      bundle)
-        res = simulate(flown, ref, draws, gens, sw, guidance, SilSettings())
+        res = fly_runs(flown, ref, draws, gens, sw, guidance, SilSettings())
         assert res.failure == [""] * 6, res.failure
         errors[name] = {k: np.max(np.abs(v)) for k, v in res.errors.items()}
     shaped, plain = errors["shaped"], errors["unshaped"]

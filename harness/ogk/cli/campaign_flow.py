@@ -11,11 +11,11 @@ from ogk_host.scenario_file import file_sha256, read_header
 
 from ogk.missions import registry
 from ogk.sil import dispersion_check, engine, envelope, numerics, target_summary
-from ogk.sil.family import CampaignPlan
+from ogk.sil.family import CampaignPlan, MissionFamily
 from ogk.sil.outputs import check_output_dir, check_output_file
 
 
-def campaign_plan(doc: dict[str, Any], path: str | Path) -> tuple[Any, CampaignPlan]:
+def campaign_plan(doc: dict[str, Any], path: str | Path) -> tuple[MissionFamily, CampaignPlan]:
     """The family and the plan of a campaign envelope, rebuilt from its scenario and options
     (refused when the scenario file changed since)."""
     scenario = Path(doc["scenario_path"])
@@ -26,7 +26,7 @@ def campaign_plan(doc: dict[str, Any], path: str | Path) -> tuple[Any, CampaignP
         raise OgkInputError(f"scenario {scenario} changed since the campaign (SHA-256 differs)",
                             path=path, key="scenario_sha256")
     header = read_header(scenario)
-    fam = registry.campaign_family(header)
+    fam = registry.family(header)
     plan = fam.plan(header, doc["options"])
     if plan.products != doc["products"]:
         diff = sorted(k for k in set(plan.products) | set(doc["products"])

@@ -6,7 +6,7 @@ from typing import Any
 
 
 def run_switching(args: argparse.Namespace) -> int:
-    from ogk.sil.demo_switching import format_report, run_switching_demo
+    from ogk.demos.switching import format_report, run_switching_demo
 
     demo = run_switching_demo(distance=args.distance, duration=args.duration,
                               u_max=args.u_max, step=args.step)

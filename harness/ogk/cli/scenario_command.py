@@ -1,7 +1,8 @@
 """The shape every scenario command shares: `ogk COMMAND SCENARIO [family options]`.
 
-The first parser takes the scenario (a path or a name under scenarios/); its family's adapter then
-parses the rest with the options it declares, so `ogk mc leo-geo --help` lists that family's
+The first parser takes the scenario (a path or a name under scenarios/); its family
+(ogk.sil.family.MissionFamily, found by ogk.missions.registry) then parses the rest with the options
+it declares, so `ogk mc leo-geo --help` lists that family's
 options. Bad input of any kind is an OgkInputError: one line, exit code 2 (ogk.cli.main).
 """
 from __future__ import annotations
@@ -11,9 +12,10 @@ from collections.abc import Sequence
 from typing import Any
 
 from ogk_bindings.errors import OgkInputError
-from ogk_host.scenario_file import read_header, resolve_scenario
+from ogk_host.scenario_file import ScenarioHeader, read_header, resolve_scenario
 
 from ogk.missions import registry
+from ogk.sil.family import MissionFamily
 
 
 def register_scenario_command(sub: Any, name: str, help_text: str) -> None:
@@ -55,25 +57,31 @@ def run_scenario_command(name: str, scenario: str | None, rest: Sequence[str],
         scenario = rest[i + 1]
         del rest[i:i + 2]
     header = read_header(resolve_scenario(scenario))
+    fam = registry.family(header)
     if name == "mc":
-        return _campaign(header, scenario, rest, overrides)
-    adapter = registry.command(header, name)
+        return _campaign(fam, header, scenario, rest, overrides)
+    if name == "tables" and fam.has_tables:
+        add_arguments, verb = fam.add_tables_arguments, fam.tables
+    elif name == "run" or name in fam.run_aliases:
+        add_arguments, verb = fam.add_run_arguments, fam.run
+    else:
+        have = [*(["ogk tables"] if fam.has_tables else []), "ogk run",
+                *(f"ogk {a}" for a in fam.run_aliases), "ogk mc"]
+        raise OgkInputError(f"family {header.mission!r} has no `ogk {name}` (it has: "
+                            f"{', '.join(have)})", path=header.path)
     parser = argparse.ArgumentParser(prog=f"ogk {name} {scenario}",
-                                     description=(adapter.__doc__ or "").strip().splitlines()[0])
-    adder = getattr(adapter, f"add_{name}_arguments", None)
-    if adder is not None:
-        adder(parser)
+                                     description=(verb.__doc__ or "").strip().splitlines()[0])
+    add_arguments(parser)
     args = parser.parse_args(rest)
     for key, value in (overrides or {}).items():
         setattr(args, key, value)
-    return int(getattr(adapter, name)(header, args))
+    return int(verb(header, args))
 
 
-def _campaign(header: Any, scenario: str, rest: Sequence[str],
+def _campaign(fam: MissionFamily, header: ScenarioHeader, scenario: str, rest: Sequence[str],
               overrides: dict[str, Any] | None) -> int:
     """`ogk mc SCENARIO`: the engine's options, then the family's (ogk.sil.command)."""
     from ogk.sil import command
-    fam = registry.campaign_family(header)
     args = command.parser_for(fam, f"ogk mc {scenario}", header).parse_args(rest)
     for key, value in (overrides or {}).items():
         setattr(args, key, value)

@@ -13,13 +13,13 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader
 
 from . import dispersion_check, engine, envelope, robustness, target_summary
-from .family import CampaignPlan
+from .family import CampaignPlan, MissionFamily
 from .outputs import check_output_dir, check_output_file, remove_stale
 from .pil import TARGETS
 from .runner import Watchdog
 
 
-def parser_for(fam: Any, prog: str, header: ScenarioHeader | None = None
+def parser_for(fam: MissionFamily, prog: str, header: ScenarioHeader | None = None
                ) -> argparse.ArgumentParser:
     """The parser of a family's campaign: the engine's options, then the family's."""
     p = argparse.ArgumentParser(prog=prog, description=f"Monte Carlo campaign of a {fam.name} "
@@ -29,7 +29,7 @@ def parser_for(fam: Any, prog: str, header: ScenarioHeader | None = None
     return p
 
 
-def add_engine_arguments(p: argparse.ArgumentParser, family: Any,
+def add_engine_arguments(p: argparse.ArgumentParser, family: MissionFamily,
                          header: ScenarioHeader | None = None) -> None:
     """The options every campaign has (the family adds its own after them). The number of runs
     defaults to what the scenario states, when the family reads one (`default_runs(header)`)."""
@@ -103,16 +103,15 @@ def family_options(args: argparse.Namespace) -> dict[str, Any]:
             and not (k == "target" and v == "host")}
 
 
-def check_target(fam: Any, args: argparse.Namespace) -> None:
+def check_target(fam: MissionFamily, args: argparse.Namespace) -> None:
     target = getattr(args, "target", "host")
-    if target not in getattr(fam, "targets", ("host",)):
+    if target not in fam.targets:
         raise OgkInputError(f"the {fam.name} family has no flight program for target {target} "
-                            f"(its targets: {', '.join(getattr(fam, 'targets', ('host',)))})",
-                            key="--target")
+                            f"(its targets: {', '.join(fam.targets)})", key="--target")
 
 
-def fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace) -> int:
-    """`ogk mc SCENARIO ...` for any family `fam` (its FAMILY object); with `--dask` on a Dask
+def fly(fam: MissionFamily, header: ScenarioHeader, args: argparse.Namespace) -> int:
+    """`ogk mc SCENARIO ...` for any family `fam`; with `--dask` on a Dask
     cluster (ogk.sil.dask_executor), the same campaign."""
     check_engine_arguments(args)
     check_target(fam, args)
@@ -123,8 +122,9 @@ def fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace) -> int:
         return _fly(fam, header, args, executor)
 
 
-def _fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace, executor: Any) -> int:
-    if args.runs is None and not getattr(fam, "fixed_lists", False):
+def _fly(fam: MissionFamily, header: ScenarioHeader, args: argparse.Namespace,
+         executor: Any) -> int:
+    if args.runs is None and not fam.fixed_lists:
         raise OgkInputError("required: the number of runs", key="--runs")
     remove_stale(args.json)
     plan: CampaignPlan = fam.plan(header, family_options(args))
@@ -169,12 +169,12 @@ def _fly(fam: Any, header: ScenarioHeader, args: argparse.Namespace, executor: A
     print(robustness.format_summary(doc["robustness"], plan.family, plan.mission))
     print(f"\nwrote {args.json} and {envelope.table_path(args.json)} "
           f"({len(flown.records)} runs, {flown.wall_s:.1f} s wall, {flown.workers} workers)")
-    if args.plots and hasattr(fam, "plots"):
-        if plan.target != "host":
-            print("plots: time histories of the host's flights of the same runs (the target sends "
-                  "no histories back)")
-        for path in fam.plots(flown, Path(args.plots)):
-            print(f"wrote {path}")
+    plots = fam.plots(flown, Path(args.plots)) if args.plots else []
+    if plots and plan.target != "host":
+        print("plots: time histories of the host's flights of the same runs (the target sends "
+              "no histories back)")
+    for path in plots:
+        print(f"wrote {path}")
     agree = pil is None or pil["host_vs_target"]["within_bounds"]
     if not agree:
         print("the target campaign differs from the host's beyond the stated bounds (above)")

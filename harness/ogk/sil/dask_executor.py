@@ -38,7 +38,7 @@ from numpy.typing import NDArray
 from ogk_bindings.errors import OgkInputError
 
 from .engine import JudgedChunk
-from .family import CampaignPlan, Record
+from .family import CampaignPlan, MissionFamily, Record
 from .runner import CampaignAborted, Watchdog, describe_error, split_chunks
 from .shipping import Shipment, plan_of, ship
 
@@ -82,7 +82,7 @@ class DaskExecutor:
     its own cluster of N single-threaded worker processes on 127.0.0.1)."""
 
     address: str
-    family: Any
+    family: MissionFamily
     client: Any = None
     cluster: Any = None
 

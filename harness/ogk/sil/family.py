@@ -1,14 +1,27 @@
-"""The family contract: what a mission family gives the campaign engine (docs/adding-a-mission.md).
+"""The family interface: every verb a mission family offers, on one protocol (docs/campaigns.md,
+docs/adding-a-mission.md).
 
-A family is a module under ogk.missions (found by ogk.missions.registry from the scenario's
-`mission = "..."`) that defines `FAMILY`, an object with
+A family is one class deriving from `FamilyDefaults` and implementing `MissionFamily`, whose one
+instance `FAMILY` (in ogk.missions.<family>.family) ogk.missions.registry finds from the scenario's
+`mission = "..."`. Its verbs:
 
-  name: str, laws: tuple[str, ...]          the family and the guidance laws it flies
+  name, laws, campaign_doc, targets, fixed_lists, run_aliases, has_tables
+                                            what it is, what it flies, where; `ogk run`'s old
+                                            names; whether it makes ground tables
   load(header) -> scenario                  the typed scenario (every bad key: OgkInputError)
+  default_runs(header) -> int | None        the runs the scenario states (None: --runs required)
   add_campaign_arguments(parser)            the family's own `ogk mc` options (the engine adds
                                             --runs --seed --workers --json --plots ...)
   plan(header, options) -> CampaignPlan     its ground products made or checked (provenance
                                             directory), and how to fly one run
+  report(flown) -> (text, keys)             the campaign's report and its envelope keys
+  plots(flown, dir) -> [path]               the campaign's PNGs
+  add_tables_arguments, tables(header, args)   `ogk tables SCENARIO`
+  add_run_arguments, run(header, args)         `ogk run SCENARIO`: one flight with its plots
+  flight_config(plan, dir), flight_program(plan, target), target_job(plan, program),
+  target_bounds(plan), on_target(plan, target)
+                                            the plan's flight build (its generated C), its
+                                            flight program, the plan flown by it on a target
 
 and the campaign plan says everything the engine needs and nothing of the physics:
 
@@ -34,21 +47,29 @@ and the campaign plan says everything the engine needs and nothing of the physic
   solve_failures(record) -> [class]         optional: each failed solve of the run (default: the
                                             record's `failed_solves` count, unclassified)
 
-A family that flies on the target lists it in `targets` (("host", "m7")) and reads
-options["target"] (absent: "host").
+A family that flies on a target lists it in `targets` (("host", "m7", "sparc")), and its plan
+reads options["target"] (absent: "host") and calls `on_target`.
 
 `options` is JSON: everything a run depends on besides its id and seed. It is the run log's key,
 it is written into the campaign envelope, and `ogk replay` rebuilds the plan from it.
 """
 from __future__ import annotations
 
+import abc
+import argparse
 import dataclasses
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import NDArray
+from ogk_bindings.errors import OgkInputError
+from ogk_host.scenario_file import ScenarioHeader
+
+if TYPE_CHECKING:
+    from .engine import Flown
+    from .pil import FlightProgram
 
 Record = dict[str, Any]
 ChunkFlight = Callable[[NDArray[np.int64], NDArray[np.uint64]], Sequence[Record]]
@@ -106,17 +127,169 @@ class CampaignPlan:
                 "options": self.options, "products": self.products, "seed": int(seed)}
 
 
+@runtime_checkable
 class MissionFamily(Protocol):
-    """What every family's `FAMILY` object provides (module doc)."""
+    """Every verb of a mission family: the one interface through which the CLI (`ogk tables`,
+    `ogk run`, `ogk mc`, `ogk replay`, `ogk report`) and the engine reach a family. A family is one
+    class (`FamilyDefaults` gives the optional verbs their defaults) and one line of
+    ogk.missions.registry. mypy checks every family against it (tests/typecheck/families.py, `make
+    test-imports`), tests/python/test_family_protocol.py its signatures and capabilities."""
 
-    name: str
-    laws: tuple[str, ...]
+    # what it is and what it has (read-only: a family states them as class attributes)
+    @property
+    def name(self) -> str:
+        """`mission = "..."` of the family's scenarios."""
 
-    def load(self, header: Any) -> Any: ...
+    @property
+    def laws(self) -> tuple[str, ...]:
+        """The guidance laws it flies ([guidance] law)."""
 
-    def add_campaign_arguments(self, parser: Any) -> None: ...
+    @property
+    def campaign_doc(self) -> str:
+        """One sentence for `ogk mc SCENARIO --help`: what a run is."""
 
-    def plan(self, header: Any, options: Mapping[str, Any]) -> CampaignPlan: ...
+    @property
+    def targets(self) -> tuple[str, ...]:
+        """Where its flight software runs (ogk.sil.pil.TARGETS)."""
+
+    @property
+    def fixed_lists(self) -> bool:
+        """A campaign may be a fixed list (then --runs may be omitted)."""
+
+    @property
+    def run_aliases(self) -> tuple[str, ...]:
+        """Older spellings of `ogk run` for this family (`ogk nmpc`)."""
+
+    @property
+    def has_tables(self) -> bool:
+        """It makes ground tables (`ogk tables`)."""
+
+    # its verbs
+
+    def load(self, header: ScenarioHeader) -> Any:
+        """The typed scenario (every bad key: one OgkInputError line)."""
+
+    def default_runs(self, header: ScenarioHeader) -> int | None:
+        """The number of runs the scenario states, or None (then --runs is required)."""
+
+    def add_campaign_arguments(self, parser: argparse.ArgumentParser) -> None:
+        """The family's own `ogk mc` options (the engine adds its own first)."""
+
+    def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
+        """Ground products made or checked; everything needed to fly one run (on
+        options["target"] when it is not the host)."""
+
+    def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
+        """The campaign's report and the JSON keys the family adds to the envelope."""
+
+    def plots(self, flown: Flown, out_dir: Path) -> list[Path]:
+        """The campaign's PNGs (none by default)."""
+
+    def add_tables_arguments(self, parser: argparse.ArgumentParser) -> None:
+        """The options of `ogk tables SCENARIO`."""
+
+    def tables(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
+        """`ogk tables SCENARIO`: the ground products into the scenario's provenance directory."""
+
+    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None:
+        """The options of `ogk run SCENARIO`."""
+
+    def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
+        """`ogk run SCENARIO`: one flight, case or transfer with its plots; the exit code."""
+
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        """The generated C the plan's flight build compiles (a table image where the family has
+        one, the const configuration headers) written into out_dir/c; the files written."""
+
+    def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
+        """The plan's flight program for target, built on its flight_config."""
+
+    def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
+        """The plan's chunk flight with the flight software on `program` (ogk.sil.pil)."""
+
+    def target_bounds(self, plan: CampaignPlan) -> tuple[dict[str, float], str]:
+        """The largest allowed |host - target| per quantity on the same draws, and why they differ
+        at all (docs/pil.md, "Host vs target")."""
+
+    def on_target(self, plan: CampaignPlan, target: str) -> None:
+        """The plan flown by its flight program on `target` (flight_program, target_job)."""
+
+
+class FamilyDefaults(abc.ABC):
+    """MissionFamily as a base class: the verbs every family has are abstract (a family class that
+    lacks one cannot be made), the optional ones have their defaults, which a family overrides
+    when it has the capability. A verb a family does not have says so in one OgkInputError line."""
+
+    name: str = ""
+    laws: tuple[str, ...] = ()
+    campaign_doc: str = ""
+    targets: tuple[str, ...] = ("host",)
+    fixed_lists: bool = False
+    run_aliases: tuple[str, ...] = ()
+    has_tables: bool = False
+    #: a target campaign's watchdog allowance per run [s]
+    target_watchdog_per_run_s: float = 60.0
+
+    @abc.abstractmethod
+    def load(self, header: ScenarioHeader) -> Any: ...
+
+    @abc.abstractmethod
+    def add_campaign_arguments(self, parser: argparse.ArgumentParser) -> None: ...
+
+    @abc.abstractmethod
+    def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan: ...
+
+    @abc.abstractmethod
+    def report(self, flown: Flown) -> tuple[str, dict[str, Any]]: ...
+
+    @abc.abstractmethod
+    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None: ...
+
+    @abc.abstractmethod
+    def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int: ...
+
+    def default_runs(self, header: ScenarioHeader) -> int | None:
+        return None
+
+    def plots(self, flown: Flown, out_dir: Path) -> list[Path]:
+        return []
+
+    def add_tables_arguments(self, parser: argparse.ArgumentParser) -> None:
+        return None
+
+    def tables(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
+        """`ogk tables SCENARIO`: none (has_tables is False)."""
+        raise OgkInputError(f"family {self.name!r} has no `ogk tables` (it makes no ground tables)",
+                            path=header.path)
+
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        raise OgkInputError(f"the {self.name} family has no flight build", key="--target")
+
+    def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
+        raise OgkInputError(f"the {self.name} family has no flight program for target {target}",
+                            key="--target")
+
+    def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
+        raise OgkInputError(f"the {self.name} family flies no target job", key="--target")
+
+    def target_bounds(self, plan: CampaignPlan) -> tuple[dict[str, float], str]:
+        return {}, ""
+
+    def on_target(self, plan: CampaignPlan, target: str) -> None:
+        """The plan's flight replaced by the target job on the flight program; the plan then says
+        so (target, options, the program's SHA-256 among the products, bounds, watchdog)."""
+        from .pil import target_why
+        from .pil_build import file_sha256
+
+        program = self.flight_program(plan, target)
+        plan.fly = self.target_job(plan, program)
+        plan.target = target
+        plan.options = {**plan.options, "target": target}     # `ogk replay` flies it there
+        plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
+        bounds, why = self.target_bounds(plan)
+        plan.target_bounds = bounds
+        plan.target_why = target_why(target, why)
+        plan.watchdog_per_run_s = self.target_watchdog_per_run_s
 
 
 def per_run(fly_one: Callable[[int, int], Record]) -> ChunkFlight:

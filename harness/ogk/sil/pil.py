@@ -7,18 +7,25 @@ by QEMU's insn_count plugin and the stack of every call measured on the target (
   * `exchange(kind, values)` at every step (binary64 values in and out; or `send` to several
     sessions, then `receive` from each, so that their QEMUs compute at once),
   * `end_run(run_id)` after each run (the target answers with its stack per entry point),
-  * `close()` at the end of the chunk (`fly_sessions` does the starting and ending for a family): the plugin's call log (one line `NAME COUNT` per returned
+  * `close()` at the end of the chunk: the plugin's call log (one line `NAME COUNT` per returned
     call, cut into steps and runs by the program's markers) becomes, per run and entry point, the
     record keys of `entry_keys`:
       pil.<entry>.calls, .insn_median, .insn_max, .insn_max_step (the step of the maximum, from 0),
       .stack_bytes (deepest stack of the run's calls below the caller's stack pointer).
 The engine summarises those keys over the campaign (ogk.sil.target_summary).
+
+The session loop of a family's target job is written once, here: `fly_runs_on_target` flies a chunk
+run by run on one or more sessions (each session takes the chunk's next run when it is free),
+ends each run and hands back the results with their pil.* keys; `fly_sessions` is its lower half
+(sessions started, a family's own loop, sessions ended), for a family that flies its runs in lock
+step over several sessions (orbit injection: a batch of runs under one vectorised truth).
 """
 from __future__ import annotations
 
 import dataclasses
 import subprocess
 import tempfile
+import threading
 from collections.abc import Callable, Sequence
 from functools import lru_cache
 from pathlib import Path
@@ -211,3 +218,51 @@ def fly_sessions(program: FlightProgram, n: int, fly: Callable[[list[PilSession]
             s.kill()
         raise
     return out, keys
+
+
+def fly_runs_on_target(program: FlightProgram, run_ids: Sequence[int], run_seeds: Sequence[int],
+                       fly_run: Callable[[PilSession, int, int], R], sessions: int = 1
+                       ) -> tuple[list[R], dict[int, dict[str, Any]]]:
+    """A chunk's runs on `sessions` QEMUs of `program`: `fly_run(session, run_id, run_seed)` flies
+    one run on a free session (with one session, in run order in this thread; with more, each in
+    its own thread taking the chunk's next run), then the session ends the run. Returns (the
+    results in run order, run id -> the run's pil.* record keys). An error in any run kills every
+    session's QEMU and propagates."""
+    from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
+
+    ids = [int(i) for i in run_ids]
+    seeds = [int(s) for s in run_seeds]
+    n = max(1, min(int(sessions), len(ids)))
+    results: list[Any] = [None] * len(ids)
+
+    def fly_one(s: PilSession, k: int) -> None:
+        results[k] = fly_run(s, ids[k], seeds[k])
+        s.end_run(ids[k])
+
+    def in_order(ss: list[PilSession]) -> None:
+        for k in range(len(ids)):
+            fly_one(ss[0], k)
+
+    def in_threads(ss: list[PilSession]) -> None:
+        queue = iter(range(len(ids)))
+        lock = threading.Lock()
+
+        def take(s: PilSession) -> None:
+            while True:
+                with lock:
+                    k = next(queue, None)
+                if k is None:
+                    return
+                fly_one(s, k)
+
+        with ThreadPoolExecutor(max_workers=n, thread_name_prefix="ogk-pil") as pool:
+            futures = [pool.submit(take, s) for s in ss]
+            done, _ = wait(futures, return_when=FIRST_EXCEPTION)
+            if any(f.exception() is not None for f in done):
+                for s in ss:            # the other threads' links fail at once
+                    s.kill()
+            for f in futures:
+                f.result()
+
+    _, keys = fly_sessions(program, n, in_order if n == 1 else in_threads)
+    return results, keys

@@ -1,4 +1,5 @@
-"""PNG figures every mission's campaign can draw (matplotlib, Agg backend): final-error dispersions."""
+"""PNG figures of every family (matplotlib, Agg backend): the set-up (`pyplot`, `save`) and the
+final-error dispersion figure every mission's campaign can draw."""
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
@@ -10,16 +11,17 @@ from numpy.typing import NDArray
 
 
 def pyplot() -> Any:
+    """matplotlib.pyplot on the Agg backend (PNG files, no display): every family's figures."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     return plt
 
 
-def save(fig: Any, path: Path) -> Path:
-    """Writes and closes the figure."""
+def save(fig: Any, path: Path, dpi: int = 110, tight: bool = False) -> Path:
+    """Writes and closes the figure (`tight`: the bounding box cut to the drawing)."""
     plt = pyplot()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=dpi, **({"bbox_inches": "tight"} if tight else {}))
     plt.close(fig)
     return path
 

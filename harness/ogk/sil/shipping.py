@@ -33,7 +33,7 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import read_header
 
 from . import numerics
-from .family import CampaignPlan
+from .family import CampaignPlan, MissionFamily
 from .pil_build import ROOT
 
 #: the most bytes of ground products one shipment may carry (they go to every worker once)
@@ -59,7 +59,7 @@ class ShippedFile:
 class Shipment:
     """A campaign plan as data (module doc)."""
 
-    family: Any
+    family: MissionFamily
     scenario: ShippedFile
     options: dict[str, Any]
     products: dict[str, Any]
@@ -70,7 +70,7 @@ class Shipment:
     @property
     def key(self) -> str:
         """SHA-256 of what the plan depends on: the worker's plan cache key."""
-        doc = {"family": getattr(self.family, "name", ""), "scenario": self.scenario.sha256,
+        doc = {"family": self.family.name, "scenario": self.scenario.sha256,
                "options": self.options, "products": self.products,
                "files": sorted((f.path, f.sha256) for f in self.files)}
         return hashlib.sha256(json.dumps(doc, sort_keys=True).encode()).hexdigest()
@@ -113,7 +113,7 @@ def _directory_files(directory: Path) -> list[Path]:
                   and not any(part.startswith(".") for part in p.relative_to(directory).parts))
 
 
-def ship(plan: CampaignPlan, family: Any) -> Shipment:
+def ship(plan: CampaignPlan, family: MissionFamily) -> Shipment:
     """The shipment of `plan` (module doc). Raises OgkInputError when the products are too big."""
     files: dict[str, ShippedFile] = {}
     for directory in _product_paths({**plan.options, **plan.products}):

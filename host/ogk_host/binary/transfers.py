@@ -6,8 +6,8 @@ initial guess (ogk_host.binary.guess), convergence by the kernel (ogk_host.binar
     [transfers.NAME] kind = "single-burn"      SBIG (eqs. 23-31) from_orbit -> to_orbit, StoS (eq. 65)
     [transfers.NAME] kind = "ump-backward"     UbMPIG (eqs. 53-60) circle -> to_orbit, burn-coast-burn
     [transfers.NAME] kind = "bmp"              BMPIG (eqs. 36-43) from_orbit -> to_orbit via x = 1 - mu, 3 burns
-    [monte_carlo]                  the convergence campaign of Table 3 (ogk.missions.binary.campaign): the
-                                   transfer flown, runs per level, the corrector's tol and max_iter there;
+    [monte_carlo]                  the convergence campaign of Table 3 (ogk.missions.binary
+                                   .convergence_run): the transfer flown, runs per level, the corrector's tol and max_iter there;
                                    what it draws is [dispersions] (levels_percent, sigma_fraction), the
                                    paper's column [paper_results.table3]
 """

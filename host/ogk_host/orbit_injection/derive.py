@@ -56,6 +56,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import sys
 from typing import Any
 
 import numpy as np
@@ -297,3 +298,11 @@ def envelope_warnings(scn: OrbitInjectionScenario, t_f_star_s: float) -> list[tu
                         f"m/s sigma for this burn; {VELOCITY_BEYOND_MEASURED})"))
     return out
 
+
+def warn_outside_envelope(scn: OrbitInjectionScenario, t_f_star_s: float) -> int:
+    """One line on stderr per setting outside the measured envelope (envelope_warnings),
+    FILE: KEY: warning: REASON; returns how many (`ogk tables` and `ogk mc` print them)."""
+    found = envelope_warnings(scn, t_f_star_s)
+    for key, reason in found:
+        print(f"{scn.path}: {key}: warning: {reason}", file=sys.stderr)
+    return len(found)

@@ -1,4 +1,4 @@
-"""The binary family's dispersions (Xiong & Wang, Table 3; campaign.py's module doc): run i flies
+"""The binary family's dispersions (Xiong & Wang, Table 3; convergence_run.py's module doc): run i flies
 level p = levels_percent[i mod L], and every BLT parameter and the departure is perturbed by
 p xi, xi ~ N(0, sigma_fraction^2) clipped to [-1, 1]; and how a campaign's records show them
 (ogk.sil.dispersion_check).
@@ -26,8 +26,8 @@ LEVEL_KEY = "disp.levels_percent"
 
 
 class Nominal(Protocol):
-    """What the dispersions read of campaign.Nominal (a protocol, so that this module does not
-    import campaign.py, which imports it)."""
+    """What the dispersions read of convergence_run.Nominal (a protocol, so that this module does not
+    import convergence_run.py, which imports it)."""
 
     layout: Any           #: the chain's layout: .kinds, "burn" or a coast per segment
     transfer: Any         #: the nominal Transfer

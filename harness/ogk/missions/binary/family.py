@@ -1,7 +1,9 @@
-"""The binary-asteroid family's campaign contract (ogk.sil.family): the convergence Monte Carlo of
-Table 3 (Xiong & Wang, sec. V.A.2). A run is the scenario's [monte_carlo] transfer perturbed at one
-level of its [dispersions] (run i: level i mod L) and corrected by each corrector on the same draw
-(campaign.py).
+"""The binary-asteroid family (ogk.sil.family.MissionFamily): BLT transfers corrected by NRPC
+(Xiong & Wang). `ogk run` flies one transfer (one_transfer.py; `ogk blt` is its older spelling);
+`ogk mc` is the convergence Monte Carlo of Table 3 (sec. V.A.2): a run is the scenario's
+[monte_carlo] transfer perturbed at one level of its [dispersions] (run i: level i mod L) and
+corrected by each corrector on the same draw (convergence_run.py); on a target every corrector call
+is the flight program's (pil.py). The family has no ground tables.
 
 Acceptance (`scenario.acceptance`): a run fails when a corrector claims convergence that the DOP853
 re-propagation does not confirm within [acceptance] error_tolerance (default: the [monte_carlo] tol
@@ -27,11 +29,12 @@ from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
 from ogk.sil.dispersion_check import scenario_table
 from ogk.sil.engine import Flown
-from ogk.sil.family import CampaignPlan, Record, per_run
+from ogk.sil.family import CampaignPlan, ChunkFlight, FamilyDefaults, Record, per_run
+from ogk.sil.pil import FlightProgram
 from ogk.sil.progress import Working
 from ogk.sil.seeds import run_generator
 
-from . import campaign
+from . import convergence_run
 from .dispersions import applied_record, declared
 
 ALL = ("nrpc", "lm", "hybrid")
@@ -45,22 +48,26 @@ class _Base:
     correctors: tuple[str, ...]
     levels_percent: tuple[float, ...]
     paper: dict[float, float]         #: level [%] -> the paper's converged % (empty: no paper column)
+    nominal: convergence_run.Nominal  #: what every run perturbs and corrects
+    sigma_fraction: float             #: a draw's sigma as a fraction of its level
 
 
-def draw_record(nominal: campaign.Nominal, levels: tuple[float, ...], sigma: float, run_id: int,
+def draw_record(nominal: convergence_run.Nominal, levels: tuple[float, ...], sigma: float, run_id: int,
                 run_seed: int) -> Record:
     """Run `run_id`'s disp.* keys without correcting it: its level and its perturbed problem, drawn
-    as fly_one draws them (campaign.perturbed; the node's re-prediction changes no disp.* key)."""
+    as fly_one draws them (convergence_run.perturbed; the node's re-prediction changes no disp.* key)."""
     level = levels[run_id % len(levels)] / 100.0
-    guess, _ = campaign.perturbed(nominal, level, sigma, run_generator(run_seed))
+    guess, _ = convergence_run.perturbed(nominal, level, sigma, run_generator(run_seed))
     return applied_record(nominal, level, guess)
 
 
-class BinaryFamily:
+class BinaryFamily(FamilyDefaults):
     name = "binary-asteroid"
     laws = LAWS
     #: m7 / sparc: the corrector calls on the emulated Cortex-M7 / SPARC V8 (pil.py)
     targets = ("host", "m7", "sparc")
+    run_aliases = ("blt",)            #: `ogk blt`: the older `ogk run`
+    target_watchdog_per_run_s = 120.0
 
     def default_runs(self, header: ScenarioHeader) -> int | None:
         """The scenario's [monte_carlo] runs per level times its [dispersions] levels (Table 3: 600 x 6)."""
@@ -76,12 +83,12 @@ class BinaryFamily:
     def load(self, header: ScenarioHeader) -> BinaryScenario:
         return load_scenario(header.path)
 
-    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
-        p.add_argument("--perturbation", type=float, nargs="+", default=None, metavar="PCT",
+    def add_campaign_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--perturbation", type=float, nargs="+", default=None, metavar="PCT",
                        help="perturbation levels [%%] (default: the scenario's [dispersions] levels)")
-        p.add_argument("--corrector", choices=("all", *ALL), default="all",
+        parser.add_argument("--corrector", choices=("all", *ALL), default="all",
                        help="which corrector(s) to fly on the same draws (default all three)")
-        p.add_argument("--sigma-fraction", type=float, default=None, metavar="F",
+        parser.add_argument("--sigma-fraction", type=float, default=None, metavar="F",
                        help="sigma of a draw as a fraction of the level (default: the scenario's)")
 
     def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
@@ -111,18 +118,18 @@ class BinaryFamily:
                                 key=f"transfers.{spec.name}")
         assert spec.circle_radius_m is not None
         accept_tol = scenario.acceptance.tolerance(spec_mc.tol)
-        nominal = campaign.Nominal(
+        nominal = convergence_run.Nominal(
             model=d.model, layout=d.guess.layout, transfer=d.transfer,
             circle_radius=spec.circle_radius_m / scenario.units.length_m, tol=spec_mc.tol,
             max_iter=spec_mc.max_iter, jacobian=T.JACOBIANS[solver.jacobian],
             fields=dict(fd_step=solver.fd_step, ls_trials=solver.ls_trials),
             error_tolerance=accept_tol)
-        solvers = campaign.kernels(nominal, correctors)
+        solvers = convergence_run.kernels(nominal, correctors)
         n_levels = len(levels)
 
         def fly_one(run_id: int, run_seed: int) -> Record:
             level = levels[run_id % n_levels]
-            return campaign.fly_run(nominal, solvers, level / 100.0, sigma, run_generator(run_seed))
+            return convergence_run.fly_run(nominal, solvers, level / 100.0, sigma, run_generator(run_seed))
 
         tol = spec_mc.tol
 
@@ -155,7 +162,7 @@ class BinaryFamily:
         table3 = (scenario.paper_results or {}).get("table3") or {}
         paper = {float(lv): float(pc) for lv, pc in zip(table3.get("levels_percent", ()),
                                                           table3.get("converged_percent", ()))}
-        base = _Base(scenario, spec.name, spec.thrust_n, correctors, levels, paper)
+        base = _Base(scenario, spec.name, spec.thrust_n, correctors, levels, paper, nominal, sigma)
         plan = CampaignPlan(
             family=self.name, law=header.law, mission=scenario.name, scenario_path=Path(header.path),
             scenario_sha256=file_sha256(header.path),
@@ -174,35 +181,58 @@ class BinaryFamily:
             draw=per_run(lambda run_id, run_seed: draw_record(nominal, levels, sigma, run_id,
                                                               run_seed)))
         if options.get("target", "host") != "host":
-            self._on_target(plan, options, nominal, levels, sigma, Path(header.path))
+            self.on_target(plan, str(options["target"]))
         return plan
 
-    @staticmethod
-    def _on_target(plan: CampaignPlan, options: Mapping[str, Any], nominal: campaign.Nominal,
-                   levels: tuple[float, ...], sigma: float, scenario: Path) -> None:
-        """The plan with every corrector call made by the scenario's flight program on the emulated
-        Cortex-M7 (pil.py); the draws, the DOP853 checks and the judging stay on the host."""
-        from ogk.sil.pil import target_why
-        from ogk.sil.pil_build import file_sha256
+    # ------------------------------------------------------------------ ogk run
+    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None:
+        from .one_transfer import add_run_arguments
+        add_run_arguments(parser)
 
+    def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
+        """`ogk run SCENARIO --transfer NAME`: one BLT transfer, checked by DOP853."""
+        from .one_transfer import run
+        return run(header, args, lambda: self.scenario_program(header))
+
+    def scenario_program(self, header: ScenarioHeader) -> FlightProgram:
+        """The scenario's flight program: the one its `ogk mc --target m7` flies (built for the
+        corrector configurations of its [monte_carlo] nominal; a design's solves uplink their own)."""
+        return self.flight_program(self.plan(header, {}), "m7")
+
+    # ------------------------------------------------------------------ on a target
+    # every corrector call made by the scenario's flight program (pil.py); the draws, the DOP853
+    # checks and the judging stay on the host
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        """The three correctors' configurations of the [monte_carlo] nominal (the program's slots)."""
+        from .flight_config import slot_configs, write_flight_config
+        base: _Base = plan.base
+        return [write_flight_config(out_dir / "c", plan.scenario_path, slot_configs(base.nominal),
+                                    base.transfer)]
+
+    def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
         from . import pil
         base: _Base = plan.base
-        program = pil.flight_program(nominal, scenario, base.transfer, str(options["target"]))
-        plan.fly = pil.TargetJob(nominal, base.correctors, levels, sigma, program)
-        plan.target = str(options["target"])
-        plan.options = {**plan.options, "target": plan.target}
-        plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
-        plan.target_bounds = {k: v for k, v in pil.BOUNDS.items()
-                              if k.split(".")[0] in base.correctors}
-        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
-        plan.watchdog_per_run_s = 120.0
+        return pil.flight_program(base.nominal, plan.scenario_path,
+                                  lambda out: self.flight_config(plan, out), target)
+
+    def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
+        from . import pil
+        base: _Base = plan.base
+        return pil.TargetJob(base.nominal, base.correctors, base.levels_percent,
+                             base.sigma_fraction, program)
+
+    def target_bounds(self, plan: CampaignPlan) -> tuple[dict[str, float], str]:
+        from . import pil
+        base: _Base = plan.base
+        return ({k: v for k, v in pil.BOUNDS.items() if k.split(".")[0] in base.correctors},
+                pil.BOUNDS_WHY)
 
     # ------------------------------------------------------------------ reports
     def _levels(self, base: _Base, records: Sequence[Record]) -> list[dict[str, Any]]:
         out = []
         for level in base.levels_percent:
             recs = [r for r in records if r["level_percent"] == level]
-            summary = {c: campaign.summarise(list(recs), c) for c in base.correctors}
+            summary = {c: convergence_run.summarise(list(recs), c) for c in base.correctors}
             out.append(dict(level_percent=level, paper_converged_percent=base.paper.get(level),
                             runs=len(recs), summary=summary,
                             converged_pct={c: summary[c]["converged_pct"] for c in base.correctors}))

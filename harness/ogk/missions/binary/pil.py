@@ -4,7 +4,7 @@ every corrector call (ogk_blt_solve: NRPC, LM or hybrid) the host's campaign wou
 the same inputs; the host keeps the nominal design, the dispersions, the DOP853 checks and the judging.
 
   * `ogk mc SCENARIO --target m7` (family.py `_on_target`): TargetJob flies the chunk's runs with
-    campaign.fly_run on TargetCorrector contexts (one exchange per corrector call), configured from the
+    convergence_run.fly_run on TargetCorrector contexts (one exchange per corrector call), configured from the
     generated flight configuration (flight_config.py).
   * `corrections_on_target(session)`: every corrector call of the ground's design (guess stage,
     continuations) made on the target, each solve's configuration uplinked first (the continuations
@@ -16,7 +16,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import hashlib
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -26,12 +26,12 @@ from ogk_bindings._ffi import ffi
 from ogk_bindings.blt import BltConfig, BltReport, Transfer, _report
 from ogk_bindings.kernel import _check, status_name
 
-from ogk.sil.pil import FlightProgram, PilSession, fly_sessions
+from ogk.sil.pil import FlightProgram, PilSession, fly_runs_on_target
 from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
-from . import campaign
-from .flight_config import SLOTS, slot_configs, write_flight_config
+from . import convergence_run
+from .flight_config import SLOTS, slot_configs
 
 BLT_INIT, BLT_LOAD, BLT_SOLVE = 32, 33, 34      #: frame types of blt_pil.c
 #: the entry points of the program, in its stack-slot order (blt_flight.h)
@@ -109,19 +109,20 @@ TRANSFER_N = len(flatten(ffi.new("ogk_blt_transfer_t *")))
 
 # ------------------------------------------------------------------------------------------ the program
 
-def flight_program(nominal: campaign.Nominal, scenario_path: Path, transfer: str,
-                   target: str = "m7") -> FlightProgram:
+def flight_program(nominal: convergence_run.Nominal, scenario_path: Path,
+                   flight_config: Callable[[Path], object], target: str = "m7") -> FlightProgram:
     """The scenario's flight program for the corrector configurations of its Monte Carlo nominal
-    (a build per distinct configuration set: the key is the SHA-256 of their values)."""
+    (a build per distinct configuration set: the key is the SHA-256 of their values), its
+    generated C written by `flight_config(DIR)` into DIR/c (the family's flight_config)."""
     configs = slot_configs(nominal)
     key = hashlib.sha256(np.array([v for c in configs for v in flatten(c.to_c())]).tobytes())
     out = PIL_BUILD / "binary" / f"{Path(scenario_path).stem}-{key.hexdigest()[:12]}"
-    return FlightProgram(build_program("blt", out, lambda c_dir: write_flight_config(
-        c_dir, Path(scenario_path), configs, transfer), target), ENTRY_POINTS, target=target)
+    return FlightProgram(build_program("blt", out, lambda c_dir: flight_config(c_dir.parent),
+                                       target), ENTRY_POINTS, target=target)
 
 
 class TargetCorrector:
-    """campaign.fly_run's corrector (the `solve` of ogk_bindings.blt.Blt) on a slot of the program:
+    """convergence_run.fly_run's corrector (the `solve` of ogk_bindings.blt.Blt) on a slot of the program:
     one BLT_SOLVE exchange per call."""
 
     def __init__(self, session: PilSession, slot: int, n_segments: int, n_nodes: int) -> None:
@@ -158,10 +159,10 @@ def configure(session: PilSession, slot: int, cfg: BltConfig | None = None) -> N
 @dataclasses.dataclass(frozen=True)
 class TargetJob:
     """The chunk flight of `ogk mc --target m7`: one QEMU per chunk; each run re-initialises the
-    contexts from the generated configuration (BLT_INIT), then campaign.fly_run with the host's draw
+    contexts from the generated configuration (BLT_INIT), then convergence_run.fly_run with the host's draw
     (the same run stream) makes its corrector calls on them."""
 
-    nominal: campaign.Nominal
+    nominal: convergence_run.Nominal
     correctors: tuple[str, ...]
     levels: tuple[float, ...]                 #: [%]
     sigma: float
@@ -173,21 +174,16 @@ class TargetJob:
         n_seg = int(self.nominal.transfer.segments.shape[0])
         n_nodes = len(self.nominal.layout.free_nodes)
 
-        def fly_all(sessions: list[PilSession]) -> list[dict[str, Any]]:
-            session = sessions[0]
-            records: list[dict[str, Any]] = []
+        def fly_on_session(session: PilSession, run_id: int, run_seed: int) -> dict[str, Any]:
             solvers = {name: TargetCorrector(session, SLOTS.index(name), n_seg, n_nodes)
                        for name in self.correctors}
-            for rid, seed in zip(run_ids, run_seeds):
-                for name in self.correctors:      # each run: a fresh init of its contexts
-                    configure(session, SLOTS.index(name))
-                level = self.levels[int(rid) % len(self.levels)]
-                records.append(campaign.fly_run(self.nominal, solvers, level / 100.0, self.sigma,
-                                                run_generator(int(seed))))
-                session.end_run(int(rid))
-            return records
+            for name in self.correctors:      # each run: a fresh init of its contexts
+                configure(session, SLOTS.index(name))
+            level = self.levels[run_id % len(self.levels)]
+            return convergence_run.fly_run(self.nominal, solvers, level / 100.0, self.sigma,
+                                           run_generator(run_seed))
 
-        records, keys = fly_sessions(self.program, 1, fly_all)
+        records, keys = fly_runs_on_target(self.program, run_ids, run_seeds, fly_on_session)
         for rid, rec in zip(run_ids, records):
             # (timing.<corrector>.cpu_ms stays: here the host's CPU during the exchange; the
             # target's cost is pil.ogk_blt_solve.insn_*)

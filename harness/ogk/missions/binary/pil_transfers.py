@@ -41,10 +41,8 @@ def _host_solves() -> tuple[Any, list[dict[str, Any]]]:
 
 
 def scenario_program(header: Any) -> FlightProgram:
-    """The scenario's flight program (the one its `ogk mc --target m7` flies: built for the corrector
-    configurations of its [monte_carlo] nominal; the design's solves uplink their own)."""
-    plan = FAMILY.plan(header, {"target": "m7"})
-    return plan.fly.program                                     # type: ignore[attr-defined,no-any-return]
+    """The scenario's flight program (BinaryFamily.scenario_program)."""
+    return FAMILY.scenario_program(header)
 
 
 def transfers_on_target(scenario_path: Path, names: list[str] | None = None) -> dict[str, Any]:

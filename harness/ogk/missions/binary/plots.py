@@ -18,14 +18,9 @@ import numpy as np
 
 from ogk_host.binary.dynamics import Model, jacobi
 
+from ogk.sil.plots import pyplot, save
+
 from .trajectory import Samples
-
-
-def _plt() -> Any:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
 
 
 #: Margin around the transfer, as a fraction of its larger extent in the panel.
@@ -59,7 +54,7 @@ def zoom_limits(points: np.ndarray, centres: np.ndarray, radii: np.ndarray,
 
 def transfer_figures(name: str, model: Model, samples: Samples, orbits: list[np.ndarray], lu_m: float,
                      tu_s: float, out_dir: Path, title: str) -> list[Path]:
-    plt = _plt()
+    plt = pyplot()
     out_dir.mkdir(parents=True, exist_ok=True)
     km = lu_m / 1e3
     fig, axes = plt.subplots(1, 2, figsize=(12, 5.5))
@@ -99,8 +94,7 @@ def transfer_figures(name: str, model: Model, samples: Samples, orbits: list[np.
     axes[1].legend(fontsize=7, loc="upper center", ncol=3, bbox_to_anchor=(0.5, -0.32))   # below the panel: no data hidden
     fig.suptitle(title)
     p1 = out_dir / f"{name}_synodic.png"
-    fig.savefig(p1, dpi=110)
-    plt.close(fig)
+    save(fig, p1)
 
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
     hours = samples.time * tu_s / 3600.0
@@ -115,13 +109,12 @@ def transfer_figures(name: str, model: Model, samples: Samples, orbits: list[np.
     a2.grid(alpha=0.3)
     fig.suptitle(title)
     p2 = out_dir / f"{name}_history.png"
-    fig.savefig(p2, dpi=110)
-    plt.close(fig)
+    save(fig, p2)
     return [p1, p2]
 
 
 def mc_figure(doc: dict[str, Any], out_dir: Path) -> Path:
-    plt = _plt()
+    plt = pyplot()
     out_dir.mkdir(parents=True, exist_ok=True)
     levels = [lv["level_percent"] for lv in doc["levels"]]
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 4.8))
@@ -162,6 +155,5 @@ def mc_figure(doc: dict[str, Any], out_dir: Path) -> Path:
             if per_level and min(per_level) != max(per_level) else f"{doc['runs_per_level']} runs per level")
     fig.suptitle(f"{doc['scenario']}: {doc['transfer']}, {runs}, seed {doc['seed']}")
     p = out_dir / "mc_convergence.png"
-    fig.savefig(p, dpi=110)
-    plt.close(fig)
+    save(fig, p)
     return p

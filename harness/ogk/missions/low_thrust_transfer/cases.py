@@ -212,7 +212,7 @@ def paper_cases(setup: MpspSetup) -> list[Case]:
     return cases
 
 
-def run_case(setup: MpspSetup, case: Case) -> tuple[MpspResult, float]:
+def fly_run(setup: MpspSetup, case: Case) -> tuple[MpspResult, float]:
     """The kernel's solve on one case and its CPU time (time.process_time around the solve only)."""
     start = time.process_time()
     res = setup.guidance.solve(case.x0, case.thrust_scale, case.target)

@@ -1,5 +1,8 @@
-"""The low-thrust transfer family's campaign contract (ogk.sil.family): the kernel's MPSP re-planned
-on perturbed problems (Wang & Topputo 2020, sec. 4).
+"""The low-thrust transfer family (ogk.sil.family.MissionFamily): the kernel's MPSP re-planned on
+perturbed problems (Wang & Topputo 2020, sec. 4). `ogk tables` makes the fuel-optimal nominal and
+the flight configuration (ground_tables.py), `ogk run` flies one case or the paper's list
+(one_case.py; `ogk cases` is its older spelling), `ogk mc` the campaign below; on a target the
+solves are the flight program's (pil.py).
 
 Two campaigns:
   --cases dispersed (default)  run i perturbs one thing, kind i mod 3 (initial state, target,
@@ -20,9 +23,10 @@ tol_position_km, tol_velocity_km_s).
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import hashlib
 import json
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -33,12 +37,14 @@ from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
 from ogk.sil.dispersion_check import scenario_table
 from ogk.sil.engine import Flown
-from ogk.sil.family import CampaignPlan, Record, per_run
+from ogk.sil.family import CampaignPlan, ChunkFlight, FamilyDefaults, Record, per_run
+from ogk.sil.pil import FlightProgram
 from ogk.sil.seeds import run_generator
 
-from .cases import KINDS, MpspSetup, Case, build_setup, initial_case, paper_cases, run_case
+from .cases import KINDS, MpspSetup, Case, build_setup, initial_case, paper_cases, fly_run
 from .cases import terminal_case, thrust_case
 from .dispersions import applied_record, declared
+from .pil import SOLVE_TIMEOUT_S
 from .report import CaseRecord, header, make_record, paper_rows, table_line
 
 RESULTS = ("converged", "newton_iterations", "outer_steps", "dr_f_km", "dv_f_kmps", "lambda_mf",
@@ -58,15 +64,23 @@ def dispersed_case(setup: MpspSetup, run_id: int, rng: np.random.Generator) -> C
     return thrust_case(setup, float(rng.uniform(min(pert.eta_percent), max(pert.eta_percent))))
 
 
-class LowThrustFamily:
+@dataclasses.dataclass(frozen=True)
+class _Base:
+    """What the report and the target job read of a plan (family-private)."""
+
+    setup: MpspSetup
+    papers: list[Case] | None                       #: the paper's cases (--cases paper), or None
+    case_of: Callable[[int, int], Case]             #: run id, run seed -> the run's problem
+    record_of: Callable[[Case, Any, float], Record]  #: a run's record from its solve
+
+
+class LowThrustFamily(FamilyDefaults):
     name = "low-thrust-transfer"
     laws = LAWS
-
     fixed_lists = True           #: --cases paper: the number of runs is the list's
     targets = ("host", "m7", "sparc")   #: --target m7 / sparc: the solves on the flight program (pil.py)
-
-    def default_runs(self, header: ScenarioHeader) -> int | None:
-        return None              # the command states it, or the paper's list does
+    has_tables = True                   #: `ogk tables`: ground_tables.py
+    run_aliases = ("cases",)     #: `ogk cases` (and `ogk mpsp apophis`): the older `ogk run`
     campaign_doc = ("MPSP re-planned on perturbed problems: --cases dispersed (run i: one "
                     "perturbation of kind i mod 3 drawn in the scenario's range) or --cases paper "
                     "(the paper's 23 cases)")
@@ -74,17 +88,17 @@ class LowThrustFamily:
     def load(self, header: ScenarioHeader) -> Any:
         return load_scenario(header.path)
 
-    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
-        p.add_argument("--cases", choices=("dispersed", "paper"), default="dispersed",
+    def add_campaign_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--cases", choices=("dispersed", "paper"), default="dispersed",
                        help="dispersed draws (default) or the paper's 23 cases (--runs 23)")
-        p.add_argument("--basis", default=None, choices=FOURIER_BASES,
+        parser.add_argument("--basis", default=None, choices=FOURIER_BASES,
                        help="Fourier basis (printed, period_tf, period_2tf, cosine_2tf; default: "
                             "the scenario's)")
-        p.add_argument("--order", type=int, default=None, help="Fourier order (default: scenario)")
-        p.add_argument("--reference", action="store_true",
+        parser.add_argument("--order", type=int, default=None, help="Fourier order (default: scenario)")
+        parser.add_argument("--reference", action="store_true",
                        help="the fuel-optimal re-solve of every run's problem, for FI (cached in "
                             "--reference-dir)")
-        p.add_argument("--reference-dir", default=None,
+        parser.add_argument("--reference-dir", default=None,
                        help="cache of the fuel-optimal re-solves (default: reference/ in the "
                             "scenario's product directory build/tables/<name>-<sha12>)")
 
@@ -113,7 +127,7 @@ class LowThrustFamily:
 
         def fly_one(run_id: int, run_seed: int) -> Record:
             case = case_of(run_id, run_seed)
-            res, cpu = run_case(setup, case)
+            res, cpu = fly_run(setup, case)
             return record_of(case, res, cpu)
 
         def record_of(case: Case, res: Any, cpu: float) -> Record:
@@ -160,32 +174,58 @@ class LowThrustFamily:
             max_runs=None if papers is None else len(papers),
             acceptance={"converged": True, "dr_f_km": acc.position_error_km,
                         "dv_f_kmps": acc.velocity_error_km_s},
-            watchdog_per_run_s=120.0, base=(setup, papers),
+            watchdog_per_run_s=120.0, base=_Base(setup, papers, case_of, record_of),
             # a run is one MPSP solve (Algorithms 1-2): it failed when it did not converge
             solve_failures=lambda rec: [] if rec["converged"] else ["MPSP did not converge"],
             dispersions=declared(setup, scenario_table(header.path), which),
             draw=per_run(lambda run_id, run_seed: applied_record(setup, case_of(run_id, run_seed))))
         if options.get("target", "host") != "host":
-            self._on_target(plan, options, setup, case_of, record_of)
+            self.on_target(plan, str(options["target"]))
         return plan
 
-    @staticmethod
-    def _on_target(plan: CampaignPlan, opts: Mapping[str, Any], setup: MpspSetup,
-                   case_of: Any, record_of: Any) -> None:
-        """The plan's solves made by the scenario's flight program on the emulated Cortex-M7
-        (pil.py); the cases, records and judging stay the host's."""
-        from ogk.sil.pil import target_why
-        from ogk.sil.pil_build import file_sha256
+    # ------------------------------------------------------------------ ogk tables, ogk run
+    def add_tables_arguments(self, parser: argparse.ArgumentParser) -> None:
+        from .ground_tables import add_tables_arguments
+        add_tables_arguments(parser)
 
+    def tables(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
+        """`ogk tables SCENARIO`: the fuel-optimal nominal, its manifest, the flight configuration."""
+        from .ground_tables import write_ground_tables
+        return write_ground_tables(header, args)
+
+    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None:
+        from .one_case import add_run_arguments
+        add_run_arguments(parser)
+
+    def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
+        """`ogk run SCENARIO`: one MPSP case (--case, --param) or the paper's (--paper-tables)."""
+        from .one_case import run
+        return run(header, args)
+
+    # ------------------------------------------------------------------ on a target
+    # the plan's solves made by the scenario's flight program (pil.py); the cases, records and
+    # judging stay the host's
+    target_watchdog_per_run_s = SOLVE_TIMEOUT_S
+
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        """The MPSP configuration header (the nominal's weights, every [mpsp] setting)."""
+        from .flight_config import write_flight_config
+        return write_flight_config(out_dir, plan.scenario_path, plan.base.setup)
+
+    def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
         from . import pil
-        program = pil.flight_program(setup, plan.scenario_path, str(opts["target"]))
-        plan.fly = pil.TargetJob(case_of, record_of, program, t0=float(setup.guidance.cfg.t0))
-        plan.target = str(opts["target"])
-        plan.options = {**plan.options, "target": plan.target}   # `ogk replay` flies it there
-        plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
-        plan.target_bounds = dict(pil.BOUNDS)
-        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
-        plan.watchdog_per_run_s = pil.SOLVE_TIMEOUT_S
+        return pil.flight_program(plan.base.setup, plan.scenario_path,
+                                  lambda out: self.flight_config(plan, out), target)
+
+    def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
+        from . import pil
+        base: _Base = plan.base
+        return pil.TargetJob(base.case_of, base.record_of, program,
+                             t0=float(base.setup.guidance.cfg.t0))
+
+    def target_bounds(self, plan: CampaignPlan) -> tuple[dict[str, float], str]:
+        from . import pil
+        return dict(pil.BOUNDS), pil.BOUNDS_WHY
 
     def _paper(self, setup: MpspSetup, papers: list[Case],
                records: Sequence[Record]) -> dict[str, Any] | None:
@@ -199,7 +239,7 @@ class LowThrustFamily:
                            **{k: r[k] for k in RESULTS}} for r in records]}
 
     def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
-        setup, papers = flown.plan.base
+        setup, papers = flown.plan.base.setup, flown.plan.base.papers
         rows = paper_rows(setup, papers) if papers is not None else None
         if rows is not None and all(r is None for r in rows):
             rows = None                 # no [paper_results]: no paper columns

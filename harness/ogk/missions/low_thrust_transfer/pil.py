@@ -11,7 +11,6 @@ chunk's next run when it is free.
 from __future__ import annotations
 
 import dataclasses
-import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -20,7 +19,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk.sil.pil import FlightProgram, PilSession, fly_sessions
+from ogk.sil.pil import FlightProgram, PilSession, fly_runs_on_target
 from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
@@ -50,23 +49,20 @@ BOUNDS_WHY = ("the same C on both sides and the same configuration (generated fr
               "cases, against a 500 km tolerance), the final mass within 1e-9 kg")
 
 
-def flight_program(setup: Any, scenario_path: Path, target: str = "m7") -> FlightProgram:
+def flight_program(setup: Any, scenario_path: Path, flight_config: Callable[[Path], object],
+                   target: str = "m7") -> FlightProgram:
     """The scenario's flight program, built for the configuration the campaign flies: one build
     per scenario file (SHA-256), basis, order and C configuration (its bytes: the nominal weights
-    and every [mpsp] setting)."""
+    and every [mpsp] setting), its generated C written by `flight_config(DIR)` into DIR/c (the
+    family's flight_config)."""
     from ogk_host.scenario_file import file_sha256
-
-    from .flight_config import write_flight_config
 
     key = (f"{file_sha256(scenario_path)[:12]}-{setup.basis}-{setup.order}-"
            f"{_config_digest(setup.guidance.cfg)}")
     out = PIL_BUILD / "low_thrust_transfer" / f"{Path(scenario_path).stem}-{key}"
-
-    def generate(c_dir: Path) -> None:
-        write_flight_config(c_dir.parent, scenario_path, setup)   # writes OUT/c/...
-
-    return FlightProgram(build_program("mpsp", out, generate, target), ENTRY_POINTS,
-                         timeout_s=SOLVE_TIMEOUT_S, target=target)
+    return FlightProgram(build_program("mpsp", out, lambda c_dir: flight_config(c_dir.parent),
+                                       target), ENTRY_POINTS, timeout_s=SOLVE_TIMEOUT_S,
+                         target=target)
 
 
 def _config_digest(cfg: Any) -> str:
@@ -121,53 +117,28 @@ class TargetJob:
     t0: float = 0.0
     batch: int = 2
 
-    def _fly_run(self, s: PilSession, run_id: int, case: Any) -> tuple[NDArray[np.float64], float]:
-        """One run on session s: MPSP_INIT, MPSP_REPLAN, RUN_END; the reply and the host's wait for
-        it (timing.cpu_s of a target run: QEMU time, not flight CPU time)."""
+    def _fly_run(self, s: PilSession, case: Any) -> tuple[NDArray[np.float64], float]:
+        """One run on session s: MPSP_INIT, MPSP_REPLAN; the reply and the host's wait for it
+        (timing.cpu_s of a target run: QEMU time, not flight CPU time)."""
         init = s.exchange(MPSP_INIT, [])
         if init[0] != 0.0:
             raise TargetLinkError(f"the flight program's init answered action {init[0]:g} "
                                   "(ogk_mpsp_flight_action)")
         start = time.perf_counter()
         reply = s.exchange(MPSP_REPLAN, request(case, self.t0))
-        wait = time.perf_counter() - start
-        s.end_run(run_id)
-        return reply, wait
+        return reply, time.perf_counter() - start
 
     def __call__(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64]
                  ) -> list[dict[str, Any]]:
-        from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
-
         ids = [int(i) for i in run_ids]
         cases = [self.case_of(rid, int(seed)) for rid, seed in zip(ids, run_seeds)]
-        n = min(self.batch, len(ids))
-        flown: list[tuple[NDArray[np.float64], float] | None] = [None] * len(ids)
-        queue = iter(range(len(ids)))
-        lock = threading.Lock()
-
-        def fly(s: PilSession) -> None:
-            while True:
-                with lock:
-                    k = next(queue, None)
-                if k is None:
-                    return
-                flown[k] = self._fly_run(s, ids[k], cases[k])
-
-        def fly_all(sessions: list[PilSession]) -> None:
-            with ThreadPoolExecutor(max_workers=n, thread_name_prefix="ogk-pil-mpsp") as pool:
-                futures = [pool.submit(fly, s) for s in sessions]
-                done, _ = wait(futures, return_when=FIRST_EXCEPTION)
-                if any(f.exception() is not None for f in done):
-                    for s in sessions:      # the other threads' links fail at once
-                        s.kill()
-                for f in futures:
-                    f.result()
-
-        _, keys = fly_sessions(self.program, n, fly_all)
+        case_of_run = dict(zip(ids, cases))
+        flown, keys = fly_runs_on_target(
+            self.program, ids, run_seeds, lambda s, rid, seed: self._fly_run(s, case_of_run[rid]),
+            sessions=self.batch)
         records: list[dict[str, Any]] = []
-        for rid, case, item in zip(ids, cases, flown):
-            assert item is not None
-            rec = self.record_of(case, result_of(item[0]), item[1])
+        for rid, case, (reply, wait) in zip(ids, cases, flown):
+            rec = self.record_of(case, result_of(reply), wait)
             rec.update(keys[rid])
             records.append(rec)
         return records

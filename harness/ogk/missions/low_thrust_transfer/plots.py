@@ -13,9 +13,12 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk.missions.low_thrust_transfer.cases import KINDS, MpspSetup, Case
-from ogk.missions.low_thrust_transfer.reference import Reference
 from ogk_bindings.mpsp import MpspResult
+
+from ogk.sil.plots import pyplot, save
+
+from .cases import KINDS, Case, MpspSetup
+from .reference import Reference
 
 F64 = NDArray[np.float64]
 
@@ -46,9 +49,7 @@ def thrust_angles_deg(lam_v: F64) -> tuple[F64, F64]:
 
 def write_plots(setup: MpspSetup, runs: list[tuple[Case, MpspResult, Reference | None]],
                 out_dir: Path) -> list[Path]:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     day = _days(setup)
@@ -82,8 +83,7 @@ def write_plots(setup: MpspSetup, runs: list[tuple[Case, MpspResult, Reference |
         fig.suptitle(f"Thrust sequences, {kind} perturbations (throttle u)", y=0.995)
         fig.tight_layout()
         path = out_dir / f"thrust_{kind}.png"
-        fig.savefig(path, dpi=110)
-        plt.close(fig)
+        save(fig, path)
         written.append(path)
 
         fig, (ax_a, ax_b) = plt.subplots(2, 1, figsize=(8.0, 6.0), sharex=True)
@@ -103,7 +103,6 @@ def write_plots(setup: MpspSetup, runs: list[tuple[Case, MpspResult, Reference |
         fig.suptitle(f"Thrust angles of the converged MPSP solutions, {kind} perturbations")
         fig.tight_layout()
         path = out_dir / f"angles_{kind}.png"
-        fig.savefig(path, dpi=110)
-        plt.close(fig)
+        save(fig, path)
         written.append(path)
     return written

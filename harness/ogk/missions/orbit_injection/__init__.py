@@ -3,5 +3,6 @@ dispersions, closed loop, Monte Carlo campaign, report and plots. See docs/sil.m
 
 Modules: nominal_ref (dense ground nominal), truth (6-DOF and point-mass dynamics), dispersions,
 guidance (Guidance protocol + open-loop reference), attitude (AttitudeControl protocol + kernel CPD
-batch), sil (closed loop), campaign, report, plots; adapter (ogk tables / ogk mc).
+batch), sil (closed loop), flights (the campaign's chunk flight and result), report, plots;
+ground_tables (ogk tables); family (every verb: ogk tables, run, mc).
 """

@@ -79,19 +79,21 @@ class CpdBatchControl:
                  pointing: str = "body", control_period_s: float = 0.02) -> None:
         from ogk_bindings._ffi import ffi, lib
         from ogk_bindings.cpd import CpdConfig
-        self._ffi, self._lib = ffi, lib
+
+        from .csrc_batch import lib as batch
+        self._ffi, self._lib, self._batch = ffi, lib, batch
         self.n_runs = n_runs
         self.config = cpd_config(scn, gains, pointing, control_period_s)
         # Typed wrapper: ogk_cpd_config_default, then every field by its C name (checked).
         cfg = CpdConfig(**self.config).to_c()
         self._ctx = ffi.new("ogk_cpd_t[]", max(n_runs, 1))
-        self._in = np.zeros((int(lib.OGK_SIL_CPD_N_IN), n_runs))
-        self._out = np.zeros((int(lib.OGK_SIL_CPD_N_OUT), n_runs))
+        self._in = np.zeros((int(batch.OGK_SIL_CPD_N_IN), n_runs))
+        self._out = np.zeros((int(batch.OGK_SIL_CPD_N_OUT), n_runs))
         self._status = np.zeros(n_runs, dtype=np.int32)
         self._flags = np.zeros(n_runs, dtype=np.uint32)
         self._active = np.zeros(n_runs, dtype=np.uint8)
-        st = lib.ogk_sil_cpd_init_batch(self._ctx, n_runs, cfg,
-                                        ffi.from_buffer("int32_t[]", self._status))
+        st = batch.ogk_sil_cpd_init_batch(self._ctx, n_runs, cfg,
+                                          ffi.from_buffer("int32_t[]", self._status))
         if st != lib.OGK_OK:
             from ogk_bindings.kernel import KernelError
             raise KernelError(st, "ogk_sil_cpd_init_batch")
@@ -104,12 +106,12 @@ class CpdBatchControl:
 
     def step(self, t: F64, attitude: F64, alpha_c: F64, beta_c: F64, xi: F64, phi: F64,
              active: NDArray[np.bool_]) -> AttitudeCommand:
-        ffi, lib = self._ffi, self._lib
+        ffi, batch = self._ffi, self._batch
         buf = self._in
         buf[0:6] = attitude.T
         buf[6], buf[7], buf[8], buf[9] = alpha_c, beta_c, xi, phi
         self._active[:] = active
-        lib.ogk_sil_cpd_step_batch(
+        batch.ogk_sil_cpd_step_batch(
             self._ctx, self.n_runs, ffi.from_buffer("uint8_t[]", self._active),
             ffi.from_buffer("double[]", buf), ffi.from_buffer("double[]", self._out,
                                                                require_writable=True),

@@ -14,6 +14,8 @@ from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import KernelError
 
+from .csrc_batch import lib as batch
+
 F64 = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
@@ -40,7 +42,7 @@ class EnergyCutoff:
         self._n = n_runs
         self._ctx = ffi.new("ogk_cutoff_t[]", n_runs)
         status = np.zeros(n_runs, dtype=np.int32)
-        rc = lib.ogk_sil_cutoff_init_batch(self._ctx, n_runs, cutoff_config(scn, control_period_s),
+        rc = batch.ogk_sil_cutoff_init_batch(self._ctx, n_runs, cutoff_config(scn, control_period_s),
                                            ffi.from_buffer("int32_t[]", status,
                                                            require_writable=True))
         if rc != lib.OGK_OK:
@@ -56,7 +58,7 @@ class EnergyCutoff:
         t = np.ascontiguousarray(t, dtype=np.float64)
         nav = np.ascontiguousarray(nav, dtype=np.float64)
         pred = np.ascontiguousarray(t_predicted, dtype=np.float64)
-        lib.ogk_sil_cutoff_step_batch(
+        batch.ogk_sil_cutoff_step_batch(
             self._ctx, self._n, ffi.from_buffer("uint8_t[]", act), ffi.from_buffer("double[]", t),
             ffi.from_buffer("double[]", nav), ffi.from_buffer("double[]", pred),
             ffi.from_buffer("double[]", self.t_cutoff, require_writable=True),

@@ -131,7 +131,7 @@ def _noise_block(g: np.random.Generator) -> F64:
 def with_first_actuation(scn: OrbitInjectionScenario, draws: RunDraws,
                          generators: list[np.random.Generator], applied: bool) -> RunDraws:
     """`draws` with the actuation noise of the first control step as ActuationNoise will give it
-    to the truth (`applied`: the noise is on and the truth has actuators, as in sil.simulate),
+    to the truth (`applied`: the noise is on and the truth has actuators, as in sil.fly_runs),
     drawn from copies of the generators: the flight's streams are not touched."""
     ad = scn.actuator_dispersion
     sigma = np.array([ad.roll_torque_n_m, ad.deflection_y_rad, ad.deflection_z_rad])

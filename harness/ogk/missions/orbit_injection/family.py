@@ -1,14 +1,15 @@
-"""The orbit-injection family's campaign contract (ogk.sil.family): the SIL Monte Carlo of VTD-NOG
-+ CPD (Pontani & Celani 2021). Run i is one dispersed flight (initial state, attitude, rates,
-thrust; dispersions.py) drawn from its own stream; chunks of runs are flown vectorised
-(campaign._Job). Acceptance: the scenario's [acceptance] tolerances on the injection errors, plus
-any kernel error or truth-model failure (campaign.tolerances).
+"""The orbit-injection family (ogk.sil.family.MissionFamily): VTD-NOG + CPD (Pontani & Celani
+2021). `ogk tables` makes the nominal and the gain tables (ground_tables.py); `ogk mc` is the SIL
+Monte Carlo: run i is one dispersed flight (initial state, attitude, rates, thrust; dispersions.py)
+drawn from its own stream, chunks of runs flown vectorised (flights._Job); `ogk run` is run 0 of
+that campaign with its plots. Acceptance: the scenario's [acceptance] tolerances on the injection
+errors, plus any kernel error or truth-model failure (flights.tolerances). On a target (m7, sparc)
+the flight software is the scenario's flight program (pil.py).
 """
 from __future__ import annotations
 
 import argparse
 import dataclasses
-import sys
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -21,20 +22,12 @@ from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.engine import Flown, seeds_of
 from ogk.sil.envelope import ENVELOPE_KEYS
-from ogk.sil.family import CampaignPlan, Detail
+from ogk.sil.family import CampaignPlan, ChunkFlight, Detail, FamilyDefaults
+from ogk.sil.pil import FlightProgram
 
-from .campaign import CampaignResult, _assemble, _Job, _run_records, campaign_plan
+from .flights import CampaignResult, _assemble, _Job, _run_records, campaign_plan
 from .dispersions import DispersionSwitches
 from .sil import SilSettings
-
-
-def warn_outside_envelope(scn: OrbitInjectionScenario, t_f_star_s: float) -> int:
-    """One line on stderr per setting outside the measured envelope (derive.envelope_warnings),
-    FILE: KEY: warning: REASON; returns how many."""
-    found = derive.envelope_warnings(scn, t_f_star_s)
-    for key, reason in found:
-        print(f"{scn.path}: {key}: warning: {reason}", file=sys.stderr)
-    return len(found)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -48,13 +41,12 @@ class _Base:
     history_runs: int
 
 
-class OrbitInjectionFamily:
+class OrbitInjectionFamily(FamilyDefaults):
     name = "orbit-injection"
     laws = LAWS
     targets = ("host", "m7", "sparc")   #: m7 / sparc: port/cortex-m7/pil/oi_pil.c (pil.py)
-
-    def default_runs(self, header: ScenarioHeader) -> int | None:
-        return None              # the command states the number of runs
+    has_tables = True                   #: `ogk tables`: ground_tables.py
+    target_watchdog_per_run_s = 60.0
     campaign_doc = ("dispersed flights of the kernel's VTD-NOG + CPD with the scenario's end-game "
                     "(6-DOF or point-mass truth), side by side with Tables 6-7 when the scenario "
                     "carries them")
@@ -62,25 +54,25 @@ class OrbitInjectionFamily:
     def load(self, header: ScenarioHeader) -> OrbitInjectionScenario:
         return load_scenario(header.path)
 
-    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
-        p.add_argument("--no-dispersions", action="store_true",
+    def add_campaign_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--no-dispersions", action="store_true",
                        help="no dispersions: alignment errors only (Table 6 case)")
-        p.add_argument("--truth", choices=("6dof", "point-mass"), default="6dof")
-        p.add_argument("--guidance", choices=("nog", "nominal"), default="nog",
+        parser.add_argument("--truth", choices=("6dof", "point-mass"), default="6dof")
+        parser.add_argument("--guidance", choices=("nog", "nominal"), default="nog",
                        help="nog: kernel VTD-NOG; nominal: open-loop u*(t) (a reference, not guidance)")
-        p.add_argument("--tables", default=None, metavar="DIR",
+        parser.add_argument("--tables", default=None, metavar="DIR",
                        help="VTD-NOG tables to fly (default: the scenario's own directory under "
                             "build/tables, generated when missing); checked against the scenario")
-        p.add_argument("--history-runs", type=int, default=50,
+        parser.add_argument("--history-runs", type=int, default=50,
                        help="runs whose time histories are drawn with --plots (default 50)")
-        p.add_argument("--control-rate", type=float, default=50.0, help="attitude control rate [Hz]")
-        p.add_argument("--truth-substeps", type=int, default=1,
+        parser.add_argument("--control-rate", type=float, default=50.0, help="attitude control rate [Hz]")
+        parser.add_argument("--truth-substeps", type=int, default=1,
                        help="truth RK4 steps per control step (default 1: 20 ms)")
-        p.add_argument("--cpd-gains", choices=("printed", "rederived"), default=None,
+        parser.add_argument("--cpd-gains", choices=("printed", "rederived"), default=None,
                        help="CPD gain set (default: the scenario's flown set)")
-        p.add_argument("--cpd-pointing", choices=("body", "euler"), default="body",
+        parser.add_argument("--cpd-pointing", choices=("body", "euler"), default="body",
                        help="CPD pitch/yaw error: body-axis (default) or eqs. 45-46 literally")
-        p.add_argument("--paper-end-game", action="store_true",
+        parser.add_argument("--paper-end-game", action="store_true",
                        help="fly the paper's end-game (cut-off predicted at the samples, eq. 32; "
                             "Delta t_S throughout) instead of the scenario's [guidance.end_game]")
 
@@ -119,17 +111,17 @@ class OrbitInjectionFamily:
                                 f"{ref.tf_s:.6f} s: regenerate them with `ogk tables`",
                                 path=tables.directory)
         scn = derive.resolve(scn, ref.tf_s)     # what scales with the burn
-        warn_outside_envelope(scn, ref.tf_s)
+        derive.warn_outside_envelope(scn, ref.tf_s)
         history_runs = int(opts.pop("history_runs"))    # what is drawn, not what is flown
         plan = campaign_plan(scn, ref, switches, settings, factory, str(opts["guidance"]),
                              tables, header.path, header.law, opts)
         plan.base = _Base(scn, _Job(scn, ref, 0, switches, settings, factory), switches, settings,
                           str(opts["guidance"]), tables, history_runs)
         if opts.get("target", "host") != "host":
-            self._on_target(plan, opts, tables, header.path)
+            self.on_target(plan, str(opts["target"]))
 
         def detail(run_id: int, run_seed: int, plots: Path | None) -> Detail:
-            res = self._result(plan, [], history_ids=np.array([run_id], dtype=np.int64),
+            res = self.campaign_result(plan, [], history_ids=np.array([run_id], dtype=np.int64),
                                run_seeds=np.array([run_seed], dtype=np.uint64))
             files = () if plots is None else tuple(self._write_plots(res, plots))
             return Detail({}, files)
@@ -137,26 +129,64 @@ class OrbitInjectionFamily:
         plan.detail = detail
         return plan
 
-    @staticmethod
-    def _on_target(plan: CampaignPlan, opts: dict[str, Any], tables: Any, scenario: Path) -> None:
-        """The plan flown by the scenario's flight program on the emulated Cortex-M7 (pil.py)."""
-        from ogk.sil.pil import target_why
-        from ogk.sil.pil_build import file_sha256
+    # ------------------------------------------------------------------ ogk tables, ogk run
+    def add_tables_arguments(self, parser: argparse.ArgumentParser) -> None:
+        from .ground_tables import add_tables_arguments
+        add_tables_arguments(parser)
 
+    def tables(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
+        """`ogk tables SCENARIO`: nominal, VTD-NOG gain tables, C table image, flight configuration."""
+        from .ground_tables import write_ground_tables
+        return write_ground_tables(header, args)
+
+    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None:
+        from ogk.sil.command import add_target_argument
+        parser.add_argument("--seed", type=int, default=1, help="seed of the flight's draws (run 0 of a "
+                       "campaign with this seed; default 1)")
+        parser.add_argument("--json", required=True, metavar="FILE", help="the flight as a campaign of one")
+        parser.add_argument("--plots", default=None, metavar="DIR", help="PNG plots of the flight")
+        self.add_campaign_arguments(parser)
+        add_target_argument(parser)
+
+    def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
+        """`ogk run SCENARIO`: one dispersed flight (run 0 of `ogk mc` with the same seed)."""
+        from ogk.sil import command
+        for name, value in (("runs", 1), ("workers", 1), ("resume", False), ("chunk_runs", None),
+                            ("watchdog_per_run", None)):
+            setattr(args, name, value)
+        return command.fly(self, header, args)
+
+    # ------------------------------------------------------------------ on a target
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        """The table image of the tables flown and the configuration headers (flight_config.py)."""
+        from ogk_host.cgen import write_c_table
+
+        from .flight_config import write_flight_config
+        tables = plan.base.tables
+        image = write_c_table(tables.bundle.read_bytes(), "ogk_nog_bundle", out_dir / "c",
+                              plan.scenario_path,
+                              note="The PIL flight program's table image (ogk_nog_table_view).")
+        return [*image, *write_flight_config(out_dir, plan.scenario_path, tables.bundle)]
+
+    def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
+        """The scenario's flight program for the tables the campaign flies (pil.py)."""
         from . import pil
-        pil.check_target_settings(plan.base.settings, opts)
-        program = pil.flight_program(tables, scenario, str(opts["target"]))
+        pil.check_target_settings(plan.base.settings, plan.options)
+        return pil.flight_program(plan.base.tables, lambda out: self.flight_config(plan, out),
+                                  target)
+
+    def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
+        from . import pil
         job = dataclasses.replace(plan.base.job, settings=dataclasses.replace(
             plan.base.settings, history_runs=0))
-        plan.fly = pil.TargetJob(job, program)
-        plan.target = str(opts["target"])
-        plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
-        plan.target_bounds = dict(pil.BOUNDS)
-        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
-        plan.watchdog_per_run_s = 60.0
+        return pil.TargetJob(job, program)
+
+    def target_bounds(self, plan: CampaignPlan) -> tuple[dict[str, float], str]:
+        from . import pil
+        return dict(pil.BOUNDS), pil.BOUNDS_WHY
 
     # ------------------------------------------------------------------ reports
-    def _result(self, plan: CampaignPlan, records: list[dict[str, Any]], flown: Flown | None = None,
+    def campaign_result(self, plan: CampaignPlan, records: list[dict[str, Any]], flown: Flown | None = None,
                 history_ids: np.ndarray | None = None,
                 run_seeds: np.ndarray | None = None) -> CampaignResult:
         """The family's CampaignResult (report and plots) from the engine's records; the runs in
@@ -186,7 +216,7 @@ class OrbitInjectionFamily:
 
     def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
         from .report import format_report
-        res = self._result(flown.plan, flown.records, flown)
+        res = self.campaign_result(flown.plan, flown.records, flown)
         extra = res.to_json_dict(per_run=True)
         extra["family_schema"] = extra.pop("schema")
         for key in ENVELOPE_KEYS:       # the envelope states these (same meaning, one source)
@@ -196,7 +226,7 @@ class OrbitInjectionFamily:
     def plots(self, flown: Flown, out_dir: Path) -> list[Path]:
         base: _Base = flown.plan.base
         ids = np.array([i for i in flown.run_ids if i < base.history_runs], dtype=np.int64)
-        res = self._result(flown.plan, flown.records, flown, history_ids=ids)
+        res = self.campaign_result(flown.plan, flown.records, flown, history_ids=ids)
         return self._write_plots(res, out_dir)
 
     @staticmethod

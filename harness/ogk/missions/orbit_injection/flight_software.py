@@ -2,9 +2,9 @@
 through cffi (VTD-NOG sampling schedule, energy cut-off, terminal steering, CPD).
 
 It is the same sequence, the same calls in the same order, as the inline control sample of
-sil.simulate, packaged so that another simulator can fly it: the Basilisk module of ogk.basilisk
+sil.fly_runs, packaged so that another simulator can fly it: the Basilisk module of ogk.missions.orbit_injection.basilisk
 calls `tick` once per control period with Basilisk's navigation. tests/python/test_basilisk.py
-checks that sil.simulate with this flight computer gives bit-identical results to sil.simulate
+checks that sil.fly_runs with this flight computer gives bit-identical results to sil.fly_runs
 without it (so the software flown in Basilisk is the software of our campaigns).
 """
 from __future__ import annotations
@@ -34,7 +34,7 @@ class KernelFlightSoftware:
                  run_ids: NDArray[np.int64], settings: SilSettings = SilSettings()) -> None:
         n = int(np.asarray(run_ids).size)
         ctrl_dt = 1.0 / settings.control_rate_hz
-        scn = derive.resolve(scn, ref.tf_s)   # as sil.simulate: what the scenario leaves to t_f*
+        scn = derive.resolve(scn, ref.tf_s)   # as sil.fly_runs: what the scenario leaves to t_f*
         self.plan = EndGamePlan.of(scn, settings)
         self.guidance = KernelNogGuidance(
             GuidanceSetup(scn, ref, np.asarray(run_ids, dtype=np.int64),

@@ -24,7 +24,7 @@ from .dispersions import DispersionSwitches, RunDraws
 from .guidance import GuidanceSetup
 from .nog_guidance import KernelNogGuidance
 from .nominal_ref import nominal_reference
-from .sil import SilSettings, simulate
+from .sil import SilSettings, fly_runs
 
 # The offsets of main.c: A none, B +1 sigma of Table 3 on r, phi, v_r, v_t, v_n.
 RUNS = {"A nominal": [0.0] * 6,
@@ -42,7 +42,7 @@ def main(argv: list[str]) -> int:
                      np.zeros((n, 3)), np.zeros((n, 10)))
     gens = [run_generator(i) for i in range(n)]   # PCG64(i): the streams the reference always had
     guidance = KernelNogGuidance(GuidanceSetup(scn, ref, draws.run_id), bundle)
-    res = simulate(scn, ref, draws, gens, DispersionSwitches.none(), guidance,
+    res = fly_runs(scn, ref, draws, gens, DispersionSwitches.none(), guidance,
                    SilSettings(truth="point-mass", end_game="paper"))  # as the flight app flies
     vc = float(np.sqrt(scn.mu_m3_s2 / scn.target_radius_m))
     for i, name in enumerate(RUNS):

@@ -24,6 +24,8 @@ from ogk_host.orbit_injection import tables as ground_tables
 
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import KernelError
+
+from .csrc_batch import lib as batch
 from .guidance import GuidanceSetup
 
 F64 = NDArray[np.float64]
@@ -97,7 +99,7 @@ class KernelNogGuidance:
         self._cfg = nog_config(setup.scenario, self._table, setup.last_interval_s)
         self._ctx = ffi.new("ogk_nog_t[]", n)
         status = np.zeros(n, dtype=np.int32)
-        rc = lib.ogk_sil_nog_init_batch(self._ctx, n, self._cfg,
+        rc = batch.ogk_sil_nog_init_batch(self._ctx, n, self._cfg,
                                         ffi.from_buffer("int32_t[]", status, require_writable=True))
         if rc != lib.OGK_OK:
             raise KernelError(rc, "ogk_nog_init")
@@ -132,7 +134,7 @@ class KernelNogGuidance:
         if due is not None:
             take &= due
         active = np.ascontiguousarray(take, dtype=np.uint8)
-        lib.ogk_sil_nog_sample_batch(
+        batch.ogk_sil_nog_sample_batch(
             self._ctx, self._n, ffi.from_buffer("uint8_t[]", active),
             ffi.from_buffer("double[]", t), ffi.from_buffer("double[]", nav),
             ffi.from_buffer("double[]", self._cutoff, require_writable=True),
@@ -152,7 +154,7 @@ class KernelNogGuidance:
         beta = np.empty(self._n)
         flags = np.empty(self._n, dtype=np.uint32)
         status = np.empty(self._n, dtype=np.int32)
-        lib.ogk_sil_nog_command_batch(
+        batch.ogk_sil_nog_command_batch(
             self._ctx, self._n, ffi.from_buffer("double[]", t),
             ffi.from_buffer("double[]", alpha, require_writable=True),
             ffi.from_buffer("double[]", beta, require_writable=True),

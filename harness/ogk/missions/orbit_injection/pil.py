@@ -1,11 +1,12 @@
 """Orbit injection on the emulated Cortex-M7 (docs/pil.md): the flight program
 port/cortex-m7/pil/oi_pil.c (VTD-NOG + energy cut-off + terminal + CPD, oi_flight.c) flies the
-control ticks, the host's 6-DOF truth (sil.simulate) flies the vehicle. One QEMU per chunk of runs;
+control ticks, the host's 6-DOF truth (sil.fly_runs) flies the vehicle. One QEMU per chunk of runs;
 each run is a fresh init of the flight software, its draws those of the host campaign.
 """
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -17,7 +18,7 @@ from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
 from .attitude import AttitudeCommand
-from .sil import FAILURE_REASONS, SilSettings, Tick, simulate
+from .sil import FAILURE_REASONS, SilSettings, Tick, fly_runs
 
 F64 = NDArray[np.float64]
 
@@ -39,21 +40,14 @@ BOUNDS_WHY = ("the same C on both sides; newlib's libm (sin, cos, atan2) differs
               "FMA in ISO C mode on either side")
 
 
-def flight_program(tables: Any, scenario_path: Path, target: str = "m7") -> FlightProgram:
-    """The scenario's flight program, built for the tables the campaign flies."""
-    from ogk_host.cgen import write_c_table
-
-    from .flight_config import write_flight_config
-
+def flight_program(tables: Any, flight_config: Callable[[Path], object],
+                   target: str = "m7") -> FlightProgram:
+    """The scenario's flight program, built for the tables the campaign flies: one build per
+    tables directory, its generated C written by `flight_config(DIR)` into DIR/c (the family's
+    flight_config)."""
     out = PIL_BUILD / "orbit_injection" / Path(tables.directory).name
-
-    def generate(c_dir: Path) -> None:
-        write_c_table(tables.bundle.read_bytes(), "ogk_nog_bundle", c_dir, scenario_path,
-                      note="The PIL flight program's table image (ogk_nog_table_view).")
-        # write_flight_config writes into OUT/c
-        write_flight_config(c_dir.parent, scenario_path, tables.bundle)
-
-    return FlightProgram(build_program("oi", out, generate, target), ENTRY_POINTS, target=target)
+    return FlightProgram(build_program("oi", out, lambda c_dir: flight_config(c_dir.parent), target),
+                         ENTRY_POINTS, target=target)
 
 
 class TargetFlightComputer:
@@ -100,7 +94,7 @@ class TargetJob:
 
     def __call__(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64]
                  ) -> list[dict[str, Any]]:
-        from .campaign import _run_records
+        from .flights import _run_records
 
         job = self.host_job
 
@@ -110,7 +104,7 @@ class TargetJob:
                 ids, seeds = run_ids[g:g + len(sessions)], run_seeds[g:g + len(sessions)]
                 draws, gens = job.draws(ids, seeds)
                 fc = TargetFlightComputer(sessions[:ids.size])
-                res = simulate(job.scenario, job.reference, draws, gens, job.switches,
+                res = fly_runs(job.scenario, job.reference, draws, gens, job.switches,
                                _NoGuidance(), job.settings, flight_computer=fc)
                 for s, rid in zip(sessions, ids):
                     s.end_run(int(rid))
@@ -124,7 +118,7 @@ class TargetJob:
 
 
 class _NoGuidance:
-    """simulate's guidance argument when the flight program flies the ticks (never called)."""
+    """fly_runs's guidance argument when the flight program flies the ticks (never called)."""
 
     flies_end_game = True
 

@@ -19,7 +19,7 @@ import numpy as np
 
 from ogk.sil.plots import pyplot, save
 
-from .campaign import CampaignResult, tolerances
+from .flights import CampaignResult, tolerances
 from .nominal_ref import circular_speed, nominal_reference
 from .report import LABELS
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 from ogk.sil.report import fmt as _fmt
 from ogk.sil.report import table as _table
 
-from .campaign import CampaignResult, eq47_bounds, tolerances
+from .flights import CampaignResult, eq47_bounds, tolerances
 from .sil import ERROR_KEYS, RATE_KEYS, EndGamePlan
 
 LABELS = {

@@ -114,7 +114,7 @@ class History:
 
 @dataclasses.dataclass
 class SilResult:
-    """Outcome of `simulate` for N runs (run-major arrays)."""
+    """Outcome of `fly_runs` for N runs (run-major arrays)."""
 
     run_id: NDArray[np.int64]
     final_state: F64                   #: (N, 6) [r, xi, phi, v_r, v_t, v_n] at cut-off (SI)
@@ -194,7 +194,7 @@ class _Rk4:
         return x + k1
 
 
-def simulate(scn: OrbitInjectionScenario, ref: NominalReference, draws: RunDraws,
+def fly_runs(scn: OrbitInjectionScenario, ref: NominalReference, draws: RunDraws,
              generators: list[np.random.Generator], switches: DispersionSwitches,
              guidance: Guidance, settings: SilSettings = SilSettings(),
              attitude_control: AttitudeControl | None = None,

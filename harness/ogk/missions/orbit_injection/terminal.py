@@ -14,6 +14,8 @@ from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import KernelError
 
+from .csrc_batch import lib as batch
+
 F64 = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
@@ -55,7 +57,7 @@ class TerminalSteering:
         self._n = n_runs
         self._ctx = ffi.new("ogk_terminal_t[]", n_runs)
         status = np.zeros(n_runs, dtype=np.int32)
-        rc = lib.ogk_sil_terminal_init_batch(self._ctx, n_runs, terminal_config(scn),
+        rc = batch.ogk_sil_terminal_init_batch(self._ctx, n_runs, terminal_config(scn),
                                              ffi.from_buffer("int32_t[]", status,
                                                              require_writable=True))
         if rc != lib.OGK_OK:
@@ -70,7 +72,7 @@ class TerminalSteering:
         act = np.ascontiguousarray(active, dtype=np.uint8)
         a = np.array(alpha, dtype=np.float64)
         b = np.array(beta, dtype=np.float64)
-        lib.ogk_sil_terminal_step_batch(
+        batch.ogk_sil_terminal_step_batch(
             self._ctx, self._n, ffi.from_buffer("uint8_t[]", act),
             ffi.from_buffer("double[]", np.ascontiguousarray(t, dtype=np.float64)),
             ffi.from_buffer("double[]", np.ascontiguousarray(nav, dtype=np.float64)),

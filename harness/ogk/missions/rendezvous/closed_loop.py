@@ -169,7 +169,7 @@ def _record(index: int, t: float, x: FloatArray, info: ReplanInfo, t_next: float
                         cost_2n_days=_days(info.cost_2n, scenario, units))
 
 
-def fly(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed: int,
+def fly_run(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, seed: int,
         strategy_name: str = "", solver_name: str = "", truth: Any = None,
         max_replans: int | None = None, max_flight_days: float | None = None,
         progress: Callable[[ReplanRecord], None] | None = None) -> FlightResult:

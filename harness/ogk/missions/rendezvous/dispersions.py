@@ -1,7 +1,7 @@
 """The rendezvous family's dispersions (Starek & Kolmanovsky 2012, Table A.1, sec. 3.5): the
 thrust-angle noise N(0, sigma_alpha_T), drawn in flight order from the run's stream
 (ogk.sil.seeds.run_generator), held over a control subinterval or over a fixed draw period
-(closed_loop.fly), and how a campaign's records show it (ogk.sil.dispersion_check).
+(closed_loop.fly_run), and how a campaign's records show it (ogk.sil.dispersion_check).
 
 Record (naming rule disp.<[dispersions] key>): disp.thrust_angle_sigma_rad, the offset of the
 flight's first draw as the truth flies it (None when the flight stopped before its first

@@ -1,7 +1,9 @@
-"""The low-thrust rendezvous family's campaign contract (ogk.sil.family): the receding-horizon NMPC
-closed loop (Starek & Kolmanovsky 2012) flown on many thrust-angle noise streams. Run i is one
-closed-loop flight whose noise comes from its own stream (ogk.sil.seeds): a new guidance context
-per run, the truth model perturbed unless --unperturbed.
+"""The low-thrust rendezvous family (ogk.sil.family.MissionFamily): the receding-horizon NMPC
+closed loop (Starek & Kolmanovsky 2012). `ogk run` flies it once (one_flight.py; `ogk nmpc` is its
+older spelling); `ogk mc` flies it on many thrust-angle noise streams: run i is one closed-loop
+flight whose noise comes from its own stream (ogk.sil.seeds), a new guidance context per run, the
+truth model perturbed unless --unperturbed; on a target every replan is the flight program's
+(pil.py). The family has no ground tables.
 
 Acceptance: the scenario's [acceptance] (`scenario.acceptance`): the flight arrives (the [convergence]
 test: inside Mars' sphere of influence and within its velocity tolerance, before the replan and
@@ -25,7 +27,8 @@ from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
 from ogk.sil.dispersion_check import scenario_table
 from ogk.sil.engine import Flown
-from ogk.sil.family import CampaignPlan, Detail, Record, per_run
+from ogk.sil.family import CampaignPlan, ChunkFlight, Detail, FamilyDefaults, Record, per_run
+from ogk.sil.pil import FlightProgram
 
 from .dispersions import FIRST_OFFSET_KEY, declared, draw_records
 
@@ -98,13 +101,20 @@ def flight_record(summary: Mapping[str, Any]) -> Record:
     return rec
 
 
-class RendezvousFamily:
+@dataclasses.dataclass(frozen=True)
+class _Base:
+    """What the report and the target job read of a plan (family-private)."""
+
+    scenario: RendezvousScenario        #: as flown (the command's model, start and Hessian)
+    settings: Any                       #: guidance_base.StrategySettings of the strategy flown
+
+
+class RendezvousFamily(FamilyDefaults):
     name = "low-thrust-rendezvous"
     laws = LAWS
     targets = ("host", "m7", "sparc")   #: m7 / sparc: port/cortex-m7/pil/nmpc_pil.c (pil.py)
-
-    def default_runs(self, header: ScenarioHeader) -> int | None:
-        return None              # the command states the number of runs
+    run_aliases = ("nmpc",)             #: `ogk nmpc`: the older `ogk run`
+    target_watchdog_per_run_s = 7200.0  #: a whole closed loop of QEMU re-solves
     campaign_doc = ("closed-loop NMPC flights on independent thrust-angle noise streams "
                     "(run i: its own stream); judged by the scenario's [acceptance] (default: "
                     "the arrival condition)")
@@ -112,26 +122,26 @@ class RendezvousFamily:
     def load(self, header: ScenarioHeader) -> RendezvousScenario:
         return load_scenario(header.path)
 
-    def add_campaign_arguments(self, p: argparse.ArgumentParser) -> None:
-        p.add_argument("--strategy", choices=STRATEGIES, default=None,
+    def add_campaign_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--strategy", choices=STRATEGIES, default=None,
                        help="SNNS or CNCN (default: the scenario's [nmpc] strategy)")
-        p.add_argument("--solver", choices=SOLVERS, default="kernel",
+        parser.add_argument("--solver", choices=SOLVERS, default="kernel",
                        help="kernel: the flight code's ogk_nmpc (default); ipopt: the ground peer")
-        p.add_argument("--unperturbed", action="store_true",
+        parser.add_argument("--unperturbed", action="store_true",
                        help="fly the unperturbed truth (every run is then the same flight)")
-        p.add_argument("--third-bodies-in-model", choices=("scenario", "yes", "no"),
+        parser.add_argument("--third-bodies-in-model", choices=("scenario", "yes", "no"),
                        default="scenario", help="Earth and Mars gravity in the predictive model")
-        p.add_argument("--max-replans", type=int, default=None, metavar="K",
+        parser.add_argument("--max-replans", type=int, default=None, metavar="K",
                        help="replan limit of a flight (default: the scenario's)")
-        p.add_argument("--hessian", choices=("scenario", "bfgs", "exact"), default="scenario",
+        parser.add_argument("--hessian", choices=("scenario", "bfgs", "exact"), default="scenario",
                        help="the flight solver's QP Hessian (default: the scenario's [nmpc] hessian)")
-        p.add_argument("--move-start", default=None, metavar="MOVE",
+        parser.add_argument("--move-start", default=None, metavar="MOVE",
                        help="the first measured state's radius moved by MOVE: '<k>ulp' (k representable "
                             "doubles) or '<x>m' (metres); the sensitivity study "
                             "(python -m ogk.missions.rendezvous.sensitivity)")
 
     def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
-        from .closed_loop import fly
+        from .closed_loop import fly_run
         from .guidance_base import strategy_settings
         from .guidance_factory import make_guidance
 
@@ -155,7 +165,7 @@ class RendezvousFamily:
 
         def flight(run_seed: int) -> Any:
             guidance = make_guidance(solver, scenario, settings)
-            return fly(scenario, guidance, perturbed, run_seed, strategy, solver,
+            return fly_run(scenario, guidance, perturbed, run_seed, strategy, solver,
                        max_replans=max_replans)
 
         def fly_one(run_id: int, run_seed: int) -> Record:
@@ -190,44 +200,61 @@ class RendezvousFamily:
             acceptance={"arrival": f"the [convergence] test: inside {scenario.target_name}'s sphere of "
                                    "influence within its velocity tolerance; propellant within the dry mass",
                         **dataclasses.asdict(scenario.acceptance)},
-            detail=detail, watchdog_per_run_s=600.0, base=scenario,
+            detail=detail, watchdog_per_run_s=600.0, base=_Base(scenario, settings),
             dispersions=declared(scenario, scenario_table(header.path), perturbed),
             draw=lambda ids, seeds: draw_records(scenario, perturbed, ids, seeds))
         if options.get("target", "host") != "host":
-            self._on_target(plan, str(options["target"]), Path(header.path), scenario, settings,
-                            strategy, third, perturbed, max_replans)
+            self.on_target(plan, str(options["target"]))
         return plan
 
-    @staticmethod
-    def _on_target(plan: CampaignPlan, target: str, path: Path, scenario: RendezvousScenario,
-                   settings: Any, strategy: str, third: str, perturbed: bool,
-                   max_replans: Any) -> None:
-        """The plan's replans made by the scenario's flight program on the emulated Cortex-M7
-        (pil.py); the truth, the noise and the judging stay on the host."""
-        from ogk.sil.pil import target_why
-        from ogk.sil.pil_build import file_sha256
+    # ------------------------------------------------------------------ ogk run
+    def add_run_arguments(self, parser: argparse.ArgumentParser) -> None:
+        from .one_flight import add_run_arguments
+        add_run_arguments(parser)
 
+    def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
+        """`ogk run SCENARIO`: one closed-loop NMPC flight, beside the paper's Table I or II."""
+        from .one_flight import run
+        return run(header, args)
+
+    # ------------------------------------------------------------------ on a target
+    # the plan's replans made by the scenario's flight program (pil.py); the truth, the noise and
+    # the judging stay on the host
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        """The ogk_nmpc configuration and first guesses of the strategy and model flown."""
+        from .flight_config import write_flight_config
+        return [write_flight_config(out_dir, plan.scenario_path, plan.base.scenario,
+                                    str(plan.options["strategy"]),
+                                    str(plan.options["third_bodies_in_model"]))]
+
+    def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
         from . import pil
         if plan.options["solver"] != "kernel":
             raise OgkInputError(f"--target {target} flies the kernel's ogk_nmpc, got "
                                 f"{plan.options['solver']!r}", key="--solver")
-        program = pil.flight_program(path, scenario, strategy, third, target)
-        plan.fly = pil.TargetJob(scenario, settings, strategy, perturbed,
-                                 None if max_replans is None else int(max_replans), program,
-                                 flight_record, RESULTS)
-        plan.target = target
-        plan.options = {**plan.options, "target": target}
-        plan.products = {**plan.products, "flight_program": file_sha256(program.elf)}
-        plan.target_bounds = pil.target_bounds(scenario)
-        plan.target_why = target_why(plan.target, pil.BOUNDS_WHY)
-        plan.watchdog_per_run_s = 7200.0     # a whole closed loop of QEMU re-solves
+        return pil.flight_program(plan.scenario_path, str(plan.options["strategy"]),
+                                  str(plan.options["third_bodies_in_model"]),
+                                  lambda out: self.flight_config(plan, out), target)
+
+    def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
+        from . import pil
+        opts = plan.options
+        max_replans = opts["max_replans"]
+        return pil.TargetJob(plan.base.scenario, plan.base.settings, str(opts["strategy"]),
+                             not bool(opts["unperturbed"]),
+                             None if max_replans is None else int(max_replans), program,
+                             flight_record, RESULTS)
+
+    def target_bounds(self, plan: CampaignPlan) -> tuple[dict[str, float], str]:
+        from . import pil
+        return pil.target_bounds(plan.base.scenario), pil.BOUNDS_WHY
 
     def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
         opts = flown.plan.options
         recs = flown.records
         lines = [f"{flown.plan.mission}: {opts['strategy']} {opts['solver']} "
                  f"{'unperturbed' if opts['unperturbed'] else 'perturbed'}: "
-                 f"{getattr(flown.plan.base, 'target_name', 'the target')} reached on "
+                 f"{flown.plan.base.scenario.target_name} reached on "
                  f"{sum(1 for r in recs if r['converged'])} of {len(recs)} runs",
                  "  run  reached  t_f [d]   fuel [kg]  solves  failed  subdiv  median ms"]
         for r in recs:
@@ -237,19 +264,20 @@ class RendezvousFamily:
                          f"{_f(r['subdivisions'], '6d')}  {_f(r.get('timing.solve_ms_median'), '9.2f')}")
         reached = sum(1 for r in recs if r["converged"])
         extra: dict[str, Any] = {"reached_target": reached, "reached_mars": reached}   # reached_mars: older name
-        paper = paper_row(flown.plan.base, str(opts["strategy"]), not bool(opts["unperturbed"]), recs)
+        paper = paper_row(flown.plan.base.scenario, str(opts["strategy"]), not bool(opts["unperturbed"]), recs)
         if paper is not None:
             lines.append(paper["line"])
             extra["paper_row"] = {k: v for k, v in paper.items() if k != "line"}
         return "\n".join(lines), extra
 
 
-def paper_row(scenario: Any, strategy: str, perturbed: bool, recs: Any) -> dict[str, Any] | None:
+def paper_row(scenario: RendezvousScenario, strategy: str, perturbed: bool,
+              recs: Any) -> dict[str, Any] | None:
     """The paper's row of the same case (Table I or II, [paper_results]) beside the campaign: how many
     runs arrived no later than its t_f and within its fuel (the paper's accounting: nominal mass flow x
     thrusting time, errata), None when the scenario has no such row."""
-    from .adapter import paper_values
-    if getattr(scenario, "paper_results", None) is None:
+    from .one_flight import paper_values
+    if scenario.paper_results is None:
         return None
     paper = paper_values(scenario, strategy, perturbed)
     t_p, f_p = paper["t_f_days"], paper["fuel_kg"]

@@ -1,6 +1,6 @@
 """Low-thrust rendezvous on the emulated Cortex-M7 (docs/flight-integration-nmpc.md): the flight
 program port/cortex-m7/pil/nmpc_pil.c (ogk_nmpc re-solves, nmpc_flight.c) makes every replan of the
-closed loop, the host's truth (closed_loop.fly) flies the vehicle. One QEMU per chunk of runs; each
+closed loop, the host's truth (closed_loop.fly_run) flies the vehicle. One QEMU per chunk of runs; each
 run is a fresh init of the flight software, its thrust-angle noise that of the host campaign.
 
 One step = one replan exchange (NMPC_REPLAN): the measured (t, x) out, the report, the command at t
@@ -27,7 +27,7 @@ from ogk_host.rendezvous.scenario import RendezvousScenario
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import _check, status_name
 from ogk_bindings.nmpc import FLAG_SUBDIVIDED, NX, Nmpc
-from ogk.sil.pil import FlightProgram, PilSession, fly_sessions
+from ogk.sil.pil import FlightProgram, PilSession, fly_runs_on_target
 from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
@@ -110,19 +110,14 @@ def program_key(scenario_path: Path, strategy: str, third_bodies: str) -> str:
     return h.hexdigest()[:16]
 
 
-def flight_program(scenario_path: Path, scenario: RendezvousScenario, strategy: str,
-                   third_bodies: str, target: str = "m7") -> FlightProgram:
-    """The scenario's flight program, built for the strategy and predictive model flown (`scenario`:
-    the file's, with the campaign's third bodies in its model)."""
-    from .flight_config import write_flight_config
-
+def flight_program(scenario_path: Path, strategy: str, third_bodies: str,
+                   flight_config: Callable[[Path], object], target: str = "m7") -> FlightProgram:
+    """The scenario's flight program, built for the strategy and predictive model flown, its
+    generated C written by `flight_config(DIR)` into DIR/c (the family's flight_config)."""
     out = PIL_BUILD / "rendezvous" / program_key(scenario_path, strategy, third_bodies)
-
-    def generate(c_dir: Path) -> None:
-        write_flight_config(c_dir.parent, Path(scenario_path), scenario, strategy, third_bodies)
-
-    return FlightProgram(build_program("nmpc", out, generate, target), ENTRY_POINTS,
-                         timeout_s=STEP_TIMEOUT_S, target=target)
+    return FlightProgram(build_program("nmpc", out, lambda c_dir: flight_config(c_dir.parent),
+                                       target), ENTRY_POINTS, timeout_s=STEP_TIMEOUT_S,
+                         target=target)
 
 
 class TargetGuidance:
@@ -248,38 +243,31 @@ class TargetJob:
 
     def __call__(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64]
                  ) -> list[dict[str, Any]]:
-        from .closed_loop import fly
+        from .closed_loop import fly_run
         from .kernel_guidance import KernelGuidance, kernel_config
         from ogk_host.rendezvous.dynamics import DAY_S, Model
 
         cfg = kernel_config(self.scenario, self.settings)
         tu_days = Model.for_scenario(self.scenario).units.time_s / DAY_S
 
-        def fly_all(sessions: list[PilSession]) -> list[dict[str, Any]]:
-            session = sessions[0]
-            records: list[dict[str, Any]] = []
-            for rid, seed in zip(run_ids, run_seeds):
-                start = time.perf_counter()
-                guidance = TargetGuidance(session, cfg, KernelGuidance(self.scenario, self.settings))
-                try:
-                    rec = self.record(fly(self.scenario, guidance, self.perturbed, int(seed),
-                                          self.strategy, "kernel",
-                                          max_replans=self.max_replans).summary())
-                except TargetLinkError:
-                    raise
-                except RuntimeError as err:   # the truth integration stopped (family.fly_one)
-                    rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(self.results),
-                           FIRST_OFFSET_KEY: None, "timing.solve_ms_median": None, "timing.solve_ms_max": None,
-                           "timing.max_comp_fraction": None}
-                rec["timing.wall_s"] = time.perf_counter() - start
-                rec["pil.command_mismatch"] = guidance.command_mismatch
-                rec.update(shadow_keys(guidance, tu_days))
-                session.end_run(int(rid))
-                rec["run_id"] = int(rid)
-                records.append(rec)
-            return records
+        def fly_on_session(session: PilSession, run_id: int, run_seed: int) -> dict[str, Any]:
+            start = time.perf_counter()
+            guidance = TargetGuidance(session, cfg, KernelGuidance(self.scenario, self.settings))
+            try:
+                rec = self.record(fly_run(self.scenario, guidance, self.perturbed, run_seed,
+                                      self.strategy, "kernel", max_replans=self.max_replans).summary())
+            except TargetLinkError:
+                raise
+            except RuntimeError as err:   # the truth integration stopped (family.fly_one)
+                rec = {"converged": False, "reason": f"truth: {err}", **dict.fromkeys(self.results),
+                       FIRST_OFFSET_KEY: None, "timing.solve_ms_median": None, "timing.solve_ms_max": None,
+                       "timing.max_comp_fraction": None}
+            rec["timing.wall_s"] = time.perf_counter() - start
+            rec["pil.command_mismatch"] = guidance.command_mismatch
+            rec.update(shadow_keys(guidance, tu_days))
+            return rec
 
-        records, keys = fly_sessions(self.program, 1, fly_all)
-        for rec in records:
-            rec.update(keys[int(rec.pop("run_id"))])
+        records, keys = fly_runs_on_target(self.program, run_ids, run_seeds, fly_on_session)
+        for rid, rec in zip(run_ids, records):
+            rec.update(keys[int(rid)])
         return records

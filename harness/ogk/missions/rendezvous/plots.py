@@ -16,6 +16,8 @@ import numpy as np
 from ogk_host.rendezvous.dynamics import DAY_S, Model
 from ogk_host.rendezvous.scenario import RendezvousScenario
 
+from ogk.sil.plots import pyplot, save
+
 from .closed_loop import FlightResult
 
 
@@ -25,9 +27,7 @@ def _stem(result: FlightResult) -> str:
 
 
 def write_plots(scenario: RendezvousScenario, result: FlightResult, out_dir: Path) -> list[Path]:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     out_dir.mkdir(parents=True, exist_ok=True)
     model = Model.for_scenario(scenario)
@@ -73,8 +73,7 @@ def write_plots(scenario: RendezvousScenario, result: FlightResult, out_dir: Pat
     ax.legend(fontsize=7, loc="lower left")
     ax.grid(alpha=0.3)
     p = out_dir / f"{stem}_trajectory.png"
-    fig.savefig(p, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    save(fig, p, dpi=120, tight=True)
     paths.append(p)
 
     # -- control history (Figs. 6, 9) ----------------------------------------------------------------------
@@ -98,8 +97,7 @@ def write_plots(scenario: RendezvousScenario, result: FlightResult, out_dir: Pat
     a2.set_xlabel("t [d]")
     a2.grid(alpha=0.3)
     p = out_dir / f"{stem}_control.png"
-    fig.savefig(p, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    save(fig, p, dpi=120, tight=True)
     paths.append(p)
 
     # -- miss per replan (Figs. 7, 10) ---------------------------------------------------------------------
@@ -119,7 +117,6 @@ def write_plots(scenario: RendezvousScenario, result: FlightResult, out_dir: Pat
     b2.legend(fontsize=7)
     b2.grid(alpha=0.3, which="both")
     p = out_dir / f"{stem}_miss.png"
-    fig.savefig(p, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    save(fig, p, dpi=120, tight=True)
     paths.append(p)
     return paths

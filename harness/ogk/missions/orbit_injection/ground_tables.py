@@ -1,23 +1,17 @@
-"""Orbit injection (VTD-NOG guidance + CPD attitude control; Pontani & Celani 2021 is its first user).
-
-The family's adapter for ogk.missions.registry: `ogk tables SCENARIO` (nominal, gain tables, C
-images) and `ogk run SCENARIO` (one dispersed flight); `ogk mc SCENARIO` (SIL Monte Carlo, 6-DOF or
-point-mass truth) goes through the campaign engine (family.py).
-"""
+"""`ogk tables SCENARIO` of an orbit-injection scenario (the family's `tables`): the ground
+nominal, the VTD-NOG gain tables with their manifest, the C table image and the flight
+configuration header, each file named as it is written."""
 from __future__ import annotations
 
 import argparse
 import math
 from pathlib import Path
 
-from ogk_host.orbit_injection.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.orbit_injection.scenario import load_scenario
 from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.outputs import check_output_dir
 from ogk.sil.progress import Working
-
-LAWS = SCENARIO_LAWS
 
 
 def add_tables_arguments(p: argparse.ArgumentParser) -> None:
@@ -26,15 +20,14 @@ def add_tables_arguments(p: argparse.ArgumentParser) -> None:
                         "a directory that ogk did not make is never written into")
 
 
-def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
+def write_ground_tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
+    """The scenario's ground products into --out (default its provenance directory)."""
     from ogk_host.cgen import write_c_table
     from ogk_host.orbit_injection import tables as ground
+    from ogk_host.orbit_injection.derive import TURN_ACCEL_KEY, resolve, warn_outside_envelope
 
-    from ogk_host.orbit_injection.derive import TURN_ACCEL_KEY, resolve
-
-    from .family import warn_outside_envelope
-    from .terminal import shape_tilt_bound_rad
     from .flight_config import write_flight_config
+    from .terminal import shape_tilt_bound_rad
 
     scn = load_scenario(header.path)  # every bad key reported before the nominal is solved
     out = Path(args.out) if args.out else ground.default_table_dir(header.path)
@@ -68,25 +61,3 @@ def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
         print(f"  wrote {path} (flight build: const configurations)")
     print(f"  wrote {out / 'manifest.json'}")
     return 0
-
-
-def add_run_arguments(p: argparse.ArgumentParser) -> None:
-    from .family import FAMILY
-    p.add_argument("--seed", type=int, default=1, help="seed of the flight's draws (run 0 of a "
-                   "campaign with this seed; default 1)")
-    p.add_argument("--json", required=True, metavar="FILE", help="the flight as a campaign of one")
-    p.add_argument("--plots", default=None, metavar="DIR", help="PNG plots of the flight")
-    FAMILY.add_campaign_arguments(p)
-    from ogk.sil.command import add_target_argument
-    add_target_argument(p)
-
-
-def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
-    """`ogk run SCENARIO`: one dispersed flight (run 0 of `ogk mc` with the same seed)."""
-    from ogk.sil import command
-
-    from .family import FAMILY
-    for name, value in (("runs", 1), ("workers", 1), ("resume", False), ("chunk_runs", None),
-                        ("watchdog_per_run", None)):
-        setattr(args, name, value)
-    return command.fly(FAMILY, header, args)

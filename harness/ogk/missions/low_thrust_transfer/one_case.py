@@ -1,8 +1,7 @@
-"""Low-thrust transfer (MPSP bang-off-bang guidance; Wang & Topputo 2020 is its first user).
-
-The family's adapter for ogk.missions.registry: `ogk cases SCENARIO` flies the kernel's MPSP on one
-perturbation case (--case, --param) or on all of the paper's cases (--paper-tables), each with the
-fuel-optimal re-solve of the same problem for the fuel increase (docs/mpsp-cli.md).
+"""`ogk run SCENARIO` of a low-thrust transfer (the family's `run`; `ogk cases` and `ogk mpsp
+apophis` are its older spellings): the kernel's MPSP on one perturbation case (--case, --param) or
+on all of the paper's cases (--paper-tables), each with the fuel-optimal re-solve of the same
+problem for the fuel increase (docs/mpsp-cli.md).
 """
 from __future__ import annotations
 
@@ -15,48 +14,12 @@ from typing import Any
 
 from ogk_bindings.errors import OgkInputError
 from ogk_host.low_thrust_transfer.scenario import FOURIER_BASES, MAX_FOURIER_ORDER
-from ogk_host.low_thrust_transfer.scenario import LAWS as SCENARIO_LAWS
-from ogk_host.scenario_file import ScenarioHeader, table_dir_for
+from ogk_host.scenario_file import ScenarioHeader
 
 from ogk.sil.outputs import check_output_dir, check_output_file
 from ogk.sil.report import finite_or_none
 
-LAWS = SCENARIO_LAWS
-
-
-def add_tables_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--out", default=None, metavar="DIR",
-                   help="output directory (default: build/tables/<name>-<sha12> of the scenario)")
-
-
-def tables(header: ScenarioHeader, args: argparse.Namespace) -> int:
-    """The scenario's ground products into its provenance directory (default
-    build/tables/<name>-<sha12>): the fuel-optimal nominal (nominal_solution.json; from the shipped
-    cache only when the physics is the same, else solved), manifest.json (scenario path, SHA-256,
-    physics SHA-256, the nominal's SHA-256), and the MPSP flight configuration as a const C header."""
-    from ogk_host.low_thrust_transfer.products import MANIFEST, record_file
-    from ogk_host.low_thrust_transfer.scenario import load_scenario
-
-    from .cases import build_setup
-    from .flight_config import write_flight_config
-
-    load_scenario(header.path)
-    out = Path(args.out) if args.out else table_dir_for(header.path)
-    check_output_dir(out, "--out")
-    setup = build_setup(scenario_path=header.path, product_dir=out)
-    nom = setup.nominal
-    print(f"{header.name}: nominal final mass {nom.final_mass_kg:.4f} kg, {nom.thrust_arcs} thrust / "
-          f"{nom.coast_arcs} coast arcs, |dr_f| = {nom.position_error_km:.2e} km, "
-          f"|dv_f| = {nom.velocity_error_km_s:.2e} km/s ({nom.method})")
-    print(f"  wrote {setup.nominal_path} (SHA-256 {setup.nominal_sha256[:12]})")
-    for path in write_flight_config(out, header.path, setup):
-        record_file(out, str(path.relative_to(out)), path)
-        print(f"  wrote {path} (flight build: const MPSP configuration)")
-    print(f"  wrote {out / MANIFEST}")
-    return 0
-
-
-def add_cases_arguments(p: argparse.ArgumentParser) -> None:
+def add_run_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--case", choices=("initial", "terminal", "thrust"), default=None)
     p.add_argument("--param", default=None,
                    help="kappa (initial), 'dx,dy,dz' in LU (terminal), eta in %% (thrust)")
@@ -75,7 +38,8 @@ def add_cases_arguments(p: argparse.ArgumentParser) -> None:
                    help="skip the fuel-optimal re-solves (no FI)")
 
 
-def cases(header: ScenarioHeader, args: argparse.Namespace) -> int:
+def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
+    """One MPSP case, or the paper's cases with --paper-tables; exit 1 when one fails [acceptance]."""
     from ogk.missions.low_thrust_transfer.cases import check_param
     from ogk_host.low_thrust_transfer.scenario import load_scenario
     args.scenario = str(header.path)
@@ -116,11 +80,11 @@ def _reference(setup: Any, case: Any, args: argparse.Namespace) -> Any:
 
 
 def run_one(args: argparse.Namespace) -> int:
-    from ogk.missions.low_thrust_transfer.cases import build_setup, make_case, run_case
+    from ogk.missions.low_thrust_transfer.cases import build_setup, make_case, fly_run
     from ogk.missions.low_thrust_transfer.report import header, make_record, table_line
     setup = build_setup(args.basis, args.order, args.scenario)
     case = make_case(setup, args.case, args.param)
-    res, cpu = run_case(setup, case)
+    res, cpu = fly_run(setup, case)
     start = time.perf_counter()
     ref = _reference(setup, case, args)
     rec = make_record(setup, res, cpu, ref)
@@ -154,7 +118,7 @@ def judge(setup: Any, rec: Any) -> str:
 
 
 def run_tables(args: argparse.Namespace) -> int:
-    from ogk.missions.low_thrust_transfer.cases import build_setup, paper_cases, run_case
+    from ogk.missions.low_thrust_transfer.cases import build_setup, paper_cases, fly_run
     from ogk.missions.low_thrust_transfer.report import header, make_record, paper_rows, table_line
     setup = build_setup(args.basis, args.order, args.scenario)
     cases = paper_cases(setup)
@@ -170,7 +134,7 @@ def run_tables(args: argparse.Namespace) -> int:
     failures: list[str] = []
     ref_wall = 0.0
     for case, paper in zip(cases, papers):
-        res, cpu = run_case(setup, case)
+        res, cpu = fly_run(setup, case)
         start = time.perf_counter()
         ref = _reference(setup, case, args)
         ref_wall += time.perf_counter() - start
@@ -226,9 +190,3 @@ def _run(args: argparse.Namespace) -> int:
     except ValueError as err:
         print(f"ogk cases: {err}", file=sys.stderr)
         return 2
-
-
-# `ogk run` is the family's one-case verb (or the paper's tables); `ogk cases` and `ogk mpsp apophis`
-# are its older spellings. `ogk mc` goes through the campaign engine (family.py).
-add_run_arguments = add_cases_arguments
-run = cases

@@ -1,7 +1,7 @@
 """The tolerances of the Basilisk cross-check for any orbit-injection scenario, from the two truth
 models' own step errors (docs/basilisk.md, "Tolerances"):
 
-    .venv/bin/python -m ogk.basilisk.step_study [SCENARIO] --seed S --runs N
+    .venv/bin/python -m ogk.missions.orbit_injection.basilisk.step_study [SCENARIO] --seed S --runs N
 
 The models integrate the same equations, so they differ by their discretisation errors only. Each
 model flies the nominal (no dispersions) and runs 0 .. N-1 of seed S at the dynamics steps h, h/2 and
@@ -41,7 +41,7 @@ def round_up(x: float) -> float:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m ogk.basilisk.step_study", description=__doc__,
+    ap = argparse.ArgumentParser(prog="python -m ogk.missions.orbit_injection.basilisk.step_study", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scenario", nargs="?", default="scenarios/leo_geo.toml")
     ap.add_argument("--seed", type=int, default=7)

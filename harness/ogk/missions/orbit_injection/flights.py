@@ -1,15 +1,11 @@
-"""Monte Carlo campaign of the LEO-to-GEO burn: runs split in chunks over worker processes,
-statistics, JSON.
+"""The orbit-injection campaign's flights: a chunk of dispersed runs flown vectorised (`_Job`),
+their records, the campaign plan the family's `plan` returns (`campaign_plan`) and the
+`CampaignResult` its report and plots read.
 
 The same (seed, run id) gives the same numbers whatever the number of runs, workers or chunks:
 every run draws from its own generator (dispersions.py), and every truth/control operation is
-elementwise over runs. Workers are forked processes (the nominal is solved once, before the fork);
-each chunk builds its own guidance with `guidance_factory(GuidanceSetup(...))`.
-
-Faults (a kernel error, a dead worker, the watchdog) end the campaign with
-ogk.sil.runner.CampaignAborted; with a `run_log` every finished chunk's runs are appended to it as
-they complete (ogk.sil.runlog), and `resume=True` flies only the runs it does not hold yet, giving
-the same result as an uninterrupted campaign.
+elementwise over runs. Each chunk builds its own guidance with
+`guidance_factory(GuidanceSetup(...))`. The campaign itself is the engine's (ogk.sil.engine).
 """
 from __future__ import annotations
 
@@ -17,34 +13,27 @@ import dataclasses
 import hashlib
 import json
 import math
-import time
-from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_bindings.errors import TableError
-from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
-from ogk_host.scenario_file import ScenarioHeader, file_sha256
+from ogk_host.scenario_file import file_sha256
 
 from ogk.sil.dispersion_check import scenario_table
 from ogk.sil.criteria import (apply_tolerances, failure_list, failure_reasons, statistics,
                               tail_statistics)
 from ogk.sil.outputs import write_atomic
 from ogk.sil.report import finite_or_none
-from ogk.sil.engine import fly_campaign
 from ogk.sil.family import CampaignPlan
-from ogk.sil.runlog import RunLog
-from ogk.sil.runner import Watchdog, run_ids_for
 
 from .dispersions import (DispersionSwitches, RunDraws, declared, dispersion_records, draw_runs,
                           with_first_actuation)
 from .guidance import GuidanceFactory, GuidanceSetup
-from .nominal_ref import NominalReference, nominal_reference
-from .sil import ERROR_KEYS, RATE_KEYS, EndGamePlan, History, SilSettings, simulate
+from .nominal_ref import NominalReference
+from .sil import ERROR_KEYS, RATE_KEYS, EndGamePlan, History, SilSettings, fly_runs
 
 if TYPE_CHECKING:
     from .nog_guidance import NogTables
@@ -222,13 +211,13 @@ class _Job:
         guidance = self.guidance_factory(GuidanceSetup(self.scenario, self.reference, draws.run_id,
                                                        plan.fine_interval_s))
         # (a guidance that flies no end-game ignores last_interval_s: sil.EndGamePlan.flown_by)
-        res = simulate(self.scenario, self.reference, draws, gens, self.switches, guidance,
+        res = fly_runs(self.scenario, self.reference, draws, gens, self.switches, guidance,
                        self.settings)
         return draws, res
 
     def draws(self, run_ids: NDArray[np.int64], run_seeds: NDArray[np.uint64] | None = None
               ) -> tuple[RunDraws, list[np.random.Generator]]:
-        """The runs' draws, with the first actuation noise the truth will receive (simulate:
+        """The runs' draws, with the first actuation noise the truth will receive (fly_runs:
         on when the switch is and the truth is 6-DOF), and their generators positioned for the
         actuation noise."""
         draws, gens = draw_runs(self.scenario, self.seed, run_ids, self.switches, run_seeds)
@@ -239,27 +228,6 @@ class _Job:
                      run_seeds: NDArray[np.uint64]) -> list[dict[str, Any]]:
         """The disp.* keys of the runs, drawn without flying (the plan's `draw`)."""
         return dispersion_records(self.draws(run_ids, run_seeds)[0])
-
-
-def _merge_history(parts: list[History | None]) -> History | None:
-    parts = [p for p in parts if p is not None]
-    if not parts:
-        return None
-    n_t = max(p.t_s.size for p in parts)
-    longest = max(parts, key=lambda p: p.t_s.size)
-    data = {}
-    for key in longest.data:
-        cols = []
-        for p in parts:
-            v = p.data[key]
-            if v.shape[0] < n_t:
-                v = np.vstack([v, np.full((n_t - v.shape[0], v.shape[1]), np.nan)])
-            cols.append(v)
-        data[key] = np.hstack(cols)
-    return History(run_id=np.concatenate([p.run_id for p in parts]), t_s=longest.t_s, data=data)
-
-
-RUN_RECORD_FLOATS = ("d_state", "d_attitude_rad", "rates0_radps", "thrust_coeffs")
 
 
 def run_key(scenario: OrbitInjectionScenario, seed: int, truth: str, guidance: str,
@@ -344,68 +312,3 @@ def campaign_plan(scenario: OrbitInjectionScenario, ref: NominalReference, switc
         acceptance=tol, watchdog_per_run_s=2.0, base=job,
         dispersions=declared(scenario, table, switches, settings.truth == "6dof"),
         draw=job.draw_records)
-
-
-def run_campaign(scenario: OrbitInjectionScenario, runs: int, seed: int, workers: int = 1,
-                 dispersions: bool | DispersionSwitches = True, truth: str = "6dof",
-                 guidance_factory: GuidanceFactory | None = None, guidance_name: str | None = None,
-                 settings: SilSettings | None = None, run_ids: Sequence[int] | None = None,
-                 chunks: int | None = None, header: ScenarioHeader | None = None,
-                 tables: "NogTables | None" = None, *, chunk_runs: int | None = None,
-                 watchdog: Watchdog | None = None, run_log: str | Path | None = None,
-                 resume: bool = False, options: dict[str, Any] | None = None) -> CampaignResult:
-    """Flies `runs` runs (ids 0..runs-1, or the given `run_ids` to re-fly some of them) through
-    the campaign engine (ogk.sil.engine) in `chunks` chunks (default: one per worker; more when a
-    chunk would exceed `chunk_runs` runs) on `workers` forked processes. A run fails (reason
-    kept) when the kernel, the truth model or the scenario's acceptance tolerances say so.
-
-    `run_log`: file the finished runs are appended to as each chunk completes (ogk.sil.runlog);
-    `resume`: keep the runs of an existing run log of the same campaign and fly only the others.
-    The histories of runs with id < settings.history_runs are flown again in this process after
-    the campaign (the same numbers: a run depends only on its id and the campaign).
-    Raises CampaignAborted (a run raised, a worker died, `watchdog` fired) or CampaignInterrupted
-    (Ctrl-C / SIGTERM)."""
-    from .guidance import NominalOpenLoopGuidance
-    t_start = time.perf_counter()
-    if guidance_factory is None:
-        guidance_factory = NominalOpenLoopGuidance
-    name = guidance_name or getattr(guidance_factory, "name", None) or \
-        getattr(guidance_factory, "__name__", "guidance")
-    switches = dispersions if isinstance(dispersions, DispersionSwitches) else (
-        DispersionSwitches() if dispersions else DispersionSwitches.none())
-    settings = dataclasses.replace(settings or SilSettings(), truth=truth)
-    ids = run_ids_for(runs, run_ids)
-    path = header.path if header is not None else scenario.path
-    law = header.law if header is not None else "vtd-nog"
-    # the run log first: a --resume of another campaign is refused before any computation
-    probe = campaign_plan(scenario, None, switches, settings, guidance_factory,  # type: ignore[arg-type]
-                          str(name), tables, path, law, options)
-    log = None if run_log is None else RunLog(run_log, probe.key(seed), resume=resume)
-    t_nominal = time.perf_counter()
-    ref = nominal_reference(scenario)
-    nominal_solve_s = time.perf_counter() - t_nominal
-    scenario = derive.resolve(scenario, ref.tf_s)     # what scales with the burn
-    if tables is not None and abs(tables.t_f_star_s - ref.tf_s) > 1e-6 * max(ref.tf_s, 1.0):
-        raise TableError(f"tables made for t_f* = {tables.t_f_star_s:.6f} s, the scenario's nominal "
-                         f"is {ref.tf_s:.6f} s: regenerate them with `ogk tables`",
-                         path=tables.directory)
-    plan = campaign_plan(scenario, ref, switches, settings, guidance_factory, str(name), tables,
-                         path, law, options)
-    del log   # the engine reopens it (resume keeps what the check above accepted)
-    flown = fly_campaign(plan, runs, seed, workers, run_ids=run_ids, chunk_runs=chunk_runs,
-                         chunks=chunks, watchdog=watchdog, run_log=run_log, resume=resume)
-    draws, errors, rates, failure = _assemble(flown.records)
-    history, truth_steps = None, 0
-    hist_ids = ids[ids < settings.history_runs]
-    if hist_ids.size:   # the plotted runs again, with histories, in this process
-        res = _Job(scenario, ref, int(seed), switches, settings, guidance_factory)(hist_ids)[1]
-        history, truth_steps = res.history, int(res.truth_steps)
-    return CampaignResult(scenario=scenario, seed=int(seed), truth=truth, guidance=str(name),
-                          switches=switches, settings=settings, nominal_tf_s=ref.tf_s, draws=draws,
-                          errors=errors, max_rates=rates, failure=failure, history=history,
-                          wall_time_s=time.perf_counter() - t_start, workers=flown.workers,
-                          nominal_solve_s=nominal_solve_s, flight_cpu_s=flown.cpu_s,
-                          truth_steps=truth_steps,
-                          scenario_path=None if path is None else str(path),
-                          scenario_sha256=plan.scenario_sha256 or None,
-                          resumed_runs=flown.resumed_runs, tables=tables, engine_result=flown)

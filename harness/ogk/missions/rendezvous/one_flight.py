@@ -1,10 +1,9 @@
-"""Low-thrust heliocentric rendezvous (receding-horizon NMPC; Starek & Kolmanovsky 2012 is its first user).
-
-The family's adapter for ogk.missions.registry: `ogk nmpc SCENARIO` flies the closed loop of sec. 2.3 (SNNS or
-CNCN, guidance by IPOPT or by the flight code's ogk_nmpc) against the truth model, unperturbed or
-perturbed (sec. 3.3-3.5), prints the paper's Table I (min-time) or Table II (min-fuel) column of the same
-case beside the run, writes the JSON and optionally the PNG figures (Figs. 5-10). Exit 0 when the flight
-reached Mars (sec. 2.3.1's criterion), 1 when it did not, 2 on bad input.
+"""`ogk run SCENARIO` of a low-thrust rendezvous (the family's `run`; `ogk nmpc` is its older
+spelling): the closed loop of sec. 2.3 (SNNS or CNCN, guidance by IPOPT or by the flight code's
+ogk_nmpc) flown once against the truth model, unperturbed or perturbed (sec. 3.3-3.5); prints the
+paper's Table I (min-time) or Table II (min-fuel) column of the same case beside the run, writes the
+JSON and optionally the PNG figures (Figs. 5-10). Exit 0 when the flight reached the target (sec.
+2.3.1's criterion), 1 when it did not, 2 on bad input.
 """
 from __future__ import annotations
 
@@ -17,7 +16,6 @@ from typing import Any
 
 from ogk_bindings.errors import OgkInputError
 from ogk_host.rendezvous.dynamics import DAY_S
-from ogk_host.rendezvous.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.rendezvous.scenario import RendezvousScenario
 from ogk_host.scenario_file import ScenarioHeader
 
@@ -25,12 +23,11 @@ from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale, w
 from ogk.sil.progress import Working
 from ogk.sil.report import finite_or_none
 
-LAWS = SCENARIO_LAWS
 STRATEGIES = ("snns", "cncn")
 SOLVERS = ("ipopt", "kernel")
 
 
-def add_nmpc_arguments(p: argparse.ArgumentParser) -> None:
+def add_run_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--strategy", choices=STRATEGIES, default=None,
                    help="SNNS (sec. 2.3.3) or CNCN (sec. 2.3.1); default: the scenario's [nmpc] strategy")
     p.add_argument("--perturbed", action="store_true",
@@ -118,7 +115,8 @@ def report_lines(scenario: RendezvousScenario, doc: dict[str, Any]) -> list[str]
     return lines
 
 
-def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
+def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
+    """One closed-loop flight (module doc)."""
     from ogk_host.rendezvous.scenario import load_scenario
 
     scenario = load_scenario(header.path)
@@ -140,7 +138,7 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
         scenario = dataclasses.replace(scenario, nmpc=dataclasses.replace(scenario.nmpc, hessian=args.hessian))
     strategy_name = args.strategy or scenario.nmpc.strategy
 
-    from .closed_loop import fly
+    from .closed_loop import fly_run
     from .guidance_base import strategy_settings
     from .guidance_factory import make_guidance
 
@@ -153,9 +151,12 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
         from ogk.sil.pil import PilSession
 
         from . import pil
+        from .flight_config import write_flight_config
         from .kernel_guidance import kernel_config
-        program = pil.flight_program(Path(header.path), scenario, strategy_name,
-                                     args.third_bodies_in_model)
+        third = args.third_bodies_in_model
+        program = pil.flight_program(   # the flight configuration of this flight's scenario
+            Path(header.path), strategy_name, third,
+            lambda out: write_flight_config(out, Path(header.path), scenario, strategy_name, third))
         session = PilSession(program)
         guidance: Any = pil.TargetGuidance(session, kernel_config(scenario, settings))
     else:
@@ -175,7 +176,7 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
             if args.trace:
                 trace(rec)
         try:
-            result = fly(scenario, guidance, args.perturbed, args.seed, strategy_name, args.solver,
+            result = fly_run(scenario, guidance, args.perturbed, args.seed, strategy_name, args.solver,
                          max_replans=args.max_replans, progress=replanned)
             if session is not None:
                 session.end_run(0)
@@ -205,9 +206,3 @@ def nmpc(header: ScenarioHeader, args: argparse.Namespace) -> int:
         for path in write_plots(scenario, result, Path(plots_dir)):
             print(f"wrote {path}")
     return 0 if result.converged else 1
-
-
-# `ogk run` is the family's one-flight verb; `ogk nmpc` its older spelling. `ogk mc` goes through
-# the campaign engine (family.py).
-add_run_arguments = add_nmpc_arguments
-run = nmpc

@@ -1,12 +1,8 @@
-"""Binary-asteroid transfers with BLT guidance and NRPC (Xiong & Wang is its first user).
-
-The family's adapter for ogk.missions.registry:
-  `ogk blt SCENARIO --transfer NAME --json FILE [--plots DIR]`: one transfer: the ground's initial guess, the
-      flight kernel's corrector in the realistic model, the independent DOP853 re-propagation of the result,
-      the paper's figures beside it. Exit 0 when the kernel converged and DOP853 confirms the tolerance.
-  `ogk run SCENARIO --transfer NAME ...`: the same (`ogk blt` is its older spelling).
-  `ogk mc SCENARIO`: the convergence Monte Carlo of Table 3, through the campaign engine (family.py).
-Exit 2 on bad input.
+"""`ogk run SCENARIO --transfer NAME --json FILE [--plots DIR]` of a binary-asteroid scenario (the
+family's `run`; `ogk blt` is its older spelling): one transfer: the ground's initial guess, the
+flight kernel's corrector in the realistic model, the independent DOP853 re-propagation of the
+result, the paper's figures beside it. Exit 0 when the kernel converged and DOP853 confirms the
+tolerance, 1 when not, 2 on bad input.
 """
 from __future__ import annotations
 
@@ -14,32 +10,28 @@ import argparse
 import dataclasses
 import json
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from ogk_host.binary import transfers as T
 from ogk_host.binary.orbits import CorrectionError, scenario_orbit
-from ogk_host.binary.scenario import LAWS as SCENARIO_LAWS
 from ogk_host.binary.scenario import BinaryScenario, load_scenario
 from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader
 
+from ogk.sil.pil import FlightProgram
 from ogk.sil.outputs import check_output_dir, check_output_file, remove_stale, write_atomic
 from ogk.sil.report import finite_or_none
 from ogk.sil.progress import Working
-
-
-LAWS = SCENARIO_LAWS
 
 
 def _scenario(header: ScenarioHeader) -> BinaryScenario:
     return load_scenario(header.path)
 
 
-# ------------------------------------------------------------------------------------------ ogk blt
-
-def add_blt_arguments(p: argparse.ArgumentParser) -> None:
+def add_run_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--transfer", required=True, metavar="NAME", help="a [transfers.NAME] of the scenario")
     p.add_argument("--json", required=True, metavar="FILE", help="write the result as JSON")
     p.add_argument("--plots", default=None, metavar="DIR", help="PNG figures (synodic frame, C_J and control)")
@@ -119,7 +111,10 @@ def report_lines(doc: dict[str, Any]) -> list[str]:
     return lines
 
 
-def blt(header: ScenarioHeader, args: argparse.Namespace) -> int:
+def run(header: ScenarioHeader, args: argparse.Namespace,
+        target_program: Callable[[], FlightProgram] | None = None) -> int:
+    """One transfer (module doc); with --target m7 every corrector solve on `target_program()`
+    (the family's: the flight program its `ogk mc --target m7` flies)."""
     scenario = _scenario(header)
     out = check_output_file(args.json, "--json")
     plots = check_output_dir(args.plots, "--plots") if args.plots else None
@@ -130,7 +125,10 @@ def blt(header: ScenarioHeader, args: argparse.Namespace) -> int:
     if args.thrust_n is not None and not args.thrust_n > 0.0:
         raise OgkInputError("must be > 0", key="--thrust-n")
     if getattr(args, "target", "host") == "m7":
-        doc = _blt_on_target(header, scenario, args.transfer, corrector, jacobian, args.thrust_n)
+        if target_program is None:
+            raise OgkInputError("this transfer has no flight program to fly on", key="--target")
+        doc = _blt_on_target(target_program(), scenario, args.transfer, corrector, jacobian,
+                             args.thrust_n)
     else:
         doc = blt_document(scenario, args.transfer, corrector, jacobian, args.thrust_n)
     if plots is not None:
@@ -146,7 +144,7 @@ def blt(header: ScenarioHeader, args: argparse.Namespace) -> int:
     return 0 if doc["converged"] and doc["dop853_meets_tol"] else 1
 
 
-def _blt_on_target(header: ScenarioHeader, scenario: BinaryScenario, name: str, corrector: str | None,
+def _blt_on_target(program: FlightProgram, scenario: BinaryScenario, name: str, corrector: str | None,
                    jacobian: str | None, thrust_n: float | None) -> dict[str, Any]:
     """blt_document with every corrector solve made by the scenario's flight program (pil.py): the
     document's keys plus target, flight_program (SHA-256), target_solves and the pil.* keys."""
@@ -154,8 +152,6 @@ def _blt_on_target(header: ScenarioHeader, scenario: BinaryScenario, name: str, 
     from ogk.sil.pil_build import file_sha256
 
     from .pil import corrections_on_target
-    from .pil_transfers import scenario_program
-    program = scenario_program(header)
     session = PilSession(program)
     try:
         with corrections_on_target(session) as log:
@@ -194,9 +190,3 @@ def _transfer_plots(scenario: BinaryScenario, doc: dict[str, Any], out_dir: Path
              f"fuel {doc['fuel_g']:.2f} g, {'converged' if doc['converged'] else 'NOT converged'}")
     return transfer_figures(doc["transfer"], model, smp, orbit_states, scenario.units.length_m,
                             scenario.units.time_s, out_dir, title)
-
-
-# `ogk run` is the family's one-transfer verb; `ogk blt` its older spelling. `ogk mc` goes through
-# the campaign engine (family.py).
-add_run_arguments = add_blt_arguments
-run = blt

@@ -2,7 +2,7 @@
 software (the kernel's VTD-NOG, end-game and CPD), two independent vehicle models
 (docs/basilisk.md). `compare` flies a list of runs in both and returns their injection errors.
 
-    .venv/bin/python -m ogk.basilisk.crosscheck [SCENARIO] --seed S --runs N [--substeps K]
+    .venv/bin/python -m ogk.missions.orbit_injection.basilisk.crosscheck [SCENARIO] --seed S --runs N [--substeps K]
 """
 from __future__ import annotations
 
@@ -23,7 +23,7 @@ from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_ru
 from ogk.missions.orbit_injection.guidance import GuidanceSetup
 from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, prepare_tables
 from ogk.missions.orbit_injection.nominal_ref import nominal_reference
-from ogk.missions.orbit_injection.sil import ERROR_KEYS, EndGamePlan, SilSettings, simulate
+from ogk.missions.orbit_injection.sil import ERROR_KEYS, EndGamePlan, SilSettings, fly_runs
 
 from . import injection
 
@@ -60,7 +60,7 @@ def compare(scn: OrbitInjectionScenario, seed: int, run_ids: Sequence[int],
             switches: DispersionSwitches = DispersionSwitches(),
             settings: SilSettings = SilSettings(), history_s: float = 0.0,
             ref: Any = None, tables: Any = None) -> Comparison:
-    """Flies `run_ids` of campaign `seed` in ogk's 6-DOF truth (one batch, sil.simulate) and one
+    """Flies `run_ids` of campaign `seed` in ogk's 6-DOF truth (one batch, sil.fly_runs) and one
     by one in Basilisk (injection.fly), with the scenario's tables (generated when missing)."""
     ref = nominal_reference(scn) if ref is None else ref
     tables = prepare_tables(scn) if tables is None else tables
@@ -74,7 +74,7 @@ def compare(scn: OrbitInjectionScenario, seed: int, run_ids: Sequence[int],
     plan = EndGamePlan.of(scn, settings)
     guidance = KernelNogGuidance(GuidanceSetup(scn, ref, draws.run_id, plan.fine_interval_s),
                                  tables.bundle)
-    res = simulate(scn, ref, draws, gens, switches, guidance, settings)
+    res = fly_runs(scn, ref, draws, gens, switches, guidance, settings)
     c1 = time.process_time()
     flights = []
     for rid in ids:
@@ -89,7 +89,7 @@ def compare(scn: OrbitInjectionScenario, seed: int, run_ids: Sequence[int],
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m ogk.basilisk.crosscheck",
+    ap = argparse.ArgumentParser(prog="python -m ogk.missions.orbit_injection.basilisk.crosscheck",
                                  description="ogk's 6-DOF truth against Basilisk on the same runs")
     ap.add_argument("scenario", nargs="?", default="scenarios/leo_geo.toml")
     ap.add_argument("--seed", type=int, default=7)

@@ -1,0 +1,80 @@
+"""Builds each mission family's C helpers (harness/ogk/missions/<family>/csrc/*.c: batched calls of
+the kernel's step functions over many runs) into the family's own cffi extension,
+``ogk.missions.<family>._csrc_cffi`` (API mode), in place.
+
+The family layer builds its C; the bindings build the kernel's (bindings/build_ffi.py, whose
+header scan this reuses). A family's extension:
+* includes the bindings' FFI (cffi's ``ffi.include``): the kernel's types are the bindings' own, so
+  a context made by ``ogk_bindings._ffi.ffi`` is passed to a batch loop as it is, and the batch
+  module imports ``ogk_bindings._ogk_cffi`` at run time;
+* declares only what the family's csrc/*.h declare (their prototypes, and the OGK_* macros they
+  define beyond the kernel's), generated from the headers as the bindings' are;
+* compiles the kernel's sources with the family's, with the bindings' compiler options, so that the
+  batch loops call the same kernel code (a copy of it in this extension; the kernel keeps no state
+  outside the contexts it is given).
+
+Run from anywhere:  .venv/bin/python harness/ogk/missions/build_csrc.py
+(`make ffi` runs it after bindings/build_ffi.py.) Not imported at run time.
+"""
+from __future__ import annotations
+
+import shutil
+import sys
+from pathlib import Path
+
+import cffi
+
+MISSIONS_DIR = Path(__file__).resolve().parent
+ROOT = MISSIONS_DIR.parents[2]
+sys.path.insert(0, str(ROOT / "bindings"))
+import build_ffi as kernel_ffi  # noqa: E402  (the bindings' build script, not a package)
+
+BUILD_DIR = ROOT / "build" / "ffi-families"
+
+
+def families_with_csrc() -> list[Path]:
+    """The csrc/ directory of every family that has C helpers."""
+    return sorted(d for d in MISSIONS_DIR.glob("*/csrc") if any(d.glob("*.c")))
+
+
+def module_name(csrc: Path) -> str:
+    return f"ogk.missions.{csrc.parent.name}._csrc_cffi"
+
+
+def family_builder(csrc: Path, kernel: cffi.FFI) -> cffi.FFI:
+    """The FFI of one family's C helpers, on the kernel's FFI `kernel`."""
+    headers = sorted(csrc.glob("*.h"))
+    include_dirs = [*kernel_ffi.INCLUDE_DIRS, str(csrc)]
+    kernel_macros = {name for name, _, _ in kernel_ffi.macros(kernel_ffi.bound_headers())}
+    own = [m for m in kernel_ffi.macros(headers, include_dirs) if m[0] not in kernel_macros]
+    builder = cffi.FFI()
+    builder.include(kernel)
+    builder.cdef(kernel_ffi.declarations(headers, include_dirs) + kernel_ffi.macro_cdefs(own))
+    builder.set_source(
+        module_name(csrc),
+        # the kernel's headers first: the C of the included types
+        kernel_ffi.include_source(kernel_ffi.bound_headers() + headers),
+        sources=kernel_ffi.kernel_sources() + [str(p) for p in sorted(csrc.glob("*.c"))],
+        include_dirs=include_dirs,
+        extra_compile_args=kernel_ffi.COMPILE_ARGS,
+        libraries=["m"],
+    )
+    return builder
+
+
+def main() -> int:
+    kernel = kernel_ffi.make_builder()
+    for csrc in families_with_csrc():
+        tmp = BUILD_DIR / csrc.parent.name
+        tmp.mkdir(parents=True, exist_ok=True)
+        built = Path(family_builder(csrc, kernel).compile(tmpdir=str(tmp), verbose=False))
+        for old in csrc.parent.glob("_csrc_cffi*"):
+            old.unlink()
+        target = csrc.parent / built.name
+        shutil.copy2(built, target)
+        print(f"build_csrc: {target.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
