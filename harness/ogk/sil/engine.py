@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from .family import CampaignPlan, Record
+from .family import CampaignPlan, Flown, Record
 from .progress import Progress
 from .runlog import RunLog
 from .runner import CampaignInterrupted, Watchdog, run_chunks, run_ids_for
@@ -25,28 +25,6 @@ from .seeds import run_seed
 
 #: runs per chunk unless the command says otherwise: finished chunks reach the run log this often
 DEFAULT_CHUNK_RUNS = 250
-
-
-@dataclasses.dataclass
-class Flown:
-    """What a campaign produced: every run's record (run-id order) and how it was flown."""
-
-    plan: CampaignPlan
-    seed: int
-    records: list[Record]
-    workers: int
-    wall_s: float
-    cpu_s: float
-    resumed_runs: int
-
-    @property
-    def run_ids(self) -> list[int]:
-        return [int(r["run_id"]) for r in self.records]
-
-    def failures(self) -> list[dict[str, Any]]:
-        """[{run_id, reason}] of every failed run."""
-        return [{"run_id": int(r["run_id"]), "reason": r["failure"]} for r in self.records
-                if r.get("failure")]
 
 
 def run_log_path(json_path: str | Path) -> Path:

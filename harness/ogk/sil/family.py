@@ -68,7 +68,6 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader
 
 if TYPE_CHECKING:
-    from .engine import Flown
     from .pil import FlightProgram
 
 Record = dict[str, Any]
@@ -125,6 +124,29 @@ class CampaignPlan:
         """What the runs depend on besides their ids: the run log's key."""
         return {"family": self.family, "law": self.law, "scenario_sha256": self.scenario_sha256,
                 "options": self.options, "products": self.products, "seed": int(seed)}
+
+
+@dataclasses.dataclass
+class Flown:
+    """What a campaign produced: every run's record (run-id order) and how it was flown."""
+
+    plan: CampaignPlan
+    seed: int
+    records: list[Record]
+    workers: int
+    wall_s: float
+    cpu_s: float
+    resumed_runs: int
+
+    @property
+    def run_ids(self) -> list[int]:
+        return [int(r["run_id"]) for r in self.records]
+
+    def failures(self) -> list[dict[str, Any]]:
+        """[{run_id, reason}] of every failed run."""
+        return [{"run_id": int(r["run_id"]), "reason": r["failure"]} for r in self.records
+                if r.get("failure")]
+
 
 
 @runtime_checkable
