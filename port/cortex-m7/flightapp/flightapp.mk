@@ -50,7 +50,7 @@ FA_ELF := $(FA_B)/flightapp.elf
 
 # Generated sources: the CRC'd table image as const C, the const configurations, the plant constants.
 $(FA_B)/tables.stamp: $(VENV)/.installed $(FFI_STAMP) scenarios/leo_geo.toml host/ogk_host/cgen.py \
-  harness/ogk/missions/orbit_injection/flight_config.py harness/ogk/missions/orbit_injection/adapter.py \
+  harness/ogk/missions/orbit_injection/flight_config.py harness/ogk/missions/orbit_injection/ground_tables.py \
   $(wildcard host/ogk_host/orbit_injection/*.py)
 	$(VENV)/bin/ogk tables leo-geo --out $(FA_TABLES)
 	@mkdir -p $(@D)
