@@ -32,6 +32,15 @@ class Entry:
     scenario: str
     args: tuple[str, ...]
     quick: bool
+    quick_runs: int | None = None   #: make test flies only the first runs (run i depends on (seed, i) only)
+
+    def quick_args(self) -> tuple[str, ...]:
+        """The arguments of the quick check: --runs cut to quick_runs."""
+        if self.quick_runs is None:
+            return self.args
+        a = list(self.args)
+        a[a.index("--runs") + 1] = str(self.quick_runs)
+        return tuple(a)
 
     @property
     def path(self) -> Path:
@@ -40,13 +49,16 @@ class Entry:
 
 def entries() -> list[Entry]:
     raw = tomllib.loads((RECORDS / "records.toml").read_text(encoding="utf-8"))
-    return [Entry(r["name"], r["scenario"], tuple(r["args"]), bool(r["quick"])) for r in raw["record"]]
+    return [Entry(r["name"], r["scenario"], tuple(r["args"]), bool(r["quick"]), r.get("quick_runs"))
+            for r in raw["record"]]
 
 
-def fly(entry: Entry, workdir: Path) -> list[dict[str, Any]]:
-    """The entry's campaign, flown now: its normalised run log (header line first)."""
+def fly(entry: Entry, workdir: Path, quick: bool = False) -> list[dict[str, Any]]:
+    """The entry's campaign, flown now (quick: its first quick_runs runs): its normalised run log
+    (header line first)."""
     out = workdir / f"{entry.name}.json"
-    res = subprocess.run([str(OGK), "mc", entry.scenario, *entry.args, "--workers", "2",
+    args = entry.quick_args() if quick else entry.args
+    res = subprocess.run([str(OGK), "mc", entry.scenario, *args, "--workers", "2",
                           "--json", str(out)], capture_output=True, text=True, timeout=3600, cwd=ROOT)
     if res.returncode not in (0, 1) or "Traceback" in res.stderr:
         raise RuntimeError(f"ogk mc {entry.name}: exit {res.returncode}\n{res.stdout[-3000:]}"
@@ -72,8 +84,10 @@ def normalise(log: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return [head] + [{k: v for k, v in r.items() if not k.startswith("timing.")} for r in runs]
 
 
-def read(entry: Entry) -> list[dict[str, Any]]:
-    return [json.loads(x) for x in entry.path.read_text(encoding="utf-8").splitlines() if x.strip()]
+def read(entry: Entry, quick: bool = False) -> list[dict[str, Any]]:
+    """The committed record (quick: its header and first quick_runs runs)."""
+    log = [json.loads(x) for x in entry.path.read_text(encoding="utf-8").splitlines() if x.strip()]
+    return log[:1 + entry.quick_runs] if quick and entry.quick_runs is not None else log
 
 
 def write(entry: Entry, log: list[dict[str, Any]]) -> None:
