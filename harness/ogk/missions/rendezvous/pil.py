@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from ogk_host.rendezvous.dynamics import Engine, Units
 from ogk_host.rendezvous.plan import Plan
 from ogk_host.rendezvous.scenario import RendezvousScenario
 
@@ -67,40 +68,32 @@ BOUNDS_WHY = ("the same C on both sides on the same inputs (the plan crosses the
               "whole perturbed flights agree within 6.5e-3 d (48 runs on seeds 2026120514, 2026120519 and "
               "2026120520: at most 2.8e-4, 6.5e-3 and 6.2e-3 d). The t_f bound is 0.01 d in minimum time, 0.1 d in "
               "minimum fuel (flat in t_f: the host itself moves it by 0.058 d over ulp moves of the start); "
-              "fuel and the arrival misses are bounded by what that moves at arrival (the engine's largest mass flow, the "
-              "arrival test's speed, the engine's and the target's acceleration)")
+              "fuel and the arrival misses are bounded by what that moves at arrival (the engine's largest "
+              "mass flow, the arrival test's speed, the engine's and the target's acceleration)")
 
 
 def target_bounds(sc: RendezvousScenario) -> dict[str, float]:
     """The host-vs-target bounds of one scenario's whole flights: t_f within TF_BOUND_DAYS (minimum fuel:
-    TF_BOUND_MIN_FUEL_DAYS), and what
-    an arrival that much earlier or later moves. Fuel: the engine's largest mass flow between the two
+    TF_BOUND_MIN_FUEL_DAYS), and what an arrival that much earlier or later moves (the engine's limits
+    from ogk_host.rendezvous.dynamics.Engine, eqs. 12-14). Fuel: the engine's largest mass flow between the two
     orbits times dt. Position miss: the relative speed, below the arrival test's velocity_error (plus
     what the acceleration adds over dt), times dt. Velocity miss: the relative acceleration at arrival
     (the engine at the target's orbit over the dry mass, the target's pull at its SOI radius, the
     Sun's tide across it) times dt."""
     tf_bound = TF_BOUND_DAYS if sc.ocp.objective == "min-time" else TF_BOUND_MIN_FUEL_DAYS
     dt = tf_bound * 86400.0
-    pr, cv, prop = sc.problem, sc.convergence, sc.propulsion
+    pr, cv = sc.problem, sc.convergence
+    units, engine = Units.for_scenario(sc), Engine.for_scenario(sc)
     r_lo, r_hi = sorted((sc.initial.radius_m, pr.target_orbit_radius_m))
-    flow = max(_engine(prop, r)[1] for r in np.linspace(r_lo, r_hi, 65))
-    thrust_t, _ = _engine(prop, pr.target_orbit_radius_m)
+    _, flows = engine.limits(np.linspace(r_lo, r_hi, 65) / units.length_m)
+    flow = float(np.max(flows)) * units.mass_flow_kg_s
+    thrust_t = float(engine.limits(pr.target_orbit_radius_m / units.length_m)[0]) * units.force_n
     r_soi = cv.target_soi_radius_m
     accel = (thrust_t / sc.dry_mass_kg + sc.perturbations.target_mu_m3_s2 / r_soi ** 2
              + 2.0 * pr.sun_mu_m3_s2 * r_soi / pr.target_orbit_radius_m ** 3)
     return {"t_f_days": tf_bound, "fuel_kg": flow * dt,
             "final_position_miss_km": (cv.velocity_error_m_s + accel * dt) * dt / 1e3,
             "final_velocity_miss_m_s": accel * dt, "failed_solves": 0.0}
-
-
-def _engine(prop: Any, radius_m: float) -> tuple[float, float]:
-    """T_max [N] and |mdot| at T_max [kg/s] at a heliocentric radius (eqs. 12-14)."""
-    if prop.solar is None:
-        return float(prop.thrust_max_n), float(prop.mass_flow_at_max_kg_s)
-    sol = prop.solar
-    power = sol.reference_power_w(prop.thrust_max_n) * sol.power_ratio(float(radius_m))
-    return (sol.thrust_b1_n + sol.thrust_b2_n_per_w * power,
-            -(sol.mass_rate_c1_kg_s + sol.mass_rate_c2_kg_s_per_w * power))
 
 
 def program_key(scenario_path: Path, strategy: str, third_bodies: str) -> str:
