@@ -8,8 +8,9 @@ minimum-fuel problem; the impulsive optimum attains the sup). A keep-out or a th
 constraints, so the bound holds for them too; the continuous solution's Delta v = v_e ln(m_0 / m_N).
 
 lambda comes from the dual problem on a grid of tau (IPOPT), then is scaled down by the largest
-|B(tau)^T lambda| over a grid 50 times finer plus the largest change between its points (|dB/dtau|
-<= 6 + 2 n tau ... bounded numerically below), so that the bound is a bound and not an estimate."""
+|B(tau)^T lambda| over a grid 50 times finer plus twice the largest change between neighbouring points
+of that grid (the norm is smooth in tau: between two points it cannot exceed them by more), so that the
+result is a bound and not an estimate."""
 from __future__ import annotations
 
 import casadi as ca
