@@ -44,6 +44,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include "ogk/ocp.h"
 #include "ogk/qp.h"
 #include "ogk/status.h"
 #include "ogk/types.h"
@@ -56,6 +57,10 @@ extern "C" {
 #define OGK_NMPC_NC 4u        /* terminal conditions of eq. (5) */
 #define OGK_NMPC_MAX_NU 2u    /* controls per node: alpha, and the throttle w */
 #define OGK_NMPC_MAX_BODIES 2u /* third bodies of the predictive model */
+#if (OGK_NMPC_NX != OGK_OCP_NX) || (OGK_NMPC_NC != OGK_OCP_NC) || (OGK_NMPC_MAX_NU != OGK_OCP_MAX_NU) \
+    || (OGK_NMPC_MAX_BODIES > OGK_OCP_MAX_KEEPOUT)
+#error "ogk/nmpc.h's dimensions do not fit ogk/ocp.h's"
+#endif
 
 /* Largest number of subintervals N of a plan (the SNNS doubling never
  * exceeds it). */
@@ -107,6 +112,9 @@ extern "C" {
 #define OGK_NMPC_SENS_KEY (OGK_NMPC_NX + (2u * OGK_NMPC_MAX_NU) + 2u)
 /* doubles of the predictive model's fields (the configuration's mu .. body_softening and rk4_steps) */
 #define OGK_NMPC_SENS_MODEL (16u + (5u * OGK_NMPC_MAX_BODIES))
+#if OGK_NMPC_SENS_MODEL != OGK_OCP_MODEL_KEY
+#error "OGK_NMPC_SENS_MODEL (the sensitivity cache's model key) differs from OGK_OCP_MODEL_KEY"
+#endif
 
 #define OGK_NMPC_MIN_TIME 0u
 #define OGK_NMPC_MIN_FUEL 1u
@@ -305,6 +313,10 @@ typedef struct {
     double dx[(OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_NX]; /* state part of the step */
     ogk_qp_workspace_t qp_ws;
     ogk_qp_solution_t qp_sol;
+    /* the problem (ogk/ocp.h): its callback table (a const table, in flash) and its data (NULL: the
+     * heliocentric problem of this header over cfg, ogk_nmpc_init) */
+    const ogk_ocp_problem_t *problem;
+    void *problem_data;
     uint32_t init_marker;       /* [-] OGK_NMPC_INIT_MARKER once initialised */
 } ogk_nmpc_t;
 
@@ -314,6 +326,16 @@ ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg);
 
 /* Validates cfg (OGK_E_NULL, OGK_E_NONFINITE, OGK_E_CONFIG) and copies it. */
 ogk_status ogk_nmpc_init(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg);
+
+/* The same solver on another problem (ogk/ocp.h): cfg's transcription, SQP
+ * and strategy fields and its engine (the throttle a control or not) are
+ * validated and copied, its heliocentric model and target fields are not
+ * read; problem (a table that outlives ctx) and data (the problem's, which
+ * the caller validates and keeps alive and in place while ctx is used)
+ * replace the heliocentric model. OGK_E_NULL, OGK_E_NONFINITE, OGK_E_CONFIG
+ * (a callback missing). */
+ogk_status ogk_nmpc_init_problem(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg,
+                                 const ogk_ocp_problem_t *problem, void *data);
 
 /* Back to the state right after init (no plan; configuration kept). */
 ogk_status ogk_nmpc_reset(ogk_nmpc_t *ctx);
