@@ -384,6 +384,13 @@ static void test_structure_the_solver_assumes(void **state)
             }
             /* x_4' on neither x_0 nor anything else of x (jx[20] read, and 0 here) */
             assert_true(jx[20] == 0.0);
+            {
+                /* jx alone (ju, jt NULL): the same jx */
+                double jx2[NX * NX];
+                (void)memset(jx2, 0, sizeof(jx2));
+                OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, nu, 0.1, x, u, NULL, xd, jx2, NULL, NULL), OGK_OK);
+                assert_true(memcmp(jx, jx2, sizeof(jx)) == 0);
+            }
             ogk_prox_problem.dynamics_hess(&m, nu, 0.1, x, u, NULL, kappa, hz);
             for (r = 0u; r < NZ; ++r) {
                 for (c = 0u; c < NZ; ++c) {
