@@ -34,7 +34,7 @@
 
 /* The problem's data: ogk_nmpc_init_problem stores the ogk_prox_model_t
  * pointer it is given as `data`, and the solver hands it back unchanged to
- * every callback of ogk_prox_problem (docs/misra-deviations.md, D9). */
+ * every callback of ogk_prox_problem (docs/misra-deviations.md, D10). */
 static const ogk_prox_model_t *prox_model(const void *data)
 {
     return (const ogk_prox_model_t *)data;
@@ -192,11 +192,18 @@ static void prox_model_key(const void *data, double *key)
     key[2] = mdl->mass_flow_max;
 }
 
-static bool prox_state_valid(const void *data, const double *x)
+static bool prox_state_valid(const void *data, const double *x, size_t n)
 {
+    /* n <= OGK_NMPC_MAX_NODES + 1 (a plan's nodes, or one measured state): clamped once, a fixed bound */
+    const size_t n_b = ogk_i_min_size(n, (size_t)OGK_NMPC_MAX_NODES + 1u);
+    bool valid = true;
+    size_t k;
     (void)data;
     /* any finite position and velocity in the Hill frame; a positive mass */
-    return ogk_i_all_finite(x, NX) && (x[4] > 0.0);
+    for (k = 0u; (k < n_b) && valid; ++k) {
+        valid = ogk_i_all_finite(&x[k * NX], NX) && (x[(k * NX) + 4u] > 0.0);
+    }
+    return valid;
 }
 
 const ogk_ocp_problem_t ogk_prox_problem = {

@@ -491,13 +491,15 @@ static void test_target_keepout_key_domain(void **state)
     OGK_ASSERT_NEAR(ogk_test_max_abs(&key[3], OGK_OCP_MODEL_KEY - 3u), 0.0, 0.0);
     /* the domain: finite and m > 0 (any sign of position and velocity) */
     {
-        double x[NX] = { -3.0, -4.0, -0.1, 0.2, 0.5 };
-        assert_true(ogk_prox_problem.state_valid(&m, x));
-        x[4] = 0.0;
-        assert_false(ogk_prox_problem.state_valid(&m, x));
-        x[4] = 0.5;
+        double x[2u * NX] = { -3.0, -4.0, -0.1, 0.2, 0.5, 1.0, 2.0, 3.0, 4.0, 0.1 };
+        assert_true(ogk_prox_problem.state_valid(&m, x, 2u));
+        assert_true(ogk_prox_problem.state_valid(&m, x, 0u));
+        x[NX + 4u] = 0.0;
+        assert_false(ogk_prox_problem.state_valid(&m, x, 2u));
+        assert_true(ogk_prox_problem.state_valid(&m, x, 1u)); /* only the first state */
+        x[NX + 4u] = 0.5;
         x[2] = INFINITY;
-        assert_false(ogk_prox_problem.state_valid(&m, x));
+        assert_false(ogk_prox_problem.state_valid(&m, x, 2u));
     }
 }
 
