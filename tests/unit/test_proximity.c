@@ -8,7 +8,12 @@
  *   - every Jacobian / Hessian entry outside the structure the solver's
  *     sweeps assume (ogk/ocp.h) exactly 0;
  *   - the target, the keep-out discs, the model key, the state's domain;
- *   (the API's tests come with proximity.c). */
+ *   - the configuration defaults and every init rejection, the wrappers'
+ *     NULL / uninitialised answers;
+ *   - an open-loop solve of test_proximity_ground.py's mission from a
+ *     guess: converged to the ground reference's optimum (0.41886 m/s),
+ *     the hold point at rest, the disc kept; a copied context, a re-solve,
+ *     the commands. */
 #include "ogk_test.h"
 
 #include <string.h>
@@ -21,6 +26,10 @@
 #define NX OGK_OCP_NX
 #define NZ OGK_OCP_NZ
 #define PI 3.14159265358979323846
+
+static ogk_prox_t ctx;
+static ogk_prox_t ctx2;
+static ogk_nmpc_plan_t plan;
 
 /* A deterministic uniform draw in [lo, hi) (a 64-bit LCG: the same points on every target). */
 static double draw(uint64_t *s, double lo, double hi)
@@ -503,6 +512,262 @@ static void test_target_keepout_key_domain(void **state)
     }
 }
 
+/* A configuration that init accepts: the model above, 8 nodes. */
+static void good_config(ogk_prox_config_t *cfg)
+{
+    OGK_ASSERT_STATUS(ogk_prox_config_default(cfg), OGK_OK);
+    test_model(&cfg->model);
+    cfg->solver.nodes = 8u;
+}
+
+/* req: OGK-NMPC-016 */
+static void test_config_default_and_init(void **state)
+{
+    ogk_prox_config_t cfg;
+    ogk_prox_config_t bad;
+    ogk_nmpc_command_t cmd;
+    ogk_thrust_cmd_t tc;
+    ogk_nmpc_report_t rep;
+    ogk_nmpc_input_t in;
+    size_t i;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_prox_config_default(NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_prox_config_default(&cfg), OGK_OK);
+    OGK_ASSERT_NEAR(cfg.model.mean_motion, 1.0, 0.0);
+    OGK_ASSERT_NEAR(cfg.model.thrust_max, 0.0, 0.0);
+    assert_int_equal((int)cfg.model.n_keepout, 0);
+    assert_int_equal((int)cfg.solver.engine, (int)OGK_NMPC_ENGINE_THROTTLED);
+    assert_int_equal((int)cfg.solver.objective, (int)OGK_NMPC_MIN_FUEL);
+    /* thrust_max must be set */
+    OGK_ASSERT_STATUS(ogk_prox_init(&ctx, &cfg), OGK_E_CONFIG);
+    OGK_ASSERT_STATUS(ogk_prox_init(NULL, &cfg), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_prox_init(&ctx, NULL), OGK_E_NULL);
+
+    good_config(&cfg);
+    cfg.solver.engine = OGK_NMPC_ENGINE_CONSTANT; /* forced back to the throttle */
+    OGK_ASSERT_STATUS(ogk_prox_init(&ctx, &cfg), OGK_OK);
+    assert_int_equal((int)ctx.nmpc.nu, 2);
+    assert_true(ctx.nmpc.problem == &ogk_prox_problem);
+
+    /* every non-finite field: OGK_E_NONFINITE, and the context left uninitialised */
+    for (i = 0u; i < 10u; ++i) {
+        bad = cfg;
+        switch (i) {
+        case 0u: bad.model.mean_motion = NAN; break;
+        case 1u: bad.model.thrust_max = INFINITY; break;
+        case 2u: bad.model.mass_flow_max = NAN; break;
+        case 3u: bad.model.hold[0] = NAN; break;
+        case 4u: bad.model.hold[1] = -INFINITY; break;
+        case 5u: bad.model.keepout_centre[0] = NAN; break;
+        case 6u: bad.model.keepout_centre[3] = NAN; break;
+        case 7u: bad.model.keepout_radius[0] = NAN; break;
+        case 8u: bad.model.keepout_radius[1] = INFINITY; break;
+        default: bad.solver.tol_feas = NAN; break;
+        }
+        OGK_ASSERT_STATUS(ogk_prox_init(&ctx, &cfg), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_prox_init(&ctx, &bad), OGK_E_NONFINITE);
+        OGK_ASSERT_STATUS(ogk_prox_reset(&ctx), OGK_E_NOT_INIT);
+    }
+    /* every out-of-range field: OGK_E_CONFIG */
+    for (i = 0u; i < 9u; ++i) {
+        bad = cfg;
+        switch (i) {
+        case 0u: bad.model.mean_motion = 0.0; break;
+        case 1u: bad.model.mean_motion = -1.0; break;
+        case 2u: bad.model.thrust_max = 0.0; break;
+        case 3u: bad.model.mass_flow_max = -1.0e-3; break;
+        case 4u: bad.model.n_keepout = OGK_PROX_MAX_KEEPOUT + 1u; break;
+        case 5u: bad.model.keepout_radius[0] = -0.1; break;
+        case 6u: bad.model.keepout_radius[1] = -0.1; break;
+        case 7u: bad.solver.nodes = 0u; break;
+        default: bad.solver.horizon_max = bad.solver.horizon_min; break;
+        }
+        OGK_ASSERT_STATUS(ogk_prox_init(&ctx, &bad), OGK_E_CONFIG);
+        OGK_ASSERT_STATUS(ogk_prox_reset(&ctx), OGK_E_NOT_INIT);
+    }
+    /* the boundary values are accepted: no flow, no disc, a zero radius */
+    bad = cfg;
+    bad.model.mass_flow_max = 0.0;
+    bad.model.n_keepout = 0u;
+    bad.model.keepout_radius[0] = 0.0;
+    OGK_ASSERT_STATUS(ogk_prox_init(&ctx, &bad), OGK_OK);
+
+    /* NULL and uninitialised contexts */
+    (void)memset(&ctx2, 0, sizeof(ctx2));
+    in.t = 0.0;
+    (void)memset(in.x, 0, sizeof(in.x));
+    in.x[4] = 1.0;
+    OGK_ASSERT_STATUS(ogk_prox_reset(NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_prox_load_plan(NULL, &plan), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_prox_get_plan(NULL, &plan), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_prox_solve(NULL, &in, &rep), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_prox_replan(NULL, &in, &rep), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx2, &plan), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx2, &plan), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_prox_solve(&ctx2, &in, &rep), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_prox_replan(&ctx2, &in, &rep), OGK_E_NOT_INIT);
+    /* the commands: the safe command whatever the rejection */
+    cmd.throttle = 0.5;
+    OGK_ASSERT_STATUS(ogk_prox_command(NULL, 1.0, &cmd), OGK_E_NULL);
+    assert_true((cmd.flags & OGK_THRUST_FLAG_SAFE) != 0u);
+    OGK_ASSERT_NEAR(cmd.throttle, 0.0, 0.0);
+    cmd.throttle = 0.5;
+    cmd.flags = 0u;
+    OGK_ASSERT_STATUS(ogk_prox_command(&ctx2, 1.0, &cmd), OGK_E_NOT_INIT);
+    assert_true((cmd.flags & OGK_THRUST_FLAG_SAFE) != 0u);
+    OGK_ASSERT_NEAR(cmd.throttle, 0.0, 0.0);
+    OGK_ASSERT_STATUS(ogk_prox_thrust_cmd(&ctx2, 1.0, &tc), OGK_E_NOT_INIT);
+    assert_true((tc.flags & OGK_THRUST_FLAG_SAFE) != 0u);
+    OGK_ASSERT_STATUS(ogk_prox_thrust_cmd(NULL, 1.0, &tc), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_prox_thrust_cmd(&ctx, 1.0, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_prox_command(&ctx, 1.0, NULL), OGK_E_NULL);
+    /* initialised, no plan yet: as ogk_nmpc_* (OGK_E_RANGE) */
+    OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &plan), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_prox_command(&ctx, 1.0, &cmd), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_prox_thrust_cmd(&ctx, 1.0, &tc), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_prox_replan(&ctx, &in, &rep), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_prox_reset(&ctx), OGK_OK);
+}
+
+/* test_proximity_ground.py's mission in the kernel's units (LU = 1 km, TU = 1 / n, MU = m_0): 0.8 N at
+ * 2,100 m/s on 180 kg, from 1.5 km ahead along V-bar to a hold point 250 m behind, round a 150-m disc
+ * centred at (300, 620) m, on a 6,900 km orbit; 16 nodes, 8 RK4 steps, 1000..7000 s, dry mass 140 kg. */
+static void mission_config(ogk_prox_config_t *cfg, double *x0)
+{
+    const double n = sqrt(3.986004418e14 / (6.9e6 * 6.9e6 * 6.9e6));
+    const double tu = 1.0 / n;
+    const double lu = 1000.0;
+    const double mu = 180.0;
+    OGK_ASSERT_STATUS(ogk_prox_config_default(cfg), OGK_OK);
+    cfg->model.thrust_max = 0.8 / (mu * lu / (tu * tu));
+    cfg->model.mass_flow_max = (0.8 / 2100.0) / (mu / tu);
+    cfg->model.hold[0] = 0.0;
+    cfg->model.hold[1] = -0.25;
+    cfg->model.n_keepout = 1u;
+    cfg->model.keepout_centre[0] = 0.3;
+    cfg->model.keepout_centre[1] = 0.62;
+    cfg->model.keepout_radius[0] = 0.15;
+    cfg->solver.nodes = 16u;
+    cfg->solver.rk4_steps = 8u;
+    cfg->solver.horizon_min = 1000.0 / tu;
+    cfg->solver.horizon_max = 7000.0 / tu;
+    cfg->solver.mass_min = 140.0 / mu;
+    /* J = m_0 - m_N is O(1e-4) of MU = m_0: the default tol_obj (relative to max(|J|, 1)) would stop
+     * the SQP at 10 times the optimum's fuel; converged on stationarity with the exact Hessian (BFGS
+     * goes round the disc's other side, 0.453 m/s) */
+    cfg->solver.hessian = OGK_NMPC_HESSIAN_EXACT;
+    cfg->solver.max_iter_cold = 500u;
+    cfg->solver.tol_obj = 0.0;
+    cfg->solver.tol_stat = 1.0e-9;
+    x0[0] = 0.0;
+    x0[1] = 1.5;
+    x0[2] = 0.0;
+    x0[3] = 0.0;
+    x0[4] = 1.0;
+}
+
+/* ocp.detour_guess's shape: the straight line from the start to the hold point bulged away from the
+ * disc's centre to 1.5 radii, its finite-difference velocities (0 at the end), full mass, half throttle
+ * along the path, t_f mid-bounds. */
+static void mission_guess(const ogk_prox_config_t *cfg, const double *x0, ogk_nmpc_plan_t *p)
+{
+    const uint32_t nn = cfg->solver.nodes;
+    const double t_f = 0.5 * (cfg->solver.horizon_min + cfg->solver.horizon_max);
+    const double cx = cfg->model.keepout_centre[0];
+    const double cy = cfg->model.keepout_centre[1];
+    const double mx = 0.5 * (x0[0] + cfg->model.hold[0]);
+    const double my = 0.5 * (x0[1] + cfg->model.hold[1]);
+    const double dist = hypot(mx - cx, my - cy);
+    const double bulge = fmax(0.0, (1.5 * cfg->model.keepout_radius[0]) - dist);
+    uint32_t k;
+    (void)memset(p, 0, sizeof(*p));
+    p->t0 = 0.0;
+    p->horizon = t_f;
+    p->nodes = nn;
+    p->nu = 2u;
+    for (k = 0u; k <= nn; ++k) {
+        const double tau = (double)k / (double)nn;
+        const double s = sin(PI * tau);
+        p->x[(k * NX) + 0u] = x0[0] + ((cfg->model.hold[0] - x0[0]) * tau) + (bulge * s * (mx - cx) / dist);
+        p->x[(k * NX) + 1u] = x0[1] + ((cfg->model.hold[1] - x0[1]) * tau) + (bulge * s * (my - cy) / dist);
+        p->x[(k * NX) + 4u] = 1.0;
+    }
+    for (k = 0u; k <= nn; ++k) {
+        /* one-sided at the ends, central inside (numpy.gradient); at rest at t_f */
+        const uint32_t a = (k == 0u) ? 0u : (k - 1u);
+        const uint32_t b = (k == nn) ? nn : (k + 1u);
+        const double dt = (double)(b - a) * t_f / (double)nn;
+        if (k < nn) {
+            p->x[(k * NX) + 2u] = (p->x[(b * NX) + 0u] - p->x[(a * NX) + 0u]) / dt;
+            p->x[(k * NX) + 3u] = (p->x[(b * NX) + 1u] - p->x[(a * NX) + 1u]) / dt;
+        }
+        p->u[(k * 2u) + 0u] = atan2(p->x[(k * NX) + 3u], p->x[(k * NX) + 2u]);
+        p->u[(k * 2u) + 1u] = 0.5;
+    }
+}
+
+/* req: OGK-NMPC-016 */
+static void test_open_loop_solve(void **state)
+{
+    ogk_prox_config_t cfg;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    ogk_nmpc_report_t rep2;
+    ogk_nmpc_plan_t out;
+    ogk_nmpc_plan_t out2;
+    ogk_nmpc_command_t cmd;
+    ogk_thrust_cmd_t tc;
+    uint32_t k;
+    (void)state;
+    mission_config(&cfg, in.x);
+    in.t = 0.0;
+    OGK_ASSERT_STATUS(ogk_prox_init(&ctx, &cfg), OGK_OK);
+    mission_guess(&cfg, in.x, &plan);
+    OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx, &plan), OGK_OK);
+    /* a copy of the context solves on its own model (the wrappers re-bind the problem's data) */
+    ctx2 = ctx;
+    OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep), OGK_OK);
+    assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
+    OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &out), OGK_OK);
+    /* the hold point at rest, the propellant limit, the disc at the nodes */
+    OGK_ASSERT_NEAR(out.x[(16u * NX) + 0u], cfg.model.hold[0], 1e-9);
+    OGK_ASSERT_NEAR(out.x[(16u * NX) + 1u], cfg.model.hold[1], 1e-9);
+    OGK_ASSERT_NEAR(out.x[(16u * NX) + 2u], 0.0, 1e-9);
+    OGK_ASSERT_NEAR(out.x[(16u * NX) + 3u], 0.0, 1e-9);
+    assert_true(out.x[(16u * NX) + 4u] >= (cfg.solver.mass_min - 1e-12));
+    for (k = 0u; k <= 16u; ++k) {
+        const double d = hypot(out.x[(k * NX) + 0u] - 0.3, out.x[(k * NX) + 1u] - 0.62);
+        assert_true(d >= (0.15 - 1e-9));
+    }
+    /* minimum fuel: J = m_0 - m_N, the ground reference's optimum (IPOPT on the same transcription,
+     * test_proximity_kernel.py: 0.418858 m/s = 2,100 m/s ln(1 / (1 - J)), J = 1.9943631e-4) */
+    print_message("open loop: J %.12g, t_f %.12g TU, %u SQP iterations\n", rep.objective, rep.t_f,
+                  rep.sqp_iterations);
+    OGK_ASSERT_NEAR(rep.objective, 1.0 - out.x[(16u * NX) + 4u], 1e-15);
+    OGK_ASSERT_REL(rep.objective, 1.9943631e-4, 1e-6, 0.0);
+    OGK_ASSERT_REL(rep.t_f, cfg.solver.horizon_max, 1e-15, 0.0); /* the horizon's bound is active */
+    OGK_ASSERT_STATUS(ogk_prox_solve(&ctx2, &in, &rep2), OGK_OK);
+    assert_true(ctx2.nmpc.problem_data == (void *)&ctx2.model);
+    OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx2, &out2), OGK_OK);
+    assert_true(rep2.t_f == rep.t_f);
+    assert_true(memcmp(out.x, out2.x, sizeof(out.x)) == 0);
+    /* the command along the plan, and in r-t-n */
+    OGK_ASSERT_STATUS(ogk_prox_command(&ctx, 0.5 * rep.t_next, &cmd), OGK_OK);
+    assert_true((cmd.throttle >= 0.0) && (cmd.throttle <= 1.0));
+    OGK_ASSERT_STATUS(ogk_prox_thrust_cmd(&ctx, 0.5 * rep.t_next, &tc), OGK_OK);
+    OGK_ASSERT_NEAR(tc.throttle, cmd.throttle, 0.0);
+    OGK_ASSERT_NEAR(tc.u[0], cos(cmd.alpha), 1e-15);
+    OGK_ASSERT_NEAR(tc.u[1], sin(cmd.alpha), 1e-15);
+    /* a re-solve from the optimum: converged at once, the same plan */
+    OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep2), OGK_OK);
+    assert_true(rep2.sqp_iterations <= 2u);
+    OGK_ASSERT_REL(rep2.objective, rep.objective, 1e-9, 0.0);
+    OGK_ASSERT_STATUS(ogk_prox_reset(&ctx), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &out), OGK_E_RANGE);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -511,6 +776,8 @@ int main(void)
         cmocka_unit_test(test_hessian_central_differences),
         cmocka_unit_test(test_structure_the_solver_assumes),
         cmocka_unit_test(test_target_keepout_key_domain),
+        cmocka_unit_test(test_config_default_and_init),
+        cmocka_unit_test(test_open_loop_solve),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
