@@ -744,7 +744,7 @@ static void test_open_loop_solve(void **state)
     /* minimum fuel: J = m_0 - m_N, the ground reference's optimum (IPOPT on the same transcription,
      * test_proximity_kernel.py: 0.418858 m/s = 2,100 m/s ln(1 / (1 - J)), J = 1.9943631e-4) */
     print_message("open loop: J %.12g, t_f %.12g TU, %u SQP iterations\n", rep.objective, rep.t_f,
-                  rep.sqp_iterations);
+                  (unsigned)rep.sqp_iterations);
     OGK_ASSERT_NEAR(rep.objective, 1.0 - out.x[(16u * NX) + 4u], 1e-15);
     OGK_ASSERT_REL(rep.objective, 1.9943631e-4, 1e-6, 0.0);
     OGK_ASSERT_REL(rep.t_f, cfg.solver.horizon_max, 1e-15, 0.0); /* the horizon's bound is active */
