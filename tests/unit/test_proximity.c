@@ -631,6 +631,45 @@ static void test_config_default_and_init(void **state)
     OGK_ASSERT_STATUS(ogk_prox_reset(&ctx), OGK_OK);
 }
 
+/* req: OGK-NMPC-016 */
+static void test_init_problem_rejections(void **state)
+{
+    /* ogk_nmpc_init_problem with this problem: every NULL argument and every missing callback
+     * (update is optional) refused, the context left uninitialised */
+    ogk_prox_config_t cfg;
+    ogk_ocp_problem_t p;
+    ogk_prox_model_t m;
+    size_t i;
+    (void)state;
+    good_config(&cfg);
+    cfg.solver.engine = OGK_NMPC_ENGINE_THROTTLED;
+    m = cfg.model;
+    OGK_ASSERT_STATUS(ogk_nmpc_init_problem(NULL, &cfg.solver, &ogk_prox_problem, &m), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nmpc_init_problem(&ctx.nmpc, NULL, &ogk_prox_problem, &m), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nmpc_init_problem(&ctx.nmpc, &cfg.solver, NULL, &m), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nmpc_init_problem(&ctx.nmpc, &cfg.solver, &ogk_prox_problem, NULL), OGK_E_NULL);
+    for (i = 0u; i < 8u; ++i) {
+        p = ogk_prox_problem;
+        switch (i) {
+        case 0u: p.structure = NULL; break;
+        case 1u: p.dynamics = NULL; break;
+        case 2u: p.dynamics_hess = NULL; break;
+        case 3u: p.target = NULL; break;
+        case 4u: p.keepout_radius = NULL; break;
+        case 5u: p.keepout_distance = NULL; break;
+        case 6u: p.model_key = NULL; break;
+        default: p.state_valid = NULL; break;
+        }
+        OGK_ASSERT_STATUS(ogk_nmpc_init_problem(&ctx.nmpc, &cfg.solver, &ogk_prox_problem, &m), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nmpc_init_problem(&ctx.nmpc, &cfg.solver, &p, &m), OGK_E_CONFIG);
+        OGK_ASSERT_STATUS(ogk_nmpc_reset(&ctx.nmpc), OGK_E_NOT_INIT);
+    }
+    /* the same table with its optional update left out: accepted */
+    p = ogk_prox_problem;
+    OGK_ASSERT_STATUS(ogk_nmpc_init_problem(&ctx.nmpc, &cfg.solver, &p, &m), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nmpc_reset(&ctx.nmpc), OGK_OK);
+}
+
 /* test_proximity_ground.py's mission in the kernel's units (LU = 1 km, TU = 1 / n, MU = m_0): 0.8 N at
  * 2,100 m/s on 180 kg, from 1.5 km ahead along V-bar to a hold point 250 m behind, round a 150-m disc
  * centred at (300, 620) m, on a 6,900 km orbit; 16 nodes, 8 RK4 steps, 1000..7000 s, dry mass 140 kg. */
@@ -777,6 +816,7 @@ int main(void)
         cmocka_unit_test(test_structure_the_solver_assumes),
         cmocka_unit_test(test_target_keepout_key_domain),
         cmocka_unit_test(test_config_default_and_init),
+        cmocka_unit_test(test_init_problem_rejections),
         cmocka_unit_test(test_open_loop_solve),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
