@@ -27,7 +27,7 @@ from ogk_host.proximity.dynamics import Vehicle, rk4_interval
 from ogk_host.proximity.impulsive_bound import delta_v_lower_bound
 from ogk_host.proximity.problem import Approach
 
-pytestmark = pytest.mark.req("OGK-NMPC-016")
+pytestmark = pytest.mark.req("OGK-NMPC-017")
 
 N_RAD_S = math.sqrt(3.986004418e14 / 6.9e6 ** 3)
 VEHICLE = Vehicle(thrust_max_n=0.8, exhaust_velocity_m_s=2100.0, initial_mass_kg=180.0, dry_mass_kg=140.0)

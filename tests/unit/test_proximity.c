@@ -67,7 +67,7 @@ static void random_point(uint64_t *s, double *x, double *u)
     u[1] = draw(s, 0.0, 1.0);
 }
 
-/* req: OGK-NMPC-016 */
+/* req: OGK-NMPC-017 */
 static void test_dynamics_closed_form(void **state)
 {
     ogk_prox_model_t m;
@@ -206,7 +206,7 @@ static void move(double *x, double *u, double *t, uint32_t nu, size_t i, double 
     }
 }
 
-/* req: OGK-NMPC-016 */
+/* req: OGK-NMPC-017 */
 static void test_jacobians_central_differences(void **state)
 {
     ogk_prox_model_t m;
@@ -250,7 +250,7 @@ static void test_jacobians_central_differences(void **state)
     }
 }
 
-/* req: OGK-NMPC-016 */
+/* req: OGK-NMPC-017 */
 static void test_hessian_central_differences(void **state)
 {
     ogk_prox_model_t m;
@@ -335,7 +335,7 @@ static int hess_allowed(size_t r, size_t c, uint32_t nu)
     return ok;
 }
 
-/* req: OGK-NMPC-016 */
+/* req: OGK-NMPC-017 */
 static void test_structure_the_solver_assumes(void **state)
 {
     /* jx entries nmpc_shoot.c's jx_column reads (x_0' = x_2 is taken as y2, jx[2] not read) */
@@ -421,7 +421,7 @@ static void test_structure_the_solver_assumes(void **state)
     }
 }
 
-/* req: OGK-NMPC-016 */
+/* req: OGK-NMPC-017 */
 static void test_target_keepout_key_domain(void **state)
 {
     ogk_prox_model_t m;
@@ -520,7 +520,7 @@ static void good_config(ogk_prox_config_t *cfg)
     cfg->solver.nodes = 8u;
 }
 
-/* req: OGK-NMPC-016 */
+/* req: OGK-NMPC-017 */
 static void test_config_default_and_init(void **state)
 {
     ogk_prox_config_t cfg;
@@ -747,7 +747,7 @@ static void mission_guess(const ogk_prox_config_t *cfg, const double *x0, ogk_nm
     }
 }
 
-/* req: OGK-NMPC-016 */
+/* req: OGK-NMPC-017 */
 static void test_open_loop_solve(void **state)
 {
     ogk_prox_config_t cfg;
