@@ -160,7 +160,8 @@ def test_nested_structs_arrays_and_pointers(tmp_path: Path, bundle: Path) -> Non
     """A whole initialised CPD context (nested config and output structs, an array, integers) and
     a NOG config with its table pointer set (emitted NULL, "bound at init")."""
     from ogk.missions.orbit_injection.flight_config import flight_configs
-    _, nog, cpd_cfg = flight_configs(SCENARIO, bundle)
+    _, nog_cfg, cpd = flight_configs(SCENARIO, bundle)
+    nog, cpd_cfg = nog_cfg.to_c(), cpd.to_c()
     ctx = ffi.new("ogk_cpd_t *")
     assert lib.ogk_cpd_init(ctx, cpd_cfg) == lib.OGK_OK
     ctx.dir_prev_a = [0.25, -0.5, 1.0 / 3.0]
@@ -190,8 +191,8 @@ def test_leo_geo_header_is_the_sil_configuration(tmp_path: Path, bundle: Path) -
     text = paths[0].read_text()
     assert f".tau_freeze = {c_double(nog.tau_freeze)}," in text
     assert f".k_dy = {c_double(cpd.k_dy)}," in text
-    _roundtrip(tmp_path, [ConfigItem("ogk_flight_nog_config", nog),
-                          ConfigItem("ogk_flight_cpd_config", cpd)], ("ogk/nog.h", "ogk/cpd.h"))
+    _roundtrip(tmp_path, [ConfigItem("ogk_flight_nog_config", nog.to_c()),
+                          ConfigItem("ogk_flight_cpd_config", cpd.to_c())], ("ogk/nog.h", "ogk/cpd.h"))
 
 
 def test_apophis_header_is_the_mpsp_configuration(tmp_path: Path) -> None:

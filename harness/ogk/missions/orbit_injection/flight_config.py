@@ -1,8 +1,8 @@
 """Flight configuration of an orbit-injection scenario as const C (docs/flight-integration.md).
 
-The configs are the cffi structs the SIL itself flies (nog_guidance.nog_config,
-attitude.cpd_config), handed to ogk_host.cgen.write_c_config, so the header cannot drift from the
-SIL's configuration.
+The configs are the typed kernel configurations the SIL itself flies (nog_guidance.nog_config,
+attitude.cpd_config, cutoff.cutoff_config, terminal.terminal_config), handed to
+ogk_host.cgen.write_c_config as C structs, so the header cannot drift from the SIL's configuration.
 """
 from __future__ import annotations
 
@@ -18,6 +18,7 @@ def flight_configs(scenario: Path, bundle: Path) -> tuple[Any, Any, Any]:
     from ogk_host.orbit_injection.scenario import load_scenario
 
     from ogk_bindings._ffi import ffi
+    from ogk_bindings.cpd import CpdConfig
     from ogk.missions.orbit_injection.attitude import cpd_config
     from ogk.missions.orbit_injection.nog_guidance import load_table, nog_config
 
@@ -25,9 +26,7 @@ def flight_configs(scenario: Path, bundle: Path) -> tuple[Any, Any, Any]:
     table = load_table(bundle)
     scn = resolve(load_scenario(scenario), float(table.t_f_star_s))   # type: ignore[attr-defined]
     nog = nog_config(scn, table)
-    cpd = ffi.new("ogk_cpd_config_t *")
-    for key, value in cpd_config(scn, control_period_s=1.0 / CONTROL_RATE_HZ).items():
-        setattr(cpd, key, value)
+    cpd = CpdConfig(**cpd_config(scn, control_period_s=1.0 / CONTROL_RATE_HZ))
     return ffi, nog, cpd
 
 
@@ -82,12 +81,13 @@ def write_flight_config(out: Path, scenario: Path, bundle: Path) -> list[Path]:
     from ogk_host.cgen import ConfigItem, write_c_config
     ffi, nog, cpd = flight_configs(scenario, bundle)
     end_game, schedule = end_game_configs(scenario, bundle)
+    # cgen walks the C structs (to_c: copies; the configs keep the table they point to alive)
     cfg = write_c_config(
-        ffi, [ConfigItem("ogk_flight_nog_config", nog,
+        ffi, [ConfigItem("ogk_flight_nog_config", nog.to_c(),
                          "VTD-NOG (ogk/nog.h): bind .view (ogk_nog_table_view, in place) or .table (ogk_nog_table_load), then ogk_nog_init"),
-              ConfigItem("ogk_flight_cpd_config", cpd,
+              ConfigItem("ogk_flight_cpd_config", cpd.to_c(),
                          f"CPD (ogk/cpd.h), ff_period_s = the {CONTROL_RATE_HZ:g} Hz control period"),
-              *(ConfigItem(name, value, what) for name, value, what in end_game)],
+              *(ConfigItem(name, value.to_c(), what) for name, value, what in end_game)],
         out / "c" / "ogk_orbit_injection_flight_config.h", scenario,
         includes=("ogk/nog.h", "ogk/cpd.h", "ogk/cutoff.h", "ogk/terminal.h"), defines=schedule,
         note=f"Table: {bundle.name}, t_f* = {float(nog.table.t_f_star_s):.17g} s. The first two fly the "
