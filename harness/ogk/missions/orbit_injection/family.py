@@ -79,7 +79,7 @@ class OrbitInjectionFamily(FamilyDefaults):
     def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
         from .guidance import NominalOpenLoopGuidance
         from .nog_guidance import KernelNogGuidance, prepare_tables
-        from .nominal_ref import nominal_reference
+        from .nominal_ref import resolved_with_reference
 
         opts = {"no_dispersions": False, "truth": "6dof", "guidance": "nog", "tables": None,
                 "history_runs": 50, "control_rate": 50.0, "truth_substeps": 1, "cpd_gains": None,
@@ -105,12 +105,11 @@ class OrbitInjectionFamily(FamilyDefaults):
                                end_game=("paper" if opts["paper_end_game"]
                                          or opts["guidance"] == "nominal" else "scenario"))
         switches = DispersionSwitches.none() if opts["no_dispersions"] else DispersionSwitches()
-        ref = nominal_reference(scn)
+        scn, ref = resolved_with_reference(scn)     # what scales with the burn
         if tables is not None and abs(tables.t_f_star_s - ref.tf_s) > 1e-6 * max(ref.tf_s, 1.0):
             raise OgkInputError(f"tables made for t_f* = {tables.t_f_star_s:.6f} s, the nominal is "
                                 f"{ref.tf_s:.6f} s: regenerate them with `ogk tables`",
                                 path=tables.directory)
-        scn = derive.resolve(scn, ref.tf_s)     # what scales with the burn
         derive.warn_outside_envelope(scn, ref.tf_s)
         history_runs = int(opts.pop("history_runs"))    # what is drawn, not what is flown
         plan = campaign_plan(scn, ref, switches, settings, factory, str(opts["guidance"]),
@@ -162,11 +161,13 @@ class OrbitInjectionFamily(FamilyDefaults):
         from ogk_host.cgen import write_c_table
 
         from .flight_config import write_flight_config
-        tables = plan.base.tables
+        base: _Base = plan.base
+        tables = base.tables
         image = write_c_table(tables.bundle.read_bytes(), "ogk_nog_bundle", out_dir / "c",
                               plan.scenario_path,
                               note="The PIL flight program's table image (ogk_nog_table_view).")
-        return [*image, *write_flight_config(out_dir, plan.scenario_path, tables.bundle)]
+        return [*image, *write_flight_config(out_dir, base.scenario, plan.scenario_path,
+                                             tables.bundle)]
 
     def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
         """The scenario's flight program for the tables the campaign flies (pil.py)."""

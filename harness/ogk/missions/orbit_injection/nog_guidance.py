@@ -75,11 +75,11 @@ def load_table(bundle: Path) -> object:
 def nog_config(scn: OrbitInjectionScenario, table: Any, last_interval_s: float | None = None
                ) -> NogConfig:
     """ogk_nog_config_t from the scenario's guidance block (the end-game bounds included), bound
-    to `table` (kept alive by the config). `last_interval_s`: the sampling interval at the end of
-    the burn, which sets the terminating sample of eq. (32) (default: the scenario's Delta t_S,
-    sampled throughout)."""
+    to `table` (kept alive by the config). `scn` is resolved (derive.resolve) where it was loaded;
+    `last_interval_s`: the sampling interval at the end of the burn, which sets the terminating
+    sample of eq. (32) (default: the scenario's Delta t_S, sampled throughout)."""
+    derive.require_resolved(scn)
     t_f_star_s = float(table.t_f_star_s)
-    scn = derive.resolve(scn, t_f_star_s)
     return NogConfig(table=table,
                      sample_interval_s=(scn.sample_interval_s if last_interval_s is None
                                         else last_interval_s),
