@@ -201,7 +201,7 @@ class PilSession:
 R = TypeVar("R")
 
 
-def fly_sessions(program: FlightProgram, n: int, fly: Callable[[list[PilSession]], R]
+def _fly_sessions(program: FlightProgram, n: int, fly: Callable[[list[PilSession]], R]
                   ) -> tuple[R, dict[int, dict[str, Any]]]:
     """Starts `n` sessions of `program`, calls `fly(sessions)`, ends them: (fly's result, run id ->
     its pil.* record keys, for every run the sessions ended with `end_run`). Any error kills every
@@ -286,5 +286,5 @@ def fly_runs_on_target(program: FlightProgram, run_ids: Sequence[int], run_seeds
                 s.end_run(ids[k])
 
     fly = in_lock_step if fly_batch is not None else in_order if n == 1 else in_threads
-    _, keys = fly_sessions(program, n, fly)
+    _, keys = _fly_sessions(program, n, fly)
     return results, keys
