@@ -121,7 +121,7 @@ static void prox_dynamics_hess(const void *data, uint32_t nu, double t, /* NOLIN
     const double q_a = (-kappa[2] * sa) + (kappa[3] * ca);
     const double tw = throttle * mdl->thrust_max;
     (void)t;
-    (void)memset(hz, 0, NZ * NZ * sizeof(double));
+    /* ogk/ocp.h: the caller zeroes hz before every call; only the thrust term's nonzeros are written */
     hz[(4u * NZ) + 4u] = 2.0 * tw * inv_m * inv_m * inv_m * q;
     hz[(4u * NZ) + i_a] = -tw * inv_m * inv_m * q_a;
     hz[(i_a * NZ) + i_a] = -tw * inv_m * q;

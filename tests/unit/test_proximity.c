@@ -275,10 +275,13 @@ static void test_hessian_central_differences(void **state)
             }
             trig[0] = cos(u[0]);
             trig[1] = sin(u[0]);
+            /* the caller zeroes hz (ogk/ocp.h) */
+            (void)memset(hz, 0, sizeof(hz));
             ogk_prox_problem.dynamics_hess(&m, nu, 0.4, x, u, trig, kappa, hz);
             {
                 /* trig NULL: computed there, the same bits */
                 double hz2[NZ * NZ];
+                (void)memset(hz2, 0, sizeof(hz2));
                 ogk_prox_problem.dynamics_hess(&m, nu, 0.4, x, u, NULL, kappa, hz2);
                 assert_true(memcmp(hz, hz2, sizeof(hz)) == 0);
             }
@@ -400,14 +403,20 @@ static void test_structure_the_solver_assumes(void **state)
                 OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, nu, 0.1, x, u, NULL, xd, jx2, NULL, NULL), OGK_OK);
                 assert_true(memcmp(jx, jx2, sizeof(jx)) == 0);
             }
+            /* only structural nonzeros written (ogk/ocp.h): a sentinel elsewhere stays */
+            for (r = 0u; r < (NZ * NZ); ++r) {
+                hz[r] = 5.0;
+            }
             ogk_prox_problem.dynamics_hess(&m, nu, 0.1, x, u, NULL, kappa, hz);
             for (r = 0u; r < NZ; ++r) {
                 for (c = 0u; c < NZ; ++c) {
                     if ((r > c) || (hess_allowed(r, c, nu) == 0)) {
-                        assert_true(hz[(r * NZ) + c] == 0.0);
+                        assert_true(hz[(r * NZ) + c] == 5.0);
                     }
                 }
             }
+            (void)memset(hz, 0, sizeof(hz));
+            ogk_prox_problem.dynamics_hess(&m, nu, 0.1, x, u, NULL, kappa, hz);
             /* this model's curvature: the thrust term only (m, alpha, w) */
             assert_true(hz[(0u * NZ) + 0u] == 0.0);
             assert_true(hz[(0u * NZ) + NX] == 0.0);
