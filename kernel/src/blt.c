@@ -120,8 +120,8 @@ static ogk_status blt_check_config(const ogk_blt_config_t *c)
                (c->normalise_ab > 1u)) {
         st = OGK_E_CONFIG;
     } else {
-        const uint32_t nu = blt_count_unknowns(c);
-        const uint32_t ne = blt_count_errors(c);
+        const uint32_t nu = ogk_i_blt_count_unknowns(c);
+        const uint32_t ne = ogk_i_blt_count_errors(c);
         if ((nu < 1u) || (ne > nu)) {
             st = OGK_E_CONFIG; /* eq. (64) needs at least as many unknowns as errors */
         }
@@ -129,7 +129,7 @@ static ogk_status blt_check_config(const ogk_blt_config_t *c)
     return st;
 }
 
-/* Derived quantities: counts, anchors and the column of every unknown (blt_pack's order). */
+/* Derived quantities: counts, anchors and the column of every unknown (ogk_i_blt_pack's order). */
 static void blt_prepare(ogk_blt_t *ctx)
 {
     const ogk_blt_config_t *c = &ctx->cfg;
@@ -137,8 +137,8 @@ static void blt_prepare(ogk_blt_t *ctx)
     uint32_t i;
     uint32_t k;
 
-    ctx->n_unknowns = blt_count_unknowns(c);
-    ctx->n_errors = blt_count_errors(c);
+    ctx->n_unknowns = ogk_i_blt_count_unknowns(c);
+    ctx->n_errors = ogk_i_blt_count_errors(c);
     ctx->anchor[0] = 0u;
     for (k = 0u; k < OGK_BLT_MAX_FREE_NODES; ++k) {
         ctx->anchor[k + 1u] = (k < c->n_free_nodes) ? c->free_node_interface[k] : c->n_segments;
@@ -274,7 +274,7 @@ static void tidy(const ogk_blt_config_t *c, ogk_blt_transfer_t *tr)
 }
 
 static void blt_fill_report(const ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, const double *e,
-                        const blt_eval_t *ev, ogk_blt_report_t *rep)
+                        const ogk_i_blt_eval_t *ev, ogk_blt_report_t *rep)
 {
     const ogk_blt_config_t *c = &ctx->cfg;
     uint32_t k;
@@ -321,10 +321,10 @@ ogk_status ogk_blt_evaluate(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, ogk_bl
         st = check_transfer(&ctx->cfg, tr);
     }
     if (st == OGK_OK) {
-        blt_eval_t ev;
+        ogk_i_blt_eval_t ev;
         (void)memset(&ev, 0, sizeof(ev));
         ctx->steps_frozen = 0u;
-        blt_errors(ctx, tr, ctx->e_trial, NULL, &ev);
+        ogk_i_blt_errors(ctx, tr, ctx->e_trial, NULL, &ev);
         rep->propagations = ev.propagations;
         blt_fill_report(ctx, tr, ctx->e_trial, &ev, rep);
         rep->err_norm0 = rep->err_norm;
@@ -354,10 +354,10 @@ ogk_status ogk_blt_propagate(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, doubl
         st = check_transfer(&ctx->cfg, tr);
     }
     if (st == OGK_OK) {
-        blt_eval_t ev;
+        ogk_i_blt_eval_t ev;
         (void)memset(&ev, 0, sizeof(ev));
         ctx->steps_frozen = 0u;
-        blt_chain(ctx, tr, x_end, &ev);
+        ogk_i_blt_chain(ctx, tr, x_end, &ev);
         rep->propagations = ev.propagations;
         blt_fill_report(ctx, tr, NULL, &ev, rep);
         if (ev.impact || ev.bad_rhs) {
@@ -378,34 +378,34 @@ static bool jacobian_at(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, uint32_t *
     const ogk_blt_config_t *c = &ctx->cfg;
     const uint32_t nu = ctx->n_unknowns;
     const uint32_t ne = ctx->n_errors;
-    blt_eval_t ev;
+    ogk_i_blt_eval_t ev;
     bool ok = true;
     uint32_t k;
 
     (void)memset(&ev, 0, sizeof(ev));
     for (k = 0u; k < c->n_segments; ++k) {
-        ctx->seg_steps[k] = blt_steps_for(c, tr->seg[k][6]);
+        ctx->seg_steps[k] = ogk_i_blt_steps_for(c, tr->seg[k][6]);
     }
     ctx->steps_frozen = 1u;
     if (c->jacobian == OGK_BLT_JAC_VARIATIONAL) {
-        blt_errors(ctx, tr, ctx->e_trial, ctx->jac, &ev);
+        ogk_i_blt_errors(ctx, tr, ctx->e_trial, ctx->jac, &ev);
         ok = !ev.impact && !ev.bad_rhs;
     } else {
         ogk_blt_transfer_t pert;
         uint32_t j;
-        blt_pack(c, tr, ctx->u_trial);
+        ogk_i_blt_pack(c, tr, ctx->u_trial);
         (void)memcpy(&pert, tr, sizeof(pert));
         for (j = 0u; ok && (j < nu); ++j) {
             const double uj = ctx->u_trial[j];
             const double h = c->fd_step;
             uint32_t i;
             ctx->u_trial[j] = uj + h; /* eq. (62) */
-            blt_unpack(c, ctx->u_trial, &pert);
-            blt_errors(ctx, &pert, ctx->e_plus, NULL, &ev);
+            ogk_i_blt_unpack(c, ctx->u_trial, &pert);
+            ogk_i_blt_errors(ctx, &pert, ctx->e_plus, NULL, &ev);
             ok = !ev.impact && !ev.bad_rhs;
             ctx->u_trial[j] = uj - h;
-            blt_unpack(c, ctx->u_trial, &pert);
-            blt_errors(ctx, &pert, ctx->e_trial, NULL, &ev);
+            ogk_i_blt_unpack(c, ctx->u_trial, &pert);
+            ogk_i_blt_errors(ctx, &pert, ctx->e_trial, NULL, &ev);
             ok = ok && !ev.impact && !ev.bad_rhs;
             ctx->u_trial[j] = uj;
             for (i = 0u; i < ne; ++i) {
@@ -458,24 +458,24 @@ static bool corrector_step(ogk_blt_t *ctx, double lambda)
 
 /* trial = cur + alpha du, tidied; its errors into ctx->e_trial. */
 static void try_step(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double alpha, ogk_blt_transfer_t *trial,
-                     blt_eval_t *ev)
+                     ogk_i_blt_eval_t *ev)
 {
     const uint32_t nu = ctx->n_unknowns;
     uint32_t j;
-    blt_pack(&ctx->cfg, cur, ctx->u);
+    ogk_i_blt_pack(&ctx->cfg, cur, ctx->u);
     for (j = 0u; j < nu; ++j) {
         ctx->u_trial[j] = ctx->u[j] + (alpha * ctx->du[j]);
     }
     (void)memcpy(trial, cur, sizeof(*trial));
-    blt_unpack(&ctx->cfg, ctx->u_trial, trial);
+    ogk_i_blt_unpack(&ctx->cfg, ctx->u_trial, trial);
     tidy(&ctx->cfg, trial);
-    blt_errors(ctx, trial, ctx->e_trial, NULL, ev);
+    ogk_i_blt_errors(ctx, trial, ctx->e_trial, NULL, ev);
 }
 
 /* The paper's line search: step lengths 1, f, f^2, ... (f = 1/10) until |e| decreases; a step
  * whose trajectory hits a body is halved (up to impact_halvings times) first. */
 static bool nrpc_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_norm, ogk_blt_transfer_t *trial,
-                        blt_eval_t *ev, uint32_t *flags, uint32_t *propagations) /* NOLINT(bugprone-easily-swappable-parameters): the solve's two accumulators, in its order */
+                        ogk_i_blt_eval_t *ev, uint32_t *flags, uint32_t *propagations) /* NOLINT(bugprone-easily-swappable-parameters): the solve's two accumulators, in its order */
 {
     const ogk_blt_config_t *c = &ctx->cfg;
     double alpha = 1.0;
@@ -507,7 +507,7 @@ static bool nrpc_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_
 
 /* Levenberg-Marquardt: raise lambda until the step decreases |e| without impact. */
 static bool lm_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_norm, ogk_blt_transfer_t *trial,
-                      blt_eval_t *ev, uint32_t *flags, uint32_t *propagations) /* NOLINT(bugprone-easily-swappable-parameters): as nrpc_search */
+                      ogk_i_blt_eval_t *ev, uint32_t *flags, uint32_t *propagations) /* NOLINT(bugprone-easily-swappable-parameters): as nrpc_search */
 {
     const ogk_blt_config_t *c = &ctx->cfg;
     bool accepted = false;
@@ -552,7 +552,7 @@ static double lm_scale(const ogk_blt_t *ctx)
  * and HYBRID first), the Levenberg-Marquardt search (LM, and HYBRID when the Newton search found no
  * decrease). true with the accepted transfer in trial and its errors in ctx->e_trial. */
 static bool blt_iterate(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_norm, ogk_blt_transfer_t *trial,
-                        blt_eval_t *ev, uint32_t *flags, uint32_t *propagations, uint32_t iteration)
+                        ogk_i_blt_eval_t *ev, uint32_t *flags, uint32_t *propagations, uint32_t iteration)
 {
     const uint32_t kind = ctx->cfg.corrector;
     bool accepted = false;
@@ -584,7 +584,7 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
     ogk_status st = check_call(ctx, guess, solution);
     ogk_blt_transfer_t cur;
     ogk_blt_transfer_t trial;
-    blt_eval_t ev;
+    ogk_i_blt_eval_t ev;
     uint32_t flags = 0u;
     uint32_t iterations = 0u;
     uint32_t propagations = 0u;
@@ -609,7 +609,7 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
         (void)memcpy(&cur, guess, sizeof(cur));
         tidy(&ctx->cfg, &cur);
         ctx->steps_frozen = 0u;
-        blt_errors(ctx, &cur, ctx->e, NULL, &ev);
+        ogk_i_blt_errors(ctx, &cur, ctx->e, NULL, &ev);
         propagations += ev.propagations;
         ev.propagations = 0u;
         if (ev.impact || ev.bad_rhs) {
@@ -620,7 +620,7 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
     }
     if (st == OGK_OK) {
         bool go = true;
-        blt_eval_t ev_cur = ev;
+        ogk_i_blt_eval_t ev_cur = ev;
         have_e = true;
         e_norm = norm2(ctx->e, ctx->n_errors);
         e_norm0 = e_norm;

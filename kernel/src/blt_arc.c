@@ -21,7 +21,7 @@ static bool seg_param_free(const ogk_blt_config_t *cfg, uint32_t k, uint32_t p)
     return is_free;
 }
 
-uint32_t blt_count_unknowns(const ogk_blt_config_t *cfg)
+uint32_t ogk_i_blt_count_unknowns(const ogk_blt_config_t *cfg)
 {
     uint32_t n = 0u;
     uint32_t i;
@@ -37,7 +37,7 @@ uint32_t blt_count_unknowns(const ogk_blt_config_t *cfg)
     return n + (NX * cfg->n_free_nodes);
 }
 
-uint32_t blt_count_errors(const ogk_blt_config_t *cfg)
+uint32_t ogk_i_blt_count_errors(const ogk_blt_config_t *cfg)
 {
     const uint32_t last = cfg->n_free_nodes;
     uint32_t n = NX * last;
@@ -52,7 +52,7 @@ uint32_t blt_count_errors(const ogk_blt_config_t *cfg)
     return n;
 }
 
-void blt_pack(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, double *u)
+void ogk_i_blt_pack(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, double *u)
 {
     uint32_t n = 0u;
     uint32_t i;
@@ -79,7 +79,7 @@ void blt_pack(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, double 
     }
 }
 
-void blt_unpack(const ogk_blt_config_t *cfg, const double *u, ogk_blt_transfer_t *tr)
+void ogk_i_blt_unpack(const ogk_blt_config_t *cfg, const double *u, ogk_blt_transfer_t *tr)
 {
     uint32_t n = 0u;
     uint32_t i;
@@ -106,7 +106,7 @@ void blt_unpack(const ogk_blt_config_t *cfg, const double *u, ogk_blt_transfer_t
     }
 }
 
-uint32_t blt_steps_for(const ogk_blt_config_t *cfg, double duration)
+uint32_t ogk_i_blt_steps_for(const ogk_blt_config_t *cfg, double duration)
 {
     const double ratio = fabs(duration) / cfg->model.step_max;
     uint32_t n;
@@ -123,7 +123,7 @@ uint32_t blt_steps_for(const ogk_blt_config_t *cfg, double duration)
 
 /* ------------------------------------------------------------------ propagation */
 
-static void track_bodies(const ogk_blt_model_t *m, const double x[NX], blt_eval_t *ev)
+static void track_bodies(const ogk_blt_model_t *m, const double x[NX], ogk_i_blt_eval_t *ev)
 {
     const double body_x[2] = {-m->mu, 1.0 - m->mu};
     size_t b;
@@ -171,12 +171,12 @@ static void blt_activate_segment(ogk_blt_t *ctx, double *y, uint32_t k)
 /* Right-hand side of the state and, when nu > 0, of the nu carried sensitivity columns (6 entries
  * each, after the state in y; ctx->slot maps J's columns to them): S' = F S + G (docs/blt.md,
  * "Variational equations"). A column no segment has forced yet is zero and not carried. */
-static bool rhs_aug(const ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double tau, const double *y, /* NOLINT(bugprone-easily-swappable-parameters): segment index, then its time */
+static bool rhs_aug(const ogk_blt_t *ctx, const ogk_i_blt_seg_t *seg, uint32_t k, double tau, const double *y, /* NOLINT(bugprone-easily-swappable-parameters): segment index, then its time */
                     double *dy, uint32_t nu)
 {
     const ogk_blt_config_t *cfg = &ctx->cfg;
-    blt_rhs_parts_t parts;
-    bool ok = blt_rhs(&cfg->model, seg, tau, y, dy, (nu > 0u) ? &parts : NULL);
+    ogk_i_blt_rhs_parts_t parts;
+    bool ok = ogk_i_blt_rhs(&cfg->model, seg, tau, y, dy, (nu > 0u) ? &parts : NULL);
     if (ok && (nu > 0u)) {
         const double *S = &y[NX];
         double *dS = &dy[NX];
@@ -242,8 +242,8 @@ static bool rhs_aug(const ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, doub
 
 /* Propagates segment k over its duration T in n RK4 steps, forward (tau 0 -> T) or backward
  * (T -> 0); y = state (+ sensitivities when nu > 0). Stops at an impact. */
-static void prop_segment(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double duration, uint32_t n, /* NOLINT(bugprone-easily-swappable-parameters): index, duration, steps */
-                         bool backward, double *y, uint32_t nu, blt_eval_t *ev)
+static void prop_segment(ogk_blt_t *ctx, const ogk_i_blt_seg_t *seg, uint32_t k, double duration, uint32_t n, /* NOLINT(bugprone-easily-swappable-parameters): index, duration, steps */
+                         bool backward, double *y, uint32_t nu, ogk_i_blt_eval_t *ev)
 {
     const size_t dim = (size_t)NX * ((size_t)nu + 1u);
     double *k1 = &ctx->var_k[0];
@@ -283,18 +283,18 @@ static void prop_segment(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, doubl
 
 static uint32_t steps_of(const ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, uint32_t k)
 {
-    return (ctx->steps_frozen != 0u) ? ctx->seg_steps[k] : blt_steps_for(&ctx->cfg, tr->seg[k][6]);
+    return (ctx->steps_frozen != 0u) ? ctx->seg_steps[k] : ogk_i_blt_steps_for(&ctx->cfg, tr->seg[k][6]);
 }
 
 /* Adds sign * f(x at tau) of segment k to the sensitivity column of its duration. */
-static void duration_jump(ogk_blt_t *ctx, const blt_seg_t *seg, uint32_t k, double tau, double *y, bool sens, /* NOLINT(bugprone-easily-swappable-parameters): as prop_segment */
-                          double sign, blt_eval_t *ev)
+static void duration_jump(ogk_blt_t *ctx, const ogk_i_blt_seg_t *seg, uint32_t k, double tau, double *y, bool sens, /* NOLINT(bugprone-easily-swappable-parameters): as prop_segment */
+                          double sign, ogk_i_blt_eval_t *ev)
 {
     const uint32_t ct = ctx->col_seg[k][6];
     if (sens && (ct != OGK_BLT_NO_COLUMN)) {
         double f[NX];
         uint32_t i;
-        if (!blt_rhs(&ctx->cfg.model, seg, tau, y, f, NULL)) {
+        if (!ogk_i_blt_rhs(&ctx->cfg.model, seg, tau, y, f, NULL)) {
             ev->bad_rhs = true;
         }
         for (i = 0u; i < NX; ++i) {
@@ -327,7 +327,7 @@ static double sens_at(const double *s, const uint32_t *slot, uint32_t i, uint32_
     return (slot[col] == OGK_BLT_NO_COLUMN) ? 0.0 : s[((size_t)slot[col] * NX) + i];
 }
 
-void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double *sens, blt_eval_t *ev) /* NOLINT(bugprone-easily-swappable-parameters): errors, then their sensitivities (NULL) */
+void ogk_i_blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double *sens, ogk_i_blt_eval_t *ev) /* NOLINT(bugprone-easily-swappable-parameters): errors, then their sensitivities (NULL) */
 {
     const ogk_blt_config_t *cfg = &ctx->cfg;
     const bool with_sens = sens != NULL;
@@ -362,8 +362,8 @@ void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double 
         }
         track_bodies(&cfg->model, y, ev);
         for (k = lo; (k < meet) && !ev->impact && !ev->bad_rhs; ++k) {
-            blt_seg_t seg;
-            blt_segment(cfg, tr, k, &seg);
+            ogk_i_blt_seg_t seg;
+            ogk_i_blt_segment(cfg, tr, k, &seg);
             if (with_sens) {
                 blt_activate_segment(ctx, y, k);
             }
@@ -398,8 +398,8 @@ void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double 
                 init_sens(ctx, y, with_sens, ctx->col_node[a], NX);
             }
             for (k = hi; (k > meet) && !ev->impact && !ev->bad_rhs; --k) {
-                blt_seg_t seg;
-                blt_segment(cfg, tr, k - 1u, &seg);
+                ogk_i_blt_seg_t seg;
+                ogk_i_blt_segment(cfg, tr, k - 1u, &seg);
                 if (with_sens) {
                     blt_activate_segment(ctx, y, k - 1u);
                 }
@@ -420,7 +420,7 @@ void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double 
     }
 }
 
-void blt_chain(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double x_end[OGK_BLT_NX], blt_eval_t *ev)
+void ogk_i_blt_chain(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double x_end[OGK_BLT_NX], ogk_i_blt_eval_t *ev)
 {
     const ogk_blt_config_t *cfg = &ctx->cfg;
     double *y = ctx->var;
@@ -435,8 +435,8 @@ void blt_chain(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double x_end[OGK_BL
     (void)memcpy(y, tr->x0, sizeof(double) * NX);
     track_bodies(&cfg->model, y, ev);
     for (k = 0u; (k < cfg->n_segments) && !ev->impact && !ev->bad_rhs; ++k) {
-        blt_seg_t seg;
-        blt_segment(cfg, tr, k, &seg);
+        ogk_i_blt_seg_t seg;
+        ogk_i_blt_segment(cfg, tr, k, &seg);
         prop_segment(ctx, &seg, k, tr->seg[k][6], steps_of(ctx, tr, k), false, y, 0u, ev);
     }
     (void)memcpy(x_end, y, sizeof(double) * NX);

@@ -33,7 +33,7 @@ typedef struct {
     double a[3];      /* [-] BLT A (burn) */
     double b[3];      /* [1/TU] BLT B (burn) */
     bool burn;        /* engine on */
-} blt_seg_t;
+} ogk_i_blt_seg_t;
 
 /* Per-term pieces of the right-hand side at one point, for the variational equations. */
 typedef struct {
@@ -45,23 +45,23 @@ typedef struct {
     double s_hat[3];    /* [-] the Sun's direction */
     double ds_hat[3];   /* [1/TU] its time derivative */
     double mass;        /* [-] mass fraction */
-} blt_rhs_parts_t;
+} ogk_i_blt_rhs_parts_t;
 
 /* f(t, x): dx = (v, a). tau = time since the segment's start. parts (may be NULL) receives the
  * pieces the variational equations need (grad only when parts is given). Returns false when the
  * direction A + B tau vanishes or the mass is not positive (no finite thrust direction). */
-bool blt_rhs(const ogk_blt_model_t *m, const blt_seg_t *seg, double tau, const double x[OGK_BLT_NX],
-             double dx[OGK_BLT_NX], blt_rhs_parts_t *parts);
+bool ogk_i_blt_rhs(const ogk_blt_model_t *m, const ogk_i_blt_seg_t *seg, double tau, const double x[OGK_BLT_NX],
+             double dx[OGK_BLT_NX], ogk_i_blt_rhs_parts_t *parts);
 
 /* Segment k's start time, start mass, kind and A, B. */
-void blt_segment(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k, blt_seg_t *seg);
+void ogk_i_blt_segment(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k, ogk_i_blt_seg_t *seg);
 
 /* Number of unknowns / errors the configuration implies. */
-uint32_t blt_count_unknowns(const ogk_blt_config_t *cfg);
-uint32_t blt_count_errors(const ogk_blt_config_t *cfg);
+uint32_t ogk_i_blt_count_unknowns(const ogk_blt_config_t *cfg);
+uint32_t ogk_i_blt_count_errors(const ogk_blt_config_t *cfg);
 /* u <- the unknowns of tr; tr <- tr with its unknowns replaced by u. */
-void blt_pack(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, double *u);
-void blt_unpack(const ogk_blt_config_t *cfg, const double *u, ogk_blt_transfer_t *tr);
+void ogk_i_blt_pack(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, double *u);
+void ogk_i_blt_unpack(const ogk_blt_config_t *cfg, const double *u, ogk_blt_transfer_t *tr);
 
 /* Result of one evaluation of the error vector. */
 typedef struct {
@@ -69,16 +69,16 @@ typedef struct {
     bool bad_rhs;             /* no finite right-hand side (A + B tau = 0 or mass <= 0) */
     uint32_t propagations;    /* segments propagated */
     double min_distance[2];   /* [LU] closest approach at the RK4 nodes */
-} blt_eval_t;
+} ogk_i_blt_eval_t;
 
 /* e = the errors of tr (all arcs). sens (ctx->jac layout) receives de/du when non-NULL
  * (variational equations). Uses ctx->seg_steps when ctx->steps_frozen. */
-void blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double *sens, blt_eval_t *ev);
+void ogk_i_blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double *sens, ogk_i_blt_eval_t *ev);
 
 /* Forward propagation of the whole chain (free nodes ignored). */
-void blt_chain(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double x_end[OGK_BLT_NX], blt_eval_t *ev);
+void ogk_i_blt_chain(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double x_end[OGK_BLT_NX], ogk_i_blt_eval_t *ev);
 
 /* RK4 step count of a segment of duration T. */
-uint32_t blt_steps_for(const ogk_blt_config_t *cfg, double duration);
+uint32_t ogk_i_blt_steps_for(const ogk_blt_config_t *cfg, double duration);
 
 #endif /* OGK_BLT_INTERNAL_H */

@@ -54,8 +54,8 @@ static void body_gravity(double mu_b, double ref_radius, double c20, double c22,
     }
 }
 
-bool blt_rhs(const ogk_blt_model_t *m, const blt_seg_t *seg, double tau, const double x[OGK_BLT_NX],
-             double dx[OGK_BLT_NX], blt_rhs_parts_t *parts)
+bool ogk_i_blt_rhs(const ogk_blt_model_t *m, const ogk_i_blt_seg_t *seg, double tau, const double x[OGK_BLT_NX],
+             double dx[OGK_BLT_NX], ogk_i_blt_rhs_parts_t *parts)
 {
     const double t = seg->t_start + tau;
     const double phi = m->sun_angle0 + (m->sun_rate * t);
@@ -173,7 +173,7 @@ static double segment_start_mass(const ogk_blt_config_t *cfg, const ogk_blt_tran
     return tr->mass0 - (cfg->model.mass_flow * burned);
 }
 
-void blt_segment(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k, blt_seg_t *seg)
+void ogk_i_blt_segment(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k, ogk_i_blt_seg_t *seg)
 {
     size_t i;
     seg->t_start = segment_start_time(cfg, tr, k);

@@ -186,7 +186,7 @@ static ogk_status prepare(ogk_mpsp_t *ctx)
     ctx->init_marker = OGK_MPSP_INIT_MARKER;
     if (cfg->n_seg_nom == 0u) {
         ogk_mpsp_prop_t prop;
-        const ogk_status pst = mpsp_propagate_ctx(ctx, cfg->weights_nom, cfg->lambda_m0_nom, cfg->x0_nom,
+        const ogk_status pst = ogk_i_mpsp_propagate_ctx(ctx, cfg->weights_nom, cfg->lambda_m0_nom, cfg->x0_nom,
                                 cfg->t_max, &prop);
         if (pst != OGK_OK) {
             ctx->init_marker = 0u;
@@ -353,7 +353,7 @@ static bool newton_iteration(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, double *w
     if (st == OGK_OK) {
         res->newton_iterations += 1u;
         /* line 9: integrate with the update, count N_seg */
-        st = mpsp_propagate_ctx(ctx, ctx->w_trial, lm_new, cond->x0, cond->thrust, prop);
+        st = ogk_i_mpsp_propagate_ctx(ctx, ctx->w_trial, lm_new, cond->x0, cond->thrust, prop);
     }
     /* lines 10-14: accept only a thrust sequence close to the nominal one */
     if ((st == OGK_OK) && (abs_diff_u32(prop->n_segments, ctx->n_seg_nom) <= n_seg_tol)) {
@@ -375,7 +375,7 @@ static bool inner_loop(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, double *weights
     ogk_status st;
 
     res->inner_loops += 1u;
-    st = mpsp_propagate_ctx(ctx, weights, *lambda_m0, cond->x0, cond->thrust, prop);
+    st = ogk_i_mpsp_propagate_ctx(ctx, weights, *lambda_m0, cond->x0, cond->thrust, prop);
     stop = (st != OGK_OK);
     for (j = 0u; (!stop) && (j <= ctx->cfg.max_newton); ++j) {
         terminal_error(cond, prop->x_f, dy);
@@ -545,7 +545,7 @@ static ogk_status solve_checked(ogk_mpsp_t *ctx, const double *x0, double thrust
         st = OGK_OK;
     } else {
         /* Report what the safe command does when flown from x0. */
-        bool ok = mpsp_propagate_ctx(ctx, res->weights, res->lambda_m0, per.x0, per.thrust,
+        bool ok = ogk_i_mpsp_propagate_ctx(ctx, res->weights, res->lambda_m0, per.x0, per.thrust,
                                      &prop) == OGK_OK;
         fill_result(ctx, &per, &prop, ok, res);
         st = OGK_E_NOT_CONVERGED;

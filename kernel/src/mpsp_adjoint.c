@@ -14,8 +14,8 @@
 /* The partials of eq. (16) at the four stage states of the RK4 step from x
  * (ogk_rk4_step's stages, same arithmetic); uv[0..2] is U at t, t + dt/2,
  * t + dt, used by stages 1, 2-3 and 4. */
-static ogk_status stage_partials(const mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                 const mpsp_uval_t *uv, mpsp_stage_t *sd)
+static ogk_status stage_partials(const ogk_i_mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                 const ogk_i_mpsp_uval_t *uv, ogk_i_mpsp_stage_t *sd)
 {
     static const size_t stage_u[4] = {0u, 1u, 1u, 2u};
     double xs[NX];
@@ -28,10 +28,10 @@ static ogk_status stage_partials(const mpsp_dyn_t *dyn, const double *x, double 
     for (s = 0u; (s < 4u) && (st == OGK_OK); ++s) {
         if (s < 3u) {
             const double step = (s == 2u) ? dt : half;
-            st = mpsp_stage_eval(dyn, xs, &uv[stage_u[s]], mode, k, &sd[s]);
+            st = ogk_i_mpsp_stage_eval(dyn, xs, &uv[stage_u[s]], mode, k, &sd[s]);
             ogk_i_rk4_stage_state(x, step, k, NX, xs);
         } else {
-            st = mpsp_stage_eval(dyn, xs, &uv[stage_u[s]], mode, NULL, &sd[s]);
+            st = ogk_i_mpsp_stage_eval(dyn, xs, &uv[stage_u[s]], mode, NULL, &sd[s]);
         }
     }
     return st;
@@ -40,8 +40,8 @@ static ogk_status stage_partials(const mpsp_dyn_t *dyn, const double *x, double 
 /* Stage s of the reverse sweep for one row, z = bK_s with z_v = zv and
  * z_lm = zl: bx = (z A_s)_r = G z_v, b = z D_s (thrust only); returns
  * (z A_s)_m = a_vm z_v.e + a_lm z_lm, 0 in coast (a_vm = a_lm = 0 there).
- * A and D as in reverse_row; lane 0 of the partials (mpsp_stage_t). */
-static inline double stage_back(const mpsp_stage_t *p, const double *zv, double zl, bool thrust, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+ * A and D as in reverse_row; lane 0 of the partials (ogk_i_mpsp_stage_t). */
+static inline double stage_back(const ogk_i_mpsp_stage_t *p, const double *zv, double zl, bool thrust, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                          double *bx, double *b)
 {
     const double *g = p->g;
@@ -68,7 +68,7 @@ static inline double stage_back(const mpsp_stage_t *p, const double *zv, double 
  *   bK2 = dt/3 w + dt/2 bX3, bX2 = bK2 A2
  *   bK1 = dt/6 w + dt/2 bX2, bX1 = bK1 A1
  *   w dX_next/dX = w + bX1 + bX2 + bX3 + bX4,  w dX_next/dU_i = bKi Di,
- * with A = d f/d X and D = d f/d U of mpsp_stage_t; for z = bK,
+ * with A = d f/d X and D = d f/d U of ogk_i_mpsp_stage_t; for z = bK,
  *   (z A)_r = z_v G,  (z A)_v = z_r,  (z A)_m = a_vm z_v.e + a_lm z_lm,  (z A)_lm = 0,
  *   z D = d_v z_v + (d_l z_lm - d_v z_v.e) e.
  * f_m is constant and no f depends on lambda_m, so z_m never enters and the
@@ -79,7 +79,7 @@ static inline double stage_back(const mpsp_stage_t *p, const double *zv, double 
  *   (bK1)_v = dt/6 w_v + dt/2 (dt/3 w_r + dt/2 (bX3)_r).
  * b_start, b_mid, b_end (3 each) receive w dX_next/dU at t, t + dt/2 and
  * t + dt in thrust. w_out may be w. */
-static void reverse_row(const mpsp_stage_t *sd, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void reverse_row(const ogk_i_mpsp_stage_t *sd, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                         double *w_out, double *b_start, double *b_mid, double *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
     const double half = 0.5 * dt;
@@ -166,7 +166,7 @@ static void reverse_row(const mpsp_stage_t *sd, double dt, bool thrust, const do
  * every stage, so bX_r = 0, the row keeps w_r = w_v = 0 and
  *   (w dX_next/dX)_m = w_m + sum_s a_lm,s z_lm,s,   w dX_next/dU_s = d_l,s z_lm,s e_s,
  * the same numbers as reverse_row gives with z_v = 0. */
-static void reverse_row_mass(const mpsp_stage_t *sd, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void reverse_row_mass(const ogk_i_mpsp_stage_t *sd, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                              double *w_out, double *b_start, double *b_mid, double *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
     const double z6 = (dt / 6.0) * w[7];
@@ -202,7 +202,7 @@ static void reverse_row_mass(const mpsp_stage_t *sd, double dt, bool thrust, con
  * output is written (no aliasing to assume), and each statement is a loop
  * over the lanes, so that gcc -O2 on x86-64 carries a pair in one SSE2
  * register (SLP); the partials are read as pairs (MPSP_SL = 2). */
-static void stage_back2(const mpsp_stage_t *p, const double *zv_in, const double *zl_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void stage_back2(const ogk_i_mpsp_stage_t *p, const double *zv_in, const double *zl_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                         bool thrust, double *bx_out, double *b_out, double *ret) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
     const double *g = p->g;
@@ -272,7 +272,7 @@ static inline void rows2_to_lanes(const double *w_in, double *w)
  * same numbers to the bit. w_out (2 rows, may be w_in) and b_start, b_mid,
  * b_end (2 rows of 3 each) are written after every input is read. Component
  * i of row l is held at [i * 2 + l]; each loop runs over the two lanes. */
-static void reverse_rows2(const mpsp_stage_t *sd, double dt, bool thrust, const double *w_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void reverse_rows2(const ogk_i_mpsp_stage_t *sd, double dt, bool thrust, const double *w_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                           double *w_out, double *b_start, double *b_mid, double *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
     const double half = 0.5 * dt;
@@ -394,12 +394,12 @@ static bool mass_only_row(const double *w)
            (w[5] == 0.0);
 }
 
-ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                             const mpsp_uval_t *uv, bool pair_rows, size_t n_rows,
+ogk_status ogk_i_mpsp_step_adjoint(const ogk_i_mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                             const ogk_i_mpsp_uval_t *uv, bool pair_rows, size_t n_rows,
                              const double *adj_in, double *adj_out, double *bu_start, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                              double *bu_mid, double *bu_end)
 {
-    mpsp_stage_t sd[4];
+    ogk_i_mpsp_stage_t sd[4];
     const ogk_status st = stage_partials(dyn, x, dt, mode, uv, sd);
 
     if (st == OGK_OK) {
@@ -441,7 +441,7 @@ ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, 
  * Phi agrees with the step's transition to O(dt^3) (Magnus at the midpoint)
  * and b with the step's integral of w Phi(t_next, s) D(s) dU(s) to O(dt^3):
  * O(dt^2) over the arc. w_out may be w. */
-static void mid2_row(const mpsp_stage_t *p, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
+static void mid2_row(const ogk_i_mpsp_stage_t *p, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
                      double *w_out, double *b) /* NOLINT(bugprone-easily-swappable-parameters): row out, its control sensitivity; unit-tested against the exact sweep */
 {
     const double *g = p->g;
@@ -492,7 +492,7 @@ static void mid2_row(const mpsp_stage_t *p, double dt, bool thrust, const double
  * order per row, each statement a loop over the lanes (gcc -O2 carries a pair
  * in one SSE2 register), the partials read as pairs (MPSP_SL = 2); w_out (may
  * be w_in) and b (2 rows of 3) written after every input is read. */
-static void mid2_rows2(const mpsp_stage_t *p, double dt, bool thrust, const double *w_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
+static void mid2_rows2(const ogk_i_mpsp_stage_t *p, double dt, bool thrust, const double *w_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
                        double *w_out, double *b_out) /* NOLINT(bugprone-easily-swappable-parameters): rows out, their control sensitivities; unit-tested against the exact sweep */
 {
     const double *g = p->g;
@@ -558,11 +558,11 @@ static void mid2_rows2(const mpsp_stage_t *p, double dt, bool thrust, const doub
 }
 #endif /* __SSE2__ */
 
-ogk_status mpsp_step_adjoint_mid2(const mpsp_dyn_t *dyn, const double *x_lo, const double *x_hi, /* NOLINT(bugprone-easily-swappable-parameters): the step's two nodes; unit-tested against the exact sweep */
-                                  double dt, int mode, const mpsp_uval_t *uv_mid, size_t n_rows, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); unit-tested against the exact sweep */
+ogk_status ogk_i_mpsp_step_adjoint_mid2(const ogk_i_mpsp_dyn_t *dyn, const double *x_lo, const double *x_hi, /* NOLINT(bugprone-easily-swappable-parameters): the step's two nodes; unit-tested against the exact sweep */
+                                  double dt, int mode, const ogk_i_mpsp_uval_t *uv_mid, size_t n_rows, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); unit-tested against the exact sweep */
                                   double *adj, double *bu_mid)
 {
-    mpsp_stage_t sd;
+    ogk_i_mpsp_stage_t sd;
     double xm[NX];
     size_t i;
     ogk_status st;
@@ -572,7 +572,7 @@ ogk_status mpsp_step_adjoint_mid2(const mpsp_dyn_t *dyn, const double *x_lo, con
     for (i = 0u; i < NX; ++i) {
         xm[i] = 0.5 * (x_lo[i] + x_hi[i]);
     }
-    st = mpsp_stage_eval(dyn, xm, uv_mid, mode, NULL, &sd);
+    st = ogk_i_mpsp_stage_eval(dyn, xm, uv_mid, mode, NULL, &sd);
     if (st == OGK_OK) {
         const bool thrust = (mode == 1);
         size_t r = 0u;

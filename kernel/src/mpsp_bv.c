@@ -13,7 +13,7 @@
 #define HR (MB * HL)
 
 /* acc[q + i][j] += sum_b h_b[q + i] c_b[j], i < 3, for one coefficient j:
- * the column that the 4-wide tiles of mpsp_bv_block_product leave over
+ * the column that the 4-wide tiles of ogk_i_mpsp_bv_block_product leave over
  * (NYU = 21). */
 static void block_cols_3x1(double *acc, size_t q, size_t j, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                            size_t n)
@@ -226,7 +226,7 @@ static void tile_1x21(double *acc, size_t q, const double *hb, const double *cb,
  * functions x 6 coefficients (tile_3x6), the 3 coefficients left over (NYU =
  * 21) as a pair and a column. Every accumulator adds the samples in the
  * order b = 0, 1, ..., as the one-lane tiles below: the same numbers. */
-void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+void ogk_i_mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                            size_t n)
 {
     size_t q;
@@ -250,7 +250,7 @@ void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const 
  * functions x 4 coefficients: 12 multiply-adds for 7 loads per sample, and
  * the coefficient pairs (j, j + 1), (j + 2, j + 3) are adjacent in acc and in
  * cb, so gcc -O2 on x86-64 adds them two per SSE2 instruction (SLP). */
-void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+void ogk_i_mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                            size_t n)
 {
     size_t q;
@@ -335,7 +335,7 @@ void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const 
 }
 
 /* out[r][c n_basis + q] = acc[q][r * 3 + c]: B_v row-major, NY x 3 n_basis. */
-void mpsp_bv_unpack(const double *acc, size_t n_basis, double *out) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+void ogk_i_mpsp_bv_unpack(const double *acc, size_t n_basis, double *out) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
     const size_t n_weights = 3u * n_basis;
     size_t r;

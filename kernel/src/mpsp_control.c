@@ -7,14 +7,14 @@
 #include <math.h>
 #include <string.h>
 
-/* Largest phase step |omega (t - anchor_t)| taken by rotation in mpsp_phase:
+/* Largest phase step |omega (t - anchor_t)| taken by rotation in ogk_i_mpsp_phase:
  * the Taylor series below (to delta^8 and delta^9) then leave remainders
  * under delta^10/10! = 3e-20 and delta^11/11! = 1e-22, so the rotated cos and
  * sin are within a few ulp of cos() and sin(). With the Apophis grid
  * (omega h_max = pi/2000) one anchor serves 32 steps. */
 #define MPSP_PHASE_REACH 0.05
 
-void mpsp_phase(mpsp_dyn_t *dyn, double t, double *c1, double *s1)
+void ogk_i_mpsp_phase(ogk_i_mpsp_dyn_t *dyn, double t, double *c1, double *s1)
 {
     const double delta = dyn->omega * (t - dyn->anchor_t);
 
@@ -42,7 +42,7 @@ void mpsp_phase(mpsp_dyn_t *dyn, double t, double *c1, double *s1)
  * th = omega (t - t_ref)), or [1/2, cos th, ..., cos 2n th] for the cosine
  * kind; the harmonics by the angle-addition recurrence (two trigonometric
  * calls per time, error growth ~k eps). */
-void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot) /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
+void ogk_i_mpsp_basis(const ogk_i_mpsp_dyn_t *dyn, double t, double *h, double *hdot) /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
 {
     const double theta = dyn->omega * (t - dyn->t_ref);
     const double c1 = cos(theta);
@@ -81,7 +81,7 @@ void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot) /* NOL
     /* Every one of the n_basis entries is written: an even n_basis (never made by
      * ogk_mpsp_init, which sets 2 n + 1) leaves a last entry the harmonics do not
      * reach; it is zeroed instead of left indeterminate (clang-analyzer
-     * core.UndefinedBinaryOperatorResult in mpsp_control_from_basis). */
+     * core.UndefinedBinaryOperatorResult in ogk_i_mpsp_control_from_basis). */
     if (!cosine && (last % 2u) != 0u) {
         h[last] = 0.0;
         if (hdot != NULL) {
@@ -91,10 +91,10 @@ void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot) /* NOL
 }
 
 /* One pass over the basis for the three components (each sum in the order
- * q = 0, 1, ..., as control_cs and mpsp_basis_control); h_q at h[q * stride]
+ * q = 0, 1, ..., as control_cs and ogk_i_mpsp_basis_control); h_q at h[q * stride]
  * (stride 1: a plain basis row; OGK_MPSP_H_LANES: a row of the sensitivity
  * sample block, each entry held twice). */
-void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, size_t stride, double *u)
+void ogk_i_mpsp_control_from_basis(const ogk_i_mpsp_dyn_t *dyn, const double *h, size_t stride, double *u)
 {
     const size_t nb = dyn->n_basis;
     const double *w = dyn->w;
@@ -113,10 +113,10 @@ void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, size_t stri
     u[2] = u2;
 }
 
-/* U = P(t) W from the phase (c1, s1): the harmonics of mpsp_basis (same
+/* U = P(t) W from the phase (c1, s1): the harmonics of ogk_i_mpsp_basis (same
  * recurrence) summed as they are made, in the order of
- * mpsp_control_from_basis; the propagation needs U, not h (eqs. 36-37). */
-static void control_cs(const mpsp_dyn_t *dyn, double c1, double s1, double *u)
+ * ogk_i_mpsp_control_from_basis; the propagation needs U, not h (eqs. 36-37). */
+static void control_cs(const ogk_i_mpsp_dyn_t *dyn, double c1, double s1, double *u)
 {
     const size_t nb = dyn->n_basis;
     const size_t last = nb - 1u; /* 2n */
@@ -190,7 +190,7 @@ static void control_cs(const mpsp_dyn_t *dyn, double c1, double s1, double *u)
     u[2] = u2;
 }
 
-void mpsp_basis_control(mpsp_dyn_t *dyn, double t, double *h, mpsp_uval_t *uv)
+void ogk_i_mpsp_basis_control(ogk_i_mpsp_dyn_t *dyn, double t, double *h, ogk_i_mpsp_uval_t *uv)
 {
     const size_t nb = dyn->n_basis;
     const size_t last = nb - 1u; /* 2n */
@@ -204,7 +204,7 @@ void mpsp_basis_control(mpsp_dyn_t *dyn, double t, double *h, mpsp_uval_t *uv)
     double u2;
     size_t k;
 
-    mpsp_phase(dyn, t, &c1, &s1);
+    ogk_i_mpsp_phase(dyn, t, &c1, &s1);
     cn = c1;
     sn = s1;
     h[0] = 0.5;
@@ -272,7 +272,7 @@ void mpsp_basis_control(mpsp_dyn_t *dyn, double t, double *h, mpsp_uval_t *uv)
             u2 += sn * w[(2u * nb) + ic + 1u];
         }
         if ((last % 2u) != 0u) {
-            h[last] = 0.0; /* an even n_basis, as in mpsp_basis */
+            h[last] = 0.0; /* an even n_basis, as in ogk_i_mpsp_basis */
         }
     }
     uv->u[0] = u0;
@@ -284,11 +284,11 @@ void mpsp_basis_control(mpsp_dyn_t *dyn, double t, double *h, mpsp_uval_t *uv)
 #if defined(__SSE2__)
 /* U = P(t) W and |U| at two times in one pass (lane l: time t[l]; a 2-lane
  * variable v holds time l at v[l]): per lane the arithmetic of control_cs and
- * mpsp_basis_control in the same order, so the same numbers; phases taken in
+ * ogk_i_mpsp_basis_control in the same order, so the same numbers; phases taken in
  * the order t[0], t[1], with the anchor t[1]'s phase starts from kept for
  * undo_next. Each statement is a loop over the lanes, which gcc -O2 on x86-64
  * carries in SSE2 registers (SLP), the weights read from their doubled copy. */
-static void control2(mpsp_dyn_t *dyn, const double *t, mpsp_uval_t *uv)
+static void control2(ogk_i_mpsp_dyn_t *dyn, const double *t, ogk_i_mpsp_uval_t *uv)
 {
     const size_t nb = dyn->n_basis;
     const size_t last = nb - 1u; /* 2n */
@@ -307,13 +307,13 @@ static void control2(mpsp_dyn_t *dyn, const double *t, mpsp_uval_t *uv)
     size_t k;
     size_t l;
 
-    mpsp_phase(dyn, t[0], &c1[0], &s1[0]);
-    /* the anchor t[1]'s phase starts from (mpsp_control_at may undo it) */
+    ogk_i_mpsp_phase(dyn, t[0], &c1[0], &s1[0]);
+    /* the anchor t[1]'s phase starts from (ogk_i_mpsp_control_at may undo it) */
     dyn->undo_t = dyn->anchor_t;
     dyn->undo_c = dyn->anchor_c;
     dyn->undo_s = dyn->anchor_s;
     dyn->undo_ok = dyn->anchor_ok;
-    mpsp_phase(dyn, t[1], &c1[1], &s1[1]);
+    ogk_i_mpsp_phase(dyn, t[1], &c1[1], &s1[1]);
     for (l = 0u; l < 2u; ++l) {
         cn[l] = c1[l];
         sn[l] = s1[l];
@@ -401,10 +401,10 @@ static void put2(double *h2, size_t q, double v)
 }
 
 /* The basis rows of the sensitivity sample block at two times, each entry
- * twice (OGK_MPSP_H_LANES): the harmonics of mpsp_basis_control (the same
+ * twice (OGK_MPSP_H_LANES): the harmonics of ogk_i_mpsp_basis_control (the same
  * recurrence, phases taken in the order t[0], t[1]), without U, which the
- * sweep takes from the propagation (mpsp_keep_find). */
-void mpsp_basis2(mpsp_dyn_t *dyn, const double *t, double *h_a, double *h_b)
+ * sweep takes from the propagation (ogk_i_mpsp_keep_find). */
+void ogk_i_mpsp_basis2(ogk_i_mpsp_dyn_t *dyn, const double *t, double *h_a, double *h_b)
 {
     const size_t last = dyn->n_basis - 1u; /* 2n */
     const bool cosine = (dyn->kind == OGK_MPSP_BASIS_COSINE);
@@ -415,8 +415,8 @@ void mpsp_basis2(mpsp_dyn_t *dyn, const double *t, double *h_a, double *h_b)
     size_t k;
     size_t l;
 
-    mpsp_phase(dyn, t[0], &c1[0], &s1[0]);
-    mpsp_phase(dyn, t[1], &c1[1], &s1[1]);
+    ogk_i_mpsp_phase(dyn, t[0], &c1[0], &s1[0]);
+    ogk_i_mpsp_phase(dyn, t[1], &c1[1], &s1[1]);
     put2(h_a, 0u, 0.5);
     put2(h_b, 0u, 0.5);
     for (l = 0u; l < 2u; ++l) {
@@ -424,7 +424,7 @@ void mpsp_basis2(mpsp_dyn_t *dyn, const double *t, double *h_a, double *h_b)
         sn[l] = s1[l];
     }
     /* harmonic k: cos k th at q = k (cosine kind) or 2 k - 1, sin k th at 2 k;
-     * one per pass (no sums to interleave), the recurrence of mpsp_basis */
+     * one per pass (no sums to interleave), the recurrence of ogk_i_mpsp_basis */
     for (k = 1u; (cosine ? k : (2u * k)) <= last; ++k) {
         if (cosine) {
             put2(h_a, k, cn[0]);
@@ -447,13 +447,13 @@ void mpsp_basis2(mpsp_dyn_t *dyn, const double *t, double *h_a, double *h_b)
 /* The slot of t in the kept U: the nearest half grid step. t0 <= t <= tf
  * (the propagation's and the sweep's times) gives 0 .. 2 n_steps + 1, inside
  * the table; the remainder only bounds the index for any t. */
-static size_t keep_slot(const mpsp_dyn_t *dyn, double t)
+static size_t keep_slot(const ogk_i_mpsp_dyn_t *dyn, double t)
 {
     const double x = ((t - dyn->grid_t0) * dyn->keep_scale) + 0.5;
     return ((size_t)x) % OGK_MPSP_KEEP_U_SLOTS;
 }
 
-bool mpsp_keep_find(const ogk_mpsp_t *ctx, const mpsp_dyn_t *dyn, double t, mpsp_uval_t *uv)
+bool ogk_i_mpsp_keep_find(const ogk_mpsp_t *ctx, const ogk_i_mpsp_dyn_t *dyn, double t, ogk_i_mpsp_uval_t *uv)
 {
     const size_t j = keep_slot(dyn, t);
     const bool found = (ctx->keep_t[j] == t);
@@ -468,7 +468,7 @@ bool mpsp_keep_find(const ogk_mpsp_t *ctx, const mpsp_dyn_t *dyn, double t, mpsp
 }
 
 /* U and |U| at t into the slot of t. */
-static void keep_store(mpsp_dyn_t *dyn, double t, const mpsp_uval_t *uv)
+static void keep_store(ogk_i_mpsp_dyn_t *dyn, double t, const ogk_i_mpsp_uval_t *uv)
 {
     const size_t j = keep_slot(dyn, t);
 
@@ -487,7 +487,7 @@ static void keep_store(mpsp_dyn_t *dyn, double t, const mpsp_uval_t *uv)
  * arithmetic (t + dt with dt = t_next - t); false otherwise (a trial step of
  * the switch bisection, a step off the grid, the sensitivity sweep), and U is
  * then taken at t alone. */
-static bool step_end_of_midpoint(const mpsp_dyn_t *dyn, double t, double *t_end)
+static bool step_end_of_midpoint(const ogk_i_mpsp_dyn_t *dyn, double t, double *t_end)
 {
     bool found = false;
 
@@ -511,7 +511,7 @@ static bool step_end_of_midpoint(const mpsp_dyn_t *dyn, double t, double *t_end)
 /* U at the end of the step was made with the midpoint's but the step ended
  * elsewhere (a switch): the phase anchor goes back to what it was before that
  * end's phase, as if it had never been taken. */
-static void undo_next(mpsp_dyn_t *dyn)
+static void undo_next(ogk_i_mpsp_dyn_t *dyn)
 {
     dyn->anchor_t = dyn->undo_t;
     dyn->anchor_c = dyn->undo_c;
@@ -526,7 +526,7 @@ static void undo_next(mpsp_dyn_t *dyn)
  * midpoint of a grid step and at its end are made in one pass (control2: the
  * same numbers, the phases taken in the order of the one-time path, midpoint
  * then end), the end's held for stage 4 and both kept for the sweep. */
-void mpsp_control_at(mpsp_dyn_t *dyn, double t, double *u)
+void ogk_i_mpsp_control_at(ogk_i_mpsp_dyn_t *dyn, double t, double *u)
 {
 #if defined(__SSE2__)
     double t_end = 0.0;
@@ -543,7 +543,7 @@ void mpsp_control_at(mpsp_dyn_t *dyn, double t, double *u)
         dyn->next_ok = false;
     } else if (dyn->pairing && step_end_of_midpoint(dyn, t, &t_end)) {
         double tt[2];
-        mpsp_uval_t uv[2];
+        ogk_i_mpsp_uval_t uv[2];
         if (dyn->next_ok) {
             undo_next(dyn);
         }
@@ -570,7 +570,7 @@ void mpsp_control_at(mpsp_dyn_t *dyn, double t, double *u)
             undo_next(dyn);
         }
 #endif
-        mpsp_phase(dyn, t, &c1, &s1);
+        ogk_i_mpsp_phase(dyn, t, &c1, &s1);
         control_cs(dyn, c1, s1, dyn->cache_u);
         dyn->cache_t = t;
         dyn->cache_ok = true;

@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-void mpsp_dyn_setup(mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weights,
+void ogk_i_mpsp_dyn_setup(ogk_i_mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weights,
                     double thrust)
 {
     dyn->mu = ctx->cfg.mu;
@@ -62,7 +62,7 @@ static double norm3(const double *a)
 }
 
 /* Eq. (16). */
-ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int mode, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
+ogk_status ogk_i_mpsp_rhs(const ogk_i_mpsp_dyn_t *dyn, const double *x, const double *u, int mode, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
                     double *xdot)
 {
     const double m = x[6];
@@ -114,12 +114,12 @@ ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int
 }
 
 /* Eq. (10): S = 1 - lambda_m - |lambda_v| c / m. */
-double mpsp_switch_value(const mpsp_dyn_t *dyn, const double *x, const double *u)
+double ogk_i_mpsp_switch_value(const ogk_i_mpsp_dyn_t *dyn, const double *x, const double *u)
 {
     return 1.0 - x[7] - norm3(u) * dyn->c_exhaust / x[6];
 }
 
-/* v into entry i of a stage partial held MPSP_SL times (mpsp_stage_t). */
+/* v into entry i of a stage partial held MPSP_SL times (ogk_i_mpsp_stage_t). */
 static void put_sl(double *a, size_t i, double v)
 {
     size_t l;
@@ -128,10 +128,10 @@ static void put_sl(double *a, size_t i, double v)
     }
 }
 
-/* G = mu/r^3 (3 r r^T / r^2 - I), upper triangle (held as mpsp_stage_t.g),
+/* G = mu/r^3 (3 r r^T / r^2 - I), upper triangle (held as ogk_i_mpsp_stage_t.g),
  * and *kg = -mu/r^3 (0 and G = 0 without a central body): one square root
  * and one division. OGK_E_CALLBACK at r = 0. */
-static ogk_status gravity_gradient(const mpsp_dyn_t *dyn, const double *x, double *kg,
+static ogk_status gravity_gradient(const ogk_i_mpsp_dyn_t *dyn, const double *x, double *kg,
                                    double *g)
 {
     ogk_status st = OGK_OK;
@@ -165,9 +165,9 @@ static ogk_status gravity_gradient(const mpsp_dyn_t *dyn, const double *x, doubl
 
 /* The stage states need only be those of ogk_rk4_step to rounding (the
  * partials taken there agree with finite differences to 1e-8, docs/mpsp.md):
- * reciprocals replace the divisions of mpsp_rhs (7 per stage to 3). */
-ogk_status mpsp_stage_eval(const mpsp_dyn_t *dyn, const double *x, const mpsp_uval_t *uv, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
-                           int mode, double *xdot, mpsp_stage_t *sd)
+ * reciprocals replace the divisions of ogk_i_mpsp_rhs (7 per stage to 3). */
+ogk_status ogk_i_mpsp_stage_eval(const ogk_i_mpsp_dyn_t *dyn, const double *x, const ogk_i_mpsp_uval_t *uv, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
+                           int mode, double *xdot, ogk_i_mpsp_stage_t *sd)
 {
     const double m = x[6];
     double kg = 0.0;
@@ -225,33 +225,33 @@ ogk_status mpsp_stage_eval(const mpsp_dyn_t *dyn, const double *x, const mpsp_uv
     return st;
 }
 
-/* RK4 callbacks of mpsp_rk4_problem: user is the mpsp_dyn_t it was given. */
+/* RK4 callbacks of ogk_i_mpsp_rk4_problem: user is the ogk_i_mpsp_dyn_t it was given. */
 static ogk_status mpsp_rhs_cb(void *user, double t, const double *x, int mode, double *xdot)
 {
-    mpsp_dyn_t *dyn = (mpsp_dyn_t *)user;
+    ogk_i_mpsp_dyn_t *dyn = (ogk_i_mpsp_dyn_t *)user;
     double u[3] = {0.0, 0.0, 0.0};
     if (mode == 1) {
-        mpsp_control_at(dyn, t, u); /* coast needs no control */
+        ogk_i_mpsp_control_at(dyn, t, u); /* coast needs no control */
     }
-    return mpsp_rhs(dyn, x, u, mode, xdot);
+    return ogk_i_mpsp_rhs(dyn, x, u, mode, xdot);
 }
 
 static ogk_status mpsp_switch_cb(void *user, double t, const double *x, int mode, double *s)
 {
-    mpsp_dyn_t *dyn = (mpsp_dyn_t *)user;
+    ogk_i_mpsp_dyn_t *dyn = (ogk_i_mpsp_dyn_t *)user;
     ogk_status st = OGK_OK;
     (void)mode;
     if (!(x[6] > 0.0)) {
         st = OGK_E_CALLBACK;
     } else {
         double u[3];
-        mpsp_control_at(dyn, t, u);
-        *s = mpsp_switch_value(dyn, x, u);
+        ogk_i_mpsp_control_at(dyn, t, u);
+        *s = ogk_i_mpsp_switch_value(dyn, x, u);
     }
     return st;
 }
 
-void mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, mpsp_dyn_t *dyn)
+void ogk_i_mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, ogk_i_mpsp_dyn_t *dyn)
 {
     p->n = OGK_MPSP_NX;
     p->h = ctx->cfg.h_max;

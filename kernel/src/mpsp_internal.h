@@ -56,7 +56,7 @@ typedef struct {
     double w2[2u * OGK_MPSP_MAX_WEIGHTS];
     /* The propagation's grid (ogk_rk4_propagate's t0 + k h, last node tf), to
      * tell the end of an RK4 step from its midpoint, and U there, computed
-     * with the midpoint's (mpsp_control_at). */
+     * with the midpoint's (ogk_i_mpsp_control_at). */
     double grid_t0;     /* [TU] */
     double grid_h;      /* [TU] */
     double grid_tf;     /* [TU] */
@@ -71,14 +71,14 @@ typedef struct {
     bool undo_ok;
     /* The propagation's own: U at a midpoint and the step's end made in one
      * pass, and kept in keep_t / keep_u (ogk_mpsp_t's) for the sweep. Set by
-     * mpsp_propagate_ctx only (other callers of mpsp_control_at, such as the
+     * ogk_i_mpsp_propagate_ctx only (other callers of ogk_i_mpsp_control_at, such as the
      * test entry points' ogk_rk4_step, take U one time at a time). */
     bool pairing;
     double keep_scale;  /* [1/TU] 2 / h: half grid steps per TU */
     double *keep_t;     /* [TU] */
     double *keep_u;     /* [-] */
 #endif
-} mpsp_dyn_t;
+} ogk_i_mpsp_dyn_t;
 
 /* Partial derivatives of eq. (16) at one RK4 stage state (derived in
  * docs/mpsp.md; Appendix A's dF/dU block is garbled in the paper):
@@ -104,51 +104,51 @@ typedef struct {
     double a_lm[MPSP_SL];
     double d_v[MPSP_SL];
     double d_l[MPSP_SL];
-} mpsp_stage_t;
+} ogk_i_mpsp_stage_t;
 
 /* U = lambda_v at one time and its norm |U| (eq. 16 needs both). */
 typedef struct {
     double u[3];        /* [-] U(t) */
     double lam;         /* [-] |U(t)| */
-} mpsp_uval_t;
+} ogk_i_mpsp_uval_t;
 
 /* ---- mpsp_dynamics.c */
-void mpsp_dyn_setup(mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weights,
+void ogk_i_mpsp_dyn_setup(ogk_i_mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weights,
                     double thrust);
 /* h(t) (n_basis) and optionally dh/dt. */
-void mpsp_basis(const mpsp_dyn_t *dyn, double t, double *h, double *hdot);
+void ogk_i_mpsp_basis(const ogk_i_mpsp_dyn_t *dyn, double t, double *h, double *hdot);
 /* U = P(t) W from a basis vector, h_q at h[q * stride]. */
-void mpsp_control_from_basis(const mpsp_dyn_t *dyn, const double *h, size_t stride, double *u);
+void ogk_i_mpsp_control_from_basis(const ogk_i_mpsp_dyn_t *dyn, const double *h, size_t stride, double *u);
 /* cos and sin of the basis phase theta = omega (t - t_ref): rotated from the
  * last phase taken from cos() and sin() (the anchor, kept in dyn) when theta
  * is within MPSP_PHASE_REACH of it, else from cos() and sin() (new anchor). */
-void mpsp_phase(mpsp_dyn_t *dyn, double t, double *c1, double *s1);
-/* h(t) and U(t) = P(t) W, |U|, in one pass (phase from mpsp_phase). */
-void mpsp_basis_control(mpsp_dyn_t *dyn, double t, double *h, mpsp_uval_t *uv);
+void ogk_i_mpsp_phase(ogk_i_mpsp_dyn_t *dyn, double t, double *c1, double *s1);
+/* h(t) and U(t) = P(t) W, |U|, in one pass (phase from ogk_i_mpsp_phase). */
+void ogk_i_mpsp_basis_control(ogk_i_mpsp_dyn_t *dyn, double t, double *h, ogk_i_mpsp_uval_t *uv);
 /* U(t) through the cache. */
-void mpsp_control_at(mpsp_dyn_t *dyn, double t, double *u);
+void ogk_i_mpsp_control_at(ogk_i_mpsp_dyn_t *dyn, double t, double *u);
 #if defined(__SSE2__)
 /* The basis rows h(t[0]) into h_a and h(t[1]) into h_b, each entry twice
- * (OGK_MPSP_H_LANES), in one pass: the harmonics of mpsp_basis_control,
+ * (OGK_MPSP_H_LANES), in one pass: the harmonics of ogk_i_mpsp_basis_control,
  * phases taken in the order t[0], t[1]. */
-void mpsp_basis2(mpsp_dyn_t *dyn, const double *t, double *h_a, double *h_b);
+void ogk_i_mpsp_basis2(ogk_i_mpsp_dyn_t *dyn, const double *t, double *h_a, double *h_b);
 /* U and |U| at t (t0 <= t <= tf) from ctx->keep_u: false if they were not
  * kept for t. */
-bool mpsp_keep_find(const ogk_mpsp_t *ctx, const mpsp_dyn_t *dyn, double t, mpsp_uval_t *uv);
+bool ogk_i_mpsp_keep_find(const ogk_mpsp_t *ctx, const ogk_i_mpsp_dyn_t *dyn, double t, ogk_i_mpsp_uval_t *uv);
 #endif
 /* Eq. (16) with U given; OGK_E_CALLBACK on m <= 0 or |U| = 0 while thrusting. */
-ogk_status mpsp_rhs(const mpsp_dyn_t *dyn, const double *x, const double *u, int mode,
+ogk_status ogk_i_mpsp_rhs(const ogk_i_mpsp_dyn_t *dyn, const double *x, const double *u, int mode,
                     double *xdot);
 /* Eq. (10). */
-double mpsp_switch_value(const mpsp_dyn_t *dyn, const double *x, const double *u);
+double ogk_i_mpsp_switch_value(const ogk_i_mpsp_dyn_t *dyn, const double *x, const double *u);
 /* One RK4 stage of the sensitivity sweep at state x with control uv: the
  * partials of eq. (16) into sd and, when xdot is not NULL, eq. (16) itself
- * with the arithmetic of mpsp_rhs (so the stage states are those of
- * ogk_rk4_step). Errors as mpsp_rhs. */
-ogk_status mpsp_stage_eval(const mpsp_dyn_t *dyn, const double *x, const mpsp_uval_t *uv,
-                           int mode, double *xdot, mpsp_stage_t *sd);
+ * with the arithmetic of ogk_i_mpsp_rhs (so the stage states are those of
+ * ogk_rk4_step). Errors as ogk_i_mpsp_rhs. */
+ogk_status ogk_i_mpsp_stage_eval(const ogk_i_mpsp_dyn_t *dyn, const double *x, const ogk_i_mpsp_uval_t *uv,
+                           int mode, double *xdot, ogk_i_mpsp_stage_t *sd);
 /* The RK4 problem of eq. (16) on dyn (its callbacks take user = dyn). */
-void mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, mpsp_dyn_t *dyn);
+void ogk_i_mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, ogk_i_mpsp_dyn_t *dyn);
 
 /* ---- mpsp_adjoint.c */
 /* Adjoint rows: row vectors w_r (rows of d(.)/dX), row-major,
@@ -172,8 +172,8 @@ void mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, mpsp_dyn_t *d
  * (overwritten; left untouched in coast, where U does not enter eq. 16).
  * uv[0..2] is U at t, t + dt/2, t + dt (not read in coast). pair_rows: two
  * adjacent rows with r or v components per pass (MPSP_PAIR_ROWS), else one. */
-ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, int mode,
-                             const mpsp_uval_t *uv, bool pair_rows, size_t n_rows,
+ogk_status ogk_i_mpsp_step_adjoint(const ogk_i_mpsp_dyn_t *dyn, const double *x, double dt, int mode,
+                             const ogk_i_mpsp_uval_t *uv, bool pair_rows, size_t n_rows,
                              const double *adj_in, double *adj_out, double *bu_start,
                              double *bu_mid, double *bu_end);
 
@@ -182,8 +182,8 @@ ogk_status mpsp_step_adjoint(const mpsp_dyn_t *dyn, const double *x, double dt, 
  * at the mean of the nodes x_lo, x_hi and U = uv_mid (the midpoint's; not
  * read in coast); in thrust, bu_mid (n_rows x 3, overwritten) receives the
  * control sensitivity of the whole step at its midpoint (weight dt). */
-ogk_status mpsp_step_adjoint_mid2(const mpsp_dyn_t *dyn, const double *x_lo, const double *x_hi,
-                                  double dt, int mode, const mpsp_uval_t *uv_mid, size_t n_rows,
+ogk_status ogk_i_mpsp_step_adjoint_mid2(const ogk_i_mpsp_dyn_t *dyn, const double *x_lo, const double *x_hi,
+                                  double dt, int mode, const ogk_i_mpsp_uval_t *uv_mid, size_t n_rows,
                                   double *adj, double *bu_mid);
 
 /* ---- mpsp_sensitivity.c */
@@ -194,24 +194,24 @@ typedef struct {
     double s_x[OGK_MPSP_NX];   /* dS/dX */
     double s_u[3];             /* dS/dU */
     double s_dot;              /* dS/dt along the trajectory, eq. (15) */
-} mpsp_jump_t;
+} ogk_i_mpsp_jump_t;
 
-ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
-                           int mode_before, mpsp_jump_t *jump);
+ogk_status ogk_i_mpsp_jump_terms(ogk_i_mpsp_dyn_t *dyn, double t_s, const double *x_s,
+                           int mode_before, ogk_i_mpsp_jump_t *jump);
 
 /* ---- mpsp_bv.c */
 /* acc[q][r * 3 + c] += sum_b hb[b][q] cb[b][r * 3 + c] over the n samples b
  * (hb rows OGK_MPSP_MAX_BASIS * OGK_MPSP_H_LANES apart, h_q at [q *
  * OGK_MPSP_H_LANES] and, with 2 lanes, again at the next entry; cb rows 21
  * apart): B_v += bU h^T. */
-void mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb,
+void ogk_i_mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb,
                            size_t n);
 /* B_v row-major (7 x 3 n_basis) from the basis-major accumulator. */
-void mpsp_bv_unpack(const double *acc, size_t n_basis, double *out);
+void ogk_i_mpsp_bv_unpack(const double *acc, size_t n_basis, double *out);
 
 /* ---- mpsp_propagate.c */
 /* Propagates into ctx; t_max_eff is T (already scaled). */
-ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
+ogk_status ogk_i_mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
                               const double *x0, double thrust, ogk_mpsp_prop_t *out);
 
 #endif /* OGK_MPSP_INTERNAL_H */

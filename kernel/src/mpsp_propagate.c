@@ -12,10 +12,10 @@
 
 #define NX OGK_MPSP_NX
 
-ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
+ogk_status ogk_i_mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
                               const double *x0, double thrust, ogk_mpsp_prop_t *out)
 {
-    mpsp_dyn_t dyn;
+    ogk_i_mpsp_dyn_t dyn;
     ogk_rk4_problem_t prob;
     ogk_rk4_result_t res;
     ogk_rk4_dense_t dense;
@@ -39,7 +39,7 @@ ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lam
 
     (void)memcpy(xs, x0, OGK_MPSP_NX0 * sizeof xs[0]);
     xs[7] = lambda_m0;
-    mpsp_dyn_setup(&dyn, ctx, ctx->weights, thrust);
+    ogk_i_mpsp_dyn_setup(&dyn, ctx, ctx->weights, thrust);
 #if defined(__SSE2__)
     /* U made two at a time is kept for the sweep (empty slots: a time no
      * node or midpoint has) */
@@ -50,10 +50,10 @@ ogk_status mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lam
     dyn.keep_t = ctx->keep_t;
     dyn.keep_u = ctx->keep_u;
 #endif
-    mpsp_rk4_problem(&prob, ctx, &dyn);
+    ogk_i_mpsp_rk4_problem(&prob, ctx, &dyn);
     /* Initial mode from the sign of S(t0) (eq. 11; S = 0 taken as coast). */
-    mpsp_control_at(&dyn, ctx->cfg.t0, u0);
-    if (mpsp_switch_value(&dyn, xs, u0) < 0.0) {
+    ogk_i_mpsp_control_at(&dyn, ctx->cfg.t0, u0);
+    if (ogk_i_mpsp_switch_value(&dyn, xs, u0) < 0.0) {
         mode0 = 1;
     } else {
         mode0 = 0;
@@ -125,7 +125,7 @@ ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const double *weights, double lam
     } else if (!ogk_i_all_finite(weights, ctx->n_weights) || !isfinite(lambda_m0)) {
         st = OGK_E_NONFINITE;
     } else {
-        st = mpsp_propagate_ctx(ctx, weights, lambda_m0, x0, ctx->cfg.t_max * thrust_scale, out);
+        st = ogk_i_mpsp_propagate_ctx(ctx, weights, lambda_m0, x0, ctx->cfg.t_max * thrust_scale, out);
     }
     return st;
 }
@@ -239,14 +239,14 @@ ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double
     } else if (!isfinite(t) || !ogk_i_all_finite(weights, ctx->n_weights)) {
         st = OGK_E_NONFINITE;
     } else {
-        mpsp_dyn_t dyn;
+        ogk_i_mpsp_dyn_t dyn;
         double h[OGK_MPSP_MAX_BASIS];
         double hdot[OGK_MPSP_MAX_BASIS];
-        mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max);
-        mpsp_basis(&dyn, t, h, hdot);
-        mpsp_control_from_basis(&dyn, h, 1u, lambda_v);
+        ogk_i_mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max);
+        ogk_i_mpsp_basis(&dyn, t, h, hdot);
+        ogk_i_mpsp_control_from_basis(&dyn, h, 1u, lambda_v);
         if (lambda_v_dot != NULL) {
-            mpsp_control_from_basis(&dyn, hdot, 1u, lambda_v_dot);
+            ogk_i_mpsp_control_from_basis(&dyn, hdot, 1u, lambda_v_dot);
         }
         /* Finite weights can still overflow the sum, and a time far from t_ref the phase (found by
          * tests/fuzz/fuzz_mpsp_init.c): never OGK_OK with a non-finite output. */
@@ -265,13 +265,13 @@ static ogk_status thrust_cmd_held(const ogk_mpsp_t *ctx, double t, ogk_thrust_cm
     size_t k;
     ogk_status st = ogk_interp_locate(ctx->traj_t, ctx->n_nodes, t, &k);
     if (st == OGK_OK) {
-        mpsp_dyn_t dyn;
+        ogk_i_mpsp_dyn_t dyn;
         double h[OGK_MPSP_MAX_BASIS];
         double lv[3];
         double norm;
-        mpsp_dyn_setup(&dyn, ctx, ctx->weights, ctx->thrust);
-        mpsp_basis(&dyn, t, h, NULL);
-        mpsp_control_from_basis(&dyn, h, 1u, lv);
+        ogk_i_mpsp_dyn_setup(&dyn, ctx, ctx->weights, ctx->thrust);
+        ogk_i_mpsp_basis(&dyn, t, h, NULL);
+        ogk_i_mpsp_control_from_basis(&dyn, h, 1u, lv);
         norm = hypot(hypot(lv[0], lv[1]), lv[2]);
         if (!(norm > 0.0) || !isfinite(norm)) {
             st = OGK_E_SAFE_COMMAND; /* no primer direction */

@@ -23,8 +23,8 @@
 #define HR (MB * (size_t)OGK_MPSP_H_LANES)
 #define SB ((size_t)OGK_MPSP_SENS_BLOCK)
 
-ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
-                           int mode_before, mpsp_jump_t *jump)
+ogk_status ogk_i_mpsp_jump_terms(ogk_i_mpsp_dyn_t *dyn, double t_s, const double *x_s,
+                           int mode_before, ogk_i_mpsp_jump_t *jump)
 {
     double h[OGK_MPSP_MAX_BASIS];
     double hdot[OGK_MPSP_MAX_BASIS];
@@ -35,12 +35,12 @@ ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
     const double m = x_s[6];
     ogk_status st;
 
-    mpsp_basis(dyn, t_s, h, hdot);
-    mpsp_control_from_basis(dyn, h, 1u, u);
-    mpsp_control_from_basis(dyn, hdot, 1u, udot);
-    st = mpsp_rhs(dyn, x_s, u, mode_before, f_before);
+    ogk_i_mpsp_basis(dyn, t_s, h, hdot);
+    ogk_i_mpsp_control_from_basis(dyn, h, 1u, u);
+    ogk_i_mpsp_control_from_basis(dyn, hdot, 1u, udot);
+    st = ogk_i_mpsp_rhs(dyn, x_s, u, mode_before, f_before);
     if (st == OGK_OK) {
-        st = mpsp_rhs(dyn, x_s, u, 1 - mode_before, f_after);
+        st = ogk_i_mpsp_rhs(dyn, x_s, u, 1 - mode_before, f_after);
     }
     if (st == OGK_OK) {
         double lam;
@@ -69,9 +69,9 @@ ogk_status mpsp_jump_terms(mpsp_dyn_t *dyn, double t_s, const double *x_s,
 
 /* U and |U| from a basis row, h_q at h[q * stride] (1, or OGK_MPSP_H_LANES
  * for a row of the sample block: U not kept by the propagation). */
-static void uval_from_basis(const mpsp_dyn_t *dyn, const double *h, size_t stride, mpsp_uval_t *uv)
+static void uval_from_basis(const ogk_i_mpsp_dyn_t *dyn, const double *h, size_t stride, ogk_i_mpsp_uval_t *uv)
 {
-    mpsp_control_from_basis(dyn, h, stride, uv->u);
+    ogk_i_mpsp_control_from_basis(dyn, h, stride, uv->u);
     uv->lam = sqrt((uv->u[0] * uv->u[0]) + (uv->u[1] * uv->u[1]) + (uv->u[2] * uv->u[2]));
 }
 
@@ -95,7 +95,7 @@ static void accumulate_rows(double *out, size_t n_basis, size_t rows, const doub
 
 /* The partials of the RK4 step of ogk_mpsp_step_jacobian (x_next already
  * taken): dF/dX and dF/dW through the adjoint of the step, each if asked. */
-static ogk_status step_partials(const ogk_mpsp_t *ctx, const mpsp_dyn_t *dyn, double t, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static ogk_status step_partials(const ogk_mpsp_t *ctx, const ogk_i_mpsp_dyn_t *dyn, double t, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                                 const double *x, double dt, int mode, double *dfdx, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                                 double *dfdw)
 {
@@ -106,13 +106,13 @@ static ogk_status step_partials(const ogk_mpsp_t *ctx, const mpsp_dyn_t *dyn, do
     double b0[NX * 3u];
     double bm[NX * 3u];
     double b1[NX * 3u];
-    mpsp_uval_t uv[3];
+    ogk_i_mpsp_uval_t uv[3];
     size_t i;
     ogk_status st;
 
-    mpsp_basis(dyn, t, h0, NULL);
-    mpsp_basis(dyn, t + (0.5 * dt), hm, NULL);
-    mpsp_basis(dyn, t + dt, h1, NULL);
+    ogk_i_mpsp_basis(dyn, t, h0, NULL);
+    ogk_i_mpsp_basis(dyn, t + (0.5 * dt), hm, NULL);
+    ogk_i_mpsp_basis(dyn, t + dt, h1, NULL);
     (void)memset(adj, 0, sizeof adj);
     (void)memset(b0, 0, sizeof b0);
     (void)memset(bm, 0, sizeof bm);
@@ -125,7 +125,7 @@ static ogk_status step_partials(const ogk_mpsp_t *ctx, const mpsp_dyn_t *dyn, do
     uval_from_basis(dyn, h1, 1u, &uv[2]);
     /* one row at a time on every target: the paired rows of the sweep are
      * checked against this path by the unit tests */
-    st = mpsp_step_adjoint(dyn, x, dt, mode, uv, false, NX, adj, adj, b0, bm, b1);
+    st = ogk_i_mpsp_step_adjoint(dyn, x, dt, mode, uv, false, NX, adj, adj, b0, bm, b1);
     if ((st == OGK_OK) && (dfdx != NULL)) {
         (void)memcpy(dfdx, adj, sizeof adj); /* row i of adj is d X_next[i] / dX */
     }
@@ -185,10 +185,10 @@ ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
         st = OGK_E_RANGE;
     }
     if (st == OGK_OK) {
-        mpsp_dyn_t dyn;
+        ogk_i_mpsp_dyn_t dyn;
         ogk_rk4_problem_t prob;
-        mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max * thrust_scale);
-        mpsp_rk4_problem(&prob, ctx, &dyn);
+        ogk_i_mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max * thrust_scale);
+        ogk_i_mpsp_rk4_problem(&prob, ctx, &dyn);
         prob.sw = NULL;
         st = ogk_rk4_step(&prob, t, x, dt, mode, x_next);
         if ((st == OGK_OK) && ((dfdx != NULL) || (dfdw != NULL))) {
@@ -222,21 +222,21 @@ ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
                                 int mode_before, double *jx, double *jw, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                                 double *dts_dx, double *dts_dw)
 {
-    mpsp_dyn_t dyn;
-    mpsp_jump_t jump;
+    ogk_i_mpsp_dyn_t dyn;
+    ogk_i_mpsp_jump_t jump;
     double h[OGK_MPSP_MAX_BASIS];
     ogk_status st = check_jump_args(ctx, weights, thrust_scale, t_s, x_s, mode_before);
 
     if (st == OGK_OK) {
-        mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max * thrust_scale);
-        st = mpsp_jump_terms(&dyn, t_s, x_s, mode_before, &jump);
+        ogk_i_mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max * thrust_scale);
+        st = ogk_i_mpsp_jump_terms(&dyn, t_s, x_s, mode_before, &jump);
     }
     if (st == OGK_OK) {
         size_t i;
         size_t j;
         size_t c;
         size_t q;
-        mpsp_basis(&dyn, t_s, h, NULL);
+        ogk_i_mpsp_basis(&dyn, t_s, h, NULL);
         /* Eq. (24): I + dxdot S_X / Sdot;  eq. (25) with dU = P(t_s) dW. */
         for (i = 0u; i < NX; ++i) {
             const double a = jump.dxdot[i] / jump.s_dot;
@@ -273,11 +273,11 @@ ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
 /* Eqs. (22)-(25) at the switch node k + 1 (time t_hi, state x_hi) of the
  * backward recursion: the NY rows adj compensated and the S_U part added to
  * pend (bU at t_hi). */
-static ogk_status switch_compensation(mpsp_dyn_t *dyn, double t_hi, const double *x_hi, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static ogk_status switch_compensation(ogk_i_mpsp_dyn_t *dyn, double t_hi, const double *x_hi, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                                       double *adj, double *pend) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
-    mpsp_jump_t jump;
-    const ogk_status st = mpsp_jump_terms(dyn, t_hi, x_hi, mode, &jump);
+    ogk_i_mpsp_jump_t jump;
+    const ogk_status st = ogk_i_mpsp_jump_terms(dyn, t_hi, x_hi, mode, &jump);
 
     if (st == OGK_OK) {
         size_t r;
@@ -306,14 +306,14 @@ typedef struct {
     ogk_mpsp_t *ctx;
     size_t n;
     bool hi_held;
-    mpsp_uval_t hi;
+    ogk_i_mpsp_uval_t hi;
 } sens_block_t;
 
 /* Adds the complete samples to B_v and moves a held h(t_hi) to slot 0. */
 static void block_flush(sens_block_t *blk)
 {
     ogk_mpsp_t *ctx = blk->ctx;
-    mpsp_bv_block_product(ctx->bv_acc, ctx->n_basis, ctx->sens_h, ctx->sens_c, blk->n);
+    ogk_i_mpsp_bv_block_product(ctx->bv_acc, ctx->n_basis, ctx->sens_h, ctx->sens_c, blk->n);
     if (blk->hi_held && (blk->n > 0u)) {
         (void)memcpy(ctx->sens_h, &ctx->sens_h[blk->n * HR],
                      ctx->n_basis * OGK_MPSP_H_LANES * sizeof ctx->sens_h[0]);
@@ -322,20 +322,20 @@ static void block_flush(sens_block_t *blk)
 }
 
 /* h(t_hi) and U(t_hi) into slot n unless already held. */
-static void block_hold_hi(sens_block_t *blk, mpsp_dyn_t *dyn, double t_hi)
+static void block_hold_hi(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, double t_hi)
 {
     if (!blk->hi_held) {
         double *row = &blk->ctx->sens_h[blk->n * HR];
 #if defined(__SSE2__)
         double h[MB];
         size_t q;
-        mpsp_basis_control(dyn, t_hi, h, &blk->hi);
+        ogk_i_mpsp_basis_control(dyn, t_hi, h, &blk->hi);
         for (q = 0u; q < dyn->n_basis; ++q) { /* each value twice (OGK_MPSP_H_LANES) */
             row[2u * q] = h[q];
             row[(2u * q) + 1u] = h[q];
         }
 #else
-        mpsp_basis_control(dyn, t_hi, row, &blk->hi);
+        ogk_i_mpsp_basis_control(dyn, t_hi, row, &blk->hi);
 #endif
         blk->hi_held = true;
     }
@@ -346,7 +346,7 @@ static void block_hold_hi(sens_block_t *blk, mpsp_dyn_t *dyn, double t_hi)
  * differentiated, and the node above (slot n: its pending bU plus stage 4)
  * and the midpoint (stages 2 and 3) completed; the node below is held with
  * stage 1 as its pending bU. */
-static ogk_status thrust_step(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, double *adj, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static ogk_status thrust_step(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, size_t k, double *adj, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                               double *pend)
 {
     ogk_mpsp_t *ctx = blk->ctx;
@@ -358,7 +358,7 @@ static ogk_status thrust_step(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, doub
     double *c_hi = &ctx->sens_c[n * NYU];
     double *c_mid = &ctx->sens_c[(n + 1u) * NYU];
     double pend_lo[NYU];
-    mpsp_uval_t uv[3];
+    ogk_i_mpsp_uval_t uv[3];
     ogk_status st;
 
     block_hold_hi(blk, dyn, ctx->traj_t[k + 1u]);
@@ -366,12 +366,12 @@ static ogk_status thrust_step(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, doub
     {
         /* the midpoint, then t_lo: the phase order of the one-time path */
         const double t_pair[2] = {t_lo + (0.5 * dt), t_lo};
-        mpsp_uval_t uv_pair[2];
+        ogk_i_mpsp_uval_t uv_pair[2];
         /* U kept by the propagation (made there for these very times), else
          * made here with h; either way the same phases in the same order */
-        const bool kept_mid = mpsp_keep_find(ctx, dyn, t_pair[0], &uv_pair[0]);
-        const bool kept_lo = mpsp_keep_find(ctx, dyn, t_pair[1], &uv_pair[1]);
-        mpsp_basis2(dyn, t_pair, h_mid, h_lo);
+        const bool kept_mid = ogk_i_mpsp_keep_find(ctx, dyn, t_pair[0], &uv_pair[0]);
+        const bool kept_lo = ogk_i_mpsp_keep_find(ctx, dyn, t_pair[1], &uv_pair[1]);
+        ogk_i_mpsp_basis2(dyn, t_pair, h_mid, h_lo);
         if (!kept_mid) { /* the last step before a switch (bisection's) */
             uval_from_basis(dyn, h_mid, OGK_MPSP_H_LANES, &uv_pair[0]);
         }
@@ -382,11 +382,11 @@ static ogk_status thrust_step(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, doub
         uv[0] = uv_pair[1];
     }
 #else
-    mpsp_basis_control(dyn, t_lo + (0.5 * dt), h_mid, &uv[1]);
-    mpsp_basis_control(dyn, t_lo, h_lo, &uv[0]);
+    ogk_i_mpsp_basis_control(dyn, t_lo + (0.5 * dt), h_mid, &uv[1]);
+    ogk_i_mpsp_basis_control(dyn, t_lo, h_lo, &uv[0]);
 #endif
     uv[2] = blk->hi;
-    st = mpsp_step_adjoint(dyn, &ctx->traj_x[k * NX], dt, 1, uv, MPSP_PAIR_ROWS, NY, adj, adj,
+    st = ogk_i_mpsp_step_adjoint(dyn, &ctx->traj_x[k * NX], dt, 1, uv, MPSP_PAIR_ROWS, NY, adj, adj,
                            pend_lo, c_mid, c_hi);
     if (st == OGK_OK) {
         size_t j;
@@ -412,7 +412,7 @@ static void recursion_finish(ogk_mpsp_t *ctx, sens_block_t *blk, const double *a
 
     blk->hi_held = false;
     block_flush(blk);
-    mpsp_bv_unpack(ctx->bv_acc, ctx->n_basis, ctx->dy_dw);
+    ogk_i_mpsp_bv_unpack(ctx->bv_acc, ctx->n_basis, ctx->dy_dw);
     for (r = 0u; r < NY; ++r) {
         ctx->dy_dlm0[r] = adj[(r * NX) + 7u];
     }
@@ -421,11 +421,11 @@ static void recursion_finish(ogk_mpsp_t *ctx, sens_block_t *blk, const double *a
 /* The start of both sweeps: the dynamics of the current weights, an empty
  * sample block, dY/dX(tf) with Y = [r, v, lambda_m] (adj, NY x NX) and B_v's
  * accumulators cleared. */
-static void recursion_start(ogk_mpsp_t *ctx, mpsp_dyn_t *dyn, sens_block_t *blk, double *adj)
+static void recursion_start(ogk_mpsp_t *ctx, ogk_i_mpsp_dyn_t *dyn, sens_block_t *blk, double *adj)
 {
     size_t r;
 
-    mpsp_dyn_setup(dyn, ctx, ctx->weights, ctx->thrust);
+    ogk_i_mpsp_dyn_setup(dyn, ctx, ctx->weights, ctx->thrust);
     blk->ctx = ctx;
     blk->n = 0u;
     blk->hi_held = false;
@@ -443,7 +443,7 @@ static void recursion_start(ogk_mpsp_t *ctx, mpsp_dyn_t *dyn, sens_block_t *blk,
  * when a step or switch fails. */
 static ogk_status backward_recursion(ogk_mpsp_t *ctx)
 {
-    mpsp_dyn_t dyn;
+    ogk_i_mpsp_dyn_t dyn;
     sens_block_t blk;
     double adj[NY * NX];
     double pend[NYU];
@@ -471,7 +471,7 @@ static ogk_status backward_recursion(ogk_mpsp_t *ctx)
             st = thrust_step(&blk, &dyn, k, adj, pend);
             pend_nonzero = true;
         } else if (st == OGK_OK) {
-            mpsp_uval_t uv[3];
+            ogk_i_mpsp_uval_t uv[3];
             double unused[NYU];
             (void)memset(uv, 0, sizeof uv);
             if (pend_nonzero) { /* the node above ends a thrust arc or is a switch */
@@ -482,7 +482,7 @@ static ogk_status backward_recursion(ogk_mpsp_t *ctx)
             blk.hi_held = false;
             (void)memset(pend, 0, sizeof pend);
             pend_nonzero = false;
-            st = mpsp_step_adjoint(&dyn, &ctx->traj_x[k * NX], ctx->traj_t[k + 1u] - ctx->traj_t[k],
+            st = ogk_i_mpsp_step_adjoint(&dyn, &ctx->traj_x[k * NX], ctx->traj_t[k + 1u] - ctx->traj_t[k],
                                    0, uv, MPSP_PAIR_ROWS, NY, adj, adj, unused, unused,
                                    unused);
         } else {
@@ -510,7 +510,7 @@ static double step_mid(const ogk_mpsp_t *ctx, size_t k)
 /* A switch's sample of B_v at t_s with coefficients coef (NYU) into slot n;
  * a basis row held there (blk->hi_held: the next midpoint's, SSE2) moves up
  * to slot n + 1 and stays held. */
-static void mid2_push_switch(sens_block_t *blk, mpsp_dyn_t *dyn, double t_s, const double *coef)
+static void mid2_push_switch(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, double t_s, const double *coef)
 {
     ogk_mpsp_t *ctx = blk->ctx;
     const bool held = blk->hi_held; /* its U is not held: mid2_row_at takes it anew */
@@ -527,11 +527,11 @@ static void mid2_push_switch(sens_block_t *blk, mpsp_dyn_t *dyn, double t_s, con
 }
 
 /* The basis row of thrust step k's midpoint in slot n and U there. On SSE2
- * the row is made two midpoints per pass (mpsp_basis2: this step's and step
+ * the row is made two midpoints per pass (ogk_i_mpsp_basis2: this step's and step
  * k - 1's, which the sweep takes next), the second held in slot n + 1, and U
- * comes from the propagation (mpsp_keep_find) or else from the row; elsewhere
- * mpsp_basis_control makes the row and U. */
-static void mid2_row_at(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, mpsp_uval_t *uv)
+ * comes from the propagation (ogk_i_mpsp_keep_find) or else from the row; elsewhere
+ * ogk_i_mpsp_basis_control makes the row and U. */
+static void mid2_row_at(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, size_t k, ogk_i_mpsp_uval_t *uv)
 {
     const double t_mid = step_mid(blk->ctx, k);
 #if defined(__SSE2__)
@@ -540,9 +540,9 @@ static void mid2_row_at(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, mpsp_uval_
     const bool made = !blk->hi_held; /* else made with step k + 1's */
     if (made) {
         const double t_pair[2] = {t_mid, (k > 0u) ? step_mid(ctx, k - 1u) : t_mid};
-        mpsp_basis2(dyn, t_pair, row, &row[HR]);
+        ogk_i_mpsp_basis2(dyn, t_pair, row, &row[HR]);
     }
-    if (!mpsp_keep_find(ctx, dyn, t_mid, uv)) { /* the last step before a switch */
+    if (!ogk_i_mpsp_keep_find(ctx, dyn, t_mid, uv)) { /* the last step before a switch */
         uval_from_basis(dyn, row, OGK_MPSP_H_LANES, uv);
     }
     blk->hi_held = made && (k > 0u); /* slot n + 1: step k - 1's midpoint */
@@ -556,11 +556,11 @@ static void mid2_row_at(sens_block_t *blk, mpsp_dyn_t *dyn, size_t k, mpsp_uval_
 
 /* The backward recursion of the second-order sweep (OGK_MPSP_SWEEP_MID2):
  * the switching compensation as in backward_recursion (exact, a sample of
- * B_v at each switch), each step by mpsp_step_adjoint_mid2 and, in thrust,
+ * B_v at each switch), each step by ogk_i_mpsp_step_adjoint_mid2 and, in thrust,
  * one sample of B_v at the step's midpoint; results as backward_recursion. */
 static ogk_status backward_recursion_mid2(ogk_mpsp_t *ctx)
 {
-    mpsp_dyn_t dyn;
+    ogk_i_mpsp_dyn_t dyn;
     sens_block_t blk;
     double adj[NY * NX];
     double pend[NYU];
@@ -586,16 +586,16 @@ static ogk_status backward_recursion_mid2(ogk_mpsp_t *ctx)
             }
         }
         if ((st == OGK_OK) && (mode == 1)) {
-            mpsp_uval_t uv;
+            ogk_i_mpsp_uval_t uv;
             mid2_row_at(&blk, &dyn, k, &uv);
-            st = mpsp_step_adjoint_mid2(&dyn, &ctx->traj_x[k * NX], &ctx->traj_x[(k + 1u) * NX], dt,
+            st = ogk_i_mpsp_step_adjoint_mid2(&dyn, &ctx->traj_x[k * NX], &ctx->traj_x[(k + 1u) * NX], dt,
                                         1, &uv, NY, adj, &ctx->sens_c[blk.n * NYU]);
             blk.n += 1u;
         } else if (st == OGK_OK) {
-            mpsp_uval_t uv;
+            ogk_i_mpsp_uval_t uv;
             (void)memset(&uv, 0, sizeof uv);
             blk.hi_held = false; /* a held midpoint row is not needed in coast */
-            st = mpsp_step_adjoint_mid2(&dyn, &ctx->traj_x[k * NX], &ctx->traj_x[(k + 1u) * NX], dt,
+            st = ogk_i_mpsp_step_adjoint_mid2(&dyn, &ctx->traj_x[k * NX], &ctx->traj_x[(k + 1u) * NX], dt,
                                         0, &uv, NY, adj, pend);
         } else {
             /* the switch's status returned */

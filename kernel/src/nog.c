@@ -751,7 +751,7 @@ static double tau_at(const ogk_nog_t *ctx, double t_s, ogk_status *st)
     return (*st == OGK_OK) ? ctx->tau_k + (t_s - ctx->t_k_s) / ctx->t_f_s : ctx->tau_k;
 }
 
-/* ogk_nog_command on an initialised context. */
+/* ogk_nog_thrust_cmd on an initialised context. */
 static ogk_status command_at(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
 {
     double tau;
@@ -803,7 +803,7 @@ static ogk_status command_at(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t 
     return st;
 }
 
-ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
+ogk_status ogk_nog_thrust_cmd(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
 {
     ogk_status st;
 

@@ -88,7 +88,7 @@ profile-pil-sparc: $(PROFILE_PIL_SPARC)
 # SPARC V8, besides the campaigns: instructions per call of the orbit-injection entry points over the
 # flight application's whole flight (port/cortex-m7/flightapp built for SPARC, table decoded into RAM), by the QEMU plugin
 # under qemu-user (calls return after their delay slot; make test-qemu-plugin-sparc checks it).
-PROFILE_FA_ENTRIES := ogk_nog_sample ogk_nog_command ogk_cpd_step ogk_cpd_input_from_thrust_cmd \
+PROFILE_FA_ENTRIES := ogk_nog_sample ogk_nog_thrust_cmd ogk_cpd_step ogk_cpd_input_from_thrust_cmd \
   ogk_nog_table_load ogk_nog_init ogk_cpd_init
 $(PROFILE_B)/insns_sparc_flightapp.txt: $(SPARC_FA) $(QP_SO)
 	@mkdir -p $(@D)

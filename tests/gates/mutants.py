@@ -64,7 +64,7 @@ FIXED = [
      "dx_r of dx_k left uninitialised (test_nog: test_radius_error_moves_lambda_r_only)"),
     ("kernel/src/nog.c",
      "if (st == OGK_OK) { st = OGK_E_SAFE_COMMAND;", "if (st != OGK_OK) { st = OGK_E_SAFE_COMMAND;",
-     "overflowing costate in ogk_nog_command reported as OK "
+     "overflowing costate in ogk_nog_thrust_cmd reported as OK "
      "(test_nog: test_overflowing_costate_gives_safe_command)"),
     ("kernel/src/interp.c",
      "values[((n - 1u) * m) + j]) / h0", "values[((n - 1u) * m) - j]) / h0",

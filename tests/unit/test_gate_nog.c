@@ -142,10 +142,10 @@ static void test_null_and_uninitialised(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, NULL, &s), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, NULL), OGK_E_NULL);
     assert_int_equal(nog.n_samples, 0u); /* nothing taken */
-    OGK_ASSERT_STATUS(ogk_nog_command(NULL, 1.0, &c), OGK_E_NULL);
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 1.0, NULL), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(NULL, 1.0, &c), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 1.0, NULL), OGK_E_NULL);
     (void)memset(&c, 0x5A, sizeof c);
-    OGK_ASSERT_STATUS(ogk_nog_command(&zero, 1.0, &c), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&zero, 1.0, &c), OGK_E_NOT_INIT);
     /* the safe command: no engine-on flag from an uninitialised context */
     assert_int_equal(c.flags, OGK_THRUST_FLAG_SAFE);
     assert_int_equal(c.law_flags, OGK_NOG_FLAG_SAFE);
@@ -233,7 +233,7 @@ static void expect_stale(ogk_nog_t *ctx)
     OGK_ASSERT_STATUS(ogk_nog_sample(ctx, &nav, &s), OGK_E_TABLE_STALE);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
     OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12); /* the held (nominal) direction */
-    OGK_ASSERT_STATUS(ogk_nog_command(ctx, 11.0, &c), OGK_E_TABLE_STALE);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(ctx, 11.0, &c), OGK_E_TABLE_STALE);
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
     OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, 1e-12);
 }
@@ -371,14 +371,14 @@ static void test_costate_corrupted_after_load(void **state)
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
     OGK_ASSERT_NEAR(ctx.hold_alpha_rad, 0.0, 0.0);
     OGK_ASSERT_NEAR(ctx.hold_beta_rad, 0.0, 0.0);
-    OGK_ASSERT_STATUS(ogk_nog_command(&ctx, 1.0, &c), OGK_E_SAFE_COMMAND);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&ctx, 1.0, &c), OGK_E_SAFE_COMMAND);
     OGK_ASSERT_NEAR(c.alpha_rad, 0.0, 0.0);
     OGK_ASSERT_NEAR(c.beta_rad, 0.0, 0.0);
     assert_true((c.law_flags & OGK_NOG_FLAG_SAFE) != 0u);
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
     assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u);
     /* an input error keeps its own status, the direction is still the held one */
-    OGK_ASSERT_STATUS(ogk_nog_command(&ctx, NAN, &c), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&ctx, NAN, &c), OGK_E_NONFINITE);
     OGK_ASSERT_NEAR(c.alpha_rad, 0.0, 0.0);
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
     /* a sample computes a finite correction but a NaN direction: rolled back, held */
@@ -406,7 +406,7 @@ static void test_out_of_plane_costate_corrupted(void **state)
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
     OGK_ASSERT_NEAR(ctx.hold_alpha_rad, 0.0, 0.0);
     OGK_ASSERT_NEAR(ctx.hold_beta_rad, 0.0, 0.0);
-    OGK_ASSERT_STATUS(ogk_nog_command(&ctx, 1.0, &c), OGK_E_SAFE_COMMAND);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&ctx, 1.0, &c), OGK_E_SAFE_COMMAND);
     OGK_ASSERT_NEAR(c.alpha_rad, 0.0, 0.0);
     OGK_ASSERT_NEAR(c.beta_rad, 0.0, 0.0);
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);

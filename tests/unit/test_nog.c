@@ -152,7 +152,7 @@ static void test_flight_time_update_and_eq31(void **state)
     lam4 = -sin(ALPHA0) + K_L4_T * dt1;
     lam5 = -cos(ALPHA0);
     OGK_ASSERT_NEAR(s.alpha_rad, atan2(-lam4, -lam5), 1e-12);
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 3.0, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 3.0, &c), OGK_OK);
     assert_true(c.t_s == 3.0);
     assert_int_equal(c.flags, OGK_THRUST_FLAG_ENGINE_ON);
     {
@@ -192,7 +192,7 @@ static void test_radius_error_moves_lambda_r_only(void **state)
     OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0);
     OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-15);
     OGK_ASSERT_NEAR(s.beta_rad, 0.0, 0.0);
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 1.0, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 1.0, &c), OGK_OK);
     OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, 1e-15);
     OGK_ASSERT_NEAR(c.beta_rad, 0.0, 0.0);
 }
@@ -239,7 +239,7 @@ static void test_out_of_plane_with_first_order_hold(void **state)
     nav.v_n_mps = 2.0;
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
     OGK_ASSERT_NEAR(s.beta_rad, atan2(-K_L6_VN * 2.0, 1.0), 1e-14);
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, t, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, t, &c), OGK_OK);
     OGK_ASSERT_NEAR(c.beta_rad, atan2(-lam6, 1.0), 1e-14);
     OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, 1e-14);
     /* the one command of every law (ogk/types.h): r-t-n, the primer vector -lambda_v / |lambda_v|
@@ -337,7 +337,7 @@ static void test_freeze_and_termination(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
     assert_true((s.flags & OGK_NOG_FLAG_TERMINATING) != 0u);
     OGK_ASSERT_NEAR(s.t_cutoff_s, 100.0, 1e-9);
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 100.5, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 100.5, &c), OGK_OK);
     assert_true((c.law_flags & OGK_NOG_FLAG_CUTOFF) != 0u);
     assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u); /* engine off */
     OGK_ASSERT_NEAR(c.throttle, 0.0, 0.0);
@@ -398,10 +398,10 @@ static void test_bad_navigation_gives_safe_command(void **state)
     nav = nav_at(1.0, 0.01); /* time going backwards */
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 1.0, &c), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 1.0, &c), OGK_E_RANGE);
     assert_true((c.law_flags & OGK_NOG_FLAG_SAFE) != 0u);
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, NAN, &c), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, NAN, &c), OGK_E_NONFINITE);
     /* The context is still usable: a good sample goes through. */
     nav = nav_at(4.0, 4.0 / 103.0);
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
@@ -504,8 +504,8 @@ static void fly_both(ogk_nog_t *a, ogk_nog_t *b)
         nav.v_n_mps = 2.0;
         OGK_ASSERT_STATUS(ogk_nog_sample(a, &nav, &sa), ogk_nog_sample(b, &nav, &sb));
         assert_true(memcmp(&sa, &sb, sizeof sa) == 0);
-        OGK_ASSERT_STATUS(ogk_nog_command(a, times[i] + 1.0, &ca),
-                          ogk_nog_command(b, times[i] + 1.0, &cb));
+        OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(a, times[i] + 1.0, &ca),
+                          ogk_nog_thrust_cmd(b, times[i] + 1.0, &cb));
         assert_true(memcmp(&ca, &cb, sizeof ca) == 0);
     }
 }
@@ -645,12 +645,12 @@ static void check_stale(ogk_nog_t *ctx, double held_beta)
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
     OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
     OGK_ASSERT_NEAR(s.beta_rad, held_beta, 0.0);
-    OGK_ASSERT_STATUS(ogk_nog_command(ctx, 31.0, &c), OGK_E_TABLE_STALE);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(ctx, 31.0, &c), OGK_E_TABLE_STALE);
     assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad));
     OGK_ASSERT_NEAR(c.beta_rad, held_beta, 0.0);
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
     assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u); /* before the predicted cut-off */
-    OGK_ASSERT_STATUS(ogk_nog_command(ctx, 500.0, &c), OGK_E_TABLE_STALE);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(ctx, 500.0, &c), OGK_E_TABLE_STALE);
     assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u); /* and off after it */
     OGK_ASSERT_STATUS(ogk_nog_tau_at(ctx, 31.0, &tau), OGK_E_TABLE_STALE);
     OGK_ASSERT_STATUS(ogk_nog_reset(ctx), OGK_E_TABLE_STALE);
@@ -745,7 +745,7 @@ static void test_envelope_rejects_absurd_inputs(void **state)
         OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
         OGK_ASSERT_NEAR(s.beta_rad, 0.0, 1e-12);
         OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0);
-        OGK_ASSERT_STATUS(ogk_nog_command(&nog, 10.0, &c), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 10.0, &c), OGK_OK);
         assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad));
     }
     /* On the envelope's edges the sample is good. */
@@ -757,7 +757,7 @@ static void test_envelope_rejects_absurd_inputs(void **state)
         assert_true(sample_is_finite(&s));
     }
     /* Commands far in the future are finite, with the engine off. */
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, DBL_MAX, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, DBL_MAX, &c), OGK_OK);
     assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad) && isfinite(c.t_s));
     assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u);
 }
@@ -792,7 +792,7 @@ static void test_one_bad_sample_does_not_latch(void **state)
         assert_true((k != 1u) || (s.flags & OGK_NOG_FLAG_CUTOFF) != 0u); /* 150 s: past it */
         assert_true(sample_is_finite(&s));
         assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
-        OGK_ASSERT_STATUS(ogk_nog_command(&nog, t_good - 1.0, &c), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, t_good - 1.0, &c), OGK_OK);
         assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u); /* engine not cut off */
         assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
         nav = nav_at(t_good, t_good / TF_STAR);
@@ -801,8 +801,8 @@ static void test_one_bad_sample_does_not_latch(void **state)
         OGK_ASSERT_STATUS(ogk_nog_sample(&ref, &nav, &sr), OGK_OK);
         assert_true((s.flags & OGK_NOG_FLAG_SAFE) == 0u);
         assert_true(memcmp(&s, &sr, sizeof s) == 0);
-        OGK_ASSERT_STATUS(ogk_nog_command(&nog, t_good + 1.0, &c), OGK_OK);
-        OGK_ASSERT_STATUS(ogk_nog_command(&ref, t_good + 1.0, &cr), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, t_good + 1.0, &c), OGK_OK);
+        OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&ref, t_good + 1.0, &cr), OGK_OK);
         assert_true(memcmp(&c, &cr, sizeof c) == 0);
     }
 }
@@ -836,7 +836,7 @@ static void test_huge_gains_give_safe_command(void **state)
     OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0);   /* the last good (nominal) correction */
     OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
     OGK_ASSERT_NEAR(s.beta_rad, 0.0, 1e-12);
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 3.0, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 3.0, &c), OGK_OK);
     assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad));
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
     /* Small enough a displacement, and the same table flies again. */
@@ -911,16 +911,64 @@ static void test_overflowing_costate_gives_safe_command(void **state)
     assert_true(isinf(nog.dlam_k[3]) && nog.dlam_k[3] > 0.0);
     OGK_ASSERT_NEAR(s.alpha_rad, -0.5 * PI, 1e-15);
     OGK_ASSERT_NEAR(s.beta_rad, 0.0, 0.0);
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 80.0, &c), OGK_OK); /* s = 0.2: -1.77e308, finite */
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 87.5, &c), OGK_E_SAFE_COMMAND);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 80.0, &c), OGK_OK); /* s = 0.2: -1.77e308, finite */
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 87.5, &c), OGK_E_SAFE_COMMAND);
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
     assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u);
     assert_true((c.law_flags & OGK_NOG_FLAG_SAFE) != 0u);
     OGK_ASSERT_NEAR(c.alpha_rad, -0.5 * PI, 1e-15);
     OGK_ASSERT_NEAR(c.beta_rad, 0.0, 0.0);
     /* A time before the sample keeps its own status (and the held angles). */
-    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 70.0, &c), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 70.0, &c), OGK_E_RANGE);
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
+}
+
+/* The deprecated name gives the command of the new one, bit for bit. */
+static void assert_same_cmd(const ogk_thrust_cmd_t *a, const ogk_thrust_cmd_t *b)
+{
+    assert_memory_equal(&a->t_s, &b->t_s, sizeof a->t_s);
+    assert_memory_equal(&a->alpha_rad, &b->alpha_rad, sizeof a->alpha_rad);
+    assert_memory_equal(&a->beta_rad, &b->beta_rad, sizeof a->beta_rad);
+    assert_int_equal(a->flags, b->flags);
+    assert_int_equal(a->law_flags, b->law_flags);
+    assert_int_equal((int)a->frame, (int)b->frame);
+    assert_memory_equal(a->u, b->u, sizeof a->u);
+    assert_memory_equal(&a->throttle, &b->throttle, sizeof a->throttle);
+}
+
+/* req: OGK-NOG-012 */
+static void test_deprecated_ogk_nog_command_alias(void **state)
+{
+    /* ogk_nog_command (deprecated, removed in 0.3) == ogk_nog_thrust_cmd:
+     * same status and command on the nominal, after a corrected sample, for
+     * a time before the sample, a non-finite time, after the cut-off, for an
+     * uninitialised context and for NULL arguments. */
+    static const double times[] = {1.0, 3.0, 50.25, 100.5, 0.5};
+    ogk_nog_nav_t nav = nav_at(2.0, 0.02);
+    ogk_nog_sample_t s;
+    ogk_thrust_cmd_t c_new;
+    ogk_thrust_cmd_t c_old;
+    ogk_nog_t blank;
+    size_t i;
+    (void)state;
+    for (i = 0u; i < sizeof times / sizeof times[0]; ++i) {
+        OGK_ASSERT_STATUS(ogk_nog_command(&nog, times[i], &c_old), ogk_nog_thrust_cmd(&nog, times[i], &c_new));
+        assert_same_cmd(&c_old, &c_new);
+    }
+    nav.v_n_mps = 2.0;
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    for (i = 0u; i < sizeof times / sizeof times[0]; ++i) {
+        OGK_ASSERT_STATUS(ogk_nog_command(&nog, times[i], &c_old), ogk_nog_thrust_cmd(&nog, times[i], &c_new));
+        assert_same_cmd(&c_old, &c_new);
+    }
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, NAN, &c_old), ogk_nog_thrust_cmd(&nog, NAN, &c_new));
+    assert_same_cmd(&c_old, &c_new);
+    memset(&blank, 0, sizeof blank);
+    OGK_ASSERT_STATUS(ogk_nog_command(&blank, 1.0, &c_old), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&blank, 1.0, &c_new), OGK_E_NOT_INIT);
+    assert_same_cmd(&c_old, &c_new);
+    OGK_ASSERT_STATUS(ogk_nog_command(NULL, 1.0, &c_old), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nog_command(&nog, 1.0, NULL), OGK_E_NULL);
 }
 
 int main(void)
@@ -951,6 +999,7 @@ int main(void)
         cmocka_unit_test_setup(test_huge_gains_give_safe_command, setup),
         cmocka_unit_test_setup(test_overflowing_dt_f_alone_gives_safe_command, setup),
         cmocka_unit_test_setup(test_overflowing_costate_gives_safe_command, setup),
+        cmocka_unit_test_setup(test_deprecated_ogk_nog_command_alias, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
