@@ -61,14 +61,22 @@ $(B)/host/libogk.so: $(HOST_OBJ)
 kernel-host: $(B)/host/libogk.a $(B)/host/libogk.so
 
 # ---------------------------------------------------------------- host unit tests (cmocka, ASan+UBSan)
-UNIT_SRC := $(sort $(wildcard tests/unit/test_*.c))
-UNIT_HOST := $(patsubst tests/unit/%.c,$(B)/host-san/%,$(UNIT_SRC))
+# The C unit tests, grouped by module: tests/unit/<module>/test_*.c (core, qp, nog, cpd, mpsp, blt,
+# nmpc, contract), the shared fixtures and helpers in tests/unit/*.h (-Itests/unit). Every build names
+# a test by its file name alone (build/<gate>/test_x), so the names are unique across the folders.
+UNIT_SRC := $(sort $(wildcard tests/unit/*/test_*.c))
+UNIT_NAMES := $(basename $(notdir $(UNIT_SRC)))
+UNIT_HDR := $(wildcard tests/unit/*.h)
+$(if $(filter-out $(words $(UNIT_NAMES)),$(words $(sort $(UNIT_NAMES)))),\
+  $(error tests/unit: two test sources share a file name: $(sort $(UNIT_NAMES))))
+vpath test_%.c $(sort $(dir $(UNIT_SRC)))
+UNIT_HOST := $(addprefix $(B)/host-san/,$(UNIT_NAMES))
 SAN_OBJ := $(patsubst kernel/src/%.c,$(B)/host-san/kernel/%.o,$(KSRC))
 TEST_CFLAGS := -std=c99 -Wall -Wextra -Werror -O1 -g $(SAN) $(KINC) -Itests/unit
 $(B)/host-san/kernel/%.o: kernel/src/%.c $(KHDR) | apt
 	@mkdir -p $(@D)
 	gcc $(STRICT) -O1 -g $(SAN) $(KINC) -c $< -o $@
-$(B)/host-san/%: tests/unit/%.c $(wildcard tests/unit/*.h) $(SAN_OBJ) | apt
+$(B)/host-san/test_%: test_%.c $(UNIT_HDR) $(SAN_OBJ) | apt
 	@mkdir -p $(@D)
 	gcc $(TEST_CFLAGS) $< $(SAN_OBJ) -o $@ -lcmocka -lm
 

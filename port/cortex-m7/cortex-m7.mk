@@ -3,7 +3,7 @@
 # KINC, KSRC, KHDR, UNIT_SRC, B). See docs/ports.md.
 #
 #   make arm-lib             build/arm/libogk.a (kernel, strict flags, -O2)
-#   make test-unit-arm       every tests/unit/test_*.c on QEMU (cmocka shim)
+#   make test-unit-arm       every tests/unit/*/test_*.c on QEMU (cmocka shim)
 #   make test-arm-selftest   checks of this route itself (runner, faults, FPU)
 #   make arm-size            code/data size of the kernel objects
 #   make qemu-plugin         build/qemu-plugin/libinsn_count.so (instruction counts)

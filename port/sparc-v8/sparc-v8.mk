@@ -3,7 +3,7 @@
 # KSRC, KHDR, UNIT_SRC, B, ARM_PORT and FA_* variables). See docs/ports.md, "SPARC V8".
 #
 #   make sparc-lib               build/sparc/libogk.a (kernel, strict flags, -O2)
-#   make test-unit-sparc         every tests/unit/test_*.c, static, run with qemu-sparc32plus
+#   make test-unit-sparc         every tests/unit/*/test_*.c, static, run with qemu-sparc32plus
 #   make test-flight-app-sparc   the flight app (port/cortex-m7/flightapp) built for SPARC V8, table
 #                                decoded into RAM (OGK_FLIGHT_TABLE_COPY=1: the in-place view answers
 #                                OGK_E_BYTE_ORDER there); its injection errors compared with the host's

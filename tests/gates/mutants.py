@@ -11,7 +11,7 @@ seed draws other mutants once kernel/src changes (docs/mutation.md records the c
 
 Each mutant is applied to a copy of the kernel under BUILD (build/mutants by default; the
 working tree is never touched), the mutated source recompiled, every C unit test
-(tests/unit/test_*.c, host, gcc -O1, no sanitizers) relinked and run until the first failure,
+(tests/unit/*/test_*.c, host, gcc -O1, no sanitizers) relinked and run until the first failure,
 crash or time-out (killed). A mutant that does not compile is reported and not counted.
 Prints one line per mutant (file:line:column of a sampled one) and the score = killed / (killed + survived); exit status 0 unless
 the unmutated tree fails its own tests (2), a fixed mutant's fragment is no longer found once or
@@ -276,8 +276,9 @@ def main():
 
     ksrc = sorted(os.path.join("kernel/src", f) for f in os.listdir(os.path.join(ROOT, "kernel/src"))
                   if f.endswith(".c"))
-    tests = sorted(os.path.join("tests/unit", f) for f in os.listdir(os.path.join(ROOT, "tests/unit"))
-                   if f.startswith("test_") and f.endswith(".c"))
+    tests = sorted(os.path.relpath(os.path.join(d, f), ROOT)
+                   for d, _, files in os.walk(os.path.join(ROOT, "tests/unit"))
+                   for f in files if f.startswith("test_") and f.endswith(".c"))
     texts = {p: open(os.path.join(ROOT, p)).read() for p in ksrc}
 
     all_sites = []

@@ -1,4 +1,4 @@
-/* test_gate_blt.c -- ogk_blt paths test_blt.c leaves unrun (make coverage, docs/coverage.md), each
+/* test_blt_failure_paths.c -- ogk_blt paths test_blt.c leaves unrun (make coverage, docs/coverage.md), each
  * with its status, flags and outputs asserted:
  *   - the corrector's failure paths: a trial step through the secondary (the impact halvings, with
  *     and without halvings left; NRPC stalls, LM converges round it), trial steps whose burn needs
@@ -16,7 +16,7 @@
  *     each with the variational Jacobian against central differences and a converging solve;
  *     impacts and singular directions stopping a multi-segment arc forward and backward;
  *   - a segment at exactly OGK_BLT_MAX_SEGMENT_STEPS steps, normalise_ab off.
- * The layout copies test_gate_nmpc.c (one static context, a comment per path, host and QEMU). */
+ * The layout copies test_nmpc_edge_cases.c (one static context, a comment per path, host and QEMU). */
 #include "ogk_test.h"
 
 #include <string.h>

@@ -1,4 +1,4 @@
-/* test_gate_interp_table.c -- the argument, dimension and size rejections of interp.c and
+/* test_interp_table_rejections.c -- the argument, dimension and size rejections of interp.c and
  * table.c that test_interp.c and test_table.c leave unrun (make coverage, docs/coverage.md):
  * NULL arguments, grids too short, non-finite grid and values, each header field out of the
  * spec of ogk/table.h, size fields that would overflow, and the readers on a zeroed view. The

@@ -1,4 +1,4 @@
-/* test_gate_rk4_linalg.c -- RK4 and linear-algebra paths the other tests leave unrun (make
+/* test_rk4_linalg_failures.c -- RK4 and linear-algebra paths the other tests leave unrun (make
  * coverage, docs/coverage.md): a right-hand side or switching function failing at every one of
  * its calls in turn (each RK4 stage, the switch evaluation at t0, inside the bisection), the
  * argument rejections of ogk_rk4_step and ogk_rk4_propagate, and factorizations that are not held
