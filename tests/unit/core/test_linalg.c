@@ -1,4 +1,4 @@
-/* test_linalg.c -- unit tests of kernel/src/linalg.c against closed forms.
+/* test_linalg.c -- unit tests of kernel/src/core/linalg.c against closed forms.
  *
  * Truths used: hand-computed products; residuals |A x - b| of LU / Cholesky /
  * least-squares solutions (backward error, independent of the solver); the

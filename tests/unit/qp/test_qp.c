@@ -1,4 +1,4 @@
-/* test_qp.c -- unit tests of kernel/src/qp.c (ogk_qp_solve, Goldfarb-Idnani).
+/* test_qp.c -- unit tests of kernel/src/qp/qp.c (ogk_qp_solve, Goldfarb-Idnani).
  *
  * Truths used, none of them the solver itself:
  *   - every bad-input code of ogk/qp.h, with x and the multipliers zeroed;
