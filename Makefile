@@ -69,7 +69,8 @@ kernel-host: $(B)/host/libogk.a $(B)/host/libogk.so
 # The C unit tests, grouped by module: tests/unit/<module>/test_*.c (core, qp, nog, cpd, mpsp, blt,
 # nmpc, contract), the shared fixtures and helpers in tests/unit/*.h (-Itests/unit). Every build names
 # a test by its file name alone (build/<gate>/test_x), so the names are unique across the folders.
-UNIT_SRC := $(sort $(wildcard tests/unit/*/test_*.c))
+# (A test left at the top, tests/unit/test_*.c, still runs everywhere: move it to its module's folder.)
+UNIT_SRC := $(sort $(wildcard tests/unit/test_*.c) $(wildcard tests/unit/*/test_*.c))
 UNIT_NAMES := $(basename $(notdir $(UNIT_SRC)))
 UNIT_HDR := $(wildcard tests/unit/*.h)
 $(if $(filter-out $(words $(UNIT_NAMES)),$(words $(sort $(UNIT_NAMES)))),\

@@ -61,7 +61,8 @@ typedef struct {
     ogk_status (*dynamics)(const void *data, uint32_t nu, double t, const double *x, const double *u,
                            const double *trig, double *xdot, double *jx, double *ju, double *jt);
     /* hz (OGK_OCP_NZ square, z = (x, u, t), t at index 5 + nu) = the upper
-     * triangle (row <= column; the rest zero) of the Hessian of kappa . f;
+     * triangle (row <= column) of the Hessian of kappa . f: only its
+     * structural nonzeros written (the caller zeroes hz before every call);
      * called after `dynamics` at the same point succeeded. */
     void (*dynamics_hess)(const void *data, uint32_t nu, double t, const double *x, const double *u,
                           const double *trig, const double *kappa, double *hz);

@@ -314,7 +314,7 @@ void ogk_i_nmpc_rhs_hess(const void *data, uint32_t nu, double t, /* NOLINT(bugp
 
     engine_limits(cfg, r, &lim);
     engine_curvature(cfg, r, &thrust_drr, &flow_drr);
-    (void)memset(hz, 0, zs * zs * sizeof(double));
+    /* hz is zeroed by the caller (ogk/ocp.h): only the structural nonzeros are written */
     /* eq. (11): the central body and the transport terms */
     hz[(0u * zs) + 0u] = (kappa[1] * 2.0 * v_t * inv_r3)
         + (kappa[2] * ((2.0 * v_t * v_t * inv_r3) - (6.0 * cfg->mu * inv_r2 * inv_r2)))

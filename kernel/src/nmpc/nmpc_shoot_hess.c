@@ -288,6 +288,8 @@ void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(bugpro
             for (i = 0u; i < (size_t)nu; ++i) {
                 u[i] = u0[i] + ((u1[i] - u0[i]) * s_frac);
             }
+            /* the problem writes the structural nonzeros of its triangle only (ogk/ocp.h) */
+            (void)memset(hz, 0, sizeof(hz));
             ocp->ops->dynamics_hess(ocp->data, nu, t_stage, &rec[OGK_I_NMPC_TAPE_X], u, &rec[OGK_I_NMPC_TAPE_TRIG], kbar, hz);
             add_stage_curvature(hz, y_sens, nu, s_frac, bodies, sparse_m, ncol, hess);
             jx_transpose_times(&rec[OGK_I_NMPC_TAPE_JX], kbar, ybar);
