@@ -183,7 +183,7 @@ def generated_cdef() -> str:
 
 def kernel_sources() -> list[str]:
     """The kernel's sources (every extension that calls the kernel compiles them, same flags)."""
-    return [str(p) for p in sorted(KERNEL_SRC.glob("*.c"))]
+    return [str(p) for p in sorted(KERNEL_SRC.rglob("*.c"))]
 
 
 def bound_sources() -> list[str]:
@@ -191,8 +191,9 @@ def bound_sources() -> list[str]:
     return kernel_sources() + [str(p) for d in CSRC_DIRS for p in sorted(d.glob("*.c"))]
 
 
-#: the compiler options of every extension over the kernel
-COMPILE_ARGS = ["-std=c99", "-O2", *DEFINES]
+#: the compiler options of every extension over the kernel (-I kernel/src: the internal headers the
+#: kernel's modules share, kernel/src/*.h; docs/architecture.md, "Kernel source layout")
+COMPILE_ARGS = ["-std=c99", "-O2", f"-I{KERNEL_SRC}", *DEFINES]
 
 
 def make_builder() -> cffi.FFI:

@@ -87,7 +87,7 @@ class Frame(enum.IntEnum):
 
 @dataclass(frozen=True)
 class ThrustCmd:
-    """ogk_thrust_cmd_t: what every law's contract call produces (ogk_nog_command,
+    """ogk_thrust_cmd_t: what every law's contract call produces (ogk_nog_thrust_cmd,
     ogk_mpsp_thrust_cmd, ogk_nmpc_thrust_cmd, ogk_blt_thrust_cmd). ``u`` is the unit direction in
     ``frame``; in r-t-n ``alpha``, ``beta`` [rad] are the same direction (0 in the other frames).
     ``t`` is in the law's time unit (NOG: s; MPSP, NMPC, BLT: TU)."""

@@ -1,9 +1,9 @@
 # port/cortex-m7/cortex-m7.mk -- bare-metal Cortex-M7 build, run on QEMU's
 # mps2-an500 board (included by the top-level Makefile; uses its STRICT,
-# KINC, KSRC, KHDR, UNIT_SRC, B). See docs/ports.md.
+# KINC, KSRC, KSRC_INC, KHDR, UNIT_SRC, B). See docs/ports.md.
 #
 #   make arm-lib             build/arm/libogk.a (kernel, strict flags, -O2)
-#   make test-unit-arm       every tests/unit/test_*.c on QEMU (cmocka shim)
+#   make test-unit-arm       every tests/unit/*/test_*.c on QEMU (cmocka shim)
 #   make test-arm-selftest   checks of this route itself (runner, faults, FPU)
 #   make arm-size            code/data size of the kernel objects
 #   make qemu-plugin         build/qemu-plugin/libinsn_count.so (instruction counts)
@@ -52,7 +52,7 @@ ARM_LDLIBS := -lm
 # ---------------------------------------------------------------- kernel library
 $(ARM_B)/kernel/%.o: kernel/src/%.c $(KHDR) | apt
 	@mkdir -p $(@D)
-	$(ARM_CC) $(ARM_KFLAGS) $(KINC) -c $< -o $@
+	$(ARM_CC) $(ARM_KFLAGS) $(KINC) $(KSRC_INC) -c $< -o $@
 
 $(ARM_B)/libogk.a: $(ARM_KOBJ)
 	@rm -f $@
@@ -150,7 +150,7 @@ ARM_CG := $(ARM_B)/callgraph
 ARM_CI := $(patsubst kernel/src/%.c,$(ARM_CG)/%.ci,$(KSRC))
 $(ARM_CG)/%.ci: kernel/src/%.c $(KHDR) | apt
 	@mkdir -p $(@D)
-	$(ARM_CC) $(ARM_KFLAGS) $(KINC) -fcallgraph-info=su -dumpdir $(ARM_CG)/ -dumpbase $* -c $< -o $(ARM_CG)/$*.o
+	$(ARM_CC) $(ARM_KFLAGS) $(KINC) $(KSRC_INC) -fcallgraph-info=su -dumpdir $(@D)/ -dumpbase $(notdir $*) -c $< -o $(ARM_CG)/$*.o
 .PHONY: arm-stack
 arm-stack: $(ARM_CI)
 	python3 port/cortex-m7/stack_report.py $(ARM_CI)

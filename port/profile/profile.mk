@@ -7,7 +7,7 @@
 #                         recursion, an unsized frame or a frame gcc disagrees with. In make test.
 
 PROFILE_B := $(B)/profile
-ARM_UNIT_ELF := $(patsubst tests/unit/%.c,$(ARM_B)/%.elf,$(ARM_UNIT_SRC))
+ARM_UNIT_ELF := $(patsubst %,$(ARM_B)/%.elf,$(basename $(notdir $(ARM_UNIT_SRC))))
 PROFILE_PY := $(wildcard port/profile/*.py)
 
 .PHONY: stack-bound-m7 stack-bound-sparc footprint-sparc
@@ -21,7 +21,7 @@ $(PROFILE_B)/stack_m7.json: $(ARM_UNIT_ELF) $(ARM_KOBJ) $(PROFILE_PY)
 # The same on SPARC V8 (the static glibc of the qemu-user route; docs/ports.md). glibc's libm there is
 # built with the stack protector: its abort path, __stack_chk_fail, sizes its message on the stack from a
 # register and ends the process, so it is named a terminating path (its own frame still counts).
-SPARC_UNIT_EXE := $(patsubst tests/unit/%.c,$(SPARC_B)/%,$(SPARC_UNIT_SRC))
+SPARC_UNIT_EXE := $(patsubst %,$(SPARC_B)/%,$(basename $(notdir $(SPARC_UNIT_SRC))))
 stack-bound-sparc: $(PROFILE_B)/stack_sparc.json
 $(PROFILE_B)/stack_sparc.json: $(SPARC_UNIT_EXE) $(SPARC_KOBJ) $(PROFILE_PY)
 	@mkdir -p $(@D)
@@ -88,7 +88,7 @@ profile-pil-sparc: $(PROFILE_PIL_SPARC)
 # SPARC V8, besides the campaigns: instructions per call of the orbit-injection entry points over the
 # flight application's whole flight (port/cortex-m7/flightapp built for SPARC, table decoded into RAM), by the QEMU plugin
 # under qemu-user (calls return after their delay slot; make test-qemu-plugin-sparc checks it).
-PROFILE_FA_ENTRIES := ogk_nog_sample ogk_nog_command ogk_cpd_step ogk_cpd_input_from_thrust_cmd \
+PROFILE_FA_ENTRIES := ogk_nog_sample ogk_nog_thrust_cmd ogk_cpd_step ogk_cpd_input_from_thrust_cmd \
   ogk_nog_table_load ogk_nog_init ogk_cpd_init
 $(PROFILE_B)/insns_sparc_flightapp.txt: $(SPARC_FA) $(QP_SO)
 	@mkdir -p $(@D)

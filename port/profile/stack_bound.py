@@ -34,7 +34,7 @@ def plain(name: str) -> str:
 def su_frames(su_dir: Path) -> dict[str, int]:
     """Name -> frame for the functions defined once (static names defined twice are skipped)."""
     seen: dict[str, list[int]] = {}
-    for su in sorted(su_dir.glob("*.su")):
+    for su in sorted(su_dir.rglob("*.su")):
         for line in su.read_text().splitlines():
             m = _SU.match(line)
             if m:
@@ -43,7 +43,7 @@ def su_frames(su_dir: Path) -> dict[str, int]:
 
 
 def su_names(su_dir: Path) -> set[str]:
-    return {plain(m.group(2)) for su in su_dir.glob("*.su") for line in su.read_text().splitlines()
+    return {plain(m.group(2)) for su in su_dir.rglob("*.su") for line in su.read_text().splitlines()
             if (m := _SU.match(line))}
 
 

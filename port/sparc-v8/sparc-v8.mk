@@ -3,7 +3,7 @@
 # KSRC, KHDR, UNIT_SRC, B, ARM_PORT and FA_* variables). See docs/ports.md, "SPARC V8".
 #
 #   make sparc-lib               build/sparc/libogk.a (kernel, strict flags, -O2)
-#   make test-unit-sparc         every tests/unit/test_*.c, static, run with qemu-sparc32plus
+#   make test-unit-sparc         every tests/unit/*/test_*.c, static, run with qemu-sparc32plus
 #   make test-flight-app-sparc   the flight app (port/cortex-m7/flightapp) built for SPARC V8, table
 #                                decoded into RAM (OGK_FLIGHT_TABLE_COPY=1: the in-place view answers
 #                                OGK_E_BYTE_ORDER there); its injection errors compared with the host's
@@ -41,7 +41,7 @@ SPARC_LDLIBS := -lm
 
 $(SPARC_B)/kernel/%.o: kernel/src/%.c $(KHDR) | apt
 	@mkdir -p $(@D)
-	$(SPARC_CC) $(SPARC_KFLAGS) $(KINC) -c $< -o $@
+	$(SPARC_CC) $(SPARC_KFLAGS) $(KINC) $(KSRC_INC) -c $< -o $@
 $(SPARC_B)/libogk.a: $(SPARC_KOBJ)
 	@rm -f $@
 	$(SPARC_AR) rcs $@ $^
@@ -116,11 +116,11 @@ FLT_EVAL_B := $(B)/flt-eval
 test-flt-eval: | apt
 	@mkdir -p $(FLT_EVAL_B); bad=""; \
 	for src in $(KSRC); do \
-	  if gcc $(STRICT) -mfpmath=387 $(KINC) -c $$src -o $(FLT_EVAL_B)/x87.o \
+	  if gcc $(STRICT) -mfpmath=387 $(KINC) $(KSRC_INC) -c $$src -o $(FLT_EVAL_B)/x87.o \
 	       > $(FLT_EVAL_B)/x87.log 2>&1; then bad="$$bad $$src(accepted)"; \
 	  elif ! grep -q 'ogk needs FLT_EVAL_METHOD == 0' $(FLT_EVAL_B)/x87.log; then \
 	    bad="$$bad $$src(other error)"; fi; \
-	  gcc $(STRICT) -mfpmath=sse $(KINC) -c $$src -o $(FLT_EVAL_B)/sse.o || bad="$$bad $$src(sse)"; \
+	  gcc $(STRICT) -mfpmath=sse $(KINC) $(KSRC_INC) -c $$src -o $(FLT_EVAL_B)/sse.o || bad="$$bad $$src(sse)"; \
 	done; \
 	if [ -n "$$bad" ]; then echo "test-flt-eval: FAILED:$$bad"; exit 1; fi; \
 	echo "test-flt-eval: the x87 build (FLT_EVAL_METHOD 2) of all $(words $(KSRC)) kernel sources is refused, the SSE build accepted"

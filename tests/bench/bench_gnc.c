@@ -5,7 +5,7 @@
  * CASE: nog_sample   ogk_nog_sample at mid-burn (tau = 0.5) from a state displaced by
  *                    Table 3 1-sigma errors: nominal and gain interpolation, dx, the 8x7 and
  *                    7x7 gain products, the direction bound, eq. (27)
- *       nog_command  ogk_nog_command inside the interval (what the attitude loop calls)
+ *       nog_command  ogk_nog_thrust_cmd inside the interval (what the attitude loop calls)
  *       cpd_step     ogk_cpd_step in BODY pointing with the braking cap, saturated pitch
  * TABLE is the LEO-to-GEO bundle written by `ogk tables leo-geo`. */
 #include <stdio.h>
@@ -43,7 +43,7 @@ __attribute__((noinline)) static int bench_nog_sample_once(void)
 __attribute__((noinline)) static int bench_nog_command_once(void)
 {
     ogk_thrust_cmd_t out;
-    int st = (int)ogk_nog_command(&nog, nav_mid.t_s + 1.3, &out);
+    int st = (int)ogk_nog_thrust_cmd(&nog, nav_mid.t_s + 1.3, &out);
     sink = out.alpha_rad;
     return st;
 }

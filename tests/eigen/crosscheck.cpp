@@ -1,4 +1,4 @@
-// crosscheck.cpp -- cross-checks kernel/src/linalg.c against Eigen 3.4.
+// crosscheck.cpp -- cross-checks kernel/src/core/linalg.c against Eigen 3.4.
 //
 // Build and run: `make test-eigen` (links build/host/libogk.a).
 // Every check compares one kernel result with an independent Eigen result

@@ -43,7 +43,7 @@ void eva_nog(void)
         nav.r_m = eva_in(1.0, OGK_NOG_R_MAX_M);
         nav.phi_rad = eva_in(-1.5, 1.5);
         (void)ogk_nog_sample(&ctx, &nav, &smp);
-        (void)ogk_nog_command(&ctx, eva_any_finite(), &cmd);
+        (void)ogk_nog_thrust_cmd(&ctx, eva_any_finite(), &cmd);
         (void)ogk_nog_tau_at(&ctx, eva_any_finite(), &t);
     }
     for (k = 0; k < EVA_N_OUTSIDE; ++k) {

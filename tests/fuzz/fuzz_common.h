@@ -1,5 +1,5 @@
 /* fuzz_common.h -- shared pieces of the libFuzzer harnesses (tests/fuzz, make fuzz / fuzz-short,
- * tests/gates/gates.mk): a small valid NOG table (the synthetic one of tests/unit/test_nog.c),
+ * tests/gates/gates.mk): a small valid NOG table (the synthetic one of tests/unit/nog/test_nog.c),
  * re-sealing of fuzzed table bytes (so that mutations get past the CRCs and reach the field
  * checks), a byte reader, and the oracle's abort. */
 #ifndef OGK_FUZZ_COMMON_H

@@ -1,4 +1,4 @@
-/* fuzz_nog_step.c -- the VTD-NOG step entry points (ogk_nog_sample, ogk_nog_command,
+/* fuzz_nog_step.c -- the VTD-NOG step entry points (ogk_nog_sample, ogk_nog_thrust_cmd,
  * ogk_nog_tau_at, ogk_nog_reset) with arbitrary navigation and time bytes on a valid small table
  * (the 5-node synthetic table of test_nog.c), bound as a RAM table or an in-place view.
  * Input: one byte of set-up (bit 0: view instead of table; bits 1-2: tau_freeze / du_max), then
@@ -116,7 +116,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         case 3:
             t = (op == 2u) ? fz_f64(&r) : t_last + (double)fz_u8(&r);
             memset(&c, 0, sizeof c);
-            st = ogk_nog_command(&nog, t, &c);
+            st = ogk_nog_thrust_cmd(&nog, t, &c);
             if (stale) {
                 FZ_CHECK(st == OGK_E_TABLE_STALE);
             }

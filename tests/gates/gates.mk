@@ -1,6 +1,7 @@
 # tests/gates/gates.mk -- quality gates of the kernel (issue 8, item 3). Included by the top-level
-# Makefile after port/cortex-m7/flightapp/flightapp.mk; uses its STRICT, KINC, KSRC, KHDR, SAN, B,
-# VENV and UNIT_SRC. Everything is built under $(B)/gates, $(B)/fuzz, $(B)/coverage, $(B)/mutants.
+# Makefile after port/cortex-m7/flightapp/flightapp.mk; uses its STRICT, KINC, KSRC, KSRC_INC, KHDR, SAN,
+# B, VENV, UNIT_SRC, UNIT_NAMES and UNIT_HDR (the tests by file name, found through the Makefile's
+# vpath). Everything is built under $(B)/gates, $(B)/fuzz, $(B)/coverage, $(B)/mutants.
 #
 #   make tidy                    clang-tidy (bugprone-*, cert-*, clang-analyzer-*; .clang-tidy) over
 #                                kernel/src: fails on any finding (docs/static-analysis.md)
@@ -21,7 +22,7 @@ GATES_B := $(B)/gates
 
 # ---------------------------------------------------------------- clang-tidy
 CLANG_TIDY ?= clang-tidy
-TIDY_FLAGS := -std=c99 $(KINC)
+TIDY_FLAGS := -std=c99 $(KINC) $(KSRC_INC)
 TIDY_LOG := $(GATES_B)/tidy.log
 
 .PHONY: tidy gates
@@ -53,7 +54,7 @@ FUZZ_HDR := tests/fuzz/fuzz_common.h tests/unit/table_writer.h
 
 $(FUZZ_B)/kernel/%.o: kernel/src/%.c $(KHDR) | apt
 	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c $< -o $@
+	$(FUZZ_CC) $(FUZZ_CFLAGS) $(KSRC_INC) -fsanitize=fuzzer-no-link -c $< -o $@
 $(FUZZ_B)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_HDR) $(FUZZ_KOBJ) | apt
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -Wall -Wextra -Werror -Wno-unused-function -fsanitize=fuzzer $< $(FUZZ_KOBJ) -lm -o $@
@@ -72,7 +73,7 @@ fuzz-seeds: tests/fuzz/gen_seeds.c $(FUZZ_HDR) $(HOST_OBJ) | apt
 	$(FUZZ_B)/gen_seeds tests/fuzz/corpus
 
 # ---------------------------------------------------------------- coverage (gcc --coverage, gcovr)
-# Every tests/unit/test_*.c linked with the kernel built with --coverage (-O0, no sanitizers: the
+# Every tests/unit/*/test_*.c linked with the kernel built with --coverage (-O0, no sanitizers: the
 # sanitized build is make test-unit-host), run, then gcovr over kernel/. Fails under the
 # thresholds (a ratchet: raise them with the tests, never lower them; docs/coverage.md).
 COV_B := $(B)/coverage
@@ -80,12 +81,12 @@ COVERAGE_LINES ?= 99
 COVERAGE_BRANCHES ?= 95
 COV_FLAGS := -O0 -g --coverage
 COV_KOBJ := $(patsubst kernel/src/%.c,$(COV_B)/kernel/%.o,$(KSRC))
-COV_TESTS := $(patsubst tests/unit/%.c,$(COV_B)/%,$(UNIT_SRC))
+COV_TESTS := $(addprefix $(COV_B)/,$(UNIT_NAMES))
 
 $(COV_B)/kernel/%.o: kernel/src/%.c $(KHDR) | apt
 	@mkdir -p $(@D)
-	gcc $(STRICT) $(COV_FLAGS) $(KINC) -c $< -o $@
-$(COV_B)/test_%: tests/unit/test_%.c $(wildcard tests/unit/*.h) $(COV_KOBJ) | apt
+	gcc $(STRICT) $(COV_FLAGS) $(KINC) $(KSRC_INC) -c $< -o $@
+$(COV_B)/test_%: test_%.c $(UNIT_HDR) $(COV_KOBJ) | apt
 	@mkdir -p $(@D)
 	gcc -std=c99 -Wall -Wextra -Werror $(COV_FLAGS) $(KINC) -Itests/unit $< $(COV_KOBJ) -o $@ -lcmocka -lm
 
@@ -102,7 +103,7 @@ coverage-gcov: $(COV_TESTS)
 	echo "coverage: at or above lines $(COVERAGE_LINES) %, branches $(COVERAGE_BRANCHES) % (per file: $(COV_B)/coverage.txt)"
 
 # ---------------------------------------------------------------- MC/DC (clang-19, llvm-cov-19)
-# Every tests/unit/test_*.c linked with the kernel built by clang-19 with the strict flags and
+# Every tests/unit/*/test_*.c linked with the kernel built by clang-19 with the strict flags and
 # source-based coverage with MC/DC (-O0, no sanitizers), run (one raw profile per test), merged by
 # llvm-profdata-19, reported by llvm-cov-19 over kernel/src: the per-file MC/DC column in
 # $(MCDC_B)/mcdc-report.txt, every condition's independence pairs in $(MCDC_B)/mcdc-show.txt.
@@ -117,15 +118,15 @@ COVERAGE_MCDC ?= 95
 MCDC_EXCEPTIONS := docs/mcdc-exceptions.md
 MCDC_FLAGS := -O0 -g -fprofile-instr-generate -fcoverage-mapping -fcoverage-mcdc
 MCDC_KOBJ := $(patsubst kernel/src/%.c,$(MCDC_B)/kernel/%.o,$(KSRC))
-MCDC_SRC := $(KSRC) $(wildcard kernel/src/*.h)
-MCDC_TESTS := $(patsubst tests/unit/%.c,$(MCDC_B)/%,$(UNIT_SRC))
+MCDC_SRC := $(KSRC) $(wildcard kernel/src/*.h) $(wildcard kernel/src/*/*.h)
+MCDC_TESTS := $(addprefix $(MCDC_B)/,$(UNIT_NAMES))
 
 $(MCDC_B)/kernel/%.o: kernel/src/%.c $(KHDR) | apt
 	@mkdir -p $(@D)
 	@# clang's "unsupported MC/DC boolean expression" is a warning -Werror does not turn into an error:
 	@# kept in $@.err, where mcdc_check.py reads the decisions left uninstrumented.
-	$(MCDC_CC) $(STRICT) $(MCDC_FLAGS) $(KINC) -c $< -o $@ 2> $@.err || { cat $@.err; exit 1; }
-$(MCDC_B)/test_%: tests/unit/test_%.c $(wildcard tests/unit/*.h) $(MCDC_KOBJ) | apt
+	$(MCDC_CC) $(STRICT) $(MCDC_FLAGS) $(KINC) $(KSRC_INC) -c $< -o $@ 2> $@.err || { cat $@.err; exit 1; }
+$(MCDC_B)/test_%: test_%.c $(UNIT_HDR) $(MCDC_KOBJ) | apt
 	@mkdir -p $(@D)
 	$(MCDC_CC) -std=c99 -Wall -Wextra -Werror $(MCDC_FLAGS) $(KINC) -Itests/unit $< $(MCDC_KOBJ) -o $@ -lcmocka -lm
 
@@ -142,7 +143,7 @@ mcdc: $(MCDC_TESTS)
 	  -instr-profile=$(MCDC_B)/kernel.profdata $(firstword $(MCDC_TESTS)) $$objs $(MCDC_SRC) \
 	  > $(MCDC_B)/mcdc-show.txt
 	@python3 tests/gates/mcdc_check.py --report $(MCDC_B)/mcdc-report.txt --show $(MCDC_B)/mcdc-show.txt \
-	  --compile-logs '$(MCDC_B)/kernel/*.o.err' --exceptions $(MCDC_EXCEPTIONS) \
+	  --compile-logs '$(MCDC_B)/kernel/**/*.o.err' --exceptions $(MCDC_EXCEPTIONS) \
 	  --threshold $(COVERAGE_MCDC) --missed-out $(MCDC_B)/mcdc-missed.txt
 
 # ---------------------------------------------------------------- mutation run (not in make test)

@@ -196,7 +196,7 @@ def main():
 
     n_cond, n_missed, cover = total_percent(args.report)
     missed = parse_show(args.show, args.root)
-    logs = sorted(glob.glob(args.compile_logs)) if args.compile_logs else []
+    logs = sorted(glob.glob(args.compile_logs, recursive=True)) if args.compile_logs else []
     missed += parse_unsupported(logs, args.root)
     listed = parse_exceptions(args.exceptions)
     keys = {k for k, _, _ in listed}

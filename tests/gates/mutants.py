@@ -11,7 +11,7 @@ seed draws other mutants once kernel/src changes (docs/mutation.md records the c
 
 Each mutant is applied to a copy of the kernel under BUILD (build/mutants by default; the
 working tree is never touched), the mutated source recompiled, every C unit test
-(tests/unit/test_*.c, host, gcc -O1, no sanitizers) relinked and run until the first failure,
+(tests/unit/*/test_*.c, host, gcc -O1, no sanitizers) relinked and run until the first failure,
 crash or time-out (killed). A mutant that does not compile is reported and not counted.
 Prints one line per mutant (file:line:column of a sampled one) and the score = killed / (killed + survived); exit status 0 unless
 the unmutated tree fails its own tests (2), a fixed mutant's fragment is no longer found once or
@@ -35,80 +35,80 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 # rewrite, keeps it found); it must match exactly once, else the run reports it MISSING or
 # AMBIGUOUS and exits 3. Fragments are the expression that is mutated, not a return line.
 FIXED = [
-    ("kernel/src/mpsp_sensitivity.c",
+    ("kernel/src/mpsp/mpsp_sensitivity.c",
      "= a * jump.s_u[c] * h[q];", "= -a * jump.s_u[c] * h[q];",
      "eq. (25) sign in ogk_mpsp_switch_jump (dX+/dW)"),
-    ("kernel/src/mpsp.c",
+    ("kernel/src/mpsp/mpsp.c",
      "n_seg_tol += ctx->cfg.n_seg_tol_step;", "n_seg_tol += 1u;",
      "N_seg,tol step of the continuation"),
-    ("kernel/src/cpd.c",
+    ("kernel/src/cpd/cpd.c",
      "*alpha_a <= -CPD_PI", "*alpha_a < -CPD_PI",
      "alpha_a in (-pi, pi]: atan2's -pi (thrust along -t, xi = -pi) not mapped to +pi "
      "(test_cpd: test_thrust_angles_branch_cut)"),
-    ("kernel/src/cpd.c",
+    ("kernel/src/cpd/cpd.c",
      "*psi_c <= -CPD_PI", "*psi_c < -CPD_PI",
      "psi_c in (-pi, pi]: the same branch cut in ogk_cpd_commanded_attitude "
      "(test_cpd: test_thrust_angles_branch_cut)"),
-    ("kernel/src/nog.c",
+    ("kernel/src/nog/nog.c",
      "(cfg->sample_interval_s > tbl", "(cfg->sample_interval_s >= tbl",
      "Delta t_S = t_f* rejected although the documented range is (0, t_f*] "
      "(test_nog: test_config_range_boundaries)"),
-    ("kernel/src/nog.c",
+    ("kernel/src/nog/nog.c",
      "for (i = 0u; i < NX; ++i) { ctx->dlam_k[i] = scale * out8[i];",
      "for (i = 1u; i < NX; ++i) { ctx->dlam_k[i] = scale * out8[i];",
      "dlam_r, dlam_r' of [dlam_k; dt_f] = G dx, N dx not updated "
      "(test_nog: test_radius_error_moves_lambda_r_only)"),
-    ("kernel/src/nog.c",
+    ("kernel/src/nog/nog.c",
      "for (i = 0u; i < NX; ++i) { dx[i] = nav_v[i] - x_star[i];",
      "for (i = 1u; i < NX; ++i) { dx[i] = nav_v[i] - x_star[i];",
      "dx_r of dx_k left uninitialised (test_nog: test_radius_error_moves_lambda_r_only)"),
-    ("kernel/src/nog.c",
+    ("kernel/src/nog/nog.c",
      "if (st == OGK_OK) { st = OGK_E_SAFE_COMMAND;", "if (st != OGK_OK) { st = OGK_E_SAFE_COMMAND;",
-     "overflowing costate in ogk_nog_command reported as OK "
+     "overflowing costate in ogk_nog_thrust_cmd reported as OK "
      "(test_nog: test_overflowing_costate_gives_safe_command)"),
-    ("kernel/src/interp.c",
+    ("kernel/src/core/interp.c",
      "values[((n - 1u) * m) + j]) / h0", "values[((n - 1u) * m) - j]) / h0",
      "pchip right-end secant of column j > 0 read from the wrong element "
      "(test_interp: test_pchip_end_slopes_of_every_column)"),
-    ("kernel/src/interp.c",
+    ("kernel/src/core/interp.c",
      "(values[m + j] - values[j]) / (grid[1] - grid[0])",
      "(values[m - j] - values[j]) / (grid[1] - grid[0])",
      "pchip slopes of a two-node grid: column j > 0 reads another column "
      "(test_interp: test_pchip_two_points_every_column)"),
-    ("kernel/src/nog.c",
+    ("kernel/src/nog/nog.c",
      "if (direction_angle(lam, lam_star) <= du_max) { scale = 1.0;",
      "if (direction_angle(lam, lam_star) < du_max) { scale = 1.0;",
      "du_max = pi limits an exact thrust reversal (angle pi) "
      "(test_nog: test_du_max_pi_admits_a_reversal)"),
-    ("kernel/src/nog.c",
+    ("kernel/src/nog/nog.c",
      "!ogk_i_all_finite(out8, N_GAIN_ROWS) || !ogk_i_all_finite(dlam_rate, NX)",
      "!ogk_i_all_finite(out8, N_GAIN_ROWS) && !ogk_i_all_finite(dlam_rate, NX)",
      "an overflowing dt_f alone clipped to dtf_max instead of the safe command "
      "(test_nog: test_overflowing_dt_f_alone_gives_safe_command)"),
-    ("kernel/src/nog.c",
+    ("kernel/src/nog/nog.c",
      "if (dt_f != out8[NX])", "if (fabs(dt_f) >= ctx->cfg.dtf_max_s)",
      "dt_f exactly at dtf_max flagged LIMITED (test_nog: test_dt_f_at_the_bound_is_not_limited)"),
-    ("kernel/src/nog.c",
+    ("kernel/src/nog/nog.c",
      "(t_s >= ctx->t_k_s) && (t_s <= t_sample_max(ctx))",
      "(t_s >= ctx->t_k_s) && (t_s < t_sample_max(ctx))",
      "safe_sample: t_s = 2 t_f* + dtf_max (inside the closed envelope) treated as unusable "
      "(test_nog: test_sample_at_the_envelope_time_bound)"),
-    ("kernel/src/nog.c",
+    ("kernel/src/nog/nog.c",
      "ctx->n_samples += 1u;", "ctx->n_samples += 2u;",
      "good-sample count of the context (test_nog: test_on_nominal_in_every_interval)"),
-    ("kernel/src/nog.c",
+    ("kernel/src/nog/nog.c",
      "h = tbl->tau[k + 1u] - tbl->tau[k];", "h = tbl->tau[k + 1u] + tbl->tau[k];",
      "Hermite interval length wrong beyond the first interval "
      "(test_nog: test_on_nominal_in_every_interval)"),
-    ("kernel/src/table.c",
+    ("kernel/src/core/table.c",
      "(OGK_TABLE_MAX_VALUES / (v->entry_len + 1u))", "(OGK_TABLE_MAX_VALUES / (v->entry_len - 1u))",
      "value-count guard divides by entry_len - 1 (0 for scalar entries) "
      "(test_table: test_scalar_entries)"),
-    ("kernel/src/table.c",
+    ("kernel/src/core/table.c",
      "(*values > (OGK_TABLE_MAX_VALUES / 8u))", "(*values >= (OGK_TABLE_MAX_VALUES / 8u))",
      "the largest admitted payload, MAX / 8 values, rejected as too large "
      "(test_table: test_largest_payload_size)"),
-    ("kernel/src/table.c",
+    ("kernel/src/core/table.c",
      "for (i = 0u; (i < values)", "for (i = 1u; (i < values)",
      "finiteness scan of the payload skips grid[0] "
      "(test_table: test_nonfinite_first_and_last_value)"),
@@ -120,38 +120,38 @@ FIXED = [
 # (it may run over the next two lines). A fragment no longer found only excludes nothing (the
 # mutant is then sampled again and shows up as a survivor).
 EQUIVALENT = [
-    ("kernel/src/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", "&&",
+    ("kernel/src/core/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", "&&",
      "ogk_interp_locate: with || the bisection runs its 64 iterations, but once hi - lo = 1 "
      "mid = lo and nothing changes; only the time differs"),
-    ("kernel/src/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", "<",
+    ("kernel/src/core/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", "<",
      "ogk_interp_locate: 65 instead of 64 bisection steps; 64 already halve any size_t range"),
-    ("kernel/src/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", ">",
+    ("kernel/src/core/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", ">",
      "ogk_interp_locate: with >= the loop goes on at hi - lo = 1, where mid = lo changes nothing"),
-    ("kernel/src/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", "-",
+    ("kernel/src/core/interp.c", "(it < OGK_INTERP_MAX_SEARCH) && ((hi - lo) > 1u)", "-",
      "ogk_interp_locate: hi + lo > 1 keeps the loop going past hi - lo = 1, where nothing changes "
      "(and stops it at lo = 0, hi = 1, converged too)"),
-    ("kernel/src/table.c", "(v->entry_len >= OGK_TABLE_MAX_VALUES)", ">=",
+    ("kernel/src/core/table.c", "(v->entry_len >= OGK_TABLE_MAX_VALUES)", ">=",
      "check_sizes: at entry_len = OGK_TABLE_MAX_VALUES the next clause, grid_size > MAX / (MAX + 1) "
      "= 0, gives the same OGK_E_TABLE_SIZE (grid_size >= 1 is checked before); the first clause "
      "only keeps entry_len + 1 from wrapping"),
-    ("kernel/src/table.c", "(v->grid_size > (OGK_TABLE_MAX_VALUES / (v->entry_len + 1u)))", ">",
+    ("kernel/src/core/table.c", "(v->grid_size > (OGK_TABLE_MAX_VALUES / (v->entry_len + 1u)))", ">",
      "check_sizes: at grid_size = floor(MAX / (entry_len + 1)) >= 1 the value count is > MAX / 2, "
      "so the next check (values > MAX / 8) gives the same OGK_E_TABLE_SIZE"),
-    ("kernel/src/nog.c", "if (direction_angle(lam, lam_star) <= du_max) { lo = mid;", "<=",
+    ("kernel/src/nog/nog.c", "if (direction_angle(lam, lam_star) <= du_max) { lo = mid;", "<=",
      "direction_limit_scale bisection: < instead of <= differs only when a probe's angle is "
      "exactly du_max, and then moves the scale by one bisection step, 2^-40 of the correction "
      "(the bisection's own resolution)"),
-    ("kernel/src/table.c", "(OGK_TABLE_MAX_VALUES / (v->entry_len + 1u))", "1u",
+    ("kernel/src/core/table.c", "(OGK_TABLE_MAX_VALUES / (v->entry_len + 1u))", "1u",
      "check_sizes: + 2u only tightens the guard; a grid it then rejects has > MAX / 2 values, "
      "which the value-count check rejects with the same OGK_E_TABLE_SIZE"),
-    ("kernel/src/nog.c", "(nav->t_s <= t_sample_max(ctx))", "<=",
+    ("kernel/src/nog/nog.c", "(nav->t_s <= t_sample_max(ctx))", "<=",
      "nav_in_envelope: at t_s = 2 t_f* + dtf_max exactly, tau > 1 always (the cut-off is at "
      "most t_f* + dtf_max), so the tau > 1 branch rejects it with the same OGK_E_RANGE and "
      "the same safe_sample call"),
-    ("kernel/src/rk4.c", "double ratio = 0.0;", "0.0",
+    ("kernel/src/core/rk4.c", "double ratio = 0.0;", "0.0",
      "grid_steps: ratio is read only when st == OGK_OK, which is set only after ratio is assigned "
      "(the initialiser is for the static analysers)"),
-    ("kernel/src/interp.c", "for (it = 0u; (it < OGK_INTERP_MAX_SEARCH)", "0u",
+    ("kernel/src/core/interp.c", "for (it = 0u; (it < OGK_INTERP_MAX_SEARCH)", "0u",
      "ogk_interp_locate: 63 instead of 64 bisection steps; 63 halve any range of < 2^63 nodes "
      "(the grid is bounded by OGK_TABLE_MAX_VALUES)"),
 ]
@@ -274,10 +274,11 @@ def main():
                     help="run the fixed mutants only (their killing tests still kill them)")
     args = ap.parse_args()
 
-    ksrc = sorted(os.path.join("kernel/src", f) for f in os.listdir(os.path.join(ROOT, "kernel/src"))
-                  if f.endswith(".c"))
-    tests = sorted(os.path.join("tests/unit", f) for f in os.listdir(os.path.join(ROOT, "tests/unit"))
-                   if f.startswith("test_") and f.endswith(".c"))
+    ksrc = sorted(os.path.relpath(os.path.join(d, f), ROOT)
+                  for d, _, files in os.walk(os.path.join(ROOT, "kernel/src")) for f in files if f.endswith(".c"))
+    tests = sorted(os.path.relpath(os.path.join(d, f), ROOT)
+                   for d, _, files in os.walk(os.path.join(ROOT, "tests/unit"))
+                   for f in files if f.startswith("test_") and f.endswith(".c"))
     texts = {p: open(os.path.join(ROOT, p)).read() for p in ksrc}
 
     all_sites = []

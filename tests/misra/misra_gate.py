@@ -29,11 +29,11 @@ FINDING = re.compile(r"^(?P<file>[^:]+):(?P<line>\d+):misra-c2012-(?P<rule>[\d.]
 
 
 def run_cppcheck(build: Path) -> list[tuple[str, int, str]]:
-    sources = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "kernel" / "src").glob("*.c"))
+    sources = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "kernel" / "src").rglob("*.c"))
     # the addon's dump files go to build, not next to the sources
     fresh_cache(build)
     proc = subprocess.run(
-        ["cppcheck", "--std=c99", "--addon=misra", "--quiet", "-Ikernel/include",
+        ["cppcheck", "--std=c99", "--addon=misra", "--quiet", "-Ikernel/include", "-Ikernel/src",
          f"--cppcheck-build-dir={build}",
          "--template={file}:{line}:{id}", *sources],
         cwd=ROOT, capture_output=True, text=True, check=False)

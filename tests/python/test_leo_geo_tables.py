@@ -61,8 +61,9 @@ def test_generated_c_table_loads_with_ground_values(bundle, tmp_path):
     probe = tmp_path / "probe.c"
     probe.write_text(PROBE_MAIN)
     exe = tmp_path / "probe"
-    kernel = sorted(str(p) for p in (ROOT / "kernel" / "src").glob("*.c"))
+    kernel = sorted(str(p) for p in (ROOT / "kernel" / "src").rglob("*.c"))
     subprocess.run([shutil.which("gcc") or "gcc", "-std=c99", "-O1", "-I", str(ROOT / "kernel/include"),
+                    "-I", str(ROOT / "kernel/src"),
                     "-I", str(tmp_path), str(probe), str(c_path), *kernel, "-lm", "-o", str(exe)],
                    check=True)
     lines = subprocess.run([str(exe)], check=True, capture_output=True, text=True).stdout.splitlines()

@@ -27,7 +27,7 @@ from pil_checks import assert_stack_within_static, assert_worst_matches_records
 ROOT = Path(__file__).resolve().parents[2]
 OGK = Path(sys.executable).parent / "ogk"
 SEED = "20261203"
-ENTRIES = ("ogk_nog_sample", "ogk_cutoff_step", "ogk_nog_command", "ogk_terminal_step",
+ENTRIES = ("ogk_nog_sample", "ogk_cutoff_step", "ogk_nog_thrust_cmd", "ogk_terminal_step",
            "ogk_cpd_step")
 
 
@@ -92,7 +92,7 @@ def test_every_entry_point_has_its_figures_per_run(campaign: dict) -> None:
             assert 0 < r[f"pil.{e}.stack_bytes"] < 4096, e
             assert 0 <= r[f"pil.{e}.insn_max_step"] < ticks + 1
         # one command and one CPD step per tick; samples every 2 s, faster at the end
-        assert r["pil.ogk_nog_command.calls"] == ticks
+        assert r["pil.ogk_nog_thrust_cmd.calls"] == ticks
         t_f = r["tf_s"]
         assert t_f / 2.0 < r["pil.ogk_nog_sample.calls"] < t_f / 2.0 + 60
     assert_worst_matches_records(campaign["doc"], campaign["records"], ENTRIES)

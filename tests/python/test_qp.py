@@ -1,4 +1,4 @@
-"""ogk_qp_solve (kernel/src/qp.c, Goldfarb-Idnani) through the cffi bindings
+"""ogk_qp_solve (kernel/src/qp/qp.c, Goldfarb-Idnani) through the cffi bindings
 against an independent solver: qpOASES (CasADi's conic interface, an online
 active-set method) on random feasible QPs of the NMPC's size, plus the KKT
 conditions of the kernel's answer checked here in numpy and infeasible

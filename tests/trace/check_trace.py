@@ -4,7 +4,7 @@
 Reads the requirements of docs/requirements.md (`- **OGK-XXX-NNN Title.** text`), the tags of the
 tests and the gate map, and checks that
 
-- every C unit test (a function named in `cmocka_unit_test*(...)` in tests/unit/test_*.c) carries a
+- every C unit test (a function named in `cmocka_unit_test*(...)` in tests/unit/**/test_*.c) carries a
   `/* req: OGK-... */` comment in the comment block just above its definition;
 - every Python test (tests/python/test_*.py, `def test_*`, also in `class Test*`) carries
   `@pytest.mark.req("OGK-...", ...)` or its module's `pytestmark` does (parsed from the AST: no
@@ -71,7 +71,7 @@ def split_ids(text: str) -> list[str]:
 
 def c_tests(root: Path, rep: Report) -> list[Test]:
     tests: list[Test] = []
-    for path in sorted((root / "tests" / "unit").glob("test_*.c")):
+    for path in sorted((root / "tests" / "unit").rglob("test_*.c")):
         rel = path.relative_to(root).as_posix()
         lines = path.read_text().splitlines()
         text = "\n".join(lines)

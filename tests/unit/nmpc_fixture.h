@@ -1,4 +1,4 @@
-/* nmpc_fixture.h -- the NMPC problems shared by test_nmpc.c, test_gate_nmpc.c and
+/* nmpc_fixture.h -- the NMPC problems shared by test_nmpc.c, test_nmpc_edge_cases.c and
  * tests/fuzz/fuzz_nmpc_step.c: Earth to Mars in the normalised units of docs/nmpc.md (Table A.1),
  * the phase-matched guess, the solar-electric engine's eq. (14) coefficients, a third body, and the
  * near-field-free radial minimum-time transfer whose optimum is t* = 2 sqrt(D / a). */

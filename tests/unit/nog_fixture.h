@@ -1,7 +1,7 @@
-/* nog_fixture.h -- the synthetic VTD-NOG problem shared by test_nog.c and test_gate_nog.c: a
+/* nog_fixture.h -- the synthetic VTD-NOG problem shared by test_nog.c and test_nog_input_checks.c: a
  * straight-line nominal x(tau) = x0 + tau x', a constant nominal costate with thrust angle ALPHA0
  * over t_f* = TF_STAR, and the configuration both fly. Each test file writes its own table from it
- * (test_nog.c: the five-node table with the gains its closed forms need; test_gate_nog.c: n nodes). */
+ * (test_nog.c: the five-node table with the gains its closed forms need; test_nog_input_checks.c: n nodes). */
 #ifndef OGK_TEST_NOG_FIXTURE_H
 #define OGK_TEST_NOG_FIXTURE_H
 

@@ -13,7 +13,7 @@
  *   [dlam_k; dt_f] = G(tau_k) dx_k,   t_f^(k) = t_f* + dt_f
  *   cut-off predicted at t_k + (1 - tau_k) t_f^(k); eq. (32): the last interval
  *   is the one with tau_k + Delta t_S / t_f^(k) >= 1.
- * Between samples (ogk_nog_command), for tau = tau_k + (t - t_k) / t_f^(k):
+ * Between samples (ogk_nog_thrust_cmd), for tau = tau_k + (t - t_k) / t_f^(k):
  *   lambda(tau) = lambda*(tau) + dlam_k + N(tau_k) dx_k (tau - tau_k)
  *   and the thrust angles from the velocity costates, eq. (27) -- to first
  *   order the same as eq. (30), since H_ux = H_ua = 0 on this nominal, but it
@@ -265,7 +265,7 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sa
 /*@ requires ctx_valid: ctx == \null || \valid_read(ctx);
     requires out_valid: out == \null || \valid(out);
 */
-ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out);
+ogk_status ogk_nog_thrust_cmd(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out);
 
 /* *tau = normalised time of eq. (31) at t_s >= the current sample's time with
  * the t_f in force (clamped to 1 after the cut-off), for telemetry.
@@ -275,6 +275,18 @@ ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *o
     requires tau_valid: tau == \null || \valid(tau);
 */
 ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau);
+
+/* ---------------------------------------------------------------------------
+ * Deprecated (removed in 0.3): the names before issue 33's uniform naming
+ * (docs/deprecations.md). Thin wrappers of the new names, same results.
+ * ------------------------------------------------------------------------- */
+
+/* Deprecated (removed in 0.3): ogk_nog_thrust_cmd, the thrust-command
+ * producer named as every law's (ogk_<law>_thrust_cmd). */
+/*@ requires ctx_valid: ctx == \null || \valid_read(ctx);
+    requires out_valid: out == \null || \valid(out);
+*/
+ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out);
 
 #ifdef __cplusplus
 }

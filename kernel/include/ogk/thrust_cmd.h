@@ -8,7 +8,7 @@
  *   alpha = atan2(u_r, u_t) in (-pi, pi], beta = atan2(u_n, hypot(u_r, u_t))
  *   in [-pi/2, pi/2] (alpha = 0 along +-n, where it is undefined).
  *
- * A law's contract call (ogk_nog_command, ogk_mpsp_thrust_cmd,
+ * A law's contract call (ogk_nog_thrust_cmd, ogk_mpsp_thrust_cmd,
  * ogk_nmpc_thrust_cmd, ogk_blt_thrust_cmd) fills the command with these
  * helpers; a consumer that needs r-t-n angles (CPD) converts any command with
  * ogk_thrust_cmd_to_rtn. Every function returns ogk_status; on a rejection

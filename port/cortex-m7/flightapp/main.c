@@ -99,7 +99,7 @@ static void plant_direction(double t, double *u)
 {
 #if FLIGHTAPP_STAGE_COMMANDS
     ogk_thrust_cmd_t c;
-    (void)ogk_nog_command(&g_flight.nog, t, &c);
+    (void)ogk_nog_thrust_cmd(&g_flight.nog, t, &c);
     u[0] = c.u[0];
     u[1] = c.u[1];
     u[2] = c.u[2];
@@ -168,7 +168,7 @@ static int fly(const char *name, const double *dx0, int dropout, burn_result *re
     }
     /* Attitude at ignition: along the nominal thrust direction, roll = Phi_c, at rest. */
     memset(&att, 0, sizeof att);
-    (void)ogk_nog_command(&f->nog, 0.0, &f->cmd);
+    (void)ogk_nog_thrust_cmd(&f->nog, 0.0, &f->cmd);
     (void)ogk_cpd_commanded_attitude(f->cmd.alpha_rad, f->cmd.beta_rad, x[XI], x[PHI], &att.psi,
                                      &att.theta);
     att.phi_roll = f->cpd_cfg.phi_c;

@@ -223,11 +223,11 @@ ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flig
     if (!(t_s < f->t_cutoff_s)) {
         f->engine_on = 0u;
     }
-    a = count(f, OGK_FLIGHT_CALL_COMMAND, ogk_nog_command(&f->nog, t_s, &f->cmd));
+    a = count(f, OGK_FLIGHT_CALL_COMMAND, ogk_nog_thrust_cmd(&f->nog, t_s, &f->cmd));
     if (a == OGK_FLIGHT_HOLD) {
         /* Guidance context lost: re-initialise (nominal from tau = t / t_f*) and command again. */
         (void)count(f, OGK_FLIGHT_CALL_INIT, ogk_nog_init(&f->nog, &f->nog_cfg));
-        (void)count(f, OGK_FLIGHT_CALL_COMMAND, ogk_nog_command(&f->nog, t_s, &f->cmd));
+        (void)count(f, OGK_FLIGHT_CALL_COMMAND, ogk_nog_thrust_cmd(&f->nog, t_s, &f->cmd));
     } else if (a != OGK_FLIGHT_FLY && a != OGK_FLIGHT_SAFE) {
         f->engine_on = 0u;
         memset(&f->act, 0, sizeof f->act);

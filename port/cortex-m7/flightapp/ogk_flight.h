@@ -61,7 +61,7 @@ typedef enum {
     OGK_FLIGHT_CALL_TABLE = 0,   /* ogk_nog_table_load */
     OGK_FLIGHT_CALL_INIT = 1,    /* ogk_nog_init, ogk_cpd_init */
     OGK_FLIGHT_CALL_SAMPLE = 2,  /* ogk_nog_sample */
-    OGK_FLIGHT_CALL_COMMAND = 3, /* ogk_nog_command */
+    OGK_FLIGHT_CALL_COMMAND = 3, /* ogk_nog_thrust_cmd */
     OGK_FLIGHT_CALL_CPD = 4      /* ogk_cpd_input_from_thrust_cmd, ogk_cpd_step */
 } ogk_flight_call;
 
@@ -110,7 +110,7 @@ ogk_flight_action ogk_flight_guidance(ogk_flight_t *f, const ogk_nav_state_t *na
 ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flight_att_t *att,
                                      const ogk_nav_state_t *nav);
 
-/* Attitude tick on any law's thrust command (the common ogk_thrust_cmd_t: NOG's ogk_nog_command,
+/* Attitude tick on any law's thrust command (the common ogk_thrust_cmd_t: NOG's ogk_nog_thrust_cmd,
  * ogk_mpsp_thrust_cmd, ogk_nmpc_thrust_cmd, ogk_blt_thrust_cmd after
  * ogk_thrust_cmd_synodic_to_inertial): copies it to f->cmd, sets engine_on = 0 when it lacks
  * OGK_THRUST_FLAG_ENGINE_ON, and runs CPD on it (ogk_cpd_input_from_thrust_cmd converts an inertial

@@ -114,7 +114,7 @@ ogk_oi_failure ogk_oi_flight_tick(ogk_oi_flight_t *f, uint32_t k, const ogk_nav_
         }
     }
 #endif
-    CALL(OGK_OI_NOG_COMMAND, st, ogk_nog_command(&b->nog, nav->t_s, &b->cmd));
+    CALL(OGK_OI_NOG_COMMAND, st, ogk_nog_thrust_cmd(&b->nog, nav->t_s, &b->cmd));
     f->status[OGK_OI_NOG_COMMAND] = st;
     if (!(isfinite(b->cmd.alpha_rad) && isfinite(b->cmd.beta_rad))) {
         note(&fail, OGK_OI_FAIL_GUIDANCE);       /* CPD below answers with its safe command */

@@ -24,7 +24,7 @@ F64 = NDArray[np.float64]
 
 OI_INIT, OI_TICK = 32, 33           #: frame types of oi_pil.c
 #: the entry points a tick calls, in the program's stack-slot order (oi_flight.h)
-ENTRY_POINTS = ("ogk_nog_sample", "ogk_cutoff_step", "ogk_nog_command", "ogk_terminal_step",
+ENTRY_POINTS = ("ogk_nog_sample", "ogk_cutoff_step", "ogk_nog_thrust_cmd", "ogk_terminal_step",
                 "ogk_cpd_step")
 #: oi_flight.h's ogk_oi_failure -> the SIL's failure reasons
 FAILURES = {0: "", 1: "guidance", 2: "cutoff", 3: "terminal", 4: "attitude_control"}

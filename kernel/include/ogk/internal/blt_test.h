@@ -1,11 +1,11 @@
 /* ogk/internal/blt_test.h -- test entry points of ogk_blt: NOT flight API.
  *
  * The corrector's Jacobian on its own, for the unit tests' checks of the
- * variational Jacobian against central differences (tests/unit/test_blt.c,
- * test_gate_blt.c) and the Python bindings (bindings/ogk_bindings/blt.py;
+ * variational Jacobian against central differences (tests/unit/blt/test_blt.c,
+ * test_blt_failure_paths.c) and the Python bindings (bindings/ogk_bindings/blt.py;
  * bindings/build_ffi.py declares this header in its TEST_HEADERS list). A
  * flight application includes ogk/blt.h only. Why here and not in
- * kernel/src/blt_internal.h: docs/adding-a-law.md, "Test entry points". */
+ * kernel/src/blt/blt_internal.h: docs/adding-a-law.md, "Test entry points". */
 #ifndef OGK_INTERNAL_BLT_TEST_H
 #define OGK_INTERNAL_BLT_TEST_H
 

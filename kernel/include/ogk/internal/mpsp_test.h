@@ -3,10 +3,10 @@
  * One RK4 step of eq. (16) with its Jacobians (Appendix A) and the switching
  * compensation at a switch (eqs. 24-25, Appendix B), for the unit tests'
  * finite-difference checks of the sensitivities (tests/unit/test_mpsp_*.c,
- * test_gate_mpsp.c, test_gate_misc.c) and the Python bindings
+ * test_mpsp_rejections.c, test_mpsp_config_readouts.c) and the Python bindings
  * (bindings/ogk_bindings/mpsp.py; bindings/build_ffi.py declares this header in
  * its TEST_HEADERS list). A flight application includes ogk/mpsp.h only. Why
- * here and not in kernel/src/mpsp_internal.h: docs/adding-a-law.md, "Test
+ * here and not in kernel/src/mpsp/mpsp_internal.h: docs/adding-a-law.md, "Test
  * entry points". */
 #ifndef OGK_INTERNAL_MPSP_TEST_H
 #define OGK_INTERNAL_MPSP_TEST_H

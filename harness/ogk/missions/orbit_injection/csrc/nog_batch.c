@@ -61,7 +61,7 @@ ogk_status ogk_sil_nog_command_batch(const ogk_nog_t *ctx, size_t n_runs, const 
     }
     for (i = 0u; i < n_runs; ++i) {
         ogk_thrust_cmd_t out;
-        const ogk_status st = ogk_nog_command(&ctx[i], t[i], &out);
+        const ogk_status st = ogk_nog_thrust_cmd(&ctx[i], t[i], &out);
         alpha[i] = out.alpha_rad;
         beta[i] = out.beta_rad;
         flags[i] = out.law_flags;

@@ -29,7 +29,7 @@ ogk_status ogk_sil_nog_sample_batch(ogk_nog_t *ctx, size_t n_runs, const uint8_t
                                     double *t_f, double *tau_k, uint32_t *flags,
                                     int32_t *status);
 
-/* ogk_nog_command for every run at t[i]: alpha[i], beta[i] [rad], flags (the
+/* ogk_nog_thrust_cmd for every run at t[i]: alpha[i], beta[i] [rad], flags (the
  * command's law_flags, OGK_NOG_FLAG_*) and status per run. Returns the first non-OK status, else OGK_OK. */
 ogk_status ogk_sil_nog_command_batch(const ogk_nog_t *ctx, size_t n_runs, const double *t,
                                      double *alpha, double *beta, uint32_t *flags,
