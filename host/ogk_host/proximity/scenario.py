@@ -72,6 +72,7 @@ class Guidance:
     final_phase_s: float            #: no replan once the plan has less than this left: flown to its end
     min_horizon_s: float            #: a replan's horizon lower bound
     keepout_margin_m: float         #: the plans' discs are this much larger than the truth's
+    max_sweep_rad: float            #: the plans' |alpha_{k+1} - alpha_k| bound (the kernel's max_sweep)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -105,6 +106,7 @@ class ProximityScenario:
     source: str
     orbit: Orbit
     vehicle: Vehicle
+    min_throttle: float                         #: the engine's: a command below it is off (the truth's)
     start: tuple[float, float, float, float]    #: (x, y, v_x, v_y) [m, m/s]
     hold_point_m: tuple[float, float]
     horizon_s: tuple[float, float]              #: the free final time's bounds from the start
@@ -164,6 +166,7 @@ def load_scenario(path: str | Path) -> ProximityScenario:
     vehicle = Vehicle(thrust_max_n=v.number("thrust_max_n", positive=True),
                       exhaust_velocity_m_s=v.number("exhaust_velocity_m_s", positive=True),
                       initial_mass_kg=m0, dry_mass_kg=dry)
+    min_throttle = v.number("min_throttle", lo=0.0, hi=0.5)
     v.finish()
 
     a = top.section("approach")
@@ -199,7 +202,8 @@ def load_scenario(path: str | Path) -> ProximityScenario:
         replan_period_s=g.number("replan_period_s", positive=True),
         final_phase_s=g.number("final_phase_s", nonnegative=True),
         min_horizon_s=g.number("min_horizon_s", positive=True),
-        keepout_margin_m=g.number("keepout_margin_m", nonnegative=True))
+        keepout_margin_m=g.number("keepout_margin_m", nonnegative=True),
+        max_sweep_rad=g.number("max_sweep_rad", positive=True))
     g.finish()
     if guidance.min_horizon_s >= horizon[1]:
         raise g.error("min_horizon_s", f"must be below approach.horizon_s's upper bound {horizon[1]:g}")
@@ -219,7 +223,7 @@ def load_scenario(path: str | Path) -> ProximityScenario:
     acc.finish()
     paper = top.raw_table("paper_results")
     top.finish()
-    return ProximityScenario(path=p, name=name, source=source, orbit=orbit, vehicle=vehicle,
+    return ProximityScenario(path=p, name=name, source=source, orbit=orbit, vehicle=vehicle, min_throttle=min_throttle,
                              start=(pos[0], pos[1], vel[0], vel[1]), hold_point_m=hold, horizon_s=horizon,
                              keepouts=keepouts, guidance=guidance, dispersions=dispersions,
                              acceptance=acceptance, paper_results=None if paper is None else dict(paper))

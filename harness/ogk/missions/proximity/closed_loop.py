@@ -75,7 +75,7 @@ def fly(scn: ProximityScenario, solver: str, first: Plan, seed: int, perturbed: 
     g = scn.guidance
     d = draw(flown(scn.dispersions, perturbed), seed)
     v = scn.vehicle
-    truth = Truth(scn.orbit.mu_m3_s2, v.thrust_max_n, v.exhaust_velocity_m_s, d.thrust_bias)
+    truth = Truth(scn.orbit.mu_m3_s2, v.thrust_max_n, v.exhaust_velocity_m_s, d.thrust_bias, scn.min_throttle)
     rel0 = (scn.start[0] + d.position_m[0], scn.start[1] + d.position_m[1],
             scn.start[2] + d.velocity_m_s[0], scn.start[3] + d.velocity_m_s[1])
     m0 = v.initial_mass_kg + d.mass_kg

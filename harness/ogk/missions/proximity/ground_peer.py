@@ -30,6 +30,7 @@ class PeerProblem:
     mass_min: float                      #: dry mass [MU]
     objective: str                       #: "min-fuel" or "min-time"
     time_weight: float                   #: min-fuel: J = m_0 - m_N + time_weight T [MU/TU]
+    max_sweep: float                     #: |alpha_{k+1} - alpha_k| bound [rad] (0: none; the kernel's max_sweep)
     nodes: int
     rk4_steps: int
 
@@ -79,6 +80,10 @@ class PeerSolver:
             g.append(S[:, k + 1] - s)
             lbg += [0.0] * NX
             ubg += [0.0] * NX
+            if pb.max_sweep > 0.0:
+                g.append(U[0, k + 1] - U[0, k])
+                lbg.append(-pb.max_sweep)
+                ubg.append(pb.max_sweep)
         g.append(S[0:4, N] - ca.DM([pb.hold[0], pb.hold[1], 0.0, 0.0]))
         lbg += [0.0] * 4
         ubg += [0.0] * 4

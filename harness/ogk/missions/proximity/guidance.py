@@ -16,7 +16,9 @@ The closed loop speaks SI (s, m, m/s, kg), the laws the normalised units of the 
 TU = 1 / n, MU = m_0; t = 0 at the start)."""
 from __future__ import annotations
 
+import bisect
 import dataclasses
+import functools
 import math
 import time
 from typing import Any, Protocol
@@ -51,10 +53,20 @@ class Plan:
     def times(self) -> FloatArray:
         return self.t0 + self.horizon * np.linspace(0.0, 1.0, self.nodes + 1)
 
+    @functools.cached_property
+    def _table(self) -> tuple[list[float], list[float], list[float]]:
+        return self.times().tolist(), self.controls[:, 0].tolist(), self.controls[:, 1].tolist()
+
     def control(self, t: float) -> tuple[float, float]:
         """(alpha, w) linear between the nodes; the first node's before t0, the last's after t_f."""
-        ts = self.times()
-        return (float(np.interp(t, ts, self.controls[:, 0])), float(np.interp(t, ts, self.controls[:, 1])))
+        ts, a, w = self._table
+        if t <= ts[0]:
+            return a[0], w[0]
+        if t >= ts[-1]:
+            return a[-1], w[-1]
+        k = bisect.bisect_right(ts, t) - 1
+        f = (t - ts[k]) / (ts[k + 1] - ts[k])
+        return a[k] + (a[k + 1] - a[k]) * f, w[k] + (w[k + 1] - w[k]) * f
 
     def resampled(self, t: float, x: FloatArray, nodes: int, horizon: float) -> "Plan":
         """The plan from t over `horizon` on `nodes` equal subintervals, states and controls interpolated
@@ -101,7 +113,11 @@ def ground_plan(scn: ProximityScenario) -> Plan:
     sol = ocp.solve(scn.approach())
     if not sol.success:
         raise RuntimeError(f"the ground plan did not converge: {sol.status}")
-    return Plan(0.0, sol.t_f_s / scn.units.time_s, sol.states / _scale(scn), sol.controls.copy())
+    controls = sol.controls.copy()
+    # the same thrust at every node, the angles wrapped to within pi of their neighbours (the ground's
+    # OCP has no sweep bound: where w = 0 its angles wander by many turns)
+    controls[:, 0] = np.unwrap(controls[:, 0])
+    return Plan(0.0, sol.t_f_s / scn.units.time_s, sol.states / _scale(scn), controls)
 
 
 def peer_problem(scn: ProximityScenario) -> PeerProblem:
@@ -112,7 +128,8 @@ def peer_problem(scn: ProximityScenario) -> PeerProblem:
         keepout=tuple((k.centre_m[0] / u.length_m, k.centre_m[1] / u.length_m,
                        (k.radius_m + g.keepout_margin_m) / u.length_m) for k in scn.keepouts),
         mass_min=v.dry_mass_kg / u.mass_kg, objective=g.objective,
-        time_weight=g.fuel_time_weight_kg_per_s * u.time_s / u.mass_kg, nodes=g.nodes, rk4_steps=g.rk4_steps)
+        time_weight=g.fuel_time_weight_kg_per_s * u.time_s / u.mass_kg, max_sweep=g.max_sweep_rad,
+        nodes=g.nodes, rk4_steps=g.rk4_steps)
 
 
 #: one PeerSolver per (problem, nodes) in a process (built in ~1 s, then reused by every flight)
@@ -239,6 +256,7 @@ def kernel_config(scn: ProximityScenario, prox: Any) -> Any:
         solver=dict(nodes=g.nodes, rk4_steps=g.rk4_steps,
                     strategy=prox.CNCN if g.strategy == "cncn" else prox.SNNS,
                     objective=0 if g.objective == "min-time" else 1, time_weight=pb.time_weight,
+                    max_sweep=pb.max_sweep,
                     horizon_min=g.min_horizon_s / scn.units.time_s,
                     horizon_max=scn.horizon_s[1] / scn.units.time_s, mass_min=pb.mass_min))
 
