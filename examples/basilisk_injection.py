@@ -24,7 +24,7 @@ from ogk.missions.orbit_injection.basilisk.modules import OgkInjectionFsw, TvcEn
 from ogk.missions.orbit_injection import truth as tm
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs
 from ogk.missions.orbit_injection.nog_guidance import prepare_tables
-from ogk.missions.orbit_injection.nominal_ref import nominal_reference
+from ogk.missions.orbit_injection.nominal_ref import resolved_with_reference
 from ogk.missions.orbit_injection.sil import SilSettings, initial_state
 from ogk_host.orbit_injection.scenario import load_scenario
 
@@ -38,8 +38,8 @@ def main() -> int:
     args = ap.parse_args()
 
     # ogk's ground products: the scenario, its nominal and its VTD-NOG tables (made when missing)
-    scn = load_scenario(args.scenario)
-    ref, tables = nominal_reference(scn), prepare_tables(scn)
+    scn, ref = resolved_with_reference(load_scenario(args.scenario))
+    tables = prepare_tables(scn)
     settings = SilSettings()                      # 50 Hz control, the scenario's end-game
     dt_ns = macros.sec2nano(settings.truth_step_s)
 

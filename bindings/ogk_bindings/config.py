@@ -11,7 +11,11 @@ their types and their defaults come from the kernel itself:
 * fields not given keep the C default (the defaults live in C only);
 * array fields take any sequence no longer than the C array (the rest keeps its default);
   ``_array_lengths`` may say how many entries of an array are meaningful (what the getter returns);
-* instances are immutable (``replace`` makes a new one) and compare by field values.
+* instances are immutable (``replace`` makes a new one) and compare by field values;
+* a pointer field (a table the kernel reads in place, ogk_nog_config_t.table) keeps the object it
+  points to alive as long as the configuration: the kernel does not copy it, and cffi frees an
+  owning cdata that nothing references. ``to_c()`` copies the pointer only, so keep the
+  configuration while the copy is in use.
 """
 from __future__ import annotations
 
@@ -80,6 +84,7 @@ class KernelConfig:
         c = ffi.new(f"{self._ctype} *")
         _check(getattr(lib, self._default_fn)(c), self._default_fn)
         object.__setattr__(self, "_c", c)
+        object.__setattr__(self, "_targets", {})
         for name, value in fields.items():
             self._set(name, value)
         self._validate()
@@ -97,7 +102,10 @@ class KernelConfig:
         raise TypeError(f"{cls._ctype} has no field {name!r}; fields: {', '.join(cls.fields())}")
 
     def _set(self, name: str, value: Any) -> None:
-        _set_field(self._ctype, self._c, name, self._ftype(name), value)
+        ftype = self._ftype(name)
+        _set_field(self._ctype, self._c, name, ftype, value)
+        if _is_pointer(ftype):      # what the pointer points to lives as long as this config
+            self._targets[name] = value
 
     def _validate(self) -> None:
         """Hook for checks the C init cannot word as well (subclasses)."""
@@ -138,6 +146,7 @@ class KernelConfig:
         c = ffi.new(f"{self._ctype} *")
         ffi.memmove(c, self._c, ffi.sizeof(self._ctype))
         object.__setattr__(new, "_c", c)
+        object.__setattr__(new, "_targets", dict(self._targets))
         for name, value in changes.items():
             new._set(name, value)
         new._validate()

@@ -57,31 +57,21 @@ ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg)
     return st;
 }
 
-static bool nmpc_config_finite(const ogk_nmpc_config_t *c)
+/* The solver's settings (transcription, SQP, strategy): every problem's. */
+static bool settings_finite(const ogk_nmpc_config_t *c)
 {
     const double scalars[] = {
-        c->mu, c->thrust_max, c->mass_flow_max, c->solar_length_unit,
-        c->target_radius, c->target_phase0, c->target_rate, c->horizon_min,
-        c->horizon_max, c->max_sweep, c->time_weight, c->tol_feas, c->tol_stat, c->tol_obj, c->hessian_init,
-        c->step_max_alpha, c->step_max_horizon, c->elastic_weight, c->doubling_threshold, c->mass_min
+        c->horizon_min, c->horizon_max, c->max_sweep, c->time_weight, c->tol_feas, c->tol_stat, c->tol_obj,
+        c->hessian_init, c->step_max_alpha, c->step_max_horizon, c->elastic_weight, c->doubling_threshold,
+        c->mass_min
     };
     return ogk_i_all_finite(scalars, sizeof(scalars) / sizeof(scalars[0]))
-        && ogk_i_all_finite(c->solar_a, 4u) && ogk_i_all_finite(c->solar_thrust, 2u)
-        && ogk_i_all_finite(c->solar_flow, 2u)
-        && ogk_i_all_finite(c->body_mu, OGK_NMPC_MAX_BODIES)
-        && ogk_i_all_finite(c->body_radius, OGK_NMPC_MAX_BODIES)
-        && ogk_i_all_finite(c->body_phase0, OGK_NMPC_MAX_BODIES)
-        && ogk_i_all_finite(c->body_rate, OGK_NMPC_MAX_BODIES)
-        && ogk_i_all_finite(c->body_softening, OGK_NMPC_MAX_BODIES)
-        && ogk_i_all_finite(c->keepout_radius, OGK_NMPC_MAX_BODIES)
-        && ogk_i_all_finite(c->terminal_box, OGK_NMPC_NC)
-        && ogk_i_all_finite(c->body_release, OGK_NMPC_MAX_BODIES);
+        && ogk_i_all_finite(c->terminal_box, OGK_NMPC_NC);
 }
 
-static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
+static bool settings_valid(const ogk_nmpc_config_t *c)
 {
-    bool ok = (c->mu > 0.0) && (c->target_radius > 0.0)
-        && (c->engine <= OGK_NMPC_ENGINE_THROTTLED) && (c->power <= OGK_NMPC_POWER_SOLAR)
+    return (c->engine <= OGK_NMPC_ENGINE_THROTTLED)
         && (c->objective <= OGK_NMPC_MIN_FUEL) && (c->strategy <= OGK_NMPC_CNCN)
         && (c->hessian <= OGK_NMPC_HESSIAN_EXACT)
         && (c->nodes >= 1u) && (c->nodes <= OGK_NMPC_MAX_NODES)
@@ -96,7 +86,31 @@ static bool nmpc_config_valid(const ogk_nmpc_config_t *c)
         && (c->step_max_alpha > 0.0) && (c->step_max_horizon > 0.0) && (c->elastic_weight > 0.0)
         && (c->min_nodes >= 1u) && (c->min_nodes <= OGK_NMPC_MAX_NODES)
         && (c->doubling_threshold >= 0.0)
-        && (c->doubling_max_nodes <= (OGK_NMPC_MAX_NODES / 2u))
+        && (c->doubling_max_nodes <= (OGK_NMPC_MAX_NODES / 2u));
+}
+
+/* The heliocentric problem's model and target fields. */
+static bool helio_finite(const ogk_nmpc_config_t *c)
+{
+    const double scalars[] = {
+        c->mu, c->thrust_max, c->mass_flow_max, c->solar_length_unit,
+        c->target_radius, c->target_phase0, c->target_rate
+    };
+    return ogk_i_all_finite(scalars, sizeof(scalars) / sizeof(scalars[0]))
+        && ogk_i_all_finite(c->solar_a, 4u) && ogk_i_all_finite(c->solar_thrust, 2u)
+        && ogk_i_all_finite(c->solar_flow, 2u)
+        && ogk_i_all_finite(c->body_mu, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->body_radius, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->body_phase0, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->body_rate, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->body_softening, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->keepout_radius, OGK_NMPC_MAX_BODIES)
+        && ogk_i_all_finite(c->body_release, OGK_NMPC_MAX_BODIES);
+}
+
+static bool helio_valid(const ogk_nmpc_config_t *c)
+{
+    bool ok = (c->mu > 0.0) && (c->target_radius > 0.0) && (c->power <= OGK_NMPC_POWER_SOLAR)
         && (c->n_bodies <= OGK_NMPC_MAX_BODIES);
     /* clamped so the loop has a fixed bound; n_bodies > MAX has made ok false above */
     const uint32_t n_bodies = ogk_i_min_u32(c->n_bodies, OGK_NMPC_MAX_BODIES);
@@ -134,6 +148,18 @@ static void nmpc_prepare(ogk_nmpc_t *ctx)
     ogk_i_nmpc_cache_reset(ctx);
 }
 
+/* init's common part: cfg copied, the problem bound, the context prepared. */
+static void nmpc_start(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg, const ogk_ocp_problem_t *problem,
+                       void *data)
+{
+    (void)memcpy(&ctx->cfg, cfg, sizeof(*cfg));
+    (void)memcpy(ctx->body_mu_init, cfg->body_mu, sizeof(ctx->body_mu_init));
+    ctx->problem = problem;
+    ctx->problem_data = data;
+    nmpc_prepare(ctx);
+    ctx->init_marker = OGK_NMPC_INIT_MARKER;
+}
+
 ogk_status ogk_nmpc_init(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg)
 {
     ogk_status st = OGK_OK;
@@ -141,15 +167,34 @@ ogk_status ogk_nmpc_init(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg)
         st = OGK_E_NULL;
     } else {
         ctx->init_marker = 0u;
-        if (!nmpc_config_finite(cfg)) {
+        if (!settings_finite(cfg) || !helio_finite(cfg)) {
             st = OGK_E_NONFINITE;
-        } else if (!nmpc_config_valid(cfg)) {
+        } else if (!settings_valid(cfg) || !helio_valid(cfg)) {
             st = OGK_E_CONFIG;
         } else {
-            (void)memcpy(&ctx->cfg, cfg, sizeof(*cfg));
-            (void)memcpy(ctx->body_mu_init, cfg->body_mu, sizeof(ctx->body_mu_init));
-            nmpc_prepare(ctx);
-            ctx->init_marker = OGK_NMPC_INIT_MARKER;
+            nmpc_start(ctx, cfg, &ogk_i_nmpc_helio_problem, NULL);
+        }
+    }
+    return st;
+}
+
+ogk_status ogk_nmpc_init_problem(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg,
+                                 const ogk_ocp_problem_t *problem, void *data)
+{
+    ogk_status st = OGK_OK;
+    if ((ctx == NULL) || (cfg == NULL) || (problem == NULL) || (data == NULL)) {
+        st = OGK_E_NULL;
+    } else {
+        ctx->init_marker = 0u;
+        if (!settings_finite(cfg)) {
+            st = OGK_E_NONFINITE;
+        } else if (!settings_valid(cfg) || (problem->structure == NULL) || (problem->dynamics == NULL)
+                   || (problem->dynamics_hess == NULL) || (problem->target == NULL)
+                   || (problem->keepout_radius == NULL) || (problem->keepout_distance == NULL)
+                   || (problem->model_key == NULL) || (problem->state_valid == NULL)) {
+            st = OGK_E_CONFIG;
+        } else {
+            nmpc_start(ctx, cfg, problem, data);
         }
     }
     return st;
@@ -194,14 +239,18 @@ ogk_status ogk_nmpc_load_plan(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *plan)
         } else if ((plan->horizon < ctx->cfg.horizon_min) || (plan->horizon > ctx->cfg.horizon_max)) {
             st = OGK_E_RANGE;
         } else {
-            uint32_t k;
-            for (k = 0u; (k <= plan->nodes) && (st == OGK_OK); ++k) {
-                if (!(plan->x[(k * NX) + 0u] > 0.0) || !(plan->x[(k * NX) + 4u] > 0.0)) {
-                    st = OGK_E_RANGE;
-                }
-                if ((ctx->nu > 1u) && (st == OGK_OK)) {
-                    const double w = plan->u[(k * ctx->nu) + 1u];
-                    st = ((w >= 0.0) && (w <= 1.0)) ? OGK_OK : OGK_E_RANGE;
+            const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
+            if (!ocp.ops->state_valid(ocp.data, plan->x, (size_t)plan->nodes + 1u)) {
+                st = OGK_E_RANGE;
+            }
+            if (ctx->nu > 1u) {
+                uint32_t k;
+                /* the throttle in [0, 1] at every node (nodes <= OGK_NMPC_MAX_NODES: checked above) */
+                for (k = 0u; k <= plan->nodes; ++k) {
+                    const double w = plan->u[(2u * k) + 1u];
+                    if (!((w >= 0.0) && (w <= 1.0))) {
+                        st = OGK_E_RANGE;
+                    }
                 }
             }
         }
@@ -230,6 +279,13 @@ ogk_status ogk_nmpc_get_plan(const ogk_nmpc_t *ctx, ogk_nmpc_plan_t *plan)
     return st;
 }
 
+/* x inside the problem's domain (the heliocentric: r > 0 and m > 0). */
+static bool state_valid(const ogk_nmpc_t *ctx, const double *x)
+{
+    const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
+    return ocp.ops->state_valid(ocp.data, x, 1u);
+}
+
 static ogk_status check_input(const ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
                               ogk_nmpc_report_t *rep)
 {
@@ -241,8 +297,7 @@ static ogk_status check_input(const ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
         (void)memset(rep, 0, sizeof(*rep));
         if (!isfinite(in->t) || !ogk_i_all_finite(in->x, NX)) {
             st = OGK_E_NONFINITE;
-        } else if ((ctx->have_plan == 0u) || !(in->x[0] > 0.0) || !(in->x[4] > 0.0)
-                   || !(fabs(in->t) <= OGK_NMPC_T_ABS_MAX)) {
+        } else if ((ctx->have_plan == 0u) || !state_valid(ctx, in->x) || !(fabs(in->t) <= OGK_NMPC_T_ABS_MAX)) {
             st = OGK_E_RANGE; /* no plan, outside the model's domain, or a time the plan's arithmetic cannot resolve */
         } else {
             /* usable */
@@ -261,21 +316,13 @@ static void fill_report(const ogk_nmpc_t *ctx, ogk_nmpc_report_t *rep)
     rep->objective = ogk_i_nmpc_objective(&ctx->cfg, p);
 }
 
-/* A body whose release radius the measured state is beyond, on an escape
- * orbit from it (two-body energy >= 0: it does not fall back), leaves the
- * predictive model for good (body_release); FLAG_RELEASED in rep. */
-static void release_bodies(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in, ogk_nmpc_report_t *rep)
+/* The problem's own update from the measured state (the heliocentric
+ * problem: a departure planet's release, body_release), its flags in rep. */
+static void update_problem(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in, ogk_nmpc_report_t *rep)
 {
-    /* n_bodies <= OGK_NMPC_MAX_BODIES (ogk_nmpc_init): clamped once, a fixed bound */
-    const size_t n_bodies = ogk_i_min_size(ctx->cfg.n_bodies, OGK_NMPC_MAX_BODIES);
-    size_t b;
-    for (b = 0u; b < n_bodies; ++b) {
-        if ((ctx->cfg.body_release[b] > 0.0) && (ctx->cfg.body_mu[b] > 0.0)
-            && (ogk_i_nmpc_body_distance(&ctx->cfg, b, in->x, in->t) > ctx->cfg.body_release[b])
-            && (ogk_i_nmpc_body_energy(&ctx->cfg, b, in->x, in->t) >= 0.0)) {
-            ctx->cfg.body_mu[b] = 0.0;
-            rep->flags |= OGK_NMPC_FLAG_RELEASED;
-        }
+    if (ctx->problem->update != NULL) {
+        void *data = (ctx->problem_data != NULL) ? ctx->problem_data : (void *)&ctx->cfg;
+        rep->flags |= ctx->problem->update(data, in->t, in->x);
     }
 }
 
@@ -314,7 +361,7 @@ ogk_status ogk_nmpc_solve(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
 {
     ogk_status st = check_input(ctx, in, rep);
     if (st == OGK_OK) {
-        release_bodies(ctx, in, rep);
+        update_problem(ctx, in, rep);
         anchor_work(ctx, in);
         st = solve_work(ctx, rep);
         fill_report(ctx, rep);
@@ -391,6 +438,7 @@ static ogk_status doubling_test(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
 {
     ogk_status st = st_n;
     const ogk_nmpc_config_t *cfg = &ctx->cfg;
+    const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
     const uint32_t n = ctx->plan.nodes;
 
     if ((cfg->strategy == OGK_NMPC_SNNS) && (ctx->subdivisions < cfg->max_subdivisions)
@@ -398,9 +446,9 @@ static ogk_status doubling_test(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
         ogk_status st_sub;
         if (st_n != OGK_OK) {
             anchor_work(ctx, in);
-            st_sub = ogk_i_nmpc_plan_subdivide(cfg, &ctx->work, &ctx->alt);
+            st_sub = ogk_i_nmpc_plan_subdivide(&ocp, &ctx->work, &ctx->alt);
         } else {
-            st_sub = ogk_i_nmpc_plan_subdivide(cfg, &ctx->plan, &ctx->alt);
+            st_sub = ogk_i_nmpc_plan_subdivide(&ocp, &ctx->plan, &ctx->alt);
         }
         if (st_sub == OGK_OK) {
             ogk_nmpc_report_t rep_alt;
@@ -437,7 +485,7 @@ ogk_status ogk_nmpc_replan(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
 {
     ogk_status st = check_input(ctx, in, rep);
     if (st == OGK_OK) {
-        release_bodies(ctx, in, rep);
+        update_problem(ctx, in, rep);
         ctx->plan_flags = 0u;
         if (((ctx->plan.t0 + ctx->plan.horizon) - in->t) < ctx->cfg.horizon_min) {
             /* t_f reached before the target: the plan is stretched to end
@@ -536,7 +584,8 @@ ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
         st = OGK_E_NONFINITE;
     }
     if (st == OGK_OK) {
-        st = ogk_i_nmpc_rhs(&ctx->cfg, ctx->nu, t, x, u, NULL, xdot, NULL, NULL, NULL);
+        const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
+        st = ocp.ops->dynamics(ocp.data, ctx->nu, t, x, u, NULL, xdot, NULL, NULL, NULL);
     }
     return st;
 }
@@ -560,7 +609,8 @@ ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
         st = OGK_E_RANGE;
     }
     if (st == OGK_OK) {
-        st = ogk_i_nmpc_shoot(&ctx->cfg, ctx->nu, t0, h, x0, u0, u1, x1, sens, NULL);
+        const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
+        st = ogk_i_nmpc_shoot(&ocp, ctx->nu, t0, h, x0, u0, u1, x1, sens, NULL);
     }
     if (st == OGK_OK) {
         const uint32_t nu = ctx->nu;
@@ -612,15 +662,17 @@ ogk_status ogk_nmpc_interval_hess(ogk_nmpc_t *ctx, double t0, double h, /* NOLIN
     if (st == OGK_OK) {
         double sens[OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS];
         double x1[OGK_NMPC_NX];
-        st = ogk_i_nmpc_shoot(&ctx->cfg, ctx->nu, t0, h, x0, u0, u1, x1, sens, ctx->tape);
+        const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
+        st = ogk_i_nmpc_shoot(&ocp, ctx->nu, t0, h, x0, u0, u1, x1, sens, ctx->tape);
     }
     if (st == OGK_OK) {
         double w_int[OGK_I_NMPC_MAX_COLS * OGK_I_NMPC_MAX_COLS];
         const size_t nd = NX + (2u * (size_t)ctx->nu) + 2u;
-        const size_t ncol = ogk_i_nmpc_ncol(&ctx->cfg, ctx->nu);
+        const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
+        const size_t ncol = ogk_i_nmpc_ncol(&ocp, ctx->nu);
         size_t i;
         size_t j;
-        ogk_i_nmpc_shoot_hess(&ctx->cfg, ctx->nu, t0, h, u0, u1, ctx->tape, w, w_int);
+        ogk_i_nmpc_shoot_hess(&ocp, ctx->nu, t0, h, u0, u1, ctx->tape, w, w_int);
         for (i = 0u; i < nd; ++i) {
             for (j = 0u; j < nd; ++j) {
                 /* the t0 column is not propagated for an autonomous model: its second derivatives are 0 */

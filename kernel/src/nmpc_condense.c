@@ -97,9 +97,14 @@ void ogk_i_nmpc_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
                                size_t nv, const double *c_term, double *g_obj)
 {
     const size_t col_t = nv - 1u;
+    const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
+    double x_target[NC];
+    double rate[NC];
     size_t i;
     size_t c;
 
+    /* the target's rate dx_T/dt_f at this plan's t_f */
+    ocp.ops->target(ocp.data, p->t0 + p->horizon, x_target, rate);
     (void)memset(g_obj, 0, nv * sizeof(double));
     if (ctx->cfg.objective == OGK_NMPC_MIN_FUEL) {
         for (c = 0u; c < nv; ++c) {
@@ -115,9 +120,10 @@ void ogk_i_nmpc_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
         }
         ctx->qp_beq[i] = -(c_term[i] + ctx->cond_e[i]);
     }
-    /* theta_T(t_f) moves with T */
-    ctx->qp_aeq[(1u * nv) + col_t] -= ctx->cfg.target_rate;
-    (void)p;
+    /* the target x_T(t_f) moves with T (the heliocentric problem: theta_T, eq. 6) */
+    for (i = 0u; i < NC; ++i) {
+        ctx->qp_aeq[(i * nv) + col_t] -= rate[i];
+    }
 }
 
 /* State part of the step: dX_{k+1} = A_k dX_k + B0 dU_k + B1 dU_{k+1} + t_k dT + d_k. */

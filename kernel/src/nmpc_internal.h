@@ -19,22 +19,41 @@
 /* Arguments of the model f(z): z = (x (5), u (nu), t), stored with this
  * stride (the largest nu). */
 #define OGK_I_NMPC_NZ (OGK_NMPC_NX + OGK_NMPC_MAX_NU + 1u)
+#if OGK_I_NMPC_NZ != OGK_OCP_NZ
+#error "the model's argument stride differs from ogk/ocp.h's OGK_OCP_NZ"
+#endif
 
-/* xdot = f(t, x, u) and, when jx is not NULL, its Jacobians: jx (5 x 5,
- * row-major), ju (5 x nu), jt (5); only the structural nonzeros of jx and ju
- * are written (the others are 0 at every x: the caller zeroes them once).
- * trig: cos and sin of u[0] when the caller has them, NULL to compute them
- * here. OGK_E_NONFINITE when x leaves the
- * model's domain (r <= 0, m <= 0, a third body hit) or a value is not finite. */
-ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
+/* The problem as the solver's internals see it (ogk/ocp.h): its callbacks,
+ * their data, and the solver's settings (the context's configuration:
+ * transcription, SQP, strategy). */
+typedef struct {
+    const ogk_ocp_problem_t *ops;
+    const void *data;
+    const ogk_nmpc_config_t *cfg;
+} ogk_i_ocp_t;
+
+/* ctx's problem: its table and data, the heliocentric problem over ctx->cfg
+ * when the context has no data of its own (ogk_nmpc_init). Inline: it is
+ * taken on every interval of every SQP iteration. */
+static inline ogk_i_ocp_t ogk_i_nmpc_problem(const ogk_nmpc_t *ctx)
+{
+    ogk_i_ocp_t ocp;
+    ocp.ops = ctx->problem;
+    ocp.data = (ctx->problem_data != NULL) ? (const void *)ctx->problem_data : (const void *)&ctx->cfg;
+    ocp.cfg = &ctx->cfg;
+    return ocp;
+}
+
+/* The heliocentric problem of Starek & Kolmanovsky (nmpc_helio.c), its data
+ * an ogk_nmpc_config_t. */
+extern const ogk_ocp_problem_t ogk_i_nmpc_helio_problem;
+
+/* Its model (nmpc_model.c), data an ogk_nmpc_config_t: the dynamics and
+ * dynamics_hess callbacks of ogk/ocp.h (eqs. 11-14 with the third bodies). */
+ogk_status ogk_i_nmpc_rhs(const void *data, uint32_t nu, double t,
                           const double *x, const double *u, const double *trig,
                           double *xdot, double *jx, double *ju, double *jt);
-
-/* hz (OGK_I_NMPC_NZ square, z = (x, u, t) with t at index 5 + nu) = the
- * upper triangle (row <= column; the rest zero) of the Hessian of
- * kappa . f(t, x, u) in z; trig: cos and sin of u[0]. The caller has
- * evaluated ogk_i_nmpc_rhs at the same point (its domain checks passed). */
-void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
+void ogk_i_nmpc_rhs_hess(const void *data, uint32_t nu, double t,
                          const double *x, const double *u, const double *trig,
                          const double *kappa, double *hz);
 
@@ -71,17 +90,19 @@ void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t,
 
 /* Sensitivity columns propagated for this model: X_k, U_k, U_{k+1}, h, and
  * t_start only when a third body attracts (the model then depends on t). */
-size_t ogk_i_nmpc_ncol(const ogk_nmpc_config_t *cfg, uint32_t nu);
+size_t ogk_i_nmpc_ncol(const ogk_i_ocp_t *ocp, uint32_t nu);
 
 /* The keep-out along one arc (the interior RK4 step ends of a subinterval):
  * r_start, set by the caller, the radius required at the arc's start (R, or
  * on the first subinterval a measured state's distance inside R: the
- * required radius then grows straight to R at its end); per body b the step
+ * required radius then grows straight to R at its end); per disc j the step
  * ends within three radii (bit j: step j's end); the sum and the largest of
  * the violations max(0, R_required - d). */
 typedef struct {
-    double r_start[OGK_NMPC_MAX_BODIES]; /* [LU] */
-    uint32_t mask[OGK_NMPC_MAX_BODIES];  /* [-] */
+    double radius[OGK_OCP_MAX_KEEPOUT];  /* [LU] the discs' radii R_j (0: none) */
+    uint32_t steps;                      /* [-] the arc's RK4 steps */
+    double r_start[OGK_OCP_MAX_KEEPOUT]; /* [LU] */
+    uint32_t mask[OGK_OCP_MAX_KEEPOUT];  /* [-] */
     double viol_sum;                     /* [LU] */
     double viol_max;                     /* [LU] */
 } ogk_i_nmpc_arc_t;
@@ -90,14 +111,14 @@ typedef struct {
 
 /* arc of subinterval k of plan p, before its sweep: no step end, no
  * violation, the radius required at the start (see ogk_i_nmpc_arc_t). */
-void ogk_i_nmpc_arc_start(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, size_t k,
+void ogk_i_nmpc_arc_start(const ogk_i_ocp_t *ocp, const ogk_nmpc_plan_t *p, size_t k,
                           ogk_i_nmpc_arc_t *arc);
 
 /* The sweep of ogk_i_nmpc_shoot with two additions: arc (or NULL): the
  * keep-out scan of the interior step ends (ogk_i_nmpc_keepout_scan); ends (or
  * NULL, with sens): the state and its sensitivities at each interior step
  * end j, at ends + (j - 1) OGK_I_NMPC_REC_STRIDE. */
-ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu,
+ogk_status ogk_i_nmpc_shoot_arc(const ogk_i_ocp_t *ocp, uint32_t nu,
                                 double t_start, double h, const double *x0,
                                 const double *u0, const double *u1, double *xf,
                                 double *sens, double *tape, ogk_i_nmpc_arc_t *arc, double *ends);
@@ -106,18 +127,18 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu,
  * control linear from u0 to u1. When sens is not NULL it receives the
  * 5 x OGK_I_NMPC_MAX_COLS sensitivity matrix (columns above; unused control
  * columns zero); when tape is not NULL too, the sweep is recorded there
- * (cfg->rk4_steps steps of OGK_NMPC_TAPE_STEP). */
-ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu,
+ * (ocp->cfg->rk4_steps steps of OGK_NMPC_TAPE_STEP). */
+ogk_status ogk_i_nmpc_shoot(const ogk_i_ocp_t *ocp, uint32_t nu,
                             double t_start, double h, const double *x0,
                             const double *u0, const double *u1, double *xf,
                             double *sens, double *tape);
 
 /* W (OGK_I_NMPC_MAX_COLS square, symmetric, the first ogk_i_nmpc_ncol
  * columns set) = sum_i w_i d2F_i / dp2 for the interval whose forward sweep
- * with sensitivities was recorded in tape (same cfg, nu, t_start, h, u0,
+ * with sensitivities was recorded in tape (same ocp, nu, t_start, h, u0,
  * u1), p = (X_k, U_k, U_{k+1}, h[, t_start]): the RK4 recursion's adjoint
  * for the weights w, differentiated forward (docs/nmpc-flight.md). */
-void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu,
+void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu,
                            double t_start, double h, const double *u0,
                            const double *u1, const double *tape,
                            const double *w, double *hess);
@@ -138,10 +159,10 @@ bool ogk_i_nmpc_cache_hit(const ogk_nmpc_t *ctx, size_t k, const double *key, si
 void ogk_i_nmpc_cache_store(ogk_nmpc_t *ctx, size_t k, const double *key);
 void ogk_i_nmpc_cache_drop(ogk_nmpc_t *ctx, uint32_t nodes, uint32_t count, uint32_t nu);
 
-/* Terminal residual c = (r - R_T, theta - theta_T(t_f), v_r, v_theta - v_T)
- * of eq. (5) at state x and time t_f. */
-void ogk_i_nmpc_terminal(const ogk_nmpc_config_t *cfg, const double *x,
-                         double t_f, double *c);
+/* Terminal residual c = x_0..3 - x_T(t_f) at state x and time t_f (the
+ * heliocentric problem: eq. 5), and with rate != NULL dx_T/dt_f. */
+void ogk_i_nmpc_terminal(const ogk_i_ocp_t *ocp, const double *x,
+                         double t_f, double *c, double *rate);
 
 /* The condensed QP (nmpc_condense.c), nv = (N + 1) nu + 1 unknowns.
  * condense: ctx->cond_g = G_N = dX_N/dv and ctx->cond_e = e_N from the
@@ -198,24 +219,19 @@ void ogk_i_nmpc_bfgs_update(double *hess, size_t nv, const double *s, double *y,
 /* hess := scale I (nv x nv). */
 void ogk_i_nmpc_identity(double *hess, size_t nv, double scale);
 
-/* Keep-out (nmpc_keepout.c): adds sum and largest of max(0, R_b - d) over
+/* Keep-out (nmpc_keepout.c), the problem's discs j (ogk/ocp.h): adds sum and largest of max(0, R_j - d_j) over
  * the interior nodes of p to *sum and *largest; appends to ctx->ko_a/ko_b
  * the linearised rows of interior node k (g: its 5 x nv condensed
  * sensitivities, e: its offsets). */
-void ogk_i_nmpc_keepout_violation(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, double *sum,
+void ogk_i_nmpc_keepout_violation(const ogk_i_ocp_t *ocp, const ogk_nmpc_plan_t *p, double *sum,
                                   double *largest);
 void ogk_i_nmpc_keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, size_t k,
                              const double *g, const double *e);
-/* body_distance: |r - r_b| of state x at time t from body b's centre;
- * body_energy: its two-body energy relative to body b, |v - v_b|^2 / 2 -
- * mu_b / |r - r_b| [LU^2/TU^2] (>= 0: on an escape orbit from b).
- * Along the arcs: scan: one step end x at time t (step index `step`) into
+/* Along the arcs: scan: one step end x at time t (step index `step`) into
  * arc; arc_rows: the linearised rows of interval k's step ends in
  * ctx->arc_mask (g, e: node k's condensed sensitivities; the step ends'
  * from a sweep recorded in the context's tape, free during condensing). */
-double ogk_i_nmpc_body_distance(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t);
-double ogk_i_nmpc_body_energy(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t);
-void ogk_i_nmpc_keepout_scan(const ogk_nmpc_config_t *cfg, const double *x, double t, uint32_t step,
+void ogk_i_nmpc_keepout_scan(const ogk_i_ocp_t *ocp, const double *x, double t, uint32_t step,
                              ogk_i_nmpc_arc_t *arc);
 void ogk_i_nmpc_keepout_arc_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, size_t k,
                                  const double *g, const double *e);
@@ -229,7 +245,7 @@ void ogk_i_nmpc_plan_control(const ogk_nmpc_plan_t *p, double t, double *u);
 void ogk_i_nmpc_plan_drop(ogk_nmpc_plan_t *p, uint32_t count);
 void ogk_i_nmpc_plan_regrid(const ogk_nmpc_plan_t *src, double t0,
                             uint32_t nodes, ogk_nmpc_plan_t *dst);
-ogk_status ogk_i_nmpc_plan_subdivide(const ogk_nmpc_config_t *cfg,
+ogk_status ogk_i_nmpc_plan_subdivide(const ogk_i_ocp_t *ocp,
                                      const ogk_nmpc_plan_t *src,
                                      ogk_nmpc_plan_t *dst);
 

@@ -1,7 +1,9 @@
 /* nmpc_keepout.c -- the keep-out of the NMPC's SQP (docs/nmpc-flight.md,
- * section 2 item 6): every interior node at least keepout_radius[b] from
- * body b's centre, its violation in the filter's measure and its
- * linearised rows in the condensed QP. Moved out of nmpc_sqp.c unchanged. */
+ * section 2 item 6): every interior node, and every RK4 step end along the
+ * arcs, at least R_j from the centre of the problem's disc j (ogk/ocp.h:
+ * the heliocentric problem's planets, the proximity problem's discs about
+ * the target), its violation in the filter's measure and its linearised
+ * rows in the condensed QP. */
 #include "nmpc_internal.h"
 #include "ogk_checks.h"
 
@@ -11,51 +13,36 @@
 /* Keep-out rows enter the QP for nodes within this many radii. */
 #define KEEPOUT_ACTIVE 3.0
 
-/* Distance of node state x at time t from body b's centre and its
- * derivatives in r, theta and t (d^2 = r^2 + R^2 - 2 r R cos(theta - phi)). */
-static double keepout_distance(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t,
-                               double *d_r, double *d_theta, double *d_t) /* NOLINT(bugprone-easily-swappable-parameters): internal, the derivatives in the state's order (r, theta) then t; checked by test_keepout_detour */
+#define KO ((size_t)OGK_OCP_MAX_KEEPOUT)
+
+/* Distance of x at time t from disc j's centre and its derivatives in x_0,
+ * x_1 and t (the problem's callback). */
+static double disc_distance(const ogk_i_ocp_t *ocp, size_t j, const double *x, double t, double *d_x0,
+                            double *d_x1, double *d_t)
 {
-    const double big_r = cfg->body_radius[b];
-    const double phi = cfg->body_phase0[b] + (cfg->body_rate[b] * t);
-    const double cd = cos(x[1] - phi);
-    const double sd = sin(x[1] - phi);
-    const double d2 = ((x[0] * x[0]) + (big_r * big_r)) - (2.0 * x[0] * big_r * cd);
-    double d = 0.0;
-    double inv = 0.0;
-    if (d2 > 0.0) {
-        d = sqrt(d2);
-    }
-    if (d > 1.0e-300) {
-        inv = 1.0 / d;
-    }
-    *d_r = (x[0] - (big_r * cd)) * inv;
-    *d_theta = x[0] * big_r * sd * inv;
-    *d_t = -(*d_theta) * cfg->body_rate[b];
-    return d;
+    return ocp->ops->keepout_distance(ocp->data, j, x, t, d_x0, d_x1, d_t);
 }
 
-/* Keep-out violation of a plan: sum and largest of max(0, R_b - d) over the
+/* Keep-out violation of a plan: sum and largest of max(0, R_j - d_j) over the
  * interior nodes. */
-void ogk_i_nmpc_keepout_violation(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, double *sum, /* NOLINT(bugprone-easily-swappable-parameters): internal, adds to evaluate's (l1, max) pair in that order */
+void ogk_i_nmpc_keepout_violation(const ogk_i_ocp_t *ocp, const ogk_nmpc_plan_t *p, double *sum, /* NOLINT(bugprone-easily-swappable-parameters): internal, adds to evaluate's (l1, max) pair in that order */
                                   double *largest)
 {
     const double h = p->horizon / (double)p->nodes;
-    /* n_bodies <= OGK_NMPC_MAX_BODIES and nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init,
-     * the plan's checks): clamped once so each loop keeps a fixed bound */
-    const size_t n_bodies = ogk_i_min_size(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
+    /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, the plan's checks): clamped once so the loop keeps a fixed bound */
     const size_t nodes = ogk_i_min_size(p->nodes, OGK_NMPC_MAX_NODES);
     size_t k;
     size_t b;
-    for (b = 0u; b < n_bodies; ++b) {
-        if (cfg->keepout_radius[b] > 0.0) {
+    for (b = 0u; b < KO; ++b) {
+        const double radius = ocp->ops->keepout_radius(ocp->data, b);
+        if (radius > 0.0) {
             for (k = 1u; k < nodes; ++k) {
                 double dr;
                 double dth;
                 double dt;
-                const double d = keepout_distance(cfg, b, &p->x[k * NX], p->t0 + ((double)k * h),
-                                                  &dr, &dth, &dt);
-                const double v = cfg->keepout_radius[b] - d;
+                const double d = disc_distance(ocp, b, &p->x[k * NX], p->t0 + ((double)k * h),
+                                               &dr, &dth, &dt);
+                const double v = radius - d;
                 if (v > 0.0) {
                     *sum += v;
                     *largest = (v > *largest) ? v : *largest;
@@ -66,31 +53,30 @@ void ogk_i_nmpc_keepout_violation(const ogk_nmpc_config_t *cfg, const ogk_nmpc_p
 }
 
 /* The keep-out rows of node k (interior) with its condensed sensitivities G
- * (5 x nv) and offsets e: d + d_X (G v + e) + d_T v_T >= R, for each body
- * with a keep-out radius that the node is within KEEPOUT_ACTIVE radii of. */
+ * (5 x nv) and offsets e: d + d_X (G v + e) + d_T v_T >= R, for each disc
+ * that the node is within KEEPOUT_ACTIVE radii of. */
 void ogk_i_nmpc_keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, size_t k, /* NOLINT(bugprone-easily-swappable-parameters): internal, condense's (G, e) of the node in that order */
                              const double *g, const double *e) /* NOLINT(bugprone-easily-swappable-parameters): as above */
 {
-    const ogk_nmpc_config_t *cfg = &ctx->cfg;
+    const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
     const double h = p->horizon / (double)p->nodes;
-    /* n_bodies <= OGK_NMPC_MAX_BODIES (ogk_nmpc_init): clamped once, a fixed bound */
-    const size_t n_bodies = ogk_i_min_size(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
     size_t b;
     size_t c;
-    for (b = 0u; b < n_bodies; ++b) {
-        if ((cfg->keepout_radius[b] > 0.0) && (ctx->ko_rows < OGK_I_NMPC_MAX_KO_ROWS_Z)) {
+    for (b = 0u; b < KO; ++b) {
+        const double radius = ocp.ops->keepout_radius(ocp.data, b);
+        if ((radius > 0.0) && (ctx->ko_rows < OGK_I_NMPC_MAX_KO_ROWS_Z)) {
             double dr;
             double dth;
             double dt;
-            const double d = keepout_distance(cfg, b, &p->x[k * NX], p->t0 + ((double)k * h), &dr, &dth, &dt);
-            if (d < (KEEPOUT_ACTIVE * cfg->keepout_radius[b])) {
+            const double d = disc_distance(&ocp, b, &p->x[k * NX], p->t0 + ((double)k * h), &dr, &dth, &dt);
+            if (d < (KEEPOUT_ACTIVE * radius)) {
                 double *row = &ctx->ko_a[ctx->ko_rows * nv];
                 for (c = 0u; c < nv; ++c) {
                     row[c] = (dr * g[(0u * nv) + c]) + (dth * g[(1u * nv) + c]);
                 }
                 /* the node's time t0 + k T / N moves with T */
                 row[nv - 1u] += dt * (double)k / (double)p->nodes;
-                ctx->ko_b[ctx->ko_rows] = cfg->keepout_radius[b] - d - (dr * e[0]) - (dth * e[1]);
+                ctx->ko_b[ctx->ko_rows] = radius - d - (dr * e[0]) - (dth * e[1]);
                 ctx->ko_rows += 1u;
             }
         }
@@ -103,72 +89,55 @@ void ogk_i_nmpc_keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t n
  * ends of every subinterval are scanned, and the closest one per body is
  * constrained like a node (its sensitivities from a sweep stopped there). */
 
-double ogk_i_nmpc_body_distance(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t)
-{
-    double dr;
-    double dth;
-    double dt;
-    return keepout_distance(cfg, b, x, t, &dr, &dth, &dt);
-}
-
-double ogk_i_nmpc_body_energy(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t)
-{
-    const double phi = cfg->body_phase0[b] + (cfg->body_rate[b] * t);
-    const double ct = cos(x[1]);
-    const double st = sin(x[1]);
-    const double cp = cos(phi);
-    const double sp = sin(phi);
-    const double vb = cfg->body_radius[b] * cfg->body_rate[b];
-    /* Cartesian velocities: the spacecraft's (v_r, v_theta) rotated by theta, the body's R phi' e_phi */
-    const double dvx = ((x[2] * ct) - (x[3] * st)) + (vb * sp);
-    const double dvy = ((x[2] * st) + (x[3] * ct)) - (vb * cp);
-    const double d = ogk_i_nmpc_body_distance(cfg, b, x, t);
-    const double pot = (d > 1.0e-300) ? (cfg->body_mu[b] / d) : 0.0;
-    return (0.5 * ((dvx * dvx) + (dvy * dvy))) - pot;
-}
-
-void ogk_i_nmpc_arc_start(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, size_t k,
+void ogk_i_nmpc_arc_start(const ogk_i_ocp_t *ocp, const ogk_nmpc_plan_t *p, size_t k,
                           ogk_i_nmpc_arc_t *arc)
 {
-    const size_t n_bodies = ogk_i_min_size(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
     size_t b;
     arc->viol_sum = 0.0;
     arc->viol_max = 0.0;
-    for (b = 0u; b < OGK_NMPC_MAX_BODIES; ++b) {
+    for (b = 0u; b < KO; ++b) {
         arc->mask[b] = 0u;
-        arc->r_start[b] = cfg->keepout_radius[b];
+        arc->radius[b] = ocp->ops->keepout_radius(ocp->data, b);
+        arc->r_start[b] = arc->radius[b];
     }
+    arc->steps = ocp->cfg->rk4_steps;
     if (k == 0u) {
-        for (b = 0u; b < n_bodies; ++b) {
+        for (b = 0u; b < KO; ++b) {
             /* a measured state the truth has pushed inside: the required radius grows straight from
              * its distance to R at node 1 (every plan would be infeasible otherwise) */
-            const double d0 = ogk_i_nmpc_body_distance(cfg, b, p->x, p->t0);
-            arc->r_start[b] = (d0 < cfg->keepout_radius[b]) ? d0 : cfg->keepout_radius[b];
+            if (arc->radius[b] > 0.0) {
+                double dr;
+                double dth;
+                double dt;
+                const double d0 = disc_distance(ocp, b, p->x, p->t0, &dr, &dth, &dt);
+                arc->r_start[b] = (d0 < arc->radius[b]) ? d0 : arc->radius[b];
+            }
         }
     }
 }
 
-/* The radius required at step end j of steps of an arc starting at r_start. */
-static double arc_radius(const ogk_nmpc_config_t *cfg, size_t b, double r_start, uint32_t j)
+/* The radius required at step end j of an arc starting at r_start. */
+static double arc_radius(const ogk_i_nmpc_arc_t *arc, size_t b, uint32_t j)
 {
-    return r_start + ((cfg->keepout_radius[b] - r_start) * (double)j / (double)cfg->rk4_steps);
+    return arc->r_start[b] + ((arc->radius[b] - arc->r_start[b]) * (double)j / (double)arc->steps);
 }
 
-void ogk_i_nmpc_keepout_scan(const ogk_nmpc_config_t *cfg, const double *x, double t, uint32_t step, /* NOLINT(bugprone-easily-swappable-parameters): internal, the step end's time then its index, as ogk_i_nmpc_shoot_arc computes them; checked by test_keepout_along_arcs */
+void ogk_i_nmpc_keepout_scan(const ogk_i_ocp_t *ocp, const double *x, double t, uint32_t step, /* NOLINT(bugprone-easily-swappable-parameters): internal, the step end's time then its index, as ogk_i_nmpc_shoot_arc computes them; checked by test_keepout_along_arcs */
                              ogk_i_nmpc_arc_t *arc)
 {
-    /* n_bodies <= OGK_NMPC_MAX_BODIES (ogk_nmpc_init): clamped once, a fixed bound */
-    const size_t n_bodies = ogk_i_min_size(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
     size_t b;
-    for (b = 0u; b < n_bodies; ++b) {
-        if (cfg->keepout_radius[b] > 0.0) {
-            const double d = ogk_i_nmpc_body_distance(cfg, b, x, t);
-            const double v = arc_radius(cfg, b, arc->r_start[b], step) - d;
+    for (b = 0u; b < KO; ++b) {
+        if (arc->radius[b] > 0.0) {
+            double dr;
+            double dth;
+            double dt;
+            const double d = disc_distance(ocp, b, x, t, &dr, &dth, &dt);
+            const double v = arc_radius(arc, b, step) - d;
             if (v > 0.0) {
                 arc->viol_sum += v;
                 arc->viol_max = (v > arc->viol_max) ? v : arc->viol_max;
             }
-            if (d < (KEEPOUT_ACTIVE * cfg->keepout_radius[b])) {
+            if (d < (KEEPOUT_ACTIVE * arc->radius[b])) {
                 /* step <= OGK_NMPC_MAX_RK4_STEPS - 1 = 31: one bit of the mask */
                 arc->mask[b] |= (uint32_t)1u << step;
             }
@@ -179,36 +148,36 @@ void ogk_i_nmpc_keepout_scan(const ogk_nmpc_config_t *cfg, const double *x, doub
 void ogk_i_nmpc_keepout_arc_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, size_t k, /* NOLINT(bugprone-easily-swappable-parameters): internal, condense's (G, e) of node k in that order */
                                  const double *g, const double *e) /* NOLINT(bugprone-easily-swappable-parameters): as above */
 {
+    const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
     const ogk_nmpc_config_t *cfg = &ctx->cfg;
     const uint32_t nu = p->nu;
     const double h = p->horizon / (double)p->nodes;
     const double t_start = p->t0 + ((double)k * h);
-    const size_t n_bodies = ogk_i_min_size(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
     const uint32_t steps = ogk_i_min_u32(cfg->rk4_steps, OGK_NMPC_MAX_RK4_STEPS);
     const size_t col_u0 = NX;
     const size_t col_u1 = NX + (size_t)nu;
     const size_t col_h = NX + (2u * (size_t)nu);
-    const size_t ncol = ogk_i_nmpc_ncol(cfg, nu);
+    const size_t ncol = ogk_i_nmpc_ncol(&ocp, nu);
     uint32_t any = 0u;
     ogk_i_nmpc_arc_t arc;
     size_t b;
     uint32_t j;
     size_t c;
     size_t i;
-    for (b = 0u; b < n_bodies; ++b) {
-        any |= ctx->arc_mask[(k * OGK_NMPC_MAX_BODIES) + b];
+    for (b = 0u; b < KO; ++b) {
+        any |= ctx->arc_mask[(k * KO) + b];
     }
-    ogk_i_nmpc_arc_start(cfg, p, k, &arc);
+    ogk_i_nmpc_arc_start(&ocp, p, k, &arc);
     if (any != 0u) {
         double xf[NX];
         double sens[NX * OGK_I_NMPC_MAX_COLS];
         /* the step ends' states and sensitivities (X_k, U_k, U_k+1, h[, t_start]), recorded in the
          * tape (the exact Hessian's, free while condensing) */
-        any = (ogk_i_nmpc_shoot_arc(cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu], &p->u[(k + 1u) * nu],
+        any = (ogk_i_nmpc_shoot_arc(&ocp, nu, t_start, h, &p->x[k * NX], &p->u[k * nu], &p->u[(k + 1u) * nu],
                                     xf, sens, NULL, NULL, ctx->tape) == OGK_OK) ? any : 0u;
     }
-    for (b = 0u; (b < n_bodies) && (any != 0u); ++b) {
-        const uint32_t mask = ctx->arc_mask[(k * OGK_NMPC_MAX_BODIES) + b];
+    for (b = 0u; (b < KO) && (any != 0u); ++b) {
+        const uint32_t mask = ctx->arc_mask[(k * KO) + b];
         for (j = 1u; j < steps; ++j) {
             if ((((mask >> j) & 1u) != 0u) && (ctx->ko_rows < OGK_I_NMPC_MAX_KO_ROWS_Z)) {
                 const double *rec = &ctx->tape[((size_t)j - 1u) * OGK_I_NMPC_REC_STRIDE];
@@ -218,7 +187,7 @@ void ogk_i_nmpc_keepout_arc_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size
                 double dr;
                 double dth;
                 double dt;
-                const double d = keepout_distance(cfg, b, rec, t_start + (frac * h), &dr, &dth, &dt);
+                const double d = disc_distance(&ocp, b, rec, t_start + (frac * h), &dr, &dth, &dt);
                 double *row = &ctx->ko_a[ctx->ko_rows * nv];
                 double offset = 0.0;
                 /* dd/dv = (dr, dth) (S_X G_k + S_U0 E_k + S_U1 E_k+1 + S_h dh/dT + S_ts dts/dT) + dd/dt dt_j/dT */
@@ -245,7 +214,7 @@ void ogk_i_nmpc_keepout_arc_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size
                     d_dt += dt * ((double)k + frac) / (double)p->nodes;
                     row[nv - 1u] += d_dt;
                 }
-                ctx->ko_b[ctx->ko_rows] = arc_radius(cfg, b, arc.r_start[b], j) - d - offset;
+                ctx->ko_b[ctx->ko_rows] = arc_radius(&arc, b, j) - d - offset;
                 ctx->ko_rows += 1u;
             }
         }

@@ -121,10 +121,12 @@ static ogk_status body_accel(const ogk_nmpc_config_t *cfg, uint32_t b, double t,
     return st;
 }
 
-ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (model f(t, x, u) and its Jacobians); checked against eq. (11) and by central differences (test_nmpc.c) */
+ogk_status ogk_i_nmpc_rhs(const void *data, uint32_t nu, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of ogk/ocp.h's dynamics (model f(t, x, u) and its Jacobians); checked against eq. (11) and by central differences (test_nmpc.c) */
                           const double *x, const double *u, const double *trig, /* NOLINT(bugprone-easily-swappable-parameters): as above */
                           double *xdot, double *jx, double *ju, double *jt) /* NOLINT(bugprone-easily-swappable-parameters): as above */
 {
+    /* the heliocentric problem's data is its configuration (nmpc_helio.c) */
+    const ogk_nmpc_config_t *cfg = (const ogk_nmpc_config_t *)data;
     ogk_status st = OGK_OK;
     const double r = x[0];
     const double v_r = x[2];
@@ -201,16 +203,6 @@ ogk_status ogk_i_nmpc_rhs(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /
         }
     }
     return st;
-}
-
-void ogk_i_nmpc_terminal(const ogk_nmpc_config_t *cfg, const double *x,
-                         double t_f, double *c)
-{
-    /* eq. (5) with eq. (6): the target on its circular orbit at t_f */
-    c[0] = x[0] - cfg->target_radius;
-    c[1] = x[1] - (cfg->target_phase0 + (cfg->target_rate * t_f));
-    c[2] = x[2];
-    c[3] = x[3] - sqrt(cfg->mu / cfg->target_radius);
 }
 
 double ogk_i_nmpc_objective(const ogk_nmpc_config_t *cfg,
@@ -291,10 +283,11 @@ static void body_hess(const ogk_nmpc_config_t *cfg, uint32_t b, double t, double
         + (ind * ((kappa[0] * cd) + (kappa[1] * sd)));
 }
 
-void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of ogk_i_nmpc_rhs; checked by central differences of the interval's gradient (test_nmpc.c) */
+void ogk_i_nmpc_rhs_hess(const void *data, uint32_t nu, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of ogk_i_nmpc_rhs; checked by central differences of the interval's gradient (test_nmpc.c) */
                          const double *x, const double *u, const double *trig, /* NOLINT(bugprone-easily-swappable-parameters): as above */
                          const double *kappa, double *hz) /* NOLINT(bugprone-easily-swappable-parameters): as above */
 {
+    const ogk_nmpc_config_t *cfg = (const ogk_nmpc_config_t *)data;
     /* z = (r, theta, v_r, v_theta, m, alpha[, w], t); g = kappa . f(z) */
     const size_t zs = OGK_I_NMPC_NZ;
     const size_t i_a = OGK_NMPC_NX;
@@ -321,7 +314,7 @@ void ogk_i_nmpc_rhs_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, double t, /*
 
     engine_limits(cfg, r, &lim);
     engine_curvature(cfg, r, &thrust_drr, &flow_drr);
-    (void)memset(hz, 0, zs * zs * sizeof(double));
+    /* hz is zeroed by the caller (ogk/ocp.h): only the structural nonzeros are written */
     /* eq. (11): the central body and the transport terms */
     hz[(0u * zs) + 0u] = (kappa[1] * 2.0 * v_t * inv_r3)
         + (kappa[2] * ((2.0 * v_t * v_t * inv_r3) - (6.0 * cfg->mu * inv_r2 * inv_r2)))

@@ -80,7 +80,7 @@ void ogk_i_nmpc_plan_regrid(const ogk_nmpc_plan_t *src, double t0,
     }
 }
 
-ogk_status ogk_i_nmpc_plan_subdivide(const ogk_nmpc_config_t *cfg,
+ogk_status ogk_i_nmpc_plan_subdivide(const ogk_i_ocp_t *ocp,
                                      const ogk_nmpc_plan_t *src,
                                      ogk_nmpc_plan_t *dst)
 {
@@ -108,7 +108,7 @@ ogk_status ogk_i_nmpc_plan_subdivide(const ogk_nmpc_config_t *cfg,
         }
         (void)memcpy(&dst->x[2u * (size_t)k * NX], &src->x[k * NX], NX * sizeof(double));
         /* midpoint state propagated over the first half (a consistent guess) */
-        st = ogk_i_nmpc_shoot(cfg, nu, src->t0 + ((2.0 * (double)k) * h_half), h_half,
+        st = ogk_i_nmpc_shoot(ocp, nu, src->t0 + ((2.0 * (double)k) * h_half), h_half,
                               &src->x[k * NX], &src->u[(size_t)k * nu], u_mid,
                               &dst->x[((2u * (size_t)k) + 1u) * NX], NULL, NULL);
     }

@@ -34,42 +34,26 @@ static bool same_bits(const double *a, const double *b, size_t n)
     return same;
 }
 
-/* The fields ogk_i_nmpc_shoot reads, as doubles (the integers exactly). */
-static void model_fields(const ogk_nmpc_config_t *cfg, double *out)
+/* The doubles that define the problem's dynamics (its model_key callback,
+ * which writes all OGK_OCP_MODEL_KEY: for the heliocentric problem the
+ * configuration's model fields and rk4_steps). */
+static void model_fields(const ogk_nmpc_t *ctx, double *out)
 {
-    size_t b;
-    out[0] = cfg->mu;
-    out[1] = (double)cfg->engine;
-    out[2] = (double)cfg->power;
-    out[3] = cfg->thrust_max;
-    out[4] = cfg->mass_flow_max;
-    out[5] = cfg->solar_length_unit;
-    out[6] = (double)cfg->n_bodies;
-    out[7] = (double)cfg->rk4_steps;
-    (void)memcpy(&out[8], cfg->solar_a, sizeof(cfg->solar_a));
-    (void)memcpy(&out[12], cfg->solar_thrust, sizeof(cfg->solar_thrust));
-    (void)memcpy(&out[14], cfg->solar_flow, sizeof(cfg->solar_flow));
-    for (b = 0u; b < (size_t)OGK_NMPC_MAX_BODIES; ++b) {
-        double *body = &out[16u + (5u * b)];
-        body[0] = cfg->body_mu[b];
-        body[1] = cfg->body_radius[b];
-        body[2] = cfg->body_phase0[b];
-        body[3] = cfg->body_rate[b];
-        body[4] = cfg->body_softening[b];
-    }
+    const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
+    ocp.ops->model_key(ocp.data, out);
 }
 
 void ogk_i_nmpc_cache_reset(ogk_nmpc_t *ctx)
 {
     /* a key with h = 0 matches no interval (h > 0) */
     (void)memset(ctx->sens_key, 0, sizeof(ctx->sens_key));
-    model_fields(&ctx->cfg, ctx->sens_model);
+    model_fields(ctx, ctx->sens_model);
 }
 
 void ogk_i_nmpc_cache_begin(ogk_nmpc_t *ctx)
 {
     double model[OGK_NMPC_SENS_MODEL];
-    model_fields(&ctx->cfg, model);
+    model_fields(ctx, model);
     if (!same_bits(model, ctx->sens_model, MODEL)) {
         ogk_i_nmpc_cache_reset(ctx);
     }
@@ -84,8 +68,9 @@ size_t ogk_i_nmpc_cache_key(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, siz
     (void)memcpy(key, &p->x[k * NX], NX * sizeof(double));
     (void)memcpy(&key[NX], &p->u[k * nu], 2u * nu * sizeof(double));
     key[n - 1u] = h;
-    if (ogk_i_nmpc_ncol(&ctx->cfg, p->nu) > n) {
-        /* an attracting body: the model depends on time */
+    const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
+    if (ogk_i_nmpc_ncol(&ocp, p->nu) > n) {
+        /* a time-varying model (an attracting body) */
         key[n] = t_start;
         n += 1u;
     }
@@ -123,7 +108,7 @@ void ogk_i_nmpc_cache_drop(ogk_nmpc_t *ctx, uint32_t nodes, uint32_t count, uint
     (void)memmove(ctx->sens_h, &ctx->sens_h[c * NX], keep * NX * sizeof(double));
     (void)memmove(ctx->sens_ts, &ctx->sens_ts[c * NX], keep * NX * sizeof(double));
     (void)memmove(ctx->sens_key, &ctx->sens_key[c * KEY], keep * KEY * sizeof(double));
-    (void)memmove(ctx->arc_mask, &ctx->arc_mask[c * OGK_NMPC_MAX_BODIES],
-                  keep * OGK_NMPC_MAX_BODIES * sizeof(uint32_t));
+    (void)memmove(ctx->arc_mask, &ctx->arc_mask[c * OGK_OCP_MAX_KEEPOUT],
+                  keep * OGK_OCP_MAX_KEEPOUT * sizeof(uint32_t));
     (void)memmove(ctx->arc_viol, &ctx->arc_viol[c * 2u], keep * 2u * sizeof(double));
 }

@@ -37,10 +37,11 @@ static void stage_sens(const double *s, const double *k_prev_sens, /* NOLINT(bug
     }
 }
 
-/* Column l of k = jx y, jx a Jacobian of ogk_i_nmpc_rhs: only the
- * structural nonzeros of eq. (11)-(14)'s Jacobian are used (13 of 25):
- * r' = v_r; theta' depends on r, v_theta; v_r', v_theta' on every state
- * (theta through the third bodies); m' on r (solar-electric). */
+/* Column l of k = jx y, jx a Jacobian of the problem's dynamics: only the
+ * structural nonzeros that ogk/ocp.h allows are used (13 of 25; those of
+ * eq. (11)-(14)'s Jacobian): x_0' = x_2 (r' = v_r); x_1' depends on x_0,
+ * x_3 (theta' on r, v_theta); x_2', x_3' on every state (theta through the
+ * third bodies); x_4' on x_0 (m' on r, solar-electric). */
 static inline void jx_column(const double *jx, const double *y, size_t l, double *k) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, k = jx y in the order of the product; its only caller is stage_k, checked by central differences (test_nmpc.c) */
 {
     const double y0 = y[(0u * NCOL) + l];
@@ -90,50 +91,38 @@ static void stage_k(const double *jx, const double *ju, const double *jt, /* NOL
     }
 }
 
-/* True when a third body pulls (mu > 0): the model then depends on time. A
- * body with mu = 0 is an ephemeris for the keep-out only. */
-static bool attracting_bodies(const ogk_nmpc_config_t *cfg)
+size_t ogk_i_nmpc_ncol(const ogk_i_ocp_t *ocp, uint32_t nu)
 {
-    bool any = false;
-    /* n_bodies <= OGK_NMPC_MAX_BODIES (ogk_nmpc_init): clamped once, a fixed bound */
-    const uint32_t n_bodies = ogk_i_min_u32(cfg->n_bodies, OGK_NMPC_MAX_BODIES);
-    uint32_t b;
-    for (b = 0u; b < n_bodies; ++b) {
-        any = any || (cfg->body_mu[b] > 0.0);
-    }
-    return any;
+    /* the start-time column is identically zero for a time-invariant model
+     * (the heliocentric one without attracting third bodies): it is not
+     * propagated */
+    const bool varying = (ocp->ops->structure(ocp->data, nu) & OGK_OCP_TIME_VARYING) != 0u;
+    return NX + (2u * (size_t)nu) + 1u + (size_t)(varying ? 1u : 0u);
 }
 
-size_t ogk_i_nmpc_ncol(const ogk_nmpc_config_t *cfg, uint32_t nu)
-{
-    /* the start-time column is identically zero without third bodies (the
-     * model is then autonomous): it is not propagated */
-    return NX + (2u * (size_t)nu) + 1u + (size_t)(attracting_bodies(cfg) ? 1u : 0u);
-}
-
-ogk_status ogk_i_nmpc_shoot(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (nu, t_start, h as in ogk_nmpc_interval); checked by central differences (test_nmpc.c) */
+ogk_status ogk_i_nmpc_shoot(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (nu, t_start, h as in ogk_nmpc_interval); checked by central differences (test_nmpc.c) */
                             double t_start, double h, const double *x0,
                             const double *u0, const double *u1, double *xf,
                             double *sens, double *tape)
 {
-    return ogk_i_nmpc_shoot_arc(cfg, nu, t_start, h, x0, u0, u1, xf, sens, tape, NULL, NULL);
+    return ogk_i_nmpc_shoot_arc(ocp, nu, t_start, h, x0, u0, u1, xf, sens, tape, NULL, NULL);
 }
 
-ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (nu, t_start, h as in ogk_nmpc_interval); checked by central differences (test_nmpc.c) */
+ogk_status ogk_i_nmpc_shoot_arc(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (nu, t_start, h as in ogk_nmpc_interval); checked by central differences (test_nmpc.c) */
                                 double t_start, double h, const double *x0,
                                 const double *u0, const double *u1, double *xf,
                                 double *sens, double *tape, ogk_i_nmpc_arc_t *arc, double *ends)
 {
     static const uint32_t trig_index[4] = { 0u, 1u, 1u, 2u };
     ogk_status st = OGK_OK;
-    const uint32_t steps = cfg->rk4_steps;
+    const uint32_t steps = ocp->cfg->rk4_steps;
     /* rk4_steps <= OGK_NMPC_MAX_RK4_STEPS (ogk_nmpc_init): clamped once so the
      * loops below keep a fixed bound with one condition for it */
     const uint32_t steps_b = ogk_i_min_u32(steps, OGK_NMPC_MAX_RK4_STEPS);
     const double dt = h / (double)steps;
     const double inv_steps = 1.0 / (double)steps;
     const size_t col_h = NX + (2u * (size_t)nu);
-    const size_t ncol = ogk_i_nmpc_ncol(cfg, nu);
+    const size_t ncol = ogk_i_nmpc_ncol(ocp, nu);
     const size_t ncol_e = ncol + (ncol % 2u);
     const bool taped = (sens != NULL) && (tape != NULL);
     double x[NX];
@@ -163,7 +152,7 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
         trig[i][1] = sin(angle);
     }
     if (sens != NULL) {
-        /* the Jacobians' structural zeros, which ogk_i_nmpc_rhs does not write */
+        /* the Jacobians' structural zeros, which the problem's dynamics do not write */
         (void)memset(jx, 0, sizeof(jx));
         (void)memset(ju, 0, sizeof(ju));
         (void)memset(s_mat, 0, sizeof(s_mat));
@@ -187,7 +176,7 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
             } else {
                 ogk_i_rk4_stage_state(x, ogk_i_rk4_c(j) * dt, k[j - 1u], NX, stage_x);
             }
-            st = ogk_i_nmpc_rhs(cfg, nu, t_stage, stage_x, u, trig[(2u * step) + trig_index[j]], k[j],
+            st = ocp->ops->dynamics(ocp->data, nu, t_stage, stage_x, u, trig[(2u * step) + trig_index[j]], k[j],
                                 (sens != NULL) ? jx : NULL, ju, jt);
             if ((st == OGK_OK) && (sens != NULL)) {
                 if (j != 0u) {
@@ -227,7 +216,7 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NO
             if ((arc != NULL) && ((step + 1u) < steps)) {
                 /* an interior step end of the arc (the interval's ends are nodes) */
                 const uint32_t step_end = step + 1u;
-                ogk_i_nmpc_keepout_scan(cfg, x, t_start + ((double)step_end * inv_steps * h), step_end, arc);
+                ogk_i_nmpc_keepout_scan(ocp, x, t_start + ((double)step_end * inv_steps * h), step_end, arc);
             }
         }
     }

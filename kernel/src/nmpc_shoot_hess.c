@@ -208,15 +208,15 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
     }
 }
 
-void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of ogk_i_nmpc_shoot; checked by central differences (test_nmpc.c) */
+void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of ogk_i_nmpc_shoot; checked by central differences (test_nmpc.c) */
                            double t_start, double h, const double *u0, /* NOLINT(bugprone-easily-swappable-parameters): as above */
                            const double *u1, const double *tape, /* NOLINT(bugprone-easily-swappable-parameters): as above */
                            const double *w, double *hess)
 {
-    const uint32_t steps = cfg->rk4_steps;
+    const uint32_t steps = ocp->cfg->rk4_steps;
     const double dt = h / (double)steps;
     const double inv_steps = 1.0 / (double)steps;
-    const size_t ncol = ogk_i_nmpc_ncol(cfg, nu);
+    const size_t ncol = ogk_i_nmpc_ncol(ocp, nu);
     const size_t col_h = NX + (2u * (size_t)nu);
     const size_t ncol_e = ncol + (ncol % 2u);
     double lambda[NX];
@@ -231,7 +231,7 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
     /* a constant engine without a throttle: m' = -mdot_max does not depend on
      * z, so the mass row of Z is e_m plus its column h (m_0 - mdot t): the
      * triangle adds its row only where it is not 0 */
-    const bool sparse_m = (cfg->power != OGK_NMPC_POWER_SOLAR) && (nu == 1u);
+    const bool sparse_m = ((ocp->ops->structure(ocp->data, nu) & OGK_OCP_FLOW_FIXED) != 0u) && (nu == 1u);
     /* steps <= OGK_NMPC_MAX_RK4_STEPS (ogk_nmpc_init): the start of the backward
      * sweep bounded once (0, no step, beyond it as before) so the loop keeps a fixed bound */
     const uint32_t n_top = (steps <= OGK_NMPC_MAX_RK4_STEPS) ? steps : 0u;
@@ -288,7 +288,9 @@ void ogk_i_nmpc_shoot_hess(const ogk_nmpc_config_t *cfg, uint32_t nu, /* NOLINT(
             for (i = 0u; i < (size_t)nu; ++i) {
                 u[i] = u0[i] + ((u1[i] - u0[i]) * s_frac);
             }
-            ogk_i_nmpc_rhs_hess(cfg, nu, t_stage, &rec[OGK_I_NMPC_TAPE_X], u, &rec[OGK_I_NMPC_TAPE_TRIG], kbar, hz);
+            /* the problem writes the structural nonzeros of its triangle only (ogk/ocp.h) */
+            (void)memset(hz, 0, sizeof(hz));
+            ocp->ops->dynamics_hess(ocp->data, nu, t_stage, &rec[OGK_I_NMPC_TAPE_X], u, &rec[OGK_I_NMPC_TAPE_TRIG], kbar, hz);
             add_stage_curvature(hz, y_sens, nu, s_frac, bodies, sparse_m, ncol, hess);
             jx_transpose_times(&rec[OGK_I_NMPC_TAPE_JX], kbar, ybar);
             for (i = 0u; i < NX; ++i) {

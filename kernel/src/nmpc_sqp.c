@@ -125,6 +125,7 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
     double mx = 0.0;
     /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan): clamped once, a fixed bound */
     const size_t nodes = ogk_i_min_size(p->nodes, OGK_NMPC_MAX_NODES);
+    const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
     size_t n;
     size_t i;
     size_t j;
@@ -151,13 +152,13 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
         const size_t n_key = keyed ? ogk_i_nmpc_cache_key(ctx, p, k, t_start, h, key) : 0u;
         const bool hit = keyed && ogk_i_nmpc_cache_hit(ctx, k, key, n_key);
         ogk_i_nmpc_arc_t arc;
-        ogk_i_nmpc_arc_start(&ctx->cfg, p, k, &arc);
+        ogk_i_nmpc_arc_start(&ocp, p, k, &arc);
         if (hit) {
             (void)memcpy(x1, &ctx->sens_f[k * NX], sizeof(x1));
             arc.viol_sum = ctx->arc_viol[2u * k];
             arc.viol_max = ctx->arc_viol[(2u * k) + 1u];
         } else {
-            st = ogk_i_nmpc_shoot_arc(&ctx->cfg, nu, t_start, h, &p->x[k * NX], &p->u[k * nu],
+            st = ogk_i_nmpc_shoot_arc(&ocp, nu, t_start, h, &p->x[k * NX], &p->u[k * nu],
                                       &p->u[(k + 1u) * nu], x1, with_sens ? sens : NULL,
                                       second ? ctx->tape : NULL, &arc, NULL);
         }
@@ -166,8 +167,8 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
             l1 += arc.viol_sum;
             mx = (arc.viol_max > mx) ? arc.viol_max : mx;
             if (with_sens && !hit) {
-                for (i = 0u; i < OGK_NMPC_MAX_BODIES; ++i) {
-                    ctx->arc_mask[(k * OGK_NMPC_MAX_BODIES) + i] = arc.mask[i];
+                for (i = 0u; i < OGK_OCP_MAX_KEEPOUT; ++i) {
+                    ctx->arc_mask[(k * OGK_OCP_MAX_KEEPOUT) + i] = arc.mask[i];
                 }
                 ctx->arc_viol[2u * k] = arc.viol_sum;
                 ctx->arc_viol[(2u * k) + 1u] = arc.viol_max;
@@ -204,9 +205,9 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
                 /* the interval's block in the context's scratch (free until condensing), not on the stack */
                 double *w_int = ctx->hess_tmp;
                 double w_prev[NX];
-                ogk_i_nmpc_shoot_hess(&ctx->cfg, nu, t_start, h, &p->u[k * nu], &p->u[(k + 1u) * nu],
+                ogk_i_nmpc_shoot_hess(&ocp, nu, t_start, h, &p->u[k * nu], &p->u[(k + 1u) * nu],
                                       ctx->tape, w, w_int);
-                ogk_i_nmpc_hess_block(nu, ogk_i_nmpc_ncol(&ctx->cfg, nu), k, p->nodes, w_int,
+                ogk_i_nmpc_hess_block(nu, ogk_i_nmpc_ncol(&ocp, nu), k, p->nodes, w_int,
                                       &ctx->hess_blk[k * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR]);
                 /* w_{k-1} = A_k^T w_k */
                 for (j = 0u; j < NX; ++j) {
@@ -221,7 +222,7 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
         }
     }
     if (st == OGK_OK) {
-        ogk_i_nmpc_terminal(&ctx->cfg, &p->x[(size_t)p->nodes * NX], p->t0 + p->horizon, c_term);
+        ogk_i_nmpc_terminal(&ocp, &p->x[(size_t)p->nodes * NX], p->t0 + p->horizon, c_term, NULL);
         *t_excess = 0.0;
         for (i = 0u; i < NC; ++i) {
             const double e = terminal_excess(&ctx->cfg, c_term, i);
@@ -242,7 +243,7 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
                 mx = (e > mx) ? e : mx;
             }
         }
-        ogk_i_nmpc_keepout_violation(&ctx->cfg, p, &l1, &mx);
+        ogk_i_nmpc_keepout_violation(&ocp, p, &l1, &mx);
         *viol_l1 = l1;
         *viol_max = mx;
     }

@@ -30,7 +30,7 @@ from ogk.missions.orbit_injection import truth as tm
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs
 from ogk.missions.orbit_injection.flight_software import KernelFlightSoftware
 from ogk.missions.orbit_injection.nog_guidance import prepare_tables
-from ogk.missions.orbit_injection.nominal_ref import nominal_reference
+from ogk.missions.orbit_injection.nominal_ref import resolved_with_reference
 from ogk.missions.orbit_injection.sil import ERROR_KEYS, SilSettings, fly_runs
 from ogk_host.orbit_injection.scenario import load_scenario
 
@@ -61,8 +61,8 @@ SCOUT = ROOT / "scenarios" / "scout_upper_stage.toml"
 
 @pytest.fixture(scope="module")
 def leo():
-    scn = load_scenario()
-    return scn, nominal_reference(scn), prepare_tables(scn)
+    scn, ref = resolved_with_reference(load_scenario())
+    return scn, ref, prepare_tables(scn)
 
 
 @pytest.fixture(scope="module")
@@ -157,8 +157,8 @@ def test_basilisk_and_ogk_truth_agree_on_the_scout_injection():
     CPD than LEO-to-GEO): the nominal and runs 0-1 of seed 7 with every dispersion, in Basilisk and
     in ogk's 6-DOF truth: no failure, every injection error within SCOUT_TOLERANCE of the other
     model's, and the dispersed runs are not the nominal flight."""
-    scn = load_scenario(SCOUT)
-    ref, tables = nominal_reference(scn), prepare_tables(scn)
+    scn, ref = resolved_with_reference(load_scenario(SCOUT))
+    tables = prepare_tables(scn)
     nominal = compare(scn, SEED, [0], DispersionSwitches.none(), ref=ref, tables=tables)
     dispersed = compare(scn, SEED, RUNS, DispersionSwitches(), ref=ref, tables=tables)
     for cmp in (nominal, dispersed):

@@ -156,11 +156,28 @@ def test_every_field_of_the_kernel_configs(tmp_path: Path, rng: np.random.Genera
     assert n > 2 * 93
 
 
+def _resolved(bundle: Path) -> Any:
+    """The LEO-to-GEO scenario resolved for the bundle's t_f* (as `ogk tables` resolves it)."""
+    from ogk_host.orbit_injection.derive import resolve
+    from ogk_host.orbit_injection.scenario import load_scenario
+
+    from ogk.missions.orbit_injection.nog_guidance import load_table
+    return resolve(load_scenario(SCENARIO), float(load_table(bundle).t_f_star_s))  # type: ignore[attr-defined]
+
+
+def _sil_configs(bundle: Path) -> Any:
+    """(NogConfig, CpdConfig) as the SIL flies them (flight_config.flight_configs); the NOG config
+    keeps its table alive."""
+    from ogk.missions.orbit_injection.flight_config import flight_configs
+    from ogk.missions.orbit_injection.nog_guidance import load_table
+    return flight_configs(_resolved(bundle), load_table(bundle))
+
+
 def test_nested_structs_arrays_and_pointers(tmp_path: Path, bundle: Path) -> None:
     """A whole initialised CPD context (nested config and output structs, an array, integers) and
     a NOG config with its table pointer set (emitted NULL, "bound at init")."""
-    from ogk.missions.orbit_injection.flight_config import flight_configs
-    _, nog, cpd_cfg = flight_configs(SCENARIO, bundle)
+    nog_cfg, cpd = _sil_configs(bundle)
+    nog, cpd_cfg = nog_cfg.to_c(), cpd.to_c()
     ctx = ffi.new("ogk_cpd_t *")
     assert lib.ogk_cpd_init(ctx, cpd_cfg) == lib.OGK_OK
     ctx.dir_prev_a = [0.25, -0.5, 1.0 / 3.0]
@@ -175,23 +192,23 @@ def test_nested_structs_arrays_and_pointers(tmp_path: Path, bundle: Path) -> Non
 def test_leo_geo_header_is_the_sil_configuration(tmp_path: Path, bundle: Path) -> None:
     """The values of `ogk tables leo-geo` are those the SIL flies: NOG end-game from the scenario,
     tau_freeze = freeze time-to-go / t_f*, CPD with the 50 Hz feed-forward period."""
-    from ogk.missions.orbit_injection.flight_config import flight_configs, write_flight_config
+    from ogk.missions.orbit_injection.flight_config import write_flight_config
     from ogk_host.orbit_injection.scenario import load_scenario
 
     from ogk.missions.orbit_injection import nog_guidance
-    _, nog, cpd = flight_configs(SCENARIO, bundle)
+    nog, cpd = _sil_configs(bundle)
     scn = load_scenario(SCENARIO)
     assert nog.sample_interval_s == scn.sample_interval_s
     freeze = (nog_guidance.freeze_time_to_go_s(scn) if hasattr(nog_guidance, "freeze_time_to_go_s")
               else scn.end_game.freeze_time_to_go_s)
     assert nog.tau_freeze == freeze / nog.table.t_f_star_s
     assert cpd.ff_period_s == 0.02
-    paths = write_flight_config(tmp_path, SCENARIO, bundle)
+    paths = write_flight_config(tmp_path, _resolved(bundle), SCENARIO, bundle)
     text = paths[0].read_text()
     assert f".tau_freeze = {c_double(nog.tau_freeze)}," in text
     assert f".k_dy = {c_double(cpd.k_dy)}," in text
-    _roundtrip(tmp_path, [ConfigItem("ogk_flight_nog_config", nog),
-                          ConfigItem("ogk_flight_cpd_config", cpd)], ("ogk/nog.h", "ogk/cpd.h"))
+    _roundtrip(tmp_path, [ConfigItem("ogk_flight_nog_config", nog.to_c()),
+                          ConfigItem("ogk_flight_cpd_config", cpd.to_c())], ("ogk/nog.h", "ogk/cpd.h"))
 
 
 def test_apophis_header_is_the_mpsp_configuration(tmp_path: Path) -> None:

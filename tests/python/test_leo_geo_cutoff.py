@@ -24,7 +24,7 @@ from ogk_host.orbit_injection.scenario import load_scenario
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs
 from ogk.missions.orbit_injection.guidance import GuidanceSetup
 from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, prepare_tables
-from ogk.missions.orbit_injection.nominal_ref import nominal_reference
+from ogk.missions.orbit_injection.nominal_ref import resolved_with_reference
 from ogk.missions.orbit_injection.sil import EndGamePlan, SilSettings, fly_runs
 
 pytestmark = pytest.mark.req("OGK-NOG-016", "OGK-NOG-018")
@@ -35,18 +35,17 @@ SEED = 424242
 
 @pytest.fixture(scope="module")
 def flown() -> dict[str, dict[str, np.ndarray]]:
-    scn = load_scenario()
-    ref = nominal_reference(scn)
-    bundle = prepare_tables(scn).bundle
+    flown_as_is, ref = resolved_with_reference(load_scenario())
+    bundle = prepare_tables(flown_as_is).bundle
     # "paper": the paper's end-game with the CPD feed-forward clip (0.05 rad/s) and braking margin
     # (0.5) flown before this work, i.e. the loop these six runs failed with; "scenario": everything
     # the scenario flies.
-    before = dataclasses.replace(scn, cpd=dataclasses.replace(
-        scn.cpd, feedforward_rate_max_rad_s=0.05, braking_margin=0.5))
+    before = dataclasses.replace(flown_as_is, cpd=dataclasses.replace(
+        flown_as_is.cpd, feedforward_rate_max_rad_s=0.05, braking_margin=0.5))
     out = {}
     for end_game in ("paper", "scenario"):
         settings = SilSettings(end_game=end_game)
-        scn = before if end_game == "paper" else load_scenario()
+        scn = before if end_game == "paper" else flown_as_is
         plan = EndGamePlan.of(scn, settings)
         draws, gens = draw_runs(scn, SEED, WORST_RUNS, DispersionSwitches())
         guidance = KernelNogGuidance(GuidanceSetup(scn, ref, draws.run_id, plan.fine_interval_s),

@@ -36,7 +36,7 @@ from ogk.missions.orbit_injection import truth as tm
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs
 from ogk.missions.orbit_injection.guidance import GuidanceSetup, NominalOpenLoopGuidance
 from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, prepare_tables
-from ogk.missions.orbit_injection.nominal_ref import nominal_reference
+from ogk.missions.orbit_injection.nominal_ref import nominal_reference, resolved_with_reference
 from ogk.missions.orbit_injection.sil import EndGamePlan, SilSettings, fly_runs
 from ogk_host.orbit_injection import dynamics as dyn
 from ogk_host.orbit_injection.derive import effective_settings
@@ -273,13 +273,13 @@ def test_shaped_window_steers_out_the_radius_and_the_plane(scn) -> None:
     declination not steered), on 6 runs of seed 424242 (used by no tuning), 6-DOF, every dispersion
     of Tables 10-12. Measured when written: max |dr| 0.29 m and |dphi| 1.0e-6 deg shaped, 8.4 m and
     9.6e-5 deg unshaped; max |dv_r|, |dv_n| 0.34, 0.52 m/s shaped."""
-    ref = nominal_reference(scn)
+    as_flown, ref = resolved_with_reference(scn)
     bundle = prepare_tables(scn).bundle
-    unshaped = dataclasses.replace(scn, end_game=dataclasses.replace(
-        scn.end_game, terminal_shape_gain=0.0, terminal_shape_gain_normal=0.0))
+    unshaped = dataclasses.replace(as_flown, end_game=dataclasses.replace(
+        as_flown.end_game, terminal_shape_gain=0.0, terminal_shape_gain_normal=0.0))
     sw = DispersionSwitches()
     errors = {}
-    for name, flown in (("shaped", scn), ("unshaped", unshaped)):
+    for name, flown in (("shaped", as_flown), ("unshaped", unshaped)):
         plan = EndGamePlan.of(flown, SilSettings())
         draws, gens = draw_runs(flown, 424242, list(range(6)), sw)
         guidance = KernelNogGuidance(GuidanceSetup(flown, ref, draws.run_id, plan.fine_interval_s),

@@ -15,10 +15,10 @@ by QEMU's insn_count plugin and the stack of every call measured on the target (
 The engine summarises those keys over the campaign (ogk.sil.target_summary).
 
 The session loop of a family's target job is written once, here: `fly_runs_on_target` flies a chunk
-run by run on one or more sessions (each session takes the chunk's next run when it is free),
-ends each run and hands back the results with their pil.* keys; `fly_sessions` is its lower half
-(sessions started, a family's own loop, sessions ended), for a family that flies its runs in lock
-step over several sessions (orbit injection: a batch of runs under one vectorised truth).
+run by run on one or more sessions (each session takes the chunk's next run when it is free), or,
+given `fly_batch`, in lock step: `sessions` runs at a time, one per session (orbit injection: a
+batch of runs under one vectorised truth); it ends each run and hands back the results with their
+pil.* keys. A family gives only how one run (or one batch) is flown.
 """
 from __future__ import annotations
 
@@ -201,8 +201,8 @@ class PilSession:
 R = TypeVar("R")
 
 
-def fly_sessions(program: FlightProgram, n: int, fly: Callable[[list[PilSession]], R]
-                 ) -> tuple[R, dict[int, dict[str, Any]]]:
+def _fly_sessions(program: FlightProgram, n: int, fly: Callable[[list[PilSession]], R]
+                  ) -> tuple[R, dict[int, dict[str, Any]]]:
     """Starts `n` sessions of `program`, calls `fly(sessions)`, ends them: (fly's result, run id ->
     its pil.* record keys, for every run the sessions ended with `end_run`). Any error kills every
     session's QEMU and propagates."""
@@ -220,22 +220,32 @@ def fly_sessions(program: FlightProgram, n: int, fly: Callable[[list[PilSession]
     return out, keys
 
 
+#: fly_batch(sessions, run_ids, run_seeds) -> one result per run: run i on sessions[i], in lock step
+FlyBatch = Callable[[list[PilSession], list[int], list[int]], Sequence[R]]
+
+
 def fly_runs_on_target(program: FlightProgram, run_ids: Sequence[int], run_seeds: Sequence[int],
-                       fly_run: Callable[[PilSession, int, int], R], sessions: int = 1
+                       fly_run: Callable[[PilSession, int, int], R] | None = None,
+                       sessions: int = 1, *, fly_batch: FlyBatch[R] | None = None
                        ) -> tuple[list[R], dict[int, dict[str, Any]]]:
-    """A chunk's runs on `sessions` QEMUs of `program`: `fly_run(session, run_id, run_seed)` flies
+    """A chunk's runs on `sessions` QEMUs of `program`. `fly_run(session, run_id, run_seed)` flies
     one run on a free session (with one session, in run order in this thread; with more, each in
-    its own thread taking the chunk's next run), then the session ends the run. Returns (the
-    results in run order, run id -> the run's pil.* record keys). An error in any run kills every
-    session's QEMU and propagates."""
+    its own thread taking the chunk's next run); or `fly_batch(sessions, run_ids, run_seeds)` flies
+    the chunk's next `sessions` runs together, run i on session i (lock step: a family whose host
+    side is vectorised over the runs). Each session then ends its run. Returns (the results in run
+    order, run id -> the run's pil.* record keys). An error in any run kills every session's QEMU
+    and propagates."""
     from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 
+    if (fly_run is None) == (fly_batch is None):
+        raise TypeError("fly_runs_on_target: give exactly one of fly_run and fly_batch")
     ids = [int(i) for i in run_ids]
     seeds = [int(s) for s in run_seeds]
     n = max(1, min(int(sessions), len(ids)))
     results: list[Any] = [None] * len(ids)
 
     def fly_one(s: PilSession, k: int) -> None:
+        assert fly_run is not None
         results[k] = fly_run(s, ids[k], seeds[k])
         s.end_run(ids[k])
 
@@ -264,5 +274,17 @@ def fly_runs_on_target(program: FlightProgram, run_ids: Sequence[int], run_seeds
             for f in futures:
                 f.result()
 
-    _, keys = fly_sessions(program, n, in_order if n == 1 else in_threads)
+    def in_lock_step(ss: list[PilSession]) -> None:
+        assert fly_batch is not None
+        for g in range(0, len(ids), len(ss)):
+            batch = range(g, min(g + len(ss), len(ids)))
+            out = list(fly_batch(ss[:len(batch)], ids[g:batch.stop], seeds[g:batch.stop]))
+            if len(out) != len(batch):
+                raise ValueError(f"fly_batch returned {len(out)} results for {len(batch)} runs")
+            for s, k, result in zip(ss, batch, out):
+                results[k] = result
+                s.end_run(ids[k])
+
+    fly = in_lock_step if fly_batch is not None else in_order if n == 1 else in_threads
+    _, keys = _fly_sessions(program, n, fly)
     return results, keys

@@ -20,8 +20,9 @@
   T l0 sin(Delta_c) / I_y0, I_z0. Always derived (the margin is the scenario's setting).
 
 - What scales with the burn (docs/vtd-nog.md, "Derived settings"), from the nominal minimum time
-  t_f* (`resolve(scn, t_f_star_s)`, called wherever the nominal is known: `ogk tables`, the
-  campaign plan, the flight configuration), each the paper's mission's setting as a fraction of
+  t_f* (`resolve(scn, t_f_star_s)`, called once where the scenario is loaded and its nominal
+  known: `ogk tables`, the campaign plan; what flies takes the resolved scenario and only checks
+  it, `require_resolved`), each the paper's mission's setting as a fraction of
   its 105.9 s burn: the |dt_f| clip dtf_max_s = 0.375 t_f* (40 s; the kernel requires <= t_f*/2),
   the fine-sampling window fine_window_s = 0.19 t_f* (20 s) and the terminal window
   terminal_window_s = 0.094 t_f* (10 s; at least terminal_shape_hold_s). The windows are derived

@@ -283,7 +283,7 @@ typedef struct {
     double sens_model[OGK_NMPC_SENS_MODEL]; /* the model of every key (keys all 0, matching no interval, after a change) */
     /* the keep-out along subinterval k's arc, from the same sweep as its sensitivities: per body b the
      * interior RK4 step ends within three keep-out radii (bit j: step j's end), and the arc's violation */
-    uint32_t arc_mask[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_BODIES]; /* [-] */
+    uint32_t arc_mask[OGK_NMPC_MAX_NODES * OGK_OCP_MAX_KEEPOUT]; /* [-] */
     double arc_viol[OGK_NMPC_MAX_NODES * 2u];   /* [LU] sum and largest of max(0, R - d) over the arc's step ends */
     /* exact Hessian: per subinterval k the block sum_i mu_k,i d2F_k,i in (X_k, U_k, U_k+1, T),
      * OGK_NMPC_MAX_DIR square, and the tape of the interval being swept */

@@ -61,7 +61,8 @@ typedef struct {
     ogk_status (*dynamics)(const void *data, uint32_t nu, double t, const double *x, const double *u,
                            const double *trig, double *xdot, double *jx, double *ju, double *jt);
     /* hz (OGK_OCP_NZ square, z = (x, u, t), t at index 5 + nu) = the upper
-     * triangle (row <= column; the rest zero) of the Hessian of kappa . f;
+     * triangle (row <= column) of the Hessian of kappa . f: only its
+     * structural nonzeros written (the caller zeroes hz before every call);
      * called after `dynamics` at the same point succeeded. */
     void (*dynamics_hess)(const void *data, uint32_t nu, double t, const double *x, const double *u,
                           const double *trig, const double *kappa, double *hz);
@@ -73,12 +74,13 @@ typedef struct {
      * derivatives in x_0, x_1 and t. */
     double (*keepout_distance)(const void *data, size_t j, const double *x, double t, double *d_x0,
                                double *d_x1, double *d_t);
-    /* The doubles (at most OGK_OCP_MODEL_KEY, the rest left 0) that define
-     * the dynamics: sensitivities computed under another key are not reused. */
+    /* key (OGK_OCP_MODEL_KEY doubles, every one written: 0 where unused) =
+     * the doubles that define the dynamics: sensitivities computed under
+     * another key are not reused. */
     void (*model_key)(const void *data, double *key);
-    /* True when x is inside the model's domain (a measured state or a plan's
-     * node; e.g. mass > 0). */
-    bool (*state_valid)(const void *data, const double *x);
+    /* True when the n states x[0 .. n) (stride OGK_OCP_NX: a measured state,
+     * or a plan's nodes) are inside the model's domain (e.g. mass > 0). */
+    bool (*state_valid)(const void *data, const double *x, size_t n);
     /* Optional (NULL: none): the problem's own update at each solve or
      * replan from the measured state (t, x), before the SQP; returns the
      * OGK_NMPC_FLAG_* it reports (e.g. a body released). */

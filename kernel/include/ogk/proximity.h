@@ -57,7 +57,9 @@ typedef struct {
 } ogk_prox_t;
 
 /* The problem's callback table (ogk/ocp.h) over an ogk_prox_model_t: for a
- * caller who runs the NMPC directly (ogk_nmpc_init_problem). */
+ * caller who runs the NMPC directly (ogk_nmpc_init_problem), whose data must
+ * then be a validated ogk_prox_model_t (the callbacks convert it back:
+ * docs/misra-deviations.md, D10). */
 extern const ogk_ocp_problem_t ogk_prox_problem;
 
 /* Defaults: the solver's of ogk_nmpc_config_default with the throttled

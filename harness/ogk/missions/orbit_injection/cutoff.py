@@ -12,6 +12,7 @@ from numpy.typing import NDArray
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 from ogk_bindings._ffi import ffi, lib
+from ogk_bindings.cutoff import CutoffConfig
 from ogk_bindings.kernel import KernelError
 
 from .csrc_batch import lib as batch
@@ -20,19 +21,13 @@ F64 = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
 
-def cutoff_config(scn: OrbitInjectionScenario, control_period_s: float) -> object:
+def cutoff_config(scn: OrbitInjectionScenario, control_period_s: float) -> CutoffConfig:
     """ogk_cutoff_config_t: the target orbit's semi-major axis (circular: its radius) and the
     scenario's arm / extend windows."""
-    cfg = ffi.new("ogk_cutoff_config_t *")
-    status = lib.ogk_cutoff_config_default(cfg)
-    if status != lib.OGK_OK:
-        raise KernelError(status, "ogk_cutoff_config_default")
-    cfg.mu_m3_s2 = scn.mu_m3_s2
-    cfg.target_sma_m = scn.target_radius_m
-    cfg.arm_before_s = scn.end_game.arm_s(scn.sample_interval_s)
-    cfg.extend_max_s = scn.end_game.extend_max_s(scn.sample_interval_s)
-    cfg.control_period_s = control_period_s
-    return cfg
+    return CutoffConfig(mu_m3_s2=scn.mu_m3_s2, target_sma_m=scn.target_radius_m,
+                        arm_before_s=scn.end_game.arm_s(scn.sample_interval_s),
+                        extend_max_s=scn.end_game.extend_max_s(scn.sample_interval_s),
+                        control_period_s=control_period_s)
 
 
 class EnergyCutoff:
@@ -42,9 +37,10 @@ class EnergyCutoff:
         self._n = n_runs
         self._ctx = ffi.new("ogk_cutoff_t[]", n_runs)
         status = np.zeros(n_runs, dtype=np.int32)
-        rc = batch.ogk_sil_cutoff_init_batch(self._ctx, n_runs, cutoff_config(scn, control_period_s),
-                                           ffi.from_buffer("int32_t[]", status,
-                                                           require_writable=True))
+        rc = batch.ogk_sil_cutoff_init_batch(self._ctx, n_runs,
+                                             cutoff_config(scn, control_period_s).to_c(),
+                                             ffi.from_buffer("int32_t[]", status,
+                                                             require_writable=True))
         if rc != lib.OGK_OK:
             raise KernelError(rc, "ogk_cutoff_init")
         self.t_cutoff = np.full(n_runs, np.inf)

@@ -12,7 +12,7 @@ import argparse
 import dataclasses
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from ogk_bindings.errors import OgkInputError
@@ -27,7 +27,12 @@ from ogk.sil.pil import FlightProgram
 
 from .flights import CampaignResult, _assemble, _Job, _run_records, campaign_plan
 from .dispersions import DispersionSwitches
+from .guidance import GuidanceFactory
+from .nominal_ref import resolved_with_reference
 from .sil import SilSettings
+
+if TYPE_CHECKING:
+    from .nog_guidance import NogTables
 
 
 @dataclasses.dataclass(frozen=True)
@@ -79,7 +84,6 @@ class OrbitInjectionFamily(FamilyDefaults):
     def plan(self, header: ScenarioHeader, options: Mapping[str, Any]) -> CampaignPlan:
         from .guidance import NominalOpenLoopGuidance
         from .nog_guidance import KernelNogGuidance, prepare_tables
-        from .nominal_ref import nominal_reference
 
         opts = {"no_dispersions": False, "truth": "6dof", "guidance": "nog", "tables": None,
                 "history_runs": 50, "control_rate": 50.0, "truth_substeps": 1, "cpd_gains": None,
@@ -105,20 +109,31 @@ class OrbitInjectionFamily(FamilyDefaults):
                                end_game=("paper" if opts["paper_end_game"]
                                          or opts["guidance"] == "nominal" else "scenario"))
         switches = DispersionSwitches.none() if opts["no_dispersions"] else DispersionSwitches()
-        ref = nominal_reference(scn)
+        history_runs = int(opts.pop("history_runs"))    # what is drawn, not what is flown
+        plan = self.plan_flights(scn, header.path, header.law, settings, switches, factory,
+                                 str(opts["guidance"]), tables, history_runs, opts)
+        if opts.get("target", "host") != "host":
+            self.on_target(plan, str(opts["target"]))
+        return plan
+
+    def plan_flights(self, scn: OrbitInjectionScenario, scenario_path: Path | None, law: str,
+                     settings: SilSettings, switches: DispersionSwitches, guidance: GuidanceFactory,
+                     guidance_name: str, tables: "NogTables | None", history_runs: int = 0,
+                     options: dict[str, Any] | None = None) -> CampaignPlan:
+        """The campaign of `scn` as loaded (resolved here, once, against its nominal) flying
+        `guidance`: what `plan` builds from the command's options, and what a physics test builds
+        with a guidance or an in-memory scenario of its own (tests/python/oi_campaign.py); the
+        engine flies either. `options`: the run key (default: the settings, flights.run_key)."""
+        scn, ref = resolved_with_reference(scn)     # what scales with the burn
         if tables is not None and abs(tables.t_f_star_s - ref.tf_s) > 1e-6 * max(ref.tf_s, 1.0):
             raise OgkInputError(f"tables made for t_f* = {tables.t_f_star_s:.6f} s, the nominal is "
                                 f"{ref.tf_s:.6f} s: regenerate them with `ogk tables`",
                                 path=tables.directory)
-        scn = derive.resolve(scn, ref.tf_s)     # what scales with the burn
         derive.warn_outside_envelope(scn, ref.tf_s)
-        history_runs = int(opts.pop("history_runs"))    # what is drawn, not what is flown
-        plan = campaign_plan(scn, ref, switches, settings, factory, str(opts["guidance"]),
-                             tables, header.path, header.law, opts)
-        plan.base = _Base(scn, _Job(scn, ref, 0, switches, settings, factory), switches, settings,
-                          str(opts["guidance"]), tables, history_runs)
-        if opts.get("target", "host") != "host":
-            self.on_target(plan, str(opts["target"]))
+        plan = campaign_plan(scn, ref, switches, settings, guidance, guidance_name, tables,
+                             scenario_path, law, options)
+        plan.base = _Base(scn, _Job(scn, ref, 0, switches, settings, guidance), switches, settings,
+                          guidance_name, tables, history_runs)
 
         def detail(run_id: int, run_seed: int, plots: Path | None) -> Detail:
             res = self.campaign_result(plan, [], history_ids=np.array([run_id], dtype=np.int64),
@@ -162,11 +177,13 @@ class OrbitInjectionFamily(FamilyDefaults):
         from ogk_host.cgen import write_c_table
 
         from .flight_config import write_flight_config
-        tables = plan.base.tables
+        base: _Base = plan.base
+        tables = base.tables
         image = write_c_table(tables.bundle.read_bytes(), "ogk_nog_bundle", out_dir / "c",
                               plan.scenario_path,
                               note="The PIL flight program's table image (ogk_nog_table_view).")
-        return [*image, *write_flight_config(out_dir, plan.scenario_path, tables.bundle)]
+        return [*image, *write_flight_config(out_dir, base.scenario, plan.scenario_path,
+                                             tables.bundle)]
 
     def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
         """The scenario's flight program for the tables the campaign flies (pil.py)."""

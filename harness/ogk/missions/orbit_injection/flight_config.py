@@ -1,51 +1,44 @@
 """Flight configuration of an orbit-injection scenario as const C (docs/flight-integration.md).
 
-The configs are the cffi structs the SIL itself flies (nog_guidance.nog_config,
-attitude.cpd_config), handed to ogk_host.cgen.write_c_config, so the header cannot drift from the
-SIL's configuration.
+The configs are the typed kernel configurations the SIL itself flies (nog_guidance.nog_config,
+attitude.cpd_config, cutoff.cutoff_config, terminal.terminal_config), handed to
+ogk_host.cgen.write_c_config, so the header cannot drift from the SIL's configuration. The
+scenario comes in loaded and resolved (nominal_ref.resolved_with_reference), the table decoded
+once: nothing here reads the scenario file again (its path is the headers' provenance only).
 """
 from __future__ import annotations
 
 from pathlib import Path
 from typing import Any
 
+from ogk_bindings.cpd import CpdConfig
+from ogk_bindings.nog import NogConfig
+from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
+
 #: Attitude-control rate of the flight configuration (the SIL's default, docs/sil.md).
 CONTROL_RATE_HZ = 50.0
 
 
-def flight_configs(scenario: Path, bundle: Path) -> tuple[Any, Any, Any]:
-    """(ffi, nog_config, cpd_config) as the SIL builds them, from the scenario and the bundle."""
-    from ogk_host.orbit_injection.scenario import load_scenario
-
-    from ogk_bindings._ffi import ffi
+def flight_configs(scn: OrbitInjectionScenario, table: Any) -> tuple[NogConfig, CpdConfig]:
+    """(nog_config, cpd_config) as the SIL builds them, from the resolved scenario and the
+    decoded table (nog_guidance.load_table)."""
     from ogk.missions.orbit_injection.attitude import cpd_config
-    from ogk.missions.orbit_injection.nog_guidance import load_table, nog_config
+    from ogk.missions.orbit_injection.nog_guidance import nog_config
 
-    from ogk_host.orbit_injection.derive import resolve
-    table = load_table(bundle)
-    scn = resolve(load_scenario(scenario), float(table.t_f_star_s))   # type: ignore[attr-defined]
-    nog = nog_config(scn, table)
-    cpd = ffi.new("ogk_cpd_config_t *")
-    for key, value in cpd_config(scn, control_period_s=1.0 / CONTROL_RATE_HZ).items():
-        setattr(cpd, key, value)
-    return ffi, nog, cpd
+    return (nog_config(scn, table),
+            CpdConfig(**cpd_config(scn, control_period_s=1.0 / CONTROL_RATE_HZ)))
 
 
-def end_game_configs(scenario: Path, bundle: Path) -> tuple[list[tuple[str, Any, str]],
-                                                            dict[str, float | int]]:
+def end_game_configs(scn: OrbitInjectionScenario, table: Any) -> tuple[list[tuple[str, Any, str]],
+                                                                       dict[str, float | int]]:
     """The scenario's end-game as the SIL flies it (sil.EndGamePlan at CONTROL_RATE_HZ): NOG with
     the end-game's last sampling interval, the energy cut-off and the terminal stage configurations,
     and the schedule as defines (the PIL flight program, port/cortex-m7/pil/oi_flight.c)."""
-    from ogk_host.orbit_injection.derive import resolve
-    from ogk_host.orbit_injection.scenario import load_scenario
-
     from ogk.missions.orbit_injection.cutoff import cutoff_config
-    from ogk.missions.orbit_injection.nog_guidance import load_table, nog_config
+    from ogk.missions.orbit_injection.nog_guidance import nog_config
     from ogk.missions.orbit_injection.sil import EndGamePlan, SilSettings
     from ogk.missions.orbit_injection.terminal import terminal_config
 
-    table = load_table(bundle)
-    scn = resolve(load_scenario(scenario), float(table.t_f_star_s))   # type: ignore[attr-defined]
     dt = 1.0 / CONTROL_RATE_HZ
     plan = EndGamePlan.of(scn, SilSettings(control_rate_hz=CONTROL_RATE_HZ))
     ticks = round(scn.sample_interval_s / dt)
@@ -66,10 +59,8 @@ def end_game_configs(scenario: Path, bundle: Path) -> tuple[list[tuple[str, Any,
     return items, defines
 
 
-def plant_defines(scenario: Path, t_f_star_s: float) -> dict[str, float]:
+def plant_defines(scn: OrbitInjectionScenario, t_f_star_s: float) -> dict[str, float]:
     """Scenario constants of the flight app's point-mass plant (eqs. 3-6, sec. 6 thrust)."""
-    from ogk_host.orbit_injection.scenario import load_scenario
-    scn = load_scenario(scenario)
     return {"OGK_PLANT_MU_M3_S2": float(scn.mu_m3_s2),
             "OGK_PLANT_N0_M_S2": float(scn.thrust.initial_accel_m_s2),
             "OGK_PLANT_EXHAUST_VELOCITY_M_S": float(scn.thrust.exhaust_velocity_m_s),
@@ -78,22 +69,32 @@ def plant_defines(scenario: Path, t_f_star_s: float) -> dict[str, float]:
             "OGK_PLANT_CONTROL_RATE_HZ": CONTROL_RATE_HZ}
 
 
-def write_flight_config(out: Path, scenario: Path, bundle: Path) -> list[Path]:
+def write_flight_config(out: Path, scn: OrbitInjectionScenario, scenario_path: Path,
+                        bundle: Path) -> list[Path]:
+    """The configuration header and the flight app's plant header of the resolved scenario `scn`
+    (loaded from `scenario_path`, named in the headers' provenance) flying the tables of `bundle`."""
+    from ogk_bindings._ffi import ffi
     from ogk_host.cgen import ConfigItem, write_c_config
-    ffi, nog, cpd = flight_configs(scenario, bundle)
-    end_game, schedule = end_game_configs(scenario, bundle)
+
+    from ogk.missions.orbit_injection.nog_guidance import load_table
+
+    table = load_table(bundle)
+    t_f_star_s = float(table.t_f_star_s)  # type: ignore[attr-defined]
+    nog, cpd = flight_configs(scn, table)
+    end_game, schedule = end_game_configs(scn, table)
+    # cgen walks the C structs (to_c: copies; the configs keep the table they point to alive)
     cfg = write_c_config(
-        ffi, [ConfigItem("ogk_flight_nog_config", nog,
+        ffi, [ConfigItem("ogk_flight_nog_config", nog.to_c(),
                          "VTD-NOG (ogk/nog.h): bind .view (ogk_nog_table_view, in place) or .table (ogk_nog_table_load), then ogk_nog_init"),
-              ConfigItem("ogk_flight_cpd_config", cpd,
+              ConfigItem("ogk_flight_cpd_config", cpd.to_c(),
                          f"CPD (ogk/cpd.h), ff_period_s = the {CONTROL_RATE_HZ:g} Hz control period"),
-              *(ConfigItem(name, value, what) for name, value, what in end_game)],
-        out / "c" / "ogk_orbit_injection_flight_config.h", scenario,
+              *(ConfigItem(name, value.to_c(), what) for name, value, what in end_game)],
+        out / "c" / "ogk_orbit_injection_flight_config.h", scenario_path,
         includes=("ogk/nog.h", "ogk/cpd.h", "ogk/cutoff.h", "ogk/terminal.h"), defines=schedule,
-        note=f"Table: {bundle.name}, t_f* = {float(nog.table.t_f_star_s):.17g} s. The first two fly the "
+        note=f"Table: {bundle.name}, t_f* = {t_f_star_s:.17g} s. The first two fly the "
              "paper's end-game (flightapp); the end-game items and the schedule defines fly the "
              "scenario's (the PIL flight program).")
-    plant = write_c_config(ffi, [], out / "c" / "ogk_sil_plant.h", scenario, includes=(),
-                           defines=plant_defines(scenario, float(nog.table.t_f_star_s)),
+    plant = write_c_config(ffi, [], out / "c" / "ogk_sil_plant.h", scenario_path, includes=(),
+                           defines=plant_defines(scn, t_f_star_s),
                            note="Test-plant constants of the flight app (not flight data).")
     return [cfg, plant]

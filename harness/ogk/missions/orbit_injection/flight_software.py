@@ -12,7 +12,6 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 from .attitude import CpdBatchControl
@@ -28,13 +27,13 @@ F64 = NDArray[np.float64]
 
 class KernelFlightSoftware:
     """sil.FlightComputer for N runs: guidance samples every Delta t_S (and every fine interval
-    near the end), the cut-off and terminal stages of the scenario's end-game, CPD every tick."""
+    near the end), the cut-off and terminal stages of the scenario's end-game, CPD every tick.
+    `scn` is resolved where it was loaded (nominal_ref.resolved_with_reference), as for sil.fly_runs."""
 
     def __init__(self, scn: OrbitInjectionScenario, ref: NominalReference, tables: NogTables,
                  run_ids: NDArray[np.int64], settings: SilSettings = SilSettings()) -> None:
         n = int(np.asarray(run_ids).size)
         ctrl_dt = 1.0 / settings.control_rate_hz
-        scn = derive.resolve(scn, ref.tf_s)   # as sil.fly_runs: what the scenario leaves to t_f*
         self.plan = EndGamePlan.of(scn, settings)
         self.guidance = KernelNogGuidance(
             GuidanceSetup(scn, ref, np.asarray(run_ids, dtype=np.int64),

@@ -23,7 +23,7 @@ from ogk.sil.seeds import run_generator
 from .dispersions import DispersionSwitches, RunDraws
 from .guidance import GuidanceSetup
 from .nog_guidance import KernelNogGuidance
-from .nominal_ref import nominal_reference
+from .nominal_ref import resolved_with_reference
 from .sil import SilSettings, fly_runs
 
 # The offsets of main.c: A none, B +1 sigma of Table 3 on r, phi, v_r, v_t, v_n.
@@ -34,8 +34,7 @@ RUNS = {"A nominal": [0.0] * 6,
 def main(argv: list[str]) -> int:
     table_dir = Path(argv[1]) if len(argv) > 1 else Path("build/tables/leo_geo")
     bundle = next(table_dir.glob("nog_bundle.ogkt"))
-    scn = load_scenario(DEFAULT_SCENARIO_PATH)
-    ref = nominal_reference(scn)
+    scn, ref = resolved_with_reference(load_scenario(DEFAULT_SCENARIO_PATH))
     n = len(RUNS)
     draws = RunDraws(np.arange(n, dtype=np.int64), np.zeros(n, dtype=np.uint64),
                      np.array(list(RUNS.values()), dtype=np.float64), np.zeros((n, 3)),

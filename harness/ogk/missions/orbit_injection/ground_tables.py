@@ -57,7 +57,7 @@ def write_ground_tables(header: ScenarioHeader, args: argparse.Namespace) -> int
         print(f"  wrote {out / entry['file']}  kind {entry['kind']}  dims {entry['dims']}  "
               f"grid {entry['grid_size']}  {entry['bytes']} bytes")
     print(f"  wrote {c_path} and {h_path.name} (flight build: const table image)")
-    for path in write_flight_config(out, header.path, bundle):
+    for path in write_flight_config(out, resolved, header.path, bundle):
         print(f"  wrote {path} (flight build: const configurations)")
     print(f"  wrote {out / 'manifest.json'}")
     return 0

@@ -24,6 +24,7 @@ from ogk_host.orbit_injection import tables as ground_tables
 
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import KernelError
+from ogk_bindings.nog import NogConfig
 
 from .csrc_batch import lib as batch
 from .guidance import GuidanceSetup
@@ -71,21 +72,19 @@ def load_table(bundle: Path) -> object:
     return table
 
 
-def nog_config(scn: OrbitInjectionScenario, table: object, last_interval_s: float | None = None) -> object:
-    """ogk_nog_config_t from the scenario's guidance block (the end-game bounds included).
+def nog_config(scn: OrbitInjectionScenario, table: Any, last_interval_s: float | None = None
+               ) -> NogConfig:
+    """ogk_nog_config_t from the scenario's guidance block (the end-game bounds included), bound
+    to `table` (kept alive by the config). `scn` is resolved (derive.resolve) where it was loaded;
     `last_interval_s`: the sampling interval at the end of the burn, which sets the terminating
     sample of eq. (32) (default: the scenario's Delta t_S, sampled throughout)."""
-    scn = derive.resolve(scn, float(table.t_f_star_s))  # type: ignore[attr-defined]
-    cfg = ffi.new("ogk_nog_config_t *")
-    status = lib.ogk_nog_config_default(cfg)
-    if status != lib.OGK_OK:
-        raise KernelError(status, "ogk_nog_config_default")
-    cfg.table = table
-    cfg.sample_interval_s = scn.sample_interval_s if last_interval_s is None else last_interval_s
-    cfg.dtf_max_s = scn.end_game.dtf_max_s
-    cfg.du_max_rad = scn.end_game.du_max_rad
-    cfg.tau_freeze = derive.effective_settings(scn).tau_freeze(float(table.t_f_star_s))
-    return cfg
+    derive.require_resolved(scn)
+    t_f_star_s = float(table.t_f_star_s)
+    return NogConfig(table=table,
+                     sample_interval_s=(scn.sample_interval_s if last_interval_s is None
+                                        else last_interval_s),
+                     dtf_max_s=scn.end_game.dtf_max_s, du_max_rad=scn.end_game.du_max_rad,
+                     tau_freeze=derive.effective_settings(scn).tau_freeze(t_f_star_s))
 
 
 class KernelNogGuidance:
@@ -99,7 +98,7 @@ class KernelNogGuidance:
         self._cfg = nog_config(setup.scenario, self._table, setup.last_interval_s)
         self._ctx = ffi.new("ogk_nog_t[]", n)
         status = np.zeros(n, dtype=np.int32)
-        rc = batch.ogk_sil_nog_init_batch(self._ctx, n, self._cfg,
+        rc = batch.ogk_sil_nog_init_batch(self._ctx, n, self._cfg.to_c(),
                                         ffi.from_buffer("int32_t[]", status, require_writable=True))
         if rc != lib.OGK_OK:
             raise KernelError(rc, "ogk_nog_init")

@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
+from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection import dynamics as dyn
 from ogk_host.orbit_injection.nominal import Nominal, solve_nominal
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario, load_scenario
@@ -81,6 +82,16 @@ def build_reference(scn: OrbitInjectionScenario, n_grid: int = N_GRID) -> Nomina
 def nominal_reference(scn: OrbitInjectionScenario | None = None) -> NominalReference:
     """Cached `build_reference` (the scenario dataclasses are frozen, hence hashable)."""
     return build_reference(scn if scn is not None else load_scenario())
+
+
+def resolved_with_reference(scn: OrbitInjectionScenario
+                            ) -> tuple[OrbitInjectionScenario, NominalReference]:
+    """(scn with what it leaves to the burn derived from t_f*, its nominal): what every flight of
+    the scenario takes, made once where the scenario is loaded. The end-game settings that scale
+    with the burn (derive.resolve) need the nominal's t_f*; the flight code only checks them
+    (derive.require_resolved)."""
+    ref = nominal_reference(scn)
+    return derive.resolve(scn, ref.tf_s), ref
 
 
 def circular_speed(scn: OrbitInjectionScenario) -> float:

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ogk.sil.pil import FlightProgram, PilSession, fly_sessions
+from ogk.sil.pil import FlightProgram, PilSession, fly_runs_on_target
 from ogk.sil.pil_build import PIL_BUILD, build_program
 from ogk.sil.target_link import TargetLinkError
 
@@ -98,20 +98,16 @@ class TargetJob:
 
         job = self.host_job
 
-        def fly(sessions: list[PilSession]) -> list[dict[str, Any]]:
-            records: list[dict[str, Any]] = []
-            for g in range(0, run_ids.size, len(sessions)):
-                ids, seeds = run_ids[g:g + len(sessions)], run_seeds[g:g + len(sessions)]
-                draws, gens = job.draws(ids, seeds)
-                fc = TargetFlightComputer(sessions[:ids.size])
-                res = fly_runs(job.scenario, job.reference, draws, gens, job.switches,
-                               _NoGuidance(), job.settings, flight_computer=fc)
-                for s, rid in zip(sessions, ids):
-                    s.end_run(int(rid))
-                records += _run_records(draws, res)
-            return records
+        def fly_batch(sessions: list[PilSession], ids: list[int], seeds: list[int]
+                      ) -> list[dict[str, Any]]:
+            """The runs `ids` under one vectorised truth, run i's ticks on sessions[i]."""
+            draws, gens = job.draws(np.array(ids, dtype=np.int64), np.array(seeds, dtype=np.uint64))
+            res = fly_runs(job.scenario, job.reference, draws, gens, job.switches, _NoGuidance(),
+                           job.settings, flight_computer=TargetFlightComputer(sessions))
+            return _run_records(draws, res)
 
-        records, keys = fly_sessions(self.program, min(self.batch, int(run_ids.size)), fly)
+        records, keys = fly_runs_on_target(self.program, run_ids.tolist(), run_seeds.tolist(),
+                                           sessions=self.batch, fly_batch=fly_batch)
         for rec in records:
             rec.update(keys[int(rec["run_id"])])
         return records

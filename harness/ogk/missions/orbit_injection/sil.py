@@ -199,14 +199,12 @@ def fly_runs(scn: OrbitInjectionScenario, ref: NominalReference, draws: RunDraws
              guidance: Guidance, settings: SilSettings = SilSettings(),
              attitude_control: AttitudeControl | None = None,
              flight_computer: FlightComputer | None = None) -> SilResult:
-    """Flies N runs from ignition to engine cut-off (or failure). With `flight_computer` (6-DOF
-    truth) the whole control tick is the flight program's (processor in the loop): guidance,
-    the end-game and CPD are not called here."""
+    """Flies N runs from ignition to engine cut-off (or failure). `scn` is resolved where it was
+    loaded (nominal_ref.resolved_with_reference): the end-game stages refuse a setting left to
+    t_f*. With `flight_computer` (6-DOF truth) the whole control tick is the flight program's
+    (processor in the loop): guidance, the end-game and CPD are not called here."""
     if settings.truth not in TRUTHS:
         raise ValueError(f"truth must be one of {TRUTHS}, got {settings.truth!r}")
-    # what the scenario leaves to the nominal (the terminal stage's turn limit of a shipped scenario;
-    # a scenario that sets everything comes back unchanged): derive.resolve, with this t_f*
-    scn = derive.resolve(scn, ref.tf_s)
     six_dof = settings.truth == "6dof"
     n = draws.n_runs
     if flight_computer is not None and not six_dof:

@@ -13,6 +13,7 @@ from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.kernel import KernelError
+from ogk_bindings.terminal import TerminalConfig
 
 from .csrc_batch import lib as batch
 
@@ -20,23 +21,17 @@ F64 = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
 
-def terminal_config(scn: OrbitInjectionScenario) -> object:
+def terminal_config(scn: OrbitInjectionScenario) -> TerminalConfig:
     """ogk_terminal_config_t of the scenario's circular target orbit and terminal window."""
-    cfg = ffi.new("ogk_terminal_config_t *")
-    status = lib.ogk_terminal_config_default(cfg)
-    if status != lib.OGK_OK:
-        raise KernelError(status, "ogk_terminal_config_default")
-    cfg.mu_m3_s2 = scn.mu_m3_s2
-    cfg.target_radius_m = scn.target_radius_m
     derive.require_resolved(scn, derive.WINDOW_KEYS + (derive.TURN_ACCEL_KEY,))
-    cfg.window_s = scn.end_game.terminal_window_s
-    cfg.shape_gain = scn.end_game.terminal_shape_gain
-    cfg.shape_gain_normal = scn.end_game.terminal_shape_gain_normal
-    cfg.shape_hold_s = scn.end_game.terminal_shape_hold_s
-    cfg.shape_lead_s = scn.end_game.terminal_shape_lead_s
-    # the turn limit (terminal.h): the vehicle's TVC-limited angular acceleration in the window
-    cfg.turn_accel_rad_s2 = scn.end_game.terminal_turn_accel_rad_s2
-    return cfg
+    eg = scn.end_game
+    return TerminalConfig(mu_m3_s2=scn.mu_m3_s2, target_radius_m=scn.target_radius_m,
+                          window_s=eg.terminal_window_s, shape_gain=eg.terminal_shape_gain,
+                          shape_gain_normal=eg.terminal_shape_gain_normal,
+                          shape_hold_s=eg.terminal_shape_hold_s, shape_lead_s=eg.terminal_shape_lead_s,
+                          # the turn limit (terminal.h): the vehicle's TVC-limited angular
+                          # acceleration in the window
+                          turn_accel_rad_s2=eg.terminal_turn_accel_rad_s2)
 
 
 def shape_tilt_bound_rad(scn: OrbitInjectionScenario) -> float | None:
@@ -44,7 +39,7 @@ def shape_tilt_bound_rad(scn: OrbitInjectionScenario) -> float | None:
     limit of ogk/terminal.h, as ogk_terminal_init computes it), or None when it does not bind (no
     shaping, no turn limit, or a bound at OGK_TERMINAL_TILT_MAX_RAD)."""
     ctx = ffi.new("ogk_terminal_t *")
-    status = lib.ogk_terminal_init(ctx, terminal_config(scn))
+    status = lib.ogk_terminal_init(ctx, terminal_config(scn).to_c())
     if status != lib.OGK_OK:
         raise KernelError(status, "ogk_terminal_init")
     return float(ctx.shape_tilt_max_rad) if ctx.tilt_limited else None
@@ -57,7 +52,7 @@ class TerminalSteering:
         self._n = n_runs
         self._ctx = ffi.new("ogk_terminal_t[]", n_runs)
         status = np.zeros(n_runs, dtype=np.int32)
-        rc = batch.ogk_sil_terminal_init_batch(self._ctx, n_runs, terminal_config(scn),
+        rc = batch.ogk_sil_terminal_init_batch(self._ctx, n_runs, terminal_config(scn).to_c(),
                                              ffi.from_buffer("int32_t[]", status,
                                                              require_writable=True))
         if rc != lib.OGK_OK:

@@ -22,7 +22,7 @@ from ogk_host.orbit_injection.scenario import OrbitInjectionScenario, load_scena
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs
 from ogk.missions.orbit_injection.guidance import GuidanceSetup
 from ogk.missions.orbit_injection.nog_guidance import KernelNogGuidance, prepare_tables
-from ogk.missions.orbit_injection.nominal_ref import nominal_reference
+from ogk.missions.orbit_injection.nominal_ref import nominal_reference, resolved_with_reference
 from ogk.missions.orbit_injection.sil import ERROR_KEYS, EndGamePlan, SilSettings, fly_runs
 
 from . import injection
@@ -61,7 +61,8 @@ def compare(scn: OrbitInjectionScenario, seed: int, run_ids: Sequence[int],
             settings: SilSettings = SilSettings(), history_s: float = 0.0,
             ref: Any = None, tables: Any = None) -> Comparison:
     """Flies `run_ids` of campaign `seed` in ogk's 6-DOF truth (one batch, sil.fly_runs) and one
-    by one in Basilisk (injection.fly), with the scenario's tables (generated when missing)."""
+    by one in Basilisk (injection.fly), with the scenario's tables (generated when missing). `scn`
+    is resolved where it was loaded (nominal_ref.resolved_with_reference)."""
     ref = nominal_reference(scn) if ref is None else ref
     tables = prepare_tables(scn) if tables is None else tables
     ids = np.asarray(run_ids, dtype=np.int64)
@@ -98,10 +99,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-dispersions", action="store_true")
     ap.add_argument("--json", help="write the per-run errors of both models here")
     args = ap.parse_args(argv)
-    scn = load_scenario(args.scenario)
+    scn, ref = resolved_with_reference(load_scenario(args.scenario))
     switches = DispersionSwitches.none() if args.no_dispersions else DispersionSwitches()
     cmp = compare(scn, args.seed, range(args.runs), switches,
-                  SilSettings(truth_substeps=args.substeps))
+                  SilSettings(truth_substeps=args.substeps), ref=ref)
     diff = cmp.difference()
     print(f"{scn.name}: seed {args.seed}, {args.runs} runs, dynamics step "
           f"{SilSettings(truth_substeps=args.substeps).truth_step_s * 1e3:g} ms; CPU s: "

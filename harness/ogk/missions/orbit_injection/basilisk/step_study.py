@@ -23,7 +23,7 @@ from ogk_host.orbit_injection.scenario import load_scenario
 
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches
 from ogk.missions.orbit_injection.nog_guidance import prepare_tables
-from ogk.missions.orbit_injection.nominal_ref import nominal_reference
+from ogk.missions.orbit_injection.nominal_ref import resolved_with_reference
 from ogk.missions.orbit_injection.sil import ERROR_KEYS, SilSettings
 
 from .crosscheck import compare
@@ -47,8 +47,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--runs", type=int, default=2)
     args = ap.parse_args(argv)
-    scn = load_scenario(args.scenario)
-    ref, tables = nominal_reference(scn), prepare_tables(scn)
+    scn, ref = resolved_with_reference(load_scenario(args.scenario))
+    tables = prepare_tables(scn)
     cases = [("nominal", DispersionSwitches.none(), [0]),
              (f"seed {args.seed}", DispersionSwitches(), list(range(args.runs)))]
     # flown[case][k] = Comparison at SUBSTEPS[k]
