@@ -1,9 +1,8 @@
 """The proximity approach's guidance: the receding-horizon NMPC as the closed loop sees it.
 
 `KernelGuidance` is the flight code, `ogk_prox_*` (kernel/include/ogk/proximity.h) through the bindings
-`ogk_bindings.proximity` (built on branch prox-kernel); `PeerGuidance` is its ground peer (IPOPT on the
-same transcription, ground_peer.py), the law the family flies until the kernel is merged and the
-reference it is checked against after (`ogk mc --solver ipopt`). Both:
+`ogk_bindings.proximity`; `PeerGuidance` is its ground peer (IPOPT on the same transcription,
+ground_peer.py: `ogk mc --solver ipopt`), the reference the kernel's flights are checked against. Both:
 
 - start from the ground's plan (`ogk_host.proximity.ocp.solve` from the nominal start, loaded as the
   plan: `ogk_prox_load_plan`), then solve from the first measured state (`ogk_prox_solve`);
@@ -211,18 +210,14 @@ class PeerGuidance(_Base):
 
 
 class KernelGuidance(_Base):
-    """`ogk_prox_*` through `ogk_bindings.proximity` (module doc). The adapter written against
-    kernel/include/ogk/proximity.h and the bindings' expected shape (the NMPC's: `ProxConfig(model=...,
-    solver=...)`, `Prox(cfg)`, load_plan, solve, replan, thrust_cmd, plan), before they exist."""
+    """`ogk_prox_*` through `ogk_bindings.proximity` (module doc): the ground's plan loaded, the first
+    call `ogk_prox_solve`, every later one `ogk_prox_replan`, the command `ogk_prox_thrust_cmd`."""
 
     name = "kernel"
 
     def __init__(self, scn: ProximityScenario, first: Plan) -> None:
         super().__init__(scn, first)
-        from ogk_bindings import proximity as prox   # type: ignore[attr-defined]
-        self.prox = prox
-        self.cfg = kernel_config(scn, prox)
-        self.ctx = prox.Prox(self.cfg)
+        self.ctx = kernel_context(scn)
         self.ctx.load_plan(first.t0, first.horizon, first.states, first.controls)
 
     def replan(self, t_s: float, x_si: FloatArray) -> ReplanInfo:
@@ -243,22 +238,23 @@ class KernelGuidance(_Base):
         return math.atan2(cmd.u[1], cmd.u[0]), cmd.throttle
 
 
-def kernel_config(scn: ProximityScenario, prox: Any) -> Any:
-    """ogk_prox_config_t of a scenario (normalised: mean_motion 1; the plans' discs; the solver's
-    transcription, strategy, objective and bounds)."""
+#: the kernel's SQP settings of the flight (beyond ogk_prox_config_default's)
+KERNEL_SETTINGS: dict[str, Any] = {"max_iter": 200, "max_iter_cold": 500}
+
+
+def kernel_context(scn: ProximityScenario) -> Any:
+    """An ogk_prox_t of a scenario (normalised: mean_motion 1; the plans' discs; the transcription,
+    strategy, objective, time weight, sweep bound, horizon bounds and propellant limit)."""
+    from ogk_bindings.nmpc import CNCN, SNNS
+    from ogk_bindings.proximity import ProxModel, Proximity
     pb = peer_problem(scn)
     g = scn.guidance
-    centres = [c for (xc, yc, _) in pb.keepout for c in (xc, yc)]
-    return prox.ProxConfig(
-        model=dict(mean_motion=1.0, thrust_max=pb.thrust, mass_flow_max=pb.thrust / pb.exhaust_velocity,
-                   hold=list(pb.hold), n_keepout=len(pb.keepout), keepout_centre=centres,
-                   keepout_radius=[r for (_, _, r) in pb.keepout]),
-        solver=dict(nodes=g.nodes, rk4_steps=g.rk4_steps,
-                    strategy=prox.CNCN if g.strategy == "cncn" else prox.SNNS,
-                    objective=0 if g.objective == "min-time" else 1, time_weight=pb.time_weight,
-                    max_sweep=pb.max_sweep,
-                    horizon_min=g.min_horizon_s / scn.units.time_s,
-                    horizon_max=scn.horizon_s[1] / scn.units.time_s, mass_min=pb.mass_min))
+    model = ProxModel(thrust_max=pb.thrust, mass_flow_max=pb.thrust / pb.exhaust_velocity, hold=pb.hold,
+                      keepout=list(pb.keepout))
+    return Proximity(model, nodes=g.nodes, rk4_steps=g.rk4_steps, strategy=CNCN if g.strategy == "cncn" else SNNS,
+                     objective=0 if g.objective == "min-time" else 1, time_weight=pb.time_weight,
+                     max_sweep=pb.max_sweep, horizon_min=g.min_horizon_s / scn.units.time_s,
+                     horizon_max=scn.horizon_s[1] / scn.units.time_s, mass_min=pb.mass_min, **KERNEL_SETTINGS)
 
 
 def make_guidance(solver: str, scn: ProximityScenario, first: Plan) -> Guidance:
@@ -269,8 +265,5 @@ def make_guidance(solver: str, scn: ProximityScenario, first: Plan) -> Guidance:
 
 def kernel_available() -> bool:
     """ogk_bindings.proximity is built (branch prox-kernel merged)."""
-    try:
-        from ogk_bindings import proximity  # type: ignore[attr-defined]  # noqa: F401
-    except ImportError:
-        return False
-    return True
+    import importlib.util
+    return importlib.util.find_spec("ogk_bindings.proximity") is not None
