@@ -32,7 +32,8 @@ from ogk_host.scenario_file import ScenarioHeader, file_sha256
 
 from ogk.sil.dispersion_check import scenario_table
 from ogk.sil.engine import Flown
-from ogk.sil.family import CampaignPlan, Detail, FamilyDefaults, Record, per_run
+from ogk.sil.family import CampaignPlan, ChunkFlight, Detail, FamilyDefaults, Record, per_run
+from ogk.sil.pil import FlightProgram
 
 from .dispersions import declared, draw_records, flown
 from .guidance import SOLVERS, Plan, ground_plan, kernel_available
@@ -120,9 +121,6 @@ class ProximityFamily(FamilyDefaults):
         scenario = self.load(header)
         solver = _solver(options)
         perturbed = not bool(options.get("unperturbed"))
-        if options.get("target", "host") != "host":
-            raise OgkInputError(f"the {self.name} family flies on the host only (no flight program yet)",
-                                key="--target")
         first = ground_plan(scenario)
 
         def fly_one(run_id: int, run_seed: int) -> Record:
@@ -143,7 +141,7 @@ class ProximityFamily(FamilyDefaults):
             return Detail(r.record(), files)
 
         acc = scenario.acceptance
-        return CampaignPlan(
+        campaign = CampaignPlan(
             family=self.name, law=header.law, mission=scenario.name, scenario_path=Path(header.path),
             scenario_sha256=file_sha256(header.path),
             options={"solver": solver, "unperturbed": not perturbed},
@@ -154,6 +152,38 @@ class ProximityFamily(FamilyDefaults):
             detail=detail, watchdog_per_run_s=300.0, base=_Base(scenario, first),
             dispersions=declared(scenario, scenario_table(header.path), perturbed),
             draw=lambda ids, seeds: draw_records(flown(scenario.dispersions, perturbed), ids, seeds))
+        if options.get("target", "host") != "host":
+            self.on_target(campaign, str(options["target"]))
+        return campaign
+
+    # ------------------------------------------------------------------ on a target
+    # the replans made by the NMPC flight program on this problem (pil.py); the truth, the noise and
+    # the judging stay on the host
+    targets = ("host", "m7")
+    target_watchdog_per_run_s = 1800.0
+
+    def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
+        """The solver's settings, the problem's data and the ground plan as const C."""
+        from .flight_config import write_flight_config
+        return [write_flight_config(out_dir, plan.scenario_path, plan.base.scenario, plan.base.first)]
+
+    def flight_program(self, plan: CampaignPlan, target: str) -> FlightProgram:
+        from . import pil
+        if plan.options["solver"] != "kernel":
+            raise OgkInputError(f"--target {target} flies the kernel's ogk_prox problem, got "
+                                f"{plan.options['solver']!r}", key="--solver")
+        if target not in self.targets or target == "host":
+            raise OgkInputError(f"one of {', '.join(self.targets[1:])}, got {target!r}", key="--target")
+        return pil.flight_program(plan.scenario_path, lambda out: self.flight_config(plan, out), target)
+
+    def target_job(self, plan: CampaignPlan, program: FlightProgram) -> ChunkFlight:
+        from . import pil
+        return pil.TargetJob(plan.base.scenario, plan.base.first, not bool(plan.options["unperturbed"]),
+                             program, RESULTS)
+
+    def target_bounds(self, plan: CampaignPlan) -> tuple[dict[str, float], str]:
+        from . import pil
+        return pil.target_bounds(plan.base.scenario), pil.BOUNDS_WHY
 
     def report(self, flown_: Flown) -> tuple[str, dict[str, Any]]:
         plan = flown_.plan
