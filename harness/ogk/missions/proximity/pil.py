@@ -44,20 +44,26 @@ ENTRY_POINTS = ("ogk_nmpc_init_problem", "ogk_nmpc_reset", "ogk_nmpc_load_plan",
                 "ogk_nmpc_replan", "ogk_nmpc_get_plan", "ogk_nmpc_command")
 ACTIONS = {0: "fly", 1: "fly_stale", 2: "hold", 3: "no_plan", 4: "reinit", 5: "abort"}
 STEP_TIMEOUT_S = 600.0
-#: host vs target on the same draws: the same C on both sides, the plans crossing the link bit for bit;
-#: newlib's libm (sin, cos, sqrt) is not glibc's, so the solves differ in their last bits and the
-#: closed loop carries that to the end of the flight. The bounds: a tenth of the acceptance box in
-#: position and velocity, a hundredth of the propellant budget, 1 s in t_f (the replan period is tens
-#: of seconds).
+#: Host vs target on the same draws (docs/pil.md, "Host vs target"). The same C on both sides, the plans
+#: crossing the link bit for bit; newlib's libm (sin, cos, sqrt) is not glibc's, so each solve differs in
+#: its last bits and the closed loop carries that to the end of the flight. The flight's end is the last
+#: plan's free final time, which the minimum-fuel objective leaves weakly determined: the host against
+#: itself moves it by up to 33 s over 1-5 ulp moves of the start (the start's y, seed
+#: 2471802329620117774, a run of the first 8-run target campaign), so a target cannot be held tighter
+#: than that: TF_BOUND_S. The other quantities: a tenth of the acceptance box (the host's own ulp spread of
+#: the miss there: 0.22 m of the 5 m box), a hundredth of the propellant budget.
+TF_BOUND_S = 60.0
 BOUNDS_WHY = ("the same C on both sides on the same inputs (the plan crosses the link bit for bit); newlib's libm is "
-              "not glibc's, so each solve differs in its last bits and the closed loop carries that to the end; the "
-              "bounds are a tenth of the acceptance box, a hundredth of the propellant budget and 1 s in t_f")
+              "not glibc's, so each solve differs in its last bits and the closed loop carries that to the end. "
+              "The minimum-fuel plan's free final time is weakly determined: the host itself moves the flight's end "
+              "by up to 33 s over ulp moves of the start, so t_f is held to 60 s; the misses to a tenth of the "
+              "acceptance box (the host's ulp spread: 0.22 m of 5 m), the propellant to a hundredth of the budget")
 
 
 def target_bounds(scn: ProximityScenario) -> dict[str, float]:
     acc = scn.acceptance
     bounds = {"miss_m": 0.1 * acc.hold_position_box_m, "miss_velocity_m_s": 0.1 * acc.hold_velocity_box_m_s,
-              "t_f_s": 1.0, "failed_solves": 0.0}
+              "t_f_s": TF_BOUND_S, "failed_solves": 0.0}
     if acc.propellant_kg:
         bounds["fuel_kg"] = 0.01 * acc.propellant_kg
     return bounds
