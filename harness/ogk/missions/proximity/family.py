@@ -34,7 +34,8 @@ from ogk.sil.dispersion_check import scenario_table
 from ogk.sil.engine import Flown
 from ogk.sil.family import CampaignPlan, Detail, FamilyDefaults, Record, per_run
 
-from .dispersions import declared, draw_records, flown
+from .dispersions import declared, draw_records
+from .dispersions import flown as flown_sigmas
 from .guidance import SOLVERS, Plan, ground_plan, kernel_available
 
 QUANTITIES = ("miss_m", "miss_velocity_m_s", "fuel_kg", "delta_v_m_s", "keepout_clearance_m", "t_f_s",
@@ -153,13 +154,13 @@ class ProximityFamily(FamilyDefaults):
                                 "never inside a keep-out disc", **dataclasses.asdict(acc)},
             detail=detail, watchdog_per_run_s=300.0, base=_Base(scenario, first),
             dispersions=declared(scenario, scenario_table(header.path), perturbed),
-            draw=lambda ids, seeds: draw_records(flown(scenario.dispersions, perturbed), ids, seeds))
+            draw=lambda ids, seeds: draw_records(flown_sigmas(scenario.dispersions, perturbed), ids, seeds))
 
-    def report(self, flown_: Flown) -> tuple[str, dict[str, Any]]:
-        plan = flown_.plan
+    def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
+        plan = flown.plan
         scn: ProximityScenario = plan.base.scenario
         acc = scn.acceptance
-        recs = flown_.records
+        recs = flown.records
         lost = [r for r in recs if r["failure"]]
         ok = [r for r in recs if r.get("completed")]
         worst = max(recs, key=lambda r: badness(acc, r))
@@ -191,15 +192,15 @@ class ProximityFamily(FamilyDefaults):
                  "medians": med}
         return "\n".join(lines), extra
 
-    def plots(self, flown_: Flown, out_dir: Path) -> list[Path]:
+    def plots(self, flown: Flown, out_dir: Path) -> list[Path]:
         from .plots import campaign_figure, write_flight_plots
         from ogk.sil.plots import save
-        scn: ProximityScenario = flown_.plan.base.scenario
+        scn: ProximityScenario = flown.plan.base.scenario
         out_dir.mkdir(parents=True, exist_ok=True)
-        files = [save(campaign_figure(scn, flown_.records, f"{scn.name}: final errors at the hold point"),
+        files = [save(campaign_figure(scn, flown.records, f"{scn.name}: final errors at the hold point"),
                       out_dir / "hold_errors.png")]
-        worst = max(flown_.records, key=lambda r: badness(scn.acceptance, r))
-        detail = flown_.plan.detail
+        worst = max(flown.records, key=lambda r: badness(scn.acceptance, r))
+        detail = flown.plan.detail
         if detail is not None:       # the worst run flown again with its histories
             files += list(detail(int(worst["run_id"]), int(worst["run_seed"]), out_dir).files)
         return files
