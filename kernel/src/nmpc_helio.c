@@ -41,7 +41,7 @@ static uint32_t helio_structure(const void *data, uint32_t nu)
 
 /* eq. (5) with eq. (6): the target on its circular orbit at t_f, at rest in
  * its radial velocity and at the circular speed. */
-static void helio_target(const void *data, double t_f, double *x_target, double *x_target_rate)
+static void helio_target(const void *data, double t_f, double *x_target, double *x_target_rate) /* NOLINT(bugprone-easily-swappable-parameters): the order of ogk/ocp.h's target (state, then its rate); checked by the records and test_nmpc.c */
 {
     const ogk_nmpc_config_t *cfg = helio_cfg(data);
     x_target[0] = cfg->target_radius;
@@ -128,7 +128,7 @@ static bool helio_state_valid(const void *data, const double *x, size_t n)
 
 /* Two-body energy of state x at time t relative to body b, |v - v_b|^2 / 2
  * - mu_b / |r - r_b| [LU^2/TU^2] (>= 0: on an escape orbit from b). */
-static double body_energy(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t, double d)
+static double body_energy(const ogk_nmpc_config_t *cfg, size_t b, const double *x, double t, double d) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (t, then the distance at t); its only caller is helio_update */
 {
     const double phi = cfg->body_phase0[b] + (cfg->body_rate[b] * t);
     const double ct = cos(x[1]);

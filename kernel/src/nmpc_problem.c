@@ -5,7 +5,7 @@
 
 #define NC ((size_t)OGK_NMPC_NC)
 
-void ogk_i_nmpc_terminal(const ogk_i_ocp_t *ocp, const double *x, double t_f, double *c, double *rate)
+void ogk_i_nmpc_terminal(const ogk_i_ocp_t *ocp, const double *x, double t_f, double *c, double *rate) /* NOLINT(bugprone-easily-swappable-parameters): internal, the residual then the target's rate, as nmpc_internal.h; checked by the records and test_nmpc_user_problem.c */
 {
     double x_target[NC];
     double x_rate[NC];

@@ -1,9 +1,28 @@
-/* nmpc_flight.c -- one NMPC replan of the rendezvous flight software (nmpc_flight.h). */
+/* nmpc_flight.c -- one NMPC replan of the rendezvous flight software (nmpc_flight.h), and of any
+ * other problem of the same solver (ogk/ocp.h): a generated configuration that defines
+ * OGK_NMPC_FLIGHT_PROBLEM (the problem's callback table) and ogk_nmpc_flight_model (its data) binds
+ * that problem with ogk_nmpc_init_problem instead of the heliocentric one (the proximity approach:
+ * harness/ogk/missions/proximity/flight_config.py); OGK_NMPC_FLIGHT_PRESOLVE 0 skips minimum fuel's
+ * minimum-time pre-solve of the guesses (the proximity guess is the ground's minimum-fuel plan). */
 #include "nmpc_flight.h"
 
 #include <string.h>
 
 #include "ogk_nmpc_flight_config.h"
+
+#ifndef OGK_NMPC_FLIGHT_PRESOLVE
+#define OGK_NMPC_FLIGHT_PRESOLVE 1
+#endif
+
+/* ctx initialised from cfg on the flight's problem */
+static ogk_status init_context(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg)
+{
+#if defined(OGK_NMPC_FLIGHT_PROBLEM)
+    return ogk_nmpc_init_problem(ctx, cfg, OGK_NMPC_FLIGHT_PROBLEM, &ogk_nmpc_flight_model);
+#else
+    return ogk_nmpc_init(ctx, cfg);
+#endif
+}
 
 #if defined(OGK_PIL_PROBE) && OGK_PIL_PROBE
 #include "ogk_pil.h"
@@ -41,7 +60,7 @@ ogk_nmpc_action ogk_nmpc_flight_init(ogk_nmpc_flight_t *f)
     f->pre_iterations = 0u;
     f->guesses_tried = 0u;
     f->n_guesses = (uint32_t)OGK_NMPC_FLIGHT_N_GUESSES;
-    CALL(f, OGK_NMPC_FL_INIT, ogk_nmpc_init(&f->ctx, &ogk_nmpc_flight_config));
+    CALL(f, OGK_NMPC_FL_INIT, init_context(&f->ctx, &ogk_nmpc_flight_config));
     /* a rejected configuration (OGK_E_CONFIG, NONFINITE): do not start the loop */
     return (f->last[OGK_NMPC_FL_INIT] == OGK_OK) ? OGK_NMPC_FLY : OGK_NMPC_ABORT;
 }
@@ -66,7 +85,7 @@ static void min_fuel_guess(ogk_nmpc_flight_t *f)
     ogk_status st;
     (void)memset(&pre, 0, sizeof pre);
     cfg.objective = OGK_NMPC_MIN_TIME;
-    CALL(f, OGK_NMPC_FL_INIT, ogk_nmpc_init(&f->time_opt, &cfg));
+    CALL(f, OGK_NMPC_FL_INIT, init_context(&f->time_opt, &cfg));
     if (f->last[OGK_NMPC_FL_INIT] != OGK_OK) {
         return;                 /* the time context is refused: solve from the guess itself */
     }
@@ -97,7 +116,7 @@ static void first_replan(ogk_nmpc_flight_t *f)
     f->status = OGK_E_RANGE;
     for (k = 0u; k < (uint32_t)OGK_NMPC_FLIGHT_N_GUESSES; ++k) {
         measured_guess(f, k);
-        if (ogk_nmpc_flight_config.objective != OGK_NMPC_MIN_TIME) {
+        if ((OGK_NMPC_FLIGHT_PRESOLVE != 0) && (ogk_nmpc_flight_config.objective != OGK_NMPC_MIN_TIME)) {
             min_fuel_guess(f);
         }
         f->guesses_tried = k + 1u;
