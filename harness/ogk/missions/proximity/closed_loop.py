@@ -1,5 +1,5 @@
 """The proximity approach's closed loop: the guidance replans from the measured truth state every
-[guidance] replan_period_s, the truth (truth.py) flies its command in between, until the plan has less
+[guidance] replan_period_s (or final_phase_s before the plan's end when that comes first), the truth (truth.py) flies its command in between, until the plan has less
 than [guidance] final_phase_s left: then it is flown to its end, where the flight is judged (the truth's
 state against the hold point at rest), with the keep-out checked on the truth all along.
 
@@ -22,6 +22,9 @@ from .truth import Truth, hill_state
 
 FloatArray = NDArray[np.float64]
 MAX_REPLANS = 200
+#: a plan that ends within final_phase_s + this of the replan is flown to its end (a replan made
+#: final_phase_s before the end may move the end by a rounding)
+FINAL_SLACK_S = 1.0
 
 
 @dataclasses.dataclass
@@ -98,8 +101,10 @@ def fly(scn: ProximityScenario, solver: str, first: Plan, seed: int, perturbed: 
             break
         node_t, _, _ = law.plan_si()
         t_f = float(node_t[-1])
-        final = t_f - t <= g.final_phase_s + 1e-9
-        t_next = t_f if final else t + period
+        final = t_f - t <= g.final_phase_s + FINAL_SLACK_S
+        # the next replan a period on, or final_phase_s before the plan's end if that comes first (so
+        # that the last replan is never later than that)
+        t_next = t_f if final else min(t + period, t_f - g.final_phase_s)
         edges = [t] + [k * period for k in range(int(math.floor(t / period)) + 1,
                                                  int(math.ceil(t_next / period)))] + [t_next]
         for a, b in zip(edges[:-1], edges[1:]):

@@ -4,7 +4,8 @@ second problem (ogk_prox_*, kernel/include/ogk/proximity.h; docs/nmpc-problem.md
 (truth.py). `ogk run` flies it once with its plots; `ogk mc` flies it on dispersed starts, engines and
 thrust-angle noise streams: run i draws from its own stream (ogk.sil.seeds), a new guidance per run, all
 from the same ground plan (ogk_host.proximity.ocp.solve from the nominal start, made when the plan is
-built: its SHA-256 is the campaign's product). No ground tables, no target yet.
+built: its SHA-256 is the campaign's product). No ground tables. On a target (--target m7) every replan
+is the NMPC flight program's, on this problem (pil.py); the truth, the noise and the judging stay on the host.
 
 Laws: --solver kernel (the flight code, through ogk_bindings.proximity: built on branch prox-kernel) or
 --solver ipopt (its ground peer: IPOPT on the same transcription, ground_peer.py).
@@ -35,7 +36,8 @@ from ogk.sil.engine import Flown
 from ogk.sil.family import CampaignPlan, ChunkFlight, Detail, FamilyDefaults, Record, per_run
 from ogk.sil.pil import FlightProgram
 
-from .dispersions import declared, draw_records, flown
+from .dispersions import declared, draw_records
+from .dispersions import flown as flown_sigmas
 from .guidance import SOLVERS, Plan, ground_plan, kernel_available
 
 QUANTITIES = ("miss_m", "miss_velocity_m_s", "fuel_kg", "delta_v_m_s", "keepout_clearance_m", "t_f_s",
@@ -151,7 +153,7 @@ class ProximityFamily(FamilyDefaults):
                                 "never inside a keep-out disc", **dataclasses.asdict(acc)},
             detail=detail, watchdog_per_run_s=300.0, base=_Base(scenario, first),
             dispersions=declared(scenario, scenario_table(header.path), perturbed),
-            draw=lambda ids, seeds: draw_records(flown(scenario.dispersions, perturbed), ids, seeds))
+            draw=lambda ids, seeds: draw_records(flown_sigmas(scenario.dispersions, perturbed), ids, seeds))
         if options.get("target", "host") != "host":
             self.on_target(campaign, str(options["target"]))
         return campaign
@@ -185,11 +187,11 @@ class ProximityFamily(FamilyDefaults):
         from . import pil
         return pil.target_bounds(plan.base.scenario), pil.BOUNDS_WHY
 
-    def report(self, flown_: Flown) -> tuple[str, dict[str, Any]]:
-        plan = flown_.plan
+    def report(self, flown: Flown) -> tuple[str, dict[str, Any]]:
+        plan = flown.plan
         scn: ProximityScenario = plan.base.scenario
         acc = scn.acceptance
-        recs = flown_.records
+        recs = flown.records
         lost = [r for r in recs if r["failure"]]
         ok = [r for r in recs if r.get("completed")]
         worst = max(recs, key=lambda r: badness(acc, r))
@@ -221,15 +223,15 @@ class ProximityFamily(FamilyDefaults):
                  "medians": med}
         return "\n".join(lines), extra
 
-    def plots(self, flown_: Flown, out_dir: Path) -> list[Path]:
+    def plots(self, flown: Flown, out_dir: Path) -> list[Path]:
         from .plots import campaign_figure, write_flight_plots
         from ogk.sil.plots import save
-        scn: ProximityScenario = flown_.plan.base.scenario
+        scn: ProximityScenario = flown.plan.base.scenario
         out_dir.mkdir(parents=True, exist_ok=True)
-        files = [save(campaign_figure(scn, flown_.records, f"{scn.name}: final errors at the hold point"),
+        files = [save(campaign_figure(scn, flown.records, f"{scn.name}: final errors at the hold point"),
                       out_dir / "hold_errors.png")]
-        worst = max(flown_.records, key=lambda r: badness(scn.acceptance, r))
-        detail = flown_.plan.detail
+        worst = max(flown.records, key=lambda r: badness(scn.acceptance, r))
+        detail = flown.plan.detail
         if detail is not None:       # the worst run flown again with its histories
             files += list(detail(int(worst["run_id"]), int(worst["run_seed"]), out_dir).files)
         return files
