@@ -164,12 +164,13 @@ def _c_declaration(ffi: Any, item: ConfigItem) -> str:
 
 
 def write_c_config(ffi: Any, items: list[ConfigItem], out_path: str | Path, scenario: str | Path,
-                   includes: tuple[str, ...], defines: dict[str, float | int] | None = None,
+                   includes: tuple[str, ...], defines: dict[str, float | int | str] | None = None,
                    note: str = "") -> Path:
     """Writes a header holding each item as `static const <type> <symbol> = { .field = ... };`.
 
     `includes` are the kernel headers declaring the types (e.g. "ogk/nog.h"); `defines` adds
-    `#define NAME value` lines (doubles with %.17g) for scalars that are not part of a kernel struct."""
+    `#define NAME value` lines (doubles with %.17g) for scalars that are not part of a kernel struct (a
+    string is a C expression, written as it is: e.g. the address of a kernel object)."""
     out = Path(out_path)
     out.parent.mkdir(parents=True, exist_ok=True)
     scenario = Path(scenario)
@@ -186,7 +187,8 @@ def write_c_config(ffi: Any, items: list[ConfigItem], out_path: str | Path, scen
     parts += [f'#include "{inc}"\n' for inc in includes]
     parts.append("\n")
     for name, value in (defines or {}).items():
-        text = c_double(value) if isinstance(value, float) else f"{int(value)}"
+        text = (value if isinstance(value, str) else c_double(value) if isinstance(value, float)
+                else f"{int(value)}")
         parts.append(f"#define {_identifier(name)} {text}\n")
     if defines:
         parts.append("\n")

@@ -75,7 +75,8 @@ def file_sha256(path: str | Path) -> str:
 
 #: The mission families (one package each in ogk_host and ogk.missions; ogk.missions.registry
 #: maps them to their code, test_scenario_header checks the two lists agree).
-MISSIONS = ("orbit-injection", "low-thrust-transfer", "low-thrust-rendezvous", "binary-asteroid")
+MISSIONS = ("orbit-injection", "low-thrust-transfer", "low-thrust-rendezvous", "binary-asteroid",
+            "proximity-approach")
 
 HEADER_DOC = 'docs/adding-a-mission.md, "The scenario header"'
 

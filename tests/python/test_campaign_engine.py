@@ -44,6 +44,7 @@ FAMILIES = {
     "low-thrust-transfer": ("apophis", {}),
     "low-thrust-rendezvous": ("rendezvous_nep_min_time", {}),
     "binary-asteroid": ("moshup", {"perturbation": [10.0, 40.0]}),
+    "proximity-approach": ("proximity_approach", {}),
     point_mass_family.MISSION: (str(POINT_MASS), {}),
 }
 CLI_OPTIONS = {"binary-asteroid": ["--perturbation", "10", "40"]}

@@ -41,6 +41,7 @@ SHIPPED = {
     "rendezvous_nep_min_time": ({}, 1000, 2),
     "rendezvous_sep_min_fuel": ({}, 1000, 0),
     "moshup": ({}, 600, 2),
+    "proximity_approach": ({}, 1000, 0),
 }
 SEED = 20231
 
@@ -103,6 +104,10 @@ def expected_from_toml(scenario: str | Path) -> dict[str, tuple[str, object]]:
     elif mission == "binary-asteroid":     # level i mod L; xi ~ N(0, sf^2) clipped to [-1, 1]
         out["levels_percent"] = ("cycle", tuple(float(v) for v in disp["levels_percent"]))
         out["sigma_fraction"] = ("clipped", float(disp["sigma_fraction"]))
+    elif mission == "proximity-approach":   # Gaussian sigmas; the start's position, velocity: 2 each
+        for k, v in disp.items():
+            size = 2 if k in ("initial_position_sigma_m", "initial_velocity_sigma_m_s") else None
+            out[k] = ("gaussian", (float(v), size)) if float(v) > 0 else ("constant", (0.0, size))
     elif mission == "low-thrust-transfer":  # uniform within each listed range, kind i mod 3
         k, e = disp["initial.kappa"], disp["thrust.eta_percent"]
         v = np.array(disp["terminal.delta_final_position_LU"], dtype=float)

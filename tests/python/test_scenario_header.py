@@ -22,6 +22,7 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.binary import scenario as binary
 from ogk_host.low_thrust_transfer import scenario as transfer
 from ogk_host.orbit_injection import scenario as injection
+from ogk_host.proximity import scenario as proximity
 from ogk_host.rendezvous import scenario as rendezvous
 from ogk_host.scenario_file import MISSIONS, read_header, read_toml, schema_of
 
@@ -31,7 +32,7 @@ REPO = Path(__file__).resolve().parents[2]
 SCENARIOS = REPO / "scenarios"
 OGK = Path(sys.executable).parent / "ogk"
 LOADERS = {injection.MISSION: injection, transfer.MISSION: transfer, rendezvous.MISSION: rendezvous,
-           binary.MISSION: binary}
+           binary.MISSION: binary, proximity.MISSION: proximity}
 SHIPPED = sorted(SCENARIOS.glob("*.toml"))
 
 

@@ -23,6 +23,7 @@ PACKAGES: dict[str, str] = {
     "low-thrust-transfer": "ogk.missions.low_thrust_transfer.family",
     "low-thrust-rendezvous": "ogk.missions.rendezvous.family",
     "binary-asteroid": "ogk.missions.binary.family",
+    "proximity-approach": "ogk.missions.proximity.family",
 }
 
 

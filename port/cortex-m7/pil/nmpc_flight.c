@@ -14,11 +14,18 @@
 #define OGK_NMPC_FLIGHT_PRESOLVE 1
 #endif
 
+#if defined(OGK_NMPC_FLIGHT_PROBLEM)
+/* the problem's data, bound to the context (ogk/ocp.h: a pointer the context keeps; copied from the
+ * generated const configuration, OGK_NMPC_FLIGHT_MODEL_T its type) */
+static OGK_NMPC_FLIGHT_MODEL_T flight_model;
+#endif
+
 /* ctx initialised from cfg on the flight's problem */
 static ogk_status init_context(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg)
 {
 #if defined(OGK_NMPC_FLIGHT_PROBLEM)
-    return ogk_nmpc_init_problem(ctx, cfg, OGK_NMPC_FLIGHT_PROBLEM, &ogk_nmpc_flight_model);
+    flight_model = ogk_nmpc_flight_model;
+    return ogk_nmpc_init_problem(ctx, cfg, OGK_NMPC_FLIGHT_PROBLEM, &flight_model);
 #else
     return ogk_nmpc_init(ctx, cfg);
 #endif

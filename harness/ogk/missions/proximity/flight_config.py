@@ -1,0 +1,52 @@
+"""Flight configuration of a proximity-approach scenario as const C: what the NMPC flight program
+(port/cortex-m7/pil/nmpc_flight.c, the rendezvous' own) needs to fly the second problem of the same
+solver (ogk/ocp.h), taken from the context the SIL's kernel guidance flies (guidance.kernel_context,
+after ogk_prox_init), so the header cannot drift from the SIL:
+
+- `ogk_nmpc_flight_config`: the solver's ogk_nmpc_config_t as ogk_prox_init bound it;
+- `ogk_nmpc_flight_model`: the problem's data (ogk_prox_model_t), `OGK_NMPC_FLIGHT_PROBLEM` its callback
+  table (`ogk_prox_problem`): the flight software binds them with ogk_nmpc_init_problem;
+- `ogk_nmpc_flight_guesses`: one guess, the ground's plan (guidance.ground_plan) that KernelGuidance
+  loads; the first replan puts the measured time and state in its node 0 and solves from it, which
+  is the SIL's load-then-solve to the bit (the solve re-anchors node 0 and t0 at the measurement);
+- `OGK_NMPC_FLIGHT_PRESOLVE 0`: no minimum-time pre-solve (the ground plan is the minimum-fuel one).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+HEADER = "ogk_nmpc_flight_config.h"
+
+
+def write_flight_config(out: Path, scenario_path: Path, scenario: Any, first: Any) -> Path:
+    """OUT/c/ogk_nmpc_flight_config.h for `scenario` (loaded from scenario_path) with the ground plan
+    `first` (guidance.Plan, normalised)."""
+    from ogk_host.cgen import ConfigItem, write_c_config
+
+    from ogk_bindings._ffi import ffi
+
+    from .guidance import kernel_context
+
+    ctx = kernel_context(scenario)._ctx
+    cfg = ffi.new("ogk_nmpc_config_t *", ctx.nmpc.cfg)
+    model = ffi.new("ogk_prox_model_t *", ctx.model)
+    guesses = ffi.new("ogk_nmpc_plan_t[1]")
+    g = guesses[0]
+    g.t0, g.horizon, g.nodes, g.nu = float(first.t0), float(first.horizon), int(first.nodes), 2
+    for k, v in enumerate(first.states.reshape(-1)):
+        g.x[k] = float(v)
+    for k, v in enumerate(first.controls.reshape(-1)):
+        g.u[k] = float(v)
+    return write_c_config(
+        ffi, [ConfigItem("ogk_nmpc_flight_config", cfg,
+                         "the solver's settings as ogk_prox_init binds them (ogk/nmpc.h; normalised units)"),
+              ConfigItem("ogk_nmpc_flight_model", model,
+                         "the proximity problem's data (ogk/proximity.h): LU = 1 km, TU = 1 / n, MU = m_0"),
+              ConfigItem("ogk_nmpc_flight_guesses", guesses,
+                         "the ground's plan (t0 and node 0 replaced by the measured time and state)")],
+        out / "c" / HEADER, scenario_path, includes=("ogk/nmpc.h", "ogk/proximity.h"),
+        defines={"OGK_NMPC_FLIGHT_N_GUESSES": 1, "OGK_NMPC_FLIGHT_MIN_FUEL_THROTTLE": 1.0,
+                 "OGK_NMPC_FLIGHT_PRESOLVE": 0, "OGK_NMPC_FLIGHT_PROBLEM": "(&ogk_prox_problem)",
+                 "OGK_NMPC_FLIGHT_MODEL_T": "ogk_prox_model_t"},
+        note="the proximity approach on the NMPC flight program (ogk_nmpc_init_problem); 1 guess.")
