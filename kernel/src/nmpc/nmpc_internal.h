@@ -144,9 +144,9 @@ void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu,
                            const double *w, double *hess);
 
 /* The sensitivities kept with their inputs (nmpc_sens_cache.c). reset:
- * every key zeroed (none matches), the model's fields of ctx->cfg kept as
- * the keys' (ctx->sens_model). begin: at the start of an evaluation; reset
- * when the model's fields differ from the keys'.
+ * every key zeroed (none matches) and no model (a NaN). begin: at the start
+ * of an evaluation; when the problem's model key differs from the keys'
+ * (ctx->sens_model), every key zeroed and this model kept.
  * key: interval k's key of plan p (OGK_NMPC_SENS_KEY doubles, the rest 0);
  * returns the doubles that count. hit: slot k's key is these bits. store:
  * slot k's key (its data written by the caller; key NULL: forgotten, 0). drop: the slots moved with

@@ -45,9 +45,10 @@ static void model_fields(const ogk_nmpc_t *ctx, double *out)
 
 void ogk_i_nmpc_cache_reset(ogk_nmpc_t *ctx)
 {
-    /* a key with h = 0 matches no interval (h > 0) */
+    /* a key with h = 0 matches no interval (h > 0); no model yet: a NaN equals nothing, so the first
+     * evaluation's cache_begin stores the problem's (init and reset need not compute it) */
     (void)memset(ctx->sens_key, 0, sizeof(ctx->sens_key));
-    model_fields(ctx, ctx->sens_model);
+    ctx->sens_model[0] = (double)NAN;
 }
 
 void ogk_i_nmpc_cache_begin(ogk_nmpc_t *ctx)
@@ -55,7 +56,9 @@ void ogk_i_nmpc_cache_begin(ogk_nmpc_t *ctx)
     double model[OGK_NMPC_SENS_MODEL];
     model_fields(ctx, model);
     if (!same_bits(model, ctx->sens_model, MODEL)) {
-        ogk_i_nmpc_cache_reset(ctx);
+        /* another model (or none yet): every key forgotten, this model's kept */
+        (void)memset(ctx->sens_key, 0, sizeof(ctx->sens_key));
+        (void)memcpy(ctx->sens_model, model, sizeof(model));
     }
 }
 
