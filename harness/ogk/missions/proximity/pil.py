@@ -47,17 +47,19 @@ STEP_TIMEOUT_S = 600.0
 #: Host vs target on the same draws (docs/pil.md, "Host vs target"). The same C on both sides, the plans
 #: crossing the link bit for bit; newlib's libm (sin, cos, sqrt) is not glibc's, so each solve differs in
 #: its last bits and the closed loop carries that to the end of the flight. The flight's end is the last
-#: plan's free final time, which the minimum-fuel objective leaves weakly determined: the host against
-#: itself moves it by up to 33 s over 1-5 ulp moves of the start (the start's y, seed
-#: 2471802329620117774, a run of the first 8-run target campaign), so a target cannot be held tighter
-#: than that: TF_BOUND_S. The other quantities: a tenth of the acceptance box (the host's own ulp spread of
-#: the miss there: 0.22 m of the 5 m box), a hundredth of the propellant budget.
-TF_BOUND_S = 60.0
+#: plan's free final time, which this law leaves weakly determined: the host against itself moves it by
+#: up to 159 s, and the propellant by 4.7 g, over 1-5 ulp moves of the start (the start's y, run seed
+#: 6554349508805164480). That is a defect of the law, not a bound to keep (docs/notes/session-16.md,
+#: section 7: the fix, a fixed final time and a mass unit that makes J of order 1, is on branch
+#: prox-ulp and needs the flight program to keep the final time too); until it is merged a target
+#: cannot be held tighter than the host against itself: TF_BOUND_S. The misses: a tenth of the
+#: acceptance box; the propellant: a hundredth of the budget.
+TF_BOUND_S = 200.0
 BOUNDS_WHY = ("the same C on both sides on the same inputs (the plan crosses the link bit for bit); newlib's libm is "
               "not glibc's, so each solve differs in its last bits and the closed loop carries that to the end. "
-              "The minimum-fuel plan's free final time is weakly determined: the host itself moves the flight's end "
-              "by up to 33 s over ulp moves of the start, so t_f is held to 60 s; the misses to a tenth of the "
-              "acceptance box (the host's ulp spread: 0.22 m of 5 m), the propellant to a hundredth of the budget")
+              "This law's free final time is weakly determined: the host itself moves the flight's end by up to "
+              "159 s over ulp moves of the start (a known defect, session 16's note), so t_f is held to 200 s; the "
+              "misses to a tenth of the acceptance box, the propellant to a hundredth of the budget")
 
 
 def target_bounds(scn: ProximityScenario) -> dict[str, float]:
