@@ -144,7 +144,7 @@ void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu,
                            const double *w, double *hess);
 
 /* The sensitivities kept with their inputs (nmpc_sens_cache.c). reset:
- * every key zeroed (none matches) and no model (a NaN). begin: at the start
+ * every key zeroed (none matches) and the keys' model zeroed. begin: at the start
  * of an evaluation; when the problem's model key differs from the keys'
  * (ctx->sens_model), every key zeroed and this model kept.
  * key: interval k's key of plan p (OGK_NMPC_SENS_KEY doubles, the rest 0);

@@ -45,10 +45,11 @@ static void model_fields(const ogk_nmpc_t *ctx, double *out)
 
 void ogk_i_nmpc_cache_reset(ogk_nmpc_t *ctx)
 {
-    /* a key with h = 0 matches no interval (h > 0); no model yet: a NaN equals nothing, so the first
-     * evaluation's cache_begin stores the problem's (init and reset need not compute it) */
+    /* a key with h = 0 matches no interval (h > 0), so the model the keys are kept for does not matter
+     * until one is stored: it is zeroed (defined), and the first evaluation's cache_begin stores the
+     * problem's when it differs (init and reset need not compute it) */
     (void)memset(ctx->sens_key, 0, sizeof(ctx->sens_key));
-    ctx->sens_model[0] = (double)NAN;
+    (void)memset(ctx->sens_model, 0, sizeof(ctx->sens_model));
 }
 
 void ogk_i_nmpc_cache_begin(ogk_nmpc_t *ctx)
