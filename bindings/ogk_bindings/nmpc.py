@@ -15,6 +15,7 @@ the SQP fails (``rep.status`` names why, the previous plan stays flown); bad inp
 from __future__ import annotations
 
 import dataclasses
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -25,7 +26,7 @@ from ogk_bindings.kernel import ThrustCmd, _check, _thrust_cmd_call, status_name
 
 F64 = NDArray[np.float64]
 
-__all__ = ["CNCN", "SNNS", "MAX_NODES", "Nmpc", "NmpcConfig", "NmpcReport", "NmpcPlan"]
+__all__ = ["CNCN", "SNNS", "MAX_NODES", "Nmpc", "NmpcConfig", "NmpcReport", "NmpcPlan", "plan_cdata", "plan_of"]
 
 NX: int = int(lib.OGK_NMPC_NX)
 MAX_NODES: int = int(lib.OGK_NMPC_MAX_NODES)
@@ -77,6 +78,33 @@ class NmpcReport:
         return bool(self.flags & FLAG_SUBDIVIDED)
 
 
+def plan_cdata(t0: float, horizon: float, x: NDArray[np.float64], u: NDArray[np.float64],
+               multipliers: ArrayLike | None = None) -> object:
+    """An ogk_nmpc_plan_t of node states x (N + 1, NX) and controls u (N + 1, nu), checked by the caller
+    (shared by every problem's bindings: ogk_bindings.proximity too)."""
+    plan = ffi.new("ogk_nmpc_plan_t *")
+    plan.t0 = float(t0)
+    plan.horizon = float(horizon)
+    plan.nodes = x.shape[0] - 1
+    plan.nu = u.shape[1]
+    ffi.memmove(plan.x, x.tobytes(), x.nbytes)
+    ffi.memmove(plan.u, u.tobytes(), u.nbytes)
+    if multipliers is not None:
+        lam = np.ascontiguousarray(multipliers, dtype=np.float64)
+        ffi.memmove(getattr(plan, "lambda"), lam.tobytes(), lam.nbytes)
+    return plan
+
+
+def plan_of(p: object) -> NmpcPlan:
+    """The NmpcPlan of an ogk_nmpc_plan_t."""
+    c: Any = p
+    n, nu = int(c.nodes), int(c.nu)
+    x = np.frombuffer(ffi.buffer(c.x), dtype=np.float64)[: (n + 1) * NX].reshape(n + 1, NX).copy()
+    u = np.frombuffer(ffi.buffer(c.u), dtype=np.float64)[: (n + 1) * nu].reshape(n + 1, nu).copy()
+    lam = np.array([getattr(c, "lambda")[i] for i in range(4)])
+    return NmpcPlan(t0=float(c.t0), horizon=float(c.horizon), states=x, controls=u, multipliers=lam)
+
+
 class Nmpc:
     """One ogk_nmpc_t context (owned by Python; ~230 KiB with the default limits)."""
 
@@ -98,26 +126,12 @@ class Nmpc:
         n = x.shape[0] - 1
         if x.ndim != 2 or x.shape[1] != NX or not 1 <= n <= MAX_NODES:
             raise ValueError(f"states must be (N + 1, {NX}) with 1 <= N <= {MAX_NODES}, got {x.shape}")
-        plan = ffi.new("ogk_nmpc_plan_t *")
-        plan.t0 = float(t0)
-        plan.horizon = float(horizon)
-        plan.nodes = n
-        plan.nu = u.shape[1]
-        ffi.memmove(plan.x, x.tobytes(), x.nbytes)
-        ffi.memmove(plan.u, u.tobytes(), u.nbytes)
-        if multipliers is not None:
-            lam = np.ascontiguousarray(multipliers, dtype=np.float64)
-            ffi.memmove(getattr(plan, "lambda"), lam.tobytes(), lam.nbytes)
-        _check(lib.ogk_nmpc_load_plan(self._ctx, plan), "ogk_nmpc_load_plan")
+        _check(lib.ogk_nmpc_load_plan(self._ctx, plan_cdata(t0, horizon, x, u, multipliers)), "ogk_nmpc_load_plan")
 
     def plan(self) -> NmpcPlan:
         p = ffi.new("ogk_nmpc_plan_t *")
         _check(lib.ogk_nmpc_get_plan(self._ctx, p), "ogk_nmpc_get_plan")
-        n, nu = int(p.nodes), int(p.nu)
-        x = np.frombuffer(ffi.buffer(p.x), dtype=np.float64)[: (n + 1) * NX].reshape(n + 1, NX).copy()
-        u = np.frombuffer(ffi.buffer(p.u), dtype=np.float64)[: (n + 1) * nu].reshape(n + 1, nu).copy()
-        lam = np.array([getattr(p, "lambda")[i] for i in range(4)])
-        return NmpcPlan(t0=float(p.t0), horizon=float(p.horizon), states=x, controls=u, multipliers=lam)
+        return plan_of(p)
 
     def _call(self, fn: str, t: float, x: ArrayLike) -> NmpcReport:
         self._in.t = float(t)

@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.config import KernelConfig
 from ogk_bindings.kernel import ThrustCmd, _check, _thrust_cmd_call, status_name
-from ogk_bindings.nmpc import NmpcPlan, NmpcReport
+from ogk_bindings.nmpc import NmpcPlan, NmpcReport, plan_cdata, plan_of
 
 __all__ = ["MAX_KEEPOUT", "ProxConfig", "ProxModel", "Proximity"]
 
@@ -96,26 +96,12 @@ class Proximity:
         if x.ndim != 2 or x.shape[1] != NX or not 1 <= n <= MAX_NODES or u.shape != (n + 1, NU):
             raise ValueError(f"states (N + 1, {NX}) and controls (N + 1, {NU}) with 1 <= N <= {MAX_NODES}, "
                              f"got {x.shape} and {u.shape}")
-        plan = ffi.new("ogk_nmpc_plan_t *")
-        plan.t0 = float(t0)
-        plan.horizon = float(horizon)
-        plan.nodes = n
-        plan.nu = NU
-        ffi.memmove(plan.x, x.tobytes(), x.nbytes)
-        ffi.memmove(plan.u, u.tobytes(), u.nbytes)
-        if multipliers is not None:
-            lam = np.ascontiguousarray(multipliers, dtype=np.float64)
-            ffi.memmove(getattr(plan, "lambda"), lam.tobytes(), lam.nbytes)
-        _check(lib.ogk_prox_load_plan(self._ctx, plan), "ogk_prox_load_plan")
+        _check(lib.ogk_prox_load_plan(self._ctx, plan_cdata(t0, horizon, x, u, multipliers)), "ogk_prox_load_plan")
 
     def plan(self) -> NmpcPlan:
         p = ffi.new("ogk_nmpc_plan_t *")
         _check(lib.ogk_prox_get_plan(self._ctx, p), "ogk_prox_get_plan")
-        n, nu = int(p.nodes), int(p.nu)
-        x = np.frombuffer(ffi.buffer(p.x), dtype=np.float64)[: (n + 1) * NX].reshape(n + 1, NX).copy()
-        u = np.frombuffer(ffi.buffer(p.u), dtype=np.float64)[: (n + 1) * nu].reshape(n + 1, nu).copy()
-        lam = np.array([getattr(p, "lambda")[i] for i in range(4)])
-        return NmpcPlan(t0=float(p.t0), horizon=float(p.horizon), states=x, controls=u, multipliers=lam)
+        return plan_of(p)
 
     def _call(self, fn: str, t: float, x: ArrayLike) -> NmpcReport:
         self._in.t = float(t)

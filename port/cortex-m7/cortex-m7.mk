@@ -152,5 +152,5 @@ $(ARM_CG)/%.ci: kernel/src/%.c $(KHDR) | apt
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_KFLAGS) $(KINC) $(KSRC_INC) -fcallgraph-info=su -dumpdir $(@D)/ -dumpbase $(notdir $*) -c $< -o $(ARM_CG)/$*.o
 .PHONY: arm-stack
-arm-stack: $(ARM_CI)
-	python3 port/cortex-m7/stack_report.py $(ARM_CI)
+arm-stack: $(ARM_CI) $(ARM_KOBJ)
+	python3 port/cortex-m7/stack_report.py --objdump arm-none-eabi-objdump --objects $(ARM_KOBJ) -- $(ARM_CI)

@@ -6,16 +6,22 @@ format: nodes with their frame size, edges caller -> callee). Prints, for every 
 own frame and the deepest path through the kernel's call graph. Exits 1 if the graph has a cycle
 (recursion is forbidden in kernel/) or a frame is dynamic or bounded rather than static. Calls leaving
 the graph (libm, libc) are listed with zero cost: they are outside the kernel's control and small on
-newlib; calls through function pointers (the RK4 right-hand side and switching function) add the
-callback's own stack, which the caller supplies.
+newlib. A call through a function pointer (gcc's `__indirect_call`) may reach any kernel function whose
+address the kernel's objects take (port/profile/address_taken.py: the NMPC problems' callback tables, the
+MPSP right-hand sides): it costs the deepest of them, so the bound holds for the kernel's own problems; a
+caller's own callback (an RK4 problem, an ogk/ocp.h problem of its own) adds its stack, which the caller
+supplies.
 
-Usage: stack_report.py CI_FILE...
+Usage: stack_report.py [--objdump OBJDUMP --objects OBJ...] -- CI_FILE...
 """
 from __future__ import annotations
 
 import re
 import sys
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "profile"))
+from address_taken import address_taken  # noqa: E402
 
 NODE = re.compile(r'node: \{ title: "([^"]+)" label: "([^"]*)"(.*)\}')
 EDGE = re.compile(r'edge: \{ sourcename: "([^"]+)" targetname: "([^"]+)"')
@@ -46,8 +52,28 @@ def resolve(name: str, frames: dict[str, tuple[int, str]]) -> str | None:
     return None
 
 
+def indirect_targets(frames: dict[str, tuple[int, str]], taken: set[str]) -> set[str]:
+    """The graph's nodes (static functions carry a file prefix) whose function's address is taken."""
+    return {n for n in frames if n.split(":")[-1] in taken}
+
+
 def main(argv: list[str]) -> int:
-    frames, edges = parse([Path(p) for p in argv[1:]])
+    objdump, objects, ci = "", [], []
+    args = argv[1:]
+    if "--" in args:
+        opts, ci = args[:args.index("--")], args[args.index("--") + 1:]
+        objdump = opts[opts.index("--objdump") + 1]
+        objects = [Path(o) for o in opts[opts.index("--objects") + 1:]]
+    else:
+        ci = args
+    frames, edges = parse([Path(p) for p in ci])
+    if objects:
+        # every call through a pointer may reach every address-taken kernel function
+        targets = indirect_targets(frames, address_taken(objdump, objects))
+        for node, callees in edges.items():
+            if "__indirect_call" in callees:
+                callees.discard("__indirect_call")
+                callees.update(t for t in targets if t != node)
     problems = [f"{n}: {kind} frame" for n, (_, kind) in frames.items() if kind != "static"]
     external: set[str] = set()
     # Iterative DFS with colours: finds cycles and computes the deepest stack below each node.
