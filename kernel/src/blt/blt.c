@@ -3,9 +3,9 @@
  * (Levenberg-Marquardt on the same minimum-norm problem), evaluation and the thrust command.
  * Design notes: docs/blt.md. */
 #include "blt_internal.h"
-#include "newton_internal.h"
+#include "../newton_internal.h"
 #include "ogk/internal/blt_test.h"
-#include "thrust_cmd_internal.h"
+#include "../thrust_cmd_internal.h"
 
 #include <math.h>
 #include <string.h>

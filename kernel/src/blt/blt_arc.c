@@ -2,7 +2,7 @@
  * segments forward and backward with impact detection, the arcs' errors at their meeting points
  * (eqs. 65 and 70) and, optionally, their sensitivities by the variational equations. */
 #include "blt_internal.h"
-#include "rk4_internal.h"
+#include "../rk4_internal.h"
 
 #include <float.h>
 #include <math.h>

@@ -9,7 +9,7 @@
 #include <stdint.h>
 
 #include "ogk/blt.h"
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 /* the linear algebra of the corrector must hold the error vector */
 #if OGK_BLT_MAX_ERRORS > OGK_LA_MAX_N

@@ -7,8 +7,8 @@
 #include <string.h>
 
 #include "ogk/mathutil.h"
-#include "ogk_checks.h"
-#include "thrust_cmd_internal.h"
+#include "../ogk_checks.h"
+#include "../thrust_cmd_internal.h"
 
 /* true for a frame of ogk_frame_t. */
 static bool frame_known(ogk_frame_t frame)

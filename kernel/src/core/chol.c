@@ -1,8 +1,8 @@
 /* chol.c -- the kernel's one Cholesky factorisation (chol_internal.h): the
  * QP's blocked right-looking form, which every user shares (docs/qp.md,
  * "Cost"; docs/linalg.md). */
-#include "chol_internal.h"
-#include "ogk_checks.h"
+#include "../chol_internal.h"
+#include "../ogk_checks.h"
 
 #include <math.h>
 #include <stddef.h>

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdbool.h>
 
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 /* Bisection steps that locate an interval in any grid a size_t can index. */
 #define OGK_INTERP_MAX_SEARCH 64u

@@ -12,7 +12,7 @@
  *   minnorm A^T = Q R,  z = R^-T b,  x = Q [z; 0]         (Sec. 5.6)
  * Design note with thresholds, error codes and stack use: docs/linalg.md. */
 #include "ogk/linalg.h"
-#include "chol_internal.h"
+#include "../chol_internal.h"
 
 #include <float.h>
 #include <math.h>

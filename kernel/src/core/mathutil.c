@@ -3,7 +3,7 @@
 
 #include <math.h>
 
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 ogk_status ogk_wrap_pi(double angle, double *wrapped)
 {

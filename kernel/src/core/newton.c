@@ -1,6 +1,6 @@
 /* newton.c -- the damped minimum-norm Newton step of the MPSP and BLT
  * correctors (newton_internal.h). */
-#include "newton_internal.h"
+#include "../newton_internal.h"
 
 #include <math.h>
 #include <string.h>

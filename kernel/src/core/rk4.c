@@ -1,7 +1,7 @@
 /* rk4.c -- fixed-step classical RK4 with switching detection by bisection. */
 #include "ogk/rk4.h"
-#include "ogk_checks.h"
-#include "rk4_internal.h"
+#include "../ogk_checks.h"
+#include "../rk4_internal.h"
 
 #include <stdbool.h>
 #include <math.h>

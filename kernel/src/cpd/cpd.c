@@ -10,8 +10,8 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "ogk_checks.h"
-#include "thrust_cmd_internal.h"
+#include "../ogk_checks.h"
+#include "../thrust_cmd_internal.h"
 
 #define CPD_PI OGK_I_PI
 

@@ -3,7 +3,7 @@
  * and the continuation outer loop (Algorithm 2, with the missing `else`
  * restored). Design notes: docs/mpsp.md. */
 #include "mpsp_internal.h"
-#include "newton_internal.h"
+#include "../newton_internal.h"
 
 #include <math.h>
 #include <stddef.h>

@@ -5,7 +5,7 @@
  * -O2 carries the pair in SSE2 registers). Derivation and costs: docs/mpsp.md,
  * sections 3 and 8. */
 #include "mpsp_internal.h"
-#include "rk4_internal.h"
+#include "../rk4_internal.h"
 
 #include <string.h>
 

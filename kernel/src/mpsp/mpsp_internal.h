@@ -6,7 +6,7 @@
 #include <stddef.h>
 #include "ogk/mpsp.h"
 #include "ogk/rk4.h"
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 /* Compile-time checks of the limits against the solvers used (all plain
  * integer constants, so the preprocessor evaluates them). */

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "ogk/interp.h"
-#include "thrust_cmd_internal.h"
+#include "../thrust_cmd_internal.h"
 
 #define NX OGK_MPSP_NX
 

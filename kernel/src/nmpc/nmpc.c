@@ -9,8 +9,8 @@
 #include "nmpc_internal.h"
 #include "ogk/internal/nmpc_test.h"
 #include "ogk/types.h"
-#include "ogk_checks.h"
-#include "thrust_cmd_internal.h"
+#include "../ogk_checks.h"
+#include "../thrust_cmd_internal.h"
 
 #define NX OGK_NMPC_NX
 

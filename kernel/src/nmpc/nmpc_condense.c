@@ -11,7 +11,7 @@
 
 #include <string.h>
 
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 #define NX ((size_t)OGK_NMPC_NX)
 #define NC ((size_t)OGK_NMPC_NC)

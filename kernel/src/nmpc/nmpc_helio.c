@@ -10,7 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 static const ogk_nmpc_config_t *helio_cfg(const void *data)
 {

@@ -13,8 +13,8 @@
  * rho b), then shifted (H + delta I) when still not positive definite, and
  * *shifted says so (the SQP then takes the scaled identity instead). */
 #include "nmpc_internal.h"
-#include "chol_internal.h"
-#include "ogk_checks.h"
+#include "../chol_internal.h"
+#include "../ogk_checks.h"
 
 #include <math.h>
 #include <string.h>

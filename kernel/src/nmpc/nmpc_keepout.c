@@ -5,7 +5,7 @@
  * the target), its violation in the filter's measure and its linearised
  * rows in the condensed QP. */
 #include "nmpc_internal.h"
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 #include <math.h>
 

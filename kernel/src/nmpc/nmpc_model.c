@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 /* T_max(r) and mdot_max(r) with their derivatives in r. */
 typedef struct {

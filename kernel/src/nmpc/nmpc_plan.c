@@ -4,7 +4,7 @@
  * node count by interpolation (CNCN), and subdividing every subinterval in
  * two (the SNNS doubling). */
 #include "nmpc_internal.h"
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 #include <string.h>
 

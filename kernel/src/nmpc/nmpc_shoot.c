@@ -6,8 +6,8 @@
  * map it constrains; with a tape, the forward sweep records what the
  * second-order adjoint sweep (nmpc_shoot_hess.c) reads back. */
 #include "nmpc_internal.h"
-#include "rk4_internal.h"
-#include "ogk_checks.h"
+#include "../rk4_internal.h"
+#include "../ogk_checks.h"
 
 #include <math.h>
 #include <stdbool.h>

@@ -18,7 +18,7 @@
  * + sum_j ybar_j, lambda_M = w. Checked against central differences of
  * w . dF/dp (test_nmpc.c). */
 #include "nmpc_internal.h"
-#include "rk4_internal.h"
+#include "../rk4_internal.h"
 
 #include <stdbool.h>
 #include <string.h>

@@ -28,7 +28,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 #if (OGK_NMPC_MAX_QP > OGK_QP_MAX_N) || (OGK_NMPC_NC > OGK_QP_MAX_EQ) || (OGK_NMPC_MAX_ROWS > OGK_QP_MAX_IN)
 #error "ogk/qp.h limits too small for ogk/nmpc.h (OGK_NMPC_MAX_QP unknowns, OGK_NMPC_MAX_ROWS inequality rows)"

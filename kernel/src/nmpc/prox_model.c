@@ -19,7 +19,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 #define NX ((size_t)OGK_OCP_NX)
 /* OGK_OCP_NZ from its atoms, as a size_t (no composite expression cast) */

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 ogk_status ogk_prox_config_default(ogk_prox_config_t *cfg)
 {

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stddef.h>
 
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 
 #define OGK_CUTOFF_INIT_MARKER 0x43555430u /* "CUT0" */
 

@@ -9,8 +9,8 @@
 #include "ogk/linalg.h"
 #include "ogk/table.h"
 
-#include "ogk_checks.h"
-#include "thrust_cmd_internal.h"
+#include "../ogk_checks.h"
+#include "../thrust_cmd_internal.h"
 
 #define NX OGK_NOG_NX
 #define N_GAIN_ROWS 8u          /* dlam (7) and dt_f */

@@ -4,8 +4,8 @@
 #include <math.h>
 #include <stddef.h>
 
-#include "ogk_checks.h"
-#include "thrust_cmd_internal.h"
+#include "../ogk_checks.h"
+#include "../thrust_cmd_internal.h"
 
 #define OGK_TERMINAL_INIT_MARKER 0x54524d30u /* "TRM0" */
 

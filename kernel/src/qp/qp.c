@@ -31,7 +31,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "ogk_checks.h"
+#include "../ogk_checks.h"
 #include "qp_internal.h"
 
 /* "No constraint" (a constraint number or an active-set position). */

@@ -4,7 +4,7 @@
  * operations in the same order as the one-row loop, so the results are the
  * same to the bit (docs/qp.md, "Cost"). */
 #include "qp_internal.h"
-#include "chol_internal.h"
+#include "../chol_internal.h"
 
 #include <math.h>
 #include <stdbool.h>
