@@ -8,11 +8,15 @@ ground_peer.py: `ogk mc --solver ipopt`), the reference the kernel's flights are
   plan: `ogk_prox_load_plan`), then solve from the first measured state (`ogk_prox_solve`);
 - replan from each measured state (`ogk_prox_replan`: CNCN, N nodes over the remaining horizon; SNNS,
   the nodes shrinking with it), the previous plan flown when a solve fails (stale);
+- with [guidance] fixed_final_time, keep the ground plan's t_f (free on the ground, from the nominal
+  start): each replan's horizon bounds are the remaining time to it (`FIXED_T_F_BAND` wide). The
+  minimum-fuel objective is so flat in T that a replan's free t_f wandered by hundreds of seconds
+  between replans and the flight's end moved with an ulp of the start;
 - command (alpha, w) at t: the plan's controls linear between its nodes (`ogk_prox_thrust_cmd`: the
   r-t-n unit vector (cos alpha, sin alpha, 0) and the throttle, alpha taken back as atan2(u_t, u_r)).
 
 The closed loop speaks SI (s, m, m/s, kg), the laws the normalised units of the scenario (LU = 1 km,
-TU = 1 / n, MU = m_0; t = 0 at the start)."""
+TU = 1 / n, MU = [guidance] mass_unit_kg; t = 0 at the start)."""
 from __future__ import annotations
 
 import bisect
@@ -30,6 +34,9 @@ from .ground_peer import PeerProblem, PeerSolver
 
 FloatArray = NDArray[np.float64]
 SOLVERS = ("kernel", "ipopt")
+#: [guidance] fixed_final_time: a replan's horizon within (1 -/+ this) x the time left to the ground
+#: plan's t_f (the kernel's horizon_max must exceed its horizon_min)
+FIXED_T_F_BAND = 1e-9
 
 
 @dataclasses.dataclass(frozen=True)
@@ -162,6 +169,16 @@ class _Base:
         self.solves = 0
         self.failed_solves = 0
         self.started = False
+        self.t_f_fixed = first.t_f if scn.guidance.fixed_final_time else None
+
+    def _fixed_bounds(self, t: float) -> tuple[float, float] | None:
+        """[guidance] fixed_final_time: the horizon bounds [TU] of a replan at t that keep the ground
+        plan's t_f (None: free)."""
+        if self.t_f_fixed is None:
+            return None
+        h_min = self.scn.guidance.min_horizon_s / self.units.time_s
+        rem = max(self.t_f_fixed - t, h_min)
+        return rem * (1.0 - FIXED_T_F_BAND), rem * (1.0 + FIXED_T_F_BAND)
 
     def command(self, t_s: float) -> tuple[float, float]:
         return self.plan.control(t_s / self.units.time_s)
@@ -202,6 +219,9 @@ class PeerGuidance(_Base):
         x = np.asarray(x_si, dtype=np.float64) / self.scale
         h_min = self.scn.guidance.min_horizon_s / u.time_s
         h_max = max(self.scn.horizon_s[1] / u.time_s - t, h_min * 1.001)
+        fixed = self._fixed_bounds(t)
+        if fixed is not None:
+            h_min, h_max = fixed
         horizon = min(max(self.plan.t_f - t, h_min), h_max)
         nodes = self._nodes(horizon)
         guess = self.plan.resampled(t, x, nodes, horizon)
@@ -232,6 +252,11 @@ class KernelGuidance(_Base):
     def replan(self, t_s: float, x_si: FloatArray) -> ReplanInfo:
         t = t_s / self.units.time_s
         x = np.asarray(x_si, dtype=np.float64) / self.scale
+        fixed = self._fixed_bounds(t)
+        if fixed is not None:
+            # the context's horizon bounds moved in place (validated at init: 0 < min < max)
+            cfg = self.ctx._ctx.nmpc.cfg
+            cfg.horizon_min, cfg.horizon_max = fixed
         start = time.perf_counter()
         rep = self.ctx.replan(t, x) if self.started else self.ctx.solve(t, x)
         elapsed = time.perf_counter() - start
@@ -247,10 +272,12 @@ class KernelGuidance(_Base):
         return math.atan2(cmd.u[1], cmd.u[0]), cmd.throttle
 
 
-#: the kernel's SQP settings of the flight (beyond ogk_prox_config_default's; its tol_obj 1e-7 kept: on
-#: the campaign of seed 424242, tol_obj 1e-10 gave 85 failed solves in 47 of 100 runs and one lost run,
-#: tol_obj 0 with the exact Hessian 16 lost runs, the default none)
-KERNEL_SETTINGS: dict[str, Any] = {"max_iter": 200, "max_iter_cold": 500}
+#: the kernel's SQP settings of the flight (beyond ogk_prox_config_default's). In MU = m_0 (J ~ 6e-4)
+#: tol_obj 1e-7 was a loose 1.6e-4 relative, and 1e-10 gave many failed solves (campaign of seed 424242:
+#: 85 in 47 of 100 runs, one lost run). With [guidance] mass_unit_kg = 0.1 kg (J ~ 1) and the ground
+#: plan's t_f kept, tol_obj 1e-8 (relative now): on 3 run seeds an ulp of the start moves the fuel by
+#: <= 0.07 g of ~23 g (tol_obj 1e-7: up to 1.1 g; 1e-9, 1e-10 or max_iter 400: no better)
+KERNEL_SETTINGS: dict[str, Any] = {"max_iter": 200, "max_iter_cold": 500, "tol_obj": 1e-8}
 
 
 def kernel_context(scn: ProximityScenario) -> Any:
