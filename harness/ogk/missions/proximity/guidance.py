@@ -37,6 +37,9 @@ SOLVERS = ("kernel", "ipopt")
 #: [guidance] fixed_final_time: a replan's horizon within (1 -/+ this) x the time left to the ground
 #: plan's t_f (the kernel's horizon_max must exceed its horizon_min)
 FIXED_T_F_BAND = 1e-9
+#: a failed first solve is retried with T free and the first BFGS matrix this times smaller (longer first
+#: steps; run 81 of the campaign of seed 2026120581: OGK_E_INFEASIBLE with 1, converged with 1e-2)
+RETRY_HESSIAN_INIT = 1e-2
 
 
 @dataclasses.dataclass(frozen=True)
@@ -227,6 +230,15 @@ class PeerGuidance(_Base):
         guess = self.plan.resampled(t, x, nodes, horizon)
         start = time.perf_counter()
         sol = _peer(self.pb, nodes).solve(x, (h_min, h_max), horizon, guess.states, guess.controls)
+        if fixed is not None and not self.started and not sol.converged:
+            # as KernelGuidance: the first solve again with T free, its t_f kept from here on
+            self.solves += 1
+            self.failed_solves += 1
+            h_min = self.scn.guidance.min_horizon_s / u.time_s
+            h_max = max(self.scn.horizon_s[1] / u.time_s - t, h_min * 1.001)
+            sol = _peer(self.pb, nodes).solve(x, (h_min, h_max), horizon, guess.states, guess.controls)
+            if sol.converged:
+                self.t_f_fixed = t + sol.horizon
         elapsed = time.perf_counter() - start
         self.solves += 1
         ok = sol.converged
@@ -248,6 +260,9 @@ class KernelGuidance(_Base):
         super().__init__(scn, first)
         self.ctx = kernel_context(scn)
         self.ctx.load_plan(first.t0, first.horizon, first.states, first.controls)
+        self.first = first
+        cfg = self.ctx._ctx.nmpc.cfg
+        self._free_bounds = (float(cfg.horizon_min), float(cfg.horizon_max))
 
     def replan(self, t_s: float, x_si: FloatArray) -> ReplanInfo:
         t = t_s / self.units.time_s
@@ -259,6 +274,22 @@ class KernelGuidance(_Base):
             cfg.horizon_min, cfg.horizon_max = fixed
         start = time.perf_counter()
         rep = self.ctx.replan(t, x) if self.started else self.ctx.solve(t, x)
+        if fixed is not None and not self.started and not rep.converged:
+            # the first solve with the ground plan's t_f failed (a dispersed start it cannot reach then,
+            # or the QP without T's freedom): solved again from the ground plan with T free, and its t_f
+            # kept from here on
+            self.solves += int(rep.solves)
+            self.failed_solves += 1
+            cfg = self.ctx._ctx.nmpc.cfg
+            cfg.horizon_min, cfg.horizon_max = self._free_bounds
+            h0 = float(cfg.hessian_init)
+            cfg.hessian_init = h0 * RETRY_HESSIAN_INIT
+            first = self.first
+            self.ctx.load_plan(first.t0, first.horizon, first.states, first.controls)
+            rep = self.ctx.solve(t, x)
+            cfg.hessian_init = h0
+            if rep.converged:
+                self.t_f_fixed = self.ctx.plan().t0 + self.ctx.plan().horizon
         elapsed = time.perf_counter() - start
         self.started = True
         self.solves += int(rep.solves)
@@ -275,9 +306,11 @@ class KernelGuidance(_Base):
 #: the kernel's SQP settings of the flight (beyond ogk_prox_config_default's). In MU = m_0 (J ~ 6e-4)
 #: tol_obj 1e-7 was a loose 1.6e-4 relative, and 1e-10 gave many failed solves (campaign of seed 424242:
 #: 85 in 47 of 100 runs, one lost run). With [guidance] mass_unit_kg = 0.1 kg (J ~ 1) and the ground
-#: plan's t_f kept, tol_obj 1e-8 (relative now): on 3 run seeds an ulp of the start moves the fuel by
-#: <= 0.07 g of ~23 g (tol_obj 1e-7: up to 1.1 g; 1e-9, 1e-10 or max_iter 400: no better)
-KERNEL_SETTINGS: dict[str, Any] = {"max_iter": 200, "max_iter_cold": 500, "tol_obj": 1e-8}
+#: plan's t_f kept: tol_obj 1e-8 (relative now; 1e-7 let an ulp of the start move the fuel by 1.1 g of
+#: ~23 g, 1e-9, 1e-10 or max_iter 400 were no better than 1e-8's ~0.07 g); elastic_weight 1.8e6 =
+#: 1000 x m_0 / MU, the elastic slacks' price against J as it was in MU = m_0 (with 1000, run 91 of the
+#: campaign of seed 2026120581 had no first plan)
+KERNEL_SETTINGS: dict[str, Any] = {"max_iter": 200, "max_iter_cold": 500, "tol_obj": 1e-8, "elastic_weight": 1.8e6}
 
 
 def kernel_context(scn: ProximityScenario) -> Any:
