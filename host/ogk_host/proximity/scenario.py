@@ -4,7 +4,10 @@ dataclasses, every bad key one `OgkInputError` line naming the file and the key.
 Everything in the file is SI (m, s, kg, N, rad), in the target's Hill frame: x radial (away from the
 Earth), y along-track, the target on a circular orbit of `[orbit] radius_m` about a point-mass Earth.
 The normalised units the kernel and the ground OCP use (`Units`): LU = 1 km, TU = 1 / n
-(n = sqrt(mu / a^3), the target's mean motion, so n = 1 in the model), MU = the initial mass.
+(n = sqrt(mu / a^3), the target's mean motion, so n = 1 in the model), MU = `[guidance] mass_unit_kg`
+(default the initial mass). The SQP's tolerances are relative to max(|J|, 1) with J in MU: a mass unit
+of the order of the objective (fuel + time weight x T, ~0.1 kg) makes J of order 1, so that they mean
+what they say (in MU = m_0, J ~ 6e-4 and tol_obj 1e-7 was a loose 1.6e-4 relative).
 """
 from __future__ import annotations
 
@@ -27,7 +30,7 @@ LENGTH_UNIT_M = 1000.0        #: LU
 
 @dataclasses.dataclass(frozen=True)
 class Units:
-    """LU = 1 km, TU = 1 / n, MU = m_0."""
+    """LU = 1 km, TU = 1 / n, MU = [guidance] mass_unit_kg (default m_0)."""
 
     length_m: float
     time_s: float
@@ -73,6 +76,8 @@ class Guidance:
     min_horizon_s: float            #: a replan's horizon lower bound
     keepout_margin_m: float         #: the plans' discs are this much larger than the truth's
     max_sweep_rad: float            #: the plans' |alpha_{k+1} - alpha_k| bound (the kernel's max_sweep)
+    mass_unit_kg: float | None = None  #: MU of the laws' normalised units (None: the initial mass)
+    fixed_final_time: bool = False  #: the flight's replans keep the ground plan's t_f (free on the ground)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -118,7 +123,9 @@ class ProximityScenario:
 
     @property
     def units(self) -> Units:
-        return Units(LENGTH_UNIT_M, 1.0 / self.orbit.mean_motion_rad_s, self.vehicle.initial_mass_kg)
+        mu = self.guidance.mass_unit_kg
+        return Units(LENGTH_UNIT_M, 1.0 / self.orbit.mean_motion_rad_s,
+                     self.vehicle.initial_mass_kg if mu is None else mu)
 
     @property
     def propellant_kg(self) -> float:
@@ -203,7 +210,9 @@ def load_scenario(path: str | Path) -> ProximityScenario:
         final_phase_s=g.number("final_phase_s", nonnegative=True),
         min_horizon_s=g.number("min_horizon_s", positive=True),
         keepout_margin_m=g.number("keepout_margin_m", nonnegative=True),
-        max_sweep_rad=g.number("max_sweep_rad", positive=True))
+        max_sweep_rad=g.number("max_sweep_rad", positive=True),
+        mass_unit_kg=g.number("mass_unit_kg", default=None, positive=True),
+        fixed_final_time=g.flag("fixed_final_time", default=False))
     g.finish()
     if guidance.min_horizon_s >= horizon[1]:
         raise g.error("min_horizon_s", f"must be below approach.horizon_s's upper bound {horizon[1]:g}")

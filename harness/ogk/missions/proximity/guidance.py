@@ -8,11 +8,15 @@ ground_peer.py: `ogk mc --solver ipopt`), the reference the kernel's flights are
   plan: `ogk_prox_load_plan`), then solve from the first measured state (`ogk_prox_solve`);
 - replan from each measured state (`ogk_prox_replan`: CNCN, N nodes over the remaining horizon; SNNS,
   the nodes shrinking with it), the previous plan flown when a solve fails (stale);
+- with [guidance] fixed_final_time, keep the ground plan's t_f (free on the ground, from the nominal
+  start): each replan's horizon bounds are the remaining time to it (`FIXED_T_F_BAND` wide). The
+  minimum-fuel objective is so flat in T that a replan's free t_f wandered by hundreds of seconds
+  between replans and the flight's end moved with an ulp of the start;
 - command (alpha, w) at t: the plan's controls linear between its nodes (`ogk_prox_thrust_cmd`: the
   r-t-n unit vector (cos alpha, sin alpha, 0) and the throttle, alpha taken back as atan2(u_t, u_r)).
 
 The closed loop speaks SI (s, m, m/s, kg), the laws the normalised units of the scenario (LU = 1 km,
-TU = 1 / n, MU = m_0; t = 0 at the start)."""
+TU = 1 / n, MU = [guidance] mass_unit_kg; t = 0 at the start)."""
 from __future__ import annotations
 
 import bisect
@@ -30,6 +34,12 @@ from .ground_peer import PeerProblem, PeerSolver
 
 FloatArray = NDArray[np.float64]
 SOLVERS = ("kernel", "ipopt")
+#: [guidance] fixed_final_time: a replan's horizon within (1 -/+ this) x the time left to the ground
+#: plan's t_f (the kernel's horizon_max must exceed its horizon_min)
+FIXED_T_F_BAND = 1e-9
+#: a failed first solve is retried with T free and the first BFGS matrix this times smaller (longer first
+#: steps; run 81 of the campaign of seed 2026120581: OGK_E_INFEASIBLE with 1, converged with 1e-2)
+RETRY_HESSIAN_INIT = 1e-2
 
 
 @dataclasses.dataclass(frozen=True)
@@ -162,6 +172,16 @@ class _Base:
         self.solves = 0
         self.failed_solves = 0
         self.started = False
+        self.t_f_fixed = first.t_f if scn.guidance.fixed_final_time else None
+
+    def _fixed_bounds(self, t: float) -> tuple[float, float] | None:
+        """[guidance] fixed_final_time: the horizon bounds [TU] of a replan at t that keep the ground
+        plan's t_f (None: free)."""
+        if self.t_f_fixed is None:
+            return None
+        h_min = self.scn.guidance.min_horizon_s / self.units.time_s
+        rem = max(self.t_f_fixed - t, h_min)
+        return rem * (1.0 - FIXED_T_F_BAND), rem * (1.0 + FIXED_T_F_BAND)
 
     def command(self, t_s: float) -> tuple[float, float]:
         return self.plan.control(t_s / self.units.time_s)
@@ -202,11 +222,23 @@ class PeerGuidance(_Base):
         x = np.asarray(x_si, dtype=np.float64) / self.scale
         h_min = self.scn.guidance.min_horizon_s / u.time_s
         h_max = max(self.scn.horizon_s[1] / u.time_s - t, h_min * 1.001)
+        fixed = self._fixed_bounds(t)
+        if fixed is not None:
+            h_min, h_max = fixed
         horizon = min(max(self.plan.t_f - t, h_min), h_max)
         nodes = self._nodes(horizon)
         guess = self.plan.resampled(t, x, nodes, horizon)
         start = time.perf_counter()
         sol = _peer(self.pb, nodes).solve(x, (h_min, h_max), horizon, guess.states, guess.controls)
+        if fixed is not None and not self.started and not sol.converged:
+            # as KernelGuidance: the first solve again with T free, its t_f kept from here on
+            self.solves += 1
+            self.failed_solves += 1
+            h_min = self.scn.guidance.min_horizon_s / u.time_s
+            h_max = max(self.scn.horizon_s[1] / u.time_s - t, h_min * 1.001)
+            sol = _peer(self.pb, nodes).solve(x, (h_min, h_max), horizon, guess.states, guess.controls)
+            if sol.converged:
+                self.t_f_fixed = t + sol.horizon
         elapsed = time.perf_counter() - start
         self.solves += 1
         ok = sol.converged
@@ -228,12 +260,36 @@ class KernelGuidance(_Base):
         super().__init__(scn, first)
         self.ctx = kernel_context(scn)
         self.ctx.load_plan(first.t0, first.horizon, first.states, first.controls)
+        self.first = first
+        cfg = self.ctx._ctx.nmpc.cfg
+        self._free_bounds = (float(cfg.horizon_min), float(cfg.horizon_max))
 
     def replan(self, t_s: float, x_si: FloatArray) -> ReplanInfo:
         t = t_s / self.units.time_s
         x = np.asarray(x_si, dtype=np.float64) / self.scale
+        fixed = self._fixed_bounds(t)
+        if fixed is not None:
+            # the context's horizon bounds moved in place (validated at init: 0 < min < max)
+            cfg = self.ctx._ctx.nmpc.cfg
+            cfg.horizon_min, cfg.horizon_max = fixed
         start = time.perf_counter()
         rep = self.ctx.replan(t, x) if self.started else self.ctx.solve(t, x)
+        if fixed is not None and not self.started and not rep.converged:
+            # the first solve with the ground plan's t_f failed (a dispersed start it cannot reach then,
+            # or the QP without T's freedom): solved again from the ground plan with T free, and its t_f
+            # kept from here on
+            self.solves += int(rep.solves)
+            self.failed_solves += 1
+            cfg = self.ctx._ctx.nmpc.cfg
+            cfg.horizon_min, cfg.horizon_max = self._free_bounds
+            h0 = float(cfg.hessian_init)
+            cfg.hessian_init = h0 * RETRY_HESSIAN_INIT
+            first = self.first
+            self.ctx.load_plan(first.t0, first.horizon, first.states, first.controls)
+            rep = self.ctx.solve(t, x)
+            cfg.hessian_init = h0
+            if rep.converged:
+                self.t_f_fixed = self.ctx.plan().t0 + self.ctx.plan().horizon
         elapsed = time.perf_counter() - start
         self.started = True
         self.solves += int(rep.solves)
@@ -247,10 +303,13 @@ class KernelGuidance(_Base):
         return math.atan2(cmd.u[1], cmd.u[0]), cmd.throttle
 
 
-#: the kernel's SQP settings of the flight (beyond ogk_prox_config_default's; its tol_obj 1e-7 kept: on
-#: the campaign of seed 424242, tol_obj 1e-10 gave 85 failed solves in 47 of 100 runs and one lost run,
-#: tol_obj 0 with the exact Hessian 16 lost runs, the default none)
-KERNEL_SETTINGS: dict[str, Any] = {"max_iter": 200, "max_iter_cold": 500}
+#: the kernel's SQP settings of the flight (beyond ogk_prox_config_default's). In MU = m_0 (J ~ 6e-4)
+#: tol_obj 1e-7 was a loose 1.6e-4 relative, and 1e-10 gave many failed solves (campaign of seed 424242:
+#: 85 in 47 of 100 runs, one lost run). With [guidance] mass_unit_kg = 0.1 kg (J ~ 1) and the ground
+#: plan's t_f kept: tol_obj 1e-8 (relative now; on 4 run seeds an ulp of the start moves the fuel by
+#: <= 0.12 g of ~23 g; 1e-7: up to 1.1 g; 1e-9, 1e-10 or max_iter 400 no better; elastic_weight 1.8e6 =
+#: 1000 x m_0 / MU, the slacks' old price against J: up to 0.21 g)
+KERNEL_SETTINGS: dict[str, Any] = {"max_iter": 200, "max_iter_cold": 500, "tol_obj": 1e-8}
 
 
 def kernel_context(scn: ProximityScenario) -> Any:
