@@ -119,6 +119,26 @@ class Nmpc:
     def reset(self) -> None:
         _check(lib.ogk_nmpc_reset(self._ctx), "ogk_nmpc_reset")
 
+    def set_horizon_bounds(self, horizon_min: float, horizon_max: float) -> None:
+        """The bounds of T [TU] of the solves and replans that follow (ogk_nmpc_set_horizon_bounds)."""
+        _check(lib.ogk_nmpc_set_horizon_bounds(self._ctx, float(horizon_min), float(horizon_max)),
+               "ogk_nmpc_set_horizon_bounds")
+
+    def set_hessian_init(self, hessian_init: float) -> None:
+        """The first BFGS matrix's scale of the next cold solve (ogk_nmpc_set_hessian_init)."""
+        _check(lib.ogk_nmpc_set_hessian_init(self._ctx, float(hessian_init)), "ogk_nmpc_set_hessian_init")
+
+    @property
+    def horizon_bounds(self) -> tuple[float, float]:
+        """The bounds of T [TU] in force."""
+        cfg = self._ctx.cfg
+        return float(cfg.horizon_min), float(cfg.horizon_max)
+
+    @property
+    def hessian_init(self) -> float:
+        """The first BFGS matrix's scale in force."""
+        return float(self._ctx.cfg.hessian_init)
+
     def load_plan(self, t0: float, horizon: float, states: ArrayLike, controls: ArrayLike,
                   multipliers: ArrayLike | None = None) -> None:
         x = np.ascontiguousarray(states, dtype=np.float64)

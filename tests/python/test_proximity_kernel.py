@@ -133,3 +133,32 @@ def test_kernel_free_within_the_impulsive_bound(around) -> None:
     assert rep.converged, rep
     assert kernel_result(ap, g, u)[1] == pytest.approx(ref.delta_v_m_s, rel=REL, abs=0.0)
     assert ref.delta_v_m_s >= delta_v_lower_bound(N_RAD_S, ap.s0, ap.terminal, ref.t_f_s)
+
+
+def test_kernel_keeps_a_final_time_as_ipopt(around) -> None:
+    """ogk_prox_set_horizon_bounds (the proximity guidance's fixed final time): bounds 1e-9 wide about
+    5,000 s, both solvers from IPOPT's free optimum (on 7,000 s) scaled in time to it: the kernel's t_f
+    and Delta v are IPOPT's with t_f fixed at 5,000 s, to 1e-8, and Delta v above the free optimum's."""
+    t_fix = 5000.0
+    (_, (_, dv_free, _, _)), ref_free = around
+    guess = dataclasses.replace(ref_free, t_f_s=t_fix)
+    ref = ocp.solve(dataclasses.replace(APPROACH, horizon_s=(t_fix, t_fix)), guess=guess, tol=1e-14)
+    assert ref.success, ref.status
+    g, rep, u = kernel_solve(APPROACH, ocp.detour_guess(APPROACH))   # a context, its plan replaced below
+    band = (t_fix / u.tu * (1.0 - 1e-9), t_fix / u.tu * (1.0 + 1e-9))
+    g.set_horizon_bounds(*band)
+    assert g.horizon_bounds == band
+    # IPOPT's throttle within its relaxed bounds (~1e-9 outside [0, 1]): the kernel checks [0, 1]
+    controls = np.column_stack([guess.controls[:, 0], np.clip(guess.controls[:, 1], 0.0, 1.0)])
+    g.load_plan(0.0, t_fix / u.tu, guess.states / u.scale, controls)
+    rep = g.solve(0.0, APPROACH.s0 / u.scale)
+    assert rep.converged, rep
+    t_f, dv, states, controls = kernel_result(APPROACH, g, u)
+    assert t_f == pytest.approx(t_fix, rel=1.01e-9, abs=0.0)
+    assert dv == pytest.approx(ref.delta_v_m_s, rel=REL, abs=0.0)
+    assert dv > dv_free
+    assert step_end_distance(APPROACH, t_f, states, controls) >= APPROACH.keepout_radius_m * (1.0 - 1e-9)
+    # a rejected setting leaves the bounds as they were
+    with pytest.raises(Exception):
+        g.set_horizon_bounds(2.0, 1.0)
+    assert g.horizon_bounds == band

@@ -91,8 +91,9 @@ extern "C" {
  * the keep-out, the terminal set (2 per condition of eq. 5) and the
  * propellant limit (1). */
 #define OGK_NMPC_MAX_ROWS ((2u * OGK_NMPC_MAX_NODES) + OGK_NMPC_MAX_KO_ROWS + (2u * OGK_NMPC_NC) + 1u)
-/* Unknowns of the elastic QP: v and the slacks s+, s- of eq. (5). */
-#define OGK_NMPC_MAX_QP (OGK_NMPC_MAX_VARS + (2u * OGK_NMPC_NC))
+/* Unknowns of the elastic QP: v, the slacks s+, s- of eq. (5) and the
+ * keep-out rows' one slack. */
+#define OGK_NMPC_MAX_QP ((OGK_NMPC_MAX_VARS + (2u * OGK_NMPC_NC)) + 1u)
 /* Sensitivity directions of one subinterval: X_k, U_k, U_{k+1}, T. */
 #define OGK_NMPC_MAX_DIR (OGK_NMPC_NX + (2u * OGK_NMPC_MAX_NU) + 1u)
 /* Row stride of one subinterval's sensitivity matrices: its directions and
@@ -339,6 +340,22 @@ ogk_status ogk_nmpc_init_problem(ogk_nmpc_t *ctx, const ogk_nmpc_config_t *cfg,
 
 /* Back to the state right after init (no plan; configuration kept). */
 ogk_status ogk_nmpc_reset(ogk_nmpc_t *ctx);
+
+/* In-flight settings (the configuration's fields, validated as by init; a
+ * rejected value leaves the context as it was): the bounds of T of the
+ * solves and replans that follow, 0 < horizon_min < horizon_max [TU] (a
+ * guidance that keeps a final time t_f* narrows them about t_f* - t before
+ * each replan: docs/nmpc-problem.md, "Fixed final time"), and the scale of
+ * the BFGS matrix the next cold solve starts from, > 0 [-]. The plan is
+ * untouched: the next solve's step bounds move a plan's T into new bounds,
+ * but from a converged plan a move beyond its accuracy fails the line
+ * search (OGK_E_NOT_CONVERGED: the filter takes no step that raises J from
+ * a feasible point), so narrow them about the held plan's T, or load a
+ * plan scaled into them; reset keeps them, init restores the
+ * configuration's.
+ * OGK_E_NULL, OGK_E_NOT_INIT, OGK_E_NONFINITE, OGK_E_CONFIG. */
+ogk_status ogk_nmpc_set_horizon_bounds(ogk_nmpc_t *ctx, double horizon_min, double horizon_max);
+ogk_status ogk_nmpc_set_hessian_init(ogk_nmpc_t *ctx, double hessian_init);
 
 /* Loads a plan (the ground's open-loop solution, or any guess): nodes in
  * 1..OGK_NMPC_MAX_NODES, nu equal to the engine's, horizon within its bounds,

@@ -74,6 +74,10 @@ ogk_status ogk_prox_init(ogk_prox_t *ctx, const ogk_prox_config_t *cfg);
 /* Back to the state right after init. */
 ogk_status ogk_prox_reset(ogk_prox_t *ctx);
 
+/* As ogk_nmpc_set_horizon_bounds and ogk_nmpc_set_hessian_init. */
+ogk_status ogk_prox_set_horizon_bounds(ogk_prox_t *ctx, double horizon_min, double horizon_max);
+ogk_status ogk_prox_set_hessian_init(ogk_prox_t *ctx, double hessian_init);
+
 /* As ogk_nmpc_load_plan, ogk_nmpc_get_plan, ogk_nmpc_solve, ogk_nmpc_replan,
  * ogk_nmpc_command and ogk_nmpc_thrust_cmd (plan states (x, y, v_x, v_y, m)
  * [LU, LU, LU/TU, LU/TU, MU], controls (alpha [rad], w [-])); a state with

@@ -222,6 +222,37 @@ ogk_status ogk_nmpc_reset(ogk_nmpc_t *ctx)
     return st;
 }
 
+ogk_status ogk_nmpc_set_horizon_bounds(ogk_nmpc_t *ctx, double horizon_min, double horizon_max)
+{
+    ogk_status st = nmpc_check_ctx(ctx);
+    if (st != OGK_OK) {
+        /* st says why */
+    } else if (!isfinite(horizon_min) || !isfinite(horizon_max)) {
+        st = OGK_E_NONFINITE;
+    } else if (!((horizon_min > 0.0) && (horizon_max > horizon_min))) {
+        st = OGK_E_CONFIG;   /* the configuration's own rule (settings_valid) */
+    } else {
+        ctx->cfg.horizon_min = horizon_min;
+        ctx->cfg.horizon_max = horizon_max;
+    }
+    return st;
+}
+
+ogk_status ogk_nmpc_set_hessian_init(ogk_nmpc_t *ctx, double hessian_init)
+{
+    ogk_status st = nmpc_check_ctx(ctx);
+    if (st != OGK_OK) {
+        /* st says why */
+    } else if (!isfinite(hessian_init)) {
+        st = OGK_E_NONFINITE;
+    } else if (!(hessian_init > 0.0)) {
+        st = OGK_E_CONFIG;
+    } else {
+        ctx->cfg.hessian_init = hessian_init;
+    }
+    return st;
+}
+
 ogk_status ogk_nmpc_load_plan(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *plan)
 {
     ogk_status st = nmpc_check_ctx(ctx);

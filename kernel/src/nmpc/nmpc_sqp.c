@@ -387,11 +387,14 @@ static void take_step(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const dou
  * (v, s+, s-), A_eq v + s+ - s- = b_eq, s+-  >= 0, cost + elastic_weight
  * (s+ + s-) and a small curvature on the slacks (the QP needs H > 0). With a
  * terminal set the slacks relax its rows instead (row0: the first), s+ the
- * lower and s- the upper one of each condition. */
-static ogk_status solve_elastic(ogk_nmpc_t *ctx, const double *hess, const double *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the QP's (H, g) in order; its only caller is ogk_i_nmpc_sqp */
-                                size_t nv, size_t rows, size_t row0) /* NOLINT(bugprone-easily-swappable-parameters): as above, sizes (unknowns, inequality rows, first terminal row) */
+ * lower and s- the upper one of each condition. ko_n > 0: the keep-out rows
+ * ko_row0 .. ko_row0 + ko_n - 1 relaxed too, by one more slack s_ko >= 0
+ * (a_j v + s_ko >= b_j, an l-infinity penalty priced as eq. 5's). */
+static ogk_status solve_elastic_rows(ogk_nmpc_t *ctx, const double *hess, const double *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the QP's (H, g) in order; its callers are in this file */
+                                     size_t nv, size_t rows, size_t row0, /* NOLINT(bugprone-easily-swappable-parameters): as above, sizes (unknowns, inequality rows, first terminal row) */
+                                     size_t ko_row0, size_t ko_n) /* NOLINT(bugprone-easily-swappable-parameters): the keep-out rows (first, count) */
 {
-    const size_t ne = nv + (2u * NC);
+    const size_t ne = (nv + (2u * NC)) + ((ko_n > 0u) ? 1u : 0u);
     const double w = ctx->cfg.elastic_weight;
     const bool eq5 = !terminal_set(&ctx->cfg);
     ogk_qp_problem_t qp;
@@ -437,6 +440,9 @@ static ogk_status solve_elastic(ogk_nmpc_t *ctx, const double *hess, const doubl
             ctx->el_ain[((row0 + (2u * i) + 1u) * ne) + nv + NC + i] = 1.0;
         }
     }
+    for (i = 0u; (i < ko_n) && ((ko_row0 + i) < rows); ++i) {
+        ctx->el_ain[((ko_row0 + i) * ne) + (ne - 1u)] = 1.0;
+    }
     qp.n = ne;
     qp.m_eq = eq5 ? NC : 0u;
     qp.m_in = rows;
@@ -449,6 +455,13 @@ static ogk_status solve_elastic(ogk_nmpc_t *ctx, const double *hess, const doubl
     qp.lb = ctx->el_lb;
     qp.ub = ctx->el_ub;
     return ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol);
+}
+
+/* The elastic QP on eq. (5) (or the terminal set's rows) only. */
+static ogk_status solve_elastic(ogk_nmpc_t *ctx, const double *hess, const double *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): as solve_elastic_rows */
+                                size_t nv, size_t rows, size_t row0) /* NOLINT(bugprone-easily-swappable-parameters): as solve_elastic_rows */
+{
+    return solve_elastic_rows(ctx, hess, g_obj, nv, rows, row0, 0u, 0u);
 }
 
 /* Reduced gradient of the Lagrangian, g - A_eq^T y. */
@@ -675,6 +688,20 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 }
             } else {
                 /* solved, or a failure the step box does not cause */
+            }
+            if ((st == OGK_E_INFEASIBLE) && (ctx->ko_rows > 0u)) {
+                /* the keep-out rows out of every step's reach: a node of a stale plan inside a
+                 * disc that the linearisation cannot move out (at w = 0 the thrust angle moves
+                 * nothing, the throttle only along its angle; with T kept no time scaling
+                 * either). Once more with them elastic too, the box opened: the filter's theta
+                 * prices the disc's violation, so the step is taken only when it reduces it or J */
+                const size_t ko_row0 = (cfg->max_sweep > 0.0) ? (2u * (size_t)p->nodes) : 0u;
+                rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
+                (void)build_bounds(ctx, p, nv, BOX_OPEN);
+                st = solve_elastic_rows(ctx, hess, g_obj, nv, rows, terminal_row0(ctx, p), ko_row0,
+                                        ogk_i_min_size(ctx->ko_rows, OGK_I_NMPC_MAX_KO_ROWS_Z));
+                rep->flags |= OGK_NMPC_FLAG_ELASTIC;
+                rho = 0.0;
             }
             if (st == OGK_OK) {
                 terminal_multipliers(ctx, terminal_row0(ctx, p));

@@ -116,6 +116,26 @@ ogk_status ogk_prox_reset(ogk_prox_t *ctx)
     return st;
 }
 
+ogk_status ogk_prox_set_horizon_bounds(ogk_prox_t *ctx, double horizon_min, double horizon_max)
+{
+    ogk_status st;
+    ogk_nmpc_t *nmpc = prox_bind(ctx, &st);
+    if (nmpc != NULL) {
+        st = ogk_nmpc_set_horizon_bounds(nmpc, horizon_min, horizon_max);
+    }
+    return st;
+}
+
+ogk_status ogk_prox_set_hessian_init(ogk_prox_t *ctx, double hessian_init)
+{
+    ogk_status st;
+    ogk_nmpc_t *nmpc = prox_bind(ctx, &st);
+    if (nmpc != NULL) {
+        st = ogk_nmpc_set_hessian_init(nmpc, hessian_init);
+    }
+    return st;
+}
+
 ogk_status ogk_prox_load_plan(ogk_prox_t *ctx, const ogk_nmpc_plan_t *plan)
 {
     ogk_status st;

@@ -30,6 +30,8 @@
 static ogk_prox_t ctx;
 static ogk_prox_t ctx2;
 static ogk_nmpc_plan_t plan;
+static ogk_nmpc_plan_t free_opt;
+static ogk_nmpc_plan_t scaled;
 
 /* A deterministic uniform draw in [lo, hi) (a 64-bit LCG: the same points on every target). */
 static double draw(uint64_t *s, double lo, double hi)
@@ -816,6 +818,151 @@ static void test_open_loop_solve(void **state)
     OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &out), OGK_E_RANGE);
 }
 
+/* The in-flight settings (ogk_nmpc_set_horizon_bounds, ogk_nmpc_set_hessian_init, their proximity
+ * wrappers): every rejection leaves the context as it was; narrowed bounds hold T (a final time kept,
+ * as the proximity guidance flies it); a smaller first BFGS matrix reaches the same optimum.
+ * req: OGK-NMPC-017 */
+static void test_in_flight_settings(void **state)
+{
+    ogk_prox_config_t cfg;
+    ogk_nmpc_t bare;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    ogk_nmpc_report_t rep2;
+    ogk_nmpc_plan_t out;
+    const double not_a_number = nan("");
+    double t_fix;
+    double lo;
+    double hi;
+    (void)state;
+    /* NULL and uninitialised contexts, the solver's and the wrappers' */
+    (void)memset(&bare, 0, sizeof(bare));
+    OGK_ASSERT_STATUS(ogk_nmpc_set_horizon_bounds(NULL, 1.0, 2.0), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nmpc_set_hessian_init(NULL, 1.0), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_nmpc_set_horizon_bounds(&bare, 1.0, 2.0), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_nmpc_set_hessian_init(&bare, 1.0), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(NULL, 1.0, 2.0), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_prox_set_hessian_init(NULL, 1.0), OGK_E_NULL);
+    (void)memset(&ctx2, 0, sizeof(ctx2));
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx2, 1.0, 2.0), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_prox_set_hessian_init(&ctx2, 1.0), OGK_E_NOT_INIT);
+
+    mission_config(&cfg, in.x);
+    in.t = 0.0;
+    OGK_ASSERT_STATUS(ogk_prox_init(&ctx, &cfg), OGK_OK);
+    /* each operand of the checks on its own (MC/DC), the context unchanged */
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, not_a_number, 2.0), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, 1.0, INFINITY), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, 0.0, 2.0), OGK_E_CONFIG);
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, -1.0, 2.0), OGK_E_CONFIG);
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, 2.0, 2.0), OGK_E_CONFIG);
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, 2.0, 1.0), OGK_E_CONFIG);
+    OGK_ASSERT_STATUS(ogk_prox_set_hessian_init(&ctx, not_a_number), OGK_E_NONFINITE);
+    OGK_ASSERT_STATUS(ogk_prox_set_hessian_init(&ctx, 0.0), OGK_E_CONFIG);
+    OGK_ASSERT_STATUS(ogk_prox_set_hessian_init(&ctx, -1.0), OGK_E_CONFIG);
+    assert_true(ctx.nmpc.cfg.horizon_min == cfg.solver.horizon_min);
+    assert_true(ctx.nmpc.cfg.horizon_max == cfg.solver.horizon_max);
+    assert_true(ctx.nmpc.cfg.hessian_init == cfg.solver.hessian_init);
+
+    /* t_f kept at 5,000 s from the free optimum (on horizon_max = 7,000 s) scaled in time to it: the
+     * plan ends in the band, at the hold point at rest, and costs more than the free optimum (less
+     * time, more propellant; test_proximity_kernel.py compares it with IPOPT's). Held unscaled, the
+     * move of T fails the line search (ogk/nmpc.h) */
+    mission_guess(&cfg, in.x, &plan);
+    OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &free_opt), OGK_OK);
+    t_fix = 5000.0 * sqrt(3.986004418e14 / (6.9e6 * 6.9e6 * 6.9e6));   /* [TU] = 5,000 s n */
+    lo = t_fix * (1.0 - 1e-9);
+    hi = t_fix * (1.0 + 1e-9);
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, lo, hi), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep), OGK_E_NOT_CONVERGED);
+    scaled = free_opt;
+    scaled.horizon = t_fix;
+    OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx, &scaled), OGK_OK);   /* a cold solve (its iteration bound) */
+    OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep), OGK_OK);
+    print_message("t_f kept: J %.12g, t_f %.12g TU, %u SQP iterations\n", rep.objective, rep.t_f,
+                  (unsigned)rep.sqp_iterations);
+    assert_true((rep.t_f >= lo) && (rep.t_f <= hi));
+    OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &out), OGK_OK);
+    OGK_ASSERT_NEAR(out.x[(16u * NX) + 0u], cfg.model.hold[0], 1e-9);
+    OGK_ASSERT_NEAR(out.x[(16u * NX) + 1u], cfg.model.hold[1], 1e-9);
+    OGK_ASSERT_NEAR(out.x[(16u * NX) + 2u], 0.0, 1e-9);
+    OGK_ASSERT_NEAR(out.x[(16u * NX) + 3u], 0.0, 1e-9);
+    assert_true(rep.objective > (1.9943631e-4 * 1.5));
+    /* a plan outside the bounds is refused by load_plan; reset keeps the bounds */
+    OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx, &free_opt), OGK_E_RANGE);
+    OGK_ASSERT_STATUS(ogk_prox_reset(&ctx), OGK_OK);
+    assert_true((ctx.nmpc.cfg.horizon_min == lo) && (ctx.nmpc.cfg.horizon_max == hi));
+
+    /* the same optimum from a first BFGS matrix 100 times smaller (a cold solve from the free optimum) */
+    OGK_ASSERT_STATUS(ogk_prox_set_hessian_init(&ctx, 1e-2 * cfg.solver.hessian_init), OGK_OK);
+    assert_true(ctx.nmpc.cfg.hessian_init == (1e-2 * cfg.solver.hessian_init));
+    OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx, &scaled), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep2), OGK_OK);
+    OGK_ASSERT_REL(rep2.objective, rep.objective, 1e-6, 0.0);
+    assert_true((rep2.t_f >= lo) && (rep2.t_f <= hi));
+    /* init restores the configuration's settings */
+    OGK_ASSERT_STATUS(ogk_prox_init(&ctx, &cfg), OGK_OK);
+    assert_true(ctx.nmpc.cfg.horizon_min == cfg.solver.horizon_min);
+    assert_true(ctx.nmpc.cfg.hessian_init == cfg.solver.hessian_init);
+}
+
+/* A plan whose nodes sit inside a keep-out disc while coasting (w = 0, so the thrust angle moves nothing
+ * and the throttle only along an angle that points into the disc): the linearised keep-out rows have no
+ * solution. The QP goes elastic on them too (one slack, OGK_NMPC_FLAG_ELASTIC) and its step is tried by
+ * the line search (here rejected: from w = 0 the linear model has no step out of the disc, LS_FAILED),
+ * where the solve used to stop at the QP with OGK_E_INFEASIBLE; the plan is kept (STALE) and the
+ * context solves again from a guess round the disc.
+ * req: OGK-NMPC-017 */
+static void test_keepout_rows_elastic(void **state)
+{
+    ogk_prox_config_t cfg;
+    ogk_nmpc_input_t in;
+    ogk_nmpc_report_t rep;
+    uint32_t k;
+    (void)state;
+    mission_config(&cfg, in.x);
+    in.t = 0.0;
+    /* the vehicle at rest on V-bar (an equilibrium of the CW equations: the coast stays there), 50 m
+     * from the centre of a 150-m disc */
+    cfg.model.keepout_centre[0] = 0.0;
+    cfg.model.keepout_centre[1] = 1.45;
+    cfg.model.keepout_radius[0] = 0.15;
+    OGK_ASSERT_STATUS(ogk_prox_init(&ctx, &cfg), OGK_OK);
+    (void)memset(&plan, 0, sizeof(plan));
+    plan.t0 = 0.0;
+    plan.horizon = 5000.0 * sqrt(3.986004418e14 / (6.9e6 * 6.9e6 * 6.9e6));
+    plan.nodes = cfg.solver.nodes;
+    plan.nu = 2u;
+    for (k = 0u; k <= plan.nodes; ++k) {
+        plan.x[(k * NX) + 1u] = 1.5;
+        plan.x[(k * NX) + 4u] = 1.0;
+        plan.u[(k * 2u) + 0u] = -0.5 * PI;   /* along -y: into the disc */
+        plan.u[(k * 2u) + 1u] = 0.0;
+    }
+    OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, plan.horizon * (1.0 - 1e-9), plan.horizon * (1.0 + 1e-9)),
+                      OGK_OK);
+    OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep), OGK_E_NOT_CONVERGED);
+    assert_true((rep.flags & OGK_NMPC_FLAG_ELASTIC) != 0u);
+    assert_true((rep.flags & OGK_NMPC_FLAG_LS_FAILED) != 0u);
+    assert_true((rep.flags & OGK_NMPC_FLAG_STALE) != 0u);
+    OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &free_opt), OGK_OK);
+    assert_true(memcmp(free_opt.x, plan.x, sizeof(plan.x)) == 0);
+    /* the same disc from a guess round it, T free: converged outside it */
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, cfg.solver.horizon_min, cfg.solver.horizon_max), OGK_OK);
+    in.x[0] = 0.2;    /* 200 m radial of the disc's centre line, 50 m above its top */
+    in.x[1] = 1.65;
+    mission_guess(&cfg, in.x, &plan);
+    OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx, &plan), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &free_opt), OGK_OK);
+    for (k = 1u; k < free_opt.nodes; ++k) {
+        assert_true(hypot(free_opt.x[(k * NX) + 0u], free_opt.x[(k * NX) + 1u] - 1.45) >= (0.15 - 1e-9));
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -827,6 +974,8 @@ int main(void)
         cmocka_unit_test(test_config_default_and_init),
         cmocka_unit_test(test_init_problem_rejections),
         cmocka_unit_test(test_open_loop_solve),
+        cmocka_unit_test(test_in_flight_settings),
+        cmocka_unit_test(test_keepout_rows_elastic),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
