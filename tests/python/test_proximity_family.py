@@ -11,6 +11,7 @@ its dispersions; a mission no other file names (another orbit, vehicle, start, h
 by `ogk run` and `ogk mc` as a user would."""
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import subprocess
@@ -120,6 +121,25 @@ def test_a_nominal_flight_reaches_the_hold_point_outside_the_disc(scenario, firs
     assert r.keepout_clearance_m > 0.5 * scenario.guidance.keepout_margin_m
     assert r.fuel_kg < acc.propellant_kg and r.failed_solves == 0
     assert r.mass.min() > scenario.vehicle.dry_mass_kg
+
+
+@pytest.mark.parametrize("run_seed", [6554349508805164480, 31415926535897])
+def test_an_ulp_of_the_start_moves_neither_the_end_nor_the_propellant(scenario, first, run_seed) -> None:
+    """The kernel's flight from the start and from its y moved by 1 and 2 ulp ([guidance]
+    fixed_final_time, MU = mass_unit_kg): the flights end at the ground plan's t_f to a microsecond and
+    burn the same propellant to 2 % (free t_f, MU = m_0: 159 s and 4.7 g of 37 g on the first seed)."""
+    flights = []
+    y = scenario.start[1]
+    for _ in range(3):
+        s = dataclasses.replace(scenario, start=(scenario.start[0], y, *scenario.start[2:]))
+        flights.append(closed_loop.fly(s, "kernel", first, run_seed, True))
+        y = math.nextafter(y, math.inf)
+    assert all(f.completed for f in flights), [f.reason for f in flights]
+    t_f = [f.t_f_s for f in flights]
+    fuel = [f.fuel_kg for f in flights]
+    assert max(t_f) - min(t_f) < 1e-6
+    assert abs(t_f[0] - first.t_f * scenario.units.time_s) < 1e-4
+    assert max(fuel) - min(fuel) < 0.02 * min(fuel)
 
 
 def test_a_short_dispersed_campaign_loses_no_run() -> None:

@@ -3,7 +3,15 @@
  * OGK_NMPC_FLIGHT_PROBLEM (the problem's callback table) and ogk_nmpc_flight_model (its data) binds
  * that problem with ogk_nmpc_init_problem instead of the heliocentric one (the proximity approach:
  * harness/ogk/missions/proximity/flight_config.py); OGK_NMPC_FLIGHT_PRESOLVE 0 skips minimum fuel's
- * minimum-time pre-solve of the guesses (the proximity guess is the ground's minimum-fuel plan). */
+ * minimum-time pre-solve of the guesses (the proximity guess is the ground's minimum-fuel plan).
+ * OGK_NMPC_FLIGHT_FINAL_TIME [TU] keeps that final time (the ground plan's, free on the ground): before
+ * every solve the horizon bounds are narrowed to the time left to it (ogk_nmpc_set_horizon_bounds,
+ * OGK_NMPC_FLIGHT_FINAL_TIME_BAND wide); the first plan comes by continuation
+ * (OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS solves, their start moved from the guess's to the measured one),
+ * failing that from the first guess with T free and the first BFGS matrix
+ * OGK_NMPC_FLIGHT_RETRY_HESSIAN_INIT times the configuration's (its final time kept from then on); a
+ * failed replan is solved again cold from the plan held with that smaller matrix
+ * (harness/ogk/missions/proximity/guidance.py, KernelGuidance: the same calls). */
 #include "nmpc_flight.h"
 
 #include <string.h>
@@ -12,6 +20,18 @@
 
 #ifndef OGK_NMPC_FLIGHT_PRESOLVE
 #define OGK_NMPC_FLIGHT_PRESOLVE 1
+#endif
+
+#if defined(OGK_NMPC_FLIGHT_FINAL_TIME)
+#ifndef OGK_NMPC_FLIGHT_FINAL_TIME_BAND
+#define OGK_NMPC_FLIGHT_FINAL_TIME_BAND 1.0e-9
+#endif
+#ifndef OGK_NMPC_FLIGHT_RETRY_HESSIAN_INIT
+#define OGK_NMPC_FLIGHT_RETRY_HESSIAN_INIT 1.0e-2
+#endif
+#ifndef OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS
+#define OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS 4u
+#endif
 #endif
 
 #if defined(OGK_NMPC_FLIGHT_PROBLEM)
@@ -52,6 +72,14 @@ static int solver_outcome(ogk_status st, const ogk_nmpc_report_t *rep)
            (st == OGK_E_NOT_POSDEF) || ((st == OGK_E_NONFINITE) && (rep->solves > 0u));
 }
 
+/* A solve or replan of the flown context done: counted (the step's solves, and its failed ones). */
+static ogk_status counted(ogk_nmpc_flight_t *f, ogk_status st)
+{
+    f->step_solves += f->rep.solves;
+    f->step_failed += (st != OGK_OK) ? 1u : 0u;
+    return st;
+}
+
 ogk_nmpc_action ogk_nmpc_flight_init(ogk_nmpc_flight_t *f)
 {
     if (f == NULL) {
@@ -67,6 +95,14 @@ ogk_nmpc_action ogk_nmpc_flight_init(ogk_nmpc_flight_t *f)
     f->pre_iterations = 0u;
     f->guesses_tried = 0u;
     f->n_guesses = (uint32_t)OGK_NMPC_FLIGHT_N_GUESSES;
+    f->settings_status = OGK_OK;
+    f->step_solves = 0u;
+    f->step_failed = 0u;
+#if defined(OGK_NMPC_FLIGHT_FINAL_TIME)
+    f->t_f_kept = (double)OGK_NMPC_FLIGHT_FINAL_TIME;
+#else
+    f->t_f_kept = 0.0;
+#endif
     CALL(f, OGK_NMPC_FL_INIT, init_context(&f->ctx, &ogk_nmpc_flight_config));
     /* a rejected configuration (OGK_E_CONFIG, NONFINITE): do not start the loop */
     return (f->last[OGK_NMPC_FL_INIT] == OGK_OK) ? OGK_NMPC_FLY : OGK_NMPC_ABORT;
@@ -116,6 +152,113 @@ static void min_fuel_guess(ogk_nmpc_flight_t *f)
     }
 }
 
+#if defined(OGK_NMPC_FLIGHT_FINAL_TIME)
+/* The bounds of T that keep f->t_f_kept from f->in.t (guidance.py, _Base._fixed_bounds); *mid their
+ * middle. Not probed: a setter's frame is a leaf of a few words (make arm-stack), and a new slot would
+ * change every NMPC program's stack report. */
+static void keep_final_time(ogk_nmpc_flight_t *f, double *mid)
+{
+    const double h_min = ogk_nmpc_flight_config.horizon_min;
+    double rem = f->t_f_kept - f->in.t;
+    double lo;
+    double hi;
+    rem = (rem > h_min) ? rem : h_min;
+    lo = rem * (1.0 - OGK_NMPC_FLIGHT_FINAL_TIME_BAND);
+    hi = rem * (1.0 + OGK_NMPC_FLIGHT_FINAL_TIME_BAND);
+    *mid = 0.5 * (lo + hi);
+    f->settings_status = ogk_nmpc_set_horizon_bounds(&f->ctx, lo, hi);
+}
+
+/* The configuration's bounds of T (free). */
+static void free_final_time(ogk_nmpc_flight_t *f)
+{
+    f->settings_status = ogk_nmpc_set_horizon_bounds(&f->ctx, ogk_nmpc_flight_config.horizon_min,
+                                                     ogk_nmpc_flight_config.horizon_max);
+}
+
+/* The first BFGS matrix of the next cold solve: the configuration's times scale. */
+static void scale_hessian_init(ogk_nmpc_flight_t *f, double scale)
+{
+    f->settings_status = ogk_nmpc_set_hessian_init(&f->ctx, ogk_nmpc_flight_config.hessian_init * scale);
+}
+
+/* The first plan from guess k (loaded) by continuation: its start moved from the guess's node 0 to the
+ * measurement in OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS solves, the last from the measurement itself
+ * (KernelGuidance._first_kept). */
+static void first_solve_kept(ogk_nmpc_flight_t *f, uint32_t k)
+{
+    const double *x_nom = ogk_nmpc_flight_guesses[k].x;
+    const double steps = (double)OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS;
+    ogk_nmpc_input_t in_j;
+    double mid;
+    uint32_t j;
+    uint32_t i;
+    keep_final_time(f, &mid);
+    f->status = OGK_E_RANGE;
+    for (j = 1u; j <= OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS; ++j) {
+        in_j.t = f->in.t;
+        for (i = 0u; i < OGK_NMPC_NX; ++i) {
+            in_j.x[i] = (j == OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS)
+                ? f->in.x[i] : (x_nom[i] + (((double)j / steps) * (f->in.x[i] - x_nom[i])));
+        }
+        CALL(f, OGK_NMPC_FL_SOLVE, ogk_nmpc_solve(&f->ctx, &in_j, &f->rep));
+        f->status = counted(f, f->last[OGK_NMPC_FL_SOLVE]);
+        if (f->status != OGK_OK) {
+            return;
+        }
+    }
+}
+
+/* A first plan that failed with the final time kept: once more from the first guess with T free and a
+ * smaller first BFGS matrix (longer first steps), its final time kept from here on. */
+static void retry_free(ogk_nmpc_flight_t *f)
+{
+    free_final_time(f);
+    scale_hessian_init(f, OGK_NMPC_FLIGHT_RETRY_HESSIAN_INIT);
+    measured_guess(f, 0u);
+    CALL(f, OGK_NMPC_FL_LOAD_PLAN, ogk_nmpc_load_plan(&f->ctx, &f->guess));
+    f->status = f->last[OGK_NMPC_FL_LOAD_PLAN];
+    if (f->status == OGK_OK) {
+        CALL(f, OGK_NMPC_FL_SOLVE, ogk_nmpc_solve(&f->ctx, &f->in, &f->rep));
+        f->status = counted(f, f->last[OGK_NMPC_FL_SOLVE]);
+    }
+    scale_hessian_init(f, 1.0);
+    if (f->status == OGK_OK) {
+        CALL(f, OGK_NMPC_FL_GET_PLAN, ogk_nmpc_get_plan(&f->ctx, &f->plan));
+        if (f->last[OGK_NMPC_FL_GET_PLAN] == OGK_OK) {
+            f->t_f_kept = f->plan.t0 + f->plan.horizon;
+        }
+    }
+}
+
+/* A replan with the final time kept; failed, solved again cold from the plan held (the previous one,
+ * shifted) with a smaller first BFGS matrix (KernelGuidance._replan_kept). */
+static void replan_kept(ogk_nmpc_flight_t *f)
+{
+    double mid;
+    keep_final_time(f, &mid);
+    CALL(f, OGK_NMPC_FL_REPLAN, ogk_nmpc_replan(&f->ctx, &f->in, &f->rep));
+    f->status = counted(f, f->last[OGK_NMPC_FL_REPLAN]);
+    if (!solver_outcome(f->status, &f->rep)) {
+        return;                 /* converged, or the measurement itself was rejected */
+    }
+    CALL(f, OGK_NMPC_FL_GET_PLAN, ogk_nmpc_get_plan(&f->ctx, &f->guess));
+    if (f->last[OGK_NMPC_FL_GET_PLAN] != OGK_OK) {
+        return;
+    }
+    f->guess.t0 = f->in.t;
+    f->guess.horizon = mid;
+    (void)memset(f->guess.lambda, 0, sizeof f->guess.lambda);   /* as the SIL's load_plan of it */
+    scale_hessian_init(f, OGK_NMPC_FLIGHT_RETRY_HESSIAN_INIT);
+    CALL(f, OGK_NMPC_FL_LOAD_PLAN, ogk_nmpc_load_plan(&f->ctx, &f->guess));
+    if (f->last[OGK_NMPC_FL_LOAD_PLAN] == OGK_OK) {
+        CALL(f, OGK_NMPC_FL_SOLVE, ogk_nmpc_solve(&f->ctx, &f->in, &f->rep));
+        f->status = counted(f, f->last[OGK_NMPC_FL_SOLVE]);
+    }
+    scale_hessian_init(f, 1.0);
+}
+#endif
+
 /* The first replan: each guess in turn until a solve converges (KernelGuidance.replan). */
 static void first_replan(ogk_nmpc_flight_t *f)
 {
@@ -132,18 +275,28 @@ static void first_replan(ogk_nmpc_flight_t *f)
             f->status = f->last[OGK_NMPC_FL_RESET];
             return;             /* the context is lost: the step re-initialises it */
         }
+#if defined(OGK_NMPC_FLIGHT_FINAL_TIME)
+        free_final_time(f);     /* the guess is checked against the configuration's bounds */
+#endif
         CALL(f, OGK_NMPC_FL_LOAD_PLAN, ogk_nmpc_load_plan(&f->ctx, &f->guess));
         if (f->last[OGK_NMPC_FL_LOAD_PLAN] != OGK_OK) {
             f->status = f->last[OGK_NMPC_FL_LOAD_PLAN];
             (void)memset(&f->rep, 0, sizeof f->rep);
             return;             /* a guess the kernel refuses: the measurement is out of range */
         }
+#if defined(OGK_NMPC_FLIGHT_FINAL_TIME)
+        first_solve_kept(f, k);
+#else
         CALL(f, OGK_NMPC_FL_SOLVE, ogk_nmpc_solve(&f->ctx, &f->in, &f->rep));
-        f->status = f->last[OGK_NMPC_FL_SOLVE];
+        f->status = counted(f, f->last[OGK_NMPC_FL_SOLVE]);
+#endif
         if (f->status == OGK_OK || !solver_outcome(f->status, &f->rep)) {
             return;             /* converged, or the measurement itself was rejected */
         }
     }
+#if defined(OGK_NMPC_FLIGHT_FINAL_TIME)
+    retry_free(f);
+#endif
 }
 
 ogk_nmpc_action ogk_nmpc_flight_step(ogk_nmpc_flight_t *f, const ogk_nmpc_input_t *in)
@@ -155,13 +308,19 @@ ogk_nmpc_action ogk_nmpc_flight_step(ogk_nmpc_flight_t *f, const ogk_nmpc_input_
     }
     f->in = *in;
     f->pre_iterations = 0u;
+    f->step_solves = 0u;
+    f->step_failed = 0u;
     first = (f->started == 0u) ? 1u : 0u;
     if (first != 0u) {
         first_replan(f);
         f->started = 1u;
     } else {
+#if defined(OGK_NMPC_FLIGHT_FINAL_TIME)
+        replan_kept(f);
+#else
         CALL(f, OGK_NMPC_FL_REPLAN, ogk_nmpc_replan(&f->ctx, &f->in, &f->rep));
-        f->status = f->last[OGK_NMPC_FL_REPLAN];
+        f->status = counted(f, f->last[OGK_NMPC_FL_REPLAN]);
+#endif
     }
     if (f->status == OGK_OK) {
         action = OGK_NMPC_FLY;

@@ -11,6 +11,7 @@
  *                            t_f TU, objective, cmd alpha rad, cmd throttle, cmd flags,
  *                            cmd law_flags, cmd status, plan t0 TU, plan horizon TU, plan nodes,
  *                            plan nu, plan status, pre_iterations, guesses tried,
+ *                            the step's solves, the step's failed solve calls,
  *                            controls ((nodes + 1) x nu, row-major), lambda (4)]
  *   NMPC_PLAN_X (34) host -> target: [first row]; reply: node states of rows first ..
  *                    min(first + 25, nodes + 1) - 1 (5 each, row-major)
@@ -23,7 +24,7 @@
 #define NMPC_INIT 32u
 #define NMPC_REPLAN 33u
 #define NMPC_PLAN_X 34u
-#define NMPC_HEAD 21u                   /* reply values before the controls */
+#define NMPC_HEAD 23u                   /* reply values before the controls */
 #define NMPC_ROWS_PER_FRAME 25u         /* node states per NMPC_PLAN_X reply (125 values) */
 #define NMPC_MAX_OUT (OGK_LINK_MAX_PAYLOAD / 8u)
 
@@ -59,6 +60,8 @@ static uint16_t replan_reply(const ogk_nmpc_flight_t *f, ogk_nmpc_action a)
     r[18] = (double)f->plan_status;
     r[19] = (double)f->pre_iterations;
     r[20] = (double)f->guesses_tried;
+    r[21] = (double)f->step_solves;
+    r[22] = (double)f->step_failed;
     for (i = 0u; (i < nc) && (i < (OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU); ++i) {
         r[NMPC_HEAD + i] = f->plan.u[i];
     }

@@ -9,7 +9,10 @@ after ogk_prox_init), so the header cannot drift from the SIL:
 - `ogk_nmpc_flight_guesses`: one guess, the ground's plan (guidance.ground_plan) that KernelGuidance
   loads; the first replan puts the measured time and state in its node 0 and solves from it, which
   is the SIL's load-then-solve to the bit (the solve re-anchors node 0 and t0 at the measurement);
-- `OGK_NMPC_FLIGHT_PRESOLVE 0`: no minimum-time pre-solve (the ground plan is the minimum-fuel one).
+- `OGK_NMPC_FLIGHT_PRESOLVE 0`: no minimum-time pre-solve (the ground plan is the minimum-fuel one);
+- with [guidance] fixed_final_time, `OGK_NMPC_FLIGHT_FINAL_TIME` (the ground plan's t_f), its band, the
+  retries' first BFGS scale and the first plan's continuation steps: the flight program keeps that
+  final time as KernelGuidance does.
 """
 from __future__ import annotations
 
@@ -26,7 +29,7 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, first: An
 
     from ogk_bindings._ffi import ffi
 
-    from .guidance import kernel_context
+    from .guidance import FIRST_SOLVE_STEPS, FIXED_T_F_BAND, RETRY_HESSIAN_INIT, kernel_context
 
     ctx = kernel_context(scenario)._ctx
     cfg = ffi.new("ogk_nmpc_config_t *", ctx.nmpc.cfg)
@@ -38,15 +41,22 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, first: An
         g.x[k] = float(v)
     for k, v in enumerate(first.controls.reshape(-1)):
         g.u[k] = float(v)
+    defines: dict[str, float | int | str] = {
+        "OGK_NMPC_FLIGHT_N_GUESSES": 1, "OGK_NMPC_FLIGHT_MIN_FUEL_THROTTLE": 1.0,
+        "OGK_NMPC_FLIGHT_PRESOLVE": 0, "OGK_NMPC_FLIGHT_PROBLEM": "(&ogk_prox_problem)",
+        "OGK_NMPC_FLIGHT_MODEL_T": "ogk_prox_model_t"}
+    if scenario.guidance.fixed_final_time:
+        defines.update({"OGK_NMPC_FLIGHT_FINAL_TIME": float(first.t0) + float(first.horizon),
+                        "OGK_NMPC_FLIGHT_FINAL_TIME_BAND": FIXED_T_F_BAND,
+                        "OGK_NMPC_FLIGHT_RETRY_HESSIAN_INIT": RETRY_HESSIAN_INIT,
+                        "OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS": f"{FIRST_SOLVE_STEPS}u"})
     return write_c_config(
         ffi, [ConfigItem("ogk_nmpc_flight_config", cfg,
                          "the solver's settings as ogk_prox_init binds them (ogk/nmpc.h; normalised units)"),
               ConfigItem("ogk_nmpc_flight_model", model,
-                         "the proximity problem's data (ogk/proximity.h): LU = 1 km, TU = 1 / n, MU = m_0"),
+                         "the proximity problem's data (ogk/proximity.h): LU = 1 km, TU = 1 / n, MU = [guidance] mass_unit_kg"),
               ConfigItem("ogk_nmpc_flight_guesses", guesses,
                          "the ground's plan (t0 and node 0 replaced by the measured time and state)")],
         out / "c" / HEADER, scenario_path, includes=("ogk/nmpc.h", "ogk/proximity.h"),
-        defines={"OGK_NMPC_FLIGHT_N_GUESSES": 1, "OGK_NMPC_FLIGHT_MIN_FUEL_THROTTLE": 1.0,
-                 "OGK_NMPC_FLIGHT_PRESOLVE": 0, "OGK_NMPC_FLIGHT_PROBLEM": "(&ogk_prox_problem)",
-                 "OGK_NMPC_FLIGHT_MODEL_T": "ogk_prox_model_t"},
+        defines=defines,
         note="the proximity approach on the NMPC flight program (ogk_nmpc_init_problem); 1 guess.")

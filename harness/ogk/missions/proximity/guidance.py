@@ -37,9 +37,14 @@ SOLVERS = ("kernel", "ipopt")
 #: [guidance] fixed_final_time: a replan's horizon within (1 -/+ this) x the time left to the ground
 #: plan's t_f (the kernel's horizon_max must exceed its horizon_min)
 FIXED_T_F_BAND = 1e-9
-#: a failed first solve is retried with T free and the first BFGS matrix this times smaller (longer first
-#: steps; run 81 of the campaign of seed 2026120581: OGK_E_INFEASIBLE with 1, converged with 1e-2)
+#: a failed solve is retried with the first BFGS matrix this times the configuration's (longer first
+#: steps; the first solve with T free too. Campaign of seed 2026120581: run 81's first solve failed with
+#: OGK_E_INFEASIBLE at 1, converged at 1e-2)
 RETRY_HESSIAN_INIT = 1e-2
+#: [guidance] fixed_final_time: the first plan's continuation steps from the ground plan's start to the
+#: measured one (campaign of seed 2026120591, one solve: run 37 found no first plan; 2, 4, 8 or 16
+#: steps: converged)
+FIRST_SOLVE_STEPS = 4
 
 
 @dataclasses.dataclass(frozen=True)
@@ -252,7 +257,18 @@ class PeerGuidance(_Base):
 
 class KernelGuidance(_Base):
     """`ogk_prox_*` through `ogk_bindings.proximity` (module doc): the ground's plan loaded, the first
-    call `ogk_prox_solve`, every later one `ogk_prox_replan`, the command `ogk_prox_thrust_cmd`."""
+    call `ogk_prox_solve`, every later one `ogk_prox_replan`, the command `ogk_prox_thrust_cmd`. With
+    [guidance] fixed_final_time (the flight program does the same: nmpc_flight.c,
+    OGK_NMPC_FLIGHT_FINAL_TIME):
+
+    - the first plan by continuation: FIRST_SOLVE_STEPS solves from the ground plan, their start moved
+      from the ground plan's to the measured one in equal steps (the last one the measurement itself);
+      failing that, from the ground plan with T free and the first BFGS matrix RETRY_HESSIAN_INIT
+      times the configuration's, and its t_f kept from then on;
+    - a failed replan solved again cold from the plan held (the previous one, shifted), T kept, with
+      that smaller first BFGS matrix.
+
+    Every solve counts in `solves`, every one that fails in `failed_solves`."""
 
     name = "kernel"
 
@@ -261,42 +277,63 @@ class KernelGuidance(_Base):
         self.ctx = kernel_context(scn)
         self.ctx.load_plan(first.t0, first.horizon, first.states, first.controls)
         self.first = first
-        cfg = self.ctx._ctx.nmpc.cfg
-        self._free_bounds = (float(cfg.horizon_min), float(cfg.horizon_max))
+        self._free_bounds = self.ctx.horizon_bounds
+        self._hessian_init = self.ctx.hessian_init
 
     def replan(self, t_s: float, x_si: FloatArray) -> ReplanInfo:
         t = t_s / self.units.time_s
         x = np.asarray(x_si, dtype=np.float64) / self.scale
         fixed = self._fixed_bounds(t)
-        if fixed is not None:
-            # the context's horizon bounds moved in place (validated at init: 0 < min < max)
-            cfg = self.ctx._ctx.nmpc.cfg
-            cfg.horizon_min, cfg.horizon_max = fixed
         start = time.perf_counter()
-        rep = self.ctx.replan(t, x) if self.started else self.ctx.solve(t, x)
-        if fixed is not None and not self.started and not rep.converged:
-            # the first solve with the ground plan's t_f failed (a dispersed start it cannot reach then,
-            # or the QP without T's freedom): solved again from the ground plan with T free, and its t_f
-            # kept from here on
-            self.solves += int(rep.solves)
-            self.failed_solves += 1
-            cfg = self.ctx._ctx.nmpc.cfg
-            cfg.horizon_min, cfg.horizon_max = self._free_bounds
-            h0 = float(cfg.hessian_init)
-            cfg.hessian_init = h0 * RETRY_HESSIAN_INIT
-            first = self.first
-            self.ctx.load_plan(first.t0, first.horizon, first.states, first.controls)
-            rep = self.ctx.solve(t, x)
-            cfg.hessian_init = h0
-            if rep.converged:
-                self.t_f_fixed = self.ctx.plan().t0 + self.ctx.plan().horizon
+        if fixed is None:
+            rep = self._count(self.ctx.replan(t, x) if self.started else self.ctx.solve(t, x))
+        elif self.started:
+            rep = self._replan_kept(t, x, fixed)
+        else:
+            rep = self._first_kept(t, x, fixed)
         elapsed = time.perf_counter() - start
         self.started = True
-        self.solves += int(rep.solves)
-        self.failed_solves += int(not rep.converged)
         p = self.ctx.plan()
         self.plan = Plan(p.t0, p.horizon, p.states, p.controls)
         return self._info(t_s, rep.converged, rep.status, int(rep.sqp_iterations), elapsed)
+
+    def _count(self, rep: Any) -> Any:
+        self.solves += int(rep.solves)
+        self.failed_solves += int(not rep.converged)
+        return rep
+
+    def _first_kept(self, t: float, x: FloatArray, fixed: tuple[float, float]) -> Any:
+        self.ctx.set_horizon_bounds(*fixed)
+        x_nom = self.first.states[0]
+        rep = None
+        for k in range(1, FIRST_SOLVE_STEPS + 1):
+            x_k = x if k == FIRST_SOLVE_STEPS else x_nom + (k / FIRST_SOLVE_STEPS) * (x - x_nom)
+            rep = self._count(self.ctx.solve(t, x_k))
+            if not rep.converged:
+                break
+        assert rep is not None
+        if not rep.converged:
+            first = self.first
+            self.ctx.set_horizon_bounds(*self._free_bounds)
+            self.ctx.set_hessian_init(self._hessian_init * RETRY_HESSIAN_INIT)
+            self.ctx.load_plan(first.t0, first.horizon, first.states, first.controls)
+            rep = self._count(self.ctx.solve(t, x))
+            self.ctx.set_hessian_init(self._hessian_init)
+            if rep.converged:
+                p = self.ctx.plan()
+                self.t_f_fixed = p.t0 + p.horizon
+        return rep
+
+    def _replan_kept(self, t: float, x: FloatArray, fixed: tuple[float, float]) -> Any:
+        self.ctx.set_horizon_bounds(*fixed)
+        rep = self._count(self.ctx.replan(t, x))
+        if not rep.converged:
+            p = self.ctx.plan()
+            self.ctx.set_hessian_init(self._hessian_init * RETRY_HESSIAN_INIT)
+            self.ctx.load_plan(t, 0.5 * (fixed[0] + fixed[1]), p.states, p.controls)
+            rep = self._count(self.ctx.solve(t, x))
+            self.ctx.set_hessian_init(self._hessian_init)
+        return rep
 
     def command(self, t_s: float) -> tuple[float, float]:
         cmd = self.ctx.thrust_cmd(t_s / self.units.time_s)     # r-t-n unit vector and throttle
@@ -309,7 +346,7 @@ class KernelGuidance(_Base):
 #: plan's t_f kept: tol_obj 1e-8 (relative now; on 4 run seeds an ulp of the start moves the fuel by
 #: <= 0.12 g of ~23 g; 1e-7: up to 1.1 g; 1e-9, 1e-10 or max_iter 400 no better; elastic_weight 1.8e6 =
 #: 1000 x m_0 / MU, the slacks' old price against J: up to 0.21 g)
-KERNEL_SETTINGS: dict[str, Any] = {"max_iter": 200, "max_iter_cold": 500, "tol_obj": 1e-8}
+KERNEL_SETTINGS: dict[str, Any] = {"max_iter": 400, "max_iter_cold": 500, "tol_obj": 1e-8}
 
 
 def kernel_context(scn: ProximityScenario) -> Any:

@@ -39,7 +39,7 @@ from .guidance_base import ReplanInfo
 F64 = NDArray[np.float64]
 
 NMPC_INIT, NMPC_REPLAN, NMPC_PLAN_X = 32, 33, 34     #: frame types of nmpc_pil.c
-HEAD = 21                                           #: NMPC_REPLAN reply values before the controls
+HEAD = 23                                           #: NMPC_REPLAN reply values before the controls
 ROWS_PER_FRAME = 25                                 #: node states per NMPC_PLAN_X reply
 #: the entry points of a replan, in the program's stack-slot order (nmpc_flight.h)
 ENTRY_POINTS = ("ogk_nmpc_init", "ogk_nmpc_reset", "ogk_nmpc_load_plan", "ogk_nmpc_solve",
