@@ -66,7 +66,7 @@ DRIVERS = (
                     K + "nmpc/nmpc_plan.c", K + "nmpc/nmpc_sens_cache.c", K + "nmpc/nmpc_shoot.c", K + "nmpc/nmpc_shoot_hess.c",
                     K + "nmpc/nmpc_sqp.c", K + "nmpc/nmpc_helio.c", K + "nmpc/nmpc_problem.c", K + "qp/qp.c", K + "qp/qp_blas.c",
                     K + "core/chol.c", K + "contract/thrust_cmd.c"),
-           "drv_nmpc.c", defines=("OGK_NMPC_MAX_NODES=2u", "OGK_NMPC_MAX_RK4_STEPS=2u", "OGK_QP_MAX_N=15u",
+           "drv_nmpc.c", defines=("OGK_NMPC_MAX_NODES=2u", "OGK_NMPC_MAX_RK4_STEPS=2u", "OGK_QP_MAX_N=16u",
                                   "OGK_QP_MAX_EQ=4u", "OGK_QP_MAX_IN=17u")),
     Driver("blt", (K + "blt/blt.c", K + "blt/blt_arc.c", K + "blt/blt_model.c", K + "core/linalg.c", K + "core/chol.c", K + "core/newton.c",
                    K + "contract/thrust_cmd.c"),

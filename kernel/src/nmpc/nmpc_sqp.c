@@ -440,8 +440,12 @@ static ogk_status solve_elastic_rows(ogk_nmpc_t *ctx, const double *hess, const 
             ctx->el_ain[((row0 + (2u * i) + 1u) * ne) + nv + NC + i] = 1.0;
         }
     }
-    for (i = 0u; (i < ko_n) && ((ko_row0 + i) < rows); ++i) {
-        ctx->el_ain[((ko_row0 + i) * ne) + (ne - 1u)] = 1.0;
+    {
+        /* the keep-out rows within the rows built (clamped once: one bound for the loop) */
+        const size_t ko_end = ogk_i_min_size(ko_row0 + ko_n, rows);
+        for (i = ko_row0; i < ko_end; ++i) {
+            ctx->el_ain[(i * ne) + (ne - 1u)] = 1.0;
+        }
     }
     qp.n = ne;
     qp.m_eq = eq5 ? NC : 0u;
