@@ -11,7 +11,7 @@ APT_PKGS := build-essential valgrind clang clang-tidy libclang-rt-14-dev \
   libcmocka-dev cppcheck gcovr libeigen3-dev gcc-arm-none-eabi \
   libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm qemu-user \
   python3-venv pkg-config gcc-sparc64-linux-gnu libc6-dev-sparc-sparc64-cross \
-  lib32gcc-12-dev-sparc64-cross frama-c-base
+  lib32gcc-12-dev-sparc64-cross frama-c-base cmake
 PYTHON ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
@@ -53,15 +53,27 @@ KHDR := $(wildcard kernel/include/ogk/*.h) $(wildcard kernel/include/ogk/interna
 SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 B := build
 
+# ---------------------------------------------------------------- kernel libraries (CMake)
+# CMakeLists.txt is the one description of how the kernel compiles (docs/cmake.md): make configures and
+# builds it per target in $(B)/cmake-<target> with that target's toolchain file and the flags its
+# evidence needs (OGK_C_FLAGS: -O2, plus -g and -fstack-usage on the flight targets), then stages the
+# library, its objects and their .su files where the rules below read them (cmake/stage.sh).
+# The make variables are cleared: CMake's own make is not a child of this one (no job server).
+CMAKE_INPUTS := CMakeLists.txt $(wildcard cmake/*.cmake cmake/*.in cmake/*.sh cmake/toolchains/*.cmake) \
+  $(KSRC) $(KHDR)
+# $(call cmake_kernel,NAME,TOOLCHAIN,OGK_C_FLAGS,STAGE_DIR)
+cmake_kernel = cmake -S . -B $(B)/cmake-$(1) -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/$(2).cmake \
+  -DCMAKE_BUILD_TYPE= -DOGK_C_FLAGS="$(3)" --log-level=WARNING > /dev/null && \
+  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL cmake --build $(B)/cmake-$(1) -j2 && cmake/stage.sh $(B)/cmake-$(1) $(4)
+# The CPU flags of a toolchain file, which the Makefile's own target rules (tests, runtime) use too.
+toolchain_cpu = $(or $(shell sed -n 's/^set(CMAKE_C_FLAGS_INIT "\(.*\)")$$/\1/p' cmake/toolchains/$(1).cmake),\
+  $(error cmake/toolchains/$(1).cmake: no CMAKE_C_FLAGS_INIT line))
+
 # ---------------------------------------------------------------- host kernel
+# -O2 -fPIC (CMake's position-independent objects, shared by libogk.a and libogk.so).
 HOST_OBJ := $(patsubst kernel/src/%.c,$(B)/host/kernel/%.o,$(KSRC))
-$(B)/host/kernel/%.o: kernel/src/%.c $(KHDR) | apt
-	@mkdir -p $(@D)
-	gcc $(STRICT) -O2 -fPIC $(KINC) $(KSRC_INC) -c $< -o $@
-$(B)/host/libogk.a: $(HOST_OBJ)
-	ar rcs $@ $^
-$(B)/host/libogk.so: $(HOST_OBJ)
-	gcc -shared -o $@ $^ -lm
+$(B)/host/libogk.a $(B)/host/libogk.so $(HOST_OBJ) &: $(CMAKE_INPUTS) | apt
+	$(call cmake_kernel,host,host-gcc,-O2,$(B)/host)
 
 .PHONY: kernel-host
 kernel-host: $(B)/host/libogk.a $(B)/host/libogk.so
