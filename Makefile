@@ -58,13 +58,14 @@ B := build
 # builds it per target in $(B)/cmake-<target> with that target's toolchain file and the flags its
 # evidence needs (OGK_C_FLAGS: -O2, plus -g and -fstack-usage on the flight targets), then stages the
 # library, its objects and their .su files where the rules below read them (cmake/stage.sh).
-# The make variables are cleared: CMake's own make is not a child of this one (no job server).
+# CMAKE_BUILD clears the make variables: CMake's own make is not a child of this one (no job server).
+CMAKE_BUILD := env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL cmake --build
 CMAKE_INPUTS := CMakeLists.txt $(wildcard cmake/*.cmake cmake/*.in cmake/*.sh cmake/toolchains/*.cmake) \
   $(KSRC) $(KHDR)
 # $(call cmake_kernel,NAME,TOOLCHAIN,OGK_C_FLAGS,STAGE_DIR)
 cmake_kernel = cmake -S . -B $(B)/cmake-$(1) -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/$(2).cmake \
   -DCMAKE_BUILD_TYPE= -DOGK_C_FLAGS="$(3)" --log-level=WARNING > /dev/null && \
-  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL cmake --build $(B)/cmake-$(1) -j2 && cmake/stage.sh $(B)/cmake-$(1) $(4)
+  $(CMAKE_BUILD) $(B)/cmake-$(1) -j2 && cmake/stage.sh $(B)/cmake-$(1) $(4)
 # The CPU flags of a toolchain file, which the Makefile's own target rules (tests, runtime) use too.
 toolchain_cpu = $(or $(shell sed -n 's/^set(CMAKE_C_FLAGS_INIT "\(.*\)")$$/\1/p' cmake/toolchains/$(1).cmake),\
   $(error cmake/toolchains/$(1).cmake: no CMAKE_C_FLAGS_INIT line))
@@ -108,6 +109,10 @@ test-unit-host: $(UNIT_HOST)
 include port/cortex-m7/cortex-m7.mk
 # before test-python, whose prerequisites name its LINK_ECHO_ELF (prerequisites expand when read)
 include port/cortex-m7/link/link.mk
+
+# ---------------------------------------------------------------- the package as a flight project takes it
+# make test-consumer: the kernel built and installed by CMake alone, examples/consumer built against it
+include examples/consumer/consumer.mk
 
 # ---------------------------------------------------------------- Eigen cross-check (host only)
 EIGEN_BIN := $(B)/host/eigen_crosscheck
