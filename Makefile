@@ -198,18 +198,31 @@ trace:
 trace-matrix:
 	$(PYTHON) tests/trace/check_trace.py --write
 
+# ---------------------------------------------------------------- versioned API (CHANGELOG.md, "Versioning")
+# api-check (in make test, ~1 s): the public headers against the interface recorded for the last release
+# (api/ogk-X.Y.Z.api); fails on a change the version in ogk/version.h does not cover (a removed or changed
+# declaration or macro: the breaking bump, the minor one while the major is 0; an added one: the next
+# compatible version). api-record: records the current headers under the current version, at a release.
+.PHONY: api-check api-record
+api-check: | apt
+	$(PYTHON) tests/api/check_api.py check
+api-record: | apt
+	$(PYTHON) tests/api/check_api.py record
+
 # ---------------------------------------------------------------- top-level
 .PHONY: all test run clean
 all: deps kernel-host arm-lib ffi
 
 test: deps
 	$(MAKE) trace
+	$(MAKE) api-check
 	$(MAKE) lint
 	$(MAKE) test-unit-host
 	$(MAKE) test-unit-arm
 	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack stack-bound-m7 footprint-m7
 	$(MAKE) test-flight-app
 	$(MAKE) test-unit-sparc test-flight-app-sparc test-flt-eval stack-bound-sparc footprint-sparc test-qemu-plugin-sparc
+	$(MAKE) test-consumer
 	$(MAKE) test-eigen
 	$(MAKE) test-imports
 	$(MAKE) test-python-prereqs
