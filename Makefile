@@ -62,10 +62,12 @@ B := build
 CMAKE_BUILD := env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL cmake --build
 CMAKE_INPUTS := CMakeLists.txt $(wildcard cmake/*.cmake cmake/*.in cmake/*.sh cmake/toolchains/*.cmake) \
   $(KSRC) $(KHDR)
-# $(call cmake_kernel,NAME,TOOLCHAIN,OGK_C_FLAGS,STAGE_DIR)
-cmake_kernel = cmake -S . -B $(B)/cmake-$(1) -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/$(2).cmake \
-  -DCMAKE_BUILD_TYPE= -DOGK_C_FLAGS="$(3)" --log-level=WARNING > /dev/null && \
-  $(CMAKE_BUILD) $(B)/cmake-$(1) -j2 && cmake/stage.sh $(B)/cmake-$(1) $(4)
+# $(call cmake_kernel,NAME,TOOLCHAIN,OGK_C_FLAGS,STAGE_DIR). CMake reads a toolchain file at the first
+# configure only: a build directory older than its toolchain file is configured afresh.
+cmake_kernel = bd=$(B)/cmake-$(1); tc=cmake/toolchains/$(2).cmake; \
+  if [ ! $$bd/CMakeCache.txt -nt $$tc ]; then rm -rf $$bd; tca=-DCMAKE_TOOLCHAIN_FILE=$$tc; else tca=; fi; \
+  cmake -S . -B $$bd $$tca -DCMAKE_BUILD_TYPE= -DOGK_C_FLAGS="$(3)" --log-level=WARNING > /dev/null && \
+  $(CMAKE_BUILD) $$bd -j2 && cmake/stage.sh $$bd $(4)
 # The CPU flags of a toolchain file, which the Makefile's own target rules (tests, runtime) use too.
 toolchain_cpu = $(or $(shell sed -n 's/^set(CMAKE_C_FLAGS_INIT "\(.*\)")$$/\1/p' cmake/toolchains/$(1).cmake),\
   $(error cmake/toolchains/$(1).cmake: no CMAKE_C_FLAGS_INIT line))
