@@ -11,7 +11,7 @@ APT_PKGS := build-essential valgrind clang clang-tidy libclang-rt-14-dev \
   libcmocka-dev cppcheck gcovr libeigen3-dev gcc-arm-none-eabi \
   libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm qemu-user \
   python3-venv pkg-config gcc-sparc64-linux-gnu libc6-dev-sparc-sparc64-cross \
-  lib32gcc-12-dev-sparc64-cross frama-c-base
+  lib32gcc-12-dev-sparc64-cross frama-c-base cmake
 PYTHON ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
@@ -53,15 +53,30 @@ KHDR := $(wildcard kernel/include/ogk/*.h) $(wildcard kernel/include/ogk/interna
 SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 B := build
 
+# ---------------------------------------------------------------- kernel libraries (CMake)
+# CMakeLists.txt is the one description of how the kernel compiles (docs/cmake.md): make configures and
+# builds it per target in $(B)/cmake-<target> with that target's toolchain file and the flags its
+# evidence needs (OGK_C_FLAGS: -O2, plus -g and -fstack-usage on the flight targets), then stages the
+# library, its objects and their .su files where the rules below read them (cmake/stage.sh).
+# CMAKE_BUILD clears the make variables: CMake's own make is not a child of this one (no job server).
+CMAKE_BUILD := env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL cmake --build
+CMAKE_INPUTS := CMakeLists.txt $(wildcard cmake/*.cmake cmake/*.in cmake/*.sh cmake/toolchains/*.cmake) \
+  $(KSRC) $(KHDR)
+# $(call cmake_kernel,NAME,TOOLCHAIN,OGK_C_FLAGS,STAGE_DIR). CMake reads a toolchain file at the first
+# configure only: a build directory older than its toolchain file is configured afresh.
+cmake_kernel = bd=$(B)/cmake-$(1); tc=cmake/toolchains/$(2).cmake; \
+  if [ ! $$bd/CMakeCache.txt -nt $$tc ]; then rm -rf $$bd; tca=-DCMAKE_TOOLCHAIN_FILE=$$tc; else tca=; fi; \
+  cmake -S . -B $$bd $$tca -DCMAKE_BUILD_TYPE= -DOGK_C_FLAGS="$(3)" --log-level=WARNING > /dev/null && \
+  $(CMAKE_BUILD) $$bd -j2 && cmake/stage.sh $$bd $(4)
+# The CPU flags of a toolchain file, which the Makefile's own target rules (tests, runtime) use too.
+toolchain_cpu = $(or $(shell sed -n 's/^set(CMAKE_C_FLAGS_INIT "\(.*\)")$$/\1/p' cmake/toolchains/$(1).cmake),\
+  $(error cmake/toolchains/$(1).cmake: no CMAKE_C_FLAGS_INIT line))
+
 # ---------------------------------------------------------------- host kernel
+# -O2 -fPIC (CMake's position-independent objects, shared by libogk.a and libogk.so).
 HOST_OBJ := $(patsubst kernel/src/%.c,$(B)/host/kernel/%.o,$(KSRC))
-$(B)/host/kernel/%.o: kernel/src/%.c $(KHDR) | apt
-	@mkdir -p $(@D)
-	gcc $(STRICT) -O2 -fPIC $(KINC) $(KSRC_INC) -c $< -o $@
-$(B)/host/libogk.a: $(HOST_OBJ)
-	ar rcs $@ $^
-$(B)/host/libogk.so: $(HOST_OBJ)
-	gcc -shared -o $@ $^ -lm
+$(B)/host/libogk.a $(B)/host/libogk.so $(HOST_OBJ) &: $(CMAKE_INPUTS) | apt
+	$(call cmake_kernel,host,host-gcc,-O2,$(B)/host)
 
 .PHONY: kernel-host
 kernel-host: $(B)/host/libogk.a $(B)/host/libogk.so
@@ -96,6 +111,10 @@ test-unit-host: $(UNIT_HOST)
 include port/cortex-m7/cortex-m7.mk
 # before test-python, whose prerequisites name its LINK_ECHO_ELF (prerequisites expand when read)
 include port/cortex-m7/link/link.mk
+
+# ---------------------------------------------------------------- the package as a flight project takes it
+# make test-consumer: the kernel built and installed by CMake alone, examples/consumer built against it
+include examples/consumer/consumer.mk
 
 # ---------------------------------------------------------------- Eigen cross-check (host only)
 EIGEN_BIN := $(B)/host/eigen_crosscheck
@@ -181,18 +200,31 @@ trace:
 trace-matrix:
 	$(PYTHON) tests/trace/check_trace.py --write
 
+# ---------------------------------------------------------------- versioned API (CHANGELOG.md, "Versioning")
+# api-check (in make test, ~1 s): the public headers against the interface recorded for the last release
+# (api/ogk-X.Y.Z.api); fails on a change the version in ogk/version.h does not cover (a removed or changed
+# declaration or macro: the breaking bump, the minor one while the major is 0; an added one: the next
+# compatible version). api-record: records the current headers under the current version, at a release.
+.PHONY: api-check api-record
+api-check: | apt
+	$(PYTHON) tests/api/check_api.py check
+api-record: | apt
+	$(PYTHON) tests/api/check_api.py record
+
 # ---------------------------------------------------------------- top-level
 .PHONY: all test run clean
 all: deps kernel-host arm-lib ffi
 
 test: deps
 	$(MAKE) trace
+	$(MAKE) api-check
 	$(MAKE) lint
 	$(MAKE) test-unit-host
 	$(MAKE) test-unit-arm
 	$(MAKE) test-arm-selftest test-qemu-plugin arm-stack stack-bound-m7 footprint-m7
 	$(MAKE) test-flight-app
 	$(MAKE) test-unit-sparc test-flight-app-sparc test-flt-eval stack-bound-sparc footprint-sparc test-qemu-plugin-sparc
+	$(MAKE) test-consumer
 	$(MAKE) test-eigen
 	$(MAKE) test-imports
 	$(MAKE) test-python-prereqs

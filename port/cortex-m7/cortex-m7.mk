@@ -10,7 +10,9 @@
 #
 # Overridable: ARM_UNIT_SRC (which test sources), ARM_TIMEOUT (s per test run).
 
-ARM_CPU := -mthumb -mcpu=cortex-m7 -mfpu=fpv5-d16 -mfloat-abi=hard
+# The CPU flags of the flight target, from its CMake toolchain file (the one place they are written):
+# -mthumb -mcpu=cortex-m7 -mfpu=fpv5-d16 -mfloat-abi=hard.
+ARM_CPU := $(call toolchain_cpu,cortex-m7)
 
 # Counter abstraction for tests and benchmarks (port/include/ogk_port.h):
 # host programs compile $(PORT_HOST_SRC); ARM programs link $(ARM_RT_OBJ).
@@ -18,7 +20,6 @@ PORT_INC := -Iport/include
 PORT_HOST_SRC := port/host/ogk_port_host.c
 
 ARM_CC := arm-none-eabi-gcc
-ARM_AR := arm-none-eabi-ar
 ARM_PORT := port/cortex-m7
 ARM_B := $(B)/arm
 ARM_LDSCRIPT := $(ARM_PORT)/mps2-an500.ld
@@ -28,7 +29,10 @@ ARM_UNIT_SRC ?= $(UNIT_SRC)
 # Kernel: the flight flags, plus -g (addr2line on faults; no code change),
 # per-function sections (the link drops what a test does not use) and
 # -fstack-usage (build/arm/kernel/*.su: frame size of every function).
-ARM_KFLAGS := $(STRICT) $(ARM_CPU) -O2 -g -ffunction-sections -fdata-sections -fstack-usage
+# The library is CMake's (CMakeLists.txt) with ARM_KOBJ_FLAGS; ARM_KFLAGS is
+# the same command line for the call-graph build below.
+ARM_KOBJ_FLAGS := -O2 -g -ffunction-sections -fdata-sections -fstack-usage
+ARM_KFLAGS := $(STRICT) $(ARM_CPU) $(ARM_KOBJ_FLAGS)
 ARM_KOBJ := $(patsubst kernel/src/%.c,$(ARM_B)/kernel/%.o,$(KSRC))
 
 # Runtime linked into every test: startup (vectors, reset, faults, heap),
@@ -50,13 +54,9 @@ ARM_LDLIBS := -lm
 .PHONY: arm-lib test-unit-arm test-arm-selftest arm-size
 
 # ---------------------------------------------------------------- kernel library
-$(ARM_B)/kernel/%.o: kernel/src/%.c $(KHDR) | apt
-	@mkdir -p $(@D)
-	$(ARM_CC) $(ARM_KFLAGS) $(KINC) $(KSRC_INC) -c $< -o $@
-
-$(ARM_B)/libogk.a: $(ARM_KOBJ)
-	@rm -f $@
-	$(ARM_AR) rcs $@ $^
+# Built by CMake with cmake/toolchains/cortex-m7.cmake, staged with its objects and .su files.
+$(ARM_B)/libogk.a $(ARM_KOBJ) &: $(CMAKE_INPUTS) | apt
+	$(call cmake_kernel,arm,cortex-m7,$(ARM_KOBJ_FLAGS),$(ARM_B))
 
 arm-lib: $(ARM_B)/libogk.a
 

@@ -16,8 +16,7 @@
 # Overridable: SPARC_UNIT_SRC (which test sources), SPARC_TIMEOUT (s per test run).
 
 SPARC_CC := sparc64-linux-gnu-gcc
-SPARC_AR := sparc64-linux-gnu-ar
-SPARC_CPU := -m32 -mcpu=v8
+SPARC_CPU := $(call toolchain_cpu,sparc-v8)
 SPARC_QEMU := qemu-sparc32plus
 SPARC_PORT := port/sparc-v8
 SPARC_B := $(B)/sparc
@@ -27,7 +26,8 @@ SPARC_UNIT_SRC ?= $(UNIT_SRC)
 # Kernel: the flight flags (the cross gcc 12.2 defines FLT_EVAL_METHOD 0 and __BYTE_ORDER__ big).
 # -fstack-usage: build/sparc/kernel/*.su, gcc's frame of every function, against which the stack bound
 # (port/profile, make stack-bound-sparc) checks its reading of the disassembly.
-SPARC_KFLAGS := $(STRICT) $(SPARC_CPU) -O2 -g -fstack-usage
+# The library is CMake's (CMakeLists.txt, cmake/toolchains/sparc-v8.cmake: -m32 -mcpu=v8) with these.
+SPARC_KOBJ_FLAGS := -O2 -g -fstack-usage
 SPARC_KOBJ := $(patsubst kernel/src/%.c,$(SPARC_B)/kernel/%.o,$(KSRC))
 
 # Runtime linked into every test: the cmocka shim and the host port counter.
@@ -39,12 +39,8 @@ SPARC_LDLIBS := -lm
 
 .PHONY: sparc-lib test-unit-sparc test-flight-app-sparc test-flt-eval
 
-$(SPARC_B)/kernel/%.o: kernel/src/%.c $(KHDR) | apt
-	@mkdir -p $(@D)
-	$(SPARC_CC) $(SPARC_KFLAGS) $(KINC) $(KSRC_INC) -c $< -o $@
-$(SPARC_B)/libogk.a: $(SPARC_KOBJ)
-	@rm -f $@
-	$(SPARC_AR) rcs $@ $^
+$(SPARC_B)/libogk.a $(SPARC_KOBJ) &: $(CMAKE_INPUTS) | apt
+	$(call cmake_kernel,sparc,sparc-v8,$(SPARC_KOBJ_FLAGS),$(SPARC_B))
 sparc-lib: $(SPARC_B)/libogk.a
 
 $(SPARC_B)/rt/cmocka_shim.o: $(ARM_PORT)/testrunner/cmocka_shim.c $(ARM_PORT)/testrunner/cmocka.h | apt

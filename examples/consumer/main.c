@@ -1,0 +1,34 @@
+/* main.c -- the example consumer: every law's flight loop, then one summary line; the exit code is
+ * the number of laws that failed (on the Cortex-M7 under QEMU it becomes QEMU's exit code). */
+#include <stdio.h>
+#include <string.h>
+
+#include <ogk/version.h>
+
+#include "consumer.h"
+
+int consumer_verdict(const char *law, int pass, const char *detail)
+{
+    (void)printf("%-5s %s  %s\n", law, pass ? "PASS" : "FAIL", detail);
+    return pass ? 0 : 1;
+}
+
+int main(void)
+{
+    const char *text = "";
+    int failed = 0;
+    /* the library linked and the headers compiled against are the same release */
+    if ((ogk_version(&text) != OGK_OK) || (strcmp(text, OGK_VERSION_STRING) != 0)) {
+        (void)printf("consumer: library version %s, headers %s\n", text, OGK_VERSION_STRING);
+        return 100;
+    }
+    (void)printf("consumer of ogk %s\n", text);
+    failed += fly_nog();
+    failed += fly_cpd();
+    failed += fly_mpsp();
+    failed += fly_nmpc();
+    failed += fly_prox();
+    failed += fly_blt();
+    (void)printf("consumer: %d passed, %d failed\n", 6 - failed, failed);
+    return failed;
+}

@@ -1,0 +1,157 @@
+/* nog_loop.c -- VTD-NOG (ogk/nog.h) flown on a gain table made here with the public table layout
+ * (ogk/table.h, ogk/crc32.h): a straight-line nominal of t_f* = 100 s with a constant thrust angle,
+ * whose one gain maps a transverse-velocity error to a flight-time correction (2 s per m/s). The
+ * vehicle flies 1.5 m/s fast all along, so every sample must predict the cut-off at 103 s, and the
+ * engine must go off there. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <ogk/crc32.h>
+#include <ogk/nog.h>
+#include <ogk/table.h>
+
+#include "consumer.h"
+
+#define GRID 5u
+#define N_VALUES (GRID * (1u + OGK_NOG_ENTRY_LEN))
+#define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + (8u * N_VALUES))
+#define TF_STAR 100.0 /* [s] */
+#define ALPHA0 0.3    /* [rad] nominal thrust angle */
+#define K_TF_VT 2.0   /* [s per m/s] dt_f = K_TF_VT dv_t */
+#define DV_T 1.5      /* [m/s] the vehicle's transverse-velocity error */
+
+static const double x0[OGK_NOG_NX] = {7.0e6, 0.0, 0.0, 10.0, 9000.0, 0.0, 0.0};
+static const double x_rate[OGK_NOG_NX] = {2.0e6, 0.5, 0.0, -5.0, 2000.0, 0.0, TF_STAR}; /* d/dtau */
+
+/* 8-byte aligned, as the in-place view of a payload needs */
+static union {
+    double align;
+    uint8_t bytes[TABLE_BYTES];
+} image;
+static ogk_nog_table_view_t view;
+static ogk_nog_table_t table; /* the decoded copy, where the target cannot read the image in place */
+static ogk_nog_t nog;
+
+static void put_le(uint8_t *p, uint64_t v, unsigned n)
+{
+    unsigned i;
+    for (i = 0u; i < n; ++i) {
+        p[i] = (uint8_t)((v >> (8u * i)) & 0xFFu);
+    }
+}
+
+static void put_f64(uint8_t *p, double d)
+{
+    uint64_t bits;
+    (void)memcpy(&bits, &d, sizeof bits);
+    put_le(p, bits, 8u);
+}
+
+/* The table file of ogk/table.h: header, grid, one row of OGK_NOG_ENTRY_LEN values per node, CRCs. */
+static void make_table(void)
+{
+    uint8_t *b = image.bytes;
+    uint32_t crc = 0u;
+    size_t k;
+    size_t i;
+    (void)memset(b, 0, sizeof image.bytes);
+    (void)memcpy(b, "OGKT", 4u);
+    put_le(b + 4, OGK_TABLE_VERSION, 2u);
+    put_le(b + 6, OGK_TABLE_F64, 2u);
+    put_le(b + 8, OGK_NOG_TABLE_KIND, 4u);
+    put_le(b + 12, 1u, 2u);
+    put_le(b + 16, OGK_NOG_ENTRY_LEN, 4u);
+    put_le(b + 32, GRID, 4u);
+    put_le(b + 36, 8u * N_VALUES, 4u);
+    for (k = 0u; k < GRID; ++k) {
+        double row[OGK_NOG_ENTRY_LEN];
+        const double tau = (double)k / (double)(GRID - 1u);
+        (void)memset(row, 0, sizeof row);
+        for (i = 0u; i < OGK_NOG_NX; ++i) {
+            row[OGK_NOG_OFF_X + i] = x0[i] + (tau * x_rate[i]);
+            row[OGK_NOG_OFF_XDOT + i] = x_rate[i];
+        }
+        row[OGK_NOG_OFF_LAM + 3u] = -sin(ALPHA0); /* thrust along -lambda_v */
+        row[OGK_NOG_OFF_LAM + 4u] = -cos(ALPHA0);
+        if (k + 1u < GRID) { /* no gains at tau = 1 */
+            row[OGK_NOG_OFF_GAIN + (7u * 7u) + 4u] = K_TF_VT;
+        }
+        put_f64(b + OGK_TABLE_HEADER_SIZE + (8u * k), tau);
+        for (i = 0u; i < OGK_NOG_ENTRY_LEN; ++i) {
+            put_f64(b + OGK_TABLE_HEADER_SIZE + (8u * (GRID + (k * OGK_NOG_ENTRY_LEN) + i)), row[i]);
+        }
+    }
+    (void)ogk_crc32_update(&crc, b + OGK_TABLE_HEADER_SIZE, 8u * N_VALUES);
+    put_le(b + 40, crc, 4u);
+    crc = 0u;
+    (void)ogk_crc32_update(&crc, b, 44u);
+    put_le(b + 44, crc, 4u);
+}
+
+/* The vehicle: on the nominal stretched to 103 s, DV_T fast. */
+static ogk_nav_state_t nav_at(double t)
+{
+    const double tau = t / (TF_STAR + (K_TF_VT * DV_T));
+    ogk_nav_state_t nav;
+    nav.t_s = t;
+    nav.r_m = x0[0] + (tau * x_rate[0]);
+    nav.xi_rad = x0[1] + (tau * x_rate[1]);
+    nav.phi_rad = 0.0;
+    nav.v_r_mps = x0[3] + (tau * x_rate[3]);
+    nav.v_t_mps = x0[4] + (tau * x_rate[4]) + DV_T;
+    nav.v_n_mps = 0.0;
+    return nav;
+}
+
+int fly_nog(void)
+{
+    ogk_nog_config_t cfg;
+    ogk_nog_sample_t s;
+    ogk_thrust_cmd_t cmd;
+    ogk_status st;
+    char detail[160];
+    double worst_cutoff = 0.0; /* [s] largest distance of a predicted cut-off from 103 s */
+    double t_off = -1.0;       /* [s] first tick with the engine off */
+    unsigned samples = 0u;
+    unsigned n;
+    int terminating = 0;
+    int ok = 1;
+    make_table();
+    (void)ogk_nog_config_default(&cfg);
+    /* in place where the target stores a double as the file does (x86-64, Cortex-M7), else a copy */
+    if (ogk_table_check_in_place() == OGK_OK) {
+        st = ogk_nog_table_view(&view, image.bytes, sizeof image.bytes);
+        cfg.view = &view;
+    } else {
+        st = ogk_nog_table_load(&table, image.bytes, sizeof image.bytes);
+        cfg.table = &table;
+    }
+    cfg.sample_interval_s = 2.0;
+    cfg.dtf_max_s = 10.0;
+    if ((st != OGK_OK) || (ogk_nog_init(&nog, &cfg) != OGK_OK)) {
+        return consumer_verdict("nog", 0, "table or init rejected");
+    }
+    /* commands at 10 Hz; a sample every 2 s until the cut-off falls in the interval (eq. 32) */
+    for (n = 0u; (n < 1200u) && (t_off < 0.0); ++n) {
+        const double t = (double)n / 10.0;
+        if (((n % 20u) == 0u) && !terminating) {
+            const ogk_nav_state_t nav = nav_at(t);
+            ok = ok && (ogk_nog_sample(&nog, &nav, &s) == OGK_OK);
+            worst_cutoff = fmax(worst_cutoff, fabs(s.t_cutoff_s - 103.0));
+            terminating = (s.flags & OGK_NOG_FLAG_TERMINATING) != 0u;
+            ++samples;
+        }
+        ok = ok && (ogk_nog_thrust_cmd(&nog, t, &cmd) == OGK_OK);
+        ok = ok && (fabs(cmd.alpha_rad - ALPHA0) < 1e-9);
+        if ((cmd.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u) {
+            t_off = t;
+        }
+    }
+    /* the synthetic navigation is not the law's own closed loop: the samples may move the cut-off by
+     * milliseconds; the engine goes off at the first tick at or after the one predicted last */
+    ok = ok && (worst_cutoff < 0.01) && (t_off >= s.t_cutoff_s) && (t_off < s.t_cutoff_s + 0.1);
+    (void)snprintf(detail, sizeof detail, "cut-off predicted at 103 s (within %.1e s), engine off at %.1f s, %u samples",
+                   worst_cutoff, t_off, samples);
+    return consumer_verdict("nog", ok, detail);
+}
