@@ -277,11 +277,11 @@ ogk_status ogk_nog_thrust_cmd(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t
 ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau);
 
 /* ---------------------------------------------------------------------------
- * Deprecated (removed in 0.3): the names before issue 33's uniform naming
+ * Deprecated (removed in 0.2): the names before issue 33's uniform naming
  * (docs/deprecations.md). Thin wrappers of the new names, same results.
  * ------------------------------------------------------------------------- */
 
-/* Deprecated (removed in 0.3): ogk_nog_thrust_cmd, the thrust-command
+/* Deprecated (removed in 0.2): ogk_nog_thrust_cmd, the thrust-command
  * producer named as every law's (ogk_<law>_thrust_cmd). */
 /*@ requires ctx_valid: ctx == \null || \valid_read(ctx);
     requires out_valid: out == \null || \valid(out);
