@@ -20,6 +20,13 @@ def test_help() -> None:
     out = run("--help")
     assert out.returncode == 0, out.stderr
     assert "version" in out.stdout and "demo" in out.stdout
+    # the verbs listed, the older spellings not (they still run: below)
+    listed = re.findall(r"^    (\w+) ", out.stdout, flags=re.MULTILINE)
+    assert {"tables", "mc", "run", "replay", "report", "soak"} <= set(listed)
+    assert not {"cases", "mpsp", "nmpc", "blt"} & set(listed), listed
+    for older in ("cases", "mpsp", "nmpc", "blt"):
+        out = run(older, "--help")
+        assert out.returncode == 0 and out.stdout.startswith(f"usage: ogk {older}"), (older, out.stderr)
 
 
 @pytest.mark.req("OGK-HAR-013")

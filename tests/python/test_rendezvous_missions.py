@@ -146,6 +146,9 @@ def test_ogk_run_arrives_within_the_propellant(flown: dict, name: str) -> None:
     assert res.returncode == 0, res.stdout + res.stderr
     assert doc["converged"] and doc["reason"] == "rendezvous", doc["reason"]
     assert f"Reached {m.target}?" in res.stdout
+    # the solve times as measured, not rounded to "0 / 0" ms
+    times = re.search(r"solve time median / max \[ms\]\s+(\S+) / (\S+)", res.stdout)
+    assert times is not None and float(times[1]) == pytest.approx(doc["solve_ms"]["median"], rel=5e-3)
     if m.target != "Mars":
         assert "Mars" not in res.stdout, res.stdout
     assert 0.0 < doc["fuel_kg"] <= m.m0_kg - m.dry_kg

@@ -10,4 +10,4 @@ from ogk.cli.scenario_command import register_scenario_command
 
 
 def register(sub: Any) -> None:
-    register_scenario_command(sub, "blt", "one BLT transfer of a binary-asteroid scenario (NRPC)")
+    register_scenario_command(sub, "blt", "one BLT transfer of a binary-asteroid scenario (NRPC)", listed=False)

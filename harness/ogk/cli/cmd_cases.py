@@ -8,4 +8,4 @@ from ogk.cli.scenario_command import register_scenario_command
 
 
 def register(sub: Any) -> None:
-    register_scenario_command(sub, "cases", "perturbation cases of a scenario (MPSP family)")
+    register_scenario_command(sub, "cases", "perturbation cases of a scenario (MPSP family)", listed=False)

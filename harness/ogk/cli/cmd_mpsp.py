@@ -12,8 +12,8 @@ MISSIONS = {"apophis": "apophis"}
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser("mpsp", help="MPSP guidance on the Apophis mission (= ogk cases apophis)",
-                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
+    # an older spelling: works, not listed by `ogk --help` (no help text)
+    p = sub.add_parser("mpsp", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
                        add_help=False)
     p.add_argument("-h", "--help", action="store_true", dest="show_help",
                    help="show this help; after MISSION, the options of `ogk cases`")

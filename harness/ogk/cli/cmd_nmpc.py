@@ -11,4 +11,4 @@ from ogk.cli.scenario_command import register_scenario_command
 
 
 def register(sub: Any) -> None:
-    register_scenario_command(sub, "nmpc", "receding-horizon NMPC closed loop of a rendezvous scenario")
+    register_scenario_command(sub, "nmpc", "receding-horizon NMPC closed loop of a rendezvous scenario", listed=False)

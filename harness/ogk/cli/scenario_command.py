@@ -18,8 +18,11 @@ from ogk.missions import registry
 from ogk.sil.family import MissionFamily
 
 
-def register_scenario_command(sub: Any, name: str, help_text: str) -> None:
-    p = sub.add_parser(name, help=help_text, add_help=False,
+def register_scenario_command(sub: Any, name: str, help_text: str, listed: bool = True) -> None:
+    """`ogk NAME SCENARIO ...`; listed=False: an older spelling that works but `ogk --help` does not
+    list (argparse lists a subcommand only when it is given a help text)."""
+    listing = {"help": help_text} if listed else {}
+    p = sub.add_parser(name, **listing, add_help=False,
                        description=f"{help_text}. SCENARIO is a .toml path or a name under "
                                    f"scenarios/ (leo-geo, apophis, ...); `ogk {name} SCENARIO "
                                    "--help` lists the options of its mission family.")

@@ -79,8 +79,8 @@ def _symbols(elf: str, mtime_ns: int, nm: str = "arm-none-eabi-nm") -> dict[str,
 
 def plugin_arguments(program: FlightProgram, calls_path: Path, report_path: Path) -> str:
     """The -plugin argument: one fn= item per entry point and marker, the call log, the report."""
-    if not PLUGIN.is_file():
-        raise TargetLinkError(f"{PLUGIN} not built (make qemu-plugin)")
+    from .pil_build import ensure_plugin     # built on demand, as the flight programs are
+    ensure_plugin(PLUGIN)
     syms = _symbols(str(program.elf), program.elf.stat().st_mtime_ns, NM[program.target])
     items = []
     for name in (*program.entry_points, TICK_MARK, RUN_MARK):
