@@ -17,11 +17,12 @@ from pathlib import Path
 from typing import Any
 
 from ogk_bindings.errors import OgkInputError
+from ogk_host.paths import WORK_ROOT
 
 from .robustness import short
 
-REPO_ROOT = Path(__file__).resolve().parents[3]
-DEFAULT_PLAN = REPO_ROOT / "soak.toml"
+#: the repository's plan (from an installed wheel: soak.toml in the current directory, or give PLAN)
+DEFAULT_PLAN = WORK_ROOT / "soak.toml"
 
 
 @dataclasses.dataclass(frozen=True)
