@@ -170,16 +170,21 @@ def test_scenarios_resolve_from_package_data(site: Path, tmp_path: Path) -> None
     assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr
 
 
-def test_what_needs_the_repository_says_so(site: Path, tmp_path: Path) -> None:
-    out = in_site(site, tmp_path, """
+@pytest.mark.parametrize("argv, line", [
+    (["mc", "leo-geo", "--runs", "1", "--target", "m7", "--json", "F.json"],
+     "ogk mc: --target: the flight program of --target m7 needs the ogk repository (git clone, then make; "
+     "docs/install.md), not an installed wheel"),
+    (["soak", "--runs", "1"],
+     "ogk soak: the default soak plan (soak.toml; or give PLAN) needs the ogk repository (git clone, then "
+     "make; docs/install.md), not an installed wheel")])
+def test_what_needs_the_repository_says_so(site: Path, tmp_path: Path, argv: list[str], line: str) -> None:
+    out = in_site(site, tmp_path, f"""
         import sys
         from ogk.cli import main
-        sys.exit(main(["mc", "leo-geo", "--runs", "1", "--target", "m7", "--json", "F.json"]))
+        sys.exit(main({argv!r}))
         """)
     lines = out.stderr.strip().splitlines()
-    assert out.returncode == 2 and len(lines) == 1, out.stderr
-    assert lines[0] == ("ogk mc: --target: the flight program of --target m7 needs the ogk repository "
-                        "(git clone, then make; docs/install.md), not an installed wheel")
+    assert out.returncode == 2 and lines == [line], out.stderr
     assert not (tmp_path / "build").exists()
 
 

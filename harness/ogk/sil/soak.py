@@ -17,12 +17,18 @@ from pathlib import Path
 from typing import Any
 
 from ogk_bindings.errors import OgkInputError
-from ogk_host.paths import WORK_ROOT
+from ogk_host.paths import WORK_ROOT, need_repository
 
 from .robustness import short
 
-#: the repository's plan (from an installed wheel: soak.toml in the current directory, or give PLAN)
+#: the repository's plan (the shipped scenarios' soak campaigns)
 DEFAULT_PLAN = WORK_ROOT / "soak.toml"
+
+
+def default_plan() -> Path:
+    """DEFAULT_PLAN; from an installed wheel, one OgkInputError line: the plan is the repository's."""
+    need_repository("the default soak plan (soak.toml; or give PLAN)")
+    return DEFAULT_PLAN
 
 
 @dataclasses.dataclass(frozen=True)
