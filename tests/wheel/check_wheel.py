@@ -59,8 +59,10 @@ def version() -> str:
 
 
 def check(out: Path) -> None:
-    shutil.rmtree(out, ignore_errors=True)
+    start = time.monotonic()
+    shutil.rmtree(out, ignore_errors=True)       # the last check's venv too: the next one is clean
     out.mkdir(parents=True)
+    print(f"test-wheel: {out} emptied: {time.monotonic() - start:.1f} s")
     step("python -m build (sdist, then the wheel from it)",
          [sys.executable, "-m", "build", "--outdir", str(out / "dist"), str(ROOT)], ROOT,
          log=out / "build.log")
