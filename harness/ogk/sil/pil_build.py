@@ -70,11 +70,13 @@ def ensure_plugin(plugin: Path) -> Path:
     Raises OgkInputError with make's last lines."""
     if plugin.is_file():
         return plugin
+    repository = need_repository("the QEMU instruction-count plugin (make qemu-plugin)")
     PIL_BUILD.mkdir(parents=True, exist_ok=True)
     with open(PIL_BUILD / ".plugin.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if not plugin.is_file():
-            proc = subprocess.run(["make", "-s", "-C", str(ROOT), "qemu-plugin"], capture_output=True, text=True)
+            proc = subprocess.run(["make", "-s", "-C", str(repository), "qemu-plugin"], capture_output=True,
+                                  text=True)
             if proc.returncode != 0 or not plugin.is_file():
                 tail = " | ".join((proc.stdout + proc.stderr).strip().splitlines()[-4:])
                 raise OgkInputError(f"the QEMU instruction-count plugin did not build (make qemu-plugin): {tail}",
