@@ -170,10 +170,10 @@ test-slow: $(FFI_STAMP)
 # kernel's and the families' extensions), a clean venv under build/wheel with the wheel alone installed,
 # then from a temporary directory outside the repository `ogk mc leo-geo --runs 4` and `ogk run
 # apophis_cubesat --case thrust --param=3`, their JSON checked, and the one-line refusals of what needs
-# the repository (--target m7) or an extra (--dask). 71-104 s in three runs on 2026-12-05 (2 cores):
-# removing the last check's venv up to 15 s, build 24-39 s, pip install 19-22 s (the dependencies from the
-# index), the flights and refusals 7-9 s (tests/wheel/check_wheel.py prints each step's time). Needs the
-# network, or pip's cache, for the wheel's dependencies.
+# the repository (--target m7) or an extra (--dask). 49-104 s in four runs on 2026-12-05 (2 cores, the
+# slower ones beside another job): removing the last check's venv up to 15 s, build 18-39 s, pip install
+# 19-22 s (the dependencies from the index), the flights and refusals 6-9 s (tests/wheel/check_wheel.py
+# prints each step's time). Needs the network, or pip's cache, for the wheel's dependencies.
 .PHONY: test-wheel
 test-wheel: $(VENV)/.installed
 	$(VPY) tests/wheel/check_wheel.py --out $(B)/wheel
