@@ -31,11 +31,13 @@ apt:
 	  DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $$missing; \
 	fi
 
+# The package in editable mode (setup.py compiles the kernel's extensions in place, as `make ffi` does),
+# with every extra the tests use: Basilisk (test_basilisk), Dask (test_dask_executor), DAQP (make bench).
 venv: $(VENV)/.installed
-$(VENV)/.installed: pyproject.toml | apt
+$(VENV)/.installed: pyproject.toml setup.py kernel/include/ogk/version.h | apt
 	test -x $(VPY) || $(PYTHON) -m venv $(VENV)
 	$(VPY) -m pip install -q --upgrade pip
-	$(VPY) -m pip install -q -e '.[test]'
+	$(VPY) -m pip install -q -e '.[test,peers,dask,basilisk]'
 	touch $@
 
 # ---------------------------------------------------------------- flags
@@ -163,6 +165,19 @@ test-python: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_B)/r
 test-slow: $(FFI_STAMP)
 	$(VPY) -m pytest -q -m slow tests/python
 
+# ---------------------------------------------------------------- the wheel (docs/install.md)
+# test-wheel (in make test): `python -m build` (the sdist, then the wheel from it: setup.py compiles the
+# kernel's and the families' extensions), a clean venv under build/wheel with the wheel alone installed,
+# then from a temporary directory outside the repository `ogk mc leo-geo --runs 4` and `ogk run
+# apophis_cubesat --case thrust --param=3`, their JSON checked, and the one-line refusals of what needs
+# the repository (--target m7) or an extra (--dask). 49-104 s in four runs on 2026-12-05 (2 cores, the
+# slower ones beside another job): removing the last check's venv up to 15 s, build 18-39 s, pip install
+# 19-22 s (the dependencies from the index), the flights and refusals 6-9 s (tests/wheel/check_wheel.py
+# prints each step's time). Needs the network, or pip's cache, for the wheel's dependencies.
+.PHONY: test-wheel
+test-wheel: $(VENV)/.installed
+	$(VPY) tests/wheel/check_wheel.py --out $(B)/wheel
+
 # ---------------------------------------------------------------- benchmarks
 include tests/bench/bench.mk
 
@@ -225,6 +240,7 @@ test: deps
 	$(MAKE) test-flight-app
 	$(MAKE) test-unit-sparc test-flight-app-sparc test-flt-eval stack-bound-sparc footprint-sparc test-qemu-plugin-sparc
 	$(MAKE) test-consumer
+	$(MAKE) test-wheel
 	$(MAKE) test-eigen
 	$(MAKE) test-imports
 	$(MAKE) test-python-prereqs
@@ -307,4 +323,4 @@ run: all $(QP_SO)
 	$(VENV)/bin/python -m ogk.missions.binary.pil_transfers moshup --json $(B)/pil/moshup_transfers_m7.json
 
 clean:
-	rm -rf $(B) $(FFI_STAMP) bindings/ogk_bindings/_ogk_cffi* harness/ogk/missions/*/_csrc_cffi*
+	rm -rf $(B) dist ogk.egg-info $(FFI_STAMP) bindings/ogk_bindings/_ogk_cffi* harness/ogk/missions/*/_csrc_cffi*

@@ -33,7 +33,9 @@ tests/python/test_bindings.py checks independently that every function,
 struct field and integer macro of the headers is reachable.
 
 Run from anywhere:  .venv/bin/python bindings/build_ffi.py
-(`make ffi` does this whenever a kernel source, a csrc/ file or this file changes.)
+(`make ffi` does this whenever a kernel source, a csrc/ file or this file changes.) setup.py builds
+the same extension (`setuptools_builder`) through cffi's setuptools integration, for `pip install`
+and `python -m build` (docs/install.md).
 """
 from __future__ import annotations
 
@@ -181,14 +183,22 @@ def generated_cdef() -> str:
     return declarations(headers) + macro_cdefs(macros(headers))
 
 
-def kernel_sources() -> list[str]:
+def source_paths(paths: list[Path], relative: bool = False) -> list[str]:
+    """`paths` as the compiler is given them: absolute (`make ffi`: cffi compiles in its build
+    directory), or relative to the repository (setup.py: setuptools takes no absolute source path,
+    and runs there)."""
+    return [p.relative_to(ROOT).as_posix() if relative else str(p) for p in paths]
+
+
+def kernel_sources(relative: bool = False) -> list[str]:
     """The kernel's sources (every extension that calls the kernel compiles them, same flags)."""
-    return [str(p) for p in sorted(KERNEL_SRC.rglob("*.c"))]
+    return source_paths(sorted(KERNEL_SRC.rglob("*.c")), relative)
 
 
-def bound_sources() -> list[str]:
+def bound_sources(relative: bool = False) -> list[str]:
     """What this extension compiles: the kernel, then the bindings' test models."""
-    return kernel_sources() + [str(p) for d in CSRC_DIRS for p in sorted(d.glob("*.c"))]
+    return kernel_sources(relative) + source_paths([p for d in CSRC_DIRS for p in sorted(d.glob("*.c"))],
+                                                   relative)
 
 
 #: the compiler options of every extension over the kernel (-I kernel/src: the internal headers the
@@ -196,7 +206,12 @@ def bound_sources() -> list[str]:
 COMPILE_ARGS = ["-std=c99", "-O2", f"-I{KERNEL_SRC}", *DEFINES]
 
 
-def make_builder() -> cffi.FFI:
+#: cffi's glue is written to the stable ABI (_cffi_include.h defines Py_LIMITED_API); said here too, so
+#: that `make ffi` and setup.py (where cffi sets it) name the extension alike: _ogk_cffi.abi3.so
+PY_LIMITED_API = True
+
+
+def make_builder(relative: bool = False) -> cffi.FFI:
     headers = bound_headers()
     cdef = generated_cdef()
     BUILD_DIR.mkdir(parents=True, exist_ok=True)
@@ -206,12 +221,19 @@ def make_builder() -> cffi.FFI:
     ffibuilder.set_source(
         MODULE_NAME,
         include_source(headers),
-        sources=bound_sources(),
+        sources=bound_sources(relative),
         include_dirs=INCLUDE_DIRS,
         extra_compile_args=COMPILE_ARGS,
         libraries=["m"],
+        py_limited_api=PY_LIMITED_API,
     )
     return ffibuilder
+
+
+def setuptools_builder() -> cffi.FFI:
+    """The same extension for cffi's setuptools integration (setup.py's cffi_modules: `pip install .`,
+    `python -m build`, the Makefile's editable install), its sources relative to the repository."""
+    return make_builder(relative=True)
 
 
 def main() -> int:

@@ -39,11 +39,12 @@ from numpy.typing import NDArray
 from scipy.linalg import expm
 from scipy.optimize import brentq
 
+from .paths import SCENARIO_DIR
+
 F64 = NDArray[np.float64]
 
 STANDARD_GRAVITY_M_S2 = 9.80665
-REPO_ROOT = Path(__file__).resolve().parents[2]
-LEO_GEO_SCENARIO = REPO_ROOT / "scenarios" / "leo_geo.toml"
+LEO_GEO_SCENARIO = SCENARIO_DIR / "leo_geo.toml"
 
 #: Sec. 6 design targets: omega_n >= 4.24 rad/s, zeta >= 0.707 on every axis.
 PAPER_OMEGA_N_RAD_S = 4.24

@@ -1,8 +1,8 @@
 """Scenario files: where they are, what they are, and a typed reader whose every complaint names
 the file, the key and the reason (`OgkInputError`).
 
-A scenario is a TOML file under scenarios/ (or anywhere, by path). Every family's file starts with
-the same header (docs/adding-a-mission.md, "The scenario header")::
+A scenario is a TOML file under scenarios/ (the wheel ships them as package data) or anywhere, by
+path. Every family's file starts with the same header (docs/adding-a-mission.md, "The scenario header")::
 
     schema = "ogk.orbit-injection/1"   # "ogk.<mission>/<version>": checked against `mission`
     mission = "orbit-injection"        # family: truth model, ground tools, SIL adapter
@@ -30,8 +30,8 @@ from typing import Any
 
 from ogk_bindings.errors import OgkInputError
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
-SCENARIO_DIR = REPO_ROOT / "scenarios"
+# the shipped scenarios and where products go: the repository's, or the wheel's and the current directory
+from .paths import SCENARIO_DIR, WORK_ROOT
 
 #: Older spellings kept working (README): `ogk mpsp apophis`, `ogk mc leo-geo`.
 ALIASES = {"apophis": "apophis_cubesat", "leo-geo": "leo_geo"}
@@ -40,7 +40,8 @@ _MISSING = object()
 
 
 def resolve_scenario(name_or_path: str | Path) -> Path:
-    """A path to an existing file, or a name under scenarios/ (`leo-geo`, `leo_geo`, `apophis`)."""
+    """A path to an existing file, or the name of a shipped scenario (`leo-geo`, `leo_geo`, `apophis`):
+    a file of the repository's scenarios/, or of the wheel's copy of them (ogk_host.paths)."""
     text = str(name_or_path)
     path = Path(text).expanduser()
     if path.suffix == ".toml" or "/" in text:
@@ -302,12 +303,13 @@ class Section:
                                                           if len(unknown) > 1 else ""))
 
 
-TABLE_ROOT = REPO_ROOT / "build" / "tables"
+TABLE_ROOT = WORK_ROOT / "build" / "tables"
 
 
 def table_dir_for(path: str | Path, root: str | Path | None = None) -> Path:
     """Where the ground products of a scenario file live by default:
-    `build/tables/<name>-<first 12 hex of the file's SHA-256>` under the repository root, so two
+    `build/tables/<name>-<first 12 hex of the file's SHA-256>` under the repository root (under the
+    current directory when ogk runs from an installed wheel: ogk_host.paths.WORK_ROOT), so two
     scenarios, or two versions of one, never share a directory."""
     header = read_header(path)
     return Path(TABLE_ROOT if root is None else root) / f"{header.name}-{header.sha256[:12]}"

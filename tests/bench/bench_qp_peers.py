@@ -128,10 +128,11 @@ class _Quiet:
 def python_timings(qps, reps: int):
     """Per QP: (t_kernel_cffi, t_daqp_py, t_qpoases, f_kernel, f_daqp, f_qpoases), ns and objectives."""
     import casadi
-    import daqp
     from ogk_bindings._ffi import lib
+    from ogk_bindings.extras import need
     from ogk_bindings.qp import QpSolve
 
+    daqp = need("daqp", "peers", "the DAQP peer of make bench")
     INF = float(lib.OGK_QP_INF)
     rows = []
     for qp in qps:

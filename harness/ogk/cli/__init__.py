@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 from ogk_bindings.errors import OgkInputError
 
+import ogk
 from ogk.sil.runner import CampaignAborted, CampaignInterrupted
 
 SUBCOMMANDS: tuple[str, ...] = (
@@ -43,6 +44,8 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--debug", action="store_true",
                         help="show the traceback of an error instead of its one-line message")
+    parser.add_argument("--version", action="version", version=f"ogk {ogk.__version__}",
+                        help="print the version and exit (`ogk version`: the kernel's too)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name in SUBCOMMANDS:
         importlib.import_module(name).register(sub)

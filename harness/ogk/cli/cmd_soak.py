@@ -35,7 +35,7 @@ def _soak(args: argparse.Namespace) -> int:
 
     from ogk.sil import soak
     from ogk.sil.outputs import check_output_dir
-    plan = soak.load_plan(args.plan or soak.DEFAULT_PLAN)
+    plan = soak.load_plan(args.plan or soak.default_plan())
     if args.only:
         unknown = sorted(set(args.only) - {c.name for c in plan})
         if unknown:

@@ -14,10 +14,13 @@ header scan this reuses). A family's extension:
   outside the contexts it is given).
 
 Run from anywhere:  .venv/bin/python harness/ogk/missions/build_csrc.py
-(`make ffi` runs it after bindings/build_ffi.py.) Not imported at run time.
+(`make ffi` runs it after bindings/build_ffi.py.) setup.py builds the same extensions through cffi's
+setuptools integration (`cffi_modules`: `cffi_module_specs`, one `family_<name>` builder per family
+below), for `pip install` and `python -m build`. Not imported at run time, and not in the wheel.
 """
 from __future__ import annotations
 
+import functools
 import shutil
 import sys
 from pathlib import Path
@@ -41,8 +44,9 @@ def module_name(csrc: Path) -> str:
     return f"ogk.missions.{csrc.parent.name}._csrc_cffi"
 
 
-def family_builder(csrc: Path, kernel: cffi.FFI) -> cffi.FFI:
-    """The FFI of one family's C helpers, on the kernel's FFI `kernel`."""
+def family_builder(csrc: Path, kernel: cffi.FFI, relative: bool = False) -> cffi.FFI:
+    """The FFI of one family's C helpers, on the kernel's FFI `kernel` (`relative`: the sources
+    relative to the repository, for setup.py; build_ffi.source_paths)."""
     headers = sorted(csrc.glob("*.h"))
     include_dirs = [*kernel_ffi.INCLUDE_DIRS, str(csrc)]
     kernel_macros = {name for name, _, _ in kernel_ffi.macros(kernel_ffi.bound_headers())}
@@ -54,12 +58,29 @@ def family_builder(csrc: Path, kernel: cffi.FFI) -> cffi.FFI:
         module_name(csrc),
         # the kernel's headers first: the C of the included types
         kernel_ffi.include_source(kernel_ffi.bound_headers() + headers),
-        sources=kernel_ffi.kernel_sources() + [str(p) for p in sorted(csrc.glob("*.c"))],
+        sources=kernel_ffi.kernel_sources(relative) + kernel_ffi.source_paths(sorted(csrc.glob("*.c")),
+                                                                             relative),
         include_dirs=include_dirs,
         extra_compile_args=kernel_ffi.COMPILE_ARGS,
         libraries=["m"],
+        py_limited_api=kernel_ffi.PY_LIMITED_API,
     )
     return builder
+
+
+def _family_ffi(csrc: Path) -> cffi.FFI:
+    return family_builder(csrc, kernel_ffi.make_builder(relative=True), relative=True)
+
+
+def cffi_module_specs() -> list[str]:
+    """setup.py's `cffi_modules` entries: this file and the builder of each family with C helpers."""
+    here = Path(__file__).resolve().relative_to(ROOT).as_posix()
+    return [f"{here}:family_{csrc.parent.name}" for csrc in families_with_csrc()]
+
+
+# one module-level builder per family (cffi's setuptools integration names a builder by variable)
+for _csrc in families_with_csrc():
+    globals()[f"family_{_csrc.parent.name}"] = functools.partial(_family_ffi, _csrc)
 
 
 def main() -> int:

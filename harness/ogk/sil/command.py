@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from ogk_bindings.errors import OgkInputError
+from ogk_host.paths import need_repository
 from ogk_host.scenario_file import ScenarioHeader
 
 from . import dispersion_check, engine, envelope, robustness, target_summary
@@ -108,6 +109,8 @@ def check_target(fam: MissionFamily, args: argparse.Namespace) -> None:
     if target not in fam.targets:
         raise OgkInputError(f"the {fam.name} family has no flight program for target {target} "
                             f"(its targets: {', '.join(fam.targets)})", key="--target")
+    if target != "host":   # before any ground product: the flight program is built by make
+        need_repository(f"the flight program of --target {target}", key="--target")
 
 
 def fly(fam: MissionFamily, header: ScenarioHeader, args: argparse.Namespace) -> int:

@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 from ogk_bindings.errors import OgkInputError
+from ogk_bindings.extras import need
 
 from .engine import JudgedChunk
 from .family import CampaignPlan, MissionFamily, Record
@@ -87,7 +88,8 @@ class DaskExecutor:
     cluster: Any = None
 
     def __enter__(self) -> DaskExecutor:
-        from distributed import Client, LocalCluster
+        distributed = need("distributed", "dask", "ogk mc --dask")
+        Client, LocalCluster = distributed.Client, distributed.LocalCluster
         check_address(self.address)
         if self.address.startswith("local:"):
             self.cluster = LocalCluster(n_workers=int(self.address.split(":", 1)[1]),
@@ -119,7 +121,7 @@ class DaskExecutor:
             ) -> tuple[int, float]:
         """Flies `ids` in chunks of at most `chunk_runs` on the cluster; `on_chunk` as each
         finishes. Returns the worker count and the CPU seconds (workers' and this process's)."""
-        from distributed import wait
+        wait = need("distributed", "dask", "ogk mc --dask").wait
         workers = self.workers()
         pieces = split_chunks(ids, workers, None, chunk_runs)
         cpu0 = os.times()
@@ -158,7 +160,7 @@ class DaskExecutor:
 
     @staticmethod
     def _result(fut: Any, piece: NDArray[np.int64]) -> tuple[list[Record], float]:
-        from distributed.scheduler import KilledWorker
+        KilledWorker = need("distributed.scheduler", "dask", "ogk mc --dask").KilledWorker
         if fut.status == "error":
             exc = fut.exception()
             if isinstance(exc, KilledWorker):

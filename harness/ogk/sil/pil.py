@@ -33,6 +33,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
+from ogk_host.paths import WORK_ROOT
 
 from .target_link import ERROR, TargetLink, TargetLinkError, f64_payload, f64_values
 
@@ -42,7 +43,8 @@ RUN_MARK = "ogk_pil_run_mark"       #: ... and after every run
 TARGETS = ("host", "m7", "sparc")   #: where a campaign's flight software runs
 #: target -> the nm that reads its flight programs' symbols
 NM = {"m7": "arm-none-eabi-nm", "sparc": "sparc64-linux-gnu-nm"}
-PLUGIN = Path(__file__).resolve().parents[3] / "build" / "qemu-plugin" / "libinsn_count.so"
+#: the instruction-counting QEMU plugin, built by the repository (make qemu-plugin)
+PLUGIN = WORK_ROOT / "build" / "qemu-plugin" / "libinsn_count.so"
 
 
 @dataclasses.dataclass(frozen=True)

@@ -19,8 +19,11 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ogk_bindings.errors import OgkInputError
+from ogk_host.paths import WORK_ROOT, need_repository
 
-ROOT = Path(__file__).resolve().parents[3]      #: the repository (its Makefile builds the ELF)
+#: the repository (its Makefile builds the ELF); from an installed wheel, the current directory (where
+#: products go; a flight program needs the repository: build_program says so in one line)
+ROOT = WORK_ROOT
 PIL_BUILD = ROOT / "build" / "pil"
 
 
@@ -36,11 +39,12 @@ def build_program(program: str, out: Path, generate: Callable[[Path], None],
     if target not in MAKE_GOAL:
         raise OgkInputError(f"no flight program build for target {target!r}", key="--target")
     goal, sub = MAKE_GOAL[target]
+    repository = need_repository(f"the {program} flight program for --target {target}", key="--target")
     out.mkdir(parents=True, exist_ok=True)
     with open(out / ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         _generate_changed(out, generate)
-        proc = subprocess.run(["make", "-s", "-C", str(ROOT), goal,
+        proc = subprocess.run(["make", "-s", "-C", str(repository), goal,
                                f"PIL_PROGRAM={program}", f"PIL_OUT={out.resolve()}"],
                               capture_output=True, text=True)
         if proc.returncode != 0:
@@ -66,11 +70,13 @@ def ensure_plugin(plugin: Path) -> Path:
     Raises OgkInputError with make's last lines."""
     if plugin.is_file():
         return plugin
+    repository = need_repository("the QEMU instruction-count plugin (make qemu-plugin)")
     PIL_BUILD.mkdir(parents=True, exist_ok=True)
     with open(PIL_BUILD / ".plugin.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if not plugin.is_file():
-            proc = subprocess.run(["make", "-s", "-C", str(ROOT), "qemu-plugin"], capture_output=True, text=True)
+            proc = subprocess.run(["make", "-s", "-C", str(repository), "qemu-plugin"], capture_output=True,
+                                  text=True)
             if proc.returncode != 0 or not plugin.is_file():
                 tail = " | ".join((proc.stdout + proc.stderr).strip().splitlines()[-4:])
                 raise OgkInputError(f"the QEMU instruction-count plugin did not build (make qemu-plugin): {tail}",

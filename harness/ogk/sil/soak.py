@@ -17,11 +17,18 @@ from pathlib import Path
 from typing import Any
 
 from ogk_bindings.errors import OgkInputError
+from ogk_host.paths import WORK_ROOT, need_repository
 
 from .robustness import short
 
-REPO_ROOT = Path(__file__).resolve().parents[3]
-DEFAULT_PLAN = REPO_ROOT / "soak.toml"
+#: the repository's plan (the shipped scenarios' soak campaigns)
+DEFAULT_PLAN = WORK_ROOT / "soak.toml"
+
+
+def default_plan() -> Path:
+    """DEFAULT_PLAN; from an installed wheel, one OgkInputError line: the plan is the repository's."""
+    need_repository("the default soak plan (soak.toml; or give PLAN)")
+    return DEFAULT_PLAN
 
 
 @dataclasses.dataclass(frozen=True)

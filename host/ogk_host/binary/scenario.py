@@ -18,11 +18,11 @@ import math
 from pathlib import Path
 from typing import Any
 
+from ..paths import SCENARIO_DIR
 from ..scenario_file import Section, check_header, read_toml, schema_of
 from .units import Units
 
-REPO_ROOT = Path(__file__).resolve().parents[3]
-DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "moshup.toml"
+DEFAULT_SCENARIO_PATH = SCENARIO_DIR / "moshup.toml"
 MISSION = "binary-asteroid"
 SCHEMA = schema_of(MISSION)     #: "ogk.binary-asteroid/1" (the header, ogk_host.scenario_file)
 LAWS = ("blt",)

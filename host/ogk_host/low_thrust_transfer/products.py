@@ -26,6 +26,7 @@ from typing import Any, Callable
 
 from ogk_bindings.errors import OgkInputError, TableError
 
+from ..paths import SCENARIO_DIR
 from ..scenario_file import file_sha256, read_toml, table_dir_for
 from .scenario import Scenario
 
@@ -211,7 +212,9 @@ def continue_from_cache(scenario: Scenario, log: Callable[[str], None] | None = 
     cache = shipped_cache(NOMINAL_FILE)
     try:
         doc = json.loads(cache.read_text())
-        base_path = Path(__file__).resolve().parents[3] / str(doc.get("scenario", ""))
+        # the cache names its scenario as the repository does ("scenarios/apophis_cubesat.toml"):
+        # the shipped file of that name, the repository's or the wheel's (ogk_host.paths)
+        base_path = SCENARIO_DIR / Path(str(doc.get("scenario", ""))).name
         if not base_path.is_file() or physics_sha256(base_path) != doc.get("physics_sha256"):
             return None
         base = load_scenario(base_path)

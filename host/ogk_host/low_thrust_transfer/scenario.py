@@ -15,13 +15,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ogk_bindings.errors import OgkInputError
+from ..paths import SCENARIO_DIR
 from ..scenario_file import Section, check_header, read_toml, schema_of
 
 FloatArray = NDArray[np.float64]
 
 SECONDS_PER_DAY = 86400.0
-REPO_ROOT = Path(__file__).resolve().parents[3]
-DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "apophis_cubesat.toml"
+DEFAULT_SCENARIO_PATH = SCENARIO_DIR / "apophis_cubesat.toml"
 MISSION = "low-thrust-transfer"  #: the family name of ogk.missions.registry
 SCHEMA = schema_of(MISSION)      #: "ogk.low-thrust-transfer/1" (the header, ogk_host.scenario_file)
 LAWS = ("mpsp",)                 #: guidance laws this family flies

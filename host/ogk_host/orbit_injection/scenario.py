@@ -16,12 +16,12 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicSpline
 
+from ..paths import SCENARIO_DIR
 from ..scenario_file import Section, check_header, read_toml, schema_of
 
 FloatArray = NDArray[np.float64]
 
-REPO_ROOT = Path(__file__).resolve().parents[3]
-DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "leo_geo.toml"
+DEFAULT_SCENARIO_PATH = SCENARIO_DIR / "leo_geo.toml"
 MISSION = "orbit-injection"   #: the family name of ogk.missions.registry
 SCHEMA = schema_of(MISSION)    #: "ogk.orbit-injection/1" (the header, ogk_host.scenario_file)
 LAWS = ("vtd-nog",)            #: guidance laws this family flies

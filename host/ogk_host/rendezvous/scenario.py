@@ -12,10 +12,10 @@ import dataclasses
 import math
 from pathlib import Path
 
+from ..paths import SCENARIO_DIR
 from ..scenario_file import Section, check_header, read_toml, schema_of
 
-REPO_ROOT = Path(__file__).resolve().parents[3]
-DEFAULT_SCENARIO_PATH = REPO_ROOT / "scenarios" / "rendezvous_nep_min_time.toml"
+DEFAULT_SCENARIO_PATH = SCENARIO_DIR / "rendezvous_nep_min_time.toml"
 MISSION = "low-thrust-rendezvous"
 SCHEMA = schema_of(MISSION)   #: "ogk.low-thrust-rendezvous/1" (the header, ogk_host.scenario_file)
 LAWS = ("nmpc",)

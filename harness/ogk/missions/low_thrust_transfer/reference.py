@@ -22,7 +22,6 @@ from ogk.missions.low_thrust_transfer.cases import MpspSetup, Case
 from ogk.sil.runner import CallTimeout, call_with_timeout
 
 F64 = NDArray[np.float64]
-REPO_ROOT = Path(__file__).resolve().parents[4]
 FORMAT = 1
 
 

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario, load_scenario
+from ogk_host.scenario_file import resolve_scenario
 
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches, draw_runs
 from ogk.missions.orbit_injection.guidance import GuidanceSetup
@@ -92,14 +93,15 @@ def compare(scn: OrbitInjectionScenario, seed: int, run_ids: Sequence[int],
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m ogk.missions.orbit_injection.basilisk.crosscheck",
                                  description="ogk's 6-DOF truth against Basilisk on the same runs")
-    ap.add_argument("scenario", nargs="?", default="scenarios/leo_geo.toml")
+    ap.add_argument("scenario", nargs="?", default="leo-geo",
+                    help="a .toml path or a shipped scenario's name (default leo-geo)")
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--substeps", type=int, default=1, help="dynamics steps per control step")
     ap.add_argument("--no-dispersions", action="store_true")
     ap.add_argument("--json", help="write the per-run errors of both models here")
     args = ap.parse_args(argv)
-    scn, ref = resolved_with_reference(load_scenario(args.scenario))
+    scn, ref = resolved_with_reference(load_scenario(resolve_scenario(args.scenario)))
     switches = DispersionSwitches.none() if args.no_dispersions else DispersionSwitches()
     cmp = compare(scn, args.seed, range(args.runs), switches,
                   SilSettings(truth_substeps=args.substeps), ref=ref)

@@ -16,8 +16,7 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from Basilisk.simulation import extForceTorque, simpleNav, spacecraft
-from Basilisk.utilities import SimulationBaseClass, macros, simIncludeGravBody
+from ogk_bindings.extras import need
 
 from ogk.missions.orbit_injection import truth as tm
 from ogk.missions.orbit_injection.dispersions import ActuationNoise, DispersionSwitches, RunDraws
@@ -26,6 +25,15 @@ from ogk.missions.orbit_injection.sil import ERROR_KEYS, SilSettings, initial_st
 
 from . import frames
 from .modules import OgkInjectionFsw, TvcEnginePlant
+
+# Basilisk is the extra ogk[basilisk] (ogk_bindings.extras): one line naming it when it is missing
+_BASILISK = "the Basilisk truth model of ogk.missions.orbit_injection.basilisk"
+extForceTorque = need("Basilisk.simulation.extForceTorque", "basilisk", _BASILISK)
+simpleNav = need("Basilisk.simulation.simpleNav", "basilisk", _BASILISK)
+spacecraft = need("Basilisk.simulation.spacecraft", "basilisk", _BASILISK)
+SimulationBaseClass = need("Basilisk.utilities.SimulationBaseClass", "basilisk", _BASILISK)
+macros = need("Basilisk.utilities.macros", "basilisk", _BASILISK)
+simIncludeGravBody = need("Basilisk.utilities.simIncludeGravBody", "basilisk", _BASILISK)
 
 F64 = NDArray[np.float64]
 HISTORY_KEYS = ("r_m", "xi_rad", "phi_rad", "vr_mps", "vt_mps", "vn_mps", "psi_rad",

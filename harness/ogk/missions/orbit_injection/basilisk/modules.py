@@ -27,9 +27,7 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from Basilisk.architecture import messaging, sysModel
-from Basilisk.architecture.messaging import messagingSupport
-from Basilisk.utilities import macros
+from ogk_bindings.extras import need
 
 from ogk.missions.orbit_injection import truth as tm
 from ogk.missions.orbit_injection.dispersions import ActuationNoise
@@ -37,6 +35,13 @@ from ogk.missions.orbit_injection.flight_software import KernelFlightSoftware
 from ogk.missions.orbit_injection.sil import SilSettings
 
 from . import frames
+
+# Basilisk is the extra ogk[basilisk] (ogk_bindings.extras): one line naming it when it is missing
+_BASILISK = "the Basilisk modules of ogk.missions.orbit_injection.basilisk"
+messaging = need("Basilisk.architecture.messaging", "basilisk", _BASILISK)
+messagingSupport = need("Basilisk.architecture.messaging.messagingSupport", "basilisk", _BASILISK)
+sysModel = need("Basilisk.architecture.sysModel", "basilisk", _BASILISK)
+macros = need("Basilisk.utilities.macros", "basilisk", _BASILISK)
 
 F64 = NDArray[np.float64]
 #: OnTimeRequest while the cut-off is not known yet (the engine keeps firing) [s]

@@ -20,6 +20,7 @@ import sys
 import numpy as np
 
 from ogk_host.orbit_injection.scenario import load_scenario
+from ogk_host.scenario_file import resolve_scenario
 
 from ogk.missions.orbit_injection.dispersions import DispersionSwitches
 from ogk.missions.orbit_injection.nog_guidance import prepare_tables
@@ -43,11 +44,12 @@ def round_up(x: float) -> float:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m ogk.missions.orbit_injection.basilisk.step_study", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("scenario", nargs="?", default="scenarios/leo_geo.toml")
+    ap.add_argument("scenario", nargs="?", default="leo-geo",
+                    help="a .toml path or a shipped scenario's name (default leo-geo)")
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--runs", type=int, default=2)
     args = ap.parse_args(argv)
-    scn, ref = resolved_with_reference(load_scenario(args.scenario))
+    scn, ref = resolved_with_reference(load_scenario(resolve_scenario(args.scenario)))
     tables = prepare_tables(scn)
     cases = [("nominal", DispersionSwitches.none(), [0]),
              (f"seed {args.seed}", DispersionSwitches(), list(range(args.runs)))]
