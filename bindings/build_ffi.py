@@ -192,7 +192,7 @@ def bound_sources() -> list[str]:
 
 
 #: the compiler options of every extension over the kernel (-I kernel/src: the internal headers the
-#: kernel's modules share, kernel/src/*.h; docs/architecture.md, "Kernel source layout")
+#: kernel's modules share, kernel/src/*.h; docs/design/architecture.md, "Kernel source layout")
 COMPILE_ARGS = ["-std=c99", "-O2", f"-I{KERNEL_SRC}", *DEFINES]
 
 
