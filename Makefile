@@ -211,6 +211,17 @@ api-check: | apt
 api-record: | apt
 	$(PYTHON) tests/api/check_api.py record
 
+# ---------------------------------------------------------------- documentation
+# docs/: docs/index.md (getting started), then guides/, design/, evidence/; the nav in mkdocs.yml.
+# `make docs` builds the site into build/site (open build/site/index.html); --strict fails on a broken
+# link or anchor and on a page missing from the nav. docs-check (in make test, seconds) adds the plain
+# docs/... and notes/... paths the pages name, which no Markdown parser sees (tests/docs/check_docs.py).
+.PHONY: docs docs-check
+docs: venv
+	$(VENV)/bin/mkdocs build --strict --quiet --site-dir $(B)/site
+docs-check: docs
+	$(VPY) tests/docs/check_docs.py
+
 # ---------------------------------------------------------------- top-level
 .PHONY: all test run clean
 all: deps kernel-host arm-lib ffi
@@ -218,6 +229,7 @@ all: deps kernel-host arm-lib ffi
 test: deps
 	$(MAKE) trace
 	$(MAKE) api-check
+	$(MAKE) docs-check
 	$(MAKE) lint
 	$(MAKE) test-unit-host
 	$(MAKE) test-unit-arm

@@ -1,0 +1,48 @@
+"""MkDocs hooks of `make docs` (mkdocs.yml): CHANGELOG.md, which lives at the top of the repository
+where a packager and GitHub expect it, becomes the site's changelog.md, and a page's link to it
+(`../CHANGELOG.md` from docs/, `../../CHANGELOG.md` from a section) is pointed there. The pages keep
+links that also work where the repository is browsed as files."""
+from __future__ import annotations
+
+import posixpath
+import re
+from pathlib import Path
+
+from mkdocs.structure.files import File, Files
+
+ROOT = Path(__file__).resolve().parents[2]
+EXTRA = {"CHANGELOG.md": "changelog.md"}   # repository path -> the site's page
+LINK = re.compile(r"\]\(([^)\s#]+)(#[^)\s]*)?\)")
+
+
+def on_files(files: Files, config) -> Files:
+    for repo_path, page in EXTRA.items():
+        files.append(File.generated(config, page, abs_src_path=str(ROOT / repo_path)))
+    return files
+
+
+def _repo_dir(src_uri: str) -> str:
+    """Where the page lives in the repository (the folder its relative links start from)."""
+    for repo_path, page in EXTRA.items():
+        if src_uri == page:
+            return posixpath.dirname(repo_path)
+    return posixpath.join("docs", posixpath.dirname(src_uri))
+
+
+def on_page_markdown(markdown: str, page, config, files) -> str:
+    here = _repo_dir(page.file.src_uri)
+    site_dir = posixpath.dirname(page.file.src_uri) or "."
+
+    def sub(m: re.Match) -> str:
+        target = m.group(1)
+        if re.match(r"^[a-z]+:", target) or target.startswith("/"):
+            return m.group(0)
+        repo = posixpath.normpath(posixpath.join(here, target))
+        if repo in EXTRA:
+            site = EXTRA[repo]
+        elif repo.startswith("docs/"):
+            site = repo[len("docs/"):]
+        else:
+            return m.group(0)   # outside the site: mkdocs --strict reports it
+        return f"]({posixpath.relpath(site, site_dir)}{m.group(2) or ''})"
+    return LINK.sub(sub, markdown)
