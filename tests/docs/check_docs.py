@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Links of the documentation (`make docs-check`, run by `make test`; OGK-HAR-023).
+"""Links of the documentation (`make docs-check`, run by `make test`; OGK-HAR-024).
 
 `mkdocs build --strict` checks the Markdown links between the site's pages; the pages also name files
 in plain text (`docs/guides/cmake.md`, `notes/session-12.md`), which no Markdown parser sees. This

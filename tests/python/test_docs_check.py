@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-pytestmark = pytest.mark.req("OGK-HAR-023")
+pytestmark = pytest.mark.req("OGK-HAR-024")
 
 ROOT = Path(__file__).resolve().parents[2]
 _spec = importlib.util.spec_from_file_location("check_docs", ROOT / "tests" / "docs" / "check_docs.py")
