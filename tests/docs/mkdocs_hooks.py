@@ -1,7 +1,12 @@
-"""MkDocs hooks of `make docs` (mkdocs.yml): CHANGELOG.md, which lives at the top of the repository
-where a packager and GitHub expect it, becomes the site's changelog.md, and a page's link to it
-(`../CHANGELOG.md` from docs/, `../../CHANGELOG.md` from a section) is pointed there. The pages keep
-links that also work where the repository is browsed as files."""
+"""MkDocs hooks of `make docs` (mkdocs.yml).
+
+- CHANGELOG.md, which lives at the top of the repository where a packager and GitHub expect it,
+  becomes the site's changelog.md, and a page's link to it (`../CHANGELOG.md` from docs/,
+  `../../CHANGELOG.md` from a section) is pointed there: the pages keep links that also work where
+  the repository is browsed as files.
+- A page path written in plain text, docs/design/vtd-nog.md (as the code comments write them too),
+  becomes a link on the site, so --strict checks it like any other; not inside code.
+"""
 from __future__ import annotations
 
 import posixpath
@@ -13,6 +18,8 @@ from mkdocs.structure.files import File, Files
 ROOT = Path(__file__).resolve().parents[2]
 EXTRA = {"CHANGELOG.md": "changelog.md"}   # repository path -> the site's page
 LINK = re.compile(r"\]\(([^)\s#]+)(#[^)\s]*)?\)")
+PLAIN = re.compile(r"(?<![\w./\[-])docs/([\w/-]+\.md)\b")
+CODE = re.compile(r"(`+)(?:.+?)\1")   # an inline code span
 
 
 def on_files(files: Files, config) -> Files:
@@ -45,4 +52,20 @@ def on_page_markdown(markdown: str, page, config, files) -> str:
         else:
             return m.group(0)   # outside the site: mkdocs --strict reports it
         return f"]({posixpath.relpath(site, site_dir)}{m.group(2) or ''})"
-    return LINK.sub(sub, markdown)
+    def plain(text: str) -> str:
+        out, last = [], 0
+        for m in CODE.finditer(text):
+            out.append(PLAIN.sub(lambda p: f"[docs/{p.group(1)}]({posixpath.relpath(p.group(1), site_dir)})",
+                                 text[last:m.start()]))
+            out.append(m.group(0))
+            last = m.end()
+        out.append(PLAIN.sub(lambda p: f"[docs/{p.group(1)}]({posixpath.relpath(p.group(1), site_dir)})",
+                             text[last:]))
+        return "".join(out)
+
+    lines, fenced = [], False
+    for line in LINK.sub(sub, markdown).split("\n"):
+        if line.lstrip().startswith("```"):
+            fenced = not fenced
+        lines.append(line if fenced or line.lstrip().startswith("```") else plain(line))
+    return "\n".join(lines)
