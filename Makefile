@@ -218,7 +218,7 @@ api-record: | apt
 # docs/... and notes/... paths the pages name, which no Markdown parser sees (tests/docs/check_docs.py).
 .PHONY: docs docs-check
 docs: venv
-	$(VENV)/bin/mkdocs build --strict --quiet --site-dir $(B)/site
+	$(VENV)/bin/mkdocs build --strict --site-dir $(B)/site
 docs-check: docs
 	$(VPY) tests/docs/check_docs.py
 

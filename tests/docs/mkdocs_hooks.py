@@ -5,7 +5,8 @@
   `../../CHANGELOG.md` from a section) is pointed there: the pages keep links that also work where
   the repository is browsed as files.
 - A page path written in plain text, docs/design/vtd-nog.md (as the code comments write them too),
-  becomes a link on the site, so --strict checks it like any other; not inside code.
+  becomes a link on the site when it names one of its pages; not inside code. (A path that names
+  nothing stays text: tests/docs/check_docs.py fails on it.)
 """
 from __future__ import annotations
 
@@ -52,15 +53,18 @@ def on_page_markdown(markdown: str, page, config, files) -> str:
         else:
             return m.group(0)   # outside the site: mkdocs --strict reports it
         return f"]({posixpath.relpath(site, site_dir)}{m.group(2) or ''})"
+    def to_link(p: re.Match) -> str:
+        if files.get_file_from_path(p.group(1)) is None:
+            return p.group(0)   # not a page of the site (docs/README.md); check_docs.py checks it exists
+        return f"[docs/{p.group(1)}]({posixpath.relpath(p.group(1), site_dir)})"
+
     def plain(text: str) -> str:
         out, last = [], 0
         for m in CODE.finditer(text):
-            out.append(PLAIN.sub(lambda p: f"[docs/{p.group(1)}]({posixpath.relpath(p.group(1), site_dir)})",
-                                 text[last:m.start()]))
+            out.append(PLAIN.sub(to_link, text[last:m.start()]))
             out.append(m.group(0))
             last = m.end()
-        out.append(PLAIN.sub(lambda p: f"[docs/{p.group(1)}]({posixpath.relpath(p.group(1), site_dir)})",
-                             text[last:]))
+        out.append(PLAIN.sub(to_link, text[last:]))
         return "".join(out)
 
     lines, fenced = [], False
