@@ -44,7 +44,7 @@ $(VENV)/.installed: pyproject.toml setup.py kernel/include/ogk/version.h | apt
 STRICT := -std=c99 -pedantic -Wall -Wextra -Werror -Wconversion \
   -Wdouble-promotion -Wshadow
 KINC := -Ikernel/include
-# The kernel's sources by module, kernel/src/<module>/*.c (docs/architecture.md, "Kernel source layout"),
+# The kernel's sources by module, kernel/src/<module>/*.c (docs/design/architecture.md, "Kernel source layout"),
 # and the internal headers the modules share, kernel/src/*.h, which the modules include by relative path
 # ("../ogk_checks.h"): a flight project compiles the kernel with kernel/include alone (make lint checks it).
 # KSRC_INC stays for the tools that read the sources as a set.
@@ -56,7 +56,7 @@ SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-po
 B := build
 
 # ---------------------------------------------------------------- kernel libraries (CMake)
-# CMakeLists.txt is the one description of how the kernel compiles (docs/cmake.md): make configures and
+# CMakeLists.txt is the one description of how the kernel compiles (docs/guides/cmake.md): make configures and
 # builds it per target in $(B)/cmake-<target> with that target's toolchain file and the flags its
 # evidence needs (OGK_C_FLAGS: -O2, plus -g and -fstack-usage on the flight targets), then stages the
 # library, its objects and their .su files where the rules below read them (cmake/stage.sh).
@@ -134,9 +134,9 @@ lint: | apt
 	@for f in $(KSRC); do arm-none-eabi-gcc $(STRICT) $(ARM_CPU) $(KINC) -c $$f -o /dev/null || exit 1; done
 	@echo "lint: kernel/ compiles clean (gcc x86-64, arm-none-eabi cortex-m7) with strict flags"
 	cppcheck --quiet --std=c99 --enable=warning,style,performance,portability \
-	  --inline-suppr --suppressions-list=docs/cppcheck-suppressions.txt \
+	  --inline-suppr --suppressions-list=docs/evidence/cppcheck-suppressions.txt \
 	  --error-exitcode=3 $(KINC) $(KSRC_INC) $(KSRC)
-	@echo "lint: cppcheck clean (justified suppressions: docs/cppcheck-suppressions.txt)"
+	@echo "lint: cppcheck clean (justified suppressions: docs/evidence/cppcheck-suppressions.txt)"
 	$(MAKE) misra
 
 # ---------------------------------------------------------------- Python harness (cffi)
@@ -151,7 +151,7 @@ $(FFI_STAMP): $(KSRC) $(KHDR) $(wildcard bindings/csrc/*) $(wildcard harness/ogk
 ffi: $(FFI_STAMP)
 
 .PHONY: test-python test-slow test-imports
-# The import contract of docs/architecture.md (pyproject.toml [tool.importlinter]).
+# The import contract of docs/design/architecture.md (pyproject.toml [tool.importlinter]).
 test-imports: $(VENV)/.installed
 	$(VENV)/bin/lint-imports --no-cache
 	@# one family interface (issue 33): every family and the test family are a MissionFamily
@@ -165,7 +165,7 @@ test-python: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_B)/r
 test-slow: $(FFI_STAMP)
 	$(VPY) -m pytest -q -m slow tests/python
 
-# ---------------------------------------------------------------- the wheel (docs/install.md)
+# ---------------------------------------------------------------- the wheel (docs/guides/install.md)
 # test-wheel (in make test): `python -m build` (the sdist, then the wheel from it: setup.py compiles the
 # kernel's and the families' extensions), a clean venv under build/wheel with the wheel alone installed,
 # then from a temporary directory outside the repository `ogk mc leo-geo --runs 4` and `ogk run
@@ -182,12 +182,12 @@ test-wheel: $(VENV)/.installed
 include tests/bench/bench.mk
 
 # ---------------------------------------------------------------- Cortex-M7 flight application
-# (docs/flight-integration.md): make test-flight-app, flight-app-size, flight-app-stack
+# (docs/guides/flight-integration.md): make test-flight-app, flight-app-size, flight-app-stack
 include port/cortex-m7/flightapp/flightapp.mk
-# 32-bit big-endian SPARC V8 (LEON3) under qemu-user (docs/ports.md): make test-unit-sparc,
+# 32-bit big-endian SPARC V8 (LEON3) under qemu-user (docs/guides/ports.md): make test-unit-sparc,
 # test-flight-app-sparc, test-flt-eval
 include port/sparc-v8/sparc-v8.mk
-# processor-in-the-loop flight programs (docs/pil.md): make pil-program PIL_PROGRAM=oi PIL_OUT=DIR
+# processor-in-the-loop flight programs (docs/guides/pil.md): make pil-program PIL_PROGRAM=oi PIL_OUT=DIR
 include port/cortex-m7/pil/pil.mk
 # ... and the same programs for SPARC V8 Linux user mode: make pil-program-sparc PIL_PROGRAM=oi PIL_OUT=DIR
 include port/sparc-v8/pil.mk
@@ -195,7 +195,7 @@ include port/sparc-v8/pil.mk
 # ---------------------------------------------------------------- gates (issue 8): make tidy,
 # fuzz-short / fuzz, coverage, mutants (not in make test), misra (a ratchet, in make lint)
 include tests/gates/gates.mk
-# certification evidence (docs/profile.md): make stack-bound-m7
+# certification evidence (docs/evidence/profile.md): make stack-bound-m7
 include port/profile/profile.mk
 
 # ---------------------------------------------------------------- Frama-C EVA (issue 22): make eva
@@ -206,8 +206,8 @@ misra: | apt
 	$(PYTHON) tests/misra/misra_gate.py --build $(B)/misra
 
 # ---------------------------------------------------------------- requirements traceability
-# docs/requirements.md, the req: tags of the tests and tests/trace/gates.txt: `make trace` fails on an
-# untagged test, a requirement without a test, an unknown id or a stale docs/traceability.md
+# docs/evidence/requirements.md, the req: tags of the tests and tests/trace/gates.txt: `make trace` fails on an
+# untagged test, a requirement without a test, an unknown id or a stale docs/evidence/traceability.md
 # (stdlib Python, parses the sources: under a second); `make trace-matrix` regenerates the matrix.
 .PHONY: trace trace-matrix
 trace:
@@ -226,6 +226,18 @@ api-check: | apt
 api-record: | apt
 	$(PYTHON) tests/api/check_api.py record
 
+# ---------------------------------------------------------------- documentation
+# docs/: docs/index.md (getting started), then guides/, design/, evidence/; the nav in mkdocs.yml.
+# `make docs` builds the site into build/site (open build/site/index.html); --strict fails on a broken
+# link or anchor and on a page missing from the nav. docs-check (in make test, seconds) adds the plain
+# docs/... and notes/... paths every tracked file names (the pages, code comments, scenarios), which no
+# Markdown parser sees (tests/docs/check_docs.py --tree).
+.PHONY: docs docs-check
+docs: venv
+	$(VENV)/bin/mkdocs build --strict --site-dir $(B)/site
+docs-check: docs
+	$(VPY) tests/docs/check_docs.py --tree
+
 # ---------------------------------------------------------------- top-level
 .PHONY: all test run clean
 all: deps kernel-host arm-lib ffi
@@ -233,6 +245,7 @@ all: deps kernel-host arm-lib ffi
 test: deps
 	$(MAKE) trace
 	$(MAKE) api-check
+	$(MAKE) docs-check
 	$(MAKE) lint
 	$(MAKE) test-unit-host
 	$(MAKE) test-unit-arm
@@ -258,7 +271,7 @@ test-python-prereqs: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(
 
 # Long campaigns of every family's shipped scenarios (soak.toml: >= 1,000 runs each on fixed seeds no test
 # uses) through the one engine, summarised per family; exit 1 when a campaign loses a flight its law's
-# stated envelope does not allow (docs/campaigns.md, "make soak"). Not part of `make test`: ~30 min.
+# stated envelope does not allow (docs/guides/campaigns.md, "make soak"). Not part of `make test`: ~30 min.
 .PHONY: soak
 soak: $(FFI_STAMP)
 	$(VENV)/bin/ogk soak --out $(B)/soak
@@ -293,7 +306,7 @@ run: all $(QP_SO)
 	$(VENV)/bin/ogk tables leo-geo
 	$(VENV)/bin/ogk mc leo-geo --runs 100 --seed 1 --workers 2 \
 	  --json $(B)/mc/leo_geo_100.json --plots $(B)/mc/plots
-	# the first PIL_RUNS of those runs with the flight program on the emulated Cortex-M7 (docs/pil.md)
+	# the first PIL_RUNS of those runs with the flight program on the emulated Cortex-M7 (docs/guides/pil.md)
 	$(VENV)/bin/ogk mc leo-geo --target m7 --runs $(PIL_RUNS) --seed 1 --workers 2 \
 	  --json $(B)/pil/leo_geo_m7_$(PIL_RUNS).json
 	$(VENV)/bin/ogk run apophis --paper-tables \
@@ -302,7 +315,7 @@ run: all $(QP_SO)
 	$(VENV)/bin/ogk mc apophis_cubesat --cases paper --target m7 --workers 2 \
 	  --json $(B)/pil/apophis_paper_m7.json
 	# the paper's problem unperturbed (Table I's rows), then the shipped law (its robustness of
-	# docs/nmpc-flight.md, "Robustness"): unperturbed, one perturbed flight with plots, and the
+	# docs/design/nmpc-flight.md, "Robustness"): unperturbed, one perturbed flight with plots, and the
 	# perturbed campaigns beside Tables I and II
 	$(VENV)/bin/ogk run rendezvous_nep_min_time --strategy snns --solver kernel --paper-problem \
 	  --json $(B)/nmpc/snns_unperturbed_paper_problem.json

@@ -8,7 +8,7 @@
   (harness/ogk/missions/build_csrc.py, one `family_<name>` builder per family with a csrc/). So
   `pip install .`, `python -m build` and the Makefile's `pip install -e .` compile the kernel with the
   same sources and options as `make ffi` (the editable install builds them in place, where `make ffi`
-  puts them). docs/install.md.
+  puts them). docs/guides/install.md.
 """
 from __future__ import annotations
 

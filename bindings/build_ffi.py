@@ -35,7 +35,7 @@ struct field and integer macro of the headers is reachable.
 Run from anywhere:  .venv/bin/python bindings/build_ffi.py
 (`make ffi` does this whenever a kernel source, a csrc/ file or this file changes.) setup.py builds
 the same extension (`setuptools_builder`) through cffi's setuptools integration, for `pip install`
-and `python -m build` (docs/install.md).
+and `python -m build` (docs/guides/install.md).
 """
 from __future__ import annotations
 
@@ -202,7 +202,7 @@ def bound_sources(relative: bool = False) -> list[str]:
 
 
 #: the compiler options of every extension over the kernel (-I kernel/src: the internal headers the
-#: kernel's modules share, kernel/src/*.h; docs/architecture.md, "Kernel source layout")
+#: kernel's modules share, kernel/src/*.h; docs/design/architecture.md, "Kernel source layout")
 COMPILE_ARGS = ["-std=c99", "-O2", f"-I{KERNEL_SRC}", *DEFINES]
 
 

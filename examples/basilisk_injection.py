@@ -7,7 +7,7 @@ extForceTorque effector), drops in ogk's flight software (OgkInjectionFsw: VTD-N
 reading NavTransMsg/NavAttMsg, writing AttRefMsg, CmdTorqueBodyMsg, the TVC commands and the engine
 on-time) and the vehicle's engine and actuators (TvcEnginePlant), flies the nominal burn to engine
 cut-off and prints the injection errors. With --compare N it then flies N dispersed runs in both
-Basilisk and ogk's own 6-DOF truth model and prints both sets of statistics (docs/basilisk.md).
+Basilisk and ogk's own 6-DOF truth model and prints both sets of statistics (docs/guides/basilisk.md).
 """
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
 """Typed bindings of the kernel's BLT guidance with its NRPC corrector (kernel/include/ogk/blt.h,
-docs/blt.md).
+docs/design/blt.md).
 
     cfg = BltConfig(model=dict(mu=..., body_radius=[...], thrust_accel=..., ...), n_segments=3,
                     segment_kind=[BURN, COAST, BURN], ...)       # ogk_blt_config_default underneath
@@ -9,7 +9,7 @@ docs/blt.md).
     cmd = k.command(t)                                            # eq. (22) of the held solution
     c = k.thrust_cmd(t)                                           # the one command of every law (synodic)
 
-Normalised units throughout (docs/blt.md, sec. 1: LU = separation, TU = T_o / 2 pi, mass fraction).
+Normalised units throughout (docs/design/blt.md, sec. 1: LU = separation, TU = T_o / 2 pi, mass fraction).
 Bad inputs raise KernelError; a corrector that does not converge returns its report (status names why).
 """
 from __future__ import annotations

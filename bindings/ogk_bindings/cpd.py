@@ -1,4 +1,4 @@
-"""Typed bindings of the kernel's CPD attitude control (kernel/include/ogk/cpd.h, docs/cpd.md).
+"""Typed bindings of the kernel's CPD attitude control (kernel/include/ogk/cpd.h, docs/design/cpd.md).
 
     cfg = CpdConfig(k_px=..., ..., pointing=Pointing.BODY)  # ogk_cpd_config_default + fields by name
     ctl = Cpd(cfg)                               # ogk_cpd_init (KernelError on a rejected config)

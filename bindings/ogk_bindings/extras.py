@@ -1,4 +1,4 @@
-"""The optional packages of ogk and the one way every layer imports them (docs/install.md).
+"""The optional packages of ogk and the one way every layer imports them (docs/guides/install.md).
 
 The heavy peers are pip extras, not dependencies: a user who flies campaigns does not install Basilisk.
 Code that needs one imports it through `need`, which raises `MissingExtra` (an OgkInputError: the `ogk`
@@ -8,8 +8,8 @@ command prints one line and exits with 2) naming the extra that brings it:
 
 | extra      | packages            | what needs them                                                    |
 |------------|---------------------|--------------------------------------------------------------------|
-| `basilisk` | bsk (Basilisk)      | ogk.missions.orbit_injection.basilisk (docs/basilisk.md)           |
-| `dask`     | dask[distributed]   | `ogk mc --dask` (ogk.sil.dask_executor, docs/scale-out.md)         |
+| `basilisk` | bsk (Basilisk)      | ogk.missions.orbit_injection.basilisk (docs/guides/basilisk.md)           |
+| `dask`     | dask[distributed]   | `ogk mc --dask` (ogk.sil.dask_executor, docs/guides/scale-out.md)         |
 | `peers`    | daqp                | the QP peers of `make bench` (tests/bench)                         |
 
 CasADi is not an extra: the proximity family's ground plan is solved by CasADi + IPOPT before every

@@ -1,4 +1,4 @@
-"""Typed bindings of the kernel's MPSP guidance (kernel/include/ogk/mpsp.h, docs/mpsp.md).
+"""Typed bindings of the kernel's MPSP guidance (kernel/include/ogk/mpsp.h, docs/design/mpsp.md).
 
     cfg = MpspConfig(mu=1.0, t_max=..., c_exhaust=..., t0=0.0, tf=..., x0_nom=..., r_f=..., v_f=...,
                      fourier_order=15, fourier_period=2 * tf, weights_nom=eps0, lambda_m0_nom=lm0,
@@ -43,9 +43,9 @@ BASIS_FOURIER: int = int(lib.OGK_MPSP_BASIS_FOURIER)
 BASIS_COSINE: int = int(lib.OGK_MPSP_BASIS_COSINE)
 """h = [1/2, cos k th (k = 1..2n)]."""
 SWEEP_RK4: int = int(lib.OGK_MPSP_SWEEP_RK4)
-"""sens_sweep: the exact derivative of the RK4 steps (docs/mpsp.md, section 3)."""
+"""sens_sweep: the exact derivative of the RK4 steps (docs/design/mpsp.md, section 3)."""
 SWEEP_MID2: int = int(lib.OGK_MPSP_SWEEP_MID2)
-"""sens_sweep: second-order transition at the step midpoints, O(h^2) (docs/mpsp.md, section 8)."""
+"""sens_sweep: second-order transition at the step midpoints, O(h^2) (docs/design/mpsp.md, section 8)."""
 _MAX_WEIGHTS: int = int(lib.OGK_MPSP_MAX_WEIGHTS)
 _MAX_NODES: int = int(lib.OGK_MPSP_MAX_NODES)
 

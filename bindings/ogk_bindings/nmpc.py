@@ -1,4 +1,4 @@
-"""Typed bindings of the kernel's receding-horizon NMPC (kernel/include/ogk/nmpc.h, docs/nmpc.md).
+"""Typed bindings of the kernel's receding-horizon NMPC (kernel/include/ogk/nmpc.h, docs/design/nmpc.md).
 
     cfg = NmpcConfig(thrust_max=..., mass_flow_max=..., target_radius=..., target_phase0=...,
                      target_rate=..., nodes=30, strategy=SNNS)   # ogk_nmpc_config_default underneath

@@ -1,4 +1,4 @@
-"""Typed configuration of the kernel's VTD-NOG guidance (kernel/include/ogk/nog.h, docs/vtd-nog.md).
+"""Typed configuration of the kernel's VTD-NOG guidance (kernel/include/ogk/nog.h, docs/design/vtd-nog.md).
 
     cfg = NogConfig(table=table, sample_interval_s=2.0, dtf_max_s=..., du_max_rad=..., tau_freeze=...)
     cfg.to_c()                          # the ogk_nog_config_t * that ogk_nog_init takes

@@ -1,6 +1,6 @@
 """Typed bindings of the kernel's proximity approach (kernel/include/ogk/proximity.h): the planar
 Clohessy-Wiltshire problem with a throttled engine, solved by the NMPC's SQP and strategies
-(docs/nmpc-problem.md).
+(docs/design/nmpc-problem.md).
 
     model = ProxModel(thrust_max=..., mass_flow_max=..., hold=(x, y), keepout=[(cx, cy, r)])
     g = Proximity(model, nodes=16, rk4_steps=8, horizon_min=..., horizon_max=..., mass_min=...)

@@ -14,7 +14,7 @@ F64 = NDArray[np.float64]
 
 @dataclass
 class QpSolve:
-    """One dense QP (docs/qp.md): minimise 1/2 x^T H x + g^T x subject to A_eq x = b_eq, A_in x >= b_in,
+    """One dense QP (docs/design/qp.md): minimise 1/2 x^T H x + g^T x subject to A_eq x = b_eq, A_in x >= b_in,
     lb <= x <= ub (|bound| >= OGK_QP_INF: none). Empty arrays mean no rows / no bounds."""
 
     H: F64

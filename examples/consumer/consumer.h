@@ -1,4 +1,4 @@
-/* consumer.h -- the flight loops of the example consumer of an installed ogk (docs/cmake.md): one per
+/* consumer.h -- the flight loops of the example consumer of an installed ogk (docs/guides/cmake.md): one per
  * guidance or control law, each through the public API only (<ogk/...h>, never ogk/internal). Each
  * prints one line and returns 0 when every kernel call answered OGK_OK and the outcome is where the
  * law must put it, 1 otherwise. The contexts are static: they are too large for a flight stack. */

@@ -1,4 +1,4 @@
-# examples/consumer/consumer.mk -- `make test-consumer` (in `make test`; docs/cmake.md): what a flight
+# examples/consumer/consumer.mk -- `make test-consumer` (in `make test`; docs/guides/cmake.md): what a flight
 # project does with ogk, from scratch, with nothing from the Makefile's own kernel builds:
 #   the package built and installed by CMake alone, for the host and for the Cortex-M7
 #   (build/cm-host -> build/ogk-prefix-host, build/cm-m7 -> build/ogk-prefix-m7), then

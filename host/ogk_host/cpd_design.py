@@ -1,5 +1,5 @@
 """CPD attitude-control gain design (Pontani & Celani 2021, sec. 5.3) and the loop figures behind
-the choice of gains (docs/cpd.md).
+the choice of gains (docs/design/cpd.md).
 
 Sec. 5.3 rule, per axis: with the control effectiveness G (G_x = 1 / I_x for the roll torque,
 G_y = T l / I_y and G_z = T l / I_z for the TVC deflections) varying over the burn between G_min and
@@ -19,11 +19,11 @@ It also runs the attitude-capture study behind the pointing-mode decision: the f
 the cffi bindings) on the rigid-body dynamics of eqs. (13)-(18) with the initial attitude and rate
 dispersions of Table 4, pitch/yaw error measured from the truth direction cosines.
 
-    .venv/bin/python -m ogk_host.cpd_design              # gain and loop figures (docs/cpd.md)
+    .venv/bin/python -m ogk_host.cpd_design              # gain and loop figures (docs/design/cpd.md)
     .venv/bin/python -m ogk_host.cpd_design --capture 200  # + capture study (~3 min)
 
 (--capture also runs a numpy prototype of the same law, as a cross-check of the kernel, and of the
-rate-capped proportional term discussed in docs/cpd.md; those prototypes are study code only.)
+rate-capped proportional term discussed in docs/design/cpd.md; those prototypes are study code only.)
 """
 from __future__ import annotations
 
@@ -309,7 +309,7 @@ def _report_axis(name: str, fig: LoopFigures, angle_unit: float, unit: str) -> l
 
 def report(vehicle: VehicleModel | None = None, tau: float = 0.1, m_xc_max: float = 30.0,
            delta_c_max: float = math.radians(0.65), n_g: int = 11) -> str:
-    """Text report of both gain sets on the true effectiveness range (docs/cpd.md)."""
+    """Text report of both gain sets on the true effectiveness range (docs/design/cpd.md)."""
     vehicle = vehicle or leo_geo_vehicle()
     g_min, g_max = effectiveness_range(vehicle)
     rederived = design_gains(vehicle)
@@ -376,7 +376,7 @@ def prototype_body_cpd(c_bc: F64, rates: F64, t_c: F64, gains: CpdGains, limits:
                        shaping_eta: float | None = None,
                        a_sat: tuple[float, float] = (math.nan, math.nan)) -> F64:
     """STUDY PROTOTYPE (numpy, not flight code): CPD with body-axis pointing, vectorised over draws,
-    optionally with the proportional term capped as a rate command (docs/cpd.md):
+    optionally with the proportional term capped as a rate command (docs/design/cpd.md):
     k_p e -> k_d sign(e) min((k_p / k_d) |e|, sqrt(2 eta a_sat |e|)), a_sat = (roll, pitch/yaw)
     saturated acceleration [rad/s^2]. shaping_eta None: the plain CPD law of the kernel.
     c_bc (N, 3, 3) body-from-c DCMs, rates (N, 3), t_c (3,) commanded direction in c; roll

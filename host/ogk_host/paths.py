@@ -1,5 +1,5 @@
 """Where ogk reads what it ships and writes what it makes, run from the repository or from an installed
-wheel (docs/install.md).
+wheel (docs/guides/install.md).
 
 * `SOURCE_TREE`: the repository this package runs from (a clone, the Makefile's editable install), or
   None when it runs from an installed wheel (site-packages).
@@ -43,6 +43,6 @@ WORK_ROOT: Path = SOURCE_TREE if SOURCE_TREE is not None else Path.cwd()
 def need_repository(what: str, key: str | None = None) -> Path:
     """The repository; from an installed wheel, OgkInputError: `what` needs it."""
     if SOURCE_TREE is None:
-        raise OgkInputError(f"{what} needs the ogk repository (git clone, then make; docs/install.md), "
+        raise OgkInputError(f"{what} needs the ogk repository (git clone, then make; docs/guides/install.md), "
                             "not an installed wheel", key=key)
     return SOURCE_TREE

@@ -2,7 +2,7 @@
 the file, the key and the reason (`OgkInputError`).
 
 A scenario is a TOML file under scenarios/ (the wheel ships them as package data) or anywhere, by
-path. Every family's file starts with the same header (docs/adding-a-mission.md, "The scenario header")::
+path. Every family's file starts with the same header (docs/guides/adding-a-mission.md, "The scenario header")::
 
     schema = "ogk.orbit-injection/1"   # "ogk.<mission>/<version>": checked against `mission`
     mission = "orbit-injection"        # family: truth model, ground tools, SIL adapter
@@ -79,7 +79,7 @@ def file_sha256(path: str | Path) -> str:
 MISSIONS = ("orbit-injection", "low-thrust-transfer", "low-thrust-rendezvous", "binary-asteroid",
             "proximity-approach")
 
-HEADER_DOC = 'docs/adding-a-mission.md, "The scenario header"'
+HEADER_DOC = 'docs/guides/adding-a-mission.md, "The scenario header"'
 
 #: Older spellings of the header, refused with what to rename them to: (missions, dotted key as a
 #: regular expression, the new spelling with the key's groups as {0}, {1}). Checked on every table

@@ -35,10 +35,10 @@ typedef struct {
     bool bounded;        /* U(k, i) held within +-2 sqrt(|a_ii|) (row i of L has norm sqrt(a_ii)
                           * when A = L L^T: twice that is never reached by an accepted
                           * factorisation), a bound there for Frama-C EVA's ranges (linalg.c,
-                          * docs/eva.md); it goes with divide */
+                          * docs/evidence/eva.md); it goes with divide */
     bool divide;         /* U(k, i) = reduced U(k, i) / u_kk, correctly rounded (ogk_chol_factor,
                           * the NMPC's test); false: times 1 / u_kk, one multiply per entry
-                          * (the QP's cost, docs/qp.md) and up to an ulp apart */
+                          * (the QP's cost, docs/design/qp.md) and up to an ulp apart */
 } ogk_i_chol_rule_t;
 
 /* Factors in place the upper triangle of U (row-major n x n, the matrix to

@@ -29,7 +29,7 @@ static inline bool ogk_i_all_finite(const double *v, size_t n)
 /* min(n, bound): a loop's dimension clamped once to its compile-time bound
  * before the loop, so the loop keeps a fixed bound with one condition (the
  * dimension was checked against the bound at init: MC/DC could never show a
- * second `k < BOUND` operand, docs/mcdc-exceptions.md). */
+ * second `k < BOUND` operand, docs/evidence/mcdc-exceptions.md). */
 static inline size_t ogk_i_min_size(size_t n, size_t bound)
 {
     return (n < bound) ? n : bound;

@@ -1,6 +1,6 @@
 # port/cortex-m7/cortex-m7.mk -- bare-metal Cortex-M7 build, run on QEMU's
 # mps2-an500 board (included by the top-level Makefile; uses its STRICT,
-# KINC, KSRC, KSRC_INC, KHDR, UNIT_SRC, B). See docs/ports.md.
+# KINC, KSRC, KSRC_INC, KHDR, UNIT_SRC, B). See docs/guides/ports.md.
 #
 #   make arm-lib             build/arm/libogk.a (kernel, strict flags, -O2)
 #   make test-unit-arm       every tests/unit/*/test_*.c on QEMU (cmocka shim)

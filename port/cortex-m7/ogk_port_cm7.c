@@ -3,7 +3,7 @@
  * DWT_CYCCNT counts core clock cycles once DEMCR.TRCENA and DWT_CTRL.CYCCNTENA
  * are set (ARMv7-M ARM C1.8). QEMU 7.2 does not model the DWT: its registers
  * read as zero, so ogk_port_counter_init() reports the counter as not live
- * and benchmarks fall back to QEMU instruction counting (docs/ports.md). */
+ * and benchmarks fall back to QEMU instruction counting (docs/guides/ports.md). */
 #include "ogk_port.h"
 
 #define OGK_CM7_REG(addr) (*(volatile uint32_t *)(uintptr_t)(addr))

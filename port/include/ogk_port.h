@@ -8,7 +8,7 @@
  * QEMU does not model the DWT: under qemu-system-arm the cycle counter reads
  * as 0 and ogk_port_counter_init() returns false. Repeatable ARM cost figures
  * come from counting executed instructions with the QEMU TCG plugin in
- * port/qemu-plugin/ (docs/ports.md); those are instruction counts, not cycles.
+ * port/qemu-plugin/ (docs/guides/ports.md); those are instruction counts, not cycles.
  * On real Cortex-M7 silicon the counter gives core clock cycles. */
 #ifndef OGK_PORT_H
 #define OGK_PORT_H

@@ -1,4 +1,4 @@
-# port/profile/profile.mk -- certification evidence (issue 22, docs/profile.md). Included by the top-level
+# port/profile/profile.mk -- certification evidence (issue 22, docs/evidence/profile.md). Included by the top-level
 # Makefile after the ports.
 #
 #   make stack-bound-m7   worst-case stack of every public entry point on the Cortex-M7, libm, libc and the
@@ -18,7 +18,7 @@ $(PROFILE_B)/stack_m7.json: $(ARM_UNIT_ELF) $(ARM_KOBJ) $(PROFILE_PY)
 	  --su-dir $(ARM_B)/kernel --objects $(ARM_KOBJ) --json $@.tmp -- $(ARM_UNIT_ELF) \
 	  && mv $@.tmp $@
 
-# The same on SPARC V8 (the static glibc of the qemu-user route; docs/ports.md). glibc's libm there is
+# The same on SPARC V8 (the static glibc of the qemu-user route; docs/guides/ports.md). glibc's libm there is
 # built with the stack protector: its abort path, __stack_chk_fail, sizes its message on the stack from a
 # register and ends the process, so it is named a terminating path (its own frame still counts).
 SPARC_UNIT_EXE := $(patsubst %,$(SPARC_B)/%,$(basename $(notdir $(SPARC_UNIT_SRC))))
@@ -35,7 +35,7 @@ $(PROFILE_B)/footprint_sparc.json: $(SPARC_KOBJ) $(KHDR) $(PROFILE_PY)
 	  --size sparc64-linux-gnu-size --nm sparc64-linux-gnu-nm --json $@ -- $(SPARC_KOBJ)
 
 # ---------------------------------------------------------------- make profile (not in make test: minutes)
-#   make profile          build/profile/profile.json and docs/profile.md: per target, every public entry
+#   make profile          build/profile/profile.json and docs/evidence/profile.md: per target, every public entry
 #                         point's stack bound, the painted stack and QEMU's instructions per call at the
 #                         worst input of small processor-in-the-loop campaigns of every family on both
 #                         targets (fixed seed and runs: identical from run to run), code / read-only / RAM per module and the
@@ -62,7 +62,7 @@ $(PROFILE_B)/footprint_m7.json: $(ARM_KOBJ) $(KHDR) $(PROFILE_PY)
 
 # Each campaign's envelope is rebuilt when the kernel, the ports or its scenario change. A campaign
 # whose runs fail their mission criterion, or whose target results leave the host's bounds (a perturbed
-# rendezvous flown to its end amplifies libm's ulps into days, docs/pil.md), exits 1 with its envelope
+# rendezvous flown to its end amplifies libm's ulps into days, docs/guides/pil.md), exits 1 with its envelope
 # written: its resource figures stand, and profile.json lists its failures and host-vs-target verdict.
 # Any other exit (bad input, interrupted, no envelope) fails the profile and leaves nothing behind.
 $(PROFILE_B)/pil_m7/%.json: scenarios/%.toml $(ARM_B)/libogk.a $(ARM_RT_OBJ) $(QP_SO) $(FFI_STAMP)
@@ -101,4 +101,4 @@ profile: deps stack-bound-m7 footprint-m7 stack-bound-sparc footprint-sparc prof
 	  --footprint m7=$(PROFILE_B)/footprint_m7.json sparc=$(PROFILE_B)/footprint_sparc.json \
 	  --campaign $(foreach f,$(PROFILE_PIL_M7),m7=$(f)) $(foreach f,$(PROFILE_PIL_SPARC),sparc=$(f)) \
 	  --program sparc=flightapp=$(PROFILE_B)/insns_sparc_flightapp.txt \
-	  --json $(PROFILE_B)/profile.json --doc docs/profile.md
+	  --json $(PROFILE_B)/profile.json --doc docs/evidence/profile.md

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The resource profile of the flight code per target (issue 22): build/profile/profile.json and the
-generated docs/profile.md. Inputs, all produced by `make profile` in the same run:
+generated docs/evidence/profile.md. Inputs, all produced by `make profile` in the same run:
   --stack T=FILE        stack_bound.py's bounds for target T (libm, libc, callbacks included)
   --footprint T=FILE    footprint.py's code / read-only / RAM per module and sizeof per public type
   --campaign T=FILE...  processor-in-the-loop envelopes (`ogk mc ... --target T`): instructions per call

@@ -19,7 +19,7 @@
  *                       which needs `-d plugin` and goes to QEMU's log).
  *   calls=PATH          also write every completed call of every fn item to
  *                       PATH, one line `NAME COUNT` each, in the order the
- *                       calls return (processor in the loop, docs/pil.md: the
+ *                       calls return (processor in the loop, docs/guides/pil.md: the
  *                       k-th line of a function is its k-th step's count, so
  *                       a campaign keeps the maximum with its run and step).
  *

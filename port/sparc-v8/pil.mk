@@ -1,4 +1,4 @@
-# port/sparc-v8/pil.mk -- the processor-in-the-loop flight programs (docs/pil.md) built for SPARC V8
+# port/sparc-v8/pil.mk -- the processor-in-the-loop flight programs (docs/guides/pil.md) built for SPARC V8
 # Linux user mode (qemu-sparc32plus, static glibc). Included by the top-level Makefile after
 # sparc-v8.mk and port/cortex-m7/pil/pil.mk, whose program fragments (<program>.mk.inc: sources,
 # generated C, painted window) it reuses: the flight programs are the same C.

@@ -1,6 +1,6 @@
 # port/sparc-v8/sparc-v8.mk -- 32-bit big-endian SPARC V8 (LEON3/GR740's ISA) under QEMU user mode
 # (included by the top-level Makefile after cortex-m7.mk and flightapp.mk; uses their STRICT, KINC,
-# KSRC, KHDR, UNIT_SRC, B, ARM_PORT and FA_* variables). See docs/ports.md, "SPARC V8".
+# KSRC, KHDR, UNIT_SRC, B, ARM_PORT and FA_* variables). See docs/guides/ports.md, "SPARC V8".
 #
 #   make sparc-lib               build/sparc/libogk.a (kernel, strict flags, -O2)
 #   make test-unit-sparc         every tests/unit/*/test_*.c, static, run with qemu-sparc32plus

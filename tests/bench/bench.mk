@@ -47,7 +47,7 @@ bench: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE) $(FFI_STAMP)
 	    /converged; kernel CPU/'
 
 # MPSP (kernel/include/ogk/mpsp.h): one Newton iteration at flight size (2000
-# RK4 steps, Fourier order 15: 94 unknowns) and its parts; see docs/mpsp.md.
+# RK4 steps, Fourier order 15: 94 unknowns) and its parts; see docs/design/mpsp.md.
 BENCH_MPSP := $(BENCH_DIR)/bench_mpsp
 MPSP_CASES := mpsp_iter mpsp_prop mpsp_sens mpsp_update mpsp_iter_mid2 mpsp_sens_mid2
 
@@ -70,7 +70,7 @@ bench: bench-mpsp
 
 # ---------------------------------------------------------------- Cortex-M7 instruction counts (QEMU plugin)
 # One MPSP Newton iteration (and its parts) executed on the emulated Cortex-M7, counted by the TCG
-# plugin from each function's entry to its return: instructions, not cycles (docs/ports.md).
+# plugin from each function's entry to its return: instructions, not cycles (docs/guides/ports.md).
 ARM_BENCH_MPSP := $(ARM_B)/bench_mpsp.elf
 $(ARM_BENCH_MPSP): tests/bench/bench_mpsp.c $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
 	$(ARM_CC) -std=c99 -Wall -Wextra -Werror -O2 -g $(ARM_CPU) -DOGK_BENCH_BARE_METAL \
@@ -84,7 +84,7 @@ bench-arm: $(ARM_BENCH_MPSP) qemu-plugin
 	  bench_mpsp_sens_mid2_once 2>/dev/null
 bench: bench-arm
 
-# ---------------------------------------------------------------- NMPC warm re-solve (docs/nmpc.md, "Cost")
+# ---------------------------------------------------------------- NMPC warm re-solve (docs/design/nmpc.md, "Cost")
 # One ogk_nmpc_replan at N = 30 -> 29 after the open loop (the case: the committed fixture
 # tests/bench/fixtures/nmpc_case.json, the paper's problem, bench_nmpc_case.h its bit-exact transform,
 # tests/bench/nmpc_case.py): host ns (median), callgrind instructions
@@ -105,7 +105,7 @@ $(NMPC_CASE_H): $(NMPC_CASE_JSON) tests/bench/nmpc_case.py
 	python3 tests/bench/nmpc_case.py header $(NMPC_CASE_JSON) $@
 
 # The fixture made again from the scenario (through numpy: its last bits are this machine's; commit it
-# only with a reason, docs/nmpc.md section 10), and the committed one checked against a fresh generation.
+# only with a reason, docs/design/nmpc.md section 10), and the committed one checked against a fresh generation.
 .PHONY: bench-nmpc-case bench-nmpc-case-check
 bench-nmpc-case: $(FFI_STAMP)
 	$(VPY) tests/bench/nmpc_case.py generate $(NMPC_CASE_JSON)
@@ -131,7 +131,7 @@ $(ARM_BENCH_NMPC_EXACT): tests/bench/bench_nmpc.c $(NMPC_CASE_H) $(ARM_RT_OBJ) $
 
 .PHONY: bench-nmpc bench-nmpc-profile
 bench-nmpc: $(BENCH_NMPC) $(ARM_BENCH_NMPC) $(ARM_BENCH_NMPC_EXACT) $(ARM_CI) qemu-plugin $(FFI_STAMP)
-	@echo "== NMPC warm re-solve: the kernel against FATROP + JIT and IPOPT + JIT (docs/nmpc.md, \"Cost\") =="
+	@echo "== NMPC warm re-solve: the kernel against FATROP + JIT and IPOPT + JIT (docs/design/nmpc.md, \"Cost\") =="
 	@rm -f $(NMPC_B)/*.txt
 	@for m in "" tol0 exact "exact tol0"; do $(BENCH_NMPC) time $$m; done > $(NMPC_B)/host.txt
 	@for m in "" tol0 exact "exact tol0"; do \
@@ -168,7 +168,7 @@ bench-nmpc-profile: $(BENCH_NMPC)
 
 bench: bench-nmpc
 
-# ---------------------------------------------------------------- BLT / NRPC (docs/blt.md, "Cost")
+# ---------------------------------------------------------------- BLT / NRPC (docs/design/blt.md, "Cost")
 # One NRPC iteration (ogk_blt_solve with max_iter = 1 from the guess) and a whole convergence, for the
 # single-burn l2_to_l1_lyapunov and the burn-coast-burn circle_to_l2_ump of scenarios/moshup.toml, each with
 # the central-difference and the variational Jacobian (the cases: tests/bench/bench_blt_case.py, generated into
@@ -196,7 +196,7 @@ $(ARM_BENCH_BLT): tests/bench/bench_blt.c $(BLT_CASE_H) $(ARM_RT_OBJ) $(ARM_B)/l
 
 .PHONY: bench-blt bench-blt-profile
 bench-blt: $(BENCH_BLT) $(ARM_BENCH_BLT) $(ARM_CI) qemu-plugin $(FFI_STAMP)
-	@echo "== BLT / NRPC: one iteration and a whole convergence (docs/blt.md, \"Cost\") =="
+	@echo "== BLT / NRPC: one iteration and a whole convergence (docs/design/blt.md, \"Cost\") =="
 	@rm -f $(BLT_B)/*.txt
 	@$(BENCH_BLT) time > $(BLT_B)/host.txt
 	@for k in $(BLT_KEYS); do for u in iteration converge; do \
@@ -228,17 +228,17 @@ bench-blt-profile: $(BENCH_BLT)
 
 bench: bench-blt
 
-# Dense QP against DAQP and qpOASES (docs/qp.md): after the NMPC section, whose case header it uses.
+# Dense QP against DAQP and qpOASES (docs/design/qp.md): after the NMPC section, whose case header it uses.
 include tests/bench/bench_qp.mk
 bench: bench-qp
 
-# ---------------------------------------------------------------- flops per call (docs/performance.md)
+# ---------------------------------------------------------------- flops per call (docs/design/performance.md)
 # Double-precision flops of each hot path's one call, counted exactly from callgrind's per-instruction
 # counts and the binaries' disassembly (tests/bench/flops.py), beside its instructions.
 FLOPS := $(VPY) tests/bench/flops.py
 .PHONY: bench-flops
 bench-flops: $(BENCH_CORE) $(BENCH_GNC) $(NOG_TABLE) $(BENCH_MPSP) $(BENCH_NMPC) $(BENCH_BLT) | apt
-	@echo "== flops per call (x86-64 gcc -O2, callgrind; docs/performance.md) =="
+	@echo "== flops per call (x86-64 gcc -O2, callgrind; docs/design/performance.md) =="
 	@$(FLOPS) rk4_step bench_rk4_step_once -- $(BENCH_CORE) once rk4_step
 	@$(FLOPS) qp bench_qp_once -- $(BENCH_CORE) once qp
 	@$(FLOPS) nog_sample bench_nog_sample_once -- $(BENCH_GNC) $(NOG_TABLE) once nog_sample

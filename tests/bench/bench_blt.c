@@ -15,7 +15,7 @@
  *                                  prints "blt_m7_<key> <value>" lines, among them the stack
  *                                  used by each convergence
  *
- * The cases (docs/blt.md, "Cost"; generated into bench_blt_case.h by
+ * The cases (docs/design/blt.md, "Cost"; generated into bench_blt_case.h by
  * tests/bench/bench_blt_case.py header from scenarios/moshup.toml, bit-exact): the transfers
  * l2_to_l1_lyapunov (single burn) and circle_to_l2_ump (burn-coast-burn, one free node), each
  * with the central-difference (eq. 62) and the variational Jacobian, NRPC, the scenario's

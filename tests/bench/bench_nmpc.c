@@ -33,7 +33,7 @@
  *                       (each double with probability 1/8), open loop and
  *                       re-solve each
  *
- * The case (docs/nmpc.md, section 10; the committed fixture
+ * The case (docs/design/nmpc.md, section 10; the committed fixture
  * tests/bench/fixtures/nmpc_case.json, of which bench_nmpc_case.h is the
  * bit-exact transform by tests/bench/nmpc_case.py header): the paper's
  * problem, paper_problem() of scenarios/rendezvous_nep_min_time.toml with

@@ -7,7 +7,7 @@ IPOPT JIT-compiled by gcc -O2 (CasADi 3.8, tests/bench/nmpc_peers.py), same prob
     bench_nmpc_ipopt.py run [--figures DIR] the peers and the kernel through cffi here, plus the C bench's
                                             figures (CPU, callgrind, Cortex-M7, stack) read from DIR: one table
 
-The case (docs/nmpc.md, "Cost"), identical for every solver, read from the committed fixture
+The case (docs/design/nmpc.md, "Cost"), identical for every solver, read from the committed fixture
 tests/bench/fixtures/nmpc_case.json (tests/bench/nmpc_case.py: generated once, bit-exact):
 
 1. the paper's problem: `paper_problem(scenario)` of scenarios/rendezvous_nep_min_time.toml (the robustness

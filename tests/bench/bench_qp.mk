@@ -1,4 +1,4 @@
-# Dense QP against its peers (docs/qp.md, "Measured against DAQP and qpOASES"): `make bench-qp`.
+# Dense QP against its peers (docs/design/qp.md, "Measured against DAQP and qpOASES"): `make bench-qp`.
 # Two sets of QPs: (a) every QP that `bench_nmpc once` hands to ogk_qp_solve (the open loop and the
 # one re-solve; recorded by a build of tests/bench/bench_nmpc.c linked with
 # -Wl,--wrap=ogk_qp_solve and tests/bench/bench_qp_record.c, no hook in kernel/), (b) random strictly

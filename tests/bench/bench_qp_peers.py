@@ -1,4 +1,4 @@
-"""ogk_qp_solve against DAQP and qpOASES on two sets of QPs (`make bench-qp`, docs/qp.md).
+"""ogk_qp_solve against DAQP and qpOASES on two sets of QPs (`make bench-qp`, docs/design/qp.md).
 
 Sets: (a) "nmpc": every QP that `bench_nmpc once` hands to ogk_qp_solve (the open loop, then the one
 warm re-solve), recorded by a build of tests/bench/bench_nmpc.c wrapped around ogk_qp_solve

@@ -1,4 +1,4 @@
-"""runs/s of the Dask executor, local:1 and local:2, per family (docs/scale-out.md): one JSON line
+"""runs/s of the Dask executor, local:1 and local:2, per family (docs/guides/scale-out.md): one JSON line
 per family and worker count. `.venv/bin/python tests/bench/dask_runs_per_s.py [FAMILY ...]`."""
 import os, sys, time, json
 from ogk_host.scenario_file import read_header, resolve_scenario

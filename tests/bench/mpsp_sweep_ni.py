@@ -1,4 +1,4 @@
-"""Newton iterations of the 23 Apophis cases with a chosen MPSP sensitivity sweep (docs/mpsp.md 8).
+"""Newton iterations of the 23 Apophis cases with a chosen MPSP sensitivity sweep (docs/design/mpsp.md 8).
 
     .venv/bin/python tests/bench/mpsp_sweep_ni.py rk4|mid2 [period_2tf|cosine_2tf|...] [--json FILE]
 

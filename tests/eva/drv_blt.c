@@ -13,8 +13,8 @@
  * 0.3 LU/TU per component (the L1/L2 orbits' region), the target likewise.
  * Gated calls: propagate, evaluate, the command with no solution held, the
  * bad inputs. -DEVA_BLT_SOLVE adds one corrector iteration of each kind
- * (solve with max_iter 1): it did not finish in 300 s (docs/eva.md).
- * Not gated at zero: docs/eva.md lists the alarms. */
+ * (solve with max_iter 1): it did not finish in 300 s (docs/evidence/eva.md).
+ * Not gated at zero: docs/evidence/eva.md lists the alarms. */
 #include "eva_driver.h"
 #include "ogk/blt.h"
 
@@ -102,7 +102,7 @@ void eva_blt(void)
     (void)ogk_blt_reset(&ctx);
     (void)ogk_blt_command(&ctx, eva_any_finite(), &cmd);
     /* Bad input: solve reports err_norm = HUGE_VAL (ogk/blt.h), an infinity EVA
-     * proves (a sure alarm, docs/eva.md) and after which it stops the path; the
+     * proves (a sure alarm, docs/evidence/eva.md) and after which it stops the path; the
      * branch keeps a path to the driver's end. */
     if (eva_in(0.0, 1.0) > 0.5) {
         (void)ogk_blt_solve(&ctx, NULL, &sol, &rep);

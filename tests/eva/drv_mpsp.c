@@ -13,7 +13,7 @@
  * not gated: -DEVA_MPSP_PROPAGATE (propagate, trajectory, state_at and
  * thrust_cmd on it) and -DEVA_MPSP_SOLVE (sensitivity, newton_update, one
  * Newton step of solve): the RK4 switch bisection did not finish in 300 s
- * (docs/eva.md, as rk4 with a switching function). */
+ * (docs/evidence/eva.md, as rk4 with a switching function). */
 #include "eva_driver.h"
 #include "ogk/mpsp.h"
 

@@ -2,7 +2,7 @@
  * compile-time sizes (eva_gate.py: at most 2 nodes, 2 RK4 steps per
  * subinterval, the QP's limits cut to what 2 nodes need). The mission is the
  * Earth-to-Mars rendezvous of scenarios/rendezvous_*.toml in the normalised
- * units of docs/nmpc.md (mu = 1, T_0 = 0.0562, mdot = 0.0569, R_T = 1.5237,
+ * units of docs/design/nmpc.md (mu = 1, T_0 = 0.0562, mdot = 0.0569, R_T = 1.5237,
  * theta_T0 = 130 deg), constant engine, minimum time, BFGS, SNNS. The plan
  * has 2 nodes over a horizon in [8, 9] TU with node states within the
  * phase-matched guess's envelope (r in [1, 1.53], v_r in +-0.2, v_theta in
@@ -10,7 +10,7 @@
  * Gated calls: init, load_plan, get_plan, command and thrust_cmd at any
  * finite time, reset, the bad inputs. -DEVA_NMPC_SOLVE adds solve and replan
  * from a measured state of that envelope (one SQP iteration): it did not
- * finish in 200 s (docs/eva.md). */
+ * finish in 200 s (docs/evidence/eva.md). */
 #include "eva_driver.h"
 #include "ogk/nmpc.h"
 

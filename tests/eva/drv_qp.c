@@ -2,7 +2,7 @@
  * diagonal H with entries in [1, 10] plus off-diagonal terms in +-0.1
  * (symmetric positive definite), g and the bounds' data in +-10, one
  * equality row and two inequality rows with entries in +-1, box bounds
- * [-10, -1] / [1, 10]. Not gated at zero: docs/eva.md lists the alarms. */
+ * [-10, -1] / [1, 10]. Not gated at zero: docs/evidence/eva.md lists the alarms. */
 #include "eva_driver.h"
 #include "ogk/qp.h"
 

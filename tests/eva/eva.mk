@@ -1,5 +1,5 @@
 # tests/eva/eva.mk -- Frama-C EVA over the kernel's public entry points (issue 22, item 3).
-# Included by the top-level Makefile; uses its PYTHON. docs/eva.md says what is analysed, with
+# Included by the top-level Makefile; uses its PYTHON. docs/evidence/eva.md says what is analysed, with
 # which ranges, and lists every remaining alarm with its reason.
 #
 #   make eva            every driver of tests/eva/eva_gate.py (tests/eva/drv_*.c), two at a time;

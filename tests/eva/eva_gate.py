@@ -11,7 +11,7 @@ EVA runs once per driver; this script parses its report and counts, per driver:
 
 and fails when a driver's count exceeds tests/eva/baseline.json (the baseline may only go down,
 `--update` lowers it), when a driver of ZERO has any, or when a driver does not reach the end of its
-main function (an analysis that stops early proves nothing). docs/eva.md lists the remaining alarms.
+main function (an analysis that stops early proves nothing). docs/evidence/eva.md lists the remaining alarms.
 """
 from __future__ import annotations
 

@@ -41,7 +41,7 @@ static void check_plan_sane(const ogk_nmpc_t *ctx)
         FZ_CHECK(isfinite(after.t0) && isfinite(after.horizon));
         /* a positive horizon at mission-like times; at |t| >> horizon_min / DBL_EPSILON the
          * stretch past t_f (t + horizon_min) rounds to t and a stale plan of horizon 0 (or -1 ulp)
-         * is kept: finite, and the command still holds a node's control (docs/coverage.md) */
+         * is kept: finite, and the command still holds a node's control (docs/evidence/coverage.md) */
         FZ_CHECK((after.horizon > 0.0) || (fabs(after.t0) > 1.0e6));
         for (i = 0u; i < ((size_t)after.nodes + 1u) * NXF; ++i) {
             FZ_CHECK(isfinite(after.x[i]));
@@ -109,7 +109,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     r.n = size;
     m0 = fz_u8(&r);
     m1 = fz_u8(&r);
-    /* Earth to Mars, normalised (docs/nmpc.md; tests/unit/nmpc_fixture.h) */
+    /* Earth to Mars, normalised (docs/design/nmpc.md; tests/unit/nmpc_fixture.h) */
     nmpc_fx_mars(&cfg, 30u);
     cfg.engine = ((m0 & 0x01u) != 0u) ? OGK_NMPC_ENGINE_THROTTLED : OGK_NMPC_ENGINE_CONSTANT;
     cfg.objective = ((m0 & 0x02u) != 0u) ? OGK_NMPC_MIN_FUEL : OGK_NMPC_MIN_TIME;

@@ -4,16 +4,16 @@
 # vpath). Everything is built under $(B)/gates, $(B)/fuzz, $(B)/coverage, $(B)/mutants.
 #
 #   make tidy                    clang-tidy (bugprone-*, cert-*, clang-analyzer-*; .clang-tidy) over
-#                                kernel/src: fails on any finding (docs/static-analysis.md)
+#                                kernel/src: fails on any finding (docs/evidence/static-analysis.md)
 #   make fuzz-short              every libFuzzer harness of tests/fuzz for FUZZ_SHORT_SECONDS each
 #                                (about a minute in all; for make test)
 #   make fuzz FUZZ_SECONDS=N     the same, N seconds per harness
-#   make coverage                coverage-gcov and mcdc (docs/coverage.md)
+#   make coverage                coverage-gcov and mcdc (docs/evidence/coverage.md)
 #   make coverage-gcov           the unit tests built with gcc --coverage, gcovr over kernel/:
 #                                fails under COVERAGE_LINES / COVERAGE_BRANCHES
 #   make mcdc                    the unit tests built with clang-19 -fcoverage-mcdc, llvm-cov-19 over
 #                                kernel/src: fails under COVERAGE_MCDC or on a missed condition that
-#                                docs/mcdc-exceptions.md does not list
+#                                docs/evidence/mcdc-exceptions.md does not list
 #   make mutants                 deterministic mutation run over kernel/src (tests/gates/mutants.py),
 #                                C unit tests only; prints killed/survived and the score
 #   make gates                   tidy fuzz-short coverage (what make test should run)
@@ -75,7 +75,7 @@ fuzz-seeds: tests/fuzz/gen_seeds.c $(FUZZ_HDR) $(HOST_OBJ) | apt
 # ---------------------------------------------------------------- coverage (gcc --coverage, gcovr)
 # Every tests/unit/*/test_*.c linked with the kernel built with --coverage (-O0, no sanitizers: the
 # sanitized build is make test-unit-host), run, then gcovr over kernel/. Fails under the
-# thresholds (a ratchet: raise them with the tests, never lower them; docs/coverage.md).
+# thresholds (a ratchet: raise them with the tests, never lower them; docs/evidence/coverage.md).
 COV_B := $(B)/coverage
 COVERAGE_LINES ?= 99
 COVERAGE_BRANCHES ?= 95
@@ -108,14 +108,14 @@ coverage-gcov: $(COV_TESTS)
 # llvm-profdata-19, reported by llvm-cov-19 over kernel/src: the per-file MC/DC column in
 # $(MCDC_B)/mcdc-report.txt, every condition's independence pairs in $(MCDC_B)/mcdc-show.txt.
 # tests/gates/mcdc_check.py fails under COVERAGE_MCDC (percent of conditions, a ratchet like lines
-# and branches), on a missed condition that docs/mcdc-exceptions.md does not list, and reports the
-# listed ones now covered (docs/coverage.md, "MC/DC").
+# and branches), on a missed condition that docs/evidence/mcdc-exceptions.md does not list, and reports the
+# listed ones now covered (docs/evidence/coverage.md, "MC/DC").
 MCDC_B := $(B)/mcdc
 MCDC_CC ?= clang-19
 MCDC_PROFDATA ?= llvm-profdata-19
 MCDC_COV ?= llvm-cov-19
 COVERAGE_MCDC ?= 95
-MCDC_EXCEPTIONS := docs/mcdc-exceptions.md
+MCDC_EXCEPTIONS := docs/evidence/mcdc-exceptions.md
 MCDC_FLAGS := -O0 -g -fprofile-instr-generate -fcoverage-mapping -fcoverage-mcdc
 MCDC_KOBJ := $(patsubst kernel/src/%.c,$(MCDC_B)/kernel/%.o,$(KSRC))
 MCDC_SRC := $(KSRC) $(wildcard kernel/src/*.h) $(wildcard kernel/src/*/*.h)

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""MC/DC gate of `make mcdc` (tests/gates/gates.mk; docs/coverage.md, "MC/DC").
+"""MC/DC gate of `make mcdc` (tests/gates/gates.mk; docs/evidence/coverage.md, "MC/DC").
 
 Reads llvm-cov-19's `report -show-mcdc-summary` (the TOTAL MC/DC column) and `show -show-mcdc`
 (every decision, its conditions and which independence pairs are missing), and the exceptions
-list (docs/mcdc-exceptions.md). Fails when
+list (docs/evidence/mcdc-exceptions.md). Fails when
 
   * the conditions covered over kernel/src are under --threshold percent, or
   * a missed condition, or a decision clang left uninstrumented (its "unsupported MC/DC boolean

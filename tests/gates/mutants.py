@@ -7,7 +7,7 @@ preprocessor lines excluded): `<` <-> `<=`, `>` <-> `>=`, `==` <-> `!=`, `&&` <-
 constant + 1. From every site (less the equivalent ones of EQUIVALENT) a seeded sample (--seed,
 --count) is drawn, plus the fixed mutants of FIXED (earlier survivors, kept so that their killing
 tests stay checked; --fixed-only runs just those). The sample depends on the source text: the same
-seed draws other mutants once kernel/src changes (docs/mutation.md records the commit of each score).
+seed draws other mutants once kernel/src changes (docs/evidence/mutation.md records the commit of each score).
 
 Each mutant is applied to a copy of the kernel under BUILD (build/mutants by default; the
 working tree is never touched), the mutated source recompiled, every C unit test
@@ -29,7 +29,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 # Fixed mutants, (file, code fragment, replacement, what it breaks): the survivors of issue 8
-# item 3 and of the seeded runs of docs/mutation.md, each with its killing unit test, kept so that
+# item 3 and of the seeded runs of docs/evidence/mutation.md, each with its killing unit test, kept so that
 # the test stays checked. A fragment is matched with every run of white space in it standing for
 # any run of white space (so re-indenting or re-wrapping the code, e.g. the MISRA 15.5 single-exit
 # rewrite, keeps it found); it must match exactly once, else the run reports it MISSING or
@@ -114,7 +114,7 @@ FIXED = [
      "(test_table: test_nonfinite_first_and_last_value)"),
 ]
 
-# Sites excluded from the sampling: equivalent mutants (no observable change; docs/mutation.md),
+# Sites excluded from the sampling: equivalent mutants (no observable change; docs/evidence/mutation.md),
 # as (file, code fragment, mutated token, why): a site is excluded when its token is that token
 # and lies inside a match of the fragment (white space as in FIXED) that starts on the site's line
 # (it may run over the next two lines). A fragment no longer found only excludes nothing (the

@@ -8,7 +8,7 @@ compares the findings, counted per (file, rule), with tests/misra/baseline.json:
 - a count below its baseline is reported, and `--update` writes the lower count (the baseline only
   ever goes down; `--update` refuses to raise it).
 
-The baseline is the debt still to pay (docs/misra-deviations.md says which rules are to be fixed and
+The baseline is the debt still to pay (docs/evidence/misra-deviations.md says which rules are to be fixed and
 which are deviations with their rationale); the target is an empty baseline plus recorded deviations.
 """
 from __future__ import annotations
@@ -112,7 +112,7 @@ def main(argv: list[str] | None = None) -> int:
             BASELINE.write_text(json.dumps(dict(sorted(lowered.items())), indent=1) + "\n")
     if worse:
         print(f"misra: FAILED: {sum(n - b for n, b in worse.values())} findings above the baseline "
-              "(fix them, or record a deviation in docs/misra-deviations.md and justify raising it)")
+              "(fix them, or record a deviation in docs/evidence/misra-deviations.md and justify raising it)")
         return 1
     print(f"misra: ok ({len(found)} findings, baseline {sum(base.values())})")
     return 0

@@ -8,9 +8,9 @@ import pytest
 
 
 def pytest_configure(config: pytest.Config) -> None:
-    """The `req` marker: the requirements of docs/requirements.md a test verifies (collected by
+    """The `req` marker: the requirements of docs/evidence/requirements.md a test verifies (collected by
     tests/trace/check_trace.py from the source, `make trace`; pytest itself only registers it)."""
-    config.addinivalue_line("markers", "req(*ids): requirements verified (OGK-XXX-NNN, docs/requirements.md)")
+    config.addinivalue_line("markers", "req(*ids): requirements verified (OGK-XXX-NNN, docs/evidence/requirements.md)")
 
 
 @pytest.fixture

@@ -1,4 +1,4 @@
-"""ogk's orbit-injection flight software in Basilisk (harness/ogk/missions/orbit_injection/basilisk, docs/basilisk.md).
+"""ogk's orbit-injection flight software in Basilisk (harness/ogk/missions/orbit_injection/basilisk, docs/guides/basilisk.md).
 
 Checked against references that do not share the code under test:
 - frames: Basilisk's own RigidBodyKinematics (MRP2C, C2MRP) and ogk's truth-model rotations;
@@ -8,8 +8,8 @@ Checked against references that do not share the code under test:
   point-mass gravity effector, RK4) flies the LEO-to-GEO burn with the same draws as ogk's 6-DOF
   truth model (spherical coordinates, quaternions, its own RK4); injection errors and time
   histories agree within tolerances derived from the two models' step errors (TOLERANCE below);
-- the example of docs/basilisk.md runs as written.
-Runtime: see docs/basilisk.md, "In make test" (three LEO-to-GEO runs in each model, two of them
+- the example of docs/guides/basilisk.md runs as written.
+Runtime: see docs/guides/basilisk.md, "In make test" (three LEO-to-GEO runs in each model, two of them
 again in ogk's SIL with the flight computer, the example's nominal Basilisk flight).
 """
 from __future__ import annotations
@@ -43,7 +43,7 @@ SEED, RUNS = 7, [0, 1]
 #: errors only: ogk's RK4 with the force evaluated at every stage, Basilisk's RK4 with the force
 #: held over the step at its step average (second order). Each model's error at h = 20 ms was
 #: estimated from its own step halving, e(h) ~ 4/3 |x(h) - x(h/2)| (h = 20, 10, 5 ms; seed 7 runs
-#: 0-1 and the nominal; docs/basilisk.md, "Tolerances"), and the tolerance is 3 (e_ogk + e_bsk),
+#: 0-1 and the nominal; docs/guides/basilisk.md, "Tolerances"), and the tolerance is 3 (e_ogk + e_bsk),
 #: the largest over those runs, rounded up. (Measured: e_bsk is 10^2-10^4 times e_ogk, and the
 #: observed differences are 0.3-1 e_bsk: the models differ by Basilisk's held force.)
 TOLERANCE = {"dr_f_m": 0.07, "dphi_f_deg": 4e-8, "dvr_f_mps": 0.4, "dvt_f_mps": 5e-5,
@@ -52,7 +52,7 @@ TOLERANCE = {"dr_f_m": 0.07, "dphi_f_deg": 4e-8, "dvr_f_mps": 0.4, "dvt_f_mps": 
 #: The same for the Scout upper stage's 26 s burn (scenarios/scout_upper_stage.toml, Pontani & Celani
 #: sec. 7: tabulated thrust, side-jet roll torque), derived the same way by
 #: `.venv/bin/python -m ogk.missions.orbit_injection.basilisk.step_study scenarios/scout_upper_stage.toml --seed 7 --runs 2`
-#: (docs/basilisk.md, "Tolerances"): e_ogk (order 4.0-4.2) is 10^2-10^4 times below e_bsk (order
+#: (docs/guides/basilisk.md, "Tolerances"): e_ogk (order 4.0-4.2) is 10^2-10^4 times below e_bsk (order
 #: 1.6-2.0); the observed differences are about 1 e_bsk.
 SCOUT_TOLERANCE = {"dr_f_m": 0.009, "dphi_f_deg": 6e-8, "dvr_f_mps": 0.2, "dvt_f_mps": 2e-3,
                    "dvn_f_mps": 0.05, "tf_s": 1e-4}
@@ -177,7 +177,7 @@ def test_basilisk_and_ogk_time_histories_agree(dispersed):
     differ by no more than the step-error bounds of TOLERANCE (radius: dr_f's; velocity: the
     largest velocity component's, as the end-game rotates the differences between components).
     (The commanded thrust directions, which have no derived bound, are compared in
-    docs/basilisk.md.)"""
+    docs/guides/basilisk.md.)"""
     hist = dispersed.ours_history
     v_tol = max(TOLERANCE[k] for k in ("dvr_f_mps", "dvt_f_mps", "dvn_f_mps"))
     for rid, flight in zip(dispersed.run_id, dispersed.basilisk_flights):
@@ -195,9 +195,9 @@ def test_basilisk_and_ogk_time_histories_agree(dispersed):
 
 @pytest.mark.req("OGK-HAR-015")
 def test_basilisk_example_runs_as_documented():
-    """docs/basilisk.md's command: the example builds a Basilisk simulation with ogk's modules
+    """docs/guides/basilisk.md's command: the example builds a Basilisk simulation with ogk's modules
     and flies the nominal LEO-to-GEO burn onto the target orbit."""
-    doc = (ROOT / "docs" / "basilisk.md").read_text()
+    doc = (ROOT / "docs" / "guides" / "basilisk.md").read_text()
     assert ".venv/bin/python examples/basilisk_injection.py" in doc
     out = subprocess.run([sys.executable, str(ROOT / "examples" / "basilisk_injection.py")],
                          cwd=ROOT, capture_output=True, text=True, timeout=600)

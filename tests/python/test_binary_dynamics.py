@@ -1,7 +1,7 @@
-"""Binary-asteroid model of docs/blt.md section 1 (host/ogk_host/binary): scenario, units, dynamics, reference.
+"""Binary-asteroid model of docs/design/blt.md section 1 (host/ogk_host/binary): scenario, units, dynamics, reference.
 
 Validated against independent references: (a) scenarios/moshup.toml carries Table 1 and sec. IV as printed;
-(b) the units and kernel_model against the formulas of docs/blt.md written out here in SI, and the paper's
+(b) the units and kernel_model against the formulas of docs/design/blt.md written out here in SI, and the paper's
 own thrust/acceleration pairs (24 mN <-> 4e-5 m/s^2, 15 mN <-> 2.5e-5 m/s^2, sec. IV); (c) gravity = the
 central-difference gradient of the potential, the gradient = differences of the gravity, the Cartesian
 degree-2 potential = the spherical-harmonic form of eq. (7) with Legendre functions, and C20/C22 of the
@@ -92,7 +92,7 @@ def test_units_and_the_gm_mismatch(scenario) -> None:
     implied = 2550.0 ** 3 * (2.0 * math.pi / (17.4223 * HOUR)) ** 2
     assert u.gm_implied_m3_s2 == pytest.approx(implied, rel=1e-14)
     assert u.gm_mismatch == pytest.approx(implied / (6.67430e-11 * 2.488e12) - 1.0, rel=1e-12)
-    assert 0.0020 < u.gm_mismatch < 0.0022         # +0.21 % (docs/blt-ground.md)
+    assert 0.0020 < u.gm_mismatch < 0.0022         # +0.21 % (docs/design/blt-ground.md)
 
 
 @pytest.mark.req("OGK-BLT-001")

@@ -43,7 +43,7 @@ EM = Model(mu=MU_EM)
 #: Earth-Moon L2 southern halos of the JPL catalogue: (x0, z0, vy0, period) -- see the module docstring.
 JPL_L2_SOUTH = [(1.0134037728554581, -0.1753622728109184, -0.083688427472776439, 1.3960732332950263),
                 (1.02202108343387, -0.182096487798513, -0.103255420206012, 1.51110546287394)]
-#: Collinear points of the Moshup model with the degree-2 terms (reported to the kernel, docs/blt-ground.md).
+#: Collinear points of the Moshup model with the degree-2 terms (reported to the kernel, docs/design/blt-ground.md).
 MOSHUP_POINTS = {"L1": 0.70165521552681, "L2": 1.23682408043004, "L3": -1.02415660779861}
 
 

@@ -135,7 +135,7 @@ def missions(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
 # ------------------------------------------------------------------------------------------ our own model
 
 def constants(path: Path) -> dict[str, Any]:
-    """The normalised constants written out from the SI values of the file (docs/blt.md sec. 1, blt-ground.md
+    """The normalised constants written out from the SI values of the file (docs/design/blt.md sec. 1, blt-ground.md
     sec. 3-4), not through the ground's Units / kernel_model."""
     import tomllib
     raw = tomllib.loads(path.read_text())

@@ -97,7 +97,7 @@ def test_bmp_transfer_converges() -> None:
 def test_halo_bmp_of_fig_11b_converges() -> None:
     """Fig. 11b, L1 halo -> L2 halo by bilateral manifold patching ([transfers.l1_to_l2_halo_bmp] of
     moshup.toml): at the Lyapunov BMP's d = 0.05 VU every manifold of the L1 halo hits a body before the cut
-    (docs/blt-ground.md sec. 8); the guess is retried at 3 x d (0.15 VU), where an impact-free pair exists."""
+    (docs/design/blt-ground.md sec. 8); the guess is retried at 3 x d (0.15 VU), where an impact-free pair exists."""
     sc = load_scenario(SCENARIO)
     spec = T.transfer_spec(sc, "l1_to_l2_halo_bmp")
     d = T.design(sc, spec, T.solver_settings(sc), corrector="hybrid")

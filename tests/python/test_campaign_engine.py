@@ -1,5 +1,5 @@
 """The campaign engine is the same for every mission family (ogk.sil.engine, ogk.sil.family,
-ogk.sil.envelope; docs/sil.md): each family's shipped scenario flown through `ogk mc` writes the
+ogk.sil.envelope; docs/guides/sil.md): each family's shipped scenario flown through `ogk mc` writes the
 envelope and the Parquet table, `ogk replay` re-flies a run bit for bit, and the faults end the
 same way in every family: a run that raises in a worker (its runs and status named), a killed
 worker, a hung chunk (watchdog), Ctrl-C then --resume (the uninterrupted result), an unwritable

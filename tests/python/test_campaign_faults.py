@@ -1,4 +1,4 @@
-"""Campaigns that survive faults (harness/ogk/sil/runner.py, runlog.py; docs/campaigns.md, "Faults"),
+"""Campaigns that survive faults (harness/ogk/sil/runner.py, runlog.py; docs/guides/campaigns.md, "Faults"),
 flown by the test family (point_mass_family.py): a kernel error in a worker and a killed worker end
 the campaign with one line naming the runs and the status, the watchdog ends a hung chunk, Ctrl-C
 keeps the finished runs and `--resume` completes the campaign bit for bit; and the test family itself

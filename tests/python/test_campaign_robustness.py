@@ -1,7 +1,7 @@
 """Issue 32 (items 3-5b), the engine's part: the distance of the worst run from the median in both sigmas
 (against scipy and closed forms), the class of a failure, lost flights and failed solves, a failed run's
 replay command run for real, and `ogk soak` judging a campaign against its stated envelope (ogk.sil.robustness,
-ogk.sil.soak; docs/campaigns.md, "Robustness" and "make soak")."""
+ogk.sil.soak; docs/guides/campaigns.md, "Robustness" and "make soak")."""
 from __future__ import annotations
 
 import json

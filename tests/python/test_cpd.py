@@ -142,7 +142,7 @@ def test_phase_margin_definition() -> None:
         loop = g * (k_p + k_d * s) / (s * s * (TAU * s + 1))
         assert abs(loop) == pytest.approx(1.0, rel=1e-9)
         assert pm == pytest.approx(180.0 + math.degrees(math.atan2(loop.imag, loop.real)), abs=1e-9)
-    # the figures quoted in docs/cpd.md
+    # the figures quoted in docs/design/cpd.md
     g_min, g_max = cd.effectiveness_range(cd.leo_geo_vehicle())
     pm_printed = cd.phase_margin(float(g_max[1]), 21.6, 7.2, TAU)[1]
     pm_rederived = cd.phase_margin(float(g_max[1]), 2.198, 0.7330, TAU)[1]
@@ -396,7 +396,7 @@ def test_study_euler_helpers_match_scipy(rng: np.random.Generator) -> None:
 @pytest.mark.req("OGK-CPD-012", "OGK-CPD-001")
 def test_capture_study_kernel_equals_numpy_prototype() -> None:
     """The study's numpy prototype of the BODY law flies the same trajectories as the kernel (so the
-    prototype's shaped variant in docs/cpd.md differs only by the shaping)."""
+    prototype's shaped variant in docs/design/cpd.md differs only by the shaping)."""
     kw = dict(n_runs=4, duration_s=8.0, seed=7)
     kernel = cd.capture_study(controller="kernel", **kw)      # type: ignore[arg-type]
     proto = cd.capture_study(controller="numpy", **kw)        # type: ignore[arg-type]

@@ -1,5 +1,5 @@
 """The Dask executor of the campaign engine (ogk.sil.dask_executor, ogk.sil.shipping;
-docs/scale-out.md) against the local one, on a scheduler and two single-threaded workers started
+docs/guides/scale-out.md) against the local one, on a scheduler and two single-threaded workers started
 here on 127.0.0.1 (`dask scheduler`, `dask worker`, as on a cluster):
   * every family's campaign gives the local executor's records bit for bit (timing keys aside),
     and so does a `--target m7` campaign (one family, one run);
@@ -224,7 +224,7 @@ def test_shipped_products_are_checked_by_sha256_on_the_worker(tmp_path):
 @pytest.mark.req("OGK-HAR-017")
 def test_a_worker_with_other_numerics_refuses_the_chunk():
     """A worker whose BLAS picked other kernels (OPENBLAS_CORETYPE=Sandybridge, which changes a
-    perturbed NMPC flight's end: docs/notes/session-12.md) and whose numpy dispatches less SIMD
+    perturbed NMPC flight's end: notes/session-12.md) and whose numpy dispatches less SIMD
     has another numerics fingerprint, measured in a process of its own; a shipment from a client
     with that fingerprint is refused here, naming both differences, and the envelope of a
     campaign records this host's fingerprint."""

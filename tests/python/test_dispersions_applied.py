@@ -1,4 +1,4 @@
-"""Dispersions proven applied (issue 23 item 2; ogk.sil.dispersion_check, docs/campaigns.md,
+"""Dispersions proven applied (issue 23 item 2; ogk.sil.dispersion_check, docs/guides/campaigns.md,
 "Dispersions proven applied"): every family's shipped scenario, drawn through the family's own
 plan, carries each declared dispersion with spread > 0 and the distribution its [dispersions]
 states (the expectations read here from the TOML text itself, not from the family); the records of
@@ -86,7 +86,7 @@ def _leaves(table: dict, prefix: str = "") -> dict[str, object]:
 
 
 def expected_from_toml(scenario: str | Path) -> dict[str, tuple[str, object]]:
-    """What each family's documentation (docs/adding-a-mission.md, the scenario comments) says a
+    """What each family's documentation (docs/guides/adding-a-mission.md, the scenario comments) says a
     campaign draws, read from the TOML text alone: key -> (kind, parameters)."""
     doc = _toml(scenario)
     disp = _leaves(doc.get("dispersions", {}))

@@ -1,6 +1,6 @@
 """The scenario's end-game (energy cut-off by the kernel's ogk_cutoff, 0.5 s sampling in the last
 20 s, ogk_terminal in the last 10 s: radius and plane shaped with a 0.5 s lead, along the velocity to
-be gained in the last 2 s; docs/vtd-nog.md, "End-game") against the paper's (cut-off predicted at the 2 s samples, eq. 32) on the same runs: the
+be gained in the last 2 s; docs/design/vtd-nog.md, "End-game") against the paper's (cut-off predicted at the 2 s samples, eq. 32) on the same runs: the
 six runs of 1000 (seed 424242, 6-DOF, every dispersion) that the paper's end-game flies beyond the
 scenario's 20 m/s acceptance.
 

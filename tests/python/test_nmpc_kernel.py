@@ -164,7 +164,7 @@ def test_open_loop_min_time_equals_ipopt_and_reintegrates() -> None:
     assert rep.t_f * days <= 370.3                       # issue 10: at most 370.3 d (paper 370.29)
     assert abs(rep.t_f - ref.plan.t_f) * days < 1e-4     # the same optimum of the same transcription
     dpos_km, dvel = reintegrate_miss(scen, _P(g.plan()))
-    assert dpos_km < 100.0 and dvel < 0.01               # the RK4 error of docs/nmpc.md (30 km, 2.4 mm/s)
+    assert dpos_km < 100.0 and dvel < 0.01               # the RK4 error of docs/design/nmpc.md (30 km, 2.4 mm/s)
 
 
 @pytest.mark.req("OGK-NMPC-003")
@@ -206,7 +206,7 @@ def test_open_loop_min_fuel_equals_ipopt_fuel() -> None:
     assert ref.converged
     mu = Model.for_scenario(scen).units.mass_kg
     # fuel is flat in t_f along the coast: compare the fuel, not t_f; the kernel stops when a step predicts
-    # |dJ| <= 1e-7 (tol_obj), which leaves it within ~0.1 kg on this flat valley (docs/nmpc-flight.md)
+    # |dJ| <= 1e-7 (tol_obj), which leaves it within ~0.1 kg on this flat valley (docs/design/nmpc-flight.md)
     assert abs(rep.objective - (1.0 - ref.plan.states[-1, 4])) * mu < 0.2
     w = g.plan().controls[:, 1]
     assert np.all((w >= 0.0) & (w <= 1.0)) and np.any(w < 0.05) and np.any(w > 0.95)

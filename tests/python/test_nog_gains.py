@@ -1,4 +1,4 @@
-"""VTD-NOG gain tables of the LEO-to-GEO burn (host/ogk_host/orbit_injection/gains.py, docs/vtd-nog.md).
+"""VTD-NOG gain tables of the LEO-to-GEO burn (host/ogk_host/orbit_injection/gains.py, docs/design/vtd-nog.md).
 
 The main check is derivation-independent: from displaced states at tau_k = 0, 0.25, 0.5, 0.75 (with
 position, velocity AND real-time offsets dt_k = t_k - t_f* tau_k), the full nonlinear remaining-arc

@@ -1,4 +1,4 @@
-"""Minimum-time nominal over the documented envelope (docs/vtd-nog.md, sec. 2 "Envelope").
+"""Minimum-time nominal over the documented envelope (docs/design/vtd-nog.md, sec. 2 "Envelope").
 
 Envelope: the pre-ignition orbit is the transfer ellipse from a perigee (LEO) radius r_p to the
 target radius R_f (apogee = R_f, as in the paper), R_f / r_p in [1.5, 8], initial thrust acceleration
@@ -144,7 +144,7 @@ def test_envelope_point_is_a_verified_minimum(base: OrbitInjectionScenario, rati
 
 @pytest.mark.req("OGK-NOG-013", "OGK-HAR-007")
 def test_paper_case_unchanged(base: OrbitInjectionScenario) -> None:
-    """The paper's scenario gives today's optimum (docs/vtd-nog.md sec. 2) from the continuation
+    """The paper's scenario gives today's optimum (docs/design/vtd-nog.md sec. 2) from the continuation
     seed directly (zero continuation steps beyond the seed's Newton polish)."""
     nom = solve_nominal(base)
     assert f"{nom.t_f_s:.5f}" == "105.80878"

@@ -5,7 +5,7 @@ loop, every dispersion, derived end-game settings) on one fixed seed that no tun
 
 The defect it would have caught: the terminal stage shaped the radius and plane with plans whose
 turns the vehicle cannot make (a 1.5 g0 burn of 42 s, a 3.9 s window of which 1.9 s shaped, the
-TVC giving 0.2 rad/s^2): 52 of 1000 runs failed at the short-burn corner (seed 4242, docs/vtd-nog.md).
+TVC giving 0.2 rad/s^2): 52 of 1000 runs failed at the short-burn corner (seed 4242, docs/design/vtd-nog.md).
 The kernel now bounds each plan's tilt from the velocity to be gained by what the vehicle turns out
 and back in the shaped window (ogk/terminal.h, "Turn limit"; the vehicle's angular acceleration is
 derived by the ground tools). `test_the_campaign_catches_a_terminal_stage_without_turn_limit` flies

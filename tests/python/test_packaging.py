@@ -1,4 +1,4 @@
-"""ogk as a package (docs/install.md): the extras' one-line messages, the scenarios resolved from package
+"""ogk as a package (docs/guides/install.md): the extras' one-line messages, the scenarios resolved from package
 data outside the repository, the version from version.h. The wheel itself is built, installed in a clean
 venv and flown by `make test-wheel` (tests/wheel/check_wheel.py); here, in seconds:
 
@@ -174,10 +174,10 @@ def test_scenarios_resolve_from_package_data(site: Path, tmp_path: Path) -> None
 @pytest.mark.parametrize("argv, line", [
     (["mc", "leo-geo", "--runs", "1", "--target", "m7", "--json", "F.json"],
      "ogk mc: --target: the flight program of --target m7 needs the ogk repository (git clone, then make; "
-     "docs/install.md), not an installed wheel"),
+     "docs/guides/install.md), not an installed wheel"),
     (["soak", "--runs", "1"],
      "ogk soak: the default soak plan (soak.toml; or give PLAN) needs the ogk repository (git clone, then "
-     "make; docs/install.md), not an installed wheel")])
+     "make; docs/guides/install.md), not an installed wheel")])
 def test_what_needs_the_repository_says_so(site: Path, tmp_path: Path, argv: list[str], line: str) -> None:
     out = in_site(site, tmp_path, f"""
         import sys

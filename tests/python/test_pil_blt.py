@@ -1,4 +1,4 @@
-"""Processor in the loop for the binary-asteroid BLT guidance (docs/flight-integration-blt.md):
+"""Processor in the loop for the binary-asteroid BLT guidance (docs/guides/flight-integration-blt.md):
 `ogk mc SCENARIO --target m7` makes every corrector call (ogk_blt_solve: NRPC, LM, hybrid) in the
 scenario's flight program (port/cortex-m7/pil/blt_pil.c over blt_flight.c) on QEMU's Cortex-M7; the
 host keeps the nominal design, the draws, the DOP853 checks and the judging.

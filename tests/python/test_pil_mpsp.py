@@ -1,4 +1,4 @@
-"""Processor in the loop for MPSP re-planning (docs/flight-integration-mpsp.md): `ogk mc SCENARIO
+"""Processor in the loop for MPSP re-planning (docs/guides/flight-integration-mpsp.md): `ogk mc SCENARIO
 --target m7` solves every run's problem with the scenario's flight program
 (port/cortex-m7/pil/mpsp_pil.c over mpsp_flight.c: ogk_mpsp_init, ogk_mpsp_solve,
 ogk_mpsp_thrust_cmd) on QEMU's Cortex-M7, the host drawing the problems and judging the results.

@@ -1,4 +1,4 @@
-"""Processor in the loop for the rendezvous NMPC (docs/flight-integration-nmpc.md): `ogk mc SCENARIO
+"""Processor in the loop for the rendezvous NMPC (docs/guides/flight-integration-nmpc.md): `ogk mc SCENARIO
 --target m7` makes every replan of the closed loop on the flight program (port/cortex-m7/pil/nmpc_pil.c
 over nmpc_flight.c) on QEMU's Cortex-M7; truth, noise and judging stay on the host.
 

@@ -1,4 +1,4 @@
-"""Processor in the loop for orbit injection (docs/pil.md): `ogk mc SCENARIO --target m7` flies the
+"""Processor in the loop for orbit injection (docs/guides/pil.md): `ogk mc SCENARIO --target m7` flies the
 scenario's flight program (port/cortex-m7/pil/oi_pil.c over oi_flight.c) on QEMU's Cortex-M7.
 
 On a mission no other file names (a heavier kick stage than the paper's: n0 = 1.25 g0, c = 3.2 km/s),

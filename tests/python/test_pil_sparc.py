@@ -1,4 +1,4 @@
-"""Processor in the loop on the big-endian target (docs/pil.md, "SPARC V8"): the same flight program
+"""Processor in the loop on the big-endian target (docs/guides/pil.md, "SPARC V8"): the same flight program
 as the Cortex-M7's (port/cortex-m7/pil/blt_pil.c over blt_flight.c) built for SPARC V8 Linux user
 mode (port/sparc-v8/pil.mk) and flown under qemu-sparc32plus with the insn_count plugin, through the
 family's target plan exactly as `ogk mc moshup --target sparc` flies it.

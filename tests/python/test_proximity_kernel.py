@@ -6,7 +6,7 @@ on a 6,900 km orbit) solved by the kernel's SQP (ogk_prox_solve) and by IPOPT on
 relative, the kernel's plan keeps the disc at every RK4 step end; without the disc the kernel's Delta v is
 no less than Neustadt's impulsive lower bound for its t_f.
 
-Settings (measured; docs/nmpc-problem.md): in MU = m_0 the minimum-fuel objective is O(1e-4), so the
+Settings (measured; docs/design/nmpc-problem.md): in MU = m_0 the minimum-fuel objective is O(1e-4), so the
 solver's default tol_obj (a predicted |dJ| relative to max(|J|, 1)) stops the SQP far from the optimum
 (3.98 m/s after 7 iterations against 0.419 m/s); with tol_obj = 0 the exact-Hessian SQP converges on
 tol_stat (~370 iterations), BFGS reaches the other side of the disc (0.453 m/s). Without the disc the

@@ -2,7 +2,7 @@
 against an independent solver: qpOASES (CasADi's conic interface, an online
 active-set method) on random feasible QPs of the NMPC's size, plus the KKT
 conditions of the kernel's answer checked here in numpy and infeasible
-problems detected. docs/qp.md."""
+problems detected. docs/design/qp.md."""
 from __future__ import annotations
 
 import casadi

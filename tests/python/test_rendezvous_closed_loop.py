@@ -28,7 +28,7 @@ from ogk.missions.rendezvous.guidance import IpoptGuidance
 from ogk.missions.rendezvous.guidance_base import ReplanInfo, strategy_settings
 
 OGK = Path(sys.executable).parent / "ogk"
-#: open-loop optimum from the documented guess (docs/nmpc.md, section 4): t_f* = 370.12080652 d
+#: open-loop optimum from the documented guess (docs/design/nmpc.md, section 4): t_f* = 370.12080652 d
 OPEN_LOOP_TF_DAYS = 370.1208
 
 
@@ -216,7 +216,7 @@ def test_unperturbed_snns_closed_loop_reproduces_the_open_loop(scenario) -> None
     stop at the first instant of sec. 2.3.1's rendezvous test (inside Mars' SOI, < 1 km/s), 17 d before t_f*;
     the arrival times agree within 0.01 d. Tolerance: the re-plans start from DOP853 truth states, which
     differ from the NLP's RK4 (8 steps) prediction by at most the open loop's 30 km / 2.4 mm/s at arrival
-    (docs/nmpc.md, RK4 table), and each re-plan's t_f stays within 4e-4 d of t_f*; 0.01 d (14 min) is 25 x
+    (docs/design/nmpc.md, RK4 table), and each re-plan's t_f stays within 4e-4 d of t_f*; 0.01 d (14 min) is 25 x
     that and 1/1700 of the 16.9 d the paper attributes to its subdivisions."""
     guidance = IpoptGuidance(scenario, strategy_settings(scenario, "snns"))
     closed = fly_run(scenario, guidance, perturbed=False, seed=0, strategy_name="snns", solver_name="ipopt")

@@ -1,4 +1,4 @@
-"""Two rendezvous missions no other file names, made as a user would (docs/adding-a-mission.md,
+"""Two rendezvous missions no other file names, made as a user would (docs/guides/adding-a-mission.md,
 "A rendezvous mission"): copies of a shipped scenario with another target, vehicle and dry mass, flown
 through `ogk run` (the kernel solver) and a short `ogk mc`, and checked against references computed here:
 
@@ -234,7 +234,7 @@ def test_short_campaign(flown: dict, name: str, tmp_path: Path) -> None:
     f = flown[name]
     m = f["mission"]
     out = tmp_path / "mc.json"
-    # the light vehicle's perturbed flights arrive on some seeds only (docs/nmpc.md, "Any circular
+    # the light vehicle's perturbed flights arrive on some seeds only (docs/design/nmpc.md, "Any circular
     # rendezvous": seeds 3-6, 1-2 of 4; the others impact Mars or run short of propellant, with the reason)
     extra = () if m.perturbed_campaign else ("--unperturbed",)
     res = ogk("mc", str(f["path"]), "--runs", "2", "--workers", "2", "--seed", "3", "--json", str(out), *extra)

@@ -1,5 +1,5 @@
 """The NMPC NLP of the rendezvous (host/ogk_host/rendezvous/nlp.py; Starek & Kolmanovsky 2012 secs. 2.1,
-2.3, 3.2, test cases (1)-(3) of sec. 4) and its open-loop figures (docs/nmpc.md, "Minimum fuel").
+2.3, 3.2, test cases (1)-(3) of sec. 4) and its open-loop figures (docs/design/nmpc.md, "Minimum fuel").
 
 Validated: the min-time optimum through RendezvousNlp is ocp.MinTimeOcp's; the open-loop min-fuel
 optima (bounded NEP, SEP) re-integrated by DOP853 with an engine model written here from eqs. (11)-(14)

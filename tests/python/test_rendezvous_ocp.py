@@ -228,7 +228,7 @@ def test_min_fuel_scenarios_carry_table_a1(name: str) -> None:
 @pytest.mark.req("OGK-NMPC-011", "OGK-NMPC-007")
 def test_bounded_angle_sweep(optimum: OcpResult) -> None:
     """Option max_sweep_rad (not in the paper): |alpha_{k+1} - alpha_k| <= pi forbids the windings of
-    more than a turn per subinterval that every other optimum of the survey uses (docs/nmpc.md). From
+    more than a turn per subinterval that every other optimum of the survey uses (docs/design/nmpc.md). From
     the documented guess it costs under 0.01 d (measured 0.0003 d: the 186 deg reversal is clipped)."""
     ocp = MinTimeOcp(load_scenario(SCENARIO), max_sweep_rad=math.pi)
     bounded = ocp.solve(default_guess(ocp))

@@ -1,4 +1,4 @@
-"""The rendezvous law over its dispersion box, short (issue 32; docs/nmpc-flight.md, "Robustness"): the
+"""The rendezvous law over its dispersion box, short (issue 32; docs/design/nmpc-flight.md, "Robustness"): the
 campaigns that would have caught each defect the closed loop had, on fixed seeds no other file uses.
 
 - every shipped scenario, perturbed, kernel solver, through the campaign engine: no lost flight, at most

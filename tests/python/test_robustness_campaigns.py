@@ -1,6 +1,6 @@
 """Issue 32 (items 3-4): short robustness campaigns of MPSP and BLT on fixed seeds, through the family's own
 plan and the engine (ogk.sil.engine.fly_campaign, envelope.envelope), each asserting what the law's stated
-envelope says (docs/mpsp.md and docs/blt.md, "Robustness"): no lost flight outside the stated classes, and a
+envelope says (docs/design/mpsp.md and docs/design/blt.md, "Robustness"): no lost flight outside the stated classes, and a
 bound on the worst run. The long campaigns are `make soak` (soak.toml) and the 1,000-run audits quoted there.
 
 Missions: the shipped Apophis and Moshup scenarios, and two that no other file names, written here from them:
@@ -97,7 +97,7 @@ def test_mpsp_new_mission_at_1_45_mn_loses_nothing(tmp_path: Path) -> None:
         shutil.rmtree(out, ignore_errors=True)
 
 
-#: The lost-flight classes BLT's hybrid states at the scenario's levels (docs/blt.md, "Robustness"; soak.toml)
+#: The lost-flight classes BLT's hybrid states at the scenario's levels (docs/design/blt.md, "Robustness"; soak.toml)
 BLT_STATED = {"hybrid: guess hits a body", "hybrid: iteration limit"}
 
 

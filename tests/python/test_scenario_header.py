@@ -1,4 +1,4 @@
-"""One scenario header for every mission family (docs/adding-a-mission.md, "The scenario header"):
+"""One scenario header for every mission family (docs/guides/adding-a-mission.md, "The scenario header"):
 `schema = "ogk.<mission>/N"` checked against `mission`, `[guidance] law`, `[dispersions]`,
 `[acceptance]` (a stated default when absent) and the optional `[paper_results]`.
 

@@ -244,7 +244,7 @@ def test_code_after_a_return_or_a_terminating_call_is_dead_until_something_enter
 def test_libc_memset_and_memcpy_call_nothing_through_a_register(built) -> None:
     """The libc linked into the program: on SPARC (glibc's v8plus memset and memcpy) their computed
     jumps are proven local, so the bound no longer routes `memset > mpsp_switch_cb > ...` through
-    them (docs/profile.md before the fix); newlib's on the Cortex-M7 have none."""
+    them (docs/evidence/profile.md before the fix); newlib's on the Cortex-M7 have none."""
     isa, _, funcs, _ = built
     names = by_name(funcs)
     for name in ("memset", "memcpy") if isa == "sparc" else ("memset",):   # newlib links no memcpy here

@@ -1,4 +1,4 @@
-"""The processor-in-the-loop link (issue 20, first part; docs/pil.md): frames between the host and a
+"""The processor-in-the-loop link (issue 20, first part; docs/guides/pil.md): frames between the host and a
 flight program on QEMU's emulated Cortex-M7 (build/arm/link/link_echo.elf, built by `make test`
 before pytest).
 

@@ -70,8 +70,8 @@ def test_d():
 
 
 def make_tree(root: Path, c_src: str = C_SRC, py: dict[str, str] | None = None, gates: str = "") -> Path:
-    (root / "docs").mkdir()
-    (root / "docs" / "requirements.md").write_text(REQS)
+    (root / "docs" / "evidence").mkdir(parents=True)
+    (root / "docs" / "evidence" / "requirements.md").write_text(REQS)
     (root / "tests" / "unit").mkdir(parents=True)
     (root / "tests" / "unit" / "test_x.c").write_text(c_src)
     (root / "tests" / "python").mkdir()
@@ -100,15 +100,15 @@ def test_clean_tree_passes_and_a_stale_matrix_fails(tmp_path: Path, capsys) -> N
     c_src = C_SRC.replace("\nstatic void test_two", "\n/* req: OGK-AAA-001\n * OGK-AAA-002 on the next line is not a tag */\nstatic void test_two")
     root = make_tree(tmp_path, c_src=c_src)
     assert run(root, capsys, "--write")[0] == 0
-    matrix = (root / "docs" / "traceability.md").read_text()
+    matrix = (root / "docs" / "evidence" / "traceability.md").read_text()
     assert "- **OGK-BBB-001** Third (1)\n  - `tests/python/test_y.py::test_a`" in matrix
     assert "- `TestGroup::test_b`: OGK-AAA-002" in matrix
     assert "- `test_two`: OGK-AAA-001\n" in matrix
     rc, out = run(root, capsys)
     assert rc == 0 and out[-1].startswith("trace: 3 requirements, each verified; 4 tests and 0 gates")
-    (root / "docs" / "requirements.md").write_text(REQS.replace("Third", "Third, renamed"))
+    (root / "docs" / "evidence" / "requirements.md").write_text(REQS.replace("Third", "Third, renamed"))
     rc, out = run(root, capsys)
-    assert rc == 1 and "trace: docs/traceability.md is stale: run `make trace-matrix` and commit it" in out
+    assert rc == 1 and "trace: docs/evidence/traceability.md is stale: run `make trace-matrix` and commit it" in out
 
 
 def test_unknown_malformed_untested_skipped_and_slow_only(tmp_path: Path, capsys) -> None:
@@ -119,8 +119,8 @@ def test_unknown_malformed_untested_skipped_and_slow_only(tmp_path: Path, capsys
     expected = [
         "trace: untagged test: tests/python/test_y.py::test_c (add @pytest.mark.req(\"OGK-...\") or a module pytestmark)",
         "trace: tests/python/test_y.py::test_d: skipped unconditionally (a skipped test verifies nothing)",
-        "trace: unknown requirement OGK-ZZZ-001 in tests/unit/test_x.c::test_one (not in docs/requirements.md)",
-        "trace: unknown requirement OGK-AAA-009 in tests/python/test_y.py::test_d (not in docs/requirements.md)",
+        "trace: unknown requirement OGK-ZZZ-001 in tests/unit/test_x.c::test_one (not in docs/evidence/requirements.md)",
+        "trace: unknown requirement OGK-AAA-009 in tests/python/test_y.py::test_d (not in docs/evidence/requirements.md)",
         "trace: malformed tag 'AAA-1' in tests/python/test_y.py::test_d (want OGK-XXX-NNN)",
         "trace: requirement without a test: OGK-AAA-002 Second",
         "trace: requirement without a test: OGK-BBB-001 Third",
@@ -142,12 +142,12 @@ def test_gate_map_names_real_targets(tmp_path: Path, capsys) -> None:
     assert "trace: tests/trace/gates.txt:3: 'no-such-target' is not a make target" in out
     assert "trace: tests/trace/gates.txt:4: want 'make-target: OGK-... OGK-...  # what fails'" in out
     assert not any("requirement without a test" in line for line in out)
-    assert "  - `make lint`" in (root / "docs" / "traceability.md").read_text()
+    assert "  - `make lint`" in (root / "docs" / "evidence" / "traceability.md").read_text()
 
 
 def test_duplicate_and_malformed_requirement_lines(tmp_path: Path, capsys) -> None:
     root = make_tree(tmp_path)
-    (root / "docs" / "requirements.md").write_text(REQS + "- **OGK-AAA-001 Again.** x\n- **OGK-AAA-3 Bad** x\n")
+    (root / "docs" / "evidence" / "requirements.md").write_text(REQS + "- **OGK-AAA-001 Again.** x\n- **OGK-AAA-3 Bad** x\n")
     rc, out = run(root, capsys, "--write")
     assert rc == 1
     assert "trace: requirements.md:5: requirement OGK-AAA-001 defined twice" in out

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Requirements traceability of ogk (`make trace`, run by `make test`; docs/requirements.md).
+"""Requirements traceability of ogk (`make trace`, run by `make test`; docs/evidence/requirements.md).
 
-Reads the requirements of docs/requirements.md (`- **OGK-XXX-NNN Title.** text`), the tags of the
+Reads the requirements of docs/evidence/requirements.md (`- **OGK-XXX-NNN Title.** text`), the tags of the
 tests and the gate map, and checks that
 
 - every C unit test (a function named in `cmocka_unit_test*(...)` in tests/unit/**/test_*.c) carries a
@@ -11,10 +11,10 @@ tests and the gate map, and checks that
   import, no collection);
 - every tag names a defined requirement, every requirement is verified by at least one test or gate,
   no test is skipped unconditionally, every target of tests/trace/gates.txt is a make target;
-- the committed matrix docs/traceability.md is the one these tags generate.
+- the committed matrix docs/evidence/traceability.md is the one these tags generate.
 
 Every problem is printed on one line naming the file and test; exit 1 if there is any.
-`--write` regenerates docs/traceability.md (then the other checks still run).
+`--write` regenerates docs/evidence/traceability.md (then the other checks still run).
 
 Usage: check_trace.py [--write] [--root DIR]
 """
@@ -247,12 +247,12 @@ def render(reqs: dict[str, str], tests: list[Test]) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--write", action="store_true", help="regenerate docs/traceability.md")
+    ap.add_argument("--write", action="store_true", help="regenerate docs/evidence/traceability.md")
     ap.add_argument("--root", type=Path, default=Path(__file__).resolve().parents[2])
     args = ap.parse_args(argv)
     root: Path = args.root
     rep = Report()
-    reqs = read_requirements(root / "docs" / "requirements.md", rep)
+    reqs = read_requirements(root / "docs" / "evidence" / "requirements.md", rep)
     tests = c_tests(root, rep) + py_tests(root, rep) + gate_tests(root, rep)
     for t in tests:
         where = t.tid
@@ -265,7 +265,7 @@ def main(argv: list[str] | None = None) -> int:
             if not REQ_ID.match(r):
                 rep.add(f"malformed tag '{r}' in {where} (want OGK-XXX-NNN)")
             elif r not in reqs:
-                rep.add(f"unknown requirement {r} in {where} (not in docs/requirements.md)")
+                rep.add(f"unknown requirement {r} in {where} (not in docs/evidence/requirements.md)")
     covered = {r for t in tests for r in t.reqs}
     for r in reqs:
         if r not in covered:
@@ -273,13 +273,13 @@ def main(argv: list[str] | None = None) -> int:
     for r in reqs:
         if r in covered and all(t.note == "slow" for t in tests if r in t.reqs):
             rep.add(f"requirement verified only by slow tests (not in make test): {r}")
-    matrix = root / "docs" / "traceability.md"
+    matrix = root / "docs" / "evidence" / "traceability.md"
     text = render(reqs, tests)
     if args.write:
         matrix.write_text(text)
         print(f"trace: wrote {matrix.relative_to(root)}")
     elif not matrix.exists() or matrix.read_text() != text:
-        rep.add("docs/traceability.md is stale: run `make trace-matrix` and commit it")
+        rep.add("docs/evidence/traceability.md is stale: run `make trace-matrix` and commit it")
     for p in rep.problems:
         print(f"trace: {p}")
     n_tests = sum(1 for t in tests if t.note != "gate")
@@ -287,7 +287,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"trace: FAILED, {len(rep.problems)} problem(s) ({len(reqs)} requirements, {n_tests} tests)")
         return 1
     print(f"trace: {len(reqs)} requirements, each verified; {n_tests} tests and "
-          f"{len(tests) - n_tests} gates, each tracing to a requirement (docs/traceability.md up to date)")
+          f"{len(tests) - n_tests} gates, each tracing to a requirement (docs/evidence/traceability.md up to date)")
     return 0
 
 

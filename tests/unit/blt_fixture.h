@@ -1,5 +1,5 @@
 /* blt_fixture.h -- the BLT problems shared by test_blt.c, test_blt_failure_paths.c and
- * tests/fuzz/fuzz_blt_solve.c (ogk/blt.h, docs/blt.md):
+ * tests/fuzz/fuzz_blt_solve.c (ogk/blt.h, docs/design/blt.md):
  *   - a Moshup-like binary (mu = 0.0544, body radii 0.26 and 0.089 LU) with every term of the model
  *     switched on and exaggerated so that each one shows in the Jacobian: degree-2 terms of both
  *     bodies, SRP, the solar tide, mass flow;

@@ -1,5 +1,5 @@
 /* nmpc_fixture.h -- the NMPC problems shared by test_nmpc.c, test_nmpc_edge_cases.c and
- * tests/fuzz/fuzz_nmpc_step.c: Earth to Mars in the normalised units of docs/nmpc.md (Table A.1),
+ * tests/fuzz/fuzz_nmpc_step.c: Earth to Mars in the normalised units of docs/design/nmpc.md (Table A.1),
  * the phase-matched guess, the solar-electric engine's eq. (14) coefficients, a third body, and the
  * near-field-free radial minimum-time transfer whose optimum is t* = 2 sqrt(D / a). */
 #ifndef OGK_TEST_NMPC_FIXTURE_H
@@ -28,7 +28,7 @@ static inline void nmpc_fx_mars(ogk_nmpc_config_t *c, uint32_t nodes)
     c->tol_stat = 1.0e-7;
 }
 
-/* The phase-matched guess of docs/nmpc.md (smoothstep radius, 135 deg). */
+/* The phase-matched guess of docs/design/nmpc.md (smoothstep radius, 135 deg). */
 static inline void nmpc_fx_mars_guess(const ogk_nmpc_config_t *c, uint32_t nodes, double t_f,
                                       ogk_nmpc_plan_t *p)
 {

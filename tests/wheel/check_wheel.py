@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""`make test-wheel` (in `make test`; docs/install.md): ogk as an analyst installs it, outside the repository.
+"""`make test-wheel` (in `make test`; docs/guides/install.md): ogk as an analyst installs it, outside the repository.
 
 1. `python -m build`: the sdist, then the wheel built from it (setup.py compiles the kernel and the
    families' extensions), into OUT/dist;

@@ -40,7 +40,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="ogk",
         description="ogk SIL harness and ground tools (kernel bindings, demos, campaigns).",
         epilog="Older spellings still accepted, not listed: cases, mpsp, nmpc, blt (ogk run and ogk mc "
-               "fly what they flew; docs/harness.md).",
+               "fly what they flew; docs/guides/harness.md).",
     )
     parser.add_argument("--debug", action="store_true",
                         help="show the traceback of an error instead of its one-line message")

@@ -1,6 +1,6 @@
 """`ogk mpsp apophis ...`: the older spelling of `ogk cases apophis ...` (README), the kernel's MPSP
 on the paper's Apophis mission: `--case {initial,terminal,thrust} --param P` or `--paper-tables`
-(docs/mpsp-cli.md). `--scenario FILE` flies another scenario of the same family."""
+(docs/guides/mpsp-cli.md). `--scenario FILE` flies another scenario of the same family."""
 from __future__ import annotations
 
 import argparse

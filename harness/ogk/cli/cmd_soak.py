@@ -1,6 +1,6 @@
 """`ogk soak [PLAN]`: every campaign of the soak plan (default soak.toml at the repository root) flown by
 `ogk mc` in its own process, its envelope judged against the law's stated envelope, and the summary per
-family (ogk.sil.soak; docs/campaigns.md, "make soak"). Outputs under --out (default build/soak/):
+family (ogk.sil.soak; docs/guides/campaigns.md, "make soak"). Outputs under --out (default build/soak/):
 <name>.json, .parquet, .txt (the campaign's report). Exit 0 when no campaign lost a flight its law does
 not state and none aborted, 1 otherwise."""
 from __future__ import annotations

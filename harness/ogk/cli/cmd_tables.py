@@ -6,7 +6,7 @@ configuration header (the kernel configs the SIL flies, as const C99 initialiser
                           c/*_flight_config.h (ogk_nog_config_t, ogk_cpd_config_t), manifest.json
   ogk tables apophis      low-thrust transfer: c/*_flight_config.h (ogk_mpsp_config_t + nominal weights)
 
-Default DIR: build/tables/<scenario name>-<first 12 hex of its SHA-256> (docs/architecture.md).
+Default DIR: build/tables/<scenario name>-<first 12 hex of its SHA-256> (docs/design/architecture.md).
 """
 from __future__ import annotations
 

@@ -5,7 +5,7 @@ implements every verb of ogk.sil.family.MissionFamily (`ogk tables`, `ogk run`, 
 `ogk replay`, `ogk report` all go through it, the same for every family). The older per-law
 spellings of `ogk run` (`ogk cases`, `ogk nmpc`, `ogk blt`) are the family's `run_aliases`.
 
-A new family is one class plus one line here (docs/adding-a-mission.md); a new mission of a known
+A new family is one class plus one line here (docs/guides/adding-a-mission.md); a new mission of a known
 family is one TOML file and nothing else.
 """
 from __future__ import annotations

@@ -53,7 +53,7 @@ def add_engine_arguments(p: argparse.ArgumentParser, family: MissionFamily,
     p.add_argument("--dask", default=None, metavar="ADDRESS",
                    help="fly the chunks on a Dask cluster: a running scheduler's ADDRESS "
                         "(tcp://HOST:PORT) or local:N (N worker processes started here); the "
-                        "records are the same bit for bit (docs/scale-out.md)")
+                        "records are the same bit for bit (docs/guides/scale-out.md)")
     add_target_argument(p)
     p.add_argument("--watchdog-per-run", type=float, default=None, metavar="S",
                    help="a chunk without a result after 120 s + S s per run is killed and the "
@@ -64,7 +64,7 @@ def add_target_argument(p: argparse.ArgumentParser) -> None:
     p.add_argument("--target", choices=TARGETS, default="host",
                    help="host: the flight software in this process (SIL, default); m7: the "
                         "scenario's flight program on the emulated Cortex-M7 (QEMU), with the host "
-                        "campaign on the same draws beside it (docs/pil.md)")
+                        "campaign on the same draws beside it (docs/guides/pil.md)")
 
 
 def check_engine_arguments(args: argparse.Namespace) -> None:

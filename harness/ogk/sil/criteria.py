@@ -1,4 +1,4 @@
-"""Failure criterion of a run, the same for every mission (docs/sil.md):
+"""Failure criterion of a run, the same for every mission (docs/guides/sil.md):
 
 a run fails when the kernel returned an error, when the truth model left its validity, or when
 one of its final errors exceeds the tolerance the scenario states. The reason of each failure is

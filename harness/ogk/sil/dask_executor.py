@@ -1,5 +1,5 @@
 """The Dask executor of the campaign engine (`ogk mc SCENARIO ... --dask ADDRESS|local:N`;
-docs/scale-out.md): the same chunks as the forked runner (ogk.sil.runner.split_chunks), flown on
+docs/guides/scale-out.md): the same chunks as the forked runner (ogk.sil.runner.split_chunks), flown on
 the workers of a Dask cluster, for every family and target.
 
 The campaign goes out once as a `Shipment` (ogk.sil.shipping: scenario, options, ground products

@@ -1,5 +1,5 @@
-"""The family interface: every verb a mission family offers, on one protocol (docs/campaigns.md,
-docs/adding-a-mission.md).
+"""The family interface: every verb a mission family offers, on one protocol (docs/guides/campaigns.md,
+docs/guides/adding-a-mission.md).
 
 A family is one class deriving from `FamilyDefaults` and implementing `MissionFamily`, whose one
 instance `FAMILY` (in ogk.missions.<family>.family) ogk.missions.registry finds from the scenario's
@@ -106,7 +106,7 @@ class CampaignPlan:
     #: program on the emulated Cortex-M7, whose records carry pil.<entry>.* keys)
     target: str = "host"
     #: a target campaign's largest allowed |host - target| per quantity on the same draws, and why
-    #: they differ at all (docs/pil.md, "Host vs target")
+    #: they differ at all (docs/guides/pil.md, "Host vs target")
     target_bounds: dict[str, float] = dataclasses.field(default_factory=dict)
     target_why: str = ""
     #: the scenario's [dispersions] and how each key is applied (ogk.sil.dispersion_check)
@@ -231,7 +231,7 @@ class MissionFamily(Protocol):
 
     def target_bounds(self, plan: CampaignPlan) -> tuple[dict[str, float], str]:
         """The largest allowed |host - target| per quantity on the same draws, and why they differ
-        at all (docs/pil.md, "Host vs target")."""
+        at all (docs/guides/pil.md, "Host vs target")."""
 
     def on_target(self, plan: CampaignPlan, target: str) -> None:
         """The plan flown by its flight program on `target` (flight_program, target_job)."""

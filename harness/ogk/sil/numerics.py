@@ -1,11 +1,11 @@
 """What a run's numbers depend on in this process besides the code and its inputs: the numerics
-fingerprint of the host (docs/scale-out.md, "Bit for bit across machines").
+fingerprint of the host (docs/guides/scale-out.md, "Bit for bit across machines").
 
 The flight software is C compiled once, but the truth models, the dispersions and the ground
 products' interpolation run through numpy and its BLAS, and both pick their kernels from the CPU at
 load time: OpenBLAS its core type (Haswell, SkylakeX, Zen, ...), numpy its SIMD dispatch targets
 (AVX2, AVX-512, ...). Two machines with different choices give different last bits, and a chaotic
-flight (a perturbed NMPC rendezvous) can then end elsewhere (measured: docs/notes/session-12.md).
+flight (a perturbed NMPC rendezvous) can then end elsewhere (measured: notes/session-12.md).
 
 So a campaign records the fingerprint in its envelope, a Dask shipment carries the client's, and a
 worker whose fingerprint differs refuses the chunk (ogk.sil.shipping.plan_of) instead of returning

@@ -1,4 +1,4 @@
-"""Processor in the loop (docs/pil.md): a family's flight program on an emulated target (TARGETS:
+"""Processor in the loop (docs/guides/pil.md): a family's flight program on an emulated target (TARGETS:
 the Cortex-M7 under qemu-system-arm, or big-endian SPARC V8 Linux user mode under qemu-sparc32plus),
 talked to over the link (ogk.sil.target_link), with the instructions of every entry-point call counted
 by QEMU's insn_count plugin and the stack of every call measured on the target (painted window).

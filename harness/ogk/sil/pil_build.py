@@ -1,4 +1,4 @@
-"""A scenario's PIL flight program, built on demand (docs/pil.md): the family writes the generated C
+"""A scenario's PIL flight program, built on demand (docs/guides/pil.md): the family writes the generated C
 (table image, flight configuration) into DIR/c, then `make pil-program PIL_PROGRAM=NAME PIL_OUT=DIR`
 compiles and links it with the flight flags; the campaign flies DIR/NAME-<sha16>.elf, a copy named by
 its content. For SPARC V8 (`target="sparc"`), `make pil-program-sparc` builds the same program from

@@ -1,4 +1,4 @@
-"""What a campaign says about a law's robustness, the same for every family (docs/campaigns.md,
+"""What a campaign says about a law's robustness, the same for every family (docs/guides/campaigns.md,
 "Robustness"; ../shared/docs/ROBUSTNESS.md): how far the worst run sits from the bulk, every lost
 flight with its class and the command that replays it, the failed solves per flight.
 
@@ -147,7 +147,7 @@ def worst_run(quantities: Mapping[str, Any]) -> dict[str, Any] | None:
 
 def summary(records: Sequence[Record], quantities: Mapping[str, Any], lost: list[dict[str, Any]],
             solves: dict[str, Any] | None) -> dict[str, Any]:
-    """The envelope's `robustness` (docs/campaigns.md)."""
+    """The envelope's `robustness` (docs/guides/campaigns.md)."""
     by_class: dict[str, dict[str, Any]] = {}
     for f in lost:
         entry = by_class.setdefault(f["class"], {"count": 0, "runs": []})
@@ -165,7 +165,7 @@ def short(v: float | None) -> str:
 def format_quantities(quantities: Mapping[str, Any]) -> str:
     """The quantities with the worst and the farthest run's distance from the median."""
     lines = ["quantities (distance from the median in the campaign's std / in robust std = "
-             "1.4826 MAD; docs/campaigns.md)",
+             "1.4826 MAD; docs/guides/campaigns.md)",
              f"  {'quantity':28s} {'n':>5s} {'mean':>11s} {'std':>10s} {'median':>11s} "
              f"{'robust std':>10s} {'worst':>11s} {'run':>5s} {'std':>6s} {'rstd':>7s}  "
              f"farthest run, std, rstd"]

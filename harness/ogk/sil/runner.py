@@ -22,7 +22,7 @@ still ends as CampaignAborted.
 
 The same (seed, run id) gives the same numbers whatever the number of workers or chunks only if
 the mission's job draws each run from its own generator and its arithmetic is elementwise over
-runs (docs/sil.md).
+runs (docs/guides/sil.md).
 """
 from __future__ import annotations
 

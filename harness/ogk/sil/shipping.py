@@ -1,4 +1,4 @@
-"""What a campaign sends to a worker on another machine (docs/scale-out.md), and how the worker
+"""What a campaign sends to a worker on another machine (docs/guides/scale-out.md), and how the worker
 rebuilds the plan from it: the engine-level half of the Dask executor (ogk.sil.dask_executor).
 
 A `Shipment` carries everything a run depends on besides its id and seed, as data:
@@ -170,7 +170,7 @@ def plan_of(shipment: Shipment) -> CampaignPlan:
                             "not be bit for bit the local campaign's (" + "; ".join(differ) + "): "
                             "run the workers on the client's CPU kind and packages, or set "
                             "OPENBLAS_CORETYPE and NPY_DISABLE_CPU_FEATURES alike everywhere "
-                            "(docs/scale-out.md)", key="--dask")
+                            "(docs/guides/scale-out.md)", key="--dask")
     key = shipment.key
     plan = _PLANS.get(key)
     if plan is not None:

@@ -1,5 +1,5 @@
 """`ogk soak` / `make soak`: long campaigns of every family through the one engine, judged against the
-envelope each law states (soak.toml at the repository root; docs/campaigns.md, "make soak").
+envelope each law states (soak.toml at the repository root; docs/guides/campaigns.md, "make soak").
 
 The plan names campaigns (scenario, runs, seed, the family's options) and, per campaign, the classes of
 lost flights its law's documented envelope states with the largest fraction of the runs each may take.

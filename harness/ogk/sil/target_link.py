@@ -1,4 +1,4 @@
-"""The host end of the processor-in-the-loop link (docs/pil.md; the target end is
+"""The host end of the processor-in-the-loop link (docs/guides/pil.md; the target end is
 port/cortex-m7/link/ogk_link.h): one flight program on QEMU, framed messages over its stdin and
 stdout: on the Cortex-M7 (target "m7") QEMU's mps2-an500 and its semihosting console; on SPARC V8
 (target "sparc") a static Linux program under qemu-sparc32plus (user mode: glibc's read/write).

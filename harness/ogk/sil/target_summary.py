@@ -1,4 +1,4 @@
-"""What a target campaign states beyond the host's (docs/pil.md): the worst case per entry point over
+"""What a target campaign states beyond the host's (docs/guides/pil.md): the worst case per entry point over
 the campaign, and the host campaign on the same draws beside it.
 
 Per entry point (from the runs' pil.<entry>.* keys, ogk.sil.pil):

@@ -2,7 +2,7 @@
 the flight kernel's NRPC (ogk_blt_solve) in the realistic model, directly or, when that fails, by
 continuation on the perturbations (SRP and the solar tide scaled from 0 to 1: the guess stage's model has
 neither, and over a multi-TU coast SRP moves the spacecraft by ~0.1 LU, more than a Newton step from an
-impulsive guess can absorb). Normalised units (docs/blt.md)."""
+impulsive guess can absorb). Normalised units (docs/design/blt.md)."""
 from __future__ import annotations
 
 import dataclasses

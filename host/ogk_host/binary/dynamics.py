@@ -1,4 +1,4 @@
-"""The binary-asteroid model of docs/blt.md section 1 in numpy (Xiong & Wang, eqs. 4-10 and 22).
+"""The binary-asteroid model of docs/design/blt.md section 1 in numpy (Xiong & Wang, eqs. 4-10 and 22).
 
 Synodic frame, normalised units (LU = D, TU = T_o / (2 pi), `units.Units`), omega = 1. The primary (mass
 fraction 1 - mu) at (-mu, 0, 0), the secondary (mu) at (1 - mu, 0, 0). State x = (x, y, z, vx, vy, vz).
@@ -85,7 +85,7 @@ class Model:
 def kernel_model(scenario: BinaryScenario, thrust_n: float, *, gravity: str | None = None, srp: bool,
                  sun: bool, step_max: float) -> dict[str, Any]:
     """The kernel's ogk_blt_model_t for `scenario` with a constant thrust `thrust_n` [N], in normalised
-    units (docs/blt.md section 1). gravity: "degree2" or "point-mass" (default: the scenario's [gravity]
+    units (docs/design/blt.md section 1). gravity: "degree2" or "point-mass" (default: the scenario's [gravity]
     model; point-mass zeroes C20 and C22 and keeps the radii). srp / sun: include the SRP (eq. 9) / the
     solar tidal term (eq. 10). step_max [TU]: the kernel integrator's largest step."""
     return model_from_scenario(scenario, thrust_n, gravity=gravity, srp=srp, sun=sun,
@@ -140,7 +140,7 @@ def _bodies(model: Model) -> list[tuple[FloatArray, float, float, FloatArray | N
 
 
 def potential(model: Model, r: ArrayLike) -> FloatArray:
-    """U(r) = U_1 + U_2 (eqs. 6-7, degree 2, positive sign convention of docs/blt.md) [LU^2/TU^2]."""
+    """U(r) = U_1 + U_2 (eqs. 6-7, degree 2, positive sign convention of docs/design/blt.md) [LU^2/TU^2]."""
     r = np.asarray(r, dtype=float)
     total = np.zeros(r.shape[:-1])
     for pos, m, r2, k in _bodies(model):

@@ -2,8 +2,8 @@
 and the unilateral backward manifold-patching guess UbMPIG (eqs. 53-60), as kernel transfers.
 
 A guess is a `Layout` (the kernel's transfer structure: segment kinds, free nodes, meeting interfaces;
-docs/blt.md sec. 1) and the values of an `ogk_blt_transfer_t` (start, target, segment parameters, nodes).
-Everything is in the normalised units of docs/blt.md; the orbits and manifolds come from the
+docs/design/blt.md sec. 1) and the values of an `ogk_blt_transfer_t` (start, target, segment parameters, nodes).
+Everything is in the normalised units of docs/design/blt.md; the orbits and manifolds come from the
 gravity-only model (the paper's "simplified model", sec. II.B.1); the phase adjustment of eq. (29) flies
 the burn with the kernel's own propagator (ogk_blt_propagate: the same integrator the corrector uses).
 """

@@ -174,7 +174,7 @@ def realm_cut(model: Model, realm_name: str) -> float:
 def main(argv: list[str] | None = None) -> int:
     """`python -m ogk_host.binary.manifolds [SCENARIO] [N]`: for every scenario orbit, both signs, W^u forward
     and W^s backward from N phases (eq. 34, d = 1e-6) to the cut of the realm the sign leads into: how many
-    reach it, how many hit a body, the flight times (docs/blt-ground.md)."""
+    reach it, how many hit a body, the flight times (docs/design/blt-ground.md)."""
     import sys
 
     from .dynamics import model_from_scenario

@@ -31,7 +31,7 @@ from scipy.optimize import brentq, minimize_scalar
 from .dynamics import FloatArray, GravityField, Model, gravity, gravity_gradient, jacobi
 from .scenario import BinaryScenario, OrbitSpec
 
-#: Tolerances of the reference propagations (the brief of docs/blt.md: DOP853, rtol 1e-12, atol 1e-13).
+#: Tolerances of the reference propagations (the brief of docs/design/blt.md: DOP853, rtol 1e-12, atol 1e-13).
 RTOL, ATOL = 1e-12, 1e-13
 #: Looser tolerances for the intermediate members of a continuation (the final member is re-corrected
 #: at RTOL/ATOL).
@@ -696,7 +696,7 @@ def jacobi_at_point(model: Model, point: str) -> float:
 
 def main(argv: list[str] | None = None) -> int:
     """`python -m ogk_host.binary.orbits [SCENARIO]`: the libration points and the scenario's orbits (the
-    table of docs/blt-ground.md)."""
+    table of docs/design/blt-ground.md)."""
     import sys
     import time
 

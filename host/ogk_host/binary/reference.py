@@ -1,4 +1,4 @@
-"""Reference propagation of a BLT segment chain (docs/blt.md section 1; Xiong & Wang eqs. 8-10 and 22):
+"""Reference propagation of a BLT segment chain (docs/design/blt.md section 1; Xiong & Wang eqs. 8-10 and 22):
 scipy's DOP853 at rtol 1e-12, atol 1e-13, independent of the kernel's integrator, in the same model
 (`dynamics.Model`, e.g. from `kernel_model`).
 

@@ -1,13 +1,13 @@
 """Binary-asteroid BLT scenarios (Xiong & Wang, Table 1 and sec. IV): TOML -> frozen dataclasses.
 
 Everything in the file is SI (m, s, kg, N, W, rad), with the unit in each key's name; the normalised units
-of the model (LU = D, TU = T_o / (2 pi), docs/blt.md section 1) are built by `units.Units` and
+of the model (LU = D, TU = T_o / (2 pi), docs/design/blt.md section 1) are built by `units.Units` and
 `BinaryScenario.units`. Every complaint is an `OgkInputError` naming the file and the key.
 
 Sections: [system] (Table 1), [gravity] (the model and the assumed homogeneous ellipsoid of each body),
 [sun], [spacecraft] (sec. IV), [orbits.NAME] (the libration-point orbits of the study, built by
 `orbits.scenario_orbit`), [transfers.NAME], [solver] and [monte_carlo] (returned as the raw TOML tables,
-read key by key by `transfers`), and the common header tables (docs/adding-a-mission.md, "The scenario
+read key by key by `transfers`), and the common header tables (docs/guides/adding-a-mission.md, "The scenario
 header"): [dispersions] (what the Table 3 campaign draws: levels_percent, sigma_fraction), [acceptance]
 (error_tolerance) and the optional [paper_results] ([paper_results.transfers.NAME], [paper_results.table3]).
 """
@@ -31,7 +31,7 @@ ORBIT_FAMILIES = ("lyapunov", "halo")
 LIBRATION_POINTS = ("L1", "L2")
 HALO_BRANCHES = ("north", "south")
 #: The homogeneous ellipsoid's mass rho V must agree with Table 1's mass within this fraction: the
-#: ellipsoid is an assumption about the shape, never a second mass (docs/blt-ground.md, "Gravity").
+#: ellipsoid is an assumption about the shape, never a second mass (docs/design/blt-ground.md, "Gravity").
 ELLIPSOID_MASS_TOLERANCE = 0.02
 #: [paper_results.transfers.NAME]: the paper's figures of one transfer; [paper_results.table3]: Table 3.
 PAPER_TRANSFER_KEYS = ("flight_time_s", "burn_time_s", "fuel_g", "iterations")
@@ -60,7 +60,7 @@ class System:
 @dataclasses.dataclass(frozen=True)
 class Ellipsoid:
     """The assumed homogeneous triaxial ellipsoid of one body, its axes along the synodic x, y, z (the
-    secondary's long axis points at the primary; the primary is axisymmetric, docs/blt.md section 1)."""
+    secondary's long axis points at the primary; the primary is axisymmetric, docs/design/blt.md section 1)."""
 
     semi_axes_m: tuple[float, float, float]   #: (a, b, c) along x, y, z [m]
     impact_radius_m: float                    #: radius of the sphere that counts as an impact [m]
@@ -117,7 +117,7 @@ class Sun:
     @property
     def mean_motion_rad_s(self) -> float:
         """n_helio = sqrt(mu_sun / d^3): the binary's heliocentric angular rate, taken circular at d
-        (the paper gives only the distance; an assumption, docs/blt-ground.md)."""
+        (the paper gives only the distance; an assumption, docs/design/blt-ground.md)."""
         return math.sqrt(self.mu_m3_s2 / self.distance_m ** 3)
 
 
@@ -149,7 +149,7 @@ class OrbitSpec:
 
 @dataclasses.dataclass(frozen=True)
 class Dispersions:
-    """[dispersions]: what the Table 3 campaign draws (docs/blt.md, "Monte Carlo"): at each level p, every
+    """[dispersions]: what the Table 3 campaign draws (docs/design/blt.md, "Monte Carlo"): at each level p, every
     BLT parameter and the departure perturbed by p xi, xi ~ N(0, sigma_fraction^2) clipped to [-1, 1]."""
 
     levels_percent: tuple[float, ...]   #: the perturbation levels p [%]
@@ -205,7 +205,7 @@ def _read_ellipsoid(section: Section, mass_kg: float, density_kg_m3: float, mass
     body = Ellipsoid(semi_axes_m=(axes[0], axes[1], axes[2]), impact_radius_m=impact)
     if axisymmetric and axes[0] != axes[1]:
         raise section.error("semi_axes_m", "the primary spins in 2.76 h, not with the synodic frame: "
-                            "its C22 must be 0, so a must equal b (docs/blt.md section 1)")
+                            "its C22 must be 0, so a must equal b (docs/design/blt.md section 1)")
     if impact < max(axes):
         raise section.error("impact_radius_m", f"{impact:g} m is inside the body's largest semi-axis "
                             f"{max(axes):g} m: the degree-2 field is only valid outside the Brillouin sphere")

@@ -155,7 +155,7 @@ def monte_carlo_spec(scenario: BinaryScenario) -> MonteCarloSpec:
 # ------------------------------------------------------------------------------------------ the pipeline
 
 def corrector_model(scenario: BinaryScenario, spec: TransferSpec, solver: SolverSettings) -> Model:
-    """The kernel's model of this transfer (normalised; docs/blt.md sec. 1)."""
+    """The kernel's model of this transfer (normalised; docs/design/blt.md sec. 1)."""
     gravity = None if solver.gravity == "scenario" else solver.gravity
     step = solver.step_max_s if spec.step_max_s is None else spec.step_max_s
     return model_from_scenario(scenario, spec.thrust_n, gravity=gravity, srp=solver.srp, sun=solver.sun,
@@ -198,7 +198,7 @@ class Design:
 
 
 #: When no manifold pair of a BMP reaches the cut without impact at the scenario's manifold_dv_m_s (the
-#: Moshup L1 halo's, docs/blt-transfers.md), the guess is retried at these multiples of it: a larger d
+#: Moshup L1 halo's, docs/design/blt-transfers.md), the guess is retried at these multiples of it: a larger d
 #: leaves the orbit faster and clears the secondary (0.15 VU: 2 of 48 L1-halo phases reach the cut).
 BMP_WIDER_DEVIATIONS = (3.0, 6.0)
 

@@ -10,8 +10,8 @@
 With these units G (M1 + M2) = 1 LU^3/TU^2 is *implied* by the period and the separation (Kepler's third
 law of the mutual orbit: omega^2 D^3 = G (M1 + M2)); it is not G times Table 1's masses. The two differ
 (Table 1's figures are mutually inconsistent, seeds/README.md "002"): `Units.gm_mismatch` gives the figure,
-docs/blt-ground.md prints it. The model keeps the period and the separation exact (they fix the frame's
-rotation and the bodies' positions) and takes mu from the masses, as docs/blt.md section 1 prescribes.
+docs/design/blt-ground.md prints it. The model keeps the period and the separation exact (they fix the frame's
+rotation and the bodies' positions) and takes mu from the masses, as docs/design/blt.md section 1 prescribes.
 """
 from __future__ import annotations
 

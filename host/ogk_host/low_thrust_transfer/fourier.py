@@ -8,7 +8,7 @@ linearly from [t_0, t_f] onto [eta_0, eta_f] (eq. 39). Bases measured here (all 
                sin over half a period are nearly linearly dependent (cond(P_hat) ~ 1e11)
   "cosine_2tf" [1/2, cos(pi eta), cos(2 pi eta), ..., cos(2n pi eta)], eta in [0, 1]: fundamental period
                2 t_f (even extension of lambda_v about t_0 and t_f), orthogonal on the grid
-ERRATUM (paper 000, App. C): the printed range fits the nominal lambda_v badly. docs/apophis-nominal.md
+ERRATUM (paper 000, App. C): the printed range fits the nominal lambda_v badly. docs/design/apophis-nominal.md
 gives the measurements behind the scenario's choice.
 
 The initial weights eps_0 solve P_hat eps_0 = U_hat in the least-squares sense (eqs. 49-50) on the MPSP

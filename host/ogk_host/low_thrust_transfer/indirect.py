@@ -10,7 +10,7 @@ locally when Newton fails), each level warm-started by secant extrapolation of t
 the last level, zeta = 0, integrates arc by arc with the exact zeros of S found as events
 (DOP853, rtol 1e-12; extrema of S are located too, so a zero pair inside one step is not missed).
 The energy-optimal start is deterministic: a target continuation from the ballistic arc with the
-thrust boosted (unsaturated throttle), then the thrust brought back to its value (docs/apophis-nominal.md).
+thrust boosted (unsaturated throttle), then the thrust brought back to its value (docs/design/apophis-nominal.md).
 
 `solve_fuel_optimal(scenario, perturbation, warm_start)` solves nominal or perturbed problems; from a
 warm start it continues the perturbation C_tau = (1 - tau) C_nom + tau C_per (eq. 51), first directly

@@ -347,7 +347,7 @@ def _check_values(d: dict[str, Any], path: Path) -> None:
                         "numbers each")
 
 
-#: STATED ENVELOPE (docs/mpsp-cli.md, "Input checks"): a transfer is refused before any solve when
+#: STATED ENVELOPE (docs/guides/mpsp-cli.md, "Input checks"): a transfer is refused before any solve when
 #: the target is out of reach of the engine even in free space with this margin for gravity.
 REACH_MARGIN = 10.0
 
@@ -380,7 +380,7 @@ def check_reachable(scenario: Scenario) -> None:
             f"{scenario.duration_days:g} days at {scenario.spacecraft.max_thrust_N:g} N cannot reach the "
             f"target: it is {need_r * u.length_km:.3g} km and {need_v * u.velocity_km_s:.3g} km/s from "
             f"the thrust-free arc at t_f, the engine gives at most {dv * u.velocity_km_s:.3g} km/s "
-            f"(envelope: {REACH_MARGIN:g} x the free-space reach, docs/mpsp-cli.md)",
+            f"(envelope: {REACH_MARGIN:g} x the free-space reach, docs/guides/mpsp-cli.md)",
             path=scenario.path, key="transfer.duration_days")
 
 
@@ -452,7 +452,7 @@ def _build(path: Path, d: dict[str, Any]) -> Scenario:
 
 
 def _read_acceptance(sec: Section, mpsp: MpspSettings) -> Acceptance:
-    """[acceptance]; STATED DEFAULT (docs/adding-a-mission.md, "The scenario header"): the [mpsp]
+    """[acceptance]; STATED DEFAULT (docs/guides/adding-a-mission.md, "The scenario header"): the [mpsp]
     convergence tolerances tol_position_km and tol_velocity_km_s."""
     acc = Acceptance(position_error_km=sec.number("position_error_km", mpsp.tol_position_km, positive=True),
                      velocity_error_km_s=sec.number("velocity_error_km_s", mpsp.tol_velocity_km_s,

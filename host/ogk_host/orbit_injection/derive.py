@@ -3,7 +3,7 @@
 `effective_settings(scn)` returns the values the tables and the SIL fly, each with its provenance
 ("scenario" = read from the file, "derived" = computed here by the documented rule):
 
-- CPD gains (docs/cpd.md, "Design rule for another vehicle"; the re-derived set, flown unless
+- CPD gains (docs/design/cpd.md, "Design rule for another vehicle"; the re-derived set, flown unless
   `[cpd] flown = "printed"`, recorded as `cpd_flown`): the sec. 5.3 rule of the mission-independent
   ground tool (ogk_host.cpd_design: `VehicleModel.effectiveness` for G, `design_axis` for
   k_p = omega_n^2 / G_min, k_d = 2 zeta omega_n / G_min) applied to this scenario's vehicle at ignition,
@@ -11,15 +11,15 @@
   G_min of each axis (T is the smallest thrust of the burn, T_min of sec. 7 eq. 57 for a tabulated
   thrust, the constant T = n0 m0 of sec. 6); pitch and yaw share one set designed on min(G_y, G_z).
   Taken from `[cpd.rederived]` when present.
-- End-game freeze (docs/vtd-nog.md, "End-game"): freeze_time_to_go_s = Delta t_S / 4, the spacing of
+- End-game freeze (docs/design/vtd-nog.md, "End-game"): freeze_time_to_go_s = Delta t_S / 4, the spacing of
   the paper's gain grid near cut-off (4 nodes per sampling interval; 0.5 s for Delta t_S = 2 s, the
   flown value: freezing earlier was measured to be worse, and the gain grid ends there). Taken from
   `guidance.end_game.freeze_time_to_go_s` when present. tau_freeze = freeze / t_f*.
-- Braking accelerations of the CPD rate cap (docs/cpd.md): braking_margin times the smallest
+- Braking accelerations of the CPD rate cap (docs/design/cpd.md): braking_margin times the smallest
   control acceleration at the command limits over the burn: roll M_xc / I_x0, pitch/yaw
   T l0 sin(Delta_c) / I_y0, I_z0. Always derived (the margin is the scenario's setting).
 
-- What scales with the burn (docs/vtd-nog.md, "Derived settings"), from the nominal minimum time
+- What scales with the burn (docs/design/vtd-nog.md, "Derived settings"), from the nominal minimum time
   t_f* (`resolve(scn, t_f_star_s)`, called once where the scenario is loaded and its nominal
   known: `ogk tables`, the campaign plan; what flies takes the resolved scenario and only checks
   it, `require_resolved`), each the paper's mission's setting as a fraction of
@@ -28,8 +28,8 @@
   terminal_window_s = 0.094 t_f* (10 s; at least terminal_shape_hold_s). The windows are derived
   only with the energy cut-off (the paper's end-game has none). Measured at the short-burn corner
   of the envelope (t_f* = 41.8 s, 200 runs, seed 777): a copied 10 s terminal window fails 18
-  runs, 5 s fails 1 (docs/vtd-nog.md).
-- The terminal stage's turn limit (docs/vtd-nog.md, "Terminal steering within the vehicle's turn
+  runs, 5 s fails 1 (docs/design/vtd-nog.md).
+- The terminal stage's turn limit (docs/design/vtd-nog.md, "Terminal steering within the vehicle's turn
   rate"; kernel ogk_terminal_config_t.turn_accel_rad_s2): the angular acceleration the vehicle's TVC
   gives at its command limit, sin(Delta_c) T l(t) / I(t) (pitch and yaw, the smaller; T the smallest
   thrust, eq. 53's arm and inertias), the smallest over the terminal window [t_f* - window, t_f*]:
@@ -38,7 +38,7 @@
   mission 0.273 rad/s^2 (bound 62 deg: no plan of 1000 runs reaches it), the section-7 upper stage
   19.9 (no bound below 1.5 rad), the short-burn corner 0.198 (2.6 deg: v_go steering; 52 -> 1
   failure in 1000 runs of seed 4242, radius sigma 1.5 km, velocities 30 m/s). The bound is necessary, not sufficient: the paper's
-  10 s window copied onto that corner (bound 42 deg) still fails 8.6 % (docs/vtd-nog.md). Taken from
+  10 s window copied onto that corner (bound 42 deg) still fails 8.6 % (docs/design/vtd-nog.md). Taken from
   `guidance.end_game.terminal_turn_accel_rad_s2` when present.
 - The envelope (`envelope_warnings(scn, t_f_star_s)`): one line per setting outside what was
   measured to fly, naming its key: the nominal's envelope (R_f / perigee 1.5..8, n0 0.5..1.5 g0,
@@ -67,7 +67,7 @@ from .scenario import CpdGains, OrbitInjectionScenario
 
 SCENARIO = "scenario"
 DERIVED = "derived"
-#: Freeze rule: this fraction of the sampling interval (docs/vtd-nog.md, "End-game").
+#: Freeze rule: this fraction of the sampling interval (docs/design/vtd-nog.md, "End-game").
 FREEZE_FRACTION_OF_SAMPLE = 0.25
 #: Burn-scaled rules: the paper's mission's settings over its t_f* = 105.9 s (module docstring).
 DTF_MAX_FRACTION_OF_BURN = 0.375
@@ -78,7 +78,7 @@ WINDOW_WARNING_FACTOR = 2.0
 #: Linear domain of VTD-NOG (module docstring): 3 sigma radius / (n0 t_f*^2), 3 sigma velocity / Delta v.
 RADIUS_DISPERSION_FRACTION = 0.2
 VELOCITY_DISPERSION_FRACTION = 0.1
-#: What was measured beyond the linear domain, quoted by each warning (docs/vtd-nog.md, "Envelope
+#: What was measured beyond the linear domain, quoted by each warning (docs/design/vtd-nog.md, "Envelope
 #: warnings"): the short-burn corner (R_f / r_p 1.5, 1.5 g0, 4.5 km/s, derived settings), 1000 runs,
 #: 6-DOF, every dispersion, `ogk mc FILE --runs 1000 --seed S --workers 2`: radius 3 sigma at 0.29 n0
 #: t_f*^2 (2.5 km, velocities 22 m/s) 15 failures (seed 83219); at 0.58 (the paper's 5 km, 30 m/s)
@@ -91,7 +91,7 @@ WINDOW_BEYOND_MEASURED = ("measured at the short-burn corner: the paper's 10 s a
 RADIUS_BEYOND_MEASURED = "measured at the short-burn corner, 1000 runs: 1.5 % fail at 0.29, 20 % at 0.58"
 VELOCITY_BEYOND_MEASURED = ("measured at the short-burn corner, 1000 runs with the radius inside its "
                             "domain: 0.1-0.2 % fail at 0.136")
-#: The nominal's envelope (docs/vtd-nog.md sec. 2): R_f / perigee, n0 [g0], c [m/s].
+#: The nominal's envelope (docs/design/vtd-nog.md sec. 2): R_f / perigee, n0 [g0], c [m/s].
 ENVELOPE_RADIUS_RATIO = (1.5, 8.0)
 ENVELOPE_ACCEL_G0 = (0.5, 1.5)
 ENVELOPE_EXHAUST_M_S = (2500.0, 4500.0)

@@ -258,7 +258,7 @@ def extremal_rate(model: Model, z: FloatArray) -> FloatArray:
 
 @dataclasses.dataclass(frozen=True)
 class NeighboringMatrices:
-    """Matrices of the linear two-point boundary-value problem in normalised time (docs/vtd-nog.md).
+    """Matrices of the linear two-point boundary-value problem in normalised time (docs/design/vtd-nog.md).
 
     dx' = A dx - B dlam + D da,  dlam' = -C dx - A^T dlam - E da,  dmu' = -E^T dx - D^T dlam - F da,
     and the control correction du = -H_uu^-1 (H_ux dx + H_ua da + F_u^T dlam) (eq. 30) = K_x dx + K_lam

@@ -1,4 +1,4 @@
-"""VTD-NOG gain tables by transition matrices (docs/vtd-nog.md; VTD-NOG-NOTES.md secs. 2-3).
+"""VTD-NOG gain tables by transition matrices (docs/design/vtd-nog.md; VTD-NOG-NOTES.md secs. 2-3).
 
 Linear TPBVP on [tau_k, 1] in y = [dx (7); dlam (7); dmu (1)] with the parameter change da = dt_f:
   y' = M(tau) y + G(tau) da,  M = [[A, -B, 0], [-C, -A^T, 0], [-E^T, -D^T, 0]],  G = [D; -E; -F].
@@ -129,7 +129,7 @@ class GainTable:
     cond_equilibrated: FloatArray    #: (N,) same after Ruiz equilibration
 
 
-#: Largest grid spacing relative to the time-to-go (docs/vtd-nog.md sec. 7). The costate gains grow
+#: Largest grid spacing relative to the time-to-go (docs/design/vtd-nog.md sec. 7). The costate gains grow
 #: like 1/time-to-go^3, so linear interpolation between nodes errs by about 1.6 rho^2 = 0.4 % of
 #: their size; every grid built here keeps this spacing bound.
 MAX_RELATIVE_SPACING = 0.05

@@ -18,7 +18,7 @@ q = [f0, alpha0, kappa, t_f] with lambda_v(0) = -[sin alpha0, cos alpha0] (unit 
 thrust angle) and lambda_r(0) = kappa / t_f (kappa ~ total turn of lambda_v).
 
 - "continuation" (default for a transfer ellipse whose apogee is the target radius, the documented
-  envelope of docs/vtd-nog.md sec. 2): natural-parameter continuation in the canonical
+  envelope of docs/design/vtd-nog.md sec. 2): natural-parameter continuation in the canonical
   (p, e, n0, c) from the paper's problem (PAPER_PARAMETERS) and its solution (PAPER_SOLUTION), full
   Newton correctors with the exact variational Jacobian, step doubled/halved; deterministic. Over
   the envelope (R_f / r_p 1.5..8, n0 0.5..1.5 g0, c 2.5..4.5 km/s) it takes 1-2 steps.
@@ -561,7 +561,7 @@ def _outside_envelope_reason(problem: MinTimeProblem) -> tuple[str, str]:
         key = "target_orbit.radius_m"
     else:
         key = "pre_ignition_orbit"
-    return key, (f"no minimum-time burn found: the documented envelope (docs/vtd-nog.md, sec. 2) is a "
+    return key, (f"no minimum-time burn found: the documented envelope (docs/design/vtd-nog.md, sec. 2) is a "
             f"pre-ignition transfer ellipse with apogee = target radius, R_f / perigee 1.5..8, "
             f"n0 0.5..1.5 g0, c 2.5..4.5 km/s; this one has apogee {apogee / 1e3:.1f} km, target "
             f"{r_f / 1e3:.1f} km, R_f / perigee {r_f / perigee:.3g}, n0 "

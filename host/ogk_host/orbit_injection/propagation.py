@@ -3,7 +3,7 @@
   dz/dtau = t_f g(z),  g = [f~(x, u*(lambda)); -h_x(x, lambda, u*(lambda))]   (eqs. 22, 25, 27)
 
 On an extremal (u minimises H, so H_u = 0) the Jacobian of t_f g is exactly [[A, -B], [-C, -A^T]]
-(docs/vtd-nog.md, sec. 2) and d(t_f g)/dt_f = g = [D; -E]: the sensitivity S = dz(tau)/d[z(tau0), t_f]
+(docs/design/vtd-nog.md, sec. 2) and d(t_f g)/dt_f = g = [D; -E]: the sensitivity S = dz(tau)/d[z(tau0), t_f]
 (14 x 15) obeys S' = J S + [0 | g].
 """
 from __future__ import annotations

@@ -79,7 +79,7 @@ class TabulatedThrust:
 
     Both columns are interpolated by not-a-knot cubic splines (scipy CubicSpline), so the thrust
     acceleration a(t) = T(t) / m(t) is twice continuously differentiable: the ground tools need
-    a' and a'' (eqs. 25 and the accessory problem, docs/vtd-nog.md). Outside the table the motor is
+    a' and a'' (eqs. 25 and the accessory problem, docs/design/vtd-nog.md). Outside the table the motor is
     burnt out: T = 0 after the last time (the truth model), m held at its last value. The ground
     tools refuse an arc that leaves the table.
     """
@@ -293,8 +293,8 @@ class Cpd:
     roll_torque_rate_bound_n_m_s: float
     deflection_rate_bound_rad_s: float
     flown: str                      #: "printed" or "rederived"
-    braking_margin: float           #: braking-curve cap (docs/cpd.md), 0 = the paper's law
-    feedforward: bool               #: feed-forward of the commanded turn rate (docs/cpd.md)
+    braking_margin: float           #: braking-curve cap (docs/design/cpd.md), 0 = the paper's law
+    feedforward: bool               #: feed-forward of the commanded turn rate (docs/design/cpd.md)
     feedforward_rate_max_rad_s: float  #: clip of the feed-forward rate
     printed: CpdGains | None        #: eq. (54) as printed; None when the scenario has none
     rederived: CpdGains | None      #: sec. 5.3 rule; None: derived by the ground tools
@@ -390,7 +390,7 @@ THRUST_MODELS = ("constant", "tabulated")  #: [thrust] model: sec. 6 formula or 
 
 @dataclasses.dataclass(frozen=True)
 class EndGame:
-    """Guard of the VTD-NOG law near cut-off (docs/vtd-nog.md, "End-game"); kernel ogk_nog_config_t."""
+    """Guard of the VTD-NOG law near cut-off (docs/design/vtd-nog.md, "End-game"); kernel ogk_nog_config_t."""
 
     dtf_max_s: float | None   #: bound on |dt_f|; None: derived from t_f* (derive.resolve)
     du_max_rad: float         #: bound on the angle between corrected and nominal thrust directions
@@ -657,8 +657,8 @@ def _read_cpd(sec: Section) -> Cpd:
 
 
 def _read_acceptance(sec: Section, target_radius_m: float) -> Acceptance:
-    """Failure criterion of a run (docs/sil.md): |error| above these is a failed injection.
-    STATED DEFAULT (docs/adding-a-mission.md, "The scenario header"): radius_error_m = 1000 m,
+    """Failure criterion of a run (docs/guides/sil.md): |error| above these is a failed injection.
+    STATED DEFAULT (docs/guides/adding-a-mission.md, "The scenario header"): radius_error_m = 1000 m,
     declination_error_rad = radius_error_m / R_f, velocity_error_m_s = 10 m/s."""
     radius = sec.number("radius_error_m", 1000.0, positive=True)
     acc = Acceptance(

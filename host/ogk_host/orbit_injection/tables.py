@@ -22,7 +22,7 @@ The flight code (kernel/include/ogk/nog.h) loads one bundle instead:
 
 Command: `python -m ogk_host.orbit_injection.tables [OUT_DIR] [--scenario F]` writes the six .ogkt
 files, the bundle nog_bundle.ogkt and a manifest.json into OUT_DIR (default
-`default_table_dir`: build/tables/<name>-<sha12>). Provenance (docs/vtd-nog.md sec. 7): made_by,
+`default_table_dir`: build/tables/<name>-<sha12>). Provenance (docs/design/vtd-nog.md sec. 7): made_by,
 scenario name/path/SHA-256, t_f*, f0*, residuals, grid (capacity from the kernel, measured
 interpolation error), derived settings with their source, each file's SHA-256 and CRC.
 `write_nog_tables` never writes into a directory it did not make; `check_tables` verifies a

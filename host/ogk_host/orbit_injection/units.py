@@ -5,7 +5,7 @@ VU = DU / TU. For the paper's data: DU = 42164 km, TU = 13713.4 s, VU = 3074.7 m
 
 State x = [r, xi, phi, v_r, v_t, v_n, t] has the scale X = [DU, 1, 1, VU, VU, VU, TU]. Costates are
 normalised so that the Hamiltonian per unit time, h = lambda^T dx/dt, equals -1 (minimum time, see
-docs/vtd-nog.md); h is dimensionless in both systems, so lambda_i[SI] = lambda_i[canonical] * TU / X_i.
+docs/design/vtd-nog.md); h is dimensionless in both systems, so lambda_i[SI] = lambda_i[canonical] * TU / X_i.
 """
 from __future__ import annotations
 

@@ -4,7 +4,7 @@ State x = (r, theta, v_r, v_theta, m) in the rotating polar frame centred at the
 thrust angle from the local vertical (0: radially outward, pi/2: along the circumferential direction,
 sec. 4.1.1), thrust T along alpha. No perturbation: (f_perturb) = 0 in the predictive model (sec. 3.1).
 
-Normalised units (docs/nmpc.md, "Units"):
+Normalised units (docs/design/nmpc.md, "Units"):
     LU = r_E = 149597871 km (Table A.1), mu_sun = 1, so TU = sqrt(LU^3 / mu) = 5.0226429e6 s = 58.132 d,
     VU = LU / TU = 29.784692 km/s; MU = m0 = 1500 kg; force unit MU LU / TU^2.
 """
@@ -126,7 +126,7 @@ def rk4_interval(x0: FloatArray, alpha0: float, alpha1: float, h: float, steps: 
 
 
 # ---------------------------------------------------------------------------------------------------------
-# Throttle model (docs/nmpc.md, "Throttle and the solar-electric engine"), shared by the NLP
+# Throttle model (docs/design/nmpc.md, "Throttle and the solar-electric engine"), shared by the NLP
 # (ogk_host.rendezvous.nlp) and the truth model (harness/ogk/missions/rendezvous/truth.py).
 #
 # Control (alpha, w), throttle w in [0, 1]: T = w T_max(r), dm/dt = -w mdot_max(r).
@@ -224,7 +224,7 @@ def casadi_throttle_rhs(engine: Engine) -> ca.Function:
 class ThirdBody:
     """A planet on a circular orbit (normalised): position r_i (cos th_i(t), sin th_i(t)), th_i(t) =
     theta0 + rate t. `softening` (LU, default 0 = point mass) replaces |d|^3 by (|d|^2 + eps^2)^(3/2)
-    (Plummer): only the predictive model's Mars uses it (docs/nmpc.md), the truth never does."""
+    (Plummer): only the predictive model's Mars uses it (docs/design/nmpc.md), the truth never does."""
 
     mu: float
     radius: float

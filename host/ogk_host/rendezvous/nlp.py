@@ -1,8 +1,8 @@
 """One NMPC solve of the Earth-to-Mars rendezvous as a parametric NLP (Starek & Kolmanovsky 2012, secs. 2.1,
 2.3, 3.1-3.2), for the three test cases of sec. 4: constant-thrust minimum time, bounded-thrust
-nuclear-electric and solar-electric minimum fuel. Normalised units (docs/nmpc.md, "Units").
+nuclear-electric and solar-electric minimum fuel. Normalised units (docs/design/nmpc.md, "Units").
 
-Transcription (docs/nmpc.md, "The NMPC NLP"; the flight-code SQP solves the same one):
+Transcription (docs/design/nmpc.md, "The NMPC NLP"; the flight-code SQP solves the same one):
 
   parameters   p = (t0, x0): the absolute time [TU] and state of node 0, so one built NLP is re-solved from
                any state (the MPC's measured state) without rebuilding.
@@ -26,7 +26,7 @@ Transcription (docs/nmpc.md, "The NMPC NLP"; the flight-code SQP solves the same
 
 IPOPT (CasADi 3.8, exact Hessian): tol 1e-10 / constr_viol_tol 1e-12 by default (the open loop); an MPC
 passes looser ones. A warm solve (`duals` given) uses warm_start_init_point = yes with the bound pushes at
-1e-9 and mu_init = `warm_mu_init` (1e-8 by default, see docs/nmpc.md), from the guess AND its duals.
+1e-9 and mu_init = `warm_mu_init` (1e-8 by default, see docs/design/nmpc.md), from the guess AND its duals.
 One solver is built (lazily) and cached per (node count, warm) pair: SNNS changes N every step.
 
 `third_bodies` (not in the paper, whose predictive model has no perturbation; sec. 3.1): Earth and Mars
@@ -357,7 +357,7 @@ class RendezvousNlp:
 
 
 def min_time_guess(nlp: RendezvousNlp) -> Plan:
-    """ocp's documented guess (docs/nmpc.md, "Initial guess": phase-matched, alpha = 135 deg, 225 deg for an
+    """ocp's documented guess (docs/design/nmpc.md, "Initial guess": phase-matched, alpha = 135 deg, 225 deg for an
     inward transfer) with t_f sized from the vehicle and the transfer (`ocp.guess_transfer_days`: 370 d for
     the paper's) as a Plan from t0 = 0, full throttle when nu = 2."""
     from .ocp import DEFAULT_GUESS_SHAPE, guess_alpha_rad, guess_transfer_days, phase_matched_guess
@@ -368,14 +368,14 @@ def min_time_guess(nlp: RendezvousNlp) -> Plan:
     return Plan(t0=0.0, horizon=g.t_f, states=g.states, controls=controls)
 
 
-#: Throttle of the min-fuel guess at every node (docs/nmpc.md, "Minimum fuel"): from the min-time optimum's
+#: Throttle of the min-fuel guess at every node (docs/design/nmpc.md, "Minimum fuel"): from the min-time optimum's
 #: states and angles, 0.5 (mid-box) reaches the best optimum found for both engines; 1 (the min-time
 #: throttle) does for NEP but stops the SEP case at a worse local optimum (211.32 kg at the deadline).
 MIN_FUEL_GUESS_THROTTLE = 0.5
 
 
 def min_fuel_guess(scenario: RendezvousScenario, nlp: RendezvousNlp | None = None) -> tuple[Plan, NlpResult]:
-    """The documented guess of the open-loop minimum-fuel problems (docs/nmpc.md, "Minimum fuel"): the
+    """The documented guess of the open-loop minimum-fuel problems (docs/design/nmpc.md, "Minimum fuel"): the
     minimum-time optimum of the same engine (objective "min-time", full throttle; from `min_time_guess`):
     its node states, angles and horizon, with the throttle MIN_FUEL_GUESS_THROTTLE at every node. IPOPT
     then opens the coast arcs. Returns (guess, the min-time result)."""
@@ -392,7 +392,7 @@ def min_fuel_guess(scenario: RendezvousScenario, nlp: RendezvousNlp | None = Non
 
 def open_loop(scenario: RendezvousScenario, free: bool = False, third_bodies: bool = False,
               nodes: int | None = None) -> tuple[RendezvousNlp, NlpResult, NlpResult | None]:
-    """The open loop of a scenario (docs/nmpc.md): min-time from ocp's documented guess; min-fuel from the
+    """The open loop of a scenario (docs/design/nmpc.md): min-time from ocp's documented guess; min-fuel from the
     min-time optimum at full throttle, arrival by [ocp] transfer_time_max_s unless `free`. Returns (the NLP,
     its result, the min-time result used as min-fuel's guess or None)."""
     deadline = None if free else scenario.ocp.transfer_time_max_s
@@ -409,7 +409,7 @@ def open_loop(scenario: RendezvousScenario, free: bool = False, third_bodies: bo
 def main(argv: list[str] | None = None) -> int:
     """`python -m ogk_host.rendezvous.nlp [SCENARIO] [--free] [--third-bodies]`: the open loop of the
     scenario through RendezvousNlp (min-time: from ocp's documented guess; min-fuel: from the min-time
-    optimum at full throttle, arrival by [ocp] transfer_time_max_s unless --free), docs/nmpc.md's figures."""
+    optimum at full throttle, arrival by [ocp] transfer_time_max_s unless --free), docs/design/nmpc.md's figures."""
     import argparse
 
     from .scenario import load_scenario

@@ -1,6 +1,6 @@
 """Open-loop minimum-time Earth-to-Mars rendezvous (Starek & Kolmanovsky 2012, secs. 2.1, 2.3, 4.1.1).
 
-Transcription (docs/nmpc.md, "Formulation"): free final time t_f, normalised time tau = t / t_f in [0, 1],
+Transcription (docs/design/nmpc.md, "Formulation"): free final time t_f, normalised time tau = t / t_f in [0, 1],
 N subintervals of equal length, the thrust angle piecewise linear between its N + 1 node values (sec. 2.3),
 direct multiple shooting with `rk4_steps_per_interval` RK4 steps per subinterval (the angle evaluated at
 the RK4 stage times), constant thrust T_0 and mass flow of eq. (13), exact terminal conditions of eq. (5):
@@ -24,7 +24,7 @@ from .scenario import RendezvousScenario, hohmann
 
 FloatArray = NDArray[np.float64]
 
-#: The documented guess (docs/nmpc.md, "Initial guess"): t_f guess, radius-profile exponent and thrust
+#: The documented guess (docs/design/nmpc.md, "Initial guess"): t_f guess, radius-profile exponent and thrust
 #: angle. 135 deg (prograde with an inward component) was measured the most robust of 45 / 90 / 135 deg
 #: over t_f guesses of 300-460 d (20 of 21 starts reach the best optimum found, 10 of 21 with 90 deg).
 DEFAULT_GUESS_TF_DAYS = 370.0
@@ -33,7 +33,7 @@ DEFAULT_GUESS_ALPHA_RAD = 0.75 * math.pi
 
 
 #: The paper's transfer (Table A.1: Earth to Mars, 0.5 N on 1500 kg): its Hohmann time is the time scale
-#: the documented 370-day guess belongs to (docs/nmpc.md, "Any circular rendezvous").
+#: the documented 370-day guess belongs to (docs/design/nmpc.md, "Any circular rendezvous").
 PAPER_ORBITS_M = (1.49597871e11, 2.279391e11)
 PAPER_SUN_MU = 1.32712440018e20
 #: The guess never plans to burn more than this fraction of the propellant (its mass stays above dry).
@@ -88,7 +88,7 @@ class OcpResult:
     iterations: int
     solve_time_s: float         #: wall clock of the IPOPT call
     time_days: FloatArray       #: node times (N+1,)
-    states: FloatArray          #: node states (N+1, 5), normalised (docs/nmpc.md, "Units")
+    states: FloatArray          #: node states (N+1, 5), normalised (docs/design/nmpc.md, "Units")
     controls_rad: FloatArray    #: node thrust angles (N+1,) [rad]
     guess: str                  #: label of the initial guess
 
@@ -122,7 +122,7 @@ class MinTimeOcp:
     `max_sweep_rad` (not in the paper, default off): bounds |alpha_{k+1} - alpha_k|, the angle swept
     linearly over one subinterval. Without it the angle may wind through whole turns inside a subinterval,
     which averages the thrust down (a throttle the constant-thrust model does not have): every local
-    optimum but the best one found winds so (docs/nmpc.md, "Windings")."""
+    optimum but the best one found winds so (docs/design/nmpc.md, "Windings")."""
 
     def __init__(self, scenario: RendezvousScenario, nodes: int | None = None,
                  rk4_steps: int | None = None, max_sweep_rad: float | None = None) -> None:
@@ -208,7 +208,7 @@ class MinTimeOcp:
 
 
 def default_guess(ocp: MinTimeOcp) -> Guess:
-    """The documented guess (docs/nmpc.md): phase-matched, t_f = 370 d, smoothstep radius, alpha = 135 deg."""
+    """The documented guess (docs/design/nmpc.md): phase-matched, t_f = 370 d, smoothstep radius, alpha = 135 deg."""
     return phase_matched_guess(ocp.model, ocp.nodes, DEFAULT_GUESS_TF_DAYS, DEFAULT_GUESS_SHAPE,
                                DEFAULT_GUESS_ALPHA_RAD, label="documented")
 
@@ -217,7 +217,7 @@ def multi_start_guesses(ocp: MinTimeOcp) -> list[Guess]:
     """A handful of deterministic guesses (8): t_f guesses across and beyond the band of local optima
     (300-460 d), early / late climbs (shape 0.5, 2) and thrust angles tilted off circumferential
     (45 and 135 deg). Each of them, alone, was measured to converge to a different optimum or to the
-    documented guess's (docs/nmpc.md, "Multi-start")."""
+    documented guess's (docs/design/nmpc.md, "Multi-start")."""
     spec = [(300.0, 1.0, 0.25), (330.0, 1.0, 0.5), (350.0, 2.0, 0.5), (400.0, 2.0, 0.5),
             (460.0, 1.0, 0.25), (370.0, 0.5, 0.75), (430.0, 0.5, 0.25), (300.0, 0.5, 0.75)]
     return [phase_matched_guess(ocp.model, ocp.nodes, tf, shape, alpha * math.pi)
@@ -225,7 +225,7 @@ def multi_start_guesses(ocp: MinTimeOcp) -> list[Guess]:
 
 
 def grid_guesses(ocp: MinTimeOcp) -> list[Guess]:
-    """The wider survey of docs/nmpc.md: t_f guess 300-460 d (7 values) x shape 0.5, 1, 2 x angle
+    """The wider survey of docs/design/nmpc.md: t_f guess 300-460 d (7 values) x shape 0.5, 1, 2 x angle
     45, 90, 135 deg: 63 starts."""
     return [phase_matched_guess(ocp.model, ocp.nodes, tf, shape, alpha * math.pi)
             for tf in (300.0, 330.0, 350.0, 370.0, 400.0, 430.0, 460.0)
@@ -246,7 +246,7 @@ def multi_start(ocp: MinTimeOcp, guesses: list[Guess] | None = None,
 
 def main(argv: list[str] | None = None) -> int:
     """`python -m ogk_host.rendezvous.ocp [scenario] [--multi-start | --grid] [--max-sweep-pi A]`: the
-    figures of docs/nmpc.md."""
+    figures of docs/design/nmpc.md."""
     import argparse
 
     from .scenario import load_scenario

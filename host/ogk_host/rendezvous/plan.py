@@ -4,7 +4,7 @@ One plan is what one OCP solve returns and what the next solve starts from: N su
 h = horizon / N from the absolute time t0, the 5 node states (r, theta, v_r, v_theta, m) and the node
 controls, piecewise linear between the nodes (sec. 2.3). Control columns: 0 the thrust angle alpha [rad]
 from the local vertical; 1 (bounded-thrust and solar-electric cases only) the throttle w in [0, 1], the
-fraction of the engine's maximum thrust T_max(r) (docs/nmpc.md, "Throttle"). The same layout is the kernel's
+fraction of the engine's maximum thrust T_max(r) (docs/design/nmpc.md, "Throttle"). The same layout is the kernel's
 (ogk/nmpc.h), so a plan passes between the ground, the IPOPT peer and the flight code unchanged.
 """
 from __future__ import annotations

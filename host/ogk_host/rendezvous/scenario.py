@@ -1,10 +1,10 @@
 """Coplanar circular-orbit low-thrust rendezvous scenarios (Starek & Kolmanovsky 2012, Table A.1, is the
 first: Earth to Mars): TOML -> dataclasses. The target is the scenario's `[target]` (its `name`, orbit radius
 and phase), inward or outward of the departure orbit; the vehicle's dry mass is `[spacecraft] dry_mass_kg`
-(docs/nmpc.md, "Any circular rendezvous": the envelope and what is derived from the vehicle).
+(docs/design/nmpc.md, "Any circular rendezvous": the envelope and what is derived from the vehicle).
 
 Everything here is SI (m, s, kg, N, rad), as in scenarios/rendezvous_*.toml. The normalised units the
-solvers use are built by `dynamics.Units.for_scenario` (LU = r_E, mu_sun = 1, MU = m0; docs/nmpc.md).
+solvers use are built by `dynamics.Units.for_scenario` (LU = r_E, mu_sun = 1, MU = m0; docs/design/nmpc.md).
 """
 from __future__ import annotations
 
@@ -33,7 +33,7 @@ PAPER_RESULT_KEYS = ("open_loop_time_s", "open_loop_fuel_kg", "open_loop_max_com
                      "cncn_perturbed_time_s", "cncn_perturbed_fuel_kg", "cncn_perturbed_max_comp_fraction")
 
 
-#: The envelope the family states (docs/nmpc.md, "Any circular rendezvous"): target orbit radius over
+#: The envelope the family states (docs/design/nmpc.md, "Any circular rendezvous"): target orbit radius over
 #: the departure orbit radius, and the vehicle's initial thrust acceleration T / m0 [m/s^2].
 ENVELOPE_RADIUS_RATIO = (0.7, 1.55)
 ENVELOPE_ACCEL_M_S2 = (2.5e-4, 3.2e-3)
@@ -77,7 +77,7 @@ def _check_propellant(prop_s: Section, propulsion: "Propulsion", problem: "Probl
     lo, hi = ENVELOPE_ACCEL_M_S2
     if not lo <= accel <= hi:
         raise prop_s.error("thrust_max_n", f"T / m0 = {accel:.3g} m/s^2 is outside the envelope the family "
-                           f"states ({lo:g}-{hi:g} m/s^2; docs/nmpc.md, \"Any circular rendezvous\")")
+                           f"states ({lo:g}-{hi:g} m/s^2; docs/design/nmpc.md, \"Any circular rendezvous\")")
     r1, r2 = sorted((initial.radius_m, target.radius_m))
     dv_min, _ = hohmann(problem.sun_mu_m3_s2, r1, r2)
     ve = exhaust_velocity_max_m_s(propulsion, r1, r2)
@@ -132,7 +132,7 @@ class Dispersions:
 
     thrust_angle_sigma_rad: float       #: sigma_alpha_T [rad]
     #: How often the closed loop redraws the thrust-angle noise N(0, sigma_alpha_T) [s] (not in the paper,
-    #: which only says "pseudorandom"); 0 = once per MPC control subinterval (docs/nmpc.md, "Truth model").
+    #: which only says "pseudorandom"); 0 = once per MPC control subinterval (docs/design/nmpc.md, "Truth model").
     thrust_angle_draw_period_s: float
 
 
@@ -155,7 +155,7 @@ class SolarElectric:
     """Solar-electric engine, eq. (14): T_max(r) = b1 + b2 P_0 (a1 r^2 + a2 r + a3) / (r^4 (1 + a4 r)) with
     r in AU, and mass rate dm/dt = c1 + c2 P, P = (T - b1) / b2. The paper prints a_i, b_i, c_i without
     units; the scenario stores them in SI read with the units of Kim's model (mN, kW, mg/s), the only
-    reading under which T_0 = 0.5 N at 1 AU needs a plausible P_0 (13.9 kW; docs/nmpc.md)."""
+    reading under which T_0 = 0.5 N at 1 AU needs a plausible P_0 (13.9 kW; docs/design/nmpc.md)."""
 
     fit_length_unit_m: float            #: the unit of r in eq. (14): 1 AU [m]
     power_a1: float                     #: a1 [-]
@@ -217,7 +217,7 @@ class OcpSettings:
     rk4_steps_per_interval: int
     #: Open-loop minimum fuel: arrival no later than t_0 + this [s] (None: t_f free). The fuel is flat in t_f
     #: past a knee (~490 d NEP, ~530 d SEP) and free t_f stops at a guess-dependent local optimum anywhere
-    #: in 490-1700 d; the bound, just past the knee, cuts off the long branches (docs/nmpc.md, "Minimum fuel").
+    #: in 490-1700 d; the bound, just past the knee, cuts off the long branches (docs/design/nmpc.md, "Minimum fuel").
     transfer_time_max_s: float | None = None
 
 
@@ -231,7 +231,7 @@ NMPC_HESSIANS = ("bfgs", "exact")
 @dataclasses.dataclass(frozen=True)
 class NmpcSettings:
     """The closed loop of sec. 2.3 (`ogk nmpc`, harness/ogk/missions/rendezvous). The paper gives none of the
-    SNNS parameters (errata): the values in the scenario files are ours (docs/nmpc.md, "Closed loop")."""
+    SNNS parameters (errata): the values in the scenario files are ours (docs/design/nmpc.md, "Closed loop")."""
 
     strategy: str                       #: default strategy: "snns" (sec. 2.3.3) or "cncn" (sec. 2.3.1)
     doubling_threshold_percent: float   #: SNNS adopts 2N when its cost is lower by more than this [%]
@@ -246,11 +246,11 @@ class NmpcSettings:
     max_iter: int                       #: IPOPT max_iter per solve
     fuel_time_weight_kg_per_day: float = 0.0  #: min-fuel closed loop: J = fuel + w T (beyond the paper; 0 = its J)
     earth_keepout_radius_m: float = 0.0  #: flight solver: plan nodes and arcs stay this far from Earth (0: none)
-    #: flight solver, beyond the paper (docs/nmpc-flight.md, "Robustness"):
+    #: flight solver, beyond the paper (docs/design/nmpc-flight.md, "Robustness"):
     thrust_margin_percent: float = 0.0   #: the plan's engine is this much weaker than the nominal one [%]
     terminal_set_fraction: float = 0.0   #: the plan ends inside this fraction of the arrival test (0: eq. 5 exactly)
     departure_planet_in_model: str = "no"  #: "hill-sphere": Earth's gravity predicted until the flight leaves its Hill sphere
-    hessian: str = "bfgs"                #: flight solver's QP Hessian: "bfgs" (damped BFGS) or "exact" (docs/nmpc-flight.md)
+    hessian: str = "bfgs"                #: flight solver's QP Hessian: "bfgs" (damped BFGS) or "exact" (docs/design/nmpc-flight.md)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -357,7 +357,7 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
     if not ENVELOPE_RADIUS_RATIO[0] <= ratio <= ENVELOPE_RADIUS_RATIO[1] or abs(ratio - 1.0) < 0.05:
         raise target_s.error("radius_m", f"target / departure orbit radius {ratio:.4g} is outside the "
                              f"envelope the family states ({ENVELOPE_RADIUS_RATIO[0]:g}-"
-                             f"{ENVELOPE_RADIUS_RATIO[1]:g}, at least 5 % apart; docs/nmpc.md, "
+                             f"{ENVELOPE_RADIUS_RATIO[1]:g}, at least 5 % apart; docs/design/nmpc.md, "
                              f"\"Any circular rendezvous\")")
 
     craft_s = top.section("spacecraft")
@@ -481,7 +481,7 @@ def load_scenario(path: str | Path | None = None) -> RendezvousScenario:
 
 def paper_problem(scenario: RendezvousScenario) -> RendezvousScenario:
     """The scenario with the flight solver's robustness of [nmpc] off: no thrust margin, eq. (5) exactly,
-    no departure planet in the predictive model, no keep-out (docs/nmpc-flight.md, "Robustness"). It is
+    no departure planet in the predictive model, no keep-out (docs/design/nmpc-flight.md, "Robustness"). It is
     the paper's NMPC problem, the one the ground NLP (nlp.py) and the peers of `make bench` solve."""
     return dataclasses.replace(scenario, nmpc=dataclasses.replace(
         scenario.nmpc, thrust_margin_percent=0.0, terminal_set_fraction=0.0, departure_planet_in_model="no",
@@ -489,7 +489,7 @@ def paper_problem(scenario: RendezvousScenario) -> RendezvousScenario:
 
 
 def _read_acceptance(sec: Section, convergence: Convergence, propellant_kg: float) -> Acceptance:
-    """[acceptance]; STATED DEFAULT (docs/adding-a-mission.md, "The scenario header"): the arrival
+    """[acceptance]; STATED DEFAULT (docs/guides/adding-a-mission.md, "The scenario header"): the arrival
     condition of [convergence] (the target's sphere-of-influence radius, its velocity error) and the
     vehicle's propellant (initial_state.mass_kg - spacecraft.dry_mass_kg)."""
     acc = Acceptance(position_error_m=sec.number("position_error_m", convergence.target_soi_radius_m,

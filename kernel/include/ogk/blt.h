@@ -1,7 +1,7 @@
 /* ogk/blt.h -- bilinear tangent (BLT) constant-thrust guidance with a Newton-Raphson
  * predictor-corrector (NRPC) about a binary asteroid: Xiong & Wang (seed 002), sec. II.B
  * (the model, eqs. 4-10 and 13), sec. III.A (the BLT law, eq. 22) and sec. III.D (NRPC, eqs.
- * 61-76). Model, units and the arc/meeting-point structure: docs/blt.md.
+ * 61-76). Model, units and the arc/meeting-point structure: docs/design/blt.md.
  *
  * Normalised units of eq. (13) (with the erratum: TU = T_o / 2 pi): LU = separation,
  * omega = 1, G (M1 + M2) = 1; masses are fractions of the spacecraft's initial mass m0. */
@@ -68,7 +68,7 @@ extern "C" {
 #define OGK_BLT_FLAG_SAFE 0x20u       /* no solution held: the command is the safe command (engine off) */
 #define OGK_BLT_FLAG_GUESS_IMPACT 0x40u /* the guess itself hits a body: nothing to correct */
 
-/* The dynamical model (docs/blt.md, sec. 1); every term can be switched off with a zero. */
+/* The dynamical model (docs/design/blt.md, sec. 1); every term can be switched off with a zero. */
 typedef struct {
     double mu;                /* [-] M2 / (M1 + M2), in (0, 0.5] (must be set) */
     double body_radius[2];    /* [LU] impact radius of the primary, the secondary, > 0 (must be set) */

@@ -1,7 +1,7 @@
 /* ogk/cpd.h -- constrained PD (CPD) attitude control with thrust vectoring.
  *
  * Pontani & Celani 2021 (seeds/004), sections 2.2 and 5.1-5.4; design notes
- * and the deviations from the paper in docs/cpd.md.
+ * and the deviations from the paper in docs/design/cpd.md.
  *
  * Frames (all right-handed):
  *   c      inertial, c1-c2 plane = nominal orbit plane;
@@ -44,7 +44,7 @@ typedef enum {
     /* Default to fly. Rotation vector taking the body x axis onto the
      * commanded thrust direction, in body axes: e_y about y_b replaces
      * (Theta_c - Theta), e_z about z_b replaces (Psi_c - Psi). Independent of
-     * the roll angle, correct for any error up to 180 deg (docs/cpd.md). */
+     * the roll angle, correct for any error up to 180 deg (docs/design/cpd.md). */
     OGK_CPD_POINTING_BODY = 0,
     /* Eqs. (45)-(46) literally: e_y = Theta_c - Theta, e_z = wrap(Psi_c - Psi).
      * Valid near zero roll only: past ~90 deg of roll the pitch/yaw loops
@@ -62,7 +62,7 @@ typedef enum {
 
 /* Defaults (ogk_cpd_config_default): the paper's gains and limits as printed
  * (eq. 54 and sec. 6: k_px 21.6e3, k_dx 7.2e3, k_py = k_pz 21.6, k_dy = k_dz
- * 7.2, 30 N m, 0.65 deg, tau 0.1 s; see docs/cpd.md for the pitch/yaw gain
+ * 7.2, 30 N m, 0.65 deg, tau 0.1 s; see docs/design/cpd.md for the pitch/yaw gain
  * erratum), phi_c = 0, BODY pointing, braking cap and feed-forward off. */
 typedef struct {
     double k_px;          /* [N m/rad] roll proportional gain, eq. (45), > 0 */
@@ -79,7 +79,7 @@ typedef struct {
     double tau_z;         /* [s] TVC yaw actuator time constant, eq. (16), > 0 */
     double phi_c;         /* [rad] commanded roll Phi_c, in [-pi, pi] (0 in the paper) */
     ogk_cpd_pointing_t pointing; /* [-] pointing-error mode */
-    /* Braking-curve cap of the proportional term (not in the paper; docs/cpd.md):
+    /* Braking-curve cap of the proportional term (not in the paper; docs/design/cpd.md):
      * with a > 0 the PD law k_p e - k_d w is flown as k_d (w_c - w) with the
      * rate command w_c = sign(e) min(k_p |e| / k_d, sqrt(2 a |e|)), so a large
      * error is approached no faster than the saturated actuator can brake
@@ -89,7 +89,7 @@ typedef struct {
     double approach_accel_x; /* [rad/s^2] roll braking acceleration, >= 0 (0: off) */
     double approach_accel_y; /* [rad/s^2] pitch braking acceleration, >= 0 (0: off) */
     double approach_accel_z; /* [rad/s^2] yaw braking acceleration, >= 0 (0: off) */
-    /* Feed-forward of the commanded turn rate (not in the paper; docs/cpd.md):
+    /* Feed-forward of the commanded turn rate (not in the paper; docs/design/cpd.md):
      * the body-axis rate of the commanded thrust direction between two
      * consecutive steps, omega_c = (d_prev x d_now) / ff_period_s, is added to
      * the rate command of the pitch and yaw loops, k_d (w_c + omega_c - w),

@@ -1,5 +1,5 @@
 /* ogk/cutoff.h -- engine cut-off on the orbital energy, decided between
- * guidance samples (beyond Pontani & Celani 2021; docs/vtd-nog.md, "End-game").
+ * guidance samples (beyond Pontani & Celani 2021; docs/design/vtd-nog.md, "End-game").
  *
  * VTD-NOG predicts the cut-off time at each guidance sample (eq. 32,
  * t_k + (1 - tau_k) t_f^(k)). A thrust fluctuation after the last sample, or a

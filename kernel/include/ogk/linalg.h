@@ -28,7 +28,7 @@ extern "C" {
  * (|pivot| <= eps |A|) already do for any matrix whose norm exceeds
  * 1e-300 / eps (about 4.5e-285).
  * It bounds every division of the factorizations, which lets a non-relational
- * analysis prove them finite (docs/eva.md). */
+ * analysis prove them finite (docs/evidence/eva.md). */
 #define OGK_LA_PIVOT_MIN 1.0e-300
 
 /* Magnitude bound of the inputs: an entry of a matrix handed to a
@@ -45,7 +45,7 @@ extern "C" {
  * OGK_LA_VALUE_MAX every sum of the substitutions is below 1e306 (at most 15
  * products of a factor entry, <= 2^15 OGK_LA_VALUE_MAX with LU's growth, and
  * a solution entry), so no operation of the solves can overflow
- * (docs/linalg.md, docs/eva.md). The rcond of ogk_lu_factor and of the QR rank
+ * (docs/design/linalg.md, docs/evidence/eva.md). The rcond of ogk_lu_factor and of the QR rank
  * test is computed on A^-1 |A|_1 e_j, whose entries stay below this bound for
  * any rcond >= n / OGK_LA_SOLVE_MAX; a smaller rcond is reported as 0
  * (OGK_E_ILL_CONDITIONED either way). */

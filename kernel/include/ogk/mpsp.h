@@ -1,7 +1,7 @@
 /* ogk/mpsp.h -- Model Predictive Static Programming (MPSP) for bang-off-bang
  * low-thrust guidance, Wang & Topputo, Acta Astronautica 176 (2020),
  * sections 2.3 and 3.1-3.4, appendices A-C, with the errata listed in
- * docs/mpsp.md. Design, derivations and limits: docs/mpsp.md.
+ * docs/design/mpsp.md. Design, derivations and limits: docs/design/mpsp.md.
  *
  * Dynamics (eq. 16), normalised units (e.g. the paper's LU, TU, MU of Table 1):
  *   X = [r(3), v(3), m, lambda_m],  U = lambda_v(t) = P(t) W      (eqs. 36-37)
@@ -30,7 +30,7 @@
  *
  * Memory: everything lives in ogk_mpsp_t (199 KiB with the default limits);
  * no heap, no globals, every loop bounded. Stack: about 4.5 KiB worst case
- * (docs/mpsp.md). */
+ * (docs/design/mpsp.md). */
 #ifndef OGK_MPSP_H
 #define OGK_MPSP_H
 
@@ -106,7 +106,7 @@ extern "C" {
 #define OGK_MPSP_BASIS_COSINE 1u  /* 1/2, cos k theta, k = 1..2n (even extension) */
 
 /* Sensitivity sweeps (ogk_mpsp_config_t.sens_sweep): how ogk_mpsp_sensitivity
- * carries dY/dX back over one RK4 step (docs/mpsp.md, sections 3 and 8).
+ * carries dY/dX back over one RK4 step (docs/design/mpsp.md, sections 3 and 8).
  * The residual is always that of the exact propagation, so the sweep only
  * sets Newton's rate of convergence, not the accuracy of the solution. */
 #define OGK_MPSP_SWEEP_RK4 0u  /* exact derivative of the RK4 step (four stages; B_v sampled at nodes and midpoints) */

@@ -2,9 +2,9 @@
  * rendezvous with a target on a circular orbit (Starek & Kolmanovsky 2012,
  * secs. 2-3: the CNCN and SNNS strategies), solved by an SQP of our own on a
  * direct multiple-shooting transcription. Design, derivations, errata and
- * measured costs: docs/nmpc.md (section "Flight solver").
+ * measured costs: docs/design/nmpc.md (section "Flight solver").
  *
- * Units: a normalised set documented by the scenario (docs/nmpc.md: LU = r_E,
+ * Units: a normalised set documented by the scenario (docs/design/nmpc.md: LU = r_E,
  * TU = sqrt(LU^3 / mu_sun), MU = m0); every field says which. Time is absolute
  * (t = 0 at departure), so the target and third bodies follow their circular
  * ephemerides phi(t) = phi_0 + rate t.
@@ -127,7 +127,7 @@ extern "C" {
 #define OGK_NMPC_POWER_SOLAR 1u      /* eq. (14): T_max(r), mdot_max(r) from p(r) */
 /* ogk_nmpc_config_t.hessian */
 #define OGK_NMPC_HESSIAN_BFGS 0u     /* damped BFGS (Powell), carried from solve to solve (the default) */
-#define OGK_NMPC_HESSIAN_EXACT 1u    /* second order of the discrete map, convexified (docs/nmpc-flight.md) */
+#define OGK_NMPC_HESSIAN_EXACT 1u    /* second order of the discrete map, convexified (docs/design/nmpc-flight.md) */
 /* ogk_nmpc_config_t.strategy */
 #define OGK_NMPC_SNNS 0u             /* shrinking number of nodes with subdivision (sec. 2.3.3) */
 #define OGK_NMPC_CNCN 1u             /* constant number of control nodes (sec. 2.3.1) */
@@ -169,7 +169,7 @@ typedef struct {
                                                  *      whose measured state is farther than this from its centre and on an escape orbit from
                                                  *      it (two-body energy >= 0; its ephemeris stays, for the keep-out): a departure planet
                                                  *      modelled only while it matters, inside its Hill sphere or bound to it
-                                                 *      (docs/nmpc-flight.md, "Robustness"), >= 0 (0: never, the default) */
+                                                 *      (docs/design/nmpc-flight.md, "Robustness"), >= 0 (0: never, the default) */
     /* target: circular orbit (eqs. 5-6) */
     double target_radius;       /* [LU] R_T, > 0; must be set */
     double target_phase0;       /* [rad] theta_T at t = 0 */
@@ -178,7 +178,7 @@ typedef struct {
                                  *     |v_r|, |v_theta - v_T| at t_f within these half-widths, each >= 0; all 0
                                  *     (the default): eq. (5) exactly, as the paper. Beyond the paper: with eq. (5)
                                  *     exact a disturbed minimum-time plan has no slack near the end and its re-solve
-                                 *     jumps to another branch (docs/nmpc-flight.md, "Robustness") */
+                                 *     jumps to another branch (docs/design/nmpc-flight.md, "Robustness") */
     /* transcription */
     uint32_t objective;         /* [-] OGK_NMPC_MIN_TIME or OGK_NMPC_MIN_FUEL */
     double time_weight;         /* [MU/TU] minimum fuel only: J = m_0 - m_N + time_weight T, >= 0 (default 0: the paper's) */
@@ -199,7 +199,7 @@ typedef struct {
                                  *     OGK_NMPC_HESSIAN_EXACT (sum_k mu_k^T d2F_k of the RK4 maps, condensed,
                                  *     convexified along the eq. (5) normals, the scaled identity for an
                                  *     iteration where that is not enough;
-                                 *     converges in the interior-point peers' iterations: docs/nmpc-flight.md) */
+                                 *     converges in the interior-point peers' iterations: docs/design/nmpc-flight.md) */
     double hessian_init;        /* [-] scale of the first BFGS matrix (identity times it; also the QP's Hessian after a
                                  *     failed factorisation), > 0 (default 1) */
     double step_max_alpha;      /* [rad] bound on one SQP step of a node angle, > 0 (default 1) */
@@ -279,7 +279,7 @@ typedef struct {
     double sens_ts[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                  /* dF_k/dt_start (0 without attracting bodies) */
     /* what subinterval k's sensitivities above were computed from (X_k, U_k, U_k+1, h, and t_start
      * with an attracting body) and the predictive model they used: an interval whose inputs are the
-     * same bits is not swept again (a warm start's shifted intervals; docs/nmpc-flight.md, 2c) */
+     * same bits is not swept again (a warm start's shifted intervals; docs/design/nmpc-flight.md, 2c) */
     double sens_key[OGK_NMPC_MAX_NODES * OGK_NMPC_SENS_KEY];
     double sens_model[OGK_NMPC_SENS_MODEL]; /* the model of every key (keys all 0, matching no interval, after a change) */
     /* the keep-out along subinterval k's arc, from the same sweep as its sensitivities: per body b the
@@ -345,7 +345,7 @@ ogk_status ogk_nmpc_reset(ogk_nmpc_t *ctx);
  * rejected value leaves the context as it was): the bounds of T of the
  * solves and replans that follow, 0 < horizon_min < horizon_max [TU] (a
  * guidance that keeps a final time t_f* narrows them about t_f* - t before
- * each replan: docs/nmpc-problem.md, "Fixed final time"), and the scale of
+ * each replan: docs/design/nmpc-problem.md, "Fixed final time"), and the scale of
  * the BFGS matrix the next cold solve starts from, > 0 [-]. The plan is
  * untouched: the next solve's step bounds move a plan's T into new bounds,
  * but from a converged plan a move beyond its accuracy fails the line

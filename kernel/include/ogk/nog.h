@@ -1,5 +1,5 @@
 /* ogk/nog.h -- variable-time-domain neighboring optimal guidance (VTD-NOG),
- * Pontani & Celani (2021), section 4, with the formulation of docs/vtd-nog.md
+ * Pontani & Celani (2021), section 4, with the formulation of docs/design/vtd-nog.md
  * (real time t as a 7th state, parameter a = t_f).
  *
  * Ground side (host/ogk_host/orbit_injection): the minimum-time nominal and, on a grid
@@ -18,7 +18,7 @@
  *   and the thrust angles from the velocity costates, eq. (27) -- to first
  *   order the same as eq. (30), since H_ux = H_ua = 0 on this nominal, but it
  *   always yields a unit thrust direction.
- * End-game (the paper is silent, docs/vtd-nog.md): no new correction once
+ * End-game (the paper is silent, docs/design/vtd-nog.md): no new correction once
  * 1 - tau_k < tau_freeze or tau_k is past the last gain node; |dt_f| clipped
  * to dtf_max_s; the corrected thrust direction kept within du_max_rad of the
  * nominal one by scaling the costate correction.
@@ -110,7 +110,7 @@ typedef struct {
  * otherwise) and the target must store a double as the file does, little-endian
  * (x86-64 and Cortex-M7 do; on a big-endian target such as SPARC/LEON or
  * PowerPC a valid image gives OGK_E_BYTE_ORDER: decode it with
- * ogk_nog_table_load instead, docs/ports.md). The payload
+ * ogk_nog_table_load instead, docs/guides/ports.md). The payload
  * starts at offset OGK_TABLE_HEADER_SIZE = 48, a multiple of 8, so an aligned
  * buffer aligns every value. On failure the view is zeroed (unusable) and the
  * specific code returned. Every call (also with buf NULL or failing) bumps
@@ -278,7 +278,7 @@ ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau);
 
 /* ---------------------------------------------------------------------------
  * Deprecated (removed in 0.2): the names before issue 33's uniform naming
- * (docs/deprecations.md). Thin wrappers of the new names, same results.
+ * (docs/guides/deprecations.md). Thin wrappers of the new names, same results.
  * ------------------------------------------------------------------------- */
 
 /* Deprecated (removed in 0.2): ogk_nog_thrust_cmd, the thrust-command

@@ -2,7 +2,7 @@
  * problem as a table of callbacks and the caller's data, apart from the SQP
  * that solves it (ogk/nmpc.h: its settings, workspace and strategies).
  *
- * The class of problems (docs/nmpc-problem.md). A planar low-thrust vehicle:
+ * The class of problems (docs/design/nmpc-problem.md). A planar low-thrust vehicle:
  *  - the state x (OGK_OCP_NX = 5): two position coordinates, two velocity
  *    coordinates, the mass (index 4), in the problem's normalised units;
  *  - the controls u (nu = 1 or 2 per node, linear over each subinterval):

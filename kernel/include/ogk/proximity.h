@@ -2,7 +2,7 @@
  * the Clohessy-Wiltshire equations in the target's Hill frame with a
  * throttled engine, a hold point reached at rest and keep-out discs about
  * the target, solved by the NMPC's SQP and strategies (ogk/nmpc.h) as the
- * second user of its problem interface (ogk/ocp.h; docs/nmpc-problem.md).
+ * second user of its problem interface (ogk/ocp.h; docs/design/nmpc-problem.md).
  *
  * Model (normalised: the scenario documents its units; the harness uses
  * LU = 1 km, TU = 1 / n, MU = the initial mass, so mean_motion = 1):
@@ -59,7 +59,7 @@ typedef struct {
 /* The problem's callback table (ogk/ocp.h) over an ogk_prox_model_t: for a
  * caller who runs the NMPC directly (ogk_nmpc_init_problem), whose data must
  * then be a validated ogk_prox_model_t (the callbacks convert it back:
- * docs/misra-deviations.md, D10). */
+ * docs/evidence/misra-deviations.md, D10). */
 extern const ogk_ocp_problem_t ogk_prox_problem;
 
 /* Defaults: the solver's of ogk_nmpc_config_default with the throttled

@@ -1,6 +1,6 @@
 /* ogk/qp.h -- dense strictly convex quadratic programming (the QP of the
  * NMPC's SQP, ogk/nmpc.h), by the dual active-set method of Goldfarb & Idnani
- * (Math. Programming 27, 1983). Design and measured cost: docs/qp.md.
+ * (Math. Programming 27, 1983). Design and measured cost: docs/design/qp.md.
  *
  *   minimise    1/2 x^T H x + g^T x
  *   subject to  A_eq x  = b_eq          (m_eq rows)
@@ -69,7 +69,7 @@ typedef struct {
     size_t n_active;              /* [-] active constraints at the solution, equalities included */
 } ogk_qp_solution_t;
 
-/* Numerical tolerances (all relative; docs/qp.md):
+/* Numerical tolerances (all relative; docs/design/qp.md):
  * FEAS  a constraint a^T x >= b (or a bound, a = +-e_i) is violated when
  *       a^T x - b < -OGK_QP_FEAS_TOL (|b| + |a|_2 |x|_2); a dependent equality
  *       row is consistent when |a^T x - b| is within the same tolerance;

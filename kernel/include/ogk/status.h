@@ -12,7 +12,7 @@
  * evaluated in double (C99 5.2.4.2.2, FLT_EVAL_METHOD 0). With excess
  * precision (x87 without SSE: FLT_EVAL_METHOD 2) the same source gives other
  * answers at those boundaries (issue 22: 8 unit tests fail), so such a build
- * is refused here rather than flown (docs/ports.md, "Floating-point
+ * is refused here rather than flown (docs/guides/ports.md, "Floating-point
  * evaluation"). A C99 <float.h> always defines the macro; testing defined()
  * first only spares analysers that read no system header (cppcheck), which
  * would otherwise stop at the #error and report nothing. */

@@ -1,6 +1,6 @@
 /* ogk/terminal.h -- terminal steering along the velocity to be gained, for
  * the last seconds of an injection burn into a circular orbit (beyond
- * Pontani & Celani 2021; docs/vtd-nog.md, "End-game").
+ * Pontani & Celani 2021; docs/design/vtd-nog.md, "End-game").
  *
  * Near cut-off the VTD-NOG gains grow like 1/time-to-go^3 and, in long burns,
  * the variable time domain reaches tau = 1 while real time is left: the last
@@ -36,9 +36,9 @@
  * 1 / T^2 and the plan's turn at the end is more than an attitude loop
  * follows, so from T = shape_hold_s on the window steers along v_go (latched;
  * the position miss left is then about x' shape_hold_s / 2, with x' small).
- * Measured against flying the frozen plan open loop to its end: docs/vtd-nog.md.
+ * Measured against flying the frozen plan open loop to its end: docs/design/vtd-nog.md.
  *
- * Turn limit (turn_accel_rad_s2 > 0; beyond the paper, docs/vtd-nog.md,
+ * Turn limit (turn_accel_rad_s2 > 0; beyond the paper, docs/design/vtd-nog.md,
  * "Terminal steering within the vehicle's turn rate"). Thrust along v_go asks
  * for no turn (above); only the shaping does: the plan's direction leaves v_go
  * by the tilt whose tangent is k |Q| / |v_go|, Q = 3 x' + 6 x / T per axis (the

@@ -3,7 +3,7 @@
  *
  * The frames (OGK_FRAME_RTN, _INERTIAL, _SYNODIC) and the one angle
  * convention are documented at ogk_frame_t and ogk_thrust_cmd_t in
- * ogk/types.h, and in docs/kernel-core.md, "Thrust commands":
+ * ogk/types.h, and in docs/design/kernel-core.md, "Thrust commands":
  *   u_rtn = (cos beta sin alpha, cos beta cos alpha, sin beta),
  *   alpha = atan2(u_r, u_t) in (-pi, pi], beta = atan2(u_n, hypot(u_r, u_t))
  *   in [-pi/2, pi/2] (alpha = 0 along +-n, where it is undefined).

@@ -7,8 +7,8 @@
  * ogk_cpd_input_from_thrust_cmd, so any law can feed CPD. The helpers that
  * build, check and convert the command are in ogk/thrust_cmd.h. The contract
  * every law follows (config_default, init, reset, step; the init marker) is in
- * docs/adding-a-law.md; the frames and the angle convention in
- * docs/kernel-core.md, "Thrust commands". */
+ * docs/guides/adding-a-law.md; the frames and the angle convention in
+ * docs/design/kernel-core.md, "Thrust commands". */
 #ifndef OGK_TYPES_H
 #define OGK_TYPES_H
 

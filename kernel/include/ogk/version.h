@@ -10,7 +10,7 @@ extern "C" {
 
 /* Numeric version for integrators (compile-time checks, the Python
  * bindings); not used inside the kernel: MISRA deviation D2 (rule 2.5,
- * docs/misra-deviations.md). */
+ * docs/evidence/misra-deviations.md). */
 #define OGK_VERSION_MAJOR 0
 #define OGK_VERSION_MINOR 1
 #define OGK_VERSION_PATCH 0

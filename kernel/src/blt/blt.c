@@ -1,7 +1,7 @@
 /* blt.c -- ogk_blt: configuration, the NRPC corrector of sec. III.D (eq. 64 with the paper's
  * step-length search and impact back-off) and the damped corrector beyond the paper
  * (Levenberg-Marquardt on the same minimum-norm problem), evaluation and the thrust command.
- * Design notes: docs/blt.md. */
+ * Design notes: docs/design/blt.md. */
 #include "blt_internal.h"
 #include "../newton_internal.h"
 #include "ogk/internal/blt_test.h"
@@ -662,7 +662,7 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
         rep->iterations = iterations;
         rep->propagations = propagations;
         /* HUGE_VAL when no error vector exists (bad input, guess hits a body): the
-         * infinity is made only on that path (docs/eva.md, BLT) */
+         * infinity is made only on that path (docs/evidence/eva.md, BLT) */
         rep->err_norm0 = have_e ? e_norm0 : HUGE_VAL;
         if (st != OGK_OK) {
             rep->err_norm = have_e ? e_norm : HUGE_VAL;

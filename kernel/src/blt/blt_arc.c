@@ -169,7 +169,7 @@ static void blt_activate_segment(ogk_blt_t *ctx, double *y, uint32_t k)
 }
 
 /* Right-hand side of the state and, when nu > 0, of the nu carried sensitivity columns (6 entries
- * each, after the state in y; ctx->slot maps J's columns to them): S' = F S + G (docs/blt.md,
+ * each, after the state in y; ctx->slot maps J's columns to them): S' = F S + G (docs/design/blt.md,
  * "Variational equations"). A column no segment has forced yet is zero and not carried. */
 static bool rhs_aug(const ogk_blt_t *ctx, const ogk_i_blt_seg_t *seg, uint32_t k, double tau, const double *y, /* NOLINT(bugprone-easily-swappable-parameters): segment index, then its time */
                     double *dy, uint32_t nu)
@@ -340,7 +340,7 @@ void ogk_i_blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, d
     ev->impact = false;
     ev->bad_rhs = false;
     /* DBL_MAX, not HUGE_VAL: track_bodies replaces it by the first finite distance, and
-     * no infinity is ever computed (docs/eva.md, BLT) */
+     * no infinity is ever computed (docs/evidence/eva.md, BLT) */
     ev->min_distance[0] = DBL_MAX;
     ev->min_distance[1] = DBL_MAX;
     for (a = 0u; (a <= last) && !ev->impact && !ev->bad_rhs; ++a) {
@@ -429,7 +429,7 @@ void ogk_i_blt_chain(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double x_end[
     ev->impact = false;
     ev->bad_rhs = false;
     /* DBL_MAX, not HUGE_VAL: track_bodies replaces it by the first finite distance, and
-     * no infinity is ever computed (docs/eva.md, BLT) */
+     * no infinity is ever computed (docs/evidence/eva.md, BLT) */
     ev->min_distance[0] = DBL_MAX;
     ev->min_distance[1] = DBL_MAX;
     (void)memcpy(y, tr->x0, sizeof(double) * NX);

@@ -1,6 +1,6 @@
 /* blt_internal.h -- internals of ogk_blt shared by blt.c (configuration, corrector),
  * blt_model.c (the right-hand side and its derivatives) and blt_arc.c (propagation of the
- * arcs, errors, Jacobians). Not public API. Design notes: docs/blt.md. */
+ * arcs, errors, Jacobians). Not public API. Design notes: docs/design/blt.md. */
 #ifndef OGK_BLT_INTERNAL_H
 #define OGK_BLT_INTERNAL_H
 

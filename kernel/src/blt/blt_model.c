@@ -1,4 +1,4 @@
-/* blt_model.c -- the right-hand side of docs/blt.md sec. 1: the synodic-frame equations of
+/* blt_model.c -- the right-hand side of docs/design/blt.md sec. 1: the synodic-frame equations of
  * motion (eq. 4) with degree-2 gravity of both bodies (eq. 7 truncated), cannonball SRP (eq. 9,
  * divided by the mass), the solar tide (eq. 10, first order) and BLT thrust (eq. 22); the
  * gravity gradient for the variational equations; the segments' start times and masses. */

@@ -1,5 +1,5 @@
 /* thrust_cmd.c -- the one thrust-direction command of every law
- * (ogk/thrust_cmd.h, ogk/types.h; docs/kernel-core.md, "Thrust commands"). */
+ * (ogk/thrust_cmd.h, ogk/types.h; docs/design/kernel-core.md, "Thrust commands"). */
 #include "ogk/thrust_cmd.h"
 
 #include <math.h>

@@ -1,6 +1,6 @@
 /* chol.c -- the kernel's one Cholesky factorisation (chol_internal.h): the
- * QP's blocked right-looking form, which every user shares (docs/qp.md,
- * "Cost"; docs/linalg.md). */
+ * QP's blocked right-looking form, which every user shares (docs/design/qp.md,
+ * "Cost"; docs/design/linalg.md). */
 #include "../chol_internal.h"
 #include "../ogk_checks.h"
 

@@ -121,7 +121,7 @@ static bool in_direct_range(double v)
 
 /* a_lo / a_hi for 0 < a_lo <= a_hi, in [0, 1]. The branches on a_hi bound the
  * quotient without a relation between the operands (what a non-relational
- * analysis such as Frama-C EVA can use, docs/eva.md); each gives the correctly
+ * analysis such as Frama-C EVA can use, docs/evidence/eva.md); each gives the correctly
  * rounded a_lo / a_hi, and the fmin calls only restate a_lo <= a_hi. */
 static double magnitude_ratio(double a_lo, double a_hi)
 {

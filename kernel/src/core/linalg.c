@@ -10,7 +10,7 @@
  *           H = I - tau v v^T, v(0) = 1, R on and above the diagonal, v below it.
  *   lstsq   x = R^-1 (Q^T b)(0:n-1)                      (Sec. 5.3)
  *   minnorm A^T = Q R,  z = R^-T b,  x = Q [z; 0]         (Sec. 5.6)
- * Design note with thresholds, error codes and stack use: docs/linalg.md. */
+ * Design note with thresholds, error codes and stack use: docs/design/linalg.md. */
 #include "ogk/linalg.h"
 #include "../chol_internal.h"
 
@@ -69,7 +69,7 @@ static ogk_status la_all_bounded(const double *v, size_t count)
  * |den| > OGK_LA_PIVOT_MIN; false, *q unwritten, otherwise (NaN operands too).
  * The quotient is decided before it is formed, on three bands of |den|
  * whose bounds are constants, so that a non-relational analysis (Frama-C
- * EVA, docs/eva.md) bounds it from the operands' own ranges:
+ * EVA, docs/evidence/eva.md) bounds it from the operands' own ranges:
  *   |den| >= 1:          |num / den| <= |num|, finite;
  *   2^-512 <= |den| < 1: |q| <= MAX needs |num| <= MAX, then |num / den| <= MAX 2^512 (1.3e304);
  *   below 2^-512:        |q| <= MAX needs |num| <= MAX 2^-512; both scaled by 2^512
@@ -116,7 +116,7 @@ static bool la_div(double num, double den, double *q) /* NOLINT(bugprone-easily-
  * quotient t = v_i / scale is in [-1, 1]. For scale >= 2^-400 it is bounded
  * without a relation between v_i and scale by |v_i| 2^400, whose square is
  * finite for |v_i| < 2^112, what a non-relational analysis (Frama-C EVA,
- * docs/eva.md) can use; below, both are scaled by 2^400 (exact: the same
+ * docs/evidence/eva.md) can use; below, both are scaled by 2^400 (exact: the same
  * correctly rounded t) and t <= 1 restated, and the sum of squares is
  * restated to be at most count. */
 static double la_norm2(const double *v, size_t count, size_t stride) /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
@@ -609,7 +609,7 @@ static ogk_status chol_decompose(ogk_chol_t *ch, const double *A, size_t n)
     /* |l_ij| <= sqrt(a_ii) for A = L L^T (row i of L has norm sqrt(a_ii));
      * twice that bound is never reached by an accepted factorization (an
      * l_ij beyond it makes d_i negative), so its clamp only bounds the
-     * products for the analysis (docs/eva.md) */
+     * products for the analysis (docs/evidence/eva.md) */
     rule.bounded = true;
     rule.divide = true;
     st = ogk_i_chol_upper(ch->l, A, n, &rule);

@@ -47,7 +47,7 @@ static double get_f64(const uint8_t *p)
         bits = (bits << 8u) | (uint64_t)p[7u - i];
     }
     /* The object representation of a binary64 from its bits: deviation D3
-     * (rule 21.15, docs/misra-deviations.md). memcpy returns its
+     * (rule 21.15, docs/evidence/misra-deviations.md). memcpy returns its
      * destination: nothing to check. */
     (void)memcpy(&value, &bits, sizeof value);
     return value;

@@ -210,7 +210,7 @@ static void pointing_error_body(const double t_b[3], double *err_y, double *err_
      * angle / lateral overflow (pi / 1e-310 = inf). Below CPD_LATERAL_MIN the
      * axis is as undefined as at zero; above it |t_b[i]| * angle / lateral
      * <= 3 pi 1e300 is finite even for EVA, which bounds each component of
-     * the unit vector t_b only by 3 (docs/eva.md). */
+     * the unit vector t_b only by 3 (docs/evidence/eva.md). */
     if (lateral >= CPD_LATERAL_MIN) {
         const double scale = angle / lateral; /* -> 1 as the error -> 0 */
         /* |t_b[i]| <= lateral, so each is within the angle <= pi: the clamp
@@ -398,7 +398,7 @@ static bool axis_ok(double k_p, double k_d, double tau, double limit)
 static void config_default(ogk_cpd_config_t *cfg)
 {
     (void)memset(cfg, 0, sizeof(*cfg));
-    /* eq. (54) and sec. 6 as printed (docs/cpd.md: pitch/yaw gain erratum) */
+    /* eq. (54) and sec. 6 as printed (docs/design/cpd.md: pitch/yaw gain erratum) */
     cfg->k_px = 21.6e3;
     cfg->k_dx = 7.2e3;
     cfg->k_py = 21.6;

@@ -1,7 +1,7 @@
 /* mpsp.c -- MPSP guidance loops: configuration, the Newton update
  * (eqs. 44-46), the inner loop with the thrust-sequence check (Algorithm 1)
  * and the continuation outer loop (Algorithm 2, with the missing `else`
- * restored). Design notes: docs/mpsp.md. */
+ * restored). Design notes: docs/design/mpsp.md. */
 #include "mpsp_internal.h"
 #include "../newton_internal.h"
 
@@ -136,7 +136,7 @@ static void config_defaults(ogk_mpsp_config_t *cfg)
     (void)memset(cfg, 0, sizeof *cfg);
     cfg->fourier_kind = OGK_MPSP_BASIS_FOURIER;
     cfg->fourier_t_ref = 0.0;
-    cfg->sens_sweep = OGK_MPSP_SWEEP_MID2; /* the second-order sweep: the same Newton iterations (+-1) on the 23 Apophis cases, 0.58x the instructions per iteration (docs/mpsp.md, section 8) */
+    cfg->sens_sweep = OGK_MPSP_SWEEP_MID2; /* the second-order sweep: the same Newton iterations (+-1) on the 23 Apophis cases, 0.58x the instructions per iteration (docs/design/mpsp.md, section 8) */
     cfg->delta_max = 1.0;       /* Delta_max of Alg. 1 */
     cfg->delta_tau_0 = 0.5;     /* first continuation step of Alg. 2 */
     cfg->delta_tau_min = 0.1;   /* the paper's 0.1 */

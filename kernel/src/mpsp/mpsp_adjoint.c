@@ -2,7 +2,7 @@
  * transposed) for the backward recursion of mpsp_sensitivity.c: the stage
  * partials and the rows w -> w dX_next/dX with their control sensitivities,
  * one row at a time (every target) or two rows per pass (x86-64, where gcc
- * -O2 carries the pair in SSE2 registers). Derivation and costs: docs/mpsp.md,
+ * -O2 carries the pair in SSE2 registers). Derivation and costs: docs/design/mpsp.md,
  * sections 3 and 8. */
 #include "mpsp_internal.h"
 #include "../rk4_internal.h"

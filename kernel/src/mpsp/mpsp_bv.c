@@ -1,7 +1,7 @@
 /* mpsp_bv.c -- B_v of eq. (40) from the sensitivity samples of the backward
  * sweep (mpsp_sensitivity.c): the blocked product sum_b bU(t_b) h(t_b)^T and
  * the unpacking into the row-major 7 x n_weights matrix. Layout and costs:
- * docs/mpsp.md, sections 3 and 8. */
+ * docs/design/mpsp.md, sections 3 and 8. */
 #include "mpsp_internal.h"
 
 #define NY ((size_t)OGK_MPSP_NY)

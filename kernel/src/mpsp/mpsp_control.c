@@ -1,7 +1,7 @@
 /* mpsp_control.c -- the MPSP control lambda_v = U = P(t) W: the Fourier
  * basis (eqs. 36-37, C.1) and its phase, U and |U| at one time or at two
  * times per pass (SSE2), the propagation's control cache and the U it keeps
- * for the sensitivity sweep. Costs: docs/mpsp.md, section 8. */
+ * for the sensitivity sweep. Costs: docs/design/mpsp.md, section 8. */
 #include "mpsp_internal.h"
 
 #include <math.h>

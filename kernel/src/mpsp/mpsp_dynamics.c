@@ -1,5 +1,5 @@
 /* mpsp_dynamics.c -- MPSP dynamics: eq. (16), the switching function (eq. 10)
- * and their partial derivatives (Appendix A, dF/dU re-derived: docs/mpsp.md),
+ * and their partial derivatives (Appendix A, dF/dU re-derived: docs/design/mpsp.md),
  * the RK4 callbacks; the Fourier control is in mpsp_control.c. */
 #include "mpsp_internal.h"
 
@@ -164,7 +164,7 @@ static ogk_status gravity_gradient(const ogk_i_mpsp_dyn_t *dyn, const double *x,
 }
 
 /* The stage states need only be those of ogk_rk4_step to rounding (the
- * partials taken there agree with finite differences to 1e-8, docs/mpsp.md):
+ * partials taken there agree with finite differences to 1e-8, docs/design/mpsp.md):
  * reciprocals replace the divisions of ogk_i_mpsp_rhs (7 per stage to 3). */
 ogk_status ogk_i_mpsp_stage_eval(const ogk_i_mpsp_dyn_t *dyn, const double *x, const ogk_i_mpsp_uval_t *uv, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
                            int mode, double *xdot, ogk_i_mpsp_stage_t *sd)

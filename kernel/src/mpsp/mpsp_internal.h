@@ -81,7 +81,7 @@ typedef struct {
 } ogk_i_mpsp_dyn_t;
 
 /* Partial derivatives of eq. (16) at one RK4 stage state (derived in
- * docs/mpsp.md; Appendix A's dF/dU block is garbled in the paper):
+ * docs/design/mpsp.md; Appendix A's dF/dU block is garbled in the paper):
  *   d f_v/d r = G(r),  d f_v/d m = a_vm e,  d f_lm/d m = a_lm,
  *   d f_v/d U = d_v (I - e e^T),  d f_lm/d U = d_l e^T,
  * with e = U/|U|, a_vm = u T/m^2, a_lm = 2 u T |U|/m^3, d_v = -u T/(m |U|),
@@ -158,7 +158,7 @@ void ogk_i_mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, ogk_i_m
 /* Two adjoint rows per pass where the target has 2-lane double SIMD that gcc
  * -O2 uses without options (SSE2: every x86-64); one row at a time elsewhere
  * (the Cortex-M7's FPU is scalar: lane arrays would only cost it loads and
- * stores). Both give the same numbers to the bit (docs/mpsp.md, section 8). */
+ * stores). Both give the same numbers to the bit (docs/design/mpsp.md, section 8). */
 #if defined(__SSE2__)
 #define MPSP_PAIR_ROWS true
 #else

@@ -2,7 +2,7 @@
  * RK4 step Jacobians (Appendix A, with U at the RK4 stage times), the
  * switching compensation (eqs. 22-25, Appendix B) and the backward recursion
  * (eqs. 28-35) that accumulates B_v = sum_k B_k P_k (eq. 40) and A_lambda
- * (eq. 33). Derivations and costs in docs/mpsp.md (sections 3 and 8).
+ * (eq. 33). Derivations and costs in docs/design/mpsp.md (sections 3 and 8).
  *
  * The recursion propagates the 7 rows of B_{k,0} = d Y / d X_k (eq. 35)
  * backwards; each RK4 step is differentiated in reverse through its four

@@ -1,5 +1,5 @@
 /* nmpc_condense.c -- the condensing of the NMPC's multiple-shooting QP
- * (docs/nmpc.md, "Flight solver"; split out of nmpc_sqp.c, unchanged): the
+ * (docs/design/nmpc.md, "Flight solver"; split out of nmpc_sqp.c, unchanged): the
  * state corrections eliminated by the linearised continuity
  *   dX_{k+1} = A_k dX_k + B0_k dU_k + B1_k dU_{k+1} + t_k dT + d_k, dX_0 = 0
  * (d_k = F_k - X_{k+1}), so that the QP unknowns are v = (dU_0 .. dU_N, dT):

@@ -2,7 +2,7 @@
  * (2012) as a problem of the NMPC's solver (ogk/ocp.h): its data is the
  * context's ogk_nmpc_config_t; the model is nmpc_model.c (eqs. 11-14 with
  * the third bodies), the terminal set eq. (5) with the target on its
- * circular orbit (eq. 6), the keep-out discs the planets' (docs/nmpc-flight.md,
+ * circular orbit (eq. 6), the keep-out discs the planets' (docs/design/nmpc-flight.md,
  * "Robustness"), the update the release of a departure planet's gravity
  * (body_release). */
 #include "nmpc_internal.h"

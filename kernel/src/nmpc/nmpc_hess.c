@@ -1,6 +1,6 @@
 /* nmpc_hess.c -- the QP Hessian of the NMPC's SQP (nmpc_sqp.c): the exact
  * reduced Hessian of the Lagrangian and its regularisation, or the damped
- * BFGS approximation (docs/nmpc-flight.md, "Hessian").
+ * BFGS approximation (docs/design/nmpc-flight.md, "Hessian").
  *
  * Exact: with L = J - y^T c(X_N, T) and the continuity X_{k+1} = F_k - d_k
  * condensed away, the Hessian of L in the QP unknowns v = (dU, dT) is

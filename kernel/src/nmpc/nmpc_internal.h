@@ -137,7 +137,7 @@ ogk_status ogk_i_nmpc_shoot(const ogk_i_ocp_t *ocp, uint32_t nu,
  * columns set) = sum_i w_i d2F_i / dp2 for the interval whose forward sweep
  * with sensitivities was recorded in tape (same ocp, nu, t_start, h, u0,
  * u1), p = (X_k, U_k, U_{k+1}, h[, t_start]): the RK4 recursion's adjoint
- * for the weights w, differentiated forward (docs/nmpc-flight.md). */
+ * for the weights w, differentiated forward (docs/design/nmpc-flight.md). */
 void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu,
                            double t_start, double h, const double *u0,
                            const double *u1, const double *tape,

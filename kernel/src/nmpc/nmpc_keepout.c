@@ -1,4 +1,4 @@
-/* nmpc_keepout.c -- the keep-out of the NMPC's SQP (docs/nmpc-flight.md,
+/* nmpc_keepout.c -- the keep-out of the NMPC's SQP (docs/design/nmpc-flight.md,
  * section 2 item 6): every interior node, and every RK4 step end along the
  * arcs, at least R_j from the centre of the problem's disc j (ogk/ocp.h:
  * the heliocentric problem's planets, the proximity problem's discs about
@@ -83,7 +83,7 @@ void ogk_i_nmpc_keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t n
     }
 }
 
-/* The keep-out along the arcs (docs/nmpc-flight.md, "Robustness"): the
+/* The keep-out along the arcs (docs/design/nmpc-flight.md, "Robustness"): the
  * nodes of a plan are 12-15 days apart early in a flight, and an arc between
  * two nodes outside the radius can pass inside it; the interior RK4 step
  * ends of every subinterval are scanned, and the closest one per body is

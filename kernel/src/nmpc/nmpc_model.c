@@ -1,6 +1,6 @@
 /* nmpc_model.c -- the NMPC's predictive model, eqs. (11)-(14) of Starek &
  * Kolmanovsky (2012), with optional third bodies derived from vectors (the
- * printed eqs. 15-18 are wrong: docs/nmpc.md), its Jacobians and the
+ * printed eqs. 15-18 are wrong: docs/design/nmpc.md), its Jacobians and the
  * Hessian of a weighted sum of its components (the exact SQP Hessian). */
 #include "nmpc_internal.h"
 

@@ -1,5 +1,5 @@
 /* nmpc_sens_cache.c -- the sensitivities of a subinterval kept with the
- * inputs they were computed from (docs/nmpc-flight.md, section 2c).
+ * inputs they were computed from (docs/design/nmpc-flight.md, section 2c).
  *
  * ogk_i_nmpc_shoot is a deterministic function of the predictive model
  * (the configuration's model fields and rk4_steps), nu, X_k, U_k, U_{k+1},

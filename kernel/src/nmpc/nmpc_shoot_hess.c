@@ -33,7 +33,7 @@
  * output, and the helpers are inlined there, so gcc -O2 computes each pair
  * with one packed operation on x86-64, the arithmetic of each entry
  * unchanged. (The triangle's rows, 1 to ncol entries long, stay scalar: by
- * pairs they cost more, x86-64 and Cortex-M7 alike; docs/nmpc-flight.md 2d.) */
+ * pairs they cost more, x86-64 and Cortex-M7 alike; docs/design/nmpc-flight.md 2d.) */
 
 /* out = jx^T a over the Jacobian's structural nonzeros (13 of 25, those of
  * jx_column in nmpc_shoot.c; jx[2] = dr'/dv_r = 1). */

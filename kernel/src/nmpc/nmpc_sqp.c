@@ -1,5 +1,5 @@
 /* nmpc_sqp.c -- the NMPC's SQP on the multiple-shooting transcription
- * (docs/nmpc.md, "Flight solver"):
+ * (docs/design/nmpc.md, "Flight solver"):
  *   1. every interval F_k with its exact sensitivities (nmpc_shoot.c);
  *   2. the state corrections condensed away (nmpc_condense.c):
  *      dX_{k+1} = A_k dX_k + B0_k dU_k + B1_k dU_{k+1} + t_k dT + d_k,
@@ -17,12 +17,12 @@
  *      sec. 2.3, without its restoration phase) on the pair (theta, J),
  *      theta = sum |d_k|_1 + |c|_1: an l1 merit function with Armijo
  *      backtracking stalled on the Maratos effect (steps of 1/32 for
- *      hundreds of iterations near the solution; docs/nmpc.md).
+ *      hundreds of iterations near the solution; docs/design/nmpc.md).
  * Converged when every defect and terminal residual is within tol_feas and
  * either |H v|_inf (the reduced stationarity residual) is within tol_stat or
  * the step's predicted |dJ| within tol_obj max(|J|, 1): minimum-fuel
  * objectives are so flat in T that BFGS creeps for hundreds of iterations
- * at 1e-5 stationarity with J fixed to 1e-7 (docs/nmpc.md). */
+ * at 1e-5 stationarity with J fixed to 1e-7 (docs/design/nmpc.md). */
 #include "nmpc_internal.h"
 
 #include <math.h>
@@ -71,7 +71,7 @@
  * that does not contract gets a fresh Hessian at the next iteration. With
  * 0.1 the far-guess solve of test_mcdc_nmpc.c held at a ratio of 0.095
  * with its violation still at 2e-2, and took 20 iterations instead of 18
- * (docs/nmpc-flight.md, section 2e). */
+ * (docs/design/nmpc-flight.md, section 2e). */
 #define HESS_HOLD_RATE 0.03
 
 
@@ -81,7 +81,7 @@ static size_t n_vars(const ogk_nmpc_plan_t *p)
 }
 
 /* True when eq. (5) is a terminal set (a half-width > 0): its rows are then
- * two inequalities each, not equalities (docs/nmpc-flight.md, "Robustness"). */
+ * two inequalities each, not equalities (docs/design/nmpc-flight.md, "Robustness"). */
 static bool terminal_set(const ogk_nmpc_config_t *cfg)
 {
     return (cfg->terminal_box[0] > 0.0) || (cfg->terminal_box[1] > 0.0)

@@ -2,7 +2,7 @@
  * the Clohessy-Wiltshire equations in the target's Hill frame with a
  * throttled engine (ogk/proximity.h), their Jacobians, the Hessian of a
  * weighted sum of their components, the hold point and the keep-out discs,
- * over an ogk_prox_model_t (docs/nmpc-problem.md, "The second problem").
+ * over an ogk_prox_model_t (docs/design/nmpc-problem.md, "The second problem").
  *
  * The sweeps of the solver (nmpc_shoot.c jx_column and stage_k,
  * nmpc_shoot_hess.c stage_m_column and add_stage_curvature) read only the
@@ -34,7 +34,7 @@
 
 /* The problem's data: ogk_nmpc_init_problem stores the ogk_prox_model_t
  * pointer it is given as `data`, and the solver hands it back unchanged to
- * every callback of ogk_prox_problem (docs/misra-deviations.md, D10). */
+ * every callback of ogk_prox_problem (docs/evidence/misra-deviations.md, D10). */
 static const ogk_prox_model_t *prox_model(const void *data)
 {
     return (const ogk_prox_model_t *)data;

@@ -15,7 +15,7 @@ ogk_status ogk_prox_config_default(ogk_prox_config_t *cfg)
         st = OGK_E_NULL;
     } else {
         (void)memset(&cfg->model, 0, sizeof(cfg->model));
-        /* normalised units: TU = 1 / n (docs/nmpc-problem.md) */
+        /* normalised units: TU = 1 / n (docs/design/nmpc-problem.md) */
         cfg->model.mean_motion = 1.0;
         st = ogk_nmpc_config_default(&cfg->solver);
         cfg->solver.engine = OGK_NMPC_ENGINE_THROTTLED;

@@ -1,4 +1,4 @@
-/* nog.c -- VTD-NOG flight law (ogk/nog.h; derivation in docs/vtd-nog.md). */
+/* nog.c -- VTD-NOG flight law (ogk/nog.h; derivation in docs/design/vtd-nog.md). */
 #include "ogk/nog.h"
 
 #include <math.h>
@@ -214,7 +214,7 @@ static void hermite(const ogk_nog_table_view_t *tbl, double tau, size_t off_val,
     h = tbl->tau[k + 1u] - tbl->tau[k];
     /* s in [0, 1]: every caller passes tau in [0, 1], which ogk_interp_locate
      * brackets by [tau[k], tau[k+1]], and rounding is monotonic; the clamp
-     * changes no value and states the range for the analysis (docs/eva.md). */
+     * changes no value and states the range for the analysis (docs/evidence/eva.md). */
     s = fmin(fmax((tau - tbl->tau[k]) / h, 0.0), 1.0);
     h00 = (1.0 + (2.0 * s)) * (1.0 - s) * (1.0 - s);
     h10 = s * (1.0 - s) * (1.0 - s);
@@ -532,7 +532,7 @@ static void safe_sample(ogk_nog_t *ctx, double t_s, bool readable, ogk_nog_sampl
     if (isfinite(t_s) && (t_s >= ctx->t_k_s) && (t_s <= t_sample_max(ctx))) {
         /* Bounded by the envelope: finite. */
         /* tau >= tau_k as t_s >= t_k_s: the fmax changes no value and
-         * keeps tau_k in [0, 1] visible to the analysis (docs/eva.md). */
+         * keeps tau_k in [0, 1] visible to the analysis (docs/evidence/eva.md). */
         const double tau = fmax(ctx->tau_k + ((t_s - ctx->t_k_s) / ctx->t_f_s), ctx->tau_k);
         if (tau <= 1.0) {
             hold_correction(ctx, t_s, tau);
@@ -586,7 +586,7 @@ static void apply_correction(ogk_nog_t *ctx, const double *out8, const double *d
 /* out[rows] = a[rows x NX] dx: the gain products of the correction, whose sizes
  * are this file's constants and whose arrays are distinct locals, so nothing can
  * fail (ogk_mat_vec's checks, and its status, would be dead code here: its
- * discarded status once left out8 unproven-initialised for EVA, docs/eva.md). */
+ * discarded status once left out8 unproven-initialised for EVA, docs/evidence/eva.md). */
 static void gain_times_dx(const double *a, size_t rows, const double *dx, double *out)
 {
     size_t i;

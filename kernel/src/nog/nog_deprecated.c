@@ -1,5 +1,5 @@
 /* nog_deprecated.c -- the deprecated names of ogk/nog.h (removed in 0.3;
- * docs/deprecations.md): thin wrappers of the new names, same results. Kept
+ * docs/guides/deprecations.md): thin wrappers of the new names, same results. Kept
  * apart from nog.c so that the removal is this file and its header block. */
 #include "ogk/nog.h"
 

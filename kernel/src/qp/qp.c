@@ -21,7 +21,7 @@
  * normalised by the row's 2-norm), with the partial/full step rule: a partial
  * step drops the active inequality whose multiplier reaches zero first.
  * Bounds are unit rows e_i (lower) and -e_i (upper) and never stored densely.
- * Design, tolerances and measured cost: docs/qp.md. */
+ * Design, tolerances and measured cost: docs/design/qp.md. */
 #include "ogk/qp.h"
 
 #include <float.h>
@@ -310,7 +310,7 @@ static qp_dir_t qp_direction(const qp_state_t *s, size_t c)
 
 /* Rotates columns a and b of J (rows of ws->j, which holds J^T):
  * (Ja, Jb) <- (c Ja + s Jb, -s Ja + c Jb). */
-static void qp_rotate_j(ogk_qp_workspace_t *ws, size_t n, size_t a, size_t b, /* NOLINT(bugprone-easily-swappable-parameters): order, rows, cosine, sine of a Givens rotation; a swapped pair fails the unit tests (docs/qp.md, mutants) */
+static void qp_rotate_j(ogk_qp_workspace_t *ws, size_t n, size_t a, size_t b, /* NOLINT(bugprone-easily-swappable-parameters): order, rows, cosine, sine of a Givens rotation; a swapped pair fails the unit tests (docs/design/qp.md, mutants) */
                         double cs, double sn)
 {
     double *ja = &ws->j[a * n];
@@ -333,7 +333,7 @@ static void qp_rotate_j(ogk_qp_workspace_t *ws, size_t n, size_t a, size_t b, /*
  * that the product J2 v costs n operations (z is already there). P d2 =
  * -sigma |d2| e_1: column q of J is negated when sigma > 0 (R's diagonal > 0).
  * About 2 n (n - q) operations instead of the 6 n (n - q) of n - q - 1 Givens
- * rotations (docs/qp.md, "Adding a constraint"). */
+ * rotations (docs/design/qp.md, "Adding a constraint"). */
 static void qp_add(qp_state_t *s, size_t c, double u_c, double d2norm) /* NOLINT(bugprone-easily-swappable-parameters): a constraint number, its multiplier and |d2| */
 {
     ogk_qp_workspace_t *ws = s->ws;

@@ -2,7 +2,7 @@
  * four rows (two for the update) so that the shared vector is read once per
  * block and the loop overhead is shared: each element still sees the same
  * operations in the same order as the one-row loop, so the results are the
- * same to the bit (docs/qp.md, "Cost"). */
+ * same to the bit (docs/design/qp.md, "Cost"). */
 #include "qp_internal.h"
 #include "../chol_internal.h"
 

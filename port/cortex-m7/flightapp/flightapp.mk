@@ -1,5 +1,5 @@
 # port/cortex-m7/flightapp/flightapp.mk -- the flight application on the emulated Cortex-M7
-# (docs/flight-integration.md). Included by the top-level Makefile after cortex-m7.mk; uses its
+# (docs/guides/flight-integration.md). Included by the top-level Makefile after cortex-m7.mk; uses its
 # STRICT, KINC, B, VENV, FFI_STAMP and cortex-m7.mk's ARM_* variables.
 #
 #   make test-flight-app    generate the LEO-to-GEO table image and flight configuration header

@@ -1,4 +1,4 @@
-/* ogk_flight.c -- flight integration layer (ogk_flight.h, docs/flight-integration.md). */
+/* ogk_flight.c -- flight integration layer (ogk_flight.h, docs/guides/flight-integration.md). */
 #include "ogk_flight.h"
 
 #include <math.h>
@@ -62,7 +62,7 @@ ogk_flight_action ogk_flight_reaction(ogk_flight_call call, ogk_status st)
     case OGK_E_BYTE_ORDER:
         /* A valid image, but this target does not store a double as the image does (big-endian:
          * SPARC/LEON, PowerPC), so it cannot be read in place: a build defect, reading it again
-         * does not help. Do not ignite; build with OGK_FLIGHT_TABLE_COPY=1 (docs/ports.md). */
+         * does not help. Do not ignite; build with OGK_FLIGHT_TABLE_COPY=1 (docs/guides/ports.md). */
         return OGK_FLIGHT_ABORT;
     case OGK_E_NULL:
     case OGK_E_DIM:

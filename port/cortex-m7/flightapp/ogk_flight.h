@@ -1,7 +1,7 @@
 /* ogk_flight.h -- flight integration layer of the LEO-to-GEO burn: VTD-NOG guidance (ogk/nog.h)
  * and CPD attitude control (ogk/cpd.h) from a const table image and const configurations, with the
  * reaction to every status. Application code, not kernel code: copy it into your application
- * (docs/flight-integration.md), it needs the kernel, the generated table image and the generated
+ * (docs/guides/flight-integration.md), it needs the kernel, the generated table image and the generated
  * flight configuration header (`ogk tables leo-geo`), nothing else (no stdio, no heap).
  *
  * Call sequence (one ogk_flight_t, statically allocated):
@@ -14,7 +14,7 @@
  *     apply f->act (M_xc, delta_yc, delta_zc) until the next tick;
  * ogk_flight_control is NOG's command followed by ogk_flight_attitude(f, &cmd, &att, &nav), the
  * attitude tick that takes the one thrust command of every law (ogk_thrust_cmd_t, ogk/types.h) in
- * any frame CPD converts (r-t-n, inertial): another law plugs in there (docs/flight-integration.md,
+ * any frame CPD converts (r-t-n, inertial): another law plugs in there (docs/guides/flight-integration.md,
  * "Another guidance law").
  *     engine off when f->engine_on becomes 0 (t >= f->t_cutoff_s; the last tick is shortened to
  *     land on it).
@@ -35,7 +35,7 @@
  * stay unchanged and 8-byte aligned, which the generated C ensures). -DOGK_FLIGHT_TABLE_COPY=1
  * decodes it into RAM instead (ogk_nog_table_load, 268 KiB), e.g. for an uplinked image whose
  * buffer is reused, or on a big-endian target (SPARC/LEON, PowerPC), where the in-place view answers
- * OGK_E_BYTE_ORDER (docs/ports.md). */
+ * OGK_E_BYTE_ORDER (docs/guides/ports.md). */
 #ifndef OGK_FLIGHT_TABLE_COPY
 #define OGK_FLIGHT_TABLE_COPY 0
 #endif
@@ -45,7 +45,7 @@ typedef ogk_nog_table_t ogk_flight_table_t;
 typedef ogk_nog_table_view_t ogk_flight_table_t;
 #endif
 
-/* What the application does after a kernel call (docs/flight-integration.md, "Reactions"). */
+/* What the application does after a kernel call (docs/guides/flight-integration.md, "Reactions"). */
 typedef enum {
     OGK_FLIGHT_FLY = 0,          /* status OK: fly the output */
     OGK_FLIGHT_SAFE = 1,         /* fly the kernel's safe output (NOG: last valid correction held,

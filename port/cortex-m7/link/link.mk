@@ -1,4 +1,4 @@
-# port/cortex-m7/link/link.mk -- the processor-in-the-loop link of the emulated Cortex-M7 (docs/pil.md)
+# port/cortex-m7/link/link.mk -- the processor-in-the-loop link of the emulated Cortex-M7 (docs/guides/pil.md)
 # (included by the top-level Makefile after cortex-m7.mk).
 #
 #   make link-echo     build/arm/link/link_echo.elf: the link's test program

@@ -1,4 +1,4 @@
-/* link_echo.c -- the link's own test program (tests/python/test_target_link.py, docs/pil.md): each
+/* link_echo.c -- the link's own test program (tests/python/test_target_link.py, docs/guides/pil.md): each
  * OGK_LINK_ECHO frame carries n binary64 values; the reply (the same type) carries their negations
  * (a sign-bit flip: exact for every value, NaN payloads included), so the host checks the link and
  * the byte order bit for bit. A frame that fails its checks is answered with OGK_LINK_ERROR and the

@@ -1,4 +1,4 @@
-/* ogk_link.h -- the processor-in-the-loop link of the emulated Cortex-M7 (docs/pil.md): framed
+/* ogk_link.h -- the processor-in-the-loop link of the emulated Cortex-M7 (docs/guides/pil.md): framed
  * messages between the flight program and the host's truth model over semihosting stdin/stdout.
  * Not part of the kernel (it is the port's I/O).
  *

@@ -1,5 +1,5 @@
 /* ogk_link_cm7.c -- ogk_link.h over semihosting stdin/stdout (newlib rdimon's read/write: SYS_READ
- * and SYS_WRITE on the console). Chosen over the board's CMSDK UART by measurement (docs/pil.md):
+ * and SYS_WRITE on the console). Chosen over the board's CMSDK UART by measurement (docs/guides/pil.md):
  * no MPU region or driver to add, and 8k round trips of 64 B a second on QEMU 7.2. */
 #include "ogk_link.h"
 

@@ -1,11 +1,11 @@
 /* blt_flight.h -- the binary-asteroid BLT flight software: the corrector contexts (NRPC, LM,
  * hybrid) in static storage, each configured from the generated flight configuration or from a
  * configuration the ground uplinks, and the correction of a guess with a defined reaction to every
- * status of the kernel (docs/flight-integration-blt.md). Xiong & Wang, sec. III.D: the guidance
+ * status of the kernel (docs/guides/flight-integration-blt.md). Xiong & Wang, sec. III.D: the guidance
  * corrects the BLT parameters of the transfer (eqs. 61-76) before the burn and then flies the held
  * solution's eq. (22) direction (ogk_blt_thrust_cmd).
  *
- * Application code built on ogk/blt.h: copy it. Normalised units throughout (docs/blt.md: LU =
+ * Application code built on ogk/blt.h: copy it. Normalised units throughout (docs/design/blt.md: LU =
  * separation, TU = T_o / 2 pi, masses as fractions of m0).
  *
  *   ogk_blt_flight_init(f, slot, cfg)        once per context (or after an uplinked configuration):

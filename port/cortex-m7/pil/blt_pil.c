@@ -1,5 +1,5 @@
-/* blt_pil.c -- the binary-asteroid BLT flight program on the PIL link (docs/pil.md,
- * docs/flight-integration-blt.md): the host sends each corrector call (a guess, or a new
+/* blt_pil.c -- the binary-asteroid BLT flight program on the PIL link (docs/guides/pil.md,
+ * docs/guides/flight-integration-blt.md): the host sends each corrector call (a guess, or a new
  * configuration), the program makes it with blt_flight.c, which is the flight software itself,
  * and answers its outputs. The host keeps the truth, the dispersions, the DOP853 check and the
  * judging.

@@ -2,7 +2,7 @@
  * 2020, sec. 4): on every re-planning request (new navigation fix, thrust estimate or target) the
  * Fourier weights of lambda_v are solved again from the nominal ones by ogk_mpsp_solve, and the
  * thrust command of the plan held is read at any time by ogk_mpsp_thrust_cmd
- * (docs/flight-integration-mpsp.md). The same calls, in the same order and on the same generated
+ * (docs/guides/flight-integration-mpsp.md). The same calls, in the same order and on the same generated
  * configuration, as the SIL's run_case (harness/ogk/missions/low_thrust_transfer/cases.py), so a
  * PIL campaign flies what the SIL flies.
  *

@@ -1,5 +1,5 @@
-/* mpsp_pil.c -- the MPSP re-planning flight program on the PIL link (docs/pil.md,
- * docs/flight-integration-mpsp.md): the host sends each run's re-planning request (the perturbed
+/* mpsp_pil.c -- the MPSP re-planning flight program on the PIL link (docs/guides/pil.md,
+ * docs/guides/flight-integration-mpsp.md): the host sends each run's re-planning request (the perturbed
  * initial state, thrust scale and target the SIL's run_case gives ogk_mpsp_solve), the program
  * answers with the plan from ogk_mpsp_flight_replan (mpsp_flight.c, the flight software itself) and
  * the thrust command of that plan at the requested time.

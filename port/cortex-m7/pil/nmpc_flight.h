@@ -1,5 +1,5 @@
 /* nmpc_flight.h -- the rendezvous flight software of one NMPC replan (Starek & Kolmanovsky 2012,
- * sec. 2.3; docs/flight-integration-nmpc.md): at the start of each control subinterval the
+ * sec. 2.3; docs/guides/flight-integration-nmpc.md): at the start of each control subinterval the
  * navigation state goes in, the receding-horizon re-solve runs (ogk_nmpc_replan; the first time the
  * open loop from the generated guesses), and the plan's command is flown until the report's t_next,
  * where the next replan is due. The same calls, in the same order, as the SIL's kernel guidance
@@ -33,7 +33,7 @@ enum {
     OGK_NMPC_FL_N_ENTRIES = 7
 };
 
-/* What the application does after a replan (docs/flight-integration-nmpc.md, "Reactions"). */
+/* What the application does after a replan (docs/guides/flight-integration-nmpc.md, "Reactions"). */
 typedef enum {
     OGK_NMPC_FLY = 0,        /* OK: a new converged plan; fly f->cmd, replan at f->rep.t_next */
     OGK_NMPC_FLY_STALE = 1,  /* the SQP failed (ITER_LIMIT, NOT_CONVERGED, INFEASIBLE, NOT_POSDEF,

@@ -1,4 +1,4 @@
-/* nmpc_pil.c -- the rendezvous NMPC flight program on the PIL link (docs/flight-integration-nmpc.md):
+/* nmpc_pil.c -- the rendezvous NMPC flight program on the PIL link (docs/guides/flight-integration-nmpc.md):
  * the host's closed loop sends the measured state at every replan time, the program re-solves with
  * ogk_nmpc_flight_step (nmpc_flight.c), which is the flight software itself, and answers the
  * report, the command at the replan time and the plan flown (its controls; the node states on

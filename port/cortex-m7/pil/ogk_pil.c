@@ -30,7 +30,7 @@ __attribute__((noinline)) uint32_t *ogk_pil_stack_paint(void)
      * built program, tests/python/test_pil_sparc.py), so its %fp is the caller's %sp. */
     __asm__ volatile("mov %%fp, %0" : "=r"(sp));
 #else
-    /* The leaf keeps no frame (a BL pushes nothing; checked in the disassembly, docs/pil.md): its
+    /* The leaf keeps no frame (a BL pushes nothing; checked in the disassembly, docs/guides/pil.md): its
      * sp is the caller's. */
     __asm__ volatile("mov %0, sp" : "=r"(sp));
 #endif

@@ -1,4 +1,4 @@
-/* ogk_pil.h -- what every processor-in-the-loop flight program shares (docs/pil.md): the markers the
+/* ogk_pil.h -- what every processor-in-the-loop flight program shares (docs/guides/pil.md): the markers the
  * host's instruction log is cut at, the painted-stack probe around each entry-point call, and the
  * frame loop. Port code, not kernel code: a flight program on a board keeps its own scheduler and
  * drops these.

@@ -1,7 +1,7 @@
 /* oi_flight.h -- the orbit-injection flight software of one control tick, with the scenario's
  * end-game: VTD-NOG samples on the generated schedule (faster in the fine window), the energy
  * cut-off decides the cut-off between samples, the terminal stage steers the last seconds along the
- * velocity to be gained, CPD turns the command into actuator commands (docs/flight-integration.md,
+ * velocity to be gained, CPD turns the command into actuator commands (docs/guides/flight-integration.md,
  * "Orbit injection with the end-game"). The same chain, in the same order, as the SIL loop
  * (harness/ogk/missions/orbit_injection/sil.py), so a PIL campaign flies what the SIL flies.
  *

@@ -1,4 +1,4 @@
-/* oi_pil.c -- the orbit-injection flight program on the PIL link (docs/pil.md): the host's truth
+/* oi_pil.c -- the orbit-injection flight program on the PIL link (docs/guides/pil.md): the host's truth
  * model sends the navigation and attitude state at every control tick, the program answers with
  * the tick's commands from ogk_oi_flight_tick (oi_flight.c), which is the flight software itself.
  *

@@ -1,4 +1,4 @@
-# port/cortex-m7/pil/pil.mk -- the processor-in-the-loop flight programs (docs/pil.md), one per
+# port/cortex-m7/pil/pil.mk -- the processor-in-the-loop flight programs (docs/guides/pil.md), one per
 # law, each built for one scenario from the C its ground tools generate. Included by the top-level
 # Makefile after link.mk and flightapp.mk.
 #

@@ -10,7 +10,7 @@
  * assert_in_range, print_error, print_message, fail, fail_msg.
  *
  * Behaviour copied from cmocka 1.1.5 (checked by diffing outputs on the host,
- * see docs/ports.md): the same lines on the same streams ("[ RUN      ]",
+ * see docs/guides/ports.md): the same lines on the same streams ("[ RUN      ]",
  * "[       OK ]", "[  FAILED  ]", "[==========] N test(s) run." on stdout;
  * "[  ERROR   ] --- ...", "[  PASSED  ] N test(s).", the failure list on
  * stderr), values of integer assertions printed as %#llx, and the group's

@@ -1,4 +1,4 @@
-/* test_blt.c -- BLT guidance with its Newton-Raphson predictor-corrector (ogk/blt.h, docs/blt.md;
+/* test_blt.c -- BLT guidance with its Newton-Raphson predictor-corrector (ogk/blt.h, docs/design/blt.md;
  * Xiong & Wang, seed 002, eqs. 22, 62, 64, 65, 70):
  *   - configuration defaults, the unset mission data rejected, every init rejection one field at a
  *     time (each range check, the structure checks, NaN/Inf of every double), reset equal to a

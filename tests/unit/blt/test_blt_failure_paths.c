@@ -1,4 +1,4 @@
-/* test_blt_failure_paths.c -- ogk_blt paths test_blt.c leaves unrun (make coverage, docs/coverage.md), each
+/* test_blt_failure_paths.c -- ogk_blt paths test_blt.c leaves unrun (make coverage, docs/evidence/coverage.md), each
  * with its status, flags and outputs asserted:
  *   - the corrector's failure paths: a trial step through the secondary (the impact halvings, with
  *     and without halvings left; NRPC stalls, LM converges round it), trial steps whose burn needs

@@ -1,5 +1,5 @@
 /* test_interp_table_rejections.c -- the argument, dimension and size rejections of interp.c and
- * table.c that test_interp.c and test_table.c leave unrun (make coverage, docs/coverage.md):
+ * table.c that test_interp.c and test_table.c leave unrun (make coverage, docs/evidence/coverage.md):
  * NULL arguments, grids too short, non-finite grid and values, each header field out of the
  * spec of ogk/table.h, size fields that would overflow, and the readers on a zeroed view. The
  * size checks need only a sealed header: they all come before the payload is looked at. */

@@ -1038,7 +1038,7 @@ static void test_qr_tiny_scales(void **state)
 /* Inputs are bounded by OGK_LA_VALUE_MAX (1e150, ogk/linalg.h): a larger
  * finite entry of A or b gives OGK_E_RANGE, a NaN or Inf anywhere (even after
  * a large entry) OGK_E_NONFINITE. Before the bound, 0.5 I with b = 1.5e308
- * solved to x = 3e308 = inf with OGK_OK (the EVA finding of docs/eva.md). */
+ * solved to x = 3e308 = inf with OGK_OK (the EVA finding of docs/evidence/eva.md). */
 /* req: OGK-CORE-025 */
 static void test_input_bound(void **state)
 {

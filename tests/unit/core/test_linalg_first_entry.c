@@ -1,5 +1,5 @@
 /* test_linalg_first_entry.c -- paths of linalg.c that the other tests leave unrun (make
- * coverage, docs/coverage.md; moved from test_gate_misc.c):
+ * coverage, docs/evidence/coverage.md; moved from test_gate_misc.c):
  *  - linalg: a factorization or check that fails on its first entry (the loops stop there), and
  *    a right-hand side inside the QR workspace. */
 #include "ogk_test.h"

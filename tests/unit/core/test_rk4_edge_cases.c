@@ -1,5 +1,5 @@
 /* test_rk4_edge_cases.c -- paths of rk4.c that the other tests leave unrun (make coverage,
- * docs/coverage.md; moved from test_gate_misc.c):
+ * docs/evidence/coverage.md; moved from test_gate_misc.c):
  *  - RK4: each problem check, non-finite arguments, a switching function that returns NaN, a
  *    step shorter than the slop (one step), S = 0 everywhere (no event), a bisection that
  *    runs to the last bit of the bracket, a switch located at the very end of a step, and the

@@ -1,5 +1,5 @@
 /* test_rk4_linalg_failures.c -- RK4 and linear-algebra paths the other tests leave unrun (make
- * coverage, docs/coverage.md): a right-hand side or switching function failing at every one of
+ * coverage, docs/evidence/coverage.md): a right-hand side or switching function failing at every one of
  * its calls in turn (each RK4 stage, the switch evaluation at t0, inside the bisection), the
  * argument rejections of ogk_rk4_step and ogk_rk4_propagate, and factorizations that are not held
  * (ogk_lu_t / ogk_chol_t with n out of range or a corrupted permutation). */

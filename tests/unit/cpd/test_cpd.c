@@ -136,7 +136,7 @@ static double uniform(uint64_t *s, double lo, double hi)
 }
 
 /* ---------------------------------------------------------------- configurations */
-/* Sec. 5.3 gains re-derived with G_y = T l0 / I_y0 = 8.18 s^-2 (docs/cpd.md). */
+/* Sec. 5.3 gains re-derived with G_y = T l0 / I_y0 = 8.18 s^-2 (docs/design/cpd.md). */
 static ogk_cpd_config_t rederived_config(ogk_cpd_pointing_t mode)
 {
     const double wn = 4.24;
@@ -469,7 +469,7 @@ static void test_body_error_matches_euler_near_zero_roll(void **state)
 }
 
 /* req: OGK-CPD-004 */
-/* Found by Frama-C EVA (docs/eva.md): a commanded direction behind x_b to
+/* Found by Frama-C EVA (docs/evidence/eva.md): a commanded direction behind x_b to
  * within a subnormal lateral component. xi = pi turns r-t-n half-way round
  * (cos = -1, sin(pi) = s = 1.22e-16); alpha = -s cancels the s leak exactly
  * (cb s - s cb = 0) and beta = 1e-310 leaves t_b = (-1, -1e-310, -0), so
@@ -879,7 +879,7 @@ static void test_single_axis_closed_loop_converges(void **state)
             /* re-derived gains on the true G: 10 deg and 10 deg/s. Pitch/yaw
              * settle in ~16 s. Roll: the saturated PD overshoots (the linear
              * band is 0.08 deg wide, 30 N m on 1200 kg m^2 gives 1.4 deg/s^2)
-             * and rings down from 39 deg in ~130 s (docs/cpd.md). */
+             * and rings down from 39 deg in ~130 s (docs/design/cpd.md). */
             x = simulate_axis(&rederived, axes[a], g_true, target - 10.0 * DEG, 10.0 * DEG,
                               (axes[a] == AXIS_ROLL) ? 160.0 : 25.0, &target, &n_sat);
             assert_true(n_sat > 0);

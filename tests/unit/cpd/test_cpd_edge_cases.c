@@ -1,4 +1,4 @@
-/* test_cpd_edge_cases.c -- CPD paths test_cpd.c leaves unrun (make coverage, docs/coverage.md): the
+/* test_cpd_edge_cases.c -- CPD paths test_cpd.c leaves unrun (make coverage, docs/evidence/coverage.md): the
  * commanded direction exactly opposite x_b (the deterministic pitch-around of the body pointing
  * error), each sign bound of the configuration, and a finite but absurd configuration whose
  * command comes out non-finite (the safe command, never NaN handed to the actuators). */

@@ -1,5 +1,5 @@
 /* test_mpsp_config_readouts.c -- paths of the MPSP configuration and read-outs that the other
- * tests leave unrun (make coverage, docs/coverage.md; moved from test_gate_misc.c):
+ * tests leave unrun (make coverage, docs/evidence/coverage.md; moved from test_gate_misc.c):
  *  - MPSP: every range check of the configuration one by one, the held weights propagated
  *    again, trajectory copies without some outputs, the state read-out against an RK4 step,
  *    partial Jacobian and jump outputs against the full ones, and a control rate overflow. */

@@ -1,5 +1,5 @@
 /* test_mpsp_rejections.c -- MPSP paths the other MPSP tests leave unrun (make coverage,
- * docs/coverage.md): every rejection of the read-out entry points, the configuration's grid and
+ * docs/evidence/coverage.md): every rejection of the read-out entry points, the configuration's grid and
  * basis-phase checks, a propagation that fails (mass depleted) inside ogk_mpsp_solve, and the
  * non-finite control read-out. Coarse grid (40 RK4 steps): cheap on the host and on QEMU. */
 #include "ogk_test.h"

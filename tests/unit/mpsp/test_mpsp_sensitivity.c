@@ -1,4 +1,4 @@
-/* test_mpsp_sensitivity.c -- MPSP sensitivities (ogk/mpsp.h, docs/mpsp.md):
+/* test_mpsp_sensitivity.c -- MPSP sensitivities (ogk/mpsp.h, docs/design/mpsp.md):
  *   - one RK4 step: dX_next/dX and dX_next/dW against central differences of
  *     the kernel's own step, in thrust and in coast;
  *   - a whole trajectory with gravity and two switches: dY/dW and dY/dlambda_m0
@@ -410,7 +410,7 @@ static void test_sweep_matches_step_chain(void **state)
 }
 
 #if defined(__SSE2__)
-/* Where the propagation keeps U for the sweep (SSE2 hosts, docs/mpsp.md
+/* Where the propagation keeps U for the sweep (SSE2 hosts, docs/design/mpsp.md
  * section 8): the sweep with the U kept (made two times per pass in the
  * propagation, from its own phase anchors) against the sweep with every U
  * made again from the sample rows (the kept slots emptied), on the arcs of

@@ -1,4 +1,4 @@
-/* test_mpsp_solve.c -- MPSP guidance loops (ogk/mpsp.h, docs/mpsp.md):
+/* test_mpsp_solve.c -- MPSP guidance loops (ogk/mpsp.h, docs/design/mpsp.md):
  *   - Newton (eqs. 44-46, Algorithm 1) on a synthetic rendezvous built here:
  *     a two-switch trajectory of the normalised two-body problem is made
  *     consistent (lambda_m(tf) = 0) by MPSP itself, then its target, its

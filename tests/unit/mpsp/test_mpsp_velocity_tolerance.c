@@ -1,4 +1,4 @@
-/* test_mpsp_velocity_tolerance.c -- MC/DC of ogk_mpsp's convergence test (docs/coverage.md, "MC/DC"): the
+/* test_mpsp_velocity_tolerance.c -- MC/DC of ogk_mpsp's convergence test (docs/evidence/coverage.md, "MC/DC"): the
  * velocity tolerance decides alone. With the position tolerance wide open (1 LU) and a target
  * that differs from the flown nominal in velocity only, the first Newton iterate is within tol_r
  * but not tol_v; the solve must go on until the velocity is within tol_v, which is checked by

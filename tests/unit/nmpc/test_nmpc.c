@@ -1,4 +1,4 @@
-/* test_nmpc.c -- the receding-horizon NMPC (ogk/nmpc.h, docs/nmpc.md):
+/* test_nmpc.c -- the receding-horizon NMPC (ogk/nmpc.h, docs/design/nmpc.md):
  *   - configuration defaults and every init rejection;
  *   - the predictive model against eq. (11) written out here, and its third
  *     bodies against a Cartesian computation (inertial vectors rotated into

@@ -1,4 +1,4 @@
-/* test_nmpc_argument_checks.c -- MC/DC of ogk_nmpc's argument checks (docs/coverage.md, "MC/DC"): each
+/* test_nmpc_argument_checks.c -- MC/DC of ogk_nmpc's argument checks (docs/evidence/coverage.md, "MC/DC"): each
  * operand of the configuration and test-entry-point decisions decides alone. Every case changes
  * one argument from a valid call: the status is the one ogk/nmpc.h and ogk/internal/nmpc_test.h
  * document, and a rejected call writes nothing. Behaviour only (no line numbers): the SQP and the

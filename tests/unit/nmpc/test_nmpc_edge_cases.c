@@ -1,4 +1,4 @@
-/* test_nmpc_edge_cases.c -- NMPC paths test_nmpc.c leaves unrun (make coverage, docs/coverage.md):
+/* test_nmpc_edge_cases.c -- NMPC paths test_nmpc.c leaves unrun (make coverage, docs/evidence/coverage.md):
  *   - every init rejection, one configuration field at a time (NaN and Inf of every double, each
  *     range bound), and the context left unusable after each;
  *   - every bad input of every public function (NULL, not initialised, NaN/Inf, ranges), each with

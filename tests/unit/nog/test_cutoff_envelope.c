@@ -1,4 +1,4 @@
-/* test_cutoff_envelope.c -- MC/DC of ogk_cutoff (docs/coverage.md, "MC/DC"): every operand of the
+/* test_cutoff_envelope.c -- MC/DC of ogk_cutoff (docs/evidence/coverage.md, "MC/DC"): every operand of the
  * configuration and navigation-envelope conjunctions decides alone. Each case moves one field
  * just outside the range the header documents (ogk/cutoff.h) with every other field inside, and
  * the same field at its bound is accepted; the references are the documented ranges and the

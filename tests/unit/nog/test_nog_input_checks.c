@@ -1,4 +1,4 @@
-/* test_nog_input_checks.c -- VTD-NOG paths test_nog.c leaves unrun (make coverage, docs/coverage.md):
+/* test_nog_input_checks.c -- VTD-NOG paths test_nog.c leaves unrun (make coverage, docs/evidence/coverage.md):
  * the table content checks one by one, NULL and uninitialised arguments of every entry point,
  * each configuration bound, bound structs that are not what init accepted (hand-edited or
  * overwritten by a copy of another table), the freeze margin, an overflowing costate-rate gain,

@@ -1,4 +1,4 @@
-/* test_terminal_envelope.c -- MC/DC of ogk_terminal (docs/coverage.md, "MC/DC"): every operand of the
+/* test_terminal_envelope.c -- MC/DC of ogk_terminal (docs/evidence/coverage.md, "MC/DC"): every operand of the
  * configuration and navigation-envelope conjunctions decides alone. Each case moves one field
  * just outside the range ogk/terminal.h documents, every other field inside, and the same field
  * at its bound is accepted; a rejected step leaves the context unchanged and outputs the law's

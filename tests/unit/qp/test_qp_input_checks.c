@@ -1,4 +1,4 @@
-/* test_qp_input_checks.c -- MC/DC of ogk_qp_solve's input checks (docs/coverage.md, "MC/DC"): an
+/* test_qp_input_checks.c -- MC/DC of ogk_qp_solve's input checks (docs/evidence/coverage.md, "MC/DC"): an
  * inequality block with A_in but no b_in, and lower bounds without upper ones, each deciding
  * alone; an inconsistent first equality row and a first Cholesky panel that fails, each ending
  * its loop; the solutions against their closed forms. */

@@ -1,7 +1,7 @@
 """The convergence Monte Carlo of Table 3 (Xiong & Wang, sec. V.A.2): the nominal UMP transfer perturbed and
 corrected again by the flight kernel, plain NRPC, the damped corrector and the hybrid on the same draws.
 
-"Perturbation %" (the paper leaves it undefined; the scenario's [monte_carlo] comment and docs/blt.md say the
+"Perturbation %" (the paper leaves it undefined; the scenario's [monte_carlo] comment and docs/design/blt.md say the
 same): with p the level and xi ~ N(0, (sigma_fraction)^2) clipped to [-1, 1] (the level is the largest
 perturbation: "perturbed by values up to p"),
   - each component of A and B of every burn: + p xi |[A; B]| (the law's scale, 1 after normalisation);

@@ -44,7 +44,7 @@ def add_run_arguments(p: argparse.ArgumentParser) -> None:
                    help="fly the transfer at this thrust [N] instead of its thrust_n (a thrust sweep)")
     p.add_argument("--target", choices=("host", "m7"), default="host",
                    help="m7: every corrector solve of the design made by the scenario's flight program "
-                        "on the emulated Cortex-M7 (docs/flight-integration-blt.md); default host")
+                        "on the emulated Cortex-M7 (docs/guides/flight-integration-blt.md); default host")
 
 
 def blt_document(scenario: BinaryScenario, name: str, corrector: str | None, jacobian: str | None,

@@ -1,4 +1,4 @@
-"""Binary-asteroid BLT on the emulated Cortex-M7 (docs/flight-integration-blt.md, docs/pil.md): the flight
+"""Binary-asteroid BLT on the emulated Cortex-M7 (docs/guides/flight-integration-blt.md, docs/guides/pil.md): the flight
 program port/cortex-m7/pil/blt_pil.c holds the corrector contexts (blt_flight.c, static storage) and makes
 every corrector call (ogk_blt_solve: NRPC, LM or hybrid) the host's campaign would make through cffi, on
 the same inputs; the host keeps the nominal design, the dispersions, the DOP853 checks and the judging.
@@ -39,7 +39,7 @@ ENTRY_POINTS = ("ogk_blt_init", "ogk_blt_solve")
 #: blt_flight.h ogk_blt_flight_action
 ACTIONS = {0: "fly", 1: "safe", 2: "reject", 3: "abort"}
 
-#: Host vs target on the same draws (docs/flight-integration-blt.md, "Host vs target"). The
+#: Host vs target on the same draws (docs/guides/flight-integration-blt.md, "Host vs target"). The
 #: iterations must be the same (bound 0); |e| of the returned transfer may differ by what libm's
 #: ulps make of it: the model calls sin/cos (the Sun's direction, eqs. 9-10) and newlib's are not
 #: glibc's; a Newton step amplifies a last-bit difference of the error vector, so |e| (1e-9 ... 5e-5)

@@ -1,5 +1,5 @@
 """The binary-asteroid transfers with every corrector call on the emulated Cortex-M7, beside the host's
-(docs/flight-integration-blt.md, "The transfers of the scenario on the target"):
+(docs/guides/flight-integration-blt.md, "The transfers of the scenario on the target"):
 
     python -m ogk.missions.binary.pil_transfers SCENARIO [--transfer NAME ...] [--json FILE]
 

@@ -1,6 +1,6 @@
 """A corrected transfer flown again, independently of the kernel: each arc re-propagated with scipy's DOP853
 (ogk_host.binary.reference) exactly as the kernel defines the arcs (forward from the left anchor to the
-meeting interface, backward from the right anchor; docs/blt.md sec. 1), the same error vector recomputed,
+meeting interface, backward from the right anchor; docs/design/blt.md sec. 1), the same error vector recomputed,
 and samples of the trajectory for the plots. Normalised units."""
 from __future__ import annotations
 

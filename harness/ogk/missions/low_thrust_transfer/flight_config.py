@@ -1,5 +1,5 @@
 """Flight configuration of an MPSP low-thrust-transfer scenario as const C
-(docs/flight-integration.md): the kernel config and nominal weights `ogk cases` flies."""
+(docs/guides/flight-integration.md): the kernel config and nominal weights `ogk cases` flies."""
 from __future__ import annotations
 
 from pathlib import Path

@@ -1,7 +1,7 @@
 """`ogk run SCENARIO` of a low-thrust transfer (the family's `run`; `ogk cases` and `ogk mpsp
 apophis` are its older spellings): the kernel's MPSP on one perturbation case (--case, --param) or
 on all of the paper's cases (--paper-tables), each with the fuel-optimal re-solve of the same
-problem for the fuel increase (docs/mpsp-cli.md).
+problem for the fuel increase (docs/guides/mpsp-cli.md).
 """
 from __future__ import annotations
 

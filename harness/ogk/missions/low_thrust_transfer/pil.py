@@ -1,4 +1,4 @@
-"""MPSP re-planning on the emulated Cortex-M7 (docs/flight-integration-mpsp.md, docs/pil.md): the
+"""MPSP re-planning on the emulated Cortex-M7 (docs/guides/flight-integration-mpsp.md, docs/guides/pil.md): the
 flight program port/cortex-m7/pil/mpsp_pil.c (mpsp_flight.c: ogk_mpsp_init, ogk_mpsp_solve,
 ogk_mpsp_thrust_cmd on the generated configuration) solves each run's problem, the host draws the
 problem, builds the record and judges it exactly as the host campaign does (family.py fly_one).
@@ -33,7 +33,7 @@ STATUS_OK, STATUS_NOT_CONVERGED = 0, 20  #: ogk/status.h
 #: hundred seconds on a loaded QEMU; the paper's worst case (91 iterations) takes ~10 s.
 SOLVE_TIMEOUT_S = 1800.0
 
-#: Host vs target on the same cases (docs/flight-integration-mpsp.md, "Host vs target"): the largest
+#: Host vs target on the same cases (docs/guides/flight-integration-mpsp.md, "Host vs target"): the largest
 #: difference of a run's result. Measured on the 23 paper cases of apophis_cubesat (`ogk mc
 #: apophis_cubesat --cases paper --target m7`): newton_iterations, outer_steps, thrust_arcs equal;
 #: dr_f_km 1.4e-4 km, dv_f_kmps 2.6e-11 km/s, lambda_mf 5.9e-14, final_mass_kg 1.3e-12 kg. The

@@ -1,5 +1,5 @@
 """LEO-to-GEO injection burn (Pontani & Celani 2021, sec. 6): software-in-the-loop truth models,
-dispersions, closed loop, Monte Carlo campaign, report and plots. See docs/sil.md.
+dispersions, closed loop, Monte Carlo campaign, report and plots. See docs/guides/sil.md.
 
 Modules: nominal_ref (dense ground nominal), truth (6-DOF and point-mass dynamics), dispersions,
 guidance (Guidance protocol + open-loop reference), attitude (AttitudeControl protocol + kernel CPD

@@ -2,7 +2,7 @@
 
 One ogk_cutoff_t per run; the C batch loop of csrc/cutoff_batch.c crosses from Python once
 per control step. Flown when the scenario says `[guidance.end_game] cutoff = "energy"`
-(docs/vtd-nog.md, "End-game": beyond the paper).
+(docs/design/vtd-nog.md, "End-game": beyond the paper).
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Flight configuration of an orbit-injection scenario as const C (docs/flight-integration.md).
+"""Flight configuration of an orbit-injection scenario as const C (docs/guides/flight-integration.md).
 
 The configs are the typed kernel configurations the SIL itself flies (nog_guidance.nog_config,
 attitude.cpd_config, cutoff.cutoff_config, terminal.terminal_config), handed to
@@ -15,7 +15,7 @@ from ogk_bindings.cpd import CpdConfig
 from ogk_bindings.nog import NogConfig
 from ogk_host.orbit_injection.scenario import OrbitInjectionScenario
 
-#: Attitude-control rate of the flight configuration (the SIL's default, docs/sil.md).
+#: Attitude-control rate of the flight configuration (the SIL's default, docs/guides/sil.md).
 CONTROL_RATE_HZ = 50.0
 
 

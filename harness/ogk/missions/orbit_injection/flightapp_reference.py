@@ -7,7 +7,7 @@ every RK4 stage).
     .venv/bin/python -m ogk.missions.orbit_injection.flightapp_reference TABLE_DIR > sil.log
 
 A manual cross-check (about 15 s, most of it the nominal solve), run by `make flight-app-sil-compare`, not
-by make test-flight-app (docs/flight-integration.md, "Verification"). It lives with the family because it
+by make test-flight-app (docs/guides/flight-integration.md, "Verification"). It lives with the family because it
 flies the family's SIL; the flight port imports no mission.
 """
 from __future__ import annotations

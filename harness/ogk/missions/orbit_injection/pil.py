@@ -1,4 +1,4 @@
-"""Orbit injection on the emulated Cortex-M7 (docs/pil.md): the flight program
+"""Orbit injection on the emulated Cortex-M7 (docs/guides/pil.md): the flight program
 port/cortex-m7/pil/oi_pil.c (VTD-NOG + energy cut-off + terminal + CPD, oi_flight.c) flies the
 control ticks, the host's 6-DOF truth (sil.fly_runs) flies the vehicle. One QEMU per chunk of runs;
 each run is a fresh init of the flight software, its draws those of the host campaign.
@@ -30,7 +30,7 @@ ENTRY_POINTS = ("ogk_nog_sample", "ogk_cutoff_step", "ogk_nog_thrust_cmd", "ogk_
 FAILURES = {0: "", 1: "guidance", 2: "cutoff", 3: "terminal", 4: "attitude_control"}
 assert all(v in FAILURE_REASONS for v in FAILURES.values() if v)
 
-#: Host vs target on the same draws (docs/pil.md, "Host vs target"): the largest difference of a
+#: Host vs target on the same draws (docs/guides/pil.md, "Host vs target"): the largest difference of a
 #: run's injection errors. The flight code is the same C; newlib's libm (sin, cos, atan2, ...) is
 #: not glibc's (results a few ulp apart), and the closed loop carries those ulps to cut-off.
 BOUNDS = {"dr_f_m": 1e-3, "dphi_f_deg": 1e-9, "dvr_f_mps": 1e-3, "dvt_f_mps": 1e-3,

@@ -1,6 +1,6 @@
 """Closed loop of the LEO-to-GEO burn: truth model + guidance + attitude control, N runs at once.
 
-Timing (docs/sil.md):
+Timing (docs/guides/sil.md):
   * guidance samples at t_k = k Delta t_S (2 s, scenario), with perfect navigation;
   * attitude control at `control_rate_hz` (50 Hz), zero-order hold; actuation noise drawn per
     control step and held;
@@ -66,7 +66,7 @@ class SilSettings:
 
 @dataclasses.dataclass(frozen=True)
 class EndGamePlan:
-    """How a run ends (docs/vtd-nog.md, "End-game"): the cut-off decision and the sampling."""
+    """How a run ends (docs/design/vtd-nog.md, "End-game"): the cut-off decision and the sampling."""
 
     energy_cutoff: bool               #: kernel ogk_cutoff decides the cut-off between samples
     fine_interval_s: float | None     #: sampling interval near the end (None: Delta t_S throughout)

@@ -1,7 +1,7 @@
 """The kernel's terminal steering along the velocity to be gained (kernel/include/ogk/terminal.h)
 for all runs of a SIL chunk: one ogk_terminal_t per run, stepped once per control step by the C
 batch loop of csrc/terminal_batch.c. Flown when the scenario sets
-`[guidance.end_game] terminal_window_s` > 0 (docs/vtd-nog.md, "End-game": beyond the paper).
+`[guidance.end_game] terminal_window_s` > 0 (docs/design/vtd-nog.md, "End-game": beyond the paper).
 """
 from __future__ import annotations
 

@@ -16,7 +16,7 @@ runs, so every operation is one numpy call over the runs. Units SI (m, s, kg, ra
   10-12 P, Q, R          body rates, eqs. (13)-(15)
   13-15 Mx~, Dy~, Dz~    first-order actuator states, eqs. (16), (18)
 The actuator OUTPUTS are sat(state + noise) (eq. 17), the noise being Table 5's actuation error held
-over one control step (see docs/sil.md).
+over one control step (see docs/guides/sil.md).
 
 Point-mass state (6): r, xi, phi, v_r, v_t, v_n; thrust along the commanded (alpha, beta) exactly.
 
@@ -119,7 +119,7 @@ def thrust_factor(p: TruthParams, t: F64 | float, coeffs: F64 | None) -> F64 | f
     A run's value depends on its own time and coefficients only, never on the other runs of its
     chunk: the per-run-time path (landing steps, where one run's time differs) evaluates the same
     basis at each distinct time with the same operations, in the same order, as the scalar path
-    (docs/sil.md, determinism)."""
+    (docs/guides/sil.md, determinism)."""
     if coeffs is None:
         return 1.0
     if np.ndim(t) == 0:

@@ -1,6 +1,6 @@
 """The proximity-approach family (ogk.sil.family.MissionFamily): a planar approach in the target's Hill
 frame to a hold point reached at rest, round keep-out discs, by the receding-horizon NMPC of the kernel's
-second problem (ogk_prox_*, kernel/include/ogk/proximity.h; docs/nmpc-problem.md) against a two-body truth
+second problem (ogk_prox_*, kernel/include/ogk/proximity.h; docs/design/nmpc-problem.md) against a two-body truth
 (truth.py). `ogk run` flies it once with its plots; `ogk mc` flies it on dispersed starts, engines and
 thrust-angle noise streams: run i draws from its own stream (ogk.sil.seeds), a new guidance per run, all
 from the same ground plan (ogk_host.proximity.ocp.solve from the nominal start, made when the plan is

@@ -44,7 +44,7 @@ ENTRY_POINTS = ("ogk_nmpc_init_problem", "ogk_nmpc_reset", "ogk_nmpc_load_plan",
                 "ogk_nmpc_replan", "ogk_nmpc_get_plan", "ogk_nmpc_command")
 ACTIONS = {0: "fly", 1: "fly_stale", 2: "hold", 3: "no_plan", 4: "reinit", 5: "abort"}
 STEP_TIMEOUT_S = 600.0
-#: Host vs target on the same draws (docs/pil.md, "Host vs target"). The same C on both sides, the plans
+#: Host vs target on the same draws (docs/guides/pil.md, "Host vs target"). The same C on both sides, the plans
 #: crossing the link bit for bit; newlib's libm (sin, cos, sqrt) is not glibc's, so each solve differs in
 #: its last bits and the closed loop carries that to the end of the flight. The flight's end is the ground
 #: plan's t_f, kept by every replan within a band of 1e-9 of the time left to it ([guidance]

@@ -211,7 +211,7 @@ def fly_run(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, s
             break
         info = guidance.replan(t, x)
         infos.append(info)
-        # the dry mass (docs/nmpc.md, "Any circular rendezvous"): a plan that arrives below it is refused,
+        # the dry mass (docs/design/nmpc.md, "Any circular rendezvous"): a plan that arrives below it is refused,
         # the flight stops with the reason (the predictive model knows no dry mass)
         if not history and not info.converged:
             reason = (f"no first plan to {scenario.target_name}: no solve converged from the guesses sized "
@@ -222,7 +222,7 @@ def fly_run(scenario: RendezvousScenario, guidance: Guidance, perturbed: bool, s
         left_kg = float(x[4]) * units.mass_kg - scenario.dry_mass_kg
         if not history and info.converged and info.outside_set:
             # the flight solver's propellant row holds and its terminal set is priced: a first plan that
-            # ends outside the set is the closest the vehicle can get (docs/nmpc-flight.md, "Robustness")
+            # ends outside the set is the closest the vehicle can get (docs/design/nmpc-flight.md, "Robustness")
             reason = (f"propellant: the plan to {scenario.target_name} needs more than the {left_kg:.1f} kg "
                       f"left (dry mass {scenario.dry_mass_kg:g} kg): the closest plan within it ends outside "
                       f"the target's set")

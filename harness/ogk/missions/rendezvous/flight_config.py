@@ -1,4 +1,4 @@
-"""Flight configuration of a rendezvous scenario as const C (docs/flight-integration-nmpc.md).
+"""Flight configuration of a rendezvous scenario as const C (docs/guides/flight-integration-nmpc.md).
 
 What the NMPC flight program (port/cortex-m7/pil/nmpc_flight.c) needs, built by the same functions the
 SIL's kernel guidance uses (kernel_guidance.kernel_config, guidance_base.first_guesses), handed to
@@ -64,7 +64,7 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, strategy:
     return write_c_config(
         ffi, [ConfigItem("ogk_nmpc_flight_config", cfg,
                          f"ogk_nmpc (ogk/nmpc.h), strategy {strategy}, third bodies in the model: "
-                         f"{third_bodies}; normalised units (docs/nmpc.md)"),
+                         f"{third_bodies}; normalised units (docs/design/nmpc.md)"),
               ConfigItem("ogk_nmpc_flight_guesses", guesses,
                          "the first replan's guesses, tried in turn (t0 and node 0 replaced by the "
                          "measured time and state)")],

@@ -5,7 +5,7 @@ flight with the strategies of strategy.py, warm started primal and dual from the
 It is one `guidance_base.Guidance`; the flight code's is kernel_guidance.KernelGuidance, and
 guidance_factory.make_guidance picks one by the `--solver` name.
 
-All times and states are normalised (TU, LU, VU, MU: docs/nmpc.md, "Units").
+All times and states are normalised (TU, LU, VU, MU: docs/design/nmpc.md, "Units").
 """
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ from .guidance_base import FloatArray, ReplanInfo, first_guess
 #: (N, cold) when the warm start stalls, (2N, cold); the fourth keeps the previous replan's N, which CNCN and
 #: SNNS at min_nodes solve again. A dropped solver is built again when asked for: after an adopted doubling
 #: SNNS walks down node counts it has flown before (25 of the 75 solves of that flight), which costs about
-#: 30 s more CPU (0.3-1.2 s a build) for 0.79 GB instead of 3.5 GB (docs/nmpc.md, "Closed loop").
+#: 30 s more CPU (0.3-1.2 s a build) for 0.79 GB instead of 3.5 GB (docs/design/nmpc.md, "Closed loop").
 SOLVER_CACHE_SIZE = 4
 
 
@@ -73,7 +73,7 @@ class IpoptGuidance:
         # one NLP object for every node count (it builds one IPOPT solver per N, cold and warm, and keeps the
         # SOLVER_CACHE_SIZE most recently used)
         # min-fuel: arrival by [ocp] transfer_time_max_s (with t_f free the fuel is flat past the knee and
-        # has no minimum; docs/nmpc.md, "Minimum fuel"), an absolute deadline the re-plans keep
+        # has no minimum; docs/design/nmpc.md, "Minimum fuel"), an absolute deadline the re-plans keep
         deadline = scenario.ocp.transfer_time_max_s if scenario.ocp.objective == "min-fuel" else None
         self.nlp = BoundedNlp(scenario, rk4_steps=n.rk4_steps_per_interval, third_bodies=self.third_bodies,
                               tol=n.tol, constr_viol_tol=n.constr_viol_tol, max_iter=n.max_iter,

@@ -12,7 +12,7 @@ of the plan's first subinterval), and replans there. Its implementations:
 implementations use (`ReplanInfo`, `first_guess`, `strategy_settings`) and imports neither, so that no
 module of the family imports one that imports it back (tests/python/test_import_cycles.py).
 
-All times and states are normalised (TU, LU, VU, MU: docs/nmpc.md, "Units").
+All times and states are normalised (TU, LU, VU, MU: docs/design/nmpc.md, "Units").
 """
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 
 The kernel owns the whole receding-horizon logic (SNNS drop / min_nodes regrid / doubling test, CNCN
 regrid, the stale-plan fallback); this adapter only maps the scenario to the kernel configuration
-(normalised units of docs/nmpc.md) and times the calls:
+(normalised units of docs/design/nmpc.md) and times the calls:
 
 - first replan: the documented guess (`guidance_base.first_guess`) loaded as the plan, then `ogk_nmpc_solve`
   (the open loop from (t, x), a cold BFGS start); minimum fuel first solves minimum time from that guess
@@ -32,7 +32,7 @@ FloatArray = NDArray[np.float64]
 #: The SQP's stop on the predicted change of J (ogk_nmpc_config_t.tol_obj). The kernel's default 1e-7 leaves
 #: a minimum-fuel plan's t_f anywhere in its flat valley: the solar-electric flight's arrival moved by up to
 #: 0.34 d over 20 ulp moves of its first measured radius (seed 2026120478, run 0); 1e-9: 0.05 d; 0 (the
-#: stationarity test alone): 0.004 d at 44 % more SQP iterations. docs/nmpc-flight.md, "Robustness".
+#: stationarity test alone): 0.004 d at 44 % more SQP iterations. docs/design/nmpc-flight.md, "Robustness".
 TOL_OBJ = 1e-9
 
 
@@ -40,7 +40,7 @@ def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
                   third_bodies: bool | None = None, **overrides: object) -> NmpcConfig:
     """The kernel configuration of a scenario: model, target and transcription from the scenario, the
     strategy's parameters from [nmpc] (the doubling test runs while 2N fits OGK_NMPC_MAX_NODES), and the
-    robustness of docs/nmpc-flight.md, "Robustness" (beyond the paper): the plan's engine derated by
+    robustness of docs/design/nmpc-flight.md, "Robustness" (beyond the paper): the plan's engine derated by
     [nmpc] thrust_margin_percent (thrust and flow alike: the nominal specific impulse), the terminal set
     of [nmpc] terminal_set_fraction, the propellant limit at the dry mass, Earth's gravity until the
     flight leaves its Hill sphere ([nmpc] departure_planet_in_model), the keep-out along the arcs."""

@@ -47,11 +47,11 @@ def add_run_arguments(p: argparse.ArgumentParser) -> None:
                    help="the flight solver's QP Hessian (default: the scenario's [nmpc] hessian)")
     p.add_argument("--paper-problem", action="store_true",
                    help="fly the paper's problem: the flight solver's robustness of [nmpc] off (no thrust "
-                        "margin, eq. 5 exactly, no departure planet, no keep-out; docs/nmpc-flight.md, "
+                        "margin, eq. 5 exactly, no departure planet, no keep-out; docs/design/nmpc-flight.md, "
                         "\"Robustness\"), e.g. to reproduce Table I's unperturbed row")
     p.add_argument("--target", choices=("host", "m7"), default="host",
                    help="host: the kernel in this process (default); m7: every replan made by the "
-                        "scenario's flight program on the emulated Cortex-M7 (docs/pil.md)")
+                        "scenario's flight program on the emulated Cortex-M7 (docs/guides/pil.md)")
 
 
 def _paper_prefix(strategy: str, perturbed: bool) -> str:
@@ -188,7 +188,7 @@ def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
             raise
     wall = time.perf_counter() - start
     doc = result.to_json()
-    if session is not None:     # the flight program's figures per entry point (docs/pil.md)
+    if session is not None:     # the flight program's figures per entry point (docs/guides/pil.md)
         from ogk.sil.pil_build import file_sha256
         doc.update({"target": "m7", "flight_program": file_sha256(session.program.elf),
                     **target_keys})

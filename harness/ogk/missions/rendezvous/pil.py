@@ -1,4 +1,4 @@
-"""Low-thrust rendezvous on the emulated Cortex-M7 (docs/flight-integration-nmpc.md): the flight
+"""Low-thrust rendezvous on the emulated Cortex-M7 (docs/guides/flight-integration-nmpc.md): the flight
 program port/cortex-m7/pil/nmpc_pil.c (ogk_nmpc re-solves, nmpc_flight.c) makes every replan of the
 closed loop, the host's truth (closed_loop.fly_run) flies the vehicle. One QEMU per chunk of runs; each
 run is a fresh init of the flight software, its thrust-angle noise that of the host campaign.
@@ -52,19 +52,19 @@ SOLVER_CODES = {int(lib.OGK_OK), int(lib.OGK_E_ITER_LIMIT), int(lib.OGK_E_NOT_CO
 #: the longest one replan may take on QEMU (a cold first replan through every guess)
 STEP_TIMEOUT_S = 900.0
 
-#: Host vs target on the same noise streams (docs/pil.md, "Host vs target"): the largest per-run
+#: Host vs target on the same noise streams (docs/guides/pil.md, "Host vs target"): the largest per-run
 #: difference of whole perturbed flights. The arrival time is held to TF_BOUND_DAYS (issue 32's bound);
 #: the other quantities are what that difference can move at arrival (target_bounds), so that the
 #: bounds are one statement and not four. A minimum-fuel plan's t_f lies in a flat valley of its
 #: objective: the host against itself moves it by up to 0.058 d over 20 ulp moves of the start (SEP, seed
-#: 2026120478; docs/nmpc-flight.md 7), so a target cannot be held tighter than that: issue 32's ulp bound,
+#: 2026120478; docs/design/nmpc-flight.md 7), so a target cannot be held tighter than that: issue 32's ulp bound,
 #: 0.1 d (measured on the target: SEP 0.014 d, seed 20261203 run 1 of `make profile`).
 TF_BOUND_DAYS = 0.01
 TF_BOUND_MIN_FUEL_DAYS = 0.1
 BOUNDS_WHY = ("the same C on both sides on the same inputs (the plan crosses the link bit for bit); "
               "newlib's libm (sin, cos, pow) is not glibc's, so the first solve already differs by "
               "~1e-13 d in t_f, and the closed loop carries that to the end of the flight. Since the "
-              "law's robustness (docs/nmpc-flight.md, \"Robustness\") the loop does not amplify it: "
+              "law's robustness (docs/design/nmpc-flight.md, \"Robustness\") the loop does not amplify it: "
               "whole perturbed flights agree within 6.5e-3 d (48 runs on seeds 2026120514, 2026120519 and "
               "2026120520: at most 2.8e-4, 6.5e-3 and 6.2e-3 d). The t_f bound is 0.01 d in minimum time, 0.1 d in "
               "minimum fuel (flat in t_f: the host itself moves it by 0.058 d over ulp moves of the start); "

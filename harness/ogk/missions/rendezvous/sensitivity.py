@@ -1,5 +1,5 @@
 """How the rendezvous closed loop's outcome moves when its first measured state moves a little (issue 32,
-docs/nmpc-flight.md, "Robustness"): the same runs of a campaign (same noise streams) flown with the
+docs/design/nmpc-flight.md, "Robustness"): the same runs of a campaign (same noise streams) flown with the
 initial radius moved by 1..K representable doubles and by a few metres, through the campaign engine
 (`ogk mc SCENARIO --move-start MOVE`); per run the spread of arrival time and fuel over the moves.
 

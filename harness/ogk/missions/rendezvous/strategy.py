@@ -22,7 +22,7 @@ is regridded with `min_nodes` subintervals over the remaining horizon (CNCN's ru
 drops below `min_nodes` and the subintervals keep shrinking towards t_f. Subdivision stays a decision of
 the doubling test only (it is never forced), so the limit on subdivisions means what it says.
 
-All times are normalised (TU), states (r, theta, v_r, v_theta, m) normalised as in docs/nmpc.md.
+All times are normalised (TU), states (r, theta, v_r, v_theta, m) normalised as in docs/design/nmpc.md.
 """
 from __future__ import annotations
 
@@ -121,7 +121,7 @@ def adopt_doubled(cost_n: float | None, cost_2n: float | None, threshold_percent
 
 @dataclasses.dataclass(frozen=True)
 class StrategySettings:
-    """The strategy's parameters (scenario [nmpc]; docs/nmpc.md, "Closed loop")."""
+    """The strategy's parameters (scenario [nmpc]; docs/design/nmpc.md, "Closed loop")."""
 
     name: str                           #: "snns" or "cncn"
     doubling_threshold_percent: float

@@ -1,6 +1,6 @@
 """Truth ("simulation") model of the Earth-to-Mars rendezvous, Starek & Kolmanovsky 2012 secs. 3.1-3.5.
 
-Normalised units of docs/nmpc.md (`ogk_host.rendezvous.dynamics.Units`: LU = r_E, mu_sun = 1, MU = m_0),
+Normalised units of docs/design/nmpc.md (`ogk_host.rendezvous.dynamics.Units`: LU = r_E, mu_sun = 1, MU = m_0),
 state x = (r, theta, v_r, v_theta, m), control (alpha, w): the thrust angle from the local vertical and the
 throttle w in [0, 1] (w = 1 always for the constant-throttle engine).
 
@@ -30,7 +30,7 @@ Perturbed: eq. (11) with (f_perturb) = the sum of
     nominal mass flow x t_f) is `paper_fuel_kg(actual fuel)` = actual / (1 + T_offset / 100), exact because
     the scale factor is constant.
 
-Throttle model (docs/nmpc.md, "Throttle"): T = w T_max(r), dm/dt = -w mdot_max(r); nuclear-electric
+Throttle model (docs/design/nmpc.md, "Throttle"): T = w T_max(r), dm/dt = -w mdot_max(r); nuclear-electric
 T_max = T_0, mdot_max = T_0 / (g0 Isp); solar-electric eq. (14) in the "duty-cycle" reading (`dynamics.Engine`).
 The commanded throttle is clipped to [0, 1] (an actuator saturates).
 """

@@ -5,7 +5,7 @@
  * test_blt_failure_paths.c) and the Python bindings (bindings/ogk_bindings/blt.py;
  * bindings/build_ffi.py declares this header in its TEST_HEADERS list). A
  * flight application includes ogk/blt.h only. Why here and not in
- * kernel/src/blt/blt_internal.h: docs/adding-a-law.md, "Test entry points". */
+ * kernel/src/blt/blt_internal.h: docs/guides/adding-a-law.md, "Test entry points". */
 #ifndef OGK_INTERNAL_BLT_TEST_H
 #define OGK_INTERNAL_BLT_TEST_H
 

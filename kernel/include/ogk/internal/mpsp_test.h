@@ -6,7 +6,7 @@
  * test_mpsp_rejections.c, test_mpsp_config_readouts.c) and the Python bindings
  * (bindings/ogk_bindings/mpsp.py; bindings/build_ffi.py declares this header in
  * its TEST_HEADERS list). A flight application includes ogk/mpsp.h only. Why
- * here and not in kernel/src/mpsp/mpsp_internal.h: docs/adding-a-law.md, "Test
+ * here and not in kernel/src/mpsp/mpsp_internal.h: docs/guides/adding-a-law.md, "Test
  * entry points". */
 #ifndef OGK_INTERNAL_MPSP_TEST_H
 #define OGK_INTERNAL_MPSP_TEST_H

@@ -6,7 +6,7 @@
  * cross-checks (bindings/ogk_bindings/nmpc.py; bindings/build_ffi.py declares
  * this header in its TEST_HEADERS list). A flight application includes
  * ogk/nmpc.h only. Why here and not in kernel/src/nmpc/nmpc_internal.h:
- * docs/adding-a-law.md, "Test entry points". */
+ * docs/guides/adding-a-law.md, "Test entry points". */
 #ifndef OGK_INTERNAL_NMPC_TEST_H
 #define OGK_INTERNAL_NMPC_TEST_H
 

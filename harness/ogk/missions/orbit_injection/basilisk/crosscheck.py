@@ -1,6 +1,6 @@
 """ogk's 6-DOF truth model against Basilisk on the same runs: the same draws, the same flight
 software (the kernel's VTD-NOG, end-game and CPD), two independent vehicle models
-(docs/basilisk.md). `compare` flies a list of runs in both and returns their injection errors.
+(docs/guides/basilisk.md). `compare` flies a list of runs in both and returns their injection errors.
 
     .venv/bin/python -m ogk.missions.orbit_injection.basilisk.crosscheck [SCENARIO] --seed S --runs N [--substeps K]
 """

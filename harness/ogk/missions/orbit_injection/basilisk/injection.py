@@ -1,5 +1,5 @@
 """An orbit-injection burn flown in Basilisk, ogk's flight software in the loop: the independent
-truth model of docs/basilisk.md.
+truth model of docs/guides/basilisk.md.
 
 Basilisk's Spacecraft hub (RK4 on Cartesian position, velocity, MRP attitude and body rates, its
 own equations of motion), Basilisk's point-mass gravity (gravityEffector, the scenario's mu; no

@@ -1,5 +1,5 @@
 """Basilisk modules: ogk's flight software (OgkInjectionFsw) and the vehicle's engine with its TVC
-and side jets (TvcEnginePlant), both Python SysModels (docs/basilisk.md, "Python or C module").
+and side jets (TvcEnginePlant), both Python SysModels (docs/guides/basilisk.md, "Python or C module").
 
 OgkInjectionFsw, the flight software, talks only through Basilisk's standard messages:
   in   navTransInMsg (NavTransMsg: r_BN_N, v_BN_N), navAttInMsg (NavAttMsg: sigma_BN, omega_BN_B)
@@ -18,7 +18,7 @@ with a time-varying thrust and first-order actuators, Pontani & Celani eqs. 16-1
 reads the three commands, and writes the force and torque for an extForceTorque effector and the
 hub's mass and inertia (mass depletion). Over each step [t, t + h] it applies the step averages:
 the first-order actuators' exact mean under a held command, thrust, mass, arm and inertia at the
-midpoint, so that the held force is second-order accurate in h (docs/basilisk.md, "Tolerances").
+midpoint, so that the held force is second-order accurate in h (docs/guides/basilisk.md, "Tolerances").
 """
 from __future__ import annotations
 
@@ -217,7 +217,7 @@ class TvcEnginePlant(sysModel.SysModel):
         thrust = self.thrust(t_mid)
         arm = self.p.arm0 + self.p.arm_rate * t_mid
         # Basilisk's Spacecraft integrates the step [t, t + h] with the hub mass properties in
-        # force when the previous step ended (measured in docs/basilisk.md: a value set during
+        # force when the previous step ended (measured in docs/guides/basilisk.md: a value set during
         # step k acts in step k + 1), so this step sets those of the next: its midpoint
         self._mass_properties(t_mid + self.h)
         cdz = math.cos(dz)

@@ -1,5 +1,5 @@
 """The tolerances of the Basilisk cross-check for any orbit-injection scenario, from the two truth
-models' own step errors (docs/basilisk.md, "Tolerances"):
+models' own step errors (docs/guides/basilisk.md, "Tolerances"):
 
     .venv/bin/python -m ogk.missions.orbit_injection.basilisk.step_study [SCENARIO] --seed S --runs N
 

@@ -5,7 +5,7 @@
  * one per run. Per-run quantities are component-major arrays: component k of
  * run i is at [k * n_runs + i]. Each run owns one ogk_cpd_t (an array of
  * n_runs contexts allocated by the caller). Used by ogk.missions.orbit_injection.attitude;
- * docs/sil.md. */
+ * docs/guides/sil.md. */
 #ifndef OGK_SIL_BATCH_H
 #define OGK_SIL_BATCH_H
 
