@@ -158,8 +158,9 @@ test-imports: $(VENV)/.installed
 	MYPYPATH=harness:host:bindings:tests/python $(VENV)/bin/mypy --follow-imports=silent \
 	  --ignore-missing-imports --cache-dir $(B)/mypy tests/typecheck/families.py
 
+# --durations: the 25 slowest tests at the end of every run (issue 34: make test within 20 minutes)
 test-python: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o
-	$(VPY) -m pytest -q -m "not slow" tests/python
+	$(VPY) -m pytest -q -m "not slow" --durations=25 tests/python
 
 # Minutes-long checks kept out of `make test`: the Apophis nominal regenerated from scratch.
 test-slow: $(FFI_STAMP)
