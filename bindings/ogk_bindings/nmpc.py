@@ -105,7 +105,39 @@ def plan_of(p: object) -> NmpcPlan:
     return NmpcPlan(t0=float(c.t0), horizon=float(c.horizon), states=x, controls=u, multipliers=lam)
 
 
-class Nmpc:
+class SolverSettings:
+    """The in-flight settings of a context (ogk/nmpc.h, ogk_nmpc_set_*), shared by `Nmpc` and
+    `ogk_bindings.proximity.Proximity`: PREFIX names its C functions, `_solver` its ogk_nmpc_t."""
+
+    PREFIX = "ogk_nmpc"
+    _ctx: Any
+
+    def _solver(self) -> Any:
+        return self._ctx
+
+    def set_horizon_bounds(self, horizon_min: float, horizon_max: float) -> None:
+        """The bounds of T [TU] of the solves and replans that follow (PREFIX_set_horizon_bounds)."""
+        fn = f"{self.PREFIX}_set_horizon_bounds"
+        _check(getattr(lib, fn)(self._ctx, float(horizon_min), float(horizon_max)), fn)
+
+    def set_hessian_init(self, hessian_init: float) -> None:
+        """The first BFGS matrix's scale of the next cold solve (PREFIX_set_hessian_init)."""
+        fn = f"{self.PREFIX}_set_hessian_init"
+        _check(getattr(lib, fn)(self._ctx, float(hessian_init)), fn)
+
+    @property
+    def horizon_bounds(self) -> tuple[float, float]:
+        """The bounds of T [TU] in force."""
+        cfg = self._solver().cfg
+        return float(cfg.horizon_min), float(cfg.horizon_max)
+
+    @property
+    def hessian_init(self) -> float:
+        """The first BFGS matrix's scale in force."""
+        return float(self._solver().cfg.hessian_init)
+
+
+class Nmpc(SolverSettings):
     """One ogk_nmpc_t context (owned by Python; ~230 KiB with the default limits)."""
 
     def __init__(self, cfg: NmpcConfig) -> None:
@@ -118,26 +150,6 @@ class Nmpc:
 
     def reset(self) -> None:
         _check(lib.ogk_nmpc_reset(self._ctx), "ogk_nmpc_reset")
-
-    def set_horizon_bounds(self, horizon_min: float, horizon_max: float) -> None:
-        """The bounds of T [TU] of the solves and replans that follow (ogk_nmpc_set_horizon_bounds)."""
-        _check(lib.ogk_nmpc_set_horizon_bounds(self._ctx, float(horizon_min), float(horizon_max)),
-               "ogk_nmpc_set_horizon_bounds")
-
-    def set_hessian_init(self, hessian_init: float) -> None:
-        """The first BFGS matrix's scale of the next cold solve (ogk_nmpc_set_hessian_init)."""
-        _check(lib.ogk_nmpc_set_hessian_init(self._ctx, float(hessian_init)), "ogk_nmpc_set_hessian_init")
-
-    @property
-    def horizon_bounds(self) -> tuple[float, float]:
-        """The bounds of T [TU] in force."""
-        cfg = self._ctx.cfg
-        return float(cfg.horizon_min), float(cfg.horizon_max)
-
-    @property
-    def hessian_init(self) -> float:
-        """The first BFGS matrix's scale in force."""
-        return float(self._ctx.cfg.hessian_init)
 
     def load_plan(self, t0: float, horizon: float, states: ArrayLike, controls: ArrayLike,
                   multipliers: ArrayLike | None = None) -> None:

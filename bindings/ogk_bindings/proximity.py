@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike
 from ogk_bindings._ffi import ffi, lib
 from ogk_bindings.config import KernelConfig
 from ogk_bindings.kernel import ThrustCmd, _check, _thrust_cmd_call, status_name
-from ogk_bindings.nmpc import NmpcPlan, NmpcReport, plan_cdata, plan_of
+from ogk_bindings.nmpc import NmpcPlan, NmpcReport, SolverSettings, plan_cdata, plan_of
 
 __all__ = ["MAX_KEEPOUT", "ProxConfig", "ProxModel", "Proximity"]
 
@@ -73,8 +73,10 @@ def _report(r: Any, status: int) -> NmpcReport:
                       feas=float(r.feas), stat=float(r.stat))
 
 
-class Proximity:
-    """One ogk_prox_t context (owned by Python)."""
+class Proximity(SolverSettings):
+    """One ogk_prox_t context (owned by Python); its in-flight settings through ogk_prox_set_*."""
+
+    PREFIX = "ogk_prox"
 
     def __init__(self, model: ProxModel, **solver: Any) -> None:
         self.config = ProxConfig(model=model.fields(), solver=solver)
@@ -87,25 +89,8 @@ class Proximity:
     def reset(self) -> None:
         _check(lib.ogk_prox_reset(self._ctx), "ogk_prox_reset")
 
-    def set_horizon_bounds(self, horizon_min: float, horizon_max: float) -> None:
-        """The bounds of T [TU] of the solves and replans that follow (ogk_prox_set_horizon_bounds)."""
-        _check(lib.ogk_prox_set_horizon_bounds(self._ctx, float(horizon_min), float(horizon_max)),
-               "ogk_prox_set_horizon_bounds")
-
-    def set_hessian_init(self, hessian_init: float) -> None:
-        """The first BFGS matrix's scale of the next cold solve (ogk_prox_set_hessian_init)."""
-        _check(lib.ogk_prox_set_hessian_init(self._ctx, float(hessian_init)), "ogk_prox_set_hessian_init")
-
-    @property
-    def horizon_bounds(self) -> tuple[float, float]:
-        """The bounds of T [TU] in force."""
-        cfg = self._ctx.nmpc.cfg
-        return float(cfg.horizon_min), float(cfg.horizon_max)
-
-    @property
-    def hessian_init(self) -> float:
-        """The first BFGS matrix's scale in force."""
-        return float(self._ctx.nmpc.cfg.hessian_init)
+    def _solver(self) -> Any:
+        return self._ctx.nmpc
 
     def load_plan(self, t0: float, horizon: float, states: ArrayLike, controls: ArrayLike,
                   multipliers: ArrayLike | None = None) -> None:

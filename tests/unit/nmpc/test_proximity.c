@@ -718,6 +718,15 @@ static void mission_config(ogk_prox_config_t *cfg, double *x0)
     x0[4] = 1.0;
 }
 
+/* The plan's last node (N = 16) at the hold point at rest, to 1e-9. */
+static void assert_at_hold(const ogk_nmpc_plan_t *p, const ogk_prox_config_t *cfg)
+{
+    OGK_ASSERT_NEAR(p->x[(16u * NX) + 0u], cfg->model.hold[0], 1e-9);
+    OGK_ASSERT_NEAR(p->x[(16u * NX) + 1u], cfg->model.hold[1], 1e-9);
+    OGK_ASSERT_NEAR(p->x[(16u * NX) + 2u], 0.0, 1e-9);
+    OGK_ASSERT_NEAR(p->x[(16u * NX) + 3u], 0.0, 1e-9);
+}
+
 /* ocp.detour_guess's shape: the straight line from the start to the hold point bulged away from the
  * disc's centre to 1.5 radii, its finite-difference velocities (0 at the end), full mass, half throttle
  * along the path, t_f mid-bounds. */
@@ -782,10 +791,7 @@ static void test_open_loop_solve(void **state)
     assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
     OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &out), OGK_OK);
     /* the hold point at rest, the propellant limit, the disc at the nodes */
-    OGK_ASSERT_NEAR(out.x[(16u * NX) + 0u], cfg.model.hold[0], 1e-9);
-    OGK_ASSERT_NEAR(out.x[(16u * NX) + 1u], cfg.model.hold[1], 1e-9);
-    OGK_ASSERT_NEAR(out.x[(16u * NX) + 2u], 0.0, 1e-9);
-    OGK_ASSERT_NEAR(out.x[(16u * NX) + 3u], 0.0, 1e-9);
+    assert_at_hold(&out, &cfg);
     assert_true(out.x[(16u * NX) + 4u] >= (cfg.solver.mass_min - 1e-12));
     for (k = 0u; k <= 16u; ++k) {
         const double d = hypot(out.x[(k * NX) + 0u] - 0.3, out.x[(k * NX) + 1u] - 0.62);
@@ -885,10 +891,7 @@ static void test_in_flight_settings(void **state)
                   (unsigned)rep.sqp_iterations);
     assert_true((rep.t_f >= lo) && (rep.t_f <= hi));
     OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &out), OGK_OK);
-    OGK_ASSERT_NEAR(out.x[(16u * NX) + 0u], cfg.model.hold[0], 1e-9);
-    OGK_ASSERT_NEAR(out.x[(16u * NX) + 1u], cfg.model.hold[1], 1e-9);
-    OGK_ASSERT_NEAR(out.x[(16u * NX) + 2u], 0.0, 1e-9);
-    OGK_ASSERT_NEAR(out.x[(16u * NX) + 3u], 0.0, 1e-9);
+    assert_at_hold(&out, &cfg);
     assert_true(rep.objective > (1.9943631e-4 * 1.5));
     /* a plan outside the bounds is refused by load_plan; reset keeps the bounds */
     OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx, &free_opt), OGK_E_RANGE);
