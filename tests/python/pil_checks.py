@@ -12,11 +12,20 @@ ROOT = Path(__file__).resolve().parents[2]
 LIBM_SLACK_B = 256
 
 
+def locked_make(target: str, timeout: float) -> subprocess.CompletedProcess[str]:
+    """`make -s TARGET` under the lock the Makefile's `locked` takes for it (build/.lock-TARGET's
+    name): `make test` makes the same target in its other lane, and two makes of one target at once
+    would write the same files."""
+    lock = ROOT / "build" / f".lock-{target}"
+    lock.parent.mkdir(parents=True, exist_ok=True)
+    return subprocess.run(["flock", str(lock), "make", "-s", target], cwd=ROOT, capture_output=True,
+                          text=True, timeout=timeout)
+
+
 def static_worst_stack() -> dict[str, int]:
     """gcc's static worst-case stack per kernel entry point on the Cortex-M7 (`make arm-stack`: own
     frame plus the deepest path through the kernel's call graph) [B]."""
-    out = subprocess.run(["make", "-s", "arm-stack"], cwd=ROOT, capture_output=True, text=True,
-                         timeout=600)
+    out = locked_make("arm-stack", timeout=600)
     assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
     return {m.group(1): int(m.group(3)) for m in
             re.finditer(r"^(ogk_\w+)\s+(\d+)\s+(\d+)", out.stdout, flags=re.M)}

@@ -18,6 +18,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from pil_checks import locked_make
 
 ROOT = Path(__file__).resolve().parents[2]
 SEED = 7
@@ -79,8 +80,7 @@ def test_the_big_endian_campaign_agrees_with_the_host(campaign: dict) -> None:
 
 @pytest.mark.req("OGK-HAR-012")
 def test_instructions_and_painted_stack_under_the_static_bound(campaign: dict) -> None:
-    out = subprocess.run(["make", "-s", "stack-bound-sparc"], cwd=ROOT, capture_output=True,
-                         text=True, timeout=1200)
+    out = locked_make("stack-bound-sparc", timeout=1200)
     assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
     bound = json.loads((ROOT / "build" / "profile" / "stack_sparc.json").read_text())["entry_points"]
     rec = campaign["flown"].records[0]

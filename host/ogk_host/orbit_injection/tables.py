@@ -44,6 +44,7 @@ from numpy.typing import NDArray
 
 from .. import tablefile
 from ogk_bindings.errors import OgkInputError, TableError
+from ..dir_lock import directory_lock
 from ..scenario_file import table_dir_for
 from . import dynamics as dyn
 from .derive import EffectiveSettings, effective_settings, freeze_rule_s, resolve
@@ -310,14 +311,15 @@ def ensure_nog_tables(scenario_path: str | Path = DEFAULT_SCENARIO_PATH,
     """
     scenario_path = Path(scenario_path)
     out = default_table_dir(scenario_path) if table_dir is None else Path(table_dir)
-    empty = not out.exists() or (out.is_dir() and not any(out.iterdir()))
-    if empty or (table_dir is None and not (out / MANIFEST).exists()):
-        write_nog_tables(out, scenario_path)
-    elif table_dir is None and _is_ogk_dir(out) and _generator(out) != GENERATOR:
-        # the default directory is this tool's cache (keyed by the scenario's SHA-256): tables of an
-        # older generator are remade there; a user's directory is only ever checked
-        write_nog_tables(out, scenario_path)
-    check_tables(out, scenario_path)
+    with directory_lock(out):   # another process may be writing the same tables
+        empty = not out.exists() or (out.is_dir() and not any(out.iterdir()))
+        if empty or (table_dir is None and not (out / MANIFEST).exists()):
+            write_nog_tables(out, scenario_path)
+        elif table_dir is None and _is_ogk_dir(out) and _generator(out) != GENERATOR:
+            # the default directory is this tool's cache (keyed by the scenario's SHA-256): tables of
+            # an older generator are remade there; a user's directory is only ever checked
+            write_nog_tables(out, scenario_path)
+        check_tables(out, scenario_path)
     return out
 
 

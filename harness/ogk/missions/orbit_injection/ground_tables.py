@@ -7,6 +7,7 @@ import argparse
 import math
 from pathlib import Path
 
+from ogk_host.dir_lock import directory_lock
 from ogk_host.orbit_injection.scenario import load_scenario
 from ogk_host.scenario_file import ScenarioHeader
 
@@ -32,7 +33,7 @@ def write_ground_tables(header: ScenarioHeader, args: argparse.Namespace) -> int
     scn = load_scenario(header.path)  # every bad key reported before the nominal is solved
     out = Path(args.out) if args.out else ground.default_table_dir(header.path)
     check_output_dir(out, "--out")
-    with Working(f"{header.name}: ground nominal and VTD-NOG gains"):
+    with directory_lock(out), Working(f"{header.name}: ground nominal and VTD-NOG gains"):
         manifest = ground.write_nog_tables(out, scenario_path=header.path)
     bundle = out / ground.BUNDLE_FILE
     c_path, h_path = write_c_table(bundle.read_bytes(), "ogk_nog_bundle", out / "c",
