@@ -159,8 +159,9 @@ lint_single_space := $(subst x, ,x)
 LINT_SINGLE_DOUBLE_RE := (__aeabi_d[a-z0-9]+|__aeabi_[a-z0-9]+2d|__[a-z]+df[a-z0-9]*|$(subst \
   $(lint_single_space),|,$(strip $(LINT_SINGLE_DOUBLE_LIBM))))
 lint-single: | apt
-	@for f in $(KSRC); do gcc $(STRICT) $(LINT_SINGLE) $(KINC) -c $$f -o /dev/null || exit 1; done
-	@for f in $(KSRC); do clang $(STRICT) $(LINT_SINGLE) $(KINC) -c $$f -o /dev/null || exit 1; done
+	@# at -O2, as every build of the kernel compiles: some diagnostics (-Wmaybe-uninitialized) need the optimiser
+	@for f in $(KSRC); do gcc $(STRICT) $(LINT_SINGLE) -O2 $(KINC) -c $$f -o /dev/null || exit 1; done
+	@for f in $(KSRC); do clang $(STRICT) $(LINT_SINGLE) -O2 $(KINC) -c $$f -o /dev/null || exit 1; done
 	@rm -rf $(LINT_SINGLE_B) && mkdir -p $(LINT_SINGLE_B)
 	@for f in $(KSRC); do o=$$(echo $${f#kernel/src/} | tr / _); o=$(LINT_SINGLE_B)/$${o%.c}.o; \
 	  arm-none-eabi-gcc $(STRICT) $(LINT_SINGLE) $(LINT_SINGLE_M4F_CPU) -O2 $(KINC) -c $$f -o $$o || exit 1; done

@@ -90,7 +90,14 @@ static void reverse_row(const ogk_i_mpsp_stage_t *sd, ogk_real_t dt, bool thrust
     ogk_real_t bx3[3];
     ogk_real_t bx[3];
     ogk_real_t b[3];
+#if OGK_REAL_SINGLE
+    /* Written by stage 3 and read at stage 2, both only in thrust: gcc 12's
+     * -O2 of the float build (x86-64) does not see it (-Wmaybe-uninitialized).
+     * Not in the double build, whose object code stays as it was. */
+    ogk_real_t bm[3] = {OGK_R(0.0), OGK_R(0.0), OGK_R(0.0)};
+#else
     ogk_real_t bm[3];
+#endif
     ogk_real_t ar[3];
     ogk_real_t av[3];
     ogk_real_t zr2[3];
