@@ -14,8 +14,8 @@ extern "C" {
  * docs/evidence/misra-deviations.md). */
 #define OGK_VERSION_MAJOR 0
 #define OGK_VERSION_MINOR 1
-#define OGK_VERSION_PATCH 0
-#define OGK_VERSION_STRING "0.1.0"
+#define OGK_VERSION_PATCH 1
+#define OGK_VERSION_STRING "0.1.1"
 
 /* *text = OGK_VERSION_STRING. */
 ogk_status ogk_version(const char **text);
