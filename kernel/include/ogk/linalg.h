@@ -1,4 +1,4 @@
-/* ogk/linalg.h -- fixed-size dense linear algebra on row-major double arrays.
+/* ogk/linalg.h -- fixed-size dense linear algebra on row-major ogk_real_t arrays.
  *
  * Matrices are plain row-major arrays: element (i, j) of an r x c matrix A is
  * A[i * c + j]. Dimensions are checked against OGK_LA_MAX_N / OGK_LA_MAX_LONG
