@@ -130,17 +130,59 @@ test-eigen: $(EIGEN_BIN)
 	$(EIGEN_BIN)
 
 # ---------------------------------------------------------------- strict compile + static analysis
-.PHONY: lint
+.PHONY: lint lint-single
 lint: | apt
 	@# with kernel/include only, as a flight project compiles it (the shared internal headers are included by relative path)
 	@for f in $(KSRC); do gcc $(STRICT) $(KINC) -c $$f -o /dev/null || exit 1; done
 	@for f in $(KSRC); do arm-none-eabi-gcc $(STRICT) $(ARM_CPU) $(KINC) -c $$f -o /dev/null || exit 1; done
 	@echo "lint: kernel/ compiles clean (gcc x86-64, arm-none-eabi cortex-m7) with strict flags"
+	$(MAKE) lint-single
+	@# the double build's configuration (its #if variants, e.g. __SSE2__); lint-single checks the float build's.
+	@# One configuration per run: cppcheck's cross-file checks would pair one file's float configuration with
+	@# another's double one (an array of 8 floats read as 8 doubles).
 	cppcheck --quiet --std=c99 --enable=warning,style,performance,portability \
 	  --inline-suppr --suppressions-list=docs/evidence/cppcheck-suppressions.txt \
-	  --error-exitcode=3 $(KINC) $(KSRC_INC) $(KSRC)
+	  --error-exitcode=3 -UOGK_REAL_SINGLE $(KINC) $(KSRC_INC) $(KSRC)
 	@echo "lint: cppcheck clean (justified suppressions: docs/evidence/cppcheck-suppressions.txt)"
 	$(MAKE) misra
+
+# The float build (kernel/include/ogk/real.h: ogk_real_t is float with -DOGK_REAL_SINGLE=1) compiles clean,
+# strict flags and -Wfloat-conversion, with gcc x86-64, clang and arm-none-eabi-gcc for a Cortex-M4F
+# (single-precision FPU only), cppcheck finds nothing in its configuration, and it does no double
+# arithmetic: its Cortex-M4F objects (-O2, as a flight build) reference no double-precision run-time
+# helper of libgcc (__aeabi_dadd, __aeabi_f2d, __aeabi_i2d, ..., the __*df* names) and no double libm
+# function (sqrt rather than sqrtf). The check is first shown to catch a one-line double function, so
+# that a pattern matching nothing cannot pass.
+LINT_SINGLE := -DOGK_REAL_SINGLE=1 -Wfloat-conversion
+LINT_SINGLE_M4F_CPU := -mthumb -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard
+LINT_SINGLE_B := $(B)/lint-single
+LINT_SINGLE_DOUBLE_LIBM := sqrt cbrt hypot sin cos tan asin acos atan atan2 sinh cosh tanh exp exp2 expm1 log \
+  log10 log1p log2 pow fabs floor ceil trunc round lround nearbyint rint fmod remainder fmin fmax fdim fma copysign \
+  ldexp frexp modf scalbn nextafter
+lint_single_space := $(subst x, ,x)
+LINT_SINGLE_DOUBLE_RE := (__aeabi_d[a-z0-9]+|__aeabi_[a-z0-9]+2d|__[a-z]+df[a-z0-9]*|$(subst \
+  $(lint_single_space),|,$(strip $(LINT_SINGLE_DOUBLE_LIBM))))
+lint-single: | apt
+	@# at -O2, as every build of the kernel compiles: some diagnostics (-Wmaybe-uninitialized) need the optimiser
+	@for f in $(KSRC); do gcc $(STRICT) $(LINT_SINGLE) -O2 $(KINC) -c $$f -o /dev/null || exit 1; done
+	@for f in $(KSRC); do clang $(STRICT) $(LINT_SINGLE) -O2 $(KINC) -c $$f -o /dev/null || exit 1; done
+	@rm -rf $(LINT_SINGLE_B) && mkdir -p $(LINT_SINGLE_B)
+	@for f in $(KSRC); do o=$$(echo $${f#kernel/src/} | tr / _); o=$(LINT_SINGLE_B)/$${o%.c}.o; \
+	  arm-none-eabi-gcc $(STRICT) $(LINT_SINGLE) $(LINT_SINGLE_M4F_CPU) -O2 $(KINC) -c $$f -o $$o || exit 1; done
+	@printf 'double ogk_lint_twice(double x);\ndouble ogk_lint_twice(double x) { return x * 2.0 + (double)sqrt(x); }\n' \
+	  | arm-none-eabi-gcc -std=c99 $(LINT_SINGLE_M4F_CPU) -O2 -include math.h -x c -c - -o $(LINT_SINGLE_B)/selfcheck.d
+	@arm-none-eabi-nm -u $(LINT_SINGLE_B)/selfcheck.d | awk '{print $$NF}' | grep -Eqx '$(LINT_SINGLE_DOUBLE_RE)' || \
+	  { echo "lint-single: FAILED: the double-symbol check misses a double function (selfcheck)"; exit 1; }
+	@bad=$$(for o in $(LINT_SINGLE_B)/*.o; do arm-none-eabi-nm -u $$o | awk -v o=$$o '{print o ": " $$NF}'; done \
+	  | grep -E ': $(LINT_SINGLE_DOUBLE_RE)$$'); \
+	  if [ -n "$$bad" ]; then echo "lint-single: FAILED: double arithmetic in the float build:"; echo "$$bad"; exit 1; fi
+	@# cppcheck over the float build's configuration (and its #if variants: --force)
+	@cppcheck --quiet --force --std=c99 --enable=warning,style,performance,portability \
+	  --inline-suppr --suppressions-list=docs/evidence/cppcheck-suppressions.txt \
+	  --error-exitcode=3 -DOGK_REAL_SINGLE=1 $(KINC) $(KSRC_INC) $(KSRC)
+	@echo "lint-single: the float build (OGK_REAL_SINGLE=1) compiles clean (gcc x86-64, clang, arm-none-eabi \
+	cortex-m4f) with strict flags and -Wfloat-conversion, cppcheck clean; its $(words $(KSRC)) Cortex-M4F objects \
+	reference no double helper or double libm function"
 
 # ---------------------------------------------------------------- Python harness (cffi)
 FFI_STAMP := bindings/ogk_bindings/.ffi-built

@@ -26,8 +26,12 @@ a kernel type is restated here:
 * macros: ``gcc -dM -E`` over the same headers; every ``OGK_*`` object-like
   macro defined in one of them becomes ``#define NAME ...`` (integers: cffi
   reads the value from the compiler), ``static const double NAME;`` (floating
-  constants) or ``static const char *const NAME;`` (string literals). Include
-  guards (empty macros) are skipped.
+  constants, also through <float.h> and <math.h>: OGK_REAL_MAX is DBL_MAX) or
+  ``static const char *const NAME;`` (string literals). Include guards (empty
+  macros) and function-like macros (ogk/real.h's OGK_R, OGK_SQRT, ...) are skipped.
+  ogk/real.h's ``typedef double ogk_real_t;`` reaches the cdef as written: the
+  default build's real type, the float64 of every wrapper (a kernel built with
+  OGK_REAL_SINGLE=1 is refused at import: ogk_bindings._ffi).
 
 tests/python/test_bindings.py checks independently that every function,
 struct field and integer macro of the headers is reachable.
@@ -128,6 +132,9 @@ def declarations(headers: list[Path], include_dirs: list[str] | None = None) -> 
 
 
 _MACRO = re.compile(r"^#define\s+(OGK_\w+)(?:\s+(.*))?$")
+_ANY_MACRO = re.compile(r"^#define\s+(\w+)(?:\s+(.*))?$")
+# <math.h>'s HUGE_VAL (OGK_REAL_HUGE_VAL) is a builtin call, not a literal
+_FLOAT_BUILTIN = re.compile(r"\b__builtin_(?:huge_val|inf|nan)f?\b")
 _FLOAT = re.compile(r"(?<![\w.])(\d+\.\d*|\.\d+|\d+[eE][-+]?\d+)(?:[eE][-+]?\d+)?[fFlL]?(?![\w.])")
 
 
@@ -137,17 +144,24 @@ def macros(headers: list[Path], include_dirs: list[str] | None = None
     include), kind in {"int", "double", "string"}; empty (include-guard) macros skipped."""
     text = _preprocess(include_source(headers), "-dM", include_dirs=include_dirs)
     values: dict[str, str] = {}
+    # every object-like macro the headers see (<float.h>'s, <math.h>'s, the compiler's), to expand
+    # the OGK_* ones through them: ogk/real.h's OGK_REAL_EPSILON is DBL_EPSILON, __DBL_EPSILON__,
+    # a floating literal
+    every: dict[str, str] = {}
     for line in text.splitlines():
+        m = _ANY_MACRO.match(line)
+        if m and m.group(2) is not None and m.group(2).strip():
+            every[m.group(1)] = m.group(2).strip()
         m = _MACRO.match(line)
         if m and m.group(2) is not None and m.group(2).strip():
             values[m.group(1)] = m.group(2).strip()
 
     def expanded(value: str) -> str:
-        # Other OGK_* macros replaced by their values (a macro may alias another,
-        # e.g. OGK_CPD_ANGLE_LIMIT -> OGK_ANGLE_LIMIT), so the kind is the compiler's.
+        # Other macros replaced by their values (a macro may alias another, e.g.
+        # OGK_CPD_ANGLE_LIMIT -> OGK_ANGLE_LIMIT, OGK_REAL_MAX -> DBL_MAX), so the kind is the compiler's.
         for _ in range(16):
-            new = re.sub(r"\bOGK_\w+\b", lambda m: f"({values.get(m.group(0), m.group(0))})",
-                         value)
+            new = re.sub(r"\b[A-Za-z_]\w*\b", lambda m: f"({every[m.group(0)]})" if m.group(0) in every
+                         else m.group(0), value)
             if new == value:
                 break
             value = new
@@ -158,7 +172,7 @@ def macros(headers: list[Path], include_dirs: list[str] | None = None
         full = expanded(value)
         if full.lstrip("( ").startswith('"'):
             kind = "string"
-        elif _FLOAT.search(full):
+        elif _FLOAT.search(full) or _FLOAT_BUILTIN.search(full):
             kind = "double"
         else:
             kind = "int"

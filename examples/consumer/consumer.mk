@@ -4,10 +4,15 @@
 #   (build/cm-host -> build/ogk-prefix-host, build/cm-m7 -> build/ogk-prefix-m7), then
 #   examples/consumer configured with find_package(ogk 0.1) against each prefix, built and run:
 #   on the host directly, on the Cortex-M7 under QEMU (mps2-an500, the board files of port/cortex-m7).
+#   Then the single-precision package (OGK_PRECISION=single, kernel/include/ogk/real.h) for the host
+#   (build/cm-host-single -> build/ogk-prefix-host-single): its ogk.pc and ogk::ogk carry OGK_REAL_SINGLE=1,
+#   and examples/consumer's real-type probe built against it finds the library's float.
 # Fails on any configure, build, install or link error and on any law whose flight loop fails.
 # Included by the top-level Makefile (uses its B, CMAKE_BUILD, ARM_PORT).
-CONSUMER_DIRS := $(B)/cm-host $(B)/cm-m7 $(B)/ogk-prefix-host $(B)/ogk-prefix-m7 $(B)/consumer-host $(B)/consumer-m7
+CONSUMER_DIRS := $(B)/cm-host $(B)/cm-m7 $(B)/ogk-prefix-host $(B)/ogk-prefix-m7 $(B)/consumer-host $(B)/consumer-m7 \
+  $(B)/cm-host-single $(B)/ogk-prefix-host-single $(B)/consumer-host-single
 PREFIX_M7 := $(abspath $(B)/ogk-prefix-m7)
+PREFIX_HOST_SINGLE := $(abspath $(B)/ogk-prefix-host-single)
 
 .PHONY: test-consumer
 test-consumer: | apt
@@ -21,6 +26,7 @@ test-consumer: | apt
 	cmake -S examples/consumer -B $(B)/consumer-host -DCMAKE_PREFIX_PATH=$(abspath $(B)/ogk-prefix-host) \
 	  --log-level=WARNING
 	$(CMAKE_BUILD) $(B)/consumer-host
+	$(B)/consumer-host/ogk_real_probe | grep -q 'double (8 bytes)'
 	$(B)/consumer-host/ogk_consumer
 	@# the package's own toolchain file, as a flight project would take it
 	cmake -S examples/consumer -B $(B)/consumer-m7 -DCMAKE_PREFIX_PATH=$(PREFIX_M7) \
@@ -28,3 +34,12 @@ test-consumer: | apt
 	  -DOGK_CONSUMER_BOARD_DIR=$(abspath $(ARM_PORT)) --log-level=WARNING
 	$(CMAKE_BUILD) $(B)/consumer-m7
 	$(ARM_PORT)/run_qemu.sh $(B)/consumer-m7/ogk_consumer.elf 300
+	@# the single-precision package: the definition reaches a consumer by pkg-config and by the CMake target
+	cmake -B $(B)/cm-host-single -S . -DOGK_PRECISION=single -DOGK_BUILD_SHARED=OFF --log-level=WARNING
+	$(CMAKE_BUILD) $(B)/cm-host-single -j2
+	cmake --install $(B)/cm-host-single --prefix $(B)/ogk-prefix-host-single > $(B)/cm-host-single/install.log
+	PKG_CONFIG_PATH=$(PREFIX_HOST_SINGLE)/lib/pkgconfig pkg-config --cflags ogk | grep -q -- '-DOGK_REAL_SINGLE=1'
+	cmake -S examples/consumer -B $(B)/consumer-host-single -DCMAKE_PREFIX_PATH=$(PREFIX_HOST_SINGLE) \
+	  --log-level=WARNING
+	$(CMAKE_BUILD) $(B)/consumer-host-single
+	$(B)/consumer-host-single/ogk_real_probe | grep -q 'float (4 bytes)'

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <ogk/real.h>
 #include <ogk/version.h>
 
 #include "consumer.h"
@@ -16,11 +17,18 @@ int consumer_verdict(const char *law, int pass, const char *detail)
 int main(void)
 {
     const char *text = "";
+    uint32_t real_bytes = 0u;
     int failed = 0;
     /* the library linked and the headers compiled against are the same release */
     if ((ogk_version(&text) != OGK_OK) || (strcmp(text, OGK_VERSION_STRING) != 0)) {
         (void)printf("consumer: library version %s, headers %s\n", text, OGK_VERSION_STRING);
         return 100;
+    }
+    /* ... and have the same real type (the package passes the library's OGK_REAL_SINGLE on) */
+    if ((ogk_real_bytes(&real_bytes) != OGK_OK) || (real_bytes != (uint32_t)sizeof(ogk_real_t))) {
+        (void)printf("consumer: library's real type %u bytes, headers' %u\n", (unsigned)real_bytes,
+                     (unsigned)sizeof(ogk_real_t));
+        return 101;
     }
     (void)printf("consumer of ogk %s\n", text);
     failed += fly_nog();

@@ -9,16 +9,17 @@
 #include <stddef.h>
 
 #include "ogk/status.h"
+#include "ogk/real.h"
 
 /* row[0..len-1] -= a * u[0..len-1], two columns per step (one SIMD pair on
  * SSE2); each entry sees one multiply and one subtract, as the plain loop.
  * static inline: the QP's loops (qp_blas.c) pay no call. */
-static inline void ogk_i_row_axpy_sub(double *row, double a, const double *u, size_t len)
+static inline void ogk_i_row_axpy_sub(ogk_real_t *row, ogk_real_t a, const ogk_real_t *u, size_t len)
 {
     size_t c = 0u;
     for (; (c + 2u) <= len; c += 2u) {
-        const double ra = row[c] - (a * u[c]);
-        const double rb = row[c + 1u] - (a * u[c + 1u]);
+        const ogk_real_t ra = row[c] - (a * u[c]);
+        const ogk_real_t rb = row[c + 1u] - (a * u[c + 1u]);
         row[c] = ra;
         row[c + 1u] = rb;
     }
@@ -30,8 +31,8 @@ static inline void ogk_i_row_axpy_sub(double *row, double a, const double *u, si
 /* What each user accepts as a pivot, how it scales a pivot row, and the
  * analysis bound of linalg.c. */
 typedef struct {
-    double rel;          /* [-] a reduced pivot d_k <= rel a_kk is not positive definite */
-    double floor;        /* [units of A] nor is a d_k <= floor (nor an a_kk <= 0 or NaN) */
+    ogk_real_t rel;          /* [-] a reduced pivot d_k <= rel a_kk is not positive definite */
+    ogk_real_t floor;        /* [units of A] nor is a d_k <= floor (nor an a_kk <= 0 or NaN) */
     bool bounded;        /* U(k, i) held within +-2 sqrt(|a_ii|) (row i of L has norm sqrt(a_ii)
                           * when A = L L^T: twice that is never reached by an accepted
                           * factorisation), a bound there for Frama-C EVA's ranges (linalg.c,
@@ -51,6 +52,6 @@ typedef struct {
  * row over u_kk = sqrt(d_k), and every entry U(i, j)
  * receives its updates -U(k, i) U(k, j) in increasing k, so the blocking
  * changes no bit. */
-ogk_status ogk_i_chol_upper(double *U, const double *a, size_t n, const ogk_i_chol_rule_t *rule);
+ogk_status ogk_i_chol_upper(ogk_real_t *U, const ogk_real_t *a, size_t n, const ogk_i_chol_rule_t *rule);
 
 #endif /* OGK_CHOL_INTERNAL_H */

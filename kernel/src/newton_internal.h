@@ -21,7 +21,7 @@
  * solved system, step (when not NULL) receives z[0..n-1]. Returns
  * ogk_minnorm's failure, OGK_E_NONFINITE when z[0..n-1] is not finite, or
  * OGK_OK. */
-ogk_status ogk_i_newton_minnorm(ogk_qr_t *ws, const double *jac, size_t m, size_t n, double lambda,
-                                const double *r, double *aug, double *z, double *step);
+ogk_status ogk_i_newton_minnorm(ogk_qr_t *ws, const ogk_real_t *jac, size_t m, size_t n, ogk_real_t lambda,
+                                const ogk_real_t *r, ogk_real_t *aug, ogk_real_t *z, ogk_real_t *step);
 
 #endif /* OGK_NEWTON_INTERNAL_H */

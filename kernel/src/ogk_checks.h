@@ -10,11 +10,13 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#define OGK_I_PI 3.14159265358979323846
-#define OGK_I_TWO_PI 6.28318530717958647692
+#include "ogk/real.h"
+
+#define OGK_I_PI OGK_R(3.14159265358979323846)
+#define OGK_I_TWO_PI OGK_R(6.28318530717958647692)
 
 /* true when v[0..n-1] are all finite (n = 0: true). */
-static inline bool ogk_i_all_finite(const double *v, size_t n)
+static inline bool ogk_i_all_finite(const ogk_real_t *v, size_t n)
 {
     bool finite = true;
     size_t i;
@@ -43,9 +45,9 @@ static inline uint32_t ogk_i_min_u32(uint32_t n, uint32_t bound)
 /* angle + 2 pi k in (-pi, pi], angle finite. fmod is exact, so an angle
  * already in (-pi, pi] comes back unchanged; otherwise one rounding of the
  * +-2 pi correction. */
-static inline double ogk_i_wrap_pi(double angle)
+static inline ogk_real_t ogk_i_wrap_pi(ogk_real_t angle)
 {
-    double w = fmod(angle, OGK_I_TWO_PI);
+    ogk_real_t w = OGK_FMOD(angle, OGK_I_TWO_PI);
     if (w > OGK_I_PI) {
         w -= OGK_I_TWO_PI;
     } else if (w <= -OGK_I_PI) {

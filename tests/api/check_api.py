@@ -19,6 +19,11 @@ while the major is 0 -- the same as ogkConfigVersion.cmake's SameMinorVersion fo
     added entries only        compatible    minor bump (0.x: patch bump)
 A bump that covers the change passes, with the reminder to record at the release.
 
+ogk/real.h's names are compared as the default build compiles them (as_compiled): a declaration spelled
+`ogk_real_t` where the record says `double`, or a macro `OGK_R(1.0e4)` or `OGK_REAL_TINY` where it says
+`1.0e4` or `1.0e-300`, is the same declaration (the type is double unless OGK_REAL_SINGLE=1, and a double
+literal cast to double is that literal); a real that becomes float, or real.h's own typedef, still changes.
+
 Usage: check_api.py check|record [--include DIR] [--api-dir DIR] [--cc GCC]
 """
 from __future__ import annotations
@@ -217,6 +222,55 @@ def digest(include: Path, cc: str = "gcc") -> dict[str, str]:
     return out
 
 
+# ogk/real.h's names, read as the default build compiles them (CHANGELOG.md, "Versioning"): the kernel's
+# reals became ogk_real_t, which is double unless OGK_REAL_SINGLE=1, and its floating literals OGK_R(x),
+# which is the cast of a double literal to double there. An entry whose text differs from the recorded
+# one only by these spellings declares the same thing and is no change.
+REAL_HEADER = "real.h"
+FLOAT_LITERAL = re.compile(r"^(?:\d+\.\d*|\.\d+|\d+(?=[eE]))(?:[eE][-+]?\d+)?$")
+
+
+def as_compiled(entries: dict[str, str]) -> dict[str, str]:
+    """Every entry outside real.h with real.h's names (as `entries` define them) replaced by what the
+    default build makes of them: ogk_real_t by its typedef's type, real.h's object-like macros
+    (OGK_REAL_TINY, ...) by their values, then OGK_R ( <floating literal> ) by the literal. real.h's own
+    entries, and entries that use none of its names, come back as they are."""
+    typedef = entries.get(f"[{REAL_HEADER}] type ogk_real_t", "")
+    toks = typedef.split(" ")
+    real_type = toks[1:-1] if len(toks) > 2 and toks[0] == "typedef" and toks[-1] == "ogk_real_t" else []
+    macros = {k.split(" ")[-1]: v.split(" ") for k, v in entries.items()
+              if k.startswith(f"[{REAL_HEADER}] macro ") and "(" not in k.split(" ")[-1]}
+    out: dict[str, str] = {}
+    for key, text in entries.items():
+        if key.startswith(f"[{REAL_HEADER}]"):
+            out[key] = text
+            continue
+        words = text.split(" ")
+        for _ in range(8):  # a macro of real.h may name another
+            new: list[str] = []
+            for w in words:
+                if w == "ogk_real_t" and real_type:
+                    new.extend(real_type)
+                elif w in macros:
+                    new.extend(macros[w])
+                else:
+                    new.append(w)
+            if new == words:
+                break
+            words = new
+        i, flat = 0, []
+        while i < len(words):
+            if (words[i:i + 2] == ["OGK_R", "("] and i + 3 < len(words) and words[i + 3] == ")"
+                    and FLOAT_LITERAL.match(words[i + 2])):
+                flat.append(words[i + 2])
+                i += 4
+            else:
+                flat.append(words[i])
+                i += 1
+        out[key] = " ".join(flat)
+    return out
+
+
 def read_version(include: Path) -> tuple[int, int, int]:
     text = (include / "ogk" / "version.h").read_text()
     parts = dict(VERSION.findall(text))
@@ -287,8 +341,15 @@ def check(include: Path, api_dir: Path, cc: str) -> int:
     current = digest(include, cc)
     removed = sorted(set(recorded) - set(current))
     added = sorted(set(current) - set(recorded))
-    changed = sorted(k for k in set(recorded) & set(current) if recorded[k] != current[k])
+    compiled, compiled_record = as_compiled(current), as_compiled(recorded)
+    differ = [k for k in set(recorded) & set(current) if recorded[k] != current[k]]
+    changed = sorted(k for k in differ if compiled_record[k] != compiled[k])
+    respelled = len(differ) - len(changed)
     rel = record.relative_to(ROOT) if record.is_relative_to(ROOT) else record
+    if respelled:
+        print(f"api-check: {respelled} entries differ from {vtext(rec_version)}'s only in the spelling of "
+              "ogk/real.h's names (ogk_real_t / double, OGK_R(x) / x, OGK_REAL_*): the same declarations in "
+              "the default build, no change")
     if not (removed or added or changed):
         print(f"api-check: the public API is the one recorded for {vtext(rec_version)} ({rel}, "
               f"{len(current)} entries); version.h says {vtext(version)}")

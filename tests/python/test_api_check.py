@@ -82,7 +82,7 @@ def test_changed_macro_and_removed_function_fail(scratch: Path) -> None:
     """A flag's value and a removed function are incompatible too (the macros are API)."""
     edit(scratch / "include" / "ogk" / "nog.h", "#define OGK_NOG_FLAG_SAFE 0x08u", "#define OGK_NOG_FLAG_SAFE 0x40u")
     edit(scratch / "include" / "ogk" / "nog.h",
-         "ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau);", "")
+         "ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, ogk_real_t t_s, ogk_real_t *tau);", "")
     r = run(scratch)
     assert r.returncode == 1, r.stdout
     assert "changed: [nog.h] macro OGK_NOG_FLAG_SAFE" in r.stdout
@@ -106,3 +106,37 @@ def test_added_declaration_needs_the_compatible_bump(scratch: Path) -> None:
     assert run(scratch, "record").returncode == 0
     r = run(scratch)
     assert r.returncode == 0 and "is the one recorded for %d.%d.%d" % compatible in r.stdout
+
+
+def test_real_type_spelling_is_no_change(scratch: Path) -> None:
+    """ogk/real.h's names read as the default build compiles them (issue 35): a parameter spelled double
+    where the record says ogk_real_t, a macro's bare literal where it says OGK_R(literal), and one
+    spelled with a real.h limit, declare the same API and pass without a bump."""
+    mathutil = scratch / "include" / "ogk" / "mathutil.h"
+    edit(mathutil, "ogk_status ogk_wrap_pi(ogk_real_t angle, ogk_real_t *wrapped);",
+         "ogk_status ogk_wrap_pi(double angle, ogk_real_t *wrapped);")
+    edit(mathutil, "#define OGK_ANGLE_LIMIT OGK_R(1.0e4)", "#define OGK_ANGLE_LIMIT 1.0e4")
+    edit(scratch / "include" / "ogk" / "linalg.h", "#define OGK_LA_PIVOT_MIN OGK_REAL_TINY",
+         "#define OGK_LA_PIVOT_MIN 1.0e-300")
+    r = run(scratch)
+    assert r.returncode == 0, r.stdout
+    assert "3 entries differ from" in r.stdout and "only in the spelling of ogk/real.h's names" in r.stdout
+    assert "changed:" not in r.stdout
+
+
+def test_real_type_made_float_is_a_change(scratch: Path) -> None:
+    """What the reading of real.h's names must not hide: a real that becomes float, a macro whose value
+    differs, and the default build's real type itself."""
+    mathutil = scratch / "include" / "ogk" / "mathutil.h"
+    edit(mathutil, "ogk_status ogk_wrap_pi(ogk_real_t angle, ogk_real_t *wrapped);",
+         "ogk_status ogk_wrap_pi(float angle, ogk_real_t *wrapped);")
+    edit(scratch / "include" / "ogk" / "linalg.h", "#define OGK_LA_PIVOT_MIN OGK_REAL_TINY",
+         "#define OGK_LA_PIVOT_MIN OGK_REAL_MIN")
+    r = run(scratch)
+    assert r.returncode == 1, r.stdout
+    assert "changed: [mathutil.h] func ogk_wrap_pi" in r.stdout
+    assert "changed: [linalg.h] macro OGK_LA_PIVOT_MIN" in r.stdout
+    edit(scratch / "include" / "ogk" / "real.h", "typedef double ogk_real_t;", "typedef float ogk_real_t;")
+    r = run(scratch)
+    assert "changed: [real.h] type ogk_real_t" in r.stdout and r.returncode == 1
+

@@ -110,6 +110,9 @@ MACROS = [(h.name, name, value) for h in HEADERS for name, value in _macros(h)]
 _VALUES = {name: value for _, name, value in MACROS}
 
 
+_FLOAT_LIMIT = r"(?:DBL|FLT)_(?:EPSILON|MAX|MIN)|HUGE_VALF?"
+
+
 def _resolved(value: str) -> str:
     """A macro that is another macro's name stands for that macro's value."""
     for _ in range(8):
@@ -194,7 +197,10 @@ def test_macro_readable(header: str, name: str, value: str) -> None:
     value = _resolved(value)
     if value.startswith('"'):
         assert ffi.string(v).decode() == value.strip('"')
-    elif not re.search(r"0[xX]", value) and re.search(r"\d\.\d*|\d[eE][-+]?\d", value):
+    elif (not re.search(r"0[xX]", value) and re.search(r"\d\.\d*|\d[eE][-+]?\d", value)) or \
+            re.fullmatch(_FLOAT_LIMIT, value):
+        # a floating literal, or a floating limit of <float.h> / <math.h> (ogk/real.h's
+        # OGK_REAL_EPSILON is DBL_EPSILON, FLT_EPSILON in the float build)
         assert isinstance(v, float)
         if re.fullmatch(r"[-+]?[\d.]+(?:[eE][-+]?\d+)?", value):
             assert v == float(value)

@@ -220,6 +220,60 @@ def test_nonfinite_value_with_valid_crcs(table: tuple[np.ndarray, np.ndarray, by
             tf.decode_table(bad)
 
 
+# ----------------------------------------------------------------- precision of the elements
+@pytest.mark.req("OGK-CORE-028", "OGK-HAR-008")
+def test_f32_table_header_payload_and_crc_by_hand(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:
+    """precision="single" writes an F32 table (kernel/include/ogk/table.h: element type 2, 4 bytes a
+    value), checked here with explicit offsets, struct's own binary32 packing and zlib, not the writer's
+    code; the double kernel refuses it (OGK_E_TABLE_TYPE), as a kernel refuses the other build's table."""
+    grid, data, f64_blob = table
+    blob = tf.encode_table(KIND, grid, data, precision="single")
+    u16 = lambda off: int.from_bytes(blob[off:off + 2], "little")  # noqa: E731
+    u32 = lambda off: int.from_bytes(blob[off:off + 4], "little")  # noqa: E731
+    values = np.concatenate([grid, data.ravel()])
+    assert blob[0:4] == b"OGKT"
+    assert (u16(4), u16(6), u32(8), u16(12), u16(14)) == (1, 2, KIND, 2, 0)
+    assert [u32(16 + 4 * i) for i in range(4)] == [3, 2, 0, 0]
+    assert u32(32) == GRID_SIZE
+    assert u32(36) == 4 * GRID_SIZE * (1 + 6) == 4 * values.size == len(blob) - 48
+    assert u32(40) == zlib.crc32(blob[48:])
+    assert u32(44) == zlib.crc32(blob[:44])
+    # grid then the rows, each value the nearest binary32, little-endian
+    assert blob[48:] == struct.pack(f"<{values.size}f", *values)
+    expect_code(blob, lib.OGK_E_TABLE_TYPE)
+    assert lib.OGK_TABLE_REAL == lib.OGK_TABLE_F64 == tf.ELEM_F64
+    assert lib.OGK_TABLE_F32 == tf.ELEM_F32
+    # the pure-Python reader reads either (float64 arrays), or only one build's when asked
+    back = tf.decode_table(blob, KIND)
+    assert back.elem_type == tf.ELEM_F32
+    np.testing.assert_array_equal(back.data, data.astype(np.float32).astype(np.float64))
+    np.testing.assert_array_equal(back.grid, grid.astype(np.float32).astype(np.float64))
+    assert tf.decode_table(blob, KIND, precision="single").elem_type == tf.ELEM_F32
+    with pytest.raises(tf.TableFormatError, match="element type 2"):
+        tf.decode_table(blob, KIND, precision="double")
+    with pytest.raises(tf.TableFormatError, match="element type 1"):
+        tf.decode_table(f64_blob, KIND, precision="single")
+
+
+@pytest.mark.req("OGK-CORE-028", "OGK-HAR-008")
+def test_default_precision_writes_the_f64_file_of_before() -> None:
+    """The precision parameter's default is the F64 file, byte for byte what the writer wrote before it
+    had the parameter (the CRC of this file recorded then), so every existing table and its CRCs stay."""
+    grid, data = [0.0, 0.5, 1.0], np.array([[1.0, -2.5], [3.0, 0.1], [1e-3, 7.0]])
+    blob = tf.encode_table(0x4E4F4701, grid, data)
+    assert (len(blob), zlib.crc32(blob)) == (120, 0xD92635EF)
+    assert tf.encode_table(0x4E4F4701, grid, data, precision="double") == blob
+    assert tf.decode_table(blob).elem_type == tf.ELEM_F64
+
+
+@pytest.mark.req("OGK-HAR-008")
+def test_f32_writer_refuses_what_binary32_cannot_hold() -> None:
+    with pytest.raises(tf.TableFormatError, match="range of single"):
+        tf.encode_table(KIND, [0.0, 1.0], [[1.0], [1e39]], precision="single")
+    with pytest.raises(tf.TableFormatError, match="precision 'half'"):
+        tf.encode_table(KIND, [0.0, 1.0], [[1.0], [2.0]], precision="half")
+
+
 # ----------------------------------------------------------------- pure-Python reader / writer
 @pytest.mark.req("OGK-HAR-008", "OGK-CORE-017")
 def test_python_reader_rejects_corruptions(table: tuple[np.ndarray, np.ndarray, bytes]) -> None:

@@ -65,4 +65,39 @@ static void tw_header(uint8_t *buf, uint32_t kind, uint16_t ndims, const uint32_
     tw_put_u32(buf + 36, 8u * grid * (1u + entry_len));
 }
 
+/* The F32 (IEEE-754 binary32, little-endian) copy of the sealed F64 table src of
+ * n_values payload values into dst (OGK_TABLE_HEADER_SIZE + 4 n_values bytes):
+ * the same header with element type OGK_TABLE_F32 and the payload size of
+ * 4-byte values, each value rounded to float, both CRCs recomputed. What a
+ * ground tool writes for a kernel built with OGK_REAL_SINGLE=1. static inline:
+ * not every test that includes this header converts a table. */
+static inline void tw_to_f32(const uint8_t *src, uint8_t *dst, uint32_t n_values)
+{
+    uint32_t k;
+    uint32_t crc = 0u;
+    memcpy(dst, src, OGK_TABLE_HEADER_SIZE);
+    tw_put_u16(dst + 6, (uint16_t)OGK_TABLE_F32);
+    tw_put_u32(dst + 36, 4u * n_values);
+    for (k = 0u; k < n_values; ++k) {
+        const uint8_t *p = src + OGK_TABLE_HEADER_SIZE + 8u * (size_t)k;
+        uint64_t bits = 0u;
+        double d;
+        float f;
+        uint32_t fbits;
+        unsigned i;
+        for (i = 0u; i < 8u; ++i) {
+            bits |= (uint64_t)p[i] << (8u * i);
+        }
+        memcpy(&d, &bits, sizeof d);
+        f = (float)d;
+        memcpy(&fbits, &f, sizeof fbits);
+        tw_put_u32(dst + OGK_TABLE_HEADER_SIZE + 4u * (size_t)k, fbits);
+    }
+    (void)ogk_crc32_update(&crc, dst + OGK_TABLE_HEADER_SIZE, 4u * (size_t)n_values);
+    tw_put_u32(dst + 40, crc);
+    crc = 0u;
+    (void)ogk_crc32_update(&crc, dst, 44u);
+    tw_put_u32(dst + 44, crc);
+}
+
 #endif /* OGK_TEST_TABLE_WRITER_H */

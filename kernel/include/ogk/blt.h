@@ -13,6 +13,7 @@
 #include "ogk/linalg.h"
 #include "ogk/status.h"
 #include "ogk/types.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -70,18 +71,18 @@ extern "C" {
 
 /* The dynamical model (docs/design/blt.md, sec. 1); every term can be switched off with a zero. */
 typedef struct {
-    double mu;                /* [-] M2 / (M1 + M2), in (0, 0.5] (must be set) */
-    double body_radius[2];    /* [LU] impact radius of the primary, the secondary, > 0 (must be set) */
-    double ref_radius[2];     /* [LU] normalising radius of c20 / c22 of each body, > 0 (default 1) */
-    double c20[2];            /* [-] unnormalised degree-2 zonal coefficient of each body (default 0) */
-    double c22[2];            /* [-] unnormalised degree-2 sectoral coefficient in synodic axes; c22[0] = 0 (default 0) */
-    double srp_accel;         /* [LU/TU^2] SRP acceleration at mass fraction 1, >= 0 (default 0) */
-    double sun_angle0;        /* [rad] the Sun's direction from the barycentre, synodic frame, t = 0 (default 0) */
-    double sun_rate;          /* [rad/TU] its rate in the synodic frame (n_helio - 1) (default -1) */
-    double sun_tidal;         /* [1/TU^2] mu_sun / d_sun^3, >= 0 (default 0) */
-    double thrust_accel;      /* [LU/TU^2] F / m0 during a burn, > 0 (must be set) */
-    double mass_flow;         /* [1/TU] F / (Isp g0 m0), >= 0 (default 0) */
-    double step_max;          /* [TU] longest RK4 step, > 0 (default 2e-3) */
+    ogk_real_t mu;                /* [-] M2 / (M1 + M2), in (0, 0.5] (must be set) */
+    ogk_real_t body_radius[2];    /* [LU] impact radius of the primary, the secondary, > 0 (must be set) */
+    ogk_real_t ref_radius[2];     /* [LU] normalising radius of c20 / c22 of each body, > 0 (default 1) */
+    ogk_real_t c20[2];            /* [-] unnormalised degree-2 zonal coefficient of each body (default 0) */
+    ogk_real_t c22[2];            /* [-] unnormalised degree-2 sectoral coefficient in synodic axes; c22[0] = 0 (default 0) */
+    ogk_real_t srp_accel;         /* [LU/TU^2] SRP acceleration at mass fraction 1, >= 0 (default 0) */
+    ogk_real_t sun_angle0;        /* [rad] the Sun's direction from the barycentre, synodic frame, t = 0 (default 0) */
+    ogk_real_t sun_rate;          /* [rad/TU] its rate in the synodic frame (n_helio - 1) (default -1) */
+    ogk_real_t sun_tidal;         /* [1/TU^2] mu_sun / d_sun^3, >= 0 (default 0) */
+    ogk_real_t thrust_accel;      /* [LU/TU^2] F / m0 during a burn, > 0 (must be set) */
+    ogk_real_t mass_flow;         /* [1/TU] F / (Isp g0 m0), >= 0 (default 0) */
+    ogk_real_t step_max;          /* [TU] longest RK4 step, > 0 (default 2e-3) */
 } ogk_blt_model_t;
 
 typedef struct {
@@ -97,30 +98,30 @@ typedef struct {
     uint32_t target_mask;     /* [-] bits 0-5: constrained components of xf; all six when the last arc meets before the end (default 0x3F) */
     uint32_t corrector;       /* [-] OGK_BLT_CORR_* (default NRPC) */
     uint32_t jacobian;        /* [-] OGK_BLT_JAC_* (default central) */
-    double fd_step;           /* [-] central-difference step on each unknown, normalised units (default 1e-6) */
-    double tol;               /* [-] convergence: |e|_2 <= tol, normalised units (default 1e-6, the paper's) */
+    ogk_real_t fd_step;           /* [-] central-difference step on each unknown, normalised units (default 1e-6) */
+    ogk_real_t tol;               /* [-] convergence: |e|_2 <= tol, normalised units (default 1e-6, the paper's) */
     uint32_t max_iter;        /* [-] 1..OGK_BLT_MAX_ITER (default 40, the paper's sec. V) */
-    double ls_factor;         /* [-] NRPC line search: step lengths 1, f, f^2, ... (default 0.1, the paper's 1/10) */
+    ogk_real_t ls_factor;         /* [-] NRPC line search: step lengths 1, f, f^2, ... (default 0.1, the paper's 1/10) */
     uint32_t ls_trials;       /* [-] step lengths tried per iteration, 1..OGK_BLT_MAX_TRIALS (default 4) */
     uint32_t impact_halvings; /* [-] halvings of a step whose trajectory hits a body, 0..OGK_BLT_MAX_TRIALS (default 10) */
-    double lm_lambda0;        /* [-] LM: initial damping, relative to the mean diagonal of J J^T (default 1e-3) */
-    double lm_up;             /* [-] LM: damping factor after a rejected step, > 1 (default 10) */
-    double lm_down;           /* [-] LM: damping factor after an accepted step, in (0, 1] (default 0.3) */
+    ogk_real_t lm_lambda0;        /* [-] LM: initial damping, relative to the mean diagonal of J J^T (default 1e-3) */
+    ogk_real_t lm_up;             /* [-] LM: damping factor after a rejected step, > 1 (default 10) */
+    ogk_real_t lm_down;           /* [-] LM: damping factor after an accepted step, in (0, 1] (default 0.3) */
     uint32_t lm_trials;       /* [-] LM: damping trials per iteration, 1..OGK_BLT_MAX_TRIALS (default 12) */
-    double burn_time_min;     /* [TU] a segment's duration is kept >= this, > 0 (default 1e-4) */
-    double time_max;          /* [TU] and <= this; time_max / step_max <= OGK_BLT_MAX_SEGMENT_STEPS (default 30) */
+    ogk_real_t burn_time_min;     /* [TU] a segment's duration is kept >= this, > 0 (default 1e-4) */
+    ogk_real_t time_max;          /* [TU] and <= this; time_max / step_max <= OGK_BLT_MAX_SEGMENT_STEPS (default 30) */
     uint32_t normalise_ab;    /* [-] 1: each burn's [A; B] scaled to unit norm after every update (default 1) */
 } ogk_blt_config_t;
 
 /* One transfer: where it starts and ends, and the corrector's unknowns (a guess on input, the
  * solution on output). */
 typedef struct {
-    double t0;                /* [TU] time of the start (sets the Sun's direction), |t0| <= 1e6 */
-    double mass0;             /* [-] mass fraction at the start, (0, 1] */
-    double x0[OGK_BLT_NX];    /* [LU, VU] start state (components in start_free_mask: a guess) */
-    double xf[OGK_BLT_NX];    /* [LU, VU] target state (components outside target_mask unused, but must be finite) */
-    double seg[OGK_BLT_MAX_SEGMENTS][OGK_BLT_NP];  /* A [-], B [1/TU], T [TU] of each segment (coast: T only) */
-    double node[OGK_BLT_MAX_FREE_NODES][OGK_BLT_NX]; /* [LU, VU] free-node states */
+    ogk_real_t t0;                /* [TU] time of the start (sets the Sun's direction), |t0| <= 1e6 */
+    ogk_real_t mass0;             /* [-] mass fraction at the start, (0, 1] */
+    ogk_real_t x0[OGK_BLT_NX];    /* [LU, VU] start state (components in start_free_mask: a guess) */
+    ogk_real_t xf[OGK_BLT_NX];    /* [LU, VU] target state (components outside target_mask unused, but must be finite) */
+    ogk_real_t seg[OGK_BLT_MAX_SEGMENTS][OGK_BLT_NP];  /* A [-], B [1/TU], T [TU] of each segment (coast: T only) */
+    ogk_real_t node[OGK_BLT_MAX_FREE_NODES][OGK_BLT_NX]; /* [LU, VU] free-node states */
 } ogk_blt_transfer_t;
 
 typedef struct {
@@ -129,19 +130,19 @@ typedef struct {
     uint32_t propagations;    /* [-] segment propagations (the cost unit) */
     uint32_t n_unknowns;      /* [-] length of the unknown vector */
     uint32_t n_errors;        /* [-] length of the error vector */
-    double err_norm0;         /* [-] |e|_2 of the guess */
-    double err_norm;          /* [-] |e|_2 of the returned transfer (HUGE_VAL when it has none: bad input, guess hits a body) */
-    double err[OGK_BLT_MAX_ERRORS];  /* [LU, VU] the returned transfer's error vector (eqs. 65, 70) */
-    double burn_time;         /* [TU] total burn time */
-    double flight_time;       /* [TU] total duration */
-    double mass_final;        /* [-] mass fraction at the end */
-    double min_distance[2];   /* [LU] closest approach to the primary's, the secondary's centre */
+    ogk_real_t err_norm0;         /* [-] |e|_2 of the guess */
+    ogk_real_t err_norm;          /* [-] |e|_2 of the returned transfer (HUGE_VAL when it has none: bad input, guess hits a body) */
+    ogk_real_t err[OGK_BLT_MAX_ERRORS];  /* [LU, VU] the returned transfer's error vector (eqs. 65, 70) */
+    ogk_real_t burn_time;         /* [TU] total burn time */
+    ogk_real_t flight_time;       /* [TU] total duration */
+    ogk_real_t mass_final;        /* [-] mass fraction at the end */
+    ogk_real_t min_distance[2];   /* [LU] closest approach to the primary's, the secondary's centre */
 } ogk_blt_report_t;
 
 /* Thrust command at a time of the held solution. */
 typedef struct {
-    double t;                 /* [TU] time of the command */
-    double u_hat[3];          /* [-] unit thrust direction, synodic frame (zeros when off) */
+    ogk_real_t t;                 /* [TU] time of the command */
+    ogk_real_t u_hat[3];          /* [-] unit thrust direction, synodic frame (zeros when off) */
     uint32_t engine_on;       /* [-] 1 during a burn */
     uint32_t segment;         /* [-] segment index (n_segments after the end) */
     uint32_t flags;           /* [-] OGK_BLT_FLAG_SAFE when no converged solution is held */
@@ -161,24 +162,24 @@ typedef struct {
     uint32_t anchor[OGK_BLT_MAX_ARCS + 1u];    /* [-] anchor interfaces: 0, the free nodes', n_segments */
     uint32_t seg_steps[OGK_BLT_MAX_SEGMENTS]; /* [-] RK4 steps of each segment, frozen per Jacobian */
     uint32_t steps_frozen;        /* [-] 1 while seg_steps is frozen */
-    double u[OGK_BLT_MAX_UNKNOWNS];       /* [-] current unknowns */
-    double u_trial[OGK_BLT_MAX_UNKNOWNS]; /* [-] trial unknowns */
-    double du[OGK_BLT_MAX_UNKNOWNS];      /* [-] Newton / LM step */
-    double e[OGK_BLT_MAX_ERRORS];         /* [-] current errors */
-    double e_trial[OGK_BLT_MAX_ERRORS];   /* [-] trial errors */
-    double e_plus[OGK_BLT_MAX_ERRORS];    /* [-] central-difference work */
-    double jac[OGK_BLT_MAX_ERRORS * OGK_BLT_MAX_UNKNOWNS]; /* [-] J = de/du, row-major */
-    double jaug[OGK_BLT_MAX_ERRORS * (OGK_BLT_MAX_UNKNOWNS + OGK_BLT_MAX_ERRORS)]; /* [-] [J, sqrt(lambda) I] */
-    double step_aug[OGK_BLT_MAX_UNKNOWNS + OGK_BLT_MAX_ERRORS];  /* [-] minimum-norm solution of it */
+    ogk_real_t u[OGK_BLT_MAX_UNKNOWNS];       /* [-] current unknowns */
+    ogk_real_t u_trial[OGK_BLT_MAX_UNKNOWNS]; /* [-] trial unknowns */
+    ogk_real_t du[OGK_BLT_MAX_UNKNOWNS];      /* [-] Newton / LM step */
+    ogk_real_t e[OGK_BLT_MAX_ERRORS];         /* [-] current errors */
+    ogk_real_t e_trial[OGK_BLT_MAX_ERRORS];   /* [-] trial errors */
+    ogk_real_t e_plus[OGK_BLT_MAX_ERRORS];    /* [-] central-difference work */
+    ogk_real_t jac[OGK_BLT_MAX_ERRORS * OGK_BLT_MAX_UNKNOWNS]; /* [-] J = de/du, row-major */
+    ogk_real_t jaug[OGK_BLT_MAX_ERRORS * (OGK_BLT_MAX_UNKNOWNS + OGK_BLT_MAX_ERRORS)]; /* [-] [J, sqrt(lambda) I] */
+    ogk_real_t step_aug[OGK_BLT_MAX_UNKNOWNS + OGK_BLT_MAX_ERRORS];  /* [-] minimum-norm solution of it */
     ogk_qr_t qr;                  /* [-] QR workspace of the minimum-norm step (eq. 64) */
-    double var[OGK_BLT_NX * (1u + OGK_BLT_MAX_UNKNOWNS)];      /* [-] state + sensitivities (variational) */
-    double var_k[5u * OGK_BLT_NX * (1u + OGK_BLT_MAX_UNKNOWNS)]; /* [-] RK4 stages of it */
-    double s_fwd[OGK_BLT_NX * OGK_BLT_MAX_UNKNOWNS];           /* [-] forward sensitivities at a meeting point */
+    ogk_real_t var[OGK_BLT_NX * (1u + OGK_BLT_MAX_UNKNOWNS)];      /* [-] state + sensitivities (variational) */
+    ogk_real_t var_k[5u * OGK_BLT_NX * (1u + OGK_BLT_MAX_UNKNOWNS)]; /* [-] RK4 stages of it */
+    ogk_real_t s_fwd[OGK_BLT_NX * OGK_BLT_MAX_UNKNOWNS];           /* [-] forward sensitivities at a meeting point */
     uint32_t slot[OGK_BLT_MAX_UNKNOWNS];     /* [-] where each column of J lives in var while propagating
                                                 (OGK_BLT_NO_COLUMN: still zero, not carried) */
     uint32_t slot_fwd[OGK_BLT_MAX_UNKNOWNS]; /* [-] the same for s_fwd */
     uint32_t n_live;                         /* [-] columns carried in var */
-    double lm_lambda;             /* [-] current LM damping (absolute) */
+    ogk_real_t lm_lambda;             /* [-] current LM damping (absolute) */
     uint32_t init_marker;         /* [-] OGK_BLT_INIT_MARKER once initialised */
 } ogk_blt_t;
 
@@ -204,11 +205,11 @@ ogk_status ogk_blt_evaluate(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, ogk_bl
 /* Forward propagation of the whole chain from tr->x0 (free nodes ignored) to the end:
  * x_end [LU, VU], rep (errors not filled). OGK_E_NOT_CONVERGED on impact. */
 ogk_status ogk_blt_propagate(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr,
-                             double x_end[OGK_BLT_NX], ogk_blt_report_t *rep);
+                             ogk_real_t x_end[OGK_BLT_NX], ogk_blt_report_t *rep);
 
 /* The BLT direction (eq. 22) of the held converged solution at time t [TU] (absolute, the
  * solution's t0 based). Engine off (the safe command, OGK_E_SAFE_COMMAND) when none is held. */
-ogk_status ogk_blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cmd);
+ogk_status ogk_blt_command(const ogk_blt_t *ctx, ogk_real_t t, ogk_blt_command_t *cmd);
 
 /* BLT's contract call for the one command of every law (ogk/types.h): the
  * held solution's command at time t [TU] (ogk_blt_command) in
@@ -221,7 +222,7 @@ ogk_status ogk_blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cm
  * (engine off, u = (1, 0, 0), flags SAFE, law_flags OGK_BLT_FLAG_SAFE; t_s =
  * 0 for a non-finite t). OGK_E_NULL when cmd is NULL. CPD needs it inertial:
  * ogk_thrust_cmd_synodic_to_inertial with the binary's phase at t. */
-ogk_status ogk_blt_thrust_cmd(const ogk_blt_t *ctx, double t, ogk_thrust_cmd_t *cmd);
+ogk_status ogk_blt_thrust_cmd(const ogk_blt_t *ctx, ogk_real_t t, ogk_thrust_cmd_t *cmd);
 
 #ifdef __cplusplus
 }

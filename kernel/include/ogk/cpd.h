@@ -30,6 +30,7 @@
 #include "ogk/mathutil.h"
 #include "ogk/status.h"
 #include "ogk/types.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -65,19 +66,19 @@ typedef enum {
  * 7.2, 30 N m, 0.65 deg, tau 0.1 s; see docs/design/cpd.md for the pitch/yaw gain
  * erratum), phi_c = 0, BODY pointing, braking cap and feed-forward off. */
 typedef struct {
-    double k_px;          /* [N m/rad] roll proportional gain, eq. (45), > 0 */
-    double k_dx;          /* [N m s/rad] roll derivative gain, > k_px tau_x */
-    double k_py;          /* [rad/rad] pitch proportional gain, eq. (46), > 0 */
-    double k_dy;          /* [rad s/rad] = [s] pitch derivative gain, > k_py tau_y */
-    double k_pz;          /* [rad/rad] yaw proportional gain, eq. (46), > 0 */
-    double k_dz;          /* [s] yaw derivative gain, > k_pz tau_z */
-    double m_xc_max;      /* [N m] roll torque command limit (Mbar_xc), > 0 */
-    double delta_yc_max;  /* [rad] pitch deflection command limit (Deltabar_yc), > 0 */
-    double delta_zc_max;  /* [rad] yaw deflection command limit (Deltabar_zc), > 0 */
-    double tau_x;         /* [s] side-jet actuator time constant, eq. (18), > 0 */
-    double tau_y;         /* [s] TVC pitch actuator time constant, eq. (16), > 0 */
-    double tau_z;         /* [s] TVC yaw actuator time constant, eq. (16), > 0 */
-    double phi_c;         /* [rad] commanded roll Phi_c, in [-pi, pi] (0 in the paper) */
+    ogk_real_t k_px;          /* [N m/rad] roll proportional gain, eq. (45), > 0 */
+    ogk_real_t k_dx;          /* [N m s/rad] roll derivative gain, > k_px tau_x */
+    ogk_real_t k_py;          /* [rad/rad] pitch proportional gain, eq. (46), > 0 */
+    ogk_real_t k_dy;          /* [rad s/rad] = [s] pitch derivative gain, > k_py tau_y */
+    ogk_real_t k_pz;          /* [rad/rad] yaw proportional gain, eq. (46), > 0 */
+    ogk_real_t k_dz;          /* [s] yaw derivative gain, > k_pz tau_z */
+    ogk_real_t m_xc_max;      /* [N m] roll torque command limit (Mbar_xc), > 0 */
+    ogk_real_t delta_yc_max;  /* [rad] pitch deflection command limit (Deltabar_yc), > 0 */
+    ogk_real_t delta_zc_max;  /* [rad] yaw deflection command limit (Deltabar_zc), > 0 */
+    ogk_real_t tau_x;         /* [s] side-jet actuator time constant, eq. (18), > 0 */
+    ogk_real_t tau_y;         /* [s] TVC pitch actuator time constant, eq. (16), > 0 */
+    ogk_real_t tau_z;         /* [s] TVC yaw actuator time constant, eq. (16), > 0 */
+    ogk_real_t phi_c;         /* [rad] commanded roll Phi_c, in [-pi, pi] (0 in the paper) */
     ogk_cpd_pointing_t pointing; /* [-] pointing-error mode */
     /* Braking-curve cap of the proportional term (not in the paper; docs/design/cpd.md):
      * with a > 0 the PD law k_p e - k_d w is flown as k_d (w_c - w) with the
@@ -86,9 +87,9 @@ typedef struct {
      * (a = margin * control acceleration at the command limit). Identical to
      * eqs. (45)-(46) while k_p |e| / k_d <= sqrt(2 a |e|); a = 0 flies the
      * paper's law unchanged. The command saturation, hence eq. (47), is kept. */
-    double approach_accel_x; /* [rad/s^2] roll braking acceleration, >= 0 (0: off) */
-    double approach_accel_y; /* [rad/s^2] pitch braking acceleration, >= 0 (0: off) */
-    double approach_accel_z; /* [rad/s^2] yaw braking acceleration, >= 0 (0: off) */
+    ogk_real_t approach_accel_x; /* [rad/s^2] roll braking acceleration, >= 0 (0: off) */
+    ogk_real_t approach_accel_y; /* [rad/s^2] pitch braking acceleration, >= 0 (0: off) */
+    ogk_real_t approach_accel_z; /* [rad/s^2] yaw braking acceleration, >= 0 (0: off) */
     /* Feed-forward of the commanded turn rate (not in the paper; docs/design/cpd.md):
      * the body-axis rate of the commanded thrust direction between two
      * consecutive steps, omega_c = (d_prev x d_now) / ff_period_s, is added to
@@ -96,33 +97,33 @@ typedef struct {
      * so a steadily turning command is tracked without the ramp lag
      * (k_d / k_p) x rate of eq. (46). Its magnitude is clipped to ff_rate_max
      * (a guidance sample that steps the command is not a rate). */
-    double ff_period_s;      /* [s] control period between steps, >= 0 (0: no feed-forward) */
-    double ff_rate_max;      /* [rad/s] clip of the feed-forward rate, >= 0 */
+    ogk_real_t ff_period_s;      /* [s] control period between steps, >= 0 (0: no feed-forward) */
+    ogk_real_t ff_rate_max;      /* [rad/s] clip of the feed-forward rate, >= 0 */
 } ogk_cpd_config_t;
 
 typedef struct {
-    double psi;       /* [rad] yaw Psi, eq. (9) */
-    double theta;     /* [rad] pitch Theta, eq. (9) */
-    double phi_roll;  /* [rad] roll Phi, eq. (9) */
-    double rate_p;    /* [rad/s] body angular rate about x_b (P) */
-    double rate_q;    /* [rad/s] body angular rate about y_b (Q) */
-    double rate_r;    /* [rad/s] body angular rate about z_b (R) */
-    double alpha_c;   /* [rad] commanded in-plane thrust angle (from guidance) */
-    double beta_c;    /* [rad] commanded out-of-plane thrust angle */
-    double xi;        /* [rad] right ascension of the vehicle */
-    double phi;       /* [rad] declination of the vehicle */
+    ogk_real_t psi;       /* [rad] yaw Psi, eq. (9) */
+    ogk_real_t theta;     /* [rad] pitch Theta, eq. (9) */
+    ogk_real_t phi_roll;  /* [rad] roll Phi, eq. (9) */
+    ogk_real_t rate_p;    /* [rad/s] body angular rate about x_b (P) */
+    ogk_real_t rate_q;    /* [rad/s] body angular rate about y_b (Q) */
+    ogk_real_t rate_r;    /* [rad/s] body angular rate about z_b (R) */
+    ogk_real_t alpha_c;   /* [rad] commanded in-plane thrust angle (from guidance) */
+    ogk_real_t beta_c;    /* [rad] commanded out-of-plane thrust angle */
+    ogk_real_t xi;        /* [rad] right ascension of the vehicle */
+    ogk_real_t phi;       /* [rad] declination of the vehicle */
 } ogk_cpd_input_t;
 
 typedef struct {
-    double m_xc;      /* [N m] commanded roll torque, eq. (45), |m_xc| <= m_xc_max */
-    double delta_yc;  /* [rad] commanded pitch deflection, eq. (46) */
-    double delta_zc;  /* [rad] commanded yaw deflection, eq. (46) */
-    double psi_c;     /* [rad] commanded yaw, eqs. (38)-(39), in (-pi, pi] */
-    double theta_c;   /* [rad] commanded pitch, in [-pi/2, pi/2] */
-    double phi_c;     /* [rad] commanded roll (configuration value) */
-    double err_x;     /* [rad] roll error used: wrap(Phi_c - Phi) */
-    double err_y;     /* [rad] pitch pointing error used (about y_b in BODY mode) */
-    double err_z;     /* [rad] yaw pointing error used (about z_b in BODY mode) */
+    ogk_real_t m_xc;      /* [N m] commanded roll torque, eq. (45), |m_xc| <= m_xc_max */
+    ogk_real_t delta_yc;  /* [rad] commanded pitch deflection, eq. (46) */
+    ogk_real_t delta_zc;  /* [rad] commanded yaw deflection, eq. (46) */
+    ogk_real_t psi_c;     /* [rad] commanded yaw, eqs. (38)-(39), in (-pi, pi] */
+    ogk_real_t theta_c;   /* [rad] commanded pitch, in [-pi/2, pi/2] */
+    ogk_real_t phi_c;     /* [rad] commanded roll (configuration value) */
+    ogk_real_t err_x;     /* [rad] roll error used: wrap(Phi_c - Phi) */
+    ogk_real_t err_y;     /* [rad] pitch pointing error used (about y_b in BODY mode) */
+    ogk_real_t err_z;     /* [rad] yaw pointing error used (about z_b in BODY mode) */
     uint32_t flags;   /* [-] OGK_CPD_FLAG_* bits */
 } ogk_cpd_output_t;
 
@@ -132,7 +133,7 @@ typedef struct {
 typedef struct {
     ogk_cpd_config_t cfg;     /* copy of the accepted configuration */
     ogk_cpd_output_t last;    /* last command written by ogk_cpd_step */
-    double dir_prev_a[3];     /* [-] commanded thrust direction of the previous step (a frame) */
+    ogk_real_t dir_prev_a[3];     /* [-] commanded thrust direction of the previous step (a frame) */
     uint32_t has_prev;        /* [-] 1 when dir_prev_a holds a direction */
     uint32_t init_marker;     /* [-] OGK_CPD_INIT_MARKER once initialised */
 } ogk_cpd_t;
@@ -193,27 +194,27 @@ ogk_status ogk_cpd_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in,
  * [-pi/2, pi/2], psi_c in (-pi, pi]; when the direction is along +-a3 (within
  * 1e-12) yaw is undefined and psi_c = 0. OGK_E_NULL, OGK_E_NONFINITE,
  * OGK_E_RANGE (|angle| > OGK_CPD_ANGLE_LIMIT). */
-ogk_status ogk_cpd_commanded_attitude(double alpha_c, double beta_c, double xi,
-                                      double phi, double *psi_c,
-                                      double *theta_c);
+ogk_status ogk_cpd_commanded_attitude(ogk_real_t alpha_c, ogk_real_t beta_c, ogk_real_t xi,
+                                      ogk_real_t phi, ogk_real_t *psi_c,
+                                      ogk_real_t *theta_c);
 
 /* Actual thrust angles (alpha_a in (-pi, pi], beta_a in [-pi/2, pi/2]) of the
  * deflected thrust for attitude (psi, theta, phi_roll), position (xi, phi) and
  * deflections (delta_y, delta_z): eqs. (49)-(52). Error codes as
  * ogk_cpd_commanded_attitude (deflections are range-checked the same way). */
-ogk_status ogk_cpd_thrust_angles(double psi, double theta, double phi_roll,
-                                 double xi, double phi, double delta_y,
-                                 double delta_z, double *alpha_a,
-                                 double *beta_a);
+ogk_status ogk_cpd_thrust_angles(ogk_real_t psi, ogk_real_t theta, ogk_real_t phi_roll,
+                                 ogk_real_t xi, ogk_real_t phi, ogk_real_t delta_y,
+                                 ogk_real_t delta_z, ogk_real_t *alpha_a,
+                                 ogk_real_t *beta_a);
 
 /* Body-axis pointing error (OGK_CPD_POINTING_BODY) of attitude (psi, theta,
  * phi_roll) towards the direction (alpha_c, beta_c) at (xi, phi): the rotation
  * vector taking x_b onto the direction has body components (0, *err_y,
  * *err_z), magnitude in [0, pi]. Exactly behind (angle pi, axis undefined) it
  * is (0, pi, 0). Error codes as ogk_cpd_commanded_attitude. */
-ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll,
-                                       double alpha_c, double beta_c, double xi,
-                                       double phi, double *err_y, double *err_z);
+ogk_status ogk_cpd_pointing_error_body(ogk_real_t psi, ogk_real_t theta, ogk_real_t phi_roll,
+                                       ogk_real_t alpha_c, ogk_real_t beta_c, ogk_real_t xi,
+                                       ogk_real_t phi, ogk_real_t *err_y, ogk_real_t *err_z);
 
 /* The angle wrap is ogk_wrap_pi (ogk/mathutil.h), shared by every law. */
 

@@ -31,15 +31,16 @@
 #include <stdint.h>
 #include "ogk/status.h"
 #include "ogk/types.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /* Envelope of ogk_cutoff_step's navigation input (OGK_E_RANGE outside). */
-#define OGK_CUTOFF_R_MAX_M 1.0e10    /* [m] radius, (0, 1e10]: beyond the Moon by 25x */
-#define OGK_CUTOFF_V_MAX_MPS 1.0e5   /* [m/s] |v_r|, |v_t|, |v_n| */
-#define OGK_CUTOFF_T_MAX_S 1.0e7     /* [s] time since ignition, [0, 1e7] (115 days) */
+#define OGK_CUTOFF_R_MAX_M OGK_R(1.0e10)    /* [m] radius, (0, 1e10]: beyond the Moon by 25x */
+#define OGK_CUTOFF_V_MAX_MPS OGK_R(1.0e5)   /* [m/s] |v_r|, |v_t|, |v_n| */
+#define OGK_CUTOFF_T_MAX_S OGK_R(1.0e7)     /* [s] time since ignition, [0, 1e7] (115 days) */
 
 /* Flags of ogk_cutoff_out_t. */
 #define OGK_CUTOFF_FLAG_ARMED 0x01u    /* inside the window before the predicted cut-off */
@@ -47,29 +48,29 @@ extern "C" {
 #define OGK_CUTOFF_FLAG_BACKSTOP 0x04u /* not decided: t_cutoff_s is prediction + extend_max_s */
 
 typedef struct {
-    double mu_m3_s2;         /* [m^3/s^2] gravitational parameter, > 0 */
-    double target_sma_m;     /* [m] semi-major axis of the target orbit (its radius if circular), > 0 */
-    double arm_before_s;     /* [s] armed from this long before the predicted cut-off, >= 0 */
-    double extend_max_s;     /* [s] latest cut-off after the predicted one (backstop), >= 0 */
-    double control_period_s; /* [s] time between ogk_cutoff_step calls, > 0 */
+    ogk_real_t mu_m3_s2;         /* [m^3/s^2] gravitational parameter, > 0 */
+    ogk_real_t target_sma_m;     /* [m] semi-major axis of the target orbit (its radius if circular), > 0 */
+    ogk_real_t arm_before_s;     /* [s] armed from this long before the predicted cut-off, >= 0 */
+    ogk_real_t extend_max_s;     /* [s] latest cut-off after the predicted one (backstop), >= 0 */
+    ogk_real_t control_period_s; /* [s] time between ogk_cutoff_step calls, > 0 */
 } ogk_cutoff_config_t;
 
 typedef struct {
     ogk_cutoff_config_t cfg;
-    double energy_target_j_kg; /* [J/kg] -mu / (2 a) */
-    double energy_prev_j_kg;   /* [J/kg] energy at the previous accepted call */
-    double t_prev_s;           /* [s] time of the previous accepted call */
-    double t_cutoff_s;         /* [s] the decided cut-off time, valid once decided */
-    double t_backstop_s;       /* [s] backstop of the last accepted call (T_MAX before one) */
+    ogk_real_t energy_target_j_kg; /* [J/kg] -mu / (2 a) */
+    ogk_real_t energy_prev_j_kg;   /* [J/kg] energy at the previous accepted call */
+    ogk_real_t t_prev_s;           /* [s] time of the previous accepted call */
+    ogk_real_t t_cutoff_s;         /* [s] the decided cut-off time, valid once decided */
+    ogk_real_t t_backstop_s;       /* [s] backstop of the last accepted call (T_MAX before one) */
     bool have_prev;            /* [-] an accepted call is held (the rate needs two) */
     bool decided;              /* [-] cut-off decided (final) */
     uint32_t init_marker;      /* [-] set by ogk_cutoff_init */
 } ogk_cutoff_t;
 
 typedef struct {
-    double t_cutoff_s;        /* [s] cut-off time in force: decided, else the backstop */
-    double energy_j_kg;       /* [J/kg] specific orbital energy of the input state (0 if rejected) */
-    double energy_rate_w_kg;  /* [W/kg] energy rate over the last period (0 until known) */
+    ogk_real_t t_cutoff_s;        /* [s] cut-off time in force: decided, else the backstop */
+    ogk_real_t energy_j_kg;       /* [J/kg] specific orbital energy of the input state (0 if rejected) */
+    ogk_real_t energy_rate_w_kg;  /* [W/kg] energy rate over the last period (0 until known) */
     uint32_t flags;           /* [-] OGK_CUTOFF_FLAG_* */
 } ogk_cutoff_out_t;
 
@@ -99,7 +100,7 @@ ogk_status ogk_cutoff_reset(ogk_cutoff_t *ctx);
     requires nav_valid: nav == \null || \valid_read(nav);
     requires out_valid: out == \null || \valid(out);
 */
-ogk_status ogk_cutoff_step(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s,
+ogk_status ogk_cutoff_step(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, ogk_real_t t_predicted_s,
                            ogk_cutoff_out_t *out);
 
 #ifdef __cplusplus

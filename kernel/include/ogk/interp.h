@@ -9,6 +9,7 @@
 
 #include <stddef.h>
 #include "ogk/status.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -16,16 +17,16 @@ extern "C" {
 
 /* Checks that grid[0..n_grid-1] is finite and strictly increasing, n_grid >= 2. */
 /*@ requires grid_valid: grid == \null || \valid_read(grid + (0 .. n_grid - 1)); */
-ogk_status ogk_interp_check_grid(const double *grid, size_t n_grid);
+ogk_status ogk_interp_check_grid(const ogk_real_t *grid, size_t n_grid);
 
 /* Piecewise-linear interpolation of m quantities at tau. */
 /*@ requires grid_valid: grid == \null || \valid_read(grid + (0 .. n_grid - 1));
     requires values_valid: values == \null || \valid_read(values + (0 .. n_grid * m - 1));
     requires out_valid: out == \null || \valid(out + (0 .. m - 1));
 */
-ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
-                             const double *values, size_t m,
-                             double tau, double *out);
+ogk_status ogk_interp_linear(const ogk_real_t *grid, size_t n_grid,
+                             const ogk_real_t *values, size_t m,
+                             ogk_real_t tau, ogk_real_t *out);
 
 /* Shape-preserving piecewise-cubic Hermite (pchip, Fritsch-Carlson slopes with
  * the Fritsch-Butland harmonic mean, one-sided three-point end slopes as in
@@ -38,25 +39,25 @@ ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
     requires values_valid: values == \null || \valid_read(values + (0 .. n_grid * m - 1));
     requires slopes_valid: slopes == \null || \valid(slopes + (0 .. n_grid * m - 1));
 */
-ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
-                                   const double *values, size_t m,
-                                   double *slopes);
+ogk_status ogk_interp_pchip_slopes(const ogk_real_t *grid, size_t n_grid,
+                                   const ogk_real_t *values, size_t m,
+                                   ogk_real_t *slopes);
 
 /*@ requires grid_valid: grid == \null || \valid_read(grid + (0 .. n_grid - 1));
     requires values_valid: values == \null || \valid_read(values + (0 .. n_grid * m - 1));
     requires slopes_valid: slopes == \null || \valid_read(slopes + (0 .. n_grid * m - 1));
     requires out_valid: out == \null || \valid(out + (0 .. m - 1));
 */
-ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
-                            const double *values, const double *slopes,
-                            size_t m, double tau, double *out);
+ogk_status ogk_interp_pchip(const ogk_real_t *grid, size_t n_grid,
+                            const ogk_real_t *values, const ogk_real_t *slopes,
+                            size_t m, ogk_real_t tau, ogk_real_t *out);
 
 /* Index k of the interval [grid[k], grid[k+1]] holding tau (the last interval
  * for tau == grid[n_grid-1]). */
 /*@ requires grid_valid: grid == \null || \valid_read(grid + (0 .. n_grid - 1));
     requires k_valid: k == \null || \valid(k);
 */
-ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
+ogk_status ogk_interp_locate(const ogk_real_t *grid, size_t n_grid, ogk_real_t tau,
                              size_t *k);
 
 #ifdef __cplusplus

@@ -1,4 +1,4 @@
-/* ogk/linalg.h -- fixed-size dense linear algebra on row-major double arrays.
+/* ogk/linalg.h -- fixed-size dense linear algebra on row-major ogk_real_t arrays.
  *
  * Matrices are plain row-major arrays: element (i, j) of an r x c matrix A is
  * A[i * c + j]. Dimensions are checked against OGK_LA_MAX_N / OGK_LA_MAX_LONG
@@ -13,6 +13,7 @@
 #include <stddef.h>
 #include "ogk/config.h"
 #include "ogk/status.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -20,23 +21,25 @@ extern "C" {
 
 /* Reciprocal 1-norm condition number below which a factorization reports
  * OGK_E_ILL_CONDITIONED (its factors are still stored and usable). */
-#define OGK_LA_RCOND_MIN 1.0e-13
+#define OGK_LA_RCOND_MIN OGK_R(1.0e-13)
 
 /* Absolute floor of the pivots: an LU pivot, a Cholesky Schur-complement pivot
  * d_i or a diagonal entry of R (QR) at or below it counts as zero, giving
  * OGK_E_SINGULAR (LU, QR) or OGK_E_NOT_POSDEF (Cholesky), as the relative tests
  * (|pivot| <= eps |A|) already do for any matrix whose norm exceeds
- * 1e-300 / eps (about 4.5e-285).
+ * 1e-300 / eps (about 4.5e-285; float build: 1e-30 / eps, about 8.4e-24).
  * It bounds every division of the factorizations, which lets a non-relational
- * analysis prove them finite (docs/evidence/eva.md). */
-#define OGK_LA_PIVOT_MIN 1.0e-300
+ * analysis prove them finite (docs/evidence/eva.md). OGK_REAL_TINY: 1e-300 in
+ * double, 1e-30 in float (ogk/real.h). */
+#define OGK_LA_PIVOT_MIN OGK_REAL_TINY
 
 /* Magnitude bound of the inputs: an entry of a matrix handed to a
  * factorization or of a right-hand side above it gives OGK_E_RANGE (NaN or Inf
  * still OGK_E_NONFINITE). The products do not check it (cost): their callers
  * must keep their operands within it (the ACSL requires below), and then no
- * product can overflow (at most OGK_LA_MAX_LONG terms of 1e300 each). */
-#define OGK_LA_VALUE_MAX 1.0e150
+ * product can overflow (at most OGK_LA_MAX_LONG terms of 1e300 each; float
+ * build: 1e30 each). OGK_REAL_ROOT_BIG: 1e150 in double, 1e15 in float. */
+#define OGK_LA_VALUE_MAX OGK_REAL_ROOT_BIG
 
 /* Magnitude bound of every entry of a solution (the solves, ogk_lstsq,
  * ogk_minnorm, ogk_lu_inverse) and of every intermediate of the substitutions.
@@ -45,11 +48,12 @@ extern "C" {
  * OGK_LA_VALUE_MAX every sum of the substitutions is below 1e306 (at most 15
  * products of a factor entry, <= 2^15 OGK_LA_VALUE_MAX with LU's growth, and
  * a solution entry), so no operation of the solves can overflow
- * (docs/design/linalg.md, docs/evidence/eva.md). The rcond of ogk_lu_factor and of the QR rank
+ * (docs/design/linalg.md, docs/evidence/eva.md); in the float build, 1e15 each,
+ * every sum is below 15 2^15 1e30 (4.9e35 < FLT_MAX). The rcond of ogk_lu_factor and of the QR rank
  * test is computed on A^-1 |A|_1 e_j, whose entries stay below this bound for
  * any rcond >= n / OGK_LA_SOLVE_MAX; a smaller rcond is reported as 0
  * (OGK_E_ILL_CONDITIONED either way). */
-#define OGK_LA_SOLVE_MAX 1.0e150
+#define OGK_LA_SOLVE_MAX OGK_REAL_ROOT_BIG
 
 /* y = A x,  A: rows x cols,  rows, cols <= OGK_LA_MAX_LONG. The entries of A
  * and x must be within OGK_LA_VALUE_MAX (not checked: cost), so y is finite. */
@@ -61,8 +65,8 @@ extern "C" {
     requires x_bounded: x == \null || cols > OGK_LA_MAX_LONG ||
         (\forall integer i; 0 <= i < cols ==> -OGK_LA_VALUE_MAX <= x[i] <= OGK_LA_VALUE_MAX);
 */
-ogk_status ogk_mat_vec(const double *A, size_t rows, size_t cols,
-                       const double *x, double *y);
+ogk_status ogk_mat_vec(const ogk_real_t *A, size_t rows, size_t cols,
+                       const ogk_real_t *x, ogk_real_t *y);
 
 /* y = A^T x,  A: rows x cols,  y has cols entries; operands within
  * OGK_LA_VALUE_MAX as for ogk_mat_vec. */
@@ -74,33 +78,33 @@ ogk_status ogk_mat_vec(const double *A, size_t rows, size_t cols,
     requires x_bounded: x == \null || rows > OGK_LA_MAX_LONG ||
         (\forall integer i; 0 <= i < rows ==> -OGK_LA_VALUE_MAX <= x[i] <= OGK_LA_VALUE_MAX);
 */
-ogk_status ogk_mat_t_vec(const double *A, size_t rows, size_t cols,
-                         const double *x, double *y);
+ogk_status ogk_mat_t_vec(const ogk_real_t *A, size_t rows, size_t cols,
+                         const ogk_real_t *x, ogk_real_t *y);
 
 /* C = A B,  A: r x k, B: k x c, C: r x c; each dimension <= OGK_LA_MAX_LONG.
  * The entries of the operands of all products must be within OGK_LA_VALUE_MAX. */
-ogk_status ogk_mat_mul(const double *A, size_t r, size_t k,
-                       const double *B, size_t c, double *C);
+ogk_status ogk_mat_mul(const ogk_real_t *A, size_t r, size_t k,
+                       const ogk_real_t *B, size_t c, ogk_real_t *C);
 
 /* C = A^T B,  A: k x r, B: k x c, C: r x c. */
-ogk_status ogk_mat_mul_at_b(const double *A, size_t k, size_t r,
-                            const double *B, size_t c, double *C);
+ogk_status ogk_mat_mul_at_b(const ogk_real_t *A, size_t k, size_t r,
+                            const ogk_real_t *B, size_t c, ogk_real_t *C);
 
 /* C = A B^T,  A: r x k, B: c x k, C: r x c. */
-ogk_status ogk_mat_mul_a_bt(const double *A, size_t r, size_t k,
-                            const double *B, size_t c, double *C);
+ogk_status ogk_mat_mul_a_bt(const ogk_real_t *A, size_t r, size_t k,
+                            const ogk_real_t *B, size_t c, ogk_real_t *C);
 
 /* At = A^T,  A: rows x cols. */
-ogk_status ogk_mat_transpose(const double *A, size_t rows, size_t cols,
-                             double *At);
+ogk_status ogk_mat_transpose(const ogk_real_t *A, size_t rows, size_t cols,
+                             ogk_real_t *At);
 
 /* LU factorization with partial pivoting, P A = L U. */
 typedef struct {
-    double lu[OGK_LA_MAX_N * OGK_LA_MAX_N]; /* [-] L (unit lower, below diag) and U, row-major n x n */
+    ogk_real_t lu[OGK_LA_MAX_N * OGK_LA_MAX_N]; /* [-] L (unit lower, below diag) and U, row-major n x n */
     size_t perm[OGK_LA_MAX_N];              /* [-] row i of P A is row perm[i] of A */
     size_t n;                               /* [-] order; 0 when no valid factorization is held */
-    double anorm1;                          /* [units of A] 1-norm of A */
-    double rcond;                           /* [-] reciprocal 1-norm condition number, 1/(|A|_1 |A^-1|_1) */
+    ogk_real_t anorm1;                          /* [units of A] 1-norm of A */
+    ogk_real_t rcond;                           /* [-] reciprocal 1-norm condition number, 1/(|A|_1 |A^-1|_1) */
 } ogk_lu_t;
 
 /* Factors the n x n matrix A (entries within OGK_LA_VALUE_MAX, OGK_E_RANGE
@@ -110,20 +114,20 @@ typedef struct {
 /*@ requires lu_valid: lu == \null || \valid(lu);
     requires A_valid: A == \null || n > OGK_LA_MAX_N || \valid_read(A + (0 .. n * n - 1));
 */
-ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n);
+ogk_status ogk_lu_factor(ogk_lu_t *lu, const ogk_real_t *A, size_t n);
 
 /* Solves A x = b with a held factorization; x may alias b. b within
  * OGK_LA_VALUE_MAX (OGK_E_RANGE); OGK_E_OVERFLOW, x unwritten, when an entry
  * of x or of the substitution's intermediates would exceed OGK_LA_SOLVE_MAX. */
-ogk_status ogk_lu_solve(const ogk_lu_t *lu, const double *b, double *x);
+ogk_status ogk_lu_solve(const ogk_lu_t *lu, const ogk_real_t *b, ogk_real_t *x);
 
 /* Ainv = A^-1 (n x n) with a held factorization; OGK_E_OVERFLOW (Ainv
  * partly written) when an entry would exceed OGK_LA_SOLVE_MAX. */
-ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv);
+ogk_status ogk_lu_inverse(const ogk_lu_t *lu, ogk_real_t *Ainv);
 
 /* Cholesky factorization A = L L^T of a symmetric positive definite matrix. */
 typedef struct {
-    double l[OGK_LA_MAX_N * OGK_LA_MAX_N]; /* [sqrt(units of A)] lower factor, row-major n x n, zero above diag */
+    ogk_real_t l[OGK_LA_MAX_N * OGK_LA_MAX_N]; /* [sqrt(units of A)] lower factor, row-major n x n, zero above diag */
     size_t n;                              /* [-] order; 0 when no valid factorization is held */
 } ogk_chol_t;
 
@@ -134,16 +138,16 @@ typedef struct {
 /*@ requires ch_valid: ch == \null || \valid(ch);
     requires A_valid: A == \null || n > OGK_LA_MAX_N || \valid_read(A + (0 .. n * n - 1));
 */
-ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n);
+ogk_status ogk_chol_factor(ogk_chol_t *ch, const ogk_real_t *A, size_t n);
 
 /* Solves A x = b with a held factorization; x may alias b. b within
  * OGK_LA_VALUE_MAX (OGK_E_RANGE); OGK_E_OVERFLOW, x unwritten, as ogk_lu_solve. */
-ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x);
+ogk_status ogk_chol_solve(const ogk_chol_t *ch, const ogk_real_t *b, ogk_real_t *x);
 
 /* Householder QR workspace for least-squares and minimum-norm problems. */
 typedef struct {
-    double qr[OGK_LA_MAX_LONG * OGK_LA_MAX_N]; /* [-] Householder vectors and R, row-major long x short */
-    double tau[OGK_LA_MAX_N];                  /* [-] Householder scalars */
+    ogk_real_t qr[OGK_LA_MAX_LONG * OGK_LA_MAX_N]; /* [-] Householder vectors and R, row-major long x short */
+    ogk_real_t tau[OGK_LA_MAX_N];                  /* [-] Householder scalars */
     size_t long_dim;                           /* [-] long side of the factored matrix */
     size_t short_dim;                          /* [-] short side (rank) */
 } ogk_qr_t;
@@ -154,15 +158,15 @@ typedef struct {
  * entry of R at or below OGK_LA_PIVOT_MIN is singular). A and b within
  * OGK_LA_VALUE_MAX (OGK_E_RANGE); OGK_E_OVERFLOW when an entry of x would
  * exceed OGK_LA_SOLVE_MAX (x then unwritten). */
-ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
-                     const double *b, double *x);
+ogk_status ogk_lstsq(ogk_qr_t *ws, const ogk_real_t *A, size_t m, size_t n,
+                     const ogk_real_t *b, ogk_real_t *x);
 
 /* Minimum norm: x = argmin |x|_2 subject to A x = b for A: m x n with m <= n,
  * full row rank (m <= OGK_LA_MAX_N, n <= OGK_LA_MAX_LONG), computed from a QR
  * factorization of A^T (equal to A^T (A A^T)^-1 b without forming A A^T).
  * Bounds and OGK_E_OVERFLOW as ogk_lstsq. */
-ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
-                       const double *b, double *x);
+ogk_status ogk_minnorm(ogk_qr_t *ws, const ogk_real_t *A, size_t m, size_t n,
+                       const ogk_real_t *b, ogk_real_t *x);
 
 #ifdef __cplusplus
 }

@@ -40,6 +40,7 @@
 #include "ogk/linalg.h"
 #include "ogk/status.h"
 #include "ogk/types.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -115,34 +116,34 @@ extern "C" {
 /* Configuration, read-only after ogk_mpsp_init (copied into the context).
  * Units: any consistent normalised set (LU, TU, MU); [T] = MU LU / TU^2. */
 typedef struct {
-    double mu;                  /* [LU^3/TU^2] gravitational parameter, >= 0 (0: field-free) */
-    double t_max;               /* [MU LU/TU^2] nominal maximum thrust T_max, > 0 */
-    double c_exhaust;           /* [LU/TU] exhaust velocity c = Isp g0, > 0 */
-    double t0;                  /* [TU] initial time */
-    double tf;                  /* [TU] final time, > t0 */
-    double x0_nom[OGK_MPSP_NX0]; /* [LU, LU/TU, MU] nominal r0, v0, m0 (C_nom of eq. 51), m0 > 0 */
-    double r_f[3];              /* [LU] nominal target position */
-    double v_f[3];              /* [LU/TU] nominal target velocity */
+    ogk_real_t mu;                  /* [LU^3/TU^2] gravitational parameter, >= 0 (0: field-free) */
+    ogk_real_t t_max;               /* [MU LU/TU^2] nominal maximum thrust T_max, > 0 */
+    ogk_real_t c_exhaust;           /* [LU/TU] exhaust velocity c = Isp g0, > 0 */
+    ogk_real_t t0;                  /* [TU] initial time */
+    ogk_real_t tf;                  /* [TU] final time, > t0 */
+    ogk_real_t x0_nom[OGK_MPSP_NX0]; /* [LU, LU/TU, MU] nominal r0, v0, m0 (C_nom of eq. 51), m0 > 0 */
+    ogk_real_t r_f[3];              /* [LU] nominal target position */
+    ogk_real_t v_f[3];              /* [LU/TU] nominal target velocity */
     uint32_t fourier_order;     /* [-] n_x of eq. (C.1), 1..OGK_MPSP_MAX_ORDER */
     uint32_t fourier_kind;      /* [-] OGK_MPSP_BASIS_FOURIER or OGK_MPSP_BASIS_COSINE */
-    double fourier_period;      /* [TU] fundamental period of the basis, > 0 (erratum: 2 (tf - t0) fits the Apophis nominal) */
-    double fourier_t_ref;       /* [TU] time of zero phase of the basis */
-    double h_max;               /* [TU] RK4 grid step, ceil((tf - t0)/h_max) <= OGK_MPSP_MAX_STEPS */
-    double delta_max;           /* [mixed] Newton only while ||Delta Y||_2 <= Delta_max (Alg. 1), > 0 */
-    double delta_tau_0;         /* [-] initial continuation step (Alg. 2), (0, 1] */
-    double delta_tau_min;       /* [-] continuation fails when a step <= this is needed (paper 0.1), [0, delta_tau_0) */
-    double r_eps[OGK_MPSP_MAX_WEIGHTS]; /* [-] diagonal of R_eps (eq. 41), first n_weights entries > 0 */
-    double r_lambda;            /* [-] R_lambda (eq. 41), > 0 */
-    double tol_r;               /* [LU] convergence: ||r(tf) - r_f|| <= tol_r, > 0 */
-    double tol_v;               /* [LU/TU] convergence: ||v(tf) - v_f|| <= tol_v, > 0 */
-    double tol_lambda_m;        /* [-] convergence: |lambda_m(tf)| <= tol_lambda_m, > 0 */
-    double s_tol;               /* [-] switch accepted when |S(t_s)| <= s_tol (paper 1e-12), > 0 */
+    ogk_real_t fourier_period;      /* [TU] fundamental period of the basis, > 0 (erratum: 2 (tf - t0) fits the Apophis nominal) */
+    ogk_real_t fourier_t_ref;       /* [TU] time of zero phase of the basis */
+    ogk_real_t h_max;               /* [TU] RK4 grid step, ceil((tf - t0)/h_max) <= OGK_MPSP_MAX_STEPS */
+    ogk_real_t delta_max;           /* [mixed] Newton only while ||Delta Y||_2 <= Delta_max (Alg. 1), > 0 */
+    ogk_real_t delta_tau_0;         /* [-] initial continuation step (Alg. 2), (0, 1] */
+    ogk_real_t delta_tau_min;       /* [-] continuation fails when a step <= this is needed (paper 0.1), [0, delta_tau_0) */
+    ogk_real_t r_eps[OGK_MPSP_MAX_WEIGHTS]; /* [-] diagonal of R_eps (eq. 41), first n_weights entries > 0 */
+    ogk_real_t r_lambda;            /* [-] R_lambda (eq. 41), > 0 */
+    ogk_real_t tol_r;               /* [LU] convergence: ||r(tf) - r_f|| <= tol_r, > 0 */
+    ogk_real_t tol_v;               /* [LU/TU] convergence: ||v(tf) - v_f|| <= tol_v, > 0 */
+    ogk_real_t tol_lambda_m;        /* [-] convergence: |lambda_m(tf)| <= tol_lambda_m, > 0 */
+    ogk_real_t s_tol;               /* [-] switch accepted when |S(t_s)| <= s_tol (paper 1e-12), > 0 */
     uint32_t max_newton;        /* [-] Newton iterations per inner loop, >= 1 */
     uint32_t max_outer;         /* [-] inner loops run by the continuation (Alg. 2), >= 1 */
     uint32_t n_seg_tol;         /* [-] initial N_seg,tol (paper 0) */
     uint32_t n_seg_tol_step;    /* [-] increase of N_seg,tol after a failed continuation (paper 2), >= 1 */
-    double weights_nom[OGK_MPSP_MAX_WEIGHTS]; /* [-] nominal weights epsilon_0 (eq. 50), first n_weights used */
-    double lambda_m0_nom;       /* [-] nominal lambda_m(t0) */
+    ogk_real_t weights_nom[OGK_MPSP_MAX_WEIGHTS]; /* [-] nominal weights epsilon_0 (eq. 50), first n_weights used */
+    ogk_real_t lambda_m0_nom;       /* [-] nominal lambda_m(t0) */
     uint32_t n_seg_nom;         /* [-] N_seg,nom = thrust + coast segments of the nominal; 0: counted at init
                                    by propagating the nominal weights from x0_nom */
     uint32_t sens_sweep;        /* [-] OGK_MPSP_SWEEP_RK4 (exact) or OGK_MPSP_SWEEP_MID2 (cheaper, O(h^2)) */
@@ -150,9 +151,9 @@ typedef struct {
 
 /* Summary of one propagation (the trajectory itself stays in the context). */
 typedef struct {
-    double x_f[OGK_MPSP_NX];    /* [LU, LU/TU, MU, -] X(tf) */
+    ogk_real_t x_f[OGK_MPSP_NX];    /* [LU, LU/TU, MU, -] X(tf) */
     uint32_t n_switches;        /* [-] switches found */
-    double t_switch[OGK_MPSP_MAX_SWITCHES]; /* [TU] switch times (first OGK_MPSP_MAX_SWITCHES) */
+    ogk_real_t t_switch[OGK_MPSP_MAX_SWITCHES]; /* [TU] switch times (first OGK_MPSP_MAX_SWITCHES) */
     uint32_t n_segments;        /* [-] N_seg = thrust + coast segments = n_switches + 1 */
     uint32_t n_thrust_arcs;     /* [-] segments flown with u = 1 */
     int mode0;                  /* [-] u on the first segment (0 coast, 1 thrust) */
@@ -165,21 +166,21 @@ typedef struct {
     uint32_t inner_loops;       /* [-] inner loops run (Alg. 1), the direct one included */
     uint32_t outer_steps;       /* [-] continuation inner loops (Alg. 2); 0 when the direct loop converged */
     uint32_t n_seg_tol;         /* [-] N_seg,tol in force at the end */
-    double tau_reached;         /* [-] largest continuation parameter solved (1 on success) */
-    double dy[OGK_MPSP_NY];     /* [mixed] Y(tf) - Y_d with the returned weights, perturbed conditions */
-    double err_r;               /* [LU] ||r(tf) - r_f|| */
-    double err_v;               /* [LU/TU] ||v(tf) - v_f|| */
-    double lambda_mf;           /* [-] lambda_m(tf) */
-    double m_f;                 /* [MU] final mass */
+    ogk_real_t tau_reached;         /* [-] largest continuation parameter solved (1 on success) */
+    ogk_real_t dy[OGK_MPSP_NY];     /* [mixed] Y(tf) - Y_d with the returned weights, perturbed conditions */
+    ogk_real_t err_r;               /* [LU] ||r(tf) - r_f|| */
+    ogk_real_t err_v;               /* [LU/TU] ||v(tf) - v_f|| */
+    ogk_real_t lambda_mf;           /* [-] lambda_m(tf) */
+    ogk_real_t m_f;                 /* [MU] final mass */
     uint32_t n_segments;        /* [-] thrust + coast segments */
     uint32_t n_thrust_arcs;     /* [-] thrust segments */
     uint32_t n_switches;        /* [-] switches */
-    double t_switch[OGK_MPSP_MAX_SWITCHES]; /* [TU] switch times */
+    ogk_real_t t_switch[OGK_MPSP_MAX_SWITCHES]; /* [TU] switch times */
     size_t n_weights;           /* [-] 3 (2 n + 1) */
-    double weights[OGK_MPSP_MAX_WEIGHTS]; /* [-] updated weights: the command (safe command on failure) */
-    double lambda_m0;           /* [-] updated lambda_m(t0) */
+    ogk_real_t weights[OGK_MPSP_MAX_WEIGHTS]; /* [-] updated weights: the command (safe command on failure) */
+    ogk_real_t lambda_m0;           /* [-] updated lambda_m(t0) */
     uint32_t n_log;             /* [-] entries of dy_norm_log */
-    double dy_norm_log[OGK_MPSP_MAX_LOG]; /* [mixed] ||Delta Y||_2 before each Newton step, in order */
+    ogk_real_t dy_norm_log[OGK_MPSP_MAX_LOG]; /* [mixed] ||Delta Y||_2 before each Newton step, in order */
 } ogk_mpsp_result_t;
 
 /* Context: configuration, the last trajectory, its sensitivities and the
@@ -190,17 +191,17 @@ typedef struct {
     size_t n_weights;           /* [-] 3 n_basis */
     size_t n_steps;             /* [-] RK4 grid steps */
     uint32_t n_seg_nom;         /* [-] N_seg,nom in use */
-    double omega;               /* [rad/TU] 2 pi / period */
-    double inv_sqrt_r_eps[OGK_MPSP_MAX_WEIGHTS]; /* [-] R_eps^-1/2 */
-    double inv_sqrt_r_lambda;   /* [-] R_lambda^-1/2 */
+    ogk_real_t omega;               /* [rad/TU] 2 pi / period */
+    ogk_real_t inv_sqrt_r_eps[OGK_MPSP_MAX_WEIGHTS]; /* [-] R_eps^-1/2 */
+    ogk_real_t inv_sqrt_r_lambda;   /* [-] R_lambda^-1/2 */
     /* Conditions and parameters of the trajectory held. */
-    double thrust;              /* [MU LU/TU^2] T of the trajectory held */
-    double x0[OGK_MPSP_NX0];    /* [LU, LU/TU, MU] its initial state */
-    double weights[OGK_MPSP_MAX_WEIGHTS]; /* [-] its weights */
-    double lambda_m0;           /* [-] its lambda_m(t0) */
+    ogk_real_t thrust;              /* [MU LU/TU^2] T of the trajectory held */
+    ogk_real_t x0[OGK_MPSP_NX0];    /* [LU, LU/TU, MU] its initial state */
+    ogk_real_t weights[OGK_MPSP_MAX_WEIGHTS]; /* [-] its weights */
+    ogk_real_t lambda_m0;           /* [-] its lambda_m(t0) */
     /* Dense trajectory (ogk_rk4_propagate's dense output). */
-    double traj_t[OGK_MPSP_MAX_NODES];
-    double traj_x[OGK_MPSP_MAX_NODES * OGK_MPSP_NX];
+    ogk_real_t traj_t[OGK_MPSP_MAX_NODES];
+    ogk_real_t traj_x[OGK_MPSP_MAX_NODES * OGK_MPSP_NX];
     uint8_t traj_mode[OGK_MPSP_MAX_NODES];
     size_t n_nodes;
     size_t n_switch_nodes;
@@ -208,30 +209,30 @@ typedef struct {
     uint8_t traj_valid;
     uint8_t sens_valid;
     /* Sensitivities of the trajectory held (eqs. 33 and 40). */
-    double dy_dw[OGK_MPSP_NY * OGK_MPSP_MAX_WEIGHTS]; /* B_v, row-major 7 x n_weights */
-    double dy_dlm0[OGK_MPSP_NY];                      /* A_lambda */
+    ogk_real_t dy_dw[OGK_MPSP_NY * OGK_MPSP_MAX_WEIGHTS]; /* B_v, row-major 7 x n_weights */
+    ogk_real_t dy_dlm0[OGK_MPSP_NY];                      /* A_lambda */
     /* B_v being accumulated, basis-major: bv_acc[q][r * 3 + c] (eq. 40), and
      * the samples not yet added to it: basis rows h(t) and their 7 x 3
      * control sensitivities bU(t), added OGK_MPSP_SENS_BLOCK at a time. */
-    double bv_acc[OGK_MPSP_MAX_BASIS * OGK_MPSP_NY * OGK_MPSP_NU];
-    double sens_h[OGK_MPSP_SENS_BLOCK * OGK_MPSP_MAX_BASIS * OGK_MPSP_H_LANES];
-    double sens_c[OGK_MPSP_SENS_BLOCK * OGK_MPSP_NY * OGK_MPSP_NU];
+    ogk_real_t bv_acc[OGK_MPSP_MAX_BASIS * OGK_MPSP_NY * OGK_MPSP_NU];
+    ogk_real_t sens_h[OGK_MPSP_SENS_BLOCK * OGK_MPSP_MAX_BASIS * OGK_MPSP_H_LANES];
+    ogk_real_t sens_c[OGK_MPSP_SENS_BLOCK * OGK_MPSP_NY * OGK_MPSP_NU];
 #if defined(__SSE2__)
     /* U and |U| of the trajectory held at the times the propagation made them
      * two at a time: keep_u[4 j .. 4 j + 3] = U(keep_t[j]), |U|, in the slot j
      * of the half grid step nearest keep_t[j] (NaN: empty). */
-    double keep_t[OGK_MPSP_KEEP_U_SLOTS];      /* [TU] */
-    double keep_u[OGK_MPSP_KEEP_U_SLOTS * 4u]; /* [-] */
+    ogk_real_t keep_t[OGK_MPSP_KEEP_U_SLOTS];      /* [TU] */
+    ogk_real_t keep_u[OGK_MPSP_KEEP_U_SLOTS * 4u]; /* [-] */
 #endif
     /* Newton workspace (eqs. 44-45 as a minimum-norm problem). */
-    double newton_m[OGK_MPSP_NY * OGK_MPSP_MAX_UNKNOWNS];
-    double newton_z[OGK_MPSP_MAX_UNKNOWNS];
+    ogk_real_t newton_m[OGK_MPSP_NY * OGK_MPSP_MAX_UNKNOWNS];
+    ogk_real_t newton_z[OGK_MPSP_MAX_UNKNOWNS];
     ogk_qr_t qr;
     /* Loop workspace: weights of the last solved tau (eps_k of Alg. 2), the
      * inner loop's current iterate (eps_j of Alg. 1) and its Newton trial. */
-    double w_cont[OGK_MPSP_MAX_WEIGHTS];
-    double w_iter[OGK_MPSP_MAX_WEIGHTS];
-    double w_trial[OGK_MPSP_MAX_WEIGHTS];
+    ogk_real_t w_cont[OGK_MPSP_MAX_WEIGHTS];
+    ogk_real_t w_iter[OGK_MPSP_MAX_WEIGHTS];
+    ogk_real_t w_trial[OGK_MPSP_MAX_WEIGHTS];
     uint32_t init_marker;       /* [-] OGK_MPSP_INIT_MARKER once initialised */
 } ogk_mpsp_t;
 
@@ -266,8 +267,8 @@ ogk_status ogk_mpsp_reset(ogk_mpsp_t *ctx);
  * ones if none; res->dy etc. then describe that command flown from x0. Bad
  * input: OGK_E_NULL, OGK_E_NOT_INIT, OGK_E_NONFINITE, OGK_E_RANGE (m0 <= 0,
  * thrust_scale <= 0). */
-ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale,
-                          const double *target_rv, ogk_mpsp_result_t *res);
+ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const ogk_real_t *x0, ogk_real_t thrust_scale,
+                          const ogk_real_t *target_rv, ogk_mpsp_result_t *res);
 
 /* Integrates eq. (16) from (t0, [x0, lambda_m0]) to tf with the given weights
  * and thrust T_max * thrust_scale; the dense trajectory replaces the one in
@@ -275,39 +276,39 @@ ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale
  * OGK_E_SWITCH_OVERFLOW (more than OGK_MPSP_MAX_SWITCHES switches; trajectory
  * kept), OGK_E_CALLBACK (mass <= 0, or lambda_v = 0 while thrusting),
  * OGK_E_NONFINITE, and the input errors of ogk_mpsp_solve. */
-ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
-                              const double *x0, double thrust_scale,
+ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const ogk_real_t *weights, ogk_real_t lambda_m0,
+                              const ogk_real_t *x0, ogk_real_t thrust_scale,
                               ogk_mpsp_prop_t *out);
 
 /* Copies the dense trajectory held: t (count), x (count x 8, row-major), mode
  * (count; u of the step leaving each node). OGK_E_DIM if capacity is short. */
-ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, double *t, double *x,
+ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, ogk_real_t *t, ogk_real_t *x,
                                uint8_t *mode, size_t capacity, size_t *count);
 
 /* X(t) of the trajectory held by pchip (ogk/interp.h) over the nodes of the
  * segment containing t (never across a switch). OGK_E_RANGE outside [t0, tf]. */
-ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x);
+ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, ogk_real_t t, ogk_real_t *x);
 
 /* lambda_v(t) = P(t) W (eqs. 36-37) for any weights (3 values); lambda_v_dot
  * (3, may be NULL) receives d lambda_v / dt. OGK_E_NONFINITE (outputs not to be used) when
  * the weights make a non-finite control: never OGK_OK with a non-finite output. */
-ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double t,
-                            double *lambda_v, double *lambda_v_dot);
+ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const ogk_real_t *weights, ogk_real_t t,
+                            ogk_real_t *lambda_v, ogk_real_t *lambda_v_dot);
 
 /* Sensitivities of the trajectory held (eqs. 28-35 with eqs. 22-25 at each
  * switch): dy_dw = dY/dW (7 x n_weights, B_v of eq. 40) and dy_dlm0 = dY/d
  * lambda_m0 (7, A_lambda of eq. 33). Either output may be NULL (they are kept
  * in ctx for ogk_mpsp_newton_update). OGK_E_NOT_INIT without a trajectory;
  * OGK_E_SINGULAR at a tangential switch (dS/dt = 0). */
-ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, double *dy_dw, double *dy_dlm0);
+ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, ogk_real_t *dy_dw, ogk_real_t *dy_dlm0);
 
 /* Newton update of eqs. (44)-(46) from the sensitivities held: weights and
  * *lambda_m0 (in/out) are decreased by the minimum-R-norm correction that
  * cancels dy (7) to first order, solved as ogk_minnorm of
  * [B_v R_eps^-1/2, A_lambda R_lambda^-1/2]. OGK_E_SINGULAR when the 7 x 7
  * matrix of eq. (44) is singular (nothing changed). */
-ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *weights,
-                                  double *lambda_m0);
+ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const ogk_real_t *dy, ogk_real_t *weights,
+                                  ogk_real_t *lambda_m0);
 
 /* MPSP's contract call for the one command of every law (ogk/types.h): the
  * command of the trajectory held (after ogk_mpsp_solve: the converged one,
@@ -322,7 +323,7 @@ ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *wei
  * OGK_E_NOT_INIT (no context, or no trajectory held), OGK_E_NONFINITE (t),
  * OGK_E_RANGE (t outside [t0, tf]), OGK_E_SAFE_COMMAND (lambda_v(t) = 0 or
  * not finite: no direction). */
-ogk_status ogk_mpsp_thrust_cmd(const ogk_mpsp_t *ctx, double t, ogk_thrust_cmd_t *cmd);
+ogk_status ogk_mpsp_thrust_cmd(const ogk_mpsp_t *ctx, ogk_real_t t, ogk_thrust_cmd_t *cmd);
 
 /* Test entry points (one RK4 step's Jacobians, the switching compensation):
  * ogk/internal/mpsp_test.h. */

@@ -48,6 +48,7 @@
 #include "ogk/qp.h"
 #include "ogk/status.h"
 #include "ogk/types.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -80,7 +81,7 @@ extern "C" {
 
 /* Largest |time| a solve or replan accepts [TU] (OGK_E_RANGE beyond): far
  * past it t + horizon_min rounds to t (1e6 TU is 160,000 years). */
-#define OGK_NMPC_T_ABS_MAX 1.0e6
+#define OGK_NMPC_T_ABS_MAX OGK_R(1.0e6)
 
 /* QP unknowns: the node-control corrections and the horizon correction. */
 #define OGK_NMPC_MAX_VARS (((OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU) + 1u)
@@ -149,85 +150,85 @@ extern "C" {
 /* Configuration, read-only after ogk_nmpc_init (copied into the context). */
 typedef struct {
     /* predictive model */
-    double mu;                  /* [LU^3/TU^2] central body (the Sun), > 0 (normalised: 1) */
+    ogk_real_t mu;                  /* [LU^3/TU^2] central body (the Sun), > 0 (normalised: 1) */
     uint32_t engine;            /* [-] OGK_NMPC_ENGINE_CONSTANT or _THROTTLED */
     uint32_t power;             /* [-] OGK_NMPC_POWER_CONSTANT or _SOLAR */
-    double thrust_max;          /* [MU LU/TU^2] T_0 (POWER_CONSTANT), > 0; must be set */
-    double mass_flow_max;       /* [MU/TU] |dm/dt| at T_0 (POWER_CONSTANT), >= 0; must be set */
-    double solar_length_unit;   /* [LU] unit of r in eq. (14) (1 AU), > 0 with POWER_SOLAR */
-    double solar_a[4];          /* [-] a_1 .. a_4 of eq. (14): p = (a1 s^2 + a2 s + a3) / (s^4 (1 + a4 s)), s = r / unit */
-    double solar_thrust[2];     /* [MU LU/TU^2] T_max(r) = solar_thrust[0] + solar_thrust[1] p (b_1, b_2 P_0) */
-    double solar_flow[2];       /* [MU/TU] mdot_max(r) = solar_flow[0] + solar_flow[1] p (-c_1, -c_2 P_0), > 0 where flown */
+    ogk_real_t thrust_max;          /* [MU LU/TU^2] T_0 (POWER_CONSTANT), > 0; must be set */
+    ogk_real_t mass_flow_max;       /* [MU/TU] |dm/dt| at T_0 (POWER_CONSTANT), >= 0; must be set */
+    ogk_real_t solar_length_unit;   /* [LU] unit of r in eq. (14) (1 AU), > 0 with POWER_SOLAR */
+    ogk_real_t solar_a[4];          /* [-] a_1 .. a_4 of eq. (14): p = (a1 s^2 + a2 s + a3) / (s^4 (1 + a4 s)), s = r / unit */
+    ogk_real_t solar_thrust[2];     /* [MU LU/TU^2] T_max(r) = solar_thrust[0] + solar_thrust[1] p (b_1, b_2 P_0) */
+    ogk_real_t solar_flow[2];       /* [MU/TU] mdot_max(r) = solar_flow[0] + solar_flow[1] p (-c_1, -c_2 P_0), > 0 where flown */
     uint32_t n_bodies;          /* [-] third bodies in the predictive model, 0..OGK_NMPC_MAX_BODIES (paper: 0) */
-    double body_mu[OGK_NMPC_MAX_BODIES];     /* [LU^3/TU^2] their gravitational parameters, >= 0 */
-    double body_radius[OGK_NMPC_MAX_BODIES]; /* [LU] their circular-orbit radii, > 0 */
-    double body_phase0[OGK_NMPC_MAX_BODIES]; /* [rad] their polar angles at t = 0 */
-    double body_rate[OGK_NMPC_MAX_BODIES];   /* [rad/TU] their angular rates */
-    double body_softening[OGK_NMPC_MAX_BODIES]; /* [LU] Plummer length eps, |d|^3 -> (|d|^2 + eps^2)^(3/2), >= 0 (0: point mass) */
-    double keepout_radius[OGK_NMPC_MAX_BODIES]; /* [LU] nodes 1..N-1 and the arcs between the nodes (their interior RK4 step ends) stay this far from body b's centre (b < n_bodies; body_mu may be 0 for an ephemeris only), >= 0 (0: none) */
-    double body_release[OGK_NMPC_MAX_BODIES];   /* [LU] body b's gravity leaves the predictive model for good at the first solve or replan
+    ogk_real_t body_mu[OGK_NMPC_MAX_BODIES];     /* [LU^3/TU^2] their gravitational parameters, >= 0 */
+    ogk_real_t body_radius[OGK_NMPC_MAX_BODIES]; /* [LU] their circular-orbit radii, > 0 */
+    ogk_real_t body_phase0[OGK_NMPC_MAX_BODIES]; /* [rad] their polar angles at t = 0 */
+    ogk_real_t body_rate[OGK_NMPC_MAX_BODIES];   /* [rad/TU] their angular rates */
+    ogk_real_t body_softening[OGK_NMPC_MAX_BODIES]; /* [LU] Plummer length eps, |d|^3 -> (|d|^2 + eps^2)^(3/2), >= 0 (0: point mass) */
+    ogk_real_t keepout_radius[OGK_NMPC_MAX_BODIES]; /* [LU] nodes 1..N-1 and the arcs between the nodes (their interior RK4 step ends) stay this far from body b's centre (b < n_bodies; body_mu may be 0 for an ephemeris only), >= 0 (0: none) */
+    ogk_real_t body_release[OGK_NMPC_MAX_BODIES];   /* [LU] body b's gravity leaves the predictive model for good at the first solve or replan
                                                  *      whose measured state is farther than this from its centre and on an escape orbit from
                                                  *      it (two-body energy >= 0; its ephemeris stays, for the keep-out): a departure planet
                                                  *      modelled only while it matters, inside its Hill sphere or bound to it
                                                  *      (docs/design/nmpc-flight.md, "Robustness"), >= 0 (0: never, the default) */
     /* target: circular orbit (eqs. 5-6) */
-    double target_radius;       /* [LU] R_T, > 0; must be set */
-    double target_phase0;       /* [rad] theta_T at t = 0 */
-    double target_rate;         /* [rad/TU] theta_T' (sqrt(mu / R_T^3) on a Keplerian orbit) */
-    double terminal_box[OGK_NMPC_NC]; /* [LU, rad, LU/TU, LU/TU] the terminal set: |r - R_T|, |theta - theta_T(t_f)|,
+    ogk_real_t target_radius;       /* [LU] R_T, > 0; must be set */
+    ogk_real_t target_phase0;       /* [rad] theta_T at t = 0 */
+    ogk_real_t target_rate;         /* [rad/TU] theta_T' (sqrt(mu / R_T^3) on a Keplerian orbit) */
+    ogk_real_t terminal_box[OGK_NMPC_NC]; /* [LU, rad, LU/TU, LU/TU] the terminal set: |r - R_T|, |theta - theta_T(t_f)|,
                                  *     |v_r|, |v_theta - v_T| at t_f within these half-widths, each >= 0; all 0
                                  *     (the default): eq. (5) exactly, as the paper. Beyond the paper: with eq. (5)
                                  *     exact a disturbed minimum-time plan has no slack near the end and its re-solve
                                  *     jumps to another branch (docs/design/nmpc-flight.md, "Robustness") */
     /* transcription */
     uint32_t objective;         /* [-] OGK_NMPC_MIN_TIME or OGK_NMPC_MIN_FUEL */
-    double time_weight;         /* [MU/TU] minimum fuel only: J = m_0 - m_N + time_weight T, >= 0 (default 0: the paper's) */
-    double mass_min;            /* [MU] the propellant limit: the final node's mass m_N >= mass_min (the dry mass;
+    ogk_real_t time_weight;         /* [MU/TU] minimum fuel only: J = m_0 - m_N + time_weight T, >= 0 (default 0: the paper's) */
+    ogk_real_t mass_min;            /* [MU] the propellant limit: the final node's mass m_N >= mass_min (the dry mass;
                                  *     m decreases along every arc, so m_N bounds them all), >= 0 (default 0: none) */
     uint32_t nodes;             /* [-] N of the first plan, 1..OGK_NMPC_MAX_NODES (default 30) */
     uint32_t rk4_steps;         /* [-] RK4 steps per subinterval, 1..OGK_NMPC_MAX_RK4_STEPS (default 8) */
-    double horizon_min;         /* [TU] lower bound of T, > 0 (default 1e-3) */
-    double horizon_max;         /* [TU] upper bound of T, > horizon_min (default 30) */
-    double max_sweep;           /* [rad] bound on |alpha_{k+1} - alpha_k|, 0: none (default 0) */
+    ogk_real_t horizon_min;         /* [TU] lower bound of T, > 0 (default 1e-3) */
+    ogk_real_t horizon_max;         /* [TU] upper bound of T, > horizon_min (default 30) */
+    ogk_real_t max_sweep;           /* [rad] bound on |alpha_{k+1} - alpha_k|, 0: none (default 0) */
     /* SQP */
     uint32_t max_iter;          /* [-] SQP iterations per warm solve (a BFGS matrix carried), 1..OGK_NMPC_MAX_SQP_ITER (default 100) */
     uint32_t max_iter_cold;     /* [-] SQP iterations per cold solve (first plan, after a failure, doubling test), 1..OGK_NMPC_MAX_SQP_ITER (default 200) */
-    double tol_feas;            /* [LU, LU/TU, MU] max |defect|, |terminal residual| at convergence, > 0 (default 1e-9) */
-    double tol_stat;            /* [-] max |H dv| (reduced stationarity) at convergence, > 0 (default 1e-7) */
-    double tol_obj;             /* [-] or converged when the QP step's predicted |dJ| <= tol_obj max(|J|, 1), >= 0 (default 1e-7) */
+    ogk_real_t tol_feas;            /* [LU, LU/TU, MU] max |defect|, |terminal residual| at convergence, > 0 (default 1e-9) */
+    ogk_real_t tol_stat;            /* [-] max |H dv| (reduced stationarity) at convergence, > 0 (default 1e-7) */
+    ogk_real_t tol_obj;             /* [-] or converged when the QP step's predicted |dJ| <= tol_obj max(|J|, 1), >= 0 (default 1e-7) */
     uint32_t hessian;           /* [-] OGK_NMPC_HESSIAN_BFGS (default: damped BFGS of the reduced Hessian) or
                                  *     OGK_NMPC_HESSIAN_EXACT (sum_k mu_k^T d2F_k of the RK4 maps, condensed,
                                  *     convexified along the eq. (5) normals, the scaled identity for an
                                  *     iteration where that is not enough;
                                  *     converges in the interior-point peers' iterations: docs/design/nmpc-flight.md) */
-    double hessian_init;        /* [-] scale of the first BFGS matrix (identity times it; also the QP's Hessian after a
+    ogk_real_t hessian_init;        /* [-] scale of the first BFGS matrix (identity times it; also the QP's Hessian after a
                                  *     failed factorisation), > 0 (default 1) */
-    double step_max_alpha;      /* [rad] bound on one SQP step of a node angle, > 0 (default 1) */
-    double step_max_horizon;    /* [TU] bound on one SQP step of T, > 0 (default 1) */
-    double elastic_weight;      /* [J units per residual unit] l1 weight of eq. (5)'s slacks in an elastic QP, > 0 (default 1000) */
+    ogk_real_t step_max_alpha;      /* [rad] bound on one SQP step of a node angle, > 0 (default 1) */
+    ogk_real_t step_max_horizon;    /* [TU] bound on one SQP step of T, > 0 (default 1) */
+    ogk_real_t elastic_weight;      /* [J units per residual unit] l1 weight of eq. (5)'s slacks in an elastic QP, > 0 (default 1000) */
     /* receding horizon (sec. 2.3) */
     uint32_t strategy;          /* [-] OGK_NMPC_SNNS or OGK_NMPC_CNCN */
     uint32_t min_nodes;         /* [-] SNNS: fewest subintervals; below it the plan is regridded to min_nodes (default 2) */
     uint32_t max_subdivisions;  /* [-] SNNS: doublings allowed over the flight (default 2) */
-    double doubling_threshold;  /* [-] SNNS: double when (J_N - J_2N) / |J_N| > this (default 0.01 = 1 %) */
+    ogk_real_t doubling_threshold;  /* [-] SNNS: double when (J_N - J_2N) / |J_N| > this (default 0.01 = 1 %) */
     uint32_t doubling_max_nodes;/* [-] SNNS: run the doubling test only when N <= this (<= MAX_NODES / 2; default 8) */
 } ogk_nmpc_config_t;
 
 /* A plan: what a solve returns and the next one starts from. */
 typedef struct {
-    double t0;                  /* [TU] absolute time of node 0 */
-    double horizon;             /* [TU] T = t_f - t0 */
+    ogk_real_t t0;                  /* [TU] absolute time of node 0 */
+    ogk_real_t horizon;             /* [TU] T = t_f - t0 */
     uint32_t nodes;             /* [-] N, 1..OGK_NMPC_MAX_NODES */
     uint32_t nu;                /* [-] controls per node (1 or 2; set by the context's engine) */
-    double x[(OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_NX];     /* [LU, rad, LU/TU, LU/TU, MU] node states, row k = node k */
-    double u[(OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU]; /* [rad, -] node controls, row k = node k (nu used) */
-    double lambda[OGK_NMPC_NC]; /* [-] multipliers of eq. (5) at the last solve (dual warm start) */
+    ogk_real_t x[(OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_NX];     /* [LU, rad, LU/TU, LU/TU, MU] node states, row k = node k */
+    ogk_real_t u[(OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU]; /* [rad, -] node controls, row k = node k (nu used) */
+    ogk_real_t lambda[OGK_NMPC_NC]; /* [-] multipliers of eq. (5) at the last solve (dual warm start) */
 } ogk_nmpc_plan_t;
 
 /* Measured state at the replan time. */
 typedef struct {
-    double t;                   /* [TU] absolute time */
-    double x[OGK_NMPC_NX];      /* [LU, rad, LU/TU, LU/TU, MU] state */
+    ogk_real_t t;                   /* [TU] absolute time */
+    ogk_real_t x[OGK_NMPC_NX];      /* [LU, rad, LU/TU, LU/TU, MU] state */
 } ogk_nmpc_input_t;
 
 /* What one solve or replan did. */
@@ -238,18 +239,18 @@ typedef struct {
     uint32_t qp_iterations;     /* [-] active-set changes of the QPs, summed */
     uint32_t solves;            /* [-] SQP solves run by the call (2 with a doubling test) */
     uint32_t nodes;             /* [-] N of the plan now flown */
-    double t_next;              /* [TU] end of the plan's first subinterval: the next replan time */
-    double t_f;                 /* [TU] the plan's final time */
-    double objective;           /* [TU or MU] J of the plan flown */
-    double feas;                /* [mixed] max |defect or terminal residual| of the plan flown */
-    double stat;                /* [-] last reduced stationarity |H dv|_inf */
+    ogk_real_t t_next;              /* [TU] end of the plan's first subinterval: the next replan time */
+    ogk_real_t t_f;                 /* [TU] the plan's final time */
+    ogk_real_t objective;           /* [TU or MU] J of the plan flown */
+    ogk_real_t feas;                /* [mixed] max |defect or terminal residual| of the plan flown */
+    ogk_real_t stat;                /* [-] last reduced stationarity |H dv|_inf */
 } ogk_nmpc_report_t;
 
 /* Command of the plan at one time. */
 typedef struct {
-    double t;                   /* [TU] time the command is for */
-    double alpha;               /* [rad] thrust angle from the local vertical (paper's convention) */
-    double throttle;            /* [-] w in [0, 1] (1 with OGK_NMPC_ENGINE_CONSTANT) */
+    ogk_real_t t;                   /* [TU] time the command is for */
+    ogk_real_t alpha;               /* [rad] thrust angle from the local vertical (paper's convention) */
+    ogk_real_t throttle;            /* [-] w in [0, 1] (1 with OGK_NMPC_ENGINE_CONSTANT) */
     uint32_t flags;             /* [-] OGK_THRUST_FLAG_* of ogk/types.h (ENGINE_ON, SAFE) */
     uint32_t law_flags;         /* [-] OGK_NMPC_FLAG_* of the plan flown */
 } ogk_nmpc_command_t;
@@ -257,7 +258,7 @@ typedef struct {
 /* Context. Treat as opaque; read it through the functions below. */
 typedef struct {
     ogk_nmpc_config_t cfg;      /* the configuration; body_mu[b] is 0 once body b is released (body_release) */
-    double body_mu_init[OGK_NMPC_MAX_BODIES]; /* [LU^3/TU^2] the configuration's body_mu, restored by reset */
+    ogk_real_t body_mu_init[OGK_NMPC_MAX_BODIES]; /* [LU^3/TU^2] the configuration's body_mu, restored by reset */
     uint32_t nu;                /* [-] controls per node */
     uint32_t subdivisions;      /* [-] doublings made since init or reset */
     uint32_t plan_flags;        /* [-] OGK_NMPC_FLAG_* of the plan flown */
@@ -266,52 +267,52 @@ typedef struct {
     ogk_nmpc_plan_t work;       /* the SQP iterate */
     ogk_nmpc_plan_t trial;      /* the line-search point */
     ogk_nmpc_plan_t alt;        /* the doubled plan of the SNNS test */
-    double hess[OGK_NMPC_MAX_VARS * OGK_NMPC_MAX_VARS];     /* [-] QP Hessian (BFGS: the matrix of the plan flown) */
-    double hess_alt[OGK_NMPC_MAX_VARS * OGK_NMPC_MAX_VARS]; /* [-] BFGS matrix of the doubled plan */
+    ogk_real_t hess[OGK_NMPC_MAX_VARS * OGK_NMPC_MAX_VARS];     /* [-] QP Hessian (BFGS: the matrix of the plan flown) */
+    ogk_real_t hess_alt[OGK_NMPC_MAX_VARS * OGK_NMPC_MAX_VARS]; /* [-] BFGS matrix of the doubled plan */
     uint8_t hess_valid;         /* [-] 1: hess belongs to the plan flown (warm start) */
     /* sensitivities of the current iterate, per subinterval k */
-    double sens_f[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                   /* F_k */
-    double sens_a[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_NX];     /* dF_k/dX_k */
-    double sens_b0[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_MAX_NU]; /* dF_k/dU_k */
-    double sens_b1[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_MAX_NU]; /* dF_k/dU_k+1 */
-    double sens_t[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                   /* dF_k/dT */
-    double sens_h[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                   /* dF_k/dh (h = T / N) */
-    double sens_ts[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                  /* dF_k/dt_start (0 without attracting bodies) */
+    ogk_real_t sens_f[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                   /* F_k */
+    ogk_real_t sens_a[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_NX];     /* dF_k/dX_k */
+    ogk_real_t sens_b0[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_MAX_NU]; /* dF_k/dU_k */
+    ogk_real_t sens_b1[OGK_NMPC_MAX_NODES * OGK_NMPC_NX * OGK_NMPC_MAX_NU]; /* dF_k/dU_k+1 */
+    ogk_real_t sens_t[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                   /* dF_k/dT */
+    ogk_real_t sens_h[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                   /* dF_k/dh (h = T / N) */
+    ogk_real_t sens_ts[OGK_NMPC_MAX_NODES * OGK_NMPC_NX];                  /* dF_k/dt_start (0 without attracting bodies) */
     /* what subinterval k's sensitivities above were computed from (X_k, U_k, U_k+1, h, and t_start
      * with an attracting body) and the predictive model they used: an interval whose inputs are the
      * same bits is not swept again (a warm start's shifted intervals; docs/design/nmpc-flight.md, 2c) */
-    double sens_key[OGK_NMPC_MAX_NODES * OGK_NMPC_SENS_KEY];
-    double sens_model[OGK_NMPC_SENS_MODEL]; /* the model of every key (keys all 0, matching no interval, after a change) */
+    ogk_real_t sens_key[OGK_NMPC_MAX_NODES * OGK_NMPC_SENS_KEY];
+    ogk_real_t sens_model[OGK_NMPC_SENS_MODEL]; /* the model of every key (keys all 0, matching no interval, after a change) */
     /* the keep-out along subinterval k's arc, from the same sweep as its sensitivities: per body b the
      * interior RK4 step ends within three keep-out radii (bit j: step j's end), and the arc's violation */
     uint32_t arc_mask[OGK_NMPC_MAX_NODES * OGK_OCP_MAX_KEEPOUT]; /* [-] */
-    double arc_viol[OGK_NMPC_MAX_NODES * 2u];   /* [LU] sum and largest of max(0, R - d) over the arc's step ends */
+    ogk_real_t arc_viol[OGK_NMPC_MAX_NODES * 2u];   /* [LU] sum and largest of max(0, R - d) over the arc's step ends */
     /* exact Hessian: per subinterval k the block sum_i mu_k,i d2F_k,i in (X_k, U_k, U_k+1, T),
      * OGK_NMPC_MAX_DIR square, and the tape of the interval being swept */
-    double hess_blk[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR];
-    double tape[OGK_NMPC_MAX_RK4_STEPS * OGK_NMPC_TAPE_STEP];
-    double hess_tmp[2u * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_VARS]; /* scratch: one interval's second derivatives, then the condensing's */
+    ogk_real_t hess_blk[OGK_NMPC_MAX_NODES * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR];
+    ogk_real_t tape[OGK_NMPC_MAX_RK4_STEPS * OGK_NMPC_TAPE_STEP];
+    ogk_real_t hess_tmp[2u * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_VARS]; /* scratch: one interval's second derivatives, then the condensing's */
     /* condensed QP */
-    double cond_g[OGK_NMPC_NX * OGK_NMPC_MAX_VARS]; /* dX_N / dv */
-    double cond_e[OGK_NMPC_NX];                     /* dX_N at v = 0 (the defects carried) */
-    double el_h[OGK_NMPC_MAX_QP * OGK_NMPC_MAX_QP];      /* elastic QP: Hessian */
-    double el_g[OGK_NMPC_MAX_QP];
-    double el_aeq[OGK_NMPC_NC * OGK_NMPC_MAX_QP];
-    double el_ain[OGK_NMPC_MAX_ROWS * OGK_NMPC_MAX_QP];
-    double el_lb[OGK_NMPC_MAX_QP];
-    double el_ub[OGK_NMPC_MAX_QP];
-    double qp_aeq[OGK_NMPC_NC * OGK_NMPC_MAX_VARS];
-    double qp_beq[OGK_NMPC_NC];
-    double qp_ain[OGK_NMPC_MAX_ROWS * OGK_NMPC_MAX_VARS];
-    double qp_bin[OGK_NMPC_MAX_ROWS];
-    double ko_a[OGK_NMPC_MAX_KO_ROWS * OGK_NMPC_MAX_VARS]; /* keep-out rows of the condensed QP */
-    double ko_b[OGK_NMPC_MAX_KO_ROWS];
+    ogk_real_t cond_g[OGK_NMPC_NX * OGK_NMPC_MAX_VARS]; /* dX_N / dv */
+    ogk_real_t cond_e[OGK_NMPC_NX];                     /* dX_N at v = 0 (the defects carried) */
+    ogk_real_t el_h[OGK_NMPC_MAX_QP * OGK_NMPC_MAX_QP];      /* elastic QP: Hessian */
+    ogk_real_t el_g[OGK_NMPC_MAX_QP];
+    ogk_real_t el_aeq[OGK_NMPC_NC * OGK_NMPC_MAX_QP];
+    ogk_real_t el_ain[OGK_NMPC_MAX_ROWS * OGK_NMPC_MAX_QP];
+    ogk_real_t el_lb[OGK_NMPC_MAX_QP];
+    ogk_real_t el_ub[OGK_NMPC_MAX_QP];
+    ogk_real_t qp_aeq[OGK_NMPC_NC * OGK_NMPC_MAX_VARS];
+    ogk_real_t qp_beq[OGK_NMPC_NC];
+    ogk_real_t qp_ain[OGK_NMPC_MAX_ROWS * OGK_NMPC_MAX_VARS];
+    ogk_real_t qp_bin[OGK_NMPC_MAX_ROWS];
+    ogk_real_t ko_a[OGK_NMPC_MAX_KO_ROWS * OGK_NMPC_MAX_VARS]; /* keep-out rows of the condensed QP */
+    ogk_real_t ko_b[OGK_NMPC_MAX_KO_ROWS];
     size_t ko_rows;             /* [-] keep-out rows in use */
-    double qp_lb[OGK_NMPC_MAX_VARS];
-    double qp_ub[OGK_NMPC_MAX_VARS];
-    double grad_lag[OGK_NMPC_MAX_VARS];  /* reduced Lagrangian gradient of the last iterate */
-    double step_v[OGK_NMPC_MAX_VARS];    /* accepted step in the QP unknowns */
-    double dx[(OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_NX]; /* state part of the step */
+    ogk_real_t qp_lb[OGK_NMPC_MAX_VARS];
+    ogk_real_t qp_ub[OGK_NMPC_MAX_VARS];
+    ogk_real_t grad_lag[OGK_NMPC_MAX_VARS];  /* reduced Lagrangian gradient of the last iterate */
+    ogk_real_t step_v[OGK_NMPC_MAX_VARS];    /* accepted step in the QP unknowns */
+    ogk_real_t dx[(OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_NX]; /* state part of the step */
     ogk_qp_workspace_t qp_ws;
     ogk_qp_solution_t qp_sol;
     /* the problem (ogk/ocp.h): its callback table (a const table, in flash) and its data (NULL: the
@@ -354,8 +355,8 @@ ogk_status ogk_nmpc_reset(ogk_nmpc_t *ctx);
  * plan scaled into them; reset keeps them, init restores the
  * configuration's.
  * OGK_E_NULL, OGK_E_NOT_INIT, OGK_E_NONFINITE, OGK_E_CONFIG. */
-ogk_status ogk_nmpc_set_horizon_bounds(ogk_nmpc_t *ctx, double horizon_min, double horizon_max);
-ogk_status ogk_nmpc_set_hessian_init(ogk_nmpc_t *ctx, double hessian_init);
+ogk_status ogk_nmpc_set_horizon_bounds(ogk_nmpc_t *ctx, ogk_real_t horizon_min, ogk_real_t horizon_max);
+ogk_status ogk_nmpc_set_hessian_init(ogk_nmpc_t *ctx, ogk_real_t hessian_init);
 
 /* Loads a plan (the ground's open-loop solution, or any guess): nodes in
  * 1..OGK_NMPC_MAX_NODES, nu equal to the engine's, horizon within its bounds,
@@ -388,7 +389,7 @@ ogk_status ogk_nmpc_replan(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
 /* The plan's control at absolute time t (piecewise linear; before t0 the
  * first node's, after t_f the last node's with FLAG_END_OF_PLAN). No plan:
  * OGK_E_RANGE with the safe command (engine off, alpha 0, FLAG SAFE). */
-ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t,
+ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, ogk_real_t t,
                             ogk_nmpc_command_t *cmd);
 
 /* NMPC's contract call for the one command of every law (ogk/types.h): the
@@ -401,7 +402,7 @@ ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t,
  * statuses of ogk_nmpc_command, with NMPC's safe command converted the same
  * way (engine off, along r_hat: alpha_rad = pi/2; t_s = 0 for a non-finite t);
  * OGK_E_NULL when cmd is NULL. */
-ogk_status ogk_nmpc_thrust_cmd(const ogk_nmpc_t *ctx, double t, ogk_thrust_cmd_t *cmd);
+ogk_status ogk_nmpc_thrust_cmd(const ogk_nmpc_t *ctx, ogk_real_t t, ogk_thrust_cmd_t *cmd);
 
 /* Test entry points (the model's right-hand side, one shooting interval with
  * its sensitivities): ogk/internal/nmpc_test.h. */

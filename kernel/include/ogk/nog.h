@@ -31,6 +31,7 @@
 #include <stdint.h>
 #include "ogk/status.h"
 #include "ogk/types.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -39,7 +40,7 @@ extern "C" {
 #define OGK_NOG_NX 7u            /* state (and costate) size */
 #define OGK_NOG_TABLE_KIND 0x4E4F4742u /* "NOGB": one bundle entry per tau node */
 
-/* Entry layout of the table bundle (one row of OGK_NOG_ENTRY_LEN doubles per
+/* Entry layout of the table bundle (one row of OGK_NOG_ENTRY_LEN reals per
  * tau node, SI, ' = d/dtau):
  *   [  0,  7) x*        [  7, 14) x*'       [ 14, 21) lambda*   [ 21, 28) lambda*'
  *   [ 28, 84) G (8 x 7, row-major): rows 0..6 -> dlam_k, row 7 -> dt_f [s]
@@ -65,16 +66,16 @@ extern "C" {
  * default OGK_NOG_MAX_GRID; a flight build with the table in flash uses
  * ogk_nog_table_view instead and needs no copy. */
 typedef struct {
-    double tau[OGK_NOG_MAX_GRID];                        /* [-] grid, 0 .. 1 strictly increasing */
-    double entry[OGK_NOG_MAX_GRID * OGK_NOG_ENTRY_LEN];  /* [SI] rows as documented above */
+    ogk_real_t tau[OGK_NOG_MAX_GRID];                        /* [-] grid, 0 .. 1 strictly increasing */
+    ogk_real_t entry[OGK_NOG_MAX_GRID * OGK_NOG_ENTRY_LEN];  /* [SI] rows as documented above */
     size_t n_grid;                                       /* [-] nodes in use; 0 = no valid table */
-    double t_f_star_s;                                   /* [s] nominal flight time */
+    ogk_real_t t_f_star_s;                                   /* [s] nominal flight time */
     uint32_t generation;                                 /* [-] bumped by every ogk_nog_table_load, good or failed: a bound context compares it with the value it recorded at init */
 } ogk_nog_table_t;
 
 /* Largest nominal flight time a table may carry [s] (~32 years): far above any
  * burn, low enough that every time bound derived from t_f* stays finite. */
-#define OGK_NOG_TF_MAX_S 1.0e9
+#define OGK_NOG_TF_MAX_S OGK_R(1.0e9)
 
 /* Decodes and validates a table file (ogk/table.h format, kind
  * OGK_NOG_TABLE_KIND, one dimension OGK_NOG_ENTRY_LEN): CRC, dims, grid from 0
@@ -95,10 +96,10 @@ ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t
  * caller's table bytes, which must stay unchanged while any context bound to
  * the view is used. */
 typedef struct {
-    const double *tau;     /* [-] n_grid grid values inside the table bytes */
-    const double *entry;   /* [SI] n_grid rows of OGK_NOG_ENTRY_LEN values inside the table bytes */
+    const ogk_real_t *tau;     /* [-] n_grid grid values inside the table bytes */
+    const ogk_real_t *entry;   /* [SI] n_grid rows of OGK_NOG_ENTRY_LEN values inside the table bytes */
     size_t n_grid;         /* [-] nodes; 0 = no valid table */
-    double t_f_star_s;     /* [s] nominal flight time */
+    ogk_real_t t_f_star_s;     /* [s] nominal flight time */
     uint32_t init_marker;  /* [-] OGK_NOG_VIEW_MARKER once validated */
     uint32_t generation;   /* [-] bumped by every ogk_nog_table_view on this struct, good or failed (stale-binding check, as ogk_nog_table_t.generation) */
 } ogk_nog_table_view_t;
@@ -106,8 +107,10 @@ typedef struct {
 /* Validates buf[0..len-1] exactly as ogk_nog_table_load (magic, version, type,
  * kind, dims, grid size, length, both CRCs, finite values, grid from 0 to 1,
  * t_f* consistency) and then points the view into buf: the payload is read in
- * place as IEEE-754 binary64, so buf must be 8-byte aligned (OGK_E_ALIGN
- * otherwise) and the target must store a double as the file does, little-endian
+ * place as ogk_real_t (IEEE-754 binary64; binary32 in the float build, from an
+ * F32 table), so buf must be aligned to sizeof(ogk_real_t) (8 bytes; 4 in the
+ * float build; OGK_E_ALIGN otherwise) and the target must store an ogk_real_t
+ * as the file does, little-endian
  * (x86-64 and Cortex-M7 do; on a big-endian target such as SPARC/LEON or
  * PowerPC a valid image gives OGK_E_BYTE_ORDER: decode it with
  * ogk_nog_table_load instead, docs/guides/ports.md). The payload
@@ -126,10 +129,10 @@ ogk_status ogk_nog_table_view(ogk_nog_table_view_t *view, const uint8_t *buf, si
 typedef struct {
     const ogk_nog_table_t *table;     /* validated RAM table (ogk_nog_table_load), or NULL */
     const ogk_nog_table_view_t *view; /* validated in-place view (ogk_nog_table_view), or NULL */
-    double sample_interval_s;     /* [s] Delta t_S, > 0 and <= t_f* (default 2 s, the paper's sec. 6) */
-    double dtf_max_s;             /* [s] bound on |dt_f|, > 0 and <= t_f* / 2 (default 40 s) */
-    double du_max_rad;            /* [rad] bound on the angle between corrected and nominal thrust directions, (0, pi] (default pi/3) */
-    double tau_freeze;            /* [-] no new correction when 1 - tau_k < tau_freeze, [0, 1) (default 0) */
+    ogk_real_t sample_interval_s;     /* [s] Delta t_S, > 0 and <= t_f* (default 2 s, the paper's sec. 6) */
+    ogk_real_t dtf_max_s;             /* [s] bound on |dt_f|, > 0 and <= t_f* / 2 (default 40 s) */
+    ogk_real_t du_max_rad;            /* [rad] bound on the angle between corrected and nominal thrust directions, (0, pi] (default pi/3) */
+    ogk_real_t tau_freeze;            /* [-] no new correction when 1 - tau_k < tau_freeze, [0, 1) (default 0) */
 } ogk_nog_config_t;
 
 /* Navigation state at a sampling time (ogk/types.h). */
@@ -143,14 +146,14 @@ typedef ogk_nav_state_t ogk_nog_nav_t;
 #define OGK_NOG_FLAG_CUTOFF 0x10u      /* t is at or past the cut-off time: engine off */
 
 typedef struct {
-    double tau_k;        /* [-] normalised time of this sample */
-    double tau_next;     /* [-] tau_(k+1) of eq. (31) (may exceed 1 in the last interval) */
-    double t_f_s;        /* [s] t_f^(k) = t_f* + dt_f */
-    double dt_f_s;       /* [s] applied flight-time correction */
-    double t_cutoff_s;   /* [s] predicted engine cut-off time, t_k + (1 - tau_k) t_f^(k) */
-    double dx[OGK_NOG_NX]; /* [SI] state displacement dx_k used */
-    double alpha_rad;    /* [rad] commanded in-plane thrust angle at t_k */
-    double beta_rad;     /* [rad] commanded out-of-plane thrust angle at t_k */
+    ogk_real_t tau_k;        /* [-] normalised time of this sample */
+    ogk_real_t tau_next;     /* [-] tau_(k+1) of eq. (31) (may exceed 1 in the last interval) */
+    ogk_real_t t_f_s;        /* [s] t_f^(k) = t_f* + dt_f */
+    ogk_real_t dt_f_s;       /* [s] applied flight-time correction */
+    ogk_real_t t_cutoff_s;   /* [s] predicted engine cut-off time, t_k + (1 - tau_k) t_f^(k) */
+    ogk_real_t dx[OGK_NOG_NX]; /* [SI] state displacement dx_k used */
+    ogk_real_t alpha_rad;    /* [rad] commanded in-plane thrust angle at t_k */
+    ogk_real_t beta_rad;     /* [rad] commanded out-of-plane thrust angle at t_k */
     uint32_t flags;      /* [-] OGK_NOG_FLAG_* */
 } ogk_nog_sample_t;
 
@@ -161,13 +164,13 @@ typedef struct {
 typedef struct {
     ogk_nog_config_t cfg;            /* copy of the configuration */
     ogk_nog_table_view_t tbl;        /* the bound table (view, or pointers into the RAM table) */
-    double t_k_s;                    /* [s] time of the current sample */
-    double tau_k;                    /* [-] tau of the current sample */
-    double t_f_s;                    /* [s] t_f in force */
-    double dlam_k[OGK_NOG_NX];       /* [costate units] dlam at tau_k */
-    double dlam_rate[OGK_NOG_NX];    /* [costate units] d(dlam)/dtau held over the interval */
-    double hold_alpha_rad;           /* [rad] in-plane angle of the last good sample (nominal at tau = 0 before): flown when the table cannot be read (stale) or the costate overflows */
-    double hold_beta_rad;            /* [rad] out-of-plane angle, as hold_alpha_rad */
+    ogk_real_t t_k_s;                    /* [s] time of the current sample */
+    ogk_real_t tau_k;                    /* [-] tau of the current sample */
+    ogk_real_t t_f_s;                    /* [s] t_f in force */
+    ogk_real_t dlam_k[OGK_NOG_NX];       /* [costate units] dlam at tau_k */
+    ogk_real_t dlam_rate[OGK_NOG_NX];    /* [costate units] d(dlam)/dtau held over the interval */
+    ogk_real_t hold_alpha_rad;           /* [rad] in-plane angle of the last good sample (nominal at tau = 0 before): flown when the table cannot be read (stale) or the costate overflows */
+    ogk_real_t hold_beta_rad;            /* [rad] out-of-plane angle, as hold_alpha_rad */
     uint32_t n_samples;              /* [-] good samples taken */
     uint32_t flags;                  /* [-] OGK_NOG_FLAG_* of the current sample */
     uint32_t table_generation;       /* [-] generation of the bound table (or view) at init */
@@ -211,10 +214,10 @@ ogk_status ogk_nog_reset(ogk_nog_t *ctx);
  *                             clipped there), and one more t_f* separates a
  *                             late sample (past the cut-off: tau > 1) from a
  *                             corrupted time tag; both are rejected */
-#define OGK_NOG_R_MAX_M 1.0e9
-#define OGK_NOG_XI_MAX_RAD 1.0e4
-#define OGK_NOG_PHI_MAX_RAD 1.5707963267948966
-#define OGK_NOG_V_MAX_MPS 1.0e5
+#define OGK_NOG_R_MAX_M OGK_R(1.0e9)
+#define OGK_NOG_XI_MAX_RAD OGK_R(1.0e4)
+#define OGK_NOG_PHI_MAX_RAD OGK_R(1.5707963267948966)
+#define OGK_NOG_V_MAX_MPS OGK_R(1.0e5)
 
 /* One guidance sample. Rejected samples: the table was reloaded
  * (OGK_E_TABLE_STALE); NaN/Inf input (OGK_E_NONFINITE); input outside the
@@ -265,7 +268,7 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sa
 /*@ requires ctx_valid: ctx == \null || \valid_read(ctx);
     requires out_valid: out == \null || \valid(out);
 */
-ogk_status ogk_nog_thrust_cmd(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out);
+ogk_status ogk_nog_thrust_cmd(const ogk_nog_t *ctx, ogk_real_t t_s, ogk_thrust_cmd_t *out);
 
 /* *tau = normalised time of eq. (31) at t_s >= the current sample's time with
  * the t_f in force (clamped to 1 after the cut-off), for telemetry.
@@ -274,7 +277,7 @@ ogk_status ogk_nog_thrust_cmd(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t
 /*@ requires ctx_valid: ctx == \null || \valid_read(ctx);
     requires tau_valid: tau == \null || \valid(tau);
 */
-ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau);
+ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, ogk_real_t t_s, ogk_real_t *tau);
 
 /* ---------------------------------------------------------------------------
  * Deprecated (removed in 0.2): the names before issue 33's uniform naming
@@ -286,7 +289,7 @@ ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau);
 /*@ requires ctx_valid: ctx == \null || \valid_read(ctx);
     requires out_valid: out == \null || \valid(out);
 */
-ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out);
+ogk_status ogk_nog_command(const ogk_nog_t *ctx, ogk_real_t t_s, ogk_thrust_cmd_t *out);
 
 #ifdef __cplusplus
 }

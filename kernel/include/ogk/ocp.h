@@ -32,6 +32,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "ogk/status.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -58,33 +59,33 @@ typedef struct {
      * (the caller zeroes the arrays once). trig: cos and sin of u[0], or NULL
      * (computed here). OGK_E_NONFINITE outside the model's domain or for a
      * value that is not finite. */
-    ogk_status (*dynamics)(const void *data, uint32_t nu, double t, const double *x, const double *u,
-                           const double *trig, double *xdot, double *jx, double *ju, double *jt);
+    ogk_status (*dynamics)(const void *data, uint32_t nu, ogk_real_t t, const ogk_real_t *x, const ogk_real_t *u,
+                           const ogk_real_t *trig, ogk_real_t *xdot, ogk_real_t *jx, ogk_real_t *ju, ogk_real_t *jt);
     /* hz (OGK_OCP_NZ square, z = (x, u, t), t at index 5 + nu) = the upper
      * triangle (row <= column) of the Hessian of kappa . f: only its
      * structural nonzeros written (the caller zeroes hz before every call);
      * called after `dynamics` at the same point succeeded. */
-    void (*dynamics_hess)(const void *data, uint32_t nu, double t, const double *x, const double *u,
-                          const double *trig, const double *kappa, double *hz);
+    void (*dynamics_hess)(const void *data, uint32_t nu, ogk_real_t t, const ogk_real_t *x, const ogk_real_t *u,
+                          const ogk_real_t *trig, const ogk_real_t *kappa, ogk_real_t *hz);
     /* The target state x_T(t_f) (OGK_OCP_NC) and its rate dx_T/dt_f. */
-    void (*target)(const void *data, double t_f, double *x_target, double *x_target_rate);
+    void (*target)(const void *data, ogk_real_t t_f, ogk_real_t *x_target, ogk_real_t *x_target_rate);
     /* Radius R_j of keep-out disc j < OGK_OCP_MAX_KEEPOUT (0: none). */
-    double (*keepout_radius)(const void *data, size_t j);
+    ogk_real_t (*keepout_radius)(const void *data, size_t j);
     /* Distance d_j of (x_0, x_1) at time t from disc j's centre, and its
      * derivatives in x_0, x_1 and t. */
-    double (*keepout_distance)(const void *data, size_t j, const double *x, double t, double *d_x0,
-                               double *d_x1, double *d_t);
+    ogk_real_t (*keepout_distance)(const void *data, size_t j, const ogk_real_t *x, ogk_real_t t, ogk_real_t *d_x0,
+                               ogk_real_t *d_x1, ogk_real_t *d_t);
     /* key (OGK_OCP_MODEL_KEY doubles, every one written: 0 where unused) =
      * the doubles that define the dynamics: sensitivities computed under
      * another key are not reused. */
-    void (*model_key)(const void *data, double *key);
+    void (*model_key)(const void *data, ogk_real_t *key);
     /* True when the n states x[0 .. n) (stride OGK_OCP_NX: a measured state,
      * or a plan's nodes) are inside the model's domain (e.g. mass > 0). */
-    bool (*state_valid)(const void *data, const double *x, size_t n);
+    bool (*state_valid)(const void *data, const ogk_real_t *x, size_t n);
     /* Optional (NULL: none): the problem's own update at each solve or
      * replan from the measured state (t, x), before the SQP; returns the
      * OGK_NMPC_FLAG_* it reports (e.g. a body released). */
-    uint32_t (*update)(void *data, double t, const double *x);
+    uint32_t (*update)(void *data, ogk_real_t t, const ogk_real_t *x);
 } ogk_ocp_problem_t;
 
 #ifdef __cplusplus

@@ -21,6 +21,7 @@
 #include "ogk/nmpc.h"
 #include "ogk/status.h"
 #include "ogk/types.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -31,13 +32,13 @@ extern "C" {
 
 /* The model: what ogk_ocp_problem_t's callbacks read. */
 typedef struct {
-    double mean_motion;         /* [rad/TU] n of the target's circular orbit, > 0 (normalised: 1) */
-    double thrust_max;          /* [MU LU/TU^2] T_max, > 0 */
-    double mass_flow_max;       /* [MU/TU] mdot at full throttle, >= 0 */
-    double hold[2];             /* [LU] the hold point (x, y), reached at rest */
+    ogk_real_t mean_motion;         /* [rad/TU] n of the target's circular orbit, > 0 (normalised: 1) */
+    ogk_real_t thrust_max;          /* [MU LU/TU^2] T_max, > 0 */
+    ogk_real_t mass_flow_max;       /* [MU/TU] mdot at full throttle, >= 0 */
+    ogk_real_t hold[2];             /* [LU] the hold point (x, y), reached at rest */
     uint32_t n_keepout;         /* [-] keep-out discs, 0..OGK_PROX_MAX_KEEPOUT */
-    double keepout_centre[2u * OGK_PROX_MAX_KEEPOUT]; /* [LU] disc j's centre (x, y) at 2 j */
-    double keepout_radius[OGK_PROX_MAX_KEEPOUT];      /* [LU] disc j's radius, >= 0 (0: none) */
+    ogk_real_t keepout_centre[2u * OGK_PROX_MAX_KEEPOUT]; /* [LU] disc j's centre (x, y) at 2 j */
+    ogk_real_t keepout_radius[OGK_PROX_MAX_KEEPOUT];      /* [LU] disc j's radius, >= 0 (0: none) */
 } ogk_prox_model_t;
 
 /* Configuration: the model, and the solver's settings (ogk_nmpc_config_t's
@@ -75,8 +76,8 @@ ogk_status ogk_prox_init(ogk_prox_t *ctx, const ogk_prox_config_t *cfg);
 ogk_status ogk_prox_reset(ogk_prox_t *ctx);
 
 /* As ogk_nmpc_set_horizon_bounds and ogk_nmpc_set_hessian_init. */
-ogk_status ogk_prox_set_horizon_bounds(ogk_prox_t *ctx, double horizon_min, double horizon_max);
-ogk_status ogk_prox_set_hessian_init(ogk_prox_t *ctx, double hessian_init);
+ogk_status ogk_prox_set_horizon_bounds(ogk_prox_t *ctx, ogk_real_t horizon_min, ogk_real_t horizon_max);
+ogk_status ogk_prox_set_hessian_init(ogk_prox_t *ctx, ogk_real_t hessian_init);
 
 /* As ogk_nmpc_load_plan, ogk_nmpc_get_plan, ogk_nmpc_solve, ogk_nmpc_replan,
  * ogk_nmpc_command and ogk_nmpc_thrust_cmd (plan states (x, y, v_x, v_y, m)
@@ -86,8 +87,8 @@ ogk_status ogk_prox_load_plan(ogk_prox_t *ctx, const ogk_nmpc_plan_t *plan);
 ogk_status ogk_prox_get_plan(const ogk_prox_t *ctx, ogk_nmpc_plan_t *plan);
 ogk_status ogk_prox_solve(ogk_prox_t *ctx, const ogk_nmpc_input_t *in, ogk_nmpc_report_t *rep);
 ogk_status ogk_prox_replan(ogk_prox_t *ctx, const ogk_nmpc_input_t *in, ogk_nmpc_report_t *rep);
-ogk_status ogk_prox_command(const ogk_prox_t *ctx, double t, ogk_nmpc_command_t *cmd);
-ogk_status ogk_prox_thrust_cmd(const ogk_prox_t *ctx, double t, ogk_thrust_cmd_t *cmd);
+ogk_status ogk_prox_command(const ogk_prox_t *ctx, ogk_real_t t, ogk_nmpc_command_t *cmd);
+ogk_status ogk_prox_thrust_cmd(const ogk_prox_t *ctx, ogk_real_t t, ogk_thrust_cmd_t *cmd);
 
 #ifdef __cplusplus
 }

@@ -20,6 +20,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "ogk/status.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -39,7 +40,7 @@ extern "C" {
 #endif
 
 /* A bound of this magnitude or more (either sign) means "no bound". */
-#define OGK_QP_INF 1.0e20
+#define OGK_QP_INF OGK_R(1.0e20)
 
 /* Largest number of active-set changes of one solve (fixed loop bound). */
 #define OGK_QP_MAX_ITER ((4u * (OGK_QP_MAX_N + OGK_QP_MAX_EQ + OGK_QP_MAX_IN)) + 16u)
@@ -48,23 +49,23 @@ typedef struct {
     size_t n;              /* [-] variables, 1..OGK_QP_MAX_N */
     size_t m_eq;           /* [-] equality rows, 0..OGK_QP_MAX_EQ, <= n */
     size_t m_in;           /* [-] general inequality rows, 0..OGK_QP_MAX_IN */
-    const double *H;       /* [-] n x n, symmetric positive definite (both triangles read) */
-    const double *g;       /* [-] n, linear term */
-    const double *A_eq;    /* [-] m_eq x n (NULL when m_eq = 0) */
-    const double *b_eq;    /* [-] m_eq (NULL when m_eq = 0) */
-    const double *A_in;    /* [-] m_in x n (NULL when m_in = 0) */
-    const double *b_in;    /* [-] m_in (NULL when m_in = 0) */
-    const double *lb;      /* [-] n lower bounds, <= -OGK_QP_INF for none; NULL: none at all */
-    const double *ub;      /* [-] n upper bounds, >= +OGK_QP_INF for none; NULL: none at all */
+    const ogk_real_t *H;       /* [-] n x n, symmetric positive definite (both triangles read) */
+    const ogk_real_t *g;       /* [-] n, linear term */
+    const ogk_real_t *A_eq;    /* [-] m_eq x n (NULL when m_eq = 0) */
+    const ogk_real_t *b_eq;    /* [-] m_eq (NULL when m_eq = 0) */
+    const ogk_real_t *A_in;    /* [-] m_in x n (NULL when m_in = 0) */
+    const ogk_real_t *b_in;    /* [-] m_in (NULL when m_in = 0) */
+    const ogk_real_t *lb;      /* [-] n lower bounds, <= -OGK_QP_INF for none; NULL: none at all */
+    const ogk_real_t *ub;      /* [-] n upper bounds, >= +OGK_QP_INF for none; NULL: none at all */
 } ogk_qp_problem_t;
 
 typedef struct {
-    double x[OGK_QP_MAX_N];       /* [-] minimiser (n entries used) */
-    double y_eq[OGK_QP_MAX_EQ];   /* [-] equality multipliers (m_eq) */
-    double y_in[OGK_QP_MAX_IN];   /* [-] inequality multipliers, >= 0 (m_in) */
-    double z_lb[OGK_QP_MAX_N];    /* [-] lower-bound multipliers, >= 0 (n) */
-    double z_ub[OGK_QP_MAX_N];    /* [-] upper-bound multipliers, >= 0 (n) */
-    double objective;             /* [-] 1/2 x^T H x + g^T x at x */
+    ogk_real_t x[OGK_QP_MAX_N];       /* [-] minimiser (n entries used) */
+    ogk_real_t y_eq[OGK_QP_MAX_EQ];   /* [-] equality multipliers (m_eq) */
+    ogk_real_t y_in[OGK_QP_MAX_IN];   /* [-] inequality multipliers, >= 0 (m_in) */
+    ogk_real_t z_lb[OGK_QP_MAX_N];    /* [-] lower-bound multipliers, >= 0 (n) */
+    ogk_real_t z_ub[OGK_QP_MAX_N];    /* [-] upper-bound multipliers, >= 0 (n) */
+    ogk_real_t objective;             /* [-] 1/2 x^T H x + g^T x at x */
     size_t iterations;            /* [-] constraints added to or dropped from the active set */
     size_t n_active;              /* [-] active constraints at the solution, equalities included */
 } ogk_qp_solution_t;
@@ -80,26 +81,26 @@ typedef struct {
  *       <= OGK_QP_PIVOT_TOL H_jj (or H_jj <= 0);
  * SYM   H is not symmetric when |H_ij - H_ji| > OGK_QP_SYM_TOL max |H_kl|
  *       (OGK_E_NOT_POSDEF); the factored matrix is (H + H^T) / 2. */
-#define OGK_QP_FEAS_TOL 1.0e-12
-#define OGK_QP_DEP_TOL 1.0e-10
-#define OGK_QP_PIVOT_TOL 1.0e-12
-#define OGK_QP_SYM_TOL 1.0e-12
+#define OGK_QP_FEAS_TOL OGK_R(1.0e-12)
+#define OGK_QP_DEP_TOL OGK_R(1.0e-10)
+#define OGK_QP_PIVOT_TOL OGK_R(1.0e-12)
+#define OGK_QP_SYM_TOL OGK_R(1.0e-12)
 
 /* Workspace of one solve; reusable, never read before it is written.
  * Constraints are numbered: equality rows 0..m_eq-1, inequality rows
  * m_eq..m_eq+m_in-1, lower bounds m_eq+m_in+i, upper bounds m_eq+m_in+n+i. */
 typedef struct {
-    double j[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] J^T = Q^T L^-1, row-major n x n (row k: column k of J) */
-    double r[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] Cholesky factor U = L^T of H during setup, then the upper-triangular R of the active set (row stride n) */
-    double x[OGK_QP_MAX_N];                  /* [-] primal iterate */
-    double d[OGK_QP_MAX_N];                  /* [-] J^T n of the constraint being added */
-    double z[OGK_QP_MAX_N];                  /* [-] primal step direction J2 J2^T n */
-    double rdir[OGK_QP_MAX_N];               /* [-] dual step direction R^-1 J1^T n; then J2 v / beta of the Householder update that adds n */
-    double u[OGK_QP_MAX_N];                  /* [-] multipliers of the active set, in R's column order */
+    ogk_real_t j[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] J^T = Q^T L^-1, row-major n x n (row k: column k of J) */
+    ogk_real_t r[OGK_QP_MAX_N * OGK_QP_MAX_N];   /* [-] Cholesky factor U = L^T of H during setup, then the upper-triangular R of the active set (row stride n) */
+    ogk_real_t x[OGK_QP_MAX_N];                  /* [-] primal iterate */
+    ogk_real_t d[OGK_QP_MAX_N];                  /* [-] J^T n of the constraint being added */
+    ogk_real_t z[OGK_QP_MAX_N];                  /* [-] primal step direction J2 J2^T n */
+    ogk_real_t rdir[OGK_QP_MAX_N];               /* [-] dual step direction R^-1 J1^T n; then J2 v / beta of the Householder update that adds n */
+    ogk_real_t u[OGK_QP_MAX_N];                  /* [-] multipliers of the active set, in R's column order */
     size_t active[OGK_QP_MAX_N];             /* [-] constraint numbers of the active set, in R's column order */
-    double slack[OGK_QP_MAX_IN + (2u * OGK_QP_MAX_N)]; /* [-] a^T x - b of the inequality rows and bounds (0: active or no bound) */
-    double rowscale[OGK_QP_MAX_EQ + OGK_QP_MAX_IN];  /* [-] 1 / |a|_2 of the rows of A_eq, then A_in (1 for a zero row): rows are handled as unit normals */
-    double eqsign[OGK_QP_MAX_EQ];            /* [-] +-1: the sign with which each equality row was made active */
+    ogk_real_t slack[OGK_QP_MAX_IN + (2u * OGK_QP_MAX_N)]; /* [-] a^T x - b of the inequality rows and bounds (0: active or no bound) */
+    ogk_real_t rowscale[OGK_QP_MAX_EQ + OGK_QP_MAX_IN];  /* [-] 1 / |a|_2 of the rows of A_eq, then A_in (1 for a zero row): rows are handled as unit normals */
+    ogk_real_t eqsign[OGK_QP_MAX_EQ];            /* [-] +-1: the sign with which each equality row was made active */
 } ogk_qp_workspace_t;
 
 /* Solves the QP. Returns OGK_OK with the solution, or:

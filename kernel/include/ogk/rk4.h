@@ -16,6 +16,7 @@
 #include <stdint.h>
 #include "ogk/config.h"
 #include "ogk/status.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -23,21 +24,21 @@ extern "C" {
 
 /* Right-hand side: writes xdot[0..n-1] = f(t, x, mode). Any status other than
  * OGK_OK stops the propagation with OGK_E_CALLBACK. */
-typedef ogk_status (*ogk_rhs_fn)(void *user, double t, const double *x,
-                                 int mode, double *xdot);
+typedef ogk_status (*ogk_rhs_fn)(void *user, ogk_real_t t, const ogk_real_t *x,
+                                 int mode, ogk_real_t *xdot);
 
 /* Switching function: writes *s = S(t, x, mode). */
-typedef ogk_status (*ogk_switch_fn)(void *user, double t, const double *x,
-                                    int mode, double *s);
+typedef ogk_status (*ogk_switch_fn)(void *user, ogk_real_t t, const ogk_real_t *x,
+                                    int mode, ogk_real_t *s);
 
 typedef struct {
     size_t n;             /* [-] state size, 1..OGK_RK4_MAX_STATE */
-    double h;             /* [s or normalised time] fixed step, > 0 */
+    ogk_real_t h;             /* [s or normalised time] fixed step, > 0 */
     ogk_rhs_fn rhs;       /* right-hand side, required */
     ogk_switch_fn sw;     /* switching function, NULL for none */
     void *user;           /* passed unchanged to rhs and sw */
-    double s_tol;         /* [units of S] |S(t_s)| accepted as a root, e.g. 1e-12 */
-    double t_tol;         /* [units of t] bracket width at which bisection stops, > 0 */
+    ogk_real_t s_tol;         /* [units of S] |S(t_s)| accepted as a root, e.g. 1e-12 */
+    ogk_real_t t_tol;         /* [units of t] bracket width at which bisection stops, > 0 */
 } ogk_rk4_problem_t;
 
 /* How a switch time was accepted. */
@@ -45,8 +46,8 @@ typedef struct {
 #define OGK_SWITCH_BY_TIME_TOL 1u  /* bracket below t_tol first: reported, t_s is the bracket's far end */
 
 typedef struct {
-    double t;          /* [units of t] switching time */
-    double s;          /* [units of S] S at the accepted point */
+    ogk_real_t t;          /* [units of t] switching time */
+    ogk_real_t s;          /* [units of S] S at the accepted point */
     int mode_after;    /* [-] control mode from t on */
     uint8_t how;       /* OGK_SWITCH_BY_S_TOL or OGK_SWITCH_BY_TIME_TOL */
     uint16_t bisections; /* [-] bisection iterations used */
@@ -59,15 +60,15 @@ typedef struct {
     size_t n_steps;      /* [-] RK4 (sub-)steps taken, split steps counted per piece */
     size_t n_rhs;        /* [-] right-hand-side evaluations (including bisection) */
     int mode_final;      /* [-] control mode at tf */
-    double t_reached;    /* [units of t] last time integrated to (tf on success) */
+    ogk_real_t t_reached;    /* [units of t] last time integrated to (tf on success) */
 } ogk_rk4_result_t;
 
 /* Optional dense output: caller-owned buffers receiving every node of the
  * integration grid, t0 and tf included, each switching point once. Node k to
  * node k + 1 is one RK4 step of length t[k+1] - t[k] taken in mode[k]. */
 typedef struct {
-    double *t;        /* [units of t] capacity entries */
-    double *x;        /* [units of x] capacity * n entries, row k is the state at t[k] */
+    ogk_real_t *t;        /* [units of t] capacity entries */
+    ogk_real_t *x;        /* [units of x] capacity * n entries, row k is the state at t[k] */
     uint8_t *mode;    /* [-] capacity entries, mode of the step from node k to k + 1 (mode at tf for the last) */
     size_t capacity;  /* [-] nodes the buffers hold */
     size_t count;     /* [-] nodes written (output) */
@@ -75,16 +76,16 @@ typedef struct {
 
 /* One RK4 step of length dt (any sign, nonzero) from (t, x) in mode.
  * x_next may alias x. */
-ogk_status ogk_rk4_step(const ogk_rk4_problem_t *p, double t, const double *x,
-                        double dt, int mode, double *x_next);
+ogk_status ogk_rk4_step(const ogk_rk4_problem_t *p, ogk_real_t t, const ogk_real_t *x,
+                        ogk_real_t dt, int mode, ogk_real_t *x_next);
 
 /* Propagates from (t0, x0, mode0) to tf > t0. xf receives the state at
  * t_reached. On OGK_E_SWITCH_OVERFLOW integration stops at the switch that
  * did not fit (its time is res->t_reached, the state there is in xf). dense
  * may be NULL; OGK_E_DIM if it runs out of capacity. */
-ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
-                             const double *x0, int mode0, double tf,
-                             ogk_rk4_result_t *res, double *xf,
+ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, ogk_real_t t0,
+                             const ogk_real_t *x0, int mode0, ogk_real_t tf,
+                             ogk_rk4_result_t *res, ogk_real_t *xf,
                              ogk_rk4_dense_t *dense);
 
 #ifdef __cplusplus

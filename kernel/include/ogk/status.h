@@ -8,8 +8,9 @@
 #include <float.h>
 
 /* The kernel's boundary checks (a value against its bound, a step landing
- * exactly on a node or a cut-off) assume that every double expression is
- * evaluated in double (C99 5.2.4.2.2, FLT_EVAL_METHOD 0). With excess
+ * exactly on a node or a cut-off) assume that every real expression is
+ * evaluated in its own type, double in double and float in float (ogk/real.h;
+ * C99 5.2.4.2.2, FLT_EVAL_METHOD 0). With excess
  * precision (x87 without SSE: FLT_EVAL_METHOD 2) the same source gives other
  * answers at those boundaries (issue 22: 8 unit tests fail), so such a build
  * is refused here rather than flown (docs/guides/ports.md, "Floating-point
@@ -19,7 +20,8 @@
 #if defined(FLT_EVAL_METHOD) && (FLT_EVAL_METHOD != 0)
 #error "ogk needs FLT_EVAL_METHOD == 0 (double evaluated as double); x87: build with -msse2 -mfpmath=sse"
 #endif
-/* double must be IEEE-754 binary64 (the table format's element type). */
+/* double must be IEEE-754 binary64 (the element type of F64 tables; ogk/real.h
+ * checks float, the element of F32 tables, in the float build). */
 #if defined(DBL_MANT_DIG) && defined(DBL_MAX_EXP) && \
     ((DBL_MANT_DIG != 53) || (DBL_MAX_EXP != 1024))
 #error "ogk needs double to be IEEE-754 binary64"
@@ -44,7 +46,7 @@ typedef enum {
     OGK_E_CALLBACK = 10,        /* a user callback returned a failure */
     OGK_E_TABLE_MAGIC = 11,     /* table buffer does not start with the table magic */
     OGK_E_TABLE_VERSION = 12,   /* unsupported table format version */
-    OGK_E_TABLE_TYPE = 13,      /* unsupported element type or table kind */
+    OGK_E_TABLE_TYPE = 13,      /* unsupported element type (also the other precision's: ogk/table.h) or table kind */
     OGK_E_TABLE_DIM = 14,       /* table dimensions differ from what the caller expects */
     OGK_E_TABLE_TRUNCATED = 15, /* buffer shorter than the header says */
     OGK_E_TABLE_SIZE = 16,      /* buffer longer than the header says, or sizes overflow */
@@ -58,7 +60,7 @@ typedef enum {
     OGK_E_INFEASIBLE = 24,      /* a constrained subproblem (QP) has no feasible point */
     OGK_E_ITER_LIMIT = 25,      /* an iterative solver reached its iteration bound before its tolerance */
     OGK_E_FRAME = 26,           /* a thrust command's frame is unknown, or one the consumer cannot convert */
-    OGK_E_BYTE_ORDER = 27,      /* the target's double is not the file's little-endian binary64: cannot read in place */
+    OGK_E_BYTE_ORDER = 27,      /* the target's ogk_real_t is not the file's little-endian element: cannot read in place */
     OGK_E_OVERFLOW = 28,        /* a result would exceed its documented bound (linalg: OGK_LA_SOLVE_MAX); not computed */
     OGK_STATUS_COUNT = 29
 } ogk_status;

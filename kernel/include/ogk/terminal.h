@@ -71,64 +71,65 @@
 #include <stdint.h>
 #include "ogk/status.h"
 #include "ogk/types.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /* Envelope of the navigation input (OGK_E_RANGE outside). */
-#define OGK_TERMINAL_R_MAX_M 1.0e10   /* [m] radius, (0, 1e10] */
-#define OGK_TERMINAL_V_MAX_MPS 1.0e5  /* [m/s] |v_r|, |v_t|, |v_n| */
-#define OGK_TERMINAL_T_MAX_S 1.0e7    /* [s] times, [0, 1e7] */
+#define OGK_TERMINAL_R_MAX_M OGK_R(1.0e10)   /* [m] radius, (0, 1e10] */
+#define OGK_TERMINAL_V_MAX_MPS OGK_R(1.0e5)  /* [m/s] |v_r|, |v_t|, |v_n| */
+#define OGK_TERMINAL_T_MAX_S OGK_R(1.0e7)    /* [s] times, [0, 1e7] */
 /* Below this |v_go| the direction is held (it is not defined at v_go = 0). */
-#define OGK_TERMINAL_VGO_MIN_MPS 1.0e-3
+#define OGK_TERMINAL_VGO_MIN_MPS OGK_R(1.0e-3)
 /* Smallest shape_hold_s: the plan's gains grow like 1 / hold^3. */
-#define OGK_TERMINAL_HOLD_MIN_S 1.0e-3
+#define OGK_TERMINAL_HOLD_MIN_S OGK_R(1.0e-3)
 /* [rad/s^2] Largest turn_accel_rad_s2 (a bound far above any vehicle's; keeps a S^2 / 16 finite). */
-#define OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2 1.0e4
+#define OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2 OGK_R(1.0e4)
 /* [rad] Largest tilt bound: at or beyond it the turn limit does not bind (tan stays finite). */
-#define OGK_TERMINAL_TILT_MAX_RAD 1.5
+#define OGK_TERMINAL_TILT_MAX_RAD OGK_R(1.5)
 
 /* law_flags of the output command while engaged (the law's own flags are
  * replaced: the command is not the law's). */
 #define OGK_TERMINAL_FLAG_ENGAGED 0x100u
 
 typedef struct {
-    double mu_m3_s2;        /* [m^3/s^2] gravitational parameter, > 0 */
-    double target_radius_m; /* [m] radius of the circular target orbit, (0, R_MAX] */
-    double window_s;        /* [s] engaged when the predicted time to go is at most this, [0, T_MAX] (0: never) */
-    double shape_gain;      /* [-] k of the radius miss steered out in the window, [0, 1] (0: not steered) */
-    double shape_gain_normal; /* [-] k of the plane-normal position miss, [0, 1] (0: not steered) */
-    double shape_lead_s;    /* [s] the command is the plan's direction this long ahead (attitude-loop lag), [0, T_MAX] (0: none) */
-    double shape_hold_s;    /* [s] time to go below which v_go steering takes over, [HOLD_MIN, window_s] when shape_gain > 0 */
-    double turn_accel_rad_s2; /* [rad/s^2] the vehicle's angular acceleration at its TVC command limit in the window (turn limit), [0, TURN_ACCEL_MAX] (0: no limit) */
+    ogk_real_t mu_m3_s2;        /* [m^3/s^2] gravitational parameter, > 0 */
+    ogk_real_t target_radius_m; /* [m] radius of the circular target orbit, (0, R_MAX] */
+    ogk_real_t window_s;        /* [s] engaged when the predicted time to go is at most this, [0, T_MAX] (0: never) */
+    ogk_real_t shape_gain;      /* [-] k of the radius miss steered out in the window, [0, 1] (0: not steered) */
+    ogk_real_t shape_gain_normal; /* [-] k of the plane-normal position miss, [0, 1] (0: not steered) */
+    ogk_real_t shape_lead_s;    /* [s] the command is the plan's direction this long ahead (attitude-loop lag), [0, T_MAX] (0: none) */
+    ogk_real_t shape_hold_s;    /* [s] time to go below which v_go steering takes over, [HOLD_MIN, window_s] when shape_gain > 0 */
+    ogk_real_t turn_accel_rad_s2; /* [rad/s^2] the vehicle's angular acceleration at its TVC command limit in the window (turn limit), [0, TURN_ACCEL_MAX] (0: no limit) */
 } ogk_terminal_config_t;
 
 /* The last linear-acceleration plan of the shaped window (r-t-n). */
 typedef struct {
-    double t0_s;            /* [s] time at which it was made */
-    double duration_s;      /* [s] time to go at t0_s, > shape_hold_s */
-    double accel_r0_mps2;   /* [m/s^2] radial thrust acceleration at t0_s */
-    double accel_r1_mps3;   /* [m/s^3] its rate */
-    double accel_n0_mps2;   /* [m/s^2] plane-normal thrust acceleration at t0_s */
-    double accel_n1_mps3;   /* [m/s^3] its rate */
-    double accel_t_mps2;    /* [m/s^2] tangential thrust acceleration, held */
-    double gain_scale;      /* [-] scale on both shape gains that kept the plan within the turn limit, [0, 1] */
+    ogk_real_t t0_s;            /* [s] time at which it was made */
+    ogk_real_t duration_s;      /* [s] time to go at t0_s, > shape_hold_s */
+    ogk_real_t accel_r0_mps2;   /* [m/s^2] radial thrust acceleration at t0_s */
+    ogk_real_t accel_r1_mps3;   /* [m/s^3] its rate */
+    ogk_real_t accel_n0_mps2;   /* [m/s^2] plane-normal thrust acceleration at t0_s */
+    ogk_real_t accel_n1_mps3;   /* [m/s^3] its rate */
+    ogk_real_t accel_t_mps2;    /* [m/s^2] tangential thrust acceleration, held */
+    ogk_real_t gain_scale;      /* [-] scale on both shape gains that kept the plan within the turn limit, [0, 1] */
     bool in_hold;           /* [-] past the hold: v_go steering (latched) */
 } ogk_terminal_plan_t;
 
 typedef struct {
     ogk_terminal_config_t cfg;
-    double v_target_mps;    /* [m/s] circular speed of the target orbit, sqrt(mu / R_f) */
-    double alpha_rad;       /* [rad] last terminal command, in-plane angle */
-    double beta_rad;        /* [rad] last terminal command, out-of-plane angle */
+    ogk_real_t v_target_mps;    /* [m/s] circular speed of the target orbit, sqrt(mu / R_f) */
+    ogk_real_t alpha_rad;       /* [rad] last terminal command, in-plane angle */
+    ogk_real_t beta_rad;        /* [rad] last terminal command, out-of-plane angle */
     bool engaged;           /* [-] in the terminal window (latched) */
     ogk_terminal_plan_t plan; /* [-] shaped window only */
-    double shape_tilt_max_rad; /* [rad] largest tilt of a plan from v_go (turn limit), set by init */
-    double shape_tilt_max_tan; /* [-] its tangent */
+    ogk_real_t shape_tilt_max_rad; /* [rad] largest tilt of a plan from v_go (turn limit), set by init */
+    ogk_real_t shape_tilt_max_tan; /* [-] its tangent */
     bool tilt_limited;      /* [-] the turn limit binds (turn_accel_rad_s2 > 0, bound below TILT_MAX, shaped) */
-    double last_t_s;        /* [s] time of the last accepted step */
-    double last_energy_j_kg; /* [J/kg] specific orbital energy at last_t_s */
+    ogk_real_t last_t_s;        /* [s] time of the last accepted step */
+    ogk_real_t last_energy_j_kg; /* [J/kg] specific orbital energy at last_t_s */
     bool has_last;          /* [-] last_t_s, last_energy_j_kg are set */
     uint32_t init_marker;   /* [-] set by ogk_terminal_init */
 } ogk_terminal_t;
@@ -164,7 +165,7 @@ ogk_status ogk_terminal_reset(ogk_terminal_t *ctx);
     requires law_cmd_valid: law_cmd == \null || \valid_read(law_cmd);
     requires out_valid: out == \null || \valid(out);
 */
-ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s,
+ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t t_predicted_s,
                              const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out);
 
 #ifdef __cplusplus

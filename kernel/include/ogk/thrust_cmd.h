@@ -19,6 +19,7 @@
 #include <stdint.h>
 #include "ogk/status.h"
 #include "ogk/types.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -26,41 +27,41 @@ extern "C" {
 
 /* A direction is a unit vector when | |u| - 1 | <= this; the helpers store
  * u / |u|. [-] */
-#define OGK_THRUST_CMD_UNIT_TOL 1.0e-9
+#define OGK_THRUST_CMD_UNIT_TOL OGK_R(1.0e-9)
 
 /* u = (cos b sin a, cos b cos a, sin b): the r-t-n unit vector of the angles.
  * OGK_E_NULL, OGK_E_NONFINITE, OGK_E_RANGE (|angle| > OGK_ANGLE_LIMIT,
  * ogk/mathutil.h). */
-ogk_status ogk_thrust_cmd_angles_to_unit(double alpha_rad, double beta_rad, double u[3]);
+ogk_status ogk_thrust_cmd_angles_to_unit(ogk_real_t alpha_rad, ogk_real_t beta_rad, ogk_real_t u[3]);
 
 /* The angles of an r-t-n unit vector: alpha in (-pi, pi], beta in
  * [-pi/2, pi/2]; alpha = 0 when u is along +-n. OGK_E_NULL, OGK_E_NONFINITE,
  * OGK_E_RANGE (| |u| - 1 | > OGK_THRUST_CMD_UNIT_TOL, a zero vector among
  * them). */
-ogk_status ogk_thrust_cmd_unit_to_angles(const double u[3], double *alpha_rad, double *beta_rad);
+ogk_status ogk_thrust_cmd_unit_to_angles(const ogk_real_t u[3], ogk_real_t *alpha_rad, ogk_real_t *beta_rad);
 
 /* A complete r-t-n command from the angles: frame OGK_FRAME_RTN, the angles as
  * given, u from them, throttle (stored as 0 when flags lacks ENGINE_ON), the
  * flags, the law's flags and the time. OGK_E_NULL, OGK_E_NONFINITE (t, an
  * angle or the throttle), OGK_E_RANGE (|angle| > OGK_ANGLE_LIMIT, throttle
  * outside [0, 1]). */
-ogk_status ogk_thrust_cmd_from_angles(double t_s, double alpha_rad, double beta_rad,
-                                      double throttle, uint32_t flags, uint32_t law_flags,
+ogk_status ogk_thrust_cmd_from_angles(ogk_real_t t_s, ogk_real_t alpha_rad, ogk_real_t beta_rad,
+                                      ogk_real_t throttle, uint32_t flags, uint32_t law_flags,
                                       ogk_thrust_cmd_t *cmd);
 
 /* A complete command from a unit vector in `frame`: u / |u| stored, in
  * OGK_FRAME_RTN also its angles (0 in the other frames), throttle as
  * ogk_thrust_cmd_from_angles. OGK_E_NULL, OGK_E_FRAME (unknown frame),
  * OGK_E_NONFINITE, OGK_E_RANGE (not a unit vector, throttle outside [0, 1]). */
-ogk_status ogk_thrust_cmd_from_unit(double t_s, ogk_frame_t frame, const double u[3],
-                                    double throttle, uint32_t flags, uint32_t law_flags,
+ogk_status ogk_thrust_cmd_from_unit(ogk_real_t t_s, ogk_frame_t frame, const ogk_real_t u[3],
+                                    ogk_real_t throttle, uint32_t flags, uint32_t law_flags,
                                     ogk_thrust_cmd_t *cmd);
 
 /* The safe command in `frame`: engine off (throttle 0, flags SAFE), the law's
  * flags, the time (0 when t_s is not finite), and the frame's reference
  * direction: in r-t-n the zero angles (u = t), in the other frames their first
  * axis (1, 0, 0). OGK_E_NULL, OGK_E_FRAME (unknown frame). */
-ogk_status ogk_thrust_cmd_safe(double t_s, ogk_frame_t frame, uint32_t law_flags,
+ogk_status ogk_thrust_cmd_safe(ogk_real_t t_s, ogk_frame_t frame, uint32_t law_flags,
                                ogk_thrust_cmd_t *cmd);
 
 /* The command in r-t-n at the position of nav (its xi, phi; the rest of nav is
@@ -83,7 +84,7 @@ ogk_status ogk_thrust_cmd_to_rtn(const ogk_thrust_cmd_t *in, const ogk_nav_state
  * Time, flags, throttle kept; frame OGK_FRAME_INERTIAL. out may alias in.
  * OGK_E_NULL; OGK_E_FRAME (in is not synodic); OGK_E_NONFINITE; OGK_E_RANGE
  * (|angle| > OGK_ANGLE_LIMIT, u not a unit vector, throttle outside [0, 1]). */
-ogk_status ogk_thrust_cmd_synodic_to_inertial(const ogk_thrust_cmd_t *in, double angle_rad,
+ogk_status ogk_thrust_cmd_synodic_to_inertial(const ogk_thrust_cmd_t *in, ogk_real_t angle_rad,
                                               ogk_thrust_cmd_t *out);
 
 #ifdef __cplusplus

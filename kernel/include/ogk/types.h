@@ -14,6 +14,7 @@
 
 #include <stdint.h>
 #include "ogk/status.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -22,13 +23,13 @@ extern "C" {
 /* Navigation state at one time, spherical coordinates of the position and
  * velocity in the local r-t-n frame (Pontani & Celani 2021, eqs. 1-6). */
 typedef struct {
-    double t_s;        /* [s] time since ignition */
-    double r_m;        /* [m] radius */
-    double xi_rad;     /* [rad] right ascension */
-    double phi_rad;    /* [rad] declination */
-    double v_r_mps;    /* [m/s] radial velocity */
-    double v_t_mps;    /* [m/s] transverse velocity */
-    double v_n_mps;    /* [m/s] normal velocity */
+    ogk_real_t t_s;        /* [s] time since ignition */
+    ogk_real_t r_m;        /* [m] radius */
+    ogk_real_t xi_rad;     /* [rad] right ascension */
+    ogk_real_t phi_rad;    /* [rad] declination */
+    ogk_real_t v_r_mps;    /* [m/s] radial velocity */
+    ogk_real_t v_t_mps;    /* [m/s] transverse velocity */
+    ogk_real_t v_n_mps;    /* [m/s] normal velocity */
 } ogk_nav_state_t;
 
 /* Flags of a thrust command (ogk_thrust_cmd_t.flags). */
@@ -82,14 +83,14 @@ typedef enum {
  * field in the old way (memset to 0, then the angles) is a valid r-t-n
  * command for the consumers that read the angles. */
 typedef struct {
-    double t_s;          /* [s, or the law's normalised TU] time the command is for (NOG: s since ignition; MPSP, NMPC, BLT: their TU) */
-    double alpha_rad;    /* [rad] in-plane thrust angle, from t towards r (r-t-n frame; 0 in other frames) */
-    double beta_rad;     /* [rad] out-of-plane thrust angle, towards n (r-t-n frame; 0 in other frames) */
+    ogk_real_t t_s;          /* [s, or the law's normalised TU] time the command is for (NOG: s since ignition; MPSP, NMPC, BLT: their TU) */
+    ogk_real_t alpha_rad;    /* [rad] in-plane thrust angle, from t towards r (r-t-n frame; 0 in other frames) */
+    ogk_real_t beta_rad;     /* [rad] out-of-plane thrust angle, towards n (r-t-n frame; 0 in other frames) */
     uint32_t flags;      /* [-] OGK_THRUST_FLAG_* */
     uint32_t law_flags;  /* [-] the producing law's own flags (OGK_NOG_FLAG_*, OGK_NMPC_FLAG_*, OGK_BLT_FLAG_*; MPSP: 0) */
     ogk_frame_t frame;   /* [-] frame of u (OGK_FRAME_*) */
-    double u[3];         /* [-] unit thrust direction, components in frame (r-t-n: u_r, u_t, u_n) */
-    double throttle;     /* [-] thrust fraction in [0, 1]; 0 when ENGINE_ON is clear */
+    ogk_real_t u[3];         /* [-] unit thrust direction, components in frame (r-t-n: u_r, u_t, u_n) */
+    ogk_real_t throttle;     /* [-] thrust fraction in [0, 1]; 0 when ENGINE_ON is clear */
 } ogk_thrust_cmd_t;
 
 #ifdef __cplusplus

@@ -20,14 +20,14 @@ ogk_status ogk_blt_config_default(ogk_blt_config_t *cfg)
     if (cfg != NULL) {
         uint32_t k;
         (void)memset(cfg, 0, sizeof(*cfg));
-        cfg->model.mu = 0.0;              /* must be set */
-        cfg->model.body_radius[0] = 0.0;  /* must be set */
-        cfg->model.body_radius[1] = 0.0;
-        cfg->model.ref_radius[0] = 1.0;
-        cfg->model.ref_radius[1] = 1.0;
-        cfg->model.sun_rate = -1.0;
-        cfg->model.thrust_accel = 0.0;    /* must be set */
-        cfg->model.step_max = 2.0e-3;
+        cfg->model.mu = OGK_R(0.0);              /* must be set */
+        cfg->model.body_radius[0] = OGK_R(0.0);  /* must be set */
+        cfg->model.body_radius[1] = OGK_R(0.0);
+        cfg->model.ref_radius[0] = OGK_R(1.0);
+        cfg->model.ref_radius[1] = OGK_R(1.0);
+        cfg->model.sun_rate = -OGK_R(1.0);
+        cfg->model.thrust_accel = OGK_R(0.0);    /* must be set */
+        cfg->model.step_max = OGK_R(2.0e-3);
         cfg->n_segments = 1u;
         for (k = 0u; k < OGK_BLT_MAX_SEGMENTS; ++k) {
             cfg->segment_kind[k] = OGK_BLT_SEG_BURN;
@@ -39,18 +39,18 @@ ogk_status ogk_blt_config_default(ogk_blt_config_t *cfg)
         cfg->target_mask = 0x3Fu;
         cfg->corrector = OGK_BLT_CORR_NRPC;
         cfg->jacobian = OGK_BLT_JAC_CENTRAL;
-        cfg->fd_step = 1.0e-6;
-        cfg->tol = 1.0e-6;
+        cfg->fd_step = OGK_R(1.0e-6);
+        cfg->tol = OGK_R(1.0e-6);
         cfg->max_iter = 40u;
-        cfg->ls_factor = 0.1;
+        cfg->ls_factor = OGK_R(0.1);
         cfg->ls_trials = 4u;
         cfg->impact_halvings = 10u;
-        cfg->lm_lambda0 = 1.0e-3;
-        cfg->lm_up = 10.0;
-        cfg->lm_down = 0.3;
+        cfg->lm_lambda0 = OGK_R(1.0e-3);
+        cfg->lm_up = OGK_R(10.0);
+        cfg->lm_down = OGK_R(0.3);
         cfg->lm_trials = 12u;
-        cfg->burn_time_min = 1.0e-4;
-        cfg->time_max = 30.0;
+        cfg->burn_time_min = OGK_R(1.0e-4);
+        cfg->time_max = OGK_R(30.0);
         cfg->normalise_ab = 1u;
         st = OGK_OK;
     }
@@ -59,7 +59,7 @@ ogk_status ogk_blt_config_default(ogk_blt_config_t *cfg)
 
 static bool model_finite(const ogk_blt_model_t *m)
 {
-    const double s[] = {m->mu, m->srp_accel, m->sun_angle0, m->sun_rate, m->sun_tidal,
+    const ogk_real_t s[] = {m->mu, m->srp_accel, m->sun_angle0, m->sun_rate, m->sun_tidal,
                         m->thrust_accel, m->mass_flow, m->step_max};
     return ogk_i_all_finite(s, sizeof(s) / sizeof(s[0])) && ogk_i_all_finite(m->body_radius, 2u) &&
            ogk_i_all_finite(m->ref_radius, 2u) && ogk_i_all_finite(m->c20, 2u) && ogk_i_all_finite(m->c22, 2u);
@@ -67,10 +67,10 @@ static bool model_finite(const ogk_blt_model_t *m)
 
 static bool model_ranges_ok(const ogk_blt_model_t *m)
 {
-    return (m->mu > 0.0) && (m->mu <= 0.5) && (m->body_radius[0] > 0.0) && (m->body_radius[1] > 0.0) &&
-           (m->ref_radius[0] > 0.0) && (m->ref_radius[1] > 0.0) && (m->c22[0] == 0.0) &&
-           (m->srp_accel >= 0.0) && (m->sun_tidal >= 0.0) && (m->thrust_accel > 0.0) &&
-           (m->mass_flow >= 0.0) && (m->step_max > 0.0);
+    return (m->mu > OGK_R(0.0)) && (m->mu <= OGK_R(0.5)) && (m->body_radius[0] > OGK_R(0.0)) && (m->body_radius[1] > OGK_R(0.0)) &&
+           (m->ref_radius[0] > OGK_R(0.0)) && (m->ref_radius[1] > OGK_R(0.0)) && (m->c22[0] == OGK_R(0.0)) &&
+           (m->srp_accel >= OGK_R(0.0)) && (m->sun_tidal >= OGK_R(0.0)) && (m->thrust_accel > OGK_R(0.0)) &&
+           (m->mass_flow >= OGK_R(0.0)) && (m->step_max > OGK_R(0.0));
 }
 
 static bool structure_ok(const ogk_blt_config_t *c)
@@ -102,21 +102,21 @@ static bool structure_ok(const ogk_blt_config_t *c)
 static ogk_status blt_check_config(const ogk_blt_config_t *c)
 {
     ogk_status st = OGK_OK;
-    const double s[] = {c->fd_step, c->tol, c->ls_factor, c->lm_lambda0, c->lm_up, c->lm_down,
+    const ogk_real_t s[] = {c->fd_step, c->tol, c->ls_factor, c->lm_lambda0, c->lm_up, c->lm_down,
                         c->burn_time_min, c->time_max};
     if (!model_finite(&c->model) || !ogk_i_all_finite(s, sizeof(s) / sizeof(s[0]))) {
         st = OGK_E_NONFINITE;
     } else if (!model_ranges_ok(&c->model) || !structure_ok(c) ||
                (c->corrector > OGK_BLT_CORR_HYBRID) ||
                ((c->jacobian != OGK_BLT_JAC_CENTRAL) && (c->jacobian != OGK_BLT_JAC_VARIATIONAL)) ||
-               !(c->fd_step > 0.0) || !(c->tol > 0.0) || (c->max_iter < 1u) ||
-               (c->max_iter > OGK_BLT_MAX_ITER) || !(c->ls_factor > 0.0) || !(c->ls_factor < 1.0) ||
+               !(c->fd_step > OGK_R(0.0)) || !(c->tol > OGK_R(0.0)) || (c->max_iter < 1u) ||
+               (c->max_iter > OGK_BLT_MAX_ITER) || !(c->ls_factor > OGK_R(0.0)) || !(c->ls_factor < OGK_R(1.0)) ||
                (c->ls_trials < 1u) || (c->ls_trials > OGK_BLT_MAX_TRIALS) ||
-               (c->impact_halvings > OGK_BLT_MAX_TRIALS) || !(c->lm_lambda0 > 0.0) || !(c->lm_up > 1.0) ||
-               !(c->lm_down > 0.0) || !(c->lm_down <= 1.0) || (c->lm_trials < 1u) ||
-               (c->lm_trials > OGK_BLT_MAX_TRIALS) || !(c->burn_time_min > 0.0) ||
+               (c->impact_halvings > OGK_BLT_MAX_TRIALS) || !(c->lm_lambda0 > OGK_R(0.0)) || !(c->lm_up > OGK_R(1.0)) ||
+               !(c->lm_down > OGK_R(0.0)) || !(c->lm_down <= OGK_R(1.0)) || (c->lm_trials < 1u) ||
+               (c->lm_trials > OGK_BLT_MAX_TRIALS) || !(c->burn_time_min > OGK_R(0.0)) ||
                !(c->time_max > c->burn_time_min) ||
-               !((c->time_max / c->model.step_max) <= (double)OGK_BLT_MAX_SEGMENT_STEPS) ||
+               !((c->time_max / c->model.step_max) <= (ogk_real_t)OGK_BLT_MAX_SEGMENT_STEPS) ||
                (c->normalise_ab > 1u)) {
         st = OGK_E_CONFIG;
     } else {
@@ -174,7 +174,7 @@ static void blt_prepare(ogk_blt_t *ctx)
     ctx->held_valid = 0u;
     ctx->steps_frozen = 0u;
     (void)memset(ctx->seg_steps, 0, sizeof(ctx->seg_steps));
-    ctx->lm_lambda = 0.0;
+    ctx->lm_lambda = OGK_R(0.0);
 }
 
 ogk_status ogk_blt_init(ogk_blt_t *ctx, const ogk_blt_config_t *cfg)
@@ -223,12 +223,12 @@ static ogk_status check_transfer(const ogk_blt_config_t *c, const ogk_blt_transf
     }
     if (!finite) {
         st = OGK_E_NONFINITE;
-    } else if (!(fabs(tr->t0) <= BLT_T_ABS_MAX) || !(tr->mass0 > 0.0) || !(tr->mass0 <= 1.0)) {
+    } else if (!(OGK_FABS(tr->t0) <= BLT_T_ABS_MAX) || !(tr->mass0 > OGK_R(0.0)) || !(tr->mass0 <= OGK_R(1.0))) {
         st = OGK_E_RANGE;
     } else {
-        double burned = 0.0;
+        ogk_real_t burned = OGK_R(0.0);
         for (k = 0u; (k < c->n_segments) && (st == OGK_OK); ++k) {
-            const double T = tr->seg[k][6];
+            const ogk_real_t T = tr->seg[k][6];
             if (!(T >= c->burn_time_min) || !(T <= c->time_max)) {
                 st = OGK_E_RANGE;
             } else if (c->segment_kind[k] == OGK_BLT_SEG_BURN) {
@@ -237,21 +237,21 @@ static ogk_status check_transfer(const ogk_blt_config_t *c, const ogk_blt_transf
                 /* a coast burns nothing */
             }
         }
-        if ((st == OGK_OK) && !((tr->mass0 - (c->model.mass_flow * burned)) > 0.0)) {
+        if ((st == OGK_OK) && !((tr->mass0 - (c->model.mass_flow * burned)) > OGK_R(0.0))) {
             st = OGK_E_RANGE; /* the burns would need more than the spacecraft's mass */
         }
     }
     return st;
 }
 
-static double norm2(const double *v, uint32_t n)
+static ogk_real_t norm2(const ogk_real_t *v, uint32_t n)
 {
-    double s = 0.0;
+    ogk_real_t s = OGK_R(0.0);
     uint32_t i;
     for (i = 0u; i < n; ++i) {
         s += v[i] * v[i];
     }
-    return sqrt(s);
+    return OGK_SQRT(s);
 }
 
 /* |[A; B]| = 1 for every burn (the law is invariant to the scale) and durations kept in range. */
@@ -259,21 +259,21 @@ static void tidy(const ogk_blt_config_t *c, ogk_blt_transfer_t *tr)
 {
     uint32_t k;
     for (k = 0u; k < c->n_segments; ++k) {
-        double *p = tr->seg[k];
+        ogk_real_t *p = tr->seg[k];
         if ((c->normalise_ab != 0u) && (c->segment_kind[k] == OGK_BLT_SEG_BURN)) {
-            const double n = norm2(p, 6u);
-            if (n > 0.0) {
+            const ogk_real_t n = norm2(p, 6u);
+            if (n > OGK_R(0.0)) {
                 uint32_t i;
                 for (i = 0u; i < 6u; ++i) {
                     p[i] /= n;
                 }
             }
         }
-        p[6] = fmin(fmax(p[6], c->burn_time_min), c->time_max);
+        p[6] = OGK_FMIN(OGK_FMAX(p[6], c->burn_time_min), c->time_max);
     }
 }
 
-static void blt_fill_report(const ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, const double *e,
+static void blt_fill_report(const ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, const ogk_real_t *e,
                         const ogk_i_blt_eval_t *ev, ogk_blt_report_t *rep)
 {
     const ogk_blt_config_t *c = &ctx->cfg;
@@ -282,11 +282,11 @@ static void blt_fill_report(const ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, 
     rep->n_errors = ctx->n_errors;
     (void)memset(rep->err, 0, sizeof(rep->err));
     if (e != NULL) {
-        (void)memcpy(rep->err, e, sizeof(double) * ctx->n_errors);
+        (void)memcpy(rep->err, e, sizeof(ogk_real_t) * ctx->n_errors);
         rep->err_norm = norm2(e, ctx->n_errors);
     }
-    rep->burn_time = 0.0;
-    rep->flight_time = 0.0;
+    rep->burn_time = OGK_R(0.0);
+    rep->flight_time = OGK_R(0.0);
     for (k = 0u; k < c->n_segments; ++k) {
         rep->flight_time += tr->seg[k][6];
         if (c->segment_kind[k] == OGK_BLT_SEG_BURN) {
@@ -340,7 +340,7 @@ ogk_status ogk_blt_evaluate(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, ogk_bl
     return st;
 }
 
-ogk_status ogk_blt_propagate(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double x_end[OGK_BLT_NX],
+ogk_status ogk_blt_propagate(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, ogk_real_t x_end[OGK_BLT_NX],
                              ogk_blt_report_t *rep)
 {
     ogk_status st = check_call(ctx, tr, rep);
@@ -396,8 +396,8 @@ static bool jacobian_at(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, uint32_t *
         ogk_i_blt_pack(c, tr, ctx->u_trial);
         (void)memcpy(&pert, tr, sizeof(pert));
         for (j = 0u; ok && (j < nu); ++j) {
-            const double uj = ctx->u_trial[j];
-            const double h = c->fd_step;
+            const ogk_real_t uj = ctx->u_trial[j];
+            const ogk_real_t h = c->fd_step;
             uint32_t i;
             ctx->u_trial[j] = uj + h; /* eq. (62) */
             ogk_i_blt_unpack(c, ctx->u_trial, &pert);
@@ -409,7 +409,7 @@ static bool jacobian_at(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, uint32_t *
             ok = ok && !ev.impact && !ev.bad_rhs;
             ctx->u_trial[j] = uj;
             for (i = 0u; i < ne; ++i) {
-                ctx->jac[(i * nu) + j] = (ctx->e_plus[i] - ctx->e_trial[i]) / (2.0 * h);
+                ctx->jac[(i * nu) + j] = (ctx->e_plus[i] - ctx->e_trial[i]) / (OGK_R(2.0) * h);
             }
         }
     }
@@ -418,7 +418,7 @@ static bool jacobian_at(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, uint32_t *
     return ok && ogk_i_all_finite(ctx->jac, (size_t)ne * nu);
 }
 
-ogk_status ogk_blt_jacobian(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *jac, size_t jac_len)
+ogk_status ogk_blt_jacobian(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, ogk_real_t *jac, size_t jac_len)
 {
     ogk_status st = check_call(ctx, tr, jac);
     if ((st == OGK_OK) && (jac_len < ((size_t)ctx->n_errors * ctx->n_unknowns))) {
@@ -430,7 +430,7 @@ ogk_status ogk_blt_jacobian(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double
     if (st == OGK_OK) {
         uint32_t props = 0u;
         if (jacobian_at(ctx, tr, &props)) {
-            (void)memcpy(jac, ctx->jac, sizeof(double) * ctx->n_errors * ctx->n_unknowns);
+            (void)memcpy(jac, ctx->jac, sizeof(ogk_real_t) * ctx->n_errors * ctx->n_unknowns);
         } else {
             st = OGK_E_NOT_CONVERGED;
         }
@@ -442,11 +442,11 @@ ogk_status ogk_blt_jacobian(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double
 
 /* du = the minimum-norm solution of [J, sqrt(lambda) I] [du; s] = -e: eq. (64) for lambda = 0,
  * the Levenberg-Marquardt step -J^T (J J^T + lambda I)^-1 e otherwise (newton.c). */
-static bool corrector_step(ogk_blt_t *ctx, double lambda)
+static bool corrector_step(ogk_blt_t *ctx, ogk_real_t lambda)
 {
     const uint32_t nu = ctx->n_unknowns;
     const uint32_t ne = ctx->n_errors;
-    double rhs[OGK_BLT_MAX_ERRORS];
+    ogk_real_t rhs[OGK_BLT_MAX_ERRORS];
     uint32_t i;
 
     for (i = 0u; i < ne; ++i) {
@@ -457,7 +457,7 @@ static bool corrector_step(ogk_blt_t *ctx, double lambda)
 }
 
 /* trial = cur + alpha du, tidied; its errors into ctx->e_trial. */
-static void try_step(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double alpha, ogk_blt_transfer_t *trial,
+static void try_step(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, ogk_real_t alpha, ogk_blt_transfer_t *trial,
                      ogk_i_blt_eval_t *ev)
 {
     const uint32_t nu = ctx->n_unknowns;
@@ -474,11 +474,11 @@ static void try_step(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double alpha
 
 /* The paper's line search: step lengths 1, f, f^2, ... (f = 1/10) until |e| decreases; a step
  * whose trajectory hits a body is halved (up to impact_halvings times) first. */
-static bool nrpc_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_norm, ogk_blt_transfer_t *trial,
+static bool nrpc_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, ogk_real_t e_norm, ogk_blt_transfer_t *trial,
                         ogk_i_blt_eval_t *ev, uint32_t *flags, uint32_t *propagations) /* NOLINT(bugprone-easily-swappable-parameters): the solve's two accumulators, in its order */
 {
     const ogk_blt_config_t *c = &ctx->cfg;
-    double alpha = 1.0;
+    ogk_real_t alpha = OGK_R(1.0);
     bool accepted = false;
     uint32_t trial_no;
     uint32_t halvings = 0u;
@@ -492,7 +492,7 @@ static bool nrpc_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_
             hit = ev->impact || ev->bad_rhs;
             if (hit) {
                 *flags |= OGK_BLT_FLAG_IMPACT;
-                alpha *= 0.5;
+                alpha *= OGK_R(0.5);
                 ++halvings;
             }
         }
@@ -506,7 +506,7 @@ static bool nrpc_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_
 }
 
 /* Levenberg-Marquardt: raise lambda until the step decreases |e| without impact. */
-static bool lm_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_norm, ogk_blt_transfer_t *trial,
+static bool lm_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, ogk_real_t e_norm, ogk_blt_transfer_t *trial,
                       ogk_i_blt_eval_t *ev, uint32_t *flags, uint32_t *propagations) /* NOLINT(bugprone-easily-swappable-parameters): as nrpc_search */
 {
     const ogk_blt_config_t *c = &ctx->cfg;
@@ -518,7 +518,7 @@ static bool lm_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_no
             *flags |= OGK_BLT_FLAG_SINGULAR;
         } else {
             bool hit;
-            try_step(ctx, cur, 1.0, trial, ev);
+            try_step(ctx, cur, OGK_R(1.0), trial, ev);
             *propagations += ev->propagations;
             ev->propagations = 0u;
             hit = ev->impact || ev->bad_rhs;
@@ -537,21 +537,21 @@ static bool lm_search(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_no
 }
 
 /* lambda_0 relative to the mean diagonal of J J^T (the squared row norms of J). */
-static double lm_scale(const ogk_blt_t *ctx)
+static ogk_real_t lm_scale(const ogk_blt_t *ctx)
 {
-    double s = 0.0;
+    ogk_real_t s = OGK_R(0.0);
     uint32_t i;
     for (i = 0u; i < ctx->n_errors; ++i) {
-        const double r = norm2(&ctx->jac[(size_t)i * ctx->n_unknowns], ctx->n_unknowns);
+        const ogk_real_t r = norm2(&ctx->jac[(size_t)i * ctx->n_unknowns], ctx->n_unknowns);
         s += r * r;
     }
-    return s / (double)ctx->n_errors;
+    return s / (ogk_real_t)ctx->n_errors;
 }
 
 /* One corrector iteration from cur (J held): the Newton step of eq. (64) with the paper's search (NRPC,
  * and HYBRID first), the Levenberg-Marquardt search (LM, and HYBRID when the Newton search found no
  * decrease). true with the accepted transfer in trial and its errors in ctx->e_trial. */
-static bool blt_iterate(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_norm, ogk_blt_transfer_t *trial,
+static bool blt_iterate(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, ogk_real_t e_norm, ogk_blt_transfer_t *trial,
                         ogk_i_blt_eval_t *ev, uint32_t *flags, uint32_t *propagations, uint32_t iteration)
 {
     const uint32_t kind = ctx->cfg.corrector;
@@ -560,7 +560,7 @@ static bool blt_iterate(ogk_blt_t *ctx, const ogk_blt_transfer_t *cur, double e_
         ctx->lm_lambda = ctx->cfg.lm_lambda0 * lm_scale(ctx);
     }
     if (kind != OGK_BLT_CORR_LM) {
-        if (!corrector_step(ctx, 0.0)) {
+        if (!corrector_step(ctx, OGK_R(0.0))) {
             *flags |= OGK_BLT_FLAG_SINGULAR;
         } else {
             accepted = nrpc_search(ctx, cur, e_norm, trial, ev, flags, propagations);
@@ -589,8 +589,8 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
     uint32_t iterations = 0u;
     uint32_t propagations = 0u;
     bool have_e = false; /* an error vector exists (its norms below) */
-    double e_norm = 0.0;
-    double e_norm0 = 0.0;
+    ogk_real_t e_norm = OGK_R(0.0);
+    ogk_real_t e_norm0 = OGK_R(0.0);
 
     (void)memset(&ev, 0, sizeof(ev));
     if (rep == NULL) {
@@ -640,7 +640,7 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
                 accepted = blt_iterate(ctx, &cur, e_norm, &trial, &ev, &flags, &propagations, iterations);
                 if (accepted) {
                     (void)memcpy(&cur, &trial, sizeof(cur));
-                    (void)memcpy(ctx->e, ctx->e_trial, sizeof(double) * ctx->n_errors);
+                    (void)memcpy(ctx->e, ctx->e_trial, sizeof(ogk_real_t) * ctx->n_errors);
                     e_norm = norm2(ctx->e, ctx->n_errors);
                     ev_cur = ev;
                 } else {
@@ -663,9 +663,9 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
         rep->propagations = propagations;
         /* HUGE_VAL when no error vector exists (bad input, guess hits a body): the
          * infinity is made only on that path (docs/evidence/eva.md, BLT) */
-        rep->err_norm0 = have_e ? e_norm0 : HUGE_VAL;
+        rep->err_norm0 = have_e ? e_norm0 : OGK_REAL_HUGE_VAL;
         if (st != OGK_OK) {
-            rep->err_norm = have_e ? e_norm : HUGE_VAL;
+            rep->err_norm = have_e ? e_norm : OGK_REAL_HUGE_VAL;
         }
     }
     return st;
@@ -674,7 +674,7 @@ ogk_status ogk_blt_solve(ogk_blt_t *ctx, const ogk_blt_transfer_t *guess, ogk_bl
 /* ------------------------------------------------------------------ command */
 
 /* ogk_blt_command (also behind ogk_blt_thrust_cmd). */
-static ogk_status blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cmd)
+static ogk_status blt_command(const ogk_blt_t *ctx, ogk_real_t t, ogk_blt_command_t *cmd)
 {
     ogk_status st = OGK_OK;
     if ((ctx == NULL) || (cmd == NULL)) {
@@ -693,7 +693,7 @@ static ogk_status blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t 
             st = OGK_E_RANGE;
         } else {
             const ogk_blt_config_t *c = &ctx->cfg;
-            double t_seg = ctx->held.t0;
+            ogk_real_t t_seg = ctx->held.t0;
             uint32_t k = 0u;
             uint32_t j;
             bool found = false;
@@ -710,11 +710,11 @@ static ogk_status blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t 
             }
             cmd->segment = k;
             if ((k < c->n_segments) && (c->segment_kind[k] == OGK_BLT_SEG_BURN)) {
-                const double *p = ctx->held.seg[k];
-                const double tau = t - t_seg;
-                const double w[3] = {p[0] + (p[3] * tau), p[1] + (p[4] * tau), p[2] + (p[5] * tau)};
-                const double wn = norm2(w, 3u);
-                if (wn > 0.0) {
+                const ogk_real_t *p = ctx->held.seg[k];
+                const ogk_real_t tau = t - t_seg;
+                const ogk_real_t w[3] = {p[0] + (p[3] * tau), p[1] + (p[4] * tau), p[2] + (p[5] * tau)};
+                const ogk_real_t wn = norm2(w, 3u);
+                if (wn > OGK_R(0.0)) {
                     uint32_t i;
                     for (i = 0u; i < 3u; ++i) {
                         cmd->u_hat[i] = w[i] / wn; /* eq. (22) */
@@ -730,7 +730,7 @@ static ogk_status blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t 
     return st;
 }
 
-ogk_status ogk_blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cmd)
+ogk_status ogk_blt_command(const ogk_blt_t *ctx, ogk_real_t t, ogk_blt_command_t *cmd)
 {
     return blt_command(ctx, t, cmd);
 }
@@ -740,31 +740,31 @@ ogk_status ogk_blt_command(const ogk_blt_t *ctx, double t, ogk_blt_command_t *cm
  * 0, A / |A|; (1, 0, 0) when no burn follows (or its A is zero). The segments
  * after k are visited last to first, so the first burn after k is the one
  * that stays. */
-static void hold_direction(const ogk_blt_t *ctx, uint32_t k, double u[3])
+static void hold_direction(const ogk_blt_t *ctx, uint32_t k, ogk_real_t u[3])
 {
     const ogk_blt_config_t *c = &ctx->cfg;
     uint32_t j;
-    u[0] = 1.0;
-    u[1] = 0.0;
-    u[2] = 0.0;
+    u[0] = OGK_R(1.0);
+    u[1] = OGK_R(0.0);
+    u[2] = OGK_R(0.0);
     for (j = c->n_segments; j > (k + 1u); --j) {
         if (c->segment_kind[j - 1u] == OGK_BLT_SEG_BURN) {
-            const double *a = ctx->held.seg[j - 1u];
-            const double an = norm2(a, 3u);
-            if (an > 0.0) {
+            const ogk_real_t *a = ctx->held.seg[j - 1u];
+            const ogk_real_t an = norm2(a, 3u);
+            if (an > OGK_R(0.0)) {
                 u[0] = a[0] / an;
                 u[1] = a[1] / an;
                 u[2] = a[2] / an;
             } else {
-                u[0] = 1.0;
-                u[1] = 0.0;
-                u[2] = 0.0;
+                u[0] = OGK_R(1.0);
+                u[1] = OGK_R(0.0);
+                u[2] = OGK_R(0.0);
             }
         }
     }
 }
 
-ogk_status ogk_blt_thrust_cmd(const ogk_blt_t *ctx, double t, ogk_thrust_cmd_t *cmd)
+ogk_status ogk_blt_thrust_cmd(const ogk_blt_t *ctx, ogk_real_t t, ogk_thrust_cmd_t *cmd)
 {
     ogk_status st;
     if (cmd == NULL) {
@@ -776,12 +776,12 @@ ogk_status ogk_blt_thrust_cmd(const ogk_blt_t *ctx, double t, ogk_thrust_cmd_t *
         if (st != OGK_OK) {
             /* the safe command */
         } else if (bc.engine_on != 0u) {
-            ogk_i_thrust_cmd_unit(cmd, t, OGK_FRAME_SYNODIC, bc.u_hat, 1.0, OGK_THRUST_FLAG_ENGINE_ON,
+            ogk_i_thrust_cmd_unit(cmd, t, OGK_FRAME_SYNODIC, bc.u_hat, OGK_R(1.0), OGK_THRUST_FLAG_ENGINE_ON,
                                   bc.flags);
         } else {
-            double u[3];
+            ogk_real_t u[3];
             hold_direction(ctx, bc.segment, u);
-            ogk_i_thrust_cmd_unit(cmd, t, OGK_FRAME_SYNODIC, u, 0.0, 0u, bc.flags);
+            ogk_i_thrust_cmd_unit(cmd, t, OGK_FRAME_SYNODIC, u, OGK_R(0.0), 0u, bc.flags);
         }
     }
     return st;

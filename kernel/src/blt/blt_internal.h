@@ -24,34 +24,34 @@
 #error "OGK_BLT_FREE_* must be the bits of the parameter indices"
 #endif
 
-#define BLT_T_ABS_MAX 1.0e6 /* [TU] |t0| bound */
+#define BLT_T_ABS_MAX OGK_R(1.0e6) /* [TU] |t0| bound */
 
 /* What a segment's right-hand side needs besides the state. */
 typedef struct {
-    double t_start;   /* [TU] absolute time at tau = 0 */
-    double m_start;   /* [-] mass fraction at tau = 0 */
-    double a[3];      /* [-] BLT A (burn) */
-    double b[3];      /* [1/TU] BLT B (burn) */
+    ogk_real_t t_start;   /* [TU] absolute time at tau = 0 */
+    ogk_real_t m_start;   /* [-] mass fraction at tau = 0 */
+    ogk_real_t a[3];      /* [-] BLT A (burn) */
+    ogk_real_t b[3];      /* [1/TU] BLT B (burn) */
     bool burn;        /* engine on */
 } ogk_i_blt_seg_t;
 
 /* Per-term pieces of the right-hand side at one point, for the variational equations. */
 typedef struct {
-    double grad[9];     /* [1/TU^2] d(acceleration)/d(position), gravity + centrifugal + solar tide */
-    double u_hat[3];    /* [-] thrust direction (burn) */
-    double w_norm;      /* [-] |A + B tau| (burn) */
-    double thrust;      /* [LU/TU^2] thrust acceleration magnitude, thrust_accel / m (burn) */
-    double srp;         /* [LU/TU^2] SRP acceleration magnitude, srp_accel / m */
-    double s_hat[3];    /* [-] the Sun's direction */
-    double ds_hat[3];   /* [1/TU] its time derivative */
-    double mass;        /* [-] mass fraction */
+    ogk_real_t grad[9];     /* [1/TU^2] d(acceleration)/d(position), gravity + centrifugal + solar tide */
+    ogk_real_t u_hat[3];    /* [-] thrust direction (burn) */
+    ogk_real_t w_norm;      /* [-] |A + B tau| (burn) */
+    ogk_real_t thrust;      /* [LU/TU^2] thrust acceleration magnitude, thrust_accel / m (burn) */
+    ogk_real_t srp;         /* [LU/TU^2] SRP acceleration magnitude, srp_accel / m */
+    ogk_real_t s_hat[3];    /* [-] the Sun's direction */
+    ogk_real_t ds_hat[3];   /* [1/TU] its time derivative */
+    ogk_real_t mass;        /* [-] mass fraction */
 } ogk_i_blt_rhs_parts_t;
 
 /* f(t, x): dx = (v, a). tau = time since the segment's start. parts (may be NULL) receives the
  * pieces the variational equations need (grad only when parts is given). Returns false when the
  * direction A + B tau vanishes or the mass is not positive (no finite thrust direction). */
-bool ogk_i_blt_rhs(const ogk_blt_model_t *m, const ogk_i_blt_seg_t *seg, double tau, const double x[OGK_BLT_NX],
-             double dx[OGK_BLT_NX], ogk_i_blt_rhs_parts_t *parts);
+bool ogk_i_blt_rhs(const ogk_blt_model_t *m, const ogk_i_blt_seg_t *seg, ogk_real_t tau, const ogk_real_t x[OGK_BLT_NX],
+             ogk_real_t dx[OGK_BLT_NX], ogk_i_blt_rhs_parts_t *parts);
 
 /* Segment k's start time, start mass, kind and A, B. */
 void ogk_i_blt_segment(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k, ogk_i_blt_seg_t *seg);
@@ -60,25 +60,25 @@ void ogk_i_blt_segment(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr
 uint32_t ogk_i_blt_count_unknowns(const ogk_blt_config_t *cfg);
 uint32_t ogk_i_blt_count_errors(const ogk_blt_config_t *cfg);
 /* u <- the unknowns of tr; tr <- tr with its unknowns replaced by u. */
-void ogk_i_blt_pack(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, double *u);
-void ogk_i_blt_unpack(const ogk_blt_config_t *cfg, const double *u, ogk_blt_transfer_t *tr);
+void ogk_i_blt_pack(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, ogk_real_t *u);
+void ogk_i_blt_unpack(const ogk_blt_config_t *cfg, const ogk_real_t *u, ogk_blt_transfer_t *tr);
 
 /* Result of one evaluation of the error vector. */
 typedef struct {
     bool impact;              /* a body was hit (propagation of that arc stopped there) */
     bool bad_rhs;             /* no finite right-hand side (A + B tau = 0 or mass <= 0) */
     uint32_t propagations;    /* segments propagated */
-    double min_distance[2];   /* [LU] closest approach at the RK4 nodes */
+    ogk_real_t min_distance[2];   /* [LU] closest approach at the RK4 nodes */
 } ogk_i_blt_eval_t;
 
 /* e = the errors of tr (all arcs). sens (ctx->jac layout) receives de/du when non-NULL
  * (variational equations). Uses ctx->seg_steps when ctx->steps_frozen. */
-void ogk_i_blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *e, double *sens, ogk_i_blt_eval_t *ev);
+void ogk_i_blt_errors(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, ogk_real_t *e, ogk_real_t *sens, ogk_i_blt_eval_t *ev);
 
 /* Forward propagation of the whole chain (free nodes ignored). */
-void ogk_i_blt_chain(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double x_end[OGK_BLT_NX], ogk_i_blt_eval_t *ev);
+void ogk_i_blt_chain(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, ogk_real_t x_end[OGK_BLT_NX], ogk_i_blt_eval_t *ev);
 
 /* RK4 step count of a segment of duration T. */
-uint32_t ogk_i_blt_steps_for(const ogk_blt_config_t *cfg, double duration);
+uint32_t ogk_i_blt_steps_for(const ogk_blt_config_t *cfg, ogk_real_t duration);
 
 #endif /* OGK_BLT_INTERNAL_H */

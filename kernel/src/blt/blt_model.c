@@ -10,19 +10,19 @@
 /* Gravity of one body at rho = r - r_body: acc += grad U, hess += d(grad U)/d rho (when non-NULL).
  * U = mu / s + mu R^2 P(rho) / s^5 with P = rho^T Q rho, Q = diag(-C20/2 + 3 C22,
  * -C20/2 - 3 C22, C20): the Cartesian form of eq. (7)'s degree-2 terms. */
-static void body_gravity(double mu_b, double ref_radius, double c20, double c22, const double rho[3], /* NOLINT(bugprone-easily-swappable-parameters): eq. (7)'s order */
-                         double acc[3], double *hess) /* NOLINT(bugprone-easily-swappable-parameters): acceleration, then its gradient */
+static void body_gravity(ogk_real_t mu_b, ogk_real_t ref_radius, ogk_real_t c20, ogk_real_t c22, const ogk_real_t rho[3], /* NOLINT(bugprone-easily-swappable-parameters): eq. (7)'s order */
+                         ogk_real_t acc[3], ogk_real_t *hess) /* NOLINT(bugprone-easily-swappable-parameters): acceleration, then its gradient */
 {
-    const double s2 = (rho[0] * rho[0]) + (rho[1] * rho[1]) + (rho[2] * rho[2]);
-    const double s = sqrt(s2);
-    const double inv_s2 = 1.0 / s2;
-    const double inv_s3 = inv_s2 / s;
-    const double k2 = mu_b * ref_radius * ref_radius;
-    const double q[3] = {(-0.5 * c20) + (3.0 * c22), (-0.5 * c20) - (3.0 * c22), c20};
-    const double inv_s5 = inv_s3 * inv_s2;
-    const double inv_s7 = inv_s5 * inv_s2;
-    double qrho[3];
-    double p = 0.0;
+    const ogk_real_t s2 = (rho[0] * rho[0]) + (rho[1] * rho[1]) + (rho[2] * rho[2]);
+    const ogk_real_t s = OGK_SQRT(s2);
+    const ogk_real_t inv_s2 = OGK_R(1.0) / s2;
+    const ogk_real_t inv_s3 = inv_s2 / s;
+    const ogk_real_t k2 = mu_b * ref_radius * ref_radius;
+    const ogk_real_t q[3] = {(-OGK_R(0.5) * c20) + (OGK_R(3.0) * c22), (-OGK_R(0.5) * c20) - (OGK_R(3.0) * c22), c20};
+    const ogk_real_t inv_s5 = inv_s3 * inv_s2;
+    const ogk_real_t inv_s7 = inv_s5 * inv_s2;
+    ogk_real_t qrho[3];
+    ogk_real_t p = OGK_R(0.0);
     size_t i;
 
     for (i = 0u; i < 3u; ++i) {
@@ -30,20 +30,20 @@ static void body_gravity(double mu_b, double ref_radius, double c20, double c22,
         p += qrho[i] * rho[i];
     }
     for (i = 0u; i < 3u; ++i) {
-        acc[i] += (-mu_b * rho[i] * inv_s3) + (k2 * ((2.0 * qrho[i] * inv_s5) - (5.0 * p * inv_s7 * rho[i])));
+        acc[i] += (-mu_b * rho[i] * inv_s3) + (k2 * ((OGK_R(2.0) * qrho[i] * inv_s5) - (OGK_R(5.0) * p * inv_s7 * rho[i])));
     }
     if (hess != NULL) {
         /* H_ij = a rho_i rho_j + b (qrho_i rho_j + rho_i qrho_j) + delta_ij d_i, symmetric: 6 entries */
-        const double inv_s9 = inv_s7 * inv_s2;
-        const double a = (3.0 * mu_b * inv_s5) + (35.0 * k2 * p * inv_s9);
-        const double b = -10.0 * k2 * inv_s7;
-        const double d0 = (-mu_b * inv_s3) - (5.0 * k2 * p * inv_s7);
+        const ogk_real_t inv_s9 = inv_s7 * inv_s2;
+        const ogk_real_t a = (OGK_R(3.0) * mu_b * inv_s5) + (OGK_R(35.0) * k2 * p * inv_s9);
+        const ogk_real_t b = -OGK_R(10.0) * k2 * inv_s7;
+        const ogk_real_t d0 = (-mu_b * inv_s3) - (OGK_R(5.0) * k2 * p * inv_s7);
         size_t j;
         for (i = 0u; i < 3u; ++i) {
             for (j = i; j < 3u; ++j) {
-                double h = (a * rho[i] * rho[j]) + (b * ((qrho[i] * rho[j]) + (rho[i] * qrho[j])));
+                ogk_real_t h = (a * rho[i] * rho[j]) + (b * ((qrho[i] * rho[j]) + (rho[i] * qrho[j])));
                 if (i == j) {
-                    h += d0 + (2.0 * k2 * q[i] * inv_s5);
+                    h += d0 + (OGK_R(2.0) * k2 * q[i] * inv_s5);
                     hess[(i * 3u) + i] += h;
                 } else {
                     hess[(i * 3u) + j] += h;
@@ -54,19 +54,19 @@ static void body_gravity(double mu_b, double ref_radius, double c20, double c22,
     }
 }
 
-bool ogk_i_blt_rhs(const ogk_blt_model_t *m, const ogk_i_blt_seg_t *seg, double tau, const double x[OGK_BLT_NX],
-             double dx[OGK_BLT_NX], ogk_i_blt_rhs_parts_t *parts)
+bool ogk_i_blt_rhs(const ogk_blt_model_t *m, const ogk_i_blt_seg_t *seg, ogk_real_t tau, const ogk_real_t x[OGK_BLT_NX],
+             ogk_real_t dx[OGK_BLT_NX], ogk_i_blt_rhs_parts_t *parts)
 {
-    const double t = seg->t_start + tau;
-    const double phi = m->sun_angle0 + (m->sun_rate * t);
-    const double s_hat[3] = {cos(phi), sin(phi), 0.0};
-    const double mass = seg->burn ? (seg->m_start - (m->mass_flow * tau)) : seg->m_start;
-    const double body_x[2] = {-m->mu, 1.0 - m->mu};
-    const double body_mu[2] = {1.0 - m->mu, m->mu};
-    double acc[3] = {0.0, 0.0, 0.0};
-    double *hess = NULL;
-    double s_dot_r;
-    bool ok = mass > 0.0;
+    const ogk_real_t t = seg->t_start + tau;
+    const ogk_real_t phi = m->sun_angle0 + (m->sun_rate * t);
+    const ogk_real_t s_hat[3] = {OGK_COS(phi), OGK_SIN(phi), OGK_R(0.0)};
+    const ogk_real_t mass = seg->burn ? (seg->m_start - (m->mass_flow * tau)) : seg->m_start;
+    const ogk_real_t body_x[2] = {-m->mu, OGK_R(1.0) - m->mu};
+    const ogk_real_t body_mu[2] = {OGK_R(1.0) - m->mu, m->mu};
+    ogk_real_t acc[3] = {OGK_R(0.0), OGK_R(0.0), OGK_R(0.0)};
+    ogk_real_t *hess = NULL;
+    ogk_real_t s_dot_r;
+    bool ok = mass > OGK_R(0.0);
     size_t b;
 
     if (parts != NULL) {
@@ -74,20 +74,20 @@ bool ogk_i_blt_rhs(const ogk_blt_model_t *m, const ogk_i_blt_seg_t *seg, double 
         hess = parts->grad;
     }
     for (b = 0u; b < 2u; ++b) {
-        const double rho[3] = {x[0] - body_x[b], x[1], x[2]};
+        const ogk_real_t rho[3] = {x[0] - body_x[b], x[1], x[2]};
         body_gravity(body_mu[b], m->ref_radius[b], m->c20[b], m->c22[b], rho, acc, hess);
     }
     /* eq. (4): Coriolis and centrifugal terms, omega = 1 */
-    acc[0] += (2.0 * x[4]) + x[0];
-    acc[1] += (-2.0 * x[3]) + x[1];
+    acc[0] += (OGK_R(2.0) * x[4]) + x[0];
+    acc[1] += (-OGK_R(2.0) * x[3]) + x[1];
     /* eq. (10), first-order tide: sun_tidal (3 s (s . r) - r) */
     s_dot_r = (s_hat[0] * x[0]) + (s_hat[1] * x[1]);
-    acc[0] += m->sun_tidal * ((3.0 * s_hat[0] * s_dot_r) - x[0]);
-    acc[1] += m->sun_tidal * ((3.0 * s_hat[1] * s_dot_r) - x[1]);
+    acc[0] += m->sun_tidal * ((OGK_R(3.0) * s_hat[0] * s_dot_r) - x[0]);
+    acc[1] += m->sun_tidal * ((OGK_R(3.0) * s_hat[1] * s_dot_r) - x[1]);
     acc[2] -= m->sun_tidal * x[2];
     if (ok) {
         /* eq. (9) / m: pushes away from the Sun */
-        const double srp = m->srp_accel / mass;
+        const ogk_real_t srp = m->srp_accel / mass;
         acc[0] -= srp * s_hat[0];
         acc[1] -= srp * s_hat[1];
         if (parts != NULL) {
@@ -95,17 +95,17 @@ bool ogk_i_blt_rhs(const ogk_blt_model_t *m, const ogk_i_blt_seg_t *seg, double 
         }
     }
     if (ok && seg->burn) {
-        double w[3];
-        double wn;
+        ogk_real_t w[3];
+        ogk_real_t wn;
         size_t i;
         for (i = 0u; i < 3u; ++i) {
             w[i] = seg->a[i] + (seg->b[i] * tau); /* eq. (21) */
         }
-        wn = sqrt((w[0] * w[0]) + (w[1] * w[1]) + (w[2] * w[2]));
-        if (wn > 0.0) {
-            const double thrust = m->thrust_accel / mass;
+        wn = OGK_SQRT((w[0] * w[0]) + (w[1] * w[1]) + (w[2] * w[2]));
+        if (wn > OGK_R(0.0)) {
+            const ogk_real_t thrust = m->thrust_accel / mass;
             for (i = 0u; i < 3u; ++i) {
-                const double u = w[i] / wn; /* eq. (22) */
+                const ogk_real_t u = w[i] / wn; /* eq. (22) */
                 acc[i] += thrust * u;
                 if (parts != NULL) {
                     parts->u_hat[i] = u;
@@ -120,14 +120,14 @@ bool ogk_i_blt_rhs(const ogk_blt_model_t *m, const ogk_i_blt_seg_t *seg, double 
         }
     }
     if (parts != NULL) {
-        const double tide = m->sun_tidal;
+        const ogk_real_t tide = m->sun_tidal;
         size_t i;
         size_t j;
-        parts->grad[0] += 1.0; /* centrifugal */
-        parts->grad[4] += 1.0;
+        parts->grad[0] += OGK_R(1.0); /* centrifugal */
+        parts->grad[4] += OGK_R(1.0);
         for (i = 0u; i < 3u; ++i) {
             for (j = 0u; j < 3u; ++j) {
-                parts->grad[(i * 3u) + j] += tide * ((3.0 * s_hat[i] * s_hat[j]) - ((i == j) ? 1.0 : 0.0));
+                parts->grad[(i * 3u) + j] += tide * ((OGK_R(3.0) * s_hat[i] * s_hat[j]) - ((i == j) ? OGK_R(1.0) : OGK_R(0.0)));
             }
         }
         for (i = 0u; i < 3u; ++i) {
@@ -135,7 +135,7 @@ bool ogk_i_blt_rhs(const ogk_blt_model_t *m, const ogk_i_blt_seg_t *seg, double 
         }
         parts->ds_hat[0] = -m->sun_rate * s_hat[1];
         parts->ds_hat[1] = m->sun_rate * s_hat[0];
-        parts->ds_hat[2] = 0.0;
+        parts->ds_hat[2] = OGK_R(0.0);
         parts->mass = mass;
     }
     dx[0] = x[3];
@@ -147,9 +147,9 @@ bool ogk_i_blt_rhs(const ogk_blt_model_t *m, const ogk_i_blt_seg_t *seg, double 
     return ok;
 }
 
-static double segment_start_time(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k)
+static ogk_real_t segment_start_time(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k)
 {
-    double t = tr->t0;
+    ogk_real_t t = tr->t0;
     /* k clamped once to n_segments (every caller passes k < n_segments): one condition */
     const uint32_t k_b = (k < cfg->n_segments) ? k : cfg->n_segments;
     uint32_t j;
@@ -159,9 +159,9 @@ static double segment_start_time(const ogk_blt_config_t *cfg, const ogk_blt_tran
     return t;
 }
 
-static double segment_start_mass(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k)
+static ogk_real_t segment_start_mass(const ogk_blt_config_t *cfg, const ogk_blt_transfer_t *tr, uint32_t k)
 {
-    double burned = 0.0;
+    ogk_real_t burned = OGK_R(0.0);
     /* k clamped once to n_segments (every caller passes k < n_segments): one condition */
     const uint32_t k_b = (k < cfg->n_segments) ? k : cfg->n_segments;
     uint32_t j;

@@ -29,29 +29,29 @@ static bool frame_known(ogk_frame_t frame)
 }
 
 /* u of the angles, unchecked (any finite angles give a finite unit vector). */
-static void unit_of_angles(double alpha, double beta, double *u)
+static void unit_of_angles(ogk_real_t alpha, ogk_real_t beta, ogk_real_t *u)
 {
-    const double cb = cos(beta);
-    u[0] = cb * sin(alpha);
-    u[1] = cb * cos(alpha);
-    u[2] = sin(beta);
+    const ogk_real_t cb = OGK_COS(beta);
+    u[0] = cb * OGK_SIN(alpha);
+    u[1] = cb * OGK_COS(alpha);
+    u[2] = OGK_SIN(beta);
 }
 
 /* The angles of a unit r-t-n vector, unchecked: alpha in (-pi, pi] (0 along
  * +-n), beta in [-pi/2, pi/2]. */
-static double alpha_of_unit(const double *u)
+static ogk_real_t alpha_of_unit(const ogk_real_t *u)
 {
-    return atan2(u[0], u[1]);
+    return OGK_ATAN2(u[0], u[1]);
 }
 
-static double beta_of_unit(const double *u)
+static ogk_real_t beta_of_unit(const ogk_real_t *u)
 {
-    return atan2(u[2], hypot(u[0], u[1]));
+    return OGK_ATAN2(u[2], OGK_HYPOT(u[0], u[1]));
 }
 
 /* Checks a direction (finite, unit within the tolerance) and writes u / |u|
  * to out (may alias u). */
-static ogk_status unit_checked(const double *u, double *out)
+static ogk_status unit_checked(const ogk_real_t *u, ogk_real_t *out)
 {
     ogk_status st = OGK_OK;
     if (!ogk_i_all_finite(u, 3u)) {
@@ -59,8 +59,8 @@ static ogk_status unit_checked(const double *u, double *out)
     } else {
         /* hypot: no overflow for finite components, so a huge vector is
          * rejected as not unit instead of becoming inf */
-        const double norm = hypot(hypot(u[0], u[1]), u[2]);
-        if (!(fabs(norm - 1.0) <= OGK_THRUST_CMD_UNIT_TOL)) {
+        const ogk_real_t norm = OGK_HYPOT(OGK_HYPOT(u[0], u[1]), u[2]);
+        if (!(OGK_FABS(norm - OGK_R(1.0)) <= OGK_THRUST_CMD_UNIT_TOL)) {
             st = OGK_E_RANGE;
         } else {
             out[0] = u[0] / norm;
@@ -72,12 +72,12 @@ static ogk_status unit_checked(const double *u, double *out)
 }
 
 /* Checks the time and the throttle of a command. */
-static ogk_status time_throttle_checked(double t_s, double throttle)
+static ogk_status time_throttle_checked(ogk_real_t t_s, ogk_real_t throttle)
 {
     ogk_status st = OGK_OK;
     if (!isfinite(t_s) || !isfinite(throttle)) {
         st = OGK_E_NONFINITE;
-    } else if ((throttle < 0.0) || (throttle > 1.0)) {
+    } else if ((throttle < OGK_R(0.0)) || (throttle > OGK_R(1.0))) {
         st = OGK_E_RANGE;
     } else {
         /* usable */
@@ -87,7 +87,7 @@ static ogk_status time_throttle_checked(double t_s, double throttle)
 
 /* Writes the fields every command has (cmd zeroed first, so padding and the
  * fields the frame does not use are 0). */
-static void fill_common(ogk_thrust_cmd_t *cmd, double t_s, ogk_frame_t frame, double throttle, /* NOLINT(bugprone-easily-swappable-parameters): the field order of ogk_thrust_cmd_t; static, every caller in this file names the fields it passes; each field checked by test_thrust_cmd.c */
+static void fill_common(ogk_thrust_cmd_t *cmd, ogk_real_t t_s, ogk_frame_t frame, ogk_real_t throttle, /* NOLINT(bugprone-easily-swappable-parameters): the field order of ogk_thrust_cmd_t; static, every caller in this file names the fields it passes; each field checked by test_thrust_cmd.c */
                         uint32_t flags, uint32_t law_flags) /* NOLINT(bugprone-easily-swappable-parameters): as above */
 {
     (void)memset(cmd, 0, sizeof *cmd); /* returns cmd: nothing to check */
@@ -95,11 +95,11 @@ static void fill_common(ogk_thrust_cmd_t *cmd, double t_s, ogk_frame_t frame, do
     cmd->frame = frame;
     cmd->flags = flags;
     cmd->law_flags = law_flags;
-    cmd->throttle = ((flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u) ? throttle : 0.0;
+    cmd->throttle = ((flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u) ? throttle : OGK_R(0.0);
 }
 
-void ogk_i_thrust_cmd_angles(ogk_thrust_cmd_t *cmd, double t_s, double alpha_rad, double beta_rad, /* NOLINT(bugprone-easily-swappable-parameters): the argument order of ogk_thrust_cmd_from_angles (ogk/thrust_cmd.h) and the field order of ogk_thrust_cmd_t; each field checked by test_thrust_cmd.c and the laws' tests */
-                             double throttle, uint32_t flags, uint32_t law_flags)
+void ogk_i_thrust_cmd_angles(ogk_thrust_cmd_t *cmd, ogk_real_t t_s, ogk_real_t alpha_rad, ogk_real_t beta_rad, /* NOLINT(bugprone-easily-swappable-parameters): the argument order of ogk_thrust_cmd_from_angles (ogk/thrust_cmd.h) and the field order of ogk_thrust_cmd_t; each field checked by test_thrust_cmd.c and the laws' tests */
+                             ogk_real_t throttle, uint32_t flags, uint32_t law_flags)
 {
     fill_common(cmd, t_s, OGK_FRAME_RTN, throttle, flags, law_flags);
     cmd->alpha_rad = alpha_rad;
@@ -107,12 +107,12 @@ void ogk_i_thrust_cmd_angles(ogk_thrust_cmd_t *cmd, double t_s, double alpha_rad
     unit_of_angles(alpha_rad, beta_rad, cmd->u);
 }
 
-void ogk_i_thrust_cmd_unit(ogk_thrust_cmd_t *cmd, double t_s, ogk_frame_t frame, const double *u,
-                           double throttle, uint32_t flags, uint32_t law_flags)
+void ogk_i_thrust_cmd_unit(ogk_thrust_cmd_t *cmd, ogk_real_t t_s, ogk_frame_t frame, const ogk_real_t *u,
+                           ogk_real_t throttle, uint32_t flags, uint32_t law_flags)
 {
-    const double u0 = u[0];
-    const double u1 = u[1];
-    const double u2 = u[2];
+    const ogk_real_t u0 = u[0];
+    const ogk_real_t u1 = u[1];
+    const ogk_real_t u2 = u[2];
     fill_common(cmd, t_s, frame, throttle, flags, law_flags);
     cmd->u[0] = u0;
     cmd->u[1] = u1;
@@ -123,23 +123,23 @@ void ogk_i_thrust_cmd_unit(ogk_thrust_cmd_t *cmd, double t_s, ogk_frame_t frame,
     }
 }
 
-void ogk_i_thrust_cmd_safe(ogk_thrust_cmd_t *cmd, double t_s, ogk_frame_t frame, uint32_t law_flags)
+void ogk_i_thrust_cmd_safe(ogk_thrust_cmd_t *cmd, ogk_real_t t_s, ogk_frame_t frame, uint32_t law_flags)
 {
-    fill_common(cmd, isfinite(t_s) ? t_s : 0.0, frame, 0.0, OGK_THRUST_FLAG_SAFE, law_flags);
+    fill_common(cmd, isfinite(t_s) ? t_s : OGK_R(0.0), frame, OGK_R(0.0), OGK_THRUST_FLAG_SAFE, law_flags);
     if (frame == OGK_FRAME_RTN) {
-        cmd->u[1] = 1.0; /* alpha = beta = 0: along t */
+        cmd->u[1] = OGK_R(1.0); /* alpha = beta = 0: along t */
     } else {
-        cmd->u[0] = 1.0;
+        cmd->u[0] = OGK_R(1.0);
     }
 }
 
 /* Checks a pair of angles (finite, within OGK_ANGLE_LIMIT). */
-static ogk_status angles_checked(double alpha_rad, double beta_rad)
+static ogk_status angles_checked(ogk_real_t alpha_rad, ogk_real_t beta_rad)
 {
     ogk_status st = OGK_OK;
     if (!isfinite(alpha_rad) || !isfinite(beta_rad)) {
         st = OGK_E_NONFINITE;
-    } else if ((fabs(alpha_rad) > OGK_ANGLE_LIMIT) || (fabs(beta_rad) > OGK_ANGLE_LIMIT)) {
+    } else if ((OGK_FABS(alpha_rad) > OGK_ANGLE_LIMIT) || (OGK_FABS(beta_rad) > OGK_ANGLE_LIMIT)) {
         st = OGK_E_RANGE;
     } else {
         /* usable */
@@ -147,7 +147,7 @@ static ogk_status angles_checked(double alpha_rad, double beta_rad)
     return st;
 }
 
-ogk_status ogk_thrust_cmd_angles_to_unit(double alpha_rad, double beta_rad, double u[3])
+ogk_status ogk_thrust_cmd_angles_to_unit(ogk_real_t alpha_rad, ogk_real_t beta_rad, ogk_real_t u[3])
 {
     ogk_status st;
     if (u == NULL) {
@@ -161,13 +161,13 @@ ogk_status ogk_thrust_cmd_angles_to_unit(double alpha_rad, double beta_rad, doub
     return st;
 }
 
-ogk_status ogk_thrust_cmd_unit_to_angles(const double u[3], double *alpha_rad, double *beta_rad)
+ogk_status ogk_thrust_cmd_unit_to_angles(const ogk_real_t u[3], ogk_real_t *alpha_rad, ogk_real_t *beta_rad)
 {
     ogk_status st;
     if ((u == NULL) || (alpha_rad == NULL) || (beta_rad == NULL)) {
         st = OGK_E_NULL;
     } else {
-        double n[3];
+        ogk_real_t n[3];
         st = unit_checked(u, n);
         if (st == OGK_OK) {
             *alpha_rad = alpha_of_unit(n);
@@ -177,8 +177,8 @@ ogk_status ogk_thrust_cmd_unit_to_angles(const double u[3], double *alpha_rad, d
     return st;
 }
 
-ogk_status ogk_thrust_cmd_from_angles(double t_s, double alpha_rad, double beta_rad,
-                                      double throttle, uint32_t flags, uint32_t law_flags,
+ogk_status ogk_thrust_cmd_from_angles(ogk_real_t t_s, ogk_real_t alpha_rad, ogk_real_t beta_rad,
+                                      ogk_real_t throttle, uint32_t flags, uint32_t law_flags,
                                       ogk_thrust_cmd_t *cmd)
 {
     ogk_status st;
@@ -196,12 +196,12 @@ ogk_status ogk_thrust_cmd_from_angles(double t_s, double alpha_rad, double beta_
     return st;
 }
 
-ogk_status ogk_thrust_cmd_from_unit(double t_s, ogk_frame_t frame, const double u[3],
-                                    double throttle, uint32_t flags, uint32_t law_flags,
+ogk_status ogk_thrust_cmd_from_unit(ogk_real_t t_s, ogk_frame_t frame, const ogk_real_t u[3],
+                                    ogk_real_t throttle, uint32_t flags, uint32_t law_flags,
                                     ogk_thrust_cmd_t *cmd)
 {
     ogk_status st;
-    double n[3];
+    ogk_real_t n[3];
     if ((u == NULL) || (cmd == NULL)) {
         st = OGK_E_NULL;
     } else if (!frame_known(frame)) {
@@ -218,7 +218,7 @@ ogk_status ogk_thrust_cmd_from_unit(double t_s, ogk_frame_t frame, const double 
     return st;
 }
 
-ogk_status ogk_thrust_cmd_safe(double t_s, ogk_frame_t frame, uint32_t law_flags,
+ogk_status ogk_thrust_cmd_safe(ogk_real_t t_s, ogk_frame_t frame, uint32_t law_flags,
                                ogk_thrust_cmd_t *cmd)
 {
     ogk_status st = OGK_OK;
@@ -234,19 +234,19 @@ ogk_status ogk_thrust_cmd_safe(double t_s, ogk_frame_t frame, uint32_t law_flags
 
 /* r-t-n components of an inertial vector at (xi, phi): the rows of the
  * r-t-n axes in I (ogk/types.h). */
-static void inertial_to_rtn(const double *u_i, double xi, double phi, double *u_rtn)
+static void inertial_to_rtn(const ogk_real_t *u_i, ogk_real_t xi, ogk_real_t phi, ogk_real_t *u_rtn)
 {
-    const double cx = cos(xi);
-    const double sx = sin(xi);
-    const double cp = cos(phi);
-    const double sp = sin(phi);
+    const ogk_real_t cx = OGK_COS(xi);
+    const ogk_real_t sx = OGK_SIN(xi);
+    const ogk_real_t cp = OGK_COS(phi);
+    const ogk_real_t sp = OGK_SIN(phi);
     u_rtn[0] = (cp * cx * u_i[0]) + (cp * sx * u_i[1]) + (sp * u_i[2]);
     u_rtn[1] = (-sx * u_i[0]) + (cx * u_i[1]);
     u_rtn[2] = (-sp * cx * u_i[0]) - (sp * sx * u_i[1]) + (cp * u_i[2]);
 }
 
 ogk_status ogk_i_thrust_cmd_rtn_direction(const ogk_thrust_cmd_t *in, const ogk_nav_state_t *nav,
-                                          double ab[2], double *u_rtn)
+                                          ogk_real_t ab[2], ogk_real_t *u_rtn)
 {
     ogk_status st = time_throttle_checked(in->t_s, in->throttle);
 
@@ -263,16 +263,16 @@ ogk_status ogk_i_thrust_cmd_rtn_direction(const ogk_thrust_cmd_t *in, const ogk_
             }
         }
     } else if (in->frame == OGK_FRAME_INERTIAL) {
-        double n[3];
+        ogk_real_t n[3];
         st = unit_checked(in->u, n);
         if (st != OGK_OK) {
             /* the direction check's status */
         } else if (!isfinite(nav->xi_rad) || !isfinite(nav->phi_rad)) {
             st = OGK_E_NONFINITE;
-        } else if ((fabs(nav->xi_rad) > OGK_ANGLE_LIMIT) || (fabs(nav->phi_rad) > OGK_ANGLE_LIMIT)) {
+        } else if ((OGK_FABS(nav->xi_rad) > OGK_ANGLE_LIMIT) || (OGK_FABS(nav->phi_rad) > OGK_ANGLE_LIMIT)) {
             st = OGK_E_RANGE;
         } else {
-            double u[3];
+            ogk_real_t u[3];
             inertial_to_rtn(n, nav->xi_rad, nav->phi_rad, u);
             ab[0] = alpha_of_unit(u);
             ab[1] = beta_of_unit(u);
@@ -292,12 +292,12 @@ ogk_status ogk_i_thrust_cmd_rtn_direction(const ogk_thrust_cmd_t *in, const ogk_
 static ogk_status to_rtn_checked(const ogk_thrust_cmd_t *in, const ogk_nav_state_t *nav,
                                  ogk_thrust_cmd_t *out)
 {
-    double ab[2];
-    double u[3];
+    ogk_real_t ab[2];
+    ogk_real_t u[3];
     const ogk_status st = ogk_i_thrust_cmd_rtn_direction(in, nav, ab, u);
     if (st == OGK_OK) {
-        const double t_s = in->t_s;
-        const double throttle = in->throttle;
+        const ogk_real_t t_s = in->t_s;
+        const ogk_real_t throttle = in->throttle;
         const uint32_t flags = in->flags;
         const uint32_t law_flags = in->law_flags;
         fill_common(out, t_s, OGK_FRAME_RTN, throttle, flags, law_flags);
@@ -322,18 +322,18 @@ ogk_status ogk_thrust_cmd_to_rtn(const ogk_thrust_cmd_t *in, const ogk_nav_state
     return st;
 }
 
-ogk_status ogk_thrust_cmd_synodic_to_inertial(const ogk_thrust_cmd_t *in, double angle_rad,
+ogk_status ogk_thrust_cmd_synodic_to_inertial(const ogk_thrust_cmd_t *in, ogk_real_t angle_rad,
                                               ogk_thrust_cmd_t *out)
 {
     ogk_status st;
-    double n[3];
+    ogk_real_t n[3];
     if ((in == NULL) || (out == NULL)) {
         st = OGK_E_NULL;
     } else if (in->frame != OGK_FRAME_SYNODIC) {
         st = OGK_E_FRAME;
     } else if (!isfinite(angle_rad)) {
         st = OGK_E_NONFINITE;
-    } else if (fabs(angle_rad) > OGK_ANGLE_LIMIT) {
+    } else if (OGK_FABS(angle_rad) > OGK_ANGLE_LIMIT) {
         st = OGK_E_RANGE;
     } else {
         st = unit_checked(in->u, n);
@@ -341,10 +341,10 @@ ogk_status ogk_thrust_cmd_synodic_to_inertial(const ogk_thrust_cmd_t *in, double
             st = time_throttle_checked(in->t_s, in->throttle);
         }
         if (st == OGK_OK) {
-            const double c = cos(angle_rad);
-            const double s = sin(angle_rad);
-            const double t_s = in->t_s;
-            const double throttle = in->throttle;
+            const ogk_real_t c = OGK_COS(angle_rad);
+            const ogk_real_t s = OGK_SIN(angle_rad);
+            const ogk_real_t t_s = in->t_s;
+            const ogk_real_t throttle = in->throttle;
             const uint32_t flags = in->flags;
             const uint32_t law_flags = in->law_flags;
             fill_common(out, t_s, OGK_FRAME_INERTIAL, throttle, flags, law_flags);

@@ -9,7 +9,7 @@
 /* Bisection steps that locate an interval in any grid a size_t can index. */
 #define OGK_INTERP_MAX_SEARCH 64u
 
-ogk_status ogk_interp_check_grid(const double *grid, size_t n_grid)
+ogk_status ogk_interp_check_grid(const ogk_real_t *grid, size_t n_grid)
 {
     size_t k;
     ogk_status st;
@@ -33,7 +33,7 @@ ogk_status ogk_interp_check_grid(const double *grid, size_t n_grid)
     return st;
 }
 
-ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
+ogk_status ogk_interp_locate(const ogk_real_t *grid, size_t n_grid, ogk_real_t tau,
                              size_t *k)
 {
     ogk_status st;
@@ -69,9 +69,9 @@ ogk_status ogk_interp_locate(const double *grid, size_t n_grid, double tau,
     return st;
 }
 
-ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
-                             const double *values, size_t m, /* NOLINT(bugprone-easily-swappable-parameters): order of the public header (grid, size, values, ...), checked by the unit tests and pytest */
-                             double tau, double *out)
+ogk_status ogk_interp_linear(const ogk_real_t *grid, size_t n_grid,
+                             const ogk_real_t *values, size_t m, /* NOLINT(bugprone-easily-swappable-parameters): order of the public header (grid, size, values, ...), checked by the unit tests and pytest */
+                             ogk_real_t tau, ogk_real_t *out)
 {
     size_t k = 0u;
     ogk_status st;
@@ -84,11 +84,11 @@ ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
         st = ogk_interp_locate(grid, n_grid, tau, &k);
     }
     if (st == OGK_OK) {
-        const double w = (tau - grid[k]) / (grid[k + 1u] - grid[k]);
+        const ogk_real_t w = (tau - grid[k]) / (grid[k + 1u] - grid[k]);
         size_t j;
         for (j = 0u; j < m; ++j) {
-            const double y0 = values[(k * m) + j];
-            const double y1 = values[((k + 1u) * m) + j];
+            const ogk_real_t y0 = values[(k * m) + j];
+            const ogk_real_t y1 = values[((k + 1u) * m) + j];
             out[j] = y0 + (w * (y1 - y0));
         }
     }
@@ -97,25 +97,33 @@ ogk_status ogk_interp_linear(const double *grid, size_t n_grid,
 
 /* Magnitudes inside which the direct form of the interior slope cannot
  * overflow or lose its terms to underflow: every w / d is then within
- * [1e-300, 1e300]. Normal data (grid steps and secants far from 1e+-150) take
- * the direct form, bit for bit the formula of Fritsch & Butland. */
-#define OGK_INTERP_DIRECT_LO 1.0e-150
-#define OGK_INTERP_DIRECT_HI 1.0e150
+ * [1e-300, 1e300] (float build: [1e-15, 1e15], every w / d within [1e-30,
+ * 1e30]; ogk/real.h). Normal data (grid steps and secants far from 1e+-150)
+ * take the direct form, bit for bit the formula of Fritsch & Butland. */
+#define OGK_INTERP_DIRECT_LO OGK_REAL_ROOT_TINY
+#define OGK_INTERP_DIRECT_HI OGK_REAL_ROOT_BIG
 
 /* 2^537 and 2^-537: a ratio a / b of magnitudes b < 2^-537 is taken as
  * (a 2^537) / (b 2^537), the same quotient (scaling by a power of two is
- * exact here) with a divisor of at least 2^-537. */
-#define OGK_INTERP_SCALE_UP 0x1p537
-#define OGK_INTERP_SCALE_DOWN 0x1p-537
+ * exact here) with a divisor of at least 2^-537 (the smallest subnormal,
+ * 2^-1074, scaled up). The float build's 2^75 and 2^-75 give a divisor of at
+ * least 2^-74 (from 2^-149) and a quotient of at most 2^75 above the band. */
+#if OGK_REAL_SINGLE
+#define OGK_INTERP_SCALE_UP OGK_R(0x1p75)
+#define OGK_INTERP_SCALE_DOWN OGK_R(0x1p-75)
+#else
+#define OGK_INTERP_SCALE_UP OGK_R(0x1p537)
+#define OGK_INTERP_SCALE_DOWN OGK_R(0x1p-537)
+#endif
 
-static int sign_of(double v)
+static int sign_of(ogk_real_t v)
 {
-    return (v > 0.0) ? 1 : ((v < 0.0) ? -1 : 0);
+    return (v > OGK_R(0.0)) ? 1 : ((v < OGK_R(0.0)) ? -1 : 0);
 }
 
-static bool in_direct_range(double v)
+static bool in_direct_range(ogk_real_t v)
 {
-    const double a = fabs(v);
+    const ogk_real_t a = OGK_FABS(v);
     return (a >= OGK_INTERP_DIRECT_LO) && (a <= OGK_INTERP_DIRECT_HI);
 }
 
@@ -123,18 +131,18 @@ static bool in_direct_range(double v)
  * quotient without a relation between the operands (what a non-relational
  * analysis such as Frama-C EVA can use, docs/evidence/eva.md); each gives the correctly
  * rounded a_lo / a_hi, and the fmin calls only restate a_lo <= a_hi. */
-static double magnitude_ratio(double a_lo, double a_hi)
+static ogk_real_t magnitude_ratio(ogk_real_t a_lo, ogk_real_t a_hi)
 {
-    double r;
-    if (a_hi >= 1.0) {
+    ogk_real_t r;
+    if (a_hi >= OGK_R(1.0)) {
         r = a_lo / a_hi;
     } else if (a_hi >= OGK_INTERP_SCALE_DOWN) {
-        r = fmin(a_lo, 1.0) / a_hi;
+        r = OGK_FMIN(a_lo, OGK_R(1.0)) / a_hi;
     } else {
-        r = (fmin(a_lo, OGK_INTERP_SCALE_DOWN) * OGK_INTERP_SCALE_UP) /
+        r = (OGK_FMIN(a_lo, OGK_INTERP_SCALE_DOWN) * OGK_INTERP_SCALE_UP) /
             (a_hi * OGK_INTERP_SCALE_UP);
     }
-    return fmin(r, 1.0);
+    return OGK_FMIN(r, OGK_R(1.0));
 }
 
 /* Weighted harmonic mean (w0 + w1) / (w0 / a0 + w1 / a1) of two secant
@@ -146,22 +154,22 @@ static double magnitude_ratio(double a_lo, double a_hi)
  * q = e (u_hi + u_lo) / (u_hi e + u_lo) in [0, 1] (u_hi the weight of a_hi):
  * no step overflows, the result lies between a0 and a1, exact to rounding or
  * (when e underflows) within a subnormal of e times a_hi. */
-static double harmonic_magnitude(double w0, double w1, double a0, double a1)
+static ogk_real_t harmonic_magnitude(ogk_real_t w0, ogk_real_t w1, ogk_real_t a0, ogk_real_t a1)
 {
-    double slope;
+    ogk_real_t slope;
 
     if ((a0 >= OGK_INTERP_DIRECT_LO) && (a0 <= OGK_INTERP_DIRECT_HI) &&
         (a1 >= OGK_INTERP_DIRECT_LO) && (a1 <= OGK_INTERP_DIRECT_HI) &&
         in_direct_range(w0) && in_direct_range(w1)) {
         slope = (w0 + w1) / ((w0 / a0) + (w1 / a1));
     } else {
-        const double wm = fmax(w0, w1);
-        const double u0 = w0 / wm;
-        const double u1 = w1 / wm;
-        double a_hi;
-        double u_hi;
-        double u_lo;
-        double e;
+        const ogk_real_t wm = OGK_FMAX(w0, w1);
+        const ogk_real_t u0 = w0 / wm;
+        const ogk_real_t u1 = w1 / wm;
+        ogk_real_t a_hi;
+        ogk_real_t u_hi;
+        ogk_real_t u_lo;
+        ogk_real_t e;
         if (a0 >= a1) {
             a_hi = a0;
             u_hi = u0;
@@ -174,7 +182,7 @@ static double harmonic_magnitude(double w0, double w1, double a0, double a1)
             e = magnitude_ratio(a0, a1);
         }
         /* q <= 1 since e <= 1; fmin only catches rounding. */
-        slope = a_hi * fmin((e * (u_hi + u_lo)) / ((u_hi * e) + u_lo), 1.0);
+        slope = a_hi * OGK_FMIN((e * (u_hi + u_lo)) / ((u_hi * e) + u_lo), OGK_R(1.0));
     }
     return slope;
 }
@@ -182,13 +190,13 @@ static double harmonic_magnitude(double w0, double w1, double a0, double a1)
 /* One-sided three-point end slope, shape-preserving (Moler, "Numerical
  * Computing with MATLAB", pchip): h0, h1 the first two intervals, d0, d1 their
  * secant slopes. */
-static double pchip_end_slope(double h0, double h1, double d0, double d1)
+static ogk_real_t pchip_end_slope(ogk_real_t h0, ogk_real_t h1, ogk_real_t d0, ogk_real_t d1)
 {
-    double s = ((((2.0 * h0) + h1) * d0) - (h0 * d1)) / (h0 + h1);
+    ogk_real_t s = ((((OGK_R(2.0) * h0) + h1) * d0) - (h0 * d1)) / (h0 + h1);
     if (sign_of(s) != sign_of(d0)) {
-        s = 0.0;
-    } else if ((sign_of(d0) != sign_of(d1)) && (fabs(s) > fabs(3.0 * d0))) {
-        s = 3.0 * d0;
+        s = OGK_R(0.0);
+    } else if ((sign_of(d0) != sign_of(d1)) && (OGK_FABS(s) > OGK_FABS(OGK_R(3.0) * d0))) {
+        s = OGK_R(3.0) * d0;
     } else {
         /* the three-point slope is kept */
     }
@@ -198,15 +206,15 @@ static double pchip_end_slope(double h0, double h1, double d0, double d1)
 /* pchip slopes of the m value columns over the checked grid (n_grid >= 2):
  * the secant for two points, else Fritsch-Butland inside and the one-sided
  * three-point slope at both ends. */
-static void pchip_fill_slopes(const double *grid, size_t n_grid,
-                              const double *values, size_t m, double *slopes)
+static void pchip_fill_slopes(const ogk_real_t *grid, size_t n_grid,
+                              const ogk_real_t *values, size_t m, ogk_real_t *slopes)
 {
     size_t k;
     size_t j;
 
     for (j = 0u; j < m; ++j) {
         if (n_grid == 2u) {
-            const double d = (values[m + j] - values[j]) / (grid[1] - grid[0]);
+            const ogk_real_t d = (values[m + j] - values[j]) / (grid[1] - grid[0]);
             slopes[j] = d;
             slopes[m + j] = d;
             continue;
@@ -214,45 +222,45 @@ static void pchip_fill_slopes(const double *grid, size_t n_grid,
         /* Interior: weighted harmonic mean of the adjacent secants
          * (Fritsch & Butland 1984), zero at local extrema. */
         for (k = 1u; (k + 1u) < n_grid; ++k) {
-            const double h0 = grid[k] - grid[k - 1u];
-            const double h1 = grid[k + 1u] - grid[k];
-            const double d0 = (values[(k * m) + j] - values[((k - 1u) * m) + j]) / h0;
-            const double d1 = (values[((k + 1u) * m) + j] - values[(k * m) + j]) / h1;
-            const double w0 = (2.0 * h1) + h0;
-            const double w1 = h1 + (2.0 * h0);
+            const ogk_real_t h0 = grid[k] - grid[k - 1u];
+            const ogk_real_t h1 = grid[k + 1u] - grid[k];
+            const ogk_real_t d0 = (values[(k * m) + j] - values[((k - 1u) * m) + j]) / h0;
+            const ogk_real_t d1 = (values[((k + 1u) * m) + j] - values[(k * m) + j]) / h1;
+            const ogk_real_t w0 = (OGK_R(2.0) * h1) + h0;
+            const ogk_real_t w1 = h1 + (OGK_R(2.0) * h0);
             /* Signs, not d0 * d1: the product of two tiny secants of the same
              * sign underflows to 0 and would flatten a monotone run. Tested on
              * the secants themselves (not through sign_of) so the analysis
              * knows each magnitude is positive. */
-            if ((d0 > 0.0) && (d1 > 0.0)) {
+            if ((d0 > OGK_R(0.0)) && (d1 > OGK_R(0.0))) {
                 slopes[(k * m) + j] = harmonic_magnitude(w0, w1, d0, d1);
-            } else if ((d0 < 0.0) && (d1 < 0.0)) {
+            } else if ((d0 < OGK_R(0.0)) && (d1 < OGK_R(0.0))) {
                 slopes[(k * m) + j] = -harmonic_magnitude(w0, w1, -d0, -d1);
             } else {
-                slopes[(k * m) + j] = 0.0;
+                slopes[(k * m) + j] = OGK_R(0.0);
             }
         }
         {
-            const double h0 = grid[1] - grid[0];
-            const double h1 = grid[2] - grid[1];
-            const double d0 = (values[m + j] - values[j]) / h0;
-            const double d1 = (values[(2u * m) + j] - values[m + j]) / h1;
+            const ogk_real_t h0 = grid[1] - grid[0];
+            const ogk_real_t h1 = grid[2] - grid[1];
+            const ogk_real_t d0 = (values[m + j] - values[j]) / h0;
+            const ogk_real_t d1 = (values[(2u * m) + j] - values[m + j]) / h1;
             slopes[j] = pchip_end_slope(h0, h1, d0, d1);
         }
         {
             const size_t n = n_grid - 1u;
-            const double h0 = grid[n] - grid[n - 1u];
-            const double h1 = grid[n - 1u] - grid[n - 2u];
-            const double d0 = (values[(n * m) + j] - values[((n - 1u) * m) + j]) / h0;
-            const double d1 = (values[((n - 1u) * m) + j] - values[((n - 2u) * m) + j]) / h1;
+            const ogk_real_t h0 = grid[n] - grid[n - 1u];
+            const ogk_real_t h1 = grid[n - 1u] - grid[n - 2u];
+            const ogk_real_t d0 = (values[(n * m) + j] - values[((n - 1u) * m) + j]) / h0;
+            const ogk_real_t d1 = (values[((n - 1u) * m) + j] - values[((n - 2u) * m) + j]) / h1;
             slopes[(n * m) + j] = pchip_end_slope(h0, h1, d0, d1);
         }
     }
 }
 
-ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
-                                   const double *values, size_t m,
-                                   double *slopes)
+ogk_status ogk_interp_pchip_slopes(const ogk_real_t *grid, size_t n_grid,
+                                   const ogk_real_t *values, size_t m,
+                                   ogk_real_t *slopes)
 {
     ogk_status st;
 
@@ -278,9 +286,9 @@ ogk_status ogk_interp_pchip_slopes(const double *grid, size_t n_grid,
     return st;
 }
 
-ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
-                            const double *values, const double *slopes,
-                            size_t m, double tau, double *out) /* NOLINT(bugprone-easily-swappable-parameters): order of the public header (grid, size, values, ...), checked by the unit tests and pytest */
+ogk_status ogk_interp_pchip(const ogk_real_t *grid, size_t n_grid,
+                            const ogk_real_t *values, const ogk_real_t *slopes,
+                            size_t m, ogk_real_t tau, ogk_real_t *out) /* NOLINT(bugprone-easily-swappable-parameters): order of the public header (grid, size, values, ...), checked by the unit tests and pytest */
 {
     size_t k = 0u;
     ogk_status st;
@@ -293,13 +301,13 @@ ogk_status ogk_interp_pchip(const double *grid, size_t n_grid,
         st = ogk_interp_locate(grid, n_grid, tau, &k);
     }
     if (st == OGK_OK) {
-        const double h = grid[k + 1u] - grid[k];
-        const double s = (tau - grid[k]) / h;
+        const ogk_real_t h = grid[k + 1u] - grid[k];
+        const ogk_real_t s = (tau - grid[k]) / h;
         /* Cubic Hermite basis on [0, 1]. */
-        const double h00 = (1.0 + (2.0 * s)) * (1.0 - s) * (1.0 - s);
-        const double h10 = s * (1.0 - s) * (1.0 - s);
-        const double h01 = s * s * (3.0 - (2.0 * s));
-        const double h11 = s * s * (s - 1.0);
+        const ogk_real_t h00 = (OGK_R(1.0) + (OGK_R(2.0) * s)) * (OGK_R(1.0) - s) * (OGK_R(1.0) - s);
+        const ogk_real_t h10 = s * (OGK_R(1.0) - s) * (OGK_R(1.0) - s);
+        const ogk_real_t h01 = s * s * (OGK_R(3.0) - (OGK_R(2.0) * s));
+        const ogk_real_t h11 = s * s * (s - OGK_R(1.0));
         size_t j;
         for (j = 0u; j < m; ++j) {
             out[j] = (h00 * values[(k * m) + j]) + (h10 * h * slopes[(k * m) + j]) +

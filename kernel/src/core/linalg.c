@@ -21,7 +21,7 @@
 #include <string.h>
 
 /* Symmetry tolerance of the Cholesky input, relative to max |A_ij| (ogk/linalg.h). */
-#define OGK_CHOL_SYM_TOL 1.0e-12
+#define OGK_CHOL_SYM_TOL OGK_R(1.0e-12)
 
 /* ------------------------------------------------------------------ helpers */
 
@@ -38,7 +38,7 @@ static bool la_overlap(const void *p, size_t p_bytes, const void *q, size_t q_by
 /* Bytes of an array of `count` doubles (count <= OGK_LA_MAX_LONG^2, no overflow). */
 static size_t la_bytes(size_t count)
 {
-    return count * sizeof(double);
+    return count * sizeof(ogk_real_t);
 }
 
 static bool la_dim_ok(size_t dim, size_t dim_max)
@@ -49,21 +49,30 @@ static bool la_dim_ok(size_t dim, size_t dim_max)
 /* OGK_OK when every v[i] is within OGK_LA_VALUE_MAX (ogk/linalg.h),
  * OGK_E_NONFINITE at a NaN or infinity, else OGK_E_RANGE; one pass, one
  * compare per entry (NaN fails it too) as the finite check it replaces. */
-static ogk_status la_all_bounded(const double *v, size_t count)
+static ogk_status la_all_bounded(const ogk_real_t *v, size_t count)
 {
     ogk_status st = OGK_OK;
     size_t i;
     for (i = 0u; (i < count) && (st != OGK_E_NONFINITE); ++i) {
-        if (!(fabs(v[i]) <= OGK_LA_VALUE_MAX)) {
+        if (!(OGK_FABS(v[i]) <= OGK_LA_VALUE_MAX)) {
             st = isfinite(v[i]) ? OGK_E_RANGE : OGK_E_NONFINITE;
         }
     }
     return st;
 }
 
-/* 2^-512 and 2^512: la_div's band for its smallest divisors. */
-#define OGK_LA_DIV_LOW 0x1p-512
-#define OGK_LA_DIV_UP 0x1p512
+/* 2^-512 and 2^512, the square root of double's range: la_div's band for its
+ * smallest divisors. The float build takes the square root of float's range,
+ * 2^-64 and 2^64 (below, with OGK_LA_SOLVE_MAX = 1e15 and OGK_LA_PIVOT_MIN =
+ * 1e-30: the middle band's quotient is at most 1e15 2^64 = 1.8e34, the lowest
+ * band's scaled divisor at least 1e-30 2^64, normal). */
+#if OGK_REAL_SINGLE
+#define OGK_LA_DIV_LOW OGK_R(0x1p-64)
+#define OGK_LA_DIV_UP OGK_R(0x1p64)
+#else
+#define OGK_LA_DIV_LOW OGK_R(0x1p-512)
+#define OGK_LA_DIV_UP OGK_R(0x1p512)
+#endif
 
 /* *q = num / den when |num / den| <= OGK_LA_SOLVE_MAX (ogk/linalg.h) and
  * |den| > OGK_LA_PIVOT_MIN; false, *q unwritten, otherwise (NaN operands too).
@@ -77,13 +86,13 @@ static ogk_status la_all_bounded(const double *v, size_t count)
  * The sign is restored after dividing the magnitudes (IEEE 754 division is
  * sign-symmetric): *q is num / den bit for bit. One compare and one branch
  * more than a bare division for |den| >= 1. */
-static bool la_div(double num, double den, double *q) /* NOLINT(bugprone-easily-swappable-parameters): num / den, the order of the quotient written */
+static bool la_div(ogk_real_t num, ogk_real_t den, ogk_real_t *q) /* NOLINT(bugprone-easily-swappable-parameters): num / den, the order of the quotient written */
 {
-    const double ad = fabs(den);
-    double t = 0.0;
+    const ogk_real_t ad = OGK_FABS(den);
+    ogk_real_t t = OGK_R(0.0);
     bool ok = false;
 
-    if (ad >= 1.0) {
+    if (ad >= OGK_R(1.0)) {
         t = num / ad;
         ok = true;
     } else if (ad >= OGK_LA_DIV_LOW) {
@@ -100,16 +109,24 @@ static bool la_div(double num, double den, double *q) /* NOLINT(bugprone-easily-
          * quotient too large, or NaN: not divided */
     }
     if (ok && (t <= OGK_LA_SOLVE_MAX) && (t >= -OGK_LA_SOLVE_MAX)) {
-        *q = (den < 0.0) ? -t : t;
+        *q = (den < OGK_R(0.0)) ? -t : t;
     } else {
         ok = false;
     }
     return ok;
 }
 
-/* 2^-400 and 2^400: below 2^-400, la_norm2 scales its quotients up. */
-#define OGK_LA_SCALE_DOWN 0x1p-400
-#define OGK_LA_SCALE_UP 0x1p400
+/* 2^-400 and 2^400: below 2^-400, la_norm2 scales its quotients up. The float
+ * build's 2^-50 and 2^50 keep the same two properties in float's range: the
+ * smallest subnormal (2^-149) scaled up is normal (2^-99), and |v_i| 2^50 has a
+ * finite square for |v_i| < 2^14 (double: 2^-674 and 2^112). */
+#if OGK_REAL_SINGLE
+#define OGK_LA_SCALE_DOWN OGK_R(0x1p-50)
+#define OGK_LA_SCALE_UP OGK_R(0x1p50)
+#else
+#define OGK_LA_SCALE_DOWN OGK_R(0x1p-400)
+#define OGK_LA_SCALE_UP OGK_R(0x1p400)
+#endif
 
 /* Euclidean norm of v[0], v[stride], ..., v[(count-1) stride], scaled by the
  * largest magnitude so that squares neither overflow nor underflow. Each
@@ -119,43 +136,43 @@ static bool la_div(double num, double den, double *q) /* NOLINT(bugprone-easily-
  * docs/evidence/eva.md) can use; below, both are scaled by 2^400 (exact: the same
  * correctly rounded t) and t <= 1 restated, and the sum of squares is
  * restated to be at most count. */
-static double la_norm2(const double *v, size_t count, size_t stride) /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
+static ogk_real_t la_norm2(const ogk_real_t *v, size_t count, size_t stride) /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
 {
-    double scale = 0.0;
-    double norm = 0.0;
+    ogk_real_t scale = OGK_R(0.0);
+    ogk_real_t norm = OGK_R(0.0);
     size_t i;
 
     for (i = 0u; i < count; ++i) {
-        const double a = fabs(v[i * stride]);
+        const ogk_real_t a = OGK_FABS(v[i * stride]);
         if (a > scale) {
             scale = a;
         }
     }
-    if (scale > 0.0) {
-        double ssq = 0.0;
+    if (scale > OGK_R(0.0)) {
+        ogk_real_t ssq = OGK_R(0.0);
         if (scale >= OGK_LA_SCALE_DOWN) {
             for (i = 0u; i < count; ++i) {
-                const double t = v[i * stride] / scale;
+                const ogk_real_t t = v[i * stride] / scale;
                 ssq += t * t;
             }
         } else {
-            const double scale_up = scale * OGK_LA_SCALE_UP;
+            const ogk_real_t scale_up = scale * OGK_LA_SCALE_UP;
             for (i = 0u; i < count; ++i) {
-                const double t = fmin((fmin(fabs(v[i * stride]), OGK_LA_SCALE_DOWN) *
-                                       OGK_LA_SCALE_UP) / scale_up, 1.0);
+                const ogk_real_t t = OGK_FMIN((OGK_FMIN(OGK_FABS(v[i * stride]), OGK_LA_SCALE_DOWN) *
+                                       OGK_LA_SCALE_UP) / scale_up, OGK_R(1.0));
                 ssq += t * t;
             }
         }
         /* every t^2 <= 1: the fmin restates ssq <= count */
-        norm = scale * sqrt(fmin(ssq, (double)count));
+        norm = scale * OGK_SQRT(OGK_FMIN(ssq, (ogk_real_t)count));
     }
     return norm;
 }
 
 /* Common checks of the products: NULL, dimensions, output overlapping an input. */
-static ogk_status la_product_check(const double *in1, size_t in1_count,
-                                   const double *in2, size_t in2_count,
-                                   const double *out, size_t out_count, /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
+static ogk_status la_product_check(const ogk_real_t *in1, size_t in1_count,
+                                   const ogk_real_t *in2, size_t in2_count,
+                                   const ogk_real_t *out, size_t out_count, /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
                                    size_t d1, size_t d2, size_t d3)
 {
     ogk_status st;
@@ -176,7 +193,7 @@ static ogk_status la_product_check(const double *in1, size_t in1_count,
 /* Common checks of the factorizations of an n x n matrix A into a
  * caller-owned struct of fact_bytes bytes at fact: NULL, dimension, A
  * overlapping the struct, non-finite entries. */
-static ogk_status la_square_check(const double *A, size_t n, const void *fact,
+static ogk_status la_square_check(const ogk_real_t *A, size_t n, const void *fact,
                                   size_t fact_bytes)
 {
     ogk_status st;
@@ -197,15 +214,15 @@ static ogk_status la_square_check(const double *A, size_t n, const void *fact,
 /* C (r x c, row-major) = sum_p A(i, p) B(p, j), where A(i, p) = A[i a_i + p a_p] and
  * B(p, j) = B[p b_p + j b_j]: one loop nest for
  * A x, A^T x, A B, A^T B and A B^T. */
-static void product_strided(const double *A, size_t a_i, size_t a_p, const double *B,
-                            size_t b_p, size_t b_j, size_t r, size_t k, size_t c, double *C) /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
+static void product_strided(const ogk_real_t *A, size_t a_i, size_t a_p, const ogk_real_t *B,
+                            size_t b_p, size_t b_j, size_t r, size_t k, size_t c, ogk_real_t *C) /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header, crossed with Eigen */
 {
     size_t i;
     size_t j;
     size_t p;
     for (i = 0u; i < r; ++i) {
         for (j = 0u; j < c; ++j) {
-            double sum = 0.0;
+            ogk_real_t sum = OGK_R(0.0);
             for (p = 0u; p < k; ++p) {
                 sum += A[(i * a_i) + (p * a_p)] * B[(p * b_p) + (j * b_j)];
             }
@@ -214,8 +231,8 @@ static void product_strided(const double *A, size_t a_i, size_t a_p, const doubl
     }
 }
 
-ogk_status ogk_mat_vec(const double *A, size_t rows, size_t cols,
-                       const double *x, double *y)
+ogk_status ogk_mat_vec(const ogk_real_t *A, size_t rows, size_t cols,
+                       const ogk_real_t *x, ogk_real_t *y)
 {
     const ogk_status st = la_product_check(A, rows * cols, x, cols, y, rows,
                                            rows, cols, 1u);
@@ -225,8 +242,8 @@ ogk_status ogk_mat_vec(const double *A, size_t rows, size_t cols,
     return st;
 }
 
-ogk_status ogk_mat_t_vec(const double *A, size_t rows, size_t cols,
-                         const double *x, double *y)
+ogk_status ogk_mat_t_vec(const ogk_real_t *A, size_t rows, size_t cols,
+                         const ogk_real_t *x, ogk_real_t *y)
 {
     const ogk_status st = la_product_check(A, rows * cols, x, rows, y, cols,
                                            rows, cols, 1u);
@@ -236,8 +253,8 @@ ogk_status ogk_mat_t_vec(const double *A, size_t rows, size_t cols,
     return st;
 }
 
-ogk_status ogk_mat_mul(const double *A, size_t r, size_t k,
-                       const double *B, size_t c, double *C)
+ogk_status ogk_mat_mul(const ogk_real_t *A, size_t r, size_t k,
+                       const ogk_real_t *B, size_t c, ogk_real_t *C)
 {
     const ogk_status st = la_product_check(A, r * k, B, k * c, C, r * c, r, k, c);
     if (st == OGK_OK) {
@@ -246,8 +263,8 @@ ogk_status ogk_mat_mul(const double *A, size_t r, size_t k,
     return st;
 }
 
-ogk_status ogk_mat_mul_at_b(const double *A, size_t k, size_t r,
-                            const double *B, size_t c, double *C)
+ogk_status ogk_mat_mul_at_b(const ogk_real_t *A, size_t k, size_t r,
+                            const ogk_real_t *B, size_t c, ogk_real_t *C)
 {
     const ogk_status st = la_product_check(A, k * r, B, k * c, C, r * c, r, k, c);
     if (st == OGK_OK) {
@@ -256,8 +273,8 @@ ogk_status ogk_mat_mul_at_b(const double *A, size_t k, size_t r,
     return st;
 }
 
-ogk_status ogk_mat_mul_a_bt(const double *A, size_t r, size_t k,
-                            const double *B, size_t c, double *C)
+ogk_status ogk_mat_mul_a_bt(const ogk_real_t *A, size_t r, size_t k,
+                            const ogk_real_t *B, size_t c, ogk_real_t *C)
 {
     const ogk_status st = la_product_check(A, r * k, B, c * k, C, r * c, r, k, c);
     if (st == OGK_OK) {
@@ -266,8 +283,8 @@ ogk_status ogk_mat_mul_a_bt(const double *A, size_t r, size_t k,
     return st;
 }
 
-ogk_status ogk_mat_transpose(const double *A, size_t rows, size_t cols,
-                             double *At)
+ogk_status ogk_mat_transpose(const ogk_real_t *A, size_t rows, size_t cols,
+                             ogk_real_t *At)
 {
     /* A is passed twice: la_product_check wants two inputs. */
     const ogk_status st = la_product_check(A, rows * cols, A, rows * cols,
@@ -289,8 +306,8 @@ ogk_status ogk_mat_transpose(const double *A, size_t rows, size_t cols,
 static void lu_invalidate(ogk_lu_t *lu)
 {
     lu->n = 0u;
-    lu->anorm1 = 0.0;
-    lu->rcond = 0.0;
+    lu->anorm1 = OGK_R(0.0);
+    lu->rcond = OGK_R(0.0);
 }
 
 /* Checks that lu holds a factorization that can be used without reading out
@@ -316,10 +333,10 @@ static ogk_status lu_check_held(const ogk_lu_t *lu)
 
 /* Solves L U y_out = y_in in place, y_in already permuted (= P b); false
  * (y partly overwritten) when a quotient would exceed OGK_LA_SOLVE_MAX (la_div). */
-static bool lu_substitute(const ogk_lu_t *lu, double *y)
+static bool lu_substitute(const ogk_lu_t *lu, ogk_real_t *y)
 {
     const size_t n = lu->n;
-    const double *f = lu->lu;
+    const ogk_real_t *f = lu->lu;
     bool ok = true;
     size_t i;
     size_t j;
@@ -327,7 +344,7 @@ static bool lu_substitute(const ogk_lu_t *lu, double *y)
 
     /* Forward: L unit lower triangular. */
     for (i = 1u; i < n; ++i) {
-        double sum = y[i];
+        ogk_real_t sum = y[i];
         for (j = 0u; j < i; ++j) {
             sum -= f[(i * n) + j] * y[j];
         }
@@ -337,7 +354,7 @@ static bool lu_substitute(const ogk_lu_t *lu, double *y)
      * factor time, and again by la_div); every x_j <= OGK_LA_SOLVE_MAX. */
     for (ii = 0u; (ii < n) && ok; ++ii) {
         const size_t row = n - 1u - ii;
-        double sum = y[row];
+        ogk_real_t sum = y[row];
         for (j = row + 1u; j < n; ++j) {
             sum -= f[(row * n) + j] * y[j];
         }
@@ -348,27 +365,27 @@ static bool lu_substitute(const ogk_lu_t *lu, double *y)
 
 /* Column j of A^-1 times s into col[0..n-1]: solves A z = s e_j, i.e.
  * L U z = P s e_j; false as lu_substitute. */
-static bool lu_inverse_column(const ogk_lu_t *lu, size_t j, double s, double *col)
+static bool lu_inverse_column(const ogk_lu_t *lu, size_t j, ogk_real_t s, ogk_real_t *col)
 {
     size_t i;
     for (i = 0u; i < lu->n; ++i) {
-        col[i] = (lu->perm[i] == j) ? s : 0.0;
+        col[i] = (lu->perm[i] == j) ? s : OGK_R(0.0);
     }
     return lu_substitute(lu, col);
 }
 
 /* Loads A (n x n, checked) into lu: copy, 1-norm (largest absolute column
  * sum), identity permutation. */
-static void lu_load(ogk_lu_t *lu, const double *A, size_t n)
+static void lu_load(ogk_lu_t *lu, const ogk_real_t *A, size_t n)
 {
     size_t i;
     size_t j;
-    double anorm1 = 0.0;
+    ogk_real_t anorm1 = OGK_R(0.0);
 
     for (j = 0u; j < n; ++j) {
-        double colsum = 0.0;
+        ogk_real_t colsum = OGK_R(0.0);
         for (i = 0u; i < n; ++i) {
-            colsum += fabs(A[(i * n) + j]);
+            colsum += OGK_FABS(A[(i * n) + j]);
         }
         if (colsum > anorm1) {
             anorm1 = colsum;
@@ -393,23 +410,23 @@ static void lu_load(ogk_lu_t *lu, const double *A, size_t n)
  * (n eps |A|_1) would already reject the 12 x 12 Hilbert matrix. */
 static ogk_status lu_eliminate(ogk_lu_t *lu, size_t n)
 {
-    const double pivot_tol = DBL_EPSILON * lu->anorm1;
+    const ogk_real_t pivot_tol = OGK_REAL_EPSILON * lu->anorm1;
     ogk_status st = OGK_OK;
-    double *f = lu->lu;
+    ogk_real_t *f = lu->lu;
     size_t i;
     size_t j;
     size_t k;
 
     for (k = 0u; (k < n) && (st == OGK_OK); ++k) {
         size_t p = k;
-        double pmax = fabs(f[(k * n) + k]);
-        bool negative = f[(k * n) + k] < 0.0;
+        ogk_real_t pmax = OGK_FABS(f[(k * n) + k]);
+        bool negative = f[(k * n) + k] < OGK_R(0.0);
         for (i = k + 1u; i < n; ++i) {
-            const double a = fabs(f[(i * n) + k]);
+            const ogk_real_t a = OGK_FABS(f[(i * n) + k]);
             if (a > pmax) {
                 pmax = a;
                 p = i;
-                negative = f[(i * n) + k] < 0.0;
+                negative = f[(i * n) + k] < OGK_R(0.0);
             }
         }
         if (!(pmax > pivot_tol) || !(pmax > OGK_LA_PIVOT_MIN)) {
@@ -420,7 +437,7 @@ static ogk_status lu_eliminate(ogk_lu_t *lu, size_t n)
                 lu->perm[k] = lu->perm[p];
                 lu->perm[p] = tp;
                 for (j = 0u; j < n; ++j) {
-                    const double t = f[(k * n) + j];
+                    const ogk_real_t t = f[(k * n) + j];
                     f[(k * n) + j] = f[(p * n) + j];
                     f[(p * n) + j] = t;
                 }
@@ -429,8 +446,8 @@ static ogk_status lu_eliminate(ogk_lu_t *lu, size_t n)
                 /* f_ik / f_kk as +-(f_ik / pmax): the same quotient, with a
                  * divisor the analysis knows is above OGK_LA_PIVOT_MIN; |l_ik| <= 1
                  * by the pivot choice, so the clamp only restates it. */
-                const double q = fmin(fmax(f[(i * n) + k] / pmax, -1.0), 1.0);
-                const double l_ik = negative ? -q : q;
+                const ogk_real_t q = OGK_FMIN(OGK_FMAX(f[(i * n) + k] / pmax, -OGK_R(1.0)), OGK_R(1.0));
+                const ogk_real_t l_ik = negative ? -q : q;
                 f[(i * n) + k] = l_ik;
                 for (j = k + 1u; j < n; ++j) {
                     f[(i * n) + j] -= l_ik * f[(k * n) + j];
@@ -452,24 +469,24 @@ static void lu_set_rcond(ogk_lu_t *lu)
 {
     size_t i;
     size_t j;
-    double cond1 = 0.0;
+    ogk_real_t cond1 = OGK_R(0.0);
     bool ok = true;
-    double col[OGK_LA_MAX_N];
+    ogk_real_t col[OGK_LA_MAX_N];
 
     for (j = 0u; (j < lu->n) && ok; ++j) {
-        double colsum = 0.0;
+        ogk_real_t colsum = OGK_R(0.0);
         ok = lu_inverse_column(lu, j, lu->anorm1, col);
         for (i = 0u; (i < lu->n) && ok; ++i) {
-            colsum += fabs(col[i]);
+            colsum += OGK_FABS(col[i]);
         }
         if (colsum > cond1) {
             cond1 = colsum;
         }
     }
-    lu->rcond = ok ? (1.0 / fmax(cond1, 1.0)) : 0.0;
+    lu->rcond = ok ? (OGK_R(1.0) / OGK_FMAX(cond1, OGK_R(1.0))) : OGK_R(0.0);
 }
 
-ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
+ogk_status ogk_lu_factor(ogk_lu_t *lu, const ogk_real_t *A, size_t n)
 {
     ogk_status st;
 
@@ -495,7 +512,7 @@ ogk_status ogk_lu_factor(ogk_lu_t *lu, const double *A, size_t n)
     return st;
 }
 
-ogk_status ogk_lu_solve(const ogk_lu_t *lu, const double *b, double *x)
+ogk_status ogk_lu_solve(const ogk_lu_t *lu, const ogk_real_t *b, ogk_real_t *x)
 {
     ogk_status st;
 
@@ -512,7 +529,7 @@ ogk_status ogk_lu_solve(const ogk_lu_t *lu, const double *b, double *x)
         }
         if (st == OGK_OK) {
             size_t i;
-            double y[OGK_LA_MAX_N];
+            ogk_real_t y[OGK_LA_MAX_N];
             /* b is read completely before x is written, so x may alias b. */
             for (i = 0u; i < lu->n; ++i) {
                 y[i] = b[lu->perm[i]];
@@ -527,7 +544,7 @@ ogk_status ogk_lu_solve(const ogk_lu_t *lu, const double *b, double *x)
     return st;
 }
 
-ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv)
+ogk_status ogk_lu_inverse(const ogk_lu_t *lu, ogk_real_t *Ainv)
 {
     ogk_status st;
 
@@ -542,9 +559,9 @@ ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv)
         } else {
             size_t i;
             size_t j;
-            double col[OGK_LA_MAX_N];
+            ogk_real_t col[OGK_LA_MAX_N];
             for (j = 0u; (j < lu->n) && (st == OGK_OK); ++j) {
-                if (lu_inverse_column(lu, j, 1.0, col)) {
+                if (lu_inverse_column(lu, j, OGK_R(1.0), col)) {
                     for (i = 0u; i < lu->n; ++i) {
                         Ainv[(i * lu->n) + j] = col[i];
                     }
@@ -562,22 +579,22 @@ ogk_status ogk_lu_inverse(const ogk_lu_t *lu, double *Ainv)
 /* OGK_E_NOT_POSDEF unless the n x n matrix A is symmetric to OGK_CHOL_SYM_TOL
  * relative to the matrix scale max |A_ij| (an element-wise relative test would
  * reject round-off in entries that should be zero). */
-static ogk_status chol_symmetry_check(const double *A, size_t n)
+static ogk_status chol_symmetry_check(const ogk_real_t *A, size_t n)
 {
     size_t i;
     size_t j;
-    double scale = 0.0;
+    ogk_real_t scale = OGK_R(0.0);
     bool symmetric = true;
 
     for (i = 0u; i < (n * n); ++i) {
-        const double a = fabs(A[i]);
+        const ogk_real_t a = OGK_FABS(A[i]);
         if (a > scale) {
             scale = a;
         }
     }
     for (i = 1u; (i < n) && symmetric; ++i) {
         for (j = 0u; (j < i) && symmetric; ++j) {
-            if (fabs(A[(i * n) + j] - A[(j * n) + i]) > (OGK_CHOL_SYM_TOL * scale)) {
+            if (OGK_FABS(A[(i * n) + j] - A[(j * n) + i]) > (OGK_CHOL_SYM_TOL * scale)) {
                 symmetric = false;
             }
         }
@@ -589,7 +606,7 @@ static ogk_status chol_symmetry_check(const double *A, size_t n)
  * (chol.c) on A's lower triangle, read as the upper triangle of U = L^T and
  * factored in ch->l, then transposed in place; on OGK_E_NOT_POSDEF ch->l is
  * left zero. */
-static ogk_status chol_decompose(ogk_chol_t *ch, const double *A, size_t n)
+static ogk_status chol_decompose(ogk_chol_t *ch, const ogk_real_t *A, size_t n)
 {
     ogk_status st;
     size_t i;
@@ -604,7 +621,7 @@ static ogk_status chol_decompose(ogk_chol_t *ch, const double *A, size_t n)
     }
     /* a pivot d_i must exceed eps a_ii and the absolute floor
      * OGK_LA_PIVOT_MIN (ogk/linalg.h) */
-    rule.rel = DBL_EPSILON;
+    rule.rel = OGK_REAL_EPSILON;
     rule.floor = OGK_LA_PIVOT_MIN;
     /* |l_ij| <= sqrt(a_ii) for A = L L^T (row i of L has norm sqrt(a_ii));
      * twice that bound is never reached by an accepted factorization (an
@@ -618,7 +635,7 @@ static ogk_status chol_decompose(ogk_chol_t *ch, const double *A, size_t n)
         for (i = 1u; i < n; ++i) {
             for (j = 0u; j < i; ++j) {
                 ch->l[(i * n) + j] = ch->l[(j * n) + i];
-                ch->l[(j * n) + i] = 0.0;
+                ch->l[(j * n) + i] = OGK_R(0.0);
             }
         }
     } else {
@@ -627,7 +644,7 @@ static ogk_status chol_decompose(ogk_chol_t *ch, const double *A, size_t n)
     return st;
 }
 
-ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n)
+ogk_status ogk_chol_factor(ogk_chol_t *ch, const ogk_real_t *A, size_t n)
 {
     ogk_status st;
 
@@ -652,17 +669,17 @@ ogk_status ogk_chol_factor(ogk_chol_t *ch, const double *A, size_t n)
 /* L y = b, then L^T x = y with a held factorization of order n; b is read
  * completely before x is written; false, x unwritten, when a quotient would
  * exceed OGK_LA_SOLVE_MAX (la_div). */
-static bool chol_substitute(const ogk_chol_t *ch, const double *b, double *x)
+static bool chol_substitute(const ogk_chol_t *ch, const ogk_real_t *b, ogk_real_t *x)
 {
     const size_t n = ch->n;
     bool ok = true;
     size_t i;
     size_t j;
     size_t ii;
-    double y[OGK_LA_MAX_N];
+    ogk_real_t y[OGK_LA_MAX_N];
 
     for (i = 0u; (i < n) && ok; ++i) {
-        double sum = b[i];
+        ogk_real_t sum = b[i];
         for (j = 0u; j < i; ++j) {
             sum -= ch->l[(i * n) + j] * y[j];
         }
@@ -670,7 +687,7 @@ static bool chol_substitute(const ogk_chol_t *ch, const double *b, double *x)
     }
     for (ii = 0u; (ii < n) && ok; ++ii) {
         const size_t row = n - 1u - ii;
-        double sum = y[row];
+        ogk_real_t sum = y[row];
         for (j = row + 1u; j < n; ++j) {
             sum -= ch->l[(j * n) + row] * y[j];
         }
@@ -682,7 +699,7 @@ static bool chol_substitute(const ogk_chol_t *ch, const double *b, double *x)
     return ok;
 }
 
-ogk_status ogk_chol_solve(const ogk_chol_t *ch, const double *b, double *x)
+ogk_status ogk_chol_solve(const ogk_chol_t *ch, const ogk_real_t *b, ogk_real_t *x)
 {
     ogk_status st;
 
@@ -716,42 +733,42 @@ static void qr_factor(ogk_qr_t *ws)
 {
     const size_t rows = ws->long_dim;
     const size_t cols = ws->short_dim;
-    double *a = ws->qr;
+    ogk_real_t *a = ws->qr;
     size_t i;
     size_t j;
     size_t k;
 
     for (k = 0u; k < cols; ++k) {
-        const double alpha = a[(k * cols) + k];
-        const double xnorm = la_norm2(&a[((k + 1u) * cols) + k], rows - k - 1u, cols);
-        const double r = hypot(alpha, xnorm);
-        double beta;
-        double tau;
-        double v_scale;
+        const ogk_real_t alpha = a[(k * cols) + k];
+        const ogk_real_t xnorm = la_norm2(&a[((k + 1u) * cols) + k], rows - k - 1u, cols);
+        const ogk_real_t r = OGK_HYPOT(alpha, xnorm);
+        ogk_real_t beta;
+        ogk_real_t tau;
+        ogk_real_t v_scale;
 
-        if ((!(xnorm > 0.0)) || (!(r > OGK_LA_PIVOT_MIN))) {
+        if ((!(xnorm > OGK_R(0.0))) || (!(r > OGK_LA_PIVOT_MIN))) {
             /* Column already upper triangular: H = I (dlarfg convention); or
              * its norm r is at or below OGK_LA_PIVOT_MIN: H = I too, and
              * R_kk = alpha (|alpha| <= r) makes the rank test answer
              * OGK_E_SINGULAR (qr_r_norm1). */
-            ws->tau[k] = 0.0;
+            ws->tau[k] = OGK_R(0.0);
             continue;
         }
-        beta = -copysign(r, alpha);
+        beta = -OGK_COPYSIGN(r, alpha);
         /* (beta - alpha) / beta and 1 / (alpha - beta) with beta = -sign(alpha) r,
          * written on magnitudes (the same operations, bit for bit): the divisors
          * r and |alpha| + r exceed OGK_LA_PIVOT_MIN. tau lies in [1, 2] and
          * |v_i| <= xnorm / (|alpha| + r) <= 1: the clamps only catch rounding. */
-        tau = fmin((r + fabs(alpha)) / r, 2.0);
-        v_scale = copysign(1.0 / (fabs(alpha) + r), alpha);
+        tau = OGK_FMIN((r + OGK_FABS(alpha)) / r, OGK_R(2.0));
+        v_scale = OGK_COPYSIGN(OGK_R(1.0) / (OGK_FABS(alpha) + r), alpha);
         for (i = k + 1u; i < rows; ++i) {
-            a[(i * cols) + k] = fmin(fmax(a[(i * cols) + k] * v_scale, -1.0), 1.0);
+            a[(i * cols) + k] = OGK_FMIN(OGK_FMAX(a[(i * cols) + k] * v_scale, -OGK_R(1.0)), OGK_R(1.0));
         }
         a[(k * cols) + k] = beta;
         ws->tau[k] = tau;
         /* Apply H_k = I - tau v v^T to the trailing columns. */
         for (j = k + 1u; j < cols; ++j) {
-            double w = a[(k * cols) + j];
+            ogk_real_t w = a[(k * cols) + j];
             for (i = k + 1u; i < rows; ++i) {
                 w += a[(i * cols) + k] * a[(i * cols) + j];
             }
@@ -765,15 +782,15 @@ static void qr_factor(ogk_qr_t *ws)
 }
 
 /* y <- H_k y for a vector y of long_dim entries. */
-static void qr_apply_reflector(const ogk_qr_t *ws, size_t k, double *y)
+static void qr_apply_reflector(const ogk_qr_t *ws, size_t k, ogk_real_t *y)
 {
     const size_t rows = ws->long_dim;
     const size_t cols = ws->short_dim;
-    const double *a = ws->qr;
+    const ogk_real_t *a = ws->qr;
 
-    if (ws->tau[k] != 0.0) {
+    if (ws->tau[k] != OGK_R(0.0)) {
         size_t i;
-        double w = y[k];
+        ogk_real_t w = y[k];
         for (i = k + 1u; i < rows; ++i) {
             w += a[(i * cols) + k] * y[i];
         }
@@ -787,23 +804,23 @@ static void qr_apply_reflector(const ogk_qr_t *ws, size_t k, double *y)
 
 /* *rnorm1 = |R|_1; OGK_E_SINGULAR (and *rnorm1 unspecified) at the first
  * diagonal entry of R at or below tol or OGK_LA_PIVOT_MIN. */
-static ogk_status qr_r_norm1(const ogk_qr_t *ws, double tol, double *rnorm1)
+static ogk_status qr_r_norm1(const ogk_qr_t *ws, ogk_real_t tol, ogk_real_t *rnorm1)
 {
     const size_t cols = ws->short_dim;
-    const double *a = ws->qr;
+    const ogk_real_t *a = ws->qr;
     ogk_status st = OGK_OK;
     size_t i;
     size_t j;
 
-    *rnorm1 = 0.0;
+    *rnorm1 = OGK_R(0.0);
     for (j = 0u; (j < cols) && (st == OGK_OK); ++j) {
-        if ((!(fabs(a[(j * cols) + j]) > tol)) ||
-            (!(fabs(a[(j * cols) + j]) > OGK_LA_PIVOT_MIN))) {
+        if ((!(OGK_FABS(a[(j * cols) + j]) > tol)) ||
+            (!(OGK_FABS(a[(j * cols) + j]) > OGK_LA_PIVOT_MIN))) {
             st = OGK_E_SINGULAR;
         } else {
-            double colsum = 0.0;
+            ogk_real_t colsum = OGK_R(0.0);
             for (i = 0u; i <= j; ++i) {
-                colsum += fabs(a[(i * cols) + j]);
+                colsum += OGK_FABS(a[(i * cols) + j]);
             }
             if (colsum > *rnorm1) {
                 *rnorm1 = colsum;
@@ -817,30 +834,30 @@ static ogk_status qr_r_norm1(const ogk_qr_t *ws, double tol, double *rnorm1)
  * substitution on s e_j (nonzero in rows 0..j only): scale-free, each entry at
  * most 1 / rcond(R) (as lu_set_rcond). false when an entry would exceed
  * OGK_LA_SOLVE_MAX (la_div): rcond(R) below 1e-150. */
-static bool qr_r_cond1(const ogk_qr_t *ws, double s, double *cond1)
+static bool qr_r_cond1(const ogk_qr_t *ws, ogk_real_t s, ogk_real_t *cond1)
 {
     const size_t cols = ws->short_dim;
-    const double *a = ws->qr;
+    const ogk_real_t *a = ws->qr;
     bool ok = true;
-    double z[OGK_LA_MAX_N];
+    ogk_real_t z[OGK_LA_MAX_N];
     size_t j;
     size_t p;
     size_t ii;
 
-    *cond1 = 0.0;
+    *cond1 = OGK_R(0.0);
     for (j = 0u; (j < cols) && ok; ++j) {
-        double colsum = 0.0;
+        ogk_real_t colsum = OGK_R(0.0);
         ok = la_div(s, a[(j * cols) + j], &z[j]);
         for (ii = 0u; (ii < j) && ok; ++ii) {
             const size_t row = j - 1u - ii;
-            double sum = 0.0;
+            ogk_real_t sum = OGK_R(0.0);
             for (p = row + 1u; p <= j; ++p) {
                 sum += a[(row * cols) + p] * z[p];
             }
             ok = la_div(-sum, a[(row * cols) + row], &z[row]);
         }
         for (ii = 0u; (ii <= j) && ok; ++ii) {
-            colsum += fabs(z[ii]);
+            colsum += OGK_FABS(z[ii]);
         }
         if (colsum > *cond1) {
             *cond1 = colsum;
@@ -855,17 +872,17 @@ static bool qr_r_cond1(const ogk_qr_t *ws, double s, double *cond1)
  * |R|_1 >= max_j |a_j|_2 and |R^-1|_1 >= 1/|r_kk|), ILL_CONDITIONED when
  * the exact 1-norm rcond of R (= that of A up to a factor short_dim in
  * the 2-norm sense) is below OGK_LA_RCOND_MIN. */
-static ogk_status qr_rank_check(const ogk_qr_t *ws, double colnorm_max)
+static ogk_status qr_rank_check(const ogk_qr_t *ws, ogk_real_t colnorm_max)
 {
-    const double tol = (double)ws->long_dim * DBL_EPSILON * colnorm_max;
-    double rnorm1;
+    const ogk_real_t tol = (ogk_real_t)ws->long_dim * OGK_REAL_EPSILON * colnorm_max;
+    ogk_real_t rnorm1;
     ogk_status st = qr_r_norm1(ws, tol, &rnorm1);
 
     if (st == OGK_OK) {
         /* cond1 >= 1 (|R R^-1|_1 = 1): the fmax only restates it */
-        double cond1;
+        ogk_real_t cond1;
         if ((!qr_r_cond1(ws, rnorm1, &cond1)) ||
-            (!((1.0 / fmax(cond1, 1.0)) >= OGK_LA_RCOND_MIN))) {
+            (!((OGK_R(1.0) / OGK_FMAX(cond1, OGK_R(1.0))) >= OGK_LA_RCOND_MIN))) {
             st = OGK_E_ILL_CONDITIONED;
         }
     }
@@ -875,8 +892,8 @@ static ogk_status qr_rank_check(const ogk_qr_t *ws, double colnorm_max)
 /* Common checks of ogk_lstsq and ogk_minnorm (A: m x n, b: m, x: n) in the
  * order of the header: NULL, dimensions (dims_ok, the caller's test, read only
  * once the pointers are known good), overlaps, non-finite inputs. */
-static ogk_status qr_problem_check(const ogk_qr_t *ws, const double *A, size_t m, size_t n, /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header */
-                                   const double *b, const double *x, bool dims_ok)
+static ogk_status qr_problem_check(const ogk_qr_t *ws, const ogk_real_t *A, size_t m, size_t n, /* NOLINT(bugprone-easily-swappable-parameters): dimension order of the header */
+                                   const ogk_real_t *b, const ogk_real_t *x, bool dims_ok)
 {
     ogk_status st;
     if ((A == NULL) || (b == NULL) || (x == NULL)) {
@@ -906,7 +923,7 @@ static ogk_status qr_problem_check(const ogk_qr_t *ws, const double *A, size_t m
 
 /* x = R^-1 (Q^T b)(0:n-1) with the factors of ogk_lstsq in ws (m x n);
  * false, x unwritten, when an entry would exceed OGK_LA_SOLVE_MAX (la_div). */
-static bool qr_lstsq_solve(const ogk_qr_t *ws, const double *b, double *x)
+static bool qr_lstsq_solve(const ogk_qr_t *ws, const ogk_real_t *b, ogk_real_t *x)
 {
     const size_t m = ws->long_dim;
     const size_t n = ws->short_dim;
@@ -915,7 +932,7 @@ static bool qr_lstsq_solve(const ogk_qr_t *ws, const double *b, double *x)
     size_t k;
     size_t ii;
     /* Q^T b needs all m entries: 1 KiB at the default OGK_LA_MAX_LONG. */
-    double y[OGK_LA_MAX_LONG];
+    ogk_real_t y[OGK_LA_MAX_LONG];
 
     /* y = Q^T b = H_{n-1} ... H_0 b, then R x = y(0:n-1). */
     (void)memcpy(y, b, la_bytes(m));
@@ -924,7 +941,7 @@ static bool qr_lstsq_solve(const ogk_qr_t *ws, const double *b, double *x)
     }
     for (ii = 0u; (ii < n) && ok; ++ii) {
         const size_t row = n - 1u - ii;
-        double sum = y[row];
+        ogk_real_t sum = y[row];
         for (i = row + 1u; i < n; ++i) {
             sum -= ws->qr[(row * n) + i] * y[i];
         }
@@ -936,8 +953,8 @@ static bool qr_lstsq_solve(const ogk_qr_t *ws, const double *b, double *x)
     return ok;
 }
 
-ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
-                     const double *b, double *x)
+ogk_status ogk_lstsq(ogk_qr_t *ws, const ogk_real_t *A, size_t m, size_t n,
+                     const ogk_real_t *b, ogk_real_t *x)
 {
     ogk_status st;
 
@@ -951,12 +968,12 @@ ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
     }
     if (st == OGK_OK) {
         size_t j;
-        double colnorm_max = 0.0;
+        ogk_real_t colnorm_max = OGK_R(0.0);
         (void)memcpy(ws->qr, A, la_bytes(m * n));
         ws->long_dim = m;
         ws->short_dim = n;
         for (j = 0u; j < n; ++j) {
-            const double c = la_norm2(&A[j], m, n);
+            const ogk_real_t c = la_norm2(&A[j], m, n);
             if (c > colnorm_max) {
                 colnorm_max = c;
             }
@@ -977,18 +994,18 @@ ogk_status ogk_lstsq(ogk_qr_t *ws, const double *A, size_t m, size_t n,
 /* x = Q [z; 0] with R^T z = b, the factors of A^T (ogk_minnorm) in ws
  * (n x m); b is read completely before x is written; false, x unwritten, when
  * an entry of z would exceed OGK_LA_SOLVE_MAX (la_div; |x|_2 = |z|_2). */
-static bool qr_minnorm_solve(const ogk_qr_t *ws, const double *b, double *x)
+static bool qr_minnorm_solve(const ogk_qr_t *ws, const ogk_real_t *b, ogk_real_t *x)
 {
     const size_t n = ws->long_dim;
     const size_t m = ws->short_dim;
     bool ok = true;
     size_t i;
     size_t j;
-    double z[OGK_LA_MAX_N];
+    ogk_real_t z[OGK_LA_MAX_N];
 
     /* A = R^T Q^T: R^T z = b (forward substitution), then x = Q [z; 0]. */
     for (i = 0u; (i < m) && ok; ++i) {
-        double sum = b[i];
+        ogk_real_t sum = b[i];
         for (j = 0u; j < i; ++j) {
             sum -= ws->qr[(j * m) + i] * z[j];
         }
@@ -1000,7 +1017,7 @@ static bool qr_minnorm_solve(const ogk_qr_t *ws, const double *b, double *x)
             x[i] = z[i];
         }
         for (i = m; i < n; ++i) {
-            x[i] = 0.0;
+            x[i] = OGK_R(0.0);
         }
         /* Q = H_0 H_1 ... H_{m-1}: apply the last reflector first. */
         for (kk = 0u; kk < m; ++kk) {
@@ -1010,8 +1027,8 @@ static bool qr_minnorm_solve(const ogk_qr_t *ws, const double *b, double *x)
     return ok;
 }
 
-ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
-                       const double *b, double *x)
+ogk_status ogk_minnorm(ogk_qr_t *ws, const ogk_real_t *A, size_t m, size_t n,
+                       const ogk_real_t *b, ogk_real_t *x)
 {
     ogk_status st;
 
@@ -1026,7 +1043,7 @@ ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
     if (st == OGK_OK) {
         size_t i;
         size_t j;
-        double rownorm_max = 0.0;
+        ogk_real_t rownorm_max = OGK_R(0.0);
         /* ws->qr = A^T (n x m): the long side is A's column count. */
         for (i = 0u; i < n; ++i) {
             for (j = 0u; j < m; ++j) {
@@ -1036,7 +1053,7 @@ ogk_status ogk_minnorm(ogk_qr_t *ws, const double *A, size_t m, size_t n,
         ws->long_dim = n;
         ws->short_dim = m;
         for (j = 0u; j < m; ++j) {
-            const double r = la_norm2(&A[j * n], n, 1u);
+            const ogk_real_t r = la_norm2(&A[j * n], n, 1u);
             if (r > rownorm_max) {
                 rownorm_max = r;
             }

@@ -5,7 +5,7 @@
 
 #include "../ogk_checks.h"
 
-ogk_status ogk_wrap_pi(double angle, double *wrapped)
+ogk_status ogk_wrap_pi(ogk_real_t angle, ogk_real_t *wrapped)
 {
     ogk_status st;
 
@@ -13,7 +13,7 @@ ogk_status ogk_wrap_pi(double angle, double *wrapped)
         st = OGK_E_NULL;
     } else if (!isfinite(angle)) {
         st = OGK_E_NONFINITE;
-    } else if (fabs(angle) > OGK_ANGLE_LIMIT) {
+    } else if (OGK_FABS(angle) > OGK_ANGLE_LIMIT) {
         st = OGK_E_RANGE;
     } else {
         *wrapped = ogk_i_wrap_pi(angle);

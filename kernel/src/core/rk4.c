@@ -9,7 +9,7 @@
 
 /* A step count within this relative slop of an integer is that integer:
  * (tf - t0) / h = 1000.0000000001 is 1000 steps, not 1001 with a sliver. */
-#define OGK_RK4_STEP_SLOP 1.0e-9
+#define OGK_RK4_STEP_SLOP OGK_R(1.0e-9)
 
 typedef struct {
     const ogk_rk4_problem_t *p;
@@ -23,9 +23,9 @@ static ogk_status check_problem(const ogk_rk4_problem_t *p)
         st = OGK_E_NULL;
     } else if ((p->n == 0u) || (p->n > OGK_RK4_MAX_STATE)) {
         st = OGK_E_DIM;
-    } else if ((!isfinite(p->h)) || (!(p->h > 0.0)) ||
+    } else if ((!isfinite(p->h)) || (!(p->h > OGK_R(0.0))) ||
                ((p->sw != NULL) &&
-                ((!isfinite(p->s_tol)) || (p->s_tol < 0.0) || (!isfinite(p->t_tol)) || (!(p->t_tol > 0.0))))) {
+                ((!isfinite(p->s_tol)) || (p->s_tol < OGK_R(0.0)) || (!isfinite(p->t_tol)) || (!(p->t_tol > OGK_R(0.0)))))) {
         st = OGK_E_RANGE;
     } else {
         st = OGK_OK;
@@ -35,16 +35,16 @@ static ogk_status check_problem(const ogk_rk4_problem_t *p)
 
 /* One RK4 step; x_next may alias x (written only once all four stages
  * succeeded). */
-static ogk_status step_raw(stepper_t *s, double t, const double *x, double dt,
-                           int mode, double *x_next)
+static ogk_status step_raw(stepper_t *s, ogk_real_t t, const ogk_real_t *x, ogk_real_t dt,
+                           int mode, ogk_real_t *x_next)
 {
-    double k1[OGK_RK4_MAX_STATE];
-    double k2[OGK_RK4_MAX_STATE];
-    double k3[OGK_RK4_MAX_STATE];
-    double k4[OGK_RK4_MAX_STATE];
-    double xs[OGK_RK4_MAX_STATE];
+    ogk_real_t k1[OGK_RK4_MAX_STATE];
+    ogk_real_t k2[OGK_RK4_MAX_STATE];
+    ogk_real_t k3[OGK_RK4_MAX_STATE];
+    ogk_real_t k4[OGK_RK4_MAX_STATE];
+    ogk_real_t xs[OGK_RK4_MAX_STATE];
     const size_t n = s->p->n;
-    const double half = 0.5 * dt;
+    const ogk_real_t half = OGK_R(0.5) * dt;
     ogk_status st = OGK_OK;
 
     s->n_rhs += 4u;
@@ -76,8 +76,8 @@ static ogk_status step_raw(stepper_t *s, double t, const double *x, double dt,
     return st;
 }
 
-ogk_status ogk_rk4_step(const ogk_rk4_problem_t *p, double t, const double *x,
-                        double dt, int mode, double *x_next)
+ogk_status ogk_rk4_step(const ogk_rk4_problem_t *p, ogk_real_t t, const ogk_real_t *x,
+                        ogk_real_t dt, int mode, ogk_real_t *x_next)
 {
     ogk_status st = check_problem(p);
 
@@ -86,7 +86,7 @@ ogk_status ogk_rk4_step(const ogk_rk4_problem_t *p, double t, const double *x,
             st = OGK_E_NULL;
         } else if (!isfinite(t) || !isfinite(dt) || !ogk_i_all_finite(x, p->n)) {
             st = OGK_E_NONFINITE;
-        } else if (dt == 0.0) {
+        } else if (dt == OGK_R(0.0)) {
             st = OGK_E_RANGE;
         } else {
             stepper_t s;
@@ -99,13 +99,13 @@ ogk_status ogk_rk4_step(const ogk_rk4_problem_t *p, double t, const double *x,
 }
 
 /* Sign of the switching function: +1, -1, or 0 at an exact zero. */
-static int switch_sign(double v)
+static int switch_sign(ogk_real_t v)
 {
-    return (v > 0.0) ? 1 : ((v < 0.0) ? -1 : 0);
+    return (v > OGK_R(0.0)) ? 1 : ((v < OGK_R(0.0)) ? -1 : 0);
 }
 
-static ogk_status eval_switch(const ogk_rk4_problem_t *p, double t,
-                              const double *x, int mode, double *sv)
+static ogk_status eval_switch(const ogk_rk4_problem_t *p, ogk_real_t t,
+                              const ogk_real_t *x, int mode, ogk_real_t *sv)
 {
     ogk_status st;
     if (p->sw(p->user, t, x, mode, sv) != OGK_OK) {
@@ -116,8 +116,8 @@ static ogk_status eval_switch(const ogk_rk4_problem_t *p, double t,
     return st;
 }
 
-static ogk_status dense_push(ogk_rk4_dense_t *d, size_t n, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, order of the RK4 step state; unit-tested */
-                             const double *x, int mode)
+static ogk_status dense_push(ogk_rk4_dense_t *d, size_t n, ogk_real_t t, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, order of the RK4 step state; unit-tested */
+                             const ogk_real_t *x, int mode)
 {
     ogk_status st = OGK_OK;
     if (d != NULL) {
@@ -137,20 +137,20 @@ static ogk_status dense_push(ogk_rk4_dense_t *d, size_t n, double t, /* NOLINT(b
 /* Locates the switch inside the sub-step [t, t + dt] whose end has S of sign
  * -side: bisection on the sub-step length, each trial one RK4 step from t.
  * On return *dt_s is the accepted sub-step, x_s the state there. */
-static ogk_status bisect_switch(stepper_t *s, double t, const double *x,
-                                double dt, int mode, int side, double *dt_s, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, order of the RK4 step state; unit-tested */
-                                double *x_s, ogk_switch_event_t *ev)
+static ogk_status bisect_switch(stepper_t *s, ogk_real_t t, const ogk_real_t *x,
+                                ogk_real_t dt, int mode, int side, ogk_real_t *dt_s, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, order of the RK4 step state; unit-tested */
+                                ogk_real_t *x_s, ogk_switch_event_t *ev)
 {
-    double lo = 0.0;
-    double hi = dt;
+    ogk_real_t lo = OGK_R(0.0);
+    ogk_real_t hi = dt;
     unsigned it;
     bool found = false; /* |S| <= s_tol at a trial point */
     ogk_status st = OGK_OK;
 
     ev->how = OGK_SWITCH_BY_TIME_TOL;
     for (it = 0u; (it < OGK_RK4_MAX_BISECTIONS) && (st == OGK_OK) && (!found); ++it) {
-        const double mid = lo + (0.5 * (hi - lo));
-        double s_mid = 0.0;
+        const ogk_real_t mid = lo + (OGK_R(0.5) * (hi - lo));
+        ogk_real_t s_mid = OGK_R(0.0);
         /* !(mid > lo && mid < hi) written by De Morgan (the same for NaN), so that
          * clang's MC/DC instruments the decision */
         if ((!(mid > lo)) || (!(mid < hi)) || ((hi - lo) <= s->p->t_tol)) {
@@ -162,7 +162,7 @@ static ogk_status bisect_switch(stepper_t *s, double t, const double *x,
         }
         if (st == OGK_OK) {
             ev->bisections = (uint16_t)(it + 1u);
-            if (fabs(s_mid) <= s->p->s_tol) {
+            if (OGK_FABS(s_mid) <= s->p->s_tol) {
                 ev->how = OGK_SWITCH_BY_S_TOL;
                 ev->s = s_mid;
                 *dt_s = mid;
@@ -185,8 +185,8 @@ static ogk_status bisect_switch(stepper_t *s, double t, const double *x,
     return st;
 }
 
-static void finish(ogk_rk4_result_t *res, const stepper_t *s, double t, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, order of the RK4 step state; unit-tested */
-                   int mode, const double *x, double *xf, size_t n)
+static void finish(ogk_rk4_result_t *res, const stepper_t *s, ogk_real_t t, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, order of the RK4 step state; unit-tested */
+                   int mode, const ogk_real_t *x, ogk_real_t *xf, size_t n)
 {
     res->n_rhs = s->n_rhs;
     res->t_reached = t;
@@ -196,8 +196,8 @@ static void finish(ogk_rk4_result_t *res, const stepper_t *s, double t, /* NOLIN
 
 /* The output pointers of ogk_rk4_propagate (dense optional, its buffers
  * required when it is given). */
-static ogk_status check_outputs(const double *x0, const ogk_rk4_result_t *res,
-                                const double *xf, const ogk_rk4_dense_t *dense)
+static ogk_status check_outputs(const ogk_real_t *x0, const ogk_rk4_result_t *res,
+                                const ogk_real_t *xf, const ogk_rk4_dense_t *dense)
 {
     ogk_status st;
     if ((x0 == NULL) || (res == NULL) || (xf == NULL) ||
@@ -211,11 +211,11 @@ static ogk_status check_outputs(const double *x0, const ogk_rk4_result_t *res,
 
 /* Checks the span and initial state of ogk_rk4_propagate and counts its grid
  * steps into *n_grid. */
-static ogk_status grid_steps(const ogk_rk4_problem_t *p, double t0, const double *x0, /* NOLINT(bugprone-easily-swappable-parameters): argument order of ogk_rk4_propagate */
-                             int mode0, double tf, size_t *n_grid)
+static ogk_status grid_steps(const ogk_rk4_problem_t *p, ogk_real_t t0, const ogk_real_t *x0, /* NOLINT(bugprone-easily-swappable-parameters): argument order of ogk_rk4_propagate */
+                             int mode0, ogk_real_t tf, size_t *n_grid)
 {
     ogk_status st;
-    double ratio = 0.0;
+    ogk_real_t ratio = OGK_R(0.0);
 
     if (!isfinite(t0) || !isfinite(tf) || !ogk_i_all_finite(x0, p->n)) {
         st = OGK_E_NONFINITE;
@@ -223,11 +223,11 @@ static ogk_status grid_steps(const ogk_rk4_problem_t *p, double t0, const double
         st = OGK_E_RANGE;
     } else {
         ratio = (tf - t0) / p->h;
-        st = (ratio <= (double)OGK_RK4_MAX_STEPS) ? OGK_OK : OGK_E_STEP_LIMIT;
+        st = (ratio <= (ogk_real_t)OGK_RK4_MAX_STEPS) ? OGK_OK : OGK_E_STEP_LIMIT;
     }
     if (st == OGK_OK) {
-        *n_grid = (size_t)floor(ratio);
-        if (((ratio - (double)*n_grid) > (OGK_RK4_STEP_SLOP * fmax(1.0, ratio))) || (*n_grid == 0u)) {
+        *n_grid = (size_t)OGK_FLOOR(ratio);
+        if (((ratio - (ogk_real_t)*n_grid) > (OGK_RK4_STEP_SLOP * OGK_FMAX(OGK_R(1.0), ratio))) || (*n_grid == 0u)) {
             *n_grid += 1u;
         }
     }
@@ -236,13 +236,13 @@ static ogk_status grid_steps(const ogk_rk4_problem_t *p, double t0, const double
 
 /* The integration of ogk_rk4_propagate over its n_grid grid steps, inputs
  * checked and res zeroed. */
-static ogk_status integrate(const ogk_rk4_problem_t *p, double t0,
-                            const double *x0, int mode0, double tf, size_t n_grid, /* NOLINT(bugprone-easily-swappable-parameters): argument order of ogk_rk4_propagate */
-                            ogk_rk4_result_t *res, double *xf, ogk_rk4_dense_t *dense)
+static ogk_status integrate(const ogk_rk4_problem_t *p, ogk_real_t t0,
+                            const ogk_real_t *x0, int mode0, ogk_real_t tf, size_t n_grid, /* NOLINT(bugprone-easily-swappable-parameters): argument order of ogk_rk4_propagate */
+                            ogk_rk4_result_t *res, ogk_real_t *xf, ogk_rk4_dense_t *dense)
 {
-    double x[OGK_RK4_MAX_STATE];
-    double x_end[OGK_RK4_MAX_STATE];
-    double t = t0;
+    ogk_real_t x[OGK_RK4_MAX_STATE];
+    ogk_real_t x_end[OGK_RK4_MAX_STATE];
+    ogk_real_t t = t0;
     size_t k;
     int mode = mode0;
     int side = 0;
@@ -253,7 +253,7 @@ static ogk_status integrate(const ogk_rk4_problem_t *p, double t0,
     s.n_rhs = 0u;
     (void)memcpy(x, x0, p->n * sizeof x[0]);
     if (p->sw != NULL) {
-        double s0 = 0.0;
+        ogk_real_t s0 = OGK_R(0.0);
         st = eval_switch(p, t, x, mode, &s0);
         if (st == OGK_OK) {
             side = switch_sign(s0);
@@ -265,12 +265,12 @@ static ogk_status integrate(const ogk_rk4_problem_t *p, double t0,
 
     for (k = 0u; (k < n_grid) && (st == OGK_OK); ++k) {
         const size_t k_next = k + 1u;
-        const double t_target = (k_next == n_grid) ? tf : (t0 + ((double)k_next * p->h));
+        const ogk_real_t t_target = (k_next == n_grid) ? tf : (t0 + ((ogk_real_t)k_next * p->h));
         bool done = false; /* t_target reached, or stopped on an error */
         size_t piece;
         /* One piece per located switch plus the last one: fixed bound. */
         for (piece = 0u; (piece <= OGK_RK4_MAX_SWITCHES) && (!done); ++piece) {
-            double s_end = 0.0;
+            ogk_real_t s_end = OGK_R(0.0);
             st = step_raw(&s, t, x, t_target - t, mode, x_end);
             if ((st == OGK_OK) && (p->sw != NULL)) {
                 st = eval_switch(p, t_target, x_end, mode, &s_end);
@@ -288,7 +288,7 @@ static ogk_status integrate(const ogk_rk4_problem_t *p, double t0,
                 done = true;
             } else {
                 ogk_switch_event_t ev;
-                double dt_s = 0.0;
+                ogk_real_t dt_s = OGK_R(0.0);
                 (void)memset(&ev, 0, sizeof ev); /* returns its destination */
                 st = bisect_switch(&s, t, x, t_target - t, mode, side, &dt_s, x_end, &ev);
                 if (st == OGK_OK) {
@@ -316,9 +316,9 @@ static ogk_status integrate(const ogk_rk4_problem_t *p, double t0,
     return st;
 }
 
-ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, double t0,
-                             const double *x0, int mode0, double tf,
-                             ogk_rk4_result_t *res, double *xf,
+ogk_status ogk_rk4_propagate(const ogk_rk4_problem_t *p, ogk_real_t t0,
+                             const ogk_real_t *x0, int mode0, ogk_real_t tf,
+                             ogk_rk4_result_t *res, ogk_real_t *xf,
                              ogk_rk4_dense_t *dense)
 {
     size_t n_grid = 0u;

@@ -27,6 +27,15 @@
  * below 2^31 so no intermediate overflows on 32-bit targets. */
 #define OGK_TABLE_MAX_VALUES 0x0FFFFFFFu
 
+/* Size in bytes of one payload value of this build's element type
+ * (OGK_TABLE_REAL), which is sizeof(ogk_real_t): ogk/status.h refuses a double
+ * that is not binary64, ogk/real.h a float that is not binary32. */
+#if OGK_REAL_SINGLE
+#define TABLE_VALUE_BYTES 4u
+#else
+#define TABLE_VALUE_BYTES 8u
+#endif
+
 static uint16_t get_u16(const uint8_t *p)
 {
     return (uint16_t)((uint16_t)p[0] | (uint16_t)((uint16_t)p[1] << 8));
@@ -38,10 +47,28 @@ static uint32_t get_u32(const uint8_t *p)
            ((uint32_t)p[3] << 24);
 }
 
-static double get_f64(const uint8_t *p)
+#if OGK_REAL_SINGLE
+/* One payload value of an F32 table, from its little-endian binary32 bytes. */
+static ogk_real_t get_value(const uint8_t *p)
+{
+    uint32_t bits = 0u;
+    ogk_real_t value;
+    unsigned i;
+    for (i = 0u; i < 4u; ++i) {
+        bits = (bits << 8u) | (uint32_t)p[3u - i];
+    }
+    /* The object representation of a binary32 from its bits: deviation D3
+     * (rule 21.15, docs/evidence/misra-deviations.md). memcpy returns its
+     * destination: nothing to check. */
+    (void)memcpy(&value, &bits, sizeof value);
+    return value;
+}
+#else
+/* One payload value of an F64 table, from its little-endian binary64 bytes. */
+static ogk_real_t get_value(const uint8_t *p)
 {
     uint64_t bits = 0u;
-    double value;
+    ogk_real_t value;
     unsigned i;
     for (i = 0u; i < 8u; ++i) {
         bits = (bits << 8u) | (uint64_t)p[7u - i];
@@ -52,6 +79,7 @@ static double get_f64(const uint8_t *p)
     (void)memcpy(&value, &bits, sizeof value);
     return value;
 }
+#endif
 
 /* Checks the dims against the caller's spec and computes their product. */
 static ogk_status check_dims(const uint8_t *hdr, const ogk_table_spec_t *spec,
@@ -109,8 +137,10 @@ static ogk_status check_header(const uint8_t *buf, size_t len,
             st = OGK_E_TABLE_CRC;
         } else if (get_u16(&buf[OFF_VERSION]) != OGK_TABLE_VERSION) {
             st = OGK_E_TABLE_VERSION;
-        } else if ((get_u16(&buf[OFF_ELEM_TYPE]) != OGK_TABLE_F64) ||
+        } else if ((get_u16(&buf[OFF_ELEM_TYPE]) != OGK_TABLE_REAL) ||
                    (get_u16(&buf[OFF_RESERVED]) != 0u)) {
+            /* the other precision's table (F64 in the float build, F32 in
+             * the double build) too: made for the other build */
             st = OGK_E_TABLE_TYPE;
         } else {
             v->kind = get_u32(&buf[OFF_KIND]);
@@ -121,7 +151,7 @@ static ogk_status check_header(const uint8_t *buf, size_t len,
 }
 
 /* Grid size, and the payload size against the dims (v->entry_len) and len;
- * *values = number of binary64 values in the payload. */
+ * *values = number of values in the payload. */
 static ogk_status check_sizes(const uint8_t *buf, size_t len, const ogk_table_spec_t *spec,
                               ogk_table_view_t *v, uint32_t *values)
 {
@@ -137,7 +167,8 @@ static ogk_status check_sizes(const uint8_t *buf, size_t len, const ogk_table_sp
     } else {
         const uint32_t payload_bytes = get_u32(&buf[OFF_PAYLOAD_BYTES]);
         *values = v->grid_size * (v->entry_len + 1u);
-        if ((*values > (OGK_TABLE_MAX_VALUES / 8u)) || (payload_bytes != (8u * *values))) {
+        if ((*values > (OGK_TABLE_MAX_VALUES / TABLE_VALUE_BYTES)) ||
+            (payload_bytes != (TABLE_VALUE_BYTES * *values))) {
             st = OGK_E_TABLE_SIZE;
         } else if ((len - OGK_TABLE_HEADER_SIZE) == (size_t)payload_bytes) {
             st = OGK_OK;
@@ -150,8 +181,8 @@ static ogk_status check_sizes(const uint8_t *buf, size_t len, const ogk_table_sp
     return st;
 }
 
-/* Payload CRC, then every value finite; the payload is `values` binary64
- * values, its length checked by check_sizes. */
+/* Payload CRC, then every value finite; the payload is `values` values of
+ * TABLE_VALUE_BYTES each, its length checked by check_sizes. */
 static ogk_status check_payload(const uint8_t *buf, uint32_t values)
 {
     const uint8_t *payload = &buf[OGK_TABLE_HEADER_SIZE];
@@ -160,12 +191,12 @@ static ogk_status check_payload(const uint8_t *buf, uint32_t values)
     uint32_t i;
 
     /* Cannot fail: crc is a local and payload is non-NULL. */
-    (void)ogk_crc32_update(&crc, payload, (size_t)8u * (size_t)values);
+    (void)ogk_crc32_update(&crc, payload, (size_t)TABLE_VALUE_BYTES * (size_t)values);
     if (crc != get_u32(&buf[OFF_PAYLOAD_CRC])) {
         st = OGK_E_TABLE_CRC;
     }
     for (i = 0u; (i < values) && (st == OGK_OK); ++i) {
-        if (!isfinite(get_f64(&payload[(size_t)8u * (size_t)i]))) {
+        if (!isfinite(get_value(&payload[(size_t)TABLE_VALUE_BYTES * (size_t)i]))) {
             st = OGK_E_NONFINITE;
         }
     }
@@ -216,7 +247,7 @@ ogk_status ogk_table_open(const uint8_t *buf, size_t len,
 }
 
 /* NULL and not-opened checks shared by the readers. */
-static ogk_status view_check(const ogk_table_view_t *view, const double *out)
+static ogk_status view_check(const ogk_table_view_t *view, const ogk_real_t *out)
 {
     ogk_status st;
     if ((view == NULL) || (out == NULL)) {
@@ -229,7 +260,7 @@ static ogk_status view_check(const ogk_table_view_t *view, const double *out)
     return st;
 }
 
-ogk_status ogk_table_read_grid(const ogk_table_view_t *view, double *grid_out,
+ogk_status ogk_table_read_grid(const ogk_table_view_t *view, ogk_real_t *grid_out,
                                size_t capacity)
 {
     ogk_status st = view_check(view, grid_out);
@@ -241,13 +272,13 @@ ogk_status ogk_table_read_grid(const ogk_table_view_t *view, double *grid_out,
         const uint8_t *grid = &view->buf[OGK_TABLE_HEADER_SIZE];
         uint32_t k;
         for (k = 0u; k < view->grid_size; ++k) {
-            grid_out[k] = get_f64(&grid[(size_t)8u * (size_t)k]);
+            grid_out[k] = get_value(&grid[(size_t)TABLE_VALUE_BYTES * (size_t)k]);
         }
     }
     return st;
 }
 
-ogk_status ogk_table_read_data(const ogk_table_view_t *view, double *data_out,
+ogk_status ogk_table_read_data(const ogk_table_view_t *view, ogk_real_t *data_out,
                                size_t capacity)
 {
     size_t count = 0u;
@@ -260,17 +291,17 @@ ogk_status ogk_table_read_data(const ogk_table_view_t *view, double *data_out,
         }
     }
     if (st == OGK_OK) {
-        const uint8_t *data = &view->buf[OGK_TABLE_HEADER_SIZE + ((size_t)8u * (size_t)view->grid_size)];
+        const uint8_t *data = &view->buf[OGK_TABLE_HEADER_SIZE + ((size_t)TABLE_VALUE_BYTES * (size_t)view->grid_size)];
         size_t i;
         for (i = 0u; i < count; ++i) {
-            data_out[i] = get_f64(&data[(size_t)8u * i]);
+            data_out[i] = get_value(&data[(size_t)TABLE_VALUE_BYTES * i]);
         }
     }
     return st;
 }
 
 ogk_status ogk_table_get(const ogk_table_view_t *view, uint32_t k,
-                         uint32_t index, double *value)
+                         uint32_t index, ogk_real_t *value)
 {
     ogk_status st = view_check(view, value);
 
@@ -279,8 +310,8 @@ ogk_status ogk_table_get(const ogk_table_view_t *view, uint32_t k,
     }
     if (st == OGK_OK) {
         const size_t offset = OGK_TABLE_HEADER_SIZE +
-            ((size_t)8u * ((size_t)view->grid_size + ((size_t)k * (size_t)view->entry_len) + (size_t)index));
-        *value = get_f64(&view->buf[offset]);
+            ((size_t)TABLE_VALUE_BYTES * ((size_t)view->grid_size + ((size_t)k * (size_t)view->entry_len) + (size_t)index));
+        *value = get_value(&view->buf[offset]);
     }
     return st;
 }
@@ -302,12 +333,30 @@ ogk_status ogk_table_check_f64_bytes(const uint8_t *bytes)
     return st;
 }
 
+#if OGK_REAL_SINGLE
 ogk_status ogk_table_check_in_place(void)
 {
-    static const double probe = OGK_TABLE_ORDER_PROBE;
+    /* OGK_TABLE_ORDER_PROBE as an F32 table stores it: the bits 0x40490FDB,
+     * least significant byte first. */
+    static const uint8_t probe_le[4] = {0xDBu, 0x0Fu, 0x49u, 0x40u};
+    static const ogk_real_t probe = OGK_TABLE_ORDER_PROBE;
+
+    /* The target's object representation of the probe, read through a
+     * character type (C99 6.2.6.1p4, 6.5p7; the exception of MISRA rule 11.3),
+     * compared over the element's 4 bytes: ogk/real.h makes float binary32,
+     * 4 bytes (the element size of an F32 table). */
+    return (memcmp((const uint8_t *)&probe, probe_le, sizeof probe_le) != 0) ? OGK_E_BYTE_ORDER
+                                                                            : OGK_OK;
+}
+#else
+ogk_status ogk_table_check_in_place(void)
+{
+    static const ogk_real_t probe = OGK_TABLE_ORDER_PROBE;
 
     /* The target's object representation of the probe, read through a
      * character type (C99 6.2.6.1p4, 6.5p7; the exception of MISRA rule 11.3);
-     * ogk/status.h makes double binary64, 8 bytes. */
+     * ogk/status.h makes double binary64, 8 bytes (the element size of an F64
+     * table). */
     return ogk_table_check_f64_bytes((const uint8_t *)&probe);
 }
+#endif

@@ -17,47 +17,48 @@
 
 /* Below this horizontal component (in a1-a2) of a unit vector its yaw is
  * undefined (the vector is along +-a3 to within 1e-12 rad). */
-#define CPD_YAW_EPS 1.0e-12
+#define CPD_YAW_EPS OGK_R(1.0e-12)
 
 /* Below this lateral component of the commanded direction in body axes the
- * pointing error's axis is undefined (pointing_error_body): 1e-300 rad is
- * zero for every purpose, and it keeps angle / lateral far from overflow. */
-#define CPD_LATERAL_MIN 1.0e-300
+ * pointing error's axis is undefined (pointing_error_body): 1e-300 rad
+ * (float build: 1e-30 rad; ogk/real.h) is zero for every purpose, and it keeps
+ * angle / lateral far from overflow. */
+#define CPD_LATERAL_MIN OGK_REAL_TINY
 
 /* Row-major 3x3 matrix (a struct, so const pointers to it are plain C99). */
 typedef struct {
-    double m[3][3];
+    ogk_real_t m[3][3];
 } mat3_t;
 
 /* ---------------------------------------------------------------- rotations */
 
 /* Elementary frame rotations (counterclockwise about axis 1, 2, 3):
  * [new]^T = R_i(t) [old]^T, so components transform as v_new = R_i(t) v_old. */
-static void rot1(double t, mat3_t *r)
+static void rot1(ogk_real_t t, mat3_t *r)
 {
-    const double c = cos(t);
-    const double s = sin(t);
-    r->m[0][0] = 1.0; r->m[0][1] = 0.0; r->m[0][2] = 0.0;
-    r->m[1][0] = 0.0; r->m[1][1] = c;   r->m[1][2] = s;
-    r->m[2][0] = 0.0; r->m[2][1] = -s;  r->m[2][2] = c;
+    const ogk_real_t c = OGK_COS(t);
+    const ogk_real_t s = OGK_SIN(t);
+    r->m[0][0] = OGK_R(1.0); r->m[0][1] = OGK_R(0.0); r->m[0][2] = OGK_R(0.0);
+    r->m[1][0] = OGK_R(0.0); r->m[1][1] = c;   r->m[1][2] = s;
+    r->m[2][0] = OGK_R(0.0); r->m[2][1] = -s;  r->m[2][2] = c;
 }
 
-static void rot2(double t, mat3_t *r)
+static void rot2(ogk_real_t t, mat3_t *r)
 {
-    const double c = cos(t);
-    const double s = sin(t);
-    r->m[0][0] = c;   r->m[0][1] = 0.0; r->m[0][2] = -s;
-    r->m[1][0] = 0.0; r->m[1][1] = 1.0; r->m[1][2] = 0.0;
-    r->m[2][0] = s;   r->m[2][1] = 0.0; r->m[2][2] = c;
+    const ogk_real_t c = OGK_COS(t);
+    const ogk_real_t s = OGK_SIN(t);
+    r->m[0][0] = c;   r->m[0][1] = OGK_R(0.0); r->m[0][2] = -s;
+    r->m[1][0] = OGK_R(0.0); r->m[1][1] = OGK_R(1.0); r->m[1][2] = OGK_R(0.0);
+    r->m[2][0] = s;   r->m[2][1] = OGK_R(0.0); r->m[2][2] = c;
 }
 
-static void rot3(double t, mat3_t *r)
+static void rot3(ogk_real_t t, mat3_t *r)
 {
-    const double c = cos(t);
-    const double s = sin(t);
-    r->m[0][0] = c;   r->m[0][1] = s;   r->m[0][2] = 0.0;
-    r->m[1][0] = -s;  r->m[1][1] = c;   r->m[1][2] = 0.0;
-    r->m[2][0] = 0.0; r->m[2][1] = 0.0; r->m[2][2] = 1.0;
+    const ogk_real_t c = OGK_COS(t);
+    const ogk_real_t s = OGK_SIN(t);
+    r->m[0][0] = c;   r->m[0][1] = s;   r->m[0][2] = OGK_R(0.0);
+    r->m[1][0] = -s;  r->m[1][1] = c;   r->m[1][2] = OGK_R(0.0);
+    r->m[2][0] = OGK_R(0.0); r->m[2][1] = OGK_R(0.0); r->m[2][2] = OGK_R(1.0);
 }
 
 /* out = a b (out must not alias a or b). */
@@ -74,7 +75,7 @@ static void mat_mul(const mat3_t *a, const mat3_t *b, mat3_t *out)
 }
 
 /* out = m v */
-static void mat_vec(const mat3_t *a, const double v[3], double out[3])
+static void mat_vec(const mat3_t *a, const ogk_real_t v[3], ogk_real_t out[3])
 {
     size_t i;
     for (i = 0u; i < 3u; ++i) {
@@ -83,7 +84,7 @@ static void mat_vec(const mat3_t *a, const double v[3], double out[3])
 }
 
 /* out = m^T v */
-static void mat_t_vec(const mat3_t *a, const double v[3], double out[3])
+static void mat_t_vec(const mat3_t *a, const ogk_real_t v[3], ogk_real_t out[3])
 {
     size_t i;
     for (i = 0u; i < 3u; ++i) {
@@ -93,9 +94,9 @@ static void mat_t_vec(const mat3_t *a, const double v[3], double out[3])
 
 /* N = R_A R3(-xi) R2(phi): [a]^T = N [r t n]^T (sec. 5.4), so a vector with
  * r-t-n components u has a components N u. R_A: a1 = c2, a2 = -c3, a3 = -c1. */
-static void a_from_rtn(double xi, double phi, mat3_t *n_out) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+static void a_from_rtn(ogk_real_t xi, ogk_real_t phi, mat3_t *n_out) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
-    static const mat3_t r_a = {{{0.0, 1.0, 0.0}, {0.0, 0.0, -1.0}, {-1.0, 0.0, 0.0}}};
+    static const mat3_t r_a = {{{OGK_R(0.0), OGK_R(1.0), OGK_R(0.0)}, {OGK_R(0.0), OGK_R(0.0), -OGK_R(1.0)}, {-OGK_R(1.0), OGK_R(0.0), OGK_R(0.0)}}};
     mat3_t r3;
     mat3_t r2;
     mat3_t c_from_rtn;
@@ -106,7 +107,7 @@ static void a_from_rtn(double xi, double phi, mat3_t *n_out) /* NOLINT(bugprone-
 }
 
 /* C = R1(Phi) R2(Theta) R3(Psi): body components = C a components (eq. 9). */
-static void body_from_a(double psi, double theta, double phi_roll, mat3_t *c_out) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+static void body_from_a(ogk_real_t psi, ogk_real_t theta, ogk_real_t phi_roll, mat3_t *c_out) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     mat3_t r1;
     mat3_t r2;
@@ -120,23 +121,23 @@ static void body_from_a(double psi, double theta, double phi_roll, mat3_t *c_out
 }
 
 /* Unit thrust direction in r-t-n from its angles (eqs. 39, 52). */
-static void rtn_direction(double alpha, double beta, double u[3])
+static void rtn_direction(ogk_real_t alpha, ogk_real_t beta, ogk_real_t u[3])
 {
-    const double cb = cos(beta);
-    u[0] = cb * sin(alpha);
-    u[1] = cb * cos(alpha);
-    u[2] = sin(beta);
+    const ogk_real_t cb = OGK_COS(beta);
+    u[0] = cb * OGK_SIN(alpha);
+    u[1] = cb * OGK_COS(alpha);
+    u[2] = OGK_SIN(beta);
 }
 
 /* ---------------------------------------------------------------- checks */
 
-static ogk_status check_angle(double angle)
+static ogk_status check_angle(ogk_real_t angle)
 {
     ogk_status st = OGK_OK;
 
     if (!isfinite(angle)) {
         st = OGK_E_NONFINITE;
-    } else if (fabs(angle) > OGK_CPD_ANGLE_LIMIT) {
+    } else if (OGK_FABS(angle) > OGK_CPD_ANGLE_LIMIT) {
         st = OGK_E_RANGE;
     } else {
         /* finite and inside the limit */
@@ -146,7 +147,7 @@ static ogk_status check_angle(double angle)
 
 /* First non-OK status of check_angle over n values (NONFINITE before RANGE:
  * the scan stops at the first non-finite value). */
-static ogk_status check_angles(const double *angles, size_t n)
+static ogk_status check_angles(const ogk_real_t *angles, size_t n)
 {
     ogk_status st = OGK_OK;
     size_t i;
@@ -159,9 +160,9 @@ static ogk_status check_angles(const double *angles, size_t n)
     return st;
 }
 
-static double saturate(double value, double limit, uint32_t flag, uint32_t *flags) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+static ogk_real_t saturate(ogk_real_t value, ogk_real_t limit, uint32_t flag, uint32_t *flags) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
-    double sat = value;
+    ogk_real_t sat = value;
 
     if (value > limit) {
         *flags |= flag;
@@ -178,17 +179,17 @@ static double saturate(double value, double limit, uint32_t flag, uint32_t *flag
 /* ---------------------------------------------------------------- geometry */
 
 /* Eqs. (38)-(39): yaw and pitch of a unit vector with a components t_a. */
-static void attitude_of_direction(const double t_a[3], double *psi_c, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
-                                  double *theta_c, bool *yaw_undefined)
+static void attitude_of_direction(const ogk_real_t t_a[3], ogk_real_t *psi_c, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+                                  ogk_real_t *theta_c, bool *yaw_undefined)
 {
-    const double horiz = hypot(t_a[0], t_a[1]);
+    const ogk_real_t horiz = OGK_HYPOT(t_a[0], t_a[1]);
     /* eq. (38): t_a = (cos Th cos Ps, cos Th sin Ps, -sin Th) */
-    *theta_c = atan2(-t_a[2], horiz);
+    *theta_c = OGK_ATAN2(-t_a[2], horiz);
     if (horiz < CPD_YAW_EPS) {
-        *psi_c = 0.0;
+        *psi_c = OGK_R(0.0);
         *yaw_undefined = true;
     } else {
-        *psi_c = atan2(t_a[1], t_a[0]);
+        *psi_c = OGK_ATAN2(t_a[1], t_a[0]);
         if (*psi_c <= -CPD_PI) {
             *psi_c = CPD_PI;
         }
@@ -202,40 +203,40 @@ static void attitude_of_direction(const double t_a[3], double *psi_c, /* NOLINT(
  * and yaw pointing errors. Near zero error they reduce to (-t_z, t_y), i.e.
  * (Theta_c - Theta, Psi_c - Psi) at zero roll; they never change sign with
  * the size of the error, and their magnitude is the true pointing angle. */
-static void pointing_error_body(const double t_b[3], double *err_y, double *err_z)
+static void pointing_error_body(const ogk_real_t t_b[3], ogk_real_t *err_y, ogk_real_t *err_z)
 {
-    const double lateral = hypot(t_b[1], t_b[2]);
-    const double angle = atan2(lateral, t_b[0]);
+    const ogk_real_t lateral = OGK_HYPOT(t_b[1], t_b[2]);
+    const ogk_real_t angle = OGK_ATAN2(lateral, t_b[0]);
     /* A subnormal lateral (direction behind to within 1e-308 rad) made
      * angle / lateral overflow (pi / 1e-310 = inf). Below CPD_LATERAL_MIN the
      * axis is as undefined as at zero; above it |t_b[i]| * angle / lateral
      * <= 3 pi 1e300 is finite even for EVA, which bounds each component of
      * the unit vector t_b only by 3 (docs/evidence/eva.md). */
     if (lateral >= CPD_LATERAL_MIN) {
-        const double scale = angle / lateral; /* -> 1 as the error -> 0 */
+        const ogk_real_t scale = angle / lateral; /* -> 1 as the error -> 0 */
         /* |t_b[i]| <= lateral, so each is within the angle <= pi: the clamp
          * only catches rounding, and tells EVA so. */
-        *err_y = fmin(fmax(-t_b[2] * scale, -CPD_PI), CPD_PI);
-        *err_z = fmin(fmax(t_b[1] * scale, -CPD_PI), CPD_PI);
-    } else if (t_b[0] >= 0.0) {
-        *err_y = 0.0;
-        *err_z = 0.0;
+        *err_y = OGK_FMIN(OGK_FMAX(-t_b[2] * scale, -CPD_PI), CPD_PI);
+        *err_z = OGK_FMIN(OGK_FMAX(t_b[1] * scale, -CPD_PI), CPD_PI);
+    } else if (t_b[0] >= OGK_R(0.0)) {
+        *err_y = OGK_R(0.0);
+        *err_z = OGK_R(0.0);
     } else {
         /* exactly behind: any axis normal to x_b turns the vehicle around;
          * pitch is chosen so the command is deterministic */
         *err_y = CPD_PI;
-        *err_z = 0.0;
+        *err_z = OGK_R(0.0);
     }
 }
 
 /* Commanded direction in a and body components. */
-static void commanded_direction(double psi, double theta, double phi_roll, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
-                                double alpha_c, double beta_c, double xi, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
-                                double phi, double t_a[3], double t_b[3])
+static void commanded_direction(ogk_real_t psi, ogk_real_t theta, ogk_real_t phi_roll, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+                                ogk_real_t alpha_c, ogk_real_t beta_c, ogk_real_t xi, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+                                ogk_real_t phi, ogk_real_t t_a[3], ogk_real_t t_b[3])
 {
     mat3_t n_a_rtn;
     mat3_t c_b_a;
-    double u_rtn[3];
+    ogk_real_t u_rtn[3];
     rtn_direction(alpha_c, beta_c, u_rtn);
     a_from_rtn(xi, phi, &n_a_rtn);
     mat_vec(&n_a_rtn, u_rtn, t_a);
@@ -246,28 +247,28 @@ static void commanded_direction(double psi, double theta, double phi_roll, /* NO
 /* Body-axis rate [rad/s] of the commanded direction between two steps,
  * (d_prev x d_now) / period in a components, rotated to body axes; only the
  * y and z components (the pointing loops) are returned, clipped in norm. */
-static void feedforward_rate(const ogk_cpd_t *ctx, const double t_a[3], double psi,
-                             double theta, double phi_roll, double *w_y, double *w_z)
+static void feedforward_rate(const ogk_cpd_t *ctx, const ogk_real_t t_a[3], ogk_real_t psi,
+                             ogk_real_t theta, ogk_real_t phi_roll, ogk_real_t *w_y, ogk_real_t *w_z)
 {
     const ogk_cpd_config_t *cfg = &ctx->cfg;
-    const double *p = ctx->dir_prev_a;
+    const ogk_real_t *p = ctx->dir_prev_a;
 
-    *w_y = 0.0;
-    *w_z = 0.0;
+    *w_y = OGK_R(0.0);
+    *w_z = OGK_R(0.0);
     /* Zero without a period or a previous direction. */
-    if ((cfg->ff_period_s > 0.0) && (ctx->has_prev != 0u)) {
-        double w_a[3];
-        double w_b[3];
-        double norm;
+    if ((cfg->ff_period_s > OGK_R(0.0)) && (ctx->has_prev != 0u)) {
+        ogk_real_t w_a[3];
+        ogk_real_t w_b[3];
+        ogk_real_t norm;
         mat3_t c_b_a;
         w_a[0] = ((p[1] * t_a[2]) - (p[2] * t_a[1])) / cfg->ff_period_s;
         w_a[1] = ((p[2] * t_a[0]) - (p[0] * t_a[2])) / cfg->ff_period_s;
         w_a[2] = ((p[0] * t_a[1]) - (p[1] * t_a[0])) / cfg->ff_period_s;
         body_from_a(psi, theta, phi_roll, &c_b_a);
         mat_vec(&c_b_a, w_a, w_b);
-        norm = hypot(w_b[1], w_b[2]);
+        norm = OGK_HYPOT(w_b[1], w_b[2]);
         if (norm > cfg->ff_rate_max) {
-            const double scale = (norm > 0.0) ? (cfg->ff_rate_max / norm) : 0.0;
+            const ogk_real_t scale = (norm > OGK_R(0.0)) ? (cfg->ff_rate_max / norm) : OGK_R(0.0);
             w_b[1] *= scale;
             w_b[2] *= scale;
         }
@@ -278,11 +279,11 @@ static void feedforward_rate(const ogk_cpd_t *ctx, const double t_a[3], double p
 
 /* ---------------------------------------------------------------- public */
 
-ogk_status ogk_cpd_commanded_attitude(double alpha_c, double beta_c, double xi,
-                                      double phi, double *psi_c,
-                                      double *theta_c)
+ogk_status ogk_cpd_commanded_attitude(ogk_real_t alpha_c, ogk_real_t beta_c, ogk_real_t xi,
+                                      ogk_real_t phi, ogk_real_t *psi_c,
+                                      ogk_real_t *theta_c)
 {
-    const double angles[4] = {alpha_c, beta_c, xi, phi};
+    const ogk_real_t angles[4] = {alpha_c, beta_c, xi, phi};
     ogk_status st;
 
     if ((psi_c == NULL) || (theta_c == NULL)) {
@@ -292,8 +293,8 @@ ogk_status ogk_cpd_commanded_attitude(double alpha_c, double beta_c, double xi,
     }
     if (st == OGK_OK) {
         mat3_t n_a_rtn;
-        double u_rtn[3];
-        double t_a[3];
+        ogk_real_t u_rtn[3];
+        ogk_real_t t_a[3];
         bool yaw_undefined;
         rtn_direction(alpha_c, beta_c, u_rtn);
         a_from_rtn(xi, phi, &n_a_rtn);
@@ -303,12 +304,12 @@ ogk_status ogk_cpd_commanded_attitude(double alpha_c, double beta_c, double xi,
     return st;
 }
 
-ogk_status ogk_cpd_thrust_angles(double psi, double theta, double phi_roll,
-                                 double xi, double phi, double delta_y,
-                                 double delta_z, double *alpha_a,
-                                 double *beta_a)
+ogk_status ogk_cpd_thrust_angles(ogk_real_t psi, ogk_real_t theta, ogk_real_t phi_roll,
+                                 ogk_real_t xi, ogk_real_t phi, ogk_real_t delta_y,
+                                 ogk_real_t delta_z, ogk_real_t *alpha_a,
+                                 ogk_real_t *beta_a)
 {
-    const double angles[7] = {psi, theta, phi_roll, xi, phi, delta_y, delta_z};
+    const ogk_real_t angles[7] = {psi, theta, phi_roll, xi, phi, delta_y, delta_z};
     ogk_status st;
 
     if ((alpha_a == NULL) || (beta_a == NULL)) {
@@ -320,32 +321,32 @@ ogk_status ogk_cpd_thrust_angles(double psi, double theta, double phi_roll,
         mat3_t n_a_rtn;
         mat3_t c_b_a;
         mat3_t c_b_rtn;
-        double d_b[3];
-        double t_rtn[3];
+        ogk_real_t d_b[3];
+        ogk_real_t t_rtn[3];
         /* eq. (50): deflected thrust direction in body axes */
-        d_b[0] = cos(delta_z) * cos(delta_y);
-        d_b[1] = sin(delta_z);
-        d_b[2] = cos(delta_z) * sin(delta_y);
+        d_b[0] = OGK_COS(delta_z) * OGK_COS(delta_y);
+        d_b[1] = OGK_SIN(delta_z);
+        d_b[2] = OGK_COS(delta_z) * OGK_SIN(delta_y);
         /* eqs. (49), (51): body components = C N (r-t-n components) */
         a_from_rtn(xi, phi, &n_a_rtn);
         body_from_a(psi, theta, phi_roll, &c_b_a);
         mat_mul(&c_b_a, &n_a_rtn, &c_b_rtn);
         mat_t_vec(&c_b_rtn, d_b, t_rtn);
         /* eq. (52): t_rtn = (cos b sin a, cos b cos a, sin b) */
-        *alpha_a = atan2(t_rtn[0], t_rtn[1]);
+        *alpha_a = OGK_ATAN2(t_rtn[0], t_rtn[1]);
         if (*alpha_a <= -CPD_PI) {
             *alpha_a = CPD_PI;
         }
-        *beta_a = atan2(t_rtn[2], hypot(t_rtn[0], t_rtn[1]));
+        *beta_a = OGK_ATAN2(t_rtn[2], OGK_HYPOT(t_rtn[0], t_rtn[1]));
     }
     return st;
 }
 
-ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll,
-                                       double alpha_c, double beta_c, double xi,
-                                       double phi, double *err_y, double *err_z)
+ogk_status ogk_cpd_pointing_error_body(ogk_real_t psi, ogk_real_t theta, ogk_real_t phi_roll,
+                                       ogk_real_t alpha_c, ogk_real_t beta_c, ogk_real_t xi,
+                                       ogk_real_t phi, ogk_real_t *err_y, ogk_real_t *err_z)
 {
-    const double angles[7] = {psi, theta, phi_roll, alpha_c, beta_c, xi, phi};
+    const ogk_real_t angles[7] = {psi, theta, phi_roll, alpha_c, beta_c, xi, phi};
     ogk_status st;
 
     if ((err_y == NULL) || (err_z == NULL)) {
@@ -354,8 +355,8 @@ ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll
         st = check_angles(angles, 7u);
     }
     if (st == OGK_OK) {
-        double t_a[3];
-        double t_b[3];
+        ogk_real_t t_a[3];
+        ogk_real_t t_b[3];
         commanded_direction(psi, theta, phi_roll, alpha_c, beta_c, xi, phi, t_a, t_b);
         pointing_error_body(t_b, err_y, err_z);
     }
@@ -364,7 +365,7 @@ ogk_status ogk_cpd_pointing_error_body(double psi, double theta, double phi_roll
 
 static bool config_finite(const ogk_cpd_config_t *cfg)
 {
-    const double v[18] = {cfg->k_px, cfg->k_dx, cfg->k_py, cfg->k_dy, cfg->k_pz,
+    const ogk_real_t v[18] = {cfg->k_px, cfg->k_dx, cfg->k_py, cfg->k_dy, cfg->k_pz,
                           cfg->k_dz, cfg->m_xc_max, cfg->delta_yc_max,
                           cfg->delta_zc_max, cfg->tau_x, cfg->tau_y, cfg->tau_z,
                           cfg->phi_c, cfg->approach_accel_x, cfg->approach_accel_y,
@@ -374,13 +375,13 @@ static bool config_finite(const ogk_cpd_config_t *cfg)
 
 /* The PD term of one axis, k_p e - k_d w, with the braking-curve cap of the
  * rate command k_p e / k_d when a > 0 (see ogk_cpd_config_t). */
-static double pd_term(double k_p, double k_d, double a, double err, double rate) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+static ogk_real_t pd_term(ogk_real_t k_p, ogk_real_t k_d, ogk_real_t a, ogk_real_t err, ogk_real_t rate) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
-    double rate_cmd = k_p * err / k_d;
-    if (a > 0.0) {
-        const double braking = sqrt(2.0 * a * fabs(err));
-        if (fabs(rate_cmd) > braking) {
-            rate_cmd = copysign(braking, err);
+    ogk_real_t rate_cmd = k_p * err / k_d;
+    if (a > OGK_R(0.0)) {
+        const ogk_real_t braking = OGK_SQRT(OGK_R(2.0) * a * OGK_FABS(err));
+        if (OGK_FABS(rate_cmd) > braking) {
+            rate_cmd = OGK_COPYSIGN(braking, err);
         }
     }
     return k_d * (rate_cmd - rate);
@@ -388,9 +389,9 @@ static double pd_term(double k_p, double k_d, double a, double err, double rate)
 
 /* Sec. 5.2: the linearised loop with a first-order actuator converges iff
  * k_d > k_p tau > 0 (Routh on tau s^3 + s^2 + G k_d s + G k_p). */
-static bool axis_ok(double k_p, double k_d, double tau, double limit)
+static bool axis_ok(ogk_real_t k_p, ogk_real_t k_d, ogk_real_t tau, ogk_real_t limit)
 {
-    return (k_p > 0.0) && (k_d > 0.0) && (tau > 0.0) && (limit > 0.0) &&
+    return (k_p > OGK_R(0.0)) && (k_d > OGK_R(0.0)) && (tau > OGK_R(0.0)) && (limit > OGK_R(0.0)) &&
            (k_d > (k_p * tau));
 }
 
@@ -399,25 +400,25 @@ static void config_default(ogk_cpd_config_t *cfg)
 {
     (void)memset(cfg, 0, sizeof(*cfg));
     /* eq. (54) and sec. 6 as printed (docs/design/cpd.md: pitch/yaw gain erratum) */
-    cfg->k_px = 21.6e3;
-    cfg->k_dx = 7.2e3;
-    cfg->k_py = 21.6;
-    cfg->k_dy = 7.2;
-    cfg->k_pz = 21.6;
-    cfg->k_dz = 7.2;
-    cfg->m_xc_max = 30.0;
-    cfg->delta_yc_max = 0.65 * CPD_PI / 180.0;
-    cfg->delta_zc_max = 0.65 * CPD_PI / 180.0;
-    cfg->tau_x = 0.1;
-    cfg->tau_y = 0.1;
-    cfg->tau_z = 0.1;
-    cfg->phi_c = 0.0;
+    cfg->k_px = OGK_R(21.6e3);
+    cfg->k_dx = OGK_R(7.2e3);
+    cfg->k_py = OGK_R(21.6);
+    cfg->k_dy = OGK_R(7.2);
+    cfg->k_pz = OGK_R(21.6);
+    cfg->k_dz = OGK_R(7.2);
+    cfg->m_xc_max = OGK_R(30.0);
+    cfg->delta_yc_max = OGK_R(0.65) * CPD_PI / OGK_R(180.0);
+    cfg->delta_zc_max = OGK_R(0.65) * CPD_PI / OGK_R(180.0);
+    cfg->tau_x = OGK_R(0.1);
+    cfg->tau_y = OGK_R(0.1);
+    cfg->tau_z = OGK_R(0.1);
+    cfg->phi_c = OGK_R(0.0);
     cfg->pointing = OGK_CPD_POINTING_BODY;
-    cfg->approach_accel_x = 0.0;
-    cfg->approach_accel_y = 0.0;
-    cfg->approach_accel_z = 0.0;
-    cfg->ff_period_s = 0.0;
-    cfg->ff_rate_max = 0.0;
+    cfg->approach_accel_x = OGK_R(0.0);
+    cfg->approach_accel_y = OGK_R(0.0);
+    cfg->approach_accel_z = OGK_R(0.0);
+    cfg->ff_period_s = OGK_R(0.0);
+    cfg->ff_rate_max = OGK_R(0.0);
 }
 
 /* The configuration checks of ogk_cpd_init, in their order. */
@@ -433,10 +434,10 @@ static ogk_status cpd_check_config(const ogk_cpd_config_t *cfg)
                 !axis_ok(cfg->k_py, cfg->k_dy, cfg->tau_y, cfg->delta_yc_max) ||
                 !axis_ok(cfg->k_pz, cfg->k_dz, cfg->tau_z, cfg->delta_zc_max)) ||
                /* roll command */
-               (fabs(cfg->phi_c) > CPD_PI) ||
+               (OGK_FABS(cfg->phi_c) > CPD_PI) ||
                /* braking curves and feed-forward */
-               ((cfg->approach_accel_x < 0.0) || (cfg->approach_accel_y < 0.0) ||
-                (cfg->approach_accel_z < 0.0) || (cfg->ff_period_s < 0.0) || (cfg->ff_rate_max < 0.0)) ||
+               ((cfg->approach_accel_x < OGK_R(0.0)) || (cfg->approach_accel_y < OGK_R(0.0)) ||
+                (cfg->approach_accel_z < OGK_R(0.0)) || (cfg->ff_period_s < OGK_R(0.0)) || (cfg->ff_rate_max < OGK_R(0.0))) ||
                /* pointing-error definition */
                ((cfg->pointing != OGK_CPD_POINTING_BODY) &&
                 (cfg->pointing != OGK_CPD_POINTING_EULER))) {
@@ -488,9 +489,9 @@ ogk_status ogk_cpd_reset(ogk_cpd_t *ctx)
     } else {
         (void)memset(&ctx->last, 0, sizeof(ctx->last));
         ctx->last.flags = OGK_CPD_FLAG_SAFE;
-        ctx->dir_prev_a[0] = 0.0;
-        ctx->dir_prev_a[1] = 0.0;
-        ctx->dir_prev_a[2] = 0.0;
+        ctx->dir_prev_a[0] = OGK_R(0.0);
+        ctx->dir_prev_a[1] = OGK_R(0.0);
+        ctx->dir_prev_a[2] = OGK_R(0.0);
         ctx->has_prev = 0u;
     }
     return st;
@@ -504,7 +505,7 @@ ogk_status ogk_cpd_input_from_thrust_cmd(ogk_cpd_input_t *in, const ogk_thrust_c
     if ((in == NULL) || (cmd == NULL) || (nav == NULL)) {
         st = OGK_E_NULL;
     } else {
-        double ab[2];
+        ogk_real_t ab[2];
         /* any law's command as r-t-n angles at the vehicle's position (ogk_thrust_cmd_to_rtn's
          * checks; no unit vector built) */
         st = ogk_i_thrust_cmd_rtn_direction(cmd, nav, ab, NULL);
@@ -523,15 +524,15 @@ ogk_status ogk_cpd_input_from_thrust_cmd(ogk_cpd_input_t *in, const ogk_thrust_c
 
 static void safe_command(ogk_cpd_output_t *out)
 {
-    out->m_xc = 0.0;
-    out->delta_yc = 0.0;
-    out->delta_zc = 0.0;
-    out->psi_c = 0.0;
-    out->theta_c = 0.0;
-    out->phi_c = 0.0;
-    out->err_x = 0.0;
-    out->err_y = 0.0;
-    out->err_z = 0.0;
+    out->m_xc = OGK_R(0.0);
+    out->delta_yc = OGK_R(0.0);
+    out->delta_zc = OGK_R(0.0);
+    out->psi_c = OGK_R(0.0);
+    out->theta_c = OGK_R(0.0);
+    out->phi_c = OGK_R(0.0);
+    out->err_x = OGK_R(0.0);
+    out->err_y = OGK_R(0.0);
+    out->err_z = OGK_R(0.0);
     out->flags = OGK_CPD_FLAG_SAFE;
 }
 
@@ -550,7 +551,7 @@ static void reject(ogk_cpd_t *ctx, ogk_cpd_output_t *out)
 /* The input checks of ogk_cpd_step: rates finite, angles checked. */
 static ogk_status cpd_check_input(const ogk_cpd_input_t *in)
 {
-    const double angles[7] = {in->psi, in->theta, in->phi_roll, in->alpha_c,
+    const ogk_real_t angles[7] = {in->psi, in->theta, in->phi_roll, in->alpha_c,
                               in->beta_c, in->xi, in->phi};
     ogk_status st;
     /* rates: only finiteness matters (a large rate saturates the command) */
@@ -567,13 +568,13 @@ static ogk_status cpd_check_input(const ogk_cpd_input_t *in)
 static ogk_status control_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in, ogk_cpd_output_t *out)
 {
     const ogk_cpd_config_t *cfg = &ctx->cfg;
-    double t_a[3];
-    double t_b[3];
-    double err_y;
-    double err_z;
-    double err_x;
-    double ff_y;
-    double ff_z;
+    ogk_real_t t_a[3];
+    ogk_real_t t_b[3];
+    ogk_real_t err_y;
+    ogk_real_t err_z;
+    ogk_real_t err_x;
+    ogk_real_t ff_y;
+    ogk_real_t ff_z;
     bool yaw_undefined;
     uint32_t flags = 0u;
     ogk_status st = OGK_OK;
@@ -586,7 +587,7 @@ static ogk_status control_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in, ogk_cp
     if (yaw_undefined) {
         flags |= OGK_CPD_FLAG_YAW_UNDEFINED;
     }
-    if (t_b[0] < 0.0) {
+    if (t_b[0] < OGK_R(0.0)) {
         flags |= OGK_CPD_FLAG_BEHIND;
     }
 
@@ -621,7 +622,7 @@ static ogk_status control_step(ogk_cpd_t *ctx, const ogk_cpd_input_t *in, ogk_cp
         /* Finite by construction for the gains met in practice (saturate
          * bounds the commands, atan2 and the wrap bound the angles); absurd
          * but finite gains with huge rates could still meet inf - inf. */
-        const double v[9] = {out->m_xc, out->delta_yc, out->delta_zc, out->psi_c,
+        const ogk_real_t v[9] = {out->m_xc, out->delta_yc, out->delta_zc, out->psi_c,
                              out->theta_c, out->phi_c, out->err_x, out->err_y, out->err_z};
         if (!ogk_i_all_finite(v, 9u)) {
             st = OGK_E_SAFE_COMMAND;

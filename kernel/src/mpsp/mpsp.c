@@ -11,25 +11,25 @@
 
 #define NX OGK_MPSP_NX
 #define NY OGK_MPSP_NY
-#define MPSP_TWO_PI 6.283185307179586476925286766559
+#define MPSP_TWO_PI OGK_R(6.283185307179586476925286766559)
 /* Same rule as ogk_rk4_propagate: a step count within this slop of an integer is that integer. */
-#define MPSP_STEP_SLOP 1.0e-9
+#define MPSP_STEP_SLOP OGK_R(1.0e-9)
 /* N_seg,tol levels tried by Algorithm 2 at most (N_seg,nom <= switches + 1, step >= 1). */
 #define MPSP_MAX_TOL_LEVELS (OGK_RK4_MAX_SWITCHES + 4u)
 
 /* Boundary conditions and parameters C of eq. (51). */
 typedef struct {
-    double x0[OGK_MPSP_NX0];
-    double r_f[3];
-    double v_f[3];
-    double thrust;
+    ogk_real_t x0[OGK_MPSP_NX0];
+    ogk_real_t r_f[3];
+    ogk_real_t v_f[3];
+    ogk_real_t thrust;
 } mpsp_cond_t;
 
 /* ------------------------------------------------------------------ configuration */
 
 static bool cfg_scalars_finite(const ogk_mpsp_config_t *cfg)
 {
-    const double s[] = {cfg->mu, cfg->t_max, cfg->c_exhaust, cfg->t0, cfg->tf,
+    const ogk_real_t s[] = {cfg->mu, cfg->t_max, cfg->c_exhaust, cfg->t0, cfg->tf,
                         cfg->fourier_period, cfg->fourier_t_ref, cfg->h_max, cfg->delta_max,
                         cfg->delta_tau_0, cfg->delta_tau_min, cfg->r_lambda, cfg->tol_r,
                         cfg->tol_v, cfg->tol_lambda_m, cfg->s_tol, cfg->lambda_m0_nom};
@@ -38,15 +38,15 @@ static bool cfg_scalars_finite(const ogk_mpsp_config_t *cfg)
            ogk_i_all_finite(cfg->v_f, 3u);
 }
 
-static size_t mpsp_grid_steps(double span, double h)
+static size_t mpsp_grid_steps(ogk_real_t span, ogk_real_t h)
 {
-    const double ratio = span / h;
+    const ogk_real_t ratio = span / h;
     size_t n;
-    if (!(ratio <= (double)OGK_MPSP_MAX_STEPS + 1.0)) {
+    if (!(ratio <= (ogk_real_t)OGK_MPSP_MAX_STEPS + OGK_R(1.0))) {
         n = OGK_MPSP_MAX_STEPS + 1u;
     } else {
-        n = (size_t)floor(ratio);
-        if (((ratio - (double)n) > (MPSP_STEP_SLOP * fmax(1.0, ratio))) || (n == 0u)) {
+        n = (size_t)OGK_FLOOR(ratio);
+        if (((ratio - (ogk_real_t)n) > (MPSP_STEP_SLOP * OGK_FMAX(OGK_R(1.0), ratio))) || (n == 0u)) {
             n += 1u;
         }
     }
@@ -65,7 +65,7 @@ static ogk_status check_config_weights(const ogk_mpsp_config_t *cfg)
     } else {
         size_t i;
         for (i = 0u; (i < n_weights) && (st == OGK_OK); ++i) {
-            if (!(cfg->r_eps[i] > 0.0)) {
+            if (!(cfg->r_eps[i] > OGK_R(0.0))) {
                 st = OGK_E_CONFIG;
             }
         }
@@ -76,19 +76,19 @@ static ogk_status check_config_weights(const ogk_mpsp_config_t *cfg)
 /* The range checks of check_config (every value already finite). */
 static ogk_status check_config_ranges(const ogk_mpsp_config_t *cfg)
 {
-    double r2;
+    ogk_real_t r2;
     ogk_status st = OGK_OK;
 
     r2 = (cfg->x0_nom[0] * cfg->x0_nom[0]) + (cfg->x0_nom[1] * cfg->x0_nom[1]) +
          (cfg->x0_nom[2] * cfg->x0_nom[2]);
-    if ((cfg->mu < 0.0) || !(cfg->t_max > 0.0) || !(cfg->c_exhaust > 0.0) ||
-        !(cfg->tf > cfg->t0) || !(cfg->fourier_period > 0.0) || !(cfg->h_max > 0.0) ||
-        !(cfg->delta_max > 0.0) || !(cfg->delta_tau_0 > 0.0) || (cfg->delta_tau_0 > 1.0) ||
-        (cfg->delta_tau_min < 0.0) || !(cfg->delta_tau_min < cfg->delta_tau_0) ||
-        !(cfg->r_lambda > 0.0) || !(cfg->tol_r > 0.0) || !(cfg->tol_v > 0.0) ||
-        !(cfg->tol_lambda_m > 0.0) || !(cfg->s_tol > 0.0) || (cfg->max_newton < 1u) ||
-        (cfg->max_outer < 1u) || (cfg->n_seg_tol_step < 1u) || !(cfg->x0_nom[6] > 0.0) ||
-        ((cfg->mu > 0.0) && (!(r2 > 0.0))) ||
+    if ((cfg->mu < OGK_R(0.0)) || !(cfg->t_max > OGK_R(0.0)) || !(cfg->c_exhaust > OGK_R(0.0)) ||
+        !(cfg->tf > cfg->t0) || !(cfg->fourier_period > OGK_R(0.0)) || !(cfg->h_max > OGK_R(0.0)) ||
+        !(cfg->delta_max > OGK_R(0.0)) || !(cfg->delta_tau_0 > OGK_R(0.0)) || (cfg->delta_tau_0 > OGK_R(1.0)) ||
+        (cfg->delta_tau_min < OGK_R(0.0)) || !(cfg->delta_tau_min < cfg->delta_tau_0) ||
+        !(cfg->r_lambda > OGK_R(0.0)) || !(cfg->tol_r > OGK_R(0.0)) || !(cfg->tol_v > OGK_R(0.0)) ||
+        !(cfg->tol_lambda_m > OGK_R(0.0)) || !(cfg->s_tol > OGK_R(0.0)) || (cfg->max_newton < 1u) ||
+        (cfg->max_outer < 1u) || (cfg->n_seg_tol_step < 1u) || !(cfg->x0_nom[6] > OGK_R(0.0)) ||
+        ((cfg->mu > OGK_R(0.0)) && (!(r2 > OGK_R(0.0)))) ||
         /* the dense trajectory would not fit */
         (mpsp_grid_steps(cfg->tf - cfg->t0, cfg->h_max) > OGK_MPSP_MAX_STEPS)) {
         st = OGK_E_CONFIG;
@@ -96,7 +96,7 @@ static ogk_status check_config_ranges(const ogk_mpsp_config_t *cfg)
         /* The basis phase omega (t - t_ref) must be finite over [t0, tf]: a period near the
          * smallest double or a far t_ref overflows it and the basis would be NaN (found by
          * tests/fuzz/fuzz_mpsp_init.c). */
-        const double omega = MPSP_TWO_PI / cfg->fourier_period;
+        const ogk_real_t omega = MPSP_TWO_PI / cfg->fourier_period;
         if (!isfinite(omega) || !isfinite(omega * (cfg->t0 - cfg->fourier_t_ref)) ||
             !isfinite(omega * (cfg->tf - cfg->fourier_t_ref))) {
             st = OGK_E_CONFIG;
@@ -135,16 +135,16 @@ static void config_defaults(ogk_mpsp_config_t *cfg)
      * must be set, and ogk_mpsp_init rejects it left at 0. */
     (void)memset(cfg, 0, sizeof *cfg);
     cfg->fourier_kind = OGK_MPSP_BASIS_FOURIER;
-    cfg->fourier_t_ref = 0.0;
+    cfg->fourier_t_ref = OGK_R(0.0);
     cfg->sens_sweep = OGK_MPSP_SWEEP_MID2; /* the second-order sweep: the same Newton iterations (+-1) on the 23 Apophis cases, 0.58x the instructions per iteration (docs/design/mpsp.md, section 8) */
-    cfg->delta_max = 1.0;       /* Delta_max of Alg. 1 */
-    cfg->delta_tau_0 = 0.5;     /* first continuation step of Alg. 2 */
-    cfg->delta_tau_min = 0.1;   /* the paper's 0.1 */
+    cfg->delta_max = OGK_R(1.0);       /* Delta_max of Alg. 1 */
+    cfg->delta_tau_0 = OGK_R(0.5);     /* first continuation step of Alg. 2 */
+    cfg->delta_tau_min = OGK_R(0.1);   /* the paper's 0.1 */
     for (i = 0u; i < (sizeof cfg->r_eps / sizeof cfg->r_eps[0]); ++i) {
-        cfg->r_eps[i] = 1.0;    /* R_eps = I (eq. 41) */
+        cfg->r_eps[i] = OGK_R(1.0);    /* R_eps = I (eq. 41) */
     }
-    cfg->r_lambda = 1.0;        /* R_lambda = 1 (eq. 41) */
-    cfg->s_tol = 1.0e-12;       /* the paper's switch tolerance */
+    cfg->r_lambda = OGK_R(1.0);        /* R_lambda = 1 (eq. 41) */
+    cfg->s_tol = OGK_R(1.0e-12);       /* the paper's switch tolerance */
     cfg->max_newton = 100u;
     cfg->max_outer = 50u;
     cfg->n_seg_tol = 0u;        /* the paper's initial N_seg,tol */
@@ -180,9 +180,9 @@ static ogk_status prepare(ogk_mpsp_t *ctx)
     ctx->n_steps = mpsp_grid_steps(cfg->tf - cfg->t0, cfg->h_max);
     ctx->omega = MPSP_TWO_PI / cfg->fourier_period;
     for (i = 0u; i < ctx->n_weights; ++i) {
-        ctx->inv_sqrt_r_eps[i] = 1.0 / sqrt(cfg->r_eps[i]);
+        ctx->inv_sqrt_r_eps[i] = OGK_R(1.0) / OGK_SQRT(cfg->r_eps[i]);
     }
-    ctx->inv_sqrt_r_lambda = 1.0 / sqrt(cfg->r_lambda);
+    ctx->inv_sqrt_r_lambda = OGK_R(1.0) / OGK_SQRT(cfg->r_lambda);
     ctx->init_marker = OGK_MPSP_INIT_MARKER;
     if (cfg->n_seg_nom == 0u) {
         ogk_mpsp_prop_t prop;
@@ -235,8 +235,8 @@ ogk_status ogk_mpsp_reset(ogk_mpsp_t *ctx)
 /* ------------------------------------------------------------------ Newton update */
 
 /* ogk_mpsp_newton_update on checked arguments. */
-static ogk_status newton_step(ogk_mpsp_t *ctx, const double *dy, double *weights, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the argument order of ogk_mpsp_newton_update, its only caller */
-                              double *lambda_m0)
+static ogk_status newton_step(ogk_mpsp_t *ctx, const ogk_real_t *dy, ogk_real_t *weights, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the argument order of ogk_mpsp_newton_update, its only caller */
+                              ogk_real_t *lambda_m0)
 {
     size_t nw;
     size_t nu;
@@ -257,7 +257,7 @@ static ogk_status newton_step(ogk_mpsp_t *ctx, const double *dy, double *weights
         ctx->newton_m[(r * nu) + nw] = ctx->dy_dlm0[r] * ctx->inv_sqrt_r_lambda;
     }
     /* ill-conditioned still gives the least-norm step: taken (newton.c) */
-    st = ogk_i_newton_minnorm(&ctx->qr, ctx->newton_m, NY, nu, 0.0, dy, NULL, ctx->newton_z, NULL);
+    st = ogk_i_newton_minnorm(&ctx->qr, ctx->newton_m, NY, nu, OGK_R(0.0), dy, NULL, ctx->newton_z, NULL);
     if (st == OGK_OK) {
         /* Eq. (46): epsilon_{j+1} = epsilon_j - d epsilon_j, same for lambda_m0. */
         for (i = 0u; i < nw; ++i) {
@@ -268,8 +268,8 @@ static ogk_status newton_step(ogk_mpsp_t *ctx, const double *dy, double *weights
     return st;
 }
 
-ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *weights,
-                                  double *lambda_m0)
+ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const ogk_real_t *dy, ogk_real_t *weights,
+                                  ogk_real_t *lambda_m0)
 {
     ogk_status st;
 
@@ -288,18 +288,18 @@ ogk_status ogk_mpsp_newton_update(ogk_mpsp_t *ctx, const double *dy, double *wei
 
 /* ------------------------------------------------------------------ loops */
 
-static double norm_n(const double *v, size_t n)
+static ogk_real_t norm_n(const ogk_real_t *v, size_t n)
 {
-    double s = 0.0;
+    ogk_real_t s = OGK_R(0.0);
     size_t i;
     for (i = 0u; i < n; ++i) {
         s += v[i] * v[i];
     }
-    return sqrt(s);
+    return OGK_SQRT(s);
 }
 
 /* Delta Y = Y(tf) - Y_d, Y_d = [r_f, v_f, 0]. */
-static void terminal_error(const mpsp_cond_t *cond, const double *x_f, double *dy)
+static void terminal_error(const mpsp_cond_t *cond, const ogk_real_t *x_f, ogk_real_t *dy)
 {
     size_t i;
     for (i = 0u; i < 3u; ++i) {
@@ -309,10 +309,10 @@ static void terminal_error(const mpsp_cond_t *cond, const double *x_f, double *d
     dy[6] = x_f[7];
 }
 
-static bool terminal_ok(const ogk_mpsp_config_t *cfg, const double *dy)
+static bool terminal_ok(const ogk_mpsp_config_t *cfg, const ogk_real_t *dy)
 {
     return (norm_n(dy, 3u) <= cfg->tol_r) && (norm_n(&dy[3], 3u) <= cfg->tol_v) &&
-           (fabs(dy[6]) <= cfg->tol_lambda_m);
+           (OGK_FABS(dy[6]) <= cfg->tol_lambda_m);
 }
 
 static uint32_t abs_diff_u32(uint32_t a, uint32_t b)
@@ -332,11 +332,11 @@ static uint32_t abs_diff_u32(uint32_t a, uint32_t b)
 /* Lines 6-14 of Algorithm 1 from the iterate weights / *lambda_m0 (in/out)
  * with terminal error dy of norm dy_norm: true when the updated iterate is
  * accepted (and taken), false when the inner loop gives up. */
-static bool newton_iteration(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, double *weights, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of inner_loop, its only caller, which is unit-tested */
-                             double *lambda_m0, const double *dy, double dy_norm, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of inner_loop, its only caller, which is unit-tested */
+static bool newton_iteration(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, ogk_real_t *weights, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of inner_loop, its only caller, which is unit-tested */
+                             ogk_real_t *lambda_m0, const ogk_real_t *dy, ogk_real_t dy_norm, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of inner_loop, its only caller, which is unit-tested */
                              uint32_t n_seg_tol, ogk_mpsp_prop_t *prop, ogk_mpsp_result_t *res)
 {
-    double lm_new = *lambda_m0;
+    ogk_real_t lm_new = *lambda_m0;
     bool accepted = false;
     ogk_status st;
 
@@ -364,11 +364,11 @@ static bool newton_iteration(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, double *w
     return accepted;
 }
 
-static bool inner_loop(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, double *weights,
-                       double *lambda_m0, uint32_t n_seg_tol, ogk_mpsp_prop_t *prop,
+static bool inner_loop(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, ogk_real_t *weights,
+                       ogk_real_t *lambda_m0, uint32_t n_seg_tol, ogk_mpsp_prop_t *prop,
                        ogk_mpsp_result_t *res)
 {
-    double dy[NY];
+    ogk_real_t dy[NY];
     uint32_t j;
     bool converged = false;
     bool stop;
@@ -383,7 +383,7 @@ static bool inner_loop(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, double *weights
             converged = true;
             stop = true;
         } else {
-            const double dy_norm = norm_n(dy, NY);
+            const ogk_real_t dy_norm = norm_n(dy, NY);
             if ((j == ctx->cfg.max_newton) || (!(dy_norm <= ctx->cfg.delta_max))) {
                 stop = true; /* line 5: too far for a Newton step */
             } else {
@@ -396,10 +396,10 @@ static bool inner_loop(ogk_mpsp_t *ctx, const mpsp_cond_t *cond, double *weights
 }
 
 /* C_tau = (1 - tau) C_nom + tau C_per (eq. 51). */
-static void blend(const mpsp_cond_t *nom, const mpsp_cond_t *per, double tau, mpsp_cond_t *out)
+static void blend(const mpsp_cond_t *nom, const mpsp_cond_t *per, ogk_real_t tau, mpsp_cond_t *out)
 {
     size_t i;
-    const double a = 1.0 - tau;
+    const ogk_real_t a = OGK_R(1.0) - tau;
     for (i = 0u; i < OGK_MPSP_NX0; ++i) {
         out->x0[i] = (a * nom->x0[i]) + (tau * per->x0[i]);
     }
@@ -428,25 +428,25 @@ static void fill_result(const ogk_mpsp_t *ctx, const mpsp_cond_t *cond,
         }
     } else {
         for (i = 0u; i < NY; ++i) {
-            res->dy[i] = HUGE_VAL;
+            res->dy[i] = OGK_REAL_HUGE_VAL;
         }
-        res->err_r = HUGE_VAL;
-        res->err_v = HUGE_VAL;
-        res->lambda_mf = HUGE_VAL;
-        res->m_f = 0.0;
+        res->err_r = OGK_REAL_HUGE_VAL;
+        res->err_v = OGK_REAL_HUGE_VAL;
+        res->lambda_mf = OGK_REAL_HUGE_VAL;
+        res->m_f = OGK_R(0.0);
     }
     res->n_weights = ctx->n_weights;
 }
 
 /* ogk_mpsp_solve on checked arguments. */
-static ogk_status solve_checked(ogk_mpsp_t *ctx, const double *x0, double thrust_scale,
-                                const double *target_rv, ogk_mpsp_result_t *res)
+static ogk_status solve_checked(ogk_mpsp_t *ctx, const ogk_real_t *x0, ogk_real_t thrust_scale,
+                                const ogk_real_t *target_rv, ogk_mpsp_result_t *res)
 {
     mpsp_cond_t per;
     mpsp_cond_t nom;
     mpsp_cond_t cur;
     ogk_mpsp_prop_t prop;
-    double lm_iter;
+    ogk_real_t lm_iter;
     uint32_t n_seg_tol;
     uint32_t level;
     bool solved;
@@ -479,7 +479,7 @@ static ogk_status solve_checked(ogk_mpsp_t *ctx, const double *x0, double thrust
     if (solved) {
         (void)memcpy(res->weights, ctx->w_iter, nw * sizeof res->weights[0]);
         res->lambda_m0 = lm_iter;
-        res->tau_reached = 1.0;
+        res->tau_reached = OGK_R(1.0);
     }
 
     /* Lines 6-27: continuation from C_nom, restarted from the nominal weights
@@ -490,13 +490,13 @@ static ogk_status solve_checked(ogk_mpsp_t *ctx, const double *x0, double thrust
                      (((int64_t)ctx->n_seg_nom - (int64_t)n_seg_tol) >= -1) &&
                      (res->outer_steps < ctx->cfg.max_outer);
          ++level) {
-        double tau_old = 0.0;
-        double dtau = ctx->cfg.delta_tau_0;
-        double tau = tau_old + dtau;
-        double lm_cont;
+        ogk_real_t tau_old = OGK_R(0.0);
+        ogk_real_t dtau = ctx->cfg.delta_tau_0;
+        ogk_real_t tau = tau_old + dtau;
+        ogk_real_t lm_cont;
         /* The continuation ends when dtau reaches 0 (tau = 1 reached) or at
          * the give-up rule of lines 17-19. */
-        bool cont_done = !(dtau > 0.0);
+        bool cont_done = !(dtau > OGK_R(0.0));
 
         (void)memcpy(ctx->w_cont, ctx->cfg.weights_nom, nw * sizeof ctx->w_cont[0]);
         lm_cont = ctx->cfg.lambda_m0_nom;
@@ -508,13 +508,13 @@ static ogk_status solve_checked(ogk_mpsp_t *ctx, const double *x0, double thrust
             res->outer_steps += 1u;
             ok = inner_loop(ctx, &cur, ctx->w_iter, &lm_iter, n_seg_tol, &prop, res);
             if (!ok) {
-                dtau *= 0.5; /* line 12 */
+                dtau *= OGK_R(0.5); /* line 12 */
             } else {
                 /* line 14 */
                 (void)memcpy(ctx->w_cont, ctx->w_iter, nw * sizeof ctx->w_cont[0]);
                 lm_cont = lm_iter;
                 tau_old = tau;
-                dtau = fmin(1.0 - tau, 2.0 * dtau);
+                dtau = OGK_FMIN(OGK_R(1.0) - tau, OGK_R(2.0) * dtau);
                 if (tau > res->tau_reached) {
                     /* best safe command so far */
                     res->tau_reached = tau;
@@ -523,15 +523,15 @@ static ogk_status solve_checked(ogk_mpsp_t *ctx, const double *x0, double thrust
                 }
             }
             /* line 16 (landing exactly on 1 for the closing step) */
-            tau = (dtau >= (1.0 - tau_old)) ? 1.0 : (tau_old + dtau);
+            tau = (dtau >= (OGK_R(1.0) - tau_old)) ? OGK_R(1.0) : (tau_old + dtau);
             /* lines 17-19: give up when the step needed is too small; a closing
              * step (dtau = 1 - tau_old) below delta_tau_min is still taken,
              * which is the paper's rule for delta_tau_0 = 0.5, whose tau are
              * multiples of 0.125. */
-            cont_done = ((dtau <= ctx->cfg.delta_tau_min) && (tau_old != 1.0) && (dtau < (1.0 - tau_old))) ||
-                        (!(dtau > 0.0));
+            cont_done = ((dtau <= ctx->cfg.delta_tau_min) && (tau_old != OGK_R(1.0)) && (dtau < (OGK_R(1.0) - tau_old))) ||
+                        (!(dtau > OGK_R(0.0)));
         }
-        if (tau_old == 1.0) {
+        if (tau_old == OGK_R(1.0)) {
             solved = true; /* lines 21-22: continuation reached C_per */
         } else {
             n_seg_tol += ctx->cfg.n_seg_tol_step; /* line 24 */
@@ -555,8 +555,8 @@ static ogk_status solve_checked(ogk_mpsp_t *ctx, const double *x0, double thrust
     return st;
 }
 
-ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale,
-                          const double *target_rv, ogk_mpsp_result_t *res)
+ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const ogk_real_t *x0, ogk_real_t thrust_scale,
+                          const ogk_real_t *target_rv, ogk_mpsp_result_t *res)
 {
     ogk_status st;
 
@@ -567,7 +567,7 @@ ogk_status ogk_mpsp_solve(ogk_mpsp_t *ctx, const double *x0, double thrust_scale
     } else if (!ogk_i_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale) ||
                ((target_rv != NULL) && (!ogk_i_all_finite(target_rv, 6u)))) {
         st = OGK_E_NONFINITE;
-    } else if (!(x0[6] > 0.0) || !(thrust_scale > 0.0)) {
+    } else if (!(x0[6] > OGK_R(0.0)) || !(thrust_scale > OGK_R(0.0))) {
         st = OGK_E_RANGE;
     } else {
         st = solve_checked(ctx, x0, thrust_scale, target_rv, res);

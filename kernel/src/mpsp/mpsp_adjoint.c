@@ -14,20 +14,20 @@
 /* The partials of eq. (16) at the four stage states of the RK4 step from x
  * (ogk_rk4_step's stages, same arithmetic); uv[0..2] is U at t, t + dt/2,
  * t + dt, used by stages 1, 2-3 and 4. */
-static ogk_status stage_partials(const ogk_i_mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static ogk_status stage_partials(const ogk_i_mpsp_dyn_t *dyn, const ogk_real_t *x, ogk_real_t dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                                  const ogk_i_mpsp_uval_t *uv, ogk_i_mpsp_stage_t *sd)
 {
     static const size_t stage_u[4] = {0u, 1u, 1u, 2u};
-    double xs[NX];
-    double k[NX];
-    const double half = 0.5 * dt;
+    ogk_real_t xs[NX];
+    ogk_real_t k[NX];
+    const ogk_real_t half = OGK_R(0.5) * dt;
     size_t s;
     ogk_status st = OGK_OK;
 
     (void)memcpy(xs, x, sizeof xs);
     for (s = 0u; (s < 4u) && (st == OGK_OK); ++s) {
         if (s < 3u) {
-            const double step = (s == 2u) ? dt : half;
+            const ogk_real_t step = (s == 2u) ? dt : half;
             st = ogk_i_mpsp_stage_eval(dyn, xs, &uv[stage_u[s]], mode, k, &sd[s]);
             ogk_i_rk4_stage_state(x, step, k, NX, xs);
         } else {
@@ -41,18 +41,18 @@ static ogk_status stage_partials(const ogk_i_mpsp_dyn_t *dyn, const double *x, d
  * z_lm = zl: bx = (z A_s)_r = G z_v, b = z D_s (thrust only); returns
  * (z A_s)_m = a_vm z_v.e + a_lm z_lm, 0 in coast (a_vm = a_lm = 0 there).
  * A and D as in reverse_row; lane 0 of the partials (ogk_i_mpsp_stage_t). */
-static inline double stage_back(const ogk_i_mpsp_stage_t *p, const double *zv, double zl, bool thrust, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                         double *bx, double *b)
+static inline ogk_real_t stage_back(const ogk_i_mpsp_stage_t *p, const ogk_real_t *zv, ogk_real_t zl, bool thrust, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                         ogk_real_t *bx, ogk_real_t *b)
 {
-    const double *g = p->g;
-    double ret = 0.0;
+    const ogk_real_t *g = p->g;
+    ogk_real_t ret = OGK_R(0.0);
     bx[0] = (zv[0] * g[0]) + (zv[1] * g[MPSP_SL]) + (zv[2] * g[2u * MPSP_SL]);
     bx[1] = (zv[0] * g[MPSP_SL]) + (zv[1] * g[3u * MPSP_SL]) + (zv[2] * g[4u * MPSP_SL]);
     bx[2] = (zv[0] * g[2u * MPSP_SL]) + (zv[1] * g[4u * MPSP_SL]) + (zv[2] * g[5u * MPSP_SL]);
     if (thrust) {
-        const double *e = p->e;
-        const double ze = (zv[0] * e[0]) + (zv[1] * e[MPSP_SL]) + (zv[2] * e[2u * MPSP_SL]);
-        const double alpha = (p->d_l[0] * zl) - (p->d_v[0] * ze);
+        const ogk_real_t *e = p->e;
+        const ogk_real_t ze = (zv[0] * e[0]) + (zv[1] * e[MPSP_SL]) + (zv[2] * e[2u * MPSP_SL]);
+        const ogk_real_t alpha = (p->d_l[0] * zl) - (p->d_v[0] * ze);
         b[0] = (p->d_v[0] * zv[0]) + (alpha * e[0]);
         b[1] = (p->d_v[0] * zv[1]) + (alpha * e[MPSP_SL]);
         b[2] = (p->d_v[0] * zv[2]) + (alpha * e[2u * MPSP_SL]);
@@ -79,22 +79,29 @@ static inline double stage_back(const ogk_i_mpsp_stage_t *p, const double *zv, d
  *   (bK1)_v = dt/6 w_v + dt/2 (dt/3 w_r + dt/2 (bX3)_r).
  * b_start, b_mid, b_end (3 each) receive w dX_next/dU at t, t + dt/2 and
  * t + dt in thrust. w_out may be w. */
-static void reverse_row(const ogk_i_mpsp_stage_t *sd, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                        double *w_out, double *b_start, double *b_mid, double *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void reverse_row(const ogk_i_mpsp_stage_t *sd, ogk_real_t dt, bool thrust, const ogk_real_t *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                        ogk_real_t *w_out, ogk_real_t *b_start, ogk_real_t *b_mid, ogk_real_t *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
-    const double half = 0.5 * dt;
-    const double c6 = dt / 6.0;
-    const double c3 = dt / 3.0;
-    double zv[3];
-    double bx4[3];
-    double bx3[3];
-    double bx[3];
-    double b[3];
-    double bm[3];
-    double ar[3];
-    double av[3];
-    double zr2[3];
-    double am;
+    const ogk_real_t half = OGK_R(0.5) * dt;
+    const ogk_real_t c6 = dt / OGK_R(6.0);
+    const ogk_real_t c3 = dt / OGK_R(3.0);
+    ogk_real_t zv[3];
+    ogk_real_t bx4[3];
+    ogk_real_t bx3[3];
+    ogk_real_t bx[3];
+    ogk_real_t b[3];
+#if OGK_REAL_SINGLE
+    /* Written by stage 3 and read at stage 2, both only in thrust: gcc 12's
+     * -O2 of the float build (x86-64) does not see it (-Wmaybe-uninitialized).
+     * Not in the double build, whose object code stays as it was. */
+    ogk_real_t bm[3] = {OGK_R(0.0), OGK_R(0.0), OGK_R(0.0)};
+#else
+    ogk_real_t bm[3];
+#endif
+    ogk_real_t ar[3];
+    ogk_real_t av[3];
+    ogk_real_t zr2[3];
+    ogk_real_t am;
 
     /* stage 4: (bK4)_v = dt/6 w_v */
     zv[0] = c6 * w[3];
@@ -166,12 +173,12 @@ static void reverse_row(const ogk_i_mpsp_stage_t *sd, double dt, bool thrust, co
  * every stage, so bX_r = 0, the row keeps w_r = w_v = 0 and
  *   (w dX_next/dX)_m = w_m + sum_s a_lm,s z_lm,s,   w dX_next/dU_s = d_l,s z_lm,s e_s,
  * the same numbers as reverse_row gives with z_v = 0. */
-static void reverse_row_mass(const ogk_i_mpsp_stage_t *sd, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                             double *w_out, double *b_start, double *b_mid, double *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void reverse_row_mass(const ogk_i_mpsp_stage_t *sd, ogk_real_t dt, bool thrust, const ogk_real_t *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                             ogk_real_t *w_out, ogk_real_t *b_start, ogk_real_t *b_mid, ogk_real_t *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
-    const double z6 = (dt / 6.0) * w[7];
-    const double z3 = (dt / 3.0) * w[7];
-    double am = w[6] + (sd[3].a_lm[0] * z6);
+    const ogk_real_t z6 = (dt / OGK_R(6.0)) * w[7];
+    const ogk_real_t z3 = (dt / OGK_R(3.0)) * w[7];
+    ogk_real_t am = w[6] + (sd[3].a_lm[0] * z6);
 
     am += sd[2].a_lm[0] * z3;
     am += sd[1].a_lm[0] * z3;
@@ -185,12 +192,12 @@ static void reverse_row_mass(const ogk_i_mpsp_stage_t *sd, double dt, bool thrus
             b_start[i] = (sd[0].d_l[0] * z6) * sd[0].e[j];
         }
     }
-    w_out[0] = 0.0;
-    w_out[1] = 0.0;
-    w_out[2] = 0.0;
-    w_out[3] = 0.0;
-    w_out[4] = 0.0;
-    w_out[5] = 0.0;
+    w_out[0] = OGK_R(0.0);
+    w_out[1] = OGK_R(0.0);
+    w_out[2] = OGK_R(0.0);
+    w_out[3] = OGK_R(0.0);
+    w_out[4] = OGK_R(0.0);
+    w_out[5] = OGK_R(0.0);
     w_out[6] = am;
     w_out[7] = w[7];
 }
@@ -202,12 +209,12 @@ static void reverse_row_mass(const ogk_i_mpsp_stage_t *sd, double dt, bool thrus
  * output is written (no aliasing to assume), and each statement is a loop
  * over the lanes, so that gcc -O2 on x86-64 carries a pair in one SSE2
  * register (SLP); the partials are read as pairs (MPSP_SL = 2). */
-static void stage_back2(const ogk_i_mpsp_stage_t *p, const double *zv_in, const double *zl_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                        bool thrust, double *bx_out, double *b_out, double *ret) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void stage_back2(const ogk_i_mpsp_stage_t *p, const ogk_real_t *zv_in, const ogk_real_t *zl_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                        bool thrust, ogk_real_t *bx_out, ogk_real_t *b_out, ogk_real_t *ret) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
-    const double *g = p->g;
-    double zv[6];
-    double bx[6];
+    const ogk_real_t *g = p->g;
+    ogk_real_t zv[6];
+    ogk_real_t bx[6];
     size_t l;
 
     for (l = 0u; l < 2u; ++l) {
@@ -221,16 +228,16 @@ static void stage_back2(const ogk_i_mpsp_stage_t *p, const double *zv_in, const 
         bx[4u + l] = (zv[l] * g[4u + l]) + (zv[2u + l] * g[8u + l]) + (zv[4u + l] * g[10u + l]);
     }
     if (thrust) {
-        const double *e = p->e;
-        double zl[2];
-        double ze[2];
-        double r[2];
-        double b[6];
+        const ogk_real_t *e = p->e;
+        ogk_real_t zl[2];
+        ogk_real_t ze[2];
+        ogk_real_t r[2];
+        ogk_real_t b[6];
         for (l = 0u; l < 2u; ++l) {
             zl[l] = zl_in[l];
         }
         for (l = 0u; l < 2u; ++l) {
-            double alpha;
+            ogk_real_t alpha;
             ze[l] = (zv[l] * e[l]) + (zv[2u + l] * e[2u + l]) + (zv[4u + l] * e[4u + l]);
             alpha = (p->d_l[l] * zl[l]) - (p->d_v[l] * ze[l]);
             b[l] = (p->d_v[l] * zv[l]) + (alpha * e[l]);
@@ -242,20 +249,20 @@ static void stage_back2(const ogk_i_mpsp_stage_t *p, const double *zv_in, const 
         ret[0] = r[0];
         ret[1] = r[1];
     } else { /* a_vm = a_lm = 0 in coast */
-        ret[0] = 0.0;
-        ret[1] = 0.0;
+        ret[0] = OGK_R(0.0);
+        ret[1] = OGK_R(0.0);
     }
     (void)memcpy(bx_out, bx, sizeof bx);
 }
 
 /* Two adjoint rows w_in[0..7], w_in[8..15] into lanes: component i of row l
  * at w[i * 2 + l], the layout of the paired passes below. */
-static inline void rows2_to_lanes(const double *w_in, double *w)
+static inline void rows2_to_lanes(const ogk_real_t *w_in, ogk_real_t *w)
 {
     size_t l;
 
     for (l = 0u; l < 2u; ++l) {
-        const double *wl = &w_in[l * NX];
+        const ogk_real_t *wl = &w_in[l * NX];
         w[l] = wl[0];
         w[2u + l] = wl[1];
         w[4u + l] = wl[2];
@@ -272,27 +279,27 @@ static inline void rows2_to_lanes(const double *w_in, double *w)
  * same numbers to the bit. w_out (2 rows, may be w_in) and b_start, b_mid,
  * b_end (2 rows of 3 each) are written after every input is read. Component
  * i of row l is held at [i * 2 + l]; each loop runs over the two lanes. */
-static void reverse_rows2(const ogk_i_mpsp_stage_t *sd, double dt, bool thrust, const double *w_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                          double *w_out, double *b_start, double *b_mid, double *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void reverse_rows2(const ogk_i_mpsp_stage_t *sd, ogk_real_t dt, bool thrust, const ogk_real_t *w_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                          ogk_real_t *w_out, ogk_real_t *b_start, ogk_real_t *b_mid, ogk_real_t *b_end) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
-    const double half = 0.5 * dt;
-    const double c6 = dt / 6.0;
-    const double c3 = dt / 3.0;
-    double w[NX * 2u];
-    double zv[6];
-    double zl[2];
-    double bx4[6];
-    double bx3[6];
-    double bx[6];
-    double b[6];
-    double bm[6];
-    double bs[6];
-    double be[6];
-    double ar[6];
-    double av[6];
-    double zr2[6];
-    double am[2];
-    double ret[2];
+    const ogk_real_t half = OGK_R(0.5) * dt;
+    const ogk_real_t c6 = dt / OGK_R(6.0);
+    const ogk_real_t c3 = dt / OGK_R(3.0);
+    ogk_real_t w[NX * 2u];
+    ogk_real_t zv[6];
+    ogk_real_t zl[2];
+    ogk_real_t bx4[6];
+    ogk_real_t bx3[6];
+    ogk_real_t bx[6];
+    ogk_real_t b[6];
+    ogk_real_t bm[6];
+    ogk_real_t bs[6];
+    ogk_real_t be[6];
+    ogk_real_t ar[6];
+    ogk_real_t av[6];
+    ogk_real_t zr2[6];
+    ogk_real_t am[2];
+    ogk_real_t ret[2];
     size_t l;
 
     rows2_to_lanes(w_in, w);
@@ -360,7 +367,7 @@ static void reverse_rows2(const ogk_i_mpsp_stage_t *sd, double dt, bool thrust, 
     stage_back2(&sd[0], zv, zl, thrust, bx, bs, ret);
     /* w dX_next/dX = w + bX1 + bX2 + bX3 + bX4, (bX)_v = (bK)_r; lambda_m passes */
     for (l = 0u; l < 2u; ++l) {
-        double *wo = &w_out[l * NX];
+        ogk_real_t *wo = &w_out[l * NX];
         wo[0] = ar[l] + bx[l];
         wo[1] = ar[2u + l] + bx[2u + l];
         wo[2] = ar[4u + l] + bx[4u + l];
@@ -388,16 +395,16 @@ static void reverse_rows2(const ogk_i_mpsp_stage_t *sd, double dt, bool thrust, 
 #endif /* __SSE2__ */
 
 /* A row of m and lambda_m only (that of lambda_m(tf)): it stays so. */
-static bool mass_only_row(const double *w)
+static bool mass_only_row(const ogk_real_t *w)
 {
-    return (w[0] == 0.0) && (w[1] == 0.0) && (w[2] == 0.0) && (w[3] == 0.0) && (w[4] == 0.0) &&
-           (w[5] == 0.0);
+    return (w[0] == OGK_R(0.0)) && (w[1] == OGK_R(0.0)) && (w[2] == OGK_R(0.0)) && (w[3] == OGK_R(0.0)) && (w[4] == OGK_R(0.0)) &&
+           (w[5] == OGK_R(0.0));
 }
 
-ogk_status ogk_i_mpsp_step_adjoint(const ogk_i_mpsp_dyn_t *dyn, const double *x, double dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+ogk_status ogk_i_mpsp_step_adjoint(const ogk_i_mpsp_dyn_t *dyn, const ogk_real_t *x, ogk_real_t dt, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                              const ogk_i_mpsp_uval_t *uv, bool pair_rows, size_t n_rows,
-                             const double *adj_in, double *adj_out, double *bu_start, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                             double *bu_mid, double *bu_end)
+                             const ogk_real_t *adj_in, ogk_real_t *adj_out, ogk_real_t *bu_start, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                             ogk_real_t *bu_mid, ogk_real_t *bu_end)
 {
     ogk_i_mpsp_stage_t sd[4];
     const ogk_status st = stage_partials(dyn, x, dt, mode, uv, sd);
@@ -406,7 +413,7 @@ ogk_status ogk_i_mpsp_step_adjoint(const ogk_i_mpsp_dyn_t *dyn, const double *x,
         const bool thrust = (mode == 1);
         size_t r = 0u;
         while (r < n_rows) {
-            const double *w = &adj_in[r * NX];
+            const ogk_real_t *w = &adj_in[r * NX];
             size_t n_done = 1u;
             if (mass_only_row(w)) {
                 reverse_row_mass(sd, dt, thrust, w, &adj_out[r * NX], &bu_start[r * 3u],
@@ -441,15 +448,15 @@ ogk_status ogk_i_mpsp_step_adjoint(const ogk_i_mpsp_dyn_t *dyn, const double *x,
  * Phi agrees with the step's transition to O(dt^3) (Magnus at the midpoint)
  * and b with the step's integral of w Phi(t_next, s) D(s) dU(s) to O(dt^3):
  * O(dt^2) over the arc. w_out may be w. */
-static void mid2_row(const ogk_i_mpsp_stage_t *p, double dt, bool thrust, const double *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
-                     double *w_out, double *b) /* NOLINT(bugprone-easily-swappable-parameters): row out, its control sensitivity; unit-tested against the exact sweep */
+static void mid2_row(const ogk_i_mpsp_stage_t *p, ogk_real_t dt, bool thrust, const ogk_real_t *w, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
+                     ogk_real_t *w_out, ogk_real_t *b) /* NOLINT(bugprone-easily-swappable-parameters): row out, its control sensitivity; unit-tested against the exact sweep */
 {
-    const double *g = p->g;
-    const double hh = 0.5 * dt * dt;
-    double gv[3];
-    double gr[3];
-    double wm = w[6];
-    const double wlm = w[7];
+    const ogk_real_t *g = p->g;
+    const ogk_real_t hh = OGK_R(0.5) * dt * dt;
+    ogk_real_t gv[3];
+    ogk_real_t gr[3];
+    ogk_real_t wm = w[6];
+    const ogk_real_t wlm = w[7];
 
     gv[0] = (w[3] * g[0]) + (w[4] * g[MPSP_SL]) + (w[5] * g[2u * MPSP_SL]);
     gv[1] = (w[3] * g[MPSP_SL]) + (w[4] * g[3u * MPSP_SL]) + (w[5] * g[4u * MPSP_SL]);
@@ -458,23 +465,23 @@ static void mid2_row(const ogk_i_mpsp_stage_t *p, double dt, bool thrust, const 
     gr[1] = (w[0] * g[MPSP_SL]) + (w[1] * g[3u * MPSP_SL]) + (w[2] * g[4u * MPSP_SL]);
     gr[2] = (w[0] * g[2u * MPSP_SL]) + (w[1] * g[4u * MPSP_SL]) + (w[2] * g[5u * MPSP_SL]);
     if (thrust) {
-        const double *e = p->e;
-        const double half = 0.5 * dt;
-        const double ve = (w[3] * e[0]) + (w[4] * e[MPSP_SL]) + (w[5] * e[2u * MPSP_SL]);
-        const double re = (w[0] * e[0]) + (w[1] * e[MPSP_SL]) + (w[2] * e[2u * MPSP_SL]);
-        const double zl = dt * wlm;
-        const double ze = dt * (ve + (half * re));
-        const double alpha = (p->d_l[0] * zl) - (p->d_v[0] * ze);
-        const double dvd = p->d_v[0] * dt;
+        const ogk_real_t *e = p->e;
+        const ogk_real_t half = OGK_R(0.5) * dt;
+        const ogk_real_t ve = (w[3] * e[0]) + (w[4] * e[MPSP_SL]) + (w[5] * e[2u * MPSP_SL]);
+        const ogk_real_t re = (w[0] * e[0]) + (w[1] * e[MPSP_SL]) + (w[2] * e[2u * MPSP_SL]);
+        const ogk_real_t zl = dt * wlm;
+        const ogk_real_t ze = dt * (ve + (half * re));
+        const ogk_real_t alpha = (p->d_l[0] * zl) - (p->d_v[0] * ze);
+        const ogk_real_t dvd = p->d_v[0] * dt;
         wm += (dt * ((p->a_vm[0] * ve) + (p->a_lm[0] * wlm))) + (hh * (p->a_vm[0] * re));
         b[0] = (dvd * (w[3] + (half * w[0]))) + (alpha * e[0]);
         b[1] = (dvd * (w[4] + (half * w[1]))) + (alpha * e[MPSP_SL]);
         b[2] = (dvd * (w[5] + (half * w[2]))) + (alpha * e[2u * MPSP_SL]);
     }
     {
-        const double v0 = w[3] + (dt * w[0]) + (hh * gv[0]);
-        const double v1 = w[4] + (dt * w[1]) + (hh * gv[1]);
-        const double v2 = w[5] + (dt * w[2]) + (hh * gv[2]);
+        const ogk_real_t v0 = w[3] + (dt * w[0]) + (hh * gv[0]);
+        const ogk_real_t v1 = w[4] + (dt * w[1]) + (hh * gv[1]);
+        const ogk_real_t v2 = w[5] + (dt * w[2]) + (hh * gv[2]);
         w_out[0] = w[0] + (dt * gv[0]) + (hh * gr[0]);
         w_out[1] = w[1] + (dt * gv[1]) + (hh * gr[1]);
         w_out[2] = w[2] + (dt * gv[2]) + (hh * gr[2]);
@@ -492,16 +499,16 @@ static void mid2_row(const ogk_i_mpsp_stage_t *p, double dt, bool thrust, const 
  * order per row, each statement a loop over the lanes (gcc -O2 carries a pair
  * in one SSE2 register), the partials read as pairs (MPSP_SL = 2); w_out (may
  * be w_in) and b (2 rows of 3) written after every input is read. */
-static void mid2_rows2(const ogk_i_mpsp_stage_t *p, double dt, bool thrust, const double *w_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
-                       double *w_out, double *b_out) /* NOLINT(bugprone-easily-swappable-parameters): rows out, their control sensitivities; unit-tested against the exact sweep */
+static void mid2_rows2(const ogk_i_mpsp_stage_t *p, ogk_real_t dt, bool thrust, const ogk_real_t *w_in, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25) */
+                       ogk_real_t *w_out, ogk_real_t *b_out) /* NOLINT(bugprone-easily-swappable-parameters): rows out, their control sensitivities; unit-tested against the exact sweep */
 {
-    const double *g = p->g;
-    const double hh = 0.5 * dt * dt;
-    double w[NX * 2u];
-    double gv[6];
-    double gr[6];
-    double wo[NX * 2u];
-    double b[6];
+    const ogk_real_t *g = p->g;
+    const ogk_real_t hh = OGK_R(0.5) * dt * dt;
+    ogk_real_t w[NX * 2u];
+    ogk_real_t gv[6];
+    ogk_real_t gr[6];
+    ogk_real_t wo[NX * 2u];
+    ogk_real_t b[6];
     size_t l;
 
     rows2_to_lanes(w_in, w);
@@ -515,15 +522,15 @@ static void mid2_rows2(const ogk_i_mpsp_stage_t *p, double dt, bool thrust, cons
         wo[12u + l] = w[12u + l];
     }
     if (thrust) {
-        const double *e = p->e;
-        const double half = 0.5 * dt;
+        const ogk_real_t *e = p->e;
+        const ogk_real_t half = OGK_R(0.5) * dt;
         for (l = 0u; l < 2u; ++l) {
-            const double ve = (w[6u + l] * e[l]) + (w[8u + l] * e[2u + l]) + (w[10u + l] * e[4u + l]);
-            const double re = (w[l] * e[l]) + (w[2u + l] * e[2u + l]) + (w[4u + l] * e[4u + l]);
-            const double zl = dt * w[14u + l];
-            const double ze = dt * (ve + (half * re));
-            const double alpha = (p->d_l[l] * zl) - (p->d_v[l] * ze);
-            const double dvd = p->d_v[l] * dt;
+            const ogk_real_t ve = (w[6u + l] * e[l]) + (w[8u + l] * e[2u + l]) + (w[10u + l] * e[4u + l]);
+            const ogk_real_t re = (w[l] * e[l]) + (w[2u + l] * e[2u + l]) + (w[4u + l] * e[4u + l]);
+            const ogk_real_t zl = dt * w[14u + l];
+            const ogk_real_t ze = dt * (ve + (half * re));
+            const ogk_real_t alpha = (p->d_l[l] * zl) - (p->d_v[l] * ze);
+            const ogk_real_t dvd = p->d_v[l] * dt;
             wo[12u + l] += (dt * ((p->a_vm[l] * ve) + (p->a_lm[l] * w[14u + l]))) +
                            (hh * (p->a_vm[l] * re));
             b[l] = (dvd * (w[6u + l] + (half * w[l]))) + (alpha * e[l]);
@@ -545,7 +552,7 @@ static void mid2_rows2(const ogk_i_mpsp_stage_t *p, double dt, bool thrust, cons
         wo[10u + l] = w[10u + l] + (dt * w[4u + l]) + (hh * gv[4u + l]);
     }
     for (l = 0u; l < 2u; ++l) {
-        double *o = &w_out[l * NX];
+        ogk_real_t *o = &w_out[l * NX];
         o[0] = wo[l];
         o[1] = wo[2u + l];
         o[2] = wo[4u + l];
@@ -558,19 +565,19 @@ static void mid2_rows2(const ogk_i_mpsp_stage_t *p, double dt, bool thrust, cons
 }
 #endif /* __SSE2__ */
 
-ogk_status ogk_i_mpsp_step_adjoint_mid2(const ogk_i_mpsp_dyn_t *dyn, const double *x_lo, const double *x_hi, /* NOLINT(bugprone-easily-swappable-parameters): the step's two nodes; unit-tested against the exact sweep */
-                                  double dt, int mode, const ogk_i_mpsp_uval_t *uv_mid, size_t n_rows, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); unit-tested against the exact sweep */
-                                  double *adj, double *bu_mid)
+ogk_status ogk_i_mpsp_step_adjoint_mid2(const ogk_i_mpsp_dyn_t *dyn, const ogk_real_t *x_lo, const ogk_real_t *x_hi, /* NOLINT(bugprone-easily-swappable-parameters): the step's two nodes; unit-tested against the exact sweep */
+                                  ogk_real_t dt, int mode, const ogk_i_mpsp_uval_t *uv_mid, size_t n_rows, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); unit-tested against the exact sweep */
+                                  ogk_real_t *adj, ogk_real_t *bu_mid)
 {
     ogk_i_mpsp_stage_t sd;
-    double xm[NX];
+    ogk_real_t xm[NX];
     size_t i;
     ogk_status st;
 
     /* the midpoint state as the mean of the nodes: O(dt^2) from the
      * trajectory's, which moves Phi and b by O(dt^3) per step */
     for (i = 0u; i < NX; ++i) {
-        xm[i] = 0.5 * (x_lo[i] + x_hi[i]);
+        xm[i] = OGK_R(0.5) * (x_lo[i] + x_hi[i]);
     }
     st = ogk_i_mpsp_stage_eval(dyn, xm, uv_mid, mode, NULL, &sd);
     if (st == OGK_OK) {

@@ -15,17 +15,17 @@
 /* acc[q + i][j] += sum_b h_b[q + i] c_b[j], i < 3, for one coefficient j:
  * the column that the 4-wide tiles of ogk_i_mpsp_bv_block_product leave over
  * (NYU = 21). */
-static void block_cols_3x1(double *acc, size_t q, size_t j, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void block_cols_3x1(ogk_real_t *acc, size_t q, size_t j, const ogk_real_t *hb, const ogk_real_t *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                            size_t n)
 {
     const size_t i0 = (q * NYU) + j;
-    double a0 = acc[i0];
-    double a1 = acc[i0 + NYU];
-    double a2 = acc[i0 + (2u * NYU)];
+    ogk_real_t a0 = acc[i0];
+    ogk_real_t a1 = acc[i0 + NYU];
+    ogk_real_t a2 = acc[i0 + (2u * NYU)];
     size_t b;
 
     for (b = 0u; b < n; ++b) {
-        const double c0 = cb[(b * NYU) + j];
+        const ogk_real_t c0 = cb[(b * NYU) + j];
         a0 += hb[(b * HR) + (q * HL)] * c0;
         a1 += hb[(b * HR) + ((q + 1u) * HL)] * c0;
         a2 += hb[(b * HR) + ((q + 2u) * HL)] * c0;
@@ -41,35 +41,35 @@ static void block_cols_3x1(double *acc, size_t q, size_t j, const double *hb, co
  * and in cb and h_b[q + i] held twice in hb, so that gcc -O2 on x86-64 adds
  * each pair with one SSE2 multiply and add (SLP) and reads every operand as a
  * pair: 18 multiply-adds for 6 loads per sample. */
-static void tile_3x6(double *acc, size_t q, size_t j, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void tile_3x6(ogk_real_t *acc, size_t q, size_t j, const ogk_real_t *hb, const ogk_real_t *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                      size_t n)
 {
     const size_t i0 = (q * NYU) + j;
     const size_t i1 = i0 + NYU;
     const size_t i2 = i1 + NYU;
-    double a00 = acc[i0];
-    double a01 = acc[i0 + 1u];
-    double a02 = acc[i0 + 2u];
-    double a03 = acc[i0 + 3u];
-    double a04 = acc[i0 + 4u];
-    double a05 = acc[i0 + 5u];
-    double a10 = acc[i1];
-    double a11 = acc[i1 + 1u];
-    double a12 = acc[i1 + 2u];
-    double a13 = acc[i1 + 3u];
-    double a14 = acc[i1 + 4u];
-    double a15 = acc[i1 + 5u];
-    double a20 = acc[i2];
-    double a21 = acc[i2 + 1u];
-    double a22 = acc[i2 + 2u];
-    double a23 = acc[i2 + 3u];
-    double a24 = acc[i2 + 4u];
-    double a25 = acc[i2 + 5u];
+    ogk_real_t a00 = acc[i0];
+    ogk_real_t a01 = acc[i0 + 1u];
+    ogk_real_t a02 = acc[i0 + 2u];
+    ogk_real_t a03 = acc[i0 + 3u];
+    ogk_real_t a04 = acc[i0 + 4u];
+    ogk_real_t a05 = acc[i0 + 5u];
+    ogk_real_t a10 = acc[i1];
+    ogk_real_t a11 = acc[i1 + 1u];
+    ogk_real_t a12 = acc[i1 + 2u];
+    ogk_real_t a13 = acc[i1 + 3u];
+    ogk_real_t a14 = acc[i1 + 4u];
+    ogk_real_t a15 = acc[i1 + 5u];
+    ogk_real_t a20 = acc[i2];
+    ogk_real_t a21 = acc[i2 + 1u];
+    ogk_real_t a22 = acc[i2 + 2u];
+    ogk_real_t a23 = acc[i2 + 3u];
+    ogk_real_t a24 = acc[i2 + 4u];
+    ogk_real_t a25 = acc[i2 + 5u];
     size_t b;
 
     for (b = 0u; b < n; ++b) {
-        const double *c = &cb[(b * NYU) + j];
-        const double *h = &hb[(b * HR) + (q * HL)];
+        const ogk_real_t *c = &cb[(b * NYU) + j];
+        const ogk_real_t *h = &hb[(b * HR) + (q * HL)];
         a00 += h[0] * c[0];
         a01 += h[1] * c[1];
         a02 += h[0] * c[2];
@@ -110,23 +110,23 @@ static void tile_3x6(double *acc, size_t q, size_t j, const double *hb, const do
 }
 
 /* tile_3x6 for one coefficient pair (j, j + 1). */
-static void tile_3x2(double *acc, size_t q, size_t j, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void tile_3x2(ogk_real_t *acc, size_t q, size_t j, const ogk_real_t *hb, const ogk_real_t *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                      size_t n)
 {
     const size_t i0 = (q * NYU) + j;
     const size_t i1 = i0 + NYU;
     const size_t i2 = i1 + NYU;
-    double a00 = acc[i0];
-    double a01 = acc[i0 + 1u];
-    double a10 = acc[i1];
-    double a11 = acc[i1 + 1u];
-    double a20 = acc[i2];
-    double a21 = acc[i2 + 1u];
+    ogk_real_t a00 = acc[i0];
+    ogk_real_t a01 = acc[i0 + 1u];
+    ogk_real_t a10 = acc[i1];
+    ogk_real_t a11 = acc[i1 + 1u];
+    ogk_real_t a20 = acc[i2];
+    ogk_real_t a21 = acc[i2 + 1u];
     size_t b;
 
     for (b = 0u; b < n; ++b) {
-        const double *c = &cb[(b * NYU) + j];
-        const double *h = &hb[(b * HR) + (q * HL)];
+        const ogk_real_t *c = &cb[(b * NYU) + j];
+        const ogk_real_t *h = &hb[(b * HR) + (q * HL)];
         a00 += h[0] * c[0];
         a01 += h[1] * c[1];
         a10 += h[2] * c[0];
@@ -147,35 +147,35 @@ static void tile_3x2(double *acc, size_t q, size_t j, const double *hb, const do
  * pair with one SSE2 multiply and add per sample (h_q held twice); the
  * samples in the order b = 0, 1, ..., as every tile: the same numbers as the
  * one-lane loop of the other targets. */
-static void tile_1x21(double *acc, size_t q, const double *hb, const double *cb, size_t n) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static void tile_1x21(ogk_real_t *acc, size_t q, const ogk_real_t *hb, const ogk_real_t *cb, size_t n) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
-    double *ar = &acc[q * NYU];
-    double a00 = ar[0];
-    double a01 = ar[1];
-    double a02 = ar[2];
-    double a03 = ar[3];
-    double a04 = ar[4];
-    double a05 = ar[5];
-    double a06 = ar[6];
-    double a07 = ar[7];
-    double a08 = ar[8];
-    double a09 = ar[9];
-    double a10 = ar[10];
-    double a11 = ar[11];
-    double a12 = ar[12];
-    double a13 = ar[13];
-    double a14 = ar[14];
-    double a15 = ar[15];
-    double a16 = ar[16];
-    double a17 = ar[17];
-    double a18 = ar[18];
-    double a19 = ar[19];
-    double a20 = ar[20];
+    ogk_real_t *ar = &acc[q * NYU];
+    ogk_real_t a00 = ar[0];
+    ogk_real_t a01 = ar[1];
+    ogk_real_t a02 = ar[2];
+    ogk_real_t a03 = ar[3];
+    ogk_real_t a04 = ar[4];
+    ogk_real_t a05 = ar[5];
+    ogk_real_t a06 = ar[6];
+    ogk_real_t a07 = ar[7];
+    ogk_real_t a08 = ar[8];
+    ogk_real_t a09 = ar[9];
+    ogk_real_t a10 = ar[10];
+    ogk_real_t a11 = ar[11];
+    ogk_real_t a12 = ar[12];
+    ogk_real_t a13 = ar[13];
+    ogk_real_t a14 = ar[14];
+    ogk_real_t a15 = ar[15];
+    ogk_real_t a16 = ar[16];
+    ogk_real_t a17 = ar[17];
+    ogk_real_t a18 = ar[18];
+    ogk_real_t a19 = ar[19];
+    ogk_real_t a20 = ar[20];
     size_t b;
 
     for (b = 0u; b < n; ++b) {
-        const double *c = &cb[b * NYU];
-        const double *h = &hb[(b * HR) + (q * HL)];
+        const ogk_real_t *c = &cb[b * NYU];
+        const ogk_real_t *h = &hb[(b * HR) + (q * HL)];
         a00 += h[0] * c[0];
         a01 += h[1] * c[1];
         a02 += h[0] * c[2];
@@ -226,7 +226,7 @@ static void tile_1x21(double *acc, size_t q, const double *hb, const double *cb,
  * functions x 6 coefficients (tile_3x6), the 3 coefficients left over (NYU =
  * 21) as a pair and a column. Every accumulator adds the samples in the
  * order b = 0, 1, ..., as the one-lane tiles below: the same numbers. */
-void ogk_i_mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+void ogk_i_mpsp_bv_block_product(ogk_real_t *acc, size_t n_basis, const ogk_real_t *hb, const ogk_real_t *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                            size_t n)
 {
     size_t q;
@@ -250,7 +250,7 @@ void ogk_i_mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, 
  * functions x 4 coefficients: 12 multiply-adds for 7 loads per sample, and
  * the coefficient pairs (j, j + 1), (j + 2, j + 3) are adjacent in acc and in
  * cb, so gcc -O2 on x86-64 adds them two per SSE2 instruction (SLP). */
-void ogk_i_mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, const double *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+void ogk_i_mpsp_bv_block_product(ogk_real_t *acc, size_t n_basis, const ogk_real_t *hb, const ogk_real_t *cb, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
                            size_t n)
 {
     size_t q;
@@ -262,28 +262,28 @@ void ogk_i_mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, 
             const size_t i0 = (q * NYU) + j;
             const size_t i1 = i0 + NYU;
             const size_t i2 = i1 + NYU;
-            double a00 = acc[i0];
-            double a01 = acc[i0 + 1u];
-            double a02 = acc[i0 + 2u];
-            double a03 = acc[i0 + 3u];
-            double a10 = acc[i1];
-            double a11 = acc[i1 + 1u];
-            double a12 = acc[i1 + 2u];
-            double a13 = acc[i1 + 3u];
-            double a20 = acc[i2];
-            double a21 = acc[i2 + 1u];
-            double a22 = acc[i2 + 2u];
-            double a23 = acc[i2 + 3u];
+            ogk_real_t a00 = acc[i0];
+            ogk_real_t a01 = acc[i0 + 1u];
+            ogk_real_t a02 = acc[i0 + 2u];
+            ogk_real_t a03 = acc[i0 + 3u];
+            ogk_real_t a10 = acc[i1];
+            ogk_real_t a11 = acc[i1 + 1u];
+            ogk_real_t a12 = acc[i1 + 2u];
+            ogk_real_t a13 = acc[i1 + 3u];
+            ogk_real_t a20 = acc[i2];
+            ogk_real_t a21 = acc[i2 + 1u];
+            ogk_real_t a22 = acc[i2 + 2u];
+            ogk_real_t a23 = acc[i2 + 3u];
             for (b = 0u; b < n; ++b) {
-                const double *c = &cb[(b * NYU) + j];
-                const double *h = &hb[(b * HR) + q];
-                const double h0 = h[0];
-                const double h1 = h[1];
-                const double h2 = h[2];
-                const double c0 = c[0];
-                const double c1 = c[1];
-                const double c2 = c[2];
-                const double c3 = c[3];
+                const ogk_real_t *c = &cb[(b * NYU) + j];
+                const ogk_real_t *h = &hb[(b * HR) + q];
+                const ogk_real_t h0 = h[0];
+                const ogk_real_t h1 = h[1];
+                const ogk_real_t h2 = h[2];
+                const ogk_real_t c0 = c[0];
+                const ogk_real_t c1 = c[1];
+                const ogk_real_t c2 = c[2];
+                const ogk_real_t c3 = c[3];
                 a00 += h0 * c0;
                 a01 += h0 * c1;
                 a02 += h0 * c2;
@@ -317,11 +317,11 @@ void ogk_i_mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, 
 #endif
     for (; q < n_basis; ++q) { /* the basis functions left over */
         for (j = 0u; j < NYU; j += 3u) {
-            double a0 = acc[(q * NYU) + j];
-            double a1 = acc[(q * NYU) + j + 1u];
-            double a2 = acc[(q * NYU) + j + 2u];
+            ogk_real_t a0 = acc[(q * NYU) + j];
+            ogk_real_t a1 = acc[(q * NYU) + j + 1u];
+            ogk_real_t a2 = acc[(q * NYU) + j + 2u];
             for (b = 0u; b < n; ++b) {
-                const double hq = hb[(b * HR) + (q * HL)];
+                const ogk_real_t hq = hb[(b * HR) + (q * HL)];
                 const size_t ic = (b * NYU) + j;
                 a0 += hq * cb[ic];
                 a1 += hq * cb[ic + 1u];
@@ -335,7 +335,7 @@ void ogk_i_mpsp_bv_block_product(double *acc, size_t n_basis, const double *hb, 
 }
 
 /* out[r][c n_basis + q] = acc[q][r * 3 + c]: B_v row-major, NY x 3 n_basis. */
-void ogk_i_mpsp_bv_unpack(const double *acc, size_t n_basis, double *out) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+void ogk_i_mpsp_bv_unpack(const ogk_real_t *acc, size_t n_basis, ogk_real_t *out) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
     const size_t n_weights = 3u * n_basis;
     size_t r;

@@ -12,26 +12,26 @@
  * under delta^10/10! = 3e-20 and delta^11/11! = 1e-22, so the rotated cos and
  * sin are within a few ulp of cos() and sin(). With the Apophis grid
  * (omega h_max = pi/2000) one anchor serves 32 steps. */
-#define MPSP_PHASE_REACH 0.05
+#define MPSP_PHASE_REACH OGK_R(0.05)
 
-void ogk_i_mpsp_phase(ogk_i_mpsp_dyn_t *dyn, double t, double *c1, double *s1)
+void ogk_i_mpsp_phase(ogk_i_mpsp_dyn_t *dyn, ogk_real_t t, ogk_real_t *c1, ogk_real_t *s1)
 {
-    const double delta = dyn->omega * (t - dyn->anchor_t);
+    const ogk_real_t delta = dyn->omega * (t - dyn->anchor_t);
 
-    if (dyn->anchor_ok && (fabs(delta) <= MPSP_PHASE_REACH)) {
+    if (dyn->anchor_ok && (OGK_FABS(delta) <= MPSP_PHASE_REACH)) {
         /* cos(a + d) = cos a cos d - sin a sin d, sin(a + d) = sin a cos d + cos a sin d */
-        const double d2 = delta * delta;
-        const double cd = 1.0 - (d2 * (0.5 - (d2 * ((1.0 / 24.0) -
-                          (d2 * ((1.0 / 720.0) - (d2 * (1.0 / 40320.0))))))));
-        const double sd = delta * (1.0 - (d2 * ((1.0 / 6.0) - (d2 * ((1.0 / 120.0) -
-                          (d2 * ((1.0 / 5040.0) - (d2 * (1.0 / 362880.0)))))))));
+        const ogk_real_t d2 = delta * delta;
+        const ogk_real_t cd = OGK_R(1.0) - (d2 * (OGK_R(0.5) - (d2 * ((OGK_R(1.0) / OGK_R(24.0)) -
+                          (d2 * ((OGK_R(1.0) / OGK_R(720.0)) - (d2 * (OGK_R(1.0) / OGK_R(40320.0)))))))));
+        const ogk_real_t sd = delta * (OGK_R(1.0) - (d2 * ((OGK_R(1.0) / OGK_R(6.0)) - (d2 * ((OGK_R(1.0) / OGK_R(120.0)) -
+                          (d2 * ((OGK_R(1.0) / OGK_R(5040.0)) - (d2 * (OGK_R(1.0) / OGK_R(362880.0))))))))));
         *c1 = (dyn->anchor_c * cd) - (dyn->anchor_s * sd);
         *s1 = (dyn->anchor_s * cd) + (dyn->anchor_c * sd);
     } else {
-        const double theta = dyn->omega * (t - dyn->t_ref);
+        const ogk_real_t theta = dyn->omega * (t - dyn->t_ref);
         dyn->anchor_t = t;
-        dyn->anchor_c = cos(theta);
-        dyn->anchor_s = sin(theta);
+        dyn->anchor_c = OGK_COS(theta);
+        dyn->anchor_s = OGK_SIN(theta);
         dyn->anchor_ok = true;
         *c1 = dyn->anchor_c;
         *s1 = dyn->anchor_s;
@@ -42,23 +42,23 @@ void ogk_i_mpsp_phase(ogk_i_mpsp_dyn_t *dyn, double t, double *c1, double *s1)
  * th = omega (t - t_ref)), or [1/2, cos th, ..., cos 2n th] for the cosine
  * kind; the harmonics by the angle-addition recurrence (two trigonometric
  * calls per time, error growth ~k eps). */
-void ogk_i_mpsp_basis(const ogk_i_mpsp_dyn_t *dyn, double t, double *h, double *hdot) /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
+void ogk_i_mpsp_basis(const ogk_i_mpsp_dyn_t *dyn, ogk_real_t t, ogk_real_t *h, ogk_real_t *hdot) /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
 {
-    const double theta = dyn->omega * (t - dyn->t_ref);
-    const double c1 = cos(theta);
-    const double s1 = sin(theta);
+    const ogk_real_t theta = dyn->omega * (t - dyn->t_ref);
+    const ogk_real_t c1 = OGK_COS(theta);
+    const ogk_real_t s1 = OGK_SIN(theta);
     const size_t last = dyn->n_basis - 1u; /* 2n */
     const bool cosine = (dyn->kind == OGK_MPSP_BASIS_COSINE);
-    double cn = c1;
-    double sn = s1;
+    ogk_real_t cn = c1;
+    ogk_real_t sn = s1;
     size_t k;
 
-    h[0] = 0.5;
+    h[0] = OGK_R(0.5);
     if (hdot != NULL) {
-        hdot[0] = 0.0;
+        hdot[0] = OGK_R(0.0);
     }
     for (k = 1u; (cosine ? k : (2u * k)) <= last; ++k) { /* k <= n harmonics */
-        const double kw = (double)k * dyn->omega;
+        const ogk_real_t kw = (ogk_real_t)k * dyn->omega;
         if (cosine) {
             h[k] = cn;
             if (hdot != NULL) {
@@ -73,7 +73,7 @@ void ogk_i_mpsp_basis(const ogk_i_mpsp_dyn_t *dyn, double t, double *h, double *
             }
         }
         {
-            const double c_next = (cn * c1) - (sn * s1);
+            const ogk_real_t c_next = (cn * c1) - (sn * s1);
             sn = (sn * c1) + (cn * s1);
             cn = c_next;
         }
@@ -83,9 +83,9 @@ void ogk_i_mpsp_basis(const ogk_i_mpsp_dyn_t *dyn, double t, double *h, double *
      * reach; it is zeroed instead of left indeterminate (clang-analyzer
      * core.UndefinedBinaryOperatorResult in ogk_i_mpsp_control_from_basis). */
     if (!cosine && (last % 2u) != 0u) {
-        h[last] = 0.0;
+        h[last] = OGK_R(0.0);
         if (hdot != NULL) {
-            hdot[last] = 0.0;
+            hdot[last] = OGK_R(0.0);
         }
     }
 }
@@ -94,16 +94,16 @@ void ogk_i_mpsp_basis(const ogk_i_mpsp_dyn_t *dyn, double t, double *h, double *
  * q = 0, 1, ..., as control_cs and ogk_i_mpsp_basis_control); h_q at h[q * stride]
  * (stride 1: a plain basis row; OGK_MPSP_H_LANES: a row of the sensitivity
  * sample block, each entry held twice). */
-void ogk_i_mpsp_control_from_basis(const ogk_i_mpsp_dyn_t *dyn, const double *h, size_t stride, double *u)
+void ogk_i_mpsp_control_from_basis(const ogk_i_mpsp_dyn_t *dyn, const ogk_real_t *h, size_t stride, ogk_real_t *u)
 {
     const size_t nb = dyn->n_basis;
-    const double *w = dyn->w;
-    double u0 = 0.0;
-    double u1 = 0.0;
-    double u2 = 0.0;
+    const ogk_real_t *w = dyn->w;
+    ogk_real_t u0 = OGK_R(0.0);
+    ogk_real_t u1 = OGK_R(0.0);
+    ogk_real_t u2 = OGK_R(0.0);
     size_t q;
     for (q = 0u; q < nb; ++q) {
-        const double hq = h[q * stride];
+        const ogk_real_t hq = h[q * stride];
         u0 += hq * w[q];
         u1 += hq * w[nb + q];
         u2 += hq * w[(2u * nb) + q];
@@ -116,25 +116,25 @@ void ogk_i_mpsp_control_from_basis(const ogk_i_mpsp_dyn_t *dyn, const double *h,
 /* U = P(t) W from the phase (c1, s1): the harmonics of ogk_i_mpsp_basis (same
  * recurrence) summed as they are made, in the order of
  * ogk_i_mpsp_control_from_basis; the propagation needs U, not h (eqs. 36-37). */
-static void control_cs(const ogk_i_mpsp_dyn_t *dyn, double c1, double s1, double *u)
+static void control_cs(const ogk_i_mpsp_dyn_t *dyn, ogk_real_t c1, ogk_real_t s1, ogk_real_t *u)
 {
     const size_t nb = dyn->n_basis;
     const size_t last = nb - 1u; /* 2n */
-    const double *w = dyn->w;
-    double cn = c1;
-    double sn = s1;
-    double u0 = 0.0;
-    double u1 = 0.0;
-    double u2 = 0.0;
+    const ogk_real_t *w = dyn->w;
+    ogk_real_t cn = c1;
+    ogk_real_t sn = s1;
+    ogk_real_t u0 = OGK_R(0.0);
+    ogk_real_t u1 = OGK_R(0.0);
+    ogk_real_t u2 = OGK_R(0.0);
     size_t k;
 
-    u0 += 0.5 * w[0];
-    u1 += 0.5 * w[nb];
-    u2 += 0.5 * w[2u * nb];
+    u0 += OGK_R(0.5) * w[0];
+    u1 += OGK_R(0.5) * w[nb];
+    u2 += OGK_R(0.5) * w[2u * nb];
     if (dyn->kind == OGK_MPSP_BASIS_COSINE) {
         for (k = 1u; k < last; k += 2u) { /* cos k theta, k = 1..2n, two per pass */
-            double c2;
-            double s2;
+            ogk_real_t c2;
+            ogk_real_t s2;
             u0 += cn * w[k];
             u1 += cn * w[nb + k];
             u2 += cn * w[(2u * nb) + k];
@@ -156,8 +156,8 @@ static void control_cs(const ogk_i_mpsp_dyn_t *dyn, double c1, double s1, double
          * recurrence then needs no register copies) */
         for (k = 1u; ((2u * k) + 2u) <= last; k += 2u) {
             const size_t ic = (2u * k) - 1u;
-            double c2;
-            double s2;
+            ogk_real_t c2;
+            ogk_real_t s2;
             u0 += cn * w[ic];
             u0 += sn * w[ic + 1u];
             u1 += cn * w[nb + ic];
@@ -190,31 +190,31 @@ static void control_cs(const ogk_i_mpsp_dyn_t *dyn, double c1, double s1, double
     u[2] = u2;
 }
 
-void ogk_i_mpsp_basis_control(ogk_i_mpsp_dyn_t *dyn, double t, double *h, ogk_i_mpsp_uval_t *uv)
+void ogk_i_mpsp_basis_control(ogk_i_mpsp_dyn_t *dyn, ogk_real_t t, ogk_real_t *h, ogk_i_mpsp_uval_t *uv)
 {
     const size_t nb = dyn->n_basis;
     const size_t last = nb - 1u; /* 2n */
-    const double *w = dyn->w;
-    double c1;
-    double s1;
-    double cn;
-    double sn;
-    double u0;
-    double u1;
-    double u2;
+    const ogk_real_t *w = dyn->w;
+    ogk_real_t c1;
+    ogk_real_t s1;
+    ogk_real_t cn;
+    ogk_real_t sn;
+    ogk_real_t u0;
+    ogk_real_t u1;
+    ogk_real_t u2;
     size_t k;
 
     ogk_i_mpsp_phase(dyn, t, &c1, &s1);
     cn = c1;
     sn = s1;
-    h[0] = 0.5;
-    u0 = 0.5 * w[0];
-    u1 = 0.5 * w[nb];
-    u2 = 0.5 * w[2u * nb];
+    h[0] = OGK_R(0.5);
+    u0 = OGK_R(0.5) * w[0];
+    u1 = OGK_R(0.5) * w[nb];
+    u2 = OGK_R(0.5) * w[2u * nb];
     if (dyn->kind == OGK_MPSP_BASIS_COSINE) {
         for (k = 1u; k < last; k += 2u) { /* two per pass */
-            double c2;
-            double s2;
+            ogk_real_t c2;
+            ogk_real_t s2;
             h[k] = cn;
             u0 += cn * w[k];
             u1 += cn * w[nb + k];
@@ -237,8 +237,8 @@ void ogk_i_mpsp_basis_control(ogk_i_mpsp_dyn_t *dyn, double t, double *h, ogk_i_
     } else {
         for (k = 1u; ((2u * k) + 2u) <= last; k += 2u) { /* two harmonics per pass */
             const size_t ic = (2u * k) - 1u;
-            double c2;
-            double s2;
+            ogk_real_t c2;
+            ogk_real_t s2;
             h[ic] = cn;
             h[ic + 1u] = sn;
             u0 += cn * w[ic];
@@ -272,13 +272,13 @@ void ogk_i_mpsp_basis_control(ogk_i_mpsp_dyn_t *dyn, double t, double *h, ogk_i_
             u2 += sn * w[(2u * nb) + ic + 1u];
         }
         if ((last % 2u) != 0u) {
-            h[last] = 0.0; /* an even n_basis, as in ogk_i_mpsp_basis */
+            h[last] = OGK_R(0.0); /* an even n_basis, as in ogk_i_mpsp_basis */
         }
     }
     uv->u[0] = u0;
     uv->u[1] = u1;
     uv->u[2] = u2;
-    uv->lam = sqrt((u0 * u0) + (u1 * u1) + (u2 * u2));
+    uv->lam = OGK_SQRT((u0 * u0) + (u1 * u1) + (u2 * u2));
 }
 
 #if defined(__SSE2__)
@@ -288,22 +288,22 @@ void ogk_i_mpsp_basis_control(ogk_i_mpsp_dyn_t *dyn, double t, double *h, ogk_i_
  * the order t[0], t[1], with the anchor t[1]'s phase starts from kept for
  * undo_next. Each statement is a loop over the lanes, which gcc -O2 on x86-64
  * carries in SSE2 registers (SLP), the weights read from their doubled copy. */
-static void control2(ogk_i_mpsp_dyn_t *dyn, const double *t, ogk_i_mpsp_uval_t *uv)
+static void control2(ogk_i_mpsp_dyn_t *dyn, const ogk_real_t *t, ogk_i_mpsp_uval_t *uv)
 {
     const size_t nb = dyn->n_basis;
     const size_t last = nb - 1u; /* 2n */
-    const double *w2 = dyn->w2;
-    const double *w2b = &dyn->w2[2u * nb];
-    const double *w2c = &dyn->w2[4u * nb];
-    double c1[2];
-    double s1[2];
-    double cn[2];
-    double sn[2];
-    double c2[2];
-    double s2[2];
-    double u0[2];
-    double u1[2];
-    double u2[2];
+    const ogk_real_t *w2 = dyn->w2;
+    const ogk_real_t *w2b = &dyn->w2[2u * nb];
+    const ogk_real_t *w2c = &dyn->w2[4u * nb];
+    ogk_real_t c1[2];
+    ogk_real_t s1[2];
+    ogk_real_t cn[2];
+    ogk_real_t sn[2];
+    ogk_real_t c2[2];
+    ogk_real_t s2[2];
+    ogk_real_t u0[2];
+    ogk_real_t u1[2];
+    ogk_real_t u2[2];
     size_t k;
     size_t l;
 
@@ -317,9 +317,9 @@ static void control2(ogk_i_mpsp_dyn_t *dyn, const double *t, ogk_i_mpsp_uval_t *
     for (l = 0u; l < 2u; ++l) {
         cn[l] = c1[l];
         sn[l] = s1[l];
-        u0[l] = 0.5 * w2[l];
-        u1[l] = 0.5 * w2b[l];
-        u2[l] = 0.5 * w2c[l];
+        u0[l] = OGK_R(0.5) * w2[l];
+        u1[l] = OGK_R(0.5) * w2b[l];
+        u2[l] = OGK_R(0.5) * w2c[l];
     }
     if (dyn->kind == OGK_MPSP_BASIS_COSINE) {
         for (k = 1u; k < last; k += 2u) { /* two per pass */
@@ -386,7 +386,7 @@ static void control2(ogk_i_mpsp_dyn_t *dyn, const double *t, ogk_i_mpsp_uval_t *
         uv[l].u[0] = u0[l];
         uv[l].u[1] = u1[l];
         uv[l].u[2] = u2[l];
-        uv[l].lam = sqrt((u0[l] * u0[l]) + (u1[l] * u1[l]) + (u2[l] * u2[l]));
+        uv[l].lam = OGK_SQRT((u0[l] * u0[l]) + (u1[l] * u1[l]) + (u2[l] * u2[l]));
     }
 }
 
@@ -394,7 +394,7 @@ static void control2(ogk_i_mpsp_dyn_t *dyn, const double *t, ogk_i_mpsp_uval_t *
 
 #if defined(__SSE2__)
 /* h2[2 q] = h2[2 q + 1] = h_q (each entry twice: OGK_MPSP_H_LANES). */
-static void put2(double *h2, size_t q, double v)
+static void put2(ogk_real_t *h2, size_t q, ogk_real_t v)
 {
     h2[2u * q] = v;
     h2[(2u * q) + 1u] = v;
@@ -404,21 +404,21 @@ static void put2(double *h2, size_t q, double v)
  * twice (OGK_MPSP_H_LANES): the harmonics of ogk_i_mpsp_basis_control (the same
  * recurrence, phases taken in the order t[0], t[1]), without U, which the
  * sweep takes from the propagation (ogk_i_mpsp_keep_find). */
-void ogk_i_mpsp_basis2(ogk_i_mpsp_dyn_t *dyn, const double *t, double *h_a, double *h_b)
+void ogk_i_mpsp_basis2(ogk_i_mpsp_dyn_t *dyn, const ogk_real_t *t, ogk_real_t *h_a, ogk_real_t *h_b)
 {
     const size_t last = dyn->n_basis - 1u; /* 2n */
     const bool cosine = (dyn->kind == OGK_MPSP_BASIS_COSINE);
-    double c1[2];
-    double s1[2];
-    double cn[2];
-    double sn[2];
+    ogk_real_t c1[2];
+    ogk_real_t s1[2];
+    ogk_real_t cn[2];
+    ogk_real_t sn[2];
     size_t k;
     size_t l;
 
     ogk_i_mpsp_phase(dyn, t[0], &c1[0], &s1[0]);
     ogk_i_mpsp_phase(dyn, t[1], &c1[1], &s1[1]);
-    put2(h_a, 0u, 0.5);
-    put2(h_b, 0u, 0.5);
+    put2(h_a, 0u, OGK_R(0.5));
+    put2(h_b, 0u, OGK_R(0.5));
     for (l = 0u; l < 2u; ++l) {
         cn[l] = c1[l];
         sn[l] = s1[l];
@@ -436,7 +436,7 @@ void ogk_i_mpsp_basis2(ogk_i_mpsp_dyn_t *dyn, const double *t, double *h_a, doub
             put2(h_b, 2u * k, sn[1]);
         }
         for (l = 0u; l < 2u; ++l) {
-            const double c_next = (cn[l] * c1[l]) - (sn[l] * s1[l]);
+            const ogk_real_t c_next = (cn[l] * c1[l]) - (sn[l] * s1[l]);
             sn[l] = (sn[l] * c1[l]) + (cn[l] * s1[l]);
             cn[l] = c_next;
         }
@@ -447,13 +447,13 @@ void ogk_i_mpsp_basis2(ogk_i_mpsp_dyn_t *dyn, const double *t, double *h_a, doub
 /* The slot of t in the kept U: the nearest half grid step. t0 <= t <= tf
  * (the propagation's and the sweep's times) gives 0 .. 2 n_steps + 1, inside
  * the table; the remainder only bounds the index for any t. */
-static size_t keep_slot(const ogk_i_mpsp_dyn_t *dyn, double t)
+static size_t keep_slot(const ogk_i_mpsp_dyn_t *dyn, ogk_real_t t)
 {
-    const double x = ((t - dyn->grid_t0) * dyn->keep_scale) + 0.5;
+    const ogk_real_t x = ((t - dyn->grid_t0) * dyn->keep_scale) + OGK_R(0.5);
     return ((size_t)x) % OGK_MPSP_KEEP_U_SLOTS;
 }
 
-bool ogk_i_mpsp_keep_find(const ogk_mpsp_t *ctx, const ogk_i_mpsp_dyn_t *dyn, double t, ogk_i_mpsp_uval_t *uv)
+bool ogk_i_mpsp_keep_find(const ogk_mpsp_t *ctx, const ogk_i_mpsp_dyn_t *dyn, ogk_real_t t, ogk_i_mpsp_uval_t *uv)
 {
     const size_t j = keep_slot(dyn, t);
     const bool found = (ctx->keep_t[j] == t);
@@ -468,7 +468,7 @@ bool ogk_i_mpsp_keep_find(const ogk_mpsp_t *ctx, const ogk_i_mpsp_dyn_t *dyn, do
 }
 
 /* U and |U| at t into the slot of t. */
-static void keep_store(ogk_i_mpsp_dyn_t *dyn, double t, const ogk_i_mpsp_uval_t *uv)
+static void keep_store(ogk_i_mpsp_dyn_t *dyn, ogk_real_t t, const ogk_i_mpsp_uval_t *uv)
 {
     const size_t j = keep_slot(dyn, t);
 
@@ -487,21 +487,21 @@ static void keep_store(ogk_i_mpsp_dyn_t *dyn, double t, const ogk_i_mpsp_uval_t 
  * arithmetic (t + dt with dt = t_next - t); false otherwise (a trial step of
  * the switch bisection, a step off the grid, the sensitivity sweep), and U is
  * then taken at t alone. */
-static bool step_end_of_midpoint(const ogk_i_mpsp_dyn_t *dyn, double t, double *t_end)
+static bool step_end_of_midpoint(const ogk_i_mpsp_dyn_t *dyn, ogk_real_t t, ogk_real_t *t_end)
 {
     bool found = false;
 
     if (dyn->cache_ok && (t > dyn->cache_t) && (t < dyn->grid_tf)) {
-        const double t_start = dyn->cache_t;
+        const ogk_real_t t_start = dyn->cache_t;
         /* the grid node above t (t is inside a step, never on a node) */
-        const double k_next = floor((t - dyn->grid_t0) / dyn->grid_h) + 1.0;
-        double t_next = dyn->grid_t0 + (k_next * dyn->grid_h);
+        const ogk_real_t k_next = OGK_FLOOR((t - dyn->grid_t0) / dyn->grid_h) + OGK_R(1.0);
+        ogk_real_t t_next = dyn->grid_t0 + (k_next * dyn->grid_h);
         if (!(t_next < dyn->grid_tf)) {
             t_next = dyn->grid_tf;
         }
         {
-            const double dt = t_next - t_start;
-            found = ((t_start + (0.5 * dt)) == t);
+            const ogk_real_t dt = t_next - t_start;
+            found = ((t_start + (OGK_R(0.5) * dt)) == t);
             *t_end = t_start + dt;
         }
     }
@@ -526,10 +526,10 @@ static void undo_next(ogk_i_mpsp_dyn_t *dyn)
  * midpoint of a grid step and at its end are made in one pass (control2: the
  * same numbers, the phases taken in the order of the one-time path, midpoint
  * then end), the end's held for stage 4 and both kept for the sweep. */
-void ogk_i_mpsp_control_at(ogk_i_mpsp_dyn_t *dyn, double t, double *u)
+void ogk_i_mpsp_control_at(ogk_i_mpsp_dyn_t *dyn, ogk_real_t t, ogk_real_t *u)
 {
 #if defined(__SSE2__)
-    double t_end = 0.0;
+    ogk_real_t t_end = OGK_R(0.0);
 #endif
 
     if (dyn->cache_ok && (dyn->cache_t == t)) {
@@ -542,7 +542,7 @@ void ogk_i_mpsp_control_at(ogk_i_mpsp_dyn_t *dyn, double t, double *u)
         dyn->cache_t = t;
         dyn->next_ok = false;
     } else if (dyn->pairing && step_end_of_midpoint(dyn, t, &t_end)) {
-        double tt[2];
+        ogk_real_t tt[2];
         ogk_i_mpsp_uval_t uv[2];
         if (dyn->next_ok) {
             undo_next(dyn);
@@ -563,8 +563,8 @@ void ogk_i_mpsp_control_at(ogk_i_mpsp_dyn_t *dyn, double t, double *u)
         keep_store(dyn, t_end, &uv[1]);
 #endif
     } else {
-        double c1;
-        double s1;
+        ogk_real_t c1;
+        ogk_real_t s1;
 #if defined(__SSE2__)
         if (dyn->next_ok) {
             undo_next(dyn);

@@ -7,8 +7,8 @@
 #include <math.h>
 #include <string.h>
 
-void ogk_i_mpsp_dyn_setup(ogk_i_mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const double *weights,
-                    double thrust)
+void ogk_i_mpsp_dyn_setup(ogk_i_mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const ogk_real_t *weights,
+                    ogk_real_t thrust)
 {
     dyn->mu = ctx->cfg.mu;
     dyn->thrust = thrust;
@@ -19,14 +19,14 @@ void ogk_i_mpsp_dyn_setup(ogk_i_mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const do
     dyn->kind = ctx->cfg.fourier_kind;
     dyn->omega = ctx->omega;
     dyn->t_ref = ctx->cfg.fourier_t_ref;
-    dyn->cache_t = 0.0;
-    dyn->cache_u[0] = 0.0;
-    dyn->cache_u[1] = 0.0;
-    dyn->cache_u[2] = 0.0;
+    dyn->cache_t = OGK_R(0.0);
+    dyn->cache_u[0] = OGK_R(0.0);
+    dyn->cache_u[1] = OGK_R(0.0);
+    dyn->cache_u[2] = OGK_R(0.0);
     dyn->cache_ok = false;
-    dyn->anchor_t = 0.0;
-    dyn->anchor_c = 1.0;
-    dyn->anchor_s = 0.0;
+    dyn->anchor_t = OGK_R(0.0);
+    dyn->anchor_c = OGK_R(1.0);
+    dyn->anchor_s = OGK_R(0.0);
     dyn->anchor_ok = false;
 #if defined(__SSE2__)
     {
@@ -39,44 +39,44 @@ void ogk_i_mpsp_dyn_setup(ogk_i_mpsp_dyn_t *dyn, const ogk_mpsp_t *ctx, const do
     dyn->grid_t0 = ctx->cfg.t0;
     dyn->grid_h = ctx->cfg.h_max;
     dyn->grid_tf = ctx->cfg.tf;
-    dyn->next_t = 0.0;
-    dyn->next_u[0] = 0.0;
-    dyn->next_u[1] = 0.0;
-    dyn->next_u[2] = 0.0;
+    dyn->next_t = OGK_R(0.0);
+    dyn->next_u[0] = OGK_R(0.0);
+    dyn->next_u[1] = OGK_R(0.0);
+    dyn->next_u[2] = OGK_R(0.0);
     dyn->next_ok = false;
-    dyn->undo_t = 0.0;
-    dyn->undo_c = 1.0;
-    dyn->undo_s = 0.0;
+    dyn->undo_t = OGK_R(0.0);
+    dyn->undo_c = OGK_R(1.0);
+    dyn->undo_s = OGK_R(0.0);
     dyn->undo_ok = false;
     dyn->pairing = false;
-    dyn->keep_scale = 2.0 / ctx->cfg.h_max;
+    dyn->keep_scale = OGK_R(2.0) / ctx->cfg.h_max;
     dyn->keep_t = NULL;
     dyn->keep_u = NULL;
 #endif
 }
 
 
-static double norm3(const double *a)
+static ogk_real_t norm3(const ogk_real_t *a)
 {
-    return sqrt((a[0] * a[0]) + (a[1] * a[1]) + (a[2] * a[2]));
+    return OGK_SQRT((a[0] * a[0]) + (a[1] * a[1]) + (a[2] * a[2]));
 }
 
 /* Eq. (16). */
-ogk_status ogk_i_mpsp_rhs(const ogk_i_mpsp_dyn_t *dyn, const double *x, const double *u, int mode, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
-                    double *xdot)
+ogk_status ogk_i_mpsp_rhs(const ogk_i_mpsp_dyn_t *dyn, const ogk_real_t *x, const ogk_real_t *u, int mode, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
+                    ogk_real_t *xdot)
 {
-    const double m = x[6];
-    double gx = 0.0;
-    double gy = 0.0;
-    double gz = 0.0;
+    const ogk_real_t m = x[6];
+    ogk_real_t gx = OGK_R(0.0);
+    ogk_real_t gy = OGK_R(0.0);
+    ogk_real_t gz = OGK_R(0.0);
     ogk_status st = OGK_OK;
 
-    if (!(m > 0.0)) {
+    if (!(m > OGK_R(0.0))) {
         st = OGK_E_CALLBACK; /* mass depleted: eq. (16) undefined */
-    } else if (dyn->mu != 0.0) {
-        const double r2 = (x[0] * x[0]) + (x[1] * x[1]) + (x[2] * x[2]);
-        const double k = -dyn->mu / (r2 * sqrt(r2));
-        if (!(r2 > 0.0)) {
+    } else if (dyn->mu != OGK_R(0.0)) {
+        const ogk_real_t r2 = (x[0] * x[0]) + (x[1] * x[1]) + (x[2] * x[2]);
+        const ogk_real_t k = -dyn->mu / (r2 * OGK_SQRT(r2));
+        if (!(r2 > OGK_R(0.0))) {
             st = OGK_E_CALLBACK;
         } else {
             gx = k * x[0];
@@ -91,11 +91,11 @@ ogk_status ogk_i_mpsp_rhs(const ogk_i_mpsp_dyn_t *dyn, const double *x, const do
         xdot[1] = x[4];
         xdot[2] = x[5];
         if (mode == 1) {
-            const double lam = norm3(u);
-            if (!(lam > 0.0)) {
+            const ogk_real_t lam = norm3(u);
+            if (!(lam > OGK_R(0.0))) {
                 st = OGK_E_CALLBACK; /* thrust direction undefined (eq. 8) */
             } else {
-                const double a = dyn->thrust / (m * lam);
+                const ogk_real_t a = dyn->thrust / (m * lam);
                 xdot[3] = gx - (a * u[0]);
                 xdot[4] = gy - (a * u[1]);
                 xdot[5] = gz - (a * u[2]);
@@ -106,21 +106,21 @@ ogk_status ogk_i_mpsp_rhs(const ogk_i_mpsp_dyn_t *dyn, const double *x, const do
             xdot[3] = gx;
             xdot[4] = gy;
             xdot[5] = gz;
-            xdot[6] = 0.0;
-            xdot[7] = 0.0;
+            xdot[6] = OGK_R(0.0);
+            xdot[7] = OGK_R(0.0);
         }
     }
     return st;
 }
 
 /* Eq. (10): S = 1 - lambda_m - |lambda_v| c / m. */
-double ogk_i_mpsp_switch_value(const ogk_i_mpsp_dyn_t *dyn, const double *x, const double *u)
+ogk_real_t ogk_i_mpsp_switch_value(const ogk_i_mpsp_dyn_t *dyn, const ogk_real_t *x, const ogk_real_t *u)
 {
-    return 1.0 - x[7] - norm3(u) * dyn->c_exhaust / x[6];
+    return OGK_R(1.0) - x[7] - norm3(u) * dyn->c_exhaust / x[6];
 }
 
 /* v into entry i of a stage partial held MPSP_SL times (ogk_i_mpsp_stage_t). */
-static void put_sl(double *a, size_t i, double v)
+static void put_sl(ogk_real_t *a, size_t i, ogk_real_t v)
 {
     size_t l;
     for (l = 0u; l < MPSP_SL; ++l) {
@@ -131,20 +131,20 @@ static void put_sl(double *a, size_t i, double v)
 /* G = mu/r^3 (3 r r^T / r^2 - I), upper triangle (held as ogk_i_mpsp_stage_t.g),
  * and *kg = -mu/r^3 (0 and G = 0 without a central body): one square root
  * and one division. OGK_E_CALLBACK at r = 0. */
-static ogk_status gravity_gradient(const ogk_i_mpsp_dyn_t *dyn, const double *x, double *kg,
-                                   double *g)
+static ogk_status gravity_gradient(const ogk_i_mpsp_dyn_t *dyn, const ogk_real_t *x, ogk_real_t *kg,
+                                   ogk_real_t *g)
 {
     ogk_status st = OGK_OK;
 
-    if (dyn->mu != 0.0) {
-        const double r2 = (x[0] * x[0]) + (x[1] * x[1]) + (x[2] * x[2]);
-        if (!(r2 > 0.0)) {
+    if (dyn->mu != OGK_R(0.0)) {
+        const ogk_real_t r2 = (x[0] * x[0]) + (x[1] * x[1]) + (x[2] * x[2]);
+        if (!(r2 > OGK_R(0.0))) {
             st = OGK_E_CALLBACK;
         } else {
-            const double inv_r = 1.0 / sqrt(r2);
-            const double inv_r2 = inv_r * inv_r;
-            const double k = dyn->mu * inv_r2 * inv_r;
-            const double k3 = 3.0 * k * inv_r2;
+            const ogk_real_t inv_r = OGK_R(1.0) / OGK_SQRT(r2);
+            const ogk_real_t inv_r2 = inv_r * inv_r;
+            const ogk_real_t k = dyn->mu * inv_r2 * inv_r;
+            const ogk_real_t k3 = OGK_R(3.0) * k * inv_r2;
             *kg = -k;
             put_sl(g, 0u, (k3 * x[0] * x[0]) - k);
             put_sl(g, 1u, k3 * x[0] * x[1]);
@@ -155,9 +155,9 @@ static ogk_status gravity_gradient(const ogk_i_mpsp_dyn_t *dyn, const double *x,
         }
     } else {
         size_t i;
-        *kg = 0.0;
+        *kg = OGK_R(0.0);
         for (i = 0u; i < (6u * MPSP_SL); ++i) {
-            g[i] = 0.0;
+            g[i] = OGK_R(0.0);
         }
     }
     return st;
@@ -166,33 +166,33 @@ static ogk_status gravity_gradient(const ogk_i_mpsp_dyn_t *dyn, const double *x,
 /* The stage states need only be those of ogk_rk4_step to rounding (the
  * partials taken there agree with finite differences to 1e-8, docs/design/mpsp.md):
  * reciprocals replace the divisions of ogk_i_mpsp_rhs (7 per stage to 3). */
-ogk_status ogk_i_mpsp_stage_eval(const ogk_i_mpsp_dyn_t *dyn, const double *x, const ogk_i_mpsp_uval_t *uv, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
-                           int mode, double *xdot, ogk_i_mpsp_stage_t *sd)
+ogk_status ogk_i_mpsp_stage_eval(const ogk_i_mpsp_dyn_t *dyn, const ogk_real_t *x, const ogk_i_mpsp_uval_t *uv, /* NOLINT(bugprone-easily-swappable-parameters): eq. (16) order x, u; FD-checked by the unit tests */
+                           int mode, ogk_real_t *xdot, ogk_i_mpsp_stage_t *sd)
 {
-    const double m = x[6];
-    double kg = 0.0;
+    const ogk_real_t m = x[6];
+    ogk_real_t kg = OGK_R(0.0);
     ogk_status st = OGK_OK;
 
-    if (!(m > 0.0)) {
+    if (!(m > OGK_R(0.0))) {
         st = OGK_E_CALLBACK; /* mass depleted: eq. (16) undefined */
     } else {
         st = gravity_gradient(dyn, x, &kg, sd->g);
     }
-    if ((st == OGK_OK) && (mode == 1) && !(uv->lam > 0.0)) {
+    if ((st == OGK_OK) && (mode == 1) && !(uv->lam > OGK_R(0.0))) {
         st = OGK_E_CALLBACK; /* thrust direction undefined (eq. 8) */
     }
     if (st == OGK_OK) {
         if (mode == 1) {
-            const double lam = uv->lam;
-            const double inv_lam = 1.0 / lam;
-            const double t_m = dyn->thrust / m;
-            const double t_m2 = t_m / m;
-            const double a = t_m * inv_lam; /* T/(m |U|) */
+            const ogk_real_t lam = uv->lam;
+            const ogk_real_t inv_lam = OGK_R(1.0) / lam;
+            const ogk_real_t t_m = dyn->thrust / m;
+            const ogk_real_t t_m2 = t_m / m;
+            const ogk_real_t a = t_m * inv_lam; /* T/(m |U|) */
             put_sl(sd->e, 0u, uv->u[0] * inv_lam);
             put_sl(sd->e, 1u, uv->u[1] * inv_lam);
             put_sl(sd->e, 2u, uv->u[2] * inv_lam);
             put_sl(sd->a_vm, 0u, t_m2);
-            put_sl(sd->a_lm, 0u, 2.0 * t_m2 * lam / m);
+            put_sl(sd->a_lm, 0u, OGK_R(2.0) * t_m2 * lam / m);
             put_sl(sd->d_v, 0u, -a);
             put_sl(sd->d_l, 0u, -t_m2);
             if (xdot != NULL) { /* eq. (16), thrust */
@@ -212,8 +212,8 @@ ogk_status ogk_i_mpsp_stage_eval(const ogk_i_mpsp_dyn_t *dyn, const double *x, c
                 xdot[3] = kg * x[0];
                 xdot[4] = kg * x[1];
                 xdot[5] = kg * x[2];
-                xdot[6] = 0.0;
-                xdot[7] = 0.0;
+                xdot[6] = OGK_R(0.0);
+                xdot[7] = OGK_R(0.0);
             }
         }
         if (xdot != NULL) {
@@ -226,25 +226,25 @@ ogk_status ogk_i_mpsp_stage_eval(const ogk_i_mpsp_dyn_t *dyn, const double *x, c
 }
 
 /* RK4 callbacks of ogk_i_mpsp_rk4_problem: user is the ogk_i_mpsp_dyn_t it was given. */
-static ogk_status mpsp_rhs_cb(void *user, double t, const double *x, int mode, double *xdot)
+static ogk_status mpsp_rhs_cb(void *user, ogk_real_t t, const ogk_real_t *x, int mode, ogk_real_t *xdot)
 {
     ogk_i_mpsp_dyn_t *dyn = (ogk_i_mpsp_dyn_t *)user;
-    double u[3] = {0.0, 0.0, 0.0};
+    ogk_real_t u[3] = {OGK_R(0.0), OGK_R(0.0), OGK_R(0.0)};
     if (mode == 1) {
         ogk_i_mpsp_control_at(dyn, t, u); /* coast needs no control */
     }
     return ogk_i_mpsp_rhs(dyn, x, u, mode, xdot);
 }
 
-static ogk_status mpsp_switch_cb(void *user, double t, const double *x, int mode, double *s)
+static ogk_status mpsp_switch_cb(void *user, ogk_real_t t, const ogk_real_t *x, int mode, ogk_real_t *s)
 {
     ogk_i_mpsp_dyn_t *dyn = (ogk_i_mpsp_dyn_t *)user;
     ogk_status st = OGK_OK;
     (void)mode;
-    if (!(x[6] > 0.0)) {
+    if (!(x[6] > OGK_R(0.0))) {
         st = OGK_E_CALLBACK;
     } else {
-        double u[3];
+        ogk_real_t u[3];
         ogk_i_mpsp_control_at(dyn, t, u);
         *s = ogk_i_mpsp_switch_value(dyn, x, u);
     }
@@ -261,5 +261,5 @@ void ogk_i_mpsp_rk4_problem(ogk_rk4_problem_t *p, const ogk_mpsp_t *ctx, ogk_i_m
     p->s_tol = ctx->cfg.s_tol;
     /* Bisection stops at the last representable bits of t if |S| <= s_tol
      * is not reached first. */
-    p->t_tol = 4.0 * DBL_EPSILON * (fabs(ctx->cfg.t0) + fabs(ctx->cfg.tf));
+    p->t_tol = OGK_R(4.0) * OGK_REAL_EPSILON * (OGK_FABS(ctx->cfg.t0) + OGK_FABS(ctx->cfg.tf));
 }

@@ -12,16 +12,16 @@
 
 #define NX OGK_MPSP_NX
 
-ogk_status ogk_i_mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
-                              const double *x0, double thrust, ogk_mpsp_prop_t *out)
+ogk_status ogk_i_mpsp_propagate_ctx(ogk_mpsp_t *ctx, const ogk_real_t *weights, ogk_real_t lambda_m0,
+                              const ogk_real_t *x0, ogk_real_t thrust, ogk_mpsp_prop_t *out)
 {
     ogk_i_mpsp_dyn_t dyn;
     ogk_rk4_problem_t prob;
     ogk_rk4_result_t res;
     ogk_rk4_dense_t dense;
-    double xs[NX];
-    double xf[NX];
-    double u0[3];
+    ogk_real_t xs[NX];
+    ogk_real_t xf[NX];
+    ogk_real_t u0[3];
     size_t i;
     int mode0;
     ogk_status st;
@@ -44,7 +44,7 @@ ogk_status ogk_i_mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, doub
     /* U made two at a time is kept for the sweep (empty slots: a time no
      * node or midpoint has) */
     for (i = 0u; i < OGK_MPSP_KEEP_U_SLOTS; ++i) {
-        ctx->keep_t[i] = -HUGE_VAL;
+        ctx->keep_t[i] = -OGK_REAL_HUGE_VAL;
     }
     dyn.pairing = true;
     dyn.keep_t = ctx->keep_t;
@@ -53,7 +53,7 @@ ogk_status ogk_i_mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, doub
     ogk_i_mpsp_rk4_problem(&prob, ctx, &dyn);
     /* Initial mode from the sign of S(t0) (eq. 11; S = 0 taken as coast). */
     ogk_i_mpsp_control_at(&dyn, ctx->cfg.t0, u0);
-    if (ogk_i_mpsp_switch_value(&dyn, xs, u0) < 0.0) {
+    if (ogk_i_mpsp_switch_value(&dyn, xs, u0) < OGK_R(0.0)) {
         mode0 = 1;
     } else {
         mode0 = 0;
@@ -95,7 +95,7 @@ ogk_status ogk_i_mpsp_propagate_ctx(ogk_mpsp_t *ctx, const double *weights, doub
     return st;
 }
 
-static ogk_status check_inputs(const ogk_mpsp_t *ctx, const double *x0, double thrust_scale)
+static ogk_status check_inputs(const ogk_mpsp_t *ctx, const ogk_real_t *x0, ogk_real_t thrust_scale)
 {
     ogk_status st = OGK_OK;
 
@@ -105,7 +105,7 @@ static ogk_status check_inputs(const ogk_mpsp_t *ctx, const double *x0, double t
         st = OGK_E_NOT_INIT;
     } else if (!ogk_i_all_finite(x0, OGK_MPSP_NX0) || !isfinite(thrust_scale)) {
         st = OGK_E_NONFINITE;
-    } else if (!(x0[6] > 0.0) || !(thrust_scale > 0.0)) {
+    } else if (!(x0[6] > OGK_R(0.0)) || !(thrust_scale > OGK_R(0.0))) {
         st = OGK_E_RANGE;
     } else {
         /* usable initial state and thrust scale */
@@ -113,8 +113,8 @@ static ogk_status check_inputs(const ogk_mpsp_t *ctx, const double *x0, double t
     return st;
 }
 
-ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const double *weights, double lambda_m0,
-                              const double *x0, double thrust_scale,
+ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const ogk_real_t *weights, ogk_real_t lambda_m0,
+                              const ogk_real_t *x0, ogk_real_t thrust_scale,
                               ogk_mpsp_prop_t *out)
 {
     ogk_status st = check_inputs(ctx, x0, thrust_scale);
@@ -130,7 +130,7 @@ ogk_status ogk_mpsp_propagate(ogk_mpsp_t *ctx, const double *weights, double lam
     return st;
 }
 
-ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, double *t, double *x,
+ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, ogk_real_t *t, ogk_real_t *x,
                                uint8_t *mode, size_t capacity, size_t *count)
 {
     ogk_status st = OGK_OK;
@@ -159,9 +159,9 @@ ogk_status ogk_mpsp_trajectory(const ogk_mpsp_t *ctx, double *t, double *x,
 }
 
 /* The pchip state at t inside interval k of the held trajectory. */
-static ogk_status state_in_interval(const ogk_mpsp_t *ctx, double t, size_t k, double *x) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, its only caller (ogk_mpsp_state_at) is in this file and unit-tested */
+static ogk_status state_in_interval(const ogk_mpsp_t *ctx, ogk_real_t t, size_t k, ogk_real_t *x) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, its only caller (ogk_mpsp_state_at) is in this file and unit-tested */
 {
-    double slopes[4u * NX];
+    ogk_real_t slopes[4u * NX];
     size_t seg_lo = 0u;
     size_t seg_hi;
     size_t lo;
@@ -205,7 +205,7 @@ static ogk_status state_in_interval(const ogk_mpsp_t *ctx, double t, size_t k, d
     return st;
 }
 
-ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x)
+ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, ogk_real_t t, ogk_real_t *x)
 {
     ogk_status st;
 
@@ -227,8 +227,8 @@ ogk_status ogk_mpsp_state_at(const ogk_mpsp_t *ctx, double t, double *x)
     return st;
 }
 
-ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double t,
-                            double *lambda_v, double *lambda_v_dot)
+ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const ogk_real_t *weights, ogk_real_t t,
+                            ogk_real_t *lambda_v, ogk_real_t *lambda_v_dot)
 {
     ogk_status st = OGK_OK;
 
@@ -240,8 +240,8 @@ ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double
         st = OGK_E_NONFINITE;
     } else {
         ogk_i_mpsp_dyn_t dyn;
-        double h[OGK_MPSP_MAX_BASIS];
-        double hdot[OGK_MPSP_MAX_BASIS];
+        ogk_real_t h[OGK_MPSP_MAX_BASIS];
+        ogk_real_t hdot[OGK_MPSP_MAX_BASIS];
         ogk_i_mpsp_dyn_setup(&dyn, ctx, weights, ctx->cfg.t_max);
         ogk_i_mpsp_basis(&dyn, t, h, hdot);
         ogk_i_mpsp_control_from_basis(&dyn, h, 1u, lambda_v);
@@ -260,33 +260,33 @@ ogk_status ogk_mpsp_control(const ogk_mpsp_t *ctx, const double *weights, double
 
 /* ogk_mpsp_thrust_cmd on a context holding a trajectory and a finite t (cmd
  * holds the safe command). */
-static ogk_status thrust_cmd_held(const ogk_mpsp_t *ctx, double t, ogk_thrust_cmd_t *cmd)
+static ogk_status thrust_cmd_held(const ogk_mpsp_t *ctx, ogk_real_t t, ogk_thrust_cmd_t *cmd)
 {
     size_t k;
     ogk_status st = ogk_interp_locate(ctx->traj_t, ctx->n_nodes, t, &k);
     if (st == OGK_OK) {
         ogk_i_mpsp_dyn_t dyn;
-        double h[OGK_MPSP_MAX_BASIS];
-        double lv[3];
-        double norm;
+        ogk_real_t h[OGK_MPSP_MAX_BASIS];
+        ogk_real_t lv[3];
+        ogk_real_t norm;
         ogk_i_mpsp_dyn_setup(&dyn, ctx, ctx->weights, ctx->thrust);
         ogk_i_mpsp_basis(&dyn, t, h, NULL);
         ogk_i_mpsp_control_from_basis(&dyn, h, 1u, lv);
-        norm = hypot(hypot(lv[0], lv[1]), lv[2]);
-        if (!(norm > 0.0) || !isfinite(norm)) {
+        norm = OGK_HYPOT(OGK_HYPOT(lv[0], lv[1]), lv[2]);
+        if (!(norm > OGK_R(0.0)) || !isfinite(norm)) {
             st = OGK_E_SAFE_COMMAND; /* no primer direction */
         } else {
             /* eq. (16) thrusts along -lambda_v; u of the segment holding t (eq. 11) */
-            const double u[3] = {-lv[0] / norm, -lv[1] / norm, -lv[2] / norm};
+            const ogk_real_t u[3] = {-lv[0] / norm, -lv[1] / norm, -lv[2] / norm};
             const bool thrust = ctx->traj_mode[k] != 0u;
-            ogk_i_thrust_cmd_unit(cmd, t, OGK_FRAME_INERTIAL, u, thrust ? 1.0 : 0.0,
+            ogk_i_thrust_cmd_unit(cmd, t, OGK_FRAME_INERTIAL, u, thrust ? OGK_R(1.0) : OGK_R(0.0),
                                   thrust ? OGK_THRUST_FLAG_ENGINE_ON : 0u, 0u);
         }
     }
     return st;
 }
 
-ogk_status ogk_mpsp_thrust_cmd(const ogk_mpsp_t *ctx, double t, ogk_thrust_cmd_t *cmd)
+ogk_status ogk_mpsp_thrust_cmd(const ogk_mpsp_t *ctx, ogk_real_t t, ogk_thrust_cmd_t *cmd)
 {
     ogk_status st;
 

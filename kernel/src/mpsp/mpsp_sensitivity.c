@@ -23,16 +23,16 @@
 #define HR (MB * (size_t)OGK_MPSP_H_LANES)
 #define SB ((size_t)OGK_MPSP_SENS_BLOCK)
 
-ogk_status ogk_i_mpsp_jump_terms(ogk_i_mpsp_dyn_t *dyn, double t_s, const double *x_s,
+ogk_status ogk_i_mpsp_jump_terms(ogk_i_mpsp_dyn_t *dyn, ogk_real_t t_s, const ogk_real_t *x_s,
                            int mode_before, ogk_i_mpsp_jump_t *jump)
 {
-    double h[OGK_MPSP_MAX_BASIS];
-    double hdot[OGK_MPSP_MAX_BASIS];
-    double u[3];
-    double udot[3];
-    double f_before[NX];
-    double f_after[NX];
-    const double m = x_s[6];
+    ogk_real_t h[OGK_MPSP_MAX_BASIS];
+    ogk_real_t hdot[OGK_MPSP_MAX_BASIS];
+    ogk_real_t u[3];
+    ogk_real_t udot[3];
+    ogk_real_t f_before[NX];
+    ogk_real_t f_after[NX];
+    const ogk_real_t m = x_s[6];
     ogk_status st;
 
     ogk_i_mpsp_basis(dyn, t_s, h, hdot);
@@ -43,24 +43,24 @@ ogk_status ogk_i_mpsp_jump_terms(ogk_i_mpsp_dyn_t *dyn, double t_s, const double
         st = ogk_i_mpsp_rhs(dyn, x_s, u, 1 - mode_before, f_after);
     }
     if (st == OGK_OK) {
-        double lam;
-        double e_udot;
+        ogk_real_t lam;
+        ogk_real_t e_udot;
         size_t i;
-        lam = sqrt((u[0] * u[0]) + (u[1] * u[1]) + (u[2] * u[2]));
+        lam = OGK_SQRT((u[0] * u[0]) + (u[1] * u[1]) + (u[2] * u[2]));
         for (i = 0u; i < NX; ++i) {
             jump->dxdot[i] = f_after[i] - f_before[i];
-            jump->s_x[i] = 0.0;
+            jump->s_x[i] = OGK_R(0.0);
         }
         /* S_X = [0_6, c lambda_v / m^2, -1], S_U = -c/(m lambda_v) lambda_v^T (eq. 25) */
         jump->s_x[6] = dyn->c_exhaust * lam / (m * m);
-        jump->s_x[7] = -1.0;
+        jump->s_x[7] = -OGK_R(1.0);
         for (i = 0u; i < 3u; ++i) {
             jump->s_u[i] = -dyn->c_exhaust * u[i] / (m * lam);
         }
         /* Eq. (15): dS/dt = S_U dU/dt (S_X Xdot vanishes identically). */
         e_udot = (jump->s_u[0] * udot[0]) + (jump->s_u[1] * udot[1]) + (jump->s_u[2] * udot[2]);
         jump->s_dot = e_udot;
-        if (!isfinite(jump->s_dot) || !(fabs(jump->s_dot) > 0.0)) {
+        if (!isfinite(jump->s_dot) || !(OGK_FABS(jump->s_dot) > OGK_R(0.0))) {
             st = OGK_E_SINGULAR; /* tangential switch: t_s not differentiable */
         }
     }
@@ -69,16 +69,16 @@ ogk_status ogk_i_mpsp_jump_terms(ogk_i_mpsp_dyn_t *dyn, double t_s, const double
 
 /* U and |U| from a basis row, h_q at h[q * stride] (1, or OGK_MPSP_H_LANES
  * for a row of the sample block: U not kept by the propagation). */
-static void uval_from_basis(const ogk_i_mpsp_dyn_t *dyn, const double *h, size_t stride, ogk_i_mpsp_uval_t *uv)
+static void uval_from_basis(const ogk_i_mpsp_dyn_t *dyn, const ogk_real_t *h, size_t stride, ogk_i_mpsp_uval_t *uv)
 {
     ogk_i_mpsp_control_from_basis(dyn, h, stride, uv->u);
-    uv->lam = sqrt((uv->u[0] * uv->u[0]) + (uv->u[1] * uv->u[1]) + (uv->u[2] * uv->u[2]));
+    uv->lam = OGK_SQRT((uv->u[0] * uv->u[0]) + (uv->u[1] * uv->u[1]) + (uv->u[2] * uv->u[2]));
 }
 
 /* out[r][c n_basis + q] += coef[r * 3 + c] h[q], row-major rows x 3 n_basis
  * (the one-step Jacobian; not on the hot path). */
-static void accumulate_rows(double *out, size_t n_basis, size_t rows, const double *coef, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                            const double *h)
+static void accumulate_rows(ogk_real_t *out, size_t n_basis, size_t rows, const ogk_real_t *coef, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                            const ogk_real_t *h)
 {
     const size_t n_weights = 3u * n_basis;
     size_t r;
@@ -95,30 +95,30 @@ static void accumulate_rows(double *out, size_t n_basis, size_t rows, const doub
 
 /* The partials of the RK4 step of ogk_mpsp_step_jacobian (x_next already
  * taken): dF/dX and dF/dW through the adjoint of the step, each if asked. */
-static ogk_status step_partials(const ogk_mpsp_t *ctx, const ogk_i_mpsp_dyn_t *dyn, double t, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                const double *x, double dt, int mode, double *dfdx, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                double *dfdw)
+static ogk_status step_partials(const ogk_mpsp_t *ctx, const ogk_i_mpsp_dyn_t *dyn, ogk_real_t t, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                const ogk_real_t *x, ogk_real_t dt, int mode, ogk_real_t *dfdx, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                ogk_real_t *dfdw)
 {
-    double h0[OGK_MPSP_MAX_BASIS];
-    double hm[OGK_MPSP_MAX_BASIS];
-    double h1[OGK_MPSP_MAX_BASIS];
-    double adj[NX * NX];
-    double b0[NX * 3u];
-    double bm[NX * 3u];
-    double b1[NX * 3u];
+    ogk_real_t h0[OGK_MPSP_MAX_BASIS];
+    ogk_real_t hm[OGK_MPSP_MAX_BASIS];
+    ogk_real_t h1[OGK_MPSP_MAX_BASIS];
+    ogk_real_t adj[NX * NX];
+    ogk_real_t b0[NX * 3u];
+    ogk_real_t bm[NX * 3u];
+    ogk_real_t b1[NX * 3u];
     ogk_i_mpsp_uval_t uv[3];
     size_t i;
     ogk_status st;
 
     ogk_i_mpsp_basis(dyn, t, h0, NULL);
-    ogk_i_mpsp_basis(dyn, t + (0.5 * dt), hm, NULL);
+    ogk_i_mpsp_basis(dyn, t + (OGK_R(0.5) * dt), hm, NULL);
     ogk_i_mpsp_basis(dyn, t + dt, h1, NULL);
     (void)memset(adj, 0, sizeof adj);
     (void)memset(b0, 0, sizeof b0);
     (void)memset(bm, 0, sizeof bm);
     (void)memset(b1, 0, sizeof b1);
     for (i = 0u; i < NX; ++i) {
-        adj[(i * NX) + i] = 1.0; /* row i seeds d X_next[i] */
+        adj[(i * NX) + i] = OGK_R(1.0); /* row i seeds d X_next[i] */
     }
     uval_from_basis(dyn, h0, 1u, &uv[0]);
     uval_from_basis(dyn, hm, 1u, &uv[1]);
@@ -150,13 +150,13 @@ static ogk_status check_ctx(const ogk_mpsp_t *ctx)
     return st;
 }
 
-static ogk_status check_mode_scale(double thrust_scale, int mode)
+static ogk_status check_mode_scale(ogk_real_t thrust_scale, int mode)
 {
     ogk_status st = OGK_OK;
 
     if (!isfinite(thrust_scale)) {
         st = OGK_E_NONFINITE;
-    } else if ((!(thrust_scale > 0.0)) || ((mode != 0) && (mode != 1))) {
+    } else if ((!(thrust_scale > OGK_R(0.0))) || ((mode != 0) && (mode != 1))) {
         st = OGK_E_RANGE;
     } else {
         /* a usable scale and mode */
@@ -164,10 +164,10 @@ static ogk_status check_mode_scale(double thrust_scale, int mode)
     return st;
 }
 
-ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
-                                  double thrust_scale, double t, const double *x, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                  double dt, int mode, double *x_next, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                  double *dfdx, double *dfdw)
+ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const ogk_real_t *weights,
+                                  ogk_real_t thrust_scale, ogk_real_t t, const ogk_real_t *x, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                  ogk_real_t dt, int mode, ogk_real_t *x_next, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                  ogk_real_t *dfdx, ogk_real_t *dfdw)
 {
     ogk_status st = check_ctx(ctx);
 
@@ -181,7 +181,7 @@ ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
                            !ogk_i_all_finite(weights, ctx->n_weights))) {
         st = OGK_E_NONFINITE;
     }
-    if ((st == OGK_OK) && (dt == 0.0)) {
+    if ((st == OGK_OK) && (dt == OGK_R(0.0))) {
         st = OGK_E_RANGE;
     }
     if (st == OGK_OK) {
@@ -199,8 +199,8 @@ ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
 }
 
 /* The argument checks of ogk_mpsp_switch_jump, in their order. */
-static ogk_status check_jump_args(const ogk_mpsp_t *ctx, const double *weights, double thrust_scale, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                  double t_s, const double *x_s, int mode_before)
+static ogk_status check_jump_args(const ogk_mpsp_t *ctx, const ogk_real_t *weights, ogk_real_t thrust_scale, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                  ogk_real_t t_s, const ogk_real_t *x_s, int mode_before)
 {
     ogk_status st = check_ctx(ctx);
 
@@ -217,14 +217,14 @@ static ogk_status check_jump_args(const ogk_mpsp_t *ctx, const double *weights, 
     return st;
 }
 
-ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
-                                double thrust_scale, double t_s, const double *x_s, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                int mode_before, double *jx, double *jw, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                double *dts_dx, double *dts_dw)
+ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const ogk_real_t *weights,
+                                ogk_real_t thrust_scale, ogk_real_t t_s, const ogk_real_t *x_s, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                int mode_before, ogk_real_t *jx, ogk_real_t *jw, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                ogk_real_t *dts_dx, ogk_real_t *dts_dw)
 {
     ogk_i_mpsp_dyn_t dyn;
     ogk_i_mpsp_jump_t jump;
-    double h[OGK_MPSP_MAX_BASIS];
+    ogk_real_t h[OGK_MPSP_MAX_BASIS];
     ogk_status st = check_jump_args(ctx, weights, thrust_scale, t_s, x_s, mode_before);
 
     if (st == OGK_OK) {
@@ -239,10 +239,10 @@ ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
         ogk_i_mpsp_basis(&dyn, t_s, h, NULL);
         /* Eq. (24): I + dxdot S_X / Sdot;  eq. (25) with dU = P(t_s) dW. */
         for (i = 0u; i < NX; ++i) {
-            const double a = jump.dxdot[i] / jump.s_dot;
+            const ogk_real_t a = jump.dxdot[i] / jump.s_dot;
             if (jx != NULL) {
                 for (j = 0u; j < NX; ++j) {
-                    jx[(i * NX) + j] = ((i == j) ? 1.0 : 0.0) + (a * jump.s_x[j]);
+                    jx[(i * NX) + j] = ((i == j) ? OGK_R(1.0) : OGK_R(0.0)) + (a * jump.s_x[j]);
                 }
             }
             if (jw != NULL) {
@@ -273,8 +273,8 @@ ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
 /* Eqs. (22)-(25) at the switch node k + 1 (time t_hi, state x_hi) of the
  * backward recursion: the NY rows adj compensated and the S_U part added to
  * pend (bU at t_hi). */
-static ogk_status switch_compensation(ogk_i_mpsp_dyn_t *dyn, double t_hi, const double *x_hi, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                                      double *adj, double *pend) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+static ogk_status switch_compensation(ogk_i_mpsp_dyn_t *dyn, ogk_real_t t_hi, const ogk_real_t *x_hi, int mode, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                                      ogk_real_t *adj, ogk_real_t *pend) /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
 {
     ogk_i_mpsp_jump_t jump;
     const ogk_status st = ogk_i_mpsp_jump_terms(dyn, t_hi, x_hi, mode, &jump);
@@ -283,7 +283,7 @@ static ogk_status switch_compensation(ogk_i_mpsp_dyn_t *dyn, double t_hi, const 
         size_t r;
         size_t i;
         for (r = 0u; r < NY; ++r) {
-            double a = 0.0;
+            ogk_real_t a = OGK_R(0.0);
             for (i = 0u; i < NX; ++i) {
                 a += adj[(r * NX) + i] * jump.dxdot[i];
             }
@@ -322,12 +322,12 @@ static void block_flush(sens_block_t *blk)
 }
 
 /* h(t_hi) and U(t_hi) into slot n unless already held. */
-static void block_hold_hi(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, double t_hi)
+static void block_hold_hi(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, ogk_real_t t_hi)
 {
     if (!blk->hi_held) {
-        double *row = &blk->ctx->sens_h[blk->n * HR];
+        ogk_real_t *row = &blk->ctx->sens_h[blk->n * HR];
 #if defined(__SSE2__)
-        double h[MB];
+        ogk_real_t h[MB];
         size_t q;
         ogk_i_mpsp_basis_control(dyn, t_hi, h, &blk->hi);
         for (q = 0u; q < dyn->n_basis; ++q) { /* each value twice (OGK_MPSP_H_LANES) */
@@ -346,18 +346,18 @@ static void block_hold_hi(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, double t_hi)
  * differentiated, and the node above (slot n: its pending bU plus stage 4)
  * and the midpoint (stages 2 and 3) completed; the node below is held with
  * stage 1 as its pending bU. */
-static ogk_status thrust_step(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, size_t k, double *adj, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
-                              double *pend)
+static ogk_status thrust_step(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, size_t k, ogk_real_t *adj, /* NOLINT(bugprone-easily-swappable-parameters): order of eqs. (16)/(25); FD-checked by the unit tests */
+                              ogk_real_t *pend)
 {
     ogk_mpsp_t *ctx = blk->ctx;
-    const double t_lo = ctx->traj_t[k];
-    const double dt = ctx->traj_t[k + 1u] - t_lo;
+    const ogk_real_t t_lo = ctx->traj_t[k];
+    const ogk_real_t dt = ctx->traj_t[k + 1u] - t_lo;
     const size_t n = blk->n;
-    double *h_mid = &ctx->sens_h[(n + 1u) * HR];
-    double *h_lo = &ctx->sens_h[(n + 2u) * HR];
-    double *c_hi = &ctx->sens_c[n * NYU];
-    double *c_mid = &ctx->sens_c[(n + 1u) * NYU];
-    double pend_lo[NYU];
+    ogk_real_t *h_mid = &ctx->sens_h[(n + 1u) * HR];
+    ogk_real_t *h_lo = &ctx->sens_h[(n + 2u) * HR];
+    ogk_real_t *c_hi = &ctx->sens_c[n * NYU];
+    ogk_real_t *c_mid = &ctx->sens_c[(n + 1u) * NYU];
+    ogk_real_t pend_lo[NYU];
     ogk_i_mpsp_uval_t uv[3];
     ogk_status st;
 
@@ -365,7 +365,7 @@ static ogk_status thrust_step(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, size_t k
 #if defined(__SSE2__)
     {
         /* the midpoint, then t_lo: the phase order of the one-time path */
-        const double t_pair[2] = {t_lo + (0.5 * dt), t_lo};
+        const ogk_real_t t_pair[2] = {t_lo + (OGK_R(0.5) * dt), t_lo};
         ogk_i_mpsp_uval_t uv_pair[2];
         /* U kept by the propagation (made there for these very times), else
          * made here with h; either way the same phases in the same order */
@@ -382,7 +382,7 @@ static ogk_status thrust_step(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, size_t k
         uv[0] = uv_pair[1];
     }
 #else
-    ogk_i_mpsp_basis_control(dyn, t_lo + (0.5 * dt), h_mid, &uv[1]);
+    ogk_i_mpsp_basis_control(dyn, t_lo + (OGK_R(0.5) * dt), h_mid, &uv[1]);
     ogk_i_mpsp_basis_control(dyn, t_lo, h_lo, &uv[0]);
 #endif
     uv[2] = blk->hi;
@@ -406,7 +406,7 @@ static ogk_status thrust_step(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, size_t k
 
 /* The end of both sweeps: the last samples into B_v, B_v unpacked into
  * dY/dw, and A_lambda, the lambda_m column of dY/dX(t0) (eq. 33). */
-static void recursion_finish(ogk_mpsp_t *ctx, sens_block_t *blk, const double *adj)
+static void recursion_finish(ogk_mpsp_t *ctx, sens_block_t *blk, const ogk_real_t *adj)
 {
     size_t r;
 
@@ -421,7 +421,7 @@ static void recursion_finish(ogk_mpsp_t *ctx, sens_block_t *blk, const double *a
 /* The start of both sweeps: the dynamics of the current weights, an empty
  * sample block, dY/dX(tf) with Y = [r, v, lambda_m] (adj, NY x NX) and B_v's
  * accumulators cleared. */
-static void recursion_start(ogk_mpsp_t *ctx, ogk_i_mpsp_dyn_t *dyn, sens_block_t *blk, double *adj)
+static void recursion_start(ogk_mpsp_t *ctx, ogk_i_mpsp_dyn_t *dyn, sens_block_t *blk, ogk_real_t *adj)
 {
     size_t r;
 
@@ -432,9 +432,9 @@ static void recursion_start(ogk_mpsp_t *ctx, ogk_i_mpsp_dyn_t *dyn, sens_block_t
     (void)memset(&blk->hi, 0, sizeof blk->hi);
     (void)memset(adj, 0, NY * NX * sizeof adj[0]);
     for (r = 0u; r < 6u; ++r) {
-        adj[(r * NX) + r] = 1.0;
+        adj[(r * NX) + r] = OGK_R(1.0);
     }
-    adj[(6u * NX) + 7u] = 1.0;
+    adj[(6u * NX) + 7u] = OGK_R(1.0);
     (void)memset(ctx->bv_acc, 0, ctx->n_basis * NYU * sizeof ctx->bv_acc[0]);
 }
 
@@ -445,8 +445,8 @@ static ogk_status backward_recursion(ogk_mpsp_t *ctx)
 {
     ogk_i_mpsp_dyn_t dyn;
     sens_block_t blk;
-    double adj[NY * NX];
-    double pend[NYU];
+    ogk_real_t adj[NY * NX];
+    ogk_real_t pend[NYU];
     bool pend_nonzero = false;
     size_t kk;
     ogk_status st = OGK_OK;
@@ -472,7 +472,7 @@ static ogk_status backward_recursion(ogk_mpsp_t *ctx)
             pend_nonzero = true;
         } else if (st == OGK_OK) {
             ogk_i_mpsp_uval_t uv[3];
-            double unused[NYU];
+            ogk_real_t unused[NYU];
             (void)memset(uv, 0, sizeof uv);
             if (pend_nonzero) { /* the node above ends a thrust arc or is a switch */
                 block_hold_hi(&blk, &dyn, ctx->traj_t[k + 1u]);
@@ -501,20 +501,20 @@ static ogk_status backward_recursion(ogk_mpsp_t *ctx)
 }
 
 /* The midpoint of step k (node k -> k + 1), as both sweeps compute it. */
-static double step_mid(const ogk_mpsp_t *ctx, size_t k)
+static ogk_real_t step_mid(const ogk_mpsp_t *ctx, size_t k)
 {
-    const double t_lo = ctx->traj_t[k];
-    return t_lo + (0.5 * (ctx->traj_t[k + 1u] - t_lo));
+    const ogk_real_t t_lo = ctx->traj_t[k];
+    return t_lo + (OGK_R(0.5) * (ctx->traj_t[k + 1u] - t_lo));
 }
 
 /* A switch's sample of B_v at t_s with coefficients coef (NYU) into slot n;
  * a basis row held there (blk->hi_held: the next midpoint's, SSE2) moves up
  * to slot n + 1 and stays held. */
-static void mid2_push_switch(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, double t_s, const double *coef)
+static void mid2_push_switch(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, ogk_real_t t_s, const ogk_real_t *coef)
 {
     ogk_mpsp_t *ctx = blk->ctx;
     const bool held = blk->hi_held; /* its U is not held: mid2_row_at takes it anew */
-    double *row = &ctx->sens_h[blk->n * HR];
+    ogk_real_t *row = &ctx->sens_h[blk->n * HR];
 
     if (held) {
         (void)memcpy(&row[HR], row, dyn->n_basis * OGK_MPSP_H_LANES * sizeof row[0]);
@@ -533,13 +533,13 @@ static void mid2_push_switch(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, double t_
  * ogk_i_mpsp_basis_control makes the row and U. */
 static void mid2_row_at(sens_block_t *blk, ogk_i_mpsp_dyn_t *dyn, size_t k, ogk_i_mpsp_uval_t *uv)
 {
-    const double t_mid = step_mid(blk->ctx, k);
+    const ogk_real_t t_mid = step_mid(blk->ctx, k);
 #if defined(__SSE2__)
     ogk_mpsp_t *ctx = blk->ctx;
-    double *row = &ctx->sens_h[blk->n * HR];
+    ogk_real_t *row = &ctx->sens_h[blk->n * HR];
     const bool made = !blk->hi_held; /* else made with step k + 1's */
     if (made) {
-        const double t_pair[2] = {t_mid, (k > 0u) ? step_mid(ctx, k - 1u) : t_mid};
+        const ogk_real_t t_pair[2] = {t_mid, (k > 0u) ? step_mid(ctx, k - 1u) : t_mid};
         ogk_i_mpsp_basis2(dyn, t_pair, row, &row[HR]);
     }
     if (!ogk_i_mpsp_keep_find(ctx, dyn, t_mid, uv)) { /* the last step before a switch */
@@ -562,8 +562,8 @@ static ogk_status backward_recursion_mid2(ogk_mpsp_t *ctx)
 {
     ogk_i_mpsp_dyn_t dyn;
     sens_block_t blk;
-    double adj[NY * NX];
-    double pend[NYU];
+    ogk_real_t adj[NY * NX];
+    ogk_real_t pend[NYU];
     size_t kk;
     ogk_status st = OGK_OK;
 
@@ -572,7 +572,7 @@ static ogk_status backward_recursion_mid2(ogk_mpsp_t *ctx)
     for (kk = 1u; (kk < ctx->n_nodes) && (st == OGK_OK); ++kk) {
         const size_t k = ctx->n_nodes - 1u - kk; /* step k: node k -> k + 1 */
         const int mode = (int)ctx->traj_mode[k];
-        const double dt = ctx->traj_t[k + 1u] - ctx->traj_t[k];
+        const ogk_real_t dt = ctx->traj_t[k + 1u] - ctx->traj_t[k];
 
         if ((blk.n + 3u) > SB) {
             block_flush(&blk); /* room for a switch, a midpoint and a held row */
@@ -616,7 +616,7 @@ static ogk_status backward_recursion_mid2(ogk_mpsp_t *ctx)
  *   bU at a node time gathers stage 4 of the step below, stage 1 of the step
  *   above and any switch there, so h is evaluated once per node and once per
  *   step midpoint, and not at all in coast (U does not enter eq. 16 there). */
-ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, double *dy_dw, double *dy_dlm0)
+ogk_status ogk_mpsp_sensitivity(ogk_mpsp_t *ctx, ogk_real_t *dy_dw, ogk_real_t *dy_dlm0)
 {
     ogk_status st = check_ctx(ctx);
 

@@ -15,7 +15,7 @@
 #define NX OGK_NMPC_NX
 
 /* Relative slack when counting the subintervals already flown. */
-#define FLOWN_EPS 1.0e-9
+#define FLOWN_EPS OGK_R(1.0e-9)
 
 ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg)
 {
@@ -24,34 +24,34 @@ ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg)
         st = OGK_E_NULL;
     } else {
         (void)memset(cfg, 0, sizeof(*cfg));
-        cfg->mu = 1.0;
+        cfg->mu = OGK_R(1.0);
         cfg->engine = OGK_NMPC_ENGINE_CONSTANT;
         cfg->power = OGK_NMPC_POWER_CONSTANT;
-        cfg->thrust_max = 0.0;      /* must be set */
-        cfg->mass_flow_max = 0.0;   /* must be set */
-        cfg->solar_length_unit = 1.0;
+        cfg->thrust_max = OGK_R(0.0);      /* must be set */
+        cfg->mass_flow_max = OGK_R(0.0);   /* must be set */
+        cfg->solar_length_unit = OGK_R(1.0);
         cfg->n_bodies = 0u;
-        cfg->target_radius = 0.0;   /* must be set */
+        cfg->target_radius = OGK_R(0.0);   /* must be set */
         cfg->objective = OGK_NMPC_MIN_TIME;
         cfg->nodes = 30u;
         cfg->rk4_steps = 8u;
-        cfg->horizon_min = 1.0e-3;
-        cfg->horizon_max = 30.0;
-        cfg->max_sweep = 0.0;
+        cfg->horizon_min = OGK_R(1.0e-3);
+        cfg->horizon_max = OGK_R(30.0);
+        cfg->max_sweep = OGK_R(0.0);
         cfg->max_iter = 100u;
         cfg->max_iter_cold = 200u;
-        cfg->tol_feas = 1.0e-9;
-        cfg->tol_stat = 1.0e-7;
-        cfg->tol_obj = 1.0e-7;
+        cfg->tol_feas = OGK_R(1.0e-9);
+        cfg->tol_stat = OGK_R(1.0e-7);
+        cfg->tol_obj = OGK_R(1.0e-7);
         cfg->hessian = OGK_NMPC_HESSIAN_BFGS;
-        cfg->hessian_init = 1.0;
-        cfg->step_max_alpha = 1.0;
-        cfg->step_max_horizon = 1.0;
-        cfg->elastic_weight = 1000.0;
+        cfg->hessian_init = OGK_R(1.0);
+        cfg->step_max_alpha = OGK_R(1.0);
+        cfg->step_max_horizon = OGK_R(1.0);
+        cfg->elastic_weight = OGK_R(1000.0);
         cfg->strategy = OGK_NMPC_SNNS;
         cfg->min_nodes = 2u;
         cfg->max_subdivisions = 2u;
-        cfg->doubling_threshold = 0.01;
+        cfg->doubling_threshold = OGK_R(0.01);
         cfg->doubling_max_nodes = 8u;
     }
     return st;
@@ -60,7 +60,7 @@ ogk_status ogk_nmpc_config_default(ogk_nmpc_config_t *cfg)
 /* The solver's settings (transcription, SQP, strategy): every problem's. */
 static bool settings_finite(const ogk_nmpc_config_t *c)
 {
-    const double scalars[] = {
+    const ogk_real_t scalars[] = {
         c->horizon_min, c->horizon_max, c->max_sweep, c->time_weight, c->tol_feas, c->tol_stat, c->tol_obj,
         c->hessian_init, c->step_max_alpha, c->step_max_horizon, c->elastic_weight, c->doubling_threshold,
         c->mass_min
@@ -76,23 +76,23 @@ static bool settings_valid(const ogk_nmpc_config_t *c)
         && (c->hessian <= OGK_NMPC_HESSIAN_EXACT)
         && (c->nodes >= 1u) && (c->nodes <= OGK_NMPC_MAX_NODES)
         && (c->rk4_steps >= 1u) && (c->rk4_steps <= OGK_NMPC_MAX_RK4_STEPS)
-        && (c->horizon_min > 0.0) && (c->horizon_max > c->horizon_min)
-        && (c->max_sweep >= 0.0) && (c->time_weight >= 0.0) && (c->mass_min >= 0.0)
-        && (c->terminal_box[0] >= 0.0) && (c->terminal_box[1] >= 0.0)
-        && (c->terminal_box[2] >= 0.0) && (c->terminal_box[3] >= 0.0)
+        && (c->horizon_min > OGK_R(0.0)) && (c->horizon_max > c->horizon_min)
+        && (c->max_sweep >= OGK_R(0.0)) && (c->time_weight >= OGK_R(0.0)) && (c->mass_min >= OGK_R(0.0))
+        && (c->terminal_box[0] >= OGK_R(0.0)) && (c->terminal_box[1] >= OGK_R(0.0))
+        && (c->terminal_box[2] >= OGK_R(0.0)) && (c->terminal_box[3] >= OGK_R(0.0))
         && (c->max_iter >= 1u) && (c->max_iter <= OGK_NMPC_MAX_SQP_ITER)
         && (c->max_iter_cold >= 1u) && (c->max_iter_cold <= OGK_NMPC_MAX_SQP_ITER)
-        && (c->tol_feas > 0.0) && (c->tol_stat > 0.0) && (c->tol_obj >= 0.0) && (c->hessian_init > 0.0)
-        && (c->step_max_alpha > 0.0) && (c->step_max_horizon > 0.0) && (c->elastic_weight > 0.0)
+        && (c->tol_feas > OGK_R(0.0)) && (c->tol_stat > OGK_R(0.0)) && (c->tol_obj >= OGK_R(0.0)) && (c->hessian_init > OGK_R(0.0))
+        && (c->step_max_alpha > OGK_R(0.0)) && (c->step_max_horizon > OGK_R(0.0)) && (c->elastic_weight > OGK_R(0.0))
         && (c->min_nodes >= 1u) && (c->min_nodes <= OGK_NMPC_MAX_NODES)
-        && (c->doubling_threshold >= 0.0)
+        && (c->doubling_threshold >= OGK_R(0.0))
         && (c->doubling_max_nodes <= (OGK_NMPC_MAX_NODES / 2u));
 }
 
 /* The heliocentric problem's model and target fields. */
 static bool helio_finite(const ogk_nmpc_config_t *c)
 {
-    const double scalars[] = {
+    const ogk_real_t scalars[] = {
         c->mu, c->thrust_max, c->mass_flow_max, c->solar_length_unit,
         c->target_radius, c->target_phase0, c->target_rate
     };
@@ -110,21 +110,21 @@ static bool helio_finite(const ogk_nmpc_config_t *c)
 
 static bool helio_valid(const ogk_nmpc_config_t *c)
 {
-    bool ok = (c->mu > 0.0) && (c->target_radius > 0.0) && (c->power <= OGK_NMPC_POWER_SOLAR)
+    bool ok = (c->mu > OGK_R(0.0)) && (c->target_radius > OGK_R(0.0)) && (c->power <= OGK_NMPC_POWER_SOLAR)
         && (c->n_bodies <= OGK_NMPC_MAX_BODIES);
     /* clamped so the loop has a fixed bound; n_bodies > MAX has made ok false above */
     const uint32_t n_bodies = ogk_i_min_u32(c->n_bodies, OGK_NMPC_MAX_BODIES);
     uint32_t b;
     if (ok && (c->power == OGK_NMPC_POWER_SOLAR)) {
-        ok = c->solar_length_unit > 0.0;
+        ok = c->solar_length_unit > OGK_R(0.0);
     } else if (ok) {
-        ok = (c->thrust_max > 0.0) && (c->mass_flow_max >= 0.0);
+        ok = (c->thrust_max > OGK_R(0.0)) && (c->mass_flow_max >= OGK_R(0.0));
     } else {
         /* already rejected */
     }
     for (b = 0u; ok && (b < n_bodies); ++b) {
-        ok = (c->body_mu[b] >= 0.0) && (c->body_radius[b] > 0.0) && (c->body_softening[b] >= 0.0)
-            && (c->keepout_radius[b] >= 0.0) && (c->body_release[b] >= 0.0);
+        ok = (c->body_mu[b] >= OGK_R(0.0)) && (c->body_radius[b] > OGK_R(0.0)) && (c->body_softening[b] >= OGK_R(0.0))
+            && (c->keepout_radius[b] >= OGK_R(0.0)) && (c->body_release[b] >= OGK_R(0.0));
     }
     return ok;
 }
@@ -222,14 +222,14 @@ ogk_status ogk_nmpc_reset(ogk_nmpc_t *ctx)
     return st;
 }
 
-ogk_status ogk_nmpc_set_horizon_bounds(ogk_nmpc_t *ctx, double horizon_min, double horizon_max)
+ogk_status ogk_nmpc_set_horizon_bounds(ogk_nmpc_t *ctx, ogk_real_t horizon_min, ogk_real_t horizon_max)
 {
     ogk_status st = nmpc_check_ctx(ctx);
     if (st != OGK_OK) {
         /* st says why */
     } else if (!isfinite(horizon_min) || !isfinite(horizon_max)) {
         st = OGK_E_NONFINITE;
-    } else if (!((horizon_min > 0.0) && (horizon_max > horizon_min))) {
+    } else if (!((horizon_min > OGK_R(0.0)) && (horizon_max > horizon_min))) {
         st = OGK_E_CONFIG;   /* the configuration's own rule (settings_valid) */
     } else {
         ctx->cfg.horizon_min = horizon_min;
@@ -238,14 +238,14 @@ ogk_status ogk_nmpc_set_horizon_bounds(ogk_nmpc_t *ctx, double horizon_min, doub
     return st;
 }
 
-ogk_status ogk_nmpc_set_hessian_init(ogk_nmpc_t *ctx, double hessian_init)
+ogk_status ogk_nmpc_set_hessian_init(ogk_nmpc_t *ctx, ogk_real_t hessian_init)
 {
     ogk_status st = nmpc_check_ctx(ctx);
     if (st != OGK_OK) {
         /* st says why */
     } else if (!isfinite(hessian_init)) {
         st = OGK_E_NONFINITE;
-    } else if (!(hessian_init > 0.0)) {
+    } else if (!(hessian_init > OGK_R(0.0))) {
         st = OGK_E_CONFIG;
     } else {
         ctx->cfg.hessian_init = hessian_init;
@@ -278,8 +278,8 @@ ogk_status ogk_nmpc_load_plan(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *plan)
                 uint32_t k;
                 /* the throttle in [0, 1] at every node (nodes <= OGK_NMPC_MAX_NODES: checked above) */
                 for (k = 0u; k <= plan->nodes; ++k) {
-                    const double w = plan->u[(2u * k) + 1u];
-                    if (!((w >= 0.0) && (w <= 1.0))) {
+                    const ogk_real_t w = plan->u[(2u * k) + 1u];
+                    if (!((w >= OGK_R(0.0)) && (w <= OGK_R(1.0)))) {
                         st = OGK_E_RANGE;
                     }
                 }
@@ -311,7 +311,7 @@ ogk_status ogk_nmpc_get_plan(const ogk_nmpc_t *ctx, ogk_nmpc_plan_t *plan)
 }
 
 /* x inside the problem's domain (the heliocentric: r > 0 and m > 0). */
-static bool state_valid(const ogk_nmpc_t *ctx, const double *x)
+static bool state_valid(const ogk_nmpc_t *ctx, const ogk_real_t *x)
 {
     const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
     return ocp.ops->state_valid(ocp.data, x, 1u);
@@ -328,7 +328,7 @@ static ogk_status check_input(const ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
         (void)memset(rep, 0, sizeof(*rep));
         if (!isfinite(in->t) || !ogk_i_all_finite(in->x, NX)) {
             st = OGK_E_NONFINITE;
-        } else if ((ctx->have_plan == 0u) || !state_valid(ctx, in->x) || !(fabs(in->t) <= OGK_NMPC_T_ABS_MAX)) {
+        } else if ((ctx->have_plan == 0u) || !state_valid(ctx, in->x) || !(OGK_FABS(in->t) <= OGK_NMPC_T_ABS_MAX)) {
             st = OGK_E_RANGE; /* no plan, outside the model's domain, or a time the plan's arithmetic cannot resolve */
         } else {
             /* usable */
@@ -342,7 +342,7 @@ static void fill_report(const ogk_nmpc_t *ctx, ogk_nmpc_report_t *rep)
     const ogk_nmpc_plan_t *p = &ctx->plan;
     rep->flags |= ctx->plan_flags;
     rep->nodes = p->nodes;
-    rep->t_next = p->t0 + (p->horizon / (double)p->nodes);
+    rep->t_next = p->t0 + (p->horizon / (ogk_real_t)p->nodes);
     rep->t_f = p->t0 + p->horizon;
     rep->objective = ogk_i_nmpc_objective(&ctx->cfg, p);
 }
@@ -360,14 +360,14 @@ static void update_problem(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in, ogk_nmpc
 /* work := plan re-anchored at (t, x): node 0 measured, same t_f. */
 static void anchor_work(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in)
 {
-    const double t_f = ctx->plan.t0 + ctx->plan.horizon;
+    const ogk_real_t t_f = ctx->plan.t0 + ctx->plan.horizon;
     (void)memcpy(&ctx->work, &ctx->plan, sizeof(ctx->work));
     ctx->work.t0 = in->t;
     ctx->work.horizon = t_f - in->t;
     if (ctx->work.horizon < ctx->cfg.horizon_min) {
         ctx->work.horizon = ctx->cfg.horizon_min;
     }
-    (void)memcpy(ctx->work.x, in->x, NX * sizeof(double));
+    (void)memcpy(ctx->work.x, in->x, NX * sizeof(ogk_real_t));
 }
 
 /* Runs the SQP on work; on success it becomes the plan. */
@@ -401,7 +401,7 @@ ogk_status ogk_nmpc_solve(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
 }
 
 /* Rows and columns [drop, nv) of the BFGS matrix, moved to the top left. */
-static void hessian_drop(double *hess, size_t nv, size_t drop)
+static void hessian_drop(ogk_real_t *hess, size_t nv, size_t drop)
 {
     const size_t nv_new = nv - drop;
     size_t i;
@@ -414,20 +414,20 @@ static void hessian_drop(double *hess, size_t nv, size_t drop)
 }
 
 /* The strategy's shift of the plan to time t (sec. 2.3). */
-static void shift_plan(ogk_nmpc_t *ctx, double t)
+static void shift_plan(ogk_nmpc_t *ctx, ogk_real_t t)
 {
     ogk_nmpc_plan_t *p = &ctx->plan;
-    const double h = p->horizon / (double)p->nodes;
+    const ogk_real_t h = p->horizon / (ogk_real_t)p->nodes;
     const size_t nv = (((size_t)p->nodes + 1u) * ctx->nu) + 1u;
-    double flown = (t - p->t0) / h;
+    ogk_real_t flown = (t - p->t0) / h;
     uint32_t count = 0u;
 
-    if (flown > 0.0) {
+    if (flown > OGK_R(0.0)) {
         flown += FLOWN_EPS;
     } else {
-        flown = 0.0;
+        flown = OGK_R(0.0);
     }
-    if (flown < (double)p->nodes) {
+    if (flown < (ogk_real_t)p->nodes) {
         count = (uint32_t)flown;
     } else {
         count = p->nodes;
@@ -490,13 +490,13 @@ static ogk_status doubling_test(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
             rep->qp_iterations += rep_alt.qp_iterations;
             rep->solves += rep_alt.solves;
             if (st_sub == OGK_OK) {
-                const double j_n = ogk_i_nmpc_objective(cfg, &ctx->plan);
-                const double j_2n = ogk_i_nmpc_objective(cfg, &ctx->work);
-                const double gain = (j_n - j_2n) / ((fabs(j_n) > 1.0e-12) ? fabs(j_n) : 1.0e-12);
+                const ogk_real_t j_n = ogk_i_nmpc_objective(cfg, &ctx->plan);
+                const ogk_real_t j_2n = ogk_i_nmpc_objective(cfg, &ctx->work);
+                const ogk_real_t gain = (j_n - j_2n) / ((OGK_FABS(j_n) > OGK_R(1.0e-12)) ? OGK_FABS(j_n) : OGK_R(1.0e-12));
                 if ((st_n != OGK_OK) || (gain > cfg->doubling_threshold)) {
                     const size_t nv = (((size_t)ctx->work.nodes + 1u) * ctx->nu) + 1u;
                     (void)memcpy(&ctx->plan, &ctx->work, sizeof(ctx->plan));
-                    (void)memcpy(ctx->hess, ctx->hess_alt, nv * nv * sizeof(double));
+                    (void)memcpy(ctx->hess, ctx->hess_alt, nv * nv * sizeof(ogk_real_t));
                     ctx->hess_valid = 1u;
                     ctx->subdivisions += 1u;
                     ctx->plan_flags = OGK_NMPC_FLAG_CONVERGED | OGK_NMPC_FLAG_SUBDIVIDED;
@@ -538,7 +538,7 @@ ogk_status ogk_nmpc_replan(ogk_nmpc_t *ctx, const ogk_nmpc_input_t *in,
 }
 
 /* ogk_nmpc_command (also behind ogk_nmpc_thrust_cmd). */
-static ogk_status nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command_t *cmd)
+static ogk_status nmpc_command(const ogk_nmpc_t *ctx, ogk_real_t t, ogk_nmpc_command_t *cmd)
 {
     ogk_status st = nmpc_check_ctx(ctx);
     if ((st == OGK_OK) && (cmd == NULL)) {
@@ -547,8 +547,8 @@ static ogk_status nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command
     if (cmd != NULL) {
         /* the safe command: engine off */
         cmd->t = t;
-        cmd->alpha = 0.0;
-        cmd->throttle = 0.0;
+        cmd->alpha = OGK_R(0.0);
+        cmd->throttle = OGK_R(0.0);
         cmd->flags = OGK_THRUST_FLAG_SAFE;
         cmd->law_flags = 0u;
     }
@@ -558,12 +558,12 @@ static ogk_status nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command
         } else if (ctx->have_plan == 0u) {
             st = OGK_E_RANGE;
         } else {
-            double u[OGK_NMPC_MAX_NU] = { 0.0, 1.0 };
+            ogk_real_t u[OGK_NMPC_MAX_NU] = { OGK_R(0.0), OGK_R(1.0) };
             ogk_i_nmpc_plan_control(&ctx->plan, t, u);
             cmd->alpha = u[0];
-            cmd->throttle = (ctx->nu > 1u) ? u[1] : 1.0;
-            cmd->throttle = (cmd->throttle < 0.0) ? 0.0 : ((cmd->throttle > 1.0) ? 1.0 : cmd->throttle);
-            if (cmd->throttle > 0.0) {
+            cmd->throttle = (ctx->nu > 1u) ? u[1] : OGK_R(1.0);
+            cmd->throttle = (cmd->throttle < OGK_R(0.0)) ? OGK_R(0.0) : ((cmd->throttle > OGK_R(1.0)) ? OGK_R(1.0) : cmd->throttle);
+            if (cmd->throttle > OGK_R(0.0)) {
                 cmd->flags = OGK_THRUST_FLAG_ENGINE_ON;
             } else {
                 cmd->flags = 0u;
@@ -580,12 +580,12 @@ static ogk_status nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command
     return st;
 }
 
-ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, double t, ogk_nmpc_command_t *cmd)
+ogk_status ogk_nmpc_command(const ogk_nmpc_t *ctx, ogk_real_t t, ogk_nmpc_command_t *cmd)
 {
     return nmpc_command(ctx, t, cmd);
 }
 
-ogk_status ogk_nmpc_thrust_cmd(const ogk_nmpc_t *ctx, double t, ogk_thrust_cmd_t *cmd)
+ogk_status ogk_nmpc_thrust_cmd(const ogk_nmpc_t *ctx, ogk_real_t t, ogk_thrust_cmd_t *cmd)
 {
     ogk_status st;
     if (cmd == NULL) {
@@ -596,16 +596,16 @@ ogk_status ogk_nmpc_thrust_cmd(const ogk_nmpc_t *ctx, double t, ogk_thrust_cmd_t
         st = nmpc_command(ctx, t, &nc);
         {
             /* thrust (cos alpha, sin alpha) along (r_hat, theta_hat) = (r, t) of r-t-n */
-            const double u[3] = {cos(nc.alpha), sin(nc.alpha), 0.0};
-            ogk_i_thrust_cmd_unit(cmd, isfinite(nc.t) ? nc.t : 0.0, OGK_FRAME_RTN, u, nc.throttle,
+            const ogk_real_t u[3] = {OGK_COS(nc.alpha), OGK_SIN(nc.alpha), OGK_R(0.0)};
+            ogk_i_thrust_cmd_unit(cmd, isfinite(nc.t) ? nc.t : OGK_R(0.0), OGK_FRAME_RTN, u, nc.throttle,
                                   nc.flags, nc.law_flags);
         }
     }
     return st;
 }
 
-ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
-                              const double *u, double *xdot)
+ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, ogk_real_t t, const ogk_real_t *x,
+                              const ogk_real_t *u, ogk_real_t *xdot)
 {
     ogk_status st = nmpc_check_ctx(ctx);
     if ((st == OGK_OK) && ((x == NULL) || (u == NULL) || (xdot == NULL))) {
@@ -621,14 +621,14 @@ ogk_status ogk_nmpc_model_rhs(const ogk_nmpc_t *ctx, double t, const double *x,
     return st;
 }
 
-ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
-                             const double *x0, const double *u0,
-                             const double *u1, double *x1, double *dfdx, /* NOLINT(bugprone-easily-swappable-parameters): order of the test header (ogk/internal/nmpc_test.h) and the bindings; every output is checked by central differences (test_nmpc.c) */
-                             double *dfdu0, double *dfdu1, double *dfdh, /* NOLINT(bugprone-easily-swappable-parameters): as above */
-                             double *dfdt0)
+ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, ogk_real_t t0, ogk_real_t h,
+                             const ogk_real_t *x0, const ogk_real_t *u0,
+                             const ogk_real_t *u1, ogk_real_t *x1, ogk_real_t *dfdx, /* NOLINT(bugprone-easily-swappable-parameters): order of the test header (ogk/internal/nmpc_test.h) and the bindings; every output is checked by central differences (test_nmpc.c) */
+                             ogk_real_t *dfdu0, ogk_real_t *dfdu1, ogk_real_t *dfdh, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                             ogk_real_t *dfdt0)
 {
     ogk_status st = nmpc_check_ctx(ctx);
-    double sens[OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS];
+    ogk_real_t sens[OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS];
     if ((st == OGK_OK) && ((x0 == NULL) || (u0 == NULL) || (u1 == NULL) || (x1 == NULL))) {
         st = OGK_E_NULL;
     }
@@ -636,7 +636,7 @@ ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
                            || !ogk_i_all_finite(u0, ctx->nu) || !ogk_i_all_finite(u1, ctx->nu))) {
         st = OGK_E_NONFINITE;
     }
-    if ((st == OGK_OK) && !(h > 0.0)) {
+    if ((st == OGK_OK) && !(h > OGK_R(0.0))) {
         st = OGK_E_RANGE;
     }
     if (st == OGK_OK) {
@@ -673,10 +673,10 @@ ogk_status ogk_nmpc_interval(const ogk_nmpc_t *ctx, double t0, double h,
     return st;
 }
 
-ogk_status ogk_nmpc_interval_hess(ogk_nmpc_t *ctx, double t0, double h, /* NOLINT(bugprone-easily-swappable-parameters): order of the test header (ogk/internal/nmpc_test.h), as ogk_nmpc_interval; checked by central differences (test_nmpc.c) */
-                                  const double *x0, const double *u0,
-                                  const double *u1, const double *w,
-                                  double *hess)
+ogk_status ogk_nmpc_interval_hess(ogk_nmpc_t *ctx, ogk_real_t t0, ogk_real_t h, /* NOLINT(bugprone-easily-swappable-parameters): order of the test header (ogk/internal/nmpc_test.h), as ogk_nmpc_interval; checked by central differences (test_nmpc.c) */
+                                  const ogk_real_t *x0, const ogk_real_t *u0,
+                                  const ogk_real_t *u1, const ogk_real_t *w,
+                                  ogk_real_t *hess)
 {
     ogk_status st = nmpc_check_ctx(ctx);
     if ((st == OGK_OK) && ((x0 == NULL) || (u0 == NULL) || (u1 == NULL) || (w == NULL) || (hess == NULL))) {
@@ -687,17 +687,17 @@ ogk_status ogk_nmpc_interval_hess(ogk_nmpc_t *ctx, double t0, double h, /* NOLIN
                            || !ogk_i_all_finite(w, NX))) {
         st = OGK_E_NONFINITE;
     }
-    if ((st == OGK_OK) && !(h > 0.0)) {
+    if ((st == OGK_OK) && !(h > OGK_R(0.0))) {
         st = OGK_E_RANGE;
     }
     if (st == OGK_OK) {
-        double sens[OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS];
-        double x1[OGK_NMPC_NX];
+        ogk_real_t sens[OGK_NMPC_NX * OGK_I_NMPC_MAX_COLS];
+        ogk_real_t x1[OGK_NMPC_NX];
         const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
         st = ogk_i_nmpc_shoot(&ocp, ctx->nu, t0, h, x0, u0, u1, x1, sens, ctx->tape);
     }
     if (st == OGK_OK) {
-        double w_int[OGK_I_NMPC_MAX_COLS * OGK_I_NMPC_MAX_COLS];
+        ogk_real_t w_int[OGK_I_NMPC_MAX_COLS * OGK_I_NMPC_MAX_COLS];
         const size_t nd = NX + (2u * (size_t)ctx->nu) + 2u;
         const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
         const size_t ncol = ogk_i_nmpc_ncol(&ocp, ctx->nu);
@@ -707,7 +707,7 @@ ogk_status ogk_nmpc_interval_hess(ogk_nmpc_t *ctx, double t0, double h, /* NOLIN
         for (i = 0u; i < nd; ++i) {
             for (j = 0u; j < nd; ++j) {
                 /* the t0 column is not propagated for an autonomous model: its second derivatives are 0 */
-                hess[(i * nd) + j] = ((i < ncol) && (j < ncol)) ? w_int[(i * OGK_I_NMPC_MAX_COLS) + j] : 0.0;
+                hess[(i * nd) + j] = ((i < ncol) && (j < ncol)) ? w_int[(i * OGK_I_NMPC_MAX_COLS) + j] : OGK_R(0.0);
             }
         }
     }

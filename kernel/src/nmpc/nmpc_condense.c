@@ -18,12 +18,12 @@
 #define MAXV OGK_NMPC_MAX_VARS
 
 /* G_N = dX_N/dv and e_N = dX_N(v = 0) by the forward recursion. */
-void ogk_i_nmpc_condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, double *hess)
+void ogk_i_nmpc_condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, ogk_real_t *hess)
 {
     const uint32_t nu = p->nu;
     const size_t col_t = nv - 1u;
-    double g_next[NX * MAXV];
-    double e_next[NX];
+    ogk_real_t g_next[NX * MAXV];
+    ogk_real_t e_next[NX];
     /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan): clamped once, a fixed bound */
     const size_t nodes = ogk_i_min_size(p->nodes, OGK_NMPC_MAX_NODES);
     size_t k;
@@ -31,14 +31,14 @@ void ogk_i_nmpc_condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, d
     size_t j;
     size_t c;
 
-    (void)memset(ctx->cond_g, 0, NX * nv * sizeof(double));
+    (void)memset(ctx->cond_g, 0, NX * nv * sizeof(ogk_real_t));
     (void)memset(ctx->cond_e, 0, sizeof(ctx->cond_e));
     ctx->ko_rows = 0u;
     if (hess != NULL) {
-        (void)memset(hess, 0, nv * nv * sizeof(double));
+        (void)memset(hess, 0, nv * nv * sizeof(ogk_real_t));
     }
     for (k = 0u; k < nodes; ++k) {
-        const double *a = &ctx->sens_a[k * NX * NX];
+        const ogk_real_t *a = &ctx->sens_a[k * NX * NX];
         /* the keep-out along interval k's arc, with cond_g = dX_k/dv, cond_e = e_k */
         ogk_i_nmpc_keepout_arc_rows(ctx, p, nv, k, ctx->cond_g, ctx->cond_e);
         if (hess != NULL) {
@@ -49,12 +49,12 @@ void ogk_i_nmpc_condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, d
         /* columns that can be nonzero after interval k: U_0..U_{k+1}, T */
         const size_t n_used = (k + 2u) * nu;
         for (i = 0u; i < NX; ++i) {
-            double acc_e = 0.0;
+            ogk_real_t acc_e = OGK_R(0.0);
             /* by pairs (packed on x86-64); an odd n_used's extra column is 0
              * (U_{k+2}) or T's (set below), and is not copied back */
             for (c = 0u; c < n_used; c += 2u) {
-                double acc0 = 0.0;
-                double acc1 = 0.0;
+                ogk_real_t acc0 = OGK_R(0.0);
+                ogk_real_t acc1 = OGK_R(0.0);
                 for (j = 0u; j < NX; ++j) {
                     acc0 += a[(i * NX) + j] * ctx->cond_g[(j * nv) + c];
                     acc1 += a[(i * NX) + j] * ctx->cond_g[(j * nv) + c + 1u];
@@ -63,7 +63,7 @@ void ogk_i_nmpc_condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, d
                 g_next[(i * nv) + c + 1u] = acc1;
             }
             {
-                double acc = 0.0;
+                ogk_real_t acc = OGK_R(0.0);
                 for (j = 0u; j < NX; ++j) {
                     acc += a[(i * NX) + j] * ctx->cond_g[(j * nv) + col_t];
                     acc_e += a[(i * NX) + j] * ctx->cond_e[j];
@@ -94,25 +94,25 @@ void ogk_i_nmpc_condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, d
 
 /* Objective gradient in v and the QP's equality rows (linearised eq. 5). */
 void ogk_i_nmpc_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
-                               size_t nv, const double *c_term, double *g_obj)
+                               size_t nv, const ogk_real_t *c_term, ogk_real_t *g_obj)
 {
     const size_t col_t = nv - 1u;
     const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
-    double x_target[NC];
-    double rate[NC];
+    ogk_real_t x_target[NC];
+    ogk_real_t rate[NC];
     size_t i;
     size_t c;
 
     /* the target's rate dx_T/dt_f at this plan's t_f */
     ocp.ops->target(ocp.data, p->t0 + p->horizon, x_target, rate);
-    (void)memset(g_obj, 0, nv * sizeof(double));
+    (void)memset(g_obj, 0, nv * sizeof(ogk_real_t));
     if (ctx->cfg.objective == OGK_NMPC_MIN_FUEL) {
         for (c = 0u; c < nv; ++c) {
             g_obj[c] = -ctx->cond_g[(4u * nv) + c]; /* J = m_0 - m_N (+ time_weight T) */
         }
         g_obj[col_t] += ctx->cfg.time_weight;
     } else {
-        g_obj[col_t] = 1.0; /* J = T */
+        g_obj[col_t] = OGK_R(1.0); /* J = T */
     }
     for (i = 0u; i < NC; ++i) {
         for (c = 0u; c < nv; ++c) {
@@ -127,7 +127,7 @@ void ogk_i_nmpc_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
 }
 
 /* State part of the step: dX_{k+1} = A_k dX_k + B0 dU_k + B1 dU_{k+1} + t_k dT + d_k. */
-void ogk_i_nmpc_expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const double *v, size_t nv)
+void ogk_i_nmpc_expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const ogk_real_t *v, size_t nv)
 {
     const uint32_t nu = p->nu;
     /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan): clamped once, a fixed bound */
@@ -136,10 +136,10 @@ void ogk_i_nmpc_expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const dou
     size_t i;
     size_t j;
 
-    (void)memset(ctx->dx, 0, NX * sizeof(double));
+    (void)memset(ctx->dx, 0, NX * sizeof(ogk_real_t));
     for (k = 0u; k < nodes; ++k) {
         for (i = 0u; i < NX; ++i) {
-            double acc = ctx->sens_f[(k * NX) + i] - p->x[((k + 1u) * NX) + i];
+            ogk_real_t acc = ctx->sens_f[(k * NX) + i] - p->x[((k + 1u) * NX) + i];
             for (j = 0u; j < NX; ++j) {
                 acc += ctx->sens_a[(k * NX * NX) + (i * NX) + j] * ctx->dx[(k * NX) + j];
             }

@@ -50,12 +50,12 @@ extern const ogk_ocp_problem_t ogk_i_nmpc_helio_problem;
 
 /* Its model (nmpc_model.c), data an ogk_nmpc_config_t: the dynamics and
  * dynamics_hess callbacks of ogk/ocp.h (eqs. 11-14 with the third bodies). */
-ogk_status ogk_i_nmpc_rhs(const void *data, uint32_t nu, double t,
-                          const double *x, const double *u, const double *trig,
-                          double *xdot, double *jx, double *ju, double *jt);
-void ogk_i_nmpc_rhs_hess(const void *data, uint32_t nu, double t,
-                         const double *x, const double *u, const double *trig,
-                         const double *kappa, double *hz);
+ogk_status ogk_i_nmpc_rhs(const void *data, uint32_t nu, ogk_real_t t,
+                          const ogk_real_t *x, const ogk_real_t *u, const ogk_real_t *trig,
+                          ogk_real_t *xdot, ogk_real_t *jx, ogk_real_t *ju, ogk_real_t *jt);
+void ogk_i_nmpc_rhs_hess(const void *data, uint32_t nu, ogk_real_t t,
+                         const ogk_real_t *x, const ogk_real_t *u, const ogk_real_t *trig,
+                         const ogk_real_t *kappa, ogk_real_t *hz);
 
 /* size_t forms of the limits (built from the atoms, so that no composite
  * expression is cast): sensitivity columns, model arguments, directions,
@@ -99,12 +99,12 @@ size_t ogk_i_nmpc_ncol(const ogk_i_ocp_t *ocp, uint32_t nu);
  * ends within three radii (bit j: step j's end); the sum and the largest of
  * the violations max(0, R_required - d). */
 typedef struct {
-    double radius[OGK_OCP_MAX_KEEPOUT];  /* [LU] the discs' radii R_j (0: none) */
+    ogk_real_t radius[OGK_OCP_MAX_KEEPOUT];  /* [LU] the discs' radii R_j (0: none) */
     uint32_t steps;                      /* [-] the arc's RK4 steps */
-    double r_start[OGK_OCP_MAX_KEEPOUT]; /* [LU] */
+    ogk_real_t r_start[OGK_OCP_MAX_KEEPOUT]; /* [LU] */
     uint32_t mask[OGK_OCP_MAX_KEEPOUT];  /* [-] */
-    double viol_sum;                     /* [LU] */
-    double viol_max;                     /* [LU] */
+    ogk_real_t viol_sum;                     /* [LU] */
+    ogk_real_t viol_max;                     /* [LU] */
 } ogk_i_nmpc_arc_t;
 /* Doubles recorded per step end by ogk_i_nmpc_shoot_arc's rec: the state and its sensitivities. */
 #define OGK_I_NMPC_REC_STRIDE ((size_t)OGK_NMPC_NX + ((size_t)OGK_NMPC_NX * OGK_I_NMPC_NCOL_Z))
@@ -119,9 +119,9 @@ void ogk_i_nmpc_arc_start(const ogk_i_ocp_t *ocp, const ogk_nmpc_plan_t *p, size
  * NULL, with sens): the state and its sensitivities at each interior step
  * end j, at ends + (j - 1) OGK_I_NMPC_REC_STRIDE. */
 ogk_status ogk_i_nmpc_shoot_arc(const ogk_i_ocp_t *ocp, uint32_t nu,
-                                double t_start, double h, const double *x0,
-                                const double *u0, const double *u1, double *xf,
-                                double *sens, double *tape, ogk_i_nmpc_arc_t *arc, double *ends);
+                                ogk_real_t t_start, ogk_real_t h, const ogk_real_t *x0,
+                                const ogk_real_t *u0, const ogk_real_t *u1, ogk_real_t *xf,
+                                ogk_real_t *sens, ogk_real_t *tape, ogk_i_nmpc_arc_t *arc, ogk_real_t *ends);
 
 /* F = x at the end of one interval [t_start, t_start + h] from x0 with the
  * control linear from u0 to u1. When sens is not NULL it receives the
@@ -129,9 +129,9 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_i_ocp_t *ocp, uint32_t nu,
  * columns zero); when tape is not NULL too, the sweep is recorded there
  * (ocp->cfg->rk4_steps steps of OGK_NMPC_TAPE_STEP). */
 ogk_status ogk_i_nmpc_shoot(const ogk_i_ocp_t *ocp, uint32_t nu,
-                            double t_start, double h, const double *x0,
-                            const double *u0, const double *u1, double *xf,
-                            double *sens, double *tape);
+                            ogk_real_t t_start, ogk_real_t h, const ogk_real_t *x0,
+                            const ogk_real_t *u0, const ogk_real_t *u1, ogk_real_t *xf,
+                            ogk_real_t *sens, ogk_real_t *tape);
 
 /* W (OGK_I_NMPC_MAX_COLS square, symmetric, the first ogk_i_nmpc_ncol
  * columns set) = sum_i w_i d2F_i / dp2 for the interval whose forward sweep
@@ -139,9 +139,9 @@ ogk_status ogk_i_nmpc_shoot(const ogk_i_ocp_t *ocp, uint32_t nu,
  * u1), p = (X_k, U_k, U_{k+1}, h[, t_start]): the RK4 recursion's adjoint
  * for the weights w, differentiated forward (docs/design/nmpc-flight.md). */
 void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu,
-                           double t_start, double h, const double *u0,
-                           const double *u1, const double *tape,
-                           const double *w, double *hess);
+                           ogk_real_t t_start, ogk_real_t h, const ogk_real_t *u0,
+                           const ogk_real_t *u1, const ogk_real_t *tape,
+                           const ogk_real_t *w, ogk_real_t *hess);
 
 /* The sensitivities kept with their inputs (nmpc_sens_cache.c). reset:
  * every key zeroed (none matches) and the keys' model zeroed. begin: at the start
@@ -154,15 +154,15 @@ void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu,
 void ogk_i_nmpc_cache_reset(ogk_nmpc_t *ctx);
 void ogk_i_nmpc_cache_begin(ogk_nmpc_t *ctx);
 size_t ogk_i_nmpc_cache_key(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t k,
-                            double t_start, double h, double *key);
-bool ogk_i_nmpc_cache_hit(const ogk_nmpc_t *ctx, size_t k, const double *key, size_t n_key);
-void ogk_i_nmpc_cache_store(ogk_nmpc_t *ctx, size_t k, const double *key);
+                            ogk_real_t t_start, ogk_real_t h, ogk_real_t *key);
+bool ogk_i_nmpc_cache_hit(const ogk_nmpc_t *ctx, size_t k, const ogk_real_t *key, size_t n_key);
+void ogk_i_nmpc_cache_store(ogk_nmpc_t *ctx, size_t k, const ogk_real_t *key);
 void ogk_i_nmpc_cache_drop(ogk_nmpc_t *ctx, uint32_t nodes, uint32_t count, uint32_t nu);
 
 /* Terminal residual c = x_0..3 - x_T(t_f) at state x and time t_f (the
  * heliocentric problem: eq. 5), and with rate != NULL dx_T/dt_f. */
-void ogk_i_nmpc_terminal(const ogk_i_ocp_t *ocp, const double *x,
-                         double t_f, double *c, double *rate);
+void ogk_i_nmpc_terminal(const ogk_i_ocp_t *ocp, const ogk_real_t *x,
+                         ogk_real_t t_f, ogk_real_t *c, ogk_real_t *rate);
 
 /* The condensed QP (nmpc_condense.c), nv = (N + 1) nu + 1 unknowns.
  * condense: ctx->cond_g = G_N = dX_N/dv and ctx->cond_e = e_N from the
@@ -170,34 +170,34 @@ void ogk_i_nmpc_terminal(const ogk_i_ocp_t *ocp, const double *x,
  * exact reduced Hessian (nv x nv, full) from ctx->hess_blk. linear_terms:
  * g_obj (nv) and eq. (5)'s rows qp_aeq, qp_beq (c_term: eq. 5's residual).
  * expand_step: ctx->dx = the state corrections of the QP step v. */
-void ogk_i_nmpc_condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, double *hess);
-void ogk_i_nmpc_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, const double *c_term,
-                             double *g_obj);
-void ogk_i_nmpc_expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const double *v, size_t nv);
+void ogk_i_nmpc_condense(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, ogk_real_t *hess);
+void ogk_i_nmpc_linear_terms(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, const ogk_real_t *c_term,
+                             ogk_real_t *g_obj);
+void ogk_i_nmpc_expand_step(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const ogk_real_t *v, size_t nv);
 
 /* The SQP on ctx->work (node 0 and t0 already set) with the BFGS matrix
  * hess (nv x nv), restarted from the scaled identity when cold. Adds its
  * iterations to rep and sets rep->feas, rep->stat. */
-ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
+ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, ogk_real_t *hess, bool cold,
                           ogk_nmpc_report_t *rep);
 
 /* The QP Hessian (nmpc_hess.c). Powell damping: keep s^T y >= this s^T H s. */
-#define OGK_I_NMPC_POWELL_DAMP 0.2
+#define OGK_I_NMPC_POWELL_DAMP OGK_R(0.2)
 
 /* blk (OGK_NMPC_MAX_DIR square, the first 5 + 2 nu + 1 rows and columns
  * set) = interval k's second-order block w_int (ogk_i_nmpc_shoot_hess, ncol
  * columns) in (X_k, U_k, U_{k+1}, T): h = T / N, t_start = t0 + k T / N. */
 void ogk_i_nmpc_hess_block(uint32_t nu, size_t ncol, size_t k, uint32_t nodes,
-                           const double *w_int, double *blk);
+                           const ogk_real_t *w_int, ogk_real_t *blk);
 
 /* The upper triangle of hess (nv x nv) += Gt^T blk Gt, Gt = d(X_k, U_k,
  * U_{k+1}, T)/dv with X_k's rows g (5 x nv, the condensing's dX_k/dv).
  * scratch: 2 OGK_NMPC_MAX_DIR OGK_NMPC_MAX_VARS doubles. */
-void ogk_i_nmpc_hess_add(double *hess, size_t nv, uint32_t nu, size_t k,
-                         const double *g, const double *blk, double *scratch);
+void ogk_i_nmpc_hess_add(ogk_real_t *hess, size_t nv, uint32_t nu, size_t k,
+                         const ogk_real_t *g, const ogk_real_t *blk, ogk_real_t *scratch);
 
 /* The upper triangle of hess (nv x nv) copied into the lower one. */
-void ogk_i_nmpc_hess_mirror(double *hess, size_t nv);
+void ogk_i_nmpc_hess_mirror(ogk_real_t *hess, size_t nv);
 
 /* hess := hess + rho A^T A (+ delta I), the least of a few rho (from
  * rho_hint, the last one used, when larger) then delta that factors (a_eq:
@@ -205,45 +205,45 @@ void ogk_i_nmpc_hess_mirror(double *hess, size_t nv);
  * does. out and work: nv x nv scratch. Returns the rho used (the QP's
  * multipliers of eq. 5 are then y - rho b_eq); *shifted: a delta was needed
  * (H not convex on eq. 5's null space). */
-double ogk_i_nmpc_hess_convexify(double *hess, size_t nv, const double *a_eq,
-                                 double fallback, double rho_hint, double *out, double *work, bool *shifted);
+ogk_real_t ogk_i_nmpc_hess_convexify(ogk_real_t *hess, size_t nv, const ogk_real_t *a_eq,
+                                 ogk_real_t fallback, ogk_real_t rho_hint, ogk_real_t *out, ogk_real_t *work, bool *shifted);
 
 /* hess (nv x nv, H0 + rho A_old^T A_old, A NC x nv) := H0 + rho A_new^T
  * A_new: the exact Hessian of the last iteration held (nmpc_sqp.c). */
-void ogk_i_nmpc_hess_reshift(double *hess, size_t nv, const double *a_old, const double *a_new, double rho);
+void ogk_i_nmpc_hess_reshift(ogk_real_t *hess, size_t nv, const ogk_real_t *a_old, const ogk_real_t *a_new, ogk_real_t rho);
 
 /* Damped BFGS (Powell) update of hess with step s and gradient change y (y
  * is damped in place); first: Shanno-Phua scaling of the initial matrix. */
-void ogk_i_nmpc_bfgs_update(double *hess, size_t nv, const double *s, double *y, bool first);
+void ogk_i_nmpc_bfgs_update(ogk_real_t *hess, size_t nv, const ogk_real_t *s, ogk_real_t *y, bool first);
 
 /* hess := scale I (nv x nv). */
-void ogk_i_nmpc_identity(double *hess, size_t nv, double scale);
+void ogk_i_nmpc_identity(ogk_real_t *hess, size_t nv, ogk_real_t scale);
 
 /* Keep-out (nmpc_keepout.c), the problem's discs j (ogk/ocp.h): adds sum and largest of max(0, R_j - d_j) over
  * the interior nodes of p to *sum and *largest; appends to ctx->ko_a/ko_b
  * the linearised rows of interior node k (g: its 5 x nv condensed
  * sensitivities, e: its offsets). */
-void ogk_i_nmpc_keepout_violation(const ogk_i_ocp_t *ocp, const ogk_nmpc_plan_t *p, double *sum,
-                                  double *largest);
+void ogk_i_nmpc_keepout_violation(const ogk_i_ocp_t *ocp, const ogk_nmpc_plan_t *p, ogk_real_t *sum,
+                                  ogk_real_t *largest);
 void ogk_i_nmpc_keepout_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, size_t k,
-                             const double *g, const double *e);
+                             const ogk_real_t *g, const ogk_real_t *e);
 /* Along the arcs: scan: one step end x at time t (step index `step`) into
  * arc; arc_rows: the linearised rows of interval k's step ends in
  * ctx->arc_mask (g, e: node k's condensed sensitivities; the step ends'
  * from a sweep recorded in the context's tape, free during condensing). */
-void ogk_i_nmpc_keepout_scan(const ogk_i_ocp_t *ocp, const double *x, double t, uint32_t step,
+void ogk_i_nmpc_keepout_scan(const ogk_i_ocp_t *ocp, const ogk_real_t *x, ogk_real_t t, uint32_t step,
                              ogk_i_nmpc_arc_t *arc);
 void ogk_i_nmpc_keepout_arc_rows(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, size_t k,
-                                 const double *g, const double *e);
+                                 const ogk_real_t *g, const ogk_real_t *e);
 
 /* Objective of a plan: T or m_0 - m_N. */
-double ogk_i_nmpc_objective(const ogk_nmpc_config_t *cfg,
+ogk_real_t ogk_i_nmpc_objective(const ogk_nmpc_config_t *cfg,
                             const ogk_nmpc_plan_t *p);
 
 /* Plan operations of the strategies (nmpc_plan.c). */
-void ogk_i_nmpc_plan_control(const ogk_nmpc_plan_t *p, double t, double *u);
+void ogk_i_nmpc_plan_control(const ogk_nmpc_plan_t *p, ogk_real_t t, ogk_real_t *u);
 void ogk_i_nmpc_plan_drop(ogk_nmpc_plan_t *p, uint32_t count);
-void ogk_i_nmpc_plan_regrid(const ogk_nmpc_plan_t *src, double t0,
+void ogk_i_nmpc_plan_regrid(const ogk_nmpc_plan_t *src, ogk_real_t t0,
                             uint32_t nodes, ogk_nmpc_plan_t *dst);
 ogk_status ogk_i_nmpc_plan_subdivide(const ogk_i_ocp_t *ocp,
                                      const ogk_nmpc_plan_t *src,

@@ -5,10 +5,10 @@
 
 #define NC ((size_t)OGK_NMPC_NC)
 
-void ogk_i_nmpc_terminal(const ogk_i_ocp_t *ocp, const double *x, double t_f, double *c, double *rate) /* NOLINT(bugprone-easily-swappable-parameters): internal, the residual then the target's rate, as nmpc_internal.h; checked by the records and test_nmpc_user_problem.c */
+void ogk_i_nmpc_terminal(const ogk_i_ocp_t *ocp, const ogk_real_t *x, ogk_real_t t_f, ogk_real_t *c, ogk_real_t *rate) /* NOLINT(bugprone-easily-swappable-parameters): internal, the residual then the target's rate, as nmpc_internal.h; checked by the records and test_nmpc_user_problem.c */
 {
-    double x_target[NC];
-    double x_rate[NC];
+    ogk_real_t x_target[NC];
+    ogk_real_t x_rate[NC];
     size_t i;
     ocp->ops->target(ocp->data, t_f, x_target, x_rate);
     for (i = 0u; i < NC; ++i) {

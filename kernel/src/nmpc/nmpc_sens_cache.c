@@ -24,7 +24,7 @@
 /* True when a[0..n) and b[0..n) are the same bits: equal and of the same
  * sign (only the zeros have two encodings; a NaN equals nothing, so it is
  * never taken for a stored input). */
-static bool same_bits(const double *a, const double *b, size_t n)
+static bool same_bits(const ogk_real_t *a, const ogk_real_t *b, size_t n)
 {
     bool same = true;
     size_t i;
@@ -37,7 +37,7 @@ static bool same_bits(const double *a, const double *b, size_t n)
 /* The doubles that define the problem's dynamics (its model_key callback,
  * which writes all OGK_OCP_MODEL_KEY: for the heliocentric problem the
  * configuration's model fields and rk4_steps). */
-static void model_fields(const ogk_nmpc_t *ctx, double *out)
+static void model_fields(const ogk_nmpc_t *ctx, ogk_real_t *out)
 {
     const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
     ocp.ops->model_key(ocp.data, out);
@@ -54,7 +54,7 @@ void ogk_i_nmpc_cache_reset(ogk_nmpc_t *ctx)
 
 void ogk_i_nmpc_cache_begin(ogk_nmpc_t *ctx)
 {
-    double model[OGK_NMPC_SENS_MODEL];
+    ogk_real_t model[OGK_NMPC_SENS_MODEL];
     model_fields(ctx, model);
     if (!same_bits(model, ctx->sens_model, MODEL)) {
         /* another model (or none yet): every key forgotten, this model's kept */
@@ -64,13 +64,13 @@ void ogk_i_nmpc_cache_begin(ogk_nmpc_t *ctx)
 }
 
 size_t ogk_i_nmpc_cache_key(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t k, /* NOLINT(bugprone-easily-swappable-parameters): internal, the interval then its (t_start, h) in ogk_i_nmpc_shoot's order; callers in nmpc_sqp.c */
-                            double t_start, double h, double *key)
+                            ogk_real_t t_start, ogk_real_t h, ogk_real_t *key)
 {
     const size_t nu = (size_t)p->nu;
     size_t n = (NX + (2u * nu)) + 1u;
-    (void)memset(key, 0, KEY * sizeof(double));
-    (void)memcpy(key, &p->x[k * NX], NX * sizeof(double));
-    (void)memcpy(&key[NX], &p->u[k * nu], 2u * nu * sizeof(double));
+    (void)memset(key, 0, KEY * sizeof(ogk_real_t));
+    (void)memcpy(key, &p->x[k * NX], NX * sizeof(ogk_real_t));
+    (void)memcpy(&key[NX], &p->u[k * nu], 2u * nu * sizeof(ogk_real_t));
     key[n - 1u] = h;
     const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
     if (ogk_i_nmpc_ncol(&ocp, p->nu) > n) {
@@ -81,19 +81,19 @@ size_t ogk_i_nmpc_cache_key(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, siz
     return n;
 }
 
-bool ogk_i_nmpc_cache_hit(const ogk_nmpc_t *ctx, size_t k, const double *key, size_t n_key)
+bool ogk_i_nmpc_cache_hit(const ogk_nmpc_t *ctx, size_t k, const ogk_real_t *key, size_t n_key)
 {
     /* k < OGK_NMPC_MAX_NODES: the caller's loop bound */
     return same_bits(&ctx->sens_key[k * KEY], key, n_key);
 }
 
-void ogk_i_nmpc_cache_store(ogk_nmpc_t *ctx, size_t k, const double *key)
+void ogk_i_nmpc_cache_store(ogk_nmpc_t *ctx, size_t k, const ogk_real_t *key)
 {
     /* k < OGK_NMPC_MAX_NODES: the caller's loop bound */
     if (key != NULL) {
-        (void)memcpy(&ctx->sens_key[k * KEY], key, KEY * sizeof(double));
+        (void)memcpy(&ctx->sens_key[k * KEY], key, KEY * sizeof(ogk_real_t));
     } else {
-        (void)memset(&ctx->sens_key[k * KEY], 0, KEY * sizeof(double));
+        (void)memset(&ctx->sens_key[k * KEY], 0, KEY * sizeof(ogk_real_t));
     }
 }
 
@@ -105,14 +105,14 @@ void ogk_i_nmpc_cache_drop(ogk_nmpc_t *ctx, uint32_t nodes, uint32_t count, uint
     const size_t keep = (size_t)nodes - (size_t)count; /* caller: count < nodes <= OGK_NMPC_MAX_NODES */
     const size_t c = (size_t)count;
     const size_t u = (size_t)nu;
-    (void)memmove(ctx->sens_f, &ctx->sens_f[c * NX], keep * NX * sizeof(double));
-    (void)memmove(ctx->sens_a, &ctx->sens_a[c * NX * NX], keep * NX * NX * sizeof(double));
-    (void)memmove(ctx->sens_b0, &ctx->sens_b0[c * NX * u], keep * NX * u * sizeof(double));
-    (void)memmove(ctx->sens_b1, &ctx->sens_b1[c * NX * u], keep * NX * u * sizeof(double));
-    (void)memmove(ctx->sens_h, &ctx->sens_h[c * NX], keep * NX * sizeof(double));
-    (void)memmove(ctx->sens_ts, &ctx->sens_ts[c * NX], keep * NX * sizeof(double));
-    (void)memmove(ctx->sens_key, &ctx->sens_key[c * KEY], keep * KEY * sizeof(double));
+    (void)memmove(ctx->sens_f, &ctx->sens_f[c * NX], keep * NX * sizeof(ogk_real_t));
+    (void)memmove(ctx->sens_a, &ctx->sens_a[c * NX * NX], keep * NX * NX * sizeof(ogk_real_t));
+    (void)memmove(ctx->sens_b0, &ctx->sens_b0[c * NX * u], keep * NX * u * sizeof(ogk_real_t));
+    (void)memmove(ctx->sens_b1, &ctx->sens_b1[c * NX * u], keep * NX * u * sizeof(ogk_real_t));
+    (void)memmove(ctx->sens_h, &ctx->sens_h[c * NX], keep * NX * sizeof(ogk_real_t));
+    (void)memmove(ctx->sens_ts, &ctx->sens_ts[c * NX], keep * NX * sizeof(ogk_real_t));
+    (void)memmove(ctx->sens_key, &ctx->sens_key[c * KEY], keep * KEY * sizeof(ogk_real_t));
     (void)memmove(ctx->arc_mask, &ctx->arc_mask[c * OGK_OCP_MAX_KEEPOUT],
                   keep * OGK_OCP_MAX_KEEPOUT * sizeof(uint32_t));
-    (void)memmove(ctx->arc_viol, &ctx->arc_viol[c * 2u], keep * 2u * sizeof(double));
+    (void)memmove(ctx->arc_viol, &ctx->arc_viol[c * 2u], keep * 2u * sizeof(ogk_real_t));
 }

@@ -25,9 +25,9 @@
  * column is unchanged (the same operations in the same order). */
 
 /* Y = S + a K_prev (+ b k_prev in column col_h), for the first `ncol_e` columns. */
-static void stage_sens(const double *s, const double *k_prev_sens, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the terms of Y = S + a K_prev in order; its only caller is ogk_i_nmpc_shoot, checked by central differences (test_nmpc.c) */
-                       const double *k_prev, double a, double b, size_t col_h, /* NOLINT(bugprone-easily-swappable-parameters): as above */
-                       size_t ncol_e, double *y)
+static void stage_sens(const ogk_real_t *s, const ogk_real_t *k_prev_sens, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the terms of Y = S + a K_prev in order; its only caller is ogk_i_nmpc_shoot, checked by central differences (test_nmpc.c) */
+                       const ogk_real_t *k_prev, ogk_real_t a, ogk_real_t b, size_t col_h, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                       size_t ncol_e, ogk_real_t *y)
 {
     size_t i;
     for (i = 0u; i < NX; ++i) {
@@ -42,13 +42,13 @@ static void stage_sens(const double *s, const double *k_prev_sens, /* NOLINT(bug
  * eq. (11)-(14)'s Jacobian): x_0' = x_2 (r' = v_r); x_1' depends on x_0,
  * x_3 (theta' on r, v_theta); x_2', x_3' on every state (theta through the
  * third bodies); x_4' on x_0 (m' on r, solar-electric). */
-static inline void jx_column(const double *jx, const double *y, size_t l, double *k) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, k = jx y in the order of the product; its only caller is stage_k, checked by central differences (test_nmpc.c) */
+static inline void jx_column(const ogk_real_t *jx, const ogk_real_t *y, size_t l, ogk_real_t *k) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, k = jx y in the order of the product; its only caller is stage_k, checked by central differences (test_nmpc.c) */
 {
-    const double y0 = y[(0u * NCOL) + l];
-    const double y1 = y[(1u * NCOL) + l];
-    const double y2 = y[(2u * NCOL) + l];
-    const double y3 = y[(3u * NCOL) + l];
-    const double y4 = y[(4u * NCOL) + l];
+    const ogk_real_t y0 = y[(0u * NCOL) + l];
+    const ogk_real_t y1 = y[(1u * NCOL) + l];
+    const ogk_real_t y2 = y[(2u * NCOL) + l];
+    const ogk_real_t y3 = y[(3u * NCOL) + l];
+    const ogk_real_t y4 = y[(4u * NCOL) + l];
     k[(0u * NCOL) + l] = y2;
     k[(1u * NCOL) + l] = (jx[5] * y0) + (jx[8] * y3);
     k[(2u * NCOL) + l] = (jx[10] * y0) + (jx[11] * y1) + (jx[13] * y3) + (jx[14] * y4);
@@ -57,9 +57,9 @@ static inline void jx_column(const double *jx, const double *y, size_t l, double
 }
 
 /* K = fx Y + fu dU/dp + ft dt/dp for one stage. */
-static void stage_k(const double *jx, const double *ju, const double *jt, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the terms of K = fx Y + fu dU/dp + ft dt/dp in order; its only caller is ogk_i_nmpc_shoot, checked by central differences (test_nmpc.c) */
-                    const double *y, uint32_t nu, double s_frac, size_t ncol, /* NOLINT(bugprone-easily-swappable-parameters): as above */
-                    double *k)
+static void stage_k(const ogk_real_t *jx, const ogk_real_t *ju, const ogk_real_t *jt, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the terms of K = fx Y + fu dU/dp + ft dt/dp in order; its only caller is ogk_i_nmpc_shoot, checked by central differences (test_nmpc.c) */
+                    const ogk_real_t *y, uint32_t nu, ogk_real_t s_frac, size_t ncol, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                    ogk_real_t *k)
 {
     const size_t col_u0 = NX;
     const size_t col_u1 = NX + (size_t)nu;
@@ -78,7 +78,7 @@ static void stage_k(const double *jx, const double *ju, const double *jt, /* NOL
      * are structurally 0 */
     for (i = 2u; i < NX; ++i) {
         for (j = 0u; j < nu; ++j) {
-            k[(i * NCOL) + col_u0 + j] += ju[(i * nu) + j] * (1.0 - s_frac);
+            k[(i * NCOL) + col_u0 + j] += ju[(i * nu) + j] * (OGK_R(1.0) - s_frac);
             k[(i * NCOL) + col_u1 + j] += ju[(i * nu) + j] * s_frac;
         }
     }
@@ -101,17 +101,17 @@ size_t ogk_i_nmpc_ncol(const ogk_i_ocp_t *ocp, uint32_t nu)
 }
 
 ogk_status ogk_i_nmpc_shoot(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (nu, t_start, h as in ogk_nmpc_interval); checked by central differences (test_nmpc.c) */
-                            double t_start, double h, const double *x0,
-                            const double *u0, const double *u1, double *xf,
-                            double *sens, double *tape)
+                            ogk_real_t t_start, ogk_real_t h, const ogk_real_t *x0,
+                            const ogk_real_t *u0, const ogk_real_t *u1, ogk_real_t *xf,
+                            ogk_real_t *sens, ogk_real_t *tape)
 {
     return ogk_i_nmpc_shoot_arc(ocp, nu, t_start, h, x0, u0, u1, xf, sens, tape, NULL, NULL);
 }
 
 ogk_status ogk_i_nmpc_shoot_arc(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of nmpc_internal.h (nu, t_start, h as in ogk_nmpc_interval); checked by central differences (test_nmpc.c) */
-                                double t_start, double h, const double *x0,
-                                const double *u0, const double *u1, double *xf,
-                                double *sens, double *tape, ogk_i_nmpc_arc_t *arc, double *ends)
+                                ogk_real_t t_start, ogk_real_t h, const ogk_real_t *x0,
+                                const ogk_real_t *u0, const ogk_real_t *u1, ogk_real_t *xf,
+                                ogk_real_t *sens, ogk_real_t *tape, ogk_i_nmpc_arc_t *arc, ogk_real_t *ends)
 {
     static const uint32_t trig_index[4] = { 0u, 1u, 1u, 2u };
     ogk_status st = OGK_OK;
@@ -119,23 +119,23 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(b
     /* rk4_steps <= OGK_NMPC_MAX_RK4_STEPS (ogk_nmpc_init): clamped once so the
      * loops below keep a fixed bound with one condition for it */
     const uint32_t steps_b = ogk_i_min_u32(steps, OGK_NMPC_MAX_RK4_STEPS);
-    const double dt = h / (double)steps;
-    const double inv_steps = 1.0 / (double)steps;
+    const ogk_real_t dt = h / (ogk_real_t)steps;
+    const ogk_real_t inv_steps = OGK_R(1.0) / (ogk_real_t)steps;
     const size_t col_h = NX + (2u * (size_t)nu);
     const size_t ncol = ogk_i_nmpc_ncol(ocp, nu);
     const size_t ncol_e = ncol + (ncol % 2u);
     const bool taped = (sens != NULL) && (tape != NULL);
-    double x[NX];
-    double stage_x[NX];
-    double k[4][NX];
-    double u[OGK_NMPC_MAX_NU];
-    double jx[NX * NX];
-    double ju[NX * OGK_NMPC_MAX_NU];
-    double jt[NX];
-    double trig[(2u * OGK_NMPC_MAX_RK4_STEPS) + 1u][2];
-    double s_mat[NX * NCOL];
-    double y_mat[NX * NCOL];
-    double k_mat[4][NX * NCOL];
+    ogk_real_t x[NX];
+    ogk_real_t stage_x[NX];
+    ogk_real_t k[4][NX];
+    ogk_real_t u[OGK_NMPC_MAX_NU];
+    ogk_real_t jx[NX * NX];
+    ogk_real_t ju[NX * OGK_NMPC_MAX_NU];
+    ogk_real_t jt[NX];
+    ogk_real_t trig[(2u * OGK_NMPC_MAX_RK4_STEPS) + 1u][2];
+    ogk_real_t s_mat[NX * NCOL];
+    ogk_real_t y_mat[NX * NCOL];
+    ogk_real_t k_mat[4][NX * NCOL];
     uint32_t step;
     uint32_t j;
     size_t i;
@@ -146,10 +146,10 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(b
      * the stage loop's s_frac */
     for (i = 0u; i <= (2u * (size_t)steps_b); ++i) {
         const size_t i_step = i / 2u; /* the step of stage offset i (exact integer division) */
-        const double s_frac = ((double)i_step + (((i % 2u) != 0u) ? 0.5 : 0.0)) * inv_steps;
-        const double angle = u0[0] + ((u1[0] - u0[0]) * s_frac);
-        trig[i][0] = cos(angle);
-        trig[i][1] = sin(angle);
+        const ogk_real_t s_frac = ((ogk_real_t)i_step + (((i % 2u) != 0u) ? OGK_R(0.5) : OGK_R(0.0))) * inv_steps;
+        const ogk_real_t angle = u0[0] + ((u1[0] - u0[0]) * s_frac);
+        trig[i][0] = OGK_COS(angle);
+        trig[i][1] = OGK_SIN(angle);
     }
     if (sens != NULL) {
         /* the Jacobians' structural zeros, which the problem's dynamics do not write */
@@ -157,17 +157,17 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(b
         (void)memset(ju, 0, sizeof(ju));
         (void)memset(s_mat, 0, sizeof(s_mat));
         for (i = 0u; i < NX; ++i) {
-            s_mat[(i * NCOL) + i] = 1.0;
+            s_mat[(i * NCOL) + i] = OGK_R(1.0);
         }
     }
     for (step = 0u; (step < steps_b) && (st == OGK_OK); ++step) {
-        double *tape_step = taped ? &tape[(size_t)step * OGK_I_NMPC_TAPE_STEP_Z] : NULL;
+        ogk_real_t *tape_step = taped ? &tape[(size_t)step * OGK_I_NMPC_TAPE_STEP_Z] : NULL;
         if (tape_step != NULL) {
             (void)memcpy(tape_step, s_mat, sizeof(s_mat));
         }
         for (j = 0u; (j < 4u) && (st == OGK_OK); ++j) {
-            const double s_frac = ((double)step + ogk_i_rk4_c(j)) * inv_steps;
-            const double t_stage = t_start + (s_frac * h);
+            const ogk_real_t s_frac = ((ogk_real_t)step + ogk_i_rk4_c(j)) * inv_steps;
+            const ogk_real_t t_stage = t_start + (s_frac * h);
             for (i = 0u; i < nu; ++i) {
                 u[i] = u0[i] + ((u1[i] - u0[i]) * s_frac);
             }
@@ -187,28 +187,28 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(b
                 }
                 stage_k(jx, ju, jt, (j == 0u) ? s_mat : y_mat, nu, s_frac, ncol, k_mat[j]);
                 if (tape_step != NULL) {
-                    double *rec = &tape_step[OGK_I_NMPC_TAPE_STAGE0 + ((size_t)j * OGK_I_NMPC_TAPE_STAGE)];
+                    ogk_real_t *rec = &tape_step[OGK_I_NMPC_TAPE_STAGE0 + ((size_t)j * OGK_I_NMPC_TAPE_STAGE)];
                     (void)memcpy(&rec[OGK_I_NMPC_TAPE_X], stage_x, sizeof(stage_x));
                     (void)memcpy(&rec[OGK_I_NMPC_TAPE_K], k[j], sizeof(k[j]));
-                    (void)memcpy(&rec[OGK_I_NMPC_TAPE_TRIG], trig[(2u * step) + trig_index[j]], 2u * sizeof(double));
+                    (void)memcpy(&rec[OGK_I_NMPC_TAPE_TRIG], trig[(2u * step) + trig_index[j]], 2u * sizeof(ogk_real_t));
                     (void)memcpy(&rec[OGK_I_NMPC_TAPE_JX], jx, sizeof(jx));
                     (void)memcpy(&rec[OGK_I_NMPC_TAPE_KS], k_mat[j], sizeof(k_mat[j]));
                 }
             }
         }
         if (st == OGK_OK) {
-            ogk_i_rk4_accumulate(x, k[0], k[1], k[2], k[3], dt / 6.0, NX);
+            ogk_i_rk4_accumulate(x, k[0], k[1], k[2], k[3], dt / OGK_R(6.0), NX);
             if (sens != NULL) {
                 for (i = 0u; i < NX; ++i) {
                     const size_t row = i * NCOL;
                     /* S += dt/6 sum_j b_j K_j, then the step's own d/dh: (1 / 6M) sum_j b_j k_j */
-                    ogk_i_rk4_accumulate_pairs(s_mat, k_mat[0], k_mat[1], k_mat[2], k_mat[3], dt / 6.0, row, ncol_e);
+                    ogk_i_rk4_accumulate_pairs(s_mat, k_mat[0], k_mat[1], k_mat[2], k_mat[3], dt / OGK_R(6.0), row, ncol_e);
                     s_mat[row + col_h] =
-                        ogk_i_rk4_step_entry(s_mat[row + col_h], inv_steps / 6.0, k[0][i], k[1][i], k[2][i], k[3][i]);
+                        ogk_i_rk4_step_entry(s_mat[row + col_h], inv_steps / OGK_R(6.0), k[0][i], k[1][i], k[2][i], k[3][i]);
                 }
                 if ((ends != NULL) && ((step + 1u) < steps)) {
                     /* an interior step end's state and sensitivities (ends needs sens) */
-                    double *r = &ends[(size_t)step * OGK_I_NMPC_REC_STRIDE];
+                    ogk_real_t *r = &ends[(size_t)step * OGK_I_NMPC_REC_STRIDE];
                     (void)memcpy(r, x, sizeof(x));
                     (void)memcpy(&r[NX], s_mat, sizeof(s_mat));
                 }
@@ -216,7 +216,7 @@ ogk_status ogk_i_nmpc_shoot_arc(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(b
             if ((arc != NULL) && ((step + 1u) < steps)) {
                 /* an interior step end of the arc (the interval's ends are nodes) */
                 const uint32_t step_end = step + 1u;
-                ogk_i_nmpc_keepout_scan(ocp, x, t_start + ((double)step_end * inv_steps * h), step_end, arc);
+                ogk_i_nmpc_keepout_scan(ocp, x, t_start + ((ogk_real_t)step_end * inv_steps * h), step_end, arc);
             }
         }
     }

@@ -37,7 +37,7 @@
 
 /* out = jx^T a over the Jacobian's structural nonzeros (13 of 25, those of
  * jx_column in nmpc_shoot.c; jx[2] = dr'/dv_r = 1). */
-static void jx_transpose_times(const double *jx, const double *a, double *out)
+static void jx_transpose_times(const ogk_real_t *jx, const ogk_real_t *a, ogk_real_t *out)
 {
     out[0] = (jx[5] * a[1]) + (jx[10] * a[2]) + (jx[15] * a[3]) + (jx[20] * a[4]);
     out[1] = (jx[11] * a[2]) + (jx[16] * a[3]);
@@ -50,8 +50,8 @@ static void jx_transpose_times(const double *jx, const double *a, double *out)
  * hess[h][c] and hess[c][h] += scale (K^T a)_c. Every such term lands in
  * h's row and column, so they are summed in g_h over the interval and added
  * to the upper triangle once (the diagonal entry twice). */
-static void add_h_cross(const double *k_sens, const double *a, double scale, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (K, adjoint, factor) in the order of the product; callers in this file */
-                        size_t ncol_e, double *g_h)
+static void add_h_cross(const ogk_real_t *k_sens, const ogk_real_t *a, ogk_real_t scale, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (K, adjoint, factor) in the order of the product; callers in this file */
+                        size_t ncol_e, ogk_real_t *g_h)
 {
     size_t c;
     for (c = 0u; c < ncol_e; c += 2u) {
@@ -65,13 +65,13 @@ static void add_h_cross(const double *k_sens, const double *a, double scale, /* 
 
 /* Column l of m_a = (hz Z)_a for the state arguments r, v_r, v_theta and m
  * (hz's structural nonzeros without theta, t and the controls). */
-static inline void stage_m_column(const double *hz, const double *y_sens, size_t l, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, its only caller is add_stage_curvature */
-                                  double *m_r, double *m_vr, double *m_vt, double *m_m) /* NOLINT(bugprone-easily-swappable-parameters): as above */
+static inline void stage_m_column(const ogk_real_t *hz, const ogk_real_t *y_sens, size_t l, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, its only caller is add_stage_curvature */
+                                  ogk_real_t *m_r, ogk_real_t *m_vr, ogk_real_t *m_vt, ogk_real_t *m_m) /* NOLINT(bugprone-easily-swappable-parameters): as above */
 {
-    const double z_r = y_sens[(0u * NCOL) + l];
-    const double z_vr = y_sens[(2u * NCOL) + l];
-    const double z_vt = y_sens[(3u * NCOL) + l];
-    const double z_m = y_sens[(4u * NCOL) + l];
+    const ogk_real_t z_r = y_sens[(0u * NCOL) + l];
+    const ogk_real_t z_vr = y_sens[(2u * NCOL) + l];
+    const ogk_real_t z_vt = y_sens[(3u * NCOL) + l];
+    const ogk_real_t z_m = y_sens[(4u * NCOL) + l];
     m_r[l] = (hz[(0u * NZ) + 0u] * z_r) + (hz[(0u * NZ) + 2u] * z_vr) + (hz[(0u * NZ) + 3u] * z_vt)
         + (hz[(0u * NZ) + 4u] * z_m);
     m_vr[l] = (hz[(0u * NZ) + 2u] * z_r) + (hz[(2u * NZ) + 3u] * z_vt);
@@ -86,26 +86,26 @@ static inline void stage_m_column(const double *hz, const double *y_sens, size_t
  * nonzeros are written out: m_a = (hz Z)_a for each argument a, then
  * sum_a Z_a^T m_a (the mass row's terms only where that row is not 0 when
  * sparse_m). theta and t have curvature only with attracting bodies. */
-static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (model Hessian, state sensitivities, nu) as in the stage; its only caller is ogk_i_nmpc_shoot_hess */
-                                double s_frac, bool bodies, bool sparse_m, size_t ncol, /* NOLINT(bugprone-easily-swappable-parameters): as above */
-                                double *hess)
+static void add_stage_curvature(const ogk_real_t *hz, const ogk_real_t *y_sens, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, (model Hessian, state sensitivities, nu) as in the stage; its only caller is ogk_i_nmpc_shoot_hess */
+                                ogk_real_t s_frac, bool bodies, bool sparse_m, size_t ncol, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                                ogk_real_t *hess)
 {
     const size_t ncol_e = ncol + (ncol % 2u);
     const size_t i_a = NX;                        /* alpha's z index and U_k's column */
     const size_t i_t = NX + (size_t)nu;           /* t's z index */
     const size_t col_h = NX + (2u * (size_t)nu);
-    const double *row_r = &y_sens[0u * NCOL];
-    const double *row_th = &y_sens[1u * NCOL];
-    const double *row_vr = &y_sens[2u * NCOL];
-    const double *row_vt = &y_sens[3u * NCOL];
-    const double *row_m = &y_sens[4u * NCOL];
-    double m_r[NCOL];
-    double m_vr[NCOL];
-    double m_vt[NCOL];
-    double m_m[NCOL];
-    double m_ctl[OGK_NMPC_MAX_NU][NCOL];
-    double m_th[NCOL];
-    double m_t[NCOL];
+    const ogk_real_t *row_r = &y_sens[0u * NCOL];
+    const ogk_real_t *row_th = &y_sens[1u * NCOL];
+    const ogk_real_t *row_vr = &y_sens[2u * NCOL];
+    const ogk_real_t *row_vt = &y_sens[3u * NCOL];
+    const ogk_real_t *row_m = &y_sens[4u * NCOL];
+    ogk_real_t m_r[NCOL];
+    ogk_real_t m_vr[NCOL];
+    ogk_real_t m_vt[NCOL];
+    ogk_real_t m_m[NCOL];
+    ogk_real_t m_ctl[OGK_NMPC_MAX_NU][NCOL];
+    ogk_real_t m_th[NCOL];
+    ogk_real_t m_t[NCOL];
     size_t a;
     size_t c;
     size_t j;
@@ -121,8 +121,8 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
         stage_m_column(hz, y_sens, c + 1u, m_r, m_vr, m_vt, m_m);
     }
     for (j = 0u; j < (size_t)nu; ++j) {
-        const double h_r = hz[(0u * NZ) + (i_a + j)];
-        const double h_m = hz[(4u * NZ) + (i_a + j)];
+        const ogk_real_t h_r = hz[(0u * NZ) + (i_a + j)];
+        const ogk_real_t h_m = hz[(4u * NZ) + (i_a + j)];
         for (c = 0u; c < ncol_e; c += 2u) {
             m_ctl[j][c] = (h_r * row_r[c]) + (h_m * row_m[c]);
             m_ctl[j][c + 1u] = (h_r * row_r[c + 1u]) + (h_m * row_m[c + 1u]);
@@ -131,13 +131,13 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
     /* the control rows' entries: (1 - s) in column NX + j, s in column NX + nu + j */
     for (j = 0u; j < (size_t)nu; ++j) {
         size_t l;
-        const double lo = 1.0 - s_frac;
+        const ogk_real_t lo = OGK_R(1.0) - s_frac;
         m_r[i_a + j] += hz[(0u * NZ) + (i_a + j)] * lo;
         m_r[i_a + (size_t)nu + j] += hz[(0u * NZ) + (i_a + j)] * s_frac;
         m_m[i_a + j] += hz[(4u * NZ) + (i_a + j)] * lo;
         m_m[i_a + (size_t)nu + j] += hz[(4u * NZ) + (i_a + j)] * s_frac;
         for (l = 0u; l < (size_t)nu; ++l) {
-            const double h_jl = (j <= l) ? hz[((i_a + j) * NZ) + (i_a + l)] : hz[((i_a + l) * NZ) + (i_a + j)];
+            const ogk_real_t h_jl = (j <= l) ? hz[((i_a + j) * NZ) + (i_a + l)] : hz[((i_a + l) * NZ) + (i_a + j)];
             m_ctl[j][i_a + l] += h_jl * lo;
             m_ctl[j][i_a + (size_t)nu + l] += h_jl * s_frac;
         }
@@ -158,11 +158,11 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
     }
     /* hess += sum_a Z_a^T m_a, upper triangle */
     for (a = 0u; a < ncol; ++a) {
-        double *hrow = &hess[a * NCOL];
-        const double z_r = row_r[a];
-        const double z_vr = row_vr[a];
-        const double z_vt = row_vt[a];
-        const double z_m = row_m[a];
+        ogk_real_t *hrow = &hess[a * NCOL];
+        const ogk_real_t z_r = row_r[a];
+        const ogk_real_t z_vr = row_vr[a];
+        const ogk_real_t z_vt = row_vt[a];
+        const ogk_real_t z_m = row_m[a];
         /* without attracting bodies the model does not depend on theta: Z's
          * theta column (a = 1) is 0 in the rows r, v_r, v_theta and m (the
          * forward sweep propagates exact zeros), so its row adds nothing */
@@ -173,7 +173,7 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
             for (c = a; c < ncol; ++c) {
                 hrow[c] += (z_r * m_r[c]) + (z_vr * m_vr[c]) + (z_vt * m_vt[c]);
             }
-            if (z_m != 0.0) {
+            if (z_m != OGK_R(0.0)) {
                 for (c = a; c < ncol; ++c) {
                     hrow[c] += z_m * m_m[c];
                 }
@@ -184,7 +184,7 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
             }
         }
         if (bodies) {
-            const double z_th = row_th[a];
+            const ogk_real_t z_th = row_th[a];
             for (c = a; c < ncol; ++c) {
                 hrow[c] += z_th * m_th[c];
             }
@@ -194,7 +194,7 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
         const size_t c0 = i_a + j;
         const size_t c1 = i_a + (size_t)nu + j;
         for (c = c0; c < ncol; ++c) {
-            hess[(c0 * NCOL) + c] += (1.0 - s_frac) * m_ctl[j][c];
+            hess[(c0 * NCOL) + c] += (OGK_R(1.0) - s_frac) * m_ctl[j][c];
         }
         for (c = c1; c < ncol; ++c) {
             hess[(c1 * NCOL) + c] += s_frac * m_ctl[j][c];
@@ -209,24 +209,24 @@ static void add_stage_curvature(const double *hz, const double *y_sens, uint32_t
 }
 
 void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(bugprone-easily-swappable-parameters): internal, the order of ogk_i_nmpc_shoot; checked by central differences (test_nmpc.c) */
-                           double t_start, double h, const double *u0, /* NOLINT(bugprone-easily-swappable-parameters): as above */
-                           const double *u1, const double *tape, /* NOLINT(bugprone-easily-swappable-parameters): as above */
-                           const double *w, double *hess)
+                           ogk_real_t t_start, ogk_real_t h, const ogk_real_t *u0, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                           const ogk_real_t *u1, const ogk_real_t *tape, /* NOLINT(bugprone-easily-swappable-parameters): as above */
+                           const ogk_real_t *w, ogk_real_t *hess)
 {
     const uint32_t steps = ocp->cfg->rk4_steps;
-    const double dt = h / (double)steps;
-    const double inv_steps = 1.0 / (double)steps;
+    const ogk_real_t dt = h / (ogk_real_t)steps;
+    const ogk_real_t inv_steps = OGK_R(1.0) / (ogk_real_t)steps;
     const size_t ncol = ogk_i_nmpc_ncol(ocp, nu);
     const size_t col_h = NX + (2u * (size_t)nu);
     const size_t ncol_e = ncol + (ncol % 2u);
-    double lambda[NX];
-    double ybar[NX];
-    double kbar[NX];
-    double kb[NX];
-    double y_sens[NX * NCOL];
-    double hz[NZ * NZ];
-    double g_h[NCOL];
-    double u[OGK_NMPC_MAX_NU];
+    ogk_real_t lambda[NX];
+    ogk_real_t ybar[NX];
+    ogk_real_t kbar[NX];
+    ogk_real_t kb[NX];
+    ogk_real_t y_sens[NX * NCOL];
+    ogk_real_t hz[NZ * NZ];
+    ogk_real_t g_h[NCOL];
+    ogk_real_t u[OGK_NMPC_MAX_NU];
     const bool bodies = ncol > (col_h + 1u);
     /* a constant engine without a throttle: m' = -mdot_max does not depend on
      * z, so the mass row of Z is e_m plus its column h (m_0 - mdot t): the
@@ -239,29 +239,29 @@ void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(bugpro
     size_t i;
     size_t c;
 
-    (void)memset(hess, 0, NCOL * NCOL * sizeof(double));
+    (void)memset(hess, 0, NCOL * NCOL * sizeof(ogk_real_t));
     (void)memcpy(lambda, w, sizeof(lambda));
     (void)memset(g_h, 0, sizeof(g_h));
     for (n = n_top; n > 0u; --n) {
-        const double *rec_step = &tape[((size_t)n - 1u) * OGK_I_NMPC_TAPE_STEP_Z];
-        const double *s_mat = rec_step;
-        double lambda_next[NX];
+        const ogk_real_t *rec_step = &tape[((size_t)n - 1u) * OGK_I_NMPC_TAPE_STEP_Z];
+        const ogk_real_t *s_mat = rec_step;
+        ogk_real_t lambda_next[NX];
         uint32_t j;
 
         (void)memcpy(lambda_next, lambda, sizeof(lambda));
         (void)memset(ybar, 0, sizeof(ybar));
         for (j = 4u; j > 0u; --j) {
             const uint32_t js = j - 1u;
-            const double *rec = &rec_step[OGK_I_NMPC_TAPE_STAGE0 + ((size_t)js * OGK_I_NMPC_TAPE_STAGE)];
-            const double s_frac = (((double)n - 1.0) + ogk_i_rk4_c(js)) * inv_steps;
-            const double t_stage = t_start + (s_frac * h);
+            const ogk_real_t *rec = &rec_step[OGK_I_NMPC_TAPE_STAGE0 + ((size_t)js * OGK_I_NMPC_TAPE_STAGE)];
+            const ogk_real_t s_frac = (((ogk_real_t)n - OGK_R(1.0)) + ogk_i_rk4_c(js)) * inv_steps;
+            const ogk_real_t t_stage = t_start + (s_frac * h);
             /* k_j enters x_{n+1} = x_n + (h / 6M) sum b_j k_j and y_{j+1} =
              * x_n + c_{j+1} (h / M) k_j (ybar holds ybar_{j+1}): with
              * kb = (b_j / 6) lambda_{n+1} + c_{j+1} ybar_{j+1}, its adjoint is
              * kbar_j = (h / M) kb and both products' h cross terms are
              * (1 / M) K_j^T kb */
             for (i = 0u; i < NX; ++i) {
-                kb[i] = (ogk_i_rk4_w6(js) / 6.0) * lambda_next[i];
+                kb[i] = (ogk_i_rk4_w6(js) / OGK_R(6.0)) * lambda_next[i];
             }
             if (js < 3u) {
                 for (i = 0u; i < NX; ++i) {
@@ -277,8 +277,8 @@ void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(bugpro
             if (js == 0u) {
                 (void)memcpy(y_sens, s_mat, sizeof(y_sens));
             } else {
-                const double *prev = &rec_step[OGK_I_NMPC_TAPE_STAGE0 + (((size_t)js - 1u) * OGK_I_NMPC_TAPE_STAGE)];
-                const double c_dt = ogk_i_rk4_c(js) * dt;
+                const ogk_real_t *prev = &rec_step[OGK_I_NMPC_TAPE_STAGE0 + (((size_t)js - 1u) * OGK_I_NMPC_TAPE_STAGE)];
+                const ogk_real_t c_dt = ogk_i_rk4_c(js) * dt;
                 for (i = 0u; i < NX; ++i) {
                     const size_t row = i * NCOL;
                     ogk_i_rk4_stage_state_pairs(s_mat, c_dt, &prev[OGK_I_NMPC_TAPE_KS], row, ncol_e, y_sens);
@@ -305,7 +305,7 @@ void ogk_i_nmpc_shoot_hess(const ogk_i_ocp_t *ocp, uint32_t nu, /* NOLINT(bugpro
         } else if (c > col_h) {
             hess[(col_h * NCOL) + c] += g_h[c];
         } else {
-            hess[(col_h * NCOL) + col_h] += 2.0 * g_h[c];
+            hess[(col_h * NCOL) + col_h] += OGK_R(2.0) * g_h[c];
         }
     }
     /* the lower triangle mirrored */

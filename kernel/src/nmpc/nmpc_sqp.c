@@ -40,26 +40,26 @@
 #define MAXV OGK_NMPC_MAX_VARS
 
 /* Armijo constant and backtracking factor of the line search. */
-#define ARMIJO_C1 1.0e-4
-#define BACKTRACK 0.5
+#define ARMIJO_C1 OGK_R(1.0e-4)
+#define BACKTRACK OGK_R(0.5)
 /* Filter line search constants (Waechter & Biegler 2006, sec. 2.3). */
 #define FILTER_SIZE 32u
-#define FILTER_GAMMA 1.0e-5
-#define FILTER_S_THETA 1.1
-#define FILTER_S_PHI 2.3
+#define FILTER_GAMMA OGK_R(1.0e-5)
+#define FILTER_S_THETA OGK_R(1.1)
+#define FILTER_S_PHI OGK_R(2.3)
 /* Curvature of the elastic slacks, relative to elastic_weight. */
-#define ELASTIC_CURVATURE 1.0e-6
+#define ELASTIC_CURVATURE OGK_R(1.0e-6)
 /* Restarts (scaled-identity Hessian, empty filter) after a failed line search. */
 #define MAX_RESTARTS 2u
 /* Smallest step box (fraction of step_max_*) and the smallest step taken as
  * a BFGS pair. */
-#define BOX_MIN 1.0e-3
-#define BFGS_MIN_ALPHA 0.1
+#define BOX_MIN OGK_R(1.0e-3)
+#define BFGS_MIN_ALPHA OGK_R(0.1)
 /* Feasibility steps per solve, and the largest violation they are tried at. */
 #define MAX_RESTORES 3u
-#define RESTORE_VIOL_MAX 1.0e-4
+#define RESTORE_VIOL_MAX OGK_R(1.0e-4)
 /* Factor on the step box of a QP retried after OGK_E_INFEASIBLE. */
-#define BOX_OPEN 1.0e3
+#define BOX_OPEN OGK_R(1.0e3)
 /* The exact Hessian is held (reused, its shift moved to the new rows of
  * eq. 5) for the next iteration while the solve is in its Newton phase: the
  * step of an exact Hessian (computed or held) that factored with its shift
@@ -72,7 +72,7 @@
  * 0.1 the far-guess solve of test_mcdc_nmpc.c held at a ratio of 0.095
  * with its violation still at 2e-2, and took 20 iterations instead of 18
  * (docs/design/nmpc-flight.md, section 2e). */
-#define HESS_HOLD_RATE 0.03
+#define HESS_HOLD_RATE OGK_R(0.03)
 
 
 static size_t n_vars(const ogk_nmpc_plan_t *p)
@@ -84,45 +84,45 @@ static size_t n_vars(const ogk_nmpc_plan_t *p)
  * two inequalities each, not equalities (docs/design/nmpc-flight.md, "Robustness"). */
 static bool terminal_set(const ogk_nmpc_config_t *cfg)
 {
-    return (cfg->terminal_box[0] > 0.0) || (cfg->terminal_box[1] > 0.0)
-        || (cfg->terminal_box[2] > 0.0) || (cfg->terminal_box[3] > 0.0);
+    return (cfg->terminal_box[0] > OGK_R(0.0)) || (cfg->terminal_box[1] > OGK_R(0.0))
+        || (cfg->terminal_box[2] > OGK_R(0.0)) || (cfg->terminal_box[3] > OGK_R(0.0));
 }
 
 /* The merit's objective: J, plus with a terminal set its l1 excess priced at
  * elastic_weight (an exact penalty: the set is reached whenever the vehicle
  * can reach it, and otherwise the plan ends as close to it as it can). */
-static double penalized(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, double t_excess)
+static ogk_real_t penalized(const ogk_nmpc_config_t *cfg, const ogk_nmpc_plan_t *p, ogk_real_t t_excess)
 {
     return ogk_i_nmpc_objective(cfg, p) + (cfg->elastic_weight * t_excess);
 }
 
 /* How far terminal residual i lies outside its half-width (|c_i| for eq. 5
  * exactly: |c_i| - 0 is |c_i| to the bit). */
-static double terminal_excess(const ogk_nmpc_config_t *cfg, const double *c, size_t i)
+static ogk_real_t terminal_excess(const ogk_nmpc_config_t *cfg, const ogk_real_t *c, size_t i)
 {
-    const double e = fabs(c[i]) - cfg->terminal_box[i];
-    return (e > 0.0) ? e : 0.0;
+    const ogk_real_t e = OGK_FABS(c[i]) - cfg->terminal_box[i];
+    return (e > OGK_R(0.0)) ? e : OGK_R(0.0);
 }
 
 /* Merit pieces of a plan: l1 and max norms of every defect and terminal
  * residual. Stores F_k and the sensitivities in ctx when with_sens. */
 static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
-                           bool with_sens, const double *y, double *viol_l1, double *viol_max, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, outputs in the order of the merit pair (l1, max) and c; every caller is in this file */
-                           double *c_term, double *t_excess)
+                           bool with_sens, const ogk_real_t *y, ogk_real_t *viol_l1, ogk_real_t *viol_max, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, outputs in the order of the merit pair (l1, max) and c; every caller is in this file */
+                           ogk_real_t *c_term, ogk_real_t *t_excess)
 {
     ogk_status st = OGK_OK;
     const uint32_t nu = p->nu;
-    const double h = p->horizon / (double)p->nodes;
+    const ogk_real_t h = p->horizon / (ogk_real_t)p->nodes;
     /* the exact Hessian's blocks come with the sensitivities, for the
      * multipliers y of eq. (5); the intervals then go from the last to the
      * first, carrying the continuity multiplier w backwards */
-    const double *y_w = with_sens ? y : NULL; /* y != NULL only with the exact Hessian (both callers) */
+    const ogk_real_t *y_w = with_sens ? y : NULL; /* y != NULL only with the exact Hessian (both callers) */
     const bool second = y_w != NULL;
-    double sens[NX * NCOL];
-    double x1[NX];
-    double w[NX];
-    double l1 = 0.0;
-    double mx = 0.0;
+    ogk_real_t sens[NX * NCOL];
+    ogk_real_t x1[NX];
+    ogk_real_t w[NX];
+    ogk_real_t l1 = OGK_R(0.0);
+    ogk_real_t mx = OGK_R(0.0);
     /* nodes <= OGK_NMPC_MAX_NODES (ogk_nmpc_init, load_plan): clamped once, a fixed bound */
     const size_t nodes = ogk_i_min_size(p->nodes, OGK_NMPC_MAX_NODES);
     const ogk_i_ocp_t ocp = ogk_i_nmpc_problem(ctx);
@@ -139,12 +139,12 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
         for (i = 0u; i < NC; ++i) {
             w[i] = -y_w[i];
         }
-        w[4] = (ctx->cfg.objective == OGK_NMPC_MIN_FUEL) ? -1.0 : 0.0;
+        w[4] = (ctx->cfg.objective == OGK_NMPC_MIN_FUEL) ? -OGK_R(1.0) : OGK_R(0.0);
     }
     for (n = 0u; (n < nodes) && (st == OGK_OK); ++n) {
         const size_t k = second ? ((size_t)p->nodes - 1u - n) : n;
-        const double t_start = p->t0 + ((double)k * h);
-        double key[OGK_NMPC_SENS_KEY];
+        const ogk_real_t t_start = p->t0 + ((ogk_real_t)k * h);
+        ogk_real_t key[OGK_NMPC_SENS_KEY];
         /* the same inputs as the slot's: its F_k and sensitivities are this
          * sweep's bits (nmpc_sens_cache.c); the exact Hessian needs the
          * sweep's tape, and its slots are only forgotten */
@@ -174,9 +174,9 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
                 ctx->arc_viol[(2u * k) + 1u] = arc.viol_max;
             }
             for (i = 0u; i < NX; ++i) {
-                const double d = x1[i] - p->x[((k + 1u) * NX) + i];
-                l1 += fabs(d);
-                mx = (fabs(d) > mx) ? fabs(d) : mx;
+                const ogk_real_t d = x1[i] - p->x[((k + 1u) * NX) + i];
+                l1 += OGK_FABS(d);
+                mx = (OGK_FABS(d) > mx) ? OGK_FABS(d) : mx;
             }
             if (with_sens && !hit) {
                 const size_t col_h = NX + (2u * (size_t)nu);
@@ -198,20 +198,20 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
                 /* h = T / N and t_start = t0 + k T / N */
                 for (i = 0u; i < NX; ++i) {
                     ctx->sens_t[(k * NX) + i] = (ctx->sens_h[(k * NX) + i]
-                        + ((double)k * ctx->sens_ts[(k * NX) + i])) / (double)p->nodes;
+                        + ((ogk_real_t)k * ctx->sens_ts[(k * NX) + i])) / (ogk_real_t)p->nodes;
                 }
             }
             if (second) {
                 /* the interval's block in the context's scratch (free until condensing), not on the stack */
-                double *w_int = ctx->hess_tmp;
-                double w_prev[NX];
+                ogk_real_t *w_int = ctx->hess_tmp;
+                ogk_real_t w_prev[NX];
                 ogk_i_nmpc_shoot_hess(&ocp, nu, t_start, h, &p->u[k * nu], &p->u[(k + 1u) * nu],
                                       ctx->tape, w, w_int);
                 ogk_i_nmpc_hess_block(nu, ogk_i_nmpc_ncol(&ocp, nu), k, p->nodes, w_int,
                                       &ctx->hess_blk[k * OGK_NMPC_MAX_DIR * OGK_NMPC_MAX_DIR]);
                 /* w_{k-1} = A_k^T w_k */
                 for (j = 0u; j < NX; ++j) {
-                    double acc = 0.0;
+                    ogk_real_t acc = OGK_R(0.0);
                     for (i = 0u; i < NX; ++i) {
                         acc += sens[(i * NCOL) + j] * w[i];
                     }
@@ -223,9 +223,9 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
     }
     if (st == OGK_OK) {
         ogk_i_nmpc_terminal(&ocp, &p->x[(size_t)p->nodes * NX], p->t0 + p->horizon, c_term, NULL);
-        *t_excess = 0.0;
+        *t_excess = OGK_R(0.0);
         for (i = 0u; i < NC; ++i) {
-            const double e = terminal_excess(&ctx->cfg, c_term, i);
+            const ogk_real_t e = terminal_excess(&ctx->cfg, c_term, i);
             if (terminal_set(&ctx->cfg)) {
                 /* the terminal set is elastic: its excess is priced in the merit's
                  * objective (penalized), not in its violation */
@@ -235,10 +235,10 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
                 mx = (e > mx) ? e : mx;
             }
         }
-        if (ctx->cfg.mass_min > 0.0) {
+        if (ctx->cfg.mass_min > OGK_R(0.0)) {
             /* the propellant limit (m decreases along the arcs: the final node bounds them) */
-            const double e = ctx->cfg.mass_min - p->x[((size_t)p->nodes * NX) + 4u];
-            if (e > 0.0) {
+            const ogk_real_t e = ctx->cfg.mass_min - p->x[((size_t)p->nodes * NX) + 4u];
+            if (e > OGK_R(0.0)) {
                 l1 += e;
                 mx = (e > mx) ? e : mx;
             }
@@ -255,7 +255,7 @@ static ogk_status evaluate(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p,
  * lower then upper, and the propellant row; returns the number of rows.
  * Needs the linear terms (qp_aeq, qp_beq) of the iterate. */
 static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, nv and the box factor; every caller is in this file */
-                           double box_scale)
+                           ogk_real_t box_scale)
 {
     const uint32_t nu = p->nu;
     const ogk_nmpc_config_t *cfg = &ctx->cfg;
@@ -265,16 +265,16 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
     const uint32_t nodes = ogk_i_min_u32(p->nodes, OGK_NMPC_MAX_NODES);
     const size_t ko_rows = ogk_i_min_size(ctx->ko_rows, OGK_I_NMPC_MAX_KO_ROWS_Z);
     uint32_t k;
-    double lo;
-    double hi;
+    ogk_real_t lo;
+    ogk_real_t hi;
 
     for (k = 0u; k <= nodes; ++k) {
         ctx->qp_lb[(size_t)k * nu] = -cfg->step_max_alpha * box_scale;
         ctx->qp_ub[(size_t)k * nu] = cfg->step_max_alpha * box_scale;
         if (nu > 1u) {
-            const double w = p->u[((size_t)k * nu) + 1u];
+            const ogk_real_t w = p->u[((size_t)k * nu) + 1u];
             lo = -w;
-            hi = 1.0 - w;
+            hi = OGK_R(1.0) - w;
             ctx->qp_lb[((size_t)k * nu) + 1u] = (lo < hi) ? lo : hi;
             ctx->qp_ub[((size_t)k * nu) + 1u] = hi;
         }
@@ -285,23 +285,23 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
     hi = (hi < (cfg->step_max_horizon * box_scale)) ? hi : (cfg->step_max_horizon * box_scale);
     ctx->qp_lb[nv - 1u] = lo;
     ctx->qp_ub[nv - 1u] = (hi > lo) ? hi : lo;
-    if (cfg->max_sweep > 0.0) {
-        (void)memset(ctx->qp_ain, 0, 2u * (size_t)p->nodes * nv * sizeof(double));
+    if (cfg->max_sweep > OGK_R(0.0)) {
+        (void)memset(ctx->qp_ain, 0, 2u * (size_t)p->nodes * nv * sizeof(ogk_real_t));
         for (k = 0u; k < nodes; ++k) {
-            const double sweep = p->u[((size_t)k + 1u) * nu] - p->u[(size_t)k * nu];
+            const ogk_real_t sweep = p->u[((size_t)k + 1u) * nu] - p->u[(size_t)k * nu];
             /* -max <= sweep + da_{k+1} - da_k <= max */
-            ctx->qp_ain[(rows * nv) + (((size_t)k + 1u) * nu)] = 1.0;
-            ctx->qp_ain[(rows * nv) + ((size_t)k * nu)] = -1.0;
+            ctx->qp_ain[(rows * nv) + (((size_t)k + 1u) * nu)] = OGK_R(1.0);
+            ctx->qp_ain[(rows * nv) + ((size_t)k * nu)] = -OGK_R(1.0);
             ctx->qp_bin[rows] = -cfg->max_sweep - sweep;
             ++rows;
-            ctx->qp_ain[(rows * nv) + (((size_t)k + 1u) * nu)] = -1.0;
-            ctx->qp_ain[(rows * nv) + ((size_t)k * nu)] = 1.0;
+            ctx->qp_ain[(rows * nv) + (((size_t)k + 1u) * nu)] = -OGK_R(1.0);
+            ctx->qp_ain[(rows * nv) + ((size_t)k * nu)] = OGK_R(1.0);
             ctx->qp_bin[rows] = -cfg->max_sweep + sweep;
             ++rows;
         }
     }
     for (k = 0u; k < ko_rows; ++k) {
-        (void)memcpy(&ctx->qp_ain[rows * nv], &ctx->ko_a[(size_t)k * nv], nv * sizeof(double));
+        (void)memcpy(&ctx->qp_ain[rows * nv], &ctx->ko_a[(size_t)k * nv], nv * sizeof(ogk_real_t));
         ctx->qp_bin[rows] = ctx->ko_b[k];
         ++rows;
     }
@@ -320,9 +320,9 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
             rows += 2u;
         }
     }
-    if (cfg->mass_min > 0.0) {
+    if (cfg->mass_min > OGK_R(0.0)) {
         /* m_N + dm_N >= mass_min, dm_N = G_N[4] v + e_N[4] */
-        (void)memcpy(&ctx->qp_ain[rows * nv], &ctx->cond_g[4u * nv], nv * sizeof(double));
+        (void)memcpy(&ctx->qp_ain[rows * nv], &ctx->cond_g[4u * nv], nv * sizeof(ogk_real_t));
         ctx->qp_bin[rows] = cfg->mass_min - p->x[((size_t)p->nodes * NX) + 4u] - ctx->cond_e[4];
         ++rows;
     }
@@ -332,7 +332,7 @@ static size_t build_bounds(ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, size_t nv,
 /* Index of the first terminal-set row in the rows of build_bounds. */
 static size_t terminal_row0(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p)
 {
-    const size_t sweep_rows = (ctx->cfg.max_sweep > 0.0) ? (2u * (size_t)p->nodes) : 0u;
+    const size_t sweep_rows = (ctx->cfg.max_sweep > OGK_R(0.0)) ? (2u * (size_t)p->nodes) : 0u;
     return sweep_rows + ogk_i_min_size(ctx->ko_rows, OGK_I_NMPC_MAX_KO_ROWS_Z);
 }
 
@@ -349,9 +349,9 @@ static void terminal_multipliers(ogk_nmpc_t *ctx, size_t row0)
 }
 
 /* The terminal set's excess after an elastic QP's step: the sum of its slacks. */
-static double elastic_excess(const ogk_nmpc_t *ctx, size_t nv)
+static ogk_real_t elastic_excess(const ogk_nmpc_t *ctx, size_t nv)
 {
-    double sum = 0.0;
+    ogk_real_t sum = OGK_R(0.0);
     size_t i;
     for (i = nv; i < (nv + (2u * NC)); ++i) {
         sum += ctx->qp_sol.x[i];
@@ -360,8 +360,8 @@ static double elastic_excess(const ogk_nmpc_t *ctx, size_t nv)
 }
 
 /* trial = work + alpha * step */
-static void take_step(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const double *v,
-                      size_t nv, double alpha, ogk_nmpc_plan_t *trial)
+static void take_step(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const ogk_real_t *v,
+                      size_t nv, ogk_real_t alpha, ogk_nmpc_plan_t *trial)
 {
     const uint32_t nu = p->nu;
     size_t i;
@@ -375,9 +375,9 @@ static void take_step(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const dou
     if (nu > 1u) {
         /* the QP's throttle bounds are exact; clip rounding only */
         for (i = 0u; i <= (size_t)p->nodes; ++i) {
-            double w = trial->u[(i * nu) + 1u];
-            w = (w < 0.0) ? 0.0 : w;
-            trial->u[(i * nu) + 1u] = (w > 1.0) ? 1.0 : w;
+            ogk_real_t w = trial->u[(i * nu) + 1u];
+            w = (w < OGK_R(0.0)) ? OGK_R(0.0) : w;
+            trial->u[(i * nu) + 1u] = (w > OGK_R(1.0)) ? OGK_R(1.0) : w;
         }
     }
     trial->horizon = p->horizon + (alpha * v[nv - 1u]);
@@ -390,18 +390,18 @@ static void take_step(const ogk_nmpc_t *ctx, const ogk_nmpc_plan_t *p, const dou
  * lower and s- the upper one of each condition. ko_n > 0: the keep-out rows
  * ko_row0 .. ko_row0 + ko_n - 1 relaxed too, by one more slack s_ko >= 0
  * (a_j v + s_ko >= b_j, an l-infinity penalty priced as eq. 5's). */
-static ogk_status solve_elastic_rows(ogk_nmpc_t *ctx, const double *hess, const double *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the QP's (H, g) in order; its callers are in this file */
+static ogk_status solve_elastic_rows(ogk_nmpc_t *ctx, const ogk_real_t *hess, const ogk_real_t *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the QP's (H, g) in order; its callers are in this file */
                                      size_t nv, size_t rows, size_t row0, /* NOLINT(bugprone-easily-swappable-parameters): as above, sizes (unknowns, inequality rows, first terminal row) */
                                      size_t ko_row0, size_t ko_n) /* NOLINT(bugprone-easily-swappable-parameters): the keep-out rows (first, count) */
 {
     const size_t ne = (nv + (2u * NC)) + ((ko_n > 0u) ? 1u : 0u);
-    const double w = ctx->cfg.elastic_weight;
+    const ogk_real_t w = ctx->cfg.elastic_weight;
     const bool eq5 = !terminal_set(&ctx->cfg);
     ogk_qp_problem_t qp;
     size_t i;
     size_t j;
 
-    (void)memset(ctx->el_h, 0, ne * ne * sizeof(double));
+    (void)memset(ctx->el_h, 0, ne * ne * sizeof(ogk_real_t));
     for (i = 0u; i < nv; ++i) {
         for (j = 0u; j < nv; ++j) {
             ctx->el_h[(i * ne) + j] = hess[(i * nv) + j];
@@ -413,7 +413,7 @@ static ogk_status solve_elastic_rows(ogk_nmpc_t *ctx, const double *hess, const 
     for (i = nv; i < ne; ++i) {
         ctx->el_h[(i * ne) + i] = ELASTIC_CURVATURE * w;
         ctx->el_g[i] = w;
-        ctx->el_lb[i] = 0.0;
+        ctx->el_lb[i] = OGK_R(0.0);
         ctx->el_ub[i] = OGK_QP_INF;
     }
     for (i = 0u; i < NC; ++i) {
@@ -421,30 +421,30 @@ static ogk_status solve_elastic_rows(ogk_nmpc_t *ctx, const double *hess, const 
             ctx->el_aeq[(i * ne) + j] = ctx->qp_aeq[(i * nv) + j];
         }
         for (j = nv; j < ne; ++j) {
-            ctx->el_aeq[(i * ne) + j] = 0.0;
+            ctx->el_aeq[(i * ne) + j] = OGK_R(0.0);
         }
-        ctx->el_aeq[(i * ne) + nv + i] = 1.0;
-        ctx->el_aeq[(i * ne) + nv + NC + i] = -1.0;
+        ctx->el_aeq[(i * ne) + nv + i] = OGK_R(1.0);
+        ctx->el_aeq[(i * ne) + nv + NC + i] = -OGK_R(1.0);
     }
     for (i = 0u; i < rows; ++i) {
         for (j = 0u; j < nv; ++j) {
             ctx->el_ain[(i * ne) + j] = ctx->qp_ain[(i * nv) + j];
         }
         for (j = nv; j < ne; ++j) {
-            ctx->el_ain[(i * ne) + j] = 0.0;
+            ctx->el_ain[(i * ne) + j] = OGK_R(0.0);
         }
     }
     if (!eq5) {
         for (i = 0u; i < NC; ++i) {
-            ctx->el_ain[((row0 + (2u * i)) * ne) + nv + i] = 1.0;
-            ctx->el_ain[((row0 + (2u * i) + 1u) * ne) + nv + NC + i] = 1.0;
+            ctx->el_ain[((row0 + (2u * i)) * ne) + nv + i] = OGK_R(1.0);
+            ctx->el_ain[((row0 + (2u * i) + 1u) * ne) + nv + NC + i] = OGK_R(1.0);
         }
     }
     {
         /* the keep-out rows within the rows built (clamped once: one bound for the loop) */
         const size_t ko_end = ogk_i_min_size(ko_row0 + ko_n, rows);
         for (i = ko_row0; i < ko_end; ++i) {
-            ctx->el_ain[(i * ne) + (ne - 1u)] = 1.0;
+            ctx->el_ain[(i * ne) + (ne - 1u)] = OGK_R(1.0);
         }
     }
     qp.n = ne;
@@ -462,20 +462,20 @@ static ogk_status solve_elastic_rows(ogk_nmpc_t *ctx, const double *hess, const 
 }
 
 /* The elastic QP on eq. (5) (or the terminal set's rows) only. */
-static ogk_status solve_elastic(ogk_nmpc_t *ctx, const double *hess, const double *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): as solve_elastic_rows */
+static ogk_status solve_elastic(ogk_nmpc_t *ctx, const ogk_real_t *hess, const ogk_real_t *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): as solve_elastic_rows */
                                 size_t nv, size_t rows, size_t row0) /* NOLINT(bugprone-easily-swappable-parameters): as solve_elastic_rows */
 {
     return solve_elastic_rows(ctx, hess, g_obj, nv, rows, row0, 0u, 0u);
 }
 
 /* Reduced gradient of the Lagrangian, g - A_eq^T y. */
-static void lagrangian_gradient(const ogk_nmpc_t *ctx, size_t nv, const double *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the order of g - A_eq^T y; every caller is in this file */
-                                const double *y, double *out)
+static void lagrangian_gradient(const ogk_nmpc_t *ctx, size_t nv, const ogk_real_t *g_obj, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the order of g - A_eq^T y; every caller is in this file */
+                                const ogk_real_t *y, ogk_real_t *out)
 {
     size_t c;
     size_t i;
     for (c = 0u; c < nv; ++c) {
-        double acc = g_obj[c];
+        ogk_real_t acc = g_obj[c];
         for (i = 0u; i < NC; ++i) {
             acc -= ctx->qp_aeq[(i * nv) + c] * y[i];
         }
@@ -485,8 +485,8 @@ static void lagrangian_gradient(const ogk_nmpc_t *ctx, size_t nv, const double *
 
 /* The step's QP on the context's linearised eq. (5), bounds and sweep rows,
  * with the Hessian and linear term given. */
-static void step_qp(const ogk_nmpc_t *ctx, size_t nv, size_t rows, const double *hess, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the QP's sizes then its H and g; callers in this file only */
-                    const double *g, ogk_qp_problem_t *qp)
+static void step_qp(const ogk_nmpc_t *ctx, size_t nv, size_t rows, const ogk_real_t *hess, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the QP's sizes then its H and g; callers in this file only */
+                    const ogk_real_t *g, ogk_qp_problem_t *qp)
 {
     const bool eq5 = !terminal_set(&ctx->cfg);
     qp->n = nv;
@@ -506,22 +506,22 @@ static void step_qp(const ogk_nmpc_t *ctx, size_t nv, size_t rows, const double 
  * constraints, taken whole when it lowers the l1 violation. True when taken
  * (the iterate moved; the BFGS pair of this step is skipped). */
 static bool feasibility_step(ogk_nmpc_t *ctx, ogk_nmpc_plan_t *p, size_t nv, size_t rows, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, the sizes of the QP (unknowns, rows) and the violation to beat; its only caller is ogk_i_nmpc_sqp */
-                             double viol_l1, ogk_nmpc_report_t *rep)
+                             ogk_real_t viol_l1, ogk_nmpc_report_t *rep)
 {
     ogk_qp_problem_t qp;
-    double zero[MAXV];
-    double t_l1 = 0.0;
-    double t_max = 0.0;
+    ogk_real_t zero[MAXV];
+    ogk_real_t t_l1 = OGK_R(0.0);
+    ogk_real_t t_max = OGK_R(0.0);
     bool taken = false;
     (void)memset(zero, 0, sizeof(zero));
-    ogk_i_nmpc_identity(ctx->el_h, nv, 1.0);
+    ogk_i_nmpc_identity(ctx->el_h, nv, OGK_R(1.0));
     step_qp(ctx, nv, rows, ctx->el_h, zero, &qp);
     if (ogk_qp_solve(&ctx->qp_ws, &qp, &ctx->qp_sol) == OGK_OK) {
-        double c_trial[NC];
-        double t_exc = 0.0;
+        ogk_real_t c_trial[NC];
+        ogk_real_t t_exc = OGK_R(0.0);
         rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
         ogk_i_nmpc_expand_step(ctx, p, ctx->qp_sol.x, nv);
-        take_step(ctx, p, ctx->qp_sol.x, nv, 1.0, &ctx->trial);
+        take_step(ctx, p, ctx->qp_sol.x, nv, OGK_R(1.0), &ctx->trial);
         if ((evaluate(ctx, &ctx->trial, false, NULL, &t_l1, &t_max, c_trial, &t_exc) == OGK_OK)
             && (t_l1 < viol_l1)) {
             (void)memcpy(p, &ctx->trial, sizeof(*p));
@@ -531,7 +531,7 @@ static bool feasibility_step(ogk_nmpc_t *ctx, ogk_nmpc_plan_t *p, size_t nv, siz
     return taken;
 }
 
-ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
+ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, ogk_real_t *hess, bool cold,
                           ogk_nmpc_report_t *rep)
 {
     ogk_nmpc_plan_t *p = &ctx->work;
@@ -545,30 +545,30 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     bool done = false;
     bool have_prev = false;
     bool first_update = cold;
-    double g_obj[MAXV];
-    double grad_new[MAXV];
-    double c_term[NC];
-    double c_trial[NC];
-    double y_prev[NC];
-    double filter_theta[FILTER_SIZE];
-    double filter_phi[FILTER_SIZE];
+    ogk_real_t g_obj[MAXV];
+    ogk_real_t grad_new[MAXV];
+    ogk_real_t c_term[NC];
+    ogk_real_t c_trial[NC];
+    ogk_real_t y_prev[NC];
+    ogk_real_t filter_theta[FILTER_SIZE];
+    ogk_real_t filter_phi[FILTER_SIZE];
     uint32_t n_filter = 0u;
     uint32_t filter_next = 0u;
-    double theta_max = 0.0;
-    double theta_min = 0.0;
+    ogk_real_t theta_max = OGK_R(0.0);
+    ogk_real_t theta_min = OGK_R(0.0);
     bool first_iter = true;
     bool flat = false;
     bool restored = false;
     uint32_t restarts = 0u;
     uint32_t restores = 0u;
-    double box = 1.0;
+    ogk_real_t box = OGK_R(1.0);
     bool have_eval = false;
-    double first_l1 = 0.0;
-    double first_max = 0.0;
-    double viol_l1 = 0.0;
-    double viol_max = 0.0;
-    double t_excess = 0.0;   /* l1 excess of the terminal set (elastic: priced in the merit) */
-    double first_exc = 0.0;
+    ogk_real_t first_l1 = OGK_R(0.0);
+    ogk_real_t first_max = OGK_R(0.0);
+    ogk_real_t viol_l1 = OGK_R(0.0);
+    ogk_real_t viol_max = OGK_R(0.0);
+    ogk_real_t t_excess = OGK_R(0.0);   /* l1 excess of the terminal set (elastic: priced in the merit) */
+    ogk_real_t first_exc = OGK_R(0.0);
     const bool elastic_set = terminal_set(cfg);
     uint32_t iter;
     size_t i;
@@ -576,18 +576,18 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
     ogk_qp_problem_t qp;
     /* the exact Hessian, until a failed line search falls back to BFGS */
     bool exact = (cfg->hessian == OGK_NMPC_HESSIAN_EXACT);
-    double rho;
-    double rho_last = 0.0;
+    ogk_real_t rho;
+    ogk_real_t rho_last = OGK_R(0.0);
     /* the exact Hessian of the last iteration held for this one (HESS_HOLD_RATE) */
     bool hold_next = false;
     bool hold_ok = false;
-    double pred_prev = 0.0; /* |dJ| predicted by the last iteration's QP (0: none yet) */
+    ogk_real_t pred_prev = OGK_R(0.0); /* |dJ| predicted by the last iteration's QP (0: none yet) */
 
     if (cold) {
         ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
     }
     (void)memcpy(y_prev, p->lambda, sizeof(y_prev));
-    rep->stat = 0.0;
+    rep->stat = OGK_R(0.0);
     for (iter = 0u; (iter < iter_limit) && !done; ++iter) {
         /* a cold solve has no multipliers for its first exact Hessian: that
          * iteration's QP gets the scaled identity */
@@ -605,11 +605,11 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
         if (st == OGK_OK) {
             if (held) {
                 /* the last iteration's eq. (5) rows, for its shift (scratch free: no condensed Hessian) */
-                (void)memcpy(ctx->hess_tmp, ctx->qp_aeq, NC * nv * sizeof(double));
+                (void)memcpy(ctx->hess_tmp, ctx->qp_aeq, NC * nv * sizeof(ogk_real_t));
             }
             ogk_i_nmpc_condense(ctx, p, nv, (second && !held) ? hess : NULL);
             ogk_i_nmpc_linear_terms(ctx, p, nv, c_term, g_obj);
-            rho = 0.0;
+            rho = OGK_R(0.0);
             if (held) {
                 /* the last iteration's H + rho A^T A with its A replaced by this one's */
                 ogk_i_nmpc_hess_reshift(hess, nv, ctx->hess_tmp, ctx->qp_aeq, rho_last);
@@ -629,7 +629,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                      * loop crept 500 identity steps from its guess (47 iterations on BFGS).
                      * Without one it turns convex near the minimum (the minimum-time open
                      * loop: more than 60 identity steps in a row, then exact steps) */
-                    rho = 0.0;
+                    rho = OGK_R(0.0);
                     ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
                     if (p->nu > 1u) {
                         exact = false;
@@ -663,7 +663,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
             if (st == OGK_E_NOT_POSDEF) {
                 ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
                 first_update = true;
-                rho = 0.0;
+                rho = OGK_R(0.0);
                 if (elastic_set) {
                     st = solve_elastic(ctx, hess, g_obj, nv, rows, terminal_row0(ctx, p));
                 } else {
@@ -688,7 +688,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                     (void)build_bounds(ctx, p, nv, box);
                     st = solve_elastic(ctx, hess, g_obj, nv, rows, terminal_row0(ctx, p));
                     rep->flags |= OGK_NMPC_FLAG_ELASTIC;
-                    rho = 0.0; /* the slacks take the residual: no shift to undo */
+                    rho = OGK_R(0.0); /* the slacks take the residual: no shift to undo */
                 }
             } else {
                 /* solved, or a failure the step box does not cause */
@@ -699,24 +699,24 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                  * nothing, the throttle only along its angle; with T kept no time scaling
                  * either). Once more with them elastic too, the box opened: the filter's theta
                  * prices the disc's violation, so the step is taken only when it reduces it or J */
-                const size_t ko_row0 = (cfg->max_sweep > 0.0) ? (2u * (size_t)p->nodes) : 0u;
+                const size_t ko_row0 = (cfg->max_sweep > OGK_R(0.0)) ? (2u * (size_t)p->nodes) : 0u;
                 rep->qp_iterations += (uint32_t)ctx->qp_sol.iterations;
                 (void)build_bounds(ctx, p, nv, BOX_OPEN);
                 st = solve_elastic_rows(ctx, hess, g_obj, nv, rows, terminal_row0(ctx, p), ko_row0,
                                         ogk_i_min_size(ctx->ko_rows, OGK_I_NMPC_MAX_KO_ROWS_Z));
                 rep->flags |= OGK_NMPC_FLAG_ELASTIC;
-                rho = 0.0;
+                rho = OGK_R(0.0);
             }
             if (st == OGK_OK) {
                 terminal_multipliers(ctx, terminal_row0(ctx, p));
             }
-            if ((st == OGK_OK) && (rho > 0.0)) {
+            if ((st == OGK_OK) && (rho > OGK_R(0.0))) {
                 /* H + rho A^T A: the multipliers of eq. (5) are y - rho A v, and A v
                  * = b_eq with eq. (5) exactly */
                 for (i = 0u; i < NC; ++i) {
                     if (terminal_set(cfg)) {
                         size_t c;
-                        double av = 0.0;
+                        ogk_real_t av = OGK_R(0.0);
                         for (c = 0u; c < nv; ++c) {
                             av += ctx->qp_aeq[(i * nv) + c] * ctx->qp_sol.x[c];
                         }
@@ -732,36 +732,36 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
         done = (st != OGK_OK);
         if (!done) {
             /* reduced stationarity |H v|_inf = |g - A^T y - z|_inf */
-            double stat = 0.0;
+            ogk_real_t stat = OGK_R(0.0);
             size_t j;
             for (i = 0u; i < nv; ++i) {
-                double acc = 0.0;
+                ogk_real_t acc = OGK_R(0.0);
                 for (j = 0u; j < nv; ++j) {
                     acc += hess[(i * nv) + j] * ctx->qp_sol.x[j];
                 }
-                stat = (fabs(acc) > stat) ? fabs(acc) : stat;
+                stat = (OGK_FABS(acc) > stat) ? OGK_FABS(acc) : stat;
             }
             rep->stat = stat;
             {
                 /* predicted change of J by the QP step (its defect part included),
                  * with a terminal set of its priced excess too */
-                double pred = (cfg->objective == OGK_NMPC_MIN_FUEL) ? -ctx->cond_e[4] : 0.0;
-                const double j_now = fabs(ogk_i_nmpc_objective(cfg, p));
+                ogk_real_t pred = (cfg->objective == OGK_NMPC_MIN_FUEL) ? -ctx->cond_e[4] : OGK_R(0.0);
+                const ogk_real_t j_now = OGK_FABS(ogk_i_nmpc_objective(cfg, p));
                 for (i = 0u; i < nv; ++i) {
                     pred += g_obj[i] * ctx->qp_sol.x[i];
                 }
                 if (elastic_set) {
                     pred += cfg->elastic_weight * (elastic_excess(ctx, nv) - t_excess);
                 }
-                const double stop = cfg->tol_obj * ((j_now > 1.0) ? j_now : 1.0);
-                flat = (cfg->tol_obj > 0.0) && (fabs(pred) <= stop);
+                const ogk_real_t stop = cfg->tol_obj * ((j_now > OGK_R(1.0)) ? j_now : OGK_R(1.0));
+                flat = (cfg->tol_obj > OGK_R(0.0)) && (OGK_FABS(pred) <= stop);
                 /* a step from an exact Hessian (computed or held) that factored with
                  * its shift alone (rho > 0 only then), contracting (HESS_HOLD_RATE):
                  * held when its full step is taken (below); never with tol_obj = 0
                  * (stop = 0: the never-held reference) */
-                hold_ok = (stop > 0.0) && (rho > 0.0)
-                    && ((!cold && (iter == 0u)) || (fabs(pred) <= (HESS_HOLD_RATE * pred_prev)));
-                pred_prev = fabs(pred);
+                hold_ok = (stop > OGK_R(0.0)) && (rho > OGK_R(0.0))
+                    && ((!cold && (iter == 0u)) || (OGK_FABS(pred) <= (HESS_HOLD_RATE * pred_prev)));
+                pred_prev = OGK_FABS(pred);
             }
             /* a held Hessian's flat step is taken (newton_last below: its trial
              * evaluated without sensitivities, converged there when feasible): the
@@ -791,14 +791,14 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
         } else if (!done) {
             /* filter line search (Waechter & Biegler 2006, without the
              * restoration phase): theta = l1 violation, phi = J */
-            const double phi0 = penalized(cfg, p, t_excess);
-            const double theta0 = viol_l1;
+            const ogk_real_t phi0 = penalized(cfg, p, t_excess);
+            const ogk_real_t theta0 = viol_l1;
             /* an exact-Hessian step that predicts no change of J is the
              * last Newton step when its full step is feasible: that trial
              * is first evaluated without sensitivities */
             const bool newton_last = exact && flat;
-            double dphi;
-            double alpha = 1.0;
+            ogk_real_t dphi;
+            ogk_real_t alpha = OGK_R(1.0);
             bool accepted = false;
             bool f_type = false;
             uint32_t ls;
@@ -811,14 +811,14 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 dphi += cfg->elastic_weight * (elastic_excess(ctx, nv) - t_excess);
             }
             if (first_iter) {
-                theta_max = 1.0e4 * ((theta0 > 1.0) ? theta0 : 1.0);
-                theta_min = 1.0e-4 * ((theta0 > 1.0) ? theta0 : 1.0);
+                theta_max = OGK_R(1.0e4) * ((theta0 > OGK_R(1.0)) ? theta0 : OGK_R(1.0));
+                theta_min = OGK_R(1.0e-4) * ((theta0 > OGK_R(1.0)) ? theta0 : OGK_R(1.0));
                 first_iter = false;
             }
             for (ls = 0u; (ls < OGK_NMPC_MAX_LINE_SEARCH) && !accepted; ++ls) {
-                double t_l1 = 0.0;
-                double t_max = 0.0;
-                double t_exc = 0.0;
+                ogk_real_t t_l1 = OGK_R(0.0);
+                ogk_real_t t_max = OGK_R(0.0);
+                ogk_real_t t_exc = OGK_R(0.0);
                 ogk_status ts;
                 take_step(ctx, p, ctx->qp_sol.x, nv, alpha, &ctx->trial);
                 /* the full step is evaluated with its sensitivities: taken
@@ -831,14 +831,14 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 first_max = t_max;
                 first_exc = t_exc;
                 if ((ts == OGK_OK) && (t_l1 <= theta_max)) {
-                    const double phi_t = penalized(cfg, &ctx->trial, t_exc);
-                    const double m_alpha = alpha * dphi;
-                    f_type = (dphi < 0.0) && (theta0 <= theta_min)
-                        && ((alpha * pow(-m_alpha, FILTER_S_PHI)) > pow(theta0, FILTER_S_THETA));
+                    const ogk_real_t phi_t = penalized(cfg, &ctx->trial, t_exc);
+                    const ogk_real_t m_alpha = alpha * dphi;
+                    f_type = (dphi < OGK_R(0.0)) && (theta0 <= theta_min)
+                        && ((alpha * OGK_POW(-m_alpha, FILTER_S_PHI)) > OGK_POW(theta0, FILTER_S_THETA));
                     if (f_type) {
                         accepted = phi_t <= (phi0 + (ARMIJO_C1 * m_alpha));
                     } else {
-                        accepted = (t_l1 <= ((1.0 - FILTER_GAMMA) * theta0))
+                        accepted = (t_l1 <= ((OGK_R(1.0) - FILTER_GAMMA) * theta0))
                             || (phi_t <= (phi0 - (FILTER_GAMMA * theta0)));
                     }
                     if (accepted) {
@@ -861,7 +861,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 /* restart: a BFGS matrix that has drifted and a filter that
                  * blocks every step are the usual causes */
                 restarts += 1u;
-                box = 1.0;
+                box = OGK_R(1.0);
                 /* the exact Hessian's step failed too: BFGS from here on */
                 exact = false;
                 ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
@@ -877,7 +877,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 if (!f_type) {
                     /* augment the filter (oldest entry replaced when full) */
                     const uint32_t slot = (n_filter < FILTER_SIZE) ? n_filter : (filter_next % FILTER_SIZE);
-                    filter_theta[slot] = (1.0 - FILTER_GAMMA) * theta0;
+                    filter_theta[slot] = (OGK_R(1.0) - FILTER_GAMMA) * theta0;
                     filter_phi[slot] = phi0 - (FILTER_GAMMA * theta0);
                     if (n_filter < FILTER_SIZE) {
                         n_filter += 1u;
@@ -894,19 +894,19 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                 /* the step box as a trust region: a cut step shrinks it (the
                  * next QP stays where the linearisation held), a full step
                  * regrows it; a much-cut step is no curvature sample */
-                if (alpha < 1.0) {
+                if (alpha < OGK_R(1.0)) {
                     box *= alpha;
                     if (!(box > BOX_MIN)) {
                         box = BOX_MIN;
                     }
                 } else {
-                    box *= 2.0;
-                    if (!(box < 1.0)) {
-                        box = 1.0;
+                    box *= OGK_R(2.0);
+                    if (!(box < OGK_R(1.0))) {
+                        box = OGK_R(1.0);
                     }
                 }
                 have_prev = alpha >= BFGS_MIN_ALPHA;
-                if (newton_last && (alpha >= 1.0) && (first_max <= cfg->tol_feas)) {
+                if (newton_last && (alpha >= OGK_R(1.0)) && (first_max <= cfg->tol_feas)) {
                     /* converged at the trial: a full Newton step predicting no
                      * change of J (|dJ| <= tol_obj max(|J|, 1)) landed feasible */
                     viol_max = first_max;
@@ -914,7 +914,7 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, double *hess, bool cold,
                     if (first_exc > cfg->tol_feas) {
                         rep->flags |= OGK_NMPC_FLAG_OUTSIDE_SET;
                     }
-                } else if ((alpha >= 1.0) && !newton_last) {
+                } else if ((alpha >= OGK_R(1.0)) && !newton_last) {
                     have_eval = true;
                     hold_next = hold_ok;
                     viol_l1 = first_l1;

@@ -16,7 +16,7 @@ ogk_status ogk_prox_config_default(ogk_prox_config_t *cfg)
     } else {
         (void)memset(&cfg->model, 0, sizeof(cfg->model));
         /* normalised units: TU = 1 / n (docs/design/nmpc-problem.md) */
-        cfg->model.mean_motion = 1.0;
+        cfg->model.mean_motion = OGK_R(1.0);
         st = ogk_nmpc_config_default(&cfg->solver);
         cfg->solver.engine = OGK_NMPC_ENGINE_THROTTLED;
         cfg->solver.objective = OGK_NMPC_MIN_FUEL;
@@ -37,11 +37,11 @@ static bool prox_model_finite(const ogk_prox_model_t *m)
 /* The model's ranges (ogk/proximity.h), its doubles finite. */
 static bool prox_model_valid(const ogk_prox_model_t *m)
 {
-    bool ok = (m->mean_motion > 0.0) && (m->thrust_max > 0.0) && (m->mass_flow_max >= 0.0)
+    bool ok = (m->mean_motion > OGK_R(0.0)) && (m->thrust_max > OGK_R(0.0)) && (m->mass_flow_max >= OGK_R(0.0))
         && (m->n_keepout <= OGK_PROX_MAX_KEEPOUT);
     size_t j;
     for (j = 0u; j < OGK_PROX_MAX_KEEPOUT; ++j) {
-        ok = ok && (m->keepout_radius[j] >= 0.0);
+        ok = ok && (m->keepout_radius[j] >= OGK_R(0.0));
     }
     return ok;
 }
@@ -116,7 +116,7 @@ ogk_status ogk_prox_reset(ogk_prox_t *ctx)
     return st;
 }
 
-ogk_status ogk_prox_set_horizon_bounds(ogk_prox_t *ctx, double horizon_min, double horizon_max)
+ogk_status ogk_prox_set_horizon_bounds(ogk_prox_t *ctx, ogk_real_t horizon_min, ogk_real_t horizon_max)
 {
     ogk_status st;
     ogk_nmpc_t *nmpc = prox_bind(ctx, &st);
@@ -126,7 +126,7 @@ ogk_status ogk_prox_set_horizon_bounds(ogk_prox_t *ctx, double horizon_min, doub
     return st;
 }
 
-ogk_status ogk_prox_set_hessian_init(ogk_prox_t *ctx, double hessian_init)
+ogk_status ogk_prox_set_hessian_init(ogk_prox_t *ctx, ogk_real_t hessian_init)
 {
     ogk_status st;
     ogk_nmpc_t *nmpc = prox_bind(ctx, &st);
@@ -176,7 +176,7 @@ ogk_status ogk_prox_replan(ogk_prox_t *ctx, const ogk_nmpc_input_t *in, ogk_nmpc
     return st;
 }
 
-ogk_status ogk_prox_command(const ogk_prox_t *ctx, double t, ogk_nmpc_command_t *cmd)
+ogk_status ogk_prox_command(const ogk_prox_t *ctx, ogk_real_t t, ogk_nmpc_command_t *cmd)
 {
     ogk_status st;
     const ogk_nmpc_t *nmpc = prox_solver(ctx, &st);
@@ -188,7 +188,7 @@ ogk_status ogk_prox_command(const ogk_prox_t *ctx, double t, ogk_nmpc_command_t 
     return st;
 }
 
-ogk_status ogk_prox_thrust_cmd(const ogk_prox_t *ctx, double t, ogk_thrust_cmd_t *cmd)
+ogk_status ogk_prox_thrust_cmd(const ogk_prox_t *ctx, ogk_real_t t, ogk_thrust_cmd_t *cmd)
 {
     ogk_status st;
     const ogk_nmpc_t *nmpc = prox_solver(ctx, &st);

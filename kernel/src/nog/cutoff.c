@@ -12,13 +12,19 @@
  * measured [s]: closer calls (a malformed time tag; the control period is
  * milliseconds) give no rate, instead of a difference quotient over a
  * subnormal step that overflows. */
-#define CUTOFF_DT_MIN_S 1.0e-9
+#define CUTOFF_DT_MIN_S OGK_R(1.0e-9)
 
 /* Smallest energy rate extrapolated to the crossing [W/kg]: below it the
  * crossing is beyond any control period for any gap above 1e-100 J/kg, and
  * for physical energies (gap below 1e200 J/kg) gap / rate stays finite; with
- * an absurd mu an infinite t_cross only fails the comparison below. */
-#define CUTOFF_RATE_MIN_W_KG 1.0e-100
+ * an absurd mu an infinite t_cross only fails the comparison below. The float
+ * build takes 1e-15 (OGK_REAL_ROOT_TINY): gaps above 1e-15 J/kg, and gap / rate
+ * finite (at most 1e30) for gaps below 1e15 J/kg. */
+#if OGK_REAL_SINGLE
+#define CUTOFF_RATE_MIN_W_KG OGK_REAL_ROOT_TINY
+#else
+#define CUTOFF_RATE_MIN_W_KG OGK_R(1.0e-100)
+#endif
 
 ogk_status ogk_cutoff_config_default(ogk_cutoff_config_t *cfg)
 {
@@ -27,32 +33,32 @@ ogk_status ogk_cutoff_config_default(ogk_cutoff_config_t *cfg)
     if (cfg == NULL) {
         st = OGK_E_NULL;
     } else {
-        cfg->mu_m3_s2 = 3.986004e14;
-        cfg->target_sma_m = 42164.0e3;
-        cfg->arm_before_s = 2.0;
-        cfg->extend_max_s = 10.0;
-        cfg->control_period_s = 0.02;
+        cfg->mu_m3_s2 = OGK_R(3.986004e14);
+        cfg->target_sma_m = OGK_R(42164.0e3);
+        cfg->arm_before_s = OGK_R(2.0);
+        cfg->extend_max_s = OGK_R(10.0);
+        cfg->control_period_s = OGK_R(0.02);
     }
     return st;
 }
 
 static bool config_valid(const ogk_cutoff_config_t *cfg)
 {
-    const double v[5] = {cfg->mu_m3_s2, cfg->target_sma_m, cfg->arm_before_s, cfg->extend_max_s,
+    const ogk_real_t v[5] = {cfg->mu_m3_s2, cfg->target_sma_m, cfg->arm_before_s, cfg->extend_max_s,
                          cfg->control_period_s};
 
-    return ogk_i_all_finite(v, 5u) && (cfg->mu_m3_s2 > 0.0) && (cfg->target_sma_m > 0.0) &&
-           (cfg->target_sma_m <= OGK_CUTOFF_R_MAX_M) && (cfg->arm_before_s >= 0.0) &&
-           (cfg->arm_before_s <= OGK_CUTOFF_T_MAX_S) && (cfg->extend_max_s >= 0.0) &&
-           (cfg->extend_max_s <= OGK_CUTOFF_T_MAX_S) && (cfg->control_period_s > 0.0) &&
+    return ogk_i_all_finite(v, 5u) && (cfg->mu_m3_s2 > OGK_R(0.0)) && (cfg->target_sma_m > OGK_R(0.0)) &&
+           (cfg->target_sma_m <= OGK_CUTOFF_R_MAX_M) && (cfg->arm_before_s >= OGK_R(0.0)) &&
+           (cfg->arm_before_s <= OGK_CUTOFF_T_MAX_S) && (cfg->extend_max_s >= OGK_R(0.0)) &&
+           (cfg->extend_max_s <= OGK_CUTOFF_T_MAX_S) && (cfg->control_period_s > OGK_R(0.0)) &&
            (cfg->control_period_s <= OGK_CUTOFF_T_MAX_S);
 }
 
 static void clear_state(ogk_cutoff_t *ctx)
 {
-    ctx->energy_prev_j_kg = 0.0;
-    ctx->t_prev_s = 0.0;
-    ctx->t_cutoff_s = 0.0;
+    ctx->energy_prev_j_kg = OGK_R(0.0);
+    ctx->t_prev_s = OGK_R(0.0);
+    ctx->t_cutoff_s = OGK_R(0.0);
     ctx->t_backstop_s = OGK_CUTOFF_T_MAX_S;
     ctx->have_prev = false;
     ctx->decided = false;
@@ -69,7 +75,7 @@ ogk_status ogk_cutoff_init(ogk_cutoff_t *ctx, const ogk_cutoff_config_t *cfg)
     } else {
         ctx->cfg = *cfg;
         /* Specific energy of any orbit with semi-major axis a (vis-viva). */
-        ctx->energy_target_j_kg = -cfg->mu_m3_s2 / (2.0 * cfg->target_sma_m);
+        ctx->energy_target_j_kg = -cfg->mu_m3_s2 / (OGK_R(2.0) * cfg->target_sma_m);
         clear_state(ctx);
         ctx->init_marker = OGK_CUTOFF_INIT_MARKER;
     }
@@ -92,22 +98,22 @@ ogk_status ogk_cutoff_reset(ogk_cutoff_t *ctx)
 
 static bool nav_in_envelope(const ogk_cutoff_t *ctx, const ogk_nav_state_t *nav)
 {
-    return (nav->r_m > 0.0) && (nav->r_m <= OGK_CUTOFF_R_MAX_M) &&
-           (fabs(nav->v_r_mps) <= OGK_CUTOFF_V_MAX_MPS) && (fabs(nav->v_t_mps) <= OGK_CUTOFF_V_MAX_MPS) &&
-           (fabs(nav->v_n_mps) <= OGK_CUTOFF_V_MAX_MPS) && (nav->t_s >= 0.0) &&
+    return (nav->r_m > OGK_R(0.0)) && (nav->r_m <= OGK_CUTOFF_R_MAX_M) &&
+           (OGK_FABS(nav->v_r_mps) <= OGK_CUTOFF_V_MAX_MPS) && (OGK_FABS(nav->v_t_mps) <= OGK_CUTOFF_V_MAX_MPS) &&
+           (OGK_FABS(nav->v_n_mps) <= OGK_CUTOFF_V_MAX_MPS) && (nav->t_s >= OGK_R(0.0)) &&
            (nav->t_s <= OGK_CUTOFF_T_MAX_S) && ((!ctx->have_prev) || (nav->t_s > ctx->t_prev_s));
 }
 
-static bool prediction_usable(double t_predicted_s)
+static bool prediction_usable(ogk_real_t t_predicted_s)
 {
-    return isfinite(t_predicted_s) && (t_predicted_s >= 0.0) && (t_predicted_s <= OGK_CUTOFF_T_MAX_S);
+    return isfinite(t_predicted_s) && (t_predicted_s >= OGK_R(0.0)) && (t_predicted_s <= OGK_CUTOFF_T_MAX_S);
 }
 
 /* The output of a rejected call: the cut-off in force, nothing moved. */
-static void fill_rejected(const ogk_cutoff_t *ctx, double t_predicted_s, ogk_cutoff_out_t *out)
+static void fill_rejected(const ogk_cutoff_t *ctx, ogk_real_t t_predicted_s, ogk_cutoff_out_t *out)
 {
-    out->energy_j_kg = 0.0;
-    out->energy_rate_w_kg = 0.0;
+    out->energy_j_kg = OGK_R(0.0);
+    out->energy_rate_w_kg = OGK_R(0.0);
     if (ctx->decided) {
         out->t_cutoff_s = ctx->t_cutoff_s;
         out->flags = OGK_CUTOFF_FLAG_DECIDED;
@@ -121,25 +127,25 @@ static void fill_rejected(const ogk_cutoff_t *ctx, double t_predicted_s, ogk_cut
 }
 
 /* An accepted call: energy, its rate over the last period, the decision. */
-static void accept(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s,
+static void accept(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, ogk_real_t t_predicted_s,
                    ogk_cutoff_out_t *out)
 {
-    const double v2 = (nav->v_r_mps * nav->v_r_mps) + (nav->v_t_mps * nav->v_t_mps) +
+    const ogk_real_t v2 = (nav->v_r_mps * nav->v_r_mps) + (nav->v_t_mps * nav->v_t_mps) +
                       (nav->v_n_mps * nav->v_n_mps);
     /* Bounded by the envelope: |v| <= 1.8e5 m/s, r > 0 finite; mu / r may
      * still overflow for a subnormal r, hence the check below. */
-    const double energy = (0.5 * v2) - (ctx->cfg.mu_m3_s2 / nav->r_m);
-    const double backstop = t_predicted_s + ctx->cfg.extend_max_s;
-    double rate = 0.0;
+    const ogk_real_t energy = (OGK_R(0.5) * v2) - (ctx->cfg.mu_m3_s2 / nav->r_m);
+    const ogk_real_t backstop = t_predicted_s + ctx->cfg.extend_max_s;
+    ogk_real_t rate = OGK_R(0.0);
 
     if (ctx->have_prev) {
         /* > 0 by the envelope (t_s after t_prev_s) */
-        const double dt = nav->t_s - ctx->t_prev_s;
+        const ogk_real_t dt = nav->t_s - ctx->t_prev_s;
         if (dt >= CUTOFF_DT_MIN_S) {
             rate = (energy - ctx->energy_prev_j_kg) / dt;
         }
         if (!isfinite(rate)) {
-            rate = 0.0; /* an energy change beyond DBL_MAX (absurd mu): no extrapolation now */
+            rate = OGK_R(0.0); /* an energy change beyond DBL_MAX (absurd mu): no extrapolation now */
         }
     }
     out->flags = 0u;
@@ -150,7 +156,7 @@ static void accept(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, double t_predi
             ctx->decided = true;
         } else if (rate >= CUTOFF_RATE_MIN_W_KG) {
             /* Linear extrapolation of the energy over the coming period. */
-            const double t_cross = nav->t_s + ((ctx->energy_target_j_kg - energy) / rate);
+            const ogk_real_t t_cross = nav->t_s + ((ctx->energy_target_j_kg - energy) / rate);
             if (t_cross <= (nav->t_s + ctx->cfg.control_period_s)) {
                 ctx->t_cutoff_s = t_cross;
                 ctx->decided = true;
@@ -178,7 +184,7 @@ static void accept(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, double t_predi
     }
 }
 
-ogk_status ogk_cutoff_step(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s,
+ogk_status ogk_cutoff_step(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, ogk_real_t t_predicted_s,
                            ogk_cutoff_out_t *out)
 {
     ogk_status st = OGK_OK;
@@ -188,7 +194,7 @@ ogk_status ogk_cutoff_step(ogk_cutoff_t *ctx, const ogk_nav_state_t *nav, double
     } else if (ctx->init_marker != OGK_CUTOFF_INIT_MARKER) {
         st = OGK_E_NOT_INIT;
     } else {
-        const double v[6] = {nav->t_s, nav->r_m, nav->v_r_mps, nav->v_t_mps, nav->v_n_mps, t_predicted_s};
+        const ogk_real_t v[6] = {nav->t_s, nav->r_m, nav->v_r_mps, nav->v_t_mps, nav->v_n_mps, t_predicted_s};
         if (!ogk_i_all_finite(v, 6u)) {
             st = OGK_E_NONFINITE;
         } else if ((!nav_in_envelope(ctx, nav)) || (!prediction_usable(t_predicted_s)) ||

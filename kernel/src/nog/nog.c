@@ -25,9 +25,9 @@
 #define OGK_NOG_LIMIT_ITERATIONS 40u
 
 /* Relative tolerance on the t_f* values a table carries (x*' of the time state). */
-#define OGK_NOG_TF_CONSISTENCY 1.0e-9
+#define OGK_NOG_TF_CONSISTENCY OGK_R(1.0e-9)
 
-static const double *entry_row(const ogk_nog_table_view_t *tbl, size_t k)
+static const ogk_real_t *entry_row(const ogk_nog_table_view_t *tbl, size_t k)
 {
     return &tbl->entry[k * OGK_NOG_ENTRY_LEN];
 }
@@ -38,21 +38,21 @@ static const double *entry_row(const ogk_nog_table_view_t *tbl, size_t k)
 static ogk_status check_table_content(const ogk_nog_table_view_t *tbl)
 {
     const size_t n = tbl->n_grid;
-    const double t_f = entry_row(tbl, 0u)[OGK_NOG_OFF_XDOT + IDX_TIME];
+    const ogk_real_t t_f = entry_row(tbl, 0u)[OGK_NOG_OFF_XDOT + IDX_TIME];
     size_t k;
     ogk_status st = ogk_interp_check_grid(tbl->tau, n);
 
-    if ((st != OGK_OK) || (tbl->tau[0] != 0.0) || (tbl->tau[n - 1u] != 1.0)) {
+    if ((st != OGK_OK) || (tbl->tau[0] != OGK_R(0.0)) || (tbl->tau[n - 1u] != OGK_R(1.0))) {
         st = OGK_E_TABLE_DIM;
-    } else if ((!(t_f > 0.0)) || (t_f > OGK_NOG_TF_MAX_S)) {
+    } else if ((!(t_f > OGK_R(0.0))) || (t_f > OGK_NOG_TF_MAX_S)) {
         st = OGK_E_TABLE_TYPE;
     } else {
         /* Up to the first inconsistent row. */
         for (k = 0u; (k < n) && (st == OGK_OK); ++k) {
-            const double *row = entry_row(tbl, k);
-            if ((fabs(row[OGK_NOG_OFF_XDOT + IDX_TIME] - t_f) > (OGK_NOG_TF_CONSISTENCY * t_f)) ||
-                (fabs(row[OGK_NOG_OFF_X + IDX_TIME] - (t_f * tbl->tau[k])) > (OGK_NOG_TF_CONSISTENCY * t_f)) ||
-                (!(row[OGK_NOG_OFF_X + IDX_R] > 0.0))) {
+            const ogk_real_t *row = entry_row(tbl, k);
+            if ((OGK_FABS(row[OGK_NOG_OFF_XDOT + IDX_TIME] - t_f) > (OGK_NOG_TF_CONSISTENCY * t_f)) ||
+                (OGK_FABS(row[OGK_NOG_OFF_X + IDX_TIME] - (t_f * tbl->tau[k])) > (OGK_NOG_TF_CONSISTENCY * t_f)) ||
+                (!(row[OGK_NOG_OFF_X + IDX_R] > OGK_R(0.0)))) {
                 st = OGK_E_TABLE_TYPE;
             }
         }
@@ -99,7 +99,7 @@ ogk_status ogk_nog_table_load(ogk_nog_table_t *table, const uint8_t *buf, size_t
          * here on, even if the new bytes turn out to be the old ones. */
         table->generation += 1u;
         table->n_grid = 0u;
-        table->t_f_star_s = 0.0;
+        table->t_f_star_s = OGK_R(0.0);
         st = open_table(buf, len, &view);
         if (st == OGK_OK) {
             st = ogk_table_read_grid(&view, table->tau, OGK_NOG_MAX_GRID);
@@ -129,10 +129,11 @@ static ogk_status view_payload(ogk_nog_table_view_t *view, const uint8_t *buf, s
     const uint32_t generation = view->generation;
     ogk_status st;
 
-    /* Grid then entries, both in the table's little-endian binary64 (the
-     * target's own representation: ogk_table_check_in_place passed). The
-     * bytes are only ever read, as double, through these pointers. */
-    view->tau = (const double *)(const void *)&buf[OGK_TABLE_HEADER_SIZE];
+    /* Grid then entries, both in the table's little-endian element type
+     * (OGK_TABLE_REAL, the target's own representation of ogk_real_t:
+     * ogk_table_check_in_place passed). The bytes are only ever read, as
+     * ogk_real_t, through these pointers. */
+    view->tau = (const ogk_real_t *)(const void *)&buf[OGK_TABLE_HEADER_SIZE];
     view->entry = &view->tau[grid_size];
     view->n_grid = grid_size;
     st = check_table_content(view);
@@ -154,15 +155,15 @@ static ogk_status point_view(ogk_nog_table_view_t *view, const uint8_t *buf, siz
 
     if (buf == NULL) {
         st = OGK_E_NULL;
-    } else if (((uintptr_t)(const void *)buf & 7u) != 0u) {
-        /* The payload (offset 48) is read in place as double: 8-byte alignment
-         * of buf aligns every value. */
+    } else if (((uintptr_t)(const void *)buf & (uintptr_t)(sizeof(ogk_real_t) - 1u)) != 0u) {
+        /* The payload (offset 48) is read in place as ogk_real_t: buf aligned
+         * to its size (8 bytes, 4 in the float build) aligns every value. */
         st = OGK_E_ALIGN;
     } else {
         st = open_table(buf, len, &tv);
         if (st == OGK_OK) {
-            /* Read in place only where a double is the file's little-endian
-             * binary64; elsewhere (SPARC/LEON, PowerPC) ogk_nog_table_load
+            /* Read in place only where an ogk_real_t is the file's
+             * little-endian element; elsewhere (SPARC/LEON, PowerPC) ogk_nog_table_load
              * decodes the same image. After the file checks: a corrupt image
              * is reported as such on every target. */
             st = ogk_table_check_in_place();
@@ -194,19 +195,19 @@ ogk_status ogk_nog_table_view(ogk_nog_table_view_t *view, const uint8_t *buf, si
 
 /* Cubic Hermite of n quantities at tau from values at offset off_val and
  * d/dtau at off_der of the bracketing nodes. tau must be inside the grid. */
-static void hermite(const ogk_nog_table_view_t *tbl, double tau, size_t off_val, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
-                    size_t off_der, size_t n, double *out) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+static void hermite(const ogk_nog_table_view_t *tbl, ogk_real_t tau, size_t off_val, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+                    size_t off_der, size_t n, ogk_real_t *out) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     size_t k = 0u;
     size_t i;
-    double h;
-    double s;
-    double h00;
-    double h10;
-    double h01;
-    double h11;
-    const double *a;
-    const double *b;
+    ogk_real_t h;
+    ogk_real_t s;
+    ogk_real_t h00;
+    ogk_real_t h10;
+    ogk_real_t h01;
+    ogk_real_t h11;
+    const ogk_real_t *a;
+    const ogk_real_t *b;
 
     (void)ogk_interp_locate(tbl->tau, tbl->n_grid, tau, &k);
     a = entry_row(tbl, k);
@@ -215,11 +216,11 @@ static void hermite(const ogk_nog_table_view_t *tbl, double tau, size_t off_val,
     /* s in [0, 1]: every caller passes tau in [0, 1], which ogk_interp_locate
      * brackets by [tau[k], tau[k+1]], and rounding is monotonic; the clamp
      * changes no value and states the range for the analysis (docs/evidence/eva.md). */
-    s = fmin(fmax((tau - tbl->tau[k]) / h, 0.0), 1.0);
-    h00 = (1.0 + (2.0 * s)) * (1.0 - s) * (1.0 - s);
-    h10 = s * (1.0 - s) * (1.0 - s);
-    h01 = s * s * (3.0 - (2.0 * s));
-    h11 = s * s * (s - 1.0);
+    s = OGK_FMIN(OGK_FMAX((tau - tbl->tau[k]) / h, OGK_R(0.0)), OGK_R(1.0));
+    h00 = (OGK_R(1.0) + (OGK_R(2.0) * s)) * (OGK_R(1.0) - s) * (OGK_R(1.0) - s);
+    h10 = s * (OGK_R(1.0) - s) * (OGK_R(1.0) - s);
+    h01 = s * s * (OGK_R(3.0) - (OGK_R(2.0) * s));
+    h11 = s * s * (s - OGK_R(1.0));
     for (i = 0u; i < n; ++i) {
         out[i] = (h00 * a[off_val + i]) + (h10 * h * a[off_der + i]) + (h01 * b[off_val + i]) +
                  (h11 * h * b[off_der + i]);
@@ -227,51 +228,51 @@ static void hermite(const ogk_nog_table_view_t *tbl, double tau, size_t off_val,
 }
 
 /* Linear interpolation of a block of n values at offset off. */
-static void linear_block(const ogk_nog_table_view_t *tbl, double tau, size_t off, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
-                         size_t n, double *out)
+static void linear_block(const ogk_nog_table_view_t *tbl, ogk_real_t tau, size_t off, /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+                         size_t n, ogk_real_t *out)
 {
     size_t k = 0u;
     size_t i;
-    double w;
-    const double *a;
-    const double *b;
+    ogk_real_t w;
+    const ogk_real_t *a;
+    const ogk_real_t *b;
 
     (void)ogk_interp_locate(tbl->tau, tbl->n_grid, tau, &k);
     a = entry_row(tbl, k);
     b = entry_row(tbl, k + 1u);
     /* w in [0, 1] as hermite's s: a clamp that changes no value. */
-    w = fmin(fmax((tau - tbl->tau[k]) / (tbl->tau[k + 1u] - tbl->tau[k]), 0.0), 1.0);
+    w = OGK_FMIN(OGK_FMAX((tau - tbl->tau[k]) / (tbl->tau[k + 1u] - tbl->tau[k]), OGK_R(0.0)), OGK_R(1.0));
     for (i = 0u; i < n; ++i) {
         out[i] = a[off + i] + (w * (b[off + i] - a[off + i]));
     }
 }
 
 /* Thrust direction minimising H: along -lambda_v (eq. 27), as angles. */
-static void angles_from_costate(const double *lam, double *alpha, double *beta) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+static void angles_from_costate(const ogk_real_t *lam, ogk_real_t *alpha, ogk_real_t *beta) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
-    const double l4 = lam[IDX_VR];
-    const double l5 = lam[IDX_VR + 1u];
-    const double l6 = lam[IDX_VR + 2u];
-    const double in_plane = sqrt((l4 * l4) + (l5 * l5));
-    *alpha = atan2(-l4, -l5);
-    *beta = atan2(-l6, in_plane);
+    const ogk_real_t l4 = lam[IDX_VR];
+    const ogk_real_t l5 = lam[IDX_VR + 1u];
+    const ogk_real_t l6 = lam[IDX_VR + 2u];
+    const ogk_real_t in_plane = OGK_SQRT((l4 * l4) + (l5 * l5));
+    *alpha = OGK_ATAN2(-l4, -l5);
+    *beta = OGK_ATAN2(-l6, in_plane);
 }
 
 /* Angle between the thrust directions of two costate vectors. */
-static double direction_angle(const double *lam_a, const double *lam_b)
+static ogk_real_t direction_angle(const ogk_real_t *lam_a, const ogk_real_t *lam_b)
 {
-    const double *a = &lam_a[IDX_VR];
-    const double *b = &lam_b[IDX_VR];
-    const double cx = (a[1] * b[2]) - (a[2] * b[1]);
-    const double cy = (a[2] * b[0]) - (a[0] * b[2]);
-    const double cz = (a[0] * b[1]) - (a[1] * b[0]);
-    const double dot = (a[0] * b[0]) + (a[1] * b[1]) + (a[2] * b[2]);
-    return atan2(sqrt((cx * cx) + (cy * cy) + (cz * cz)), dot);
+    const ogk_real_t *a = &lam_a[IDX_VR];
+    const ogk_real_t *b = &lam_b[IDX_VR];
+    const ogk_real_t cx = (a[1] * b[2]) - (a[2] * b[1]);
+    const ogk_real_t cy = (a[2] * b[0]) - (a[0] * b[2]);
+    const ogk_real_t cz = (a[0] * b[1]) - (a[1] * b[0]);
+    const ogk_real_t dot = (a[0] * b[0]) + (a[1] * b[1]) + (a[2] * b[2]);
+    return OGK_ATAN2(OGK_SQRT((cx * cx) + (cy * cy) + (cz * cz)), dot);
 }
 
-static void costate_at(const ogk_nog_t *ctx, double tau, double *lam)
+static void costate_at(const ogk_nog_t *ctx, ogk_real_t tau, ogk_real_t *lam)
 {
-    double lam_star[NX];
+    ogk_real_t lam_star[NX];
     size_t i;
     hermite(&ctx->tbl, tau, OGK_NOG_OFF_LAM, OGK_NOG_OFF_LAMDOT, NX, lam_star);
     for (i = 0u; i < NX; ++i) {
@@ -282,23 +283,23 @@ static void costate_at(const ogk_nog_t *ctx, double tau, double *lam)
 /* Largest scale s in [0, 1] of the correction (dlam, dlam_rate) whose thrust
  * direction at tau_k stays within du_max of the nominal one (bisection: the
  * angle grows with s for the corrections met in practice; s = 0 always fits). */
-static double direction_limit_scale(const double *lam_star, const double *dlam, double du_max)
+static ogk_real_t direction_limit_scale(const ogk_real_t *lam_star, const ogk_real_t *dlam, ogk_real_t du_max)
 {
-    double lam[NX];
-    double scale;
+    ogk_real_t lam[NX];
+    ogk_real_t scale;
     size_t i;
 
     for (i = 0u; i < NX; ++i) {
         lam[i] = lam_star[i] + dlam[i];
     }
     if (direction_angle(lam, lam_star) <= du_max) {
-        scale = 1.0;
+        scale = OGK_R(1.0);
     } else {
-        double lo = 0.0;
-        double hi = 1.0;
+        ogk_real_t lo = OGK_R(0.0);
+        ogk_real_t hi = OGK_R(1.0);
         unsigned it;
         for (it = 0u; it < OGK_NOG_LIMIT_ITERATIONS; ++it) {
-            const double mid = 0.5 * (lo + hi);
+            const ogk_real_t mid = OGK_R(0.5) * (lo + hi);
             for (i = 0u; i < NX; ++i) {
                 lam[i] = lam_star[i] + (mid * dlam[i]);
             }
@@ -325,10 +326,10 @@ ogk_status ogk_nog_config_default(ogk_nog_config_t *cfg)
         (void)memset(cfg, 0, sizeof *cfg); /* returns cfg: nothing to check */
         cfg->table = NULL;
         cfg->view = NULL;
-        cfg->sample_interval_s = 2.0; /* Delta t_S of the paper's sec. 6 */
-        cfg->dtf_max_s = 40.0;        /* ~17 sigma of the paper's MC t_f spread (2.34 s) */
-        cfg->du_max_rad = PI / 3.0;   /* 60 deg */
-        cfg->tau_freeze = 0.0;        /* corrections up to the last gain node */
+        cfg->sample_interval_s = OGK_R(2.0); /* Delta t_S of the paper's sec. 6 */
+        cfg->dtf_max_s = OGK_R(40.0);        /* ~17 sigma of the paper's MC t_f spread (2.34 s) */
+        cfg->du_max_rad = PI / OGK_R(3.0);   /* 60 deg */
+        cfg->tau_freeze = OGK_R(0.0);        /* corrections up to the last gain node */
     }
     return st;
 }
@@ -336,21 +337,21 @@ ogk_status ogk_nog_config_default(ogk_nog_config_t *cfg)
 /* The just-initialised state: nominal from tau = 0, no sample taken. */
 static void start_nominal(ogk_nog_t *ctx)
 {
-    double lam[NX];
+    ogk_real_t lam[NX];
     (void)memset(ctx->dlam_k, 0, sizeof ctx->dlam_k);       /* returns its first argument */
     (void)memset(ctx->dlam_rate, 0, sizeof ctx->dlam_rate); /* returns its first argument */
-    ctx->t_k_s = 0.0;
-    ctx->tau_k = 0.0;
+    ctx->t_k_s = OGK_R(0.0);
+    ctx->tau_k = OGK_R(0.0);
     ctx->t_f_s = ctx->tbl.t_f_star_s;
     ctx->n_samples = 0u;
     ctx->flags = 0u;
     /* The held direction before any sample: the nominal at tau = 0 (finite:
      * at a node the Hermite is the node's finite value; 0 if not anyway). */
-    costate_at(ctx, 0.0, lam);
+    costate_at(ctx, OGK_R(0.0), lam);
     angles_from_costate(lam, &ctx->hold_alpha_rad, &ctx->hold_beta_rad);
     if (!isfinite(ctx->hold_alpha_rad) || !isfinite(ctx->hold_beta_rad)) {
-        ctx->hold_alpha_rad = 0.0;
-        ctx->hold_beta_rad = 0.0;
+        ctx->hold_alpha_rad = OGK_R(0.0);
+        ctx->hold_beta_rad = OGK_R(0.0);
     }
 }
 
@@ -391,7 +392,7 @@ static ogk_status bound_table(const ogk_nog_config_t *cfg, ogk_nog_table_view_t 
         st = OGK_E_NOT_INIT;
     }
     if ((st == OGK_OK) &&
-        ((tbl->n_grid < 3u) || (tbl->n_grid > OGK_NOG_MAX_GRID) || (!(tbl->t_f_star_s > 0.0)))) {
+        ((tbl->n_grid < 3u) || (tbl->n_grid > OGK_NOG_MAX_GRID) || (!(tbl->t_f_star_s > OGK_R(0.0))))) {
         st = OGK_E_NOT_INIT;
     }
     return st;
@@ -400,11 +401,11 @@ static ogk_status bound_table(const ogk_nog_config_t *cfg, ogk_nog_table_view_t 
 /* The configuration ranges of ogk/nog.h against the bound table. */
 static bool nog_config_valid(const ogk_nog_config_t *cfg, const ogk_nog_table_view_t *tbl)
 {
-    return !(!isfinite(cfg->sample_interval_s) || !(cfg->sample_interval_s > 0.0) ||
-             !isfinite(cfg->dtf_max_s) || !(cfg->dtf_max_s > 0.0) ||
-             (cfg->dtf_max_s > (0.5 * tbl->t_f_star_s)) || (cfg->sample_interval_s > tbl->t_f_star_s) ||
-             !isfinite(cfg->du_max_rad) || !(cfg->du_max_rad > 0.0) || (cfg->du_max_rad > PI) ||
-             !isfinite(cfg->tau_freeze) || (cfg->tau_freeze < 0.0) || !(cfg->tau_freeze < 1.0));
+    return !(!isfinite(cfg->sample_interval_s) || !(cfg->sample_interval_s > OGK_R(0.0)) ||
+             !isfinite(cfg->dtf_max_s) || !(cfg->dtf_max_s > OGK_R(0.0)) ||
+             (cfg->dtf_max_s > (OGK_R(0.5) * tbl->t_f_star_s)) || (cfg->sample_interval_s > tbl->t_f_star_s) ||
+             !isfinite(cfg->du_max_rad) || !(cfg->du_max_rad > OGK_R(0.0)) || (cfg->du_max_rad > PI) ||
+             !isfinite(cfg->tau_freeze) || (cfg->tau_freeze < OGK_R(0.0)) || !(cfg->tau_freeze < OGK_R(1.0)));
 }
 
 ogk_status ogk_nog_init(ogk_nog_t *ctx, const ogk_nog_config_t *cfg)
@@ -449,12 +450,12 @@ ogk_status ogk_nog_reset(ogk_nog_t *ctx)
 
 /* Moves the current sample to (t_s, tau) keeping the correction in force
  * (dlam continued from its hold, then held constant; t_f unchanged). */
-static void hold_correction(ogk_nog_t *ctx, double t_s, double tau) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+static void hold_correction(ogk_nog_t *ctx, ogk_real_t t_s, ogk_real_t tau) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     size_t i;
     for (i = 0u; i < NX; ++i) {
         ctx->dlam_k[i] += ctx->dlam_rate[i] * (tau - ctx->tau_k);
-        ctx->dlam_rate[i] = 0.0;
+        ctx->dlam_rate[i] = OGK_R(0.0);
     }
     ctx->t_k_s = t_s;
     ctx->tau_k = tau;
@@ -468,22 +469,22 @@ static void fill_sample_held(const ogk_nog_t *ctx, ogk_nog_sample_t *out)
     out->t_f_s = ctx->t_f_s;
     out->dt_f_s = ctx->t_f_s - ctx->tbl.t_f_star_s;
     out->tau_next = ctx->tau_k + (ctx->cfg.sample_interval_s / ctx->t_f_s);
-    out->t_cutoff_s = ctx->t_k_s + (1.0 - ctx->tau_k) * ctx->t_f_s;
+    out->t_cutoff_s = ctx->t_k_s + (OGK_R(1.0) - ctx->tau_k) * ctx->t_f_s;
     out->alpha_rad = ctx->hold_alpha_rad;
     out->beta_rad = ctx->hold_beta_rad;
     out->flags = ctx->flags;
-    if (out->tau_next >= 1.0) {
+    if (out->tau_next >= OGK_R(1.0)) {
         out->flags |= OGK_NOG_FLAG_TERMINATING;
     }
-    if (ctx->tau_k >= 1.0) {
+    if (ctx->tau_k >= OGK_R(1.0)) {
         out->flags |= OGK_NOG_FLAG_CUTOFF;
     }
 }
 
 static void fill_sample(const ogk_nog_t *ctx, ogk_nog_sample_t *out)
 {
-    double lam[NX];
-    const double tau = fmin(ctx->tau_k, 1.0);
+    ogk_real_t lam[NX];
+    const ogk_real_t tau = OGK_FMIN(ctx->tau_k, OGK_R(1.0));
 
     fill_sample_held(ctx, out);
     costate_at(ctx, tau, lam);
@@ -493,24 +494,24 @@ static void fill_sample(const ogk_nog_t *ctx, ogk_nog_sample_t *out)
 /* Every double of a sample is finite. */
 static bool sample_finite(const ogk_nog_sample_t *out)
 {
-    const double v[7] = {out->tau_k, out->tau_next, out->t_f_s, out->dt_f_s,
+    const ogk_real_t v[7] = {out->tau_k, out->tau_next, out->t_f_s, out->dt_f_s,
                          out->t_cutoff_s, out->alpha_rad, out->beta_rad};
     return ogk_i_all_finite(v, 7u) && ogk_i_all_finite(out->dx, NX);
 }
 
 /* Latest time a sample may carry (the t_s envelope of ogk/nog.h). */
-static double t_sample_max(const ogk_nog_t *ctx)
+static ogk_real_t t_sample_max(const ogk_nog_t *ctx)
 {
-    return (2.0 * ctx->tbl.t_f_star_s) + ctx->cfg.dtf_max_s;
+    return (OGK_R(2.0) * ctx->tbl.t_f_star_s) + ctx->cfg.dtf_max_s;
 }
 
 /* The navigation envelope of ogk/nog.h (all values already finite). */
 static bool nog_nav_in_envelope(const ogk_nog_t *ctx, const ogk_nav_state_t *nav)
 {
-    return (nav->r_m > 0.0) && (nav->r_m <= OGK_NOG_R_MAX_M) &&
-           (fabs(nav->xi_rad) <= OGK_NOG_XI_MAX_RAD) && (fabs(nav->phi_rad) < OGK_NOG_PHI_MAX_RAD) &&
-           (fabs(nav->v_r_mps) <= OGK_NOG_V_MAX_MPS) && (fabs(nav->v_t_mps) <= OGK_NOG_V_MAX_MPS) &&
-           (fabs(nav->v_n_mps) <= OGK_NOG_V_MAX_MPS) && (nav->t_s >= 0.0) &&
+    return (nav->r_m > OGK_R(0.0)) && (nav->r_m <= OGK_NOG_R_MAX_M) &&
+           (OGK_FABS(nav->xi_rad) <= OGK_NOG_XI_MAX_RAD) && (OGK_FABS(nav->phi_rad) < OGK_NOG_PHI_MAX_RAD) &&
+           (OGK_FABS(nav->v_r_mps) <= OGK_NOG_V_MAX_MPS) && (OGK_FABS(nav->v_t_mps) <= OGK_NOG_V_MAX_MPS) &&
+           (OGK_FABS(nav->v_n_mps) <= OGK_NOG_V_MAX_MPS) && (nav->t_s >= OGK_R(0.0)) &&
            (nav->t_s <= t_sample_max(ctx));
 }
 
@@ -522,7 +523,7 @@ static bool nog_nav_in_envelope(const ogk_nog_t *ctx, const ogk_nav_state_t *nav
  * a wrong time tag must not stop the engine early. An unusable time (not
  * finite, outside the envelope, before the current sample) moves nothing.
  * With a stale table (readable = false) nothing is read from it: held angles. */
-static void safe_sample(ogk_nog_t *ctx, double t_s, bool readable, ogk_nog_sample_t *out)
+static void safe_sample(ogk_nog_t *ctx, ogk_real_t t_s, bool readable, ogk_nog_sample_t *out)
 {
     ogk_nog_t at;
 
@@ -533,8 +534,8 @@ static void safe_sample(ogk_nog_t *ctx, double t_s, bool readable, ogk_nog_sampl
         /* Bounded by the envelope: finite. */
         /* tau >= tau_k as t_s >= t_k_s: the fmax changes no value and
          * keeps tau_k in [0, 1] visible to the analysis (docs/evidence/eva.md). */
-        const double tau = fmax(ctx->tau_k + ((t_s - ctx->t_k_s) / ctx->t_f_s), ctx->tau_k);
-        if (tau <= 1.0) {
+        const ogk_real_t tau = OGK_FMAX(ctx->tau_k + ((t_s - ctx->t_k_s) / ctx->t_f_s), ctx->tau_k);
+        if (tau <= OGK_R(1.0)) {
             hold_correction(ctx, t_s, tau);
             at = *ctx;
         } else {
@@ -557,23 +558,23 @@ static void safe_sample(ogk_nog_t *ctx, double t_s, bool readable, ogk_nog_sampl
 
 /* The bounds of compute_correction on the finite gain products out8
  * (dlam, dt_f) and dlam_rate, then the correction into ctx. */
-static void apply_correction(ogk_nog_t *ctx, const double *out8, const double *dlam_rate) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
+static void apply_correction(ogk_nog_t *ctx, const ogk_real_t *out8, const ogk_real_t *dlam_rate) /* NOLINT(bugprone-easily-swappable-parameters): internal helper, argument order of the equation it implements; every caller is in this file and unit-tested */
 {
     const ogk_nog_table_view_t *tbl = &ctx->tbl;
-    double lam_star[NX];
-    double dt_f;
-    double scale;
+    ogk_real_t lam_star[NX];
+    ogk_real_t dt_f;
+    ogk_real_t scale;
     size_t i;
 
     /* dt_f clipped to [-dtf_max, dtf_max] (finite: compute_correction
      * checked it), so t_f >= t_f* - dtf_max >= t_f* / 2 > 0 (init's check). */
-    dt_f = fmin(fmax(out8[NX], -ctx->cfg.dtf_max_s), ctx->cfg.dtf_max_s);
+    dt_f = OGK_FMIN(OGK_FMAX(out8[NX], -ctx->cfg.dtf_max_s), ctx->cfg.dtf_max_s);
     if (dt_f != out8[NX]) {
         ctx->flags |= OGK_NOG_FLAG_LIMITED;
     }
     hermite(tbl, ctx->tau_k, OGK_NOG_OFF_LAM, OGK_NOG_OFF_LAMDOT, NX, lam_star);
     scale = direction_limit_scale(lam_star, out8, ctx->cfg.du_max_rad);
-    if (scale < 1.0) {
+    if (scale < OGK_R(1.0)) {
         ctx->flags |= OGK_NOG_FLAG_LIMITED;
     }
     for (i = 0u; i < NX; ++i) {
@@ -587,12 +588,12 @@ static void apply_correction(ogk_nog_t *ctx, const double *out8, const double *d
  * are this file's constants and whose arrays are distinct locals, so nothing can
  * fail (ogk_mat_vec's checks, and its status, would be dead code here: its
  * discarded status once left out8 unproven-initialised for EVA, docs/evidence/eva.md). */
-static void gain_times_dx(const double *a, size_t rows, const double *dx, double *out)
+static void gain_times_dx(const ogk_real_t *a, size_t rows, const ogk_real_t *dx, ogk_real_t *out)
 {
     size_t i;
     size_t j;
     for (i = 0u; i < rows; ++i) {
-        double acc = 0.0;
+        ogk_real_t acc = OGK_R(0.0);
         for (j = 0u; j < NX; ++j) {
             acc += a[(i * NX) + j] * dx[j];
         }
@@ -602,13 +603,13 @@ static void gain_times_dx(const double *a, size_t rows, const double *dx, double
 
 /* The correction at tau_k from the gains (eqs. 29-31) with the end-game
  * bounds. False (context untouched) when the gains times dx overflow. */
-static bool compute_correction(ogk_nog_t *ctx, const double *dx)
+static bool compute_correction(ogk_nog_t *ctx, const ogk_real_t *dx)
 {
     const ogk_nog_table_view_t *tbl = &ctx->tbl;
-    double gain[N_GAIN_ROWS * NX];
-    double nrate[NX * NX];
-    double out8[N_GAIN_ROWS];
-    double dlam_rate[NX];
+    ogk_real_t gain[N_GAIN_ROWS * NX];
+    ogk_real_t nrate[NX * NX];
+    ogk_real_t out8[N_GAIN_ROWS];
+    ogk_real_t dlam_rate[NX];
     bool finite = true;
 
     linear_block(tbl, ctx->tau_k, OGK_NOG_OFF_GAIN, (size_t)N_GAIN_ROWS * NX, gain);
@@ -625,8 +626,8 @@ static bool compute_correction(ogk_nog_t *ctx, const double *dx)
 
 /* ogk_nog_sample from a finite, in-envelope sample at tau <= 1: the
  * correction (or the end-game hold) committed, or the safe output. */
-static ogk_status take_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, const double *nav_v,
-                              double tau, ogk_nog_sample_t *out)
+static ogk_status take_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, const ogk_real_t *nav_v,
+                              ogk_real_t tau, ogk_nog_sample_t *out)
 {
     const ogk_nog_table_view_t *tbl = &ctx->tbl;
     ogk_nog_t before;
@@ -637,13 +638,13 @@ static ogk_status take_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, const 
     ctx->flags = 0u;
     ctx->n_samples += 1u;
     /* End-game: past the last node with gains, or inside the freeze margin. */
-    if ((tau >= tbl->tau[tbl->n_grid - 2u]) || ((1.0 - tau) < ctx->cfg.tau_freeze)) {
+    if ((tau >= tbl->tau[tbl->n_grid - 2u]) || ((OGK_R(1.0) - tau) < ctx->cfg.tau_freeze)) {
         hold_correction(ctx, nav->t_s, tau);
         ctx->flags = OGK_NOG_FLAG_FROZEN;
         fill_sample(ctx, out);
     } else {
-        double x_star[NX];
-        double dx[NX];
+        ogk_real_t x_star[NX];
+        ogk_real_t dx[NX];
         size_t i;
         ctx->t_k_s = nav->t_s;
         ctx->tau_k = tau;
@@ -677,8 +678,8 @@ static ogk_status take_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, const 
 static ogk_status sample_current(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sample_t *out)
 {
     const ogk_nog_table_view_t *tbl = &ctx->tbl;
-    double nav_v[NX];
-    double tau;
+    ogk_real_t nav_v[NX];
+    ogk_real_t tau;
     ogk_status st;
 
     nav_v[0] = nav->r_m;
@@ -701,8 +702,8 @@ static ogk_status sample_current(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk
         /* tau >= tau_k (t_s > t_k_s after the first sample): the fmax, as in
          * safe_sample, changes no value. */
         tau = (ctx->n_samples == 0u) ? (nav->t_s / tbl->t_f_star_s)
-                                     : fmax(ctx->tau_k + ((nav->t_s - ctx->t_k_s) / ctx->t_f_s), ctx->tau_k);
-        if (tau > 1.0) {
+                                     : OGK_FMAX(ctx->tau_k + ((nav->t_s - ctx->t_k_s) / ctx->t_f_s), ctx->tau_k);
+        if (tau > OGK_R(1.0)) {
             /* Sampled after the predicted cut-off (tau outside [0, 1]): nothing to
              * guide, and nothing to commit (a wrong time tag must not stop the
              * engine; the commands stop it at the predicted cut-off anyway). */
@@ -737,7 +738,7 @@ ogk_status ogk_nog_sample(ogk_nog_t *ctx, const ogk_nav_state_t *nav, ogk_nog_sa
 }
 
 /* tau of eq. (31) at t_s with the t_f in force; st receives the input check. */
-static double tau_at(const ogk_nog_t *ctx, double t_s, ogk_status *st)
+static ogk_real_t tau_at(const ogk_nog_t *ctx, ogk_real_t t_s, ogk_status *st)
 {
     if (!isfinite(t_s)) {
         *st = OGK_E_NONFINITE;
@@ -752,11 +753,11 @@ static double tau_at(const ogk_nog_t *ctx, double t_s, ogk_status *st)
 }
 
 /* ogk_nog_thrust_cmd on an initialised context. */
-static ogk_status command_at(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
+static ogk_status command_at(const ogk_nog_t *ctx, ogk_real_t t_s, ogk_thrust_cmd_t *out)
 {
-    double tau;
-    double alpha;
-    double beta;
+    ogk_real_t tau;
+    ogk_real_t alpha;
+    ogk_real_t beta;
     uint32_t law;
     uint32_t flags = OGK_THRUST_FLAG_ENGINE_ON;
     ogk_status st;
@@ -771,15 +772,15 @@ static ogk_status command_at(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t 
     if (st != OGK_OK) {
         law |= OGK_NOG_FLAG_SAFE;
     }
-    if (tau >= 1.0) {
-        tau = 1.0;
+    if (tau >= OGK_R(1.0)) {
+        tau = OGK_R(1.0);
         law |= OGK_NOG_FLAG_CUTOFF;
         flags = 0u;
     }
     alpha = ctx->hold_alpha_rad;
     beta = ctx->hold_beta_rad;
     if (readable) {
-        double lam[NX];
+        ogk_real_t lam[NX];
         costate_at(ctx, tau, lam);
         angles_from_costate(lam, &alpha, &beta);
         if (!isfinite(alpha) || !isfinite(beta)) {
@@ -799,11 +800,11 @@ static ogk_status command_at(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t 
     }
     /* the r-t-n command (full thrust while the engine is on) */
     ogk_i_thrust_cmd_angles(out, (isfinite(t_s) && (t_s >= ctx->t_k_s)) ? t_s : ctx->t_k_s, alpha,
-                            beta, 1.0, flags, law);
+                            beta, OGK_R(1.0), flags, law);
     return st;
 }
 
-ogk_status ogk_nog_thrust_cmd(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
+ogk_status ogk_nog_thrust_cmd(const ogk_nog_t *ctx, ogk_real_t t_s, ogk_thrust_cmd_t *out)
 {
     ogk_status st;
 
@@ -819,10 +820,10 @@ ogk_status ogk_nog_thrust_cmd(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t
     return st;
 }
 
-ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau)
+ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, ogk_real_t t_s, ogk_real_t *tau)
 {
     ogk_status st;
-    double v;
+    ogk_real_t v;
 
     if ((ctx == NULL) || (tau == NULL)) {
         st = OGK_E_NULL;
@@ -833,7 +834,7 @@ ogk_status ogk_nog_tau_at(const ogk_nog_t *ctx, double t_s, double *tau)
     } else {
         v = tau_at(ctx, t_s, &st);
         if (st == OGK_OK) {
-            *tau = fmin(v, 1.0);
+            *tau = OGK_FMIN(v, OGK_R(1.0));
         }
     }
     return st;

@@ -3,7 +3,7 @@
  * apart from nog.c so that the removal is this file and its header block. */
 #include "ogk/nog.h"
 
-ogk_status ogk_nog_command(const ogk_nog_t *ctx, double t_s, ogk_thrust_cmd_t *out)
+ogk_status ogk_nog_command(const ogk_nog_t *ctx, ogk_real_t t_s, ogk_thrust_cmd_t *out)
 {
     return ogk_nog_thrust_cmd(ctx, t_s, out);
 }

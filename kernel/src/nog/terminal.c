@@ -16,60 +16,60 @@ ogk_status ogk_terminal_config_default(ogk_terminal_config_t *cfg)
     if (cfg == NULL) {
         st = OGK_E_NULL;
     } else {
-        cfg->mu_m3_s2 = 3.986004e14;
-        cfg->target_radius_m = 42164.0e3;
-        cfg->window_s = 3.0;
-        cfg->shape_gain = 0.0;
-        cfg->shape_gain_normal = 0.0;
-        cfg->shape_hold_s = 1.0;
-        cfg->shape_lead_s = 0.0;
-        cfg->turn_accel_rad_s2 = 0.0;
+        cfg->mu_m3_s2 = OGK_R(3.986004e14);
+        cfg->target_radius_m = OGK_R(42164.0e3);
+        cfg->window_s = OGK_R(3.0);
+        cfg->shape_gain = OGK_R(0.0);
+        cfg->shape_gain_normal = OGK_R(0.0);
+        cfg->shape_hold_s = OGK_R(1.0);
+        cfg->shape_lead_s = OGK_R(0.0);
+        cfg->turn_accel_rad_s2 = OGK_R(0.0);
     }
     return st;
 }
 
 static bool terminal_shaped(const ogk_terminal_config_t *cfg)
 {
-    return (cfg->shape_gain > 0.0) || (cfg->shape_gain_normal > 0.0);
+    return (cfg->shape_gain > OGK_R(0.0)) || (cfg->shape_gain_normal > OGK_R(0.0));
 }
 
 /* Shaping off, or gains in [0, 1] with a hold in [HOLD_MIN, window]. */
 static bool terminal_shape_valid(const ogk_terminal_config_t *cfg)
 {
-    return (cfg->shape_gain >= 0.0) && (cfg->shape_gain <= 1.0) && (cfg->shape_gain_normal >= 0.0) &&
-           (cfg->shape_gain_normal <= 1.0) &&
+    return (cfg->shape_gain >= OGK_R(0.0)) && (cfg->shape_gain <= OGK_R(1.0)) && (cfg->shape_gain_normal >= OGK_R(0.0)) &&
+           (cfg->shape_gain_normal <= OGK_R(1.0)) &&
            (!terminal_shaped(cfg) ||
             ((cfg->shape_hold_s >= OGK_TERMINAL_HOLD_MIN_S) && (cfg->shape_hold_s <= cfg->window_s)));
 }
 
 static bool terminal_config_valid(const ogk_terminal_config_t *cfg)
 {
-    const double v[8] = {cfg->mu_m3_s2, cfg->target_radius_m, cfg->window_s, cfg->shape_gain,
+    const ogk_real_t v[8] = {cfg->mu_m3_s2, cfg->target_radius_m, cfg->window_s, cfg->shape_gain,
                          cfg->shape_gain_normal, cfg->shape_hold_s, cfg->shape_lead_s, cfg->turn_accel_rad_s2};
 
-    return ogk_i_all_finite(v, 8u) && (cfg->turn_accel_rad_s2 >= 0.0) &&
-           (cfg->turn_accel_rad_s2 <= OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2) && (cfg->shape_lead_s >= 0.0) && (cfg->shape_lead_s <= OGK_TERMINAL_T_MAX_S) && (cfg->mu_m3_s2 > 0.0) && (cfg->target_radius_m > 0.0) &&
-           (cfg->target_radius_m <= OGK_TERMINAL_R_MAX_M) && (cfg->window_s >= 0.0) &&
+    return ogk_i_all_finite(v, 8u) && (cfg->turn_accel_rad_s2 >= OGK_R(0.0)) &&
+           (cfg->turn_accel_rad_s2 <= OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2) && (cfg->shape_lead_s >= OGK_R(0.0)) && (cfg->shape_lead_s <= OGK_TERMINAL_T_MAX_S) && (cfg->mu_m3_s2 > OGK_R(0.0)) && (cfg->target_radius_m > OGK_R(0.0)) &&
+           (cfg->target_radius_m <= OGK_TERMINAL_R_MAX_M) && (cfg->window_s >= OGK_R(0.0)) &&
            (cfg->window_s <= OGK_TERMINAL_T_MAX_S) &&
-           isfinite(sqrt(cfg->mu_m3_s2 / cfg->target_radius_m)) && terminal_shape_valid(cfg);
+           isfinite(OGK_SQRT(cfg->mu_m3_s2 / cfg->target_radius_m)) && terminal_shape_valid(cfg);
 }
 
 static void terminal_clear(ogk_terminal_t *ctx)
 {
-    ctx->alpha_rad = 0.0;
-    ctx->beta_rad = 0.0;
+    ctx->alpha_rad = OGK_R(0.0);
+    ctx->beta_rad = OGK_R(0.0);
     ctx->engaged = false;
-    ctx->plan.t0_s = 0.0;
-    ctx->plan.duration_s = 0.0;
-    ctx->plan.accel_r0_mps2 = 0.0;
-    ctx->plan.accel_r1_mps3 = 0.0;
-    ctx->plan.accel_n0_mps2 = 0.0;
-    ctx->plan.accel_n1_mps3 = 0.0;
-    ctx->plan.accel_t_mps2 = 0.0;
-    ctx->plan.gain_scale = 1.0;
+    ctx->plan.t0_s = OGK_R(0.0);
+    ctx->plan.duration_s = OGK_R(0.0);
+    ctx->plan.accel_r0_mps2 = OGK_R(0.0);
+    ctx->plan.accel_r1_mps3 = OGK_R(0.0);
+    ctx->plan.accel_n0_mps2 = OGK_R(0.0);
+    ctx->plan.accel_n1_mps3 = OGK_R(0.0);
+    ctx->plan.accel_t_mps2 = OGK_R(0.0);
+    ctx->plan.gain_scale = OGK_R(1.0);
     ctx->plan.in_hold = false;
-    ctx->last_t_s = 0.0;
-    ctx->last_energy_j_kg = 0.0;
+    ctx->last_t_s = OGK_R(0.0);
+    ctx->last_energy_j_kg = OGK_R(0.0);
     ctx->has_last = false;
 }
 
@@ -81,13 +81,13 @@ static void terminal_clear(ogk_terminal_t *ctx)
  * hold is at most the window when shaped (terminal_shape_valid). */
 static void terminal_turn_limit(ogk_terminal_t *ctx)
 {
-    const double shaped_s = ctx->cfg.window_s - ctx->cfg.shape_hold_s;
-    const double tilt = 0.0625 * ctx->cfg.turn_accel_rad_s2 * shaped_s * shaped_s;
+    const ogk_real_t shaped_s = ctx->cfg.window_s - ctx->cfg.shape_hold_s;
+    const ogk_real_t tilt = OGK_R(0.0625) * ctx->cfg.turn_accel_rad_s2 * shaped_s * shaped_s;
 
-    ctx->tilt_limited = terminal_shaped(&ctx->cfg) && (ctx->cfg.turn_accel_rad_s2 > 0.0) &&
+    ctx->tilt_limited = terminal_shaped(&ctx->cfg) && (ctx->cfg.turn_accel_rad_s2 > OGK_R(0.0)) &&
                         (tilt < OGK_TERMINAL_TILT_MAX_RAD);
     ctx->shape_tilt_max_rad = ctx->tilt_limited ? tilt : OGK_TERMINAL_TILT_MAX_RAD;
-    ctx->shape_tilt_max_tan = tan(ctx->shape_tilt_max_rad);
+    ctx->shape_tilt_max_tan = OGK_TAN(ctx->shape_tilt_max_rad);
 }
 
 ogk_status ogk_terminal_init(ogk_terminal_t *ctx, const ogk_terminal_config_t *cfg)
@@ -100,7 +100,7 @@ ogk_status ogk_terminal_init(ogk_terminal_t *ctx, const ogk_terminal_config_t *c
         st = OGK_E_CONFIG;
     } else {
         ctx->cfg = *cfg;
-        ctx->v_target_mps = sqrt(cfg->mu_m3_s2 / cfg->target_radius_m); /* eq. (20): v_tf */
+        ctx->v_target_mps = OGK_SQRT(cfg->mu_m3_s2 / cfg->target_radius_m); /* eq. (20): v_tf */
         terminal_turn_limit(ctx);
         terminal_clear(ctx);
         ctx->init_marker = OGK_TERMINAL_INIT_MARKER;
@@ -122,12 +122,12 @@ ogk_status ogk_terminal_reset(ogk_terminal_t *ctx)
     return st;
 }
 
-static bool terminal_nav_in_envelope(const ogk_nav_state_t *nav, double t_predicted_s)
+static bool terminal_nav_in_envelope(const ogk_nav_state_t *nav, ogk_real_t t_predicted_s)
 {
-    return (nav->r_m > 0.0) && (nav->r_m <= OGK_TERMINAL_R_MAX_M) &&
-           (fabs(nav->v_r_mps) <= OGK_TERMINAL_V_MAX_MPS) && (fabs(nav->v_t_mps) <= OGK_TERMINAL_V_MAX_MPS) &&
-           (fabs(nav->v_n_mps) <= OGK_TERMINAL_V_MAX_MPS) && (nav->t_s >= 0.0) &&
-           (nav->t_s <= OGK_TERMINAL_T_MAX_S) && (t_predicted_s >= 0.0) &&
+    return (nav->r_m > OGK_R(0.0)) && (nav->r_m <= OGK_TERMINAL_R_MAX_M) &&
+           (OGK_FABS(nav->v_r_mps) <= OGK_TERMINAL_V_MAX_MPS) && (OGK_FABS(nav->v_t_mps) <= OGK_TERMINAL_V_MAX_MPS) &&
+           (OGK_FABS(nav->v_n_mps) <= OGK_TERMINAL_V_MAX_MPS) && (nav->t_s >= OGK_R(0.0)) &&
+           (nav->t_s <= OGK_TERMINAL_T_MAX_S) && (t_predicted_s >= OGK_R(0.0)) &&
            (t_predicted_s <= OGK_TERMINAL_T_MAX_S);
 }
 
@@ -137,7 +137,7 @@ static bool terminal_nav_in_envelope(const ogk_nav_state_t *nav, double t_predic
 static void terminal_output(const ogk_terminal_t *ctx, const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out)
 {
     if (ctx->engaged) {
-        ogk_i_thrust_cmd_angles(out, law_cmd->t_s, ctx->alpha_rad, ctx->beta_rad, 1.0,
+        ogk_i_thrust_cmd_angles(out, law_cmd->t_s, ctx->alpha_rad, ctx->beta_rad, OGK_R(1.0),
                                 law_cmd->flags & OGK_THRUST_FLAG_ENGINE_ON, OGK_TERMINAL_FLAG_ENGAGED);
     } else {
         *out = *law_cmd;
@@ -148,33 +148,33 @@ static void terminal_output(const ogk_terminal_t *ctx, const ogk_thrust_cmd_t *l
  * (ogk/types.h); held while |v_go| is below OGK_TERMINAL_VGO_MIN_MPS. */
 static void steer_along_vgo(ogk_terminal_t *ctx, const ogk_nav_state_t *nav)
 {
-    const double vgo_r = -nav->v_r_mps;
-    const double vgo_t = ctx->v_target_mps - nav->v_t_mps;
-    const double vgo_n = -nav->v_n_mps;
-    const double vgo_in_plane = hypot(vgo_r, vgo_t);
+    const ogk_real_t vgo_r = -nav->v_r_mps;
+    const ogk_real_t vgo_t = ctx->v_target_mps - nav->v_t_mps;
+    const ogk_real_t vgo_n = -nav->v_n_mps;
+    const ogk_real_t vgo_in_plane = OGK_HYPOT(vgo_r, vgo_t);
 
-    if (hypot(vgo_in_plane, vgo_n) >= OGK_TERMINAL_VGO_MIN_MPS) {
-        ctx->alpha_rad = atan2(vgo_r, vgo_t);
-        ctx->beta_rad = atan2(vgo_n, vgo_in_plane);
+    if (OGK_HYPOT(vgo_in_plane, vgo_n) >= OGK_TERMINAL_VGO_MIN_MPS) {
+        ctx->alpha_rad = OGK_ATAN2(vgo_r, vgo_t);
+        ctx->beta_rad = OGK_ATAN2(vgo_n, vgo_in_plane);
     }
 }
 
 /* Initial value and rate of the acceleration, linear in time over duration_s,
  * that takes x' to 0 and x + x' duration_s / 2 (the miss of a decay of x' at
  * constant rate) to (1 - k) times itself: terminal.h, "Position shaping". */
-static void plan_axis(double x, double x_dot, double duration_s, double k, double *accel0, double *accel1)
+static void plan_axis(ogk_real_t x, ogk_real_t x_dot, ogk_real_t duration_s, ogk_real_t k, ogk_real_t *accel0, ogk_real_t *accel1)
 {
-    const double t2 = duration_s * duration_s;
+    const ogk_real_t t2 = duration_s * duration_s;
 
-    *accel0 = (-((1.0 + (3.0 * k)) * x_dot) / duration_s) - ((6.0 * k * x) / t2);
-    *accel1 = ((12.0 * k * x) / (t2 * duration_s)) + ((6.0 * k * x_dot) / t2);
+    *accel0 = (-((OGK_R(1.0) + (OGK_R(3.0) * k)) * x_dot) / duration_s) - ((OGK_R(6.0) * k * x) / t2);
+    *accel1 = ((OGK_R(12.0) * k * x) / (t2 * duration_s)) + ((OGK_R(6.0) * k * x_dot) / t2);
 }
 
 /* The position misses a shaped plan steers out. */
 typedef struct {
-    double x;     /* [m] radius miss, r - R_f */
-    double z;     /* [m] plane-normal position, r sin(phi) */
-    double z_dot; /* [m/s] its rate */
+    ogk_real_t x;     /* [m] radius miss, r - R_f */
+    ogk_real_t z;     /* [m] plane-normal position, r sin(phi) */
+    ogk_real_t z_dot; /* [m/s] its rate */
 } plan_miss_t;
 
 /* The scale on both shape gains that keeps the plan's tilt from v_go within
@@ -183,15 +183,15 @@ typedef struct {
  * start and end, against |v_go| / T along v_go, so its tilt is
  * atan(|(k_r Q_r, k_n Q_n)| / |v_go|). 1 when the limit does not bind;
  * 0 (v_go steering) when |v_go| is 0 and the plan has a position part. */
-static double plan_gain_scale(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav, const plan_miss_t *miss,
-                              double duration_s)
+static ogk_real_t plan_gain_scale(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav, const plan_miss_t *miss,
+                              ogk_real_t duration_s)
 {
-    const double q_r = ctx->cfg.shape_gain * ((3.0 * nav->v_r_mps) + ((6.0 * miss->x) / duration_s));
-    const double q_n = ctx->cfg.shape_gain_normal * ((3.0 * miss->z_dot) + ((6.0 * miss->z) / duration_s));
-    const double q = hypot(q_r, q_n);
-    const double vgo = hypot(hypot(nav->v_r_mps, ctx->v_target_mps - nav->v_t_mps), nav->v_n_mps);
-    const double allowed = ctx->shape_tilt_max_tan * vgo;
-    double scale = 1.0;
+    const ogk_real_t q_r = ctx->cfg.shape_gain * ((OGK_R(3.0) * nav->v_r_mps) + ((OGK_R(6.0) * miss->x) / duration_s));
+    const ogk_real_t q_n = ctx->cfg.shape_gain_normal * ((OGK_R(3.0) * miss->z_dot) + ((OGK_R(6.0) * miss->z) / duration_s));
+    const ogk_real_t q = OGK_HYPOT(q_r, q_n);
+    const ogk_real_t vgo = OGK_HYPOT(OGK_HYPOT(nav->v_r_mps, ctx->v_target_mps - nav->v_t_mps), nav->v_n_mps);
+    const ogk_real_t allowed = ctx->shape_tilt_max_tan * vgo;
+    ogk_real_t scale = OGK_R(1.0);
 
     if (ctx->tilt_limited && (q > allowed)) {
         scale = allowed / q; /* q > allowed >= 0: in [0, 1) */
@@ -201,27 +201,27 @@ static double plan_gain_scale(const ogk_terminal_t *ctx, const ogk_nav_state_t *
 
 /* The shaped plan from the state at nav->t_s with duration_s to go; false
  * (plan unchanged) if a term overflows (a radius near 0 in the envelope). */
-static bool plan_from(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double duration_s)
+static bool plan_from(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t duration_s)
 {
-    const double r = nav->r_m;
-    const plan_miss_t miss = {r - ctx->cfg.target_radius_m, r * sin(nav->phi_rad),
-                              (nav->v_r_mps * sin(nav->phi_rad)) + (nav->v_n_mps * cos(nav->phi_rad))};
-    const double z = miss.z;
-    const double z_dot = miss.z_dot;
-    const double mu_r2 = ctx->cfg.mu_m3_s2 / (r * r);
-    const double g_r = (((nav->v_t_mps * nav->v_t_mps) + (nav->v_n_mps * nav->v_n_mps)) / r) - mu_r2;
-    const double g_n = -(mu_r2 * z) / r;
-    const double scale = plan_gain_scale(ctx, nav, &miss, duration_s);
-    double a_r0 = 0.0;
-    double a_r1 = 0.0;
-    double a_n0 = 0.0;
-    double a_n1 = 0.0;
+    const ogk_real_t r = nav->r_m;
+    const plan_miss_t miss = {r - ctx->cfg.target_radius_m, r * OGK_SIN(nav->phi_rad),
+                              (nav->v_r_mps * OGK_SIN(nav->phi_rad)) + (nav->v_n_mps * OGK_COS(nav->phi_rad))};
+    const ogk_real_t z = miss.z;
+    const ogk_real_t z_dot = miss.z_dot;
+    const ogk_real_t mu_r2 = ctx->cfg.mu_m3_s2 / (r * r);
+    const ogk_real_t g_r = (((nav->v_t_mps * nav->v_t_mps) + (nav->v_n_mps * nav->v_n_mps)) / r) - mu_r2;
+    const ogk_real_t g_n = -(mu_r2 * z) / r;
+    const ogk_real_t scale = plan_gain_scale(ctx, nav, &miss, duration_s);
+    ogk_real_t a_r0 = OGK_R(0.0);
+    ogk_real_t a_r1 = OGK_R(0.0);
+    ogk_real_t a_n0 = OGK_R(0.0);
+    ogk_real_t a_n1 = OGK_R(0.0);
     bool finite;
 
     plan_axis(miss.x, nav->v_r_mps, duration_s, scale * ctx->cfg.shape_gain, &a_r0, &a_r1);
     plan_axis(z, z_dot, duration_s, scale * ctx->cfg.shape_gain_normal, &a_n0, &a_n1);
     {
-        const double v[6] = {a_r0 - g_r, a_r1, a_n0 - g_n, a_n1, (ctx->v_target_mps - nav->v_t_mps) / duration_s,
+        const ogk_real_t v[6] = {a_r0 - g_r, a_r1, a_n0 - g_n, a_n1, (ctx->v_target_mps - nav->v_t_mps) / duration_s,
                              scale};
         finite = ogk_i_all_finite(v, 6u);
         if (finite) {
@@ -243,37 +243,37 @@ static bool plan_from(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double du
  * acceleration. */
 static void steer_along_plan(ogk_terminal_t *ctx)
 {
-    const double lead = fmin(ctx->cfg.shape_lead_s, ctx->plan.duration_s);
-    const double a_r = ctx->plan.accel_r0_mps2 + (ctx->plan.accel_r1_mps3 * lead);
-    const double a_n = ctx->plan.accel_n0_mps2 + (ctx->plan.accel_n1_mps3 * lead);
-    const double a_t = ctx->plan.accel_t_mps2;
-    const double a_in_plane = hypot(a_r, a_t);
+    const ogk_real_t lead = OGK_FMIN(ctx->cfg.shape_lead_s, ctx->plan.duration_s);
+    const ogk_real_t a_r = ctx->plan.accel_r0_mps2 + (ctx->plan.accel_r1_mps3 * lead);
+    const ogk_real_t a_n = ctx->plan.accel_n0_mps2 + (ctx->plan.accel_n1_mps3 * lead);
+    const ogk_real_t a_t = ctx->plan.accel_t_mps2;
+    const ogk_real_t a_in_plane = OGK_HYPOT(a_r, a_t);
 
-    if (hypot(a_in_plane, a_n) > 0.0) {
-        ctx->alpha_rad = atan2(a_r, a_t);
-        ctx->beta_rad = atan2(a_n, a_in_plane);
+    if (OGK_HYPOT(a_in_plane, a_n) > OGK_R(0.0)) {
+        ctx->alpha_rad = OGK_ATAN2(a_r, a_t);
+        ctx->beta_rad = OGK_ATAN2(a_n, a_in_plane);
     }
 }
 
-static double specific_energy(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav)
+static ogk_real_t specific_energy(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav)
 {
-    const double v2 = (nav->v_r_mps * nav->v_r_mps) + (nav->v_t_mps * nav->v_t_mps) + (nav->v_n_mps * nav->v_n_mps);
+    const ogk_real_t v2 = (nav->v_r_mps * nav->v_r_mps) + (nav->v_t_mps * nav->v_t_mps) + (nav->v_n_mps * nav->v_n_mps);
 
-    return (0.5 * v2) - (ctx->cfg.mu_m3_s2 / nav->r_m);
+    return (OGK_R(0.5) * v2) - (ctx->cfg.mu_m3_s2 / nav->r_m);
 }
 
 /* Time to the energy cut-off at the last period's energy rate (terminal.h),
  * else the law's predicted time to go. */
-static double time_to_cutoff(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s)
+static ogk_real_t time_to_cutoff(const ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t t_predicted_s)
 {
-    const double energy = specific_energy(ctx, nav);
-    double time_to_go = t_predicted_s - nav->t_s;
+    const ogk_real_t energy = specific_energy(ctx, nav);
+    ogk_real_t time_to_go = t_predicted_s - nav->t_s;
 
     if (ctx->has_last && (nav->t_s > ctx->last_t_s)) {
-        const double energy_rate = (energy - ctx->last_energy_j_kg) / (nav->t_s - ctx->last_t_s);
-        if (energy_rate > 0.0) {
-            const double energy_target = -ctx->cfg.mu_m3_s2 / (2.0 * ctx->cfg.target_radius_m);
-            const double t_energy = (energy_target - energy) / energy_rate;
+        const ogk_real_t energy_rate = (energy - ctx->last_energy_j_kg) / (nav->t_s - ctx->last_t_s);
+        if (energy_rate > OGK_R(0.0)) {
+            const ogk_real_t energy_target = -ctx->cfg.mu_m3_s2 / (OGK_R(2.0) * ctx->cfg.target_radius_m);
+            const ogk_real_t t_energy = (energy_target - energy) / energy_rate;
             time_to_go = isfinite(t_energy) ? t_energy : time_to_go;
         }
     }
@@ -283,9 +283,9 @@ static double time_to_cutoff(const ogk_terminal_t *ctx, const ogk_nav_state_t *n
 /* Shaped window: re-plan at every step while the time to go exceeds the
  * hold, then v_go steering for the rest of the window (latched). A plan that
  * overflows is not made: v_go steering for this step. */
-static void steer_shaped(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s)
+static void steer_shaped(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t t_predicted_s)
 {
-    const double time_to_go = time_to_cutoff(ctx, nav, t_predicted_s);
+    const ogk_real_t time_to_go = time_to_cutoff(ctx, nav, t_predicted_s);
 
     ctx->plan.in_hold = ctx->plan.in_hold || (time_to_go <= ctx->cfg.shape_hold_s);
     steer_along_vgo(ctx, nav);
@@ -294,7 +294,7 @@ static void steer_shaped(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double
     }
 }
 
-ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, double t_predicted_s,
+ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t t_predicted_s,
                              const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out)
 {
     ogk_status st = OGK_OK;
@@ -304,14 +304,14 @@ ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, do
     } else if (ctx->init_marker != OGK_TERMINAL_INIT_MARKER) {
         st = OGK_E_NOT_INIT;
     } else {
-        const double v[9] = {nav->t_s, nav->r_m, nav->phi_rad, nav->v_r_mps, nav->v_t_mps, nav->v_n_mps,
+        const ogk_real_t v[9] = {nav->t_s, nav->r_m, nav->phi_rad, nav->v_r_mps, nav->v_t_mps, nav->v_n_mps,
                              t_predicted_s, law_cmd->alpha_rad, law_cmd->beta_rad};
         if (!ogk_i_all_finite(v, 9u)) {
             st = OGK_E_NONFINITE;
         } else if (!terminal_nav_in_envelope(nav, t_predicted_s)) {
             st = OGK_E_RANGE;
         } else {
-            if ((!ctx->engaged) && ((t_predicted_s - nav->t_s) <= ctx->cfg.window_s) && (ctx->cfg.window_s > 0.0)) {
+            if ((!ctx->engaged) && ((t_predicted_s - nav->t_s) <= ctx->cfg.window_s) && (ctx->cfg.window_s > OGK_R(0.0))) {
                 ctx->engaged = true;
                 ctx->alpha_rad = law_cmd->alpha_rad; /* held if v_go is already ~0 */
                 ctx->beta_rad = law_cmd->beta_rad;
@@ -329,7 +329,7 @@ ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, do
         }
         if ((st != OGK_OK) && ((!isfinite(law_cmd->alpha_rad)) || (!isfinite(law_cmd->beta_rad)))) {
             /* No usable law command either: the last terminal one (zeros before). */
-            ogk_i_thrust_cmd_angles(out, law_cmd->t_s, ctx->alpha_rad, ctx->beta_rad, 1.0,
+            ogk_i_thrust_cmd_angles(out, law_cmd->t_s, ctx->alpha_rad, ctx->beta_rad, OGK_R(1.0),
                                     (law_cmd->flags & OGK_THRUST_FLAG_ENGINE_ON) | OGK_THRUST_FLAG_SAFE,
                                     ctx->engaged ? OGK_TERMINAL_FLAG_ENGAGED : 0u);
         } else {

@@ -51,8 +51,8 @@ typedef struct {
 
 /* Result of the step computation for one constraint. */
 typedef struct {
-    double ztn;    /* z^T n+ = |d2|^2 */
-    double d2;     /* |d2|_2, d2 = d(q..n-1) */
+    ogk_real_t ztn;    /* z^T n+ = |d2|^2 */
+    ogk_real_t d2;     /* |d2|_2, d2 = d(q..n-1) */
     bool dep;      /* n+ linearly dependent on the active normals (z = 0) */
 } qp_dir_t;
 
@@ -77,7 +77,7 @@ static bool qp_pointers_ok(const ogk_qp_problem_t *p)
 }
 
 /* True when v[0..n-1] has no NaN (infinities allowed: bounds). */
-static bool qp_no_nan(const double *v, size_t n)
+static bool qp_no_nan(const ogk_real_t *v, size_t n)
 {
     bool ok = true;
     size_t i;
@@ -92,29 +92,29 @@ static bool qp_no_nan(const double *v, size_t n)
 /* True when v[0..n-1] is all finite: v_i * 0 is 0 for a finite v_i and NaN
  * for +-Inf or NaN, and a NaN stays in the sums. Two independent sums and no
  * branch per element (the input check reads all of H). */
-static bool qp_all_finite(const double *v, size_t n)
+static bool qp_all_finite(const ogk_real_t *v, size_t n)
 {
-    double acc0 = 0.0;
-    double acc1 = 0.0;
+    ogk_real_t acc0 = OGK_R(0.0);
+    ogk_real_t acc1 = OGK_R(0.0);
     size_t i = 0u;
     for (; (i + 2u) <= n; i += 2u) {
-        acc0 += v[i] * 0.0;
-        acc1 += v[i + 1u] * 0.0;
+        acc0 += v[i] * OGK_R(0.0);
+        acc1 += v[i + 1u] * OGK_R(0.0);
     }
     if (i < n) {
-        acc0 += v[i] * 0.0;
+        acc0 += v[i] * OGK_R(0.0);
     }
-    return (acc0 + acc1) == 0.0;
+    return (acc0 + acc1) == OGK_R(0.0);
 }
 
 static bool qp_has_lb(const ogk_qp_problem_t *p, size_t i)
 {
-    return (p->lb != NULL) && (fabs(p->lb[i]) < OGK_QP_INF);
+    return (p->lb != NULL) && (OGK_FABS(p->lb[i]) < OGK_QP_INF);
 }
 
 static bool qp_has_ub(const ogk_qp_problem_t *p, size_t i)
 {
-    return (p->ub != NULL) && (fabs(p->ub[i]) < OGK_QP_INF);
+    return (p->ub != NULL) && (OGK_FABS(p->ub[i]) < OGK_QP_INF);
 }
 
 /* OGK_E_NONFINITE for a NaN bound, OGK_E_RANGE for lb > ub (both bounds set). */
@@ -158,35 +158,35 @@ static ogk_status qp_input_check(const ogk_qp_workspace_t *ws, const ogk_qp_prob
 
 /* Sum of squares below which the unscaled 2-norm may have lost accuracy to
  * underflow (DBL_MIN / DBL_EPSILON). */
-#define QP_SSQ_SAFE_MIN (DBL_MIN / DBL_EPSILON)
+#define QP_SSQ_SAFE_MIN (OGK_REAL_MIN / OGK_REAL_EPSILON)
 
 /* 2-norm of v[0..n-1]: the plain sum of squares, or, when it overflowed or
  * may have underflowed, the sum rescaled by the largest magnitude. */
-static double qp_norm2(const double *v, size_t n)
+static ogk_real_t qp_norm2(const ogk_real_t *v, size_t n)
 {
-    double ssq = 0.0;
-    double norm;
+    ogk_real_t ssq = OGK_R(0.0);
+    ogk_real_t norm;
     size_t i;
     for (i = 0u; i < n; ++i) {
         ssq += v[i] * v[i];
     }
-    if ((ssq <= DBL_MAX) && (ssq >= QP_SSQ_SAFE_MIN)) {
-        norm = sqrt(ssq);
+    if ((ssq <= OGK_REAL_MAX) && (ssq >= QP_SSQ_SAFE_MIN)) {
+        norm = OGK_SQRT(ssq);
     } else {
-        double scale = 0.0;
+        ogk_real_t scale = OGK_R(0.0);
         for (i = 0u; i < n; ++i) {
-            if (fabs(v[i]) > scale) {
-                scale = fabs(v[i]);
+            if (OGK_FABS(v[i]) > scale) {
+                scale = OGK_FABS(v[i]);
             }
         }
-        ssq = 0.0;
-        if (scale > 0.0) {
+        ssq = OGK_R(0.0);
+        if (scale > OGK_R(0.0)) {
             for (i = 0u; i < n; ++i) {
-                const double t = v[i] / scale;
+                const ogk_real_t t = v[i] / scale;
                 ssq += t * t;
             }
         }
-        norm = scale * sqrt(ssq);
+        norm = scale * OGK_SQRT(ssq);
     }
     return norm;
 }
@@ -194,9 +194,9 @@ static double qp_norm2(const double *v, size_t n)
 /* ------------------------------------------------------------------ constraints */
 
 /* Row of the general constraint number c (equality or inequality row). */
-static const double *qp_row(const qp_state_t *s, size_t c)
+static const ogk_real_t *qp_row(const qp_state_t *s, size_t c)
 {
-    const double *row;
+    const ogk_real_t *row;
     if (c < s->k_in) {
         row = &s->p->A_eq[c * s->n];
     } else {
@@ -209,9 +209,9 @@ static const double *qp_row(const qp_state_t *s, size_t c)
  * times the row: 1 / |a|_2 for the general rows (unit normals), times the
  * sign an equality was made active with; +-1 for the bounds, whose variable
  * goes to *var (QP_NONE for a general row). */
-static double qp_rhs(const qp_state_t *s, size_t c, double *sign, size_t *var)
+static ogk_real_t qp_rhs(const qp_state_t *s, size_t c, ogk_real_t *sign, size_t *var)
 {
-    double b;
+    ogk_real_t b;
     *var = QP_NONE;
     if (c < s->k_in) {
         *sign = s->ws->eqsign[c] * s->ws->rowscale[c];
@@ -220,11 +220,11 @@ static double qp_rhs(const qp_state_t *s, size_t c, double *sign, size_t *var)
         *sign = s->ws->rowscale[c];
         b = *sign * s->p->b_in[c - s->k_in];
     } else if (c < s->k_ub) {
-        *sign = 1.0;
+        *sign = OGK_R(1.0);
         *var = c - s->k_lb;
         b = s->p->lb[*var];
     } else {
-        *sign = -1.0;
+        *sign = -OGK_R(1.0);
         *var = c - s->k_ub;
         b = -s->p->ub[*var];
     }
@@ -232,18 +232,18 @@ static double qp_rhs(const qp_state_t *s, size_t c, double *sign, size_t *var)
 }
 
 /* n_c^T v for the constraint normal n_c. */
-static double qp_dot(const qp_state_t *s, size_t c, const double *v)
+static ogk_real_t qp_dot(const qp_state_t *s, size_t c, const ogk_real_t *v)
 {
-    double sign;
+    ogk_real_t sign;
     size_t var;
-    double dot;
+    ogk_real_t dot;
     (void)qp_rhs(s, c, &sign, &var); /* only the sign and the variable are needed */
     if (var != QP_NONE) {
         dot = sign * v[var];
     } else {
-        const double *row = qp_row(s, c);
+        const ogk_real_t *row = qp_row(s, c);
         size_t i;
-        dot = 0.0;
+        dot = OGK_R(0.0);
         for (i = 0u; i < s->n; ++i) {
             dot += row[i] * v[i];
         }
@@ -253,13 +253,13 @@ static double qp_dot(const qp_state_t *s, size_t c, const double *v)
 }
 
 /* Slack n_c^T x - b_c at ws->x and its violation tolerance in *tol. */
-static double qp_slack(const qp_state_t *s, size_t c, double xnorm, double *tol) /* NOLINT(bugprone-easily-swappable-parameters): a constraint number and a norm, every call checked by the KKT and brute-force unit tests */
+static ogk_real_t qp_slack(const qp_state_t *s, size_t c, ogk_real_t xnorm, ogk_real_t *tol) /* NOLINT(bugprone-easily-swappable-parameters): a constraint number and a norm, every call checked by the KKT and brute-force unit tests */
 {
-    double sign;
+    ogk_real_t sign;
     size_t var;
-    const double b = qp_rhs(s, c, &sign, &var);
+    const ogk_real_t b = qp_rhs(s, c, &sign, &var);
     (void)var; /* unit normals: |n_c|_2 = 1 (1 / |a| for a zero row a: |n_c| = 0) */
-    *tol = OGK_QP_FEAS_TOL * (fabs(b) + xnorm);
+    *tol = OGK_QP_FEAS_TOL * (OGK_FABS(b) + xnorm);
     return qp_dot(s, c, s->ws->x) - b;
 }
 
@@ -273,7 +273,7 @@ static qp_dir_t qp_direction(const qp_state_t *s, size_t c)
     const size_t q = s->q;
     /* J^T is L^-1, lower triangular, until the first change of the active set */
     const bool lower = s->iter == 0u;
-    double sign;
+    ogk_real_t sign;
     size_t var;
     qp_dir_t dir;
     size_t i;
@@ -292,18 +292,18 @@ static qp_dir_t qp_direction(const qp_state_t *s, size_t c)
     /* rdir = R^-1 d(0..q-1), back substitution */
     for (i = q; i > 0u; --i) {
         const size_t ii = i - 1u;
-        double t = ws->d[ii];
+        ogk_real_t t = ws->d[ii];
         for (k = i; k < q; ++k) {
             t -= ws->r[(ii * n) + k] * ws->rdir[k];
         }
         ws->rdir[ii] = t / ws->r[(ii * n) + ii];
     }
     {
-        const double d2 = (q < n) ? qp_norm2(&ws->d[q], n - q) : 0.0;
+        const ogk_real_t d2 = (q < n) ? qp_norm2(&ws->d[q], n - q) : OGK_R(0.0);
         dir.ztn = d2 * d2;
         dir.d2 = d2;
         dir.dep = (q >= n) || (d2 <= (OGK_QP_DEP_TOL * qp_norm2(ws->d, n))) ||
-                  (dir.ztn <= 0.0);
+                  (dir.ztn <= OGK_R(0.0));
     }
     return dir;
 }
@@ -311,14 +311,14 @@ static qp_dir_t qp_direction(const qp_state_t *s, size_t c)
 /* Rotates columns a and b of J (rows of ws->j, which holds J^T):
  * (Ja, Jb) <- (c Ja + s Jb, -s Ja + c Jb). */
 static void qp_rotate_j(ogk_qp_workspace_t *ws, size_t n, size_t a, size_t b, /* NOLINT(bugprone-easily-swappable-parameters): order, rows, cosine, sine of a Givens rotation; a swapped pair fails the unit tests (docs/design/qp.md, mutants) */
-                        double cs, double sn)
+                        ogk_real_t cs, ogk_real_t sn)
 {
-    double *ja = &ws->j[a * n];
-    double *jb = &ws->j[b * n];
+    ogk_real_t *ja = &ws->j[a * n];
+    ogk_real_t *jb = &ws->j[b * n];
     size_t i;
     for (i = 0u; i < n; ++i) {
-        const double va = ja[i];
-        const double vb = jb[i];
+        const ogk_real_t va = ja[i];
+        const ogk_real_t vb = jb[i];
         ja[i] = (cs * va) + (sn * vb);
         jb[i] = (cs * vb) - (sn * va);
     }
@@ -334,20 +334,20 @@ static void qp_rotate_j(ogk_qp_workspace_t *ws, size_t n, size_t a, size_t b, /*
  * -sigma |d2| e_1: column q of J is negated when sigma > 0 (R's diagonal > 0).
  * About 2 n (n - q) operations instead of the 6 n (n - q) of n - q - 1 Givens
  * rotations (docs/design/qp.md, "Adding a constraint"). */
-static void qp_add(qp_state_t *s, size_t c, double u_c, double d2norm) /* NOLINT(bugprone-easily-swappable-parameters): a constraint number, its multiplier and |d2| */
+static void qp_add(qp_state_t *s, size_t c, ogk_real_t u_c, ogk_real_t d2norm) /* NOLINT(bugprone-easily-swappable-parameters): a constraint number, its multiplier and |d2| */
 {
     ogk_qp_workspace_t *ws = s->ws;
     const size_t n = s->n;
     const size_t q = s->q;
-    double *w = ws->rdir; /* R^-1 d1 is not needed after the step: reused for J2 v */
+    ogk_real_t *w = ws->rdir; /* R^-1 d1 is not needed after the step: reused for J2 v */
     size_t i;
-    if (((q + 1u) < n) && (d2norm > 0.0)) {
+    if (((q + 1u) < n) && (d2norm > OGK_R(0.0))) {
         size_t k;
-        const double *jq = &ws->j[q * n];
-        const double sigma = (ws->d[q] < 0.0) ? -1.0 : 1.0;
-        const double alpha = sigma * d2norm;
-        const double v0 = ws->d[q] + alpha;
-        const double inv_beta = 1.0 / (alpha * v0);
+        const ogk_real_t *jq = &ws->j[q * n];
+        const ogk_real_t sigma = (ws->d[q] < OGK_R(0.0)) ? -OGK_R(1.0) : OGK_R(1.0);
+        const ogk_real_t alpha = sigma * d2norm;
+        const ogk_real_t v0 = ws->d[q] + alpha;
+        const ogk_real_t inv_beta = OGK_R(1.0) / (alpha * v0);
         for (i = 0u; i < n; ++i) {
             w[i] = (ws->z[i] + (alpha * jq[i])) * inv_beta;
         }
@@ -355,17 +355,17 @@ static void qp_add(qp_state_t *s, size_t c, double u_c, double d2norm) /* NOLINT
         ws->d[q] = v0;
         ogk_i_qp_rank1_rows(ws->j, n, q, ws->d, w);
         for (k = q + 1u; k < n; ++k) {
-            ws->d[k] = 0.0;
+            ws->d[k] = OGK_R(0.0);
         }
         /* P d2 = -alpha e_1: negate column q when sigma > 0 so that R(q, q) = |d2| > 0 */
-        if (sigma > 0.0) {
-            double *jq_new = &ws->j[q * n];
+        if (sigma > OGK_R(0.0)) {
+            ogk_real_t *jq_new = &ws->j[q * n];
             for (i = 0u; i < n; ++i) {
                 jq_new[i] = -jq_new[i];
             }
         }
         ws->d[q] = d2norm;
-    } else if (ws->d[q] < 0.0) {
+    } else if (ws->d[q] < OGK_R(0.0)) {
         /* q = n - 1 (nothing to reflect): only the sign of column q */
         for (i = 0u; i < n; ++i) {
             ws->j[(q * n) + i] = -ws->j[(q * n) + i];
@@ -401,29 +401,29 @@ static void qp_drop(qp_state_t *s, size_t pos)
     }
     /* R is now upper Hessenberg in columns pos..q-2: zero R(k+1, k). */
     for (k = pos; (k + 1u) < q; ++k) {
-        const double a = ws->r[(k * n) + k];
-        const double b = ws->r[((k + 1u) * n) + k];
-        const double h = hypot(a, b);
-        if (h > 0.0) {
+        const ogk_real_t a = ws->r[(k * n) + k];
+        const ogk_real_t b = ws->r[((k + 1u) * n) + k];
+        const ogk_real_t h = OGK_HYPOT(a, b);
+        if (h > OGK_R(0.0)) {
             /* also when b = 0: a < 0 then gives cs = -1, a positive diagonal */
-            const double cs = a / h;
-            const double sn = b / h;
+            const ogk_real_t cs = a / h;
+            const ogk_real_t sn = b / h;
             for (i = k; (i + 1u) < q; ++i) {
-                const double ra = ws->r[(k * n) + i];
-                const double rb = ws->r[((k + 1u) * n) + i];
+                const ogk_real_t ra = ws->r[(k * n) + i];
+                const ogk_real_t rb = ws->r[((k + 1u) * n) + i];
                 ws->r[(k * n) + i] = (cs * ra) + (sn * rb);
                 ws->r[((k + 1u) * n) + i] = (cs * rb) - (sn * ra);
             }
             qp_rotate_j(ws, n, k, k + 1u, cs, sn);
         }
-        ws->r[((k + 1u) * n) + k] = 0.0;
+        ws->r[((k + 1u) * n) + k] = OGK_R(0.0);
     }
     s->q = q - 1u;
     s->iter += 1u;
 }
 
 /* x += t z, u(0..q-1) -= t rdir; inequality multipliers kept >= 0 (rounding). */
-static void qp_take_step(const qp_state_t *s, double t)
+static void qp_take_step(const qp_state_t *s, ogk_real_t t)
 {
     ogk_qp_workspace_t *ws = s->ws;
     size_t k;
@@ -432,8 +432,8 @@ static void qp_take_step(const qp_state_t *s, double t)
     }
     for (k = 0u; k < s->q; ++k) {
         ws->u[k] -= t * ws->rdir[k];
-        if ((ws->active[k] >= s->k_in) && (ws->u[k] < 0.0)) {
-            ws->u[k] = 0.0;
+        if ((ws->active[k] >= s->k_in) && (ws->u[k] < OGK_R(0.0))) {
+            ws->u[k] = OGK_R(0.0);
         }
     }
 }
@@ -449,14 +449,14 @@ static ogk_status qp_equalities(qp_state_t *s)
     ogk_status st = OGK_OK;
     size_t c;
     for (c = 0u; (c < s->k_in) && (st == OGK_OK); ++c) {
-        const double xnorm = qp_norm2(ws->x, s->n);
-        double tol;
-        double slack;
+        const ogk_real_t xnorm = qp_norm2(ws->x, s->n);
+        ogk_real_t tol;
+        ogk_real_t slack;
         qp_dir_t dir;
-        ws->eqsign[c] = 1.0;
+        ws->eqsign[c] = OGK_R(1.0);
         slack = qp_slack(s, c, xnorm, &tol);
-        if (slack > 0.0) {
-            ws->eqsign[c] = -1.0;
+        if (slack > OGK_R(0.0)) {
+            ws->eqsign[c] = -OGK_R(1.0);
             slack = -slack;
         }
         dir = qp_direction(s, c);
@@ -465,7 +465,7 @@ static ogk_status qp_equalities(qp_state_t *s)
                 st = OGK_E_INFEASIBLE;
             }
         } else {
-            const double t = -slack / dir.ztn;
+            const ogk_real_t t = -slack / dir.ztn;
             qp_take_step(s, t);
             qp_add(s, c, t, dir.d2);
         }
@@ -479,40 +479,40 @@ static size_t qp_select(const qp_state_t *s)
     ogk_qp_workspace_t *ws = s->ws;
     const size_t m_in = s->k_lb - s->k_in;
     const size_t total = m_in + (2u * s->n);
-    const double xnorm = qp_norm2(ws->x, s->n);
+    const ogk_real_t xnorm = qp_norm2(ws->x, s->n);
     size_t best = QP_NONE;
-    double worst = 0.0;
+    ogk_real_t worst = OGK_R(0.0);
     size_t k;
     /* the rows: A_in x four rows per pass, then qp_slack's arithmetic on the
      * unit normals (factor 1 / |a|_2) */
     if (m_in > 0u) {
-        ogk_i_qp_mat_vec(s->p->A_in, m_in, s->n, false, ws->x, 1.0, ws->slack);
+        ogk_i_qp_mat_vec(s->p->A_in, m_in, s->n, false, ws->x, OGK_R(1.0), ws->slack);
     }
     for (k = 0u; k < m_in; ++k) {
-        const double scale = ws->rowscale[s->k_in + k];
-        const double b = scale * s->p->b_in[k];
-        const double slack = (scale * ws->slack[k]) - b;
-        ws->slack[k] = (slack >= -(OGK_QP_FEAS_TOL * (fabs(b) + xnorm))) ? 0.0 : slack;
+        const ogk_real_t scale = ws->rowscale[s->k_in + k];
+        const ogk_real_t b = scale * s->p->b_in[k];
+        const ogk_real_t slack = (scale * ws->slack[k]) - b;
+        ws->slack[k] = (slack >= -(OGK_QP_FEAS_TOL * (OGK_FABS(b) + xnorm))) ? OGK_R(0.0) : slack;
     }
     /* bounds in one pass each, the arithmetic of qp_slack without its
      * dispatch: x_i - lb_i, and (-x_i) - (-ub_i) = ub_i - x_i exactly */
     for (k = 0u; k < s->n; ++k) {
-        double lo = 0.0;
-        double hi = 0.0;
+        ogk_real_t lo = OGK_R(0.0);
+        ogk_real_t hi = OGK_R(0.0);
         if (qp_has_lb(s->p, k)) {
-            const double slack = ws->x[k] - s->p->lb[k];
-            lo = (slack >= -(OGK_QP_FEAS_TOL * (fabs(s->p->lb[k]) + xnorm))) ? 0.0 : slack;
+            const ogk_real_t slack = ws->x[k] - s->p->lb[k];
+            lo = (slack >= -(OGK_QP_FEAS_TOL * (OGK_FABS(s->p->lb[k]) + xnorm))) ? OGK_R(0.0) : slack;
         }
         if (qp_has_ub(s->p, k)) {
-            const double slack = s->p->ub[k] - ws->x[k];
-            hi = (slack >= -(OGK_QP_FEAS_TOL * (fabs(s->p->ub[k]) + xnorm))) ? 0.0 : slack;
+            const ogk_real_t slack = s->p->ub[k] - ws->x[k];
+            hi = (slack >= -(OGK_QP_FEAS_TOL * (OGK_FABS(s->p->ub[k]) + xnorm))) ? OGK_R(0.0) : slack;
         }
         ws->slack[m_in + k] = lo;
         ws->slack[m_in + s->n + k] = hi;
     }
     for (k = 0u; k < s->q; ++k) {
         if (ws->active[k] >= s->k_in) {
-            ws->slack[ws->active[k] - s->k_in] = 0.0;
+            ws->slack[ws->active[k] - s->k_in] = OGK_R(0.0);
         }
     }
     /* the most negative slack, the first on ties (worst starts at 0: only
@@ -529,20 +529,20 @@ static size_t qp_select(const qp_state_t *s)
  * multiplier is *u_c: a full step adds c (*added = true); a partial step, or a
  * dual step when n_c depends on the active set, drops the active inequality
  * whose multiplier reaches zero first. OGK_E_INFEASIBLE when neither exists. */
-static ogk_status qp_iterate(qp_state_t *s, size_t c, double *u_c, bool *added)
+static ogk_status qp_iterate(qp_state_t *s, size_t c, ogk_real_t *u_c, bool *added)
 {
     ogk_qp_workspace_t *ws = s->ws;
     ogk_status st = OGK_OK;
     const qp_dir_t dir = qp_direction(s, c);
-    double tol;
-    const double slack = qp_slack(s, c, qp_norm2(ws->x, s->n), &tol);
-    double t1 = 0.0;
+    ogk_real_t tol;
+    const ogk_real_t slack = qp_slack(s, c, qp_norm2(ws->x, s->n), &tol);
+    ogk_real_t t1 = OGK_R(0.0);
     size_t drop = QP_NONE;
     size_t k;
     *added = false;
     for (k = 0u; k < s->q; ++k) {
-        if ((ws->active[k] >= s->k_in) && (ws->rdir[k] > 0.0)) {
-            const double ratio = ws->u[k] / ws->rdir[k];
+        if ((ws->active[k] >= s->k_in) && (ws->rdir[k] > OGK_R(0.0))) {
+            const ogk_real_t ratio = ws->u[k] / ws->rdir[k];
             if ((drop == QP_NONE) || (ratio < t1)) {
                 t1 = ratio;
                 drop = k;
@@ -552,18 +552,18 @@ static ogk_status qp_iterate(qp_state_t *s, size_t c, double *u_c, bool *added)
     if (dir.dep && (drop == QP_NONE)) {
         st = OGK_E_INFEASIBLE;
     } else if (!dir.dep && ((drop == QP_NONE) || ((-slack / dir.ztn) <= t1))) {
-        const double t2 = -slack / dir.ztn;
+        const ogk_real_t t2 = -slack / dir.ztn;
         qp_take_step(s, t2);
         *u_c += t2;
         qp_add(s, c, *u_c, dir.d2);
         *added = true;
     } else {
         if (dir.dep) {
-            (void)memset(ws->z, 0, s->n * sizeof(double)); /* result unused: dual step only */
+            (void)memset(ws->z, 0, s->n * sizeof(ogk_real_t)); /* result unused: dual step only */
         }
         qp_take_step(s, t1);
         *u_c += t1;
-        ws->u[drop] = 0.0;
+        ws->u[drop] = OGK_R(0.0);
         qp_drop(s, drop);
     }
     return st;
@@ -575,12 +575,12 @@ static ogk_status qp_inequalities(qp_state_t *s)
     ogk_status st = OGK_OK;
     bool running = true;
     size_t c = QP_NONE;
-    double u_c = 0.0;
+    ogk_real_t u_c = OGK_R(0.0);
     size_t pass;
     for (pass = 0u; (pass <= OGK_QP_MAX_ITER) && running; ++pass) {
         if (c == QP_NONE) {
             c = qp_select(s);
-            u_c = 0.0;
+            u_c = OGK_R(0.0);
         }
         if (c == QP_NONE) {
             running = false;
@@ -610,20 +610,20 @@ static ogk_status qp_inequalities(qp_state_t *s)
 static void qp_solution(const qp_state_t *s, ogk_qp_solution_t *sol)
 {
     ogk_qp_workspace_t *ws = s->ws;
-    double *hx = ws->d; /* scratch: d is not needed after the last step */
-    const double *H = s->p->H;
+    ogk_real_t *hx = ws->d; /* scratch: d is not needed after the last step */
+    const ogk_real_t *H = s->p->H;
     const size_t n = s->n;
-    double quad = 0.0;
-    double lin = 0.0;
+    ogk_real_t quad = OGK_R(0.0);
+    ogk_real_t lin = OGK_R(0.0);
     size_t i;
     size_t k;
-    ogk_i_qp_mat_vec(H, n, n, false, ws->x, 1.0, hx); /* H x, four rows per pass */
+    ogk_i_qp_mat_vec(H, n, n, false, ws->x, OGK_R(1.0), hx); /* H x, four rows per pass */
     for (i = 0u; i < n; ++i) {
         quad += ws->x[i] * hx[i];
         lin += s->p->g[i] * ws->x[i];
         sol->x[i] = ws->x[i];
     }
-    sol->objective = (0.5 * quad) + lin;
+    sol->objective = (OGK_R(0.5) * quad) + lin;
     for (k = 0u; k < s->q; ++k) {
         const size_t c = ws->active[k];
         if (c < s->k_in) {
@@ -643,10 +643,10 @@ static void qp_row_norms(const qp_state_t *s)
 {
     size_t c;
     for (c = 0u; c < s->k_lb; ++c) {
-        const double norm = qp_norm2(qp_row(s, c), s->n);
-        double scale = 1.0;
-        if (norm > 0.0) {
-            scale = 1.0 / norm;
+        const ogk_real_t norm = qp_norm2(qp_row(s, c), s->n);
+        ogk_real_t scale = OGK_R(1.0);
+        if (norm > OGK_R(0.0)) {
+            scale = OGK_R(1.0) / norm;
         }
         s->ws->rowscale[c] = scale;
     }
@@ -675,7 +675,7 @@ ogk_status ogk_qp_solve(ogk_qp_workspace_t *ws, const ogk_qp_problem_t *p,
     if (st == OGK_OK) {
         ogk_i_qp_inverse_lower(ws->r, p->n, ws->j); /* J^T = L^-1 */
         /* unconstrained start x = -H^-1 g = L^-T (-L^-1 g), by the rows of L^-1 */
-        ogk_i_qp_mat_vec(ws->j, p->n, p->n, true, p->g, -1.0, ws->d);
+        ogk_i_qp_mat_vec(ws->j, p->n, p->n, true, p->g, -OGK_R(1.0), ws->d);
         ogk_i_qp_rows_combine(ws->j, p->n, true, 0u, ws->d, ws->x);
         qp_row_norms(&s);
         st = qp_equalities(&s);

@@ -23,30 +23,30 @@ static size_t qp_row_end(bool lower, size_t n, size_t end)
     return len;
 }
 
-void ogk_i_qp_mat_vec(const double *J, size_t m, size_t n, bool lower, const double *a, double sign, double *d) /* NOLINT(bugprone-easily-swappable-parameters): internal, every call in qp.c */
+void ogk_i_qp_mat_vec(const ogk_real_t *J, size_t m, size_t n, bool lower, const ogk_real_t *a, ogk_real_t sign, ogk_real_t *d) /* NOLINT(bugprone-easily-swappable-parameters): internal, every call in qp.c */
 {
     size_t k = 0u;
     size_t i;
     /* four rows per pass over a; each row's sum in two halves (even and odd
      * columns), added at the end: a SIMD pair on SSE2 */
     for (; (k + 4u) <= m; k += 4u) {
-        const double *j0 = &J[k * n];
-        const double *j1 = &j0[n];
-        const double *j2 = &j1[n];
-        const double *j3 = &j2[n];
-        double s0a = 0.0;
-        double s0b = 0.0;
-        double s1a = 0.0;
-        double s1b = 0.0;
-        double s2a = 0.0;
-        double s2b = 0.0;
-        double s3a = 0.0;
-        double s3b = 0.0;
+        const ogk_real_t *j0 = &J[k * n];
+        const ogk_real_t *j1 = &j0[n];
+        const ogk_real_t *j2 = &j1[n];
+        const ogk_real_t *j3 = &j2[n];
+        ogk_real_t s0a = OGK_R(0.0);
+        ogk_real_t s0b = OGK_R(0.0);
+        ogk_real_t s1a = OGK_R(0.0);
+        ogk_real_t s1b = OGK_R(0.0);
+        ogk_real_t s2a = OGK_R(0.0);
+        ogk_real_t s2b = OGK_R(0.0);
+        ogk_real_t s3a = OGK_R(0.0);
+        ogk_real_t s3b = OGK_R(0.0);
         /* a lower triangular J: rows k..k+3 end at column k+3 */
         const size_t len = qp_row_end(lower, n, k + 4u);
         for (i = 0u; (i + 2u) <= len; i += 2u) {
-            const double aa = a[i];
-            const double ab = a[i + 1u];
+            const ogk_real_t aa = a[i];
+            const ogk_real_t ab = a[i + 1u];
             s0a += j0[i] * aa;
             s0b += j0[i + 1u] * ab;
             s1a += j1[i] * aa;
@@ -68,8 +68,8 @@ void ogk_i_qp_mat_vec(const double *J, size_t m, size_t n, bool lower, const dou
         d[k + 3u] = sign * (s3a + s3b);
     }
     for (; k < m; ++k) {
-        const double *jk = &J[k * n];
-        double s = 0.0;
+        const ogk_real_t *jk = &J[k * n];
+        ogk_real_t s = OGK_R(0.0);
         const size_t len = qp_row_end(lower, n, k + 1u);
         for (i = 0u; i < len; ++i) {
             s += jk[i] * a[i];
@@ -78,29 +78,29 @@ void ogk_i_qp_mat_vec(const double *J, size_t m, size_t n, bool lower, const dou
     }
 }
 
-void ogk_i_qp_rows_combine(const double *J, size_t n, bool lower, size_t k0, const double *d, double *z) /* NOLINT(bugprone-easily-swappable-parameters): internal, every call in qp.c */
+void ogk_i_qp_rows_combine(const ogk_real_t *J, size_t n, bool lower, size_t k0, const ogk_real_t *d, ogk_real_t *z) /* NOLINT(bugprone-easily-swappable-parameters): internal, every call in qp.c */
 {
     size_t k = k0;
     size_t i;
     for (i = 0u; i < n; ++i) {
-        z[i] = 0.0;
+        z[i] = OGK_R(0.0);
     }
     for (; (k + 4u) <= n; k += 4u) {
-        const double *j0 = &J[k * n];
-        const double *j1 = &j0[n];
-        const double *j2 = &j1[n];
-        const double *j3 = &j2[n];
-        const double d0 = d[k];
-        const double d1 = d[k + 1u];
-        const double d2 = d[k + 2u];
-        const double d3 = d[k + 3u];
+        const ogk_real_t *j0 = &J[k * n];
+        const ogk_real_t *j1 = &j0[n];
+        const ogk_real_t *j2 = &j1[n];
+        const ogk_real_t *j3 = &j2[n];
+        const ogk_real_t d0 = d[k];
+        const ogk_real_t d1 = d[k + 1u];
+        const ogk_real_t d2 = d[k + 2u];
+        const ogk_real_t d3 = d[k + 3u];
         /* a lower triangular J: rows k..k+3 end at column k+3 */
         const size_t len = qp_row_end(lower, n, k + 4u);
         /* two columns per step: the pair is one SIMD operation where the
          * target has one (SSE2), two scalar ones elsewhere */
         for (i = 0u; (i + 2u) <= len; i += 2u) {
-            const double za = (((z[i] + (j0[i] * d0)) + (j1[i] * d1)) + (j2[i] * d2)) + (j3[i] * d3);
-            const double zb = (((z[i + 1u] + (j0[i + 1u] * d0)) + (j1[i + 1u] * d1)) + (j2[i + 1u] * d2)) +
+            const ogk_real_t za = (((z[i] + (j0[i] * d0)) + (j1[i] * d1)) + (j2[i] * d2)) + (j3[i] * d3);
+            const ogk_real_t zb = (((z[i + 1u] + (j0[i + 1u] * d0)) + (j1[i + 1u] * d1)) + (j2[i + 1u] * d2)) +
                               (j3[i + 1u] * d3);
             z[i] = za;
             z[i + 1u] = zb;
@@ -110,8 +110,8 @@ void ogk_i_qp_rows_combine(const double *J, size_t n, bool lower, size_t k0, con
         }
     }
     for (; k < n; ++k) {
-        const double *jk = &J[k * n];
-        const double dk = d[k];
+        const ogk_real_t *jk = &J[k * n];
+        const ogk_real_t dk = d[k];
         const size_t len = qp_row_end(lower, n, k + 1u);
         for (i = 0u; i < len; ++i) {
             z[i] += jk[i] * dk;
@@ -119,31 +119,31 @@ void ogk_i_qp_rows_combine(const double *J, size_t n, bool lower, size_t k0, con
     }
 }
 
-void ogk_i_qp_rank1_rows(double *J, size_t n, size_t k0, const double *v, const double *w) /* NOLINT(bugprone-easily-swappable-parameters): internal, its one call in qp_add; a swap fails the unit tests */
+void ogk_i_qp_rank1_rows(ogk_real_t *J, size_t n, size_t k0, const ogk_real_t *v, const ogk_real_t *w) /* NOLINT(bugprone-easily-swappable-parameters): internal, its one call in qp_add; a swap fails the unit tests */
 {
     size_t k = k0;
     size_t i;
     for (; (k + 4u) <= n; k += 4u) {
-        double *j0 = &J[k * n];
-        double *j1 = &j0[n];
-        double *j2 = &j1[n];
-        double *j3 = &j2[n];
-        const double v0 = v[k];
-        const double v1 = v[k + 1u];
-        const double v2 = v[k + 2u];
-        const double v3 = v[k + 3u];
+        ogk_real_t *j0 = &J[k * n];
+        ogk_real_t *j1 = &j0[n];
+        ogk_real_t *j2 = &j1[n];
+        ogk_real_t *j3 = &j2[n];
+        const ogk_real_t v0 = v[k];
+        const ogk_real_t v1 = v[k + 1u];
+        const ogk_real_t v2 = v[k + 2u];
+        const ogk_real_t v3 = v[k + 3u];
         /* four rows per pass over w, two columns per step (one SIMD pair on SSE2) */
         for (i = 0u; (i + 2u) <= n; i += 2u) {
-            const double wa = w[i];
-            const double wb = w[i + 1u];
-            const double a0 = j0[i] - (v0 * wa);
-            const double b0 = j0[i + 1u] - (v0 * wb);
-            const double a1 = j1[i] - (v1 * wa);
-            const double b1 = j1[i + 1u] - (v1 * wb);
-            const double a2 = j2[i] - (v2 * wa);
-            const double b2 = j2[i + 1u] - (v2 * wb);
-            const double a3 = j3[i] - (v3 * wa);
-            const double b3 = j3[i + 1u] - (v3 * wb);
+            const ogk_real_t wa = w[i];
+            const ogk_real_t wb = w[i + 1u];
+            const ogk_real_t a0 = j0[i] - (v0 * wa);
+            const ogk_real_t b0 = j0[i + 1u] - (v0 * wb);
+            const ogk_real_t a1 = j1[i] - (v1 * wa);
+            const ogk_real_t b1 = j1[i + 1u] - (v1 * wb);
+            const ogk_real_t a2 = j2[i] - (v2 * wa);
+            const ogk_real_t b2 = j2[i + 1u] - (v2 * wb);
+            const ogk_real_t a3 = j3[i] - (v3 * wa);
+            const ogk_real_t b3 = j3[i + 1u] - (v3 * wb);
             j0[i] = a0;
             j0[i + 1u] = b0;
             j1[i] = a1;
@@ -165,27 +165,27 @@ void ogk_i_qp_rank1_rows(double *J, size_t n, size_t k0, const double *v, const 
     }
 }
 
-ogk_status ogk_i_qp_cholesky(const double *H, size_t n, double *U)
+ogk_status ogk_i_qp_cholesky(const ogk_real_t *H, size_t n, ogk_real_t *U)
 {
-    static const ogk_i_chol_rule_t rule = {OGK_QP_PIVOT_TOL, 0.0, false, false};
+    static const ogk_i_chol_rule_t rule = {OGK_QP_PIVOT_TOL, OGK_R(0.0), false, false};
     ogk_status st;
-    double hmax = 0.0;
-    double asym = 0.0;
+    ogk_real_t hmax = OGK_R(0.0);
+    ogk_real_t asym = OGK_R(0.0);
     size_t i;
     size_t k;
     /* the upper triangle of (H + H^T)/2; the pairs H(i, k), H(k, i) also
      * give max |H| and the asymmetry */
     for (k = 0u; k < n; ++k) {
-        const double hkk = fabs(H[(k * n) + k]);
+        const ogk_real_t hkk = OGK_FABS(H[(k * n) + k]);
         hmax = (hkk > hmax) ? hkk : hmax;
         U[(k * n) + k] = H[(k * n) + k];
         for (i = k + 1u; i < n; ++i) {
-            const double up = H[(k * n) + i];
-            const double lo = H[(i * n) + k];
-            const double big = (fabs(lo) > fabs(up)) ? fabs(lo) : fabs(up);
+            const ogk_real_t up = H[(k * n) + i];
+            const ogk_real_t lo = H[(i * n) + k];
+            const ogk_real_t big = (OGK_FABS(lo) > OGK_FABS(up)) ? OGK_FABS(lo) : OGK_FABS(up);
             hmax = (big > hmax) ? big : hmax;
-            asym = (fabs(lo - up) > asym) ? fabs(lo - up) : asym;
-            U[(k * n) + i] = 0.5 * (lo + up);
+            asym = (OGK_FABS(lo - up) > asym) ? OGK_FABS(lo - up) : asym;
+            U[(k * n) + i] = OGK_R(0.5) * (lo + up);
         }
     }
     /* H = U^T U by the kernel's one Cholesky (chol.c): a pivot must exceed
@@ -197,33 +197,33 @@ ogk_status ogk_i_qp_cholesky(const double *H, size_t n, double *U)
     return st;
 }
 
-void ogk_i_qp_inverse_lower(const double *U, size_t n, double *Li)
+void ogk_i_qp_inverse_lower(const ogk_real_t *U, size_t n, ogk_real_t *Li)
 {
     size_t c;
     size_t i;
     for (i = 0u; i < (n * n); ++i) {
-        Li[i] = 0.0;
+        Li[i] = OGK_R(0.0);
     }
     for (i = 0u; i < n; ++i) {
-        double *row = &Li[i * n];
-        const double inv = 1.0 / U[(i * n) + i];
+        ogk_real_t *row = &Li[i * n];
+        const ogk_real_t inv = OGK_R(1.0) / U[(i * n) + i];
         size_t k = 0u;
         /* four rows k of Li per pass over row i; Li(k, c) = 0 for c > k, so
          * the block's columns 0..k+3 take the same values as one row at a
          * time. L(i, k) = U(k, i). */
         for (; (k + 4u) <= i; k += 4u) {
-            const double *r0 = &Li[k * n];
-            const double *r1 = &r0[n];
-            const double *r2 = &r1[n];
-            const double *r3 = &r2[n];
-            const double l0 = U[(k * n) + i];
-            const double l1 = U[((k + 1u) * n) + i];
-            const double l2 = U[((k + 2u) * n) + i];
-            const double l3 = U[((k + 3u) * n) + i];
+            const ogk_real_t *r0 = &Li[k * n];
+            const ogk_real_t *r1 = &r0[n];
+            const ogk_real_t *r2 = &r1[n];
+            const ogk_real_t *r3 = &r2[n];
+            const ogk_real_t l0 = U[(k * n) + i];
+            const ogk_real_t l1 = U[((k + 1u) * n) + i];
+            const ogk_real_t l2 = U[((k + 2u) * n) + i];
+            const ogk_real_t l3 = U[((k + 3u) * n) + i];
             /* columns 0..k+3 (an even count), two per step (one SIMD pair on SSE2) */
             for (c = 0u; c <= (k + 3u); c += 2u) {
-                const double ra = (((row[c] - (l0 * r0[c])) - (l1 * r1[c])) - (l2 * r2[c])) - (l3 * r3[c]);
-                const double rb = (((row[c + 1u] - (l0 * r0[c + 1u])) - (l1 * r1[c + 1u])) - (l2 * r2[c + 1u])) -
+                const ogk_real_t ra = (((row[c] - (l0 * r0[c])) - (l1 * r1[c])) - (l2 * r2[c])) - (l3 * r3[c]);
+                const ogk_real_t rb = (((row[c + 1u] - (l0 * r0[c + 1u])) - (l1 * r1[c + 1u])) - (l2 * r2[c + 1u])) -
                                   (l3 * r3[c + 1u]);
                 row[c] = ra;
                 row[c + 1u] = rb;
@@ -232,7 +232,7 @@ void ogk_i_qp_inverse_lower(const double *U, size_t n, double *Li)
         for (; k < i; ++k) {
             ogk_i_row_axpy_sub(row, U[(k * n) + i], &Li[k * n], k + 1u);
         }
-        row[i] = 1.0;
+        row[i] = OGK_R(1.0);
         for (c = 0u; c <= i; ++c) {
             row[c] *= inv;
         }

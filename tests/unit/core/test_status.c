@@ -3,6 +3,7 @@
 
 #include <string.h>
 
+#include "ogk/real.h"
 #include "ogk/status.h"
 #include "ogk/version.h"
 
@@ -45,12 +46,26 @@ static void test_version(void **state)
     OGK_ASSERT_STATUS(ogk_version(NULL), OGK_E_NULL);
 }
 
+/* req: OGK-CORE-028 */
+/* The library's real type as compiled (what a binding checks before passing
+ * a real): 8 bytes in the default (double) build, 4 with OGK_REAL_SINGLE=1. */
+static void test_real_bytes(void **state)
+{
+    uint32_t bytes = 0u;
+    (void)state;
+    OGK_ASSERT_STATUS(ogk_real_bytes(&bytes), OGK_OK);
+    assert_int_equal(bytes, sizeof(ogk_real_t));
+    assert_int_equal(bytes, (OGK_REAL_SINGLE != 0) ? 4u : 8u);
+    OGK_ASSERT_STATUS(ogk_real_bytes(NULL), OGK_E_NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_each_code_named_and_distinct),
         cmocka_unit_test(test_unknown_code_and_null),
         cmocka_unit_test(test_version),
+        cmocka_unit_test(test_real_bytes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -308,6 +308,31 @@ static void test_byte_order_probe(void **state)
                       OGK_TEST_BIG_ENDIAN ? OGK_E_BYTE_ORDER : OGK_OK);
 }
 
+/* req: OGK-CORE-028 OGK-CORE-017 */
+/* The other precision's table (F32, IEEE-754 binary32, for the double kernel
+ * the unit tests build) is refused as an element type this build does not
+ * read, with the view left zeroed (unusable); the same view then opens the
+ * build's own F64 table. */
+static void test_other_precision_refused(void **state)
+{
+    static uint8_t f32_buf[OGK_TABLE_HEADER_SIZE + 4u * N_VALUES];
+    static const ogk_table_view_t zero_view;
+    ogk_table_spec_t s = spec();
+    ogk_table_view_t v;
+    double value = -1.0;
+    (void)state;
+    assert_int_equal(OGK_TABLE_REAL, OGK_TABLE_F64);
+    build(table_buf);
+    tw_to_f32(table_buf, f32_buf, N_VALUES);
+    memset(&v, 0xA5, sizeof v);
+    OGK_ASSERT_STATUS(ogk_table_open(f32_buf, sizeof f32_buf, &s, &v), OGK_E_TABLE_TYPE);
+    assert_true(memcmp(&v, &zero_view, sizeof v) == 0);
+    OGK_ASSERT_STATUS(ogk_table_get(&v, 0u, 0u, &value), OGK_E_NOT_INIT);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_table_get(&v, 1u, 2u, &value), OGK_OK);
+    OGK_ASSERT_NEAR(value, entry_value(1u, 2u), 0.0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -323,6 +348,7 @@ int main(void)
         cmocka_unit_test(test_largest_payload_size),
         cmocka_unit_test(test_null_and_unopened),
         cmocka_unit_test(test_byte_order_probe),
+        cmocka_unit_test(test_other_precision_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -680,6 +680,38 @@ static void test_stale_table_after_failed_reload(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
 }
 
+/* req: OGK-CORE-028 OGK-NOG-001 OGK-NOG-002 */
+/* An uplinked table made for the other precision (F32: a kernel built with
+ * OGK_REAL_SINGLE=1) is refused by this double kernel with OGK_E_TABLE_TYPE,
+ * by the loader (table left empty) and by the in-place view (view zeroed); the
+ * bound context answers stale, not broken, and flies again once the build's
+ * own F64 table is loaded and the context initialised. */
+static void test_other_precision_table_refused(void **state)
+{
+    static union {
+        double align;
+        uint8_t b[OGK_TABLE_HEADER_SIZE + 4u * N_VALUES];
+    } f32;
+    ogk_nog_table_view_t view;
+    ogk_nog_config_t cfg = config();
+    ogk_nog_nav_t nav = nav_at(0.0, 0.0);
+    ogk_nog_sample_t s;
+    (void)state;
+    tw_to_f32(buf, f32.b, N_VALUES);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, f32.b, sizeof f32.b), OGK_E_TABLE_TYPE);
+    assert_int_equal(table.n_grid, 0u);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_TABLE_STALE);
+    memset(&view, 0, sizeof view);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, f32.b, sizeof f32.b), OGK_E_TABLE_TYPE);
+    assert_true(view.n_grid == 0u && view.tau == NULL && view.entry == NULL);
+    assert_true(view.init_marker == 0u && view.generation == 1u);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
+    assert_int_equal(table.n_grid, GRID);
+    OGK_ASSERT_STATUS(ogk_nog_init(&nog, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
+    OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 1e-12);
+}
+
 /* req: OGK-NOG-003 */
 static void test_stale_view_after_failed_reload(void **state)
 {
@@ -995,6 +1027,7 @@ int main(void)
         cmocka_unit_test_setup(test_reset, setup),
         cmocka_unit_test_setup(test_stale_table_after_failed_reload, setup),
         cmocka_unit_test_setup(test_stale_view_after_failed_reload, setup),
+        cmocka_unit_test_setup(test_other_precision_table_refused, setup),
         cmocka_unit_test_setup(test_envelope_rejects_absurd_inputs, setup),
         cmocka_unit_test_setup(test_one_bad_sample_does_not_latch, setup),
         cmocka_unit_test_setup(test_huge_gains_give_safe_command, setup),

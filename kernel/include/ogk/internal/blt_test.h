@@ -12,6 +12,7 @@
 #include <stddef.h>
 #include "ogk/blt.h"
 #include "ogk/status.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -20,7 +21,7 @@ extern "C" {
 /* J = de/du at `tr` (n_errors x n_unknowns, row-major into jac[0 .. n_errors * n_unknowns - 1])
  * with the configured Jacobian; the unknowns' order: free start components, then each segment's
  * free parameters (A, B, T), then each free node's six components. */
-ogk_status ogk_blt_jacobian(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, double *jac,
+ogk_status ogk_blt_jacobian(ogk_blt_t *ctx, const ogk_blt_transfer_t *tr, ogk_real_t *jac,
                             size_t jac_len);
 
 #ifdef __cplusplus

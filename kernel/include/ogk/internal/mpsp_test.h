@@ -13,6 +13,7 @@
 
 #include "ogk/mpsp.h"
 #include "ogk/status.h"
+#include "ogk/real.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -22,20 +23,20 @@ extern "C" {
  * thrust T_max * thrust_scale, and its Jacobians (Appendix A with U at the stage
  * times): x_next (8), dfdx = dX_next/dX (8 x 8) and dfdw = dX_next/dW
  * (8 x n_weights). Outputs other than x_next may be NULL. */
-ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const double *weights,
-                                  double thrust_scale, double t, const double *x,
-                                  double dt, int mode, double *x_next,
-                                  double *dfdx, double *dfdw);
+ogk_status ogk_mpsp_step_jacobian(const ogk_mpsp_t *ctx, const ogk_real_t *weights,
+                                  ogk_real_t thrust_scale, ogk_real_t t, const ogk_real_t *x,
+                                  ogk_real_t dt, int mode, ogk_real_t *x_next,
+                                  ogk_real_t *dfdx, ogk_real_t *dfdw);
 
 /* Switching compensation at a switch (t_s, x_s) left in mode_before
  * (eqs. 24-25, Appendix B): jx = dX+/dX- (8 x 8), jw = dX+/dW (8 x n_weights,
  * through dU = P(t_s) dW), dts_dx = dt_s/dX- (8) and dts_dw = dt_s/dW
  * (n_weights) from eq. (B.2). Any output may be NULL. OGK_E_SINGULAR when
  * dS/dt = 0 at t_s. */
-ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const double *weights,
-                                double thrust_scale, double t_s, const double *x_s,
-                                int mode_before, double *jx, double *jw,
-                                double *dts_dx, double *dts_dw);
+ogk_status ogk_mpsp_switch_jump(const ogk_mpsp_t *ctx, const ogk_real_t *weights,
+                                ogk_real_t thrust_scale, ogk_real_t t_s, const ogk_real_t *x_s,
+                                int mode_before, ogk_real_t *jx, ogk_real_t *jw,
+                                ogk_real_t *dts_dx, ogk_real_t *dts_dw);
 
 #ifdef __cplusplus
 }
