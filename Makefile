@@ -113,7 +113,11 @@ test-unit-host: $(UNIT_HOST)
 	  $$t 2>&1 || fail=1; done; exit $$fail
 
 # ---------------------------------------------------------------- Cortex-M7 (bare metal, QEMU)
+# The ARMv7-M route (runtime, test runner, rules), then each target's parameters and goals.
+include port/armv7m/armv7m.mk
 include port/cortex-m7/cortex-m7.mk
+# the QEMU instruction counter (after the ARMv7-M targets, whose runtimes its known-answer programs link)
+include port/qemu-plugin/qemu-plugin.mk
 # before test-python, whose prerequisites name its LINK_ECHO_ELF (prerequisites expand when read)
 include port/cortex-m7/link/link.mk
 
@@ -167,7 +171,7 @@ test-imports: $(VENV)/.installed
 # (ogk.sil.pil_build), the Makefile targets the tests make (pil_checks.locked_make). --durations: the
 # 25 slowest tests at the end of every run (issue 34: make test within 20 minutes).
 PYTEST_WORKERS ?= 2
-test-python: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o
+test-python: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_BOARD_OBJ)
 	$(VPY) -m pytest -q -m "not slow" -n $(PYTEST_WORKERS) --dist loadfile --durations=25 tests/python
 
 # Minutes-long checks kept out of `make test`: the Apophis nominal regenerated from scratch.
@@ -286,8 +290,7 @@ test-beside-python:
 test-static-gates:
 	$(MAKE) gates
 	$(MAKE) eva
-test-python-prereqs: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_B)/rt/startup.o \
-  $(ARM_B)/rt/ogk_port_cm7.o
+test-python-prereqs: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_BOARD_OBJ)
 
 # Long campaigns of every family's shipped scenarios (soak.toml: >= 1,000 runs each on fixed seeds no test
 # uses) through the one engine, summarised per family; exit 1 when a campaign loses a flight its law's

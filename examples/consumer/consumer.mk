@@ -3,9 +3,9 @@
 #   the package built and installed by CMake alone, for the host and for the Cortex-M7
 #   (build/cm-host -> build/ogk-prefix-host, build/cm-m7 -> build/ogk-prefix-m7), then
 #   examples/consumer configured with find_package(ogk 0.1) against each prefix, built and run:
-#   on the host directly, on the Cortex-M7 under QEMU (mps2-an500, the board files of port/cortex-m7).
+#   on the host directly, on the Cortex-M7 under QEMU (mps2-an500, the board files of port/armv7m).
 # Fails on any configure, build, install or link error and on any law whose flight loop fails.
-# Included by the top-level Makefile (uses its B, CMAKE_BUILD, ARM_PORT).
+# Included by the top-level Makefile (uses its B, CMAKE_BUILD, ARMV7M_DIR, armv7m_env).
 CONSUMER_DIRS := $(B)/cm-host $(B)/cm-m7 $(B)/ogk-prefix-host $(B)/ogk-prefix-m7 $(B)/consumer-host $(B)/consumer-m7
 PREFIX_M7 := $(abspath $(B)/ogk-prefix-m7)
 
@@ -25,6 +25,6 @@ test-consumer: | apt
 	@# the package's own toolchain file, as a flight project would take it
 	cmake -S examples/consumer -B $(B)/consumer-m7 -DCMAKE_PREFIX_PATH=$(PREFIX_M7) \
 	  -DCMAKE_TOOLCHAIN_FILE=$(PREFIX_M7)/lib/cmake/ogk/toolchains/cortex-m7.cmake \
-	  -DOGK_CONSUMER_BOARD_DIR=$(abspath $(ARM_PORT)) --log-level=WARNING
+	  -DOGK_CONSUMER_BOARD_DIR=$(abspath $(ARMV7M_DIR)) --log-level=WARNING
 	$(CMAKE_BUILD) $(B)/consumer-m7
-	$(ARM_PORT)/run_qemu.sh $(B)/consumer-m7/ogk_consumer.elf 300
+	$(call armv7m_env,ARM) $(ARMV7M_DIR)/run_qemu.sh $(B)/consumer-m7/ogk_consumer.elf 300

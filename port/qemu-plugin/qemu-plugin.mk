@@ -1,5 +1,5 @@
 # port/qemu-plugin/qemu-plugin.mk -- QEMU TCG plugin counting executed guest
-# instructions (included by port/cortex-m7/cortex-m7.mk). No glib needed.
+# instructions (included by the top-level Makefile after the ARMv7-M targets). No glib needed.
 #   make qemu-plugin        build/qemu-plugin/libinsn_count.so
 #   make test-qemu-plugin   known-answer + repeatability check
 #   port/qemu-plugin/count_insns.sh ELF FUNCTION...   per-function counts

@@ -21,7 +21,7 @@
 #include <string.h>
 
 #if defined(__arm__)
-#include "ogk_cm7.h"
+#include "ogk_armv7m.h"
 #endif
 
 /* Two units in the last place of x. */
@@ -232,7 +232,7 @@ static void test_large_stack_frame(void **state)
     assert_true(sum == 0.25 * (double)FRAME_DOUBLES * (double)(FRAME_DOUBLES - 1u));
     assert_true(last == 0.5 * (double)(FRAME_DOUBLES - 1u));
 #if defined(__arm__)
-    assert_true(ogk_cm7_stack_high_water() >= FRAME_DOUBLES * sizeof(double));
+    assert_true(ogk_armv7m_stack_high_water() >= FRAME_DOUBLES * sizeof(double));
 #endif
 }
 
