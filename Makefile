@@ -112,10 +112,11 @@ test-unit-host: $(UNIT_HOST)
 	@fail=0; for t in $(UNIT_HOST); do echo "== host: $$t"; \
 	  $$t 2>&1 || fail=1; done; exit $$fail
 
-# ---------------------------------------------------------------- Cortex-M7 (bare metal, QEMU)
+# ---------------------------------------------------------------- Cortex-M7 and Cortex-M4F (bare metal, QEMU)
 # The ARMv7-M route (runtime, test runner, rules), then each target's parameters and goals.
 include port/armv7m/armv7m.mk
 include port/cortex-m7/cortex-m7.mk
+include port/cortex-m4f/cortex-m4f.mk
 # the QEMU instruction counter (after the ARMv7-M targets, whose runtimes its known-answer programs link)
 include port/qemu-plugin/qemu-plugin.mk
 # before test-python, whose prerequisites name its LINK_ECHO_ELF (prerequisites expand when read)
