@@ -258,13 +258,15 @@ all: deps kernel-host arm-lib ffi
 
 # Two lanes on the 2-core machine (issue 34: make test within 20 minutes): the Python tests, the
 # long pole (~16 min), on one core; every other check on the other, in the order it fails fastest
-# (~9 min of work). The first three (seconds) run alone: a stale trace, API or link fails at once.
+# (~12 min of work, ~3 of them the Cortex-M4F's unit tests: its doubles are library calls). The first
+# three (seconds) run alone: a stale trace, API or link fails at once.
 # What both lanes build is built first (test-python-prereqs); the two targets the Python tests also
 # make themselves (arm-stack, stack-bound-sparc: tests/python/pil_checks.py, test_pil_sparc.py) are
 # made under a lock (locked: flock on build/.lock-NAME), so that the lane that comes second finds them
 # made. The lanes build
 # in their own directories: the gates in build/gates, fuzz, coverage, mcdc (Frama-C in memory); the
-# flight app its tables under build/arm/flightapp; the consumer build/cm-*; the wheel build/wheel.
+# flight app its tables under build/arm/flightapp; the Cortex-M4F build/m4f and build/cmake-m4f; the
+# consumer build/cm-*; the wheel build/wheel.
 test: deps
 	$(MAKE) trace
 	$(MAKE) api-check
@@ -282,6 +284,8 @@ test-beside-python:
 	$(MAKE) test-flight-app
 	$(call locked,stack-bound-sparc) $(MAKE) test-unit-sparc test-flight-app-sparc test-flt-eval stack-bound-sparc \
 	  footprint-sparc test-qemu-plugin-sparc
+	$(MAKE) test-unit-m4f
+	$(MAKE) test-m4f-selftest test-qemu-plugin-m4f stack-bound-m4f footprint-m4f
 	$(MAKE) test-consumer
 	$(MAKE) test-wheel
 	$(MAKE) test-eigen
