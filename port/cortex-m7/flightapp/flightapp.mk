@@ -79,7 +79,7 @@ $(FA_HOST): $(FA_SRC) $(FA_HDR) $(FA_GEN_C) $(FA_GEN_H) $(HOST_OBJ) | apt
 	  -lm -o $@
 
 test-flight-app: $(FA_ELF) $(FA_HOST)
-	@$(ARM_PORT)/run_qemu.sh $(FA_ELF) $(ARM_TIMEOUT) > $(FA_B)/flightapp.log 2>&1; rc=$$?; \
+	@$(call armv7m_env,ARM) $(ARMV7M_DIR)/run_qemu.sh $(FA_ELF) $(ARM_TIMEOUT) > $(FA_B)/flightapp.log 2>&1; rc=$$?; \
 	cat $(FA_B)/flightapp.log; \
 	if [ $$rc -ne 0 ] || ! grep -q '^flightapp: PASS' $(FA_B)/flightapp.log; then \
 	  echo "test-flight-app: FAILED (qemu exit $$rc)"; exit 1; fi; \
