@@ -112,8 +112,13 @@ test-unit-host: $(UNIT_HOST)
 	@fail=0; for t in $(UNIT_HOST); do echo "== host: $$t"; \
 	  $$t 2>&1 || fail=1; done; exit $$fail
 
-# ---------------------------------------------------------------- Cortex-M7 (bare metal, QEMU)
+# ---------------------------------------------------------------- Cortex-M7 and Cortex-M4F (bare metal, QEMU)
+# The ARMv7-M route (runtime, test runner, rules), then each target's parameters and goals.
+include port/armv7m/armv7m.mk
 include port/cortex-m7/cortex-m7.mk
+include port/cortex-m4f/cortex-m4f.mk
+# the QEMU instruction counter (after the ARMv7-M targets, whose runtimes its known-answer programs link)
+include port/qemu-plugin/qemu-plugin.mk
 # before test-python, whose prerequisites name its LINK_ECHO_ELF (prerequisites expand when read)
 include port/cortex-m7/link/link.mk
 
@@ -154,7 +159,7 @@ lint: | apt
 # function (sqrt rather than sqrtf). The check is first shown to catch a one-line double function, so
 # that a pattern matching nothing cannot pass.
 LINT_SINGLE := -DOGK_REAL_SINGLE=1 -Wfloat-conversion
-LINT_SINGLE_M4F_CPU := -mthumb -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard
+LINT_SINGLE_M4F_CPU := $(call toolchain_cpu,cortex-m4f)
 LINT_SINGLE_B := $(B)/lint-single
 LINT_SINGLE_DOUBLE_LIBM := sqrt cbrt hypot sin cos tan asin acos atan atan2 sinh cosh tanh exp exp2 expm1 log \
   log10 log1p log2 pow fabs floor ceil trunc round lround nearbyint rint fmod remainder fmin fmax fdim fma copysign \
@@ -209,7 +214,7 @@ test-imports: $(VENV)/.installed
 # (ogk.sil.pil_build), the Makefile targets the tests make (pil_checks.locked_make). --durations: the
 # 25 slowest tests at the end of every run (issue 34: make test within 20 minutes).
 PYTEST_WORKERS ?= 2
-test-python: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o
+test-python: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_BOARD_OBJ)
 	$(VPY) -m pytest -q -m "not slow" -n $(PYTEST_WORKERS) --dist loadfile --durations=25 tests/python
 
 # Minutes-long checks kept out of `make test`: the Apophis nominal regenerated from scratch.
@@ -295,13 +300,15 @@ all: deps kernel-host arm-lib ffi
 
 # Two lanes on the 2-core machine (issue 34: make test within 20 minutes): the Python tests, the
 # long pole (~16 min), on one core; every other check on the other, in the order it fails fastest
-# (~9 min of work). The first three (seconds) run alone: a stale trace, API or link fails at once.
+# (~12 min of work, ~3 of them the Cortex-M4F's unit tests: its doubles are library calls). The first
+# three (seconds) run alone: a stale trace, API or link fails at once.
 # What both lanes build is built first (test-python-prereqs); the two targets the Python tests also
 # make themselves (arm-stack, stack-bound-sparc: tests/python/pil_checks.py, test_pil_sparc.py) are
 # made under a lock (locked: flock on build/.lock-NAME), so that the lane that comes second finds them
 # made. The lanes build
 # in their own directories: the gates in build/gates, fuzz, coverage, mcdc (Frama-C in memory); the
-# flight app its tables under build/arm/flightapp; the consumer build/cm-*; the wheel build/wheel.
+# flight app its tables under build/arm/flightapp; the Cortex-M4F build/m4f and build/cmake-m4f; the
+# consumer build/cm-*; the wheel build/wheel.
 test: deps
 	$(MAKE) trace
 	$(MAKE) api-check
@@ -319,6 +326,8 @@ test-beside-python:
 	$(MAKE) test-flight-app
 	$(call locked,stack-bound-sparc) $(MAKE) test-unit-sparc test-flight-app-sparc test-flt-eval stack-bound-sparc \
 	  footprint-sparc test-qemu-plugin-sparc
+	$(MAKE) test-unit-m4f
+	$(MAKE) test-m4f-selftest test-qemu-plugin-m4f stack-bound-m4f footprint-m4f
 	$(MAKE) test-consumer
 	$(MAKE) test-wheel
 	$(MAKE) test-eigen
@@ -328,8 +337,7 @@ test-beside-python:
 test-static-gates:
 	$(MAKE) gates
 	$(MAKE) eva
-test-python-prereqs: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_B)/rt/startup.o \
-  $(ARM_B)/rt/ogk_port_cm7.o
+test-python-prereqs: $(FFI_STAMP) $(LINK_ECHO_ELF) $(QP_SO) $(ARM_B)/libogk.a $(ARM_BOARD_OBJ)
 
 # Long campaigns of every family's shipped scenarios (soak.toml: >= 1,000 runs each on fixed seeds no test
 # uses) through the one engine, summarised per family; exit 1 when a campaign loses a flight its law's

@@ -1,18 +1,31 @@
 # examples/consumer/consumer.mk -- `make test-consumer` (in `make test`; docs/guides/cmake.md): what a flight
 # project does with ogk, from scratch, with nothing from the Makefile's own kernel builds:
-#   the package built and installed by CMake alone, for the host and for the Cortex-M7
-#   (build/cm-host -> build/ogk-prefix-host, build/cm-m7 -> build/ogk-prefix-m7), then
-#   examples/consumer configured with find_package(ogk 0.1) against each prefix, built and run:
-#   on the host directly, on the Cortex-M7 under QEMU (mps2-an500, the board files of port/cortex-m7).
+#   the package built and installed by CMake alone, for the host, the Cortex-M7 and the Cortex-M4F
+#   (build/cm-host -> build/ogk-prefix-host, build/cm-m7 -> build/ogk-prefix-m7, build/cm-m4f ->
+#   build/ogk-prefix-m4f), then examples/consumer configured with find_package(ogk 0.1) against each
+#   prefix, built and run: on the host directly, on the Cortex-M7 (mps2-an500) and the Cortex-M4F
+#   (mps2-an386) under QEMU, with the board files of port/armv7m.
 #   Then the single-precision package (OGK_PRECISION=single, kernel/include/ogk/real.h) for the host
 #   (build/cm-host-single -> build/ogk-prefix-host-single): its ogk.pc and ogk::ogk carry OGK_REAL_SINGLE=1,
 #   and examples/consumer's real-type probe built against it finds the library's float.
 # Fails on any configure, build, install or link error and on any law whose flight loop fails.
-# Included by the top-level Makefile (uses its B, CMAKE_BUILD, ARM_PORT).
-CONSUMER_DIRS := $(B)/cm-host $(B)/cm-m7 $(B)/ogk-prefix-host $(B)/ogk-prefix-m7 $(B)/consumer-host $(B)/consumer-m7 \
+# Included by the top-level Makefile (uses its B, CMAKE_BUILD, ARMV7M_DIR, armv7m_env).
+CONSUMER_DIRS := $(B)/cm-host $(B)/ogk-prefix-host $(B)/consumer-host \
+  $(foreach t,m7 m4f,$(B)/cm-$(t) $(B)/ogk-prefix-$(t) $(B)/consumer-$(t)) \
   $(B)/cm-host-single $(B)/ogk-prefix-host-single $(B)/consumer-host-single
-PREFIX_M7 := $(abspath $(B)/ogk-prefix-m7)
 PREFIX_HOST_SINGLE := $(abspath $(B)/ogk-prefix-host-single)
+
+# $(call consumer_armv7m,TAG,TOOLCHAIN,P): the package built and installed with cmake/toolchains/TOOLCHAIN.cmake
+# into build/ogk-prefix-TAG, the consumer built with the installed toolchain file (as a flight project
+# would take it) and run on the board of ARMv7-M target P.
+consumer_armv7m = cmake -B $(B)/cm-$(1) -S . -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/$(2).cmake --log-level=WARNING && \
+	$(CMAKE_BUILD) $(B)/cm-$(1) -j2 && \
+	cmake --install $(B)/cm-$(1) --prefix $(B)/ogk-prefix-$(1) > $(B)/cm-$(1)/install.log && \
+	cmake -S examples/consumer -B $(B)/consumer-$(1) -DCMAKE_PREFIX_PATH=$(abspath $(B)/ogk-prefix-$(1)) \
+	  -DCMAKE_TOOLCHAIN_FILE=$(abspath $(B)/ogk-prefix-$(1))/lib/cmake/ogk/toolchains/$(2).cmake \
+	  -DOGK_CONSUMER_BOARD_DIR=$(abspath $(ARMV7M_DIR)) --log-level=WARNING && \
+	$(CMAKE_BUILD) $(B)/consumer-$(1) && \
+	$(call armv7m_env,$(3)) $(ARMV7M_DIR)/run_qemu.sh $(B)/consumer-$(1)/ogk_consumer.elf 300
 
 .PHONY: test-consumer
 test-consumer: | apt
@@ -20,20 +33,14 @@ test-consumer: | apt
 	cmake -B $(B)/cm-host -S . --log-level=WARNING
 	$(CMAKE_BUILD) $(B)/cm-host -j2
 	cmake --install $(B)/cm-host --prefix $(B)/ogk-prefix-host > $(B)/cm-host/install.log
-	cmake -B $(B)/cm-m7 -S . -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/cortex-m7.cmake --log-level=WARNING
-	$(CMAKE_BUILD) $(B)/cm-m7 -j2
-	cmake --install $(B)/cm-m7 --prefix $(B)/ogk-prefix-m7 > $(B)/cm-m7/install.log
 	cmake -S examples/consumer -B $(B)/consumer-host -DCMAKE_PREFIX_PATH=$(abspath $(B)/ogk-prefix-host) \
 	  --log-level=WARNING
 	$(CMAKE_BUILD) $(B)/consumer-host
 	$(B)/consumer-host/ogk_real_probe | grep -q 'double (8 bytes)'
 	$(B)/consumer-host/ogk_consumer
 	@# the package's own toolchain file, as a flight project would take it
-	cmake -S examples/consumer -B $(B)/consumer-m7 -DCMAKE_PREFIX_PATH=$(PREFIX_M7) \
-	  -DCMAKE_TOOLCHAIN_FILE=$(PREFIX_M7)/lib/cmake/ogk/toolchains/cortex-m7.cmake \
-	  -DOGK_CONSUMER_BOARD_DIR=$(abspath $(ARM_PORT)) --log-level=WARNING
-	$(CMAKE_BUILD) $(B)/consumer-m7
-	$(ARM_PORT)/run_qemu.sh $(B)/consumer-m7/ogk_consumer.elf 300
+	$(call consumer_armv7m,m7,cortex-m7,ARM)
+	$(call consumer_armv7m,m4f,cortex-m4f,M4F)
 	@# the single-precision package: the definition reaches a consumer by pkg-config and by the CMake target
 	cmake -B $(B)/cm-host-single -S . -DOGK_PRECISION=single -DOGK_BUILD_SHARED=OFF --log-level=WARNING
 	$(CMAKE_BUILD) $(B)/cm-host-single -j2

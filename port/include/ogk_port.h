@@ -3,13 +3,13 @@
  * The kernel (kernel/) never includes this header: it has no notion of time
  * or platform. Tests and benchmarks link one implementation:
  *   port/host/ogk_port_host.c      x86-64 Linux: clock_gettime(CLOCK_MONOTONIC), ns
- *   port/cortex-m7/ogk_port_cm7.c  Cortex-M7: DWT cycle counter (CYCCNT), cycles
+ *   port/armv7m/ogk_port_armv7m.c  Cortex-M7, Cortex-M4F: DWT cycle counter (CYCCNT), cycles
  *
  * QEMU does not model the DWT: under qemu-system-arm the cycle counter reads
  * as 0 and ogk_port_counter_init() returns false. Repeatable ARM cost figures
  * come from counting executed instructions with the QEMU TCG plugin in
  * port/qemu-plugin/ (docs/guides/ports.md); those are instruction counts, not cycles.
- * On real Cortex-M7 silicon the counter gives core clock cycles. */
+ * On real Cortex-M7 or M4F silicon the counter gives core clock cycles. */
 #ifndef OGK_PORT_H
 #define OGK_PORT_H
 
@@ -38,7 +38,7 @@ uint64_t ogk_port_counter_now(void);
 ogk_port_unit ogk_port_counter_unit(void);
 const char *ogk_port_counter_unit_name(void);
 
-/* Platform name for reports ("host", "cortex-m7"). */
+/* Platform name for reports ("host", "cortex-m7", "cortex-m4f"). */
 const char *ogk_port_name(void);
 
 #endif /* OGK_PORT_H */

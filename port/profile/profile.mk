@@ -5,18 +5,37 @@
 #                         kernel's own callbacks included: the disassembly of the linked unit-test ELFs, each
 #                         frame checked against gcc -fstack-usage (port/profile/stack_bound.py). Fails on
 #                         recursion, an unsized frame or a frame gcc disagrees with. In make test.
+#   make footprint-m7     code / read-only / RAM per kernel module and the size of every public type
+#                         (port/profile/footprint.py); fails on a mutable global. In make test.
+#   make stack-bound-m4f, footprint-m4f   the same on the Cortex-M4F (its unit-test ELFs and objects, the
+#                         kernel's configuration for it). In make test.
 
 PROFILE_B := $(B)/profile
-ARM_UNIT_ELF := $(patsubst %,$(ARM_B)/%.elf,$(basename $(notdir $(ARM_UNIT_SRC))))
 PROFILE_PY := $(wildcard port/profile/*.py)
 
-.PHONY: stack-bound-m7 stack-bound-sparc footprint-sparc
-stack-bound-m7: $(PROFILE_B)/stack_m7.json
-$(PROFILE_B)/stack_m7.json: $(ARM_UNIT_ELF) $(ARM_KOBJ) $(PROFILE_PY)
-	@mkdir -p $(@D)
+# $(call profile_armv7m,P,TAG): build/profile/stack_TAG.json and footprint_TAG.json of the ARMv7-M target
+# P (port/armv7m/armv7m.mk), from its unit-test ELFs P_UNIT_ELF and its kernel objects; the public types
+# are sized with its CPU flags and kernel configuration.
+define profile_armv7m
+$(1)_UNIT_ELF := $$(patsubst %,$$($(1)_B)/%.elf,$$(basename $$(notdir $$($(1)_UNIT_SRC))))
+$$(PROFILE_B)/stack_$(2).json: $$($(1)_UNIT_ELF) $$($(1)_KOBJ) $$(PROFILE_PY)
+	@mkdir -p $$(@D)
 	python3 port/profile/stack_bound.py --isa thumb --objdump arm-none-eabi-objdump \
-	  --su-dir $(ARM_B)/kernel --objects $(ARM_KOBJ) --json $@.tmp -- $(ARM_UNIT_ELF) \
-	  && mv $@.tmp $@
+	  --su-dir $$($(1)_B)/kernel --objects $$($(1)_KOBJ) --json $$@.tmp -- $$($(1)_UNIT_ELF) \
+	  && mv $$@.tmp $$@
+$$(PROFILE_B)/footprint_$(2).json: $$($(1)_KOBJ) $$(KHDR) $$(PROFILE_PY)
+	@mkdir -p $$(@D)
+	python3 port/profile/footprint.py --cc "$$(strip $$($(1)_CC) -std=c99 $$($(1)_CPU) $$($(1)_DEFS))" \
+	  --size arm-none-eabi-size --nm arm-none-eabi-nm --json $$@ -- $$($(1)_KOBJ)
+endef
+$(eval $(call profile_armv7m,ARM,m7))
+$(eval $(call profile_armv7m,M4F,m4f))
+
+.PHONY: stack-bound-m7 footprint-m7 stack-bound-m4f footprint-m4f stack-bound-sparc footprint-sparc
+stack-bound-m7: $(PROFILE_B)/stack_m7.json
+footprint-m7: $(PROFILE_B)/footprint_m7.json
+stack-bound-m4f: $(PROFILE_B)/stack_m4f.json
+footprint-m4f: $(PROFILE_B)/footprint_m4f.json
 
 # The same on SPARC V8 (the static glibc of the qemu-user route; docs/guides/ports.md). glibc's libm there is
 # built with the stack protector: its abort path, __stack_chk_fail, sizes its message on the stack from a
@@ -53,12 +72,7 @@ PROFILE_PIL_M7 := $(foreach c,$(PROFILE_CAMPAIGNS),$(PROFILE_B)/pil_m7/$(firstwo
 # ... and the same campaigns (scenarios, runs, seed) with the same flight programs on SPARC V8
 PROFILE_PIL_SPARC := $(foreach c,$(PROFILE_CAMPAIGNS),$(PROFILE_B)/pil_sparc/$(firstword $(subst :, ,$(c))).json)
 
-.PHONY: profile footprint-m7 profile-pil-m7 profile-pil-sparc
-footprint-m7: $(PROFILE_B)/footprint_m7.json
-$(PROFILE_B)/footprint_m7.json: $(ARM_KOBJ) $(KHDR) $(PROFILE_PY)
-	@mkdir -p $(@D)
-	python3 port/profile/footprint.py --cc "$(ARM_CC) -std=c99 $(ARM_CPU)" --size arm-none-eabi-size \
-	  --nm arm-none-eabi-nm --json $@ -- $(ARM_KOBJ)
+.PHONY: profile profile-pil-m7 profile-pil-sparc
 
 # Each campaign's envelope is rebuilt when the kernel, the ports or its scenario change. A campaign
 # whose runs fail their mission criterion, or whose target results leave the host's bounds (a perturbed

@@ -4,7 +4,8 @@
 # and a repeatability check (two runs, identical reports).
 # SPARC V8 (known_counts_sparc.c, qemu-user): QEMU_USER=qemu-sparc32plus NM=sparc64-linux-gnu-nm
 # TEN=12 CALLS=17 (ten_nops: 10 nops, retl and its delay slot; calls_ten_nops: save, call, delay
-# nop, ret, restore). Defaults: Thumb-2 on the Cortex-M7 (11 and 14).
+# nop, ret, restore). Defaults: Thumb-2 on the Cortex-M7 (11 and 14); the Cortex-M4F's are the same
+# (QEMU_MACHINE=mps2-an386, known_counts linked with the M4F's runtime).
 set -u
 here=$(dirname "$0")
 elf=${1:?usage: check_plugin.sh known_counts.elf}

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# count_insns.sh ELF FUNCTION... -- run a bare-metal Cortex-M7 ELF on QEMU
-# (mps2-an500) with the insn_count plugin and print, for each FUNCTION, the
+# count_insns.sh ELF FUNCTION... -- run a bare-metal ARMv7-M ELF on QEMU
+# (mps2-an500, the Cortex-M7; QEMU_MACHINE=mps2-an386 for the Cortex-M4F)
+# with the insn_count plugin and print, for each FUNCTION, the
 # instructions executed per call including callees (fn) and inside its own
 # body only (range). Addresses and sizes come from arm-none-eabi-nm -S.
 # The program's own output goes to stderr; the report to stdout.
@@ -28,7 +29,7 @@ set +e
 if [ -n "${QEMU_USER:-}" ]; then
   "$QEMU_USER" -plugin "$plugin" -d plugin "$elf" </dev/null >&2 2>&1
 else
-  qemu-system-arm -M mps2-an500 -nographic -monitor none -serial none \
+  qemu-system-arm -M "${QEMU_MACHINE:-mps2-an500}" -nographic -monitor none -serial none \
     -semihosting-config enable=on,target=native -plugin "$plugin" -d plugin \
     -kernel "$elf" </dev/null >&2 2>&1
 fi

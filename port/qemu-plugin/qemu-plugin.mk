@@ -1,7 +1,8 @@
 # port/qemu-plugin/qemu-plugin.mk -- QEMU TCG plugin counting executed guest
-# instructions (included by port/cortex-m7/cortex-m7.mk). No glib needed.
+# instructions (included by the top-level Makefile after the ARMv7-M targets). No glib needed.
 #   make qemu-plugin        build/qemu-plugin/libinsn_count.so
-#   make test-qemu-plugin   known-answer + repeatability check
+#   make test-qemu-plugin   known-answer + repeatability check (Cortex-M7, mps2-an500)
+#   make test-qemu-plugin-m4f   the same on the Cortex-M4F (mps2-an386; count_insns.sh with QEMU_MACHINE)
 #   port/qemu-plugin/count_insns.sh ELF FUNCTION...   per-function counts
 #   make test-qemu-plugin-sparc   the same on SPARC V8 (qemu-user; count_insns.sh with QEMU_USER, NM)
 QP_B := $(B)/qemu-plugin
@@ -13,12 +14,23 @@ $(QP_SO): port/qemu-plugin/insn_count.c port/qemu-plugin/qemu_plugin_api.h | apt
 	gcc -std=gnu11 -O2 -Wall -Wextra -Werror -fPIC -shared -fvisibility=hidden $< -o $@
 qemu-plugin: $(QP_SO)
 
-$(QP_B)/known_counts.elf: port/qemu-plugin/known_counts.c $(ARM_RT_OBJ) $(ARM_LDSCRIPT)
-	@mkdir -p $(@D)
-	$(ARM_CC) -std=gnu99 -Wall -Wextra -Werror -O2 $(ARM_CPU) $< $(ARM_RT_OBJ) \
-	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
+# The known-answer program linked with an ARMv7-M target's runtime: $(call qp_known_counts,P,SUFFIX)
+define qp_known_counts
+$(QP_B)/known_counts$(2).elf: port/qemu-plugin/known_counts.c $$($(1)_RT_OBJ) $$($(1)_LDSCRIPT)
+	@mkdir -p $$(@D)
+	$$($(1)_CC) -std=gnu99 -Wall -Wextra -Werror -O2 $$($(1)_CPU) $$< $$($(1)_RT_OBJ) \
+	  $$($(1)_LDFLAGS) $$($(1)_LDLIBS) -o $$@
+endef
+$(eval $(call qp_known_counts,ARM,))
+$(eval $(call qp_known_counts,M4F,_m4f))
 test-qemu-plugin: $(QP_SO) $(QP_B)/known_counts.elf
 	QEMU_PLUGIN_SO=$(QP_SO) port/qemu-plugin/check_plugin.sh $(QP_B)/known_counts.elf
+
+# The same known answers on the Cortex-M4F (QEMU mps2-an386; the same Thumb-2 instructions):
+#   make test-qemu-plugin-m4f
+.PHONY: test-qemu-plugin-m4f
+test-qemu-plugin-m4f: $(QP_SO) $(QP_B)/known_counts_m4f.elf
+	QEMU_PLUGIN_SO=$(QP_SO) QEMU_MACHINE=$(M4F_BOARD) port/qemu-plugin/check_plugin.sh $(QP_B)/known_counts_m4f.elf
 
 # The same known answers on SPARC V8 under qemu-user (calls return after their delay slot):
 #   make test-qemu-plugin-sparc

@@ -74,7 +74,7 @@ bench: bench-mpsp
 ARM_BENCH_MPSP := $(ARM_B)/bench_mpsp.elf
 $(ARM_BENCH_MPSP): tests/bench/bench_mpsp.c $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
 	$(ARM_CC) -std=c99 -Wall -Wextra -Werror -O2 -g $(ARM_CPU) -DOGK_BENCH_BARE_METAL \
-	  $(KINC) -Iport/include -I$(ARM_PORT) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
+	  $(KINC) -Iport/include -I$(ARMV7M_DIR) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
 	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
 .PHONY: bench-arm
 bench-arm: $(ARM_BENCH_MPSP) qemu-plugin
@@ -119,14 +119,14 @@ $(BENCH_NMPC): tests/bench/bench_nmpc.c $(NMPC_CASE_H) $(B)/host/libogk.a $(PORT
 
 $(ARM_BENCH_NMPC): tests/bench/bench_nmpc.c $(NMPC_CASE_H) $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
 	$(ARM_CC) -std=c99 -Wall -Wextra -Werror -O2 -g $(ARM_CPU) -DOGK_BENCH_BARE_METAL \
-	  $(KINC) -Iport/include -I$(ARM_PORT) -I$(NMPC_B) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
+	  $(KINC) -Iport/include -I$(ARMV7M_DIR) -I$(NMPC_B) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
 	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
 
 # The same re-solve with the exact Hessian (set after the same open loop; bench_nmpc.c).
 ARM_BENCH_NMPC_EXACT := $(ARM_B)/bench_nmpc_exact.elf
 $(ARM_BENCH_NMPC_EXACT): tests/bench/bench_nmpc.c $(NMPC_CASE_H) $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
 	$(ARM_CC) -std=c99 -Wall -Wextra -Werror -O2 -g $(ARM_CPU) -DOGK_BENCH_BARE_METAL -DBENCH_NMPC_HESSIAN=1 \
-	  $(KINC) -Iport/include -I$(ARM_PORT) -I$(NMPC_B) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
+	  $(KINC) -Iport/include -I$(ARMV7M_DIR) -I$(NMPC_B) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
 	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
 
 .PHONY: bench-nmpc bench-nmpc-profile
@@ -191,7 +191,7 @@ $(BENCH_BLT): tests/bench/bench_blt.c $(BLT_CASE_H) $(B)/host/libogk.a $(PORT_HO
 
 $(ARM_BENCH_BLT): tests/bench/bench_blt.c $(BLT_CASE_H) $(ARM_RT_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
 	$(ARM_CC) -std=c99 -Wall -Wextra -Werror -O2 -g $(ARM_CPU) -DOGK_BENCH_BARE_METAL \
-	  $(KINC) -Iport/include -I$(ARM_PORT) -I$(BLT_B) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
+	  $(KINC) -Iport/include -I$(ARMV7M_DIR) -I$(BLT_B) $< $(ARM_RT_OBJ) $(ARM_B)/libogk.a \
 	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
 
 .PHONY: bench-blt bench-blt-profile

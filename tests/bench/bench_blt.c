@@ -41,7 +41,7 @@
 #include "ogk_port.h"
 #include "bench_blt_case.h"
 #ifdef OGK_BENCH_BARE_METAL
-#include "ogk_cm7.h"
+#include "ogk_armv7m.h"
 #endif
 
 /* contexts in static storage (ogk_blt_t is ~46 KB) */
@@ -157,11 +157,11 @@ int main(void)
         if (setup(c, 0u) != 0) {
             return 1;
         }
-        ogk_cm7_stack_repaint_below((uintptr_t)&here - 1024u);
+        ogk_armv7m_stack_repaint_below((uintptr_t)&here - 1024u);
         if ((m7_conv[i]() != 0) || (check_converged(c) != 0)) {
             return 1;
         }
-        hwm = ogk_cm7_stack_high_water();
+        hwm = ogk_armv7m_stack_high_water();
         printf("blt_m7_%s_conv_iters %u\n", c->key, (unsigned)rep.iterations);
         printf("blt_m7_%s_conv_props %u\n", c->key, (unsigned)rep.propagations);
         printf("blt_m7_%s_conv_err %.17g\n", c->key, rep.err_norm);

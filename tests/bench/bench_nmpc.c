@@ -60,7 +60,7 @@
 #include "ogk_port.h"
 #include "bench_nmpc_case.h"
 #ifdef OGK_BENCH_BARE_METAL
-#include "ogk_cm7.h"
+#include "ogk_armv7m.h"
 #endif
 
 static ogk_nmpc_t ctx;
@@ -199,13 +199,13 @@ int main(void)
     if (setup() != 0) {
         return 1;
     }
-    hwm_open = ogk_cm7_stack_high_water();
+    hwm_open = ogk_armv7m_stack_high_water();
     depth = (uint32_t)((uintptr_t)__StackTop - (uintptr_t)&here);
-    ogk_cm7_stack_repaint_below((uintptr_t)&here - 1024u);
+    ogk_armv7m_stack_repaint_below((uintptr_t)&here - 1024u);
     if (bench_nmpc_replan_once() != 0) {
         return 1;
     }
-    hwm_after = ogk_cm7_stack_high_water();
+    hwm_after = ogk_armv7m_stack_high_water();
     if (check_replan() != 0) {
         return 1;
     }

@@ -213,7 +213,7 @@ def render(reqs: dict[str, str], tests: list[Test]) -> str:
         "[requirements.md](requirements.md), the `req:` tags of the tests and tests/trace/gates.txt;",
         "`make trace` (in `make test`) fails when this file is stale. Do not edit it by hand.",
         "",
-        f"{len(reqs)} requirements; {n_c} C unit tests (cmocka, host ASan+UBSan and Cortex-M7), "
+        f"{len(reqs)} requirements; {n_c} C unit tests (cmocka, host ASan+UBSan, Cortex-M7 and Cortex-M4F), "
         f"{n_py} Python tests, {n_g} make gates.",
         "`(slow)`: run by `make test-slow`, not by `make test`.",
         "",

@@ -43,7 +43,7 @@ FA_CFLAGS := $(STRICT) $(ARM_CPU) -O2 -g -ffunction-sections -fdata-sections -fs
   $(FA_DEFS) $(KINC) -I$(FA_GEN) -I$(FA_DIR)
 FA_OBJ := $(FA_B)/ogk_flight.o $(FA_B)/main.o $(FA_B)/ogk_nog_bundle.o
 # Runtime: start-up (vectors, reset, FPU/MPU, semihosting exit) and the port counter; no test runner.
-FA_RT_OBJ := $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o
+FA_RT_OBJ := $(ARM_BOARD_OBJ)
 FA_ELF := $(FA_B)/flightapp.elf
 
 .PHONY: test-flight-app flight-app flight-app-size flight-app-stack
@@ -79,7 +79,7 @@ $(FA_HOST): $(FA_SRC) $(FA_HDR) $(FA_GEN_C) $(FA_GEN_H) $(HOST_OBJ) | apt
 	  -lm -o $@
 
 test-flight-app: $(FA_ELF) $(FA_HOST)
-	@$(ARM_PORT)/run_qemu.sh $(FA_ELF) $(ARM_TIMEOUT) > $(FA_B)/flightapp.log 2>&1; rc=$$?; \
+	@$(call armv7m_env,ARM) $(ARMV7M_DIR)/run_qemu.sh $(FA_ELF) $(ARM_TIMEOUT) > $(FA_B)/flightapp.log 2>&1; rc=$$?; \
 	cat $(FA_B)/flightapp.log; \
 	if [ $$rc -ne 0 ] || ! grep -q '^flightapp: PASS' $(FA_B)/flightapp.log; then \
 	  echo "test-flight-app: FAILED (qemu exit $$rc)"; exit 1; fi; \

@@ -17,8 +17,8 @@ $(LINK_B)/%.o: $(LINK_DIR)/%.c $(LINK_DIR)/ogk_link.h $(ARM_RT_HDR) | apt
 	@mkdir -p $(@D)
 	$(ARM_CC) $(LINK_CFLAGS) -c $< -o $@
 
-$(LINK_ECHO_ELF): $(LINK_OBJ) $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
-	$(ARM_CC) $(LINK_OBJ) $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o $(ARM_B)/libogk.a \
+$(LINK_ECHO_ELF): $(LINK_OBJ) $(ARM_BOARD_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
+	$(ARM_CC) $(LINK_OBJ) $(ARM_BOARD_OBJ) $(ARM_B)/libogk.a \
 	  $(ARM_LDFLAGS) $(ARM_LDLIBS) -o $@
 
 link-echo: $(LINK_ECHO_ELF)

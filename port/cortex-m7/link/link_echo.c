@@ -5,7 +5,7 @@
  * code, and the program goes on reading; OGK_LINK_STOP ends it (exit 0), end of input with exit 3. */
 #include <stdint.h>
 
-#include "ogk_cm7.h"
+#include "ogk_armv7m.h"
 #include "ogk_link.h"
 
 int main(void)

@@ -27,7 +27,7 @@ include $(wildcard $(PIL_DIR)/*.mk.inc)
 
 # The flight code: the kernel's strict flags, -O2, the probe hook on (OGK_PIL_PROBE).
 PIL_CFLAGS := $(STRICT) $(ARM_CPU) -O2 -g -ffunction-sections -fdata-sections -fstack-usage $(PIL_WINDOW_$(PIL_PROGRAM)) \
-  -DOGK_PIL_PROBE=1 $(KINC) -I$(PIL_GEN) -I$(PIL_DIR) -I$(FA_DIR) -I$(LINK_DIR) -I$(ARM_PORT)
+  -DOGK_PIL_PROBE=1 $(KINC) -I$(PIL_GEN) -I$(PIL_DIR) -I$(FA_DIR) -I$(LINK_DIR) -I$(ARMV7M_DIR)
 # The link and the probe are port code (inline assembly, newlib's read/write): the runtime's flags.
 PIL_PORT_CFLAGS := $(LINK_CFLAGS) $(PIL_WINDOW_$(PIL_PROGRAM)) -I$(PIL_DIR)
 
@@ -49,8 +49,8 @@ $(PIL_OBJ_DIR)/ogk_link_cm7.o: $(LINK_DIR)/ogk_link_cm7.c $(LINK_DIR)/ogk_link.h
 	@mkdir -p $(@D)
 	$(ARM_CC) $(PIL_PORT_CFLAGS) -c $< -o $@
 
-$(PIL_ELF): $(PIL_OBJ) $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
-	$(ARM_CC) $(PIL_OBJ) $(ARM_B)/rt/startup.o $(ARM_B)/rt/ogk_port_cm7.o $(ARM_B)/libogk.a \
+$(PIL_ELF): $(PIL_OBJ) $(ARM_BOARD_OBJ) $(ARM_B)/libogk.a $(ARM_LDSCRIPT)
+	$(ARM_CC) $(PIL_OBJ) $(ARM_BOARD_OBJ) $(ARM_B)/libogk.a \
 	  $(ARM_LDFLAGS) -Wl,-Map=$(@:.elf=.map) $(ARM_LDLIBS) -o $@
 
 pil-program: $(PIL_ELF)

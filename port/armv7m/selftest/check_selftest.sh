@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# check_selftest.sh -- judges the runs of `make test-arm-selftest`.
+# check_selftest.sh -- judges the runs of `make test-arm-selftest` (the Cortex-M7) and
+# `make test-m4f-selftest` (the Cortex-M4F).
 #   $1 selftest ELF (must pass)
 #   $2 selftest ELF with -DOGK_SELFTEST_INJECT_FAILURES (must fail exactly the inject_* tests)
 #   $3 selftest ELF with -DOGK_SELFTEST_INJECT_FAULT (must exit 250 with a fault report)
@@ -7,8 +8,12 @@
 #   $5 host binary, injected failures, real cmocka
 #   $6 host binary, injected failures, the shim runner
 #   $7 file with the preprocessed injected-failure source (expected test names)
+# Env: TARGET_NAME and QEMU_MACHINE (run_qemu.sh; default cortex-m7 on mps2-an500), SELFTEST_GOAL
+# (the make target named in the verdict; default test-arm-selftest).
 set -u
 here=$(cd "$(dirname "$0")/.." && pwd)
+target=${TARGET_NAME:-cortex-m7}
+goal=${SELFTEST_GOAL:-test-arm-selftest}
 run="$here/run_qemu.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -45,7 +50,7 @@ listed=$(grep -c '^\[  FAILED  \] inject_' "$tmp/inject.txt")
 "$run" "$3" 60 > "$tmp/fault.txt"; rc=$?
 summ "fault" "$tmp/fault.txt" $rc
 [ $rc -eq 250 ] || bad "fault run exit $rc (expected 250)"
-grep -q '^\[cortex-m7\] FAULT: HardFault DIVBYZERO' "$tmp/fault.txt" || bad "no DIVBYZERO fault report"
+grep -q "^\\[$target\\] FAULT: HardFault DIVBYZERO" "$tmp/fault.txt" || bad "no [$target] DIVBYZERO fault report"
 
 # 4. a stack overflow ends the run with 251
 "$run" "$4" 60 > "$tmp/overflow.txt"; rc=$?
@@ -65,7 +70,7 @@ diff -u "$tmp/real.err" "$tmp/shim.err" || bad "stderr differs between cmocka an
 
 if [ $problems -ne 0 ]; then
   dump
-  echo "test-arm-selftest: $problems problem(s)"
+  echo "$goal: $problems problem(s)"
   exit 1
 fi
-echo "test-arm-selftest: OK (pass run, $n_inject injected failures detected, fault -> 250, stack overflow -> 251, shim == cmocka)"
+echo "$goal: OK (pass run, $n_inject injected failures detected, fault -> 250, stack overflow -> 251, shim == cmocka)"

@@ -1,10 +1,13 @@
-/* test_selftest.c -- checks of the Cortex-M7 test route itself: hardware
- * double precision, libm, printf of doubles, 64-bit integers, setjmp/longjmp
- * across floating-point callee-saved registers, large static and stack
- * storage, the port counter, and (on the target) the runtime configuration.
+/* test_selftest.c -- checks of the ARMv7-M test route itself (the Cortex-M7
+ * and the Cortex-M4F): IEEE double precision (the M7's FPU, the M4F's
+ * software), single precision on the FPU, libm, printf of doubles, 64-bit
+ * integers, setjmp/longjmp across floating-point callee-saved registers, large
+ * static and stack storage, the port counter, and (on the target) the core,
+ * its FPU and the runtime configuration.
  *
  * Built like tests/unit/test_*.c (ogk_test.h, cmocka or the shim runner) for
- * QEMU by `make test-arm-selftest`, which also builds it:
+ * QEMU by `make test-arm-selftest` (M7) and `make test-m4f-selftest` (M4F),
+ * which also build it:
  *   -DOGK_SELFTEST_INJECT_FAILURES  adds inject_* tests that must all fail;
  *       the target checks QEMU's exit code equals their number and that the
  *       host build diffs identically between real cmocka and the shim;
@@ -21,7 +24,24 @@
 #include <string.h>
 
 #if defined(__arm__)
-#include "ogk_cm7.h"
+#include "ogk_armv7m.h"
+
+/* The core this build is for, from the compiler's FPU macros (not from the runtime under test):
+ * hardware double precision (fpv5-d16) is the Cortex-M7, single precision only (fpv4-sp-d16) the
+ * Cortex-M4F. Its CPUID part number and MVFR0's double-precision field (ARMv7-M ARM B4.1.2, B4.6.4)
+ * are checked on the board that runs it. */
+#if !defined(__ARM_FP) || ((__ARM_FP & 0x4) == 0) || !defined(__ARM_PCS_VFP)
+#error "the ARMv7-M route is built with a hardware FPU and the hard-float ABI (-mfloat-abi=hard)"
+#endif
+#if (__ARM_FP & 0x8) != 0
+#define SELFTEST_CORE "cortex-m7"
+#define SELFTEST_CPUID_PART 0xC27u /* Cortex-M7 */
+#define SELFTEST_MVFR0_DOUBLE 2u   /* double precision in hardware */
+#else
+#define SELFTEST_CORE "cortex-m4f"
+#define SELFTEST_CPUID_PART 0xC24u /* Cortex-M4 */
+#define SELFTEST_MVFR0_DOUBLE 0u   /* no double precision: doubles are library calls */
+#endif
 #endif
 
 /* Two units in the last place of x. */
@@ -37,6 +57,13 @@ static uint64_t bits_of(double x)
     return bits;
 }
 
+static uint32_t bits_of_float(float x)
+{
+    uint32_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    return bits;
+}
+
 /* Inputs through volatile objects so that nothing is folded at compile time:
  * the target's FPU and libm compute every value below. */
 static volatile double v_two = 2.0;
@@ -44,6 +71,10 @@ static volatile double v_one = 1.0;
 static volatile double v_half = 0.5;
 static volatile double v_ten = 10.0;
 static volatile double v_tenth = 0.1;
+static volatile float vf_two = 2.0f;
+static volatile float vf_one = 1.0f;
+static volatile float vf_ten = 10.0f;
+static volatile float vf_tenth = 0.1f;
 
 static void test_sqrt_is_correctly_rounded(void **state)
 {
@@ -71,7 +102,14 @@ static void test_libm_matches_constants(void **state)
     OGK_ASSERT_NEAR(sin(v_half), sin_half_ref, two_ulp(sin_half_ref));
     OGK_ASSERT_NEAR(cos(v_half), cos_half_ref, two_ulp(cos_half_ref));
     OGK_ASSERT_NEAR(pow(v_two, 0.5), sqrt(v_two), two_ulp(1.4142135623730951));
+#if defined(__arm__) && ((__ARM_FP & 0x8) == 0)
+    /* Without a double-precision FPU (the M4F), newlib's fma is x * y + z rounded twice
+     * (libm/common/s_fma.c), not fused: 0.1 * 10 rounds to 1 and the 2^-54 is lost. The kernel calls
+     * no fma; this records the library's behaviour, so that a change of it shows here. */
+    assert_int_equal(bits_of(fma(v_tenth, v_ten, -1.0)), bits_of(0.0));
+#else
     OGK_ASSERT_NEAR(fma(v_tenth, v_ten, -1.0), 5.5511151231257827e-17, 0.0);
+#endif
 }
 
 static void test_subnormals_are_not_flushed(void **state)
@@ -85,6 +123,31 @@ static void test_subnormals_are_not_flushed(void **state)
     assert_int_equal(bits_of(quarter), UINT64_C(0x0004000000000000));
     assert_true(isnan(v_one * NAN));
     assert_true(isinf(v_one / 0.0));
+}
+
+/* Single precision, as the kernel's OGK_REAL_SINGLE build computes (on the FPU of both cores):
+ * correctly rounded sqrt and division, a fused multiply-add, subnormals not flushed to zero. */
+static void test_single_precision_is_ieee(void **state)
+{
+    (void)state;
+    /* sqrt(2) rounds to 0x1.6a09e6p+0 (the root lies 0.20 ulp above), 1/3 to 0x1.555556p-2 */
+    assert_int_equal(bits_of_float(sqrtf(vf_two)), 0x3FB504F3u);
+    assert_int_equal(bits_of_float(vf_one / 3.0f), 0x3EAAAAABu);
+    /* 0.1f * 10 is 1 + 2^-26 exactly: fused, 2^-26 remains; rounded first, 0 would */
+    assert_int_equal(bits_of_float(fmaf(vf_tenth, vf_ten, -1.0f)), 0x32800000u);
+    volatile float tiny = FLT_MIN;
+    const float quarter = tiny / 4.0f;
+    assert_int_equal(fpclassify(quarter), FP_SUBNORMAL);
+    assert_int_equal(bits_of_float(quarter), 0x00200000u);
+#if defined(__arm__)
+    /* the FPU's own square root, not a library's */
+    float root;
+    __asm__ volatile("vsqrt.f32 %0, %1" : "=t"(root) : "t"(vf_two));
+    assert_int_equal(bits_of_float(root), 0x3FB504F3u);
+    uint32_t fpscr;
+    __asm__ volatile("vmrs %0, fpscr" : "=r"(fpscr));
+    assert_int_equal((fpscr >> 24) & 1u, 0u); /* FZ: subnormals kept */
+#endif
 }
 
 static void test_printf_of_doubles(void **state)
@@ -117,7 +180,8 @@ static void test_int64_arithmetic(void **state)
                      UINT64_C(0xFFFFFFFE00000001));
 }
 
-/* --- setjmp/longjmp and the FP callee-saved registers d8-d15 (AAPCS-VFP).
+/* --- setjmp/longjmp and the FP callee-saved registers d8-d15 (AAPCS-VFP;
+ * s16-s31 on the M4F's single-precision FPU, the same registers).
  * newlib's setjmp for Armv7E-M does not save d8-d15, and longjmp skips the
  * epilogues that would restore them. */
 static jmp_buf jump_target;
@@ -127,14 +191,19 @@ static __attribute__((noinline)) double opaque_value(double x)
     return sqrt(x) * 3.0;
 }
 
-/* Sets d8-d15 to -1 (its own prologue saves them, the epilogue never runs). */
+/* Sets s16-s31 (d8-d15) to -1.0f (its own prologue saves them, the epilogue
+ * never runs); single-precision moves, which both FPUs have. */
 static __attribute__((noinline)) void clobber_fp_registers(void)
 {
 #if defined(__ARM_PCS_VFP)
-    __asm__ volatile("vmov.f64 d8, #-1.0\n\tvmov.f64 d9, #-1.0\n\t"
-                     "vmov.f64 d10, #-1.0\n\tvmov.f64 d11, #-1.0\n\t"
-                     "vmov.f64 d12, #-1.0\n\tvmov.f64 d13, #-1.0\n\t"
-                     "vmov.f64 d14, #-1.0\n\tvmov.f64 d15, #-1.0\n\t" ::
+    __asm__ volatile("vmov.f32 s16, #-1.0\n\tvmov.f32 s17, #-1.0\n\t"
+                     "vmov.f32 s18, #-1.0\n\tvmov.f32 s19, #-1.0\n\t"
+                     "vmov.f32 s20, #-1.0\n\tvmov.f32 s21, #-1.0\n\t"
+                     "vmov.f32 s22, #-1.0\n\tvmov.f32 s23, #-1.0\n\t"
+                     "vmov.f32 s24, #-1.0\n\tvmov.f32 s25, #-1.0\n\t"
+                     "vmov.f32 s26, #-1.0\n\tvmov.f32 s27, #-1.0\n\t"
+                     "vmov.f32 s28, #-1.0\n\tvmov.f32 s29, #-1.0\n\t"
+                     "vmov.f32 s30, #-1.0\n\tvmov.f32 s31, #-1.0\n\t" ::
                          : "d8", "d9", "d10", "d11", "d12", "d13", "d14", "d15");
 #endif
 }
@@ -150,7 +219,7 @@ static void test_setjmp_keeps_unmodified_locals(void **state)
     (void)state;
     /* kept is never modified after setjmp, so C99 7.13.2.1 guarantees its
      * value after the longjmp (gcc keeps such locals in memory around a
-     * returns_twice call, which is what makes this hold on the M7). */
+     * returns_twice call, which is what makes this hold on the target). */
     const double kept = opaque_value(v_two);
     const int jumped = setjmp(jump_target);
     if (jumped == 0) {
@@ -167,7 +236,7 @@ static void nested_clobbers_fp_then_fails(void **state)
 {
     (void)state;
     clobber_fp_registers();
-    __asm__ volatile("vmov.f64 d8, #-1.0" ::: "d8"); /* also live at the longjmp */
+    __asm__ volatile("vmov.f32 s16, #-1.0\n\tvmov.f32 s17, #-1.0" ::: "d8"); /* live at the longjmp */
     fail();
 }
 
@@ -232,7 +301,7 @@ static void test_large_stack_frame(void **state)
     assert_true(sum == 0.25 * (double)FRAME_DOUBLES * (double)(FRAME_DOUBLES - 1u));
     assert_true(last == 0.5 * (double)(FRAME_DOUBLES - 1u));
 #if defined(__arm__)
-    assert_true(ogk_cm7_stack_high_water() >= FRAME_DOUBLES * sizeof(double));
+    assert_true(ogk_armv7m_stack_high_water() >= FRAME_DOUBLES * sizeof(double));
 #endif
 }
 
@@ -243,7 +312,7 @@ static void test_port_counter(void **state)
     const bool live = ogk_port_counter_init();
     assert_true(live == ogk_port_counter_live());
 #if defined(__arm__)
-    assert_string_equal(ogk_port_name(), "cortex-m7");
+    assert_string_equal(ogk_port_name(), SELFTEST_CORE);
     assert_int_equal(ogk_port_counter_unit(), OGK_PORT_UNIT_CYCLES);
     assert_string_equal(ogk_port_counter_unit_name(), "cycles");
 #else
@@ -268,13 +337,15 @@ static void test_port_counter(void **state)
 }
 
 #if defined(__arm__)
-/* --- runtime configuration done by startup.c */
+/* --- the core and its FPU, and the runtime configuration done by startup.c */
 static void test_runtime_configuration(void **state)
 {
     (void)state;
-#if !defined(__ARM_FP) || ((__ARM_FP & 0x8) == 0) || !defined(__ARM_PCS_VFP)
-#error "the Cortex-M7 route must be built with hardware double precision (fpv5-d16, hard ABI)"
-#endif
+    const uint32_t cpuid = *(volatile uint32_t *)0xE000ED00u;
+    const uint32_t mvfr0 = *(volatile uint32_t *)0xE000EF40u;
+    assert_int_equal((cpuid >> 4) & 0xFFFu, SELFTEST_CPUID_PART); /* the board runs this core */
+    assert_int_equal((mvfr0 >> 4) & 0xFu, 2u);                    /* single precision in hardware */
+    assert_int_equal((mvfr0 >> 8) & 0xFu, SELFTEST_MVFR0_DOUBLE);
     const uint32_t cpacr = *(volatile uint32_t *)0xE000ED88u;
     const uint32_t ccr = *(volatile uint32_t *)0xE000ED14u;
     const uint32_t mpu_ctrl = *(volatile uint32_t *)0xE000ED94u;
@@ -364,6 +435,7 @@ int main(void)
         cmocka_unit_test(test_sqrt_is_correctly_rounded),
         cmocka_unit_test(test_libm_matches_constants),
         cmocka_unit_test(test_subnormals_are_not_flushed),
+        cmocka_unit_test(test_single_precision_is_ieee),
 #if defined(OGK_SELFTEST_INJECT_FAILURES)
         cmocka_unit_test(inject_assert_true),
         cmocka_unit_test(inject_assert_false),
