@@ -97,20 +97,39 @@ UNIT_HDR := $(wildcard tests/unit/*.h)
 $(if $(filter-out $(words $(UNIT_NAMES)),$(words $(sort $(UNIT_NAMES)))),\
   $(error tests/unit: two test sources share a file name: $(sort $(UNIT_NAMES))))
 vpath test_%.c $(sort $(dir $(UNIT_SRC)))
-UNIT_HOST := $(addprefix $(B)/host-san/,$(UNIT_NAMES))
-SAN_OBJ := $(patsubst kernel/src/%.c,$(B)/host-san/kernel/%.o,$(KSRC))
 TEST_CFLAGS := -std=c99 -Wall -Wextra -Werror -O1 -g $(SAN) $(KINC) -Itests/unit
-$(B)/host-san/kernel/%.o: kernel/src/%.c $(KHDR) | apt
-	@mkdir -p $(@D)
-	gcc $(STRICT) -O1 -g $(SAN) $(KINC) $(KSRC_INC) -c $< -o $@
-$(B)/host-san/test_%: test_%.c $(UNIT_HDR) $(SAN_OBJ) | apt
-	@mkdir -p $(@D)
-	gcc $(TEST_CFLAGS) $< $(SAN_OBJ) -o $@ -lcmocka -lm
 
-.PHONY: test-unit-host
-test-unit-host: $(UNIT_HOST)
-	@fail=0; for t in $(UNIT_HOST); do echo "== host: $$t"; \
+# One sanitizer build of the kernel and the tests per precision of the real type (ogk/real.h), each in its
+# own directory: $(call host_unit_target,P,DIR,DEFS) defines P_B, P_DEFS, P_OBJ (the kernel's objects),
+# P_TESTS (one program per test source) and their rules; $(call host_unit_run,P,LABEL) is the recipe that
+# runs them all, every one even after a failure. The double build (test-unit-host: build/host-san, the
+# default configuration) and the float build (test-unit-host-single: build/host-san-single,
+# -DOGK_REAL_SINGLE=1 on the kernel and on the tests alike, so that both see one ogk_real_t). An optional
+# fourth argument is compiled into the tests only (make unit-errors: -DOGK_TEST_MEASURE).
+define host_unit_target
+$(1)_B := $$(B)/$(2)
+$(1)_DEFS := $(3)
+$(1)_TEST_DEFS := $(4)
+$(1)_OBJ := $$(patsubst kernel/src/%.c,$$($(1)_B)/kernel/%.o,$$(KSRC))
+$(1)_TESTS := $$(addprefix $$($(1)_B)/,$$(UNIT_NAMES))
+$$($(1)_B)/kernel/%.o: kernel/src/%.c $$(KHDR) | apt
+	@mkdir -p $$(@D)
+	gcc $$(strip $$(STRICT) $$($(1)_DEFS)) -O1 -g $$(SAN) $$(KINC) $$(KSRC_INC) -c $$< -o $$@
+$$($(1)_B)/test_%: test_%.c $$(UNIT_HDR) $$($(1)_OBJ) | apt
+	@mkdir -p $$(@D)
+	gcc $$(strip $$(TEST_CFLAGS) $$($(1)_DEFS) $$($(1)_TEST_DEFS)) $$< $$($(1)_OBJ) -o $$@ -lcmocka -lm
+endef
+host_unit_run = @fail=0; for t in $($(1)_TESTS); do echo "== $(2): $$t"; \
 	  $$t 2>&1 || fail=1; done; exit $$fail
+
+$(eval $(call host_unit_target,HOST_SAN,host-san,))
+$(eval $(call host_unit_target,HOST_SAN_SINGLE,host-san-single,-DOGK_REAL_SINGLE=1))
+
+.PHONY: test-unit-host test-unit-host-single
+test-unit-host: $(HOST_SAN_TESTS)
+	$(call host_unit_run,HOST_SAN,host)
+test-unit-host-single: $(HOST_SAN_SINGLE_TESTS)
+	$(call host_unit_run,HOST_SAN_SINGLE,host single)
 
 # ---------------------------------------------------------------- Cortex-M7 and Cortex-M4F (bare metal, QEMU)
 # The ARMv7-M route (runtime, test runner, rules), then each target's parameters and goals.
@@ -121,6 +140,9 @@ include port/cortex-m4f/cortex-m4f.mk
 include port/qemu-plugin/qemu-plugin.mk
 # before test-python, whose prerequisites name its LINK_ECHO_ELF (prerequisites expand when read)
 include port/cortex-m7/link/link.mk
+
+# the measured errors of the unit tests per precision (make unit-errors: docs/design/precision-unit-tests.md)
+include tests/unit/unit_errors.mk
 
 # ---------------------------------------------------------------- the package as a flight project takes it
 # make test-consumer: the kernel built and installed by CMake alone, examples/consumer built against it

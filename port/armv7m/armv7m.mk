@@ -26,7 +26,7 @@
 ARMV7M_DIR := port/armv7m
 ARMV7M_RUNNER := port/cortex-m7/testrunner
 ARMV7M_ST_SRC := $(ARMV7M_DIR)/selftest/test_selftest.c
-ARMV7M_ST_HOST_CFLAGS := -std=c99 -Wall -Wextra -Werror -O1 -g -Itests/unit -Iport/include
+ARMV7M_ST_HOST_CFLAGS := -std=c99 -Wall -Wextra -Werror -O1 -g -Itests/unit $(KINC) -Iport/include
 
 define armv7m_target
 $(1)_NAME := $(3)
