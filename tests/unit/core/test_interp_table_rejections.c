@@ -17,14 +17,14 @@
 
 /* ------------------------------------------------------------------ interp */
 
-static const double grid3[3] = {0.0, 1.0, 3.0};
-static const double vals3[3] = {1.0, 2.0, 4.0};
+static const ogk_real_t grid3[3] = {0.0, 1.0, 3.0};
+static const ogk_real_t vals3[3] = {1.0, 2.0, 4.0};
 
 /* req: OGK-CORE-015 OGK-CORE-021 */
 static void test_interp_null_arguments(void **state)
 {
-    double out[2] = {-7.0, -7.0};
-    double slopes[3] = {-7.0, -7.0, -7.0};
+    ogk_real_t out[2] = {-7.0, -7.0};
+    ogk_real_t slopes[3] = {-7.0, -7.0, -7.0};
     size_t k = 99u;
     (void)state;
     OGK_ASSERT_STATUS(ogk_interp_check_grid(NULL, 3u), OGK_E_NULL);
@@ -46,8 +46,8 @@ static void test_interp_null_arguments(void **state)
 /* req: OGK-CORE-015 OGK-CORE-021 */
 static void test_interp_dimensions(void **state)
 {
-    double out[2] = {-7.0, -7.0};
-    double slopes[3] = {-7.0, -7.0, -7.0};
+    ogk_real_t out[2] = {-7.0, -7.0};
+    ogk_real_t slopes[3] = {-7.0, -7.0, -7.0};
     size_t k = 99u;
     (void)state;
     /* a one-node grid has no interval */
@@ -67,9 +67,9 @@ static void test_interp_dimensions(void **state)
 /* req: OGK-CORE-015 OGK-CORE-021 */
 static void test_interp_nonfinite(void **state)
 {
-    double grid[3] = {0.0, 1.0, 3.0};
-    double vals[3] = {1.0, 2.0, 4.0};
-    double slopes[3] = {-7.0, -7.0, -7.0};
+    ogk_real_t grid[3] = {0.0, 1.0, 3.0};
+    ogk_real_t vals[3] = {1.0, 2.0, 4.0};
+    ogk_real_t slopes[3] = {-7.0, -7.0, -7.0};
     (void)state;
     grid[1] = NAN;
     OGK_ASSERT_STATUS(ogk_interp_check_grid(grid, 3u), OGK_E_NONFINITE);
@@ -84,7 +84,7 @@ static void test_interp_nonfinite(void **state)
     vals[2] = 4.0;
     OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(grid, 3u, vals, 1u, slopes), OGK_OK);
     /* interior: weighted harmonic mean of the secants 1 and 1 is 1 */
-    OGK_ASSERT_NEAR(slopes[1], 1.0, 1e-15);
+    OGK_ASSERT_NEAR(slopes[1], 1.0, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
 }
 
 /* Fritsch-Butland interior slope (w0 + w1) / (w0 / d0 + w1 / d1), w0 = 2 h1 + h0,
@@ -98,39 +98,59 @@ static double fb_slope(double h0, double h1, double d0, double d1)
 }
 
 /* The scaled form of the interior slope is taken when one secant or one weight leaves
- * [1e-150, 1e150]; it must agree with the formula. One case per operand. */
+ * [1e-150, 1e150] (float build: [1e-15, 1e15], OGK_REAL_ROOT_TINY / _BIG; each float case
+ * below sits where its double one does, the magnitudes scaled to that range); it must
+ * agree with the formula. One case per operand. Tolerance 1e-14 relative: 45 eps, in
+ * float 45 FLT_EPSILON. */
+#if OGK_REAL_SINGLE
+#define S_TINY 1e-20 /* d1 */
+#define S_STEP 1e-16 /* grid steps: w0 = 3e-16 below the range */
+#define S_STEP_2 2e-16
+#define S_STEP_3 3e-16
+#define S_H0 6e14    /* w0 = 6.2e14 in range, w1 = 1.21e15 out of it */
+#define S_H1 1e13
+#define S_HI 1e15
+#else
+#define S_TINY 1e-200
+#define S_STEP 1e-160
+#define S_STEP_2 2e-160
+#define S_STEP_3 3e-160
+#define S_H0 6e149
+#define S_H1 1e148
+#define S_HI 1e150
+#endif
 /* req: OGK-CORE-015 */
 static void test_interp_scaled_harmonic_slope(void **state)
 {
-    double slopes[3];
+    ogk_real_t slopes[3];
     (void)state;
     {
         /* d0 = 1, d1 = 1e-200 tiny: w / d stays representable here (w1 / d1 = 3e200) */
-        const double g[3] = {0.0, 1.0, 2.0};
-        const double v[3] = {-1.0, 0.0, 1e-200};
+        const ogk_real_t g[3] = {0.0, 1.0, 2.0};
+        const ogk_real_t v[3] = {-1.0, 0.0, S_TINY};
         OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(g, 3u, v, 1u, slopes), OGK_OK);
-        OGK_ASSERT_REL(slopes[1], fb_slope(1.0, 1.0, 1.0, 1e-200), 1e-14, 0.0);
-        OGK_ASSERT_REL(slopes[1], 2.0e-200, 1e-14, 0.0); /* ~ (w0 + w1) d1 / w1, w0 = w1 */
+        OGK_ASSERT_REL(slopes[1], fb_slope(1.0, 1.0, 1.0, v[2]), OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON), 0.0);
+        OGK_ASSERT_REL(slopes[1], 2.0 * v[2], OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON), 0.0); /* ~ (w0 + w1) d1 / w1, w0 = w1 */
     }
     {
         /* grid steps 1e-160 (w0 out of range), secants 1 and 2 */
-        const double g[3] = {0.0, 1e-160, 2e-160};
-        const double v[3] = {0.0, 1e-160, 3e-160};
+        const ogk_real_t g[3] = {0.0, S_STEP, S_STEP_2};
+        const ogk_real_t v[3] = {0.0, S_STEP, S_STEP_3};
         OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(g, 3u, v, 1u, slopes), OGK_OK);
-        OGK_ASSERT_REL(slopes[1], 4.0 / 3.0, 1e-14, 0.0); /* (3 + 3) / (3 / 1 + 3 / 2) */
+        OGK_ASSERT_REL(slopes[1], 4.0 / 3.0, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON), 0.0); /* (3 + 3) / (3 / 1 + 3 / 2) */
     }
     {
         /* h0 = 6e149, h1 = 1e148: w0 = 6.2e149 in range, w1 = 1.21e150 out of it */
-        const double h0 = 6e149;
-        const double h1 = 1e148;
-        const double g[3] = {0.0, h0, h0 + h1};
-        const double v[3] = {0.0, h0, h0 + (2.0 * h1)};
+        const double h0 = S_H0;
+        const double h1 = S_H1;
+        const ogk_real_t g[3] = {0.0, h0, h0 + h1};
+        const ogk_real_t v[3] = {0.0, h0, h0 + (2.0 * h1)};
         const double d0 = (v[1] - v[0]) / (g[1] - g[0]);
         const double d1 = (v[2] - v[1]) / (g[2] - g[1]);
-        assert_true(((2.0 * (g[2] - g[1])) + (g[1] - g[0])) <= 1e150);
-        assert_true(((g[2] - g[1]) + (2.0 * (g[1] - g[0]))) > 1e150);
+        assert_true(((2.0 * (g[2] - g[1])) + (g[1] - g[0])) <= S_HI);
+        assert_true(((g[2] - g[1]) + (2.0 * (g[1] - g[0]))) > S_HI);
         OGK_ASSERT_STATUS(ogk_interp_pchip_slopes(g, 3u, v, 1u, slopes), OGK_OK);
-        OGK_ASSERT_REL(slopes[1], fb_slope(g[1] - g[0], g[2] - g[1], d0, d1), 1e-14, 0.0);
+        OGK_ASSERT_REL(slopes[1], fb_slope(g[1] - g[0], g[2] - g[1], d0, d1), OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON), 0.0);
     }
 }
 
@@ -240,8 +260,10 @@ static void test_table_size_overflow(void **state)
         expect_open(&s1, OGK_E_TABLE_SIZE);
     }
     {
-        const uint32_t d[1] = {0xFFFFu}; /* 0x300 * 0x10000 values: 8 x that overflows */
-        header(1u, d, 0x300u);
+        /* 0x300 * 0x10000 values: 8 x that overflows (float build, 4-byte values:
+         * 0x600 * 0x10000, 4 x that overflows) */
+        const uint32_t d[1] = {0xFFFFu};
+        header(1u, d, (TW_REAL_BYTES == 8u) ? 0x300u : 0x600u);
         expect_open(&s1, OGK_E_TABLE_SIZE);
     }
 }
@@ -267,7 +289,7 @@ static void test_table_short_buffers(void **state)
 #define GRID 3u
 #define ENTRY 2u
 #define NVAL (GRID * (1u + ENTRY))
-static uint8_t tbuf[OGK_TABLE_HEADER_SIZE + 8u * NVAL];
+static uint8_t tbuf[OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * NVAL];
 
 /* req: OGK-CORE-017 OGK-CORE-021 */
 static void test_table_readers_reject(void **state)
@@ -276,14 +298,14 @@ static void test_table_readers_reject(void **state)
     ogk_table_spec_t s = any_spec(1u);
     ogk_table_view_t v;
     ogk_table_view_t zero;
-    double grid[GRID] = {-7.0, -7.0, -7.0};
-    double data[GRID * ENTRY];
-    double one = -7.0;
+    ogk_real_t grid[GRID] = {-7.0, -7.0, -7.0};
+    ogk_real_t data[GRID * ENTRY];
+    ogk_real_t one = -7.0;
     uint32_t i;
     (void)state;
     tw_header(tbuf, KIND, 1u, d1, GRID);
     for (i = 0u; i < NVAL; ++i) {
-        tw_put_f64(tbuf + OGK_TABLE_HEADER_SIZE + 8u * i, (double)i);
+        tw_put_real(tbuf + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * i, (double)i);
     }
     tw_seal(tbuf, NVAL);
     OGK_ASSERT_STATUS(ogk_table_open(tbuf, sizeof tbuf, &s, &v), OGK_OK);

@@ -1,6 +1,8 @@
 /* test_table.c -- the table loader accepts a well-formed table and rejects
  * each kind of damage with its own status. The writer here is the test's
- * own, written from the layout documented in ogk/table.h. */
+ * own, written from the layout documented in ogk/table.h, in the build's
+ * element type (table_writer.h: F64 for the double kernel, F32 for the float
+ * one; the values below are exact in both). */
 #include "ogk_test.h"
 
 #include <string.h>
@@ -13,7 +15,7 @@
 #define ROWS 2u
 #define COLS 3u
 #define N_VALUES (GRID * (1u + ROWS * COLS))
-#define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + 8u * N_VALUES)
+#define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * N_VALUES)
 
 static double entry_value(unsigned k, unsigned idx)
 {
@@ -33,9 +35,9 @@ static void build(uint8_t *buf)
     memset(buf, 0, TABLE_BYTES);
     tw_header(buf, KIND_TEST, 2u, dims, GRID);
     for (k = 0u; k < GRID; ++k) {
-        tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * k, 0.25 * (double)k);
+        tw_put_real(buf + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * k, 0.25 * (double)k);
         for (i = 0u; i < ROWS * COLS; ++i) {
-            tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * (GRID + k * ROWS * COLS + i),
+            tw_put_real(buf + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * (GRID + k * ROWS * COLS + i),
                     entry_value(k, i));
         }
     }
@@ -62,9 +64,9 @@ static void test_valid_table_reads_back(void **state)
 {
     ogk_table_spec_t s = spec();
     ogk_table_view_t v;
-    double grid[GRID];
-    double data[GRID * ROWS * COLS];
-    double one;
+    ogk_real_t grid[GRID];
+    ogk_real_t data[GRID * ROWS * COLS];
+    ogk_real_t one;
     unsigned k, i;
     (void)state;
     build(table_buf);
@@ -95,17 +97,17 @@ static void test_valid_table_reads_back(void **state)
 static void test_scalar_entries(void **state)
 {
     const uint32_t dims[1] = {1u};
-    static uint8_t scalar_buf[OGK_TABLE_HEADER_SIZE + 8u * 2u * GRID];
+    static uint8_t scalar_buf[OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * 2u * GRID];
     ogk_table_spec_t s = spec();
     ogk_table_view_t v;
-    double value;
+    ogk_real_t value;
     unsigned k;
     (void)state;
     memset(scalar_buf, 0, sizeof scalar_buf);
     tw_header(scalar_buf, KIND_TEST, 1u, dims, GRID);
     for (k = 0u; k < GRID; ++k) {
-        tw_put_f64(scalar_buf + OGK_TABLE_HEADER_SIZE + 8u * k, (double)k);
-        tw_put_f64(scalar_buf + OGK_TABLE_HEADER_SIZE + 8u * (GRID + k), 2.0 * (double)k + 0.5);
+        tw_put_real(scalar_buf + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * k, (double)k);
+        tw_put_real(scalar_buf + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * (GRID + k), 2.0 * (double)k + 0.5);
     }
     tw_seal(scalar_buf, 2u * GRID);
     s.ndims = 1u;
@@ -170,7 +172,7 @@ static void test_truncated_and_oversized(void **state)
     build(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES - 1u, &s, &v), OGK_E_TABLE_TRUNCATED);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, 20u, &s, &v), OGK_E_TABLE_TRUNCATED);
-    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES + 8u, &s, &v), OGK_E_TABLE_SIZE);
+    OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES + TW_REAL_BYTES, &s, &v), OGK_E_TABLE_SIZE);
 }
 
 /* req: OGK-CORE-017 */
@@ -187,7 +189,7 @@ static void test_magic_version_type_kind(void **state)
     seal(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_VERSION);
     build(table_buf);
-    tw_put_u16(table_buf + 6, 2u);
+    tw_put_u16(table_buf + 6, (uint16_t)TW_OTHER_TYPE); /* the other precision's element */
     seal(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_TYPE);
     build(table_buf);
@@ -202,11 +204,11 @@ static void test_inconsistent_payload_size_and_nan(void **state)
     ogk_table_view_t v;
     (void)state;
     build(table_buf);
-    tw_put_u32(table_buf + 36, 8u * N_VALUES - 8u);
+    tw_put_u32(table_buf + 36, TW_REAL_BYTES * N_VALUES - TW_REAL_BYTES);
     seal(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_TABLE_SIZE);
     build(table_buf);
-    tw_put_f64(table_buf + OGK_TABLE_HEADER_SIZE + 8u * 9u, NAN);
+    tw_put_real(table_buf + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * 9u, NAN);
     seal(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_NONFINITE);
 }
@@ -220,16 +222,16 @@ static void test_nonfinite_first_and_last_value(void **state)
     ogk_table_view_t v;
     (void)state;
     build(table_buf);
-    tw_put_f64(table_buf + OGK_TABLE_HEADER_SIZE, NAN);
+    tw_put_real(table_buf + OGK_TABLE_HEADER_SIZE, NAN);
     seal(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_NONFINITE);
     assert_null(v.buf);
     build(table_buf);
-    tw_put_f64(table_buf + OGK_TABLE_HEADER_SIZE, -INFINITY);
+    tw_put_real(table_buf + OGK_TABLE_HEADER_SIZE, -INFINITY);
     seal(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_NONFINITE);
     build(table_buf);
-    tw_put_f64(table_buf + OGK_TABLE_HEADER_SIZE + 8u * (N_VALUES - 1u), INFINITY);
+    tw_put_real(table_buf + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * (N_VALUES - 1u), INFINITY);
     seal(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(table_buf, TABLE_BYTES, &s, &v), OGK_E_NONFINITE);
     build(table_buf); /* and the undamaged table opens */
@@ -241,13 +243,22 @@ static void test_nonfinite_first_and_last_value(void **state)
  * 1 082 401. A header claiming it passes the size checks and is then found
  * truncated (only the header is there); one value more, 2^25 = 32 x 2^20
  * (entries of 31), is too large. Both stop before the payload is read, so
- * the payload CRC is not needed. */
+ * the payload CRC is not needed. With 4-byte values (float build) the limit
+ * is OGK_TABLE_MAX_VALUES / 4 = 2^26 - 1 = 8193 x 8191 (entries of 8192 on a
+ * grid of 8191), and 2^26 = 64 x 2^20 (entries of 63) is one too many. */
 /* req: OGK-CORE-017 */
 static void test_largest_payload_size(void **state)
 {
     static uint8_t hdr[OGK_TABLE_HEADER_SIZE];
+#if OGK_REAL_SINGLE
+    const uint32_t dims_max[1] = {8192u};
+    const uint32_t dims_over[1] = {63u};
+    enum { GRID_MAX = 8191u };
+#else
     const uint32_t dims_max[1] = {30u};
     const uint32_t dims_over[1] = {31u};
+    enum { GRID_MAX = 601u * 1801u };
+#endif
     ogk_table_spec_t s = spec();
     ogk_table_view_t v;
     (void)state;
@@ -255,7 +266,7 @@ static void test_largest_payload_size(void **state)
     s.dims[0] = 0u;
     s.dims[1] = 0u;
     s.max_grid = 2000000u;
-    tw_header(hdr, KIND_TEST, 1u, dims_max, 601u * 1801u);
+    tw_header(hdr, KIND_TEST, 1u, dims_max, GRID_MAX);
     tw_seal(hdr, 0u);
     OGK_ASSERT_STATUS(ogk_table_open(hdr, sizeof hdr, &s, &v), OGK_E_TABLE_TRUNCATED);
     tw_header(hdr, KIND_TEST, 1u, dims_over, 1048576u);
@@ -268,7 +279,7 @@ static void test_null_and_unopened(void **state)
 {
     ogk_table_spec_t s = spec();
     ogk_table_view_t v;
-    double grid[GRID];
+    ogk_real_t grid[GRID];
     (void)state;
     build(table_buf);
     OGK_ASSERT_STATUS(ogk_table_open(NULL, TABLE_BYTES, &s, &v), OGK_E_NULL);
@@ -288,7 +299,18 @@ static void test_byte_order_probe(void **state)
     unsigned i;
     (void)state;
     OGK_ASSERT_STATUS(ogk_table_check_f64_bytes(le), OGK_OK);
+#if OGK_REAL_SINGLE
+    /* The float build's probe is the float nearest pi (F32 bits 0x40490FDB,
+     * as its tables store it); the binary64 bytes are those of pi's literal. */
+    {
+        static const uint8_t le32[4] = {0xDBu, 0x0Fu, 0x49u, 0x40u};
+        tw_put_real(b, OGK_TABLE_ORDER_PROBE);
+        assert_true(memcmp(b, le32, sizeof le32) == 0);
+    }
+    tw_put_f64(b, 3.141592653589793); /* the test's own little-endian writer agrees */
+#else
     tw_put_f64(b, OGK_TABLE_ORDER_PROBE); /* the test's own little-endian writer agrees */
+#endif
     assert_true(memcmp(b, le, sizeof b) == 0);
     OGK_ASSERT_STATUS(ogk_table_check_f64_bytes(b), OGK_OK);
     for (i = 0u; i < 8u; ++i) {
@@ -309,21 +331,21 @@ static void test_byte_order_probe(void **state)
 }
 
 /* req: OGK-CORE-028 OGK-CORE-017 */
-/* The other precision's table (F32, IEEE-754 binary32, for the double kernel
- * the unit tests build) is refused as an element type this build does not
+/* The other precision's table (F32, IEEE-754 binary32, for the double kernel;
+ * F64 for the float one) is refused as an element type this build does not
  * read, with the view left zeroed (unusable); the same view then opens the
- * build's own F64 table. */
+ * build's own table. */
 static void test_other_precision_refused(void **state)
 {
-    static uint8_t f32_buf[OGK_TABLE_HEADER_SIZE + 4u * N_VALUES];
+    static uint8_t f32_buf[OGK_TABLE_HEADER_SIZE + TW_OTHER_BYTES * N_VALUES];
     static const ogk_table_view_t zero_view;
     ogk_table_spec_t s = spec();
     ogk_table_view_t v;
-    double value = -1.0;
+    ogk_real_t value = -1.0;
     (void)state;
-    assert_int_equal(OGK_TABLE_REAL, OGK_TABLE_F64);
+    assert_int_equal(OGK_TABLE_REAL, OGK_REAL_SINGLE ? OGK_TABLE_F32 : OGK_TABLE_F64);
     build(table_buf);
-    tw_to_f32(table_buf, f32_buf, N_VALUES);
+    tw_to_other(table_buf, f32_buf, N_VALUES);
     memset(&v, 0xA5, sizeof v);
     OGK_ASSERT_STATUS(ogk_table_open(f32_buf, sizeof f32_buf, &s, &v), OGK_E_TABLE_TYPE);
     assert_true(memcmp(&v, &zero_view, sizeof v) == 0);
