@@ -14,7 +14,7 @@
 /* ------------------------------------------------------------------ rk4 */
 
 /* mode 1: x' = -x, mode 0: x' = +x */
-static ogk_status rhs_decay(void *user, double t, const double *x, int mode, double *xdot)
+static ogk_status rhs_decay(void *user, ogk_real_t t, const ogk_real_t *x, int mode, ogk_real_t *xdot)
 {
     (void)user;
     (void)t;
@@ -23,7 +23,7 @@ static ogk_status rhs_decay(void *user, double t, const double *x, int mode, dou
 }
 
 /* S = t - t_root, with t_root in *user */
-static ogk_status sw_root(void *user, double t, const double *x, int mode, double *s)
+static ogk_status sw_root(void *user, ogk_real_t t, const ogk_real_t *x, int mode, ogk_real_t *s)
 {
     const double *t_root = (const double *)user;
     (void)x;
@@ -34,7 +34,7 @@ static ogk_status sw_root(void *user, double t, const double *x, int mode, doubl
 
 /* S = (t - t_root) - 1e-17: t - t_root is a multiple of 2^-54 for t, t_root in [0.25, 0.5),
  * so S is never exactly 0 on a double there */
-static ogk_status sw_root_off(void *user, double t, const double *x, int mode, double *s)
+static ogk_status sw_root_off(void *user, ogk_real_t t, const ogk_real_t *x, int mode, ogk_real_t *s)
 {
     const double *t_root = (const double *)user;
     (void)x;
@@ -43,7 +43,7 @@ static ogk_status sw_root_off(void *user, double t, const double *x, int mode, d
     return OGK_OK;
 }
 
-static ogk_status sw_zero(void *user, double t, const double *x, int mode, double *s)
+static ogk_status sw_zero(void *user, ogk_real_t t, const ogk_real_t *x, int mode, ogk_real_t *s)
 {
     (void)user;
     (void)t;
@@ -53,7 +53,7 @@ static ogk_status sw_zero(void *user, double t, const double *x, int mode, doubl
     return OGK_OK;
 }
 
-static ogk_status sw_nan(void *user, double t, const double *x, int mode, double *s)
+static ogk_status sw_nan(void *user, ogk_real_t t, const ogk_real_t *x, int mode, ogk_real_t *s)
 {
     (void)user;
     (void)t;
@@ -83,11 +83,11 @@ static void test_rk4_problem_and_argument_checks(void **state)
     double t_root = 0.37;
     ogk_rk4_problem_t p;
     ogk_rk4_result_t res;
-    const double x0[1] = {1.0};
-    double xf[1] = {-7.0};
-    double xn[1] = {-7.0};
-    double dt_buf[4];
-    double dx_buf[4];
+    const ogk_real_t x0[1] = {1.0};
+    ogk_real_t xf[1] = {-7.0};
+    ogk_real_t xn[1] = {-7.0};
+    ogk_real_t dt_buf[4];
+    ogk_real_t dx_buf[4];
     uint8_t dm_buf[4];
     ogk_rk4_dense_t d;
     unsigned k;
@@ -108,13 +108,13 @@ static void test_rk4_problem_and_argument_checks(void **state)
     }
     p = problem(sw_root, &t_root);
     {
-        const double bad[1] = {NAN};
+        const ogk_real_t bad[1] = {NAN};
         OGK_ASSERT_STATUS(ogk_rk4_step(&p, 0.0, bad, 0.1, 1, xn), OGK_E_NONFINITE);
     }
     {
         /* two states, the first one NaN: found without looking further */
-        const double bad2[2] = {NAN, 0.0};
-        double xn2[2] = {-7.0, -7.0};
+        const ogk_real_t bad2[2] = {NAN, 0.0};
+        ogk_real_t xn2[2] = {-7.0, -7.0};
         p.n = 2u;
         OGK_ASSERT_STATUS(ogk_rk4_step(&p, 0.0, bad2, 0.1, 1, xn2), OGK_E_NONFINITE);
         OGK_ASSERT_NEAR(xn2[0], -7.0, 0.0);
@@ -146,16 +146,16 @@ static void test_rk4_degenerate_grids_and_switches(void **state)
     double t_root = 0.37;
     ogk_rk4_problem_t p;
     ogk_rk4_result_t res;
-    const double x0[1] = {1.0};
-    double xf[1];
+    const ogk_real_t x0[1] = {1.0};
+    ogk_real_t xf[1];
     (void)state;
     /* tf - t0 far below one step h (ratio under the slop): one step of tf - t0 */
     p = problem(NULL, NULL);
     p.h = 1.0;
     OGK_ASSERT_STATUS(ogk_rk4_propagate(&p, 0.0, x0, 1, 1e-12, &res, xf, NULL), OGK_OK);
     assert_int_equal(res.n_steps, 1u);
-    OGK_ASSERT_NEAR(res.t_reached, 1e-12, 0.0);
-    OGK_ASSERT_REL(xf[0], 1.0 - 1e-12, 1e-15, 0.0);
+    OGK_ASSERT_NEAR(res.t_reached, (ogk_real_t)1e-12, 0.0); /* the end time as the kernel has it */
+    OGK_ASSERT_REL(xf[0], 1.0 - 1e-12, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON), 0.0);
     /* S identically 0: no sign to leave, so no event; plain decay */
     p = problem(sw_zero, NULL);
     OGK_ASSERT_STATUS(ogk_rk4_propagate(&p, 0.0, x0, 1, 1.0, &res, xf, NULL), OGK_OK);
@@ -163,17 +163,20 @@ static void test_rk4_degenerate_grids_and_switches(void **state)
     assert_int_equal(res.mode_final, 1);
     OGK_ASSERT_REL(xf[0], exp(-1.0), 1e-4, 0.0);
     /* S never exactly 0 on a double and s_tol = 0, t_tol = 1e-300 below any bracket: the
-     * bisection runs to the last bit of the bracket and accepts its far end */
+     * bisection runs to the last bit of the bracket and accepts its far end. Float: S is
+     * never 0 either (0.37 is not a float), t_tol = 1e-30 (1e-300 is 0 there), and the last
+     * bit of a bracket of 0.25 at 0.37 is 2^-25 (23 halvings; double 2^-54, 52) */
     t_root = 0.37;
     p = problem(sw_root_off, &t_root);
     p.s_tol = 0.0;
-    p.t_tol = 1e-300;
+    p.t_tol = OGK_TEST_TOL(1e-300, 1e-30);
     OGK_ASSERT_STATUS(ogk_rk4_propagate(&p, 0.0, x0, 1, 1.0, &res, xf, NULL), OGK_OK);
     assert_int_equal(res.n_switches, 1u);
     assert_int_equal(res.sw[0].how, OGK_SWITCH_BY_TIME_TOL);
-    assert_true(res.sw[0].bisections > 40u);
+    assert_true(res.sw[0].bisections > OGK_TEST_TOL(40u, 20u));
     assert_true(res.sw[0].s > 0.0); /* the far end: S already of the new sign */
-    OGK_ASSERT_NEAR(res.sw[0].t, 0.37, 2e-16);
+    /* 2e-16 is 3.6 ulps of 0.37 (2^-54); float: 4 ulps (2^-25 each) */
+    OGK_ASSERT_NEAR(res.sw[0].t, 0.37, OGK_TEST_TOL(2e-16, FLT_EPSILON));
     /* root 1e-12 before the end of the second step (t = 0.5), t_tol = 1e-9: the bracket
      * keeps its upper end, and the switch is accepted at the step's end exactly */
     t_root = 0.5 - 1e-12;
@@ -198,10 +201,10 @@ static void test_rk4_dense_full_at_switch(void **state)
     ogk_rk4_problem_t p = problem(sw_root, &t_root);
     ogk_rk4_result_t res;
     ogk_rk4_dense_t d;
-    const double x0[1] = {1.0};
-    double xf[1];
-    double dt_buf[2];
-    double dx_buf[2];
+    const ogk_real_t x0[1] = {1.0};
+    ogk_real_t xf[1];
+    ogk_real_t dt_buf[2];
+    ogk_real_t dx_buf[2];
     uint8_t dm_buf[2];
     (void)state;
     d.t = dt_buf;
@@ -213,7 +216,9 @@ static void test_rk4_dense_full_at_switch(void **state)
     assert_int_equal(d.count, 2u);
     OGK_ASSERT_NEAR(dt_buf[1], 0.25, 0.0);
     assert_int_equal(res.n_switches, 1u);
-    OGK_ASSERT_NEAR(res.t_reached, 0.37, 1e-9); /* stopped at the switch */
+    /* stopped at the switch; float: t_tol = 1e-9 is below float's resolution, so the
+     * bracket runs to its last bit: 4 ulps of 0.37 */
+    OGK_ASSERT_NEAR(res.t_reached, 0.37, OGK_TEST_TOL(1e-9, FLT_EPSILON));
 }
 
 int main(void)

@@ -17,7 +17,7 @@ typedef struct {
     unsigned sw_fail_at;  /* 0: never */
 } counter_t;
 
-static ogk_status rhs_decay(void *user, double t, const double *x, int mode, double *xdot)
+static ogk_status rhs_decay(void *user, ogk_real_t t, const ogk_real_t *x, int mode, ogk_real_t *xdot)
 {
     counter_t *c = (counter_t *)user;
     (void)t;
@@ -30,7 +30,7 @@ static ogk_status rhs_decay(void *user, double t, const double *x, int mode, dou
 }
 
 /* S = t - 0.37: one switch inside the second step of h = 0.25. */
-static ogk_status sw_time(void *user, double t, const double *x, int mode, double *s)
+static ogk_status sw_time(void *user, ogk_real_t t, const ogk_real_t *x, int mode, ogk_real_t *s)
 {
     counter_t *c = (counter_t *)user;
     (void)x;
@@ -62,8 +62,8 @@ static void test_step_rejections_and_stage_failures(void **state)
 {
     counter_t c;
     ogk_rk4_problem_t p;
-    const double x[1] = {1.0};
-    double xn[1];
+    const ogk_real_t x[1] = {1.0};
+    ogk_real_t xn[1];
     unsigned k;
     (void)state;
     memset(&c, 0, sizeof c);
@@ -91,8 +91,8 @@ static void test_propagate_fails_at_every_callback(void **state)
     counter_t c;
     ogk_rk4_problem_t p;
     ogk_rk4_result_t res;
-    const double x0[1] = {1.0};
-    double xf[1];
+    const ogk_real_t x0[1] = {1.0};
+    ogk_real_t xf[1];
     unsigned rhs_total;
     unsigned sw_total;
     unsigned k;
@@ -129,9 +129,9 @@ static void test_factorizations_not_held(void **state)
 {
     ogk_lu_t lu;
     ogk_chol_t ch;
-    const double A[4] = {4.0, 1.0, 1.0, 3.0};
-    const double b[2] = {1.0, 2.0};
-    double x[2];
+    const ogk_real_t A[4] = {4.0, 1.0, 1.0, 3.0};
+    const ogk_real_t b[2] = {1.0, 2.0};
+    ogk_real_t x[2];
     (void)state;
     OGK_ASSERT_STATUS(ogk_lu_factor(&lu, A, 2u), OGK_OK);
     OGK_ASSERT_STATUS(ogk_lu_solve(&lu, b, x), OGK_OK);
@@ -145,7 +145,7 @@ static void test_factorizations_not_held(void **state)
     OGK_ASSERT_STATUS(ogk_chol_solve(&ch, b, x), OGK_E_DIM);
     OGK_ASSERT_STATUS(ogk_chol_factor(&ch, A, 2u), OGK_OK);
     {
-        const double bad[2] = {NAN, 0.0};
+        const ogk_real_t bad[2] = {NAN, 0.0};
         OGK_ASSERT_STATUS(ogk_chol_solve(&ch, bad, x), OGK_E_NONFINITE);
     }
     OGK_ASSERT_STATUS(ogk_chol_solve(&ch, b, x), OGK_OK);
