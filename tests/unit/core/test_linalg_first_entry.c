@@ -18,9 +18,9 @@ static void test_linalg_first_entry_failures(void **state)
 {
     ogk_lu_t lu;
     ogk_chol_t ch;
-    const double A2[4] = {4.0, 1.0, 1.0, 3.0};
-    const double b2[2] = {1.0, 2.0};
-    double x[3] = {-7.0, -7.0, -7.0};
+    const ogk_real_t A2[4] = {4.0, 1.0, 1.0, 3.0};
+    const ogk_real_t b2[2] = {1.0, 2.0};
+    ogk_real_t x[3] = {-7.0, -7.0, -7.0};
     (void)state;
     /* the first permutation entry out of range: found before the others are looked at */
     OGK_ASSERT_STATUS(ogk_lu_factor(&lu, A2, 2u), OGK_OK);
@@ -29,26 +29,26 @@ static void test_linalg_first_entry_failures(void **state)
     OGK_ASSERT_NEAR(x[0], -7.0, 0.0);
     {
         /* not symmetric in its first off-diagonal pair (1, 0) / (0, 1) */
-        const double A3[9] = {4.0, 1.0, 0.0, 2.0, 4.0, 0.0, 0.0, 0.0, 4.0};
+        const ogk_real_t A3[9] = {4.0, 1.0, 0.0, 2.0, 4.0, 0.0, 0.0, 0.0, 4.0};
         OGK_ASSERT_STATUS(ogk_chol_factor(&ch, A3, 3u), OGK_E_NOT_POSDEF);
         assert_int_equal(ch.n, 0u);
     }
     {
         /* not symmetric in the pair (2, 0) / (0, 2), found before (2, 1) is looked at */
-        const double A3[9] = {4.0, 0.0, 1.0, 0.0, 4.0, 0.0, 2.0, 0.0, 4.0};
+        const ogk_real_t A3[9] = {4.0, 0.0, 1.0, 0.0, 4.0, 0.0, 2.0, 0.0, 4.0};
         OGK_ASSERT_STATUS(ogk_chol_factor(&ch, A3, 3u), OGK_E_NOT_POSDEF);
         assert_int_equal(ch.n, 0u);
     }
     {
         /* negative first pivot */
-        const double A3[9] = {-1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+        const ogk_real_t A3[9] = {-1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
         OGK_ASSERT_STATUS(ogk_chol_factor(&ch, A3, 3u), OGK_E_NOT_POSDEF);
         assert_int_equal(ch.n, 0u);
     }
     {
         /* first column zero: rank deficient from the first diagonal entry of R */
-        const double A32[6] = {0.0, 1.0, 0.0, 2.0, 0.0, 3.0};
-        const double b3[3] = {1.0, 2.0, 3.0};
+        const ogk_real_t A32[6] = {0.0, 1.0, 0.0, 2.0, 0.0, 3.0};
+        const ogk_real_t b3[3] = {1.0, 2.0, 3.0};
         OGK_ASSERT_STATUS(ogk_lstsq(&qr_ws, A32, 3u, 2u, b3, x), OGK_E_SINGULAR);
         /* a right-hand side that lies inside the workspace */
         OGK_ASSERT_STATUS(ogk_lstsq(&qr_ws, A32, 3u, 2u, qr_ws.tau, x), OGK_E_RANGE);
