@@ -39,6 +39,19 @@
 #endif
 #define OGK_TEST_EPS OGK_TEST_TOL(DBL_EPSILON, (double)FLT_EPSILON)
 
+/* OGK_TEST_PICK(value_double, value_single): an input whose magnitude is tied to the type's range
+ * (near its overflow, below its pivot floor, ...): the value the test has always used in the double
+ * build, the float build's counterpart on the same side of the same limit. Not a tolerance. */
+#define OGK_TEST_PICK(value_double, value_single) OGK_TEST_TOL(value_double, value_single)
+
+/* The neighbour of x towards y in the build's real type (one ulp of ogk_real_t: nextafter's double
+ * neighbour would round back to x in the float build). */
+#if OGK_REAL_SINGLE
+#define OGK_TEST_NEXTAFTER(x, y) ((double)nextafterf((float)(x), (float)(y)))
+#else
+#define OGK_TEST_NEXTAFTER(x, y) nextafter((x), (y))
+#endif
+
 /* With -DOGK_TEST_MEASURE (never in the gates: make unit-errors, tests/unit/unit_errors.py), every
  * OGK_ASSERT_NEAR / _LE / _LT site prints "OGK_ERR file:line value bound ratio expression" each time its
  * worst ratio value / bound so far grows (a zero bound: ratio 0 for a zero value, inf otherwise): the

@@ -103,10 +103,11 @@ static void test_not_armed_before_window(void **state)
     assert_true((out.flags & OGK_CUTOFF_FLAG_DECIDED) == 0u);
     assert_true((out.flags & OGK_CUTOFF_FLAG_BACKSTOP) != 0u);
     assert_true((out.flags & OGK_CUTOFF_FLAG_ARMED) == 0u);
-    OGK_ASSERT_NEAR(out.t_cutoff_s, T_CROSS + 30.0, 1.0e-9);
+    /* float: the time as a float (half an ulp of 136 s, 1 eps of it written) */
+    OGK_ASSERT_NEAR(out.t_cutoff_s, T_CROSS + 30.0, OGK_TEST_TOL(1.0e-9, FLT_EPSILON * (T_CROSS + 30.0)));
     out = fly(&ctx, T_CROSS + 18.0, T_CROSS + 19.0, T_CROSS + 20.0);
     assert_true((out.flags & OGK_CUTOFF_FLAG_DECIDED) != 0u);
-    OGK_ASSERT_NEAR(out.t_cutoff_s, T_CROSS + 18.0, 1.0e-9);
+    OGK_ASSERT_NEAR(out.t_cutoff_s, T_CROSS + 18.0, OGK_TEST_TOL(1.0e-9, FLT_EPSILON * (T_CROSS + 18.0)));
 }
 
 /* req: OGK-NOG-016 */
@@ -178,7 +179,7 @@ static void test_rate_overflow_is_no_rate(void **state)
     (void)state;
     OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_OK);
     OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &nav, 0.5, &out), OGK_OK);
-    nav.t_s = DBL_MIN * DBL_EPSILON;
+    nav.t_s = OGK_REAL_MIN * OGK_REAL_EPSILON; /* the smallest subnormal of the type */
     nav.v_t_mps += 1.0;
     OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &nav, 0.5, &out), OGK_OK);
     OGK_ASSERT_NEAR(out.energy_rate_w_kg, 0.0, 0.0);
@@ -189,7 +190,9 @@ static void test_rate_overflow_is_no_rate(void **state)
 /* req: OGK-NOG-016 */
 /* Calls at least the minimum step apart whose energies differ by more than
  * DBL_MAX times that step (mu = 1e308: -1e308 J/kg at r = 1 m, -1e307 at
- * 10 m, 1 ns apart): the quotient overflows, and no rate is used. */
+ * 10 m, 1 ns apart): the quotient overflows, and no rate is used. Float:
+ * mu = 1e38, 10 us apart (1 ns is below float's resolution of t = 100 s):
+ * beyond FLT_MAX the same way. */
 static void test_rate_of_absurd_mu_is_no_rate(void **state)
 {
     ogk_cutoff_config_t cfg = cutoff_config(DT);
@@ -197,11 +200,11 @@ static void test_rate_of_absurd_mu_is_no_rate(void **state)
     ogk_cutoff_out_t out;
     ogk_nav_state_t nav = burn_state(100.0);
     (void)state;
-    cfg.mu_m3_s2 = 1.0e308;
+    cfg.mu_m3_s2 = OGK_TEST_PICK(1.0e308, 1.0e38);
     OGK_ASSERT_STATUS(ogk_cutoff_init(&ctx, &cfg), OGK_OK);
     nav.r_m = 1.0;
     OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &nav, 100.5, &out), OGK_OK);
-    nav.t_s += 1.0e-9;
+    nav.t_s += OGK_TEST_PICK(1.0e-9, 1.0e-5);
     nav.r_m = 10.0;
     OGK_ASSERT_STATUS(ogk_cutoff_step(&ctx, &nav, 100.5, &out), OGK_OK);
     OGK_ASSERT_NEAR(out.energy_rate_w_kg, 0.0, 0.0);

@@ -1,6 +1,14 @@
 /* test_nog.c -- VTD-NOG flight law on a synthetic table whose every output
  * has a closed form: straight-line nominal, constant nominal costate with
- * thrust angle ALPHA0, and sparse gains. */
+ * thrust angle ALPHA0, and sparse gains.
+ *
+ * Both precisions (ogk_test.h); the table is written in the build's element
+ * type (table_writer.h). Float tolerances are a few roundings of the
+ * quantity's own scale: angles from the unit costate 4 eps (ANG_EPS), tau
+ * (a quotient of times) 2 eps tau, and the state's errors the float
+ * resolution of the nominal's magnitudes (r ~ 9e6 m: ulp 1 m; v_t ~ 1.1e4
+ * m/s: ulp 1e-3 m/s; t ~ 100 s), 4 eps of each. The magnitudes near the
+ * type's overflow (1e308, DBL_MAX) are float's (1e38, FLT_MAX). */
 #include "ogk_test.h"
 
 #include <float.h>
@@ -18,7 +26,10 @@
 #define K_L1_RATE 2.0e-3 /* dlam_r' = K_L1_RATE dr */
 #define PI 3.14159265358979323846
 #define N_VALUES (GRID * (1u + OGK_NOG_ENTRY_LEN))
-#define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + 8u * N_VALUES)
+#define ANG_EPS (4.0 * FLT_EPSILON)     /* float: an angle from the unit costate */
+#define R_SCALE 9.0e6                   /* [m] the nominal's largest radius */
+#define V_SCALE 1.1e4                   /* [m/s] its largest speed */
+#define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * N_VALUES)
 
 static const double tau_grid[GRID] = {0.0, 0.25, 0.5, 0.75, 1.0};
 
@@ -58,9 +69,9 @@ static void build_table(double tf_last_node)
             row[OGK_NOG_OFF_GAIN + 0u * 7u + 0u] = K_L1_R;    /* dlam_r from dr */
             row[OGK_NOG_OFF_NRATE + 0u * 7u + 0u] = K_L1_RATE;
         }
-        tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * k, tau_grid[k]);
+        tw_put_real(buf + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * k, tau_grid[k]);
         for (i = 0u; i < OGK_NOG_ENTRY_LEN; ++i) {
-            tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * (GRID + k * OGK_NOG_ENTRY_LEN + i),
+            tw_put_real(buf + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * (GRID + k * OGK_NOG_ENTRY_LEN + i),
                        row[i]);
         }
     }
@@ -72,7 +83,7 @@ static ogk_nog_config_t config(void)
     return nog_fixture_config(&table);
 }
 
-static ogk_nog_nav_t nav_at(double t, double tau)
+static ogk_nog_nav_t nav_at(ogk_real_t t, ogk_real_t tau)
 {
     return nog_fixture_nav_at(t, tau);
 }
@@ -101,11 +112,11 @@ static void test_table_load_and_rejections(void **state)
     build_table(TF_STAR * 1.01); /* t_f* of the last node disagrees */
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_E_TABLE_TYPE);
     build_table(TF_STAR);
-    tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * (GRID - 1u), 0.9); /* grid must end at 1 */
+    tw_put_real(buf + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * (GRID - 1u), 0.9); /* grid must end at 1 */
     tw_seal(buf, N_VALUES);
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_E_TABLE_DIM);
     build_table(TF_STAR);
-    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES - 8u), OGK_E_TABLE_TRUNCATED);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES - TW_REAL_BYTES), OGK_E_TABLE_TRUNCATED);
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
 }
 
@@ -118,9 +129,9 @@ static void test_on_nominal_no_correction(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
     OGK_ASSERT_NEAR(s.tau_k, 0.0, 0.0);
     OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 1e-12);
-    OGK_ASSERT_NEAR(s.tau_next, 2.0 / TF_STAR, 1e-15);
+    OGK_ASSERT_NEAR(s.tau_next, 2.0 / TF_STAR, OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON * 0.02));
     OGK_ASSERT_NEAR(s.t_cutoff_s, TF_STAR, 1e-12);
-    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-15);
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-15, ANG_EPS));
     OGK_ASSERT_NEAR(s.beta_rad, 0.0, 0.0);
     assert_int_equal(s.flags, 0u);
 }
@@ -145,20 +156,20 @@ static void test_flight_time_update_and_eq31(void **state)
     OGK_ASSERT_NEAR(s.dx[4], 1.5, 1e-9);
     nav = nav_at(2.0, tau1);
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
-    OGK_ASSERT_NEAR(s.tau_k, tau1, 1e-15);
-    OGK_ASSERT_NEAR(s.dx[6], dt1, 1e-12);
+    OGK_ASSERT_NEAR(s.tau_k, tau1, OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON * 0.02));
+    OGK_ASSERT_NEAR(s.dx[6], dt1, OGK_TEST_TOL(1e-12, 4.0 * FLT_EPSILON * 2.0)); /* t - t_f* tau at t = 2 */
     OGK_ASSERT_NEAR(s.dt_f_s, 0.0, 1e-10); /* on the nominal state again (v_t rounding) */
     /* The time-state error moves lambda_vr: alpha = atan2(-lam4, -lam5). */
     lam4 = -sin(ALPHA0) + K_L4_T * dt1;
     lam5 = -cos(ALPHA0);
-    OGK_ASSERT_NEAR(s.alpha_rad, atan2(-lam4, -lam5), 1e-12);
+    OGK_ASSERT_NEAR(s.alpha_rad, atan2(-lam4, -lam5), OGK_TEST_TOL(1e-12, ANG_EPS));
     OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 3.0, &c), OGK_OK);
     assert_true(c.t_s == 3.0);
     assert_int_equal(c.flags, OGK_THRUST_FLAG_ENGINE_ON);
     {
-        double tau = -1.0;
+        ogk_real_t tau = -1.0;
         OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, 3.0, &tau), OGK_OK);
-        OGK_ASSERT_NEAR(tau, tau1 + 1.0 / TF_STAR, 1e-15);
+        OGK_ASSERT_NEAR(tau, tau1 + 1.0 / TF_STAR, OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON * 0.03));
         OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, 1.0, &tau), OGK_E_RANGE);
         OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, NAN, &tau), OGK_E_NONFINITE);
         OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, 3.0, NULL), OGK_E_NULL);
@@ -183,17 +194,18 @@ static void test_radius_error_moves_lambda_r_only(void **state)
     for (i = 1u; i < 7u; ++i) {
         OGK_ASSERT_NEAR(s.dx[i], 0.0, 0.0);
     }
-    OGK_ASSERT_NEAR(nog.dlam_k[0], K_L1_R * 100.0, 1e-15);
-    OGK_ASSERT_NEAR(nog.dlam_rate[0], K_L1_RATE * 100.0, 1e-15);
+    /* float: the gains are rounded to float (eps / 2), one product more */
+    OGK_ASSERT_NEAR(nog.dlam_k[0], K_L1_R * 100.0, OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON * 0.1));
+    OGK_ASSERT_NEAR(nog.dlam_rate[0], K_L1_RATE * 100.0, OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON * 0.2));
     for (i = 1u; i < 7u; ++i) {
         OGK_ASSERT_NEAR(nog.dlam_k[i], 0.0, 0.0);
         OGK_ASSERT_NEAR(nog.dlam_rate[i], 0.0, 0.0);
     }
     OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0);
-    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-15);
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-15, ANG_EPS));
     OGK_ASSERT_NEAR(s.beta_rad, 0.0, 0.0);
     OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 1.0, &c), OGK_OK);
-    OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, 1e-15);
+    OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-15, ANG_EPS));
     OGK_ASSERT_NEAR(c.beta_rad, 0.0, 0.0);
 }
 
@@ -212,13 +224,16 @@ static void test_on_nominal_in_every_interval(void **state)
     for (k = 0u; k < 3u; ++k) {
         ogk_nog_nav_t nav = nav_at(TF_STAR * taus[k], taus[k]);
         OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
-        OGK_ASSERT_NEAR(s.tau_k, taus[k], 1e-15);
-        OGK_ASSERT_NEAR(s.dx[0], 0.0, 1e-8);
+        /* float: dx is the float resolution of the nominal's magnitudes (4 eps
+         * of r, of v_t the largest of the others); dt_f = K_TF_VT dv_t; alpha
+         * moves with the time-state error (4 eps of t_f*) through K_L4_T */
+        OGK_ASSERT_NEAR(s.tau_k, taus[k], OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON * 0.6));
+        OGK_ASSERT_NEAR(s.dx[0], 0.0, OGK_TEST_TOL(1e-8, 4.0 * FLT_EPSILON * R_SCALE));
         for (i = 1u; i < 7u; ++i) {
-            OGK_ASSERT_NEAR(s.dx[i], 0.0, 1e-11);
+            OGK_ASSERT_NEAR(s.dx[i], 0.0, OGK_TEST_TOL(1e-11, 4.0 * FLT_EPSILON * V_SCALE));
         }
-        OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 1e-9);
-        OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
+        OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, OGK_TEST_TOL(1e-9, K_TF_VT * 4.0 * FLT_EPSILON * V_SCALE));
+        OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-12, ANG_EPS * (1.0 + K_L4_T * TF_STAR)));
         assert_int_equal(s.flags, 0u);
         assert_int_equal(nog.n_samples, k + 1u); /* good samples taken */
     }
@@ -238,16 +253,16 @@ static void test_out_of_plane_with_first_order_hold(void **state)
     (void)state;
     nav.v_n_mps = 2.0;
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
-    OGK_ASSERT_NEAR(s.beta_rad, atan2(-K_L6_VN * 2.0, 1.0), 1e-14);
+    OGK_ASSERT_NEAR(s.beta_rad, atan2(-K_L6_VN * 2.0, 1.0), OGK_TEST_TOL(1e-14, ANG_EPS));
     OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, t, &c), OGK_OK);
-    OGK_ASSERT_NEAR(c.beta_rad, atan2(-lam6, 1.0), 1e-14);
-    OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, 1e-14);
+    OGK_ASSERT_NEAR(c.beta_rad, atan2(-lam6, 1.0), OGK_TEST_TOL(1e-14, ANG_EPS));
+    OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-14, ANG_EPS));
     /* the one command of every law (ogk/types.h): r-t-n, the primer vector -lambda_v / |lambda_v|
      * = (sin ALPHA0, cos ALPHA0, -lam6) / sqrt(1 + lam6^2) as u, full thrust */
     assert_int_equal((int)c.frame, (int)OGK_FRAME_RTN);
-    OGK_ASSERT_NEAR(c.u[0], sin(ALPHA0) / sqrt(1.0 + (lam6 * lam6)), 1e-15);
-    OGK_ASSERT_NEAR(c.u[1], cos(ALPHA0) / sqrt(1.0 + (lam6 * lam6)), 1e-15);
-    OGK_ASSERT_NEAR(c.u[2], -lam6 / sqrt(1.0 + (lam6 * lam6)), 1e-15);
+    OGK_ASSERT_NEAR(c.u[0], sin(ALPHA0) / sqrt(1.0 + (lam6 * lam6)), OGK_TEST_TOL(1e-15, ANG_EPS));
+    OGK_ASSERT_NEAR(c.u[1], cos(ALPHA0) / sqrt(1.0 + (lam6 * lam6)), OGK_TEST_TOL(1e-15, ANG_EPS));
+    OGK_ASSERT_NEAR(c.u[2], -lam6 / sqrt(1.0 + (lam6 * lam6)), OGK_TEST_TOL(1e-15, ANG_EPS));
     OGK_ASSERT_NEAR(c.throttle, 1.0, 0.0);
     OGK_ASSERT_NEAR(c.t_s, t, 0.0);
     assert_int_equal(c.flags, OGK_THRUST_FLAG_ENGINE_ON);
@@ -264,7 +279,7 @@ static void test_end_game_limits(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
     OGK_ASSERT_NEAR(s.dt_f_s, 10.0, 0.0);
     assert_true((s.flags & OGK_NOG_FLAG_LIMITED) != 0u);
-    OGK_ASSERT_NEAR(fabs(s.beta_rad), 0.5, 1e-9);
+    OGK_ASSERT_NEAR(fabs(s.beta_rad), 0.5, OGK_TEST_TOL(1e-9, ANG_EPS));
 }
 
 /* |dt_f| at the bound is not clipped: dv_t = 5 m/s gives dt_f = 10 s =
@@ -282,7 +297,7 @@ static void test_dt_f_at_the_bound_is_not_limited(void **state)
     OGK_ASSERT_NEAR(s.dt_f_s, 10.0, 0.0);
     assert_int_equal(s.flags & OGK_NOG_FLAG_LIMITED, 0u);
     OGK_ASSERT_STATUS(ogk_nog_init(&nog, &cfg), OGK_OK);
-    nav.v_t_mps = nextafter(nav.v_t_mps, 1.0e4);
+    nav.v_t_mps = OGK_TEST_NEXTAFTER(nav.v_t_mps, 1.0e4);
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
     OGK_ASSERT_NEAR(s.dt_f_s, 10.0, 0.0);
     assert_true((s.flags & OGK_NOG_FLAG_LIMITED) != 0u);
@@ -297,10 +312,10 @@ static void test_du_max_pi_admits_a_reversal(void **state)
     ogk_nog_config_t cfg = config();
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
     ogk_nog_sample_t s;
-    const size_t row0 = OGK_TABLE_HEADER_SIZE + 8u * GRID;
+    const size_t row0 = OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * GRID;
     (void)state;
-    tw_put_f64(buf + row0 + 8u * (OGK_NOG_OFF_GAIN + 3u * 7u + 2u), 2.0 * sin(ALPHA0));
-    tw_put_f64(buf + row0 + 8u * (OGK_NOG_OFF_GAIN + 4u * 7u + 2u), 2.0 * cos(ALPHA0));
+    tw_put_real(buf + row0 + TW_REAL_BYTES * (OGK_NOG_OFF_GAIN + 3u * 7u + 2u), 2.0 * sin(ALPHA0));
+    tw_put_real(buf + row0 + TW_REAL_BYTES * (OGK_NOG_OFF_GAIN + 4u * 7u + 2u), 2.0 * cos(ALPHA0));
     tw_seal(buf, N_VALUES);
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
     cfg.du_max_rad = PI;
@@ -308,7 +323,7 @@ static void test_du_max_pi_admits_a_reversal(void **state)
     nav.phi_rad = 1.0;
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
     assert_true((s.flags & OGK_NOG_FLAG_LIMITED) == 0u);
-    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0 - PI, 1e-15);
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0 - PI, OGK_TEST_TOL(1e-15, ANG_EPS * PI)); /* an angle near pi */
     OGK_ASSERT_NEAR(s.beta_rad, 0.0, 0.0);
     /* the same correction under du_max = pi / 2 is scaled to that angle */
     cfg.du_max_rad = 0.5 * PI;
@@ -332,7 +347,7 @@ static void test_freeze_and_termination(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
     assert_true((s.flags & OGK_NOG_FLAG_FROZEN) != 0u);
     /* dlam held from the first sample's first-order hold at tau = 0.8. */
-    OGK_ASSERT_NEAR(s.beta_rad, atan2(-(K_L6_VN * 2.0 + K_L6_RATE * 2.0 * 0.8), 1.0), 1e-12);
+    OGK_ASSERT_NEAR(s.beta_rad, atan2(-(K_L6_VN * 2.0 + K_L6_RATE * 2.0 * 0.8), 1.0), OGK_TEST_TOL(1e-12, ANG_EPS));
     nav = nav_at(98.5, 0.985);
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
     assert_true((s.flags & OGK_NOG_FLAG_TERMINATING) != 0u);
@@ -341,10 +356,10 @@ static void test_freeze_and_termination(void **state)
     assert_true((c.law_flags & OGK_NOG_FLAG_CUTOFF) != 0u);
     assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u); /* engine off */
     OGK_ASSERT_NEAR(c.throttle, 0.0, 0.0);
-    OGK_ASSERT_NEAR(c.u[0], cos(c.beta_rad) * sin(c.alpha_rad), 1e-16); /* still a direction */
-    OGK_ASSERT_NEAR(c.u[2], sin(c.beta_rad), 1e-16);
+    OGK_ASSERT_NEAR(c.u[0], cos(c.beta_rad) * sin(c.alpha_rad), OGK_TEST_TOL(1e-16, ANG_EPS)); /* still a direction */
+    OGK_ASSERT_NEAR(c.u[2], sin(c.beta_rad), OGK_TEST_TOL(1e-16, ANG_EPS));
     {
-        double tau = -1.0;
+        ogk_real_t tau = -1.0;
         OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, 100.5, &tau), OGK_OK);
         OGK_ASSERT_NEAR(tau, 1.0, 0.0);
     }
@@ -352,7 +367,7 @@ static void test_freeze_and_termination(void **state)
     nav = nav_at(101.0, 1.0);
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u && (s.flags & OGK_NOG_FLAG_CUTOFF) != 0u);
-    OGK_ASSERT_NEAR(s.beta_rad, atan2(-(K_L6_VN * 2.0 + K_L6_RATE * 2.0 * 0.8), 1.0), 1e-12);
+    OGK_ASSERT_NEAR(s.beta_rad, atan2(-(K_L6_VN * 2.0 + K_L6_RATE * 2.0 * 0.8), 1.0), OGK_TEST_TOL(1e-12, ANG_EPS));
 }
 
 /* The time bound of the envelope, t_s <= 2 t_f* + dtf_max = 210 s, is
@@ -369,11 +384,11 @@ static void test_sample_at_the_envelope_time_bound(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
     nav = nav_at(t_max, 1.0);
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
-    OGK_ASSERT_NEAR(s.tau_k, t_max / TF_STAR, 1e-15);
+    OGK_ASSERT_NEAR(s.tau_k, t_max / TF_STAR, OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON * 2.1));
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u && (s.flags & OGK_NOG_FLAG_CUTOFF) != 0u);
     OGK_ASSERT_NEAR(nog.tau_k, 0.0, 0.0); /* shown, not committed */
     assert_int_equal(nog.n_samples, 1u);
-    nav.t_s = nextafter(t_max, 1.0e3);
+    nav.t_s = OGK_TEST_NEXTAFTER(t_max, 1.0e3);
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
     OGK_ASSERT_NEAR(s.tau_k, 0.0, 0.0);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u && (s.flags & OGK_NOG_FLAG_CUTOFF) == 0u);
@@ -393,8 +408,8 @@ static void test_bad_navigation_gives_safe_command(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_NONFINITE);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
     OGK_ASSERT_NEAR(s.t_f_s, 103.0, 1e-12);            /* last valid correction held */
-    OGK_ASSERT_NEAR(s.tau_k, 2.0 / 103.0, 1e-15);      /* tau still advanced */
-    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
+    OGK_ASSERT_NEAR(s.tau_k, 2.0 / 103.0, OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON * 0.02)); /* tau still advanced */
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-12, ANG_EPS));
     nav = nav_at(1.0, 0.01); /* time going backwards */
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
@@ -449,24 +464,24 @@ static void test_config_range_boundaries(void **state)
     (void)state;
     cfg.sample_interval_s = TF_STAR;
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
-    cfg.sample_interval_s = nextafter(TF_STAR, 2.0 * TF_STAR);
+    cfg.sample_interval_s = OGK_TEST_NEXTAFTER(TF_STAR, 2.0 * TF_STAR);
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
     cfg = config();
     cfg.dtf_max_s = 0.5 * TF_STAR;
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
-    cfg.dtf_max_s = nextafter(0.5 * TF_STAR, TF_STAR);
+    cfg.dtf_max_s = OGK_TEST_NEXTAFTER(0.5 * TF_STAR, TF_STAR);
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
     cfg = config();
     cfg.du_max_rad = PI;
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
-    cfg.du_max_rad = nextafter(PI, 4.0);
+    cfg.du_max_rad = OGK_TEST_NEXTAFTER(PI, 4.0);
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
     cfg = config();
-    cfg.tau_freeze = nextafter(1.0, 0.0);
+    cfg.tau_freeze = OGK_TEST_NEXTAFTER(1.0, 0.0);
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
     cfg.tau_freeze = -0.0;
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
-    cfg.tau_freeze = -DBL_MIN;
+    cfg.tau_freeze = -OGK_REAL_MIN;
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_CONFIG);
 }
 
@@ -483,7 +498,7 @@ static void test_config_default(void **state)
     assert_null(cfg.view);
     OGK_ASSERT_NEAR(cfg.sample_interval_s, 2.0, 0.0);
     OGK_ASSERT_NEAR(cfg.dtf_max_s, 40.0, 0.0);
-    OGK_ASSERT_NEAR(cfg.du_max_rad, 1.0471975511965976, 1e-16);
+    OGK_ASSERT_NEAR(cfg.du_max_rad, 1.0471975511965976, OGK_TEST_TOL(1e-16, FLT_EPSILON)); /* float: 1 ulp of pi/3 */
     OGK_ASSERT_NEAR(cfg.tau_freeze, 0.0, 0.0);
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_NULL); /* no table bound */
     cfg.table = &table;
@@ -545,7 +560,7 @@ static void test_table_view_in_place(void **state)
     /* in place: no copy, the pointers are into the bytes */
     assert_true((const void *)view.tau == (const void *)&vbuf.b[OGK_TABLE_HEADER_SIZE]);
     assert_true((const void *)view.entry ==
-                (const void *)&vbuf.b[OGK_TABLE_HEADER_SIZE + 8u * GRID]);
+                (const void *)&vbuf.b[OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * GRID]);
     cfg.table = NULL;
     cfg.view = &view;
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_OK);
@@ -571,8 +586,9 @@ static void test_table_view_rejections(void **state)
     cfg.table = NULL;
     cfg.view = &view; /* an unvalidated view cannot be flown */
     OGK_ASSERT_STATUS(ogk_nog_init(&ctx, &cfg), OGK_E_NOT_INIT);
-    memcpy(&vbuf.b[4], buf, TABLE_BYTES);
-    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, &vbuf.b[4], TABLE_BYTES), OGK_E_ALIGN);
+    /* half the element's size: 4 in the double build, 2 in the float one */
+    memcpy(&vbuf.b[TW_REAL_BYTES / 2u], buf, TABLE_BYTES);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, &vbuf.b[TW_REAL_BYTES / 2u], TABLE_BYTES), OGK_E_ALIGN);
     /* corrupted payload, header, magic; wrong length; then the same bytes, good */
     memcpy(vbuf.b, buf, TABLE_BYTES);
     vbuf.b[OGK_TABLE_HEADER_SIZE + 100u] ^= 0x01u;
@@ -585,9 +601,9 @@ static void test_table_view_rejections(void **state)
     vbuf.b[0] = (uint8_t)'X';
     OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES), OGK_E_TABLE_MAGIC);
     memcpy(vbuf.b, buf, TABLE_BYTES);
-    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES - 8u),
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES - TW_REAL_BYTES),
                       OGK_E_TABLE_TRUNCATED);
-    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES + 8u), OGK_E_TABLE_SIZE);
+    OGK_ASSERT_STATUS(ogk_nog_table_view(&view, vbuf.b, TABLE_BYTES + TW_REAL_BYTES), OGK_E_TABLE_SIZE);
     /* content checks shared with the loader (read in place: after the byte-order check) */
     build_table(TF_STAR * 1.01);
     memcpy(vbuf.b, buf, TABLE_BYTES);
@@ -639,11 +655,11 @@ static void check_stale(ogk_nog_t *ctx, double held_beta)
     ogk_nog_nav_t nav = nav_at(30.0, 0.3);
     ogk_nog_sample_t s;
     ogk_thrust_cmd_t c;
-    double tau = -1.0;
+    ogk_real_t tau = -1.0;
     OGK_ASSERT_STATUS(ogk_nog_sample(ctx, &nav, &s), OGK_E_TABLE_STALE);
     assert_true(sample_is_finite(&s));
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
-    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-12, ANG_EPS));
     OGK_ASSERT_NEAR(s.beta_rad, held_beta, 0.0);
     OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(ctx, 31.0, &c), OGK_E_TABLE_STALE);
     assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad));
@@ -682,22 +698,22 @@ static void test_stale_table_after_failed_reload(void **state)
 
 /* req: OGK-CORE-028 OGK-NOG-001 OGK-NOG-002 */
 /* An uplinked table made for the other precision (F32: a kernel built with
- * OGK_REAL_SINGLE=1) is refused by this double kernel with OGK_E_TABLE_TYPE,
- * by the loader (table left empty) and by the in-place view (view zeroed); the
- * bound context answers stale, not broken, and flies again once the build's
- * own F64 table is loaded and the context initialised. */
+ * OGK_REAL_SINGLE=1; F64 for the float build) is refused by this kernel with
+ * OGK_E_TABLE_TYPE, by the loader (table left empty) and by the in-place view
+ * (view zeroed); the bound context answers stale, not broken, and flies again
+ * once the build's own table is loaded and the context initialised. */
 static void test_other_precision_table_refused(void **state)
 {
     static union {
         double align;
-        uint8_t b[OGK_TABLE_HEADER_SIZE + 4u * N_VALUES];
+        uint8_t b[OGK_TABLE_HEADER_SIZE + TW_OTHER_BYTES * N_VALUES];
     } f32;
     ogk_nog_table_view_t view;
     ogk_nog_config_t cfg = config();
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
     ogk_nog_sample_t s;
     (void)state;
-    tw_to_f32(buf, f32.b, N_VALUES);
+    tw_to_other(buf, f32.b, N_VALUES);
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table, f32.b, sizeof f32.b), OGK_E_TABLE_TYPE);
     assert_int_equal(table.n_grid, 0u);
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_TABLE_STALE);
@@ -758,24 +774,27 @@ static void test_envelope_rejects_absurd_inputs(void **state)
     for (k = 0u; k < 12u; ++k) {
         ogk_nog_nav_t nav = nav_at(10.0, 0.1);
         switch (k) {
-        case 0u: nav.phi_rad = 1.7e308; break;
-        case 1u: nav.t_s = DBL_MAX; break;
-        case 2u: nav.t_s = 2.0 * TF_STAR + 10.0 + 1e-9; break; /* 2 t_f* + dtf_max */
-        case 3u: nav.r_m = 1.0e9 * (1.0 + 1e-15); break;
+        /* just outside each bound: 1e-15 relative in double, 2 eps (beyond
+         * float's rounding of the product) in float; the finite extremes of
+         * the type (OGK_REAL_MAX / _MIN, float's 1.7e38 and 1e30) */
+        case 0u: nav.phi_rad = OGK_TEST_PICK(1.7e308, 1.7e38); break;
+        case 1u: nav.t_s = OGK_REAL_MAX; break;
+        case 2u: nav.t_s = 2.0 * TF_STAR + 10.0 + OGK_TEST_TOL(1e-9, 2.0 * FLT_EPSILON * 210.0); break; /* 2 t_f* + dtf_max */
+        case 3u: nav.r_m = 1.0e9 * (1.0 + OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON)); break;
         case 4u: nav.r_m = 0.0; break;
         case 5u: nav.phi_rad = -OGK_NOG_PHI_MAX_RAD; break;
-        case 6u: nav.xi_rad = 1.0e4 * (1.0 + 1e-15); break;
-        case 7u: nav.v_r_mps = -1.0e5 * (1.0 + 1e-15); break;
-        case 8u: nav.v_t_mps = 1.0e300; break;
-        case 9u: nav.v_n_mps = 1.0e5 * (1.0 + 1e-15); break;
-        case 10u: nav.t_s = -DBL_MIN; break;
-        default: nav.xi_rad = -DBL_MAX; break;
+        case 6u: nav.xi_rad = 1.0e4 * (1.0 + OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON)); break;
+        case 7u: nav.v_r_mps = -1.0e5 * (1.0 + OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON)); break;
+        case 8u: nav.v_t_mps = OGK_TEST_PICK(1.0e300, 1.0e30); break;
+        case 9u: nav.v_n_mps = 1.0e5 * (1.0 + OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON)); break;
+        case 10u: nav.t_s = -OGK_REAL_MIN; break;
+        default: nav.xi_rad = -OGK_REAL_MAX; break;
         }
         OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_RANGE);
         assert_true(sample_is_finite(&s));
         assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
-        OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
-        OGK_ASSERT_NEAR(s.beta_rad, 0.0, 1e-12);
+        OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-12, ANG_EPS));
+        OGK_ASSERT_NEAR(s.beta_rad, 0.0, OGK_TEST_TOL(1e-12, ANG_EPS));
         OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0);
         OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 10.0, &c), OGK_OK);
         assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad));
@@ -789,7 +808,7 @@ static void test_envelope_rejects_absurd_inputs(void **state)
         assert_true(sample_is_finite(&s));
     }
     /* Commands far in the future are finite, with the engine off. */
-    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, DBL_MAX, &c), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, OGK_REAL_MAX, &c), OGK_OK);
     assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad) && isfinite(c.t_s));
     assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u);
 }
@@ -840,7 +859,9 @@ static void test_one_bad_sample_does_not_latch(void **state)
 }
 
 /* A valid-CRC table whose gains are 1e308: finite input, overflowing
- * correction. The step reports it and flies the last good correction. */
+ * correction. The step reports it and flies the last good correction.
+ * (HUGE_GAIN: 1e308, float 1e38: times a 10 m/s error, beyond the type.) */
+#define HUGE_GAIN OGK_TEST_PICK(1.0e308, 1.0e38)
 /* req: OGK-NOG-011 */
 static void test_huge_gains_give_safe_command(void **state)
 {
@@ -851,9 +872,9 @@ static void test_huge_gains_give_safe_command(void **state)
     size_t k;
     (void)state;
     for (k = 0u; k + 1u < GRID; ++k) {
-        const size_t row = OGK_TABLE_HEADER_SIZE + 8u * (GRID + k * OGK_NOG_ENTRY_LEN);
-        tw_put_f64(buf + row + 8u * (OGK_NOG_OFF_GAIN + 7u * 7u + 4u), 1.0e308);
-        tw_put_f64(buf + row + 8u * (OGK_NOG_OFF_GAIN + 5u * 7u + 5u), 1.0e308);
+        const size_t row = OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * (GRID + k * OGK_NOG_ENTRY_LEN);
+        tw_put_real(buf + row + TW_REAL_BYTES * (OGK_NOG_OFF_GAIN + 7u * 7u + 4u), HUGE_GAIN);
+        tw_put_real(buf + row + TW_REAL_BYTES * (OGK_NOG_OFF_GAIN + 5u * 7u + 5u), HUGE_GAIN);
     }
     tw_seal(buf, N_VALUES);
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
@@ -866,8 +887,8 @@ static void test_huge_gains_give_safe_command(void **state)
     assert_true(sample_is_finite(&s));
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
     OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0);   /* the last good (nominal) correction */
-    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
-    OGK_ASSERT_NEAR(s.beta_rad, 0.0, 1e-12);
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-12, ANG_EPS));
+    OGK_ASSERT_NEAR(s.beta_rad, 0.0, OGK_TEST_TOL(1e-12, ANG_EPS));
     OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 3.0, &c), OGK_OK);
     assert_true(isfinite(c.alpha_rad) && isfinite(c.beta_rad));
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
@@ -889,8 +910,8 @@ static void test_overflowing_dt_f_alone_gives_safe_command(void **state)
     size_t k;
     (void)state;
     for (k = 0u; k + 1u < GRID; ++k) {
-        const size_t row = OGK_TABLE_HEADER_SIZE + 8u * (GRID + k * OGK_NOG_ENTRY_LEN);
-        tw_put_f64(buf + row + 8u * (OGK_NOG_OFF_GAIN + 7u * 7u + 4u), 1.0e308);
+        const size_t row = OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * (GRID + k * OGK_NOG_ENTRY_LEN);
+        tw_put_real(buf + row + TW_REAL_BYTES * (OGK_NOG_OFF_GAIN + 7u * 7u + 4u), HUGE_GAIN);
     }
     tw_seal(buf, N_VALUES);
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
@@ -899,7 +920,7 @@ static void test_overflowing_dt_f_alone_gives_safe_command(void **state)
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_SAFE_COMMAND);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
     OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0); /* the nominal t_f, not t_f* + dtf_max */
-    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-15);
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-15, ANG_EPS));
 }
 
 /* A valid table (finite values) whose costate still overflows: lambda_vr
@@ -910,45 +931,51 @@ static void test_overflowing_dt_f_alone_gives_safe_command(void **state)
  * is not scaled) continued by its rate 1.5e308 over 0.75 to +inf in the frozen
  * sample at tau = 0.75. There the costate is +inf (thrust along -r: alpha =
  * -pi/2, beta = 0, finite, flown); at tau = 0.875 it is -inf + inf = NaN: the
- * command reports OGK_E_SAFE_COMMAND and flies those held angles. */
+ * command reports OGK_E_SAFE_COMMAND and flies those held angles.
+ * Float: the same arithmetic near FLT_MAX (3.403e38): big = 3.23e38 puts the
+ * middle sum (1.0624 big = 3.43e38) beyond it and the sum at s = 0.2 (1.041
+ * big = 3.36e38) within it, as 1.7e308 does for DBL_MAX; the held correction
+ * 2e38 grows over 0.75 to 3.5e38 = +inf. */
+#define BIG_COSTATE OGK_TEST_PICK(1.7e308, 3.23e38)
+#define BIG_DLAM OGK_TEST_PICK(1.5e308, 2.0e38)
 /* req: OGK-NOG-011 */
 static void test_overflowing_costate_gives_safe_command(void **state)
 {
-    const double big = 1.7e308;
+    const double big = BIG_COSTATE;
     ogk_nog_config_t cfg = config();
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
     ogk_nog_sample_t s;
     ogk_thrust_cmd_t c;
-    const size_t row0 = OGK_TABLE_HEADER_SIZE + 8u * GRID;
-    const size_t row3 = row0 + 8u * 3u * OGK_NOG_ENTRY_LEN;
-    const size_t row4 = row0 + 8u * 4u * OGK_NOG_ENTRY_LEN;
+    const size_t row0 = OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * GRID;
+    const size_t row3 = row0 + TW_REAL_BYTES * 3u * OGK_NOG_ENTRY_LEN;
+    const size_t row4 = row0 + TW_REAL_BYTES * 4u * OGK_NOG_ENTRY_LEN;
     (void)state;
-    tw_put_f64(buf + row0 + 8u * (OGK_NOG_OFF_GAIN + 3u * 7u + 5u), 1.5e308);
-    tw_put_f64(buf + row0 + 8u * (OGK_NOG_OFF_NRATE + 3u * 7u + 5u), 1.5e308);
-    tw_put_f64(buf + row3 + 8u * (OGK_NOG_OFF_LAM + 3u), -big);
-    tw_put_f64(buf + row3 + 8u * (OGK_NOG_OFF_LAMDOT + 3u), -big);
-    tw_put_f64(buf + row4 + 8u * (OGK_NOG_OFF_LAM + 3u), -big);
-    tw_put_f64(buf + row4 + 8u * (OGK_NOG_OFF_LAMDOT + 3u), big);
+    tw_put_real(buf + row0 + TW_REAL_BYTES * (OGK_NOG_OFF_GAIN + 3u * 7u + 5u), BIG_DLAM);
+    tw_put_real(buf + row0 + TW_REAL_BYTES * (OGK_NOG_OFF_NRATE + 3u * 7u + 5u), BIG_DLAM);
+    tw_put_real(buf + row3 + TW_REAL_BYTES * (OGK_NOG_OFF_LAM + 3u), -big);
+    tw_put_real(buf + row3 + TW_REAL_BYTES * (OGK_NOG_OFF_LAMDOT + 3u), -big);
+    tw_put_real(buf + row4 + TW_REAL_BYTES * (OGK_NOG_OFF_LAM + 3u), -big);
+    tw_put_real(buf + row4 + TW_REAL_BYTES * (OGK_NOG_OFF_LAMDOT + 3u), big);
     tw_seal(buf, N_VALUES);
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table, buf, TABLE_BYTES), OGK_OK);
     cfg.du_max_rad = PI;
     OGK_ASSERT_STATUS(ogk_nog_init(&nog, &cfg), OGK_OK);
     nav.v_n_mps = 1.0;
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
-    OGK_ASSERT_NEAR(nog.dlam_k[3], 1.5e308, 0.0);
+    OGK_ASSERT_NEAR(nog.dlam_k[3], (ogk_real_t)BIG_DLAM, 0.0);
     nav = nav_at(75.0, 0.75);
     nav.v_n_mps = 1.0;
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_OK);
     assert_true((s.flags & OGK_NOG_FLAG_FROZEN) != 0u);
     assert_true(isinf(nog.dlam_k[3]) && nog.dlam_k[3] > 0.0);
-    OGK_ASSERT_NEAR(s.alpha_rad, -0.5 * PI, 1e-15);
+    OGK_ASSERT_NEAR(s.alpha_rad, -0.5 * PI, OGK_TEST_TOL(1e-15, ANG_EPS));
     OGK_ASSERT_NEAR(s.beta_rad, 0.0, 0.0);
     OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 80.0, &c), OGK_OK); /* s = 0.2: -1.77e308, finite */
     OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 87.5, &c), OGK_E_SAFE_COMMAND);
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
     assert_true((c.flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u);
     assert_true((c.law_flags & OGK_NOG_FLAG_SAFE) != 0u);
-    OGK_ASSERT_NEAR(c.alpha_rad, -0.5 * PI, 1e-15);
+    OGK_ASSERT_NEAR(c.alpha_rad, -0.5 * PI, OGK_TEST_TOL(1e-15, ANG_EPS));
     OGK_ASSERT_NEAR(c.beta_rad, 0.0, 0.0);
     /* A time before the sample keeps its own status (and the held angles). */
     OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(&nog, 70.0, &c), OGK_E_RANGE);

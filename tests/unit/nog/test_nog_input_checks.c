@@ -5,7 +5,9 @@
  * and a table whose costate went bad in RAM after it was validated.
  *
  * The table is the closed-form one of test_nog.c (straight-line nominal, constant costate with
- * thrust angle ALPHA0, sparse gains), written here again with the nodes as a parameter. */
+ * thrust angle ALPHA0, sparse gains), written here again with the nodes as a parameter, in the
+ * build's element type (table_writer.h). Float tolerances: angles 4 eps (ANG_EPS, test_nog.c),
+ * tau one rounding of the quotient, bounds crossed by 2 eps. */
 #include "ogk_test.h"
 
 #include <float.h>
@@ -17,8 +19,11 @@
 
 #define GRID_MAX 5u
 #define N_VALUES(n) ((n) * (1u + OGK_NOG_ENTRY_LEN))
-#define TABLE_BYTES(n) (OGK_TABLE_HEADER_SIZE + 8u * N_VALUES(n))
-#define ROW(n, k, i) (OGK_TABLE_HEADER_SIZE + 8u * ((n) + (k) * OGK_NOG_ENTRY_LEN + (i)))
+#define TABLE_BYTES(n) (OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * N_VALUES(n))
+#define ROW(n, k, i) (OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * ((n) + (k) * OGK_NOG_ENTRY_LEN + (i)))
+#define ANG_EPS (4.0 * FLT_EPSILON) /* float: an angle from the unit costate */
+/* The 4-node table's t_f*: 96 s in float, where t_f* k / 3 is exact (test_table_content_rejections) */
+#define TF_STAR_THIRDS OGK_TEST_PICK(TF_STAR, 96.0)
 
 
 /* Two table images (5 and 4 nodes), 8-byte aligned for the in-place view. */
@@ -53,9 +58,9 @@ static void build(uint8_t *buf, uint32_t n, double t_f)
         if (k + 1u < n) {
             row[OGK_NOG_OFF_GAIN + 5u * 7u + 5u] = K_L6_VN;
         }
-        tw_put_f64(buf + OGK_TABLE_HEADER_SIZE + 8u * k, tau);
+        tw_put_real(buf + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * k, tau);
         for (i = 0u; i < OGK_NOG_ENTRY_LEN; ++i) {
-            tw_put_f64(buf + ROW(n, k, i), row[i]);
+            tw_put_real(buf + ROW(n, k, i), row[i]);
         }
     }
     tw_seal(buf, N_VALUES(n));
@@ -66,7 +71,7 @@ static ogk_nog_config_t config(void)
     return nog_fixture_config(&table);
 }
 
-static ogk_nog_nav_t nav_at(double t, double tau)
+static ogk_nog_nav_t nav_at(ogk_real_t t, ogk_real_t tau)
 {
     return nog_fixture_nav_at(t, tau);
 }
@@ -99,11 +104,11 @@ static void test_table_content_rejections(void **state)
     (void)state;
     OGK_ASSERT_STATUS(ogk_nog_table_load(NULL, img5.b, TABLE_BYTES(5u)), OGK_E_NULL);
     /* grid not strictly increasing (node 2 repeats node 1) */
-    tw_put_f64(img5.b + OGK_TABLE_HEADER_SIZE + 16u, 0.25);
+    tw_put_real(img5.b + OGK_TABLE_HEADER_SIZE + TW_REAL_BYTES * 2u, 0.25);
     expect_load(OGK_E_TABLE_DIM);
     /* grid not starting at tau = 0 */
     build(img5.b, 5u, TF_STAR);
-    tw_put_f64(img5.b + OGK_TABLE_HEADER_SIZE, 0.1);
+    tw_put_real(img5.b + OGK_TABLE_HEADER_SIZE, 0.1);
     expect_load(OGK_E_TABLE_DIM);
     /* t_f* = 0 and t_f* over OGK_NOG_TF_MAX_S (consistent in every row) */
     build(img5.b, 5u, 0.0);
@@ -112,11 +117,11 @@ static void test_table_content_rejections(void **state)
     expect_load(OGK_E_TABLE_TYPE);
     /* the time state of node 2 is not t_f* tau */
     build(img5.b, 5u, TF_STAR);
-    tw_put_f64(img5.b + ROW(5u, 2u, OGK_NOG_OFF_X + 6u), 0.5 * TF_STAR + 1e-3);
+    tw_put_real(img5.b + ROW(5u, 2u, OGK_NOG_OFF_X + 6u), 0.5 * TF_STAR + 1e-3);
     expect_load(OGK_E_TABLE_TYPE);
     /* a node with r <= 0 */
     build(img5.b, 5u, TF_STAR);
-    tw_put_f64(img5.b + ROW(5u, 3u, OGK_NOG_OFF_X), 0.0);
+    tw_put_real(img5.b + ROW(5u, 3u, OGK_NOG_OFF_X), 0.0);
     expect_load(OGK_E_TABLE_TYPE);
     /* and the undamaged image loads */
     build(img5.b, 5u, TF_STAR);
@@ -125,6 +130,18 @@ static void test_table_content_rejections(void **state)
     for (k = 0u; k < 5u; ++k) {
         OGK_ASSERT_NEAR(table.tau[k], 0.25 * (double)k, 0.0);
     }
+#if OGK_REAL_SINGLE
+    /* Float: OGK_NOG_TF_CONSISTENCY (1e-9 relative, nog.c) is below float's resolution. A
+     * table on the grid k / 3 with t_f* = 100 s, consistent as written (each time state is
+     * t_f* tau rounded once to float), is refused: the kernel's float product t_f* tau(k)
+     * differs from it by an ulp (3.8e-6 s at 33 s, against 1e-7 s). The documented refusal of
+     * an inconsistent table, asserted here as what float does; t_f* = 96 s makes each t_f* tau
+     * exact, and that table loads (test_stale_after_struct_copy flies it). */
+    build(img4.b, 4u, TF_STAR);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table_other, img4.b, TABLE_BYTES(4u)), OGK_E_TABLE_TYPE);
+    build(img4.b, 4u, TF_STAR_THIRDS);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table_other, img4.b, TABLE_BYTES(4u)), OGK_OK);
+#endif
 }
 
 /* req: OGK-NOG-004 OGK-NOG-012 */
@@ -134,7 +151,7 @@ static void test_null_and_uninitialised(void **state)
     ogk_nog_nav_t nav = nav_at(0.0, 0.0);
     ogk_nog_sample_t s;
     ogk_thrust_cmd_t c;
-    double tau = -7.0;
+    ogk_real_t tau = -7.0;
     (void)state;
     (void)memset(&zero, 0, sizeof zero);
     OGK_ASSERT_STATUS(ogk_nog_init(&zero, NULL), OGK_E_NULL);
@@ -161,7 +178,7 @@ static void test_null_and_uninitialised(void **state)
     OGK_ASSERT_STATUS(ogk_nog_tau_at(&zero, 1.0, &tau), OGK_E_NOT_INIT);
     OGK_ASSERT_NEAR(tau, -7.0, 0.0);
     OGK_ASSERT_STATUS(ogk_nog_tau_at(&nog, 1.0, &tau), OGK_OK);
-    OGK_ASSERT_NEAR(tau, 1.0 / TF_STAR, 1e-17);
+    OGK_ASSERT_NEAR(tau, 1.0 / TF_STAR, OGK_TEST_TOL(1e-17, 2.0 * FLT_EPSILON * 0.01));
 }
 
 /* Every bound of ogk_nog_config_t on its own (ogk/nog.h). */
@@ -175,13 +192,13 @@ static void test_config_bounds(void **state)
         ogk_nog_config_t cfg = config();
         switch (k) {
         case 0u: cfg.sample_interval_s = NAN; break;
-        case 1u: cfg.sample_interval_s = TF_STAR * (1.0 + 1e-15); break; /* > t_f* */
+        case 1u: cfg.sample_interval_s = TF_STAR * (1.0 + OGK_TEST_TOL(1e-15, 2.0 * FLT_EPSILON)); break; /* > t_f* */
         case 2u: cfg.dtf_max_s = INFINITY; break;
         case 3u: cfg.dtf_max_s = -1.0; break;
         case 4u: cfg.du_max_rad = 0.0; break;
-        case 5u: cfg.du_max_rad = 3.1415926535897936; break; /* next double above pi */
+        case 5u: cfg.du_max_rad = OGK_TEST_NEXTAFTER(3.141592653589793, 4.0); break; /* next real above pi */
         case 6u: cfg.tau_freeze = NAN; break;
-        case 7u: cfg.tau_freeze = -DBL_MIN; break;
+        case 7u: cfg.tau_freeze = -OGK_REAL_MIN; break;
         case 8u: cfg.sample_interval_s = -2.0; break;
         default: cfg.dtf_max_s = 0.0; break;
         }
@@ -232,10 +249,10 @@ static void expect_stale(ogk_nog_t *ctx)
     ogk_thrust_cmd_t c;
     OGK_ASSERT_STATUS(ogk_nog_sample(ctx, &nav, &s), OGK_E_TABLE_STALE);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
-    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12); /* the held (nominal) direction */
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-12, ANG_EPS)); /* the held (nominal) direction */
     OGK_ASSERT_STATUS(ogk_nog_thrust_cmd(ctx, 11.0, &c), OGK_E_TABLE_STALE);
     assert_true((c.flags & OGK_THRUST_FLAG_SAFE) != 0u);
-    OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, 1e-12);
+    OGK_ASSERT_NEAR(c.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-12, ANG_EPS));
 }
 
 /* The views of test_stale_after_struct_copy copied over the bound one (little-endian targets:
@@ -277,7 +294,7 @@ static void test_stale_after_struct_copy(void **state)
     ogk_nog_config_t cfg = config();
     ogk_nog_t ctx;
     (void)state;
-    build(img4.b, 4u, TF_STAR);
+    build(img4.b, 4u, TF_STAR_THIRDS);
     (void)memcpy(img5b.b, img5.b, TABLE_BYTES(5u));
     (void)memset(&v5, 0, sizeof v5);
     (void)memset(&v4, 0, sizeof v4);
@@ -321,15 +338,15 @@ static void test_freeze_margin(void **state)
     nav.v_n_mps = 2.0; /* 1 - 0.4 >= 0.5: corrected, dlam_vn = 0.02 */
     OGK_ASSERT_STATUS(ogk_nog_sample(&ctx, &nav, &s), OGK_OK);
     assert_true((s.flags & OGK_NOG_FLAG_FROZEN) == 0u);
-    OGK_ASSERT_NEAR(s.beta_rad, atan2(-K_L6_VN * 2.0, 1.0), 1e-14);
+    OGK_ASSERT_NEAR(s.beta_rad, atan2(-K_L6_VN * 2.0, 1.0), OGK_TEST_TOL(1e-14, ANG_EPS));
     nav = nav_at(60.0, 0.6);
     nav.v_n_mps = 50.0; /* 1 - 0.6 < 0.5 (and 0.6 < 0.75, the last gain node): frozen */
     OGK_ASSERT_STATUS(ogk_nog_sample(&ctx, &nav, &s), OGK_OK);
     assert_true((s.flags & OGK_NOG_FLAG_FROZEN) != 0u);
-    OGK_ASSERT_NEAR(s.beta_rad, atan2(-K_L6_VN * 2.0, 1.0), 1e-14); /* correction held */
+    OGK_ASSERT_NEAR(s.beta_rad, atan2(-K_L6_VN * 2.0, 1.0), OGK_TEST_TOL(1e-14, ANG_EPS)); /* correction held */
 }
 
-/* Finite gains, a costate-rate gain of 1e308: dlam' overflows while dlam does not. */
+/* Finite gains, a costate-rate gain of 1e308 (float: 1e38): dlam' overflows while dlam does not. */
 /* req: OGK-NOG-011 */
 static void test_overflowing_rate_gain(void **state)
 {
@@ -339,7 +356,7 @@ static void test_overflowing_rate_gain(void **state)
     size_t k;
     (void)state;
     for (k = 0u; k + 1u < 5u; ++k) {
-        tw_put_f64(img5.b + ROW(5u, k, OGK_NOG_OFF_NRATE + 5u * 7u + 5u), 1.0e308);
+        tw_put_real(img5.b + ROW(5u, k, OGK_NOG_OFF_NRATE + 5u * 7u + 5u), OGK_TEST_PICK(1.0e308, 1.0e38));
     }
     tw_seal(img5.b, N_VALUES(5u));
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table, img5.b, TABLE_BYTES(5u)), OGK_OK);
@@ -347,8 +364,8 @@ static void test_overflowing_rate_gain(void **state)
     nav.v_n_mps = 10.0;
     OGK_ASSERT_STATUS(ogk_nog_sample(&nog, &nav, &s), OGK_E_SAFE_COMMAND);
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
-    OGK_ASSERT_NEAR(s.beta_rad, 0.0, 1e-15); /* nominal held: no correction taken */
-    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, 1e-12);
+    OGK_ASSERT_NEAR(s.beta_rad, 0.0, OGK_TEST_TOL(1e-15, ANG_EPS)); /* nominal held: no correction taken */
+    OGK_ASSERT_NEAR(s.alpha_rad, ALPHA0, OGK_TEST_TOL(1e-12, ANG_EPS));
     OGK_ASSERT_NEAR(s.t_f_s, TF_STAR, 0.0);
     assert_int_equal(nog.n_samples, 0u);
 }
@@ -427,7 +444,7 @@ static void test_nan_time_tag(void **state)
     assert_true((s.flags & OGK_NOG_FLAG_SAFE) != 0u);
     OGK_ASSERT_NEAR(s.tau_k, 0.0, 0.0); /* still the first sample's */
     OGK_ASSERT_NEAR(nog.t_k_s, 0.0, 0.0);
-    OGK_ASSERT_NEAR(s.beta_rad, atan2(-K_L6_VN * 2.0, 1.0), 1e-14); /* its correction flies */
+    OGK_ASSERT_NEAR(s.beta_rad, atan2(-K_L6_VN * 2.0, 1.0), OGK_TEST_TOL(1e-14, ANG_EPS)); /* its correction flies */
 }
 
 int main(void)

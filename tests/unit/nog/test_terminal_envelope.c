@@ -35,12 +35,12 @@ static void init_with(size_t offset, double value, ogk_status want)
     ogk_terminal_t before;
     (void)memset(&ctx, 0x5a, sizeof ctx);
     before = ctx;
-    *(double *)((char *)&cfg + offset) = value;
+    *(ogk_real_t *)((char *)&cfg + offset) = value;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), want);
     if (want != OGK_OK) {
         assert_true(memcmp(&ctx, &before, sizeof ctx) == 0);
     } else {
-        OGK_ASSERT_REL(ctx.v_target_mps, sqrt(cfg.mu_m3_s2 / cfg.target_radius_m), 1e-15, 0.0);
+        OGK_ASSERT_REL(ctx.v_target_mps, sqrt(cfg.mu_m3_s2 / cfg.target_radius_m), OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON), 0.0);
     }
 }
 
@@ -49,19 +49,19 @@ static void test_each_config_bound_decides_alone(void **state)
 {
     (void)state;
     init_with(offsetof(ogk_terminal_config_t, shape_gain_normal), 0.0, OGK_OK);
-    init_with(offsetof(ogk_terminal_config_t, shape_gain_normal), nextafter(0.0, -1.0), OGK_E_CONFIG);
+    init_with(offsetof(ogk_terminal_config_t, shape_gain_normal), OGK_TEST_NEXTAFTER(0.0, -1.0), OGK_E_CONFIG);
     init_with(offsetof(ogk_terminal_config_t, target_radius_m), OGK_TERMINAL_R_MAX_M, OGK_OK);
-    init_with(offsetof(ogk_terminal_config_t, target_radius_m), nextafter(OGK_TERMINAL_R_MAX_M, DBL_MAX),
+    init_with(offsetof(ogk_terminal_config_t, target_radius_m), OGK_TEST_NEXTAFTER(OGK_TERMINAL_R_MAX_M, DBL_MAX),
               OGK_E_CONFIG);
     init_with(offsetof(ogk_terminal_config_t, window_s), 0.0, OGK_OK);
-    init_with(offsetof(ogk_terminal_config_t, window_s), nextafter(0.0, -1.0), OGK_E_CONFIG);
+    init_with(offsetof(ogk_terminal_config_t, window_s), OGK_TEST_NEXTAFTER(0.0, -1.0), OGK_E_CONFIG);
     init_with(offsetof(ogk_terminal_config_t, window_s), OGK_TERMINAL_T_MAX_S, OGK_OK);
-    init_with(offsetof(ogk_terminal_config_t, window_s), nextafter(OGK_TERMINAL_T_MAX_S, DBL_MAX), OGK_E_CONFIG);
+    init_with(offsetof(ogk_terminal_config_t, window_s), OGK_TEST_NEXTAFTER(OGK_TERMINAL_T_MAX_S, DBL_MAX), OGK_E_CONFIG);
     init_with(offsetof(ogk_terminal_config_t, turn_accel_rad_s2), 0.0, OGK_OK);
-    init_with(offsetof(ogk_terminal_config_t, turn_accel_rad_s2), nextafter(0.0, -1.0), OGK_E_CONFIG);
+    init_with(offsetof(ogk_terminal_config_t, turn_accel_rad_s2), OGK_TEST_NEXTAFTER(0.0, -1.0), OGK_E_CONFIG);
     init_with(offsetof(ogk_terminal_config_t, turn_accel_rad_s2), OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2, OGK_OK);
     init_with(offsetof(ogk_terminal_config_t, turn_accel_rad_s2),
-              nextafter(OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2, DBL_MAX), OGK_E_CONFIG);
+              OGK_TEST_NEXTAFTER(OGK_TERMINAL_TURN_ACCEL_MAX_RAD_S2, DBL_MAX), OGK_E_CONFIG);
 }
 
 /* A nav field set to value, outside the window (t_predicted - t = 500 s > 3 s): want; on a
@@ -74,7 +74,7 @@ static void step_with(size_t offset, double value, double t_predicted, ogk_statu
     ogk_nav_state_t nav = nav_at(100.0);
     const ogk_thrust_cmd_t law = law_command(100.0);
     ogk_thrust_cmd_t out;
-    *(double *)((char *)&nav + offset) = value;
+    *(ogk_real_t *)((char *)&nav + offset) = value;
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
     before = ctx;
     OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, t_predicted, &law, &out), want);
@@ -92,17 +92,17 @@ static void step_with(size_t offset, double value, double t_predicted, ogk_statu
 /* req: OGK-NOG-017 */
 static void test_each_envelope_bound_decides_alone(void **state)
 {
-    const double over_v = nextafter(OGK_TERMINAL_V_MAX_MPS, DBL_MAX);
-    const double over_t = nextafter(OGK_TERMINAL_T_MAX_S, DBL_MAX);
+    const double over_v = OGK_TEST_NEXTAFTER(OGK_TERMINAL_V_MAX_MPS, DBL_MAX);
+    const double over_t = OGK_TEST_NEXTAFTER(OGK_TERMINAL_T_MAX_S, DBL_MAX);
     (void)state;
     step_with(offsetof(ogk_nav_state_t, r_m), OGK_TERMINAL_R_MAX_M, 600.0, OGK_OK);
-    step_with(offsetof(ogk_nav_state_t, r_m), nextafter(OGK_TERMINAL_R_MAX_M, DBL_MAX), 600.0, OGK_E_RANGE);
+    step_with(offsetof(ogk_nav_state_t, r_m), OGK_TEST_NEXTAFTER(OGK_TERMINAL_R_MAX_M, DBL_MAX), 600.0, OGK_E_RANGE);
     step_with(offsetof(ogk_nav_state_t, v_r_mps), -OGK_TERMINAL_V_MAX_MPS, 600.0, OGK_OK);
     step_with(offsetof(ogk_nav_state_t, v_r_mps), -over_v, 600.0, OGK_E_RANGE);
     step_with(offsetof(ogk_nav_state_t, v_n_mps), OGK_TERMINAL_V_MAX_MPS, 600.0, OGK_OK);
     step_with(offsetof(ogk_nav_state_t, v_n_mps), over_v, 600.0, OGK_E_RANGE);
     step_with(offsetof(ogk_nav_state_t, t_s), 0.0, 600.0, OGK_OK);
-    step_with(offsetof(ogk_nav_state_t, t_s), nextafter(0.0, -1.0), 600.0, OGK_E_RANGE);
+    step_with(offsetof(ogk_nav_state_t, t_s), OGK_TEST_NEXTAFTER(0.0, -1.0), 600.0, OGK_E_RANGE);
     /* t and the predicted cut-off each one step beyond T_MAX (v_t = 0 is inside the envelope) */
     step_with(offsetof(ogk_nav_state_t, t_s), over_t, 600.0, OGK_E_RANGE);
     step_with(offsetof(ogk_nav_state_t, v_t_mps), 0.0, OGK_TERMINAL_T_MAX_S, OGK_OK);
