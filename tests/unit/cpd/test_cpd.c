@@ -7,7 +7,16 @@
  * a2 = -c3, a3 = -c1, and the body axes by turning the a axes with Rodrigues'
  * formula about the current 3rd, 2nd, then 1st axis (yaw, pitch, roll). The
  * dynamics used in the closed-loop checks are eqs. (10)-(18) / (42)-(44),
- * integrated here with a local RK4. */
+ * integrated here with a local RK4.
+ *
+ * Both precisions (ogk_test.h): the random angles are drawn as the kernel
+ * has them (ogk_real_t), so the double references measure the kernel alone.
+ * In float, a unit vector or an angle made of sines and cosines of float
+ * angles carries a few eps each: CPD_EPS = 16 eps (an angle near pi: times
+ * pi); an error of size s, 16 eps s. Where a float input cannot stand
+ * exactly on a singular direction (pi, pi/2 are not floats) the test says
+ * what the kernel does there. Gains and rates near the type's overflow are
+ * float's (1e30, 1e38). */
 #include "ogk_test.h"
 
 #include <string.h>
@@ -16,6 +25,8 @@
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
+#define PI_R ((ogk_real_t)PI) /* pi as the build has it: the ends of the range (-pi, pi] */
+#define CPD_EPS (16.0 * FLT_EPSILON)
 
 /* LEO-to-GEO vehicle (sec. 6, Tables 1-2) at ignition; T = n0 m0 with
  * n0 = 1.112 g0. */
@@ -192,20 +203,20 @@ static void test_commanded_attitude_points_x_body(void **state)
     int k;
     (void)state;
     for (k = 0; k < 500; ++k) {
-        const double alpha = uniform(&seed, -PI, PI);
-        const double beta = uniform(&seed, -0.49 * PI, 0.49 * PI);
-        const double xi = uniform(&seed, -PI, PI);
-        const double phi = uniform(&seed, -0.49 * PI, 0.49 * PI);
-        const double roll = uniform(&seed, -PI, PI);
-        double psi_c = 99.0;
-        double theta_c = 99.0;
+        const ogk_real_t alpha = uniform(&seed, -PI, PI);
+        const ogk_real_t beta = uniform(&seed, -0.49 * PI, 0.49 * PI);
+        const ogk_real_t xi = uniform(&seed, -PI, PI);
+        const ogk_real_t phi = uniform(&seed, -0.49 * PI, 0.49 * PI);
+        const ogk_real_t roll = uniform(&seed, -PI, PI);
+        ogk_real_t psi_c = 99.0;
+        ogk_real_t theta_c = 99.0;
         triad b;
         OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(alpha, beta, xi, phi, &psi_c, &theta_c),
                           OGK_OK);
-        assert_true(psi_c > -PI && psi_c <= PI);
-        assert_true(theta_c >= -0.5 * PI && theta_c <= 0.5 * PI);
+        assert_true(psi_c > -PI_R && psi_c <= PI_R);
+        assert_true(theta_c >= -0.5 * PI_R && theta_c <= 0.5 * PI_R);
         b = body_frame(psi_c, theta_c, roll);
-        assert_vec_near(b.x, thrust_dir(alpha, beta, xi, phi), 1e-13);
+        assert_vec_near(b.x, thrust_dir(alpha, beta, xi, phi), OGK_TEST_TOL(1e-13, CPD_EPS));
     }
 }
 
@@ -214,30 +225,40 @@ static void test_commanded_attitude_points_x_body(void **state)
 /* req: OGK-CPD-002 */
 static void test_commanded_attitude_known_values(void **state)
 {
-    double psi_c;
-    double theta_c;
+    ogk_real_t psi_c;
+    ogk_real_t theta_c;
     (void)state;
     OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(0.0, 0.0, 0.0, 0.0, &psi_c, &theta_c), OGK_OK);
-    OGK_ASSERT_NEAR(psi_c, 0.0, 1e-15);
-    OGK_ASSERT_NEAR(theta_c, 0.0, 1e-15);
+    OGK_ASSERT_NEAR(psi_c, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS));
+    OGK_ASSERT_NEAR(theta_c, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS));
     /* T = sin a c1 + cos a c2 = cos a a1 - sin a a3: pitch up by alpha */
     OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(0.3, 0.0, 0.0, 0.0, &psi_c, &theta_c), OGK_OK);
-    OGK_ASSERT_NEAR(psi_c, 0.0, 1e-15);
-    OGK_ASSERT_NEAR(theta_c, 0.3, 1e-15);
+    OGK_ASSERT_NEAR(psi_c, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS));
+    OGK_ASSERT_NEAR(theta_c, 0.3, OGK_TEST_TOL(1e-15, CPD_EPS));
     /* T = cos b c2 + sin b c3 = cos b a1 - sin b a2: yaw by -beta */
     OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(0.0, 0.2, 0.0, 0.0, &psi_c, &theta_c), OGK_OK);
-    OGK_ASSERT_NEAR(psi_c, -0.2, 1e-15);
-    OGK_ASSERT_NEAR(theta_c, 0.0, 1e-15);
+    OGK_ASSERT_NEAR(psi_c, -0.2, OGK_TEST_TOL(1e-15, CPD_EPS));
+    OGK_ASSERT_NEAR(theta_c, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS));
     /* along t at right ascension xi: t = (-sin xi, cos xi, 0) = cos xi a1 + sin xi a3,
      * i.e. pitch -xi (eq. 38) */
     OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(0.0, 0.0, 0.4, 0.0, &psi_c, &theta_c), OGK_OK);
-    OGK_ASSERT_NEAR(psi_c, 0.0, 1e-15);
-    OGK_ASSERT_NEAR(theta_c, -0.4, 1e-15);
+    OGK_ASSERT_NEAR(psi_c, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS));
+    OGK_ASSERT_NEAR(theta_c, -0.4, OGK_TEST_TOL(1e-15, CPD_EPS));
     /* along a3 = -c1 (alpha = -90 deg at xi = phi = 0): yaw undefined -> 0 */
     OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(-0.5 * PI, 0.0, 0.0, 0.0, &psi_c, &theta_c),
                       OGK_OK);
+#if OGK_REAL_SINGLE
+    /* In float -pi/2 is not a float: the direction lies 4.4e-8 rad off a3,
+     * beyond the yaw-undefined threshold (CPD_YAW_EPS, 1e-12 rad in both
+     * builds), so the yaw is defined there and any value of it points x_b
+     * along the same direction: theta_c is -pi/2 to float's resolution and the
+     * body axis lands on the commanded direction. */
+    OGK_ASSERT_NEAR(theta_c, -0.5 * PI, OGK_TEST_TOL(1e-15, CPD_EPS));
+    assert_vec_near(body_frame(psi_c, theta_c, 0.0).x, thrust_dir(-0.5 * PI_R, 0.0, 0.0, 0.0), CPD_EPS);
+#else
     OGK_ASSERT_NEAR(psi_c, 0.0, 0.0);
     OGK_ASSERT_NEAR(theta_c, -0.5 * PI, 1e-15);
+#endif
 }
 
 /* Eqs. (49)-(52): zero deflection at the commanded attitude gives back the
@@ -250,17 +271,17 @@ static void test_thrust_angles_round_trip_and_deflection(void **state)
     int k;
     (void)state;
     for (k = 0; k < 300; ++k) {
-        const double alpha = uniform(&seed, -0.99 * PI, 0.99 * PI);
-        const double beta = uniform(&seed, -0.45 * PI, 0.45 * PI);
-        const double xi = uniform(&seed, -PI, PI);
-        const double phi = uniform(&seed, -0.45 * PI, 0.45 * PI);
-        const double roll = uniform(&seed, -PI, PI);
-        const double dy = uniform(&seed, -0.3, 0.3);
-        const double dz = uniform(&seed, -0.3, 0.3);
-        double psi_c;
-        double theta_c;
-        double alpha_a;
-        double beta_a;
+        const ogk_real_t alpha = uniform(&seed, -0.99 * PI, 0.99 * PI);
+        const ogk_real_t beta = uniform(&seed, -0.45 * PI, 0.45 * PI);
+        const ogk_real_t xi = uniform(&seed, -PI, PI);
+        const ogk_real_t phi = uniform(&seed, -0.45 * PI, 0.45 * PI);
+        const ogk_real_t roll = uniform(&seed, -PI, PI);
+        const ogk_real_t dy = uniform(&seed, -0.3, 0.3);
+        const ogk_real_t dz = uniform(&seed, -0.3, 0.3);
+        ogk_real_t psi_c;
+        ogk_real_t theta_c;
+        ogk_real_t alpha_a;
+        ogk_real_t beta_a;
         triad b;
         vec3 d;
         OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(alpha, beta, xi, phi, &psi_c, &theta_c),
@@ -268,8 +289,9 @@ static void test_thrust_angles_round_trip_and_deflection(void **state)
         OGK_ASSERT_STATUS(ogk_cpd_thrust_angles(psi_c, theta_c, roll, xi, phi, 0.0, 0.0,
                                                 &alpha_a, &beta_a),
                           OGK_OK);
-        OGK_ASSERT_NEAR(alpha_a, alpha, 1e-12);
-        OGK_ASSERT_NEAR(beta_a, beta, 1e-12);
+        /* float: CPD_EPS, alpha divided by cos(beta) (>= 0.16 here) */
+        OGK_ASSERT_NEAR(alpha_a, alpha, OGK_TEST_TOL(1e-12, CPD_EPS / cos(beta)));
+        OGK_ASSERT_NEAR(beta_a, beta, OGK_TEST_TOL(1e-12, CPD_EPS));
 
         /* large deflection: compare directions, built independently */
         OGK_ASSERT_STATUS(ogk_cpd_thrust_angles(psi_c, theta_c, roll, xi, phi, dy, dz,
@@ -278,9 +300,9 @@ static void test_thrust_angles_round_trip_and_deflection(void **state)
         b = body_frame(psi_c, theta_c, roll);
         d = add(add(scale(b.x, cos(dz) * cos(dy)), scale(b.y, sin(dz))),
                 scale(b.z, cos(dz) * sin(dy)));
-        assert_vec_near(thrust_dir(alpha_a, beta_a, xi, phi), d, 1e-13);
-        assert_true(alpha_a > -PI && alpha_a <= PI);
-        assert_true(beta_a >= -0.5 * PI && beta_a <= 0.5 * PI);
+        assert_vec_near(thrust_dir(alpha_a, beta_a, xi, phi), d, OGK_TEST_TOL(1e-13, CPD_EPS));
+        assert_true(alpha_a > -PI_R && alpha_a <= PI_R);
+        assert_true(beta_a >= -0.5 * PI_R && beta_a <= 0.5 * PI_R);
     }
 }
 
@@ -290,70 +312,82 @@ static void test_thrust_angles_round_trip_and_deflection(void **state)
  * Commanded: (alpha, beta) = (0, pi) at xi = phi = 0 is -t = -c2 = -a1 (its
  * n-component sin(pi) = 1.2e-16 is the rounding), so psi_c = pi, theta_c = 0.
  * Actual: zero attitude puts x_b on a1 = c2, which at xi = -pi is -t(xi), so
- * alpha_a = pi, beta_a = 0 (the same as at xi = +pi). */
+ * alpha_a = pi, beta_a = 0 (the same as at xi = +pi). In float pi is not a
+ * float (PI_R = pi + 8.7e-8): the commanded direction's rounding leak is
+ * 8.7e-8 rad, and at xi = +PI_R the actual direction lies 8.7e-8 rad past
+ * the cut, where -pi + 8.7e-8 is its in-plane angle; both ends are within
+ * CPD_EPS pi of pi in magnitude. */
 /* req: OGK-CPD-003 */
 static void test_thrust_angles_branch_cut(void **state)
 {
-    double psi_c;
-    double theta_c;
-    double alpha_a;
-    double beta_a;
+    ogk_real_t psi_c;
+    ogk_real_t theta_c;
+    ogk_real_t alpha_a;
+    ogk_real_t beta_a;
     (void)state;
     OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(0.0, PI, 0.0, 0.0, &psi_c, &theta_c), OGK_OK);
-    OGK_ASSERT_NEAR(psi_c, PI, 1e-15);
-    OGK_ASSERT_NEAR(theta_c, 0.0, 1e-15);
+    OGK_ASSERT_NEAR(psi_c, PI, OGK_TEST_TOL(1e-15, CPD_EPS * PI));
+    OGK_ASSERT_NEAR(theta_c, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS));
     OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(PI, 0.0, 0.0, 0.0, &psi_c, &theta_c), OGK_OK);
-    OGK_ASSERT_NEAR(psi_c, PI, 1e-15);
-    OGK_ASSERT_NEAR(theta_c, 0.0, 1e-15);
+    OGK_ASSERT_NEAR(psi_c, PI, OGK_TEST_TOL(1e-15, CPD_EPS * PI));
+    OGK_ASSERT_NEAR(theta_c, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS));
     OGK_ASSERT_STATUS(ogk_cpd_thrust_angles(0.0, 0.0, 0.0, -PI, 0.0, 0.0, 0.0, &alpha_a, &beta_a),
                       OGK_OK);
-    OGK_ASSERT_NEAR(alpha_a, PI, 1e-15);
-    OGK_ASSERT_NEAR(beta_a, 0.0, 1e-15);
-    assert_vec_near(thrust_dir(alpha_a, beta_a, -PI, 0.0), a_frame().x, 1e-15);
+    OGK_ASSERT_NEAR(alpha_a, PI, OGK_TEST_TOL(1e-15, CPD_EPS * PI));
+    OGK_ASSERT_NEAR(beta_a, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS));
+    assert_vec_near(thrust_dir(alpha_a, beta_a, -PI_R, 0.0), a_frame().x, OGK_TEST_TOL(1e-15, CPD_EPS));
     OGK_ASSERT_STATUS(ogk_cpd_thrust_angles(0.0, 0.0, 0.0, PI, 0.0, 0.0, 0.0, &alpha_a, &beta_a),
                       OGK_OK);
+#if OGK_REAL_SINGLE
+    OGK_ASSERT_NEAR(fabs(alpha_a), PI, CPD_EPS * PI);
+#else
     OGK_ASSERT_NEAR(alpha_a, PI, 1e-15);
-    OGK_ASSERT_NEAR(beta_a, 0.0, 1e-15);
+#endif
+    OGK_ASSERT_NEAR(beta_a, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS));
 }
 
 /* Small deflections: d alpha, d beta from the first-order expansion of eq. (52)
- * with dT = Dz y_b + Dy z_b. */
+ * with dT = Dz y_b + Dy z_b. Float: d = 1e-3 (1e-6 is four ulps of an angle
+ * near pi there): the second-order terms, d^2 / cos^2 beta, and the angles'
+ * rounding bound the expansion's error (below). */
 /* req: OGK-CPD-003 */
 static void test_thrust_angles_small_deflection(void **state)
 {
-    const double d = 1.0e-6;
+    const double d = OGK_TEST_PICK(1.0e-6, 1.0e-3);
     uint64_t seed = 4242u;
     int k;
-    double alpha_a;
-    double beta_a;
+    ogk_real_t alpha_a;
+    ogk_real_t beta_a;
     (void)state;
     /* nominal geometry: x_b = t, y_b = -n, z_b = -r -> d alpha = -Dy, d beta = -Dz */
     OGK_ASSERT_STATUS(ogk_cpd_thrust_angles(0.0, 0.0, 0.0, 0.0, 0.0, d, 0.0, &alpha_a, &beta_a),
                       OGK_OK);
-    OGK_ASSERT_NEAR(alpha_a, -d, 1e-18);
-    OGK_ASSERT_NEAR(beta_a, 0.0, 1e-18);
+    /* a pure rotation here: exact but for rounding (float: 16 eps of d) */
+    OGK_ASSERT_NEAR(alpha_a, -d, OGK_TEST_TOL(1e-18, CPD_EPS * d));
+    OGK_ASSERT_NEAR(beta_a, 0.0, OGK_TEST_TOL(1e-18, CPD_EPS * d));
     OGK_ASSERT_STATUS(ogk_cpd_thrust_angles(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, d, &alpha_a, &beta_a),
                       OGK_OK);
-    OGK_ASSERT_NEAR(alpha_a, 0.0, 1e-18);
-    OGK_ASSERT_NEAR(beta_a, -d, 1e-18);
+    OGK_ASSERT_NEAR(alpha_a, 0.0, OGK_TEST_TOL(1e-18, CPD_EPS * d));
+    OGK_ASSERT_NEAR(beta_a, -d, OGK_TEST_TOL(1e-18, CPD_EPS * d));
     /* 90 deg of roll swaps the roles: y_b = -r, z_b = +n */
     OGK_ASSERT_STATUS(ogk_cpd_thrust_angles(0.0, 0.0, 0.5 * PI, 0.0, 0.0, d, 0.0, &alpha_a,
                                             &beta_a),
                       OGK_OK);
-    OGK_ASSERT_NEAR(alpha_a, 0.0, 1e-17);
-    OGK_ASSERT_NEAR(beta_a, d, 1e-17);
+    /* float: the roll pi/2 is not a float either (cos = 4.4e-8): CPD_EPS d */
+    OGK_ASSERT_NEAR(alpha_a, 0.0, OGK_TEST_TOL(1e-17, CPD_EPS * d));
+    OGK_ASSERT_NEAR(beta_a, d, OGK_TEST_TOL(1e-17, CPD_EPS * d));
 
     for (k = 0; k < 100; ++k) {
-        const double alpha = uniform(&seed, -PI, PI);
-        const double beta = uniform(&seed, -1.2, 1.2);
-        const double xi = uniform(&seed, -PI, PI);
-        const double phi = uniform(&seed, -1.2, 1.2);
-        const double roll = uniform(&seed, -PI, PI);
-        const double dy = uniform(&seed, -d, d);
-        const double dz = uniform(&seed, -d, d);
+        const ogk_real_t alpha = uniform(&seed, -PI, PI);
+        const ogk_real_t beta = uniform(&seed, -1.2, 1.2);
+        const ogk_real_t xi = uniform(&seed, -PI, PI);
+        const ogk_real_t phi = uniform(&seed, -1.2, 1.2);
+        const ogk_real_t roll = uniform(&seed, -PI, PI);
+        const ogk_real_t dy = uniform(&seed, -d, d);
+        const ogk_real_t dz = uniform(&seed, -d, d);
         const triad f = rtn_frame(xi, phi);
-        double psi_c;
-        double theta_c;
+        ogk_real_t psi_c;
+        ogk_real_t theta_c;
         triad b;
         vec3 dt;
         vec3 du_dalpha;
@@ -374,8 +408,12 @@ static void test_thrust_angles_small_deflection(void **state)
                        scale(f.z, cos(beta)));
         exp_da = dot(dt, du_dalpha) / (cos(beta) * cos(beta));
         exp_db = dot(dt, du_dbeta);
-        OGK_ASSERT_NEAR(alpha_a - alpha, exp_da, 1e-11);
-        OGK_ASSERT_NEAR(beta_a - beta, exp_db, 1e-11);
+        /* float: the second order, d^2 / cos^2 beta (x 10), and the rounding
+         * of the two angles near pi, CPD_EPS pi / cos beta */
+        OGK_ASSERT_NEAR(alpha_a - alpha, exp_da,
+                        OGK_TEST_TOL(1e-11, ((10.0 * d * d) + (CPD_EPS * PI)) / (cos(beta) * cos(beta))));
+        OGK_ASSERT_NEAR(beta_a - beta, exp_db,
+                        OGK_TEST_TOL(1e-11, ((10.0 * d * d) + (CPD_EPS * PI)) / (cos(beta) * cos(beta))));
         /* and the change is really first order (not zero by accident) */
         assert_true(fabs(alpha_a - alpha) + fabs(beta_a - beta) > 1e-3 * d);
     }
@@ -395,29 +433,29 @@ static void test_body_pointing_error_geometry(void **state)
     size_t j;
     (void)state;
     for (k = 0; k < 200; ++k) {
-        const double alpha = uniform(&seed, -PI, PI);
-        const double beta = uniform(&seed, -1.4, 1.4);
-        const double xi = uniform(&seed, -PI, PI);
-        const double phi = uniform(&seed, -1.4, 1.4);
-        const double psi = uniform(&seed, -PI, PI);
-        const double theta = uniform(&seed, -1.4, 1.4);
+        const ogk_real_t alpha = uniform(&seed, -PI, PI);
+        const ogk_real_t beta = uniform(&seed, -1.4, 1.4);
+        const ogk_real_t xi = uniform(&seed, -PI, PI);
+        const ogk_real_t phi = uniform(&seed, -1.4, 1.4);
+        const ogk_real_t psi = uniform(&seed, -PI, PI);
+        const ogk_real_t theta = uniform(&seed, -1.4, 1.4);
         const vec3 tc = thrust_dir(alpha, beta, xi, phi);
         double ey0 = 0.0;
         double ez0 = 0.0;
         for (j = 0u; j < 6u; ++j) {
             const triad b = body_frame(psi, theta, rolls[j]);
             const double true_angle = atan2(norm(cross(b.x, tc)), dot(b.x, tc));
-            double ey;
-            double ez;
+            ogk_real_t ey;
+            ogk_real_t ez;
             double mag;
             OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(psi, theta, rolls[j], alpha, beta, xi,
                                                           phi, &ey, &ez),
                               OGK_OK);
             mag = hypot(ey, ez);
-            OGK_ASSERT_NEAR(mag, true_angle, 1e-12);
+            OGK_ASSERT_NEAR(mag, true_angle, OGK_TEST_TOL(1e-12, CPD_EPS * PI));
             if (mag > 1e-9) {
                 const vec3 axis = scale(add(scale(b.y, ey), scale(b.z, ez)), 1.0 / mag);
-                assert_vec_near(rodrigues(b.x, axis, mag), tc, 1e-12);
+                assert_vec_near(rodrigues(b.x, axis, mag), tc, OGK_TEST_TOL(1e-12, CPD_EPS * PI));
             }
             if (j == 0u) {
                 ey0 = ey;
@@ -426,8 +464,8 @@ static void test_body_pointing_error_geometry(void **state)
                 /* a vector fixed in space seen from axes rolled by Phi */
                 const double c = cos(rolls[j]);
                 const double s = sin(rolls[j]);
-                OGK_ASSERT_NEAR(ey, c * ey0 + s * ez0, 1e-11);
-                OGK_ASSERT_NEAR(ez, -s * ey0 + c * ez0, 1e-11);
+                OGK_ASSERT_NEAR(ey, c * ey0 + s * ez0, OGK_TEST_TOL(1e-11, CPD_EPS * PI));
+                OGK_ASSERT_NEAR(ez, -s * ey0 + c * ez0, OGK_TEST_TOL(1e-11, CPD_EPS * PI));
             }
         }
     }
@@ -437,35 +475,37 @@ static void test_body_pointing_error_geometry(void **state)
 /* req: OGK-CPD-004 */
 static void test_body_error_matches_euler_near_zero_roll(void **state)
 {
-    double psi_c;
-    double theta_c;
-    double ey;
-    double ez;
+    ogk_real_t psi_c;
+    ogk_real_t theta_c;
+    ogk_real_t ey;
+    ogk_real_t ez;
     (void)state;
     OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(0.2, -0.1, 0.3, 0.05, &psi_c, &theta_c), OGK_OK);
     /* pure pitch offset: exact */
     OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(psi_c, theta_c - 0.7, 0.0, 0.2, -0.1, 0.3,
                                                   0.05, &ey, &ez),
                       OGK_OK);
-    OGK_ASSERT_NEAR(ey, 0.7, 1e-14);
-    OGK_ASSERT_NEAR(ez, 0.0, 1e-14);
+    OGK_ASSERT_NEAR(ey, 0.7, OGK_TEST_TOL(1e-14, CPD_EPS));
+    OGK_ASSERT_NEAR(ez, 0.0, OGK_TEST_TOL(1e-14, CPD_EPS));
     /* pure yaw offset at zero pitch: exact */
     OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(-0.8, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, &ey, &ez),
                       OGK_OK);
-    OGK_ASSERT_NEAR(ey, 0.0, 1e-15);
-    OGK_ASSERT_NEAR(ez, 0.8, 1e-15);
+    OGK_ASSERT_NEAR(ey, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS));
+    OGK_ASSERT_NEAR(ez, 0.8, OGK_TEST_TOL(1e-15, CPD_EPS));
     /* small mixed offset: first order */
     OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(psi_c - 1e-5, theta_c + 2e-5, 0.0, 0.2, -0.1,
                                                   0.3, 0.05, &ey, &ez),
                       OGK_OK);
-    OGK_ASSERT_NEAR(ey, -2e-5, 1e-9);
-    OGK_ASSERT_NEAR(ez, 1e-5 * cos(theta_c), 1e-9);
+    /* float: the offsets are rounded at the angles' ulp (3e-8 at 0.3): 4 of them */
+    OGK_ASSERT_NEAR(ey, -2e-5, OGK_TEST_TOL(1e-9, 4.0 * FLT_EPSILON * 0.3));
+    OGK_ASSERT_NEAR(ez, 1e-5 * cos(theta_c), OGK_TEST_TOL(1e-9, 4.0 * FLT_EPSILON * 0.3));
     /* at 180 deg of roll both signs flip: the Euler differences do not */
     OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(psi_c, theta_c - 0.01, PI, 0.2, -0.1, 0.3,
                                                   0.05, &ey, &ez),
                       OGK_OK);
-    OGK_ASSERT_NEAR(ey, -0.01, 1e-14);
-    OGK_ASSERT_NEAR(ez, 0.0, 1e-14);
+    /* float: the roll pi leaks sin(PI_R) = 8.7e-8 of the error into the other axis */
+    OGK_ASSERT_NEAR(ey, -0.01, OGK_TEST_TOL(1e-14, CPD_EPS * 0.01));
+    OGK_ASSERT_NEAR(ez, 0.0, OGK_TEST_TOL(1e-14, CPD_EPS * 0.01));
 }
 
 /* req: OGK-CPD-004 */
@@ -475,17 +515,19 @@ static void test_body_error_matches_euler_near_zero_roll(void **state)
  * (cb s - s cb = 0) and beta = 1e-310 leaves t_b = (-1, -1e-310, -0), so
  * hypot = 1e-310 and the rotation angle is pi: angle / lateral overflowed to
  * inf and the error came back (NaN, -inf) with OGK_OK. The true error is a
- * half turn about an axis normal to x_b: magnitude pi, finite. */
+ * half turn about an axis normal to x_b: magnitude pi, finite. Float: the
+ * float sine of PI_R (-8.7e-8) and a float subnormal beta (1e-40). */
 static void test_body_error_behind_subnormal_lateral(void **state)
 {
-    const double s = sin(PI);
-    double ey = 0.0;
-    double ez = 0.0;
+    const double s = OGK_TEST_PICK(sin(PI), (double)sinf(PI_R));
+    ogk_real_t ey = 0.0;
+    ogk_real_t ez = 0.0;
     (void)state;
-    OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(0.0, 0.0, 0.0, -s, 1e-310, PI, 0.0, &ey, &ez),
+    OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(0.0, 0.0, 0.0, -s, OGK_TEST_PICK(1e-310, 1e-40), PI, 0.0,
+                                                  &ey, &ez),
                       OGK_OK);
     assert_true(isfinite(ey) && isfinite(ez));
-    OGK_ASSERT_NEAR(hypot(ey, ez), PI, 1e-15);
+    OGK_ASSERT_NEAR(hypot(ey, ez), PI, OGK_TEST_TOL(1e-15, CPD_EPS * PI));
 }
 
 /* Commanded direction behind the vehicle: error magnitude near pi, flagged,
@@ -497,14 +539,19 @@ static void test_body_error_behind(void **state)
     ogk_cpd_config_t cfg = rederived_config(OGK_CPD_POINTING_BODY);
     ogk_cpd_input_t in = zero_input();
     ogk_cpd_output_t out;
-    double ey;
-    double ez;
+    ogk_real_t ey;
+    ogk_real_t ez;
     (void)state;
     /* x_b = a1 = t; T_c = -t (alpha = 180 deg) */
     OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(0.0, 0.0, 0.0, PI, 0.0, 0.0, 0.0, &ey, &ez),
                       OGK_OK);
+#if OGK_REAL_SINGLE
+    /* PI_R is 8.7e-8 past pi: a half turn either way about y_b */
+    OGK_ASSERT_NEAR(fabs(ey), PI, CPD_EPS * PI);
+#else
     OGK_ASSERT_NEAR(ey, PI, 1e-15);
-    OGK_ASSERT_NEAR(ez, 0.0, 1e-15);
+#endif
+    OGK_ASSERT_NEAR(ez, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS));
     /* 170 deg away in a skew direction */
     OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(0.3, 0.2, 1.0, 0.3 + PI - 0.1, 0.1, 0.0, 0.0,
                                                   &ey, &ez),
@@ -517,15 +564,22 @@ static void test_body_error_behind(void **state)
     assert_true((out.flags & OGK_CPD_FLAG_BEHIND) != 0u);
     assert_true((out.flags & OGK_CPD_FLAG_SAT_Y) != 0u);
     OGK_ASSERT_NEAR(out.delta_yc, cfg.delta_yc_max, 0.0);
-    OGK_ASSERT_NEAR(out.err_y, PI - 0.2, 1e-14);
+    OGK_ASSERT_NEAR(out.err_y, PI - 0.2, OGK_TEST_TOL(1e-14, CPD_EPS * PI));
     in.alpha_c = 0.2;
     OGK_ASSERT_STATUS(ogk_cpd_step(&ctx, &in, &out), OGK_OK);
     assert_true((out.flags & OGK_CPD_FLAG_BEHIND) == 0u);
-    /* along a3: yaw undefined flag */
+    /* along a3: yaw undefined flag. Float: -pi/2 is not a float, the
+     * direction lies 4.4e-8 rad off a3, beyond CPD_YAW_EPS (1e-12 rad): the
+     * yaw is defined and not flagged (test_commanded_attitude_known_values) */
     in.alpha_c = -0.5 * PI;
     OGK_ASSERT_STATUS(ogk_cpd_step(&ctx, &in, &out), OGK_OK);
+#if OGK_REAL_SINGLE
+    assert_true((out.flags & OGK_CPD_FLAG_YAW_UNDEFINED) == 0u);
+    assert_true(isfinite(out.psi_c));
+#else
     assert_true((out.flags & OGK_CPD_FLAG_YAW_UNDEFINED) != 0u);
     OGK_ASSERT_NEAR(out.psi_c, 0.0, 0.0);
+#endif
 }
 
 /* ================================================================ control law */
@@ -555,16 +609,21 @@ static void test_control_law_and_saturation(void **state)
         in.rate_r = -1e-4;
         OGK_ASSERT_STATUS(ogk_cpd_step(&ctx, &in, &out), OGK_OK);
         assert_int_equal(out.flags, 0);
-        OGK_ASSERT_NEAR(out.theta_c, 0.3, 1e-15);
-        OGK_ASSERT_NEAR(out.psi_c, 0.0, 1e-15);
-        OGK_ASSERT_NEAR(out.err_x, -1e-6, 1e-15);
-        OGK_ASSERT_NEAR(out.m_xc, cfg.k_px * -1e-6 - cfg.k_dx * 1e-6, 5e-11); /* k_px * 1e-15 */
+        /* float: angles CPD_EPS (of their size); the errors are differences of
+         * angles near 0.3 (ulp 3e-8), 4 of those; the commands 16 eps of their
+         * size (below 1e-3) */
+        OGK_ASSERT_NEAR(out.theta_c, 0.3, OGK_TEST_TOL(1e-15, CPD_EPS * 0.3));
+        OGK_ASSERT_NEAR(out.psi_c, 0.0, OGK_TEST_TOL(1e-15, CPD_EPS * 0.3));
+        OGK_ASSERT_NEAR(out.err_x, -1e-6, OGK_TEST_TOL(1e-15, CPD_EPS * 1e-6));
+        OGK_ASSERT_NEAR(out.m_xc, cfg.k_px * -1e-6 - cfg.k_dx * 1e-6,
+                        OGK_TEST_TOL(5e-11, cfg.k_px * CPD_EPS * 1e-6)); /* k_px * 1e-15 */
         /* Euler: e_y = 1e-4 exactly, e_z = -2e-4; body: first order */
-        OGK_ASSERT_NEAR(out.err_y, 1e-4, modes[m] == OGK_CPD_POINTING_EULER ? 1e-16 : 1e-8);
+        OGK_ASSERT_NEAR(out.err_y, 1e-4,
+                        OGK_TEST_TOL(modes[m] == OGK_CPD_POINTING_EULER ? 1e-16 : 1e-8, 4.0 * FLT_EPSILON * 0.3));
         OGK_ASSERT_NEAR(out.err_z, -2e-4 * (modes[m] == OGK_CPD_POINTING_EULER ? 1.0 : cos(0.3)),
-                        modes[m] == OGK_CPD_POINTING_EULER ? 1e-16 : 1e-8);
-        OGK_ASSERT_NEAR(out.delta_yc, cfg.k_py * out.err_y - cfg.k_dy * 2e-4, 1e-15);
-        OGK_ASSERT_NEAR(out.delta_zc, -cfg.k_pz * out.err_z + cfg.k_dz * -1e-4, 1e-15);
+                        OGK_TEST_TOL(modes[m] == OGK_CPD_POINTING_EULER ? 1e-16 : 1e-8, 4.0 * FLT_EPSILON * 0.3));
+        OGK_ASSERT_NEAR(out.delta_yc, cfg.k_py * out.err_y - cfg.k_dy * 2e-4, OGK_TEST_TOL(1e-15, CPD_EPS * 1e-3));
+        OGK_ASSERT_NEAR(out.delta_zc, -cfg.k_pz * out.err_z + cfg.k_dz * -1e-4, OGK_TEST_TOL(1e-15, CPD_EPS * 1e-3));
         assert_true(fabs(out.delta_yc) < cfg.delta_yc_max);
         assert_true(fabs(out.delta_zc) < cfg.delta_zc_max);
         /* the context keeps the last command */
@@ -598,10 +657,10 @@ static void test_control_law_and_saturation(void **state)
             OGK_ASSERT_NEAR(out.delta_yc, sign * cfg.delta_yc_max, 0.0);
             OGK_ASSERT_NEAR(out.delta_zc, -sign * cfg.delta_zc_max, 0.0);
         }
-        /* huge finite rates: saturated, no overflow to NaN */
-        in.rate_p = 1e308;
-        in.rate_q = -1e308;
-        in.rate_r = 1e308;
+        /* huge finite rates: saturated, no overflow to NaN (float: 1e38) */
+        in.rate_p = OGK_TEST_PICK(1e308, 1e38);
+        in.rate_q = -OGK_TEST_PICK(1e308, 1e38);
+        in.rate_r = OGK_TEST_PICK(1e308, 1e38);
         OGK_ASSERT_STATUS(ogk_cpd_step(&ctx, &in, &out), OGK_OK);
         OGK_ASSERT_NEAR(out.m_xc, -cfg.m_xc_max, 0.0);
         OGK_ASSERT_NEAR(out.delta_yc, cfg.delta_yc_max, 0.0);
@@ -623,11 +682,11 @@ static void test_euler_mode_wraps_errors(void **state)
     in.phi_roll = -170.0 * DEG; /* raw error 340 deg -> -20 deg */
     in.psi = -350.0 * DEG;      /* psi_c = 0: raw error 350 deg -> -10 deg */
     OGK_ASSERT_STATUS(ogk_cpd_step(&ctx, &in, &out), OGK_OK);
-    OGK_ASSERT_NEAR(out.err_x, -20.0 * DEG, 1e-13);
-    OGK_ASSERT_NEAR(out.err_z, -10.0 * DEG, 1e-13);
+    OGK_ASSERT_NEAR(out.err_x, -20.0 * DEG, OGK_TEST_TOL(1e-13, CPD_EPS * PI));
+    OGK_ASSERT_NEAR(out.err_z, -10.0 * DEG, OGK_TEST_TOL(1e-13, CPD_EPS * PI));
     OGK_ASSERT_NEAR(out.m_xc, -cfg.m_xc_max, 0.0);
     OGK_ASSERT_NEAR(out.delta_zc, cfg.delta_zc_max, 0.0);
-    OGK_ASSERT_NEAR(out.phi_c, 170.0 * DEG, 0.0);
+    OGK_ASSERT_NEAR(out.phi_c, (ogk_real_t)(170.0 * DEG), 0.0); /* the configured value, as stored */
 }
 
 /* req: OGK-CORE-020 */
@@ -640,33 +699,43 @@ static void test_wrap_pi(void **state)
         {1.0, 1.0},          {-1.0, -1.0},       {PI + 1e-9, -PI + 1e-9},
         {-PI + 1e-9, -PI + 1e-9}};
     size_t i;
-    double w;
+    ogk_real_t w;
     uint64_t seed = 5u;
     (void)state;
+    /* Float: an odd multiple of pi rounded to float lies an ulp or so to one
+     * side of the cut, so its wrap is +pi or -pi (both within rounding of the
+     * input): the cases are compared as angles, by the distance modulo 2 pi;
+     * the wrap's own error is that of subtracting multiples of 2 PI_R from a
+     * float of up to OGK_CPD_ANGLE_LIMIT: a few ulps of it (CPD_EPS of the
+     * input's size). */
     for (i = 0u; i < sizeof(cases) / sizeof(cases[0]); ++i) {
         OGK_ASSERT_STATUS(ogk_wrap_pi(cases[i][0], &w), OGK_OK);
+#if OGK_REAL_SINGLE
+        OGK_ASSERT_NEAR(remainder(w - cases[i][1], 2.0 * PI), 0.0, CPD_EPS * fmax(PI, fabs(cases[i][0])));
+#else
         OGK_ASSERT_NEAR(w, cases[i][1], 1e-12);
+#endif
     }
     for (i = 0u; i < 1000u; ++i) {
-        const double a = uniform(&seed, -OGK_CPD_ANGLE_LIMIT, OGK_CPD_ANGLE_LIMIT);
+        const ogk_real_t a = uniform(&seed, -OGK_CPD_ANGLE_LIMIT, OGK_CPD_ANGLE_LIMIT);
         OGK_ASSERT_STATUS(ogk_wrap_pi(a, &w), OGK_OK);
-        assert_true(w > -PI && w <= PI);
-        OGK_ASSERT_NEAR(sin(w), sin(a), 1e-11);
-        OGK_ASSERT_NEAR(cos(w), cos(a), 1e-11);
+        assert_true(w > -PI_R && w <= PI_R);
+        OGK_ASSERT_NEAR(sin(w), sin(a), OGK_TEST_TOL(1e-11, CPD_EPS * fabs(a)));
+        OGK_ASSERT_NEAR(cos(w), cos(a), OGK_TEST_TOL(1e-11, CPD_EPS * fabs(a)));
     }
     /* exact on the principal range (one wrap for every law, ogk/mathutil.h) */
     for (i = 0u; i < 1000u; ++i) {
-        const double a = uniform(&seed, -PI, PI);
+        const ogk_real_t a = uniform(&seed, -PI, PI);
         OGK_ASSERT_STATUS(ogk_wrap_pi(a, &w), OGK_OK);
-        assert_true(w == a || (a == -PI && w == PI));
+        assert_true(w == a || (a == -PI_R && w == PI_R));
     }
     /* one ulp past +-pi: still in (-pi, pi] */
-    OGK_ASSERT_STATUS(ogk_wrap_pi(nextafter(PI, 4.0), &w), OGK_OK);
-    assert_true(w > -PI && w <= PI);
-    OGK_ASSERT_NEAR(fabs(w), PI, 1e-15);
-    OGK_ASSERT_STATUS(ogk_wrap_pi(nextafter(-PI, -4.0), &w), OGK_OK);
-    assert_true(w > -PI && w <= PI);
-    OGK_ASSERT_NEAR(fabs(w), PI, 1e-15);
+    OGK_ASSERT_STATUS(ogk_wrap_pi(OGK_TEST_NEXTAFTER(PI, 4.0), &w), OGK_OK);
+    assert_true(w > -PI_R && w <= PI_R);
+    OGK_ASSERT_NEAR(fabs(w), PI, OGK_TEST_TOL(1e-15, CPD_EPS * PI));
+    OGK_ASSERT_STATUS(ogk_wrap_pi(OGK_TEST_NEXTAFTER(-PI, -4.0), &w), OGK_OK);
+    assert_true(w > -PI_R && w <= PI_R);
+    OGK_ASSERT_NEAR(fabs(w), PI, OGK_TEST_TOL(1e-15, CPD_EPS * PI));
 }
 
 /* ================================================================ actuator rate bound */
@@ -742,8 +811,9 @@ static void test_actuator_rate_bound(void **state)
         assert_true(max_rate[k] >= 0.99 * bound[k]); /* the bound is reached: tight */
     }
     /* paper, sec. 6: 600 N m/s and 13 deg/s */
-    OGK_ASSERT_NEAR(bound[0], 600.0, 1e-9);
-    OGK_ASSERT_NEAR(bound[1] / DEG, 13.0, 1e-9);
+    /* float: the limits and tau as stored (a rounding each) */
+    OGK_ASSERT_NEAR(bound[0], 600.0, OGK_TEST_TOL(1e-9, 2.0 * FLT_EPSILON * 600.0));
+    OGK_ASSERT_NEAR(bound[1] / DEG, 13.0, OGK_TEST_TOL(1e-9, 2.0 * FLT_EPSILON * 13.0));
 }
 
 /* ================================================================ closed loops */
@@ -868,7 +938,9 @@ static void test_single_axis_closed_loop_converges(void **state)
             x = simulate_axis(&printed, axes[a], 0.83, target - 0.01 * DEG, 0.0, 20.0, &target,
                               &n_sat);
             assert_int_equal(n_sat, 0);
-            OGK_ASSERT_NEAR(x.angle, target, 1e-9);
+            /* float: the loop settles within the resolution of the attitude it is
+             * handed (ulp of 0.83: 6e-8), 4 ulps */
+            OGK_ASSERT_NEAR(x.angle, target, OGK_TEST_TOL(1e-9, 4.0 * FLT_EPSILON * 0.83));
             OGK_ASSERT_NEAR(x.rate, 0.0, 1e-9);
             /* printed gains, paper's G, 1 deg error: saturated, converges */
             x = simulate_axis(&printed, axes[a], 0.83, target - 1.0 * DEG, 0.0, 40.0, &target,
@@ -941,8 +1013,8 @@ static void simulate_rigid_body(ogk_cpd_pointing_t mode, double *max_err, double
     const double alpha_c = 0.1;
     const double beta_c = 0.02;
     const double h = 0.001;
-    double psi_c;
-    double theta_c;
+    ogk_real_t psi_c;
+    ogk_real_t theta_c;
     int k;
     int s;
     int i;
@@ -1020,7 +1092,7 @@ static void test_init_rejects_bad_config(void **state)
     ogk_cpd_t ctx;
     ogk_cpd_input_t in = zero_input();
     ogk_cpd_output_t out;
-    double *fields[13];
+    ogk_real_t *fields[13];
     size_t i;
     (void)state;
 
@@ -1044,7 +1116,7 @@ static void test_init_rejects_bad_config(void **state)
     fields[11] = &c.tau_z;
     fields[12] = &c.phi_c;
     for (i = 0u; i < 13u; ++i) {
-        const double keep = *fields[i];
+        const ogk_real_t keep = *fields[i];
         *fields[i] = NAN;
         OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &c), OGK_E_NONFINITE);
         OGK_ASSERT_STATUS(ogk_cpd_step(&ctx, &in, &out), OGK_E_NOT_INIT);
@@ -1062,17 +1134,17 @@ static void test_init_rejects_bad_config(void **state)
     }
     /* convergence condition k_d > k_p tau (sec. 5.2), each axis */
     for (i = 0u; i < 3u; ++i) {
-        double *kp = fields[2u * i];
-        double *kd = fields[2u * i + 1u];
-        double *tau = fields[9u + i];
+        ogk_real_t *kp = fields[2u * i];
+        ogk_real_t *kd = fields[2u * i + 1u];
+        ogk_real_t *tau = fields[9u + i];
         const double keep = *kd;
         *kd = *kp * *tau;
         OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &c), OGK_E_CONFIG);
-        *kd = *kp * *tau * (1.0 + 1e-9);
+        *kd = *kp * *tau * (1.0 + OGK_TEST_TOL(1e-9, 4.0 * FLT_EPSILON)); /* just above */
         OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &c), OGK_OK);
         *kd = keep;
     }
-    c.phi_c = PI + 1e-9;
+    c.phi_c = PI + OGK_TEST_PICK(1e-9, 1e-6); /* float: beyond PI_R */
     OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &c), OGK_E_CONFIG);
     c.phi_c = -PI;
     OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &c), OGK_OK);
@@ -1104,7 +1176,7 @@ static void test_step_bad_inputs_give_safe_command(void **state)
     ogk_cpd_t ctx;
     ogk_cpd_input_t good = zero_input();
     ogk_cpd_output_t out;
-    double *fields[10];
+    ogk_real_t *fields[10];
     size_t i;
     (void)state;
     OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &cfg), OGK_OK);
@@ -1152,8 +1224,8 @@ static void test_step_bad_inputs_give_safe_command(void **state)
 /* req: OGK-CPD-007 */
 static void test_geometry_functions_bad_inputs(void **state)
 {
-    double a;
-    double b;
+    ogk_real_t a;
+    ogk_real_t b;
     (void)state;
     OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(0.0, 0.0, 0.0, 0.0, NULL, &b), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_cpd_commanded_attitude(0.0, 0.0, 0.0, 0.0, &a, NULL), OGK_E_NULL);
@@ -1208,18 +1280,18 @@ static void test_braking_cap_formula(void **state)
     in.rate_q = 0.001;
     OGK_ASSERT_STATUS(ogk_cpd_step(&ctx_paper, &in, &o_paper), OGK_OK);
     OGK_ASSERT_STATUS(ogk_cpd_step(&ctx_capped, &in, &o_capped), OGK_OK);
-    OGK_ASSERT_NEAR(o_capped.delta_yc, o_paper.delta_yc, 1e-15);
+    OGK_ASSERT_NEAR(o_capped.delta_yc, o_paper.delta_yc, OGK_TEST_TOL(1e-15, CPD_EPS * DELTA_C_MAX_RAD));
     /* Pitch error 0.5 rad flown at exactly the braking rate: zero command. */
     in.theta = 0.3 - e;
     in.rate_q = w_brake;
     OGK_ASSERT_STATUS(ogk_cpd_step(&ctx_capped, &in, &o_capped), OGK_OK);
     OGK_ASSERT_NEAR(o_capped.err_y, e, 1e-12);
-    OGK_ASSERT_NEAR(o_capped.delta_yc, 0.0, 1e-12);
+    OGK_ASSERT_NEAR(o_capped.delta_yc, 0.0, OGK_TEST_TOL(1e-12, CPD_EPS * DELTA_C_MAX_RAD));
     /* Slightly faster than the braking curve: brake (negative deflection),
      * while the paper's law still accelerates (saturated positive). */
     in.rate_q = w_brake + 0.005;
     OGK_ASSERT_STATUS(ogk_cpd_step(&ctx_capped, &in, &o_capped), OGK_OK);
-    OGK_ASSERT_NEAR(o_capped.delta_yc, -capped.k_dy * 0.005, 1e-12);
+    OGK_ASSERT_NEAR(o_capped.delta_yc, -capped.k_dy * 0.005, OGK_TEST_TOL(1e-12, CPD_EPS * DELTA_C_MAX_RAD));
     OGK_ASSERT_STATUS(ogk_cpd_step(&ctx_paper, &in, &o_paper), OGK_OK);
     OGK_ASSERT_NEAR(o_paper.delta_yc, paper.delta_yc_max, 0.0);
     /* Yaw: error +0.5 rad about z_b approached at +w_brake (R > 0): zero command. */
@@ -1284,7 +1356,7 @@ static void test_feedforward_turn_rate(void **state)
     ogk_cpd_t c_off, c_on;
     ogk_cpd_output_t o_off, o_on;
     ogk_cpd_input_t in = zero_input();
-    double psi_c, theta_c, ff_y, ff_z;
+    ogk_real_t psi_c, theta_c, ff_y, ff_z;
     int k;
     (void)state;
     on.ff_period_s = dt;
@@ -1348,8 +1420,9 @@ static void test_config_default_reset_and_thrust_cmd(void **state)
     OGK_ASSERT_NEAR(cfg.k_pz, printed.k_pz, 0.0);
     OGK_ASSERT_NEAR(cfg.k_dz, printed.k_dz, 0.0);
     OGK_ASSERT_NEAR(cfg.m_xc_max, printed.m_xc_max, 0.0);
-    OGK_ASSERT_NEAR(cfg.delta_yc_max, printed.delta_yc_max, 1e-17);
-    OGK_ASSERT_NEAR(cfg.delta_zc_max, printed.delta_zc_max, 1e-17);
+    /* float: the float of 0.65 deg by two roundings: an ulp */
+    OGK_ASSERT_NEAR(cfg.delta_yc_max, printed.delta_yc_max, OGK_TEST_TOL(1e-17, FLT_EPSILON * DELTA_C_MAX_RAD));
+    OGK_ASSERT_NEAR(cfg.delta_zc_max, printed.delta_zc_max, OGK_TEST_TOL(1e-17, FLT_EPSILON * DELTA_C_MAX_RAD));
     OGK_ASSERT_NEAR(cfg.tau_x, printed.tau_x, 0.0);
     OGK_ASSERT_NEAR(cfg.tau_y, printed.tau_y, 0.0);
     OGK_ASSERT_NEAR(cfg.tau_z, printed.tau_z, 0.0);
@@ -1386,36 +1459,37 @@ static void test_config_default_reset_and_thrust_cmd(void **state)
     in = zero_input();
     in.theta = 0.2;
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in, &cmd, &nav), OGK_OK);
-    OGK_ASSERT_NEAR(in.alpha_c, 0.3, 0.0);
-    OGK_ASSERT_NEAR(in.beta_c, -0.1, 0.0);
-    OGK_ASSERT_NEAR(in.xi, 1.2, 0.0);
-    OGK_ASSERT_NEAR(in.phi, 0.01, 0.0);
-    OGK_ASSERT_NEAR(in.theta, 0.2, 0.0); /* attitude untouched */
+    /* copied: the values as stored (ogk_real_t) */
+    OGK_ASSERT_NEAR(in.alpha_c, (ogk_real_t)0.3, 0.0);
+    OGK_ASSERT_NEAR(in.beta_c, (ogk_real_t)-0.1, 0.0);
+    OGK_ASSERT_NEAR(in.xi, (ogk_real_t)1.2, 0.0);
+    OGK_ASSERT_NEAR(in.phi, (ogk_real_t)0.01, 0.0);
+    OGK_ASSERT_NEAR(in.theta, (ogk_real_t)0.2, 0.0); /* attitude untouched */
     OGK_ASSERT_STATUS(ogk_cpd_step(&fresh, &in, &out), OGK_OK);
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(NULL, &cmd, &nav), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in, NULL, &nav), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in, &cmd, NULL), OGK_E_NULL);
     cmd.beta_rad = NAN;
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in, &cmd, &nav), OGK_E_NONFINITE);
-    OGK_ASSERT_NEAR(in.beta_c, -0.1, 0.0); /* untouched on rejection */
+    OGK_ASSERT_NEAR(in.beta_c, (ogk_real_t)-0.1, 0.0); /* untouched on rejection */
 }
 
 
 /* Every output is finite whatever the input's size: absurd but finite gains
  * (1e300, still k_d > k_p tau) and rates of +-1e308 on every axis, both
- * pointing modes. */
+ * pointing modes (float: 1e30 and 1e38). */
 /* req: OGK-CPD-007 */
 static void test_outputs_finite_for_absurd_finite_input(void **state)
 {
-    static const double rates[3] = {1e308, -1e308, 0.0};
+    static const double rates[3] = {OGK_TEST_PICK(1e308, 1e38), -OGK_TEST_PICK(1e308, 1e38), 0.0};
     unsigned mode, i, j, k;
     (void)state;
     for (mode = 0u; mode < 2u; ++mode) {
         ogk_cpd_config_t cfg = rederived_config(mode == 0u ? OGK_CPD_POINTING_BODY
                                                            : OGK_CPD_POINTING_EULER);
         ogk_cpd_t ctx;
-        cfg.k_px = cfg.k_py = cfg.k_pz = 1e300;
-        cfg.k_dx = cfg.k_dy = cfg.k_dz = 1e300;
+        cfg.k_px = cfg.k_py = cfg.k_pz = OGK_TEST_PICK(1e300, 1e30);
+        cfg.k_dx = cfg.k_dy = cfg.k_dz = OGK_TEST_PICK(1e300, 1e30);
         OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &cfg), OGK_OK);
         for (i = 0u; i < 3u; ++i) {
             for (j = 0u; j < 3u; ++j) {

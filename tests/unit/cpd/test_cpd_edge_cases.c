@@ -1,7 +1,12 @@
 /* test_cpd_edge_cases.c -- CPD paths test_cpd.c leaves unrun (make coverage, docs/evidence/coverage.md): the
  * commanded direction exactly opposite x_b (the deterministic pitch-around of the body pointing
  * error), each sign bound of the configuration, and a finite but absurd configuration whose
- * command comes out non-finite (the safe command, never NaN handed to the actuators). */
+ * command comes out non-finite (the safe command, never NaN handed to the actuators).
+ *
+ * Both precisions (ogk_test.h). In float the residues of sin(pi), cos(pi/2) are 8.7e-8 and
+ * 4.4e-8 (pi, pi/2 are not floats): the direction is behind to within 1e-7 rad, the error's
+ * magnitude and its pitch axis pi to CPD_EPS pi (test_cpd.c). A subnormal period and the
+ * smallest normal bound are float's. */
 #include "ogk_test.h"
 
 #include <float.h>
@@ -10,6 +15,7 @@
 #include "ogk/cpd.h"
 
 #define PI 3.14159265358979323846
+#define CPD_EPS (16.0 * FLT_EPSILON)
 
 static ogk_cpd_input_t zero_input(void)
 {
@@ -40,8 +46,8 @@ static void test_exactly_behind(void **state)
     const double beta_c = PI;
     const double xi = 0.0;
     const double phi = PI;
-    double ey = -7.0;
-    double ez = -7.0;
+    ogk_real_t ey = -7.0;
+    ogk_real_t ez = -7.0;
     ogk_cpd_t ctx;
     ogk_cpd_config_t cfg = default_config();
     ogk_cpd_input_t in = zero_input();
@@ -50,9 +56,9 @@ static void test_exactly_behind(void **state)
     OGK_ASSERT_STATUS(ogk_cpd_pointing_error_body(psi, theta, phi_roll, alpha_c, beta_c, xi, phi,
                                                   &ey, &ez),
                       OGK_OK);
-    OGK_ASSERT_NEAR(hypot(ey, ez), PI, 1e-12);
-    OGK_ASSERT_NEAR(fabs(ey), PI, 1e-12); /* pitch, not yaw, turns the vehicle around */
-    OGK_ASSERT_NEAR(ez, 0.0, 1e-12);
+    OGK_ASSERT_NEAR(hypot(ey, ez), PI, OGK_TEST_TOL(1e-12, CPD_EPS * PI));
+    OGK_ASSERT_NEAR(fabs(ey), PI, OGK_TEST_TOL(1e-12, CPD_EPS * PI)); /* pitch, not yaw, turns the vehicle around */
+    OGK_ASSERT_NEAR(ez, 0.0, OGK_TEST_TOL(1e-12, CPD_EPS * PI));
     OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &cfg), OGK_OK);
     in.psi = psi;
     in.theta = theta;
@@ -81,7 +87,7 @@ static void test_config_sign_bounds(void **state)
     for (k = 0u; k < 5u; ++k) {
         ogk_cpd_config_t cfg = default_config();
         switch (k) {
-        case 0u: cfg.approach_accel_x = -DBL_MIN; break;
+        case 0u: cfg.approach_accel_x = -OGK_REAL_MIN; break;
         case 1u: cfg.approach_accel_y = -1.0; break;
         case 2u: cfg.approach_accel_z = -1.0; break;
         case 3u: cfg.ff_period_s = -0.01; break;
@@ -99,7 +105,7 @@ static void test_config_sign_bounds(void **state)
     }
 }
 
-/* A control period of 1e-320 s (subnormal, finite, > 0: accepted) makes the feed-forward rate
+/* A control period of 1e-320 s (float: 1e-40; subnormal, finite, > 0: accepted) makes the feed-forward rate
  * (d_prev x d_now) / period overflow; its clip turns inf into NaN. The step must answer with
  * the safe command (all zero, SAFE) and OGK_E_SAFE_COMMAND, and keep it as its last command. */
 /* req: OGK-CPD-009 OGK-CPD-007 */
@@ -110,7 +116,7 @@ static void test_overflowing_feedforward_gives_safe_command(void **state)
     ogk_cpd_input_t in = zero_input();
     ogk_cpd_output_t out;
     (void)state;
-    cfg.ff_period_s = 1.0e-320;
+    cfg.ff_period_s = OGK_TEST_PICK(1.0e-320, 1.0e-40);
     cfg.ff_rate_max = 1.0;
     OGK_ASSERT_STATUS(ogk_cpd_init(&ctx, &cfg), OGK_OK);
     in.alpha_c = 0.1;
