@@ -11,7 +11,14 @@
  *     subset, feasible with non-negative multipliers, least objective);
  *   - degenerate cases (redundant constraints active at the optimum, dependent
  *     consistent and inconsistent equality rows, a fixed variable).
- * Large structs are static (Cortex-M7 target stack). */
+ * Large structs are static (Cortex-M7 target stack).
+ *
+ * Both precisions (ogk_test.h): the problems are ogk_real_t, the reference
+ * solvers (Gaussian elimination, the brute force, the objective) work in
+ * double on the same data. Float tolerances of the hand-worked cases are
+ * the double ones' multiples of the unit round-off (1e-15 is 4.5 eps, 1e-14
+ * 45); those of the random problems ten times the worst measured (make
+ * unit-errors). Row scalings and overflows at float's magnitudes. */
 #include "ogk_test.h"
 
 #include <float.h>
@@ -22,6 +29,12 @@
 
 static ogk_qp_workspace_t ws;
 static ogk_qp_solution_t sol;
+
+/* Float tolerances of the random problems (H = M M^T + 0.1 I: condition up to
+ * about 1e3), relative to the data and solution sizes as the double ones are:
+ * ten times the worst measured on host and M4F (make unit-errors). */
+#define QP_KKT_TOL_F 1e-5      /* KKT residuals; measured worst 8.6e-7 (primal feasibility) */
+#define QP_SOL_TOL_F 5e-5      /* x, y against the KKT / brute-force references; measured worst 3.9e-6 */
 
 /* ------------------------------------------------------------------ helpers */
 
@@ -46,8 +59,11 @@ static size_t lcg_int(uint64_t *state, size_t k)
 #define GE_MAX 40
 static bool ge_solve(double *M, double *rhs, size_t dim)
 {
-    const double scale = ogk_test_max_abs(M, dim * dim);
+    double scale = 0.0;
     size_t c, i, k;
+    for (i = 0; i < dim * dim; ++i) {
+        scale = fmax(scale, fabs(M[i]));
+    }
     for (c = 0; c < dim; ++c) {
         size_t piv = c;
         for (i = c + 1; i < dim; ++i) {
@@ -95,14 +111,14 @@ static bool ge_solve(double *M, double *rhs, size_t dim)
 #define TP_IN 16
 typedef struct {
     size_t n, m_eq, m_in;
-    double H[TP_N * TP_N];
-    double g[TP_N];
-    double A_eq[TP_EQ * TP_N];
-    double b_eq[TP_EQ];
-    double A_in[TP_IN * TP_N];
-    double b_in[TP_IN];
-    double lb[TP_N];
-    double ub[TP_N];
+    ogk_real_t H[TP_N * TP_N];
+    ogk_real_t g[TP_N];
+    ogk_real_t A_eq[TP_EQ * TP_N];
+    ogk_real_t b_eq[TP_EQ];
+    ogk_real_t A_in[TP_IN * TP_N];
+    ogk_real_t b_in[TP_IN];
+    ogk_real_t lb[TP_N];
+    ogk_real_t ub[TP_N];
     bool bounds;
 } test_problem_t;
 
@@ -125,6 +141,17 @@ static ogk_qp_problem_t view(const test_problem_t *t)
     return p;
 }
 
+/* max_i |v[i]| of a double reference array (ogk_test_max_abs reads the kernel's ogk_real_t). */
+static double max_abs_d(const double *v, size_t count)
+{
+    double m = 0.0;
+    size_t i;
+    for (i = 0; i < count; ++i) {
+        m = fmax(m, fabs(v[i]));
+    }
+    return m;
+}
+
 static double objective(const test_problem_t *t, const double *x)
 {
     double f = 0.0;
@@ -137,6 +164,22 @@ static double objective(const test_problem_t *t, const double *x)
         f += 0.5 * x[i] * hx + t->g[i] * x[i];
     }
     return f;
+}
+
+/* A value of the constraint data: itself in the double build; in the float
+ * build the nearest multiple of 2^-8, so that every b = A x0 - slack is exact
+ * in float (products of 17 bits, sums of at most 48 of them below 2^6: 23
+ * bits) and the vertices made degenerate on purpose (slack 0, bounds at x0)
+ * stay so: rounding independent floats would leave some of these problems
+ * infeasible by 1e-7 (measured: 3 of the 300 of test_random_vs_brute_force,
+ * infeasible to the double kernel too). */
+static double q_data(double v)
+{
+#if OGK_REAL_SINGLE
+    return floor((v * 256.0) + 0.5) / 256.0;
+#else
+    return v;
+#endif
 }
 
 /* Random feasible problem: H = M M^T + 0.1 I, A random, b built from a known
@@ -166,21 +209,21 @@ static void random_problem(test_problem_t *t, uint64_t *s, size_t n, size_t m_eq
             t->H[j * n + i] = v;
         }
         t->g[i] = 3.0 * lcg_uniform(s);
-        x0[i] = lcg_uniform(s);
+        x0[i] = q_data(lcg_uniform(s));
     }
     for (i = 0; i < m_eq; ++i) {
         double b = 0.0;
         for (k = 0; k < n; ++k) {
-            t->A_eq[i * n + k] = lcg_uniform(s);
+            t->A_eq[i * n + k] = q_data(lcg_uniform(s));
             b += t->A_eq[i * n + k] * x0[k];
         }
         t->b_eq[i] = b;
     }
     for (i = 0; i < m_in; ++i) {
         double b = 0.0;
-        const double slack = (lcg_int(s, 4) == 0) ? 0.0 : 0.5 * (lcg_uniform(s) + 1.0);
+        const double slack = (lcg_int(s, 4) == 0) ? 0.0 : q_data(0.5 * (lcg_uniform(s) + 1.0));
         for (k = 0; k < n; ++k) {
-            t->A_in[i * n + k] = lcg_uniform(s);
+            t->A_in[i * n + k] = q_data(lcg_uniform(s));
             b += t->A_in[i * n + k] * x0[k];
         }
         t->b_in[i] = b - slack;
@@ -191,12 +234,12 @@ static void random_problem(test_problem_t *t, uint64_t *s, size_t n, size_t m_eq
         t->ub[i] = OGK_QP_INF;
         if (0.5 * (lcg_uniform(s) + 1.0) < bound_share) {
             const size_t kind = lcg_int(s, 3);
-            const double w = (lcg_int(s, 5) == 0) ? 0.0 : 0.3 * (lcg_uniform(s) + 1.0);
+            const double w = (lcg_int(s, 5) == 0) ? 0.0 : q_data(0.3 * (lcg_uniform(s) + 1.0));
             if (kind != 1) {
                 t->lb[i] = x0[i] - w;
             }
             if (kind != 0) {
-                t->ub[i] = x0[i] + 0.3 * (lcg_uniform(s) + 1.0);
+                t->ub[i] = x0[i] + q_data(0.3 * (lcg_uniform(s) + 1.0));
             }
         }
     }
@@ -266,7 +309,13 @@ static void check_kkt(const test_problem_t *t, const ogk_qp_solution_t *s, doubl
             assert_true(s->z_ub[i] == 0.0);
         }
     }
-    OGK_ASSERT_REL(s->objective, objective(t, s->x), 1e-12, 1.0);
+    {
+        double xd[TP_N];
+        for (i = 0; i < n; ++i) {
+            xd[i] = s->x[i];
+        }
+        OGK_ASSERT_REL(s->objective, objective(t, xd), OGK_TEST_TOL(1e-12, tol), 1.0);
+    }
 }
 
 /* ------------------------------------------------------------------ brute force */
@@ -359,7 +408,9 @@ static bool brute_force(const test_problem_t *t, double *x_best, double *f_best)
             continue; /* dependent active normals: another subset covers it */
         }
         for (j = 0; j < na && ok; ++j) {
-            if (act[j] >= c.n_eq && y[n + j] < -1e-9) {
+            /* float data: the constraints through x0, rounded to float one by one,
+             * agree only to the KKT tolerance (so does the kernel's answer) */
+            if (act[j] >= c.n_eq && y[n + j] < -OGK_TEST_TOL(1e-9, QP_KKT_TOL_F)) {
                 ok = false;
             }
         }
@@ -368,7 +419,7 @@ static bool brute_force(const test_problem_t *t, double *x_best, double *f_best)
             for (i = 0; i < n; ++i) {
                 a += c.normal[k][i] * y[i];
             }
-            if (a - c.rhs[k] < -1e-9 * fmax(1.0, fabs(c.rhs[k]))) {
+            if (a - c.rhs[k] < -OGK_TEST_TOL(1e-9, QP_KKT_TOL_F) * fmax(1.0, fabs(c.rhs[k]))) {
                 ok = false;
             }
         }
@@ -412,8 +463,8 @@ static void expect_status(const ogk_qp_problem_t *p, ogk_status code)
 }
 
 /* 2 variables, H = diag(2, 2), g = (-2, -5): the Nocedal & Wright problem. */
-static const double H2[4] = {2.0, 0.0, 0.0, 2.0};
-static const double g2[2] = {-2.0, -5.0};
+static const ogk_real_t H2[4] = {2.0, 0.0, 0.0, 2.0};
+static const ogk_real_t g2[2] = {-2.0, -5.0};
 
 static ogk_qp_problem_t small_problem(void)
 {
@@ -429,8 +480,8 @@ static ogk_qp_problem_t small_problem(void)
 static void test_null_and_dims(void **state)
 {
     ogk_qp_problem_t p = small_problem();
-    static const double a[2] = {1.0, 1.0};
-    static const double b[1] = {1.0};
+    static const ogk_real_t a[2] = {1.0, 1.0};
+    static const ogk_real_t b[1] = {1.0};
     (void)state;
     OGK_ASSERT_STATUS(ogk_qp_solve(NULL, &p, &sol), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_qp_solve(&ws, NULL, &sol), OGK_E_NULL);
@@ -469,20 +520,20 @@ static void test_null_and_dims(void **state)
     /* and the workspace still works */
     p = small_problem();
     expect_status(&p, OGK_OK);
-    OGK_ASSERT_NEAR(sol.x[0], 1.0, 1e-15);
-    OGK_ASSERT_NEAR(sol.x[1], 2.5, 1e-15);
+    OGK_ASSERT_NEAR(sol.x[0], 1.0, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.x[1], 2.5, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
 }
 
 /* req: OGK-CORE-018 */
 static void test_nonfinite_and_range(void **state)
 {
     ogk_qp_problem_t p = small_problem();
-    double H[4] = {2.0, 0.0, 0.0, 2.0};
-    double g[2] = {-2.0, -5.0};
-    double a[2] = {1.0, 1.0};
-    double b[1] = {1.0};
-    double lb[2] = {0.0, -INFINITY};
-    double ub[2] = {1.0, INFINITY};
+    ogk_real_t H[4] = {2.0, 0.0, 0.0, 2.0};
+    ogk_real_t g[2] = {-2.0, -5.0};
+    ogk_real_t a[2] = {1.0, 1.0};
+    ogk_real_t b[1] = {1.0};
+    ogk_real_t lb[2] = {0.0, -INFINITY};
+    ogk_real_t ub[2] = {1.0, INFINITY};
     (void)state;
     p.H = H;
     p.g = g;
@@ -519,8 +570,8 @@ static void test_nonfinite_and_range(void **state)
     p.lb = lb;
     p.ub = ub;
     expect_status(&p, OGK_OK);
-    OGK_ASSERT_NEAR(sol.x[0], 1.0, 1e-15);
-    OGK_ASSERT_NEAR(sol.x[1], 2.5, 1e-15);
+    OGK_ASSERT_NEAR(sol.x[0], 1.0, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.x[1], 2.5, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
     lb[1] = NAN;
     expect_status(&p, OGK_E_NONFINITE);
     lb[1] = -INFINITY;
@@ -530,25 +581,28 @@ static void test_nonfinite_and_range(void **state)
     expect_status(&p, OGK_E_RANGE);
     ub[0] = 0.0; /* lb == ub: a fixed variable */
     expect_status(&p, OGK_OK);
-    OGK_ASSERT_NEAR(sol.x[0], 0.0, 1e-15);
-    OGK_ASSERT_NEAR(sol.x[1], 2.5, 1e-15);
+    OGK_ASSERT_NEAR(sol.x[0], 0.0, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.x[1], 2.5, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
     /* stationarity in x0: 2*0 - 2 = z_lb - z_ub, so z_ub = 2 */
-    OGK_ASSERT_NEAR(sol.z_ub[0] - sol.z_lb[0], 2.0, 1e-14);
+    OGK_ASSERT_NEAR(sol.z_ub[0] - sol.z_lb[0], 2.0, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
 }
 
 /* req: OGK-CORE-018 */
 static void test_not_posdef(void **state)
 {
     ogk_qp_problem_t p = small_problem();
-    const double indefinite[4] = {1.0, 2.0, 2.0, 1.0};
-    const double semidefinite[4] = {1.0, 1.0, 1.0, 1.0};
-    const double negative_diag[4] = {-1.0, 0.0, 0.0, 1.0};
-    const double unsymmetric[4] = {2.0, 1.0, 0.0, 2.0};
-    const double tiny_asym[4] = {2.0, 1.0, 1.0 + 1e-14, 2.0};
+    const ogk_real_t indefinite[4] = {1.0, 2.0, 2.0, 1.0};
+    const ogk_real_t semidefinite[4] = {1.0, 1.0, 1.0, 1.0};
+    const ogk_real_t negative_diag[4] = {-1.0, 0.0, 0.0, 1.0};
+    const ogk_real_t unsymmetric[4] = {2.0, 1.0, 0.0, 2.0};
+    const ogk_real_t tiny_asym[4] = {2.0, 1.0, 1.0 + 1e-14, 2.0};
     /* pivots 2^-46 ~ 1.4e-14 and 2^-33 ~ 1.2e-10 relative to H_22 = 1 (exact
-     * in binary): below and above OGK_QP_PIVOT_TOL = 1e-12 */
-    const double near_singular[4] = {1.0, 1.0, 1.0, 1.0 + 0x1p-46};
-    const double barely_pd[4] = {1.0, 1.0, 1.0, 1.0 + 0x1p-33};
+     * in binary): below and above OGK_QP_PIVOT_TOL = 1e-12. Float: 1 + 2^-46
+     * is 1 (exactly singular) and 1 + 2^-33 too, so the accepted pivot is
+     * 2^-20; OGK_QP_PIVOT_TOL (1e-12 in both builds) is below float's
+     * resolution: a float H is refused only when it is singular to rounding. */
+    const ogk_real_t near_singular[4] = {1.0, 1.0, 1.0, 1.0 + 0x1p-46};
+    const ogk_real_t barely_pd[4] = {1.0, 1.0, 1.0, 1.0 + OGK_TEST_PICK(0x1p-33, 0x1p-20)};
     (void)state;
     p.H = indefinite;
     expect_status(&p, OGK_E_NOT_POSDEF);
@@ -572,16 +626,16 @@ static void test_not_posdef(void **state)
 static void test_infeasible(void **state)
 {
     ogk_qp_problem_t p = small_problem();
-    const double a_eq[2] = {1.0, 1.0};
-    const double b_eq[1] = {5.0};
-    const double lb[2] = {0.0, 0.0};
-    const double ub[2] = {2.0, 2.0};
-    const double a_in[4] = {1.0, 0.0, -1.0, 0.0};
-    const double b_in[2] = {1.0, 0.0};
-    const double a_eq2[4] = {1.0, 1.0, 2.0, 2.0};
-    const double b_eq2[2] = {1.0, 3.0};
-    const double a_in3[6] = {1.0, 1.0, 1.0, -3.0, -3.0, -3.0};
-    const double b_in3[2] = {1.0, 0.0};
+    const ogk_real_t a_eq[2] = {1.0, 1.0};
+    const ogk_real_t b_eq[1] = {5.0};
+    const ogk_real_t lb[2] = {0.0, 0.0};
+    const ogk_real_t ub[2] = {2.0, 2.0};
+    const ogk_real_t a_in[4] = {1.0, 0.0, -1.0, 0.0};
+    const ogk_real_t b_in[2] = {1.0, 0.0};
+    const ogk_real_t a_eq2[4] = {1.0, 1.0, 2.0, 2.0};
+    const ogk_real_t b_eq2[2] = {1.0, 3.0};
+    const ogk_real_t a_in3[6] = {1.0, 1.0, 1.0, -3.0, -3.0, -3.0};
+    const ogk_real_t b_in3[2] = {1.0, 0.0};
     (void)state;
     p.m_eq = 1;
     p.A_eq = a_eq;
@@ -602,8 +656,8 @@ static void test_infeasible(void **state)
     /* 3 variables: x1 + x2 + x3 >= 1 and x1 + x2 + x3 <= 0 (scaled differently),
      * with H = I: the second row can only be added by dropping the first. */
     {
-        static const double H3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-        static const double g3[3] = {0.5, -0.2, 0.1};
+        static const ogk_real_t H3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+        static const ogk_real_t g3[3] = {0.5, -0.2, 0.1};
         p = small_problem();
         p.n = 3;
         p.H = H3;
@@ -616,7 +670,7 @@ static void test_infeasible(void **state)
     /* and a feasible problem afterwards solves normally */
     p = small_problem();
     expect_status(&p, OGK_OK);
-    OGK_ASSERT_NEAR(sol.x[1], 2.5, 1e-15);
+    OGK_ASSERT_NEAR(sol.x[1], 2.5, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
 }
 
 /* ------------------------------------------------------------------ closed forms */
@@ -642,11 +696,11 @@ static void test_unconstrained(void **state)
         }
         assert_true(ge_solve(M, y, n));
         for (i = 0; i < n; ++i) {
-            OGK_ASSERT_NEAR(sol.x[i], y[i], 1e-9 * fmax(1.0, ogk_test_max_abs(y, n)));
+            OGK_ASSERT_NEAR(sol.x[i], y[i], OGK_TEST_TOL(1e-9, QP_SOL_TOL_F) * fmax(1.0, max_abs_d(y, n)));
         }
         assert_int_equal((int)sol.n_active, 0);
         assert_int_equal((int)sol.iterations, 0);
-        OGK_ASSERT_REL(sol.objective, objective(&tp, y), 1e-11, 1.0);
+        OGK_ASSERT_REL(sol.objective, objective(&tp, y), OGK_TEST_TOL(1e-11, QP_SOL_TOL_F), 1.0);
     }
 }
 
@@ -682,14 +736,14 @@ static void test_equality_only(void **state)
         }
         assert_true(ge_solve(M, y, dim));
         for (i = 0; i < n; ++i) {
-            OGK_ASSERT_NEAR(sol.x[i], y[i], 1e-9 * fmax(1.0, ogk_test_max_abs(y, n)));
+            OGK_ASSERT_NEAR(sol.x[i], y[i], OGK_TEST_TOL(1e-9, QP_SOL_TOL_F) * fmax(1.0, max_abs_d(y, n)));
         }
         for (k = 0; k < me; ++k) {
-            OGK_ASSERT_NEAR(sol.y_eq[k], y[n + k], 1e-8 * fmax(1.0, ogk_test_max_abs(&y[n], me)));
+            OGK_ASSERT_NEAR(sol.y_eq[k], y[n + k], OGK_TEST_TOL(1e-8, QP_SOL_TOL_F) * fmax(1.0, max_abs_d(&y[n], me)));
         }
         assert_int_equal((int)sol.n_active, (int)me);
         assert_int_equal((int)sol.iterations, (int)me);
-        check_kkt(&tp, &sol, 1e-11);
+        check_kkt(&tp, &sol, OGK_TEST_TOL(1e-11, QP_KKT_TOL_F));
     }
 }
 
@@ -704,10 +758,10 @@ static void test_equality_only(void **state)
  * (2.8 - 2, 3.4 - 5) = (0.8, -1.6) = y1 (1, -2): y1 = 0.8 >= 0.
  * c2 = -1.4 - 3.4 + 6 = 1.2 > 0, c3 = -1.4 + 3.4 + 2 = 4 > 0, bounds inactive.
  * Objective 1/2 x^T H x + g^T x = 1.96 + 2.89 - 2.8 - 8.5 = -6.45. */
-static const double nw_A[6] = {1.0, -2.0, -1.0, -2.0, -1.0, 2.0};
-static const double nw_b[3] = {-2.0, -6.0, -2.0};
-static const double nw_lb[2] = {0.0, 0.0};
-static const double nw_ub[2] = {OGK_QP_INF, OGK_QP_INF};
+static const ogk_real_t nw_A[6] = {1.0, -2.0, -1.0, -2.0, -1.0, 2.0};
+static const ogk_real_t nw_b[3] = {-2.0, -6.0, -2.0};
+static const ogk_real_t nw_lb[2] = {0.0, 0.0};
+static const ogk_real_t nw_ub[2] = {OGK_QP_INF, OGK_QP_INF};
 
 /* req: OGK-CORE-018 */
 static void test_hand_example(void **state)
@@ -720,12 +774,12 @@ static void test_hand_example(void **state)
     p.lb = nw_lb;
     p.ub = nw_ub;
     expect_status(&p, OGK_OK);
-    OGK_ASSERT_NEAR(sol.x[0], 1.4, 1e-14);
-    OGK_ASSERT_NEAR(sol.x[1], 1.7, 1e-14);
-    OGK_ASSERT_NEAR(sol.y_in[0], 0.8, 1e-14);
+    OGK_ASSERT_NEAR(sol.x[0], 1.4, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.x[1], 1.7, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.y_in[0], 0.8, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
     assert_true(sol.y_in[1] == 0.0 && sol.y_in[2] == 0.0);
     assert_true(sol.z_lb[0] == 0.0 && sol.z_lb[1] == 0.0);
-    OGK_ASSERT_NEAR(sol.objective, -6.45, 1e-14);
+    OGK_ASSERT_NEAR(sol.objective, -6.45, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
     assert_int_equal((int)sol.n_active, 1);
     assert_int_equal((int)sol.iterations, 1);
     /* the same workspace again: bit-identical */
@@ -744,24 +798,24 @@ static void test_hand_example(void **state)
 static void test_degenerate(void **state)
 {
     ogk_qp_problem_t p = small_problem();
-    static const double A4[8] = {1.0, -2.0, -1.0, -2.0, -1.0, 2.0, 2.0, -4.0};
-    static const double b4[4] = {-2.0, -6.0, -2.0, -4.0};
-    static const double I2[4] = {1.0, 0.0, 0.0, 1.0};
-    static const double zero2[2] = {0.0, 0.0};
-    static const double one2[2] = {1.0, 1.0};
-    static const double inf2[2] = {OGK_QP_INF, OGK_QP_INF};
-    static const double row[2] = {1.0, 1.0};
-    static const double two[1] = {2.0};
+    static const ogk_real_t A4[8] = {1.0, -2.0, -1.0, -2.0, -1.0, 2.0, 2.0, -4.0};
+    static const ogk_real_t b4[4] = {-2.0, -6.0, -2.0, -4.0};
+    static const ogk_real_t I2[4] = {1.0, 0.0, 0.0, 1.0};
+    static const ogk_real_t zero2[2] = {0.0, 0.0};
+    static const ogk_real_t one2[2] = {1.0, 1.0};
+    static const ogk_real_t inf2[2] = {OGK_QP_INF, OGK_QP_INF};
+    static const ogk_real_t row[2] = {1.0, 1.0};
+    static const ogk_real_t two[1] = {2.0};
     (void)state;
     p.m_in = 4;
     p.A_in = A4;
     p.b_in = b4;
     expect_status(&p, OGK_OK);
-    OGK_ASSERT_NEAR(sol.x[0], 1.4, 1e-14);
-    OGK_ASSERT_NEAR(sol.x[1], 1.7, 1e-14);
-    OGK_ASSERT_NEAR(sol.y_in[0] + 2.0 * sol.y_in[3], 0.8, 1e-14);
+    OGK_ASSERT_NEAR(sol.x[0], 1.4, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.x[1], 1.7, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.y_in[0] + 2.0 * sol.y_in[3], 0.8, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
     assert_true(sol.y_in[0] >= 0.0 && sol.y_in[3] >= 0.0);
-    OGK_ASSERT_NEAR(sol.objective, -6.45, 1e-14);
+    OGK_ASSERT_NEAR(sol.objective, -6.45, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
 
     p = small_problem();
     p.H = I2;
@@ -772,17 +826,17 @@ static void test_degenerate(void **state)
     p.lb = one2;
     p.ub = inf2;
     expect_status(&p, OGK_OK);
-    OGK_ASSERT_NEAR(sol.x[0], 1.0, 1e-15);
-    OGK_ASSERT_NEAR(sol.x[1], 1.0, 1e-15);
+    OGK_ASSERT_NEAR(sol.x[0], 1.0, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.x[1], 1.0, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
     /* x = y_in (1, 1) + z_lb */
-    OGK_ASSERT_NEAR(sol.y_in[0] + sol.z_lb[0], 1.0, 1e-15);
-    OGK_ASSERT_NEAR(sol.y_in[0] + sol.z_lb[1], 1.0, 1e-15);
-    OGK_ASSERT_NEAR(sol.objective, 1.0, 1e-15);
+    OGK_ASSERT_NEAR(sol.y_in[0] + sol.z_lb[0], 1.0, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.y_in[0] + sol.z_lb[1], 1.0, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.objective, 1.0, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
     /* the most violated constraint first (violation / row norm): the row
      * (-2 / sqrt 2) before the bounds (-1 each), one step to (1, 1) */
     assert_int_equal((int)sol.iterations, 1);
     assert_int_equal((int)sol.n_active, 1);
-    OGK_ASSERT_NEAR(sol.y_in[0], 1.0, 1e-15);
+    OGK_ASSERT_NEAR(sol.y_in[0], 1.0, OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
 }
 
 /* Dependent equality rows: consistent ones solve (the dependent row is
@@ -792,13 +846,13 @@ static void test_degenerate(void **state)
 static void test_dependent_equalities(void **state)
 {
     ogk_qp_problem_t p = small_problem();
-    static const double A[4] = {1.0, 1.0, 2.0, 2.0};
-    static const double b[2] = {1.0, 2.0};
+    static const ogk_real_t A[4] = {1.0, 1.0, 2.0, 2.0};
+    static const ogk_real_t b[2] = {1.0, 2.0};
     /* 3 variables: row 3 = row 1 - 2 row 2, b3 = b1 - 2 b2 */
-    static const double H3[9] = {2.0, 0.5, 0.0, 0.5, 1.0, 0.2, 0.0, 0.2, 3.0};
-    static const double g3[3] = {1.0, -2.0, 0.5};
-    static const double A3[9] = {1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 1.0, -2.0, -1.0};
-    static const double b3[3] = {0.7, -0.4, 1.5};
+    static const ogk_real_t H3[9] = {2.0, 0.5, 0.0, 0.5, 1.0, 0.2, 0.0, 0.2, 3.0};
+    static const ogk_real_t g3[3] = {1.0, -2.0, 0.5};
+    static const ogk_real_t A3[9] = {1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 1.0, -2.0, -1.0};
+    static const ogk_real_t b3[3] = {0.7, -0.4, 1.5};
     double M[25];
     double y[5];
     size_t i, k;
@@ -808,10 +862,10 @@ static void test_dependent_equalities(void **state)
     p.b_eq = b;
     expect_status(&p, OGK_OK);
     /* min (x1-1)^2 + (x2-2.5)^2 on x1 + x2 = 1: x = (-0.25, 1.25) */
-    OGK_ASSERT_NEAR(sol.x[0], -0.25, 1e-14);
-    OGK_ASSERT_NEAR(sol.x[1], 1.25, 1e-14);
+    OGK_ASSERT_NEAR(sol.x[0], -0.25, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.x[1], 1.25, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
     /* H x + g = (-2.5, -2.5) = (1, 1) (y0 + 2 y1) */
-    OGK_ASSERT_NEAR(sol.y_eq[0] + 2.0 * sol.y_eq[1], -2.5, 1e-14);
+    OGK_ASSERT_NEAR(sol.y_eq[0] + 2.0 * sol.y_eq[1], -2.5, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
     assert_int_equal((int)sol.n_active, 1);
 
     p.n = 3;
@@ -838,25 +892,26 @@ static void test_dependent_equalities(void **state)
     y[4] = b3[1];
     assert_true(ge_solve(M, y, 5));
     for (i = 0; i < 3; ++i) {
-        OGK_ASSERT_NEAR(sol.x[i], y[i], 1e-14);
+        OGK_ASSERT_NEAR(sol.x[i], y[i], OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
     }
     /* the multipliers of the dependent set: y0 + y2 = Y0, y1 - 2 y2 = Y1 */
-    OGK_ASSERT_NEAR(sol.y_eq[0] + sol.y_eq[2], y[3], 1e-13);
-    OGK_ASSERT_NEAR(sol.y_eq[1] - 2.0 * sol.y_eq[2], y[4], 1e-13);
+    OGK_ASSERT_NEAR(sol.y_eq[0] + sol.y_eq[2], y[3], OGK_TEST_TOL(1e-13, 450.0 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(sol.y_eq[1] - 2.0 * sol.y_eq[2], y[4], OGK_TEST_TOL(1e-13, 450.0 * FLT_EPSILON));
 }
 
 /* Row scaling: the N&W problem with its rows multiplied by 1e200 and by
  * 1e-200 (squares overflow / underflow) gives the same x, and multipliers
- * divided by the factor; a solution that overflows is OGK_E_NONFINITE. */
+ * divided by the factor; a solution that overflows is OGK_E_NONFINITE.
+ * Float: 1e20 and 1e-20, g = 1e30 (x = -1e40). */
 /* req: OGK-CORE-018 */
 static void test_scaled_rows_and_overflow(void **state)
 {
     ogk_qp_problem_t p = small_problem();
-    static const double factors[2] = {1e200, 1e-200};
-    static double A[6];
-    static double b[3];
-    static const double Hs[4] = {1e-10, 0.0, 0.0, 1e-10};
-    static const double gs[2] = {1e300, 0.0};
+    static const double factors[2] = {OGK_TEST_PICK(1e200, 1e20), OGK_TEST_PICK(1e-200, 1e-20)};
+    static ogk_real_t A[6];
+    static ogk_real_t b[3];
+    static const ogk_real_t Hs[4] = {1e-10, 0.0, 0.0, 1e-10};
+    static const ogk_real_t gs[2] = {OGK_TEST_PICK(1e300, 1e30), 0.0};
     size_t f, i;
     (void)state;
     for (f = 0; f < 2; ++f) {
@@ -871,17 +926,17 @@ static void test_scaled_rows_and_overflow(void **state)
         p.A_in = A;
         p.b_in = b;
         expect_status(&p, OGK_OK);
-        OGK_ASSERT_NEAR(sol.x[0], 1.4, 1e-14);
-        OGK_ASSERT_NEAR(sol.x[1], 1.7, 1e-14);
-        OGK_ASSERT_REL(sol.y_in[0] * factors[f], 0.8, 1e-14, 0.0);
+        OGK_ASSERT_NEAR(sol.x[0], 1.4, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
+        OGK_ASSERT_NEAR(sol.x[1], 1.7, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
+        OGK_ASSERT_REL(sol.y_in[0] * factors[f], 0.8, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON), 0.0);
         /* the same rows as equalities: x1 - 2 x2 = -2 alone */
         p = small_problem();
         p.m_eq = 1;
         p.A_eq = A;
         p.b_eq = b;
         expect_status(&p, OGK_OK);
-        OGK_ASSERT_NEAR(sol.x[0], 1.4, 1e-14);
-        OGK_ASSERT_REL(sol.y_eq[0] * factors[f], 0.8, 1e-14, 0.0);
+        OGK_ASSERT_NEAR(sol.x[0], 1.4, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON));
+        OGK_ASSERT_REL(sol.y_eq[0] * factors[f], 0.8, OGK_TEST_TOL(1e-14, 45.0 * FLT_EPSILON), 0.0);
     }
     /* x = -H^-1 g = -1e310: overflows */
     p = small_problem();
@@ -911,12 +966,12 @@ static void test_random_vs_brute_force(void **state)
         random_problem(&tp, &s, n, me, mi, 0.4);
         p = view(&tp);
         expect_status(&p, OGK_OK);
-        check_kkt(&tp, &sol, 1e-11);
+        check_kkt(&tp, &sol, OGK_TEST_TOL(1e-11, QP_KKT_TOL_F));
         assert_true(brute_force(&tp, xb, &fb));
         for (i = 0; i < n; ++i) {
-            OGK_ASSERT_NEAR(sol.x[i], xb[i], 1e-8 * fmax(1.0, ogk_test_max_abs(xb, n)));
+            OGK_ASSERT_NEAR(sol.x[i], xb[i], OGK_TEST_TOL(1e-8, QP_SOL_TOL_F) * fmax(1.0, max_abs_d(xb, n)));
         }
-        OGK_ASSERT_REL(sol.objective, fb, 1e-10, 1.0);
+        OGK_ASSERT_REL(sol.objective, fb, OGK_TEST_TOL(1e-10, QP_SOL_TOL_F), 1.0);
         if (sol.n_active > me) {
             ++with_active;
         }
@@ -940,7 +995,7 @@ static void test_random_target_size(void **state)
         random_problem(&tp, &s, n, 4, mi, 0.34);
         p = view(&tp);
         expect_status(&p, OGK_OK);
-        check_kkt(&tp, &sol, 1e-10);
+        check_kkt(&tp, &sol, OGK_TEST_TOL(1e-10, QP_KKT_TOL_F));
         assert_true(sol.iterations <= OGK_QP_MAX_ITER);
         assert_true(sol.n_active >= 4 && sol.n_active <= n);
     }

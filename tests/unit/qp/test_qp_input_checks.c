@@ -11,8 +11,8 @@
 static ogk_qp_workspace_t ws;
 
 /* min 1/2 |x|^2 - (2, 3) . x: the unconstrained minimiser is (2, 3). */
-static const double H[4] = {1.0, 0.0, 0.0, 1.0};
-static const double G[2] = {-2.0, -3.0};
+static const ogk_real_t H[4] = {1.0, 0.0, 0.0, 1.0};
+static const ogk_real_t G[2] = {-2.0, -3.0};
 
 /* min 1/2 x'Hx + g'x over two variables, no constraint yet: each test adds its own. */
 static ogk_qp_problem_t two_variable_problem(void)
@@ -28,7 +28,7 @@ static ogk_qp_problem_t two_variable_problem(void)
 /* req: OGK-CORE-018 OGK-CORE-021 */
 static void test_inequalities_without_b_in(void **state)
 {
-    const double a_in[2] = {1.0, 1.0};
+    const ogk_real_t a_in[2] = {1.0, 1.0};
     ogk_qp_problem_t p;
     ogk_qp_solution_t sol;
     (void)state;
@@ -44,7 +44,7 @@ static void test_inequalities_without_b_in(void **state)
 /* req: OGK-CORE-018 */
 static void test_lower_bounds_only(void **state)
 {
-    const double lb[2] = {0.0, 3.5};
+    const ogk_real_t lb[2] = {0.0, 3.5};
     ogk_qp_problem_t p;
     ogk_qp_solution_t sol;
     (void)state;
@@ -64,8 +64,8 @@ static void test_lower_bounds_only(void **state)
 /* req: OGK-CORE-018 */
 static void test_inconsistent_zero_equality_first(void **state)
 {
-    const double a_eq[4] = {0.0, 0.0, 1.0, 0.0};
-    const double b_eq[2] = {1.0, 0.0};
+    const ogk_real_t a_eq[4] = {0.0, 0.0, 1.0, 0.0};
+    const ogk_real_t b_eq[2] = {1.0, 0.0};
     ogk_qp_problem_t p;
     ogk_qp_solution_t sol;
     (void)state;
@@ -76,7 +76,7 @@ static void test_inconsistent_zero_equality_first(void **state)
     OGK_ASSERT_STATUS(ogk_qp_solve(&ws, &p, &sol), OGK_E_INFEASIBLE);
     /* with b = 0 the zero row holds for every x (0 . x = 0): x_1 = 0, x_2 free: (0, 3) */
     {
-        const double b_ok[2] = {0.0, 0.0};
+        const ogk_real_t b_ok[2] = {0.0, 0.0};
         p.b_eq = b_ok;
         OGK_ASSERT_STATUS(ogk_qp_solve(&ws, &p, &sol), OGK_OK);
         OGK_ASSERT_NEAR(sol.x[0], 0.0, 1e-14);
@@ -89,8 +89,8 @@ static void test_inconsistent_zero_equality_first(void **state)
 /* req: OGK-CORE-018 */
 static void test_not_posdef_in_first_panel(void **state)
 {
-    double h5[25];
-    const double g5[5] = {1.0, 1.0, 1.0, 1.0, 1.0};
+    ogk_real_t h5[25];
+    const ogk_real_t g5[5] = {1.0, 1.0, 1.0, 1.0, 1.0};
     ogk_qp_problem_t p;
     ogk_qp_solution_t sol;
     size_t i;
