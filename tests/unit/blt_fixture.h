@@ -45,8 +45,8 @@ static inline void blt_fx_moshup(ogk_blt_config_t *c)
  * secondary), A, B not parallel (the direction turns by about 50 deg over the burn). */
 static inline void blt_fx_single_burn(ogk_blt_transfer_t *tr)
 {
-    static const double x0[OGK_BLT_NX] = {0.30, 0.80, 0.05, -0.30, 0.20, 0.01};
-    static const double p[OGK_BLT_NP] = {0.6, 0.5, 0.1, -0.4, 0.8, 0.3, 0.6123};
+    static const ogk_real_t x0[OGK_BLT_NX] = {0.30, 0.80, 0.05, -0.30, 0.20, 0.01};
+    static const ogk_real_t p[OGK_BLT_NP] = {0.6, 0.5, 0.1, -0.4, 0.8, 0.3, 0.6123};
     (void)memset(tr, 0, sizeof(*tr));
     tr->t0 = 0.25;
     tr->mass0 = 0.9;
@@ -57,9 +57,9 @@ static inline void blt_fx_single_burn(ogk_blt_transfer_t *tr)
 /* Burn-coast-burn: three segments, the second a coast. */
 static inline void blt_fx_bcb(ogk_blt_transfer_t *tr)
 {
-    static const double x0[OGK_BLT_NX] = {0.30, 0.80, 0.05, -0.30, 0.20, 0.01};
-    static const double p0[OGK_BLT_NP] = {0.6, 0.5, 0.1, -0.4, 0.8, 0.3, 0.3123};
-    static const double p2[OGK_BLT_NP] = {-0.7, 0.2, -0.1, 0.5, 0.6, 0.2, 0.2871};
+    static const ogk_real_t x0[OGK_BLT_NX] = {0.30, 0.80, 0.05, -0.30, 0.20, 0.01};
+    static const ogk_real_t p0[OGK_BLT_NP] = {0.6, 0.5, 0.1, -0.4, 0.8, 0.3, 0.3123};
+    static const ogk_real_t p2[OGK_BLT_NP] = {-0.7, 0.2, -0.1, 0.5, 0.6, 0.2, 0.2871};
     (void)memset(tr, 0, sizeof(*tr));
     tr->t0 = 0.25;
     tr->mass0 = 0.9;

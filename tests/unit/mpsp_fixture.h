@@ -10,11 +10,11 @@
 
 #include "ogk/mpsp.h"
 
-static const double w3[21] = {
+static const ogk_real_t w3[21] = {
     2.0, 0.05, 0.02, 0.6, 0.03, -0.02, 0.01,
     0.6, 0.0, 0.2, 0.01, -0.02, 0.0, 0.01,
     0.0, 0.05, 0.0, 0.01, 0.0, 0.0, -0.01};
-static const double x0_3d[7] = {1.0, 0.0, 0.01, 0.0, 1.0, 0.02, 1.0};
+static const ogk_real_t x0_3d[7] = {1.0, 0.0, 0.01, 0.0, 1.0, 0.02, 1.0};
 
 /* ogk_mpsp_config_default, then the fixture's mission data; returns config_default's status. */
 static ogk_status mpsp_fixture_config(ogk_mpsp_config_t *c, uint32_t max_newton,

@@ -10,6 +10,11 @@
  *   - a command set field by field the old way (memset, angles) still feeds CPD. */
 #include "ogk_test.h"
 
+/* Float tolerances (ogk_test.h): a unit vector's component or an angle (at most pi) made of sines and
+ * cosines of float angles carries a few roundings: CMD_EPS = 8 eps pi; in double the tolerances as
+ * always. Copies of the caller's values are compared with those values as stored (ogk_real_t). */
+#define CMD_EPS (8.0 * FLT_EPSILON * 3.14159265358979323846)
+
 #include <string.h>
 
 #include "ogk/cpd.h"
@@ -19,23 +24,23 @@
 
 #define PI 3.14159265358979323846
 
-static void cross(const double *a, const double *b, double *c)
+static void cross(const ogk_real_t *a, const ogk_real_t *b, ogk_real_t *c)
 {
     c[0] = (a[1] * b[2]) - (a[2] * b[1]);
     c[1] = (a[2] * b[0]) - (a[0] * b[2]);
     c[2] = (a[0] * b[1]) - (a[1] * b[0]);
 }
 
-static double dot(const double *a, const double *b)
+static ogk_real_t dot(const ogk_real_t *a, const ogk_real_t *b)
 {
     return (a[0] * b[0]) + (a[1] * b[1]) + (a[2] * b[2]);
 }
 
 /* r-t-n axes at (xi, phi) in the inertial frame, built from the position direction and I3. */
-static void rtn_axes(double xi, double phi, double *r, double *t, double *n)
+static void rtn_axes(ogk_real_t xi, ogk_real_t phi, ogk_real_t *r, ogk_real_t *t, ogk_real_t *n)
 {
-    static const double z[3] = {0.0, 0.0, 1.0};
-    double zr[3];
+    static const ogk_real_t z[3] = {0.0, 0.0, 1.0};
+    ogk_real_t zr[3];
     double norm;
     r[0] = cos(phi) * cos(xi);
     r[1] = cos(phi) * sin(xi);
@@ -49,9 +54,9 @@ static void rtn_axes(double xi, double phi, double *r, double *t, double *n)
 }
 
 /* Angle between two directions [rad]. */
-static double angle_between(const double *a, const double *b)
+static ogk_real_t angle_between(const ogk_real_t *a, const ogk_real_t *b)
 {
-    double c[3];
+    ogk_real_t c[3];
     cross(a, b, c);
     return atan2(sqrt(dot(c, c)), dot(a, b));
 }
@@ -61,9 +66,9 @@ static void test_angles_and_unit_vectors(void **state)
 {
     int i;
     int j;
-    double u[3];
-    double a;
-    double b;
+    ogk_real_t u[3];
+    ogk_real_t a;
+    ogk_real_t b;
     (void)state;
     /* the axes: alpha = beta = 0 is t, alpha = pi/2 is r, beta = pi/2 is n */
     OGK_ASSERT_STATUS(ogk_thrust_cmd_angles_to_unit(0.0, 0.0, u), OGK_OK);
@@ -71,8 +76,8 @@ static void test_angles_and_unit_vectors(void **state)
     OGK_ASSERT_NEAR(u[1], 1.0, 0.0);
     OGK_ASSERT_NEAR(u[2], 0.0, 0.0);
     OGK_ASSERT_STATUS(ogk_thrust_cmd_angles_to_unit(PI / 2.0, 0.0, u), OGK_OK);
-    OGK_ASSERT_NEAR(u[0], 1.0, 1e-16);
-    OGK_ASSERT_NEAR(u[1], 0.0, 1e-16);
+    OGK_ASSERT_NEAR(u[0], 1.0, OGK_TEST_TOL(1e-16, CMD_EPS));
+    OGK_ASSERT_NEAR(u[1], 0.0, OGK_TEST_TOL(1e-16, CMD_EPS));
     OGK_ASSERT_STATUS(ogk_thrust_cmd_angles_to_unit(0.3, PI / 2.0, u), OGK_OK);
     OGK_ASSERT_NEAR(u[2], 1.0, 0.0);
     /* a grid of directions: the closed form, and back */
@@ -81,51 +86,53 @@ static void test_angles_and_unit_vectors(void **state)
             const double alpha = 0.5 * (double)i;     /* -3 .. 3 rad */
             const double beta = 0.38 * (double)j;     /* -1.52 .. 1.52 rad */
             OGK_ASSERT_STATUS(ogk_thrust_cmd_angles_to_unit(alpha, beta, u), OGK_OK);
-            OGK_ASSERT_NEAR(u[0], cos(beta) * sin(alpha), 1e-16);
-            OGK_ASSERT_NEAR(u[1], cos(beta) * cos(alpha), 1e-16);
-            OGK_ASSERT_NEAR(u[2], sin(beta), 1e-16);
+            OGK_ASSERT_NEAR(u[0], cos(beta) * sin(alpha), OGK_TEST_TOL(1e-16, CMD_EPS));
+            OGK_ASSERT_NEAR(u[1], cos(beta) * cos(alpha), OGK_TEST_TOL(1e-16, CMD_EPS));
+            OGK_ASSERT_NEAR(u[2], sin(beta), OGK_TEST_TOL(1e-16, CMD_EPS));
             OGK_ASSERT_STATUS(ogk_thrust_cmd_unit_to_angles(u, &a, &b), OGK_OK);
-            OGK_ASSERT_NEAR(a, alpha, 1e-15);
-            OGK_ASSERT_NEAR(b, beta, 1e-15);
+            OGK_ASSERT_NEAR(a, alpha, OGK_TEST_TOL(1e-15, CMD_EPS));
+            OGK_ASSERT_NEAR(b, beta, OGK_TEST_TOL(1e-15, CMD_EPS));
         }
     }
     /* alpha comes back wrapped into (-pi, pi] */
     OGK_ASSERT_STATUS(ogk_thrust_cmd_angles_to_unit(3.5, 0.2, u), OGK_OK);
     OGK_ASSERT_STATUS(ogk_thrust_cmd_unit_to_angles(u, &a, &b), OGK_OK);
-    OGK_ASSERT_NEAR(a, 3.5 - (2.0 * PI), 1e-15);
-    OGK_ASSERT_NEAR(b, 0.2, 1e-15);
+    OGK_ASSERT_NEAR(a, 3.5 - (2.0 * PI), OGK_TEST_TOL(1e-15, CMD_EPS));
+    OGK_ASSERT_NEAR(b, 0.2, OGK_TEST_TOL(1e-15, CMD_EPS));
     /* the poles: alpha undefined, 0 */
     {
-        const double up[3] = {0.0, 0.0, 1.0};
-        const double down[3] = {0.0, 0.0, -1.0};
+        const ogk_real_t up[3] = {0.0, 0.0, 1.0};
+        const ogk_real_t down[3] = {0.0, 0.0, -1.0};
         OGK_ASSERT_STATUS(ogk_thrust_cmd_unit_to_angles(up, &a, &b), OGK_OK);
         OGK_ASSERT_NEAR(a, 0.0, 0.0);
-        OGK_ASSERT_NEAR(b, PI / 2.0, 0.0);
+        OGK_ASSERT_NEAR(b, (ogk_real_t)(PI / 2.0), 0.0);
         OGK_ASSERT_STATUS(ogk_thrust_cmd_unit_to_angles(down, &a, &b), OGK_OK);
         OGK_ASSERT_NEAR(a, 0.0, 0.0);
-        OGK_ASSERT_NEAR(b, -PI / 2.0, 0.0);
+        OGK_ASSERT_NEAR(b, (ogk_real_t)(-PI / 2.0), 0.0);
     }
     /* within the unit tolerance: accepted (and the angles of u / |u|) */
     {
         const double s = 1.0 + (0.5 * OGK_THRUST_CMD_UNIT_TOL);
-        const double v[3] = {0.6 * s, 0.8 * s, 0.0};
+        const ogk_real_t v[3] = {0.6 * s, 0.8 * s, 0.0};
         OGK_ASSERT_STATUS(ogk_thrust_cmd_unit_to_angles(v, &a, &b), OGK_OK);
-        OGK_ASSERT_NEAR(a, atan2(0.6, 0.8), 1e-15);
+        OGK_ASSERT_NEAR(a, atan2(0.6, 0.8), OGK_TEST_TOL(1e-15, CMD_EPS));
     }
 }
 
 /* req: OGK-CORE-019 */
 static void test_angle_and_vector_rejections(void **state)
 {
-    double u[3] = {7.0, 7.0, 7.0};
-    double a = 7.0;
-    double b = 7.0;
-    const double big = 1.0 + (4.0 * OGK_THRUST_CMD_UNIT_TOL);
-    const double v_long[3] = {0.0, big, 0.0};
-    const double v_zero[3] = {0.0, 0.0, 0.0};
-    const double v_huge[3] = {1e308, 1e308, 1e308}; /* |u| would overflow: not unit, no inf */
-    const double v_nan[3] = {0.0, NAN, 0.0};
-    const double v_inf[3] = {INFINITY, 0.0, 0.0};
+    ogk_real_t u[3] = {7.0, 7.0, 7.0};
+    ogk_real_t a = 7.0;
+    ogk_real_t b = 7.0;
+    /* beyond the tolerance (float: 1 + 4e-9 is 1, the next float above 1 instead) */
+    const double big = OGK_TEST_PICK(1.0 + (4.0 * OGK_THRUST_CMD_UNIT_TOL), 1.0 + FLT_EPSILON);
+    const ogk_real_t v_long[3] = {0.0, big, 0.0};
+    const ogk_real_t v_zero[3] = {0.0, 0.0, 0.0};
+    const ogk_real_t v_huge[3] = {OGK_TEST_PICK(1e308, 1e38), OGK_TEST_PICK(1e308, 1e38),
+                                  OGK_TEST_PICK(1e308, 1e38)}; /* |u| would overflow: not unit, no inf */
+    const ogk_real_t v_nan[3] = {0.0, NAN, 0.0};
+    const ogk_real_t v_inf[3] = {INFINITY, 0.0, 0.0};
     (void)state;
     OGK_ASSERT_STATUS(ogk_thrust_cmd_angles_to_unit(0.1, 0.2, NULL), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_thrust_cmd_angles_to_unit(NAN, 0.2, u), OGK_E_NONFINITE);
@@ -151,8 +158,8 @@ static void test_builders(void **state)
     ogk_thrust_cmd_t c;
     ogk_thrust_cmd_t d;
     ogk_thrust_cmd_t keep;
-    const double u_in[3] = {0.0, 0.6, -0.8};
-    const double u_sy[3] = {0.48, 0.64, 0.6};
+    const ogk_real_t u_in[3] = {0.0, 0.6, -0.8};
+    const ogk_real_t u_sy[3] = {0.48, 0.64, 0.6};
     (void)state;
     /* from the angles: a complete r-t-n command */
     (void)memset(&c, 0x5A, sizeof c);
@@ -161,11 +168,11 @@ static void test_builders(void **state)
                                                  0x11u, &c), OGK_OK);
     OGK_ASSERT_NEAR(c.t_s, 12.5, 0.0);
     assert_int_equal((int)c.frame, (int)OGK_FRAME_RTN);
-    OGK_ASSERT_NEAR(c.alpha_rad, 0.4, 0.0);
-    OGK_ASSERT_NEAR(c.beta_rad, -0.3, 0.0);
-    OGK_ASSERT_NEAR(c.u[0], cos(-0.3) * sin(0.4), 1e-16);
-    OGK_ASSERT_NEAR(c.u[1], cos(-0.3) * cos(0.4), 1e-16);
-    OGK_ASSERT_NEAR(c.u[2], sin(-0.3), 1e-16);
+    OGK_ASSERT_NEAR(c.alpha_rad, (ogk_real_t)0.4, 0.0);
+    OGK_ASSERT_NEAR(c.beta_rad, (ogk_real_t)-0.3, 0.0);
+    OGK_ASSERT_NEAR(c.u[0], cos(-0.3) * sin(0.4), OGK_TEST_TOL(1e-16, CMD_EPS));
+    OGK_ASSERT_NEAR(c.u[1], cos(-0.3) * cos(0.4), OGK_TEST_TOL(1e-16, CMD_EPS));
+    OGK_ASSERT_NEAR(c.u[2], sin(-0.3), OGK_TEST_TOL(1e-16, CMD_EPS));
     OGK_ASSERT_NEAR(c.throttle, 0.75, 0.0);
     assert_int_equal(c.flags, OGK_THRUST_FLAG_ENGINE_ON | OGK_THRUST_FLAG_LIMITED);
     assert_int_equal(c.law_flags, 0x11u);
@@ -182,15 +189,15 @@ static void test_builders(void **state)
     OGK_ASSERT_STATUS(ogk_thrust_cmd_from_unit(2.0, OGK_FRAME_INERTIAL, u_in, 1.0,
                                                OGK_THRUST_FLAG_ENGINE_ON, 0u, &d), OGK_OK);
     assert_int_equal((int)d.frame, (int)OGK_FRAME_INERTIAL);
-    OGK_ASSERT_NEAR(d.u[1], 0.6, 0.0);
-    OGK_ASSERT_NEAR(d.u[2], -0.8, 0.0);
+    OGK_ASSERT_NEAR(d.u[1], (ogk_real_t)0.6, 0.0);
+    OGK_ASSERT_NEAR(d.u[2], (ogk_real_t)-0.8, 0.0);
     OGK_ASSERT_NEAR(d.alpha_rad, 0.0, 0.0);
     OGK_ASSERT_NEAR(d.beta_rad, 0.0, 0.0);
     OGK_ASSERT_STATUS(ogk_thrust_cmd_from_unit(2.0, OGK_FRAME_RTN, c.u, 0.75,
                                                OGK_THRUST_FLAG_ENGINE_ON | OGK_THRUST_FLAG_LIMITED,
                                                0x11u, &d), OGK_OK);
-    OGK_ASSERT_NEAR(d.alpha_rad, 0.4, 1e-15);
-    OGK_ASSERT_NEAR(d.beta_rad, -0.3, 1e-15);
+    OGK_ASSERT_NEAR(d.alpha_rad, 0.4, OGK_TEST_TOL(1e-15, CMD_EPS));
+    OGK_ASSERT_NEAR(d.beta_rad, -0.3, OGK_TEST_TOL(1e-15, CMD_EPS));
     OGK_ASSERT_STATUS(ogk_thrust_cmd_from_unit(2.0, OGK_FRAME_SYNODIC, u_sy, 0.0, 0u, 0u, &d), OGK_OK);
     assert_int_equal((int)d.frame, (int)OGK_FRAME_SYNODIC);
     /* the safe commands */
@@ -221,8 +228,8 @@ static void test_builders(void **state)
     OGK_ASSERT_STATUS(ogk_thrust_cmd_from_unit(1.0, (ogk_frame_t)7, u_in, 1.0, 0u, 0u, &c), OGK_E_FRAME);
     OGK_ASSERT_STATUS(ogk_thrust_cmd_from_unit(1.0, OGK_FRAME_COUNT, u_in, 1.0, 0u, 0u, &c), OGK_E_FRAME);
     {
-        const double half[3] = {0.0, 0.5, 0.0};
-        const double nan3[3] = {0.0, 1.0, NAN};
+        const ogk_real_t half[3] = {0.0, 0.5, 0.0};
+        const ogk_real_t nan3[3] = {0.0, 1.0, NAN};
         OGK_ASSERT_STATUS(ogk_thrust_cmd_from_unit(1.0, OGK_FRAME_RTN, half, 1.0, 0u, 0u, &c), OGK_E_RANGE);
         OGK_ASSERT_STATUS(ogk_thrust_cmd_from_unit(1.0, OGK_FRAME_RTN, nan3, 1.0, 0u, 0u, &c),
                           OGK_E_NONFINITE);
@@ -244,10 +251,10 @@ static void test_inertial_to_rtn(void **state)
         const double phi = -1.3 + (0.11 * (double)i);
         const double alpha = 2.9 - (0.25 * (double)i);
         const double beta = -1.2 + (0.1 * (double)i);
-        double r[3];
-        double t[3];
-        double n[3];
-        double u_i[3];
+        ogk_real_t r[3];
+        ogk_real_t t[3];
+        ogk_real_t n[3];
+        ogk_real_t u_i[3];
         double u_rtn[3];
         ogk_nav_state_t nav;
         ogk_thrust_cmd_t in;
@@ -264,11 +271,11 @@ static void test_inertial_to_rtn(void **state)
                                                    OGK_THRUST_FLAG_ENGINE_ON, 0x3u, &in), OGK_OK);
         OGK_ASSERT_STATUS(ogk_thrust_cmd_to_rtn(&in, &nav, &out), OGK_OK);
         assert_int_equal((int)out.frame, (int)OGK_FRAME_RTN);
-        OGK_ASSERT_NEAR(out.alpha_rad, alpha, 1e-13);
-        OGK_ASSERT_NEAR(out.beta_rad, beta, 1e-13);
-        OGK_ASSERT_NEAR(out.u[0], dot(u_i, r), 1e-15);
-        OGK_ASSERT_NEAR(out.u[1], dot(u_i, t), 1e-15);
-        OGK_ASSERT_NEAR(out.u[2], dot(u_i, n), 1e-15);
+        OGK_ASSERT_NEAR(out.alpha_rad, alpha, OGK_TEST_TOL(1e-13, CMD_EPS));
+        OGK_ASSERT_NEAR(out.beta_rad, beta, OGK_TEST_TOL(1e-13, CMD_EPS));
+        OGK_ASSERT_NEAR(out.u[0], dot(u_i, r), OGK_TEST_TOL(1e-15, CMD_EPS));
+        OGK_ASSERT_NEAR(out.u[1], dot(u_i, t), OGK_TEST_TOL(1e-15, CMD_EPS));
+        OGK_ASSERT_NEAR(out.u[2], dot(u_i, n), OGK_TEST_TOL(1e-15, CMD_EPS));
         OGK_ASSERT_NEAR(out.t_s, 3.0, 0.0);
         OGK_ASSERT_NEAR(out.throttle, 0.5, 0.0);
         assert_int_equal(out.flags, OGK_THRUST_FLAG_ENGINE_ON);
@@ -278,7 +285,7 @@ static void test_inertial_to_rtn(void **state)
         u_rtn[1] = out.u[1];
         u_rtn[2] = out.u[2];
         for (k = 0u; k < 3u; ++k) {
-            OGK_ASSERT_NEAR((u_rtn[0] * r[k]) + (u_rtn[1] * t[k]) + (u_rtn[2] * n[k]), u_i[k], 1e-15);
+            OGK_ASSERT_NEAR((u_rtn[0] * r[k]) + (u_rtn[1] * t[k]) + (u_rtn[2] * n[k]), u_i[k], OGK_TEST_TOL(1e-15, CMD_EPS));
         }
         /* in place */
         OGK_ASSERT_STATUS(ogk_thrust_cmd_to_rtn(&in, &nav, &in), OGK_OK);
@@ -293,7 +300,7 @@ static void test_to_rtn_frames_and_rejections(void **state)
     ogk_thrust_cmd_t out;
     ogk_thrust_cmd_t keep;
     ogk_nav_state_t nav;
-    const double u_sy[3] = {0.0, 1.0, 0.0};
+    const ogk_real_t u_sy[3] = {0.0, 1.0, 0.0};
     (void)state;
     (void)memset(&nav, 0, sizeof nav);
     nav.xi_rad = 0.4;
@@ -305,10 +312,10 @@ static void test_to_rtn_frames_and_rejections(void **state)
     in.beta_rad = 0.2;
     in.flags = OGK_THRUST_FLAG_ENGINE_ON;
     OGK_ASSERT_STATUS(ogk_thrust_cmd_to_rtn(&in, &nav, &out), OGK_OK);
-    OGK_ASSERT_NEAR(out.alpha_rad, 0.7, 0.0);
-    OGK_ASSERT_NEAR(out.beta_rad, 0.2, 0.0);
-    OGK_ASSERT_NEAR(out.u[0], cos(0.2) * sin(0.7), 1e-16); /* u filled in */
-    OGK_ASSERT_NEAR(out.u[2], sin(0.2), 1e-16);
+    OGK_ASSERT_NEAR(out.alpha_rad, (ogk_real_t)0.7, 0.0);
+    OGK_ASSERT_NEAR(out.beta_rad, (ogk_real_t)0.2, 0.0);
+    OGK_ASSERT_NEAR(out.u[0], cos(0.2) * sin(0.7), OGK_TEST_TOL(1e-16, CMD_EPS)); /* u filled in */
+    OGK_ASSERT_NEAR(out.u[2], sin(0.2), OGK_TEST_TOL(1e-16, CMD_EPS));
     OGK_ASSERT_NEAR(out.throttle, 0.0, 0.0);
     /* r-t-n needs no position: a navigation state with NaN angles does not matter */
     nav.xi_rad = NAN;
@@ -369,7 +376,7 @@ static void test_to_rtn_frames_and_rejections(void **state)
 static void test_synodic_to_inertial_and_cpd(void **state)
 {
     static const double angles[5] = {0.0, 0.5 * PI, -2.0, 3.0, 7.5};
-    const double u_s[3] = {0.48, -0.64, 0.6};
+    const ogk_real_t u_s[3] = {0.48, -0.64, 0.6};
     ogk_thrust_cmd_t syn;
     ogk_thrust_cmd_t in;
     ogk_thrust_cmd_t keep;
@@ -392,7 +399,7 @@ static void test_synodic_to_inertial_and_cpd(void **state)
         OGK_ASSERT_STATUS(ogk_thrust_cmd_synodic_to_inertial(&syn, a, &in), OGK_OK);
         assert_int_equal((int)in.frame, (int)OGK_FRAME_INERTIAL);
         for (k = 0u; k < 2u; ++k) {
-            OGK_ASSERT_NEAR(in.u[k], (u_s[0] * x_s[k]) + (u_s[1] * y_s[k]), 1e-15);
+            OGK_ASSERT_NEAR(in.u[k], (u_s[0] * x_s[k]) + (u_s[1] * y_s[k]), OGK_TEST_TOL(1e-15, CMD_EPS));
         }
         OGK_ASSERT_NEAR(in.u[2], u_s[2], 0.0);
         OGK_ASSERT_NEAR(in.t_s, 0.75, 0.0);
@@ -406,20 +413,20 @@ static void test_synodic_to_inertial_and_cpd(void **state)
         OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&cpd_b, &rtn, &nav), OGK_OK);
         OGK_ASSERT_NEAR(cpd_a.alpha_c, cpd_b.alpha_c, 0.0);
         OGK_ASSERT_NEAR(cpd_a.beta_c, cpd_b.beta_c, 0.0);
-        OGK_ASSERT_NEAR(cpd_a.xi, 1.1, 0.0);
-        OGK_ASSERT_NEAR(cpd_a.phi, -0.2, 0.0);
+        OGK_ASSERT_NEAR(cpd_a.xi, (ogk_real_t)1.1, 0.0);
+        OGK_ASSERT_NEAR(cpd_a.phi, (ogk_real_t)-0.2, 0.0);
         {
             /* the direction CPD gets is the inertial one (r-t-n axes built here) */
-            double r[3];
-            double t[3];
-            double n[3];
-            double d[3];
+            ogk_real_t r[3];
+            ogk_real_t t[3];
+            ogk_real_t n[3];
+            ogk_real_t d[3];
             rtn_axes(nav.xi_rad, nav.phi_rad, r, t, n);
             for (k = 0u; k < 3u; ++k) {
                 d[k] = (cos(cpd_a.beta_c) * sin(cpd_a.alpha_c) * r[k]) +
                        (cos(cpd_a.beta_c) * cos(cpd_a.alpha_c) * t[k]) + (sin(cpd_a.beta_c) * n[k]);
             }
-            OGK_ASSERT_NEAR(angle_between(d, in.u), 0.0, 1e-14);
+            OGK_ASSERT_NEAR(angle_between(d, in.u), 0.0, OGK_TEST_TOL(1e-14, CMD_EPS));
         }
         OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&cpd_b, &syn, &nav), OGK_E_FRAME);
         OGK_ASSERT_NEAR(cpd_b.alpha_c, cpd_a.alpha_c, 0.0); /* untouched */
@@ -456,10 +463,10 @@ static void test_cpd_same_output_from_either_frame(void **state)
     ogk_thrust_cmd_t rtn;
     ogk_thrust_cmd_t inert;
     ogk_nav_state_t nav;
-    double r[3];
-    double t[3];
-    double n[3];
-    double u_i[3];
+    ogk_real_t r[3];
+    ogk_real_t t[3];
+    ogk_real_t n[3];
+    ogk_real_t u_i[3];
     size_t k;
     (void)state;
     OGK_ASSERT_STATUS(ogk_cpd_config_default(&cfg), OGK_OK);
@@ -483,14 +490,14 @@ static void test_cpd_same_output_from_either_frame(void **state)
     in_b = in_a;
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in_a, &rtn, &nav), OGK_OK);
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in_b, &inert, &nav), OGK_OK);
-    OGK_ASSERT_NEAR(in_b.alpha_c, 0.25, 1e-14);
-    OGK_ASSERT_NEAR(in_b.beta_c, -0.1, 1e-14);
+    OGK_ASSERT_NEAR(in_b.alpha_c, 0.25, OGK_TEST_TOL(1e-14, CMD_EPS));
+    OGK_ASSERT_NEAR(in_b.beta_c, -0.1, OGK_TEST_TOL(1e-14, CMD_EPS));
     OGK_ASSERT_STATUS(ogk_cpd_step(&ctx_a, &in_a, &out_a), OGK_OK);
     OGK_ASSERT_STATUS(ogk_cpd_step(&ctx_b, &in_b, &out_b), OGK_OK);
     OGK_ASSERT_NEAR(out_b.delta_yc, out_a.delta_yc, 1e-12);
     OGK_ASSERT_NEAR(out_b.delta_zc, out_a.delta_zc, 1e-12);
-    OGK_ASSERT_NEAR(out_b.theta_c, out_a.theta_c, 1e-13);
-    OGK_ASSERT_NEAR(out_b.psi_c, out_a.psi_c, 1e-13);
+    OGK_ASSERT_NEAR(out_b.theta_c, out_a.theta_c, OGK_TEST_TOL(1e-13, CMD_EPS));
+    OGK_ASSERT_NEAR(out_b.psi_c, out_a.psi_c, OGK_TEST_TOL(1e-13, CMD_EPS));
     /* the rejections CPD adds: a NaN position with an r-t-n command; a non-unit inertial u */
     nav.phi_rad = NAN;
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in_a, &rtn, &nav), OGK_E_NONFINITE);
@@ -501,7 +508,7 @@ static void test_cpd_same_output_from_either_frame(void **state)
     OGK_ASSERT_NEAR(in_a.alpha_c, 0.25, 0.0); /* untouched */
     inert.u[2] += 0.1;
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in_b, &inert, &nav), OGK_E_RANGE);
-    OGK_ASSERT_NEAR(in_b.beta_c, -0.1, 1e-14); /* untouched */
+    OGK_ASSERT_NEAR(in_b.beta_c, -0.1, OGK_TEST_TOL(1e-14, CMD_EPS)); /* untouched */
 }
 
 int main(void)

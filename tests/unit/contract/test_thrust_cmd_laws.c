@@ -15,6 +15,11 @@
  *     the binary's angle, then to CPD. */
 #include "ogk_test.h"
 
+/* Float tolerances (ogk_test.h): a unit vector's component or an angle (at most pi) made of sines and
+ * cosines of float angles carries a few roundings: CMD_EPS = 8 eps pi; in double the tolerances as
+ * always. Copies of the caller's values are compared with those values as stored (ogk_real_t). */
+#define CMD_EPS (8.0 * FLT_EPSILON * 3.14159265358979323846)
+
 #include <stdbool.h>
 #include <string.h>
 
@@ -52,11 +57,11 @@ static double angle_diff(double a, double b)
 
 static void assert_unit_and_angles(const ogk_thrust_cmd_t *c)
 {
-    OGK_ASSERT_NEAR(sqrt((c->u[0] * c->u[0]) + (c->u[1] * c->u[1]) + (c->u[2] * c->u[2])), 1.0, 1e-15);
+    OGK_ASSERT_NEAR(sqrt((c->u[0] * c->u[0]) + (c->u[1] * c->u[1]) + (c->u[2] * c->u[2])), 1.0, OGK_TEST_TOL(1e-15, CMD_EPS));
     if (c->frame == OGK_FRAME_RTN) {
-        OGK_ASSERT_NEAR(c->u[0], cos(c->beta_rad) * sin(c->alpha_rad), 1e-15);
-        OGK_ASSERT_NEAR(c->u[1], cos(c->beta_rad) * cos(c->alpha_rad), 1e-15);
-        OGK_ASSERT_NEAR(c->u[2], sin(c->beta_rad), 1e-15);
+        OGK_ASSERT_NEAR(c->u[0], cos(c->beta_rad) * sin(c->alpha_rad), OGK_TEST_TOL(1e-15, CMD_EPS));
+        OGK_ASSERT_NEAR(c->u[1], cos(c->beta_rad) * cos(c->alpha_rad), OGK_TEST_TOL(1e-15, CMD_EPS));
+        OGK_ASSERT_NEAR(c->u[2], sin(c->beta_rad), OGK_TEST_TOL(1e-15, CMD_EPS));
     } else {
         OGK_ASSERT_NEAR(c->alpha_rad, 0.0, 0.0);
         OGK_ASSERT_NEAR(c->beta_rad, 0.0, 0.0);
@@ -103,30 +108,30 @@ static void test_nmpc_angle_from_the_vertical(void **state)
         OGK_ASSERT_STATUS(ogk_nmpc_command(&nmpc, t, &nc), OGK_OK);
         OGK_ASSERT_STATUS(ogk_nmpc_thrust_cmd(&nmpc, t, &c), OGK_OK);
         assert_int_equal((int)c.frame, (int)OGK_FRAME_RTN);
-        OGK_ASSERT_NEAR(angle_diff(c.alpha_rad, (0.5 * PI) - nc.alpha), 0.0, 1e-14);
+        OGK_ASSERT_NEAR(angle_diff(c.alpha_rad, (0.5 * PI) - nc.alpha), 0.0, OGK_TEST_TOL(1e-14, CMD_EPS));
         assert_true((c.alpha_rad > -PI) && (c.alpha_rad <= PI));
         OGK_ASSERT_NEAR(c.beta_rad, 0.0, 0.0);
-        OGK_ASSERT_NEAR(c.u[0], cos(nc.alpha), 1e-15); /* radial */
-        OGK_ASSERT_NEAR(c.u[1], sin(nc.alpha), 1e-15); /* along theta_hat = t */
+        OGK_ASSERT_NEAR(c.u[0], cos(nc.alpha), OGK_TEST_TOL(1e-15, CMD_EPS)); /* radial */
+        OGK_ASSERT_NEAR(c.u[1], sin(nc.alpha), OGK_TEST_TOL(1e-15, CMD_EPS)); /* along theta_hat = t */
         OGK_ASSERT_NEAR(c.u[2], 0.0, 0.0);
         assert_unit_and_angles(&c);
         OGK_ASSERT_NEAR(c.throttle, 1.0, 0.0);
-        OGK_ASSERT_NEAR(c.t_s, t, 0.0);
+        OGK_ASSERT_NEAR(c.t_s, (ogk_real_t)t, 0.0);
         assert_int_equal(c.flags, OGK_THRUST_FLAG_ENGINE_ON);
         assert_int_equal(c.law_flags, nc.law_flags);
     }
     /* the node angles themselves: a = 0 (radially out) is alpha = pi/2, a = pi/2 (along t) is 0 */
     OGK_ASSERT_STATUS(ogk_nmpc_thrust_cmd(&nmpc, 2.0 * NMPC_TF / (double)NMPC_N, &c), OGK_OK);
-    OGK_ASSERT_NEAR(c.alpha_rad, 0.5 * PI, 1e-15);
+    OGK_ASSERT_NEAR(c.alpha_rad, 0.5 * PI, OGK_TEST_TOL(1e-15, CMD_EPS));
     OGK_ASSERT_STATUS(ogk_nmpc_thrust_cmd(&nmpc, 3.0 * NMPC_TF / (double)NMPC_N, &c), OGK_OK);
-    OGK_ASSERT_NEAR(c.alpha_rad, 0.0, 1e-15);
+    OGK_ASSERT_NEAR(c.alpha_rad, 0.0, OGK_TEST_TOL(1e-15, CMD_EPS));
     /* node 0: a = -3.5, alpha = pi/2 + 3.5 - 2 pi */
     OGK_ASSERT_STATUS(ogk_nmpc_thrust_cmd(&nmpc, 0.0, &c), OGK_OK);
-    OGK_ASSERT_NEAR(c.alpha_rad, (0.5 * PI) + 3.5 - (2.0 * PI), 1e-14);
+    OGK_ASSERT_NEAR(c.alpha_rad, (0.5 * PI) + 3.5 - (2.0 * PI), OGK_TEST_TOL(1e-14, CMD_EPS));
     /* past t_f: the last node's, END_OF_PLAN */
     OGK_ASSERT_STATUS(ogk_nmpc_thrust_cmd(&nmpc, NMPC_TF + 1.0, &c), OGK_OK);
     assert_true((c.law_flags & OGK_NMPC_FLAG_END_OF_PLAN) != 0u);
-    OGK_ASSERT_NEAR(angle_diff(c.alpha_rad, (0.5 * PI) - 4.0), 0.0, 1e-14);
+    OGK_ASSERT_NEAR(angle_diff(c.alpha_rad, (0.5 * PI) - 4.0), 0.0, OGK_TEST_TOL(1e-14, CMD_EPS));
 }
 
 /* req: OGK-NMPC-009 */
@@ -137,18 +142,18 @@ static void test_nmpc_throttle_and_safe(void **state)
     (void)state;
     nmpc_setup(OGK_NMPC_ENGINE_THROTTLED);
     OGK_ASSERT_STATUS(ogk_nmpc_thrust_cmd(&nmpc, 1.0 * NMPC_TF / (double)NMPC_N, &c), OGK_OK);
-    OGK_ASSERT_NEAR(c.throttle, 0.5, 1e-15);
+    OGK_ASSERT_NEAR(c.throttle, 0.5, OGK_TEST_TOL(1e-15, CMD_EPS));
     assert_int_equal(c.flags, OGK_THRUST_FLAG_ENGINE_ON);
     OGK_ASSERT_STATUS(ogk_nmpc_thrust_cmd(&nmpc, 2.0 * NMPC_TF / (double)NMPC_N, &c), OGK_OK);
     OGK_ASSERT_NEAR(c.throttle, 0.0, 0.0); /* w = 0: engine off, still a direction */
     assert_int_equal(c.flags, 0u);
     assert_unit_and_angles(&c);
     OGK_ASSERT_STATUS(ogk_nmpc_thrust_cmd(&nmpc, 2.5 * NMPC_TF / (double)NMPC_N, &c), OGK_OK);
-    OGK_ASSERT_NEAR(c.throttle, 0.125, 1e-15);
+    OGK_ASSERT_NEAR(c.throttle, 0.125, OGK_TEST_TOL(1e-15, CMD_EPS));
     /* the safe commands: NMPC's (engine off, a = 0: radially out) converted */
     OGK_ASSERT_STATUS(ogk_nmpc_thrust_cmd(&nmpc, NAN, &c), OGK_E_NONFINITE);
     OGK_ASSERT_NEAR(c.t_s, 0.0, 0.0);
-    OGK_ASSERT_NEAR(c.alpha_rad, 0.5 * PI, 0.0);
+    OGK_ASSERT_NEAR(c.alpha_rad, (ogk_real_t)(0.5 * PI), 0.0);
     OGK_ASSERT_NEAR(c.u[0], 1.0, 0.0);
     OGK_ASSERT_NEAR(c.throttle, 0.0, 0.0);
     assert_int_equal(c.flags, OGK_THRUST_FLAG_SAFE);
@@ -181,7 +186,7 @@ static void test_nmpc_feeds_cpd(void **state)
     for (i = 0u; i < 8u; ++i) {
         const double t = 0.45 * (double)i;
         const double theta = -2.5 + (0.7 * (double)i);
-        double u_i[3];
+        ogk_real_t u_i[3];
         OGK_ASSERT_STATUS(ogk_nmpc_command(&nmpc, t, &nc), OGK_OK);
         OGK_ASSERT_STATUS(ogk_nmpc_thrust_cmd(&nmpc, t, &c), OGK_OK);
         u_i[0] = (cos(nc.alpha) * cos(theta)) - (sin(nc.alpha) * sin(theta));
@@ -195,16 +200,16 @@ static void test_nmpc_feeds_cpd(void **state)
         (void)memset(&in_b, 0, sizeof in_b);
         OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in_a, &c, &nav), OGK_OK);
         OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in_b, &cart, &nav), OGK_OK);
-        OGK_ASSERT_NEAR(angle_diff(in_a.alpha_c, in_b.alpha_c), 0.0, 1e-14);
+        OGK_ASSERT_NEAR(angle_diff(in_a.alpha_c, in_b.alpha_c), 0.0, OGK_TEST_TOL(1e-14, CMD_EPS));
         OGK_ASSERT_NEAR(in_a.beta_c, 0.0, 0.0);
-        OGK_ASSERT_NEAR(in_b.beta_c, 0.0, 1e-15);
+        OGK_ASSERT_NEAR(in_b.beta_c, 0.0, OGK_TEST_TOL(1e-15, CMD_EPS));
     }
 }
 
 /* ------------------------------------------------------------------ MPSP */
 
 /* lambda_v(t) of the fixture's weights w3: FOURIER basis of order 3 (Appendix C) written out. */
-static void mpsp_lambda_v(const ogk_mpsp_config_t *c, const double *w, double t, double *lv)
+static void mpsp_lambda_v(const ogk_mpsp_config_t *c, const ogk_real_t *w, double t, double *lv)
 {
     const double th = 2.0 * PI * (t - c->fourier_t_ref) / c->fourier_period;
     const double h[7] = {0.5, cos(th), sin(th), cos(2.0 * th), sin(2.0 * th), cos(3.0 * th), sin(3.0 * th)};
@@ -237,7 +242,7 @@ static void test_mpsp_primer_vector_and_bang_off_bang(void **state)
     for (i = 0u; i <= 200u; ++i) {
         const double t = c.t0 + ((c.tf - c.t0) * (double)i / 200.0);
         double lv[3];
-        double x[OGK_MPSP_NX];
+        ogk_real_t x[OGK_MPSP_NX];
         double nlv;
         double s;
         bool near_switch = false;
@@ -247,10 +252,10 @@ static void test_mpsp_primer_vector_and_bang_off_bang(void **state)
         assert_unit_and_angles(&cmd);
         mpsp_lambda_v(&c, w3, t, lv);
         nlv = sqrt((lv[0] * lv[0]) + (lv[1] * lv[1]) + (lv[2] * lv[2]));
-        OGK_ASSERT_NEAR(cmd.u[0], -lv[0] / nlv, 1e-14);
-        OGK_ASSERT_NEAR(cmd.u[1], -lv[1] / nlv, 1e-14);
-        OGK_ASSERT_NEAR(cmd.u[2], -lv[2] / nlv, 1e-14);
-        OGK_ASSERT_NEAR(cmd.t_s, t, 0.0);
+        OGK_ASSERT_NEAR(cmd.u[0], -lv[0] / nlv, OGK_TEST_TOL(1e-14, CMD_EPS));
+        OGK_ASSERT_NEAR(cmd.u[1], -lv[1] / nlv, OGK_TEST_TOL(1e-14, CMD_EPS));
+        OGK_ASSERT_NEAR(cmd.u[2], -lv[2] / nlv, OGK_TEST_TOL(1e-14, CMD_EPS));
+        OGK_ASSERT_NEAR(cmd.t_s, (ogk_real_t)t, 0.0);
         assert_int_equal(cmd.law_flags, 0u);
         /* eq. (10) on the held state, away from the switches (where the sign is the integrator's) */
         OGK_ASSERT_STATUS(ogk_mpsp_state_at(&mpsp, t, x), OGK_OK);
@@ -311,7 +316,7 @@ static void test_mpsp_rejections(void **state)
 
 /* ------------------------------------------------------------------ BLT */
 
-static void blt_direction(const double *seg, double tau, double *u)
+static void blt_direction(const ogk_real_t *seg, double tau, double *u)
 {
     const double w[3] = {seg[0] + (seg[3] * tau), seg[1] + (seg[4] * tau), seg[2] + (seg[5] * tau)};
     const double n = sqrt((w[0] * w[0]) + (w[1] * w[1]) + (w[2] * w[2]));
@@ -350,7 +355,7 @@ static void test_blt_burn_coast_and_after(void **state)
             OGK_ASSERT_STATUS(ogk_blt_thrust_cmd(&blt, t, &cmd), OGK_OK);
             assert_int_equal((int)cmd.frame, (int)OGK_FRAME_SYNODIC);
             assert_unit_and_angles(&cmd);
-            OGK_ASSERT_NEAR(cmd.t_s, t, 0.0);
+            OGK_ASSERT_NEAR(cmd.t_s, (ogk_real_t)t, 0.0);
             assert_int_equal(cmd.law_flags, 0u);
             if (t < t1) {
                 blt_direction(sol.seg[0], t - sol.t0, u);
@@ -359,9 +364,9 @@ static void test_blt_burn_coast_and_after(void **state)
             } else {
                 blt_direction(sol.seg[2], t - t2, u);
             }
-            OGK_ASSERT_NEAR(cmd.u[0], u[0], 1e-15);
-            OGK_ASSERT_NEAR(cmd.u[1], u[1], 1e-15);
-            OGK_ASSERT_NEAR(cmd.u[2], u[2], 1e-15);
+            OGK_ASSERT_NEAR(cmd.u[0], u[0], OGK_TEST_TOL(1e-15, CMD_EPS));
+            OGK_ASSERT_NEAR(cmd.u[1], u[1], OGK_TEST_TOL(1e-15, CMD_EPS));
+            OGK_ASSERT_NEAR(cmd.u[2], u[2], OGK_TEST_TOL(1e-15, CMD_EPS));
             if ((t < t1) || (t >= t2)) {
                 OGK_ASSERT_NEAR(cmd.throttle, 1.0, 0.0);
                 assert_int_equal(cmd.flags, OGK_THRUST_FLAG_ENGINE_ON);
@@ -422,19 +427,19 @@ static void test_blt_synodic_to_cpd(void **state)
     OGK_ASSERT_STATUS(ogk_blt_solve(&blt, &tr, &sol, &rep), OGK_OK);
     OGK_ASSERT_STATUS(ogk_blt_thrust_cmd(&blt, t, &syn), OGK_OK);
     blt_direction(sol.seg[0], t - sol.t0, u);
-    OGK_ASSERT_NEAR(syn.u[0], u[0], 1e-15);
+    OGK_ASSERT_NEAR(syn.u[0], u[0], OGK_TEST_TOL(1e-15, CMD_EPS));
     (void)memset(&nav, 0, sizeof nav);
     nav.xi_rad = 0.3;
     (void)memset(&in, 0, sizeof in);
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in, &syn, &nav), OGK_E_FRAME);
     ang = theta0 + t;
     OGK_ASSERT_STATUS(ogk_thrust_cmd_synodic_to_inertial(&syn, ang, &inert), OGK_OK);
-    OGK_ASSERT_NEAR(inert.u[0], (cos(ang) * u[0]) - (sin(ang) * u[1]), 1e-15);
-    OGK_ASSERT_NEAR(inert.u[1], (sin(ang) * u[0]) + (cos(ang) * u[1]), 1e-15);
-    OGK_ASSERT_NEAR(inert.u[2], u[2], 1e-15);
+    OGK_ASSERT_NEAR(inert.u[0], (cos(ang) * u[0]) - (sin(ang) * u[1]), OGK_TEST_TOL(1e-15, CMD_EPS));
+    OGK_ASSERT_NEAR(inert.u[1], (sin(ang) * u[0]) + (cos(ang) * u[1]), OGK_TEST_TOL(1e-15, CMD_EPS));
+    OGK_ASSERT_NEAR(inert.u[2], u[2], OGK_TEST_TOL(1e-15, CMD_EPS));
     OGK_ASSERT_STATUS(ogk_cpd_input_from_thrust_cmd(&in, &inert, &nav), OGK_OK);
     /* beta: the out-of-plane part is the synodic z, which is I3 = n at phi = 0 */
-    OGK_ASSERT_NEAR(in.beta_c, asin(u[2]), 1e-14);
+    OGK_ASSERT_NEAR(in.beta_c, asin(u[2]), OGK_TEST_TOL(1e-14, CMD_EPS));
 }
 
 int main(void)
