@@ -16,6 +16,15 @@ static const ogk_real_t w3[21] = {
     0.0, 0.05, 0.0, 0.01, 0.0, 0.0, -0.01};
 static const ogk_real_t x0_3d[7] = {1.0, 0.0, 0.01, 0.0, 1.0, 0.02, 1.0};
 
+/* The solve's tolerance on r(tf), v(tf) and lambda_m(tf): 1e-10, and in the float build 1e-5 (the
+ * float solves stall near 3e-7 at this unit scale, measured: MPSP_TOL_F of the MPSP tests; written
+ * here with #if, as ogk_test.h's OGK_TEST_TOL, because the fuzzer includes this file without it). */
+#if OGK_REAL_SINGLE
+#define MPSP_FX_TOL 1e-5
+#else
+#define MPSP_FX_TOL 1e-10
+#endif
+
 /* ogk_mpsp_config_default, then the fixture's mission data; returns config_default's status. */
 static ogk_status mpsp_fixture_config(ogk_mpsp_config_t *c, uint32_t max_newton,
                                       uint32_t max_outer)
@@ -38,9 +47,9 @@ static ogk_status mpsp_fixture_config(ogk_mpsp_config_t *c, uint32_t max_newton,
     for (i = 0u; i < OGK_MPSP_MAX_WEIGHTS; ++i) {
         c->r_eps[i] = 1.0;
     }
-    c->tol_r = 1e-10;
-    c->tol_v = 1e-10;
-    c->tol_lambda_m = 1e-10;
+    c->tol_r = MPSP_FX_TOL;
+    c->tol_v = MPSP_FX_TOL;
+    c->tol_lambda_m = MPSP_FX_TOL;
     c->max_newton = max_newton;
     c->max_outer = max_outer;
     (void)memcpy(c->weights_nom, w3, sizeof w3);

@@ -65,9 +65,9 @@ static void test_mpsp_config_one_field_at_a_time(void **state)
             c.x0_nom[1] = 0.0;
             c.x0_nom[2] = 0.0;
             break;
-        case 22u: /* the basis phase omega (tf - t_ref) overflows at tf only */
-            c.tf = 1e300;
-            c.h_max = 1e299;
+        case 22u: /* the basis phase omega (tf - t_ref) overflows at tf only (float: 1e30) */
+            c.tf = OGK_TEST_PICK(1e300, 1e30);
+            c.h_max = OGK_TEST_PICK(1e299, 1e29);
             c.fourier_period = 1e-9;
             break;
         default: c.max_newton = 0u; break;
@@ -85,8 +85,8 @@ static void test_mpsp_config_one_field_at_a_time(void **state)
     }
 }
 
-static double traj_t[OGK_MPSP_MAX_NODES];
-static double traj_x[OGK_MPSP_MAX_NODES * 8u];
+static ogk_real_t traj_t[OGK_MPSP_MAX_NODES];
+static ogk_real_t traj_x[OGK_MPSP_MAX_NODES * 8u];
 static uint8_t traj_mode[OGK_MPSP_MAX_NODES];
 
 /* req: OGK-MPSP-009 */
@@ -97,8 +97,8 @@ static void test_mpsp_readouts(void **state)
     size_t count = 0u;
     size_t n;
     size_t i;
-    double x[8];
-    double xn[8];
+    ogk_real_t x[8];
+    ogk_real_t xn[8];
     (void)state;
     OGK_ASSERT_STATUS(ogk_mpsp_state_at(&ctx, 0.5, NULL), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_mpsp_state_at(&ctx, 0.5, x), OGK_E_NOT_INIT); /* no trajectory yet */
@@ -155,9 +155,9 @@ static void test_mpsp_readouts(void **state)
 /* req: OGK-MPSP-002 OGK-MPSP-008 */
 static void test_mpsp_control_rejections(void **state)
 {
-    double lv[3] = {-7.0, -7.0, -7.0};
-    double lvd[3];
-    double w[21];
+    ogk_real_t lv[3] = {-7.0, -7.0, -7.0};
+    ogk_real_t lvd[3];
+    ogk_real_t w[21];
     size_t c;
     (void)state;
     OGK_ASSERT_STATUS(ogk_mpsp_control(&ctx, NULL, 0.0, lv, NULL), OGK_E_NULL);
@@ -167,12 +167,12 @@ static void test_mpsp_control_rejections(void **state)
     OGK_ASSERT_STATUS(ogk_mpsp_control(&ctx, w, 0.0, lv, NULL), OGK_E_NONFINITE);
     OGK_ASSERT_NEAR(lv[0], -7.0, 0.0);
     /* sine weights of 1e308 at t = t_ref: lambda_v = 0 exactly (every sine is 0), its rate
-     * 1e308 (w + 2 w + 3 w) omega overflows */
+     * 1e308 (w + 2 w + 3 w) omega overflows (float: 1e38) */
     (void)memset(w, 0, sizeof w);
     for (c = 0u; c < 3u; ++c) {
-        w[c * 7u + 2u] = 1e308;
-        w[c * 7u + 4u] = 1e308;
-        w[c * 7u + 6u] = 1e308;
+        w[c * 7u + 2u] = OGK_TEST_PICK(1e308, 1e38);
+        w[c * 7u + 4u] = OGK_TEST_PICK(1e308, 1e38);
+        w[c * 7u + 6u] = OGK_TEST_PICK(1e308, 1e38);
     }
     OGK_ASSERT_STATUS(ogk_mpsp_control(&ctx, w, cfg.fourier_t_ref, lv, NULL), OGK_OK);
     OGK_ASSERT_NEAR(lv[0], 0.0, 0.0);
@@ -184,9 +184,9 @@ static void test_mpsp_control_rejections(void **state)
 static void test_mpsp_newton_update_arguments(void **state)
 {
     static ogk_mpsp_t blank; /* never initialised */
-    double dy[OGK_MPSP_NY];
-    double w[21];
-    double lm = 0.25;
+    ogk_real_t dy[OGK_MPSP_NY];
+    ogk_real_t w[21];
+    ogk_real_t lm = 0.25;
     (void)state;
     (void)memset(dy, 0, sizeof dy);
     dy[0] = 1e-3;
@@ -207,22 +207,22 @@ static void test_mpsp_newton_update_arguments(void **state)
 }
 
 /* Partial outputs of ogk_mpsp_step_jacobian and ogk_mpsp_switch_jump are the full call's. */
-static double jx_full[64];
-static double jw_full[8u * 21u];
-static double jx_part[64];
-static double jw_part[8u * 21u];
+static ogk_real_t jx_full[64];
+static ogk_real_t jw_full[8u * 21u];
+static ogk_real_t jx_part[64];
+static ogk_real_t jw_part[8u * 21u];
 
 /* req: OGK-MPSP-003 */
 static void test_mpsp_partial_jacobians(void **state)
 {
-    double x[8];
-    double bad[8];
-    double w_bad[21];
-    double xn[8];
-    double dx_full[8];
-    double dw_full[21];
-    double dx_part[8];
-    double dw_part[21];
+    ogk_real_t x[8];
+    ogk_real_t bad[8];
+    ogk_real_t w_bad[21];
+    ogk_real_t xn[8];
+    ogk_real_t dx_full[8];
+    ogk_real_t dw_full[21];
+    ogk_real_t dx_part[8];
+    ogk_real_t dw_part[21];
     (void)state;
     (void)memcpy(x, x0_3d, sizeof x0_3d);
     x[7] = 0.0;
@@ -278,9 +278,9 @@ static void test_mpsp_partial_jacobians(void **state)
 /* req: OGK-MPSP-003 */
 static void test_mpsp_tangential_switch(void **state)
 {
-    double x[8];
-    double w[21];
-    double jx[64];
+    ogk_real_t x[8];
+    ogk_real_t w[21];
+    ogk_real_t jx[64];
     size_t c;
     (void)state;
     (void)memcpy(x, x0_3d, sizeof x0_3d);
@@ -292,9 +292,9 @@ static void test_mpsp_tangential_switch(void **state)
     OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, w, 1.0, 0.5, x, 1, jx, NULL, NULL, NULL),
                       OGK_E_SINGULAR);
     for (c = 0u; c < 3u; ++c) {
-        w[c * 7u + 2u] = 1e308;
-        w[c * 7u + 4u] = 1e308;
-        w[c * 7u + 6u] = 1e308;
+        w[c * 7u + 2u] = OGK_TEST_PICK(1e308, 1e38);
+        w[c * 7u + 4u] = OGK_TEST_PICK(1e308, 1e38);
+        w[c * 7u + 6u] = OGK_TEST_PICK(1e308, 1e38);
     }
     OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, w, 1.0, cfg.fourier_t_ref, x, 1, jx, NULL, NULL,
                                            NULL),
@@ -334,10 +334,10 @@ static void test_mpsp_segment_tolerance_widened(void **state)
     OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, res.weights, res.lambda_m0, x0_3d, 1.0, &prop),
                       OGK_OK);
     for (i = 0u; i < 3u; ++i) {
-        OGK_ASSERT_NEAR(prop.x_f[i], c.r_f[i], 1e-9);
-        OGK_ASSERT_NEAR(prop.x_f[3u + i], c.v_f[i], 1e-9);
+        OGK_ASSERT_NEAR(prop.x_f[i], c.r_f[i], OGK_TEST_TOL(1e-9, MPSP_FX_TOL));
+        OGK_ASSERT_NEAR(prop.x_f[3u + i], c.v_f[i], OGK_TEST_TOL(1e-9, MPSP_FX_TOL));
     }
-    OGK_ASSERT_NEAR(prop.x_f[7], 0.0, 1e-9);
+    OGK_ASSERT_NEAR(prop.x_f[7], 0.0, OGK_TEST_TOL(1e-9, MPSP_FX_TOL));
 }
 
 int main(void)

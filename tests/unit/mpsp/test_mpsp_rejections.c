@@ -34,17 +34,17 @@ static void test_config_grid_and_phase(void **state)
     ogk_mpsp_t tmp;
     (void)state;
     c = cfg;
-    c.h_max = 1e-300; /* (tf - t0) / h_max far over OGK_MPSP_MAX_STEPS */
+    c.h_max = OGK_TEST_PICK(1e-300, 1e-30); /* (tf - t0) / h_max far over OGK_MPSP_MAX_STEPS */
     OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_E_CONFIG);
     c = cfg;
     c.h_max = 2.0 / 40.5; /* not a whole number of steps: rounded up to 41 */
     OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_OK);
     assert_int_equal(tmp.n_steps, 41u);
     c = cfg;
-    c.fourier_period = DBL_MIN; /* omega = 2 pi / period overflows */
+    c.fourier_period = OGK_REAL_MIN; /* omega = 2 pi / period overflows */
     OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_E_CONFIG);
     c = cfg;
-    c.fourier_t_ref = -DBL_MAX; /* omega (t0 - t_ref) overflows */
+    c.fourier_t_ref = -OGK_REAL_MAX; /* omega (t0 - t_ref) overflows */
     OGK_ASSERT_STATUS(ogk_mpsp_init(&tmp, &c), OGK_E_CONFIG);
     assert_true(tmp.init_marker != OGK_MPSP_INIT_MARKER);
 }
@@ -87,8 +87,8 @@ static void test_config_range_edges(void **state)
 static void test_propagate_rejections(void **state)
 {
     ogk_mpsp_prop_t prop;
-    double x[7];
-    double w[21];
+    ogk_real_t x[7];
+    ogk_real_t w[21];
     (void)state;
     OGK_ASSERT_STATUS(ogk_mpsp_propagate(NULL, w3, 0.0, x0_3d, 1.0, &prop), OGK_E_NULL);
     OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, w3, 0.0, NULL, 1.0, &prop), OGK_E_NULL);
@@ -112,9 +112,9 @@ static void test_propagate_rejections(void **state)
 static void test_readout_rejections(void **state)
 {
     ogk_mpsp_prop_t prop;
-    double t[4];
-    double x[8];
-    double u[3];
+    ogk_real_t t[4];
+    ogk_real_t x[8];
+    ogk_real_t u[3];
     size_t count = 0u;
     (void)state;
     OGK_ASSERT_STATUS(ogk_mpsp_trajectory(NULL, t, NULL, NULL, 4u, &count), OGK_E_NULL);
@@ -133,7 +133,7 @@ static void test_readout_rejections(void **state)
     OGK_ASSERT_STATUS(ogk_mpsp_control(&ctx, w3, NAN, u, NULL), OGK_E_NONFINITE);
     {
         /* finite weights whose sum overflows: never OGK_OK with a non-finite output */
-        double w[21];
+        ogk_real_t w[21];
         size_t i;
         for (i = 0u; i < 21u; ++i) {
             w[i] = DBL_MAX;
@@ -146,9 +146,9 @@ static void test_readout_rejections(void **state)
 /* req: OGK-MPSP-004 */
 static void test_newton_update_rejections(void **state)
 {
-    double dy[OGK_MPSP_NY];
-    double w[21];
-    double lm = 0.0;
+    ogk_real_t dy[OGK_MPSP_NY];
+    ogk_real_t w[21];
+    ogk_real_t lm = 0.0;
     ogk_mpsp_prop_t prop;
     (void)state;
     (void)memset(dy, 0, sizeof dy);
@@ -172,7 +172,7 @@ static void test_newton_update_rejections(void **state)
 static void test_solve_with_failing_propagation(void **state)
 {
     ogk_mpsp_result_t res;
-    double x[7];
+    ogk_real_t x[7];
     size_t i;
     (void)state;
     (void)memcpy(x, x0_3d, sizeof x);
@@ -191,10 +191,10 @@ static void test_solve_with_failing_propagation(void **state)
 /* req: OGK-MPSP-003 */
 static void test_jacobian_and_jump_rejections(void **state)
 {
-    double x[8];
-    double xn[8];
-    double jx[64];
-    double zero_w[21];
+    ogk_real_t x[8];
+    ogk_real_t xn[8];
+    ogk_real_t jx[64];
+    ogk_real_t zero_w[21];
     (void)state;
     (void)memcpy(x, x0_3d, sizeof x0_3d);
     x[7] = 0.0;
