@@ -13,6 +13,17 @@
 #define NMPC_FX_PI 3.14159265358979323846
 #define NMPC_FX_NX OGK_NMPC_NX
 
+/* The solver tolerances the tests set, in the float build (as ogk_test.h's OGK_TEST_TOL; written with
+ * #if because the fuzzer includes this file without it): the float SQP's defects and stationarity stop
+ * near 5e-7 at these unit scales (measured on the radial transfer and Earth to Mars: 1.2e-7 and 4.8e-7
+ * reached, 1e-8 and 1e-10 never), so 1e-5, twenty times that floor, for tol_feas and tol_stat. */
+#if OGK_REAL_SINGLE
+#define NMPC_FX_TOL_F 1.0e-5
+#define NMPC_FX_TOL(tol_double) NMPC_FX_TOL_F
+#else
+#define NMPC_FX_TOL(tol_double) (tol_double)
+#endif
+
 /* Earth to Mars, normalised: T_0, mdot, r_M, theta_M0, n_M; the tests' solver settings. */
 static inline void nmpc_fx_mars(ogk_nmpc_config_t *c, uint32_t nodes)
 {
@@ -25,7 +36,10 @@ static inline void nmpc_fx_mars(ogk_nmpc_config_t *c, uint32_t nodes)
     c->nodes = nodes;
     c->max_iter = 200u;
     c->max_iter_cold = 200u;
-    c->tol_stat = 1.0e-7;
+    c->tol_stat = NMPC_FX_TOL(1.0e-7);
+#if OGK_REAL_SINGLE
+    c->tol_feas = NMPC_FX_TOL_F; /* the default 1e-9 is below float's resolution */
+#endif
 }
 
 /* The phase-matched guess of docs/design/nmpc.md (smoothstep radius, 135 deg). */
@@ -91,8 +105,8 @@ static inline void nmpc_fx_radial(ogk_nmpc_config_t *c, uint32_t nodes, uint32_t
     c->horizon_max = 20.0;
     c->max_iter = max_iter;
     c->max_iter_cold = max_iter;
-    c->tol_feas = 1.0e-10;
-    c->tol_stat = 1.0e-8;
+    c->tol_feas = NMPC_FX_TOL(1.0e-10);
+    c->tol_stat = NMPC_FX_TOL(1.0e-8);
 }
 
 /* Its guess: smoothstep radius over t_guess, accelerate then brake. */

@@ -19,6 +19,12 @@
  *     flying the previous plan with the SAFE flag, bad inputs, reset. */
 #include "ogk_test.h"
 
+/* Central differences in float (ogk_test.h): the step FD_STEP_F = 4e-3 balances the differences'
+ * round-off, eps |f| / h (3e-5 for |f| ~ 1), against the truncation h^2 |f'''| / 6 (3e-6); their
+ * sum, with values up to about 10 (thrust terms over the mass), is bounded by FD_TOL_F = 1e-3. */
+#define FD_STEP_F 4.0e-3
+#define FD_TOL_F 1.0e-3
+
 #include <string.h>
 
 #include "nmpc_fixture.h"
@@ -106,22 +112,27 @@ static void test_config_default_and_init(void **state)
 static void test_model_closed_form(void **state)
 {
     ogk_nmpc_config_t c;
-    const double x[NX] = { 1.2, 0.3, 0.05, 0.9, 0.8 };
-    const double u[1] = { 0.7 };
-    double xdot[NX];
+    const ogk_real_t x[NX] = { 1.2, 0.3, 0.05, 0.9, 0.8 };
+    const ogk_real_t u[1] = { 0.7 };
+    ogk_real_t xdot[NX];
     const double acc = 0.05621056 / 0.8;
     (void)state;
     mars_config(&c, 8u);
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, x, u, xdot), OGK_OK);
     /* eq. (11) and (13) with mu = 1 */
-    OGK_ASSERT_NEAR(xdot[0], 0.05, 1e-15);
-    OGK_ASSERT_NEAR(xdot[1], 0.9 / 1.2, 1e-15);
-    OGK_ASSERT_NEAR(xdot[2], 0.81 / 1.2 - 1.0 / 1.44 + acc * cos(0.7), 1e-15);
-    OGK_ASSERT_NEAR(xdot[3], -0.9 * 0.05 / 1.2 + acc * sin(0.7), 1e-15);
-    OGK_ASSERT_NEAR(xdot[4], -0.05690745, 1e-15);
+    /* float: measured worst 7.5e-10 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(xdot[0], 0.05, OGK_TEST_TOL(1e-15, 1e-8));
+    /* float: measured worst 6e-08 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(xdot[1], 0.9 / 1.2, OGK_TEST_TOL(1e-15, 1e-6));
+    /* float: measured worst 2.2e-08 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(xdot[2], 0.81 / 1.2 - 1.0 / 1.44 + acc * cos(0.7), OGK_TEST_TOL(1e-15, 5e-7));
+    /* float: measured worst 1.5e-09 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(xdot[3], -0.9 * 0.05 / 1.2 + acc * sin(0.7), OGK_TEST_TOL(1e-15, 2e-8));
+    /* float: measured worst 1.1e-09 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(xdot[4], -0.05690745, OGK_TEST_TOL(1e-15, 2e-8));
     {
-        const double bad[NX] = { -1.0, 0.0, 0.0, 1.0, 1.0 };
+        const ogk_real_t bad[NX] = { -1.0, 0.0, 0.0, 1.0, 1.0 };
         OGK_ASSERT_STATUS(ogk_nmpc_model_rhs(&ctx, 0.0, bad, u, xdot), OGK_E_NONFINITE);
     }
 }
@@ -131,10 +142,10 @@ static void test_third_bodies_cartesian(void **state)
 {
     ogk_nmpc_config_t c;
     /* 0.014 LU from the first body at t (its phase 0.1 + 0.37) */
-    const double x[NX] = { 1.01, 0.46, 0.0, 1.0, 1.0 };
-    const double u[1] = { 0.0 };
-    double with_b[NX];
-    double without_b[NX];
+    const ogk_real_t x[NX] = { 1.01, 0.46, 0.0, 1.0, 1.0 };
+    const ogk_real_t u[1] = { 0.0 };
+    ogk_real_t with_b[NX];
+    ogk_real_t without_b[NX];
     const double t = 0.37;
     double ax = 0.0;
     double ay = 0.0;
@@ -160,8 +171,10 @@ static void test_third_bodies_cartesian(void **state)
         ax += -c.body_mu[b] * dx / d3 - c.body_mu[b] * bx / r3;
         ay += -c.body_mu[b] * dy / d3 - c.body_mu[b] * by / r3;
     }
-    OGK_ASSERT_REL(with_b[2] - without_b[2], ax * cos(x[1]) + ay * sin(x[1]), 1e-9, 1e-12);
-    OGK_ASSERT_REL(with_b[3] - without_b[3], -ax * sin(x[1]) + ay * cos(x[1]), 1e-9, 1e-12);
+    /* float: measured worst relative 1.9e-07 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_REL(with_b[2] - without_b[2], ax * cos(x[1]) + ay * sin(x[1]), OGK_TEST_TOL(1e-9, 2e-6), 1e-12);
+    /* float: measured worst relative 1.1e-06 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_REL(with_b[3] - without_b[3], -ax * sin(x[1]) + ay * cos(x[1]), OGK_TEST_TOL(1e-9, 2e-5), 1e-12);
     /* Earth's pull at 0.01 LU dominates the field there: the check is not vacuous */
     assert_true(fabs(ax) > 1.0e-2);
 }
@@ -170,18 +183,18 @@ static void test_third_bodies_cartesian(void **state)
 static void test_interval_sensitivities(void **state)
 {
     ogk_nmpc_config_t c;
-    const double x0[NX] = { 1.01, 0.05, 0.02, 0.98, 0.9 };
-    const double u0[2] = { 0.7, 0.6 };
-    const double u1[2] = { 1.9, 0.3 };
+    const ogk_real_t x0[NX] = { 1.01, 0.05, 0.02, 0.98, 0.9 };
+    const ogk_real_t u0[2] = { 0.7, 0.6 };
+    const ogk_real_t u1[2] = { 1.9, 0.3 };
     const double t0 = 0.3;
     const double h = 0.2;
-    const double eps = 1.0e-6;
-    double x1[NX];
-    double fx[NX * NX];
-    double fu0[NX * 2];
-    double fu1[NX * 2];
-    double fh[NX];
-    double ft[NX];
+    const double eps = OGK_TEST_PICK(1.0e-6, FD_STEP_F);
+    ogk_real_t x1[NX];
+    ogk_real_t fx[NX * NX];
+    ogk_real_t fu0[NX * 2];
+    ogk_real_t fu1[NX * 2];
+    ogk_real_t fh[NX];
+    ogk_real_t ft[NX];
     double worst = 0.0;
     int col;
     (void)state;
@@ -189,7 +202,7 @@ static void test_interval_sensitivities(void **state)
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_interval(&ctx, t0, h, x0, u0, u1, x1, fx, fu0, fu1, fh, ft), OGK_OK);
     for (col = 0; col < 11; ++col) {
-        double xp[NX], xm[NX], u0p[2], u0m[2], u1p[2], u1m[2], a[NX], bm[NX];
+        ogk_real_t xp[NX], xm[NX], u0p[2], u0m[2], u1p[2], u1m[2], a[NX], bm[NX];
         double tp = t0, tm = t0, hp = h, hm = h;
         int i;
         (void)memcpy(xp, x0, sizeof xp);
@@ -213,7 +226,7 @@ static void test_interval_sensitivities(void **state)
             else if (col < 9) { an = fu1[i * 2 + col - 7]; }
             else if (col == 9) { an = fh[i]; }
             else { an = ft[i]; }
-            OGK_ASSERT_NEAR(an, fd, 2e-8);
+            OGK_ASSERT_NEAR(an, fd, OGK_TEST_TOL(2e-8, FD_TOL_F));
             worst = fmax(worst, fabs(an));
         }
     }
@@ -221,15 +234,15 @@ static void test_interval_sensitivities(void **state)
 }
 
 /* g = w . dF/dp at p = (x0, u0, u1, h, t0) (5 + 2 nu + 2 entries). */
-static void interval_gradient(double t0, double h, const double *x0, const double *u0, const double *u1, /* NOLINT(bugprone-easily-swappable-parameters): the order of ogk_nmpc_interval */
-                              const double *w, uint32_t nu, double *g)
+static void interval_gradient(ogk_real_t t0, ogk_real_t h, const ogk_real_t *x0, const ogk_real_t *u0, const ogk_real_t *u1, /* NOLINT(bugprone-easily-swappable-parameters): the order of ogk_nmpc_interval */
+                              const ogk_real_t *w, uint32_t nu, double *g)
 {
-    double x1[NX];
-    double fx[NX * NX];
-    double fu0[NX * 2];
-    double fu1[NX * 2];
-    double fh[NX];
-    double ft[NX];
+    ogk_real_t x1[NX];
+    ogk_real_t fx[NX * NX];
+    ogk_real_t fu0[NX * 2];
+    ogk_real_t fu1[NX * 2];
+    ogk_real_t fh[NX];
+    ogk_real_t ft[NX];
     size_t j;
     size_t i;
     OGK_ASSERT_STATUS(ogk_nmpc_interval(&ctx, t0, h, x0, u0, u1, x1, fx, fu0, fu1, fh, ft), OGK_OK);
@@ -250,27 +263,27 @@ static void interval_gradient(double t0, double h, const double *x0, const doubl
 
 /* The weighted second derivatives of the interval in ctx against central
  * differences of its gradient; returns the largest |entry|. */
-static double check_interval_hess(uint32_t nu, const double *u0, const double *u1)
+static ogk_real_t check_interval_hess(uint32_t nu, const ogk_real_t *u0, const ogk_real_t *u1)
 {
-    const double x0[NX] = { 1.01, 0.05, 0.02, 0.98, 0.9 };
-    const double w[NX] = { 0.7, -1.3, 2.1, 0.4, -0.9 };
+    const ogk_real_t x0[NX] = { 1.01, 0.05, 0.02, 0.98, 0.9 };
+    const ogk_real_t w[NX] = { 0.7, -1.3, 2.1, 0.4, -0.9 };
     const double t0 = 0.3;
     const double h = 0.2;
-    const double eps = 1.0e-5;
+    const double eps = OGK_TEST_PICK(1.0e-5, FD_STEP_F);
     const size_t nd = NX + (2u * nu) + 2u;
-    double hess[11 * 11];
+    ogk_real_t hess[11 * 11];
     double worst = 0.0;
     size_t col;
     OGK_ASSERT_STATUS(ogk_nmpc_interval_hess(&ctx, t0, h, x0, u0, u1, w, hess), OGK_OK);
     for (col = 0u; col < nd; ++col) {
-        double p_plus[11];
-        double p_minus[11];
+        ogk_real_t p_plus[11];
+        ogk_real_t p_minus[11];
         double gp[11];
         double gm[11];
         size_t i;
         (void)memcpy(p_plus, x0, sizeof x0);
-        (void)memcpy(&p_plus[NX], u0, nu * sizeof(double));
-        (void)memcpy(&p_plus[NX + nu], u1, nu * sizeof(double));
+        (void)memcpy(&p_plus[NX], u0, nu * sizeof(ogk_real_t));
+        (void)memcpy(&p_plus[NX + nu], u1, nu * sizeof(ogk_real_t));
         p_plus[NX + 2u * nu] = h;
         p_plus[NX + 2u * nu + 1u] = t0;
         (void)memcpy(p_minus, p_plus, sizeof p_plus);
@@ -280,7 +293,7 @@ static double check_interval_hess(uint32_t nu, const double *u0, const double *u
         interval_gradient(p_minus[nd - 1u], p_minus[nd - 2u], p_minus, &p_minus[NX], &p_minus[NX + nu], w, nu, gm);
         for (i = 0u; i < nd; ++i) {
             const double fd = (gp[i] - gm[i]) / (2.0 * eps);
-            OGK_ASSERT_NEAR(hess[i * nd + col], fd, 1e-7 * (1.0 + fabs(fd)));
+            OGK_ASSERT_NEAR(hess[i * nd + col], fd, OGK_TEST_TOL(1e-7, FD_TOL_F) * (1.0 + fabs(fd)));
             assert_true(hess[i * nd + col] == hess[col * nd + i]); /* symmetric */
             worst = fmax(worst, fabs(hess[i * nd + col]));
         }
@@ -292,10 +305,10 @@ static double check_interval_hess(uint32_t nu, const double *u0, const double *u
 static void test_interval_second_derivatives(void **state)
 {
     ogk_nmpc_config_t c;
-    const double u0[2] = { 0.7, 0.6 };
-    const double u1[2] = { 1.9, 0.3 };
-    const double x0[NX] = { 1.01, 0.05, 0.02, 0.98, 0.9 };
-    double hess[11 * 11];
+    const ogk_real_t u0[2] = { 0.7, 0.6 };
+    const ogk_real_t u1[2] = { 1.9, 0.3 };
+    const ogk_real_t x0[NX] = { 1.01, 0.05, 0.02, 0.98, 0.9 };
+    ogk_real_t hess[11 * 11];
     (void)state;
     /* solar-electric, throttled, two third bodies: every entry of eq. (11)-(14)'s Hessian */
     solar_two_bodies_config(&c);
@@ -335,7 +348,7 @@ static double radial_transfer(uint32_t nodes, uint32_t hessian, uint32_t *iterat
         return -1.0;
     }
     *iterations = rep.sqp_iterations;
-    assert_true(rep.feas <= 1.0e-10);
+    OGK_ASSERT_LE(rep.feas, OGK_TEST_TOL(1.0e-10, NMPC_FX_TOL_F));
     return rep.t_f;
 }
 
@@ -401,10 +414,10 @@ static void test_sqp_exact_hessian(void **state)
         mars_config(&c, 8u);
         c.strategy = strategy;
         c.tol_obj = 0.0;
-        c.tol_stat = 1.0e-9;
+        c.tol_stat = OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F);
         OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx2, &c), OGK_OK);
         c.tol_obj = 1.0e-7;
-        c.tol_stat = 1.0e-7;
+        c.tol_stat = OGK_TEST_TOL(1.0e-7, NMPC_FX_TOL_F);
         c.hessian = OGK_NMPC_HESSIAN_EXACT;
         OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
         mars_guess(&c, 8u, 6.4, &plan);
@@ -438,7 +451,7 @@ static void exact_cncn_open_loop(uint32_t nodes, ogk_nmpc_input_t *in, ogk_nmpc_
     mars_config(&c, nodes);
     c.strategy = OGK_NMPC_CNCN;
     c.tol_obj = 1.0e-7;
-    c.tol_stat = 1.0e-7;
+    c.tol_stat = OGK_TEST_TOL(1.0e-7, NMPC_FX_TOL_F);
     c.hessian = OGK_NMPC_HESSIAN_EXACT;
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     mars_guess(&c, nodes, 6.4, &plan);
@@ -448,7 +461,7 @@ static void exact_cncn_open_loop(uint32_t nodes, ogk_nmpc_input_t *in, ogk_nmpc_
     OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, in, rep), OGK_OK);
     (void)memcpy(&ctx2, &ctx, sizeof ctx2);
     ctx2.cfg.tol_obj = 0.0;
-    ctx2.cfg.tol_stat = 1.0e-9;
+    ctx2.cfg.tol_stat = OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F);
 }
 
 /* The exact Hessian held for the last step (nmpc_sqp.c, HESS_HOLD) at the
@@ -469,7 +482,8 @@ static void test_sqp_exact_hessian_held(void **state)
                   (unsigned)rep.sqp_iterations, rep_ref.t_f, (unsigned)rep_ref.sqp_iterations);
     assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
     assert_true((rep_ref.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
-    OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, 1.0e-9);
+    /* float: measured worst 1.3e-05 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, OGK_TEST_TOL(1.0e-9, 2e-4));
     assert_true(rep.feas <= ctx.cfg.tol_feas);
     assert_true(rep.sqp_iterations <= rep_ref.sqp_iterations);
 }
@@ -479,10 +493,10 @@ static double move_ulps(double x, int k)
 {
     int i;
     for (i = 0; i < k; ++i) {
-        x = nextafter(x, INFINITY);
+        x = OGK_TEST_NEXTAFTER(x, INFINITY);
     }
     for (i = 0; i > k; --i) {
-        x = nextafter(x, -INFINITY);
+        x = OGK_TEST_NEXTAFTER(x, -INFINITY);
     }
     return x;
 }
@@ -522,7 +536,8 @@ static void test_sqp_exact_hessian_held_contracting(void **state)
     print_message("exact CNCN replan N = 12: held t_f %.13f (%u SQP iterations), never held %.13f (%u)\n", rep.t_f,
                   (unsigned)rep.sqp_iterations, rep_ref.t_f, (unsigned)rep_ref.sqp_iterations);
     assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
-    OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, 1.0e-9);
+    /* float: measured worst 0.00019 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, OGK_TEST_TOL(1.0e-9, 2e-3));
     assert_true(rep.feas <= ctx.cfg.tol_feas);
     assert_true((rep.sqp_iterations + 3u) <= rep_ref.sqp_iterations);
     for (comp = 0u; comp <= NX; ++comp) {
@@ -618,14 +633,15 @@ static void test_strategies_and_command(void **state)
     (void)memcpy(in.x, plan.x, sizeof in.x);
     OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
     assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
-    assert_true(rep.feas <= 1.0e-9);
+    OGK_ASSERT_LE(rep.feas, OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F));
     OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan), OGK_OK);
     h = plan.horizon / 8.0;
     t_f = plan.t0 + plan.horizon;
     OGK_ASSERT_NEAR(rep.t_next, h, 1e-14);
     /* the command interpolates the node controls */
     OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, 0.25 * h, &cmd), OGK_OK);
-    OGK_ASSERT_NEAR(cmd.alpha, 0.75 * plan.u[0] + 0.25 * plan.u[1], 1e-14);
+    /* float: measured worst 6e-08 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(cmd.alpha, 0.75 * plan.u[0] + 0.25 * plan.u[1], OGK_TEST_TOL(1e-14, 1e-6));
     OGK_ASSERT_NEAR(cmd.throttle, 1.0, 0.0);
     assert_true((cmd.flags & OGK_THRUST_FLAG_ENGINE_ON) != 0u);
     OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, t_f + 1.0, &cmd), OGK_OK);
@@ -650,7 +666,8 @@ static void test_strategies_and_command(void **state)
     OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx2, &in, &rep), OGK_OK);
     assert_int_equal((int)rep.nodes, 8);
     assert_true((rep.flags & OGK_NMPC_FLAG_REGRIDDED) != 0u);
-    OGK_ASSERT_NEAR(rep.t_next, h + (rep.t_f - h) / 8.0, 1e-12);
+    /* float: measured worst 3.7e-08 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(rep.t_next, h + (rep.t_f - h) / 8.0, OGK_TEST_TOL(1e-12, 5e-7));
     /* another grid, another discrete optimum: within 0.3 d here */
     OGK_ASSERT_NEAR(rep.t_f, t_f, 5e-3);
 }
@@ -743,7 +760,8 @@ static void test_failure_and_bad_input(void **state)
     assert_true((rep.flags & OGK_NMPC_FLAG_STALE) != 0u);
     OGK_ASSERT_STATUS(ogk_nmpc_command(&ctx, 0.1, &cmd), OGK_OK);
     assert_true((cmd.flags & OGK_THRUST_FLAG_SAFE) != 0u);
-    OGK_ASSERT_NEAR(cmd.alpha, 0.75 * PI, 1e-15); /* the guess, still flown */
+    /* float: measured worst 6e-09 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(cmd.alpha, 0.75 * PI, OGK_TEST_TOL(1e-15, 1e-7)); /* the guess, still flown */
     alpha_before = cmd.alpha;
 
     /* bad inputs: specific codes, the plan untouched */
@@ -816,7 +834,7 @@ static void keepout_detour(uint32_t hessian)
     for (k = 1u; k < 12u; ++k) {
         const double r = plan2.x[k * NX];
         const double th = plan2.x[k * NX + 1u];
-        assert_true(sqrt(r * r + 1.5625 - 2.5 * r * cos(th - 0.03)) >= radius - 1.0e-8);
+        assert_true(sqrt(r * r + 1.5625 - 2.5 * r * cos(th - 0.03)) >= radius - OGK_TEST_TOL(1.0e-8, NMPC_FX_TOL_F));
     }
     print_message("keep-out detour (%s Hessian): t_f %.8f against %.8f unconstrained, %u SQP iterations\n",
                   (hessian == OGK_NMPC_HESSIAN_EXACT) ? "exact" : "BFGS", rep.t_f, t_free,
@@ -868,9 +886,10 @@ static void terminal_set_radial(uint32_t hessian)
     assert_true(rep.t_f <= t_star * 1.003);
     assert_true(rep.t_f < 2.0 * sqrt(0.5 / a));
     /* it arrives on the box: the near face in r, moving out at nu */
-    OGK_ASSERT_NEAR(plan2.x[20u * NX], 1.5 - delta, 1.0e-9);
+    /* float: measured worst 4.8e-08 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(plan2.x[20u * NX], 1.5 - delta, OGK_TEST_TOL(1.0e-9, 5e-7));
     OGK_ASSERT_NEAR(plan2.x[20u * NX + 2u], nu, 1.0e-9);
-    assert_true(rep.feas <= 1.0e-10);
+    OGK_ASSERT_LE(rep.feas, OGK_TEST_TOL(1.0e-10, NMPC_FX_TOL_F));
 }
 
 /* req: OGK-NMPC-013 */
@@ -968,8 +987,8 @@ static void test_keepout_along_arcs(void **state)
         closest_node = fmin(closest_node, sqrt(rn * rn + r_b * r_b - 2.0 * rn * r_b * cos(thn - phase)));
         for (j = 1u; j < steps; ++j) {
             const double frac = (double)j / (double)steps;
-            const double u1 = plan2.u[k] + (frac * (plan2.u[k + 1u] - plan2.u[k]));
-            double xs[NX];
+            const ogk_real_t u1 = plan2.u[k] + (frac * (plan2.u[k + 1u] - plan2.u[k]));
+            ogk_real_t xs[NX];
             double r;
             double th;
             OGK_ASSERT_STATUS(ogk_nmpc_interval(&ctx, plan2.t0 + ((double)k * h), frac * h, &plan2.x[k * NX],
@@ -995,11 +1014,11 @@ static void test_body_release(void **state)
     ogk_nmpc_config_t c;
     ogk_nmpc_input_t in;
     ogk_nmpc_report_t rep;
-    const double x_near[NX] = { 1.0, 0.0, 0.0, 1.0, 1.0 };
-    const double u[2] = { 1.0, 1.0 };
-    double f_on[NX];
-    double f_off[NX];
-    double f_none[NX];
+    const ogk_real_t x_near[NX] = { 1.0, 0.0, 0.0, 1.0, 1.0 };
+    const ogk_real_t u[2] = { 1.0, 1.0 };
+    ogk_real_t f_on[NX];
+    ogk_real_t f_off[NX];
+    ogk_real_t f_none[NX];
     (void)state;
     mars_config(&c, 8u);
     c.n_bodies = 1u;

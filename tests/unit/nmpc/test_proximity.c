@@ -16,6 +16,16 @@
  *     the commands. */
 #include "ogk_test.h"
 
+/* Central differences in float (ogk_test.h): the step FD_STEP_F = 4e-3 balances the differences'
+ * round-off, eps |f| / h (3e-5 for |f| ~ 1), against the truncation h^2 |f'''| / 6 (3e-6); their
+ * sum, with values up to about 10 (thrust terms over the mass), is bounded by FD_TOL_F = 1e-3. */
+#define FD_STEP_F 4.0e-3
+#define FD_TOL_F 1.0e-3
+
+/* The SQP's tolerances in the float build: 1e-5, twenty times the defects' and stationarity's
+ * float floor (NMPC_FX_TOL_F of nmpc_fixture.h, measured there). */
+#define NMPC_FX_TOL_F 1.0e-5
+
 #include <string.h>
 
 #include "ogk/nmpc.h"
@@ -34,7 +44,7 @@ static ogk_nmpc_plan_t free_opt;
 static ogk_nmpc_plan_t scaled;
 
 /* A deterministic uniform draw in [lo, hi) (a 64-bit LCG: the same points on every target). */
-static double draw(uint64_t *s, double lo, double hi)
+static ogk_real_t draw(uint64_t *s, ogk_real_t lo, ogk_real_t hi)
 {
     *s = (*s * 6364136223846793005ull) + 1442695040888963407ull;
     return lo + ((hi - lo) * ((double)(*s >> 11) / 9007199254740992.0));
@@ -58,7 +68,7 @@ static void test_model(ogk_prox_model_t *m)
     m->keepout_radius[1] = 0.2;
 }
 
-static void random_point(uint64_t *s, double *x, double *u)
+static void random_point(uint64_t *s, ogk_real_t *x, ogk_real_t *u)
 {
     x[0] = draw(s, -2.0, 2.0);
     x[1] = draw(s, -2.0, 2.0);
@@ -80,23 +90,25 @@ static void test_dynamics_closed_form(void **state)
     assert_int_equal((int)ogk_prox_problem.structure(&m, 2u), 0);
     assert_null(ogk_prox_problem.update);
     for (i = 0; i < 50; ++i) {
-        double x[NX];
-        double u[2];
-        double xd[NX];
-        double xd_trig[NX];
-        double xd_nu1[NX];
-        double trig[2];
+        ogk_real_t x[NX];
+        ogk_real_t u[2];
+        ogk_real_t xd[NX];
+        ogk_real_t xd_trig[NX];
+        ogk_real_t xd_nu1[NX];
+        ogk_real_t trig[2];
         random_point(&s, x, u);
-        trig[0] = cos(u[0]);
-        trig[1] = sin(u[0]);
+        trig[0] = OGK_COS(u[0]); /* the build's cosine, as the kernel's */
+        trig[1] = OGK_SIN(u[0]);
         OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, 2u, 0.7, x, u, NULL, xd, NULL, NULL, NULL), OGK_OK);
         {
-            const double n = m.mean_motion;
-            const double a = u[1] * m.thrust_max / x[4];
+            const ogk_real_t n = m.mean_motion;
+            const ogk_real_t a = u[1] * m.thrust_max / x[4];
             OGK_ASSERT_NEAR(xd[0], x[2], 0.0);
             OGK_ASSERT_NEAR(xd[1], x[3], 0.0);
-            OGK_ASSERT_NEAR(xd[2], (3.0 * n * n * x[0]) + (2.0 * n * x[3]) + (a * cos(u[0])), 1e-15);
-            OGK_ASSERT_NEAR(xd[3], (-2.0 * n * x[2]) + (a * sin(u[0])), 1e-15);
+            /* float: measured worst 1.1e-06 (host; M4F in make unit-errors), tolerance 10x */
+            OGK_ASSERT_NEAR(xd[2], (3.0 * n * n * x[0]) + (2.0 * n * x[3]) + (a * cos(u[0])), OGK_TEST_TOL(1e-15, 2e-5));
+            /* float: measured worst 1.3e-07 (host; M4F in make unit-errors), tolerance 10x */
+            OGK_ASSERT_NEAR(xd[3], (-2.0 * n * x[2]) + (a * sin(u[0])), OGK_TEST_TOL(1e-15, 2e-6));
             OGK_ASSERT_NEAR(xd[4], -u[1] * m.mass_flow_max, 0.0);
         }
         /* the caller's cos / sin are used as given */
@@ -104,28 +116,29 @@ static void test_dynamics_closed_form(void **state)
         assert_true(memcmp(xd, xd_trig, sizeof(xd)) == 0);
         /* nu = 1: full throttle */
         OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, 1u, 0.7, x, u, NULL, xd_nu1, NULL, NULL, NULL), OGK_OK);
-        OGK_ASSERT_NEAR(xd_nu1[3], (-2.0 * m.mean_motion * x[2]) + (m.thrust_max / x[4] * sin(u[0])), 1e-15);
+        /* float: measured worst 1.6e-07 (host; M4F in make unit-errors), tolerance 10x */
+        OGK_ASSERT_NEAR(xd_nu1[3], (-2.0 * m.mean_motion * x[2]) + (m.thrust_max / x[4] * sin(u[0])), OGK_TEST_TOL(1e-15, 2e-6));
         OGK_ASSERT_NEAR(xd_nu1[4], -m.mass_flow_max, 0.0);
     }
     /* the unforced motion from (x, y, v_x, v_y) over t against the CW closed form
      * (Clohessy & Wiltshire 1960), RK4 on the callback with 400 steps */
     {
-        const double n = m.mean_motion;
-        const double t_end = 2.5;
-        const double x0[NX] = { -0.3, 1.2, 0.4, -0.2, 1.0 };
-        const double u0[2] = { 0.0, 0.0 };
+        const ogk_real_t n = m.mean_motion;
+        const ogk_real_t t_end = 2.5;
+        const ogk_real_t x0[NX] = { -0.3, 1.2, 0.4, -0.2, 1.0 };
+        const ogk_real_t u0[2] = { 0.0, 0.0 };
         const int steps = 400;
-        const double h = t_end / (double)steps;
-        double x[NX];
+        const ogk_real_t h = t_end / (ogk_real_t)steps;
+        ogk_real_t x[NX];
         int k;
         int j;
         (void)memcpy(x, x0, sizeof(x));
         for (k = 0; k < steps; ++k) {
-            double k1[NX];
-            double k2[NX];
-            double k3[NX];
-            double k4[NX];
-            double y[NX];
+            ogk_real_t k1[NX];
+            ogk_real_t k2[NX];
+            ogk_real_t k3[NX];
+            ogk_real_t k4[NX];
+            ogk_real_t y[NX];
             OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, 2u, 0.0, x, u0, NULL, k1, NULL, NULL, NULL), OGK_OK);
             for (j = 0; j < (int)NX; ++j) { y[j] = x[j] + (0.5 * h * k1[j]); }
             OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, 2u, 0.0, y, u0, NULL, k2, NULL, NULL, NULL), OGK_OK);
@@ -138,25 +151,29 @@ static void test_dynamics_closed_form(void **state)
             }
         }
         {
-            const double c = cos(n * t_end);
-            const double sn = sin(n * t_end);
-            const double xe = ((4.0 - (3.0 * c)) * x0[0]) + ((sn / n) * x0[2]) + ((2.0 * (1.0 - c) / n) * x0[3]);
-            const double ye = (6.0 * (sn - (n * t_end)) * x0[0]) + x0[1] - ((2.0 * (1.0 - c) / n) * x0[2])
+            const ogk_real_t c = cos(n * t_end);
+            const ogk_real_t sn = sin(n * t_end);
+            const ogk_real_t xe = ((4.0 - (3.0 * c)) * x0[0]) + ((sn / n) * x0[2]) + ((2.0 * (1.0 - c) / n) * x0[3]);
+            const ogk_real_t ye = (6.0 * (sn - (n * t_end)) * x0[0]) + x0[1] - ((2.0 * (1.0 - c) / n) * x0[2])
                 + ((((4.0 * sn) - (3.0 * n * t_end)) / n) * x0[3]);
-            const double vxe = (3.0 * n * sn * x0[0]) + (c * x0[2]) + (2.0 * sn * x0[3]);
-            const double vye = (-6.0 * n * (1.0 - c) * x0[0]) - (2.0 * sn * x0[2]) + (((4.0 * c) - 3.0) * x0[3]);
-            OGK_ASSERT_NEAR(x[0], xe, 1e-9);
-            OGK_ASSERT_NEAR(x[1], ye, 1e-9);
-            OGK_ASSERT_NEAR(x[2], vxe, 1e-9);
-            OGK_ASSERT_NEAR(x[3], vye, 1e-9);
+            const ogk_real_t vxe = (3.0 * n * sn * x0[0]) + (c * x0[2]) + (2.0 * sn * x0[3]);
+            const ogk_real_t vye = (-6.0 * n * (1.0 - c) * x0[0]) - (2.0 * sn * x0[2]) + (((4.0 * c) - 3.0) * x0[3]);
+            /* float: measured worst 2.4e-07 (host; M4F in make unit-errors), tolerance 10x */
+            OGK_ASSERT_NEAR(x[0], xe, OGK_TEST_TOL(1e-9, 5e-6));
+            /* float: measured worst 9.5e-07 (host; M4F in make unit-errors), tolerance 10x */
+            OGK_ASSERT_NEAR(x[1], ye, OGK_TEST_TOL(1e-9, 1e-5));
+            /* float: measured worst 4.9e-07 (host; M4F in make unit-errors), tolerance 10x */
+            OGK_ASSERT_NEAR(x[2], vxe, OGK_TEST_TOL(1e-9, 5e-6));
+            /* float: measured worst 1.4e-06 (host; M4F in make unit-errors), tolerance 10x */
+            OGK_ASSERT_NEAR(x[3], vye, OGK_TEST_TOL(1e-9, 2e-5));
             OGK_ASSERT_NEAR(x[4], x0[4], 0.0);
         }
     }
     /* outside the domain: m <= 0, NaN, an overflow */
     {
-        double x[NX] = { 0.1, 0.2, 0.3, 0.4, 0.0 };
-        const double u[2] = { 0.3, 0.5 };
-        double xd[NX];
+        ogk_real_t x[NX] = { 0.1, 0.2, 0.3, 0.4, 0.0 };
+        const ogk_real_t u[2] = { 0.3, 0.5 };
+        ogk_real_t xd[NX];
         OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, 2u, 0.0, x, u, NULL, xd, NULL, NULL, NULL), OGK_E_NONFINITE);
         x[4] = NAN;
         OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, 2u, 0.0, x, u, NULL, xd, NULL, NULL, NULL), OGK_E_NONFINITE);
@@ -169,20 +186,20 @@ static void test_dynamics_closed_form(void **state)
 }
 
 /* The full Jacobian in z = (x, u, t) of f, from jx, ju, jt (zeroed first, as the solver does). */
-static ogk_status jacobian_z(const ogk_prox_model_t *m, uint32_t nu, const double *x, const double *u,
-                             double jz[NX][NZ])
+static ogk_status jacobian_z(const ogk_prox_model_t *m, uint32_t nu, const ogk_real_t *x, const ogk_real_t *u,
+                             ogk_real_t jz[NX][NZ])
 {
-    double xd[NX];
-    double jx[NX * NX];
-    double ju[NX * 2u];
-    double jt[NX];
+    ogk_real_t xd[NX];
+    ogk_real_t jx[NX * NX];
+    ogk_real_t ju[NX * 2u];
+    ogk_real_t jt[NX];
     size_t r;
     size_t c;
     ogk_status st;
     (void)memset(jx, 0, sizeof(jx));
     (void)memset(ju, 0, sizeof(ju));
     (void)memset(jt, 0, sizeof(jt));
-    (void)memset(jz, 0, NX * NZ * sizeof(double));
+    (void)memset(jz, 0, NX * NZ * sizeof(ogk_real_t));
     st = ogk_prox_problem.dynamics(m, nu, 0.4, x, u, NULL, xd, jx, ju, jt);
     for (r = 0u; r < NX; ++r) {
         for (c = 0u; c < NX; ++c) {
@@ -197,7 +214,7 @@ static ogk_status jacobian_z(const ogk_prox_model_t *m, uint32_t nu, const doubl
 }
 
 /* z's entry i of the point (x, u, t) moved by d. */
-static void move(double *x, double *u, double *t, uint32_t nu, size_t i, double d)
+static void move(ogk_real_t *x, ogk_real_t *u, ogk_real_t *t, uint32_t nu, size_t i, ogk_real_t d)
 {
     if (i < NX) {
         x[i] += d;
@@ -219,23 +236,23 @@ static void test_jacobians_central_differences(void **state)
     test_model(&m);
     for (nu = 1u; nu <= 2u; ++nu) {
         for (i = 0; i < 40; ++i) {
-            double x[NX];
-            double u[2];
-            double jz[NX][NZ];
+            ogk_real_t x[NX];
+            ogk_real_t u[2];
+            ogk_real_t jz[NX][NZ];
             size_t c;
             size_t r;
             random_point(&s, x, u);
             OGK_ASSERT_STATUS(jacobian_z(&m, nu, x, u, jz), OGK_OK);
             for (c = 0u; c <= (NX + nu); ++c) {
-                const double e = 1.0e-6;
-                double xp[NX];
-                double up[2];
-                double xm[NX];
-                double um[2];
-                double tp = 0.4;
-                double tm = 0.4;
-                double fp[NX];
-                double fm[NX];
+                const ogk_real_t e = OGK_TEST_PICK(1.0e-6, FD_STEP_F);
+                ogk_real_t xp[NX];
+                ogk_real_t up[2];
+                ogk_real_t xm[NX];
+                ogk_real_t um[2];
+                ogk_real_t tp = 0.4;
+                ogk_real_t tm = 0.4;
+                ogk_real_t fp[NX];
+                ogk_real_t fm[NX];
                 (void)memcpy(xp, x, sizeof(x));
                 (void)memcpy(xm, x, sizeof(x));
                 (void)memcpy(up, u, sizeof(u));
@@ -245,7 +262,7 @@ static void test_jacobians_central_differences(void **state)
                 OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, nu, tp, xp, up, NULL, fp, NULL, NULL, NULL), OGK_OK);
                 OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, nu, tm, xm, um, NULL, fm, NULL, NULL, NULL), OGK_OK);
                 for (r = 0u; r < NX; ++r) {
-                    OGK_ASSERT_NEAR(jz[r][c], (fp[r] - fm[r]) / (2.0 * e), 1e-8);
+                    OGK_ASSERT_NEAR(jz[r][c], (fp[r] - fm[r]) / (2.0 * e), OGK_TEST_TOL(1e-8, FD_TOL_F));
                 }
             }
         }
@@ -263,11 +280,11 @@ static void test_hessian_central_differences(void **state)
     test_model(&m);
     for (nu = 1u; nu <= 2u; ++nu) {
         for (i = 0; i < 40; ++i) {
-            double x[NX];
-            double u[2];
-            double kappa[NX];
-            double hz[NZ * NZ];
-            double trig[2];
+            ogk_real_t x[NX];
+            ogk_real_t u[2];
+            ogk_real_t kappa[NX];
+            ogk_real_t hz[NZ * NZ];
+            ogk_real_t trig[2];
             size_t r;
             size_t c;
             size_t q;
@@ -275,29 +292,29 @@ static void test_hessian_central_differences(void **state)
             for (r = 0u; r < NX; ++r) {
                 kappa[r] = draw(&s, -2.0, 2.0);
             }
-            trig[0] = cos(u[0]);
-            trig[1] = sin(u[0]);
+            trig[0] = OGK_COS(u[0]); /* the build's cosine, as the kernel's */
+            trig[1] = OGK_SIN(u[0]);
             /* the caller zeroes hz (ogk/ocp.h) */
             (void)memset(hz, 0, sizeof(hz));
             ogk_prox_problem.dynamics_hess(&m, nu, 0.4, x, u, trig, kappa, hz);
             {
                 /* trig NULL: computed there, the same bits */
-                double hz2[NZ * NZ];
+                ogk_real_t hz2[NZ * NZ];
                 (void)memset(hz2, 0, sizeof(hz2));
                 ogk_prox_problem.dynamics_hess(&m, nu, 0.4, x, u, NULL, kappa, hz2);
                 assert_true(memcmp(hz, hz2, sizeof(hz)) == 0);
             }
             /* column c of the Hessian = d/dz_c of the gradient kappa . J(z) */
             for (c = 0u; c <= (NX + nu); ++c) {
-                const double e = 1.0e-6;
-                double xp[NX];
-                double up[2];
-                double xm[NX];
-                double um[2];
-                double tp = 0.4;
-                double tm = 0.4;
-                double jp[NX][NZ];
-                double jm[NX][NZ];
+                const ogk_real_t e = OGK_TEST_PICK(1.0e-6, FD_STEP_F);
+                ogk_real_t xp[NX];
+                ogk_real_t up[2];
+                ogk_real_t xm[NX];
+                ogk_real_t um[2];
+                ogk_real_t tp = 0.4;
+                ogk_real_t tm = 0.4;
+                ogk_real_t jp[NX][NZ];
+                ogk_real_t jm[NX][NZ];
                 (void)memcpy(xp, x, sizeof(x));
                 (void)memcpy(xm, x, sizeof(x));
                 (void)memcpy(up, u, sizeof(u));
@@ -307,12 +324,13 @@ static void test_hessian_central_differences(void **state)
                 OGK_ASSERT_STATUS(jacobian_z(&m, nu, xp, up, jp), OGK_OK);
                 OGK_ASSERT_STATUS(jacobian_z(&m, nu, xm, um, jm), OGK_OK);
                 for (r = 0u; r <= (NX + nu); ++r) {
-                    double d = 0.0;
-                    const double h_rc = (r <= c) ? hz[(r * NZ) + c] : hz[(c * NZ) + r];
+                    ogk_real_t d = 0.0;
+                    const ogk_real_t h_rc = (r <= c) ? hz[(r * NZ) + c] : hz[(c * NZ) + r];
                     for (q = 0u; q < NX; ++q) {
                         d += kappa[q] * (jp[q][r] - jm[q][r]) / (2.0 * e);
                     }
-                    OGK_ASSERT_NEAR(h_rc, d, 1e-7);
+                    /* float: differences of Jacobian entries up to 3 n^2 = 5: five times FD_TOL_F */
+                    OGK_ASSERT_NEAR(h_rc, d, OGK_TEST_TOL(1e-7, 5.0 * FD_TOL_F));
                 }
             }
         }
@@ -359,14 +377,14 @@ static void test_structure_the_solver_assumes(void **state)
     test_model(&m);
     for (nu = 1u; nu <= 2u; ++nu) {
         for (i = 0; i < 40; ++i) {
-            double x[NX];
-            double u[2];
-            double xd[NX];
-            double jx[NX * NX];
-            double ju[NX * 2u];
-            double jt[NX];
-            double kappa[NX];
-            double hz[NZ * NZ];
+            ogk_real_t x[NX];
+            ogk_real_t u[2];
+            ogk_real_t xd[NX];
+            ogk_real_t jx[NX * NX];
+            ogk_real_t ju[NX * 2u];
+            ogk_real_t jt[NX];
+            ogk_real_t kappa[NX];
+            ogk_real_t hz[NZ * NZ];
             size_t r;
             size_t c;
             random_point(&s, x, u);
@@ -400,7 +418,7 @@ static void test_structure_the_solver_assumes(void **state)
             assert_true(jx[20] == 0.0);
             {
                 /* jx alone (ju, jt NULL): the same jx */
-                double jx2[NX * NX];
+                ogk_real_t jx2[NX * NX];
                 (void)memset(jx2, 0, sizeof(jx2));
                 OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, nu, 0.1, x, u, NULL, xd, jx2, NULL, NULL), OGK_OK);
                 assert_true(memcmp(jx, jx2, sizeof(jx)) == 0);
@@ -436,9 +454,9 @@ static void test_structure_the_solver_assumes(void **state)
 static void test_target_keepout_key_domain(void **state)
 {
     ogk_prox_model_t m;
-    double xt[4];
-    double rate[4] = { 9.0, 9.0, 9.0, 9.0 };
-    double key[OGK_OCP_MODEL_KEY];
+    ogk_real_t xt[4];
+    ogk_real_t rate[4] = { 9.0, 9.0, 9.0, 9.0 };
+    ogk_real_t key[OGK_OCP_MODEL_KEY];
     size_t i;
     uint64_t s = 5u;
     (void)state;
@@ -450,8 +468,10 @@ static void test_target_keepout_key_domain(void **state)
     OGK_ASSERT_NEAR(xt[3], 0.0, 0.0);
     OGK_ASSERT_NEAR(ogk_test_max_abs(rate, 4u), 0.0, 0.0);
     /* radii: the discs in use, 0 beyond n_keepout and beyond the limit */
-    OGK_ASSERT_NEAR(ogk_prox_problem.keepout_radius(&m, 0u), 0.15, 0.0);
-    OGK_ASSERT_NEAR(ogk_prox_problem.keepout_radius(&m, 1u), 0.2, 0.0);
+    /* float: measured worst 6e-09 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(ogk_prox_problem.keepout_radius(&m, 0u), 0.15, OGK_TEST_TOL(0.0, 1e-7));
+    /* float: measured worst 3e-09 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(ogk_prox_problem.keepout_radius(&m, 1u), 0.2, OGK_TEST_TOL(0.0, 5e-8));
     OGK_ASSERT_NEAR(ogk_prox_problem.keepout_radius(&m, 2u), 0.0, 0.0);
     m.n_keepout = 1u;
     OGK_ASSERT_NEAR(ogk_prox_problem.keepout_radius(&m, 1u), 0.0, 0.0);
@@ -459,21 +479,22 @@ static void test_target_keepout_key_domain(void **state)
     /* distance and its gradient: central differences at random points */
     for (i = 0u; i < 40u; ++i) {
         const size_t j = i % 2u;
-        double x[NX];
-        double u[2];
-        double d_x0;
-        double d_x1;
-        double d_t = 5.0;
-        double g0;
-        double g1;
-        double g2;
-        double dp;
-        double dm;
-        const double e = 1.0e-6;
+        ogk_real_t x[NX];
+        ogk_real_t u[2];
+        ogk_real_t d_x0;
+        ogk_real_t d_x1;
+        ogk_real_t d_t = 5.0;
+        ogk_real_t g0;
+        ogk_real_t g1;
+        ogk_real_t g2;
+        ogk_real_t dp;
+        ogk_real_t dm;
+        const ogk_real_t e = OGK_TEST_PICK(1.0e-6, FD_STEP_F);
         random_point(&s, x, u);
         {
-            const double d = ogk_prox_problem.keepout_distance(&m, j, x, 2.0, &d_x0, &d_x1, &d_t);
-            OGK_ASSERT_NEAR(d, hypot(x[0] - m.keepout_centre[2u * j], x[1] - m.keepout_centre[(2u * j) + 1u]), 1e-15);
+            const ogk_real_t d = ogk_prox_problem.keepout_distance(&m, j, x, 2.0, &d_x0, &d_x1, &d_t);
+            /* float: measured worst 1.3e-07 (host; M4F in make unit-errors), tolerance 10x */
+            OGK_ASSERT_NEAR(d, hypot(x[0] - m.keepout_centre[2u * j], x[1] - m.keepout_centre[(2u * j) + 1u]), OGK_TEST_TOL(1e-15, 2e-6));
         }
         OGK_ASSERT_NEAR(d_t, 0.0, 0.0);
         x[0] += e;
@@ -481,19 +502,19 @@ static void test_target_keepout_key_domain(void **state)
         x[0] -= 2.0 * e;
         dm = ogk_prox_problem.keepout_distance(&m, j, x, 2.0, &g0, &g1, &g2);
         x[0] += e;
-        OGK_ASSERT_NEAR(d_x0, (dp - dm) / (2.0 * e), 1e-8);
+        OGK_ASSERT_NEAR(d_x0, (dp - dm) / (2.0 * e), OGK_TEST_TOL(1e-8, FD_TOL_F));
         x[1] += e;
         dp = ogk_prox_problem.keepout_distance(&m, j, x, 2.0, &g0, &g1, &g2);
         x[1] -= 2.0 * e;
         dm = ogk_prox_problem.keepout_distance(&m, j, x, 2.0, &g0, &g1, &g2);
-        OGK_ASSERT_NEAR(d_x1, (dp - dm) / (2.0 * e), 1e-8);
+        OGK_ASSERT_NEAR(d_x1, (dp - dm) / (2.0 * e), OGK_TEST_TOL(1e-8, FD_TOL_F));
     }
     {
         /* at the centre: d = 0 and a zero gradient; a disc beyond the limit: 0 */
-        double x[NX] = { 0.3, -0.5, 0.0, 0.0, 1.0 };
-        double d_x0 = 1.0;
-        double d_x1 = 1.0;
-        double d_t = 1.0;
+        ogk_real_t x[NX] = { 0.3, -0.5, 0.0, 0.0, 1.0 };
+        ogk_real_t d_x0 = 1.0;
+        ogk_real_t d_x1 = 1.0;
+        ogk_real_t d_t = 1.0;
         OGK_ASSERT_NEAR(ogk_prox_problem.keepout_distance(&m, 0u, x, 0.0, &d_x0, &d_x1, &d_t), 0.0, 0.0);
         OGK_ASSERT_NEAR(d_x0, 0.0, 0.0);
         OGK_ASSERT_NEAR(d_x1, 0.0, 0.0);
@@ -511,7 +532,7 @@ static void test_target_keepout_key_domain(void **state)
     OGK_ASSERT_NEAR(ogk_test_max_abs(&key[3], OGK_OCP_MODEL_KEY - 3u), 0.0, 0.0);
     /* the domain: finite and m > 0 (any sign of position and velocity) */
     {
-        double x[2u * NX] = { -3.0, -4.0, -0.1, 0.2, 0.5, 1.0, 2.0, 3.0, 4.0, 0.1 };
+        ogk_real_t x[2u * NX] = { -3.0, -4.0, -0.1, 0.2, 0.5, 1.0, 2.0, 3.0, 4.0, 0.1 };
         assert_true(ogk_prox_problem.state_valid(&m, x, 2u));
         assert_true(ogk_prox_problem.state_valid(&m, x, 0u));
         x[NX + 4u] = 0.0;
@@ -684,12 +705,12 @@ static void test_init_problem_rejections(void **state)
 /* test_proximity_ground.py's mission in the kernel's units (LU = 1 km, TU = 1 / n, MU = m_0): 0.8 N at
  * 2,100 m/s on 180 kg, from 1.5 km ahead along V-bar to a hold point 250 m behind, round a 150-m disc
  * centred at (300, 620) m, on a 6,900 km orbit; 16 nodes, 8 RK4 steps, 1000..7000 s, dry mass 140 kg. */
-static void mission_config(ogk_prox_config_t *cfg, double *x0)
+static void mission_config(ogk_prox_config_t *cfg, ogk_real_t *x0)
 {
-    const double n = sqrt(3.986004418e14 / (6.9e6 * 6.9e6 * 6.9e6));
-    const double tu = 1.0 / n;
-    const double lu = 1000.0;
-    const double mu = 180.0;
+    const ogk_real_t n = sqrt(3.986004418e14 / (6.9e6 * 6.9e6 * 6.9e6));
+    const ogk_real_t tu = 1.0 / n;
+    const ogk_real_t lu = 1000.0;
+    const ogk_real_t mu = 180.0;
     OGK_ASSERT_STATUS(ogk_prox_config_default(cfg), OGK_OK);
     cfg->model.thrust_max = 0.8 / (mu * lu / (tu * tu));
     cfg->model.mass_flow_max = (0.8 / 2100.0) / (mu / tu);
@@ -710,7 +731,7 @@ static void mission_config(ogk_prox_config_t *cfg, double *x0)
     cfg->solver.hessian = OGK_NMPC_HESSIAN_EXACT;
     cfg->solver.max_iter_cold = 500u;
     cfg->solver.tol_obj = 0.0;
-    cfg->solver.tol_stat = 1.0e-9;
+    cfg->solver.tol_stat = OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F);
     x0[0] = 0.0;
     x0[1] = 1.5;
     x0[2] = 0.0;
@@ -730,16 +751,16 @@ static void assert_at_hold(const ogk_nmpc_plan_t *p, const ogk_prox_config_t *cf
 /* ocp.detour_guess's shape: the straight line from the start to the hold point bulged away from the
  * disc's centre to 1.5 radii, its finite-difference velocities (0 at the end), full mass, half throttle
  * along the path, t_f mid-bounds. */
-static void mission_guess(const ogk_prox_config_t *cfg, const double *x0, ogk_nmpc_plan_t *p)
+static void mission_guess(const ogk_prox_config_t *cfg, const ogk_real_t *x0, ogk_nmpc_plan_t *p)
 {
     const uint32_t nn = cfg->solver.nodes;
-    const double t_f = 0.5 * (cfg->solver.horizon_min + cfg->solver.horizon_max);
-    const double cx = cfg->model.keepout_centre[0];
-    const double cy = cfg->model.keepout_centre[1];
-    const double mx = 0.5 * (x0[0] + cfg->model.hold[0]);
-    const double my = 0.5 * (x0[1] + cfg->model.hold[1]);
-    const double dist = hypot(mx - cx, my - cy);
-    const double bulge = fmax(0.0, (1.5 * cfg->model.keepout_radius[0]) - dist);
+    const ogk_real_t t_f = 0.5 * (cfg->solver.horizon_min + cfg->solver.horizon_max);
+    const ogk_real_t cx = cfg->model.keepout_centre[0];
+    const ogk_real_t cy = cfg->model.keepout_centre[1];
+    const ogk_real_t mx = 0.5 * (x0[0] + cfg->model.hold[0]);
+    const ogk_real_t my = 0.5 * (x0[1] + cfg->model.hold[1]);
+    const ogk_real_t dist = hypot(mx - cx, my - cy);
+    const ogk_real_t bulge = fmax(0.0, (1.5 * cfg->model.keepout_radius[0]) - dist);
     uint32_t k;
     (void)memset(p, 0, sizeof(*p));
     p->t0 = 0.0;
@@ -747,8 +768,8 @@ static void mission_guess(const ogk_prox_config_t *cfg, const double *x0, ogk_nm
     p->nodes = nn;
     p->nu = 2u;
     for (k = 0u; k <= nn; ++k) {
-        const double tau = (double)k / (double)nn;
-        const double s = sin(PI * tau);
+        const ogk_real_t tau = (ogk_real_t)k / (ogk_real_t)nn;
+        const ogk_real_t s = sin(PI * tau);
         p->x[(k * NX) + 0u] = x0[0] + ((cfg->model.hold[0] - x0[0]) * tau) + (bulge * s * (mx - cx) / dist);
         p->x[(k * NX) + 1u] = x0[1] + ((cfg->model.hold[1] - x0[1]) * tau) + (bulge * s * (my - cy) / dist);
         p->x[(k * NX) + 4u] = 1.0;
@@ -757,7 +778,7 @@ static void mission_guess(const ogk_prox_config_t *cfg, const double *x0, ogk_nm
         /* one-sided at the ends, central inside (numpy.gradient); at rest at t_f */
         const uint32_t a = (k == 0u) ? 0u : (k - 1u);
         const uint32_t b = (k == nn) ? nn : (k + 1u);
-        const double dt = (double)(b - a) * t_f / (double)nn;
+        const ogk_real_t dt = (ogk_real_t)(b - a) * t_f / (ogk_real_t)nn;
         if (k < nn) {
             p->x[(k * NX) + 2u] = (p->x[(b * NX) + 0u] - p->x[(a * NX) + 0u]) / dt;
             p->x[(k * NX) + 3u] = (p->x[(b * NX) + 1u] - p->x[(a * NX) + 1u]) / dt;
@@ -794,7 +815,7 @@ static void test_open_loop_solve(void **state)
     assert_at_hold(&out, &cfg);
     assert_true(out.x[(16u * NX) + 4u] >= (cfg.solver.mass_min - 1e-12));
     for (k = 0u; k <= 16u; ++k) {
-        const double d = hypot(out.x[(k * NX) + 0u] - 0.3, out.x[(k * NX) + 1u] - 0.62);
+        const ogk_real_t d = hypot(out.x[(k * NX) + 0u] - 0.3, out.x[(k * NX) + 1u] - 0.62);
         assert_true(d >= (0.15 - 1e-9));
     }
     /* minimum fuel: J = m_0 - m_N, the ground reference's optimum (IPOPT on the same transcription,
@@ -836,10 +857,10 @@ static void test_in_flight_settings(void **state)
     ogk_nmpc_report_t rep;
     ogk_nmpc_report_t rep2;
     ogk_nmpc_plan_t out;
-    const double not_a_number = nan("");
-    double t_fix;
-    double lo;
-    double hi;
+    const ogk_real_t not_a_number = nan("");
+    ogk_real_t t_fix;
+    ogk_real_t lo;
+    ogk_real_t hi;
     (void)state;
     /* NULL and uninitialised contexts, the solver's and the wrappers' */
     (void)memset(&bare, 0, sizeof(bare));
@@ -945,7 +966,8 @@ static void test_keepout_rows_elastic(void **state)
         plan.u[(k * 2u) + 1u] = 0.0;
     }
     OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx, &plan), OGK_OK);
-    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, plan.horizon * (1.0 - 1e-9), plan.horizon * (1.0 + 1e-9)),
+    OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, plan.horizon * (1.0 - OGK_TEST_TOL(1e-9, 4.0 * FLT_EPSILON)),
+                                                  plan.horizon * (1.0 + OGK_TEST_TOL(1e-9, 4.0 * FLT_EPSILON))),
                       OGK_OK);
     OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep), OGK_E_NOT_CONVERGED);
     assert_true((rep.flags & OGK_NMPC_FLAG_ELASTIC) != 0u);
