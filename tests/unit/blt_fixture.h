@@ -19,6 +19,16 @@
 #define BLT_FX_PI 3.14159265358979323846
 #define BLT_FX_EM_MU 0.01215058560962404
 
+/* The float build's corrector settings (as ogk_test.h's OGK_TEST_TOL; written with #if because the
+ * fuzzer includes this header without it): the kernel's default fd_step 1e-6 makes the central-difference
+ * Jacobian's round-off eps / h = 0.1 in float, so 1e-3 (eps / h = 1e-4 against a truncation h^2 = 1e-6);
+ * the corrector's residual then stalls near 1e-7 (measured on the single burn, NRPC and LM, central and
+ * variational), and BLT_TOL_F = 1e-5 is a hundred times that floor. */
+#if OGK_REAL_SINGLE
+#define BLT_FX_FD_STEP_F 1.0e-3
+#define BLT_TOL_F 1.0e-5
+#endif
+
 /* The Moshup-like model: every perturbation on (values exaggerated, not the asteroid's). */
 static inline void blt_fx_moshup(ogk_blt_config_t *c)
 {
@@ -39,6 +49,9 @@ static inline void blt_fx_moshup(ogk_blt_config_t *c)
     c->model.mass_flow = 0.05;
     c->model.step_max = 5.0e-3;
     c->time_max = 5.0;
+#if OGK_REAL_SINGLE
+    c->fd_step = BLT_FX_FD_STEP_F;
+#endif
 }
 
 /* The single burn: start well away from both bodies (0.8 LU from the primary, 1.0 from the
@@ -129,6 +142,9 @@ static inline void blt_fx_lyapunov_config(ogk_blt_config_t *c)
     c->start_free_mask = 1u << 4;
     c->target_mask = (1u << 1) | (1u << 3);
     c->time_max = 5.0;
+#if OGK_REAL_SINGLE
+    c->fd_step = BLT_FX_FD_STEP_F;
+#endif
 }
 
 #ifdef OGK_TEST_H /* the cmocka helpers: only for the unit tests (the fuzzer includes this header too) */

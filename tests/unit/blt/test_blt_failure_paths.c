@@ -34,8 +34,8 @@ static ogk_blt_t ctx;
 static ogk_blt_transfer_t tr;
 static ogk_blt_transfer_t g;
 static ogk_blt_transfer_t out;
-static double jac_a[JAC_LEN];
-static double jac_b[JAC_LEN];
+static ogk_real_t jac_a[JAC_LEN];
+static ogk_real_t jac_b[JAC_LEN];
 
 static void set_burn(ogk_blt_transfer_t *t, uint32_t k, double ax, double ay, double bx, double by, double T)
 {
@@ -54,11 +54,11 @@ static void set_burn(ogk_blt_transfer_t *t, uint32_t k, double ax, double ay, do
  * flies clear of it, NRPC's first steps cut through it. */
 static void trial_impact_problem(ogk_blt_config_t *c)
 {
-    static const double x0[NX] = {1.1772373375471936, 0.094043308395906244, 0.0, -0.27501668723999367,
+    static const ogk_real_t x0[NX] = {1.1772373375471936, 0.094043308395906244, 0.0, -0.27501668723999367,
                                   -0.10690822061472954, 0.0};
-    static const double xf[NX] = {1.0356885010283823, 0.033381827063908902, -0.0064510070864786011,
+    static const ogk_real_t xf[NX] = {1.0356885010283823, 0.033381827063908902, -0.0064510070864786011,
                                   -0.92191079684576305, -0.33803121095452376, -0.031260320563178241};
-    static const double p[NP] = {-0.70730928625320511, -0.47722043324132468, -0.45945583552096775,
+    static const ogk_real_t p[NP] = {-0.70730928625320511, -0.47722043324132468, -0.45945583552096775,
                                  0.27850847499375631, 1.26320572591536, 0.49438188643864445,
                                  0.20637870326188723};
     blt_fx_moshup(c);
@@ -137,7 +137,7 @@ static void test_unreachable_tolerance_stalls(void **state)
     (void)state;
     blt_fx_moshup(&c);
     c.jacobian = OGK_BLT_JAC_VARIATIONAL;
-    c.tol = 1.0e-300;
+    c.tol = OGK_TEST_PICK(1.0e-300, 1.0e-30);
     blt_fx_single_burn(&tr);
     blt_fx_make_target(&ctx, &c, &tr);
     g = tr;
@@ -146,7 +146,8 @@ static void test_unreachable_tolerance_stalls(void **state)
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_blt_solve(&ctx, &g, &out, &rep), OGK_E_NOT_CONVERGED);
     assert_int_equal((int)rep.flags, (int)(OGK_BLT_FLAG_STALLED | OGK_BLT_FLAG_SAFE));
-    assert_true(rep.err_norm < 1.0e-9); /* the best transfer found is returned */
+    /* float: measured worst 1.5e-07 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_LT(rep.err_norm, OGK_TEST_TOL(1.0e-9, 2e-6)); /* the best transfer found is returned */
     assert_true(rep.iterations >= 2u);
     for (i = 0u; i < NP; ++i) {
         assert_true(isfinite(out.seg[0][i]));
@@ -160,7 +161,8 @@ static void test_unreachable_tolerance_stalls(void **state)
                   (unsigned)rep.flags, (unsigned)rep.iterations, rep.err_norm);
     assert_true((st == OGK_E_NOT_CONVERGED) || (st == OGK_E_ITER_LIMIT));
     assert_true((rep.flags & OGK_BLT_FLAG_SAFE) != 0u);
-    assert_true(rep.err_norm < 1.0e-9);
+    /* float: measured worst 9e-08 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_LT(rep.err_norm, OGK_TEST_TOL(1.0e-9, 1e-6));
 }
 
 /* A coast with free T aimed at z = 0.5 from a planar state: z stays 0, J = dz/dT = vz = 0. */
@@ -235,7 +237,8 @@ static void test_jacobian_failures(void **state)
     g.mass0 = (c.model.mass_flow * g.seg[0][6]) + (0.5 * c.model.mass_flow * c.fd_step);
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_blt_evaluate(&ctx, &g, &rep), OGK_OK);
-    OGK_ASSERT_NEAR(rep.mass_final, 0.5 * c.model.mass_flow * c.fd_step, 1e-15);
+    /* float: measured worst 5.6e-09 (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_NEAR(rep.mass_final, 0.5 * c.model.mass_flow * c.fd_step, OGK_TEST_TOL(1e-15, 1e-7));
     OGK_ASSERT_STATUS(ogk_blt_jacobian(&ctx, &g, jac_a, JAC_LEN), OGK_E_NOT_CONVERGED);
 
     /* (c) A = (h, 0, 0), B = 0: the -h difference of A_x is A = B = 0 (no direction) */
@@ -297,9 +300,9 @@ static void test_ill_conditioned_step(void **state)
     static ogk_qr_t qr;
     ogk_blt_config_t c;
     ogk_blt_report_t rep;
-    double x_end[NX];
-    double b[2] = {1.0, 1.0};
-    double x[2];
+    ogk_real_t x_end[NX];
+    ogk_real_t b[2] = {1.0, 1.0};
+    ogk_real_t x[2];
     ogk_status st;
     (void)state;
     blt_fx_moshup(&c);
@@ -331,7 +334,7 @@ static void test_direction_through_zero(void **state)
     ogk_blt_config_t c;
     ogk_blt_report_t rep;
     ogk_blt_command_t cmd;
-    double x_end[NX];
+    ogk_real_t x_end[NX];
     (void)state;
     /* (i) held: A + B tau vanishes at tau = 0.5, between the RK4 stages (147 steps of 0.00498) */
     blt_fx_moshup(&c);
@@ -399,19 +402,19 @@ static void test_direction_through_zero(void **state)
     assert_int_equal(memcmp(&out, &tr, sizeof(out)), 0);
 }
 
-/* A finite state whose first step overflows (vx = 1e308: the Coriolis term is -2e308). */
+/* A finite state whose first step overflows (vx = 1e308: the Coriolis term is -2e308; float: 1e38). */
 /* req: OGK-BLT-002 OGK-BLT-006 */
 static void test_state_overflow(void **state)
 {
     ogk_blt_config_t c;
     ogk_blt_report_t rep;
-    double x_end[NX];
+    ogk_real_t x_end[NX];
     (void)state;
     blt_fx_moshup(&c);
     blt_fx_single_burn(&tr);
     tr.x0[0] = 2.0;
     tr.x0[1] = 0.0;
-    tr.x0[3] = 1.0e308;
+    tr.x0[3] = OGK_TEST_PICK(1.0e308, 1.0e38);
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_blt_propagate(&ctx, &tr, x_end, &rep), OGK_E_NOT_CONVERGED);
     assert_true((rep.flags & (OGK_BLT_FLAG_IMPACT | OGK_BLT_FLAG_SINGULAR)) != 0u);
@@ -461,7 +464,9 @@ static void check_layout(const ogk_blt_config_t *c0, const char *what)
     print_message("layout %s (%u x %u): |central - variational| %.2e of max|J| %.3g; solved in %u iterations\n",
                   what, (unsigned)ctx.n_errors, (unsigned)ctx.n_unknowns, d / scale, scale,
                   (unsigned)rep.iterations);
-    assert_true(d <= 1.0e-6 * scale);
+    /* float: the central difference at h = 1e-3 (blt_fixture.h, round-off eps / h ~ 1e-4) against the
+     * variational equations: measured worst 4.3e-4 of max|J| (host; M4F in make unit-errors), tolerance 10x */
+    OGK_ASSERT_LE(d, OGK_TEST_TOL(1.0e-6, 5e-3) * scale);
     assert_true(rep.err_norm <= c.tol);
 }
 
@@ -497,7 +502,7 @@ static void test_arc_stops(void **state)
 {
     ogk_blt_config_t c;
     ogk_blt_report_t rep;
-    double x_end[NX];
+    ogk_real_t x_end[NX];
     (void)state;
     /* forward over two segments to the node (meet 2): the first burn runs into the secondary */
     blt_fx_bcb_config(&c, 1);
@@ -553,8 +558,8 @@ static void test_max_segment_steps(void **state)
 {
     ogk_blt_config_t c;
     ogk_blt_report_t rep;
-    double x_fine[NX];
-    double x_coarse[NX];
+    ogk_real_t x_fine[NX];
+    ogk_real_t x_coarse[NX];
     uint32_t i;
     (void)state;
     blt_fx_moshup(&c);
@@ -572,7 +577,8 @@ static void test_max_segment_steps(void **state)
     OGK_ASSERT_STATUS(ogk_blt_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_blt_propagate(&ctx, &tr, x_coarse, &rep), OGK_OK);
     for (i = 0u; i < NX; ++i) {
-        OGK_ASSERT_NEAR(x_fine[i], x_coarse[i], 1e-12);
+        /* float: measured worst 3.1e-05 (host; M4F in make unit-errors), tolerance 10x */
+        OGK_ASSERT_NEAR(x_fine[i], x_coarse[i], OGK_TEST_TOL(1e-12, 5e-4));
     }
 }
 
