@@ -68,10 +68,12 @@ CMAKE_BUILD := env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL cmake --build
 CMAKE_INPUTS := CMakeLists.txt $(wildcard cmake/*.cmake cmake/*.in cmake/*.sh cmake/toolchains/*.cmake) \
   $(KSRC) $(KHDR)
 # $(call cmake_kernel,NAME,TOOLCHAIN,OGK_C_FLAGS,STAGE_DIR). CMake reads a toolchain file at the first
-# configure only: a build directory older than its toolchain file is configured afresh.
+# configure only: a build directory older than its toolchain file is configured afresh. The precision is
+# the flags' (OGK_C_FLAGS with -DOGK_REAL_SINGLE=1: single), whatever a toolchain file's default.
 cmake_kernel = bd=$(B)/cmake-$(1); tc=cmake/toolchains/$(2).cmake; \
   if [ ! $$bd/CMakeCache.txt -nt $$tc ]; then rm -rf $$bd; tca=-DCMAKE_TOOLCHAIN_FILE=$$tc; else tca=; fi; \
-  cmake -S . -B $$bd $$tca -DCMAKE_BUILD_TYPE= -DOGK_C_FLAGS="$(3)" --log-level=WARNING > /dev/null && \
+  cmake -S . -B $$bd $$tca -DCMAKE_BUILD_TYPE= -DOGK_C_FLAGS="$(3)" \
+    -DOGK_PRECISION=$(if $(findstring -DOGK_REAL_SINGLE=1,$(3)),single,double) --log-level=WARNING > /dev/null && \
   $(CMAKE_BUILD) $$bd -j2 && cmake/stage.sh $$bd $(4)
 # The CPU flags of a toolchain file, which the Makefile's own target rules (tests, runtime) use too.
 toolchain_cpu = $(or $(shell sed -n 's/^set(CMAKE_C_FLAGS_INIT "\(.*\)")$$/\1/p' cmake/toolchains/$(1).cmake),\

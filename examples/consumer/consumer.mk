@@ -15,10 +15,11 @@ CONSUMER_DIRS := $(B)/cm-host $(B)/ogk-prefix-host $(B)/consumer-host \
   $(B)/cm-host-single $(B)/ogk-prefix-host-single $(B)/consumer-host-single
 PREFIX_HOST_SINGLE := $(abspath $(B)/ogk-prefix-host-single)
 
-# $(call consumer_armv7m,TAG,TOOLCHAIN,P): the package built and installed with cmake/toolchains/TOOLCHAIN.cmake
+# $(call consumer_armv7m,TAG,TOOLCHAIN,P[,CMAKE_ARGS]): the package built and installed with cmake/toolchains/TOOLCHAIN.cmake
 # into build/ogk-prefix-TAG, the consumer built with the installed toolchain file (as a flight project
 # would take it) and run on the board of ARMv7-M target P.
-consumer_armv7m = cmake -B $(B)/cm-$(1) -S . -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/$(2).cmake --log-level=WARNING && \
+consumer_armv7m = cmake -B $(B)/cm-$(1) -S . -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/$(2).cmake $(4) \
+	  --log-level=WARNING && \
 	$(CMAKE_BUILD) $(B)/cm-$(1) -j2 && \
 	cmake --install $(B)/cm-$(1) --prefix $(B)/ogk-prefix-$(1) > $(B)/cm-$(1)/install.log && \
 	cmake -S examples/consumer -B $(B)/consumer-$(1) -DCMAKE_PREFIX_PATH=$(abspath $(B)/ogk-prefix-$(1)) \
@@ -40,7 +41,7 @@ test-consumer: | apt
 	$(B)/consumer-host/ogk_consumer
 	@# the package's own toolchain file, as a flight project would take it
 	$(call consumer_armv7m,m7,cortex-m7,ARM)
-	$(call consumer_armv7m,m4f,cortex-m4f,M4F)
+	$(call consumer_armv7m,m4f,cortex-m4f,M4F,-DOGK_PRECISION=$(M4F_PRECISION))
 	@# the single-precision package: the definition reaches a consumer by pkg-config and by the CMake target
 	cmake -B $(B)/cm-host-single -S . -DOGK_PRECISION=single -DOGK_BUILD_SHARED=OFF --log-level=WARNING
 	$(CMAKE_BUILD) $(B)/cm-host-single -j2

@@ -66,9 +66,12 @@ $(1)_LDFLAGS := $$($(1)_CPU) --specs=rdimon.specs -T $$($(1)_LDSCRIPT) -Wl,--gc-
 $(1)_LDLIBS := -lm
 
 # ---------------------------------------------------------------- kernel library
-# Built by CMake with cmake/toolchains/$(3).cmake, staged with its objects and .su files.
-$$($(1)_B)/libogk.a $$($(1)_KOBJ) &: $$(CMAKE_INPUTS) | apt
+# Built by CMake with cmake/toolchains/$(3).cmake, staged with its objects and .su files; rebuilt when its
+# definitions change (defs.stamp: e.g. `make test-unit-m4f M4F_PRECISION=single` after a double build).
+$$($(1)_B)/libogk.a $$($(1)_KOBJ) &: $$(CMAKE_INPUTS) $$($(1)_B)/defs.stamp | apt
 	$$(call cmake_kernel,$(2),$(3),$$($(1)_KOBJ_FLAGS),$$($(1)_B))
+$$($(1)_B)/defs.stamp: armv7m-force
+	@mkdir -p $$(@D); echo '$$($(1)_DEFS)' | cmp -s - $$@ || echo '$$($(1)_DEFS)' > $$@
 
 # ---------------------------------------------------------------- runtime
 $$($(1)_B)/rt/startup.o: $$(ARMV7M_DIR)/startup.c $$($(1)_RT_HDR) | apt
@@ -150,3 +153,7 @@ armv7m_unit_tests = @pass=0; fail=0; nobuild=0; failed=""; \
 # Recipe of the selftest goal (test-arm-selftest, test-m4f-selftest): judges the runs of $(1)_ST_ALL.
 armv7m_selftest = $(call armv7m_env,$(1)) SELFTEST_GOAL=$@ $(ARMV7M_DIR)/selftest/check_selftest.sh \
 	$($(1)_ST_ALL)
+
+# a prerequisite that is always out of date (the stamps compare their contents themselves)
+.PHONY: armv7m-force
+armv7m-force:

@@ -9,10 +9,14 @@
 #
 # Overridable: M4F_UNIT_SRC (which test sources), M4F_TIMEOUT (s per test run).
 
-# The kernel in single precision (OGK_REAL_SINGLE): the library, the tests and the selftest are compiled
-# with it, so that they agree on the kernel's types. The CPU flags come from
-# cmake/toolchains/cortex-m4f.cmake (-mthumb -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard).
-M4F_REAL := -DOGK_REAL_SINGLE=1
+# The kernel's precision on the M4F (M4F_PRECISION: single or double): the library, the tests, the
+# selftest and the consumer are compiled with it, so that they agree on the kernel's types. The CPU flags
+# come from cmake/toolchains/cortex-m4f.cmake (-mthumb -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard).
+# double until the unit tests and the consumer's law loops are precision-aware (issue 35, next step): the
+# double kernel in software, which proves the board, the runner and the link; the float kernel's build is
+# proven clean meanwhile by make lint-single.
+M4F_PRECISION ?= double
+M4F_REAL := $(if $(filter single,$(M4F_PRECISION)),-DOGK_REAL_SINGLE=1)
 $(eval $(call armv7m_target,M4F,m4f,cortex-m4f,mps2-an386,$(M4F_REAL)))
 
 .PHONY: m4f-lib test-unit-m4f test-m4f-selftest m4f-size
