@@ -67,7 +67,7 @@ $(1)_LDLIBS := -lm
 
 # ---------------------------------------------------------------- kernel library
 # Built by CMake with cmake/toolchains/$(3).cmake, staged with its objects and .su files; rebuilt when its
-# definitions change (defs.stamp: e.g. `make test-unit-m4f M4F_PRECISION=single` after a double build).
+# definitions change (defs.stamp: e.g. `make test-unit-m4f M4F_PRECISION=double` after a single build).
 $$($(1)_B)/libogk.a $$($(1)_KOBJ) &: $$(CMAKE_INPUTS) $$($(1)_B)/defs.stamp | apt
 	$$(call cmake_kernel,$(2),$(3),$$($(1)_KOBJ_FLAGS),$$($(1)_B))
 $$($(1)_B)/defs.stamp: armv7m-force

@@ -12,10 +12,10 @@
 # The kernel's precision on the M4F (M4F_PRECISION: single or double): the library, the tests, the
 # selftest and the consumer are compiled with it, so that they agree on the kernel's types. The CPU flags
 # come from cmake/toolchains/cortex-m4f.cmake (-mthumb -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard).
-# double until the unit tests and the consumer's law loops are precision-aware (issue 35, next step): the
-# double kernel in software, which proves the board, the runner and the link; the float kernel's build is
-# proven clean meanwhile by make lint-single.
-M4F_PRECISION ?= double
+# single: the unit tests are precision-aware (tests/unit/ogk_test.h, OGK_TEST_TOL;
+# docs/design/precision-unit-tests.md). `make test-unit-m4f M4F_PRECISION=double` runs them on the double
+# kernel in software (every double operation a libgcc call), as the board's first gates did.
+M4F_PRECISION ?= single
 M4F_REAL := $(if $(filter single,$(M4F_PRECISION)),-DOGK_REAL_SINGLE=1)
 $(eval $(call armv7m_target,M4F,m4f,cortex-m4f,mps2-an386,$(M4F_REAL)))
 

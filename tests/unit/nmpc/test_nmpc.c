@@ -1000,7 +1000,9 @@ static void test_keepout_along_arcs(void **state)
     }
     print_message("keep-out along the arcs: closest step end %.9f, closest node %.9f, radius %.9f, t_f %.6f\n",
                   closest, closest_node, radius, rep.t_f);
-    assert_true(closest >= radius * (1.0 - 1.0e-5));
+    /* float: the keep-out's violation (radius - distance) is held to the SQP's feasibility tolerance
+     * NMPC_FX_TOL_F, 1e-5 of distance, 3.3e-4 of the radius */
+    OGK_ASSERT_LE(radius * (1.0 - OGK_TEST_TOL(1.0e-5, NMPC_FX_TOL_F / radius)), closest);
     assert_true(closest_node > radius);
 }
 
