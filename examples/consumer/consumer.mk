@@ -4,10 +4,12 @@
 #   (build/cm-host -> build/ogk-prefix-host, build/cm-m7 -> build/ogk-prefix-m7, build/cm-m4f ->
 #   build/ogk-prefix-m4f), then examples/consumer configured with find_package(ogk 0.1) against each
 #   prefix, built and run: on the host directly, on the Cortex-M7 (mps2-an500) and the Cortex-M4F
-#   (mps2-an386) under QEMU, with the board files of port/armv7m.
+#   (mps2-an386) under QEMU, with the board files of port/armv7m; the M4F's package in its M4F_PRECISION
+#   (single: the law loops compute in float there, examples/consumer/consumer.h).
 #   Then the single-precision package (OGK_PRECISION=single, kernel/include/ogk/real.h) for the host
 #   (build/cm-host-single -> build/ogk-prefix-host-single): its ogk.pc and ogk::ogk carry OGK_REAL_SINGLE=1,
-#   and examples/consumer's real-type probe built against it finds the library's float.
+#   examples/consumer's real-type probe built against it finds the library's float, and its law loops
+#   run in float as on the M4F.
 # Fails on any configure, build, install or link error and on any law whose flight loop fails.
 # Included by the top-level Makefile (uses its B, CMAKE_BUILD, ARMV7M_DIR, armv7m_env).
 CONSUMER_DIRS := $(B)/cm-host $(B)/ogk-prefix-host $(B)/consumer-host \
@@ -51,3 +53,4 @@ test-consumer: | apt
 	  --log-level=WARNING
 	$(CMAKE_BUILD) $(B)/consumer-host-single
 	$(B)/consumer-host-single/ogk_real_probe | grep -q 'float (4 bytes)'
+	$(B)/consumer-host-single/ogk_consumer

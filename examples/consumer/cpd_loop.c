@@ -32,18 +32,18 @@ int fly_cpd(void)
     unsigned j;
     char detail[160];
     int ok = (ogk_cpd_config_default(&cfg) == OGK_OK) && (ogk_cpd_init(&cpd, &cfg) == OGK_OK) &&
-             (ogk_thrust_cmd_from_angles(0.0, ALPHA_C, 0.0, 1.0, OGK_THRUST_FLAG_ENGINE_ON, 0u, &cmd) == OGK_OK);
+             (ogk_thrust_cmd_from_angles(0.0, OGK_R(ALPHA_C), 0.0, 1.0, OGK_THRUST_FLAG_ENGINE_ON, 0u, &cmd) == OGK_OK);
     for (k = 0u; ok && (k < 4000u); ++k) { /* 100 Hz control, the vehicle at 1 ms */
         ok = ogk_cpd_input_from_thrust_cmd(&in, &cmd, &nav) == OGK_OK;
-        in.theta = theta;
-        in.rate_q = q;
+        in.theta = (ogk_real_t)theta; /* the vehicle's double, as its sensors hand it over */
+        in.rate_q = (ogk_real_t)q;
         ok = ok && (ogk_cpd_step(&cpd, &in, &out) == OGK_OK);
         saturated += ((out.flags & OGK_CPD_FLAG_SAT_Y) != 0u) ? 1u : 0u;
         for (j = 0u; j < 10u; ++j) {
-            const double delta = fmax(-cfg.delta_yc_max, fmin(cfg.delta_yc_max, act));
+            const double delta = fmax(-(double)cfg.delta_yc_max, fmin((double)cfg.delta_yc_max, act));
             theta += 1e-3 * q;
             q += 1e-3 * G_TVC * delta;
-            act += 1e-3 * (out.delta_yc - act) / cfg.tau_y;
+            act += 1e-3 * ((double)out.delta_yc - act) / (double)cfg.tau_y;
         }
     }
     ok = ok && (saturated > 0u) && (fabs(theta - ALPHA_C) < 1e-6) && (fabs(q) < 1e-6);

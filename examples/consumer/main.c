@@ -1,5 +1,6 @@
 /* main.c -- the example consumer: every law's flight loop, then one summary line; the exit code is
  * the number of laws that failed (on the Cortex-M7 under QEMU it becomes QEMU's exit code). */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -12,6 +13,14 @@ int consumer_verdict(const char *law, int pass, const char *detail)
 {
     (void)printf("%-5s %s  %s\n", law, pass ? "PASS" : "FAIL", detail);
     return pass ? 0 : 1;
+}
+
+double consumer_unit_error(const ogk_thrust_cmd_t *cmd)
+{
+    const double u0 = (double)cmd->u[0];
+    const double u1 = (double)cmd->u[1];
+    const double u2 = (double)cmd->u[2];
+    return fabs(sqrt((u0 * u0) + (u1 * u1) + (u2 * u2)) - 1.0);
 }
 
 int main(void)

@@ -15,7 +15,8 @@
 
 #define GRID 5u
 #define N_VALUES (GRID * (1u + OGK_NOG_ENTRY_LEN))
-#define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + (8u * N_VALUES))
+#define ELEM_BYTES ((uint32_t)sizeof(ogk_real_t)) /* the table's element: the kernel's real type */
+#define TABLE_BYTES (OGK_TABLE_HEADER_SIZE + (ELEM_BYTES * N_VALUES))
 #define TF_STAR 100.0 /* [s] */
 #define ALPHA0 0.3    /* [rad] nominal thrust angle */
 #define K_TF_VT 2.0   /* [s per m/s] dt_f = K_TF_VT dv_t */
@@ -41,11 +42,20 @@ static void put_le(uint8_t *p, uint64_t v, unsigned n)
     }
 }
 
-static void put_f64(uint8_t *p, double d)
+/* A value of the table, written on the ground in double, stored in the element type the kernel reads
+ * (OGK_TABLE_REAL: F64 in the double build, F32 in the float build). */
+static void put_real(uint8_t *p, double d)
 {
+#if OGK_REAL_SINGLE
+    const float f = (float)d;
+    uint32_t bits;
+    (void)memcpy(&bits, &f, sizeof bits);
+    put_le(p, bits, 4u);
+#else
     uint64_t bits;
     (void)memcpy(&bits, &d, sizeof bits);
     put_le(p, bits, 8u);
+#endif
 }
 
 /* The table file of ogk/table.h: header, grid, one row of OGK_NOG_ENTRY_LEN values per node, CRCs. */
@@ -58,12 +68,12 @@ static void make_table(void)
     (void)memset(b, 0, sizeof image.bytes);
     (void)memcpy(b, "OGKT", 4u);
     put_le(b + 4, OGK_TABLE_VERSION, 2u);
-    put_le(b + 6, OGK_TABLE_F64, 2u);
+    put_le(b + 6, OGK_TABLE_REAL, 2u);
     put_le(b + 8, OGK_NOG_TABLE_KIND, 4u);
     put_le(b + 12, 1u, 2u);
     put_le(b + 16, OGK_NOG_ENTRY_LEN, 4u);
     put_le(b + 32, GRID, 4u);
-    put_le(b + 36, 8u * N_VALUES, 4u);
+    put_le(b + 36, ELEM_BYTES * N_VALUES, 4u);
     for (k = 0u; k < GRID; ++k) {
         double row[OGK_NOG_ENTRY_LEN];
         const double tau = (double)k / (double)(GRID - 1u);
@@ -77,29 +87,29 @@ static void make_table(void)
         if (k + 1u < GRID) { /* no gains at tau = 1 */
             row[OGK_NOG_OFF_GAIN + (7u * 7u) + 4u] = K_TF_VT;
         }
-        put_f64(b + OGK_TABLE_HEADER_SIZE + (8u * k), tau);
+        put_real(b + OGK_TABLE_HEADER_SIZE + (ELEM_BYTES * k), tau);
         for (i = 0u; i < OGK_NOG_ENTRY_LEN; ++i) {
-            put_f64(b + OGK_TABLE_HEADER_SIZE + (8u * (GRID + (k * OGK_NOG_ENTRY_LEN) + i)), row[i]);
+            put_real(b + OGK_TABLE_HEADER_SIZE + (ELEM_BYTES * (GRID + (k * OGK_NOG_ENTRY_LEN) + i)), row[i]);
         }
     }
-    (void)ogk_crc32_update(&crc, b + OGK_TABLE_HEADER_SIZE, 8u * N_VALUES);
+    (void)ogk_crc32_update(&crc, b + OGK_TABLE_HEADER_SIZE, ELEM_BYTES * N_VALUES);
     put_le(b + 40, crc, 4u);
     crc = 0u;
     (void)ogk_crc32_update(&crc, b, 44u);
     put_le(b + 44, crc, 4u);
 }
 
-/* The vehicle: on the nominal stretched to 103 s, DV_T fast. */
-static ogk_nav_state_t nav_at(double t)
+/* The vehicle: on the nominal stretched to 103 s, DV_T fast (the navigation's double, handed over). */
+static ogk_nav_state_t nav_at(ogk_real_t t)
 {
-    const double tau = t / (TF_STAR + (K_TF_VT * DV_T));
+    const double tau = (double)t / (TF_STAR + (K_TF_VT * DV_T));
     ogk_nav_state_t nav;
     nav.t_s = t;
-    nav.r_m = x0[0] + (tau * x_rate[0]);
-    nav.xi_rad = x0[1] + (tau * x_rate[1]);
+    nav.r_m = (ogk_real_t)(x0[0] + (tau * x_rate[0]));
+    nav.xi_rad = (ogk_real_t)(x0[1] + (tau * x_rate[1]));
     nav.phi_rad = 0.0;
-    nav.v_r_mps = x0[3] + (tau * x_rate[3]);
-    nav.v_t_mps = x0[4] + (tau * x_rate[4]) + DV_T;
+    nav.v_r_mps = (ogk_real_t)(x0[3] + (tau * x_rate[3]));
+    nav.v_t_mps = (ogk_real_t)(x0[4] + (tau * x_rate[4]) + DV_T);
     nav.v_n_mps = 0.0;
     return nav;
 }
@@ -112,7 +122,7 @@ int fly_nog(void)
     ogk_status st;
     char detail[160];
     double worst_cutoff = 0.0; /* [s] largest distance of a predicted cut-off from 103 s */
-    double t_off = -1.0;       /* [s] first tick with the engine off */
+    ogk_real_t t_off = -1.0;   /* [s] first tick with the engine off */
     unsigned samples = 0u;
     unsigned n;
     int terminating = 0;
@@ -133,25 +143,26 @@ int fly_nog(void)
         return consumer_verdict("nog", 0, "table or init rejected");
     }
     /* commands at 10 Hz; a sample every 2 s until the cut-off falls in the interval (eq. 32) */
-    for (n = 0u; (n < 1200u) && (t_off < 0.0); ++n) {
-        const double t = (double)n / 10.0;
+    for (n = 0u; (n < 1200u) && (t_off < OGK_R(0.0)); ++n) {
+        const ogk_real_t t = (ogk_real_t)n / OGK_R(10.0);
         if (((n % 20u) == 0u) && !terminating) {
             const ogk_nav_state_t nav = nav_at(t);
             ok = ok && (ogk_nog_sample(&nog, &nav, &s) == OGK_OK);
-            worst_cutoff = fmax(worst_cutoff, fabs(s.t_cutoff_s - 103.0));
+            worst_cutoff = fmax(worst_cutoff, fabs((double)s.t_cutoff_s - 103.0));
             terminating = (s.flags & OGK_NOG_FLAG_TERMINATING) != 0u;
             ++samples;
         }
         ok = ok && (ogk_nog_thrust_cmd(&nog, t, &cmd) == OGK_OK);
-        ok = ok && (fabs(cmd.alpha_rad - ALPHA0) < 1e-9);
+        /* float: ALPHA0 from its float sine and cosine (atan2f), a few ulp of 0.3 rad: 8 eps */
+        ok = ok && (fabs((double)cmd.alpha_rad - ALPHA0) < CONSUMER_TOL(1e-9, 8.0 * (double)FLT_EPSILON));
         if ((cmd.flags & OGK_THRUST_FLAG_ENGINE_ON) == 0u) {
             t_off = t;
         }
     }
     /* the synthetic navigation is not the law's own closed loop: the samples may move the cut-off by
      * milliseconds; the engine goes off at the first tick at or after the one predicted last */
-    ok = ok && (worst_cutoff < 0.01) && (t_off >= s.t_cutoff_s) && (t_off < s.t_cutoff_s + 0.1);
+    ok = ok && (worst_cutoff < 0.01) && (t_off >= s.t_cutoff_s) && (t_off < s.t_cutoff_s + OGK_R(0.1));
     (void)snprintf(detail, sizeof detail, "cut-off predicted at 103 s (within %.1e s), engine off at %.1f s, %u samples",
-                   worst_cutoff, t_off, samples);
+                   worst_cutoff, (double)t_off, samples);
     return consumer_verdict("nog", ok, detail);
 }

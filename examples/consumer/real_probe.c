@@ -1,8 +1,7 @@
 /* real_probe.c -- a program built against an installed ogk package compiles with the library's real type
  * (kernel/include/ogk/real.h): ogk::ogk and ogk.pc carry OGK_REAL_SINGLE=1 from a package built with
  * OGK_PRECISION=single. Prints the type and exits 0 when the library's ogk_real_bytes is this program's
- * sizeof(ogk_real_t), 1 otherwise. The law loops of the consumer are written for the double build; this
- * probe is what `make test-consumer` builds against the single-precision package. */
+ * sizeof(ogk_real_t), 1 otherwise. */
 #include <stdint.h>
 #include <stdio.h>
 
