@@ -924,12 +924,14 @@ static void test_propellant_limit(void **state)
     t_free = rep.t_f;
     OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
     m_free = plan2.x[8u * NX + 4u];
-    OGK_ASSERT_NEAR(m_free, 1.0 - (c.mass_flow_max * t_free), 1.0e-9);
+    /* float: the final mass is held by the mass defects to the SQP's feasibility tolerance NMPC_FX_TOL_F */
+    OGK_ASSERT_NEAR(m_free, 1.0 - (c.mass_flow_max * t_free), OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F));
     c.mass_min = m_free - 0.01;
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
-    OGK_ASSERT_NEAR(rep.t_f, t_free, 1.0e-6);
+    /* float: stationarity NMPC_FX_TOL_F, t_f comparable to ten times that (as 1e-6 to 1e-7 in double) */
+    OGK_ASSERT_NEAR(rep.t_f, t_free, OGK_TEST_TOL(1.0e-6, 10.0 * NMPC_FX_TOL_F));
     c.mass_min = m_free + 0.01;
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
