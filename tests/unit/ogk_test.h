@@ -28,7 +28,8 @@
  * computed value) that depends on the precision: the first in the double build (the tolerance the test
  * has always had, the same expression), the second in the float build. Every single-precision value
  * carries its reason where it is not obvious: float's epsilon times the problem's scale or condition,
- * or "measured worst X on M4F and host" (docs/design/precision-unit-tests.md gives the table).
+ * or "measured worst X on M4F and host" (the tolerance then ten times the worst first measured on the
+ * host, rounded up to 1, 2 or 5 times a power of ten; docs/design/precision-unit-tests.md gives the table).
  * OGK_TEST_EPS is the build's unit round-off in the same form (DBL_EPSILON or FLT_EPSILON), for bounds
  * written as c * eps * scale. A fact of one precision only (a value beyond float's range, a 1e-300
  * pivot) is under #if !OGK_REAL_SINGLE with a comment saying why, or has its float equivalent. */

@@ -134,7 +134,7 @@ static double max_abs(const ogk_real_t *v, size_t n, size_t stride)
  * step: the round-off of a difference of values |Y| <= 2 over d, (1 + 8 + 8
  * + 1) / 12 eps 2 / d, FD_NOISE = 4 eps / d. A whole arc of ARC_STEPS steps:
  * the propagated Y carries a rounding noise that the differences amplify by
- * 1.5 / d; measured worst 3.7e-4 on host, ARC_FD_FLOOR ten times that. Two
+ * 1.5 / d; measured worst 3.7e-4 on M4F and host, ARC_FD_FLOOR ten times that. Two
  * kernel computations of the same derivative (sweep against step chain):
  * measured, CHAIN_REL ten times the worst relative difference. */
 #define FD_D OGK_TEST_PICK(1e-3, 1e-2)
@@ -607,7 +607,7 @@ static void test_switch_time_closed_form(void **state)
                       OGK_OK);
     assert_int_equal(prop.mode0, 0);
     assert_int_equal(prop.n_switches, 1);
-    /* float: measured worst 4e-07 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst 4e-7 on M4F and host */
     OGK_ASSERT_NEAR(prop.t_switch[0], ts, OGK_TEST_TOL(1e-11, 5e-6));
 
     /* State at the switch: coast in field-free space. */
@@ -617,15 +617,15 @@ static void test_switch_time_closed_form(void **state)
     OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, cfg.weights_nom, 1.0, ts, x_s, 0, jx, NULL,
                                            dts_dx, dts_dw), OGK_OK);
     /* eq. (B.2) against the closed form */
-    /* float: measured worst relative 8.6e-08 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 8.6e-8 on M4F and host */
     OGK_ASSERT_REL(dts_dw[0], dts_dq * (-0.5 / FF_A1), OGK_TEST_TOL(1e-9, 1e-6), 1e-12);
-    /* float: measured worst relative 1.9e-07 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 1.9e-7 on M4F and host */
     OGK_ASSERT_REL(dts_dw[1], dts_dq * (-q / FF_A1), OGK_TEST_TOL(1e-9, 2e-6), 1e-12);
-    /* float: measured worst relative 5.9e-08 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 5.9e-8 on M4F and host */
     OGK_ASSERT_REL(dts_dw[2], -sin(theta_s) / lam_dot, OGK_TEST_TOL(1e-9, 1e-6), 1e-12); /* implicit: b1 */
-    /* float: measured worst relative 8.6e-08 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 8.6e-8 on M4F and host */
     OGK_ASSERT_REL(dts_dx[7], dts_dq * (-FF_M0 / (FF_C * FF_A1)), OGK_TEST_TOL(1e-9, 1e-6), 1e-12);
-    /* float: measured worst relative 8.6e-08 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 8.6e-8 on M4F and host */
     OGK_ASSERT_REL(dts_dx[6], dts_dq * ((1.0 - FF_LM0) / (FF_C * FF_A1)), OGK_TEST_TOL(1e-9, 1e-6), 1e-12);
     OGK_ASSERT_NEAR(dts_dx[0], 0.0, 1e-15);
     OGK_ASSERT_NEAR(dts_dx[3], 0.0, 1e-15);
@@ -664,9 +664,9 @@ static void test_switch_jump_dw_closed_form(void **state)
     OGK_ASSERT_STATUS(ogk_mpsp_switch_jump(&ctx, cfg.weights_nom, 1.0, ts, x_s, 0, jx, jw,
                                            dts_dx, dts_dw), OGK_OK);
     /* closed form of the v_x row: -T/m times -dt_s/dW, with dt_s/dW from eq. (B.2) */
-    /* float: measured worst relative 8.6e-08 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 8.6e-8 on M4F and host */
     OGK_ASSERT_REL(jw[3u * 9u + 0u], (-FF_T / FF_M0) * (-(dts_dq * (-0.5 / FF_A1))), OGK_TEST_TOL(1e-9, 1e-6), 1e-12);
-    /* float: measured worst relative 1.1e-07 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 1.1e-7 on M4F and host */
     OGK_ASSERT_REL(jw[3u * 9u + 1u], (-FF_T / FF_M0) * (-(dts_dq * (-q / FF_A1))), OGK_TEST_TOL(1e-9, 2e-6), 1e-12);
     assert_true(fabs(jw[3u * 9u + 0u]) > 1e-3); /* not trivially zero */
     /* position rows do not jump (dxdot_r = 0 at a switch) */
@@ -678,7 +678,7 @@ static void test_switch_jump_dw_closed_form(void **state)
             for (k = 0u; k < 9u; ++k) {
                 const double lhs = jw[i * 9u + k] * dts_dx[j];
                 const double rhs = (jx[i * NX + j] - ((i == j) ? 1.0 : 0.0)) * dts_dw[k];
-                /* float: measured worst 2.1e-08 (host; M4F in make unit-errors), tolerance 10x */
+                /* float: measured worst 2.1e-8 on M4F and host */
                 OGK_ASSERT_NEAR(lhs, rhs, OGK_TEST_TOL(1e-12, 5e-7) * fmax(1.0, fabs(rhs)));
             }
         }
@@ -715,21 +715,21 @@ static void test_whole_arc_closed_form(void **state)
     nw = ctx.n_weights;
     OGK_ASSERT_STATUS(ogk_mpsp_propagate(&ctx, cfg.weights_nom, FF_LM0, cfg.x0_nom, 1.0, &prop),
                       OGK_OK);
-    /* float: measured worst relative 2e-07 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 2e-7 on M4F and host */
     OGK_ASSERT_REL(prop.x_f[6], m_f, OGK_TEST_TOL(1e-12, 2e-6), 1.0);
     OGK_ASSERT_STATUS(ogk_mpsp_sensitivity(&ctx, dydw, dydl), OGK_OK);
     /* r_x (row 0) and v_x (row 3): only the switch time moves them. */
-    /* float: measured worst relative 2.5e-06 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 2.5e-6 on M4F and host */
     OGK_ASSERT_REL(dydw[0u * nw + 0u], dr_dts * dts[0], OGK_TEST_TOL(1e-6, 5e-5), 1e-9);
-    /* float: measured worst relative 1.1e-05 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 1.1e-5 on M4F and host */
     OGK_ASSERT_REL(dydw[0u * nw + 1u], dr_dts * dts[1], OGK_TEST_TOL(1e-6, 2e-4), 1e-9);
-    /* float: measured worst relative 1e-06 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 1e-6 on M4F and host */
     OGK_ASSERT_REL(dydw[3u * nw + 0u], dv_dts * dts[0], OGK_TEST_TOL(1e-6, 2e-5), 1e-9);
-    /* float: measured worst relative 1.4e-05 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 1.4e-5 on M4F and host */
     OGK_ASSERT_REL(dydw[3u * nw + 1u], dv_dts * dts[1], OGK_TEST_TOL(1e-6, 2e-4), 1e-9);
-    /* float: measured worst relative 2.5e-06 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 2.5e-6 on M4F and host */
     OGK_ASSERT_REL(dydl[0], dr_dts * dts[2], OGK_TEST_TOL(1e-6, 5e-5), 1e-9);
-    /* float: measured worst relative 1e-06 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 1e-6 on M4F and host */
     OGK_ASSERT_REL(dydl[3], dv_dts * dts[2], OGK_TEST_TOL(1e-6, 2e-5), 1e-9);
 
     /* Cross-track (dF/dU block): dv_y/dw_y,q = -int_ts^tf T/(m lambda_x) h_q dt,
@@ -750,9 +750,9 @@ static void test_whole_arc_closed_form(void **state)
         }
         iv *= -hq / 3.0;
         ir *= -hq / 3.0;
-        /* float: measured worst relative 7.3e-06 (host; M4F in make unit-errors), tolerance 10x */
+        /* float: measured worst relative 7.3e-6 on M4F and host */
         OGK_ASSERT_REL(dydw[4u * nw + 3u + qb], iv, OGK_TEST_TOL(1e-6, 1e-4), 1e-9);
-        /* float: measured worst relative 1.2e-05 (host; M4F in make unit-errors), tolerance 10x */
+        /* float: measured worst relative 1.2e-5 on M4F and host */
         OGK_ASSERT_REL(dydw[1u * nw + 3u + qb], ir, OGK_TEST_TOL(1e-6, 2e-4), 1e-9);
     }
 }

@@ -209,7 +209,7 @@ static void test_min_time_against_bang_bang(void **state)
     assert_true(t_bfgs <= 1.005 * t_star); /* measured: +0.12 % */
     t_exact = solve(&fs, OGK_NMPC_HESSIAN_EXACT, 0.0, &plan);
     /* the same optimum: BFGS stops on its predicted decrease (tol_obj), the exact Hessian in Newton steps */
-    /* float: measured worst 2.9e-05 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst 2.9e-5 on M4F and host */
     OGK_ASSERT_NEAR(t_exact, t_bfgs, OGK_TEST_TOL(1.0e-5, 5e-4));
 }
 

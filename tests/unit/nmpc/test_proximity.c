@@ -105,9 +105,9 @@ static void test_dynamics_closed_form(void **state)
             const ogk_real_t a = u[1] * m.thrust_max / x[4];
             OGK_ASSERT_NEAR(xd[0], x[2], 0.0);
             OGK_ASSERT_NEAR(xd[1], x[3], 0.0);
-            /* float: measured worst 1.1e-06 (host; M4F in make unit-errors), tolerance 10x */
+            /* float: measured worst 1.1e-6 on M4F and host */
             OGK_ASSERT_NEAR(xd[2], (3.0 * n * n * x[0]) + (2.0 * n * x[3]) + (a * cos(u[0])), OGK_TEST_TOL(1e-15, 2e-5));
-            /* float: measured worst 1.3e-07 (host; M4F in make unit-errors), tolerance 10x */
+            /* float: measured worst 1.3e-7 on M4F and host */
             OGK_ASSERT_NEAR(xd[3], (-2.0 * n * x[2]) + (a * sin(u[0])), OGK_TEST_TOL(1e-15, 2e-6));
             OGK_ASSERT_NEAR(xd[4], -u[1] * m.mass_flow_max, 0.0);
         }
@@ -116,7 +116,7 @@ static void test_dynamics_closed_form(void **state)
         assert_true(memcmp(xd, xd_trig, sizeof(xd)) == 0);
         /* nu = 1: full throttle */
         OGK_ASSERT_STATUS(ogk_prox_problem.dynamics(&m, 1u, 0.7, x, u, NULL, xd_nu1, NULL, NULL, NULL), OGK_OK);
-        /* float: measured worst 1.6e-07 (host; M4F in make unit-errors), tolerance 10x */
+        /* float: measured worst 1.6e-7 on M4F and host */
         OGK_ASSERT_NEAR(xd_nu1[3], (-2.0 * m.mean_motion * x[2]) + (m.thrust_max / x[4] * sin(u[0])), OGK_TEST_TOL(1e-15, 2e-6));
         OGK_ASSERT_NEAR(xd_nu1[4], -m.mass_flow_max, 0.0);
     }
@@ -158,13 +158,13 @@ static void test_dynamics_closed_form(void **state)
                 + ((((4.0 * sn) - (3.0 * n * t_end)) / n) * x0[3]);
             const ogk_real_t vxe = (3.0 * n * sn * x0[0]) + (c * x0[2]) + (2.0 * sn * x0[3]);
             const ogk_real_t vye = (-6.0 * n * (1.0 - c) * x0[0]) - (2.0 * sn * x0[2]) + (((4.0 * c) - 3.0) * x0[3]);
-            /* float: measured worst 2.4e-07 (host; M4F in make unit-errors), tolerance 10x */
+            /* float: measured worst 2.4e-7 on M4F and host */
             OGK_ASSERT_NEAR(x[0], xe, OGK_TEST_TOL(1e-9, 5e-6));
-            /* float: measured worst 9.5e-07 (host; M4F in make unit-errors), tolerance 10x */
+            /* float: measured worst 9.5e-7 on M4F and host */
             OGK_ASSERT_NEAR(x[1], ye, OGK_TEST_TOL(1e-9, 1e-5));
-            /* float: measured worst 4.9e-07 (host; M4F in make unit-errors), tolerance 10x */
+            /* float: measured worst 4.9e-7 on M4F and host */
             OGK_ASSERT_NEAR(x[2], vxe, OGK_TEST_TOL(1e-9, 5e-6));
-            /* float: measured worst 1.4e-06 (host; M4F in make unit-errors), tolerance 10x */
+            /* float: measured worst 1.4e-6 on M4F and host */
             OGK_ASSERT_NEAR(x[3], vye, OGK_TEST_TOL(1e-9, 2e-5));
             OGK_ASSERT_NEAR(x[4], x0[4], 0.0);
         }
@@ -468,9 +468,9 @@ static void test_target_keepout_key_domain(void **state)
     OGK_ASSERT_NEAR(xt[3], 0.0, 0.0);
     OGK_ASSERT_NEAR(ogk_test_max_abs(rate, 4u), 0.0, 0.0);
     /* radii: the discs in use, 0 beyond n_keepout and beyond the limit */
-    /* float: measured worst 6e-09 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst 6e-9 on M4F and host */
     OGK_ASSERT_NEAR(ogk_prox_problem.keepout_radius(&m, 0u), 0.15, OGK_TEST_TOL(0.0, 1e-7));
-    /* float: measured worst 3e-09 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst 3e-9 on M4F and host */
     OGK_ASSERT_NEAR(ogk_prox_problem.keepout_radius(&m, 1u), 0.2, OGK_TEST_TOL(0.0, 5e-8));
     OGK_ASSERT_NEAR(ogk_prox_problem.keepout_radius(&m, 2u), 0.0, 0.0);
     m.n_keepout = 1u;
@@ -493,7 +493,7 @@ static void test_target_keepout_key_domain(void **state)
         random_point(&s, x, u);
         {
             const ogk_real_t d = ogk_prox_problem.keepout_distance(&m, j, x, 2.0, &d_x0, &d_x1, &d_t);
-            /* float: measured worst 1.3e-07 (host; M4F in make unit-errors), tolerance 10x */
+            /* float: measured worst 1.3e-7 on M4F and host */
             OGK_ASSERT_NEAR(d, hypot(x[0] - m.keepout_centre[2u * j], x[1] - m.keepout_centre[(2u * j) + 1u]), OGK_TEST_TOL(1e-15, 2e-6));
         }
         OGK_ASSERT_NEAR(d_t, 0.0, 0.0);

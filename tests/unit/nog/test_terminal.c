@@ -225,9 +225,9 @@ static void test_shaped_plan_meets_its_end_conditions(void **state)
         v_end = nav.v_r_mps + ((ctx.plan.accel_r0_mps2 + g_r) * T) + (0.5 * ctx.plan.accel_r1_mps3 * T * T);
         x_end = dr + (nav.v_r_mps * T) + (0.5 * (ctx.plan.accel_r0_mps2 + g_r) * T * T) +
                 ((ctx.plan.accel_r1_mps3 * T * T * T) / 6.0);
-        /* float: measured worst 4.4e-05 (host; M4F in make unit-errors), tolerance 10x */
+        /* float: measured worst 4.4e-5 on M4F and host */
         OGK_ASSERT_NEAR(v_end, 0.0, OGK_TEST_TOL(1e-12, 5e-4));
-        /* float: measured worst 4.4e-05 (host; M4F in make unit-errors), tolerance 10x */
+        /* float: measured worst 4.4e-5 on M4F and host */
         OGK_ASSERT_NEAR(x_end, (1.0 - k) * (dr + (0.5 * nav.v_r_mps * T)), OGK_TEST_TOL(1e-9, 5e-4));
         z = nav.r_m * sin(nav.phi_rad);
         z_dot = (nav.v_r_mps * sin(nav.phi_rad)) + (nav.v_n_mps * cos(nav.phi_rad));
@@ -235,12 +235,12 @@ static void test_shaped_plan_meets_its_end_conditions(void **state)
         v_end = z_dot + ((ctx.plan.accel_n0_mps2 + g_n) * T) + (0.5 * ctx.plan.accel_n1_mps3 * T * T);
         x_end = z + (z_dot * T) + (0.5 * (ctx.plan.accel_n0_mps2 + g_n) * T * T) +
                 ((ctx.plan.accel_n1_mps3 * T * T * T) / 6.0);
-        /* float: measured worst 4.7e-07 (host; M4F in make unit-errors), tolerance 10x */
+        /* float: measured worst 4.7e-7 on M4F and host */
         OGK_ASSERT_NEAR(v_end, 0.0, OGK_TEST_TOL(1e-12, 5e-6));
-        /* float: measured worst 2.6e-07 (host; M4F in make unit-errors), tolerance 10x */
+        /* float: measured worst 2.6e-7 on M4F and host */
         OGK_ASSERT_NEAR(x_end, (1.0 - cfg.shape_gain_normal) * (z + (0.5 * z_dot * T)), OGK_TEST_TOL(1e-9, 5e-6));
         /* the tangential component nulls the along-track speed error over T */
-        /* float: measured worst 5.4e-05 (host; M4F in make unit-errors), tolerance 10x */
+        /* float: measured worst 5.4e-5 on M4F and host */
         OGK_ASSERT_NEAR(ctx.plan.accel_t_mps2, (sqrt(MU / R_F) - nav.v_t_mps) / T, OGK_TEST_TOL(1e-12, 1e-3));
         /* the command is the plan's direction at its start */
         /* float: an angle from the plan's own components, 4 eps */
@@ -443,7 +443,7 @@ static void test_shaped_fallbacks(void **state)
         e1 = (0.5 * ((nav.v_r_mps * nav.v_r_mps) + (nav.v_t_mps * nav.v_t_mps) + (nav.v_n_mps * nav.v_n_mps))) -
              (MU / nav.r_m);
         OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.5, &law, &out), OGK_OK);
-        /* float: measured worst 0.00044 (host; M4F in make unit-errors), tolerance 10x */
+        /* float: measured worst 4.4e-4 on M4F and host */
         OGK_ASSERT_NEAR(ctx.plan.duration_s, ((-MU / (2.0 * R_F)) - e1) / ((e1 - e0) / 0.02), OGK_TEST_TOL(1e-6, 5e-3));
         assert_true(ctx.plan.duration_s > 2.0); /* 45 m/s at 17.5 m/s^2 */
     }
@@ -528,9 +528,9 @@ static void test_turn_limit_bounds_the_plans_tilt(void **state)
         rate += acc * 1.0e-5;
     }
     OGK_ASSERT_NEAR(rate, 0.0, 1e-12);
-    /* float: measured worst relative 1.5e-08 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 1.5e-8 on M4F and host */
     OGK_ASSERT_REL(ctx.shape_tilt_max_rad, angle, OGK_TEST_TOL(1e-9, 2e-7), 0.0);
-    /* float: measured worst relative 5.4e-10 (host; M4F in make unit-errors), tolerance 10x */
+    /* float: measured worst relative 5.4e-10 on M4F and host */
     OGK_ASSERT_REL(tan(ctx.shape_tilt_max_rad), ctx.shape_tilt_max_tan, OGK_TEST_TOL(1e-15, 1e-8), 0.0);
     /* a 400 m radius miss rising at 30 m/s with 2.5 s to go: far beyond the bound */
     nav.r_m = R_F + 400.0;
@@ -545,7 +545,7 @@ static void test_turn_limit_bounds_the_plans_tilt(void **state)
     {
         const double g_r = (((nav.v_t_mps * nav.v_t_mps) + (nav.v_n_mps * nav.v_n_mps)) / nav.r_m) -
                            (MU / (nav.r_m * nav.r_m));
-        /* float: measured worst 1.7e-06 (host; M4F in make unit-errors), tolerance 10x */
+        /* float: measured worst 1.7e-6 on M4F and host */
         OGK_ASSERT_NEAR(nav.v_r_mps + ((ctx.plan.accel_r0_mps2 + g_r) * t_go) +
                             (0.5 * ctx.plan.accel_r1_mps3 * t_go * t_go),
                         0.0, OGK_TEST_TOL(1e-12, 2e-5));
@@ -639,7 +639,7 @@ static void test_turn_limit_binds_only_when_it_can(void **state)
     OGK_ASSERT_STATUS(ogk_terminal_init(&ctx, &cfg), OGK_OK);
     OGK_ASSERT_STATUS(ogk_terminal_step(&ctx, &nav, 102.5, &law, &out), OGK_OK);
     /* float: v_go is then the rounding residual of the orbital speed (an ulp), not 0:
-     * measured worst 6.4e-17 (host; M4F in make unit-errors), tolerance 10x */
+     * measured worst 6.4e-17 on M4F and host */
     OGK_ASSERT_NEAR(ctx.plan.gain_scale, 0.0, OGK_TEST_TOL(0.0, 1e-15));
 }
 
