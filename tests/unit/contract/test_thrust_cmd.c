@@ -125,8 +125,9 @@ static void test_angle_and_vector_rejections(void **state)
     ogk_real_t u[3] = {7.0, 7.0, 7.0};
     ogk_real_t a = 7.0;
     ogk_real_t b = 7.0;
-    /* beyond the tolerance (float: 1 + 4e-9 is 1, the next float above 1 instead) */
-    const double big = OGK_TEST_PICK(1.0 + (4.0 * OGK_THRUST_CMD_UNIT_TOL), 1.0 + FLT_EPSILON);
+    /* beyond the tolerance: four times it, in either build (float: 8 eps, so 1 + 32 eps, which float
+     * holds exactly, where 1 + 4e-9 would be 1) */
+    const double big = 1.0 + (4.0 * OGK_THRUST_CMD_UNIT_TOL);
     const ogk_real_t v_long[3] = {0.0, big, 0.0};
     const ogk_real_t v_zero[3] = {0.0, 0.0, 0.0};
     const ogk_real_t v_huge[3] = {OGK_TEST_PICK(1e308, 1e38), OGK_TEST_PICK(1e308, 1e38),
