@@ -20,8 +20,23 @@ extern "C" {
 #endif
 
 /* Reciprocal 1-norm condition number below which a factorization reports
- * OGK_E_ILL_CONDITIONED (its factors are still stored and usable). */
+ * OGK_E_ILL_CONDITIONED (its factors are still stored and usable).
+ * It must lie above what the pivot tests imply, so that OGK_E_SINGULAR never
+ * hides a matrix ILL_CONDITIONED would have accepted: an LU pivot at or below
+ * eps |A|_1 implies rcond <= n eps, a QR diagonal entry at or below long_dim
+ * eps max_j |a_j|_2 implies rcond(R) <= long_dim eps, so at most
+ * OGK_LA_MAX_LONG eps (ogk/config.h). Double: 1e-13, 3.5 times that bound
+ * (128 eps = 2.8e-14), where cond eps = 2e-3 (a solve keeps about three
+ * digits). Float: 1e-13 is below any rcond float can compute without a pivot
+ * falling below eps |A| first (LU: n eps >= 2.4e-7), so ILL_CONDITIONED was
+ * unreachable and every such matrix SINGULAR; 4 OGK_LA_MAX_LONG eps (512 eps
+ * = 6.1e-5) keeps the double value's ratio to the bound and its meaning
+ * (cond eps = 2e-3 at the threshold). */
+#if OGK_REAL_SINGLE
+#define OGK_LA_RCOND_MIN (OGK_R(4.0) * OGK_R(OGK_LA_MAX_LONG) * OGK_REAL_EPSILON)
+#else
 #define OGK_LA_RCOND_MIN OGK_R(1.0e-13)
+#endif
 
 /* Absolute floor of the pivots: an LU pivot, a Cholesky Schur-complement pivot
  * d_i or a diagonal entry of R (QR) at or below it counts as zero, giving

@@ -556,13 +556,13 @@ static void test_lu_singular(void **state)
 
     /* Pivot threshold eps |A|_1: a 1e-17 pivot under a unit pivot is zero to
      * working precision; 1e-15 is not (rcond = 1e-15: ill-conditioned). In
-     * float 1e-8 is zero and 1e-6 is not; its rcond 1e-6 is above
-     * OGK_LA_RCOND_MIN (1e-13 in both builds), so a diagonal matrix is never
-     * ill-conditioned there: it is OK or singular. */
+     * float 1e-8 is zero and 1e-6 is not; its rcond 1e-6 is below the float
+     * OGK_LA_RCOND_MIN (512 eps = 6.1e-5, ogk/linalg.h): ill-conditioned, as
+     * in double. */
     OGK_ASSERT_STATUS(ogk_lu_factor(&lu, tiny17, 2), OGK_E_SINGULAR);
     assert_int_equal(lu.n, 0);
 #if OGK_REAL_SINGLE
-    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, tiny15, 2), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_lu_factor(&lu, tiny15, 2), OGK_E_ILL_CONDITIONED);
     assert_int_equal(lu.n, 2);
     OGK_ASSERT_REL(lu.rcond, 1e-6, 4.5 * FLT_EPSILON, 0.0);
 #else
