@@ -98,8 +98,8 @@ typedef struct {
     uint32_t target_mask;     /* [-] bits 0-5: constrained components of xf; all six when the last arc meets before the end (default 0x3F) */
     uint32_t corrector;       /* [-] OGK_BLT_CORR_* (default NRPC) */
     uint32_t jacobian;        /* [-] OGK_BLT_JAC_* (default central) */
-    ogk_real_t fd_step;           /* [-] central-difference step on each unknown, normalised units (default 1e-6) */
-    ogk_real_t tol;               /* [-] convergence: |e|_2 <= tol, normalised units (default 1e-6, the paper's) */
+    ogk_real_t fd_step;           /* [-] central-difference step on each unknown, normalised units (default 1e-6; float build 2^-8) */
+    ogk_real_t tol;               /* [-] convergence: |e|_2 <= tol, normalised units (default 1e-6, the paper's; float build 128 eps) */
     uint32_t max_iter;        /* [-] 1..OGK_BLT_MAX_ITER (default 40, the paper's sec. V) */
     ogk_real_t ls_factor;         /* [-] NRPC line search: step lengths 1, f, f^2, ... (default 0.1, the paper's 1/10) */
     uint32_t ls_trials;       /* [-] step lengths tried per iteration, 1..OGK_BLT_MAX_TRIALS (default 4) */

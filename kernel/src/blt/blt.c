@@ -12,6 +12,24 @@
 
 #define NX OGK_BLT_NX
 
+/* The defaults of fd_step and tol (ogk/blt.h), per precision of ogk_real_t (ogk/real.h).
+ * Double: the central-difference step 1e-6 and the paper's tolerance 1e-6 (normalised units).
+ * Float: a step of 1e-6 makes the central difference's round-off eps |e| / h = 0.1 of each
+ * Jacobian entry; the step that balances round-off eps / h against truncation h^2 is about
+ * eps^(1/3) = 4.9e-3, and 2^-8 = 3.9e-3 (the power of two below it) is the measured best:
+ * |central - variational| 4e-5 to 7e-5 of max|J| on the unit tests' transfers, against 2e-4 to
+ * 3e-4 at 1e-3 and 1.6e-3 at 1e-4 (docs/design/blt.md). The tolerance 1e-6 is at the float
+ * corrector's floor (|e| stalls between 1e-7 and 2.8e-6 on the unit tests' problems, about
+ * 1 to 24 eps of their unit-size states: the rounding of a state over a few hundred RK4 steps),
+ * so the float build's default is 128 eps = 1.5e-5, five times the worst floor measured. */
+#if OGK_REAL_SINGLE
+#define BLT_FD_STEP_DEFAULT OGK_R(0.00390625)
+#define BLT_TOL_DEFAULT (OGK_R(128.0) * OGK_REAL_EPSILON)
+#else
+#define BLT_FD_STEP_DEFAULT OGK_R(1.0e-6)
+#define BLT_TOL_DEFAULT OGK_R(1.0e-6)
+#endif
+
 /* ------------------------------------------------------------------ configuration */
 
 ogk_status ogk_blt_config_default(ogk_blt_config_t *cfg)
@@ -39,8 +57,8 @@ ogk_status ogk_blt_config_default(ogk_blt_config_t *cfg)
         cfg->target_mask = 0x3Fu;
         cfg->corrector = OGK_BLT_CORR_NRPC;
         cfg->jacobian = OGK_BLT_JAC_CENTRAL;
-        cfg->fd_step = OGK_R(1.0e-6);
-        cfg->tol = OGK_R(1.0e-6);
+        cfg->fd_step = BLT_FD_STEP_DEFAULT;
+        cfg->tol = BLT_TOL_DEFAULT;
         cfg->max_iter = 40u;
         cfg->ls_factor = OGK_R(0.1);
         cfg->ls_trials = 4u;
