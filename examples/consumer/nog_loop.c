@@ -1,8 +1,19 @@
 /* nog_loop.c -- VTD-NOG (ogk/nog.h) flown on a gain table made here with the public table layout
  * (ogk/table.h, ogk/crc32.h): a straight-line nominal of t_f* = 100 s with a constant thrust angle,
- * whose one gain maps a transverse-velocity error to a flight-time correction (2 s per m/s). The
- * vehicle flies 1.5 m/s fast all along, so every sample must predict the cut-off at 103 s, and the
- * engine must go off there. */
+ * whose flight-time row maps a transverse-velocity error to a flight-time correction (2 s per m/s).
+ * The vehicle flies the nominal stretched to 103 s, 1.5 m/s fast all along, and its navigation errs
+ * by 1 mm/s on v_t, alternately up and down from sample to sample: every sample must predict the
+ * cut-off at 103 s (within the 2 ms that error moves it) and the engine must go off there.
+ *
+ * The law samples the nominal at its own phase tau = tau_k + dt / t_f, with the t_f it last
+ * predicted, so a t_f off by d puts the nominal it compares with off along the nominal's tangent
+ * (x*' dtau, 2e6 m of r and 2000 m/s of v_t per unit tau). A flight-time row with a gain on v_t
+ * alone reads that displacement as a velocity error: 2000 K t / t_f^2 per second of d, a loop gain
+ * above one after the first three seconds (39 at the end), whose fixed point only exact navigation
+ * held (in float the rounding of v_t, in double a single 1 mm/s error, carried the prediction 5 s
+ * off). The row is therefore made blind to the tangent, as a neighbouring-optimal gain is to a
+ * displacement the law's own clock accounts for: K_TF_R on r cancels K_TF_VT along x*'
+ * (K_TF_R 2e6 + K_TF_VT 2000 = 0), and a phase error no longer feeds back into t_f. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -21,6 +32,8 @@
 #define ALPHA0 0.3    /* [rad] nominal thrust angle */
 #define K_TF_VT 2.0   /* [s per m/s] dt_f = K_TF_VT dv_t */
 #define DV_T 1.5      /* [m/s] the vehicle's transverse-velocity error */
+#define K_TF_R (-K_TF_VT * 2000.0 / 2.0e6) /* [s/m] the flight-time row blind to the nominal's tangent */
+#define NAV_ERR_VT 1.0e-3 /* [m/s] the navigation's error on v_t, alternating in sign from sample to sample */
 
 static const double x0[OGK_NOG_NX] = {7.0e6, 0.0, 0.0, 10.0, 9000.0, 0.0, 0.0};
 static const double x_rate[OGK_NOG_NX] = {2.0e6, 0.5, 0.0, -5.0, 2000.0, 0.0, TF_STAR}; /* d/dtau */
@@ -86,6 +99,7 @@ static void make_table(void)
         row[OGK_NOG_OFF_LAM + 4u] = -cos(ALPHA0);
         if (k + 1u < GRID) { /* no gains at tau = 1 */
             row[OGK_NOG_OFF_GAIN + (7u * 7u) + 4u] = K_TF_VT;
+            row[OGK_NOG_OFF_GAIN + (7u * 7u) + 0u] = K_TF_R;
         }
         put_real(b + OGK_TABLE_HEADER_SIZE + (ELEM_BYTES * k), tau);
         for (i = 0u; i < OGK_NOG_ENTRY_LEN; ++i) {
@@ -100,7 +114,7 @@ static void make_table(void)
 }
 
 /* The vehicle: on the nominal stretched to 103 s, DV_T fast (the navigation's double, handed over). */
-static ogk_nav_state_t nav_at(ogk_real_t t)
+static ogk_nav_state_t nav_at(ogk_real_t t, double nav_err_vt)
 {
     const double tau = (double)t / (TF_STAR + (K_TF_VT * DV_T));
     ogk_nav_state_t nav;
@@ -109,7 +123,7 @@ static ogk_nav_state_t nav_at(ogk_real_t t)
     nav.xi_rad = (ogk_real_t)(x0[1] + (tau * x_rate[1]));
     nav.phi_rad = 0.0;
     nav.v_r_mps = (ogk_real_t)(x0[3] + (tau * x_rate[3]));
-    nav.v_t_mps = (ogk_real_t)(x0[4] + (tau * x_rate[4]) + DV_T);
+    nav.v_t_mps = (ogk_real_t)(x0[4] + (tau * x_rate[4]) + DV_T + nav_err_vt);
     nav.v_n_mps = 0.0;
     return nav;
 }
@@ -146,7 +160,7 @@ int fly_nog(void)
     for (n = 0u; (n < 1200u) && (t_off < OGK_R(0.0)); ++n) {
         const ogk_real_t t = (ogk_real_t)n / OGK_R(10.0);
         if (((n % 20u) == 0u) && !terminating) {
-            const ogk_nav_state_t nav = nav_at(t);
+            const ogk_nav_state_t nav = nav_at(t, ((samples % 2u) == 0u) ? NAV_ERR_VT : -NAV_ERR_VT);
             ok = ok && (ogk_nog_sample(&nog, &nav, &s) == OGK_OK);
             worst_cutoff = fmax(worst_cutoff, fabs((double)s.t_cutoff_s - 103.0));
             terminating = (s.flags & OGK_NOG_FLAG_TERMINATING) != 0u;
@@ -159,8 +173,10 @@ int fly_nog(void)
             t_off = t;
         }
     }
-    /* the synthetic navigation is not the law's own closed loop: the samples may move the cut-off by
-     * milliseconds; the engine goes off at the first tick at or after the one predicted last */
+    /* each sample's prediction moves by K_TF_VT NAV_ERR_VT = 2 ms with the navigation's error (float
+     * adds the rounding of r, 1 m at 9e6 m, through K_TF_R: about 1 ms); 0.01 s holds both builds,
+     * and fails by seconds with a table whose row is not blind to the tangent; the engine goes off at
+     * the first tick at or after the cut-off predicted last */
     ok = ok && (worst_cutoff < 0.01) && (t_off >= s.t_cutoff_s) && (t_off < s.t_cutoff_s + OGK_R(0.1));
     (void)snprintf(detail, sizeof detail, "cut-off predicted at 103 s (within %.1e s), engine off at %.1f s, %u samples",
                    worst_cutoff, (double)t_off, samples);
