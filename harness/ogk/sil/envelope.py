@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from . import numerics, robustness
+from . import numerics, precision, robustness
 from .engine import Flown
 from .family import Record
 from .outputs import write_atomic
@@ -46,7 +46,7 @@ ENVELOPE_KEYS = ("schema", "family", "law", "mission", "scenario_path", "scenari
                  "products", "options", "seed", "runs", "workers", "resumed_runs", "failures",
                  "failure_reasons", "failure_classes", "failed_runs", "acceptance", "quantities",
                  "paper", "per_run_table", "timing", "target", "pil", "dispersion_check", "numerics",
-                 "robustness")
+                 "robustness", "precision")
 
 
 def table_path(json_path: str | Path) -> Path:
@@ -125,7 +125,9 @@ def envelope(flown: Flown, extra: Mapping[str, Any] | None = None,
         "quantities": quantities, "robustness": rob,
         "per_run_table": None if json_path is None else table_path(json_path).name,
         "timing": {"wall_s": flown.wall_s, "cpu_s": flown.cpu_s}, "target": plan.target,
-        "numerics": numerics.fingerprint()})
+        "numerics": numerics.fingerprint(),
+        # the kernel's real type flown (ogk.sil.precision): "double", or "single" (float kernel)
+        "precision": precision.of_options(plan.options)})
     if paper is not None:
         doc["paper"] = paper
     if pil is not None:
