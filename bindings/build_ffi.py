@@ -30,14 +30,17 @@ a kernel type is restated here:
   ``static const char *const NAME;`` (string literals). Include guards (empty
   macros) and function-like macros (ogk/real.h's OGK_R, OGK_SQRT, ...) are skipped.
   ogk/real.h's ``typedef double ogk_real_t;`` reaches the cdef as written: the
-  default build's real type, the float64 of every wrapper (a kernel built with
-  OGK_REAL_SINGLE=1 is refused at import: ogk_bindings._ffi).
+  default build's real type. The same bindings are built a second time with
+  OGK_REAL_SINGLE=1 (``PRECISIONS``): ``ogk_bindings._ogk_cffi_single``, whose
+  cdef says ``typedef float ogk_real_t;``; a process loads one of the two
+  (ogk_bindings._ffi, env OGK_PRECISION), the wrappers keep float64 and
+  convert at the kernel boundary (ogk_bindings._real).
 
 tests/python/test_bindings.py checks independently that every function,
 struct field and integer macro of the headers is reachable.
 
-Run from anywhere:  .venv/bin/python bindings/build_ffi.py
-(`make ffi` does this whenever a kernel source, a csrc/ file or this file changes.) setup.py builds
+Run from anywhere:  .venv/bin/python bindings/build_ffi.py [--precision double|single|both]
+(both by default; `make ffi` does this whenever a kernel source, a csrc/ file or this file changes.) setup.py builds
 the same extension (`setuptools_builder`) through cffi's setuptools integration, for `pip install`
 and `python -m build` (docs/guides/install.md).
 """

@@ -259,3 +259,22 @@ def test_a_process_of_one_precision_refuses_the_other(monkeypatch: pytest.Monkey
         precision.check("single")
     with pytest.raises(OgkInputError, match="expected one of"):
         precision.select("half")
+
+
+def test_make_ffi_and_setup_py_build_both_precisions() -> None:
+    """The wheel's extensions: the kernel's and each family's, in both precisions (setup.py's cffi_modules)."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("build_csrc", ROOT / "harness" / "ogk" / "missions" / "build_csrc.py")
+    assert spec is not None and spec.loader is not None
+    build_csrc = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(build_csrc)
+    specs = build_csrc.cffi_module_specs()
+    assert "harness/ogk/missions/build_csrc.py:family_orbit_injection_single" in specs
+    assert "harness/ogk/missions/build_csrc.py:family_orbit_injection" in specs
+    assert "bindings/build_ffi.py:setuptools_builder_single" in (ROOT / "setup.py").read_text()
+    kffi = build_csrc.kernel_ffi
+    assert kffi.module_name("single") == "ogk_bindings._ogk_cffi_single"
+    assert "typedef float ogk_real_t;" in kffi.declarations(kffi.bound_headers(), precision="single")
+    assert "typedef double ogk_real_t;" in kffi.declarations(kffi.bound_headers())
+    assert kffi.compile_args("double") == kffi.COMPILE_ARGS   # the double build's flags as they were
+    assert kffi.build_dir("single") != kffi.build_dir("double")

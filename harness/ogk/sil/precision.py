@@ -28,7 +28,7 @@ DEFAULT = "double"
 OPTION = "--precision"
 HELP = ("the kernel's real type flown: double (default) or single (the kernel built with "
         "OGK_REAL_SINGLE=1, float, as on a single-precision FPU; F32 tables; "
-        "docs/guides/sil.md, \"Single precision\")")
+        "docs/guides/campaigns.md, \"Single precision\")")
 
 
 def _loaded() -> str | None:
