@@ -141,26 +141,6 @@ def build_nog_bundle(nominal: Nominal, table: GainTable) -> PlannedTable:
     return PlannedTable("nog_bundle", KIND_NOG_BUNDLE, grid, data)
 
 
-#: the time component of the bundle's x* (OGK_NOG_OFF_X + IDX_TIME) and x*' (OGK_NOG_OFF_XDOT + IDX_TIME)
-_BUNDLE_X_TIME, _BUNDLE_XDOT_TIME = 6, 13
-
-
-def single_precision_bundle(bundle: PlannedTable) -> PlannedTable:
-    """The bundle as the float kernel must read it: its time columns as float computes them.
-
-    The kernel checks that every node's x*' time (= t_f*) equals the first node's and that its x* time
-    equals t_f* tau within 1e-9 t_f* (kernel/src/nog/nog.c, check_table_content), in its own real type.
-    The double values rounded to float one by one are an ulp (1.2e-7 t_f*) apart, and would be refused
-    (OGK_E_TABLE_TYPE); so the F32 file stores float(t_f*) in every x*' time and float(t_f*) x float(tau),
-    rounded as the float kernel rounds it, in every x* time: the same quantities, in the type that flies.
-    """
-    data = np.array(bundle.data, dtype=np.float64, copy=True)
-    t_f = np.float32(data[0, _BUNDLE_XDOT_TIME])
-    data[:, _BUNDLE_XDOT_TIME] = float(t_f)
-    data[:, _BUNDLE_X_TIME] = (t_f * np.asarray(bundle.grid, dtype=np.float32)).astype(np.float64)
-    return dataclasses.replace(bundle, data=data)
-
-
 def _sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
@@ -241,8 +221,6 @@ def write_nog_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SC
             f"grid that fits OGK_NOG_MAX_GRID = {grid.capacity} (uniform step {grid.step_s:g} s): "
             f"shorten sample_interval_s", path=scenario_path, key="guidance.sample_interval_s")
     bundle = build_nog_bundle(nominal, table)
-    if precision == "single":
-        bundle = single_precision_bundle(bundle)
     out.mkdir(parents=True, exist_ok=True)
     (out / MANIFEST).unlink(missing_ok=True)
     files = []
