@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pyarrow.parquet as pq
 import pytest
 
 from ogk_bindings import _ffi, kernel, models
@@ -232,6 +233,23 @@ def test_a_campaign_in_single_records_its_precision(tmp_path: Path) -> None:
     assert 0.0 < doc["quantities"]["final_mass_kg"]["mean"]
     key = json.loads(Path(str(out) + ".runs.jsonl").read_text().splitlines()[0])["key"]
     assert key["options"]["precision"] == "single"   # the run log's key: never resumed by a double campaign
+    # the double twin on the same draws (ogk.sil.precision_twin): its figures are those of the double
+    # campaign of the same seed flown on its own, and of the single campaign's own records
+    twin = doc["precision_vs_double"]
+    assert twin["runs_compared"] == 2 and twin["failures_differ"] == []
+    ref = tmp_path / "double.json"
+    res_d = subprocess.run([str(OGK), "mc", str(scenario), "--runs", "2", "--seed", "3", "--json", str(ref)],
+                           capture_output=True, text=True, env=_env(None), cwd=tmp_path, timeout=240)
+    assert res_d.returncode == 0, res_d.stdout + res_d.stderr
+    single_rows = pq.read_table(out.with_suffix(".parquet")).to_pylist()
+    double_rows = pq.read_table(ref.with_suffix(".parquet")).to_pylist()
+    for name in ("dr_f_km", "final_mass_kg"):
+        diffs = [(abs(s[name] - d[name]), s["run_id"], s[name], d[name]) for s, d in zip(single_rows, double_rows)]
+        worst = max(diffs)
+        q = twin["quantities"][name]
+        assert (q["max_abs_diff"], q["run_id"], q["single"], q["double"]) == worst, name
+        assert q["max_abs_diff"] > 0.0, name       # float is not double in disguise
+    assert "Single against double on the same draws (2 runs" in res.stdout
 
 
 def test_the_command_line_precision_wins_over_the_environment(tmp_path: Path) -> None:
