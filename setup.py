@@ -4,8 +4,10 @@
   CHANGELOG.md, "Versioning"); pyproject.toml declares it dynamic.
 * The cffi extensions (cffi's setuptools integration, `cffi_modules`) are described by the scripts
   `make ffi` runs, not by a copy: the kernel's, `ogk_bindings._ogk_cffi` (bindings/build_ffi.py,
-  `setuptools_builder`), then each mission family's C helpers, `ogk.missions.<family>._csrc_cffi`
-  (harness/ogk/missions/build_csrc.py, one `family_<name>` builder per family with a csrc/). So
+  `setuptools_builder`) and its single-precision twin `ogk_bindings._ogk_cffi_single`
+  (`setuptools_builder_single`, OGK_REAL_SINGLE=1: `OGK_PRECISION=single`), then each mission family's
+  C helpers, `ogk.missions.<family>._csrc_cffi` and `_csrc_cffi_single` (harness/ogk/missions/build_csrc.py,
+  `family_<name>` and `family_<name>_single` builders per family with a csrc/). So
   `pip install .`, `python -m build` and the Makefile's `pip install -e .` compile the kernel with the
   same sources and options as `make ffi` (the editable install builds them in place, where `make ffi`
   puts them). docs/guides/install.md.
@@ -52,7 +54,8 @@ class BuildPy(build_py):
 
 setup(
     version=kernel_version(),
-    cffi_modules=["bindings/build_ffi.py:setuptools_builder", *build_csrc.cffi_module_specs()],
+    cffi_modules=["bindings/build_ffi.py:setuptools_builder", "bindings/build_ffi.py:setuptools_builder_single",
+                  *build_csrc.cffi_module_specs()],
     cmdclass={"build_py": BuildPy},
     # setuptools' own directories apart from the Makefile's build/<target> (no parallel build_ext: the
     # two extensions compile the same kernel sources into the same objects)

@@ -30,14 +30,17 @@ a kernel type is restated here:
   ``static const char *const NAME;`` (string literals). Include guards (empty
   macros) and function-like macros (ogk/real.h's OGK_R, OGK_SQRT, ...) are skipped.
   ogk/real.h's ``typedef double ogk_real_t;`` reaches the cdef as written: the
-  default build's real type, the float64 of every wrapper (a kernel built with
-  OGK_REAL_SINGLE=1 is refused at import: ogk_bindings._ffi).
+  default build's real type. The same bindings are built a second time with
+  OGK_REAL_SINGLE=1 (``PRECISIONS``): ``ogk_bindings._ogk_cffi_single``, whose
+  cdef says ``typedef float ogk_real_t;``; a process loads one of the two
+  (ogk_bindings._ffi, env OGK_PRECISION), the wrappers keep float64 and
+  convert at the kernel boundary (ogk_bindings._real).
 
 tests/python/test_bindings.py checks independently that every function,
 struct field and integer macro of the headers is reachable.
 
-Run from anywhere:  .venv/bin/python bindings/build_ffi.py
-(`make ffi` does this whenever a kernel source, a csrc/ file or this file changes.) setup.py builds
+Run from anywhere:  .venv/bin/python bindings/build_ffi.py [--precision double|single|both]
+(both by default; `make ffi` does this whenever a kernel source, a csrc/ file or this file changes.) setup.py builds
 the same extension (`setuptools_builder`) through cffi's setuptools integration, for `pip install`
 and `python -m build` (docs/guides/install.md).
 """
@@ -66,6 +69,30 @@ CC = os.environ.get("CC", "gcc")
 # Extra -D/-U options (e.g. a capacity override) applied both to the header scan
 # and to the compilation of the extension.
 DEFINES = shlex.split(os.environ.get("OGK_FFI_DEFINES", ""))
+
+#: The kernel's two real types (ogk/real.h), one extension each: "double" (the default,
+#: ogk_bindings._ogk_cffi) and "single" (-DOGK_REAL_SINGLE=1, ogk_bindings._ogk_cffi_single, whose
+#: cdef's ogk_real_t is float). A process loads one of them (ogk_bindings._ffi, env OGK_PRECISION).
+PRECISIONS = ("double", "single")
+#: the module-name suffix of each precision (the families' extensions take the same one)
+PRECISION_SUFFIX = {"double": "", "single": "_single"}
+
+
+def precision_defines(precision: str = "double") -> list[str]:
+    """The -D options of a precision, after OGK_FFI_DEFINES (header scan and compilation alike)."""
+    if precision not in PRECISIONS:
+        raise ValueError(f"precision {precision!r}: expected one of {PRECISIONS}")
+    return ["-DOGK_REAL_SINGLE=1"] if precision == "single" else []
+
+
+def module_name(precision: str = "double") -> str:
+    precision_defines(precision)  # validates
+    return MODULE_NAME + PRECISION_SUFFIX[precision]
+
+
+def build_dir(precision: str = "double") -> Path:
+    """cffi's build directory of a precision (apart: the same sources compile to different objects)."""
+    return BUILD_DIR if precision == "double" else BUILD_DIR.parent / f"ffi-{precision}"
 INCLUDE_DIRS = [str(KERNEL_INCLUDE), *(str(d) for d in CSRC_DIRS)]
 
 
@@ -100,9 +127,11 @@ def include_source(headers: list[Path]) -> str:
     return "".join(lines)
 
 
-def _preprocess(source: str, *flags: str, include_dirs: list[str] | None = None) -> str:
+def _preprocess(source: str, *flags: str, include_dirs: list[str] | None = None,
+                precision: str = "double") -> str:
     dirs = INCLUDE_DIRS if include_dirs is None else include_dirs
-    cmd = [CC, "-std=c99", "-E", *flags, *DEFINES, *(f"-I{d}" for d in dirs), "-"]
+    cmd = [CC, "-std=c99", "-E", *flags, *DEFINES, *precision_defines(precision), *(f"-I{d}" for d in dirs),
+           "-"]
     return subprocess.run(cmd, input=source, capture_output=True, text=True,
                           check=True).stdout
 
@@ -110,12 +139,14 @@ def _preprocess(source: str, *flags: str, include_dirs: list[str] | None = None)
 _LINEMARKER = re.compile(r'^#\s*(\d+)\s+"([^"]*)"')
 
 
-def declarations(headers: list[Path], include_dirs: list[str] | None = None) -> str:
+def declarations(headers: list[Path], include_dirs: list[str] | None = None,
+                 precision: str = "double") -> str:
     """Types, enums and prototypes of `headers`, macro-expanded, nothing else."""
     ours = {str(h.resolve()) for h in headers}
     keep = False
     out: list[str] = []
-    for line in _preprocess(include_source(headers), include_dirs=include_dirs).splitlines():
+    for line in _preprocess(include_source(headers), include_dirs=include_dirs,
+                            precision=precision).splitlines():
         m = _LINEMARKER.match(line)
         if m:
             path = m.group(2)
@@ -138,11 +169,11 @@ _FLOAT_BUILTIN = re.compile(r"\b__builtin_(?:huge_val|inf|nan)f?\b")
 _FLOAT = re.compile(r"(?<![\w.])(\d+\.\d*|\.\d+|\d+[eE][-+]?\d+)(?:[eE][-+]?\d+)?[fFlL]?(?![\w.])")
 
 
-def macros(headers: list[Path], include_dirs: list[str] | None = None
+def macros(headers: list[Path], include_dirs: list[str] | None = None, precision: str = "double"
            ) -> list[tuple[str, str, str]]:
     """(name, kind, value) of the object-like OGK_* macros of `headers` (and of what they
     include), kind in {"int", "double", "string"}; empty (include-guard) macros skipped."""
-    text = _preprocess(include_source(headers), "-dM", include_dirs=include_dirs)
+    text = _preprocess(include_source(headers), "-dM", include_dirs=include_dirs, precision=precision)
     values: dict[str, str] = {}
     # every object-like macro the headers see (<float.h>'s, <math.h>'s, the compiler's), to expand
     # the OGK_* ones through them: ogk/real.h's OGK_REAL_EPSILON is DBL_EPSILON, __DBL_EPSILON__,
@@ -192,9 +223,9 @@ def macro_cdefs(found: list[tuple[str, str, str]]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def generated_cdef() -> str:
+def generated_cdef(precision: str = "double") -> str:
     headers = bound_headers()
-    return declarations(headers) + macro_cdefs(macros(headers))
+    return declarations(headers, precision=precision) + macro_cdefs(macros(headers, precision=precision))
 
 
 def source_paths(paths: list[Path], relative: bool = False) -> list[str]:
@@ -225,19 +256,25 @@ COMPILE_ARGS = ["-std=c99", "-O2", f"-I{KERNEL_SRC}", *DEFINES]
 PY_LIMITED_API = True
 
 
-def make_builder(relative: bool = False) -> cffi.FFI:
+def compile_args(precision: str = "double") -> list[str]:
+    """COMPILE_ARGS with the precision's define (the double build's are COMPILE_ARGS as they were)."""
+    return [*COMPILE_ARGS, *precision_defines(precision)]
+
+
+def make_builder(relative: bool = False, precision: str = "double") -> cffi.FFI:
     headers = bound_headers()
-    cdef = generated_cdef()
-    BUILD_DIR.mkdir(parents=True, exist_ok=True)
-    (BUILD_DIR / "generated_cdef.h").write_text(cdef)  # for inspection only
+    cdef = generated_cdef(precision)
+    tmp = build_dir(precision)
+    tmp.mkdir(parents=True, exist_ok=True)
+    (tmp / "generated_cdef.h").write_text(cdef)  # for inspection only
     ffibuilder = cffi.FFI()
     ffibuilder.cdef(cdef)
     ffibuilder.set_source(
-        MODULE_NAME,
+        module_name(precision),
         include_source(headers),
         sources=bound_sources(relative),
         include_dirs=INCLUDE_DIRS,
-        extra_compile_args=COMPILE_ARGS,
+        extra_compile_args=compile_args(precision),
         libraries=["m"],
         py_limited_api=PY_LIMITED_API,
     )
@@ -250,15 +287,27 @@ def setuptools_builder() -> cffi.FFI:
     return make_builder(relative=True)
 
 
-def main() -> int:
-    BUILD_DIR.mkdir(parents=True, exist_ok=True)
-    built = Path(make_builder().compile(tmpdir=str(BUILD_DIR), verbose=False))
-    # Install the extension next to the package sources (editable install).
-    for old in PACKAGE_DIR.glob("_ogk_cffi*"):
-        old.unlink()
-    target = PACKAGE_DIR / built.name
-    shutil.copy2(built, target)
-    print(f"build_ffi: {target.relative_to(ROOT)}")
+def setuptools_builder_single() -> cffi.FFI:
+    """The single-precision extension (ogk_bindings._ogk_cffi_single) for setup.py, likewise."""
+    return make_builder(relative=True, precision="single")
+
+
+def main(argv: list[str] | None = None) -> int:
+    import argparse
+    parser = argparse.ArgumentParser(description="builds the kernel's cffi extension of each precision")
+    parser.add_argument("--precision", choices=[*PRECISIONS, "both"], default="both")
+    args = parser.parse_args(argv)
+    for precision in PRECISIONS if args.precision == "both" else (args.precision,):
+        tmp = build_dir(precision)
+        tmp.mkdir(parents=True, exist_ok=True)
+        built = Path(make_builder(precision=precision).compile(tmpdir=str(tmp), verbose=False))
+        # Install the extension next to the package sources (editable install).
+        stem = module_name(precision).rsplit(".", 1)[1]
+        for old in PACKAGE_DIR.glob(f"{stem}.*"):
+            old.unlink()
+        target = PACKAGE_DIR / built.name
+        shutil.copy2(built, target)
+        print(f"build_ffi: {target.relative_to(ROOT)}")
     return 0
 
 

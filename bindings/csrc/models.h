@@ -4,6 +4,7 @@
 #ifndef OGK_HARNESS_MODELS_H
 #define OGK_HARNESS_MODELS_H
 
+#include "ogk/real.h"
 #include "ogk/status.h"
 
 #ifdef __cplusplus
@@ -14,11 +15,11 @@ extern "C" {
  * x = [r(3), v(3)] in an inertial frame; xdot = [v, -mu r / |r|^3].
  * mode is ignored. OGK_E_RANGE at r = 0. */
 typedef struct {
-    double mu; /* [length^3/time^2] gravitational parameter */
+    ogk_real_t mu; /* [length^3/time^2] gravitational parameter */
 } ogk_model_two_body_t;
 
-ogk_status ogk_model_two_body_rhs(void *user, double t, const double *x,
-                                  int mode, double *xdot);
+ogk_status ogk_model_two_body_rhs(void *user, ogk_real_t t, const ogk_real_t *x,
+                                  int mode, ogk_real_t *xdot);
 
 /* ---------------------------------------------------------------- min-fuel double integrator
  * Minimum-fuel control of r'' = u, |u| <= u_max (cost = integral of |u|),
@@ -36,24 +37,24 @@ ogk_status ogk_model_two_body_rhs(void *user, double t, const double *x,
 #define OGK_MODEL_MIN_FUEL_DI_N 4u
 
 typedef struct {
-    double u_max; /* [length/time^2] acceleration magnitude when thrust is on, > 0 */
+    ogk_real_t u_max; /* [length/time^2] acceleration magnitude when thrust is on, > 0 */
 } ogk_model_min_fuel_di_t;
 
-ogk_status ogk_model_min_fuel_di_rhs(void *user, double t, const double *x,
-                                     int mode, double *xdot);
-ogk_status ogk_model_min_fuel_di_switch(void *user, double t, const double *x,
-                                        int mode, double *s);
+ogk_status ogk_model_min_fuel_di_rhs(void *user, ogk_real_t t, const ogk_real_t *x,
+                                     int mode, ogk_real_t *xdot);
+ogk_status ogk_model_min_fuel_di_switch(void *user, ogk_real_t t, const ogk_real_t *x,
+                                        int mode, ogk_real_t *s);
 
 /* ---------------------------------------------------------------- decay
  * Scalar x' = -rate x (exact solution x0 exp(-rate t)); returns OGK_E_RANGE
  * for t > t_fail, so tests can provoke OGK_E_CALLBACK. mode is ignored. */
 typedef struct {
-    double rate;   /* [1/time] decay rate */
-    double t_fail; /* [time] the rhs fails beyond this time */
+    ogk_real_t rate;   /* [1/time] decay rate */
+    ogk_real_t t_fail; /* [time] the rhs fails beyond this time */
 } ogk_model_decay_t;
 
-ogk_status ogk_model_decay_rhs(void *user, double t, const double *x,
-                               int mode, double *xdot);
+ogk_status ogk_model_decay_rhs(void *user, ogk_real_t t, const ogk_real_t *x,
+                               int mode, ogk_real_t *xdot);
 
 /* ---------------------------------------------------------------- oscillator
  * x = [q, q'], q'' = -omega^2 q; switching function S = q, so with x0 = [1, 0]
@@ -61,13 +62,13 @@ ogk_status ogk_model_decay_rhs(void *user, double t, const double *x,
  * ignored by the rhs: the model exercises event location on smooth,
  * non-polynomial motion and the switch-count limit. */
 typedef struct {
-    double omega; /* [rad/time] angular frequency */
+    ogk_real_t omega; /* [rad/time] angular frequency */
 } ogk_model_oscillator_t;
 
-ogk_status ogk_model_oscillator_rhs(void *user, double t, const double *x,
-                                    int mode, double *xdot);
-ogk_status ogk_model_oscillator_switch(void *user, double t, const double *x,
-                                       int mode, double *s);
+ogk_status ogk_model_oscillator_rhs(void *user, ogk_real_t t, const ogk_real_t *x,
+                                    int mode, ogk_real_t *xdot);
+ogk_status ogk_model_oscillator_switch(void *user, ogk_real_t t, const ogk_real_t *x,
+                                       int mode, ogk_real_t *s);
 
 #ifdef __cplusplus
 }

@@ -20,6 +20,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ogk_bindings._ffi import ffi, lib
+from ogk_bindings._real import real_view
 from ogk_bindings.config import KernelConfig
 from ogk_bindings.kernel import ThrustCmd, _check, _thrust_cmd_call, status_name
 
@@ -160,16 +161,16 @@ class Blt:
         return self._outcome(lib.ogk_blt_evaluate(self._ctx, tr.to_c(), self._rep), "ogk_blt_evaluate")
 
     def propagate(self, tr: Transfer) -> tuple[F64, BltReport]:
-        x = ffi.new("double[6]")
+        x = ffi.new("ogk_real_t[6]")
         rep = self._outcome(lib.ogk_blt_propagate(self._ctx, tr.to_c(), x, self._rep), "ogk_blt_propagate")
         return np.array(list(x)), rep
 
     def jacobian(self, tr: Transfer) -> F64:
         """J = de/du (test entry point: kernel/include/ogk/internal/blt_test.h)."""
         n = self.n_errors * self.n_unknowns
-        buf = ffi.new(f"double[{n}]")
+        buf = ffi.new(f"ogk_real_t[{n}]")
         _check(lib.ogk_blt_jacobian(self._ctx, tr.to_c(), buf, n), "ogk_blt_jacobian")
-        return np.frombuffer(ffi.buffer(buf), dtype=np.float64).reshape(self.n_errors, self.n_unknowns).copy()
+        return real_view(buf).reshape(self.n_errors, self.n_unknowns)
 
     def thrust_cmd(self, t: float) -> ThrustCmd:
         """ogk_blt_thrust_cmd: the held solution's command at t [TU] in the synodic frame;

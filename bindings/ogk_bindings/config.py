@@ -38,6 +38,11 @@ def _is_pointer(ftype: Any) -> bool:
     return ftype.kind == "pointer"
 
 
+#: the C names of a floating field: the kernel's ogk_real_t is double, or float in a single-precision
+#: process (ogk_bindings._ffi.PRECISION); a Python float either way
+_REAL_CNAMES = ("double", "float")
+
+
 def _set_field(owner: str, c: Any, name: str, ftype: Any, value: Any) -> None:
     """c.name = value, by the field's C type; a nested struct takes a mapping of its fields."""
     if _is_pointer(ftype):
@@ -50,14 +55,14 @@ def _set_field(owner: str, c: Any, name: str, ftype: Any, value: Any) -> None:
                 raise TypeError(f"{owner}.{name} has no field {key!r}; fields: {', '.join(fields)}")
             _set_field(f"{owner}.{name}", sub, key, fields[key].type, v)
     elif ftype.kind == "array":
-        v = np.asarray(value, dtype=np.float64 if ftype.item.cname == "double" else np.int64)
+        v = np.asarray(value, dtype=np.float64 if ftype.item.cname in _REAL_CNAMES else np.int64)
         v = v.reshape(-1)
         if v.size > ftype.length:
             raise ValueError(f"{owner}.{name}: {v.size} values, the C array holds {ftype.length}")
         arr = getattr(c, name)
         for i, x in enumerate(v):
-            arr[i] = float(x) if ftype.item.cname == "double" else int(x)
-    elif ftype.kind == "enum" or (ftype.kind == "primitive" and ftype.cname != "double"):
+            arr[i] = float(x) if ftype.item.cname in _REAL_CNAMES else int(x)
+    elif ftype.kind == "enum" or (ftype.kind == "primitive" and ftype.cname not in _REAL_CNAMES):
         setattr(c, name, int(value))
     else:
         setattr(c, name, float(value))
@@ -69,7 +74,7 @@ def _get_field(value: Any, ftype: Any) -> Any:
         return {k: _get_field(getattr(value, k), f.type) for k, f in ftype.fields}
     if ftype.kind == "array":
         return np.array([value[i] for i in range(ftype.length)])
-    if ftype.kind == "primitive" and ftype.cname == "double":
+    if ftype.kind == "primitive" and ftype.cname in _REAL_CNAMES:
         return float(value)
     return int(value)
 
@@ -128,7 +133,7 @@ class KernelConfig:
             return value
         if ftype.kind == "struct":
             return _get_field(value, ftype)
-        if ftype.kind == "primitive" and ftype.cname == "double":
+        if ftype.kind == "primitive" and ftype.cname in _REAL_CNAMES:
             return float(value)
         if name in self._enums:
             return self._enums[name](int(value))

@@ -164,7 +164,7 @@ def _elementwise(func: Any, name: str, n_out: int, *args: ArrayLike) -> Any:
     shape = arrays[0].shape
     flat = [a.ravel() for a in arrays]
     outs = [np.empty(flat[0].size) for _ in range(n_out)]
-    ptrs = [ffi.new("double *") for _ in range(n_out)]
+    ptrs = [ffi.new("ogk_real_t *") for _ in range(n_out)]
     for i in range(flat[0].size):
         _check(func(*[float(a[i]) for a in flat], *ptrs), name)
         for o, p in zip(outs, ptrs):

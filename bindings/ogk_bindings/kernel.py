@@ -2,7 +2,10 @@
 
 Every wrapper converts its inputs to contiguous float64 arrays, calls the one
 kernel function, and raises KernelError (status code and name) for any status
-other than OGK_OK. Outputs are fresh numpy arrays owned by Python.
+other than OGK_OK. Outputs are fresh float64 numpy arrays owned by Python. What
+crosses into the kernel is converted to its real type by ogk_bindings._real
+(float64 itself in the default double build; float32 in a single-precision
+process, ogk_bindings._ffi.PRECISION).
 """
 from __future__ import annotations
 
@@ -14,6 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ogk_bindings._ffi import ffi, lib
+from ogk_bindings._real import real_array, real_in, real_like, real_out, to_f64
 
 F64 = NDArray[np.float64]
 
@@ -144,12 +148,8 @@ def _f64(a: ArrayLike) -> F64:
     return np.ascontiguousarray(a, dtype=np.float64)
 
 
-def _in(a: F64) -> Any:
-    return ffi.from_buffer("double[]", a)
-
-
-def _out(a: F64) -> Any:
-    return ffi.from_buffer("double[]", a, require_writable=True)
+_in = real_in
+_out = real_out
 
 
 def version() -> str:
@@ -237,17 +237,17 @@ class TableView:
         return int(self._view.entry_len)
 
     def grid(self) -> F64:
-        out = np.empty(self.grid_size)
+        out = real_array(self.grid_size)
         _check(lib.ogk_table_read_grid(self._view, _out(out), out.size), "ogk_table_read_grid")
-        return out
+        return to_f64(out)
 
     def data(self) -> F64:
-        out = np.empty(self.grid_size * self.entry_len)
+        out = real_array(self.grid_size * self.entry_len)
         _check(lib.ogk_table_read_data(self._view, _out(out), out.size), "ogk_table_read_data")
-        return out.reshape((self.grid_size, *self.dims))
+        return to_f64(out).reshape((self.grid_size, *self.dims))
 
     def get(self, k: int, index: int) -> float:
-        value = ffi.new("double *")
+        value = ffi.new("ogk_real_t *")
         _check(lib.ogk_table_get(self._view, k, index, value), "ogk_table_get")
         return float(value[0])
 
@@ -297,7 +297,7 @@ def interp_linear(grid: ArrayLike, values: ArrayLike, tau: float | ArrayLike) ->
     gp, vp = _in(g), _in(v)
 
     def one(t: float, row: F64) -> None:
-        res = np.empty(m)
+        res = real_array(m)
         _check(lib.ogk_interp_linear(gp, g.size, vp, m, t, _out(res)), "ogk_interp_linear")
         row[:] = res
 
@@ -307,10 +307,10 @@ def interp_linear(grid: ArrayLike, values: ArrayLike, tau: float | ArrayLike) ->
 def pchip_slopes(grid: ArrayLike, values: ArrayLike) -> F64:
     """Pchip node slopes d values / d grid, same shape as values."""
     g, v, m = _grid_values(grid, values)
-    out = np.empty_like(v)
+    out = real_like(v)
     _check(lib.ogk_interp_pchip_slopes(_in(g), g.size, _in(v), m, _out(out)),
            "ogk_interp_pchip_slopes")
-    return out
+    return to_f64(out)
 
 
 def interp_pchip(grid: ArrayLike, values: ArrayLike, tau: float | ArrayLike,
@@ -323,7 +323,7 @@ def interp_pchip(grid: ArrayLike, values: ArrayLike, tau: float | ArrayLike,
     gp, vp, dp = _in(g), _in(v), _in(d)
 
     def one(t: float, row: F64) -> None:
-        res = np.empty(m)
+        res = real_array(m)
         _check(lib.ogk_interp_pchip(gp, g.size, vp, dp, m, t, _out(res)), "ogk_interp_pchip")
         row[:] = res
 
@@ -349,19 +349,19 @@ def _vector(a: ArrayLike, length: int) -> F64:
 def mat_vec(A: ArrayLike, x: ArrayLike) -> F64:
     a = _matrix(A)
     v = _vector(x, a.shape[1])
-    y = np.empty(a.shape[0])
+    y = real_array(a.shape[0])
     _check(lib.ogk_mat_vec(_in(a), a.shape[0], a.shape[1], _in(v), _out(y)), "ogk_mat_vec")
-    return y
+    return to_f64(y)
 
 
 def mat_mul(A: ArrayLike, B: ArrayLike) -> F64:
     a, b = _matrix(A), _matrix(B)
     if a.shape[1] != b.shape[0]:
         raise ValueError(f"shapes {a.shape} and {b.shape} do not chain")
-    c = np.empty((a.shape[0], b.shape[1]))
+    c = real_array((a.shape[0], b.shape[1]))
     _check(lib.ogk_mat_mul(_in(a), a.shape[0], a.shape[1], _in(b), b.shape[1], _out(c)),
            "ogk_mat_mul")
-    return c
+    return to_f64(c)
 
 
 class LuFactor:
@@ -394,15 +394,15 @@ class LuFactor:
         if rhs.shape[0] != self.n:
             raise ValueError(f"b has {rhs.shape[0]} rows, the matrix {self.n}")
         cols = rhs.reshape(self.n, -1).T.copy()
-        out = np.empty_like(cols)
+        out = real_like(cols)
         for j in range(cols.shape[0]):
             _check(lib.ogk_lu_solve(self._lu, _in(cols[j]), _out(out[j])), "ogk_lu_solve")
-        return out.T.reshape(rhs.shape).copy()
+        return to_f64(out).T.reshape(rhs.shape).copy()
 
     def inverse(self) -> F64:
-        out = np.empty((self.n, self.n))
+        out = real_array((self.n, self.n))
         _check(lib.ogk_lu_inverse(self._lu, _out(out)), "ogk_lu_inverse")
-        return out
+        return to_f64(out)
 
 
 def lu_factor(A: ArrayLike, allow_ill_conditioned: bool = False) -> LuFactor:
@@ -430,9 +430,9 @@ def cholesky_solve(A: ArrayLike, b: ArrayLike) -> F64:
     ch = ffi.new("ogk_chol_t *")
     _check(lib.ogk_chol_factor(ch, _in(a), a.shape[0] if a.shape[0] == a.shape[1] else 0),
            "ogk_chol_factor")
-    x = np.empty(a.shape[0])
+    x = real_array(a.shape[0])
     _check(lib.ogk_chol_solve(ch, _in(rhs), _out(x)), "ogk_chol_solve")
-    return x
+    return to_f64(x)
 
 
 def lstsq(A: ArrayLike, b: ArrayLike) -> F64:
@@ -440,9 +440,9 @@ def lstsq(A: ArrayLike, b: ArrayLike) -> F64:
     a = _matrix(A)
     rhs = _vector(b, a.shape[0])
     ws = ffi.new("ogk_qr_t *")
-    x = np.empty(a.shape[1])
+    x = real_array(a.shape[1])
     _check(lib.ogk_lstsq(ws, _in(a), a.shape[0], a.shape[1], _in(rhs), _out(x)), "ogk_lstsq")
-    return x
+    return to_f64(x)
 
 
 def minnorm(A: ArrayLike, b: ArrayLike) -> F64:
@@ -450,10 +450,10 @@ def minnorm(A: ArrayLike, b: ArrayLike) -> F64:
     a = _matrix(A)
     rhs = _vector(b, a.shape[0])
     ws = ffi.new("ogk_qr_t *")
-    x = np.empty(a.shape[1])
+    x = real_array(a.shape[1])
     _check(lib.ogk_minnorm(ws, _in(a), a.shape[0], a.shape[1], _in(rhs), _out(x)),
            "ogk_minnorm")
-    return x
+    return to_f64(x)
 
 
 # ----------------------------------------------------------------- RK4
@@ -524,9 +524,9 @@ def rk4_step(model: CModel, t: float, x: ArrayLike, dt: float, mode: int = 0) ->
     if x0.shape != (model.n,):
         raise ValueError(f"{model.name}: state must have shape ({model.n},), got {x0.shape}")
     p = _problem(model, 1.0, 0.0, 1.0)  # h and tolerances unused by one step, only validated
-    out = np.empty(model.n)
+    out = real_array(model.n)
     _check(lib.ogk_rk4_step(p, t, _in(x0), dt, mode, _out(out)), "ogk_rk4_step")
-    return out
+    return to_f64(out)
 
 
 def rk4_propagate(model: CModel, x0: ArrayLike, t0: float, tf: float, h: float,
@@ -541,11 +541,11 @@ def rk4_propagate(model: CModel, x0: ArrayLike, t0: float, tf: float, h: float,
         raise ValueError(f"{model.name}: x0 must have shape ({model.n},), got {x.shape}")
     p = _problem(model, h, s_tol, t_tol)
     res = ffi.new("ogk_rk4_result_t *")
-    xf = np.empty(model.n)
+    xf = real_array(model.n)
     dense = ffi.NULL
     if dense_capacity > 0:
-        dt_buf = np.empty(dense_capacity)
-        dx_buf = np.empty((dense_capacity, model.n))
+        dt_buf = real_array(dense_capacity)
+        dx_buf = real_array((dense_capacity, model.n))
         dm_buf = np.empty(dense_capacity, dtype=np.uint8)
         dense = ffi.new("ogk_rk4_dense_t *")
         dense.t = _out(dt_buf)
@@ -562,8 +562,8 @@ def rk4_propagate(model: CModel, x0: ArrayLike, t0: float, tf: float, h: float,
     dense_out = None
     if dense_capacity > 0:
         k = int(dense.count)
-        dense_out = Dense(t=dt_buf[:k].copy(), x=dx_buf[:k].copy(), mode=dm_buf[:k].copy())
-    result = Rk4Result(xf=xf, t_reached=float(res.t_reached), mode_final=int(res.mode_final),
+        dense_out = Dense(t=to_f64(dt_buf[:k]).copy(), x=to_f64(dx_buf[:k]).copy(), mode=dm_buf[:k].copy())
+    result = Rk4Result(xf=to_f64(xf), t_reached=float(res.t_reached), mode_final=int(res.mode_final),
                        n_steps=int(res.n_steps), n_rhs=int(res.n_rhs), switches=switches,
                        dense=dense_out)
     _check(st, "ogk_rk4_propagate", partial=result)

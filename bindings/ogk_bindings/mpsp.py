@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ogk_bindings._ffi import ffi, lib
+from ogk_bindings._real import real_array, real_in, real_out, to_f64, to_real
 from ogk_bindings.config import KernelConfig
 from ogk_bindings.kernel import Status, ThrustCmd, _check, _thrust_cmd_call
 
@@ -97,12 +98,8 @@ def _vec(a: ArrayLike, n: int, name: str) -> F64:
     return v
 
 
-def _buf(a: F64) -> Any:
-    return ffi.from_buffer("double[]", a)
-
-
-def _out(a: F64) -> Any:
-    return ffi.from_buffer("double[]", a, require_writable=True)
+_buf = real_in
+_out = real_out
 
 
 class MpspConfig(KernelConfig):
@@ -240,14 +237,14 @@ class Mpsp:
         _check(lib.ogk_mpsp_propagate(self._ctx, _buf(w), float(lambda_m0), _buf(x),
                                       float(thrust_scale), prop), "ogk_mpsp_propagate")
         n = int(prop.n_nodes)
-        t = np.empty(n)
-        xs = np.empty((n, NX))
+        t = real_array(n)
+        xs = real_array((n, NX))
         mode = np.empty(n, dtype=np.uint8)
         count = ffi.new("size_t *")
         _check(lib.ogk_mpsp_trajectory(self._ctx, _out(t), _out(xs.reshape(-1)),
                                        ffi.from_buffer("uint8_t[]", mode, require_writable=True),
                                        n, count), "ogk_mpsp_trajectory")
-        return Trajectory(t=t, x=xs, mode=mode,
+        return Trajectory(t=to_f64(t), x=to_f64(xs), mode=mode,
                           switch_times=np.array(list(prop.t_switch)[:int(prop.n_switches)]),
                           n_segments=int(prop.n_segments), n_thrust_arcs=int(prop.n_thrust_arcs),
                           x_f=np.array(list(prop.x_f)))
@@ -255,38 +252,38 @@ class Mpsp:
     def state_at(self, t: ArrayLike) -> F64:
         """X at each t of the trajectory held (pchip inside a segment), shape (len(t), 8)."""
         ts = np.atleast_1d(np.asarray(t, dtype=np.float64))
-        out = np.empty((ts.size, NX))
+        out = real_array((ts.size, NX))
         for i, ti in enumerate(ts):
             _check(lib.ogk_mpsp_state_at(self._ctx, float(ti), _out(out[i])), "ogk_mpsp_state_at")
-        return out
+        return to_f64(out)
 
     def control(self, weights: ArrayLike, t: ArrayLike) -> tuple[F64, F64]:
         """lambda_v(t) and its time derivative, each shape (len(t), 3)."""
         w = _vec(weights, self.n_weights, "weights")
         ts = np.atleast_1d(np.asarray(t, dtype=np.float64))
-        lv = np.empty((ts.size, 3))
-        lvd = np.empty((ts.size, 3))
+        lv = real_array((ts.size, 3))
+        lvd = real_array((ts.size, 3))
         for i, ti in enumerate(ts):
             _check(lib.ogk_mpsp_control(self._ctx, _buf(w), float(ti), _out(lv[i]), _out(lvd[i])),
                    "ogk_mpsp_control")
-        return lv, lvd
+        return to_f64(lv), to_f64(lvd)
 
     def sensitivity(self) -> tuple[F64, F64]:
         """dY/dW (7 x n_weights) and dY/dlambda_m0 (7) of the trajectory held."""
-        dydw = np.empty((NY, self.n_weights))
-        dydl = np.empty(NY)
+        dydw = real_array((NY, self.n_weights))
+        dydl = real_array(NY)
         _check(lib.ogk_mpsp_sensitivity(self._ctx, _out(dydw.reshape(-1)), _out(dydl)),
                "ogk_mpsp_sensitivity")
-        return dydw, dydl
+        return to_f64(dydw), to_f64(dydl)
 
     def newton_update(self, dy: ArrayLike, weights: ArrayLike,
                       lambda_m0: float) -> tuple[F64, float]:
         """Eqs. (44)-(46) from the sensitivities held: the updated (weights, lambda_m0)."""
-        w = _vec(weights, self.n_weights, "weights").copy()
-        lm = ffi.new("double *", float(lambda_m0))
+        w = to_real(_vec(weights, self.n_weights, "weights")).copy()
+        lm = ffi.new("ogk_real_t *", float(lambda_m0))
         _check(lib.ogk_mpsp_newton_update(self._ctx, _buf(_vec(dy, NY, "dy")), _out(w), lm),
                "ogk_mpsp_newton_update")
-        return w, float(lm[0])
+        return to_f64(w), float(lm[0])
 
     def thrust_cmd(self, t: float) -> ThrustCmd:
         """ogk_mpsp_thrust_cmd: the held trajectory's command at t [TU], inertial: the primer
@@ -299,11 +296,11 @@ class Mpsp:
         """One RK4 step: (x_next, dX_next/dX (8 x 8), dX_next/dW (8 x n_weights)). Test entry point
         (kernel/include/ogk/internal/mpsp_test.h, not flight API)."""
         w = _vec(weights, self.n_weights, "weights")
-        xn = np.empty(NX)
-        jx = np.empty((NX, NX))
-        jw = np.empty((NX, self.n_weights))
+        xn = real_array(NX)
+        jx = real_array((NX, NX))
+        jw = real_array((NX, self.n_weights))
         _check(lib.ogk_mpsp_step_jacobian(self._ctx, _buf(w), float(thrust_scale), float(t),
                                           _buf(_vec(x, NX, "x")), float(dt), int(mode), _out(xn),
                                           _out(jx.reshape(-1)), _out(jw.reshape(-1))),
                "ogk_mpsp_step_jacobian")
-        return xn, jx, jw
+        return to_f64(xn), to_f64(jx), to_f64(jw)

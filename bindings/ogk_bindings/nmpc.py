@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ogk_bindings._ffi import ffi, lib
+from ogk_bindings._real import real_array, real_in, real_out, real_view, to_f64, to_real
 from ogk_bindings.config import KernelConfig
 from ogk_bindings.kernel import ThrustCmd, _check, _thrust_cmd_call, status_name
 
@@ -87,10 +88,11 @@ def plan_cdata(t0: float, horizon: float, x: NDArray[np.float64], u: NDArray[np.
     plan.horizon = float(horizon)
     plan.nodes = x.shape[0] - 1
     plan.nu = u.shape[1]
-    ffi.memmove(plan.x, x.tobytes(), x.nbytes)
-    ffi.memmove(plan.u, u.tobytes(), u.nbytes)
+    xr, ur = to_real(x), to_real(u)  # the kernel's real type (ogk_bindings._real)
+    ffi.memmove(plan.x, xr.tobytes(), xr.nbytes)
+    ffi.memmove(plan.u, ur.tobytes(), ur.nbytes)
     if multipliers is not None:
-        lam = np.ascontiguousarray(multipliers, dtype=np.float64)
+        lam = to_real(multipliers)
         ffi.memmove(getattr(plan, "lambda"), lam.tobytes(), lam.nbytes)
     return plan
 
@@ -99,8 +101,8 @@ def plan_of(p: object) -> NmpcPlan:
     """The NmpcPlan of an ogk_nmpc_plan_t."""
     c: Any = p
     n, nu = int(c.nodes), int(c.nu)
-    x = np.frombuffer(ffi.buffer(c.x), dtype=np.float64)[: (n + 1) * NX].reshape(n + 1, NX).copy()
-    u = np.frombuffer(ffi.buffer(c.u), dtype=np.float64)[: (n + 1) * nu].reshape(n + 1, nu).copy()
+    x = real_view(c.x, (n + 1) * NX).reshape(n + 1, NX)
+    u = real_view(c.u, (n + 1) * nu).reshape(n + 1, nu)
     lam = np.array([getattr(c, "lambda")[i] for i in range(4)])
     return NmpcPlan(t0=float(c.t0), horizon=float(c.horizon), states=x, controls=u, multipliers=lam)
 
@@ -202,23 +204,22 @@ class Nmpc(SolverSettings):
     def model_rhs(self, t: float, x: ArrayLike, u: ArrayLike) -> F64:
         xs = np.ascontiguousarray(x, dtype=np.float64)
         us = np.ascontiguousarray(u, dtype=np.float64)
-        out = np.empty(NX)
-        _check(lib.ogk_nmpc_model_rhs(self._ctx, float(t), ffi.from_buffer("double[]", xs),
-                                      ffi.from_buffer("double[]", us),
-                                      ffi.from_buffer("double[]", out)), "ogk_nmpc_model_rhs")
-        return out
+        out = real_array(NX)
+        _check(lib.ogk_nmpc_model_rhs(self._ctx, float(t), real_in(xs), real_in(us), real_out(out)),
+               "ogk_nmpc_model_rhs")
+        return to_f64(out)
 
     def interval(self, t0: float, h: float, x0: ArrayLike, u0: ArrayLike,
                  u1: ArrayLike) -> tuple[F64, F64, F64, F64, F64, F64]:
         """(x1, dfdx (5, 5), dfdu0 (5, nu), dfdu1 (5, nu), dfdh (5,), dfdt0 (5,)) of one subinterval."""
         nu = self.nu
-        bufs = [np.empty(NX), np.empty(NX * NX), np.empty(NX * nu), np.empty(NX * nu), np.empty(NX),
-                np.empty(NX)]
+        bufs = [real_array(NX), real_array(NX * NX), real_array(NX * nu), real_array(NX * nu), real_array(NX),
+                real_array(NX)]
         xs = np.ascontiguousarray(x0, dtype=np.float64)
         a = np.ascontiguousarray(u0, dtype=np.float64)
         b = np.ascontiguousarray(u1, dtype=np.float64)
-        _check(lib.ogk_nmpc_interval(self._ctx, float(t0), float(h), ffi.from_buffer("double[]", xs),
-                                     ffi.from_buffer("double[]", a), ffi.from_buffer("double[]", b),
-                                     *[ffi.from_buffer("double[]", q) for q in bufs]), "ogk_nmpc_interval")
-        return (bufs[0], bufs[1].reshape(NX, NX), bufs[2].reshape(NX, nu), bufs[3].reshape(NX, nu),
-                bufs[4], bufs[5])
+        _check(lib.ogk_nmpc_interval(self._ctx, float(t0), float(h), real_in(xs), real_in(a), real_in(b),
+                                     *[real_out(q) for q in bufs]), "ogk_nmpc_interval")
+        out = [to_f64(q) for q in bufs]
+        return (out[0], out[1].reshape(NX, NX), out[2].reshape(NX, nu), out[3].reshape(NX, nu),
+                out[4], out[5])

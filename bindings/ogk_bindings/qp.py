@@ -8,6 +8,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._ffi import ffi, lib
+from ._real import to_real
 
 F64 = NDArray[np.float64]
 
@@ -28,7 +29,7 @@ class QpSolve:
     _keep: list = field(default_factory=list, repr=False)
 
     def __post_init__(self) -> None:
-        self._arrays = [np.ascontiguousarray(a, dtype=np.float64) for a in
+        self._arrays = [to_real(a) for a in  # the kernel's real type (ogk_bindings._real)
                         (self.H, self.g, self.A_eq, self.b_eq, self.A_in, self.b_in, self.lb, self.ub)]
         H, g, A_eq, b_eq, A_in, b_in, lb, ub = (self._ptr(a) for a in self._arrays)
         p = ffi.new("ogk_qp_problem_t *")
@@ -41,7 +42,7 @@ class QpSolve:
     def _ptr(self, a: F64):
         if a.size == 0:
             return ffi.NULL
-        buf = ffi.from_buffer("double[]", a)
+        buf = ffi.from_buffer("ogk_real_t[]", a)
         self._keep.append(buf)
         return buf
 

@@ -15,6 +15,7 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import ScenarioHeader, read_header, resolve_scenario
 
 from ogk.missions import registry
+from ogk.sil import precision
 from ogk.sil.family import MissionFamily
 
 
@@ -59,6 +60,14 @@ def run_scenario_command(name: str, scenario: str | None, rest: Sequence[str],
             raise OgkInputError("needs a file", key="--scenario")
         scenario = rest[i + 1]
         del rest[i:i + 2]
+    # `--precision single` (ogk mc, ogk run): the kernel's real type, chosen before the family's modules
+    # import the bindings (ogk.sil.precision); `ogk mc`'s parser declares the option, the others' do not
+    chosen = precision.take(rest, remove=name != "mc")
+    if chosen is not None:
+        if name == "tables":   # the ground products of the flight build (docs/guides/sil.md)
+            raise OgkInputError(f"`ogk {name}` has no {precision.OPTION} (ogk mc and ogk run have)",
+                                key=precision.OPTION)
+        precision.select(chosen)
     header = read_header(resolve_scenario(scenario))
     fam = registry.family(header)
     if name == "mc":
@@ -78,6 +87,8 @@ def run_scenario_command(name: str, scenario: str | None, rest: Sequence[str],
     args = parser.parse_args(rest)
     for key, value in (overrides or {}).items():
         setattr(args, key, value)
+    if chosen is not None and chosen != precision.DEFAULT:
+        print(f"precision: {chosen} (the kernel's ogk_real_t is float: OGK_REAL_SINGLE=1)")
     return int(verb(header, args))
 
 

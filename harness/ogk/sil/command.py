@@ -13,7 +13,7 @@ from ogk_bindings.errors import OgkInputError
 from ogk_host.paths import need_repository
 from ogk_host.scenario_file import ScenarioHeader
 
-from . import dispersion_check, engine, envelope, robustness, target_summary
+from . import dispersion_check, engine, envelope, precision, precision_twin, robustness, target_summary
 from .family import CampaignPlan, MissionFamily
 from .outputs import check_output_dir, check_output_file, remove_stale
 from .pil import TARGETS
@@ -55,6 +55,10 @@ def add_engine_arguments(p: argparse.ArgumentParser, family: MissionFamily,
                         "(tcp://HOST:PORT) or local:N (N worker processes started here); the "
                         "records are the same bit for bit (docs/guides/scale-out.md)")
     add_target_argument(p)
+    p.add_argument(precision.OPTION, choices=precision.CHOICES, default=precision.DEFAULT, help=precision.HELP)
+    p.add_argument("--double-twin", action=argparse.BooleanOptionalAction, default=True,
+                   help="with --precision single: also fly the same runs on the double kernel (a new "
+                        "process) and report the largest difference per quantity (default: on)")
     p.add_argument("--watchdog-per-run", type=float, default=None, metavar="S",
                    help="a chunk without a result after 120 s + S s per run is killed and the "
                         "campaign aborted (default: the family's)")
@@ -94,7 +98,7 @@ def check_engine_arguments(args: argparse.Namespace) -> None:
 
 
 ENGINE_OPTIONS = ("runs", "seed", "workers", "json", "plots", "resume", "chunk_runs",
-                  "watchdog_per_run", "debug", "dask")
+                  "watchdog_per_run", "debug", "dask", "precision", "double_twin")
 
 
 def family_options(args: argparse.Namespace) -> dict[str, Any]:
@@ -118,6 +122,7 @@ def fly(fam: MissionFamily, header: ScenarioHeader, args: argparse.Namespace) ->
     cluster (ogk.sil.dask_executor), the same campaign."""
     check_engine_arguments(args)
     check_target(fam, args)
+    precision.check(getattr(args, "precision", precision.DEFAULT), getattr(args, "target", "host"))
     if getattr(args, "dask", None) is None:
         return _fly(fam, header, args, None)
     from .dask_executor import DaskExecutor
@@ -131,6 +136,7 @@ def _fly(fam: MissionFamily, header: ScenarioHeader, args: argparse.Namespace,
         raise OgkInputError("required: the number of runs", key="--runs")
     remove_stale(args.json)
     plan: CampaignPlan = fam.plan(header, family_options(args))
+    plan.options = precision.stamp(plan.options)   # "precision": "single" (a double plan's unchanged)
     if args.runs is None:
         if plan.max_runs is None:
             raise OgkInputError("required: the number of runs (this campaign draws its runs)",
@@ -152,12 +158,24 @@ def _fly(fam: MissionFamily, header: ScenarioHeader, args: argparse.Namespace,
                                    executor=executor)
         pil = target_summary.summary(plan.target, flown.records, host.records, plan.target_bounds,
                                      plan.target_why, flown.wall_s, flown.workers)
+    twin = None
+    if precision.of_options(plan.options) != precision.DEFAULT and args.double_twin:
+        # the same runs on the double kernel: what float changes, per run
+        ref = precision_twin.fly_double(fam, header, family_options(args), args.seed, flown.run_ids,
+                                        args.workers, args.chunk_runs)
+        twin = precision_twin.compare(flown.records, ref, plan.quantities)
     text, extra = fam.report(flown)
     disp = dispersion_check.check_plan(plan, flown.records)   # dispersions proven applied
+    if precision.of_options(plan.options) != precision.DEFAULT:
+        print(f"precision: {precision.of_options(plan.options)} (the kernel's ogk_real_t is float: "
+              "OGK_REAL_SINGLE=1, F32 tables)\n")
     print(text)
     if pil is not None:
         print()
         print(target_summary.format_summary(pil))
+    if twin is not None:
+        print()
+        print(precision_twin.format_comparison(twin))
     if disp is not None:
         print()
         print(disp.summary())
@@ -165,7 +183,7 @@ def _fly(fam: MissionFamily, header: ScenarioHeader, args: argparse.Namespace,
         print(f"\n{flown.resumed_runs} of {len(flown.records)} runs taken from "
               f"{engine.run_log_path(args.json)}")
     doc = envelope.write_campaign(args.json, flown, extra, pil,
-                                  None if disp is None else disp.to_json())
+                                  None if disp is None else disp.to_json(), twin)
     print()
     print(robustness.format_quantities(doc["quantities"]))
     print()

@@ -15,6 +15,8 @@ Envelope (`ogk.campaign/1`, written atomically, NaN as null):
   paper (the paper's columns beside ours, only when the scenario carries them),
   per_run_table (the Parquet file's name), timing {wall_s, cpu_s}, target ("host" or "m7"),
   pil (a target campaign only: worst case per entry point, host vs target; ogk.sil.target_summary),
+  precision_vs_double (a single-precision campaign only: its double twin on the same draws, the largest
+    difference per quantity; ogk.sil.precision_twin),
   dispersion_check (each declared dispersion against the records; ogk.sil.dispersion_check),
   numerics (this host's numerics fingerprint: numpy, its SIMD targets, the BLAS kernels;
   ogk.sil.numerics; `ogk replay` on another machine says when it differs)
@@ -35,7 +37,7 @@ from typing import Any
 
 import numpy as np
 
-from . import numerics, robustness
+from . import numerics, precision, robustness
 from .engine import Flown
 from .family import Record
 from .outputs import write_atomic
@@ -46,7 +48,7 @@ ENVELOPE_KEYS = ("schema", "family", "law", "mission", "scenario_path", "scenari
                  "products", "options", "seed", "runs", "workers", "resumed_runs", "failures",
                  "failure_reasons", "failure_classes", "failed_runs", "acceptance", "quantities",
                  "paper", "per_run_table", "timing", "target", "pil", "dispersion_check", "numerics",
-                 "robustness")
+                 "robustness", "precision", "precision_vs_double")
 
 
 def table_path(json_path: str | Path) -> Path:
@@ -97,7 +99,8 @@ def failure_reasons(records: Sequence[Record]) -> dict[str, int]:
 def envelope(flown: Flown, extra: Mapping[str, Any] | None = None,
              json_path: str | Path | None = None,
              pil: Mapping[str, Any] | None = None,
-             dispersion_check: Mapping[str, Any] | None = None) -> dict[str, Any]:
+             dispersion_check: Mapping[str, Any] | None = None,
+             precision_vs_double: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """The campaign's JSON document (module doc); `extra`: the family's own keys."""
     plan, recs = flown.plan, flown.records
     doc: dict[str, Any] = dict(extra or {})
@@ -125,13 +128,18 @@ def envelope(flown: Flown, extra: Mapping[str, Any] | None = None,
         "quantities": quantities, "robustness": rob,
         "per_run_table": None if json_path is None else table_path(json_path).name,
         "timing": {"wall_s": flown.wall_s, "cpu_s": flown.cpu_s}, "target": plan.target,
-        "numerics": numerics.fingerprint()})
+        "numerics": numerics.fingerprint(),
+        # the kernel's real type flown (ogk.sil.precision): "double", or "single" (float kernel)
+        "precision": precision.of_options(plan.options)})
     if paper is not None:
         doc["paper"] = paper
     if pil is not None:
         doc["pil"] = dict(pil)
     if dispersion_check is not None:
         doc["dispersion_check"] = dict(dispersion_check)
+    if precision_vs_double is not None:
+        # a single campaign's double twin on the same draws (ogk.sil.precision_twin)
+        doc["precision_vs_double"] = dict(precision_vs_double)
     return finite_or_none(doc)
 
 
@@ -171,11 +179,12 @@ def read_table(path: str | Path) -> list[Record]:
 def write_campaign(json_path: str | Path, flown: Flown,
                    extra: Mapping[str, Any] | None = None,
                    pil: Mapping[str, Any] | None = None,
-                   dispersion_check: Mapping[str, Any] | None = None) -> dict[str, Any]:
+                   dispersion_check: Mapping[str, Any] | None = None,
+                   precision_vs_double: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Writes the Parquet table, then the envelope (the envelope last: a JSON that exists names a
     complete table). Returns the envelope."""
     write_table(table_path(json_path), flown.records)
-    doc = envelope(flown, extra, json_path, pil, dispersion_check)
+    doc = envelope(flown, extra, json_path, pil, dispersion_check, precision_vs_double)
     write_atomic(json_path, json.dumps(doc, indent=1) + "\n")
     return doc
 

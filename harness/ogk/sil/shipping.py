@@ -32,7 +32,7 @@ from typing import Any
 from ogk_bindings.errors import OgkInputError
 from ogk_host.scenario_file import read_header
 
-from . import numerics
+from . import numerics, precision
 from .family import CampaignPlan, MissionFamily
 from .pil_build import ROOT
 
@@ -171,6 +171,7 @@ def plan_of(shipment: Shipment) -> CampaignPlan:
                             "run the workers on the client's CPU kind and packages, or set "
                             "OPENBLAS_CORETYPE and NPY_DISABLE_CPU_FEATURES alike everywhere "
                             "(docs/guides/scale-out.md)", key="--dask")
+    precision.check_options(shipment.options)   # the worker loaded the campaign's kernel precision
     key = shipment.key
     plan = _PLANS.get(key)
     if plan is not None:

@@ -145,11 +145,20 @@ def _sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
-def default_table_dir(scenario_path: str | Path = DEFAULT_SCENARIO_PATH) -> Path:
+def default_table_dir(scenario_path: str | Path = DEFAULT_SCENARIO_PATH, precision: str = "double") -> Path:
     """build/tables/<scenario name>-<first 12 hex of the scenario file's SHA-256> under the
     repository root (`ogk_host.scenario_file.table_dir_for`, the same for every family): one
-    directory per scenario content, so editing a scenario never reuses its previous tables."""
-    return table_dir_for(scenario_path)
+    directory per scenario content, so editing a scenario never reuses its previous tables.
+    The tables of a single-precision kernel (F32, `precision` "single") have a directory of their
+    own, the same name with "-single": double and single never share a file."""
+    tablefile.element_type(precision)  # validates
+    base = table_dir_for(scenario_path)
+    return base if precision == "double" else base.with_name(f"{base.name}-{precision}")
+
+
+def _manifest_precision(manifest: dict) -> str:
+    """The precision of a manifest's tables (no "precision" key: double, as every file before it)."""
+    return str(manifest.get("precision", "double"))
 
 
 def flight_grid(nominal: Nominal, settings: EffectiveSettings | None = None,
@@ -176,15 +185,19 @@ def _is_ogk_dir(out: Path) -> bool:
 
 
 def write_nog_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SCENARIO_PATH, *,
-                     nominal: Nominal | None = None, table: GainTable | None = None) -> dict:
+                     nominal: Nominal | None = None, table: GainTable | None = None,
+                     precision: str = "double") -> dict:
     """Writes <out_dir>/<name>.ogkt for every table and manifest.json; returns the manifest.
 
     Refuses (TableError) a non-empty directory without an ogk manifest: it never overwrites what it
     did not make. The manifest is removed first and written last, so a directory with a manifest
     is complete. `nominal`/`table` (optional) must come from the same scenario file; by default
     the nominal is solved and the gains computed on `flight_grid`, whose mid-node interpolation
-    error is measured and must stay below INTERPOLATION_ERROR_BOUND.
+    error is measured and must stay below INTERPOLATION_ERROR_BOUND. `precision` is the element
+    type of the files (tablefile: "double" F64, "single" F32 for a kernel built with
+    OGK_REAL_SINGLE=1); a single-precision manifest says so ("precision"), a double one is as before.
     """
+    tablefile.element_type(precision)  # validates before the nominal is solved
     scenario_path = Path(scenario_path)
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
@@ -213,7 +226,7 @@ def write_nog_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SC
     files = []
     for planned in build_table_arrays(nominal, table) + [bundle]:
         path = out / f"{planned.name}.ogkt"
-        size = tablefile.write_table(path, planned.kind, planned.grid, planned.data)
+        size = tablefile.write_table(path, planned.kind, planned.grid, planned.data, precision)
         header, _ = tablefile.TableHeader.unpack(path.read_bytes())
         files.append({"name": planned.name, "file": path.name, "kind": f"0x{planned.kind:08X}",
                       "dims": list(planned.dims), "grid_size": int(planned.grid.size),
@@ -239,6 +252,8 @@ def write_nog_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SC
         "settings": settings.as_manifest(),
         "files": files,
     }
+    if precision != "double":
+        manifest["precision"] = precision
     (out / MANIFEST).write_text(json.dumps(manifest, indent=2) + "\n")
     return manifest
 
@@ -259,12 +274,14 @@ def check_burn_bounds(scn: Any, t_f_star_s: float) -> None:
 
 
 def check_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SCENARIO_PATH,
-                 reference_tf_s: float | None = None, tf_tolerance_s: float = 1e-6) -> dict:
+                 reference_tf_s: float | None = None, tf_tolerance_s: float = 1e-6,
+                 precision: str = "double") -> dict:
     """The manifest of `out_dir` if its tables belong to `scenario_path` and are intact.
 
     TableError (one line) when there is no ogk manifest, when the manifest names another scenario
     (SHA-256 mismatch), when a file is missing or its SHA-256 or CRC does not match (corrupted),
-    or when t_f* differs from `reference_tf_s` by more than `tf_tolerance_s`.
+    or when t_f* differs from `reference_tf_s` by more than `tf_tolerance_s`, or when the tables
+    are not of `precision` (F64 for "double", F32 for "single").
     """
     out, scenario_path = Path(out_dir), Path(scenario_path)
     manifest_path = out / MANIFEST
@@ -282,7 +299,10 @@ def check_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SCENAR
         raise TableError(
             f"made from scenario {scn_rec.get('name')!r} ({scn_rec.get('path')}, SHA-256 "
             f"{str(scn_rec.get('sha256'))[:12]}), not from {scenario_path} (SHA-256 {want[:12]}): "
-            f"regenerate with `ogk tables` or use {default_table_dir(scenario_path)}", path=out)
+            f"regenerate with `ogk tables` or use {default_table_dir(scenario_path, precision)}", path=out)
+    if _manifest_precision(manifest) != precision:
+        raise TableError(f"{_manifest_precision(manifest)}-precision tables, not {precision}: use "
+                         f"{default_table_dir(scenario_path, precision)}", path=out)
     for entry in manifest.get("files", []):
         path = out / entry["file"]
         if not path.is_file():
@@ -290,7 +310,7 @@ def check_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SCENAR
         if _sha256(path) != entry["sha256"]:
             raise TableError("corrupted: SHA-256 differs from the manifest", path=path)
         try:
-            tablefile.decode_table(path.read_bytes(), int(entry["kind"], 16))
+            tablefile.decode_table(path.read_bytes(), int(entry["kind"], 16), precision)
         except tablefile.TableFormatError as exc:
             raise TableError(f"corrupted: {exc}", path=path) from None
     if not any(e.get("file") == BUNDLE_FILE for e in manifest.get("files", [])):
@@ -302,24 +322,26 @@ def check_tables(out_dir: str | Path, scenario_path: str | Path = DEFAULT_SCENAR
 
 
 def ensure_nog_tables(scenario_path: str | Path = DEFAULT_SCENARIO_PATH,
-                      table_dir: str | Path | None = None) -> Path:
+                      table_dir: str | Path | None = None, precision: str = "double") -> Path:
     """The checked table directory of `scenario_path` (the flight bundle is BUNDLE_FILE in it).
 
     table_dir None: the default directory (`default_table_dir`), generated when it has no tables,
     otherwise checked. A given table_dir is only checked (`check_tables`), except that it is
     generated when it does not exist (or is empty). Raises TableError (one line) otherwise.
+    `precision`: the element type the flying kernel reads ("single": F32 tables, in their own default
+    directory, `default_table_dir`).
     """
     scenario_path = Path(scenario_path)
-    out = default_table_dir(scenario_path) if table_dir is None else Path(table_dir)
+    out = default_table_dir(scenario_path, precision) if table_dir is None else Path(table_dir)
     with directory_lock(out):   # another process may be writing the same tables
         empty = not out.exists() or (out.is_dir() and not any(out.iterdir()))
         if empty or (table_dir is None and not (out / MANIFEST).exists()):
-            write_nog_tables(out, scenario_path)
+            write_nog_tables(out, scenario_path, precision=precision)
         elif table_dir is None and _is_ogk_dir(out) and _generator(out) != GENERATOR:
             # the default directory is this tool's cache (keyed by the scenario's SHA-256): tables of
             # an older generator are remade there; a user's directory is only ever checked
-            write_nog_tables(out, scenario_path)
-        check_tables(out, scenario_path)
+            write_nog_tables(out, scenario_path, precision=precision)
+        check_tables(out, scenario_path, precision=precision)
     return out
 
 

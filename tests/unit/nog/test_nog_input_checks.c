@@ -131,16 +131,20 @@ static void test_table_content_rejections(void **state)
         OGK_ASSERT_NEAR(table.tau[k], 0.25 * (double)k, 0.0);
     }
 #if OGK_REAL_SINGLE
-    /* Float: OGK_NOG_TF_CONSISTENCY (1e-9 relative, nog.c) is below float's resolution. A
-     * table on the grid k / 3 with t_f* = 100 s, consistent as written (each time state is
-     * t_f* tau rounded once to float), is refused: the kernel's float product t_f* tau(k)
-     * differs from it by an ulp (3.8e-6 s at 33 s, against 1e-7 s). The documented refusal of
-     * an inconsistent table, asserted here as what float does; t_f* = 96 s makes each t_f* tau
-     * exact, and that table loads (test_stale_after_struct_copy flies it). */
+    /* Float: a table on the grid k / 3 with t_f* = 100 s, each time state t_f* tau rounded
+     * once to float, differs from the kernel's float product t_f* tau(k) by an ulp (3.8e-6 s
+     * at 33 s): consistent within OGK_NOG_TF_CONSISTENCY (4 eps t_f*, nog.c), it loads, as
+     * does t_f* = 96 s, where each t_f* tau is exact. A time state 8 eps t_f* off (two ulps
+     * beyond the tolerance) is refused. */
     build(img4.b, 4u, TF_STAR);
-    OGK_ASSERT_STATUS(ogk_nog_table_load(&table_other, img4.b, TABLE_BYTES(4u)), OGK_E_TABLE_TYPE);
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table_other, img4.b, TABLE_BYTES(4u)), OGK_OK);
     build(img4.b, 4u, TF_STAR_THIRDS);
     OGK_ASSERT_STATUS(ogk_nog_table_load(&table_other, img4.b, TABLE_BYTES(4u)), OGK_OK);
+    build(img4.b, 4u, TF_STAR);
+    tw_put_real(img4.b + ROW(4u, 2u, OGK_NOG_OFF_X + 6u),
+                (2.0 / 3.0) * TF_STAR + 8.0 * (double)FLT_EPSILON * TF_STAR);
+    tw_seal(img4.b, N_VALUES(4u));
+    OGK_ASSERT_STATUS(ogk_nog_table_load(&table_other, img4.b, TABLE_BYTES(4u)), OGK_E_TABLE_TYPE);
 #endif
 }
 

@@ -22,7 +22,7 @@ from ogk_bindings.errors import TableError
 from ogk_host.orbit_injection import derive
 from ogk_host.orbit_injection import tables as ground_tables
 
-from ogk_bindings._ffi import ffi, lib
+from ogk_bindings._ffi import PRECISION, ffi, lib
 from ogk_bindings.kernel import KernelError
 from ogk_bindings.nog import NogConfig
 
@@ -54,8 +54,9 @@ def prepare_tables(scn: OrbitInjectionScenario, table_dir: Path | None = None) -
     (`table_dir`) is only checked, never written over (TableError, one line)."""
     if scn.path is None:
         raise TableError("the scenario has no file: tables are keyed by the scenario file")
-    directory = ground_tables.ensure_nog_tables(scn.path, table_dir)
-    manifest = ground_tables.check_tables(directory, scn.path)
+    # the tables of the kernel's precision (F64 or F32, each in its own default directory)
+    directory = ground_tables.ensure_nog_tables(scn.path, table_dir, precision=PRECISION)
+    manifest = ground_tables.check_tables(directory, scn.path, precision=PRECISION)
     bundle = Path(directory) / ground_tables.BUNDLE_FILE
     sha = {p.name: hashlib.sha256(p.read_bytes()).hexdigest()
            for p in sorted(Path(directory).glob("*.ogkt"))}

@@ -30,13 +30,16 @@ import numpy as np
 from numpy.typing import NDArray
 from ogk_host.proximity.scenario import ProximityScenario
 
+from ogk_bindings._real import REAL_EPS
+
 from .ground_peer import PeerProblem, PeerSolver
 
 FloatArray = NDArray[np.float64]
 SOLVERS = ("kernel", "ipopt")
 #: [guidance] fixed_final_time: a replan's horizon within (1 -/+ this) x the time left to the ground
-#: plan's t_f (the kernel's horizon_max must exceed its horizon_min)
-FIXED_T_F_BAND = 1e-9
+#: plan's t_f (the kernel's horizon_max must exceed its horizon_min: in a single-precision kernel 1e-9
+#: would round both bounds to one float, so the band is at least 8 eps of the kernel's real type)
+FIXED_T_F_BAND = max(1e-9, 8.0 * REAL_EPS)
 #: a failed solve is retried with the first BFGS matrix this times the configuration's (longer first
 #: steps; the first solve with T free too. Campaign of seed 2026120581: run 81's first solve failed with
 #: OGK_E_INFEASIBLE at 1, converged at 1e-2)

@@ -38,8 +38,8 @@ ogk_status ogk_sil_cutoff_step_batch(ogk_cutoff_t *ctx, size_t n_runs, const uin
             continue;
         }
         (void)ogk_sil_nav_of_run(t, nav, i, &in); /* pointers checked above */
-        st = ogk_cutoff_step(&ctx[i], &in, t_predicted[i], &out);
-        t_cutoff[i] = out.t_cutoff_s;
+        st = ogk_cutoff_step(&ctx[i], &in, (ogk_real_t)t_predicted[i], &out);
+        t_cutoff[i] = (double)out.t_cutoff_s;
         flags[i] = out.flags;
         status[i] = (int32_t)st;
         (void)ogk_sil_keep_first_error(&first, st);

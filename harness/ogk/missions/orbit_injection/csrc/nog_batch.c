@@ -39,9 +39,9 @@ ogk_status ogk_sil_nog_sample_batch(ogk_nog_t *ctx, size_t n_runs, const uint8_t
         }
         (void)ogk_sil_nav_of_run(t, nav, i, &in); /* pointers checked above */
         st = ogk_nog_sample(&ctx[i], &in, &out);
-        t_cutoff[i] = out.t_cutoff_s;
-        t_f[i] = out.t_f_s;
-        tau_k[i] = out.tau_k;
+        t_cutoff[i] = (double)out.t_cutoff_s;
+        t_f[i] = (double)out.t_f_s;
+        tau_k[i] = (double)out.tau_k;
         flags[i] = out.flags;
         status[i] = (int32_t)st;
         (void)ogk_sil_keep_first_error(&first, st);
@@ -61,9 +61,9 @@ ogk_status ogk_sil_nog_command_batch(const ogk_nog_t *ctx, size_t n_runs, const 
     }
     for (i = 0u; i < n_runs; ++i) {
         ogk_thrust_cmd_t out;
-        const ogk_status st = ogk_nog_thrust_cmd(&ctx[i], t[i], &out);
-        alpha[i] = out.alpha_rad;
-        beta[i] = out.beta_rad;
+        const ogk_status st = ogk_nog_thrust_cmd(&ctx[i], (ogk_real_t)t[i], &out);
+        alpha[i] = (double)out.alpha_rad;
+        beta[i] = (double)out.beta_rad;
         flags[i] = out.law_flags;
         status[i] = (int32_t)st;
         (void)ogk_sil_keep_first_error(&first, st);

@@ -37,22 +37,22 @@ ogk_status ogk_sil_cpd_step_batch(ogk_cpd_t *ctx, size_t n_runs,
         if (active[i] == 0u) {
             continue;
         }
-        u.psi = in[0u * n_runs + i];
-        u.theta = in[1u * n_runs + i];
-        u.phi_roll = in[2u * n_runs + i];
-        u.rate_p = in[3u * n_runs + i];
-        u.rate_q = in[4u * n_runs + i];
-        u.rate_r = in[5u * n_runs + i];
-        u.alpha_c = in[6u * n_runs + i];
-        u.beta_c = in[7u * n_runs + i];
-        u.xi = in[8u * n_runs + i];
-        u.phi = in[9u * n_runs + i];
+        u.psi = (ogk_real_t)in[0u * n_runs + i];
+        u.theta = (ogk_real_t)in[1u * n_runs + i];
+        u.phi_roll = (ogk_real_t)in[2u * n_runs + i];
+        u.rate_p = (ogk_real_t)in[3u * n_runs + i];
+        u.rate_q = (ogk_real_t)in[4u * n_runs + i];
+        u.rate_r = (ogk_real_t)in[5u * n_runs + i];
+        u.alpha_c = (ogk_real_t)in[6u * n_runs + i];
+        u.beta_c = (ogk_real_t)in[7u * n_runs + i];
+        u.xi = (ogk_real_t)in[8u * n_runs + i];
+        u.phi = (ogk_real_t)in[9u * n_runs + i];
         st = ogk_cpd_step(&ctx[i], &u, &y);
-        out[0u * n_runs + i] = y.m_xc;
-        out[1u * n_runs + i] = y.delta_yc;
-        out[2u * n_runs + i] = y.delta_zc;
-        out[3u * n_runs + i] = y.psi_c;
-        out[4u * n_runs + i] = y.theta_c;
+        out[0u * n_runs + i] = (double)y.m_xc;
+        out[1u * n_runs + i] = (double)y.delta_yc;
+        out[2u * n_runs + i] = (double)y.delta_zc;
+        out[3u * n_runs + i] = (double)y.psi_c;
+        out[4u * n_runs + i] = (double)y.theta_c;
         status[i] = (int32_t)st;
         flags[i] = y.flags;
         if (st != OGK_OK && first == OGK_OK) {

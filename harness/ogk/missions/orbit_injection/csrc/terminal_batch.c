@@ -41,17 +41,17 @@ ogk_status ogk_sil_terminal_step_batch(ogk_terminal_t *ctx, size_t n_runs, const
         }
         (void)ogk_sil_nav_of_run(t, nav, i, &in); /* pointers checked above */
         /* the law's complete command (frame r-t-n, unit vector, throttle 1) from its angles */
-        st = ogk_thrust_cmd_from_angles(t[i], alpha[i], beta[i], 1.0, OGK_THRUST_FLAG_ENGINE_ON,
-                                        0u, &law);
+        st = ogk_thrust_cmd_from_angles((ogk_real_t)t[i], (ogk_real_t)alpha[i], (ogk_real_t)beta[i],
+                                        OGK_R(1.0), OGK_THRUST_FLAG_ENGINE_ON, 0u, &law);
         if (st != OGK_OK) {   /* not finite: the step is not flown, the status says why */
             engaged[i] = 0u;
             status[i] = (int32_t)st;
             (void)ogk_sil_keep_first_error(&first, st);
             continue;
         }
-        st = ogk_terminal_step(&ctx[i], &in, t_predicted[i], &law, &out);
-        alpha[i] = out.alpha_rad;
-        beta[i] = out.beta_rad;
+        st = ogk_terminal_step(&ctx[i], &in, (ogk_real_t)t_predicted[i], &law, &out);
+        alpha[i] = (double)out.alpha_rad;
+        beta[i] = (double)out.beta_rad;
         engaged[i] = (uint8_t)((out.law_flags & OGK_TERMINAL_FLAG_ENGAGED) != 0u);
         status[i] = (int32_t)st;
         (void)ogk_sil_keep_first_error(&first, st);
