@@ -2,7 +2,10 @@
 (table image, flight configuration) into DIR/c, then `make pil-program PIL_PROGRAM=NAME PIL_OUT=DIR`
 compiles and links it with the flight flags; the campaign flies DIR/NAME-<sha16>.elf, a copy named by
 its content. For SPARC V8 (`target="sparc"`), `make pil-program-sparc` builds the same program from
-the same DIR/c into DIR/sparc (the flown copy DIR/sparc/NAME-<sha16>.elf). DIR is keyed by the family (e.g. by the SHA-256 of the
+the same DIR/c into DIR/sparc (the flown copy DIR/sparc/NAME-<sha16>.elf). For the Cortex-M4F
+(`target="m4f"`, the single-precision kernel), the C is generated for a float kernel
+(ogk_host.cgen.generated_precision("single"): real literals OGK_R(...), F32 table images) into
+DIR/m4f/c, and `make pil-program-m4f` builds DIR/m4f/NAME.elf. DIR is keyed by the family (e.g. by the SHA-256 of the
 tables flown), so two campaigns of one scenario share one build; a lock file serialises them. The C is
 generated again at every build, into DIR/gen/c, and a file replaces DIR/c's only when its content
 changed (the generation stamp aside): a change of the family's settings (not only of the scenario
@@ -28,7 +31,13 @@ PIL_BUILD = ROOT / "build" / "pil"
 
 
 #: target -> (make goal, where the ELF lands under DIR)
-MAKE_GOAL = {"m7": ("pil-program", "."), "sparc": ("pil-program-sparc", "sparc")}
+MAKE_GOAL = {"m7": ("pil-program", "."), "sparc": ("pil-program-sparc", "sparc"),
+             "m4f": ("pil-program-m4f", "m4f")}
+#: target -> the precision of its kernel (kernel/include/ogk/real.h; port/cortex-m4f/cortex-m4f.mk's
+#: M4F_PRECISION): the generated C and tables are written for it
+PRECISION = {"m7": "double", "sparc": "double", "m4f": "single"}
+#: target -> where its generated C lives under DIR (the double targets share DIR/c)
+GEN_DIR = {"m7": ".", "sparc": ".", "m4f": "m4f"}
 
 
 def build_program(program: str, out: Path, generate: Callable[[Path], None],
@@ -43,7 +52,9 @@ def build_program(program: str, out: Path, generate: Callable[[Path], None],
     out.mkdir(parents=True, exist_ok=True)
     with open(out / ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
-        _generate_changed(out, generate)
+        from ogk_host.cgen import generated_precision
+        with generated_precision(PRECISION[target]):
+            _generate_changed(out / GEN_DIR[target], generate)
         proc = subprocess.run(["make", "-s", "-C", str(repository), goal,
                                f"PIL_PROGRAM={program}", f"PIL_OUT={out.resolve()}"],
                               capture_output=True, text=True)
