@@ -33,6 +33,8 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, first: An
 
     ctx = kernel_context(scenario)._ctx
     cfg = ffi.new("ogk_nmpc_config_t *", ctx.nmpc.cfg)
+    from ..rendezvous.flight_config import single_precision_tolerances
+    single_precision_tolerances(cfg)    # floored for a float kernel (the M4F); as is otherwise
     model = ffi.new("ogk_prox_model_t *", ctx.model)
     guesses = ffi.new("ogk_nmpc_plan_t[1]")
     g = guesses[0]
