@@ -109,6 +109,7 @@ def test_the_flown_table_is_binary32_and_doubles_stay_at_the_boundary(campaign: 
     assert "Tag_ABI_HardFP_use: SP only" in attrs and "VFPv4-D16" in attrs, attrs
 
 
+@pytest.mark.req("OGK-HAR-012")
 def test_the_generator_writes_reals_for_a_float_kernel() -> None:
     from ogk_host import cgen
     from ogk_bindings._ffi import ffi
@@ -125,6 +126,7 @@ def test_the_generator_writes_reals_for_a_float_kernel() -> None:
             pass
 
 
+@pytest.mark.req("OGK-HAR-012")
 def test_the_single_precision_table_passes_the_float_loaders_time_checks() -> None:
     from ogk_host import tablefile
     from ogk.missions.orbit_injection.family import single_precision_bundle
@@ -142,6 +144,7 @@ def test_the_single_precision_table_passes_the_float_loaders_time_checks() -> No
     assert np.all(np.abs(t.data[:, 6] - data[:, 6]) <= 2 * np.spacing(np.float32(t_f)))
 
 
+@pytest.mark.req("OGK-HAR-012")
 def test_report_only_for_a_single_precision_target() -> None:
     from ogk.sil import pil, target_summary
     assert pil.PRECISION["m4f"] == "single" and "m4f" in pil.TARGETS
@@ -156,6 +159,7 @@ def test_report_only_for_a_single_precision_target() -> None:
     assert "reported" in target_summary.format_summary(doc)
 
 
+@pytest.mark.req("OGK-HAR-012")
 def test_the_m4f_runs_on_mps2_an386_in_system_emulation() -> None:
     from ogk.sil import pil_build, target_link
     cmd = target_link.qemu_command("m4f", Path("/x/oi.elf"))
