@@ -163,9 +163,9 @@ static void keep_final_time(ogk_nmpc_flight_t *f, ogk_real_t *mid)
     ogk_real_t lo;
     ogk_real_t hi;
     rem = (rem > h_min) ? rem : h_min;
-    lo = rem * (1.0 - OGK_NMPC_FLIGHT_FINAL_TIME_BAND);
-    hi = rem * (1.0 + OGK_NMPC_FLIGHT_FINAL_TIME_BAND);
-    *mid = 0.5 * (lo + hi);
+    lo = rem * (OGK_R(1.0) - OGK_NMPC_FLIGHT_FINAL_TIME_BAND);
+    hi = rem * (OGK_R(1.0) + OGK_NMPC_FLIGHT_FINAL_TIME_BAND);
+    *mid = OGK_R(0.5) * (lo + hi);
     f->settings_status = ogk_nmpc_set_horizon_bounds(&f->ctx, lo, hi);
 }
 
