@@ -33,8 +33,8 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, first: An
 
     ctx = kernel_context(scenario)._ctx
     cfg = ffi.new("ogk_nmpc_config_t *", ctx.nmpc.cfg)
-    from ..rendezvous.flight_config import single_precision_tolerances
-    single_precision_tolerances(cfg)    # floored for a float kernel (the M4F); as is otherwise
+    from ogk.sil.pil_build import nmpc_single_precision_tolerances
+    nmpc_single_precision_tolerances(cfg)   # floored for a float kernel (the M4F); as is otherwise
     model = ffi.new("ogk_prox_model_t *", ctx.model)
     guesses = ffi.new("ogk_nmpc_plan_t[1]")
     g = guesses[0]
@@ -70,6 +70,6 @@ def final_time_band() -> float:
     would collapse onto the remaining time itself."""
     from ogk_host.cgen import current_precision
 
-    from ..rendezvous.flight_config import SINGLE_EPS
+    from ogk.sil.pil_build import SINGLE_EPS
     from .guidance import FIXED_T_F_BAND
     return FIXED_T_F_BAND if current_precision() != "single" else max(FIXED_T_F_BAND, 8 * SINGLE_EPS)

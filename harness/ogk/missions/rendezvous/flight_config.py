@@ -61,7 +61,8 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, strategy:
     from ogk_host.rendezvous.nlp import MIN_FUEL_GUESS_THROTTLE
 
     ffi, cfg, guesses, n = flight_items(scenario, strategy)
-    single_precision_tolerances(cfg)
+    from ogk.sil.pil_build import nmpc_single_precision_tolerances
+    nmpc_single_precision_tolerances(cfg)   # floored for a float kernel (the M4F); as is otherwise
     return write_c_config(
         ffi, [ConfigItem("ogk_nmpc_flight_config", cfg,
                          f"ogk_nmpc (ogk/nmpc.h), strategy {strategy}, third bodies in the model: "
@@ -74,23 +75,3 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, strategy:
                  "OGK_NMPC_FLIGHT_MIN_FUEL_THROTTLE": float(MIN_FUEL_GUESS_THROTTLE)},
         note=f"strategy {strategy}, third bodies {third_bodies}; {n} guesses.")
 
-
-#: the solver's tolerances on a single-precision kernel (ogk_host.cgen.current_precision "single": the
-#: Cortex-M4F): binary32's eps is 1.19e-7, so a feasibility or objective change of 1e-9 (the double
-#: law's) is below the rounding of the residuals themselves and no solve converges (seen: no first
-#: plan on the M4F). Floors: feasibility and objective 64 eps (7.6e-6, a few roundings of the
-#: normalised residual summed over the nodes), stationarity sqrt(eps) (3.5e-4, the accuracy of a
-#: gradient whose cancellation loses half the digits). A tolerance already above its floor is kept.
-SINGLE_EPS = 2.0 ** -23
-SINGLE_FLOORS = {"tol_feas": 64 * SINGLE_EPS, "tol_obj": 64 * SINGLE_EPS,
-                 "tol_stat": SINGLE_EPS ** 0.5}
-
-
-def single_precision_tolerances(cfg: Any) -> None:
-    """The NMPC configuration `cfg` (cffi ogk_nmpc_config_t *) with its tolerances floored for a
-    single-precision kernel when the C is generated for one (SINGLE_FLOORS); unchanged otherwise."""
-    from ogk_host.cgen import current_precision
-    if current_precision() != "single":
-        return
-    for name, floor in SINGLE_FLOORS.items():
-        setattr(cfg, name, max(float(getattr(cfg, name)), floor))
