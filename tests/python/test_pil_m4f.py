@@ -12,6 +12,7 @@ One run (about 10 s with the host campaign beside it):
   program's init accepted it (the run flew);
 - doubles only at the boundary: the flight software's objects (oi_flight.o, ogk_flight.o) call none
   of libgcc's double routines; the *_pil.c handlers and ogk_pil.c convert the frames' binary64.
+- the painted stack of every entry point is at most the M4F's static bound (make stack-bound-m4f).
 The generator's float mode and the report-only summary are checked on hand-made inputs.
 """
 from __future__ import annotations
@@ -107,6 +108,19 @@ def test_the_flown_table_is_binary32_and_doubles_stay_at_the_boundary(campaign: 
     attrs = subprocess.run(["arm-none-eabi-readelf", "-A", str(next(prog.glob("oi-*.elf")))],
                            check=True, capture_output=True, text=True).stdout
     assert "Tag_ABI_HardFP_use: SP only" in attrs and "VFPv4-D16" in attrs, attrs
+
+
+@pytest.mark.req("OGK-HAR-012")
+def test_the_painted_stack_is_within_the_m4f_static_bound(campaign: dict) -> None:
+    """Each entry point's painted stack on the board is at most the M4F's static bound (`make
+    stack-bound-m4f`: own frame plus the deepest path, newlib's float libm included)."""
+    from pil_checks import locked_make
+    out = locked_make("stack-bound-m4f", timeout=600)
+    assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
+    bound = json.loads((ROOT / "build" / "profile" / "stack_m4f.json").read_text())["entry_points"]
+    for e in ENTRIES:
+        painted = campaign["doc"]["pil"]["entry_points"][e]["stack_bytes"]["value"]
+        assert 0 < painted <= bound[e]["bytes"], (e, painted, bound[e])
 
 
 @pytest.mark.req("OGK-HAR-012")
