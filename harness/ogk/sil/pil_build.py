@@ -5,8 +5,8 @@ its content. For SPARC V8 (`target="sparc"`), `make pil-program-sparc` builds th
 the same DIR/c into DIR/sparc (the flown copy DIR/sparc/NAME-<sha16>.elf). For the Cortex-M4F
 (`target="m4f"`, the single-precision kernel), the C is generated for a float kernel
 (ogk_host.cgen.generated_precision("single"): real literals OGK_R(...), F32 table images) into
-DIR/m4f/c, and `make pil-program-m4f` builds DIR/m4f/NAME.elf. DIR is keyed by the family (e.g. by the SHA-256 of the
-tables flown), so two campaigns of one scenario share one build; a lock file serialises them. The C is
+DIR/m4f/c, and `make pil-program-m4f` builds DIR/m4f/NAME.elf. DIR is keyed by the family (e.g. by
+the SHA-256 of the tables flown), so two campaigns of one scenario share one build; a lock file serialises them. The C is
 generated again at every build, into DIR/gen/c, and a file replaces DIR/c's only when its content
 changed (the generation stamp aside): a change of the family's settings (not only of the scenario
 file that keys DIR) reaches the flight program, and an unchanged one does not make it rebuild."""
@@ -119,8 +119,9 @@ def file_sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
-#: the NMPC solver's tolerances on a single-precision kernel (the rendezvous and proximity families'
-#: flight configurations when ogk_host.cgen.current_precision() is "single": the Cortex-M4F): binary32's eps is 1.19e-7, so a feasibility or objective change of 1e-9 (the double
+#: the NMPC solver's tolerances on a single-precision kernel (the rendezvous and proximity
+#: families' flight configurations when ogk_host.cgen.current_precision() is "single": the
+#: Cortex-M4F). Binary32's eps is 1.19e-7, so a feasibility or objective change of 1e-9 (the double
 #: law's) is below the rounding of the residuals themselves and no solve converges (seen: no first
 #: plan on the M4F). Floors: feasibility and objective 64 eps (7.6e-6, a few roundings of the
 #: normalised residual summed over the nodes), stationarity sqrt(eps) (3.5e-4, the accuracy of a
