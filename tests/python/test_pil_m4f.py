@@ -12,7 +12,8 @@ One run (about 10 s with the host campaign beside it):
   program's init accepted it (the run flew);
 - doubles only at the boundary: the flight software's objects (oi_flight.o, ogk_flight.o) call none
   of libgcc's double routines; the *_pil.c handlers and ogk_pil.c convert the frames' binary64.
-- the painted stack of every entry point is at most the M4F's static bound (make stack-bound-m4f).
+- the painted stack of every entry point is at most the M4F's static bound (make stack-bound-m4f);
+- `ogk run` of three rendezvous replans on the float kernel (the NMPC program, its floored tolerances).
 The generator's float mode and the report-only summary are checked on hand-made inputs.
 """
 from __future__ import annotations
@@ -121,6 +122,28 @@ def test_the_painted_stack_is_within_the_m4f_static_bound(campaign: dict) -> Non
     for e in ENTRIES:
         painted = campaign["doc"]["pil"]["entry_points"][e]["stack_bytes"]["value"]
         assert 0 < painted <= bound[e]["bytes"], (e, painted, bound[e])
+
+
+@pytest.mark.req("OGK-HAR-012", "OGK-NMPC-010")
+def test_ogk_run_makes_the_nmpc_replans_on_the_float_kernel(tmp_path: Path) -> None:
+    """`ogk run rendezvous_nep_min_time --max-replans 3 --target m4f`: the NMPC program's cold first
+    solve converges on the float kernel with the tolerances floored for binary32 (the double law's
+    1e-9 found no first plan), every replan made on the board."""
+    from ogk.sil.pil_build import PIL_BUILD, SINGLE_FLOORS
+    out = subprocess.run([str(OGK), "run", "rendezvous_nep_min_time", "--max-replans", "3", "--target",
+                          "m4f", "--json", str(tmp_path / "m4f.json")], capture_output=True,
+                         text=True, timeout=600, cwd=ROOT)
+    assert out.returncode == 1, out.stdout[-2000:] + out.stderr[-2000:]   # not arrived in 3 replans
+    a = json.loads((tmp_path / "m4f.json").read_text())
+    assert a["target"] == "m4f" and a["target_precision"] == "single"
+    assert a["replans"] == 3 and a["failed_solves"] == 0
+    assert a["pil.ogk_nmpc_solve.calls"] == 1 and a["pil.ogk_nmpc_replan.calls"] == 2
+    assert a["pil.ogk_nmpc_solve.insn_max"] > a["pil.ogk_nmpc_command.insn_max"] > 0
+    elf = [p for p in PIL_BUILD.glob("rendezvous/*/m4f/nmpc-*.elf")
+           if p.name == f"nmpc-{a['flight_program'][:16]}.elf"]
+    assert len(elf) == 1
+    config = (elf[0].parent / "c" / "ogk_nmpc_flight_config.h").read_text()
+    assert f".tol_feas = OGK_R({SINGLE_FLOORS['tol_feas']!r})," in config
 
 
 @pytest.mark.req("OGK-HAR-012")
