@@ -271,6 +271,8 @@ include port/sparc-v8/sparc-v8.mk
 include port/cortex-m7/pil/pil.mk
 # ... and the same programs for SPARC V8 Linux user mode: make pil-program-sparc PIL_PROGRAM=oi PIL_OUT=DIR
 include port/sparc-v8/pil.mk
+# ... and for the Cortex-M4F on the single-precision kernel: make pil-program-m4f PIL_PROGRAM=oi PIL_OUT=DIR
+include port/cortex-m4f/pil.mk
 
 # ---------------------------------------------------------------- gates (issue 8): make tidy,
 # fuzz-short / fuzz, coverage, mutants (not in make test), misra (a ratchet, in make lint)

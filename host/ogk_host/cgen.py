@@ -7,16 +7,49 @@ provenance comment (generator, scenario and its SHA-256, UTC date, table CRCs) h
 """
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import dataclasses
 import datetime as _dt
 import hashlib
 import re
 import zlib
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 GENERATOR = "ogk_host.cgen/1"
 BYTES_PER_LINE = 16
+
+#: the precision of the kernel build the generated C is for (kernel/include/ogk/real.h): "double" (the
+#: default: every generated file as before) or "single" (a float kernel, -DOGK_REAL_SINGLE=1: a real
+#: field or #define is written OGK_R(<%.17g>), the compiler rounds it to binary32 at translation time,
+#: and a top-level array of reals is declared ogk_real_t). Set for a build by `generated_precision`.
+_PRECISION: contextvars.ContextVar[str] = contextvars.ContextVar("ogk_cgen_precision", default="double")
+
+
+@contextlib.contextmanager
+def generated_precision(precision: str) -> Iterator[None]:
+    """Within the block, the generated C is for a kernel of `precision` ("double" or "single";
+    e.g. the Cortex-M4F's flight programs, ogk.sil.pil_build)."""
+    if precision not in ("double", "single"):
+        raise ValueError(f"precision {precision!r}: one of double, single")
+    token = _PRECISION.set(precision)
+    try:
+        yield
+    finally:
+        _PRECISION.reset(token)
+
+
+def current_precision() -> str:
+    """The precision of the C generated now ("double" unless inside generated_precision)."""
+    return _PRECISION.get()
+
+
+def _c_real(value: float) -> str:
+    """A literal of the kernel's real type: the double literal, wrapped in OGK_R() for a float kernel."""
+    text = c_double(value)
+    return text if _PRECISION.get() == "double" else f"OGK_R({text})"
 
 
 def _identifier(symbol: str) -> str:
@@ -101,7 +134,7 @@ def _c_scalar(ffi: Any, ctype: Any, value: Any) -> str:
     if ctype.kind != "primitive":
         raise TypeError(f"not a scalar: {ctype.cname}")
     if ctype.cname == "double":
-        return c_double(value)
+        return _c_real(value)
     if ctype.cname == "float":
         text = "%.9g" % float(value)
         return (text if any(ch in text for ch in ".e") else text + ".0") + "f"
@@ -156,7 +189,9 @@ def _c_declaration(ffi: Any, item: ConfigItem) -> str:
     ctype = _ctype_of(ffi, item.cdata)
     value = item.cdata[0] if ffi.typeof(item.cdata).kind == "pointer" else item.cdata
     if ctype.kind == "array":
-        decl = f"static const {ctype.item.cname} {_identifier(item.symbol)}[{ctype.length}]"
+        item_type = ("ogk_real_t" if ctype.item.cname == "double" and _PRECISION.get() == "single"
+                     else ctype.item.cname)
+        decl = f"static const {item_type} {_identifier(item.symbol)}[{ctype.length}]"
     else:
         decl = f"static const {ctype.cname} {_identifier(item.symbol)}"
     comment = f"/* {item.comment} */\n" if item.comment else ""
@@ -187,7 +222,7 @@ def write_c_config(ffi: Any, items: list[ConfigItem], out_path: str | Path, scen
     parts += [f'#include "{inc}"\n' for inc in includes]
     parts.append("\n")
     for name, value in (defines or {}).items():
-        text = (value if isinstance(value, str) else c_double(value) if isinstance(value, float)
+        text = (value if isinstance(value, str) else _c_real(value) if isinstance(value, float)
                 else f"{int(value)}")
         parts.append(f"#define {_identifier(name)} {text}\n")
     if defines:

@@ -68,7 +68,8 @@ def add_target_argument(p: argparse.ArgumentParser) -> None:
     p.add_argument("--target", choices=TARGETS, default="host",
                    help="host: the flight software in this process (SIL, default); m7: the "
                         "scenario's flight program on the emulated Cortex-M7 (QEMU), with the host "
-                        "campaign on the same draws beside it (docs/guides/pil.md)")
+                        "campaign on the same draws beside it (docs/guides/pil.md); sparc: on SPARC "
+                        "V8; m4f: on the Cortex-M4F with the single-precision kernel")
 
 
 def check_engine_arguments(args: argparse.Namespace) -> None:

@@ -13,7 +13,7 @@ Envelope (`ogk.campaign/1`, written atomically, NaN as null):
     failed_solves {total, runs_with_any, per_run_max, run_of_max, by_class} | null, worst_run}
     (ogk.sil.robustness),
   paper (the paper's columns beside ours, only when the scenario carries them),
-  per_run_table (the Parquet file's name), timing {wall_s, cpu_s}, target ("host" or "m7"),
+  per_run_table (the Parquet file's name), timing {wall_s, cpu_s}, target ("host", "m7", "sparc" or "m4f"),
   pil (a target campaign only: worst case per entry point, host vs target; ogk.sil.target_summary),
   precision_vs_double (a single-precision campaign only: its double twin on the same draws, the largest
     difference per quantity; ogk.sil.precision_twin),

@@ -40,9 +40,11 @@ from .target_link import ERROR, TargetLink, TargetLinkError, f64_payload, f64_va
 RUN_END = 16                        #: OGK_PIL_RUN_END (port/cortex-m7/pil/ogk_pil.h)
 TICK_MARK = "ogk_pil_tick_mark"     #: called by the program after every step it answers
 RUN_MARK = "ogk_pil_run_mark"       #: ... and after every run
-TARGETS = ("host", "m7", "sparc")   #: where a campaign's flight software runs
+TARGETS = ("host", "m7", "sparc", "m4f")   #: where a campaign's flight software runs
 #: target -> the nm that reads its flight programs' symbols
-NM = {"m7": "arm-none-eabi-nm", "sparc": "sparc64-linux-gnu-nm"}
+NM = {"m7": "arm-none-eabi-nm", "sparc": "sparc64-linux-gnu-nm", "m4f": "arm-none-eabi-nm"}
+#: target -> the precision of its kernel (ogk_real_t): the M4F flies the float kernel
+PRECISION = {"host": "double", "m7": "double", "sparc": "double", "m4f": "single"}
 #: the instruction-counting QEMU plugin, built by the repository (make qemu-plugin)
 PLUGIN = WORK_ROOT / "build" / "qemu-plugin" / "libinsn_count.so"
 
@@ -59,7 +61,13 @@ class FlightProgram:
 
 def target_why(target: str, why: str) -> str:
     """A family's reason why host and target differ (written for the Cortex-M7 and newlib), with
-    what is different on SPARC V8."""
+    what is different on SPARC V8 and on the single-precision Cortex-M4F."""
+    if target == "m4f":
+        return ("the Cortex-M4F flies the single-precision kernel (ogk_real_t float): every value is "
+                "rounded to binary32 at the program's boundary (ogk_pil.h) and every operation of "
+                "the flight software in binary32 (eps 1.2e-7), which the closed loop carries to the "
+                "end of the flight; report only, the scenario's acceptance judged on the target's "
+                "runs (the double targets' reasons and bounds: " + why + ")")
     if target != "sparc":
         return why
     return ("on SPARC V8 both sides use glibc's libm (the target's built for v8plus, not x86-64's), "

@@ -2,8 +2,11 @@
 (table image, flight configuration) into DIR/c, then `make pil-program PIL_PROGRAM=NAME PIL_OUT=DIR`
 compiles and links it with the flight flags; the campaign flies DIR/NAME-<sha16>.elf, a copy named by
 its content. For SPARC V8 (`target="sparc"`), `make pil-program-sparc` builds the same program from
-the same DIR/c into DIR/sparc (the flown copy DIR/sparc/NAME-<sha16>.elf). DIR is keyed by the family (e.g. by the SHA-256 of the
-tables flown), so two campaigns of one scenario share one build; a lock file serialises them. The C is
+the same DIR/c into DIR/sparc (the flown copy DIR/sparc/NAME-<sha16>.elf). For the Cortex-M4F
+(`target="m4f"`, the single-precision kernel), the C is generated for a float kernel
+(ogk_host.cgen.generated_precision("single"): real literals OGK_R(...), F32 table images) into
+DIR/m4f/c, and `make pil-program-m4f` builds DIR/m4f/NAME.elf. DIR is keyed by the family (e.g. by
+the SHA-256 of the tables flown), so two campaigns of one scenario share one build; a lock file serialises them. The C is
 generated again at every build, into DIR/gen/c, and a file replaces DIR/c's only when its content
 changed (the generation stamp aside): a change of the family's settings (not only of the scenario
 file that keys DIR) reaches the flight program, and an unchanged one does not make it rebuild."""
@@ -17,6 +20,7 @@ import shutil
 import subprocess
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from ogk_bindings.errors import OgkInputError
 from ogk_host.paths import WORK_ROOT, need_repository
@@ -28,7 +32,13 @@ PIL_BUILD = ROOT / "build" / "pil"
 
 
 #: target -> (make goal, where the ELF lands under DIR)
-MAKE_GOAL = {"m7": ("pil-program", "."), "sparc": ("pil-program-sparc", "sparc")}
+MAKE_GOAL = {"m7": ("pil-program", "."), "sparc": ("pil-program-sparc", "sparc"),
+             "m4f": ("pil-program-m4f", "m4f")}
+#: target -> the precision of its kernel (kernel/include/ogk/real.h; port/cortex-m4f/cortex-m4f.mk's
+#: M4F_PRECISION): the generated C and tables are written for it
+PRECISION = {"m7": "double", "sparc": "double", "m4f": "single"}
+#: target -> where its generated C lives under DIR (the double targets share DIR/c)
+GEN_DIR = {"m7": ".", "sparc": ".", "m4f": "m4f"}
 
 
 def build_program(program: str, out: Path, generate: Callable[[Path], None],
@@ -43,7 +53,9 @@ def build_program(program: str, out: Path, generate: Callable[[Path], None],
     out.mkdir(parents=True, exist_ok=True)
     with open(out / ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
-        _generate_changed(out, generate)
+        from ogk_host.cgen import generated_precision
+        with generated_precision(PRECISION[target]):
+            _generate_changed(out / GEN_DIR[target], generate)
         proc = subprocess.run(["make", "-s", "-C", str(repository), goal,
                                f"PIL_PROGRAM={program}", f"PIL_OUT={out.resolve()}"],
                               capture_output=True, text=True)
@@ -105,3 +117,25 @@ def _generate_changed(out: Path, generate: Callable[[Path], None]) -> None:
 
 def file_sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+#: the NMPC solver's tolerances on a single-precision kernel (the rendezvous and proximity
+#: families' flight configurations when ogk_host.cgen.current_precision() is "single": the
+#: Cortex-M4F). Binary32's eps is 1.19e-7, so a feasibility or objective change of 1e-9 (the double
+#: law's) is below the rounding of the residuals themselves and no solve converges (seen: no first
+#: plan on the M4F). Floors: feasibility and objective 64 eps (7.6e-6, a few roundings of the
+#: normalised residual summed over the nodes), stationarity sqrt(eps) (3.5e-4, the accuracy of a
+#: gradient whose cancellation loses half the digits). A tolerance already above its floor is kept.
+SINGLE_EPS = 2.0 ** -23
+SINGLE_FLOORS = {"tol_feas": 64 * SINGLE_EPS, "tol_obj": 64 * SINGLE_EPS,
+                 "tol_stat": SINGLE_EPS ** 0.5}
+
+
+def nmpc_single_precision_tolerances(cfg: Any) -> None:
+    """The NMPC configuration `cfg` (cffi ogk_nmpc_config_t *) with its tolerances floored for a
+    single-precision kernel when the C is generated for one (SINGLE_FLOORS); unchanged otherwise."""
+    from ogk_host.cgen import current_precision
+    if current_precision() != "single":
+        return
+    for name, floor in SINGLE_FLOORS.items():
+        setattr(cfg, name, max(float(getattr(cfg, name)), floor))

@@ -1,7 +1,9 @@
 """The host end of the processor-in-the-loop link (docs/guides/pil.md; the target end is
 port/cortex-m7/link/ogk_link.h): one flight program on QEMU, framed messages over its stdin and
-stdout: on the Cortex-M7 (target "m7") QEMU's mps2-an500 and its semihosting console; on SPARC V8
-(target "sparc") a static Linux program under qemu-sparc32plus (user mode: glibc's read/write).
+stdout: on the Cortex-M7 (target "m7") QEMU's mps2-an500 and its semihosting console, on the
+Cortex-M4F (target "m4f") mps2-an386 and the same console; on SPARC V8 (target "sparc") a static
+Linux program under qemu-sparc32plus (user mode: glibc's read/write). The values of the frames are
+binary64 on every target: a single-precision program converts them at its boundary (ogk_pil.h).
 
 Frame (every field little-endian): b"OGKL" | type u16 | length u16 | payload | CRC-32 u32 of type,
 length and payload (zlib's). The runtime's own text (the stack report at exit, a fault report) also
@@ -31,8 +33,14 @@ STOP, ERROR, ECHO = 1, 2, 3  #: OGK_LINK_STOP, OGK_LINK_ERROR, OGK_LINK_ECHO
 QEMU = ("qemu-system-arm", "-M", "mps2-an500", "-nographic", "-monitor", "none", "-serial", "none",
         "-semihosting-config", "enable=on,target=native")
 QEMU_SPARC = ("qemu-sparc32plus",)
+#: the Cortex-M4F: QEMU's mps2-an386 board (single-precision FPU), the same semihosting console
+QEMU_M4F = ("qemu-system-arm", "-M", "mps2-an386", "-nographic", "-monitor", "none", "-serial", "none",
+            "-semihosting-config", "enable=on,target=native")
 #: target -> (how QEMU is named in messages, the command line before the extra arguments)
-TARGET_QEMU = {"m7": ("qemu mps2-an500", QEMU), "sparc": ("qemu-sparc32plus", QEMU_SPARC)}
+TARGET_QEMU = {"m7": ("qemu mps2-an500", QEMU), "sparc": ("qemu-sparc32plus", QEMU_SPARC),
+               "m4f": ("qemu mps2-an386", QEMU_M4F)}
+#: the targets QEMU runs in system emulation (the ELF loaded as the kernel; the others: user mode)
+SYSTEM_TARGETS = ("m7", "m4f")
 
 
 def qemu_command(target: str, elf: Path, extra_args: tuple[str, ...] = ()) -> list[str]:
@@ -41,7 +49,8 @@ def qemu_command(target: str, elf: Path, extra_args: tuple[str, ...] = ()) -> li
     if target not in TARGET_QEMU:
         raise TargetLinkError(f"no QEMU for target {target!r} (known: {', '.join(TARGET_QEMU)})")
     base = TARGET_QEMU[target][1]
-    return [*base, *extra_args, "-kernel", str(elf)] if target == "m7" else [*base, *extra_args, str(elf)]
+    return ([*base, *extra_args, "-kernel", str(elf)] if target in SYSTEM_TARGETS
+            else [*base, *extra_args, str(elf)])
 
 
 class TargetLinkError(RuntimeError):
@@ -66,7 +75,7 @@ def f64_values(payload: bytes) -> NDArray[np.float64]:
 
 
 class TargetLink:
-    """One flight program on an emulated target ("m7" or "sparc"), talked to in frames."""
+    """One flight program on an emulated target ("m7", "m4f" or "sparc"), talked to in frames."""
 
     def __init__(self, elf: str | Path, timeout_s: float = 10.0, extra_args: tuple[str, ...] = (),
                  target: str = "m7") -> None:
@@ -80,7 +89,7 @@ class TargetLink:
         # for other alignments (instruction counts differed by up to 0.6 % between an `ogk mc` run
         # and the same run under make). A fixed empty environment and the path "./NAME" (flown
         # copies are NAME-<sha16>.elf: one length) give the same stack on every run and clone.
-        user = target != "m7"
+        user = target not in SYSTEM_TARGETS
         self._proc = subprocess.Popen(qemu_command(target, Path("./" + self.elf.name) if user
                                                    else self.elf, extra_args),
                                       cwd=self.elf.parent if user else None,

@@ -90,12 +90,21 @@ static ogk_flight_action count(ogk_flight_t *f, ogk_flight_call call, ogk_status
     return ogk_flight_reaction(call, st);
 }
 
+/* How far Delta t_S x rate may lie from a whole number of ticks: rounding of the product (below a
+ * million ticks: 1e-9 in double; a float's ulp at 2^20 is 2^-3, so the single-precision kernel allows
+ * 1e-4 relative to the tick count, below any real misconfiguration of a fraction of a tick). */
+#if OGK_REAL_SINGLE
+#define OGK_FLIGHT_TICKS_TOL (OGK_R(1.0e-4) * ticks)
+#else
+#define OGK_FLIGHT_TICKS_TOL 1.0e-9
+#endif
+
 ogk_flight_action ogk_flight_init(ogk_flight_t *f, const uint8_t *image, size_t len,
                                   const ogk_nog_config_t *nog_cfg,
-                                  const ogk_cpd_config_t *cpd_cfg, double control_rate_hz)
+                                  const ogk_cpd_config_t *cpd_cfg, ogk_real_t control_rate_hz)
 {
     ogk_flight_action a;
-    double ticks;
+    ogk_real_t ticks;
 
     if (f == NULL || nog_cfg == NULL || cpd_cfg == NULL) {
         return OGK_FLIGHT_ABORT;
@@ -127,10 +136,11 @@ ogk_flight_action ogk_flight_init(ogk_flight_t *f, const uint8_t *image, size_t 
         return a;
     }
     ticks = f->nog_cfg.sample_interval_s * control_rate_hz;
-    if (!(ticks >= 1.0 && ticks < 1.0e6) || fabs(ticks - floor(ticks + 0.5)) > 1.0e-9) {
+    if (!(ticks >= OGK_R(1.0) && ticks < OGK_R(1.0e6)) ||
+        OGK_FABS(ticks - OGK_FLOOR(ticks + OGK_R(0.5))) > OGK_FLIGHT_TICKS_TOL) {
         return OGK_FLIGHT_ABORT; /* the sampling interval is not a whole number of ticks */
     }
-    f->ticks_per_sample = (uint32_t)floor(ticks + 0.5);
+    f->ticks_per_sample = (uint32_t)OGK_FLOOR(ticks + OGK_R(0.5));
     f->t_cutoff_s = f->table.t_f_star_s;
     f->n_samples = 0u;
     f->n_ticks = 0u;
@@ -213,7 +223,7 @@ ogk_flight_action ogk_flight_attitude(ogk_flight_t *f, const ogk_thrust_cmd_t *c
     return b;
 }
 
-ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flight_att_t *att,
+ogk_flight_action ogk_flight_control(ogk_flight_t *f, ogk_real_t t_s, const ogk_flight_att_t *att,
                                      const ogk_nav_state_t *nav)
 {
     ogk_flight_action a;

@@ -67,8 +67,8 @@ typedef enum {
 
 /* Attitude navigation at a control tick. */
 typedef struct {
-    double psi, theta, phi_roll;      /* [rad] Euler angles of eq. (9) */
-    double rate_p, rate_q, rate_r;    /* [rad/s] body rates */
+    ogk_real_t psi, theta, phi_roll;      /* [rad] Euler angles of eq. (9) */
+    ogk_real_t rate_p, rate_q, rate_r;    /* [rad/s] body rates */
 } ogk_flight_att_t;
 
 typedef struct {
@@ -81,7 +81,7 @@ typedef struct {
     ogk_nog_sample_t sample;     /* last guidance sample */
     ogk_thrust_cmd_t cmd;        /* last thrust-direction command (ogk/types.h; NOG's: r-t-n) */
     ogk_cpd_output_t act;        /* last actuator command: apply until the next tick */
-    double t_cutoff_s;           /* [s] predicted (final once terminating) engine cut-off */
+    ogk_real_t t_cutoff_s;           /* [s] predicted (final once terminating) engine cut-off */
     uint32_t ticks_per_sample;   /* [-] control ticks per guidance sample (Delta t_S x rate) */
     uint32_t n_samples, n_ticks; /* [-] calls made */
     uint32_t n_nonok[OGK_FLIGHT_CALL_CPD + 1]; /* [-] non-OK statuses per call */
@@ -99,7 +99,7 @@ ogk_flight_action ogk_flight_reaction(ogk_flight_call call, ogk_status st);
  * re-uplinked image); ABORT for a rejected configuration (do not ignite). */
 ogk_flight_action ogk_flight_init(ogk_flight_t *f, const uint8_t *image, size_t len,
                                   const ogk_nog_config_t *nog_cfg,
-                                  const ogk_cpd_config_t *cpd_cfg, double control_rate_hz);
+                                  const ogk_cpd_config_t *cpd_cfg, ogk_real_t control_rate_hz);
 
 /* Guidance sample at nav->t_s (every Delta t_S): new correction, cut-off time, terminating flag. */
 ogk_flight_action ogk_flight_guidance(ogk_flight_t *f, const ogk_nav_state_t *nav);
@@ -107,7 +107,7 @@ ogk_flight_action ogk_flight_guidance(ogk_flight_t *f, const ogk_nav_state_t *na
 /* Control tick at t_s: thrust-direction command (NOG) and attitude control (CPD) -> f->act.
  * nav: navigation state at the tick (CPD uses the position angles xi, phi). Sets engine_on = 0 at
  * or after the cut-off. */
-ogk_flight_action ogk_flight_control(ogk_flight_t *f, double t_s, const ogk_flight_att_t *att,
+ogk_flight_action ogk_flight_control(ogk_flight_t *f, ogk_real_t t_s, const ogk_flight_att_t *att,
                                      const ogk_nav_state_t *nav);
 
 /* Attitude tick on any law's thrust command (the common ogk_thrust_cmd_t: NOG's ogk_nog_thrust_cmd,

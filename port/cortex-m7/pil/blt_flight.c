@@ -56,13 +56,13 @@ ogk_blt_flight_action ogk_blt_flight_correct(ogk_blt_flight_t *f, uint32_t slot,
     }
 }
 
-ogk_status ogk_blt_flight_command(const ogk_blt_flight_t *f, uint32_t slot, double t,
+ogk_status ogk_blt_flight_command(const ogk_blt_flight_t *f, uint32_t slot, ogk_real_t t,
                                   ogk_thrust_cmd_t *cmd)
 {
     if (f == NULL || cmd == NULL || slot >= OGK_BLT_FLIGHT_N_SLOTS || f->ready[slot] == 0u) {
         /* no context: the safe command in the synodic frame (engine off) */
         return (cmd == NULL) ? OGK_E_NULL
-                             : ogk_thrust_cmd_safe(0.0, OGK_FRAME_SYNODIC, OGK_BLT_FLAG_SAFE, cmd);
+                             : ogk_thrust_cmd_safe(OGK_R(0.0), OGK_FRAME_SYNODIC, OGK_BLT_FLAG_SAFE, cmd);
     }
     /* eq. (22) of the held solution; engine off (OGK_E_SAFE_COMMAND) when none is held */
     return ogk_blt_thrust_cmd(&f->ctx[slot], t, cmd);

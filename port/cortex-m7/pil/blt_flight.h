@@ -66,7 +66,7 @@ ogk_blt_flight_action ogk_blt_flight_correct(ogk_blt_flight_t *f, uint32_t slot,
 
 /* The command of the held solution at time t [TU] (ogk_blt_thrust_cmd, synodic frame): the
  * kernel's safe command (engine off) when the slot holds no converged solution. */
-ogk_status ogk_blt_flight_command(const ogk_blt_flight_t *f, uint32_t slot, double t,
+ogk_status ogk_blt_flight_command(const ogk_blt_flight_t *f, uint32_t slot, ogk_real_t t,
                                   ogk_thrust_cmd_t *cmd);
 
 #endif /* BLT_FLIGHT_H */

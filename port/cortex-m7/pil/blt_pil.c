@@ -51,16 +51,23 @@ typedef struct {
     int bad;                             /* an integer field that is not an exact uint32 */
 } reader_t;
 
-static double rd(reader_t *r)
+/* The frame's double, unconverted (integer fields: exact in binary64, not always in binary32). */
+static double rd_f64(reader_t *r)
 {
     double x = r->v[r->i];
     r->i++;
     return x;
 }
 
+/* A real field: the program's precision boundary (ogk_pil.h), a float kernel's value rounded here. */
+static ogk_real_t rd(reader_t *r)
+{
+    return OGK_PIL_REAL(rd_f64(r));
+}
+
 static uint32_t rd_u32(reader_t *r)
 {
-    const double x = rd(r);
+    const double x = rd_f64(r);
     if (!(x >= 0.0 && x <= 4294967295.0) || floor(x) != x) {
         r->bad = 1;
         return 0u;
@@ -68,7 +75,7 @@ static uint32_t rd_u32(reader_t *r)
     return (uint32_t)x;
 }
 
-static void rd_f64s(reader_t *r, double *dst, unsigned n)
+static void rd_f64s(reader_t *r, ogk_real_t *dst, unsigned n)
 {
     unsigned k;
     for (k = 0u; k < n; k++) {
@@ -148,11 +155,11 @@ static void transfer_from(const double *v, ogk_blt_transfer_t *t)
     }
 }
 
-static unsigned put_f64s(double *dst, unsigned at, const double *src, unsigned n)
+static unsigned put_f64s(double *dst, unsigned at, const ogk_real_t *src, unsigned n)
 {
     unsigned k;
     for (k = 0u; k < n; k++) {
-        dst[at + k] = src[k];
+        dst[at + k] = (double)src[k];
     }
     return at + n;
 }
@@ -160,8 +167,8 @@ static unsigned put_f64s(double *dst, unsigned at, const double *src, unsigned n
 static unsigned transfer_to(const ogk_blt_transfer_t *t, double *o, unsigned at)
 {
     unsigned k;
-    o[at] = t->t0;
-    o[at + 1u] = t->mass0;
+    o[at] = (double)t->t0;
+    o[at + 1u] = (double)t->mass0;
     at = put_f64s(o, at + 2u, t->x0, OGK_BLT_NX);
     at = put_f64s(o, at, t->xf, OGK_BLT_NX);
     for (k = 0u; k < BLT_MS; k++) {
@@ -180,12 +187,12 @@ static unsigned report_to(const ogk_blt_report_t *p, double *o, unsigned at)
     o[at + 2u] = (double)p->propagations;
     o[at + 3u] = (double)p->n_unknowns;
     o[at + 4u] = (double)p->n_errors;
-    o[at + 5u] = p->err_norm0;
-    o[at + 6u] = p->err_norm;
+    o[at + 5u] = (double)p->err_norm0;
+    o[at + 6u] = (double)p->err_norm;
     at = put_f64s(o, at + 7u, p->err, OGK_BLT_MAX_ERRORS);
-    o[at] = p->burn_time;
-    o[at + 1u] = p->flight_time;
-    o[at + 2u] = p->mass_final;
+    o[at] = (double)p->burn_time;
+    o[at + 1u] = (double)p->flight_time;
+    o[at + 2u] = (double)p->mass_final;
     return put_f64s(o, at + 3u, p->min_distance, 2u);
 }
 

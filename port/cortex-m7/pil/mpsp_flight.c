@@ -41,8 +41,8 @@ ogk_mpsp_flight_action ogk_mpsp_flight_init(ogk_mpsp_flight_t *f)
     return init_context(f);
 }
 
-ogk_mpsp_flight_action ogk_mpsp_flight_replan(ogk_mpsp_flight_t *f, const double *x0,
-                                              double thrust_scale, const double *target_rv)
+ogk_mpsp_flight_action ogk_mpsp_flight_replan(ogk_mpsp_flight_t *f, const ogk_real_t *x0,
+                                              ogk_real_t thrust_scale, const ogk_real_t *target_rv)
 {
     ogk_status st = OGK_OK;
     ogk_mpsp_flight_action a;
@@ -85,7 +85,7 @@ ogk_mpsp_flight_action ogk_mpsp_flight_replan(ogk_mpsp_flight_t *f, const double
     return a;
 }
 
-ogk_mpsp_flight_action ogk_mpsp_flight_command(ogk_mpsp_flight_t *f, double t)
+ogk_mpsp_flight_action ogk_mpsp_flight_command(ogk_mpsp_flight_t *f, ogk_real_t t)
 {
     ogk_status st = OGK_OK;
     if (f == NULL) {

@@ -65,11 +65,11 @@ ogk_mpsp_flight_action ogk_mpsp_flight_init(ogk_mpsp_flight_t *f);
  * converged: f->plan holds the safe command), HOLD (input rejected: f->plan and the trajectory
  * held unchanged), REINIT (context lost; re-initialised: the nominal held again, as after
  * ogk_mpsp_flight_init), ABORT (re-initialisation failed). */
-ogk_mpsp_flight_action ogk_mpsp_flight_replan(ogk_mpsp_flight_t *f, const double *x0,
-                                              double thrust_scale, const double *target_rv);
+ogk_mpsp_flight_action ogk_mpsp_flight_replan(ogk_mpsp_flight_t *f, const ogk_real_t *x0,
+                                              ogk_real_t thrust_scale, const ogk_real_t *target_rv);
 
 /* ogk_mpsp_thrust_cmd of the plan held at t [TU] into f->cmd: FLY, or SAFE (f->cmd is the
  * kernel's safe command: engine off). */
-ogk_mpsp_flight_action ogk_mpsp_flight_command(ogk_mpsp_flight_t *f, double t);
+ogk_mpsp_flight_action ogk_mpsp_flight_command(ogk_mpsp_flight_t *f, ogk_real_t t);
 
 #endif /* MPSP_FLIGHT_H */

@@ -4,7 +4,8 @@
  * answers with the plan from ogk_mpsp_flight_replan (mpsp_flight.c, the flight software itself) and
  * the thrust command of that plan at the requested time.
  *
- * Frames (payloads of binary64 values, ogk_pil.h for the common ones):
+ * Frames (payloads of binary64 values, ogk_pil.h for the common ones; read into and answered from
+ * ogk_real_t arrays, ogk_pil_get_reals / put_reals: the program's precision boundary, counts exact):
  *   MPSP_INIT   (32) host -> target: nothing; reply: [action, n_weights, t0 TU, tf TU]
  *   MPSP_REPLAN (33) host -> target: [x0: r LU (3), v LU/TU (3), m MU, thrust_scale,
  *                                     has_target (0/1), r_f LU (3), v_f LU/TU (3), t_cmd TU]
@@ -31,24 +32,24 @@
 
 ogk_pil_stack_t ogk_pil_probe;
 static ogk_mpsp_flight_t g_flight;   /* 187 KiB of kernel context: static storage */
-static double g_reply[MPSP_REPLY_MAX];
+static ogk_real_t g_reply[MPSP_REPLY_MAX];
 
-static unsigned replan(const double *v)
+static unsigned replan(const ogk_real_t *v)
 {
     ogk_mpsp_flight_action a;
     ogk_mpsp_flight_action c;
     const ogk_mpsp_result_t *p = &g_flight.plan;
     size_t nw;
     size_t i;
-    a = ogk_mpsp_flight_replan(&g_flight, v, v[7], (v[8] != 0.0) ? &v[9] : NULL);
+    a = ogk_mpsp_flight_replan(&g_flight, v, v[7], (v[8] != OGK_R(0.0)) ? &v[9] : NULL);
     c = ogk_mpsp_flight_command(&g_flight, v[15]);
-    g_reply[0] = (double)a;
-    g_reply[1] = (double)g_flight.status[OGK_MPSP_FLIGHT_SOLVE];
-    g_reply[2] = (double)p->converged;
-    g_reply[3] = (double)p->newton_iterations;
-    g_reply[4] = (double)p->inner_loops;
-    g_reply[5] = (double)p->outer_steps;
-    g_reply[6] = (double)p->n_seg_tol;
+    g_reply[0] = (ogk_real_t)a;
+    g_reply[1] = (ogk_real_t)g_flight.status[OGK_MPSP_FLIGHT_SOLVE];
+    g_reply[2] = (ogk_real_t)p->converged;
+    g_reply[3] = (ogk_real_t)p->newton_iterations;
+    g_reply[4] = (ogk_real_t)p->inner_loops;
+    g_reply[5] = (ogk_real_t)p->outer_steps;
+    g_reply[6] = (ogk_real_t)p->n_seg_tol;
     g_reply[7] = p->tau_reached;
     for (i = 0u; i < OGK_MPSP_NY; ++i) {
         g_reply[8u + i] = p->dy[i];
@@ -57,18 +58,18 @@ static unsigned replan(const double *v)
     g_reply[16] = p->err_v;
     g_reply[17] = p->lambda_mf;
     g_reply[18] = p->m_f;
-    g_reply[19] = (double)p->n_segments;
-    g_reply[20] = (double)p->n_thrust_arcs;
-    g_reply[21] = (double)p->n_switches;
+    g_reply[19] = (ogk_real_t)p->n_segments;
+    g_reply[20] = (ogk_real_t)p->n_thrust_arcs;
+    g_reply[21] = (ogk_real_t)p->n_switches;
     g_reply[22] = p->lambda_m0;
-    g_reply[23] = (double)c;
+    g_reply[23] = (ogk_real_t)c;
     g_reply[24] = g_flight.cmd.throttle;
     g_reply[25] = g_flight.cmd.u[0];
     g_reply[26] = g_flight.cmd.u[1];
     g_reply[27] = g_flight.cmd.u[2];
-    g_reply[28] = (double)g_flight.cmd.flags;
+    g_reply[28] = (ogk_real_t)g_flight.cmd.flags;
     nw = (p->n_weights <= OGK_MPSP_MAX_WEIGHTS) ? p->n_weights : 0u;
-    g_reply[29] = (double)nw;
+    g_reply[29] = (ogk_real_t)nw;
     for (i = 0u; i < nw; ++i) {
         g_reply[MPSP_REPLY_HEAD + i] = p->weights[i];
     }
@@ -81,22 +82,22 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
     if (type == MPSP_INIT && length == 0u) {
         const ogk_mpsp_flight_action a = ogk_mpsp_flight_init(&g_flight);
         ogk_pil_tick_mark();
-        g_reply[0] = (double)a;
-        g_reply[1] = (double)g_flight.mpsp.n_weights;
+        g_reply[0] = (ogk_real_t)a;
+        g_reply[1] = (ogk_real_t)g_flight.mpsp.n_weights;
         g_reply[2] = g_flight.mpsp.cfg.t0;
         g_reply[3] = g_flight.mpsp.cfg.tf;
-        ogk_pil_put_f64s(out, g_reply, 4u);
+        ogk_pil_put_reals(out, g_reply, 4u);
         *reply_type = MPSP_INIT;
         *reply_length = 32u;
         return 0;
     }
     if (type == MPSP_REPLAN && length == 8u * MPSP_REPLAN_IN) {
-        double v[MPSP_REPLAN_IN];
+        ogk_real_t v[MPSP_REPLAN_IN];
         unsigned n;
-        ogk_pil_get_f64s(in, v, MPSP_REPLAN_IN);
+        ogk_pil_get_reals(in, v, MPSP_REPLAN_IN);
         n = replan(v);
         ogk_pil_tick_mark();
-        ogk_pil_put_f64s(out, g_reply, n);
+        ogk_pil_put_reals(out, g_reply, n);
         *reply_type = MPSP_REPLAN;
         *reply_length = (uint16_t)(8u * n);
         return 0;

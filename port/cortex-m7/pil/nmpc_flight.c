@@ -99,7 +99,7 @@ ogk_nmpc_action ogk_nmpc_flight_init(ogk_nmpc_flight_t *f)
     f->step_solves = 0u;
     f->step_failed = 0u;
 #if defined(OGK_NMPC_FLIGHT_FINAL_TIME)
-    f->t_f_kept = (double)OGK_NMPC_FLIGHT_FINAL_TIME;
+    f->t_f_kept = (ogk_real_t)OGK_NMPC_FLIGHT_FINAL_TIME;
 #else
     f->t_f_kept = 0.0;
 #endif
@@ -156,16 +156,16 @@ static void min_fuel_guess(ogk_nmpc_flight_t *f)
 /* The bounds of T that keep f->t_f_kept from f->in.t (guidance.py, _Base._fixed_bounds); *mid their
  * middle. Not probed: a setter's frame is a leaf of a few words (make arm-stack), and a new slot would
  * change every NMPC program's stack report. */
-static void keep_final_time(ogk_nmpc_flight_t *f, double *mid)
+static void keep_final_time(ogk_nmpc_flight_t *f, ogk_real_t *mid)
 {
-    const double h_min = ogk_nmpc_flight_config.horizon_min;
-    double rem = f->t_f_kept - f->in.t;
-    double lo;
-    double hi;
+    const ogk_real_t h_min = ogk_nmpc_flight_config.horizon_min;
+    ogk_real_t rem = f->t_f_kept - f->in.t;
+    ogk_real_t lo;
+    ogk_real_t hi;
     rem = (rem > h_min) ? rem : h_min;
-    lo = rem * (1.0 - OGK_NMPC_FLIGHT_FINAL_TIME_BAND);
-    hi = rem * (1.0 + OGK_NMPC_FLIGHT_FINAL_TIME_BAND);
-    *mid = 0.5 * (lo + hi);
+    lo = rem * (OGK_R(1.0) - OGK_NMPC_FLIGHT_FINAL_TIME_BAND);
+    hi = rem * (OGK_R(1.0) + OGK_NMPC_FLIGHT_FINAL_TIME_BAND);
+    *mid = OGK_R(0.5) * (lo + hi);
     f->settings_status = ogk_nmpc_set_horizon_bounds(&f->ctx, lo, hi);
 }
 
@@ -177,7 +177,7 @@ static void free_final_time(ogk_nmpc_flight_t *f)
 }
 
 /* The first BFGS matrix of the next cold solve: the configuration's times scale. */
-static void scale_hessian_init(ogk_nmpc_flight_t *f, double scale)
+static void scale_hessian_init(ogk_nmpc_flight_t *f, ogk_real_t scale)
 {
     f->settings_status = ogk_nmpc_set_hessian_init(&f->ctx, ogk_nmpc_flight_config.hessian_init * scale);
 }
@@ -187,10 +187,10 @@ static void scale_hessian_init(ogk_nmpc_flight_t *f, double scale)
  * (KernelGuidance._first_kept). */
 static void first_solve_kept(ogk_nmpc_flight_t *f, uint32_t k)
 {
-    const double *x_nom = ogk_nmpc_flight_guesses[k].x;
-    const double steps = (double)OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS;
+    const ogk_real_t *x_nom = ogk_nmpc_flight_guesses[k].x;
+    const ogk_real_t steps = (ogk_real_t)OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS;
     ogk_nmpc_input_t in_j;
-    double mid;
+    ogk_real_t mid;
     uint32_t j;
     uint32_t i;
     keep_final_time(f, &mid);
@@ -199,7 +199,7 @@ static void first_solve_kept(ogk_nmpc_flight_t *f, uint32_t k)
         in_j.t = f->in.t;
         for (i = 0u; i < OGK_NMPC_NX; ++i) {
             in_j.x[i] = (j == OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS)
-                ? f->in.x[i] : (x_nom[i] + (((double)j / steps) * (f->in.x[i] - x_nom[i])));
+                ? f->in.x[i] : (x_nom[i] + (((ogk_real_t)j / steps) * (f->in.x[i] - x_nom[i])));
         }
         CALL(f, OGK_NMPC_FL_SOLVE, ogk_nmpc_solve(&f->ctx, &in_j, &f->rep));
         f->status = counted(f, f->last[OGK_NMPC_FL_SOLVE]);
@@ -235,7 +235,7 @@ static void retry_free(ogk_nmpc_flight_t *f)
  * shifted) with a smaller first BFGS matrix (KernelGuidance._replan_kept). */
 static void replan_kept(ogk_nmpc_flight_t *f)
 {
-    double mid;
+    ogk_real_t mid;
     keep_final_time(f, &mid);
     CALL(f, OGK_NMPC_FL_REPLAN, ogk_nmpc_replan(&f->ctx, &f->in, &f->rep));
     f->status = counted(f, f->last[OGK_NMPC_FL_REPLAN]);

@@ -66,7 +66,7 @@ typedef struct {
     uint32_t step_solves;       /* [-] SQP solves of the flown context in the last step (ogk_nmpc_report_t.solves, summed) */
     uint32_t step_failed;       /* [-] its solve and replan calls of the last step that failed */
     uint32_t n_guesses;         /* [-] guesses of the generated configuration */
-    double t_f_kept;            /* [TU] OGK_NMPC_FLIGHT_FINAL_TIME: the final time every solve keeps (the
+    ogk_real_t t_f_kept;            /* [TU] OGK_NMPC_FLIGHT_FINAL_TIME: the final time every solve keeps (the
                                  *      ground plan's; a first solve retried with T free: its own); 0 else */
     ogk_status settings_status; /* [-] the last in-flight setting's status (ogk_nmpc_set_*) */
     ogk_status last[OGK_NMPC_FL_N_ENTRIES]; /* [-] last status per entry point */

@@ -30,7 +30,7 @@
 
 ogk_pil_stack_t ogk_pil_probe;
 static ogk_nmpc_flight_t g_flight;
-static double g_out[NMPC_MAX_OUT];
+static ogk_real_t g_out[NMPC_MAX_OUT];   /* the reply: its values widened to binary64 as sent */
 
 static uint16_t replan_reply(const ogk_nmpc_flight_t *f, ogk_nmpc_action a)
 {
@@ -38,30 +38,30 @@ static uint16_t replan_reply(const ogk_nmpc_flight_t *f, ogk_nmpc_action a)
     const uint32_t nu = (f->plan_status == OGK_OK) ? f->plan.nu : 0u;
     const uint32_t nc = (nodes + 1u) * nu;
     uint32_t i;
-    double *r = g_out;
-    r[0] = (double)a;
-    r[1] = (double)f->status;
-    r[2] = (double)f->rep.flags;
-    r[3] = (double)f->rep.sqp_iterations;
-    r[4] = (double)f->rep.solves;
-    r[5] = (double)f->rep.nodes;
+    ogk_real_t *r = g_out;
+    r[0] = (ogk_real_t)a;
+    r[1] = (ogk_real_t)f->status;
+    r[2] = (ogk_real_t)f->rep.flags;
+    r[3] = (ogk_real_t)f->rep.sqp_iterations;
+    r[4] = (ogk_real_t)f->rep.solves;
+    r[5] = (ogk_real_t)f->rep.nodes;
     r[6] = f->rep.t_next;
     r[7] = f->rep.t_f;
     r[8] = f->rep.objective;
     r[9] = f->cmd.alpha;
     r[10] = f->cmd.throttle;
-    r[11] = (double)f->cmd.flags;
-    r[12] = (double)f->cmd.law_flags;
-    r[13] = (double)f->cmd_status;
+    r[11] = (ogk_real_t)f->cmd.flags;
+    r[12] = (ogk_real_t)f->cmd.law_flags;
+    r[13] = (ogk_real_t)f->cmd_status;
     r[14] = f->plan.t0;
     r[15] = f->plan.horizon;
-    r[16] = (double)nodes;
-    r[17] = (double)nu;
-    r[18] = (double)f->plan_status;
-    r[19] = (double)f->pre_iterations;
-    r[20] = (double)f->guesses_tried;
-    r[21] = (double)f->step_solves;
-    r[22] = (double)f->step_failed;
+    r[16] = (ogk_real_t)nodes;
+    r[17] = (ogk_real_t)nu;
+    r[18] = (ogk_real_t)f->plan_status;
+    r[19] = (ogk_real_t)f->pre_iterations;
+    r[20] = (ogk_real_t)f->guesses_tried;
+    r[21] = (ogk_real_t)f->step_solves;
+    r[22] = (ogk_real_t)f->step_failed;
     for (i = 0u; (i < nc) && (i < (OGK_NMPC_MAX_NODES + 1u) * OGK_NMPC_MAX_NU); ++i) {
         r[NMPC_HEAD + i] = f->plan.u[i];
     }
@@ -74,19 +74,19 @@ static uint16_t replan_reply(const ogk_nmpc_flight_t *f, ogk_nmpc_action a)
 static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *reply_type,
                   uint8_t *out, uint16_t *reply_length)
 {
-    double v[1u + OGK_NMPC_NX];
+    ogk_real_t v[1u + OGK_NMPC_NX];   /* the frame's values at the kernel's precision */
     uint16_t n;
     if (type == NMPC_INIT) {
         const ogk_nmpc_action a = ogk_nmpc_flight_init(&g_flight);
-        g_out[0] = (double)a;
-        g_out[1] = (double)g_flight.ctx.nu;
-        g_out[2] = (double)g_flight.n_guesses;
+        g_out[0] = (ogk_real_t)a;
+        g_out[1] = (ogk_real_t)g_flight.ctx.nu;
+        g_out[2] = (ogk_real_t)g_flight.n_guesses;
         n = 3u;
     } else if (type == NMPC_REPLAN && length == 8u * (1u + OGK_NMPC_NX)) {
         ogk_nmpc_input_t meas;
         ogk_nmpc_action a;
         uint32_t i;
-        ogk_pil_get_f64s(in, v, 1u + OGK_NMPC_NX);
+        ogk_pil_get_reals(in, v, 1u + OGK_NMPC_NX);
         meas.t = v[0];
         for (i = 0u; i < OGK_NMPC_NX; ++i) {
             meas.x[i] = v[1u + i];
@@ -97,8 +97,8 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
     } else if (type == NMPC_PLAN_X && length == 8u) {
         uint32_t first;
         uint32_t rows;
-        ogk_pil_get_f64s(in, v, 1u);
-        if (!(v[0] >= 0.0) || !(v[0] <= (double)OGK_NMPC_MAX_NODES) ||
+        ogk_pil_get_reals(in, v, 1u);
+        if (!(v[0] >= OGK_R(0.0)) || !(v[0] <= (ogk_real_t)OGK_NMPC_MAX_NODES) ||
             g_flight.plan_status != OGK_OK) {
             return OGK_PIL_UNKNOWN;   /* unknown frame or wrong length */
         }
@@ -106,12 +106,12 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
         rows = (g_flight.plan.nodes + 1u > first) ? (g_flight.plan.nodes + 1u - first) : 0u;
         rows = (rows > NMPC_ROWS_PER_FRAME) ? NMPC_ROWS_PER_FRAME : rows;
         (void)memcpy(g_out, &g_flight.plan.x[first * OGK_NMPC_NX],
-                     sizeof(double) * rows * OGK_NMPC_NX);
+                     sizeof(ogk_real_t) * rows * OGK_NMPC_NX);
         n = (uint16_t)(rows * OGK_NMPC_NX);
     } else {
         return OGK_PIL_UNKNOWN;   /* unknown frame or wrong length */
     }
-    ogk_pil_put_f64s(out, g_out, n);
+    ogk_pil_put_reals(out, g_out, n);
     *reply_type = type;
     *reply_length = (uint16_t)(8u * n);
     return 0;

@@ -112,6 +112,22 @@ void ogk_pil_put_f64s(uint8_t *out, const double *values, unsigned n)
     }
 }
 
+void ogk_pil_get_reals(const uint8_t *in, ogk_real_t *values, unsigned n)
+{
+    unsigned i;
+    for (i = 0u; i < n; ++i) {
+        values[i] = (ogk_real_t)ogk_link_get_f64(in + 8u * i);
+    }
+}
+
+void ogk_pil_put_reals(uint8_t *out, const ogk_real_t *values, unsigned n)
+{
+    unsigned i;
+    for (i = 0u; i < n; ++i) {
+        ogk_link_put_f64(out + 8u * i, (double)values[i]);
+    }
+}
+
 int ogk_pil_serve(ogk_pil_handler handler, ogk_pil_stack_t *probe, unsigned n_slots)
 {
     static uint8_t in[OGK_LINK_MAX_PAYLOAD];

@@ -18,6 +18,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "ogk/real.h"
+
 #include "ogk_link.h"
 
 #ifndef OGK_PIL_STACK_WINDOW
@@ -66,5 +68,16 @@ int ogk_pil_serve(ogk_pil_handler handler, ogk_pil_stack_t *probe, unsigned n_sl
 /* Payload helpers: n binary64 values in and out (little-endian bit patterns). */
 void ogk_pil_get_f64s(const uint8_t *in, double *values, unsigned n);
 void ogk_pil_put_f64s(uint8_t *out, const double *values, unsigned n);
+
+/* The program's precision boundary: the frames carry binary64 on every target (target_link.py); the
+ * flight code computes in the kernel's ogk_real_t. A double kernel (Cortex-M7, SPARC V8) reads and
+ * writes the values as they are; a float kernel (Cortex-M4F, -DOGK_REAL_SINGLE=1) rounds each
+ * received value to the nearest float here (IEEE round to nearest; NaN and infinities kept) and widens
+ * each reply value exactly: the only double arithmetic of a float program (libgcc's __aeabi_d2f and
+ * __aeabi_f2d on the M4F). The *_pil.c handlers convert a scalar at the boundary with OGK_PIL_REAL(x)
+ * (a frame's double to ogk_real_t) and (double)x (back). */
+#define OGK_PIL_REAL(x) ((ogk_real_t)(x))
+void ogk_pil_get_reals(const uint8_t *in, ogk_real_t *values, unsigned n);
+void ogk_pil_put_reals(uint8_t *out, const ogk_real_t *values, unsigned n);
 
 #endif /* OGK_PIL_H */

@@ -42,7 +42,7 @@ ogk_flight_action ogk_oi_flight_init(ogk_oi_flight_t *f, const uint8_t *image, s
 
 /* Whether guidance samples at tick k: every Delta t_S, and every fine period once the predicted
  * time to go is inside the fine window (sil.py's schedule, on the previous tick's prediction). */
-static int sample_due(const ogk_oi_flight_t *f, uint32_t k, double t_s)
+static int sample_due(const ogk_oi_flight_t *f, uint32_t k, ogk_real_t t_s)
 {
     int due = (k % (uint32_t)OGK_FLIGHT_TICKS_PER_SAMPLE) == 0u;
 #if OGK_FLIGHT_FINE_TICKS > 0

@@ -45,8 +45,8 @@ typedef struct {
     ogk_flight_t base;          /* NOG (end-game config) + CPD, reactions (ogk_flight.h) */
     ogk_cutoff_t cutoff;
     ogk_terminal_t terminal;
-    double t_predicted_s;       /* [s] NOG's cut-off prediction (inf before the first sample) */
-    double t_cutoff_s;          /* [s] cut-off in force (energy cut-off's when flown) */
+    ogk_real_t t_predicted_s;       /* [s] NOG's cut-off prediction (inf before the first sample) */
+    ogk_real_t t_cutoff_s;          /* [s] cut-off in force (energy cut-off's when flown) */
     uint8_t engaged;            /* [-] the terminal stage steers */
     uint8_t sampled;            /* [-] this tick took a guidance sample */
     ogk_status status[OGK_OI_N_ENTRIES]; /* last status per entry point */

@@ -2,7 +2,8 @@
  * model sends the navigation and attitude state at every control tick, the program answers with
  * the tick's commands from ogk_oi_flight_tick (oi_flight.c), which is the flight software itself.
  *
- * Frames (payloads of binary64 values, ogk_pil.h for the common ones):
+ * Frames (payloads of binary64 values, ogk_pil.h for the common ones; a single-precision build
+ * converts each value to ogk_real_t here, OGK_PIL_REAL, and each reply value back, (double)):
  *   OI_INIT  (32) host -> target: nothing; reply: [action, t_f* s]
  *   OI_TICK  (33) host -> target: [k, t s, r m, xi rad, phi rad, v_r, v_t, v_n m/s,
  *                                  psi, theta, phi_roll rad, p, q, r rad/s]
@@ -33,7 +34,7 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
         const ogk_flight_action a = ogk_oi_flight_init(&g_flight, ogk_nog_bundle,
                                                        ogk_nog_bundle_len);
         r[0] = (double)a;
-        r[1] = g_flight.base.table.t_f_star_s;
+        r[1] = (double)g_flight.base.table.t_f_star_s;
         ogk_pil_put_f64s(out, r, 2u);
         *reply_type = OI_INIT;
         *reply_length = 16u;
@@ -44,31 +45,31 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
         ogk_flight_att_t att;
         ogk_oi_failure fail;
         ogk_pil_get_f64s(in, v, OI_TICK_IN);
-        nav.t_s = v[1];
-        nav.r_m = v[2];
-        nav.xi_rad = v[3];
-        nav.phi_rad = v[4];
-        nav.v_r_mps = v[5];
-        nav.v_t_mps = v[6];
-        nav.v_n_mps = v[7];
-        att.psi = v[8];
-        att.theta = v[9];
-        att.phi_roll = v[10];
-        att.rate_p = v[11];
-        att.rate_q = v[12];
-        att.rate_r = v[13];
+        nav.t_s = OGK_PIL_REAL(v[1]);
+        nav.r_m = OGK_PIL_REAL(v[2]);
+        nav.xi_rad = OGK_PIL_REAL(v[3]);
+        nav.phi_rad = OGK_PIL_REAL(v[4]);
+        nav.v_r_mps = OGK_PIL_REAL(v[5]);
+        nav.v_t_mps = OGK_PIL_REAL(v[6]);
+        nav.v_n_mps = OGK_PIL_REAL(v[7]);
+        att.psi = OGK_PIL_REAL(v[8]);
+        att.theta = OGK_PIL_REAL(v[9]);
+        att.phi_roll = OGK_PIL_REAL(v[10]);
+        att.rate_p = OGK_PIL_REAL(v[11]);
+        att.rate_q = OGK_PIL_REAL(v[12]);
+        att.rate_r = OGK_PIL_REAL(v[13]);
         fail = ogk_oi_flight_tick(&g_flight, (uint32_t)v[0], &nav, &att);
         ogk_pil_tick_mark();
         r[0] = (double)fail;
-        r[1] = g_flight.t_predicted_s;
-        r[2] = g_flight.t_cutoff_s;
-        r[3] = g_flight.base.cmd.alpha_rad;
-        r[4] = g_flight.base.cmd.beta_rad;
-        r[5] = g_flight.base.act.m_xc;
-        r[6] = g_flight.base.act.delta_yc;
-        r[7] = g_flight.base.act.delta_zc;
-        r[8] = g_flight.base.act.psi_c;
-        r[9] = g_flight.base.act.theta_c;
+        r[1] = (double)g_flight.t_predicted_s;
+        r[2] = (double)g_flight.t_cutoff_s;
+        r[3] = (double)g_flight.base.cmd.alpha_rad;
+        r[4] = (double)g_flight.base.cmd.beta_rad;
+        r[5] = (double)g_flight.base.act.m_xc;
+        r[6] = (double)g_flight.base.act.delta_yc;
+        r[7] = (double)g_flight.base.act.delta_zc;
+        r[8] = (double)g_flight.base.act.psi_c;
+        r[9] = (double)g_flight.base.act.theta_c;
         r[10] = (double)g_flight.engaged;
         r[11] = (double)g_flight.sampled;
         ogk_pil_put_f64s(out, r, OI_TICK_OUT);

@@ -65,7 +65,7 @@ class BinaryFamily(FamilyDefaults):
     name = "binary-asteroid"
     laws = LAWS
     #: m7 / sparc: the corrector calls on the emulated Cortex-M7 / SPARC V8 (pil.py)
-    targets = ("host", "m7", "sparc")
+    targets = ("host", "m7", "sparc", "m4f")
     run_aliases = ("blt",)            #: `ogk blt`: the older `ogk run`
     target_watchdog_per_run_s = 120.0
 
@@ -192,12 +192,12 @@ class BinaryFamily(FamilyDefaults):
     def run(self, header: ScenarioHeader, args: argparse.Namespace) -> int:
         """`ogk run SCENARIO --transfer NAME`: one BLT transfer, checked by DOP853."""
         from .one_transfer import run
-        return run(header, args, lambda: self.scenario_program(header))
+        return run(header, args, lambda: self.scenario_program(header, getattr(args, "target", "m7")))
 
-    def scenario_program(self, header: ScenarioHeader) -> FlightProgram:
-        """The scenario's flight program: the one its `ogk mc --target m7` flies (built for the
+    def scenario_program(self, header: ScenarioHeader, target: str = "m7") -> FlightProgram:
+        """The scenario's flight program: the one its `ogk mc --target TARGET` flies (built for the
         corrector configurations of its [monte_carlo] nominal; a design's solves uplink their own)."""
-        return self.flight_program(self.plan(header, {}), "m7")
+        return self.flight_program(self.plan(header, {}), target)
 
     # ------------------------------------------------------------------ on a target
     # every corrector call made by the scenario's flight program (pil.py); the draws, the DOP853

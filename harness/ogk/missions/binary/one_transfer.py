@@ -42,9 +42,10 @@ def add_run_arguments(p: argparse.ArgumentParser) -> None:
                    help="variational equations or central differences (eq. 62); default: the scenario's")
     p.add_argument("--thrust-n", type=float, default=None, metavar="F",
                    help="fly the transfer at this thrust [N] instead of its thrust_n (a thrust sweep)")
-    p.add_argument("--target", choices=("host", "m7"), default="host",
+    p.add_argument("--target", choices=("host", "m7", "m4f"), default="host",
                    help="m7: every corrector solve of the design made by the scenario's flight program "
-                        "on the emulated Cortex-M7 (docs/guides/flight-integration-blt.md); default host")
+                        "on the emulated Cortex-M7 (docs/guides/flight-integration-blt.md); m4f: on the "
+                        "Cortex-M4F with the single-precision kernel; default host")
 
 
 def blt_document(scenario: BinaryScenario, name: str, corrector: str | None, jacobian: str | None,
@@ -124,7 +125,7 @@ def run(header: ScenarioHeader, args: argparse.Namespace,
     jacobian = None if args.jacobian == "scenario" else args.jacobian
     if args.thrust_n is not None and not args.thrust_n > 0.0:
         raise OgkInputError("must be > 0", key="--thrust-n")
-    if getattr(args, "target", "host") == "m7":
+    if getattr(args, "target", "host") != "host":
         if target_program is None:
             raise OgkInputError("this transfer has no flight program to fly on", key="--target")
         doc = _blt_on_target(target_program(), scenario, args.transfer, corrector, jacobian,
@@ -137,7 +138,7 @@ def run(header: ScenarioHeader, args: argparse.Namespace,
     print("\n".join(report_lines(doc)))
     if "target_solves" in doc:
         pil = doc["pil"]
-        print(f"  on the target (m7): {len(doc['target_solves'])} solve(s), iterations "
+        print(f"  on the target ({doc['target']}): {len(doc['target_solves'])} solve(s), iterations "
               + ", ".join(str(s["iterations"]) for s in doc["target_solves"])
               + f"; ogk_blt_solve max {pil.get('pil.ogk_blt_solve.insn_max')} instructions, "
               f"stack {pil.get('pil.ogk_blt_solve.stack_bytes')} B")
@@ -161,7 +162,9 @@ def _blt_on_target(program: FlightProgram, scenario: BinaryScenario, name: str, 
     except BaseException:
         session.kill()
         raise
-    doc.update(target="m7", flight_program=file_sha256(program.elf), target_solves=log, pil=keys)
+    from ogk.sil.pil import PRECISION
+    doc.update(target=program.target, target_precision=PRECISION[program.target],
+               flight_program=file_sha256(program.elf), target_solves=log, pil=keys)
     return doc
 
 

@@ -78,7 +78,8 @@ class LowThrustFamily(FamilyDefaults):
     name = "low-thrust-transfer"
     laws = LAWS
     fixed_lists = True           #: --cases paper: the number of runs is the list's
-    targets = ("host", "m7", "sparc")   #: --target m7 / sparc: the solves on the flight program (pil.py)
+    #: --target m7 / sparc / m4f: the solves on the flight program (pil.py)
+    targets = ("host", "m7", "sparc", "m4f")
     has_tables = True                   #: `ogk tables`: ground_tables.py
     run_aliases = ("cases",)     #: `ogk cases` (and `ogk mpsp apophis`): the older `ogk run`
     campaign_doc = ("MPSP re-planned on perturbed problems: --cases dispersed (run i: one "

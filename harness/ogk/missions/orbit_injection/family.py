@@ -35,6 +35,30 @@ if TYPE_CHECKING:
     from .nog_guidance import NogTables
 
 
+def single_precision_bundle(blob: bytes) -> bytes:
+    """The NOG table image `blob` (F64) for the single-precision kernel: every value rounded to the
+    nearest binary32 (F32), and the two time columns made what the float kernel's loader checks them
+    against in its own arithmetic (kernel/src/nog/nog.c, check_table_content: every row's t_f and
+    t = t_f * tau to 1e-9 of t_f): the t_f column is row 0's float in every row, the time column the
+    float product t_f * tau. Each moves by at most an ulp of binary32 (the double table's rows agree
+    to 1e-9 of t_f): rounding the same quantity in the other order, no other change."""
+    import numpy as np
+    from ogk_host import tablefile
+
+    t = tablefile.decode_table(blob)
+    tau = np.asarray(t.grid, dtype=np.float32)
+    data = np.asarray(t.data, dtype=np.float32).copy()
+    t_f = data[0, _NOG_OFF_XDOT + _NOG_IDX_TIME]
+    data[:, _NOG_OFF_XDOT + _NOG_IDX_TIME] = t_f
+    data[:, _NOG_OFF_X + _NOG_IDX_TIME] = t_f * tau          # binary32 products, round to nearest
+    return tablefile.encode_table(t.kind, tau.astype(np.float64), data.astype(np.float64),
+                                  precision="single")
+
+
+#: the NOG table row's layout (ogk/nog.h OGK_NOG_OFF_X, OGK_NOG_OFF_XDOT; nog.c's IDX_TIME)
+_NOG_OFF_X, _NOG_OFF_XDOT, _NOG_IDX_TIME = 0, 7, 6
+
+
 @dataclasses.dataclass(frozen=True)
 class _Base:
     scenario: OrbitInjectionScenario
@@ -49,7 +73,7 @@ class _Base:
 class OrbitInjectionFamily(FamilyDefaults):
     name = "orbit-injection"
     laws = LAWS
-    targets = ("host", "m7", "sparc")   #: m7 / sparc: port/cortex-m7/pil/oi_pil.c (pil.py)
+    targets = ("host", "m7", "sparc", "m4f")   #: m7 / sparc / m4f: port/cortex-m7/pil/oi_pil.c (pil.py)
     has_tables = True                   #: `ogk tables`: ground_tables.py
     target_watchdog_per_run_s = 60.0
     campaign_doc = ("dispersed flights of the kernel's VTD-NOG + CPD with the scenario's end-game "
@@ -174,14 +198,18 @@ class OrbitInjectionFamily(FamilyDefaults):
     # ------------------------------------------------------------------ on a target
     def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:
         """The table image of the tables flown and the configuration headers (flight_config.py)."""
-        from ogk_host.cgen import write_c_table
+        from ogk_host.cgen import current_precision, write_c_table
 
         from .flight_config import write_flight_config
         base: _Base = plan.base
         tables = base.tables
-        image = write_c_table(tables.bundle.read_bytes(), "ogk_nog_bundle", out_dir / "c",
-                              plan.scenario_path,
-                              note="The PIL flight program's table image (ogk_nog_table_view).")
+        blob, note = tables.bundle.read_bytes(), "The PIL flight program's table image (ogk_nog_table_view)."
+        if current_precision() == "single":
+            # a float kernel refuses an F64 table (OGK_E_TABLE_TYPE): the same table in binary32
+            blob = single_precision_bundle(blob)
+            note += (" Binary32 (F32) for the single-precision kernel, its time columns rounded "
+                     "as that kernel computes them.")
+        image = write_c_table(blob, "ogk_nog_bundle", out_dir / "c", plan.scenario_path, note=note)
         return [*image, *write_flight_config(out_dir, base.scenario, plan.scenario_path,
                                              tables.bundle)]
 

@@ -161,7 +161,7 @@ class ProximityFamily(FamilyDefaults):
     # ------------------------------------------------------------------ on a target
     # the replans made by the NMPC flight program on this problem (pil.py); the truth, the noise and
     # the judging stay on the host
-    targets = ("host", "m7")
+    targets = ("host", "m7", "m4f")
     target_watchdog_per_run_s = 1800.0
 
     def flight_config(self, plan: CampaignPlan, out_dir: Path) -> list[Path]:

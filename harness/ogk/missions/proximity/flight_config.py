@@ -33,6 +33,8 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, first: An
 
     ctx = kernel_context(scenario)._ctx
     cfg = ffi.new("ogk_nmpc_config_t *", ctx.nmpc.cfg)
+    from ogk.sil.pil_build import nmpc_single_precision_tolerances
+    nmpc_single_precision_tolerances(cfg)   # floored for a float kernel (the M4F); as is otherwise
     model = ffi.new("ogk_prox_model_t *", ctx.model)
     guesses = ffi.new("ogk_nmpc_plan_t[1]")
     g = guesses[0]
@@ -47,7 +49,7 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, first: An
         "OGK_NMPC_FLIGHT_MODEL_T": "ogk_prox_model_t"}
     if scenario.guidance.fixed_final_time:
         defines.update({"OGK_NMPC_FLIGHT_FINAL_TIME": float(first.t0) + float(first.horizon),
-                        "OGK_NMPC_FLIGHT_FINAL_TIME_BAND": FIXED_T_F_BAND,
+                        "OGK_NMPC_FLIGHT_FINAL_TIME_BAND": final_time_band(),
                         "OGK_NMPC_FLIGHT_RETRY_HESSIAN_INIT": RETRY_HESSIAN_INIT,
                         "OGK_NMPC_FLIGHT_FIRST_SOLVE_STEPS": f"{FIRST_SOLVE_STEPS}u"})
     return write_c_config(
@@ -60,3 +62,14 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, first: An
         out / "c" / HEADER, scenario_path, includes=("ogk/nmpc.h", "ogk/proximity.h"),
         defines=defines,
         note="the proximity approach on the NMPC flight program (ogk_nmpc_init_problem); 1 guess.")
+
+
+def final_time_band() -> float:
+    """The relative band the fixed final time is kept in (guidance.FIXED_T_F_BAND, 1e-9); on a
+    single-precision kernel 8 eps of binary32 (9.5e-7): 1 +- 1e-9 rounds to 1 in binary32, the bounds
+    would collapse onto the remaining time itself."""
+    from ogk_host.cgen import current_precision
+
+    from ogk.sil.pil_build import SINGLE_EPS
+    from .guidance import FIXED_T_F_BAND
+    return FIXED_T_F_BAND if current_precision() != "single" else max(FIXED_T_F_BAND, 8 * SINGLE_EPS)

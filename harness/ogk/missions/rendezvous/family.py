@@ -112,7 +112,7 @@ class _Base:
 class RendezvousFamily(FamilyDefaults):
     name = "low-thrust-rendezvous"
     laws = LAWS
-    targets = ("host", "m7", "sparc")   #: m7 / sparc: port/cortex-m7/pil/nmpc_pil.c (pil.py)
+    targets = ("host", "m7", "sparc", "m4f")   #: m7 / sparc / m4f: port/cortex-m7/pil/nmpc_pil.c (pil.py)
     run_aliases = ("nmpc",)             #: `ogk nmpc`: the older `ogk run`
     target_watchdog_per_run_s = 7200.0  #: a whole closed loop of QEMU re-solves
     campaign_doc = ("closed-loop NMPC flights on independent thrust-angle noise streams "

@@ -61,6 +61,8 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, strategy:
     from ogk_host.rendezvous.nlp import MIN_FUEL_GUESS_THROTTLE
 
     ffi, cfg, guesses, n = flight_items(scenario, strategy)
+    from ogk.sil.pil_build import nmpc_single_precision_tolerances
+    nmpc_single_precision_tolerances(cfg)   # floored for a float kernel (the M4F); as is otherwise
     return write_c_config(
         ffi, [ConfigItem("ogk_nmpc_flight_config", cfg,
                          f"ogk_nmpc (ogk/nmpc.h), strategy {strategy}, third bodies in the model: "
@@ -72,3 +74,4 @@ def write_flight_config(out: Path, scenario_path: Path, scenario: Any, strategy:
         defines={"OGK_NMPC_FLIGHT_N_GUESSES": int(n),
                  "OGK_NMPC_FLIGHT_MIN_FUEL_THROTTLE": float(MIN_FUEL_GUESS_THROTTLE)},
         note=f"strategy {strategy}, third bodies {third_bodies}; {n} guesses.")
+

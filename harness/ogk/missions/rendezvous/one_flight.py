@@ -49,9 +49,10 @@ def add_run_arguments(p: argparse.ArgumentParser) -> None:
                    help="fly the paper's problem: the flight solver's robustness of [nmpc] off (no thrust "
                         "margin, eq. 5 exactly, no departure planet, no keep-out; docs/design/nmpc-flight.md, "
                         "\"Robustness\"), e.g. to reproduce Table I's unperturbed row")
-    p.add_argument("--target", choices=("host", "m7"), default="host",
+    p.add_argument("--target", choices=("host", "m7", "m4f"), default="host",
                    help="host: the kernel in this process (default); m7: every replan made by the "
-                        "scenario's flight program on the emulated Cortex-M7 (docs/guides/pil.md)")
+                        "scenario's flight program on the emulated Cortex-M7 (docs/guides/pil.md); "
+                        "m4f: on the Cortex-M4F with the single-precision kernel")
 
 
 def _paper_prefix(strategy: str, perturbed: bool) -> str:
@@ -145,9 +146,10 @@ def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
 
     settings = strategy_settings(scenario, strategy_name)
     session = None
-    if getattr(args, "target", "host") == "m7":
+    target = getattr(args, "target", "host")
+    if target != "host":
         if args.solver != "kernel":
-            raise OgkInputError(f"--target m7 flies the kernel's ogk_nmpc, got {args.solver!r}",
+            raise OgkInputError(f"--target {target} flies the kernel's ogk_nmpc, got {args.solver!r}",
                                 key="--solver")
         from ogk.sil.pil import PilSession
 
@@ -157,7 +159,8 @@ def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
         third = args.third_bodies_in_model
         program = pil.flight_program(   # the flight configuration of this flight's scenario
             Path(header.path), strategy_name, third,
-            lambda out: write_flight_config(out, Path(header.path), scenario, strategy_name, third))
+            lambda out: write_flight_config(out, Path(header.path), scenario, strategy_name, third),
+            target)
         session = PilSession(program)
         guidance: Any = pil.TargetGuidance(session, kernel_config(scenario, settings))
     else:
@@ -190,7 +193,9 @@ def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
     doc = result.to_json()
     if session is not None:     # the flight program's figures per entry point (docs/guides/pil.md)
         from ogk.sil.pil_build import file_sha256
-        doc.update({"target": "m7", "flight_program": file_sha256(session.program.elf),
+        from ogk.sil.pil import PRECISION
+        doc.update({"target": target, "target_precision": PRECISION[target],
+                    "flight_program": file_sha256(session.program.elf),
                     **target_keys})
     doc.update({"scenario_path": str(header.path), "scenario_sha256": header.sha256,
                 "objective": scenario.ocp.objective,
