@@ -36,27 +36,13 @@ if TYPE_CHECKING:
 
 
 def single_precision_bundle(blob: bytes) -> bytes:
-    """The NOG table image `blob` (F64) for the single-precision kernel: every value rounded to the
-    nearest binary32 (F32), and the two time columns made what the float kernel's loader checks them
-    against in its own arithmetic (kernel/src/nog/nog.c, check_table_content: every row's t_f and
-    t = t_f * tau to 1e-9 of t_f): the t_f column is row 0's float in every row, the time column the
-    float product t_f * tau. Each moves by at most an ulp of binary32 (the double table's rows agree
-    to 1e-9 of t_f): rounding the same quantity in the other order, no other change."""
-    import numpy as np
+    """The NOG table image `blob` (F64) for the single-precision kernel: the same table with every value
+    rounded to the nearest binary32 (F32). The float kernel's loader accepts it as it is: its time
+    columns are checked to 4 eps of t_f there (kernel/src/nog/nog.c, OGK_NOG_TF_CONSISTENCY)."""
     from ogk_host import tablefile
 
     t = tablefile.decode_table(blob)
-    tau = np.asarray(t.grid, dtype=np.float32)
-    data = np.asarray(t.data, dtype=np.float32).copy()
-    t_f = data[0, _NOG_OFF_XDOT + _NOG_IDX_TIME]
-    data[:, _NOG_OFF_XDOT + _NOG_IDX_TIME] = t_f
-    data[:, _NOG_OFF_X + _NOG_IDX_TIME] = t_f * tau          # binary32 products, round to nearest
-    return tablefile.encode_table(t.kind, tau.astype(np.float64), data.astype(np.float64),
-                                  precision="single")
-
-
-#: the NOG table row's layout (ogk/nog.h OGK_NOG_OFF_X, OGK_NOG_OFF_XDOT; nog.c's IDX_TIME)
-_NOG_OFF_X, _NOG_OFF_XDOT, _NOG_IDX_TIME = 0, 7, 6
+    return tablefile.encode_table(t.kind, t.grid, t.data, precision="single")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -207,8 +193,7 @@ class OrbitInjectionFamily(FamilyDefaults):
         if current_precision() == "single":
             # a float kernel refuses an F64 table (OGK_E_TABLE_TYPE): the same table in binary32
             blob = single_precision_bundle(blob)
-            note += (" Binary32 (F32) for the single-precision kernel, its time columns rounded "
-                     "as that kernel computes them.")
+            note += " Binary32 (F32) for the single-precision kernel."
         image = write_c_table(blob, "ogk_nog_bundle", out_dir / "c", plan.scenario_path, note=note)
         return [*image, *write_flight_config(out_dir, base.scenario, plan.scenario_path,
                                              tables.bundle)]
