@@ -30,6 +30,7 @@ class Func:
     indirect: bool = False
     local_jumps: int = 0     # computed jumps proven to stay inside the function (isa.local_jumps)
     unknown_sp: bool = False
+    last: int = 0            # address of its last listed line (instruction or literal word)
 
 
 @dataclass
@@ -58,6 +59,8 @@ def disassemble(objdump: str, elf: Path, isa: str, no_return: frozenset[str] = f
             funcs[cur.start] = cur
             continue
         m = _LINE.match(line)
+        if cur is not None and m:
+            cur.last = int(m.group(1), 16)
         if cur is None or not m or m.group(2).startswith("."):
             continue
         ins = read(m.group(2).replace("\t", " "))
@@ -142,6 +145,42 @@ def _callees(f: Func, indirect_targets: set[int], no_return: frozenset[str]) -> 
     if f.name in no_return:
         return set()
     return f.calls | (indirect_targets if f.indirect else set())
+
+
+_SYM = re.compile(r"^([0-9a-f]+)\s.*\sF\s+\S+\s+([0-9a-f]+)\s+(?:\S+\s+)?(\S+)$")
+
+
+def code_bytes(objdump: str, elf: Path, funcs: dict[int, Func]) -> dict[int, int]:
+    """The size of every function: its ELF symbol's (objdump -t), or where the symbol has none (a
+    hand-written library routine), its extent in the listing up to the next function."""
+    text = subprocess.run([objdump, "-t", str(elf)], check=True, capture_output=True, text=True).stdout
+    sym: dict[int, int] = {}
+    for line in text.splitlines():
+        m = _SYM.match(line)
+        if m and int(m.group(2), 16) > 0:
+            sym[int(m.group(1), 16) & ~1] = int(m.group(2), 16)     # a Thumb symbol's address has bit 0 set
+    starts = sorted(funcs)
+    out = {}
+    for i, a in enumerate(starts):
+        end = max(funcs[a].last, a) + 4
+        if i + 1 < len(starts):
+            end = min(end, starts[i + 1])
+        out[a] = sym.get(a, end - a)
+    return out
+
+
+def reachable(funcs: dict[int, Func], root: int, indirect_targets: set[int],
+              no_return: frozenset[str] = frozenset()) -> set[int]:
+    """Every function a call of `root` may execute (itself, its callees, the address-taken functions
+    where it calls through a register): the code it needs in flash."""
+    seen = {root}
+    todo = [root]
+    while todo:
+        for c in _callees(funcs[todo.pop()], indirect_targets, no_return):
+            if c not in seen:
+                seen.add(c)
+                todo.append(c)
+    return seen
 
 
 def by_name(funcs: dict[int, Func]) -> dict[str, list[int]]:

@@ -71,8 +71,10 @@ PROFILE_CAMPAIGNS := leo_geo:8 scout_upper_stage:4 apophis_cubesat:4 rendezvous_
 PROFILE_PIL_M7 := $(foreach c,$(PROFILE_CAMPAIGNS),$(PROFILE_B)/pil_m7/$(firstword $(subst :, ,$(c))).json)
 # ... and the same campaigns (scenarios, runs, seed) with the same flight programs on SPARC V8
 PROFILE_PIL_SPARC := $(foreach c,$(PROFILE_CAMPAIGNS),$(PROFILE_B)/pil_sparc/$(firstword $(subst :, ,$(c))).json)
+# ... and on the Cortex-M4F, the flight programs built on the single-precision kernel (issue 35)
+PROFILE_PIL_M4F := $(foreach c,$(PROFILE_CAMPAIGNS),$(PROFILE_B)/pil_m4f/$(firstword $(subst :, ,$(c))).json)
 
-.PHONY: profile profile-pil-m7 profile-pil-sparc
+.PHONY: profile profile-pil-m7 profile-pil-sparc profile-pil-m4f
 
 # Each campaign's envelope is rebuilt when the kernel, the ports or its scenario change. A campaign
 # whose runs fail their mission criterion, or whose target results leave the host's bounds (a perturbed
@@ -99,6 +101,16 @@ $(PROFILE_B)/pil_sparc/%.json: scenarios/%.toml $(SPARC_B)/libogk.a $(QP_SO) $(F
 	mv $(@:.json=.tmp.json) $@
 profile-pil-sparc: $(PROFILE_PIL_SPARC)
 
+# The Cortex-M4F campaigns (mps2-an386): the PIL flight programs on the float kernel; the same rules.
+$(PROFILE_B)/pil_m4f/%.json: scenarios/%.toml $(M4F_B)/libogk.a $(QP_SO) $(FFI_STAMP)
+	@mkdir -p $(@D)
+	rm -f $@ $(@:.json=.tmp.json)*
+	$(VENV)/bin/ogk mc $* --target m4f --runs $(lastword $(subst :, ,$(filter $*:%,$(PROFILE_CAMPAIGNS)))) \
+	  --seed $(PROFILE_SEED) --workers 2 $(PROFILE_WATCHDOG_$*) --json $(@:.json=.tmp.json); rc=$$?; \
+	  if [ $$rc -gt 1 ] || [ ! -f $(@:.json=.tmp.json) ]; then exit 1; fi
+	mv $(@:.json=.tmp.json) $@
+profile-pil-m4f: $(PROFILE_PIL_M4F)
+
 # SPARC V8, besides the campaigns: instructions per call of the orbit-injection entry points over the
 # flight application's whole flight (port/cortex-m7/flightapp built for SPARC, table decoded into RAM), by the QEMU plugin
 # under qemu-user (calls return after their delay slot; make test-qemu-plugin-sparc checks it).
@@ -109,10 +121,13 @@ $(PROFILE_B)/insns_sparc_flightapp.txt: $(SPARC_FA) $(QP_SO)
 	QEMU_PLUGIN_SO=$(QP_SO) QEMU_USER=$(SPARC_QEMU) NM=sparc64-linux-gnu-nm \
 	  port/qemu-plugin/count_insns.sh $(SPARC_FA) $(PROFILE_FA_ENTRIES) > $@.tmp 2> /dev/null && mv $@.tmp $@
 
-profile: deps stack-bound-m7 footprint-m7 stack-bound-sparc footprint-sparc profile-pil-m7 \
-  profile-pil-sparc $(PROFILE_B)/insns_sparc_flightapp.txt
+profile: deps stack-bound-m7 footprint-m7 stack-bound-sparc footprint-sparc stack-bound-m4f footprint-m4f \
+  profile-pil-m7 profile-pil-sparc profile-pil-m4f $(PROFILE_B)/insns_sparc_flightapp.txt
 	python3 port/profile/profile.py --stack m7=$(PROFILE_B)/stack_m7.json sparc=$(PROFILE_B)/stack_sparc.json \
+	  m4f=$(PROFILE_B)/stack_m4f.json \
 	  --footprint m7=$(PROFILE_B)/footprint_m7.json sparc=$(PROFILE_B)/footprint_sparc.json \
+	  m4f=$(PROFILE_B)/footprint_m4f.json \
 	  --campaign $(foreach f,$(PROFILE_PIL_M7),m7=$(f)) $(foreach f,$(PROFILE_PIL_SPARC),sparc=$(f)) \
-	  --program sparc=flightapp=$(PROFILE_B)/insns_sparc_flightapp.txt \
+	  $(foreach f,$(PROFILE_PIL_M4F),m4f=$(f)) \
+	  --program sparc=flightapp=$(PROFILE_B)/insns_sparc_flightapp.txt --beside m7:m4f \
 	  --json $(PROFILE_B)/profile.json --doc docs/evidence/profile.md

@@ -8,6 +8,10 @@ generated docs/evidence/profile.md. Inputs, all produced by `make profile` in th
                         the recorded inputs, with the run and step that produced it.
   --program T=NAME=FILE the QEMU plugin's report (count_insns*.sh) of a program run on target T: the
                         worst instructions per call of its entry points over that run (no painting).
+  --beside A:B...       a section putting target B beside target A, entry point by entry point: stack
+                        bound, code reachable from the entry point (flash, libraries included), worst
+                        instructions and their ratio, and the two kernels' totals (e.g. m7:m4f, the
+                        Cortex-M4F's single-precision build beside the Cortex-M7's double build).
 The painted stack of every entry point must stay under its static bound (exit 1 otherwise): the
 measurement cross-checks the bound on the worst input the campaigns recorded. Nothing timed goes in:
 the profile is identical from run to run.
@@ -79,6 +83,7 @@ def build(stack: list[tuple[str, Path]], foot: list[tuple[str, Path]],
         entries = {}
         for entry, e in s["entry_points"].items():
             row = {"stack_bound": e["bytes"], "own_frame": e["frame"], "deepest_path": e["path"],
+                   "code_bytes": e.get("code_bytes"),
                    "library_frames": e["outside_kernel"], "indirect_call": e["indirect"]}
             w = worst.get(target, {}).get(entry)
             if w:
@@ -97,6 +102,47 @@ def build(stack: list[tuple[str, Path]], foot: list[tuple[str, Path]],
     for target, path in foot:
         targets.setdefault(target, {})["footprint"] = json.loads(path.read_text())
     return {"targets": targets, "campaigns": listed}, problems
+
+
+def beside(doc: dict, a: str, b: str) -> dict:
+    """Target b beside target a, per entry point both have: stack bound, reachable code, worst
+    instructions (None where no campaign measured it) and b's instructions over a's."""
+    ta, tb = doc["targets"][a], doc["targets"][b]
+    rows = {}
+    for entry in sorted(set(ta.get("entry_points", {})) & set(tb.get("entry_points", {}))):
+        ea, eb = ta["entry_points"][entry], tb["entry_points"][entry]
+        ia = (ea.get("insn_max") or {}).get("value")
+        ib = (eb.get("insn_max") or {}).get("value")
+        rows[entry] = {"stack_bound": [ea["stack_bound"], eb["stack_bound"]],
+                       "code_bytes": [ea.get("code_bytes"), eb.get("code_bytes")],
+                       "insn_max": [ia, ib],
+                       "insn_ratio": (ib / ia) if ia and ib else None}
+    totals = {k: [ta.get("footprint", {}).get("total", {}).get(k), tb.get("footprint", {}).get("total", {}).get(k)]
+              for k in ("code", "rodata", "data", "bss")}
+    return {"a": a, "b": b, "entry_points": rows, "kernel_totals": totals}
+
+
+def _cell(v: object) -> str:
+    return "" if v is None else str(v)
+
+
+def beside_markdown(s: dict) -> list[str]:
+    a, b = s["a"], s["b"]
+    tot = s["kernel_totals"]
+    out = ["", f"## {b} beside {a}", "",
+           f"Kernel code {_cell(tot['code'][0])} B on {a}, {_cell(tot['code'][1])} B on {b}; read-only data "
+           f"{_cell(tot['rodata'][0])} B and {_cell(tot['rodata'][1])} B; no global data on either. Per entry "
+           "point: the stack bound, the code its call may execute (its own, the kernel's it reaches, libm's "
+           "and libc's, soft-float helpers included) and the worst instructions per call the campaigns above "
+           "recorded on each.", "",
+           f"| entry point | stack {a} [B] | stack {b} [B] | code {a} [B] | code {b} [B] | worst insns {a} "
+           f"| worst insns {b} | {b} / {a} |", "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for entry, r in s["entry_points"].items():
+        ratio = "" if r["insn_ratio"] is None else f"{r['insn_ratio']:.2f}"
+        out.append(f"| `{entry}` | {r['stack_bound'][0]} | {r['stack_bound'][1]} | {_cell(r['code_bytes'][0])} "
+                   f"| {_cell(r['code_bytes'][1])} | {_cell(r['insn_max'][0])} | {_cell(r['insn_max'][1])} "
+                   f"| {ratio} |")
+    return out
 
 
 def markdown(doc: dict) -> str:
@@ -140,6 +186,8 @@ def markdown(doc: dict) -> str:
             out += ["", "| header | type | size [B] |", "|---|---|---:|"]
             for h, types in f["types"].items():
                 out += [f"| {h}.h | `{ty}` | {n} |" for ty, n in types.items()]
+    for side in doc.get("beside", []):
+        out += beside_markdown(side)
     return "\n".join(out) + "\n"
 
 
@@ -149,11 +197,19 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--footprint", nargs="*", default=[])
     ap.add_argument("--campaign", nargs="*", default=[])
     ap.add_argument("--program", nargs="*", default=[])
+    ap.add_argument("--beside", nargs="*", default=[])
     ap.add_argument("--json", type=Path, required=True)
     ap.add_argument("--doc", type=Path, required=True)
     a = ap.parse_args(argv)
     programs = [(i.split("=", 2)[0], i.split("=", 2)[1], Path(i.split("=", 2)[2])) for i in a.program]
     doc, problems = build(_pairs(a.stack), _pairs(a.footprint), _pairs(a.campaign), programs)
+    for pair in a.beside:
+        ta, tb = pair.split(":", 1)
+        missing = [t for t in (ta, tb) if t not in doc["targets"]]
+        if missing:
+            problems.append(f"--beside {pair}: no profile of {', '.join(missing)}")
+            continue
+        doc.setdefault("beside", []).append(beside(doc, ta, tb))
     doc["problems"] = problems
     a.json.parent.mkdir(parents=True, exist_ok=True)
     a.json.write_text(json.dumps(doc, indent=1, sort_keys=True) + "\n")

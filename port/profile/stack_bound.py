@@ -8,6 +8,9 @@ whose address the compiled objects take (address_taken.py). Every kernel functio
 frame is checked against gcc's -fstack-usage figure for it (the .su files): a mismatch means the
 reader misses an instruction, and fails the run, so the same reader can be trusted on libm and libc,
 which come without .su. An entry point's figure is its worst over the ELFs that link it.
+Beside it, code_bytes: the flash that entry point's call may execute in that ELF (every function it
+reaches, libraries and the address-taken callbacks included: elf_stack.reachable), e.g. the soft-float
+helpers a double kernel pulls in on a single-precision FPU.
 """
 from __future__ import annotations
 
@@ -19,7 +22,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from address_taken import address_taken  # noqa: E402
-from elf_stack import bounds, by_name, disassemble  # noqa: E402
+from elf_stack import bounds, by_name, code_bytes, disassemble, reachable  # noqa: E402
 
 _SU = re.compile(r"^(.+):\d+:\d+:(\S+)\t(\d+)\t(\S+)$")
 _CLONE_NO = re.compile(r"\.\d+(?=\.|$)")
@@ -78,6 +81,7 @@ def main(argv: list[str]) -> int:
                 if funcs[addr].frame != frame:
                     problems.append(f"{elf.name}: {n}: disassembly {funcs[addr].frame} B, gcc {frame} B")
         bd = bounds(funcs, targets, frozenset(a.no_return))
+        size = code_bytes(a.objdump, elf, funcs)
         for addr, f in funcs.items():
             if not f.name.startswith("ogk_") or f.name.startswith("ogk_i_") or "." in f.name \
                     or f.name not in su:
@@ -91,6 +95,8 @@ def main(argv: list[str]) -> int:
             if old is None or b.bytes > old["bytes"]:
                 entry[f.name] = {"bytes": b.bytes, "frame": f.frame, "path": b.path,
                                  "outside_kernel": lib, "elf": elf.name,
+                                 "code_bytes": sum(size[x] for x in reachable(
+                                     funcs, addr, targets, frozenset(a.no_return))),
                                  "indirect": any(funcs[x].indirect for x in funcs
                                                  if funcs[x].name in b.path)}
     a.json.parent.mkdir(parents=True, exist_ok=True)

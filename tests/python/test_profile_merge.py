@@ -84,3 +84,30 @@ def test_a_program_report_adds_its_worst_call(tmp_path):
     e = json.loads(out.read_text())["targets"]["sparc"]["entry_points"]["ogk_a_step"]
     assert e["calls"] == 7 and e["insn_max"]["value"] == 31 and e["stack_painted"] is None
     assert "| `ogk_a_step` | 900 |  | 31 | demo_app (whole run) | 7 |" in doc.read_text()
+
+
+def test_beside_puts_a_second_target_next_to_the_first(tmp_path):
+    """--beside m7:m4f: per entry point both targets profile, the two stack bounds, codes and worst
+    instructions, and the second's instructions over the first's."""
+    def stack(name, bound, code):
+        p = tmp_path / f"stack_{name}.json"
+        p.write_text(json.dumps({"isa": "thumb", "problems": [], "entry_points": {
+            "ogk_a_step": {"bytes": bound, "frame": 40, "path": ["ogk_a_step"], "outside_kernel": [],
+                           "indirect": False, "code_bytes": code},
+            "ogk_only_here": {"bytes": 8, "frame": 8, "path": ["ogk_only_here"], "outside_kernel": [],
+                              "indirect": False, "code_bytes": 12}}}))
+        return p
+    e7 = envelope(tmp_path / "a.json", "mission_a", {"ogk_a_step": entry(4, 1000, 1, 2, 100, 1)})
+    e4 = envelope(tmp_path / "b.json", "mission_a", {"ogk_a_step": entry(4, 2500, 1, 2, 60, 1)})
+    out, doc = tmp_path / "p.json", tmp_path / "p.md"
+    r = subprocess.run([sys.executable, str(ROOT / "port/profile/profile.py"),
+                        "--stack", f"m7={stack('m7', 512, 9000)}", f"m4f={stack('m4f', 300, 7000)}",
+                        "--campaign", f"m7={e7}", f"m4f={e4}", "--beside", "m7:m4f", "nope:m4f",
+                        "--json", str(out), "--doc", str(doc)], capture_output=True, text=True)
+    prof = json.loads(out.read_text())
+    (side,) = prof["beside"]
+    row = side["entry_points"]["ogk_a_step"]
+    assert row["stack_bound"] == [512, 300] and row["code_bytes"] == [9000, 7000]
+    assert row["insn_max"] == [1000, 2500] and row["insn_ratio"] == 2.5
+    assert "| `ogk_a_step` | 512 | 300 | 9000 | 7000 | 1000 | 2500 | 2.50 |" in doc.read_text()
+    assert r.returncode == 1 and "--beside nope:m4f: no profile of nope" in r.stdout

@@ -17,7 +17,7 @@ pytestmark = pytest.mark.req("OGK-CORE-006")
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "port" / "profile"))
-from elf_stack import bounds, by_name, disassemble  # noqa: E402
+from elf_stack import bounds, by_name, code_bytes, disassemble, reachable  # noqa: E402
 
 PROGRAM = r"""
 #include <math.h>
@@ -130,6 +130,44 @@ def test_recursion_is_refused(built):
     b = _bound_of(funcs, set(), "countdown")
     assert b.bytes is None and b.why == "recursion"
     assert _bound_of(funcs, set(), "main").bytes is None
+
+
+NM = {"thumb": "arm-none-eabi-nm", "sparc": "sparc64-linux-gnu-nm"}
+OBJDUMP = {"thumb": "arm-none-eabi-objdump", "sparc": "sparc64-linux-gnu-objdump"}
+
+
+def _symbol_sizes(isa: str, elf: Path) -> dict[str, int]:
+    """The ELF symbol table's sizes (nm -S): the independent reference of each function's code."""
+    out = subprocess.run([NM[isa], "-S", str(elf)], check=True, capture_output=True, text=True).stdout
+    sizes = {}
+    for line in out.splitlines():
+        f = line.split()
+        if len(f) == 4 and f[2] in "tT":
+            sizes[f[3]] = int(f[1], 16)
+    return sizes
+
+
+def test_code_reachable_from_an_entry_point(built):
+    """The flash a call may execute (profile's code column): the sum of the extents of what it reaches,
+    each its ELF symbol's size (nm -S, a second reader of the symbol table)."""
+    isa, d, funcs, _ = built
+    names = by_name(funcs)
+    size = code_bytes(OBJDUMP[isa], d / "p.elf", funcs)
+    nm = _symbol_sizes(isa, d / "p.elf")
+    for fn in ("leaf", "middle", "big_cb", "with_libm"):
+        (addr,) = names[fn]
+        assert size[addr] == nm[fn], (isa, fn, size[addr], nm[fn])
+
+    def reached(name, targets=frozenset()):
+        return {funcs[a].name for a in reachable(funcs, names[name][0], set(targets), NO_RETURN)}
+
+    assert reached("middle") == {"middle", "leaf"}
+    cands = {names["small_cb"][0], names["big_cb"][0]}
+    assert reached("through_pointer", cands) == {"through_pointer", "small_cb", "big_cb"}
+    lib = reached("with_libm")
+    assert any(n.endswith("sin") for n in lib) and any("sqrt" in n for n in lib) and len(lib) > 3
+    total = sum(size[a] for a in reachable(funcs, names["with_libm"][0], set(), NO_RETURN))
+    assert total == sum(nm.get(n, 0) for n in lib) and total > nm["with_libm"] + 1000   # sin is kilobytes
 
 
 def test_stack_bound_cli_flags_a_frame_mismatch(built, tmp_path):
