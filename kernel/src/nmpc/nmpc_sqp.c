@@ -88,7 +88,8 @@
  * OBJ_FLOOR   a positive tol_obj as at least 16 eps (1.9e-6): 6x the predicted
  *             |dJ| of a converged iterate;
  * and a line search that finds no acceptable trial from a feasible iterate
- * (viol <= tol_feas) whose step predicts |dJ| <= OBJ_FLOOR max(|J|, 1) has met
+ * (viol <= tol_feas, T within its bounds) whose step predicts |dJ| within
+ * float's noise (sqp_noise_floor) has met
  * float's resolution of the stationarity: converged (with tol_obj = 0 too: the
  * filter cannot rank trials whose theta and J differ by rounding alone). */
 #define FEAS_FLOOR (OGK_R(32.0) * OGK_REAL_EPSILON)
@@ -917,8 +918,11 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, ogk_real_t *hess, bool cold,
                 }
             }
 #if OGK_REAL_SINGLE
-            if ((!accepted) && (viol_max <= tol_feas) && sqp_noise_floor(ctx, dphi, phi0, theta0)) {
-                /* float's noise floor (sqp_noise_floor): converged at this iterate */
+            if ((!accepted) && (viol_max <= tol_feas) && (p->horizon >= cfg->horizon_min)
+                && (p->horizon <= cfg->horizon_max) && sqp_noise_floor(ctx, dphi, phi0, theta0)) {
+                /* float's noise floor (sqp_noise_floor): converged at this iterate, which is
+                 * feasible and within its horizon bounds (a plan loaded outside them, whose
+                 * step to them fails the line search, is not: OGK_E_NOT_CONVERGED as in double) */
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
                 done = true;
                 if (t_excess > tol_feas) {

@@ -615,7 +615,9 @@ static void test_coast_rendezvous_zero_fuel(void **state)
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
-    OGK_ASSERT_NEAR(rep.t_f, c.horizon_min, 1.0e-9);
+    /* float: T enters J as 0.01 T, J is resolved to NMPC_FX_TOL_F (as above): T to that over 0.01
+     * (measured 2.4e-6 on the M4F, 0 on the host) */
+    OGK_ASSERT_NEAR(rep.t_f, c.horizon_min, OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F / 0.01));
     OGK_ASSERT_NEAR(rep.objective, 0.01 * c.horizon_min, OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F)); /* float: as above */
 }
 
