@@ -76,7 +76,7 @@
 
 #if OGK_REAL_SINGLE
 /* The float build's floors under the convergence tests (docs/design/nmpc-flight.md,
- * "Single precision"). The default tolerances (tol_feas 1e-9, tol_obj 1e-7) are
+ * section 2g, "Single precision"). The default tolerances (tol_feas 1e-9, tol_obj 1e-7) are
  * at or below float's resolution: a defect of states of size 1.5 carries 2 to 4
  * ulps of rounding (measured 2.4e-7 to 4.8e-7 at every converged iterate of the
  * unit tests), and the QP's predicted |dJ| of a converged iterate 0.4 to 2.5 eps
