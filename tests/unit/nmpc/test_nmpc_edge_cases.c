@@ -67,6 +67,9 @@ static void coast_config(ogk_nmpc_config_t *c, uint32_t nodes)
     c->max_iter = 100u;
     c->max_iter_cold = 100u;
     c->doubling_max_nodes = 0u;
+#if OGK_REAL_SINGLE
+    c->tol_feas = NMPC_FX_TOL_F; /* the default 1e-9 is below float's resolution (as nmpc_fx_mars) */
+#endif
 }
 
 static void coast_guess(uint32_t nodes, double horizon, double w, ogk_nmpc_plan_t *p)
