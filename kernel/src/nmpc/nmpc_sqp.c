@@ -47,8 +47,20 @@
 #define FILTER_GAMMA OGK_R(1.0e-5)
 #define FILTER_S_THETA OGK_R(1.1)
 #define FILTER_S_PHI OGK_R(2.3)
-/* Curvature of the elastic slacks, relative to elastic_weight. */
+/* Curvature of the elastic slacks, relative to elastic_weight. The QP (a dual
+ * active-set method) starts from its unconstrained minimum, where each slack
+ * is -1 / ELASTIC_CURVATURE: -1e6 in double. Float resolves x there to eps 1e6
+ * = 0.12 absolute, and the step that removes a residual of the states' rounding
+ * (1e-7) came out as full throttle (test_nmpc_edge_cases
+ * solve_solar_engine_and_bodies: the QP's step burned 0.0255 where a slack of
+ * 1e-7 costs 1e-4). In float the slacks start at -1: the slack's price at 0 is
+ * w in both (the l1 penalty stays exact); a slack s > 0 costs w (s + s^2 / 2)
+ * instead of w (s + 1e-6 s^2 / 2). */
+#if OGK_REAL_SINGLE
+#define ELASTIC_CURVATURE OGK_R(1.0)
+#else
 #define ELASTIC_CURVATURE OGK_R(1.0e-6)
+#endif
 /* Restarts (scaled-identity Hessian, empty filter) after a failed line search. */
 #define MAX_RESTARTS 2u
 /* Smallest step box (fraction of step_max_*) and the smallest step taken as

@@ -600,11 +600,14 @@ static void solve_solar_engine_and_bodies(uint32_t hessian)
     assert_int_equal((int)(rep.flags & ~(uint32_t)OGK_NMPC_FLAG_ELASTIC), (int)OGK_NMPC_FLAG_CONVERGED);
     assert_true(rep.feas <= c.tol_feas);
     /* the bodies' pull (1e-10 at 2-3 LU) needs a burn of that order, no more */
-    assert_true(rep.objective >= -1.0e-12);
-    assert_true(rep.objective <= 1.0e-7);
+    /* float: the fuel m_0 - m_N of masses near 1 is resolved to NMPC_FX_TOL_F (the mass defects'
+     * tolerance), a node's throttle to that over mass_flow_max T / (2 nodes) (as test_nmpc.c's coast) */
+    assert_true(rep.objective >= -OGK_TEST_TOL(1.0e-12, NMPC_FX_TOL_F));
+    assert_true(rep.objective <= OGK_TEST_TOL(1.0e-7, NMPC_FX_TOL_F));
     OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
     for (k = 0u; k <= 4u; ++k) {
-        assert_true(plan2.u[2u * k + 1u] >= 0.0 && plan2.u[2u * k + 1u] <= 1.0e-4);
+        assert_true(plan2.u[2u * k + 1u] >= 0.0
+                    && plan2.u[2u * k + 1u] <= OGK_TEST_TOL(1.0e-4, NMPC_FX_TOL_F * 8.0 / (c.mass_flow_max * rep.t_f)));
     }
     OGK_ASSERT_NEAR(rep.objective, plan2.x[4] - plan2.x[4u * NX + 4u], 0.0);
 }

@@ -731,7 +731,10 @@ static void mission_config(ogk_prox_config_t *cfg, ogk_real_t *x0)
     cfg->solver.hessian = OGK_NMPC_HESSIAN_EXACT;
     cfg->solver.max_iter_cold = 500u;
     cfg->solver.tol_obj = 0.0;
-    cfg->solver.tol_stat = OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F);
+    /* float: 1e-7, not NMPC_FX_TOL_F: J is 2e-4 here, and a stationarity of 1e-5 stopped the solves
+     * 2 to 3 % of J apart (in_flight_settings: 4.54e-4 against 4.69e-4); at 1e-7 the float SQP ends on
+     * its noise floor (nmpc_sqp.c) where it cannot reach it, the open loop's J within 0.3 % of IPOPT's */
+    cfg->solver.tol_stat = OGK_TEST_TOL(1.0e-9, 1.0e-7);
     x0[0] = 0.0;
     x0[1] = 1.5;
     x0[2] = 0.0;
