@@ -106,6 +106,7 @@
  * filter cannot rank trials whose theta and J differ by rounding alone). */
 #define FEAS_FLOOR (OGK_R(32.0) * OGK_REAL_EPSILON)
 #define OBJ_FLOOR (OGK_R(16.0) * OGK_REAL_EPSILON)
+#define STOP_NOISE (OGK_R(2.0) * OGK_REAL_EPSILON)
 #define SQP_TOL_FEAS tol_feas
 #define SQP_TOL_OBJ tol_obj
 #else
@@ -116,7 +117,11 @@
 
 #if OGK_REAL_SINGLE
 /* True when the step's predicted change dphi of the merit's J is within what
- * float resolves of it: OBJ_FLOOR max(|J|, 1), plus the change the QP's own
+ * float resolves of it: STOP_NOISE max(|J|, 1) (2 ulps of J's operands, of
+ * size 1 in the kernel's units: not OBJ_FLOOR, for a J much smaller than its
+ * operands, the propellant m_0 - m_N of test_proximity, makes real progress in
+ * steps of 1e-7: a trial with 16 eps stopped it at 10 times its optimum), plus
+ * the change the QP's own
  * restoration of the rounded defects makes, to first order |y|_1 theta0 (the
  * multipliers of eq. 5 times the l1 violation; measured: the minimum-fuel coast
  * of test_nmpc.c, |y|_1 = 174, theta0 = 6e-7: dphi 3.4e-6 against 1.1e-4, and
@@ -128,7 +133,7 @@ static bool sqp_noise_floor(const ogk_nmpc_t *ctx, ogk_real_t dphi, ogk_real_t p
     for (i = 0u; i < NC; ++i) {
         y1 += OGK_FABS(ctx->qp_sol.y_eq[i]);
     }
-    return OGK_FABS(dphi) <= ((OBJ_FLOOR * ((OGK_FABS(phi0) > OGK_R(1.0)) ? OGK_FABS(phi0) : OGK_R(1.0)))
+    return OGK_FABS(dphi) <= ((STOP_NOISE * ((OGK_FABS(phi0) > OGK_R(1.0)) ? OGK_FABS(phi0) : OGK_R(1.0)))
                               + (y1 * theta0));
 }
 #endif
