@@ -81,10 +81,35 @@ typedef struct {
  *       <= OGK_QP_PIVOT_TOL H_jj (or H_jj <= 0);
  * SYM   H is not symmetric when |H_ij - H_ji| > OGK_QP_SYM_TOL max |H_kl|
  *       (OGK_E_NOT_POSDEF); the factored matrix is (H + H^T) / 2. */
+#if OGK_REAL_SINGLE
+/* The float build's values, multiples of FLT_EPSILON (eps = 1.19e-7; the
+ * double values, 4.5e3 to 4.5e5 DBL_EPSILON, are below float's resolution and
+ * made float answer OK with a wrong x; docs/design/qp.md, "Tolerances"):
+ * FEAS  64 eps = 7.6e-6: the slack of a constraint the solve made active
+ *       (or satisfies degenerately) carries the rounding of x, measured up to
+ *       1.5e-6 (|b| + |x|) (13 eps) in the unit tests: x5 above it;
+ * DEP   128 eps = 1.5e-5: the part of J^T n outside the active span is
+ *       rounding when n depends on the active set: measured 0.25 eps |d|, up
+ *       to about n eps |d| for the Householder updates (80 eps at
+ *       OGK_QP_MAX_N): x1.6 above that bound. 1024 eps made the elastic
+ *       keep-out QP of test_proximity OGK_E_INFEASIBLE on the M4F (a row
+ *       independent of the active set taken as dependent);
+ * PIVOT 64 eps = 7.6e-6: the rounding of a Cholesky pivot d_jj^2 is j eps
+ *       H_jj at worst, about sqrt(j) eps typically; below 64 eps H_jj a pivot
+ *       is rounding, not information, and its inverse is not H's;
+ * SYM   64 eps = 7.6e-6: an H computed symmetrically (the BFGS and exact
+ *       Hessians of the NMPC) differs from its transpose by a few eps max |H|
+ *       through the order of its sums. */
+#define OGK_QP_FEAS_TOL (OGK_R(64.0) * OGK_REAL_EPSILON)
+#define OGK_QP_DEP_TOL (OGK_R(128.0) * OGK_REAL_EPSILON)
+#define OGK_QP_PIVOT_TOL (OGK_R(64.0) * OGK_REAL_EPSILON)
+#define OGK_QP_SYM_TOL (OGK_R(64.0) * OGK_REAL_EPSILON)
+#else
 #define OGK_QP_FEAS_TOL OGK_R(1.0e-12)
 #define OGK_QP_DEP_TOL OGK_R(1.0e-10)
 #define OGK_QP_PIVOT_TOL OGK_R(1.0e-12)
 #define OGK_QP_SYM_TOL OGK_R(1.0e-12)
+#endif
 
 /* Workspace of one solve; reusable, never read before it is written.
  * Constraints are numbered: equality rows 0..m_eq-1, inequality rows

@@ -47,8 +47,20 @@
 #define FILTER_GAMMA OGK_R(1.0e-5)
 #define FILTER_S_THETA OGK_R(1.1)
 #define FILTER_S_PHI OGK_R(2.3)
-/* Curvature of the elastic slacks, relative to elastic_weight. */
+/* Curvature of the elastic slacks, relative to elastic_weight. The QP (a dual
+ * active-set method) starts from its unconstrained minimum, where each slack
+ * is -1 / ELASTIC_CURVATURE: -1e6 in double. Float resolves x there to eps 1e6
+ * = 0.12 absolute, and the step that removes a residual of the states' rounding
+ * (1e-7) came out as full throttle (test_nmpc_edge_cases
+ * solve_solar_engine_and_bodies: the QP's step burned 0.0255 where a slack of
+ * 1e-7 costs 1e-4). In float the slacks start at -1: the slack's price at 0 is
+ * w in both (the l1 penalty stays exact); a slack s > 0 costs w (s + s^2 / 2)
+ * instead of w (s + 1e-6 s^2 / 2). */
+#if OGK_REAL_SINGLE
+#define ELASTIC_CURVATURE OGK_R(1.0)
+#else
 #define ELASTIC_CURVATURE OGK_R(1.0e-6)
+#endif
 /* Restarts (scaled-identity Hessian, empty filter) after a failed line search. */
 #define MAX_RESTARTS 2u
 /* Smallest step box (fraction of step_max_*) and the smallest step taken as
@@ -74,6 +86,57 @@
  * (docs/design/nmpc-flight.md, section 2e). */
 #define HESS_HOLD_RATE OGK_R(0.03)
 
+#if OGK_REAL_SINGLE
+/* The float build's floors under the convergence tests (docs/design/nmpc-flight.md,
+ * section 2g, "Single precision"). The default tolerances (tol_feas 1e-9, tol_obj 1e-7) are
+ * at or below float's resolution: a defect of states of size 1.5 carries 2 to 4
+ * ulps of rounding (measured 2.4e-7 to 4.8e-7 at every converged iterate of the
+ * unit tests), and the QP's predicted |dJ| of a converged iterate 0.4 to 2.5 eps
+ * |J| (its step moves the states by their rounding). Whether such a value passes
+ * a test at its level is a coin flip of the rounding: the outcome (converged or
+ * not, the iteration count) then differed between the host and the M4F.
+ * FEAS_FLOOR  tol_feas is read as at least 32 eps max(1, |x|_inf of the start):
+ *             8x the defects' measured rounding;
+ * OBJ_FLOOR   a positive tol_obj as at least 16 eps (1.9e-6): 6x the predicted
+ *             |dJ| of a converged iterate;
+ * and a line search that finds no acceptable trial from a feasible iterate
+ * (viol <= tol_feas, T within its bounds) whose step predicts |dJ| within
+ * float's noise (sqp_noise_floor) has met
+ * float's resolution of the stationarity: converged (with tol_obj = 0 too: the
+ * filter cannot rank trials whose theta and J differ by rounding alone). */
+#define FEAS_FLOOR (OGK_R(32.0) * OGK_REAL_EPSILON)
+#define OBJ_FLOOR (OGK_R(16.0) * OGK_REAL_EPSILON)
+#define STOP_NOISE (OGK_R(2.0) * OGK_REAL_EPSILON)
+#define SQP_TOL_FEAS tol_feas
+#define SQP_TOL_OBJ tol_obj
+#else
+#define SQP_TOL_FEAS (cfg->tol_feas)
+#define SQP_TOL_OBJ (cfg->tol_obj)
+#endif
+
+
+#if OGK_REAL_SINGLE
+/* True when the step's predicted change dphi of the merit's J is within what
+ * float resolves of it: STOP_NOISE max(|J|, 1) (2 ulps of J's operands, of
+ * size 1 in the kernel's units: not OBJ_FLOOR, for a J much smaller than its
+ * operands, the propellant m_0 - m_N of test_proximity, makes real progress in
+ * steps of 1e-7: a trial with 16 eps stopped it at 10 times its optimum), plus
+ * the change the QP's own
+ * restoration of the rounded defects makes, to first order |y|_1 theta0 (the
+ * multipliers of eq. 5 times the l1 violation; measured: the minimum-fuel coast
+ * of test_nmpc.c, |y|_1 = 174, theta0 = 6e-7: dphi 3.4e-6 against 1.1e-4, and
+ * J = 3.5e-6 unchanged to its last bit at every trial). */
+static bool sqp_noise_floor(const ogk_nmpc_t *ctx, ogk_real_t dphi, ogk_real_t phi0, ogk_real_t theta0)
+{
+    ogk_real_t y1 = OGK_R(0.0);
+    size_t i;
+    for (i = 0u; i < NC; ++i) {
+        y1 += OGK_FABS(ctx->qp_sol.y_eq[i]);
+    }
+    return OGK_FABS(dphi) <= ((STOP_NOISE * ((OGK_FABS(phi0) > OGK_R(1.0)) ? OGK_FABS(phi0) : OGK_R(1.0)))
+                              + (y1 * theta0));
+}
+#endif
 
 static size_t n_vars(const ogk_nmpc_plan_t *p)
 {
@@ -582,6 +645,20 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, ogk_real_t *hess, bool cold,
     bool hold_next = false;
     bool hold_ok = false;
     ogk_real_t pred_prev = OGK_R(0.0); /* |dJ| predicted by the last iteration's QP (0: none yet) */
+#if OGK_REAL_SINGLE
+    ogk_real_t tol_feas = cfg->tol_feas;
+    ogk_real_t tol_obj = cfg->tol_obj;
+    {
+        /* the floors of float's resolution (FEAS_FLOOR, OBJ_FLOOR) */
+        ogk_real_t xs = OGK_R(1.0);
+        for (i = 0u; i < (((size_t)p->nodes + 1u) * NX); ++i) {
+            xs = (OGK_FABS(p->x[i]) > xs) ? OGK_FABS(p->x[i]) : xs;
+        }
+        xs *= FEAS_FLOOR;
+        tol_feas = (tol_feas > xs) ? tol_feas : xs;
+        tol_obj = ((tol_obj > OGK_R(0.0)) && (tol_obj < OBJ_FLOOR)) ? OBJ_FLOOR : tol_obj;
+    }
+#endif
 
     if (cold) {
         ogk_i_nmpc_identity(hess, nv, cfg->hessian_init);
@@ -753,8 +830,8 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, ogk_real_t *hess, bool cold,
                 if (elastic_set) {
                     pred += cfg->elastic_weight * (elastic_excess(ctx, nv) - t_excess);
                 }
-                const ogk_real_t stop = cfg->tol_obj * ((j_now > OGK_R(1.0)) ? j_now : OGK_R(1.0));
-                flat = (cfg->tol_obj > OGK_R(0.0)) && (OGK_FABS(pred) <= stop);
+                const ogk_real_t stop = SQP_TOL_OBJ * ((j_now > OGK_R(1.0)) ? j_now : OGK_R(1.0));
+                flat = (SQP_TOL_OBJ > OGK_R(0.0)) && (OGK_FABS(pred) <= stop);
                 /* a step from an exact Hessian (computed or held) that factored with
                  * its shift alone (rho > 0 only then), contracting (HESS_HOLD_RATE):
                  * held when its full step is taken (below); never with tol_obj = 0
@@ -767,10 +844,10 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, ogk_real_t *hess, bool cold,
              * evaluated without sensitivities, converged there when feasible): the
              * iterate of a lagged Newton step is less accurate than a Newton
              * step's, and the step is what is left of it */
-            if ((viol_max <= cfg->tol_feas) && ((stat <= cfg->tol_stat) || (flat && !held))) {
+            if ((viol_max <= SQP_TOL_FEAS) && ((stat <= cfg->tol_stat) || (flat && !held))) {
                 (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
                 done = true;
-                if (t_excess > cfg->tol_feas) {
+                if (t_excess > SQP_TOL_FEAS) {
                     /* the vehicle cannot reach the terminal set: the plan ends as close to it as it can */
                     rep->flags |= OGK_NMPC_FLAG_OUTSIDE_SET;
                 }
@@ -857,6 +934,19 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, ogk_real_t *hess, bool cold,
                     alpha *= BACKTRACK;
                 }
             }
+#if OGK_REAL_SINGLE
+            if ((!accepted) && (viol_max <= tol_feas) && (p->horizon >= cfg->horizon_min)
+                && (p->horizon <= cfg->horizon_max) && sqp_noise_floor(ctx, dphi, phi0, theta0)) {
+                /* float's noise floor (sqp_noise_floor): converged at this iterate, which is
+                 * feasible and within its horizon bounds (a plan loaded outside them, whose
+                 * step to them fails the line search, is not: OGK_E_NOT_CONVERGED as in double) */
+                (void)memcpy(p->lambda, ctx->qp_sol.y_eq, sizeof(p->lambda));
+                done = true;
+                if (t_excess > tol_feas) {
+                    rep->flags |= OGK_NMPC_FLAG_OUTSIDE_SET;
+                }
+            } else
+#endif
             if (!accepted && (restarts < MAX_RESTARTS)) {
                 /* restart: a BFGS matrix that has drifted and a filter that
                  * blocks every step are the usual causes */
@@ -906,12 +996,12 @@ ogk_status ogk_i_nmpc_sqp(ogk_nmpc_t *ctx, ogk_real_t *hess, bool cold,
                     }
                 }
                 have_prev = alpha >= BFGS_MIN_ALPHA;
-                if (newton_last && (alpha >= OGK_R(1.0)) && (first_max <= cfg->tol_feas)) {
+                if (newton_last && (alpha >= OGK_R(1.0)) && (first_max <= SQP_TOL_FEAS)) {
                     /* converged at the trial: a full Newton step predicting no
                      * change of J (|dJ| <= tol_obj max(|J|, 1)) landed feasible */
                     viol_max = first_max;
                     done = true;
-                    if (first_exc > cfg->tol_feas) {
+                    if (first_exc > SQP_TOL_FEAS) {
                         rep->flags |= OGK_NMPC_FLAG_OUTSIDE_SET;
                     }
                 } else if ((alpha >= OGK_R(1.0)) && !newton_last) {

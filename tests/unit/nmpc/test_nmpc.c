@@ -427,7 +427,9 @@ static void test_sqp_exact_hessian(void **state)
         (void)memcpy(in.x, plan.x, sizeof in.x);
         OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
         OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx2, &in, &rep_ref), OGK_OK);
-        OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, 1.0e-8);
+        /* float: two solves each stopped at the float SQP's floor (nmpc_sqp.c, OBJ_FLOOR);
+         * measured worst 6.2e-6 on the host */
+        OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, OGK_TEST_TOL(1.0e-8, 1e-4));
         assert_true(rep.feas <= c.tol_feas);
         assert_true(rep.sqp_iterations < rep_ref.sqp_iterations);
         /* one replan at the first node, the state 1e-4 off the plan's */
@@ -436,7 +438,7 @@ static void test_sqp_exact_hessian(void **state)
                       (strategy == OGK_NMPC_SNNS) ? "SNNS" : "CNCN", rep.t_f, (unsigned)rep.sqp_iterations,
                       rep_ref.t_f, (unsigned)rep_ref.sqp_iterations);
         assert_true((rep.flags & OGK_NMPC_FLAG_CONVERGED) != 0u);
-        OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, 1.0e-8);
+        OGK_ASSERT_NEAR(rep.t_f, rep_ref.t_f, OGK_TEST_TOL(1.0e-8, 1e-4)); /* float: as above */
         assert_true(rep.feas <= c.tol_feas);
         assert_true(rep.sqp_iterations <= rep_ref.sqp_iterations);
     }
@@ -552,7 +554,10 @@ static void test_sqp_exact_hessian_held_contracting(void **state)
             (void)memcpy(&ctx, &ctx2, sizeof ctx);
             OGK_ASSERT_STATUS(ogk_nmpc_replan(&ctx, &in, &rep_m), OGK_OK);
             assert_int_equal(rep_m.sqp_iterations, rep.sqp_iterations);
-            OGK_ASSERT_NEAR(rep_m.t_f, rep.t_f, 1.0e-12);
+            /* float: the moved starts stop at other iterates within the float SQP's floor
+             * (OBJ_FLOOR); measured worst 6.7e-6 on the host: the same bound as the held replan's
+             * t_f above */
+            OGK_ASSERT_NEAR(rep_m.t_f, rep.t_f, OGK_TEST_TOL(1.0e-12, 2e-3));
         }
     }
 }
@@ -595,10 +600,16 @@ static void test_coast_rendezvous_zero_fuel(void **state)
     in.t = 0.0;
     (void)memcpy(in.x, plan.x, sizeof in.x);
     OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
-    OGK_ASSERT_NEAR(rep.objective, 0.0, 1.0e-9);
+    /* float: the fuel m_0 - m_N of masses near 1, the mass defects held to the float tol_feas */
+    OGK_ASSERT_NEAR(rep.objective, 0.0, OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F));
     OGK_ASSERT_STATUS(ogk_nmpc_get_plan(&ctx, &plan2), OGK_OK);
     for (k = 0u; k <= nodes; ++k) {
-        OGK_ASSERT_NEAR(plan2.u[2u * k + 1u], 0.0, 1.0e-7);
+        /* float: node k's throttle u burns about mass_flow_max u h / 2 (an end node of the
+         * trapezoid; h = T / nodes); the fuel is resolved to NMPC_FX_TOL_F (the mass defects'
+         * tolerance), a node's throttle to that over mass_flow_max horizon_min / (2 nodes)
+         * (measured 4.4e-6 on the host, 3.8e-4 on the M4F) */
+        OGK_ASSERT_NEAR(plan2.u[2u * k + 1u], 0.0,
+                        OGK_TEST_TOL(1.0e-7, NMPC_FX_TOL_F * 2.0 * nodes / (c.mass_flow_max * c.horizon_min)));
     }
     /* with a time weight the coast is as short as allowed: T = horizon_min,
      * J = 0 fuel + w T */
@@ -606,8 +617,10 @@ static void test_coast_rendezvous_zero_fuel(void **state)
     OGK_ASSERT_STATUS(ogk_nmpc_init(&ctx, &c), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_load_plan(&ctx, &plan), OGK_OK);
     OGK_ASSERT_STATUS(ogk_nmpc_solve(&ctx, &in, &rep), OGK_OK);
-    OGK_ASSERT_NEAR(rep.t_f, c.horizon_min, 1.0e-9);
-    OGK_ASSERT_NEAR(rep.objective, 0.01 * c.horizon_min, 1.0e-9);
+    /* float: T enters J as 0.01 T, J is resolved to NMPC_FX_TOL_F (as above): T to that over 0.01
+     * (measured 2.4e-6 on the M4F, 0 on the host) */
+    OGK_ASSERT_NEAR(rep.t_f, c.horizon_min, OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F / 0.01));
+    OGK_ASSERT_NEAR(rep.objective, 0.01 * c.horizon_min, OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F)); /* float: as above */
 }
 
 /* Earth-to-Mars N = 8: the open loop, then one SNNS and one CNCN replan. */
@@ -888,7 +901,8 @@ static void terminal_set_radial(uint32_t hessian)
     /* it arrives on the box: the near face in r, moving out at nu */
     /* float: measured worst 4.8e-8 on M4F and host */
     OGK_ASSERT_NEAR(plan2.x[20u * NX], 1.5 - delta, OGK_TEST_TOL(1.0e-9, 5e-7));
-    OGK_ASSERT_NEAR(plan2.x[20u * NX + 2u], nu, 1.0e-9);
+    /* float: the box's face in v_r, a terminal row held to the float tol_feas (NMPC_FX_TOL_F) */
+    OGK_ASSERT_NEAR(plan2.x[20u * NX + 2u], nu, OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F));
     OGK_ASSERT_LE(rep.feas, OGK_TEST_TOL(1.0e-10, NMPC_FX_TOL_F));
 }
 

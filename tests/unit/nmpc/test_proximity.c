@@ -731,7 +731,10 @@ static void mission_config(ogk_prox_config_t *cfg, ogk_real_t *x0)
     cfg->solver.hessian = OGK_NMPC_HESSIAN_EXACT;
     cfg->solver.max_iter_cold = 500u;
     cfg->solver.tol_obj = 0.0;
-    cfg->solver.tol_stat = OGK_TEST_TOL(1.0e-9, NMPC_FX_TOL_F);
+    /* float: 1e-7, not NMPC_FX_TOL_F: J is 2e-4 here, and a stationarity of 1e-5 stopped the solves
+     * 2 to 3 % of J apart (in_flight_settings: 4.54e-4 against 4.69e-4); at 1e-7 the float SQP ends on
+     * its noise floor (nmpc_sqp.c) where it cannot reach it, the open loop's J within 0.3 % of IPOPT's */
+    cfg->solver.tol_stat = OGK_TEST_TOL(1.0e-9, 1.0e-7);
     x0[0] = 0.0;
     x0[1] = 1.5;
     x0[2] = 0.0;
@@ -739,13 +742,14 @@ static void mission_config(ogk_prox_config_t *cfg, ogk_real_t *x0)
     x0[4] = 1.0;
 }
 
-/* The plan's last node (N = 16) at the hold point at rest, to 1e-9. */
+/* The plan's last node (N = 16) at the hold point at rest, to 1e-9 (float: to the float tol_feas,
+ * NMPC_FX_TOL_F: the terminal residual is held to the SQP's feasibility tolerance). */
 static void assert_at_hold(const ogk_nmpc_plan_t *p, const ogk_prox_config_t *cfg)
 {
-    OGK_ASSERT_NEAR(p->x[(16u * NX) + 0u], cfg->model.hold[0], 1e-9);
-    OGK_ASSERT_NEAR(p->x[(16u * NX) + 1u], cfg->model.hold[1], 1e-9);
-    OGK_ASSERT_NEAR(p->x[(16u * NX) + 2u], 0.0, 1e-9);
-    OGK_ASSERT_NEAR(p->x[(16u * NX) + 3u], 0.0, 1e-9);
+    OGK_ASSERT_NEAR(p->x[(16u * NX) + 0u], cfg->model.hold[0], OGK_TEST_TOL(1e-9, NMPC_FX_TOL_F));
+    OGK_ASSERT_NEAR(p->x[(16u * NX) + 1u], cfg->model.hold[1], OGK_TEST_TOL(1e-9, NMPC_FX_TOL_F));
+    OGK_ASSERT_NEAR(p->x[(16u * NX) + 2u], 0.0, OGK_TEST_TOL(1e-9, NMPC_FX_TOL_F));
+    OGK_ASSERT_NEAR(p->x[(16u * NX) + 3u], 0.0, OGK_TEST_TOL(1e-9, NMPC_FX_TOL_F));
 }
 
 /* ocp.detour_guess's shape: the straight line from the start to the hold point bulged away from the
@@ -823,7 +827,13 @@ static void test_open_loop_solve(void **state)
     print_message("open loop: J %.12g, t_f %.12g TU, %u SQP iterations\n", rep.objective, rep.t_f,
                   (unsigned)rep.sqp_iterations);
     OGK_ASSERT_NEAR(rep.objective, 1.0 - out.x[(16u * NX) + 4u], 1e-15);
+#if OGK_REAL_SINGLE
+    /* float: J = m_0 - m_N of masses near 1, the mass defects held to the float tol_feas
+     * (NMPC_FX_TOL_F): float resolves this J (2e-4) to that, absolutely */
+    OGK_ASSERT_NEAR(rep.objective, 1.9943631e-4, NMPC_FX_TOL_F);
+#else
     OGK_ASSERT_REL(rep.objective, 1.9943631e-4, 1e-6, 0.0);
+#endif
     OGK_ASSERT_REL(rep.t_f, cfg.solver.horizon_max, 1e-15, 0.0); /* the horizon's bound is active */
     OGK_ASSERT_STATUS(ogk_prox_solve(&ctx2, &in, &rep2), OGK_OK);
     assert_true(ctx2.nmpc.problem_data == (void *)&ctx2.model);
@@ -835,12 +845,17 @@ static void test_open_loop_solve(void **state)
     assert_true((cmd.throttle >= 0.0) && (cmd.throttle <= 1.0));
     OGK_ASSERT_STATUS(ogk_prox_thrust_cmd(&ctx, 0.5 * rep.t_next, &tc), OGK_OK);
     OGK_ASSERT_NEAR(tc.throttle, cmd.throttle, 0.0);
-    OGK_ASSERT_NEAR(tc.u[0], cos(cmd.alpha), 1e-15);
-    OGK_ASSERT_NEAR(tc.u[1], sin(cmd.alpha), 1e-15);
+    /* float: float's cosine and sine of alpha against double's (4.5 eps, as 1e-15 is in double) */
+    OGK_ASSERT_NEAR(tc.u[0], cos(cmd.alpha), OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
+    OGK_ASSERT_NEAR(tc.u[1], sin(cmd.alpha), OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON));
     /* a re-solve from the optimum: converged at once, the same plan */
     OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep2), OGK_OK);
     assert_true(rep2.sqp_iterations <= 2u);
+#if OGK_REAL_SINGLE
+    OGK_ASSERT_NEAR(rep2.objective, rep.objective, NMPC_FX_TOL_F); /* float: J resolved to the float tol_feas */
+#else
     OGK_ASSERT_REL(rep2.objective, rep.objective, 1e-9, 0.0);
+#endif
     OGK_ASSERT_STATUS(ogk_prox_reset(&ctx), OGK_OK);
     OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &out), OGK_E_RANGE);
 }
@@ -900,8 +915,10 @@ static void test_in_flight_settings(void **state)
     OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep), OGK_OK);
     OGK_ASSERT_STATUS(ogk_prox_get_plan(&ctx, &free_opt), OGK_OK);
     t_fix = 5000.0 * sqrt(3.986004418e14 / (6.9e6 * 6.9e6 * 6.9e6));   /* [TU] = 5,000 s n */
-    lo = t_fix * (1.0 - 1e-9);
-    hi = t_fix * (1.0 + 1e-9);
+    /* float: a band of +-1e-9 rounds to one value (lo == hi: OGK_E_CONFIG); the narrowest band
+     * float holds is a few ulps (+-4 eps) */
+    lo = t_fix * (1.0 - OGK_TEST_PICK(1e-9, 4.0 * FLT_EPSILON));
+    hi = t_fix * (1.0 + OGK_TEST_PICK(1e-9, 4.0 * FLT_EPSILON));
     OGK_ASSERT_STATUS(ogk_prox_set_horizon_bounds(&ctx, lo, hi), OGK_OK);
     OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep), OGK_E_NOT_CONVERGED);
     scaled = free_opt;
@@ -921,10 +938,14 @@ static void test_in_flight_settings(void **state)
 
     /* the same optimum from a first BFGS matrix 100 times smaller (a cold solve from the free optimum) */
     OGK_ASSERT_STATUS(ogk_prox_set_hessian_init(&ctx, 1e-2 * cfg.solver.hessian_init), OGK_OK);
-    assert_true(ctx.nmpc.cfg.hessian_init == (1e-2 * cfg.solver.hessian_init));
+    assert_true(ctx.nmpc.cfg.hessian_init == (ogk_real_t)(1e-2 * cfg.solver.hessian_init)); /* float: stored rounded */
     OGK_ASSERT_STATUS(ogk_prox_load_plan(&ctx, &scaled), OGK_OK);
     OGK_ASSERT_STATUS(ogk_prox_solve(&ctx, &in, &rep2), OGK_OK);
+#if OGK_REAL_SINGLE
+    OGK_ASSERT_NEAR(rep2.objective, rep.objective, NMPC_FX_TOL_F); /* float: J resolved to the float tol_feas */
+#else
     OGK_ASSERT_REL(rep2.objective, rep.objective, 1e-6, 0.0);
+#endif
     assert_true((rep2.t_f >= lo) && (rep2.t_f <= hi));
     /* init restores the configuration's settings */
     OGK_ASSERT_STATUS(ogk_prox_init(&ctx, &cfg), OGK_OK);
