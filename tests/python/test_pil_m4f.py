@@ -139,7 +139,8 @@ def test_ogk_run_makes_the_nmpc_replans_on_the_float_kernel(tmp_path: Path) -> N
     """`ogk run rendezvous_nep_min_time --max-replans 3 --target m4f`: the NMPC program's cold first
     solve converges on the float kernel with the tolerances floored for binary32 (the double law's
     1e-9 found no first plan), every replan made on the board."""
-    from ogk.sil.pil_build import PIL_BUILD, SINGLE_FLOORS
+    from ogk.sil.pil_build import PIL_BUILD
+    from ogk.sil.precision import NMPC_SINGLE_FLOORS as SINGLE_FLOORS
     out = subprocess.run([str(OGK), "run", "rendezvous_nep_min_time", "--max-replans", "3", "--target",
                           "m4f", "--json", str(tmp_path / "m4f.json")], capture_output=True,
                          text=True, timeout=600, cwd=ROOT)

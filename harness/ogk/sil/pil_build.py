@@ -119,23 +119,12 @@ def file_sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
-#: the NMPC solver's tolerances on a single-precision kernel (the rendezvous and proximity
-#: families' flight configurations when ogk_host.cgen.current_precision() is "single": the
-#: Cortex-M4F). Binary32's eps is 1.19e-7, so a feasibility or objective change of 1e-9 (the double
-#: law's) is below the rounding of the residuals themselves and no solve converges (seen: no first
-#: plan on the M4F). Floors: feasibility and objective 64 eps (7.6e-6, a few roundings of the
-#: normalised residual summed over the nodes), stationarity sqrt(eps) (3.5e-4, the accuracy of a
-#: gradient whose cancellation loses half the digits). A tolerance already above its floor is kept.
-SINGLE_EPS = 2.0 ** -23
-SINGLE_FLOORS = {"tol_feas": 64 * SINGLE_EPS, "tol_obj": 64 * SINGLE_EPS,
-                 "tol_stat": SINGLE_EPS ** 0.5}
-
-
 def nmpc_single_precision_tolerances(cfg: Any) -> None:
     """The NMPC configuration `cfg` (cffi ogk_nmpc_config_t *) with its tolerances floored for a
-    single-precision kernel when the C is generated for one (SINGLE_FLOORS); unchanged otherwise."""
+    single-precision kernel when the C is generated for one (ogk.sil.precision.NMPC_SINGLE_FLOORS); unchanged otherwise."""
     from ogk_host.cgen import current_precision
-    if current_precision() != "single":
-        return
-    for name, floor in SINGLE_FLOORS.items():
-        setattr(cfg, name, max(float(getattr(cfg, name)), floor))
+
+    from .precision import NMPC_SINGLE_FLOORS, nmpc_tolerances
+    floored = nmpc_tolerances({k: getattr(cfg, k) for k in NMPC_SINGLE_FLOORS}, current_precision())
+    for name, value in floored.items():
+        setattr(cfg, name, value)

@@ -107,3 +107,27 @@ def check_options(options: Mapping[str, Any]) -> None:
     if current() != want:
         raise OgkInputError(f"this worker loaded the {current()}-precision kernel, the campaign flies "
                             f"{want}: start the workers with {ENV}={want}", key=OPTION)
+
+
+#: binary32's epsilon: the float kernel's OGK_REAL_EPSILON
+SINGLE_EPS = 2.0 ** -23
+#: the NMPC solver's tolerances on a single-precision kernel, host (SIL) or target (the M4F's flight
+#: configuration): a feasibility or objective change of 1e-9 (the double law's) is below the rounding of
+#: the residuals themselves, and the rendezvous found no first plan (M4F; host: 2 of 2 runs lost with 6
+#: failed solves, seed 51205). Feasibility and objective 64 eps (7.6e-6, a few roundings of the normalised
+#: residual summed over the nodes), stationarity sqrt(eps) (3.5e-4, the accuracy of a gradient whose
+#: cancellation loses half the digits). A tolerance already above its floor is kept; the kernel floors
+#: tol_feas and tol_obj itself too (nmpc_sqp.c, docs/design/nmpc-flight.md, "2g. Single precision").
+NMPC_SINGLE_FLOORS = {"tol_feas": 64 * SINGLE_EPS, "tol_obj": 64 * SINGLE_EPS, "tol_stat": SINGLE_EPS ** 0.5}
+
+
+def nmpc_tolerances(settings: Mapping[str, Any], real: str) -> dict[str, Any]:
+    """`settings` (NMPC configuration fields) for a kernel of precision `real`: the tolerances it names
+    floored at NMPC_SINGLE_FLOORS when single, unchanged when double."""
+    out = dict(settings)
+    if real == "single":
+        for name, floor in NMPC_SINGLE_FLOORS.items():
+            if name in out:
+                out[name] = max(float(out[name]), floor)
+    return out
+

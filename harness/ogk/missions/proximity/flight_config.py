@@ -70,6 +70,6 @@ def final_time_band() -> float:
     would collapse onto the remaining time itself."""
     from ogk_host.cgen import current_precision
 
-    from ogk.sil.pil_build import SINGLE_EPS
+    from ogk.sil.precision import SINGLE_EPS
     from .guidance import FIXED_T_F_BAND
     return FIXED_T_F_BAND if current_precision() != "single" else max(FIXED_T_F_BAND, 8 * SINGLE_EPS)

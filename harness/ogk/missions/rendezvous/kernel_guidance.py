@@ -23,6 +23,8 @@ from ogk_host.rendezvous.scenario import RendezvousScenario
 
 from ogk_bindings.nmpc import CNCN, FLAG_OUTSIDE_SET, FLAG_SUBDIVIDED, MAX_NODES, SNNS, Nmpc, NmpcConfig
 
+from ogk.sil import precision
+
 from . import strategy as st
 from .guidance_base import ReplanInfo, first_guesses
 
@@ -98,7 +100,8 @@ def kernel_config(scenario: RendezvousScenario, strategy: st.StrategySettings,
                           body_rate=[earth.rate])
         fields.update(keepout_radius=[keepout])
     fields.update(overrides)
-    return NmpcConfig(**fields)
+    # a float kernel's solver tolerances (ogk.sil.precision: 1e-9 is below its rounding)
+    return NmpcConfig(**precision.nmpc_tolerances(fields, precision.current()))
 
 
 def terminal_box(scenario: RendezvousScenario) -> list[float]:
