@@ -53,7 +53,7 @@ def first(scenario):
 def test_the_family_is_registered_with_its_scenario() -> None:
     header = read_header(SCENARIO)
     assert registry.family(header) is FAMILY and FAMILY.name == header.mission == "proximity-approach"
-    assert FAMILY.targets == ("host", "m7") and not FAMILY.has_tables
+    assert FAMILY.targets == ("host", "m7", "m4f") and not FAMILY.has_tables
 
 
 def test_truth_coasts_as_clohessy_wiltshire_where_it_holds_and_converges() -> None:
