@@ -250,6 +250,10 @@ def test_a_campaign_in_single_records_its_precision(tmp_path: Path) -> None:
         assert (q["max_abs_diff"], q["run_id"], q["single"], q["double"]) == worst, name
         assert q["max_abs_diff"] > 0.0, name       # float is not double in disguise
     assert "Single against double on the same draws (2 runs" in res.stdout
+    # `ogk replay` flies a single campaign's run on the float kernel (the envelope's precision), bit-exact
+    rep = subprocess.run([str(OGK), "replay", str(out), "1"], capture_output=True, text=True, env=_env(None),
+                         cwd=tmp_path, timeout=240)
+    assert rep.returncode == 0 and "bit-exact" in rep.stdout, rep.stdout + rep.stderr
 
 
 def test_the_command_line_precision_wins_over_the_environment(tmp_path: Path) -> None:

@@ -5,6 +5,8 @@ draws them. Exit 0 when bit-exact, 1 when a value differs, 2 on bad input."""
 from __future__ import annotations
 
 import argparse
+import json
+from pathlib import Path
 from typing import Any
 
 
@@ -19,5 +21,19 @@ def register(sub: Any) -> None:
 
 
 def _replay(args: argparse.Namespace) -> int:
+    _select_precision(args.campaign)
     from ogk.cli.campaign_flow import replay
     return replay(args.campaign, args.run_id, args.plots, args.json)
+
+
+def _select_precision(campaign: str) -> None:
+    """The kernel precision the campaign flew (its envelope's "precision"), selected before anything
+    imports the bindings (ogk.sil.precision): a single campaign's run is replayed on the float kernel.
+    An unreadable envelope is left to the replay's own check of it."""
+    from ogk.sil import precision
+    try:
+        want = json.loads(Path(campaign).read_text(encoding="utf-8")).get("precision")
+    except (OSError, ValueError, AttributeError):
+        return
+    if want in precision.CHOICES:
+        precision.select(want)
