@@ -54,7 +54,7 @@ $(PROFILE_B)/footprint_sparc.json: $(SPARC_KOBJ) $(KHDR) $(PROFILE_PY)
 	  --size sparc64-linux-gnu-size --nm sparc64-linux-gnu-nm --json $@ -- $(SPARC_KOBJ)
 
 # ---------------------------------------------------------------- make profile (not in make test: minutes)
-#   make profile          build/profile/profile.json and docs/evidence/profile.md: per target, every public entry
+#   make profile          build/profile/profile.json and docs/evidence/profile.md: per target (M7, SPARC V8, M4F), every public entry
 #                         point's stack bound, the painted stack and QEMU's instructions per call at the
 #                         worst input of small processor-in-the-loop campaigns of every family on both
 #                         targets (fixed seed and runs: identical from run to run), code / read-only / RAM per module and the

@@ -56,7 +56,8 @@ def merge_campaigns(files: list[tuple[str, Path]],
         listed.append({"target": target, "scenario": name, "runs": env.get("runs"),
                        "seed": env.get("seed"), "scenario_sha256": env.get("scenario_sha256"),
                        "failed_runs": env.get("failures"),
-                       "host_vs_target_within_bounds": hvt.get("within_bounds")})
+                       "host_vs_target_within_bounds": hvt.get("within_bounds"),
+                       "host_vs_target_report_only": bool(hvt.get("report_only"))})
         for entry, e in (env.get("pil") or {}).get("entry_points", {}).items():
             w = worst.setdefault(target, {}).setdefault(entry, {"calls": 0, "insn_max": None,
                                                                   "stack_painted": None})
@@ -161,6 +162,8 @@ def markdown(doc: dict) -> str:
             continue
         verdict = {True: "within the stated bounds", False: "OUTSIDE the stated bounds",
                    None: "not compared"}[c.get("host_vs_target_within_bounds")]
+        if c.get("host_vs_target_report_only"):
+            verdict = "compared, report only (a single-precision target: no bound)"
         out.append(f"- `{c['scenario']}` on `{c['target']}`: {c['runs']} runs, seed {c['seed']}; "
                    f"{c.get('failed_runs') or 0} failed their mission criterion; host against target "
                    f"{verdict}")

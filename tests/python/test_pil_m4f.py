@@ -75,6 +75,7 @@ def test_the_float_kernel_flies_the_scenario_and_the_envelope_says_so(campaign: 
     assert doc["failures"] == 0 and doc["runs"] == 1 and len(recs) == 1
     pil = doc["pil"]
     assert pil["target"] == "m4f" and pil["precision"] == "single"
+    assert doc["precision"] == "single"     # the envelope names the precision of the kernel that flew
     for e in ENTRIES:
         w = pil["entry_points"][e]
         assert w["calls"] > 0 and w["insn_max"]["value"] > 0 and w["stack_bytes"]["value"] > 0, e
@@ -215,4 +216,4 @@ def test_the_m4f_runs_on_mps2_an386_in_system_emulation() -> None:
     cmd = target_link.qemu_command("m4f", Path("/x/oi.elf"))
     assert cmd[:3] == ["qemu-system-arm", "-M", "mps2-an386"] and cmd[-2:] == ["-kernel", "/x/oi.elf"]
     assert pil_build.MAKE_GOAL["m4f"] == ("pil-program-m4f", "m4f")
-    assert pil_build.PRECISION["m4f"] == "single" and pil_build.GEN_DIR["m4f"] == "m4f"
+    assert pil_build.TARGET_PRECISION["m4f"] == "single" and pil_build.GEN_DIR["m4f"] == "m4f"

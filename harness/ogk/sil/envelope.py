@@ -129,8 +129,10 @@ def envelope(flown: Flown, extra: Mapping[str, Any] | None = None,
         "per_run_table": None if json_path is None else table_path(json_path).name,
         "timing": {"wall_s": flown.wall_s, "cpu_s": flown.cpu_s}, "target": plan.target,
         "numerics": numerics.fingerprint(),
-        # the kernel's real type flown (ogk.sil.precision): "double", or "single" (float kernel)
-        "precision": precision.of_options(plan.options)})
+        # the real type of the kernel flown (ogk.sil.precision): "double", or "single" (float kernel):
+        # on the host the campaign's --precision, on a target that target's (the M4F's: single)
+        "precision": precision.of_options(plan.options) if plan.target == "host"
+        else precision.TARGET_PRECISION[plan.target]})
     if paper is not None:
         doc["paper"] = paper
     if pil is not None:

@@ -25,6 +25,8 @@ from typing import Any
 from ogk_bindings.errors import OgkInputError
 from ogk_host.paths import WORK_ROOT, need_repository
 
+from .precision import TARGET_PRECISION
+
 #: the repository (its Makefile builds the ELF); from an installed wheel, the current directory (where
 #: products go; a flight program needs the repository: build_program says so in one line)
 ROOT = WORK_ROOT
@@ -34,9 +36,6 @@ PIL_BUILD = ROOT / "build" / "pil"
 #: target -> (make goal, where the ELF lands under DIR)
 MAKE_GOAL = {"m7": ("pil-program", "."), "sparc": ("pil-program-sparc", "sparc"),
              "m4f": ("pil-program-m4f", "m4f")}
-#: target -> the precision of its kernel (kernel/include/ogk/real.h; port/cortex-m4f/cortex-m4f.mk's
-#: M4F_PRECISION): the generated C and tables are written for it
-PRECISION = {"m7": "double", "sparc": "double", "m4f": "single"}
 #: target -> where its generated C lives under DIR (the double targets share DIR/c)
 GEN_DIR = {"m7": ".", "sparc": ".", "m4f": "m4f"}
 
@@ -54,7 +53,7 @@ def build_program(program: str, out: Path, generate: Callable[[Path], None],
     with open(out / ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         from ogk_host.cgen import generated_precision
-        with generated_precision(PRECISION[target]):
+        with generated_precision(TARGET_PRECISION[target]):
             _generate_changed(out / GEN_DIR[target], generate)
         proc = subprocess.run(["make", "-s", "-C", str(repository), goal,
                                f"PIL_PROGRAM={program}", f"PIL_OUT={out.resolve()}"],

@@ -21,6 +21,10 @@ from typing import Any
 
 from ogk_bindings.errors import OgkInputError
 
+#: the real type of the kernel each target flies: the host's is the process's (this module's `current`,
+#: "double" unless --precision single); the Cortex-M4F's flight programs are built on the float kernel
+#: (port/cortex-m4f: M4F_PRECISION), the others' on the double one
+TARGET_PRECISION = {"host": "double", "m7": "double", "sparc": "double", "m4f": "single"}
 #: the environment variable ogk_bindings._ffi reads (its PRECISION_ENV), and the precisions
 ENV = "OGK_PRECISION"
 CHOICES = ("double", "single")
