@@ -300,3 +300,43 @@ def test_make_ffi_and_setup_py_build_both_precisions() -> None:
     assert "typedef double ogk_real_t;" in kffi.declarations(kffi.bound_headers())
     assert kffi.compile_args("double") == kffi.COMPILE_ARGS   # the double build's flags as they were
     assert kffi.build_dir("single") != kffi.build_dir("double")
+
+
+# ----------------------------------------------------------------- ground products of a float flight build
+@pytest.mark.usefixtures("alarm")
+def test_ogk_tables_single_writes_what_the_float_flight_build_compiles_and_loads(tmp_path: Path) -> None:
+    """`ogk tables SCN --precision single` (a mission no shipped file names: the LEO-GEO injection renamed):
+    F32 table files the float kernel loads (and the double kernel refuses), and C for a float kernel that
+    compiles under the flight flags with -Wfloat-conversion (a bare double literal in a float field fails)."""
+    text = (ROOT / "scenarios" / "leo_geo.toml").read_text()
+    assert text.count('name = "leo_geo"') == 1
+    scenario = tmp_path / "float_probe_injection.toml"
+    scenario.write_text(text.replace('name = "leo_geo"', 'name = "float_probe_injection"'))
+    out = tmp_path / "products"
+    res = subprocess.run([str(OGK), "tables", str(scenario), "--precision", "single", "--out", str(out)],
+                         capture_output=True, text=True, env=_env(None), cwd=tmp_path, timeout=240)
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert json.loads((out / "manifest.json").read_text())["precision"] == "single"
+    bundle = (out / "nog_bundle.ogkt").read_bytes()
+    status = _single(f"""
+        from pathlib import Path
+        from ogk_bindings._ffi import ffi, lib
+        data = Path({str(out / "nog_bundle.ogkt")!r}).read_bytes()
+        table = ffi.new("ogk_nog_table_t *")
+        print(int(lib.ogk_nog_table_load(table, ffi.from_buffer("uint8_t[]", data), len(data))))
+    """).stdout.strip()
+    assert status == "0"
+    table = _ffi.ffi.new("ogk_nog_table_t *")
+    assert lib.ogk_nog_table_load(table, _ffi.ffi.from_buffer("uint8_t[]", bundle), len(bundle)) == \
+        lib.OGK_E_TABLE_TYPE
+    config = out / "c" / "ogk_orbit_injection_flight_config.h"
+    assert "OGK_R(" in config.read_text()
+    tu = tmp_path / "uses_products.c"
+    tu.write_text('#include "ogk_orbit_injection_flight_config.h"\n#include "ogk_nog_bundle.h"\n'
+                  "int main(void) { return (int)(ogk_flight_nog_config.du_max_rad > 1.0f) + "
+                  "(int)(ogk_nog_bundle_len == 0u); }\n")
+    cc = subprocess.run(["gcc", "-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-Wconversion",
+                         "-Wdouble-promotion", "-Wfloat-conversion", "-DOGK_REAL_SINGLE=1",
+                         f"-I{ROOT / 'kernel' / 'include'}", f"-I{out / 'c'}", "-c", str(tu), "-o",
+                         str(tmp_path / "uses_products.o")], capture_output=True, text=True)
+    assert cc.returncode == 0, cc.stderr

@@ -7,6 +7,8 @@ configuration header (the kernel configs the SIL flies, as const C99 initialiser
   ogk tables apophis      low-thrust transfer: c/*_flight_config.h (ogk_mpsp_config_t + nominal weights)
 
 Default DIR: build/tables/<scenario name>-<first 12 hex of its SHA-256> (docs/design/architecture.md).
+--precision single: the products of a float flight build (OGK_REAL_SINGLE=1, e.g. the Cortex-M4F): F32
+table files and image, the C written for a float kernel; default DIR <...>-single (docs/precision.md).
 """
 from __future__ import annotations
 

@@ -63,11 +63,14 @@ def run_scenario_command(name: str, scenario: str | None, rest: Sequence[str],
     # `--precision single` (ogk mc, ogk run): the kernel's real type, chosen before the family's modules
     # import the bindings (ogk.sil.precision); `ogk mc`'s parser declares the option, the others' do not
     chosen = precision.take(rest, remove=name != "mc")
-    if chosen is not None:
-        if name == "tables":   # the ground products of the flight build (docs/guides/sil.md)
-            raise OgkInputError(f"`ogk {name}` has no {precision.OPTION} (ogk mc and ogk run have)",
-                                key=precision.OPTION)
+    if chosen is not None and name != "tables":
         precision.select(chosen)
+    # `ogk tables --precision single`: the ground products of a float flight build (F32 tables, C for a
+    # float kernel); the ground tools themselves compute in double
+    products = chosen or precision.DEFAULT
+    if products not in precision.CHOICES:
+        raise OgkInputError(f"expected one of {', '.join(precision.CHOICES)}, got {products!r}",
+                            key=precision.OPTION)
     header = read_header(resolve_scenario(scenario))
     fam = registry.family(header)
     if name == "mc":
@@ -89,6 +92,11 @@ def run_scenario_command(name: str, scenario: str | None, rest: Sequence[str],
         setattr(args, key, value)
     if chosen is not None and chosen != precision.DEFAULT:
         print(f"precision: {chosen} (the kernel's ogk_real_t is float: OGK_REAL_SINGLE=1)")
+    if name == "tables":
+        from ogk_host.cgen import generated_precision
+        args.precision = products
+        with generated_precision(products):
+            return int(verb(header, args))
     return int(verb(header, args))
 
 

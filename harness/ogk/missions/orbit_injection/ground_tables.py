@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import tempfile
 from pathlib import Path
 
 from ogk_host.dir_lock import directory_lock
@@ -31,10 +32,11 @@ def write_ground_tables(header: ScenarioHeader, args: argparse.Namespace) -> int
     from .terminal import shape_tilt_bound_rad
 
     scn = load_scenario(header.path)  # every bad key reported before the nominal is solved
-    out = Path(args.out) if args.out else ground.default_table_dir(header.path)
+    real = getattr(args, "precision", "double")   # of the flight build the products are for
+    out = Path(args.out) if args.out else ground.default_table_dir(header.path, precision=real)
     check_output_dir(out, "--out")
     with directory_lock(out), Working(f"{header.name}: ground nominal and VTD-NOG gains"):
-        manifest = ground.write_nog_tables(out, scenario_path=header.path)
+        manifest = ground.write_nog_tables(out, scenario_path=header.path, precision=real)
     bundle = out / ground.BUNDLE_FILE
     c_path, h_path = write_c_table(bundle.read_bytes(), "ogk_nog_bundle", out / "c",
                                    header.path, note="Validate with ogk_nog_table_view() or load "
@@ -58,7 +60,29 @@ def write_ground_tables(header: ScenarioHeader, args: argparse.Namespace) -> int
         print(f"  wrote {out / entry['file']}  kind {entry['kind']}  dims {entry['dims']}  "
               f"grid {entry['grid_size']}  {entry['bytes']} bytes")
     print(f"  wrote {c_path} and {h_path.name} (flight build: const table image)")
-    for path in write_flight_config(out, resolved, header.path, bundle):
-        print(f"  wrote {path} (flight build: const configurations)")
+    with tempfile.TemporaryDirectory() as tmp:
+        # the configurations are made by this process's (double) kernel from the table flown: an F32
+        # table is read here as the F64 table of the same values (binary32 widens exactly)
+        flown = bundle if real == "double" else _as_f64(bundle, Path(tmp) / bundle.name)
+        for path in write_flight_config(out, resolved, header.path, flown):
+            print(f"  wrote {path} (flight build: const configurations)")
     print(f"  wrote {out / 'manifest.json'}")
     return 0
+
+
+def _as_f64(table: Path, dest: Path) -> Path:
+    """The F32 bundle `table` written again as F64 at `dest`, for this process's double kernel: the same
+    values, but for the time columns, which the double kernel checks to 1e-9 of t_f* (the float kernel
+    to 4 eps): every row's x*' time is row 0's t_f*, its x* time t_f* tau, in double (each within an ulp
+    of binary32 of the value the file holds)."""
+    import numpy as np
+    from ogk_bindings._ffi import lib
+    from ogk_host import tablefile
+    t = tablefile.decode_table(table.read_bytes(), precision="single")
+    data = np.array(t.data, dtype=np.float64)
+    x_time, xdot_time = int(lib.OGK_NOG_OFF_X) + 6, int(lib.OGK_NOG_OFF_XDOT) + 6   # nog.c's IDX_TIME
+    data[:, xdot_time] = data[0, xdot_time]
+    data[:, x_time] = data[0, xdot_time] * np.asarray(t.grid, dtype=np.float64)
+    dest.write_bytes(tablefile.encode_table(t.kind, t.grid, data))
+    return dest
+
