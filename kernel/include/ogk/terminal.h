@@ -131,6 +131,9 @@ typedef struct {
     ogk_real_t last_t_s;        /* [s] time of the last accepted step */
     ogk_real_t last_energy_j_kg; /* [J/kg] specific orbital energy at last_t_s */
     bool has_last;          /* [-] last_t_s, last_energy_j_kg are set */
+#if OGK_REAL_SINGLE
+    ogk_real_t r_lo_m;      /* [m] float build: low part of the radius of the step in progress (ogk_terminal_step_split), 0 otherwise */
+#endif
     uint32_t init_marker;   /* [-] set by ogk_terminal_init */
 } ogk_terminal_t;
 
@@ -167,6 +170,26 @@ ogk_status ogk_terminal_reset(ogk_terminal_t *ctx);
 */
 ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t t_predicted_s,
                              const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out);
+
+#if OGK_REAL_SINGLE
+/* Float build only: ogk_terminal_step with the radius in two parts, r = nav->r_m
+ * + r_lo_m, r_lo_m the part a float r_m cannot hold (a navigation source of
+ * higher precision: r_lo_m = r - (float)r; |r_lo_m| <= OGK_REAL_EPSILON |r_m|).
+ * At the target radius (42164 km) a float radius is 4 m apart from the next
+ * one, and the shaped plan's radius miss x = r - R_f, whose gain grows like
+ * 6 k / T^2, turns that step into direction noise: (r_m - R_f) + r_lo_m (exact
+ * difference, Sterbenz) keeps x to its own resolution (docs/design/vtd-nog.md,
+ * "Single precision"). Everything else reads r_m. OGK_E_NONFINITE for a
+ * non-finite r_lo_m, OGK_E_RANGE for a larger one, as ogk_terminal_step's. */
+/*@ requires ctx_valid: ctx == \null || \valid(ctx);
+    requires nav_valid: nav == \null || \valid_read(nav);
+    requires law_cmd_valid: law_cmd == \null || \valid_read(law_cmd);
+    requires out_valid: out == \null || \valid(out);
+*/
+ogk_status ogk_terminal_step_split(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t r_lo_m,
+                                   ogk_real_t t_predicted_s, const ogk_thrust_cmd_t *law_cmd,
+                                   ogk_thrust_cmd_t *out);
+#endif
 
 #ifdef __cplusplus
 }

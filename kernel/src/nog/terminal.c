@@ -71,6 +71,9 @@ static void terminal_clear(ogk_terminal_t *ctx)
     ctx->last_t_s = OGK_R(0.0);
     ctx->last_energy_j_kg = OGK_R(0.0);
     ctx->has_last = false;
+#if OGK_REAL_SINGLE
+    ctx->r_lo_m = OGK_R(0.0);
+#endif
 }
 
 /* The turn limit (terminal.h, "Turn limit"): the largest tilt th from v_go
@@ -204,7 +207,12 @@ static ogk_real_t plan_gain_scale(const ogk_terminal_t *ctx, const ogk_nav_state
 static bool plan_from(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t duration_s)
 {
     const ogk_real_t r = nav->r_m;
+#if OGK_REAL_SINGLE
+    /* r - R_f exact (both near R_f), then the radius's low part (terminal.h) */
+    const plan_miss_t miss = {(r - ctx->cfg.target_radius_m) + ctx->r_lo_m, r * OGK_SIN(nav->phi_rad),
+#else
     const plan_miss_t miss = {r - ctx->cfg.target_radius_m, r * OGK_SIN(nav->phi_rad),
+#endif
                               (nav->v_r_mps * OGK_SIN(nav->phi_rad)) + (nav->v_n_mps * OGK_COS(nav->phi_rad))};
     const ogk_real_t z = miss.z;
     const ogk_real_t z_dot = miss.z_dot;
@@ -294,8 +302,15 @@ static void steer_shaped(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_re
     }
 }
 
+#if OGK_REAL_SINGLE
+/* The float build's step reads the radius's low part from ctx->r_lo_m, set by
+ * its two entry points below (0 by ogk_terminal_step). */
+static ogk_status terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t t_predicted_s,
+                                const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out)
+#else
 ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t t_predicted_s,
                              const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out)
+#endif
 {
     ogk_status st = OGK_OK;
 
@@ -306,11 +321,20 @@ ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, og
     } else {
         const ogk_real_t v[9] = {nav->t_s, nav->r_m, nav->phi_rad, nav->v_r_mps, nav->v_t_mps, nav->v_n_mps,
                              t_predicted_s, law_cmd->alpha_rad, law_cmd->beta_rad};
+#if OGK_REAL_SINGLE
+        if ((!ogk_i_all_finite(v, 9u)) || (!isfinite(ctx->r_lo_m))) {
+            st = OGK_E_NONFINITE;
+        } else if ((!terminal_nav_in_envelope(nav, t_predicted_s)) ||
+                   (OGK_FABS(ctx->r_lo_m) > (OGK_REAL_EPSILON * nav->r_m))) {
+            st = OGK_E_RANGE;
+        } else {
+#else
         if (!ogk_i_all_finite(v, 9u)) {
             st = OGK_E_NONFINITE;
         } else if (!terminal_nav_in_envelope(nav, t_predicted_s)) {
             st = OGK_E_RANGE;
         } else {
+#endif
             if ((!ctx->engaged) && ((t_predicted_s - nav->t_s) <= ctx->cfg.window_s) && (ctx->cfg.window_s > OGK_R(0.0))) {
                 ctx->engaged = true;
                 ctx->alpha_rad = law_cmd->alpha_rad; /* held if v_go is already ~0 */
@@ -341,3 +365,27 @@ ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, og
     }
     return st;
 }
+
+#if OGK_REAL_SINGLE
+ogk_status ogk_terminal_step(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t t_predicted_s,
+                             const ogk_thrust_cmd_t *law_cmd, ogk_thrust_cmd_t *out)
+{
+    return ogk_terminal_step_split(ctx, nav, OGK_R(0.0), t_predicted_s, law_cmd, out);
+}
+
+ogk_status ogk_terminal_step_split(ogk_terminal_t *ctx, const ogk_nav_state_t *nav, ogk_real_t r_lo_m,
+                                   ogk_real_t t_predicted_s, const ogk_thrust_cmd_t *law_cmd,
+                                   ogk_thrust_cmd_t *out)
+{
+    ogk_status st;
+
+    if ((ctx != NULL) && (ctx->init_marker == OGK_TERMINAL_INIT_MARKER)) {
+        ctx->r_lo_m = r_lo_m;
+        st = terminal_step(ctx, nav, t_predicted_s, law_cmd, out);
+        ctx->r_lo_m = OGK_R(0.0);
+    } else {
+        st = terminal_step(ctx, nav, t_predicted_s, law_cmd, out);
+    }
+    return st;
+}
+#endif

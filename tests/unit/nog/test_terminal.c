@@ -733,6 +733,65 @@ static void test_contract(void **state)
                    OGK_TEST_TOL(1e-15, 4.5 * FLT_EPSILON), 0.0);
 }
 
+#if OGK_REAL_SINGLE
+/* The float build's split radius (ogk_terminal_step_split): r_lo_m 0 is
+ * ogk_terminal_step bit for bit; the shaped plan's radius miss is
+ * (r_m - R_f) + r_lo_m, so r_m = R_f + 124 m with r_lo_m = -4 m (float's
+ * radius step there) flies as r_m = R_f + 120 m on the first engaged step
+ * (no energy rate yet, phi = 0: nothing else reads r); a non-finite r_lo_m,
+ * or one beyond OGK_REAL_EPSILON r_m, is rejected as ogk_terminal_step's
+ * inputs are, the context unchanged. */
+/* req: OGK-NOG-017 */
+static void test_split_radius(void **state)
+{
+    ogk_terminal_config_t cfg = terminal_config();
+    ogk_terminal_t a;
+    ogk_terminal_t b;
+    ogk_terminal_t before;
+    ogk_nav_state_t nav = nav_at(100.0, 3.0, -40.0, -4.0);
+    const ogk_nav_state_t nav_120 = nav;
+    const ogk_thrust_cmd_t law = law_command(100.0);
+    ogk_thrust_cmd_t out_a;
+    ogk_thrust_cmd_t out_b;
+    (void)state;
+    cfg.shape_gain = 1.0;
+    cfg.shape_gain_normal = 1.0;
+    cfg.shape_hold_s = 0.5;
+    (void)memset(&a, 0, sizeof a); /* the padding too: the contexts are compared byte for byte */
+    (void)memset(&b, 0, sizeof b);
+    OGK_ASSERT_STATUS(ogk_terminal_init(&a, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_terminal_init(&b, &cfg), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_terminal_step_split(&a, &nav, 0.0f, 102.9, &law, &out_a), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_terminal_step(&b, &nav, 102.9, &law, &out_b), OGK_OK);
+    assert_true(memcmp(&out_a, &out_b, sizeof out_a) == 0);
+    assert_true(memcmp(&a, &b, sizeof a) == 0);
+
+    nav.r_m = (ogk_real_t)(R_F + 124.0);
+    assert_true((double)nav.r_m == R_F + 124.0);
+    OGK_ASSERT_STATUS(ogk_terminal_reset(&a), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_terminal_reset(&b), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_terminal_step_split(&a, &nav, -4.0f, 102.9, &law, &out_a), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_terminal_step(&b, &nav_120, 102.9, &law, &out_b), OGK_OK);
+    assert_true(memcmp(&out_a, &out_b, sizeof out_a) == 0);
+    OGK_ASSERT_NEAR(a.r_lo_m, 0.0, 0.0); /* the step's alone */
+    /* the 4 m the split carries do move the command */
+    OGK_ASSERT_STATUS(ogk_terminal_reset(&b), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_terminal_step(&b, &nav, 102.9, &law, &out_b), OGK_OK);
+    assert_true(out_a.alpha_rad != out_b.alpha_rad);
+
+    /* rejections: the context as it was, the safe flag on the law's command */
+    (void)memcpy(&before, &a, sizeof before);
+    OGK_ASSERT_STATUS(ogk_terminal_step_split(&a, &nav, (ogk_real_t)NAN, 102.92, &law, &out_a), OGK_E_NONFINITE);
+    assert_true(memcmp(&a, &before, sizeof a) == 0);
+    assert_true((out_a.flags & OGK_THRUST_FLAG_SAFE) != 0u);
+    OGK_ASSERT_STATUS(ogk_terminal_step_split(&a, &nav, 8.0f, 102.92, &law, &out_a), OGK_E_RANGE);
+    assert_true(memcmp(&a, &before, sizeof a) == 0);
+    OGK_ASSERT_STATUS(ogk_terminal_step_split(&a, &nav, 4.0f, 102.92, &law, &out_a), OGK_OK);
+    OGK_ASSERT_STATUS(ogk_terminal_step_split(NULL, &nav, 0.0f, 102.9, &law, &out_a), OGK_E_NULL);
+    OGK_ASSERT_STATUS(ogk_terminal_step_split(&a, NULL, 0.0f, 102.9, &law, &out_a), OGK_E_NULL);
+}
+#endif
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -747,6 +806,9 @@ int main(void)
         cmocka_unit_test(test_turn_limit_bounds_the_plans_tilt),
         cmocka_unit_test(test_turn_limit_binds_only_when_it_can),
         cmocka_unit_test(test_contract),
+#if OGK_REAL_SINGLE
+        cmocka_unit_test(test_split_radius),
+#endif
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -49,7 +49,14 @@ ogk_status ogk_sil_terminal_step_batch(ogk_terminal_t *ctx, size_t n_runs, const
             (void)ogk_sil_keep_first_error(&first, st);
             continue;
         }
+#if OGK_REAL_SINGLE
+        /* the float kernel gets the radius in two parts: the float r_m and what it cannot hold
+         * (ogk_terminal_step_split; docs/design/vtd-nog.md, "Single precision") */
+        st = ogk_terminal_step_split(&ctx[i], &in, (ogk_real_t)(nav[6u * i] - (double)in.r_m),
+                                     (ogk_real_t)t_predicted[i], &law, &out);
+#else
         st = ogk_terminal_step(&ctx[i], &in, (ogk_real_t)t_predicted[i], &law, &out);
+#endif
         alpha[i] = (double)out.alpha_rad;
         beta[i] = (double)out.beta_rad;
         engaged[i] = (uint8_t)((out.law_flags & OGK_TERMINAL_FLAG_ENGAGED) != 0u);
