@@ -31,7 +31,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 OGK = Path(sys.executable).parent / "ogk"
 SEED = "20261205"
-ENTRIES = ("ogk_nog_sample", "ogk_cutoff_step", "ogk_nog_thrust_cmd", "ogk_terminal_step",
+ENTRIES = ("ogk_nog_sample", "ogk_cutoff_step", "ogk_nog_thrust_cmd", "ogk_terminal_step_split",
            "ogk_cpd_step")
 #: libgcc's double-precision routines (soft-float on the M4F: its FPU is single precision only)
 #: in a single-precision process: the float kernel's NOG loader on a table image (hex on argv), its status

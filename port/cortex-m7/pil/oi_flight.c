@@ -26,6 +26,9 @@ ogk_flight_action ogk_oi_flight_init(ogk_oi_flight_t *f, const uint8_t *image, s
     f->t_cutoff_s = INFINITY;
     f->engaged = 0u;
     f->sampled = 0u;
+#if OGK_REAL_SINGLE
+    f->r_lo_m = OGK_R(0.0);
+#endif
     /* NOG with the end-game's last sampling interval, CPD: the reactions of ogk_flight.c */
     a = ogk_flight_init(&f->base, image, len, &ogk_flight_endgame_nog_config,
                         &ogk_flight_cpd_config, OGK_FLIGHT_CONTROL_RATE_HZ);
@@ -126,8 +129,15 @@ ogk_oi_failure ogk_oi_flight_tick(ogk_oi_flight_t *f, uint32_t k, const ogk_nav_
         st = ogk_thrust_cmd_from_angles(nav->t_s, b->cmd.alpha_rad, b->cmd.beta_rad, 1.0,
                                         OGK_THRUST_FLAG_ENGINE_ON, 0u, &law);
         if (st == OGK_OK) {
+#if OGK_REAL_SINGLE
+            /* the float radius steps by 4 m at the GEO radius: the terminal stage takes its low part
+             * too (docs/design/vtd-nog.md, "Single precision") */
+            CALL(OGK_OI_TERMINAL_STEP, st,
+                 ogk_terminal_step_split(&f->terminal, nav, f->r_lo_m, f->t_predicted_s, &law, &out));
+#else
             CALL(OGK_OI_TERMINAL_STEP, st,
                  ogk_terminal_step(&f->terminal, nav, f->t_predicted_s, &law, &out));
+#endif
         }
         f->status[OGK_OI_TERMINAL_STEP] = st;
         if (st == OGK_OK) {

@@ -47,6 +47,10 @@ typedef struct {
     ogk_terminal_t terminal;
     ogk_real_t t_predicted_s;       /* [s] NOG's cut-off prediction (inf before the first sample) */
     ogk_real_t t_cutoff_s;          /* [s] cut-off in force (energy cut-off's when flown) */
+#if OGK_REAL_SINGLE
+    ogk_real_t r_lo_m;              /* [m] float kernel: the part of the navigation's radius nav.r_m cannot
+                                     * hold (set before each tick; ogk_terminal_step_split) */
+#endif
     uint8_t engaged;            /* [-] the terminal stage steers */
     uint8_t sampled;            /* [-] this tick took a guidance sample */
     ogk_status status[OGK_OI_N_ENTRIES]; /* last status per entry point */

@@ -58,6 +58,11 @@ static int handle(uint16_t type, const uint8_t *in, uint16_t length, uint16_t *r
         att.rate_p = OGK_PIL_REAL(v[11]);
         att.rate_q = OGK_PIL_REAL(v[12]);
         att.rate_r = OGK_PIL_REAL(v[13]);
+#if OGK_REAL_SINGLE
+        /* the navigation's radius in two floats (the low part in double arithmetic, here at the
+         * boundary only, as the other conversions) */
+        g_flight.r_lo_m = (ogk_real_t)(v[2] - (double)nav.r_m);
+#endif
         fail = ogk_oi_flight_tick(&g_flight, (uint32_t)v[0], &nav, &att);
         ogk_pil_tick_mark();
         r[0] = (double)fail;

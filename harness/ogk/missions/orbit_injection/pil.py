@@ -15,6 +15,7 @@ from numpy.typing import NDArray
 
 from ogk.sil.pil import FlightProgram, PilSession, fly_runs_on_target
 from ogk.sil.pil_build import PIL_BUILD, build_program
+from ogk.sil.precision import TARGET_PRECISION
 from ogk.sil.target_link import TargetLinkError
 
 from .attitude import AttitudeCommand
@@ -26,6 +27,9 @@ OI_INIT, OI_TICK = 32, 33           #: frame types of oi_pil.c
 #: the entry points a tick calls, in the program's stack-slot order (oi_flight.h)
 ENTRY_POINTS = ("ogk_nog_sample", "ogk_cutoff_step", "ogk_nog_thrust_cmd", "ogk_terminal_step",
                 "ogk_cpd_step")
+#: ... on a float kernel, whose terminal step takes the radius in two parts (oi_flight.c,
+#: ogk_terminal_step_split; docs/design/vtd-nog.md, "Single precision")
+ENTRY_POINTS_SINGLE = tuple("ogk_terminal_step_split" if e == "ogk_terminal_step" else e for e in ENTRY_POINTS)
 #: oi_flight.h's ogk_oi_failure -> the SIL's failure reasons
 FAILURES = {0: "", 1: "guidance", 2: "cutoff", 3: "terminal", 4: "attitude_control"}
 assert all(v in FAILURE_REASONS for v in FAILURES.values() if v)
@@ -46,8 +50,9 @@ def flight_program(tables: Any, flight_config: Callable[[Path], object],
     tables directory, its generated C written by `flight_config(DIR)` into DIR/c (the family's
     flight_config)."""
     out = PIL_BUILD / "orbit_injection" / Path(tables.directory).name
+    entries = ENTRY_POINTS_SINGLE if TARGET_PRECISION[target] == "single" else ENTRY_POINTS
     return FlightProgram(build_program("oi", out, lambda c_dir: flight_config(c_dir.parent), target),
-                         ENTRY_POINTS, target=target)
+                         entries, target=target)
 
 
 class TargetFlightComputer:
