@@ -23,6 +23,7 @@ import pytest
 
 import importlib
 
+from ogk_bindings import _ffi
 from ogk_bindings._ffi import ffi, lib
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -48,10 +49,41 @@ def _strip_comments(text: str) -> str:
     return re.sub(r"//[^\n]*", " ", text)
 
 
+_PRECISION_IF = re.compile(r"^#\s*if\s+(!?)\s*OGK_REAL_SINGLE\s*$")
+
+
+def _this_precision(lines: list[str]) -> list[str]:
+    """The lines a compiler of this process's precision reads of the `#if OGK_REAL_SINGLE` /
+    `#if !OGK_REAL_SINGLE` blocks (their `#else` branch too); every other line as it is. The float build
+    declares a few things of its own (ogk/terminal.h's ogk_terminal_step_split): the bindings of the
+    double build do not have them, the float build's do."""
+    single = _ffi.PRECISION == "single"
+    out: list[str] = []
+    stack: list[tuple[bool, bool]] = []     # (is a precision block, keep its current branch)
+    for line in lines:
+        d = line.strip()
+        m = _PRECISION_IF.match(d)
+        if m:
+            stack.append((True, single != bool(m.group(1))))
+            continue
+        if d.startswith("#if"):
+            stack.append((False, True))
+        elif d.startswith("#else") and stack and stack[-1][0]:
+            stack[-1] = (True, not stack[-1][1])
+            continue
+        elif d.startswith("#endif") and stack:
+            if stack.pop()[0]:
+                continue
+        if all(keep for _, keep in stack):
+            out.append(line)
+    return out
+
+
 def _code(path: Path) -> str:
-    """Header text without comments and without preprocessor lines (continuations joined)."""
+    """Header text without comments and without preprocessor lines (continuations joined), of this
+    process's precision (`_this_precision`)."""
     text = _strip_comments(path.read_text()).replace("\\\n", " ")
-    return "\n".join(l for l in text.splitlines() if not l.lstrip().startswith("#"))
+    return "\n".join(l for l in _this_precision(text.splitlines()) if not l.lstrip().startswith("#"))
 
 
 def _functions(path: Path) -> list[tuple[str, str]]:
