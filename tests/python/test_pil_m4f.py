@@ -198,7 +198,8 @@ def test_the_single_precision_table_is_the_double_table_rounded_and_the_float_ke
 @pytest.mark.req("OGK-HAR-012")
 def test_report_only_for_a_single_precision_target() -> None:
     from ogk.sil import pil, target_summary
-    assert pil.PRECISION["m4f"] == "single" and "m4f" in pil.TARGETS
+    from ogk.sil.precision import TARGET_PRECISION
+    assert TARGET_PRECISION["m4f"] == "single" and "m4f" in pil.TARGETS
     host = [{"run_id": 0, "x": 1.0, "failure": ""}]
     tgt = [{"run_id": 0, "x": 1.5, "failure": ""}]
     doc = target_summary.summary("m4f", tgt, host, {"x": 1e-9}, "why", 1.0, 1)

@@ -35,7 +35,6 @@ import numpy as np
 from numpy.typing import NDArray
 from ogk_host.paths import WORK_ROOT
 
-from .precision import TARGET_PRECISION
 from .target_link import ERROR, TargetLink, TargetLinkError, f64_payload, f64_values
 
 RUN_END = 16                        #: OGK_PIL_RUN_END (port/cortex-m7/pil/ogk_pil.h)
@@ -45,7 +44,6 @@ TARGETS = ("host", "m7", "sparc", "m4f")   #: where a campaign's flight software
 #: target -> the nm that reads its flight programs' symbols
 NM = {"m7": "arm-none-eabi-nm", "sparc": "sparc64-linux-gnu-nm", "m4f": "arm-none-eabi-nm"}
 #: target -> the precision of its kernel (ogk_real_t): the M4F flies the float kernel
-PRECISION = TARGET_PRECISION   #: the real type of each target's kernel (ogk.sil.precision)
 #: the instruction-counting QEMU plugin, built by the repository (make qemu-plugin)
 PLUGIN = WORK_ROOT / "build" / "qemu-plugin" / "libinsn_count.so"
 

@@ -16,7 +16,6 @@ beside the campaign; the single campaign's acceptance is its own records' (the f
 """
 from __future__ import annotations
 
-import math
 import multiprocessing
 import os
 from collections.abc import Mapping, Sequence
@@ -26,6 +25,7 @@ import numpy as np
 
 from . import engine, precision
 from .family import MissionFamily, Record
+from .report import is_finite_number
 
 
 def _fly_double(fam: MissionFamily, header: Any, options: dict[str, Any], seed: int,
@@ -81,11 +81,6 @@ def fly_double(fam: MissionFamily, header: Any, options: Mapping[str, Any], seed
     return list(value)
 
 
-def _finite(v: Any) -> bool:
-    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) \
-        and math.isfinite(float(v))
-
-
 def compare(single: Sequence[Record], double: Sequence[Record], quantities: Sequence[str]) -> dict[str, Any]:
     """The envelope's `precision_vs_double` section (module doc)."""
     by_id = {int(r["run_id"]): r for r in double}
@@ -93,8 +88,8 @@ def compare(single: Sequence[Record], double: Sequence[Record], quantities: Sequ
     out: dict[str, Any] = {}
     for key in quantities:
         both = [(float(s[key]), float(d[key]), int(s["run_id"])) for s, d in pairs
-                if _finite(s.get(key)) and _finite(d.get(key))]
-        ref = [float(d[key]) for _, d in pairs if _finite(d.get(key))]
+                if is_finite_number(s.get(key)) and is_finite_number(d.get(key))]
+        ref = [float(d[key]) for _, d in pairs if is_finite_number(d.get(key))]
         std = float(np.std(ref, ddof=1)) if len(ref) > 1 else None
         if not both:
             out[key] = {"max_abs_diff": None, "run_id": None, "double": None, "in_double_std": None,

@@ -29,6 +29,12 @@ def table(header: list[str], rows: list[list[str]]) -> list[str]:
     return [head, "-" * len(head), *(line(r) for r in rows)]
 
 
+def is_finite_number(v: Any) -> bool:
+    """A record value that is a finite number (a bool, a string, None, NaN or inf is not)."""
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) \
+        and math.isfinite(float(v))
+
+
 def finite_or_none(obj: Any) -> Any:
     """NaN/inf -> None, recursively (JSON has no NaN)."""
     if isinstance(obj, float):

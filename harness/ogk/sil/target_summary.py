@@ -8,7 +8,7 @@ Per entry point (from the runs' pil.<entry>.* keys, ogk.sil.pil):
   stack_bytes      {value, run_id}: the deepest stack one call used, where
 Host vs target (per quantity of the plan, over the runs both flew):
   {max_abs_diff, run_id, bound, within}; failures_differ: the runs whose failure differs.
-On a target whose kernel is single precision (ogk.sil.pil.PRECISION: the Cortex-M4F) the comparison is
+On a target whose kernel is single precision (ogk.sil.precision.TARGET_PRECISION: the Cortex-M4F) the comparison is
 report only: the families' bounds are those of a double kernel (a few ulp of libm carried by the
 closed loop), and a float kernel rounds every operation to binary32 (eps 1.2e-7, 5e8 times double's),
 which the closed loop carries to the end of the flight by a gain no family has derived. The figures are
@@ -18,7 +18,6 @@ campaign, and failures_differ is still listed.
 """
 from __future__ import annotations
 
-import math
 import re
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -26,6 +25,8 @@ from typing import Any
 import numpy as np
 
 from .family import Record
+from .precision import TARGET_PRECISION
+from .report import is_finite_number
 
 _ENTRY = re.compile(r"^pil\.(?P<entry>[A-Za-z_][A-Za-z0-9_]*)\.insn_max$")
 
@@ -41,17 +42,12 @@ def entry_points(records: Sequence[Record]) -> list[str]:
     return list(seen)
 
 
-def _finite(v: Any) -> bool:
-    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) \
-        and math.isfinite(float(v))
-
-
 def worst_per_entry(records: Sequence[Record]) -> dict[str, Any]:
     """Per entry point: calls, median, worst instructions (run, step), worst stack (run)."""
     out: dict[str, Any] = {}
     for e in entry_points(records):
         p = f"pil.{e}."
-        runs = [r for r in records if _finite(r.get(p + "insn_max"))]
+        runs = [r for r in records if is_finite_number(r.get(p + "insn_max"))]
         if not runs:
             out[e] = {"calls": 0, "insn_median": None, "insn_max": None, "stack_bytes": None}
             continue
@@ -77,7 +73,7 @@ def host_vs_target(target: Sequence[Record], host: Sequence[Record],
     out: dict[str, Any] = {}
     for key, bound in bounds.items():
         diffs = [(abs(float(t[key]) - float(h[key])), int(t["run_id"])) for t, h in pairs
-                 if _finite(t.get(key)) and _finite(h.get(key))]
+                 if is_finite_number(t.get(key)) and is_finite_number(h.get(key))]
         stated = None if report_only else float(bound)
         if not diffs:
             out[key] = {"max_abs_diff": None, "run_id": None, "bound": stated,
@@ -97,9 +93,8 @@ def host_vs_target(target: Sequence[Record], host: Sequence[Record],
 
 def summary(target: str, records: Sequence[Record], host: Sequence[Record] | None,
             bounds: Mapping[str, float], why: str, wall_s: float, workers: int) -> dict[str, Any]:
-    """The envelope's `pil` section (`precision`: that of the target's kernel, ogk.sil.pil.PRECISION)."""
-    from .pil import PRECISION
-    precision = PRECISION.get(target, "double")
+    """The envelope's `pil` section (`precision`: that of the target's kernel, ogk.sil.precision.TARGET_PRECISION)."""
+    precision = TARGET_PRECISION[target]
     doc: dict[str, Any] = {
         "target": target, "precision": precision, "entry_points": worst_per_entry(records),
         "runs_per_minute": (60.0 * len(records) / wall_s) if wall_s > 0.0 else None,

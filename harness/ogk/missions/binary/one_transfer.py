@@ -162,8 +162,8 @@ def _blt_on_target(program: FlightProgram, scenario: BinaryScenario, name: str, 
     except BaseException:
         session.kill()
         raise
-    from ogk.sil.pil import PRECISION
-    doc.update(target=program.target, target_precision=PRECISION[program.target],
+    from ogk.sil.precision import TARGET_PRECISION
+    doc.update(target=program.target, target_precision=TARGET_PRECISION[program.target],
                flight_program=file_sha256(program.elf), target_solves=log, pil=keys)
     return doc
 

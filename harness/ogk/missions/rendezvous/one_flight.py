@@ -193,8 +193,8 @@ def run(header: ScenarioHeader, args: argparse.Namespace) -> int:
     doc = result.to_json()
     if session is not None:     # the flight program's figures per entry point (docs/guides/pil.md)
         from ogk.sil.pil_build import file_sha256
-        from ogk.sil.pil import PRECISION
-        doc.update({"target": target, "target_precision": PRECISION[target],
+        from ogk.sil.precision import TARGET_PRECISION
+        doc.update({"target": target, "target_precision": TARGET_PRECISION[target],
                     "flight_program": file_sha256(session.program.elf),
                     **target_keys})
     doc.update({"scenario_path": str(header.path), "scenario_sha256": header.sha256,
